@@ -1,0 +1,10 @@
+#pragma once
+// Subcommands of the `zenith` executable. Each registers itself on the CLI11 app.
+#include <CLI/CLI.hpp>
+
+namespace zenith::app {
+
+/// `zenith atmosphere show|list`.
+void register_atmosphere_command(CLI::App& app);
+
+}  // namespace zenith::app

@@ -1,0 +1,101 @@
+#include "atmosphere/json_reader.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace zenith {
+
+ConfigError::ConfigError(const std::string& file, const std::string& key, const std::string& message)
+    : std::runtime_error(file + ": " + (key.empty() ? std::string("(top level)") : key) + ": " + message),
+      file_(file),
+      key_(key) {}
+
+nlohmann::json parse_json(const std::string& text, const std::string& file) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw ConfigError(file, "", std::string("not valid JSON: ") + e.what());
+  }
+}
+
+JsonReader::JsonReader(const nlohmann::json& object, std::string file, std::string path)
+    : object_(object), file_(std::move(file)), path_(std::move(path)) {
+  if (!object_.is_object()) throw ConfigError(file_, path_, "must be a JSON object, got " + object_.dump());
+}
+
+void JsonReader::fail(const std::string& key, const std::string& message) const {
+  throw ConfigError(file_, key.empty() ? path_ : key_path(key), message);
+}
+
+std::string JsonReader::range_text(double lo, double hi, const std::string& unit) {
+  std::ostringstream s;
+  s << "must be in [" << lo << ", " << hi << "]" << (unit.empty() ? "" : " ") << unit;
+  return s.str();
+}
+
+bool JsonReader::has(const std::string& key) const { return object_.contains(key); }
+
+const nlohmann::json& JsonReader::raw(const std::string& key) {
+  if (!object_.contains(key)) fail(key, "missing required key");
+  read_.insert(key);
+  return object_.at(key);
+}
+
+JsonReader JsonReader::object(const std::string& key) {
+  const nlohmann::json& v = raw(key);
+  if (!v.is_object()) fail(key, "must be an object, got " + v.dump());
+  return JsonReader(v, file_, key_path(key));
+}
+
+std::optional<JsonReader> JsonReader::optional_object(const std::string& key) {
+  if (!has(key)) return std::nullopt;
+  return object(key);
+}
+
+double JsonReader::number(const std::string& key, double lo, double hi, const std::string& unit) {
+  const nlohmann::json& v = raw(key);
+  if (!v.is_number()) fail(key, "must be a number " + range_text(lo, hi, unit).substr(5) + ", got " + v.dump());
+  const double x = v.get<double>();
+  if (!std::isfinite(x) || x < lo || x > hi) {
+    std::ostringstream s;
+    s << "= " << v.dump() << ": " << range_text(lo, hi, unit);
+    fail(key, s.str());
+  }
+  return x;
+}
+
+double JsonReader::number_or(const std::string& key, double fallback, double lo, double hi, const std::string& unit) {
+  return has(key) ? number(key, lo, hi, unit) : fallback;
+}
+
+int JsonReader::integer(const std::string& key, int lo, int hi) {
+  const nlohmann::json& v = raw(key);
+  if (!v.is_number_integer()) fail(key, "must be an integer, got " + v.dump());
+  const auto x = v.get<long long>();
+  if (x < lo || x > hi) fail(key, "= " + v.dump() + ": " + range_text(lo, hi, ""));
+  return int(x);
+}
+
+std::string JsonReader::string(const std::string& key, const std::vector<std::string>& allowed) {
+  const nlohmann::json& v = raw(key);
+  if (!v.is_string()) fail(key, "must be a string, got " + v.dump());
+  std::string s = v.get<std::string>();
+  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), s) == allowed.end()) {
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+    fail(key, "= \"" + s + "\": must be one of " + list);
+  }
+  return s;
+}
+
+std::string JsonReader::string_or(const std::string& key, const std::string& fallback,
+                                  const std::vector<std::string>& allowed) {
+  return has(key) ? string(key, allowed) : fallback;
+}
+
+void JsonReader::finish() const {
+  for (const auto& [key, value] : object_.items())
+    if (!read_.count(key)) fail(key, "unknown key (check the spelling; see docs/atmosphere-config.md)");
+}
+
+}  // namespace zenith

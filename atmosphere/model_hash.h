@@ -1,0 +1,27 @@
+#pragma once
+// Identity of a lookup-table set.
+//
+// The hash covers exactly the quantities that shape the precomputed tables:
+// wavelengths, radii, ground albedo, every coefficient, density profile and
+// phase function, and the air-mass mode. It does not cover what only the render
+// pass uses (exposure, sun irradiance and angular size, tone mapping, camera)
+// nor the model's name, so changing those never triggers a precompute.
+//
+// Numbers enter as decimal text rounded to 12 significant digits, so the same
+// parameters give the same hash on every machine even if a libm differs in the
+// last bit of a derived coefficient.
+#include <string>
+
+#include "atmosphere/atmosphere_model.h"
+
+namespace zenith::atmosphere {
+
+/// Bumped whenever the meaning of a table changes (parameterization, layout).
+inline constexpr int kLookupTableFormatVersion = 1;
+
+/// The canonical text that is hashed (one "key: values" line per quantity).
+std::string canonical_description(const AtmosphereModel& model);
+/// SHA-256 of canonical_description(), as 64 lowercase hex digits.
+std::string lookup_table_hash(const AtmosphereModel& model);
+
+}  // namespace zenith::atmosphere
