@@ -58,7 +58,7 @@ AirMassStretch AirMassStretch::pickering(double ground_radius_m, double top_radi
     const double geometric = slant_column(ground_radius_m, top_radius_m, mu, molecular_profile) / vertical;
     a.cos_zenith_.push_back(mu);
     a.geometric_.push_back(geometric);
-    a.stretch_.push_back(pickering_air_mass(elevation_deg) / geometric);
+    a.stretch_.push_back(std::max(1.0, pickering_air_mass(elevation_deg) / geometric));
   }
   return a;
 }
@@ -78,6 +78,14 @@ double AirMassStretch::operator()(double r_m, double mu) const {
   const double p = r_m * std::sqrt(std::max(0.0, 1.0 - mu * mu));  // impact parameter, constant along the ray
   if (p < R) return interpolate(stretch_, std::sqrt(1.0 - (p / R) * (p / R)));
   return 1.0 + (stretch_.front() - 1.0) * molecular_profile_(p - R);
+}
+
+double AirMassStretch::min_stretch() const {
+  return enabled() ? *std::min_element(stretch_.begin(), stretch_.end()) : 1.0;
+}
+
+double AirMassStretch::max_stretch() const {
+  return enabled() ? *std::max_element(stretch_.begin(), stretch_.end()) : 1.0;
 }
 
 double AirMassStretch::geometric_air_mass(double elevation_deg) const {

@@ -31,7 +31,10 @@ double pickering_air_mass(double apparent_altitude_deg);
 ///  * s → 1 toward the zenith and reaches ≈ 1.09 at Earth's horizon;
 ///  * for rays that pass above the ground (p > R_ground) the bending fades with
 ///    the density at the ray's lowest point: s = 1 + (s_h − 1)·ρ_R(p − R_ground);
-///  * s is continuous in direction and altitude.
+///  * s is continuous in direction and altitude;
+///  * s ≥ 1: where Pickering's fit dips a hair below the straight-ray air mass
+///    (well above the horizon, by < 1e-3) refraction cannot shorten a path, so
+///    the ratio is clamped to 1.
 /// It is switchable (`air_mass: "geometric"` gives s ≡ 1) and meant for Earth,
 /// the planet for which Pickering fitted it.
 class AirMassStretch {
@@ -43,6 +46,11 @@ class AirMassStretch {
   static AirMassStretch pickering(double ground_radius_m, double top_radius_m, const DensityProfile& molecular_profile);
 
   bool enabled() const { return !stretch_.empty(); }
+  /// Smallest and largest stretch over all ground elevations (1 when disabled).
+  /// Pickering fitted Earth's refraction; for a planet of very different
+  /// geometry the ratio leaves [1, 1.5] and the option is refused by the loader.
+  double min_stretch() const;
+  double max_stretch() const;
   /// Optical-depth stretch for a ray through radius r [m] with cosine μ of its zenith angle.
   double operator()(double r_m, double mu) const;
   /// Straight-ray relative air mass of the molecular profile from the ground at

@@ -13,7 +13,7 @@ ConfigError::ConfigError(const std::string& file, const std::string& key, const 
 nlohmann::json parse_json(const std::string& text, const std::string& file) {
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax errors and number overflow
     throw ConfigError(file, "", std::string("not valid JSON: ") + e.what());
   }
 }

@@ -214,7 +214,18 @@ DensityProfile read_profile(JsonReader& parent, const std::string& key, double* 
 
 AirMassStretch read_air_mass(JsonReader& root, const AtmosphereModel& m) {
   if (root.string_or("air_mass", "geometric", {"geometric", "pickering"}) == "geometric") return {};
-  return AirMassStretch::pickering(m.ground_radius_m, m.top_radius_m, m.rayleigh_density);
+  AirMassStretch stretch = AirMassStretch::pickering(m.ground_radius_m, m.top_radius_m, m.rayleigh_density);
+  // Pickering's formula is Earth's refraction; it is a small correction only for
+  // Earth-like ratios of radius to scale height (Earth: stretch 1 to ~1.09).
+  if (stretch.max_stretch() > 1.5 || stretch.geometric_air_mass(0.0) > 1.5 * pickering_air_mass(0.0)) {
+    std::ostringstream s;
+    s << "= \"pickering\": Pickering's air mass is fitted to Earth (horizon air mass 38.7); this planet's "
+         "straight-ray horizon air mass is "
+      << stretch.geometric_air_mass(0.0) << ", so the optical-depth stretch would be " << stretch.max_stretch()
+      << "; it must stay in [1, 1.5]. Use \"geometric\" for this atmosphere";
+    root.fail("air_mass", s.str());
+  }
+  return stretch;
 }
 
 void check_mie_consistency(JsonReader& r, const std::string& key, const AtmosphereModel& m) {
@@ -339,6 +350,13 @@ Gas resolve_gas(JsonReader& root, AtmosphereModel& m, const Planet& planet, cons
     m.rayleigh_scattering_m1[i] = rayleigh_scattering_coefficient_scaled(
         ctx.wavelengths_nm[i], index[i], index_density, gas.number_density_m3, depolarization);
   note << "f(delta) = " << king_factor(depolarization);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(m.rayleigh_scattering_m1[i] <= kCoefficient.hi)) {
+      std::ostringstream s;
+      s << "derived Rayleigh scattering " << m.rayleigh_scattering_m1[i] << " m^-1 at " << ctx.wavelengths_nm[i]
+        << " nm must be in [0, 1] m^-1 (an opaque gas: check the number density and refractive index)";
+      r.fail("", s.str());
+    }
   m.rayleigh_phase = read_rayleigh_phase(r);
 
   // Molecular absorption: cross section × N, or eq. (11) from the complex index.
@@ -450,6 +468,10 @@ void resolve_aerosol(JsonReader& root, AtmosphereModel& m, const Context& ctx) {
       for (std::size_t i = 0; i < n; ++i) m.mie_extinction_m1[i] = m.mie_scattering_m1[i] / ssa[i];
     }
     e.finish();
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(m.mie_extinction_m1[i] <= kCoefficient.hi))
+        r->fail("extinction", "derived Mie extinction " + std::to_string(m.mie_extinction_m1[i]) +
+                                  " m^-1 must be in [0, 1] m^-1 (check number density and radius)");
     check_mie_consistency(*r, "extinction", m);
   }
   m.mie_phase = read_mie_phase(*r, ctx);

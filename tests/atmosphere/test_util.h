@@ -1,0 +1,23 @@
+#pragma once
+// Small numerical helpers shared by the atmosphere tests.
+#include <cmath>
+#include <functional>
+
+#include "atmosphere/constants.h"
+
+namespace zenith::atmosphere::test {
+
+/// ∫_{4π} P(cos θ) dω = 2π ∫_{-1}^{1} P(μ) dμ by composite Gauss–Legendre
+/// quadrature (4 nodes per panel); `panels` high enough for sharp HG lobes.
+inline double integrate_over_sphere(const std::function<double(double)>& phase, int panels = 4000) {
+  static constexpr double x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+  static constexpr double w[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+  double sum = 0.0;
+  for (int p = 0; p < panels; ++p) {
+    const double a = -1.0 + 2.0 * p / panels, b = -1.0 + 2.0 * (p + 1) / panels;
+    for (int k = 0; k < 4; ++k) sum += w[k] * 0.5 * (b - a) * phase(0.5 * (a + b) + 0.5 * (b - a) * x[k]);
+  }
+  return 2.0 * kPi * sum;
+}
+
+}  // namespace zenith::atmosphere::test
