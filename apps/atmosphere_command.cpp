@@ -51,7 +51,7 @@ nlohmann::json to_json(const LoadedAtmosphere& a, const std::string& hash) {
   j["ground_albedo"] = spec(m.ground_albedo);
   j["rayleigh"] = {{"scattering_m1", spec(m.rayleigh_scattering_m1)},
                    {"density", profile_text(m.rayleigh_density)},
-                   {"phase", m.rayleigh_phase == atmosphere::RayleighPhaseModel::Penndorf ? "penndorf" : "classic"}};
+                   {"phase", atmosphere::rayleigh_phase_name(m.rayleigh_phase)}};
   j["mie"] = {{"scattering_m1", spec(m.mie_scattering_m1)},
               {"extinction_m1", spec(m.mie_extinction_m1)},
               {"density", profile_text(m.mie_density)},
@@ -89,8 +89,11 @@ void print_text(const LoadedAtmosphere& a, const std::string& hash) {
   for (double w : m.wavelengths_nm) header += fmt::format("{:>9.1f} nm", w);
   fmt::print("\n{}\n", header);
   row("ground albedo", m.ground_albedo, "");
-  fmt::print("  Rayleigh ({} phase; {})\n",
-             m.rayleigh_phase == atmosphere::RayleighPhaseModel::Penndorf ? "Penndorf eq. 9" : "classic eq. 8",
+  const char* rayleigh_phase_text[] = {"classic eq. 9", "Penndorf eq. 10", "depolarized"};
+  fmt::print("  Rayleigh ({} phase{}; {})\n", rayleigh_phase_text[int(m.rayleigh_phase)],
+             m.rayleigh_phase == atmosphere::RayleighPhaseModel::Depolarized
+                 ? fmt::format(", delta = {}", m.rayleigh_depolarization)
+                 : "",
              profile_text(m.rayleigh_density));
   row("  beta_R^scat (ground)", m.rayleigh_scattering_m1, "m^-1");
   if (m.has_mie()) {

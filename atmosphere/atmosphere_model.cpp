@@ -16,9 +16,22 @@ double MiePhase::operator()(std::size_t i, double cos_theta) const {
   return 0.0;
 }
 
+const char* rayleigh_phase_name(RayleighPhaseModel model) {
+  switch (model) {
+    case RayleighPhaseModel::Classic: return "classic";
+    case RayleighPhaseModel::Penndorf: return "penndorf";
+    case RayleighPhaseModel::Depolarized: return "depolarized";
+  }
+  return "";
+}
+
 double AtmosphereModel::rayleigh_phase_function(double cos_theta) const {
-  return rayleigh_phase == RayleighPhaseModel::Penndorf ? rayleigh_phase_penndorf(cos_theta)
-                                                        : rayleigh_phase_classic(cos_theta);
+  switch (rayleigh_phase) {
+    case RayleighPhaseModel::Classic: return rayleigh_phase_classic(cos_theta);
+    case RayleighPhaseModel::Penndorf: return rayleigh_phase_penndorf(cos_theta);
+    case RayleighPhaseModel::Depolarized: return rayleigh_phase_depolarized(cos_theta, rayleigh_depolarization);
+  }
+  return 0.0;
 }
 
 Spectrum AtmosphereModel::extinction_m1(double altitude_m) const {

@@ -17,9 +17,13 @@
 namespace zenith::atmosphere {
 
 enum class RayleighPhaseModel {
-  Classic,   ///< eq. (8)
-  Penndorf,  ///< eq. (9)
+  Classic,      ///< eq. (9)
+  Penndorf,     ///< eq. (10)
+  Depolarized,  ///< Chandrasekhar's phase with the gas's depolarization δ (exactly normalized)
 };
+
+/// "classic", "penndorf" or "depolarized", as in parameter files.
+const char* rayleigh_phase_name(RayleighPhaseModel model);
 
 /// Mie phase function, per wavelength. Henyey–Greenstein is the double HG with α = 1.
 struct MiePhase {
@@ -33,7 +37,7 @@ struct MiePhase {
   double operator()(std::size_t i, double cos_theta) const;
 };
 
-/// A purely absorbing constituent (ozone, O2, molecular absorption of eq. 11,
+/// A purely absorbing constituent (ozone, O2, molecular absorption of eq. 12,
 /// or any user-defined absorber).
 struct Absorber {
   std::string name;
@@ -52,6 +56,7 @@ struct AtmosphereModel {
   Spectrum rayleigh_scattering_m1;
   DensityProfile rayleigh_density = DensityProfile::exponential(8000.0);
   RayleighPhaseModel rayleigh_phase = RayleighPhaseModel::Penndorf;
+  double rayleigh_depolarization = 0.0;  ///< δ, used by RayleighPhaseModel::Depolarized
 
   // Aerosols (Mie). Absorption is β^ext − β^scat.
   Spectrum mie_scattering_m1;

@@ -6,7 +6,9 @@
 namespace zenith {
 
 ConfigError::ConfigError(const std::string& file, const std::string& key, const std::string& message)
-    : std::runtime_error(file + ": " + (key.empty() ? std::string("(top level)") : key) + ": " + message),
+    // "file: /key = value: reason" for values, "file: /key: reason" otherwise.
+    : std::runtime_error(file + ": " + (key.empty() ? std::string("(top level)") : key) +
+                         (message.starts_with("= ") || message.starts_with("[") ? " " : ": ") + message),
       file_(file),
       key_(key) {}
 
@@ -54,7 +56,7 @@ std::optional<JsonReader> JsonReader::optional_object(const std::string& key) {
 
 double JsonReader::number(const std::string& key, double lo, double hi, const std::string& unit) {
   const nlohmann::json& v = raw(key);
-  if (!v.is_number()) fail(key, "must be a number " + range_text(lo, hi, unit).substr(5) + ", got " + v.dump());
+  if (!v.is_number()) fail(key, "= " + v.dump() + ": must be a number, " + range_text(lo, hi, unit).substr(5));
   const double x = v.get<double>();
   if (!std::isfinite(x) || x < lo || x > hi) {
     std::ostringstream s;

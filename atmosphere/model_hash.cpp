@@ -43,7 +43,9 @@ std::string canonical_description(const AtmosphereModel& m) {
   line(out, "ground_albedo", m.ground_albedo.values());
   line(out, "rayleigh.scattering_m1", m.rayleigh_scattering_m1.values());
   profile(out, "rayleigh.density", m.rayleigh_density);
-  out << "rayleigh.phase: " << (m.rayleigh_phase == RayleighPhaseModel::Penndorf ? "penndorf" : "classic") << '\n';
+  out << "rayleigh.phase: " << rayleigh_phase_name(m.rayleigh_phase) << '\n';
+  if (m.rayleigh_phase == RayleighPhaseModel::Depolarized)
+    line(out, "rayleigh.depolarization", std::span(&m.rayleigh_depolarization, 1));
   line(out, "mie.scattering_m1", m.mie_scattering_m1.values());
   line(out, "mie.extinction_m1", m.mie_extinction_m1.values());
   if (m.has_mie()) {

@@ -3,7 +3,8 @@
 //
 // The hash covers exactly the quantities that shape the precomputed tables:
 // wavelengths, radii, ground albedo, every coefficient, density profile and
-// phase function, and the air-mass mode. It does not cover what only the render
+// phase function in use (the aerosol profile and phase only when there is an
+// aerosol), and the air-mass mode. It does not cover what only the render
 // pass uses (exposure, sun irradiance and angular size, tone mapping, camera)
 // nor the model's name, so changing those never triggers a precompute.
 //

@@ -58,6 +58,12 @@ struct Context {
   std::vector<std::string>* derivation;
 };
 
+std::string format_nm(double wavelength_nm) {
+  std::ostringstream s;
+  s << wavelength_nm << " nm";
+  return s.str();
+}
+
 double number(JsonReader& r, const std::string& key, const Range& range) {
   return r.number(key, range.lo, range.hi, range.unit);
 }
@@ -106,9 +112,12 @@ Spectrum spectral(JsonReader& r, const std::string& key, const Range& range, con
   return table.sample(ctx.wavelengths_nm);
 }
 
-std::vector<double> read_wavelengths(JsonReader& r) {
-  if (!r.has("wavelengths_nm")) return kDefaultWavelengths_nm;
-  const nlohmann::json& v = r.raw("wavelengths_nm");
+/// The working wavelengths: from the file, or overridden by the caller (then
+/// checked by the same rules and reported under the same key).
+std::vector<double> read_wavelengths(JsonReader& r, const std::optional<std::vector<double>>& override_nm) {
+  if (!r.has("wavelengths_nm") && !override_nm) return kDefaultWavelengths_nm;
+  const nlohmann::json v = override_nm ? nlohmann::json(*override_nm) : r.raw("wavelengths_nm");
+  if (override_nm && r.has("wavelengths_nm")) r.raw("wavelengths_nm");  // overridden, not unknown
   if (!v.is_array() || v.empty() || v.size() > 64)
     r.fail("wavelengths_nm", "must be an array of 1 to 64 wavelengths in nm, got " + v.dump());
   std::vector<double> wl;
@@ -154,8 +163,10 @@ Planet read_planet(JsonReader& root, const Context& ctx) {
 }
 
 RayleighPhaseModel read_rayleigh_phase(JsonReader& r) {
-  return r.string_or("phase", "penndorf", {"penndorf", "classic"}) == "classic" ? RayleighPhaseModel::Classic
-                                                                                 : RayleighPhaseModel::Penndorf;
+  const std::string phase = r.string_or("phase", "penndorf", {"penndorf", "classic", "depolarized"});
+  if (phase == "classic") return RayleighPhaseModel::Classic;
+  if (phase == "depolarized") return RayleighPhaseModel::Depolarized;
+  return RayleighPhaseModel::Penndorf;
 }
 
 MiePhase read_mie_phase(JsonReader& parent, const Context& ctx) {
@@ -247,6 +258,8 @@ void resolve_standard(JsonReader& root, AtmosphereModel& m, const Context& ctx) 
     m.rayleigh_scattering_m1 = spectral(r, "scattering_m1", kCoefficient, ctx);
     m.rayleigh_density = DensityProfile::exponential(number(r, "scale_height_m", kScaleHeight));
     m.rayleigh_phase = read_rayleigh_phase(r);
+    if (m.rayleigh_phase == RayleighPhaseModel::Depolarized || r.has("depolarization"))
+      m.rayleigh_depolarization = number(r, "depolarization", kDepolarization);
     r.finish();
   }
   const std::size_t n = ctx.wavelengths_nm.size();
@@ -335,7 +348,13 @@ Gas resolve_gas(JsonReader& root, AtmosphereModel& m, const Planet& planet, cons
   double index_density = gas.number_density_m3;
   if (r.has("refractive_index") && r.raw("refractive_index").is_string()) {
     r.string("refractive_index", {"standard_air"});
-    for (std::size_t i = 0; i < n; ++i) index[i] = standard_air_refractive_index(ctx.wavelengths_nm[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      index[i] = standard_air_refractive_index(ctx.wavelengths_nm[i]);
+      if (ctx.wavelengths_nm[i] > 2000.0)
+        ctx.warnings->push_back(r.file() + ": " + r.key_path("refractive_index") +
+                                ": Edlen's standard-air formula is valid to 2000 nm; extrapolated to " +
+                                format_nm(ctx.wavelengths_nm[i]));
+    }
     index_density = kStandardAirNumberDensity_m3;
   } else {
     index = spectral(r, "refractive_index", kGasIndex, ctx);
@@ -344,7 +363,7 @@ Gas resolve_gas(JsonReader& root, AtmosphereModel& m, const Planet& planet, cons
     index_density = number(r, "refractive_index_number_density_m3", kNumberDensity);
   const double depolarization = number(r, "depolarization", kDepolarization);
 
-  // Rayleigh scattering, eq. (10), with (n − 1) scaled to the gas density.
+  // Rayleigh scattering, eq. (11), with (n − 1) scaled to the gas density.
   m.rayleigh_scattering_m1 = Spectrum(n);
   for (std::size_t i = 0; i < n; ++i)
     m.rayleigh_scattering_m1[i] = rayleigh_scattering_coefficient_scaled(
@@ -358,8 +377,9 @@ Gas resolve_gas(JsonReader& root, AtmosphereModel& m, const Planet& planet, cons
       r.fail("", s.str());
     }
   m.rayleigh_phase = read_rayleigh_phase(r);
+  m.rayleigh_depolarization = depolarization;
 
-  // Molecular absorption: cross section × N, or eq. (11) from the complex index.
+  // Molecular absorption: cross section × N, or eq. (12) from the complex index.
   if (auto a = r.optional_object("absorption")) {
     Absorber abs;
     abs.name = "molecular absorption";
@@ -370,9 +390,12 @@ Gas resolve_gas(JsonReader& root, AtmosphereModel& m, const Planet& planet, cons
       const Spectrum k = spectral(*a, "refractive_index_imag", kImagIndex, ctx);
       const double radius = number(*a, "molecule_radius_m", kMoleculeRadius);
       abs.absorption_m1 = Spectrum(n);
-      for (std::size_t i = 0; i < n; ++i)
-        abs.absorption_m1[i] = small_particle_absorption_coefficient(
-            ctx.wavelengths_nm[i], {index[i], k[i]}, radius, gas.number_density_m3);
+      for (std::size_t i = 0; i < n; ++i) {
+        // Real part of the index at the gas's own density ((n − 1) ∝ N).
+        const double n_gas = 1.0 + (index[i] - 1.0) * gas.number_density_m3 / index_density;
+        abs.absorption_m1[i] = small_particle_absorption_coefficient(ctx.wavelengths_nm[i], {n_gas, k[i]}, radius,
+                                                                     gas.number_density_m3);
+      }
     }
     a->finish();
     m.absorbers.push_back(std::move(abs));
@@ -408,7 +431,7 @@ void resolve_ozone(JsonReader& root, AtmosphereModel& m, const Context& ctx) {
       sigma[i] = ozone_cross_section_m2(ctx.wavelengths_nm[i], T, &covered);
       if (!covered)
         ctx.warnings->push_back(r->file() + ": " + r->key_path("cross_sections") + ": table covers 360-830 nm; " +
-                                std::to_string(ctx.wavelengths_nm[i]) + " nm uses the nearest bin");
+                                format_nm(ctx.wavelengths_nm[i]) + " uses the nearest bin");
     }
   }
   // Eq. (15): β_O3^abs(h, λ) = σ(λ) ρ_O3(h).
@@ -489,9 +512,14 @@ LoadedAtmosphere resolve_atmosphere(const nlohmann::json& parameters, const std:
   (void)version;
   AtmosphereModel& m = out.model;
   m.name = root.string_or("name", source, {});
+  // Free-text provenance of the values (not part of the physics or the hash).
+  if (root.has("sources")) {
+    const nlohmann::json& s = root.raw("sources");
+    if (!s.is_array() || !std::all_of(s.begin(), s.end(), [](const nlohmann::json& x) { return x.is_string(); }))
+      root.fail("sources", "must be an array of strings");
+  }
   out.mode = root.string("mode", {"standard", "advanced"});
-  const std::vector<double> file_wavelengths = read_wavelengths(root);  // validated even when overridden
-  m.wavelengths_nm = options.wavelengths_nm.value_or(file_wavelengths);
+  m.wavelengths_nm = read_wavelengths(root, options.wavelengths_nm);
   Context ctx{m.wavelengths_nm, &out.warnings, &out.derivation};
 
   const Planet planet = read_planet(root, ctx);

@@ -6,7 +6,7 @@
 //    scale heights, Mie phase constants, radii, ground albedo, optional absorbers.
 //  * advanced — physical quantities from which the coefficients are derived:
 //    refractive index, number density (or pressure and temperature, or mass
-//    density and molar mass), depolarization, molecular absorption (eq. 11–12),
+//    density and molar mass), depolarization, molecular absorption (eq. 12),
 //    O2 (eq. 13–14) and ozone (eq. 15) absorption, turbidity-driven Mie
 //    scattering (eq. 17), anomalous-diffraction Mie extinction (eq. 18–20),
 //    wavelength-dependent double Henyey–Greenstein phase (eq. 16).

@@ -5,11 +5,11 @@
 
 namespace zenith::atmosphere {
 
-/// Classic Rayleigh phase function, paper eq. (8):
+/// Classic Rayleigh phase function, paper eq. (9):
 ///   P_R(θ) = 3/4 (1 + cos²θ) / 4π.
 double rayleigh_phase_classic(double cos_theta);
 
-/// Penndorf's Rayleigh phase function for air, paper eq. (9):
+/// Penndorf's Rayleigh phase function for air, paper eq. (10):
 ///   P_R(θ) = 0.7629 (1 + 0.932 cos²θ) / 4π.
 /// The constants are Penndorf's (1957) fit; as printed they integrate to
 /// 0.7629·(4π)(1 + 0.932/3)/4π = 0.99991 over the sphere, not exactly 1. We keep
