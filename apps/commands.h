@@ -6,5 +6,9 @@ namespace zenith::app {
 
 /// `zenith atmosphere show|list`.
 void register_atmosphere_command(CLI::App& app);
+/// `zenith precompute`.
+void register_precompute_command(CLI::App& app);
+/// `zenith sample`.
+void register_sample_command(CLI::App& app);
 
 }  // namespace zenith::app

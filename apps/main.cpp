@@ -1,4 +1,5 @@
 // zenith — planetary atmospheres for domes, projector clusters and display walls.
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -8,6 +9,8 @@
 #include "atmosphere/json_reader.h"
 
 int main(int argc, char** argv) {
+  // Logs go to stderr: stdout carries command output (CSV, JSON) that may be piped.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("zenith"));
   CLI::App app{"zenith: physically based planetary atmospheres for planetarium domes and projector clusters"};
   app.require_subcommand(1);
   std::string log_level = "info";
@@ -16,6 +19,8 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] { spdlog::set_level(spdlog::level::from_str(log_level)); });
 
   zenith::app::register_atmosphere_command(app);
+  zenith::app::register_precompute_command(app);
+  zenith::app::register_sample_command(app);
 
   try {
     app.parse(argc, argv);

@@ -57,6 +57,13 @@ class AirMassStretch {
   /// elevation h [deg] (the denominator of s); exposed for tests and reports.
   double geometric_air_mass(double elevation_deg) const;
 
+  // The table behind operator() and its fade, for implementations that evaluate
+  // the stretch elsewhere (the GPU precompute, render/lut/gpu_precompute.cpp).
+  double ground_radius_m() const { return ground_radius_m_; }
+  const DensityProfile& molecular_profile() const { return molecular_profile_; }
+  const std::vector<double>& cos_zenith_table() const { return cos_zenith_; }  ///< abscissae μ_i = t_i², t uniform
+  const std::vector<double>& stretch_table() const { return stretch_; }       ///< s at each abscissa
+
  private:
   /// Linear interpolation of a per-abscissa table at cos(zenith) at the ground.
   double interpolate(const std::vector<double>& values, double cos_zenith) const;

@@ -41,6 +41,16 @@ Spectrum AtmosphereModel::extinction_m1(double altitude_m) const {
   return e;
 }
 
+void AtmosphereModel::extinction_m1(double altitude_m, double* out) const {
+  const double rayleigh = rayleigh_density(altitude_m), mie = mie_density(altitude_m);
+  for (std::size_t i = 0; i < wavelength_count(); ++i)
+    out[i] = rayleigh_scattering_m1[i] * rayleigh + mie_extinction_m1[i] * mie;
+  for (const Absorber& a : absorbers) {
+    const double density = a.profile(altitude_m);
+    for (std::size_t i = 0; i < wavelength_count(); ++i) out[i] += a.absorption_m1[i] * density;
+  }
+}
+
 AtmosphereModel::ZenithOpticalDepth AtmosphereModel::zenith_optical_depth() const {
   const double H = atmosphere_height_m();
   ZenithOpticalDepth d;

@@ -77,6 +77,8 @@ struct AtmosphereModel {
   double rayleigh_phase_function(double cos_theta) const;
   /// Total extinction coefficient at altitude h [m^-1], without the air-mass stretch.
   Spectrum extinction_m1(double altitude_m) const;
+  /// Same, written into out[0..wavelength_count()) without allocating (hot loops).
+  void extinction_m1(double altitude_m, double* out) const;
   /// Vertical optical depth from the ground to the top, per constituent and total.
   struct ZenithOpticalDepth {
     Spectrum rayleigh, mie_scattering, mie_absorption, total;

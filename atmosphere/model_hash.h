@@ -18,7 +18,7 @@
 namespace zenith::atmosphere {
 
 /// Bumped whenever the meaning of a table changes (parameterization, layout).
-inline constexpr int kLookupTableFormatVersion = 1;
+inline constexpr int kLookupTableFormatVersion = 5;
 
 /// The canonical text that is hashed (one "key: values" line per quantity).
 std::string canonical_description(const AtmosphereModel& model);

@@ -1,0 +1,124 @@
+#include "apps/sampling.h"
+
+#include <sstream>
+
+#include "apps/progress_bar.h"
+#include "atmosphere/constants.h"
+#include "atmosphere/reference/geometry.h"
+#include "atmosphere/reference/optical_depth.h"
+#include "atmosphere/reference/path_tracer.h"
+
+namespace zenith::app {
+namespace {
+
+using namespace atmosphere;
+
+reference::SunDisc sun_disc(const SamplingRequest& r) {
+  return {r.geometry.sun_direction(), r.sun_angular_radius_deg * kPi / 180.0};
+}
+
+reference::PathTracerOptions tracer_options(const SamplingRequest& r) {
+  reference::PathTracerOptions o;
+  o.samples_per_wavelength = r.reference_samples;
+  o.seed = r.seed;
+  o.thread_count = r.threads;
+  return o;
+}
+
+std::string spectrum_header(const AtmosphereModel& m, const std::string& prefix) {
+  std::string h;
+  for (double w : m.wavelengths_nm) h += "," + prefix + std::to_string(int(std::lround(w))) + "nm";
+  return h;
+}
+
+}  // namespace
+
+std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequest& r) {
+  std::vector<RadianceSample> samples;
+  if (r.method == SamplingMethod::Tables) {
+    const ObtainedTables t = obtain_tables(model, r.tables);
+    const lut::TableQueries queries(model, t.tables);
+    samples = sample_radiance(queries, r.geometry, r.directions);
+  } else {
+    ProgressBar bar("reference");
+    const Vec3 observer = r.geometry.observer_m(model);
+    for (std::size_t i = 0; i < r.directions.size(); ++i) {
+      bar.update("direction " + std::to_string(i + 1) + "/" + std::to_string(r.directions.size()),
+                 double(i) / double(r.directions.size()));
+      const auto e = reference::path_traced_radiance(model, observer, view_vector(r.directions[i]), sun_disc(r),
+                                                     tracer_options(r));
+      samples.push_back({r.directions[i], e.mean, e.standard_error});
+    }
+  }
+  return radiance_csv(model, samples);
+}
+
+std::string sample_transmittance_csv(const AtmosphereModel& model, const SamplingRequest& r) {
+  std::ostringstream csv;
+  csv.precision(9);
+  csv << "zenith_deg,azimuth_deg,path_length_m,ends_on_ground" << spectrum_header(model, "T_") << '\n';
+  const Vec3 observer = r.geometry.observer_m(model);
+  std::optional<ObtainedTables> tables;
+  if (r.method == SamplingMethod::Tables) tables = obtain_tables(model, r.tables);
+  for (const ViewDirection& d : r.directions) {
+    const reference::Ray ray(observer, view_vector(d));
+    const auto interval = reference::atmosphere_interval(ray, model.ground_radius_m, model.top_radius_m);
+    Spectrum t(model.wavelength_count(), 1.0);
+    if (interval.intersects) {
+      if (tables) {
+        const lut::TableQueries q(model, tables->tables);
+        const Vec3 start = observer + view_vector(d) * interval.begin_t_m;
+        const double rr = length(start), mu = dot(start, view_vector(d)) / rr;
+        double out[lut::kMaxChannels];
+        q.transmittance(rr, mu, interval.end_t_m - interval.begin_t_m, interval.ends_on_ground, out);
+        for (std::size_t c = 0; c < t.size(); ++c) t[c] = out[c];
+      } else {
+        t = reference::transmittance(model, observer + view_vector(d) * interval.begin_t_m,
+                                     observer + view_vector(d) * interval.end_t_m);
+      }
+    }
+    csv << d.zenith_deg << ',' << d.azimuth_deg << ',' << (interval.intersects ? interval.end_t_m - interval.begin_t_m : 0.0)
+        << ',' << (interval.ends_on_ground ? 1 : 0);
+    for (double v : t) csv << ',' << v;
+    csv << '\n';
+  }
+  return csv.str();
+}
+
+std::string sample_irradiance_csv(const AtmosphereModel& model, const SamplingRequest& r) {
+  std::ostringstream csv;
+  csv.precision(9);
+  csv << "altitude_m,sun_zenith_deg" << spectrum_header(model, "E_direct_") << spectrum_header(model, "E_sky_")
+      << spectrum_header(model, "E_total_");
+  if (r.method == SamplingMethod::Reference) csv << spectrum_header(model, "se_total_");
+  csv << '\n';
+  Spectrum direct(model.wavelength_count()), sky(model.wavelength_count()), total, se;
+  if (r.method == SamplingMethod::Tables) {
+    const ObtainedTables t = obtain_tables(model, r.tables);
+    const lut::TableQueries q(model, t.tables);
+    const double rr = model.ground_radius_m + r.geometry.altitude_m;
+    const double mu_s = std::cos(r.geometry.sun_zenith_deg * kPi / 180.0);
+    double with[lut::kMaxChannels], without[lut::kMaxChannels];
+    q.irradiance(rr, mu_s, true, with);
+    q.irradiance(rr, mu_s, false, without);
+    for (std::size_t c = 0; c < direct.size(); ++c) {
+      sky[c] = without[c];
+      direct[c] = with[c] - without[c];
+    }
+    total = direct + sky;
+  } else {
+    const auto e = reference::ground_irradiance(model, r.geometry.observer_m(model), sun_disc(r), tracer_options(r));
+    direct = e.direct_mean;
+    sky = e.diffuse_mean;
+    total = e.total_mean;
+    se = e.total_standard_error;
+  }
+  csv << r.geometry.altitude_m << ',' << r.geometry.sun_zenith_deg;
+  for (const Spectrum* s : {&direct, &sky, &total})
+    for (double v : *s) csv << ',' << v;
+  for (double v : se) csv << ',' << v;
+  csv << '\n';
+  return csv.str();
+}
+
+}  // namespace zenith::app

@@ -1,0 +1,82 @@
+#include "apps/table_provider.h"
+
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <optional>
+
+#include "apps/progress_bar.h"
+#include "atmosphere/lut/cpu_precompute.h"
+#include "atmosphere/lut/table_cache.h"
+#include "render/gl/egl_context.h"
+#include "render/lut/gpu_precompute.h"
+
+namespace zenith::app {
+
+using namespace atmosphere::lut;
+
+atmosphere::LoadedAtmosphere load_atmosphere_argument(const std::string& value,
+                                                      const atmosphere::LoadOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(value, ec) || value.find('/') != std::string::npos ||
+      value.ends_with(".json"))
+    return atmosphere::load_atmosphere_file(value, options);
+  return atmosphere::load_preset(value, options);
+}
+
+TableSizes table_sizes_by_name(const std::string& name) {
+  if (name == "paper") return TableSizes{};
+  if (name == "small") return TableSizes::small();
+  if (name == "large") return TableSizes{512, 128, 128, 32, 64, 256, 64, 16};
+  throw std::invalid_argument("unknown table size set '" + name + "': use paper, small or large");
+}
+
+ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const TableRequest& request) {
+  const TableCache cache(request.cache_directory.value_or(default_cache_directory()));
+  ObtainedTables out;
+  if (request.use_cache) {
+    std::string problem;
+    if (auto cached = cache.load(model, request.options, &problem)) {
+      out.tables = std::move(*cached);
+      out.from_cache = true;
+      out.cache_file = cache.path_for(table_set_key(model, request.options));
+      spdlog::info("lookup tables loaded from {}", out.cache_file.string());
+      return out;
+    }
+    if (!problem.empty()) spdlog::warn("ignoring cached tables: {}; recomputing", problem);
+  }
+
+  // The GPU path needs a GL context; without one (no EGL, no llvmpipe) use the CPU.
+  std::optional<render::gl::HeadlessContext> context;
+  if (request.backend == PrecomputeBackend::Gpu) {
+    try {
+      context.emplace();
+    } catch (const std::exception& e) {
+      spdlog::warn("no GL context for the GPU precompute, using the CPU: {}", e.what());
+    }
+  }
+
+  PrecomputeOptions options = request.options;
+  std::optional<ProgressBar> bar;
+  if (request.show_progress) {
+    bar.emplace("precompute");
+    options.progress = [&bar](const PrecomputeProgress& p) { bar->update(p.stage, p.fraction); };
+  }
+  if (context) {
+    spdlog::debug("precomputing on {} ({})", context->renderer(), context->source());
+    out.tables = render::precompute_tables_gpu(model, options, &out.report, &*context);
+  } else {
+    out.tables = precompute_tables_cpu(model, options, &out.report);
+  }
+  if (bar) bar->finish();
+  if (request.use_cache) {
+    try {
+      out.cache_file = cache.store(model, request.options, out.tables);
+    } catch (const std::exception& e) {
+      spdlog::warn("could not write the table cache in {}: {}", cache.directory().string(), e.what());
+    }
+  }
+  return out;
+}
+
+}  // namespace zenith::app

@@ -1,0 +1,41 @@
+#pragma once
+// Obtains the lookup tables of an atmosphere: from the cache when a valid set
+// with the same key exists, else by precomputing (GPU by default, CPU on
+// request or when no GL context can be had) and storing them.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "atmosphere/lut/lookup_tables.h"
+#include "atmosphere/lut/precompute_options.h"
+#include "atmosphere/parameters.h"
+
+namespace zenith::app {
+
+enum class PrecomputeBackend { Gpu, Cpu };
+
+struct TableRequest {
+  atmosphere::lut::PrecomputeOptions options;
+  PrecomputeBackend backend = PrecomputeBackend::Gpu;
+  std::optional<std::filesystem::path> cache_directory;  ///< default: default_cache_directory()
+  bool use_cache = true;
+  bool show_progress = true;
+};
+
+struct ObtainedTables {
+  atmosphere::lut::LookupTables tables;
+  atmosphere::lut::PrecomputeReport report;  ///< empty stages when loaded from the cache
+  bool from_cache = false;
+  std::filesystem::path cache_file;
+};
+
+ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const TableRequest& request);
+
+/// "--atmosphere" values: an existing file path, else a preset name.
+atmosphere::LoadedAtmosphere load_atmosphere_argument(const std::string& value,
+                                                      const atmosphere::LoadOptions& options = {});
+
+/// Table sizes by name: "paper" (the defaults), "small" (tests), "large".
+atmosphere::lut::TableSizes table_sizes_by_name(const std::string& name);
+
+}  // namespace zenith::app

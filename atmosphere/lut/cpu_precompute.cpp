@@ -1,0 +1,403 @@
+#include "atmosphere/lut/cpu_precompute.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "atmosphere/constants.h"
+#include "atmosphere/lut/gauss_legendre.h"
+#include "atmosphere/lut/parallel_for.h"
+#include "atmosphere/lut/quadrature.h"
+#include "atmosphere/model_hash.h"
+
+namespace zenith::atmosphere::lut {
+namespace {
+
+using Channels = std::array<double, kMaxChannels>;
+
+double PrecomputeSeconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Everything the stages share.
+class Precompute {
+ public:
+  Precompute(const AtmosphereModel& model, const PrecomputeOptions& options, PrecomputeReport* report)
+      : model_(model),
+        options_(options),
+        report_(report),
+        n_(model.wavelength_count()),
+        tables_(LookupTables::allocate({model.ground_radius_m, model.top_radius_m}, options.sizes, n_)),
+        queries_(model, tables_) {
+    if (n_ > kMaxChannels) throw std::invalid_argument("too many wavelengths for the lookup tables");
+    if (options.max_orders < 1) throw std::invalid_argument("max_orders must be >= 1");
+  }
+
+  LookupTables run();
+
+ private:
+  const ShellGeometry& geometry() const { return tables_.geometry; }
+  const TableSizes& sizes() const { return tables_.sizes; }
+  void stage(const std::string& name, double fraction, auto&& body);
+
+  void compute_transmittance();
+  void compute_single_scattering();
+  /// Scattering density J_n from the radiance of order n−1 (`delta_radiance`,
+  /// or the single-scattering tables when n = 2) and the ground irradiance of
+  /// order n−2 (`delta_irradiance`, or the direct sun when n = 2).
+  void compute_scattering_density(int order, Table3D& density);
+  /// Sky irradiance of order n−1 on horizontal surfaces, added to the irradiance table.
+  void compute_indirect_irradiance(int order);
+  /// Radiance of order n: J_n integrated along every ray; returns Σ L_n.
+  double compute_multiple_scattering(const Table3D& density);
+
+  /// Radiance of order (order−1) arriving at (r) from direction (μ, ν_sun = nu).
+  void previous_order_radiance(int order, double r, double mu, double mu_s, double nu, double* out) const;
+  double total_radiance_sum() const;
+
+  const AtmosphereModel& model_;
+  const PrecomputeOptions& options_;
+  PrecomputeReport* report_;
+  std::size_t n_;
+  LookupTables tables_;
+  TableQueries queries_;
+  Table3D delta_radiance_;    ///< multiple-scattering radiance of the last order
+  Table2D delta_irradiance_;  ///< sky irradiance of the last order
+  double fraction_done_ = 0.0;
+};
+
+template <typename Body>
+void run_stage(const std::string& name, double fraction, PrecomputeReport* report, const PrecomputeOptions& options,
+               double& done, Body&& body) {
+  if (options.progress) options.progress({name, done});
+  const auto start = std::chrono::steady_clock::now();
+  body();
+  if (report) report->stages.push_back({name, PrecomputeSeconds(start)});
+  done += fraction;
+  if (options.progress) options.progress({name, std::min(done, 1.0)});
+}
+
+void Precompute::stage(const std::string& name, double fraction, auto&& body) {
+  run_stage(name, fraction, report_, options_, fraction_done_, body);
+}
+
+// ---------------------------------------------------------------- transmittance
+
+void Precompute::compute_transmittance() {
+  // T(r, μ) = exp(−s(r, μ) ∫₀^d β_ext(h(t)) dt), composite Simpson rule on a uniform
+  // grid along the ray to the top (paper eq. 5, with the air-mass stretch s of eq. 21).
+  // Simpson, not the trapezoid: with 500 intervals over 100 km the trapezoid's
+  // error on a 1.2 km Mie scale height is ~1e-4 in T; Simpson's is ~1e-7.
+  Table2D& table = tables_.transmittance;
+  const int samples = options_.transmittance_samples + options_.transmittance_samples % 2;  // even
+  parallel_for(table.height, options_.threads, [&](std::size_t y) {
+    Channels beta{}, tau{};
+    for (std::size_t x = 0; x < table.width; ++x) {
+      double r, mu;
+      transmittance_r_mu(geometry(), sizes(), (double(x) + 0.5) / double(table.width),
+                         (double(y) + 0.5) / double(table.height), &r, &mu);
+      const double d = geometry().distance_to_top_m(r, mu);
+      const double dx = d / samples;
+      std::fill(tau.begin(), tau.begin() + long(n_), 0.0);
+      for (int i = 0; i <= samples; ++i) {
+        const double t = i * dx;
+        const double r_t = std::sqrt(t * t + 2.0 * r * mu * t + r * r);
+        model_.extinction_m1(r_t - geometry().bottom_radius_m, beta.data());
+        const double w = (i == 0 || i == samples) ? 1.0 / 3.0 : (i % 2 == 1 ? 4.0 / 3.0 : 2.0 / 3.0);
+        for (std::size_t c = 0; c < n_; ++c) tau[c] += w * beta[c] * dx;
+      }
+      const double stretch = model_.air_mass(r, mu);
+      float* out = table.texel(x, y);
+      for (std::size_t c = 0; c < n_; ++c) out[c] = float(std::exp(-stretch * tau[c]));
+    }
+  });
+}
+
+// ---------------------------------------------------------------- single scattering
+
+void Precompute::compute_single_scattering() {
+  // S1_R(x, v) = β_R ∫₀^d T(x, y) T(y, sun) ρ_R(y) dy, likewise for Mie (paper eq. 7,
+  // one scattering event), without phase functions. Uniform samples along the
+  // ray, each interval integrated by integrate_interval (quadrature.h).
+  const TableSizes& s = sizes();
+  const int samples = options_.scattering_samples;
+  const std::size_t width = s.scattering_width(), height = s.scattering_mu;
+  parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
+    const std::size_t z = row / height, y = row % height;
+    Channels t_view{}, t_sun{}, rayleigh{}, mie{}, prev_r{}, prev_m{};
+    for (std::size_t x = 0; x < width; ++x) {
+      const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Distance);
+      const double d = geometry().distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
+      const double dx = d / samples;
+      std::fill(rayleigh.begin(), rayleigh.end(), 0.0);
+      std::fill(mie.begin(), mie.end(), 0.0);
+      for (int i = 0; i <= samples; ++i) {
+        const double t = i * dx;
+        const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m),
+                                      geometry().bottom_radius_m, geometry().top_radius_m);
+        const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / r_t, -1.0, 1.0);
+        queries_.transmittance(c.r_m, c.mu, t, c.ray_hits_ground, t_view.data());
+        queries_.transmittance_to_sun(r_t, mu_s_t, t_sun.data());
+        const double h = r_t - geometry().bottom_radius_m;
+        const double rho_r = model_.rayleigh_density(h), rho_m = model_.mie_density(h);
+        for (std::size_t ch = 0; ch < n_; ++ch) {
+          const double tt = t_view[ch] * t_sun[ch];
+          const double f_r = tt * rho_r, f_m = tt * rho_m;
+          if (i > 0) {
+            rayleigh[ch] += integrate_interval(prev_r[ch], f_r, dx, options_.scattering_quadrature);
+            mie[ch] += integrate_interval(prev_m[ch], f_m, dx, options_.scattering_quadrature);
+          }
+          prev_r[ch] = f_r;
+          prev_m[ch] = f_m;
+        }
+      }
+      float* out_r = tables_.single_rayleigh.texel(x, y, z);
+      float* out_m = tables_.single_mie.texel(x, y, z);
+      for (std::size_t ch = 0; ch < n_; ++ch) {
+        out_r[ch] = float(rayleigh[ch] * model_.rayleigh_scattering_m1[ch]);
+        out_m[ch] = float(mie[ch] * model_.mie_scattering_m1[ch]);
+      }
+    }
+  });
+}
+
+// ---------------------------------------------------------------- multiple scattering
+
+void Precompute::previous_order_radiance(int order, double r, double mu, double mu_s, double nu, double* out) const {
+  const bool hits_ground = geometry().ray_hits_ground(r, mu);
+  if (order == 2) {
+    // Order 1: the single-scattering tables with their phase functions.
+    Channels rayleigh{}, mie{};
+    queries_.scattering_terms(r, mu, mu_s, nu, hits_ground, rayleigh.data(), mie.data(), nullptr);
+    const double phase_r = model_.rayleigh_phase_function(nu);
+    for (std::size_t c = 0; c < n_; ++c) out[c] = rayleigh[c] * phase_r + mie[c] * model_.mie_phase(c, nu);
+    return;
+  }
+  // Orders ≥ 2: the delta table of the last order, read like the final table.
+  sample_scattering_table(delta_radiance_, sizes(),
+                          scattering_uvwz(geometry(), sizes(), r, mu, mu_s, nu, hits_ground, AngleMapping::Blended), out);
+}
+
+void Precompute::compute_scattering_density(int order, Table3D& density) {
+  // J_n(x, v) = ∫_4π [β_R ρ_R P_R(v·ω) + β_M ρ_M P_M(v·ω)] L_{n−1}(x, ω) dω, where
+  // L_{n−1} includes, for directions that hit the ground, the ground's reflection
+  // of the irradiance of order n−2 (albedo/π · E_{n−2}, attenuated).
+  const TableSizes& s = sizes();
+  // Directions: Gauss–Legendre in μ = cos θ (gauss_legendre.h), uniform in φ.
+  const int n_theta = options_.sphere_zenith_samples, n_phi = 2 * n_theta;
+  const GaussLegendre rule(n_theta);
+  const double d_phi = 2.0 * kPi / n_phi;
+  const std::size_t width = s.scattering_width(), height = s.scattering_mu;
+  const double rb = geometry().bottom_radius_m;
+  parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
+    const std::size_t z = row / height, y = row % height;
+    Channels incoming{}, ground_e{}, ground_t{}, j{};
+    for (std::size_t x = 0; x < width; ++x) {
+      const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
+      // Local frame: zenith z, view ω in the xz-plane, sun from μs and ν.
+      const Vec3 zenith{0.0, 0.0, 1.0};
+      const Vec3 view{std::sqrt(std::max(0.0, 1.0 - c.mu * c.mu)), 0.0, c.mu};
+      const double sun_x = view.x == 0.0 ? 0.0 : (c.nu - c.mu * c.mu_s) / view.x;
+      const double sun_y = std::sqrt(std::max(1.0 - sun_x * sun_x - c.mu_s * c.mu_s, 0.0));
+      const Vec3 sun{sun_x, sun_y, c.mu_s};
+      const double h = c.r_m - rb;
+      const double rho_r = model_.rayleigh_density(h), rho_m = model_.mie_density(h);
+      std::fill(j.begin(), j.end(), 0.0);
+      for (int it = 0; it < n_theta; ++it) {
+        const double cos_theta = rule.nodes[std::size_t(it)];
+        const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+        const bool hits_ground = geometry().ray_hits_ground(c.r_m, cos_theta);
+        // Ground seen in this direction: distance, transmittance, and its normal's height.
+        double ground_distance = 0.0;
+        if (hits_ground) {
+          ground_distance = geometry().distance_to_bottom_m(c.r_m, cos_theta);
+          queries_.transmittance(c.r_m, cos_theta, ground_distance, true, ground_t.data());
+        }
+        for (int ip = 0; ip < n_phi; ++ip) {
+          const double phi = (ip + 0.5) * d_phi;
+          const Vec3 omega{sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+          const double d_omega = rule.weights[std::size_t(it)] * d_phi;
+          const double nu_i = std::clamp(dot(omega, sun), -1.0, 1.0);
+          previous_order_radiance(order, c.r_m, cos_theta, c.mu_s, nu_i, incoming.data());
+          if (hits_ground) {
+            const Vec3 ground_normal = normalize(zenith * c.r_m + omega * ground_distance);
+            const double mu_s_ground = std::clamp(dot(ground_normal, sun), -1.0, 1.0);
+            if (order == 2) {
+              queries_.transmittance_to_sun(rb, mu_s_ground, ground_e.data());
+              for (std::size_t ch = 0; ch < n_; ++ch) ground_e[ch] *= std::max(mu_s_ground, 0.0);
+            } else {
+              const IrradianceUV uv = irradiance_uv(geometry(), s, rb, mu_s_ground);
+              delta_irradiance_.sample(uv.u_mu_s, uv.v_r, ground_e.data());
+            }
+            for (std::size_t ch = 0; ch < n_; ++ch)
+              incoming[ch] += ground_t[ch] * model_.ground_albedo[ch] / kPi * ground_e[ch];
+          }
+          const double cos_scatter = std::clamp(dot(view, omega), -1.0, 1.0);
+          const double phase_r = model_.rayleigh_phase_function(cos_scatter);
+          for (std::size_t ch = 0; ch < n_; ++ch) {
+            const double beta = model_.rayleigh_scattering_m1[ch] * rho_r * phase_r +
+                                model_.mie_scattering_m1[ch] * rho_m * model_.mie_phase(ch, cos_scatter);
+            j[ch] += incoming[ch] * beta * d_omega;
+          }
+        }
+      }
+      float* out = density.texel(x, y, z);
+      for (std::size_t ch = 0; ch < n_; ++ch) out[ch] = float(j[ch]);
+    }
+  });
+}
+
+void Precompute::compute_indirect_irradiance(int order) {
+  // E_{n−1}(r, μs) = ∫_{upper hemisphere} L_{n−1}(x, ω) cos θ dω, Gauss–Legendre
+  // in μ ∈ [0, 1] (half as many nodes as the sphere integral), uniform in φ.
+  const TableSizes& s = sizes();
+  const int n_theta = std::max(1, options_.sphere_zenith_samples / 2), n_phi = 4 * n_theta;
+  const GaussLegendre rule(n_theta);
+  const double d_phi = 2.0 * kPi / n_phi;
+  Table2D next(s.irradiance_mu_s, s.irradiance_r, n_);
+  parallel_for(s.irradiance_r, options_.threads, [&](std::size_t y) {
+    Channels incoming{}, e{};
+    for (std::size_t x = 0; x < s.irradiance_mu_s; ++x) {
+      double r, mu_s;
+      irradiance_r_mu_s(geometry(), s, (double(x) + 0.5) / double(s.irradiance_mu_s),
+                        (double(y) + 0.5) / double(s.irradiance_r), &r, &mu_s);
+      const Vec3 sun{std::sqrt(std::max(0.0, 1.0 - mu_s * mu_s)), 0.0, mu_s};
+      std::fill(e.begin(), e.end(), 0.0);
+      for (int it = 0; it < n_theta; ++it) {
+        const double mu = 0.5 + 0.5 * rule.nodes[std::size_t(it)];  // [−1, 1] → [0, 1]
+        const double sin_theta = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+        for (int ip = 0; ip < n_phi; ++ip) {
+          const double phi = (ip + 0.5) * d_phi;
+          const Vec3 omega{sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu};
+          previous_order_radiance(order, r, omega.z, mu_s, std::clamp(dot(omega, sun), -1.0, 1.0), incoming.data());
+          const double w = mu * 0.5 * rule.weights[std::size_t(it)] * d_phi;
+          for (std::size_t ch = 0; ch < n_; ++ch) e[ch] += incoming[ch] * w;
+        }
+      }
+      float* out = next.texel(x, y);
+      float* total = tables_.irradiance.texel(x, y);
+      for (std::size_t ch = 0; ch < n_; ++ch) {
+        out[ch] = float(e[ch]);
+        total[ch] += float(e[ch]);
+      }
+    }
+  });
+  delta_irradiance_ = std::move(next);
+}
+
+double Precompute::compute_multiple_scattering(const Table3D& density) {
+  // L_n(x, v) = ∫₀^d T(x, y) J_n(y, v) dy along the ray (same rule as single scattering).
+  const TableSizes& s = sizes();
+  const int samples = options_.scattering_samples;
+  const std::size_t width = s.scattering_width(), height = s.scattering_mu;
+  Table3D next(width, height, s.scattering_r, n_);
+  std::vector<double> row_sums(s.scattering_r * height, 0.0);
+  parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
+    const std::size_t z = row / height, y = row % height;
+    Channels t_view{}, j{}, sum{}, prev{};
+    for (std::size_t x = 0; x < width; ++x) {
+      const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
+      const double d = geometry().distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
+      const double dx = d / samples;
+      std::fill(sum.begin(), sum.end(), 0.0);
+      for (int i = 0; i <= samples; ++i) {
+        const double t = i * dx;
+        const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m),
+                                      geometry().bottom_radius_m, geometry().top_radius_m);
+        const double mu_t = std::clamp((c.r_m * c.mu + t) / r_t, -1.0, 1.0);
+        const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / r_t, -1.0, 1.0);
+        sample_scattering_table(
+            density, s, scattering_uvwz(geometry(), s, r_t, mu_t, mu_s_t, c.nu, c.ray_hits_ground, AngleMapping::Blended),
+            j.data());
+        queries_.transmittance(c.r_m, c.mu, t, c.ray_hits_ground, t_view.data());
+        for (std::size_t ch = 0; ch < n_; ++ch) {
+          const double f = t_view[ch] * j[ch];
+          if (i > 0) sum[ch] += integrate_interval(prev[ch], f, dx, options_.scattering_quadrature);
+          prev[ch] = f;
+        }
+      }
+      float* out = next.texel(x, y, z);
+      float* total = tables_.multiple.texel(x, y, z);
+      for (std::size_t ch = 0; ch < n_; ++ch) {
+        out[ch] = float(sum[ch]);
+        total[ch] += float(sum[ch]);
+        row_sums[row] += sum[ch];
+      }
+    }
+  });
+  delta_radiance_ = std::move(next);
+  double total = 0.0;
+  for (double v : row_sums) total += v;
+  return total;
+}
+
+double Precompute::total_radiance_sum() const {
+  // Σ over texels and channels of the in-scattered radiance with phases applied.
+  const TableSizes& s = sizes();
+  double total = 0.0;
+  for (std::size_t z = 0; z < s.scattering_r; ++z)
+    for (std::size_t y = 0; y < s.scattering_mu; ++y)
+      for (std::size_t x = 0; x < s.scattering_width(); ++x) {
+        const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Distance);
+        // Single terms at their own texel's geometry; the multiple table is a plain sum.
+        const double phase_r = model_.rayleigh_phase_function(c.nu);
+        const float *r = tables_.single_rayleigh.texel(x, y, z), *m = tables_.single_mie.texel(x, y, z),
+                    *ms = tables_.multiple.texel(x, y, z);
+        for (std::size_t ch = 0; ch < n_; ++ch) total += r[ch] * phase_r + m[ch] * model_.mie_phase(ch, c.nu) + ms[ch];
+      }
+  return total;
+}
+
+LookupTables Precompute::run() {
+  const int orders = options_.max_orders;
+  // Rough shares of the run time, for the progress bar.
+  const double share_multiple = orders > 1 ? 0.85 / (orders - 1) : 0.0;
+  stage("transmittance", 0.05, [&] { compute_transmittance(); });
+  stage("single scattering", orders > 1 ? 0.10 : 0.95, [&] { compute_single_scattering(); });
+  std::vector<double> order_sums;
+  order_sums.push_back(total_radiance_sum());
+  int used = 1;
+  Table3D density(sizes().scattering_width(), sizes().scattering_mu, sizes().scattering_r, n_);
+  for (int order = 2; order <= orders; ++order) {
+    const std::string prefix = "order " + std::to_string(order) + ": ";
+    stage(prefix + "scattering density", share_multiple * 0.6, [&] { compute_scattering_density(order, density); });
+    stage(prefix + "sky irradiance", share_multiple * 0.1, [&] { compute_indirect_irradiance(order); });
+    double added = 0.0;
+    stage(prefix + "multiple scattering", share_multiple * 0.3, [&] { added = compute_multiple_scattering(density); });
+    order_sums.push_back(added);
+    used = order;
+    double total = 0.0;
+    for (double v : order_sums) total += v;
+    if (options_.tolerance > 0.0 && total > 0.0 && added < options_.tolerance * total) break;
+  }
+  tables_.scattering_orders = used;
+  tables_.hash = lookup_table_hash(model_);
+  if (report_) {
+    report_->orders_used = used;
+    double total = 0.0;
+    for (double v : order_sums) total += v;
+    report_->order_fraction.clear();
+    for (double v : order_sums) report_->order_fraction.push_back(total > 0.0 ? v / total : 0.0);
+    report_->device = "CPU (" + std::to_string(resolve_thread_count(options_.threads)) + " threads)";
+  }
+  if (options_.progress) options_.progress({"done", 1.0});
+  return std::move(tables_);
+}
+
+}  // namespace
+
+double PrecomputeReport::total_seconds() const {
+  double s = 0.0;
+  for (const auto& st : stages) s += st.seconds;
+  return s;
+}
+
+LookupTables precompute_tables_cpu(const AtmosphereModel& model, const PrecomputeOptions& options,
+                                   PrecomputeReport* report) {
+  options.sizes.check();
+  return Precompute(model, options, report).run();
+}
+
+}  // namespace zenith::atmosphere::lut

@@ -1,0 +1,243 @@
+#include "atmosphere/lut/parameterization.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "atmosphere/constants.h"
+
+namespace zenith::atmosphere::lut {
+
+namespace {
+double clamp_cosine(double mu) { return std::clamp(mu, -1.0, 1.0); }
+double safe_sqrt(double a) { return std::sqrt(std::max(a, 0.0)); }
+}  // namespace
+
+void TableSizes::check() const {
+  auto in = [](std::size_t v, std::size_t lo, std::size_t hi, const char* name) {
+    if (v < lo || v > hi) {
+      std::ostringstream m;
+      m << "table size " << name << " = " << v << ": must be in [" << lo << ", " << hi << "]";
+      throw std::invalid_argument(m.str());
+    }
+  };
+  in(transmittance_mu, 4, 4096, "transmittance_mu");
+  in(transmittance_r, 4, 4096, "transmittance_r");
+  in(irradiance_mu_s, 4, 4096, "irradiance_mu_s");
+  in(irradiance_r, 4, 4096, "irradiance_r");
+  in(scattering_r, 4, 512, "scattering_r");
+  in(scattering_mu, 8, 1024, "scattering_mu");
+  in(scattering_mu_s, 4, 512, "scattering_mu_s");
+  in(scattering_nu, 2, 256, "scattering_nu");
+  if (scattering_mu % 2 != 0) throw std::invalid_argument("table size scattering_mu must be even");
+}
+
+std::string TableSizes::describe() const {
+  std::ostringstream out;  // (GCC 12 warns falsely on chained std::string +)
+  out << 'T' << transmittance_mu << 'x' << transmittance_r << " E" << irradiance_mu_s << 'x' << irradiance_r << " S"
+      << scattering_r << 'x' << scattering_mu << 'x' << scattering_mu_s << 'x' << scattering_nu;
+  return out.str();
+}
+
+TableSizes TableSizes::small() { return TableSizes{64, 16, 32, 8, 8, 32, 32, 8}; }
+
+double ShellGeometry::horizon_distance_at_top_m() const {
+  return safe_sqrt(top_radius_m * top_radius_m - bottom_radius_m * bottom_radius_m);
+}
+
+double ShellGeometry::horizon_distance_m(double r_m) const {
+  return safe_sqrt(r_m * r_m - bottom_radius_m * bottom_radius_m);
+}
+
+double ShellGeometry::min_sun_cosine() const { return -horizon_distance_at_top_m() / top_radius_m; }
+
+double ShellGeometry::distance_to_top_m(double r_m, double mu) const {
+  // Solve |x + d v| = rt: d = −rμ + √(r²(μ² − 1) + rt²).
+  const double disc = r_m * r_m * (mu * mu - 1.0) + top_radius_m * top_radius_m;
+  return std::max(0.0, -r_m * mu + safe_sqrt(disc));
+}
+
+double ShellGeometry::distance_to_bottom_m(double r_m, double mu) const {
+  const double disc = r_m * r_m * (mu * mu - 1.0) + bottom_radius_m * bottom_radius_m;
+  return std::max(0.0, -r_m * mu - safe_sqrt(disc));
+}
+
+bool ShellGeometry::ray_hits_ground(double r_m, double mu) const {
+  return mu < 0.0 && r_m * r_m * (mu * mu - 1.0) + bottom_radius_m * bottom_radius_m >= 0.0;
+}
+
+double ShellGeometry::distance_to_nearest_boundary_m(double r_m, double mu, bool hits_ground) const {
+  return hits_ground ? distance_to_bottom_m(r_m, mu) : distance_to_top_m(r_m, mu);
+}
+
+double texture_coord_from_unit(double x, std::size_t n) { return 0.5 / double(n) + x * (1.0 - 1.0 / double(n)); }
+double unit_from_texture_coord(double u, std::size_t n) { return (u - 0.5 / double(n)) / (1.0 - 1.0 / double(n)); }
+
+TransmittanceUV transmittance_uv(const ShellGeometry& g, const TableSizes& s, double r_m, double mu) {
+  const double H = g.horizon_distance_at_top_m();
+  const double rho = g.horizon_distance_m(r_m);
+  const double d = g.distance_to_top_m(r_m, mu);
+  const double d_min = g.top_radius_m - r_m, d_max = rho + H;
+  const double x_mu = d_max > d_min ? (d - d_min) / (d_max - d_min) : 0.0;
+  return {texture_coord_from_unit(std::clamp(x_mu, 0.0, 1.0), s.transmittance_mu),
+          texture_coord_from_unit(std::clamp(rho / H, 0.0, 1.0), s.transmittance_r)};
+}
+
+void transmittance_r_mu(const ShellGeometry& g, const TableSizes& s, double u_mu, double v_r, double* r_m,
+                        double* mu) {
+  const double H = g.horizon_distance_at_top_m();
+  const double rho = H * unit_from_texture_coord(v_r, s.transmittance_r);
+  const double r = std::sqrt(rho * rho + g.bottom_radius_m * g.bottom_radius_m);
+  const double d_min = g.top_radius_m - r, d_max = rho + H;
+  const double d = d_min + unit_from_texture_coord(u_mu, s.transmittance_mu) * (d_max - d_min);
+  // Law of cosines in the triangle (centre, x, exit point): rt² = r² + d² + 2 r d μ.
+  *r_m = r;
+  *mu = d == 0.0 ? 1.0 : clamp_cosine((H * H - rho * rho - d * d) / (2.0 * r * d));
+}
+
+IrradianceUV irradiance_uv(const ShellGeometry& g, const TableSizes& s, double r_m, double mu_s) {
+  const double x_r = (r_m - g.bottom_radius_m) / (g.top_radius_m - g.bottom_radius_m);
+  return {texture_coord_from_unit(std::clamp(0.5 * mu_s + 0.5, 0.0, 1.0), s.irradiance_mu_s),
+          texture_coord_from_unit(std::clamp(x_r, 0.0, 1.0), s.irradiance_r)};
+}
+
+void irradiance_r_mu_s(const ShellGeometry& g, const TableSizes& s, double u_mu_s, double v_r, double* r_m,
+                       double* mu_s) {
+  *r_m = g.bottom_radius_m + unit_from_texture_coord(v_r, s.irradiance_r) * (g.top_radius_m - g.bottom_radius_m);
+  *mu_s = clamp_cosine(2.0 * unit_from_texture_coord(u_mu_s, s.irradiance_mu_s) - 1.0);
+}
+
+namespace {
+
+/// Bruneton's μs ↔ [0, 1]: a = normalised distance to the top from the ground
+/// toward the sun; x = max(1 − a/A, 0)/(1 + a) with A the value of a at μs_min.
+/// x = 1 at the zenith, 0 at μs_min and below; most resolution near the horizon.
+double distance_mapping_mu_s(const ShellGeometry& g, double mu_s) {
+  const double rb = g.bottom_radius_m;
+  const double d_min = g.top_radius_m - rb, d_max = g.horizon_distance_at_top_m();
+  const double a = (g.distance_to_top_m(rb, mu_s) - d_min) / (d_max - d_min);
+  const double A = (g.distance_to_top_m(rb, g.min_sun_cosine()) - d_min) / (d_max - d_min);
+  return std::max(1.0 - a / A, 0.0) / (1.0 + a);
+}
+
+/// μs ↔ [0, 1] for a table. Blended: the average of the distance mapping (fine
+/// steps through twilight) and a mapping uniform in the sun's zenith angle down
+/// to μs_min. The distance mapping alone spends one texel in 32 on the top 40°
+/// of sun elevation; multiple scattering with a forward-peaked aerosol phase
+/// varies sharply there (the second order's aureole follows the sun) and linear
+/// interpolation across 40° inflated Earth's hazy zenith sky 3×. The blend keeps
+/// half the twilight resolution and gives ≤ 2·θs_max/n per texel everywhere.
+double unit_from_mu_s(const ShellGeometry& g, double mu_s, AngleMapping mapping) {
+  if (mapping == AngleMapping::Distance) return distance_mapping_mu_s(g, mu_s);
+  const double theta_max = std::acos(g.min_sun_cosine());
+  const double theta = std::acos(std::clamp(mu_s, -1.0, 1.0));
+  const double uniform = std::max(0.0, 1.0 - theta / theta_max);
+  return 0.5 * distance_mapping_mu_s(g, mu_s) + 0.5 * uniform;
+}
+
+/// Inverse of unit_from_mu_s (monotone in μs) by bisection on μs ∈ [μs_min, 1].
+double mu_s_from_unit(const ShellGeometry& g, double x, AngleMapping mapping) {
+  double lo = g.min_sun_cosine(), hi = 1.0;
+  if (x <= 0.0) return lo;
+  if (x >= 1.0) return 1.0;
+  for (int i = 0; i < 64; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (unit_from_mu_s(g, mid, mapping) < x ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/// ν ↔ [0, 1] uniform in the scattering angle: slices every 180°/(n−1), so a
+/// forward-peaked aerosol phase baked into multiple scattering is resolved near
+/// the sun as well as elsewhere (uniform in ν, the first slice spans 44°).
+double unit_from_nu(double nu) { return 1.0 - std::acos(std::clamp(nu, -1.0, 1.0)) / kPi; }
+double nu_from_unit(double x) { return std::cos(kPi * (1.0 - x)); }
+
+}  // namespace
+
+/// μ ↔ [0, 1] for rays that do not hit the ground (see AngleMapping).
+double unit_from_mu_sky(const ShellGeometry& g, double r_m, double mu, AngleMapping mapping) {
+  const double H = g.horizon_distance_at_top_m(), rho = g.horizon_distance_m(r_m);
+  const double disc = r_m * r_m * (mu * mu - 1.0) + g.bottom_radius_m * g.bottom_radius_m;
+  const double d = -r_m * mu + safe_sqrt(disc + H * H);
+  const double d_min = g.top_radius_m - r_m, d_max = rho + H;
+  const double distance = d_max == d_min ? 0.0 : std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0);
+  if (mapping == AngleMapping::Distance) return distance;
+  const double theta_horizon = std::acos(std::clamp(-rho / r_m, -1.0, 1.0));  // zenith angle of the horizon
+  const double angle = std::clamp(std::acos(std::clamp(mu, -1.0, 1.0)) / theta_horizon, 0.0, 1.0);
+  return 0.5 * distance + 0.5 * angle;
+}
+
+/// Inverse of unit_from_mu_sky: closed form for Distance, bisection for Blended.
+double mu_sky_from_unit(const ShellGeometry& g, double r_m, double x, AngleMapping mapping) {
+  const double H = g.horizon_distance_at_top_m(), rho = g.horizon_distance_m(r_m);
+  if (mapping == AngleMapping::Distance) {
+    const double d_min = g.top_radius_m - r_m, d_max = rho + H;
+    const double d = d_min + (d_max - d_min) * x;
+    return d == 0.0 ? 1.0 : clamp_cosine((H * H - rho * rho - d * d) / (2.0 * r_m * d));
+  }
+  double lo = -rho / r_m, hi = 1.0;  // x decreases as μ increases
+  for (int i = 0; i < 64; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (unit_from_mu_sky(g, r_m, mid, mapping) > x ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+ScatteringUVWZ scattering_uvwz(const ShellGeometry& g, const TableSizes& s, double r_m, double mu, double mu_s,
+                               double nu, bool ray_hits_ground, AngleMapping mapping) {
+  const double H = g.horizon_distance_at_top_m();
+  const double rho = g.horizon_distance_m(r_m);
+  const double u_r = texture_coord_from_unit(std::clamp(rho / H, 0.0, 1.0), s.scattering_r);
+
+  const double r_mu = r_m * mu;
+  const double disc = r_mu * r_mu - r_m * r_m + g.bottom_radius_m * g.bottom_radius_m;
+  const std::size_t half = s.scattering_mu / 2;
+  double u_mu;
+  if (ray_hits_ground) {
+    // Distance to the ground, between r − rb (straight down) and ρ (tangent).
+    const double d = -r_mu - safe_sqrt(disc);
+    const double d_min = r_m - g.bottom_radius_m, d_max = rho;
+    const double x = d_max == d_min ? 0.0 : std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0);
+    u_mu = 0.5 - 0.5 * texture_coord_from_unit(x, half);
+  } else {
+    // Distance to the top, between rt − r (straight up) and ρ + H (tangent to the
+    // ground), blended with the zenith angle for AngleMapping::Blended.
+    u_mu = 0.5 + 0.5 * texture_coord_from_unit(unit_from_mu_sky(g, r_m, mu, mapping), half);
+  }
+  const double u_mu_s = texture_coord_from_unit(unit_from_mu_s(g, mu_s, mapping), s.scattering_mu_s);
+  return {unit_from_nu(nu), u_mu_s, u_mu, u_r};
+}
+
+ScatteringCoordinates scattering_texel_coordinates(const ShellGeometry& g, const TableSizes& s, std::size_t x,
+                                                   std::size_t y, std::size_t z, AngleMapping mapping) {
+  const std::size_t nu_index = x / s.scattering_mu_s, mu_s_index = x % s.scattering_mu_s;
+  const double u_r = (double(z) + 0.5) / double(s.scattering_r);
+  const double u_mu = (double(y) + 0.5) / double(s.scattering_mu);
+  const double u_mu_s = (double(mu_s_index) + 0.5) / double(s.scattering_mu_s);
+  const double x_nu = double(nu_index) / double(s.scattering_nu - 1);
+
+  ScatteringCoordinates c{};
+  const double H = g.horizon_distance_at_top_m();
+  const double rho = H * unit_from_texture_coord(u_r, s.scattering_r);
+  c.r_m = std::sqrt(rho * rho + g.bottom_radius_m * g.bottom_radius_m);
+  const std::size_t half = s.scattering_mu / 2;
+  if (u_mu < 0.5) {
+    const double d_min = c.r_m - g.bottom_radius_m, d_max = rho;
+    const double d = d_min + (d_max - d_min) * unit_from_texture_coord(1.0 - 2.0 * u_mu, half);
+    c.mu = d == 0.0 ? -1.0 : clamp_cosine(-(rho * rho + d * d) / (2.0 * c.r_m * d));
+    c.ray_hits_ground = true;
+  } else {
+    c.mu = mu_sky_from_unit(g, c.r_m, unit_from_texture_coord(2.0 * u_mu - 1.0, half), mapping);
+    c.ray_hits_ground = false;
+  }
+  c.mu_s = mu_s_from_unit(g, unit_from_texture_coord(u_mu_s, s.scattering_mu_s), mapping);
+  const double nu = nu_from_unit(x_nu);
+  const double spread = std::sqrt((1.0 - c.mu * c.mu) * (1.0 - c.mu_s * c.mu_s));
+  c.nu = std::clamp(nu, c.mu * c.mu_s - spread, c.mu * c.mu_s + spread);
+  return c;
+}
+
+}  // namespace zenith::atmosphere::lut

@@ -1,0 +1,58 @@
+#pragma once
+// Options and report of a lookup-table precomputation, shared by the CPU
+// (atmosphere/lut/cpu_precompute.h) and GPU (render/) implementations, which
+// must produce the same tables for the same options.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "atmosphere/lut/table_sizes.h"
+
+namespace zenith::atmosphere::lut {
+
+struct PrecomputeProgress {
+  std::string stage;   ///< "transmittance", "single scattering", "order 2: density", ...
+  double fraction;     ///< of the whole precompute, [0, 1]
+};
+
+struct PrecomputeOptions {
+  TableSizes sizes{};
+  /// Highest scattering order n (paper: "n is a user input"). ≥ 1.
+  int max_orders = 4;
+  /// If > 0, stop early once an order adds less than this fraction of the total
+  /// in-scattered radiance (summed over the table); max_orders still caps it.
+  double tolerance = 0.0;
+  unsigned threads = 0;  ///< CPU worker threads; 0 = hardware concurrency
+
+  // Quadrature: the same on CPU and GPU.
+  int transmittance_samples = 500;   ///< Simpson intervals along each transmittance ray (rounded up to even)
+  int scattering_samples = 50;       ///< samples along each single/multiple scattering ray
+  /// How the integrand is interpolated between samples along scattering rays:
+  /// trapezoid (linear, as Bruneton & Neyret), or log-linear (exact for an
+  /// exponential integrand: on a vertical ray through a 1.2 km Mie layer with
+  /// 2 km steps the trapezoid overestimates by ~20%, log-linear by < 1%).
+  enum class Quadrature { Trapezoid, LogLinear };
+  Quadrature scattering_quadrature = Quadrature::LogLinear;
+  /// Gauss–Legendre nodes in cos θ of the scattering-density sphere integral
+  /// (azimuth: twice as many steps; the sky-irradiance hemisphere uses half as many nodes).
+  int sphere_zenith_samples = 16;
+
+  std::function<void(const PrecomputeProgress&)> progress;  ///< optional
+};
+
+struct StageTiming {
+  std::string stage;
+  double seconds;
+};
+
+struct PrecomputeReport {
+  std::vector<StageTiming> stages;
+  int orders_used = 0;
+  /// Fraction of the final total in-scattered radiance each order added
+  /// (index 0 = single scattering).
+  std::vector<double> order_fraction;
+  std::string device;  ///< "CPU (2 threads)" or the GL renderer string
+  double total_seconds() const;
+};
+
+}  // namespace zenith::atmosphere::lut

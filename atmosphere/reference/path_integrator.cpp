@@ -1,0 +1,118 @@
+#include "atmosphere/reference/path_integrator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "atmosphere/constants.h"
+#include "atmosphere/reference/direction_sampling.h"
+#include "atmosphere/reference/optical_depth.h"
+#include "atmosphere/reference/phase_sampling.h"
+
+namespace zenith::atmosphere::reference {
+
+namespace {
+
+const PathSettings& checked(const PathSettings& s) {
+  if (s.min_scattering_order < 1 || s.max_scattering_order < s.min_scattering_order)
+    throw std::invalid_argument("PathSettings: need 1 <= min_scattering_order <= max_scattering_order");
+  if (s.russian_roulette_start_order < 1)
+    throw std::invalid_argument("PathSettings: russian_roulette_start_order must be >= 1");
+  if (s.majorant_shell_count == 0) throw std::invalid_argument("PathSettings: majorant_shell_count must be > 0");
+  return s;
+}
+
+}  // namespace
+
+PathIntegrator::PathIntegrator(const AtmosphereModel& model, const SunDisc& sun, const PathSettings& settings)
+    : model_(&model),
+      medium_(model),
+      majorants_(model, checked(settings).majorant_shell_count),
+      tracking_{&medium_, &majorants_},
+      sun_(validated(sun)),
+      sun_weight_(sun_sample_weight(sun_)),
+      settings_(settings) {}
+
+double PathIntegrator::transmittance_to_space(const Vec3& point_m, const Vec3& direction, std::size_t i, Pcg32& rng,
+                                              std::size_t& violations) const {
+  const Ray ray(point_m, direction);
+  const AtmosphereInterval interval = atmosphere_interval(ray, model_->ground_radius_m, model_->top_radius_m);
+  if (!interval.intersects) return 1.0;
+  if (interval.ends_on_ground) return 0.0;
+  const double stretch = optical_depth_stretch(*model_, ray, interval.begin_t_m, interval.end_t_m);
+  return ratio_tracking_transmittance(tracking_, ray, interval.begin_t_m, stretch, i, rng, violations);
+}
+
+double PathIntegrator::direct_irradiance(const Vec3& point_m, const Vec3& normal, std::size_t i, Pcg32& rng,
+                                         std::size_t& violations) const {
+  const double u1 = rng.uniform(), u2 = rng.uniform();
+  const Vec3 to_sun = sample_sun_direction(sun_, u1, u2);
+  const double cosine = dot(normal, to_sun);
+  if (!(cosine > 0.0)) return 0.0;
+  return sun_weight_ * cosine * transmittance_to_space(point_m, to_sun, i, rng, violations);
+}
+
+double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng, std::size_t& violations) const {
+  const AtmosphereModel& model = *model_;
+  const double ground_radius = model.ground_radius_m;
+  double radiance = 0.0, weight = 1.0;
+  int order = 0;
+  Ray ray = first_ray;
+  while (true) {
+    const AtmosphereInterval interval = atmosphere_interval(ray, ground_radius, model.top_radius_m);
+    if (!interval.intersects) break;
+    // s of this straight segment: attenuation s·β_ext, source β_scat (unstretched).
+    const double stretch = optical_depth_stretch(model, ray, interval.begin_t_m, interval.end_t_m);
+    const FreeFlight flight = sample_free_flight(tracking_, ray, interval.begin_t_m, stretch, i, rng, violations);
+    if (flight.event == FreeFlight::Event::Escape) break;  // the sun is reached by next-event estimation only
+    ++order;
+    const bool counted = order >= settings_.min_scattering_order;
+    const bool last = order >= settings_.max_scattering_order;
+    const Vec3& d = ray.direction();
+    Vec3 vertex = ray.point_at(flight.t_m);
+    Vec3 next_direction;
+
+    if (flight.event == FreeFlight::Event::Scattering) {
+      const LocalCoefficients& c = flight.coefficients;
+      const double scattering = c.scattering_m1();
+      weight *= scattering / (stretch * c.extinction_m1);  // w = β_scat / (s β_ext)
+      if (!(weight > 0.0)) break;
+      if (counted) {
+        // Light from ω_s travels along −ω_s and leaves along −d: cos(scattering angle) = ω_s·d.
+        const double u1 = rng.uniform(), u2 = rng.uniform();
+        const Vec3 to_sun = sample_sun_direction(sun_, u1, u2);
+        const double phase = medium_.mixture_phase(c, i, dot(to_sun, d));
+        if (phase > 0.0)
+          radiance += weight * sun_weight_ * phase * transmittance_to_space(vertex, to_sun, i, rng, violations);
+      }
+      if (last) break;
+      // One-sample mixture of the Rayleigh and Mie proposals; weight P(ν)/q(ν).
+      const double u_component = rng.uniform(), u_lobe = rng.uniform(), u_cos = rng.uniform(), u_phi = rng.uniform();
+      const PhaseSample scattered = sample_scattering_cosine(medium_, c, i, u_component, u_lobe, u_cos);
+      weight *= scattered.weight;
+      next_direction = direction_with_cosine(d, scattered.cos_scattering, u_phi);
+    } else {  // the ground: Lambertian, BRDF a/π
+      const Vec3 normal = normalize(vertex);
+      vertex = ground_radius * normal;
+      const double albedo = model.ground_albedo[i];
+      if (counted && albedo > 0.0) radiance += weight * albedo / kPi * direct_irradiance(vertex, normal, i, rng, violations);
+      if (last) break;
+      weight *= albedo;  // cosine-weighted sampling: (a/π) cos θ / (cos θ/π) = a
+      if (!(weight > 0.0)) break;
+      const double u1 = rng.uniform(), u2 = rng.uniform();
+      next_direction = sample_cosine_hemisphere(normal, u1, u2);
+    }
+
+    if (order >= settings_.russian_roulette_start_order) {
+      const double survival = std::min(1.0, weight);
+      if (survival < 1.0) {
+        if (!(rng.uniform() < survival)) break;
+        weight /= survival;
+      }
+    }
+    ray = Ray(vertex, next_direction);
+  }
+  return radiance;
+}
+
+}  // namespace zenith::atmosphere::reference

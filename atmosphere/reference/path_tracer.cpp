@@ -1,0 +1,114 @@
+#include "atmosphere/reference/path_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <stdexcept>
+
+#include "atmosphere/constants.h"
+#include "atmosphere/reference/direction_sampling.h"
+#include "atmosphere/reference/geometry.h"
+#include "atmosphere/reference/parallel_estimator.h"
+#include "atmosphere/reference/path_integrator.h"
+
+namespace zenith::atmosphere::reference {
+
+namespace {
+
+PathSettings path_settings(const PathTracerOptions& o) {
+  if (o.samples_per_wavelength == 0) throw std::invalid_argument("PathTracerOptions: samples_per_wavelength must be > 0");
+  PathSettings s;
+  s.min_scattering_order = o.min_scattering_order;
+  s.max_scattering_order = o.max_scattering_order;
+  s.russian_roulette_start_order = o.russian_roulette_start_order;
+  s.majorant_shell_count = o.majorant_shell_count;
+  return s;
+}
+
+ParallelEstimatorSettings estimator_settings(const AtmosphereModel& model, const PathTracerOptions& o,
+                                             std::size_t components) {
+  ParallelEstimatorSettings s;
+  s.wavelength_count = model.wavelength_count();
+  s.samples_per_wavelength = o.samples_per_wavelength;
+  s.components = components;
+  s.seed = o.seed;
+  s.thread_count = o.thread_count;
+  return s;
+}
+
+}  // namespace
+
+RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& observer_m,
+                                      const Vec3& view_direction, const SunDisc& sun,
+                                      const PathTracerOptions& options) {
+  const PathSettings settings = path_settings(options);
+  const std::size_t n = model.wavelength_count();
+  if (length(observer_m) < model.ground_radius_m * (1.0 - 1e-12))
+    throw std::invalid_argument("path_traced_radiance: observer below the ground");
+  RadianceEstimate estimate;
+  estimate.mean = Spectrum(n);
+  estimate.standard_error = Spectrum(n);
+  estimate.samples = options.samples_per_wavelength;
+
+  const Ray observer_ray(observer_m, view_direction);
+  const AtmosphereInterval interval = atmosphere_interval(observer_ray, model.ground_radius_m, model.top_radius_m);
+  if (!interval.intersects) return estimate;
+  const Ray first_ray(observer_ray.point_at(interval.begin_t_m), observer_ray.direction());
+
+  const PathIntegrator integrator(model, sun, settings);
+  std::atomic<std::size_t> violations{0};
+  const SampleMoments moments = run_parallel_estimator(
+      estimator_settings(model, options, 1),
+      [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> values) {
+        std::size_t local_violations = 0;
+        values[0] = integrator.radiance(first_ray, i, rng, local_violations);
+        if (local_violations != 0) violations += local_violations;
+      });
+  for (std::size_t i = 0; i < n; ++i) {
+    estimate.mean[i] = moments.mean[i];
+    estimate.standard_error[i] = moments.standard_error[i];
+  }
+  estimate.majorant_violations = violations;
+  return estimate;
+}
+
+GroundIrradianceEstimate ground_irradiance(const AtmosphereModel& model, const Vec3& ground_point_m,
+                                           const SunDisc& sun, const PathTracerOptions& options) {
+  const PathSettings settings = path_settings(options);
+  const std::size_t n = model.wavelength_count();
+  if (!(length(ground_point_m) > 0.0)) throw std::invalid_argument("ground_irradiance: point at the planet's centre");
+  const Vec3 normal = normalize(ground_point_m);
+  const Vec3 point = model.ground_radius_m * normal;
+
+  const PathIntegrator integrator(model, sun, settings);
+  std::atomic<std::size_t> violations{0};
+  const SampleMoments moments = run_parallel_estimator(
+      estimator_settings(model, options, 3), [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> values) {
+        std::size_t local_violations = 0;
+        const double direct = integrator.direct_irradiance(point, normal, i, rng, local_violations);
+        const double u1 = rng.uniform(), u2 = rng.uniform();
+        const Ray sky_ray(point, sample_cosine_hemisphere(normal, u1, u2));
+        const double diffuse = kPi * integrator.radiance(sky_ray, i, rng, local_violations);
+        values[0] = direct;
+        values[1] = diffuse;
+        values[2] = direct + diffuse;
+        if (local_violations != 0) violations += local_violations;
+      });
+  GroundIrradianceEstimate estimate;
+  estimate.direct_mean = estimate.direct_standard_error = Spectrum(n);
+  estimate.diffuse_mean = estimate.diffuse_standard_error = Spectrum(n);
+  estimate.total_mean = estimate.total_standard_error = Spectrum(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    estimate.direct_mean[i] = moments.mean[i];
+    estimate.direct_standard_error[i] = moments.standard_error[i];
+    estimate.diffuse_mean[i] = moments.mean[n + i];
+    estimate.diffuse_standard_error[i] = moments.standard_error[n + i];
+    estimate.total_mean[i] = moments.mean[2 * n + i];
+    estimate.total_standard_error[i] = moments.standard_error[2 * n + i];
+  }
+  estimate.samples = options.samples_per_wavelength;
+  estimate.majorant_violations = violations;
+  return estimate;
+}
+
+}  // namespace zenith::atmosphere::reference

@@ -1,0 +1,63 @@
+#include "atmosphere/sky_sampling.h"
+
+#include <sstream>
+
+#include "atmosphere/constants.h"
+#include "atmosphere/photometry.h"
+
+namespace zenith::atmosphere {
+
+namespace {
+constexpr double kDegree = kPi / 180.0;
+}
+
+Vec3 SkyGeometry::sun_direction() const {
+  return direction_from_angles(sun_zenith_deg * kDegree, sun_azimuth_deg * kDegree);
+}
+
+Vec3 view_vector(const ViewDirection& d) {
+  return direction_from_angles(d.zenith_deg * kDegree, d.azimuth_deg * kDegree);
+}
+
+std::vector<RadianceSample> sample_radiance(const lut::TableQueries& tables, const SkyGeometry& geometry,
+                                            const std::vector<ViewDirection>& directions) {
+  std::vector<RadianceSample> out;
+  out.reserve(directions.size());
+  // The queries need the model only for phases and albedo; the tables carry the geometry.
+  const Vec3 observer{0.0, 0.0, tables.tables().geometry.bottom_radius_m + geometry.altitude_m};
+  for (const ViewDirection& d : directions)
+    out.push_back({d, tables.sky_radiance(observer, view_vector(d), geometry.sun_direction()), {}});
+  return out;
+}
+
+std::string radiance_csv(const AtmosphereModel& model, const std::vector<RadianceSample>& samples) {
+  std::ostringstream csv;
+  csv.precision(9);
+  const auto& wl = model.wavelengths_nm;
+  const std::vector<double> weights = luminance_weights(wl);
+  const bool with_errors = !samples.empty() && samples.front().standard_error.size() == wl.size();
+  csv << "zenith_deg,azimuth_deg";
+  for (double w : wl) csv << ",L_rel_" << w << "nm_per_sr";
+  for (double w : wl) csv << ",L_" << w << "nm_W_m2_sr_nm";
+  csv << ",Y_cd_m2";
+  if (with_errors)
+    for (double w : wl) csv << ",se_rel_" << w << "nm_per_sr";
+  csv << '\n';
+  for (const RadianceSample& s : samples) {
+    csv << s.direction.zenith_deg << ',' << s.direction.azimuth_deg;
+    for (double v : s.radiance) csv << ',' << v;
+    double y = 0.0;
+    for (std::size_t i = 0; i < wl.size(); ++i) {
+      const double spectral = s.radiance[i] * solar_irradiance_W_m2_nm(wl[i]);
+      csv << ',' << spectral;
+      y += weights[i] * spectral;
+    }
+    csv << ',' << y;
+    if (with_errors)
+      for (double v : s.standard_error) csv << ',' << v;
+    csv << '\n';
+  }
+  return csv.str();
+}
+
+}  // namespace zenith::atmosphere

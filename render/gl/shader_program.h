@@ -1,0 +1,99 @@
+#pragma once
+// A linked GLSL program: one compute shader, or a vertex + fragment pair.
+// Variants are made by injecting `#define NAME VALUE` lines after the #version
+// line, so a shader can drop the terms a variant disables at compile time.
+// Needs a current GL 4.5 context.
+#include <array>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace zenith::render::gl {
+
+enum class ShaderStage { vertex, fragment, compute };
+const char* to_string(ShaderStage stage);
+
+/// `#define name value`; an empty value defines the name to nothing.
+struct ShaderDefine {
+  std::string name;   ///< a GLSL identifier, not starting with "GL_" and without "__"
+  std::string value;  ///< one line
+};
+
+/// One stage's GLSL text. `files` names the source-string numbers used by #line
+/// directives (files[0] is the shader itself; see render/shader_source.h's
+/// ExpandedShader); empty means {name}.
+struct ShaderCode {
+  std::string name;  ///< for messages: "test_pattern.comp"
+  std::string text;  ///< starts with a #version line (comments and blank lines may precede it)
+  std::vector<std::string> files;
+};
+
+/// `text` with one `#define` line per define inserted right after its #version
+/// line, followed by `#line <n> 0` so that later lines keep their numbers.
+/// Throws std::invalid_argument when there is no #version line or a define is
+/// not a valid identifier / has a multi-line value.
+std::string inject_defines(std::string_view name, std::string_view text, std::span<const ShaderDefine> defines);
+
+class ShaderProgram {
+ public:
+  /// Compiles and links. On a compile or link failure throws std::runtime_error:
+  ///   shader 'broken.comp' (compute) failed to compile:
+  ///   0:7(12): error: syntax error, unexpected ...
+  ///       broken.comp:7 | float x = ;
+  /// i.e. the shader name, the driver's info log and, under each message that
+  /// names a line, that line of the source (source-string numbers resolved
+  /// through ShaderCode::files).
+  static ShaderProgram compute(const ShaderCode& code, std::span<const ShaderDefine> defines = {});
+  static ShaderProgram graphics(const ShaderCode& vertex, const ShaderCode& fragment,
+                                std::span<const ShaderDefine> defines = {});
+  /// From the embedded shaders/ files, includes expanded (render/shader_source.h).
+  static ShaderProgram load_compute(std::string_view name, std::span<const ShaderDefine> defines = {});
+  static ShaderProgram load_graphics(std::string_view vertex_name, std::string_view fragment_name,
+                                     std::span<const ShaderDefine> defines = {});
+
+  ShaderProgram() = default;  ///< no program (id 0)
+  ~ShaderProgram();
+  ShaderProgram(ShaderProgram&& other) noexcept;
+  ShaderProgram& operator=(ShaderProgram&& other) noexcept;
+  ShaderProgram(const ShaderProgram&) = delete;
+  ShaderProgram& operator=(const ShaderProgram&) = delete;
+
+  unsigned id() const { return id_; }
+  const std::string& name() const { return name_; }
+  bool is_compute() const { return compute_; }
+  void use() const;
+
+  /// -1 when the program has no such active uniform (absent, or optimized out
+  /// by a variant).
+  int uniform_location(std::string_view uniform) const;
+  /// Set a uniform without binding the program (glProgramUniform*). Return false,
+  /// and do nothing, when the uniform is not active (e.g. a variant dropped it).
+  bool set_uniform(std::string_view uniform, int value) const;
+  bool set_uniform(std::string_view uniform, unsigned value) const;
+  bool set_uniform(std::string_view uniform, float value) const;
+  bool set_uniform(std::string_view uniform, const std::array<float, 2>& value) const;
+  bool set_uniform(std::string_view uniform, const std::array<float, 3>& value) const;
+  bool set_uniform(std::string_view uniform, const std::array<float, 4>& value) const;
+  bool set_uniform(std::string_view uniform, const std::array<int, 2>& value) const;
+  bool set_uniform(std::string_view uniform, const std::array<int, 3>& value) const;
+  bool set_uniform(std::string_view uniform, const std::array<int, 4>& value) const;
+
+  /// Compute programs: the layout(local_size_x/y/z) of the shader.
+  std::array<int, 3> work_group_size() const;
+  /// Compute programs: use() and glDispatchCompute(x, y, z).
+  void dispatch(unsigned groups_x, unsigned groups_y = 1, unsigned groups_z = 1) const;
+  /// Compute programs: enough work groups to cover width × height × depth
+  /// invocations (the shader discards those outside its domain).
+  void dispatch_covering(int width, int height = 1, int depth = 1) const;
+
+ private:
+  void release() noexcept;
+
+  unsigned id_ = 0;
+  std::string name_;
+  bool compute_ = false;
+  std::array<int, 3> local_size_ = {0, 0, 0};
+};
+
+}  // namespace zenith::render::gl

@@ -1,0 +1,174 @@
+#include "render/gl/texture.h"
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include "render/gl/gl_error.h"
+
+namespace zenith::render::gl {
+namespace {
+
+GLenum internal_format(TextureFormat f) {
+  switch (f) {
+    case TextureFormat::r32f: return GL_R32F;
+    case TextureFormat::rg32f: return GL_RG32F;
+    case TextureFormat::rgba32f: return GL_RGBA32F;
+  }
+  return GL_RGBA32F;
+}
+
+GLenum pixel_format(TextureFormat f) {
+  switch (f) {
+    case TextureFormat::r32f: return GL_RED;
+    case TextureFormat::rg32f: return GL_RG;
+    case TextureFormat::rgba32f: return GL_RGBA;
+  }
+  return GL_RGBA;
+}
+
+GLenum access_enum(ImageAccess a) {
+  switch (a) {
+    case ImageAccess::read_only: return GL_READ_ONLY;
+    case ImageAccess::write_only: return GL_WRITE_ONLY;
+    case ImageAccess::read_write: return GL_READ_WRITE;
+  }
+  return GL_READ_WRITE;
+}
+
+/// Transfers go from/to client memory: no pixel buffer object may be bound.
+/// Float rows are multiples of 4 bytes long, so the default alignment of 4 holds.
+void unbind_pixel_buffer(GLenum buffer_target) { glBindBuffer(buffer_target, 0); }
+
+}  // namespace
+
+int channel_count(TextureFormat format) {
+  switch (format) {
+    case TextureFormat::r32f: return 1;
+    case TextureFormat::rg32f: return 2;
+    case TextureFormat::rgba32f: return 4;
+  }
+  return 4;
+}
+
+const char* to_string(TextureFormat format) {
+  switch (format) {
+    case TextureFormat::r32f: return "r32f";
+    case TextureFormat::rg32f: return "rg32f";
+    case TextureFormat::rgba32f: return "rgba32f";
+  }
+  return "?";
+}
+
+Texture::Texture(TextureFormat format, int width, int height, int depth)
+    : format_(format), width_(width), height_(height), depth_(depth) {
+  const bool three_d = depth > 0;
+  if (width < 1 || height < 1 || depth < 0)
+    throw std::invalid_argument(fmt::format("Texture: invalid size {}x{}{}", width, height,
+                                            three_d ? fmt::format("x{}", depth) : std::string()));
+  check_gl_error("Texture: an earlier GL call left an error");
+  glCreateTextures(three_d ? GL_TEXTURE_3D : GL_TEXTURE_2D, 1, &id_);
+  if (three_d) glTextureStorage3D(id_, 1, internal_format(format), width, height, depth);
+  else glTextureStorage2D(id_, 1, internal_format(format), width, height);
+  glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(id_, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  try {
+    check_gl_error(fmt::format("Texture: {} storage {}x{}{}", to_string(format), width, height,
+                               three_d ? fmt::format("x{}", depth) : std::string()));
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+Texture Texture::create_2d(TextureFormat format, int width, int height, std::span<const float> data) {
+  Texture t(format, width, height, 0);
+  if (data.empty()) {
+    const float zero[4] = {0, 0, 0, 0};
+    glClearTexImage(t.id_, 0, pixel_format(format), GL_FLOAT, zero);
+  } else {
+    t.upload(data);
+  }
+  return t;
+}
+
+Texture Texture::create_3d(TextureFormat format, int width, int height, int depth, std::span<const float> data) {
+  if (depth < 1) throw std::invalid_argument(fmt::format("Texture: invalid 3D depth {}", depth));
+  Texture t(format, width, height, depth);
+  if (data.empty()) {
+    const float zero[4] = {0, 0, 0, 0};
+    glClearTexImage(t.id_, 0, pixel_format(format), GL_FLOAT, zero);
+  } else {
+    t.upload(data);
+  }
+  return t;
+}
+
+Texture::~Texture() { release(); }
+
+Texture::Texture(Texture&& other) noexcept
+    : id_(std::exchange(other.id_, 0u)),
+      format_(other.format_),
+      width_(std::exchange(other.width_, 0)),
+      height_(std::exchange(other.height_, 0)),
+      depth_(std::exchange(other.depth_, 0)) {}
+
+Texture& Texture::operator=(Texture&& other) noexcept {
+  if (this != &other) {
+    release();
+    id_ = std::exchange(other.id_, 0u);
+    format_ = other.format_;
+    width_ = std::exchange(other.width_, 0);
+    height_ = std::exchange(other.height_, 0);
+    depth_ = std::exchange(other.depth_, 0);
+  }
+  return *this;
+}
+
+void Texture::release() noexcept {
+  if (id_ != 0) glDeleteTextures(1, &id_);
+  id_ = 0;
+}
+
+std::size_t Texture::texel_count() const {
+  return static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * static_cast<std::size_t>(depth());
+}
+
+void Texture::upload(std::span<const float> data) {
+  if (id_ == 0) throw std::logic_error("Texture::upload on an empty texture");
+  if (data.size() != float_count())
+    throw std::invalid_argument(fmt::format("Texture::upload: {} floats given, a {} {}x{}x{} texture holds {}", data.size(),
+                                            to_string(format_), width_, height_, depth(), float_count()));
+  unbind_pixel_buffer(GL_PIXEL_UNPACK_BUFFER);
+  if (is_3d())
+    glTextureSubImage3D(id_, 0, 0, 0, 0, width_, height_, depth_, pixel_format(format_), GL_FLOAT, data.data());
+  else
+    glTextureSubImage2D(id_, 0, 0, 0, width_, height_, pixel_format(format_), GL_FLOAT, data.data());
+  check_gl_error("Texture::upload");
+}
+
+std::vector<float> Texture::read() const {
+  if (id_ == 0) throw std::logic_error("Texture::read on an empty texture");
+  std::vector<float> out(float_count());
+  if (out.size() * sizeof(float) > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max()))
+    throw std::length_error("Texture::read: more than 2 GiB in one texture");
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  unbind_pixel_buffer(GL_PIXEL_PACK_BUFFER);
+  glGetTextureImage(id_, 0, pixel_format(format_), GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
+  check_gl_error("Texture::read");
+  return out;
+}
+
+void Texture::bind(unsigned unit) const { glBindTextureUnit(unit, id_); }
+
+void Texture::bind_image(unsigned unit, ImageAccess access) const {
+  glBindImageTexture(unit, id_, 0, is_3d() ? GL_TRUE : GL_FALSE, 0, access_enum(access), internal_format(format_));
+}
+
+}  // namespace zenith::render::gl

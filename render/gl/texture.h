@@ -1,0 +1,66 @@
+#pragma once
+// Float textures for lookup tables: 2D or 3D, one mip level, linear filtering,
+// clamp-to-edge. Needs a current GL 4.5 context (direct state access).
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace zenith::render::gl {
+
+enum class TextureFormat { r32f, rg32f, rgba32f };
+/// 1, 2 or 4.
+int channel_count(TextureFormat format);
+/// "r32f", "rg32f", "rgba32f" (the GLSL image format qualifier).
+const char* to_string(TextureFormat format);
+
+/// How a compute shader accesses a texture bound as an image.
+enum class ImageAccess { read_only, write_only, read_write };
+
+class Texture {
+ public:
+  /// `data`: empty (the texture is zero-filled) or width·height·channels floats,
+  /// x fastest, then y. Throws std::invalid_argument on a bad size and
+  /// std::runtime_error when GL refuses the storage (too large, out of memory).
+  static Texture create_2d(TextureFormat format, int width, int height, std::span<const float> data = {});
+  /// Same for 3D: width·height·depth·channels floats, x fastest, then y, then z.
+  static Texture create_3d(TextureFormat format, int width, int height, int depth, std::span<const float> data = {});
+
+  Texture() = default;  ///< no texture (id 0)
+  ~Texture();
+  Texture(Texture&& other) noexcept;
+  Texture& operator=(Texture&& other) noexcept;
+  Texture(const Texture&) = delete;
+  Texture& operator=(const Texture&) = delete;
+
+  /// Replaces the whole contents; `data.size()` must equal float_count().
+  void upload(std::span<const float> data);
+  /// The whole contents (layout as in create_2d/create_3d). Issues
+  /// glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT) first, so image stores of
+  /// earlier dispatches are visible.
+  std::vector<float> read() const;
+
+  /// Binds for sampling (sampler2D / sampler3D) on texture unit `unit`.
+  void bind(unsigned unit) const;
+  /// Binds level 0 as an image (image2D / image3D, all layers) on image unit `unit`
+  /// with this texture's format.
+  void bind_image(unsigned unit, ImageAccess access) const;
+
+  unsigned id() const { return id_; }
+  TextureFormat format() const { return format_; }
+  bool is_3d() const { return depth_ > 0; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int depth() const { return depth_ > 0 ? depth_ : 1; }
+  std::size_t texel_count() const;
+  std::size_t float_count() const { return texel_count() * static_cast<std::size_t>(channel_count(format_)); }
+
+ private:
+  Texture(TextureFormat format, int width, int height, int depth);
+  void release() noexcept;
+
+  unsigned id_ = 0;
+  TextureFormat format_ = TextureFormat::rgba32f;
+  int width_ = 0, height_ = 0, depth_ = 0;  // depth_ == 0: a 2D texture
+};
+
+}  // namespace zenith::render::gl

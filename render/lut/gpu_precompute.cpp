@@ -1,0 +1,549 @@
+#include "render/lut/gpu_precompute.h"
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "atmosphere/lut/gauss_legendre.h"
+#include "atmosphere/model_hash.h"
+#include "render/gl/buffer.h"
+#include "render/gl/gl_error.h"
+#include "render/gl/gl_limits.h"
+#include "render/gl/shader_program.h"
+#include "render/gl/texture.h"
+
+namespace zenith::render {
+
+const char* to_string(GpuPrecision precision) {
+  switch (precision) {
+    case GpuPrecision::automatic: return "auto";
+    case GpuPrecision::fp64: return "fp64";
+    case GpuPrecision::fp32: return "fp32";
+  }
+  return "?";
+}
+
+namespace {
+
+using atmosphere::AtmosphereModel;
+using atmosphere::DensityProfile;
+using atmosphere::MiePhase;
+using atmosphere::RayleighPhaseModel;
+using atmosphere::lut::LookupTables;
+using atmosphere::lut::PrecomputeOptions;
+using atmosphere::lut::PrecomputeReport;
+using atmosphere::lut::Table2D;
+using atmosphere::lut::Table3D;
+using atmosphere::lut::TableSizes;
+using gl::ShaderDefine;
+using gl::ShaderProgram;
+using gl::Texture;
+using gl::TextureFormat;
+
+constexpr std::size_t kLanes = 4;  // wavelengths per group (one RGBA32F texel)
+
+// Binding points shared with the shaders (atmosphere_common.glsl, previous_order.glsl, *.comp).
+enum StorageBinding : unsigned { kWavelengthData = 0, kTableData = 1, kTexelCoordinates = 2, kRowSums = 3 };
+enum TextureUnit : unsigned {
+  kTransmittanceUnit = 0,
+  kSingleRayleighUnit = 1,
+  kSingleMieUnit = 2,
+  kDeltaRadianceUnit = 3,
+  kDeltaIrradianceUnit = 4,
+  kDensityUnit = 5,
+};
+// Per-group real4 fields of WavelengthData (FIELD_* in atmosphere_common.glsl).
+enum WavelengthField : std::size_t {
+  kRayleighScattering = 0,
+  kMieScattering,
+  kMieExtinction,
+  kMieG1,
+  kMieG2,
+  kMieAlpha,
+  kGroundAlbedo,
+  kAbsorbers,  // absorber k: kAbsorbers + k
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+int to_int(std::size_t v) { return static_cast<int>(v); }
+
+/// One group of 4 wavelengths' tables on the GPU (RGBA32F, created when first needed).
+struct GroupTables {
+  Texture transmittance, irradiance, delta_irradiance;
+  Texture single_rayleigh, single_mie, multiple, delta_radiance, density;
+};
+
+class GpuPrecompute {
+ public:
+  GpuPrecompute(const AtmosphereModel& model, const PrecomputeOptions& options, PrecomputeReport* report,
+                const gl::HeadlessContext& context, bool fp64);
+  LookupTables run();
+
+ private:
+  const TableSizes& sizes() const { return options_.sizes; }
+  std::size_t group_count() const { return groups_.size(); }
+  /// TEXEL_VALUE_COUNT of atmosphere_common.glsl: μs per mapping, acos(μs_min), sky μ per mapping and r.
+  std::size_t texel_coordinate_count() const {
+    return 2 * sizes().scattering_mu_s + 1 + 2 * sizes().scattering_r * (sizes().scattering_mu / 2);
+  }
+  std::string literal(double v) const;
+  gl::Buffer real_buffer(const std::vector<double>& values) const;
+  void prepare_model_data();
+  void check_limits() const;
+  const ShaderProgram& program(const std::string& file, std::vector<ShaderDefine> extra = {});
+  void stage(const std::string& name, double fraction, auto&& body);
+  void dispatch_scattering(const ShaderProgram& p) const;
+  static void barrier() { glMemoryBarrier(GL_ALL_BARRIER_BITS); }
+  Texture new_scattering_texture() const;
+  static void unpack(const Texture& texture, std::size_t group, std::size_t channels, std::vector<float>& out);
+
+  void compute_transmittance();
+  void compute_single_scattering();
+  void compute_scattering_density(int order);
+  void compute_indirect_irradiance(int order);
+  double compute_multiple_scattering();
+  /// Σ over texels and wavelengths: single scattering with phases, or the last order's radiance.
+  double radiance_sum(bool single);
+  void read_back_multiple_orders();
+
+  const AtmosphereModel& model_;
+  const PrecomputeOptions& options_;
+  PrecomputeReport* report_;
+  const gl::HeadlessContext& context_;
+  const bool fp64_;
+  std::size_t n_;
+  LookupTables tables_;
+  std::vector<ShaderDefine> defines_;
+  gl::Buffer wavelength_data_, table_data_, texel_coordinates_, row_sums_;
+  std::vector<GroupTables> groups_;
+  std::map<std::string, ShaderProgram> programs_;
+  double fraction_done_ = 0.0;
+};
+
+GpuPrecompute::GpuPrecompute(const AtmosphereModel& model, const PrecomputeOptions& options, PrecomputeReport* report,
+                             const gl::HeadlessContext& context, bool fp64)
+    : model_(model),
+      options_(options),
+      report_(report),
+      context_(context),
+      fp64_(fp64),
+      n_(model.wavelength_count()),
+      tables_(LookupTables::allocate({model.ground_radius_m, model.top_radius_m}, options.sizes, n_)) {
+  if (n_ > atmosphere::lut::kMaxChannels) throw std::invalid_argument("too many wavelengths for the lookup tables");
+  if (n_ == 0) throw std::invalid_argument("the atmosphere has no wavelengths");
+  if (options.max_orders < 1) throw std::invalid_argument("max_orders must be >= 1");
+  if (options.transmittance_samples < 1 || options.scattering_samples < 1 || options.sphere_zenith_samples < 1)
+    throw std::invalid_argument("transmittance_samples, scattering_samples and sphere_zenith_samples must be >= 1");
+  groups_.resize((n_ + kLanes - 1) / kLanes);
+  check_limits();
+  prepare_model_data();
+}
+
+void GpuPrecompute::check_limits() const {
+  const gl::GlLimits limits = gl::query_gl_limits();
+  const TableSizes& s = sizes();
+  auto check = [](std::size_t v, int limit, const char* what) {
+    if (v > static_cast<std::size_t>(limit))
+      throw std::runtime_error(fmt::format("GPU precompute: {} = {} exceeds this GL implementation's limit {}", what, v,
+                                           limit));
+  };
+  check(s.transmittance_mu, limits.max_texture_size, "transmittance_mu");
+  check(s.transmittance_r, limits.max_texture_size, "transmittance_r");
+  check(s.irradiance_mu_s, limits.max_texture_size, "irradiance_mu_s");
+  check(s.irradiance_r, limits.max_texture_size, "irradiance_r");
+  check(s.scattering_width(), limits.max_3d_texture_size, "scattering_nu * scattering_mu_s (3D texture width)");
+  check(s.scattering_mu, limits.max_3d_texture_size, "scattering_mu");
+  check(s.scattering_r, limits.max_3d_texture_size, "scattering_r");
+}
+
+std::string GpuPrecompute::literal(double v) const {
+  // 17 significant digits round-trip a double exactly; 9 a float.
+  return fp64_ ? fmt::format("{:.16e}LF", v) : fmt::format("{:.8e}", v);
+}
+
+gl::Buffer GpuPrecompute::real_buffer(const std::vector<double>& values) const {
+  if (fp64_) return gl::Buffer::from(std::span<const double>(values));
+  std::vector<float> f(values.size());
+  std::transform(values.begin(), values.end(), f.begin(), [](double v) { return static_cast<float>(v); });
+  return gl::Buffer::from(std::span<const float>(f));
+}
+
+void GpuPrecompute::prepare_model_data() {
+  const std::size_t absorbers = model_.absorbers.size();
+  const std::size_t fields = kAbsorbers + absorbers;
+
+  // Per-wavelength coefficients, 4 lanes per group; lanes past N stay zero.
+  std::vector<double> wavelength_data(group_count() * fields * kLanes, 0.0);
+  auto put = [&](std::size_t field, const atmosphere::Spectrum& s) {
+    for (std::size_t i = 0; i < n_ && i < s.size(); ++i)
+      wavelength_data[((i / kLanes) * fields + field) * kLanes + i % kLanes] = s[i];
+  };
+  put(kRayleighScattering, model_.rayleigh_scattering_m1);
+  put(kMieScattering, model_.mie_scattering_m1);
+  put(kMieExtinction, model_.mie_extinction_m1);
+  put(kMieG1, model_.mie_phase.g1);
+  put(kMieG2, model_.mie_phase.g2);
+  put(kMieAlpha, model_.mie_phase.alpha);
+  put(kGroundAlbedo, model_.ground_albedo);
+  for (std::size_t a = 0; a < absorbers; ++a) put(kAbsorbers + a, model_.absorbers[a].absorption_m1);
+
+  // Profile descriptors first (4 reals each, absorbers contiguous), then knots and the air-mass table.
+  std::vector<const DensityProfile*> profiles = {&model_.rayleigh_density, &model_.mie_density,
+                                                 &model_.air_mass.molecular_profile()};
+  for (const auto& a : model_.absorbers) profiles.push_back(&a.profile);
+  std::vector<double> table(4 * profiles.size(), 0.0);
+  for (std::size_t k = 0; k < profiles.size(); ++k) {
+    const DensityProfile& p = *profiles[k];
+    if (p.kind() == DensityProfile::Kind::Exponential) {
+      table[4 * k] = 0.0;
+      table[4 * k + 1] = p.scale_height_m();
+      continue;
+    }
+    const auto& spline = p.table();
+    table[4 * k] = 1.0;
+    table[4 * k + 2] = static_cast<double>(table.size());
+    table[4 * k + 3] = static_cast<double>(spline.knots_x().size());
+    table.insert(table.end(), spline.knots_x().begin(), spline.knots_x().end());
+    table.insert(table.end(), spline.knots_y().begin(), spline.knots_y().end());
+    table.insert(table.end(), spline.slopes().begin(), spline.slopes().end());
+  }
+  // The direction quadratures of the scattering density (sphere) and sky irradiance
+  // (hemisphere): the CPU's Gauss–Legendre rules, nodes then weights.
+  const int sphere_nodes = options_.sphere_zenith_samples, hemisphere_nodes = std::max(1, sphere_nodes / 2);
+  const std::size_t sphere_rule = table.size();
+  const atmosphere::lut::GaussLegendre sphere(sphere_nodes);
+  table.insert(table.end(), sphere.nodes.begin(), sphere.nodes.end());
+  table.insert(table.end(), sphere.weights.begin(), sphere.weights.end());
+  const std::size_t hemisphere_rule = table.size();
+  const atmosphere::lut::GaussLegendre hemisphere(hemisphere_nodes);
+  table.insert(table.end(), hemisphere.nodes.begin(), hemisphere.nodes.end());
+  table.insert(table.end(), hemisphere.weights.begin(), hemisphere.weights.end());
+
+  const bool air_mass = model_.air_mass.enabled();
+  const std::size_t air_mass_table = table.size();
+  const std::size_t air_mass_size = air_mass ? model_.air_mass.cos_zenith_table().size() : 0;
+  if (air_mass) {
+    table.insert(table.end(), model_.air_mass.cos_zenith_table().begin(), model_.air_mass.cos_zenith_table().end());
+    table.insert(table.end(), model_.air_mass.stretch_table().begin(), model_.air_mass.stretch_table().end());
+  }
+
+  wavelength_data_ = real_buffer(wavelength_data);
+  table_data_ = real_buffer(table);
+  const std::size_t real_size = fp64_ ? sizeof(double) : sizeof(float);
+  texel_coordinates_ = gl::Buffer(texel_coordinate_count() * real_size);
+  row_sums_ = gl::Buffer(group_count() * sizes().scattering_r * sizes().scattering_mu * real_size);
+
+  auto rayleigh_phase = [&] {
+    switch (model_.rayleigh_phase) {
+      case RayleighPhaseModel::Classic: return 0;
+      case RayleighPhaseModel::Penndorf: return 1;
+      case RayleighPhaseModel::Depolarized: return 2;
+    }
+    return 1;
+  };
+  auto mie_phase = [&] {
+    switch (model_.mie_phase.model) {
+      case MiePhase::Model::HenyeyGreenstein: return 0;
+      case MiePhase::Model::DoubleHenyeyGreenstein: return 1;
+      case MiePhase::Model::CornetteShanks: return 2;
+    }
+    return 0;
+  };
+  const TableSizes& s = sizes();
+  auto define = [&](const char* name, const auto& value) { defines_.push_back({name, fmt::format("{}", value)}); };
+  define("USE_FP64", fp64_ ? 1 : 0);
+  define("BOTTOM_RADIUS", literal(model_.ground_radius_m));
+  define("TOP_RADIUS", literal(model_.top_radius_m));
+  define("TRANSMITTANCE_MU", s.transmittance_mu);
+  define("TRANSMITTANCE_R", s.transmittance_r);
+  define("IRRADIANCE_MU_S", s.irradiance_mu_s);
+  define("IRRADIANCE_R", s.irradiance_r);
+  define("SCATTERING_R", s.scattering_r);
+  define("SCATTERING_MU", s.scattering_mu);
+  define("SCATTERING_MU_S", s.scattering_mu_s);
+  define("SCATTERING_NU", s.scattering_nu);
+  define("RAYLEIGH_PHASE", rayleigh_phase());
+  define("RAYLEIGH_DEPOLARIZATION", literal(model_.rayleigh_depolarization));
+  define("HAS_MIE", model_.has_mie() ? 1 : 0);
+  define("MIE_PHASE", mie_phase());
+  define("ABSORBER_COUNT", absorbers);
+  define("WAVELENGTH_FIELDS", fields);
+  define("RAYLEIGH_PROFILE", 0);
+  define("MIE_PROFILE", 4);
+  define("AIR_MASS_PROFILE", 8);
+  define("ABSORBER_PROFILES", 12);
+  define("AIR_MASS", air_mass ? 1 : 0);
+  define("AIR_MASS_GROUND_RADIUS", literal(model_.air_mass.ground_radius_m()));
+  define("AIR_MASS_TABLE", air_mass_table);
+  define("AIR_MASS_TABLE_SIZE", air_mass_size);
+  define("QUADRATURE_LOG_LINEAR",
+         options_.scattering_quadrature == PrecomputeOptions::Quadrature::LogLinear ? 1 : 0);
+  define("SCATTERING_SAMPLES", options_.scattering_samples);
+  define("TRANSMITTANCE_SAMPLES", options_.transmittance_samples + options_.transmittance_samples % 2);
+  define("SPHERE_ZENITH_SAMPLES", sphere_nodes);
+  define("HEMISPHERE_ZENITH_SAMPLES", hemisphere_nodes);
+  define("SPHERE_RULE", sphere_rule);
+  define("HEMISPHERE_RULE", hemisphere_rule);
+}
+
+const ShaderProgram& GpuPrecompute::program(const std::string& file, std::vector<ShaderDefine> extra) {
+  std::string key = file;
+  for (const ShaderDefine& d : extra) key += fmt::format(" {}={}", d.name, d.value);
+  auto it = programs_.find(key);
+  if (it != programs_.end()) return it->second;
+  std::vector<ShaderDefine> defines = defines_;
+  defines.insert(defines.end(), extra.begin(), extra.end());
+  const auto start = std::chrono::steady_clock::now();
+  ShaderProgram p = ShaderProgram::load_compute(file, defines);
+  spdlog::debug("GPU precompute: compiled {} in {:.3f} s", key, seconds_since(start));
+  return programs_.emplace(key, std::move(p)).first->second;
+}
+
+void GpuPrecompute::stage(const std::string& name, double fraction, auto&& body) {
+  // As run_stage in cpu_precompute.cpp; glFinish so the time is the GPU's.
+  if (options_.progress) options_.progress({name, fraction_done_});
+  const auto start = std::chrono::steady_clock::now();
+  body();
+  glFinish();
+  gl::check_gl_error(fmt::format("GPU precompute, stage '{}'", name));
+  if (report_) report_->stages.push_back({name, seconds_since(start)});
+  fraction_done_ += fraction;
+  if (options_.progress) options_.progress({name, std::min(fraction_done_, 1.0)});
+}
+
+void GpuPrecompute::dispatch_scattering(const ShaderProgram& p) const {
+  // One r layer per dispatch: no single dispatch runs long enough to trip a
+  // display watchdog on a slow GPU at large table sizes.
+  for (std::size_t z = 0; z < sizes().scattering_r; ++z) {
+    p.set_uniform("z_offset", to_int(z));
+    p.dispatch_covering(to_int(sizes().scattering_width()), to_int(sizes().scattering_mu), 1);
+  }
+}
+
+Texture GpuPrecompute::new_scattering_texture() const {
+  return Texture::create_3d(TextureFormat::rgba32f, to_int(sizes().scattering_width()), to_int(sizes().scattering_mu),
+                            to_int(sizes().scattering_r));
+}
+
+void GpuPrecompute::unpack(const Texture& texture, std::size_t group, std::size_t channels, std::vector<float>& out) {
+  const std::vector<float> rgba = texture.read();
+  const std::size_t texels = rgba.size() / kLanes, first = group * kLanes;
+  const std::size_t lanes = std::min(kLanes, channels - first);
+  for (std::size_t t = 0; t < texels; ++t)
+    for (std::size_t k = 0; k < lanes; ++k) out[t * channels + first + k] = rgba[t * kLanes + k];
+}
+
+// ---------------------------------------------------------------- stages
+
+void GpuPrecompute::compute_transmittance() {
+  const TableSizes& s = sizes();
+  const ShaderProgram& p = program("transmittance.comp");
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    groups_[g].transmittance =
+        Texture::create_2d(TextureFormat::rgba32f, to_int(s.transmittance_mu), to_int(s.transmittance_r));
+    groups_[g].transmittance.bind_image(0, gl::ImageAccess::write_only);
+    p.set_uniform("wavelength_group", to_int(g));
+    p.dispatch_covering(to_int(s.transmittance_mu), to_int(s.transmittance_r));
+  }
+  barrier();
+  for (std::size_t g = 0; g < group_count(); ++g) unpack(groups_[g].transmittance, g, n_, tables_.transmittance.data);
+}
+
+void GpuPrecompute::compute_single_scattering() {
+  // The texel coordinates the CPU finds by bisection, once (texel_coordinates.comp);
+  // every scattering stage reads them.
+  program("texel_coordinates.comp").dispatch_covering(to_int(texel_coordinate_count()));
+  barrier();
+
+  const ShaderProgram& p = program("single_scattering.comp");
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    GroupTables& t = groups_[g];
+    t.single_rayleigh = new_scattering_texture();
+    t.single_rayleigh.bind_image(0, gl::ImageAccess::write_only);
+    if (model_.has_mie()) {
+      t.single_mie = new_scattering_texture();
+      t.single_mie.bind_image(1, gl::ImageAccess::write_only);
+    }
+    t.transmittance.bind(kTransmittanceUnit);
+    p.set_uniform("wavelength_group", to_int(g));
+    dispatch_scattering(p);
+  }
+  barrier();
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    unpack(groups_[g].single_rayleigh, g, n_, tables_.single_rayleigh.data);
+    if (model_.has_mie()) unpack(groups_[g].single_mie, g, n_, tables_.single_mie.data);
+  }
+}
+
+void GpuPrecompute::compute_scattering_density(int order) {
+  const ShaderProgram& p = program("scattering_density.comp", {{"FIRST_ORDER", order == 2 ? "1" : "0"}});
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    GroupTables& t = groups_[g];
+    if (t.density.id() == 0) t.density = new_scattering_texture();
+    t.density.bind_image(0, gl::ImageAccess::write_only);
+    t.transmittance.bind(kTransmittanceUnit);
+    if (order == 2) {
+      t.single_rayleigh.bind(kSingleRayleighUnit);
+      if (model_.has_mie()) t.single_mie.bind(kSingleMieUnit);
+    } else {
+      t.delta_radiance.bind(kDeltaRadianceUnit);
+      t.delta_irradiance.bind(kDeltaIrradianceUnit);
+    }
+    p.set_uniform("wavelength_group", to_int(g));
+    dispatch_scattering(p);
+  }
+  barrier();
+}
+
+void GpuPrecompute::compute_indirect_irradiance(int order) {
+  const TableSizes& s = sizes();
+  const ShaderProgram& p = program("indirect_irradiance.comp", {{"FIRST_ORDER", order == 2 ? "1" : "0"}});
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    GroupTables& t = groups_[g];
+    if (t.irradiance.id() == 0) {
+      t.irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
+      t.delta_irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
+    }
+    t.delta_irradiance.bind_image(0, gl::ImageAccess::write_only);
+    t.irradiance.bind_image(1, gl::ImageAccess::read_write);
+    t.transmittance.bind(kTransmittanceUnit);
+    if (order == 2) {
+      t.single_rayleigh.bind(kSingleRayleighUnit);
+      if (model_.has_mie()) t.single_mie.bind(kSingleMieUnit);
+    } else {
+      t.delta_radiance.bind(kDeltaRadianceUnit);
+    }
+    p.set_uniform("wavelength_group", to_int(g));
+    p.dispatch_covering(to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
+  }
+  barrier();
+}
+
+double GpuPrecompute::compute_multiple_scattering() {
+  const ShaderProgram& p = program("multiple_scattering.comp");
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    GroupTables& t = groups_[g];
+    if (t.multiple.id() == 0) {
+      t.multiple = new_scattering_texture();
+      t.delta_radiance = new_scattering_texture();
+    }
+    t.delta_radiance.bind_image(0, gl::ImageAccess::write_only);
+    t.multiple.bind_image(1, gl::ImageAccess::read_write);
+    t.transmittance.bind(kTransmittanceUnit);
+    t.density.bind(kDensityUnit);
+    p.set_uniform("wavelength_group", to_int(g));
+    dispatch_scattering(p);
+  }
+  barrier();
+  return radiance_sum(false);
+}
+
+double GpuPrecompute::radiance_sum(bool single) {
+  const ShaderProgram& p = program("radiance_sum.comp", {{"SINGLE", single ? "1" : "0"}});
+  const std::size_t rows = sizes().scattering_r * sizes().scattering_mu;
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    GroupTables& t = groups_[g];
+    if (single) {
+      t.single_rayleigh.bind(kSingleRayleighUnit);
+      if (model_.has_mie()) t.single_mie.bind(kSingleMieUnit);
+    } else {
+      t.delta_radiance.bind(kDeltaRadianceUnit);
+    }
+    p.set_uniform("wavelength_group", to_int(g));
+    p.set_uniform("lanes", to_int(std::min(kLanes, n_ - g * kLanes)));
+    p.dispatch_covering(to_int(rows));
+  }
+  barrier();
+  double total = 0.0;
+  if (fp64_) {
+    for (double v : row_sums_.read<double>()) total += v;
+  } else {
+    for (float v : row_sums_.read<float>()) total += static_cast<double>(v);
+  }
+  return total;
+}
+
+void GpuPrecompute::read_back_multiple_orders() {
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    unpack(groups_[g].irradiance, g, n_, tables_.irradiance.data);
+    unpack(groups_[g].multiple, g, n_, tables_.multiple.data);
+  }
+}
+
+LookupTables GpuPrecompute::run() {
+  const int orders = options_.max_orders;
+  // The same stages, shares and order accounting as cpu_precompute.cpp.
+  const double share_multiple = orders > 1 ? 0.85 / (orders - 1) : 0.0;
+  wavelength_data_.bind_storage(kWavelengthData);
+  table_data_.bind_storage(kTableData);
+  texel_coordinates_.bind_storage(kTexelCoordinates);
+  row_sums_.bind_storage(kRowSums);
+  stage("transmittance", 0.05, [&] { compute_transmittance(); });
+  stage("single scattering", orders > 1 ? 0.10 : 0.95, [&] { compute_single_scattering(); });
+  std::vector<double> order_sums;
+  order_sums.push_back(radiance_sum(true));
+  int used = 1;
+  for (int order = 2; order <= orders; ++order) {
+    const std::string prefix = "order " + std::to_string(order) + ": ";
+    stage(prefix + "scattering density", share_multiple * 0.6, [&] { compute_scattering_density(order); });
+    stage(prefix + "sky irradiance", share_multiple * 0.1, [&] { compute_indirect_irradiance(order); });
+    bool last = false;
+    stage(prefix + "multiple scattering", share_multiple * 0.3, [&] {
+      const double added = compute_multiple_scattering();
+      order_sums.push_back(added);
+      double total = 0.0;
+      for (double v : order_sums) total += v;
+      last = order == orders || (options_.tolerance > 0.0 && total > 0.0 && added < options_.tolerance * total);
+      if (last) read_back_multiple_orders();  // the tables are final: their readback is part of this stage
+    });
+    used = order;
+    if (last) break;
+  }
+  tables_.scattering_orders = used;
+  tables_.hash = atmosphere::lookup_table_hash(model_);
+  if (report_) {
+    report_->orders_used = used;
+    double total = 0.0;
+    for (double v : order_sums) total += v;
+    report_->order_fraction.clear();
+    for (double v : order_sums) report_->order_fraction.push_back(total > 0.0 ? v / total : 0.0);
+    report_->device = context_.renderer();
+  }
+  if (options_.progress) options_.progress({"done", 1.0});
+  return std::move(tables_);
+}
+
+}  // namespace
+
+LookupTables precompute_tables_gpu(const AtmosphereModel& model, const PrecomputeOptions& options,
+                                   PrecomputeReport* report, const gl::HeadlessContext* context,
+                                   GpuPrecision precision) {
+  options.sizes.check();
+  std::optional<gl::HeadlessContext> own;
+  if (context == nullptr) {
+    own.emplace();
+    context = &*own;
+  } else if (!context->is_current()) {
+    context->make_current();
+  }
+  const bool fp64 = precision == GpuPrecision::fp64 ||
+                    (precision == GpuPrecision::automatic && context->gl_major() >= 4);
+  spdlog::debug("GPU precompute on '{}' in {}", context->renderer(), fp64 ? "fp64" : "fp32");
+  gl::check_gl_error("GPU precompute: an earlier GL call left an error");
+  LookupTables tables = GpuPrecompute(model, options, report, *context, fp64).run();
+  return tables;
+}
+
+}  // namespace zenith::render

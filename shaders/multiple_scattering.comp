@@ -1,0 +1,33 @@
+#version 450 core
+// Radiance of order n, L_n(r, μ, μs, ν) = ∫₀^d T(x, y) J_n(y) dy along the ray with
+// the rule of single scattering, for one group of 4 wavelengths; written as the
+// delta of this order and added to the multiple-scattering table
+// (cpu_precompute.cpp, compute_multiple_scattering).
+layout(local_size_x = 8, local_size_y = 8) in;
+
+#include "atmosphere_common.glsl"
+
+layout(binding = 5) uniform sampler3D density_texture;
+layout(binding = 0, rgba32f) uniform writeonly image3D delta_radiance_image;
+layout(binding = 1, rgba32f) uniform image3D multiple_image;
+
+void main() {
+  const ivec3 p = ivec3(gl_GlobalInvocationID.xy, z_offset + int(gl_GlobalInvocationID.z));
+  if (p.x >= SCATTERING_NU * SCATTERING_MU_S || p.y >= SCATTERING_MU || p.z >= SCATTERING_R) return;
+  const ScatteringCoordinates c = scattering_texel_coordinates(p.x, p.y, p.z, ANGLE_MAPPING_BLENDED);
+  const real d = distance_to_nearest_boundary(c.r, c.mu, c.hits_ground);
+  const real dx = d / real(SCATTERING_SAMPLES);
+  real4 sum = real4(0), prev = real4(0);
+  for (int i = 0; i <= SCATTERING_SAMPLES; ++i) {
+    const real t = real(i) * dx;
+    PRECISE real r_t = clamp(sqrt(t * t + real(2) * c.r * c.mu * t + c.r * c.r), RB, RT);
+    PRECISE real mu_t = clamp((c.r * c.mu + t) / r_t, real(-1), real(1));
+    PRECISE real mu_s_t = clamp((c.r * c.mu_s + t * c.nu) / r_t, real(-1), real(1));
+    const real4 j = sample_scattering_table(density_texture, scattering_uvwz(r_t, mu_t, mu_s_t, c.nu, c.hits_ground, ANGLE_MAPPING_BLENDED));
+    const real4 f = transmittance(c.r, c.mu, t, c.hits_ground) * j;
+    if (i > 0) sum += integrate_interval(prev, f, dx);
+    prev = f;
+  }
+  imageStore(delta_radiance_image, p, vec4(sum));
+  imageStore(multiple_image, p, imageLoad(multiple_image, p) + vec4(sum));
+}

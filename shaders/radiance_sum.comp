@@ -1,0 +1,43 @@
+#version 450 core
+// Per-row sums of in-scattered radiance over one group's wavelengths, for the
+// share of each scattering order (PrecomputeReport::order_fraction) and the
+// tolerance stop: one invocation per (μ, r) row of the scattering tables.
+//   SINGLE 1: single scattering with its phase functions (total_radiance_sum);
+//   SINGLE 0: the radiance of the last order (delta_radiance_texture).
+// row_sums[wavelength_group · rows + row]; `lanes`: wavelengths in this group.
+layout(local_size_x = 64) in;
+
+#include "atmosphere_common.glsl"
+
+layout(std430, binding = 3) writeonly buffer RowSums { real row_sums[]; };
+uniform int lanes;
+#if SINGLE
+layout(binding = 1) uniform sampler3D single_rayleigh_texture;
+#if HAS_MIE
+layout(binding = 2) uniform sampler3D single_mie_texture;
+#endif
+#else
+layout(binding = 3) uniform sampler3D delta_radiance_texture;
+#endif
+
+void main() {
+  const int rows = SCATTERING_R * SCATTERING_MU;
+  const int row = int(gl_GlobalInvocationID.x);
+  if (row >= rows) return;
+  const int z = row / SCATTERING_MU, y = row % SCATTERING_MU;
+  real sum = real(0);
+  for (int x = 0; x < SCATTERING_NU * SCATTERING_MU_S; ++x) {
+    const ivec3 p = ivec3(x, y, z);
+#if SINGLE
+    const ScatteringCoordinates c = scattering_texel_coordinates(x, y, z, ANGLE_MAPPING_DISTANCE);
+    real4 v = real4(texelFetch(single_rayleigh_texture, p, 0)) * rayleigh_phase(c.nu);
+#if HAS_MIE
+    v = v + real4(texelFetch(single_mie_texture, p, 0)) * mie_phase(c.nu);
+#endif
+#else
+    const real4 v = real4(texelFetch(delta_radiance_texture, p, 0));
+#endif
+    for (int k = 0; k < lanes; ++k) sum += v[k];
+  }
+  row_sums[wavelength_group * rows + row] = sum;
+}

@@ -1,0 +1,172 @@
+// Lookup tables: parameterization, CPU precompute, queries and the cache.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <unistd.h>
+
+#include "atmosphere/constants.h"
+#include "atmosphere/lut/cpu_precompute.h"
+#include "atmosphere/lut/table_cache.h"
+#include "atmosphere/model_hash.h"
+#include "atmosphere/parameters.h"
+#include "tests/atmosphere/lut_fixture.h"
+
+namespace zenith::atmosphere::lut {
+namespace {
+
+TEST(Parameterization, TransmittanceMappingRoundTrips) {
+  for (const char* preset : {"earth-advanced", "mars", "titan"}) {
+    const AtmosphereModel m = load_preset(preset).model;
+    const ShellGeometry g{m.ground_radius_m, m.top_radius_m};
+    const TableSizes s;
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int i = 0; i < 1000; ++i) {
+      const double r = g.bottom_radius_m + u(rng) * (g.top_radius_m - g.bottom_radius_m);
+      const double mu_horizon = -std::sqrt(1.0 - (g.bottom_radius_m / r) * (g.bottom_radius_m / r));
+      const double mu = mu_horizon + u(rng) * (1.0 - mu_horizon);
+      const TransmittanceUV uv = transmittance_uv(g, s, r, mu);
+      double r2, mu2;
+      transmittance_r_mu(g, s, uv.u_mu, uv.v_r, &r2, &mu2);
+      EXPECT_NEAR(r2, r, 1e-6 * r) << preset;
+      EXPECT_NEAR(mu2, mu, 1e-6) << preset << " r=" << r;
+    }
+  }
+}
+
+TEST(Parameterization, ScatteringTexelCentresMapBackToThemselves) {
+  const AtmosphereModel m = load_preset("mars").model;
+  const ShellGeometry g{m.ground_radius_m, m.top_radius_m};
+  const TableSizes s = TableSizes::small();
+  for (std::size_t z = 0; z < s.scattering_r; ++z)
+    for (std::size_t y = 0; y < s.scattering_mu; ++y)
+      for (std::size_t x = 0; x < s.scattering_mu_s; ++x) {  // ν index 0 (ν clamped, so skip ν)
+        for (AngleMapping mapping : {AngleMapping::Distance, AngleMapping::Blended}) {
+        const ScatteringCoordinates c = scattering_texel_coordinates(g, s, x, y, z, mapping);
+        const ScatteringUVWZ uv = scattering_uvwz(g, s, c.r_m, c.mu, c.mu_s, c.nu, c.ray_hits_ground, mapping);
+        EXPECT_NEAR(uv.u_r, (z + 0.5) / s.scattering_r, 1e-9);
+        // At the ground (z = 0) every downward ray has length 0: that half is degenerate.
+        if (z > 0 || !c.ray_hits_ground) {
+          // (1e-6: the tangent ray, y = 0, is ill-conditioned: d depends on √disc with disc → 0.)
+          EXPECT_NEAR(uv.u_mu, (y + 0.5) / s.scattering_mu, 1e-6) << z << " " << y;
+        }
+        EXPECT_NEAR(uv.u_mu_s, (x + 0.5) / s.scattering_mu_s, 1e-9);
+        EXPECT_EQ(c.ray_hits_ground, y < s.scattering_mu / 2);
+        }
+      }
+}
+
+TEST(Parameterization, SunAngleRangeDerivesFromTheRadii) {
+  // μs_min = −H/rt: −0.175 for Earth's 100 km shell, much lower for Titan's thick one.
+  const ShellGeometry earth{6371e3, 6471e3}, titan{2574.73e3, 3174.73e3};
+  EXPECT_NEAR(earth.min_sun_cosine(), -std::sqrt(1.0 - std::pow(6371.0 / 6471.0, 2)), 1e-12);
+  EXPECT_NEAR(earth.min_sun_cosine(), -0.1751, 1e-4);
+  EXPECT_LT(titan.min_sun_cosine(), -0.5);
+}
+
+TEST(LookupTables, ZenithTransmittanceMatchesClosedForm) {
+  for (const char* preset : {"earth-standard", "earth-advanced", "mars", "titan", "halcyon"}) {
+    const auto& fixture = SmallTables::get(preset);
+    const AtmosphereModel& m = fixture.model;
+    const auto tau = m.zenith_optical_depth().total;
+    double t[kMaxChannels];
+    fixture.queries->transmittance_to_top(m.ground_radius_m, 1.0, t);
+    for (std::size_t c = 0; c < m.wavelength_count(); ++c)
+      EXPECT_NEAR(t[c], std::exp(-tau[c] * m.air_mass(m.ground_radius_m, 1.0)), 1e-6 + 1e-5 * t[c]) << preset;
+  }
+}
+
+TEST(LookupTables, TransmittanceIsReciprocal) {
+  const auto& f = SmallTables::get("earth-advanced");
+  const ShellGeometry& g = f.tables.geometry;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 200; ++i) {
+    // A segment from x (radius r, upward-ish μ) over distance d, then back.
+    const double r = g.bottom_radius_m + 10.0 + u(rng) * 50e3;
+    const double mu = 0.02 + 0.98 * u(rng);
+    const double d = u(rng) * g.distance_to_top_m(r, mu);
+    const double r_d = std::sqrt(d * d + 2.0 * r * mu * d + r * r);
+    const double mu_d = (r * mu + d) / r_d;
+    double forward[kMaxChannels], backward[kMaxChannels];
+    f.queries->transmittance(r, mu, d, false, forward);
+    f.queries->transmittance(r_d, -mu_d, d, g.ray_hits_ground(r_d, -mu_d), backward);
+    for (std::size_t c = 0; c < f.tables.channels; ++c) EXPECT_NEAR(forward[c], backward[c], 5e-3) << r << " " << mu;
+  }
+}
+
+TEST(LookupTables, EarthNoonSkyIsBlueAndOrdersShrink) {
+  const auto& f = SmallTables::get("earth-advanced");
+  const Vec3 observer{0.0, 0.0, f.model.ground_radius_m + 1.0};
+  const Vec3 sun = direction_from_angles(30.0 * kPi / 180.0, 0.0);
+  const Spectrum zenith = f.queries->sky_radiance(observer, {0.0, 0.0, 1.0}, sun);
+  EXPECT_GT(zenith[2], zenith[1]);  // B > G > R
+  EXPECT_GT(zenith[1], zenith[0]);
+  for (double v : zenith) EXPECT_TRUE(std::isfinite(v) && v > 0.0);
+  // Each order adds less than the one before.
+  for (std::size_t i = 1; i < f.report.order_fraction.size(); ++i)
+    EXPECT_LT(f.report.order_fraction[i], f.report.order_fraction[i - 1]);
+}
+
+TEST(LookupTables, ToleranceStopsEarlyAndReportsOrders) {
+  const AtmosphereModel m = load_preset("mars").model;
+  PrecomputeOptions o;
+  o.sizes = TableSizes{32, 8, 16, 4, 4, 16, 8, 4};
+  o.max_orders = 30;
+  o.tolerance = 0.05;
+  o.sphere_zenith_samples = 6;
+  o.scattering_samples = 16;
+  PrecomputeReport report;
+  const LookupTables t = precompute_tables_cpu(m, o, &report);
+  EXPECT_LT(report.orders_used, 30);
+  EXPECT_GE(report.orders_used, 2);
+  EXPECT_EQ(t.scattering_orders, report.orders_used);
+  EXPECT_LT(report.order_fraction.back(), 0.05 / (1.0 - 0.05) + 1e-9);
+}
+
+TEST(TableCache, RoundTripAndCorruptionDetection) {
+  const auto& f = SmallTables::get("mars");
+  const auto dir = std::filesystem::temp_directory_path() / ("zenith-cache-test-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const TableCache cache(dir);
+  EXPECT_FALSE(cache.load(f.model, f.options).has_value());
+  const auto path = cache.store(f.model, f.options, f.tables);
+  ASSERT_TRUE(std::filesystem::exists(path));
+  const auto loaded = cache.load(f.model, f.options);
+  ASSERT_TRUE(loaded.has_value());
+  EXPECT_EQ(loaded->multiple.data, f.tables.multiple.data);
+  EXPECT_EQ(loaded->transmittance.data, f.tables.transmittance.data);
+  EXPECT_EQ(loaded->scattering_orders, f.tables.scattering_orders);
+  EXPECT_EQ(loaded->hash, lookup_table_hash(f.model));
+
+  // Other options: another key, so not found.
+  PrecomputeOptions other = f.options;
+  other.max_orders += 1;
+  EXPECT_FALSE(cache.load(f.model, other).has_value());
+
+  // Truncated file: detected, reported, not used.
+  const auto size = std::filesystem::file_size(path);
+  std::filesystem::resize_file(path, size / 2);
+  std::string problem;
+  EXPECT_FALSE(cache.load(f.model, f.options, &problem).has_value());
+  EXPECT_FALSE(problem.empty());
+
+  // Flipped bits in the pixel data: the checksum catches them.
+  cache.store(f.model, f.options, f.tables);
+  {
+    std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(std::streamoff(std::filesystem::file_size(path) - 100));
+    const char junk[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+    file.write(junk, 8);
+  }
+  problem.clear();
+  EXPECT_FALSE(cache.load(f.model, f.options, &problem).has_value());
+  EXPECT_FALSE(problem.empty());
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace zenith::atmosphere::lut

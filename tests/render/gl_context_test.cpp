@@ -1,0 +1,358 @@
+// The GL foundation: a headless EGL context, the RAII wrappers, embedded shaders
+// with #include, #define variants, compile errors. Runs on Mesa llvmpipe (CPU).
+#include <epoxy/gl.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "render/gl/buffer.h"
+#include "render/gl/egl_context.h"
+#include "render/gl/gl_error.h"
+#include "render/gl/gl_limits.h"
+#include "render/gl/shader_program.h"
+#include "render/gl/texture.h"
+#include "render/shader_source.h"
+
+namespace zenith::render {
+namespace {
+
+using gl::HeadlessContext;
+using gl::ShaderProgram;
+using gl::Texture;
+using gl::TextureFormat;
+
+/// The pattern of shaders/test_common.glsl, in C++.
+std::vector<float> expected_pattern(int w, int h, int d, float scale = 1.0f, bool index_term = true) {
+  std::vector<float> out;
+  for (int z = 0; z < d; ++z)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        out.push_back((static_cast<float>(x) + 0.5f) / static_cast<float>(w) * scale);
+        out.push_back((static_cast<float>(y) + 0.5f) / static_cast<float>(h) * scale);
+        out.push_back((static_cast<float>(z) + 0.5f) / static_cast<float>(d) * scale);
+        out.push_back(index_term ? static_cast<float>(x + w * (y + h * z)) : 0.0f);
+      }
+  return out;
+}
+
+std::vector<float> run_pattern(const ShaderProgram& program, int w, int h, int d) {
+  Texture image = Texture::create_3d(TextureFormat::rgba32f, w, h, d);
+  image.bind_image(0, gl::ImageAccess::write_only);
+  program.dispatch_covering(w, h, d);
+  std::vector<float> out = image.read();
+  gl::check_gl_error("test pattern dispatch");
+  return out;
+}
+
+void expect_floats_near(const std::vector<float>& actual, const std::vector<float>& expected, float tolerance) {
+  ASSERT_EQ(actual.size(), expected.size());
+  for (std::size_t i = 0; i < actual.size(); ++i)
+    ASSERT_NEAR(actual[i], expected[i], tolerance) << "float " << i << " (texel " << i / 4 << ", channel " << i % 4 << ")";
+}
+
+class GlTest : public ::testing::Test {
+ protected:
+  HeadlessContext context_;
+};
+
+TEST(HeadlessContext, CreatesAGl45CoreContextWithoutADisplay) {
+  const auto start = std::chrono::steady_clock::now();
+  HeadlessContext context;
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+  EXPECT_TRUE(context.is_current());
+  EXPECT_TRUE(context.core_profile());
+  EXPECT_TRUE(context.gl_major() > 4 || (context.gl_major() == 4 && context.gl_minor() >= 5))
+      << context.gl_major() << "." << context.gl_minor();
+  EXPECT_FALSE(context.renderer().empty());
+  EXPECT_FALSE(context.vendor().empty());
+  EXPECT_NE(context.version().find("Core Profile"), std::string::npos) << context.version();
+
+  GLint profile = 0;
+  glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+  EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
+
+  const gl::GlLimits limits = gl::query_gl_limits();
+  EXPECT_GE(limits.max_3d_texture_size, 2048);  // the GL 4.5 minimum
+  EXPECT_GE(limits.max_compute_work_group_invocations, 1024);  // the GL 4.3+ minimum
+  gl::check_gl_error("query_gl_limits");
+
+  std::printf("renderer: %s\nvendor: %s\nversion: %s\nGLSL: %s\nsource: %s\nEGL: %s %s\nsoftware: %s, surfaceless: %s\n"
+              "context creation: %.1f ms\n%s",
+              context.renderer().c_str(), context.vendor().c_str(), context.version().c_str(),
+              context.glsl_version().c_str(), context.source().c_str(), context.egl_vendor().c_str(),
+              context.egl_version().c_str(), context.is_software() ? "yes" : "no",
+              context.surfaceless() ? "yes" : "no", ms, gl::to_string(limits).c_str());
+  RecordProperty("renderer", context.renderer());
+  RecordProperty("context_creation_ms", std::to_string(ms));
+}
+
+TEST(HeadlessContext, MovesAndReleasesOnDestruction) {
+  std::optional<HeadlessContext> a(std::in_place);
+  ASSERT_TRUE(a->is_current());
+  HeadlessContext b(std::move(*a));
+  EXPECT_FALSE(a->is_current());  // moved-from: no context
+  EXPECT_TRUE(b.is_current());
+  EXPECT_THROW(a->make_current(), std::logic_error);
+  a.reset();
+  EXPECT_TRUE(b.is_current());  // destroying the moved-from object changes nothing
+  {
+    HeadlessContext c;  // a second context, current now
+    EXPECT_TRUE(c.is_current());
+    EXPECT_FALSE(b.is_current());
+    b.make_current();
+    EXPECT_TRUE(b.is_current());
+  }  // c was not current: b stays current
+  EXPECT_TRUE(b.is_current());
+  const Texture t = Texture::create_2d(TextureFormat::r32f, 2, 2, std::vector<float>{1, 2, 3, 4});
+  EXPECT_EQ(t.read(), (std::vector<float>{1, 2, 3, 4}));
+}
+
+TEST(HeadlessContext, TwoContextsOnTwoThreads) {
+  HeadlessContext main_context;
+  std::string other_renderer;
+  std::thread worker([&] {
+    HeadlessContext worker_context;
+    const Texture t = Texture::create_2d(TextureFormat::r32f, 1, 1, std::vector<float>{7.0f});
+    if (t.read() == std::vector<float>{7.0f}) other_renderer = worker_context.renderer();
+  });
+  worker.join();
+  EXPECT_EQ(other_renderer, main_context.renderer());
+  EXPECT_TRUE(main_context.is_current());
+}
+
+TEST(HeadlessContext, DevicePreference) {
+  EXPECT_EQ(gl::parse_device_preference("software"), gl::DevicePreference::software);
+  EXPECT_THROW(gl::parse_device_preference("gpu"), std::invalid_argument);
+  EXPECT_THROW(HeadlessContext(gl::ContextOptions{3, 1}), std::invalid_argument);
+
+  const HeadlessContext software(gl::ContextOptions{.prefer = gl::DevicePreference::software});
+  EXPECT_TRUE(software.is_software()) << software.renderer();
+  try {
+    const HeadlessContext hardware(gl::ContextOptions{.prefer = gl::DevicePreference::hardware});
+    EXPECT_FALSE(hardware.is_software()) << hardware.renderer();
+  } catch (const std::runtime_error& e) {  // a machine without a GPU, like CI
+    EXPECT_NE(std::string(e.what()).find("prefer=hardware"), std::string::npos) << e.what();
+  }
+}
+
+TEST(HeadlessContext, UnavailableVersionThrowsNamingEglCalls) {
+  try {
+    const HeadlessContext context(gl::ContextOptions{.gl_major = 9, .gl_minor = 9});
+    FAIL() << "a GL 9.9 context was created: " << context.version();
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("GL 9.9"), std::string::npos) << what;
+    EXPECT_NE(what.find("eglCreateContext"), std::string::npos) << what;
+    EXPECT_NE(what.find("0x"), std::string::npos) << what;  // the EGL error code
+  }
+}
+
+TEST(HeadlessContext, DebugContextRoutesMessages) {
+  const HeadlessContext context(gl::ContextOptions{.debug = true});
+  EXPECT_TRUE(context.debug());
+  glBindTexture(GL_TEXTURE_2D, 123456);  // an invalid name: GL_INVALID_OPERATION, logged through spdlog
+  EXPECT_THROW(gl::check_gl_error("bind of an invalid texture"), std::runtime_error);
+  gl::check_gl_error("after draining");
+}
+
+TEST_F(GlTest, TestPatternComputeShaderMatchesCpp) {
+  const ShaderProgram program = ShaderProgram::load_compute("test_pattern.comp");
+  EXPECT_EQ(program.work_group_size(), (std::array<int, 3>{4, 4, 2}));
+  const int w = 8, h = 4, d = 3;  // d = 3 is not a multiple of the work group's 2: out-of-range invocations return
+  expect_floats_near(run_pattern(program, w, h, d), expected_pattern(w, h, d), 1e-6f);
+}
+
+TEST_F(GlTest, DefineVariantsChangeTheOutput) {
+  const std::vector<gl::ShaderDefine> no_index = {{"PATTERN_INDEX_TERM", "0"}, {"PATTERN_SCALE", "2.0"}};
+  const ShaderProgram variant = ShaderProgram::load_compute("test_pattern.comp", no_index);
+  const std::vector<float> out = run_pattern(variant, 5, 3, 2);
+  expect_floats_near(out, expected_pattern(5, 3, 2, 2.0f, false), 1e-6f);
+  const ShaderProgram plain = ShaderProgram::load_compute("test_pattern.comp");
+  EXPECT_NE(out, run_pattern(plain, 5, 3, 2));
+}
+
+TEST_F(GlTest, SyntaxErrorThrowsWithShaderNameAndLine) {
+  const gl::ShaderCode broken{"broken_test.comp",
+                              "#version 450 core\n"
+                              "layout(local_size_x = 1) in;\n"
+                              "void main() {\n"
+                              "  float x = 1.0 +;\n"
+                              "}\n",
+                              {}};
+  try {
+    ShaderProgram::compute(broken, std::vector<gl::ShaderDefine>{{"UNUSED", "1"}});
+    FAIL() << "compiled";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("broken_test.comp"), std::string::npos) << what;
+    EXPECT_NE(what.find("failed to compile"), std::string::npos) << what;
+    // The driver's line number is the file's (the injected #define does not shift it),
+    // and the offending line is quoted under it.
+    EXPECT_NE(what.find("broken_test.comp:4 | float x = 1.0 +;"), std::string::npos) << what;
+  }
+}
+
+TEST_F(GlTest, ErrorInAnIncludedFileNamesThatFileAndLine) {
+  const std::map<std::string, std::string, std::less<>> files = {
+      {"main.comp", "#version 450 core\nlayout(local_size_x = 1) in;\n#include \"lib/common.glsl\"\nvoid main() {}\n"},
+      {"lib/common.glsl", "// common\nfloat f() { return 1.0; }\nfloat g() { return undefined_name; }\n"}};
+  const ExpandedShader e = expand_includes("main.comp", files.at("main.comp"), [&](std::string_view n) {
+    auto it = files.find(n);
+    return it == files.end() ? std::nullopt : std::optional<std::string_view>(it->second);
+  });
+  try {
+    ShaderProgram::compute(gl::ShaderCode{e.name, e.text, e.files});
+    FAIL() << "compiled";
+  } catch (const std::runtime_error& ex) {
+    const std::string what = ex.what();
+    EXPECT_NE(what.find("lib/common.glsl:3 | float g() { return undefined_name; }"), std::string::npos) << what;
+    EXPECT_NE(what.find("1 = lib/common.glsl"), std::string::npos) << what;
+  }
+}
+
+TEST_F(GlTest, TextureRoundTrips) {
+  const std::vector<float> r = {1.5f, -2.0f, 3.25f, 1e-30f, 6.0f, 7.0f};  // 3x2
+  const Texture t2 = Texture::create_2d(TextureFormat::r32f, 3, 2, r);
+  EXPECT_FALSE(t2.is_3d());
+  EXPECT_EQ(t2.read(), r);
+
+  std::vector<float> rg(2 * 2 * 3 * 4);
+  for (std::size_t i = 0; i < rg.size(); ++i) rg[i] = static_cast<float>(i) * 0.125f - 1.0f;
+  Texture t3 = Texture::create_3d(TextureFormat::rg32f, 2, 3, 4, rg);
+  EXPECT_EQ(t3.read(), rg);
+  for (float& v : rg) v *= 2.0f;
+  t3.upload(rg);
+  EXPECT_EQ(t3.read(), rg);
+  EXPECT_THROW(t3.upload(std::vector<float>(3)), std::invalid_argument);
+
+  const Texture zero = Texture::create_3d(TextureFormat::rgba32f, 2, 2, 2);
+  EXPECT_EQ(zero.read(), std::vector<float>(32, 0.0f));
+  EXPECT_THROW(Texture::create_2d(TextureFormat::r32f, 0, 4), std::invalid_argument);
+  EXPECT_THROW(Texture::create_3d(TextureFormat::r32f, 1 << 20, 1 << 20, 1 << 20), std::runtime_error);
+}
+
+TEST_F(GlTest, StorageBufferThroughACompute) {
+  const gl::ShaderCode doubler{"doubler.comp",
+                               "#version 450 core\n"
+                               "layout(local_size_x = 64) in;\n"
+                               "layout(std430, binding = 0) buffer Data { float values[]; };\n"
+                               "layout(std140, binding = 1) uniform Params { float factor; };\n"
+                               "uniform uint count;\n"
+                               "void main() {\n"
+                               "  uint i = gl_GlobalInvocationID.x;\n"
+                               "  if (i < count) values[i] *= factor;\n"
+                               "}\n",
+                               {}};
+  const ShaderProgram program = ShaderProgram::compute(doubler);
+  std::vector<float> values(100);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>(i);
+  const gl::Buffer data = gl::Buffer::from(std::span<const float>(values));
+  const float params[4] = {3.0f, 0, 0, 0};
+  const gl::Buffer uniforms = gl::Buffer::from(std::span<const float>(params));
+  data.bind_storage(0);
+  uniforms.bind_uniform(1);
+  EXPECT_TRUE(program.set_uniform("count", 100u));
+  EXPECT_FALSE(program.set_uniform("not_there", 1));
+  program.dispatch_covering(100);
+  const std::vector<float> out = data.read<float>();
+  ASSERT_EQ(out.size(), 100u);
+  for (std::size_t i = 0; i < out.size(); ++i) EXPECT_EQ(out[i], 3.0f * static_cast<float>(i));
+  EXPECT_THROW(gl::Buffer(0), std::invalid_argument);
+  gl::Buffer zeros(16);
+  EXPECT_EQ(zeros.read<std::uint32_t>(), std::vector<std::uint32_t>(4, 0u));
+  EXPECT_THROW(zeros.upload(std::span<const float>(params), 4), std::out_of_range);
+}
+
+// --- GL-free: embedded shaders, includes, define injection --------------------
+
+TEST(ShaderSource, EmbeddedShadersAreThere) {
+  EXPECT_NE(shader_source("test_pattern.comp").find("#include \"test_common.glsl\""), std::string_view::npos);
+  const auto names = shader_names();
+  EXPECT_NE(std::find(names.begin(), names.end(), "test_common.glsl"), names.end());
+  try {
+    (void)shader_source("nope.comp");
+    FAIL();
+  } catch (const std::out_of_range& e) {
+    EXPECT_NE(std::string(e.what()).find("nope.comp"), std::string::npos);
+  }
+  const ExpandedShader e = load_shader("test_pattern.comp");
+  EXPECT_EQ(e.files, (std::vector<std::string>{"test_pattern.comp", "test_common.glsl"}));
+  EXPECT_NE(e.text.find("vec4 test_pattern("), std::string::npos);
+  EXPECT_EQ(e.text.find("#include"), std::string::npos);
+}
+
+TEST(ShaderSource, IncludesExpandOnceWithLineDirectives) {
+  const std::map<std::string, std::string, std::less<>> files = {
+      {"a/b.glsl", "#include \"c.glsl\"\nB\n"},  // c.glsl resolves to a/c.glsl first
+      {"a/c.glsl", "C"},                         // no final newline
+      {"c.glsl", "root C\n"},
+      {"d.glsl", "#include \"a/c.glsl\" // again: expands to nothing\nD\n"}};
+  auto resolve = [&](std::string_view n) {
+    auto it = files.find(n);
+    return it == files.end() ? std::nullopt : std::optional<std::string_view>(it->second);
+  };
+  const ExpandedShader e = expand_includes("main.comp", "#version 450\n#include \"a/b.glsl\"\n  #  include \"d.glsl\"\nM\n", resolve);
+  EXPECT_EQ(e.text,
+            "#version 450\n"
+            "#line 1 1\n"
+            "#line 1 2\n"
+            "C\n"
+            "#line 2 1\n"
+            "B\n"
+            "#line 3 0\n"
+            "#line 1 3\n"
+            "\n"
+            "D\n"
+            "#line 4 0\n"
+            "M\n");
+  EXPECT_EQ(e.files, (std::vector<std::string>{"main.comp", "a/b.glsl", "a/c.glsl", "d.glsl"}));
+}
+
+TEST(ShaderSource, IncludeErrorsNameFileAndLine) {
+  const std::map<std::string, std::string, std::less<>> files = {
+      {"x.glsl", "#include \"y.glsl\"\n"}, {"y.glsl", "\n#include \"x.glsl\"\n"}, {"v.glsl", "#version 450\n"}};
+  auto resolve = [&](std::string_view n) {
+    auto it = files.find(n);
+    return it == files.end() ? std::nullopt : std::optional<std::string_view>(it->second);
+  };
+  auto message = [&](std::string_view source) {
+    try {
+      expand_includes("m.comp", source, resolve);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("\n#include \"missing.glsl\"\n"), "m.comp:2: #include \"missing.glsl\": no such shader file");
+  EXPECT_EQ(message("#include \"x.glsl\"\n"), "y.glsl:2: #include cycle: m.comp -> x.glsl -> y.glsl -> x.glsl");
+  EXPECT_EQ(message("#include \"v.glsl\"\n"), "v.glsl:1: #version in an included file");
+  EXPECT_NE(message("#include <x.glsl>\n").find("malformed #include"), std::string::npos);
+  EXPECT_NE(message("#include \"x.glsl\" junk\n").find("unexpected text"), std::string::npos);
+}
+
+TEST(ShaderSource, DefinesGoRightAfterVersion) {
+  const std::vector<gl::ShaderDefine> defines = {{"USE_OZONE", "1"}, {"FLAG", ""}};
+  EXPECT_EQ(gl::inject_defines("s", "// header\n#version 450 core\nvoid main() {}\n", defines),
+            "// header\n#version 450 core\n#define USE_OZONE 1\n#define FLAG \n#line 3 0\nvoid main() {}\n");
+  EXPECT_EQ(gl::inject_defines("s", "#version 450\nx\n", {}), "#version 450\nx\n");
+  EXPECT_THROW(gl::inject_defines("s", "void main() {}\n", defines), std::invalid_argument);
+  for (const char* bad : {"1X", "GL_FOO", "A__B", "A-B", ""})
+    EXPECT_THROW(gl::inject_defines("s", "#version 450\n", std::vector<gl::ShaderDefine>{{bad, "1"}}),
+                 std::invalid_argument)
+        << bad;
+  EXPECT_THROW(gl::inject_defines("s", "#version 450\n", std::vector<gl::ShaderDefine>{{"A", "1\n2"}}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace zenith::render

@@ -1,0 +1,297 @@
+// The GPU lookup-table precomputation (render/lut/gpu_precompute.h) against the
+// CPU one (atmosphere/lut/cpu_precompute.h): same options, same tables, same report.
+//
+// Agreement bound (fp64 shaders, the default): in every table, values above 1e-3
+// of the table's largest value agree to 1e-5 relative, the others to 1e-8 of the
+// largest value. Measured on Mesa llvmpipe: the tables are bit-identical (the
+// shaders repeat the CPU's operations in double, in the same order, without
+// fused multiply-add); the bound leaves room for drivers whose double
+// elementary functions or summation round differently (one float ulp is 1.2e-7).
+// The fp32 fallback (geometry in float: r² − rb² loses most digits near the
+// ground) is held to 1e-1 relative; measured 6e-2 on the tiny tables below and
+// 1.6e-2 on TableSizes::small(), at grazing rays near the ground.
+#include "render/lut/gpu_precompute.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "atmosphere/lut/cpu_precompute.h"
+#include "atmosphere/parameters.h"
+
+namespace zenith::render {
+namespace {
+
+using atmosphere::AtmosphereModel;
+using atmosphere::lut::LookupTables;
+using atmosphere::lut::PrecomputeOptions;
+using atmosphere::lut::PrecomputeProgress;
+using atmosphere::lut::PrecomputeReport;
+using atmosphere::lut::TableSizes;
+
+constexpr double kSignificant = 1e-3;  ///< of the table's largest value: compared relatively above it
+constexpr double kRelativeBound = 1e-5;
+constexpr double kAbsoluteBound = 1e-8;  ///< of the table's largest value, below kSignificant
+constexpr double kFp32RelativeBound = 1e-1;
+constexpr double kFp32AbsoluteBound = 1e-4;
+
+/// Difference of a GPU table from the CPU one.
+struct Agreement {
+  double max_relative = 0.0;  ///< over |cpu| > kSignificant · max
+  double max_absolute = 0.0;  ///< |gpu − cpu| / max over the others
+  std::size_t worst = 0;      ///< index of the largest relative difference
+  double table_max = 0.0;
+  bool identical = true;
+};
+
+Agreement compare(const std::vector<float>& gpu, const std::vector<float>& cpu) {
+  Agreement a;
+  if (gpu.size() != cpu.size()) {
+    ADD_FAILURE() << "table sizes differ: GPU " << gpu.size() << ", CPU " << cpu.size();
+    a.max_relative = INFINITY;
+    return a;
+  }
+  for (float v : cpu) a.table_max = std::max(a.table_max, std::abs(static_cast<double>(v)));
+  const double floor = kSignificant * a.table_max;
+  for (std::size_t i = 0; i < cpu.size(); ++i) {
+    const double c = cpu[i], g = gpu[i];
+    if (gpu[i] != cpu[i]) a.identical = false;
+    if (!std::isfinite(g)) {
+      a.max_relative = INFINITY;
+      a.worst = i;
+    } else if (std::abs(c) > floor) {
+      const double r = std::abs(g - c) / std::abs(c);
+      if (r > a.max_relative) {
+        a.max_relative = r;
+        a.worst = i;
+      }
+    } else {
+      a.max_absolute = std::max(a.max_absolute, std::abs(g - c) / std::max(a.table_max, 1e-30));
+    }
+  }
+  return a;
+}
+
+struct Result {
+  LookupTables tables;
+  PrecomputeReport report;
+  std::vector<std::pair<std::string, double>> progress;
+  double seconds = 0.0;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <typename F>
+Result timed_run(PrecomputeOptions options, F&& precompute) {
+  Result run;
+  options.progress = [&run](const PrecomputeProgress& p) { run.progress.emplace_back(p.stage, p.fraction); };
+  const auto start = std::chrono::steady_clock::now();
+  run.tables = precompute(options, &run.report);
+  run.seconds = seconds_since(start);
+  return run;
+}
+
+Result run_cpu(const AtmosphereModel& model, const PrecomputeOptions& options) {
+  return timed_run(options, [&](const PrecomputeOptions& o, PrecomputeReport* r) {
+    return atmosphere::lut::precompute_tables_cpu(model, o, r);
+  });
+}
+
+Result run_gpu(const AtmosphereModel& model, const PrecomputeOptions& options,
+            GpuPrecision precision = GpuPrecision::automatic, const gl::HeadlessContext* context = nullptr) {
+  return timed_run(options, [&](const PrecomputeOptions& o, PrecomputeReport* r) {
+    return precompute_tables_gpu(model, o, r, context, precision);
+  });
+}
+
+/// The options of the comparison: small tables, 3 orders, a coarse sphere integral.
+PrecomputeOptions small_options() {
+  PrecomputeOptions o;
+  o.sizes = TableSizes::small();
+  o.max_orders = 3;
+  o.sphere_zenith_samples = 8;
+  return o;
+}
+
+/// Tiny tables (every code path, a fraction of a second on the CPU) for the variant tests.
+PrecomputeOptions tiny_options() {
+  PrecomputeOptions o;
+  o.sizes = TableSizes{16, 8, 8, 4, 4, 16, 8, 4};
+  o.max_orders = 3;
+  o.sphere_zenith_samples = 4;
+  o.transmittance_samples = 100;
+  o.scattering_samples = 20;
+  return o;
+}
+
+/// Compares every table, the table-set metadata and the report; prints the agreement.
+void expect_same_tables(const std::string& name, const Result& cpu, const Result& gpu, double relative_bound = kRelativeBound,
+                        double absolute_bound = kAbsoluteBound) {
+  const LookupTables &c = cpu.tables, &g = gpu.tables;
+  EXPECT_EQ(g.channels, c.channels);
+  EXPECT_EQ(g.sizes, c.sizes);
+  EXPECT_EQ(g.geometry.bottom_radius_m, c.geometry.bottom_radius_m);
+  EXPECT_EQ(g.geometry.top_radius_m, c.geometry.top_radius_m);
+  EXPECT_EQ(g.scattering_orders, c.scattering_orders);
+  EXPECT_EQ(g.hash, c.hash);
+  const struct {
+    const char* table;
+    const std::vector<float>& gpu;
+    const std::vector<float>& cpu;
+  } tables[] = {{"transmittance", g.transmittance.data, c.transmittance.data},
+                {"irradiance", g.irradiance.data, c.irradiance.data},
+                {"single Rayleigh", g.single_rayleigh.data, c.single_rayleigh.data},
+                {"single Mie", g.single_mie.data, c.single_mie.data},
+                {"multiple", g.multiple.data, c.multiple.data}};
+  std::printf("%s: CPU %.2f s, GPU %.2f s on %s\n", name.c_str(), cpu.seconds, gpu.seconds, gpu.report.device.c_str());
+  for (const auto& t : tables) {
+    const Agreement a = compare(t.gpu, t.cpu);
+    std::printf("  %-16s %s max relative %.2e, max absolute %.2e of max %.4g\n", t.table,
+                a.identical ? "identical," : "          ", a.max_relative, a.max_absolute, a.table_max);
+    EXPECT_LE(a.max_relative, relative_bound)
+        << name << ", " << t.table << ": value " << a.worst << " GPU " << t.gpu[a.worst] << " CPU " << t.cpu[a.worst];
+    EXPECT_LE(a.max_absolute, absolute_bound) << name << ", " << t.table;
+  }
+
+  // The report: the same stages in the same order, orders and their shares.
+  ASSERT_EQ(gpu.report.stages.size(), cpu.report.stages.size());
+  for (std::size_t i = 0; i < cpu.report.stages.size(); ++i) {
+    EXPECT_EQ(gpu.report.stages[i].stage, cpu.report.stages[i].stage);
+    EXPECT_GE(gpu.report.stages[i].seconds, 0.0);
+  }
+  EXPECT_EQ(gpu.report.orders_used, cpu.report.orders_used);
+  ASSERT_EQ(gpu.report.order_fraction.size(), cpu.report.order_fraction.size());
+  for (std::size_t i = 0; i < cpu.report.order_fraction.size(); ++i)
+    EXPECT_NEAR(gpu.report.order_fraction[i], cpu.report.order_fraction[i], 10 * relative_bound) << "order " << i + 1;
+  EXPECT_FALSE(gpu.report.device.empty());
+  EXPECT_EQ(gpu.report.device.find("CPU ("), std::string::npos) << gpu.report.device;
+  // Progress: the same calls (stage names and fractions) in the same order.
+  EXPECT_EQ(gpu.progress, cpu.progress);
+}
+
+void compare_preset(const std::string& preset) {
+  const AtmosphereModel model = atmosphere::load_preset(preset).model;
+  const PrecomputeOptions options = small_options();
+  const Result cpu = run_cpu(model, options);
+  const Result gpu = run_gpu(model, options);
+  expect_same_tables(preset, cpu, gpu);
+  for (const auto& s : gpu.report.stages) std::printf("    %-34s %.3f s\n", s.stage.c_str(), s.seconds);
+}
+
+TEST(GpuPrecompute, MatchesCpuForEarthAdvanced) { compare_preset("earth-advanced"); }
+TEST(GpuPrecompute, MatchesCpuForMars) { compare_preset("mars"); }
+TEST(GpuPrecompute, MatchesCpuForTitan) { compare_preset("titan"); }
+
+TEST(GpuPrecompute, FiveWavelengthsUseTwoGroupsOfFour) {
+  atmosphere::LoadOptions load;
+  load.wavelengths_nm = std::vector<double>{440, 500, 550, 600, 680};
+  const AtmosphereModel model = atmosphere::load_preset("earth-advanced", load).model;
+  ASSERT_EQ(model.wavelength_count(), 5u);
+  PrecomputeOptions options = small_options();
+  options.max_orders = 2;  // orders >= 3 with several groups: SixtyFourWavelengths
+  const Result gpu = run_gpu(model, options);
+  EXPECT_EQ(gpu.tables.channels, 5u);
+  expect_same_tables("earth-advanced, 5 wavelengths", run_cpu(model, options), gpu);
+}
+
+TEST(GpuPrecompute, SixtyFourWavelengths) {
+  std::vector<double> wavelengths;
+  for (int i = 0; i < 64; ++i) wavelengths.push_back(440.0 + 4.0 * i);  // within the preset's tabulated range
+  atmosphere::LoadOptions load;
+  load.wavelengths_nm = wavelengths;
+  const AtmosphereModel model = atmosphere::load_preset("mars", load).model;
+  ASSERT_EQ(model.wavelength_count(), 64u);
+  const PrecomputeOptions options = tiny_options();
+  expect_same_tables("mars, 64 wavelengths", run_cpu(model, options), run_gpu(model, options));
+}
+
+/// A model without aerosols: the Mie terms are compiled out of the shaders.
+TEST(GpuPrecompute, NoMieVariantMatchesCpu) {
+  AtmosphereModel model = atmosphere::load_preset("earth-advanced").model;
+  for (std::size_t i = 0; i < model.wavelength_count(); ++i) model.mie_scattering_m1[i] = model.mie_extinction_m1[i] = 0.0;
+  ASSERT_FALSE(model.has_mie());
+  const PrecomputeOptions options = small_options();
+  const Result cpu = run_cpu(model, options);
+  const Result gpu = run_gpu(model, options);
+  expect_same_tables("earth-advanced without Mie", cpu, gpu);
+  for (float v : gpu.tables.single_mie.data) ASSERT_EQ(v, 0.0f);
+}
+
+/// Every switch of the shaders against the CPU, on tiny tables: phase functions,
+/// absorbers, air mass, quadrature rule, a single order, the tolerance stop.
+TEST(GpuPrecompute, ShaderVariantsMatchCpu) {
+  struct Variant {
+    std::string name;
+    std::string preset;
+    void (*edit)(AtmosphereModel&, PrecomputeOptions&);
+  };
+  const Variant variants[] = {
+      {"halcyon (Cornette-Shanks, molecular absorption)", "halcyon", [](AtmosphereModel&, PrecomputeOptions&) {}},
+      {"earth-standard (no absorbers)", "earth-standard", [](AtmosphereModel&, PrecomputeOptions&) {}},
+      {"classic Rayleigh phase, no air mass, trapezoid", "earth-advanced",
+       [](AtmosphereModel& m, PrecomputeOptions& o) {
+         m.rayleigh_phase = atmosphere::RayleighPhaseModel::Classic;
+         m.air_mass = atmosphere::AirMassStretch();
+         o.scattering_quadrature = PrecomputeOptions::Quadrature::Trapezoid;
+       }},
+      {"one order, odd transmittance samples", "titan",
+       [](AtmosphereModel&, PrecomputeOptions& o) {
+         o.max_orders = 1;
+         o.transmittance_samples = 51;
+       }},
+      {"tolerance stop", "earth-advanced",
+       [](AtmosphereModel&, PrecomputeOptions& o) {
+         o.max_orders = 8;
+         o.tolerance = 0.02;
+       }},
+  };
+  for (const Variant& v : variants) {
+    AtmosphereModel model = atmosphere::load_preset(v.preset).model;
+    PrecomputeOptions options = tiny_options();
+    v.edit(model, options);
+    const Result cpu = run_cpu(model, options);
+    expect_same_tables(v.name, cpu, run_gpu(model, options));
+    if (options.tolerance > 0.0) {
+      EXPECT_GT(cpu.report.orders_used, 2);
+      EXPECT_LT(cpu.report.orders_used, options.max_orders);  // the stop was exercised
+    }
+  }
+}
+
+TEST(GpuPrecompute, Fp32FallbackAgreesLoosely) {
+  const AtmosphereModel model = atmosphere::load_preset("earth-advanced").model;
+  const PrecomputeOptions options = tiny_options();
+  expect_same_tables("earth-advanced, fp32 shaders", run_cpu(model, options),
+                     run_gpu(model, options, GpuPrecision::fp32), kFp32RelativeBound, kFp32AbsoluteBound);
+}
+
+TEST(GpuPrecompute, UsesAGivenContextAndLeavesItCurrent) {
+  const gl::HeadlessContext context;
+  const AtmosphereModel model = atmosphere::load_preset("mars").model;
+  const PrecomputeOptions options = tiny_options();
+  const Result gpu = run_gpu(model, options, GpuPrecision::automatic, &context);
+  EXPECT_TRUE(context.is_current());
+  EXPECT_EQ(gpu.report.device, context.renderer());
+  expect_same_tables("mars, given context", run_cpu(model, options), gpu);
+}
+
+TEST(GpuPrecompute, RejectsBadOptionsLikeTheCpu) {
+  const AtmosphereModel model = atmosphere::load_preset("mars").model;
+  PrecomputeOptions options = tiny_options();
+  options.max_orders = 0;
+  EXPECT_THROW(precompute_tables_gpu(model, options), std::invalid_argument);
+  options = tiny_options();
+  options.sizes.scattering_mu = 9;  // odd
+  EXPECT_THROW(precompute_tables_gpu(model, options), std::invalid_argument);
+  EXPECT_STREQ(to_string(GpuPrecision::fp64), "fp64");
+}
+
+}  // namespace
+}  // namespace zenith::render
