@@ -17,7 +17,8 @@ namespace zenith::app {
 namespace {
 
 struct SampleArgs {
-  std::string atmosphere, directions_file, grid, method = "lut", out = "-", tables = "paper", quantity = "radiance";
+  std::string atmosphere, directions_file, grid, method = "lut", out = "-", tables = "paper", quantity = "radiance",
+              cache_dir;
   double altitude_m = 0.0, sun_zenith_deg = 30.0, sun_azimuth_deg = 0.0, sun_radius_deg = 0.2666;
   std::uint64_t seed = 1;
   std::size_t samples = 4096;
@@ -80,6 +81,7 @@ void run_sample(const SampleArgs& a) {
   r.tables.options.max_orders = a.orders;
   r.tables.options.threads = a.threads;
   r.tables.backend = a.cpu ? PrecomputeBackend::Cpu : PrecomputeBackend::Gpu;
+  if (!a.cache_dir.empty()) r.tables.cache_directory = a.cache_dir;
 
   std::string csv;
   if (a.quantity == "radiance") csv = sample_radiance_csv(loaded.model, r);
@@ -122,6 +124,7 @@ void register_sample_command(CLI::App& app) {
   cmd->add_option("--tables", args->tables, "Table sizes: paper (default), small, large")
       ->check(CLI::IsMember({"paper", "small", "large"}));
   cmd->add_flag("--cpu", args->cpu, "Precompute tables on the CPU");
+  cmd->add_option("--cache", args->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
   cmd->add_option("--threads", args->threads, "CPU threads (default: all)");
   cmd->add_option("--out", args->out, "Output CSV file ('-' for standard output)");
   cmd->callback([args] { run_sample(*args); });

@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
     add("small 4 orders trapezoid", small, 4, false, 8, on_gpu);
     add("small 2 orders", small, 2, true, 8, on_gpu);
     if (!quick || on_gpu) add("medium 4 orders", medium, 4, true, 16, on_gpu);
-    if (!quick && on_gpu) add("paper 4 orders", paper, 4, true, 16, on_gpu);
+    if (on_gpu) add("paper 4 orders", paper, 4, true, 16, on_gpu);
     if (!quick && on_gpu) add("paper 8 orders", paper, 8, true, 16, on_gpu);
   }
 
