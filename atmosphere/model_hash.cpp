@@ -64,12 +64,10 @@ std::string canonical_description(const AtmosphereModel& m) {
   return out.str();
 }
 
-std::string lookup_table_hash(const AtmosphereModel& model) {
-  const std::string text = canonical_description(model);
+std::string sha256_hex(const void* data, std::size_t bytes) {
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
-  if (EVP_Digest(text.data(), text.size(), digest, &length, EVP_sha256(), nullptr) != 1)
-    throw std::runtime_error("SHA-256 failed");
+  if (EVP_Digest(data, bytes, digest, &length, EVP_sha256(), nullptr) != 1) throw std::runtime_error("SHA-256 failed");
   static const char* hex = "0123456789abcdef";
   std::string out;
   for (unsigned int i = 0; i < length; ++i) {
@@ -77,6 +75,11 @@ std::string lookup_table_hash(const AtmosphereModel& model) {
     out += hex[digest[i] & 15];
   }
   return out;
+}
+
+std::string lookup_table_hash(const AtmosphereModel& model) {
+  const std::string text = canonical_description(model);
+  return sha256_hex(text.data(), text.size());
 }
 
 }  // namespace zenith::atmosphere

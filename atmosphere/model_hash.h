@@ -11,6 +11,7 @@
 // Numbers enter as decimal text rounded to 12 significant digits, so the same
 // parameters give the same hash on every machine even if a libm differs in the
 // last bit of a derived coefficient.
+#include <cstddef>
 #include <string>
 
 #include "atmosphere/atmosphere_model.h"
@@ -22,6 +23,9 @@ inline constexpr int kLookupTableFormatVersion = 5;
 
 /// The canonical text that is hashed (one "key: values" line per quantity).
 std::string canonical_description(const AtmosphereModel& model);
+/// SHA-256 of `bytes` bytes at `data`, as 64 lowercase hex digits.
+std::string sha256_hex(const void* data, std::size_t bytes);
+
 /// SHA-256 of canonical_description(), as 64 lowercase hex digits.
 std::string lookup_table_hash(const AtmosphereModel& model);
 

@@ -375,11 +375,7 @@ LookupTables Precompute::run() {
   tables_.scattering_orders = used;
   tables_.hash = lookup_table_hash(model_);
   if (report_) {
-    report_->orders_used = used;
-    double total = 0.0;
-    for (double v : order_sums) total += v;
-    report_->order_fraction.clear();
-    for (double v : order_sums) report_->order_fraction.push_back(total > 0.0 ? v / total : 0.0);
+    report_->set_order_sums(order_sums);
     report_->device = "CPU (" + std::to_string(resolve_thread_count(options_.threads)) + " threads)";
   }
   if (options_.progress) options_.progress({"done", 1.0});
@@ -387,6 +383,14 @@ LookupTables Precompute::run() {
 }
 
 }  // namespace
+
+void PrecomputeReport::set_order_sums(const std::vector<double>& order_sums) {
+  orders_used = int(order_sums.size());
+  double total = 0.0;
+  for (double v : order_sums) total += v;
+  order_fraction.clear();
+  for (double v : order_sums) order_fraction.push_back(total > 0.0 ? v / total : 0.0);
+}
 
 double PrecomputeReport::total_seconds() const {
   double s = 0.0;

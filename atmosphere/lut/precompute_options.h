@@ -53,6 +53,8 @@ struct PrecomputeReport {
   std::vector<double> order_fraction;
   std::string device;  ///< "CPU (2 threads)" or the GL renderer string
   double total_seconds() const;
+  /// Fills orders_used and order_fraction from Σ radiance of each order (index 0 = single).
+  void set_order_sums(const std::vector<double>& order_sums);
 };
 
 }  // namespace zenith::atmosphere::lut

@@ -10,7 +10,6 @@
 #include <ImfOutputPart.h>
 #include <ImfPartType.h>
 #include <ImfStringAttribute.h>
-#include <openssl/evp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,19 +22,6 @@
 
 namespace zenith::atmosphere::lut {
 namespace {
-
-std::string sha256_hex(const void* data, std::size_t bytes) {
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  if (EVP_Digest(data, bytes, digest, &length, EVP_sha256(), nullptr) != 1) throw std::runtime_error("SHA-256 failed");
-  static const char* hex = "0123456789abcdef";
-  std::string out;
-  for (unsigned int i = 0; i < length; ++i) {
-    out += hex[digest[i] >> 4];
-    out += hex[digest[i] & 15];
-  }
-  return out;
-}
 
 /// A table viewed as a 2D float image: 3D tables stack their depth slices vertically.
 struct PartView {

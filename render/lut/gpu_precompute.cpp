@@ -514,11 +514,7 @@ LookupTables GpuPrecompute::run() {
   tables_.scattering_orders = used;
   tables_.hash = atmosphere::lookup_table_hash(model_);
   if (report_) {
-    report_->orders_used = used;
-    double total = 0.0;
-    for (double v : order_sums) total += v;
-    report_->order_fraction.clear();
-    for (double v : order_sums) report_->order_fraction.push_back(total > 0.0 ? v / total : 0.0);
+    report_->set_order_sums(order_sums);
     report_->device = context_.renderer();
   }
   if (options_.progress) options_.progress({"done", 1.0});
