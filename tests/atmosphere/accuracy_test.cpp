@@ -102,53 +102,35 @@ Agreement compare(const std::string& preset, const std::string& fixture_name) {
 // the reference's standard error. The twilight and limb cases are the hardest
 // for tables this small (the Earth's shadow and the limb are a few texels
 // wide); bench/lut_accuracy_bench reports the same comparison for larger tables.
-TEST(AccuracyVsReference, EarthNoon) {
-  const Agreement a = compare("earth-advanced", "earth-advanced_noon");
-  EXPECT_LT(a.rms_relative, 0.09);
-  EXPECT_LT(a.max_relative, 0.2);
+struct AccuracyCase {
+  const char* name;     ///< test name
+  const char* preset;
+  const char* fixture;  ///< tests/data/reference_<fixture>.csv
+  double max_rms, max_max;
+};
+
+void PrintTo(const AccuracyCase& c, std::ostream* os) { *os << c.name; }
+
+class AccuracyVsReference : public ::testing::TestWithParam<AccuracyCase> {};
+
+TEST_P(AccuracyVsReference, WithinStatedBounds) {
+  const AccuracyCase& c = GetParam();
+  const Agreement a = compare(c.preset, c.fixture);
+  EXPECT_LT(a.rms_relative, c.max_rms);
+  EXPECT_LT(a.max_relative, c.max_max);
 }
 
-TEST(AccuracyVsReference, EarthLowSun) {
-  const Agreement a = compare("earth-advanced", "earth-advanced_low_sun");
-  EXPECT_LT(a.rms_relative, 0.12);
-  EXPECT_LT(a.max_relative, 0.28);
-}
-
-TEST(AccuracyVsReference, EarthTwilight) {
-  const Agreement a = compare("earth-advanced", "earth-advanced_twilight");
-  EXPECT_LT(a.rms_relative, 0.3);
-  EXPECT_LT(a.max_relative, 0.95);
-}
-
-TEST(AccuracyVsReference, EarthLimbFromOrbit) {
-  const Agreement a = compare("earth-advanced", "earth-advanced_orbit_limb");
-  EXPECT_LT(a.rms_relative, 0.35);
-  EXPECT_LT(a.max_relative, 0.8);
-}
-
-TEST(AccuracyVsReference, MarsNoon) {
-  const Agreement a = compare("mars", "mars_noon");
-  EXPECT_LT(a.rms_relative, 0.1);
-  EXPECT_LT(a.max_relative, 0.22);
-}
-
-TEST(AccuracyVsReference, MarsLowSun) {
-  const Agreement a = compare("mars", "mars_low_sun");
-  EXPECT_LT(a.rms_relative, 0.11);
-  EXPECT_LT(a.max_relative, 0.3);
-}
-
-TEST(AccuracyVsReference, MarsTwilight) {
-  const Agreement a = compare("mars", "mars_twilight");
-  EXPECT_LT(a.rms_relative, 0.15);
-  EXPECT_LT(a.max_relative, 0.3);
-}
-
-TEST(AccuracyVsReference, MarsLimbFromOrbit) {
-  const Agreement a = compare("mars", "mars_orbit_limb");
-  EXPECT_LT(a.rms_relative, 0.16);
-  EXPECT_LT(a.max_relative, 0.35);
-}
+INSTANTIATE_TEST_SUITE_P(
+    Cases, AccuracyVsReference,
+    ::testing::Values(AccuracyCase{"EarthNoon", "earth-advanced", "earth-advanced_noon", 0.09, 0.20},
+                      AccuracyCase{"EarthLowSun", "earth-advanced", "earth-advanced_low_sun", 0.12, 0.28},
+                      AccuracyCase{"EarthTwilight", "earth-advanced", "earth-advanced_twilight", 0.30, 0.95},
+                      AccuracyCase{"EarthLimbFromOrbit", "earth-advanced", "earth-advanced_orbit_limb", 0.35, 0.80},
+                      AccuracyCase{"MarsNoon", "mars", "mars_noon", 0.10, 0.22},
+                      AccuracyCase{"MarsLowSun", "mars", "mars_low_sun", 0.11, 0.30},
+                      AccuracyCase{"MarsTwilight", "mars", "mars_twilight", 0.15, 0.30},
+                      AccuracyCase{"MarsLimbFromOrbit", "mars", "mars_orbit_limb", 0.16, 0.35}),
+    [](const auto& test_info) { return std::string(test_info.param.name); });
 
 TEST(Energy, ConservativeAtmosphereOverAWhiteGroundCreatesNoLight) {
   // No absorption anywhere, albedo 1: the light leaving the top can at most
