@@ -111,6 +111,7 @@ class GpuPrecompute {
 
   void compute_transmittance();
   void compute_single_scattering();
+  void bind_previous_order_radiance(GroupTables& t, int order) const;
   void compute_scattering_density(int order);
   void compute_indirect_irradiance(int order);
   double compute_multiple_scattering();
@@ -387,6 +388,17 @@ void GpuPrecompute::compute_single_scattering() {
   }
 }
 
+/// The radiance of order n−1 that orders n read: the single-scattering tables
+/// (order 2) or the last order's delta table.
+void GpuPrecompute::bind_previous_order_radiance(GroupTables& t, int order) const {
+  if (order == 2) {
+    t.single_rayleigh.bind(kSingleRayleighUnit);
+    if (model_.has_mie()) t.single_mie.bind(kSingleMieUnit);
+  } else {
+    t.delta_radiance.bind(kDeltaRadianceUnit);
+  }
+}
+
 void GpuPrecompute::compute_scattering_density(int order) {
   const ShaderProgram& p = program("scattering_density.comp", {{"FIRST_ORDER", order == 2 ? "1" : "0"}});
   for (std::size_t g = 0; g < group_count(); ++g) {
@@ -394,13 +406,8 @@ void GpuPrecompute::compute_scattering_density(int order) {
     if (t.density.id() == 0) t.density = new_scattering_texture();
     t.density.bind_image(0, gl::ImageAccess::write_only);
     t.transmittance.bind(kTransmittanceUnit);
-    if (order == 2) {
-      t.single_rayleigh.bind(kSingleRayleighUnit);
-      if (model_.has_mie()) t.single_mie.bind(kSingleMieUnit);
-    } else {
-      t.delta_radiance.bind(kDeltaRadianceUnit);
-      t.delta_irradiance.bind(kDeltaIrradianceUnit);
-    }
+    bind_previous_order_radiance(t, order);
+    if (order > 2) t.delta_irradiance.bind(kDeltaIrradianceUnit);
     p.set_uniform("wavelength_group", to_int(g));
     dispatch_scattering(p);
   }
@@ -419,12 +426,7 @@ void GpuPrecompute::compute_indirect_irradiance(int order) {
     t.delta_irradiance.bind_image(0, gl::ImageAccess::write_only);
     t.irradiance.bind_image(1, gl::ImageAccess::read_write);
     t.transmittance.bind(kTransmittanceUnit);
-    if (order == 2) {
-      t.single_rayleigh.bind(kSingleRayleighUnit);
-      if (model_.has_mie()) t.single_mie.bind(kSingleMieUnit);
-    } else {
-      t.delta_radiance.bind(kDeltaRadianceUnit);
-    }
+    bind_previous_order_radiance(t, order);
     p.set_uniform("wavelength_group", to_int(g));
     p.dispatch_covering(to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
   }
