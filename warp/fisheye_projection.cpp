@@ -1,0 +1,142 @@
+#include "warp/fisheye_projection.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+namespace zenith::warp {
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+constexpr double kMaxPositionPx = 1e6;  // centre and radius: far beyond any image, finite
+// pixel() accepts directions this far past fov / 2 (radians), so that the rays
+// ray() gives on the rim, whose angle atan2 may round up, map back.
+constexpr double kRimToleranceRad = 1e-12;
+
+/// The shortest text that reads back as `value` ("180", "89.5").
+std::string number(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+/// Requires value in [lo, hi] (or (lo, hi] when `open_lo`); NaN and infinities fail.
+void check_range(const char* name, double value, double lo, double hi, const char* unit, bool open_lo = false) {
+  const bool ok = (open_lo ? lo < value : lo <= value) && value <= hi;
+  if (!ok)
+    throw std::invalid_argument(std::string("FisheyeProjection: ") + name + " = " + number(value) + ": must be in " +
+                                (open_lo ? "(" : "[") + number(lo) + ", " + number(hi) + "] " + unit);
+}
+
+}  // namespace
+
+FisheyeProjection::FisheyeProjection(int width_px, int height_px, const FisheyeParameters& parameters)
+    : Projection(width_px, height_px),
+      fov_deg_(parameters.fov_deg),
+      tilt_deg_(parameters.tilt_deg),
+      rotation_deg_(parameters.rotation_deg),
+      centre_x_px_(parameters.centre_x_px.value_or(0.5 * width_px)),
+      centre_y_px_(parameters.centre_y_px.value_or(0.5 * height_px)),
+      radius_px_(parameters.radius_px.value_or(0.5 * std::min(width_px, height_px))) {
+  check_range("fov_deg", fov_deg_, 1.0, 360.0, "degrees");
+  check_range("tilt_deg", tilt_deg_, -90.0, 90.0, "degrees");
+  check_range("rotation_deg", rotation_deg_, -360.0, 360.0, "degrees");
+  check_range("centre_x_px", centre_x_px_, -kMaxPositionPx, kMaxPositionPx, "px");
+  check_range("centre_y_px", centre_y_px_, -kMaxPositionPx, kMaxPositionPx, "px");
+  check_range("radius_px", radius_px_, 0.0, kMaxPositionPx, "px", /*open_lo=*/true);
+
+  half_fov_rad_ = 0.5 * fov_deg_ * kDegToRad;
+  rad_per_px_ = half_fov_rad_ / radius_px_;
+
+  // The untilted dome: axis up (+y), image right +x, image up +z (backward), so
+  // forward (−z) is at the bottom. The spin turns the picture counter-clockwise
+  // by ρ: the pixel offset (dx, dy) shows what the unspun image has at the offset
+  // turned back by −ρ, (dx cos ρ + dy sin ρ, −dx sin ρ + dy cos ρ); collecting
+  // dx and dy gives the spun basis vectors below.
+  const double cos_rho = std::cos(rotation_deg_ * kDegToRad), sin_rho = std::sin(rotation_deg_ * kDegToRad);
+  const glm::dvec3 right(cos_rho, 0.0, -sin_rho);  // cos ρ · x̂ − sin ρ · ẑ
+  const glm::dvec3 up(sin_rho, 0.0, cos_rho);      // sin ρ · x̂ + cos ρ · ẑ
+  const glm::dvec3 axis(0.0, 1.0, 0.0);
+  // The tilt turns +y toward −z: a right-handed turn by −tilt about +x,
+  // (x, y, z) → (x, y cos t + z sin t, −y sin t + z cos t).
+  const double cos_t = std::cos(tilt_deg_ * kDegToRad), sin_t = std::sin(tilt_deg_ * kDegToRad);
+  auto tilt = [&](const glm::dvec3& v) {
+    return glm::dvec3(v.x, v.y * cos_t + v.z * sin_t, -v.y * sin_t + v.z * cos_t);
+  };
+  frame_ = glm::dmat3(tilt(right), tilt(up), tilt(axis));
+}
+
+std::optional<glm::dvec3> FisheyeProjection::ray(double x_px, double y_px) const {
+  if (!std::isfinite(x_px) || !std::isfinite(y_px)) return std::nullopt;
+  const double dx = x_px - centre_x_px_;
+  const double dy = centre_y_px_ - y_px;  // image y points down; dy points up
+  const double r = std::hypot(dx, dy);
+  if (r > radius_px_) return std::nullopt;
+  const double theta = r * rad_per_px_;
+  // sin θ / r → rad_per_px at the centre, where the azimuth is undefined.
+  const double sin_theta_over_r = r > 0.0 ? std::sin(theta) / r : rad_per_px_;
+  const glm::dvec3 d = (dx * sin_theta_over_r) * frame_[0] + (dy * sin_theta_over_r) * frame_[1] +
+                       std::cos(theta) * frame_[2];
+  return glm::normalize(d);  // unit already up to rounding
+}
+
+std::optional<glm::dvec2> FisheyeProjection::pixel(const glm::dvec3& direction) const {
+  if (!std::isfinite(direction.x) || !std::isfinite(direction.y) || !std::isfinite(direction.z)) return std::nullopt;
+  // Into the optical frame: frameᵀ · d.
+  const double lx = glm::dot(frame_[0], direction);
+  const double ly = glm::dot(frame_[1], direction);
+  const double lz = glm::dot(frame_[2], direction);
+  const double across = std::hypot(lx, ly);
+  if (across == 0.0 && lz == 0.0) return std::nullopt;  // the zero vector
+  // atan2 keeps θ accurate near the axis and near its opposite, where acos is not.
+  const double theta = std::atan2(across, lz);
+  if (theta > half_fov_rad_ + kRimToleranceRad) return std::nullopt;
+  const double r = theta / rad_per_px_;
+  double dx = 0.0, dy = 0.0;
+  if (across > 0.0) {
+    dx = r * lx / across;
+    dy = r * ly / across;
+  } else if (lz < 0.0) {
+    dy = -r;  // exactly opposite the axis (fov 360): the rim point below the centre
+  }
+  return glm::dvec2(centre_x_px_ + dx, centre_y_px_ - dy);
+}
+
+GpuProjection FisheyeProjection::gpu() const {
+  auto pack = [](const glm::dvec3& v) {
+    return std::array<float, 4>{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), 0.0f};
+  };
+  GpuProjection out;
+  out.kind = ProjectionKind::fisheye;
+  out.params = {std::array<float, 4>{static_cast<float>(centre_x_px_), static_cast<float>(centre_y_px_),
+                                     static_cast<float>(rad_per_px_), static_cast<float>(half_fov_rad_)},
+                pack(frame_[0]), pack(frame_[1]), pack(frame_[2])};
+  return out;
+}
+
+std::string FisheyeProjection::describe() const {
+  std::ostringstream out;  // 6 significant digits: "73.7398°"
+  out << "fisheye " << fov_deg_ << "° " << width() << "×" << height();
+  if (tilt_deg_ != 0.0) out << ", tilt " << tilt_deg_ << "°";
+  if (rotation_deg_ != 0.0) out << ", rotation " << rotation_deg_ << "°";
+  if (centre_x_px_ != 0.5 * width() || centre_y_px_ != 0.5 * height() ||
+      radius_px_ != 0.5 * std::min(width(), height()))
+    out << ", circle r=" << radius_px_ << " px at (" << centre_x_px_ << ", " << centre_y_px_ << ")";
+  return out.str();
+}
+
+double FisheyeProjection::max_pixel_angle_rad() const {
+  // The metric of the map is dθ² + sin²θ dφ² = k² dr² + sin²(k r) dφ² with
+  // k = rad_per_px, at most k² (dr² + r² dφ²): no path turns the ray by more
+  // than k radians per pixel. The straight segment between two points of one
+  // pixel stays in the (convex) circle and is at most sqrt(2) px long.
+  return std::numbers::sqrt2 * rad_per_px_;
+}
+
+}  // namespace zenith::warp

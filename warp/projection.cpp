@@ -1,0 +1,26 @@
+#include "warp/projection.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace zenith::warp {
+namespace {
+
+constexpr int kMinSizePx = 1;
+constexpr int kMaxSizePx = 65536;  // 8K domes are 8192 px; 65536 leaves room and keeps float pixel maths exact
+
+void check_size(const char* name, int value_px) {
+  if (value_px < kMinSizePx || value_px > kMaxSizePx)
+    throw std::invalid_argument(std::string("projection ") + name + " = " + std::to_string(value_px) +
+                                ": must be in [" + std::to_string(kMinSizePx) + ", " + std::to_string(kMaxSizePx) +
+                                "] px");
+}
+
+}  // namespace
+
+Projection::Projection(int width_px, int height_px) : width_(width_px), height_(height_px) {
+  check_size("width_px", width_px);
+  check_size("height_px", height_px);
+}
+
+}  // namespace zenith::warp

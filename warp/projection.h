@@ -1,0 +1,76 @@
+#pragma once
+// A projection gives the ray of every output pixel. The renderer asks it, per
+// pixel, for a direction in the camera frame; planets are then intersected
+// analytically, so no projection needs a cube map and none has seams.
+//
+// Conventions (docs/projections.md has the diagrams):
+//  * Camera frame: +x right, +y up, −z forward (OpenGL's eye space). A camera's
+//    orientation maps this frame to the world.
+//  * Pixel coordinates are continuous: x to the right, y down, (0, 0) the top-left
+//    corner of the image, pixel (i, j) covers [i, i+1) × [j, j+1) and its centre is
+//    (i + 0.5, j + 0.5).
+//  * ray() and pixel() are inverses wherever ray() is defined. Neither is
+//    limited to the image rectangle: a projection's domain is its plane (planar)
+//    or its image circle (fisheye), which may extend past the image's edges
+//    (a cropped dome master, the renderer's filter footprint at the border).
+//
+// Each projection also describes itself to the GPU (GpuProjection): a kind and
+// sixteen floats that shaders/projection.glsl turns into the same ray, so the
+// GPU does not read a ray per pixel from memory. Angles there are in radians.
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace zenith::warp {
+
+/// The kinds shaders/projection.glsl knows (PROJECTION_KIND_* there, same values).
+enum class ProjectionKind : int {
+  planar = 0,   ///< pinhole with an asymmetric frustum
+  fisheye = 1,  ///< angular (azimuthal equidistant) fisheye
+};
+
+/// What the GPU needs to compute a projection's rays: `kind` and four vec4
+/// uniforms (projection_params[0..3] in the shader); the meaning of each float is
+/// documented next to each projection's gpu().
+struct GpuProjection {
+  ProjectionKind kind = ProjectionKind::planar;
+  std::array<std::array<float, 4>, 4> params{};
+};
+
+class Projection {
+ public:
+  virtual ~Projection() = default;
+
+  /// The image size in pixels, each in [1, 65536].
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  /// The unit direction, in the camera frame, through the continuous pixel
+  /// position (x, y); nothing where the position lies outside the projection's
+  /// image (e.g. the corners of a fisheye's square).
+  virtual std::optional<glm::dvec3> ray(double x_px, double y_px) const = 0;
+  /// Inverse of ray(): the pixel position of a camera-frame direction (need not
+  /// be unit), nothing when the projection does not see it. Positions outside
+  /// [0, width) × [0, height) are returned as they are (callers clip).
+  virtual std::optional<glm::dvec2> pixel(const glm::dvec3& direction) const = 0;
+  /// The description shaders/projection.glsl evaluates.
+  virtual GpuProjection gpu() const = 0;
+  /// One line for logs: "fisheye 180° 1024×1024".
+  virtual std::string describe() const = 0;
+  /// An upper bound of the angle (radians) between the rays of two points of
+  /// the same pixel (hence also between the rays of two adjacent pixel centres,
+  /// horizontally, vertically or diagonally); the renderer widens its culling by it.
+  virtual double max_pixel_angle_rad() const = 0;
+
+ protected:
+  Projection(int width_px, int height_px);  ///< throws std::invalid_argument unless both are in [1, 65536]
+
+ private:
+  int width_, height_;
+};
+
+}  // namespace zenith::warp
