@@ -1,0 +1,188 @@
+// Display-referred previews as 8-bit sRGB PNG: each linear value goes through
+// the tone mapping operator and the sRGB transfer function and is rounded to a
+// byte (display_byte, tone_mapping.h; SrgbQuantizer computes the same bytes
+// without pow). Rows are streamed to libpng one at a time (png_write_row), so
+// the writer holds one row of bytes.
+//
+// The file is deterministic: no tIME chunk, libpng's default zlib level and
+// filter heuristics, attributes in the order given. It carries an sRGB chunk
+// (perceptual intent) and one tEXt chunk per attribute (iTXt, UTF-8, where the
+// value is not plain ASCII).
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include "render/image/image_writer.h"
+#include "render/image/png_support.h"
+#include "render/image/srgb_quantizer.h"
+#include "render/image/writer_support.h"
+
+namespace zenith::image {
+namespace {
+
+constexpr long long kMaxSide_px = 32768;  ///< as read_image accepts
+constexpr std::size_t kMaxKeywordLength = 79;  ///< PNG specification, 11.3.4.2
+
+/// A PNG text keyword: 1–79 printable ASCII characters (the specification allows
+/// Latin-1; attribute names are UTF-8, so only ASCII means the same in both), no
+/// leading, trailing or consecutive spaces.
+void check_keyword(const std::filesystem::path& path, const std::string& key) {
+  bool ok = !key.empty() && key.size() <= kMaxKeywordLength && key.front() != ' ' && key.back() != ' ';
+  for (std::size_t i = 0; ok && i < key.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(key[i]);
+    ok = c >= 32 && c <= 126 && !(c == ' ' && i > 0 && key[i - 1] == ' ');
+  }
+  if (!ok)
+    throw std::invalid_argument(detail::prefix(path) + "attribute name '" + key +
+                                "' is not a PNG keyword (1 to 79 printable ASCII characters, no leading, trailing "
+                                "or double spaces)");
+}
+
+bool is_ascii(const std::string& text) {
+  for (char c : text)
+    if (static_cast<unsigned char>(c) > 127) return false;
+  return true;
+}
+
+/// png_rw_ptr writing to the FILE*; a short write is a libpng error naming errno.
+void write_to_file(png_structp png, png_bytep data, std::size_t length) {
+  auto* file = static_cast<std::FILE*>(png_get_io_ptr(png));
+  if (std::fwrite(data, 1, length, file) != length) {
+    char message[160];
+    std::snprintf(message, sizeof message, "write error: %s", std::strerror(errno));
+    png_error(png, message);
+  }
+}
+
+void flush_file(png_structp png) { std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png))); }
+
+class PngWriter final : public ImageWriter {
+ public:
+  PngWriter(const std::filesystem::path& path, int width, int height, ToneMapping tone,
+            const ImageAttributes& attributes)
+      : ImageWriter(width, height),
+        path_(path),
+        partial_(detail::partial_path_for(path)),
+        tone_(tone),
+        row_(std::size_t(width) * 3) {
+    for (const auto& [name, value] : attributes) {
+      check_keyword(path_, name);
+      if (value.find('\0') != std::string::npos)
+        throw std::invalid_argument(detail::prefix(path_) + "attribute '" + name + "' holds a NUL character");
+    }
+    file_ = std::fopen(partial_.c_str(), "wb");
+    if (!file_)
+      throw std::runtime_error(detail::prefix(path_) + "cannot create " + partial_.string() + ": " +
+                               std::strerror(errno));
+    png_ = png_create_write_struct(PNG_LIBPNG_VER_STRING, &errors_, detail::png_error_callback,
+                                   detail::png_warning_callback);
+    if (png_) info_ = png_create_info_struct(png_);
+    if (!png_ || !info_) {
+      abandon();
+      throw std::runtime_error(detail::prefix(path_) + "libpng cannot allocate its state");
+    }
+    // libpng copies the text in png_set_text; the pointers only need to live until then.
+    std::vector<png_text> text(attributes.size());
+    for (std::size_t i = 0; i < attributes.size(); ++i) {
+      const auto& [name, value] = attributes[i];
+      text[i].compression = is_ascii(value) ? PNG_TEXT_COMPRESSION_NONE : PNG_ITXT_COMPRESSION_NONE;
+      text[i].key = const_cast<char*>(name.c_str());
+      text[i].text = const_cast<char*>(value.c_str());
+      text[i].text_length = value.size();
+    }
+    png_structp png = png_;
+    png_infop info = info_;
+    std::FILE* file = file_;
+    png_text* text_data = text.data();
+    const int text_count = static_cast<int>(text.size());
+    const bool ok = detail::png_guarded(png, [=] {
+      png_set_write_fn(png, file, write_to_file, flush_file);
+      png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                   PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+      png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+      if (text_count > 0) png_set_text(png, info, text_data, text_count);
+      png_write_info(png, info);
+    });
+    if (!ok) {
+      const std::string reason = errors_.message;
+      abandon();
+      throw std::runtime_error(detail::prefix(path_) + "PNG: " + reason);
+    }
+  }
+
+  ~PngWriter() override {
+    if (!finished_) abandon();
+  }
+
+  void write_rows(int row_count, std::span<const float> rgb) override {
+    detail::check_row_block(path_, width(), height(), rows_written_, row_count, rgb.size(), open());
+    const std::size_t row_values = std::size_t(width()) * 3;
+    for (int r = 0; r < row_count; ++r) {
+      const float* in = rgb.data() + std::size_t(r) * row_values;
+      for (std::size_t k = 0; k < row_values; ++k) row_[k] = quantize_(tone_map(in[k], tone_));
+      png_structp png = png_;
+      png_bytep row = row_.data();
+      if (!detail::png_guarded(png, [=] { png_write_row(png, row); })) fail();
+      ++rows_written_;
+    }
+  }
+
+  void finish() override {
+    detail::check_complete(path_, height(), rows_written_, open());
+    png_structp png = png_;
+    png_infop info = info_;
+    if (!detail::png_guarded(png, [=] { png_write_end(png, info); })) fail();
+    png_destroy_write_struct(&png_, &info_);
+    const bool write_error = std::ferror(file_) != 0;
+    const bool close_error = std::fclose(file_) != 0;
+    file_ = nullptr;
+    if (write_error || close_error) {
+      failed_ = true;
+      throw std::runtime_error(detail::prefix(path_) + "error writing " + partial_.string());
+    }
+    detail::publish(partial_, path_);
+    finished_ = true;
+  }
+
+ private:
+  bool open() const { return !finished_ && !failed_; }
+
+  [[noreturn]] void fail() {
+    failed_ = true;
+    throw std::runtime_error(detail::prefix(path_) + "PNG: " + errors_.message);
+  }
+
+  /// Releases libpng and the file and removes the partial file; never throws.
+  void abandon() noexcept {
+    if (png_) png_destroy_write_struct(&png_, info_ ? &info_ : nullptr);
+    png_ = nullptr;
+    info_ = nullptr;
+    if (file_) std::fclose(file_);
+    file_ = nullptr;
+    detail::discard(partial_);
+  }
+
+  std::filesystem::path path_, partial_;
+  ToneMapping tone_;
+  SrgbQuantizer quantize_;
+  std::vector<png_byte> row_;  ///< one row of 8-bit RGB
+  detail::PngErrorState errors_;
+  std::FILE* file_ = nullptr;
+  png_structp png_ = nullptr;
+  png_infop info_ = nullptr;
+  int rows_written_ = 0;
+  bool finished_ = false, failed_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<ImageWriter> open_png_writer(const std::filesystem::path& path, int width, int height,
+                                             ToneMapping tone, const ImageAttributes& attributes) {
+  detail::check_dimensions(path, width, height, kMaxSide_px);
+  detail::check_unique_names(path, attributes);
+  return std::make_unique<PngWriter>(path, width, height, tone, attributes);
+}
+
+}  // namespace zenith::image

@@ -1,0 +1,201 @@
+// Streaming writers: chunked rows, atomic publication, misuse and bad pixels.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "render/image/image_io.h"
+#include "render/image/image_writer.h"
+#include "tests/image/image_test_util.h"
+
+namespace zenith::image {
+namespace {
+
+using testing::TempDir;
+
+struct Format {
+  const char* name;
+  std::function<std::unique_ptr<ImageWriter>(const std::filesystem::path&, int, int)> open;
+};
+
+std::vector<Format> formats() {
+  return {{"exr-half", [](const auto& p, int w, int h) { return open_exr_writer(p, w, h, ExrPixelType::half, {{"k", "v"}}); }},
+          {"exr-float", [](const auto& p, int w, int h) { return open_exr_writer(p, w, h, ExrPixelType::float32); }},
+          {"png", [](const auto& p, int w, int h) { return open_png_writer(p, w, h, ToneMapping::exponential, {{"k", "v"}}); }}};
+}
+
+std::span<const float> rows(const std::vector<float>& rgb, int width, int first, int count) {
+  return std::span<const float>(rgb).subspan(std::size_t(first) * width * 3, std::size_t(count) * width * 3);
+}
+
+TEST(ImageWriter, RowsInChunksGiveTheSameBytesAsOneWrite) {
+  TempDir dir;
+  const int w = 29, h = 83;  // several ZIP blocks of 16 rows, the last one partial
+  const std::vector<float> rgb = testing::test_pattern(w, h);
+  for (const Format& f : formats()) {
+    SCOPED_TRACE(f.name);
+    auto one = f.open(dir / "one", w, h);
+    one->write_rows(h, rgb);
+    one->finish();
+    const std::vector<unsigned char> reference = testing::read_bytes(dir / "one");
+    ASSERT_GT(reference.size(), 100u);
+    for (const std::vector<int>& chunks :
+         {std::vector<int>(h, 1), std::vector<int>{7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 6}, std::vector<int>{16, 0, 16, 51},
+          std::vector<int>{33, 1, 2, 40, 7}}) {
+      auto writer = f.open(dir / "chunked", w, h);
+      int y = 0;
+      for (int n : chunks) {
+        writer->write_rows(n, rows(rgb, w, y, n));
+        y += n;
+      }
+      ASSERT_EQ(y, h);
+      writer->finish();
+      ASSERT_EQ(testing::read_bytes(dir / "chunked"), reference) << chunks.size() << " chunks";
+    }
+  }
+}
+
+TEST(ImageWriter, WritesToAPartialFileAndRenamesItOnFinish) {
+  TempDir dir;
+  const int w = 8, h = 4;
+  const std::vector<float> rgb = testing::test_pattern(w, h);
+  for (const Format& f : formats()) {
+    SCOPED_TRACE(f.name);
+    testing::write_bytes(dir / "frame", {'o', 'l', 'd'});
+    auto writer = f.open(dir / "frame", w, h);
+    writer->write_rows(2, rows(rgb, w, 0, 2));
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"frame", "frame.partial"}));
+    EXPECT_EQ(testing::read_bytes(dir / "frame").size(), 3u);  // the old file is untouched until finish
+    writer->write_rows(2, rows(rgb, w, 2, 2));
+    writer->finish();
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"frame"}));
+    EXPECT_EQ(read_image(dir / "frame").width, w);
+    writer.reset();  // destroying a finished writer keeps the file
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"frame"}));
+    std::filesystem::remove(dir / "frame");
+  }
+}
+
+TEST(ImageWriter, AWriterDestroyedBeforeFinishLeavesNoFile) {
+  TempDir dir;
+  const int w = 8, h = 40;
+  const std::vector<float> rgb = testing::test_pattern(w, h);
+  for (const Format& f : formats()) {
+    SCOPED_TRACE(f.name);
+    for (int written : {0, 1, 17, h}) {
+      auto writer = f.open(dir / "frame", w, h);
+      writer->write_rows(written, rows(rgb, w, 0, written));
+      writer.reset();
+      EXPECT_TRUE(dir.entries().empty()) << written << " rows";
+    }
+  }
+}
+
+TEST(ImageWriter, TooManyRowsIsALogicError) {
+  TempDir dir;
+  const std::vector<float> rgb = testing::test_pattern(4, 5);
+  for (const Format& f : formats()) {
+    SCOPED_TRACE(f.name);
+    auto writer = f.open(dir / "frame", 4, 4);
+    writer->write_rows(3, rows(rgb, 4, 0, 3));
+    try {
+      writer->write_rows(2, rows(rgb, 4, 3, 2));
+      FAIL() << "no exception";
+    } catch (const std::logic_error& e) {
+      EXPECT_NE(std::string(e.what()).find("rows 3..4 written to a 4-row image"), std::string::npos) << e.what();
+    }
+    writer->write_rows(1, rows(rgb, 4, 3, 1));  // the rejected call wrote nothing
+    writer->finish();
+    EXPECT_THROW(writer->write_rows(1, rows(rgb, 4, 0, 1)), std::logic_error);
+    EXPECT_THROW(writer->finish(), std::logic_error);
+    std::filesystem::remove(dir / "frame");
+  }
+}
+
+TEST(ImageWriter, FinishWithMissingRowsThrowsAndPublishesNothing) {
+  TempDir dir;
+  const std::vector<float> rgb = testing::test_pattern(4, 4);
+  for (const Format& f : formats()) {
+    SCOPED_TRACE(f.name);
+    auto writer = f.open(dir / "frame", 4, 4);
+    writer->write_rows(3, rows(rgb, 4, 0, 3));
+    try {
+      writer->finish();
+      FAIL() << "no exception";
+    } catch (const std::logic_error& e) {
+      EXPECT_NE(std::string(e.what()).find("3 of 4 rows"), std::string::npos) << e.what();
+    }
+    writer.reset();
+    EXPECT_TRUE(dir.entries().empty());
+  }
+}
+
+TEST(ImageWriter, AWrongNumberOfValuesIsRejected) {
+  TempDir dir;
+  const std::vector<float> rgb = testing::test_pattern(4, 4);
+  for (const Format& f : formats()) {
+    SCOPED_TRACE(f.name);
+    auto writer = f.open(dir / "frame", 4, 4);
+    EXPECT_THROW(writer->write_rows(2, rows(rgb, 4, 0, 1)), std::invalid_argument);
+    EXPECT_THROW(writer->write_rows(-1, {}), std::invalid_argument);
+  }
+  EXPECT_THROW(write_exr(dir / "x.exr", 4, 4, rows(rgb, 4, 0, 3), ExrPixelType::half), std::invalid_argument);
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(ImageWriter, InvalidSizesAreRejected) {
+  TempDir dir;
+  for (const Format& f : formats()) {
+    SCOPED_TRACE(f.name);
+    EXPECT_THROW(f.open(dir / "frame", 0, 4), std::invalid_argument);
+    EXPECT_THROW(f.open(dir / "frame", 4, -1), std::invalid_argument);
+    EXPECT_THROW(f.open(dir / "frame", 40000, 4), std::invalid_argument);
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(ImageWriter, ExrRejectsNaNAndInfinityNamingThePixel) {
+  TempDir dir;
+  const int w = 6, h = 9;
+  for (ExrPixelType type : {ExrPixelType::half, ExrPixelType::float32}) {
+    SCOPED_TRACE(to_string(type));
+    for (float bad : {std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::infinity()}) {
+      std::vector<float> rgb = testing::test_pattern(w, h);
+      rgb[(std::size_t(5) * w + 3) * 3 + 1] = bad;  // pixel (3, 5), G
+      auto writer = open_exr_writer(dir / "nan.exr", w, h, type);
+      writer->write_rows(4, rows(rgb, w, 0, 4));
+      try {
+        writer->write_rows(5, rows(rgb, w, 4, 5));
+        FAIL() << "no exception";
+      } catch (const std::runtime_error& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("nan.exr"), std::string::npos) << m;
+        EXPECT_NE(m.find("pixel (x 3, y 5) channel G"), std::string::npos) << m;
+        EXPECT_NE(m.find(std::isnan(bad) ? "NaN" : "infinite"), std::string::npos) << m;
+      }
+      // Nothing of the rejected rows was written: the writer goes on with fixed values.
+      rgb[(std::size_t(5) * w + 3) * 3 + 1] = 0.5f;
+      writer->write_rows(5, rows(rgb, w, 4, 5));
+      writer->finish();
+      EXPECT_EQ(read_image(dir / "nan.exr").rgb[(std::size_t(5) * w + 3) * 3 + 1], 0.5f);
+    }
+  }
+}
+
+TEST(ImageWriter, AnUnwritableDirectoryIsARuntimeErrorNamingTheFile) {
+  TempDir dir;
+  const auto path = dir / "no" / "such" / "dir" / "frame.exr";
+  for (const Format& f : formats()) {
+    SCOPED_TRACE(f.name);
+    try {
+      f.open(path, 4, 4);
+      FAIL() << "no exception";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace zenith::image
