@@ -10,5 +10,7 @@ void register_atmosphere_command(CLI::App& app);
 void register_precompute_command(CLI::App& app);
 /// `zenith sample`.
 void register_sample_command(CLI::App& app);
+/// `zenith render`.
+void register_render_command(CLI::App& app);
 
 }  // namespace zenith::app

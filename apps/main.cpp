@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   zenith::app::register_atmosphere_command(app);
   zenith::app::register_precompute_command(app);
   zenith::app::register_sample_command(app);
+  zenith::app::register_render_command(app);
 
   try {
     app.parse(argc, argv);

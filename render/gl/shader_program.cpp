@@ -349,6 +349,11 @@ bool ShaderProgram::set_uniform(std::string_view uniform, const std::array<float
   if (loc >= 0) glProgramUniform4fv(id_, loc, 1, v.data());
   return loc >= 0;
 }
+bool ShaderProgram::set_uniform(std::string_view uniform, const std::array<float, 9>& m) const {
+  const int loc = uniform_location(uniform);
+  if (loc >= 0) glProgramUniformMatrix3fv(id_, loc, 1, GL_FALSE, m.data());
+  return loc >= 0;
+}
 bool ShaderProgram::set_uniform(std::string_view uniform, const std::array<int, 2>& v) const {
   const int loc = uniform_location(uniform);
   if (loc >= 0) glProgramUniform2iv(id_, loc, 1, v.data());

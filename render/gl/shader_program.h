@@ -75,6 +75,8 @@ class ShaderProgram {
   bool set_uniform(std::string_view uniform, const std::array<float, 2>& value) const;
   bool set_uniform(std::string_view uniform, const std::array<float, 3>& value) const;
   bool set_uniform(std::string_view uniform, const std::array<float, 4>& value) const;
+  /// A mat3, column-major (m[0..2] the first column).
+  bool set_uniform(std::string_view uniform, const std::array<float, 9>& value) const;
   bool set_uniform(std::string_view uniform, const std::array<int, 2>& value) const;
   bool set_uniform(std::string_view uniform, const std::array<int, 3>& value) const;
   bool set_uniform(std::string_view uniform, const std::array<int, 4>& value) const;

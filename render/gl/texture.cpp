@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -17,6 +18,7 @@ GLenum internal_format(TextureFormat f) {
     case TextureFormat::r32f: return GL_R32F;
     case TextureFormat::rg32f: return GL_RG32F;
     case TextureFormat::rgba32f: return GL_RGBA32F;
+    case TextureFormat::rgba16f: return GL_RGBA16F;
   }
   return GL_RGBA32F;
 }
@@ -25,7 +27,8 @@ GLenum pixel_format(TextureFormat f) {
   switch (f) {
     case TextureFormat::r32f: return GL_RED;
     case TextureFormat::rg32f: return GL_RG;
-    case TextureFormat::rgba32f: return GL_RGBA;
+    case TextureFormat::rgba32f:
+    case TextureFormat::rgba16f: return GL_RGBA;
   }
   return GL_RGBA;
 }
@@ -49,7 +52,8 @@ int channel_count(TextureFormat format) {
   switch (format) {
     case TextureFormat::r32f: return 1;
     case TextureFormat::rg32f: return 2;
-    case TextureFormat::rgba32f: return 4;
+    case TextureFormat::rgba32f:
+    case TextureFormat::rgba16f: return 4;
   }
   return 4;
 }
@@ -59,12 +63,13 @@ const char* to_string(TextureFormat format) {
     case TextureFormat::r32f: return "r32f";
     case TextureFormat::rg32f: return "rg32f";
     case TextureFormat::rgba32f: return "rgba32f";
+    case TextureFormat::rgba16f: return "rgba16f";
   }
   return "?";
 }
 
-Texture::Texture(TextureFormat format, int width, int height, int depth)
-    : format_(format), width_(width), height_(height), depth_(depth) {
+Texture::Texture(TextureFormat format, int width, int height, int depth, int levels)
+    : format_(format), width_(width), height_(height), depth_(depth), levels_(levels) {
   const bool three_d = depth > 0;
   if (width < 1 || height < 1 || depth < 0)
     throw std::invalid_argument(fmt::format("Texture: invalid size {}x{}{}", width, height,
@@ -72,8 +77,8 @@ Texture::Texture(TextureFormat format, int width, int height, int depth)
   check_gl_error("Texture: an earlier GL call left an error");
   glCreateTextures(three_d ? GL_TEXTURE_3D : GL_TEXTURE_2D, 1, &id_);
   if (three_d) glTextureStorage3D(id_, 1, internal_format(format), width, height, depth);
-  else glTextureStorage2D(id_, 1, internal_format(format), width, height);
-  glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  else glTextureStorage2D(id_, levels, internal_format(format), width, height);
+  glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
   glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
@@ -98,6 +103,20 @@ Texture Texture::create_2d(TextureFormat format, int width, int height, std::spa
   return t;
 }
 
+Texture Texture::create_2d_mipmapped(TextureFormat format, int width, int height, std::span<const float> data) {
+  int levels = 1;
+  for (int extent = std::max(width, height); extent > 1; extent /= 2) ++levels;
+  Texture t(format, width, height, 0, levels);
+  t.upload(data);
+  glGenerateTextureMipmap(t.id_);
+  check_gl_error("Texture: generating mipmaps");
+  return t;
+}
+
+void Texture::set_repeat_s(bool repeat) {
+  glTextureParameteri(id_, GL_TEXTURE_WRAP_S, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+}
+
 Texture Texture::create_3d(TextureFormat format, int width, int height, int depth, std::span<const float> data) {
   if (depth < 1) throw std::invalid_argument(fmt::format("Texture: invalid 3D depth {}", depth));
   Texture t(format, width, height, depth);
@@ -117,7 +136,8 @@ Texture::Texture(Texture&& other) noexcept
       format_(other.format_),
       width_(std::exchange(other.width_, 0)),
       height_(std::exchange(other.height_, 0)),
-      depth_(std::exchange(other.depth_, 0)) {}
+      depth_(std::exchange(other.depth_, 0)),
+      levels_(std::exchange(other.levels_, 1)) {}
 
 Texture& Texture::operator=(Texture&& other) noexcept {
   if (this != &other) {
@@ -127,6 +147,7 @@ Texture& Texture::operator=(Texture&& other) noexcept {
     width_ = std::exchange(other.width_, 0);
     height_ = std::exchange(other.height_, 0);
     depth_ = std::exchange(other.depth_, 0);
+    levels_ = std::exchange(other.levels_, 1);
   }
   return *this;
 }

@@ -7,7 +7,7 @@
 
 namespace zenith::render::gl {
 
-enum class TextureFormat { r32f, rg32f, rgba32f };
+enum class TextureFormat { r32f, rg32f, rgba32f, rgba16f };
 /// 1, 2 or 4.
 int channel_count(TextureFormat format);
 /// "r32f", "rg32f", "rgba32f" (the GLSL image format qualifier).
@@ -22,6 +22,9 @@ class Texture {
   /// x fastest, then y. Throws std::invalid_argument on a bad size and
   /// std::runtime_error when GL refuses the storage (too large, out of memory).
   static Texture create_2d(TextureFormat format, int width, int height, std::span<const float> data = {});
+  /// A 2D texture with a full mipmap chain (trilinear filtering), built from
+  /// level 0 `data` (width·height·channels floats): albedo maps seen from far away.
+  static Texture create_2d_mipmapped(TextureFormat format, int width, int height, std::span<const float> data);
   /// Same for 3D: width·height·depth·channels floats, x fastest, then y, then z.
   static Texture create_3d(TextureFormat format, int width, int height, int depth, std::span<const float> data = {});
 
@@ -45,6 +48,11 @@ class Texture {
   /// with this texture's format.
   void bind_image(unsigned unit, ImageAccess access) const;
 
+  /// Wrap mode of the s (x) coordinate: repeat (longitude of an equirectangular
+  /// map) or clamp to edge (the default).
+  void set_repeat_s(bool repeat);
+  int mip_levels() const { return levels_; }
+
   unsigned id() const { return id_; }
   TextureFormat format() const { return format_; }
   bool is_3d() const { return depth_ > 0; }
@@ -55,12 +63,13 @@ class Texture {
   std::size_t float_count() const { return texel_count() * static_cast<std::size_t>(channel_count(format_)); }
 
  private:
-  Texture(TextureFormat format, int width, int height, int depth);
+  Texture(TextureFormat format, int width, int height, int depth, int levels = 1);
   void release() noexcept;
 
   unsigned id_ = 0;
   TextureFormat format_ = TextureFormat::rgba32f;
   int width_ = 0, height_ = 0, depth_ = 0;  // depth_ == 0: a 2D texture
+  int levels_ = 1;
 };
 
 }  // namespace zenith::render::gl

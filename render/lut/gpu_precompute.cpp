@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
-#include "atmosphere/lut/gauss_legendre.h"
 #include "atmosphere/model_hash.h"
 #include "render/gl/buffer.h"
 #include "render/gl/gl_error.h"
 #include "render/gl/gl_limits.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/lut/shader_model.h"
 
 namespace zenith::render {
 
@@ -35,9 +35,6 @@ const char* to_string(GpuPrecision precision) {
 namespace {
 
 using atmosphere::AtmosphereModel;
-using atmosphere::DensityProfile;
-using atmosphere::MiePhase;
-using atmosphere::RayleighPhaseModel;
 using atmosphere::lut::LookupTables;
 using atmosphere::lut::PrecomputeOptions;
 using atmosphere::lut::PrecomputeReport;
@@ -49,7 +46,7 @@ using gl::ShaderProgram;
 using gl::Texture;
 using gl::TextureFormat;
 
-constexpr std::size_t kLanes = 4;  // wavelengths per group (one RGBA32F texel)
+constexpr std::size_t kLanes = kWavelengthLanes;
 
 // Binding points shared with the shaders (atmosphere_common.glsl, previous_order.glsl, *.comp).
 enum StorageBinding : unsigned { kWavelengthData = 0, kTableData = 1, kTexelCoordinates = 2, kRowSums = 3 };
@@ -60,17 +57,6 @@ enum TextureUnit : unsigned {
   kDeltaRadianceUnit = 3,
   kDeltaIrradianceUnit = 4,
   kDensityUnit = 5,
-};
-// Per-group real4 fields of WavelengthData (FIELD_* in atmosphere_common.glsl).
-enum WavelengthField : std::size_t {
-  kRayleighScattering = 0,
-  kMieScattering,
-  kMieExtinction,
-  kMieG1,
-  kMieG2,
-  kMieAlpha,
-  kGroundAlbedo,
-  kAbsorbers,  // absorber k: kAbsorbers + k
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -98,8 +84,6 @@ class GpuPrecompute {
   std::size_t texel_coordinate_count() const {
     return 2 * sizes().scattering_mu_s + 1 + 2 * sizes().scattering_r * (sizes().scattering_mu / 2);
   }
-  std::string literal(double v) const;
-  gl::Buffer real_buffer(const std::vector<double>& values) const;
   void prepare_model_data();
   void check_limits() const;
   const ShaderProgram& program(const std::string& file, std::vector<ShaderDefine> extra = {});
@@ -169,134 +153,14 @@ void GpuPrecompute::check_limits() const {
   check(s.scattering_r, limits.max_3d_texture_size, "scattering_r");
 }
 
-std::string GpuPrecompute::literal(double v) const {
-  // 17 significant digits round-trip a double exactly; 9 a float.
-  return fp64_ ? fmt::format("{:.16e}LF", v) : fmt::format("{:.8e}", v);
-}
-
-gl::Buffer GpuPrecompute::real_buffer(const std::vector<double>& values) const {
-  if (fp64_) return gl::Buffer::from(std::span<const double>(values));
-  std::vector<float> f(values.size());
-  std::transform(values.begin(), values.end(), f.begin(), [](double v) { return static_cast<float>(v); });
-  return gl::Buffer::from(std::span<const float>(f));
-}
-
 void GpuPrecompute::prepare_model_data() {
-  const std::size_t absorbers = model_.absorbers.size();
-  const std::size_t fields = kAbsorbers + absorbers;
-
-  // Per-wavelength coefficients, 4 lanes per group; lanes past N stay zero.
-  std::vector<double> wavelength_data(group_count() * fields * kLanes, 0.0);
-  auto put = [&](std::size_t field, const atmosphere::Spectrum& s) {
-    for (std::size_t i = 0; i < n_ && i < s.size(); ++i)
-      wavelength_data[((i / kLanes) * fields + field) * kLanes + i % kLanes] = s[i];
-  };
-  put(kRayleighScattering, model_.rayleigh_scattering_m1);
-  put(kMieScattering, model_.mie_scattering_m1);
-  put(kMieExtinction, model_.mie_extinction_m1);
-  put(kMieG1, model_.mie_phase.g1);
-  put(kMieG2, model_.mie_phase.g2);
-  put(kMieAlpha, model_.mie_phase.alpha);
-  put(kGroundAlbedo, model_.ground_albedo);
-  for (std::size_t a = 0; a < absorbers; ++a) put(kAbsorbers + a, model_.absorbers[a].absorption_m1);
-
-  // Profile descriptors first (4 reals each, absorbers contiguous), then knots and the air-mass table.
-  std::vector<const DensityProfile*> profiles = {&model_.rayleigh_density, &model_.mie_density,
-                                                 &model_.air_mass.molecular_profile()};
-  for (const auto& a : model_.absorbers) profiles.push_back(&a.profile);
-  std::vector<double> table(4 * profiles.size(), 0.0);
-  for (std::size_t k = 0; k < profiles.size(); ++k) {
-    const DensityProfile& p = *profiles[k];
-    if (p.kind() == DensityProfile::Kind::Exponential) {
-      table[4 * k] = 0.0;
-      table[4 * k + 1] = p.scale_height_m();
-      continue;
-    }
-    const auto& spline = p.table();
-    table[4 * k] = 1.0;
-    table[4 * k + 2] = static_cast<double>(table.size());
-    table[4 * k + 3] = static_cast<double>(spline.knots_x().size());
-    table.insert(table.end(), spline.knots_x().begin(), spline.knots_x().end());
-    table.insert(table.end(), spline.knots_y().begin(), spline.knots_y().end());
-    table.insert(table.end(), spline.slopes().begin(), spline.slopes().end());
-  }
-  // The direction quadratures of the scattering density (sphere) and sky irradiance
-  // (hemisphere): the CPU's Gauss–Legendre rules, nodes then weights.
-  const int sphere_nodes = options_.sphere_zenith_samples, hemisphere_nodes = std::max(1, sphere_nodes / 2);
-  const std::size_t sphere_rule = table.size();
-  const atmosphere::lut::GaussLegendre sphere(sphere_nodes);
-  table.insert(table.end(), sphere.nodes.begin(), sphere.nodes.end());
-  table.insert(table.end(), sphere.weights.begin(), sphere.weights.end());
-  const std::size_t hemisphere_rule = table.size();
-  const atmosphere::lut::GaussLegendre hemisphere(hemisphere_nodes);
-  table.insert(table.end(), hemisphere.nodes.begin(), hemisphere.nodes.end());
-  table.insert(table.end(), hemisphere.weights.begin(), hemisphere.weights.end());
-
-  const bool air_mass = model_.air_mass.enabled();
-  const std::size_t air_mass_table = table.size();
-  const std::size_t air_mass_size = air_mass ? model_.air_mass.cos_zenith_table().size() : 0;
-  if (air_mass) {
-    table.insert(table.end(), model_.air_mass.cos_zenith_table().begin(), model_.air_mass.cos_zenith_table().end());
-    table.insert(table.end(), model_.air_mass.stretch_table().begin(), model_.air_mass.stretch_table().end());
-  }
-
-  wavelength_data_ = real_buffer(wavelength_data);
-  table_data_ = real_buffer(table);
+  ShaderModel m = shader_model(model_, options_, fp64_);
+  defines_ = std::move(m.defines);
+  wavelength_data_ = real_buffer(m.wavelength_data, fp64_);
+  table_data_ = real_buffer(m.table_data, fp64_);
   const std::size_t real_size = fp64_ ? sizeof(double) : sizeof(float);
   texel_coordinates_ = gl::Buffer(texel_coordinate_count() * real_size);
   row_sums_ = gl::Buffer(group_count() * sizes().scattering_r * sizes().scattering_mu * real_size);
-
-  auto rayleigh_phase = [&] {
-    switch (model_.rayleigh_phase) {
-      case RayleighPhaseModel::Classic: return 0;
-      case RayleighPhaseModel::Penndorf: return 1;
-      case RayleighPhaseModel::Depolarized: return 2;
-    }
-    return 1;
-  };
-  auto mie_phase = [&] {
-    switch (model_.mie_phase.model) {
-      case MiePhase::Model::HenyeyGreenstein: return 0;
-      case MiePhase::Model::DoubleHenyeyGreenstein: return 1;
-      case MiePhase::Model::CornetteShanks: return 2;
-    }
-    return 0;
-  };
-  const TableSizes& s = sizes();
-  auto define = [&](const char* name, const auto& value) { defines_.push_back({name, fmt::format("{}", value)}); };
-  define("USE_FP64", fp64_ ? 1 : 0);
-  define("BOTTOM_RADIUS", literal(model_.ground_radius_m));
-  define("TOP_RADIUS", literal(model_.top_radius_m));
-  define("TRANSMITTANCE_MU", s.transmittance_mu);
-  define("TRANSMITTANCE_R", s.transmittance_r);
-  define("IRRADIANCE_MU_S", s.irradiance_mu_s);
-  define("IRRADIANCE_R", s.irradiance_r);
-  define("SCATTERING_R", s.scattering_r);
-  define("SCATTERING_MU", s.scattering_mu);
-  define("SCATTERING_MU_S", s.scattering_mu_s);
-  define("SCATTERING_NU", s.scattering_nu);
-  define("RAYLEIGH_PHASE", rayleigh_phase());
-  define("RAYLEIGH_DEPOLARIZATION", literal(model_.rayleigh_depolarization));
-  define("HAS_MIE", model_.has_mie() ? 1 : 0);
-  define("MIE_PHASE", mie_phase());
-  define("ABSORBER_COUNT", absorbers);
-  define("WAVELENGTH_FIELDS", fields);
-  define("RAYLEIGH_PROFILE", 0);
-  define("MIE_PROFILE", 4);
-  define("AIR_MASS_PROFILE", 8);
-  define("ABSORBER_PROFILES", 12);
-  define("AIR_MASS", air_mass ? 1 : 0);
-  define("AIR_MASS_GROUND_RADIUS", literal(model_.air_mass.ground_radius_m()));
-  define("AIR_MASS_TABLE", air_mass_table);
-  define("AIR_MASS_TABLE_SIZE", air_mass_size);
-  define("QUADRATURE_LOG_LINEAR",
-         options_.scattering_quadrature == PrecomputeOptions::Quadrature::LogLinear ? 1 : 0);
-  define("SCATTERING_SAMPLES", options_.scattering_samples);
-  define("TRANSMITTANCE_SAMPLES", options_.transmittance_samples + options_.transmittance_samples % 2);
-  define("SPHERE_ZENITH_SAMPLES", sphere_nodes);
-  define("HEMISPHERE_ZENITH_SAMPLES", hemisphere_nodes);
-  define("SPHERE_RULE", sphere_rule);
-  define("HEMISPHERE_RULE", hemisphere_rule);
 }
 
 const ShaderProgram& GpuPrecompute::program(const std::string& file, std::vector<ShaderDefine> extra) {

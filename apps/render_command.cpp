@@ -1,0 +1,423 @@
+// `zenith render`: one frame of a scene through a planar or fisheye projection,
+// written as a linear OpenEXR and/or an 8-bit sRGB PNG preview; with --window,
+// the same renderer on a window's GL context, explored with the keyboard
+// (docs/window.md).
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "apps/commands.h"
+#include "apps/progress_bar.h"
+#include "apps/table_provider.h"
+#include "render/gl/egl_context.h"
+#include "render/image/image_writer.h"
+#include "render/renderer.h"
+#include "render/scene/scene_loader.h"
+#include "render/window/frame_presenter.h"
+#include "render/window/window_context.h"
+#include "warp/fisheye_projection.h"
+#include "warp/planar_projection.h"
+
+namespace zenith::app {
+namespace {
+
+struct RenderArgs {
+  std::string scene, projection = "fisheye", size = "1024x1024", tables = "paper", cache_dir, device = "auto";
+  std::string exr_type = "half", tone = "exponential", colour = "auto";
+  std::vector<std::string> outputs;
+  std::optional<double> fov_deg, tilt_deg, exposure;
+  bool no_cache = false, cpu_precompute = false, no_sun_disc = false, no_limb_darkening = false;
+  bool single_scattering = false, bodies_only = false, no_eclipses = false, fp64 = false;
+  int orders = 4;
+  bool window = false;        ///< show the frame in a window and explore the scene
+  std::optional<int> frames;  ///< --window: close after this many presented frames
+};
+
+/// 1 to 5 decimal digits, the whole of `text`.
+bool is_short_number(std::string_view text) {
+  return !text.empty() && text.size() <= 5 &&
+         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+std::pair<int, int> parse_size(const std::string& text) {
+  // WIDTHxHEIGHT, 1–5 digits each (parsed by hand: GCC 12 warns inside
+  // std::regex under the sanitizer build's -O2, which -Werror turns fatal).
+  const std::size_t x = text.find_first_of("xX");
+  if (x == std::string::npos || !is_short_number(std::string_view(text).substr(0, x)) ||
+      !is_short_number(std::string_view(text).substr(x + 1)))
+    throw std::invalid_argument(fmt::format("--size '{}': expected WIDTHxHEIGHT, e.g. 1920x1080", text));
+  const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
+  if (w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw std::invalid_argument(fmt::format("--size '{}': width and height must be in [1, 16384]", text));
+  return {w, h};
+}
+
+std::unique_ptr<warp::Projection> make_projection(const RenderArgs& a, int width, int height) {
+  if (a.projection == "planar") {
+    const double fov = a.fov_deg.value_or(60.0);
+    if (!(fov > 0.0 && fov < 179.0))
+      throw std::invalid_argument(fmt::format("--fov {}: a planar projection's horizontal field of view must be in (0, 179) degrees", fov));
+    if (a.tilt_deg) throw std::invalid_argument("--tilt applies to the fisheye projection only");
+    return std::make_unique<warp::PlanarProjection>(warp::PlanarProjection::symmetric(width, height, fov));
+  }
+  warp::FisheyeParameters p;
+  p.fov_deg = a.fov_deg.value_or(180.0);
+  p.tilt_deg = a.tilt_deg.value_or(0.0);
+  return std::make_unique<warp::FisheyeProjection>(width, height, p);
+}
+
+render::RenderOptions make_render_options(const RenderArgs& a) {
+  render::RenderOptions options;
+  options.atmospheres = !a.bodies_only;
+  options.sun_disc = !a.no_sun_disc;
+  options.limb_darkening = !a.no_limb_darkening;
+  options.atmosphere.multiple_scattering = !a.single_scattering;
+  options.atmosphere.eclipses = !a.no_eclipses;
+  options.atmosphere.fp64 = a.fp64;
+  options.colour = image::parse_colour_mapping(a.colour);
+  return options;
+}
+
+TableRequest make_table_request(const RenderArgs& a) {
+  TableRequest request;
+  request.options.sizes = table_sizes_by_name(a.tables);
+  request.options.max_orders = a.orders;
+  request.backend = a.cpu_precompute ? PrecomputeBackend::Cpu : PrecomputeBackend::Gpu;
+  request.use_cache = !a.no_cache;
+  if (!a.cache_dir.empty()) request.cache_directory = a.cache_dir;
+  return request;
+}
+
+image::ImageAttributes image_attributes(const scene::Scene& scene, const warp::Projection& projection) {
+  return {
+      {"zenith:scene", scene.name},
+      {"zenith:projection", projection.describe()},
+      {"zenith:exposure", fmt::format("{}", scene.camera.exposure)},
+      {"zenith:units", "linear sRGB radiance [W m^-2 sr^-1 nm^-1] x exposure"},
+  };
+}
+
+void log_frame_stats(const render::FrameStats& s) {
+  for (const auto& atm : s.atmospheres)
+    spdlog::info("atmosphere of '{}': {} of {} tiles", atm.body, atm.tiles, atm.tiles_total);
+  spdlog::info("frame rendered in {:.3f} s ({} band{})", s.seconds, s.bands, s.bands == 1 ? "" : "s");
+}
+
+// ---------------------------------------------------------------------------
+// The window's view controls: how keys move the camera and the sun.
+
+constexpr double kTurnStepRad = 2.0 * std::numbers::pi / 180.0;  ///< arrows, ',' and '.'
+constexpr double kFastTurnFactor = 5.0;                          ///< with Shift
+constexpr double kMoveFraction = 0.1;                            ///< PageUp/PageDown: of the altitude
+constexpr double kMinAltitudeM = 1.0;                            ///< the camera stays this high above every body
+constexpr double kExposureStep = 1.25;                           ///< '[' and ']'
+
+/// The body whose surface is nearest to `point`, or null in an empty scene.
+const scene::Body* nearest_body(const scene::Scene& scene, const glm::dvec3& point) {
+  const scene::Body* nearest = nullptr;
+  double best = std::numeric_limits<double>::infinity();
+  for (const scene::Body& body : scene.bodies) {
+    const double altitude = glm::length(point - body.position_m) - body.radius_m;
+    if (altitude < best) {
+      best = altitude;
+      nearest = &body;
+    }
+  }
+  return nearest;
+}
+
+/// The camera's local up: away from the nearest body's centre, else world +z.
+glm::dvec3 local_up(const scene::Scene& scene) {
+  const scene::Body* body = nearest_body(scene, scene.camera.position_m);
+  if (body == nullptr) return {0.0, 0.0, 1.0};
+  const glm::dvec3 away = scene.camera.position_m - body->position_m;
+  const double length = glm::length(away);
+  return length > 0.0 ? away / length : glm::dvec3(0.0, 0.0, 1.0);
+}
+
+/// Turns the camera about its position: `yaw_rad` about the local up (positive
+/// turns left, counter-clockwise seen from above), then `pitch_rad` about its
+/// right axis (positive looks up).
+void turn_camera(scene::Scene& scene, double yaw_rad, double pitch_rad) {
+  glm::dquat& q = scene.camera.orientation;
+  if (yaw_rad != 0.0) q = glm::angleAxis(yaw_rad, local_up(scene)) * q;
+  if (pitch_rad != 0.0) q = glm::angleAxis(pitch_rad, q * glm::dvec3(1.0, 0.0, 0.0)) * q;
+  q = glm::normalize(q);
+}
+
+/// Moves the camera along its forward axis by `fraction` of its altitude above
+/// the nearest body (negative: backward), keeping it kMinAltitudeM above every
+/// body's surface.
+void move_camera(scene::Scene& scene, double fraction) {
+  glm::dvec3& p = scene.camera.position_m;
+  const scene::Body* body = nearest_body(scene, p);
+  const double altitude = body != nullptr ? glm::length(p - body->position_m) - body->radius_m : glm::length(p);
+  const glm::dvec3 forward = scene.camera.orientation * glm::dvec3(0.0, 0.0, -1.0);
+  p += forward * (fraction * std::max(altitude, kMinAltitudeM));
+  for (const scene::Body& b : scene.bodies) {
+    const glm::dvec3 away = p - b.position_m;
+    const double distance = glm::length(away);
+    const double floor = b.radius_m + kMinAltitudeM;
+    if (distance < floor) p = b.position_m + (distance > 0.0 ? away / distance : local_up(scene)) * floor;
+  }
+}
+
+/// Rotates the sun's direction by `angle_rad` about the nearest body's polar
+/// axis (world +z without bodies): the time of day. Negative moves the sun
+/// westward, as the day advances on a prograde-rotating body.
+void rotate_sun(scene::Scene& scene, double angle_rad) {
+  const scene::Body* body = nearest_body(scene, scene.camera.position_m);
+  const glm::dvec3 axis = body != nullptr ? body->orientation * glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(0.0, 0.0, 1.0);
+  scene.sun.direction = glm::normalize(glm::angleAxis(angle_rad, glm::normalize(axis)) * scene.sun.direction);
+}
+
+void log_key_help() {
+  spdlog::info("window keys: arrows turn the camera (yaw about the local up, pitch about its right axis; Shift: 5x)");
+  spdlog::info("window keys: PageUp/PageDown move forward/backward by 10% of the altitude");
+  spdlog::info("window keys: [ / ] exposure /1.25 and x1.25; , / . turn the sun -2/+2 deg about the body's axis");
+  spdlog::info("window keys: P saves a PNG screenshot; Escape (or closing the window) quits");
+}
+
+/// A path for the next screenshot: next to the first --out (its stem, "-<n>.png")
+/// or zenith-window-<n>.png in the working directory; n counts up past existing files.
+std::filesystem::path next_screenshot_path(const RenderArgs& a, int& counter) {
+  for (;;) {
+    ++counter;
+    std::filesystem::path path;
+    if (!a.outputs.empty()) {
+      const std::filesystem::path first(a.outputs.front());
+      path = first.parent_path() / fmt::format("{}-{}.png", first.stem().string(), counter);
+    } else {
+      path = fmt::format("zenith-window-{}.png", counter);
+    }
+    if (!std::filesystem::exists(path)) return path;
+  }
+}
+
+/// What one key press did to the view.
+enum class KeyEffect { none, scene_changed, screenshot, quit };
+
+KeyEffect apply_key(const render::window::KeyEvent& e, scene::Scene& scene) {
+  using render::window::Key;
+  const double turn = kTurnStepRad * (e.shift ? kFastTurnFactor : 1.0);
+  switch (e.key) {
+    case Key::left: turn_camera(scene, turn, 0.0); return KeyEffect::scene_changed;
+    case Key::right: turn_camera(scene, -turn, 0.0); return KeyEffect::scene_changed;
+    case Key::up: turn_camera(scene, 0.0, turn); return KeyEffect::scene_changed;
+    case Key::down: turn_camera(scene, 0.0, -turn); return KeyEffect::scene_changed;
+    case Key::page_up: move_camera(scene, kMoveFraction); return KeyEffect::scene_changed;
+    case Key::page_down: move_camera(scene, -kMoveFraction); return KeyEffect::scene_changed;
+    case Key::left_bracket:
+    case Key::right_bracket: {
+      const double e_new = e.key == Key::left_bracket ? scene.camera.exposure / kExposureStep
+                                                      : scene.camera.exposure * kExposureStep;
+      scene.camera.exposure = std::clamp(e_new, 1e-9, 1e6);
+      spdlog::info("exposure {:.4g}", scene.camera.exposure);
+      return KeyEffect::scene_changed;
+    }
+    case Key::comma: rotate_sun(scene, -turn); return KeyEffect::scene_changed;
+    case Key::period: rotate_sun(scene, turn); return KeyEffect::scene_changed;
+    case Key::p: return KeyEffect::screenshot;
+    case Key::escape: return KeyEffect::quit;
+    default: return KeyEffect::none;
+  }
+}
+
+/// `zenith render --window`: the renderer on the window's GL context, one
+/// render per change of the view, presented until the window closes (or after
+/// --frames presented frames). --out files receive the last frame on exit.
+void run_window(const RenderArgs& a, scene::Scene scene, const warp::Projection& projection, int width, int height) {
+  if (a.device != "auto")
+    spdlog::warn("--device {}: applies to the headless path; the window system picks the GL device", a.device);
+  render::window::WindowOptions window_options;
+  window_options.title = fmt::format("zenith: {}", scene.name);
+  window_options.width = width;
+  window_options.height = height;
+  render::window::WindowContext window(window_options);
+  spdlog::info("rendering '{}' {} in a window on {}", scene.name, projection.describe(), window.renderer());
+
+  // Destroyed before the window: they hold GL objects of its context.
+  const TableRequest request = make_table_request(a);
+  render::Renderer renderer(make_render_options(a), [&](const atmosphere::AtmosphereModel& model) {
+    // The GPU precompute runs on a headless EGL context of its own, which
+    // cannot become current on this thread while the window's (GLX) one is.
+    window.release_current();
+    ObtainedTables t = obtain_tables(model, request);
+    window.make_current();
+    return std::move(t.tables);
+  });
+  render::window::FramePresenter presenter;
+  const image::ToneMapping tone = image::parse_tone_mapping(a.tone);
+  log_key_help();
+
+  std::vector<float> frame;
+  bool stale = true, uploaded = false, screenshot_pending = false;
+  int presented = 0, screenshots = 0;
+  while (!window.should_close()) {
+    if (stale) {
+      frame = renderer.render_image(scene, projection);
+      presenter.upload(frame, width, height);
+      stale = false;
+      uploaded = true;
+      spdlog::debug("frame rendered in {:.3f} s", renderer.last_frame().seconds);
+      window.set_title(fmt::format("zenith: {} (exposure {:.4g}, {:.2f} s)", scene.name, scene.camera.exposure,
+                                   renderer.last_frame().seconds));
+    }
+    if (screenshot_pending) {  // after the re-render, so it shows every key pressed before P
+      const std::filesystem::path path = next_screenshot_path(a, screenshots);
+      if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+      image::write_png(path, width, height, frame, tone, image_attributes(scene, projection));
+      spdlog::info("screenshot written to {}", path.string());
+      screenshot_pending = false;
+    }
+    // Draw when the frame or the window changed; --frames draws every pass.
+    const bool redraw = window.take_redraw_request() || uploaded || a.frames.has_value();
+    const render::window::FramebufferSize fb = window.framebuffer_size();
+    if (redraw && fb.width > 0 && fb.height > 0) {  // zero while minimised
+      presenter.draw(tone, {0, fb.width, fb.height});
+      window.swap_buffers();
+      uploaded = false;
+      ++presented;
+      if (a.frames && presented >= *a.frames) break;
+    }
+    if (a.frames && fb.width > 0 && fb.height > 0) window.poll_events();
+    else window.wait_events(0.5);
+    for (const render::window::KeyEvent& e : window.take_key_events()) {
+      if (e.action == render::window::KeyAction::release) continue;
+      switch (apply_key(e, scene)) {
+        case KeyEffect::scene_changed: stale = true; break;
+        case KeyEffect::screenshot: screenshot_pending = screenshot_pending || e.action == render::window::KeyAction::press; break;
+        case KeyEffect::quit: window.request_close(); break;
+        case KeyEffect::none: break;
+      }
+    }
+  }
+  spdlog::info("window closed after {} presented frame{}", presented, presented == 1 ? "" : "s");
+
+  if (a.outputs.empty() || frame.empty()) return;
+  const image::ImageAttributes attributes = image_attributes(scene, projection);
+  const image::ExrPixelType exr_type = image::parse_exr_pixel_type(a.exr_type);
+  for (const auto& out : a.outputs) {
+    const std::filesystem::path path(out);
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    if (path.extension() == ".exr") image::write_exr(path, width, height, frame, exr_type, attributes);
+    else image::write_png(path, width, height, frame, tone, attributes);
+    fmt::print("written {}\n", out);
+  }
+}
+
+void run_render(const RenderArgs& a) {
+  if (a.outputs.empty() && !a.window) throw std::invalid_argument("--out: give at least one FILE.exr or FILE.png");
+  for (const auto& out : a.outputs) {
+    const auto ext = std::filesystem::path(out).extension().string();
+    if (ext != ".exr" && ext != ".png")
+      throw std::invalid_argument(fmt::format("--out '{}': the file name must end in .exr or .png", out));
+  }
+  if (a.frames && !a.window) throw std::invalid_argument("--frames applies to --window only");
+  const auto [width, height] = parse_size(a.size);
+  scene::Scene scene = scene::load_scene(a.scene);
+  if (a.exposure) {
+    if (!(*a.exposure > 0.0 && *a.exposure <= 1e6))
+      throw std::invalid_argument(fmt::format("--exposure {}: must be in (0, 1e6]", *a.exposure));
+    scene.camera.exposure = *a.exposure;
+  }
+  const auto projection = make_projection(a, width, height);
+  if (a.window) {
+    run_window(a, std::move(scene), *projection, width, height);
+    return;
+  }
+
+  render::gl::ContextOptions context_options;
+  context_options.prefer = render::gl::parse_device_preference(a.device);
+  render::gl::HeadlessContext context(context_options);
+  spdlog::info("rendering '{}' {} on {}", scene.name, projection->describe(), context.renderer());
+
+  const TableRequest request = make_table_request(a);
+  render::Renderer renderer(make_render_options(a), [&](const atmosphere::AtmosphereModel& model) {
+    ObtainedTables t = obtain_tables(model, request);
+    context.make_current();  // the GPU precompute may have used a context of its own
+    return std::move(t.tables);
+  });
+
+  const image::ToneMapping tone = image::parse_tone_mapping(a.tone);
+  const image::ExrPixelType exr_type = image::parse_exr_pixel_type(a.exr_type);
+  const image::ImageAttributes attributes = image_attributes(scene, *projection);
+  std::vector<std::unique_ptr<image::ImageWriter>> writers;
+  for (const auto& out : a.outputs) {
+    const std::filesystem::path path(out);
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    writers.push_back(path.extension() == ".exr"
+                          ? image::open_exr_writer(path, width, height, exr_type, attributes)
+                          : image::open_png_writer(path, width, height, tone, attributes));
+  }
+  ProgressBar bar("render");
+  renderer.render(scene, *projection, [&](int first_row, int rows, std::span<const float> rgb) {
+    for (auto& w : writers) w->write_rows(rows, rgb);
+    bar.update(fmt::format("rows {}–{}", first_row, first_row + rows - 1),
+               static_cast<double>(first_row + rows) / height);
+  });
+  for (auto& w : writers) w->finish();
+  bar.finish();
+  log_frame_stats(renderer.last_frame());
+  for (const auto& out : a.outputs) fmt::print("written {}\n", out);
+}
+
+}  // namespace
+
+void register_render_command(CLI::App& app) {
+  auto a = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render one frame of a scene to EXR (linear) and/or PNG (sRGB)");
+  cmd->add_option("--scene", a->scene, "Scene JSON file (configs/scenes/)")->required();
+  cmd->add_option("--projection", a->projection, "planar or fisheye (default: fisheye, a dome master)")
+      ->check(CLI::IsMember({"planar", "fisheye"}));
+  cmd->add_option("--fov", a->fov_deg, "Field of view [deg]: planar horizontal (default 60), fisheye (default 180)");
+  cmd->add_option("--tilt", a->tilt_deg, "Fisheye: axis tilted from the zenith toward forward [deg]");
+  cmd->add_option("--size", a->size, "WIDTHxHEIGHT in pixels (default 1024x1024)");
+  cmd->add_option("--out", a->outputs,
+                  "Output FILE.exr and/or FILE.png (repeatable; with --window optional: the last frame shown)");
+  cmd->add_option("--exr-type", a->exr_type, "EXR pixels: half (default) or float")
+      ->check(CLI::IsMember({"half", "float"}));
+  cmd->add_option("--tone", a->tone, "PNG tone mapping: exponential (paper, default) or clamp")
+      ->check(CLI::IsMember({"exponential", "clamp"}));
+  cmd->add_option("--colour", a->colour, "Spectral to RGB: auto, direct, cie1931")
+      ->check(CLI::IsMember({"auto", "direct", "cie1931"}));
+  cmd->add_option("--exposure", a->exposure, "Override the scene camera's exposure");
+  cmd->add_option("--tables", a->tables, "Table sizes: paper (default), small, large")
+      ->check(CLI::IsMember({"paper", "small", "large"}));
+  cmd->add_option("--orders", a->orders, "Scattering orders of the tables (default 4)")->check(CLI::Range(1, 50));
+  cmd->add_option("--cache", a->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
+  cmd->add_flag("--no-cache", a->no_cache, "Neither read nor write the table cache");
+  cmd->add_flag("--cpu-precompute", a->cpu_precompute, "Precompute missing tables on the CPU");
+  cmd->add_option("--device", a->device, "GL device: auto, software (llvmpipe), hardware")
+      ->check(CLI::IsMember({"auto", "software", "hardware"}));
+  cmd->add_flag("--no-sun-disc", a->no_sun_disc, "Do not draw the sun's disc");
+  cmd->add_flag("--no-limb-darkening", a->no_limb_darkening, "Draw the sun as a uniform disc");
+  cmd->add_flag("--single-scattering", a->single_scattering, "Drop multiple scattering at render time");
+  cmd->add_flag("--no-eclipses", a->no_eclipses, "Ignore shadows of bodies on other bodies");
+  cmd->add_flag("--bodies-only", a->bodies_only, "No atmospheres: bodies lit by the sun only");
+  cmd->add_flag("--fp64", a->fp64, "Atmosphere pass in double precision");
+  cmd->add_flag("--window", a->window, "Show the frame in a window and explore the scene with the keys (docs/window.md)");
+  cmd->add_option("--frames", a->frames, "--window: close after N presented frames (tests, scripts)")
+      ->check(CLI::Range(1, 100000000));
+  cmd->callback([a] {
+    // --out is required without --window: the same error CLI11 gives for a required option.
+    if (a->outputs.empty() && !a->window) throw CLI::RequiredError("--out");
+    run_render(*a);
+  });
+}
+
+}  // namespace zenith::app

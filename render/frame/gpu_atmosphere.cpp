@@ -1,0 +1,104 @@
+#include "render/frame/gpu_atmosphere.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "atmosphere/lut/precompute_options.h"
+#include "atmosphere/model_hash.h"
+#include "render/gl/gl_error.h"
+#include "render/lut/shader_model.h"
+
+namespace zenith::render {
+namespace {
+
+using atmosphere::lut::Table2D;
+using atmosphere::lut::Table3D;
+
+constexpr std::size_t kLanes = kWavelengthLanes;
+
+// Texture units and storage bindings of atmosphere_pass.comp / atmosphere_common.glsl.
+enum TextureUnit : unsigned { kTransmittance = 0, kSingleRayleigh = 1, kSingleMie = 2, kMultiple = 3, kIrradiance = 4 };
+enum StorageBinding : unsigned { kWavelengthData = 0, kTableData = 1, kTexelCoordinates = 2 };
+
+/// Lanes 4g..4g+3 of a channel-interleaved table, as RGBA texels (missing lanes 0).
+std::vector<float> group_lanes(const std::vector<float>& data, std::size_t texels, std::size_t channels,
+                               std::size_t group) {
+  std::vector<float> out(texels * kLanes, 0.0f);
+  const std::size_t first = group * kLanes, lanes = std::min(kLanes, channels - first);
+  for (std::size_t t = 0; t < texels; ++t)
+    for (std::size_t k = 0; k < lanes; ++k) out[t * kLanes + k] = data[t * channels + first + k];
+  return out;
+}
+
+gl::Texture texture_2d(const Table2D& t, std::size_t group) {
+  return gl::Texture::create_2d(gl::TextureFormat::rgba32f, static_cast<int>(t.width), static_cast<int>(t.height),
+                                group_lanes(t.data, t.width * t.height, t.channels, group));
+}
+
+gl::Texture texture_3d(const Table3D& t, std::size_t group) {
+  return gl::Texture::create_3d(gl::TextureFormat::rgba32f, static_cast<int>(t.width), static_cast<int>(t.height),
+                                static_cast<int>(t.depth),
+                                group_lanes(t.data, t.width * t.height * t.depth, t.channels, group));
+}
+
+}  // namespace
+
+GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
+                             const AtmospherePassFeatures& features)
+    : hash_(tables.hash),
+      top_radius_m_(model.top_radius_m),
+      ground_radius_m_(model.ground_radius_m) {
+  if (tables.channels != model.wavelength_count())
+    throw std::invalid_argument(fmt::format("atmosphere '{}': tables have {} channels, the model {} wavelengths",
+                                            model.name, tables.channels, model.wavelength_count()));
+  if (std::abs(tables.geometry.bottom_radius_m - model.ground_radius_m) > 1e-6 ||
+      std::abs(tables.geometry.top_radius_m - model.top_radius_m) > 1e-6)
+    throw std::invalid_argument(fmt::format("atmosphere '{}': the tables were made for other radii", model.name));
+
+  atmosphere::lut::PrecomputeOptions options;
+  options.sizes = tables.sizes;
+  ShaderModel shader = shader_model(model, options, features.fp64);
+  groups_.resize(shader.group_count);
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    GroupTextures& t = groups_[g];
+    t.transmittance = texture_2d(tables.transmittance, g);
+    t.irradiance = texture_2d(tables.irradiance, g);
+    t.single_rayleigh = texture_3d(tables.single_rayleigh, g);
+    t.single_mie = texture_3d(tables.single_mie, g);
+    t.multiple = texture_3d(tables.multiple, g);
+    for (const gl::Texture* x : {&t.transmittance, &t.irradiance, &t.single_rayleigh, &t.single_mie, &t.multiple})
+      table_bytes_ += x->float_count() * sizeof(float);
+  }
+  wavelength_data_ = real_buffer(shader.wavelength_data, features.fp64);
+  table_data_ = real_buffer(shader.table_data, features.fp64);
+  // Of the texel-coordinate values the precompute derives, rendering reads one:
+  // acos(μs_min) at TEXEL_SUN_THETA_MAX = 2 · SCATTERING_MU_S (atmosphere_common.glsl).
+  const std::size_t mu_s = tables.sizes.scattering_mu_s;
+  std::vector<double> texel_values(2 * mu_s + 1 + 2 * tables.sizes.scattering_r * (tables.sizes.scattering_mu / 2), 0.0);
+  texel_values[2 * mu_s] = std::acos(tables.geometry.min_sun_cosine());
+  texel_coordinates_ = real_buffer(texel_values, features.fp64);
+
+  std::vector<gl::ShaderDefine> defines = shader.defines;
+  defines.push_back({"MULTIPLE_SCATTERING", features.multiple_scattering && tables.scattering_orders >= 2 ? "1" : "0"});
+  defines.push_back({"ECLIPSES", features.eclipses ? "1" : "0"});
+  program_ = gl::ShaderProgram::load_compute("render/atmosphere_pass.comp", defines);
+  gl::check_gl_error(fmt::format("uploading the tables of atmosphere '{}'", model.name));
+}
+
+void GpuAtmosphere::bind(std::size_t group) const {
+  const GroupTextures& t = groups_.at(group);
+  t.transmittance.bind(kTransmittance);
+  t.single_rayleigh.bind(kSingleRayleigh);
+  t.single_mie.bind(kSingleMie);
+  t.multiple.bind(kMultiple);
+  t.irradiance.bind(kIrradiance);
+  wavelength_data_.bind_storage(kWavelengthData);
+  table_data_.bind_storage(kTableData);
+  texel_coordinates_.bind_storage(kTexelCoordinates);
+  program_.set_uniform("wavelength_group", static_cast<int>(group));
+}
+
+}  // namespace zenith::render

@@ -1,0 +1,51 @@
+#pragma once
+// Which 16×16-pixel tiles of an image a sphere (an atmosphere's shell, a body)
+// can touch, so a pass covers only those pixels.
+//
+// A tile's rays fill a cone: TileCones computes, once per projection, each
+// tile's cone in the camera frame (axis and half-angle) from the rays of the
+// ring of pixel centres on the tile's border (for the continuous projections
+// here the border's rays enclose the interior's), widened by one pixel's angle.
+// A sphere of radius R at distance D in direction ĉ can touch the tile when
+//   angle(axis, ĉ) ≤ half_angle + asin(R / D),
+// and always when the camera is inside it (D ≤ R). Tiles whose border has no
+// ray at all (outside a fisheye's circle) hold no pixel with a ray: never listed.
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "warp/projection.h"
+
+namespace zenith::render {
+
+inline constexpr int kTileSize = 16;  ///< pixels; the local size of the render passes
+
+/// A tile's cone of rays, camera frame.
+struct TileCone {
+  glm::vec3 axis{0.0f, 0.0f, -1.0f};  ///< unit
+  float half_angle_rad = 0.0f;
+  bool has_rays = false;
+};
+
+class TileCones {
+ public:
+  /// Computes every tile's cone (O(pixels on tile borders) projection calls).
+  explicit TileCones(const warp::Projection& projection);
+
+  int columns() const { return columns_; }
+  int rows() const { return rows_; }
+  const TileCone& cone(int column, int row) const { return cones_[static_cast<std::size_t>(row) * columns_ + column]; }
+
+  /// Tiles of rows [first_row, first_row + row_count) that a sphere (camera-frame
+  /// unit direction to its centre, distance and radius in metres) can touch,
+  /// packed as x | (y − first_row) << 16 (the tile's column and its row within the band).
+  std::vector<std::uint32_t> tiles_touching_sphere(const glm::dvec3& centre_direction, double distance_m,
+                                                   double radius_m, int first_row, int row_count) const;
+
+ private:
+  int columns_ = 0, rows_ = 0;
+  std::vector<TileCone> cones_;
+};
+
+}  // namespace zenith::render

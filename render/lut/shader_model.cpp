@@ -1,0 +1,168 @@
+#include "render/lut/shader_model.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <span>
+
+#include "atmosphere/lut/gauss_legendre.h"
+
+namespace zenith::render {
+
+using atmosphere::AtmosphereModel;
+using atmosphere::DensityProfile;
+using atmosphere::MiePhase;
+using atmosphere::RayleighPhaseModel;
+using atmosphere::lut::PrecomputeOptions;
+using atmosphere::lut::TableSizes;
+
+namespace {
+
+constexpr std::size_t kLanes = kWavelengthLanes;
+
+// Per-group real4 fields of WavelengthData (FIELD_* in atmosphere_common.glsl).
+enum WavelengthField : std::size_t {
+  kRayleighScattering = 0,
+  kMieScattering,
+  kMieExtinction,
+  kMieG1,
+  kMieG2,
+  kMieAlpha,
+  kGroundAlbedo,
+  kAbsorbers,  // absorber k: kAbsorbers + k
+};
+
+}  // namespace
+
+std::string glsl_literal(double v, bool fp64) {
+  // 17 significant digits round-trip a double exactly; 9 a float.
+  return fp64 ? fmt::format("{:.16e}LF", v) : fmt::format("{:.8e}", v);
+}
+
+gl::Buffer real_buffer(const std::vector<double>& values, bool fp64) {
+  if (fp64) return gl::Buffer::from(std::span<const double>(values));
+  std::vector<float> f(values.size());
+  std::transform(values.begin(), values.end(), f.begin(), [](double v) { return static_cast<float>(v); });
+  return gl::Buffer::from(std::span<const float>(f));
+}
+
+ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& options, bool fp64) {
+  ShaderModel out;
+  const std::size_t n = model.wavelength_count();
+  out.group_count = (n + kLanes - 1) / kLanes;
+  const std::size_t absorbers = model.absorbers.size();
+  const std::size_t fields = kAbsorbers + absorbers;
+
+  // Per-wavelength coefficients, 4 lanes per group; lanes past N stay zero.
+  std::vector<double> wavelength_data(out.group_count * fields * kLanes, 0.0);
+  auto put = [&](std::size_t field, const atmosphere::Spectrum& s) {
+    for (std::size_t i = 0; i < n && i < s.size(); ++i)
+      wavelength_data[((i / kLanes) * fields + field) * kLanes + i % kLanes] = s[i];
+  };
+  put(kRayleighScattering, model.rayleigh_scattering_m1);
+  put(kMieScattering, model.mie_scattering_m1);
+  put(kMieExtinction, model.mie_extinction_m1);
+  put(kMieG1, model.mie_phase.g1);
+  put(kMieG2, model.mie_phase.g2);
+  put(kMieAlpha, model.mie_phase.alpha);
+  put(kGroundAlbedo, model.ground_albedo);
+  for (std::size_t a = 0; a < absorbers; ++a) put(kAbsorbers + a, model.absorbers[a].absorption_m1);
+
+  // Profile descriptors first (4 reals each, absorbers contiguous), then knots and the air-mass table.
+  std::vector<const DensityProfile*> profiles = {&model.rayleigh_density, &model.mie_density,
+                                                 &model.air_mass.molecular_profile()};
+  for (const auto& a : model.absorbers) profiles.push_back(&a.profile);
+  std::vector<double> table(4 * profiles.size(), 0.0);
+  for (std::size_t k = 0; k < profiles.size(); ++k) {
+    const DensityProfile& p = *profiles[k];
+    if (p.kind() == DensityProfile::Kind::Exponential) {
+      table[4 * k] = 0.0;
+      table[4 * k + 1] = p.scale_height_m();
+      continue;
+    }
+    const auto& spline = p.table();
+    table[4 * k] = 1.0;
+    table[4 * k + 2] = static_cast<double>(table.size());
+    table[4 * k + 3] = static_cast<double>(spline.knots_x().size());
+    table.insert(table.end(), spline.knots_x().begin(), spline.knots_x().end());
+    table.insert(table.end(), spline.knots_y().begin(), spline.knots_y().end());
+    table.insert(table.end(), spline.slopes().begin(), spline.slopes().end());
+  }
+  // The direction quadratures of the scattering density (sphere) and sky irradiance
+  // (hemisphere): the CPU's Gauss–Legendre rules, nodes then weights.
+  const int sphere_nodes = options.sphere_zenith_samples, hemisphere_nodes = std::max(1, sphere_nodes / 2);
+  const std::size_t sphere_rule = table.size();
+  const atmosphere::lut::GaussLegendre sphere(sphere_nodes);
+  table.insert(table.end(), sphere.nodes.begin(), sphere.nodes.end());
+  table.insert(table.end(), sphere.weights.begin(), sphere.weights.end());
+  const std::size_t hemisphere_rule = table.size();
+  const atmosphere::lut::GaussLegendre hemisphere(hemisphere_nodes);
+  table.insert(table.end(), hemisphere.nodes.begin(), hemisphere.nodes.end());
+  table.insert(table.end(), hemisphere.weights.begin(), hemisphere.weights.end());
+
+  const bool air_mass = model.air_mass.enabled();
+  const std::size_t air_mass_table = table.size();
+  const std::size_t air_mass_size = air_mass ? model.air_mass.cos_zenith_table().size() : 0;
+  if (air_mass) {
+    table.insert(table.end(), model.air_mass.cos_zenith_table().begin(), model.air_mass.cos_zenith_table().end());
+    table.insert(table.end(), model.air_mass.stretch_table().begin(), model.air_mass.stretch_table().end());
+  }
+
+  out.wavelength_data = std::move(wavelength_data);
+  out.table_data = std::move(table);
+
+  auto rayleigh_phase = [&] {
+    switch (model.rayleigh_phase) {
+      case RayleighPhaseModel::Classic: return 0;
+      case RayleighPhaseModel::Penndorf: return 1;
+      case RayleighPhaseModel::Depolarized: return 2;
+    }
+    return 1;
+  };
+  auto mie_phase = [&] {
+    switch (model.mie_phase.model) {
+      case MiePhase::Model::HenyeyGreenstein: return 0;
+      case MiePhase::Model::DoubleHenyeyGreenstein: return 1;
+      case MiePhase::Model::CornetteShanks: return 2;
+    }
+    return 0;
+  };
+  const TableSizes& s = options.sizes;
+  auto define = [&](const char* name, const auto& value) { out.defines.push_back({name, fmt::format("{}", value)}); };
+  define("USE_FP64", fp64 ? 1 : 0);
+  define("BOTTOM_RADIUS", glsl_literal(model.ground_radius_m, fp64));
+  define("TOP_RADIUS", glsl_literal(model.top_radius_m, fp64));
+  define("TRANSMITTANCE_MU", s.transmittance_mu);
+  define("TRANSMITTANCE_R", s.transmittance_r);
+  define("IRRADIANCE_MU_S", s.irradiance_mu_s);
+  define("IRRADIANCE_R", s.irradiance_r);
+  define("SCATTERING_R", s.scattering_r);
+  define("SCATTERING_MU", s.scattering_mu);
+  define("SCATTERING_MU_S", s.scattering_mu_s);
+  define("SCATTERING_NU", s.scattering_nu);
+  define("RAYLEIGH_PHASE", rayleigh_phase());
+  define("RAYLEIGH_DEPOLARIZATION", glsl_literal(model.rayleigh_depolarization, fp64));
+  define("HAS_MIE", model.has_mie() ? 1 : 0);
+  define("MIE_PHASE", mie_phase());
+  define("ABSORBER_COUNT", absorbers);
+  define("WAVELENGTH_FIELDS", fields);
+  define("RAYLEIGH_PROFILE", 0);
+  define("MIE_PROFILE", 4);
+  define("AIR_MASS_PROFILE", 8);
+  define("ABSORBER_PROFILES", 12);
+  define("AIR_MASS", air_mass ? 1 : 0);
+  define("AIR_MASS_GROUND_RADIUS", glsl_literal(model.air_mass.ground_radius_m(), fp64));
+  define("AIR_MASS_TABLE", air_mass_table);
+  define("AIR_MASS_TABLE_SIZE", air_mass_size);
+  define("QUADRATURE_LOG_LINEAR",
+         options.scattering_quadrature == PrecomputeOptions::Quadrature::LogLinear ? 1 : 0);
+  define("SCATTERING_SAMPLES", options.scattering_samples);
+  define("TRANSMITTANCE_SAMPLES", options.transmittance_samples + options.transmittance_samples % 2);
+  define("SPHERE_ZENITH_SAMPLES", sphere_nodes);
+  define("HEMISPHERE_ZENITH_SAMPLES", hemisphere_nodes);
+  define("SPHERE_RULE", sphere_rule);
+  define("HEMISPHERE_RULE", hemisphere_rule);
+  return out;
+}
+
+}  // namespace zenith::render

@@ -1,0 +1,128 @@
+// Frame data shared by the render passes (gbuffer.comp, atmosphere_pass.comp,
+// resolve.comp), filled by render/renderer.cpp.
+//
+// Precision: every position is camera-relative and was computed in double on
+// the CPU; the GPU sees directions (unit vectors), distances from the camera
+// and, for each body, |c|² − R² computed in double, so a ray from 1 m above the
+// ground and one from 40 AU away are intersected equally well in float.
+//
+// The frame is rendered in horizontal bands; `band_origin` is the band's first
+// pixel in the full image, so every pass computes the same ray for a pixel
+// whichever band it falls in (projection.glsl).
+
+#include "projection.glsl"
+
+const int MAX_BODIES = 8;
+
+/// One analytic sphere (render/frame_setup.h: GpuBody, same layout).
+struct Body {
+  vec4 centre;          // xyz: unit direction camera → centre (world); w: distance camera → centre [m]
+  vec4 shape;           // x: radius R [m]; y: |c|² − R² [m²]; z: atmosphere slot or −1; w: albedo map slot
+  vec4 albedo_map;      // x: width of the albedo map's level 0 [texels]; yzw: unused
+  vec4 world_to_body0;  // rows of the rotation world → body frame
+  vec4 world_to_body1;
+  vec4 world_to_body2;
+};
+layout(std430, binding = 4) readonly buffer Bodies { Body bodies[]; };
+
+uniform int body_count;
+uniform mat3 camera_to_world;
+uniform ivec2 band_origin;  // first pixel of this band in the full image
+uniform ivec2 band_size;
+uniform vec3 sun_direction;        // world, unit
+uniform float sun_angular_radius;  // [rad]
+uniform float pixel_angle;         // upper bound of one pixel's angular size [rad] (Projection::max_pixel_angle_rad)
+
+/// The world-space unit ray of band pixel `p` (integer, band-local), or false
+/// where the projection has no ray.
+bool pixel_ray(ivec2 p, out vec3 ray) {
+  vec3 d;
+  if (!projection_ray(vec2(band_origin + p) + vec2(0.5), d)) return false;
+  ray = normalize(camera_to_world * d);
+  return true;
+}
+
+vec3 body_centre(int b) { return bodies[b].centre.xyz * bodies[b].centre.w; }
+
+/// Where a ray meets a sphere of radius R centred at distance D along unit
+/// direction c from the camera: q = D (ray·c) is the distance to the point of
+/// closest approach and disc = R² − p² (p the ray's distance from the centre)
+/// the square of half the chord. disc is formed as q² − C, with C = D² − R²
+/// computed in double on the CPU, while the camera is near the sphere (no
+/// cancellation from 1 m above the ground), and as R² − (D sin θ)² from further
+/// away (q² − C would lose everything to rounding at 40 AU). False: no intersection.
+bool sphere_chord(vec3 ray, vec3 centre_dir, float centre_distance, float R, float C, out float q, out float disc) {
+  const float cos_theta = dot(ray, centre_dir);
+  q = centre_distance * cos_theta;
+  if (C < R * R) {
+    disc = q * q - C;
+  } else {
+    const float p = centre_distance * length(cross(ray, centre_dir));
+    disc = (R - p) * (R + p);
+  }
+  return disc >= 0.0;
+}
+
+/// Distance along unit `ray` to the first intersection with body b (front face),
+/// or −1: t = C / (q + √disc), the stable root.
+float intersect_body(int b, vec3 ray) {
+  const float C = bodies[b].shape.y;
+  if (C <= 0.0) return -1.0;  // inside the body: the scene loader forbids it
+  float q, disc;
+  if (!sphere_chord(ray, bodies[b].centre.xyz, bodies[b].centre.w, bodies[b].shape.x, C, q, disc)) return -1.0;
+  if (q <= 0.0) return -1.0;
+  return C / (q + sqrt(disc));
+}
+
+/// Outward unit normal of body b at distance t along `ray` (world frame).
+vec3 body_normal(int b, vec3 ray, float t) {
+  return normalize(ray * t - body_centre(b));
+}
+
+/// The normal in the body frame (for its albedo map).
+vec3 to_body_frame(int b, vec3 n) {
+  return vec3(dot(bodies[b].world_to_body0.xyz, n), dot(bodies[b].world_to_body1.xyz, n),
+              dot(bodies[b].world_to_body2.xyz, n));
+}
+
+/// Angle between two unit vectors, accurate for small angles too (acos is not).
+float angle_between(vec3 a, vec3 b) {
+  return 2.0 * asin(clamp(0.5 * length(a - b), 0.0, 1.0));
+}
+
+/// Area of the intersection of two discs of radii a and b whose centres are d
+/// apart (all angles in radians, small-angle plane geometry).
+float disc_overlap_area(float a, float b, float d) {
+  const float PI_F = 3.14159265;
+  if (d >= a + b) return 0.0;
+  if (d <= abs(a - b)) return PI_F * min(a, b) * min(a, b);
+  const float ca = clamp((d * d + a * a - b * b) / (2.0 * d * a), -1.0, 1.0);
+  const float cb = clamp((d * d + b * b - a * a) / (2.0 * d * b), -1.0, 1.0);
+  const float k = max(0.0, (-d + a + b) * (d + a - b) * (d - a + b) * (d + a + b));
+  return a * a * acos(ca) + b * b * acos(cb) - 0.5 * sqrt(k);
+}
+
+/// Fraction of the sun's disc visible from the point at camera-relative
+/// position p, with every body but `self` as a possible occluder (eclipses:
+/// the Moon's shadow on the Earth, the Earth's on the Moon). The disc is taken
+/// as uniformly bright here (limb darkening would shift partial phases by a few percent).
+float sun_visibility(vec3 p, int self) {
+#if ECLIPSES
+  float visible = 1.0;
+  const float sun_area = 3.14159265 * sun_angular_radius * sun_angular_radius;
+  for (int b = 0; b < body_count; ++b) {
+    if (b == self) continue;
+    const vec3 to_centre = body_centre(b) - p;
+    const float distance = length(to_centre);
+    const float R = bodies[b].shape.x;
+    if (distance <= R) continue;
+    const vec3 dir = to_centre / distance;
+    if (dot(dir, sun_direction) <= 0.0) continue;  // behind the point
+    const float radius = asin(min(R / distance, 1.0));
+    visible -= disc_overlap_area(sun_angular_radius, radius, angle_between(dir, sun_direction)) / sun_area;
+  }
+  return clamp(visible, 0.0, 1.0);
+#else
+  return 1.0;
+#endif
+}
