@@ -29,8 +29,15 @@ namespace zenith::warp {
 
 /// The kinds shaders/projection.glsl knows (PROJECTION_KIND_* there, same values).
 enum class ProjectionKind : int {
-  planar = 0,   ///< pinhole with an asymmetric frustum
-  fisheye = 1,  ///< angular (azimuthal equidistant) fisheye
+  planar = 0,           ///< pinhole with an asymmetric frustum
+  fisheye = 1,          ///< angular (azimuthal equidistant) fisheye
+  cylindrical = 2,      ///< cylindrical panorama: angle across, tangent up
+  equirectangular = 3,  ///< longitude/latitude
+  cube_face = 4,        ///< one face of a cube map (the planar layout, OpenGL face orientation)
+  /// No closed form on the GPU (e.g. a warp mesh): the renderer evaluates ray()
+  /// on the CPU, in double, once per projection and band, and the shader reads
+  /// the rays from a table (params unused).
+  ray_table = 5,
 };
 
 /// What the GPU needs to compute a projection's rays: `kind` and four vec4

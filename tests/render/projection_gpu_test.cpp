@@ -1,5 +1,5 @@
-// shaders/projection.glsl against the CPU projections of warp/: the ray of every
-// pixel centre, computed in float on the GPU (Mesa llvmpipe without one) from
+// shaders/projection.glsl against the CPU projections of warp/ (planar,
+// fisheye, cylindrical, equirectangular, cube face): the ray of every pixel centre, computed in float on the GPU (Mesa llvmpipe without one) from
 // GpuProjection's 16 floats, equals the CPU's double ray within 2e-6 rad; a
 // fisheye's pixels without a ray agree except within 1e-4 px of the circle.
 // Built as warp_gpu_tests (tests/warp/CMakeLists.txt).
@@ -18,12 +18,21 @@
 #include "render/gl/gl_error.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "warp/cube_face_projection.h"
+#include "warp/cylindrical_projection.h"
+#include "warp/equirectangular_projection.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 
 namespace zenith::render {
 namespace {
 
+using warp::CubeFace;
+using warp::CubeFaceProjection;
+using warp::CylindricalParameters;
+using warp::CylindricalProjection;
+using warp::EquirectangularParameters;
+using warp::EquirectangularProjection;
 using warp::FisheyeParameters;
 using warp::FisheyeProjection;
 using warp::PlanarFrustum;
@@ -62,6 +71,11 @@ TEST_F(ProjectionGpu, RaysMatchTheCpuProjections) {
   std::printf("renderer: %s\n", context_.renderer().c_str());
   auto planar = [](int w, int h, PlanarFrustum f) { return std::make_shared<PlanarProjection>(w, h, f); };
   auto fisheye = [](int w, int h, FisheyeParameters p) { return std::make_shared<FisheyeProjection>(w, h, p); };
+  auto cylinder = [](int w, int h, CylindricalParameters p) { return std::make_shared<CylindricalProjection>(w, h, p); };
+  auto equirect = [](int w, int h, EquirectangularParameters p) {
+    return std::make_shared<EquirectangularProjection>(w, h, p);
+  };
+  auto cube = [](int size, CubeFace face) { return std::make_shared<CubeFaceProjection>(size, face); };
   const std::vector<Case> cases = {
       {"planar symmetric 64×48", std::make_shared<PlanarProjection>(PlanarProjection::symmetric(64, 48, 90.0))},
       {"planar asymmetric 65×65", planar(65, 65, {-20.0, 45.0, -10.0, 30.0})},
@@ -75,6 +89,21 @@ TEST_F(ProjectionGpu, RaysMatchTheCpuProjections) {
       {"fisheye cropped 64×48",
        fisheye(64, 48, {.fov_deg = 200.0, .tilt_deg = 15.0, .centre_x_px = 30.0, .centre_y_px = 40.0, .radius_px = 37.5,
                         .rotation_deg = -45.0})},
+      {"cylindrical 360° 128×32", cylinder(128, 32, {})},
+      {"cylindrical 360° asymmetric 101×37", cylinder(101, 37, {.down_deg = -20.0, .up_deg = 88.0})},
+      {"cylindrical 200° turned 96×40",
+       cylinder(96, 40, {.horizontal_fov_deg = 200.0, .down_deg = -30.0, .up_deg = 40.0, .yaw_deg = 35.0,
+                         .pitch_deg = -20.0, .roll_deg = 15.0})},
+      {"equirectangular 360×180 128×64", equirect(128, 64, {})},
+      {"equirectangular 360×180 101×37", equirect(101, 37, {})},
+      {"equirectangular over the seam 96×40", equirect(96, 40, {120.0, 240.0, -10.0, 60.0})},
+      {"equirectangular 0..360 64×32", equirect(64, 32, {0.0, 360.0, -90.0, 90.0})},
+      {"cube +x 64", cube(64, CubeFace::positive_x)},
+      {"cube -x 64", cube(64, CubeFace::negative_x)},
+      {"cube +y 64", cube(64, CubeFace::positive_y)},
+      {"cube -y 64", cube(64, CubeFace::negative_y)},
+      {"cube +z 65", cube(65, CubeFace::positive_z)},
+      {"cube -z 65", cube(65, CubeFace::negative_z)},
   };
   for (const Case& c : cases) {
     const Projection& p = *c.projection;

@@ -1,0 +1,80 @@
+#pragma once
+// Helpers shared by the warp-file tests: a scratch folder, hand-made PFMs, and
+// checks of error messages.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace zenith::warp::testing {
+
+/// A fresh folder under the system's temp folder, removed with its contents.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& tag) {
+    static std::atomic<int> counter{0};
+    path_ = std::filesystem::temp_directory_path() /
+            ("zenith_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+  std::filesystem::path write(const std::string& name, const std::string& bytes) const {
+    const std::filesystem::path file = path_ / name;
+    std::ofstream stream(file, std::ios::binary);
+    stream.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return file;
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// Runs `action`, expects it to throw a std::exception whose message contains
+/// every one of `parts`.
+inline void expect_error(const std::function<void()>& action, const std::vector<std::string>& parts) {
+  try {
+    action();
+    ADD_FAILURE() << "no exception; expected one mentioning '" << parts.front() << "'";
+  } catch (const std::exception& error) {
+    const std::string message = error.what();
+    for (const std::string& part : parts)
+      EXPECT_NE(message.find(part), std::string::npos) << "message: " << message << "\nmissing: " << part;
+  }
+}
+
+/// A PFM with `channels` channels; `value(x, y, c)` gives the sample of the
+/// pixel at column x, row y counted from the top. `stored_top_first` writes the
+/// top row first (MPCDI), else the bottom row first (classic PFM).
+inline std::string make_pfm(int width, int height, int channels, const std::function<float(int, int, int)>& value,
+                            bool little_endian, bool stored_top_first) {
+  std::string bytes = std::string(channels == 3 ? "PF" : "Pf") + "\n" + std::to_string(width) + " " +
+                      std::to_string(height) + "\n" + (little_endian ? "-1.0" : "1.0") + "\n";
+  for (int stored = 0; stored < height; ++stored) {
+    const int y = stored_top_first ? stored : height - 1 - stored;
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c) {
+        std::uint32_t word = std::bit_cast<std::uint32_t>(value(x, y, c));
+        unsigned char b[4];
+        for (int k = 0; k < 4; ++k) b[k] = static_cast<unsigned char>(word >> (8 * k));  // little endian
+        if (!little_endian) std::swap(b[0], b[3]), std::swap(b[1], b[2]);
+        bytes.append(reinterpret_cast<const char*>(b), 4);
+      }
+  }
+  return bytes;
+}
+
+}  // namespace zenith::warp::testing

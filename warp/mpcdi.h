@@ -1,0 +1,122 @@
+#pragma once
+// MPCDI (VESA Multiple Projector Common Data Interchange, v1 and v2) files: a
+// ZIP archive holding mpcdi.xml and the warp and blend files it names.
+// docs/warp-meshes.md describes what is read and how.
+//
+//   <MPCDI profile="2d|3d|a3|sl" geometry=".." version="2.0">
+//     <display>
+//       <buffer id=".." xResolution=".." yResolution="..">
+//         <region id=".." x=".." y=".." xsize=".." ysize=".." xResolution=".." yResolution="..">
+//           <frustum> yaw pitch roll leftAngle rightAngle upAngle downAngle (degrees) </frustum>
+//         </region> ...
+//       </buffer> ...
+//     </display>
+//     <files>
+//       <fileset region="..">
+//         <geometryWarpFile> path interpolation componentDepth ... </geometryWarpFile>
+//         <alphaMap> path componentDepth bitDepth gammaEmbedded </alphaMap>
+//         <betaMap> path componentDepth bitDepth </betaMap>
+//       </fileset> ...
+//     </files>
+//   </MPCDI>
+//
+// Element and attribute names are matched ignoring case; unknown elements
+// (coordinateFrame, distortionMap, extensionSet, ...) are skipped.
+//
+// Geometry warps are PFMs whose samples start top-left and span the region's
+// raster edge to edge, in either byte order, NaN = no data. For the 2d and 3d
+// profiles each sample holds (x, y) normalized in the region's image ((0, 0) its
+// top-left; for 3d the image rendered through the region's frustum), which is
+// what a WarpMesh holds: the region gets one. For a3 and sl the samples are 3D
+// points on the screen surface, which need the viewer's position to become
+// rays: the raw map is loaded, no WarpMesh is made.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "warp/blend_map.h"
+#include "warp/pfm.h"
+#include "warp/planar_projection.h"
+#include "warp/warp_mesh.h"
+
+namespace zenith::warp {
+
+enum class MpcdiProfile {
+  media_2d,       ///< "2d": 2D media
+  simulation_3d,  ///< "3d": 3D simulation (a frustum per region)
+  advanced_3d,    ///< "a3": advanced 3D (warps to 3D points)
+  shader_lamps,   ///< "sl": shader lamps (warps to 3D points)
+};
+/// "2d", "3d", "a3", "sl".
+const char* to_string(MpcdiProfile profile);
+
+/// A region's view frustum, angles in degrees, MPCDI's conventions: yaw turns
+/// right, pitch up, roll raises the left wing; leftAngle and downAngle are
+/// normally negative. These are PlanarFrustum's conventions, so planar() copies.
+struct MpcdiFrustum {
+  double yaw_deg = 0, pitch_deg = 0, roll_deg = 0;
+  double left_deg = 0, right_deg = 0, up_deg = 0, down_deg = 0;
+
+  PlanarFrustum planar() const { return {left_deg, right_deg, down_deg, up_deg, yaw_deg, pitch_deg, roll_deg}; }
+};
+
+struct MpcdiGeometryWarp {
+  std::string path;           ///< the member of the archive
+  std::string interpolation;  ///< as written ("linear"); "linear" → bilinear, "cubic" → Catmull–Rom
+  int component_depth = 2;    ///< 2 (x, y) or 3 (x, y, z)
+  PfmImage map;               ///< row 0 at the top
+};
+
+/// An alpha (blend) or beta (black-level) map. Values are the stored ones
+/// (BlendMap: integer / (2^bits − 1)); an alpha map's blend weight in linear
+/// light is value^gamma_embedded.
+struct MpcdiBlendMap {
+  std::string path;             ///< the member of the archive
+  int component_depth = 1;      ///< as declared (1 or 3); the image's own channel count is image.channels
+  int bit_depth = 8;            ///< as declared (8 or 16)
+  double gamma_embedded = 1.0;  ///< alpha maps: <gammaEmbedded>, 1 when absent; beta maps: 1
+  BlendMap image;
+
+  /// value^gamma_embedded of channel c (channel 0 for a 1-channel image).
+  double linear(int x, int y, int c = 0) const;
+};
+
+struct MpcdiRegion {
+  std::string id;
+  double x = 0, y = 0, xsize = 1, ysize = 1;  ///< the region in its buffer, normalized, (0, 0) top-left
+  int x_resolution_px = 0, y_resolution_px = 0;
+  std::optional<MpcdiFrustum> frustum;  ///< required for the 3d profile
+  std::optional<MpcdiGeometryWarp> geometry_warp;
+  std::optional<WarpMesh> warp_mesh;    ///< from geometry_warp, profiles 2d and 3d only
+  std::optional<MpcdiBlendMap> alpha_map, beta_map;
+};
+
+struct MpcdiBuffer {
+  std::string id;
+  int x_resolution_px = 0, y_resolution_px = 0;  ///< 0 when not given
+  std::vector<MpcdiRegion> regions;
+};
+
+struct MpcdiFile {
+  std::string path;  ///< the archive
+  MpcdiProfile profile = MpcdiProfile::media_2d;
+  std::string version;  ///< as written, "" when absent
+  std::vector<MpcdiBuffer> buffers;
+
+  /// The region with that id (ids are unique across buffers); nullptr when none.
+  const MpcdiRegion* find_region(const std::string& id) const;
+};
+
+/// Reads an .mpcdi archive. Throws std::runtime_error naming the archive, the
+/// member and the line of mpcdi.xml where it applies, e.g.
+/// "show.mpcdi:mpcdi.xml:7: <region> has no attribute 'xsize'", for: an archive
+/// that cannot be opened or is not a ZIP; no mpcdi.xml (matched ignoring case,
+/// in any folder of the archive); malformed XML; a missing required attribute or
+/// element, or a value out of range; an unknown profile; a duplicate region id;
+/// a fileset naming an unknown region; a warp or blend file missing from the
+/// archive; a broken PFM (truncated, bad header) or PNG; and a NaN-only warp
+/// (std::invalid_argument from WarpMesh, message "<archive>:<member>: ... NaN-only mesh").
+MpcdiFile load_mpcdi(const std::filesystem::path& path);
+
+}  // namespace zenith::warp
