@@ -17,6 +17,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "atmosphere/lut/parallel_for.h"
 #include "atmosphere/model_hash.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
@@ -37,6 +38,7 @@ using Vec4 = std::array<float, 4>;
 
 constexpr int kMaxBodies = 8;          // MAX_BODIES of frame.glsl and the albedo map slots of gbuffer.comp
 constexpr unsigned kAlbedoMapUnit = 8;  // albedo_map0 .. albedo_map7
+constexpr unsigned kRayTableUnit = 7;   // projection_ray_table of projection.glsl
 constexpr std::size_t kLanes = kWavelengthLanes;
 
 // Storage bindings and image units of the render passes (frame.glsl, *.comp).
@@ -107,6 +109,9 @@ struct Renderer::Impl {
   std::unique_ptr<TileCones> cones;
   gl::Buffer bodies;
   gl::Buffer tiles;
+  // Ray tables of projections without a GPU form, per band (keyed with the projection).
+  std::map<int, std::vector<float>> ray_tables;  // by first row
+  Texture ray_table;
   std::size_t tiles_capacity = 0;
   // Band images, (re)allocated when the band size changes.
   int band_width = 0, band_height = 0;
@@ -207,6 +212,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     if (key.str() != im.projection_key || !im.cones) {
       im.cones = std::make_unique<TileCones>(projection);
       im.projection_key = key.str();
+      im.ray_tables.clear();
     }
   }
   const TileCones& cones = *im.cones;
@@ -342,6 +348,36 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
       p.set_uniform("band_origin", origin);
       p.set_uniform("band_size", size);
     };
+
+    if (gpu_projection.kind == warp::ProjectionKind::ray_table) {
+      // Rays of this band on the CPU, in double, kept for the next frames.
+      auto table = im.ray_tables.find(first_row);
+      if (table == im.ray_tables.end()) {
+        std::vector<float> rays(static_cast<std::size_t>(width) * im.band_height * 4, 0.0f);
+        atmosphere::parallel_for(static_cast<std::size_t>(rows), 0, [&](std::size_t row) {
+          for (int x = 0; x < width; ++x) {
+            const auto r = projection.ray(x + 0.5, first_row + static_cast<double>(row) + 0.5);
+            if (!r) continue;
+            const glm::dvec3 d = glm::normalize(*r);
+            float* t = &rays[(row * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4];
+            t[0] = static_cast<float>(d.x);
+            t[1] = static_cast<float>(d.y);
+            t[2] = static_cast<float>(d.z);
+            t[3] = 1.0f;
+          }
+        });
+        table = im.ray_tables.emplace(first_row, std::move(rays)).first;
+      }
+      if (im.ray_table.width() != width || im.ray_table.height() != im.band_height)
+        im.ray_table = Texture::create_2d(TextureFormat::rgba32f, width, im.band_height);
+      im.ray_table.upload(table->second);
+      im.ray_table.bind(kRayTableUnit);
+      auto set_table = [&](const ShaderProgram& p) { p.set_uniform("projection_table_origin", origin); };
+      set_table(im.gbuffer);
+      set_table(im.resolve);
+      for (const AtmospherePass& pass : passes)
+        if (pass.gpu) set_table(pass.gpu->program());
+    }
 
     set_band(im.gbuffer);
     im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::write_only);
