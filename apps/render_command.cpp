@@ -1,7 +1,9 @@
 // `zenith render`: one frame of a scene through a planar or fisheye projection,
 // written as a linear OpenEXR and/or an 8-bit sRGB PNG preview; with --window,
 // the same renderer on a window's GL context, explored with the keyboard
-// (docs/window.md).
+// (docs/window.md); with --viewport CONFIG#NAME, one output of a viewport
+// config (its projection, warp, size, blend mask and black level;
+// docs/viewports.md), or every output of the config without #NAME.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -29,8 +31,10 @@
 #include "render/scene/scene_loader.h"
 #include "render/window/frame_presenter.h"
 #include "render/window/window_context.h"
+#include "warp/blending.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
+#include "warp/viewport_config.h"
 
 namespace zenith::app {
 namespace {
@@ -45,6 +49,9 @@ struct RenderArgs {
   int orders = 4;
   bool window = false;        ///< show the frame in a window and explore the scene
   std::optional<int> frames;  ///< --window: close after this many presented frames
+  std::string viewport;       ///< --viewport CONFIG[#NAME]
+  /// Which of the options a viewport replaces were given on the command line.
+  bool projection_given = false, size_given = false;
 };
 
 /// 1 to 5 decimal digits, the whole of `text`.
@@ -115,6 +122,62 @@ void log_frame_stats(const render::FrameStats& s) {
   for (const auto& atm : s.atmospheres)
     spdlog::info("atmosphere of '{}': {} of {} tiles", atm.body, atm.tiles, atm.tiles_total);
   spdlog::info("frame rendered in {:.3f} s ({} band{})", s.seconds, s.bands, s.bands == 1 ? "" : "s");
+}
+
+/// `text` with every "{name}" replaced by `name`.
+std::string substitute_name(std::string text, const std::string& name) {
+  for (std::size_t at = text.find("{name}"); at != std::string::npos; at = text.find("{name}", at + name.size()))
+    text.replace(at, 6, name);
+  return text;
+}
+
+/// Renders one frame into every file of `outputs` (.exr or .png). With a
+/// `blend` mask, each output's rows go through the output stage first
+/// (docs/viewports.md): PNG: L = tone(v), L' = L·α·(1 − β) + β, then sRGB
+/// (the writer is opened with the clamp operator, the identity on [0, 1]);
+/// EXR: v' = v·α·(1 − β) + β, linear, 1.0 = full white.
+void render_to_files(render::Renderer& renderer, const scene::Scene& scene, const warp::Projection& projection,
+                     const std::vector<std::string>& outputs, const RenderArgs& a,
+                     const image::ImageAttributes& attributes, const warp::BlendMask* blend, double black_level) {
+  const int width = projection.width(), height = projection.height();
+  const image::ToneMapping tone = image::parse_tone_mapping(a.tone);
+  const image::ExrPixelType exr_type = image::parse_exr_pixel_type(a.exr_type);
+  struct Target {
+    std::unique_ptr<image::ImageWriter> writer;
+    bool png;
+  };
+  std::vector<Target> targets;
+  for (const auto& out : outputs) {
+    const std::filesystem::path path(out);
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    const bool png = path.extension() != ".exr";
+    // With a blend the PNG rows arrive tone mapped: the writer only encodes sRGB.
+    const image::ToneMapping writer_tone = png && blend != nullptr ? image::ToneMapping::clamp : tone;
+    targets.push_back({png ? image::open_png_writer(path, width, height, writer_tone, attributes)
+                           : image::open_exr_writer(path, width, height, exr_type, attributes),
+                       png});
+  }
+  ProgressBar bar("render");
+  std::vector<float> rows;
+  renderer.render(scene, projection, [&](int first_row, int row_count, std::span<const float> rgb) {
+    for (auto& t : targets) {
+      if (blend == nullptr) {
+        t.writer->write_rows(row_count, rgb);
+        continue;
+      }
+      rows.assign(rgb.begin(), rgb.end());
+      if (t.png)
+        for (float& v : rows) v = image::tone_map(v, tone);
+      warp::apply_blend(rows, first_row, row_count, *blend, black_level);
+      t.writer->write_rows(row_count, rows);
+    }
+    bar.update(fmt::format("rows {}–{}", first_row, first_row + row_count - 1),
+               static_cast<double>(first_row + row_count) / height);
+  });
+  for (auto& t : targets) t.writer->finish();
+  bar.finish();
+  log_frame_stats(renderer.last_frame());
+  for (const auto& out : outputs) fmt::print("written {}\n", out);
 }
 
 // ---------------------------------------------------------------------------
@@ -320,21 +383,93 @@ void run_window(const RenderArgs& a, scene::Scene scene, const warp::Projection&
   }
 }
 
+/// The viewport part of `zenith render`: CONFIG#NAME renders output NAME,
+/// CONFIG alone every output; "{name}" in --out becomes the output's name, and
+/// an --out ending in '/' means DIR/{name}.png.
+void run_viewport_render(const RenderArgs& a, const scene::Scene& scene) {
+  if (a.projection_given || a.size_given || a.fov_deg || a.tilt_deg)
+    throw std::invalid_argument(
+        "--viewport: the viewport config gives each output's projection and size; drop --projection, --size, "
+        "--fov and --tilt");
+  if (a.window) throw std::invalid_argument("--viewport renders to files; --window shows a plain projection");
+  const std::size_t hash = a.viewport.rfind('#');
+  const std::string file = a.viewport.substr(0, hash);
+  const std::optional<std::string> only =
+      hash == std::string::npos ? std::nullopt : std::optional<std::string>(a.viewport.substr(hash + 1));
+  if (file.empty()) throw std::invalid_argument(fmt::format("--viewport '{}': expected CONFIG.json[#NAME]", a.viewport));
+  const warp::ViewportConfig config = warp::load_viewport_config(file);
+
+  std::vector<std::size_t> indices;
+  if (only) {
+    indices.push_back(config.index_of(*only));
+  } else {
+    for (std::size_t i = 0; i < config.outputs.size(); ++i) indices.push_back(i);
+  }
+  // Each output's files: {name} substituted, DIR/ → DIR/{name}.png.
+  auto files_of = [&](const warp::OutputConfig& o) {
+    std::vector<std::string> files;
+    for (const auto& out : a.outputs) {
+      const std::string pattern = !out.empty() && out.back() == '/' ? out + "{name}.png" : out;
+      files.push_back(substitute_name(pattern, o.name));
+    }
+    return files;
+  };
+  if (indices.size() > 1)
+    for (const auto& out : a.outputs)
+      if (out.find("{name}") == std::string::npos && (out.empty() || out.back() != '/'))
+        throw std::invalid_argument(fmt::format(
+            "--out '{}': --viewport without #NAME renders {} outputs: give a folder (DIR/) or a pattern with "
+            "{{name}} (out/{{name}}.exr)",
+            out, indices.size()));
+  for (const auto& out : a.outputs) {
+    const std::string pattern = !out.empty() && out.back() == '/' ? out + "x.png" : out;
+    const auto ext = std::filesystem::path(pattern).extension().string();
+    if (ext != ".exr" && ext != ".png")
+      throw std::invalid_argument(fmt::format("--out '{}': the file name must end in .exr or .png (or the folder in /)", out));
+  }
+
+  render::gl::ContextOptions context_options;
+  context_options.prefer = render::gl::parse_device_preference(a.device);
+  render::gl::HeadlessContext context(context_options);
+  const TableRequest request = make_table_request(a);
+  render::Renderer renderer(make_render_options(a), [&](const atmosphere::AtmosphereModel& model) {
+    ObtainedTables t = obtain_tables(model, request);
+    context.make_current();
+    return std::move(t.tables);
+  });
+  for (const std::size_t i : indices) {
+    const warp::OutputConfig& o = config.outputs[i];
+    spdlog::info("rendering '{}' output '{}' of viewport '{}': {} on {}", scene.name, o.name, config.name,
+                 o.projection->describe(), context.renderer());
+    const warp::BlendMask mask = warp::output_blend_mask(config, i);
+    image::ImageAttributes attributes = image_attributes(scene, *o.projection);
+    attributes.emplace_back("zenith:viewport", fmt::format("{}#{}", file, o.name));
+    attributes.emplace_back("zenith:blend", fmt::format("{}; black level {}; output stage P*alpha*(1-beta)+beta "
+                                                        "(docs/viewports.md)",
+                                                        warp::to_string(o.blend.mode), o.black_level));
+    render_to_files(renderer, scene, *o.projection, files_of(o), a, attributes, &mask, o.black_level);
+  }
+}
+
 void run_render(const RenderArgs& a) {
   if (a.outputs.empty() && !a.window) throw std::invalid_argument("--out: give at least one FILE.exr or FILE.png");
-  for (const auto& out : a.outputs) {
-    const auto ext = std::filesystem::path(out).extension().string();
-    if (ext != ".exr" && ext != ".png")
-      throw std::invalid_argument(fmt::format("--out '{}': the file name must end in .exr or .png", out));
-  }
   if (a.frames && !a.window) throw std::invalid_argument("--frames applies to --window only");
-  const auto [width, height] = parse_size(a.size);
   scene::Scene scene = scene::load_scene(a.scene);
   if (a.exposure) {
     if (!(*a.exposure > 0.0 && *a.exposure <= 1e6))
       throw std::invalid_argument(fmt::format("--exposure {}: must be in (0, 1e6]", *a.exposure));
     scene.camera.exposure = *a.exposure;
   }
+  if (!a.viewport.empty()) {
+    run_viewport_render(a, scene);
+    return;
+  }
+  for (const auto& out : a.outputs) {
+    const auto ext = std::filesystem::path(out).extension().string();
+    if (ext != ".exr" && ext != ".png")
+      throw std::invalid_argument(fmt::format("--out '{}': the file name must end in .exr or .png", out));
+  }
+  const auto [width, height] = parse_size(a.size);
   const auto projection = make_projection(a, width, height);
   if (a.window) {
     run_window(a, std::move(scene), *projection, width, height);
@@ -352,28 +487,7 @@ void run_render(const RenderArgs& a) {
     context.make_current();  // the GPU precompute may have used a context of its own
     return std::move(t.tables);
   });
-
-  const image::ToneMapping tone = image::parse_tone_mapping(a.tone);
-  const image::ExrPixelType exr_type = image::parse_exr_pixel_type(a.exr_type);
-  const image::ImageAttributes attributes = image_attributes(scene, *projection);
-  std::vector<std::unique_ptr<image::ImageWriter>> writers;
-  for (const auto& out : a.outputs) {
-    const std::filesystem::path path(out);
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    writers.push_back(path.extension() == ".exr"
-                          ? image::open_exr_writer(path, width, height, exr_type, attributes)
-                          : image::open_png_writer(path, width, height, tone, attributes));
-  }
-  ProgressBar bar("render");
-  renderer.render(scene, *projection, [&](int first_row, int rows, std::span<const float> rgb) {
-    for (auto& w : writers) w->write_rows(rows, rgb);
-    bar.update(fmt::format("rows {}–{}", first_row, first_row + rows - 1),
-               static_cast<double>(first_row + rows) / height);
-  });
-  for (auto& w : writers) w->finish();
-  bar.finish();
-  log_frame_stats(renderer.last_frame());
-  for (const auto& out : a.outputs) fmt::print("written {}\n", out);
+  render_to_files(renderer, scene, *projection, a.outputs, a, image_attributes(scene, *projection), nullptr, 0.0);
 }
 
 }  // namespace
@@ -382,6 +496,10 @@ void register_render_command(CLI::App& app) {
   auto a = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render one frame of a scene to EXR (linear) and/or PNG (sRGB)");
   cmd->add_option("--scene", a->scene, "Scene JSON file (configs/scenes/)")->required();
+  cmd->add_option("--viewport", a->viewport,
+                  "Render output NAME of a viewport config (CONFIG.json#NAME: its projection, warp, size, blend and "
+                  "black level), or every output (CONFIG.json, with --out DIR/ or --out out/{name}.exr); "
+                  "docs/viewports.md");
   cmd->add_option("--projection", a->projection, "planar or fisheye (default: fisheye, a dome master)")
       ->check(CLI::IsMember({"planar", "fisheye"}));
   cmd->add_option("--fov", a->fov_deg, "Field of view [deg]: planar horizontal (default 60), fisheye (default 180)");
@@ -413,9 +531,11 @@ void register_render_command(CLI::App& app) {
   cmd->add_flag("--window", a->window, "Show the frame in a window and explore the scene with the keys (docs/window.md)");
   cmd->add_option("--frames", a->frames, "--window: close after N presented frames (tests, scripts)")
       ->check(CLI::Range(1, 100000000));
-  cmd->callback([a] {
+  cmd->callback([a, cmd] {
     // --out is required without --window: the same error CLI11 gives for a required option.
     if (a->outputs.empty() && !a->window) throw CLI::RequiredError("--out");
+    a->projection_given = cmd->count("--projection") > 0;
+    a->size_given = cmd->count("--size") > 0;
     run_render(*a);
   });
 }

@@ -1,0 +1,281 @@
+#include "warp/viewport_config.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+
+#include "atmosphere/json_reader.h"
+#include "warp/mpcdi.h"
+#include "warp/projection_factory.h"
+#include "warp/warp_mesh.h"
+#include "warp/warped_projection.h"
+
+namespace zenith::warp {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+constexpr int kMaxOutputs = 256;
+constexpr int kMaxSidePx = 16384;
+constexpr double kMaxBlackLevel = 0.5;
+constexpr double kMinBlendWidthFraction = 1e-3, kMaxBlendWidthFraction = 0.5;
+constexpr double kMinMaskGamma = 0.1, kMaxMaskGamma = 10.0;
+constexpr std::size_t kMaxNameLength = 64;
+
+/// Concatenation through a stream (GCC 12 warns falsely on chains of std::string +).
+template <typename... T>
+std::string cat(const T&... parts) {
+  std::ostringstream s;
+  (s << ... << parts);
+  return s.str();
+}
+
+/// A value for a message, shortened when long.
+std::string brief(const json& v) {
+  std::string text = v.dump();
+  if (text.size() > 80) text = text.substr(0, 77) + "...";
+  return text;
+}
+
+/// Rejects any key of `object` not in `allowed`, listing those that are.
+void allow_keys(const JsonReader& r, const json& object, std::initializer_list<std::string_view> allowed) {
+  for (const auto& [key, value] : object.items()) {
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    std::ostringstream s;
+    s << "unknown key (check the spelling); allowed here: ";
+    for (auto it = allowed.begin(); it != allowed.end(); ++it) s << (it == allowed.begin() ? "" : ", ") << *it;
+    s << " (see docs/viewports.md)";
+    r.fail(key, s.str());
+  }
+}
+
+bool valid_name(const std::string& name) {
+  return !name.empty() && name.size() <= kMaxNameLength && name != "." && name != ".." &&
+         std::all_of(name.begin(), name.end(), [](char c) {
+           return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' ||
+                  c == '.';
+         });
+}
+
+/// "size": [width, height], integers in [1, 16384].
+std::pair<int, int> read_size(JsonReader& r) {
+  const json& v = r.raw("size");
+  if (!v.is_array() || v.size() != 2)
+    r.fail("size", cat("= ", brief(v), ": must be [width, height] in pixels"));
+  int side[2] = {0, 0};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const json& s = v[k];
+    const std::string key = cat("size/", k);
+    if (!s.is_number_integer()) r.fail(key, cat("= ", brief(s), ": must be an integer in [1, ", kMaxSidePx, "] px"));
+    const auto x = s.get<long long>();
+    if (x < 1 || x > kMaxSidePx) r.fail(key, cat("= ", x, ": must be in [1, ", kMaxSidePx, "] px"));
+    side[k] = static_cast<int>(x);
+  }
+  return {side[0], side[1]};
+}
+
+/// A file named by `key`, resolved against `base_dir`; it must exist.
+fs::path existing_file(JsonReader& r, const std::string& key, const fs::path& base_dir) {
+  const std::string name = r.string(key);
+  if (name.empty()) r.fail(key, "= \"\": must name a file");
+  fs::path path(name);
+  if (path.is_relative()) path = base_dir / path;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    r.fail(key, cat("= \"", name, "\": no such file (looked for ", path.string(), ")"));
+  return path;
+}
+
+WarpMesh load_warp(JsonReader& w, const WarpSource& source) {
+  try {
+    if (source.format == "bourke") return load_bourke_mesh(source.file);
+    if (source.format == "pfm") return load_pfm_warp_mesh(source.file);
+    const MpcdiFile mpcdi = load_mpcdi(source.file);
+    const MpcdiRegion* region = mpcdi.find_region(source.region);
+    if (region == nullptr) {
+      std::string ids;
+      for (const MpcdiBuffer& b : mpcdi.buffers)
+        for (const MpcdiRegion& g : b.regions) ids += (ids.empty() ? "" : ", ") + ("\"" + g.id + "\"");
+      w.fail("region", cat("= \"", source.region, "\": no such region in ", source.file.string(),
+                           " (regions: ", ids.empty() ? "none" : ids, ")"));
+    }
+    if (!region->warp_mesh)
+      w.fail("region", cat("= \"", source.region, "\": the region has no 2D geometry warp (profile ",
+                           to_string(mpcdi.profile), ")"));
+    return *region->warp_mesh;
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const std::exception& e) {  // the loaders' runtime_error / invalid_argument
+    w.fail("file", cat("cannot use the warp: ", e.what()));
+  }
+}
+
+BlendSource read_blend(JsonReader& o, const fs::path& base_dir) {
+  BlendSource blend;
+  if (!o.has("blend")) return blend;
+  const json& v = o.raw("blend");
+  if (v.is_string()) {
+    const std::string mode = o.string("blend", {"none", "auto"});
+    blend.mode = mode == "auto" ? BlendMode::automatic : BlendMode::none;
+    return blend;
+  }
+  if (!v.is_object())
+    o.fail("blend", cat("= ", brief(v), ": must be \"none\", \"auto\" or an object ({\"type\": \"auto\", ...} or "
+                                        "{\"file\": ..., \"gamma\": ...})"));
+  JsonReader b(v, o.file(), o.key_path("blend"));
+  const std::string type = b.string_or("type", b.has("file") ? "file" : "auto", {"none", "auto", "file"});
+  if (type == "none") {
+    allow_keys(b, v, {"type"});
+  } else if (type == "auto") {
+    allow_keys(b, v, {"type", "width_fraction"});
+    blend.mode = BlendMode::automatic;
+    blend.width_fraction =
+        b.number_or("width_fraction", blend.width_fraction, kMinBlendWidthFraction, kMaxBlendWidthFraction,
+                    "of the smaller side");
+  } else {
+    allow_keys(b, v, {"type", "file", "gamma"});
+    blend.mode = BlendMode::file;
+    blend.file = existing_file(b, "file", base_dir);
+    blend.gamma = b.number_or("gamma", blend.gamma, kMinMaskGamma, kMaxMaskGamma);
+  }
+  return blend;
+}
+
+OutputConfig read_output(JsonReader& o, const fs::path& base_dir) {
+  OutputConfig out;
+  out.name = o.string("name");
+  if (!valid_name(out.name))
+    o.fail("name", cat("= \"", out.name, "\": must be 1 to ", kMaxNameLength,
+                       " letters, digits, '-', '_' or '.' (it names the output's file)"));
+  std::tie(out.width_px, out.height_px) = read_size(o);
+
+  const json& spec = o.raw("projection");
+  if (!spec.is_object()) o.fail("projection", cat("must be an object (docs/projections.md), got ", brief(spec)));
+  out.projection_spec = spec;
+  std::shared_ptr<const Projection> base =
+      make_projection(spec, out.width_px, out.height_px, o.file(), o.key_path("projection"));
+
+  if (o.has("warp")) {
+    const json& wv = o.raw("warp");
+    if (!wv.is_object()) o.fail("warp", cat("must be an object {\"file\", \"format\", \"region\"}, got ", brief(wv)));
+    JsonReader w(wv, o.file(), o.key_path("warp"));
+    allow_keys(w, wv, {"file", "format", "region"});
+    WarpSource source;
+    source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
+    source.file = existing_file(w, "file", base_dir);
+    if (source.format == "mpcdi") {
+      source.region = w.string("region");
+      if (source.region.empty()) w.fail("region", "= \"\": must name a region of the MPCDI file");
+    } else if (w.has("region")) {
+      w.fail("region", cat("applies to \"format\": \"mpcdi\" only (format is \"", source.format, "\")"));
+    }
+    WarpMesh mesh = load_warp(w, source);
+    out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(mesh), base);
+    out.warp = std::move(source);
+  } else {
+    out.projection = std::move(base);
+  }
+
+  out.blend = read_blend(o, base_dir);
+  out.black_level = o.number_or("black_level", 0.0, 0.0, kMaxBlackLevel, "(fraction of full white)");
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(BlendMode mode) {
+  switch (mode) {
+    case BlendMode::none: return "none";
+    case BlendMode::automatic: return "auto";
+    case BlendMode::file: return "file";
+  }
+  return "?";
+}
+
+const OutputConfig* ViewportConfig::find(const std::string& output_name) const {
+  for (const OutputConfig& o : outputs)
+    if (o.name == output_name) return &o;
+  return nullptr;
+}
+
+std::size_t ViewportConfig::index_of(const std::string& output_name) const {
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    if (outputs[i].name == output_name) return i;
+  std::string names;
+  for (const OutputConfig& o : outputs) names += (names.empty() ? "" : ", ") + o.name;
+  throw std::invalid_argument(cat(source, ": no output named '", output_name, "' (outputs: ", names, ")"));
+}
+
+ViewportConfig parse_viewport_config(const json& config, const std::string& source, const fs::path& base_dir) {
+  JsonReader root(config, source);
+  allow_keys(root, config, {"zenith_viewports", "name", "description", "outputs"});
+  if (!root.has("zenith_viewports"))
+    root.fail("zenith_viewports", cat("missing: a viewport config starts with \"zenith_viewports\": ",
+                                      kViewportConfigVersion, " (the schema version)"));
+  root.integer("zenith_viewports", kViewportConfigVersion, kViewportConfigVersion);
+
+  ViewportConfig vc;
+  vc.source = source;
+  vc.name = root.string("name");
+  if (vc.name.empty()) root.fail("name", "= \"\": must not be empty");
+  vc.description = root.string_or("description", "", {});
+
+  const json& outputs = root.raw("outputs");
+  if (!outputs.is_array() || outputs.empty() || outputs.size() > static_cast<std::size_t>(kMaxOutputs))
+    root.fail("outputs", cat("= ", brief(outputs), ": must be an array of 1 to ", kMaxOutputs, " outputs"));
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const std::string pointer = cat("/outputs/", i);
+    const json& ov = outputs[i];
+    if (!ov.is_object()) throw ConfigError(source, pointer, cat("must be an object, got ", brief(ov)));
+    JsonReader o(ov, source, pointer);
+    allow_keys(o, ov, {"name", "size", "projection", "warp", "blend", "black_level"});
+    OutputConfig out = read_output(o, base_dir);
+    if (!names.insert(out.name).second)
+      o.fail("name", cat("= \"", out.name, "\": duplicate output name (names must be unique)"));
+    vc.outputs.push_back(std::move(out));
+  }
+  return vc;
+}
+
+ViewportConfig load_viewport_config(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path.string(), "", "cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_viewport_config(parse_json(text.str(), path.string()), path.string(), path.parent_path());
+}
+
+PlanarFrustum display_wall_frustum(const DisplayWall& wall, int column, int row) {
+  if (wall.columns < 1 || wall.columns > 64 || wall.rows < 1 || wall.rows > 64)
+    throw std::invalid_argument(cat("display wall: columns and rows must be in [1, 64], got ", wall.columns, " x ",
+                                    wall.rows));
+  if (column < 0 || column >= wall.columns || row < 0 || row >= wall.rows)
+    throw std::invalid_argument(cat("display wall: screen (", column, ", ", row, ") outside ", wall.columns, " x ",
+                                    wall.rows));
+  if (!(wall.screen_width_mm > 0.0 && wall.screen_height_mm > 0.0 && wall.bezel_mm >= 0.0 &&
+        wall.distance_mm > 0.0 && std::isfinite(wall.screen_width_mm) && std::isfinite(wall.screen_height_mm) &&
+        std::isfinite(wall.bezel_mm) && std::isfinite(wall.distance_mm)))
+    throw std::invalid_argument("display wall: screen sizes and distance must be finite and > 0, the bezel >= 0");
+  const double gap_mm = 2.0 * wall.bezel_mm;
+  const double total_w = wall.columns * wall.screen_width_mm + (wall.columns - 1) * gap_mm;
+  const double total_h = wall.rows * wall.screen_height_mm + (wall.rows - 1) * gap_mm;
+  const double x_left = -0.5 * total_w + column * (wall.screen_width_mm + gap_mm);
+  const double y_top = 0.5 * total_h - row * (wall.screen_height_mm + gap_mm);
+  constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+  const double d = wall.distance_mm;
+  PlanarFrustum f{};
+  f.left_deg = std::atan(x_left / d) * kDegPerRad;
+  f.right_deg = std::atan((x_left + wall.screen_width_mm) / d) * kDegPerRad;
+  f.up_deg = std::atan(y_top / d) * kDegPerRad;
+  f.down_deg = std::atan((y_top - wall.screen_height_mm) / d) * kDegPerRad;
+  return f;
+}
+
+}  // namespace zenith::warp

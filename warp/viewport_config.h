@@ -1,0 +1,132 @@
+#pragma once
+// The viewport/output part of a cluster configuration: what each output (a
+// projector, a screen of a display wall, a dome master) shows, at what size,
+// through which projection and warp, with which blend mask and black level.
+// docs/viewports.md has the schema, the blend model and the bezel arithmetic.
+//
+//   {
+//     "zenith_viewports": 1,
+//     "name": "dome-6",
+//     "outputs": [
+//       {"name": "p1", "size": [1920, 1200],
+//        "projection": {"type": "planar", "left_deg": -45, ...},          make_projection() spec
+//        "warp": {"file": "p1.data", "format": "bourke"},                 optional
+//        "blend": "auto",                                                 "none" | "auto" | object
+//        "black_level": 0.02}                                             β in [0, 0.5]
+//     ]
+//   }
+//
+// Keys are strict; every error is a zenith::ConfigError naming the file, the
+// JSON pointer of the key, the value and the allowed range, e.g.
+//   dome.json: /outputs/2/black_level = 0.8: must be in [0, 0.5]
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "warp/planar_projection.h"
+#include "warp/projection.h"
+
+namespace zenith::warp {
+
+/// The schema version this reader understands ("zenith_viewports": 1).
+inline constexpr int kViewportConfigVersion = 1;
+
+enum class BlendMode {
+  none,       ///< α = 1 everywhere (a dome master, non-overlapping screens)
+  automatic,  ///< α from the overlap of the outputs' coverage (warp/blending.h)
+  file,       ///< α read from a PNG mask
+};
+/// "none", "auto", "file".
+const char* to_string(BlendMode mode);
+
+/// Where an output's blend mask α comes from. α is a weight in linear light.
+struct BlendSource {
+  BlendMode mode = BlendMode::none;
+  /// automatic: the ramp width as a fraction of the output's smaller side, in
+  /// (0, 0.5]; a pixel this far (or farther) inside the border of the output's
+  /// coverage has its full raw weight.
+  double width_fraction = 0.1;
+  /// file: the PNG (8 or 16 bit, grey or RGB: channel 0 is used), resolved
+  /// against the config's folder; its size must be the output's.
+  std::filesystem::path file;
+  /// file: α = stored^gamma, stored = integer / (2^bits − 1) (MPCDI's
+  /// gammaEmbedded); in [0.1, 10], 1 (linear) unless given.
+  double gamma = 1.0;
+};
+
+/// The warp file of an output, as configured (the mesh is already built into
+/// OutputConfig::projection).
+struct WarpSource {
+  std::filesystem::path file;  ///< resolved against the config's folder
+  std::string format;          ///< "bourke", "pfm" or "mpcdi"
+  std::string region;          ///< mpcdi: the region id; empty otherwise
+};
+
+struct OutputConfig {
+  std::string name;  ///< unique in its config; letters, digits, '-', '_', '.' (a file name)
+  int width_px = 0, height_px = 0;
+  nlohmann::json projection_spec;  ///< the "projection" object as given
+  /// The output's rays: make_projection(projection_spec, size) or, with a warp,
+  /// a WarpedProjection of the output's size over that projection (the warp's
+  /// source image is rendered through the spec's projection at the same size).
+  std::shared_ptr<const Projection> projection;
+  std::optional<WarpSource> warp;
+  BlendSource blend;
+  /// β: the projector's black level as a fraction of its full white, in
+  /// [0, 0.5]; the output stage writes P·α·(1 − β) + β (docs/viewports.md).
+  double black_level = 0.0;
+};
+
+struct ViewportConfig {
+  std::string name;
+  std::string description;  ///< optional, "" when absent
+  std::string source;       ///< the file it came from (messages)
+  std::vector<OutputConfig> outputs;
+
+  /// The output with that name; nullptr when none.
+  const OutputConfig* find(const std::string& output_name) const;
+  /// Its index in outputs; throws std::invalid_argument listing the names when none.
+  std::size_t index_of(const std::string& output_name) const;
+};
+
+/// Parses a viewport config held in `config`. `source` names the file in
+/// messages; relative warp and blend files resolve against `base_dir`.
+/// Throws zenith::ConfigError for anything invalid: a missing or wrong version,
+/// unknown keys, a bad size, projection, warp, blend or black level, duplicate
+/// or invalid names, a missing warp or blend file, and a warp file that cannot
+/// be read (its loader's message, pointing at /outputs/<i>/warp/file).
+ViewportConfig parse_viewport_config(const nlohmann::json& config, const std::string& source,
+                                     const std::filesystem::path& base_dir);
+/// Reads and parses a file (ConfigError "cannot open file" when unreadable).
+ViewportConfig load_viewport_config(const std::filesystem::path& path);
+
+// ---------------------------------------------------------------------------
+// Display walls with bezel compensation.
+
+/// A flat wall of identical screens seen from a point on the normal through the
+/// wall's centre. Lengths in millimetres.
+struct DisplayWall {
+  int columns = 3, rows = 2;       ///< each in [1, 64]
+  double screen_width_mm = 0.0;    ///< the active (lit) area of one screen, > 0
+  double screen_height_mm = 0.0;   ///< > 0
+  double bezel_mm = 0.0;           ///< the frame on each side of a screen, ≥ 0: adjacent pictures are 2 · bezel_mm apart
+  double distance_mm = 0.0;        ///< from the eye to the wall, > 0
+};
+
+/// The asymmetric frustum of the screen in `column` (0 = left) and `row`
+/// (0 = top), all axes straight ahead (the wall is one plane z = −distance):
+///   W = columns · w + (columns − 1) · 2b,     x_left = −W / 2 + column · (w + 2b)
+///   H = rows · h + (rows − 1) · 2b,           y_top  =  H / 2 − row · (h + 2b)
+///   left = atan(x_left / D), right = atan((x_left + w) / D),
+///   up = atan(y_top / D),    down = atan((y_top − h) / D)
+/// so the picture continues behind the bezels (the hidden part is not shown)
+/// and a straight line crossing two screens stays straight. Throws
+/// std::invalid_argument for parameters out of range.
+PlanarFrustum display_wall_frustum(const DisplayWall& wall, int column, int row);
+
+}  // namespace zenith::warp
