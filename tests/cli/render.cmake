@@ -32,6 +32,32 @@ if(NOT rc EQUAL 0 OR NOT EXISTS "${out}/mars.png")
   message(FATAL_ERROR "planar render failed (${rc}): ${err}")
 endif()
 
+# One projector of the 6-projector dome, alone, blended (docs/viewports.md).
+execute_process(COMMAND ${ZENITH} render --scene "${SOURCE_DIR}/configs/scenes/earth-ground-noon.json"
+                        --viewport "${SOURCE_DIR}/configs/viewports/dome-6-projectors.json#p2" --tables small
+                        --cache "${cache}" --out "${out}/p2.png"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS "${out}/p2.png")
+  message(FATAL_ERROR "viewport render failed (${rc}): ${err}")
+endif()
+file(READ "${out}/p2.png" ihdr OFFSET 16 LIMIT 8 HEX)
+if(NOT ihdr STREQUAL "00000780000004b0")  # 1920 x 1200 from the viewport config
+  message(FATAL_ERROR "p2.png is not 1920x1200: IHDR ${ihdr}")
+endif()
+
+# An 8192² dome master streams through bands and the PNG writer within CI memory.
+execute_process(COMMAND ${ZENITH} render --scene "${SOURCE_DIR}/configs/scenes/earth-ground-noon.json"
+                        --projection fisheye --size 8192x8192 --tables small --cache "${cache}"
+                        --out "${out}/dome-8k.png"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS "${out}/dome-8k.png")
+  message(FATAL_ERROR "8K render failed (${rc}): ${err}")
+endif()
+file(READ "${out}/dome-8k.png" ihdr OFFSET 16 LIMIT 8 HEX)
+if(NOT ihdr STREQUAL "0000200000002000")
+  message(FATAL_ERROR "dome-8k.png is not 8192x8192: IHDR ${ihdr}")
+endif()
+
 # Bad input: each refused with a message naming what is wrong.
 function(expect_refused needle)
   execute_process(COMMAND ${ZENITH} render ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
@@ -44,5 +70,8 @@ set(scene --scene "${SOURCE_DIR}/configs/scenes/earth-sunset.json")
 expect_refused("--size" ${scene} --size 12by12 --out "${out}/x.png")
 expect_refused("--out" ${scene} --size 8x8 --out "${out}/x.tiff")
 expect_refused("--fov" ${scene} --projection planar --fov 200 --size 8x8 --out "${out}/x.png")
+expect_refused("--viewport" ${scene} --viewport "${SOURCE_DIR}/configs/viewports/dome-6-projectors.json#p2"
+               --size 8x8 --out "${out}/x.png")
+expect_refused("p9" ${scene} --viewport "${SOURCE_DIR}/configs/viewports/dome-6-projectors.json#p9" --out "${out}/x.png")
 expect_refused("missing.json" --scene "${out}/missing.json" --size 8x8 --out "${out}/x.png")
 file(REMOVE_RECURSE "${out}")
