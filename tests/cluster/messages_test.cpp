@@ -1,0 +1,159 @@
+#include "cluster/messages.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "cluster/crc32c.h"
+#include "cluster/sample_messages.h"
+#include "test_support.h"
+
+namespace zenith::cluster {
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+
+FrameState known_frame_state() {
+  FrameState f;
+  f.frame = 0x0102030405060708ull;
+  f.show_time_s = 1.0;
+  f.camera_position_m = {2.0, -2.0, 0.5};
+  f.camera_orientation = {1, 0, 0, 0};
+  f.exposure = 10.0;
+  f.sun_direction = {0, 0, 1};
+  f.sun_angular_radius_rad = 0.25;
+  f.sun_irradiance_W_m2_nm = {1.5};
+  f.atmospheres.push_back({"Mars", Digest{}, 7});
+  f.render_flags = kRenderSunDisc | kRenderEclipses;
+  return f;
+}
+
+TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
+  const Bytes frame = encode(known_frame_state());
+  const std::size_t payload_bytes = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1 + (2 + 4 + 32 + 8) + 4;
+  ASSERT_EQ(frame.size(), kHeaderBytes + payload_bytes);
+  const Bytes payload(frame.begin() + kHeaderBytes, frame.end());
+  const std::uint32_t crc = crc32c(payload);
+  const Bytes expected_header = {'Z', 'N', 'T', 'H',  // magic
+                                 0x00, 0x01,          // version 1
+                                 0x00, 0x10,          // type 16 = FrameState
+                                 0x00, 0x00, 0x00, static_cast<std::uint8_t>(payload_bytes),  // length
+                                 // payload CRC-32C
+                                 static_cast<std::uint8_t>(crc >> 24), static_cast<std::uint8_t>(crc >> 16),
+                                 static_cast<std::uint8_t>(crc >> 8), static_cast<std::uint8_t>(crc)};
+  ASSERT_EQ(expected_header.size(), 16u);
+  EXPECT_EQ(Bytes(frame.begin(), frame.begin() + 16), expected_header);
+  // Bytes 16..19: CRC-32C of bytes 0..15, big-endian.
+  const std::uint32_t header_crc = crc32c(std::span<const std::uint8_t>(frame).first(16));
+  EXPECT_EQ(Bytes(frame.begin() + 16, frame.begin() + 20),
+            (Bytes{static_cast<std::uint8_t>(header_crc >> 24), static_cast<std::uint8_t>(header_crc >> 16),
+                   static_cast<std::uint8_t>(header_crc >> 8), static_cast<std::uint8_t>(header_crc)}));
+  // The payload starts with the frame number, then show_time_s = 1.0 (0x3FF0…), position x = 2.0 (0x4000…).
+  const Bytes expected_start = {1, 2, 3, 4, 5, 6, 7, 8, 0x3F, 0xF0, 0, 0, 0, 0, 0, 0, 0x40, 0, 0, 0, 0, 0, 0, 0,
+                                0xC0, 0, 0, 0, 0, 0, 0, 0};
+  EXPECT_EQ(Bytes(payload.begin(), payload.begin() + 32), expected_start);
+  // Orientation w = 1.0 comes first (offset 40), then x, y, z.
+  EXPECT_EQ(payload[40], 0x3F);
+  EXPECT_EQ(payload[41], 0xF0);
+  // The flags close the payload: sun disc | eclipses = 9.
+  EXPECT_EQ(Bytes(payload.end() - 4, payload.end()), (Bytes{0, 0, 0, 9}));
+  // Atmosphere entry: u16 length 4, "Mars".
+  const std::size_t atmosphere_at = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1;
+  EXPECT_EQ(Bytes(payload.begin() + atmosphere_at, payload.begin() + atmosphere_at + 6),
+            (Bytes{0, 4, 'M', 'a', 'r', 's'}));
+}
+
+TEST(Messages, EverySampleRoundTrips) {
+  for (const Message& m : sample_messages()) {
+    const Bytes frame = encode(m);
+    const auto header = parse_header(std::span<const std::uint8_t, kHeaderBytes>(frame.data(), kHeaderBytes));
+    EXPECT_EQ(header.type, message_type(m));
+    EXPECT_EQ(header.payload_bytes, frame.size() - kHeaderBytes);
+    const Message back = decode_payload(static_cast<std::uint16_t>(header.type),
+                                        std::span<const std::uint8_t>(frame).subspan(kHeaderBytes));
+    EXPECT_EQ(back, m) << to_string(message_type(m));
+    EXPECT_EQ(encode(back), frame);
+  }
+}
+
+TEST(Messages, MaximumSizeMessagesRoundTripAndReachTheirDocumentedLimitExactly) {
+  const auto messages = max_size_messages();
+  EXPECT_EQ(messages.size(), std::variant_size_v<Message>);
+  for (const Message& m : messages) {
+    const Bytes payload = encode_payload(m);
+    const auto type = static_cast<std::uint16_t>(message_type(m));
+    EXPECT_EQ(payload.size(), *max_payload_bytes(type)) << to_string(message_type(m));
+    EXPECT_EQ(decode_payload(type, payload), m) << to_string(message_type(m));
+  }
+}
+
+TEST(Messages, DocumentedMaximumPayloads) {
+  const auto max = [](MessageType t) { return *max_payload_bytes(static_cast<std::uint16_t>(t)); };
+  EXPECT_EQ(max(MessageType::hello), 166u);
+  EXPECT_EQ(max(MessageType::challenge), 32u);
+  EXPECT_EQ(max(MessageType::authenticate), 32u);
+  EXPECT_EQ(max(MessageType::welcome), 52u);
+  EXPECT_EQ(max(MessageType::reject), 1028u);
+  EXPECT_EQ(max(MessageType::frame_state), 1478u);
+  EXPECT_EQ(max(MessageType::render_done), 16u);
+  EXPECT_EQ(max(MessageType::present), 8u);
+  EXPECT_EQ(max(MessageType::table_announce), 80u);
+  EXPECT_EQ(max(MessageType::table_chunk), 1048616u);
+  EXPECT_EQ(max(MessageType::table_ready), 32u);
+  EXPECT_EQ(max(MessageType::heartbeat), 8u);
+  EXPECT_EQ(max(MessageType::goodbye), 1026u);
+  EXPECT_FALSE(max_payload_bytes(0).has_value());
+  EXPECT_FALSE(max_payload_bytes(6).has_value());
+  EXPECT_FALSE(max_payload_bytes(0xFFFF).has_value());
+}
+
+TEST(Messages, EncoderRefusesWhatTheDecoderWouldRefuse) {
+  Hello hello{kProtocolVersion, "dome", std::string(kMaxNameBytes + 1, 'x'), {}};
+  EXPECT_THROW(encode(hello), std::length_error);
+  hello.node_name = "";
+  EXPECT_THROW(encode(hello), std::invalid_argument);
+
+  FrameState f = known_frame_state();
+  f.exposure = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(encode(f), std::invalid_argument);
+  f = known_frame_state();
+  f.camera_orientation = {2, 0, 0, 0};
+  EXPECT_THROW(encode(f), std::invalid_argument);
+  f = known_frame_state();
+  f.render_flags = 1u << 31;
+  EXPECT_THROW(encode(f), std::invalid_argument);
+  f = known_frame_state();
+  f.atmospheres.resize(kMaxAtmospheres + 1, f.atmospheres[0]);
+  EXPECT_THROW(encode(f), std::invalid_argument);
+  f = known_frame_state();
+  f.sun_irradiance_W_m2_nm.assign(kMaxWavelengths + 1, 1.0);
+  EXPECT_THROW(encode(f), std::invalid_argument);
+
+  EXPECT_THROW(encode(TableAnnounce{{}, 10000, 4096, 2, {}}), std::invalid_argument);  // needs 3 chunks
+  EXPECT_THROW(encode(TableAnnounce{{}, kMaxTableTotalBytes + 1, 1 << 20, 2049, {}}), std::invalid_argument);
+  EXPECT_THROW(encode(TableChunk{{}, 0, {}}), std::invalid_argument);
+  EXPECT_THROW(encode(TableChunk{{}, 0, std::vector<std::uint8_t>(kMaxTableChunkBytes + 1)}), std::invalid_argument);
+  EXPECT_THROW(encode(RenderDone{1, -1.0}), std::invalid_argument);
+}
+
+TEST(Messages, DigestHex) {
+  const std::string hex = "00ff10ab" + std::string(56, 'c');
+  const Digest d = digest_from_hex(hex);
+  EXPECT_EQ(d[0], 0x00);
+  EXPECT_EQ(d[1], 0xFF);
+  EXPECT_EQ(d[3], 0xAB);
+  EXPECT_EQ(to_hex(d), hex);
+  EXPECT_EQ(digest_from_hex("00FF10AB" + std::string(56, 'C')), d);
+  EXPECT_THROW(digest_from_hex("abc"), std::invalid_argument);
+  EXPECT_THROW(digest_from_hex(std::string(63, '0') + "g"), std::invalid_argument);
+}
+
+TEST(Messages, TypeNames) {
+  EXPECT_STREQ(to_string(MessageType::frame_state), "FrameState");
+  EXPECT_STREQ(to_string(static_cast<MessageType>(999)), "unknown");
+  EXPECT_EQ(message_type(Message{Goodbye{}}), MessageType::goodbye);
+}
+
+}  // namespace
+}  // namespace zenith::cluster
