@@ -1,12 +1,16 @@
 #pragma once
-// Small lookup tables computed once per test process and preset (the CPU
-// precompute of small tables takes a few seconds; every LUT test shares them).
+// Small lookup tables computed once per preset and shared by every test: in
+// memory within a process and, because CTest runs each test in a process of its
+// own, through a table cache in the build tree (ZENITH_TEST_TABLE_CACHE): the
+// first test to need a preset computes it (seconds), the others load it (ms).
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "atmosphere/lut/cpu_precompute.h"
+#include "atmosphere/lut/table_cache.h"
 #include "atmosphere/parameters.h"
 
 namespace zenith::atmosphere::lut {
@@ -27,16 +31,35 @@ struct SmallTables {
     return o;
   }
 
-  static const SmallTables& get(const std::string& preset) {
+  /// The shared tables (from the build tree's cache when another test made them:
+  /// `report` is then empty).
+  static const SmallTables& get(const std::string& preset) { return instance(preset, false); }
+  /// The shared tables computed in this process, so `report` is filled.
+  static const SmallTables& computed(const std::string& preset) { return instance(preset, true); }
+
+ private:
+  static const SmallTables& instance(const std::string& preset, bool need_report) {
     static std::mutex mutex;
     static std::map<std::string, std::unique_ptr<SmallTables>> cache;
     std::lock_guard lock(mutex);
     auto& slot = cache[preset];
-    if (!slot) {
+    if (!slot || (need_report && slot->report.stages.empty())) {
       slot = std::make_unique<SmallTables>();
       slot->model = load_preset(preset).model;
       slot->options = small_options();
+#ifdef ZENITH_TEST_TABLE_CACHE
+      const TableCache disk(ZENITH_TEST_TABLE_CACHE);
+      std::optional<LookupTables> stored;
+      if (!need_report) stored = disk.load(slot->model, slot->options);
+      if (stored) {
+        slot->tables = std::move(*stored);
+      } else {
+        slot->tables = precompute_tables_cpu(slot->model, slot->options, &slot->report);
+        disk.store(slot->model, slot->options, slot->tables);  // atomic: parallel tests may race
+      }
+#else
       slot->tables = precompute_tables_cpu(slot->model, slot->options, &slot->report);
+#endif
       slot->queries = std::make_unique<TableQueries>(slot->model, slot->tables);
     }
     return *slot;

@@ -1,0 +1,486 @@
+// Frame time of the renderer against resolution and number of atmospheres, in
+// the layout of the paper's Table 2 (Costa et al., section 6, "Average
+// performance of our method relative to the number of visible atmospheres").
+//
+// The scene is configs/scenes/three-worlds.json: Earth, Mars and Titan side by
+// side, each with its atmosphere, all in view of a 16:9 planar camera (90°
+// horizontal field) and of a 180° dome master. Every case renders the same
+// three bodies and the same pixels; only the work differs:
+//
+//   bodies only    RenderOptions::atmospheres = false: G-buffer, resolve, readback
+//   N atmospheres  the first N bodies keep their atmosphere, the others have none
+//
+// at each resolution: 1280×720 and 1920×1080 planar 90°, 4096² and 8192²
+// fisheye 180° (square sizes are dome masters, the others planar views).
+//
+// Timing. A frame is timed by the wall clock around Renderer::render(); the
+// renderer reads every band back (glGetTexImage), which waits for the GPU, so
+// the time is the whole frame: passes, readback and conversion to RGB rows.
+// Before a case's first timed frame the renderer has rendered the same
+// projection once (its tile cones are computed once per projection) and holds
+// every table set (loaded from the cache, or precomputed and stored, before
+// the first case). A case renders up to --iterations frames, stopping early
+// when the next frame would take it past --budget-s. With --rounds R the whole
+// list of cases runs R times, so that a burst of load from other processes
+// spreads over the cases instead of spoiling one. A case reports the median of
+// all its frames and the fastest one (on a shared machine, the frame least
+// disturbed by other processes). A frame during which the renderer had to
+// fetch tables is not counted.
+//
+// Google Benchmark drives the cases (filter them with --benchmark_filter=, get
+// its reports with --benchmark_out=); each case is one benchmark "iteration"
+// running its own frame loop (frames take seconds on a CPU rasterizer), whose
+// median is reported as the manual time. At the end the program prints the
+// table in the paper's layout and writes CSV, one row per case:
+//
+//   device, resolution, projection, atmospheres (0: bodies only), frame_ms (median),
+//   mpixel_per_s (all width × height pixels, a fisheye's corners included),
+//   tiles_covered (16×16 tiles the atmosphere passes ran on, summed over the
+//   atmospheres), tiles_total (tiles in the frame), frames (timed), frame_ms_min
+//
+// and, with gnuplot installed, a PNG chart next to it (same name, .png).
+//
+//   render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]
+//                [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]
+//                [--scene FILE] [--cache DIR] [--device auto|software|hardware]
+//                [--benchmark_filter=REGEX] ...
+//
+// Results for docs/rendering-performance.md: bench/results/render_frame_times.csv.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "atmosphere/lut/precompute_options.h"
+#include "atmosphere/lut/table_cache.h"
+#include "render/gl/egl_context.h"
+#include "render/lut/gpu_precompute.h"
+#include "render/renderer.h"
+#include "render/scene/scene_loader.h"
+#include "warp/fisheye_projection.h"
+#include "warp/planar_projection.h"
+
+namespace {
+
+using namespace zenith;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kPlanarFovDeg = 90.0;    // horizontal field of the planar views
+constexpr double kFisheyeFovDeg = 180.0;  // the dome masters
+constexpr int kTile = 16;                 // render::kTileSize: tiles of the atmosphere passes
+
+// ---- command line
+
+struct Options {
+  bool quick = false, chart = true, chart_only = false;
+  std::string tables = "paper", device = "auto";
+  int orders = 4, iterations = 3, rounds = 3;
+  double budget_s = 120.0;
+  std::vector<std::pair<int, int>> sizes;  // empty: the defaults (see default_sizes)
+  std::filesystem::path csv = std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/render_frame_times.csv";
+  std::filesystem::path scene = std::filesystem::path(ZENITH_SOURCE_DIR) / "configs/scenes/three-worlds.json";
+  std::optional<std::filesystem::path> cache;
+};
+
+constexpr const char* kUsage =
+    "usage: render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]\n"
+    "                    [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]\n"
+    "                    [--scene FILE] [--cache DIR] [--device auto|software|hardware]\n"
+    "                    [Google Benchmark flags, e.g. --benchmark_filter=planar]\n"
+    "  --quick        only the planar 1280x720 and 1920x1080 cases (a smoke run)\n"
+    "  --tables       lookup-table sizes: paper (default) or small\n"
+    "  --orders       scattering orders of the tables (default 4)\n"
+    "  --sizes        replace the resolutions; square sizes are 180 deg dome masters,\n"
+    "                 the others planar views with a 90 deg horizontal field\n"
+    "  --iterations   timed frames per case and round, at most (default 3)\n"
+    "  --rounds       run every case this many times, interleaved (default 3); the median and\n"
+    "                 the fastest of all their frames are reported\n"
+    "  --budget-s     stop a case's frames when the next would exceed this many seconds (default 120)\n"
+    "  --csv          output CSV (default bench/results/render_frame_times.csv in the source tree)\n"
+    "  --no-chart     no gnuplot script and PNG next to the CSV\n"
+    "  --chart-only   render nothing: redraw the chart of an existing --csv (same --quick/--sizes)\n"
+    "  --scene        scene file (default configs/scenes/three-worlds.json)\n"
+    "  --cache        table cache directory (default $ZENITH_CACHE_DIR, $XDG_CACHE_HOME/zenith, ~/.cache/zenith)\n"
+    "  --device       GL device: auto (default), software (llvmpipe), hardware\n";
+
+std::pair<int, int> parse_size(const std::string& text) {
+  static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, pattern))
+    throw std::invalid_argument(fmt::format("--sizes '{}': expected WIDTHxHEIGHT, e.g. 1920x1080", text));
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw std::invalid_argument(fmt::format("--sizes '{}': width and height must be in [1, 16384]", text));
+  return {w, h};
+}
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  auto value = [&](int& i, const std::string& flag) -> std::string {
+    if (i + 1 >= argc) throw std::invalid_argument(flag + ": a value is missing");
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--quick") o.quick = true;
+    else if (a == "--no-chart") o.chart = false;
+    else if (a == "--chart-only") o.chart_only = true;
+    else if (a == "--tables") {
+      o.tables = value(i, a);
+      if (o.tables != "paper" && o.tables != "small")
+        throw std::invalid_argument("--tables '" + o.tables + "': use paper or small");
+    } else if (a == "--orders") {
+      o.orders = std::stoi(value(i, a));
+      if (o.orders < 1 || o.orders > 50) throw std::invalid_argument("--orders: must be in [1, 50]");
+    } else if (a == "--iterations") {
+      o.iterations = std::stoi(value(i, a));
+      if (o.iterations < 1 || o.iterations > 1000) throw std::invalid_argument("--iterations: must be in [1, 1000]");
+    } else if (a == "--rounds") {
+      o.rounds = std::stoi(value(i, a));
+      if (o.rounds < 1 || o.rounds > 100) throw std::invalid_argument("--rounds: must be in [1, 100]");
+    } else if (a == "--budget-s") {
+      o.budget_s = std::stod(value(i, a));
+      if (!(o.budget_s >= 0.0)) throw std::invalid_argument("--budget-s: must be >= 0");
+    } else if (a == "--sizes") {
+      std::stringstream list(value(i, a));
+      for (std::string item; std::getline(list, item, ',');) o.sizes.push_back(parse_size(item));
+      if (o.sizes.empty()) throw std::invalid_argument("--sizes: give at least one WIDTHxHEIGHT");
+    } else if (a == "--csv") o.csv = value(i, a);
+    else if (a == "--scene") o.scene = value(i, a);
+    else if (a == "--cache") o.cache = value(i, a);
+    else if (a == "--device") o.device = value(i, a);
+    else if (a == "--help" || a == "-h") {
+      fmt::print("{}", kUsage);
+      std::exit(0);
+    } else throw std::invalid_argument("unknown option '" + a + "'");
+  }
+  return o;
+}
+
+// ---- cases
+
+/// One output format: its size and the projection it implies.
+struct Resolution {
+  int width = 0, height = 0;
+  bool fisheye = false;
+  std::string label() const { return fmt::format("{}x{}", width, height); }
+  std::string projection() const {
+    return fisheye ? fmt::format("fisheye {:g}deg", kFisheyeFovDeg) : fmt::format("planar {:g}deg", kPlanarFovDeg);
+  }
+  std::unique_ptr<warp::Projection> make() const {
+    if (!fisheye) return std::make_unique<warp::PlanarProjection>(warp::PlanarProjection::symmetric(width, height, kPlanarFovDeg));
+    warp::FisheyeParameters p;
+    p.fov_deg = kFisheyeFovDeg;
+    return std::make_unique<warp::FisheyeProjection>(width, height, p);
+  }
+};
+
+Resolution resolution_of(std::pair<int, int> size) { return {size.first, size.second, size.first == size.second}; }
+
+std::vector<Resolution> resolutions(const Options& o) {
+  std::vector<std::pair<int, int>> sizes = o.sizes;
+  if (sizes.empty()) {
+    sizes = {{1280, 720}, {1920, 1080}};
+    if (!o.quick) sizes.insert(sizes.end(), {{4096, 4096}, {8192, 8192}});
+  }
+  std::vector<Resolution> out;
+  for (auto s : sizes) out.push_back(resolution_of(s));
+  return out;
+}
+
+/// The measured figures of one case (a CSV row).
+struct Result {
+  Resolution resolution;
+  int atmospheres = 0;  // 0: bodies only
+  double frame_s = 0.0;      // median
+  double frame_min_s = 0.0;  // fastest frame: the least disturbed by other processes
+  int frames = 0;
+  std::size_t tiles_covered = 0, tiles_total = 0;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// `scene` with only its first `count` atmospheres (in body order); the bodies
+/// beyond keep their place, size and albedo.
+scene::Scene with_atmospheres(const scene::Scene& scene, int count) {
+  scene::Scene out = scene;
+  int kept = 0;
+  for (scene::Body& b : out.bodies)
+    if (b.atmosphere && kept++ >= count) b.atmosphere.reset();
+  return out;
+}
+
+int atmosphere_count(const scene::Scene& scene) {
+  return static_cast<int>(std::count_if(scene.bodies.begin(), scene.bodies.end(),
+                                        [](const scene::Body& b) { return b.atmosphere.has_value(); }));
+}
+
+std::string csv_field(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+void write_csv(const std::filesystem::path& path, const std::string& device, const std::vector<Result>& results) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  std::ofstream csv(path);
+  if (!csv) throw std::runtime_error("cannot write " + path.string());
+  csv << "device,resolution,projection,atmospheres,frame_ms,mpixel_per_s,tiles_covered,tiles_total,frames,"
+         "frame_ms_min\n";
+  for (const Result& r : results) {
+    const double pixels = double(r.resolution.width) * double(r.resolution.height);
+    csv << csv_field(device) << ',' << r.resolution.label() << ',' << r.resolution.projection() << ','
+        << r.atmospheres << ',' << fmt::format("{:.3f}", r.frame_s * 1e3) << ','
+        << fmt::format("{:.3f}", pixels / r.frame_s / 1e6) << ',' << r.tiles_covered << ',' << r.tiles_total << ','
+        << r.frames << ',' << fmt::format("{:.3f}", r.frame_min_s * 1e3) << '\n';
+  }
+  if (!csv.flush()) throw std::runtime_error("cannot write " + path.string());
+}
+
+/// Frame time against the number of atmospheres, one line per resolution.
+void write_chart(const std::filesystem::path& csv, const std::vector<Resolution>& res, const std::string& device) {
+  std::filesystem::path gp = csv, png = csv;
+  gp.replace_extension(".gp");
+  png.replace_extension(".png");
+  std::ofstream s(gp);
+  s << "set terminal pngcairo size 900,600\nset output '" << png.string() << "'\n"
+    << "set datafile separator ','\nset logscale y\nset grid\nset key top left\n"
+    << "set xlabel 'atmospheres (0: bodies only)'\nset xtics 1\n"
+    << "set ylabel 'frame time [ms] (solid: median, dashed: fastest frame)'\n"
+    << "set title \"zenith renderer, three-worlds scene: " << device << "\" noenhanced\n"
+    << "plot ";
+  // Solid: the median frame; dashed: the fastest one.
+  for (std::size_t i = 0; i < res.size(); ++i) {
+    const std::string select = fmt::format("'{}' using (strcol(2) eq '{}' ? $4 : 1/0):", csv.string(), res[i].label());
+    s << (i ? ", \\\n     " : "") << select << "5 with linespoints pt 7 lc " << i + 1 << " title '"
+      << res[i].label() << ' ' << res[i].projection() << "', \\\n     " << select << "10 with linespoints dt 2 pt 6 lc "
+      << i + 1 << " notitle";
+  }
+  s << '\n';
+  s.close();
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0 &&
+      std::system(("gnuplot '" + gp.string() + "'").c_str()) == 0)
+    fmt::print("chart: {}\n", png.string());
+  else
+    fmt::print("gnuplot not found or failed: chart script left in {}\n", gp.string());
+}
+
+/// The paper's layout: a row per resolution, a column per case, frame time in
+/// ms (the median, or with `fastest` the fastest frame).
+void print_table(const std::vector<Resolution>& res, int max_atmospheres, const std::vector<Result>& results,
+                 bool fastest) {
+  std::string head = fmt::format("{:<24}{:>14}", "resolution", "bodies only");
+  for (int n = 1; n <= max_atmospheres; ++n) head += fmt::format("{:>14}", fmt::format("{} ATM", n));
+  fmt::print("\nframe time [ms], {}\n{}\n", fastest ? "fastest frame" : "median", head);
+  for (const Resolution& r : res) {
+    std::string line = fmt::format("{:<24}", r.label() + " " + r.projection());
+    for (int n = 0; n <= max_atmospheres; ++n) {
+      auto it = std::find_if(results.begin(), results.end(), [&](const Result& x) {
+        return x.atmospheres == n && x.resolution.width == r.width && x.resolution.height == r.height;
+      });
+      line += it == results.end()
+                  ? fmt::format("{:>14}", "-")
+                  : fmt::format("{:>14.1f}", (fastest ? it->frame_min_s : it->frame_s) * 1e3);
+    }
+    fmt::print("{}\n", line);
+  }
+}
+
+int run(int argc, char** argv) {
+  const Options opt = parse_options(argc, argv);
+  const std::vector<Resolution> res = resolutions(opt);
+  if (opt.chart_only) {
+    // The device is the first field of the first row: "llvmpipe (...)",...
+    std::ifstream in(opt.csv);
+    std::string header, row;
+    if (!std::getline(in, header) || !std::getline(in, row) || row.size() < 2 || row[0] != '"')
+      throw std::runtime_error(opt.csv.string() + ": not a render_bench CSV with at least one row");
+    write_chart(opt.csv, res, row.substr(1, row.find('"', 1) - 1));
+    return 0;
+  }
+
+  render::gl::ContextOptions context_options;
+  context_options.prefer = render::gl::parse_device_preference(opt.device);
+  const render::gl::HeadlessContext context(context_options);
+  const std::string device = context.renderer();
+  benchmark::AddCustomContext("gl_renderer", device);
+  benchmark::AddCustomContext("tables", fmt::format("{} sizes, {} orders", opt.tables, opt.orders));
+
+  const scene::Scene scene = scene::load_scene(opt.scene);
+  const int max_atm = atmosphere_count(scene);
+  std::vector<scene::Scene> variants;  // index: number of atmospheres kept
+  for (int n = 0; n <= max_atm; ++n) variants.push_back(with_atmospheres(scene, n));
+  fmt::print("render_bench: scene '{}' ({} bodies, {} atmospheres) on {}\n", scene.name, scene.bodies.size(), max_atm,
+             device);
+
+  // Tables as the `zenith` command obtains them: the cache, else the GPU
+  // precompute on a context of its own (stored for the next run).
+  atmosphere::lut::PrecomputeOptions table_options;
+  table_options.sizes = opt.tables == "small" ? atmosphere::lut::TableSizes::small() : atmosphere::lut::TableSizes{};
+  table_options.max_orders = opt.orders;
+  const atmosphere::lut::TableCache cache(opt.cache.value_or(atmosphere::lut::default_cache_directory()));
+  auto tables = [&](const atmosphere::AtmosphereModel& model) {
+    std::string problem;
+    if (auto cached = cache.load(model, table_options, &problem)) {
+      fmt::print("tables of '{}' loaded from {}\n", model.name, cache.directory().string());
+      return std::move(*cached);
+    }
+    if (!problem.empty()) fmt::print("ignoring cached tables of '{}': {}\n", model.name, problem);
+    fmt::print("precomputing the tables of '{}' ({} sizes, {} orders); stored in {}\n", model.name, opt.tables,
+               opt.orders, cache.directory().string());
+    atmosphere::lut::PrecomputeOptions o = table_options;
+    std::string stage;
+    const auto start = Clock::now();
+    o.progress = [&](const atmosphere::lut::PrecomputeProgress& p) {
+      if (p.stage == stage) return;
+      stage = p.stage;
+      fmt::print(stderr, "  {:6.1f} s  {:3.0f}%  {}\n", std::chrono::duration<double>(Clock::now() - start).count(),
+                 100.0 * p.fraction, p.stage);
+    };
+    atmosphere::lut::LookupTables t;
+    {
+      const render::gl::HeadlessContext precompute_context(context_options);
+      t = render::precompute_tables_gpu(model, o, nullptr, &precompute_context);
+    }
+    context.make_current();
+    try {
+      cache.store(model, table_options, t);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "could not write the table cache: {}\n", e.what());
+    }
+    return t;
+  };
+
+  render::RenderOptions atm_options, body_options;
+  body_options.atmospheres = false;
+  render::Renderer with_atmospheres_renderer(atm_options, tables), bodies_renderer(body_options, tables);
+  const render::RowSink discard = [](int, int, std::span<const float>) {};
+
+  // Every table set resident before the first case (a small view of the whole scene).
+  {
+    const auto start = Clock::now();
+    with_atmospheres_renderer.render(scene, *resolution_of({64, 36}).make(), discard);
+    fmt::print("{} table sets resident after {:.1f} s\n", with_atmospheres_renderer.last_frame().table_sets_uploaded,
+               std::chrono::duration<double>(Clock::now() - start).count());
+  }
+
+  // Frames of every case, gathered over the rounds; a case is (resolution, atmospheres).
+  struct Gathered {
+    std::vector<double> times;
+    render::FrameStats stats;
+  };
+  std::map<std::pair<std::size_t, int>, Gathered> gathered;
+  bool failed = false;
+  std::vector<std::unique_ptr<warp::Projection>> projections;
+  for (const Resolution& r : res) projections.push_back(r.make());
+  std::map<const render::Renderer*, const warp::Projection*> warmed;  // the projection each renderer last drew
+
+  for (int round = 0; round < opt.rounds; ++round)
+    for (std::size_t ri = 0; ri < res.size(); ++ri)
+      for (int n = 0; n <= max_atm; ++n) {
+        std::string name = fmt::format("render/{}_{}/{}", res[ri].fisheye ? "fisheye" : "planar", res[ri].label(),
+                                       n == 0 ? std::string("bodies_only") : fmt::format("atmospheres:{}", n));
+        if (opt.rounds > 1) name += fmt::format("/round:{}", round + 1);
+        auto* b = benchmark::RegisterBenchmark(name.c_str(), [&, ri, n](benchmark::State& state) {
+          render::Renderer& renderer = n == 0 ? bodies_renderer : with_atmospheres_renderer;
+          const warp::Projection& projection = *projections[ri];
+          const scene::Scene& s = variants[static_cast<std::size_t>(n)];
+          if (warmed[&renderer] != &projection) {
+            // Tile cones of the new projection (and, the first time, albedo maps): no atmosphere needed.
+            renderer.render(variants[0], projection, discard);
+            warmed[&renderer] = &projection;
+          }
+          std::vector<double> times;
+          render::FrameStats stats;
+          for (auto _ : state) {
+            double spent = 0.0;
+            for (int attempt = 0; static_cast<int>(times.size()) < opt.iterations && attempt < opt.iterations + 3;
+                 ++attempt) {
+              const auto start = Clock::now();
+              renderer.render(s, projection, discard);
+              const double t = std::chrono::duration<double>(Clock::now() - start).count();
+              if (renderer.last_frame().table_sets_requested > 0) continue;  // fetched tables: not a steady frame
+              times.push_back(t);
+              stats = renderer.last_frame();
+              spent += t;
+              if (spent + t > opt.budget_s) break;
+            }
+            if (times.empty()) {
+              state.SkipWithError("no steady frame (tables fetched in every frame)");
+              failed = true;
+              return;
+            }
+            state.SetIterationTime(median(times));
+          }
+          std::size_t tiles = 0;
+          for (const auto& a : stats.atmospheres) tiles += a.tiles;
+          state.counters["frames"] = static_cast<double>(times.size());
+          state.counters["min_ms"] = *std::min_element(times.begin(), times.end()) * 1e3;
+          state.counters["Mpix/s"] = double(projection.width()) * double(projection.height()) / median(times) / 1e6;
+          state.counters["atm_tiles"] = static_cast<double>(tiles);
+          Gathered& g = gathered[{ri, n}];
+          g.times.insert(g.times.end(), times.begin(), times.end());
+          g.stats = stats;
+        });
+        b->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+      }
+
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+
+  std::vector<Result> results;
+  for (const auto& [key, g] : gathered) {
+    const Resolution& r = res[key.first];
+    Result out{r, key.second, median(g.times), *std::min_element(g.times.begin(), g.times.end()),
+               static_cast<int>(g.times.size()), 0,
+               static_cast<std::size_t>((r.width + kTile - 1) / kTile) * static_cast<std::size_t>((r.height + kTile - 1) / kTile)};
+    for (const auto& a : g.stats.atmospheres) out.tiles_covered += a.tiles;
+    results.push_back(out);
+  }
+  if (results.empty()) {
+    fmt::print(stderr, "render_bench: no case ran (check --benchmark_filter)\n");
+    return 1;
+  }
+
+  print_table(res, max_atm, results, false);
+  print_table(res, max_atm, results, true);
+  write_csv(opt.csv, device, results);
+  fmt::print("csv: {}\n", opt.csv.string());
+  if (opt.chart) write_chart(opt.csv, res, device);
+  return failed ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
+      fmt::print("{}\nGoogle Benchmark's flags:\n", kUsage);
+      std::fflush(stdout);
+      break;  // benchmark::Initialize prints its flags and exits
+    }
+  benchmark::Initialize(&argc, argv);  // takes the --benchmark_* flags out of argv
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "render_bench: {}\n(render_bench --help lists the options)\n", e.what());
+    return 2;
+  }
+}
