@@ -36,8 +36,8 @@ using gl::Texture;
 using gl::TextureFormat;
 using Vec4 = std::array<float, 4>;
 
-constexpr int kMaxBodies = 8;          // MAX_BODIES of frame.glsl and the albedo map slots of gbuffer.comp
-constexpr unsigned kAlbedoMapUnit = 8;  // albedo_map0 .. albedo_map7
+constexpr int kMaxBodies = 8;          // MAX_BODIES of frame.glsl
+constexpr unsigned kAlbedoMapUnit = 8;  // albedo_maps (a 2D array texture)
 constexpr unsigned kRayTableUnit = 7;   // projection_ray_table of projection.glsl
 constexpr std::size_t kLanes = kWavelengthLanes;
 
@@ -104,7 +104,49 @@ std::array<unsigned, 2> tile_groups(std::size_t count) {
 struct Renderer::Impl {
   ShaderProgram gbuffer, resolve;
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
-  std::map<std::string, Texture> albedo_maps;                         // by albedo_key
+  std::map<std::string, image::LinearImage> albedo_images;           // by albedo_key
+  std::string albedo_array_key;
+  Texture albedo_array;  // one layer per body, all at the largest map's size
+
+  /// The bodies' maps as the layers of one array texture (rebuilt when the list
+  /// changes): each resampled bilinearly, wrapping in longitude, to the largest
+  /// width and height among them.
+  void ensure_albedo_array(const std::vector<std::string>& keys) {
+    std::string joined;
+    for (const std::string& k : keys) joined += k + '\n';
+    if (joined == albedo_array_key && albedo_array.id() != 0) return;
+    int width = 1, height = 1;
+    for (const std::string& k : keys) {
+      width = std::max(width, albedo_images.at(k).width);
+      height = std::max(height, albedo_images.at(k).height);
+    }
+    const std::size_t layer_floats = static_cast<std::size_t>(width) * height * 4;
+    std::vector<float> rgba(std::max<std::size_t>(keys.size(), 1) * layer_floats, 1.0f);
+    for (std::size_t layer = 0; layer < keys.size(); ++layer) {
+      const image::LinearImage& m = albedo_images.at(keys[layer]);
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+          // Texel centres map to texel centres; x wraps (longitude), y clamps (poles).
+          const double sx = (x + 0.5) * m.width / width - 0.5, sy = (y + 0.5) * m.height / height - 0.5;
+          const double fx = std::floor(sx), fy = std::floor(sy);
+          const double tx = sx - fx, ty = sy - fy;
+          auto at = [&](int xi, int yi, int k) {
+            xi = ((xi % m.width) + m.width) % m.width;
+            yi = std::clamp(yi, 0, m.height - 1);
+            return static_cast<double>(m.rgb[(static_cast<std::size_t>(yi) * m.width + xi) * 3 + k]);
+          };
+          const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+          float* out = &rgba[layer * layer_floats + (static_cast<std::size_t>(y) * width + x) * 4];
+          for (int k = 0; k < 3; ++k)
+            out[k] = static_cast<float>((1 - ty) * ((1 - tx) * at(x0, y0, k) + tx * at(x0 + 1, y0, k)) +
+                                        ty * ((1 - tx) * at(x0, y0 + 1, k) + tx * at(x0 + 1, y0 + 1, k)));
+        }
+    }
+    albedo_array = Texture::create_2d_array_mipmapped(TextureFormat::rgba16f, width, height,
+                                                      static_cast<int>(std::max<std::size_t>(keys.size(), 1)), rgba);
+    albedo_array.set_repeat_s(true);
+    albedo_array_key = joined;
+  }
   std::string projection_key;
   std::unique_ptr<TileCones> cones;
   gl::Buffer bodies;
@@ -220,6 +262,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
 
   // ---- bodies: camera-relative, in double, then float
   std::vector<GpuBody> bodies(scene.bodies.size());
+  std::vector<std::string> albedo_layers;  // body b's map is layer b
   struct AtmospherePass {
     int body = 0;
     double distance_m = 0.0, top_radius_m = 0.0, power_m2 = 0.0;
@@ -242,18 +285,8 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
       g.world_to_body[row] = vec4_of(glm::dvec3(world_to_body[0][row], world_to_body[1][row], world_to_body[2][row]), 0.0);
 
     const std::string key = albedo_key(body.albedo);
-    auto map = im.albedo_maps.find(key);
-    if (map == im.albedo_maps.end()) {
-      const image::LinearImage albedo = scene::load_albedo_map(body.albedo);
-      std::vector<float> rgba(static_cast<std::size_t>(albedo.width) * albedo.height * 4, 1.0f);
-      for (std::size_t i = 0; i < static_cast<std::size_t>(albedo.width) * albedo.height; ++i)
-        for (int k = 0; k < 3; ++k) rgba[4 * i + k] = albedo.rgb[3 * i + k];
-      Texture t = Texture::create_2d_mipmapped(TextureFormat::rgba16f, albedo.width, albedo.height, rgba);
-      t.set_repeat_s(true);
-      map = im.albedo_maps.emplace(key, std::move(t)).first;
-    }
-    map->second.bind(kAlbedoMapUnit + static_cast<unsigned>(b));
-    g.albedo_map = {static_cast<float>(map->second.width()), 0, 0, 0};
+    if (!im.albedo_images.contains(key)) im.albedo_images.emplace(key, scene::load_albedo_map(body.albedo));
+    albedo_layers.push_back(key);
 
     if (!body.atmosphere || !options_.atmospheres) continue;
     const atmosphere::AtmosphereModel& model = body.atmosphere->loaded.model;
@@ -280,6 +313,9 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     s.tiles_total = tiles_total;
     stats_.atmospheres.push_back(s);
   }
+  im.ensure_albedo_array(albedo_layers);
+  for (GpuBody& g : bodies) g.albedo_map = {static_cast<float>(im.albedo_array.width()), 0, 0, 0};
+  im.albedo_array.bind(kAlbedoMapUnit);
   im.bodies = gl::Buffer::from(std::span<const GpuBody>(bodies.empty() ? std::vector<GpuBody>(1) : bodies));
 
   // ---- tables: only for atmospheres the view touches, only when not resident

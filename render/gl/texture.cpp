@@ -68,15 +68,15 @@ const char* to_string(TextureFormat format) {
   return "?";
 }
 
-Texture::Texture(TextureFormat format, int width, int height, int depth, int levels)
+Texture::Texture(TextureFormat format, int width, int height, int depth, int levels, bool array)
     : format_(format), width_(width), height_(height), depth_(depth), levels_(levels) {
   const bool three_d = depth > 0;
   if (width < 1 || height < 1 || depth < 0)
     throw std::invalid_argument(fmt::format("Texture: invalid size {}x{}{}", width, height,
                                             three_d ? fmt::format("x{}", depth) : std::string()));
   check_gl_error("Texture: an earlier GL call left an error");
-  glCreateTextures(three_d ? GL_TEXTURE_3D : GL_TEXTURE_2D, 1, &id_);
-  if (three_d) glTextureStorage3D(id_, 1, internal_format(format), width, height, depth);
+  glCreateTextures(array ? GL_TEXTURE_2D_ARRAY : three_d ? GL_TEXTURE_3D : GL_TEXTURE_2D, 1, &id_);
+  if (three_d) glTextureStorage3D(id_, levels, internal_format(format), width, height, depth);
   else glTextureStorage2D(id_, levels, internal_format(format), width, height);
   glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
   glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -110,6 +110,18 @@ Texture Texture::create_2d_mipmapped(TextureFormat format, int width, int height
   t.upload(data);
   glGenerateTextureMipmap(t.id_);
   check_gl_error("Texture: generating mipmaps");
+  return t;
+}
+
+Texture Texture::create_2d_array_mipmapped(TextureFormat format, int width, int height, int layers,
+                                           std::span<const float> data) {
+  if (layers < 1) throw std::invalid_argument(fmt::format("Texture: invalid layer count {}", layers));
+  int levels = 1;
+  for (int extent = std::max(width, height); extent > 1; extent /= 2) ++levels;
+  Texture t(format, width, height, layers, levels, true);
+  t.upload(data);
+  glGenerateTextureMipmap(t.id_);
+  check_gl_error("Texture: generating mipmaps of an array texture");
   return t;
 }
 

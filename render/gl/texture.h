@@ -25,6 +25,10 @@ class Texture {
   /// A 2D texture with a full mipmap chain (trilinear filtering), built from
   /// level 0 `data` (width·height·channels floats): albedo maps seen from far away.
   static Texture create_2d_mipmapped(TextureFormat format, int width, int height, std::span<const float> data);
+  /// A 2D array texture of `layers` layers (width·height·layers·channels floats,
+  /// layer after layer), with a full mipmap chain per layer (sampler2DArray).
+  static Texture create_2d_array_mipmapped(TextureFormat format, int width, int height, int layers,
+                                           std::span<const float> data);
   /// Same for 3D: width·height·depth·channels floats, x fastest, then y, then z.
   static Texture create_3d(TextureFormat format, int width, int height, int depth, std::span<const float> data = {});
 
@@ -63,7 +67,7 @@ class Texture {
   std::size_t float_count() const { return texel_count() * static_cast<std::size_t>(channel_count(format_)); }
 
  private:
-  Texture(TextureFormat format, int width, int height, int depth, int levels = 1);
+  Texture(TextureFormat format, int width, int height, int depth, int levels = 1, bool array = false);
   void release() noexcept;
 
   unsigned id_ = 0;

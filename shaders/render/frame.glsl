@@ -17,8 +17,8 @@ const int MAX_BODIES = 8;
 /// One analytic sphere (render/frame_setup.h: GpuBody, same layout).
 struct Body {
   vec4 centre;          // xyz: unit direction camera → centre (world); w: distance camera → centre [m]
-  vec4 shape;           // x: radius R [m]; y: |c|² − R² [m²]; z: atmosphere slot or −1; w: albedo map slot
-  vec4 albedo_map;      // x: width of the albedo map's level 0 [texels]; yzw: unused
+  vec4 shape;           // x: radius R [m]; y: |c|² − R² [m²]; z: atmosphere slot or −1; w: albedo map layer
+  vec4 albedo_map;      // x: width of the albedo maps' level 0 [texels]; yzw: unused
   vec4 world_to_body0;  // rows of the rotation world → body frame
   vec4 world_to_body1;
   vec4 world_to_body2;

@@ -12,28 +12,9 @@ layout(local_size_x = 16, local_size_y = 16) in;
 layout(binding = 0, rgba32f) uniform writeonly image2D gbuffer_hit;
 layout(binding = 1, rgba16f) uniform writeonly image2D gbuffer_albedo;
 
-layout(binding = 8) uniform sampler2D albedo_map0;
-layout(binding = 9) uniform sampler2D albedo_map1;
-layout(binding = 10) uniform sampler2D albedo_map2;
-layout(binding = 11) uniform sampler2D albedo_map3;
-layout(binding = 12) uniform sampler2D albedo_map4;
-layout(binding = 13) uniform sampler2D albedo_map5;
-layout(binding = 14) uniform sampler2D albedo_map6;
-layout(binding = 15) uniform sampler2D albedo_map7;
-
-/// textureLod on map `slot` (sampler arrays may not be indexed by a varying value in GL 4.5).
-vec3 sample_albedo(int slot, vec2 uv, float lod) {
-  switch (slot) {
-    case 0: return textureLod(albedo_map0, uv, lod).rgb;
-    case 1: return textureLod(albedo_map1, uv, lod).rgb;
-    case 2: return textureLod(albedo_map2, uv, lod).rgb;
-    case 3: return textureLod(albedo_map3, uv, lod).rgb;
-    case 4: return textureLod(albedo_map4, uv, lod).rgb;
-    case 5: return textureLod(albedo_map5, uv, lod).rgb;
-    case 6: return textureLod(albedo_map6, uv, lod).rgb;
-    default: return textureLod(albedo_map7, uv, lod).rgb;
-  }
-}
+/// Every body's albedo map as one layer of an array texture (all resampled to
+/// one size), so the map is picked by a coordinate, not by branching over samplers.
+layout(binding = 8) uniform sampler2DArray albedo_maps;
 
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -65,11 +46,11 @@ void main() {
   const vec2 uv = vec2(atan(nb.y, nb.x) / (2.0 * PI_F) + 0.5, acos(clamp(nb.z, -1.0, 1.0)) / PI_F);
   // Level of detail: the pixel's footprint on the surface (stretched by the
   // incidence angle) in texels of the map's level 0 (2π R per map width).
-  const int slot = int(bodies[hit_body].shape.w);
+  const float layer = bodies[hit_body].shape.w;
   const float cos_incidence = max(abs(dot(n, ray)), 0.05);
   const float footprint_m = pixel_angle * nearest / cos_incidence;
   const float texel_m = 2.0 * PI_F * bodies[hit_body].shape.x / max(bodies[hit_body].albedo_map.x, 1.0);
   const float lod = max(0.0, log2(max(footprint_m / texel_m, 1e-6)));
   imageStore(gbuffer_hit, p, vec4(nearest, float(hit_body), 1.0, 0.0));
-  imageStore(gbuffer_albedo, p, vec4(sample_albedo(slot, uv, lod), 0.0));
+  imageStore(gbuffer_albedo, p, vec4(textureLod(albedo_maps, vec3(uv, layer), lod).rgb, 0.0));
 }
