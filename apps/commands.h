@@ -12,5 +12,7 @@ void register_precompute_command(CLI::App& app);
 void register_sample_command(CLI::App& app);
 /// `zenith render`.
 void register_render_command(CLI::App& app);
+/// `zenith master`, `zenith node`, `zenith cluster` (apps/cluster_commands.cpp).
+void register_cluster_commands(CLI::App& app);
 
 }  // namespace zenith::app

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   zenith::app::register_precompute_command(app);
   zenith::app::register_sample_command(app);
   zenith::app::register_render_command(app);
+  zenith::app::register_cluster_commands(app);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,358 @@
+// `zenith master`, `zenith node` and `zenith cluster` (docs/cluster.md): the
+// master and a render node of a networked cluster, and a local cluster that
+// starts the master and every node configured for this machine as child
+// processes, stops them cleanly and stitches the last frame's outputs.
+#include <fmt/format.h>
+#include <spawn.h>
+#include <spdlog/spdlog.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstring>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apps/commands.h"
+#include "atmosphere/lut/table_cache.h"
+#include "cluster/cluster_config.h"
+#include "cluster/handshake.h"
+#include "cluster/master.h"
+#include "cluster/node.h"
+#include "render/image/image_io.h"
+#include "render/image/image_writer.h"
+#include "warp/fisheye_projection.h"
+#include "warp/viewport_config.h"
+
+extern char** environ;
+
+namespace zenith::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kDefaultCluster = "configs/clusters/local-dome.json";
+
+/// The node's own table cache unless --cache is given: per cluster and node,
+/// so nodes sharing a machine (and the master) never write each other's files.
+fs::path default_node_cache(const cluster::ClusterConfig& config, const std::string& node) {
+  return atmosphere::lut::default_cache_directory() / "cluster-nodes" / config.name / node;
+}
+
+cluster::SharedSecret load_secret(const cluster::ClusterConfig& config) {
+  return cluster::load_shared_secret(config.secret_file, config.secret_env.c_str());
+}
+
+// ---------------------------------------------------------------------------
+// zenith master
+
+struct MasterArgs {
+  std::string cluster = kDefaultCluster, show, cache_dir;
+  std::uint64_t frames = 0;
+  std::optional<int> port;
+  double sun_step_deg = 0.1;
+  std::uint32_t wait_for_nodes_ms = 30000;
+  bool cpu_precompute = false;
+};
+
+void run_master(const MasterArgs& a) {
+  if (!a.show.empty()) throw std::invalid_argument("--show: show files are not supported yet (the default show turns the sun)");
+  cluster::MasterOptions options;
+  options.config = cluster::load_cluster_config(a.cluster);
+  options.frames = a.frames;
+  options.sun_step_deg = a.sun_step_deg;
+  if (a.port) options.port = static_cast<std::uint16_t>(*a.port);
+  if (!a.cache_dir.empty()) options.cache_directory = fs::path(a.cache_dir);
+  options.cpu_precompute = a.cpu_precompute;
+  options.wait_for_nodes_ms = a.wait_for_nodes_ms;
+  cluster::SharedSecret secret = load_secret(options.config);
+  spdlog::info("master: shared secret from {}", secret.source());
+  cluster::Master master(std::move(options), std::move(secret));
+  master.run();
+}
+
+// ---------------------------------------------------------------------------
+// zenith node
+
+struct NodeArgs {
+  std::string cluster = kDefaultCluster, name, out, cache_dir;
+  std::optional<int> port;
+  std::uint32_t connect_timeout_ms = 15000;
+};
+
+int run_node(const NodeArgs& a) {
+  cluster::NodeOptions options;
+  options.config = cluster::load_cluster_config(a.cluster);
+  options.node_name = a.name;
+  options.output_directory = a.out.empty() ? options.config.output_directory : fs::path(a.out);
+  options.cache_directory = a.cache_dir.empty() ? default_node_cache(options.config, a.name) : fs::path(a.cache_dir);
+  if (a.port) options.port = static_cast<std::uint16_t>(*a.port);
+  options.connect_timeout_ms = a.connect_timeout_ms;
+  cluster::SharedSecret secret = load_secret(options.config);
+  cluster::Node node(std::move(options), std::move(secret));
+  return node.run();
+}
+
+// ---------------------------------------------------------------------------
+// zenith cluster
+
+struct ClusterArgs {
+  std::string cluster = kDefaultCluster, show, out, cache_dir;
+  std::uint64_t frames = 10;
+  std::optional<int> port;
+  double sun_step_deg = 0.1;
+  std::optional<std::uint64_t> stitch_frame;
+};
+
+bool is_local_host(const std::string& host) {
+  if (host == "127.0.0.1" || host == "localhost" || host == "::1") return true;
+  char name[256] = {};
+  return ::gethostname(name, sizeof name - 1) == 0 && host == name;
+}
+
+/// The --log-level value matching the current level, for the children.
+std::string log_level_argument() {
+  switch (spdlog::get_level()) {
+    case spdlog::level::trace: return "trace";
+    case spdlog::level::debug: return "debug";
+    case spdlog::level::warn: return "warn";
+    case spdlog::level::err: return "error";
+    case spdlog::level::off: return "off";
+    default: return "info";
+  }
+}
+
+/// Starts /proc/self/exe with `args` (argv[1..]); returns the child's pid.
+pid_t spawn_self(const std::vector<std::string>& args) {
+  std::vector<std::string> all = {"/proc/self/exe"};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& s : all) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (const int e = ::posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ); e != 0)
+    throw std::runtime_error(fmt::format("cannot start a child zenith process: {}", std::strerror(e)));
+  return pid;
+}
+
+/// waitpid with a deadline; the exit status, or nullopt when still running.
+std::optional<int> wait_for(pid_t pid, std::chrono::milliseconds timeout) {
+  const auto deadline = Clock::now() + timeout;
+  for (;;) {
+    int status = 0;
+    const pid_t r = ::waitpid(pid, &status, WNOHANG);
+    if (r == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (r < 0) return -1;
+    if (Clock::now() >= deadline) return std::nullopt;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+/// Stops a child: waits `grace`, then SIGTERM, then SIGKILL.
+int stop_child(pid_t pid, const std::string& what, std::chrono::milliseconds grace) {
+  if (auto status = wait_for(pid, grace)) return *status;
+  spdlog::warn("cluster: {} still running after {} ms: SIGTERM", what, grace.count());
+  ::kill(pid, SIGTERM);
+  if (auto status = wait_for(pid, std::chrono::milliseconds(3000))) return *status;
+  spdlog::warn("cluster: {} ignored SIGTERM: SIGKILL", what);
+  ::kill(pid, SIGKILL);
+  return wait_for(pid, std::chrono::milliseconds(3000)).value_or(-1);
+}
+
+/// Stitches frame `frame` of fisheye outputs that share one image circle (a dome
+/// master cut into tiles) into one image; false (with a log line) when the
+/// outputs are not such tiles or a file is missing.
+bool stitch_dome(const cluster::ClusterConfig& config, const fs::path& out, std::uint64_t frame, const fs::path& target) {
+  const warp::ViewportConfig viewports = warp::load_viewport_config(config.viewports);
+  struct Tile {
+    const warp::OutputConfig* output;
+    std::string node;
+    double cx, cy;
+  };
+  std::vector<Tile> tiles;
+  double radius = -1.0, max_cx = 0.0, max_cy = 0.0;
+  for (const auto& node : config.nodes) {
+    for (const std::string& name : node.outputs) {
+      const warp::OutputConfig* o = viewports.find(name);
+      const auto* fisheye = dynamic_cast<const warp::FisheyeProjection*>(o->projection.get());
+      if (fisheye == nullptr || (radius >= 0.0 && fisheye->radius_px() != radius)) {
+        spdlog::info("cluster: not stitching: the outputs are not tiles of one fisheye dome master");
+        return false;
+      }
+      radius = fisheye->radius_px();
+      tiles.push_back({o, node.name, fisheye->centre_x_px(), fisheye->centre_y_px()});
+      max_cx = std::max(max_cx, fisheye->centre_x_px());
+      max_cy = std::max(max_cy, fisheye->centre_y_px());
+    }
+  }
+  // Tile origin in the stitched image: (max_cx − cx, max_cy − cy); integral for exact stitching.
+  int width = 0, height = 0;
+  for (const Tile& t : tiles) {
+    const double x0 = max_cx - t.cx, y0 = max_cy - t.cy;
+    if (x0 != std::floor(x0) || y0 != std::floor(y0)) {
+      spdlog::info("cluster: not stitching: tile '{}' is not at a whole-pixel offset", t.output->name);
+      return false;
+    }
+    width = std::max(width, static_cast<int>(x0) + t.output->width_px);
+    height = std::max(height, static_cast<int>(y0) + t.output->height_px);
+  }
+  std::vector<float> rgb(static_cast<std::size_t>(width) * height * 3, 0.0f);
+  for (const Tile& t : tiles) {
+    const fs::path file = out / t.node / t.output->name / fmt::format("frame-{:06d}.png", frame);
+    if (!fs::exists(file)) {
+      spdlog::warn("cluster: not stitching frame {}: {} is missing", frame, file.string());
+      return false;
+    }
+    const image::LinearImage tile = image::read_image(file);
+    const int x0 = static_cast<int>(max_cx - t.cx), y0 = static_cast<int>(max_cy - t.cy);
+    for (int y = 0; y < tile.height; ++y)
+      for (int x = 0; x < tile.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          rgb[(static_cast<std::size_t>(y0 + y) * width + (x0 + x)) * 3 + c] =
+              tile.rgb[(static_cast<std::size_t>(y) * tile.width + x) * 3 + c];
+  }
+  fs::create_directories(target.parent_path());
+  // The tiles are decoded sRGB; clamp re-encodes each value to its own byte.
+  image::write_png(target, width, height, rgb, image::ToneMapping::clamp,
+                   {{"zenith:stitched", fmt::format("frame {} of cluster '{}'", frame, config.name)}});
+  fmt::print("stitched {} ({}x{} from {} tiles)\n", target.string(), width, height, tiles.size());
+  return true;
+}
+
+void run_cluster(const ClusterArgs& a) {
+  if (!a.show.empty()) throw std::invalid_argument("--show: show files are not supported yet (the default show turns the sun)");
+  const cluster::ClusterConfig config = cluster::load_cluster_config(a.cluster);
+  const fs::path out = a.out.empty() ? config.output_directory : fs::path(a.out);
+  // A local run needs no secret set up: a fresh random one goes to the children.
+  if (!config.secret_file) {
+    const char* value = std::getenv(config.secret_env.c_str());
+    if (value == nullptr || *value == '\0') {
+      const cluster::Nonce bytes = cluster::random_nonce();
+      ::setenv(config.secret_env.c_str(), cluster::to_hex(bytes).c_str(), 1);
+      spdlog::info("cluster: ${} is not set: a random one-off secret is passed to the master and nodes", config.secret_env);
+    }
+  }
+  const std::string level = log_level_argument();
+  std::vector<std::string> common = {"--cluster", a.cluster};
+  if (a.port) common.insert(common.end(), {"--port", std::to_string(*a.port)});
+
+  std::vector<std::string> master_args = {"--log-level", level, "master", "--frames", std::to_string(a.frames),
+                                          "--sun-step-deg", fmt::format("{}", a.sun_step_deg)};
+  master_args.insert(master_args.end(), common.begin(), common.end());
+  if (!a.cache_dir.empty()) master_args.insert(master_args.end(), {"--cache", a.cache_dir});
+  const pid_t master = spawn_self(master_args);
+  spdlog::info("cluster: master started (pid {})", master);
+
+  std::vector<std::pair<pid_t, std::string>> nodes;
+  for (const auto& node : config.nodes) {
+    if (!is_local_host(node.host)) {
+      spdlog::info("cluster: node '{}' runs on {}: start it there with `zenith node --cluster {} --name {}`", node.name,
+                   node.host, a.cluster, node.name);
+      continue;
+    }
+    // The master may precompute tables for minutes before its Welcome (paper sizes on a CPU GL): wait for it.
+    std::vector<std::string> args = {"--log-level", level, "node", "--name", node.name, "--out", out.string(),
+                                     "--connect-timeout-ms", "900000"};
+    args.insert(args.end(), common.begin(), common.end());
+    if (!a.cache_dir.empty()) args.insert(args.end(), {"--cache", (fs::path(a.cache_dir) / "nodes" / node.name).string()});
+    nodes.emplace_back(spawn_self(args), node.name);
+    spdlog::info("cluster: node '{}' started (pid {})", node.name, nodes.back().first);
+  }
+
+  // Wait for the master; if every local node ends first (they could not join), stop it.
+  int status = -1;
+  std::vector<std::optional<int>> node_status(nodes.size());
+  for (;;) {
+    if (auto s = wait_for(master, std::chrono::milliseconds(200))) {
+      status = *s;
+      break;
+    }
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (!node_status[i]) node_status[i] = wait_for(nodes[i].first, std::chrono::milliseconds(0));
+    if (!nodes.empty() && std::all_of(node_status.begin(), node_status.end(), [](const auto& s) { return s.has_value(); })) {
+      spdlog::error("cluster: every local node has exited; stopping the master");
+      ::kill(master, SIGTERM);
+      stop_child(master, "the master", std::chrono::milliseconds(5000));
+      throw std::runtime_error("the nodes exited before the show ended (see their log lines above)");
+    }
+  }
+  // The master's Goodbye ends the nodes; stop any that linger.
+  int failed_nodes = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const auto& [pid, name] = nodes[i];
+    const int exit_status =
+        node_status[i] ? *node_status[i] : stop_child(pid, fmt::format("node '{}'", name), std::chrono::milliseconds(5000));
+    if (exit_status != 0) {
+      spdlog::warn("cluster: node '{}' exited with status {}", name, exit_status);
+      ++failed_nodes;
+    }
+  }
+  if (status != 0) throw std::runtime_error(fmt::format("the master exited with status {}", status));
+  spdlog::info("cluster: master and {} node{} stopped{}", nodes.size(), nodes.size() == 1 ? "" : "s",
+               failed_nodes ? fmt::format(" ({} with an error)", failed_nodes) : std::string());
+  if (config.output_format == "png" && a.frames > 0) {
+    const std::uint64_t frame = a.stitch_frame.value_or(a.frames - 1);
+    stitch_dome(config, out, frame, out / "stitched" / fmt::format("frame-{:06d}.png", frame));
+  }
+  if (failed_nodes) throw std::runtime_error(fmt::format("{} node{} failed", failed_nodes, failed_nodes == 1 ? "" : "s"));
+}
+
+}  // namespace
+
+void register_cluster_commands(CLI::App& app) {
+  {
+    auto a = std::make_shared<MasterArgs>();
+    CLI::App* cmd = app.add_subcommand("master", "Run the master of a cluster: tables, frame barrier (docs/cluster.md)");
+    cmd->add_option("--cluster", a->cluster, "Cluster config JSON (configs/clusters/)")->required();
+    cmd->add_option("--show", a->show, "Show file (not supported yet)");
+    cmd->add_option("--frames", a->frames, "Present this many frames, then stop the nodes (default 0: until SIGTERM)");
+    cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
+    cmd->add_option("--cache", a->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
+    cmd->add_flag("--cpu-precompute", a->cpu_precompute, "Precompute missing tables on the CPU");
+    cmd->add_option("--sun-step-deg", a->sun_step_deg, "Default show: the sun turns this much per frame (default 0.1)")
+        ->check(CLI::Range(-10.0, 10.0));
+    cmd->add_option("--wait-for-nodes-ms", a->wait_for_nodes_ms,
+                    "Start when every node is ready, or after this long with those that are (default 30000)");
+    cmd->callback([a] { run_master(*a); });
+  }
+  {
+    auto a = std::make_shared<NodeArgs>();
+    CLI::App* cmd = app.add_subcommand("node", "Run one render node of a cluster (docs/cluster.md)");
+    cmd->add_option("--cluster", a->cluster, "Cluster config JSON (configs/clusters/)")->required();
+    cmd->add_option("--name", a->name, "This node's name in the config")->required();
+    cmd->add_option("--out", a->out, "Frames go to OUT/<node>/<output>/ (default: the config's output directory)");
+    cmd->add_option("--cache", a->cache_dir, "This node's table cache (default $XDG_CACHE_HOME/zenith/cluster-nodes/<cluster>/<node>)");
+    cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
+    cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms, "Keep trying to reach the master this long (default 15000)");
+    cmd->callback([a] {
+      const int code = run_node(*a);
+      if (code != 0) std::exit(code);  // the NodeExit code (docs/cluster.md)
+    });
+  }
+  {
+    auto a = std::make_shared<ClusterArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "cluster", "Run a local cluster: the master and every node of this machine as child processes (docs/cluster.md)");
+    cmd->add_option("--cluster", a->cluster, fmt::format("Cluster config JSON (default {})", kDefaultCluster));
+    cmd->add_option("--show", a->show, "Show file (not supported yet)");
+    cmd->add_option("--frames", a->frames, "Frames to present (default 10)")->check(CLI::Range(1, 100000000));
+    cmd->add_option("--out", a->out, "Output folder (default: the config's)");
+    cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
+    cmd->add_option("--cache", a->cache_dir, "Master table cache; nodes use CACHE/nodes/<node>");
+    cmd->add_option("--sun-step-deg", a->sun_step_deg, "The sun turns this much per frame (default 0.1)")
+        ->check(CLI::Range(-10.0, 10.0));
+    cmd->add_option("--stitch-frame", a->stitch_frame, "Frame to stitch into OUT/stitched/ (default: the last)");
+    cmd->callback([a] { run_cluster(*a); });
+  }
+}
+
+}  // namespace zenith::app

@@ -1,0 +1,77 @@
+#pragma once
+// The cluster configuration: who the master is, which nodes render which
+// outputs of a viewport config, the scene, the timing of the frame barrier,
+// where the shared secret comes from and where frames are written
+// (docs/cluster.md, "Configuration").
+//
+//   {
+//     "zenith_cluster": 1,
+//     "name": "local-dome",
+//     "master": {"host": "127.0.0.1", "port": 47100},
+//     "scene": "../scenes/earth-sunset.json",              relative to this file
+//     "viewports": "../viewports/dome-quadrants.json",     relative to this file
+//     "timing": {"heartbeat_ms": 250, "barrier_timeout_ms": 5000, "frame_rate_hz": 10},
+//     "secret": {"env": "ZENITH_CLUSTER_SECRET"},          or {"file": "secret.key"}; never the secret itself
+//     "tables": {"sizes": "paper", "orders": 4},           optional
+//     "nodes": [{"name": "q1", "host": "127.0.0.1", "outputs": ["top-left"]}, ...],
+//     "output": {"directory": "out/cluster", "format": "png"}
+//   }
+//
+// Keys are strict; every error is a zenith::ConfigError naming the file, the
+// JSON pointer of the key, the value and the allowed range, e.g.
+//   local-dome.json: /timing/barrier_timeout_ms = 5: must be in [10, 600000] ms
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace zenith::cluster {
+
+/// The schema version this reader understands ("zenith_cluster": 1).
+inline constexpr int kClusterConfigVersion = 1;
+
+/// One render node: a process on `host` rendering `outputs` (names of outputs
+/// of the viewport config).
+struct ClusterNodeConfig {
+  std::string name;  ///< unique; letters, digits, '-', '_', '.' (it names the node's folder of frames)
+  std::string host;  ///< the machine it runs on ("127.0.0.1", "dome-pc-3"); `zenith cluster` starts the local ones
+  std::vector<std::string> outputs;  ///< at least one; each output belongs to at most one node
+};
+
+struct ClusterConfig {
+  std::string name;                  ///< the cluster's name (checked in the handshake)
+  std::string source;                ///< the file it came from (messages)
+  std::string master_host;           ///< where nodes connect (the master listens on it)
+  std::uint16_t master_port = 0;     ///< TCP port, in [1, 65535]
+  std::filesystem::path scene;       ///< resolved against the config's folder
+  std::filesystem::path viewports;   ///< resolved against the config's folder
+  std::uint32_t heartbeat_ms = 250;         ///< each side sends a Heartbeat at least this often; 3× silent = gone
+  std::uint32_t barrier_timeout_ms = 5000;  ///< a node not done with a frame within this is dropped from it
+  double frame_rate_hz = 30.0;              ///< the master starts frames no faster than this
+  /// The shared secret: a file (resolved against the config's folder) or else
+  /// the environment variable `secret_env`.
+  std::optional<std::filesystem::path> secret_file;
+  std::string secret_env = "ZENITH_CLUSTER_SECRET";
+  std::string table_sizes = "paper";  ///< "paper", "small", "large" (apps/table_provider.h)
+  int table_orders = 4;               ///< scattering orders of the tables, [1, 50]
+  std::vector<ClusterNodeConfig> nodes;
+  std::filesystem::path output_directory = "out/cluster";  ///< relative: to the working directory
+  std::string output_format = "png";                       ///< "png" or "exr"
+
+  /// The node with that name; nullptr when none.
+  const ClusterNodeConfig* find_node(const std::string& node_name) const;
+};
+
+/// Parses a cluster config held in `config`; `source` names the file in
+/// messages and relative scene, viewport and secret paths resolve against
+/// `base_dir`. Also loads the viewport config to check that every node's
+/// outputs exist there. Throws zenith::ConfigError.
+ClusterConfig parse_cluster_config(const nlohmann::json& config, const std::string& source,
+                                   const std::filesystem::path& base_dir);
+/// Reads and parses a file (ConfigError "cannot open file" when unreadable).
+ClusterConfig load_cluster_config(const std::filesystem::path& path);
+
+}  // namespace zenith::cluster

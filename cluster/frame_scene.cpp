@@ -1,0 +1,86 @@
+#include "cluster/frame_scene.h"
+
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "cluster/table_transfer.h"
+
+namespace zenith::cluster {
+namespace {
+
+/// The polar axis of the body nearest the camera, or world +z.
+glm::dvec3 sun_axis(const scene::Scene& scene) {
+  const scene::Body* nearest = nullptr;
+  double best = std::numeric_limits<double>::infinity();
+  for (const scene::Body& body : scene.bodies) {
+    const double altitude = glm::length(scene.camera.position_m - body.position_m) - body.radius_m;
+    if (altitude < best) {
+      best = altitude;
+      nearest = &body;
+    }
+  }
+  return nearest != nullptr ? glm::normalize(nearest->orientation * glm::dvec3(0.0, 0.0, 1.0)) : glm::dvec3(0, 0, 1);
+}
+
+}  // namespace
+
+FrameState default_show_frame(const scene::Scene& scene, std::uint64_t frame, double sun_step_deg,
+                              const std::vector<AtmosphereTableRef>& atmospheres, std::uint32_t render_flags) {
+  FrameState s;
+  s.frame = frame;
+  s.show_time_s = 0.0;
+  s.camera_position_m = scene.camera.position_m;
+  s.camera_orientation = scene.camera.orientation;
+  s.exposure = scene.camera.exposure;
+  // Negative: westward, as the day advances on a prograde-rotating body.
+  const double angle_rad = -static_cast<double>(frame) * sun_step_deg * std::numbers::pi / 180.0;
+  s.sun_direction = frame == 0 ? scene.sun.direction
+                               : glm::normalize(glm::angleAxis(angle_rad, sun_axis(scene)) * scene.sun.direction);
+  s.sun_angular_radius_rad = scene.sun.angular_radius_rad;
+  s.sun_irradiance_W_m2_nm = scene.sun.irradiance_W_m2_nm;
+  s.atmospheres = atmospheres;
+  s.render_flags = render_flags;
+  return s;
+}
+
+void apply_frame_state(const FrameState& state, scene::Scene& scene) {
+  if (state.sun_irradiance_W_m2_nm.size() != scene.wavelengths_nm.size())
+    throw std::invalid_argument("FrameState: " + std::to_string(state.sun_irradiance_W_m2_nm.size()) +
+                                " sun irradiance values for a scene of " + std::to_string(scene.wavelengths_nm.size()) +
+                                " wavelengths (do master and node read the same scene?)");
+  scene.camera.position_m = state.camera_position_m;
+  scene.camera.orientation = state.camera_orientation;
+  scene.camera.exposure = state.exposure;
+  scene.sun.direction = state.sun_direction;
+  scene.sun.angular_radius_rad = state.sun_angular_radius_rad;
+  scene.sun.irradiance_W_m2_nm = state.sun_irradiance_W_m2_nm;
+}
+
+std::uint32_t render_flags_of(const render::RenderOptions& o) {
+  std::uint32_t flags = 0;
+  if (o.sun_disc) flags |= kRenderSunDisc;
+  if (o.limb_darkening) flags |= kRenderLimbDarkening;
+  if (o.atmosphere.multiple_scattering) flags |= kRenderMultipleScattering;
+  if (o.atmosphere.eclipses) flags |= kRenderEclipses;
+  flags |= kRenderBodies;  // bodies are always drawn
+  return flags;
+}
+
+render::RenderOptions render_options_of(std::uint32_t flags) {
+  render::RenderOptions o;
+  o.sun_disc = (flags & kRenderSunDisc) != 0;
+  o.limb_darkening = (flags & kRenderLimbDarkening) != 0;
+  o.atmosphere.multiple_scattering = (flags & kRenderMultipleScattering) != 0;
+  o.atmosphere.eclipses = (flags & kRenderEclipses) != 0;
+  return o;
+}
+
+std::string state_digest(const FrameState& state) {
+  const std::vector<std::uint8_t> payload = encode_payload(state);
+  return to_hex(sha256(payload)).substr(0, 16);
+}
+
+}  // namespace zenith::cluster

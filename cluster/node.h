@@ -1,0 +1,57 @@
+#pragma once
+// A cluster render node (docs/cluster.md): connects to the master,
+// authenticates, receives and caches the lookup tables, then renders every
+// FrameState it is sent into its outputs (headless), reports RenderDone and on
+// Present renames the frame's files into place:
+//
+//   <out>/<node>/<output>/frame-000042.png     (written as ….png.partial, renamed on Present)
+//   <out>/<node>/presented.log                 one line per presented frame: "frame N state DIGEST"
+//
+// Two threads: the networking thread runs the Boost.Asio io_context (all
+// socket work, heartbeats, table reassembly); the caller's thread owns the GL
+// context and the renderer. They talk through a job queue (network → render)
+// and asio::post (render → network), nothing else is shared.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cluster/cluster_config.h"
+#include "cluster/handshake.h"
+
+namespace zenith::cluster {
+
+/// Exit codes of Node::run (and of `zenith node`).
+enum NodeExit : int {
+  kNodeExitDone = 0,         ///< the master said Goodbye (show over), or SIGINT/SIGTERM
+  kNodeExitFailed = 1,       ///< rendering or writing failed
+  kNodeExitRefused = 2,      ///< the master refused us (Reject), or failed to prove the secret
+  kNodeExitMasterLost = 3,   ///< the master is unreachable or vanished without a Goodbye
+};
+
+struct NodeOptions {
+  ClusterConfig config;
+  std::string node_name;                       ///< one of config.nodes
+  std::filesystem::path output_directory;      ///< frames go to <this>/<node>/<output>/
+  std::filesystem::path cache_directory;       ///< the node's own table cache
+  std::optional<std::uint16_t> port;           ///< overrides config.master.port
+  std::uint32_t connect_timeout_ms = 15000;    ///< keep trying to reach the master this long
+};
+
+class Node {
+ public:
+  Node(NodeOptions options, SharedSecret secret);
+  ~Node();
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
+
+  /// Runs until the master says Goodbye, a signal, or a failure; returns a NodeExit code.
+  int run();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace zenith::cluster

@@ -1,0 +1,103 @@
+// The cluster configuration: the shipped local-dome config, strict keys and
+// messages with the file, the JSON pointer and the range.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "atmosphere/json_reader.h"
+#include "cluster/cluster_config.h"
+
+namespace zenith::cluster {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSource = ZENITH_SOURCE_DIR;
+
+nlohmann::json valid() {
+  return nlohmann::json::parse(R"({
+    "zenith_cluster": 1, "name": "t",
+    "master": {"host": "127.0.0.1", "port": 47000},
+    "scene": "scenes/earth-sunset.json", "viewports": "viewports/dome-quadrants.json",
+    "timing": {"heartbeat_ms": 100, "barrier_timeout_ms": 2000, "frame_rate_hz": 10},
+    "secret": {"env": "ZENITH_CLUSTER_SECRET"},
+    "nodes": [{"name": "a", "host": "127.0.0.1", "outputs": ["top-left", "top-right"]},
+              {"name": "b", "host": "127.0.0.1", "outputs": ["bottom-left"]}]
+  })");
+}
+
+ClusterConfig parse(const nlohmann::json& j) { return parse_cluster_config(j, "t.json", kSource / "configs"); }
+
+std::string error_of(const nlohmann::json& j) {
+  try {
+    parse(j);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(ClusterConfig, LocalDomeLoads) {
+  const ClusterConfig c = load_cluster_config(kSource / "configs/clusters/local-dome.json");
+  EXPECT_EQ(c.name, "local-dome");
+  EXPECT_EQ(c.nodes.size(), 4u);
+  EXPECT_EQ(c.master_host, "127.0.0.1");
+  EXPECT_FALSE(c.secret_file.has_value());
+  EXPECT_EQ(c.secret_env, "ZENITH_CLUSTER_SECRET");
+  EXPECT_EQ(c.output_format, "png");
+  EXPECT_TRUE(fs::exists(c.scene));
+}
+
+TEST(ClusterConfig, ValidParsesWithDefaults) {
+  const ClusterConfig c = parse(valid());
+  EXPECT_EQ(c.master_port, 47000);
+  EXPECT_EQ(c.heartbeat_ms, 100u);
+  EXPECT_EQ(c.barrier_timeout_ms, 2000u);
+  EXPECT_EQ(c.table_sizes, "paper");
+  EXPECT_EQ(c.output_directory, fs::path("out/cluster"));
+  ASSERT_NE(c.find_node("a"), nullptr);
+  EXPECT_EQ(c.find_node("a")->outputs.size(), 2u);
+  EXPECT_EQ(c.find_node("zz"), nullptr);
+}
+
+TEST(ClusterConfig, ErrorsNameFilePointerAndRange) {
+  auto j = valid();
+  j["timing"]["barrier_timeout_ms"] = 5;
+  EXPECT_NE(error_of(j).find("t.json: /timing/barrier_timeout_ms = 5"), std::string::npos) << error_of(j);
+  j = valid();
+  j["master"]["port"] = 70000;
+  EXPECT_NE(error_of(j).find("/master/port"), std::string::npos) << error_of(j);
+  j = valid();
+  j["nodes"][1]["outputs"][0] = "nowhere";
+  EXPECT_NE(error_of(j).find("/nodes/1/outputs/0 = \"nowhere\": no such output"), std::string::npos) << error_of(j);
+  j = valid();
+  j["nodes"][1]["outputs"][0] = "top-left";
+  EXPECT_NE(error_of(j).find("already rendered by node \"a\""), std::string::npos) << error_of(j);
+  j = valid();
+  j["nodes"][1]["name"] = "a";
+  EXPECT_NE(error_of(j).find("duplicate node name"), std::string::npos) << error_of(j);
+}
+
+TEST(ClusterConfig, UnknownKeysAndInlineSecretsAreRefused) {
+  auto j = valid();
+  j["timing"]["heartbeat"] = 5;
+  EXPECT_NE(error_of(j).find("/timing/heartbeat"), std::string::npos) << error_of(j);
+  j = valid();
+  j["secret"] = {{"value", "hunter2hunter2hunter2"}};
+  EXPECT_NE(error_of(j).find("/secret"), std::string::npos) << error_of(j);
+  j = valid();
+  j["secret"] = {{"env", "A"}, {"file", "x"}};
+  EXPECT_NE(error_of(j).find("exactly one"), std::string::npos) << error_of(j);
+  j = valid();
+  j["zenith_cluster"] = 2;
+  EXPECT_NE(error_of(j).find("/zenith_cluster"), std::string::npos) << error_of(j);
+  j = valid();
+  j["output"] = {{"format", "jpg"}};
+  EXPECT_NE(error_of(j).find("/output/format"), std::string::npos) << error_of(j);
+}
+
+}  // namespace
+}  // namespace zenith::cluster

@@ -1,0 +1,442 @@
+// Multi-process tests of the running cluster: the `zenith` binary as master
+// and nodes on loopback, headless, with tiny outputs and small tables
+// (docs/cluster.md, "Tests"). Each test is bounded in time.
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cluster/frame_decoder.h"
+#include "cluster/handshake.h"
+#include "cluster/messages.h"
+#include "render/image/image_io.h"
+#include "test_support.h"
+
+extern char** environ;
+
+namespace zenith::cluster {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
+
+const fs::path kSource = ZENITH_SOURCE_DIR;
+const fs::path kBinary = ZENITH_BINARY;
+const fs::path kWork = CLUSTER_TEST_WORK_DIR;
+constexpr const char* kSecretVar = "ZENITH_CLUSTER_TEST_SECRET";
+constexpr int kQuadrantPx = 64;
+
+/// A child process with its output in a log file.
+struct Child {
+  pid_t pid = -1;
+  fs::path log;
+};
+
+Child spawn(const std::vector<std::string>& args, const fs::path& log) {
+  std::vector<std::string> all = {kBinary.string()};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& s : all) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  Child child{-1, log};
+  const int e = posix_spawn(&child.pid, kBinary.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (e != 0) throw std::runtime_error("posix_spawn failed");
+  return child;
+}
+
+/// The exit status (128 + signal when killed), or nullopt on timeout.
+std::optional<int> wait_exit(const Child& c, std::chrono::milliseconds timeout) {
+  const auto deadline = Clock::now() + timeout;
+  for (;;) {
+    int status = 0;
+    const pid_t r = waitpid(c.pid, &status, WNOHANG);
+    if (r == c.pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (r < 0 || Clock::now() > deadline) return std::nullopt;
+    std::this_thread::sleep_for(20ms);
+  }
+}
+
+void kill_hard(const Child& c) {
+  kill(c.pid, SIGKILL);
+  wait_exit(c, 5000ms);
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// "frame N state DIGEST" lines of a node's presented.log.
+struct Presented {
+  std::uint64_t frame;
+  std::string digest;
+};
+std::vector<Presented> presented(const fs::path& node_dir) {
+  std::vector<Presented> out;
+  std::ifstream in(node_dir / "presented.log");
+  std::string word, digest, state;
+  std::uint64_t frame = 0;
+  while (in >> word >> frame >> state >> digest) out.push_back({frame, digest});
+  return out;
+}
+
+bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
+  const auto deadline = Clock::now() + timeout;
+  while (Clock::now() < deadline) {
+    if (done()) return true;
+    std::this_thread::sleep_for(50ms);
+  }
+  return done();
+}
+
+/// A cluster of 3 nodes on loopback rendering a 128² dome master as four 64²
+/// quadrants: node a renders two, b and c one each.
+class ClusterProcess : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = kWork / info->name();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    cache_ = kWork / "table-cache";  // shared by the tests (same small tables)
+    port_ = static_cast<int>(20000 + (getpid() * 7 + std::hash<std::string>{}(info->name())) % 30000);
+    setenv(kSecretVar, "cluster-test-secret-0123456789", 1);
+  }
+  void TearDown() override {
+    for (const Child& c : children_)
+      if (kill(c.pid, 0) == 0) kill_hard(c);
+  }
+
+  fs::path write_config(int frame_rate_hz, int barrier_timeout_ms = 20000, int heartbeat_ms = 200) {
+    std::ofstream v(dir_ / "quadrants.json");
+    v << R"({"zenith_viewports": 1, "name": "q", "outputs": [)";
+    const char* names[4] = {"top-left", "top-right", "bottom-left", "bottom-right"};
+    for (int i = 0; i < 4; ++i) {
+      const int cx = (i % 2 == 0) ? kQuadrantPx : 0, cy = (i < 2) ? kQuadrantPx : 0;
+      v << (i ? "," : "") << R"({"name": ")" << names[i] << R"(", "size": [)" << kQuadrantPx << ", " << kQuadrantPx
+        << R"(], "projection": {"type": "fisheye", "fov_deg": 180, "centre_x_px": )" << cx << R"(, "centre_y_px": )"
+        << cy << R"(, "radius_px": )" << kQuadrantPx << "}}";
+    }
+    v << "]}";
+    v.close();
+    std::ofstream c(dir_ / "cluster.json");
+    c << R"({"zenith_cluster": 1, "name": "test-dome", "master": {"host": "127.0.0.1", "port": )" << port_ << R"(},
+      "scene": ")" << (kSource / "configs/scenes/earth-sunset.json").string() << R"(", "viewports": "quadrants.json",
+      "timing": {"heartbeat_ms": )" << heartbeat_ms << R"(, "barrier_timeout_ms": )" << barrier_timeout_ms
+      << R"(, "frame_rate_hz": )" << frame_rate_hz << R"(},
+      "secret": {"env": ")" << kSecretVar << R"("}, "tables": {"sizes": "small", "orders": 4},
+      "nodes": [{"name": "a", "host": "127.0.0.1", "outputs": ["top-left", "top-right"]},
+                {"name": "b", "host": "127.0.0.1", "outputs": ["bottom-left"]},
+                {"name": "c", "host": "127.0.0.1", "outputs": ["bottom-right"]}],
+      "output": {"directory": "out", "format": "png"}})";
+    c.close();
+    return dir_ / "cluster.json";
+  }
+
+  Child start_master(const fs::path& config, std::uint64_t frames, int wait_for_nodes_ms = 120000) {
+    children_.push_back(spawn({"master", "--cluster", config.string(), "--frames", std::to_string(frames), "--cache",
+                               cache_.string(), "--wait-for-nodes-ms", std::to_string(wait_for_nodes_ms)},
+                              dir_ / "master.log"));
+    return children_.back();
+  }
+  Child start_node(const fs::path& config, const std::string& name) {
+    children_.push_back(spawn({"node", "--cluster", config.string(), "--name", name, "--out", (dir_ / "out").string(),
+                               "--cache", (dir_ / "node-cache" / name).string(), "--connect-timeout-ms", "300000"},
+                              dir_ / (name + ".log")));
+    return children_.back();
+  }
+  std::string logs() const {
+    std::string all;
+    for (const char* n : {"master", "a", "b", "c", "cluster"})
+      if (fs::exists(dir_ / (std::string(n) + ".log")))
+        all += "---- " + std::string(n) + ".log\n" + read_text(dir_ / (std::string(n) + ".log"));
+    return all;
+  }
+
+  fs::path dir_, cache_;
+  int port_ = 0;
+  std::vector<Child> children_;
+};
+
+/// Frames 0..n-1 in order, each once.
+void expect_contiguous(const std::vector<Presented>& p, std::uint64_t first, std::uint64_t last, const std::string& who) {
+  ASSERT_EQ(p.size(), last - first + 1) << who;
+  for (std::size_t i = 0; i < p.size(); ++i) EXPECT_EQ(p[i].frame, first + i) << who << " line " << i;
+}
+
+TEST_F(ClusterProcess, ThreeNodesPresentEveryFrameAndStitchToASingleRender) {
+  const fs::path config = write_config(20);
+  const Child cluster = spawn({"cluster", "--cluster", config.string(), "--frames", "5", "--out",
+                               (dir_ / "out").string(), "--cache", cache_.string(), "--stitch-frame", "0"},
+                              dir_ / "cluster.log");
+  children_.push_back(cluster);
+  ASSERT_EQ(wait_exit(cluster, 280s), std::optional<int>(0)) << logs();
+
+  // Every node presented frames 0..4 in order with the same state on every node.
+  const auto a = presented(dir_ / "out/a"), b = presented(dir_ / "out/b"), c = presented(dir_ / "out/c");
+  expect_contiguous(a, 0, 4, "a");
+  expect_contiguous(b, 0, 4, "b");
+  expect_contiguous(c, 0, 4, "c");
+  for (std::size_t i = 0; i < a.size() && i < b.size() && i < c.size(); ++i) {
+    EXPECT_EQ(a[i].digest, b[i].digest) << "frame " << i;
+    EXPECT_EQ(a[i].digest, c[i].digest) << "frame " << i;
+    if (i > 0) {
+      EXPECT_NE(a[i].digest, a[i - 1].digest) << "the sun moves between frames";
+    }
+  }
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"a", "top-left"}, {"a", "top-right"}, {"b", "bottom-left"}, {"c", "bottom-right"}};
+  for (const auto& [node, output] : files)
+    for (int f = 0; f < 5; ++f) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame-%06d.png", f);
+      EXPECT_TRUE(fs::exists(dir_ / "out" / node / output / name)) << node << "/" << output << "/" << name;
+    }
+  for (const auto& entry : fs::recursive_directory_iterator(dir_ / "out"))
+    EXPECT_NE(entry.path().extension(), ".partial") << entry.path();
+
+  // The quadrants of frame 0 equal a single-process render of the whole dome master, bit for bit.
+  const fs::path single = dir_ / "single.png";
+  const Child render = spawn({"render", "--scene", (kSource / "configs/scenes/earth-sunset.json").string(),
+                              "--projection", "fisheye", "--size", "128x128", "--tables", "small", "--cache",
+                              cache_.string(), "--out", single.string()},
+                             dir_ / "render.log");
+  children_.push_back(render);
+  ASSERT_EQ(wait_exit(render, 200s), std::optional<int>(0)) << read_text(dir_ / "render.log");
+  const image::LinearImage whole = image::read_image(single);
+  ASSERT_EQ(whole.width, 2 * kQuadrantPx);
+  for (std::size_t q = 0; q < files.size(); ++q) {
+    const auto& [node, output] = files[q];
+    const image::LinearImage tile = image::read_image(dir_ / "out" / node / output / "frame-000000.png");
+    ASSERT_EQ(tile.width, kQuadrantPx);
+    const int x0 = (q % 2) * kQuadrantPx, y0 = (q / 2) * kQuadrantPx;
+    int differing = 0;
+    for (int y = 0; y < kQuadrantPx; ++y)
+      for (int x = 0; x < kQuadrantPx * 3; ++x)
+        differing += tile.rgb[y * kQuadrantPx * 3 + x] != whole.rgb[(y0 + y) * whole.width * 3 + x0 * 3 + x];
+    EXPECT_EQ(differing, 0) << output << ": values differing from the single-process render";
+  }
+  // And so does the stitched image `zenith cluster` wrote.
+  const image::LinearImage stitched = image::read_image(dir_ / "out/stitched/frame-000000.png");
+  EXPECT_EQ(stitched.rgb, whole.rgb);
+}
+
+TEST_F(ClusterProcess, KilledNodeRestartsAndRejoinsWhileTheOthersSkipNoFrame) {
+  const fs::path config = write_config(10);
+  const Child master = start_master(config, 0);
+  start_node(config, "a");
+  Child b = start_node(config, "b");
+  start_node(config, "c");
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/b").size() >= 5; }, 240s)) << logs();
+  kill(b.pid, SIGKILL);
+  ASSERT_EQ(wait_exit(b, 5s), std::optional<int>(128 + SIGKILL));
+  const std::uint64_t last_before = presented(dir_ / "out/b").back().frame;
+  const std::size_t a_at_kill = presented(dir_ / "out/a").size();
+  // The others go on without b.
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= a_at_kill + 5; }, 60s)) << logs();
+  b = start_node(config, "b");
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/b").size() >= 5 + 3; }, 240s)) << logs();
+  kill(master.pid, SIGTERM);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  for (const Child& c : children_)
+    if (c.pid != master.pid && kill(c.pid, 0) == 0) {
+      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
+    }
+
+  const auto a = presented(dir_ / "out/a"), bp = presented(dir_ / "out/b"), c = presented(dir_ / "out/c");
+  ASSERT_FALSE(a.empty());
+  expect_contiguous(a, 0, a.back().frame, "a");
+  expect_contiguous(c, 0, c.back().frame, "c");
+  EXPECT_EQ(a.back().frame, c.back().frame);
+  // b: frames 0..last_before, then (after the restart) a contiguous run from a later frame boundary.
+  std::size_t split = 0;
+  while (split < bp.size() && bp[split].frame <= last_before) ++split;
+  ASSERT_LT(split, bp.size());
+  expect_contiguous(std::vector<Presented>(bp.begin(), bp.begin() + split), 0, last_before, "b before");
+  EXPECT_GT(bp[split].frame, last_before + 1) << "b rejoined later, at a frame boundary";
+  expect_contiguous(std::vector<Presented>(bp.begin() + split, bp.end()), bp[split].frame, bp.back().frame, "b after");
+  // Same frame, same state, on every node.
+  for (const Presented& p : bp) EXPECT_EQ(p.digest, a[p.frame].digest) << "frame " << p.frame;
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_NE(master_log.find("node 'b'"), std::string::npos);
+  EXPECT_NE(master_log.find("disconnected"), std::string::npos) << master_log;
+}
+
+TEST_F(ClusterProcess, NodesExitWithAClearMessageWhenTheMasterDies) {
+  const fs::path config = write_config(10, 20000, 200);
+  const Child master = start_master(config, 0, 1000);
+  const Child a = start_node(config, "a");
+  const Child b = start_node(config, "b");
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/b").size() >= 2 && presented(dir_ / "out/a").size() >= 2; },
+                         240s))
+      << logs();
+  kill(master.pid, SIGKILL);
+  EXPECT_EQ(wait_exit(a, 10s), std::optional<int>(3)) << logs();
+  EXPECT_EQ(wait_exit(b, 10s), std::optional<int>(3)) << logs();
+  for (const char* n : {"a", "b"}) {
+    const std::string log = read_text(dir_ / (std::string(n) + ".log"));
+    EXPECT_NE(log.find("the master is gone"), std::string::npos) << log;
+  }
+}
+
+// ---- hostile clients --------------------------------------------------------
+
+int connect_to(int port) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+void send_all(int fd, const std::vector<std::uint8_t>& bytes) {
+  std::size_t sent = 0;
+  while (sent < bytes.size()) {
+    const ssize_t n = ::send(fd, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) return;
+    sent += static_cast<std::size_t>(n);
+  }
+}
+
+/// Reads until the peer closes (true) or `timeout` passes (false); decoded messages go to `messages`.
+bool read_until_closed(int fd, std::chrono::milliseconds timeout, std::vector<Message>* messages = nullptr) {
+  FrameDecoder decoder;
+  const auto deadline = Clock::now() + timeout;
+  std::uint8_t buffer[4096];
+  while (Clock::now() < deadline) {
+    pollfd p{fd, POLLIN, 0};
+    if (poll(&p, 1, 50) <= 0) continue;
+    const ssize_t n = recv(fd, buffer, sizeof buffer, 0);
+    if (n <= 0) return true;
+    decoder.feed(std::span<const std::uint8_t>(buffer, static_cast<std::size_t>(n)));
+    try {
+      while (auto m = decoder.next())
+        if (messages) messages->push_back(*m);
+    } catch (const ProtocolError&) {
+    }
+  }
+  return false;
+}
+
+TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
+  const fs::path config = write_config(10);
+  const Child master = start_master(config, 0, 1000);
+  const Child a = start_node(config, "a");
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= 2; }, 240s)) << logs();
+
+  {  // garbage bytes
+    const int fd = connect_to(port_);
+    ASSERT_GE(fd, 0);
+    const std::string junk = "GET / HTTP/1.1\r\nHost: zenith\r\n\r\n";
+    send_all(fd, std::vector<std::uint8_t>(junk.begin(), junk.end()));
+    EXPECT_TRUE(read_until_closed(fd, 5s)) << "garbage: the master must close";
+    close(fd);
+  }
+  {  // an oversized length in an otherwise valid header
+    const int fd = connect_to(port_);
+    std::vector<std::uint8_t> frame = test::raw_frame(static_cast<std::uint16_t>(MessageType::hello), {});
+    test::put_be32(frame, 8, 0x7FFFFFFF);
+    test::fix_header_crc(frame);
+    send_all(fd, frame);
+    EXPECT_TRUE(read_until_closed(fd, 5s)) << "oversized: the master must close";
+    close(fd);
+  }
+  {  // another protocol version
+    const int fd = connect_to(port_);
+    std::vector<std::uint8_t> frame = test::raw_frame(static_cast<std::uint16_t>(MessageType::heartbeat),
+                                                      std::vector<std::uint8_t>(8, 0));
+    test::put_be16(frame, 4, kProtocolVersion + 1);
+    test::fix_header_crc(frame);
+    send_all(fd, frame);
+    EXPECT_TRUE(read_until_closed(fd, 5s)) << "wrong version: the master must close";
+    close(fd);
+  }
+  {  // a message before the handshake
+    const int fd = connect_to(port_);
+    send_all(fd, encode(RenderDone{0, 1.0}));
+    std::vector<Message> got;
+    EXPECT_TRUE(read_until_closed(fd, 5s, &got));
+    ASSERT_FALSE(got.empty());
+    EXPECT_TRUE(std::holds_alternative<Reject>(got.back()));
+    close(fd);
+  }
+  {  // the wrong secret: Reject(authentication_failed), then closed
+    const int fd = connect_to(port_);
+    const std::string wrong = "not-the-cluster-secret-at-all";
+    NodeHandshake hs(SharedSecret(std::vector<std::uint8_t>(wrong.begin(), wrong.end()), "test"), "test-dome", "b");
+    send_all(fd, encode(hs.start()));
+    FrameDecoder decoder;
+    std::optional<Challenge> challenge;
+    std::uint8_t buffer[512];
+    const auto deadline = Clock::now() + 5s;
+    while (!challenge && Clock::now() < deadline) {
+      pollfd p{fd, POLLIN, 0};
+      if (poll(&p, 1, 50) <= 0) continue;
+      const ssize_t n = recv(fd, buffer, sizeof buffer, 0);
+      ASSERT_GT(n, 0);
+      decoder.feed(std::span<const std::uint8_t>(buffer, static_cast<std::size_t>(n)));
+      if (auto m = decoder.next()) challenge = std::get<Challenge>(*m);
+    }
+    ASSERT_TRUE(challenge.has_value());
+    send_all(fd, encode(hs.on_challenge(*challenge)));
+    std::vector<Message> got;
+    EXPECT_TRUE(read_until_closed(fd, 5s, &got));
+    ASSERT_EQ(got.size(), 1u);
+    ASSERT_TRUE(std::holds_alternative<Reject>(got[0]));
+    EXPECT_EQ(std::get<Reject>(got[0]).reason, RejectReason::authentication_failed);
+    close(fd);
+  }
+  {  // a truncated frame, then the client goes away
+    const int fd = connect_to(port_);
+    std::vector<std::uint8_t> frame = encode(Hello{kProtocolVersion, "test-dome", "c", Nonce{}});
+    frame.resize(frame.size() / 2);
+    send_all(fd, frame);
+    close(fd);
+  }
+  // The master keeps serving node a.
+  const std::size_t before = presented(dir_ / "out/a").size();
+  EXPECT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= before + 3; }, 60s)) << logs();
+  kill(master.pid, SIGTERM);
+  EXPECT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  EXPECT_EQ(wait_exit(a, 20s), std::optional<int>(0)) << logs();
+  const std::string log = read_text(dir_ / "master.log");
+  EXPECT_NE(log.find("protocol error: bad_magic"), std::string::npos) << log;
+  EXPECT_NE(log.find("protocol error: oversized"), std::string::npos) << log;
+  EXPECT_NE(log.find("protocol error: unsupported_version"), std::string::npos) << log;
+  EXPECT_NE(log.find("refused"), std::string::npos) << log;
+  EXPECT_NE(log.find("wrong shared secret"), std::string::npos) << log;
+  EXPECT_NE(log.find("truncated frame"), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace zenith::cluster
