@@ -72,6 +72,7 @@
 #include "render/scene/scene_loader.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
+#include "warp/viewport_config.h"
 
 namespace {
 
@@ -93,6 +94,11 @@ struct Options {
   std::filesystem::path csv = std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/render_frame_times.csv";
   std::filesystem::path scene = std::filesystem::path(ZENITH_SOURCE_DIR) / "configs/scenes/three-worlds.json";
   std::optional<std::filesystem::path> cache;
+  /// Per-projector mode: render every output of this viewport config (its own
+  /// projection, warp and size) and report each one's frame time and peak memory.
+  std::optional<std::filesystem::path> viewport;
+  std::filesystem::path viewport_csv =
+      std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/projector_frame_times.csv";
 };
 
 constexpr const char* kUsage =
@@ -114,7 +120,10 @@ constexpr const char* kUsage =
     "  --chart-only   render nothing: redraw the chart of an existing --csv (same --quick/--sizes)\n"
     "  --scene        scene file (default configs/scenes/three-worlds.json)\n"
     "  --cache        table cache directory (default $ZENITH_CACHE_DIR, $XDG_CACHE_HOME/zenith, ~/.cache/zenith)\n"
-    "  --device       GL device: auto (default), software (llvmpipe), hardware\n";
+    "  --device       GL device: auto (default), software (llvmpipe), hardware\n"
+    "  --viewport     also time every output of a viewport config (configs/viewports/), with all\n"
+    "                 atmospheres: per-projector frame time and peak memory\n"
+    "  --viewport-csv its CSV (default bench/results/projector_frame_times.csv)\n";
 
 std::pair<int, int> parse_size(const std::string& text) {
   static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
@@ -162,6 +171,8 @@ Options parse_options(int argc, char** argv) {
     else if (a == "--scene") o.scene = value(i, a);
     else if (a == "--cache") o.cache = value(i, a);
     else if (a == "--device") o.device = value(i, a);
+    else if (a == "--viewport") o.viewport = value(i, a);
+    else if (a == "--viewport-csv") o.viewport_csv = value(i, a);
     else if (a == "--help" || a == "-h") {
       fmt::print("{}", kUsage);
       std::exit(0);
@@ -209,7 +220,23 @@ struct Result {
   double frame_min_s = 0.0;  // fastest frame: the least disturbed by other processes
   int frames = 0;
   std::size_t tiles_covered = 0, tiles_total = 0;
+  double peak_memory_mb = 0.0;  // largest over the case's rounds (process peak during its frames)
 };
+
+/// Resets the process's peak resident set size (Linux: /proc/self/clear_refs "5").
+void reset_peak_memory() {
+  std::ofstream clear("/proc/self/clear_refs");
+  clear << "5";
+}
+
+/// Peak resident set size since the last reset [MB] (VmHWM of /proc/self/status; 0 if unknown).
+/// On a CPU rasterizer the GPU's images live in this process, so it is the frame's whole footprint.
+double peak_memory_mb() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
+  return 0.0;
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -243,13 +270,14 @@ void write_csv(const std::filesystem::path& path, const std::string& device, con
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write " + path.string());
   csv << "device,resolution,projection,atmospheres,frame_ms,mpixel_per_s,tiles_covered,tiles_total,frames,"
-         "frame_ms_min\n";
+         "frame_ms_min,peak_memory_mb\n";
   for (const Result& r : results) {
     const double pixels = double(r.resolution.width) * double(r.resolution.height);
     csv << csv_field(device) << ',' << r.resolution.label() << ',' << r.resolution.projection() << ','
         << r.atmospheres << ',' << fmt::format("{:.3f}", r.frame_s * 1e3) << ','
         << fmt::format("{:.3f}", pixels / r.frame_s / 1e6) << ',' << r.tiles_covered << ',' << r.tiles_total << ','
-        << r.frames << ',' << fmt::format("{:.3f}", r.frame_min_s * 1e3) << '\n';
+        << r.frames << ',' << fmt::format("{:.3f}", r.frame_min_s * 1e3) << ','
+        << fmt::format("{:.0f}", r.peak_memory_mb) << '\n';
   }
   if (!csv.flush()) throw std::runtime_error("cannot write " + path.string());
 }
@@ -301,6 +329,38 @@ void print_table(const std::vector<Resolution>& res, int max_atmospheres, const 
     }
     fmt::print("{}\n", line);
   }
+}
+
+/// Per-projector frame time and peak memory for every output of a viewport
+/// config (all the scene's atmospheres), e.g. the six projectors of a dome.
+void time_projectors(const Options& opt, const std::string& device, const scene::Scene& scene,
+                     render::Renderer& renderer) {
+  const warp::ViewportConfig config = warp::load_viewport_config(*opt.viewport);
+  const render::RowSink discard = [](int, int, std::span<const float>) {};
+  if (opt.viewport_csv.has_parent_path()) std::filesystem::create_directories(opt.viewport_csv.parent_path());
+  std::ofstream csv(opt.viewport_csv);
+  if (!csv) throw std::runtime_error("cannot write " + opt.viewport_csv.string());
+  csv << "device,viewports,output,size,projection,frame_ms,frame_ms_min,peak_memory_mb,frames\n";
+  fmt::print("\nper projector ({}, scene '{}'):\n{:<10} {:>11} {:>10} {:>10} {:>9}  projection\n", config.name,
+             scene.name, "output", "size", "median ms", "min ms", "peak MB");
+  for (const warp::OutputConfig& out : config.outputs) {
+    renderer.render(scene, *out.projection, discard);  // tile cones, ray tables: once per projection
+    reset_peak_memory();
+    std::vector<double> times;
+    for (int i = 0; i < opt.iterations * opt.rounds; ++i) {
+      const auto start = Clock::now();
+      renderer.render(scene, *out.projection, discard);
+      times.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    }
+    const double peak = peak_memory_mb(), med = median(times), fastest = *std::min_element(times.begin(), times.end());
+    const std::string size = fmt::format("{}x{}", out.width_px, out.height_px);
+    fmt::print("{:<10} {:>11} {:>10.1f} {:>10.1f} {:>9.0f}  {}\n", out.name, size, med * 1e3, fastest * 1e3, peak,
+               out.projection->describe());
+    csv << csv_field(device) << ',' << csv_field(config.name) << ',' << csv_field(out.name) << ',' << size << ','
+        << csv_field(out.projection->describe()) << ',' << fmt::format("{:.3f},{:.3f},{:.0f}", med * 1e3, fastest * 1e3, peak)
+        << ',' << times.size() << '\n';
+  }
+  fmt::print("csv: {}\n", opt.viewport_csv.string());
 }
 
 int run(int argc, char** argv) {
@@ -385,6 +445,7 @@ int run(int argc, char** argv) {
   struct Gathered {
     std::vector<double> times;
     render::FrameStats stats;
+    double peak_memory_mb = 0.0;
   };
   std::map<std::pair<std::size_t, int>, Gathered> gathered;
   bool failed = false;
@@ -409,6 +470,7 @@ int run(int argc, char** argv) {
           }
           std::vector<double> times;
           render::FrameStats stats;
+          reset_peak_memory();
           for (auto _ : state) {
             double spent = 0.0;
             for (int attempt = 0; static_cast<int>(times.size()) < opt.iterations && attempt < opt.iterations + 3;
@@ -436,6 +498,7 @@ int run(int argc, char** argv) {
           state.counters["Mpix/s"] = double(projection.width()) * double(projection.height()) / median(times) / 1e6;
           state.counters["atm_tiles"] = static_cast<double>(tiles);
           Gathered& g = gathered[{ri, n}];
+          g.peak_memory_mb = std::max(g.peak_memory_mb, peak_memory_mb());
           g.times.insert(g.times.end(), times.begin(), times.end());
           g.stats = stats;
         });
@@ -452,6 +515,7 @@ int run(int argc, char** argv) {
                static_cast<int>(g.times.size()), 0,
                static_cast<std::size_t>((r.width + kTile - 1) / kTile) * static_cast<std::size_t>((r.height + kTile - 1) / kTile)};
     for (const auto& a : g.stats.atmospheres) out.tiles_covered += a.tiles;
+    out.peak_memory_mb = g.peak_memory_mb;
     results.push_back(out);
   }
   if (results.empty()) {
@@ -464,6 +528,7 @@ int run(int argc, char** argv) {
   write_csv(opt.csv, device, results);
   fmt::print("csv: {}\n", opt.csv.string());
   if (opt.chart) write_chart(opt.csv, res, device);
+  if (opt.viewport) time_projectors(opt, device, scene, with_atmospheres_renderer);
   return failed ? 1 : 0;
 }
 
