@@ -62,6 +62,7 @@ struct MasterArgs {
   double sun_step_deg = 0.1;
   std::uint32_t wait_for_nodes_ms = 30000;
   bool cpu_precompute = false;
+  std::vector<std::string> switches;  ///< --switch-atmosphere FRAME:BODY:PRESET_OR_FILE
 };
 
 void run_master(const MasterArgs& a) {
@@ -74,6 +75,7 @@ void run_master(const MasterArgs& a) {
   if (!a.cache_dir.empty()) options.cache_directory = fs::path(a.cache_dir);
   options.cpu_precompute = a.cpu_precompute;
   options.wait_for_nodes_ms = a.wait_for_nodes_ms;
+  for (const std::string& text : a.switches) options.atmosphere_switches.push_back(cluster::parse_atmosphere_switch(text));
   cluster::SharedSecret secret = load_secret(options.config);
   spdlog::info("master: shared secret from {}", secret.source());
   cluster::Master master(std::move(options), std::move(secret));
@@ -87,6 +89,8 @@ struct NodeArgs {
   std::string cluster = kDefaultCluster, name, out, cache_dir;
   std::optional<int> port;
   std::uint32_t connect_timeout_ms = 15000;
+  std::vector<std::string> atmosphere_files;
+  std::uint32_t debug_render_delay_ms = 0;
 };
 
 int run_node(const NodeArgs& a) {
@@ -97,6 +101,8 @@ int run_node(const NodeArgs& a) {
   options.cache_directory = a.cache_dir.empty() ? default_node_cache(options.config, a.name) : fs::path(a.cache_dir);
   if (a.port) options.port = static_cast<std::uint16_t>(*a.port);
   options.connect_timeout_ms = a.connect_timeout_ms;
+  for (const std::string& f : a.atmosphere_files) options.atmosphere_files.emplace_back(f);
+  options.debug_render_delay_ms = a.debug_render_delay_ms;
   cluster::SharedSecret secret = load_secret(options.config);
   cluster::Node node(std::move(options), std::move(secret));
   return node.run();
@@ -111,6 +117,7 @@ struct ClusterArgs {
   std::optional<int> port;
   double sun_step_deg = 0.1;
   std::optional<std::uint64_t> stitch_frame;
+  std::vector<std::string> switches;  ///< passed to the master; files also to the local nodes
 };
 
 bool is_local_host(const std::string& host) {
@@ -249,6 +256,13 @@ void run_cluster(const ClusterArgs& a) {
                                           "--sun-step-deg", fmt::format("{}", a.sun_step_deg)};
   master_args.insert(master_args.end(), common.begin(), common.end());
   if (!a.cache_dir.empty()) master_args.insert(master_args.end(), {"--cache", a.cache_dir});
+  // A switch to an atmosphere file needs the file on the nodes too (they can only use parameters they know).
+  std::vector<std::string> node_atmospheres;
+  for (const std::string& text : a.switches) {
+    const cluster::AtmosphereSwitch sw = cluster::parse_atmosphere_switch(text);
+    master_args.insert(master_args.end(), {"--switch-atmosphere", text});
+    if (fs::is_regular_file(sw.atmosphere)) node_atmospheres.insert(node_atmospheres.end(), {"--atmosphere", sw.atmosphere});
+  }
   const pid_t master = spawn_self(master_args);
   spdlog::info("cluster: master started (pid {})", master);
 
@@ -263,6 +277,7 @@ void run_cluster(const ClusterArgs& a) {
     std::vector<std::string> args = {"--log-level", level, "node", "--name", node.name, "--out", out.string(),
                                      "--connect-timeout-ms", "900000"};
     args.insert(args.end(), common.begin(), common.end());
+    args.insert(args.end(), node_atmospheres.begin(), node_atmospheres.end());
     if (!a.cache_dir.empty()) args.insert(args.end(), {"--cache", (fs::path(a.cache_dir) / "nodes" / node.name).string()});
     nodes.emplace_back(spawn_self(args), node.name);
     spdlog::info("cluster: node '{}' started (pid {})", node.name, nodes.back().first);
@@ -322,6 +337,9 @@ void register_cluster_commands(CLI::App& app) {
         ->check(CLI::Range(-10.0, 10.0));
     cmd->add_option("--wait-for-nodes-ms", a->wait_for_nodes_ms,
                     "Start when every node is ready, or after this long with those that are (default 30000)");
+    cmd->add_option("--switch-atmosphere", a->switches,
+                    "FRAME:BODY:PRESET_OR_FILE: from FRAME on, prepare that atmosphere's tables in the background and "
+                    "switch every node to them at one frame (repeatable; docs/cluster.md)");
     cmd->callback([a] { run_master(*a); });
   }
   {
@@ -333,6 +351,10 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--cache", a->cache_dir, "This node's table cache (default $XDG_CACHE_HOME/zenith/cluster-nodes/<cluster>/<node>)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms, "Keep trying to reach the master this long (default 15000)");
+    cmd->add_option("--atmosphere", a->atmosphere_files,
+                    "An atmosphere file the master may switch to (besides the scene's and the presets; repeatable)");
+    cmd->add_option("--debug-render-delay-ms", a->debug_render_delay_ms,
+                    "Test hook: sleep this long before rendering each frame (plays a slow node)");
     cmd->callback([a] {
       const int code = run_node(*a);
       if (code != 0) std::exit(code);  // the NodeExit code (docs/cluster.md)
@@ -351,6 +373,8 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--sun-step-deg", a->sun_step_deg, "The sun turns this much per frame (default 0.1)")
         ->check(CLI::Range(-10.0, 10.0));
     cmd->add_option("--stitch-frame", a->stitch_frame, "Frame to stitch into OUT/stitched/ (default: the last)");
+    cmd->add_option("--switch-atmosphere", a->switches,
+                    "FRAME:BODY:PRESET_OR_FILE: switch that atmosphere mid-show (passed to the master; repeatable)");
     cmd->callback([a] { run_cluster(*a); });
   }
 }

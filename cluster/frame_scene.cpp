@@ -37,7 +37,8 @@ FrameState default_show_frame(const scene::Scene& scene, std::uint64_t frame, do
   s.exposure = scene.camera.exposure;
   // Negative: westward, as the day advances on a prograde-rotating body.
   const double angle_rad = -static_cast<double>(frame) * sun_step_deg * std::numbers::pi / 180.0;
-  s.sun_direction = frame == 0 ? scene.sun.direction
+  // Frame 0 (and every frame of a still sun) is the scene exactly as configured.
+  s.sun_direction = frame == 0 || sun_step_deg == 0.0 ? scene.sun.direction
                                : glm::normalize(glm::angleAxis(angle_rad, sun_axis(scene)) * scene.sun.direction);
   s.sun_angular_radius_rad = scene.sun.angular_radius_rad;
   s.sun_irradiance_W_m2_nm = scene.sun.irradiance_W_m2_nm;

@@ -16,7 +16,8 @@ namespace zenith::cluster {
 
 /// The default show without a show file: frame N is the scene as configured
 /// with the sun turned by N · sun_step_deg about the polar axis of the body
-/// nearest the camera (world +z without bodies), westward as the day advances.
+/// nearest the camera (world +z without bodies), westward as the day advances;
+/// with sun_step_deg = 0 every frame has the configured sun direction exactly.
 FrameState default_show_frame(const scene::Scene& scene, std::uint64_t frame, double sun_step_deg,
                               const std::vector<AtmosphereTableRef>& atmospheres, std::uint32_t render_flags);
 

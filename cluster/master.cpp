@@ -8,9 +8,11 @@
 #include <memory>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
 
@@ -39,7 +41,27 @@ std::string cat(const T&... parts) {
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
+std::string short_hash(const Digest& d) { return to_hex(d).substr(0, 12) + "…"; }
+
 }  // namespace
+
+AtmosphereSwitch parse_atmosphere_switch(const std::string& text) {
+  const auto first = text.find(':');
+  const auto second = first == std::string::npos ? std::string::npos : text.find(':', first + 1);
+  if (second == std::string::npos || first == 0 || second == first + 1 || second + 1 >= text.size())
+    throw std::invalid_argument(cat("--switch-atmosphere ", text, ": expected FRAME:BODY:PRESET_OR_FILE"));
+  AtmosphereSwitch sw;
+  try {
+    std::size_t used = 0;
+    sw.frame = std::stoull(text.substr(0, first), &used);
+    if (used != first) throw std::invalid_argument("trailing characters");
+  } catch (const std::exception&) {
+    throw std::invalid_argument(cat("--switch-atmosphere ", text, ": FRAME must be a frame number"));
+  }
+  sw.body = text.substr(first + 1, second - first - 1);
+  sw.atmosphere = text.substr(second + 1);
+  return sw;
+}
 
 struct Master::Impl {
   /// One node's connection.
@@ -49,7 +71,13 @@ struct Master::Impl {
     std::optional<MasterHandshake> handshake;
     enum class State { handshake, tables, ready } state = State::handshake;
     std::string name;  ///< from Hello
-    std::set<Digest> tables_ready;
+    /// The node's cache inventory: the TableReady messages it sends right after
+    /// Welcome, up to its first other message (a Heartbeat), name the sets it
+    /// already holds; those are announced to it but never sent again.
+    bool inventory_done = false;
+    std::set<Digest> cached;
+    std::set<Digest> tables_ready;  ///< TableReady after the inventory: held, verified and loaded
+    std::uint64_t chunks_sent = 0;
     bool lagging = false;  ///< dropped from a barrier; back at the next boundary once it reports
     Clock::time_point connected_at = Clock::now();
   };
@@ -57,8 +85,22 @@ struct Master::Impl {
   MasterOptions options;
   SharedSecret secret;
   scene::Scene scene;
-  std::vector<TableSetFile> tables;
+  /// Every table set prepared so far (current, pending and superseded versions), by table hash.
+  std::map<Digest, TableSetFile> table_sets;
+  /// The current version of every atmosphere, as FrameStates carry it.
   std::vector<AtmosphereTableRef> table_refs;
+
+  /// A new table version on its way (docs/cluster.md, "Table versions"):
+  /// prepared on `worker` while frames go on with the old one, then sent to
+  /// every node; it takes effect once every ready node sent TableReady for it.
+  struct PendingVersion {
+    std::size_t ref_index = 0;  ///< into table_refs
+    Digest hash{};
+    bool distributed = false;   ///< prepared and sent to the nodes
+  };
+  std::optional<PendingVersion> pending;
+  std::size_t next_switch = 0;  ///< into options.atmosphere_switches (sorted by frame)
+  std::thread worker;
   std::uint32_t render_flags = 0;
 
   asio::io_context io;
@@ -77,35 +119,202 @@ struct Master::Impl {
   bool started = false, stopping = false, waiting_logged = false;
   std::uint64_t presented = 0;
 
-  Impl(MasterOptions o, SharedSecret s) : options(std::move(o)), secret(std::move(s)) {}
+  Impl(MasterOptions o, SharedSecret s) : options(std::move(o)), secret(std::move(s)) {
+    std::stable_sort(options.atmosphere_switches.begin(), options.atmosphere_switches.end(),
+                     [](const AtmosphereSwitch& a, const AtmosphereSwitch& b) { return a.frame < b.frame; });
+  }
+  ~Impl() {
+    if (worker.joinable()) worker.join();
+  }
 
-  // ---- preparation ----------------------------------------------------------
-
-  void prepare_tables() {
+  app::TableRequest table_request() const {
     app::TableRequest request;
     request.options.sizes = app::table_sizes_by_name(options.config.table_sizes);
     request.options.max_orders = options.config.table_orders;
     request.backend = options.cpu_precompute ? app::PrecomputeBackend::Cpu : app::PrecomputeBackend::Gpu;
     request.cache_directory = options.cache_directory;
     request.show_progress = false;
+    return request;
+  }
+
+  /// Obtains (cache or precompute) and encodes one set; any thread.
+  static TableSetFile obtain_table_set(const std::string& body, const atmosphere::AtmosphereModel& model,
+                                       const app::TableRequest& request) {
+    app::ObtainedTables obtained = app::obtain_tables(model, request);
+    if (obtained.cache_file.empty())
+      throw std::runtime_error(cat("the tables of '", body, "' could not be stored in the cache: nodes get "
+                                   "the cache file's bytes, so the master needs a writable cache (--cache DIR)"));
+    return make_table_set_file(body, digest_from_hex(atmosphere::lookup_table_hash(model)), obtained.cache_file);
+  }
+
+  /// The atmosphere a switch names, resolved at the scene's wavelengths and
+  /// checked against its body. Throws std::invalid_argument / ConfigError.
+  std::pair<std::size_t, atmosphere::LoadedAtmosphere> resolve_switch(const AtmosphereSwitch& sw) const {
+    // table_refs lists the bodies with an atmosphere in scene order (prepare_tables).
+    std::optional<std::size_t> index;
+    std::size_t with_atmosphere = 0;
     for (const scene::Body& body : scene.bodies) {
       if (!body.atmosphere) continue;
-      const atmosphere::AtmosphereModel& model = body.atmosphere->loaded.model;
-      app::ObtainedTables obtained = app::obtain_tables(model, request);
-      if (obtained.cache_file.empty())
-        throw std::runtime_error(cat("the tables of '", body.name, "' could not be stored in the cache: nodes get "
-                                     "the cache file's bytes, so the master needs a writable cache (--cache DIR)"));
-      const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(model));
-      tables.push_back(make_table_set_file(body.name, hash, obtained.cache_file));
+      if (body.name == sw.body) index = with_atmosphere;
+      ++with_atmosphere;
+    }
+    if (!index)
+      throw std::invalid_argument(cat("--switch-atmosphere: the scene ", scene.source, " has no body '", sw.body,
+                                      "' with an atmosphere"));
+    atmosphere::LoadedAtmosphere loaded = app::load_atmosphere_argument(sw.atmosphere, {scene.wavelengths_nm});
+    scene::Scene changed = scene;
+    for (scene::Body& body : changed.bodies)
+      if (body.name == sw.body) body.atmosphere->loaded = loaded;
+    try {
+      scene::check_scene(changed);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(cat("--switch-atmosphere ", sw.body, ":", sw.atmosphere, ": ", e.what()));
+    }
+    return {*index, std::move(loaded)};
+  }
+
+  // ---- preparation ----------------------------------------------------------
+
+  void prepare_tables() {
+    const app::TableRequest request = table_request();
+    for (const scene::Body& body : scene.bodies) {
+      if (!body.atmosphere) continue;
+      TableSetFile set = obtain_table_set(body.name, body.atmosphere->loaded.model, request);
       AtmosphereTableRef ref;
       ref.body_name = body.name;
-      ref.table_hash = hash;
+      ref.table_hash = set.table_hash;
       ref.effective_from_frame = 0;
       table_refs.push_back(ref);
-      spdlog::info("master: tables of '{}' ready to share: {} ({} bytes, sha256 {}…)", body.name,
-                   obtained.cache_file.string(), tables.back().bytes->size(),
-                   to_hex(tables.back().content_sha256).substr(0, 12));
+      spdlog::info("master: tables of '{}' ready to share: version {} ({} bytes, sha256 {}…)", body.name,
+                   short_hash(set.table_hash), set.bytes->size(), to_hex(set.content_sha256).substr(0, 12));
+      table_sets.insert_or_assign(set.table_hash, std::move(set));
     }
+  }
+
+  // ---- table versions -------------------------------------------------------
+
+  /// The sets a node must hold: the current versions and a distributed pending one.
+  std::vector<Digest> wanted_sets() const {
+    std::vector<Digest> wanted;
+    for (const AtmosphereTableRef& r : table_refs)
+      if (std::find(wanted.begin(), wanted.end(), r.table_hash) == wanted.end()) wanted.push_back(r.table_hash);
+    if (pending && pending->distributed && std::find(wanted.begin(), wanted.end(), pending->hash) == wanted.end())
+      wanted.push_back(pending->hash);
+    return wanted;
+  }
+
+  /// Sends one set: the whole transfer, or only its TableAnnounce when the
+  /// node's inventory holds it (the node then loads its cached copy).
+  void send_table_set(Session& s, const TableSetFile& set) {
+    if (s.cached.count(set.table_hash)) {
+      s.connection->send_encoded(set.frames.front());
+      return;
+    }
+    for (const auto& f : set.frames) s.connection->send_encoded(f);
+    s.chunks_sent += set.frames.size() - 1;
+  }
+
+  /// The node's inventory is complete: send what it lacks.
+  void finish_inventory(Session& s) {
+    s.inventory_done = true;
+    const std::vector<Digest> wanted = wanted_sets();
+    const std::uint64_t chunks_before = s.chunks_sent;
+    std::size_t cached = 0;
+    for (const Digest& h : wanted) {
+      cached += s.cached.count(h);
+      send_table_set(s, table_sets.at(h));
+    }
+    spdlog::info("master: node '{}' holds {} of its {} table set{} in its cache: sent {} table chunk{}", s.name, cached,
+                 wanted.size(), wanted.size() == 1 ? "" : "s", s.chunks_sent - chunks_before,
+                 s.chunks_sent - chunks_before == 1 ? "" : "s");
+    maybe_become_ready(s);
+  }
+
+  void maybe_become_ready(Session& s) {
+    if (s.state != Session::State::tables || !s.inventory_done) return;
+    for (const AtmosphereTableRef& r : table_refs)
+      if (!s.tables_ready.count(r.table_hash)) return;
+    become_ready(s);
+  }
+
+  /// Starts the next switch whose frame has come (one version in flight at a time).
+  void maybe_start_switch() {
+    if (pending || next_switch >= options.atmosphere_switches.size()) return;
+    const AtmosphereSwitch& sw = options.atmosphere_switches[next_switch];
+    if (sw.frame > frame) return;
+    ++next_switch;
+    auto [index, loaded] = resolve_switch(sw);  // checked at start-up: does not throw here
+    const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
+    if (hash == table_refs[index].table_hash) {
+      spdlog::info("master: frame {}: '{}' already uses {}; nothing to switch", frame, sw.body, sw.atmosphere);
+      maybe_start_switch();
+      return;
+    }
+    pending = PendingVersion{index, hash, false};
+    spdlog::info("master: frame {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
+                 "version {}",
+                 frame, short_hash(hash), sw.body, sw.atmosphere, short_hash(table_refs[index].table_hash));
+    if (worker.joinable()) worker.join();  // the previous switch's worker has posted its result already
+    auto known = table_sets.find(hash);
+    if (known != table_sets.end()) {  // an earlier version again: already encoded
+      asio::post(io, [this] { on_version_prepared(std::nullopt); });
+      return;
+    }
+    worker = std::thread([this, body = sw.body, model = loaded.model, request = table_request()] {
+      try {
+        TableSetFile set = obtain_table_set(body, model, request);
+        asio::post(io, [this, set = std::move(set)]() mutable { on_version_prepared(std::move(set)); });
+      } catch (const std::exception& e) {
+        asio::post(io, [this, what = std::string(e.what())] {
+          spdlog::error("master: the new tables could not be prepared: {}; the show goes on with the current version",
+                        what);
+          pending.reset();
+          maybe_start_switch();
+        });
+      }
+    });
+  }
+
+  /// Networking thread: the pending version's tables are ready; send them to every node.
+  void on_version_prepared(std::optional<TableSetFile> set) {
+    if (!pending || stopping) return;
+    if (set) table_sets.insert_or_assign(set->table_hash, std::move(*set));
+    const TableSetFile& prepared = table_sets.at(pending->hash);
+    pending->distributed = true;
+    std::size_t receivers = 0;
+    for (auto& [id, s] : sessions) {
+      if (s->state == Session::State::handshake || !s->inventory_done) continue;  // gets it with its inventory
+      send_table_set(*s, prepared);
+      ++receivers;
+    }
+    spdlog::info("master: table version {} of '{}' prepared ({} bytes); sent to {} node{}", short_hash(pending->hash),
+                 prepared.body_name, prepared.bytes->size(), receivers, receivers == 1 ? "" : "s");
+    maybe_apply_pending();
+  }
+
+  /// Once every ready node holds the pending version, it takes effect at the next frame to start.
+  void maybe_apply_pending() {
+    if (!pending || !pending->distributed || stopping) return;
+    std::size_t ready = 0;
+    for (const auto& [id, s] : sessions) {
+      if (s->state != Session::State::ready) continue;
+      if (!s->tables_ready.count(pending->hash)) return;
+      ++ready;
+    }
+    AtmosphereTableRef& ref = table_refs[pending->ref_index];
+    const std::uint64_t effective = in_flight ? frame + 1 : frame;
+    spdlog::info("master: table version {} of '{}' takes effect at frame {} on all {} ready node{} (was {})",
+                 short_hash(pending->hash), ref.body_name, effective, ready, ready == 1 ? "" : "s",
+                 short_hash(ref.table_hash));
+    ref.table_hash = pending->hash;
+    ref.effective_from_frame = effective;
+    pending.reset();
+    // Nodes still joining now need the new version (they were sent it) and no longer the old one.
+    std::vector<std::uint32_t> ids;
+    for (const auto& [id, s] : sessions) ids.push_back(id);
+    for (const std::uint32_t id : ids)
+      if (Session* s = find(id)) maybe_become_ready(*s);
+    maybe_start_switch();
   }
 
   // ---- connections ----------------------------------------------------------
@@ -164,6 +373,7 @@ struct Master::Impl {
     sessions.erase(it);
     asio::post(io, [keep] {});
     if (in_flight && participants.erase(id) > 0) check_barrier();
+    maybe_apply_pending();  // it may have been the last node without the pending version
   }
 
   void on_message(std::uint32_t id, Message&& message) {
@@ -197,11 +407,8 @@ struct Master::Impl {
       }
       s.connection->send(s.handshake->welcome(s.id, frame, options.config.heartbeat_ms, options.config.barrier_timeout_ms));
       s.state = Session::State::tables;
-      spdlog::info("master: node '{}' authenticated from {} (id {}); sending {} table set{}", s.name,
-                   s.connection->peer(), s.id, tables.size(), tables.size() == 1 ? "" : "s");
-      for (const TableSetFile& t : tables)
-        for (const auto& f : t.frames) s.connection->send_encoded(f);
-      if (tables.empty()) become_ready(s);
+      spdlog::info("master: node '{}' authenticated from {} (id {}); waiting for its table inventory", s.name,
+                   s.connection->peer(), s.id);
     } else if (std::holds_alternative<Goodbye>(message)) {
       s.connection->close(cat("Goodbye during the handshake: ", std::get<Goodbye>(message).reason));
     } else {
@@ -219,19 +426,25 @@ struct Master::Impl {
   }
 
   void on_running_message(Session& s, const Message& message) {
+    if (!s.inventory_done) {
+      if (const auto* held = std::get_if<TableReady>(&message)) {
+        s.cached.insert(held->table_hash);  // any set, even one this show does not use
+        return;
+      }
+      finish_inventory(s);  // the first other message (the node sends a Heartbeat) ends it
+    }
     std::visit(
         [&](const auto& m) {
           using T = std::decay_t<decltype(m)>;
           if constexpr (std::is_same_v<T, Heartbeat>) {
           } else if constexpr (std::is_same_v<T, TableReady>) {
-            const bool known = std::any_of(tables.begin(), tables.end(),
-                                           [&](const TableSetFile& t) { return t.table_hash == m.table_hash; });
-            if (!known) {
+            if (!table_sets.count(m.table_hash)) {
               protocol_violation(s, "TableReady for a table set that was never sent");
               return;
             }
             s.tables_ready.insert(m.table_hash);
-            if (s.state == Session::State::tables && s.tables_ready.size() == tables.size()) become_ready(s);
+            maybe_become_ready(s);
+            maybe_apply_pending();
           } else if constexpr (std::is_same_v<T, RenderDone>) {
             on_render_done(s, m);
           } else if constexpr (std::is_same_v<T, Goodbye>) {
@@ -290,6 +503,7 @@ struct Master::Impl {
       return;
     }
     waiting_logged = false;
+    maybe_start_switch();
     const FrameState state = default_show_frame(scene, frame, options.sun_step_deg, table_refs, render_flags);
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(state));
     for (const auto& [id, done] : participants) sessions.at(id)->connection->send_encoded(encoded);
@@ -397,6 +611,7 @@ struct Master::Impl {
       s->connection->send_encoded(encoded);
     }
     if (!started) maybe_start_show();
+    if (started) maybe_start_switch();
     heartbeat_timer.expires_after(milliseconds(options.config.heartbeat_ms));
     heartbeat_timer.async_wait([this](const boost::system::error_code& ec) {
       if (!ec && !stopping) heartbeat_tick();
@@ -439,6 +654,7 @@ struct Master::Impl {
     acceptor.bind(endpoint, ec);
     if (ec) throw std::runtime_error(cat("master: cannot listen on ", options.config.master_host, ":", port, ": ", ec.message()));
     acceptor.listen();
+    for (const AtmosphereSwitch& sw : options.atmosphere_switches) resolve_switch(sw);  // fail before any precompute
     prepare_tables();
     spdlog::info("master: cluster '{}' listening on {}:{} for {} node{} (heartbeat {} ms, barrier timeout {} ms, {} Hz)",
                  options.config.name, options.config.master_host, port, options.config.nodes.size(),
@@ -452,6 +668,7 @@ struct Master::Impl {
     });
     heartbeat_tick();
     io.run();
+    if (worker.joinable()) worker.join();
     spdlog::info("master: done, {} frame{} presented", presented, presented == 1 ? "" : "s");
     return 0;
   }

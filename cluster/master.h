@@ -7,18 +7,36 @@
 //   timeout: late nodes are dropped from the frame with a log line naming them)
 //   ──► Present N to every node that finished N ──► FrameState N + 1 …
 //
-// Nodes join or rejoin at any time; they get the tables, then enter at the
-// next frame boundary. All networking runs on one thread (the io_context's);
-// the caller's thread only prepares the tables and then runs that loop.
+// Nodes join or rejoin at any time; they get the tables (only those their
+// cache lacks: the inventory), then enter at the next frame boundary. All
+// networking runs on one thread (the io_context's); the caller's thread
+// prepares the first tables and then runs that loop. A new table version
+// (AtmosphereSwitch) is prepared on a worker thread while the show goes on,
+// sent to every node, and takes effect at one frame on all of them once every
+// ready node holds it (docs/cluster.md, "Table versions").
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cluster/cluster_config.h"
 #include "cluster/handshake.h"
 
 namespace zenith::cluster {
+
+/// A change of one atmosphere's parameters during the show (docs/cluster.md,
+/// "Table versions"): from frame `frame` on, the master prepares the tables of
+/// `atmosphere` for body `body` in the background, ships them, and switches
+/// every node to them at one frame once all live nodes hold them.
+struct AtmosphereSwitch {
+  std::uint64_t frame = 0;  ///< start preparing when this frame starts
+  std::string body;         ///< a body of the scene that has an atmosphere
+  std::string atmosphere;   ///< a preset name or an atmosphere file (as `zenith render --atmosphere`)
+};
+
+/// Parses "FRAME:BODY:PRESET_OR_FILE"; throws std::invalid_argument naming the value.
+AtmosphereSwitch parse_atmosphere_switch(const std::string& text);
 
 struct MasterOptions {
   ClusterConfig config;
@@ -30,6 +48,8 @@ struct MasterOptions {
   /// Frames start when every configured node is ready, or after this long with
   /// the nodes that are (at least one).
   std::uint32_t wait_for_nodes_ms = 30000;
+  /// Parameter changes the show makes (for now from the command line).
+  std::vector<AtmosphereSwitch> atmosphere_switches;
 };
 
 class Master {

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <deque>
 #include <fstream>
@@ -23,6 +24,7 @@
 #include "apps/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
+#include "atmosphere/parameters.h"
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
 #include "cluster/table_transfer.h"
@@ -54,10 +56,13 @@ double ms_since(Clock::time_point t) { return std::chrono::duration<double, std:
 
 /// Work for the render thread.
 struct Job {
-  enum class Kind { warmup, render, present, stop } kind = Kind::stop;
+  enum class Kind { prepare, render, present, stop } kind = Kind::stop;
   FrameState state;         ///< render
   std::uint64_t frame = 0;  ///< present
+  Digest table_hash{};      ///< prepare: load this table set, render once, then TableReady
 };
+
+std::string short_hash(const Digest& d) { return to_hex(d).substr(0, 12) + "…"; }
 
 }  // namespace
 
@@ -67,6 +72,14 @@ struct Node::Impl {
   scene::Scene base_scene;
   warp::ViewportConfig viewports;
   std::vector<std::size_t> outputs;  ///< indices into viewports.outputs
+  /// Every atmosphere this node can render, by table hash: the scene's, the
+  /// presets that fit a body, and NodeOptions::atmosphere_files. Built before
+  /// the threads start and read-only after, so both threads use it.
+  struct KnownAtmosphere {
+    std::string body;
+    atmosphere::LoadedAtmosphere loaded;
+  };
+  std::map<Digest, KnownAtmosphere> known_tables;
   atmosphere::lut::PrecomputeOptions table_options;
   std::filesystem::path node_directory;
 
@@ -77,9 +90,9 @@ struct Node::Impl {
   std::shared_ptr<Connection> connection;
   std::optional<NodeHandshake> handshake;
   TableReceiver receiver;
-  std::map<Digest, const scene::Body*> needed_tables;  ///< table hash → the body whose atmosphere uses it
-  std::set<Digest> stored_tables;
-  bool welcomed = false, stopping = false, warmup_sent = false;
+  std::set<Digest> inventory;     ///< sets found valid in the cache at Welcome (declared to the master)
+  std::set<Digest> held_tables;   ///< sets this node holds (cached or received) and may render with
+  bool welcomed = false, stopping = false;
   std::uint32_t heartbeat_ms = 250;
   Clock::time_point connect_started;
   int exit_code = kNodeExitDone;
@@ -95,7 +108,8 @@ struct Node::Impl {
   std::unique_ptr<render::Renderer> renderer;
   std::uint32_t renderer_flags = 0;
   std::optional<std::uint64_t> rendered_frame;
-  std::string rendered_digest;
+  std::string rendered_digest, rendered_tables;
+  bool warmed_up = false;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> partials;  ///< partial → final
 
   Impl(NodeOptions o, SharedSecret s) : options(std::move(o)), secret(std::move(s)) {}
@@ -192,7 +206,7 @@ struct Node::Impl {
       heartbeat_ms = w->heartbeat_interval_ms;
       spdlog::info("node '{}': welcomed by the master as id {} at frame {} (heartbeat {} ms, barrier timeout {} ms)",
                    options.node_name, w->node_id, w->current_frame, w->heartbeat_interval_ms, w->barrier_timeout_ms);
-      if (needed_tables.empty()) request_warmup();
+      send_inventory();
     } else if (const auto* r = std::get_if<Reject>(&message)) {
       spdlog::error("node '{}': the master refused the connection ({}): {}", options.node_name,
                     static_cast<int>(r->reason), r->text);
@@ -212,17 +226,25 @@ struct Node::Impl {
   void on_running_message(const Message& message) {
     if (const auto* fs = std::get_if<FrameState>(&message)) {
       for (const AtmosphereTableRef& ref : fs->atmospheres)
-        if (!stored_tables.count(ref.table_hash))
+        if (!held_tables.count(ref.table_hash) || ref.effective_from_frame > fs->frame)
           throw std::runtime_error(cat("FrameState ", fs->frame, " uses table set ", to_hex(ref.table_hash).substr(0, 12),
-                                       "… for '", ref.body_name, "', which this node does not hold"));
-      push(Job{Job::Kind::render, *fs, fs->frame});
+                                       "… (effective from frame ", ref.effective_from_frame, ") for '", ref.body_name,
+                                       "', which this node does not hold or may not use yet"));
+      push(Job{Job::Kind::render, *fs, fs->frame, {}});
     } else if (const auto* p = std::get_if<Present>(&message)) {
-      push(Job{Job::Kind::present, {}, p->frame});
+      push(Job{Job::Kind::present, {}, p->frame, {}});
     } else if (const auto* a = std::get_if<TableAnnounce>(&message)) {
-      if (!needed_tables.count(a->table_hash))
+      if (!known_tables.count(a->table_hash))
         throw std::runtime_error(cat("TableAnnounce of table set ", to_hex(a->table_hash).substr(0, 12),
-                                     "…, which no atmosphere of the scene uses (do master and node read the same scene?)"));
-      receiver.on_announce(*a);
+                                     "…, which no atmosphere this node knows uses (the scene's, the presets, --atmosphere "
+                                     "files: do master and node read the same scene and files?)"));
+      if (inventory.count(a->table_hash)) {
+        // Declared in the inventory: the master sends no chunks; use the cached copy.
+        held_tables.insert(a->table_hash);
+        push(Job{Job::Kind::prepare, {}, 0, a->table_hash});
+      } else {
+        receiver.on_announce(*a);
+      }
     } else if (const auto* c = std::get_if<TableChunk>(&message)) {
       if (std::optional<std::vector<std::uint8_t>> bytes = receiver.on_chunk(*c)) store_tables(c->table_hash, *bytes);
     } else if (std::holds_alternative<Heartbeat>(message)) {
@@ -237,28 +259,45 @@ struct Node::Impl {
   }
 
   void store_tables(const Digest& hash, const std::vector<std::uint8_t>& bytes) {
-    const scene::Body* body = needed_tables.at(hash);
+    const KnownAtmosphere& known = known_tables.at(hash);
     const atmosphere::lut::TableCache cache(options.cache_directory);
-    const auto path = cache.path_for(atmosphere::lut::table_set_key(body->atmosphere->loaded.model, table_options));
+    const auto path = cache.path_for(atmosphere::lut::table_set_key(known.loaded.model, table_options));
     write_file_atomically(path, bytes);
-    stored_tables.insert(hash);
-    spdlog::info("node '{}': tables of '{}' received ({} bytes, SHA-256 verified) and cached as {}", options.node_name,
-                 body->name, bytes.size(), path.string());
-    if (stored_tables.size() == needed_tables.size()) request_warmup();
+    held_tables.insert(hash);
+    spdlog::info("node '{}': tables of '{}' version {} received ({} bytes, SHA-256 verified) and cached as {}",
+                 options.node_name, known.body, short_hash(hash), bytes.size(), path.string());
+    // The render thread loads them and renders once (shaders, uploads); then TableReady.
+    push(Job{Job::Kind::prepare, {}, 0, hash});
   }
 
-  /// Every table set is cached: the render thread loads them and renders once
-  /// (shaders, uploads), then TableReady tells the master this node can join.
-  void request_warmup() {
-    if (warmup_sent) return;
-    warmup_sent = true;
-    push(Job{Job::Kind::warmup, {}, 0});
+  /// Right after Welcome: a TableReady for every set this node knows that its
+  /// cache holds and that loads with valid checksums, then a Heartbeat that
+  /// ends the inventory. The master sends such sets as a bare TableAnnounce.
+  void send_inventory() {
+    const atmosphere::lut::TableCache cache(options.cache_directory);
+    for (const auto& [hash, known] : known_tables) {
+      const auto path = cache.path_for(atmosphere::lut::table_set_key(known.loaded.model, table_options));
+      std::error_code ec;
+      if (!std::filesystem::exists(path, ec)) continue;
+      std::string problem;
+      if (!cache.load(known.loaded.model, table_options, &problem)) {
+        spdlog::warn("node '{}': cached tables {} are not usable ({}); the master will send them again",
+                     options.node_name, path.string(), problem);
+        continue;
+      }
+      inventory.insert(hash);
+      connection->send(TableReady{hash});
+    }
+    connection->send(Heartbeat{static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count())});
+    spdlog::info("node '{}': {} table set{} already in the cache", options.node_name, inventory.size(),
+                 inventory.size() == 1 ? "" : "s");
   }
 
-  void send_tables_ready() {
+  void send_table_ready(const Digest& hash) {
     if (stopping || !connection) return;
-    for (const auto& [hash, body] : needed_tables) connection->send(TableReady{hash});
-    spdlog::info("node '{}': ready; joining the barrier at the next frame boundary", options.node_name);
+    connection->send(TableReady{hash});
+    spdlog::info("node '{}': table version {} ready", options.node_name, short_hash(hash));
   }
 
   void heartbeat_tick() {
@@ -295,7 +334,7 @@ struct Node::Impl {
     heartbeat_timer.cancel();
     retry_timer.cancel();
     if (connection && connection->is_open()) connection->close_after_flush("node stopping");
-    push(Job{Job::Kind::stop, {}, 0});
+    push(Job{Job::Kind::stop, {}, 0, {}});
   }
   bool finished = false;
 
@@ -369,11 +408,30 @@ struct Node::Impl {
     rendered_frame.reset();
   }
 
+  /// The scene with body `body`'s atmosphere replaced by table version `hash`.
+  void use_table_version(scene::Scene& scene, const std::string& body, const Digest& hash) const {
+    const KnownAtmosphere& known = known_tables.at(hash);
+    for (scene::Body& b : scene.bodies)
+      if (b.name == body && b.atmosphere) {
+        b.atmosphere->loaded = known.loaded;
+        return;
+      }
+    throw std::runtime_error(cat("FrameState names body '", body, "', which has no atmosphere in ", base_scene.source));
+  }
+
   void render_frame(const FrameState& state) {
     discard_partials();
+    if (options.debug_render_delay_ms > 0)
+      std::this_thread::sleep_for(milliseconds(options.debug_render_delay_ms));  // test hook: a slow node
     const auto t0 = Clock::now();
     scene::Scene scene = base_scene;
     apply_frame_state(state, scene);
+    rendered_tables.clear();
+    for (const AtmosphereTableRef& ref : state.atmospheres) {
+      use_table_version(scene, ref.body_name, ref.table_hash);
+      rendered_tables += cat(rendered_tables.empty() ? "" : ",", ref.body_name, "=", to_hex(ref.table_hash).substr(0, 16));
+    }
+    if (rendered_tables.empty()) rendered_tables = "-";
     ensure_renderer(state.render_flags);
     for (const std::size_t i : outputs) {
       const warp::OutputConfig& o = viewports.outputs[i];
@@ -400,16 +458,26 @@ struct Node::Impl {
     partials.clear();
     rendered_frame.reset();
     std::ofstream log(node_directory / "presented.log", std::ios::app);
-    log << "frame " << frame << " state " << rendered_digest << "\n";
+    log << "frame " << frame << " state " << rendered_digest << " tables " << rendered_tables << "\n";
     spdlog::debug("node '{}': presented frame {}", options.node_name, frame);
   }
 
-  void warmup() {
+  /// Loads table set `hash` (TableCache::load checks every part's checksum)
+  /// and renders with it once: every output the first time (shaders), then
+  /// the first output only (table upload). Then TableReady.
+  void prepare(const Digest& hash) {
     ensure_renderer(render_flags_of(render::RenderOptions{}));
     const auto t0 = Clock::now();
-    for (const std::size_t i : outputs) renderer->render_image(base_scene, *viewports.outputs[i].projection);
-    spdlog::info("node '{}': tables loaded and shaders ready ({:.0f} ms)", options.node_name, ms_since(t0));
-    asio::post(io, [this] { send_tables_ready(); });
+    scene::Scene scene = base_scene;
+    use_table_version(scene, known_tables.at(hash).body, hash);
+    for (const std::size_t i : outputs) {
+      renderer->render_image(scene, *viewports.outputs[i].projection);
+      if (warmed_up) break;
+    }
+    warmed_up = true;
+    spdlog::info("node '{}': tables of '{}' version {} loaded and rendered once ({:.0f} ms)", options.node_name,
+                 known_tables.at(hash).body, short_hash(hash), ms_since(t0));
+    asio::post(io, [this, hash] { send_table_ready(hash); });
   }
 
   void render_loop() {
@@ -428,7 +496,7 @@ struct Node::Impl {
       }
       try {
         switch (job.kind) {
-          case Job::Kind::warmup: warmup(); break;
+          case Job::Kind::prepare: prepare(job.table_hash); break;
           case Job::Kind::render: render_frame(job.state); break;
           case Job::Kind::present: present_frame(job.frame); break;
           case Job::Kind::stop: discard_partials(); return;
@@ -442,6 +510,32 @@ struct Node::Impl {
 
   // =========================================================================
 
+  /// known_tables: for each body with an atmosphere, the scene's atmosphere,
+  /// every preset and every --atmosphere file that fits it (ground radius).
+  void build_known_tables() {
+    const atmosphere::LoadOptions load_options{base_scene.wavelengths_nm};
+    std::vector<atmosphere::LoadedAtmosphere> candidates;
+    for (const std::string& name : atmosphere::preset_names()) {
+      try {
+        candidates.push_back(atmosphere::load_preset(name, load_options));
+      } catch (const std::exception& e) {
+        spdlog::debug("node '{}': preset {} not usable here: {}", options.node_name, name, e.what());
+      }
+    }
+    for (const std::filesystem::path& file : options.atmosphere_files)
+      candidates.push_back(atmosphere::load_atmosphere_file(file.string(), load_options));  // errors are fatal
+    for (const scene::Body& body : base_scene.bodies) {
+      if (!body.atmosphere) continue;
+      auto add = [&](const atmosphere::LoadedAtmosphere& loaded) {
+        known_tables.emplace(digest_from_hex(atmosphere::lookup_table_hash(loaded.model)),
+                             KnownAtmosphere{body.name, loaded});
+      };
+      add(body.atmosphere->loaded);
+      for (const atmosphere::LoadedAtmosphere& c : candidates)
+        if (std::abs(c.model.ground_radius_m - body.radius_m) <= 1.0) add(c);
+    }
+  }
+
   int run() {
     const ClusterNodeConfig* me = options.config.find_node(options.node_name);
     if (me == nullptr)
@@ -451,9 +545,7 @@ struct Node::Impl {
     for (const std::string& name : me->outputs) outputs.push_back(viewports.index_of(name));
     table_options.sizes = app::table_sizes_by_name(options.config.table_sizes);
     table_options.max_orders = options.config.table_orders;
-    for (const scene::Body& body : base_scene.bodies)
-      if (body.atmosphere)
-        needed_tables.emplace(digest_from_hex(atmosphere::lookup_table_hash(body.atmosphere->loaded.model)), &body);
+    build_known_tables();
     node_directory = options.output_directory / options.node_name;
     std::filesystem::create_directories(node_directory);
     heartbeat_ms = options.config.heartbeat_ms;
@@ -471,7 +563,7 @@ struct Node::Impl {
       } catch (const std::exception& e) {
         spdlog::error("node '{}': networking failed: {}", options.node_name, e.what());
         exit_code = kNodeExitFailed;
-        push(Job{Job::Kind::stop, {}, 0});
+        push(Job{Job::Kind::stop, {}, 0, {}});
       }
     });
     render_loop();

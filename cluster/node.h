@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cluster/cluster_config.h"
 #include "cluster/handshake.h"
@@ -37,6 +38,13 @@ struct NodeOptions {
   std::filesystem::path cache_directory;       ///< the node's own table cache
   std::optional<std::uint16_t> port;           ///< overrides config.master.port
   std::uint32_t connect_timeout_ms = 15000;    ///< keep trying to reach the master this long
+  /// Atmosphere files (besides the scene's atmospheres and the built-in
+  /// presets) whose tables the master may switch to during the show: a node
+  /// can only use a table version whose parameters it knows (docs/cluster.md).
+  std::vector<std::filesystem::path> atmosphere_files;
+  /// Test hook (`--debug-render-delay-ms`): sleep this long before each frame,
+  /// to play a slow node. 0 in production.
+  std::uint32_t debug_render_delay_ms = 0;
 };
 
 class Node {

@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -91,17 +92,22 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-/// "frame N state DIGEST" lines of a node's presented.log.
+/// "frame N state DIGEST tables BODY=HASH,..." lines of a node's presented.log.
 struct Presented {
   std::uint64_t frame;
   std::string digest;
+  std::string tables;  ///< "Earth=0123456789abcdef"
 };
 std::vector<Presented> presented(const fs::path& node_dir) {
   std::vector<Presented> out;
   std::ifstream in(node_dir / "presented.log");
-  std::string word, digest, state;
-  std::uint64_t frame = 0;
-  while (in >> word >> frame >> state >> digest) out.push_back({frame, digest});
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string word, state, digest, tables_word, tables;
+    std::uint64_t frame = 0;
+    if (fields >> word >> frame >> state >> digest >> tables_word >> tables) out.push_back({frame, digest, tables});
+  }
   return out;
 }
 
@@ -158,16 +164,20 @@ class ClusterProcess : public ::testing::Test {
     return dir_ / "cluster.json";
   }
 
-  Child start_master(const fs::path& config, std::uint64_t frames, int wait_for_nodes_ms = 120000) {
-    children_.push_back(spawn({"master", "--cluster", config.string(), "--frames", std::to_string(frames), "--cache",
-                               cache_.string(), "--wait-for-nodes-ms", std::to_string(wait_for_nodes_ms)},
-                              dir_ / "master.log"));
+  Child start_master(const fs::path& config, std::uint64_t frames, int wait_for_nodes_ms = 120000,
+                     const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args = {"master", "--cluster", config.string(), "--frames", std::to_string(frames),
+                                     "--cache", cache_.string(), "--wait-for-nodes-ms", std::to_string(wait_for_nodes_ms)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    children_.push_back(spawn(args, dir_ / "master.log"));
     return children_.back();
   }
-  Child start_node(const fs::path& config, const std::string& name) {
-    children_.push_back(spawn({"node", "--cluster", config.string(), "--name", name, "--out", (dir_ / "out").string(),
-                               "--cache", (dir_ / "node-cache" / name).string(), "--connect-timeout-ms", "300000"},
-                              dir_ / (name + ".log")));
+  Child start_node(const fs::path& config, const std::string& name, const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args = {"node", "--cluster", config.string(), "--name", name, "--out",
+                                     (dir_ / "out").string(), "--cache", (dir_ / "node-cache" / name).string(),
+                                     "--connect-timeout-ms", "300000"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    children_.push_back(spawn(args, dir_ / (name + ".log")));
     return children_.back();
   }
   std::string logs() const {
@@ -304,6 +314,135 @@ TEST_F(ClusterProcess, NodesExitWithAClearMessageWhenTheMasterDies) {
   }
 }
 
+/// Occurrences of `needle` in `text`.
+std::size_t count_of(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+  return n;
+}
+
+/// The quadrants of `frame` equal a single-process 128² render of `scene`, bit for bit.
+void expect_frame_equals_single_render(const fs::path& dir, const fs::path& cache, const fs::path& scene,
+                                       std::uint64_t frame, std::vector<Child>& children) {
+  const fs::path single = dir / "single.png";
+  const Child render = spawn({"render", "--scene", scene.string(), "--projection", "fisheye", "--size", "128x128",
+                              "--tables", "small", "--cache", cache.string(), "--out", single.string()},
+                             dir / "render.log");
+  children.push_back(render);
+  ASSERT_EQ(wait_exit(render, 200s), std::optional<int>(0)) << read_text(dir / "render.log");
+  const image::LinearImage whole = image::read_image(single);
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"a", "top-left"}, {"a", "top-right"}, {"b", "bottom-left"}, {"c", "bottom-right"}};
+  char name[32];
+  std::snprintf(name, sizeof name, "frame-%06d.png", static_cast<int>(frame));
+  for (std::size_t q = 0; q < files.size(); ++q) {
+    const image::LinearImage tile = image::read_image(dir / "out" / files[q].first / files[q].second / name);
+    ASSERT_EQ(tile.width, kQuadrantPx);
+    const int x0 = (q % 2) * kQuadrantPx, y0 = (q / 2) * kQuadrantPx;
+    int differing = 0;
+    for (int y = 0; y < kQuadrantPx; ++y)
+      for (int x = 0; x < kQuadrantPx * 3; ++x)
+        differing += tile.rgb[y * kQuadrantPx * 3 + x] != whole.rgb[(y0 + y) * whole.width * 3 + x0 * 3 + x];
+    EXPECT_EQ(differing, 0) << files[q].second << " of " << name << ": values differing from the single render";
+  }
+}
+
+TEST_F(ClusterProcess, AtmosphereSwitchTakesEffectAtTheSameFrameOnEveryNode) {
+  const fs::path config = write_config(10);
+  // Earth goes from earth-advanced (the scene's) to earth-standard: asked for at frame 3, prepared in the background.
+  const Child master = start_master(config, 0, 120000,
+                                    {"--sun-step-deg", "0", "--switch-atmosphere", "3:Earth:earth-standard"});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  const auto switched_frames = [&](const char* node) {
+    const auto p = presented(dir_ / "out" / node);
+    return std::count_if(p.begin(), p.end(), [&](const Presented& x) { return x.tables != p.front().tables; });
+  };
+  ASSERT_TRUE(wait_until([&] { return switched_frames("a") >= 3 && switched_frames("b") >= 3 && switched_frames("c") >= 3; },
+                         400s))
+      << logs();
+  kill(master.pid, SIGTERM);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  for (const Child& c : children_) {
+    if (c.pid != master.pid) {
+      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
+    }
+  }
+
+  const auto a = presented(dir_ / "out/a");
+  ASSERT_FALSE(a.empty());
+  const std::string old_tables = a.front().tables;
+  std::optional<std::uint64_t> first_new;
+  std::string new_tables;
+  for (const Presented& p : a)
+    if (p.tables != old_tables) {
+      first_new = p.frame;
+      new_tables = p.tables;
+      break;
+    }
+  ASSERT_TRUE(first_new.has_value());
+  EXPECT_GE(*first_new, 3u) << "not before the switch was asked for";
+  for (const char* node : {"a", "b", "c"}) {
+    const auto p = presented(dir_ / "out" / node);
+    expect_contiguous(p, 0, p.back().frame, node);
+    for (const Presented& x : p)
+      EXPECT_EQ(x.tables, x.frame < *first_new ? old_tables : new_tables) << node << " frame " << x.frame;
+  }
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_NE(master_log.find("takes effect at frame " + std::to_string(*first_new)), std::string::npos) << master_log;
+
+  // A frame after the switch equals a single-process render with the new atmosphere.
+  std::ifstream in(kSource / "configs/scenes/earth-sunset.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  const auto at = scene.find("\"earth-advanced\"");
+  ASSERT_NE(at, std::string::npos);
+  scene.replace(at, 16, "\"earth-standard\"");
+  std::ofstream(dir_ / "earth-standard-sunset.json") << scene;
+  expect_frame_equals_single_render(dir_, cache_, dir_ / "earth-standard-sunset.json", *first_new + 1, children_);
+}
+
+TEST_F(ClusterProcess, SlowNodeMissesTheBarrierWhileTheOthersSkipNoFrame) {
+  const fs::path config = write_config(10, 300);
+  const Child master = start_master(config, 0);
+  start_node(config, "a");
+  start_node(config, "b");
+  start_node(config, "c", {"--debug-render-delay-ms", "1500"});
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= 8; }, 300s)) << logs();
+  kill(master.pid, SIGTERM);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  const auto a = presented(dir_ / "out/a"), b = presented(dir_ / "out/b");
+  expect_contiguous(a, 0, a.back().frame, "a");
+  expect_contiguous(b, 0, b.back().frame, "b");
+  EXPECT_EQ(a.back().frame, b.back().frame);
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_NE(master_log.find("node 'c' missed the barrier of frame"), std::string::npos) << master_log;
+  EXPECT_EQ(master_log.find("node 'a' missed"), std::string::npos) << master_log;
+  EXPECT_EQ(master_log.find("node 'b' missed"), std::string::npos) << master_log;
+}
+
+TEST_F(ClusterProcess, ReconnectingNodeWithCachedTablesReceivesNoChunks) {
+  const fs::path config = write_config(10);
+  const Child master = start_master(config, 0, 1000);
+  Child a = start_node(config, "a");
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= 2; }, 240s)) << logs();
+  kill(a.pid, SIGKILL);
+  ASSERT_EQ(wait_exit(a, 5s), std::optional<int>(128 + SIGKILL));
+  const std::size_t before = presented(dir_ / "out/a").size();
+  a = start_node(config, "a");  // same cache folder
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= before + 3; }, 240s)) << logs();
+  kill(master.pid, SIGTERM);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  const std::string master_log = read_text(dir_ / "master.log");
+  // First connection: an empty cache, the whole set; second: announced only.
+  EXPECT_EQ(count_of(master_log, "node 'a' holds 0 of its 1 table set in its cache: sent "), 1u) << master_log;
+  EXPECT_EQ(count_of(master_log, "node 'a' holds 1 of its 1 table set in its cache: sent 0 table chunks"), 1u)
+      << master_log;
+  const std::string node_log = read_text(dir_ / "a.log");
+  EXPECT_EQ(count_of(node_log, "received ("), 1u) << node_log;
+  EXPECT_NE(node_log.find("1 table set already in the cache"), std::string::npos) << node_log;
+}
+
 // ---- hostile clients --------------------------------------------------------
 
 int connect_to(int port) {
@@ -436,6 +575,59 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
   EXPECT_NE(log.find("refused"), std::string::npos) << log;
   EXPECT_NE(log.find("wrong shared secret"), std::string::npos) << log;
   EXPECT_NE(log.find("truncated frame"), std::string::npos) << log;
+}
+
+// ---- a hostile master -------------------------------------------------------
+
+TEST_F(ClusterProcess, NodeRefusesAMasterThatProvesTheWrongSecret) {
+  const fs::path config = write_config(10);
+  // A fake master: it answers the handshake but cannot compute the master MAC.
+  const int listener = socket(AF_INET, SOCK_STREAM, 0);
+  const int yes = 1;
+  setsockopt(listener, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port_));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(bind(listener, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  ASSERT_EQ(listen(listener, 4), 0);
+  const Child node = start_node(config, "a");
+  pollfd p{listener, POLLIN, 0};
+  ASSERT_EQ(poll(&p, 1, 60000), 1) << logs();
+  const int fd = accept(listener, nullptr, nullptr);
+  ASSERT_GE(fd, 0);
+  FrameDecoder decoder;
+  std::uint8_t buffer[512];
+  const auto next_message = [&]() -> std::optional<Message> {
+    const auto deadline = Clock::now() + 10s;
+    while (Clock::now() < deadline) {
+      if (auto m = decoder.next()) return m;
+      pollfd q{fd, POLLIN, 0};
+      if (poll(&q, 1, 50) <= 0) continue;
+      const ssize_t n = recv(fd, buffer, sizeof buffer, 0);
+      if (n <= 0) return std::nullopt;
+      decoder.feed(std::span<const std::uint8_t>(buffer, static_cast<std::size_t>(n)));
+    }
+    return std::nullopt;
+  };
+  const auto hello = next_message();
+  ASSERT_TRUE(hello && std::holds_alternative<Hello>(*hello)) << logs();
+  send_all(fd, encode(Challenge{random_nonce()}));
+  const auto auth = next_message();
+  ASSERT_TRUE(auth && std::holds_alternative<Authenticate>(*auth)) << logs();
+  Welcome welcome;
+  welcome.node_id = 1;
+  welcome.master_mac.fill(0x42);  // not HMAC(secret, ...)
+  welcome.heartbeat_interval_ms = 200;
+  welcome.barrier_timeout_ms = 20000;
+  send_all(fd, encode(welcome));
+  EXPECT_EQ(wait_exit(node, 20s), std::optional<int>(2)) << logs();
+  read_until_closed(fd, 2s);
+  close(fd);
+  close(listener);
+  const std::string log = read_text(dir_ / "a.log");
+  EXPECT_NE(log.find("failed to authenticate"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir_ / "out/a/presented.log"));
 }
 
 }  // namespace
