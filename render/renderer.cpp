@@ -36,7 +36,7 @@ using gl::Texture;
 using gl::TextureFormat;
 using Vec4 = std::array<float, 4>;
 
-constexpr int kMaxBodies = 8;          // MAX_BODIES of frame.glsl
+constexpr int kMaxBodies = 64;         // as many as a scene may have (render/scene/scene_loader.cpp)
 constexpr unsigned kAlbedoMapUnit = 8;  // albedo_maps (a 2D array texture)
 constexpr unsigned kRayTableUnit = 7;   // projection_ray_table of projection.glsl
 constexpr std::size_t kLanes = kWavelengthLanes;
@@ -48,7 +48,7 @@ enum ImageUnit : unsigned { kGbufferHit = 0, kGbufferAlbedo = 1, kRadianceSum = 
 /// frame.glsl's Body, std430 layout (6 vec4).
 struct GpuBody {
   Vec4 centre;  // direction camera → centre, distance
-  Vec4 shape;   // R, |c|² − R², atmosphere slot, albedo slot
+  Vec4 shape;   // R, |c|² − R², atmosphere slot, albedo layer
   Vec4 albedo_map;
   Vec4 world_to_body[3];
 };

@@ -72,7 +72,7 @@ class Renderer {
 
   /// Renders `scene` through `projection` (its camera, sun and bodies), handing
   /// rows to `sink` as bands finish. Throws std::invalid_argument for scenes it
-  /// cannot render (more than 8 bodies, an atmosphere at other wavelengths than
+  /// cannot render (more than 64 bodies, an atmosphere at other wavelengths than
   /// the scene's) and std::runtime_error for GL failures.
   void render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink);
   /// The whole frame in memory: width · height · 3 floats.

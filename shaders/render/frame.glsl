@@ -12,9 +12,7 @@
 
 #include "projection.glsl"
 
-const int MAX_BODIES = 8;
-
-/// One analytic sphere (render/frame_setup.h: GpuBody, same layout).
+/// One analytic sphere (render/renderer.cpp: GpuBody, same layout).
 struct Body {
   vec4 centre;          // xyz: unit direction camera → centre (world); w: distance camera → centre [m]
   vec4 shape;           // x: radius R [m]; y: |c|² − R² [m²]; z: atmosphere slot or −1; w: albedo map layer
