@@ -1,5 +1,7 @@
 #include "atmosphere/json_reader.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <sstream>
 
@@ -100,4 +102,26 @@ void JsonReader::finish() const {
     if (!read_.count(key)) fail(key, "unknown key (check the spelling; see docs/atmosphere-config.md)");
 }
 
+namespace config {
+
+std::string brief(const nlohmann::json& value) {
+  std::string text = value.dump();
+  if (text.size() > 80) text = text.substr(0, 77) + "...";
+  return text;
+}
+
+void reject_unknown_keys(const JsonReader& r, const nlohmann::json& object,
+                         std::initializer_list<std::string_view> allowed, std::string_view docs_page) {
+  if (!object.is_object()) return;
+  for (const auto& [key, value] : object.items()) {
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    std::ostringstream s;
+    s << "unknown key (check the spelling); allowed here: ";
+    for (auto it = allowed.begin(); it != allowed.end(); ++it) s << (it == allowed.begin() ? "" : ", ") << *it;
+    s << " (see " << docs_page << ")";
+    r.fail(key, s.str());
+  }
+}
+
+}  // namespace config
 }  // namespace zenith

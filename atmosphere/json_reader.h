@@ -12,6 +12,9 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <sstream>
+#include <initializer_list>
 #include <vector>
 
 namespace zenith {
@@ -65,4 +68,25 @@ class JsonReader {
   mutable std::set<std::string> read_;
 };
 
+/// Helpers the config loaders share (scenes, viewports, clusters).
+namespace config {
+
+/// Concatenation through a stream (GCC 12 warns falsely on chains of std::string +).
+template <typename... T>
+std::string cat(const T&... parts) {
+  std::ostringstream s;
+  (s << ... << parts);
+  return s.str();
+}
+
+/// A JSON value for a message, shortened to 80 characters when long (an inline object).
+std::string brief(const nlohmann::json& value);
+
+/// Rejects, through r.fail(), the first key of `object` not in `allowed`, listing
+/// those that are and pointing to `docs_page` ("docs/scenes.md"). Objects that
+/// are not objects are left to JsonReader's constructor to report.
+void reject_unknown_keys(const JsonReader& r, const nlohmann::json& object,
+                         std::initializer_list<std::string_view> allowed, std::string_view docs_page);
+
+}  // namespace config
 }  // namespace zenith

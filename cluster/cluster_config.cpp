@@ -11,19 +11,13 @@
 namespace zenith::cluster {
 namespace {
 
+using config::cat;
+
 using nlohmann::json;
 namespace fs = std::filesystem;
 
 constexpr std::size_t kMaxNameLength = 64;
 constexpr int kMaxNodes = 256;
-
-/// Concatenation through a stream (GCC 12 warns falsely on chains of std::string +).
-template <typename... T>
-std::string cat(const T&... parts) {
-  std::ostringstream s;
-  (s << ... << parts);
-  return s.str();
-}
 
 bool valid_name(const std::string& name) {
   return !name.empty() && name.size() <= kMaxNameLength && name != "." && name != ".." &&

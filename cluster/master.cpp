@@ -1,3 +1,4 @@
+#include "atmosphere/json_reader.h"
 #include "cluster/master.h"
 
 #include <spdlog/spdlog.h>
@@ -32,12 +33,7 @@ using std::chrono::milliseconds;
 
 namespace {
 
-template <typename... T>
-std::string cat(const T&... parts) {
-  std::ostringstream s;
-  (s << ... << parts);
-  return s.str();
-}
+using config::cat;  // atmosphere/json_reader.h
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 

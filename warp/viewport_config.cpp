@@ -18,6 +18,9 @@
 namespace zenith::warp {
 namespace {
 
+using config::brief;
+using config::cat;
+
 using nlohmann::json;
 namespace fs = std::filesystem;
 
@@ -28,31 +31,8 @@ constexpr double kMinBlendWidthFraction = 1e-3, kMaxBlendWidthFraction = 0.5;
 constexpr double kMinMaskGamma = 0.1, kMaxMaskGamma = 10.0;
 constexpr std::size_t kMaxNameLength = 64;
 
-/// Concatenation through a stream (GCC 12 warns falsely on chains of std::string +).
-template <typename... T>
-std::string cat(const T&... parts) {
-  std::ostringstream s;
-  (s << ... << parts);
-  return s.str();
-}
-
-/// A value for a message, shortened when long.
-std::string brief(const json& v) {
-  std::string text = v.dump();
-  if (text.size() > 80) text = text.substr(0, 77) + "...";
-  return text;
-}
-
-/// Rejects any key of `object` not in `allowed`, listing those that are.
 void allow_keys(const JsonReader& r, const json& object, std::initializer_list<std::string_view> allowed) {
-  for (const auto& [key, value] : object.items()) {
-    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    std::ostringstream s;
-    s << "unknown key (check the spelling); allowed here: ";
-    for (auto it = allowed.begin(); it != allowed.end(); ++it) s << (it == allowed.begin() ? "" : ", ") << *it;
-    s << " (see docs/viewports.md)";
-    r.fail(key, s.str());
-  }
+  config::reject_unknown_keys(r, object, allowed, "docs/viewports.md");
 }
 
 bool valid_name(const std::string& name) {

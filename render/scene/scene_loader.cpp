@@ -22,6 +22,9 @@
 namespace zenith::scene {
 namespace {
 
+using config::brief;
+using config::cat;
+
 using glm::dvec3;
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -64,33 +67,8 @@ constexpr int kMaxMapWidth_px = 16384, kMaxMapHeight_px = 8192;
 /// Two directions closer than this (radians) count as parallel.
 constexpr double kParallel_rad = 1e-6;
 
-/// Concatenation through a stream (GCC 12 warns falsely on chains of std::string +).
-template <typename... T>
-std::string cat(const T&... parts) {
-  std::ostringstream s;
-  (s << ... << parts);
-  return s.str();
-}
-
-/// A value for a message, shortened when long (an inline object).
-std::string brief(const json& v) {
-  std::string text = v.dump();
-  if (text.size() > 80) text = text.substr(0, 77) + "...";
-  return text;
-}
-
-/// Rejects any key not in `allowed` with a message listing those that are
-/// (JsonReader::finish() would point to the atmosphere docs).
 void allow_keys(const JsonReader& r, const json& object, std::initializer_list<std::string_view> allowed) {
-  if (!object.is_object()) return;  // JsonReader's constructor reports it
-  for (const auto& [key, value] : object.items()) {
-    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    std::ostringstream s;
-    s << "unknown key (check the spelling); allowed here: ";
-    for (auto it = allowed.begin(); it != allowed.end(); ++it) s << (it == allowed.begin() ? "" : ", ") << *it;
-    s << " (see docs/scenes.md)";
-    r.fail(key, s.str());
-  }
+  config::reject_unknown_keys(r, object, allowed, "docs/scenes.md");
 }
 
 /// The object under `key`, with its keys checked.
