@@ -89,6 +89,16 @@ class ByteWriter {
     u16(static_cast<std::uint16_t>(s.size()));
     out_.insert(out_.end(), s.begin(), s.end());
   }
+  /// u32 byte count, then the bytes: for long texts (JSON documents). Same
+  /// errors as string().
+  void long_string(std::string_view s, std::size_t max_bytes, const char* field) {
+    if (s.size() > max_bytes || s.size() > 0xFFFFFFFFu)
+      throw std::length_error(std::string(field) + ": " + std::to_string(s.size()) + " bytes, at most " +
+                              std::to_string(max_bytes) + " allowed");
+    if (!is_valid_utf8(s)) throw std::invalid_argument(std::string(field) + ": not valid UTF-8 (or contains NUL)");
+    u32(static_cast<std::uint32_t>(s.size()));
+    out_.insert(out_.end(), s.begin(), s.end());
+  }
 
  private:
   void put_be(std::uint64_t v, int count) {
@@ -127,6 +137,17 @@ class ByteReader {
   /// length is checked before the bytes are copied.
   std::string string(std::size_t max_bytes, const char* field) {
     const std::size_t length = u16(field);
+    if (length > max_bytes)
+      fail(std::string(field) + ": length " + std::to_string(length) + " exceeds the limit of " +
+           std::to_string(max_bytes) + " bytes");
+    auto view = bytes(length, field);
+    std::string s(reinterpret_cast<const char*>(view.data()), view.size());
+    if (!is_valid_utf8(s)) fail(std::string(field) + ": not valid UTF-8 (or contains NUL)");
+    return s;
+  }
+  /// A u32-length-prefixed UTF-8 string (long_string()), length checked first.
+  std::string long_string(std::size_t max_bytes, const char* field) {
+    const std::size_t length = u32(field);
     if (length > max_bytes)
       fail(std::string(field) + ": length " + std::to_string(length) + " exceeds the limit of " +
            std::to_string(max_bytes) + " bytes");

@@ -25,6 +25,7 @@ constexpr std::size_t kFrameStateMax = 8 + 8 + 3 * 8 + 4 * 8 + 8 + 3 * 8 + 8 + 1
 constexpr std::size_t kTableAnnounceMax = kDigestBytes + 8 + 4 + 4 + kDigestBytes;
 constexpr std::size_t kTableChunkMax = kDigestBytes + 4 + 4 + kMaxTableChunkBytes;
 constexpr std::size_t kGoodbyeMax = kStringMax(kMaxReasonBytes);
+constexpr std::size_t kDefinitionMax = kStringMax(kMaxNameBytes) + kDigestBytes + 4 + kMaxDefinitionBytes;
 static_assert(kFrameStateMax == 1478);
 static_assert(kTableChunkMax == 1048616);
 
@@ -92,6 +93,12 @@ void validate(const TableChunk& m, const Check& check) {
         "TableChunk.bytes: " + std::to_string(m.bytes.size()) + " bytes outside [1, " +
             std::to_string(kMaxTableChunkBytes) + "]");
 }
+void validate(const AtmosphereDefinition& m, const Check& check) {
+  check(!m.body_name.empty(), "AtmosphereDefinition.body_name: empty");
+  // Only the shape is checked here: the node parses the JSON and verifies its hash.
+  check(m.parameters_json.size() >= 2 && m.parameters_json.front() == '{' && m.parameters_json.back() == '}',
+        "AtmosphereDefinition.parameters_json: not a JSON object ({...})");
+}
 template <class T>
 void validate(const T&, const Check&) {}
 
@@ -156,6 +163,11 @@ void write(ByteWriter& w, const TableChunk& m) {
   w.bytes(m.bytes);
 }
 void write(ByteWriter& w, const TableReady& m) { w.bytes(m.table_hash); }
+void write(ByteWriter& w, const AtmosphereDefinition& m) {
+  w.string(m.body_name, kMaxNameBytes, "AtmosphereDefinition.body_name");
+  w.bytes(m.table_hash);
+  w.long_string(m.parameters_json, kMaxDefinitionBytes, "AtmosphereDefinition.parameters_json");
+}
 void write(ByteWriter& w, const Heartbeat& m) { w.u64(m.sent_time_ns); }
 void write(ByteWriter& w, const Goodbye& m) { w.string(m.reason, kMaxReasonBytes, "Goodbye.reason"); }
 
@@ -260,6 +272,13 @@ Message read(MessageType type, ByteReader& r) {
     case MessageType::table_announce: return read_table_announce(r);
     case MessageType::table_chunk: return read_table_chunk(r);
     case MessageType::table_ready: return TableReady{r.array<32>("TableReady.table_hash")};
+    case MessageType::atmosphere_definition: {
+      AtmosphereDefinition m;
+      m.body_name = r.string(kMaxNameBytes, "AtmosphereDefinition.body_name");
+      m.table_hash = r.array<32>("AtmosphereDefinition.table_hash");
+      m.parameters_json = r.long_string(kMaxDefinitionBytes, "AtmosphereDefinition.parameters_json");
+      return m;
+    }
     case MessageType::heartbeat: return Heartbeat{r.u64("Heartbeat.sent_time_ns")};
     case MessageType::goodbye: return Goodbye{r.string(kMaxReasonBytes, "Goodbye.reason")};
   }
@@ -280,6 +299,7 @@ constexpr MessageType type_of() {
   else if constexpr (std::is_same_v<T, TableChunk>) return MessageType::table_chunk;
   else if constexpr (std::is_same_v<T, TableReady>) return MessageType::table_ready;
   else if constexpr (std::is_same_v<T, Heartbeat>) return MessageType::heartbeat;
+  else if constexpr (std::is_same_v<T, AtmosphereDefinition>) return MessageType::atmosphere_definition;
   else {
     static_assert(std::is_same_v<T, Goodbye>);
     return MessageType::goodbye;
@@ -330,6 +350,7 @@ const char* to_string(MessageType type) {
     case MessageType::table_announce: return "TableAnnounce";
     case MessageType::table_chunk: return "TableChunk";
     case MessageType::table_ready: return "TableReady";
+    case MessageType::atmosphere_definition: return "AtmosphereDefinition";
     case MessageType::heartbeat: return "Heartbeat";
     case MessageType::goodbye: return "Goodbye";
   }
@@ -349,6 +370,7 @@ std::optional<std::size_t> max_payload_bytes(std::uint16_t type_value) {
     case MessageType::table_announce: return kTableAnnounceMax;
     case MessageType::table_chunk: return kTableChunkMax;
     case MessageType::table_ready: return kDigestBytes;
+    case MessageType::atmosphere_definition: return kDefinitionMax;
     case MessageType::heartbeat: return 8;
     case MessageType::goodbye: return kGoodbyeMax;
   }

@@ -34,7 +34,7 @@
 namespace zenith::cluster {
 
 /// Bumped on any change to the header or to any payload layout (docs/protocol.md, "Versioning").
-inline constexpr std::uint16_t kProtocolVersion = 1;
+inline constexpr std::uint16_t kProtocolVersion = 2;
 inline constexpr std::array<std::uint8_t, 4> kMagic = {'Z', 'N', 'T', 'H'};
 inline constexpr std::size_t kHeaderBytes = 20;
 
@@ -45,6 +45,7 @@ inline constexpr std::size_t kMaxWavelengths = 64;        ///< FrameState sun ir
 inline constexpr std::size_t kMaxAtmospheres = 8;         ///< FrameState atmosphere table references
 inline constexpr std::size_t kMaxTableChunkBytes = std::size_t{1} << 20;        ///< 1 MiB per TableChunk
 inline constexpr std::uint64_t kMaxTableTotalBytes = std::uint64_t{1} << 31;    ///< 2 GiB per table set
+inline constexpr std::size_t kMaxDefinitionBytes = std::size_t{256} << 10;     ///< 256 KiB of atmosphere JSON
 /// Tolerance on |q| − 1 and |sun direction| − 1 accepted from the wire.
 inline constexpr double kUnitTolerance = 1e-6;
 
@@ -69,6 +70,7 @@ enum class MessageType : std::uint16_t {
   table_announce = 32, ///< master → node
   table_chunk = 33,    ///< master → node
   table_ready = 34,    ///< node → master
+  atmosphere_definition = 35,  ///< master → node, before the TableAnnounce of a set
   heartbeat = 48,      ///< both ways
   goodbye = 49,        ///< both ways, then close
 };
@@ -189,6 +191,19 @@ struct TableReady {
   bool operator==(const TableReady&) const = default;
 };
 
+/// Master → node, before a table set is announced: the parameters that shape
+/// it, so a node renders any version the master prepares — a preset, a file
+/// that exists only on the master's machine, a step of a show's parameter
+/// track (docs/protocol.md, "Atmosphere definitions"). The node resolves the
+/// parameters at its scene's wavelengths and refuses the definition unless
+/// their lookup-table hash equals `table_hash`.
+struct AtmosphereDefinition {
+  std::string body_name;        ///< 1..kMaxNameBytes UTF-8 bytes; the scene's body
+  Digest table_hash{};          ///< atmosphere::lookup_table_hash of the resolved parameters
+  std::string parameters_json;  ///< 2..kMaxDefinitionBytes UTF-8 bytes: a JSON object (an atmosphere file's content)
+  bool operator==(const AtmosphereDefinition&) const = default;
+};
+
 // ---- liveness --------------------------------------------------------------
 
 struct Heartbeat {
@@ -201,7 +216,7 @@ struct Goodbye {
 };
 
 using Message = std::variant<Hello, Challenge, Authenticate, Welcome, Reject, FrameState, RenderDone, Present,
-                             TableAnnounce, TableChunk, TableReady, Heartbeat, Goodbye>;
+                             TableAnnounce, TableChunk, TableReady, Heartbeat, Goodbye, AtmosphereDefinition>;
 
 MessageType message_type(const Message& message);
 

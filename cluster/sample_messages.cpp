@@ -52,6 +52,7 @@ std::vector<Message> sample_messages() {
   out.push_back(TableReady{pattern<32>(5)});
   out.push_back(Heartbeat{987654321ull});
   out.push_back(Goodbye{"shutting down: show ended"});
+  out.push_back(AtmosphereDefinition{"Mars", pattern<32>(7), R"({"zenith_atmosphere": 1, "mode": "standard"})"});
   return out;
 }
 
@@ -81,6 +82,10 @@ std::vector<Message> max_size_messages() {
   out.push_back(TableReady{pattern<32>(17)});
   out.push_back(Heartbeat{~std::uint64_t{0}});
   out.push_back(Goodbye{reason});
+  std::string json = "{\"description\": \"x";  // 18 bytes: even, so 2-byte characters end exactly at the limit
+  while (json.size() < kMaxDefinitionBytes - 2) json += "\xC3\xA9";
+  json += "\"}";
+  out.push_back(AtmosphereDefinition{name, pattern<32>(18), json});
   return out;
 }
 

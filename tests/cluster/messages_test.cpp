@@ -103,6 +103,7 @@ TEST(Messages, DocumentedMaximumPayloads) {
   EXPECT_EQ(max(MessageType::table_ready), 32u);
   EXPECT_EQ(max(MessageType::heartbeat), 8u);
   EXPECT_EQ(max(MessageType::goodbye), 1026u);
+  EXPECT_EQ(max(MessageType::atmosphere_definition), 66u + 32u + 4u + 262144u);
   EXPECT_FALSE(max_payload_bytes(0).has_value());
   EXPECT_FALSE(max_payload_bytes(6).has_value());
   EXPECT_FALSE(max_payload_bytes(0xFFFF).has_value());
@@ -135,6 +136,24 @@ TEST(Messages, EncoderRefusesWhatTheDecoderWouldRefuse) {
   EXPECT_THROW(encode(TableChunk{{}, 0, {}}), std::invalid_argument);
   EXPECT_THROW(encode(TableChunk{{}, 0, std::vector<std::uint8_t>(kMaxTableChunkBytes + 1)}), std::invalid_argument);
   EXPECT_THROW(encode(RenderDone{1, -1.0}), std::invalid_argument);
+
+  EXPECT_THROW(encode(AtmosphereDefinition{"Earth", {}, "[1, 2]"}), std::invalid_argument);  // not an object
+  EXPECT_THROW(encode(AtmosphereDefinition{"", {}, "{}"}), std::invalid_argument);
+  EXPECT_THROW(encode(AtmosphereDefinition{"Earth", {}, "{" + std::string(kMaxDefinitionBytes, ' ') + "}"}),
+               std::length_error);
+}
+
+TEST(Messages, AtmosphereDefinitionLayout) {
+  // u16 name length, name, 32-byte hash, u32 text length, text: all big-endian.
+  const AtmosphereDefinition d{"Io", Digest{}, "{}"};
+  const Bytes payload = encode_payload(d);
+  const Bytes expected = {0, 2, 'I', 'o', 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+                          0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, '{', '}'};
+  EXPECT_EQ(payload, expected);
+  // A length beyond the limit is refused before the text is read.
+  Bytes oversized = payload;
+  oversized[36] = 0x00, oversized[37] = 0x04, oversized[38] = 0x00, oversized[39] = 0x01;  // 262145 bytes
+  EXPECT_THROW(decode_payload(static_cast<std::uint16_t>(MessageType::atmosphere_definition), oversized), ProtocolError);
 }
 
 TEST(Messages, DigestHex) {
