@@ -435,16 +435,6 @@ Horizon horizon_at(const dvec3& camera_m, std::size_t body_index, const Body& bo
   return h;
 }
 
-/// The body whose surface is nearest to a point.
-std::size_t nearest_body(const std::vector<Body>& bodies, const dvec3& p) {
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < bodies.size(); ++i)
-    if (glm::length(p - bodies[i].position_m) - bodies[i].radius_m <
-        glm::length(p - bodies[best].position_m) - bodies[best].radius_m)
-      best = i;
-  return best;
-}
-
 /// Camera frame (+x right, +y up, −z forward) → world, from a forward and an up
 /// that are not parallel (up is made perpendicular to forward).
 glm::dquat camera_rotation(const dvec3& forward, const dvec3& up) {
@@ -453,14 +443,13 @@ glm::dquat camera_rotation(const dvec3& forward, const dvec3& up) {
   return rotation_from_axes(right, true_up, -forward);
 }
 
-struct CameraResult {
-  Camera camera;
-  Horizon horizon;
-};
+void allow_camera_keys(const JsonReader& r, const json& camera) {
+  allow_keys(r, camera, {"position_m", "surface", "look_at", "look", "forward", "up", "exposure"});
+}
 
-CameraResult read_camera(JsonReader& root, const std::vector<Body>& bodies, const Context& ctx) {
-  JsonReader r = open_object(root, "camera", {"position_m", "surface", "look_at", "look", "forward", "up", "exposure"});
-  CameraResult out;
+/// Reads a camera object (its keys already checked by allow_camera_keys).
+CameraPlacement read_camera(JsonReader& r, const std::vector<Body>& bodies, const Context& ctx) {
+  CameraPlacement out;
   Camera& cam = out.camera;
 
   // Position, and the body the camera stands on or is above.
@@ -483,6 +472,7 @@ CameraResult read_camera(JsonReader& root, const std::vector<Body>& bodies, cons
     const double altitude = number(s, "altitude_m", kAltitude);
     // p = c + q · (R + h) (cos φ cos λ, cos φ sin λ, sin φ)
     cam.position_m = b.position_m + b.orientation * direction_from_latitude_longitude(lat, lon) * (b.radius_m + altitude);
+    out.surface = CameraPlacement::Surface{lat, lon, altitude};
     s.finish();
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -497,8 +487,8 @@ CameraResult read_camera(JsonReader& root, const std::vector<Body>& bodies, cons
                                                  i, ")"),
                             "; it must be at least ", kMinCameraClearance_m, " m above every body's surface"));
   }
-  out.horizon = horizon_at(cam.position_m, reference, bodies[reference]);
-  const Horizon& h = out.horizon;
+  out.reference_body = reference;
+  const Horizon h = horizon_at(cam.position_m, reference, bodies[reference]);
 
   // Orientation.
   if (exactly_one(r, {"look_at", "look", "forward"}) == 1) {
@@ -599,9 +589,22 @@ std::vector<double> read_irradiance(JsonReader& r, double distance_au, const Con
   return out;
 }
 
-Sun read_sun(JsonReader& root, const Camera& camera, const Horizon& horizon, const Context& ctx) {
-  JsonReader r = open_object(root, "sun",
-                             {"direction", "position_m", "sky", "angular_diameter_deg", "distance_au", "irradiance"});
+void allow_sun_keys(const JsonReader& r, const json& sun) {
+  allow_keys(r, sun, {"direction", "position_m", "sky", "angular_diameter_deg", "distance_au", "irradiance"});
+}
+
+/// The object under `key` of `parent` (not yet checked for unknown keys).
+JsonReader open_unchecked(JsonReader& parent, const std::string& key) {
+  const json& v = parent.raw(key);
+  if (!v.is_object()) parent.fail(key, cat("must be an object, got ", brief(v)));
+  return JsonReader(v, parent.file(), parent.key_path(key));
+}
+
+/// Reads a sun object (its keys already checked by allow_sun_keys); "sky" is in
+/// the local horizon of `camera`.
+Sun read_sun(JsonReader& r, const std::vector<Body>& bodies, const CameraPlacement& placement, const Context& ctx) {
+  const Camera& camera = placement.camera;
+  const Horizon horizon = horizon_at(camera.position_m, placement.reference_body, bodies.at(placement.reference_body));
   Sun sun;
   double distance_au = 1.0;
   switch (exactly_one(r, {"direction", "position_m", "sky"})) {
@@ -659,9 +662,13 @@ Scene parse_scene(const json& j, const std::string& source, const fs::path& base
   scene.wavelengths_nm = read_wavelengths(root);
   const Context ctx{source, base_dir, scene.wavelengths_nm};
   scene.bodies = read_bodies(root, ctx);
-  const CameraResult camera = read_camera(root, scene.bodies, ctx);
+  JsonReader camera_reader = open_unchecked(root, "camera");
+  allow_camera_keys(camera_reader, root.raw("camera"));
+  const CameraPlacement camera = read_camera(camera_reader, scene.bodies, ctx);
   scene.camera = camera.camera;
-  scene.sun = read_sun(root, scene.camera, camera.horizon, ctx);
+  JsonReader sun_reader = open_unchecked(root, "sun");
+  allow_sun_keys(sun_reader, root.raw("sun"));
+  scene.sun = read_sun(sun_reader, scene.bodies, camera, ctx);
   root.finish();
   try {
     check_scene(scene);  // the invariants, once more, on the resolved values
@@ -669,6 +676,32 @@ Scene parse_scene(const json& j, const std::string& source, const fs::path& base
     throw ConfigError(source, "", e.what());
   }
   return scene;
+}
+
+std::size_t nearest_body(const std::vector<Body>& bodies, const dvec3& point_m) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < bodies.size(); ++i)
+    if (glm::length(point_m - bodies[i].position_m) - bodies[i].radius_m <
+        glm::length(point_m - bodies[best].position_m) - bodies[best].radius_m)
+      best = i;
+  return best;
+}
+
+CameraPlacement parse_camera(const json& camera, const Scene& scene, const std::string& source,
+                             const std::string& pointer) {
+  JsonReader r(camera, source, pointer);
+  allow_camera_keys(r, camera);
+  if (scene.bodies.empty()) r.fail("", "the scene has no bodies to place a camera by");
+  const Context ctx{source, {}, scene.wavelengths_nm};
+  return read_camera(r, scene.bodies, ctx);
+}
+
+Sun parse_sun(const json& sun, const Scene& scene, const CameraPlacement& camera, const std::string& source,
+              const std::string& pointer) {
+  JsonReader r(sun, source, pointer);
+  allow_sun_keys(r, sun);
+  const Context ctx{source, {}, scene.wavelengths_nm};
+  return read_sun(r, scene.bodies, camera, ctx);
 }
 
 Scene load_scene(const fs::path& path) {

@@ -1,0 +1,148 @@
+#include "cluster/show/recording_json.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "atmosphere/json_reader.h"
+
+namespace zenith::show {
+namespace {
+
+using config::brief;
+using config::cat;
+using nlohmann::json;
+
+constexpr double kMaxShowTime_s = 1e9;
+constexpr double kMaxExposure = 1e6;
+constexpr double kMaxSunAngularRadius_rad = 15.0 * std::numbers::pi / 180.0;
+
+json vec3_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
+
+/// An array of `count` numbers.
+std::vector<double> numbers(JsonReader& r, const std::string& key, std::size_t count, const char* what) {
+  const json& v = r.raw(key);
+  if (!v.is_array() || v.size() != count)
+    r.fail(key, cat("= ", brief(v), ": must be an array of ", count, " numbers ", what));
+  std::vector<double> out;
+  for (const json& x : v) {
+    if (!x.is_number()) r.fail(key, cat("= ", brief(v), ": must be an array of ", count, " numbers ", what));
+    out.push_back(x.get<double>());
+  }
+  return out;
+}
+
+std::uint64_t unsigned_integer(JsonReader& r, const std::string& key, std::uint64_t max) {
+  const json& v = r.raw(key);
+  if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<long long>() >= 0))
+    r.fail(key, cat("= ", brief(v), ": must be an integer in [0, ", max, "]"));
+  const std::uint64_t x = v.get<std::uint64_t>();
+  if (x > max) r.fail(key, cat("= ", brief(v), ": must be an integer in [0, ", max, "]"));
+  return x;
+}
+
+}  // namespace
+
+json frame_to_json(const cluster::FrameState& s) {
+  json atmospheres = json::array();
+  for (const cluster::AtmosphereTableRef& ref : s.atmospheres)
+    atmospheres.push_back({{"body", ref.body_name},
+                           {"table_hash", cluster::to_hex(ref.table_hash)},
+                           {"effective_from_frame", ref.effective_from_frame}});
+  const glm::dquat& q = s.camera_orientation;
+  return {{"frame", s.frame},
+          {"show_time_s", s.show_time_s},
+          {"camera_position_m", vec3_json(s.camera_position_m)},
+          {"camera_orientation", json::array({q.w, q.x, q.y, q.z})},
+          {"exposure", s.exposure},
+          {"sun_direction", vec3_json(s.sun_direction)},
+          {"sun_angular_radius_rad", s.sun_angular_radius_rad},
+          {"sun_irradiance_W_m2_nm", s.sun_irradiance_W_m2_nm},
+          {"atmospheres", atmospheres},
+          {"render_flags", s.render_flags}};
+}
+
+json version_to_json(const AtmosphereVersion& version) {
+  return {{"body", version.body}, {"table_hash", cluster::to_hex(version.table_hash)}, {"parameters", version.parameters}};
+}
+
+void check_recordable(const cluster::FrameState& s) {
+  auto finite = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  const glm::dquat& q = s.camera_orientation;
+  if (!(std::isfinite(s.show_time_s) && s.show_time_s >= 0.0))
+    throw std::invalid_argument(cat("show_time_s = ", s.show_time_s, ": must be finite and >= 0"));
+  if (!finite(s.camera_position_m)) throw std::invalid_argument("camera_position_m: must be finite");
+  if (!(std::abs(glm::length(q) - 1.0) <= cluster::kUnitTolerance))
+    throw std::invalid_argument("camera_orientation: must be a unit quaternion");
+  if (!(s.exposure > 0.0 && s.exposure <= kMaxExposure))
+    throw std::invalid_argument(cat("exposure = ", s.exposure, ": must be in (0, 1e+06]"));
+  if (!(finite(s.sun_direction) && std::abs(glm::length(s.sun_direction) - 1.0) <= cluster::kUnitTolerance))
+    throw std::invalid_argument("sun_direction: must be a unit vector");
+  if (!(s.sun_angular_radius_rad >= 0.0 && s.sun_angular_radius_rad <= kMaxSunAngularRadius_rad))
+    throw std::invalid_argument(cat("sun_angular_radius_rad = ", s.sun_angular_radius_rad, ": must be in [0, 15 deg]"));
+  if (s.sun_irradiance_W_m2_nm.size() > cluster::kMaxWavelengths)
+    throw std::invalid_argument("sun_irradiance_W_m2_nm: too many values");
+  for (double e : s.sun_irradiance_W_m2_nm)
+    if (!(std::isfinite(e) && e >= 0.0)) throw std::invalid_argument("sun_irradiance_W_m2_nm: must be finite, >= 0");
+  if (s.atmospheres.size() > cluster::kMaxAtmospheres) throw std::invalid_argument("atmospheres: too many");
+  if ((s.render_flags & ~cluster::kKnownRenderFlags) != 0) throw std::invalid_argument("render_flags: unknown bits");
+}
+
+cluster::FrameState frame_from_json(const json& frame, const scene::Scene& scene, const std::string& file,
+                                    const std::string& pointer) {
+  JsonReader r(frame, file, pointer);
+  config::reject_unknown_keys(r, frame,
+                              {"frame", "show_time_s", "camera_position_m", "camera_orientation", "exposure",
+                               "sun_direction", "sun_angular_radius_rad", "sun_irradiance_W_m2_nm", "atmospheres",
+                               "render_flags"},
+                              "docs/shows.md");
+  cluster::FrameState s;
+  s.frame = unsigned_integer(r, "frame", std::uint64_t{1} << 53);
+  s.show_time_s = r.number("show_time_s", 0.0, kMaxShowTime_s, "s");
+  const std::vector<double> p = numbers(r, "camera_position_m", 3, "[x, y, z] m");
+  s.camera_position_m = {p[0], p[1], p[2]};
+  const std::vector<double> q = numbers(r, "camera_orientation", 4, "[w, x, y, z] (a unit quaternion)");
+  s.camera_orientation = glm::dquat(q[0], q[1], q[2], q[3]);
+  if (!(std::abs(glm::length(s.camera_orientation) - 1.0) <= cluster::kUnitTolerance))
+    r.fail("camera_orientation", cat("= ", brief(r.raw("camera_orientation")), ": must be a unit quaternion (|q| - 1 within ",
+                                     cluster::kUnitTolerance, ")"));
+  s.exposure = r.number("exposure", 0.0, kMaxExposure);
+  if (!(s.exposure > 0.0)) r.fail("exposure", cat("= ", brief(r.raw("exposure")), ": must be in (0, 1e+06]"));
+  const std::vector<double> d = numbers(r, "sun_direction", 3, "[x, y, z] (a unit vector)");
+  s.sun_direction = {d[0], d[1], d[2]};
+  if (!(std::abs(glm::length(s.sun_direction) - 1.0) <= cluster::kUnitTolerance))
+    r.fail("sun_direction", cat("= ", brief(r.raw("sun_direction")), ": must be a unit vector"));
+  s.sun_angular_radius_rad = r.number("sun_angular_radius_rad", 0.0, kMaxSunAngularRadius_rad, "rad");
+  s.sun_irradiance_W_m2_nm =
+      numbers(r, "sun_irradiance_W_m2_nm", scene.wavelengths_nm.size(), "(one per scene wavelength, each >= 0)");
+  for (double e : s.sun_irradiance_W_m2_nm)
+    if (!(e >= 0.0)) r.fail("sun_irradiance_W_m2_nm", "values must be >= 0 W m^-2 nm^-1");
+  const json& atmospheres = r.raw("atmospheres");
+  if (!atmospheres.is_array() || atmospheres.size() > cluster::kMaxAtmospheres)
+    r.fail("atmospheres", cat("= ", brief(atmospheres), ": must be an array of at most ", cluster::kMaxAtmospheres,
+                              " {\"body\", \"table_hash\", \"effective_from_frame\"}"));
+  for (std::size_t i = 0; i < atmospheres.size(); ++i) {
+    JsonReader a(atmospheres[i], file, r.key_path(cat("atmospheres/", i)));
+    config::reject_unknown_keys(a, atmospheres[i], {"body", "table_hash", "effective_from_frame"}, "docs/shows.md");
+    cluster::AtmosphereTableRef ref;
+    ref.body_name = a.string("body");
+    const scene::Body* body = scene.find_body(ref.body_name);
+    if (body == nullptr || !body->atmosphere)
+      a.fail("body", cat("= \"", ref.body_name, "\": the scene has no body of that name with an atmosphere"));
+    try {
+      ref.table_hash = cluster::digest_from_hex(a.string("table_hash"));
+    } catch (const std::invalid_argument&) {
+      a.fail("table_hash", cat("= ", brief(a.raw("table_hash")), ": must be 64 hexadecimal digits"));
+    }
+    ref.effective_from_frame = unsigned_integer(a, "effective_from_frame", std::uint64_t{1} << 53);
+    a.finish();
+    s.atmospheres.push_back(std::move(ref));
+  }
+  s.render_flags = static_cast<std::uint32_t>(unsigned_integer(r, "render_flags", cluster::kKnownRenderFlags));
+  r.finish();
+  return s;
+}
+
+}  // namespace zenith::show
