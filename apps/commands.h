@@ -14,5 +14,11 @@ void register_sample_command(CLI::App& app);
 void register_render_command(CLI::App& app);
 /// `zenith master`, `zenith node`, `zenith cluster` (apps/cluster_commands.cpp).
 void register_cluster_commands(CLI::App& app);
+/// `zenith show ...` (apps/show_command.cpp).
+void register_show_command(CLI::App& app);
+/// `show render` under `show` (apps/show_render.cpp).
+void register_show_render(CLI::App& show);
+/// `show plan` under `show` (apps/show_render.cpp).
+void register_show_plan(CLI::App& show);
 
 }  // namespace zenith::app

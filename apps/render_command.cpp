@@ -23,6 +23,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "apps/commands.h"
+#include "apps/output_rendering.h"
 #include "apps/progress_bar.h"
 #include "apps/table_provider.h"
 #include "render/gl/egl_context.h"
@@ -32,8 +33,6 @@
 #include "render/window/frame_presenter.h"
 #include "render/window/window_context.h"
 #include "warp/blending.h"
-#include "warp/fisheye_projection.h"
-#include "warp/planar_projection.h"
 #include "warp/viewport_config.h"
 
 namespace zenith::app {
@@ -54,37 +53,8 @@ struct RenderArgs {
   bool projection_given = false, size_given = false;
 };
 
-/// 1 to 5 decimal digits, the whole of `text`.
-bool is_short_number(std::string_view text) {
-  return !text.empty() && text.size() <= 5 &&
-         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
-std::pair<int, int> parse_size(const std::string& text) {
-  // WIDTHxHEIGHT, 1–5 digits each (parsed by hand: GCC 12 warns inside
-  // std::regex under the sanitizer build's -O2, which -Werror turns fatal).
-  const std::size_t x = text.find_first_of("xX");
-  if (x == std::string::npos || !is_short_number(std::string_view(text).substr(0, x)) ||
-      !is_short_number(std::string_view(text).substr(x + 1)))
-    throw std::invalid_argument(fmt::format("--size '{}': expected WIDTHxHEIGHT, e.g. 1920x1080", text));
-  const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
-  if (w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw std::invalid_argument(fmt::format("--size '{}': width and height must be in [1, 16384]", text));
-  return {w, h};
-}
-
 std::unique_ptr<warp::Projection> make_projection(const RenderArgs& a, int width, int height) {
-  if (a.projection == "planar") {
-    const double fov = a.fov_deg.value_or(60.0);
-    if (!(fov > 0.0 && fov < 179.0))
-      throw std::invalid_argument(fmt::format("--fov {}: a planar projection's horizontal field of view must be in (0, 179) degrees", fov));
-    if (a.tilt_deg) throw std::invalid_argument("--tilt applies to the fisheye projection only");
-    return std::make_unique<warp::PlanarProjection>(warp::PlanarProjection::symmetric(width, height, fov));
-  }
-  warp::FisheyeParameters p;
-  p.fov_deg = a.fov_deg.value_or(180.0);
-  p.tilt_deg = a.tilt_deg.value_or(0.0);
-  return std::make_unique<warp::FisheyeProjection>(width, height, p);
+  return app::make_projection(a.projection, a.fov_deg, a.tilt_deg, width, height);
 }
 
 render::RenderOptions make_render_options(const RenderArgs& a) {
@@ -100,22 +70,7 @@ render::RenderOptions make_render_options(const RenderArgs& a) {
 }
 
 TableRequest make_table_request(const RenderArgs& a) {
-  TableRequest request;
-  request.options.sizes = table_sizes_by_name(a.tables);
-  request.options.max_orders = a.orders;
-  request.backend = a.cpu_precompute ? PrecomputeBackend::Cpu : PrecomputeBackend::Gpu;
-  request.use_cache = !a.no_cache;
-  if (!a.cache_dir.empty()) request.cache_directory = a.cache_dir;
-  return request;
-}
-
-image::ImageAttributes image_attributes(const scene::Scene& scene, const warp::Projection& projection) {
-  return {
-      {"zenith:scene", scene.name},
-      {"zenith:projection", projection.describe()},
-      {"zenith:exposure", fmt::format("{}", scene.camera.exposure)},
-      {"zenith:units", "linear sRGB radiance [W m^-2 sr^-1 nm^-1] x exposure"},
-  };
+  return app::make_table_request(a.tables, a.orders, a.cpu_precompute, !a.no_cache, a.cache_dir);
 }
 
 void log_frame_stats(const render::FrameStats& s) {
@@ -131,50 +86,23 @@ std::string substitute_name(std::string text, const std::string& name) {
   return text;
 }
 
-/// Renders one frame into every file of `outputs` (.exr or .png). With a
-/// `blend` mask, each output's rows go through the output stage first
-/// (docs/viewports.md): PNG: L = tone(v), L' = L·α·(1 − β) + β, then sRGB
-/// (the writer is opened with the clamp operator, the identity on [0, 1]);
-/// EXR: v' = v·α·(1 − β) + β, linear, 1.0 = full white.
+/// Renders one frame into every file of `outputs` (render_to_files in
+/// apps/output_rendering.h) with a progress bar over the rows.
 void render_to_files(render::Renderer& renderer, const scene::Scene& scene, const warp::Projection& projection,
                      const std::vector<std::string>& outputs, const RenderArgs& a,
                      const image::ImageAttributes& attributes, const warp::BlendMask* blend, double black_level) {
-  const int width = projection.width(), height = projection.height();
-  const image::ToneMapping tone = image::parse_tone_mapping(a.tone);
-  const image::ExrPixelType exr_type = image::parse_exr_pixel_type(a.exr_type);
-  struct Target {
-    std::unique_ptr<image::ImageWriter> writer;
-    bool png;
-  };
-  std::vector<Target> targets;
-  for (const auto& out : outputs) {
-    const std::filesystem::path path(out);
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    const bool png = path.extension() != ".exr";
-    // With a blend the PNG rows arrive tone mapped: the writer only encodes sRGB.
-    const image::ToneMapping writer_tone = png && blend != nullptr ? image::ToneMapping::clamp : tone;
-    targets.push_back({png ? image::open_png_writer(path, width, height, writer_tone, attributes)
-                           : image::open_exr_writer(path, width, height, exr_type, attributes),
-                       png});
-  }
+  OutputStage stage;
+  stage.tone = image::parse_tone_mapping(a.tone);
+  stage.exr_type = image::parse_exr_pixel_type(a.exr_type);
+  stage.blend = blend;
+  stage.black_level = black_level;
+  const int height = projection.height();
   ProgressBar bar("render");
-  std::vector<float> rows;
-  renderer.render(scene, projection, [&](int first_row, int row_count, std::span<const float> rgb) {
-    for (auto& t : targets) {
-      if (blend == nullptr) {
-        t.writer->write_rows(row_count, rgb);
-        continue;
-      }
-      rows.assign(rgb.begin(), rgb.end());
-      if (t.png)
-        for (float& v : rows) v = image::tone_map(v, tone);
-      warp::apply_blend(rows, first_row, row_count, *blend, black_level);
-      t.writer->write_rows(row_count, rows);
-    }
-    bar.update(fmt::format("rows {}–{}", first_row, first_row + row_count - 1),
-               static_cast<double>(first_row + row_count) / height);
-  });
-  for (auto& t : targets) t.writer->finish();
+  app::render_to_files(renderer, scene, projection, std::vector<std::filesystem::path>(outputs.begin(), outputs.end()),
+                  stage, attributes, [&](int first_row, int row_count) {
+                    bar.update(fmt::format("rows {}–{}", first_row, first_row + row_count - 1),
+                               static_cast<double>(first_row + row_count) / height);
+                  });
   bar.finish();
   log_frame_stats(renderer.last_frame());
   for (const auto& out : outputs) fmt::print("written {}\n", out);
@@ -392,19 +320,9 @@ void run_viewport_render(const RenderArgs& a, const scene::Scene& scene) {
         "--viewport: the viewport config gives each output's projection and size; drop --projection, --size, "
         "--fov and --tilt");
   if (a.window) throw std::invalid_argument("--viewport renders to files; --window shows a plain projection");
-  const std::size_t hash = a.viewport.rfind('#');
-  const std::string file = a.viewport.substr(0, hash);
-  const std::optional<std::string> only =
-      hash == std::string::npos ? std::nullopt : std::optional<std::string>(a.viewport.substr(hash + 1));
-  if (file.empty()) throw std::invalid_argument(fmt::format("--viewport '{}': expected CONFIG.json[#NAME]", a.viewport));
-  const warp::ViewportConfig config = warp::load_viewport_config(file);
-
-  std::vector<std::size_t> indices;
-  if (only) {
-    indices.push_back(config.index_of(*only));
-  } else {
-    for (std::size_t i = 0; i < config.outputs.size(); ++i) indices.push_back(i);
-  }
+  const ViewportSelection selection = select_viewport_outputs(a.viewport);
+  const warp::ViewportConfig& config = selection.config;
+  const std::vector<std::size_t>& indices = selection.indices;
   // Each output's files: {name} substituted, DIR/ → DIR/{name}.png.
   auto files_of = [&](const warp::OutputConfig& o) {
     std::vector<std::string> files;
@@ -443,10 +361,7 @@ void run_viewport_render(const RenderArgs& a, const scene::Scene& scene) {
                  o.projection->describe(), context.renderer());
     const warp::BlendMask mask = warp::output_blend_mask(config, i);
     image::ImageAttributes attributes = image_attributes(scene, *o.projection);
-    attributes.emplace_back("zenith:viewport", fmt::format("{}#{}", file, o.name));
-    attributes.emplace_back("zenith:blend", fmt::format("{}; black level {}; output stage P*alpha*(1-beta)+beta "
-                                                        "(docs/viewports.md)",
-                                                        warp::to_string(o.blend.mode), o.black_level));
+    for (auto& attribute : viewport_attributes(selection.file, o)) attributes.push_back(std::move(attribute));
     render_to_files(renderer, scene, *o.projection, files_of(o), a, attributes, &mask, o.black_level);
   }
 }

@@ -1,0 +1,160 @@
+# `zenith show render` end to end (docs/shows.md, "Offline rendering"), on a
+# 6-frame show with two table sets (tests/data/shows/offline-sunset.json),
+# 48x48 fisheye frames, small tables in a private cache:
+#   1. two renders into two folders give byte-identical files;
+#   2. a resume re-renders exactly a deleted and a corrupted frame;
+#   3. an interrupted render (--to 2, plus a file written but never recorded)
+#      completes with only the missing frames;
+#   4. a changed frame rate re-renders exactly the frames whose state changed,
+#      a dropped format nothing;
+#   5. a viewport config's outputs get a folder each;
+#   6. bad arguments are refused with a message naming the argument.
+set(cache "${WORK_DIR}/cache")  # shared with cli.render: tables computed once
+set(root "${WORK_DIR}/show-render-out")
+set(show "${SOURCE_DIR}/tests/data/shows/offline-sunset.json")
+file(REMOVE_RECURSE "${root}")
+set(dome --projection fisheye --size 48x48 --tables small --cache "${cache}")
+
+# Runs `zenith show render --show SHOW ARGN`; fails unless it succeeds and its
+# stdout contains `summary`.
+function(render_show summary)
+  execute_process(COMMAND ${ZENITH} show render --show "${show}" ${ARGN}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+  string(FIND "${o}" "${summary}" pos)
+  if(NOT rc EQUAL 0 OR pos EQUAL -1)
+    message(FATAL_ERROR "show render ${ARGN}: expected success and '${summary}', got (${rc}):\n${o}\n${e}")
+  endif()
+  set(last_stdout "${o}" PARENT_SCOPE)
+  set(last_stderr "${e}" PARENT_SCOPE)
+endfunction()
+
+# Fails unless folders `a` and `b` hold the same bytes for frames `first`..`last` of output `output`.
+function(expect_identical a b output first last)
+  foreach(frame RANGE ${first} ${last})
+    string(LENGTH "${frame}" digits)
+    math(EXPR pad "6 - ${digits}")
+    string(REPEAT "0" ${pad} zeros)
+    foreach(ext png exr)
+      set(f "${output}/${output}.${zeros}${frame}.${ext}")
+      if(NOT EXISTS "${a}/${f}" OR NOT EXISTS "${b}/${f}")
+        message(FATAL_ERROR "missing ${f} in ${a} or ${b}")
+      endif()
+      execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${a}/${f}" "${b}/${f}" RESULT_VARIABLE differ)
+      if(NOT differ EQUAL 0)
+        message(FATAL_ERROR "${a}/${f} and ${b}/${f} differ")
+      endif()
+    endforeach()
+  endforeach()
+endfunction()
+
+# 1. Deterministic: the same frames twice, byte for byte (contact sheet included).
+render_show("rendered 6, skipped 0 of 6 frames" ${dome} --format png,exr --out "${root}/a")
+string(FIND "${last_stdout}" "2 lookup-table sets for 6 frames at 2 fps" pos)
+if(pos EQUAL -1)
+  message(FATAL_ERROR "show render did not print the table plan first:\n${last_stdout}")
+endif()
+render_show("rendered 6, skipped 0 of 6 frames" ${dome} --format png,exr --out "${root}/b")
+expect_identical("${root}/a" "${root}/b" fisheye 0 5)
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${root}/a/contact-sheet.png" "${root}/b/contact-sheet.png"
+                RESULT_VARIABLE differ)
+if(NOT differ EQUAL 0)
+  message(FATAL_ERROR "the two contact sheets differ")
+endif()
+file(READ "${root}/a/contact-sheet.png" ihdr OFFSET 16 LIMIT 8 HEX)
+# 6 frames of 48x48 cells, round(sqrt(6)) = 2 columns, 3 rows, 4 px gaps: 108 x 160.
+if(NOT ihdr STREQUAL "0000006c000000a0")
+  message(FATAL_ERROR "contact-sheet.png is not 108x160: IHDR ${ihdr}")
+endif()
+foreach(f manifest.json.partial fisheye/fisheye.000000.png.partial)
+  if(EXISTS "${root}/a/${f}")
+    message(FATAL_ERROR "${f} left behind")
+  endif()
+endforeach()
+
+# Nothing to do when everything is verified.
+render_show("rendered 0, skipped 6 of 6 frames" ${dome} --format png,exr --out "${root}/a")
+
+# 2. Resume: one frame's file deleted, another's bytes corrupted (same size):
+#    exactly those two frames are rendered again, and come back identical.
+file(REMOVE "${root}/a/fisheye/fisheye.000002.png")
+file(SIZE "${root}/a/fisheye/fisheye.000004.exr" exr_size)
+string(REPEAT "x" ${exr_size} garbage)
+file(WRITE "${root}/a/fisheye/fisheye.000004.exr" "${garbage}")
+render_show("rendered 2, skipped 4 of 6 frames" ${dome} --format png,exr --out "${root}/a")
+foreach(needle "frame 2: rendering again: fisheye/fisheye.000002.png: missing"
+               "frame 4: rendering again: fisheye/fisheye.000004.exr: changed on disk")
+  string(FIND "${last_stderr}" "${needle}" pos)
+  if(pos EQUAL -1)
+    message(FATAL_ERROR "the resume did not report '${needle}':\n${last_stderr}")
+  endif()
+endforeach()
+expect_identical("${root}/a" "${root}/b" fisheye 0 5)
+
+# 3. Interrupted: frames 0-2 only, then a frame written but never recorded in
+#    the manifest (killed before the update): the full run renders 3, 4 and 5.
+render_show("rendered 3, skipped 0 of 3 frames" ${dome} --format png,exr --to 2 --contact-sheet none --out "${root}/c")
+if(EXISTS "${root}/c/contact-sheet.png" OR EXISTS "${root}/c/fisheye/fisheye.000003.png")
+  message(FATAL_ERROR "--to 2 --contact-sheet none wrote more than frames 0-2")
+endif()
+file(COPY "${root}/b/fisheye/fisheye.000003.png" DESTINATION "${root}/c/fisheye")
+render_show("rendered 3, skipped 3 of 6 frames" ${dome} --format png,exr --out "${root}/c")
+expect_identical("${root}/c" "${root}/b" fisheye 0 5)
+
+# 4. Another frame rate: at 4 fps frame 0 is the same state (show time 0), the
+#    other ten are new; dropping the EXR invalidates no frame.
+render_show("rendered 10, skipped 1 of 11 frames" ${dome} --format png,exr --fps 4 --contact-sheet none
+            --out "${root}/c")
+render_show("rendered 0, skipped 11 of 11 frames" ${dome} --format png --fps 4 --contact-sheet none --out "${root}/c")
+render_show("rendered 0, skipped 6 of 6 frames" ${dome} --format png --out "${root}/b")
+
+# 5. A viewport config: each output in its folder, side by side on the sheet.
+file(WRITE "${root}/halves.json" [=[{
+  "zenith_viewports": 1,
+  "name": "halves",
+  "outputs": [
+    {"name": "left", "size": [24, 48],
+     "projection": {"type": "fisheye", "fov_deg": 180, "centre_x_px": 24, "centre_y_px": 24, "radius_px": 24}},
+    {"name": "right", "size": [24, 48],
+     "projection": {"type": "fisheye", "fov_deg": 180, "centre_x_px": 0, "centre_y_px": 24, "radius_px": 24}}
+  ]
+}]=])
+render_show("rendered 2, skipped 0 of 2 frames" --viewport "${root}/halves.json" --tables small --cache "${cache}"
+            --from 4 --to 5 --out "${root}/v")
+foreach(f left/left.000004.png left/left.000005.png right/right.000004.png right/right.000005.png contact-sheet.png)
+  if(NOT EXISTS "${root}/v/${f}")
+    message(FATAL_ERROR "viewport render did not write ${f}")
+  endif()
+endforeach()
+file(READ "${root}/v/contact-sheet.png" ihdr OFFSET 16 LIMIT 8 HEX)
+# 2 frames, cells 24 + 4 + 24 = 52 px wide and 48 high: 1 column, 2 rows: 60 x 108.
+if(NOT ihdr STREQUAL "0000003c0000006c")
+  message(FATAL_ERROR "the viewport contact sheet is not 60x108: IHDR ${ihdr}")
+endif()
+
+# 6. Bad input: each refused with a message naming what is wrong.
+function(expect_refused needle)
+  execute_process(COMMAND ${ZENITH} show render ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+  string(FIND "${o}${e}" "${needle}" pos)
+  if(rc EQUAL 0 OR pos EQUAL -1)
+    message(FATAL_ERROR "show render ${ARGN}: expected a failure mentioning '${needle}', got (${rc}):\n${o}\n${e}")
+  endif()
+endfunction()
+set(s --show "${show}")
+set(x "${root}/refused")
+expect_refused("--out is required" ${s} ${dome})
+expect_refused("p9" ${s} --viewport "${SOURCE_DIR}/configs/viewports/dome-6-projectors.json#p9" --out "${x}")
+expect_refused("--fps 0: must be in (0, 1000]" ${s} ${dome} --fps 0 --out "${x}")
+expect_refused("--fps 5000: must be in (0, 1000]" ${s} ${dome} --fps 5000 --out "${x}")
+expect_refused("--fps" ${s} ${dome} --fps fast --out "${x}")
+expect_refused("--from 4 --to 2" ${s} ${dome} --from 4 --to 2 --out "${x}")
+expect_refused("the show's last frame" ${s} ${dome} --to 6 --out "${x}")
+expect_refused("--format 'tiff'" ${s} ${dome} --format tiff --out "${x}")
+expect_refused("--size" ${s} --projection fisheye --out "${x}")
+expect_refused("either --viewport" ${s} --size 48x48 --out "${x}")
+expect_refused("--viewport" ${s} --viewport "${root}/halves.json" --size 48x48 --out "${x}")
+expect_refused("missing.json" --show "${root}/missing.json" ${dome} --out "${x}")
+expect_refused("--show is required" ${dome} --out "${x}")
+if(EXISTS "${x}")
+  message(FATAL_ERROR "a refused render created ${x}")
+endif()
+file(REMOVE_RECURSE "${root}")
