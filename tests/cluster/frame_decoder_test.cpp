@@ -109,8 +109,8 @@ TEST(FrameDecoder, GarbageBytesAreRefusedAtTheHeader) {
 
 TEST(FrameDecoder, UnsupportedVersionInTheHeader) {
   Bytes f = heartbeat_frame();
-  put_be16(f, 4, 2);
-  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2");
+  put_be16(f, 4, 1);  // the first release: no AtmosphereDefinition
+  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 1");
 }
 
 TEST(FrameDecoder, UnsupportedVersionInHello) {
