@@ -22,11 +22,13 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "apps/default_configs.h"
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/cluster_config.h"
 #include "cluster/handshake.h"
 #include "cluster/master.h"
 #include "cluster/node.h"
+#include "cluster/show/show.h"
 #include "render/image/image_io.h"
 #include "render/image/image_writer.h"
 #include "warp/fisheye_projection.h"
@@ -40,7 +42,10 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* kDefaultCluster = "configs/clusters/local-dome.json";
+/// The cluster configuration to use: the one named, or the built-in default.
+std::string cluster_path(const std::string& named) {
+  return named.empty() ? default_config(kDefaultClusterName).string() : named;
+}
 
 /// The node's own table cache unless --cache is given: per cluster and node,
 /// so nodes sharing a machine (and the master) never write each other's files.
@@ -55,8 +60,54 @@ cluster::SharedSecret load_secret(const cluster::ClusterConfig& config) {
 // ---------------------------------------------------------------------------
 // zenith master
 
+/// Playback options shared by `zenith master` and `zenith cluster` (docs/shows.md).
+struct PlaybackArgs {
+  std::string show, record;
+  double fps = 0.0;
+  bool loop = false, no_loop = false, console = false, unpaced = false;
+  std::optional<int> control_port;
+
+  void add_to(CLI::App& cmd) {
+    cmd.add_option("--show", show, "Play this show file (configs/shows/; docs/shows.md) instead of the default show");
+    cmd.add_option("--record", record, "Record every presented frame state into this show file (a recording)");
+    cmd.add_option("--fps", fps, "Frames per second of show time (default: the cluster's frame rate; a recording's own)")
+        ->check(CLI::Range(0.001, 1000.0));
+    cmd.add_flag("--loop", loop, "Loop the show");
+    cmd.add_flag("--no-loop", no_loop, "Play the show once even if it says loop");
+    cmd.add_flag("--console", console, "Read playback commands from standard input (play, pause, seek S, rate R, loop on|off, quit)");
+    cmd.add_option("--control-port", control_port, "Playback commands on a control socket at 127.0.0.1:PORT")
+        ->check(CLI::Range(1, 65535));
+    cmd.add_flag("--unpaced", unpaced, "Start each frame as soon as the last is presented (offline rendering)");
+  }
+  void apply(cluster::MasterOptions& options) const {
+    if (!show.empty()) options.show = fs::path(show);
+    if (!record.empty()) options.record = fs::path(record);
+    options.show_fps = fps;
+    if (loop && no_loop) throw std::invalid_argument("--loop and --no-loop contradict each other");
+    if (loop) options.loop = true;
+    if (no_loop) options.loop = false;
+    options.console = console;
+    if (control_port) options.control_port = static_cast<std::uint16_t>(*control_port);
+    options.paced = !unpaced;
+  }
+  /// The same options as command-line arguments for a child master.
+  std::vector<std::string> arguments() const {
+    std::vector<std::string> args;
+    if (!show.empty()) args.insert(args.end(), {"--show", show});
+    if (!record.empty()) args.insert(args.end(), {"--record", record});
+    if (fps > 0.0) args.insert(args.end(), {"--fps", fmt::format("{}", fps)});
+    if (loop) args.push_back("--loop");
+    if (no_loop) args.push_back("--no-loop");
+    if (console) args.push_back("--console");
+    if (control_port) args.insert(args.end(), {"--control-port", std::to_string(*control_port)});
+    if (unpaced) args.push_back("--unpaced");
+    return args;
+  }
+};
+
 struct MasterArgs {
-  std::string cluster = kDefaultCluster, show, cache_dir;
+  std::string cluster, cache_dir;
+  PlaybackArgs playback;
   std::uint64_t frames = 0;
   std::optional<int> port;
   double sun_step_deg = 0.1;
@@ -66,9 +117,9 @@ struct MasterArgs {
 };
 
 void run_master(const MasterArgs& a) {
-  if (!a.show.empty()) throw std::invalid_argument("--show: show files are not supported yet (the default show turns the sun)");
   cluster::MasterOptions options;
-  options.config = cluster::load_cluster_config(a.cluster);
+  a.playback.apply(options);
+  options.config = cluster::load_cluster_config(cluster_path(a.cluster));
   options.frames = a.frames;
   options.sun_step_deg = a.sun_step_deg;
   if (a.port) options.port = static_cast<std::uint16_t>(*a.port);
@@ -86,7 +137,7 @@ void run_master(const MasterArgs& a) {
 // zenith node
 
 struct NodeArgs {
-  std::string cluster = kDefaultCluster, name, out, cache_dir;
+  std::string cluster, name, out, cache_dir, scene;
   std::optional<int> port;
   std::uint32_t connect_timeout_ms = 15000;
   std::vector<std::string> atmosphere_files;
@@ -95,7 +146,7 @@ struct NodeArgs {
 
 int run_node(const NodeArgs& a) {
   cluster::NodeOptions options;
-  options.config = cluster::load_cluster_config(a.cluster);
+  options.config = cluster::load_cluster_config(cluster_path(a.cluster));
   options.node_name = a.name;
   options.output_directory = a.out.empty() ? options.config.output_directory : fs::path(a.out);
   options.cache_directory = a.cache_dir.empty() ? default_node_cache(options.config, a.name) : fs::path(a.cache_dir);
@@ -103,6 +154,7 @@ int run_node(const NodeArgs& a) {
   options.connect_timeout_ms = a.connect_timeout_ms;
   for (const std::string& f : a.atmosphere_files) options.atmosphere_files.emplace_back(f);
   options.debug_render_delay_ms = a.debug_render_delay_ms;
+  if (!a.scene.empty()) options.scene = fs::path(a.scene);
   cluster::SharedSecret secret = load_secret(options.config);
   cluster::Node node(std::move(options), std::move(secret));
   return node.run();
@@ -112,8 +164,9 @@ int run_node(const NodeArgs& a) {
 // zenith cluster
 
 struct ClusterArgs {
-  std::string cluster = kDefaultCluster, show, out, cache_dir;
-  std::uint64_t frames = 10;
+  std::string cluster, out, cache_dir;
+  PlaybackArgs playback;
+  std::optional<std::uint64_t> frames;  ///< default 10 without a show, the whole show with one
   std::optional<int> port;
   double sun_step_deg = 0.1;
   std::optional<std::uint64_t> stitch_frame;
@@ -236,8 +289,19 @@ bool stitch_dome(const cluster::ClusterConfig& config, const fs::path& out, std:
 }
 
 void run_cluster(const ClusterArgs& a) {
-  if (!a.show.empty()) throw std::invalid_argument("--show: show files are not supported yet (the default show turns the sun)");
-  const cluster::ClusterConfig config = cluster::load_cluster_config(a.cluster);
+  const std::string config_path = cluster_path(a.cluster);
+  const cluster::ClusterConfig config = cluster::load_cluster_config(config_path);
+  // A show brings its own scene: master and nodes render it instead of the configuration's.
+  std::optional<fs::path> show_scene;
+  std::uint64_t show_frames = 0;
+  if (!a.playback.show.empty()) {
+    const show::Show loaded = show::load_show(a.playback.show);  // errors before any child starts
+    show_scene = loaded.scene_path();
+    const double fps = a.playback.fps > 0.0 ? a.playback.fps
+                       : loaded.kind() == show::Show::Kind::recording ? loaded.frame_rate_hz() : config.frame_rate_hz;
+    show_frames = loaded.frame_count(fps);
+  }
+  const std::uint64_t frames = a.frames.value_or(show_scene ? 0 : 10);
   const fs::path out = a.out.empty() ? config.output_directory : fs::path(a.out);
   // A local run needs no secret set up: a fresh random one goes to the children.
   if (!config.secret_file) {
@@ -249,20 +313,17 @@ void run_cluster(const ClusterArgs& a) {
     }
   }
   const std::string level = log_level_argument();
-  std::vector<std::string> common = {"--cluster", a.cluster};
+  std::vector<std::string> common = {"--cluster", config_path};
   if (a.port) common.insert(common.end(), {"--port", std::to_string(*a.port)});
 
-  std::vector<std::string> master_args = {"--log-level", level, "master", "--frames", std::to_string(a.frames),
+  std::vector<std::string> master_args = {"--log-level", level, "master", "--frames", std::to_string(frames),
                                           "--sun-step-deg", fmt::format("{}", a.sun_step_deg)};
   master_args.insert(master_args.end(), common.begin(), common.end());
+  const std::vector<std::string> playback = a.playback.arguments();
+  master_args.insert(master_args.end(), playback.begin(), playback.end());
   if (!a.cache_dir.empty()) master_args.insert(master_args.end(), {"--cache", a.cache_dir});
-  // A switch to an atmosphere file needs the file on the nodes too (they can only use parameters they know).
-  std::vector<std::string> node_atmospheres;
-  for (const std::string& text : a.switches) {
-    const cluster::AtmosphereSwitch sw = cluster::parse_atmosphere_switch(text);
-    master_args.insert(master_args.end(), {"--switch-atmosphere", text});
-    if (fs::is_regular_file(sw.atmosphere)) node_atmospheres.insert(node_atmospheres.end(), {"--atmosphere", sw.atmosphere});
-  }
+  // Nodes need no atmosphere files: the master sends each version's parameters (AtmosphereDefinition).
+  for (const std::string& text : a.switches) master_args.insert(master_args.end(), {"--switch-atmosphere", text});
   const pid_t master = spawn_self(master_args);
   spdlog::info("cluster: master started (pid {})", master);
 
@@ -270,14 +331,14 @@ void run_cluster(const ClusterArgs& a) {
   for (const auto& node : config.nodes) {
     if (!is_local_host(node.host)) {
       spdlog::info("cluster: node '{}' runs on {}: start it there with `zenith node --cluster {} --name {}`", node.name,
-                   node.host, a.cluster, node.name);
+                   node.host, config_path, node.name);
       continue;
     }
     // The master may precompute tables for minutes before its Welcome (paper sizes on a CPU GL): wait for it.
     std::vector<std::string> args = {"--log-level", level, "node", "--name", node.name, "--out", out.string(),
                                      "--connect-timeout-ms", "900000"};
     args.insert(args.end(), common.begin(), common.end());
-    args.insert(args.end(), node_atmospheres.begin(), node_atmospheres.end());
+    if (show_scene) args.insert(args.end(), {"--scene", show_scene->string()});
     if (!a.cache_dir.empty()) args.insert(args.end(), {"--cache", (fs::path(a.cache_dir) / "nodes" / node.name).string()});
     nodes.emplace_back(spawn_self(args), node.name);
     spdlog::info("cluster: node '{}' started (pid {})", node.name, nodes.back().first);
@@ -314,8 +375,9 @@ void run_cluster(const ClusterArgs& a) {
   if (status != 0) throw std::runtime_error(fmt::format("the master exited with status {}", status));
   spdlog::info("cluster: master and {} node{} stopped{}", nodes.size(), nodes.size() == 1 ? "" : "s",
                failed_nodes ? fmt::format(" ({} with an error)", failed_nodes) : std::string());
-  if (config.output_format == "png" && a.frames > 0) {
-    const std::uint64_t frame = a.stitch_frame.value_or(a.frames - 1);
+  const std::uint64_t last_frame = frames > 0 ? frames : show_frames;
+  if (config.output_format == "png" && last_frame > 0) {
+    const std::uint64_t frame = a.stitch_frame.value_or(last_frame - 1);
     stitch_dome(config, out, frame, out / "stitched" / fmt::format("frame-{:06d}.png", frame));
   }
   if (failed_nodes) throw std::runtime_error(fmt::format("{} node{} failed", failed_nodes, failed_nodes == 1 ? "" : "s"));
@@ -328,8 +390,9 @@ void register_cluster_commands(CLI::App& app) {
     auto a = std::make_shared<MasterArgs>();
     CLI::App* cmd = app.add_subcommand("master", "Run the master of a cluster: tables, frame barrier (docs/cluster.md)");
     cmd->add_option("--cluster", a->cluster, "Cluster config JSON (configs/clusters/)")->required();
-    cmd->add_option("--show", a->show, "Show file (not supported yet)");
-    cmd->add_option("--frames", a->frames, "Present this many frames, then stop the nodes (default 0: until SIGTERM)");
+    a->playback.add_to(*cmd);
+    cmd->add_option("--frames", a->frames,
+                    "Present this many frames, then stop the nodes (default 0: until SIGTERM, or the end of a show)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--cache", a->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
     cmd->add_flag("--cpu-precompute", a->cpu_precompute, "Precompute missing tables on the CPU");
@@ -351,6 +414,7 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--cache", a->cache_dir, "This node's table cache (default $XDG_CACHE_HOME/zenith/cluster-nodes/<cluster>/<node>)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms, "Keep trying to reach the master this long (default 15000)");
+    cmd->add_option("--scene", a->scene, "Render this scene instead of the config's (a show's scene)");
     cmd->add_option("--atmosphere", a->atmosphere_files,
                     "An atmosphere file the master may switch to (besides the scene's and the presets; repeatable)");
     cmd->add_option("--debug-render-delay-ms", a->debug_render_delay_ms,
@@ -364,9 +428,10 @@ void register_cluster_commands(CLI::App& app) {
     auto a = std::make_shared<ClusterArgs>();
     CLI::App* cmd = app.add_subcommand(
         "cluster", "Run a local cluster: the master and every node of this machine as child processes (docs/cluster.md)");
-    cmd->add_option("--cluster", a->cluster, fmt::format("Cluster config JSON (default {})", kDefaultCluster));
-    cmd->add_option("--show", a->show, "Show file (not supported yet)");
-    cmd->add_option("--frames", a->frames, "Frames to present (default 10)")->check(CLI::Range(1, 100000000));
+    cmd->add_option("--cluster", a->cluster, fmt::format("Cluster config JSON (default configs/{}, built in)", kDefaultClusterName));
+    a->playback.add_to(*cmd);
+    cmd->add_option("--frames", a->frames, "Frames to present (default 10; with --show, the whole show)")
+        ->check(CLI::Range(1, 100000000));
     cmd->add_option("--out", a->out, "Output folder (default: the config's)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--cache", a->cache_dir, "Master table cache; nodes use CACHE/nodes/<node>");

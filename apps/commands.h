@@ -20,5 +20,7 @@ void register_show_command(CLI::App& app);
 void register_show_render(CLI::App& show);
 /// `show plan` under `show` (apps/show_render.cpp).
 void register_show_plan(CLI::App& show);
+/// `show control` under `show` (apps/show_control.cpp).
+void register_show_control(CLI::App& show);
 
 }  // namespace zenith::app

@@ -11,16 +11,25 @@
 #include <sstream>
 #include <thread>
 
+#include <unistd.h>
+
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/posix/stream_descriptor.hpp>
 #include <boost/asio/post.hpp>
+#include <boost/asio/read_until.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <boost/asio/streambuf.hpp>
+#include <boost/asio/write.hpp>
 
 #include "apps/table_provider.h"
 #include "atmosphere/model_hash.h"
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
+#include "cluster/show/playback_clock.h"
+#include "cluster/show/show.h"
+#include "cluster/show/table_plan.h"
 #include "cluster/table_transfer.h"
 #include "render/scene/scene_loader.h"
 
@@ -99,6 +108,23 @@ struct Master::Impl {
   std::thread worker;
   std::uint32_t render_flags = 0;
 
+  /// Every atmosphere version prepared so far (the scene's, switches', the
+  /// show's), by table hash: for AtmosphereDefinitions and the recording.
+  std::map<Digest, show::AtmosphereVersion> versions;
+  /// Encoded AtmosphereDefinition of each version, sent before its TableAnnounce.
+  std::map<Digest, std::shared_ptr<const std::vector<std::uint8_t>>> definitions;
+
+  // ---- the show (docs/shows.md) ----
+  std::optional<show::Show> show;
+  std::optional<show::PlaybackClock> clock;
+  double fps = 30.0;             ///< frames per second of show time (and of pacing)
+  std::vector<Digest> show_sets; ///< with a show: every table set it uses, all distributed before frame 0
+  std::unique_ptr<show::ShowRecorder> recorder;
+  FrameState frame_in_flight;    ///< the state of the frame in flight (recorded once presented)
+  std::optional<asio::posix::stream_descriptor> console_in;
+  asio::streambuf console_buffer;
+  std::optional<tcp::acceptor> control_acceptor;
+
   asio::io_context io;
   tcp::acceptor acceptor{io};
   /// Installed once the tables are ready: until then SIGINT/SIGTERM end the process at once.
@@ -169,10 +195,24 @@ struct Master::Impl {
     return {*index, std::move(loaded)};
   }
 
+  /// Remembers a version and encodes its AtmosphereDefinition.
+  void add_version(const std::string& body, const atmosphere::LoadedAtmosphere& loaded, const Digest& hash) {
+    if (versions.count(hash)) return;
+    show::AtmosphereVersion v;
+    v.body = body;
+    v.parameters = loaded.parameters;
+    v.table_hash = hash;
+    v.loaded = loaded;
+    definitions.emplace(hash, std::make_shared<const std::vector<std::uint8_t>>(
+                                  encode(AtmosphereDefinition{body, hash, loaded.parameters.dump()})));
+    versions.emplace(hash, std::move(v));
+  }
+
   // ---- preparation ----------------------------------------------------------
 
   void prepare_tables() {
     const app::TableRequest request = table_request();
+    if (show) return prepare_show_tables(request);
     for (const scene::Body& body : scene.bodies) {
       if (!body.atmosphere) continue;
       TableSetFile set = obtain_table_set(body.name, body.atmosphere->loaded.model, request);
@@ -181,16 +221,41 @@ struct Master::Impl {
       ref.table_hash = set.table_hash;
       ref.effective_from_frame = 0;
       table_refs.push_back(ref);
+      add_version(body.name, body.atmosphere->loaded, set.table_hash);
       spdlog::info("master: tables of '{}' ready to share: version {} ({} bytes, sha256 {}…)", body.name,
                    short_hash(set.table_hash), set.bytes->size(), to_hex(set.content_sha256).substr(0, 12));
       table_sets.insert_or_assign(set.table_hash, std::move(set));
     }
   }
 
+  /// With a show: reports its table plan, then obtains every set it uses
+  /// (cache or precompute) before the first frame, so playback, seeking and
+  /// looping never wait for tables.
+  void prepare_show_tables(const app::TableRequest& request) {
+    const show::TablePlan plan =
+        show::plan_tables(*show, fps, request.options,
+                          atmosphere::lut::TableCache(request.cache_directory.value_or(atmosphere::lut::default_cache_directory())));
+    spdlog::info("master: show '{}' at {} fps needs {} table set{} ({} to precompute):\n{}", show->name(), fps,
+                 plan.sets.size(), plan.sets.size() == 1 ? "" : "s", plan.missing(), show::describe(plan));
+    std::size_t index = 0;
+    for (const show::TablePlanEntry& entry : plan.sets) {
+      ++index;
+      const auto t0 = Clock::now();
+      TableSetFile set = obtain_table_set(entry.version.body, entry.version.loaded.model, request);
+      add_version(entry.version.body, entry.version.loaded, set.table_hash);
+      show_sets.push_back(set.table_hash);
+      spdlog::info("master: table set {} of {} ('{}', version {}) ready ({:.1f} s)", index, plan.sets.size(),
+                   entry.version.body, short_hash(set.table_hash), ms_since(t0) / 1000.0);
+      table_sets.insert_or_assign(set.table_hash, std::move(set));
+    }
+    table_refs = show->state_at(0.0, 0, render_flags).atmospheres;
+  }
+
   // ---- table versions -------------------------------------------------------
 
   /// The sets a node must hold: the current versions and a distributed pending one.
   std::vector<Digest> wanted_sets() const {
+    if (show) return show_sets;
     std::vector<Digest> wanted;
     for (const AtmosphereTableRef& r : table_refs)
       if (std::find(wanted.begin(), wanted.end(), r.table_hash) == wanted.end()) wanted.push_back(r.table_hash);
@@ -202,6 +267,7 @@ struct Master::Impl {
   /// Sends one set: the whole transfer, or only its TableAnnounce when the
   /// node's inventory holds it (the node then loads its cached copy).
   void send_table_set(Session& s, const TableSetFile& set) {
+    if (auto d = definitions.find(set.table_hash); d != definitions.end()) s.connection->send_encoded(d->second);
     if (s.cached.count(set.table_hash)) {
       s.connection->send_encoded(set.frames.front());
       return;
@@ -230,6 +296,8 @@ struct Master::Impl {
     if (s.state != Session::State::tables || !s.inventory_done) return;
     for (const AtmosphereTableRef& r : table_refs)
       if (!s.tables_ready.count(r.table_hash)) return;
+    for (const Digest& h : show_sets)
+      if (!s.tables_ready.count(h)) return;
     become_ready(s);
   }
 
@@ -246,6 +314,7 @@ struct Master::Impl {
       maybe_start_switch();
       return;
     }
+    add_version(sw.body, loaded, hash);
     pending = PendingVersion{index, hash, false};
     spdlog::info("master: frame {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
                  "version {}",
@@ -500,8 +569,10 @@ struct Master::Impl {
     }
     waiting_logged = false;
     maybe_start_switch();
-    const FrameState state = default_show_frame(scene, frame, options.sun_step_deg, table_refs, render_flags);
-    auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(state));
+    frame_in_flight = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
+                           : default_show_frame(scene, frame, options.sun_step_deg, table_refs, render_flags);
+    if (!show) frame_in_flight.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
+    auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
     for (const auto& [id, done] : participants) sessions.at(id)->connection->send_encoded(encoded);
     in_flight = true;
     frame_started = Clock::now();
@@ -562,20 +633,120 @@ struct Master::Impl {
     spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, participants.size(),
                  participants.size() == 1 ? "" : "s", ms_since(frame_started));
     participants.clear();
+    if (recorder) {
+      for (const AtmosphereTableRef& r : frame_in_flight.atmospheres) recorder->add_version(versions.at(r.table_hash));
+      recorder->record(frame_in_flight);
+    }
     ++frame;
     ++presented;
     if (options.frames != 0 && presented >= options.frames) {
       stop(cat("show finished after ", presented, " frames"));
       return;
     }
+    if (clock && clock->finished()) {
+      stop(cat("show '", show->name(), "' finished after ", presented, " frames"));
+      return;
+    }
+    if (!options.paced) {
+      asio::post(io, [this] { start_frame(); });
+      return;
+    }
     // Pace: frame N starts no earlier than show start + N / rate.
     const auto due = show_started + std::chrono::duration_cast<Clock::duration>(
-                                        std::chrono::duration<double>(static_cast<double>(presented) /
-                                                                      options.config.frame_rate_hz));
+                                        std::chrono::duration<double>(static_cast<double>(presented) / fps));
     frame_timer.expires_at(std::max(due, Clock::now()));
     frame_timer.async_wait([this](const boost::system::error_code& ec) {
       if (!ec) start_frame();
     });
+  }
+
+  // ---- operator commands (docs/shows.md, "Playback") -------------------------
+
+  /// One command line from the console or the control socket; the reply line.
+  /// Commands change the clock between frames, so every node gets one
+  /// consistent state per frame.
+  std::string on_command(std::string line) {
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (line.empty()) return "";
+    if (line == "quit" || line == "stop") {
+      stop("stopped by the operator");
+      return "stopping";
+    }
+    if (!clock) {
+      if (line == "status") return cat("default show at frame ", frame, " (no show file: only status and quit)");
+      return "no show is playing: only 'status' and 'quit' are available";
+    }
+    try {
+      std::string reply = clock->apply_command(line);
+      spdlog::info("master: operator: {} → {}", line, reply);
+      return reply;
+    } catch (const std::invalid_argument& e) {
+      return cat("error: ", e.what());
+    }
+  }
+
+  void read_console() {
+    asio::async_read_until(*console_in, console_buffer, '\n', [this](const boost::system::error_code& ec, std::size_t) {
+      if (ec || stopping) return;  // end of input: the show goes on without a console
+      std::istream in(&console_buffer);
+      std::string line;
+      std::getline(in, line);
+      const std::string reply = on_command(line);
+      if (!reply.empty()) spdlog::info("master: {}", reply);
+      read_console();
+    });
+  }
+
+  /// One control-socket client: lines in, one reply line out per command.
+  struct ControlClient {
+    tcp::socket socket;
+    asio::streambuf buffer;
+    explicit ControlClient(tcp::socket s) : socket(std::move(s)) {}
+  };
+
+  void accept_control() {
+    control_acceptor->async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
+      if (ec || stopping) return;
+      serve_control(std::make_shared<ControlClient>(std::move(socket)));
+      accept_control();
+    });
+  }
+
+  void serve_control(std::shared_ptr<ControlClient> client) {
+    asio::async_read_until(client->socket, client->buffer, '\n',
+                           [this, client](const boost::system::error_code& ec, std::size_t bytes) {
+                             if (ec) return;
+                             if (bytes > 1024) return;  // not an operator command: drop the client
+                             std::istream in(&client->buffer);
+                             std::string line;
+                             std::getline(in, line);
+                             auto reply = std::make_shared<std::string>(on_command(line) + "\n");
+                             asio::async_write(client->socket, asio::buffer(*reply),
+                                               [this, client, reply](const boost::system::error_code& e, std::size_t) {
+                                                 if (!e && !stopping) serve_control(client);
+                                               });
+                           });
+  }
+
+  void start_operator_inputs() {
+    if (options.console) {
+      console_in.emplace(io, ::dup(STDIN_FILENO));
+      read_console();
+      spdlog::info("master: console commands: play, pause, toggle, seek SECONDS, rate FACTOR, loop on|off, status, quit");
+    }
+    if (options.control_port) {
+      const tcp::endpoint endpoint(asio::ip::make_address("127.0.0.1"), *options.control_port);
+      control_acceptor.emplace(io);
+      control_acceptor->open(endpoint.protocol());
+      control_acceptor->set_option(tcp::acceptor::reuse_address(true));
+      boost::system::error_code ec;
+      control_acceptor->bind(endpoint, ec);
+      if (ec) throw std::runtime_error(cat("master: cannot open the control socket on 127.0.0.1:", *options.control_port, ": ", ec.message()));
+      control_acceptor->listen();
+      accept_control();
+      spdlog::info("master: control socket on 127.0.0.1:{} (zenith show control --port {} COMMAND)",
+                   *options.control_port, *options.control_port);
+    }
   }
 
   // ---- liveness, stop -------------------------------------------------------
@@ -620,6 +791,8 @@ struct Master::Impl {
     spdlog::info("master: stopping: {}", reason);
     boost::system::error_code ec;
     acceptor.close(ec);
+    if (control_acceptor) control_acceptor->close(ec);
+    if (console_in) console_in->close(ec);
     if (signals) signals->cancel(ec);
     heartbeat_timer.cancel();
     barrier_timer.cancel();
@@ -636,8 +809,25 @@ struct Master::Impl {
   }
 
   int run() {
-    scene = scene::load_scene(options.config.scene);
     render_flags = render_flags_of(render::RenderOptions{});
+    fps = options.config.frame_rate_hz;
+    if (options.show) {
+      if (!options.atmosphere_switches.empty())
+        throw std::invalid_argument("--switch-atmosphere cannot be combined with a show: use the show's atmosphere tracks");
+      show.emplace(show::load_show(*options.show));
+      scene = show->scene();
+      if (options.show_fps > 0.0) fps = options.show_fps;
+      else if (show->kind() == show::Show::Kind::recording) fps = show->frame_rate_hz();
+      clock.emplace(show->duration_s(), fps, options.loop.value_or(show->loop()));
+      spdlog::info("master: playing show '{}' ({:.1f} s at {} fps, {} frames{})", show->name(), show->duration_s(), fps,
+                   show->frame_count(fps), clock->looping() ? ", looping" : "");
+    } else {
+      scene = scene::load_scene(options.config.scene);
+    }
+    if (options.record)
+      recorder = std::make_unique<show::ShowRecorder>(*options.record, show ? show->scene_path() : options.config.scene,
+                                                      show ? cat(show->name(), " (recorded)") : cat(options.config.name, " session"),
+                                                      fps);
 
     // Listen first: nodes that start now connect (the kernel queues them) and
     // are served once the tables are ready.
@@ -655,16 +845,20 @@ struct Master::Impl {
     spdlog::info("master: cluster '{}' listening on {}:{} for {} node{} (heartbeat {} ms, barrier timeout {} ms, {} Hz)",
                  options.config.name, options.config.master_host, port, options.config.nodes.size(),
                  options.config.nodes.size() == 1 ? "" : "s", options.config.heartbeat_ms,
-                 options.config.barrier_timeout_ms, options.config.frame_rate_hz);
+                 options.config.barrier_timeout_ms, fps);
     waiting_since = Clock::now();
     accept();
     signals.emplace(io, SIGINT, SIGTERM);
     signals->async_wait([this](const boost::system::error_code& e, int signal) {
       if (!e) stop(cat("signal ", signal == SIGINT ? "SIGINT" : "SIGTERM"));
     });
+    start_operator_inputs();
     heartbeat_tick();
     io.run();
     if (worker.joinable()) worker.join();
+    if (recorder)
+      spdlog::info("master: {} frame{} recorded in {}", recorder->frames(), recorder->frames() == 1 ? "" : "s",
+                   recorder->finish().string());
     spdlog::info("master: done, {} frame{} presented", presented, presented == 1 ? "" : "s");
     return 0;
   }

@@ -48,8 +48,28 @@ struct MasterOptions {
   /// Frames start when every configured node is ready, or after this long with
   /// the nodes that are (at least one).
   std::uint32_t wait_for_nodes_ms = 30000;
-  /// Parameter changes the show makes (for now from the command line).
+  /// Parameter changes made during the default show (from the command line).
   std::vector<AtmosphereSwitch> atmosphere_switches;
+
+  // ---- shows (docs/shows.md) ----
+  /// Plays this show file instead of the default show; its scene replaces the
+  /// configuration's. Every table set it uses is prepared and distributed
+  /// before the first frame. Not combined with atmosphere_switches.
+  std::optional<std::filesystem::path> show;
+  /// Frames per second of show time; 0: the show's own rate for recordings,
+  /// the configuration's frame_rate_hz otherwise.
+  double show_fps = 0.0;
+  std::optional<bool> loop;  ///< overrides the show's "loop"
+  /// Pace frames at the frame rate (live). false: as fast as the barrier
+  /// allows (offline rendering through the cluster).
+  bool paced = true;
+  /// Records every presented frame state into this show file (a recording),
+  /// written when the master stops.
+  std::optional<std::filesystem::path> record;
+  /// Playback commands from standard input, one per line (docs/shows.md, "Playback").
+  bool console = false;
+  /// Playback commands on a TCP control socket at 127.0.0.1:PORT (`zenith show control`).
+  std::optional<std::uint16_t> control_port;
 };
 
 class Master {

@@ -5,7 +5,7 @@
 // Present renames the frame's files into place:
 //
 //   <out>/<node>/<output>/frame-000042.png     (written as ….png.partial, renamed on Present)
-//   <out>/<node>/presented.log                 one line per presented frame: "frame N state DIGEST"
+//   <out>/<node>/presented.log                 one line per presented frame: "frame N state DIGEST tables B=H,... show_time_s T"
 //
 // Two threads: the networking thread runs the Boost.Asio io_context (all
 // socket work, heartbeats, table reassembly); the caller's thread owns the GL
@@ -42,6 +42,9 @@ struct NodeOptions {
   /// presets) whose tables the master may switch to during the show: a node
   /// can only use a table version whose parameters it knows (docs/cluster.md).
   std::vector<std::filesystem::path> atmosphere_files;
+  /// Renders this scene instead of the configuration's (a show's scene:
+  /// `zenith cluster --show` passes it to master and nodes alike).
+  std::optional<std::filesystem::path> scene;
   /// Test hook (`--debug-render-delay-ms`): sleep this long before each frame,
   /// to play a slow node. 0 in production.
   std::uint32_t debug_render_delay_ms = 0;

@@ -97,6 +97,7 @@ struct Presented {
   std::uint64_t frame;
   std::string digest;
   std::string tables;  ///< "Earth=0123456789abcdef"
+  double show_time_s = -1.0;
 };
 std::vector<Presented> presented(const fs::path& node_dir) {
   std::vector<Presented> out;
@@ -106,7 +107,11 @@ std::vector<Presented> presented(const fs::path& node_dir) {
     std::istringstream fields(line);
     std::string word, state, digest, tables_word, tables;
     std::uint64_t frame = 0;
-    if (fields >> word >> frame >> state >> digest >> tables_word >> tables) out.push_back({frame, digest, tables});
+    if (fields >> word >> frame >> state >> digest >> tables_word >> tables) {
+      out.push_back({frame, digest, tables});
+      std::string time_word;
+      fields >> time_word >> out.back().show_time_s;
+    }
   }
   return out;
 }
@@ -400,6 +405,136 @@ TEST_F(ClusterProcess, AtmosphereSwitchTakesEffectAtTheSameFrameOnEveryNode) {
   scene.replace(at, 16, "\"earth-standard\"");
   std::ofstream(dir_ / "earth-standard-sunset.json") << scene;
   expect_frame_equals_single_render(dir_, cache_, dir_ / "earth-standard-sunset.json", *first_new + 1, children_);
+}
+
+/// Every node presented frames 0..last with one state per frame, the same on
+/// every node; returns node a's log.
+std::vector<Presented> expect_in_sync(const fs::path& out, std::uint64_t last) {
+  const auto a = presented(out / "a"), b = presented(out / "b"), c = presented(out / "c");
+  expect_contiguous(a, 0, last, "a");
+  expect_contiguous(b, 0, last, "b");
+  expect_contiguous(c, 0, last, "c");
+  for (std::size_t i = 0; i < a.size() && i < b.size() && i < c.size(); ++i) {
+    EXPECT_EQ(a[i].digest, b[i].digest) << "frame " << i;
+    EXPECT_EQ(a[i].digest, c[i].digest) << "frame " << i;
+    EXPECT_EQ(a[i].tables, b[i].tables) << "frame " << i;
+    EXPECT_EQ(a[i].tables, c[i].tables) << "frame " << i;
+  }
+  return a;
+}
+
+TEST_F(ClusterProcess, ShowPlaysInSyncAndItsRecordingPlaysBackIdentically) {
+  const fs::path config = write_config(10);
+  // 2.5 s at 2 fps = 6 frames; the turbidity track steps from 2 to 3: two table
+  // versions the nodes know only from the master's AtmosphereDefinitions.
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const fs::path scene = kSource / "configs/scenes/earth-sunset.json";
+  const fs::path recording = dir_ / "recording.json";
+  const Child master = start_master(config, 0, 120000,
+                                    {"--show", show.string(), "--fps", "2", "--unpaced", "--record", recording.string()});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", scene.string()});
+  ASSERT_EQ(wait_exit(master, 400s), std::optional<int>(0)) << logs();
+  for (const Child& c : children_) {
+    if (c.pid != master.pid) {
+      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
+    }
+  }
+  const auto played = expect_in_sync(dir_ / "out", 5);
+  ASSERT_EQ(played.size(), 6u);
+  EXPECT_NE(played.front().tables, played.back().tables) << "the turbidity track switches table versions";
+  for (std::size_t i = 1; i < played.size(); ++i) EXPECT_NE(played[i].digest, played[i - 1].digest) << "frame " << i;
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_NE(master_log.find("needs 2 table sets"), std::string::npos) << master_log;
+  EXPECT_NE(master_log.find("6 frames recorded"), std::string::npos) << master_log;
+  ASSERT_TRUE(fs::exists(recording));
+
+  // Play the recording on fresh nodes (new output folder): the same states, frame by frame.
+  fs::rename(dir_ / "out", dir_ / "out-live");
+  for (const char* n : {"master", "a", "b", "c"}) fs::rename(dir_ / (std::string(n) + ".log"), dir_ / (std::string(n) + "-live.log"));
+  children_.clear();
+  const Child replay = start_master(config, 0, 120000, {"--show", recording.string(), "--unpaced"});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", scene.string()});
+  ASSERT_EQ(wait_exit(replay, 400s), std::optional<int>(0)) << logs();
+  for (const Child& c : children_) {
+    if (c.pid != replay.pid) {
+      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
+    }
+  }
+  const auto replayed = expect_in_sync(dir_ / "out", 5);
+  ASSERT_EQ(replayed.size(), played.size());
+  for (std::size_t i = 0; i < played.size(); ++i) {
+    EXPECT_EQ(replayed[i].digest, played[i].digest) << "frame " << i;
+    EXPECT_EQ(replayed[i].tables, played[i].tables) << "frame " << i;
+  }
+  // And the pixels: every file of the replay equals the live run's, byte for byte.
+  for (const auto& entry : fs::recursive_directory_iterator(dir_ / "out")) {
+    if (entry.path().extension() != ".png") continue;
+    const fs::path live = dir_ / "out-live" / fs::relative(entry.path(), dir_ / "out");
+    EXPECT_EQ(read_text(entry.path()), read_text(live)) << entry.path();
+  }
+}
+
+TEST_F(ClusterProcess, OperatorPausesSeeksAndQuitsThroughTheControlSocket) {
+  const fs::path config = write_config(5);
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const int control_port = port_ + 1;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--show", show.string(), "--fps", "2", "--loop", "--control-port",
+                                     std::to_string(control_port)});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  const auto control = [&](const std::string& command) {
+    const fs::path log = dir_ / "control.log";
+    fs::remove(log);
+    std::vector<std::string> args = {"show", "control", "--port", std::to_string(control_port)};
+    std::istringstream words(command);
+    for (std::string w; words >> w;) args.push_back(w);
+    const Child c = spawn(args, log);
+    const auto status = wait_exit(c, 30s);
+    return std::make_pair(status, read_text(log));
+  };
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= 3; }, 400s)) << logs();
+
+  auto [status, reply] = control("pause");
+  ASSERT_EQ(status, std::optional<int>(0)) << reply << logs();
+  EXPECT_NE(reply.find("paused"), std::string::npos) << reply;
+  // Frames go on while paused, all with one show time: the same state but for the frame number.
+  const std::size_t paused_at = presented(dir_ / "out/a").size();
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= paused_at + 4; }, 120s)) << logs();
+  const std::size_t before_seek = presented(dir_ / "out/a").size();
+  std::tie(status, reply) = control("seek 0.5");
+  EXPECT_EQ(status, std::optional<int>(0)) << reply;
+  EXPECT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= before_seek + 2; }, 120s)) << logs();
+  std::tie(status, reply) = control("warp 9");
+  EXPECT_EQ(status, std::optional<int>(1)) << "an unknown command is refused: " << reply;
+  EXPECT_NE(reply.find("error"), std::string::npos) << reply;
+  std::tie(status, reply) = control("quit");
+  EXPECT_EQ(status, std::optional<int>(0)) << reply;
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  for (const Child& c : children_) {
+    if (c.pid != master.pid) {
+      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
+    }
+  }
+
+  const auto a = expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_NE(master_log.find("operator: pause"), std::string::npos) << master_log;
+  EXPECT_NE(master_log.find("operator: seek 0.5"), std::string::npos) << master_log;
+  // Playing: show time advances by 1/2 s per frame (looping at 2.5 s). Paused: it holds for at
+  // least the 4 frames waited for. Sought: 0.5 s comes back after the pause.
+  std::size_t longest_hold = 1, hold = 1;
+  std::optional<std::size_t> first_hold_end;
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    ASSERT_GE(a[i].show_time_s, 0.0) << "presented.log carries the show time";
+    hold = a[i].show_time_s == a[i - 1].show_time_s ? hold + 1 : 1;
+    if (hold >= 4 && !first_hold_end) first_hold_end = i;
+    longest_hold = std::max(longest_hold, hold);
+  }
+  EXPECT_GE(longest_hold, 4u) << "the show time holds while paused";
+  ASSERT_TRUE(first_hold_end.has_value());
+  bool sought = false;
+  for (std::size_t i = *first_hold_end; i < a.size(); ++i) sought = sought || a[i].show_time_s == 0.5;
+  EXPECT_TRUE(sought) << "after seek 0.5 a frame shows t = 0.5 s";
 }
 
 TEST_F(ClusterProcess, SlowNodeMissesTheBarrierWhileTheOthersSkipNoFrame) {
