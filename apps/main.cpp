@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   zenith::app::register_sample_command(app);
   zenith::app::register_render_command(app);
   zenith::app::register_cluster_commands(app);
+  zenith::app::register_validate_command(app);
   zenith::app::register_show_command(app);
 
   try {
