@@ -14,8 +14,10 @@ void register_sample_command(CLI::App& app);
 void register_render_command(CLI::App& app);
 /// `zenith master`, `zenith node`, `zenith cluster` (apps/cluster_commands.cpp).
 void register_cluster_commands(CLI::App& app);
-/// `zenith validate ...` (apps/validate_command.cpp).
+/// `zenith validate cie|stress` (apps/validate_command.cpp).
 void register_validate_command(CLI::App& app);
+/// `validate cie` under `validate` (apps/validate_cie.cpp).
+void register_validate_cie(CLI::App& validate);
 /// `validate stress` under `validate` (apps/validate_stress.cpp).
 void register_validate_stress(CLI::App& validate);
 /// `zenith show ...` (apps/show_command.cpp).
