@@ -3,10 +3,8 @@
 // starts the master and every node configured for this machine as child
 // processes, stops them cleanly and stitches the last frame's outputs.
 #include <fmt/format.h>
-#include <spawn.h>
 #include <spdlog/spdlog.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -21,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "apps/child_process.h"
 #include "apps/commands.h"
 #include "apps/default_configs.h"
 #include "atmosphere/lut/table_cache.h"
@@ -33,8 +32,6 @@
 #include "render/image/image_writer.h"
 #include "warp/fisheye_projection.h"
 #include "warp/viewport_config.h"
-
-extern char** environ;
 
 namespace zenith::app {
 namespace {
@@ -137,7 +134,7 @@ void run_master(const MasterArgs& a) {
 // zenith node
 
 struct NodeArgs {
-  std::string cluster, name, out, cache_dir, scene;
+  std::string cluster, name, out, cache_dir, scene, layout = "per-node";
   std::optional<int> port;
   std::uint32_t connect_timeout_ms = 15000;
   std::vector<std::string> atmosphere_files;
@@ -155,6 +152,7 @@ int run_node(const NodeArgs& a) {
   for (const std::string& f : a.atmosphere_files) options.atmosphere_files.emplace_back(f);
   options.debug_render_delay_ms = a.debug_render_delay_ms;
   if (!a.scene.empty()) options.scene = fs::path(a.scene);
+  options.layout = a.layout == "offline" ? cluster::FrameFileLayout::offline : cluster::FrameFileLayout::per_node;
   cluster::SharedSecret secret = load_secret(options.config);
   cluster::Node node(std::move(options), std::move(secret));
   return node.run();
@@ -172,61 +170,6 @@ struct ClusterArgs {
   std::optional<std::uint64_t> stitch_frame;
   std::vector<std::string> switches;  ///< passed to the master; files also to the local nodes
 };
-
-bool is_local_host(const std::string& host) {
-  if (host == "127.0.0.1" || host == "localhost" || host == "::1") return true;
-  char name[256] = {};
-  return ::gethostname(name, sizeof name - 1) == 0 && host == name;
-}
-
-/// The --log-level value matching the current level, for the children.
-std::string log_level_argument() {
-  switch (spdlog::get_level()) {
-    case spdlog::level::trace: return "trace";
-    case spdlog::level::debug: return "debug";
-    case spdlog::level::warn: return "warn";
-    case spdlog::level::err: return "error";
-    case spdlog::level::off: return "off";
-    default: return "info";
-  }
-}
-
-/// Starts /proc/self/exe with `args` (argv[1..]); returns the child's pid.
-pid_t spawn_self(const std::vector<std::string>& args) {
-  std::vector<std::string> all = {"/proc/self/exe"};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& s : all) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (const int e = ::posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ); e != 0)
-    throw std::runtime_error(fmt::format("cannot start a child zenith process: {}", std::strerror(e)));
-  return pid;
-}
-
-/// waitpid with a deadline; the exit status, or nullopt when still running.
-std::optional<int> wait_for(pid_t pid, std::chrono::milliseconds timeout) {
-  const auto deadline = Clock::now() + timeout;
-  for (;;) {
-    int status = 0;
-    const pid_t r = ::waitpid(pid, &status, WNOHANG);
-    if (r == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    if (r < 0) return -1;
-    if (Clock::now() >= deadline) return std::nullopt;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-}
-
-/// Stops a child: waits `grace`, then SIGTERM, then SIGKILL.
-int stop_child(pid_t pid, const std::string& what, std::chrono::milliseconds grace) {
-  if (auto status = wait_for(pid, grace)) return *status;
-  spdlog::warn("cluster: {} still running after {} ms: SIGTERM", what, grace.count());
-  ::kill(pid, SIGTERM);
-  if (auto status = wait_for(pid, std::chrono::milliseconds(3000))) return *status;
-  spdlog::warn("cluster: {} ignored SIGTERM: SIGKILL", what);
-  ::kill(pid, SIGKILL);
-  return wait_for(pid, std::chrono::milliseconds(3000)).value_or(-1);
-}
 
 /// Stitches frame `frame` of fisheye outputs that share one image circle (a dome
 /// master cut into tiles) into one image; false (with a log line) when the
@@ -303,15 +246,7 @@ void run_cluster(const ClusterArgs& a) {
   }
   const std::uint64_t frames = a.frames.value_or(show_scene ? 0 : 10);
   const fs::path out = a.out.empty() ? config.output_directory : fs::path(a.out);
-  // A local run needs no secret set up: a fresh random one goes to the children.
-  if (!config.secret_file) {
-    const char* value = std::getenv(config.secret_env.c_str());
-    if (value == nullptr || *value == '\0') {
-      const cluster::Nonce bytes = cluster::random_nonce();
-      ::setenv(config.secret_env.c_str(), cluster::to_hex(bytes).c_str(), 1);
-      spdlog::info("cluster: ${} is not set: a random one-off secret is passed to the master and nodes", config.secret_env);
-    }
-  }
+  ensure_local_secret(config);
   const std::string level = log_level_argument();
   std::vector<std::string> common = {"--cluster", config_path};
   if (a.port) common.insert(common.end(), {"--port", std::to_string(*a.port)});
@@ -415,6 +350,10 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms, "Keep trying to reach the master this long (default 15000)");
     cmd->add_option("--scene", a->scene, "Render this scene instead of the config's (a show's scene)");
+    cmd->add_option("--layout", a->layout,
+                    "per-node: OUT/<node>/<output>/frame-N.png (default); offline: OUT/<output>/<output>.N.png "
+                    "(zenith show render --cluster)")
+        ->check(CLI::IsMember({"per-node", "offline"}));
     cmd->add_option("--atmosphere", a->atmosphere_files,
                     "An atmosphere file the master may switch to (besides the scene's and the presets; repeatable)");
     cmd->add_option("--debug-render-delay-ms", a->debug_render_delay_ms,

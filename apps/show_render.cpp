@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "apps/offline_cluster_renderer.h"
 #include "apps/offline_frame_renderer.h"
 #include "apps/offline_manifest.h"
 #include "apps/offline_render.h"
@@ -22,6 +23,7 @@
 #include "apps/table_provider.h"
 #include "atmosphere/json_reader.h"
 #include "atmosphere/lut/table_cache.h"
+#include "cluster/cluster_config.h"
 #include "cluster/frame_scene.h"
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
@@ -40,7 +42,7 @@ struct TableArgs {
 };
 
 struct ShowRenderArgs {
-  std::string show, out, viewport, projection, size, format = "png", contact_sheet;
+  std::string show, out, viewport, projection, size, format = "png", contact_sheet, cluster;
   std::string tone = "exponential", exr_type = "half", colour = "auto", device = "auto";
   std::optional<double> fps, fov_deg, tilt_deg;
   std::optional<std::uint64_t> from, to;
@@ -81,6 +83,23 @@ struct Outputs {
   std::vector<offline::LocalOutput> local;
 };
 
+/// The specs of every output of a cluster's nodes (they render; this process does not).
+Outputs cluster_outputs(const cluster::ClusterConfig& config) {
+  Outputs result;
+  const warp::ViewportConfig viewports = warp::load_viewport_config(config.viewports);
+  const std::string file_name = std::filesystem::path(config.viewports).filename().string();
+  const std::string digest = offline::file_sha256(config.viewports).substr(0, 16);
+  for (const cluster::ClusterNodeConfig& node : config.nodes)
+    for (const std::string& name : node.outputs) {
+      const warp::OutputConfig& o = viewports.outputs[viewports.index_of(name)];
+      result.specs.push_back({o.name, o.width_px, o.height_px,
+                              cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #", o.name,
+                                  "; blend ", warp::to_string(o.blend.mode), "; black level ", o.black_level,
+                                  "; node ", node.name)});
+    }
+  return result;
+}
+
 Outputs outputs_of(const ShowRenderArgs& a) {
   Outputs result;
   if (!a.viewport.empty()) {
@@ -107,10 +126,14 @@ Outputs outputs_of(const ShowRenderArgs& a) {
 }
 
 void check_arguments(const ShowRenderArgs& a, bool size_given) {
-  if (a.viewport.empty() == a.projection.empty())
+  if (int(!a.viewport.empty()) + int(!a.projection.empty()) + int(!a.cluster.empty()) != 1)
     throw std::invalid_argument(
-        "give either --viewport CONFIG[#NAME] (the outputs of a viewport config) or --projection fisheye|planar "
-        "with --size WxH");
+        "give one of --cluster FILE (the nodes of a cluster render their outputs), --viewport CONFIG[#NAME] (the "
+        "outputs of a viewport config) or --projection fisheye|planar with --size WxH");
+  if (!a.cluster.empty() && (size_given || a.fov_deg || a.tilt_deg))
+    throw std::invalid_argument(
+        "--cluster: the cluster's viewport config gives each output's projection and size; drop --size, --fov and "
+        "--tilt");
   if (!a.viewport.empty() && (size_given || a.fov_deg || a.tilt_deg))
     throw std::invalid_argument(
         "--viewport: the viewport config gives each output's projection and size; drop --size, --fov and --tilt");
@@ -123,13 +146,21 @@ void check_arguments(const ShowRenderArgs& a, bool size_given) {
     throw std::invalid_argument(fmt::format("--out '{}': exists and is not a folder", a.out));
 }
 
-void run_show_render(const ShowRenderArgs& a, bool size_given) {
+void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given) {
   check_arguments(a, size_given);
-  const std::vector<offline::ImageFormat> formats = offline::parse_formats(a.format);
+  std::optional<cluster::ClusterConfig> cluster_config;
+  if (!a.cluster.empty()) {
+    cluster_config = cluster::load_cluster_config(a.cluster);
+    if (format_given && a.format != cluster_config->output_format)
+      throw std::invalid_argument(fmt::format("--format {}: the nodes of {} write {} (its \"output\": \"format\")",
+                                              a.format, a.cluster, cluster_config->output_format));
+  }
+  const std::vector<offline::ImageFormat> formats =
+      offline::parse_formats(cluster_config ? cluster_config->output_format : a.format);
   const image::ToneMapping tone = image::parse_tone_mapping(a.tone);
   const image::ExrPixelType exr_type = image::parse_exr_pixel_type(a.exr_type);
   const image::ColourMapping colour = image::parse_colour_mapping(a.colour);
-  Outputs outputs = outputs_of(a);
+  Outputs outputs = cluster_config ? cluster_outputs(*cluster_config) : outputs_of(a);
 
   const show::Show show = show::load_show(a.show);
   const double fps = frame_rate(show, a.fps);
@@ -141,7 +172,12 @@ void run_show_render(const ShowRenderArgs& a, bool size_given) {
                                             "frame at {} fps)",
                                             first, last, frame_count - 1, fps));
 
-  const TableRequest request = table_request(a.tables);
+  TableArgs table_args = a.tables;
+  if (cluster_config) {  // the nodes render with the cluster's tables
+    table_args.tables = cluster_config->table_sizes;
+    table_args.orders = cluster_config->table_orders;
+  }
+  const TableRequest request = table_request(table_args);
   const show::TablePlan plan = plan_for(show, fps, request);
   fmt::print("{}", show::describe(plan));
   std::fflush(stdout);
@@ -157,8 +193,10 @@ void run_show_render(const ShowRenderArgs& a, bool size_given) {
   job.render_flags = cluster::render_flags_of(render::RenderOptions{});
   job.outputs = outputs.specs;
   job.formats = formats;
-  job.settings = cat("scene sha256 ", offline::file_sha256(show.scene_path()), "; tables ", a.tables.tables,
-                     " orders ", a.tables.orders, "; colour ", image::to_string(colour));
+  job.settings = cat("scene sha256 ", offline::file_sha256(show.scene_path()), "; tables ", table_args.tables,
+                     " orders ", table_args.orders, "; colour ", image::to_string(colour));
+  if (cluster_config)  // the nodes' own output stage (the defaults of `zenith node`)
+    job.settings = cat(job.settings, "; cluster ", cluster_config->name, " nodes");
   job.png_settings = cat("tone ", image::to_string(tone));
   job.exr_settings = cat("pixels ", image::to_string(exr_type));
   job.out_dir = a.out;
@@ -194,6 +232,35 @@ void run_show_render(const ShowRenderArgs& a, bool size_given) {
              {"png_settings", job.png_settings},
              {"exr_settings", job.exr_settings}};
 
+  if (cluster_config) {
+    offline::ClusterRenderSettings settings;
+    settings.cluster_file = a.cluster;
+    settings.show_file = a.show;
+    settings.fps = fps;
+    settings.out_dir = a.out;
+    if (!a.tables.cache_dir.empty()) settings.cache_directory = std::filesystem::path(a.tables.cache_dir);
+    settings.cpu_precompute = a.tables.cpu_precompute;
+    std::optional<offline::ClusterFrameRenderer> cluster_renderer;
+    job.before_rendering = [&](std::uint64_t frames, const std::set<cluster::Digest>&) {
+      spdlog::info("rendering {} frame{} of '{}' at {} fps on the nodes of {} into {}/<output>/<output>.NNNNNN.{}",
+                   frames, frames == 1 ? "" : "s", show.name(), fps, a.cluster, a.out, cluster_config->output_format);
+      cluster_renderer.emplace(settings);
+    };
+    /// Starts the cluster only when there is something to render (before_rendering).
+    struct Deferred final : offline::FrameRenderer {
+      std::optional<offline::ClusterFrameRenderer>& renderer;
+      explicit Deferred(std::optional<offline::ClusterFrameRenderer>& r) : renderer(r) {}
+      void render_frame(const cluster::FrameState& state,
+                        const std::vector<std::vector<std::filesystem::path>>& files) override {
+        renderer->render_frame(state, files);
+      }
+    } deferred(cluster_renderer);
+    const offline::RenderSummary summary = offline::run_render_job(job, deferred);
+    cluster_renderer.reset();  // Goodbye to the nodes before the summary
+    fmt::print("{}\n", offline::describe(summary));
+    return;
+  }
+
   render::gl::ContextOptions context_options;
   context_options.prefer = render::gl::parse_device_preference(a.device);
   offline::LocalFrameRenderer renderer(show, std::move(versions), std::move(outputs.local), OutputStage{tone, exr_type},
@@ -217,6 +284,8 @@ void register_show_render(CLI::App& show_command) {
   cmd->add_option("--show", a->show, "Show file (configs/shows/)")->required();
   cmd->add_option("--out", a->out, "Output folder: DIR/<output>/<output>.<frame:06d>.png|exr, DIR/manifest.json")
       ->required();
+  cmd->add_option("--cluster", a->cluster,
+                  "Render on the nodes of this cluster config (all on this machine; its viewports, tables and format)");
   cmd->add_option("--viewport", a->viewport,
                   "Render output NAME of a viewport config (CONFIG.json#NAME), or every output (CONFIG.json)");
   cmd->add_option("--projection", a->projection, "fisheye or planar (with --size), instead of --viewport")
@@ -240,7 +309,7 @@ void register_show_render(CLI::App& show_command) {
   cmd->add_flag("--cpu-precompute", a->tables.cpu_precompute, "Precompute missing tables on the CPU");
   cmd->add_option("--device", a->device, "GL device: auto, software (llvmpipe), hardware")
       ->check(CLI::IsMember({"auto", "software", "hardware"}));
-  cmd->callback([a, cmd] { run_show_render(*a, cmd->count("--size") > 0); });
+  cmd->callback([a, cmd] { run_show_render(*a, cmd->count("--size") > 0, cmd->count("--format") > 0); });
 }
 
 void register_show_plan(CLI::App& show_command) {

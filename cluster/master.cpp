@@ -569,9 +569,23 @@ struct Master::Impl {
     }
     waiting_logged = false;
     maybe_start_switch();
-    frame_in_flight = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
+    if (options.feed) {
+      switch (options.feed->pop(frame_in_flight)) {
+        case FrameFeed::Next::finished: stop("every frame of the feed was presented"); return;
+        case FrameFeed::Next::wait:
+          frame_timer.expires_after(milliseconds(2));
+          frame_timer.async_wait([this](const boost::system::error_code& ec) {
+            if (!ec) start_frame();
+          });
+          return;
+        case FrameFeed::Next::frame: break;
+      }
+      frame = frame_in_flight.frame;
+    } else {
+      frame_in_flight = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
                            : default_show_frame(scene, frame, options.sun_step_deg, table_refs, render_flags);
-    if (!show) frame_in_flight.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
+      if (!show) frame_in_flight.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
+    }
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
     for (const auto& [id, done] : participants) sessions.at(id)->connection->send_encoded(encoded);
     in_flight = true;
@@ -637,13 +651,14 @@ struct Master::Impl {
       for (const AtmosphereTableRef& r : frame_in_flight.atmospheres) recorder->add_version(versions.at(r.table_hash));
       recorder->record(frame_in_flight);
     }
+    if (options.feed) options.feed->presented(frame);
     ++frame;
     ++presented;
     if (options.frames != 0 && presented >= options.frames) {
       stop(cat("show finished after ", presented, " frames"));
       return;
     }
-    if (clock && clock->finished()) {
+    if (clock && clock->finished() && !options.feed) {
       stop(cat("show '", show->name(), "' finished after ", presented, " frames"));
       return;
     }
@@ -788,6 +803,7 @@ struct Master::Impl {
   void stop(const std::string& reason) {
     if (stopping) return;
     stopping = true;
+    if (options.feed) options.feed->master_stopped();
     spdlog::info("master: stopping: {}", reason);
     boost::system::error_code ec;
     acceptor.close(ec);
@@ -867,6 +883,15 @@ struct Master::Impl {
 Master::Master(MasterOptions options, SharedSecret secret)
     : impl_(std::make_unique<Impl>(std::move(options), std::move(secret))) {}
 Master::~Master() = default;
-int Master::run() { return impl_->run(); }
+int Master::run() {
+  // Whatever ends the run, a thread feeding frames must not wait for more.
+  struct StopFeed {
+    std::shared_ptr<FrameFeed> feed;
+    ~StopFeed() {
+      if (feed) feed->master_stopped();
+    }
+  } stop_feed{impl_->options.feed};
+  return impl_->run();
+}
 
 }  // namespace zenith::cluster

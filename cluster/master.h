@@ -16,11 +16,13 @@
 // ready node holds it (docs/cluster.md, "Table versions").
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cluster/cluster_config.h"
+#include "cluster/frame_feed.h"
 #include "cluster/handshake.h"
 
 namespace zenith::cluster {
@@ -70,6 +72,10 @@ struct MasterOptions {
   bool console = false;
   /// Playback commands on a TCP control socket at 127.0.0.1:PORT (`zenith show control`).
   std::optional<std::uint16_t> control_port;
+  /// Offline rendering through the cluster: frames come from this feed (the
+  /// show still names the table sets to prepare); the master stops when the
+  /// feed is finished and empty. Not combined with a show clock's commands.
+  std::shared_ptr<FrameFeed> feed;
 };
 
 class Master {

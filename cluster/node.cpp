@@ -454,6 +454,8 @@ struct Node::Impl {
   }
 
   std::filesystem::path frame_path(const warp::OutputConfig& o, std::uint64_t frame) const {
+    if (options.layout == FrameFileLayout::offline)  // apps/offline_render.h: frame_file_path()
+      return options.output_directory / o.name / fmt::format("{}.{:06d}.{}", o.name, frame, options.config.output_format);
     return node_directory / o.name / fmt::format("frame-{:06d}.{}", frame, options.config.output_format);
   }
 
@@ -630,7 +632,9 @@ struct Node::Impl {
     table_options.max_orders = options.config.table_orders;
     build_known_tables();
     load_kept_definitions();
-    node_directory = options.output_directory / options.node_name;
+    node_directory = options.layout == FrameFileLayout::offline
+                         ? options.output_directory / "nodes" / options.node_name
+                         : options.output_directory / options.node_name;
     std::filesystem::create_directories(node_directory);
     heartbeat_ms = options.config.heartbeat_ms;
 

@@ -31,6 +31,12 @@ enum NodeExit : int {
   kNodeExitMasterLost = 3,   ///< the master is unreachable or vanished without a Goodbye
 };
 
+/// Where a node writes its frames.
+enum class FrameFileLayout {
+  per_node,  ///< <out>/<node>/<output>/frame-NNNNNN.ext (live shows)
+  offline,   ///< <out>/<output>/<output>.NNNNNN.ext, logs in <out>/nodes/<node>/ (`zenith show render --cluster`)
+};
+
 struct NodeOptions {
   ClusterConfig config;
   std::string node_name;                       ///< one of config.nodes
@@ -45,6 +51,7 @@ struct NodeOptions {
   /// Renders this scene instead of the configuration's (a show's scene:
   /// `zenith cluster --show` passes it to master and nodes alike).
   std::optional<std::filesystem::path> scene;
+  FrameFileLayout layout = FrameFileLayout::per_node;
   /// Test hook (`--debug-render-delay-ms`): sleep this long before each frame,
   /// to play a slow node. 0 in production.
   std::uint32_t debug_render_delay_ms = 0;

@@ -537,6 +537,64 @@ TEST_F(ClusterProcess, OperatorPausesSeeksAndQuitsThroughTheControlSocket) {
   EXPECT_TRUE(sought) << "after seek 0.5 a frame shows t = 0.5 s";
 }
 
+TEST_F(ClusterProcess, ShowRendersOfflineOnTheNodesResumesAndMatchesASingleProcessRender) {
+  const fs::path config = write_config(10);
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const auto render = [&](const fs::path& out, const std::vector<std::string>& where, const std::string& log) {
+    std::vector<std::string> args = {"show", "render", "--show", show.string(), "--out", out.string(), "--cache",
+                                     cache_.string()};
+    args.insert(args.end(), where.begin(), where.end());
+    const Child c = spawn(args, dir_ / log);
+    children_.push_back(c);
+    const auto status = wait_exit(c, 400s);
+    return std::make_pair(status, read_text(dir_ / log));
+  };
+  const fs::path out = dir_ / "offline";
+  auto [status, text] = render(out, {"--cluster", config.string()}, "render-1.log");
+  ASSERT_EQ(status, std::optional<int>(0)) << text;
+  EXPECT_NE(text.find("rendered 6, skipped 0 of 6 frames"), std::string::npos) << text;
+  const char* outputs[4] = {"top-left", "top-right", "bottom-left", "bottom-right"};
+  for (const char* o : outputs)
+    for (int f = 0; f < 6; ++f) {
+      char name[64];
+      std::snprintf(name, sizeof name, "%s/%s.%06d.png", o, o, f);
+      EXPECT_TRUE(fs::exists(out / name)) << name;
+    }
+  EXPECT_TRUE(fs::exists(out / "manifest.json"));
+  EXPECT_TRUE(fs::exists(out / "contact-sheet.png"));
+  // Every node presented the 6 frames with one state each.
+  for (const char* node : {"a", "b", "c"}) expect_contiguous(presented(out / "nodes" / node), 0, 5, node);
+
+  // Resume: nothing to do, then exactly the frame whose file is gone.
+  std::tie(status, text) = render(out, {"--cluster", config.string()}, "render-2.log");
+  ASSERT_EQ(status, std::optional<int>(0)) << text;
+  EXPECT_NE(text.find("rendered 0, skipped 6 of 6 frames"), std::string::npos) << text;
+  const std::string before = read_text(out / "bottom-left/bottom-left.000003.png");
+  fs::remove(out / "bottom-left/bottom-left.000003.png");
+  std::tie(status, text) = render(out, {"--cluster", config.string()}, "render-3.log");
+  ASSERT_EQ(status, std::optional<int>(0)) << text;
+  EXPECT_NE(text.find("rendered 1, skipped 5 of 6 frames"), std::string::npos) << text;
+  EXPECT_EQ(read_text(out / "bottom-left/bottom-left.000003.png"), before) << "re-rendered bit for bit";
+
+  // The quadrants of frame 5 (after the turbidity step) equal one process rendering the whole dome master.
+  const fs::path single = dir_ / "single";
+  std::tie(status, text) = render(single, {"--projection", "fisheye", "--size", "128x128", "--tables", "small",
+                                           "--from", "5", "--to", "5"},
+                                  "render-single.log");
+  ASSERT_EQ(status, std::optional<int>(0)) << text;
+  const image::LinearImage whole = image::read_image(single / "fisheye/fisheye.000005.png");
+  ASSERT_EQ(whole.width, 2 * kQuadrantPx);
+  for (int q = 0; q < 4; ++q) {
+    const image::LinearImage tile = image::read_image(out / outputs[q] / (std::string(outputs[q]) + ".000005.png"));
+    const int x0 = (q % 2) * kQuadrantPx, y0 = (q / 2) * kQuadrantPx;
+    int differing = 0;
+    for (int y = 0; y < kQuadrantPx; ++y)
+      for (int x = 0; x < kQuadrantPx * 3; ++x)
+        differing += tile.rgb[y * kQuadrantPx * 3 + x] != whole.rgb[(y0 + y) * whole.width * 3 + x0 * 3 + x];
+    EXPECT_EQ(differing, 0) << outputs[q];
+  }
+}
+
 TEST_F(ClusterProcess, SlowNodeMissesTheBarrierWhileTheOthersSkipNoFrame) {
   const fs::path config = write_config(10, 300);
   const Child master = start_master(config, 0);
