@@ -30,7 +30,7 @@
 #include "cluster/show/show.h"
 #include "render/image/image_io.h"
 #include "render/image/image_writer.h"
-#include "warp/fisheye_projection.h"
+#include "warp/dome_tiles.h"
 #include "warp/viewport_config.h"
 
 namespace zenith::app {
@@ -179,44 +179,34 @@ bool stitch_dome(const cluster::ClusterConfig& config, const fs::path& out, std:
   struct Tile {
     const warp::OutputConfig* output;
     std::string node;
-    double cx, cy;
   };
   std::vector<Tile> tiles;
-  double radius = -1.0, max_cx = 0.0, max_cy = 0.0;
-  for (const auto& node : config.nodes) {
+  std::vector<const warp::OutputConfig*> outputs;
+  for (const auto& node : config.nodes)
     for (const std::string& name : node.outputs) {
-      const warp::OutputConfig* o = viewports.find(name);
-      const auto* fisheye = dynamic_cast<const warp::FisheyeProjection*>(o->projection.get());
-      if (fisheye == nullptr || (radius >= 0.0 && fisheye->radius_px() != radius)) {
-        spdlog::info("cluster: not stitching: the outputs are not tiles of one fisheye dome master");
-        return false;
-      }
-      radius = fisheye->radius_px();
-      tiles.push_back({o, node.name, fisheye->centre_x_px(), fisheye->centre_y_px()});
-      max_cx = std::max(max_cx, fisheye->centre_x_px());
-      max_cy = std::max(max_cy, fisheye->centre_y_px());
+      tiles.push_back({viewports.find(name), node.name});
+      outputs.push_back(tiles.back().output);
     }
+  const auto origins = warp::dome_tile_origins(outputs);
+  if (!origins) {
+    spdlog::info("cluster: not stitching: the outputs are not whole-pixel tiles of one fisheye dome master");
+    return false;
   }
-  // Tile origin in the stitched image: (max_cx − cx, max_cy − cy); integral for exact stitching.
   int width = 0, height = 0;
-  for (const Tile& t : tiles) {
-    const double x0 = max_cx - t.cx, y0 = max_cy - t.cy;
-    if (x0 != std::floor(x0) || y0 != std::floor(y0)) {
-      spdlog::info("cluster: not stitching: tile '{}' is not at a whole-pixel offset", t.output->name);
-      return false;
-    }
-    width = std::max(width, static_cast<int>(x0) + t.output->width_px);
-    height = std::max(height, static_cast<int>(y0) + t.output->height_px);
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    width = std::max(width, (*origins)[i][0] + tiles[i].output->width_px);
+    height = std::max(height, (*origins)[i][1] + tiles[i].output->height_px);
   }
   std::vector<float> rgb(static_cast<std::size_t>(width) * height * 3, 0.0f);
-  for (const Tile& t : tiles) {
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    const Tile& t = tiles[i];
     const fs::path file = out / t.node / t.output->name / fmt::format("frame-{:06d}.png", frame);
     if (!fs::exists(file)) {
       spdlog::warn("cluster: not stitching frame {}: {} is missing", frame, file.string());
       return false;
     }
     const image::LinearImage tile = image::read_image(file);
-    const int x0 = static_cast<int>(max_cx - t.cx), y0 = static_cast<int>(max_cy - t.cy);
+    const int x0 = (*origins)[i][0], y0 = (*origins)[i][1];
     for (int y = 0; y < tile.height; ++y)
       for (int x = 0; x < tile.width; ++x)
         for (int c = 0; c < 3; ++c)

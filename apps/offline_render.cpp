@@ -77,6 +77,27 @@ std::filesystem::path write_sheet(const RenderJob& job) {
   const auto format = std::find(job.formats.begin(), job.formats.end(), ImageFormat::png) != job.formats.end()
                           ? ImageFormat::png
                           : ImageFormat::exr;
+  const std::vector<std::uint64_t> frames =
+      image::evenly_spaced_frames(job.first_frame, job.last_frame, job.contact_sheet_frames);
+  const bool mosaic = std::all_of(job.outputs.begin(), job.outputs.end(),
+                                  [](const OutputSpec& o) { return o.mosaic_origin_px.has_value(); });
+  if (mosaic) {  // tiles of one dome master: each cell the whole picture
+    std::vector<std::vector<image::MosaicTile>> tiles;
+    int picture_height_px = 0;
+    for (const std::uint64_t frame : frames) {
+      std::vector<image::MosaicTile>& cell = tiles.emplace_back();
+      for (const OutputSpec& o : job.outputs) {
+        cell.push_back({job.out_dir / frame_file_path(o.name, frame, format), (*o.mosaic_origin_px)[0],
+                        (*o.mosaic_origin_px)[1]});
+        picture_height_px = std::max(picture_height_px, (*o.mosaic_origin_px)[1] + o.height_px);
+      }
+    }
+    image::ContactSheetOptions options;
+    options.cell_height_px = std::max(1, std::min(options.cell_height_px, picture_height_px));
+    const auto [w, h] = image::write_mosaic_contact_sheet(*job.contact_sheet, tiles, job.tone, options);
+    spdlog::info("contact sheet of {} frames: {} ({}x{})", tiles.size(), job.contact_sheet->string(), w, h);
+    return *job.contact_sheet;
+  }
   std::vector<std::vector<std::filesystem::path>> cells;
   for (const std::uint64_t frame :
        image::evenly_spaced_frames(job.first_frame, job.last_frame, job.contact_sheet_frames)) {

@@ -11,6 +11,7 @@
 //   DIR/manifest.json
 //   DIR/contact-sheet.png                 (unless --contact-sheet none / another FILE)
 //   DIR/<output>/<output>.<frame:06d>.png|exr
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -41,6 +42,10 @@ struct OutputSpec {
   /// Everything besides the frame state that shapes its pixels (projection,
   /// viewport file digest, warp, blend, black level): part of its settings key.
   std::string description;
+  /// Where this output's top-left pixel sits in one picture shared by every
+  /// output (tiles of a dome master, warp/dome_tiles.h): the contact sheet
+  /// then shows each frame as that picture. Set on all outputs or none.
+  std::optional<std::array<int, 2>> mosaic_origin_px;
 };
 
 /// "<output>/<output>.<frame:06d>.<ext>": a file's path relative to the render

@@ -28,6 +28,7 @@
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
 #include "render/image/colour.h"
+#include "warp/dome_tiles.h"
 
 namespace zenith::app {
 namespace {
@@ -83,20 +84,31 @@ struct Outputs {
   std::vector<offline::LocalOutput> local;
 };
 
+/// Tiles of one dome master show as the whole picture on the contact sheet.
+void set_dome_mosaic(std::vector<offline::OutputSpec>& specs, const std::vector<const warp::OutputConfig*>& outputs) {
+  if (specs.size() < 2) return;
+  if (const auto origins = warp::dome_tile_origins(outputs))
+    for (std::size_t i = 0; i < specs.size(); ++i) specs[i].mosaic_origin_px = (*origins)[i];
+}
+
 /// The specs of every output of a cluster's nodes (they render; this process does not).
 Outputs cluster_outputs(const cluster::ClusterConfig& config) {
   Outputs result;
   const warp::ViewportConfig viewports = warp::load_viewport_config(config.viewports);
   const std::string file_name = std::filesystem::path(config.viewports).filename().string();
   const std::string digest = offline::file_sha256(config.viewports).substr(0, 16);
+  std::vector<const warp::OutputConfig*> configs;
   for (const cluster::ClusterNodeConfig& node : config.nodes)
     for (const std::string& name : node.outputs) {
       const warp::OutputConfig& o = viewports.outputs[viewports.index_of(name)];
+      configs.push_back(&o);
       result.specs.push_back({o.name, o.width_px, o.height_px,
                               cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #", o.name,
                                   "; blend ", warp::to_string(o.blend.mode), "; black level ", o.black_level,
-                                  "; node ", node.name)});
+                                  "; node ", node.name),
+                              std::nullopt});
     }
+  set_dome_mosaic(result.specs, configs);
   return result;
 }
 
@@ -107,20 +119,24 @@ Outputs outputs_of(const ShowRenderArgs& a) {
     // Files carry the config's file name, not the path as typed: the bytes do not depend on the working folder.
     const std::string file_name = std::filesystem::path(selection.file).filename().string();
     const std::string digest = offline::file_sha256(selection.file).substr(0, 16);
+    std::vector<const warp::OutputConfig*> configs;
     for (const std::size_t i : selection.indices) {
       const warp::OutputConfig& o = selection.config.outputs[i];
+      configs.push_back(&o);
       result.specs.push_back({o.name, o.width_px, o.height_px,
                               cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #",
                                   o.name, "; blend ", warp::to_string(o.blend.mode), "; black level ",
-                                  o.black_level)});
+                                  o.black_level),
+                              std::nullopt});
       result.local.push_back({o.projection, warp::output_blend_mask(selection.config, i), o.black_level,
                               viewport_attributes(file_name, o)});
     }
+    set_dome_mosaic(result.specs, configs);
     return result;
   }
   const auto [width, height] = parse_size(a.size);
   std::shared_ptr<const warp::Projection> projection = make_projection(a.projection, a.fov_deg, a.tilt_deg, width, height);
-  result.specs.push_back({a.projection, width, height, projection->describe()});
+  result.specs.push_back({a.projection, width, height, projection->describe(), std::nullopt});
   result.local.push_back({std::move(projection), std::nullopt, 0.0, {}});
   return result;
 }

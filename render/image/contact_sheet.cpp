@@ -175,6 +175,40 @@ std::pair<int, int> write_contact_sheet(const std::filesystem::path& sheet_path,
   return {sheet.width, sheet.height};
 }
 
+std::pair<int, int> write_mosaic_contact_sheet(const std::filesystem::path& sheet_path,
+                                               const std::vector<std::vector<MosaicTile>>& frames,
+                                               ToneMapping exr_tone, const ContactSheetOptions& options) {
+  check_options(options);
+  std::vector<std::vector<LinearImage>> thumbnails;
+  for (const auto& tiles : frames) {
+    if (tiles.empty()) throw std::invalid_argument("write_mosaic_contact_sheet: a frame without tiles");
+    std::vector<LinearImage> images;
+    LinearImage picture;
+    for (const MosaicTile& tile : tiles) {
+      if (tile.x_px < 0 || tile.y_px < 0)
+        throw std::invalid_argument("write_mosaic_contact_sheet: a tile at a negative offset");
+      images.push_back(read_display_image(tile.file, exr_tone));
+      picture.width = std::max(picture.width, tile.x_px + images.back().width);
+      picture.height = std::max(picture.height, tile.y_px + images.back().height);
+    }
+    picture.rgb.assign(static_cast<std::size_t>(picture.width) * picture.height * 3, 0.0f);
+    for (std::size_t t = 0; t < tiles.size(); ++t) {
+      const LinearImage& image = images[t];
+      for (int y = 0; y < image.height; ++y)
+        std::copy_n(image.rgb.begin() + static_cast<std::ptrdiff_t>(y) * image.width * 3, image.width * 3,
+                    picture.rgb.begin() +
+                        (static_cast<std::ptrdiff_t>(tiles[t].y_px + y) * picture.width + tiles[t].x_px) * 3);
+    }
+    thumbnails.push_back(
+        {downscale_box(picture, thumbnail_width(picture, options.cell_height_px), options.cell_height_px)});
+  }
+  const LinearImage sheet = compose_contact_sheet(thumbnails, options);
+  if (sheet_path.has_parent_path()) std::filesystem::create_directories(sheet_path.parent_path());
+  write_png(sheet_path, sheet.width, sheet.height, sheet.rgb, ToneMapping::clamp,
+            {{"zenith:content", "contact sheet (docs/shows.md, \"Offline rendering\")"}});
+  return {sheet.width, sheet.height};
+}
+
 std::vector<std::uint64_t> evenly_spaced_frames(std::uint64_t first, std::uint64_t last, std::size_t count) {
   std::vector<std::uint64_t> result;
   if (count == 0 || last < first) return result;

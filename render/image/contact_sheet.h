@@ -50,6 +50,20 @@ std::pair<int, int> write_contact_sheet(const std::filesystem::path& sheet_path,
                                         const std::vector<std::vector<std::filesystem::path>>& frames,
                                         ToneMapping exr_tone, const ContactSheetOptions& options = {});
 
+/// One tile of a frame that is a mosaic — the quadrants of a dome master
+/// rendered by four cluster nodes: the file and where its top-left pixel goes
+/// in the frame's picture.
+struct MosaicTile {
+  std::filesystem::path file;
+  int x_px = 0, y_px = 0;  ///< ≥ 0
+};
+
+/// As write_contact_sheet, each cell being one picture put together from its
+/// tiles (pixels no tile covers are black; a later tile overwrites an earlier).
+std::pair<int, int> write_mosaic_contact_sheet(const std::filesystem::path& sheet_path,
+                                               const std::vector<std::vector<MosaicTile>>& frames,
+                                               ToneMapping exr_tone, const ContactSheetOptions& options = {});
+
 /// Up to `count` distinct frame numbers evenly spaced over [first, last],
 /// both ends included when count ≥ 2, ascending; all of them when the range
 /// holds no more than `count`. Empty when count = 0 or last < first.

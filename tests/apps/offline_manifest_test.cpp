@@ -196,7 +196,7 @@ TEST(OfflineLayout, SettingsKeysChangeWithWhatShapesTheBytes) {
   job.settings = "scene sha256 1234; tables small orders 4; colour auto";
   job.png_settings = "tone exponential";
   job.exr_settings = "pixels half";
-  const OutputSpec dome{"fisheye", 48, 48, "fisheye 180 deg"};
+  const OutputSpec dome{"fisheye", 48, 48, "fisheye 180 deg", std::nullopt};
   const std::string png = settings_key(job, dome, ImageFormat::png), exr = settings_key(job, dome, ImageFormat::exr);
   EXPECT_EQ(png.size(), 16u);
   EXPECT_NE(png, exr);
@@ -209,7 +209,7 @@ TEST(OfflineLayout, SettingsKeysChangeWithWhatShapesTheBytes) {
   RenderJob paper = job;
   paper.settings = "scene sha256 1234; tables paper orders 4; colour auto";
   EXPECT_NE(settings_key(paper, dome, ImageFormat::png), png);
-  const OutputSpec bigger{"fisheye", 64, 64, "fisheye 180 deg"};
+  const OutputSpec bigger{"fisheye", 64, 64, "fisheye 180 deg", std::nullopt};
   EXPECT_NE(settings_key(job, bigger, ImageFormat::png), png);
 }
 

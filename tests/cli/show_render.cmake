@@ -107,7 +107,8 @@ render_show("rendered 10, skipped 1 of 11 frames" ${dome} --format png,exr --fps
 render_show("rendered 0, skipped 11 of 11 frames" ${dome} --format png --fps 4 --contact-sheet none --out "${root}/c")
 render_show("rendered 0, skipped 6 of 6 frames" ${dome} --format png --out "${root}/b")
 
-# 5. A viewport config: each output in its folder, side by side on the sheet.
+# 5. A viewport config: each output in its folder; the two halves of one dome master are put back
+#    together on the sheet.
 file(WRITE "${root}/halves.json" [=[{
   "zenith_viewports": 1,
   "name": "halves",
@@ -126,9 +127,9 @@ foreach(f left/left.000004.png left/left.000005.png right/right.000004.png right
   endif()
 endforeach()
 file(READ "${root}/v/contact-sheet.png" ihdr OFFSET 16 LIMIT 8 HEX)
-# 2 frames, cells 24 + 4 + 24 = 52 px wide and 48 high: 1 column, 2 rows: 60 x 108.
-if(NOT ihdr STREQUAL "0000003c0000006c")
-  message(FATAL_ERROR "the viewport contact sheet is not 60x108: IHDR ${ihdr}")
+# 2 frames, each cell the whole 48 x 48 dome (not 24 + 4 + 24 side by side): 1 column, 2 rows: 56 x 108.
+if(NOT ihdr STREQUAL "000000380000006c")
+  message(FATAL_ERROR "the viewport contact sheet is not 56x108: IHDR ${ihdr}")
 endif()
 
 # 6. Bad input: each refused with a message naming what is wrong.
@@ -150,7 +151,7 @@ expect_refused("--from 4 --to 2" ${s} ${dome} --from 4 --to 2 --out "${x}")
 expect_refused("the show's last frame" ${s} ${dome} --to 6 --out "${x}")
 expect_refused("--format 'tiff'" ${s} ${dome} --format tiff --out "${x}")
 expect_refused("--size" ${s} --projection fisheye --out "${x}")
-expect_refused("either --viewport" ${s} --size 48x48 --out "${x}")
+expect_refused("give one of --cluster FILE" ${s} --size 48x48 --out "${x}")
 expect_refused("--viewport" ${s} --viewport "${root}/halves.json" --size 48x48 --out "${x}")
 expect_refused("missing.json" --show "${root}/missing.json" ${dome} --out "${x}")
 expect_refused("--show is required" ${dome} --out "${x}")

@@ -134,6 +134,32 @@ TEST(ContactSheet, WritesAPngFromPngAndExrFiles) {
                std::runtime_error);
 }
 
+TEST(ContactSheet, MosaicCellsPutTheTilesOfADomeMasterBackTogether) {
+  TempDir dir;
+  // Four 4 × 4 quadrants of an 8 × 8 picture, each its own value; one frame, cells 8 px high.
+  const float values[4] = {0.1f, 0.3f, 0.6f, 0.9f};
+  std::vector<MosaicTile> tiles;
+  for (int q = 0; q < 4; ++q) {
+    const auto file = dir / ("q" + std::to_string(q) + ".png");
+    write_png(file, 4, 4, std::vector<float>(4 * 4 * 3, values[q]), ToneMapping::clamp);
+    tiles.push_back({file, (q % 2) * 4, (q / 2) * 4});
+  }
+  ContactSheetOptions options;
+  options.cell_height_px = 8;
+  options.gap_px = 1;
+  options.columns = 1;
+  const auto [w, h] = write_mosaic_contact_sheet(dir / "sheet.png", {tiles}, ToneMapping::exponential, options);
+  EXPECT_EQ(w, 1 + 8 + 1);
+  EXPECT_EQ(h, 1 + 8 + 1);
+  const LinearImage sheet = read_image(dir / "sheet.png");
+  for (int q = 0; q < 4; ++q) {
+    const int x = 1 + (q % 2) * 4 + 2, y = 1 + (q / 2) * 4 + 2;
+    EXPECT_NEAR(red(sheet, x, y), values[q], 0.004f) << "quadrant " << q;
+  }
+  EXPECT_THROW(write_mosaic_contact_sheet(dir / "x.png", {{{dir / "q0.png", -1, 0}}}, ToneMapping::exponential),
+               std::invalid_argument);
+}
+
 TEST(EvenlySpacedFrames, SpansTheRangeWithBothEnds) {
   const std::vector<std::uint64_t> f = evenly_spaced_frames(10, 109, 24);
   ASSERT_EQ(f.size(), 24u);
