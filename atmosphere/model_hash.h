@@ -19,7 +19,9 @@
 namespace zenith::atmosphere {
 
 /// Bumped whenever the meaning of a table changes (parameterization, layout).
-inline constexpr int kLookupTableFormatVersion = 5;
+/// 6: the sun-angle axis of the scattering tables extends to μs_min = −sin 3α
+/// (was −H/rt), parameterization.h.
+inline constexpr int kLookupTableFormatVersion = 6;
 
 /// The canonical text that is hashed (one "key: values" line per quantity).
 std::string canonical_description(const AtmosphereModel& model);

@@ -355,8 +355,13 @@ real horizon_distance(real r) {
   PRECISE real rho = safe_sqrt(r * r - RB * RB);
   return rho;
 }
+/// μs_min = cos(90° + 3α) = −sin 3α, α = acos(rb/rt), −1 when 3α ≥ 90°: below
+/// that sun no point of any ray in the shell is lit (the 3α argument is at
+/// ShellGeometry::min_sun_cosine, parameterization.cpp). With s = sin α = H/rt,
+/// sin 3α = 3s − 4s³ (the same arithmetic as the CPU).
 real min_sun_cosine() {
-  PRECISE real mu_s = -horizon_distance_at_top() / RT;
+  PRECISE real s = horizon_distance_at_top() / RT;
+  PRECISE real mu_s = s >= real(0.5) ? real(-1) : -(real(3) * s - real(4) * s * s * s);
   return mu_s;
 }
 

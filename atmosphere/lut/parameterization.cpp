@@ -51,7 +51,26 @@ double ShellGeometry::horizon_distance_m(double r_m) const {
   return safe_sqrt(r_m * r_m - bottom_radius_m * bottom_radius_m);
 }
 
-double ShellGeometry::min_sun_cosine() const { return -horizon_distance_at_top_m() / top_radius_m; }
+double ShellGeometry::min_sun_cosine() const {
+  // The lowest sun at which any point of any ray in the shell can be sunlit.
+  // Let α = acos(rb/rt), the dip of the horizon seen from the top. Along a ray
+  // inside the shell, the angle at the planet's centre between its start x (at
+  // r) and any later point y is at most acos(r_p/r) + acos(r_p/rt) ≤ 2α (r_p ≥ rb
+  // its closest approach, or the ground point it hits), so y's sun zenith is at
+  // least θs(x) − 2α; and y (at r_y ≤ rt) sees the sun above its horizon only if
+  // its sun zenith is below 90° + acos(rb/r_y) ≤ 90° + α. For θs(x) > 90° + 3α
+  // no point of the ray is lit: single scattering is exactly 0 (the higher
+  // orders may carry light scattered up to 2α further toward the sun, but it is
+  // negligible: ≤ 1.3e-7 sr^-1 on dusty Mars, docs/lookup-tables.md). The bound
+  // is reached (x and y at the top, the ray grazing the ground), so the tables
+  // must cover μs down to cos(90° + 3α) and may clamp below it. With sin α = H/rt:
+  //   μs_min = −sin 3α = −(3 sin α − 4 sin³α)   for 3α < 90° (sin α < ½),
+  //   μs_min = −1                               otherwise (Titan: α = 35.8°).
+  // (The former μs_min = −H/rt = cos(90° + α) covered only rays from the
+  // ground; high cameras and rays entering from space were clamped to lit values.)
+  const double s = horizon_distance_at_top_m() / top_radius_m;
+  return s >= 0.5 ? -1.0 : -(3.0 * s - 4.0 * s * s * s);
+}
 
 double ShellGeometry::distance_to_top_m(double r_m, double mu) const {
   // Solve |x + d v| = rt: d = −rμ + √(r²(μ² − 1) + rt²).
@@ -114,6 +133,8 @@ namespace {
 /// Bruneton's μs ↔ [0, 1]: a = normalised distance to the top from the ground
 /// toward the sun; x = max(1 − a/A, 0)/(1 + a) with A the value of a at μs_min.
 /// x = 1 at the zenith, 0 at μs_min and below; most resolution near the horizon.
+/// (Below the horizon the "distance" is that of the line through the planet,
+/// −rb μs + √(rb² μs² − rb² + rt²), still monotone down to μs = −1.)
 double distance_mapping_mu_s(const ShellGeometry& g, double mu_s) {
   const double rb = g.bottom_radius_m;
   const double d_min = g.top_radius_m - rb, d_max = g.horizon_distance_at_top_m();

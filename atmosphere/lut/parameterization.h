@@ -14,11 +14,13 @@
 //    normalised between its extremes for that r, separately for rays that hit
 //    the ground (lower half of the table) and rays that do not (upper half), so
 //    the horizon falls exactly between two texels for every planet;
-//  * μs down to μs_min = −H/rt, the sun zenith below which no point of the
-//    atmosphere above a ground point is sunlit (for a lower sun every path is in
-//    the planet's shadow), by Bruneton's distance mapping for single scattering
-//    and its average with a mapping uniform in angle for multiple scattering
-//    (AngleMapping below);
+//  * μs down to μs_min = cos(90° + 3α) = −sin 3α (−1 when 3α ≥ 90°), with
+//    α = acos(rb/rt): below that sun no point of any ray in the shell is lit,
+//    whether the ray starts at the ground, at a high camera or where a ray from
+//    space enters (ShellGeometry::min_sun_cosine), so clamping below it returns
+//    the (vanishing) value at μs_min. Mapped by Bruneton's distance mapping for
+//    single scattering and its average with a mapping uniform in angle for
+//    multiple scattering (AngleMapping below);
 //    OpenSpace clamps μ at −0.15, which cuts Mars' and Titan's horizons;
 //  * ν uniform in the scattering angle.
 // Texture coordinates keep samples at texel centres: u = ½/n + x (1 − 1/n).
@@ -35,7 +37,7 @@ struct ShellGeometry {
 
   double horizon_distance_at_top_m() const;       ///< H = √(rt² − rb²)
   double horizon_distance_m(double r_m) const;    ///< ρ = √(r² − rb²)
-  double min_sun_cosine() const;                  ///< μs_min = −H/rt
+  double min_sun_cosine() const;                  ///< μs_min = −sin 3α, α = acos(rb/rt) (≥ −1)
   double distance_to_top_m(double r_m, double mu) const;
   double distance_to_bottom_m(double r_m, double mu) const;
   bool ray_hits_ground(double r_m, double mu) const;

@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "atmosphere/constants.h"
+#include "atmosphere/reference/single_scattering.h"
 #include "atmosphere/sky_sampling.h"
 #include "tests/atmosphere/lut_fixture.h"
 
@@ -194,6 +197,108 @@ TEST(HorizonContinuity, NoArtifactAtTheHorizonForAnyPreset) {
         }
       }
     }
+  }
+}
+
+
+// ---- night side: the sun-angle range of the scattering tables (parameterization.h, μs_min)
+
+/// Single scattering from the tables, S_R P_R + S_M P_M at the point where the
+/// ray starts in the shell (as TableQueries::sky_radiance), and everything
+/// (single + multiple + ground) from sky_radiance.
+struct NightQuery {
+  Spectrum single, all;
+};
+
+NightQuery night_query(const SmallTables& t, const Vec3& camera_m, const Vec3& view, const Vec3& sun) {
+  const ShellGeometry& g = t.tables.geometry;
+  Vec3 x = camera_m;
+  double r = length(x), rmu = dot(x, view);
+  if (r > g.top_radius_m) {
+    x = x + view * (-rmu - std::sqrt(rmu * rmu - r * r + g.top_radius_m * g.top_radius_m));
+    r = g.top_radius_m;
+    rmu = dot(x, view);
+  }
+  const double mu = rmu / r, mu_s = dot(x, sun) / r, nu = dot(view, sun);
+  std::array<double, kMaxChannels> rayleigh{}, mie{};
+  t.queries->scattering_terms(r, mu, mu_s, nu, g.ray_hits_ground(r, mu), rayleigh.data(), mie.data(), nullptr);
+  NightQuery q{Spectrum(t.model.wavelength_count(), 0.0), t.queries->sky_radiance(camera_m, view, sun)};
+  for (std::size_t c = 0; c < q.single.size(); ++c)
+    q.single[c] = rayleigh[c] * t.model.rayleigh_phase_function(nu) + mie[c] * t.model.mie_phase(c, nu);
+  return q;
+}
+
+/// Tables against the exact single scattering for a night geometry in which
+/// (almost) no point of the view ray is sunlit: the exact value is below 1e-6
+/// sr^-1, the tables' single scattering within `single_bound_sr` of it and
+/// their sum of all orders below `all_bound_sr` (the daylight sky is ~1e-2 to
+/// 1e-1 sr^-1 per unit solar irradiance). What remains is
+/// interpolation between the μs texels that bracket the query in the night
+/// strip (32 μs texels: 9.6° apart next to μs_min on Mars, 6.7° on Earth).
+void expect_dark(const std::string& preset, const std::string& what, const Vec3& camera_m, const Vec3& view,
+                 const Vec3& sun, double single_bound_sr, double all_bound_sr) {
+  const SmallTables& t = SmallTables::get(preset);
+  const NightQuery q = night_query(t, camera_m, view, sun);
+  const auto exact = reference::single_scattering_radiance(t.model, camera_m, view, sun);
+  for (std::size_t c = 0; c < q.single.size(); ++c) {
+    const double e = exact.atmosphere_radiance[c] + exact.ground_radiance[c];
+    if (c == q.single.size() / 2)
+      std::cout << preset << " " << what << ": single scattering tables " << q.single[c] << ", exact " << e
+                << ", all orders (tables) " << q.all[c] << " sr^-1 at " << t.model.wavelengths_nm[c] << " nm\n";
+    EXPECT_LT(e, 1e-6) << preset << " " << what << ": the geometry should be dark";
+    EXPECT_LT(std::abs(q.single[c] - e), single_bound_sr) << preset << " " << what << " at " << t.model.wavelengths_nm[c];
+    EXPECT_LT(q.all[c], all_bound_sr) << preset << " " << what << " at " << t.model.wavelengths_nm[c];
+  }
+}
+
+TEST(NightSide, HighCameraGrazingTowardTheSetSunSeesNoDaylight) {
+  // A camera at 47 237 m looking 0.019 rad above the geometric horizon toward a
+  // sun 28.5° below its horizontal (zenith 118.5°). The ray climbs through the
+  // shell for thousands of km; on Earth its far end (13.4° of arc away) sees the
+  // sun at zenith ≥ 105.1°, below that point's horizon (100.1°): single
+  // scattering is 0; on Mars (21.4° of arc, horizon 103.7°) only the last
+  // stretch near the top sees the sun, through the planet's limb: ~1e-8 sr^-1.
+  // When the tables stopped at μs_min = −H/rt (zenith 100.1° on Earth, 103.7° on
+  // Mars) and clamped below, they returned the value at that sun angle, where
+  // the whole ray is lit: at 550 nm 3.5e-3 sr^-1 on Earth, 2.2e-4 (all orders
+  // 9.0e-4) on Mars; now 6e-9 and 1.5e-6 (all orders 2.5e-6), docs/lookup-tables.md.
+  for (const auto& [preset, bound_sr] : {std::pair{"earth-standard", 1e-7}, std::pair{"mars", 5e-6}}) {
+    const double rb = load_preset(preset).model.ground_radius_m;
+    const double r = rb + 47237.0;
+    const double nadir_horizon = std::asin(rb / r);
+    const Vec3 view = direction_from_angles(kPi - (nadir_horizon + 0.019), 0.0);
+    const Vec3 sun = direction_from_angles(118.5 * kPi / 180.0, 0.0);
+    expect_dark(preset, "camera 47 km, sun zenith 118.5 deg", Vec3{0.0, 0.0, r}, view, sun, bound_sr, bound_sr);
+  }
+}
+
+TEST(NightSide, NightLimbFromOrbitDoesNotGlow) {
+  // A camera 1000 km up looking at the limb (tangent 20 km above the ground),
+  // the sun on the far side of the limb but 1° lower than needed to light any
+  // point of the ray: at the entry point x its zenith is 90° + α + 2 acos(r_p/rt)
+  // + 1° (α = acos(rb/rt): the top's horizon dip; the ray spans 2 acos(r_p/rt)
+  // of arc). Single scattering is 0; the tables used to clamp μs(x) to μs_min =
+  // −H/rt and gave the limb a glow of 1.8e-2 sr^-1 (Earth) and 1.1e-2 (Mars) at
+  // 550 nm, as bright as the day-side limb; now 3.2e-7 and 1.6e-6 (all orders
+  // 2.0e-6). Then a sun beyond the tables' range (zenith 90° + 3α + 1°, clamped
+  // to μs_min): single scattering at the μs_min texel is exactly 0; the higher
+  // orders, whose light may have been scattered up to 2α further toward the sun
+  // (5α in all), are not, but negligible: 1.6e-11 sr^-1 on Earth, 1.3e-7 on
+  // dusty Mars (550 nm).
+  for (const auto& [preset, bound_sr] : {std::pair{"earth-standard", 1e-6}, std::pair{"mars", 5e-6}}) {
+    const AtmosphereModel m = load_preset(preset).model;
+    const double rb = m.ground_radius_m, rt = m.top_radius_m, r_p = rb + 20e3;
+    const Vec3 camera{0.0, 0.0, rb + 1000e3};
+    const Vec3 view = direction_from_angles(kPi - std::asin(r_p / camera.z), 0.0);
+    const double rmu = dot(camera, view);
+    const Vec3 x = camera + view * (-rmu - std::sqrt(rmu * rmu - camera.z * camera.z + rt * rt));
+    const Vec3 up = normalize(x), along = normalize(view - up * dot(view, up));
+    const double sun_zenith = kPi / 2 + std::acos(rb / rt) + 2.0 * std::acos(r_p / rt) + kPi / 180.0;
+    const Vec3 sun = up * std::cos(sun_zenith) + along * std::sin(sun_zenith);
+    expect_dark(preset, "night limb from 1000 km", camera, view, sun, bound_sr, bound_sr);
+    const double beyond = kPi / 2 + 3.0 * std::acos(rb / rt) + kPi / 180.0;
+    expect_dark(preset, "night limb from 1000 km, sun beyond mu_s_min", camera, view,
+                up * std::cos(beyond) + along * std::sin(beyond), 1e-12, 1e-6);
   }
 }
 

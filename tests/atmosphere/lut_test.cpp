@@ -60,11 +60,22 @@ TEST(Parameterization, ScatteringTexelCentresMapBackToThemselves) {
 }
 
 TEST(Parameterization, SunAngleRangeDerivesFromTheRadii) {
-  // μs_min = −H/rt: −0.175 for Earth's 100 km shell, much lower for Titan's thick one.
-  const ShellGeometry earth{6371e3, 6471e3}, titan{2574.73e3, 3174.73e3};
-  EXPECT_NEAR(earth.min_sun_cosine(), -std::sqrt(1.0 - std::pow(6371.0 / 6471.0, 2)), 1e-12);
-  EXPECT_NEAR(earth.min_sun_cosine(), -0.1751, 1e-4);
-  EXPECT_LT(titan.min_sun_cosine(), -0.5);
+  // μs_min = cos(90° + 3α), α = acos(rb/rt), or −1 when 3α ≥ 90°: every preset.
+  struct Expected {
+    const char* preset;
+    double min_sun_cosine, min_sun_zenith_deg;
+  };
+  for (const Expected& e : {Expected{"earth-standard", -0.5039, 120.26}, Expected{"earth-advanced", -0.5039, 120.26},
+                            Expected{"mars", -0.6593, 131.25}, Expected{"halcyon", -0.3773, 112.16},
+                            Expected{"titan", -1.0, 180.0}}) {
+    const AtmosphereModel m = load_preset(e.preset).model;
+    const ShellGeometry g{m.ground_radius_m, m.top_radius_m};
+    const double alpha = std::acos(m.ground_radius_m / m.top_radius_m);
+    const double expected = 3.0 * alpha >= kPi / 2 ? -1.0 : std::cos(kPi / 2 + 3.0 * alpha);
+    EXPECT_NEAR(g.min_sun_cosine(), expected, 1e-12) << e.preset;
+    EXPECT_NEAR(g.min_sun_cosine(), e.min_sun_cosine, 1e-4) << e.preset;
+    EXPECT_NEAR(std::acos(g.min_sun_cosine()) * 180.0 / kPi, e.min_sun_zenith_deg, 0.01) << e.preset;
+  }
 }
 
 TEST(LookupTables, ZenithTransmittanceMatchesClosedForm) {
