@@ -139,6 +139,7 @@ struct NodeArgs {
   std::uint32_t connect_timeout_ms = 15000;
   std::vector<std::string> atmosphere_files;
   std::uint32_t debug_render_delay_ms = 0;
+  bool window = false;
 };
 
 int run_node(const NodeArgs& a) {
@@ -152,6 +153,7 @@ int run_node(const NodeArgs& a) {
   for (const std::string& f : a.atmosphere_files) options.atmosphere_files.emplace_back(f);
   options.debug_render_delay_ms = a.debug_render_delay_ms;
   if (!a.scene.empty()) options.scene = fs::path(a.scene);
+  options.window = a.window;
   options.layout = a.layout == "offline" ? cluster::FrameFileLayout::offline : cluster::FrameFileLayout::per_node;
   cluster::SharedSecret secret = load_secret(options.config);
   cluster::Node node(std::move(options), std::move(secret));
@@ -168,7 +170,8 @@ struct ClusterArgs {
   std::optional<int> port;
   double sun_step_deg = 0.1;
   std::optional<std::uint64_t> stitch_frame;
-  std::vector<std::string> switches;  ///< passed to the master; files also to the local nodes
+  std::vector<std::string> switches;  ///< passed to the master
+  bool windows = false;               ///< local nodes show their frames in windows
 };
 
 /// Stitches frame `frame` of fisheye outputs that share one image circle (a dome
@@ -264,6 +267,7 @@ void run_cluster(const ClusterArgs& a) {
                                      "--connect-timeout-ms", "900000"};
     args.insert(args.end(), common.begin(), common.end());
     if (show_scene) args.insert(args.end(), {"--scene", show_scene->string()});
+    if (a.windows) args.push_back("--window");
     if (!a.cache_dir.empty()) args.insert(args.end(), {"--cache", (fs::path(a.cache_dir) / "nodes" / node.name).string()});
     nodes.emplace_back(spawn_self(args), node.name);
     spdlog::info("cluster: node '{}' started (pid {})", node.name, nodes.back().first);
@@ -346,6 +350,7 @@ void register_cluster_commands(CLI::App& app) {
         ->check(CLI::IsMember({"per-node", "offline"}));
     cmd->add_option("--atmosphere", a->atmosphere_files,
                     "An atmosphere file the master may switch to (besides the scene's and the presets; repeatable)");
+    cmd->add_flag("--window", a->window, "Also show each presented frame in a window (needs a display)");
     cmd->add_option("--debug-render-delay-ms", a->debug_render_delay_ms,
                     "Test hook: sleep this long before rendering each frame (plays a slow node)");
     cmd->callback([a] {
@@ -366,6 +371,7 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--cache", a->cache_dir, "Master table cache; nodes use CACHE/nodes/<node>");
     cmd->add_option("--sun-step-deg", a->sun_step_deg, "The sun turns this much per frame (default 0.1)")
         ->check(CLI::Range(-10.0, 10.0));
+    cmd->add_flag("--windows", a->windows, "Each local node also shows its frames in a window (needs a display)");
     cmd->add_option("--stitch-frame", a->stitch_frame, "Frame to stitch into OUT/stitched/ (default: the last)");
     cmd->add_option("--switch-atmosphere", a->switches,
                     "FRAME:BODY:PRESET_OR_FILE: switch that atmosphere mid-show (passed to the master; repeatable)");

@@ -4,7 +4,6 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <csignal>
 #include <stdexcept>
 
 #include "apps/child_process.h"
@@ -68,7 +67,7 @@ ClusterFrameRenderer::~ClusterFrameRenderer() { stop(); }
 void ClusterFrameRenderer::stop() {
   if (stopped_) return;
   stopped_ = true;
-  feed_->finish();
+  feed_->finish();  // the master stops within a heartbeat, even while it still waits for nodes
   if (master_.joinable()) master_.join();
   for (const auto& [pid, name] : nodes_) {
     const int status = stop_child(pid, fmt::format("node '{}'", name), 10s);
@@ -79,9 +78,20 @@ void ClusterFrameRenderer::stop() {
 void ClusterFrameRenderer::render_frame(const cluster::FrameState& state,
                                         const std::vector<std::vector<fs::path>>& files) {
   feed_->push(state);
-  // Table preparation and the nodes' start come before the first frame: be patient, but not forever.
+  // Table preparation and the nodes' start come before the first frame: be patient, but not forever,
+  // and not at all once a node has exited (the master would wait for it).
   const auto limit = std::chrono::milliseconds(config_.barrier_timeout_ms) + 900s;
-  if (!feed_->wait_presented(state.frame, std::chrono::duration_cast<std::chrono::milliseconds>(limit)))
+  const auto give_up = std::chrono::steady_clock::now() + limit;
+  bool presented = false;
+  while (!presented && !feed_->stopped() && std::chrono::steady_clock::now() < give_up) {
+    presented = feed_->wait_presented(state.frame, 500ms);
+    for (const auto& [pid, name] : nodes_)
+      if (const std::optional<int> status = wait_for(pid, 0ms))
+        throw std::runtime_error(fmt::format("node '{}' exited with status {} before frame {} was presented (see "
+                                             "its log lines above)",
+                                             name, *status, state.frame));
+  }
+  if (!presented)
     throw std::runtime_error(feed_->stopped() ? fmt::format("the cluster stopped before presenting frame {} (see the "
                                                             "master's and nodes' log lines above)",
                                                             state.frame)

@@ -74,4 +74,13 @@ ClusterConfig parse_cluster_config(const nlohmann::json& config, const std::stri
 /// Reads and parses a file (ConfigError "cannot open file" when unreadable).
 ClusterConfig load_cluster_config(const std::filesystem::path& path);
 
+/// How long a peer may stay silent before it counts as gone (docs/cluster.md,
+/// "Join, rejoin and failures"): 3 heartbeats, but at least 10 s. A loaded
+/// machine — every core rendering on llvmpipe, table sets being verified and
+/// stored — can starve a networking thread for seconds; a peer that crashes is
+/// noticed at once anyway, because its socket closes.
+inline double silence_limit_ms(std::uint32_t heartbeat_ms) {
+  return 3.0 * heartbeat_ms > 10000.0 ? 3.0 * heartbeat_ms : 10000.0;
+}
+
 }  // namespace zenith::cluster

@@ -47,6 +47,11 @@ FrameFeed::Next FrameFeed::pop(FrameState& state) {
   return finished_ ? Next::finished : Next::wait;
 }
 
+bool FrameFeed::done() const {
+  std::lock_guard lock(mutex_);
+  return finished_ && queue_.empty();
+}
+
 void FrameFeed::presented(std::uint64_t frame) {
   {
     std::lock_guard lock(mutex_);

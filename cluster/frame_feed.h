@@ -34,6 +34,8 @@ class FrameFeed {
   Next pop(FrameState& state);
   void presented(std::uint64_t frame);
   void master_stopped();
+  /// finish() was called and every queued frame was taken.
+  bool done() const;
 
  private:
   mutable std::mutex mutex_;

@@ -102,6 +102,7 @@ struct Master::Impl {
     std::size_t ref_index = 0;  ///< into table_refs
     Digest hash{};
     bool distributed = false;   ///< prepared and sent to the nodes
+    Clock::time_point distributed_at{};
   };
   std::optional<PendingVersion> pending;
   std::size_t next_switch = 0;  ///< into options.atmosphere_switches (sorted by frame)
@@ -346,6 +347,7 @@ struct Master::Impl {
     if (set) table_sets.insert_or_assign(set->table_hash, std::move(*set));
     const TableSetFile& prepared = table_sets.at(pending->hash);
     pending->distributed = true;
+    pending->distributed_at = Clock::now();
     std::size_t receivers = 0;
     for (auto& [id, s] : sessions) {
       if (s->state == Session::State::handshake || !s->inventory_done) continue;  // gets it with its inventory
@@ -380,6 +382,27 @@ struct Master::Impl {
     for (const std::uint32_t id : ids)
       if (Session* s = find(id)) maybe_become_ready(*s);
     maybe_start_switch();
+  }
+
+  /// A ready node that does not confirm a distributed version within the
+  /// barrier timeout (at least 60 s: a node loads and warms the tables first)
+  /// would hold the switch back forever: it is disconnected with a log line
+  /// naming it, the switch goes ahead on the others, and the node rejoins at a
+  /// frame boundary with the new version when it reconnects.
+  void check_pending_confirmations() {
+    if (!pending || !pending->distributed || stopping) return;
+    const double limit_ms = std::max(60000.0, static_cast<double>(options.config.barrier_timeout_ms));
+    if (ms_since(pending->distributed_at) <= limit_ms) return;
+    std::vector<std::shared_ptr<Connection>> late;
+    for (auto& [id, s] : sessions)
+      if (s->state == Session::State::ready && !s->tables_ready.count(pending->hash)) {
+        spdlog::warn("master: node '{}' did not confirm table version {} within {:.0f} ms: disconnecting it so the "
+                     "switch can take effect (it rejoins with the new version when it reconnects)",
+                     s->name, short_hash(pending->hash), limit_ms);
+        late.push_back(s->connection);
+      }
+    for (const auto& connection : late) connection->close("table version not confirmed in time");
+    maybe_apply_pending();
   }
 
   // ---- connections ----------------------------------------------------------
@@ -768,7 +791,7 @@ struct Master::Impl {
 
   void heartbeat_tick() {
     const auto now = Clock::now();
-    const double silent_limit_ms = 3.0 * options.config.heartbeat_ms;
+    const double silent_limit_ms = silence_limit_ms(options.config.heartbeat_ms);
     const double handshake_limit_ms = std::max(5000.0, silent_limit_ms);
     const Heartbeat beat{static_cast<std::uint64_t>(
         std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count())};
@@ -786,14 +809,19 @@ struct Master::Impl {
         continue;
       }
       if (ms_since(s->connection->last_received()) > silent_limit_ms) {
-        spdlog::warn("master: closing {}: nothing received for {:.0f} ms (3 heartbeats)", who(*s), silent_limit_ms);
+        spdlog::warn("master: closing {}: nothing received for {:.0f} ms", who(*s), silent_limit_ms);
         s->connection->close("heartbeat timeout");
         continue;
       }
       s->connection->send_encoded(encoded);
     }
+    if (options.feed && options.feed->done() && !in_flight) {  // the feeding side ended (or gave up)
+      stop("the frame feed ended");
+      return;
+    }
     if (!started) maybe_start_show();
     if (started) maybe_start_switch();
+    check_pending_confirmations();
     heartbeat_timer.expires_after(milliseconds(options.config.heartbeat_ms));
     heartbeat_timer.async_wait([this](const boost::system::error_code& ec) {
       if (!ec && !stopping) heartbeat_tick();

@@ -34,6 +34,8 @@
 #include "render/image/tone_mapping.h"
 #include "render/renderer.h"
 #include "render/scene/scene_loader.h"
+#include "render/window/frame_presenter.h"
+#include "render/window/window_context.h"
 #include "warp/blending.h"
 #include "warp/viewport_config.h"
 
@@ -105,6 +107,11 @@ struct Node::Impl {
 
   // ---- render thread only ----
   std::optional<render::gl::HeadlessContext> context;
+  /// With --window: the GL context is a window's, and each presented frame is
+  /// shown in it (the node's outputs side by side, as written to the files).
+  std::optional<render::window::WindowContext> window;
+  std::optional<render::window::FramePresenter> presenter;
+  std::vector<std::vector<float>> rendered_display;  ///< per output: display-linear values of the rendered frame
   std::unique_ptr<render::Renderer> renderer;
   std::uint32_t renderer_flags = 0;
   std::optional<std::uint64_t> rendered_frame;
@@ -384,10 +391,10 @@ struct Node::Impl {
   void heartbeat_tick() {
     if (stopping || !connection) return;
     // Before Welcome the master may still be preparing tables: the connect timeout applies.
-    const double silent_limit_ms = welcomed ? 3.0 * heartbeat_ms : static_cast<double>(options.connect_timeout_ms);
+    const double silent_limit_ms = welcomed ? silence_limit_ms(heartbeat_ms) : static_cast<double>(options.connect_timeout_ms);
     if (ms_since(connection->last_received()) > silent_limit_ms) {
       spdlog::error("node '{}': nothing from the master at {} for {:.0f} ms{}: the master is gone; exiting",
-                    options.node_name, master_address, silent_limit_ms, welcomed ? " (3 heartbeats)" : " (no Welcome)");
+                    options.node_name, master_address, silent_limit_ms, welcomed ? "" : " (no Welcome)");
       stopping = true;
       connection->close("heartbeat timeout");
       finish(kNodeExitMasterLost);
@@ -432,8 +439,30 @@ struct Node::Impl {
   // =========================================================================
   // Render thread.
 
+  void make_current() const {
+    if (window) window->make_current();
+    else context->make_current();
+  }
+
   void ensure_renderer(std::uint32_t flags) {
-    if (!context) {
+    if (options.window && !window) {
+      render::window::WindowOptions w;
+      w.title = cat("zenith node ", options.node_name);
+      w.width = 0;
+      w.height = 0;
+      for (const std::size_t i : outputs) {
+        w.width += viewports.outputs[i].width_px;
+        w.height = std::max(w.height, viewports.outputs[i].height_px);
+      }
+      // Fit a 1280 × 1024 screen area at first; the window can be resized (or made full screen).
+      const double shrink = std::min(1.0, std::min(1280.0 / w.width, 1024.0 / w.height));
+      w.width = std::max(1, static_cast<int>(w.width * shrink));
+      w.height = std::max(1, static_cast<int>(w.height * shrink));
+      w.swap_interval = 0;  // the cluster's barrier paces the frames
+      window.emplace(w);
+      presenter.emplace();
+      spdlog::info("node '{}': rendering on {} into a window", options.node_name, window->renderer());
+    } else if (!options.window && !context) {
       context.emplace();
       spdlog::info("node '{}': rendering on {}", options.node_name, context->renderer());
     }
@@ -448,7 +477,7 @@ struct Node::Impl {
           if (!tables)
             throw std::runtime_error(cat("the tables the master sent are not usable from ", cache.directory().string(),
                                          problem.empty() ? std::string() : cat(": ", problem)));
-          context->make_current();
+          make_current();
           return std::move(*tables);
         });
   }
@@ -469,6 +498,12 @@ struct Node::Impl {
         {"zenith:viewport", fmt::format("{}#{}", viewports.source, o.name)},
     };
     const bool blended = o.blend.mode != warp::BlendMode::none || o.black_level != 0.0;
+    if (window) {  // what the projector shows: tone mapped, then the output stage (docs/viewports.md)
+      std::vector<float>& display = rendered_display[index_in_node(index)];
+      display = rgb;
+      for (float& v : display) v = image::tone_map(v, image::ToneMapping::exponential);
+      if (blended) warp::apply_blend(display, 0, o.height_px, warp::output_blend_mask(viewports, index), o.black_level);
+    }
     if (options.config.output_format == "exr") {
       if (blended) warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports, index), o.black_level);
       image::write_exr(path, o.width_px, o.height_px, rgb, image::ExrPixelType::half, attributes);
@@ -482,6 +517,38 @@ struct Node::Impl {
     for (float& v : rgb) v = image::tone_map(v, image::ToneMapping::exponential);
     warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports, index), o.black_level);
     image::write_png(path, o.width_px, o.height_px, rgb, image::ToneMapping::clamp, attributes);
+  }
+
+  std::size_t index_in_node(std::size_t viewport_index) const {
+    return static_cast<std::size_t>(std::find(outputs.begin(), outputs.end(), viewport_index) - outputs.begin());
+  }
+
+  /// Shows the presented frame in the window: the node's outputs side by side.
+  void show_in_window() {
+    int width = 0, height = 0;
+    for (const std::size_t i : outputs) {
+      width += viewports.outputs[i].width_px;
+      height = std::max(height, viewports.outputs[i].height_px);
+    }
+    std::vector<float> picture(static_cast<std::size_t>(width) * height * 3, 0.0f);
+    int x0 = 0;
+    for (std::size_t k = 0; k < outputs.size(); ++k) {
+      const warp::OutputConfig& o = viewports.outputs[outputs[k]];
+      const std::vector<float>& display = rendered_display[k];
+      for (int y = 0; y < o.height_px && !display.empty(); ++y)
+        std::copy_n(display.begin() + static_cast<std::ptrdiff_t>(y) * o.width_px * 3, o.width_px * 3,
+                    picture.begin() + (static_cast<std::ptrdiff_t>(y) * width + x0) * 3);
+      x0 += o.width_px;
+    }
+    window->make_current();
+    const render::window::FramebufferSize size = window->framebuffer_size();
+    presenter->present(picture, width, height, image::ToneMapping::clamp, {0, size.width, size.height});
+    window->swap_buffers();
+    window->poll_events();
+    if (window->should_close()) {
+      spdlog::info("node '{}': window closed: leaving the cluster", options.node_name);
+      asio::post(io, [this] { say_goodbye_and_finish("the node's window was closed", kNodeExitDone); });
+    }
   }
 
   void discard_partials() {
@@ -542,6 +609,7 @@ struct Node::Impl {
     partials.clear();
     rendered_frame.reset();
     std::ofstream log(node_directory / "presented.log", std::ios::app);
+    if (window) show_in_window();
     log << "frame " << frame << " state " << rendered_digest << " tables " << rendered_tables << " show_time_s "
         << fmt::format("{}", rendered_show_time_s) << "\n";
     spdlog::debug("node '{}': presented frame {}", options.node_name, frame);
@@ -570,7 +638,20 @@ struct Node::Impl {
       Job job;
       {
         std::unique_lock lock(mutex);
-        wake.wait(lock, [this] { return !jobs.empty(); });
+        if (window) {  // keep the window responsive between frames
+          while (!wake.wait_for(lock, milliseconds(30), [this] { return !jobs.empty(); })) {
+            lock.unlock();
+            window->poll_events();
+            if (window->take_redraw_request() && presenter->frame_width() > 0) {
+              const render::window::FramebufferSize size = window->framebuffer_size();
+              presenter->draw(image::ToneMapping::clamp, {0, size.width, size.height});
+              window->swap_buffers();
+            }
+            lock.lock();
+          }
+        } else {
+          wake.wait(lock, [this] { return !jobs.empty(); });
+        }
         job = std::move(jobs.front());
         jobs.pop_front();
         if (job.kind == Job::Kind::render &&
@@ -628,6 +709,7 @@ struct Node::Impl {
     base_scene = scene::load_scene(options.scene ? *options.scene : options.config.scene);
     viewports = warp::load_viewport_config(options.config.viewports);
     for (const std::string& name : me->outputs) outputs.push_back(viewports.index_of(name));
+    rendered_display.resize(outputs.size());
     table_options.sizes = app::table_sizes_by_name(options.config.table_sizes);
     table_options.max_orders = options.config.table_orders;
     build_known_tables();

@@ -52,6 +52,10 @@ struct NodeOptions {
   /// `zenith cluster --show` passes it to master and nodes alike).
   std::optional<std::filesystem::path> scene;
   FrameFileLayout layout = FrameFileLayout::per_node;
+  /// Show each presented frame in a window (GLFW; needs a display) besides
+  /// writing the files: the node's outputs side by side, as a projector shows
+  /// them (tone mapped, blended). Closing the window leaves the cluster.
+  bool window = false;
   /// Test hook (`--debug-render-delay-ms`): sleep this long before each frame,
   /// to play a slow node. 0 in production.
   std::uint32_t debug_render_delay_ms = 0;
