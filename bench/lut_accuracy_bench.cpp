@@ -1,34 +1,156 @@
-// Run time against error of the lookup tables.
+// Run time against error of the lookup tables, and the Pareto front.
 //
-// For each method and setting (table sizes, scattering orders, quadrature along
-// rays, CPU or GPU precompute) this program measures the precompute time and
-// the RMS and maximum relative error of table-based sky radiance against the
-// reference solver, over the fixed set of geometries and view directions of
-// tests/data/reference_*.csv (Earth and Mars: noon, low sun, twilight, limb from
-// orbit; 400 000 paths per wavelength and direction, standard errors ~0.1-3%).
-// It prints a table, writes CSV, and (with gnuplot installed) a PNG chart.
+// For each method and setting (table sizes, scattering orders, quadrature and
+// number of samples along rays, sphere-integral nodes, CPU or GPU precompute)
+// this program measures, per atmosphere (earth-advanced, mars):
 //
-//   build/bench/lut_accuracy_bench [--quick] [--out DIR] [--no-gpu]
+//   precompute_s    wall time of the precompute (GPU: on a headless EGL context
+//                   of its own, shader compilation included; CPU: all threads)
+//   frame_ms        median wall time of --frames frames of a --frame-size²
+//                   fisheye dome master (180°) of a ground scene with those
+//                   tables (configs/scenes/earth-ground-noon.json,
+//                   mars-ground-day.json; constant albedo), readback included;
+//                   the frames of all settings interleaved (bench/lut_frame_timer.h)
+//   rms / max       relative error of table-based sky radiance against the
+//                   reference solver over the fixed geometries and view
+//                   directions of tests/data/reference_*.csv (noon, low sun,
+//                   twilight, limb from orbit; 400 000 paths per wavelength and
+//                   direction, standard errors ~0.1-3%), after discounting twice
+//                   the reference's standard error: e = max(0, |L − L_ref| − 2σ) / L_ref
+//
+// and, over the atmospheres together (preset "all": mean precompute and frame
+// time, RMS pooled over every direction and wavelength, largest max), the
+// Pareto front for cost = precompute time and for cost = frame time: a setting
+// is on the front when no other has both a lower cost and a lower RMS error.
+// The recommended default is the cheapest setting (precompute time) whose RMS
+// error is within --tolerance (1.2) × the best; it is compared with the
+// project's default (paper sizes, 4 orders, log-linear, 50 ray samples, 16
+// sphere nodes, GPU: apps/table_provider.cpp, atmosphere/lut/precompute_options.h).
+//
+// Output in --out (default bench/results/ of the source tree):
+//   lut_accuracy.csv        one row per setting and atmosphere (and "all")
+//   lut_accuracy.png        precompute time against RMS error per atmosphere
+//   pareto_precompute.png   "all": precompute time against RMS error, front, pick
+//   pareto_frame.png        "all": frame time against RMS error, front
+// (gnuplot scripts and data next to them; PNG only with gnuplot installed).
+//
+//   lut_accuracy_bench [--quick | --smoke] [--no-gpu] [--presets LIST] [--out DIR]
+//                      [--frame-size PX] [--frames N] [--no-frames] [--tolerance X]
+//                      [--max-rms X] [--no-chart] [--list]
+//
+// --quick: tiny and small tables and the project default (~4 min on 2 cores); --smoke (CTest):
+// three tiny settings on Earth, 64² frames. Exit 1 on any non-finite radiance
+// or pixel, or (with --max-rms) any setting's pooled RMS error above the bound.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "atmosphere/lut/cpu_precompute.h"
+#include "atmosphere/model_hash.h"
 #include "atmosphere/parameters.h"
 #include "atmosphere/sky_sampling.h"
+#include "bench/lut_frame_timer.h"
+#include "bench/pareto.h"
+#include "render/gl/egl_context.h"
 #include "render/lut/gpu_precompute.h"
 
 using namespace zenith::atmosphere;
+namespace fs = std::filesystem;
 
 namespace {
+
+constexpr const char* kUsage =
+    "usage: lut_accuracy_bench [--quick | --smoke] [--no-gpu] [--presets LIST] [--out DIR]\n"
+    "                          [--frame-size PX] [--frames N] [--no-frames] [--tolerance X]\n"
+    "                          [--max-rms X] [--no-chart] [--list]\n"
+    "  --quick        tiny and small tables, and the project default (a few minutes)\n"
+    "  --smoke        three tiny settings, Earth only, 64x64 frames (the CTest smoke run)\n"
+    "  --no-gpu       CPU precompute only (frame times need a GL context: then none)\n"
+    "  --presets      atmospheres with reference fixtures (default earth-advanced,mars)\n"
+    "  --out          output folder (default bench/results in the source tree)\n"
+    "  --frame-size   fisheye dome master of PX x PX for the frame time (default 512)\n"
+    "  --frames       timed frames per setting, median reported (default 5)\n"
+    "  --no-frames    no frame times\n"
+    "  --tolerance    recommended: the cheapest setting with RMS <= X * the best RMS (default 1.2)\n"
+    "  --max-rms      fail (exit 1) when a setting's pooled RMS error exceeds X\n"
+    "  --no-chart     no gnuplot scripts and PNG\n"
+    "  --list         print the settings (with the other options) and exit\n";
+
+struct Options {
+  bool quick = false, smoke = false, gpu = true, frames = true, chart = true, list = false;
+  std::vector<std::string> presets = {"earth-advanced", "mars"};
+  fs::path out = fs::path(ZENITH_SOURCE_DIR) / "bench/results";
+  int frame_size_px = 512, frame_count = 5;
+  double tolerance = 1.2;
+  std::optional<double> max_rms;
+  std::string command;  ///< as run, for the outputs
+};
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  o.command = "lut_accuracy_bench";
+  auto value = [&](int& i, const std::string& flag) -> std::string {
+    if (i + 1 >= argc) throw std::invalid_argument(fmt::format("{}: a value is missing", flag));
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--quick") o.quick = true;
+    else if (a == "--smoke") o.smoke = true;
+    else if (a == "--no-gpu") o.gpu = false;
+    else if (a == "--no-frames") o.frames = false;
+    else if (a == "--no-chart") o.chart = false;
+    else if (a == "--list") o.list = true;
+    else if (a == "--out") o.out = value(i, a);
+    else if (a == "--presets") {
+      o.presets.clear();
+      std::stringstream list(value(i, a));
+      for (std::string item; std::getline(list, item, ',');)
+        if (!item.empty()) o.presets.push_back(item);
+      if (o.presets.empty()) throw std::invalid_argument("--presets: give at least one");
+    } else if (a == "--frame-size") {
+      o.frame_size_px = std::stoi(value(i, a));
+      if (o.frame_size_px < 16 || o.frame_size_px > 8192) throw std::invalid_argument("--frame-size: must be in [16, 8192]");
+    } else if (a == "--frames") {
+      o.frame_count = std::stoi(value(i, a));
+      if (o.frame_count < 1 || o.frame_count > 1000) throw std::invalid_argument("--frames: must be in [1, 1000]");
+    } else if (a == "--tolerance") {
+      o.tolerance = std::stod(value(i, a));
+      if (!(o.tolerance >= 1.0)) throw std::invalid_argument("--tolerance: must be >= 1");
+    } else if (a == "--max-rms") {
+      o.max_rms = std::stod(value(i, a));
+      if (!(*o.max_rms > 0.0)) throw std::invalid_argument("--max-rms: must be > 0");
+    } else if (a == "--help" || a == "-h") {
+      fmt::print("{}", kUsage);
+      std::exit(0);
+    } else throw std::invalid_argument(fmt::format("unknown option '{}'", a));
+    if (a != "--out") o.command = fmt::format("{} {}", o.command, a);
+    if (a == "--presets" || a == "--frame-size" || a == "--frames" || a == "--tolerance" || a == "--max-rms")
+      o.command = fmt::format("{} {}", o.command, argv[i]);
+  }
+  if (o.smoke) {
+    o.presets = {"earth-advanced"};
+    o.frame_size_px = std::min(o.frame_size_px, 64);
+    o.frame_count = std::min(o.frame_count, 2);
+  }
+  return o;
+}
+
+// ---- the reference fixtures
 
 struct Case {
   std::string preset, name;
@@ -38,137 +160,449 @@ struct Case {
 };
 
 Case read_case(const std::string& preset, const std::string& name, std::size_t channels) {
-  std::ifstream in(std::string(ZENITH_SOURCE_DIR) + "/tests/data/reference_" + preset + "_" + name + ".csv");
-  if (!in) throw std::runtime_error("missing fixture for " + preset + " " + name);
+  const fs::path file = fs::path(ZENITH_SOURCE_DIR) / "tests/data" / fmt::format("reference_{}_{}.csv", preset, name);
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(fmt::format("missing reference fixture {} (scripts/make-reference-fixtures)", file.string()));
   Case c{preset, name, {}, {}, {}, {}};
   std::string line;
-  std::getline(in, line);
-  auto arg = [&](const std::string& flag) { return std::stod(line.substr(line.find(flag + " ") + flag.size() + 1)); };
+  std::getline(in, line);  // "# scripts/make-reference-fixtures: zenith sample ... --altitude-m A --sun-zenith-deg Z ..."
+  auto arg = [&](const std::string& flag) {
+    const std::size_t at = line.find(fmt::format("{} ", flag));
+    if (at == std::string::npos) throw std::runtime_error(fmt::format("{}: no {} in its first line", file.string(), flag));
+    return std::stod(line.substr(at + flag.size() + 1));
+  };
   c.geometry.altitude_m = arg("--altitude-m");
   c.geometry.sun_zenith_deg = arg("--sun-zenith-deg");
-  std::getline(in, line);
+  std::getline(in, line);  // column names
   while (std::getline(in, line)) {
     std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream s(line);
     ViewDirection d{};
     s >> d.zenith_deg >> d.azimuth_deg;
     std::vector<double> v;
-    double x;
-    while (s >> x) v.push_back(x);
+    for (double x; s >> x;) v.push_back(x);
+    if (v.size() < 2 * channels) throw std::runtime_error(fmt::format("{}: a row has too few columns", file.string()));
     c.directions.push_back(d);
-    c.reference.emplace_back(v.begin(), v.begin() + long(channels));
-    c.standard_error.emplace_back(v.end() - long(channels), v.end());
+    c.reference.emplace_back(v.begin(), v.begin() + static_cast<long>(channels));
+    c.standard_error.emplace_back(v.end() - static_cast<long>(channels), v.end());
   }
   return c;
 }
 
+// ---- settings
+
 struct Setting {
   std::string label;
+  std::string sizes_name;
   lut::PrecomputeOptions options;
   bool gpu = false;
+  bool project_default = false;  ///< the settings `zenith` uses unless told otherwise
 };
 
-}  // namespace
+lut::TableSizes sizes_by_name(const std::string& name) {
+  if (name == "tiny") return lut::TableSizes{64, 16, 32, 8, 8, 16, 16, 4};
+  if (name == "small") return lut::TableSizes::small();
+  if (name == "medium") return lut::TableSizes{128, 32, 64, 16, 16, 64, 32, 8};
+  if (name == "paper") return lut::TableSizes{};
+  throw std::invalid_argument(fmt::format("no table sizes named '{}'", name));
+}
 
-int main(int argc, char** argv) {
-  bool quick = false, gpu = true;
-  std::filesystem::path out = "bench-results";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--quick") quick = true;
-    else if (a == "--no-gpu") gpu = false;
-    else if (a == "--out" && i + 1 < argc) out = argv[++i];
-    else {
-      fmt::print(stderr, "usage: lut_accuracy_bench [--quick] [--no-gpu] [--out DIR]\n");
-      return 2;
+struct Variant {
+  Variant(int orders_, bool trapezoid_ = false, int ray_samples_ = 50, int sphere_ = 16)
+      : orders(orders_), trapezoid(trapezoid_), ray_samples(ray_samples_), sphere(sphere_) {}
+  int orders;
+  bool trapezoid;
+  int ray_samples;  ///< PrecomputeOptions::scattering_samples
+  int sphere;       ///< PrecomputeOptions::sphere_zenith_samples
+};
+
+Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
+  Setting s;
+  s.sizes_name = sizes;
+  s.gpu = gpu;
+  s.options.sizes = sizes_by_name(sizes);
+  s.options.max_orders = v.orders;
+  s.options.scattering_quadrature =
+      v.trapezoid ? lut::PrecomputeOptions::Quadrature::Trapezoid : lut::PrecomputeOptions::Quadrature::LogLinear;
+  s.options.scattering_samples = v.ray_samples;
+  s.options.sphere_zenith_samples = v.sphere;
+  s.label = fmt::format("{} {} order{}", sizes, v.orders, v.orders == 1 ? "" : "s");
+  if (v.trapezoid) s.label = fmt::format("{} trapezoid", s.label);
+  if (v.ray_samples != 50) s.label = fmt::format("{} {} ray samples", s.label, v.ray_samples);
+  if (v.sphere != 16) s.label = fmt::format("{} sphere {}", s.label, v.sphere);
+  s.label = fmt::format("{} {}", s.label, gpu ? "GPU" : "CPU");
+  const lut::PrecomputeOptions defaults;
+  s.project_default = gpu && sizes == "paper" && v.orders == 4 && !v.trapezoid &&
+                      v.ray_samples == defaults.scattering_samples && v.sphere == defaults.sphere_zenith_samples;
+  return s;
+}
+
+std::vector<Setting> settings_for(const Options& o) {
+  std::vector<Setting> out;
+  auto add = [&](const std::string& sizes, Variant v, bool gpu) {
+    if (gpu && !o.gpu) return;
+    out.push_back(make_setting(sizes, v, gpu));
+  };
+  if (o.smoke) {
+    add("tiny", {2}, false);
+    add("tiny", {2}, true);
+    add("small", {2}, true);
+    return out;
+  }
+  // GPU: every dimension around small, medium and paper sizes.
+  add("tiny", {4}, true);
+  if (o.quick) add("tiny", {2}, true);
+  add("small", {1}, true);
+  add("small", {2}, true);
+  add("small", {4}, true);
+  add("small", {4, true}, true);
+  add("small", {4, false, 50, 8}, true);
+  if (o.quick) {
+    add("paper", {4}, true);  // the project default, to compare the pick with
+    add("tiny", {4}, false);
+    add("small", {4}, false);
+    return out;
+  }
+  add("small", {4, false, 25}, true);
+  add("medium", {2}, true);
+  add("medium", {4}, true);
+  add("medium", {6}, true);
+  add("medium", {4, false, 50, 8}, true);
+  add("paper", {2}, true);
+  add("paper", {4}, true);
+  add("paper", {4, false, 50, 8}, true);
+  // CPU: the same tables (same errors) at other precompute times.
+  add("small", {4}, false);
+  add("medium", {4}, false);
+  return out;
+}
+
+/// The scene of the frame-time measurement for an atmosphere with reference fixtures.
+fs::path frame_scene_for(const std::string& preset) {
+  const fs::path scenes = fs::path(ZENITH_SOURCE_DIR) / "configs/scenes";
+  if (preset.rfind("earth", 0) == 0) return scenes / "earth-ground-noon.json";
+  if (preset == "mars") return scenes / "mars-ground-day.json";
+  throw std::invalid_argument(fmt::format("no frame-time scene for '{}'", preset));
+}
+
+// ---- measurements
+
+struct Row {
+  std::size_t setting = 0;
+  std::string preset;
+  std::string device;
+  double precompute_s = NAN, frame_ms = NAN, frame_ms_min = NAN;
+  double rms = NAN, max = NAN, table_mb = 0.0;
+  double sum_squares = 0.0;  ///< of the relative errors, for pooling
+  std::size_t values = 0;    ///< compared
+  std::size_t nonfinite = 0;  ///< NaN/Inf radiances from the tables + pixels of the frame
+  std::size_t frame_index = SIZE_MAX;  ///< in the atmosphere's LutFrameTimer
+  bool front_precompute = false, front_frame = false, recommended = false;
+};
+
+std::string csv_field(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  q += '"';
+  return q;
+}
+
+std::string number(double v, const char* format = "{:.6g}") {
+  return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string();
+}
+
+/// Marks the Pareto fronts and the recommended setting among `rows` (one group).
+/// The frame-time front counts GPU settings only: a CPU setting makes the same
+/// tables as its GPU twin, so its frames are the same work (and its frame time
+/// differs only by noise).
+void mark_fronts(std::vector<Row*>& rows, const std::vector<Setting>& settings, double tolerance) {
+  std::vector<zenith::bench::CostError> by_precompute, by_frame;
+  for (const Row* r : rows) {
+    by_precompute.push_back({r->precompute_s, r->rms});
+    by_frame.push_back({settings[r->setting].gpu ? r->frame_ms : NAN, r->rms});
+  }
+  const auto fp = zenith::bench::pareto_front(by_precompute), ff = zenith::bench::pareto_front(by_frame);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    rows[i]->front_precompute = fp[i];
+    rows[i]->front_frame = ff[i];
+  }
+  if (auto pick = zenith::bench::cheapest_within(by_precompute, tolerance)) rows[*pick]->recommended = true;
+}
+
+int run(const Options& opt) {
+  const std::vector<Setting> settings = settings_for(opt);
+  if (opt.list) {
+    for (const Setting& s : settings)
+      fmt::print("{:<36} {}{}\n", s.label, s.options.sizes.describe(), s.project_default ? "  (project default)" : "");
+    return 0;
+  }
+  fs::create_directories(opt.out);
+
+  // The frames' context (also names the GL device of the GPU precompute).
+  std::optional<zenith::render::gl::HeadlessContext> context;
+  std::string gl_renderer = "none";
+  if (opt.gpu) {
+    try {
+      context.emplace();
+      gl_renderer = context->renderer();
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "no GL context ({}): no frame times, the GPU settings will fail\n", e.what());
     }
   }
-  std::filesystem::create_directories(out);
+  const bool frames = opt.frames && context.has_value();
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  fmt::print("lut_accuracy_bench: {} settings x {} atmospheres; GL: {}; CPU precompute: {} threads; frames: {}\n",
+             settings.size(), opt.presets.size(), gl_renderer, threads,
+             frames ? fmt::format("{0}x{0} fisheye 180deg, median of {1}", opt.frame_size_px, opt.frame_count)
+                    : std::string("off"));
 
-  std::vector<Setting> settings;
-  auto add = [&](std::string label, lut::TableSizes sizes, int orders, bool log_linear, int sphere, bool on_gpu) {
-    lut::PrecomputeOptions o;
-    o.sizes = sizes;
-    o.max_orders = orders;
-    o.sphere_zenith_samples = sphere;
-    o.scattering_quadrature =
-        log_linear ? lut::PrecomputeOptions::Quadrature::LogLinear : lut::PrecomputeOptions::Quadrature::Trapezoid;
-    settings.push_back({std::move(label) + (on_gpu ? " GPU" : " CPU"), o, on_gpu});
-  };
-  const lut::TableSizes small = lut::TableSizes::small();
-  const lut::TableSizes medium{128, 32, 64, 16, 16, 64, 32, 8};
-  const lut::TableSizes paper{};
-  for (bool on_gpu : {false, true}) {
-    if (on_gpu && !gpu) continue;
-    add("small 4 orders", small, 4, true, 8, on_gpu);
-    add("small 4 orders trapezoid", small, 4, false, 8, on_gpu);
-    add("small 2 orders", small, 2, true, 8, on_gpu);
-    if (!quick || on_gpu) add("medium 4 orders", medium, 4, true, 16, on_gpu);
-    if (on_gpu) add("paper 4 orders", paper, 4, true, 16, on_gpu);
-    if (!quick && on_gpu) add("paper 8 orders", paper, 8, true, 16, on_gpu);
-  }
-
-  std::ofstream csv(out / "lut_accuracy.csv");
-  csv << "setting,preset,precompute_s,rms_relative_error,max_relative_error,table_MB\n";
-  fmt::print("{:<34} {:<15} {:>12} {:>10} {:>10} {:>9}\n", "setting", "atmosphere", "precompute s", "RMS err",
-             "max err", "tables MB");
-  for (const std::string preset : {"earth-advanced", "mars"}) {
+  std::vector<Row> rows;
+  for (const std::string& preset : opt.presets) {
     const AtmosphereModel model = load_preset(preset).model;
     std::vector<Case> cases;
     for (const char* name : {"noon", "low_sun", "twilight", "orbit_limb"})
       cases.push_back(read_case(preset, name, model.wavelength_count()));
-    for (const Setting& s : settings) {
+    std::optional<zenith::bench::LutFrameTimer> timer;
+    if (frames) {
+      timer.emplace(frame_scene_for(preset), opt.frame_size_px);
+      if (lookup_table_hash(timer->model()) != lookup_table_hash(model))
+        throw std::runtime_error(fmt::format("the frame-time scene's atmosphere is not the preset '{}' as loaded here "
+                                             "(other wavelengths?)", preset));
+    }
+    for (std::size_t si = 0; si < settings.size(); ++si) {
+      const Setting& s = settings[si];
+      Row row;
+      row.setting = si;
+      row.preset = preset;
+      lut::PrecomputeReport report;
       const auto start = std::chrono::steady_clock::now();
       lut::LookupTables tables;
       try {
-        tables = s.gpu ? zenith::render::precompute_tables_gpu(model, s.options)
-                       : lut::precompute_tables_cpu(model, s.options);
+        // GPU: a context of its own per precompute (its creation and the shader
+        // compilation are part of the cost), as `zenith precompute` does.
+        tables = s.gpu ? zenith::render::precompute_tables_gpu(model, s.options, &report)
+                       : lut::precompute_tables_cpu(model, s.options, &report);
       } catch (const std::exception& e) {
-        fmt::print(stderr, "{}: {}\n", s.label, e.what());
+        fmt::print(stderr, "{} ({}): {}\n", s.label, preset, e.what());
         continue;
       }
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const lut::TableQueries q(model, tables);
-      double sum = 0.0, worst = 0.0;
-      int n = 0;
-      for (const Case& c : cases) {
-        const auto values = sample_radiance(q, c.geometry, c.directions);
-        for (std::size_t i = 0; i < values.size(); ++i)
-          for (std::size_t ch = 0; ch < model.wavelength_count(); ++ch) {
-            const double ref = c.reference[i][ch];
-            const double err = std::max(0.0, std::abs(values[i].radiance[ch] - ref) - 2.0 * c.standard_error[i][ch]) / ref;
-            sum += err * err;
-            worst = std::max(worst, err);
-            ++n;
-          }
+      row.precompute_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      row.device = report.device.empty() ? (s.gpu ? gl_renderer : fmt::format("CPU ({} threads)", threads)) : report.device;
+
+      double worst = 0.0;
+      {
+        const lut::TableQueries q(model, tables);  // holds a reference: gone before the tables move
+        for (const Case& c : cases) {
+          const auto values = sample_radiance(q, c.geometry, c.directions);
+          for (std::size_t i = 0; i < values.size(); ++i)
+            for (std::size_t ch = 0; ch < model.wavelength_count(); ++ch) {
+              const double v = values[i].radiance[ch], ref = c.reference[i][ch];
+              if (!std::isfinite(v)) {  // std::max below would hide a NaN
+                ++row.nonfinite;
+                continue;
+              }
+              const double err = std::max(0.0, std::abs(v - ref) - 2.0 * c.standard_error[i][ch]) / ref;
+              row.sum_squares += err * err;
+              worst = std::max(worst, err);
+              ++row.values;
+            }
+        }
       }
-      const double bytes = 4.0 * double(model.wavelength_count()) *
-                           double(tables.transmittance.data.size() / tables.channels + tables.irradiance.data.size() / tables.channels +
-                                  3 * tables.multiple.data.size() / tables.channels);
-      const double rms = std::sqrt(sum / n);
-      fmt::print("{:<34} {:<15} {:>12.2f} {:>10.4f} {:>10.4f} {:>9.1f}\n", s.label, preset, seconds, rms, worst, bytes / 1e6);
-      csv << '"' << s.label << "\"," << preset << ',' << seconds << ',' << rms << ',' << worst << ',' << bytes / 1e6 << '\n';
-      csv.flush();
+      row.rms = row.values > 0 ? std::sqrt(row.sum_squares / double(row.values)) : NAN;
+      row.max = worst;
+      row.table_mb = 4.0 * double(tables.transmittance.data.size() + tables.irradiance.data.size() +
+                                  3 * tables.multiple.data.size()) / 1e6;  // as float32, 3 scattering tables
+      if (timer) {  // its untimed frame now, the timed ones below with the other settings'
+        context->make_current();
+        std::size_t nonfinite_pixels = 0;
+        row.frame_index = timer->add(std::move(tables), &nonfinite_pixels);
+        row.nonfinite += nonfinite_pixels;
+      }
+      fmt::print("{:<36} {:<15} precompute {:8.2f} s   RMS {:.4f}   max {:.4f}{}\n", s.label, preset, row.precompute_s,
+                 row.rms, row.max, row.nonfinite ? fmt::format("  {} NON-FINITE", row.nonfinite) : std::string());
+      std::fflush(stdout);
+      rows.push_back(row);
+    }
+    if (timer) {
+      fmt::print("timing {} frames of each setting ({}), interleaved\n", opt.frame_count, preset);
+      const std::vector<zenith::bench::FrameTiming> timings = timer->time_all(opt.frame_count);
+      for (Row& r : rows)
+        if (r.preset == preset && r.frame_index < timings.size()) {
+          r.frame_ms = timings[r.frame_index].median_ms;
+          r.frame_ms_min = timings[r.frame_index].min_ms;
+        }
     }
   }
-  csv.close();
 
-  // Chart: precompute time against RMS error, one series per atmosphere.
-  std::ofstream gp(out / "lut_accuracy.gp");
-  gp << "set terminal pngcairo size 900,600\nset output '" << (out / "lut_accuracy.png").string() << "'\n"
-     << "set datafile separator ','\nset logscale x\nset xlabel 'precompute time [s]'\n"
-     << "set ylabel 'RMS relative error of sky radiance vs reference'\nset grid\nset key top right\n"
-     << "set title 'zenith lookup tables: run time against error'\n"
-     << "plot '" << (out / "lut_accuracy.csv").string()
-     << "' using (strcol(2) eq 'earth-advanced' ? $3 : 1/0):4:(strcol(1)) with labels point pt 7 offset 1,0.5 "
-        "font ',7' title 'Earth (advanced)', \\\n"
-     << "     '' using (strcol(2) eq 'mars' ? $3 : 1/0):4 with points pt 5 title 'Mars'\n";
-  gp.close();
-  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0 &&
-      std::system(("gnuplot " + (out / "lut_accuracy.gp").string()).c_str()) == 0)
-    fmt::print("chart: {}\n", (out / "lut_accuracy.png").string());
+  fmt::print("\n{:<36} {:<15} {:>12} {:>10} {:>10} {:>10} {:>9}\n", "setting", "atmosphere", "precompute s",
+             "frame ms", "RMS err", "max err", "tables MB");
+  for (const Row& r : rows)
+    fmt::print("{:<36} {:<15} {:>12.2f} {:>10.1f} {:>10.4f} {:>10.4f} {:>9.1f}\n", settings[r.setting].label, r.preset,
+               r.precompute_s, r.frame_ms, r.rms, r.max, r.table_mb);
+
+  // "all": every atmosphere together, for the settings measured on each.
+  std::vector<Row> pooled;
+  for (std::size_t si = 0; si < settings.size(); ++si) {
+    std::vector<const Row*> parts;
+    for (const Row& r : rows)
+      if (r.setting == si) parts.push_back(&r);
+    if (parts.size() != opt.presets.size()) continue;
+    Row all;
+    all.setting = si;
+    all.preset = "all";
+    all.device = parts.front()->device;
+    all.precompute_s = all.frame_ms = all.frame_ms_min = all.max = all.table_mb = 0.0;
+    for (const Row* p : parts) {
+      all.precompute_s += p->precompute_s / double(parts.size());
+      all.frame_ms += p->frame_ms / double(parts.size());
+      all.frame_ms_min += p->frame_ms_min / double(parts.size());
+      all.max = std::max(all.max, p->max);
+      all.table_mb += p->table_mb / double(parts.size());
+      all.sum_squares += p->sum_squares;
+      all.values += p->values;
+      all.nonfinite += p->nonfinite;
+    }
+    all.rms = all.values > 0 ? std::sqrt(all.sum_squares / double(all.values)) : NAN;
+    pooled.push_back(all);
+  }
+  rows.insert(rows.end(), pooled.begin(), pooled.end());
+
+  std::map<std::string, std::vector<Row*>> groups;
+  for (Row& r : rows) groups[r.preset].push_back(&r);
+  for (auto& [preset, group] : groups) mark_fronts(group, settings, opt.tolerance);
+
+  // CSV: the first six columns as before this file had fronts and frames.
+  const fs::path csv_path = opt.out / "lut_accuracy.csv";
+  {
+    std::ofstream csv(csv_path);
+    csv << "setting,preset,precompute_s,rms_relative_error,max_relative_error,table_MB,frame_ms,frame_ms_min,"
+           "backend,device,sizes,table_sizes,orders,quadrature,ray_samples,sphere_samples,nonfinite,"
+           "pareto_precompute,pareto_frame,recommended,project_default,frame_size_px,tolerance\n";
+    for (const Row& r : rows) {
+      const Setting& s = settings[r.setting];
+      csv << csv_field(s.label) << ',' << r.preset << ',' << number(r.precompute_s) << ',' << number(r.rms) << ','
+          << number(r.max) << ',' << number(r.table_mb, "{:.2f}") << ',' << number(r.frame_ms, "{:.3f}") << ','
+          << number(r.frame_ms_min, "{:.3f}") << ',' << (s.gpu ? "GPU" : "CPU") << ',' << csv_field(r.device) << ','
+          << s.sizes_name << ',' << csv_field(s.options.sizes.describe()) << ',' << s.options.max_orders << ','
+          << (s.options.scattering_quadrature == lut::PrecomputeOptions::Quadrature::LogLinear ? "log-linear"
+                                                                                                : "trapezoid")
+          << ',' << s.options.scattering_samples << ',' << s.options.sphere_zenith_samples << ',' << r.nonfinite << ','
+          << int(r.front_precompute) << ',' << int(r.front_frame) << ',' << int(r.recommended) << ','
+          << int(s.project_default) << ',' << (frames ? opt.frame_size_px : 0) << ',' << opt.tolerance << '\n';
+    }
+    if (!csv.flush()) throw std::runtime_error(fmt::format("cannot write {}", csv_path.string()));
+  }
+
+  // The recommendation, against the project's default.
+  const std::vector<Row*>& all = groups.count("all") ? groups["all"] : groups[opt.presets.front()];
+  const Row* pick = nullptr;
+  const Row* project = nullptr;
+  double best = std::numeric_limits<double>::infinity();
+  for (const Row* r : all) {
+    if (r->recommended) pick = r;
+    if (settings[r->setting].project_default) project = r;
+    if (std::isfinite(r->rms)) best = std::min(best, r->rms);
+  }
+  fmt::print("\nPareto front ({}; cost = precompute time):", all.empty() ? "-" : all.front()->preset);
+  for (const Row* r : all)
+    if (r->front_precompute) fmt::print(" [{}]", settings[r->setting].label);
+  fmt::print("\nPareto front (cost = frame time, GPU settings):");
+  for (const Row* r : all)
+    if (r->front_frame) fmt::print(" [{}]", settings[r->setting].label);
+  fmt::print("\n");
+  auto describe = [&](const Row* r) {
+    return fmt::format("{}: RMS {:.4f}, max {:.3f}, precompute {:.1f} s, frame {:.1f} ms", settings[r->setting].label,
+                       r->rms, r->max, r->precompute_s, r->frame_ms);
+  };
+  if (pick)
+    fmt::print("recommended default (cheapest precompute with RMS <= {:.2g} x the best, {:.4f}): {}\n", opt.tolerance,
+               best, describe(pick));
+  if (project)
+    fmt::print("project default (paper sizes, 4 orders, log-linear, 50 ray samples, sphere 16, GPU): {}{}\n",
+               describe(project), pick == project ? " (the same)" : "");
   else
-    fmt::print("gnuplot not found: chart script left in {}\n", (out / "lut_accuracy.gp").string());
-  fmt::print("csv: {}\n", (out / "lut_accuracy.csv").string());
-  return 0;
+    fmt::print("project default (paper sizes, 4 orders, GPU): not measured in this run\n");
+
+  if (opt.chart) {
+    const std::string machine = fmt::format("GL: {}; CPU: {} threads", gl_renderer, threads);
+    std::vector<zenith::bench::ChartPoint> by_precompute, by_frame;
+    std::optional<std::size_t> pick_index;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const Row* r = all[i];
+      by_precompute.push_back({{r->precompute_s, r->rms}, settings[r->setting].label, r->front_precompute});
+      if (settings[r->setting].gpu) by_frame.push_back({{r->frame_ms, r->rms}, settings[r->setting].label, r->front_frame});
+      if (r->recommended) pick_index = i;
+    }
+    std::string presets = opt.presets.front();
+    for (std::size_t i = 1; i < opt.presets.size(); ++i) presets = fmt::format("{} + {}", presets, opt.presets[i]);
+    const std::string scope = opt.presets.size() > 1 ? fmt::format("{} (mean cost, pooled RMS)", presets) : presets;
+    bool drawn = zenith::bench::write_pareto_chart(
+        opt.out / "pareto_precompute.png", by_precompute, pick_index,
+        {fmt::format("zenith lookup tables: precompute time against error, {}", scope),
+         fmt::format("{}; {}", machine, opt.command), "precompute time [s]",
+         "RMS relative error of sky radiance vs the reference solver"});
+    if (frames)
+      drawn = zenith::bench::write_pareto_chart(
+                  opt.out / "pareto_frame.png", by_frame, std::nullopt,
+                  {fmt::format("zenith lookup tables: frame time against error, {}", scope),
+                   fmt::format("{0}x{0} fisheye dome master, median of {1} frames; {2}; {3}", opt.frame_size_px,
+                               opt.frame_count, machine, opt.command),
+                   "frame time [ms]", "RMS relative error of sky radiance vs the reference solver"}) &&
+              drawn;
+
+    // Per atmosphere: precompute time against RMS error (the chart this program always drew).
+    std::ofstream gp(opt.out / "lut_accuracy.gp");
+    gp << "set terminal pngcairo size 900,600\nset output '" << (opt.out / "lut_accuracy.png").string() << "'\n"
+       << "set termoption noenhanced\nset datafile separator ','\nset logscale x\nset xlabel 'precompute time [s]'\n"
+       << "set ylabel 'RMS relative error of sky radiance vs reference'\nset grid\nset key top right\n"
+       << "set title 'zenith lookup tables: run time against error (" << machine << ")'\n"
+       << "plot '" << csv_path.string() << "' using (strcol(2) eq '" << opt.presets.front()
+       << "' ? $3 : 1/0):4:(strcol(1)) with labels point pt 7 offset 1,0.5 left font ',7' title '"
+       << opt.presets.front() << "'";
+    for (std::size_t i = 1; i < opt.presets.size(); ++i)
+      gp << ", \\\n     '' using (strcol(2) eq '" << opt.presets[i] << "' ? $3 : 1/0):4 with points pt " << 4 + i
+         << " title '" << opt.presets[i] << "'";
+    gp << '\n';
+    gp.close();
+    drawn = std::system(fmt::format("gnuplot '{}' 2>/dev/null", (opt.out / "lut_accuracy.gp").string()).c_str()) == 0 &&
+            drawn;
+    if (drawn)
+      fmt::print("charts: {}, pareto_precompute.png{}\n", (opt.out / "lut_accuracy.png").string(),
+                 frames ? ", pareto_frame.png" : "");
+    else
+      fmt::print("gnuplot not found or failed: chart scripts (.gp) left in {}\n", opt.out.string());
+  }
+  fmt::print("csv: {}\n", csv_path.string());
+
+  // Bounds (CTest smoke run and CI): no NaN/Inf anywhere, RMS within --max-rms.
+  int failures = 0;
+  for (const Row& r : rows) {
+    if (r.preset == "all") continue;
+    const std::string& label = settings[r.setting].label;
+    if (r.nonfinite > 0) {
+      fmt::print(stderr, "FAIL {} ({}): {} non-finite values\n", label, r.preset, r.nonfinite);
+      ++failures;
+    }
+    if (opt.max_rms && !(r.rms <= *opt.max_rms)) {
+      fmt::print(stderr, "FAIL {} ({}): RMS relative error {:.4f} exceeds the bound {:.4f}\n", label, r.preset, r.rms,
+                 *opt.max_rms);
+      ++failures;
+    }
+  }
+  if (rows.empty()) {
+    fmt::print(stderr, "lut_accuracy_bench: no setting could be measured\n");
+    return 1;
+  }
+  return failures > 0 ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(parse_options(argc, argv));
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "lut_accuracy_bench: {}\n(lut_accuracy_bench --help lists the options)\n", e.what());
+    return 2;
+  }
 }
