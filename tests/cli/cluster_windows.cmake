@@ -6,7 +6,7 @@ set(dir "${WORK_DIR}/cluster-windows")
 file(REMOVE_RECURSE "${dir}")
 file(MAKE_DIRECTORY "${dir}")
 execute_process(
-  COMMAND ${XVFB_RUN} -a -s "-screen 0 640x480x24" ${ZENITH} cluster --windows --frames 3
+  COMMAND ${XVFB_RUN} -a -s "-screen 0 640x480x24 -noreset" ${ZENITH} cluster --windows --frames 3
           --cluster "${SOURCE_DIR}/tests/data/clusters/windowed-halves.json" --out "${dir}/out" --cache "${dir}/cache"
   RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 600)
 if(NOT status EQUAL 0)
