@@ -23,6 +23,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "apps/commands.h"
+#include "apps/image_options.h"
 #include "apps/output_rendering.h"
 #include "apps/progress_bar.h"
 #include "apps/table_provider.h"
@@ -422,12 +423,7 @@ void register_render_command(CLI::App& app) {
   cmd->add_option("--size", a->size, "WIDTHxHEIGHT in pixels (default 1024x1024)");
   cmd->add_option("--out", a->outputs,
                   "Output FILE.exr and/or FILE.png (repeatable; with --window optional: the last frame shown)");
-  cmd->add_option("--exr-type", a->exr_type, "EXR pixels: half (default) or float")
-      ->check(CLI::IsMember({"half", "float"}));
-  cmd->add_option("--tone", a->tone, "PNG tone mapping: exponential (paper, default) or clamp")
-      ->check(CLI::IsMember({"exponential", "clamp"}));
-  cmd->add_option("--colour", a->colour, "Spectral to RGB: auto, direct, cie1931")
-      ->check(CLI::IsMember({"auto", "direct", "cie1931"}));
+  add_image_options(cmd, a->exr_type, a->tone, a->colour);
   cmd->add_option("--exposure", a->exposure, "Override the scene camera's exposure");
   cmd->add_option("--tables", a->tables, "Table sizes: paper (default), small, large")
       ->check(CLI::IsMember({"paper", "small", "large"}));

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "apps/image_options.h"
 #include "apps/offline_cluster_renderer.h"
 #include "apps/offline_frame_renderer.h"
 #include "apps/offline_manifest.h"
@@ -315,12 +316,7 @@ void register_show_render(CLI::App& show_command) {
   cmd->add_option("--format", a->format, "png (default), exr or png,exr");
   cmd->add_option("--contact-sheet", a->contact_sheet,
                   "Contact sheet PNG of 24 evenly spaced frames (default DIR/contact-sheet.png; none: no sheet)");
-  cmd->add_option("--exr-type", a->exr_type, "EXR pixels: half (default) or float")
-      ->check(CLI::IsMember({"half", "float"}));
-  cmd->add_option("--tone", a->tone, "PNG tone mapping: exponential (paper, default) or clamp")
-      ->check(CLI::IsMember({"exponential", "clamp"}));
-  cmd->add_option("--colour", a->colour, "Spectral to RGB: auto, direct, cie1931")
-      ->check(CLI::IsMember({"auto", "direct", "cie1931"}));
+  add_image_options(cmd, a->exr_type, a->tone, a->colour);
   add_table_options(cmd, a->tables);
   cmd->add_flag("--cpu-precompute", a->tables.cpu_precompute, "Precompute missing tables on the CPU");
   cmd->add_option("--device", a->device, "GL device: auto, software (llvmpipe), hardware")

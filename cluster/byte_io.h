@@ -81,28 +81,24 @@ class ByteWriter {
   /// u16 byte count, then the bytes. Throws std::length_error naming `field`
   /// when longer than `max_bytes` (or 65535), std::invalid_argument when not
   /// valid UTF-8: a writer never produces what a reader would refuse.
-  void string(std::string_view s, std::size_t max_bytes, const char* field) {
-    if (s.size() > max_bytes || s.size() > 0xFFFF)
-      throw std::length_error(std::string(field) + ": " + std::to_string(s.size()) + " bytes, at most " +
-                              std::to_string(max_bytes) + " allowed");
-    if (!is_valid_utf8(s)) throw std::invalid_argument(std::string(field) + ": not valid UTF-8 (or contains NUL)");
-    u16(static_cast<std::uint16_t>(s.size()));
-    out_.insert(out_.end(), s.begin(), s.end());
-  }
+  void string(std::string_view s, std::size_t max_bytes, const char* field) { text(s, max_bytes, 2, field); }
   /// u32 byte count, then the bytes: for long texts (JSON documents). Same
   /// errors as string().
-  void long_string(std::string_view s, std::size_t max_bytes, const char* field) {
-    if (s.size() > max_bytes || s.size() > 0xFFFFFFFFu)
-      throw std::length_error(std::string(field) + ": " + std::to_string(s.size()) + " bytes, at most " +
-                              std::to_string(max_bytes) + " allowed");
-    if (!is_valid_utf8(s)) throw std::invalid_argument(std::string(field) + ": not valid UTF-8 (or contains NUL)");
-    u32(static_cast<std::uint32_t>(s.size()));
-    out_.insert(out_.end(), s.begin(), s.end());
-  }
+  void long_string(std::string_view s, std::size_t max_bytes, const char* field) { text(s, max_bytes, 4, field); }
 
  private:
   void put_be(std::uint64_t v, int count) {
     for (int i = count - 1; i >= 0; --i) out_.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  /// A `length_bytes`-byte (2 or 4) count, then the UTF-8 bytes.
+  void text(std::string_view s, std::size_t max_bytes, int length_bytes, const char* field) {
+    const std::uint64_t representable = (std::uint64_t{1} << (8 * length_bytes)) - 1;
+    if (s.size() > max_bytes || s.size() > representable)
+      throw std::length_error(std::string(field) + ": " + std::to_string(s.size()) + " bytes, at most " +
+                              std::to_string(max_bytes) + " allowed");
+    if (!is_valid_utf8(s)) throw std::invalid_argument(std::string(field) + ": not valid UTF-8 (or contains NUL)");
+    put_be(s.size(), length_bytes);
+    out_.insert(out_.end(), s.begin(), s.end());
   }
   std::vector<std::uint8_t>& out_;
 };
@@ -135,27 +131,9 @@ class ByteReader {
   }
   /// A u16-length-prefixed UTF-8 string of at most `max_bytes` bytes. The
   /// length is checked before the bytes are copied.
-  std::string string(std::size_t max_bytes, const char* field) {
-    const std::size_t length = u16(field);
-    if (length > max_bytes)
-      fail(std::string(field) + ": length " + std::to_string(length) + " exceeds the limit of " +
-           std::to_string(max_bytes) + " bytes");
-    auto view = bytes(length, field);
-    std::string s(reinterpret_cast<const char*>(view.data()), view.size());
-    if (!is_valid_utf8(s)) fail(std::string(field) + ": not valid UTF-8 (or contains NUL)");
-    return s;
-  }
+  std::string string(std::size_t max_bytes, const char* field) { return text(u16(field), max_bytes, field); }
   /// A u32-length-prefixed UTF-8 string (long_string()), length checked first.
-  std::string long_string(std::size_t max_bytes, const char* field) {
-    const std::size_t length = u32(field);
-    if (length > max_bytes)
-      fail(std::string(field) + ": length " + std::to_string(length) + " exceeds the limit of " +
-           std::to_string(max_bytes) + " bytes");
-    auto view = bytes(length, field);
-    std::string s(reinterpret_cast<const char*>(view.data()), view.size());
-    if (!is_valid_utf8(s)) fail(std::string(field) + ": not valid UTF-8 (or contains NUL)");
-    return s;
-  }
+  std::string long_string(std::size_t max_bytes, const char* field) { return text(u32(field), max_bytes, field); }
 
   std::size_t offset() const { return offset_; }
   std::size_t remaining() const { return data_.size() - offset_; }
@@ -172,6 +150,16 @@ class ByteReader {
   }
 
  private:
+  /// `length` bytes of UTF-8 after a length field, checked against `max_bytes` before they are copied.
+  std::string text(std::size_t length, std::size_t max_bytes, const char* field) {
+    if (length > max_bytes)
+      fail(std::string(field) + ": length " + std::to_string(length) + " exceeds the limit of " +
+           std::to_string(max_bytes) + " bytes");
+    auto view = bytes(length, field);
+    std::string s(reinterpret_cast<const char*>(view.data()), view.size());
+    if (!is_valid_utf8(s)) fail(std::string(field) + ": not valid UTF-8 (or contains NUL)");
+    return s;
+  }
   void require(std::size_t count, const char* field) const {
     if (count > remaining())
       fail(std::string(field) + ": truncated (needs " + std::to_string(count) + " byte(s) at offset " +

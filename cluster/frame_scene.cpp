@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "cluster/show/show.h"
 #include "cluster/table_transfer.h"
 
 namespace zenith::cluster {
@@ -48,16 +49,11 @@ FrameState default_show_frame(const scene::Scene& scene, std::uint64_t frame, do
 }
 
 void apply_frame_state(const FrameState& state, scene::Scene& scene) {
-  if (state.sun_irradiance_W_m2_nm.size() != scene.wavelengths_nm.size())
-    throw std::invalid_argument("FrameState: " + std::to_string(state.sun_irradiance_W_m2_nm.size()) +
-                                " sun irradiance values for a scene of " + std::to_string(scene.wavelengths_nm.size()) +
-                                " wavelengths (do master and node read the same scene?)");
-  scene.camera.position_m = state.camera_position_m;
-  scene.camera.orientation = state.camera_orientation;
-  scene.camera.exposure = state.exposure;
-  scene.sun.direction = state.sun_direction;
-  scene.sun.angular_radius_rad = state.sun_angular_radius_rad;
-  scene.sun.irradiance_W_m2_nm = state.sun_irradiance_W_m2_nm;
+  // The per-frame parts are show::apply_state's without the atmospheres (those
+  // the node replaces by table version itself).
+  FrameState parts = state;
+  parts.atmospheres.clear();
+  show::apply_state(parts, {}, scene);
 }
 
 std::uint32_t render_flags_of(const render::RenderOptions& o) {

@@ -167,9 +167,8 @@ const AtmosphereVersion* Show::find_version(const cluster::Digest& table_hash) c
 
 void apply_state(const cluster::FrameState& state, const std::map<cluster::Digest, AtmosphereVersion>& versions,
                  scene::Scene& scene) {
-  // The per-frame parts, as cluster::apply_frame_state (frame_scene.h) does;
-  // repeated here so that shows need the protocol library only, not the
-  // GL-linked cluster runtime.
+  // The per-frame parts (cluster::apply_frame_state, frame_scene.h, is this
+  // without atmospheres), then each body's atmosphere version.
   if (state.sun_irradiance_W_m2_nm.size() != scene.wavelengths_nm.size())
     throw std::invalid_argument(cat("apply_state: ", state.sun_irradiance_W_m2_nm.size(),
                                     " sun irradiance values for a scene of ", scene.wavelengths_nm.size(),
