@@ -1,0 +1,25 @@
+# `zenith cluster` with no --cluster, run from a folder without configs/: the
+# built-in default (the 4-node local dome, its scene and viewports compiled into
+# the binary) is written to the cache and played; the stitched frame is the
+# 1024 x 1024 dome master. Called with ZENITH and WORK_DIR. The first run
+# precomputes the paper-size tables of earth-advanced into WORK_DIR's cache
+# (about 1.5 minutes on 2 cores with llvmpipe); later runs take seconds.
+set(dir "${WORK_DIR}/cluster-default")
+file(REMOVE_RECURSE "${dir}/run")
+file(MAKE_DIRECTORY "${dir}/run")
+execute_process(
+  COMMAND ${CMAKE_COMMAND} -E env ZENITH_CACHE_DIR=${dir}/cache
+          ${ZENITH} cluster --frames 2 --port 47133 --out "${dir}/run/out"
+  WORKING_DIRECTORY "${dir}/run"
+  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 900)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "zenith cluster (built-in default) failed (${status}):\n${out}\n${err}")
+endif()
+string(FIND "${err}" "using the built-in copy ${dir}/cache/embedded-configs/" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "the built-in cluster config was not used:\n${err}")
+endif()
+file(READ "${dir}/run/out/stitched/frame-000001.png" ihdr OFFSET 16 LIMIT 8 HEX)
+if(NOT ihdr STREQUAL "0000040000000400")
+  message(FATAL_ERROR "the stitched frame is not the 1024 x 1024 dome master: IHDR ${ihdr}")
+endif()
