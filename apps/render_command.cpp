@@ -23,7 +23,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "apps/commands.h"
-#include "apps/image_options.h"
+#include "apps/cli_options.h"
 #include "apps/output_rendering.h"
 #include "apps/progress_bar.h"
 #include "apps/table_provider.h"
@@ -425,10 +425,7 @@ void register_render_command(CLI::App& app) {
                   "Output FILE.exr and/or FILE.png (repeatable; with --window optional: the last frame shown)");
   add_image_options(cmd, a->exr_type, a->tone, a->colour);
   cmd->add_option("--exposure", a->exposure, "Override the scene camera's exposure");
-  cmd->add_option("--tables", a->tables, "Table sizes: paper (default), small, large")
-      ->check(CLI::IsMember({"paper", "small", "large"}));
-  cmd->add_option("--orders", a->orders, "Scattering orders of the tables (default 4)")->check(CLI::Range(1, 50));
-  cmd->add_option("--cache", a->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
+  add_table_options(cmd, a->tables, a->orders, a->cache_dir);
   cmd->add_flag("--no-cache", a->no_cache, "Neither read nor write the table cache");
   cmd->add_flag("--cpu-precompute", a->cpu_precompute, "Precompute missing tables on the CPU");
   cmd->add_option("--device", a->device, "GL device: auto, software (llvmpipe), hardware")

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "apps/commands.h"
-#include "apps/image_options.h"
+#include "apps/cli_options.h"
 #include "apps/offline_cluster_renderer.h"
 #include "apps/offline_frame_renderer.h"
 #include "apps/offline_manifest.h"
@@ -50,13 +50,6 @@ struct ShowRenderArgs {
   std::optional<std::uint64_t> from, to;
   TableArgs tables;
 };
-
-void add_table_options(CLI::App* cmd, TableArgs& t) {
-  cmd->add_option("--tables", t.tables, "Table sizes: paper (default), small, large")
-      ->check(CLI::IsMember({"paper", "small", "large"}));
-  cmd->add_option("--orders", t.orders, "Scattering orders of the tables (default 4)")->check(CLI::Range(1, 50));
-  cmd->add_option("--cache", t.cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
-}
 
 TableRequest table_request(const TableArgs& t) {
   return make_table_request(t.tables, t.orders, t.cpu_precompute, true, t.cache_dir);
@@ -317,7 +310,7 @@ void register_show_render(CLI::App& show_command) {
   cmd->add_option("--contact-sheet", a->contact_sheet,
                   "Contact sheet PNG of 24 evenly spaced frames (default DIR/contact-sheet.png; none: no sheet)");
   add_image_options(cmd, a->exr_type, a->tone, a->colour);
-  add_table_options(cmd, a->tables);
+  add_table_options(cmd, a->tables.tables, a->tables.orders, a->tables.cache_dir);
   cmd->add_flag("--cpu-precompute", a->tables.cpu_precompute, "Precompute missing tables on the CPU");
   cmd->add_option("--device", a->device, "GL device: auto, software (llvmpipe), hardware")
       ->check(CLI::IsMember({"auto", "software", "hardware"}));
@@ -330,7 +323,7 @@ void register_show_plan(CLI::App& show_command) {
       "plan", "Print the lookup-table sets a show needs at a frame rate, their size and which are cached");
   cmd->add_option("--show", a->show, "Show file (configs/shows/)")->required();
   cmd->add_option("--fps", a->fps, "Frame rate [Hz] in (0, 1000] (default: the show's)");
-  add_table_options(cmd, a->tables);
+  add_table_options(cmd, a->tables.tables, a->tables.orders, a->tables.cache_dir);
   cmd->callback([a] {
     const show::Show loaded = show::load_show(a->show);
     const double fps = frame_rate(loaded, a->fps);

@@ -46,7 +46,6 @@ using config::cat;  // atmosphere/json_reader.h
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-std::string short_hash(const Digest& d) { return to_hex(d).substr(0, 12) + "…"; }
 
 }  // namespace
 
@@ -224,7 +223,7 @@ struct Master::Impl {
       table_refs.push_back(ref);
       add_version(body.name, body.atmosphere->loaded, set.table_hash);
       spdlog::info("master: tables of '{}' ready to share: version {} ({} bytes, sha256 {}…)", body.name,
-                   short_hash(set.table_hash), set.bytes->size(), to_hex(set.content_sha256).substr(0, 12));
+                   short_hex(set.table_hash), set.bytes->size(), to_hex(set.content_sha256).substr(0, 12));
       table_sets.insert_or_assign(set.table_hash, std::move(set));
     }
   }
@@ -246,7 +245,7 @@ struct Master::Impl {
       add_version(entry.version.body, entry.version.loaded, set.table_hash);
       show_sets.push_back(set.table_hash);
       spdlog::info("master: table set {} of {} ('{}', version {}) ready ({:.1f} s)", index, plan.sets.size(),
-                   entry.version.body, short_hash(set.table_hash), ms_since(t0) / 1000.0);
+                   entry.version.body, short_hex(set.table_hash), ms_since(t0) / 1000.0);
       table_sets.insert_or_assign(set.table_hash, std::move(set));
     }
     table_refs = show->state_at(0.0, 0, render_flags).atmospheres;
@@ -319,7 +318,7 @@ struct Master::Impl {
     pending = PendingVersion{index, hash, false};
     spdlog::info("master: frame {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
                  "version {}",
-                 frame, short_hash(hash), sw.body, sw.atmosphere, short_hash(table_refs[index].table_hash));
+                 frame, short_hex(hash), sw.body, sw.atmosphere, short_hex(table_refs[index].table_hash));
     if (worker.joinable()) worker.join();  // the previous switch's worker has posted its result already
     auto known = table_sets.find(hash);
     if (known != table_sets.end()) {  // an earlier version again: already encoded
@@ -354,7 +353,7 @@ struct Master::Impl {
       send_table_set(*s, prepared);
       ++receivers;
     }
-    spdlog::info("master: table version {} of '{}' prepared ({} bytes); sent to {} node{}", short_hash(pending->hash),
+    spdlog::info("master: table version {} of '{}' prepared ({} bytes); sent to {} node{}", short_hex(pending->hash),
                  prepared.body_name, prepared.bytes->size(), receivers, receivers == 1 ? "" : "s");
     maybe_apply_pending();
   }
@@ -371,8 +370,8 @@ struct Master::Impl {
     AtmosphereTableRef& ref = table_refs[pending->ref_index];
     const std::uint64_t effective = in_flight ? frame + 1 : frame;
     spdlog::info("master: table version {} of '{}' takes effect at frame {} on all {} ready node{} (was {})",
-                 short_hash(pending->hash), ref.body_name, effective, ready, ready == 1 ? "" : "s",
-                 short_hash(ref.table_hash));
+                 short_hex(pending->hash), ref.body_name, effective, ready, ready == 1 ? "" : "s",
+                 short_hex(ref.table_hash));
     ref.table_hash = pending->hash;
     ref.effective_from_frame = effective;
     pending.reset();
@@ -398,7 +397,7 @@ struct Master::Impl {
       if (s->state == Session::State::ready && !s->tables_ready.count(pending->hash)) {
         spdlog::warn("master: node '{}' did not confirm table version {} within {:.0f} ms: disconnecting it so the "
                      "switch can take effect (it rejoins with the new version when it reconnects)",
-                     s->name, short_hash(pending->hash), limit_ms);
+                     s->name, short_hex(pending->hash), limit_ms);
         late.push_back(s->connection);
       }
     for (const auto& connection : late) connection->close("table version not confirmed in time");

@@ -323,6 +323,8 @@ std::string to_hex(const Digest& digest) {
   return out;
 }
 
+std::string short_hex(const Digest& digest) { return to_hex(digest).substr(0, 12) + "…"; }
+
 Digest digest_from_hex(std::string_view hex) {
   if (hex.size() != 64)
     throw std::invalid_argument("digest: expected 64 hex digits, got " + std::to_string(hex.size()) + " characters");

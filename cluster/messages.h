@@ -54,6 +54,8 @@ using Nonce = std::array<std::uint8_t, 32>;   ///< handshake nonce (RAND_bytes)
 
 /// 64 lowercase hex digits.
 std::string to_hex(const Digest& digest);
+/// The first 12 hex digits and "…": a table version in log lines.
+std::string short_hex(const Digest& digest);
 /// Parses 64 hex digits (either case); throws std::invalid_argument otherwise.
 Digest digest_from_hex(std::string_view hex);
 

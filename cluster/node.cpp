@@ -60,7 +60,6 @@ struct Job {
   Digest table_hash{};      ///< prepare: load this table set, render once, then TableReady
 };
 
-std::string short_hash(const Digest& d) { return to_hex(d).substr(0, 12) + "…"; }
 
 }  // namespace
 
@@ -306,14 +305,14 @@ struct Node::Impl {
     const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
     if (hash != d.table_hash)
       throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': the parameters hash to ",
-                                   short_hash(hash), " here, the master says ", short_hash(d.table_hash),
+                                   short_hex(hash), " here, the master says ", short_hex(d.table_hash),
                                    " (do master and node read the same scene, with the same wavelengths?)"));
     bool added = false;
     {
       std::lock_guard lock(known_mutex);
       added = known_tables.emplace(hash, KnownAtmosphere{d.body_name, std::move(loaded)}).second;
     }
-    if (added) spdlog::debug("node '{}': atmosphere version {} of '{}' defined", options.node_name, short_hash(hash), d.body_name);
+    if (added) spdlog::debug("node '{}': atmosphere version {} of '{}' defined", options.node_name, short_hex(hash), d.body_name);
     if (keep && added) {
       std::filesystem::create_directories(definitions_directory());
       const std::string text = nlohmann::json{{"body", d.body_name}, {"parameters", parameters}}.dump(1);
@@ -348,7 +347,7 @@ struct Node::Impl {
     write_file_atomically(path, bytes);
     held_tables.insert(hash);
     spdlog::info("node '{}': tables of '{}' version {} received ({} bytes, SHA-256 verified) and cached as {}",
-                 options.node_name, known.body, short_hash(hash), bytes.size(), path.string());
+                 options.node_name, known.body, short_hex(hash), bytes.size(), path.string());
     // The render thread loads them and renders once (shaders, uploads); then TableReady.
     push(Job{Job::Kind::prepare, {}, 0, hash});
   }
@@ -385,7 +384,7 @@ struct Node::Impl {
   void send_table_ready(const Digest& hash) {
     if (stopping || !connection) return;
     connection->send(TableReady{hash});
-    spdlog::info("node '{}': table version {} ready", options.node_name, short_hash(hash));
+    spdlog::info("node '{}': table version {} ready", options.node_name, short_hex(hash));
   }
 
   void heartbeat_tick() {
@@ -629,7 +628,7 @@ struct Node::Impl {
     }
     warmed_up = true;
     spdlog::info("node '{}': tables of '{}' version {} loaded and rendered once ({:.0f} ms)", options.node_name,
-                 known(hash).body, short_hash(hash), ms_since(t0));
+                 known(hash).body, short_hex(hash), ms_since(t0));
     asio::post(io, [this, hash] { send_table_ready(hash); });
   }
 
