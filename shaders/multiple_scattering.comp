@@ -1,11 +1,13 @@
 #version 450 core
 // Radiance of order n, L_n(r, μ, μs, ν) = ∫₀^d T(x, y) J_n(y) dy along the ray with
-// the rule of single scattering, for one group of 4 wavelengths; written as the
-// delta of this order and added to the multiple-scattering table
+// the rule of single scattering (T(x, y) from the view ray's samples, view_ray.glsl),
+// for one group of 4 wavelengths; written as the delta of this order and added
+// to the multiple-scattering table
 // (cpu_precompute.cpp, compute_multiple_scattering).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "atmosphere_common.glsl"
+#include "view_ray.glsl"
 
 layout(binding = 5) uniform sampler3D density_texture;
 layout(binding = 0, rgba32f) uniform writeonly image3D delta_radiance_image;
@@ -18,13 +20,20 @@ void main() {
   const real d = distance_to_nearest_boundary(c.r, c.mu, c.hits_ground);
   const real dx = d / real(SCATTERING_SAMPLES);
   real4 sum = real4(0), prev = real4(0);
+  // ν is constant along the ray; r and μ at the samples come from the ray's row (view_ray.glsl).
+  ScatteringUV uv;
+  uv.u_nu = unit_from_nu(c.nu);
+  const real theta_max = sun_theta_max();
   for (int i = 0; i <= SCATTERING_SAMPLES; ++i) {
     const real t = real(i) * dx;
     PRECISE real r_t = clamp(sqrt(t * t + real(2) * c.r * c.mu * t + c.r * c.r), RB, RT);
-    PRECISE real mu_t = clamp((c.r * c.mu + t) / r_t, real(-1), real(1));
     PRECISE real mu_s_t = clamp((c.r * c.mu_s + t * c.nu) / r_t, real(-1), real(1));
-    const real4 j = sample_scattering_table(density_texture, scattering_uvwz(r_t, mu_t, mu_s_t, c.nu, c.hits_ground, ANGLE_MAPPING_BLENDED));
-    const real4 f = transmittance(c.r, c.mu, t, c.hits_ground) * j;
+    const int sample_index = view_ray_sample_index(p.z, p.y, i);
+    uv.u_r = view_ray_uv[sample_index].x;
+    uv.u_mu = view_ray_uv[sample_index].y;
+    uv.u_mu_s = texture_coord_from_unit(unit_from_mu_s(mu_s_t, ANGLE_MAPPING_BLENDED, theta_max), SCATTERING_MU_S);
+    const real4 j = sample_scattering_table(density_texture, uv);
+    const real4 f = view_transmittance[sample_index] * j;
     if (i > 0) sum += integrate_interval(prev, f, dx);
     prev = f;
   }

@@ -1,11 +1,13 @@
 #version 450 core
 // Single scattering S1_R, S1_M(r, μ, μs, ν) without phase functions for one group
 // of 4 wavelengths: β ∫₀^d T(x, y) T(y, sun) ρ(y) dy with SCATTERING_SAMPLES
-// intervals, each integrated by integrate_interval (cpu_precompute.cpp,
-// compute_single_scattering). One dispatch covers the r layers from z_offset.
+// intervals, each integrated by integrate_interval, T(x, y) from the view ray's
+// samples (view_ray.glsl; cpu_precompute.cpp, compute_single_scattering). One
+// dispatch covers the r layers from z_offset.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "atmosphere_common.glsl"
+#include "view_ray.glsl"
 
 layout(binding = 0, rgba32f) uniform writeonly image3D single_rayleigh_image;
 #if HAS_MIE
@@ -26,8 +28,8 @@ void main() {
     const real t = real(i) * dx;
     PRECISE real r_t = clamp(sqrt(t * t + real(2) * c.r * c.mu * t + c.r * c.r), RB, RT);
     PRECISE real mu_s_t = clamp((c.r * c.mu_s + t * c.nu) / r_t, real(-1), real(1));
-    const real4 tt = transmittance(c.r, c.mu, t, c.hits_ground) * transmittance_to_sun(r_t, mu_s_t);
     const real h = r_t - RB;
+    const real4 tt = view_transmittance[view_ray_sample_index(p.z, p.y, i)] * transmittance_to_sun(r_t, mu_s_t);
     const real4 f_r = tt * rayleigh_density(h);
     if (i > 0) rayleigh += integrate_interval(prev_r, f_r, dx);
     prev_r = f_r;

@@ -10,6 +10,7 @@
 #include "atmosphere/lut/gauss_legendre.h"
 #include "atmosphere/lut/parallel_for.h"
 #include "atmosphere/lut/quadrature.h"
+#include "atmosphere/lut/spherical_harmonics.h"
 #include "atmosphere/model_hash.h"
 
 namespace zenith::atmosphere::lut {
@@ -48,6 +49,17 @@ class Precompute {
   /// or the single-scattering tables when n = 2) and the ground irradiance of
   /// order n−2 (`delta_irradiance`, or the direct sun when n = 2).
   void compute_scattering_density(int order, Table3D& density);
+  /// The same integral by spherical harmonics (PrecomputeOptions::DensityMethod::Harmonics).
+  void compute_scattering_density_harmonics(int order, Table3D& density);
+  /// The same integral summed per texel (PrecomputeOptions::DensityMethod::Direct).
+  void compute_scattering_density_direct(int order, Table3D& density);
+  /// Incoming radiance of order n−1 at (r, μs) from direction (μ, ν): the
+  /// previous order plus, where the direction hits the ground, the ground's
+  /// reflection of the irradiance of order n−2 attenuated to r.
+  /// `ground_t`: transmittance to the ground along μ, `ground_distance` the
+  /// distance to it (0 at the ground itself), both used when `hits_ground`.
+  void incoming_radiance(int order, double r, double mu, double mu_s, const Vec3& omega, const Vec3& sun,
+                         bool hits_ground, double ground_distance, const double* ground_t, double* out) const;
   /// Sky irradiance of order n−1 on horizontal surfaces, added to the irradiance table.
   void compute_indirect_irradiance(int order);
   /// Radiance of order n: J_n integrated along every ray; returns Σ L_n.
@@ -115,18 +127,63 @@ void Precompute::compute_transmittance() {
   });
 }
 
+// ---------------------------------------------------------------- transmittance along the view rays
+
+/// T(x, y_i) at the samples y_i = x + t_i v, t_i = i·d/N (N = `samples`, d the
+/// distance to the nearest boundary), of the view ray x = (r, μ) of a scattering
+/// table row, by accumulating the optical depth interval by interval (paper eq. 5):
+///   T(x, y_i) = exp(−s(r, μ) Σ_{k=1..i} ∫_{t_{k−1}}^{t_k} β_ext(h(t)) dt),
+/// each interval integrated by integrate_interval from β_ext [m^-1] at its ends
+/// (exact when β_ext varies exponentially across it), s the air-mass stretch of
+/// the ray (constant along it, eq. 21). The scattering integrals use this rather
+/// than the table ratio T_top(x)/T_top(y) (TableQueries::transmittance): along a
+/// grazing ray both are long paths whose T changes by orders of magnitude between
+/// neighbouring μ texels, and the ratio of the interpolated values was 1–9% off at
+/// 10 km and 8–17% at 300 km from a ground observer looking at the horizon
+/// (earth-standard, paper-size tables; 13–53% with the small test tables),
+/// which left the horizon sky 6–10% dark (docs/lookup-tables.md, "Horizon").
+///
+/// The ray depends on the row's r and μ only, not on μs or ν, so it is computed
+/// once per row and shared by the row's texels (on the GPU: view_transmittance.comp,
+/// the same operations in the same order). `out`: (N + 1) × channels, sample-major.
+void view_ray_transmittance(const AtmosphereModel& model, const ShellGeometry& geometry, std::size_t channels,
+                            const ScatteringCoordinates& c, int samples, PrecomputeOptions::Quadrature rule,
+                            std::vector<double>& out) {
+  out.assign((static_cast<std::size_t>(samples) + 1) * channels, 0.0);
+  const double d = geometry.distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
+  const double dx = d / samples;
+  const double stretch = model.air_mass(c.r_m, c.mu);
+  Channels optical_depth{}, previous_beta{}, beta{};
+  for (int i = 0; i <= samples; ++i) {
+    const double t = i * dx;
+    const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m), geometry.bottom_radius_m,
+                                  geometry.top_radius_m);
+    model.extinction_m1(r_t - geometry.bottom_radius_m, beta.data());
+    double* t_out = out.data() + static_cast<std::size_t>(i) * channels;
+    for (std::size_t ch = 0; ch < channels; ++ch) {
+      if (i > 0) optical_depth[ch] += integrate_interval(previous_beta[ch], beta[ch], dx, rule);
+      previous_beta[ch] = beta[ch];
+      t_out[ch] = std::exp(-stretch * optical_depth[ch]);
+    }
+  }
+}
+
 // ---------------------------------------------------------------- single scattering
 
 void Precompute::compute_single_scattering() {
   // S1_R(x, v) = β_R ∫₀^d T(x, y) T(y, sun) ρ_R(y) dy, likewise for Mie (paper eq. 7,
   // one scattering event), without phase functions. Uniform samples along the
-  // ray, each interval integrated by integrate_interval (quadrature.h).
+  // ray, each interval integrated by integrate_interval (quadrature.h); T(x, y)
+  // from the row's view-ray samples (view_ray_transmittance), T(y, sun) from the table.
   const TableSizes& s = sizes();
   const int samples = options_.scattering_samples;
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;
   parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
     const std::size_t z = row / height, y = row % height;
-    Channels t_view{}, t_sun{}, rayleigh{}, mie{}, prev_r{}, prev_m{};
+    Channels t_sun{}, rayleigh{}, mie{}, prev_r{}, prev_m{};
+    std::vector<double> t_view;
+    view_ray_transmittance(model_, geometry(), n_, scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Distance),
+                           samples, options_.scattering_quadrature, t_view);
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Distance);
       const double d = geometry().distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
@@ -138,12 +195,12 @@ void Precompute::compute_single_scattering() {
         const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m),
                                       geometry().bottom_radius_m, geometry().top_radius_m);
         const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / r_t, -1.0, 1.0);
-        queries_.transmittance(c.r_m, c.mu, t, c.ray_hits_ground, t_view.data());
-        queries_.transmittance_to_sun(r_t, mu_s_t, t_sun.data());
         const double h = r_t - geometry().bottom_radius_m;
+        const double* t_view_i = t_view.data() + static_cast<std::size_t>(i) * n_;
+        queries_.transmittance_to_sun(r_t, mu_s_t, t_sun.data());
         const double rho_r = model_.rayleigh_density(h), rho_m = model_.mie_density(h);
         for (std::size_t ch = 0; ch < n_; ++ch) {
-          const double tt = t_view[ch] * t_sun[ch];
+          const double tt = t_view_i[ch] * t_sun[ch];
           const double f_r = tt * rho_r, f_m = tt * rho_m;
           if (i > 0) {
             rayleigh[ch] += integrate_interval(prev_r[ch], f_r, dx, options_.scattering_quadrature);
@@ -181,6 +238,143 @@ void Precompute::previous_order_radiance(int order, double r, double mu, double 
 }
 
 void Precompute::compute_scattering_density(int order, Table3D& density) {
+  if (options_.density_method == PrecomputeOptions::DensityMethod::Harmonics)
+    compute_scattering_density_harmonics(order, density);
+  else
+    compute_scattering_density_direct(order, density);
+}
+
+void Precompute::incoming_radiance(int order, double r, double mu, double mu_s, const Vec3& omega, const Vec3& sun,
+                                   bool hits_ground, double ground_distance, const double* ground_t,
+                                   double* out) const {
+  previous_order_radiance(order, r, mu, mu_s, std::clamp(dot(omega, sun), -1.0, 1.0), out);
+  if (!hits_ground) return;
+  const double rb = geometry().bottom_radius_m;
+  const Vec3 ground_normal = normalize(Vec3{0.0, 0.0, r} + omega * ground_distance);
+  const double mu_s_ground = std::clamp(dot(ground_normal, sun), -1.0, 1.0);
+  Channels ground_e{};
+  if (order == 2) {
+    queries_.transmittance_to_sun(rb, mu_s_ground, ground_e.data());
+    for (std::size_t ch = 0; ch < n_; ++ch) ground_e[ch] *= std::max(mu_s_ground, 0.0);
+  } else {
+    const IrradianceUV uv = irradiance_uv(geometry(), sizes(), rb, mu_s_ground);
+    delta_irradiance_.sample(uv.u_mu_s, uv.v_r, ground_e.data());
+  }
+  for (std::size_t ch = 0; ch < n_; ++ch) out[ch] += ground_t[ch] * model_.ground_albedo[ch] / kPi * ground_e[ch];
+}
+
+void Precompute::compute_scattering_density_harmonics(int order, Table3D& density) {
+  // J_n(x, v) = Σ_lm q_l(h) a_lm(r, μs) Y_lm(v) (spherical_harmonics.h): per
+  // (r, μs), the incoming radiance is sampled once on a horizon-split
+  // Gauss–Legendre × uniform-azimuth rule and projected on the cos(mφ)
+  // harmonics (φ from the sun's vertical); every (μ, ν) texel of that column
+  // then costs one sum over the harmonics instead of a sphere integral.
+  const TableSizes& s = sizes();
+  const int nodes = options_.sphere_zenith_samples;
+  const int degree = options_.harmonic_degree_used();
+  const std::size_t count = harmonic_count(degree);
+  // 4·nodes azimuths over the circle (cos(mφ) sampled without aliasing up to
+  // m = 2·nodes − 1 ≥ degree): 2·nodes over [0, π), mirrored over (π, 2π).
+  const int half_azimuths = 2 * nodes;
+  const double d_phi = kPi / half_azimuths;
+  // Legendre moments of the phase functions (per channel for the aerosols).
+  const std::vector<double> rayleigh_moments =
+      phase_legendre_moments([&](double x) { return model_.rayleigh_phase_function(x); }, degree);
+  std::vector<std::vector<double>> mie_moments(n_);
+  for (std::size_t ch = 0; ch < n_; ++ch)
+    mie_moments[ch] = phase_legendre_moments([&](double x) { return model_.mie_phase(ch, x); }, degree);
+  const double rb = geometry().bottom_radius_m;
+  parallel_for(s.scattering_r * s.scattering_mu_s, options_.threads, [&](std::size_t column) {
+    const std::size_t z = column / s.scattering_mu_s, xs = column % s.scattering_mu_s;
+    const ScatteringCoordinates c0 = scattering_texel_coordinates(geometry(), s, xs, 0, z, AngleMapping::Blended);
+    const double r = c0.r_m, mu_s = c0.mu_s;
+    const Vec3 sun{std::sqrt(std::max(0.0, 1.0 - mu_s * mu_s)), 0.0, mu_s};
+    const HorizonSplitRule rule(rb, r, nodes);
+
+    // ---- projection: a_lm = Σ_j w_j c_m P̄_l^m(μ_j) C_m(μ_j), C_m = ∫ L cos(mφ) dφ
+    std::vector<double> coefficients(count * n_, 0.0), legendre(count), by_m(std::size_t(degree + 1) * n_);
+    Channels incoming{}, ground_t{};
+    for (std::size_t j = 0; j < rule.mu.size(); ++j) {
+      const double mu = rule.mu[j], sin_theta = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+      const bool hits_ground = int(j) < rule.ground_nodes;
+      double ground_distance = 0.0;
+      if (hits_ground) {
+        ground_distance = geometry().distance_to_bottom_m(r, mu);
+        queries_.transmittance(r, mu, ground_distance, true, ground_t.data());
+      }
+      std::fill(by_m.begin(), by_m.end(), 0.0);
+      for (int k = 0; k < half_azimuths; ++k) {
+        const double phi = (k + 0.5) * d_phi;
+        const Vec3 omega{sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu};
+        incoming_radiance(order, r, mu, mu_s, omega, sun, hits_ground, ground_distance, ground_t.data(),
+                          incoming.data());
+        // cos(mφ) by Chebyshev's recurrence; ×2: the mirrored azimuth 2π − φ.
+        const double c1 = std::cos(phi);
+        double cos_prev = 1.0, cos_m = 1.0;
+        for (int m = 0; m <= degree; ++m) {
+          const double w = 2.0 * d_phi * cos_m;
+          for (std::size_t ch = 0; ch < n_; ++ch) by_m[std::size_t(m) * n_ + ch] += w * incoming[ch];
+          const double next = m == 0 ? c1 : 2.0 * c1 * cos_m - cos_prev;
+          cos_prev = cos_m;
+          cos_m = next;
+        }
+      }
+      normalized_legendre(degree, mu, legendre.data());
+      for (int m = 0; m <= degree; ++m) {
+        const double cm = azimuth_normalisation(m) * rule.weight[j];
+        for (int l = m; l <= degree; ++l) {
+          const std::size_t i = harmonic_index(degree, l, m);
+          const double w = cm * legendre[i];
+          for (std::size_t ch = 0; ch < n_; ++ch) coefficients[i * n_ + ch] += w * by_m[std::size_t(m) * n_ + ch];
+        }
+      }
+    }
+
+    // ---- evaluation: J(μ, ν) = Σ_m cos(mφ_v) c_m Σ_l q_l a_lm P̄_l^m(μ)
+    const double h = r - rb;
+    const double rho_r = model_.rayleigh_density(h), rho_m = model_.mie_density(h);
+    std::vector<double> q(std::size_t(degree + 1) * n_);
+    for (int l = 0; l <= degree; ++l)
+      for (std::size_t ch = 0; ch < n_; ++ch)
+        q[std::size_t(l) * n_ + ch] = model_.rayleigh_scattering_m1[ch] * rho_r * rayleigh_moments[std::size_t(l)] +
+                                      model_.mie_scattering_m1[ch] * rho_m * mie_moments[ch][std::size_t(l)];
+    const double sin_theta_s = std::sqrt(std::max(0.0, 1.0 - mu_s * mu_s));
+    for (std::size_t y = 0; y < s.scattering_mu; ++y) {
+      const ScatteringCoordinates cy = scattering_texel_coordinates(geometry(), s, xs, y, z, AngleMapping::Blended);
+      const double mu = cy.mu, sin_theta = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+      normalized_legendre(degree, mu, legendre.data());
+      std::fill(by_m.begin(), by_m.end(), 0.0);
+      for (int m = 0; m <= degree; ++m) {
+        const double cm = azimuth_normalisation(m);
+        for (int l = m; l <= degree; ++l) {
+          const std::size_t i = harmonic_index(degree, l, m);
+          const double w = cm * legendre[i];
+          for (std::size_t ch = 0; ch < n_; ++ch)
+            by_m[std::size_t(m) * n_ + ch] += w * q[std::size_t(l) * n_ + ch] * coefficients[i * n_ + ch];
+        }
+      }
+      for (std::size_t xn = 0; xn < s.scattering_nu; ++xn) {
+        const std::size_t x = xn * s.scattering_mu_s + xs;
+        const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
+        const double denominator = sin_theta * sin_theta_s;
+        const double c1 = denominator > 0.0 ? std::clamp((c.nu - mu * mu_s) / denominator, -1.0, 1.0) : 1.0;
+        Channels j{};
+        double cos_prev = 1.0, cos_m = 1.0;
+        for (int m = 0; m <= degree; ++m) {
+          for (std::size_t ch = 0; ch < n_; ++ch) j[ch] += cos_m * by_m[std::size_t(m) * n_ + ch];
+          const double next = m == 0 ? c1 : 2.0 * c1 * cos_m - cos_prev;
+          cos_prev = cos_m;
+          cos_m = next;
+        }
+        float* out = density.texel(x, y, z);
+        // The series cut at degree L can ring slightly below zero where J ≈ 0.
+        for (std::size_t ch = 0; ch < n_; ++ch) out[ch] = float(std::max(j[ch], 0.0));
+      }
+    }
+  });
+}
+
+void Precompute::compute_scattering_density_direct(int order, Table3D& density) {
   // J_n(x, v) = ∫_4π [β_R ρ_R P_R(v·ω) + β_M ρ_M P_M(v·ω)] L_{n−1}(x, ω) dω, where
   // L_{n−1} includes, for directions that hit the ground, the ground's reflection
   // of the irradiance of order n−2 (albedo/π · E_{n−2}, attenuated).
@@ -193,11 +387,10 @@ void Precompute::compute_scattering_density(int order, Table3D& density) {
   const double rb = geometry().bottom_radius_m;
   parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
     const std::size_t z = row / height, y = row % height;
-    Channels incoming{}, ground_e{}, ground_t{}, j{};
+    Channels incoming{}, ground_t{}, j{};
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
       // Local frame: zenith z, view ω in the xz-plane, sun from μs and ν.
-      const Vec3 zenith{0.0, 0.0, 1.0};
       const Vec3 view{std::sqrt(std::max(0.0, 1.0 - c.mu * c.mu)), 0.0, c.mu};
       const double sun_x = view.x == 0.0 ? 0.0 : (c.nu - c.mu * c.mu_s) / view.x;
       const double sun_y = std::sqrt(std::max(1.0 - sun_x * sun_x - c.mu_s * c.mu_s, 0.0));
@@ -219,21 +412,8 @@ void Precompute::compute_scattering_density(int order, Table3D& density) {
           const double phi = (ip + 0.5) * d_phi;
           const Vec3 omega{sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
           const double d_omega = rule.weights[std::size_t(it)] * d_phi;
-          const double nu_i = std::clamp(dot(omega, sun), -1.0, 1.0);
-          previous_order_radiance(order, c.r_m, cos_theta, c.mu_s, nu_i, incoming.data());
-          if (hits_ground) {
-            const Vec3 ground_normal = normalize(zenith * c.r_m + omega * ground_distance);
-            const double mu_s_ground = std::clamp(dot(ground_normal, sun), -1.0, 1.0);
-            if (order == 2) {
-              queries_.transmittance_to_sun(rb, mu_s_ground, ground_e.data());
-              for (std::size_t ch = 0; ch < n_; ++ch) ground_e[ch] *= std::max(mu_s_ground, 0.0);
-            } else {
-              const IrradianceUV uv = irradiance_uv(geometry(), s, rb, mu_s_ground);
-              delta_irradiance_.sample(uv.u_mu_s, uv.v_r, ground_e.data());
-            }
-            for (std::size_t ch = 0; ch < n_; ++ch)
-              incoming[ch] += ground_t[ch] * model_.ground_albedo[ch] / kPi * ground_e[ch];
-          }
+          incoming_radiance(order, c.r_m, cos_theta, c.mu_s, omega, sun, hits_ground, ground_distance,
+                            ground_t.data(), incoming.data());
           const double cos_scatter = std::clamp(dot(view, omega), -1.0, 1.0);
           const double phase_r = model_.rayleigh_phase_function(cos_scatter);
           for (std::size_t ch = 0; ch < n_; ++ch) {
@@ -288,7 +468,8 @@ void Precompute::compute_indirect_irradiance(int order) {
 }
 
 double Precompute::compute_multiple_scattering(const Table3D& density) {
-  // L_n(x, v) = ∫₀^d T(x, y) J_n(y, v) dy along the ray (same rule as single scattering).
+  // L_n(x, v) = ∫₀^d T(x, y) J_n(y, v) dy along the ray (same rule as single
+  // scattering, T(x, y) from the row's view-ray samples: view_ray_transmittance).
   const TableSizes& s = sizes();
   const int samples = options_.scattering_samples;
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;
@@ -296,24 +477,41 @@ double Precompute::compute_multiple_scattering(const Table3D& density) {
   std::vector<double> row_sums(s.scattering_r * height, 0.0);
   parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
     const std::size_t z = row / height, y = row % height;
-    Channels t_view{}, j{}, sum{}, prev{};
+    Channels j{}, sum{}, prev{};
+    // The row's ray: T and the (u_r, u_μ) texture coordinates at its samples,
+    // the same for every (μs, ν) texel (view_ray.glsl on the GPU).
+    const ScatteringCoordinates ray = scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Blended);
+    std::vector<double> t_view;
+    view_ray_transmittance(model_, geometry(), n_, ray, samples, options_.scattering_quadrature, t_view);
+    std::vector<ScatteringUVWZ> ray_uv(static_cast<std::size_t>(samples) + 1);
+    {
+      const double dx = geometry().distance_to_nearest_boundary_m(ray.r_m, ray.mu, ray.ray_hits_ground) / samples;
+      for (int i = 0; i <= samples; ++i) {
+        const double t = i * dx;
+        const double r_t = std::clamp(std::sqrt(t * t + 2.0 * ray.r_m * ray.mu * t + ray.r_m * ray.r_m),
+                                      geometry().bottom_radius_m, geometry().top_radius_m);
+        const double mu_t = std::clamp((ray.r_m * ray.mu + t) / r_t, -1.0, 1.0);
+        ray_uv[i] = scattering_uvwz(geometry(), s, r_t, mu_t, ray.mu_s, ray.nu, ray.ray_hits_ground, AngleMapping::Blended);
+      }
+    }
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
       const double d = geometry().distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
       const double dx = d / samples;
+      const double u_nu = scattering_u_nu(c.nu);  // ν is constant along the ray
       std::fill(sum.begin(), sum.end(), 0.0);
       for (int i = 0; i <= samples; ++i) {
         const double t = i * dx;
         const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m),
                                       geometry().bottom_radius_m, geometry().top_radius_m);
-        const double mu_t = std::clamp((c.r_m * c.mu + t) / r_t, -1.0, 1.0);
         const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / r_t, -1.0, 1.0);
-        sample_scattering_table(
-            density, s, scattering_uvwz(geometry(), s, r_t, mu_t, mu_s_t, c.nu, c.ray_hits_ground, AngleMapping::Blended),
-            j.data());
-        queries_.transmittance(c.r_m, c.mu, t, c.ray_hits_ground, t_view.data());
+        ScatteringUVWZ uv = ray_uv[i];
+        uv.u_mu_s = scattering_u_mu_s(geometry(), s, mu_s_t, AngleMapping::Blended);
+        uv.u_nu = u_nu;
+        sample_scattering_table(density, s, uv, j.data());
+        const double* t_view_i = t_view.data() + static_cast<std::size_t>(i) * n_;
         for (std::size_t ch = 0; ch < n_; ++ch) {
-          const double f = t_view[ch] * j[ch];
+          const double f = t_view_i[ch] * j[ch];
           if (i > 0) sum[ch] += integrate_interval(prev[ch], f, dx, options_.scattering_quadrature);
           prev[ch] = f;
         }

@@ -228,9 +228,14 @@ ScatteringUVWZ scattering_uvwz(const ShellGeometry& g, const TableSizes& s, doub
     // ground), blended with the zenith angle for AngleMapping::Blended.
     u_mu = 0.5 + 0.5 * texture_coord_from_unit(unit_from_mu_sky(g, r_m, mu, mapping), half);
   }
-  const double u_mu_s = texture_coord_from_unit(unit_from_mu_s(g, mu_s, mapping), s.scattering_mu_s);
-  return {unit_from_nu(nu), u_mu_s, u_mu, u_r};
+  return {scattering_u_nu(nu), scattering_u_mu_s(g, s, mu_s, mapping), u_mu, u_r};
 }
+
+double scattering_u_mu_s(const ShellGeometry& g, const TableSizes& s, double mu_s, AngleMapping mapping) {
+  return texture_coord_from_unit(unit_from_mu_s(g, mu_s, mapping), s.scattering_mu_s);
+}
+
+double scattering_u_nu(double nu) { return unit_from_nu(nu); }
 
 ScatteringCoordinates scattering_texel_coordinates(const ShellGeometry& g, const TableSizes& s, std::size_t x,
                                                    std::size_t y, std::size_t z, AngleMapping mapping) {

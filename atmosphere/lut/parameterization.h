@@ -86,6 +86,10 @@ struct ScatteringUVWZ {
 };
 ScatteringUVWZ scattering_uvwz(const ShellGeometry& g, const TableSizes& s, double r_m, double mu, double mu_s,
                                double nu, bool ray_hits_ground, AngleMapping mapping);
+/// The μs and ν parts of scattering_uvwz alone (equal to its u_mu_s and u_nu),
+/// for integrators that compute the r and μ parts once per ray.
+double scattering_u_mu_s(const ShellGeometry& g, const TableSizes& s, double mu_s, AngleMapping mapping);
+double scattering_u_nu(double nu);
 
 struct ScatteringCoordinates {
   double r_m, mu, mu_s, nu;

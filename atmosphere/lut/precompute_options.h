@@ -2,6 +2,7 @@
 // Options and report of a lookup-table precomputation, shared by the CPU
 // (atmosphere/lut/cpu_precompute.h) and GPU (render/) implementations, which
 // must produce the same tables for the same options.
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -33,9 +34,29 @@ struct PrecomputeOptions {
   /// 2 km steps the trapezoid overestimates by ~20%, log-linear by < 1%).
   enum class Quadrature { Trapezoid, LogLinear };
   Quadrature scattering_quadrature = Quadrature::LogLinear;
-  /// Gauss–Legendre nodes in cos θ of the scattering-density sphere integral
-  /// (azimuth: twice as many steps; the sky-irradiance hemisphere uses half as many nodes).
+  /// How the scattering density J_n (the sphere integral of the last order's
+  /// radiance times the phase functions) is computed:
+  ///  * Harmonics: the incoming radiance at each (r, μs) is projected once onto
+  ///    spherical harmonics up to `harmonic_degree`, and J_n follows for every
+  ///    (μ, ν) from the phase functions' Legendre moments (Funk–Hecke;
+  ///    spherical_harmonics.h). The phase is integrated exactly to that degree.
+  ///  * Direct: the sphere integral summed per 4D texel, as Bruneton & Neyret
+  ///    (the method before; kept for comparison: 50–100× the cost, and its
+  ///    error is that of the phase's forward peak between the directions).
+  enum class DensityMethod { Harmonics, Direct };
+  DensityMethod density_method = DensityMethod::Harmonics;
+  /// Highest spherical-harmonic degree L of DensityMethod::Harmonics (the
+  /// aerosol phase is cut after g^L of its forward peak). Capped at
+  /// 2·sphere_zenith_samples − 1, what the direction rule resolves.
+  int harmonic_degree = 32;
+  /// Gauss–Legendre nodes in cos θ of the scattering-density sphere integral.
+  /// Harmonics: this many on each side of the horizon (the radiance jumps
+  /// there), 4× as many azimuths over the circle (cos(mφ) resolved without
+  /// aliasing up to the degree). Direct: this many over [−1, 1], 2× as many
+  /// azimuths. The sky-irradiance hemisphere uses half as many nodes.
   int sphere_zenith_samples = 16;
+  /// The degree DensityMethod::Harmonics uses: harmonic_degree, capped by the rule.
+  int harmonic_degree_used() const { return std::min(harmonic_degree, 2 * sphere_zenith_samples - 1); }
 
   std::function<void(const PrecomputeProgress&)> progress;  ///< optional
 };

@@ -64,14 +64,22 @@ std::filesystem::path default_cache_directory() {
   return ".zenith-cache";
 }
 
+/// Revision of the precompute's method: tables computed by an older method
+/// under the same options must not be reused. 2: T(x, y) accumulated along the
+/// scattering rays instead of the table ratio (the horizon fix of issue 13) and
+/// the scattering density by spherical harmonics (density line below).
+constexpr int kPrecomputeMethodRevision = 2;
+
 std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions& o) {
   std::ostringstream s;
-  s << "cache v" << kCacheFormatVersion << '\n'
+  s << "cache v" << kCacheFormatVersion << " method " << kPrecomputeMethodRevision << '\n'
     << lookup_table_hash(model) << '\n'
     << o.sizes.describe() << '\n'
     << "orders " << o.max_orders << " tolerance " << o.tolerance << '\n'
     << "samples " << o.transmittance_samples << ' ' << o.scattering_samples << ' ' << o.sphere_zenith_samples << '\n'
-    << "quadrature " << int(o.scattering_quadrature) << '\n';
+    << "quadrature " << int(o.scattering_quadrature) << '\n'
+    << "density " << (o.density_method == PrecomputeOptions::DensityMethod::Harmonics ? "harmonics " : "direct ")
+    << o.harmonic_degree << '\n';
   const std::string text = s.str();
   return sha256_hex(text.data(), text.size());
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "atmosphere/lut/spherical_harmonics.h"
 #include "atmosphere/model_hash.h"
 #include "render/gl/buffer.h"
 #include "render/gl/gl_error.h"
@@ -49,7 +50,16 @@ using gl::TextureFormat;
 constexpr std::size_t kLanes = kWavelengthLanes;
 
 // Binding points shared with the shaders (atmosphere_common.glsl, previous_order.glsl, *.comp).
-enum StorageBinding : unsigned { kWavelengthData = 0, kTableData = 1, kTexelCoordinates = 2, kRowSums = 3 };
+enum StorageBinding : unsigned {
+  kWavelengthData = 0,
+  kTableData = 1,
+  kTexelCoordinates = 2,
+  kRowSums = 3,
+  kAzimuthMoments = 6,        // harmonics.glsl
+  kHarmonicCoefficients = 7,  // harmonics.glsl
+  kViewTransmittance = 8,     // view_ray.glsl
+  kViewRayCoordinates = 9,    // view_ray.glsl
+};
 enum TextureUnit : unsigned {
   kTransmittanceUnit = 0,
   kSingleRayleighUnit = 1,
@@ -89,6 +99,10 @@ class GpuPrecompute {
   const ShaderProgram& program(const std::string& file, std::vector<ShaderDefine> extra = {});
   void stage(const std::string& name, double fraction, auto&& body);
   void dispatch_scattering(const ShaderProgram& p) const;
+  /// T(x, y_i) and (u_r, u_μ) at the samples of every view ray of the scattering
+  /// table for wavelength group g and the stage's μ mapping (view_transmittance.comp),
+  /// bound to kViewTransmittance and kViewRayCoordinates for the stage's shader.
+  void compute_view_transmittance(std::size_t group, bool distance_mapping);
   static void barrier() { glMemoryBarrier(GL_ALL_BARRIER_BITS); }
   Texture new_scattering_texture() const;
   static void unpack(const Texture& texture, std::size_t group, std::size_t channels, std::vector<float>& out);
@@ -97,6 +111,10 @@ class GpuPrecompute {
   void compute_single_scattering();
   void bind_previous_order_radiance(GroupTables& t, int order) const;
   void compute_scattering_density(int order);
+  /// DensityMethod::Harmonics: radiance_harmonics, harmonic_projection, harmonic_density.comp.
+  void compute_scattering_density_harmonics(int order);
+  /// DensityMethod::Direct: scattering_density.comp.
+  void compute_scattering_density_direct(int order);
   void compute_indirect_irradiance(int order);
   double compute_multiple_scattering();
   /// Σ over texels and wavelengths: single scattering with phases, or the last order's radiance.
@@ -112,6 +130,8 @@ class GpuPrecompute {
   LookupTables tables_;
   std::vector<ShaderDefine> defines_;
   gl::Buffer wavelength_data_, table_data_, texel_coordinates_, row_sums_;
+  gl::Buffer azimuth_moments_, harmonic_coefficients_;  // DensityMethod::Harmonics, one group at a time
+  gl::Buffer view_transmittance_, view_ray_uv_;         // view_ray.glsl, one group at a time
   std::vector<GroupTables> groups_;
   std::map<std::string, ShaderProgram> programs_;
   double fraction_done_ = 0.0;
@@ -197,6 +217,24 @@ void GpuPrecompute::dispatch_scattering(const ShaderProgram& p) const {
   }
 }
 
+void GpuPrecompute::compute_view_transmittance(std::size_t group, bool distance_mapping) {
+  const std::size_t rays = sizes().scattering_r * sizes().scattering_mu;
+  const std::size_t real4_size = 4 * (fp64_ ? sizeof(double) : sizeof(float));
+  const std::size_t samples = rays * (static_cast<std::size_t>(options_.scattering_samples) + 1);
+  if (view_transmittance_.id() == 0) {
+    view_transmittance_ = gl::Buffer(samples * real4_size);
+    view_ray_uv_ = gl::Buffer(samples * real4_size / 2);
+  }
+  const ShaderProgram& p = program(
+      "view_transmittance.comp",
+      {{"VIEW_MAPPING", distance_mapping ? "ANGLE_MAPPING_DISTANCE" : "ANGLE_MAPPING_BLENDED"}});
+  view_transmittance_.bind_storage(kViewTransmittance);
+  view_ray_uv_.bind_storage(kViewRayCoordinates);
+  p.set_uniform("wavelength_group", to_int(group));
+  p.dispatch_covering(to_int(rays));
+  barrier();
+}
+
 Texture GpuPrecompute::new_scattering_texture() const {
   return Texture::create_3d(TextureFormat::rgba32f, to_int(sizes().scattering_width()), to_int(sizes().scattering_mu),
                             to_int(sizes().scattering_r));
@@ -242,10 +280,11 @@ void GpuPrecompute::compute_single_scattering() {
       t.single_mie.bind_image(1, gl::ImageAccess::write_only);
     }
     t.transmittance.bind(kTransmittanceUnit);
+    compute_view_transmittance(g, true);
     p.set_uniform("wavelength_group", to_int(g));
     dispatch_scattering(p);
+    barrier();  // before the next group's view transmittance overwrites this one's
   }
-  barrier();
   for (std::size_t g = 0; g < group_count(); ++g) {
     unpack(groups_[g].single_rayleigh, g, n_, tables_.single_rayleigh.data);
     if (model_.has_mie()) unpack(groups_[g].single_mie, g, n_, tables_.single_mie.data);
@@ -264,6 +303,47 @@ void GpuPrecompute::bind_previous_order_radiance(GroupTables& t, int order) cons
 }
 
 void GpuPrecompute::compute_scattering_density(int order) {
+  if (options_.density_method == PrecomputeOptions::DensityMethod::Harmonics)
+    compute_scattering_density_harmonics(order);
+  else
+    compute_scattering_density_direct(order);
+}
+
+void GpuPrecompute::compute_scattering_density_harmonics(int order) {
+  const TableSizes& s = sizes();
+  const std::size_t columns = s.scattering_r * s.scattering_mu_s;
+  const std::size_t nodes = 2 * static_cast<std::size_t>(options_.sphere_zenith_samples);
+  const auto degree = static_cast<std::size_t>(options_.harmonic_degree_used());
+  const std::size_t real4_size = 4 * (fp64_ ? sizeof(double) : sizeof(float));
+  if (azimuth_moments_.id() == 0) {
+    azimuth_moments_ = gl::Buffer(columns * nodes * (degree + 1) * real4_size);
+    harmonic_coefficients_ = gl::Buffer(columns * atmosphere::lut::harmonic_count(int(degree)) * real4_size);
+  }
+  azimuth_moments_.bind_storage(kAzimuthMoments);
+  harmonic_coefficients_.bind_storage(kHarmonicCoefficients);
+  const ShaderProgram& radiance = program("radiance_harmonics.comp", {{"FIRST_ORDER", order == 2 ? "1" : "0"}});
+  const ShaderProgram& projection = program("harmonic_projection.comp");
+  const ShaderProgram& density = program("harmonic_density.comp");
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    GroupTables& t = groups_[g];
+    if (t.density.id() == 0) t.density = new_scattering_texture();
+    t.transmittance.bind(kTransmittanceUnit);
+    bind_previous_order_radiance(t, order);
+    if (order > 2) t.delta_irradiance.bind(kDeltaIrradianceUnit);
+    radiance.set_uniform("wavelength_group", to_int(g));
+    radiance.dispatch_covering(to_int(columns * nodes));
+    barrier();
+    projection.set_uniform("wavelength_group", to_int(g));
+    projection.dispatch_covering(to_int(columns * (degree + 1)));
+    barrier();
+    t.density.bind_image(0, gl::ImageAccess::write_only);
+    density.set_uniform("wavelength_group", to_int(g));
+    density.dispatch_covering(to_int(columns * s.scattering_mu));
+    barrier();
+  }
+}
+
+void GpuPrecompute::compute_scattering_density_direct(int order) {
   const ShaderProgram& p = program("scattering_density.comp", {{"FIRST_ORDER", order == 2 ? "1" : "0"}});
   for (std::size_t g = 0; g < group_count(); ++g) {
     GroupTables& t = groups_[g];
@@ -309,10 +389,11 @@ double GpuPrecompute::compute_multiple_scattering() {
     t.multiple.bind_image(1, gl::ImageAccess::read_write);
     t.transmittance.bind(kTransmittanceUnit);
     t.density.bind(kDensityUnit);
+    compute_view_transmittance(g, false);
     p.set_uniform("wavelength_group", to_int(g));
     dispatch_scattering(p);
+    barrier();  // before the next group's view transmittance overwrites this one's
   }
-  barrier();
   return radiance_sum(false);
 }
 

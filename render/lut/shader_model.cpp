@@ -6,6 +6,8 @@
 #include <span>
 
 #include "atmosphere/lut/gauss_legendre.h"
+#include "atmosphere/lut/parameterization.h"
+#include "atmosphere/lut/spherical_harmonics.h"
 
 namespace zenith::render {
 
@@ -100,6 +102,35 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   table.insert(table.end(), hemisphere.nodes.begin(), hemisphere.nodes.end());
   table.insert(table.end(), hemisphere.weights.begin(), hemisphere.weights.end());
 
+  // The harmonic scattering density (spherical_harmonics.h): per r layer of
+  // the scattering table, its horizon-split rule (2·nodes μ, then 2·nodes
+  // weights); the Legendre moments of the Rayleigh phase (degree + 1), then of
+  // the Mie phase per wavelength (degree + 1 each, lanes past N zero).
+  const int harmonic_degree = options.harmonic_degree_used();
+  const std::size_t harmonic_rule = table.size();
+  const atmosphere::lut::ShellGeometry shell{model.ground_radius_m, model.top_radius_m};
+  for (std::size_t z = 0; z < options.sizes.scattering_r; ++z) {
+    const double r = atmosphere::lut::scattering_texel_coordinates(shell, options.sizes, 0, 0, z,
+                                                                   atmosphere::lut::AngleMapping::Blended)
+                         .r_m;
+    const atmosphere::lut::HorizonSplitRule rule(model.ground_radius_m, r, sphere_nodes);
+    table.insert(table.end(), rule.mu.begin(), rule.mu.end());
+    table.insert(table.end(), rule.weight.begin(), rule.weight.end());
+  }
+  const std::size_t rayleigh_moments = table.size();
+  const std::vector<double> rayleigh =
+      atmosphere::lut::phase_legendre_moments([&](double x) { return model.rayleigh_phase_function(x); },
+                                              harmonic_degree);
+  table.insert(table.end(), rayleigh.begin(), rayleigh.end());
+  const std::size_t mie_moments = table.size();
+  table.resize(table.size() + out.group_count * kLanes * static_cast<std::size_t>(harmonic_degree + 1), 0.0);
+  if (model.has_mie())
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::vector<double> mie = atmosphere::lut::phase_legendre_moments(
+          [&](double x) { return model.mie_phase(i, x); }, harmonic_degree);
+      std::copy(mie.begin(), mie.end(), table.begin() + static_cast<std::ptrdiff_t>(mie_moments + i * mie.size()));
+    }
+
   const bool air_mass = model.air_mass.enabled();
   const std::size_t air_mass_table = table.size();
   const std::size_t air_mass_size = air_mass ? model.air_mass.cos_zenith_table().size() : 0;
@@ -162,6 +193,10 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("HEMISPHERE_ZENITH_SAMPLES", hemisphere_nodes);
   define("SPHERE_RULE", sphere_rule);
   define("HEMISPHERE_RULE", hemisphere_rule);
+  define("HARMONIC_DEGREE", harmonic_degree);
+  define("HARMONIC_RULE", harmonic_rule);
+  define("RAYLEIGH_MOMENTS", rayleigh_moments);
+  define("MIE_MOMENTS", mie_moments);
   return out;
 }
 

@@ -1,13 +1,19 @@
 // The spherical-harmonic pieces of the scattering density (atmosphere/lut/
 // spherical_harmonics.h) against closed forms: orthonormality of the
 // normalised Legendre functions, Legendre moments of Henyey–Greenstein (g^l)
-// and of the classic Rayleigh phase (1, 0, 1/10), and the horizon-split rule.
+// and of the classic Rayleigh phase (1, 0, 1/10), and the horizon-split rule;
+// and the whole method against the per-texel sphere sum converged with many
+// directions.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <numeric>
+#include <string>
 
 #include "atmosphere/constants.h"
+#include "atmosphere/lut/cpu_precompute.h"
+#include "atmosphere/parameters.h"
 #include "atmosphere/lut/gauss_legendre.h"
 #include "atmosphere/lut/spherical_harmonics.h"
 #include "atmosphere/phase_functions.h"
@@ -83,6 +89,53 @@ TEST(SphericalHarmonics, HorizonSplitRuleSeparatesGroundAndSky) {
     double sky = 0.0;
     for (std::size_t j = std::size_t(rule.ground_nodes); j < rule.mu.size(); ++j) sky += rule.weight[j];
     EXPECT_NEAR(sky, 1.0 - mu_h, 1e-13);
+  }
+}
+
+/// Relative L2 difference and relative bias of two multiple-scattering tables.
+struct TableDifference {
+  double l2 = 0.0, bias = 0.0;
+};
+
+TableDifference difference(const LookupTables& a, const LookupTables& reference) {
+  double d2 = 0.0, r2 = 0.0, d = 0.0, r = 0.0;
+  for (std::size_t i = 0; i < reference.multiple.data.size(); ++i) {
+    const double x = a.multiple.data[i], y = reference.multiple.data[i];
+    d2 += (x - y) * (x - y);
+    r2 += y * y;
+    d += x - y;
+    r += y;
+  }
+  return {std::sqrt(d2 / r2), d / r};
+}
+
+TEST(SphericalHarmonics, DensityConvergesToTheSphereSumWithManyDirections) {
+  // Two orders on tiny tables: the second order's radiance from the scattering
+  // density by harmonics (16 nodes per side of the horizon, degree 31) and by
+  // the per-texel sphere sum with 16 × 32 directions (the method before, its
+  // default), both against that sum with 48 × 96 directions. Measured (relative
+  // L2 / bias of the multiple-scattering table): Earth harmonics 1.1 % / −0.3 %,
+  // sum 5.2 % / −2.2 %; Mars 0.18 % / −0.10 %, 1.3 % / +0.4 %. The sum's error is
+  // the aerosol phase's forward peak between its directions and the horizon's
+  // jump inside its Gauss rule; the harmonics have neither.
+  for (const auto& [preset, bound] : {std::pair{"earth-advanced", 0.02}, std::pair{"mars", 0.005}}) {
+    const AtmosphereModel model = load_preset(preset).model;
+    auto tables = [&](PrecomputeOptions::DensityMethod method, int nodes) {
+      PrecomputeOptions o;
+      o.sizes = TableSizes{32, 8, 16, 4, 4, 16, 8, 4};
+      o.max_orders = 2;
+      o.sphere_zenith_samples = nodes;
+      o.density_method = method;
+      return precompute_tables_cpu(model, o);
+    };
+    const LookupTables converged = tables(PrecomputeOptions::DensityMethod::Direct, 48);
+    const TableDifference harmonics = difference(tables(PrecomputeOptions::DensityMethod::Harmonics, 16), converged);
+    const TableDifference direct = difference(tables(PrecomputeOptions::DensityMethod::Direct, 16), converged);
+    std::cout << preset << ": harmonics L2 " << harmonics.l2 << " bias " << harmonics.bias << "; sphere sum 16 L2 "
+              << direct.l2 << " bias " << direct.bias << "\n";
+    EXPECT_LT(harmonics.l2, bound) << preset;
+    EXPECT_LT(std::abs(harmonics.bias), 0.005) << preset;
+    EXPECT_LT(harmonics.l2, 0.5 * direct.l2) << preset;
   }
 }
 
