@@ -16,7 +16,8 @@
 //                   directions of tests/data/reference_*.csv (noon, low sun,
 //                   twilight, limb from orbit; 400 000 paths per wavelength and
 //                   direction, standard errors ~0.1-3%), after discounting twice
-//                   the reference's standard error: e = max(0, |L − L_ref| − 2σ) / L_ref
+//                   the reference's standard error: e = max(0, |L − L_ref| − 2σ) / L_ref;
+//                   pooled over the four cases, and per case (rms_noon, max_noon, ...)
 //
 // and, over the atmospheres together (preset "all": mean precompute and frame
 // time, RMS pooled over every direction and wavelength, largest max), the
@@ -36,10 +37,13 @@
 //
 //   lut_accuracy_bench [--quick | --smoke] [--no-gpu] [--presets LIST] [--out DIR]
 //                      [--frame-size PX] [--frames N] [--no-frames] [--tolerance X]
-//                      [--max-rms X] [--no-chart] [--list]
+//                      [--max-rms X] [--no-chart] [--list] [--only TEXT]
 //
 // --quick: tiny and small tables and the project default (~4 min on 2 cores); --smoke (CTest):
-// three tiny settings on Earth, 64² frames. Exit 1 on any non-finite radiance
+// three tiny settings on Earth, 64² frames. --only: the settings whose label contains TEXT
+// (e.g. --only "paper 4 orders GPU" for the project default and its variants).
+// Settings marked "direct density" compute the scattering density by the
+// per-texel sphere sum of the method before spherical harmonics (issue 13). Exit 1 on any non-finite radiance
 // or pixel, or (with --max-rms) any setting's pooled RMS error above the bound.
 #include <fmt/format.h>
 
@@ -76,7 +80,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: lut_accuracy_bench [--quick | --smoke] [--no-gpu] [--presets LIST] [--out DIR]\n"
     "                          [--frame-size PX] [--frames N] [--no-frames] [--tolerance X]\n"
-    "                          [--max-rms X] [--no-chart] [--list]\n"
+    "                          [--max-rms X] [--no-chart] [--list] [--only TEXT]\n"
     "  --quick        tiny and small tables, and the project default (a few minutes)\n"
     "  --smoke        three tiny settings, Earth only, 64x64 frames (the CTest smoke run)\n"
     "  --no-gpu       CPU precompute only (frame times need a GL context: then none)\n"
@@ -88,7 +92,8 @@ constexpr const char* kUsage =
     "  --tolerance    recommended: the cheapest setting with RMS <= X * the best RMS (default 1.2)\n"
     "  --max-rms      fail (exit 1) when a setting's pooled RMS error exceeds X\n"
     "  --no-chart     no gnuplot scripts and PNG\n"
-    "  --list         print the settings (with the other options) and exit\n";
+    "  --list         print the settings (with the other options) and exit\n"
+    "  --only         only the settings whose label contains TEXT\n";
 
 struct Options {
   bool quick = false, smoke = false, gpu = true, frames = true, chart = true, list = false;
@@ -97,6 +102,7 @@ struct Options {
   int frame_size_px = 512, frame_count = 5;
   double tolerance = 1.2;
   std::optional<double> max_rms;
+  std::string only;     ///< --only: a substring of the labels to run
   std::string command;  ///< as run, for the outputs
 };
 
@@ -116,6 +122,7 @@ Options parse_options(int argc, char** argv) {
     else if (a == "--no-chart") o.chart = false;
     else if (a == "--list") o.list = true;
     else if (a == "--out") o.out = value(i, a);
+    else if (a == "--only") o.only = value(i, a);
     else if (a == "--presets") {
       o.presets.clear();
       std::stringstream list(value(i, a));
@@ -208,12 +215,13 @@ lut::TableSizes sizes_by_name(const std::string& name) {
 }
 
 struct Variant {
-  Variant(int orders_, bool trapezoid_ = false, int ray_samples_ = 50, int sphere_ = 16)
-      : orders(orders_), trapezoid(trapezoid_), ray_samples(ray_samples_), sphere(sphere_) {}
+  Variant(int orders_, bool trapezoid_ = false, int ray_samples_ = 50, int sphere_ = 16, bool direct_ = false)
+      : orders(orders_), trapezoid(trapezoid_), ray_samples(ray_samples_), sphere(sphere_), direct_density(direct_) {}
   int orders;
   bool trapezoid;
-  int ray_samples;  ///< PrecomputeOptions::scattering_samples
-  int sphere;       ///< PrecomputeOptions::sphere_zenith_samples
+  int ray_samples;      ///< PrecomputeOptions::scattering_samples
+  int sphere;           ///< PrecomputeOptions::sphere_zenith_samples
+  bool direct_density;  ///< PrecomputeOptions::DensityMethod::Direct (else Harmonics)
 };
 
 Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
@@ -226,13 +234,16 @@ Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
       v.trapezoid ? lut::PrecomputeOptions::Quadrature::Trapezoid : lut::PrecomputeOptions::Quadrature::LogLinear;
   s.options.scattering_samples = v.ray_samples;
   s.options.sphere_zenith_samples = v.sphere;
+  s.options.density_method =
+      v.direct_density ? lut::PrecomputeOptions::DensityMethod::Direct : lut::PrecomputeOptions::DensityMethod::Harmonics;
   s.label = fmt::format("{} {} order{}", sizes, v.orders, v.orders == 1 ? "" : "s");
   if (v.trapezoid) s.label = fmt::format("{} trapezoid", s.label);
   if (v.ray_samples != 50) s.label = fmt::format("{} {} ray samples", s.label, v.ray_samples);
   if (v.sphere != 16) s.label = fmt::format("{} sphere {}", s.label, v.sphere);
+  if (v.direct_density) s.label = fmt::format("{} direct density", s.label);
   s.label = fmt::format("{} {}", s.label, gpu ? "GPU" : "CPU");
   const lut::PrecomputeOptions defaults;
-  s.project_default = gpu && sizes == "paper" && v.orders == 4 && !v.trapezoid &&
+  s.project_default = gpu && sizes == "paper" && v.orders == 4 && !v.trapezoid && !v.direct_density &&
                       v.ray_samples == defaults.scattering_samples && v.sphere == defaults.sphere_zenith_samples;
   return s;
 }
@@ -241,7 +252,9 @@ std::vector<Setting> settings_for(const Options& o) {
   std::vector<Setting> out;
   auto add = [&](const std::string& sizes, Variant v, bool gpu) {
     if (gpu && !o.gpu) return;
-    out.push_back(make_setting(sizes, v, gpu));
+    Setting s = make_setting(sizes, v, gpu);
+    if (s.label.find(o.only) == std::string::npos) return;
+    out.push_back(std::move(s));
   };
   if (o.smoke) {
     add("tiny", {2}, false);
@@ -271,6 +284,10 @@ std::vector<Setting> settings_for(const Options& o) {
   add("paper", {2}, true);
   add("paper", {4}, true);
   add("paper", {4, false, 50, 8}, true);
+  add("paper", {4, false, 50, 32}, true);
+  // The scattering density of the method before (issue 13): the per-texel sphere sum.
+  add("small", {4, false, 50, 16, true}, true);
+  add("paper", {4, false, 50, 16, true}, true);
   // CPU: the same tables (same errors) at other precompute times.
   add("small", {4}, false);
   add("medium", {4}, false);
@@ -287,12 +304,15 @@ fs::path frame_scene_for(const std::string& preset) {
 
 // ---- measurements
 
+constexpr const char* kCases[] = {"noon", "low_sun", "twilight", "orbit_limb"};
+
 struct Row {
   std::size_t setting = 0;
   std::string preset;
   std::string device;
   double precompute_s = NAN, frame_ms = NAN, frame_ms_min = NAN;
   double rms = NAN, max = NAN, table_mb = 0.0;
+  std::vector<std::pair<double, double>> case_rms_max;  ///< per case of kCases
   double sum_squares = 0.0;  ///< of the relative errors, for pooling
   std::size_t values = 0;    ///< compared
   std::size_t nonfinite = 0;  ///< NaN/Inf radiances from the tables + pixels of the frame
@@ -360,7 +380,7 @@ int run(const Options& opt) {
   for (const std::string& preset : opt.presets) {
     const AtmosphereModel model = load_preset(preset).model;
     std::vector<Case> cases;
-    for (const char* name : {"noon", "low_sun", "twilight", "orbit_limb"})
+    for (const char* name : kCases)
       cases.push_back(read_case(preset, name, model.wavelength_count()));
     std::optional<zenith::bench::LutFrameTimer> timer;
     if (frames) {
@@ -393,6 +413,8 @@ int run(const Options& opt) {
       {
         const lut::TableQueries q(model, tables);  // holds a reference: gone before the tables move
         for (const Case& c : cases) {
+          double case_sum_squares = 0.0, case_worst = 0.0;
+          std::size_t case_values = 0;
           const auto values = sample_radiance(q, c.geometry, c.directions);
           for (std::size_t i = 0; i < values.size(); ++i)
             for (std::size_t ch = 0; ch < model.wavelength_count(); ++ch) {
@@ -405,7 +427,12 @@ int run(const Options& opt) {
               row.sum_squares += err * err;
               worst = std::max(worst, err);
               ++row.values;
+              case_sum_squares += err * err;
+              case_worst = std::max(case_worst, err);
+              ++case_values;
             }
+          row.case_rms_max.emplace_back(case_values > 0 ? std::sqrt(case_sum_squares / double(case_values)) : NAN,
+                                        case_worst);
         }
       }
       row.rms = row.values > 0 ? std::sqrt(row.sum_squares / double(row.values)) : NAN;
@@ -418,8 +445,12 @@ int run(const Options& opt) {
         row.frame_index = timer->add(std::move(tables), &nonfinite_pixels);
         row.nonfinite += nonfinite_pixels;
       }
-      fmt::print("{:<36} {:<15} precompute {:8.2f} s   RMS {:.4f}   max {:.4f}{}\n", s.label, preset, row.precompute_s,
-                 row.rms, row.max, row.nonfinite ? fmt::format("  {} NON-FINITE", row.nonfinite) : std::string());
+      std::string per_case;
+      for (std::size_t ci = 0; ci < row.case_rms_max.size(); ++ci)
+        per_case += fmt::format("  {} {:.4f}/{:.3f}", kCases[ci], row.case_rms_max[ci].first, row.case_rms_max[ci].second);
+      fmt::print("{:<36} {:<15} precompute {:8.2f} s   RMS {:.4f}   max {:.4f}{}   (RMS/max:{})\n", s.label, preset,
+                 row.precompute_s, row.rms, row.max,
+                 row.nonfinite ? fmt::format("  {} NON-FINITE", row.nonfinite) : std::string(), per_case);
       std::fflush(stdout);
       rows.push_back(row);
     }
@@ -477,7 +508,9 @@ int run(const Options& opt) {
     std::ofstream csv(csv_path);
     csv << "setting,preset,precompute_s,rms_relative_error,max_relative_error,table_MB,frame_ms,frame_ms_min,"
            "backend,device,sizes,table_sizes,orders,quadrature,ray_samples,sphere_samples,nonfinite,"
-           "pareto_precompute,pareto_frame,recommended,project_default,frame_size_px,tolerance\n";
+           "pareto_precompute,pareto_frame,recommended,project_default,frame_size_px,tolerance,density";
+    for (const char* c : kCases) csv << ",rms_" << c << ",max_" << c;
+    csv << '\n';
     for (const Row& r : rows) {
       const Setting& s = settings[r.setting];
       csv << csv_field(s.label) << ',' << r.preset << ',' << number(r.precompute_s) << ',' << number(r.rms) << ','
@@ -488,7 +521,15 @@ int run(const Options& opt) {
                                                                                                 : "trapezoid")
           << ',' << s.options.scattering_samples << ',' << s.options.sphere_zenith_samples << ',' << r.nonfinite << ','
           << int(r.front_precompute) << ',' << int(r.front_frame) << ',' << int(r.recommended) << ','
-          << int(s.project_default) << ',' << (frames ? opt.frame_size_px : 0) << ',' << opt.tolerance << '\n';
+          << int(s.project_default) << ',' << (frames ? opt.frame_size_px : 0) << ',' << opt.tolerance << ','
+          << (settings[r.setting].label.find("direct density") != std::string::npos ? "direct" : "harmonics");
+      for (std::size_t ci = 0; ci < std::size(kCases); ++ci) {
+        if (ci < r.case_rms_max.size())
+          csv << ',' << number(r.case_rms_max[ci].first) << ',' << number(r.case_rms_max[ci].second);
+        else
+          csv << ",,";  // "all": pooled over atmospheres, no per-case split
+      }
+      csv << '\n';
     }
     if (!csv.flush()) throw std::runtime_error(fmt::format("cannot write {}", csv_path.string()));
   }
