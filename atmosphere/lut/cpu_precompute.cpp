@@ -131,41 +131,24 @@ void Precompute::compute_transmittance() {
 
 /// T(x, y_i) at the samples y_i = x + t_i v, t_i = i·d/N (N = `samples`, d the
 /// distance to the nearest boundary), of the view ray x = (r, μ) of a scattering
-/// table row, by accumulating the optical depth interval by interval (paper eq. 5):
-///   T(x, y_i) = exp(−s(r, μ) Σ_{k=1..i} ∫_{t_{k−1}}^{t_k} β_ext(h(t)) dt),
-/// each interval integrated by integrate_interval from β_ext [m^-1] at its ends
-/// (exact when β_ext varies exponentially across it), s the air-mass stretch of
-/// the ray (constant along it, eq. 21). The scattering integrals use this rather
-/// than the table ratio T_top(x)/T_top(y) (TableQueries::transmittance): along a
-/// grazing ray both are long paths whose T changes by orders of magnitude between
-/// neighbouring μ texels, and the ratio of the interpolated values was 1–9% off at
-/// 10 km and 8–17% at 300 km from a ground observer looking at the horizon
-/// (earth-standard, paper-size tables; 13–53% with the small test tables),
-/// which left the horizon sky 6–10% dark (docs/lookup-tables.md, "Horizon").
+/// table row, from the transmittance table (TableQueries::transmittance, paper
+/// eq. 5 by ratios of tabulated transmittances along rays pointing up).
 ///
 /// The ray depends on the row's r and μ only, not on μs or ν, so it is computed
 /// once per row and shared by the row's texels (on the GPU: view_transmittance.comp,
 /// the same operations in the same order). `out`: (N + 1) × channels, sample-major.
-void view_ray_transmittance(const AtmosphereModel& model, const ShellGeometry& geometry, std::size_t channels,
-                            const ScatteringCoordinates& c, int samples, PrecomputeOptions::Quadrature rule,
-                            std::vector<double>& out) {
+///
+/// Accumulating the optical depth along the ray instead (exact along grazing rays,
+/// where the ratio leaves the horizon row 6–10 % dark) was tried in issue 13 and
+/// set aside: it also moved mid-sky pixels by several percent in opposite
+/// directions at 440 and 680 nm, not yet understood (docs/lookup-tables.md, "Horizon").
+void view_ray_transmittance(const TableQueries& queries, const ShellGeometry& geometry, std::size_t channels,
+                            const ScatteringCoordinates& c, int samples, std::vector<double>& out) {
   out.assign((static_cast<std::size_t>(samples) + 1) * channels, 0.0);
   const double d = geometry.distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
   const double dx = d / samples;
-  const double stretch = model.air_mass(c.r_m, c.mu);
-  Channels optical_depth{}, previous_beta{}, beta{};
-  for (int i = 0; i <= samples; ++i) {
-    const double t = i * dx;
-    const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m), geometry.bottom_radius_m,
-                                  geometry.top_radius_m);
-    model.extinction_m1(r_t - geometry.bottom_radius_m, beta.data());
-    double* t_out = out.data() + static_cast<std::size_t>(i) * channels;
-    for (std::size_t ch = 0; ch < channels; ++ch) {
-      if (i > 0) optical_depth[ch] += integrate_interval(previous_beta[ch], beta[ch], dx, rule);
-      previous_beta[ch] = beta[ch];
-      t_out[ch] = std::exp(-stretch * optical_depth[ch]);
-    }
-  }
+  for (int i = 0; i <= samples; ++i)
+    queries.transmittance(c.r_m, c.mu, i * dx, c.ray_hits_ground, out.data() + static_cast<std::size_t>(i) * channels);
 }
 
 // ---------------------------------------------------------------- single scattering
@@ -182,8 +165,8 @@ void Precompute::compute_single_scattering() {
     const std::size_t z = row / height, y = row % height;
     Channels t_sun{}, rayleigh{}, mie{}, prev_r{}, prev_m{};
     std::vector<double> t_view;
-    view_ray_transmittance(model_, geometry(), n_, scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Distance),
-                           samples, options_.scattering_quadrature, t_view);
+    view_ray_transmittance(queries_, geometry(), n_, scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Distance),
+                           samples, t_view);
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Distance);
       const double d = geometry().distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
@@ -482,7 +465,7 @@ double Precompute::compute_multiple_scattering(const Table3D& density) {
     // the same for every (μs, ν) texel (view_ray.glsl on the GPU).
     const ScatteringCoordinates ray = scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Blended);
     std::vector<double> t_view;
-    view_ray_transmittance(model_, geometry(), n_, ray, samples, options_.scattering_quadrature, t_view);
+    view_ray_transmittance(queries_, geometry(), n_, ray, samples, t_view);
     std::vector<ScatteringUVWZ> ray_uv(static_cast<std::size_t>(samples) + 1);
     {
       const double dx = geometry().distance_to_nearest_boundary_m(ray.r_m, ray.mu, ray.ray_hits_ground) / samples;

