@@ -19,6 +19,7 @@
 
 #include "atmosphere/lut/parallel_for.h"
 #include "atmosphere/model_hash.h"
+#include "render/frame/pass_timer.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
 #include "render/gl/gl_error.h"
@@ -42,8 +43,9 @@ constexpr unsigned kRayTableUnit = 7;   // projection_ray_table of projection.gl
 constexpr std::size_t kLanes = kWavelengthLanes;
 
 // Storage bindings and image units of the render passes (frame.glsl, *.comp).
-enum StorageBinding : unsigned { kBodies = 4, kTiles = 5 };
-enum ImageUnit : unsigned { kGbufferHit = 0, kGbufferAlbedo = 1, kRadianceSum = 2, kTransmittance = 3, kFrameRgb = 4 };
+enum StorageBinding : unsigned { kBodies = 4, kTiles = 5, kFrameRgb = 6 };
+enum ImageUnit : unsigned { kGbufferHit = 0, kGbufferAlbedo = 1, kRadianceSum = 2, kTransmittance = 3 };
+constexpr int kMaxSpectrumUniforms = 64;  // direct_light.comp's sun_spectrum[]: a scene's wavelengths at most
 
 /// frame.glsl's Body, std430 layout (6 vec4).
 struct GpuBody {
@@ -102,7 +104,36 @@ std::array<unsigned, 2> tile_groups(std::size_t count) {
 }  // namespace
 
 struct Renderer::Impl {
-  ShaderProgram gbuffer, resolve;
+  /// The frame passes, compiled for one projection kind (PROJECTION_KIND of
+  /// shaders/projection.glsl) on first use.
+  struct FramePasses {
+    ShaderProgram gbuffer, resolve;
+    // Tiles no atmosphere touches: bodies only, and the sun's tiles (SUN = 1).
+    ShaderProgram direct_light, direct_light_sun;
+  };
+  std::map<int, FramePasses> frame_passes;    // by projection kind
+  std::vector<gl::ShaderDefine> sun_defines;  // SUN_DISC, LIMB_DARKENING (resolve.comp, atmosphere_tile.comp)
+  bool sun_disc = true, limb_darkening = true, eclipses = true;
+
+  const FramePasses& passes_for(int projection_kind) {
+    auto it = frame_passes.find(projection_kind);
+    if (it != frame_passes.end()) return it->second;
+    const gl::ShaderDefine kind{"PROJECTION_KIND", std::to_string(projection_kind)};
+    const gl::ShaderDefine eclipse_define{"ECLIPSES", eclipses ? "1" : "0"};
+    std::vector<gl::ShaderDefine> resolve_defines = sun_defines;
+    resolve_defines.insert(resolve_defines.end(), {eclipse_define, kind});
+    auto direct_defines = [&](bool sun) {
+      return std::vector<gl::ShaderDefine>{
+          {"SUN", sun ? "1" : "0"}, {"LIMB_DARKENING", limb_darkening ? "1" : "0"}, eclipse_define, kind};
+    };
+    FramePasses p;
+    const std::vector<gl::ShaderDefine> gbuffer_defines = {{"ECLIPSES", "0"}, kind};
+    p.gbuffer = ShaderProgram::load_compute("render/gbuffer.comp", gbuffer_defines);
+    p.resolve = ShaderProgram::load_compute("render/resolve.comp", resolve_defines);
+    p.direct_light = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false));
+    if (sun_disc) p.direct_light_sun = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(true));
+    return frame_passes.emplace(projection_kind, std::move(p)).first->second;
+  }
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   std::map<std::string, image::LinearImage> albedo_images;           // by albedo_key
   std::string albedo_array_key;
@@ -155,9 +186,11 @@ struct Renderer::Impl {
   std::map<int, std::vector<float>> ray_tables;  // by first row
   Texture ray_table;
   std::size_t tiles_capacity = 0;
-  // Band images, (re)allocated when the band size changes.
+  // Band images, (re)allocated when the band size changes; the output is a
+  // buffer of one vec4 per pixel, mapped and packed into the rows (frame_rgb.glsl).
   int band_width = 0, band_height = 0;
-  Texture gbuffer_hit, gbuffer_albedo, radiance_sum, transmittance, frame_rgb;
+  Texture gbuffer_hit, gbuffer_albedo, radiance_sum, transmittance;
+  gl::Buffer frame_rgb;
 
   void ensure_band_images(int width, int height) {
     if (width == band_width && height == band_height) return;
@@ -165,7 +198,7 @@ struct Renderer::Impl {
     gbuffer_albedo = Texture::create_2d(TextureFormat::rgba16f, width, height);
     radiance_sum = Texture::create_2d(TextureFormat::rgba32f, width, height);
     transmittance = Texture::create_2d(TextureFormat::rgba32f, width, height);
-    frame_rgb = Texture::create_2d(TextureFormat::rgba32f, width, height);
+    frame_rgb = gl::Buffer::mappable(static_cast<std::size_t>(width) * height * 4 * sizeof(float));
     band_width = width;
     band_height = height;
   }
@@ -181,14 +214,11 @@ Renderer::Renderer(const RenderOptions& options, TableSource tables)
     : options_(options), table_source_(std::move(tables)), impl_(std::make_unique<Impl>()) {
   if (options_.max_band_pixels < std::size_t{kTileSize} * kTileSize)
     throw std::invalid_argument("RenderOptions::max_band_pixels must be at least 256");
-  const std::vector<gl::ShaderDefine> resolve_defines = {
-      {"SUN_DISC", options_.sun_disc ? "1" : "0"},
-      {"LIMB_DARKENING", options_.limb_darkening ? "1" : "0"},
-      {"ECLIPSES", options_.atmosphere.eclipses ? "1" : "0"},
-  };
-  const std::vector<gl::ShaderDefine> gbuffer_defines = {{"ECLIPSES", "0"}};
-  impl_->gbuffer = ShaderProgram::load_compute("render/gbuffer.comp", gbuffer_defines);
-  impl_->resolve = ShaderProgram::load_compute("render/resolve.comp", resolve_defines);
+  impl_->sun_defines = {{"SUN_DISC", options_.sun_disc ? "1" : "0"},
+                        {"LIMB_DARKENING", options_.limb_darkening ? "1" : "0"}};
+  impl_->sun_disc = options_.sun_disc;
+  impl_->limb_darkening = options_.limb_darkening;
+  impl_->eclipses = options_.atmosphere.eclipses;
 }
 
 Renderer::~Renderer() = default;
@@ -206,6 +236,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   const auto start = std::chrono::steady_clock::now();
   Impl& im = *impl_;
   stats_ = FrameStats{};
+  PassTimer timer(options_.time_passes);
   gl::check_gl_error("Renderer::render: an earlier GL call left an error");
 
   const std::size_t n = scene.wavelengths_nm.size();
@@ -268,7 +299,13 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     double distance_m = 0.0, top_radius_m = 0.0, power_m2 = 0.0;
     glm::dvec3 direction_camera{0.0};
     GpuAtmosphere* gpu = nullptr;
-    std::vector<std::uint32_t> band_tiles;
+    const GpuAtmosphere::Passes* programs = nullptr;  // compiled for this frame's projection kind
+    bool sky_view = false;  // the camera is inside: the sky-view variant where it can
+    // The band's tiles the shell can touch (shell_tiles), and of those the
+    // tiles no other shell touches, drawn in one pass (atmosphere_tile.comp)
+    // from the 4D tables (tile_tiles) or from the sky-view table (sky_view_tiles);
+    // the others go through the G-buffer path.
+    std::vector<std::uint32_t> shell_tiles, tile_tiles, sky_view_tiles, gbuffer_tiles;
   };
   std::vector<AtmospherePass> passes;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -334,13 +371,38 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     if (it == im.atmospheres.end()) {
       ++stats_.table_sets_requested;
       const atmosphere::lut::LookupTables tables = table_source_(model);
-      it = im.atmospheres.emplace(key, std::make_unique<GpuAtmosphere>(model, tables, options_.atmosphere)).first;
+      it = im.atmospheres.emplace(key, std::make_unique<GpuAtmosphere>(model, tables, options_.atmosphere,
+                                                                        im.sun_defines))
+               .first;
       ++stats_.table_sets_uploaded;
       spdlog::debug("renderer: atmosphere of '{}' resident ({:.1f} MB of tables)",
                     scene.bodies[static_cast<std::size_t>(pass.body)].name, static_cast<double>(it->second->table_bytes()) / 1e6);
     }
     pass.gpu = it->second.get();
   }
+  // ---- sky-view tables: once per frame for each atmosphere whose shell holds
+  // the camera (render/frame/sky_view_table.h), at most one pass per table set.
+  std::vector<const GpuAtmosphere*> sky_view_filled;
+  for (AtmospherePass& pass : passes) {
+    if (!pass.gpu || options_.sky_view_table == SkyViewTableUse::off || pass.power_m2 > 0.0) continue;
+    if (std::find(sky_view_filled.begin(), sky_view_filled.end(), pass.gpu) != sky_view_filled.end()) continue;
+    const scene::Body& planet = scene.bodies[static_cast<std::size_t>(pass.body)];
+    const glm::dvec3 up = glm::normalize(scene.camera.position_m - planet.position_m);
+    timer.gpu("sky-view table", [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, sun), sun_radius); });
+    pass.sky_view = true;
+    sky_view_filled.push_back(pass.gpu);
+  }
+  // Bodies that reach into a shell holding the camera: their tiles need the
+  // direct path's aerial perspective (the sky-view variant has none).
+  auto bodies_inside_shell = [&](const AtmospherePass& pass) {
+    std::vector<std::size_t> inside;
+    const glm::dvec3 centre = scene.bodies[static_cast<std::size_t>(pass.body)].position_m;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+      if (static_cast<int>(b) != pass.body &&
+          glm::length(scene.bodies[b].position_m - centre) - scene.bodies[b].radius_m < pass.top_radius_m)
+        inside.push_back(b);
+    return inside;
+  };
 
   // ---- uniforms shared by all passes
   std::array<float, 9> camera_matrix{};
@@ -357,14 +419,55 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     p.set_uniform("projection_kind", static_cast<int>(gpu_projection.kind));
     for (int k = 0; k < 4; ++k)
       p.set_uniform(fmt::format("projection_params[{}]", k), gpu_projection.params[static_cast<std::size_t>(k)]);
+    p.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
+    p.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
   };
-  set_frame_uniforms(im.gbuffer);
-  set_frame_uniforms(im.resolve);
-  for (const AtmospherePass& pass : passes)
-    if (pass.gpu) set_frame_uniforms(pass.gpu->program());
-  im.resolve.set_uniform("exposure", static_cast<float>(scene.camera.exposure));
-  im.resolve.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
-  im.resolve.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
+  const int projection_kind = static_cast<int>(gpu_projection.kind);
+  const Impl::FramePasses& fp = im.passes_for(projection_kind);
+  std::vector<const ShaderProgram*> programs = {&fp.gbuffer, &fp.resolve, &fp.direct_light};
+  if (fp.direct_light_sun.id() != 0) programs.push_back(&fp.direct_light_sun);
+  for (AtmospherePass& pass : passes) {
+    if (!pass.gpu) continue;
+    pass.programs = &pass.gpu->passes(projection_kind);
+    programs.insert(programs.end(), {&pass.programs->gbuffer_path, &pass.programs->tile, &pass.programs->sky_view});
+  }
+  for (const ShaderProgram* p : programs) set_frame_uniforms(*p);
+  for (const ShaderProgram* p : programs) p->set_uniform("exposure", static_cast<float>(scene.camera.exposure));
+
+  // direct_light.comp: every wavelength at once. A body lit by the sun alone
+  // is rgb = (cos i V / π) M a with M = exposure Σ_λ w(λ) E(λ) f(λ)ᵀ (w: the
+  // spectral → RGB weights, f: the albedo's RGB → reflectance weights); the
+  // sun's disc rgb = Σ_λ exposure w(λ) I_centre(λ) μ^α(λ) × coverage.
+  {
+    const double exposure = scene.camera.exposure;
+    std::array<float, 9> rgb_from_albedo{};  // column-major: column = albedo channel
+    for (int out = 0; out < 3; ++out)
+      for (int in = 0; in < 3; ++in) {
+        double m = 0.0;
+        for (std::size_t i = 0; i < n; ++i)
+          m += rgb_weights[i][static_cast<std::size_t>(out)] * scene.sun.irradiance_W_m2_nm[i] *
+               albedo_weights[i][static_cast<std::size_t>(in)];
+        rgb_from_albedo[static_cast<std::size_t>(in * 3 + out)] = static_cast<float>(exposure * m);
+      }
+    fp.direct_light.set_uniform("rgb_from_albedo", rgb_from_albedo);
+    if (fp.direct_light_sun.id() != 0) {
+      const ShaderProgram& p = fp.direct_light_sun;
+      p.set_uniform("rgb_from_albedo", rgb_from_albedo);
+      p.set_uniform("wavelength_count", static_cast<int>(std::min<std::size_t>(n, kMaxSpectrumUniforms)));
+      for (std::size_t i = 0; i < n && i < static_cast<std::size_t>(kMaxSpectrumUniforms); ++i) {
+        const double c = exposure * sun_centre[i];
+        p.set_uniform(fmt::format("sun_spectrum[{}]", i),
+                      std::array<float, 4>{static_cast<float>(rgb_weights[i][0] * c),
+                                           static_cast<float>(rgb_weights[i][1] * c),
+                                           static_cast<float>(rgb_weights[i][2] * c),
+                                           static_cast<float>(sun_point_sigma > 0.0 ? 0.0 : limb_exponent[i])});
+      }
+    }
+  }
+  // Where the sun can be drawn: a cone of the disc's radius plus a pixel (or 6σ of the Gaussian).
+  const double sun_reach = std::min(std::numbers::pi / 2, sun_point_sigma > 0.0 ? 6.0 * sun_point_sigma
+                                                                                : sun_radius + pixel_angle);
+  const glm::dvec3 sun_camera = world_to_camera * sun;
 
   // ---- bands
   const int width = projection.width(), height = projection.height();
@@ -380,10 +483,6 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     const int rows = std::min(band_rows, height - first_row);
     ++stats_.bands;
     const std::array<int, 2> origin{0, first_row}, size{width, rows};
-    auto set_band = [&](const ShaderProgram& p) {
-      p.set_uniform("band_origin", origin);
-      p.set_uniform("band_size", size);
-    };
 
     if (gpu_projection.kind == warp::ProjectionKind::ray_table) {
       // Rays of this band on the CPU, in double, kept for the next frames.
@@ -408,88 +507,231 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
         im.ray_table = Texture::create_2d(TextureFormat::rgba32f, width, im.band_height);
       im.ray_table.upload(table->second);
       im.ray_table.bind(kRayTableUnit);
-      auto set_table = [&](const ShaderProgram& p) { p.set_uniform("projection_table_origin", origin); };
-      set_table(im.gbuffer);
-      set_table(im.resolve);
-      for (const AtmospherePass& pass : passes)
-        if (pass.gpu) set_table(pass.gpu->program());
+      for (const ShaderProgram* p : programs) p->set_uniform("projection_table_origin", origin);
+    }
+    for (const ShaderProgram* p : programs) {
+      p->set_uniform("band_origin", origin);
+      p->set_uniform("band_size", size);
     }
 
-    set_band(im.gbuffer);
-    im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::write_only);
-    im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::write_only);
-    im.gbuffer.dispatch_covering(width, rows);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    // ---- classify the band's tiles (render/frame/tile_culling.h):
+    //   exactly one atmosphere's shell can touch it: one pass for that
+    //     atmosphere (atmosphere_tile.comp), from its sky-view table when the
+    //     camera is inside the shell and no other body inside the shell can be
+    //     in the tile, else from the 4D tables;
+    //   two or more: the G-buffer path (gbuffer.comp, the atmospheres front to
+    //     back, resolve.comp), which composites them;
+    //   none, but a body or the sun can be in it: direct_light.comp, one pass;
+    //   nothing: black (not dispatched).
+    const int band_tile_rows = (rows + kTileSize - 1) / kTileSize;
+    const std::size_t band_tiles = static_cast<std::size_t>(cones.columns()) * band_tile_rows;
+    auto tile_index = [&](std::uint32_t t) { return (t >> 16) * static_cast<std::size_t>(cones.columns()) + (t & 0xffffu); };
+    std::vector<std::uint8_t> shells(band_tiles, 0);  // shells that can touch the tile (saturating)
+    for (AtmospherePass& pass : passes) {
+      pass.shell_tiles = pass.gpu ? cones.tiles_touching_sphere(pass.direction_camera, pass.distance_m,
+                                                                pass.top_radius_m, first_row, rows)
+                                  : std::vector<std::uint32_t>{};
+      for (std::uint32_t t : pass.shell_tiles) shells[tile_index(t)] = static_cast<std::uint8_t>(std::min(shells[tile_index(t)] + 1, 2));
+    }
+    for (AtmospherePass& pass : passes) {
+      pass.tile_tiles.clear();
+      pass.sky_view_tiles.clear();
+      pass.gbuffer_tiles.clear();
+      std::vector<bool> aerial;
+      if (pass.sky_view) {
+        aerial.assign(band_tiles, false);
+        for (std::size_t b : bodies_inside_shell(pass)) {
+          const glm::dvec3 c = scene.bodies[b].position_m - scene.camera.position_m;
+          for (std::uint32_t t : cones.tiles_touching_sphere(world_to_camera * glm::normalize(c), glm::length(c),
+                                                             scene.bodies[b].radius_m, first_row, rows))
+            aerial[tile_index(t)] = true;
+        }
+      }
+      for (std::uint32_t t : pass.shell_tiles) {
+        const std::size_t i = tile_index(t);
+        if (shells[i] > 1 || !options_.one_pass_tiles) pass.gbuffer_tiles.push_back(t);
+        else if (pass.sky_view && !aerial[i]) pass.sky_view_tiles.push_back(t);
+        else pass.tile_tiles.push_back(t);
+      }
+    }
+    enum TileUse : std::uint8_t { kGbuffer = 1, kBody = 2, kSun = 4 };
+    std::vector<std::uint8_t> use(band_tiles, 0);
+    auto mark = [&](const std::vector<std::uint32_t>& list, std::uint8_t flag) {
+      for (std::uint32_t t : list) use[tile_index(t)] |= flag;
+    };
+    for (const AtmospherePass& pass : passes) mark(pass.gbuffer_tiles, kGbuffer);
+    if (!options_.one_pass_tiles)
+      mark(cones.tiles_touching_sphere(glm::dvec3(0, 0, -1), 0.0, 1.0, first_row, rows), kGbuffer);
+    for (const scene::Body& body : scene.bodies) {
+      const glm::dvec3 c = body.position_m - scene.camera.position_m;
+      mark(cones.tiles_touching_sphere(world_to_camera * glm::normalize(c), glm::length(c), body.radius_m, first_row,
+                                       rows),
+           kBody);
+    }
+    if (options_.sun_disc) mark(cones.tiles_touching_sphere(sun_camera, 1.0, std::sin(sun_reach), first_row, rows), kSun);
+    // One buffer per band holds every list: each atmosphere's three, then the
+    // G-buffer path's tiles, the bodies' and the sun's direct tiles.
+    struct TileList {
+      std::size_t offset = 0, count = 0;
+    };
+    std::vector<std::uint32_t> all_tiles;
+    auto append = [&](const std::vector<std::uint32_t>& list) {
+      const TileList l{all_tiles.size(), list.size()};
+      all_tiles.insert(all_tiles.end(), list.begin(), list.end());
+      return l;
+    };
+    struct PassLists {
+      TileList tile, sky_view, gbuffer;
+    };
+    std::vector<PassLists> lists;
+    std::size_t one_pass_atmosphere_tiles = 0;
+    for (std::size_t a = 0; a < passes.size(); ++a) {
+      const AtmospherePass& pass = passes[a];
+      lists.push_back({append(pass.tile_tiles), append(pass.sky_view_tiles), append(pass.gbuffer_tiles)});
+      one_pass_atmosphere_tiles += pass.tile_tiles.size() + pass.sky_view_tiles.size();
+      FrameStats::Atmosphere& st = stats_.atmospheres[a];
+      st.tiles += pass.shell_tiles.size();
+      st.sky_view_tiles += pass.sky_view_tiles.size();
+      st.gbuffer_tiles += pass.gbuffer_tiles.size();
+    }
+    auto list_of = [&](auto&& keep) {
+      TileList l{all_tiles.size(), 0};
+      for (std::size_t i = 0; i < band_tiles; ++i)
+        if (shells[i] == 0 || (use[i] & kGbuffer) != 0)
+          if (keep(use[i])) {
+            all_tiles.push_back(static_cast<std::uint32_t>(i % static_cast<std::size_t>(cones.columns())) |
+                                static_cast<std::uint32_t>(i / static_cast<std::size_t>(cones.columns())) << 16);
+            ++l.count;
+          }
+      return l;
+    };
+    const TileList gbuffer_tiles = list_of([](std::uint8_t u) { return (u & kGbuffer) != 0; });
+    const TileList body_tiles = list_of([](std::uint8_t u) { return u == kBody; });
+    const TileList sun_tiles = list_of([](std::uint8_t u) { return (u & kGbuffer) == 0 && (u & kSun) != 0; });
+    stats_.tiles_gbuffer += gbuffer_tiles.count;
+    stats_.tiles_one_atmosphere += one_pass_atmosphere_tiles;
+    stats_.tiles_direct += body_tiles.count + sun_tiles.count;
+    const std::size_t drawn = gbuffer_tiles.count + one_pass_atmosphere_tiles + body_tiles.count + sun_tiles.count;
+    stats_.tiles_black += band_tiles - drawn;
+    im.ensure_tiles_buffer(all_tiles.size());
+    if (!all_tiles.empty()) im.tiles.upload(std::span<const std::uint32_t>(all_tiles));
+    im.tiles.bind_storage(kTiles);
+    im.frame_rgb.bind_storage(kFrameRgb);
+    const std::size_t band_bytes = static_cast<std::size_t>(width) * rows * 4 * sizeof(float);
+    if (drawn < band_tiles)
+      timer.gpu("clear", [&] {  // black where nothing is dispatched
+        glClearNamedBufferSubData(im.frame_rgb.id(), GL_R32F, 0, static_cast<GLsizeiptr>(band_bytes), GL_RED,
+                                  GL_FLOAT, nullptr);
+      });
+    auto dispatch_tiles = [&](const ShaderProgram& p, TileList list) {
+      p.set_uniform("tile_offset", static_cast<int>(list.offset));
+      p.set_uniform("tile_count", static_cast<int>(list.count));
+      const auto grid = tile_groups(list.count);
+      p.dispatch(grid[0], grid[1]);
+    };
+    // Per-group uniforms of the passes that turn a group's radiance into colour.
+    auto set_group_uniforms = [&](const ShaderProgram& p, std::size_t g) {
+      p.set_uniform("first_group", g == 0 ? 1 : 0);
+      p.set_uniform("last_group", g + 1 == groups ? 1 : 0);
+      p.set_uniform("sun_irradiance", lanes(scene.sun.irradiance_W_m2_nm, g));
+      p.set_uniform("sun_centre_radiance", lanes(sun_centre, g));
+      p.set_uniform("limb_exponent", lanes(limb_exponent, g));
+      p.set_uniform("albedo_from_r", lanes(albedo_weights, 0, g));
+      p.set_uniform("albedo_from_g", lanes(albedo_weights, 1, g));
+      p.set_uniform("albedo_from_b", lanes(albedo_weights, 2, g));
+      p.set_uniform("rgb_from_lanes_r", lanes(rgb_weights, 0, g));
+      p.set_uniform("rgb_from_lanes_g", lanes(rgb_weights, 1, g));
+      p.set_uniform("rgb_from_lanes_b", lanes(rgb_weights, 2, g));
+    };
 
-    for (AtmospherePass& pass : passes)
-      pass.band_tiles = pass.gpu ? cones.tiles_touching_sphere(pass.direction_camera, pass.distance_m,
-                                                               pass.top_radius_m, first_row, rows)
-                                 : std::vector<std::uint32_t>{};
+    // ---- tiles no atmosphere touches: one pass each, every wavelength
+    if (body_tiles.count > 0)
+      timer.gpu("direct light", [&] { dispatch_tiles(fp.direct_light, body_tiles); });
+    if (sun_tiles.count > 0)
+      timer.gpu("direct light, sun", [&] { dispatch_tiles(fp.direct_light_sun, sun_tiles); });
 
-    for (std::size_t g = 0; g < groups; ++g) {
-      const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
-      glClearTexImage(im.radiance_sum.id(), 0, GL_RGBA, GL_FLOAT, zero);
-      glClearTexImage(im.transmittance.id(), 0, GL_RGBA, GL_FLOAT, one);
-      im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::read_only);
-      im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::read_only);
-      im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::read_write);
-      im.transmittance.bind_image(kTransmittance, gl::ImageAccess::read_write);
-      const Vec4 irradiance = lanes(scene.sun.irradiance_W_m2_nm, g);
-      const Vec4 from_r = lanes(albedo_weights, 0, g), from_g = lanes(albedo_weights, 1, g),
-                 from_b = lanes(albedo_weights, 2, g);
-
-      for (std::size_t a = 0; a < passes.size(); ++a) {
-        AtmospherePass& pass = passes[a];
-        if (pass.band_tiles.empty()) continue;
-        stats_.atmospheres[a].tiles += pass.band_tiles.size();
-        const ShaderProgram& p = pass.gpu->program();
-        pass.gpu->bind(g);
-        im.bodies.bind_storage(kBodies);
-        im.ensure_tiles_buffer(pass.band_tiles.size());
-        im.tiles.upload(std::span<const std::uint32_t>(pass.band_tiles));
-        im.tiles.bind_storage(kTiles);
-        set_band(p);
-        p.set_uniform("tile_count", static_cast<int>(pass.band_tiles.size()));
-        p.set_uniform("planet", pass.body);
-        p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
-        p.set_uniform("sun_irradiance", irradiance);
-        p.set_uniform("albedo_from_r", from_r);
-        p.set_uniform("albedo_from_g", from_g);
-        p.set_uniform("albedo_from_b", from_b);
-        const auto grid = tile_groups(pass.band_tiles.size());
-        p.dispatch(grid[0], grid[1]);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    // ---- tiles one atmosphere touches: one pass per group, straight to the output
+    if (one_pass_atmosphere_tiles > 0)
+      for (std::size_t g = 0; g < groups; ++g) {
+        for (std::size_t a = 0; a < passes.size(); ++a) {
+          const AtmospherePass& pass = passes[a];
+          if (lists[a].tile.count + lists[a].sky_view.count == 0) continue;
+          pass.gpu->bind(g);
+          im.bodies.bind_storage(kBodies);
+          im.tiles.bind_storage(kTiles);
+          auto run = [&](const ShaderProgram& p, TileList list, const std::string& what) {
+            if (list.count == 0) return;
+            set_group_uniforms(p, g);
+            p.set_uniform("planet", pass.body);
+            p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
+            timer.gpu(fmt::format("atmosphere {}, {}", stats_.atmospheres[a].body, what), [&] { dispatch_tiles(p, list); });
+          };
+          run(pass.programs->tile, lists[a].tile, "one pass");
+          run(pass.programs->sky_view, lists[a].sky_view, "one pass, sky view");
+        }
+        if (g + 1 < groups) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next group adds to these pixels
       }
 
-      const ShaderProgram& r = im.resolve;
-      set_band(r);
-      im.frame_rgb.bind_image(kFrameRgb, gl::ImageAccess::read_write);
-      r.set_uniform("first_group", g == 0 ? 1 : 0);
-      r.set_uniform("sun_irradiance", irradiance);
-      r.set_uniform("sun_centre_radiance", lanes(sun_centre, g));
-      r.set_uniform("limb_exponent", lanes(limb_exponent, g));
-      r.set_uniform("albedo_from_r", from_r);
-      r.set_uniform("albedo_from_g", from_g);
-      r.set_uniform("albedo_from_b", from_b);
-      r.set_uniform("rgb_from_lanes_r", lanes(rgb_weights, 0, g));
-      r.set_uniform("rgb_from_lanes_g", lanes(rgb_weights, 1, g));
-      r.set_uniform("rgb_from_lanes_b", lanes(rgb_weights, 2, g));
-      r.dispatch_covering(width, rows);
-      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    }
+    // ---- tiles where shells overlap: G-buffer, then per group of 4
+    // wavelengths the atmospheres front to back and the resolve
+    if (gbuffer_tiles.count > 0) {
+      im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::write_only);
+      im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::write_only);
+      im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::write_only);
+      im.transmittance.bind_image(kTransmittance, gl::ImageAccess::write_only);
+      timer.gpu("g-buffer", [&] { dispatch_tiles(fp.gbuffer, gbuffer_tiles); });
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
-    // Read back (the whole band image; the last band may use fewer rows).
-    const std::vector<float> rgba = im.frame_rgb.read();
+      for (std::size_t g = 0; g < groups; ++g) {
+        im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::read_only);
+        im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::read_only);
+        im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::read_write);
+        im.transmittance.bind_image(kTransmittance, gl::ImageAccess::read_write);
+        for (std::size_t a = 0; a < passes.size(); ++a) {
+          const AtmospherePass& pass = passes[a];
+          if (lists[a].gbuffer.count == 0) continue;
+          const ShaderProgram& p = pass.programs->gbuffer_path;
+          pass.gpu->bind(g);
+          im.bodies.bind_storage(kBodies);
+          im.tiles.bind_storage(kTiles);
+          p.set_uniform("planet", pass.body);
+          p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
+          p.set_uniform("sun_irradiance", lanes(scene.sun.irradiance_W_m2_nm, g));
+          p.set_uniform("albedo_from_r", lanes(albedo_weights, 0, g));
+          p.set_uniform("albedo_from_g", lanes(albedo_weights, 1, g));
+          p.set_uniform("albedo_from_b", lanes(albedo_weights, 2, g));
+          timer.gpu(fmt::format("atmosphere {}, g-buffer path", stats_.atmospheres[a].body),
+                    [&] { dispatch_tiles(p, lists[a].gbuffer); });
+          glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        }
+        set_group_uniforms(fp.resolve, g);
+        timer.gpu("resolve", [&] { dispatch_tiles(fp.resolve, gbuffer_tiles); });
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+      }
+    }
+    // Read back the band's rows (clipped by the passes): RGB of each (r, g, b, 0),
+    // packed from the mapped buffer by both cores.
     rows_rgb.resize(static_cast<std::size_t>(width) * rows * 3);
-    for (std::size_t i = 0; i < static_cast<std::size_t>(width) * rows; ++i)
-      for (int k = 0; k < 3; ++k) {
-        // Out-of-gamut colours (the CIE mapping's negative lobes) are clipped to 0.
-        const float v = rgba[4 * i + static_cast<std::size_t>(k)];
-        rows_rgb[3 * i + static_cast<std::size_t>(k)] = v < 0.0f ? 0.0f : v;  // NaN stays visible
-      }
+    timer.cpu("readback", [&] {
+      im.frame_rgb.read_mapped(band_bytes, [&](std::span<const std::byte> bytes) {
+        const auto* rgba = reinterpret_cast<const float*>(bytes.data());
+        constexpr std::size_t kRowsPerTask = 16;
+        atmosphere::parallel_for((static_cast<std::size_t>(rows) + kRowsPerTask - 1) / kRowsPerTask, 0, [&](std::size_t task) {
+          const std::size_t begin = task * kRowsPerTask * static_cast<std::size_t>(width);
+          const std::size_t end = std::min<std::size_t>(begin + kRowsPerTask * static_cast<std::size_t>(width),
+                                                        static_cast<std::size_t>(width) * rows);
+          for (std::size_t i = begin; i < end; ++i) {
+            rows_rgb[3 * i] = rgba[4 * i];
+            rows_rgb[3 * i + 1] = rgba[4 * i + 1];
+            rows_rgb[3 * i + 2] = rgba[4 * i + 2];
+          }
+        });
+      });
+    });
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, scene.name));
-    sink(first_row, rows, rows_rgb);
+    timer.cpu("sink", [&] { sink(first_row, rows, rows_rgb); });
   }
+  stats_.pass_ms = timer.milliseconds();
   stats_.seconds = seconds_since(start);
 }
 

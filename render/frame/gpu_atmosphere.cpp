@@ -19,8 +19,11 @@ using atmosphere::lut::Table3D;
 
 constexpr std::size_t kLanes = kWavelengthLanes;
 
-// Texture units and storage bindings of atmosphere_pass.comp / atmosphere_common.glsl.
-enum TextureUnit : unsigned { kTransmittance = 0, kSingleRayleigh = 1, kSingleMie = 2, kMultiple = 3, kIrradiance = 4 };
+// Texture units and storage bindings of atmosphere_segment.glsl / atmosphere_common.glsl,
+// and the sky-view table of atmosphere_tile.comp.
+enum TextureUnit : unsigned {
+  kTransmittance = 0, kSingleRayleigh = 1, kSingleMie = 2, kMultiple = 3, kIrradiance = 4, kSkyView = 5
+};
 enum StorageBinding : unsigned { kWavelengthData = 0, kTableData = 1, kTexelCoordinates = 2 };
 
 /// Lanes 4g..4g+3 of a channel-interleaved table, as RGBA texels (missing lanes 0).
@@ -47,7 +50,8 @@ gl::Texture texture_3d(const Table3D& t, std::size_t group) {
 }  // namespace
 
 GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
-                             const AtmospherePassFeatures& features)
+                             const AtmospherePassFeatures& features,
+                             std::span<const gl::ShaderDefine> frame_defines)
     : hash_(tables.hash),
       top_radius_m_(model.top_radius_m),
       ground_radius_m_(model.ground_radius_m) {
@@ -84,7 +88,10 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   std::vector<gl::ShaderDefine> defines = shader.defines;
   defines.push_back({"MULTIPLE_SCATTERING", features.multiple_scattering && tables.scattering_orders >= 2 ? "1" : "0"});
   defines.push_back({"ECLIPSES", features.eclipses ? "1" : "0"});
-  program_ = gl::ShaderProgram::load_compute("render/atmosphere_pass.comp", defines);
+  sky_view_ = std::make_unique<SkyViewTable>(defines, groups_.size());
+  defines_ = defines;
+  tile_defines_ = defines;
+  tile_defines_.insert(tile_defines_.end(), frame_defines.begin(), frame_defines.end());
   gl::check_gl_error(fmt::format("uploading the tables of atmosphere '{}'", model.name));
 }
 
@@ -98,7 +105,46 @@ void GpuAtmosphere::bind(std::size_t group) const {
   wavelength_data_.bind_storage(kWavelengthData);
   table_data_.bind_storage(kTableData);
   texel_coordinates_.bind_storage(kTexelCoordinates);
-  program_.set_uniform("wavelength_group", static_cast<int>(group));
+  sky_view_->bind(kSkyView);
+  for (const auto& [kind, p] : passes_) {
+    for (const gl::ShaderProgram* program : {&p.gbuffer_path, &p.tile, &p.sky_view})
+      program->set_uniform("wavelength_group", static_cast<int>(group));
+    p.sky_view.set_uniform("sky_view_layer_base", static_cast<int>(group) * SkyViewTable::kLayersPerGroup);
+    p.sky_view.set_uniform("sky_view_theta_horizon", static_cast<float>(sky_view_->theta_horizon_rad()));
+  }
+}
+
+const GpuAtmosphere::Passes& GpuAtmosphere::passes(int projection_kind) {
+  auto it = passes_.find(projection_kind);
+  if (it != passes_.end()) return it->second;
+  const gl::ShaderDefine kind{"PROJECTION_KIND", std::to_string(projection_kind)};
+  std::vector<gl::ShaderDefine> pass = defines_, tile = tile_defines_, sky_view = tile_defines_;
+  pass.push_back(kind);
+  tile.insert(tile.end(), {kind, {"SKY_VIEW", "0"}});
+  sky_view.insert(sky_view.end(), {kind, {"SKY_VIEW", "1"}});
+  Passes p;
+  p.gbuffer_path = gl::ShaderProgram::load_compute("render/atmosphere_pass.comp", pass);
+  p.tile = gl::ShaderProgram::load_compute("render/atmosphere_tile.comp", tile);
+  p.sky_view = gl::ShaderProgram::load_compute("render/atmosphere_tile.comp", sky_view);
+  return passes_.emplace(projection_kind, std::move(p)).first->second;
+}
+
+void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad) {
+  sky_view_->set_camera(camera_radius_m, ground_radius_m_, sun_cosine, sun_angular_radius_rad);
+  const gl::ShaderProgram& fill = sky_view_->fill_program();
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    const GroupTextures& t = groups_[g];
+    t.transmittance.bind(kTransmittance);
+    t.single_rayleigh.bind(kSingleRayleigh);
+    t.single_mie.bind(kSingleMie);
+    t.multiple.bind(kMultiple);
+    t.irradiance.bind(kIrradiance);
+    wavelength_data_.bind_storage(kWavelengthData);
+    table_data_.bind_storage(kTableData);
+    texel_coordinates_.bind_storage(kTexelCoordinates);
+    fill.set_uniform("wavelength_group", static_cast<int>(g));
+    sky_view_->fill_group(g);
+  }
 }
 
 }  // namespace zenith::render

@@ -1,5 +1,5 @@
 // Frame data shared by the render passes (gbuffer.comp, atmosphere_pass.comp,
-// resolve.comp), filled by render/renderer.cpp.
+// resolve.comp, direct_light.comp, atmosphere_tile.comp), filled by render/renderer.cpp.
 //
 // Precision: every position is camera-relative and was computed in double on
 // the CPU; the GPU sees directions (unit vectors), distances from the camera
@@ -30,6 +30,27 @@ uniform ivec2 band_size;
 uniform vec3 sun_direction;        // world, unit
 uniform float sun_angular_radius;  // [rad]
 uniform float pixel_angle;         // upper bound of one pixel's angular size [rad] (Projection::max_pixel_angle_rad)
+
+/// The 16×16 tiles of band pixels a pass covers, one work group per tile:
+/// tiles[tile_offset + i] for i < tile_count, packed as column | row << 16
+/// (render/frame/tile_culling.h). The renderer classifies tiles on the CPU
+/// (one atmosphere, several, surface or sun only, empty) and dispatches each
+/// pass over its own list, so a pass holds only the code its tiles need: on a
+/// CPU rasterizer (llvmpipe runs 8 invocations per SIMD vector under a mask) a
+/// branch skipped by every pixel still costs, a tile not dispatched does not.
+layout(std430, binding = 5) readonly buffer Tiles { uint tiles[]; };
+uniform int tile_offset;
+uniform int tile_count;
+
+/// This invocation's band pixel: false past the end of the list or the band.
+bool tile_pixel(out ivec2 p) {
+  const uint tile_index = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+  p = ivec2(0);
+  if (tile_index >= uint(tile_count)) return false;
+  const uint tile = tiles[uint(tile_offset) + tile_index];
+  p = ivec2(int(tile & 0xffffu), int(tile >> 16)) * 16 + ivec2(gl_LocalInvocationID.xy);
+  return all(lessThan(p, band_size));
+}
 
 /// The world-space unit ray of band pixel `p` (integer, band-local), or false
 /// where the projection has no ray.
@@ -70,6 +91,20 @@ float intersect_body(int b, vec3 ray) {
   if (!sphere_chord(ray, bodies[b].centre.xyz, bodies[b].centre.w, bodies[b].shape.x, C, q, disc)) return -1.0;
   if (q <= 0.0) return -1.0;
   return C / (q + sqrt(disc));
+}
+
+/// The nearest body along `ray` and the distance to it [m]; −1 where none.
+int nearest_body(vec3 ray, out float distance_m) {
+  distance_m = 3.4e38;
+  int hit_body = -1;
+  for (int b = 0; b < body_count; ++b) {
+    const float t = intersect_body(b, ray);
+    if (t >= 0.0 && t < distance_m) {
+      distance_m = t;
+      hit_body = b;
+    }
+  }
+  return hit_body;
 }
 
 /// Outward unit normal of body b at distance t along `ray` (world frame).
