@@ -62,9 +62,11 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <sys/resource.h>
@@ -492,7 +494,7 @@ int run(int argc, char** argv) {
   bool failed = false;
   std::vector<std::unique_ptr<warp::Projection>> projections;
   for (const Resolution& r : res) projections.push_back(r.make());
-  std::map<const render::Renderer*, const warp::Projection*> warmed;  // the projection each renderer last drew
+  std::set<std::tuple<const render::Renderer*, const warp::Projection*, int>> warmed;  // cases drawn once untimed
 
   for (int round = 0; round < opt.rounds; ++round)
     for (std::size_t ri = 0; ri < res.size(); ++ri)
@@ -504,10 +506,10 @@ int run(int argc, char** argv) {
           render::Renderer& renderer = n == 0 ? bodies_renderer : with_atmospheres_renderer;
           const warp::Projection& projection = *projections[ri];
           const scene::Scene& s = variants[static_cast<std::size_t>(n)];
-          if (warmed[&renderer] != &projection) {
-            // Tile cones of the new projection (and, the first time, albedo maps): no atmosphere needed.
-            renderer.render(variants[0], projection, discard);
-            warmed[&renderer] = &projection;
+          if (warmed.insert({&renderer, &projection, n}).second) {
+            // One untimed frame of the case: tile cones of the new projection, albedo
+            // maps, and the shader variants its tiles need (compiled on first use).
+            renderer.render(s, projection, discard);
           }
           std::vector<double> times, cpu_times;
           render::FrameStats stats;

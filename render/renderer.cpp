@@ -10,6 +10,7 @@
 #include <cstring>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -55,6 +56,29 @@ struct GpuBody {
   Vec4 world_to_body[3];
 };
 static_assert(sizeof(GpuBody) == 6 * 16);
+
+/// Whether some body's shadow (its penumbra) can fall on another: then the
+/// passes are compiled with the eclipse code (frame.glsl's sun_visibility),
+/// which a CPU rasterizer would otherwise run for every lit pixel in vain. For
+/// an occluder of radius a at o and a receiver of radius b at c: the points
+/// that see part of the sun (angular radius α, direction s) behind the
+/// occluder lie within a + d tan α (·1.01, and a metre) of the shadow axis
+/// through o, at d = (o − p)·s > 0 in front of them; the receiver's nearest
+/// point is at least (its centre's distance from the axis) − b from it.
+bool eclipses_possible(const scene::Scene& scene) {
+  const glm::dvec3 s = glm::normalize(scene.sun.direction);
+  const double tan_alpha = std::tan(std::min(scene.sun.angular_radius_rad, 1.0));
+  for (const scene::Body& occluder : scene.bodies)
+    for (const scene::Body& receiver : scene.bodies) {
+      if (&occluder == &receiver) continue;
+      const glm::dvec3 oc = occluder.position_m - receiver.position_m;
+      const double d = glm::dot(oc, s) + receiver.radius_m;  // largest d over the receiver
+      if (d <= 0.0) continue;  // the occluder is behind the receiver, away from the sun
+      const double off_axis = glm::length(oc - glm::dot(oc, s) * s) - receiver.radius_m;
+      if (off_axis < 1.01 * (occluder.radius_m + d * tan_alpha) + 1.0) return true;
+    }
+  return false;
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -111,12 +135,13 @@ struct Renderer::Impl {
     // Tiles no atmosphere touches: bodies only, and the sun's tiles (SUN = 1).
     ShaderProgram direct_light, direct_light_sun;
   };
-  std::map<int, FramePasses> frame_passes;    // by projection kind
+  std::map<std::pair<int, bool>, FramePasses> frame_passes;  // by projection kind and eclipses
   std::vector<gl::ShaderDefine> sun_defines;  // SUN_DISC, LIMB_DARKENING (resolve.comp, atmosphere_tile.comp)
-  bool sun_disc = true, limb_darkening = true, eclipses = true;
+  bool sun_disc = true, limb_darkening = true;
 
-  const FramePasses& passes_for(int projection_kind) {
-    auto it = frame_passes.find(projection_kind);
+  /// `eclipses`: other bodies' shadows can fall in this frame (ECLIPSES = 1).
+  const FramePasses& passes_for(int projection_kind, bool eclipses) {
+    auto it = frame_passes.find({projection_kind, eclipses});
     if (it != frame_passes.end()) return it->second;
     const gl::ShaderDefine kind{"PROJECTION_KIND", std::to_string(projection_kind)};
     const gl::ShaderDefine eclipse_define{"ECLIPSES", eclipses ? "1" : "0"};
@@ -132,7 +157,7 @@ struct Renderer::Impl {
     p.resolve = ShaderProgram::load_compute("render/resolve.comp", resolve_defines);
     p.direct_light = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false));
     if (sun_disc) p.direct_light_sun = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(true));
-    return frame_passes.emplace(projection_kind, std::move(p)).first->second;
+    return frame_passes.emplace(std::pair{projection_kind, eclipses}, std::move(p)).first->second;
   }
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   std::map<std::string, image::LinearImage> albedo_images;           // by albedo_key
@@ -218,7 +243,6 @@ Renderer::Renderer(const RenderOptions& options, TableSource tables)
                         {"LIMB_DARKENING", options_.limb_darkening ? "1" : "0"}};
   impl_->sun_disc = options_.sun_disc;
   impl_->limb_darkening = options_.limb_darkening;
-  impl_->eclipses = options_.atmosphere.eclipses;
 }
 
 Renderer::~Renderer() = default;
@@ -299,13 +323,13 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     double distance_m = 0.0, top_radius_m = 0.0, power_m2 = 0.0;
     glm::dvec3 direction_camera{0.0};
     GpuAtmosphere* gpu = nullptr;
-    const GpuAtmosphere::Passes* programs = nullptr;  // compiled for this frame's projection kind
     bool sky_view = false;  // the camera is inside: the sky-view variant where it can
-    // The band's tiles the shell can touch (shell_tiles), and of those the
-    // tiles no other shell touches, drawn in one pass (atmosphere_tile.comp)
-    // from the 4D tables (tile_tiles) or from the sky-view table (sky_view_tiles);
-    // the others go through the G-buffer path.
-    std::vector<std::uint32_t> shell_tiles, tile_tiles, sky_view_tiles, gbuffer_tiles;
+    // The band's tiles the shell can touch (shell_tiles); of those, the tiles
+    // no other shell touches, drawn in one pass (atmosphere_tile.comp) by
+    // variant (GpuAtmosphere::TileVariant::key), and the others, which go
+    // through the G-buffer path.
+    std::vector<std::uint32_t> shell_tiles, gbuffer_tiles;
+    std::map<int, std::pair<GpuAtmosphere::TileVariant, std::vector<std::uint32_t>>> one_pass;
   };
   std::vector<AtmospherePass> passes;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -422,17 +446,26 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     p.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
     p.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
   };
+  // Programs are compiled per projection kind, and with the eclipse code only
+  // when another body can cast a shadow (a CPU rasterizer runs all of it).
   const int projection_kind = static_cast<int>(gpu_projection.kind);
-  const Impl::FramePasses& fp = im.passes_for(projection_kind);
-  std::vector<const ShaderProgram*> programs = {&fp.gbuffer, &fp.resolve, &fp.direct_light};
-  if (fp.direct_light_sun.id() != 0) programs.push_back(&fp.direct_light_sun);
-  for (AtmospherePass& pass : passes) {
-    if (!pass.gpu) continue;
-    pass.programs = &pass.gpu->passes(projection_kind);
-    programs.insert(programs.end(), {&pass.programs->gbuffer_path, &pass.programs->tile, &pass.programs->sky_view});
-  }
-  for (const ShaderProgram* p : programs) set_frame_uniforms(*p);
-  for (const ShaderProgram* p : programs) p->set_uniform("exposure", static_cast<float>(scene.camera.exposure));
+  const bool eclipses = options_.atmosphere.eclipses && eclipses_possible(scene);
+  const Impl::FramePasses& fp = im.passes_for(projection_kind, eclipses);
+  // Frame uniforms on first use in the frame, band uniforms on first use in the band.
+  std::set<const ShaderProgram*> frame_ready, band_ready;
+  std::array<int, 2> band_origin{0, 0}, band_size{0, 0};
+  auto prepare = [&](const ShaderProgram& p) -> const ShaderProgram& {
+    if (frame_ready.insert(&p).second) {
+      set_frame_uniforms(p);
+      p.set_uniform("exposure", static_cast<float>(scene.camera.exposure));
+    }
+    if (band_ready.insert(&p).second) {
+      p.set_uniform("band_origin", band_origin);
+      p.set_uniform("band_size", band_size);
+      if (gpu_projection.kind == warp::ProjectionKind::ray_table) p.set_uniform("projection_table_origin", band_origin);
+    }
+    return p;
+  };
 
   // direct_light.comp: every wavelength at once. A body lit by the sun alone
   // is rgb = (cos i V / π) M a with M = exposure Σ_λ w(λ) E(λ) f(λ)ᵀ (w: the
@@ -449,9 +482,9 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
                albedo_weights[i][static_cast<std::size_t>(in)];
         rgb_from_albedo[static_cast<std::size_t>(in * 3 + out)] = static_cast<float>(exposure * m);
       }
-    fp.direct_light.set_uniform("rgb_from_albedo", rgb_from_albedo);
+    prepare(fp.direct_light).set_uniform("rgb_from_albedo", rgb_from_albedo);
     if (fp.direct_light_sun.id() != 0) {
-      const ShaderProgram& p = fp.direct_light_sun;
+      const ShaderProgram& p = prepare(fp.direct_light_sun);
       p.set_uniform("rgb_from_albedo", rgb_from_albedo);
       p.set_uniform("wavelength_count", static_cast<int>(std::min<std::size_t>(n, kMaxSpectrumUniforms)));
       for (std::size_t i = 0; i < n && i < static_cast<std::size_t>(kMaxSpectrumUniforms); ++i) {
@@ -482,7 +515,9 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   for (int first_row = 0; first_row < height; first_row += band_rows) {
     const int rows = std::min(band_rows, height - first_row);
     ++stats_.bands;
-    const std::array<int, 2> origin{0, first_row}, size{width, rows};
+    band_origin = {0, first_row};
+    band_size = {width, rows};
+    band_ready.clear();
 
     if (gpu_projection.kind == warp::ProjectionKind::ray_table) {
       // Rays of this band on the CPU, in double, kept for the next frames.
@@ -507,18 +542,15 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
         im.ray_table = Texture::create_2d(TextureFormat::rgba32f, width, im.band_height);
       im.ray_table.upload(table->second);
       im.ray_table.bind(kRayTableUnit);
-      for (const ShaderProgram* p : programs) p->set_uniform("projection_table_origin", origin);
-    }
-    for (const ShaderProgram* p : programs) {
-      p->set_uniform("band_origin", origin);
-      p->set_uniform("band_size", size);
     }
 
     // ---- classify the band's tiles (render/frame/tile_culling.h):
     //   exactly one atmosphere's shell can touch it: one pass for that
     //     atmosphere (atmosphere_tile.comp), from its sky-view table when the
     //     camera is inside the shell and no other body inside the shell can be
-    //     in the tile, else from the 4D tables;
+    //     in the tile, else from the 4D tables; compiled for what the tile can
+    //     hold (the planet's ground: none, all or some of it; other bodies;
+    //     the sun), since llvmpipe runs every branch a program has;
     //   two or more: the G-buffer path (gbuffer.comp, the atmospheres front to
     //     back, resolve.comp), which composites them;
     //   none, but a body or the sun can be in it: direct_light.comp, one pass;
@@ -526,6 +558,11 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     const int band_tile_rows = (rows + kTileSize - 1) / kTileSize;
     const std::size_t band_tiles = static_cast<std::size_t>(cones.columns()) * band_tile_rows;
     auto tile_index = [&](std::uint32_t t) { return (t >> 16) * static_cast<std::size_t>(cones.columns()) + (t & 0xffffu); };
+    auto body_touches = [&](std::size_t b) {
+      const glm::dvec3 c = scene.bodies[b].position_m - scene.camera.position_m;
+      return cones.tiles_touching_sphere(world_to_camera * glm::normalize(c), glm::length(c), scene.bodies[b].radius_m,
+                                         first_row, rows);
+    };
     std::vector<std::uint8_t> shells(band_tiles, 0);  // shells that can touch the tile (saturating)
     for (AtmospherePass& pass : passes) {
       pass.shell_tiles = pass.gpu ? cones.tiles_touching_sphere(pass.direction_camera, pass.distance_m,
@@ -533,43 +570,55 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
                                   : std::vector<std::uint32_t>{};
       for (std::uint32_t t : pass.shell_tiles) shells[tile_index(t)] = static_cast<std::uint8_t>(std::min(shells[tile_index(t)] + 1, 2));
     }
-    for (AtmospherePass& pass : passes) {
-      pass.tile_tiles.clear();
-      pass.sky_view_tiles.clear();
-      pass.gbuffer_tiles.clear();
-      std::vector<bool> aerial;
-      if (pass.sky_view) {
-        aerial.assign(band_tiles, false);
-        for (std::size_t b : bodies_inside_shell(pass)) {
-          const glm::dvec3 c = scene.bodies[b].position_m - scene.camera.position_m;
-          for (std::uint32_t t : cones.tiles_touching_sphere(world_to_camera * glm::normalize(c), glm::length(c),
-                                                             scene.bodies[b].radius_m, first_row, rows))
-            aerial[tile_index(t)] = true;
-        }
-      }
-      for (std::uint32_t t : pass.shell_tiles) {
-        const std::size_t i = tile_index(t);
-        if (shells[i] > 1 || !options_.one_pass_tiles) pass.gbuffer_tiles.push_back(t);
-        else if (pass.sky_view && !aerial[i]) pass.sky_view_tiles.push_back(t);
-        else pass.tile_tiles.push_back(t);
-      }
-    }
     enum TileUse : std::uint8_t { kGbuffer = 1, kBody = 2, kSun = 4 };
     std::vector<std::uint8_t> use(band_tiles, 0);
     auto mark = [&](const std::vector<std::uint32_t>& list, std::uint8_t flag) {
       for (std::uint32_t t : list) use[tile_index(t)] |= flag;
     };
-    for (const AtmospherePass& pass : passes) mark(pass.gbuffer_tiles, kGbuffer);
-    if (!options_.one_pass_tiles)
-      mark(cones.tiles_touching_sphere(glm::dvec3(0, 0, -1), 0.0, 1.0, first_row, rows), kGbuffer);
-    for (const scene::Body& body : scene.bodies) {
-      const glm::dvec3 c = body.position_m - scene.camera.position_m;
-      mark(cones.tiles_touching_sphere(world_to_camera * glm::normalize(c), glm::length(c), body.radius_m, first_row,
-                                       rows),
-           kBody);
+    // Per body, the tiles it can be in (for the one-pass variants and the direct tiles).
+    std::vector<std::vector<std::uint32_t>> body_tiles_of(scene.bodies.size());
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      body_tiles_of[b] = body_touches(b);
+      mark(body_tiles_of[b], kBody);
     }
     if (options_.sun_disc) mark(cones.tiles_touching_sphere(sun_camera, 1.0, std::sin(sun_reach), first_row, rows), kSun);
-    // One buffer per band holds every list: each atmosphere's three, then the
+    for (AtmospherePass& pass : passes) {
+      pass.gbuffer_tiles.clear();
+      pass.one_pass.clear();
+      if (pass.shell_tiles.empty()) continue;
+      const scene::Body& planet = scene.bodies[static_cast<std::size_t>(pass.body)];
+      const glm::dvec3 to_planet = planet.position_m - scene.camera.position_m;
+      const std::vector<TileCover> ground =
+          cones.sphere_cover(world_to_camera * glm::normalize(to_planet), glm::length(to_planet), planet.radius_m,
+                             first_row, rows);
+      // Other bodies: 1 where one beyond the shell can be, 2 where one inside it can be.
+      std::vector<std::uint8_t> others(band_tiles, 0);
+      const std::vector<std::size_t> inside = bodies_inside_shell(pass);
+      for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+        if (static_cast<int>(b) == pass.body) continue;
+        const std::uint8_t level = std::find(inside.begin(), inside.end(), b) != inside.end() ? 2 : 1;
+        for (std::uint32_t t : body_tiles_of[b]) others[tile_index(t)] = std::max(others[tile_index(t)], level);
+      }
+      for (std::uint32_t t : pass.shell_tiles) {
+        const std::size_t i = tile_index(t);
+        if (shells[i] > 1 || !options_.one_pass_tiles) {
+          pass.gbuffer_tiles.push_back(t);
+          continue;
+        }
+        GpuAtmosphere::TileVariant v;
+        v.sky_view = pass.sky_view && others[i] < 2;
+        v.ground = ground[i];
+        v.others = others[i];
+        v.sun = (use[i] & kSun) != 0;
+        auto& list = pass.one_pass[v.key()];
+        list.first = v;
+        list.second.push_back(t);
+      }
+      mark(pass.gbuffer_tiles, kGbuffer);
+    }
+    if (!options_.one_pass_tiles)
+      mark(cones.tiles_touching_sphere(glm::dvec3(0, 0, -1), 0.0, 1.0, first_row, rows), kGbuffer);
+    // One buffer per band holds every list: each atmosphere's, then the
     // G-buffer path's tiles, the bodies' and the sun's direct tiles.
     struct TileList {
       std::size_t offset = 0, count = 0;
@@ -581,28 +630,31 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
       return l;
     };
     struct PassLists {
-      TileList tile, sky_view, gbuffer;
+      std::vector<std::pair<GpuAtmosphere::TileVariant, TileList>> one_pass;
+      TileList gbuffer;
     };
-    std::vector<PassLists> lists;
+    std::vector<PassLists> lists(passes.size());
     std::size_t one_pass_atmosphere_tiles = 0;
     for (std::size_t a = 0; a < passes.size(); ++a) {
       const AtmospherePass& pass = passes[a];
-      lists.push_back({append(pass.tile_tiles), append(pass.sky_view_tiles), append(pass.gbuffer_tiles)});
-      one_pass_atmosphere_tiles += pass.tile_tiles.size() + pass.sky_view_tiles.size();
       FrameStats::Atmosphere& st = stats_.atmospheres[a];
+      for (const auto& [key, list] : pass.one_pass) {
+        lists[a].one_pass.emplace_back(list.first, append(list.second));
+        one_pass_atmosphere_tiles += list.second.size();
+        if (list.first.sky_view) st.sky_view_tiles += list.second.size();
+      }
+      lists[a].gbuffer = append(pass.gbuffer_tiles);
       st.tiles += pass.shell_tiles.size();
-      st.sky_view_tiles += pass.sky_view_tiles.size();
       st.gbuffer_tiles += pass.gbuffer_tiles.size();
     }
     auto list_of = [&](auto&& keep) {
       TileList l{all_tiles.size(), 0};
       for (std::size_t i = 0; i < band_tiles; ++i)
-        if (shells[i] == 0 || (use[i] & kGbuffer) != 0)
-          if (keep(use[i])) {
-            all_tiles.push_back(static_cast<std::uint32_t>(i % static_cast<std::size_t>(cones.columns())) |
-                                static_cast<std::uint32_t>(i / static_cast<std::size_t>(cones.columns())) << 16);
-            ++l.count;
-          }
+        if ((shells[i] == 0 || (use[i] & kGbuffer) != 0) && keep(use[i])) {
+          all_tiles.push_back(static_cast<std::uint32_t>(i % static_cast<std::size_t>(cones.columns())) |
+                              static_cast<std::uint32_t>(i / static_cast<std::size_t>(cones.columns())) << 16);
+          ++l.count;
+        }
       return l;
     };
     const TileList gbuffer_tiles = list_of([](std::uint8_t u) { return (u & kGbuffer) != 0; });
@@ -624,6 +676,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
                                   GL_FLOAT, nullptr);
       });
     auto dispatch_tiles = [&](const ShaderProgram& p, TileList list) {
+      prepare(p);
       p.set_uniform("tile_offset", static_cast<int>(list.offset));
       p.set_uniform("tile_count", static_cast<int>(list.count));
       const auto grid = tile_groups(list.count);
@@ -631,6 +684,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     };
     // Per-group uniforms of the passes that turn a group's radiance into colour.
     auto set_group_uniforms = [&](const ShaderProgram& p, std::size_t g) {
+      prepare(p);
       p.set_uniform("first_group", g == 0 ? 1 : 0);
       p.set_uniform("last_group", g + 1 == groups ? 1 : 0);
       p.set_uniform("sun_irradiance", lanes(scene.sun.irradiance_W_m2_nm, g));
@@ -650,24 +704,25 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     if (sun_tiles.count > 0)
       timer.gpu("direct light, sun", [&] { dispatch_tiles(fp.direct_light_sun, sun_tiles); });
 
-    // ---- tiles one atmosphere touches: one pass per group, straight to the output
+    // ---- tiles one atmosphere touches: one pass per group and variant, straight to the output
     if (one_pass_atmosphere_tiles > 0)
       for (std::size_t g = 0; g < groups; ++g) {
         for (std::size_t a = 0; a < passes.size(); ++a) {
           const AtmospherePass& pass = passes[a];
-          if (lists[a].tile.count + lists[a].sky_view.count == 0) continue;
+          if (lists[a].one_pass.empty()) continue;
           pass.gpu->bind(g);
           im.bodies.bind_storage(kBodies);
           im.tiles.bind_storage(kTiles);
-          auto run = [&](const ShaderProgram& p, TileList list, const std::string& what) {
-            if (list.count == 0) return;
+          for (const auto& [variant, list] : lists[a].one_pass) {
+            const ShaderProgram& p = pass.gpu->tile_program(projection_kind, eclipses, variant);
             set_group_uniforms(p, g);
+            pass.gpu->set_group(p, g);
             p.set_uniform("planet", pass.body);
             p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
-            timer.gpu(fmt::format("atmosphere {}, {}", stats_.atmospheres[a].body, what), [&] { dispatch_tiles(p, list); });
-          };
-          run(pass.programs->tile, lists[a].tile, "one pass");
-          run(pass.programs->sky_view, lists[a].sky_view, "one pass, sky view");
+            timer.gpu(fmt::format("atmosphere {}, one pass{}", stats_.atmospheres[a].body,
+                                  variant.sky_view ? ", sky view" : ""),
+                      [&] { dispatch_tiles(p, list); });
+          }
         }
         if (g + 1 < groups) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next group adds to these pixels
       }
@@ -690,10 +745,12 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
         for (std::size_t a = 0; a < passes.size(); ++a) {
           const AtmospherePass& pass = passes[a];
           if (lists[a].gbuffer.count == 0) continue;
-          const ShaderProgram& p = pass.programs->gbuffer_path;
+          const ShaderProgram& p = pass.gpu->gbuffer_path_program(projection_kind, eclipses);
           pass.gpu->bind(g);
           im.bodies.bind_storage(kBodies);
           im.tiles.bind_storage(kTiles);
+          prepare(p);
+          pass.gpu->set_group(p, g);
           p.set_uniform("planet", pass.body);
           p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
           p.set_uniform("sun_irradiance", lanes(scene.sun.irradiance_W_m2_nm, g));
@@ -709,6 +766,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
       }
     }
+
     // Read back the band's rows (clipped by the passes): RGB of each (r, g, b, 0),
     // packed from the mapped buffer by both cores.
     rows_rgb.resize(static_cast<std::size_t>(width) * rows * 3);

@@ -87,10 +87,11 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
 
   std::vector<gl::ShaderDefine> defines = shader.defines;
   defines.push_back({"MULTIPLE_SCATTERING", features.multiple_scattering && tables.scattering_orders >= 2 ? "1" : "0"});
-  defines.push_back({"ECLIPSES", features.eclipses ? "1" : "0"});
-  sky_view_ = std::make_unique<SkyViewTable>(defines, groups_.size());
+  eclipses_ = features.eclipses;
   defines_ = defines;
-  tile_defines_ = defines;
+  defines.push_back({"ECLIPSES", "0"});  // the fill shades no surface
+  sky_view_ = std::make_unique<SkyViewTable>(defines, groups_.size());
+  tile_defines_ = defines_;
   tile_defines_.insert(tile_defines_.end(), frame_defines.begin(), frame_defines.end());
   gl::check_gl_error(fmt::format("uploading the tables of atmosphere '{}'", model.name));
 }
@@ -106,27 +107,44 @@ void GpuAtmosphere::bind(std::size_t group) const {
   table_data_.bind_storage(kTableData);
   texel_coordinates_.bind_storage(kTexelCoordinates);
   sky_view_->bind(kSkyView);
-  for (const auto& [kind, p] : passes_) {
-    for (const gl::ShaderProgram* program : {&p.gbuffer_path, &p.tile, &p.sky_view})
-      program->set_uniform("wavelength_group", static_cast<int>(group));
-    p.sky_view.set_uniform("sky_view_layer_base", static_cast<int>(group) * SkyViewTable::kLayersPerGroup);
-    p.sky_view.set_uniform("sky_view_theta_horizon", static_cast<float>(sky_view_->theta_horizon_rad()));
-  }
 }
 
-const GpuAtmosphere::Passes& GpuAtmosphere::passes(int projection_kind) {
-  auto it = passes_.find(projection_kind);
-  if (it != passes_.end()) return it->second;
-  const gl::ShaderDefine kind{"PROJECTION_KIND", std::to_string(projection_kind)};
-  std::vector<gl::ShaderDefine> pass = defines_, tile = tile_defines_, sky_view = tile_defines_;
-  pass.push_back(kind);
-  tile.insert(tile.end(), {kind, {"SKY_VIEW", "0"}});
-  sky_view.insert(sky_view.end(), {kind, {"SKY_VIEW", "1"}});
-  Passes p;
-  p.gbuffer_path = gl::ShaderProgram::load_compute("render/atmosphere_pass.comp", pass);
-  p.tile = gl::ShaderProgram::load_compute("render/atmosphere_tile.comp", tile);
-  p.sky_view = gl::ShaderProgram::load_compute("render/atmosphere_tile.comp", sky_view);
-  return passes_.emplace(projection_kind, std::move(p)).first->second;
+void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t group) const {
+  program.set_uniform("wavelength_group", static_cast<int>(group));
+  program.set_uniform("sky_view_layer_base", static_cast<int>(group) * SkyViewTable::kLayersPerGroup);
+  program.set_uniform("sky_view_theta_horizon", static_cast<float>(sky_view_->theta_horizon_rad()));
+}
+
+int GpuAtmosphere::TileVariant::key() const {
+  return (sky_view ? 1 : 0) | static_cast<int>(ground) << 1 | others << 3 | (sun ? 1 : 0) << 5;
+}
+
+const gl::ShaderProgram& GpuAtmosphere::program(const std::string& key, const std::string& file,
+                                               std::vector<gl::ShaderDefine> defines) {
+  auto it = programs_.find(key);
+  if (it == programs_.end())
+    it = programs_.emplace(key, gl::ShaderProgram::load_compute(file, defines)).first;
+  return it->second;
+}
+
+const gl::ShaderProgram& GpuAtmosphere::gbuffer_path_program(int projection_kind, bool eclipses) {
+  std::vector<gl::ShaderDefine> defines = defines_;
+  defines.insert(defines.end(), {{"PROJECTION_KIND", std::to_string(projection_kind)},
+                                 {"ECLIPSES", eclipses && eclipses_ ? "1" : "0"}});
+  return program(fmt::format("pass {} {}", projection_kind, eclipses && eclipses_), "render/atmosphere_pass.comp",
+                 std::move(defines));
+}
+
+const gl::ShaderProgram& GpuAtmosphere::tile_program(int projection_kind, bool eclipses, const TileVariant& v) {
+  std::vector<gl::ShaderDefine> defines = tile_defines_;
+  defines.insert(defines.end(), {{"PROJECTION_KIND", std::to_string(projection_kind)},
+                                 {"ECLIPSES", eclipses && eclipses_ ? "1" : "0"},
+                                 {"SKY_VIEW", v.sky_view ? "1" : "0"},
+                                 {"TILE_GROUND", std::to_string(static_cast<int>(v.ground))},
+                                 {"TILE_OTHERS", std::to_string(v.others)},
+                                 {"SUN", v.sun ? "1" : "0"}});
+  return program(fmt::format("tile {} {} {}", projection_kind, eclipses && eclipses_, v.key()),
+                 "render/atmosphere_tile.comp", std::move(defines));
 }
 
 void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad) {

@@ -18,6 +18,7 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/frame/sky_view_table.h"
+#include "render/frame/tile_culling.h"
 
 namespace zenith::render {
 
@@ -40,25 +41,29 @@ class GpuAtmosphere {
   std::size_t group_count() const { return groups_.size(); }
   double top_radius_m() const { return top_radius_m_; }
   double ground_radius_m() const { return ground_radius_m_; }
-  /// The passes of this atmosphere, compiled for one projection kind
-  /// (shaders/projection.glsl's PROJECTION_KIND) on first use.
-  struct Passes {
-    /// The G-buffer path's pass (atmosphere_pass.comp): tiles where shells overlap.
-    gl::ShaderProgram gbuffer_path;
-    /// One pass straight to the output for tiles only this shell touches
-    /// (atmosphere_tile.comp), from the 4D tables along each ray.
-    gl::ShaderProgram tile;
-    /// Its SKY_VIEW variant: a camera inside the shell, S and the ground's light
-    /// by direction from this frame's sky-view table (fill_sky_view first).
-    gl::ShaderProgram sky_view;
+  /// What the tiles of a one-pass list can hold: atmosphere_tile.comp is
+  /// compiled for each combination in use (its TILE_GROUND, TILE_OTHERS, SUN
+  /// and SKY_VIEW defines), since a CPU rasterizer runs every branch a program has.
+  struct TileVariant {
+    bool sky_view = false;                 ///< S from the sky-view table (camera inside the shell)
+    TileCover ground = TileCover::some;    ///< how the rays meet this planet's ground
+    int others = 2;                        ///< other bodies: 0 none, 1 all beyond the shell, 2 one may be inside it
+    bool sun = true;                       ///< the sun's disc can be in the tiles
+    int key() const;
   };
-  const Passes& passes(int projection_kind);
+  /// atmosphere_tile.comp for tiles only this shell touches, compiled for a
+  /// projection kind (shaders/projection.glsl's PROJECTION_KIND), whether
+  /// eclipses can happen in the frame (several bodies) and the tiles' variant.
+  const gl::ShaderProgram& tile_program(int projection_kind, bool eclipses, const TileVariant& variant);
+  /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).
+  const gl::ShaderProgram& gbuffer_path_program(int projection_kind, bool eclipses);
+  /// Sets `wavelength_group` and the sky-view uniforms of one of these programs for group g.
+  void set_group(const gl::ShaderProgram& program, std::size_t group) const;
   /// Bytes of GPU memory the tables take.
   std::size_t table_bytes() const { return table_bytes_; }
 
   /// Binds the tables of wavelength group g (texture units 0–4), the sky-view
-  /// table (unit 5) and the model's storage buffers (bindings 0–2), and sets
-  /// `wavelength_group` of every compiled pass (and the sky-view uniforms of the SKY_VIEW variant).
+  /// table (unit 5) and the model's storage buffers (bindings 0–2).
   void bind(std::size_t group) const;
 
   /// Fills the sky-view table of every wavelength group for a camera inside
@@ -75,8 +80,11 @@ class GpuAtmosphere {
   double top_radius_m_ = 0.0, ground_radius_m_ = 0.0;
   std::vector<GroupTextures> groups_;
   gl::Buffer wavelength_data_, table_data_, texel_coordinates_;
+  const gl::ShaderProgram& program(const std::string& key, const std::string& file,
+                                   std::vector<gl::ShaderDefine> defines);
   std::vector<gl::ShaderDefine> defines_, tile_defines_;  // atmosphere_pass.comp's; atmosphere_tile.comp's
-  std::map<int, Passes> passes_;                         // by projection kind
+  bool eclipses_ = true;                                  // AtmospherePassFeatures::eclipses
+  std::map<std::string, gl::ShaderProgram> programs_;     // compiled on first use, by variant
   std::unique_ptr<SkyViewTable> sky_view_;
   std::size_t table_bytes_ = 0;
 };

@@ -16,6 +16,15 @@
 // Include after atmosphere_common.glsl and frame.glsl. Defines:
 //   MULTIPLE_SCATTERING  0 drops the multiple-scattering table (single only)
 //   ECLIPSES             0 drops the shadows of other bodies on the ground
+//   TILE_GROUND, TILE_OTHERS  what the rays can meet (atmosphere_tile.comp):
+//                        the cases they cannot meet are left out; both
+//                        default to 2, every case
+#ifndef TILE_GROUND
+#define TILE_GROUND 2
+#endif
+#ifndef TILE_OTHERS
+#define TILE_OTHERS 2
+#endif
 
 layout(binding = 1) uniform sampler3D single_rayleigh_texture;
 layout(binding = 2) uniform sampler3D single_mie_texture;
@@ -32,16 +41,37 @@ struct Inscatter {
   real4 mie;          // single Mie, phase not applied
 };
 
+/// A 4D table at `uv`: sample_scattering_table (atmosphere_common.glsl), the
+/// CPU's interpolation done by hand from 16 texel fetches, in double with
+/// USE_FP64; otherwise the texture unit's own trilinear filtering within the
+/// two ν slices, two reads (the tables are GL_LINEAR, clamped to the edge).
+/// The same taps: the slice coordinate (ν index + u_μs) / NU keeps μs on the
+/// slice's texel centres at its ends, so no read mixes two slices. A CPU
+/// rasterizer runs the hand filter's address and weight arithmetic per texel;
+/// its own filter is several times cheaper (docs/rendering-performance.md).
+real4 sample_table_4d(sampler3D table, ScatteringUV uv) {
+#if USE_FP64
+  return sample_scattering_table(table, uv);
+#else
+  const float x_nu = uv.u_nu * float(SCATTERING_NU - 1);
+  const float nu_floor = min(floor(x_nu), float(SCATTERING_NU - 1));
+  const float t = x_nu - nu_floor;
+  const float u0 = (nu_floor + uv.u_mu_s) / float(SCATTERING_NU);
+  const float u1 = (min(nu_floor + 1.0, float(SCATTERING_NU - 1)) + uv.u_mu_s) / float(SCATTERING_NU);
+  return texture(table, vec3(u0, uv.u_mu, uv.u_r)) * (1.0 - t) + texture(table, vec3(u1, uv.u_mu, uv.u_r)) * t;
+#endif
+}
+
 Inscatter inscatter(real r, real mu, real mu_s, real nu, bool hits_ground) {
   const ScatteringUV single = scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_DISTANCE);
   Inscatter s;
-  s.smooth_part = sample_scattering_table(single_rayleigh_texture, single) * rayleigh_phase(nu);
+  s.smooth_part = sample_table_4d(single_rayleigh_texture, single) * rayleigh_phase(nu);
 #if MULTIPLE_SCATTERING
   s.smooth_part +=
-      sample_scattering_table(multiple_texture, scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_BLENDED));
+      sample_table_4d(multiple_texture, scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_BLENDED));
 #endif
 #if HAS_MIE
-  s.mie = sample_scattering_table(single_mie_texture, single);
+  s.mie = sample_table_4d(single_mie_texture, single);
 #else
   s.mie = real4(0);
 #endif
@@ -130,15 +160,25 @@ bool atmosphere_segment(vec3 ray, float hit_distance, int hit_body, real4 rho, o
 
   // The ray (continued) ends on the ground: decided by the hit for this
   // planet's own ground, so the table halves meet exactly where the ground's edge is drawn.
+#if TILE_OTHERS == 2
   const bool continues_to_ground = own_ground || (hits_body && ray_hits_ground(r, mu));
+#else
+  const bool continues_to_ground = own_ground;
+#endif
   radiance = scattering(r, mu, mu_s, nu, continues_to_ground);
 
+  // What the segment ends on; a case these rays cannot meet is left out of
+  // the program (atmosphere_tile.comp), as a CPU rasterizer would run it anyway.
+#if TILE_GROUND != 0
   if (own_ground) {
     const real d = real(hit_distance - d_entry);
     const real4 t = transmittance(r, mu, d, true);
     radiance += t * ground_radiance(ray, hit_distance, rho);
     transmittance_segment = real4(0);
-  } else if (hits_body && hit_distance < d_exit) {
+  }
+#endif
+#if TILE_OTHERS == 2
+  if (!own_ground && hits_body && hit_distance < d_exit) {
     // Another body inside the shell: aerial perspective S(x0) − T(x0, y) S(y).
     const real d = real(hit_distance - d_entry);
     transmittance_segment = transmittance(r, mu, d, continues_to_ground);
@@ -146,8 +186,13 @@ bool atmosphere_segment(vec3 ray, float hit_distance, int hit_body, real4 rho, o
     const real mu_y = clamp_cosine((r * mu + d) / r_y);
     const real mu_s_y = clamp_cosine((r * mu_s + d * nu) / r_y);
     radiance = max(radiance - transmittance_segment * scattering(r_y, mu_y, mu_s_y, nu, continues_to_ground), real4(0));
-  } else {
-    transmittance_segment = transmittance_to_top(r, mu);
   }
+  const bool to_top = !own_ground && !(hits_body && hit_distance < d_exit);
+#else
+  const bool to_top = !own_ground;
+#endif
+#if TILE_GROUND != 1
+  if (to_top) transmittance_segment = transmittance_to_top(r, mu);
+#endif
   return true;
 }

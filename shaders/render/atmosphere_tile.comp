@@ -1,14 +1,14 @@
 #version 450
 // The tiles exactly one atmosphere's shell can touch (render/renderer.cpp),
 // for one group of 4 wavelengths, in one pass straight to the band's output:
-// every pixel's ray, the nearest body and its albedo, this atmosphere's
+// every pixel's ray, the body it meets and its albedo, this atmosphere's
 // segment S, T of the ray, what lies behind it (an airless body lit by the
 // sun, the sun's disc) seen through T, the group's colour (group_light.glsl).
 // No G-buffer, no running radiance and transmittance images, no resolve pass:
 // the G-buffer path (gbuffer.comp, atmosphere_pass.comp, resolve.comp) is
 // kept for tiles where shells overlap, which need front-to-back composition.
 //
-// Two variants (SKY_VIEW):
+// Two ways to S (SKY_VIEW):
 //   0  the 4D tables along the ray (atmosphere_segment.glsl): any camera,
 //      from the ground to space and the limb, any body inside the shell;
 //   1  a camera inside the shell, in tiles where no other body inside the
@@ -16,11 +16,21 @@
 //      sky-view table (sky_view.comp) with hardware bilinear filtering:
 //        sky:    S = A + M P_M(ν)                          T = T(r, μ → top)
 //        ground: S = A + M P_M(ν) + ρ (G_sun V + G_sky)    T = 0
-//      T only where something lies behind the sky (a moon, the sun's disc),
-//      from the transmittance table as in variant 0.
+//      T only where something can lie behind the sky (a moon, the sun's
+//      disc), from the transmittance table as in variant 0.
 //
-// Defines: those of atmosphere_common.glsl, MULTIPLE_SCATTERING, ECLIPSES,
-// SUN_DISC, LIMB_DARKENING, SKY_VIEW.
+// Each tile list is dispatched with the program compiled for what its tiles
+// can hold (render/renderer.cpp decides per tile from the tiles' cones): Mesa's
+// llvmpipe, 8 pixels per SIMD vector, runs the code of every branch for every
+// pixel even where no pixel takes it, so what a tile cannot hold must not be
+// in its program.
+//   TILE_GROUND  0: no ray meets this planet; 1: every ray does; 2: some
+//   TILE_OTHERS  0: no other body; 1: other bodies, all beyond the shell
+//                (seen through it); 2: one may be inside the shell (aerial
+//                perspective, SKY_VIEW 0 only)
+//   SUN          1: the sun's disc can be in the tile
+// Other defines: those of atmosphere_common.glsl, MULTIPLE_SCATTERING,
+// ECLIPSES, SUN_DISC, LIMB_DARKENING.
 #include "atmosphere_common.glsl"
 #include "frame.glsl"
 #include "atmosphere_segment.glsl"
@@ -29,6 +39,9 @@
 
 layout(local_size_x = 16, local_size_y = 16) in;
 
+// Something can lie behind the atmosphere in these tiles: light seen through T.
+#define BEHIND ((SUN && TILE_GROUND != 1) || TILE_OTHERS != 0)
+
 #if SKY_VIEW
 #include "sky_view_mapping.glsl"
 /// The frame's sky-view table (sky_view.comp): SKY_VIEW_LAYERS layers per group.
@@ -36,11 +49,10 @@ layout(binding = 5) uniform sampler2DArray sky_view_table;
 uniform int sky_view_layer_base;       // SKY_VIEW_LAYERS · wavelength group
 uniform float sky_view_theta_horizon;  // zenith angle of the geometric horizon at the camera [rad]
 
-/// Variant 1's segment: the camera is inside the shell and nothing but this
-/// planet's ground lies inside it along the ray. `behind` is the light of
-/// what lies beyond the shell (0: nothing): T is looked up only then.
-vec4 sky_view_radiance(vec3 ray, int hit_body, float hit_distance, vec3 albedo, vec4 behind) {
-  const bool own_ground = hit_body == planet;
+/// Variant 1's radiance: the camera is inside the shell and nothing but this
+/// planet's ground lies inside it along the ray; `behind` is the light of
+/// what lies beyond the shell.
+vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albedo, vec4 behind) {
   const vec3 up = -bodies[planet].centre.xyz;
   const float mu_view = dot(up, ray), mu_sun = dot(up, sun_direction);
   const vec3 ray_horizontal = ray - mu_view * up, sun_horizontal = sun_direction - mu_sun * up;
@@ -53,14 +65,18 @@ vec4 sky_view_radiance(vec3 ray, int hit_body, float hit_distance, vec3 albedo, 
 #if HAS_MIE
   S += texture(sky_view_table, vec3(uv, layer + 1.0)) * vec4(mie_phase(real(dot(ray, sun_direction))));
 #endif
-  if (own_ground) {
-    const vec4 g_sun = texture(sky_view_table, vec3(uv, layer + 2.0));
-    const vec4 g_sky = texture(sky_view_table, vec3(uv, layer + 3.0));
-    const float visibility = sun_visibility(ray * hit_distance, planet);
-    return (S + reflectance(albedo) * (g_sun * visibility + g_sky)) * sun_irradiance;
-  }
   vec4 L = S * sun_irradiance;
-  if (any(greaterThan(behind, vec4(0.0)))) L += vec4(transmittance_to_top(real(bodies[planet].centre.w), real(mu_view))) * behind;
+#if TILE_GROUND != 0
+  // G_sun and G_sky exist only in the ground half: for a sky pixel of a mixed
+  // tile these read the ground half's A and M, and are not used.
+  const vec4 g_sun = texture(sky_view_table, vec3(uv, layer + 2.0));
+  const vec4 g_sky = texture(sky_view_table, vec3(uv, layer + 3.0));
+  const vec4 ground = reflectance(albedo) * (g_sun * sun_visibility(ray * hit_distance, planet) + g_sky);
+  if (own_ground) L += ground * sun_irradiance;
+#endif
+#if BEHIND && TILE_GROUND != 1
+  if (!own_ground) L += vec4(transmittance_to_top(real(bodies[planet].centre.w), real(mu_view))) * behind;
+#endif
   return L;
 }
 #endif
@@ -71,20 +87,38 @@ void main() {
   vec4 L = vec4(0.0);
   vec3 ray;
   if (pixel_ray(p, ray)) {
-    float t;
-    const int b = nearest_body(ray, t);
+    // The body the ray meets (−1: none) and where.
+    float t = -1.0;
+    int b = -1;
+#if TILE_OTHERS != 0
+    b = nearest_body(ray, t);
+#elif TILE_GROUND == 1
+    // Every ray of these tiles meets the planet (the tile's cone lies within
+    // its disc, with a pixel's margin).
+    t = max(intersect_body(planet, ray), 0.0);
+    b = planet;
+#elif TILE_GROUND == 2
+    t = intersect_body(planet, ray);
+    b = t >= 0.0 ? planet : -1;
+#endif
     vec3 albedo = vec3(0.0);
-    if (b >= 0) albedo = surface_albedo(b, ray, t, body_normal(b, ray, t));
+#if TILE_GROUND != 0 || TILE_OTHERS != 0
+    albedo = surface_albedo(max(b, 0), ray, t, body_normal(max(b, 0), ray, t));
+#endif
     // What lies behind this atmosphere: another body (airless, or it would
     // have a shell here too) or the sun's disc; this planet's ground is its own.
     vec4 behind = vec4(0.0);
+#if SUN && TILE_GROUND != 1
     if (b < 0) behind = sun_disc(ray);
-    else if (b != planet) behind = airless_surface(b, ray, t, albedo);
+#endif
+#if TILE_OTHERS != 0
+    if (b >= 0 && b != planet) behind = airless_surface(b, ray, t, albedo);
+#endif
 #if SKY_VIEW
-    L = sky_view_radiance(ray, b, t, albedo, behind);
+    L = sky_view_radiance(ray, b == planet, t, albedo, behind);
 #else
     real4 radiance, transmittance_segment;
-    if (atmosphere_segment(ray, b >= 0 ? t : -1.0, b, real4(reflectance(albedo)), radiance, transmittance_segment))
+    if (atmosphere_segment(ray, t, b, real4(reflectance(albedo)), radiance, transmittance_segment))
       L = vec4(radiance) * sun_irradiance + vec4(transmittance_segment) * behind;
     else
       L = behind;
