@@ -132,8 +132,8 @@ struct Renderer::Impl {
   /// shaders/projection.glsl) on first use.
   struct FramePasses {
     ShaderProgram gbuffer, resolve;
-    // Tiles no atmosphere touches: bodies only, and the sun's tiles (SUN = 1).
-    ShaderProgram direct_light, direct_light_sun;
+    // Tiles no atmosphere touches: bodies (one body: ONE_BODY = 1; several), and the sun's tiles (SUN = 1).
+    ShaderProgram direct_light_one, direct_light, direct_light_sun;
   };
   std::map<std::pair<int, bool>, FramePasses> frame_passes;  // by projection kind and eclipses
   std::vector<gl::ShaderDefine> sun_defines;  // SUN_DISC, LIMB_DARKENING (resolve.comp, atmosphere_tile.comp)
@@ -147,16 +147,21 @@ struct Renderer::Impl {
     const gl::ShaderDefine eclipse_define{"ECLIPSES", eclipses ? "1" : "0"};
     std::vector<gl::ShaderDefine> resolve_defines = sun_defines;
     resolve_defines.insert(resolve_defines.end(), {eclipse_define, kind});
-    auto direct_defines = [&](bool sun) {
-      return std::vector<gl::ShaderDefine>{
-          {"SUN", sun ? "1" : "0"}, {"LIMB_DARKENING", limb_darkening ? "1" : "0"}, eclipse_define, kind};
+    auto direct_defines = [&](bool sun, bool one_body) {
+      return std::vector<gl::ShaderDefine>{{"SUN", sun ? "1" : "0"},
+                                           {"ONE_BODY", one_body ? "1" : "0"},
+                                           {"LIMB_DARKENING", limb_darkening ? "1" : "0"},
+                                           eclipse_define,
+                                           kind};
     };
     FramePasses p;
     const std::vector<gl::ShaderDefine> gbuffer_defines = {{"ECLIPSES", "0"}, kind};
     p.gbuffer = ShaderProgram::load_compute("render/gbuffer.comp", gbuffer_defines);
     p.resolve = ShaderProgram::load_compute("render/resolve.comp", resolve_defines);
-    p.direct_light = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false));
-    if (sun_disc) p.direct_light_sun = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(true));
+    p.direct_light_one = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false, true));
+    p.direct_light = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false, false));
+    if (sun_disc)
+      p.direct_light_sun = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(true, false));
     return frame_passes.emplace(std::pair{projection_kind, eclipses}, std::move(p)).first->second;
   }
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
@@ -378,6 +383,16 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   for (GpuBody& g : bodies) g.albedo_map = {static_cast<float>(im.albedo_array.width()), 0, 0, 0};
   im.albedo_array.bind(kAlbedoMapUnit);
   im.bodies = gl::Buffer::from(std::span<const GpuBody>(bodies.empty() ? std::vector<GpuBody>(1) : bodies));
+  // frame.glsl's the_body: body b's data as plain uniforms of a pass about it.
+  auto set_the_body = [&](const ShaderProgram& p, std::size_t b) {
+    const GpuBody& g = bodies[b];
+    p.set_uniform("the_body.centre", g.centre);
+    p.set_uniform("the_body.shape", g.shape);
+    p.set_uniform("the_body.albedo_map", g.albedo_map);
+    p.set_uniform("the_body.world_to_body0", g.world_to_body[0]);
+    p.set_uniform("the_body.world_to_body1", g.world_to_body[1]);
+    p.set_uniform("the_body.world_to_body2", g.world_to_body[2]);
+  };
 
   // ---- tables: only for atmospheres the view touches, only when not resident
   auto touches_view = [&](const AtmospherePass& pass) {
@@ -483,6 +498,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
         rgb_from_albedo[static_cast<std::size_t>(in * 3 + out)] = static_cast<float>(exposure * m);
       }
     prepare(fp.direct_light).set_uniform("rgb_from_albedo", rgb_from_albedo);
+    prepare(fp.direct_light_one).set_uniform("rgb_from_albedo", rgb_from_albedo);
     if (fp.direct_light_sun.id() != 0) {
       const ShaderProgram& p = prepare(fp.direct_light_sun);
       p.set_uniform("rgb_from_albedo", rgb_from_albedo);
@@ -658,12 +674,34 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
       return l;
     };
     const TileList gbuffer_tiles = list_of([](std::uint8_t u) { return (u & kGbuffer) != 0; });
-    const TileList body_tiles = list_of([](std::uint8_t u) { return u == kBody; });
+    // Body tiles (no shell, no sun): those only one body can be in, per body (ONE_BODY), then the others.
+    std::vector<std::uint8_t> body_count(band_tiles, 0);
+    for (const auto& list : body_tiles_of)
+      for (std::uint32_t t : list) body_count[tile_index(t)] = static_cast<std::uint8_t>(std::min(body_count[tile_index(t)] + 1, 2));
+    std::vector<std::pair<std::size_t, TileList>> one_body_tiles;
+    std::size_t one_body_count = 0;
+    for (std::size_t b = 0; b < body_tiles_of.size(); ++b) {
+      std::vector<std::uint32_t> only;
+      for (std::uint32_t t : body_tiles_of[b])
+        if (shells[tile_index(t)] == 0 && use[tile_index(t)] == kBody && body_count[tile_index(t)] == 1) only.push_back(t);
+      if (only.empty()) continue;
+      one_body_tiles.emplace_back(b, append(only));
+      one_body_count += only.size();
+    }
+    TileList body_tiles = list_of([](std::uint8_t u) { return u == kBody; });
+    {  // drop the one-body tiles from the general list (they were appended again at its end)
+      std::vector<std::uint32_t> rest;
+      for (std::size_t k = body_tiles.offset; k < body_tiles.offset + body_tiles.count; ++k)
+        if (body_count[tile_index(all_tiles[k])] > 1) rest.push_back(all_tiles[k]);
+      all_tiles.resize(body_tiles.offset);
+      body_tiles = append(rest);
+    }
     const TileList sun_tiles = list_of([](std::uint8_t u) { return (u & kGbuffer) == 0 && (u & kSun) != 0; });
     stats_.tiles_gbuffer += gbuffer_tiles.count;
     stats_.tiles_one_atmosphere += one_pass_atmosphere_tiles;
-    stats_.tiles_direct += body_tiles.count + sun_tiles.count;
-    const std::size_t drawn = gbuffer_tiles.count + one_pass_atmosphere_tiles + body_tiles.count + sun_tiles.count;
+    stats_.tiles_direct += one_body_count + body_tiles.count + sun_tiles.count;
+    const std::size_t drawn =
+        gbuffer_tiles.count + one_pass_atmosphere_tiles + one_body_count + body_tiles.count + sun_tiles.count;
     stats_.tiles_black += band_tiles - drawn;
     im.ensure_tiles_buffer(all_tiles.size());
     if (!all_tiles.empty()) im.tiles.upload(std::span<const std::uint32_t>(all_tiles));
@@ -699,6 +737,11 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     };
 
     // ---- tiles no atmosphere touches: one pass each, every wavelength
+    for (const auto& [b, list] : one_body_tiles) {
+      set_the_body(prepare(fp.direct_light_one), b);
+      fp.direct_light_one.set_uniform("one_body", static_cast<int>(b));
+      timer.gpu("direct light", [&] { dispatch_tiles(fp.direct_light_one, list); });
+    }
     if (body_tiles.count > 0)
       timer.gpu("direct light", [&] { dispatch_tiles(fp.direct_light, body_tiles); });
     if (sun_tiles.count > 0)
@@ -717,6 +760,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
             const ShaderProgram& p = pass.gpu->tile_program(projection_kind, eclipses, variant);
             set_group_uniforms(p, g);
             pass.gpu->set_group(p, g);
+            set_the_body(p, static_cast<std::size_t>(pass.body));
             p.set_uniform("planet", pass.body);
             p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
             timer.gpu(fmt::format("atmosphere {}, one pass{}", stats_.atmospheres[a].body,
@@ -751,6 +795,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
           im.tiles.bind_storage(kTiles);
           prepare(p);
           pass.gpu->set_group(p, g);
+          set_the_body(p, static_cast<std::size_t>(pass.body));
           p.set_uniform("planet", pass.body);
           p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
           p.set_uniform("sun_irradiance", lanes(scene.sun.irradiance_W_m2_nm, g));

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -84,6 +85,19 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   std::vector<double> texel_values(2 * mu_s + 1 + 2 * tables.sizes.scattering_r * (tables.sizes.scattering_mu / 2), 0.0);
   texel_values[2 * mu_s] = std::acos(tables.geometry.min_sun_cosine());
   texel_coordinates_ = real_buffer(texel_values, features.fp64);
+  // The same values as uniforms for the render passes (atmosphere_segment.glsl).
+  sun_theta_max_ = static_cast<float>(texel_values[2 * mu_s]);
+  auto lanes = [&](const atmosphere::Spectrum& values, std::size_t group) {
+    std::array<float, 4> out{0, 0, 0, 0};
+    for (std::size_t k = 0; k < kLanes && group * kLanes + k < values.size(); ++k)
+      out[k] = static_cast<float>(values[group * kLanes + k]);
+    return out;
+  };
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    groups_[g].mie_g1 = lanes(model.mie_phase.g1, g);
+    groups_[g].mie_g2 = lanes(model.mie_phase.g2, g);
+    groups_[g].mie_alpha = lanes(model.mie_phase.alpha, g);
+  }
 
   std::vector<gl::ShaderDefine> defines = shader.defines;
   defines.push_back({"MULTIPLE_SCATTERING", features.multiple_scattering && tables.scattering_orders >= 2 ? "1" : "0"});
@@ -111,6 +125,11 @@ void GpuAtmosphere::bind(std::size_t group) const {
 
 void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t group) const {
   program.set_uniform("wavelength_group", static_cast<int>(group));
+  const GroupTextures& t = groups_.at(group);
+  program.set_uniform("mie_g1", t.mie_g1);
+  program.set_uniform("mie_g2", t.mie_g2);
+  program.set_uniform("mie_alpha", t.mie_alpha);
+  program.set_uniform("table_sun_theta_max", sun_theta_max_);
   program.set_uniform("sky_view_layer_base", static_cast<int>(group) * SkyViewTable::kLayersPerGroup);
   program.set_uniform("sky_view_theta_horizon", static_cast<float>(sky_view_->theta_horizon_rad()));
 }
@@ -160,7 +179,7 @@ void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, dou
     wavelength_data_.bind_storage(kWavelengthData);
     table_data_.bind_storage(kTableData);
     texel_coordinates_.bind_storage(kTexelCoordinates);
-    fill.set_uniform("wavelength_group", static_cast<int>(g));
+    set_group(fill, g);
     sky_view_->fill_group(g);
   }
 }

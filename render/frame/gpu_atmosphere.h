@@ -6,6 +6,7 @@
 // Tables are uploaded once per table set (identified by its hash); the
 // renderer keeps a GpuAtmosphere per hash, so re-rendering with unchanged
 // parameters uploads and precomputes nothing.
+#include <array>
 #include <map>
 #include <memory>
 #include <span>
@@ -57,7 +58,8 @@ class GpuAtmosphere {
   const gl::ShaderProgram& tile_program(int projection_kind, bool eclipses, const TileVariant& variant);
   /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).
   const gl::ShaderProgram& gbuffer_path_program(int projection_kind, bool eclipses);
-  /// Sets `wavelength_group` and the sky-view uniforms of one of these programs for group g.
+  /// Sets `wavelength_group`, the Mie phase's parameters, the tables' acos(μs_min)
+  /// and the sky-view uniforms of one of these programs for group g.
   void set_group(const gl::ShaderProgram& program, std::size_t group) const;
   /// Bytes of GPU memory the tables take.
   std::size_t table_bytes() const { return table_bytes_; }
@@ -75,6 +77,7 @@ class GpuAtmosphere {
  private:
   struct GroupTextures {
     gl::Texture transmittance, irradiance, single_rayleigh, single_mie, multiple;
+    std::array<float, 4> mie_g1{}, mie_g2{}, mie_alpha{};  // the Mie phase's parameters per lane
   };
   std::string hash_;
   double top_radius_m_ = 0.0, ground_radius_m_ = 0.0;
@@ -84,6 +87,7 @@ class GpuAtmosphere {
                                    std::vector<gl::ShaderDefine> defines);
   std::vector<gl::ShaderDefine> defines_, tile_defines_;  // atmosphere_pass.comp's; atmosphere_tile.comp's
   bool eclipses_ = true;                                  // AtmospherePassFeatures::eclipses
+  float sun_theta_max_ = 0.0f;                            // acos(μs_min) of the tables' μs mapping
   std::map<std::string, gl::ShaderProgram> programs_;     // compiled on first use, by variant
   std::unique_ptr<SkyViewTable> sky_view_;
   std::size_t table_bytes_ = 0;

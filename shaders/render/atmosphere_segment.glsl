@@ -31,8 +31,48 @@ layout(binding = 2) uniform sampler3D single_mie_texture;
 layout(binding = 3) uniform sampler3D multiple_texture;
 layout(binding = 4) uniform sampler2D irradiance_texture;
 
-uniform int planet;              // index of the body this atmosphere surrounds
+uniform int planet;              // index of the body this atmosphere surrounds (its data: the_body, frame.glsl)
 uniform float camera_top_power;  // |c|² − RT² [m²], in double on the CPU
+
+// The model's values that atmosphere_common.glsl reads from storage buffers
+// (wavelength_data, texel_values), as uniforms of the group: llvmpipe reads a
+// storage buffer lane by lane inside branches, a uniform once per SIMD vector.
+// USE_FP64 keeps the buffers (double values).
+uniform vec4 mie_g1, mie_g2, mie_alpha;  // the Mie phase's parameters (FIELD_MIE_G1, _G2, _ALPHA)
+uniform float table_sun_theta_max;      // acos(μs_min) (TEXEL_SUN_THETA_MAX)
+
+/// scattering_uvwz with acos(μs_min) from the uniform.
+ScatteringUV frame_scattering_uvwz(real r, real mu, real mu_s, real nu, bool hits_ground, int mapping) {
+#if USE_FP64
+  return scattering_uvwz(r, mu, mu_s, nu, hits_ground, mapping);
+#else
+  ScatteringUV uv;
+  uv.u_r = scattering_u_r(r);
+  uv.u_mu = scattering_u_mu(r, mu, hits_ground, mapping);
+  uv.u_mu_s = texture_coord_from_unit(unit_from_mu_s(mu_s, mapping, table_sun_theta_max), SCATTERING_MU_S);
+  uv.u_nu = unit_from_nu(nu);
+  return uv;
+#endif
+}
+
+#if HAS_MIE
+/// mie_phase (atmosphere_common.glsl, the twin of atmosphere/phase_functions.cpp)
+/// with its parameters from the uniforms.
+real4 frame_mie_phase(real c) {
+#if USE_FP64
+  return mie_phase(c);
+#else
+#if MIE_PHASE == 0
+  return henyey_greenstein(c, mie_g1);
+#elif MIE_PHASE == 1
+  return mie_alpha * henyey_greenstein(c, mie_g1) + (1.0 - mie_alpha) * henyey_greenstein(c, mie_g2);
+#else
+  const vec4 denom = 1.0 + mie_g1 * mie_g1 - 2.0 * mie_g1 * c;
+  return 3.0 * (1.0 - mie_g1 * mie_g1) * (1.0 + c * c) / (2.0 * (2.0 + mie_g1 * mie_g1) * denom * sqrt(denom)) * INV_4PI;
+#endif
+#endif
+}
+#endif
 
 /// S split by smoothness in direction: S = smooth + mie · P_M(ν). The single
 /// Mie term without its phase, whose forward peak no coarse table could hold.
@@ -63,12 +103,12 @@ real4 sample_table_4d(sampler3D table, ScatteringUV uv) {
 }
 
 Inscatter inscatter(real r, real mu, real mu_s, real nu, bool hits_ground) {
-  const ScatteringUV single = scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_DISTANCE);
+  const ScatteringUV single = frame_scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_DISTANCE);
   Inscatter s;
   s.smooth_part = sample_table_4d(single_rayleigh_texture, single) * rayleigh_phase(nu);
 #if MULTIPLE_SCATTERING
   s.smooth_part +=
-      sample_table_4d(multiple_texture, scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_BLENDED));
+      sample_table_4d(multiple_texture, frame_scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_BLENDED));
 #endif
 #if HAS_MIE
   s.mie = sample_table_4d(single_mie_texture, single);
@@ -82,7 +122,7 @@ Inscatter inscatter(real r, real mu, real mu_s, real nu, bool hits_ground) {
 real4 scattering(real r, real mu, real mu_s, real nu, bool hits_ground) {
   const Inscatter s = inscatter(r, mu, mu_s, nu, hits_ground);
 #if HAS_MIE
-  return s.smooth_part + s.mie * mie_phase(nu);
+  return s.smooth_part + s.mie * frame_mie_phase(nu);
 #else
   return s.smooth_part;
 #endif
@@ -110,7 +150,7 @@ real4 sky_irradiance(real mu_s) {
 /// The ground's reflected light where the ray meets this planet at distance t,
 /// per unit solar irradiance: L_g = ρ/π (E_sun T_sun(y) V + E_sky(y)).
 real4 ground_radiance(vec3 ray, float t, real4 rho) {
-  const vec3 n = body_normal(planet, ray, t);
+  const vec3 n = body_normal(the_body, ray, t);
   const real mu_s_ground = real(dot(n, sun_direction));
   const real visibility = real(sun_visibility(ray * t, planet));
   return rho / PI * (direct_irradiance(RB, mu_s_ground) * visibility + sky_irradiance(mu_s_ground));
@@ -130,11 +170,11 @@ bool atmosphere_segment(vec3 ray, float hit_distance, int hit_body, real4 rho, o
   const bool own_ground = hits_body && hit_body == planet;
   const real nu = real(dot(ray, sun_direction));
   // The planet-centred frame: the camera at distance r along `up`.
-  const vec3 up = -bodies[planet].centre.xyz;
-  const float r_camera = bodies[planet].centre.w;
-  const vec3 c = body_centre(planet);
+  const vec3 up = -the_body.centre.xyz;
+  const float r_camera = the_body.centre.w;
+  const vec3 c = body_centre(the_body);
   float q, disc;
-  if (!sphere_chord(ray, bodies[planet].centre.xyz, r_camera, float(RT), camera_top_power, q, disc)) return false;
+  if (!sphere_chord(ray, the_body.centre.xyz, r_camera, float(RT), camera_top_power, q, disc)) return false;
   const float half_chord = sqrt(disc);
   // Entry (0 inside the shell) and exit distances along the ray.
   const bool inside = camera_top_power <= 0.0;

@@ -53,7 +53,7 @@ uniform float sky_view_theta_horizon;  // zenith angle of the geometric horizon 
 /// planet's ground lies inside it along the ray; `behind` is the light of
 /// what lies beyond the shell.
 vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albedo, vec4 behind) {
-  const vec3 up = -bodies[planet].centre.xyz;
+  const vec3 up = -the_body.centre.xyz;
   const float mu_view = dot(up, ray), mu_sun = dot(up, sun_direction);
   const vec3 ray_horizontal = ray - mu_view * up, sun_horizontal = sun_direction - mu_sun * up;
   const float norms = dot(ray_horizontal, ray_horizontal) * dot(sun_horizontal, sun_horizontal);
@@ -63,7 +63,7 @@ vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albed
   const float layer = float(sky_view_layer_base + (own_ground ? SKY_VIEW_GROUND : SKY_VIEW_SKY));
   vec4 S = texture(sky_view_table, vec3(uv, layer));
 #if HAS_MIE
-  S += texture(sky_view_table, vec3(uv, layer + 1.0)) * vec4(mie_phase(real(dot(ray, sun_direction))));
+  S += texture(sky_view_table, vec3(uv, layer + 1.0)) * vec4(frame_mie_phase(real(dot(ray, sun_direction))));
 #endif
   vec4 L = S * sun_irradiance;
 #if TILE_GROUND != 0
@@ -75,7 +75,7 @@ vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albed
   if (own_ground) L += ground * sun_irradiance;
 #endif
 #if BEHIND && TILE_GROUND != 1
-  if (!own_ground) L += vec4(transmittance_to_top(real(bodies[planet].centre.w), real(mu_view))) * behind;
+  if (!own_ground) L += vec4(transmittance_to_top(real(the_body.centre.w), real(mu_view))) * behind;
 #endif
   return L;
 }
@@ -95,15 +95,17 @@ void main() {
 #elif TILE_GROUND == 1
     // Every ray of these tiles meets the planet (the tile's cone lies within
     // its disc, with a pixel's margin).
-    t = max(intersect_body(planet, ray), 0.0);
+    t = max(intersect_body(the_body, ray), 0.0);
     b = planet;
 #elif TILE_GROUND == 2
-    t = intersect_body(planet, ray);
+    t = intersect_body(the_body, ray);
     b = t >= 0.0 ? planet : -1;
 #endif
     vec3 albedo = vec3(0.0);
-#if TILE_GROUND != 0 || TILE_OTHERS != 0
+#if TILE_OTHERS != 0
     albedo = surface_albedo(max(b, 0), ray, t, body_normal(max(b, 0), ray, t));
+#elif TILE_GROUND != 0
+    albedo = surface_albedo(the_body, ray, t, body_normal(the_body, ray, t));
 #endif
     // What lies behind this atmosphere: another body (airless, or it would
     // have a shell here too) or the sun's disc; this planet's ground is its own.

@@ -16,7 +16,9 @@
 // The same physics as resolve.comp with T = 1 and L = 0, summed over every
 // wavelength group at once (equal to float rounding; RendererFusedPass tests).
 //
-// Defines: SUN (1: the sun's disc can be in the tile), LIMB_DARKENING, ECLIPSES.
+// Defines: SUN (1: the sun's disc can be in the tile), ONE_BODY (1: only the
+// body `one_body` can be in the tiles: no search over the bodies, its data
+// from uniforms), LIMB_DARKENING, ECLIPSES.
 #include "frame.glsl"
 #include "frame_rgb.glsl"
 #include "sun_disc.glsl"
@@ -30,12 +32,26 @@ uniform int wavelength_count;
 uniform vec4 sun_spectrum[64];  // per wavelength: xyz = exposure · w(λ) · I_centre(λ), w = α(λ)
 #endif
 
+#if ONE_BODY
+uniform int one_body;  // the only body these tiles can hold (its data: the_body, frame.glsl)
+#endif
+
 void main() {
   ivec2 p;
   if (!tile_pixel(p)) return;
   vec3 rgb = vec3(0.0);
   vec3 ray;
   if (pixel_ray(p, ray)) {
+#if ONE_BODY
+    const float t = intersect_body(the_body, ray);
+    const int b = t >= 0.0 ? one_body : -1;
+    if (b >= 0) {
+      const vec3 n = body_normal(the_body, ray, t);
+      const float cos_i = max(dot(n, sun_direction), 0.0);
+      rgb = rgb_from_albedo * surface_albedo(the_body, ray, t, n) *
+            (cos_i * sun_visibility(ray * t, one_body) * (1.0 / 3.14159265));
+    }
+#else
     float t;
     const int b = nearest_body(ray, t);
     if (b >= 0) {
@@ -43,6 +59,7 @@ void main() {
       const float cos_i = max(dot(n, sun_direction), 0.0);
       rgb = rgb_from_albedo * surface_albedo(b, ray, t, n) * (cos_i * sun_visibility(ray * t, b) * (1.0 / 3.14159265));
     }
+#endif
 #if SUN
     else {
       const SunSample s = sun_sample(ray);

@@ -22,6 +22,11 @@ struct Body {
   vec4 world_to_body2;
 };
 layout(std430, binding = 4) readonly buffer Bodies { Body bodies[]; };
+/// The one body a pass is about, as plain uniforms (render/renderer.cpp sets
+/// it to bodies[i]): the planet of an atmosphere's passes, the only body of a
+/// direct-light tile list. llvmpipe reads storage buffers lane by lane inside
+/// branches, uniforms once per SIMD vector.
+uniform Body the_body;
 
 uniform int body_count;
 uniform mat3 camera_to_world;
@@ -61,7 +66,8 @@ bool pixel_ray(ivec2 p, out vec3 ray) {
   return true;
 }
 
-vec3 body_centre(int b) { return bodies[b].centre.xyz * bodies[b].centre.w; }
+vec3 body_centre(Body body) { return body.centre.xyz * body.centre.w; }
+vec3 body_centre(int b) { return body_centre(bodies[b]); }
 
 /// Where a ray meets a sphere of radius R centred at distance D along unit
 /// direction c from the camera: q = D (ray·c) is the distance to the point of
@@ -82,16 +88,17 @@ bool sphere_chord(vec3 ray, vec3 centre_dir, float centre_distance, float R, flo
   return disc >= 0.0;
 }
 
-/// Distance along unit `ray` to the first intersection with body b (front face),
+/// Distance along unit `ray` to the first intersection with a body (front face),
 /// or −1: t = C / (q + √disc), the stable root.
-float intersect_body(int b, vec3 ray) {
-  const float C = bodies[b].shape.y;
+float intersect_body(Body body, vec3 ray) {
+  const float C = body.shape.y;
   if (C <= 0.0) return -1.0;  // inside the body: the scene loader forbids it
   float q, disc;
-  if (!sphere_chord(ray, bodies[b].centre.xyz, bodies[b].centre.w, bodies[b].shape.x, C, q, disc)) return -1.0;
+  if (!sphere_chord(ray, body.centre.xyz, body.centre.w, body.shape.x, C, q, disc)) return -1.0;
   if (q <= 0.0) return -1.0;
   return C / (q + sqrt(disc));
 }
+float intersect_body(int b, vec3 ray) { return intersect_body(bodies[b], ray); }
 
 /// The nearest body along `ray` and the distance to it [m]; −1 where none.
 int nearest_body(vec3 ray, out float distance_m) {
@@ -107,15 +114,13 @@ int nearest_body(vec3 ray, out float distance_m) {
   return hit_body;
 }
 
-/// Outward unit normal of body b at distance t along `ray` (world frame).
-vec3 body_normal(int b, vec3 ray, float t) {
-  return normalize(ray * t - body_centre(b));
-}
+/// Outward unit normal of a body at distance t along `ray` (world frame).
+vec3 body_normal(Body body, vec3 ray, float t) { return normalize(ray * t - body_centre(body)); }
+vec3 body_normal(int b, vec3 ray, float t) { return body_normal(bodies[b], ray, t); }
 
 /// The normal in the body frame (for its albedo map).
-vec3 to_body_frame(int b, vec3 n) {
-  return vec3(dot(bodies[b].world_to_body0.xyz, n), dot(bodies[b].world_to_body1.xyz, n),
-              dot(bodies[b].world_to_body2.xyz, n));
+vec3 to_body_frame(Body body, vec3 n) {
+  return vec3(dot(body.world_to_body0.xyz, n), dot(body.world_to_body1.xyz, n), dot(body.world_to_body2.xyz, n));
 }
 
 /// Angle between two unit vectors, accurate for small angles too (acos is not).

@@ -7,17 +7,18 @@
 
 layout(binding = 8) uniform sampler2DArray albedo_maps;
 
-/// Linear sRGB albedo of body b at distance t along `ray`, n its outward normal there.
-vec3 surface_albedo(int b, vec3 ray, float t, vec3 n) {
+/// Linear sRGB albedo of a body at distance t along `ray`, n its outward normal there.
+vec3 surface_albedo(Body body, vec3 ray, float t, vec3 n) {
   // Equirectangular map in the body frame: u from longitude −180°, v from the north pole.
-  const vec3 nb = to_body_frame(b, n);
+  const vec3 nb = to_body_frame(body, n);
   const float PI_F = 3.14159265;
   const vec2 uv = vec2(atan(nb.y, nb.x) / (2.0 * PI_F) + 0.5, acos(clamp(nb.z, -1.0, 1.0)) / PI_F);
   // Level of detail: the pixel's footprint on the surface (stretched by the
   // incidence angle) in texels of the map's level 0 (2π R per map width).
   const float cos_incidence = max(abs(dot(n, ray)), 0.05);
   const float footprint_m = pixel_angle * t / cos_incidence;
-  const float texel_m = 2.0 * PI_F * bodies[b].shape.x / max(bodies[b].albedo_map.x, 1.0);
+  const float texel_m = 2.0 * PI_F * body.shape.x / max(body.albedo_map.x, 1.0);
   const float lod = max(0.0, log2(max(footprint_m / texel_m, 1e-6)));
-  return textureLod(albedo_maps, vec3(uv, bodies[b].shape.w), lod).rgb;
+  return textureLod(albedo_maps, vec3(uv, body.shape.w), lod).rgb;
 }
+vec3 surface_albedo(int b, vec3 ray, float t, vec3 n) { return surface_albedo(bodies[b], ray, t, n); }
