@@ -448,6 +448,13 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   for (int col = 0; col < 3; ++col)
     for (int row = 0; row < 3; ++row) camera_matrix[col * 3 + row] = static_cast<float>(camera_to_world[col][row]);
   const warp::GpuProjection gpu_projection = projection.gpu();
+  // Planar and cube-face projections: their affine ray's vectors in the world frame (frame.glsl).
+  std::array<std::array<float, 3>, 3> world_ray{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto& v = gpu_projection.params[k];
+    const glm::dvec3 w = camera_to_world * glm::dvec3(v[0], v[1], v[2]);
+    world_ray[k] = {static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z)};
+  }
   auto set_frame_uniforms = [&](const ShaderProgram& p) {
     p.set_uniform("body_count", static_cast<int>(scene.bodies.size()));
     p.set_uniform("camera_to_world", camera_matrix);
@@ -460,6 +467,8 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
       p.set_uniform(fmt::format("projection_params[{}]", k), gpu_projection.params[static_cast<std::size_t>(k)]);
     p.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
     p.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
+    for (const auto& [name, k] : {std::pair{"world_ray_x", 0}, std::pair{"world_ray_y", 1}, std::pair{"world_ray_centre", 2}})
+      p.set_uniform(name, world_ray[static_cast<std::size_t>(k)]);
   };
   // Programs are compiled per projection kind, and with the eclipse code only
   // when another body can cast a shadow (a CPU rasterizer runs all of it).
@@ -700,19 +709,16 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     stats_.tiles_gbuffer += gbuffer_tiles.count;
     stats_.tiles_one_atmosphere += one_pass_atmosphere_tiles;
     stats_.tiles_direct += one_body_count + body_tiles.count + sun_tiles.count;
-    const std::size_t drawn =
-        gbuffer_tiles.count + one_pass_atmosphere_tiles + one_body_count + body_tiles.count + sun_tiles.count;
-    stats_.tiles_black += band_tiles - drawn;
+    stats_.tiles_black +=
+        band_tiles - (gbuffer_tiles.count + one_pass_atmosphere_tiles + one_body_count + body_tiles.count + sun_tiles.count);
     im.ensure_tiles_buffer(all_tiles.size());
     if (!all_tiles.empty()) im.tiles.upload(std::span<const std::uint32_t>(all_tiles));
     im.tiles.bind_storage(kTiles);
     im.frame_rgb.bind_storage(kFrameRgb);
     const std::size_t band_bytes = static_cast<std::size_t>(width) * rows * 4 * sizeof(float);
-    if (drawn < band_tiles)
-      timer.gpu("clear", [&] {  // black where nothing is dispatched
-        glClearNamedBufferSubData(im.frame_rgb.id(), GL_R32F, 0, static_cast<GLsizeiptr>(band_bytes), GL_RED,
-                                  GL_FLOAT, nullptr);
-      });
+    // Tiles nothing is dispatched for stay black: not cleared on the GPU, zeros in the rows.
+    std::vector<std::uint8_t> black(band_tiles, 0);
+    for (std::size_t i = 0; i < band_tiles; ++i) black[i] = shells[i] == 0 && use[i] == 0;
     auto dispatch_tiles = [&](const ShaderProgram& p, TileList list) {
       prepare(p);
       p.set_uniform("tile_offset", static_cast<int>(list.offset));
@@ -763,8 +769,12 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
             set_the_body(p, static_cast<std::size_t>(pass.body));
             p.set_uniform("planet", pass.body);
             p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
-            timer.gpu(fmt::format("atmosphere {}, one pass{}", stats_.atmospheres[a].body,
-                                  variant.sky_view ? ", sky view" : ""),
+            timer.gpu(fmt::format("atmosphere {}, one pass, {}, {}{}{}", stats_.atmospheres[a].body,
+                                  variant.sky_view ? "sky view" : "4D tables",
+                                  variant.ground == TileCover::none  ? "sky"
+                                  : variant.ground == TileCover::all ? "ground"
+                                                                     : "horizon",
+                                  variant.others == 0 ? "" : " + bodies", variant.sun ? " + sun" : ""),
                       [&] { dispatch_tiles(p, list); });
           }
         }
@@ -813,21 +823,29 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     }
 
     // Read back the band's rows (clipped by the passes): RGB of each (r, g, b, 0),
-    // packed from the mapped buffer by both cores.
+    // packed from the mapped buffer by both cores, a tile row per task; zeros
+    // for the black tiles, whose memory is not read.
     rows_rgb.resize(static_cast<std::size_t>(width) * rows * 3);
     timer.cpu("readback", [&] {
       im.frame_rgb.read_mapped(band_bytes, [&](std::span<const std::byte> bytes) {
         const auto* rgba = reinterpret_cast<const float*>(bytes.data());
-        constexpr std::size_t kRowsPerTask = 16;
-        atmosphere::parallel_for((static_cast<std::size_t>(rows) + kRowsPerTask - 1) / kRowsPerTask, 0, [&](std::size_t task) {
-          const std::size_t begin = task * kRowsPerTask * static_cast<std::size_t>(width);
-          const std::size_t end = std::min<std::size_t>(begin + kRowsPerTask * static_cast<std::size_t>(width),
-                                                        static_cast<std::size_t>(width) * rows);
-          for (std::size_t i = begin; i < end; ++i) {
-            rows_rgb[3 * i] = rgba[4 * i];
-            rows_rgb[3 * i + 1] = rgba[4 * i + 1];
-            rows_rgb[3 * i + 2] = rgba[4 * i + 2];
-          }
+        atmosphere::parallel_for(static_cast<std::size_t>(band_tile_rows), 0, [&](std::size_t tile_row) {
+          const int y_end = std::min(rows, static_cast<int>(tile_row + 1) * kTileSize);
+          for (int y = static_cast<int>(tile_row) * kTileSize; y < y_end; ++y)
+            for (int tx = 0; tx < cones.columns(); ++tx) {
+              const std::size_t begin = static_cast<std::size_t>(y) * width + static_cast<std::size_t>(tx) * kTileSize;
+              const std::size_t end = static_cast<std::size_t>(y) * width + std::min(width, (tx + 1) * kTileSize);
+              if (black[tile_row * static_cast<std::size_t>(cones.columns()) + static_cast<std::size_t>(tx)]) {
+                std::fill(rows_rgb.begin() + static_cast<std::ptrdiff_t>(3 * begin),
+                          rows_rgb.begin() + static_cast<std::ptrdiff_t>(3 * end), 0.0f);
+                continue;
+              }
+              for (std::size_t i = begin; i < end; ++i) {
+                rows_rgb[3 * i] = rgba[4 * i];
+                rows_rgb[3 * i + 1] = rgba[4 * i + 1];
+                rows_rgb[3 * i + 2] = rgba[4 * i + 2];
+              }
+            }
         });
       });
     });
