@@ -80,6 +80,23 @@ bool eclipses_possible(const scene::Scene& scene) {
   return false;
 }
 
+/// Whether every albedo lookup of the frame is at level 0 of the maps
+/// (surface_albedo.glsl: lod = max(0, log2(footprint / texel))): a pixel's
+/// footprint on a body is at most pixel angle × distance / 0.05 (the clamp of
+/// the incidence cosine), and nothing of a sphere seen from outside lies
+/// farther than its horizon, √(D² − R²). Then the passes sample level 0 with a
+/// constant level (ALBEDO_LOD0): the same texels, without the per-pixel mip
+/// selection a CPU rasterizer pays for.
+bool albedo_at_full_resolution(const scene::Scene& scene, double pixel_angle, int map_width) {
+  for (const scene::Body& body : scene.bodies) {
+    const double D = glm::length(body.position_m - scene.camera.position_m), R = body.radius_m;
+    const double farthest = std::sqrt(std::max((D - R) * (D + R), 0.0));
+    const double texel = 2.0 * std::numbers::pi * R / std::max(map_width, 1);
+    if (20.0 * pixel_angle * farthest > 0.99 * texel) return false;
+  }
+  return true;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -135,34 +152,34 @@ struct Renderer::Impl {
     // Tiles no atmosphere touches: bodies (one body: ONE_BODY = 1; several), and the sun's tiles (SUN = 1).
     ShaderProgram direct_light_one, direct_light, direct_light_sun;
   };
-  std::map<std::pair<int, bool>, FramePasses> frame_passes;  // by projection kind and eclipses
+  std::map<std::string, FramePasses> frame_passes;  // by FrameVariant::key
   std::vector<gl::ShaderDefine> sun_defines;  // SUN_DISC, LIMB_DARKENING (resolve.comp, atmosphere_tile.comp)
   bool sun_disc = true, limb_darkening = true;
 
-  /// `eclipses`: other bodies' shadows can fall in this frame (ECLIPSES = 1).
-  const FramePasses& passes_for(int projection_kind, bool eclipses) {
-    auto it = frame_passes.find({projection_kind, eclipses});
+  const FramePasses& passes_for(const FrameVariant& frame) {
+    auto it = frame_passes.find(frame.key());
     if (it != frame_passes.end()) return it->second;
-    const gl::ShaderDefine kind{"PROJECTION_KIND", std::to_string(projection_kind)};
-    const gl::ShaderDefine eclipse_define{"ECLIPSES", eclipses ? "1" : "0"};
+    const std::vector<gl::ShaderDefine> frame_defines = frame.defines();
     std::vector<gl::ShaderDefine> resolve_defines = sun_defines;
-    resolve_defines.insert(resolve_defines.end(), {eclipse_define, kind});
+    resolve_defines.insert(resolve_defines.end(), frame_defines.begin(), frame_defines.end());
     auto direct_defines = [&](bool sun, bool one_body) {
-      return std::vector<gl::ShaderDefine>{{"SUN", sun ? "1" : "0"},
-                                           {"ONE_BODY", one_body ? "1" : "0"},
-                                           {"LIMB_DARKENING", limb_darkening ? "1" : "0"},
-                                           eclipse_define,
-                                           kind};
+      std::vector<gl::ShaderDefine> d = {{"SUN", sun ? "1" : "0"},
+                                         {"ONE_BODY", one_body ? "1" : "0"},
+                                         {"LIMB_DARKENING", limb_darkening ? "1" : "0"}};
+      d.insert(d.end(), frame_defines.begin(), frame_defines.end());
+      return d;
     };
     FramePasses p;
-    const std::vector<gl::ShaderDefine> gbuffer_defines = {{"ECLIPSES", "0"}, kind};
+    FrameVariant no_eclipses = frame;  // the G-buffer pass shades nothing
+    no_eclipses.eclipses = false;
+    const std::vector<gl::ShaderDefine> gbuffer_defines = no_eclipses.defines();
     p.gbuffer = ShaderProgram::load_compute("render/gbuffer.comp", gbuffer_defines);
     p.resolve = ShaderProgram::load_compute("render/resolve.comp", resolve_defines);
     p.direct_light_one = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false, true));
     p.direct_light = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false, false));
     if (sun_disc)
       p.direct_light_sun = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(true, false));
-    return frame_passes.emplace(std::pair{projection_kind, eclipses}, std::move(p)).first->second;
+    return frame_passes.emplace(frame.key(), std::move(p)).first->second;
   }
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   std::map<std::string, image::LinearImage> albedo_images;           // by albedo_key
@@ -473,8 +490,11 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   // Programs are compiled per projection kind, and with the eclipse code only
   // when another body can cast a shadow (a CPU rasterizer runs all of it).
   const int projection_kind = static_cast<int>(gpu_projection.kind);
-  const bool eclipses = options_.atmosphere.eclipses && eclipses_possible(scene);
-  const Impl::FramePasses& fp = im.passes_for(projection_kind, eclipses);
+  FrameVariant frame_variant;
+  frame_variant.projection_kind = projection_kind;
+  frame_variant.eclipses = options_.atmosphere.eclipses && eclipses_possible(scene);
+  frame_variant.albedo_lod0 = albedo_at_full_resolution(scene, pixel_angle, im.albedo_array.width());
+  const Impl::FramePasses& fp = im.passes_for(frame_variant);
   // Frame uniforms on first use in the frame, band uniforms on first use in the band.
   std::set<const ShaderProgram*> frame_ready, band_ready;
   std::array<int, 2> band_origin{0, 0}, band_size{0, 0};
@@ -763,7 +783,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
           im.bodies.bind_storage(kBodies);
           im.tiles.bind_storage(kTiles);
           for (const auto& [variant, list] : lists[a].one_pass) {
-            const ShaderProgram& p = pass.gpu->tile_program(projection_kind, eclipses, variant);
+            const ShaderProgram& p = pass.gpu->tile_program(frame_variant, variant);
             set_group_uniforms(p, g);
             pass.gpu->set_group(p, g);
             set_the_body(p, static_cast<std::size_t>(pass.body));
@@ -799,7 +819,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
         for (std::size_t a = 0; a < passes.size(); ++a) {
           const AtmospherePass& pass = passes[a];
           if (lists[a].gbuffer.count == 0) continue;
-          const ShaderProgram& p = pass.gpu->gbuffer_path_program(projection_kind, eclipses);
+          const ShaderProgram& p = pass.gpu->gbuffer_path_program(frame_variant);
           pass.gpu->bind(g);
           im.bodies.bind_storage(kBodies);
           im.tiles.bind_storage(kTiles);

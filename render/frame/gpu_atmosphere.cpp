@@ -146,24 +146,32 @@ const gl::ShaderProgram& GpuAtmosphere::program(const std::string& key, const st
   return it->second;
 }
 
-const gl::ShaderProgram& GpuAtmosphere::gbuffer_path_program(int projection_kind, bool eclipses) {
-  std::vector<gl::ShaderDefine> defines = defines_;
-  defines.insert(defines.end(), {{"PROJECTION_KIND", std::to_string(projection_kind)},
-                                 {"ECLIPSES", eclipses && eclipses_ ? "1" : "0"}});
-  return program(fmt::format("pass {} {}", projection_kind, eclipses && eclipses_), "render/atmosphere_pass.comp",
-                 std::move(defines));
+std::vector<gl::ShaderDefine> FrameVariant::defines() const {
+  return {{"PROJECTION_KIND", std::to_string(projection_kind)},
+          {"ECLIPSES", eclipses ? "1" : "0"},
+          {"ALBEDO_LOD0", albedo_lod0 ? "1" : "0"}};
 }
 
-const gl::ShaderProgram& GpuAtmosphere::tile_program(int projection_kind, bool eclipses, const TileVariant& v) {
+std::string FrameVariant::key() const { return fmt::format("{} {:d} {:d}", projection_kind, eclipses, albedo_lod0); }
+
+const gl::ShaderProgram& GpuAtmosphere::gbuffer_path_program(const FrameVariant& frame) {
+  FrameVariant f = frame;
+  f.eclipses = frame.eclipses && eclipses_;
+  std::vector<gl::ShaderDefine> defines = defines_;
+  for (const gl::ShaderDefine& d : f.defines()) defines.push_back(d);
+  return program("pass " + f.key(), "render/atmosphere_pass.comp", std::move(defines));
+}
+
+const gl::ShaderProgram& GpuAtmosphere::tile_program(const FrameVariant& frame, const TileVariant& v) {
+  FrameVariant f = frame;
+  f.eclipses = frame.eclipses && eclipses_;
   std::vector<gl::ShaderDefine> defines = tile_defines_;
-  defines.insert(defines.end(), {{"PROJECTION_KIND", std::to_string(projection_kind)},
-                                 {"ECLIPSES", eclipses && eclipses_ ? "1" : "0"},
-                                 {"SKY_VIEW", v.sky_view ? "1" : "0"},
+  for (const gl::ShaderDefine& d : f.defines()) defines.push_back(d);
+  defines.insert(defines.end(), {{"SKY_VIEW", v.sky_view ? "1" : "0"},
                                  {"TILE_GROUND", std::to_string(static_cast<int>(v.ground))},
                                  {"TILE_OTHERS", std::to_string(v.others)},
                                  {"SUN", v.sun ? "1" : "0"}});
-  return program(fmt::format("tile {} {} {}", projection_kind, eclipses && eclipses_, v.key()),
-                 "render/atmosphere_tile.comp", std::move(defines));
+  return program(fmt::format("tile {} {}", f.key(), v.key()), "render/atmosphere_tile.comp", std::move(defines));
 }
 
 void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad) {

@@ -30,6 +30,20 @@ struct AtmospherePassFeatures {
   bool fp64 = false;                ///< table mappings and interpolation in double (slower; see docs/rendering.md)
 };
 
+/// What a frame's passes are compiled for (render/renderer.cpp): the
+/// projection kind (shaders/projection.glsl's PROJECTION_KIND), whether other
+/// bodies' shadows can fall (ECLIPSES) and whether every albedo lookup is at
+/// the maps' full resolution (ALBEDO_LOD0, surface_albedo.glsl). A CPU
+/// rasterizer runs all the code a program has, so what a frame cannot need is
+/// compiled out; each combination is compiled on first use.
+struct FrameVariant {
+  int projection_kind = 0;
+  bool eclipses = true;
+  bool albedo_lod0 = false;
+  std::vector<gl::ShaderDefine> defines() const;
+  std::string key() const;
+};
+
 class GpuAtmosphere {
  public:
   /// Uploads `tables` (made for `model`) and compiles the passes; `frame_defines`
@@ -52,12 +66,11 @@ class GpuAtmosphere {
     bool sun = true;                       ///< the sun's disc can be in the tiles
     int key() const;
   };
-  /// atmosphere_tile.comp for tiles only this shell touches, compiled for a
-  /// projection kind (shaders/projection.glsl's PROJECTION_KIND), whether
-  /// eclipses can happen in the frame (several bodies) and the tiles' variant.
-  const gl::ShaderProgram& tile_program(int projection_kind, bool eclipses, const TileVariant& variant);
+  /// atmosphere_tile.comp for tiles only this shell touches, compiled for the
+  /// frame's variant and the tiles'.
+  const gl::ShaderProgram& tile_program(const FrameVariant& frame, const TileVariant& variant);
   /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).
-  const gl::ShaderProgram& gbuffer_path_program(int projection_kind, bool eclipses);
+  const gl::ShaderProgram& gbuffer_path_program(const FrameVariant& frame);
   /// Sets `wavelength_group`, the Mie phase's parameters, the tables' acos(μs_min)
   /// and the sky-view uniforms of one of these programs for group g.
   void set_group(const gl::ShaderProgram& program, std::size_t group) const;

@@ -13,6 +13,10 @@ vec3 surface_albedo(Body body, vec3 ray, float t, vec3 n) {
   const vec3 nb = to_body_frame(body, n);
   const float PI_F = 3.14159265;
   const vec2 uv = vec2(atan(nb.y, nb.x) / (2.0 * PI_F) + 0.5, acos(clamp(nb.z, -1.0, 1.0)) / PI_F);
+#if defined(ALBEDO_LOD0) && ALBEDO_LOD0
+  // The renderer found every footprint of the frame under a texel (albedo_at_full_resolution).
+  return textureLod(albedo_maps, vec3(uv, body.shape.w), 0.0).rgb;
+#else
   // Level of detail: the pixel's footprint on the surface (stretched by the
   // incidence angle) in texels of the map's level 0 (2π R per map width).
   const float cos_incidence = max(abs(dot(n, ray)), 0.05);
@@ -20,5 +24,6 @@ vec3 surface_albedo(Body body, vec3 ray, float t, vec3 n) {
   const float texel_m = 2.0 * PI_F * body.shape.x / max(body.albedo_map.x, 1.0);
   const float lod = max(0.0, log2(max(footprint_m / texel_m, 1e-6)));
   return textureLod(albedo_maps, vec3(uv, body.shape.w), lod).rgb;
+#endif
 }
 vec3 surface_albedo(int b, vec3 ray, float t, vec3 n) { return surface_albedo(bodies[b], ray, t, n); }
