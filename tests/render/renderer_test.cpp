@@ -739,6 +739,81 @@ TEST(RendererSkyView, SunsetAndDomeMatchTheDirectPath) {
   EXPECT_LT(d.max, 0.05);
 }
 
+TEST(RendererSkyView, DifferenceFromTheDirectPathIsFarBelowTheTablesOwnError) {
+  // The ground view's sky: at sampled pixels the 4D lookups per pixel (the
+  // direct path) against the independent reference path tracer — the tables'
+  // own error — and the sky-view table against the direct path. The table
+  // must add a small fraction of what the tables already miss.
+  RenderOptions no_disc = direct_colour();
+  no_disc.sun_disc = false;  // the reference is the sky alone
+  RenderOptions off = no_disc;
+  off.sky_view_table = SkyViewTableUse::off;
+  TestRenderer with_table(no_disc), direct(off);
+  const scene::Scene s = ground_view_scene();
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(160, 90, 79.0);
+  const auto a = with_table.renderer.render_image(s, p);
+  const auto b = direct.renderer.render_image(s, p);
+  ASSERT_GT(with_table.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  const ImageDifference image = relative_difference(a, b, 1e-3 * largest_value(b));
+
+  const SmallTables& tables = SmallTables::get("earth-advanced");
+  atmosphere::reference::SunDisc sun;
+  sun.direction = {s.sun.direction.x, s.sun.direction.y, s.sun.direction.z};
+  sun.angular_radius_rad = s.sun.angular_radius_rad;
+  atmosphere::reference::PathTracerOptions options;
+  options.samples_per_wavelength = 20000;
+  double table_sum = 0.0, table_worst = 0.0, sky_view_worst = 0.0, noise = 0.0;
+  int n = 0;
+  // Sky pixels: near the horizon, toward the sun, across and away from it, high up.
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{80, 28}, {80, 10}, {100, 25}, {20, 20}, {140, 5}, {60, 30}}) {
+    const glm::dvec3 d = ray_of(p, s, x, y);
+    ASSERT_GT(d.z, 0.0) << "pixel (" << x << ", " << y << ") is not sky";
+    const auto ref = atmosphere::reference::path_traced_radiance(
+        tables.model, {s.camera.position_m.x, s.camera.position_m.y, s.camera.position_m.z}, {d.x, d.y, d.z}, sun,
+        options);
+    const Rgb got_table = pixel(a, 160, x, y), got_direct = pixel(b, 160, x, y);
+    const double va[3] = {got_table.r, got_table.g, got_table.b}, vb[3] = {got_direct.r, got_direct.g, got_direct.b};
+    for (int c = 0; c < 3; ++c) {
+      const double scale = s.sun.irradiance_W_m2_nm[c] * s.camera.exposure, expected = ref.mean[c] * scale;
+      const double e_table = std::abs(vb[c] - expected) / expected;
+      table_sum += e_table * e_table;
+      table_worst = std::max(table_worst, e_table);
+      sky_view_worst = std::max(sky_view_worst, std::abs(va[c] - vb[c]) / vb[c]);
+      noise = std::max(noise, ref.standard_error[c] / ref.mean[c]);
+      ++n;
+    }
+  }
+  const double table_rms = std::sqrt(table_sum / n);
+  std::printf("ground view, sky pixels: tables (direct path) vs reference path tracer RMS %.4f, max %.4f (noise <= %.4f); "
+              "sky-view table vs direct path at the same pixels max %.5f; whole image RMS %.5f, max %.4f\n",
+              table_rms, table_worst, noise, sky_view_worst, image.rms, image.max);
+  EXPECT_LT(sky_view_worst, 0.25 * table_rms);
+  EXPECT_LT(image.rms, 0.1 * table_rms);
+  EXPECT_LT(image.max, table_worst);
+}
+
+TEST(RendererFramePaths, BodiesOnlyGroundViewMatchesTheGbufferPath) {
+  // The no-atmosphere frame of the benchmark's ground view: one pass over the
+  // ground tiles (direct_light.comp, one body) against the G-buffer and resolve
+  // passes that drew every frame before; the sky is black and not dispatched.
+  RenderOptions bodies = direct_colour(), gbuffer_path = direct_colour();
+  bodies.atmospheres = gbuffer_path.atmospheres = false;
+  gbuffer_path.one_pass_tiles = false;
+  TestRenderer one_pass(bodies), reference(gbuffer_path);
+  scene::Scene s = ground_view_scene();
+  s.bodies[0].albedo.colour_linear_rgb = {0.3, 0.2, 0.1};
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(320, 180, 79.0);
+  const auto a = one_pass.renderer.render_image(s, p);
+  const auto b = reference.renderer.render_image(s, p);
+  const FrameStats& f = one_pass.renderer.last_frame();
+  EXPECT_GT(f.tiles_direct, 0u);
+  EXPECT_GT(f.tiles_black, 0u);
+  EXPECT_EQ(f.tiles_gbuffer + f.tiles_one_atmosphere, 0u);
+  EXPECT_GT(largest_value(a), 0.0);
+  const ImageDifference d = relative_difference(a, b, 1e-6 * largest_value(b));
+  EXPECT_LT(d.max, 1e-5) << "one pass vs G-buffer path, worst at pixel " << d.max_at / 3;
+}
+
 TEST(RendererSkyView, NotUsedFromSpace) {
   TestRenderer t;
   const scene::Scene s = planet_scene("earth-advanced", 400e3, 60.0, {1.0, 0.0, -0.35});
