@@ -42,7 +42,8 @@
 //
 //   render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]
 //                [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]
-//                [--scene FILE] [--fov DEG] [--time-passes] [--cache DIR] [--device auto|software|hardware]
+//                [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--cache DIR]
+//                [--device auto|software|hardware]
 //                [--benchmark_filter=REGEX] ...
 //
 // The ground view of docs/rendering-performance.md (issue 13):
@@ -93,7 +94,7 @@ constexpr int kTile = 16;                 // render::kTileSize: tiles of the atm
 // ---- command line
 
 struct Options {
-  bool quick = false, chart = true, chart_only = false, time_passes = false;
+  bool quick = false, chart = true, chart_only = false, time_passes = false, sky_view_error = false;
   double planar_fov_deg = kPlanarFovDeg;
   std::string tables = "paper", device = "auto";
   int orders = 4, iterations = 3, rounds = 3;
@@ -112,7 +113,8 @@ struct Options {
 constexpr const char* kUsage =
     "usage: render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]\n"
     "                    [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]\n"
-    "                    [--scene FILE] [--fov DEG] [--time-passes] [--cache DIR] [--device auto|software|hardware]\n"
+    "                    [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--cache DIR]\n"
+    "                    [--device auto|software|hardware]\n"
     "                    [Google Benchmark flags, e.g. --benchmark_filter=planar]\n"
     "  --quick        only the planar 1280x720 and 1920x1080 cases (a smoke run)\n"
     "  --tables       lookup-table sizes: paper (default) or small\n"
@@ -129,7 +131,9 @@ constexpr const char* kUsage =
     "  --scene        scene file (default configs/scenes/three-worlds.json)\n"
     "  --fov          horizontal field of the planar views in degrees (default 90); the ground view:\n"
     "                 --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79\n"
-    "  --time-passes  time every pass of each case's last frame (GL timer queries) and print the split\n"
+    "  --time-passes  time every pass of each case's last frame (glFinish-bracketed) and print the split\n"
+    "  --sky-view-error  also render each size with all atmospheres without the sky-view table (4D\n"
+    "                 lookups per pixel) and print the relative difference of the two images\n"
     "  --cache        table cache directory (default $ZENITH_CACHE_DIR, $XDG_CACHE_HOME/zenith, ~/.cache/zenith)\n"
     "  --device       GL device: auto (default), software (llvmpipe), hardware\n"
     "  --viewport     also time every output of a viewport config (configs/viewports/), with all\n"
@@ -184,6 +188,7 @@ Options parse_options(int argc, char** argv) {
     } else if (a == "--csv") o.csv = value(i, a);
     else if (a == "--scene") o.scene = value(i, a);
     else if (a == "--time-passes") o.time_passes = true;
+    else if (a == "--sky-view-error") o.sky_view_error = true;
     else if (a == "--fov") {
       o.planar_fov_deg = std::stod(value(i, a));
       if (!(o.planar_fov_deg > 0.0 && o.planar_fov_deg < 180.0)) throw std::invalid_argument("--fov: must be in (0, 180)");
@@ -405,6 +410,40 @@ void time_projectors(const Options& opt, const std::string& device, const scene:
   fmt::print("csv: {}\n", opt.viewport_csv.string());
 }
 
+/// The sky-view table's difference from the 4D lookups per pixel (the frame
+/// with all atmospheres both ways, no sun disc): per value |a − b| / max(b, 1e-3 · brightest),
+/// RMS, 99th percentile and largest, as tests/render/renderer_test.cpp measures it.
+void print_sky_view_error(const std::vector<Resolution>& res, const scene::Scene& scene,
+                          const render::RenderOptions& options, const render::TableSource& tables) {
+  render::RenderOptions off = options;
+  off.time_passes = false;
+  off.sun_disc = false;  // the sky and the ground alone: the disc would set the floor below
+  off.sky_view_table = render::SkyViewTableUse::off;
+  render::RenderOptions on = off;
+  on.sky_view_table = render::SkyViewTableUse::automatic;
+  render::Renderer with_table(on, tables), direct(off, tables);
+  fmt::print("\nsky-view table against the 4D lookups per pixel (scene '{}', all atmospheres, no sun disc):\n",
+             scene.name);
+  for (const Resolution& r : res) {
+    const auto projection = r.make();
+    const std::vector<float> a = with_table.render_image(scene, *projection), b = direct.render_image(scene, *projection);
+    std::size_t table_tiles = 0;
+    for (const auto& at : with_table.last_frame().atmospheres) table_tiles += at.sky_view_tiles;
+    const float brightest = *std::max_element(b.begin(), b.end());
+    const double floor = 1e-3 * std::max(double(brightest), 1e-30);
+    std::vector<double> e(b.size());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      e[i] = std::abs(double(a[i]) - double(b[i])) / std::max(double(b[i]), floor);
+      sum += e[i] * e[i];
+    }
+    std::sort(e.begin(), e.end());
+    fmt::print("  {:<24} {} sky-view tiles; relative difference RMS {:.5f}, 99th percentile {:.5f}, max {:.4f}\n",
+               r.label() + " " + r.projection(), table_tiles, std::sqrt(sum / double(std::max<std::size_t>(e.size(), 1))),
+               e.empty() ? 0.0 : e[e.size() * 99 / 100], e.empty() ? 0.0 : e.back());
+  }
+}
+
 int run(int argc, char** argv) {
   const Options opt = parse_options(argc, argv);
   const std::vector<Resolution> res = resolutions(opt);
@@ -587,6 +626,7 @@ int run(int argc, char** argv) {
   fmt::print("csv: {}\n", opt.csv.string());
   if (opt.chart) write_chart(opt.csv, res, device);
   if (opt.viewport) time_projectors(opt, device, scene, with_atmospheres_renderer);
+  if (opt.sky_view_error) print_sky_view_error(res, scene, atm_options, tables);
   return failed ? 1 : 0;
 }
 
