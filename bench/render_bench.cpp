@@ -42,7 +42,7 @@
 //
 //   render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]
 //                [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]
-//                [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--cache DIR]
+//                [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--gbuffer-path] [--cache DIR]
 //                [--device auto|software|hardware]
 //                [--benchmark_filter=REGEX] ...
 //
@@ -95,6 +95,7 @@ constexpr int kTile = 16;                 // render::kTileSize: tiles of the atm
 
 struct Options {
   bool quick = false, chart = true, chart_only = false, time_passes = false, sky_view_error = false;
+  bool gbuffer_path = false;
   double planar_fov_deg = kPlanarFovDeg;
   std::string tables = "paper", device = "auto";
   int orders = 4, iterations = 3, rounds = 3;
@@ -113,7 +114,8 @@ struct Options {
 constexpr const char* kUsage =
     "usage: render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]\n"
     "                    [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]\n"
-    "                    [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--cache DIR]\n"
+    "                    [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--gbuffer-path]\n"
+    "                    [--cache DIR]\n"
     "                    [--device auto|software|hardware]\n"
     "                    [Google Benchmark flags, e.g. --benchmark_filter=planar]\n"
     "  --quick        only the planar 1280x720 and 1920x1080 cases (a smoke run)\n"
@@ -134,6 +136,8 @@ constexpr const char* kUsage =
     "  --time-passes  time every pass of each case's last frame (glFinish-bracketed) and print the split\n"
     "  --sky-view-error  also render each size with all atmospheres without the sky-view table (4D\n"
     "                 lookups per pixel) and print the relative difference of the two images\n"
+    "  --gbuffer-path every tile through the G-buffer, atmosphere and resolve passes, 4D lookups per\n"
+    "                 pixel (the frame's structure before issue 13; with --time-passes: its split)\n"
     "  --cache        table cache directory (default $ZENITH_CACHE_DIR, $XDG_CACHE_HOME/zenith, ~/.cache/zenith)\n"
     "  --device       GL device: auto (default), software (llvmpipe), hardware\n"
     "  --viewport     also time every output of a viewport config (configs/viewports/), with all\n"
@@ -189,6 +193,7 @@ Options parse_options(int argc, char** argv) {
     else if (a == "--scene") o.scene = value(i, a);
     else if (a == "--time-passes") o.time_passes = true;
     else if (a == "--sky-view-error") o.sky_view_error = true;
+    else if (a == "--gbuffer-path") o.gbuffer_path = true;
     else if (a == "--fov") {
       o.planar_fov_deg = std::stod(value(i, a));
       if (!(o.planar_fov_deg > 0.0 && o.planar_fov_deg < 180.0)) throw std::invalid_argument("--fov: must be in (0, 180)");
@@ -512,6 +517,10 @@ int run(int argc, char** argv) {
   render::RenderOptions atm_options, body_options;
   body_options.atmospheres = false;
   atm_options.time_passes = body_options.time_passes = opt.time_passes;
+  if (opt.gbuffer_path) {
+    atm_options.one_pass_tiles = body_options.one_pass_tiles = false;
+    atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
+  }
   render::Renderer with_atmospheres_renderer(atm_options, tables), bodies_renderer(body_options, tables);
   const render::RowSink discard = [](int, int, std::span<const float>) {};
 

@@ -692,40 +692,36 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
       st.tiles += pass.shell_tiles.size();
       st.gbuffer_tiles += pass.gbuffer_tiles.size();
     }
-    auto list_of = [&](auto&& keep) {
+    auto list_where = [&](auto&& keep) {  // the band's tiles i with keep(i), row by row
       TileList l{all_tiles.size(), 0};
       for (std::size_t i = 0; i < band_tiles; ++i)
-        if ((shells[i] == 0 || (use[i] & kGbuffer) != 0) && keep(use[i])) {
+        if (keep(i)) {
           all_tiles.push_back(static_cast<std::uint32_t>(i % static_cast<std::size_t>(cones.columns())) |
                               static_cast<std::uint32_t>(i / static_cast<std::size_t>(cones.columns())) << 16);
           ++l.count;
         }
       return l;
     };
-    const TileList gbuffer_tiles = list_of([](std::uint8_t u) { return (u & kGbuffer) != 0; });
-    // Body tiles (no shell, no sun): those only one body can be in, per body (ONE_BODY), then the others.
+    const TileList gbuffer_tiles = list_where([&](std::size_t i) { return (use[i] & kGbuffer) != 0; });
+    // Body tiles (no shell, no sun): those only one body can be in, per body
+    // (direct_light.comp's ONE_BODY, its data as uniforms), then the others.
     std::vector<std::uint8_t> body_count(band_tiles, 0);
     for (const auto& list : body_tiles_of)
       for (std::uint32_t t : list) body_count[tile_index(t)] = static_cast<std::uint8_t>(std::min(body_count[tile_index(t)] + 1, 2));
+    auto body_only = [&](std::size_t i) { return shells[i] == 0 && use[i] == kBody; };
     std::vector<std::pair<std::size_t, TileList>> one_body_tiles;
     std::size_t one_body_count = 0;
     for (std::size_t b = 0; b < body_tiles_of.size(); ++b) {
       std::vector<std::uint32_t> only;
       for (std::uint32_t t : body_tiles_of[b])
-        if (shells[tile_index(t)] == 0 && use[tile_index(t)] == kBody && body_count[tile_index(t)] == 1) only.push_back(t);
+        if (body_only(tile_index(t)) && body_count[tile_index(t)] == 1) only.push_back(t);
       if (only.empty()) continue;
       one_body_tiles.emplace_back(b, append(only));
       one_body_count += only.size();
     }
-    TileList body_tiles = list_of([](std::uint8_t u) { return u == kBody; });
-    {  // drop the one-body tiles from the general list (they were appended again at its end)
-      std::vector<std::uint32_t> rest;
-      for (std::size_t k = body_tiles.offset; k < body_tiles.offset + body_tiles.count; ++k)
-        if (body_count[tile_index(all_tiles[k])] > 1) rest.push_back(all_tiles[k]);
-      all_tiles.resize(body_tiles.offset);
-      body_tiles = append(rest);
-    }
-    const TileList sun_tiles = list_of([](std::uint8_t u) { return (u & kGbuffer) == 0 && (u & kSun) != 0; });
+    const TileList body_tiles = list_where([&](std::size_t i) { return body_only(i) && body_count[i] > 1; });
+    const TileList sun_tiles =
+        list_where([&](std::size_t i) { return shells[i] == 0 && (use[i] & kGbuffer) == 0 && (use[i] & kSun) != 0; });
     stats_.tiles_gbuffer += gbuffer_tiles.count;
     stats_.tiles_one_atmosphere += one_pass_atmosphere_tiles;
     stats_.tiles_direct += one_body_count + body_tiles.count + sun_tiles.count;
