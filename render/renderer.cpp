@@ -97,6 +97,21 @@ bool albedo_at_full_resolution(const scene::Scene& scene, double pixel_angle, in
   return true;
 }
 
+/// Where the sky-view table is as good as the 4D lookups per pixel, for a
+/// camera at radius r inside the shell [RB, RT] with the sun's cosine μs
+/// (measured with render_bench --sky-view-error on horizon views, 1280×720 with
+/// 10° and 79° fields, paper tables; docs/rendering-performance.md): low in the
+/// atmosphere (up to 2 % of its thickness: 2 km on Earth) always; up to 20 %
+/// while the sun is above the camera's horizon. Higher, and in twilight above
+/// the lowest layer, the light at the horizon changes within hundredths of a
+/// degree (the limb, the Earth's shadow) and 64 zenith texels a half would
+/// differ by up to 25 % there: the 4D lookups stay, as from space.
+bool sky_view_accurate(double r, double ground_radius, double top_radius, double mu_s) {
+  const double height = (r - ground_radius) / (top_radius - ground_radius);
+  const double mu_horizon = -std::sqrt(std::max(0.0, 1.0 - (ground_radius / r) * (ground_radius / r)));
+  return height <= 0.02 || (height <= 0.2 && mu_s > mu_horizon);
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -444,6 +459,8 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     if (std::find(sky_view_filled.begin(), sky_view_filled.end(), pass.gpu) != sky_view_filled.end()) continue;
     const scene::Body& planet = scene.bodies[static_cast<std::size_t>(pass.body)];
     const glm::dvec3 up = glm::normalize(scene.camera.position_m - planet.position_m);
+    if (!sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(), pass.top_radius_m, glm::dot(up, sun)))
+      continue;
     timer.gpu("sky-view table", [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, sun), sun_radius); });
     pass.sky_view = true;
     sky_view_filled.push_back(pass.gpu);

@@ -814,6 +814,21 @@ TEST(RendererFramePaths, BodiesOnlyGroundViewMatchesTheGbufferPath) {
   EXPECT_LT(d.max, 1e-5) << "one pass vs G-buffer path, worst at pixel " << d.max_at / 3;
 }
 
+TEST(RendererSkyView, NotUsedHighUpInTwilight) {
+  // 10 km up (10 % of the shell): with the sun above the horizon the table is
+  // used, with the sun 4° below it not (its horizon would be up to 25 % off).
+  TestRenderer t;
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(64, 36, 60.0);
+  const glm::dvec3 forward = sky_direction(92.0, 90.0);
+  t.renderer.render_image(planet_scene("earth-advanced", 10e3, 60.0, forward), p);
+  EXPECT_GT(t.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  t.renderer.render_image(planet_scene("earth-advanced", 10e3, 94.0, forward), p);
+  EXPECT_EQ(t.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  // Low in the atmosphere, twilight or not.
+  t.renderer.render_image(planet_scene("earth-advanced", 900.0, 94.0, forward), p);
+  EXPECT_GT(t.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+}
+
 TEST(RendererSkyView, NotUsedFromSpace) {
   TestRenderer t;
   const scene::Scene s = planet_scene("earth-advanced", 400e3, 60.0, {1.0, 0.0, -0.35});
