@@ -10,7 +10,7 @@
 // trilinear fetches each, the ground's irradiance and transmittance lookups).
 //
 // 128 azimuth × 64 zenith texels per half (sky, ground), 6 RGBA32F layers per
-// group of 4 wavelengths (shaders/render/sky_view_mapping.glsl): 1.2 MB per
+// group of 4 wavelengths (shaders/render/sky_view_mapping.glsl): 0.8 MB per
 // group, 2·128·64 = 16 384 directions filled per group and frame. Its error
 // against the per-pixel 4D lookups is measured in tests/render/renderer_test.cpp
 // (RendererSkyView) and docs/rendering-performance.md.
