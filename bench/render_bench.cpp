@@ -42,8 +42,13 @@
 //
 //   render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]
 //                [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]
-//                [--scene FILE] [--cache DIR] [--device auto|software|hardware]
+//                [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--gbuffer-path] [--cache DIR]
+//                [--device auto|software|hardware]
 //                [--benchmark_filter=REGEX] ...
+//
+// The ground view of docs/rendering-performance.md (issue 13):
+//   render_bench --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79
+// and the ratio against another build from one interleaved run: scripts/bench-compare.
 //
 // Results for docs/rendering-performance.md: bench/results/render_frame_times.csv.
 #include <benchmark/benchmark.h>
@@ -58,10 +63,14 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
+
+#include <sys/resource.h>
 
 #include "atmosphere/lut/precompute_options.h"
 #include "atmosphere/lut/table_cache.h"
@@ -78,14 +87,16 @@ namespace {
 using namespace zenith;
 using Clock = std::chrono::steady_clock;
 
-constexpr double kPlanarFovDeg = 90.0;    // horizontal field of the planar views
+constexpr double kPlanarFovDeg = 90.0;    // horizontal field of the planar views (default; --fov)
 constexpr double kFisheyeFovDeg = 180.0;  // the dome masters
 constexpr int kTile = 16;                 // render::kTileSize: tiles of the atmosphere passes
 
 // ---- command line
 
 struct Options {
-  bool quick = false, chart = true, chart_only = false;
+  bool quick = false, chart = true, chart_only = false, time_passes = false, sky_view_error = false;
+  bool gbuffer_path = false;
+  double planar_fov_deg = kPlanarFovDeg;
   std::string tables = "paper", device = "auto";
   int orders = 4, iterations = 3, rounds = 3;
   double budget_s = 120.0;
@@ -103,7 +114,9 @@ struct Options {
 constexpr const char* kUsage =
     "usage: render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]\n"
     "                    [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]\n"
-    "                    [--scene FILE] [--cache DIR] [--device auto|software|hardware]\n"
+    "                    [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--gbuffer-path]\n"
+    "                    [--cache DIR]\n"
+    "                    [--device auto|software|hardware]\n"
     "                    [Google Benchmark flags, e.g. --benchmark_filter=planar]\n"
     "  --quick        only the planar 1280x720 and 1920x1080 cases (a smoke run)\n"
     "  --tables       lookup-table sizes: paper (default) or small\n"
@@ -118,6 +131,13 @@ constexpr const char* kUsage =
     "  --no-chart     no gnuplot script and PNG next to the CSV\n"
     "  --chart-only   render nothing: redraw the chart of an existing --csv (same --quick/--sizes)\n"
     "  --scene        scene file (default configs/scenes/three-worlds.json)\n"
+    "  --fov          horizontal field of the planar views in degrees (default 90); the ground view:\n"
+    "                 --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79\n"
+    "  --time-passes  time every pass of each case's last frame (glFinish-bracketed) and print the split\n"
+    "  --sky-view-error  also render each size with all atmospheres without the sky-view table (4D\n"
+    "                 lookups per pixel) and print the relative difference of the two images\n"
+    "  --gbuffer-path every tile through the G-buffer, atmosphere and resolve passes, 4D lookups per\n"
+    "                 pixel (the frame's structure before issue 13; with --time-passes: its split)\n"
     "  --cache        table cache directory (default $ZENITH_CACHE_DIR, $XDG_CACHE_HOME/zenith, ~/.cache/zenith)\n"
     "  --device       GL device: auto (default), software (llvmpipe), hardware\n"
     "  --viewport     also time every output of a viewport config (configs/viewports/), with all\n"
@@ -171,6 +191,13 @@ Options parse_options(int argc, char** argv) {
       if (o.sizes.empty()) throw std::invalid_argument("--sizes: give at least one WIDTHxHEIGHT");
     } else if (a == "--csv") o.csv = value(i, a);
     else if (a == "--scene") o.scene = value(i, a);
+    else if (a == "--time-passes") o.time_passes = true;
+    else if (a == "--sky-view-error") o.sky_view_error = true;
+    else if (a == "--gbuffer-path") o.gbuffer_path = true;
+    else if (a == "--fov") {
+      o.planar_fov_deg = std::stod(value(i, a));
+      if (!(o.planar_fov_deg > 0.0 && o.planar_fov_deg < 180.0)) throw std::invalid_argument("--fov: must be in (0, 180)");
+    }
     else if (a == "--cache") o.cache = value(i, a);
     else if (a == "--device") o.device = value(i, a);
     else if (a == "--viewport") o.viewport = value(i, a);
@@ -189,19 +216,23 @@ Options parse_options(int argc, char** argv) {
 struct Resolution {
   int width = 0, height = 0;
   bool fisheye = false;
+  double planar_fov_deg = kPlanarFovDeg;
   std::string label() const { return fmt::format("{}x{}", width, height); }
   std::string projection() const {
-    return fisheye ? fmt::format("fisheye {:g}deg", kFisheyeFovDeg) : fmt::format("planar {:g}deg", kPlanarFovDeg);
+    return fisheye ? fmt::format("fisheye {:g}deg", kFisheyeFovDeg) : fmt::format("planar {:g}deg", planar_fov_deg);
   }
   std::unique_ptr<warp::Projection> make() const {
-    if (!fisheye) return std::make_unique<warp::PlanarProjection>(warp::PlanarProjection::symmetric(width, height, kPlanarFovDeg));
+    if (!fisheye)
+      return std::make_unique<warp::PlanarProjection>(warp::PlanarProjection::symmetric(width, height, planar_fov_deg));
     warp::FisheyeParameters p;
     p.fov_deg = kFisheyeFovDeg;
     return std::make_unique<warp::FisheyeProjection>(width, height, p);
   }
 };
 
-Resolution resolution_of(std::pair<int, int> size) { return {size.first, size.second, size.first == size.second}; }
+Resolution resolution_of(std::pair<int, int> size, double planar_fov_deg = kPlanarFovDeg) {
+  return {size.first, size.second, size.first == size.second, planar_fov_deg};
+}
 
 std::vector<Resolution> resolutions(const Options& o) {
   std::vector<std::pair<int, int>> sizes = o.sizes;
@@ -210,7 +241,7 @@ std::vector<Resolution> resolutions(const Options& o) {
     if (!o.quick) sizes.insert(sizes.end(), {{4096, 4096}, {8192, 8192}});
   }
   std::vector<Resolution> out;
-  for (auto s : sizes) out.push_back(resolution_of(s));
+  for (auto s : sizes) out.push_back(resolution_of(s, o.planar_fov_deg));
   return out;
 }
 
@@ -223,7 +254,18 @@ struct Result {
   int frames = 0;
   std::size_t tiles_covered = 0, tiles_total = 0;
   double peak_memory_mb = 0.0;  // largest over the case's rounds (process peak during its frames)
+  double cpu_s = 0.0;           // median CPU time of the process per frame (all threads: llvmpipe's too)
 };
+
+/// CPU time of the whole process so far (user + system, every thread) [s]:
+/// on a machine shared with other work, a frame's CPU time moves less than its
+/// wall time (llvmpipe runs the shaders on the process's own threads).
+double process_cpu_s() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6;
+}
 
 /// Resets the process's peak resident set size (Linux: /proc/self/clear_refs "5").
 void reset_peak_memory() {
@@ -272,14 +314,14 @@ void write_csv(const std::filesystem::path& path, const std::string& device, con
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write " + path.string());
   csv << "device,resolution,projection,atmospheres,frame_ms,mpixel_per_s,tiles_covered,tiles_total,frames,"
-         "frame_ms_min,peak_memory_mb\n";
+         "frame_ms_min,peak_memory_mb,cpu_ms\n";
   for (const Result& r : results) {
     const double pixels = double(r.resolution.width) * double(r.resolution.height);
     csv << csv_field(device) << ',' << r.resolution.label() << ',' << r.resolution.projection() << ','
         << r.atmospheres << ',' << fmt::format("{:.3f}", r.frame_s * 1e3) << ','
         << fmt::format("{:.3f}", pixels / r.frame_s / 1e6) << ',' << r.tiles_covered << ',' << r.tiles_total << ','
         << r.frames << ',' << fmt::format("{:.3f}", r.frame_min_s * 1e3) << ','
-        << fmt::format("{:.0f}", r.peak_memory_mb) << '\n';
+        << fmt::format("{:.0f}", r.peak_memory_mb) << ',' << fmt::format("{:.3f}", r.cpu_s * 1e3) << '\n';
   }
   if (!csv.flush()) throw std::runtime_error("cannot write " + path.string());
 }
@@ -314,11 +356,17 @@ void write_chart(const std::filesystem::path& csv, const std::vector<Resolution>
 
 /// The paper's layout: a row per resolution, a column per case, frame time in
 /// ms (the median, or with `fastest` the fastest frame).
+enum class Figure { median, fastest, cpu };
+
 void print_table(const std::vector<Resolution>& res, int max_atmospheres, const std::vector<Result>& results,
-                 bool fastest) {
+                 Figure figure) {
   std::string head = fmt::format("{:<24}{:>14}", "resolution", "bodies only");
   for (int n = 1; n <= max_atmospheres; ++n) head += fmt::format("{:>14}", fmt::format("{} ATM", n));
-  fmt::print("\nframe time [ms], {}\n{}\n", fastest ? "fastest frame" : "median", head);
+  fmt::print("\n{}\n{}\n",
+             figure == Figure::median    ? "frame time [ms], median"
+             : figure == Figure::fastest ? "frame time [ms], fastest frame"
+                                         : "CPU time of the process per frame [ms] (all threads), median",
+             head);
   for (const Resolution& r : res) {
     std::string line = fmt::format("{:<24}", r.label() + " " + r.projection());
     for (int n = 0; n <= max_atmospheres; ++n) {
@@ -327,7 +375,9 @@ void print_table(const std::vector<Resolution>& res, int max_atmospheres, const 
       });
       line += it == results.end()
                   ? fmt::format("{:>14}", "-")
-                  : fmt::format("{:>14.1f}", (fastest ? it->frame_min_s : it->frame_s) * 1e3);
+                  : fmt::format("{:>14.1f}", (figure == Figure::median    ? it->frame_s
+                                              : figure == Figure::fastest ? it->frame_min_s
+                                                                          : it->cpu_s) * 1e3);
     }
     fmt::print("{}\n", line);
   }
@@ -363,6 +413,40 @@ void time_projectors(const Options& opt, const std::string& device, const scene:
         << ',' << times.size() << '\n';
   }
   fmt::print("csv: {}\n", opt.viewport_csv.string());
+}
+
+/// The sky-view table's difference from the 4D lookups per pixel (the frame
+/// with all atmospheres both ways, no sun disc): per value |a − b| / max(b, 1e-3 · brightest),
+/// RMS, 99th percentile and largest, as tests/render/renderer_test.cpp measures it.
+void print_sky_view_error(const std::vector<Resolution>& res, const scene::Scene& scene,
+                          const render::RenderOptions& options, const render::TableSource& tables) {
+  render::RenderOptions off = options;
+  off.time_passes = false;
+  off.sun_disc = false;  // the sky and the ground alone: the disc would set the floor below
+  off.sky_view_table = render::SkyViewTableUse::off;
+  render::RenderOptions on = off;
+  on.sky_view_table = render::SkyViewTableUse::automatic;
+  render::Renderer with_table(on, tables), direct(off, tables);
+  fmt::print("\nsky-view table against the 4D lookups per pixel (scene '{}', all atmospheres, no sun disc):\n",
+             scene.name);
+  for (const Resolution& r : res) {
+    const auto projection = r.make();
+    const std::vector<float> a = with_table.render_image(scene, *projection), b = direct.render_image(scene, *projection);
+    std::size_t table_tiles = 0;
+    for (const auto& at : with_table.last_frame().atmospheres) table_tiles += at.sky_view_tiles;
+    const float brightest = *std::max_element(b.begin(), b.end());
+    const double floor = 1e-3 * std::max(double(brightest), 1e-30);
+    std::vector<double> e(b.size());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      e[i] = std::abs(double(a[i]) - double(b[i])) / std::max(double(b[i]), floor);
+      sum += e[i] * e[i];
+    }
+    std::sort(e.begin(), e.end());
+    fmt::print("  {:<24} {} sky-view tiles; relative difference RMS {:.5f}, 99th percentile {:.5f}, max {:.4f}\n",
+               r.label() + " " + r.projection(), table_tiles, std::sqrt(sum / double(std::max<std::size_t>(e.size(), 1))),
+               e.empty() ? 0.0 : e[e.size() * 99 / 100], e.empty() ? 0.0 : e.back());
+  }
 }
 
 int run(int argc, char** argv) {
@@ -432,6 +516,11 @@ int run(int argc, char** argv) {
 
   render::RenderOptions atm_options, body_options;
   body_options.atmospheres = false;
+  atm_options.time_passes = body_options.time_passes = opt.time_passes;
+  if (opt.gbuffer_path) {
+    atm_options.one_pass_tiles = body_options.one_pass_tiles = false;
+    atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
+  }
   render::Renderer with_atmospheres_renderer(atm_options, tables), bodies_renderer(body_options, tables);
   const render::RowSink discard = [](int, int, std::span<const float>) {};
 
@@ -445,7 +534,7 @@ int run(int argc, char** argv) {
 
   // Frames of every case, gathered over the rounds; a case is (resolution, atmospheres).
   struct Gathered {
-    std::vector<double> times;
+    std::vector<double> times, cpu_times;
     render::FrameStats stats;
     double peak_memory_mb = 0.0;
   };
@@ -453,7 +542,7 @@ int run(int argc, char** argv) {
   bool failed = false;
   std::vector<std::unique_ptr<warp::Projection>> projections;
   for (const Resolution& r : res) projections.push_back(r.make());
-  std::map<const render::Renderer*, const warp::Projection*> warmed;  // the projection each renderer last drew
+  std::set<std::tuple<const render::Renderer*, const warp::Projection*, int>> warmed;  // cases drawn once untimed
 
   for (int round = 0; round < opt.rounds; ++round)
     for (std::size_t ri = 0; ri < res.size(); ++ri)
@@ -461,16 +550,16 @@ int run(int argc, char** argv) {
         std::string name = fmt::format("render/{}_{}/{}", res[ri].fisheye ? "fisheye" : "planar", res[ri].label(),
                                        n == 0 ? std::string("bodies_only") : fmt::format("atmospheres:{}", n));
         if (opt.rounds > 1) name += fmt::format("/round:{}", round + 1);
-        auto* b = benchmark::RegisterBenchmark(name.c_str(), [&, ri, n](benchmark::State& state) {
+        auto* b = benchmark::RegisterBenchmark(name.c_str(), [&, ri, n, name](benchmark::State& state) {
           render::Renderer& renderer = n == 0 ? bodies_renderer : with_atmospheres_renderer;
           const warp::Projection& projection = *projections[ri];
           const scene::Scene& s = variants[static_cast<std::size_t>(n)];
-          if (warmed[&renderer] != &projection) {
-            // Tile cones of the new projection (and, the first time, albedo maps): no atmosphere needed.
-            renderer.render(variants[0], projection, discard);
-            warmed[&renderer] = &projection;
+          if (warmed.insert({&renderer, &projection, n}).second) {
+            // One untimed frame of the case: tile cones of the new projection, albedo
+            // maps, and the shader variants its tiles need (compiled on first use).
+            renderer.render(s, projection, discard);
           }
-          std::vector<double> times;
+          std::vector<double> times, cpu_times;
           render::FrameStats stats;
           reset_peak_memory();
           for (auto _ : state) {
@@ -478,10 +567,13 @@ int run(int argc, char** argv) {
             for (int attempt = 0; static_cast<int>(times.size()) < opt.iterations && attempt < opt.iterations + 3;
                  ++attempt) {
               const auto start = Clock::now();
+              const double cpu_start = process_cpu_s();
               renderer.render(s, projection, discard);
               const double t = std::chrono::duration<double>(Clock::now() - start).count();
+              const double cpu = process_cpu_s() - cpu_start;
               if (renderer.last_frame().table_sets_requested > 0) continue;  // fetched tables: not a steady frame
               times.push_back(t);
+              cpu_times.push_back(cpu);
               stats = renderer.last_frame();
               spent += t;
               if (spent + t > opt.budget_s) break;
@@ -499,9 +591,19 @@ int run(int argc, char** argv) {
           state.counters["min_ms"] = *std::min_element(times.begin(), times.end()) * 1e3;
           state.counters["Mpix/s"] = double(projection.width()) * double(projection.height()) / median(times) / 1e6;
           state.counters["atm_tiles"] = static_cast<double>(tiles);
+          state.counters["cpu_ms"] = median(cpu_times) * 1e3;
+          if (opt.time_passes) {
+            std::string split;
+            for (const auto& [pass, ms] : stats.pass_ms) split += fmt::format("  {} {:.1f}", pass, ms);
+            fmt::print("{}: last frame {:.1f} ms; per pass [ms]:{}; tiles: {} one atmosphere, {} G-buffer path, "
+                       "{} direct light, {} black\n",
+                       name, stats.seconds * 1e3, split, stats.tiles_one_atmosphere, stats.tiles_gbuffer,
+                       stats.tiles_direct, stats.tiles_black);
+          }
           Gathered& g = gathered[{ri, n}];
           g.peak_memory_mb = std::max(g.peak_memory_mb, peak_memory_mb());
           g.times.insert(g.times.end(), times.begin(), times.end());
+          g.cpu_times.insert(g.cpu_times.end(), cpu_times.begin(), cpu_times.end());
           g.stats = stats;
         });
         b->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
@@ -518,6 +620,7 @@ int run(int argc, char** argv) {
                static_cast<std::size_t>((r.width + kTile - 1) / kTile) * static_cast<std::size_t>((r.height + kTile - 1) / kTile)};
     for (const auto& a : g.stats.atmospheres) out.tiles_covered += a.tiles;
     out.peak_memory_mb = g.peak_memory_mb;
+    out.cpu_s = median(g.cpu_times);
     results.push_back(out);
   }
   if (results.empty()) {
@@ -525,12 +628,14 @@ int run(int argc, char** argv) {
     return 1;
   }
 
-  print_table(res, max_atm, results, false);
-  print_table(res, max_atm, results, true);
+  print_table(res, max_atm, results, Figure::median);
+  print_table(res, max_atm, results, Figure::fastest);
+  print_table(res, max_atm, results, Figure::cpu);
   write_csv(opt.csv, device, results);
   fmt::print("csv: {}\n", opt.csv.string());
   if (opt.chart) write_chart(opt.csv, res, device);
   if (opt.viewport) time_projectors(opt, device, scene, with_atmospheres_renderer);
+  if (opt.sky_view_error) print_sky_view_error(res, scene, atm_options, tables);
   return failed ? 1 : 0;
 }
 

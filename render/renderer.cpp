@@ -10,6 +10,7 @@
 #include <cstring>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,6 +20,7 @@
 
 #include "atmosphere/lut/parallel_for.h"
 #include "atmosphere/model_hash.h"
+#include "render/frame/pass_timer.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
 #include "render/gl/gl_error.h"
@@ -42,8 +44,9 @@ constexpr unsigned kRayTableUnit = 7;   // projection_ray_table of projection.gl
 constexpr std::size_t kLanes = kWavelengthLanes;
 
 // Storage bindings and image units of the render passes (frame.glsl, *.comp).
-enum StorageBinding : unsigned { kBodies = 4, kTiles = 5 };
-enum ImageUnit : unsigned { kGbufferHit = 0, kGbufferAlbedo = 1, kRadianceSum = 2, kTransmittance = 3, kFrameRgb = 4 };
+enum StorageBinding : unsigned { kBodies = 4, kTiles = 5, kFrameRgb = 6 };
+enum ImageUnit : unsigned { kGbufferHit = 0, kGbufferAlbedo = 1, kRadianceSum = 2, kTransmittance = 3 };
+constexpr int kMaxSpectrumUniforms = 64;  // direct_light.comp's sun_spectrum[]: a scene's wavelengths at most
 
 /// frame.glsl's Body, std430 layout (6 vec4).
 struct GpuBody {
@@ -53,6 +56,61 @@ struct GpuBody {
   Vec4 world_to_body[3];
 };
 static_assert(sizeof(GpuBody) == 6 * 16);
+
+/// Whether some body's shadow (its penumbra) can fall on another: then the
+/// passes are compiled with the eclipse code (frame.glsl's sun_visibility),
+/// which a CPU rasterizer would otherwise run for every lit pixel in vain. For
+/// an occluder of radius a at o and a receiver of radius b at c: the points
+/// that see part of the sun (angular radius α, direction s) behind the
+/// occluder lie within a + d tan α (·1.01, and a metre) of the shadow axis
+/// through o, at d = (o − p)·s > 0 in front of them; the receiver's nearest
+/// point is at least (its centre's distance from the axis) − b from it.
+bool eclipses_possible(const scene::Scene& scene) {
+  const glm::dvec3 s = glm::normalize(scene.sun.direction);
+  const double tan_alpha = std::tan(std::min(scene.sun.angular_radius_rad, 1.0));
+  for (const scene::Body& occluder : scene.bodies)
+    for (const scene::Body& receiver : scene.bodies) {
+      if (&occluder == &receiver) continue;
+      const glm::dvec3 oc = occluder.position_m - receiver.position_m;
+      const double d = glm::dot(oc, s) + receiver.radius_m;  // largest d over the receiver
+      if (d <= 0.0) continue;  // the occluder is behind the receiver, away from the sun
+      const double off_axis = glm::length(oc - glm::dot(oc, s) * s) - receiver.radius_m;
+      if (off_axis < 1.01 * (occluder.radius_m + d * tan_alpha) + 1.0) return true;
+    }
+  return false;
+}
+
+/// Whether every albedo lookup of the frame is at level 0 of the maps
+/// (surface_albedo.glsl: lod = max(0, log2(footprint / texel))): a pixel's
+/// footprint on a body is at most pixel angle × distance / 0.05 (the clamp of
+/// the incidence cosine), and nothing of a sphere seen from outside lies
+/// farther than its horizon, √(D² − R²). Then the passes sample level 0 with a
+/// constant level (ALBEDO_LOD0): the same texels, without the per-pixel mip
+/// selection a CPU rasterizer pays for.
+bool albedo_at_full_resolution(const scene::Scene& scene, double pixel_angle, int map_width) {
+  for (const scene::Body& body : scene.bodies) {
+    const double D = glm::length(body.position_m - scene.camera.position_m), R = body.radius_m;
+    const double farthest = std::sqrt(std::max((D - R) * (D + R), 0.0));
+    const double texel = 2.0 * std::numbers::pi * R / std::max(map_width, 1);
+    if (20.0 * pixel_angle * farthest > 0.99 * texel) return false;
+  }
+  return true;
+}
+
+/// Where the sky-view table is as good as the 4D lookups per pixel, for a
+/// camera at radius r inside the shell [RB, RT] with the sun's cosine μs
+/// (measured with render_bench --sky-view-error on horizon views, 1280×720 with
+/// 10° and 79° fields, paper tables; docs/rendering-performance.md): low in the
+/// atmosphere (up to 2 % of its thickness: 2 km on Earth) always; up to 20 %
+/// while the sun is above the camera's horizon. Higher, and in twilight above
+/// the lowest layer, the light at the horizon changes within hundredths of a
+/// degree (the limb, the Earth's shadow) and 64 zenith texels a half would
+/// differ by up to 25 % there: the 4D lookups stay, as from space.
+bool sky_view_accurate(double r, double ground_radius, double top_radius, double mu_s) {
+  const double height = (r - ground_radius) / (top_radius - ground_radius);
+  const double mu_horizon = -std::sqrt(std::max(0.0, 1.0 - (ground_radius / r) * (ground_radius / r)));
+  return height <= 0.02 || (height <= 0.2 && mu_s > mu_horizon);
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -102,7 +160,42 @@ std::array<unsigned, 2> tile_groups(std::size_t count) {
 }  // namespace
 
 struct Renderer::Impl {
-  ShaderProgram gbuffer, resolve;
+  /// The frame passes, compiled for one projection kind (PROJECTION_KIND of
+  /// shaders/projection.glsl) on first use.
+  struct FramePasses {
+    ShaderProgram gbuffer, resolve;
+    // Tiles no atmosphere touches: bodies (one body: ONE_BODY = 1; several), and the sun's tiles (SUN = 1).
+    ShaderProgram direct_light_one, direct_light, direct_light_sun;
+  };
+  std::map<std::string, FramePasses> frame_passes;  // by FrameVariant::key
+  std::vector<gl::ShaderDefine> sun_defines;  // SUN_DISC, LIMB_DARKENING (resolve.comp, atmosphere_tile.comp)
+  bool sun_disc = true, limb_darkening = true;
+
+  const FramePasses& passes_for(const FrameVariant& frame) {
+    auto it = frame_passes.find(frame.key());
+    if (it != frame_passes.end()) return it->second;
+    const std::vector<gl::ShaderDefine> frame_defines = frame.defines();
+    std::vector<gl::ShaderDefine> resolve_defines = sun_defines;
+    resolve_defines.insert(resolve_defines.end(), frame_defines.begin(), frame_defines.end());
+    auto direct_defines = [&](bool sun, bool one_body) {
+      std::vector<gl::ShaderDefine> d = {{"SUN", sun ? "1" : "0"},
+                                         {"ONE_BODY", one_body ? "1" : "0"},
+                                         {"LIMB_DARKENING", limb_darkening ? "1" : "0"}};
+      d.insert(d.end(), frame_defines.begin(), frame_defines.end());
+      return d;
+    };
+    FramePasses p;
+    FrameVariant no_eclipses = frame;  // the G-buffer pass shades nothing
+    no_eclipses.eclipses = false;
+    const std::vector<gl::ShaderDefine> gbuffer_defines = no_eclipses.defines();
+    p.gbuffer = ShaderProgram::load_compute("render/gbuffer.comp", gbuffer_defines);
+    p.resolve = ShaderProgram::load_compute("render/resolve.comp", resolve_defines);
+    p.direct_light_one = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false, true));
+    p.direct_light = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false, false));
+    if (sun_disc)
+      p.direct_light_sun = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(true, false));
+    return frame_passes.emplace(frame.key(), std::move(p)).first->second;
+  }
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   std::map<std::string, image::LinearImage> albedo_images;           // by albedo_key
   std::string albedo_array_key;
@@ -155,9 +248,11 @@ struct Renderer::Impl {
   std::map<int, std::vector<float>> ray_tables;  // by first row
   Texture ray_table;
   std::size_t tiles_capacity = 0;
-  // Band images, (re)allocated when the band size changes.
+  // Band images, (re)allocated when the band size changes; the output is a
+  // buffer of one vec4 per pixel, mapped and packed into the rows (frame_rgb.glsl).
   int band_width = 0, band_height = 0;
-  Texture gbuffer_hit, gbuffer_albedo, radiance_sum, transmittance, frame_rgb;
+  Texture gbuffer_hit, gbuffer_albedo, radiance_sum, transmittance;
+  gl::Buffer frame_rgb;
 
   void ensure_band_images(int width, int height) {
     if (width == band_width && height == band_height) return;
@@ -165,7 +260,7 @@ struct Renderer::Impl {
     gbuffer_albedo = Texture::create_2d(TextureFormat::rgba16f, width, height);
     radiance_sum = Texture::create_2d(TextureFormat::rgba32f, width, height);
     transmittance = Texture::create_2d(TextureFormat::rgba32f, width, height);
-    frame_rgb = Texture::create_2d(TextureFormat::rgba32f, width, height);
+    frame_rgb = gl::Buffer::mappable(static_cast<std::size_t>(width) * height * 4 * sizeof(float));
     band_width = width;
     band_height = height;
   }
@@ -181,14 +276,10 @@ Renderer::Renderer(const RenderOptions& options, TableSource tables)
     : options_(options), table_source_(std::move(tables)), impl_(std::make_unique<Impl>()) {
   if (options_.max_band_pixels < std::size_t{kTileSize} * kTileSize)
     throw std::invalid_argument("RenderOptions::max_band_pixels must be at least 256");
-  const std::vector<gl::ShaderDefine> resolve_defines = {
-      {"SUN_DISC", options_.sun_disc ? "1" : "0"},
-      {"LIMB_DARKENING", options_.limb_darkening ? "1" : "0"},
-      {"ECLIPSES", options_.atmosphere.eclipses ? "1" : "0"},
-  };
-  const std::vector<gl::ShaderDefine> gbuffer_defines = {{"ECLIPSES", "0"}};
-  impl_->gbuffer = ShaderProgram::load_compute("render/gbuffer.comp", gbuffer_defines);
-  impl_->resolve = ShaderProgram::load_compute("render/resolve.comp", resolve_defines);
+  impl_->sun_defines = {{"SUN_DISC", options_.sun_disc ? "1" : "0"},
+                        {"LIMB_DARKENING", options_.limb_darkening ? "1" : "0"}};
+  impl_->sun_disc = options_.sun_disc;
+  impl_->limb_darkening = options_.limb_darkening;
 }
 
 Renderer::~Renderer() = default;
@@ -206,6 +297,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   const auto start = std::chrono::steady_clock::now();
   Impl& im = *impl_;
   stats_ = FrameStats{};
+  PassTimer timer(options_.time_passes);
   gl::check_gl_error("Renderer::render: an earlier GL call left an error");
 
   const std::size_t n = scene.wavelengths_nm.size();
@@ -268,7 +360,13 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     double distance_m = 0.0, top_radius_m = 0.0, power_m2 = 0.0;
     glm::dvec3 direction_camera{0.0};
     GpuAtmosphere* gpu = nullptr;
-    std::vector<std::uint32_t> band_tiles;
+    bool sky_view = false;  // the camera is inside: the sky-view variant where it can
+    // The band's tiles the shell can touch (shell_tiles); of those, the tiles
+    // no other shell touches, drawn in one pass (atmosphere_tile.comp) by
+    // variant (GpuAtmosphere::TileVariant::key), and the others, which go
+    // through the G-buffer path.
+    std::vector<std::uint32_t> shell_tiles, gbuffer_tiles;
+    std::map<int, std::pair<GpuAtmosphere::TileVariant, std::vector<std::uint32_t>>> one_pass;
   };
   std::vector<AtmospherePass> passes;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -317,6 +415,16 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   for (GpuBody& g : bodies) g.albedo_map = {static_cast<float>(im.albedo_array.width()), 0, 0, 0};
   im.albedo_array.bind(kAlbedoMapUnit);
   im.bodies = gl::Buffer::from(std::span<const GpuBody>(bodies.empty() ? std::vector<GpuBody>(1) : bodies));
+  // frame.glsl's the_body: body b's data as plain uniforms of a pass about it.
+  auto set_the_body = [&](const ShaderProgram& p, std::size_t b) {
+    const GpuBody& g = bodies[b];
+    p.set_uniform("the_body.centre", g.centre);
+    p.set_uniform("the_body.shape", g.shape);
+    p.set_uniform("the_body.albedo_map", g.albedo_map);
+    p.set_uniform("the_body.world_to_body0", g.world_to_body[0]);
+    p.set_uniform("the_body.world_to_body1", g.world_to_body[1]);
+    p.set_uniform("the_body.world_to_body2", g.world_to_body[2]);
+  };
 
   // ---- tables: only for atmospheres the view touches, only when not resident
   auto touches_view = [&](const AtmospherePass& pass) {
@@ -334,19 +442,53 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     if (it == im.atmospheres.end()) {
       ++stats_.table_sets_requested;
       const atmosphere::lut::LookupTables tables = table_source_(model);
-      it = im.atmospheres.emplace(key, std::make_unique<GpuAtmosphere>(model, tables, options_.atmosphere)).first;
+      it = im.atmospheres.emplace(key, std::make_unique<GpuAtmosphere>(model, tables, options_.atmosphere,
+                                                                        im.sun_defines))
+               .first;
       ++stats_.table_sets_uploaded;
       spdlog::debug("renderer: atmosphere of '{}' resident ({:.1f} MB of tables)",
                     scene.bodies[static_cast<std::size_t>(pass.body)].name, static_cast<double>(it->second->table_bytes()) / 1e6);
     }
     pass.gpu = it->second.get();
   }
+  // ---- sky-view tables: once per frame for each atmosphere whose shell holds
+  // the camera (render/frame/sky_view_table.h), at most one pass per table set.
+  std::vector<const GpuAtmosphere*> sky_view_filled;
+  for (AtmospherePass& pass : passes) {
+    if (!pass.gpu || options_.sky_view_table == SkyViewTableUse::off || pass.power_m2 > 0.0) continue;
+    if (std::find(sky_view_filled.begin(), sky_view_filled.end(), pass.gpu) != sky_view_filled.end()) continue;
+    const scene::Body& planet = scene.bodies[static_cast<std::size_t>(pass.body)];
+    const glm::dvec3 up = glm::normalize(scene.camera.position_m - planet.position_m);
+    if (!sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(), pass.top_radius_m, glm::dot(up, sun)))
+      continue;
+    timer.gpu("sky-view table", [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, sun), sun_radius); });
+    pass.sky_view = true;
+    sky_view_filled.push_back(pass.gpu);
+  }
+  // Bodies that reach into a shell holding the camera: their tiles need the
+  // direct path's aerial perspective (the sky-view variant has none).
+  auto bodies_inside_shell = [&](const AtmospherePass& pass) {
+    std::vector<std::size_t> inside;
+    const glm::dvec3 centre = scene.bodies[static_cast<std::size_t>(pass.body)].position_m;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+      if (static_cast<int>(b) != pass.body &&
+          glm::length(scene.bodies[b].position_m - centre) - scene.bodies[b].radius_m < pass.top_radius_m)
+        inside.push_back(b);
+    return inside;
+  };
 
   // ---- uniforms shared by all passes
   std::array<float, 9> camera_matrix{};
   for (int col = 0; col < 3; ++col)
     for (int row = 0; row < 3; ++row) camera_matrix[col * 3 + row] = static_cast<float>(camera_to_world[col][row]);
   const warp::GpuProjection gpu_projection = projection.gpu();
+  // Planar and cube-face projections: their affine ray's vectors in the world frame (frame.glsl).
+  std::array<std::array<float, 3>, 3> world_ray{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto& v = gpu_projection.params[k];
+    const glm::dvec3 w = camera_to_world * glm::dvec3(v[0], v[1], v[2]);
+    world_ray[k] = {static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z)};
+  }
   auto set_frame_uniforms = [&](const ShaderProgram& p) {
     p.set_uniform("body_count", static_cast<int>(scene.bodies.size()));
     p.set_uniform("camera_to_world", camera_matrix);
@@ -357,14 +499,70 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     p.set_uniform("projection_kind", static_cast<int>(gpu_projection.kind));
     for (int k = 0; k < 4; ++k)
       p.set_uniform(fmt::format("projection_params[{}]", k), gpu_projection.params[static_cast<std::size_t>(k)]);
+    p.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
+    p.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
+    for (const auto& [name, k] : {std::pair{"world_ray_x", 0}, std::pair{"world_ray_y", 1}, std::pair{"world_ray_centre", 2}})
+      p.set_uniform(name, world_ray[static_cast<std::size_t>(k)]);
   };
-  set_frame_uniforms(im.gbuffer);
-  set_frame_uniforms(im.resolve);
-  for (const AtmospherePass& pass : passes)
-    if (pass.gpu) set_frame_uniforms(pass.gpu->program());
-  im.resolve.set_uniform("exposure", static_cast<float>(scene.camera.exposure));
-  im.resolve.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
-  im.resolve.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
+  // Programs are compiled per projection kind, and with the eclipse code only
+  // when another body can cast a shadow (a CPU rasterizer runs all of it).
+  const int projection_kind = static_cast<int>(gpu_projection.kind);
+  FrameVariant frame_variant;
+  frame_variant.projection_kind = projection_kind;
+  frame_variant.eclipses = options_.atmosphere.eclipses && eclipses_possible(scene);
+  frame_variant.albedo_lod0 = albedo_at_full_resolution(scene, pixel_angle, im.albedo_array.width());
+  const Impl::FramePasses& fp = im.passes_for(frame_variant);
+  // Frame uniforms on first use in the frame, band uniforms on first use in the band.
+  std::set<const ShaderProgram*> frame_ready, band_ready;
+  std::array<int, 2> band_origin{0, 0}, band_size{0, 0};
+  auto prepare = [&](const ShaderProgram& p) -> const ShaderProgram& {
+    if (frame_ready.insert(&p).second) {
+      set_frame_uniforms(p);
+      p.set_uniform("exposure", static_cast<float>(scene.camera.exposure));
+    }
+    if (band_ready.insert(&p).second) {
+      p.set_uniform("band_origin", band_origin);
+      p.set_uniform("band_size", band_size);
+      if (gpu_projection.kind == warp::ProjectionKind::ray_table) p.set_uniform("projection_table_origin", band_origin);
+    }
+    return p;
+  };
+
+  // direct_light.comp: every wavelength at once. A body lit by the sun alone
+  // is rgb = (cos i V / π) M a with M = exposure Σ_λ w(λ) E(λ) f(λ)ᵀ (w: the
+  // spectral → RGB weights, f: the albedo's RGB → reflectance weights); the
+  // sun's disc rgb = Σ_λ exposure w(λ) I_centre(λ) μ^α(λ) × coverage.
+  {
+    const double exposure = scene.camera.exposure;
+    std::array<float, 9> rgb_from_albedo{};  // column-major: column = albedo channel
+    for (int out = 0; out < 3; ++out)
+      for (int in = 0; in < 3; ++in) {
+        double m = 0.0;
+        for (std::size_t i = 0; i < n; ++i)
+          m += rgb_weights[i][static_cast<std::size_t>(out)] * scene.sun.irradiance_W_m2_nm[i] *
+               albedo_weights[i][static_cast<std::size_t>(in)];
+        rgb_from_albedo[static_cast<std::size_t>(in * 3 + out)] = static_cast<float>(exposure * m);
+      }
+    prepare(fp.direct_light).set_uniform("rgb_from_albedo", rgb_from_albedo);
+    prepare(fp.direct_light_one).set_uniform("rgb_from_albedo", rgb_from_albedo);
+    if (fp.direct_light_sun.id() != 0) {
+      const ShaderProgram& p = prepare(fp.direct_light_sun);
+      p.set_uniform("rgb_from_albedo", rgb_from_albedo);
+      p.set_uniform("wavelength_count", static_cast<int>(std::min<std::size_t>(n, kMaxSpectrumUniforms)));
+      for (std::size_t i = 0; i < n && i < static_cast<std::size_t>(kMaxSpectrumUniforms); ++i) {
+        const double c = exposure * sun_centre[i];
+        p.set_uniform(fmt::format("sun_spectrum[{}]", i),
+                      std::array<float, 4>{static_cast<float>(rgb_weights[i][0] * c),
+                                           static_cast<float>(rgb_weights[i][1] * c),
+                                           static_cast<float>(rgb_weights[i][2] * c),
+                                           static_cast<float>(sun_point_sigma > 0.0 ? 0.0 : limb_exponent[i])});
+      }
+    }
+  }
+  // Where the sun can be drawn: a cone of the disc's radius plus a pixel (or 6σ of the Gaussian).
+  const double sun_reach = std::min(std::numbers::pi / 2, sun_point_sigma > 0.0 ? 6.0 * sun_point_sigma
+                                                                                : sun_radius + pixel_angle);
+  const glm::dvec3 sun_camera = world_to_camera * sun;
 
   // ---- bands
   const int width = projection.width(), height = projection.height();
@@ -379,11 +577,9 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   for (int first_row = 0; first_row < height; first_row += band_rows) {
     const int rows = std::min(band_rows, height - first_row);
     ++stats_.bands;
-    const std::array<int, 2> origin{0, first_row}, size{width, rows};
-    auto set_band = [&](const ShaderProgram& p) {
-      p.set_uniform("band_origin", origin);
-      p.set_uniform("band_size", size);
-    };
+    band_origin = {0, first_row};
+    band_size = {width, rows};
+    band_ready.clear();
 
     if (gpu_projection.kind == warp::ProjectionKind::ray_table) {
       // Rays of this band on the CPU, in double, kept for the next frames.
@@ -408,88 +604,288 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
         im.ray_table = Texture::create_2d(TextureFormat::rgba32f, width, im.band_height);
       im.ray_table.upload(table->second);
       im.ray_table.bind(kRayTableUnit);
-      auto set_table = [&](const ShaderProgram& p) { p.set_uniform("projection_table_origin", origin); };
-      set_table(im.gbuffer);
-      set_table(im.resolve);
-      for (const AtmospherePass& pass : passes)
-        if (pass.gpu) set_table(pass.gpu->program());
     }
 
-    set_band(im.gbuffer);
-    im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::write_only);
-    im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::write_only);
-    im.gbuffer.dispatch_covering(width, rows);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    // ---- classify the band's tiles (render/frame/tile_culling.h):
+    //   exactly one atmosphere's shell can touch it: one pass for that
+    //     atmosphere (atmosphere_tile.comp), from its sky-view table when the
+    //     camera is inside the shell and no other body inside the shell can be
+    //     in the tile, else from the 4D tables; compiled for what the tile can
+    //     hold (the planet's ground: none, all or some of it; other bodies;
+    //     the sun), since llvmpipe runs every branch a program has;
+    //   two or more: the G-buffer path (gbuffer.comp, the atmospheres front to
+    //     back, resolve.comp), which composites them;
+    //   none, but a body or the sun can be in it: direct_light.comp, one pass;
+    //   nothing: black (not dispatched).
+    const int band_tile_rows = (rows + kTileSize - 1) / kTileSize;
+    const std::size_t band_tiles = static_cast<std::size_t>(cones.columns()) * band_tile_rows;
+    auto tile_index = [&](std::uint32_t t) { return (t >> 16) * static_cast<std::size_t>(cones.columns()) + (t & 0xffffu); };
+    auto body_touches = [&](std::size_t b) {
+      const glm::dvec3 c = scene.bodies[b].position_m - scene.camera.position_m;
+      return cones.tiles_touching_sphere(world_to_camera * glm::normalize(c), glm::length(c), scene.bodies[b].radius_m,
+                                         first_row, rows);
+    };
+    std::vector<std::uint8_t> shells(band_tiles, 0);  // shells that can touch the tile (saturating)
+    for (AtmospherePass& pass : passes) {
+      pass.shell_tiles = pass.gpu ? cones.tiles_touching_sphere(pass.direction_camera, pass.distance_m,
+                                                                pass.top_radius_m, first_row, rows)
+                                  : std::vector<std::uint32_t>{};
+      for (std::uint32_t t : pass.shell_tiles) shells[tile_index(t)] = static_cast<std::uint8_t>(std::min(shells[tile_index(t)] + 1, 2));
+    }
+    enum TileUse : std::uint8_t { kGbuffer = 1, kBody = 2, kSun = 4 };
+    std::vector<std::uint8_t> use(band_tiles, 0);
+    auto mark = [&](const std::vector<std::uint32_t>& list, std::uint8_t flag) {
+      for (std::uint32_t t : list) use[tile_index(t)] |= flag;
+    };
+    // Per body, the tiles it can be in (for the one-pass variants and the direct tiles).
+    std::vector<std::vector<std::uint32_t>> body_tiles_of(scene.bodies.size());
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      body_tiles_of[b] = body_touches(b);
+      mark(body_tiles_of[b], kBody);
+    }
+    if (options_.sun_disc) mark(cones.tiles_touching_sphere(sun_camera, 1.0, std::sin(sun_reach), first_row, rows), kSun);
+    for (AtmospherePass& pass : passes) {
+      pass.gbuffer_tiles.clear();
+      pass.one_pass.clear();
+      if (pass.shell_tiles.empty()) continue;
+      const scene::Body& planet = scene.bodies[static_cast<std::size_t>(pass.body)];
+      const glm::dvec3 to_planet = planet.position_m - scene.camera.position_m;
+      const std::vector<TileCover> ground =
+          cones.sphere_cover(world_to_camera * glm::normalize(to_planet), glm::length(to_planet), planet.radius_m,
+                             first_row, rows);
+      // Other bodies: 1 where one beyond the shell can be, 2 where one inside it can be.
+      std::vector<std::uint8_t> others(band_tiles, 0);
+      const std::vector<std::size_t> inside = bodies_inside_shell(pass);
+      for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+        if (static_cast<int>(b) == pass.body) continue;
+        const std::uint8_t level = std::find(inside.begin(), inside.end(), b) != inside.end() ? 2 : 1;
+        for (std::uint32_t t : body_tiles_of[b]) others[tile_index(t)] = std::max(others[tile_index(t)], level);
+      }
+      for (std::uint32_t t : pass.shell_tiles) {
+        const std::size_t i = tile_index(t);
+        if (shells[i] > 1 || !options_.one_pass_tiles) {
+          pass.gbuffer_tiles.push_back(t);
+          continue;
+        }
+        GpuAtmosphere::TileVariant v;
+        v.sky_view = pass.sky_view && others[i] < 2;
+        v.ground = ground[i];
+        v.others = others[i];
+        v.sun = (use[i] & kSun) != 0;
+        auto& list = pass.one_pass[v.key()];
+        list.first = v;
+        list.second.push_back(t);
+      }
+      mark(pass.gbuffer_tiles, kGbuffer);
+    }
+    if (!options_.one_pass_tiles)
+      mark(cones.tiles_touching_sphere(glm::dvec3(0, 0, -1), 0.0, 1.0, first_row, rows), kGbuffer);
+    // One buffer per band holds every list: each atmosphere's, then the
+    // G-buffer path's tiles, the bodies' and the sun's direct tiles.
+    struct TileList {
+      std::size_t offset = 0, count = 0;
+    };
+    std::vector<std::uint32_t> all_tiles;
+    auto append = [&](const std::vector<std::uint32_t>& list) {
+      const TileList l{all_tiles.size(), list.size()};
+      all_tiles.insert(all_tiles.end(), list.begin(), list.end());
+      return l;
+    };
+    struct PassLists {
+      std::vector<std::pair<GpuAtmosphere::TileVariant, TileList>> one_pass;
+      TileList gbuffer;
+    };
+    std::vector<PassLists> lists(passes.size());
+    std::size_t one_pass_atmosphere_tiles = 0;
+    for (std::size_t a = 0; a < passes.size(); ++a) {
+      const AtmospherePass& pass = passes[a];
+      FrameStats::Atmosphere& st = stats_.atmospheres[a];
+      for (const auto& [key, list] : pass.one_pass) {
+        lists[a].one_pass.emplace_back(list.first, append(list.second));
+        one_pass_atmosphere_tiles += list.second.size();
+        if (list.first.sky_view) st.sky_view_tiles += list.second.size();
+      }
+      lists[a].gbuffer = append(pass.gbuffer_tiles);
+      st.tiles += pass.shell_tiles.size();
+      st.gbuffer_tiles += pass.gbuffer_tiles.size();
+    }
+    auto list_where = [&](auto&& keep) {  // the band's tiles i with keep(i), row by row
+      TileList l{all_tiles.size(), 0};
+      for (std::size_t i = 0; i < band_tiles; ++i)
+        if (keep(i)) {
+          all_tiles.push_back(static_cast<std::uint32_t>(i % static_cast<std::size_t>(cones.columns())) |
+                              static_cast<std::uint32_t>(i / static_cast<std::size_t>(cones.columns())) << 16);
+          ++l.count;
+        }
+      return l;
+    };
+    const TileList gbuffer_tiles = list_where([&](std::size_t i) { return (use[i] & kGbuffer) != 0; });
+    // Body tiles (no shell, no sun): those only one body can be in, per body
+    // (direct_light.comp's ONE_BODY, its data as uniforms), then the others.
+    std::vector<std::uint8_t> body_count(band_tiles, 0);
+    for (const auto& list : body_tiles_of)
+      for (std::uint32_t t : list) body_count[tile_index(t)] = static_cast<std::uint8_t>(std::min(body_count[tile_index(t)] + 1, 2));
+    auto body_only = [&](std::size_t i) { return shells[i] == 0 && use[i] == kBody; };
+    std::vector<std::pair<std::size_t, TileList>> one_body_tiles;
+    std::size_t one_body_count = 0;
+    for (std::size_t b = 0; b < body_tiles_of.size(); ++b) {
+      std::vector<std::uint32_t> only;
+      for (std::uint32_t t : body_tiles_of[b])
+        if (body_only(tile_index(t)) && body_count[tile_index(t)] == 1) only.push_back(t);
+      if (only.empty()) continue;
+      one_body_tiles.emplace_back(b, append(only));
+      one_body_count += only.size();
+    }
+    const TileList body_tiles = list_where([&](std::size_t i) { return body_only(i) && body_count[i] > 1; });
+    const TileList sun_tiles =
+        list_where([&](std::size_t i) { return shells[i] == 0 && (use[i] & kGbuffer) == 0 && (use[i] & kSun) != 0; });
+    stats_.tiles_gbuffer += gbuffer_tiles.count;
+    stats_.tiles_one_atmosphere += one_pass_atmosphere_tiles;
+    stats_.tiles_direct += one_body_count + body_tiles.count + sun_tiles.count;
+    stats_.tiles_black +=
+        band_tiles - (gbuffer_tiles.count + one_pass_atmosphere_tiles + one_body_count + body_tiles.count + sun_tiles.count);
+    im.ensure_tiles_buffer(all_tiles.size());
+    if (!all_tiles.empty()) im.tiles.upload(std::span<const std::uint32_t>(all_tiles));
+    im.tiles.bind_storage(kTiles);
+    im.frame_rgb.bind_storage(kFrameRgb);
+    const std::size_t band_bytes = static_cast<std::size_t>(width) * rows * 4 * sizeof(float);
+    // Tiles nothing is dispatched for stay black: not cleared on the GPU, zeros in the rows.
+    std::vector<std::uint8_t> black(band_tiles, 0);
+    for (std::size_t i = 0; i < band_tiles; ++i) black[i] = shells[i] == 0 && use[i] == 0;
+    auto dispatch_tiles = [&](const ShaderProgram& p, TileList list) {
+      prepare(p);
+      p.set_uniform("tile_offset", static_cast<int>(list.offset));
+      p.set_uniform("tile_count", static_cast<int>(list.count));
+      const auto grid = tile_groups(list.count);
+      p.dispatch(grid[0], grid[1]);
+    };
+    // Per-group uniforms of the passes that turn a group's radiance into colour.
+    auto set_group_uniforms = [&](const ShaderProgram& p, std::size_t g) {
+      prepare(p);
+      p.set_uniform("first_group", g == 0 ? 1 : 0);
+      p.set_uniform("last_group", g + 1 == groups ? 1 : 0);
+      p.set_uniform("sun_irradiance", lanes(scene.sun.irradiance_W_m2_nm, g));
+      p.set_uniform("sun_centre_radiance", lanes(sun_centre, g));
+      p.set_uniform("limb_exponent", lanes(limb_exponent, g));
+      p.set_uniform("albedo_from_r", lanes(albedo_weights, 0, g));
+      p.set_uniform("albedo_from_g", lanes(albedo_weights, 1, g));
+      p.set_uniform("albedo_from_b", lanes(albedo_weights, 2, g));
+      p.set_uniform("rgb_from_lanes_r", lanes(rgb_weights, 0, g));
+      p.set_uniform("rgb_from_lanes_g", lanes(rgb_weights, 1, g));
+      p.set_uniform("rgb_from_lanes_b", lanes(rgb_weights, 2, g));
+    };
 
-    for (AtmospherePass& pass : passes)
-      pass.band_tiles = pass.gpu ? cones.tiles_touching_sphere(pass.direction_camera, pass.distance_m,
-                                                               pass.top_radius_m, first_row, rows)
-                                 : std::vector<std::uint32_t>{};
+    // ---- tiles no atmosphere touches: one pass each, every wavelength
+    for (const auto& [b, list] : one_body_tiles) {
+      set_the_body(prepare(fp.direct_light_one), b);
+      fp.direct_light_one.set_uniform("one_body", static_cast<int>(b));
+      timer.gpu("direct light", [&] { dispatch_tiles(fp.direct_light_one, list); });
+    }
+    if (body_tiles.count > 0)
+      timer.gpu("direct light", [&] { dispatch_tiles(fp.direct_light, body_tiles); });
+    if (sun_tiles.count > 0)
+      timer.gpu("direct light, sun", [&] { dispatch_tiles(fp.direct_light_sun, sun_tiles); });
 
-    for (std::size_t g = 0; g < groups; ++g) {
-      const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
-      glClearTexImage(im.radiance_sum.id(), 0, GL_RGBA, GL_FLOAT, zero);
-      glClearTexImage(im.transmittance.id(), 0, GL_RGBA, GL_FLOAT, one);
-      im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::read_only);
-      im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::read_only);
-      im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::read_write);
-      im.transmittance.bind_image(kTransmittance, gl::ImageAccess::read_write);
-      const Vec4 irradiance = lanes(scene.sun.irradiance_W_m2_nm, g);
-      const Vec4 from_r = lanes(albedo_weights, 0, g), from_g = lanes(albedo_weights, 1, g),
-                 from_b = lanes(albedo_weights, 2, g);
-
-      for (std::size_t a = 0; a < passes.size(); ++a) {
-        AtmospherePass& pass = passes[a];
-        if (pass.band_tiles.empty()) continue;
-        stats_.atmospheres[a].tiles += pass.band_tiles.size();
-        const ShaderProgram& p = pass.gpu->program();
-        pass.gpu->bind(g);
-        im.bodies.bind_storage(kBodies);
-        im.ensure_tiles_buffer(pass.band_tiles.size());
-        im.tiles.upload(std::span<const std::uint32_t>(pass.band_tiles));
-        im.tiles.bind_storage(kTiles);
-        set_band(p);
-        p.set_uniform("tile_count", static_cast<int>(pass.band_tiles.size()));
-        p.set_uniform("planet", pass.body);
-        p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
-        p.set_uniform("sun_irradiance", irradiance);
-        p.set_uniform("albedo_from_r", from_r);
-        p.set_uniform("albedo_from_g", from_g);
-        p.set_uniform("albedo_from_b", from_b);
-        const auto grid = tile_groups(pass.band_tiles.size());
-        p.dispatch(grid[0], grid[1]);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    // ---- tiles one atmosphere touches: one pass per group and variant, straight to the output
+    if (one_pass_atmosphere_tiles > 0)
+      for (std::size_t g = 0; g < groups; ++g) {
+        for (std::size_t a = 0; a < passes.size(); ++a) {
+          const AtmospherePass& pass = passes[a];
+          if (lists[a].one_pass.empty()) continue;
+          pass.gpu->bind(g);
+          im.bodies.bind_storage(kBodies);
+          im.tiles.bind_storage(kTiles);
+          for (const auto& [variant, list] : lists[a].one_pass) {
+            const ShaderProgram& p = pass.gpu->tile_program(frame_variant, variant);
+            set_group_uniforms(p, g);
+            pass.gpu->set_group(p, g);
+            set_the_body(p, static_cast<std::size_t>(pass.body));
+            p.set_uniform("planet", pass.body);
+            p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
+            timer.gpu(fmt::format("atmosphere {}, one pass, {}, {}{}{}", stats_.atmospheres[a].body,
+                                  variant.sky_view ? "sky view" : "4D tables",
+                                  variant.ground == TileCover::none  ? "sky"
+                                  : variant.ground == TileCover::all ? "ground"
+                                                                     : "horizon",
+                                  variant.others == 0 ? "" : " + bodies", variant.sun ? " + sun" : ""),
+                      [&] { dispatch_tiles(p, list); });
+          }
+        }
+        if (g + 1 < groups) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next group adds to these pixels
       }
 
-      const ShaderProgram& r = im.resolve;
-      set_band(r);
-      im.frame_rgb.bind_image(kFrameRgb, gl::ImageAccess::read_write);
-      r.set_uniform("first_group", g == 0 ? 1 : 0);
-      r.set_uniform("sun_irradiance", irradiance);
-      r.set_uniform("sun_centre_radiance", lanes(sun_centre, g));
-      r.set_uniform("limb_exponent", lanes(limb_exponent, g));
-      r.set_uniform("albedo_from_r", from_r);
-      r.set_uniform("albedo_from_g", from_g);
-      r.set_uniform("albedo_from_b", from_b);
-      r.set_uniform("rgb_from_lanes_r", lanes(rgb_weights, 0, g));
-      r.set_uniform("rgb_from_lanes_g", lanes(rgb_weights, 1, g));
-      r.set_uniform("rgb_from_lanes_b", lanes(rgb_weights, 2, g));
-      r.dispatch_covering(width, rows);
-      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    // ---- tiles where shells overlap: G-buffer, then per group of 4
+    // wavelengths the atmospheres front to back and the resolve
+    if (gbuffer_tiles.count > 0) {
+      im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::write_only);
+      im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::write_only);
+      im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::write_only);
+      im.transmittance.bind_image(kTransmittance, gl::ImageAccess::write_only);
+      timer.gpu("g-buffer", [&] { dispatch_tiles(fp.gbuffer, gbuffer_tiles); });
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+      for (std::size_t g = 0; g < groups; ++g) {
+        im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::read_only);
+        im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::read_only);
+        im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::read_write);
+        im.transmittance.bind_image(kTransmittance, gl::ImageAccess::read_write);
+        for (std::size_t a = 0; a < passes.size(); ++a) {
+          const AtmospherePass& pass = passes[a];
+          if (lists[a].gbuffer.count == 0) continue;
+          const ShaderProgram& p = pass.gpu->gbuffer_path_program(frame_variant);
+          pass.gpu->bind(g);
+          im.bodies.bind_storage(kBodies);
+          im.tiles.bind_storage(kTiles);
+          prepare(p);
+          pass.gpu->set_group(p, g);
+          set_the_body(p, static_cast<std::size_t>(pass.body));
+          p.set_uniform("planet", pass.body);
+          p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
+          p.set_uniform("sun_irradiance", lanes(scene.sun.irradiance_W_m2_nm, g));
+          p.set_uniform("albedo_from_r", lanes(albedo_weights, 0, g));
+          p.set_uniform("albedo_from_g", lanes(albedo_weights, 1, g));
+          p.set_uniform("albedo_from_b", lanes(albedo_weights, 2, g));
+          timer.gpu(fmt::format("atmosphere {}, g-buffer path", stats_.atmospheres[a].body),
+                    [&] { dispatch_tiles(p, lists[a].gbuffer); });
+          glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        }
+        set_group_uniforms(fp.resolve, g);
+        timer.gpu("resolve", [&] { dispatch_tiles(fp.resolve, gbuffer_tiles); });
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+      }
     }
 
-    // Read back (the whole band image; the last band may use fewer rows).
-    const std::vector<float> rgba = im.frame_rgb.read();
+    // Read back the band's rows (clipped by the passes): RGB of each (r, g, b, 0),
+    // packed from the mapped buffer by both cores, a tile row per task; zeros
+    // for the black tiles, whose memory is not read.
     rows_rgb.resize(static_cast<std::size_t>(width) * rows * 3);
-    for (std::size_t i = 0; i < static_cast<std::size_t>(width) * rows; ++i)
-      for (int k = 0; k < 3; ++k) {
-        // Out-of-gamut colours (the CIE mapping's negative lobes) are clipped to 0.
-        const float v = rgba[4 * i + static_cast<std::size_t>(k)];
-        rows_rgb[3 * i + static_cast<std::size_t>(k)] = v < 0.0f ? 0.0f : v;  // NaN stays visible
-      }
+    timer.cpu("readback", [&] {
+      im.frame_rgb.read_mapped(band_bytes, [&](std::span<const std::byte> bytes) {
+        const auto* rgba = reinterpret_cast<const float*>(bytes.data());
+        atmosphere::parallel_for(static_cast<std::size_t>(band_tile_rows), 0, [&](std::size_t tile_row) {
+          const int y_end = std::min(rows, static_cast<int>(tile_row + 1) * kTileSize);
+          for (int y = static_cast<int>(tile_row) * kTileSize; y < y_end; ++y)
+            for (int tx = 0; tx < cones.columns(); ++tx) {
+              const std::size_t begin = static_cast<std::size_t>(y) * width + static_cast<std::size_t>(tx) * kTileSize;
+              const std::size_t end = static_cast<std::size_t>(y) * width + std::min(width, (tx + 1) * kTileSize);
+              if (black[tile_row * static_cast<std::size_t>(cones.columns()) + static_cast<std::size_t>(tx)]) {
+                std::fill(rows_rgb.begin() + static_cast<std::ptrdiff_t>(3 * begin),
+                          rows_rgb.begin() + static_cast<std::ptrdiff_t>(3 * end), 0.0f);
+                continue;
+              }
+              for (std::size_t i = begin; i < end; ++i) {
+                rows_rgb[3 * i] = rgba[4 * i];
+                rows_rgb[3 * i + 1] = rgba[4 * i + 1];
+                rows_rgb[3 * i + 2] = rgba[4 * i + 2];
+              }
+            }
+        });
+      });
+    });
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, scene.name));
-    sink(first_row, rows, rows_rgb);
+    timer.cpu("sink", [&] { sink(first_row, rows, rows_rgb); });
   }
+  stats_.pass_ms = timer.milliseconds();
   stats_.seconds = seconds_since(start);
 }
 

@@ -1,16 +1,26 @@
 #pragma once
 // The renderer: scenes of analytic planets with precomputed atmospheres, seen
-// through any projection (paper section 5.2, Algorithm 1). Per frame:
+// through any projection (paper section 5.2, Algorithm 1). Per frame and band,
+// the 16×16 tiles are sorted by what can be in them (render/frame/tile_culling.h)
+// and each kind is drawn by its own pass straight into the band's RGB output
+// (docs/rendering-performance.md):
 //
-//   1. body pass (shaders/render/gbuffer.comp): every pixel's ray from the
-//      projection, the nearest sphere, its albedo → G-buffer;
-//   2. per group of 4 wavelengths:
-//      a. one pass per atmosphere, front to back, over the 16×16 tiles its
-//         shell can touch (atmosphere_pass.comp): in-scattering, transmittance,
-//         the ground of its own planet (paper Algorithm 1);
-//      b. resolve (resolve.comp): airless surfaces and the sun's disc behind
-//         the atmospheres, then spectral radiance → linear sRGB × exposure;
-//   3. read back, hand rows to the caller (EXR/PNG writers stream them).
+//   - no atmosphere (shaders/render/direct_light.comp): bodies lit by the sun,
+//     the sun's disc, every wavelength at once; tiles with neither are not
+//     dispatched (black);
+//   - exactly one atmosphere's shell (atmosphere_tile.comp), per group of 4
+//     wavelengths: ray, nearest body, the atmosphere's in-scattering and
+//     transmittance, what lies behind it. A camera inside the shell reads a
+//     per-frame sky-view table (render/frame/sky_view_table.h) filled once from
+//     the 4D tables, except where another body inside the shell can be; other
+//     cameras (space, the limb) read the 4D tables per pixel;
+//   - two or more shells, composited front to back: the G-buffer path — body
+//     pass (gbuffer.comp: nearest sphere, albedo → G-buffer), per group one pass
+//     per atmosphere front to back (atmosphere_pass.comp: running radiance and
+//     transmittance) and resolve.comp (airless surfaces, the sun's disc, colour);
+//
+// then the band is read back and its rows handed to the caller (EXR/PNG writers
+// stream them).
 //
 // Large frames are rendered in horizontal bands of at most
 // RenderOptions::max_band_pixels so GPU memory stays bounded (8K dome masters).
@@ -31,6 +41,14 @@
 
 namespace zenith::render {
 
+/// Whether an atmosphere whose shell holds the camera reads the in-scattering
+/// (and the ground's light) along view rays from a per-frame sky-view table
+/// (render/frame/sky_view_table.h, docs/rendering-performance.md) instead of the 4D tables.
+enum class SkyViewTableUse {
+  automatic,  ///< yes, in one-pass tiles of an atmosphere the camera is inside, where no other body inside the shell can be
+  off,        ///< never: the 4D tables for every pixel (the reference the table is tested against)
+};
+
 struct RenderOptions {
   bool atmospheres = true;      ///< false: bodies lit by the sun only (the benchmarks' baseline)
   bool sun_disc = true;         ///< draw the sun's disc
@@ -39,6 +57,15 @@ struct RenderOptions {
   image::ColourMapping colour = image::ColourMapping::automatic;
   /// Pixels per band; the frame is split into bands of whole 16-pixel tile rows.
   std::size_t max_band_pixels = std::size_t{4} << 20;
+  /// Tiles with no atmosphere or with one are drawn in one pass straight to
+  /// the output (direct_light.comp, atmosphere_tile.comp). false: every tile
+  /// goes through the G-buffer, atmosphere and resolve passes (the path the
+  /// one-pass tiles are tested against).
+  bool one_pass_tiles = true;
+  SkyViewTableUse sky_view_table = SkyViewTableUse::automatic;
+  /// Time every pass (GL_TIME_ELAPSED queries; CPU steps by the wall clock) into
+  /// FrameStats::pass_ms. Serialises the frame: for profiling, not for frame times.
+  bool time_passes = false;
 };
 
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
@@ -53,14 +80,22 @@ using RowSink = std::function<void(int first_row, int row_count, std::span<const
 struct FrameStats {
   struct Atmosphere {
     std::string body;
-    std::size_t tiles = 0;        ///< tiles its pass covered (all bands)
-    std::size_t tiles_total = 0;  ///< tiles in the frame
+    std::size_t tiles = 0;           ///< tiles its shell can touch (all bands)
+    std::size_t sky_view_tiles = 0;  ///< of those, the one-pass tiles read from its sky-view table
+    std::size_t gbuffer_tiles = 0;   ///< of those, the tiles of the G-buffer path (shells overlap)
+    std::size_t tiles_total = 0;     ///< tiles in the frame
   };
   std::vector<Atmosphere> atmospheres;  ///< in the order the passes ran
   int table_sets_requested = 0;         ///< TableSource calls during the frame
   int table_sets_uploaded = 0;
   int bands = 0;
+  std::size_t tiles_gbuffer = 0;         ///< tiles of the G-buffer path (two or more shells; all bands)
+  std::size_t tiles_one_atmosphere = 0;  ///< tiles one shell touches, drawn by atmosphere_tile.comp
+  std::size_t tiles_direct = 0;          ///< tiles drawn by direct_light.comp (a body or the sun, no atmosphere)
+  std::size_t tiles_black = 0;           ///< tiles with nothing to draw: not dispatched
   double seconds = 0.0;                 ///< wall time of render(), readback included
+  /// With RenderOptions::time_passes: milliseconds per pass or CPU step, summed over bands and groups.
+  std::map<std::string, double> pass_ms;
 };
 
 class Renderer {

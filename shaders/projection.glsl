@@ -21,7 +21,15 @@
 #define PROJECTION_KIND_CUBE_FACE 4
 #define PROJECTION_KIND_RAY_TABLE 5
 
+#ifdef PROJECTION_KIND
+// Specialised for one kind (render/renderer.cpp compiles its passes per kind
+// in use): the other kinds' code is not in the program. Mesa's llvmpipe turns
+// small branches into selects, so with a uniform kind every pixel would pay
+// for every kind's rays (sines and cosines included).
+const int projection_kind = PROJECTION_KIND;
+#else
 uniform int projection_kind;
+#endif
 uniform vec4 projection_params[4];
 /// PROJECTION_KIND_RAY_TABLE: the rays of the current band's pixels, computed on
 /// the CPU (xyz: the camera-frame ray, w: 1 where there is one, 0 where not);

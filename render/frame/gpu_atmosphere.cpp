@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -19,8 +20,11 @@ using atmosphere::lut::Table3D;
 
 constexpr std::size_t kLanes = kWavelengthLanes;
 
-// Texture units and storage bindings of atmosphere_pass.comp / atmosphere_common.glsl.
-enum TextureUnit : unsigned { kTransmittance = 0, kSingleRayleigh = 1, kSingleMie = 2, kMultiple = 3, kIrradiance = 4 };
+// Texture units and storage bindings of atmosphere_segment.glsl / atmosphere_common.glsl,
+// and the sky-view table of atmosphere_tile.comp.
+enum TextureUnit : unsigned {
+  kTransmittance = 0, kSingleRayleigh = 1, kSingleMie = 2, kMultiple = 3, kIrradiance = 4, kSkyView = 5
+};
 enum StorageBinding : unsigned { kWavelengthData = 0, kTableData = 1, kTexelCoordinates = 2 };
 
 /// Lanes 4g..4g+3 of a channel-interleaved table, as RGBA texels (missing lanes 0).
@@ -47,7 +51,8 @@ gl::Texture texture_3d(const Table3D& t, std::size_t group) {
 }  // namespace
 
 GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
-                             const AtmospherePassFeatures& features)
+                             const AtmospherePassFeatures& features,
+                             std::span<const gl::ShaderDefine> frame_defines)
     : hash_(tables.hash),
       top_radius_m_(model.top_radius_m),
       ground_radius_m_(model.ground_radius_m) {
@@ -80,11 +85,28 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   std::vector<double> texel_values(2 * mu_s + 1 + 2 * tables.sizes.scattering_r * (tables.sizes.scattering_mu / 2), 0.0);
   texel_values[2 * mu_s] = std::acos(tables.geometry.min_sun_cosine());
   texel_coordinates_ = real_buffer(texel_values, features.fp64);
+  // The same values as uniforms for the render passes (atmosphere_segment.glsl).
+  sun_theta_max_ = static_cast<float>(texel_values[2 * mu_s]);
+  auto lanes = [&](const atmosphere::Spectrum& values, std::size_t group) {
+    std::array<float, 4> out{0, 0, 0, 0};
+    for (std::size_t k = 0; k < kLanes && group * kLanes + k < values.size(); ++k)
+      out[k] = static_cast<float>(values[group * kLanes + k]);
+    return out;
+  };
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    groups_[g].mie_g1 = lanes(model.mie_phase.g1, g);
+    groups_[g].mie_g2 = lanes(model.mie_phase.g2, g);
+    groups_[g].mie_alpha = lanes(model.mie_phase.alpha, g);
+  }
 
   std::vector<gl::ShaderDefine> defines = shader.defines;
   defines.push_back({"MULTIPLE_SCATTERING", features.multiple_scattering && tables.scattering_orders >= 2 ? "1" : "0"});
-  defines.push_back({"ECLIPSES", features.eclipses ? "1" : "0"});
-  program_ = gl::ShaderProgram::load_compute("render/atmosphere_pass.comp", defines);
+  eclipses_ = features.eclipses;
+  defines_ = defines;
+  defines.push_back({"ECLIPSES", "0"});  // the fill shades no surface
+  sky_view_ = std::make_unique<SkyViewTable>(defines, groups_.size());
+  tile_defines_ = defines_;
+  tile_defines_.insert(tile_defines_.end(), frame_defines.begin(), frame_defines.end());
   gl::check_gl_error(fmt::format("uploading the tables of atmosphere '{}'", model.name));
 }
 
@@ -98,7 +120,76 @@ void GpuAtmosphere::bind(std::size_t group) const {
   wavelength_data_.bind_storage(kWavelengthData);
   table_data_.bind_storage(kTableData);
   texel_coordinates_.bind_storage(kTexelCoordinates);
-  program_.set_uniform("wavelength_group", static_cast<int>(group));
+  sky_view_->bind(kSkyView);
+}
+
+void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t group) const {
+  program.set_uniform("wavelength_group", static_cast<int>(group));
+  const GroupTextures& t = groups_.at(group);
+  program.set_uniform("mie_g1", t.mie_g1);
+  program.set_uniform("mie_g2", t.mie_g2);
+  program.set_uniform("mie_alpha", t.mie_alpha);
+  program.set_uniform("table_sun_theta_max", sun_theta_max_);
+  program.set_uniform("sky_view_layer_base", static_cast<int>(group) * SkyViewTable::kLayersPerGroup);
+  program.set_uniform("sky_view_theta_horizon", static_cast<float>(sky_view_->theta_horizon_rad()));
+}
+
+int GpuAtmosphere::TileVariant::key() const {
+  return (sky_view ? 1 : 0) | static_cast<int>(ground) << 1 | others << 3 | (sun ? 1 : 0) << 5;
+}
+
+const gl::ShaderProgram& GpuAtmosphere::program(const std::string& key, const std::string& file,
+                                               std::vector<gl::ShaderDefine> defines) {
+  auto it = programs_.find(key);
+  if (it == programs_.end())
+    it = programs_.emplace(key, gl::ShaderProgram::load_compute(file, defines)).first;
+  return it->second;
+}
+
+std::vector<gl::ShaderDefine> FrameVariant::defines() const {
+  return {{"PROJECTION_KIND", std::to_string(projection_kind)},
+          {"ECLIPSES", eclipses ? "1" : "0"},
+          {"ALBEDO_LOD0", albedo_lod0 ? "1" : "0"}};
+}
+
+std::string FrameVariant::key() const { return fmt::format("{} {:d} {:d}", projection_kind, eclipses, albedo_lod0); }
+
+const gl::ShaderProgram& GpuAtmosphere::gbuffer_path_program(const FrameVariant& frame) {
+  FrameVariant f = frame;
+  f.eclipses = frame.eclipses && eclipses_;
+  std::vector<gl::ShaderDefine> defines = defines_;
+  for (const gl::ShaderDefine& d : f.defines()) defines.push_back(d);
+  return program("pass " + f.key(), "render/atmosphere_pass.comp", std::move(defines));
+}
+
+const gl::ShaderProgram& GpuAtmosphere::tile_program(const FrameVariant& frame, const TileVariant& v) {
+  FrameVariant f = frame;
+  f.eclipses = frame.eclipses && eclipses_;
+  std::vector<gl::ShaderDefine> defines = tile_defines_;
+  for (const gl::ShaderDefine& d : f.defines()) defines.push_back(d);
+  defines.insert(defines.end(), {{"SKY_VIEW", v.sky_view ? "1" : "0"},
+                                 {"TILE_GROUND", std::to_string(static_cast<int>(v.ground))},
+                                 {"TILE_OTHERS", std::to_string(v.others)},
+                                 {"SUN", v.sun ? "1" : "0"}});
+  return program(fmt::format("tile {} {}", f.key(), v.key()), "render/atmosphere_tile.comp", std::move(defines));
+}
+
+void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad) {
+  sky_view_->set_camera(camera_radius_m, ground_radius_m_, sun_cosine, sun_angular_radius_rad);
+  const gl::ShaderProgram& fill = sky_view_->fill_program();
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    const GroupTextures& t = groups_[g];
+    t.transmittance.bind(kTransmittance);
+    t.single_rayleigh.bind(kSingleRayleigh);
+    t.single_mie.bind(kSingleMie);
+    t.multiple.bind(kMultiple);
+    t.irradiance.bind(kIrradiance);
+    wavelength_data_.bind_storage(kWavelengthData);
+    table_data_.bind_storage(kTableData);
+    texel_coordinates_.bind_storage(kTexelCoordinates);
+    set_group(fill, g);
+    sky_view_->fill_group(g);
+  }
 }
 
 }  // namespace zenith::render

@@ -6,6 +6,10 @@
 // Tables are uploaded once per table set (identified by its hash); the
 // renderer keeps a GpuAtmosphere per hash, so re-rendering with unchanged
 // parameters uploads and precomputes nothing.
+#include <array>
+#include <map>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -14,6 +18,8 @@
 #include "render/gl/buffer.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/frame/sky_view_table.h"
+#include "render/frame/tile_culling.h"
 
 namespace zenith::render {
 
@@ -24,33 +30,79 @@ struct AtmospherePassFeatures {
   bool fp64 = false;                ///< table mappings and interpolation in double (slower; see docs/rendering.md)
 };
 
+/// What a frame's passes are compiled for (render/renderer.cpp): the
+/// projection kind (shaders/projection.glsl's PROJECTION_KIND), whether other
+/// bodies' shadows can fall (ECLIPSES) and whether every albedo lookup is at
+/// the maps' full resolution (ALBEDO_LOD0, surface_albedo.glsl). A CPU
+/// rasterizer runs all the code a program has, so what a frame cannot need is
+/// compiled out; each combination is compiled on first use.
+struct FrameVariant {
+  int projection_kind = 0;
+  bool eclipses = true;
+  bool albedo_lod0 = false;
+  std::vector<gl::ShaderDefine> defines() const;
+  std::string key() const;
+};
+
 class GpuAtmosphere {
  public:
-  /// Uploads `tables` (made for `model`) and compiles the pass. Needs a current GL context.
+  /// Uploads `tables` (made for `model`) and compiles the passes; `frame_defines`
+  /// are the renderer's defines of the sun's disc (SUN_DISC, LIMB_DARKENING) for
+  /// the one-pass tiles, which draw it behind the atmosphere. Needs a current GL context.
   GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
-                const AtmospherePassFeatures& features);
+                const AtmospherePassFeatures& features, std::span<const gl::ShaderDefine> frame_defines);
 
   const std::string& hash() const { return hash_; }
   std::size_t group_count() const { return groups_.size(); }
   double top_radius_m() const { return top_radius_m_; }
   double ground_radius_m() const { return ground_radius_m_; }
-  const gl::ShaderProgram& program() const { return program_; }
+  /// What the tiles of a one-pass list can hold: atmosphere_tile.comp is
+  /// compiled for each combination in use (its TILE_GROUND, TILE_OTHERS, SUN
+  /// and SKY_VIEW defines), since a CPU rasterizer runs every branch a program has.
+  struct TileVariant {
+    bool sky_view = false;                 ///< S from the sky-view table (camera inside the shell)
+    TileCover ground = TileCover::some;    ///< how the rays meet this planet's ground
+    int others = 2;                        ///< other bodies: 0 none, 1 all beyond the shell, 2 one may be inside it
+    bool sun = true;                       ///< the sun's disc can be in the tiles
+    int key() const;
+  };
+  /// atmosphere_tile.comp for tiles only this shell touches, compiled for the
+  /// frame's variant and the tiles'.
+  const gl::ShaderProgram& tile_program(const FrameVariant& frame, const TileVariant& variant);
+  /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).
+  const gl::ShaderProgram& gbuffer_path_program(const FrameVariant& frame);
+  /// Sets `wavelength_group`, the Mie phase's parameters, the tables' acos(μs_min)
+  /// and the sky-view uniforms of one of these programs for group g.
+  void set_group(const gl::ShaderProgram& program, std::size_t group) const;
   /// Bytes of GPU memory the tables take.
   std::size_t table_bytes() const { return table_bytes_; }
 
-  /// Binds the tables of wavelength group g (texture units 0–4) and the model's
-  /// storage buffers (bindings 0–2), and sets `wavelength_group`.
+  /// Binds the tables of wavelength group g (texture units 0–4), the sky-view
+  /// table (unit 5) and the model's storage buffers (bindings 0–2).
   void bind(std::size_t group) const;
+
+  /// Fills the sky-view table of every wavelength group for a camera inside
+  /// the shell at `camera_radius_m` from the centre, the sun's cosine there
+  /// `sun_cosine` and its angular radius (render/frame/sky_view_table.h).
+  /// Leaves image unit 0 and texture units 0–4 bound to its own images and tables.
+  void fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad);
 
  private:
   struct GroupTextures {
     gl::Texture transmittance, irradiance, single_rayleigh, single_mie, multiple;
+    std::array<float, 4> mie_g1{}, mie_g2{}, mie_alpha{};  // the Mie phase's parameters per lane
   };
   std::string hash_;
   double top_radius_m_ = 0.0, ground_radius_m_ = 0.0;
   std::vector<GroupTextures> groups_;
   gl::Buffer wavelength_data_, table_data_, texel_coordinates_;
-  gl::ShaderProgram program_;
+  const gl::ShaderProgram& program(const std::string& key, const std::string& file,
+                                   std::vector<gl::ShaderDefine> defines);
+  std::vector<gl::ShaderDefine> defines_, tile_defines_;  // atmosphere_pass.comp's; atmosphere_tile.comp's
+  bool eclipses_ = true;                                  // AtmospherePassFeatures::eclipses
+  float sun_theta_max_ = 0.0f;                            // acos(μs_min) of the tables' μs mapping
+  std::map<std::string, gl::ShaderProgram> programs_;     // compiled on first use, by variant
+  std::unique_ptr<SkyViewTable> sky_view_;
   std::size_t table_bytes_ = 0;
 };
 

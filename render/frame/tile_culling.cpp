@@ -69,4 +69,30 @@ std::vector<std::uint32_t> TileCones::tiles_touching_sphere(const glm::dvec3& ce
   return out;
 }
 
+std::vector<TileCover> TileCones::sphere_cover(const glm::dvec3& centre_direction, double distance_m,
+                                              double radius_m, int first_row, int row_count) const {
+  const int tile_row_begin = first_row / kTileSize;
+  const int tile_row_end = std::min(rows_, (first_row + row_count + kTileSize - 1) / kTileSize);
+  std::vector<TileCover> out(static_cast<std::size_t>(std::max(0, tile_row_end - tile_row_begin)) * columns_,
+                             TileCover::none);
+  const bool inside = distance_m <= radius_m;
+  const double angular_radius = inside ? 4.0 : std::asin(radius_m / distance_m);
+  const glm::dvec3 c = glm::normalize(centre_direction);
+  for (int ty = tile_row_begin; ty < tile_row_end; ++ty)
+    for (int tx = 0; tx < columns_; ++tx) {
+      const TileCone& cone = this->cone(tx, ty);
+      if (!cone.has_rays) continue;
+      TileCover& cover = out[static_cast<std::size_t>(ty - tile_row_begin) * columns_ + tx];
+      if (inside) {
+        cover = TileCover::all;
+        continue;
+      }
+      const double angle = 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(glm::dvec3(cone.axis) - c)));
+      // 1e-4 rad covers the float axis stored in the cone (as in tiles_touching_sphere).
+      if (angle > cone.half_angle_rad + angular_radius + 1e-4) continue;
+      cover = angle + cone.half_angle_rad + 1e-4 <= angular_radius ? TileCover::all : TileCover::some;
+    }
+  return out;
+}
+
 }  // namespace zenith::render

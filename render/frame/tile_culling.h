@@ -21,6 +21,13 @@ namespace zenith::render {
 
 inline constexpr int kTileSize = 16;  ///< pixels; the local size of the render passes
 
+/// How a tile's rays meet a sphere (TileCones::sphere_cover).
+enum class TileCover : std::uint8_t {
+  none = 0,  ///< no ray of the tile can meet it
+  all = 1,   ///< every ray meets it: the tile's cone lies within the sphere's disc
+  some = 2,  ///< some may
+};
+
 /// A tile's cone of rays, camera frame.
 struct TileCone {
   glm::vec3 axis{0.0f, 0.0f, -1.0f};  ///< unit
@@ -42,6 +49,11 @@ class TileCones {
   /// packed as x | (y − first_row) << 16 (the tile's column and its row within the band).
   std::vector<std::uint32_t> tiles_touching_sphere(const glm::dvec3& centre_direction, double distance_m,
                                                    double radius_m, int first_row, int row_count) const;
+  /// For every tile of rows [first_row, first_row + row_count), column fastest,
+  /// how its rays meet the sphere: `all` when the cone, widened by 1e-4 rad,
+  /// lies within the sphere's angular disc (or the camera is inside the sphere).
+  std::vector<TileCover> sphere_cover(const glm::dvec3& centre_direction, double distance_m, double radius_m,
+                                      int first_row, int row_count) const;
 
  private:
   int columns_ = 0, rows_ = 0;

@@ -10,16 +10,22 @@
 
 namespace zenith::render::gl {
 
-Buffer::Buffer(std::size_t size_bytes) { create(size_bytes, nullptr); }
+Buffer::Buffer(std::size_t size_bytes) { create(size_bytes, nullptr, GL_DYNAMIC_STORAGE_BIT); }
 
-Buffer::Buffer(std::span<const std::byte> data) { create(data.size(), data.data()); }
+Buffer::Buffer(std::span<const std::byte> data) { create(data.size(), data.data(), GL_DYNAMIC_STORAGE_BIT); }
 
-void Buffer::create(std::size_t size_bytes, const void* data) {
+Buffer Buffer::mappable(std::size_t size_bytes) {
+  Buffer b;
+  b.create(size_bytes, nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+  return b;
+}
+
+void Buffer::create(std::size_t size_bytes, const void* data, unsigned flags) {
   if (size_bytes == 0) throw std::invalid_argument("Buffer: size must be positive");
   check_gl_error("Buffer: an earlier GL call left an error");
   glCreateBuffers(1, &id_);
   size_ = size_bytes;
-  glNamedBufferStorage(id_, static_cast<GLsizeiptr>(size_bytes), data, GL_DYNAMIC_STORAGE_BIT);
+  glNamedBufferStorage(id_, static_cast<GLsizeiptr>(size_bytes), data, flags);
   if (data == nullptr) glClearNamedBufferData(id_, GL_R8, GL_RED, GL_UNSIGNED_BYTE, nullptr);  // zero-fill
   try {
     check_gl_error(fmt::format("Buffer: storage of {} bytes", size_bytes));
@@ -71,8 +77,25 @@ std::vector<std::byte> Buffer::read_bytes(std::size_t offset_bytes, std::size_t 
   return out;
 }
 
+std::span<const std::byte> Buffer::map_read(std::size_t size_bytes) const {
+  if (id_ == 0) throw std::logic_error("Buffer::read_mapped on an empty buffer");
+  if (size_bytes == 0 || size_bytes > size_)
+    throw std::out_of_range(fmt::format("Buffer::read_mapped: {} bytes from a {}-byte buffer", size_bytes, size_));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const void* p = glMapNamedBufferRange(id_, 0, static_cast<GLsizeiptr>(size_bytes), GL_MAP_READ_BIT);
+  if (p == nullptr) {
+    check_gl_error("Buffer::read_mapped");
+    throw std::runtime_error("Buffer::read_mapped: glMapNamedBufferRange failed (a buffer not made by mappable()?)");
+  }
+  return {static_cast<const std::byte*>(p), size_bytes};
+}
+
+void Buffer::unmap() const { glUnmapNamedBuffer(id_); }
+
 void Buffer::read_into(std::span<std::byte> out) const {
   if (id_ == 0) throw std::logic_error("Buffer::read on an empty buffer");
+  if (out.size() > size_)
+    throw std::out_of_range(fmt::format("Buffer::read_into: {} bytes from a {}-byte buffer", out.size(), size_));
   if (out.empty()) return;
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glGetNamedBufferSubData(id_, 0, static_cast<GLsizeiptr>(out.size()), out.data());

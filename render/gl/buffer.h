@@ -20,6 +20,8 @@ class Buffer {
   static Buffer from(std::span<const T> data) {
     return Buffer(std::as_bytes(data));
   }
+  /// `size_bytes` > 0 bytes, zero-filled, that the CPU can map for reading (read_mapped).
+  static Buffer mappable(std::size_t size_bytes);
 
   ~Buffer();
   Buffer(Buffer&& other) noexcept;
@@ -48,6 +50,25 @@ class Buffer {
     return out;
   }
 
+  /// The first out.size() bytes into `out` (out.size() <= size()), after
+  /// glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT): no intermediate copy.
+  void read_into(std::span<std::byte> out) const;
+  /// Maps the first `size_bytes` for reading (after the same barrier; waits for
+  /// the commands that write them), calls `read` with them and unmaps: the
+  /// caller converts straight from the buffer's memory (a software renderer's
+  /// buffers are in system memory: no copy at all). Buffers from mappable() only.
+  template <class F>
+  void read_mapped(std::size_t size_bytes, F&& read) const {
+    const std::span<const std::byte> bytes = map_read(size_bytes);
+    try {
+      read(bytes);
+    } catch (...) {
+      unmap();
+      throw;
+    }
+    unmap();
+  }
+
   /// Binds the whole buffer to `layout(binding = N) buffer` (GL_SHADER_STORAGE_BUFFER).
   void bind_storage(unsigned binding) const;
   /// Binds the whole buffer to `layout(binding = N) uniform` (GL_UNIFORM_BUFFER).
@@ -57,8 +78,9 @@ class Buffer {
   std::size_t size() const { return size_; }
 
  private:
-  void create(std::size_t size_bytes, const void* data);
-  void read_into(std::span<std::byte> out) const;  // out.size() must be a multiple of the element size, <= size_
+  void create(std::size_t size_bytes, const void* data, unsigned flags);
+  std::span<const std::byte> map_read(std::size_t size_bytes) const;
+  void unmap() const;
   void release() noexcept;
 
   unsigned id_ = 0;

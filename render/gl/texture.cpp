@@ -125,6 +125,14 @@ Texture Texture::create_2d_array_mipmapped(TextureFormat format, int width, int 
   return t;
 }
 
+Texture Texture::create_2d_array(TextureFormat format, int width, int height, int layers) {
+  if (layers < 1) throw std::invalid_argument(fmt::format("Texture: invalid layer count {}", layers));
+  Texture t(format, width, height, layers, 1, true);
+  const float zero[4] = {0, 0, 0, 0};
+  glClearTexImage(t.id_, 0, pixel_format(format), GL_FLOAT, zero);
+  return t;
+}
+
 void Texture::set_repeat_s(bool repeat) {
   glTextureParameteri(id_, GL_TEXTURE_WRAP_S, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
 }

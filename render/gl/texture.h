@@ -29,6 +29,9 @@ class Texture {
   /// layer after layer), with a full mipmap chain per layer (sampler2DArray).
   static Texture create_2d_array_mipmapped(TextureFormat format, int width, int height, int layers,
                                            std::span<const float> data);
+  /// A 2D array texture of `layers` layers, one level, bilinear filtering,
+  /// zero-filled: tables a shader fills (image2DArray) and others sample.
+  static Texture create_2d_array(TextureFormat format, int width, int height, int layers);
   /// Same for 3D: width·height·depth·channels floats, x fastest, then y, then z.
   static Texture create_3d(TextureFormat format, int width, int height, int depth, std::span<const float> data = {});
 

@@ -1,5 +1,5 @@
 // Frame data shared by the render passes (gbuffer.comp, atmosphere_pass.comp,
-// resolve.comp), filled by render/renderer.cpp.
+// resolve.comp, direct_light.comp, atmosphere_tile.comp), filled by render/renderer.cpp.
 //
 // Precision: every position is camera-relative and was computed in double on
 // the CPU; the GPU sees directions (unit vectors), distances from the camera
@@ -22,6 +22,11 @@ struct Body {
   vec4 world_to_body2;
 };
 layout(std430, binding = 4) readonly buffer Bodies { Body bodies[]; };
+/// The one body a pass is about, as plain uniforms (render/renderer.cpp sets
+/// it to bodies[i]): the planet of an atmosphere's passes, the only body of a
+/// direct-light tile list. llvmpipe reads storage buffers lane by lane inside
+/// branches, uniforms once per SIMD vector.
+uniform Body the_body;
 
 uniform int body_count;
 uniform mat3 camera_to_world;
@@ -31,16 +36,51 @@ uniform vec3 sun_direction;        // world, unit
 uniform float sun_angular_radius;  // [rad]
 uniform float pixel_angle;         // upper bound of one pixel's angular size [rad] (Projection::max_pixel_angle_rad)
 
+/// The 16×16 tiles of band pixels a pass covers, one work group per tile:
+/// tiles[tile_offset + i] for i < tile_count, packed as column | row << 16
+/// (render/frame/tile_culling.h). The renderer classifies tiles on the CPU
+/// (one atmosphere, several, surface or sun only, empty) and dispatches each
+/// pass over its own list, so a pass holds only the code its tiles need: on a
+/// CPU rasterizer (llvmpipe runs 8 invocations per SIMD vector under a mask) a
+/// branch skipped by every pixel still costs, a tile not dispatched does not.
+layout(std430, binding = 5) readonly buffer Tiles { uint tiles[]; };
+uniform int tile_offset;
+uniform int tile_count;
+
+/// This invocation's band pixel: false past the end of the list or the band.
+bool tile_pixel(out ivec2 p) {
+  const uint tile_index = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+  p = ivec2(0);
+  if (tile_index >= uint(tile_count)) return false;
+  const uint tile = tiles[uint(tile_offset) + tile_index];
+  p = ivec2(int(tile & 0xffffu), int(tile >> 16)) * 16 + ivec2(gl_LocalInvocationID.xy);
+  return all(lessThan(p, band_size));
+}
+
 /// The world-space unit ray of band pixel `p` (integer, band-local), or false
 /// where the projection has no ray.
+#if defined(PROJECTION_KIND) && (PROJECTION_KIND == PROJECTION_KIND_PLANAR || PROJECTION_KIND == PROJECTION_KIND_CUBE_FACE)
+/// projection_params[0..2].xyz turned into the world frame (camera_to_world ×,
+/// in double on the CPU): the affine ray of a planar projection straight in
+/// world coordinates, one normalization instead of two and no rotation per pixel.
+uniform vec3 world_ray_x, world_ray_y, world_ray_centre;
+#endif
+
 bool pixel_ray(ivec2 p, out vec3 ray) {
+#if defined(PROJECTION_KIND) && (PROJECTION_KIND == PROJECTION_KIND_PLANAR || PROJECTION_KIND == PROJECTION_KIND_CUBE_FACE)
+  const vec2 from_centre = vec2(band_origin + p) + vec2(0.5) - vec2(projection_params[0].w, projection_params[1].w);
+  ray = normalize(from_centre.x * world_ray_x + from_centre.y * world_ray_y + world_ray_centre);
+  return true;
+#else
   vec3 d;
   if (!projection_ray(vec2(band_origin + p) + vec2(0.5), d)) return false;
   ray = normalize(camera_to_world * d);
   return true;
+#endif
 }
 
-vec3 body_centre(int b) { return bodies[b].centre.xyz * bodies[b].centre.w; }
+vec3 body_centre(Body body) { return body.centre.xyz * body.centre.w; }
+vec3 body_centre(int b) { return body_centre(bodies[b]); }
 
 /// Where a ray meets a sphere of radius R centred at distance D along unit
 /// direction c from the camera: q = D (ray·c) is the distance to the point of
@@ -61,26 +101,39 @@ bool sphere_chord(vec3 ray, vec3 centre_dir, float centre_distance, float R, flo
   return disc >= 0.0;
 }
 
-/// Distance along unit `ray` to the first intersection with body b (front face),
+/// Distance along unit `ray` to the first intersection with a body (front face),
 /// or −1: t = C / (q + √disc), the stable root.
-float intersect_body(int b, vec3 ray) {
-  const float C = bodies[b].shape.y;
+float intersect_body(Body body, vec3 ray) {
+  const float C = body.shape.y;
   if (C <= 0.0) return -1.0;  // inside the body: the scene loader forbids it
   float q, disc;
-  if (!sphere_chord(ray, bodies[b].centre.xyz, bodies[b].centre.w, bodies[b].shape.x, C, q, disc)) return -1.0;
+  if (!sphere_chord(ray, body.centre.xyz, body.centre.w, body.shape.x, C, q, disc)) return -1.0;
   if (q <= 0.0) return -1.0;
   return C / (q + sqrt(disc));
 }
+float intersect_body(int b, vec3 ray) { return intersect_body(bodies[b], ray); }
 
-/// Outward unit normal of body b at distance t along `ray` (world frame).
-vec3 body_normal(int b, vec3 ray, float t) {
-  return normalize(ray * t - body_centre(b));
+/// The nearest body along `ray` and the distance to it [m]; −1 where none.
+int nearest_body(vec3 ray, out float distance_m) {
+  distance_m = 3.4e38;
+  int hit_body = -1;
+  for (int b = 0; b < body_count; ++b) {
+    const float t = intersect_body(b, ray);
+    if (t >= 0.0 && t < distance_m) {
+      distance_m = t;
+      hit_body = b;
+    }
+  }
+  return hit_body;
 }
 
+/// Outward unit normal of a body at distance t along `ray` (world frame).
+vec3 body_normal(Body body, vec3 ray, float t) { return normalize(ray * t - body_centre(body)); }
+vec3 body_normal(int b, vec3 ray, float t) { return body_normal(bodies[b], ray, t); }
+
 /// The normal in the body frame (for its albedo map).
-vec3 to_body_frame(int b, vec3 n) {
-  return vec3(dot(bodies[b].world_to_body0.xyz, n), dot(bodies[b].world_to_body1.xyz, n),
-              dot(bodies[b].world_to_body2.xyz, n));
+vec3 to_body_frame(Body body, vec3 n) {
+  return vec3(dot(body.world_to_body0.xyz, n), dot(body.world_to_body1.xyz, n), dot(body.world_to_body2.xyz, n));
 }
 
 /// Angle between two unit vectors, accurate for small angles too (acos is not).

@@ -606,5 +606,244 @@ TEST(RendererSkipping, ThePassCoversOnlyTilesTheShellTouches) {
   EXPECT_EQ(pixel(image, 128, 5, 5).b, 0.0);
 }
 
+// ---------------------------------------------------------------- frame paths
+
+/// Largest and RMS difference of `a` from the reference `b`, per value, relative
+/// to the reference where it exceeds `floor` (darker values: absolute / floor).
+struct ImageDifference {
+  double max = 0.0, rms = 0.0;
+  std::size_t values = 0;
+  std::size_t max_at = 0;  ///< index of the largest difference (pixel = max_at / 3, channel = max_at % 3)
+};
+ImageDifference relative_difference(const std::vector<float>& a, const std::vector<float>& b, double floor) {
+  ImageDifference d;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const double e = std::abs(double(a[i]) - double(b[i])) / std::max(double(b[i]), floor);
+    if (e > d.max) {
+      d.max = e;
+      d.max_at = i;
+    }
+    sum += e * e;
+    ++d.values;
+  }
+  d.rms = std::sqrt(sum / static_cast<double>(std::max<std::size_t>(d.values, 1)));
+  return d;
+}
+
+double largest_value(const std::vector<float>& image) {
+  double m = 0.0;
+  for (float v : image) m = std::max(m, double(v));
+  return m;
+}
+
+/// The ground view of configs/scenes/earth-ground-view.json on the test tables:
+/// 900 m up, looking 5.8° down toward the sun 15.5° high, the horizon in the
+/// upper half of a 79° × 44° view.
+scene::Scene ground_view_scene(double sun_elevation_deg = 15.5) {
+  const glm::dvec3 toward_sun = sky_direction(90.0 - sun_elevation_deg, 0.0);
+  const glm::dvec3 forward = sky_direction(90.0 + 5.8, 0.0);
+  scene::Scene s = planet_scene("earth-advanced", 900.0, 90.0 - sun_elevation_deg, forward);
+  s.sun.direction = toward_sun;
+  return s;
+}
+
+TEST(RendererFramePaths, OnePassTilesMatchTheGbufferPath) {
+  // An airless moon partly over the sun's disc (its night side toward us), a
+  // second one lit from the side, a planet with an atmosphere beside them:
+  // tiles no atmosphere touches are drawn by direct_light.comp (every
+  // wavelength at once, straight to RGB), tiles one shell touches by
+  // atmosphere_tile.comp; the same tiles through the G-buffer, atmosphere and
+  // resolve passes must give the same pixels to float rounding.
+  scene::Scene s = sun_only_scene();
+  const glm::dvec3 beside = glm::normalize(glm::cross(s.sun.direction, glm::dvec3(1, 0, 0)));
+  scene::Body moon = planet_scene("earth-advanced", 0.0, 0.0, {0, 0, 1}).bodies[0];
+  moon.name = "moon";
+  moon.atmosphere.reset();
+  moon.radius_m = 1.7374e6;
+  moon.albedo.colour_linear_rgb = {0.3, 0.25, 0.2};
+  moon.position_m = 3.8e8 * glm::normalize(s.sun.direction + 0.008 * beside);
+  s.bodies.push_back(moon);
+  scene::Body lit = moon;
+  lit.name = "lit moon";
+  lit.position_m = 2.0e7 * glm::normalize(s.sun.direction + 1.2 * beside);  // 50° from the sun, 5° across
+  s.bodies.push_back(lit);
+  scene::Body planet = planet_scene("earth-advanced", 0.0, 0.0, {0, 0, 1}).bodies[0];
+  planet.position_m = 6.0e7 * glm::normalize(s.sun.direction - 0.25 * beside);
+  s.bodies.push_back(planet);
+  // Look between the sun and the lit moon, 100° across.
+  s.camera.orientation = look_rotation(glm::normalize(s.sun.direction + 0.45 * beside), {1.0, 0.0, 0.0});
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(160, 96, 100.0);
+  RenderOptions gbuffer_path = direct_colour();
+  gbuffer_path.one_pass_tiles = false;
+  TestRenderer one_pass, reference(gbuffer_path);
+  const auto a = one_pass.renderer.render_image(s, p);
+  const auto b = reference.renderer.render_image(s, p);
+  const FrameStats& f = one_pass.renderer.last_frame();
+  EXPECT_GT(f.tiles_direct, 0u);
+  EXPECT_GT(f.tiles_one_atmosphere, 0u);
+  EXPECT_GT(f.tiles_black, 0u);
+  EXPECT_EQ(reference.renderer.last_frame().tiles_direct + reference.renderer.last_frame().tiles_one_atmosphere, 0u);
+  const ImageDifference d = relative_difference(a, b, 1e-6 * largest_value(b));
+  EXPECT_LT(d.max, 1e-4) << "one pass vs G-buffer path, RMS " << d.rms << ", worst at pixel " << d.max_at / 3;
+  // The lit moon's day side is drawn in one-pass tiles.
+  const auto [mx, my] = pixel_of(p, s, glm::normalize(lit.position_m - s.camera.position_m));
+  double moon_light = 0.0;
+  for (int y = std::max(my - 8, 0); y < std::min(my + 9, p.height()); ++y)
+    for (int x = std::max(mx - 8, 0); x < std::min(mx + 9, p.width()); ++x) moon_light = std::max(moon_light, pixel(a, 160, x, y).g);
+  EXPECT_GT(moon_light, 0.0);
+}
+
+TEST(RendererFramePaths, NothingInViewIsBlackAndDispatchesNothing) {
+  scene::Scene s = sun_only_scene();
+  // The dome's zenith (the camera's +y) away from the sun: the sun at its nadir.
+  s.camera.orientation = look_rotation(glm::dvec3(1.0, 0.0, 0.0), -s.sun.direction);
+  const warp::FisheyeProjection p(64, 64);
+  TestRenderer t;
+  const auto image = t.renderer.render_image(s, p);
+  EXPECT_EQ(largest_value(image), 0.0);
+  EXPECT_EQ(t.renderer.last_frame().tiles_direct + t.renderer.last_frame().tiles_one_atmosphere +
+                t.renderer.last_frame().tiles_gbuffer,
+            0u);
+}
+
+/// Renders `s` through `p` with the sky-view table (automatic) and without
+/// (the 4D tables for every pixel) and returns their difference.
+ImageDifference sky_view_against_direct(const scene::Scene& s, const warp::Projection& p, std::size_t* table_tiles) {
+  RenderOptions off = direct_colour();
+  off.sky_view_table = SkyViewTableUse::off;
+  TestRenderer with_table, direct(off);
+  const auto a = with_table.renderer.render_image(s, p);
+  const auto b = direct.renderer.render_image(s, p);
+  expect_finite_non_negative(a, "sky-view table");
+  *table_tiles = with_table.renderer.last_frame().atmospheres.at(0).sky_view_tiles;
+  EXPECT_EQ(direct.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  return relative_difference(a, b, 1e-3 * largest_value(b));
+}
+
+TEST(RendererSkyView, GroundViewMatchesTheDirectPathWellWithinTheTablesError) {
+  // The tables themselves are ~1% RMS from the reference path tracer
+  // (docs/lookup-tables.md); the sky-view table must add much less.
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(160, 90, 79.0);
+  std::size_t table_tiles = 0;
+  const ImageDifference d = sky_view_against_direct(ground_view_scene(), p, &table_tiles);
+  EXPECT_GT(table_tiles, 0u);
+  std::printf("sky-view vs direct, ground view: max %.4f, RMS %.5f (relative)\n", d.max, d.rms);
+  EXPECT_LT(d.rms, 0.003);
+  EXPECT_LT(d.max, 0.03);
+}
+
+TEST(RendererSkyView, SunsetAndDomeMatchTheDirectPath) {
+  // The hardest directions: the sun 1° high (the horizon's steep gradients, the
+  // aerosol's forward peak), over a whole 180° dome from 2 m.
+  const warp::FisheyeProjection p(128, 128);
+  scene::Scene s = planet_scene("earth-advanced", 2.0, 89.0, {0, 0, 1});
+  std::size_t table_tiles = 0;
+  const ImageDifference d = sky_view_against_direct(s, p, &table_tiles);
+  EXPECT_GT(table_tiles, 0u);
+  std::printf("sky-view vs direct, sunset dome: max %.4f, RMS %.5f (relative)\n", d.max, d.rms);
+  EXPECT_LT(d.rms, 0.005);
+  EXPECT_LT(d.max, 0.05);
+}
+
+TEST(RendererSkyView, DifferenceFromTheDirectPathIsFarBelowTheTablesOwnError) {
+  // The ground view's sky: at sampled pixels the 4D lookups per pixel (the
+  // direct path) against the independent reference path tracer — the tables'
+  // own error — and the sky-view table against the direct path. The table
+  // must add a small fraction of what the tables already miss.
+  RenderOptions no_disc = direct_colour();
+  no_disc.sun_disc = false;  // the reference is the sky alone
+  RenderOptions off = no_disc;
+  off.sky_view_table = SkyViewTableUse::off;
+  TestRenderer with_table(no_disc), direct(off);
+  const scene::Scene s = ground_view_scene();
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(160, 90, 79.0);
+  const auto a = with_table.renderer.render_image(s, p);
+  const auto b = direct.renderer.render_image(s, p);
+  ASSERT_GT(with_table.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  const ImageDifference image = relative_difference(a, b, 1e-3 * largest_value(b));
+
+  const SmallTables& tables = SmallTables::get("earth-advanced");
+  atmosphere::reference::SunDisc sun;
+  sun.direction = {s.sun.direction.x, s.sun.direction.y, s.sun.direction.z};
+  sun.angular_radius_rad = s.sun.angular_radius_rad;
+  atmosphere::reference::PathTracerOptions options;
+  options.samples_per_wavelength = 20000;
+  double table_sum = 0.0, table_worst = 0.0, sky_view_worst = 0.0, noise = 0.0;
+  int n = 0;
+  // Sky pixels: near the horizon, toward the sun, across and away from it, high up.
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{80, 28}, {80, 10}, {100, 25}, {20, 20}, {140, 5}, {60, 30}}) {
+    const glm::dvec3 d = ray_of(p, s, x, y);
+    ASSERT_GT(d.z, 0.0) << "pixel (" << x << ", " << y << ") is not sky";
+    const auto ref = atmosphere::reference::path_traced_radiance(
+        tables.model, {s.camera.position_m.x, s.camera.position_m.y, s.camera.position_m.z}, {d.x, d.y, d.z}, sun,
+        options);
+    const Rgb got_table = pixel(a, 160, x, y), got_direct = pixel(b, 160, x, y);
+    const double va[3] = {got_table.r, got_table.g, got_table.b}, vb[3] = {got_direct.r, got_direct.g, got_direct.b};
+    for (int c = 0; c < 3; ++c) {
+      const double scale = s.sun.irradiance_W_m2_nm[c] * s.camera.exposure, expected = ref.mean[c] * scale;
+      const double e_table = std::abs(vb[c] - expected) / expected;
+      table_sum += e_table * e_table;
+      table_worst = std::max(table_worst, e_table);
+      sky_view_worst = std::max(sky_view_worst, std::abs(va[c] - vb[c]) / vb[c]);
+      noise = std::max(noise, ref.standard_error[c] / ref.mean[c]);
+      ++n;
+    }
+  }
+  const double table_rms = std::sqrt(table_sum / n);
+  std::printf("ground view, sky pixels: tables (direct path) vs reference path tracer RMS %.4f, max %.4f (noise <= %.4f); "
+              "sky-view table vs direct path at the same pixels max %.5f; whole image RMS %.5f, max %.4f\n",
+              table_rms, table_worst, noise, sky_view_worst, image.rms, image.max);
+  EXPECT_LT(sky_view_worst, 0.25 * table_rms);
+  EXPECT_LT(image.rms, 0.1 * table_rms);
+  EXPECT_LT(image.max, table_worst);
+}
+
+TEST(RendererFramePaths, BodiesOnlyGroundViewMatchesTheGbufferPath) {
+  // The no-atmosphere frame of the benchmark's ground view: one pass over the
+  // ground tiles (direct_light.comp, one body) against the G-buffer and resolve
+  // passes that drew every frame before; the sky is black and not dispatched.
+  RenderOptions bodies = direct_colour(), gbuffer_path = direct_colour();
+  bodies.atmospheres = gbuffer_path.atmospheres = false;
+  gbuffer_path.one_pass_tiles = false;
+  TestRenderer one_pass(bodies), reference(gbuffer_path);
+  scene::Scene s = ground_view_scene();
+  s.bodies[0].albedo.colour_linear_rgb = {0.3, 0.2, 0.1};
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(320, 180, 79.0);
+  const auto a = one_pass.renderer.render_image(s, p);
+  const auto b = reference.renderer.render_image(s, p);
+  const FrameStats& f = one_pass.renderer.last_frame();
+  EXPECT_GT(f.tiles_direct, 0u);
+  EXPECT_GT(f.tiles_black, 0u);
+  EXPECT_EQ(f.tiles_gbuffer + f.tiles_one_atmosphere, 0u);
+  EXPECT_GT(largest_value(a), 0.0);
+  const ImageDifference d = relative_difference(a, b, 1e-6 * largest_value(b));
+  EXPECT_LT(d.max, 1e-5) << "one pass vs G-buffer path, worst at pixel " << d.max_at / 3;
+}
+
+TEST(RendererSkyView, NotUsedHighUpInTwilight) {
+  // 10 km up (10 % of the shell): with the sun above the horizon the table is
+  // used, with the sun 4° below it not (its horizon would be up to 25 % off).
+  TestRenderer t;
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(64, 36, 60.0);
+  const glm::dvec3 forward = sky_direction(92.0, 90.0);
+  t.renderer.render_image(planet_scene("earth-advanced", 10e3, 60.0, forward), p);
+  EXPECT_GT(t.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  t.renderer.render_image(planet_scene("earth-advanced", 10e3, 94.0, forward), p);
+  EXPECT_EQ(t.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  // Low in the atmosphere, twilight or not.
+  t.renderer.render_image(planet_scene("earth-advanced", 900.0, 94.0, forward), p);
+  EXPECT_GT(t.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+}
+
+TEST(RendererSkyView, NotUsedFromSpace) {
+  TestRenderer t;
+  const scene::Scene s = planet_scene("earth-advanced", 400e3, 60.0, {1.0, 0.0, -0.35});
+  t.renderer.render_image(s, warp::PlanarProjection::symmetric(64, 64, 60.0));
+  ASSERT_EQ(t.renderer.last_frame().atmospheres.size(), 1u);
+  EXPECT_GT(t.renderer.last_frame().atmospheres[0].tiles, 0u);
+  EXPECT_EQ(t.renderer.last_frame().atmospheres[0].sky_view_tiles, 0u);
+}
+
 }  // namespace
 }  // namespace zenith::render

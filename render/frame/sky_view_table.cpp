@@ -1,0 +1,35 @@
+#include "render/frame/sky_view_table.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace zenith::render {
+
+SkyViewTable::SkyViewTable(std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups)
+    : fill_(gl::ShaderProgram::load_compute("render/sky_view.comp", atmosphere_defines)),
+      table_(gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
+                                          static_cast<int>(std::max<std::size_t>(groups, 1)) * kLayersPerGroup)) {}
+
+void SkyViewTable::set_camera(double camera_radius_m, double ground_radius_m, double sun_cosine,
+                              double sun_angular_radius_rad) {
+  const double r = std::max(camera_radius_m, ground_radius_m);
+  theta_horizon_rad_ = std::numbers::pi - std::asin(std::min(ground_radius_m / r, 1.0));
+  fill_.set_uniform("camera_r", static_cast<float>(r));
+  fill_.set_uniform("camera_ground_power", static_cast<float>((r - ground_radius_m) * (r + ground_radius_m)));
+  fill_.set_uniform("camera_mu_s", static_cast<float>(std::clamp(sun_cosine, -1.0, 1.0)));
+  fill_.set_uniform("theta_horizon", static_cast<float>(theta_horizon_rad_));
+  fill_.set_uniform("sun_angular_radius", static_cast<float>(sun_angular_radius_rad));
+}
+
+void SkyViewTable::fill_group(std::size_t group) const {
+  fill_.set_uniform("layer_base", static_cast<int>(group) * kLayersPerGroup);
+  table_.bind_image(0, gl::ImageAccess::write_only);
+  fill_.dispatch_covering(kAzimuthTexels, kZenithTexels);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+}  // namespace zenith::render

@@ -1,0 +1,57 @@
+#pragma once
+// The sky-view table of one atmosphere (after Hillaire 2020, "A Scalable and
+// Production Ready Sky and Atmosphere Rendering Technique", section 5.3): for
+// a camera inside the atmosphere, the in-scattered radiance along every view
+// direction and, for directions that end on the ground, the ground's lighting
+// per unit albedo (transmittance to it included), filled once per frame from
+// the 4D tables at the camera's position (shaders/render/sky_view.comp) and
+// read with a few bilinear lookups per pixel by atmosphere_tile.comp's
+// SKY_VIEW variant instead of the 4D lookups (three 4D samples of two
+// trilinear fetches each, the ground's irradiance and transmittance lookups).
+//
+// 128 azimuth × 64 zenith texels per half (sky, ground), 6 RGBA32F layers per
+// group of 4 wavelengths (shaders/render/sky_view_mapping.glsl): 0.8 MB per
+// group, 2·128·64 = 16 384 directions filled per group and frame. Its error
+// against the per-pixel 4D lookups is measured in tests/render/renderer_test.cpp
+// (RendererSkyView) and docs/rendering-performance.md.
+#include <cstddef>
+#include <span>
+
+#include "render/gl/shader_program.h"
+#include "render/gl/texture.h"
+
+namespace zenith::render {
+
+class SkyViewTable {
+ public:
+  static constexpr int kAzimuthTexels = 128;  ///< SKY_VIEW_AZIMUTH_TEXELS
+  static constexpr int kZenithTexels = 64;    ///< SKY_VIEW_ZENITH_TEXELS, per half
+  static constexpr int kLayersPerGroup = 6;   ///< SKY_VIEW_LAYERS
+
+  /// Compiles the fill shader with the atmosphere's defines and allocates the
+  /// table for `groups` wavelength groups. Needs a current GL context.
+  SkyViewTable(std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups);
+
+  /// The fill program: its tables (texture units 0–4), storage buffers and
+  /// `wavelength_group` are bound by the caller for each group (GpuAtmosphere::fill_sky_view).
+  const gl::ShaderProgram& fill_program() const { return fill_; }
+
+  /// Sets the camera's radius [m] (in [RB, RT)), its ground radius, the sun's
+  /// cosine at the camera and the sun's angular radius (the fading of the direct
+  /// sun at the horizon) for the following fill_group calls.
+  void set_camera(double camera_radius_m, double ground_radius_m, double sun_cosine, double sun_angular_radius_rad);
+  /// Fills the layers of wavelength group g (its tables must be bound).
+  void fill_group(std::size_t group) const;
+
+  /// Zenith angle of the geometric horizon at the camera, π − asin(RB / r) [rad].
+  double theta_horizon_rad() const { return theta_horizon_rad_; }
+  /// Binds the table for sampling (sampler2DArray) on texture unit `unit`.
+  void bind(unsigned unit) const { table_.bind(unit); }
+
+ private:
+  gl::ShaderProgram fill_;
+  gl::Texture table_;
+  double theta_horizon_rad_ = 0.0;
+};
+
+}  // namespace zenith::render

@@ -1,0 +1,78 @@
+#version 450
+// The tiles no atmosphere touches, in one pass straight to the band's output
+// (frame_rgb.glsl): no G-buffer, no per-wavelength-group passes, no resolve.
+// What such a pixel shows is lit by the sun alone:
+//
+//   a body:    L(λ) = ρ(λ)/π · E(λ) · cos i · V, ρ(λ) = a_r f_r(λ) + a_g f_g(λ) + a_b f_b(λ)
+//              from the linear sRGB albedo a (colour.md), so its colour is
+//              rgb = exposure · Σ_λ w(λ) L(λ) = (cos i · V / π) · M a,
+//              M = exposure · Σ_λ w(λ) E(λ) f(λ)ᵀ, a 3×3 matrix summed over
+//              every wavelength on the CPU in double (rgb_from_albedo);
+//   the sun:   rgb = Σ_λ exposure · w(λ) I_centre(λ) · μ^α(λ) · coverage
+//              (sun_spectrum), only in the variant for the sun's tiles (SUN = 1);
+//   otherwise black: tiles with neither a body nor the sun are not dispatched
+//              (the band's output starts at 0).
+//
+// The same physics as resolve.comp with T = 1 and L = 0, summed over every
+// wavelength group at once (equal to float rounding; RendererFusedPass tests).
+//
+// Defines: SUN (1: the sun's disc can be in the tile), ONE_BODY (1: only the
+// body `one_body` can be in the tiles: no search over the bodies, its data
+// from uniforms), LIMB_DARKENING, ECLIPSES.
+#include "frame.glsl"
+#include "frame_rgb.glsl"
+#include "sun_disc.glsl"
+#include "surface_albedo.glsl"
+
+layout(local_size_x = 16, local_size_y = 16) in;
+
+uniform mat3 rgb_from_albedo;  // M above, exposure included
+#if SUN
+uniform int wavelength_count;
+uniform vec4 sun_spectrum[64];  // per wavelength: xyz = exposure · w(λ) · I_centre(λ), w = α(λ)
+#endif
+
+#if ONE_BODY
+uniform int one_body;  // the only body these tiles can hold (its data: the_body, frame.glsl)
+#endif
+
+void main() {
+  ivec2 p;
+  if (!tile_pixel(p)) return;
+  vec3 rgb = vec3(0.0);
+  vec3 ray;
+  if (pixel_ray(p, ray)) {
+#if ONE_BODY
+    const float t = intersect_body(the_body, ray);
+    const int b = t >= 0.0 ? one_body : -1;
+    if (b >= 0) {
+      const vec3 n = body_normal(the_body, ray, t);
+      const float cos_i = max(dot(n, sun_direction), 0.0);
+      rgb = rgb_from_albedo * surface_albedo(the_body, ray, t, n) *
+            (cos_i * sun_visibility(ray * t, one_body) * (1.0 / 3.14159265));
+    }
+#else
+    float t;
+    const int b = nearest_body(ray, t);
+    if (b >= 0) {
+      const vec3 n = body_normal(b, ray, t);
+      const float cos_i = max(dot(n, sun_direction), 0.0);
+      rgb = rgb_from_albedo * surface_albedo(b, ray, t, n) * (cos_i * sun_visibility(ray * t, b) * (1.0 / 3.14159265));
+    }
+#endif
+#if SUN
+    else {
+      const SunSample s = sun_sample(ray);
+      if (s.weight > 0.0)
+        for (int i = 0; i < wavelength_count; ++i) {
+#if LIMB_DARKENING
+          rgb += sun_spectrum[i].xyz * (pow(max(s.mu, 1e-4), sun_spectrum[i].w) * s.weight);
+#else
+          rgb += sun_spectrum[i].xyz * s.weight;
+#endif
+        }
+    }
+#endif
+  }
+  store_frame_rgb(p, clip_negative(rgb));
+}

@@ -1,0 +1,29 @@
+// Where a ray sees the sun's disc (render/scene/sun_disc.h, docs/rendering.md):
+// the disc's coverage of the pixel, antialiased over one pixel, and μ, the
+// cosine at the sun's surface for the limb darkening I(μ)/I(1) = μ^α(λ),
+// √(1 − sin²θ / sin²θ_disc) at angle θ from the centre (exact, not the
+// small-angle form). A sun under 1.5 pixels in radius is a Gaussian splat of
+// σ = sun_point_sigma instead (its pixel-sampled sum keeps the irradiance to
+// 1e-3; a disc would alias): weight exp(−θ²/2σ²), μ = 1 (no limb).
+// Include after frame.glsl.
+
+uniform float sun_draw_radius;  // the disc's radius [rad]
+uniform float sun_point_sigma;  // > 0: the sun is smaller than the pixels; drawn as a Gaussian of this σ [rad]
+
+struct SunSample {
+  float weight;  // coverage of the pixel by the disc, or the Gaussian's value; 0: no sun
+  float mu;      // cosine at the sun's surface (limb darkening); 1 for the Gaussian
+};
+
+SunSample sun_sample(vec3 ray) {
+  const float theta = angle_between(ray, sun_direction);
+  if (sun_point_sigma > 0.0) {
+    const float x = theta / sun_point_sigma;
+    return SunSample(x < 6.0 ? exp(-0.5 * x * x) : 0.0, 1.0);
+  }
+  const float R = sun_draw_radius;
+  if (theta >= R + pixel_angle) return SunSample(0.0, 1.0);
+  const float coverage = clamp((R - theta) / pixel_angle + 0.5, 0.0, 1.0);
+  const float s = min(sin(theta) / sin(R), 1.0);
+  return SunSample(coverage, sqrt(max(1.0 - s * s, 0.0)));
+}
