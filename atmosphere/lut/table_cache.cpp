@@ -65,9 +65,8 @@ std::filesystem::path default_cache_directory() {
 }
 
 /// Revision of the precompute's method: tables computed by an older method
-/// under the same options must not be reused. 2: T(x, y) accumulated along the
-/// scattering rays instead of the table ratio (the horizon fix of issue 13) and
-/// the scattering density by spherical harmonics (density line below).
+/// under the same options must not be reused. 2: the scattering density by
+/// spherical harmonics (issue 13; the density line below names the method).
 constexpr int kPrecomputeMethodRevision = 2;
 
 std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions& o) {

@@ -110,7 +110,7 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   gl::check_gl_error(fmt::format("uploading the tables of atmosphere '{}'", model.name));
 }
 
-void GpuAtmosphere::bind(std::size_t group) const {
+void GpuAtmosphere::bind_tables(std::size_t group) const {
   const GroupTextures& t = groups_.at(group);
   t.transmittance.bind(kTransmittance);
   t.single_rayleigh.bind(kSingleRayleigh);
@@ -120,6 +120,10 @@ void GpuAtmosphere::bind(std::size_t group) const {
   wavelength_data_.bind_storage(kWavelengthData);
   table_data_.bind_storage(kTableData);
   texel_coordinates_.bind_storage(kTexelCoordinates);
+}
+
+void GpuAtmosphere::bind(std::size_t group) const {
+  bind_tables(group);
   sky_view_->bind(kSkyView);
 }
 
@@ -178,15 +182,7 @@ void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, dou
   sky_view_->set_camera(camera_radius_m, ground_radius_m_, sun_cosine, sun_angular_radius_rad);
   const gl::ShaderProgram& fill = sky_view_->fill_program();
   for (std::size_t g = 0; g < groups_.size(); ++g) {
-    const GroupTextures& t = groups_[g];
-    t.transmittance.bind(kTransmittance);
-    t.single_rayleigh.bind(kSingleRayleigh);
-    t.single_mie.bind(kSingleMie);
-    t.multiple.bind(kMultiple);
-    t.irradiance.bind(kIrradiance);
-    wavelength_data_.bind_storage(kWavelengthData);
-    table_data_.bind_storage(kTableData);
-    texel_coordinates_.bind_storage(kTexelCoordinates);
+    bind_tables(g);
     set_group(fill, g);
     sky_view_->fill_group(g);
   }

@@ -88,6 +88,8 @@ class GpuAtmosphere {
   void fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad);
 
  private:
+  /// Group g's tables (texture units 0–4) and the model's storage buffers (bindings 0–2).
+  void bind_tables(std::size_t group) const;
   struct GroupTextures {
     gl::Texture transmittance, irradiance, single_rayleigh, single_mie, multiple;
     std::array<float, 4> mie_g1{}, mie_g2{}, mie_alpha{};  // the Mie phase's parameters per lane

@@ -48,23 +48,13 @@ TileCones::TileCones(const warp::Projection& projection)
 
 std::vector<std::uint32_t> TileCones::tiles_touching_sphere(const glm::dvec3& centre_direction, double distance_m,
                                                             double radius_m, int first_row, int row_count) const {
+  const std::vector<TileCover> cover = sphere_cover(centre_direction, distance_m, radius_m, first_row, row_count);
   std::vector<std::uint32_t> out;
-  const int tile_row_begin = first_row / kTileSize;
-  const int tile_row_end = std::min(rows_, (first_row + row_count + kTileSize - 1) / kTileSize);
-  const bool inside = distance_m <= radius_m;
-  const double angular_radius = inside ? 4.0 : std::asin(radius_m / distance_m);
-  const glm::dvec3 c = glm::normalize(centre_direction);
-  for (int ty = tile_row_begin; ty < tile_row_end; ++ty)
-    for (int tx = 0; tx < columns_; ++tx) {
-      const TileCone& cone = this->cone(tx, ty);
-      if (!cone.has_rays) continue;
-      if (!inside) {
-        const double angle = 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(glm::dvec3(cone.axis) - c)));
-        // 1e-4 rad covers the float axis stored in the cone.
-        if (angle > cone.half_angle_rad + angular_radius + 1e-4) continue;
-      }
-      out.push_back(static_cast<std::uint32_t>(tx) |
-                    (static_cast<std::uint32_t>(ty - tile_row_begin) << 16));
+  for (std::size_t i = 0; i < cover.size(); ++i)
+    if (cover[i] != TileCover::none) {
+      const auto tx = static_cast<std::uint32_t>(i % static_cast<std::size_t>(columns_));
+      const auto band_ty = static_cast<std::uint32_t>(i / static_cast<std::size_t>(columns_));
+      out.push_back(tx | (band_ty << 16));
     }
   return out;
 }
@@ -88,7 +78,7 @@ std::vector<TileCover> TileCones::sphere_cover(const glm::dvec3& centre_directio
         continue;
       }
       const double angle = 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(glm::dvec3(cone.axis) - c)));
-      // 1e-4 rad covers the float axis stored in the cone (as in tiles_touching_sphere).
+      // 1e-4 rad covers the float axis stored in the cone.
       if (angle > cone.half_angle_rad + angular_radius + 1e-4) continue;
       cover = angle + cone.half_angle_rad + 1e-4 <= angular_radius ? TileCover::all : TileCover::some;
     }
