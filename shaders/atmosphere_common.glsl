@@ -669,6 +669,51 @@ real4 sample_scattering_table(sampler3D table, ScatteringUV uv) {
   return a * (real(1) - t) + b * t;
 }
 
+/// geometric_blend (lookup_tables.h): a^(1−t)·b^t while |ln(b/a)| ≤
+/// GEOMETRIC_BLEND_FULL_LOG_RATIO, fading to linear over the next unit, linear
+/// where either is zero; logarithm and exponential in float, as on the CPU.
+const float GEOMETRIC_BLEND_FULL_LOG_RATIO = 5.0;
+real geometric_blend(real a, real b, real t) {
+  const real linear_value = a * (real(1) - t) + b * t;
+  if (!(a > real(0) && b > real(0))) return linear_value;
+  const float log_ratio = log(float(clamp(b / a, real(1e-30), real(1e30))));
+  const float weight = clamp(GEOMETRIC_BLEND_FULL_LOG_RATIO + 1.0 - abs(log_ratio), 0.0, 1.0);
+  if (weight == 0.0) return linear_value;
+  const real geometric = a * real(exp(float(t) * log_ratio));
+  return linear_value + real(weight) * (geometric - linear_value);
+}
+real4 geometric_blend(real4 a, real4 b, real t) {
+  return real4(geometric_blend(a.x, b.x, t), geometric_blend(a.y, b.y, t), geometric_blend(a.z, b.z, t),
+               geometric_blend(a.w, b.w, t));
+}
+
+/// The μs texel columns either side of u_μs and the blend weight between them
+/// (sample_scattering_table_geometric_mu_s, lookup_tables.cpp).
+struct MuSColumns {
+  real u_a, u_b, t;
+};
+MuSColumns mu_s_columns(real u_mu_s) {
+  const real n = real(SCATTERING_MU_S);
+  PRECISE real x = clamp(u_mu_s * n - real(0.5), real(0), n - real(1));
+  PRECISE real i0 = min(floor(x), n - real(2));
+  MuSColumns c;
+  c.t = x - i0;
+  c.u_a = (i0 + real(0.5)) / n;
+  c.u_b = (i0 + real(1.5)) / n;
+  return c;
+}
+
+/// sample_scattering_table_geometric_mu_s (lookup_tables.cpp): the final
+/// tables' read, geometric in μs between the two nearest texel columns, each
+/// read like sample_scattering_table.
+real4 sample_scattering_table_geometric_mu_s(sampler3D table, ScatteringUV uv) {
+  const MuSColumns c = mu_s_columns(uv.u_mu_s);
+  ScatteringUV column_a = uv, column_b = uv;
+  column_a.u_mu_s = c.u_a;
+  column_b.u_mu_s = c.u_b;
+  return geometric_blend(sample_scattering_table(table, column_a), sample_scattering_table(table, column_b), c.t);
+}
+
 // ------------------------------------------------------------ transmittance queries (lookup_tables.cpp)
 
 layout(binding = 0) uniform sampler2D transmittance_texture;

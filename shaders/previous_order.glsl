@@ -1,7 +1,8 @@
 // The radiance of order n−1 arriving from a direction, for the scattering density
 // and sky irradiance of order n (cpu_precompute.cpp, previous_order_radiance).
 // Needs atmosphere_common.glsl.
-//   FIRST_ORDER 1 (n = 2): the single-scattering tables with their phase functions;
+//   FIRST_ORDER 1 (n = 2): the single-scattering tables with their phase functions,
+//                          read geometrically in μs like every read of a final table;
 //   FIRST_ORDER 0 (n ≥ 3): the multiple-scattering table of the last order.
 // Each is read with its own angle mapping, PREVIOUS_ORDER_MAPPING. The caller
 // computes the texture coordinates (scattering_u_r, scattering_u_mu,
@@ -21,9 +22,9 @@ layout(binding = 3) uniform sampler3D delta_radiance_texture;
 /// `uv`: scattering_uvwz(r, μ, μs, ν) with PREVIOUS_ORDER_MAPPING; ν for the phase functions.
 real4 previous_order_radiance(ScatteringUV uv, real nu) {
 #if FIRST_ORDER
-  real4 radiance = sample_scattering_table(single_rayleigh_texture, uv) * rayleigh_phase(nu);
+  real4 radiance = sample_scattering_table_geometric_mu_s(single_rayleigh_texture, uv) * rayleigh_phase(nu);
 #if HAS_MIE
-  radiance = radiance + sample_scattering_table(single_mie_texture, uv) * mie_phase(nu);
+  radiance = radiance + sample_scattering_table_geometric_mu_s(single_mie_texture, uv) * mie_phase(nu);
 #endif
   return radiance;
 #else

@@ -91,14 +91,42 @@ void sample_scattering_table(const Table3D& table, const TableSizes& s, const Sc
   for (std::size_t ch = 0; ch < table.channels; ++ch) out[ch] = a[ch] * (1.0 - t) + b[ch] * t;
 }
 
+double geometric_blend(double a, double b, double t) {
+  const double linear = a * (1.0 - t) + b * t;
+  if (!(a > 0.0 && b > 0.0)) return linear;
+  // |ln(b/a)| in float (GLSL has no double log or pow, and the GPU precompute
+  // repeats this for the second order's source; the tables are float anyway).
+  const float log_ratio = std::log(float(std::clamp(b / a, 1e-30, 1e30)));
+  const float weight = std::clamp((kGeometricBlendFullLogRatio + 1.0f - std::abs(log_ratio)), 0.0f, 1.0f);
+  if (weight == 0.0f) return linear;
+  const double geometric = a * double(std::exp(float(t) * log_ratio));
+  return linear + double(weight) * (geometric - linear);
+}
+
+void sample_scattering_table_geometric_mu_s(const Table3D& table, const TableSizes& s, const ScatteringUVWZ& uv,
+                                            double* out) {
+  // The μs texel columns either side of u_μs (texel centres at (i + ½)/n).
+  const double n = double(s.scattering_mu_s);
+  const double x = std::clamp(uv.u_mu_s * n - 0.5, 0.0, n - 1.0);
+  const double i0 = std::min(std::floor(x), n - 2.0);
+  const double t = x - i0;
+  ScatteringUVWZ column_a = uv, column_b = uv;
+  column_a.u_mu_s = (i0 + 0.5) / n;
+  column_b.u_mu_s = (i0 + 1.5) / n;
+  std::array<double, kMaxChannels> a{}, b{};
+  sample_scattering_table(table, s, column_a, a.data());
+  sample_scattering_table(table, s, column_b, b.data());
+  for (std::size_t c = 0; c < table.channels; ++c) out[c] = geometric_blend(a[c], b[c], t);
+}
+
 void TableQueries::scattering_terms(double r_m, double mu, double mu_s, double nu, bool hits_ground, double* rayleigh,
                                     double* mie, double* multiple) const {
   const ScatteringUVWZ single =
       scattering_uvwz(tables_.geometry, tables_.sizes, r_m, mu, mu_s, nu, hits_ground, AngleMapping::Distance);
-  sample_scattering_table(tables_.single_rayleigh, tables_.sizes, single, rayleigh);
-  sample_scattering_table(tables_.single_mie, tables_.sizes, single, mie);
+  sample_scattering_table_geometric_mu_s(tables_.single_rayleigh, tables_.sizes, single, rayleigh);
+  sample_scattering_table_geometric_mu_s(tables_.single_mie, tables_.sizes, single, mie);
   if (multiple)
-    sample_scattering_table(tables_.multiple, tables_.sizes,
+    sample_scattering_table_geometric_mu_s(tables_.multiple, tables_.sizes,
                             scattering_uvwz(tables_.geometry, tables_.sizes, r_m, mu, mu_s, nu, hits_ground,
                                             AngleMapping::Blended),
                             multiple);

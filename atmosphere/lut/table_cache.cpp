@@ -66,8 +66,10 @@ std::filesystem::path default_cache_directory() {
 
 /// Revision of the precompute's method: tables computed by an older method
 /// under the same options must not be reused. 2: the scattering density by
-/// spherical harmonics (issue 13; the density line below names the method).
-constexpr int kPrecomputeMethodRevision = 2;
+/// spherical harmonics (issue 13; the density line below names the method);
+/// 3: the second order's source reads the single-scattering tables
+/// geometrically in μs (sample_scattering_table_geometric_mu_s).
+constexpr int kPrecomputeMethodRevision = 3;
 
 std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions& o) {
   std::ostringstream s;

@@ -81,24 +81,31 @@ struct Inscatter {
   real4 mie;          // single Mie, phase not applied
 };
 
-/// A 4D table at `uv`: sample_scattering_table (atmosphere_common.glsl), the
-/// CPU's interpolation done by hand from 16 texel fetches, in double with
-/// USE_FP64; otherwise the texture unit's own trilinear filtering within the
-/// two ν slices, two reads (the tables are GL_LINEAR, clamped to the edge).
-/// The same taps: the slice coordinate (ν index + u_μs) / NU keeps μs on the
-/// slice's texel centres at its ends, so no read mixes two slices. A CPU
-/// rasterizer runs the hand filter's address and weight arithmetic per texel;
-/// its own filter is several times cheaper (docs/rendering-performance.md).
+/// A final 4D table at `uv`: sample_scattering_table_geometric_mu_s
+/// (atmosphere_common.glsl), geometric in μs between the two nearest μs texel
+/// columns (through twilight S falls exponentially with the sun's depression;
+/// lookup_tables.h). With USE_FP64 the CPU's interpolation done by hand from
+/// texel fetches, in double; otherwise the texture unit's own filtering,
+/// bilinear in (μ, r) at each column's texel centre, four reads (two μs columns
+/// in each of the two ν slices; the tables are GL_LINEAR, clamped to the edge).
+/// The slice coordinate (ν index + u_μs) / NU on a column's centre reads no
+/// neighbouring column and no neighbouring slice. A CPU rasterizer runs the hand
+/// filter's address and weight arithmetic per texel; its own filter is several
+/// times cheaper (docs/rendering-performance.md).
 real4 sample_table_4d(sampler3D table, ScatteringUV uv) {
 #if USE_FP64
-  return sample_scattering_table(table, uv);
+  return sample_scattering_table_geometric_mu_s(table, uv);
 #else
   const float x_nu = uv.u_nu * float(SCATTERING_NU - 1);
   const float nu_floor = min(floor(x_nu), float(SCATTERING_NU - 1));
   const float t = x_nu - nu_floor;
-  const float u0 = (nu_floor + uv.u_mu_s) / float(SCATTERING_NU);
-  const float u1 = (min(nu_floor + 1.0, float(SCATTERING_NU - 1)) + uv.u_mu_s) / float(SCATTERING_NU);
-  return texture(table, vec3(u0, uv.u_mu, uv.u_r)) * (1.0 - t) + texture(table, vec3(u1, uv.u_mu, uv.u_r)) * t;
+  const float nu_ceil = min(nu_floor + 1.0, float(SCATTERING_NU - 1));
+  const MuSColumns c = mu_s_columns(uv.u_mu_s);
+  const vec4 a = texture(table, vec3((nu_floor + c.u_a) / float(SCATTERING_NU), uv.u_mu, uv.u_r)) * (1.0 - t) +
+                 texture(table, vec3((nu_ceil + c.u_a) / float(SCATTERING_NU), uv.u_mu, uv.u_r)) * t;
+  const vec4 b = texture(table, vec3((nu_floor + c.u_b) / float(SCATTERING_NU), uv.u_mu, uv.u_r)) * (1.0 - t) +
+                 texture(table, vec3((nu_ceil + c.u_b) / float(SCATTERING_NU), uv.u_mu, uv.u_r)) * t;
+  return geometric_blend(a, b, c.t);
 #endif
 }
 
