@@ -7,10 +7,10 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "atmosphere/embedded_file.h"
-#include "atmosphere/json_reader.h"
+#include "core/embedded_file.h"
+#include "core/json_reader.h"
 #include "atmosphere/lut/table_cache.h"
-#include "atmosphere/model_hash.h"
+#include "core/sha256.h"
 
 namespace zenith::app {
 namespace embedded_configs {
@@ -60,7 +60,7 @@ fs::path default_config(const std::string& name) {
   }
   if (!found) throw std::runtime_error(cat("no configuration ", local.string(), " here and none named ", name, " built in"));
   const fs::path folder = atmosphere::lut::default_cache_directory() / "embedded-configs" /
-                          atmosphere::sha256_hex(all.data(), all.size()).substr(0, 16);
+                          core::sha256_hex(all.data(), all.size()).substr(0, 16);
   for (const EmbeddedFile& f : files) write_if_different(folder / f.name, f.contents);
   spdlog::info("{} is not in this directory: using the built-in copy {}", local.string(), (folder / name).string());
   return folder / name;

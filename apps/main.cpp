@@ -6,7 +6,7 @@
 #include <exception>
 
 #include "apps/commands.h"
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 
 int main(int argc, char** argv) {
   // Logs go to stderr: stdout carries command output (CSV, JSON) that may be piped.

@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "atmosphere/json_reader.h"
-#include "atmosphere/model_hash.h"
+#include "core/json_reader.h"
+#include "core/sha256.h"
 
 namespace zenith::app::offline {
 namespace {
@@ -121,7 +121,7 @@ std::string file_sha256(const std::filesystem::path& path) {
   if (!in) throw std::runtime_error(cat(path.string(), ": cannot open"));
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw std::runtime_error(cat(path.string(), ": read error"));
-  return atmosphere::sha256_hex(bytes.data(), bytes.size());
+  return core::sha256_hex(bytes.data(), bytes.size());
 }
 
 FrameCheck check_frame(const Manifest& manifest, std::uint64_t frame, const std::string& state_digest,

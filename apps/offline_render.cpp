@@ -12,8 +12,8 @@
 
 #include "apps/offline_manifest.h"
 #include "apps/progress_bar.h"
-#include "atmosphere/json_reader.h"
-#include "atmosphere/model_hash.h"
+#include "core/json_reader.h"
+#include "core/sha256.h"
 #include "cluster/frame_scene.h"
 #include "render/image/contact_sheet.h"
 
@@ -135,7 +135,7 @@ std::string settings_key(const RenderJob& job, const OutputSpec& output, ImageFo
       cat(job.settings, "\noutput ", output.name, " ", output.width_px, "x", output.height_px, " ",
           output.description, "\nformat ", extension_of(format), " ",
           format == ImageFormat::png ? job.png_settings : job.exr_settings);
-  return atmosphere::sha256_hex(text.data(), text.size()).substr(0, 16);
+  return core::sha256_hex(text.data(), text.size()).substr(0, 16);
 }
 
 RenderSummary run_render_job(const RenderJob& job, FrameRenderer& renderer) {

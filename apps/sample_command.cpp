@@ -11,7 +11,7 @@
 #include "apps/commands.h"
 #include "apps/sampling.h"
 #include "apps/table_provider.h"
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 
 namespace zenith::app {
 namespace {

@@ -22,7 +22,7 @@
 #include "apps/offline_render.h"
 #include "apps/output_rendering.h"
 #include "apps/table_provider.h"
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/cluster_config.h"
 #include "cluster/frame_scene.h"

@@ -32,7 +32,7 @@
 #include "apps/table_provider.h"
 #include "atmosphere/cie_sky.h"
 #include "atmosphere/constants.h"
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/sky_sampling.h"
 

@@ -28,8 +28,8 @@
 #include "apps/stress/reference_comparison.h"
 #include "apps/stress/stress_report.h"
 #include "apps/table_provider.h"
-#include "atmosphere/json_reader.h"
-#include "atmosphere/lut/parallel_for.h"
+#include "core/json_reader.h"
+#include "core/parallel_for.h"
 #include "atmosphere/model_hash.h"
 #include "render/gl/egl_context.h"
 
@@ -206,7 +206,7 @@ void run_stress(const StressArgs& a) {
   fmt::print("{}", stress::summary_table(results, frames));
   fmt::print("CPU: {} configurations in {:.1f} s ({:.2f} us each, {} threads); tables {:.1f} s; total {:.1f} s\n",
              cpu_samples, cpu_seconds, 1e6 * cpu_seconds / double(std::max<std::size_t>(cpu_samples, 1)),
-             atmosphere::resolve_thread_count(a.threads), tables_seconds, seconds_since(start));
+             core::resolve_thread_count(a.threads), tables_seconds, seconds_since(start));
   if (!a.out.empty()) {
     std::filesystem::create_directories(a.out);
     write_file(std::filesystem::path(a.out) / "stress_regions.csv", stress::regions_csv(results));

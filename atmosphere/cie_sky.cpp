@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "atmosphere/constants.h"
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/reference_data.h"
 
 namespace zenith::atmosphere {

@@ -1,6 +1,6 @@
 #include "atmosphere/model_hash.h"
 
-#include <openssl/evp.h>
+#include "core/sha256.h"
 
 #include <cstdio>
 #include <sstream>
@@ -64,22 +64,9 @@ std::string canonical_description(const AtmosphereModel& m) {
   return out.str();
 }
 
-std::string sha256_hex(const void* data, std::size_t bytes) {
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  if (EVP_Digest(data, bytes, digest, &length, EVP_sha256(), nullptr) != 1) throw std::runtime_error("SHA-256 failed");
-  static const char* hex = "0123456789abcdef";
-  std::string out;
-  for (unsigned int i = 0; i < length; ++i) {
-    out += hex[digest[i] >> 4];
-    out += hex[digest[i] & 15];
-  }
-  return out;
-}
-
 std::string lookup_table_hash(const AtmosphereModel& model) {
   const std::string text = canonical_description(model);
-  return sha256_hex(text.data(), text.size());
+  return core::sha256_hex(text.data(), text.size());
 }
 
 }  // namespace zenith::atmosphere

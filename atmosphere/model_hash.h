@@ -25,8 +25,6 @@ inline constexpr int kLookupTableFormatVersion = 6;
 
 /// The canonical text that is hashed (one "key: values" line per quantity).
 std::string canonical_description(const AtmosphereModel& model);
-/// SHA-256 of `bytes` bytes at `data`, as 64 lowercase hex digits.
-std::string sha256_hex(const void* data, std::size_t bytes);
 
 /// SHA-256 of canonical_description(), as 64 lowercase hex digits.
 std::string lookup_table_hash(const AtmosphereModel& model);

@@ -8,7 +8,7 @@
 
 #include "atmosphere/air_mass.h"
 #include "atmosphere/constants.h"
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/mie.h"
 #include "atmosphere/rayleigh.h"
 #include "atmosphere/reference_data.h"

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "atmosphere/embedded_file.h"
+#include "core/embedded_file.h"
 
 namespace zenith::atmosphere {
 namespace embedded {

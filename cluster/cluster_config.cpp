@@ -5,7 +5,7 @@
 #include <map>
 #include <sstream>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "warp/viewport_config.h"
 
 namespace zenith::cluster {

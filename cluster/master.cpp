@@ -1,4 +1,4 @@
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "cluster/master.h"
 
 #include <spdlog/spdlog.h>
@@ -42,7 +42,7 @@ using std::chrono::milliseconds;
 
 namespace {
 
-using config::cat;  // atmosphere/json_reader.h
+using config::cat;  // core/json_reader.h
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 

@@ -1,4 +1,4 @@
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "cluster/node.h"
 
 #include <fmt/format.h>
@@ -48,7 +48,7 @@ using std::chrono::milliseconds;
 
 namespace {
 
-using config::cat;  // atmosphere/json_reader.h
+using config::cat;  // core/json_reader.h
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 

@@ -1,11 +1,12 @@
 #include "cluster/table_transfer.h"
 
-#include <openssl/evp.h>
 #include <unistd.h>
 
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/sha256.h"
 
 namespace zenith::cluster {
 namespace {
@@ -19,13 +20,7 @@ std::string cat(const T&... parts) {
 
 }  // namespace
 
-Digest sha256(std::span<const std::uint8_t> bytes) {
-  Digest out{};
-  unsigned int length = 0;
-  if (EVP_Digest(bytes.data(), bytes.size(), out.data(), &length, EVP_sha256(), nullptr) != 1 || length != out.size())
-    throw std::runtime_error("SHA-256 failed (OpenSSL EVP_Digest)");
-  return out;
-}
+Digest sha256(std::span<const std::uint8_t> bytes) { return core::sha256(bytes.data(), bytes.size()); }
 
 TableSetFile make_table_set_file(const std::string& body_name, const Digest& table_hash,
                                  const std::filesystem::path& cache_file, std::uint32_t chunk_bytes) {

@@ -18,7 +18,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
-#include "atmosphere/lut/parallel_for.h"
+#include "core/parallel_for.h"
 #include "atmosphere/model_hash.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/tile_culling.h"
@@ -586,7 +586,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
       auto table = im.ray_tables.find(first_row);
       if (table == im.ray_tables.end()) {
         std::vector<float> rays(static_cast<std::size_t>(width) * im.band_height * 4, 0.0f);
-        atmosphere::parallel_for(static_cast<std::size_t>(rows), 0, [&](std::size_t row) {
+        core::parallel_for(static_cast<std::size_t>(rows), 0, [&](std::size_t row) {
           for (int x = 0; x < width; ++x) {
             const auto r = projection.ray(x + 0.5, first_row + static_cast<double>(row) + 0.5);
             if (!r) continue;
@@ -862,7 +862,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     timer.cpu("readback", [&] {
       im.frame_rgb.read_mapped(band_bytes, [&](std::span<const std::byte> bytes) {
         const auto* rgba = reinterpret_cast<const float*>(bytes.data());
-        atmosphere::parallel_for(static_cast<std::size_t>(band_tile_rows), 0, [&](std::size_t tile_row) {
+        core::parallel_for(static_cast<std::size_t>(band_tile_rows), 0, [&](std::size_t tile_row) {
           const int y_end = std::min(rows, static_cast<int>(tile_row + 1) * kTileSize);
           for (int y = static_cast<int>(tile_row) * kTileSize; y < y_end; ++y)
             for (int tx = 0; tx < cones.columns(); ++tx) {

@@ -6,7 +6,7 @@
 #include <span>
 #include <stdexcept>
 
-#include "atmosphere/embedded_file.h"
+#include "core/embedded_file.h"
 
 namespace zenith::render {
 namespace embedded {

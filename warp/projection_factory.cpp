@@ -8,7 +8,7 @@
 #include <string_view>
 #include <utility>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "warp/cube_face_projection.h"
 #include "warp/cylindrical_projection.h"
 #include "warp/equirectangular_projection.h"

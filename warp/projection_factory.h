@@ -27,7 +27,7 @@ namespace zenith::warp {
 /// The projection `spec` describes, for an image width_px × height_px.
 /// `source` names where the spec came from (a file) and `pointer` is the JSON
 /// pointer of `spec` inside it ("" for the top level); both only enter messages.
-/// Throws zenith::ConfigError (atmosphere/json_reader.h) for any invalid spec,
+/// Throws zenith::ConfigError (core/json_reader.h) for any invalid spec,
 /// including an image size out of range for the projection.
 std::unique_ptr<Projection> make_projection(const nlohmann::json& spec, int width_px, int height_px,
                                             const std::string& source, const std::string& pointer = "");

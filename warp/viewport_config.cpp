@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "warp/mpcdi.h"
 #include "warp/projection_factory.h"
 #include "warp/warp_mesh.h"

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <vector>
 
-#include "atmosphere/json_reader.h"
-#include "atmosphere/lut/parallel_for.h"
+#include "core/json_reader.h"
+#include "core/parallel_for.h"
 #include "atmosphere/reference/geometry.h"
 
 namespace zenith::stress {
@@ -81,7 +81,7 @@ CpuStressResult run_cpu_stress(const atmosphere::lut::TableQueries& q, const std
   std::vector<RegionTable> per_chunk(chunks);
   std::mutex progress_mutex;
   std::size_t done = 0;
-  atmosphere::parallel_for(chunks, o.threads, [&](std::size_t chunk) {
+  core::parallel_for(chunks, o.threads, [&](std::size_t chunk) {
     RegionTable& regions = per_chunk[chunk];
     const std::size_t end = std::min(total, (chunk + 1) * kChunk);
     for (std::size_t i = chunk * kChunk; i < end; ++i) {

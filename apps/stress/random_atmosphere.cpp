@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/reference/random.h"
 
 namespace zenith::stress {

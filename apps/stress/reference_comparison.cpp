@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "atmosphere/constants.h"
-#include "atmosphere/json_reader.h"
-#include "atmosphere/lut/parallel_for.h"
+#include "core/json_reader.h"
+#include "core/parallel_for.h"
 #include "atmosphere/reference/random.h"
 #include "atmosphere/reference/single_scattering.h"
 
@@ -127,7 +127,7 @@ void compare_with_reference(const atmosphere::AtmosphereModel& model, const atmo
   ss.relative_tolerance = o.relative_tolerance;
   std::mutex progress_mutex;
   std::size_t done = 0;
-  atmosphere::parallel_for(total, o.threads, [&](std::size_t k) {
+  core::parallel_for(total, o.threads, [&](std::size_t k) {
     const Region region = kRegions[k / per_region];
     const Configuration c =
         configuration_in_region(region, g.bottom_radius_m, g.top_radius_m, o.seed, o.stream, k % per_region);

@@ -8,7 +8,7 @@
 
 #include "atmosphere/constants.h"
 #include "atmosphere/lut/gauss_legendre.h"
-#include "atmosphere/lut/parallel_for.h"
+#include "core/parallel_for.h"
 #include "atmosphere/lut/quadrature.h"
 #include "atmosphere/lut/spherical_harmonics.h"
 #include "atmosphere/model_hash.h"
@@ -104,7 +104,7 @@ void Precompute::compute_transmittance() {
   // error on a 1.2 km Mie scale height is ~1e-4 in T; Simpson's is ~1e-7.
   Table2D& table = tables_.transmittance;
   const int samples = options_.transmittance_samples + options_.transmittance_samples % 2;  // even
-  parallel_for(table.height, options_.threads, [&](std::size_t y) {
+  core::parallel_for(table.height, options_.threads, [&](std::size_t y) {
     Channels beta{}, tau{};
     for (std::size_t x = 0; x < table.width; ++x) {
       double r, mu;
@@ -161,7 +161,7 @@ void Precompute::compute_single_scattering() {
   const TableSizes& s = sizes();
   const int samples = options_.scattering_samples;
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;
-  parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
+  core::parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
     const std::size_t z = row / height, y = row % height;
     Channels t_sun{}, rayleigh{}, mie{}, prev_r{}, prev_m{};
     std::vector<double> t_view;
@@ -267,7 +267,7 @@ void Precompute::compute_scattering_density_harmonics(int order, Table3D& densit
   for (std::size_t ch = 0; ch < n_; ++ch)
     mie_moments[ch] = phase_legendre_moments([&](double x) { return model_.mie_phase(ch, x); }, degree);
   const double rb = geometry().bottom_radius_m;
-  parallel_for(s.scattering_r * s.scattering_mu_s, options_.threads, [&](std::size_t column) {
+  core::parallel_for(s.scattering_r * s.scattering_mu_s, options_.threads, [&](std::size_t column) {
     const std::size_t z = column / s.scattering_mu_s, xs = column % s.scattering_mu_s;
     const ScatteringCoordinates c0 = scattering_texel_coordinates(geometry(), s, xs, 0, z, AngleMapping::Blended);
     const double r = c0.r_m, mu_s = c0.mu_s;
@@ -368,7 +368,7 @@ void Precompute::compute_scattering_density_direct(int order, Table3D& density) 
   const double d_phi = 2.0 * kPi / n_phi;
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;
   const double rb = geometry().bottom_radius_m;
-  parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
+  core::parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
     const std::size_t z = row / height, y = row % height;
     Channels incoming{}, ground_t{}, j{};
     for (std::size_t x = 0; x < width; ++x) {
@@ -420,7 +420,7 @@ void Precompute::compute_indirect_irradiance(int order) {
   const GaussLegendre rule(n_theta);
   const double d_phi = 2.0 * kPi / n_phi;
   Table2D next(s.irradiance_mu_s, s.irradiance_r, n_);
-  parallel_for(s.irradiance_r, options_.threads, [&](std::size_t y) {
+  core::parallel_for(s.irradiance_r, options_.threads, [&](std::size_t y) {
     Channels incoming{}, e{};
     for (std::size_t x = 0; x < s.irradiance_mu_s; ++x) {
       double r, mu_s;
@@ -458,7 +458,7 @@ double Precompute::compute_multiple_scattering(const Table3D& density) {
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;
   Table3D next(width, height, s.scattering_r, n_);
   std::vector<double> row_sums(s.scattering_r * height, 0.0);
-  parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
+  core::parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
     const std::size_t z = row / height, y = row % height;
     Channels j{}, sum{}, prev{};
     // The row's ray: T and the (u_r, u_μ) texture coordinates at its samples,
@@ -557,7 +557,7 @@ LookupTables Precompute::run() {
   tables_.hash = lookup_table_hash(model_);
   if (report_) {
     report_->set_order_sums(order_sums);
-    report_->device = "CPU (" + std::to_string(resolve_thread_count(options_.threads)) + " threads)";
+    report_->device = "CPU (" + std::to_string(core::resolve_thread_count(options_.threads)) + " threads)";
   }
   if (options_.progress) options_.progress({"done", 1.0});
   return std::move(tables_);

@@ -1,5 +1,7 @@
 #include "atmosphere/lut/table_cache.h"
 
+#include "core/sha256.h"
+
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -82,7 +84,7 @@ std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions&
     << "density " << (o.density_method == PrecomputeOptions::DensityMethod::Harmonics ? "harmonics " : "direct ")
     << o.harmonic_degree << '\n';
   const std::string text = s.str();
-  return sha256_hex(text.data(), text.size());
+  return core::sha256_hex(text.data(), text.size());
 }
 
 void write_tables_exr(const std::filesystem::path& path, const AtmosphereModel& model, const std::string& key,
@@ -109,7 +111,7 @@ void write_tables_exr(const std::filesystem::path& path, const AtmosphereModel& 
     h.insert("zenith.orders", Imf::IntAttribute(tables.scattering_orders));
     h.insert("zenith.wavelengths_nm", Imf::StringAttribute(wavelengths.str()));
     h.insert("zenith.parameters", Imf::StringAttribute(canonical_description(model)));
-    h.insert("zenith.checksum", Imf::StringAttribute(sha256_hex(p.data, p.width * p.height * p.channels * sizeof(float))));
+    h.insert("zenith.checksum", Imf::StringAttribute(core::sha256_hex(p.data, p.width * p.height * p.channels * sizeof(float))));
     headers.push_back(h);
   }
   Imf::MultiPartOutputFile file(path.c_str(), headers.data(), int(headers.size()));
@@ -166,7 +168,7 @@ LookupTables read_tables_exr(const std::filesystem::path& path, const Atmosphere
       part.setFrameBuffer(fb);
       part.readPixels(dw.min.y, dw.max.y);
       const std::size_t count = p.width * p.height * p.channels;
-      if (sha256_hex(p.data, count * sizeof(float)) != string_attribute(h, "zenith.checksum"))
+      if (core::sha256_hex(p.data, count * sizeof(float)) != string_attribute(h, "zenith.checksum"))
         throw std::runtime_error(std::string("part ") + p.name + " fails its checksum");
       for (std::size_t k = 0; k < count; ++k)
         if (!std::isfinite(p.data[k]) || p.data[k] < 0.0f)

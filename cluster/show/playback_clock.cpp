@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 
 namespace zenith::show {
 namespace {

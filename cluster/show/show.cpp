@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/model_hash.h"
 #include "cluster/show/show_impl.h"
 

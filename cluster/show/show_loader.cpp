@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "cluster/show/recording_json.h"
 #include "cluster/show/show.h"
 #include "cluster/show/show_impl.h"

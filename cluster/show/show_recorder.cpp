@@ -6,7 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "cluster/show/recording_json.h"
 #include "cluster/show/show.h"
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 
 namespace zenith::show {
 namespace {

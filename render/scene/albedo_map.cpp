@@ -9,7 +9,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "atmosphere/lut/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace zenith::scene {
 namespace {
@@ -334,7 +334,7 @@ image::LinearImage generate_albedo_map(const std::string& generator, std::uint32
   out.height = height_px;
   out.rgb.assign(std::size_t(width_px) * std::size_t(height_px) * 3, 0.0f);
   // Rows are independent: evaluate them in parallel (the result does not depend on the threads).
-  atmosphere::parallel_for(std::size_t(height_px), 0, [&](std::size_t row) {
+  core::parallel_for(std::size_t(height_px), 0, [&](std::size_t row) {
     const double lat = (90.0 - (double(row) + 0.5) * 180.0 / height_px) * kDeg;
     for (int column = 0; column < width_px; ++column) {
       const double lon = (-180.0 + (column + 0.5) * 360.0 / width_px) * kDeg;

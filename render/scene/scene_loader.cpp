@@ -13,7 +13,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vector_relational.hpp>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/spectrum.h"
 #include "render/scene/albedo_map.h"

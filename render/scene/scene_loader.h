@@ -1,7 +1,7 @@
 #pragma once
 // Reading scenes: JSON (schema "zenith_scene": 1, docs/scenes.md) → Scene.
 //
-// Reading is strict, as for atmospheres (atmosphere/json_reader.h): every key
+// Reading is strict, as for atmospheres (core/json_reader.h): every key
 // has a unit and a range, unknown keys are errors, and every error is a
 // zenith::ConfigError naming the file, the key as a JSON pointer, the value and
 // what is allowed, e.g.

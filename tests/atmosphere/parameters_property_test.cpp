@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/parameters.h"
 

@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/mie.h"
 #include "atmosphere/model_hash.h"
 

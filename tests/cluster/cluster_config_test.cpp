@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "cluster/cluster_config.h"
 
 namespace zenith::cluster {

@@ -10,7 +10,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "atmosphere/photometry.h"
 #include "render/scene/sun_disc.h"
 

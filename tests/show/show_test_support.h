@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 
 namespace zenith::show::test {
 

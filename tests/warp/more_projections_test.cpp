@@ -21,7 +21,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "warp/cube_face_projection.h"
 #include "warp/cylindrical_projection.h"
 #include "warp/equirectangular_projection.h"

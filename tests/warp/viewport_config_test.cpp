@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/warped_projection.h"

@@ -1,4 +1,4 @@
-#include "atmosphere/json_reader.h"
+#include "core/json_reader.h"
 
 #include <algorithm>
 

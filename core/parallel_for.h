@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-namespace zenith::atmosphere {
+namespace zenith::core {
 
 inline unsigned resolve_thread_count(unsigned requested) {
   if (requested > 0) return requested;
@@ -38,4 +38,4 @@ void parallel_for(std::size_t count, unsigned threads, F&& f) {
   if (error) std::rethrow_exception(error);
 }
 
-}  // namespace zenith::atmosphere
+}  // namespace zenith::core
