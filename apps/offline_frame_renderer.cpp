@@ -14,7 +14,7 @@ namespace zenith::app::offline {
 LocalFrameRenderer::LocalFrameRenderer(const show::Show& show,
                                        std::map<cluster::Digest, show::AtmosphereVersion> versions,
                                        std::vector<LocalOutput> outputs, const OutputStage& stage,
-                                       image::ColourMapping colour, TableRequest tables,
+                                       image::ColourMapping colour, render::TableRequest tables,
                                        const render::gl::ContextOptions& context)
     : show_(show),
       versions_(std::move(versions)),
@@ -39,7 +39,7 @@ void LocalFrameRenderer::precompute_missing(const show::TablePlan& plan,
     ++done;
     spdlog::info("table set {}/{} (body '{}', first used by frame {}): precomputing", done, missing,
                  entry.version.body, entry.first_frame);
-    const ObtainedTables t = obtain_tables(entry.version.loaded.model, tables_);
+    const render::ObtainedTables t = render::obtain_tables(entry.version.loaded.model, tables_);
     spdlog::info("table set {}/{}: {} in {:.1f} s", done, missing,
                  t.from_cache ? "found in the cache" : "precomputed and cached", t.report.total_seconds());
   }
@@ -54,7 +54,7 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
     render::RenderOptions options = cluster::render_options_of(render_flags);
     options.colour = colour_;
     renderer_ = std::make_unique<render::Renderer>(options, [this](const atmosphere::AtmosphereModel& model) {
-      ObtainedTables t = obtain_tables(model, tables_);
+      render::ObtainedTables t = render::obtain_tables(model, tables_);
       context_.make_current();
       return std::move(t.tables);
     });

@@ -13,7 +13,7 @@
 
 #include "apps/offline_render.h"
 #include "apps/output_rendering.h"
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
 #include "render/gl/egl_context.h"
@@ -37,7 +37,7 @@ class LocalFrameRenderer final : public FrameRenderer {
   /// `stage`: its blend fields are ignored (each output's own apply).
   LocalFrameRenderer(const show::Show& show, std::map<cluster::Digest, show::AtmosphereVersion> versions,
                      std::vector<LocalOutput> outputs, const OutputStage& stage, image::ColourMapping colour,
-                     TableRequest tables, const render::gl::ContextOptions& context);
+                     render::TableRequest tables, const render::gl::ContextOptions& context);
   ~LocalFrameRenderer() override;
 
   /// The GL renderer's name ("llvmpipe (LLVM 15.0.7, 256 bits)", ...).
@@ -58,7 +58,7 @@ class LocalFrameRenderer final : public FrameRenderer {
   std::vector<LocalOutput> outputs_;
   OutputStage stage_;
   image::ColourMapping colour_;
-  TableRequest tables_;
+  render::TableRequest tables_;
   render::gl::HeadlessContext context_;
   std::unique_ptr<render::Renderer> renderer_;  ///< for render_flags_
   std::uint32_t render_flags_ = 0;

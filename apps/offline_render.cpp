@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "apps/offline_manifest.h"
-#include "apps/progress_bar.h"
+#include "core/progress_bar.h"
 #include "core/json_reader.h"
 #include "core/sha256.h"
 #include "cluster/frame_scene.h"
@@ -162,7 +162,7 @@ RenderSummary run_render_job(const RenderJob& job, FrameRenderer& renderer) {
   std::vector<std::uint64_t> pending;
   std::set<cluster::Digest> pending_tables;  // the table sets the pending frames use
   {
-    ProgressBar bar("checking");
+    core::ProgressBar bar("checking");
     std::uint64_t in_manifest = 0;
     for (std::uint64_t frame = job.first_frame; frame <= job.last_frame; ++frame) {
       const cluster::FrameState state =
@@ -193,7 +193,7 @@ RenderSummary run_render_job(const RenderJob& job, FrameRenderer& renderer) {
   // 2. Render the others, in order.
   if (!pending.empty()) {
     if (job.before_rendering) job.before_rendering(pending.size(), pending_tables);
-    ProgressBar bar("rendering");
+    core::ProgressBar bar("rendering");
     const Clock::time_point render_start = Clock::now();
     Clock::time_point last_write = render_start;
     double first_frame_s = 0.0;

@@ -63,12 +63,12 @@ ViewportSelection select_viewport_outputs(const std::string& spec) {
   return s;
 }
 
-TableRequest make_table_request(const std::string& table_sizes, int orders, bool cpu_precompute, bool use_cache,
+render::TableRequest make_table_request(const std::string& table_sizes, int orders, bool cpu_precompute, bool use_cache,
                                 const std::string& cache_dir) {
-  TableRequest request;
-  request.options.sizes = table_sizes_by_name(table_sizes);
+  render::TableRequest request;
+  request.options.sizes = render::table_sizes_by_name(table_sizes);
   request.options.max_orders = orders;
-  request.backend = cpu_precompute ? PrecomputeBackend::Cpu : PrecomputeBackend::Gpu;
+  request.backend = cpu_precompute ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
   request.use_cache = use_cache;
   if (!cache_dir.empty()) request.cache_directory = cache_dir;
   return request;

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 #include "render/image/image_writer.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
@@ -45,9 +45,9 @@ struct ViewportSelection {
 /// unknown NAME (listing the names), zenith::ConfigError for a bad config.
 ViewportSelection select_viewport_outputs(const std::string& spec);
 
-/// The TableRequest of --tables NAME, --orders N, --cpu-precompute, --no-cache
+/// The render::TableRequest of --tables NAME, --orders N, --cpu-precompute, --no-cache
 /// and --cache DIR ("" for the default cache directory).
-TableRequest make_table_request(const std::string& table_sizes, int orders, bool cpu_precompute, bool use_cache,
+render::TableRequest make_table_request(const std::string& table_sizes, int orders, bool cpu_precompute, bool use_cache,
                                 const std::string& cache_dir);
 
 /// zenith:scene, zenith:projection, zenith:exposure and zenith:units.

@@ -4,7 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/commands.h"
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
 
@@ -20,17 +20,17 @@ struct PrecomputeArgs {
 };
 
 void run_precompute(const PrecomputeArgs& a) {
-  const auto loaded = load_atmosphere_argument(a.atmosphere);
-  TableRequest request;
-  request.options.sizes = table_sizes_by_name(a.tables);
+  const auto loaded = render::load_atmosphere_argument(a.atmosphere);
+  render::TableRequest request;
+  request.options.sizes = render::table_sizes_by_name(a.tables);
   request.options.max_orders = a.orders;
   request.options.tolerance = a.tolerance;
   request.options.threads = a.threads;
-  request.backend = a.cpu ? PrecomputeBackend::Cpu : PrecomputeBackend::Gpu;
+  request.backend = a.cpu ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
   request.use_cache = !a.no_cache;
   if (!a.cache_dir.empty()) request.cache_directory = a.cache_dir;
 
-  const ObtainedTables t = obtain_tables(loaded.model, request);
+  const render::ObtainedTables t = render::obtain_tables(loaded.model, request);
   fmt::print("atmosphere      {}\n", loaded.model.name);
   fmt::print("lut hash        {}\n", atmosphere::lookup_table_hash(loaded.model));
   fmt::print("table set key   {}\n", atmosphere::lut::table_set_key(loaded.model, request.options));

@@ -25,8 +25,8 @@
 #include "apps/commands.h"
 #include "apps/cli_options.h"
 #include "apps/output_rendering.h"
-#include "apps/progress_bar.h"
-#include "apps/table_provider.h"
+#include "core/progress_bar.h"
+#include "render/lut/table_provider.h"
 #include "render/gl/egl_context.h"
 #include "render/image/image_writer.h"
 #include "render/renderer.h"
@@ -70,7 +70,7 @@ render::RenderOptions make_render_options(const RenderArgs& a) {
   return options;
 }
 
-TableRequest make_table_request(const RenderArgs& a) {
+render::TableRequest make_table_request(const RenderArgs& a) {
   return app::make_table_request(a.tables, a.orders, a.cpu_precompute, !a.no_cache, a.cache_dir);
 }
 
@@ -98,7 +98,7 @@ void render_to_files(render::Renderer& renderer, const scene::Scene& scene, cons
   stage.blend = blend;
   stage.black_level = black_level;
   const int height = projection.height();
-  ProgressBar bar("render");
+  core::ProgressBar bar("render");
   app::render_to_files(renderer, scene, projection, std::vector<std::filesystem::path>(outputs.begin(), outputs.end()),
                   stage, attributes, [&](int first_row, int row_count) {
                     bar.update(fmt::format("rows {}–{}", first_row, first_row + row_count - 1),
@@ -243,12 +243,12 @@ void run_window(const RenderArgs& a, scene::Scene scene, const warp::Projection&
   spdlog::info("rendering '{}' {} in a window on {}", scene.name, projection.describe(), window.renderer());
 
   // Destroyed before the window: they hold GL objects of its context.
-  const TableRequest request = make_table_request(a);
+  const render::TableRequest request = make_table_request(a);
   render::Renderer renderer(make_render_options(a), [&](const atmosphere::AtmosphereModel& model) {
     // The GPU precompute runs on a headless EGL context of its own, which
     // cannot become current on this thread while the window's (GLX) one is.
     window.release_current();
-    ObtainedTables t = obtain_tables(model, request);
+    render::ObtainedTables t = render::obtain_tables(model, request);
     window.make_current();
     return std::move(t.tables);
   });
@@ -350,9 +350,9 @@ void run_viewport_render(const RenderArgs& a, const scene::Scene& scene) {
   render::gl::ContextOptions context_options;
   context_options.prefer = render::gl::parse_device_preference(a.device);
   render::gl::HeadlessContext context(context_options);
-  const TableRequest request = make_table_request(a);
+  const render::TableRequest request = make_table_request(a);
   render::Renderer renderer(make_render_options(a), [&](const atmosphere::AtmosphereModel& model) {
-    ObtainedTables t = obtain_tables(model, request);
+    render::ObtainedTables t = render::obtain_tables(model, request);
     context.make_current();
     return std::move(t.tables);
   });
@@ -397,9 +397,9 @@ void run_render(const RenderArgs& a) {
   render::gl::HeadlessContext context(context_options);
   spdlog::info("rendering '{}' {} on {}", scene.name, projection->describe(), context.renderer());
 
-  const TableRequest request = make_table_request(a);
+  const render::TableRequest request = make_table_request(a);
   render::Renderer renderer(make_render_options(a), [&](const atmosphere::AtmosphereModel& model) {
-    ObtainedTables t = obtain_tables(model, request);
+    render::ObtainedTables t = render::obtain_tables(model, request);
     context.make_current();  // the GPU precompute may have used a context of its own
     return std::move(t.tables);
   });

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "apps/progress_bar.h"
+#include "core/progress_bar.h"
 #include "atmosphere/constants.h"
 #include "atmosphere/reference/geometry.h"
 #include "atmosphere/reference/optical_depth.h"
@@ -36,11 +36,11 @@ std::string spectrum_header(const AtmosphereModel& m, const std::string& prefix)
 std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequest& r) {
   std::vector<RadianceSample> samples;
   if (r.method == SamplingMethod::Tables) {
-    const ObtainedTables t = obtain_tables(model, r.tables);
+    const render::ObtainedTables t = render::obtain_tables(model, r.tables);
     const lut::TableQueries queries(model, t.tables);
     samples = sample_radiance(queries, r.geometry, r.directions);
   } else {
-    ProgressBar bar("reference");
+    core::ProgressBar bar("reference");
     const Vec3 observer = r.geometry.observer_m(model);
     for (std::size_t i = 0; i < r.directions.size(); ++i) {
       bar.update("direction " + std::to_string(i + 1) + "/" + std::to_string(r.directions.size()),
@@ -58,8 +58,8 @@ std::string sample_transmittance_csv(const AtmosphereModel& model, const Samplin
   csv.precision(9);
   csv << "zenith_deg,azimuth_deg,path_length_m,ends_on_ground" << spectrum_header(model, "T_") << '\n';
   const Vec3 observer = r.geometry.observer_m(model);
-  std::optional<ObtainedTables> tables;
-  if (r.method == SamplingMethod::Tables) tables = obtain_tables(model, r.tables);
+  std::optional<render::ObtainedTables> tables;
+  if (r.method == SamplingMethod::Tables) tables = render::obtain_tables(model, r.tables);
   for (const ViewDirection& d : r.directions) {
     const reference::Ray ray(observer, view_vector(d));
     const auto interval = reference::atmosphere_interval(ray, model.ground_radius_m, model.top_radius_m);
@@ -94,7 +94,7 @@ std::string sample_irradiance_csv(const AtmosphereModel& model, const SamplingRe
   csv << '\n';
   Spectrum direct(model.wavelength_count()), sky(model.wavelength_count()), total, se;
   if (r.method == SamplingMethod::Tables) {
-    const ObtainedTables t = obtain_tables(model, r.tables);
+    const render::ObtainedTables t = render::obtain_tables(model, r.tables);
     const lut::TableQueries q(model, t.tables);
     const double rr = model.ground_radius_m + r.geometry.altitude_m;
     const double mu_s = std::cos(r.geometry.sun_zenith_deg * kPi / 180.0);

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 #include "atmosphere/sky_sampling.h"
 
 namespace zenith::app {
@@ -19,7 +19,7 @@ struct SamplingRequest {
   std::size_t reference_samples = 4096;    ///< Monte Carlo paths per wavelength and direction
   std::uint64_t seed = 1;
   unsigned threads = 0;
-  TableRequest tables;
+  render::TableRequest tables;
 };
 
 std::string sample_radiance_csv(const atmosphere::AtmosphereModel& model, const SamplingRequest& request);

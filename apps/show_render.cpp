@@ -21,7 +21,7 @@
 #include "apps/offline_manifest.h"
 #include "apps/offline_render.h"
 #include "apps/output_rendering.h"
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 #include "core/json_reader.h"
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/cluster_config.h"
@@ -51,7 +51,7 @@ struct ShowRenderArgs {
   TableArgs tables;
 };
 
-TableRequest table_request(const TableArgs& t) {
+render::TableRequest table_request(const TableArgs& t) {
   return make_table_request(t.tables, t.orders, t.cpu_precompute, true, t.cache_dir);
 }
 
@@ -66,7 +66,7 @@ double frame_rate(const show::Show& show, const std::optional<double>& fps) {
   return rate;
 }
 
-show::TablePlan plan_for(const show::Show& show, double fps, const TableRequest& request) {
+show::TablePlan plan_for(const show::Show& show, double fps, const render::TableRequest& request) {
   const atmosphere::lut::TableCache cache(request.cache_directory.value_or(atmosphere::lut::default_cache_directory()));
   return show::plan_tables(show, fps, request.options, cache);
 }
@@ -187,7 +187,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
     table_args.tables = cluster_config->table_sizes;
     table_args.orders = cluster_config->table_orders;
   }
-  const TableRequest request = table_request(table_args);
+  const render::TableRequest request = table_request(table_args);
   const show::TablePlan plan = plan_for(show, fps, request);
   fmt::print("{}", show::describe(plan));
   std::fflush(stdout);

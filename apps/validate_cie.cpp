@@ -29,7 +29,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 #include "atmosphere/cie_sky.h"
 #include "atmosphere/constants.h"
 #include "core/json_reader.h"
@@ -197,14 +197,14 @@ std::size_t type_index(const std::vector<CieSkyType>& types, int number) {
 
 VariantResult evaluate_variant(const Variant& v, const ValidateCieArgs& a, const std::vector<CieSkyType>& types) {
   const atmosphere::LoadedAtmosphere loaded = atmosphere::resolve_atmosphere(v.parameters, cat("preset:", v.preset));
-  TableRequest request;
-  request.options.sizes = table_sizes_by_name(a.tables);
+  render::TableRequest request;
+  request.options.sizes = render::table_sizes_by_name(a.tables);
   request.options.max_orders = a.orders;
   request.options.threads = a.threads;
-  request.backend = a.cpu ? PrecomputeBackend::Cpu : PrecomputeBackend::Gpu;
+  request.backend = a.cpu ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
   request.use_cache = !a.no_cache;
   if (!a.cache_dir.empty()) request.cache_directory = a.cache_dir;
-  const ObtainedTables t = obtain_tables(loaded.model, request);
+  const render::ObtainedTables t = render::obtain_tables(loaded.model, request);
   const atmosphere::lut::TableQueries queries(loaded.model, t.tables);
 
   // Luminance weights with the solar spectrum folded in: Y = Σ w_i·E_sun(λ_i)·L_i,

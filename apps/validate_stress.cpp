@@ -21,13 +21,13 @@
 #include <vector>
 
 #include "apps/commands.h"
-#include "apps/progress_bar.h"
+#include "core/progress_bar.h"
 #include "apps/stress/cpu_stress.h"
 #include "apps/stress/gpu_stress.h"
 #include "apps/stress/random_atmosphere.h"
 #include "apps/stress/reference_comparison.h"
 #include "apps/stress/stress_report.h"
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 #include "core/json_reader.h"
 #include "core/parallel_for.h"
 #include "atmosphere/model_hash.h"
@@ -118,18 +118,18 @@ void run_stress(const StressArgs& a) {
     spdlog::info("{}: {}", models.back().label, params.dump());
   }
 
-  TableRequest request;
-  request.options.sizes = table_sizes_by_name(a.tables);
-  request.backend = a.cpu_precompute ? PrecomputeBackend::Cpu : PrecomputeBackend::Gpu;
+  render::TableRequest request;
+  request.options.sizes = render::table_sizes_by_name(a.tables);
+  request.backend = a.cpu_precompute ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
   if (!a.cache_dir.empty()) request.cache_directory = a.cache_dir;
-  for (StressModel& m : models) m.tables = obtain_tables(m.loaded.model, request).tables;
+  for (StressModel& m : models) m.tables = render::obtain_tables(m.loaded.model, request).tables;
   const double tables_seconds = seconds_since(start);
 
   // CPU path: the sweep and an equal share of the random samples per model.
   std::vector<stress::ModelResult> results;
   const std::size_t per_model = a.samples / models.size();
   {
-    ProgressBar bar("stress (CPU)");
+    core::ProgressBar bar("stress (CPU)");
     std::size_t finished = 0;
     const std::size_t total = per_model * models.size();
     for (std::size_t k = 0; k < models.size(); ++k) {
@@ -155,7 +155,7 @@ void run_stress(const StressArgs& a) {
   for (const auto& r : results) cpu_samples += stress::total(r.regions).samples;
 
   if (a.reference_samples > 0) {
-    ProgressBar bar("stress (reference)");
+    core::ProgressBar bar("stress (reference)");
     for (std::size_t k = 0; k < models.size(); ++k) {
       const atmosphere::lut::TableQueries q(models[k].loaded.model, models[k].tables);
       stress::ReferenceComparisonOptions o;
@@ -193,7 +193,7 @@ void run_stress(const StressArgs& a) {
         if (it == by_hash.end()) throw std::runtime_error(config::cat("no tables for ", model.name));
         return *it->second;
       });
-      ProgressBar bar("stress (GPU)");
+      core::ProgressBar bar("stress (GPU)");
       for (std::size_t k = 0; k < models.size(); ++k) {
         bar.update(models[k].label, double(k) / double(models.size()));
         const atmosphere::lut::TableQueries q(models[k].loaded.model, models[k].tables);

@@ -55,7 +55,7 @@ struct ClusterConfig {
   /// the environment variable `secret_env`.
   std::optional<std::filesystem::path> secret_file;
   std::string secret_env = "ZENITH_CLUSTER_SECRET";
-  std::string table_sizes = "paper";  ///< "paper", "small", "large" (apps/table_provider.h)
+  std::string table_sizes = "paper";  ///< "paper", "small", "large" (render/lut/table_provider.h)
   int table_orders = 4;               ///< scattering orders of the tables, [1, 50]
   std::vector<ClusterNodeConfig> nodes;
   std::filesystem::path output_directory = "out/cluster";  ///< relative: to the working directory

@@ -23,7 +23,7 @@
 #include <boost/asio/streambuf.hpp>
 #include <boost/asio/write.hpp>
 
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 #include "atmosphere/model_hash.h"
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
@@ -149,11 +149,11 @@ struct Master::Impl {
     if (worker.joinable()) worker.join();
   }
 
-  app::TableRequest table_request() const {
-    app::TableRequest request;
-    request.options.sizes = app::table_sizes_by_name(options.config.table_sizes);
+  render::TableRequest table_request() const {
+    render::TableRequest request;
+    request.options.sizes = render::table_sizes_by_name(options.config.table_sizes);
     request.options.max_orders = options.config.table_orders;
-    request.backend = options.cpu_precompute ? app::PrecomputeBackend::Cpu : app::PrecomputeBackend::Gpu;
+    request.backend = options.cpu_precompute ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
     request.cache_directory = options.cache_directory;
     request.show_progress = false;
     return request;
@@ -161,8 +161,8 @@ struct Master::Impl {
 
   /// Obtains (cache or precompute) and encodes one set; any thread.
   static TableSetFile obtain_table_set(const std::string& body, const atmosphere::AtmosphereModel& model,
-                                       const app::TableRequest& request) {
-    app::ObtainedTables obtained = app::obtain_tables(model, request);
+                                       const render::TableRequest& request) {
+    render::ObtainedTables obtained = render::obtain_tables(model, request);
     if (obtained.cache_file.empty())
       throw std::runtime_error(cat("the tables of '", body, "' could not be stored in the cache: nodes get "
                                    "the cache file's bytes, so the master needs a writable cache (--cache DIR)"));
@@ -183,7 +183,7 @@ struct Master::Impl {
     if (!index)
       throw std::invalid_argument(cat("--switch-atmosphere: the scene ", scene.source, " has no body '", sw.body,
                                       "' with an atmosphere"));
-    atmosphere::LoadedAtmosphere loaded = app::load_atmosphere_argument(sw.atmosphere, {scene.wavelengths_nm});
+    atmosphere::LoadedAtmosphere loaded = render::load_atmosphere_argument(sw.atmosphere, {scene.wavelengths_nm});
     scene::Scene changed = scene;
     for (scene::Body& body : changed.bodies)
       if (body.name == sw.body) body.atmosphere->loaded = loaded;
@@ -211,7 +211,7 @@ struct Master::Impl {
   // ---- preparation ----------------------------------------------------------
 
   void prepare_tables() {
-    const app::TableRequest request = table_request();
+    const render::TableRequest request = table_request();
     if (show) return prepare_show_tables(request);
     for (const scene::Body& body : scene.bodies) {
       if (!body.atmosphere) continue;
@@ -231,7 +231,7 @@ struct Master::Impl {
   /// With a show: reports its table plan, then obtains every set it uses
   /// (cache or precompute) before the first frame, so playback, seeking and
   /// looping never wait for tables.
-  void prepare_show_tables(const app::TableRequest& request) {
+  void prepare_show_tables(const render::TableRequest& request) {
     const show::TablePlan plan =
         show::plan_tables(*show, fps, request.options,
                           atmosphere::lut::TableCache(request.cache_directory.value_or(atmosphere::lut::default_cache_directory())));

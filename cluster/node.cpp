@@ -22,7 +22,7 @@
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
 
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/parameters.h"
@@ -709,7 +709,7 @@ struct Node::Impl {
     viewports = warp::load_viewport_config(options.config.viewports);
     for (const std::string& name : me->outputs) outputs.push_back(viewports.index_of(name));
     rendered_display.resize(outputs.size());
-    table_options.sizes = app::table_sizes_by_name(options.config.table_sizes);
+    table_options.sizes = render::table_sizes_by_name(options.config.table_sizes);
     table_options.max_orders = options.config.table_orders;
     build_known_tables();
     load_kept_definitions();

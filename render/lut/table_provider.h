@@ -10,7 +10,7 @@
 #include "atmosphere/lut/precompute_options.h"
 #include "atmosphere/parameters.h"
 
-namespace zenith::app {
+namespace zenith::render {
 
 enum class PrecomputeBackend { Gpu, Cpu };
 
@@ -38,4 +38,4 @@ atmosphere::LoadedAtmosphere load_atmosphere_argument(const std::string& value,
 /// Table sizes by name: "paper" (the defaults), "small" (tests), "large".
 atmosphere::lut::TableSizes table_sizes_by_name(const std::string& name);
 
-}  // namespace zenith::app
+}  // namespace zenith::render

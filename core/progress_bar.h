@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-namespace zenith::app {
+namespace zenith::core {
 
 class ProgressBar {
  public:
@@ -45,4 +45,4 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace zenith::app
+}  // namespace zenith::core

@@ -1,17 +1,17 @@
-#include "apps/table_provider.h"
+#include "render/lut/table_provider.h"
 
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
 #include <optional>
 
-#include "apps/progress_bar.h"
+#include "core/progress_bar.h"
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/lut/table_cache.h"
 #include "render/gl/egl_context.h"
 #include "render/lut/gpu_precompute.h"
 
-namespace zenith::app {
+namespace zenith::render {
 
 using namespace atmosphere::lut;
 
@@ -57,7 +57,7 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
   }
 
   PrecomputeOptions options = request.options;
-  std::optional<ProgressBar> bar;
+  std::optional<core::ProgressBar> bar;
   if (request.show_progress) {
     bar.emplace("precompute");
     options.progress = [&bar](const PrecomputeProgress& p) { bar->update(p.stage, p.fraction); };
@@ -79,4 +79,4 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
   return out;
 }
 
-}  // namespace zenith::app
+}  // namespace zenith::render

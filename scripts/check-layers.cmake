@@ -1,0 +1,67 @@
+# Checks that the modules include each other only downward (issue 15;
+# docs/architecture.md). The layers, bottom to top, and what each may include
+# besides itself:
+#
+#   core/        nothing of zenith (config reading, files, embedded resources,
+#                parallel loops, SHA-256, progress bars)
+#   atmosphere/  core                       the physics; no GL
+#   warp/        core                       projections, warp meshes, blending; no GL
+#   render/      core, atmosphere, warp     GL, tables on the GPU, scenes, images
+#   cluster/     core, atmosphere, warp, render
+#   apps/        all of the above           the `zenith` command
+#   (bench/ and tests/ may include anything)
+#
+# Reads every .h and .cpp under those directories, takes each
+# `#include "module/..."` and prints every include that points up or sideways,
+# as file:line, the include and what the file's module may include. Fails if
+# there is one. A CMake script, so it runs wherever the build does:
+#
+#   cmake -DSOURCE_DIR=. -P scripts/check-layers.cmake
+#
+# CTest runs it as layers.include_graph.
+cmake_minimum_required(VERSION 3.20)
+if(NOT SOURCE_DIR)
+  set(SOURCE_DIR "${CMAKE_CURRENT_LIST_DIR}/..")
+endif()
+get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
+
+set(modules core atmosphere warp render cluster apps)
+set(allowed_core "")
+set(allowed_atmosphere core)
+set(allowed_warp core)
+set(allowed_render core atmosphere warp)
+set(allowed_cluster core atmosphere warp render)
+set(allowed_apps core atmosphere warp render cluster)
+
+set(violations 0)
+set(files 0)
+foreach(module IN LISTS modules)
+  file(GLOB_RECURSE sources "${SOURCE_DIR}/${module}/*.h" "${SOURCE_DIR}/${module}/*.cpp")
+  list(SORT sources)
+  foreach(source IN LISTS sources)
+    math(EXPR files "${files} + 1")
+    file(STRINGS "${source}" lines)
+    set(number 0)
+    foreach(line IN LISTS lines)
+      math(EXPR number "${number} + 1")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]+\"([a-z_]+)/")
+        set(target "${CMAKE_MATCH_1}")
+        if(NOT target STREQUAL module AND target IN_LIST modules AND NOT target IN_LIST allowed_${module})
+          file(RELATIVE_PATH relative "${SOURCE_DIR}" "${source}")
+          string(REPLACE ";" ", " may "${allowed_${module}}")
+          if(may STREQUAL "")
+            set(may "nothing of zenith")
+          endif()
+          string(STRIP "${line}" include)
+          message("${relative}:${number}: ${include}  (${module}/ may include ${may})")
+          math(EXPR violations "${violations} + 1")
+        endif()
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+
+message("check-layers: ${files} files, ${violations} upward or sideways include(s)")
+if(violations GREATER 0)
+  message(FATAL_ERROR "check-layers: the include graph does not follow the layers (docs/architecture.md)")
+endif()
