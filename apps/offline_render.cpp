@@ -16,6 +16,7 @@
 #include "core/sha256.h"
 #include "cluster/frame_scene.h"
 #include "render/image/contact_sheet.h"
+#include "core/timing.h"
 
 namespace zenith::app::offline {
 namespace {
@@ -23,9 +24,7 @@ namespace {
 using config::cat;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using core::seconds_since;
 
 /// "42 s", "3 min 05 s", "2 h 07 min".
 std::string format_duration(double seconds) {

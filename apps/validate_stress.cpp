@@ -32,6 +32,7 @@
 #include "core/parallel_for.h"
 #include "atmosphere/model_hash.h"
 #include "render/gl/egl_context.h"
+#include "core/timing.h"
 
 namespace zenith::app {
 namespace {
@@ -55,9 +56,7 @@ struct StressModel {
   atmosphere::lut::LookupTables tables;
 };
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+using core::seconds_since;
 
 void write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream f(path);

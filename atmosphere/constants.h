@@ -1,9 +1,10 @@
 #pragma once
 // Physical constants (CODATA 2018 exact or recommended values), SI units.
+#include "core/units.h"
 
 namespace zenith::atmosphere {
 
-inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kPi = core::kPi;
 inline constexpr double kAvogadro_per_mol = 6.02214076e23;     ///< N_A [mol^-1]
 inline constexpr double kBoltzmann_J_per_K = 1.380649e-23;     ///< k_B [J K^-1]
 inline constexpr double kGasConstant_J_per_mol_K = kAvogadro_per_mol * kBoltzmann_J_per_K;  ///< R [J mol^-1 K^-1]

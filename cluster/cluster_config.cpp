@@ -42,18 +42,6 @@ JsonReader child(JsonReader& r, const std::string& key) {
   return JsonReader(v, r.file(), r.key_path(key));
 }
 
-/// A file named by `key`, resolved against `base_dir`; it must exist.
-fs::path existing_file(JsonReader& r, const std::string& key, const fs::path& base_dir) {
-  const std::string name = r.string(key);
-  if (name.empty()) r.fail(key, "= \"\": must name a file");
-  fs::path path(name);
-  if (path.is_relative()) path = base_dir / path;
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    r.fail(key, cat("= \"", name, "\": no such file (looked for ", path.string(), ")"));
-  return path;
-}
-
 void read_timing(JsonReader& t, ClusterConfig& c) {
   c.heartbeat_ms = static_cast<std::uint32_t>(t.integer("heartbeat_ms", 10, 60000));
   c.barrier_timeout_ms = static_cast<std::uint32_t>(t.integer("barrier_timeout_ms", 10, 600000));
@@ -66,7 +54,7 @@ void read_secret(JsonReader& s, const json& v, const fs::path& base_dir, Cluster
     s.fail("", "give exactly one of \"file\" (a file holding the secret, mode 600) or \"env\" (the name of an "
                "environment variable holding it); never the secret itself");
   if (s.has("file")) {
-    c.secret_file = existing_file(s, "file", base_dir);
+    c.secret_file = s.existing_file("file", base_dir);
   } else {
     c.secret_env = s.string("env");
     const bool ok = !c.secret_env.empty() && c.secret_env.size() <= 128 &&
@@ -120,8 +108,8 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
   c.master_port = static_cast<std::uint16_t>(m.integer("port", 1, 65535));
   m.finish();
 
-  c.scene = existing_file(r, "scene", base_dir);
-  c.viewports = existing_file(r, "viewports", base_dir);
+  c.scene = r.existing_file("scene", base_dir);
+  c.viewports = r.existing_file("viewports", base_dir);
 
   if (r.has("timing")) {
     JsonReader t = child(r, "timing");

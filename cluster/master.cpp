@@ -32,6 +32,7 @@
 #include "cluster/show/table_plan.h"
 #include "cluster/table_transfer.h"
 #include "render/scene/scene_loader.h"
+#include "core/timing.h"
 
 namespace zenith::cluster {
 
@@ -44,7 +45,7 @@ namespace {
 
 using config::cat;  // core/json_reader.h
 
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+using core::ms_since;
 
 
 }  // namespace

@@ -38,6 +38,7 @@
 #include "render/window/window_context.h"
 #include "warp/blending.h"
 #include "warp/viewport_config.h"
+#include "core/timing.h"
 
 namespace zenith::cluster {
 
@@ -50,7 +51,7 @@ namespace {
 
 using config::cat;  // core/json_reader.h
 
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+using core::ms_since;
 
 /// Work for the render thread.
 struct Job {

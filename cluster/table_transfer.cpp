@@ -6,17 +6,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/json_reader.h"
 #include "core/sha256.h"
 
 namespace zenith::cluster {
 namespace {
 
-template <typename... T>
-std::string cat(const T&... parts) {
-  std::ostringstream s;
-  (s << ... << parts);
-  return s.str();
-}
+using config::cat;
 
 }  // namespace
 

@@ -92,6 +92,18 @@ std::string JsonReader::string(const std::string& key, const std::vector<std::st
   return s;
 }
 
+std::filesystem::path JsonReader::existing_file(const std::string& key, const std::filesystem::path& base_dir) {
+  const std::string text = string(key);
+  if (text.empty()) fail(key, "= \"\": must name a file");
+  std::filesystem::path path(text);
+  if (path.is_relative()) path = base_dir / path;
+  path = std::filesystem::absolute(path).lexically_normal();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    fail(key, "= \"" + text + "\": file not found (no such file: " + path.string() + ")");
+  return path;
+}
+
 std::string JsonReader::string_or(const std::string& key, const std::string& fallback,
                                   const std::vector<std::string>& allowed) {
   return has(key) ? string(key, allowed) : fallback;

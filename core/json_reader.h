@@ -8,6 +8,7 @@
 //   configs/atmospheres/mars.json: /aerosol/scale_height_m = -5: must be in [1, 1e+06] m
 // Unknown keys are errors too (a typo must not silently fall back to a default).
 #include <nlohmann/json.hpp>
+#include <filesystem>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -54,6 +55,10 @@ class JsonReader {
   int integer(const std::string& key, int lo, int hi);
   std::string string(const std::string& key, const std::vector<std::string>& allowed = {});
   std::string string_or(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed);
+  /// The file named by the string at `key`: resolved against `base_dir` when
+  /// relative, made absolute and normal; it must be a regular file. Errors
+  /// name the key, the text and the path looked for.
+  std::filesystem::path existing_file(const std::string& key, const std::filesystem::path& base_dir);
 
   /// Throws ConfigError for any key of the object not read so far.
   void finish() const;

@@ -60,18 +60,6 @@ std::pair<int, int> read_size(JsonReader& r) {
   return {side[0], side[1]};
 }
 
-/// A file named by `key`, resolved against `base_dir`; it must exist.
-fs::path existing_file(JsonReader& r, const std::string& key, const fs::path& base_dir) {
-  const std::string name = r.string(key);
-  if (name.empty()) r.fail(key, "= \"\": must name a file");
-  fs::path path(name);
-  if (path.is_relative()) path = base_dir / path;
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    r.fail(key, cat("= \"", name, "\": no such file (looked for ", path.string(), ")"));
-  return path;
-}
-
 WarpMesh load_warp(JsonReader& w, const WarpSource& source) {
   try {
     if (source.format == "bourke") return load_bourke_mesh(source.file);
@@ -121,7 +109,7 @@ BlendSource read_blend(JsonReader& o, const fs::path& base_dir) {
   } else {
     allow_keys(b, v, {"type", "file", "gamma"});
     blend.mode = BlendMode::file;
-    blend.file = existing_file(b, "file", base_dir);
+    blend.file = b.existing_file("file", base_dir);
     blend.gamma = b.number_or("gamma", blend.gamma, kMinMaskGamma, kMaxMaskGamma);
   }
   return blend;
@@ -148,7 +136,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir) {
     allow_keys(w, wv, {"file", "format", "region"});
     WarpSource source;
     source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
-    source.file = existing_file(w, "file", base_dir);
+    source.file = w.existing_file("file", base_dir);
     if (source.format == "mpcdi") {
       source.region = w.string("region");
       if (source.region.empty()) w.fail("region", "= \"\": must name a region of the MPCDI file");

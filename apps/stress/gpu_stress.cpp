@@ -13,11 +13,12 @@
 #include "atmosphere/photometry.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
+#include "core/units.h"
 
 namespace zenith::stress {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kDeg;
 
 glm::dvec3 to_glm(const Vec3& v) { return {v.x, v.y, v.z}; }
 Vec3 from_glm(const glm::dvec3& v) { return {v.x, v.y, v.z}; }

@@ -12,6 +12,7 @@
 #include "core/parallel_for.h"
 #include "atmosphere/reference/random.h"
 #include "atmosphere/reference/single_scattering.h"
+#include "core/units.h"
 
 namespace zenith::stress {
 namespace {
@@ -19,7 +20,7 @@ namespace {
 using atmosphere::Spectrum;
 using atmosphere::reference::Pcg32;
 using atmosphere::lut::kMaxChannels;
-constexpr double kPi = std::numbers::pi;
+using core::kPi;
 
 double log_uniform(Pcg32& rng, double lo, double hi) {
   return std::exp(std::log(lo) + rng.uniform() * (std::log(hi) - std::log(lo)));

@@ -5,13 +5,14 @@
 #include <numbers>
 
 #include "atmosphere/reference/random.h"
+#include "core/units.h"
 
 namespace zenith::stress {
 namespace {
 
 using atmosphere::reference::Pcg32;
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using core::kDeg;
+using core::kPi;
 
 double log_uniform(Pcg32& rng, double lo, double hi) {
   return std::exp(std::log(lo) + rng.uniform() * (std::log(hi) - std::log(lo)));

@@ -13,6 +13,7 @@
 #include "cluster/show/show.h"
 #include "cluster/show/show_impl.h"
 #include "render/scene/scene_loader.h"
+#include "core/units.h"
 
 namespace zenith::show {
 namespace {
@@ -31,7 +32,7 @@ constexpr double kMaxExposure = 1e6;
 constexpr double kMinCameraClearance_m = 0.1;  // as scenes
 /// Samples per segment when checking that a free camera path clears every body.
 constexpr int kClearanceSamples = 64;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kDeg;
 
 void allow(const JsonReader& r, const json& object, std::initializer_list<std::string_view> keys) {
   config::reject_unknown_keys(r, object, keys, "docs/shows.md");
@@ -42,18 +43,6 @@ bool boolean_or(JsonReader& r, const std::string& key, bool fallback) {
   const json& v = r.raw(key);
   if (!v.is_boolean()) r.fail(key, cat("= ", brief(v), ": must be true or false"));
   return v.get<bool>();
-}
-
-/// A path relative to the show file that must name a regular file.
-fs::path existing_file(JsonReader& r, const std::string& key, const fs::path& base_dir) {
-  const std::string text = r.string(key);
-  if (text.empty()) r.fail(key, "= \"\": must be a file path");
-  fs::path p(text);
-  if (p.is_relative()) p = base_dir / p;
-  p = fs::absolute(p).lexically_normal();
-  std::error_code ec;
-  if (!fs::is_regular_file(p, ec)) r.fail(key, cat("= \"", text, "\": file not found (resolved to ", p.string(), ")"));
-  return p;
 }
 
 /// A track: a non-empty array of key objects.
@@ -388,13 +377,13 @@ Show load_show(const fs::path& path) {
   if (show.name.empty()) root.fail("name", "= \"\": must not be empty");
   if (root.has("description")) root.string("description");  // free text, for people
   const fs::path base_dir = path.parent_path();
-  show.scene_path = existing_file(root, "scene", base_dir);
+  show.scene_path = root.existing_file("scene", base_dir);
   try {
     show.scene = scene::load_scene(show.scene_path);
   } catch (const ConfigError& e) {
     root.fail("scene", cat("invalid scene file: ", e.what()));
   }
-  if (root.has("cluster")) show.cluster_path = existing_file(root, "cluster", base_dir);
+  if (root.has("cluster")) show.cluster_path = root.existing_file("cluster", base_dir);
   show.loop = boolean_or(root, "loop", false);
 
   for (const scene::Body& body : show.scene.bodies)

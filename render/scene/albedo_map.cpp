@@ -10,13 +10,14 @@
 #include <glm/geometric.hpp>
 
 #include "core/parallel_for.h"
+#include "core/units.h"
 
 namespace zenith::scene {
 namespace {
 
 using glm::dvec3;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
+using core::kDeg;
+using core::kPi;
 
 // ------------------------------------------------------------------ hashing
 

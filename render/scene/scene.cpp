@@ -1,4 +1,5 @@
 #include "render/scene/scene.h"
+#include "core/units.h"
 
 #include <cmath>
 #include <set>
@@ -10,7 +11,7 @@
 namespace zenith::scene {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 constexpr double kUnitTolerance = 1e-9;
 constexpr double kMinCameraClearance_m = 0.1;
 

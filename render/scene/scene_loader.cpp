@@ -18,6 +18,7 @@
 #include "atmosphere/spectrum.h"
 #include "render/scene/albedo_map.h"
 #include "render/scene/sun_disc.h"
+#include "core/units.h"
 
 namespace zenith::scene {
 namespace {
@@ -30,8 +31,8 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 constexpr int kFormatVersion = 1;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
+using core::kDeg;
+using core::kPi;
 
 /// Allowed ranges, in one place (docs/scenes.md lists them).
 struct Range {
@@ -169,18 +170,6 @@ struct Context {
   std::vector<double> wavelengths_nm;
 };
 
-/// A path from the scene, made absolute against the scene's folder; must name a regular file.
-fs::path existing_file(JsonReader& r, const std::string& key, const Context& ctx) {
-  const std::string text = r.string(key);
-  if (text.empty()) r.fail(key, "= \"\": must be a file path");
-  fs::path p(text);
-  if (p.is_relative()) p = ctx.base_dir / p;
-  p = fs::absolute(p).lexically_normal();
-  std::error_code ec;
-  if (!fs::is_regular_file(p, ec)) r.fail(key, cat("= \"", text, "\": file not found (resolved to ", p.string(), ")"));
-  return p;
-}
-
 // ------------------------------------------------------------------ wavelengths
 
 std::vector<double> read_wavelengths(JsonReader& root) {
@@ -234,7 +223,7 @@ AlbedoSource read_albedo(JsonReader& body, const Context& ctx) {
   if (exactly_one(r, {"image", "procedural"}) == 0) {
     allow_keys(r, v, {"image"});
     a.kind = AlbedoSource::Kind::image;
-    a.image_path = existing_file(r, "image", ctx);
+    a.image_path = r.existing_file("image", ctx.base_dir);
   } else {
     a.kind = AlbedoSource::Kind::procedural;
     a.procedural = r.string("procedural", albedo_generators());
@@ -289,7 +278,7 @@ std::optional<BodyAtmosphere> read_atmosphere(JsonReader& body, const Context& c
       break;
     }
     case 1: {
-      const fs::path path = existing_file(r, "file", ctx);
+      const fs::path path = r.existing_file("file", ctx.base_dir);
       out.source = path.string();
       try {
         out.loaded = atmosphere::load_atmosphere_file(path.string(), options);

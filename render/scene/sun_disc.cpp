@@ -1,4 +1,5 @@
 #include "render/scene/sun_disc.h"
+#include "core/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,7 @@
 namespace zenith::scene {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 
 void check_angular_radius(double angular_radius_rad) {
   if (!(angular_radius_rad > 0.0 && angular_radius_rad < 0.5 * kPi)) {
