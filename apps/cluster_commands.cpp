@@ -28,6 +28,7 @@
 #include "cluster/master.h"
 #include "cluster/node.h"
 #include "cluster/show/show.h"
+#include "core/json_reader.h"
 #include "render/image/image_io.h"
 #include "render/image/image_writer.h"
 #include "warp/dome_tiles.h"
@@ -38,6 +39,26 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+using config::cat;
+
+/// --switch-atmosphere "FRAME:BODY:PRESET_OR_FILE"; throws std::invalid_argument naming the value.
+cluster::AtmosphereSwitch parse_atmosphere_switch(const std::string& text) {
+  const auto first = text.find(':');
+  const auto second = first == std::string::npos ? std::string::npos : text.find(':', first + 1);
+  if (second == std::string::npos || first == 0 || second == first + 1 || second + 1 >= text.size())
+    throw std::invalid_argument(cat("--switch-atmosphere ", text, ": expected FRAME:BODY:PRESET_OR_FILE"));
+  cluster::AtmosphereSwitch sw;
+  try {
+    std::size_t used = 0;
+    sw.frame = std::stoull(text.substr(0, first), &used);
+    if (used != first) throw std::invalid_argument("trailing characters");
+  } catch (const std::exception&) {
+    throw std::invalid_argument(cat("--switch-atmosphere ", text, ": FRAME must be a frame number"));
+  }
+  sw.body = text.substr(first + 1, second - first - 1);
+  sw.atmosphere = text.substr(second + 1);
+  return sw;
+}
 
 /// The cluster configuration to use: the one named, or the built-in default.
 std::string cluster_path(const std::string& named) {
@@ -123,7 +144,7 @@ void run_master(const MasterArgs& a) {
   if (!a.cache_dir.empty()) options.cache_directory = fs::path(a.cache_dir);
   options.cpu_precompute = a.cpu_precompute;
   options.wait_for_nodes_ms = a.wait_for_nodes_ms;
-  for (const std::string& text : a.switches) options.atmosphere_switches.push_back(cluster::parse_atmosphere_switch(text));
+  for (const std::string& text : a.switches) options.atmosphere_switches.push_back(parse_atmosphere_switch(text));
   cluster::SharedSecret secret = load_secret(options.config);
   spdlog::info("master: shared secret from {}", secret.source());
   cluster::Master master(std::move(options), std::move(secret));

@@ -118,18 +118,9 @@ constexpr double kMoveFraction = 0.1;                            ///< PageUp/Pag
 constexpr double kMinAltitudeM = 1.0;                            ///< the camera stays this high above every body
 constexpr double kExposureStep = 1.25;                           ///< '[' and ']'
 
-/// The body whose surface is nearest to `point`, or null in an empty scene.
+/// The body whose surface is nearest to `point` (scene::nearest_body), or null in an empty scene.
 const scene::Body* nearest_body(const scene::Scene& scene, const glm::dvec3& point) {
-  const scene::Body* nearest = nullptr;
-  double best = std::numeric_limits<double>::infinity();
-  for (const scene::Body& body : scene.bodies) {
-    const double altitude = glm::length(point - body.position_m) - body.radius_m;
-    if (altitude < best) {
-      best = altitude;
-      nearest = &body;
-    }
-  }
-  return nearest;
+  return scene.bodies.empty() ? nullptr : &scene.bodies[scene::nearest_body(scene.bodies, point)];
 }
 
 /// The camera's local up: away from the nearest body's centre, else world +z.

@@ -47,26 +47,8 @@ using config::cat;  // core/json_reader.h
 
 using core::ms_since;
 
-
 }  // namespace
 
-AtmosphereSwitch parse_atmosphere_switch(const std::string& text) {
-  const auto first = text.find(':');
-  const auto second = first == std::string::npos ? std::string::npos : text.find(':', first + 1);
-  if (second == std::string::npos || first == 0 || second == first + 1 || second + 1 >= text.size())
-    throw std::invalid_argument(cat("--switch-atmosphere ", text, ": expected FRAME:BODY:PRESET_OR_FILE"));
-  AtmosphereSwitch sw;
-  try {
-    std::size_t used = 0;
-    sw.frame = std::stoull(text.substr(0, first), &used);
-    if (used != first) throw std::invalid_argument("trailing characters");
-  } catch (const std::exception&) {
-    throw std::invalid_argument(cat("--switch-atmosphere ", text, ": FRAME must be a frame number"));
-  }
-  sw.body = text.substr(first + 1, second - first - 1);
-  sw.atmosphere = text.substr(second + 1);
-  return sw;
-}
 
 struct Master::Impl {
   /// One node's connection.
@@ -166,7 +148,7 @@ struct Master::Impl {
     render::ObtainedTables obtained = render::obtain_tables(model, request);
     if (obtained.cache_file.empty())
       throw std::runtime_error(cat("the tables of '", body, "' could not be stored in the cache: nodes get "
-                                   "the cache file's bytes, so the master needs a writable cache (--cache DIR)"));
+                                   "the cache file's bytes, so the master needs a writable table cache directory"));
     return make_table_set_file(body, digest_from_hex(atmosphere::lookup_table_hash(model)), obtained.cache_file);
   }
 
@@ -182,8 +164,8 @@ struct Master::Impl {
       ++with_atmosphere;
     }
     if (!index)
-      throw std::invalid_argument(cat("--switch-atmosphere: the scene ", scene.source, " has no body '", sw.body,
-                                      "' with an atmosphere"));
+      throw std::invalid_argument(cat("atmosphere switch at frame ", sw.frame, ": the scene ", scene.source,
+                                      " has no body '", sw.body, "' with an atmosphere"));
     atmosphere::LoadedAtmosphere loaded = render::load_atmosphere_argument(sw.atmosphere, {scene.wavelengths_nm});
     scene::Scene changed = scene;
     for (scene::Body& body : changed.bodies)
@@ -191,7 +173,8 @@ struct Master::Impl {
     try {
       scene::check_scene(changed);
     } catch (const std::exception& e) {
-      throw std::invalid_argument(cat("--switch-atmosphere ", sw.body, ":", sw.atmosphere, ": ", e.what()));
+      throw std::invalid_argument(
+          cat("atmosphere switch at frame ", sw.frame, " (", sw.body, ": ", sw.atmosphere, "): ", e.what()));
     }
     return {*index, std::move(loaded)};
   }
@@ -857,7 +840,8 @@ struct Master::Impl {
     fps = options.config.frame_rate_hz;
     if (options.show) {
       if (!options.atmosphere_switches.empty())
-        throw std::invalid_argument("--switch-atmosphere cannot be combined with a show: use the show's atmosphere tracks");
+        throw std::invalid_argument(
+            "atmosphere switches cannot be combined with a show: use the show's atmosphere tracks");
       show.emplace(show::load_show(*options.show));
       scene = show->scene();
       if (options.show_fps > 0.0) fps = options.show_fps;

@@ -37,9 +37,6 @@ struct AtmosphereSwitch {
   std::string atmosphere;   ///< a preset name or an atmosphere file (as `zenith render --atmosphere`)
 };
 
-/// Parses "FRAME:BODY:PRESET_OR_FILE"; throws std::invalid_argument naming the value.
-AtmosphereSwitch parse_atmosphere_switch(const std::string& text);
-
 struct MasterOptions {
   ClusterConfig config;
   std::uint64_t frames = 0;          ///< frames to present, then say Goodbye and return; 0: run until stopped

@@ -254,8 +254,8 @@ struct Node::Impl {
     } else if (const auto* a = std::get_if<TableAnnounce>(&message)) {
       if (!knows(a->table_hash))
         throw std::runtime_error(cat("TableAnnounce of table set ", to_hex(a->table_hash).substr(0, 12),
-                                     "…, which no atmosphere this node knows uses (the scene's, the presets, --atmosphere "
-                                     "files: do master and node read the same scene and files?)"));
+                                     "…, which no atmosphere this node knows uses (the scene's, the presets, the atmosphere "
+                                     "files it was given: do master and node read the same scene and files?)"));
       if (inventory.count(a->table_hash)) {
         // Declared in the inventory: the master sends no chunks; use the cached copy.
         held_tables.insert(a->table_hash);

@@ -38,7 +38,7 @@ using gl::Texture;
 using gl::TextureFormat;
 using Vec4 = std::array<float, 4>;
 
-constexpr int kMaxBodies = 64;         // as many as a scene may have (render/scene/scene_loader.cpp)
+using scene::kMaxBodies;
 constexpr unsigned kAlbedoMapUnit = 8;  // albedo_maps (a 2D array texture)
 constexpr unsigned kRayTableUnit = 7;   // projection_ray_table of projection.glsl
 constexpr std::size_t kLanes = kWavelengthLanes;
@@ -302,7 +302,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
 
   const std::size_t n = scene.wavelengths_nm.size();
   if (n == 0) throw std::invalid_argument("scene '" + scene.name + "' has no working wavelengths");
-  if (scene.bodies.size() > static_cast<std::size_t>(kMaxBodies))
+  if (scene.bodies.size() > kMaxBodies)
     throw std::invalid_argument(fmt::format("scene '{}' has {} bodies; the renderer draws at most {}", scene.name,
                                             scene.bodies.size(), kMaxBodies));
   if (scene.sun.irradiance_W_m2_nm.size() != n)

@@ -5,6 +5,7 @@
 // resolves every convenience form (a camera standing on a body at a latitude
 // and longitude, a sun given by its elevation and azimuth in the camera's local
 // sky) into the plain world-frame values below. No GL here.
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -65,6 +66,10 @@ struct Camera {
   /// exponential operator 1 − exp(−exposure · L)); > 0.
   double exposure = 10.0;
 };
+
+/// The most bodies a scene may have (the scene loader's limit; the renderer's
+/// body buffer holds this many).
+inline constexpr std::size_t kMaxBodies = 64;
 
 struct Scene {
   std::string name;

@@ -47,7 +47,6 @@ constexpr int kMaxWavelengths = 64;
 constexpr Range kRadius{1.0, 1e9, "m"};
 constexpr double kMaxCoordinate_m = 1e14;  // ~670 AU
 constexpr double kMaxAtmosphereRadiusMismatch_m = 1.0;
-constexpr std::size_t kMaxBodies = 64;
 constexpr int kMaxAtmospheres = 8;
 constexpr Range kAlbedo{0.0, 1.0, ""};
 constexpr Range kLatitude{-90.0, 90.0, "deg"};
