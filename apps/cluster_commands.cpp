@@ -29,8 +29,8 @@
 #include "cluster/node.h"
 #include "cluster/show/show.h"
 #include "core/json_reader.h"
-#include "render/image/image_io.h"
-#include "render/image/image_writer.h"
+#include "image/image_io.h"
+#include "image/image_writer.h"
 #include "warp/dome_tiles.h"
 #include "warp/viewport_config.h"
 

@@ -17,7 +17,7 @@
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
 #include "render/gl/egl_context.h"
-#include "render/image/colour.h"
+#include "image/colour.h"
 #include "render/renderer.h"
 #include "warp/blending.h"
 

@@ -15,7 +15,7 @@
 #include "core/json_reader.h"
 #include "core/sha256.h"
 #include "cluster/frame_scene.h"
-#include "render/image/contact_sheet.h"
+#include "image/contact_sheet.h"
 #include "core/timing.h"
 
 namespace zenith::app::offline {

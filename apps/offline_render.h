@@ -24,7 +24,7 @@
 
 #include "cluster/messages.h"
 #include "cluster/show/show.h"
-#include "render/image/tone_mapping.h"
+#include "image/tone_mapping.h"
 
 namespace zenith::app::offline {
 

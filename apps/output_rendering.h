@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "render/lut/table_provider.h"
-#include "render/image/image_writer.h"
+#include "image/image_writer.h"
 #include "render/renderer.h"
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 #include "warp/blending.h"
 #include "warp/projection.h"
 #include "warp/viewport_config.h"

@@ -28,7 +28,7 @@
 #include "cluster/frame_scene.h"
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
-#include "render/image/colour.h"
+#include "image/colour.h"
 #include "warp/dome_tiles.h"
 
 namespace zenith::app {

@@ -10,7 +10,7 @@
 
 #include "atmosphere/model_hash.h"
 #include "render/renderer.h"
-#include "render/scene/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "warp/fisheye_projection.h"
 
 namespace zenith::bench {

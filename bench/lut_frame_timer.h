@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "atmosphere/lut/lookup_tables.h"
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 
 namespace zenith::render {
 class Renderer;

@@ -77,7 +77,7 @@
 #include "render/gl/egl_context.h"
 #include "render/lut/gpu_precompute.h"
 #include "render/renderer.h"
-#include "render/scene/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/viewport_config.h"

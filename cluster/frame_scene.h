@@ -10,7 +10,7 @@
 
 #include "cluster/messages.h"
 #include "render/renderer.h"
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 
 namespace zenith::cluster {
 

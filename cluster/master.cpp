@@ -31,7 +31,7 @@
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
 #include "cluster/table_transfer.h"
-#include "render/scene/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "core/timing.h"
 
 namespace zenith::cluster {

@@ -146,7 +146,7 @@ struct AtmosphereTableRef {
 };
 
 /// Everything a node needs to render one frame. Vectors in the scene's world
-/// frame (render/scene/scene.h). Every f64 must be finite.
+/// frame (scene/scene.h). Every f64 must be finite.
 struct FrameState {
   std::uint64_t frame = 0;
   double show_time_s = 0.0;

@@ -27,8 +27,8 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
-#include "render/scene/albedo_map.h"
-#include "render/scene/sun_disc.h"
+#include "scene/albedo_map.h"
+#include "scene/sun_disc.h"
 
 namespace zenith::render {
 namespace {

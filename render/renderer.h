@@ -35,8 +35,8 @@
 
 #include "atmosphere/lut/lookup_tables.h"
 #include "render/frame/gpu_atmosphere.h"
-#include "render/image/colour.h"
-#include "render/scene/scene.h"
+#include "image/colour.h"
+#include "scene/scene.h"
 #include "warp/projection.h"
 
 namespace zenith::render {

@@ -3,11 +3,13 @@
 # besides itself:
 #
 #   core/        nothing of zenith (config reading, files, embedded resources,
-#                parallel loops, SHA-256, progress bars)
+#                parallel loops, SHA-256, units, timing, progress bars)
+#   image/       core                       EXR/PNG files, tone mapping, colour
 #   atmosphere/  core                       the physics; no GL
 #   warp/        core                       projections, warp meshes, blending; no GL
-#   render/      core, atmosphere, warp     GL, tables on the GPU, scenes, images
-#   cluster/     core, atmosphere, warp, render
+#   scene/       core, image, atmosphere    scenes, albedo maps, the sun's disc; no GL
+#   render/      the above                  GL, tables on the GPU, the frame renderer
+#   cluster/     the above and render       master, node, protocol, shows
 #   apps/        all of the above           the `zenith` command
 #   (bench/ and tests/ may include anything)
 #
@@ -25,13 +27,15 @@ if(NOT SOURCE_DIR)
 endif()
 get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 
-set(modules core atmosphere warp render cluster apps)
+set(modules core image atmosphere warp scene render cluster apps)
 set(allowed_core "")
+set(allowed_image core)
 set(allowed_atmosphere core)
 set(allowed_warp core)
-set(allowed_render core atmosphere warp)
-set(allowed_cluster core atmosphere warp render)
-set(allowed_apps core atmosphere warp render cluster)
+set(allowed_scene core image atmosphere)
+set(allowed_render core image atmosphere warp scene)
+set(allowed_cluster core image atmosphere warp scene render)
+set(allowed_apps core image atmosphere warp scene render cluster)
 
 set(violations 0)
 set(files 0)

@@ -29,8 +29,8 @@
 #include "cluster/show/catmull_rom.h"
 #include "cluster/show/monotone_cubic.h"
 #include "cluster/show/squad.h"
-#include "render/scene/scene.h"
-#include "render/scene/scene_loader.h"
+#include "scene/scene.h"
+#include "scene/scene_loader.h"
 
 namespace zenith::show {
 

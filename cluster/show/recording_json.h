@@ -10,7 +10,7 @@
 
 #include "cluster/messages.h"
 #include "cluster/show/show.h"
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 
 namespace zenith::show {
 

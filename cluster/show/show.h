@@ -23,7 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cluster/messages.h"
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 
 namespace zenith::show {
 

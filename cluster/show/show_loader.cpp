@@ -12,7 +12,7 @@
 #include "cluster/show/recording_json.h"
 #include "cluster/show/show.h"
 #include "cluster/show/show_impl.h"
-#include "render/scene/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "core/units.h"
 
 namespace zenith::show {

@@ -14,7 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "cluster/show/monotone_cubic.h"
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 
 namespace zenith::show {
 

@@ -10,7 +10,7 @@
 
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
-#include "render/image/tone_mapping.h"
+#include "image/tone_mapping.h"
 
 namespace zenith::render::window {
 

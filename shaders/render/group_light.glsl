@@ -14,7 +14,7 @@ uniform bool first_group;
 uniform bool last_group;
 uniform float exposure;
 uniform vec4 sun_irradiance;       // E_sun per wavelength of the group [W m^-2 nm^-1]
-uniform vec4 sun_centre_radiance;  // at the drawn disc's centre [W m^-2 sr^-1 nm^-1] (render/scene/sun_disc.h)
+uniform vec4 sun_centre_radiance;  // at the drawn disc's centre [W m^-2 sr^-1 nm^-1] (scene/sun_disc.h)
 uniform vec4 limb_exponent;        // α(λ) of I(μ)/I(1) = μ^α
 uniform vec4 albedo_from_r;        // reflectance of each wavelength from linear sRGB albedo
 uniform vec4 albedo_from_g;

@@ -1,4 +1,4 @@
-// Where a ray sees the sun's disc (render/scene/sun_disc.h, docs/rendering.md):
+// Where a ray sees the sun's disc (scene/sun_disc.h, docs/rendering.md):
 // the disc's coverage of the pixel, antialiased over one pixel, and μ, the
 // cosine at the sun's surface for the limb darkening I(μ)/I(1) = μ^α(λ),
 // √(1 − sin²θ / sin²θ_disc) at angle θ from the centre (exact, not the

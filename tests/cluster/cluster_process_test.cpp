@@ -27,7 +27,7 @@
 #include "cluster/frame_decoder.h"
 #include "cluster/handshake.h"
 #include "cluster/messages.h"
-#include "render/image/image_io.h"
+#include "image/image_io.h"
 #include "test_support.h"
 
 extern char** environ;

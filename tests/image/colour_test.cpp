@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "render/image/colour.h"
+#include "image/colour.h"
 
 namespace zenith::image {
 namespace {

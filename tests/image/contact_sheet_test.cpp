@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "render/image/contact_sheet.h"
-#include "render/image/image_io.h"
-#include "render/image/image_writer.h"
+#include "image/contact_sheet.h"
+#include "image/image_io.h"
+#include "image/image_writer.h"
 #include "tests/image/image_test_util.h"
 
 namespace zenith::image {

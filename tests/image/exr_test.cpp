@@ -20,8 +20,8 @@
 #include <limits>
 #include <random>
 
-#include "render/image/image_io.h"
-#include "render/image/image_writer.h"
+#include "image/image_io.h"
+#include "image/image_writer.h"
 #include "tests/image/image_test_util.h"
 
 namespace zenith::image {

@@ -5,9 +5,9 @@
 #include <limits>
 #include <random>
 
-#include "render/image/image_io.h"
-#include "render/image/image_writer.h"
-#include "render/image/tone_mapping.h"
+#include "image/image_io.h"
+#include "image/image_writer.h"
+#include "image/tone_mapping.h"
 #include "tests/image/image_test_util.h"
 
 namespace zenith::image {

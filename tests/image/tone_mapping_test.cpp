@@ -7,8 +7,8 @@
 #include <limits>
 #include <random>
 
-#include "render/image/srgb_quantizer.h"
-#include "render/image/tone_mapping.h"
+#include "image/srgb_quantizer.h"
+#include "image/tone_mapping.h"
 
 namespace zenith::image {
 namespace {

@@ -5,8 +5,8 @@
 #include <functional>
 #include <limits>
 
-#include "render/image/image_io.h"
-#include "render/image/image_writer.h"
+#include "image/image_io.h"
+#include "image/image_writer.h"
 #include "tests/image/image_test_util.h"
 
 namespace zenith::image {

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "render/gl/egl_context.h"
-#include "render/image/tone_mapping.h"
+#include "image/tone_mapping.h"
 #include "render/window/window_context.h"
 
 namespace zenith::render::window {

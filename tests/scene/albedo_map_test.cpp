@@ -1,4 +1,4 @@
-#include "render/scene/albedo_map.h"
+#include "scene/albedo_map.h"
 
 #include <gtest/gtest.h>
 

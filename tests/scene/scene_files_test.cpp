@@ -8,8 +8,8 @@
 #include <glm/geometric.hpp>
 
 #include "atmosphere/photometry.h"
-#include "render/scene/scene_loader.h"
-#include "render/scene/sun_disc.h"
+#include "scene/scene_loader.h"
+#include "scene/sun_disc.h"
 
 namespace zenith::scene {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/scene/scene_loader.h"
+#include "scene/scene_loader.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include "core/json_reader.h"
 #include "atmosphere/photometry.h"
-#include "render/scene/sun_disc.h"
+#include "scene/sun_disc.h"
 
 namespace zenith::scene {
 namespace {

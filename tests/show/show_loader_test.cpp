@@ -8,7 +8,7 @@
 #include "atmosphere/model_hash.h"
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
-#include "render/scene/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "show_test_support.h"
 
 namespace zenith::show {

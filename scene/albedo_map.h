@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "render/image/image_io.h"
-#include "render/scene/scene.h"
+#include "image/image_io.h"
+#include "scene/scene.h"
 
 namespace zenith::scene {
 

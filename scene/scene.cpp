@@ -1,4 +1,4 @@
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 #include "core/units.h"
 
 #include <cmath>

@@ -29,9 +29,9 @@
 #include <utility>
 #include <vector>
 
-#include "render/image/image_io.h"
-#include "render/image/png_support.h"
-#include "render/image/tone_mapping.h"
+#include "image/image_io.h"
+#include "image/png_support.h"
+#include "image/tone_mapping.h"
 
 namespace zenith::image {
 namespace {

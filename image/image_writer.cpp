@@ -1,7 +1,7 @@
 // The writer-independent part of image_writer.h: pixel-type names and the
 // whole-image convenience functions. The writers are in exr_writer.cpp and
 // png_writer.cpp.
-#include "render/image/image_writer.h"
+#include "image/image_writer.h"
 
 #include <stdexcept>
 

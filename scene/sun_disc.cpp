@@ -1,4 +1,4 @@
-#include "render/scene/sun_disc.h"
+#include "scene/sun_disc.h"
 #include "core/units.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "render/scene/scene_loader.h"
+#include "scene/scene_loader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,8 +16,8 @@
 #include "core/json_reader.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/spectrum.h"
-#include "render/scene/albedo_map.h"
-#include "render/scene/sun_disc.h"
+#include "scene/albedo_map.h"
+#include "scene/sun_disc.h"
 #include "core/units.h"
 
 namespace zenith::scene {

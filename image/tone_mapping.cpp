@@ -1,4 +1,4 @@
-#include "render/image/tone_mapping.h"
+#include "image/tone_mapping.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,5 +1,5 @@
-// Contact sheets (render/image/contact_sheet.h).
-#include "render/image/contact_sheet.h"
+// Contact sheets (image/contact_sheet.h).
+#include "image/contact_sheet.h"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "render/image/image_writer.h"
+#include "image/image_writer.h"
 
 namespace zenith::image {
 namespace {

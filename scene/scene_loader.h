@@ -21,7 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 
 namespace zenith::scene {
 

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "render/image/tone_mapping.h"
+#include "image/tone_mapping.h"
 
 namespace zenith::image {
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "render/image/image_writer.h"
+#include "image/image_writer.h"
 
 namespace zenith::image::detail {
 

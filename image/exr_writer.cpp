@@ -27,8 +27,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "render/image/image_writer.h"
-#include "render/image/writer_support.h"
+#include "image/image_writer.h"
+#include "image/writer_support.h"
 
 namespace zenith::image {
 namespace {

@@ -11,8 +11,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "render/image/image_io.h"
-#include "render/image/tone_mapping.h"
+#include "image/image_io.h"
+#include "image/tone_mapping.h"
 
 namespace zenith::image {
 

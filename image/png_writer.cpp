@@ -14,10 +14,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "render/image/image_writer.h"
-#include "render/image/png_support.h"
-#include "render/image/srgb_quantizer.h"
-#include "render/image/writer_support.h"
+#include "image/image_writer.h"
+#include "image/png_support.h"
+#include "image/srgb_quantizer.h"
+#include "image/writer_support.h"
 
 namespace zenith::image {
 namespace {

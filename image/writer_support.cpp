@@ -1,4 +1,4 @@
-#include "render/image/writer_support.h"
+#include "image/writer_support.h"
 
 #include <set>
 #include <stdexcept>

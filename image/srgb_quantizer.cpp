@@ -1,9 +1,9 @@
-#include "render/image/srgb_quantizer.h"
+#include "image/srgb_quantizer.h"
 
 #include <bit>
 #include <cmath>
 
-#include "render/image/tone_mapping.h"
+#include "image/tone_mapping.h"
 
 namespace zenith::image {
 namespace {

@@ -1,6 +1,6 @@
 // Colour of spectral quantities at the working wavelengths (colour.h;
 // docs/colour.md explains the choices).
-#include "render/image/colour.h"
+#include "image/colour.h"
 
 #include <algorithm>
 #include <cmath>
