@@ -53,12 +53,8 @@ fs::path default_config(const std::string& name) {
   // binary with other defaults never reads an older copy.
   const auto files = embedded_configs::embedded_files();
   std::string all;
-  bool found = false;
-  for (const EmbeddedFile& f : files) {
-    all += cat(f.name, '\n', f.contents, '\n');
-    found = found || f.name == name;
-  }
-  if (!found) throw std::runtime_error(cat("no configuration ", local.string(), " here and none named ", name, " built in"));
+  for (const EmbeddedFile& f : files) all += cat(f.name, '\n', f.contents, '\n');
+  if (!core::find_embedded(files, name)) throw std::runtime_error(cat("no configuration ", local.string(), " here and none named ", name, " built in"));
   const fs::path folder = atmosphere::lut::default_cache_directory() / "embedded-configs" /
                           core::sha256_hex(all.data(), all.size()).substr(0, 16);
   for (const EmbeddedFile& f : files) write_if_different(folder / f.name, f.contents);
