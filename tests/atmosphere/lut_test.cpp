@@ -1,6 +1,7 @@
 // Lookup tables: parameterization, CPU precompute, queries and the cache.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,7 @@
 
 #include "atmosphere/constants.h"
 #include "atmosphere/lut/cpu_precompute.h"
+#include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/parameters.h"
@@ -75,6 +77,46 @@ TEST(Parameterization, SunAngleRangeDerivesFromTheRadii) {
     EXPECT_NEAR(g.min_sun_cosine(), expected, 1e-12) << e.preset;
     EXPECT_NEAR(g.min_sun_cosine(), e.min_sun_cosine, 1e-4) << e.preset;
     EXPECT_NEAR(std::acos(g.min_sun_cosine()) * 180.0 / kPi, e.min_sun_zenith_deg, 0.01) << e.preset;
+  }
+}
+
+// geometric_blend (lookup_tables.h): exact for an exponential between two
+// texels up to a ratio of e⁵, linear at zeros, and continuous as one side goes
+// to zero (the fade to linear between |ln(b/a)| = 5 and 6).
+TEST(GeometricBlend, ExactForExponentialsLinearAtZerosContinuousTowardZero) {
+  for (double log_ratio : {-4.0, -1.0, 0.3, 2.0, 5.0})
+    for (double t : {0.0, 0.25, 0.5, 0.9, 1.0})
+      EXPECT_NEAR(geometric_blend(2.0, 2.0 * std::exp(log_ratio), t), 2.0 * std::exp(t * log_ratio),
+                  2e-6 * 2.0 * std::exp(std::max(0.0, log_ratio)))
+          << "ln(b/a) " << log_ratio << ", t " << t;
+  EXPECT_DOUBLE_EQ(geometric_blend(0.0, 3.0, 0.25), 0.75);
+  EXPECT_DOUBLE_EQ(geometric_blend(3.0, 0.0, 0.25), 2.25);
+  // Beyond e⁶ the blend is linear: a vanishing neighbour does not pull the result to zero.
+  EXPECT_DOUBLE_EQ(geometric_blend(1e-9, 1.0, 0.5), 0.5 * (1e-9 + 1.0));
+  // Halfway through the fade (|ln(b/a)| = 5.5): the mean of the two forms.
+  const double b = std::exp(5.5), linear = 0.5 * (1.0 + b), geometric = std::exp(2.75);
+  EXPECT_NEAR(geometric_blend(1.0, b, 0.5), 0.5 * (linear + geometric), 1e-5 * linear);
+}
+
+// A table whose values fall by e² per μs texel (as twilight does at the paper's
+// sizes) read between texel centres: the geometric read is exact, the linear
+// read overshoots by cosh(1) − 1 ≈ 54 % at the midpoint.
+TEST(GeometricBlend, ScatteringReadFollowsAnExponentialFallInMuS) {
+  TableSizes s = TableSizes::small();
+  Table3D table(s.scattering_width(), s.scattering_mu, s.scattering_r, 1);
+  for (std::size_t z = 0; z < table.depth; ++z)
+    for (std::size_t y = 0; y < table.height; ++y)
+      for (std::size_t x = 0; x < table.width; ++x)
+        table.texel(x, y, z)[0] = float(std::exp(-2.0 * double(x % s.scattering_mu_s)));
+  const double n = double(s.scattering_mu_s);
+  for (double column : {3.5, 10.25, 20.75}) {
+    const ScatteringUVWZ uv{0.4, (column + 0.5) / n, 0.3, 0.6};
+    double geometric = 0.0, linear = 0.0;
+    sample_scattering_table_geometric_mu_s(table, s, uv, &geometric);
+    sample_scattering_table(table, s, uv, &linear);
+    const double expected = std::exp(-2.0 * column);
+    EXPECT_NEAR(geometric / expected, 1.0, 1e-5) << "column " << column;
+    EXPECT_GT(linear / expected, 1.05) << "column " << column;
   }
 }
 
