@@ -1,7 +1,6 @@
 #include "apps/child_process.h"
 
 #include <fmt/format.h>
-#include <spawn.h>
 #include <spdlog/spdlog.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,8 +12,7 @@
 #include <thread>
 
 #include "cluster/handshake.h"
-
-extern char** environ;
+#include "core/process.h"
 
 namespace zenith::app {
 
@@ -38,28 +36,14 @@ std::string log_level_argument() {
 }
 
 pid_t spawn_self(const std::vector<std::string>& args) {
-  std::vector<std::string> all = {"/proc/self/exe"};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& s : all) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (const int e = ::posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ); e != 0)
-    throw std::runtime_error(fmt::format("cannot start a child zenith process: {}", std::strerror(e)));
-  return pid;
-}
-
-std::optional<int> wait_for(pid_t pid, std::chrono::milliseconds timeout) {
-  const auto deadline = Clock::now() + timeout;
-  for (;;) {
-    int status = 0;
-    const pid_t r = ::waitpid(pid, &status, WNOHANG);
-    if (r == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    if (r < 0) return -1;
-    if (Clock::now() >= deadline) return std::nullopt;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  try {
+    return core::spawn_process("/proc/self/exe", args);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(fmt::format("cannot start a child zenith process: {}", e.what()));
   }
 }
+
+std::optional<int> wait_for(pid_t pid, std::chrono::milliseconds timeout) { return core::wait_for_exit(pid, timeout); }
 
 int stop_child(pid_t pid, const std::string& what, std::chrono::milliseconds grace) {
   if (auto status = wait_for(pid, grace)) return *status;

@@ -48,10 +48,8 @@
 //                 [--frame-tables small] [--tables small,paper,large]
 //                 [--broadcast-nodes 1,4] [--orders 1] [--cache DIR] [--work DIR]
 //                 [--csv FILE] [--timeout-s 600] [--keep]
-#include <fcntl.h>
 #include <fmt/format.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -71,7 +69,7 @@
 #include <thread>
 #include <vector>
 
-extern char** environ;
+#include "core/process.h"
 
 namespace {
 
@@ -172,31 +170,15 @@ struct Child {
 };
 
 Child spawn(const fs::path& binary, const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> all = {binary.string()};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& s : all) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  Child child{-1, log};
-  const int e = posix_spawn(&child.pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (e != 0) throw std::runtime_error(fmt::format("cannot start {}: error {}", binary.string(), e));
-  return child;
+  return Child{zenith::core::spawn_process(binary, args, log, zenith::core::LogMode::truncate), log};
 }
 
 /// The exit status (128 + signal when killed), or nullopt when `deadline` passes.
 std::optional<int> wait_exit(const Child& c, Clock::time_point deadline) {
-  for (;;) {
-    int status = 0;
-    const pid_t r = waitpid(c.pid, &status, WNOHANG);
-    if (r == c.pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    if (r < 0 || Clock::now() > deadline) return std::nullopt;
-    std::this_thread::sleep_for(10ms);
-  }
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+  const std::optional<int> status = zenith::core::wait_for_exit(c.pid, std::max(left, std::chrono::milliseconds(0)));
+  if (status && *status < 0) return std::nullopt;
+  return status;
 }
 
 void kill_hard(const Child& c) {

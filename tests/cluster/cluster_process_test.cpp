@@ -2,12 +2,10 @@
 // and nodes on loopback, headless, with tiny outputs and small tables
 // (docs/cluster.md, "Tests"). Each test is bounded in time.
 #include <arpa/inet.h>
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -27,10 +25,9 @@
 #include "cluster/frame_decoder.h"
 #include "cluster/handshake.h"
 #include "cluster/messages.h"
+#include "core/process.h"
 #include "image/image_io.h"
 #include "test_support.h"
-
-extern char** environ;
 
 namespace zenith::cluster {
 namespace {
@@ -52,32 +49,14 @@ struct Child {
 };
 
 Child spawn(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> all = {kBinary.string()};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& s : all) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  Child child{-1, log};
-  const int e = posix_spawn(&child.pid, kBinary.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (e != 0) throw std::runtime_error("posix_spawn failed");
-  return child;
+  return Child{core::spawn_process(kBinary, args, log, core::LogMode::append), log};
 }
 
 /// The exit status (128 + signal when killed), or nullopt on timeout.
 std::optional<int> wait_exit(const Child& c, std::chrono::milliseconds timeout) {
-  const auto deadline = Clock::now() + timeout;
-  for (;;) {
-    int status = 0;
-    const pid_t r = waitpid(c.pid, &status, WNOHANG);
-    if (r == c.pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    if (r < 0 || Clock::now() > deadline) return std::nullopt;
-    std::this_thread::sleep_for(20ms);
-  }
+  const std::optional<int> status = core::wait_for_exit(c.pid, timeout);
+  if (status && *status < 0) return std::nullopt;
+  return status;
 }
 
 void kill_hard(const Child& c) {
