@@ -22,6 +22,7 @@
 //   BOTTOM_RADIUS, TOP_RADIUS              metres (literals of type real)
 //   TRANSMITTANCE_MU, TRANSMITTANCE_R, IRRADIANCE_MU_S, IRRADIANCE_R,
 //   SCATTERING_R, SCATTERING_MU, SCATTERING_MU_S, SCATTERING_NU   table sizes
+//   GEOMETRIC_BLEND_FULL_LOG_RATIO                                 float literal (lookup_tables.h)
 //   RAYLEIGH_PHASE                         0 classic, 1 Penndorf, 2 depolarized
 //   RAYLEIGH_DEPOLARIZATION                δ (literal; used by RAYLEIGH_PHASE 2)
 //   HAS_MIE                                0 drops every Mie term
@@ -670,9 +671,9 @@ real4 sample_scattering_table(sampler3D table, ScatteringUV uv) {
 }
 
 /// geometric_blend (lookup_tables.h): a^(1−t)·b^t while |ln(b/a)| ≤
-/// GEOMETRIC_BLEND_FULL_LOG_RATIO, fading to linear over the next unit, linear
-/// where either is zero; logarithm and exponential in float, as on the CPU.
-const float GEOMETRIC_BLEND_FULL_LOG_RATIO = 5.0;
+/// GEOMETRIC_BLEND_FULL_LOG_RATIO (kGeometricBlendFullLogRatio, defined by the
+/// shader model), fading to linear over the next unit, linear where either is
+/// zero; logarithm and exponential in float, as on the CPU.
 real geometric_blend(real a, real b, real t) {
   const real linear_value = a * (real(1) - t) + b * t;
   if (!(a > real(0) && b > real(0))) return linear_value;

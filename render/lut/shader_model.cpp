@@ -6,6 +6,7 @@
 #include <span>
 
 #include "atmosphere/lut/gauss_legendre.h"
+#include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/parameterization.h"
 #include "atmosphere/lut/spherical_harmonics.h"
 
@@ -171,6 +172,7 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("SCATTERING_MU", s.scattering_mu);
   define("SCATTERING_MU_S", s.scattering_mu_s);
   define("SCATTERING_NU", s.scattering_nu);
+  define("GEOMETRIC_BLEND_FULL_LOG_RATIO", glsl_literal(double(atmosphere::lut::kGeometricBlendFullLogRatio), false));
   define("RAYLEIGH_PHASE", rayleigh_phase());
   define("RAYLEIGH_DEPOLARIZATION", glsl_literal(model.rayleigh_depolarization, fp64));
   define("HAS_MIE", model.has_mie() ? 1 : 0);
