@@ -774,6 +774,34 @@ real4 integrate_interval(real4 f0, real4 f1, real h) {
                integrate_interval(f0.w, f1.w, h));
 }
 
+// ------------------------------------------------------------ samples along a ray (quadrature.h)
+
+/// Distance from the start of a ray (r, μ) of length d to its lowest point
+/// (lowest_point_distance_m).
+real lowest_point_distance(real r, real mu, real d, bool hits_ground) {
+  if (mu >= real(0)) return real(0);
+  if (hits_ground) return d;
+  PRECISE real tangent = -r * mu;
+  return min(tangent, d);
+}
+
+/// t_i of sample i of n along a ray of length d with its lowest point at
+/// `lowest`: crowded quadratically toward the lowest point (ray_sample_distance_m).
+real ray_sample_distance(int i, int n, real d, real lowest) {
+  PRECISE real s = real(i) / real(n);
+  PRECISE real s_low = d > real(0) ? clamp(lowest / d, real(0), real(1)) : real(0);
+  if (s >= s_low) {
+    PRECISE real span = real(1) - s_low;
+    if (span <= real(0)) return d;
+    PRECISE real u = (s - s_low) / span;
+    PRECISE real t = lowest + (d - lowest) * u * u;
+    return t;
+  }
+  PRECISE real u = (s_low - s) / s_low;
+  PRECISE real t = lowest - lowest * u * u;
+  return t;
+}
+
 real4 exp_r4(real4 x) { return real4(exp_r(x.x), exp_r(x.y), exp_r(x.z), exp_r(x.w)); }
 
 // ------------------------------------------------------------ vectors (vec3.h), in the CPU's operation order

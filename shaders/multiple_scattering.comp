@@ -18,14 +18,17 @@ void main() {
   if (p.x >= SCATTERING_NU * SCATTERING_MU_S || p.y >= SCATTERING_MU || p.z >= SCATTERING_R) return;
   const ScatteringCoordinates c = scattering_texel_coordinates(p.x, p.y, p.z, ANGLE_MAPPING_BLENDED);
   const real d = distance_to_nearest_boundary(c.r, c.mu, c.hits_ground);
-  const real dx = d / real(SCATTERING_SAMPLES);
+  const real lowest = lowest_point_distance(c.r, c.mu, d, c.hits_ground);
+  real previous_t = real(0);
   real4 sum = real4(0), prev = real4(0);
   // ν is constant along the ray; r and μ at the samples come from the ray's row (view_ray.glsl).
   ScatteringUV uv;
   uv.u_nu = unit_from_nu(c.nu);
   const real theta_max = sun_theta_max();
   for (int i = 0; i <= SCATTERING_SAMPLES; ++i) {
-    const real t = real(i) * dx;
+    const real t = ray_sample_distance(i, SCATTERING_SAMPLES, d, lowest);
+    PRECISE real dx = t - previous_t;
+    previous_t = t;
     PRECISE real r_t = clamp(sqrt(t * t + real(2) * c.r * c.mu * t + c.r * c.r), RB, RT);
     PRECISE real mu_s_t = clamp((c.r * c.mu_s + t * c.nu) / r_t, real(-1), real(1));
     const int sample_index = view_ray_sample_index(p.z, p.y, i);

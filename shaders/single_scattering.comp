@@ -19,13 +19,16 @@ void main() {
   if (p.x >= SCATTERING_NU * SCATTERING_MU_S || p.y >= SCATTERING_MU || p.z >= SCATTERING_R) return;
   const ScatteringCoordinates c = scattering_texel_coordinates(p.x, p.y, p.z, ANGLE_MAPPING_DISTANCE);
   const real d = distance_to_nearest_boundary(c.r, c.mu, c.hits_ground);
-  const real dx = d / real(SCATTERING_SAMPLES);
+  const real lowest = lowest_point_distance(c.r, c.mu, d, c.hits_ground);
+  real previous_t = real(0);
   real4 rayleigh = real4(0), prev_r = real4(0);
 #if HAS_MIE
   real4 mie = real4(0), prev_m = real4(0);
 #endif
   for (int i = 0; i <= SCATTERING_SAMPLES; ++i) {
-    const real t = real(i) * dx;
+    const real t = ray_sample_distance(i, SCATTERING_SAMPLES, d, lowest);
+    PRECISE real dx = t - previous_t;
+    previous_t = t;
     PRECISE real r_t = clamp(sqrt(t * t + real(2) * c.r * c.mu * t + c.r * c.r), RB, RT);
     PRECISE real mu_s_t = clamp((c.r * c.mu_s + t * c.nu) / r_t, real(-1), real(1));
     const real h = r_t - RB;

@@ -129,57 +129,97 @@ void Precompute::compute_transmittance() {
 
 // ---------------------------------------------------------------- transmittance along the view rays
 
-/// T(x, y_i) at the samples y_i = x + t_i v, t_i = i·d/N (N = `samples`, d the
-/// distance to the nearest boundary), of the view ray x = (r, μ) of a scattering
-/// table row, from the transmittance table (TableQueries::transmittance, paper
-/// eq. 5 by ratios of tabulated transmittances along rays pointing up).
+/// The samples y_i = x + t_i v, i = 0..N (N = `samples`), of the view ray
+/// x = (r, μ) of a scattering table row: their distances t_i
+/// (ray_sample_distance_m: crowded toward the ray's lowest point, d the
+/// distance to the nearest boundary) and T(x, y_i), by accumulating the
+/// optical depth along the ray (paper eq. 5):
+///   T(x, y_i) = exp(−s(r, μ) Σ_{k=1..i} ∫_{t_{k−1}}^{t_k} β_ext(h(t)) dt),
+/// each interval in kOpticalDepthSubsteps equal parts integrated by
+/// integrate_interval from β_ext [m^-1] at their ends, s the air-mass stretch of
+/// the ray (constant along it, eq. 21).
 ///
-/// The ray depends on the row's r and μ only, not on μs or ν, so it is computed
+/// Not the table ratio T_top(x)/T_top(y) (TableQueries::transmittance): along a
+/// grazing ray both are long paths whose T changes by orders of magnitude between
+/// neighbouring μ texels, and from a ground observer looking at the horizon the
+/// ratio is 3–7 % off at 1 km and 10–23 % at 10 km (earth-standard, paper-size
+/// tables), which left the horizon row of the sky 4–10 % dark. (Accumulating with
+/// one log-linear step per uniform interval was tried before and moved mid-sky
+/// pixels: β_ext mixes Rayleigh and aerosol profiles, so that step overestimates
+/// τ near the ground; the sub-steps and the crowded samples remove that.)
+///
+/// The ray depends on the row's r and μ only, not on μs or ν, so this is computed
 /// once per row and shared by the row's texels (on the GPU: view_transmittance.comp,
-/// the same operations in the same order). `out`: (N + 1) × channels, sample-major.
-///
-/// Accumulating the optical depth along the ray instead (exact along grazing rays,
-/// where the ratio leaves the horizon row 6–10 % dark) was tried in issue 13 and
-/// set aside: it also moved mid-sky pixels by several percent in opposite
-/// directions at 440 and 680 nm, not yet understood (docs/lookup-tables.md, "Horizon").
-void view_ray_transmittance(const TableQueries& queries, const ShellGeometry& geometry, std::size_t channels,
-                            const ScatteringCoordinates& c, int samples, std::vector<double>& out) {
-  out.assign((static_cast<std::size_t>(samples) + 1) * channels, 0.0);
+/// the same operations in the same order).
+struct ViewRaySamples {
+  std::vector<double> distance_m;     ///< t_i, N + 1
+  std::vector<double> transmittance;  ///< T(x, y_i), (N + 1) × channels, sample-major
+};
+
+ViewRaySamples view_ray_samples(const AtmosphereModel& model, const ShellGeometry& geometry, std::size_t channels,
+                                const ScatteringCoordinates& c, int samples, PrecomputeOptions::Quadrature rule) {
+  ViewRaySamples out;
+  out.distance_m.resize(static_cast<std::size_t>(samples) + 1);
+  out.transmittance.assign((static_cast<std::size_t>(samples) + 1) * channels, 0.0);
   const double d = geometry.distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
-  const double dx = d / samples;
-  for (int i = 0; i <= samples; ++i)
-    queries.transmittance(c.r_m, c.mu, i * dx, c.ray_hits_ground, out.data() + static_cast<std::size_t>(i) * channels);
+  const double lowest = lowest_point_distance_m(c.r_m, c.mu, d, c.ray_hits_ground);
+  const double stretch = model.air_mass(c.r_m, c.mu);
+  auto extinction_at = [&](double t, double* beta) {
+    const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m), geometry.bottom_radius_m,
+                                  geometry.top_radius_m);
+    model.extinction_m1(r_t - geometry.bottom_radius_m, beta);
+  };
+  Channels optical_depth{}, previous_beta{}, beta{};
+  extinction_at(0.0, previous_beta.data());
+  double previous_t = 0.0;
+  for (int i = 0; i <= samples; ++i) {
+    const double t = ray_sample_distance_m(i, samples, d, lowest);
+    out.distance_m[static_cast<std::size_t>(i)] = t;
+    if (i > 0) {
+      const double step = (t - previous_t) / kOpticalDepthSubsteps;
+      for (int k = 1; k <= kOpticalDepthSubsteps; ++k) {
+        extinction_at(previous_t + k * step, beta.data());
+        for (std::size_t ch = 0; ch < channels; ++ch) {
+          optical_depth[ch] += integrate_interval(previous_beta[ch], beta[ch], step, rule);
+          previous_beta[ch] = beta[ch];
+        }
+      }
+    }
+    previous_t = t;
+    double* t_out = out.transmittance.data() + static_cast<std::size_t>(i) * channels;
+    for (std::size_t ch = 0; ch < channels; ++ch) t_out[ch] = std::exp(-stretch * optical_depth[ch]);
+  }
+  return out;
 }
 
 // ---------------------------------------------------------------- single scattering
 
 void Precompute::compute_single_scattering() {
   // S1_R(x, v) = β_R ∫₀^d T(x, y) T(y, sun) ρ_R(y) dy, likewise for Mie (paper eq. 7,
-  // one scattering event), without phase functions. Uniform samples along the
+  // one scattering event), without phase functions. The row's samples along the
   // ray, each interval integrated by integrate_interval (quadrature.h); T(x, y)
-  // from the row's view-ray samples (view_ray_transmittance), T(y, sun) from the table.
+  // from the row's view-ray samples (view_ray_samples), T(y, sun) from the table.
   const TableSizes& s = sizes();
   const int samples = options_.scattering_samples;
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;
   core::parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
     const std::size_t z = row / height, y = row % height;
     Channels t_sun{}, rayleigh{}, mie{}, prev_r{}, prev_m{};
-    std::vector<double> t_view;
-    view_ray_transmittance(queries_, geometry(), n_, scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Distance),
-                           samples, t_view);
+    const ViewRaySamples ray =
+        view_ray_samples(model_, geometry(), n_, scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Distance),
+                         samples, options_.scattering_quadrature);
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Distance);
-      const double d = geometry().distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
-      const double dx = d / samples;
       std::fill(rayleigh.begin(), rayleigh.end(), 0.0);
       std::fill(mie.begin(), mie.end(), 0.0);
       for (int i = 0; i <= samples; ++i) {
-        const double t = i * dx;
+        const double t = ray.distance_m[static_cast<std::size_t>(i)];
+        const double dx = i > 0 ? t - ray.distance_m[static_cast<std::size_t>(i) - 1] : 0.0;
         const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m),
                                       geometry().bottom_radius_m, geometry().top_radius_m);
         const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / r_t, -1.0, 1.0);
         const double h = r_t - geometry().bottom_radius_m;
-        const double* t_view_i = t_view.data() + static_cast<std::size_t>(i) * n_;
+        const double* t_view_i = ray.transmittance.data() + static_cast<std::size_t>(i) * n_;
         queries_.transmittance_to_sun(r_t, mu_s_t, t_sun.data());
         const double rho_r = model_.rayleigh_density(h), rho_m = model_.mie_density(h);
         for (std::size_t ch = 0; ch < n_; ++ch) {
@@ -452,7 +492,7 @@ void Precompute::compute_indirect_irradiance(int order) {
 
 double Precompute::compute_multiple_scattering(const Table3D& density) {
   // L_n(x, v) = ∫₀^d T(x, y) J_n(y, v) dy along the ray (same rule as single
-  // scattering, T(x, y) from the row's view-ray samples: view_ray_transmittance).
+  // scattering, the row's samples and T(x, y) from view_ray_samples).
   const TableSizes& s = sizes();
   const int samples = options_.scattering_samples;
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;
@@ -464,13 +504,11 @@ double Precompute::compute_multiple_scattering(const Table3D& density) {
     // The row's ray: T and the (u_r, u_μ) texture coordinates at its samples,
     // the same for every (μs, ν) texel (view_ray.glsl on the GPU).
     const ScatteringCoordinates ray = scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Blended);
-    std::vector<double> t_view;
-    view_ray_transmittance(queries_, geometry(), n_, ray, samples, t_view);
+    const ViewRaySamples view = view_ray_samples(model_, geometry(), n_, ray, samples, options_.scattering_quadrature);
     std::vector<ScatteringUVWZ> ray_uv(static_cast<std::size_t>(samples) + 1);
     {
-      const double dx = geometry().distance_to_nearest_boundary_m(ray.r_m, ray.mu, ray.ray_hits_ground) / samples;
       for (int i = 0; i <= samples; ++i) {
-        const double t = i * dx;
+        const double t = view.distance_m[static_cast<std::size_t>(i)];
         const double r_t = std::clamp(std::sqrt(t * t + 2.0 * ray.r_m * ray.mu * t + ray.r_m * ray.r_m),
                                       geometry().bottom_radius_m, geometry().top_radius_m);
         const double mu_t = std::clamp((ray.r_m * ray.mu + t) / r_t, -1.0, 1.0);
@@ -479,12 +517,11 @@ double Precompute::compute_multiple_scattering(const Table3D& density) {
     }
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
-      const double d = geometry().distance_to_nearest_boundary_m(c.r_m, c.mu, c.ray_hits_ground);
-      const double dx = d / samples;
       const double u_nu = scattering_u_nu(c.nu);  // ν is constant along the ray
       std::fill(sum.begin(), sum.end(), 0.0);
       for (int i = 0; i <= samples; ++i) {
-        const double t = i * dx;
+        const double t = view.distance_m[static_cast<std::size_t>(i)];
+        const double dx = i > 0 ? t - view.distance_m[static_cast<std::size_t>(i) - 1] : 0.0;
         const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m),
                                       geometry().bottom_radius_m, geometry().top_radius_m);
         const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / r_t, -1.0, 1.0);
@@ -492,7 +529,7 @@ double Precompute::compute_multiple_scattering(const Table3D& density) {
         uv.u_mu_s = scattering_u_mu_s(geometry(), s, mu_s_t, AngleMapping::Blended);
         uv.u_nu = u_nu;
         sample_scattering_table(density, s, uv, j.data());
-        const double* t_view_i = t_view.data() + static_cast<std::size_t>(i) * n_;
+        const double* t_view_i = view.transmittance.data() + static_cast<std::size_t>(i) * n_;
         for (std::size_t ch = 0; ch < n_; ++ch) {
           const double f = t_view_i[ch] * j[ch];
           if (i > 0) sum[ch] += integrate_interval(prev[ch], f, dx, options_.scattering_quadrature);

@@ -70,8 +70,10 @@ std::filesystem::path default_cache_directory() {
 /// under the same options must not be reused. 2: the scattering density by
 /// spherical harmonics (issue 13; the density line below names the method);
 /// 3: the second order's source reads the single-scattering tables
-/// geometrically in μs (sample_scattering_table_geometric_mu_s).
-constexpr int kPrecomputeMethodRevision = 3;
+/// geometrically in μs (sample_scattering_table_geometric_mu_s); 4: view-ray
+/// samples crowded toward the ray's lowest point, T accumulated along the ray
+/// (quadrature.h, view_ray_samples).
+constexpr int kPrecomputeMethodRevision = 4;
 
 std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions& o) {
   std::ostringstream s;

@@ -8,6 +8,7 @@
 #include "atmosphere/lut/gauss_legendre.h"
 #include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/parameterization.h"
+#include "atmosphere/lut/quadrature.h"
 #include "atmosphere/lut/spherical_harmonics.h"
 
 namespace zenith::render {
@@ -190,6 +191,7 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("QUADRATURE_LOG_LINEAR",
          options.scattering_quadrature == PrecomputeOptions::Quadrature::LogLinear ? 1 : 0);
   define("SCATTERING_SAMPLES", options.scattering_samples);
+  define("OPTICAL_DEPTH_SUBSTEPS", atmosphere::lut::kOpticalDepthSubsteps);
   define("TRANSMITTANCE_SAMPLES", options.transmittance_samples + options.transmittance_samples % 2);
   define("SPHERE_ZENITH_SAMPLES", sphere_nodes);
   define("HEMISPHERE_ZENITH_SAMPLES", hemisphere_nodes);

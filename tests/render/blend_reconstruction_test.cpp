@@ -159,10 +159,14 @@ TEST(BlendReconstruction, SixBlendedProjectorsReproduceTheDomeMaster) {
   // sky meets ground within a pixel), max 0.026 above 5° elevation. At 64 × 40
   // projectors the same figures are 0.0053, 0.0013, 0.060, 0.092 and 0.078:
   // the error shrinks with the square of the pixel size, as resampling error does.
+  // Since the precompute accumulates T along its view rays (issue 13) the horizon
+  // sky is no longer 13–53 % dark in these small tables, so the step from sky to
+  // ground across a horizon pixel, and its resampling error, grew: max 0.160
+  // (mean 0.0012, median 0.0002, 99th percentile 0.0125, above 5° 0.026 as before).
   EXPECT_LE(mean, 0.005);
   EXPECT_LE(median, 0.002);
   EXPECT_LE(p99, 0.03);
-  EXPECT_LE(max_all, 0.12);
+  EXPECT_LE(max_all, 0.2);
   EXPECT_LE(max_high, 0.04);
 }
 
