@@ -27,6 +27,7 @@
 #include "atmosphere/model_hash.h"
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
+#include "cluster/master/frame_barrier.h"
 #include "cluster/show/playback_clock.h"
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
@@ -65,7 +66,6 @@ struct Master::Impl {
     std::set<Digest> cached;
     std::set<Digest> tables_ready;  ///< TableReady after the inventory: held, verified and loaded
     std::uint64_t chunks_sent = 0;
-    bool lagging = false;  ///< dropped from a barrier; back at the next boundary once it reports
     Clock::time_point connected_at = Clock::now();
   };
 
@@ -117,9 +117,7 @@ struct Master::Impl {
   std::uint32_t next_id = 1;
 
   // The frame loop.
-  std::uint64_t frame = 0;           ///< the frame in flight, or the next one to start
-  bool in_flight = false;
-  std::map<std::uint32_t, bool> participants;  ///< session id → RenderDone received
+  FrameBarrier barrier;  ///< the frame in flight (or the next one), its participants, lagging nodes
   Clock::time_point frame_started, show_started, waiting_since;
   bool started = false, stopping = false, waiting_logged = false;
   std::uint64_t presented = 0;
@@ -289,6 +287,7 @@ struct Master::Impl {
   void maybe_start_switch() {
     if (pending || next_switch >= options.atmosphere_switches.size()) return;
     const AtmosphereSwitch& sw = options.atmosphere_switches[next_switch];
+    const std::uint64_t frame = barrier.frame();
     if (sw.frame > frame) return;
     ++next_switch;
     auto [index, loaded] = resolve_switch(sw);  // checked at start-up: does not throw here
@@ -352,7 +351,7 @@ struct Master::Impl {
       ++ready;
     }
     AtmosphereTableRef& ref = table_refs[pending->ref_index];
-    const std::uint64_t effective = in_flight ? frame + 1 : frame;
+    const std::uint64_t effective = barrier.next_boundary();
     spdlog::info("master: table version {} of '{}' takes effect at frame {} on all {} ready node{} (was {})",
                  short_hex(pending->hash), ref.body_name, effective, ready, ready == 1 ? "" : "s",
                  short_hex(ref.table_hash));
@@ -443,7 +442,7 @@ struct Master::Impl {
     std::shared_ptr<Session> keep(it->second.release());
     sessions.erase(it);
     asio::post(io, [keep] {});
-    if (in_flight && participants.erase(id) > 0) check_barrier();
+    if (barrier.remove(id) && barrier.complete()) complete_frame();
     maybe_apply_pending();  // it may have been the last node without the pending version
   }
 
@@ -476,7 +475,7 @@ struct Master::Impl {
           break;
         }
       }
-      s.connection->send(s.handshake->welcome(s.id, frame, options.config.heartbeat_ms, options.config.barrier_timeout_ms));
+      s.connection->send(s.handshake->welcome(s.id, barrier.frame(), options.config.heartbeat_ms, options.config.barrier_timeout_ms));
       s.state = Session::State::tables;
       spdlog::info("master: node '{}' authenticated from {} (id {}); waiting for its table inventory", s.name,
                    s.connection->peer(), s.id);
@@ -490,9 +489,8 @@ struct Master::Impl {
 
   void become_ready(Session& s) {
     s.state = Session::State::ready;
-    s.lagging = false;
     spdlog::info("master: node '{}' is ready: it joins the barrier at the next frame boundary (frame {})", s.name,
-                 in_flight ? frame + 1 : frame);
+                 barrier.next_boundary());
     maybe_start_show();
   }
 
@@ -561,11 +559,12 @@ struct Master::Impl {
 
   void start_frame() {
     if (stopping) return;
-    participants.clear();
+    std::vector<std::uint32_t> ready;
     for (auto& [id, s] : sessions)
-      if (s->state == Session::State::ready && !s->lagging && s->connection->is_open()) participants.emplace(id, false);
+      if (s->state == Session::State::ready && s->connection->is_open()) ready.push_back(id);
+    const std::vector<std::uint32_t> participants = barrier.participants_among(ready);
     if (participants.empty()) {
-      if (!waiting_logged) spdlog::warn("master: no node is ready for frame {}; waiting", frame);
+      if (!waiting_logged) spdlog::warn("master: no node is ready for frame {}; waiting", barrier.frame());
       waiting_logged = true;
       frame_timer.expires_after(milliseconds(20));
       frame_timer.async_wait([this](const boost::system::error_code& ec) {
@@ -575,6 +574,7 @@ struct Master::Impl {
     }
     waiting_logged = false;
     maybe_start_switch();
+    std::uint64_t frame = barrier.frame();  // the next one, or the feed's
     if (options.feed) {
       switch (options.feed->pop(frame_in_flight)) {
         case FrameFeed::Next::finished: stop("every frame of the feed was presented"); return;
@@ -593,72 +593,57 @@ struct Master::Impl {
       if (!show) frame_in_flight.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
     }
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
-    for (const auto& [id, done] : participants) sessions.at(id)->connection->send_encoded(encoded);
-    in_flight = true;
+    for (const std::uint32_t id : participants) sessions.at(id)->connection->send_encoded(encoded);
+    barrier.begin(frame, participants);
     frame_started = Clock::now();
     spdlog::debug("master: frame {} sent to {} node{}", frame, participants.size(), participants.size() == 1 ? "" : "s");
     barrier_timer.expires_after(milliseconds(options.config.barrier_timeout_ms));
-    const std::uint64_t this_frame = frame;
-    barrier_timer.async_wait([this, this_frame](const boost::system::error_code& ec) {
-      if (!ec && in_flight && frame == this_frame) on_barrier_timeout();
+    barrier_timer.async_wait([this, frame](const boost::system::error_code& ec) {
+      if (!ec && barrier.in_flight() && barrier.frame() == frame) on_barrier_timeout();
     });
   }
 
   void on_render_done(Session& s, const RenderDone& done) {
-    if (s.lagging) {
-      // A node dropped from an earlier barrier reports: it is back at the next boundary.
-      if (done.frame < frame || !in_flight) {
-        s.lagging = false;
+    switch (barrier.on_render_done(s.id, done.frame)) {
+      case FrameBarrier::Report::counted:
+        if (barrier.complete()) complete_frame();
+        return;
+      case FrameBarrier::Report::rejoins:
         spdlog::info("master: node '{}' finished frame {} late; it rejoins the barrier at frame {}", s.name,
-                     done.frame, in_flight ? frame + 1 : frame);
-      }
-      return;
+                     done.frame, barrier.next_boundary());
+        return;
+      case FrameBarrier::Report::ignored_lagging: return;
+      case FrameBarrier::Report::ignored:
+        spdlog::debug("master: ignoring RenderDone {} from node '{}' (frame {} in flight)", done.frame, s.name,
+                      barrier.frame());
+        return;
     }
-    auto it = participants.find(s.id);
-    if (!in_flight || it == participants.end() || done.frame != frame) {
-      spdlog::debug("master: ignoring RenderDone {} from node '{}' (frame {} in flight)", done.frame, s.name, frame);
-      return;
-    }
-    it->second = true;
-    check_barrier();
-  }
-
-  void check_barrier() {
-    if (!in_flight) return;
-    if (!std::all_of(participants.begin(), participants.end(), [](const auto& p) { return p.second; })) return;
-    complete_frame();
   }
 
   void on_barrier_timeout() {
-    for (auto& [id, done] : participants) {
-      if (done) continue;
-      Session* s = find(id);
-      if (s == nullptr) continue;
-      s->lagging = true;
-      spdlog::warn("master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
-                   "barrier; the show goes on without it",
-                   s->name, frame, options.config.barrier_timeout_ms);
-    }
-    std::erase_if(participants, [](const auto& p) { return !p.second; });
+    for (const std::uint32_t id : barrier.drop_unfinished())
+      if (const Session* s = find(id))
+        spdlog::warn("master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
+                     "barrier; the show goes on without it",
+                     s->name, barrier.frame(), options.config.barrier_timeout_ms);
     complete_frame();
   }
 
   void complete_frame() {
     barrier_timer.cancel();
-    in_flight = false;
+    const FrameBarrier::Release release = barrier.release();
+    const std::uint64_t frame = release.frame;
     const Present present{frame};
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(present));
-    for (const auto& [id, done] : participants)
+    for (const std::uint32_t id : release.present_to)
       if (Session* s = find(id)) s->connection->send_encoded(encoded);
-    spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, participants.size(),
-                 participants.size() == 1 ? "" : "s", ms_since(frame_started));
-    participants.clear();
+    spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, release.present_to.size(),
+                 release.present_to.size() == 1 ? "" : "s", ms_since(frame_started));
     if (recorder) {
       for (const AtmosphereTableRef& r : frame_in_flight.atmospheres) recorder->add_version(versions.at(r.table_hash));
       recorder->record(frame_in_flight);
     }
     if (options.feed) options.feed->presented(frame);
-    ++frame;
     ++presented;
     if (options.frames != 0 && presented >= options.frames) {
       stop(cat("show finished after ", presented, " frames"));
@@ -694,7 +679,7 @@ struct Master::Impl {
       return "stopping";
     }
     if (!clock) {
-      if (line == "status") return cat("default show at frame ", frame, " (no show file: only status and quit)");
+      if (line == "status") return cat("default show at frame ", barrier.frame(), " (no show file: only status and quit)");
       return "no show is playing: only 'status' and 'quit' are available";
     }
     try {
@@ -798,7 +783,7 @@ struct Master::Impl {
       }
       s->connection->send_encoded(encoded);
     }
-    if (options.feed && options.feed->done() && !in_flight) {  // the feeding side ended (or gave up)
+    if (options.feed && options.feed->done() && !barrier.in_flight()) {  // the feeding side ended (or gave up)
       stop("the frame feed ended");
       return;
     }
