@@ -27,7 +27,9 @@
 #include "atmosphere/model_hash.h"
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
+#include "cluster/heartbeat.h"
 #include "cluster/master/frame_barrier.h"
+#include "cluster/master/heartbeat_monitor.h"
 #include "cluster/show/playback_clock.h"
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
@@ -118,6 +120,7 @@ struct Master::Impl {
 
   // The frame loop.
   FrameBarrier barrier;  ///< the frame in flight (or the next one), its participants, lagging nodes
+  HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
   Clock::time_point frame_started, show_started, waiting_since;
   bool started = false, stopping = false, waiting_logged = false;
   std::uint64_t presented = 0;
@@ -759,29 +762,25 @@ struct Master::Impl {
 
   void heartbeat_tick() {
     const auto now = Clock::now();
-    const double silent_limit_ms = silence_limit_ms(options.config.heartbeat_ms);
-    const double handshake_limit_ms = std::max(5000.0, silent_limit_ms);
-    const Heartbeat beat{static_cast<std::uint64_t>(
-        std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count())};
-    auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(beat));
+    auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(heartbeat_at(now)));
     std::vector<std::uint32_t> ids;
     for (auto& [id, s] : sessions) ids.push_back(id);
     for (const std::uint32_t id : ids) {
       Session* s = find(id);
       if (s == nullptr || !s->connection->is_open()) continue;
-      if (s->state == Session::State::handshake) {
-        if (ms_since(s->connected_at) > handshake_limit_ms) {
-          spdlog::warn("master: closing {}: no handshake within {:.0f} ms", who(*s), handshake_limit_ms);
+      switch (heartbeats.check(s->state == Session::State::handshake, s->connected_at, s->connection->last_received(),
+                               now)) {
+        case HeartbeatMonitor::Verdict::awaiting_handshake: break;
+        case HeartbeatMonitor::Verdict::handshake_overdue:
+          spdlog::warn("master: closing {}: no handshake within {:.0f} ms", who(*s), heartbeats.handshake_limit_ms());
           s->connection->close("handshake timeout");
-        }
-        continue;
+          break;
+        case HeartbeatMonitor::Verdict::silent:
+          spdlog::warn("master: closing {}: nothing received for {:.0f} ms", who(*s), heartbeats.silence_limit_ms());
+          s->connection->close("heartbeat timeout");
+          break;
+        case HeartbeatMonitor::Verdict::send_heartbeat: s->connection->send_encoded(encoded); break;
       }
-      if (ms_since(s->connection->last_received()) > silent_limit_ms) {
-        spdlog::warn("master: closing {}: nothing received for {:.0f} ms", who(*s), silent_limit_ms);
-        s->connection->close("heartbeat timeout");
-        continue;
-      }
-      s->connection->send_encoded(encoded);
     }
     if (options.feed && options.feed->done() && !barrier.in_flight()) {  // the feeding side ended (or gave up)
       stop("the frame feed ended");
@@ -790,7 +789,7 @@ struct Master::Impl {
     if (!started) maybe_start_show();
     if (started) maybe_start_switch();
     check_pending_confirmations();
-    heartbeat_timer.expires_after(milliseconds(options.config.heartbeat_ms));
+    heartbeat_timer.expires_after(milliseconds(heartbeats.interval_ms()));
     heartbeat_timer.async_wait([this](const boost::system::error_code& ec) {
       if (!ec && !stopping) heartbeat_tick();
     });

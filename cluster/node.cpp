@@ -28,6 +28,7 @@
 #include "atmosphere/parameters.h"
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
+#include "cluster/heartbeat.h"
 #include "cluster/table_transfer.h"
 #include "render/gl/egl_context.h"
 #include "image/image_writer.h"
@@ -376,8 +377,7 @@ struct Node::Impl {
       inventory.insert(hash);
       connection->send(TableReady{hash});
     }
-    connection->send(Heartbeat{static_cast<std::uint64_t>(
-        std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count())});
+    connection->send(heartbeat_at(Clock::now()));
     spdlog::info("node '{}': {} table set{} already in the cache", options.node_name, inventory.size(),
                  inventory.size() == 1 ? "" : "s");
   }
@@ -401,8 +401,7 @@ struct Node::Impl {
       return;
     }
     if (welcomed)
-      connection->send(Heartbeat{static_cast<std::uint64_t>(
-          std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count())});
+      connection->send(heartbeat_at(Clock::now()));
     heartbeat_timer.expires_after(milliseconds(heartbeat_ms));
     heartbeat_timer.async_wait([this](const boost::system::error_code& ec) {
       if (!ec) heartbeat_tick();
