@@ -11,17 +11,11 @@
 #include <sstream>
 #include <thread>
 
-#include <unistd.h>
-
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
-#include <boost/asio/posix/stream_descriptor.hpp>
 #include <boost/asio/post.hpp>
-#include <boost/asio/read_until.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <boost/asio/streambuf.hpp>
-#include <boost/asio/write.hpp>
 
 #include "render/lut/table_provider.h"
 #include "atmosphere/model_hash.h"
@@ -30,6 +24,7 @@
 #include "cluster/heartbeat.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/heartbeat_monitor.h"
+#include "cluster/master/operator_input.h"
 #include "cluster/show/playback_clock.h"
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
@@ -106,9 +101,6 @@ struct Master::Impl {
   std::vector<Digest> show_sets; ///< with a show: every table set it uses, all distributed before frame 0
   std::unique_ptr<show::ShowRecorder> recorder;
   FrameState frame_in_flight;    ///< the state of the frame in flight (recorded once presented)
-  std::optional<asio::posix::stream_descriptor> console_in;
-  asio::streambuf console_buffer;
-  std::optional<tcp::acceptor> control_acceptor;
 
   asio::io_context io;
   tcp::acceptor acceptor{io};
@@ -121,6 +113,8 @@ struct Master::Impl {
   // The frame loop.
   FrameBarrier barrier;  ///< the frame in flight (or the next one), its participants, lagging nodes
   HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
+  /// Playback commands from the console and the control socket.
+  OperatorInput operator_input{io, [this](std::string line) { return on_command(std::move(line)); }};
   Clock::time_point frame_started, show_started, waiting_since;
   bool started = false, stopping = false, waiting_logged = false;
   std::uint64_t presented = 0;
@@ -694,65 +688,13 @@ struct Master::Impl {
     }
   }
 
-  void read_console() {
-    asio::async_read_until(*console_in, console_buffer, '\n', [this](const boost::system::error_code& ec, std::size_t) {
-      if (ec || stopping) return;  // end of input: the show goes on without a console
-      std::istream in(&console_buffer);
-      std::string line;
-      std::getline(in, line);
-      const std::string reply = on_command(line);
-      if (!reply.empty()) spdlog::info("master: {}", reply);
-      read_console();
-    });
-  }
-
-  /// One control-socket client: lines in, one reply line out per command.
-  struct ControlClient {
-    tcp::socket socket;
-    asio::streambuf buffer;
-    explicit ControlClient(tcp::socket s) : socket(std::move(s)) {}
-  };
-
-  void accept_control() {
-    control_acceptor->async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
-      if (ec || stopping) return;
-      serve_control(std::make_shared<ControlClient>(std::move(socket)));
-      accept_control();
-    });
-  }
-
-  void serve_control(std::shared_ptr<ControlClient> client) {
-    asio::async_read_until(client->socket, client->buffer, '\n',
-                           [this, client](const boost::system::error_code& ec, std::size_t bytes) {
-                             if (ec) return;
-                             if (bytes > 1024) return;  // not an operator command: drop the client
-                             std::istream in(&client->buffer);
-                             std::string line;
-                             std::getline(in, line);
-                             auto reply = std::make_shared<std::string>(on_command(line) + "\n");
-                             asio::async_write(client->socket, asio::buffer(*reply),
-                                               [this, client, reply](const boost::system::error_code& e, std::size_t) {
-                                                 if (!e && !stopping) serve_control(client);
-                                               });
-                           });
-  }
-
   void start_operator_inputs() {
     if (options.console) {
-      console_in.emplace(io, ::dup(STDIN_FILENO));
-      read_console();
+      operator_input.read_console();
       spdlog::info("master: console commands: play, pause, toggle, seek SECONDS, rate FACTOR, loop on|off, status, quit");
     }
     if (options.control_port) {
-      const tcp::endpoint endpoint(asio::ip::make_address("127.0.0.1"), *options.control_port);
-      control_acceptor.emplace(io);
-      control_acceptor->open(endpoint.protocol());
-      control_acceptor->set_option(tcp::acceptor::reuse_address(true));
-      boost::system::error_code ec;
-      control_acceptor->bind(endpoint, ec);
-      if (ec) throw std::runtime_error(cat("master: cannot open the control socket on 127.0.0.1:", *options.control_port, ": ", ec.message()));
-      control_acceptor->listen();
-      accept_control();
+      operator_input.listen_for_control(*options.control_port);
       spdlog::info("master: control socket on 127.0.0.1:{} (zenith show control --port {} COMMAND)",
                    *options.control_port, *options.control_port);
     }
@@ -802,8 +744,7 @@ struct Master::Impl {
     spdlog::info("master: stopping: {}", reason);
     boost::system::error_code ec;
     acceptor.close(ec);
-    if (control_acceptor) control_acceptor->close(ec);
-    if (console_in) console_in->close(ec);
+    operator_input.close();
     if (signals) signals->cancel(ec);
     heartbeat_timer.cancel();
     barrier_timer.cancel();
