@@ -24,6 +24,7 @@
 #include "cluster/heartbeat.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/heartbeat_monitor.h"
+#include "cluster/master/node_sessions.h"
 #include "cluster/master/operator_input.h"
 #include "cluster/show/playback_clock.h"
 #include "cluster/show/show.h"
@@ -49,23 +50,6 @@ using core::ms_since;
 
 
 struct Master::Impl {
-  /// One node's connection.
-  struct Session {
-    std::uint32_t id = 0;
-    std::shared_ptr<Connection> connection;
-    std::optional<MasterHandshake> handshake;
-    enum class State { handshake, tables, ready } state = State::handshake;
-    std::string name;  ///< from Hello
-    /// The node's cache inventory: the TableReady messages it sends right after
-    /// Welcome, up to its first other message (a Heartbeat), name the sets it
-    /// already holds; those are announced to it but never sent again.
-    bool inventory_done = false;
-    std::set<Digest> cached;
-    std::set<Digest> tables_ready;  ///< TableReady after the inventory: held, verified and loaded
-    std::uint64_t chunks_sent = 0;
-    Clock::time_point connected_at = Clock::now();
-  };
-
   MasterOptions options;
   SharedSecret secret;
   scene::Scene scene;
@@ -107,8 +91,7 @@ struct Master::Impl {
   /// Installed once the tables are ready: until then SIGINT/SIGTERM end the process at once.
   std::optional<asio::signal_set> signals;
   asio::steady_timer heartbeat_timer{io}, barrier_timer{io}, frame_timer{io};
-  std::map<std::uint32_t, std::unique_ptr<Session>> sessions;
-  std::uint32_t next_id = 1;
+  NodeSessions sessions;  ///< every node connection, from accept to close
 
   // The frame loop.
   FrameBarrier barrier;  ///< the frame in flight (or the next one), its participants, lagging nodes
@@ -245,7 +228,7 @@ struct Master::Impl {
 
   /// Sends one set: the whole transfer, or only its TableAnnounce when the
   /// node's inventory holds it (the node then loads its cached copy).
-  void send_table_set(Session& s, const TableSetFile& set) {
+  void send_table_set(NodeSession& s, const TableSetFile& set) {
     if (auto d = definitions.find(set.table_hash); d != definitions.end()) s.connection->send_encoded(d->second);
     if (s.cached.count(set.table_hash)) {
       s.connection->send_encoded(set.frames.front());
@@ -256,7 +239,7 @@ struct Master::Impl {
   }
 
   /// The node's inventory is complete: send what it lacks.
-  void finish_inventory(Session& s) {
+  void finish_inventory(NodeSession& s) {
     s.inventory_done = true;
     const std::vector<Digest> wanted = wanted_sets();
     const std::uint64_t chunks_before = s.chunks_sent;
@@ -271,8 +254,8 @@ struct Master::Impl {
     maybe_become_ready(s);
   }
 
-  void maybe_become_ready(Session& s) {
-    if (s.state != Session::State::tables || !s.inventory_done) return;
+  void maybe_become_ready(NodeSession& s) {
+    if (s.state != NodeSession::State::tables || !s.inventory_done) return;
     for (const AtmosphereTableRef& r : table_refs)
       if (!s.tables_ready.count(r.table_hash)) return;
     for (const Digest& h : show_sets)
@@ -328,11 +311,11 @@ struct Master::Impl {
     pending->distributed = true;
     pending->distributed_at = Clock::now();
     std::size_t receivers = 0;
-    for (auto& [id, s] : sessions) {
-      if (s->state == Session::State::handshake || !s->inventory_done) continue;  // gets it with its inventory
-      send_table_set(*s, prepared);
+    sessions.for_each([&](NodeSession& s) {
+      if (s.state == NodeSession::State::handshake || !s.inventory_done) return;  // gets it with its inventory
+      send_table_set(s, prepared);
       ++receivers;
-    }
+    });
     spdlog::info("master: table version {} of '{}' prepared ({} bytes); sent to {} node{}", short_hex(pending->hash),
                  prepared.body_name, prepared.bytes->size(), receivers, receivers == 1 ? "" : "s");
     maybe_apply_pending();
@@ -342,11 +325,13 @@ struct Master::Impl {
   void maybe_apply_pending() {
     if (!pending || !pending->distributed || stopping) return;
     std::size_t ready = 0;
-    for (const auto& [id, s] : sessions) {
-      if (s->state != Session::State::ready) continue;
-      if (!s->tables_ready.count(pending->hash)) return;
+    bool all_hold_it = true;
+    sessions.for_each([&](const NodeSession& s) {
+      if (s.state != NodeSession::State::ready) return;
+      if (!s.tables_ready.count(pending->hash)) all_hold_it = false;
       ++ready;
-    }
+    });
+    if (!all_hold_it) return;
     AtmosphereTableRef& ref = table_refs[pending->ref_index];
     const std::uint64_t effective = barrier.next_boundary();
     spdlog::info("master: table version {} of '{}' takes effect at frame {} on all {} ready node{} (was {})",
@@ -356,10 +341,8 @@ struct Master::Impl {
     ref.effective_from_frame = effective;
     pending.reset();
     // Nodes still joining now need the new version (they were sent it) and no longer the old one.
-    std::vector<std::uint32_t> ids;
-    for (const auto& [id, s] : sessions) ids.push_back(id);
-    for (const std::uint32_t id : ids)
-      if (Session* s = find(id)) maybe_become_ready(*s);
+    for (const std::uint32_t id : sessions.ids())
+      if (NodeSession* s = sessions.find(id)) maybe_become_ready(*s);
     maybe_start_switch();
   }
 
@@ -373,13 +356,14 @@ struct Master::Impl {
     const double limit_ms = std::max(60000.0, static_cast<double>(options.config.barrier_timeout_ms));
     if (ms_since(pending->distributed_at) <= limit_ms) return;
     std::vector<std::shared_ptr<Connection>> late;
-    for (auto& [id, s] : sessions)
-      if (s->state == Session::State::ready && !s->tables_ready.count(pending->hash)) {
+    sessions.for_each([&](const NodeSession& s) {
+      if (s.state == NodeSession::State::ready && !s.tables_ready.count(pending->hash)) {
         spdlog::warn("master: node '{}' did not confirm table version {} within {:.0f} ms: disconnecting it so the "
                      "switch can take effect (it rejoins with the new version when it reconnects)",
-                     s->name, short_hex(pending->hash), limit_ms);
-        late.push_back(s->connection);
+                     s.name, short_hex(pending->hash), limit_ms);
+        late.push_back(s.connection);
       }
+    });
     for (const auto& connection : late) connection->close("table version not confirmed in time");
     maybe_apply_pending();
   }
@@ -399,99 +383,50 @@ struct Master::Impl {
     boost::system::error_code ec;
     const tcp::endpoint remote = socket.remote_endpoint(ec);
     const std::string peer = ec ? std::string("unknown peer") : cat(remote.address().to_string(), ":", remote.port());
-    auto session = std::make_unique<Session>();
-    session->id = next_id++;
-    session->handshake.emplace(secret, options.config.name);
-    session->connection = std::make_shared<Connection>(std::move(socket), peer);
-    const std::uint32_t id = session->id;
-    Session* raw = session.get();
-    sessions.emplace(id, std::move(session));
+    NodeSession& session = sessions.add(std::make_shared<Connection>(std::move(socket), peer),
+                                        MasterHandshake(secret, options.config.name));
+    const std::uint32_t id = session.id;
     spdlog::debug("master: connection from {}", peer);
-    raw->connection->start([this, id](Message&& m) { on_message(id, std::move(m)); },
-                           [this, id](const std::string& reason) { on_closed(id, reason); });
-  }
-
-  Session* find(std::uint32_t id) {
-    auto it = sessions.find(id);
-    return it == sessions.end() ? nullptr : it->second.get();
-  }
-
-  static std::string who(const Session& s) {
-    return s.name.empty() ? cat("connection from ", s.connection->peer()) : cat("node '", s.name, "' (", s.connection->peer(), ")");
-  }
-
-  void refuse(Session& s, RejectReason reason, const std::string& text) {
-    spdlog::warn("master: refused {}: {}", who(s), text);
-    s.connection->send(Reject{reason, text.substr(0, kMaxReasonBytes)});
-    s.connection->close_after_flush(cat("refused: ", text));
+    session.connection->start([this, id](Message&& m) { on_message(id, std::move(m)); },
+                              [this, id](const std::string& reason) { on_closed(id, reason); });
   }
 
   void on_closed(std::uint32_t id, const std::string& reason) {
-    auto it = sessions.find(id);
-    if (it == sessions.end()) return;
-    Session& s = *it->second;
+    NodeSession* found = sessions.find(id);
+    if (found == nullptr) return;
+    const NodeSession& s = *found;
     const bool bad_peer = reason.starts_with("protocol error") || reason.find("truncated") != std::string::npos;
-    if (s.state == Session::State::ready || !s.name.empty())
-      spdlog::log(stopping ? spdlog::level::info : spdlog::level::warn, "master: {} disconnected: {}", who(s), reason);
+    if (s.state == NodeSession::State::ready || !s.name.empty())
+      spdlog::log(stopping ? spdlog::level::info : spdlog::level::warn, "master: {} disconnected: {}", s.who(), reason);
     else
-      spdlog::log(bad_peer ? spdlog::level::warn : spdlog::level::info, "master: {} closed: {}", who(s), reason);
+      spdlog::log(bad_peer ? spdlog::level::warn : spdlog::level::info, "master: {} closed: {}", s.who(), reason);
     // Release the session after the connection's handlers have returned.
-    std::shared_ptr<Session> keep(it->second.release());
-    sessions.erase(it);
-    asio::post(io, [keep] {});
+    asio::post(io, [keep = sessions.take(id)] {});
     if (barrier.remove(id) && barrier.complete()) complete_frame();
     maybe_apply_pending();  // it may have been the last node without the pending version
   }
 
   void on_message(std::uint32_t id, Message&& message) {
-    Session* s = find(id);
+    NodeSession* s = sessions.find(id);
     if (s == nullptr) return;
     try {
-      if (s->state == Session::State::handshake) on_handshake_message(*s, message);
-      else on_running_message(*s, message);
+      if (s->state == NodeSession::State::handshake)
+        sessions.on_handshake_message(*s, message, options.config, barrier.frame());
+      else
+        on_running_message(*s, message);
     } catch (const HandshakeError& e) {
-      refuse(*s, e.reason(), e.what());
+      s->refuse(e.reason(), e.what());
     }
   }
 
-  void on_handshake_message(Session& s, const Message& message) {
-    if (const auto* hello = std::get_if<Hello>(&message)) {
-      s.name = hello->node_name;
-      const Challenge challenge = s.handshake->on_hello(*hello);  // wrong cluster / version
-      if (options.config.find_node(hello->node_name) == nullptr)
-        throw HandshakeError(RejectReason::unspecified,
-                             cat("node '", hello->node_name, "' is not in the cluster config ", options.config.source));
-      s.connection->send(challenge);
-    } else if (const auto* auth = std::get_if<Authenticate>(&message)) {
-      s.handshake->on_authenticate(*auth);  // wrong secret → HandshakeError
-      // A node that reconnects replaces its old connection (it proved the secret).
-      for (auto& [other_id, other] : sessions) {
-        if (other_id != s.id && other->name == s.name && other->state != Session::State::handshake) {
-          spdlog::warn("master: node '{}' reconnected from {}: closing its old connection", s.name, s.connection->peer());
-          other->connection->close("replaced by a new connection of the same node");
-          break;
-        }
-      }
-      s.connection->send(s.handshake->welcome(s.id, barrier.frame(), options.config.heartbeat_ms, options.config.barrier_timeout_ms));
-      s.state = Session::State::tables;
-      spdlog::info("master: node '{}' authenticated from {} (id {}); waiting for its table inventory", s.name,
-                   s.connection->peer(), s.id);
-    } else if (std::holds_alternative<Goodbye>(message)) {
-      s.connection->close(cat("Goodbye during the handshake: ", std::get<Goodbye>(message).reason));
-    } else {
-      throw HandshakeError(RejectReason::protocol_error,
-                           cat(to_string(message_type(message)), " before the handshake completed"));
-    }
-  }
-
-  void become_ready(Session& s) {
-    s.state = Session::State::ready;
+  void become_ready(NodeSession& s) {
+    s.state = NodeSession::State::ready;
     spdlog::info("master: node '{}' is ready: it joins the barrier at the next frame boundary (frame {})", s.name,
                  barrier.next_boundary());
     maybe_start_show();
   }
 
-  void on_running_message(Session& s, const Message& message) {
+  void on_running_message(NodeSession& s, const Message& message) {
     if (!s.inventory_done) {
       if (const auto* held = std::get_if<TableReady>(&message)) {
         s.cached.insert(held->table_hash);  // any set, even one this show does not use
@@ -505,7 +440,7 @@ struct Master::Impl {
           if constexpr (std::is_same_v<T, Heartbeat>) {
           } else if constexpr (std::is_same_v<T, TableReady>) {
             if (!table_sets.count(m.table_hash)) {
-              protocol_violation(s, "TableReady for a table set that was never sent");
+              s.close_for_protocol_violation("TableReady for a table set that was never sent");
               return;
             }
             s.tables_ready.insert(m.table_hash);
@@ -517,29 +452,17 @@ struct Master::Impl {
             spdlog::info("master: node '{}' said goodbye: {}", s.name, m.reason);
             s.connection->close(cat("Goodbye: ", m.reason));
           } else {
-            protocol_violation(s, cat(to_string(message_type(message)), " is not sent by nodes"));
+            s.close_for_protocol_violation(cat(to_string(message_type(message)), " is not sent by nodes"));
           }
         },
         message);
   }
 
-  void protocol_violation(Session& s, const std::string& what) {
-    spdlog::warn("master: closing {}: {}", who(s), what);
-    s.connection->send(Goodbye{cat("protocol error: ", what).substr(0, kMaxReasonBytes)});
-    s.connection->close_after_flush(cat("protocol error: ", what));
-  }
-
   // ---- the frame loop -------------------------------------------------------
-
-  std::size_t ready_count() const {
-    return static_cast<std::size_t>(std::count_if(sessions.begin(), sessions.end(), [](const auto& p) {
-      return p.second->state == Session::State::ready;
-    }));
-  }
 
   void maybe_start_show() {
     if (started || stopping) return;
-    const std::size_t ready = ready_count();
+    const std::size_t ready = sessions.ready_count();
     const bool waited = ms_since(waiting_since) >= options.wait_for_nodes_ms;
     if (ready == options.config.nodes.size() || (waited && ready > 0)) {
       started = true;
@@ -556,10 +479,7 @@ struct Master::Impl {
 
   void start_frame() {
     if (stopping) return;
-    std::vector<std::uint32_t> ready;
-    for (auto& [id, s] : sessions)
-      if (s->state == Session::State::ready && s->connection->is_open()) ready.push_back(id);
-    const std::vector<std::uint32_t> participants = barrier.participants_among(ready);
+    const std::vector<std::uint32_t> participants = barrier.participants_among(sessions.ready_ids());
     if (participants.empty()) {
       if (!waiting_logged) spdlog::warn("master: no node is ready for frame {}; waiting", barrier.frame());
       waiting_logged = true;
@@ -590,7 +510,7 @@ struct Master::Impl {
       if (!show) frame_in_flight.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
     }
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
-    for (const std::uint32_t id : participants) sessions.at(id)->connection->send_encoded(encoded);
+    for (const std::uint32_t id : participants) sessions.find(id)->connection->send_encoded(encoded);
     barrier.begin(frame, participants);
     frame_started = Clock::now();
     spdlog::debug("master: frame {} sent to {} node{}", frame, participants.size(), participants.size() == 1 ? "" : "s");
@@ -600,7 +520,7 @@ struct Master::Impl {
     });
   }
 
-  void on_render_done(Session& s, const RenderDone& done) {
+  void on_render_done(NodeSession& s, const RenderDone& done) {
     switch (barrier.on_render_done(s.id, done.frame)) {
       case FrameBarrier::Report::counted:
         if (barrier.complete()) complete_frame();
@@ -619,7 +539,7 @@ struct Master::Impl {
 
   void on_barrier_timeout() {
     for (const std::uint32_t id : barrier.drop_unfinished())
-      if (const Session* s = find(id))
+      if (const NodeSession* s = sessions.find(id))
         spdlog::warn("master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
                      "barrier; the show goes on without it",
                      s->name, barrier.frame(), options.config.barrier_timeout_ms);
@@ -633,7 +553,7 @@ struct Master::Impl {
     const Present present{frame};
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(present));
     for (const std::uint32_t id : release.present_to)
-      if (Session* s = find(id)) s->connection->send_encoded(encoded);
+      if (NodeSession* s = sessions.find(id)) s->connection->send_encoded(encoded);
     spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, release.present_to.size(),
                  release.present_to.size() == 1 ? "" : "s", ms_since(frame_started));
     if (recorder) {
@@ -705,20 +625,18 @@ struct Master::Impl {
   void heartbeat_tick() {
     const auto now = Clock::now();
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(heartbeat_at(now)));
-    std::vector<std::uint32_t> ids;
-    for (auto& [id, s] : sessions) ids.push_back(id);
-    for (const std::uint32_t id : ids) {
-      Session* s = find(id);
+    for (const std::uint32_t id : sessions.ids()) {
+      NodeSession* s = sessions.find(id);
       if (s == nullptr || !s->connection->is_open()) continue;
-      switch (heartbeats.check(s->state == Session::State::handshake, s->connected_at, s->connection->last_received(),
+      switch (heartbeats.check(s->state == NodeSession::State::handshake, s->connected_at, s->connection->last_received(),
                                now)) {
         case HeartbeatMonitor::Verdict::awaiting_handshake: break;
         case HeartbeatMonitor::Verdict::handshake_overdue:
-          spdlog::warn("master: closing {}: no handshake within {:.0f} ms", who(*s), heartbeats.handshake_limit_ms());
+          spdlog::warn("master: closing {}: no handshake within {:.0f} ms", s->who(), heartbeats.handshake_limit_ms());
           s->connection->close("handshake timeout");
           break;
         case HeartbeatMonitor::Verdict::silent:
-          spdlog::warn("master: closing {}: nothing received for {:.0f} ms", who(*s), heartbeats.silence_limit_ms());
+          spdlog::warn("master: closing {}: nothing received for {:.0f} ms", s->who(), heartbeats.silence_limit_ms());
           s->connection->close("heartbeat timeout");
           break;
         case HeartbeatMonitor::Verdict::send_heartbeat: s->connection->send_encoded(encoded); break;
@@ -751,7 +669,9 @@ struct Master::Impl {
     frame_timer.cancel();
     // Closing may erase a session (its close handler): work on a copy.
     std::vector<std::pair<std::shared_ptr<Connection>, bool>> connections;
-    for (auto& [id, s] : sessions) connections.emplace_back(s->connection, s->state == Session::State::handshake);
+    sessions.for_each([&](const NodeSession& s) {
+      connections.emplace_back(s.connection, s.state == NodeSession::State::handshake);
+    });
     for (auto& [connection, in_handshake] : connections) {
       if (in_handshake) connection->send(Reject{RejectReason::shutting_down, "the master is stopping"});
       else connection->send(Goodbye{reason});
