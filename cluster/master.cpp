@@ -26,6 +26,7 @@
 #include "cluster/master/heartbeat_monitor.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/operator_input.h"
+#include "cluster/master/table_versions.h"
 #include "cluster/show/playback_clock.h"
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
@@ -53,36 +54,17 @@ struct Master::Impl {
   MasterOptions options;
   SharedSecret secret;
   scene::Scene scene;
-  /// Every table set prepared so far (current, pending and superseded versions), by table hash.
-  std::map<Digest, TableSetFile> table_sets;
-  /// The current version of every atmosphere, as FrameStates carry it.
-  std::vector<AtmosphereTableRef> table_refs;
-
-  /// A new table version on its way (docs/cluster.md, "Table versions"):
-  /// prepared on `worker` while frames go on with the old one, then sent to
-  /// every node; it takes effect once every ready node sent TableReady for it.
-  struct PendingVersion {
-    std::size_t ref_index = 0;  ///< into table_refs
-    Digest hash{};
-    bool distributed = false;   ///< prepared and sent to the nodes
-    Clock::time_point distributed_at{};
-  };
-  std::optional<PendingVersion> pending;
+  /// Table sets, the current version of every atmosphere, the pending one
+  /// (prepared on `worker` while frames go on with the old one).
+  TableVersions tables;
   std::size_t next_switch = 0;  ///< into options.atmosphere_switches (sorted by frame)
   std::thread worker;
   std::uint32_t render_flags = 0;
-
-  /// Every atmosphere version prepared so far (the scene's, switches', the
-  /// show's), by table hash: for AtmosphereDefinitions and the recording.
-  std::map<Digest, show::AtmosphereVersion> versions;
-  /// Encoded AtmosphereDefinition of each version, sent before its TableAnnounce.
-  std::map<Digest, std::shared_ptr<const std::vector<std::uint8_t>>> definitions;
 
   // ---- the show (docs/shows.md) ----
   std::optional<show::Show> show;
   std::optional<show::PlaybackClock> clock;
   double fps = 30.0;             ///< frames per second of show time (and of pacing)
-  std::vector<Digest> show_sets; ///< with a show: every table set it uses, all distributed before frame 0
   std::unique_ptr<show::ShowRecorder> recorder;
   FrameState frame_in_flight;    ///< the state of the frame in flight (recorded once presented)
 
@@ -133,7 +115,7 @@ struct Master::Impl {
   /// The atmosphere a switch names, resolved at the scene's wavelengths and
   /// checked against its body. Throws std::invalid_argument / ConfigError.
   std::pair<std::size_t, atmosphere::LoadedAtmosphere> resolve_switch(const AtmosphereSwitch& sw) const {
-    // table_refs lists the bodies with an atmosphere in scene order (prepare_tables).
+    // tables.current() lists the bodies with an atmosphere in scene order (prepare_tables).
     std::optional<std::size_t> index;
     std::size_t with_atmosphere = 0;
     for (const scene::Body& body : scene.bodies) {
@@ -157,19 +139,6 @@ struct Master::Impl {
     return {*index, std::move(loaded)};
   }
 
-  /// Remembers a version and encodes its AtmosphereDefinition.
-  void add_version(const std::string& body, const atmosphere::LoadedAtmosphere& loaded, const Digest& hash) {
-    if (versions.count(hash)) return;
-    show::AtmosphereVersion v;
-    v.body = body;
-    v.parameters = loaded.parameters;
-    v.table_hash = hash;
-    v.loaded = loaded;
-    definitions.emplace(hash, std::make_shared<const std::vector<std::uint8_t>>(
-                                  encode(AtmosphereDefinition{body, hash, loaded.parameters.dump()})));
-    versions.emplace(hash, std::move(v));
-  }
-
   // ---- preparation ----------------------------------------------------------
 
   void prepare_tables() {
@@ -178,15 +147,11 @@ struct Master::Impl {
     for (const scene::Body& body : scene.bodies) {
       if (!body.atmosphere) continue;
       TableSetFile set = obtain_table_set(body.name, body.atmosphere->loaded.model, request);
-      AtmosphereTableRef ref;
-      ref.body_name = body.name;
-      ref.table_hash = set.table_hash;
-      ref.effective_from_frame = 0;
-      table_refs.push_back(ref);
-      add_version(body.name, body.atmosphere->loaded, set.table_hash);
+      tables.add_current(body.name, set.table_hash);
+      tables.add_version(body.name, body.atmosphere->loaded, set.table_hash);
       spdlog::info("master: tables of '{}' ready to share: version {} ({} bytes, sha256 {}…)", body.name,
                    short_hex(set.table_hash), set.bytes->size(), to_hex(set.content_sha256).substr(0, 12));
-      table_sets.insert_or_assign(set.table_hash, std::move(set));
+      tables.add_set(std::move(set));
     }
   }
 
@@ -199,37 +164,27 @@ struct Master::Impl {
                           atmosphere::lut::TableCache(request.cache_directory.value_or(atmosphere::lut::default_cache_directory())));
     spdlog::info("master: show '{}' at {} fps needs {} table set{} ({} to precompute):\n{}", show->name(), fps,
                  plan.sets.size(), plan.sets.size() == 1 ? "" : "s", plan.missing(), show::describe(plan));
+    std::vector<Digest> show_sets;  // every set it uses, all distributed before frame 0
     std::size_t index = 0;
     for (const show::TablePlanEntry& entry : plan.sets) {
       ++index;
       const auto t0 = Clock::now();
       TableSetFile set = obtain_table_set(entry.version.body, entry.version.loaded.model, request);
-      add_version(entry.version.body, entry.version.loaded, set.table_hash);
+      tables.add_version(entry.version.body, entry.version.loaded, set.table_hash);
       show_sets.push_back(set.table_hash);
       spdlog::info("master: table set {} of {} ('{}', version {}) ready ({:.1f} s)", index, plan.sets.size(),
                    entry.version.body, short_hex(set.table_hash), ms_since(t0) / 1000.0);
-      table_sets.insert_or_assign(set.table_hash, std::move(set));
+      tables.add_set(std::move(set));
     }
-    table_refs = show->state_at(0.0, 0, render_flags).atmospheres;
+    tables.use_show_sets(std::move(show_sets), show->state_at(0.0, 0, render_flags).atmospheres);
   }
 
   // ---- table versions -------------------------------------------------------
 
-  /// The sets a node must hold: the current versions and a distributed pending one.
-  std::vector<Digest> wanted_sets() const {
-    if (show) return show_sets;
-    std::vector<Digest> wanted;
-    for (const AtmosphereTableRef& r : table_refs)
-      if (std::find(wanted.begin(), wanted.end(), r.table_hash) == wanted.end()) wanted.push_back(r.table_hash);
-    if (pending && pending->distributed && std::find(wanted.begin(), wanted.end(), pending->hash) == wanted.end())
-      wanted.push_back(pending->hash);
-    return wanted;
-  }
-
   /// Sends one set: the whole transfer, or only its TableAnnounce when the
   /// node's inventory holds it (the node then loads its cached copy).
   void send_table_set(NodeSession& s, const TableSetFile& set) {
-    if (auto d = definitions.find(set.table_hash); d != definitions.end()) s.connection->send_encoded(d->second);
+    if (auto definition = tables.definition(set.table_hash)) s.connection->send_encoded(definition);
     if (s.cached.count(set.table_hash)) {
       s.connection->send_encoded(set.frames.front());
       return;
@@ -241,12 +196,12 @@ struct Master::Impl {
   /// The node's inventory is complete: send what it lacks.
   void finish_inventory(NodeSession& s) {
     s.inventory_done = true;
-    const std::vector<Digest> wanted = wanted_sets();
+    const std::vector<Digest> wanted = tables.wanted_sets();
     const std::uint64_t chunks_before = s.chunks_sent;
     std::size_t cached = 0;
     for (const Digest& h : wanted) {
       cached += s.cached.count(h);
-      send_table_set(s, table_sets.at(h));
+      send_table_set(s, tables.set(h));
     }
     spdlog::info("master: node '{}' holds {} of its {} table set{} in its cache: sent {} table chunk{}", s.name, cached,
                  wanted.size(), wanted.size() == 1 ? "" : "s", s.chunks_sent - chunks_before,
@@ -256,35 +211,30 @@ struct Master::Impl {
 
   void maybe_become_ready(NodeSession& s) {
     if (s.state != NodeSession::State::tables || !s.inventory_done) return;
-    for (const AtmosphereTableRef& r : table_refs)
-      if (!s.tables_ready.count(r.table_hash)) return;
-    for (const Digest& h : show_sets)
-      if (!s.tables_ready.count(h)) return;
-    become_ready(s);
+    if (tables.ready_with(s.tables_ready)) become_ready(s);
   }
 
   /// Starts the next switch whose frame has come (one version in flight at a time).
   void maybe_start_switch() {
-    if (pending || next_switch >= options.atmosphere_switches.size()) return;
+    if (tables.pending() || next_switch >= options.atmosphere_switches.size()) return;
     const AtmosphereSwitch& sw = options.atmosphere_switches[next_switch];
     const std::uint64_t frame = barrier.frame();
     if (sw.frame > frame) return;
     ++next_switch;
     auto [index, loaded] = resolve_switch(sw);  // checked at start-up: does not throw here
     const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
-    if (hash == table_refs[index].table_hash) {
+    if (hash == tables.current()[index].table_hash) {
       spdlog::info("master: frame {}: '{}' already uses {}; nothing to switch", frame, sw.body, sw.atmosphere);
       maybe_start_switch();
       return;
     }
-    add_version(sw.body, loaded, hash);
-    pending = PendingVersion{index, hash, false};
+    tables.add_version(sw.body, loaded, hash);
+    tables.begin_pending(index, hash);
     spdlog::info("master: frame {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
                  "version {}",
-                 frame, short_hex(hash), sw.body, sw.atmosphere, short_hex(table_refs[index].table_hash));
+                 frame, short_hex(hash), sw.body, sw.atmosphere, short_hex(tables.current()[index].table_hash));
     if (worker.joinable()) worker.join();  // the previous switch's worker has posted its result already
-    auto known = table_sets.find(hash);
-    if (known != table_sets.end()) {  // an earlier version again: already encoded
+    if (tables.has_set(hash)) {  // an earlier version again: already encoded
       asio::post(io, [this] { on_version_prepared(std::nullopt); });
       return;
     }
@@ -296,7 +246,7 @@ struct Master::Impl {
         asio::post(io, [this, what = std::string(e.what())] {
           spdlog::error("master: the new tables could not be prepared: {}; the show goes on with the current version",
                         what);
-          pending.reset();
+          tables.abandon_pending();
           maybe_start_switch();
         });
       }
@@ -305,41 +255,39 @@ struct Master::Impl {
 
   /// Networking thread: the pending version's tables are ready; send them to every node.
   void on_version_prepared(std::optional<TableSetFile> set) {
-    if (!pending || stopping) return;
-    if (set) table_sets.insert_or_assign(set->table_hash, std::move(*set));
-    const TableSetFile& prepared = table_sets.at(pending->hash);
-    pending->distributed = true;
-    pending->distributed_at = Clock::now();
+    if (!tables.pending() || stopping) return;
+    if (set) tables.add_set(std::move(*set));
+    const Digest hash = tables.pending()->hash;
+    const TableSetFile& prepared = tables.set(hash);
+    tables.mark_distributed(Clock::now());
     std::size_t receivers = 0;
     sessions.for_each([&](NodeSession& s) {
       if (s.state == NodeSession::State::handshake || !s.inventory_done) return;  // gets it with its inventory
       send_table_set(s, prepared);
       ++receivers;
     });
-    spdlog::info("master: table version {} of '{}' prepared ({} bytes); sent to {} node{}", short_hex(pending->hash),
+    spdlog::info("master: table version {} of '{}' prepared ({} bytes); sent to {} node{}", short_hex(hash),
                  prepared.body_name, prepared.bytes->size(), receivers, receivers == 1 ? "" : "s");
     maybe_apply_pending();
   }
 
   /// Once every ready node holds the pending version, it takes effect at the next frame to start.
   void maybe_apply_pending() {
-    if (!pending || !pending->distributed || stopping) return;
+    if (!tables.pending() || !tables.pending()->distributed || stopping) return;
+    const Digest hash = tables.pending()->hash;
     std::size_t ready = 0;
     bool all_hold_it = true;
     sessions.for_each([&](const NodeSession& s) {
       if (s.state != NodeSession::State::ready) return;
-      if (!s.tables_ready.count(pending->hash)) all_hold_it = false;
+      if (!s.tables_ready.count(hash)) all_hold_it = false;
       ++ready;
     });
     if (!all_hold_it) return;
-    AtmosphereTableRef& ref = table_refs[pending->ref_index];
     const std::uint64_t effective = barrier.next_boundary();
+    const AtmosphereTableRef before = tables.apply_pending(effective);
     spdlog::info("master: table version {} of '{}' takes effect at frame {} on all {} ready node{} (was {})",
-                 short_hex(pending->hash), ref.body_name, effective, ready, ready == 1 ? "" : "s",
-                 short_hex(ref.table_hash));
-    ref.table_hash = pending->hash;
-    ref.effective_from_frame = effective;
-    pending.reset();
+                 short_hex(hash), before.body_name, effective, ready, ready == 1 ? "" : "s",
+                 short_hex(before.table_hash));
     // Nodes still joining now need the new version (they were sent it) and no longer the old one.
     for (const std::uint32_t id : sessions.ids())
       if (NodeSession* s = sessions.find(id)) maybe_become_ready(*s);
@@ -352,15 +300,16 @@ struct Master::Impl {
   /// naming it, the switch goes ahead on the others, and the node rejoins at a
   /// frame boundary with the new version when it reconnects.
   void check_pending_confirmations() {
-    if (!pending || !pending->distributed || stopping) return;
+    if (!tables.pending() || !tables.pending()->distributed || stopping) return;
+    const Digest hash = tables.pending()->hash;
     const double limit_ms = std::max(60000.0, static_cast<double>(options.config.barrier_timeout_ms));
-    if (ms_since(pending->distributed_at) <= limit_ms) return;
+    if (ms_since(tables.pending()->distributed_at) <= limit_ms) return;
     std::vector<std::shared_ptr<Connection>> late;
     sessions.for_each([&](const NodeSession& s) {
-      if (s.state == NodeSession::State::ready && !s.tables_ready.count(pending->hash)) {
+      if (s.state == NodeSession::State::ready && !s.tables_ready.count(hash)) {
         spdlog::warn("master: node '{}' did not confirm table version {} within {:.0f} ms: disconnecting it so the "
                      "switch can take effect (it rejoins with the new version when it reconnects)",
-                     s.name, short_hex(pending->hash), limit_ms);
+                     s.name, short_hex(hash), limit_ms);
         late.push_back(s.connection);
       }
     });
@@ -439,7 +388,7 @@ struct Master::Impl {
           using T = std::decay_t<decltype(m)>;
           if constexpr (std::is_same_v<T, Heartbeat>) {
           } else if constexpr (std::is_same_v<T, TableReady>) {
-            if (!table_sets.count(m.table_hash)) {
+            if (!tables.has_set(m.table_hash)) {
               s.close_for_protocol_violation("TableReady for a table set that was never sent");
               return;
             }
@@ -506,7 +455,7 @@ struct Master::Impl {
       frame = frame_in_flight.frame;
     } else {
       frame_in_flight = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
-                           : default_show_frame(scene, frame, options.sun_step_deg, table_refs, render_flags);
+                           : default_show_frame(scene, frame, options.sun_step_deg, tables.current(), render_flags);
       if (!show) frame_in_flight.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
     }
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
@@ -557,7 +506,7 @@ struct Master::Impl {
     spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, release.present_to.size(),
                  release.present_to.size() == 1 ? "" : "s", ms_since(frame_started));
     if (recorder) {
-      for (const AtmosphereTableRef& r : frame_in_flight.atmospheres) recorder->add_version(versions.at(r.table_hash));
+      for (const AtmosphereTableRef& r : frame_in_flight.atmospheres) recorder->add_version(tables.version(r.table_hash));
       recorder->record(frame_in_flight);
     }
     if (options.feed) options.feed->presented(frame);
