@@ -29,6 +29,7 @@
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
 #include "cluster/heartbeat.h"
+#include "cluster/node/known_atmospheres.h"
 #include "cluster/table_transfer.h"
 #include "render/gl/egl_context.h"
 #include "image/image_writer.h"
@@ -71,18 +72,8 @@ struct Node::Impl {
   scene::Scene base_scene;
   warp::ViewportConfig viewports;
   std::vector<std::size_t> outputs;  ///< indices into viewports.outputs
-  /// Every atmosphere this node can render, by table hash: the scene's, the
-  /// presets that fit a body, and NodeOptions::atmosphere_files. Built before
-  /// the threads start and read-only after, so both threads use it.
-  struct KnownAtmosphere {
-    std::string body;
-    atmosphere::LoadedAtmosphere loaded;
-  };
-  /// The network thread adds AtmosphereDefinitions while the render thread
-  /// looks versions up: lookups and inserts hold known_mutex; entries are
-  /// never changed or erased, so references to them stay valid.
-  std::map<Digest, KnownAtmosphere> known_tables;
-  mutable std::mutex known_mutex;
+  /// Every atmosphere this node can render, by table hash (both threads use it).
+  KnownAtmospheres atmospheres{base_scene, options.cache_directory, options.node_name};
   atmosphere::lut::PrecomputeOptions table_options;
   std::filesystem::path node_directory;
 
@@ -122,16 +113,6 @@ struct Node::Impl {
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> partials;  ///< partial → final
 
   Impl(NodeOptions o, SharedSecret s) : options(std::move(o)), secret(std::move(s)) {}
-
-  /// The atmosphere of table version `hash`; throws std::out_of_range if unknown.
-  const KnownAtmosphere& known(const Digest& hash) const {
-    std::lock_guard lock(known_mutex);
-    return known_tables.at(hash);
-  }
-  bool knows(const Digest& hash) const {
-    std::lock_guard lock(known_mutex);
-    return known_tables.count(hash) > 0;
-  }
 
   void push(Job job) {
     {
@@ -253,7 +234,7 @@ struct Node::Impl {
     } else if (const auto* p = std::get_if<Present>(&message)) {
       push(Job{Job::Kind::present, {}, p->frame, {}});
     } else if (const auto* a = std::get_if<TableAnnounce>(&message)) {
-      if (!knows(a->table_hash))
+      if (!atmospheres.knows(a->table_hash))
         throw std::runtime_error(cat("TableAnnounce of table set ", to_hex(a->table_hash).substr(0, 12),
                                      "…, which no atmosphere this node knows uses (the scene's, the presets, the atmosphere "
                                      "files it was given: do master and node read the same scene and files?)"));
@@ -265,7 +246,7 @@ struct Node::Impl {
         receiver.on_announce(*a);
       }
     } else if (const auto* d = std::get_if<AtmosphereDefinition>(&message)) {
-      define_atmosphere(*d, true);
+      atmospheres.define(*d, true);
     } else if (const auto* c = std::get_if<TableChunk>(&message)) {
       if (std::optional<std::vector<std::uint8_t>> bytes = receiver.on_chunk(*c)) store_tables(c->table_hash, *bytes);
     } else if (std::holds_alternative<Heartbeat>(message)) {
@@ -279,71 +260,8 @@ struct Node::Impl {
     }
   }
 
-  /// Where received definitions are kept, so that after a restart the node
-  /// knows (and declares in its inventory) the versions it has cached.
-  std::filesystem::path definitions_directory() const { return options.cache_directory / "definitions"; }
-
-  /// An AtmosphereDefinition from the master (or one kept from an earlier
-  /// run): resolves the parameters at the scene's wavelengths, checks the body
-  /// and the hash, and adds the version to known_tables. Throws naming the
-  /// body and both hashes.
-  void define_atmosphere(const AtmosphereDefinition& d, bool keep) {
-    const scene::Body* body = base_scene.find_body(d.body_name);
-    if (body == nullptr || !body->atmosphere)
-      throw std::runtime_error(cat("AtmosphereDefinition for body '", d.body_name, "', which has no atmosphere in ",
-                                   base_scene.source.string()));
-    nlohmann::json parameters;
-    try {
-      parameters = nlohmann::json::parse(d.parameters_json);
-    } catch (const nlohmann::json::exception& e) {
-      throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': not JSON: ", e.what()));
-    }
-    atmosphere::LoadedAtmosphere loaded = atmosphere::resolve_atmosphere(
-        parameters, cat("the master's definition of the atmosphere of '", d.body_name, "'"),
-        atmosphere::LoadOptions{base_scene.wavelengths_nm});
-    if (std::abs(loaded.model.ground_radius_m - body->radius_m) > 1.0)
-      throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': ground radius ",
-                                   loaded.model.ground_radius_m, " m, the body's radius is ", body->radius_m, " m"));
-    const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
-    if (hash != d.table_hash)
-      throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': the parameters hash to ",
-                                   short_hex(hash), " here, the master says ", short_hex(d.table_hash),
-                                   " (do master and node read the same scene, with the same wavelengths?)"));
-    bool added = false;
-    {
-      std::lock_guard lock(known_mutex);
-      added = known_tables.emplace(hash, KnownAtmosphere{d.body_name, std::move(loaded)}).second;
-    }
-    if (added) spdlog::debug("node '{}': atmosphere version {} of '{}' defined", options.node_name, short_hex(hash), d.body_name);
-    if (keep && added) {
-      std::filesystem::create_directories(definitions_directory());
-      const std::string text = nlohmann::json{{"body", d.body_name}, {"parameters", parameters}}.dump(1);
-      write_file_atomically(definitions_directory() / (to_hex(hash) + ".json"),
-                            std::vector<std::uint8_t>(text.begin(), text.end()));
-    }
-  }
-
-  /// Definitions kept by earlier runs; an unreadable or stale one is skipped with a log line.
-  void load_kept_definitions() {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(definitions_directory(), ec)) return;
-    for (const auto& entry : std::filesystem::directory_iterator(definitions_directory(), ec)) {
-      if (entry.path().extension() != ".json") continue;
-      try {
-        std::ifstream in(entry.path());
-        const nlohmann::json kept = nlohmann::json::parse(in);
-        define_atmosphere(AtmosphereDefinition{kept.at("body").get<std::string>(),
-                                               digest_from_hex(entry.path().stem().string()),
-                                               kept.at("parameters").dump()},
-                          false);
-      } catch (const std::exception& e) {
-        spdlog::debug("node '{}': kept definition {} not used: {}", options.node_name, entry.path().string(), e.what());
-      }
-    }
-  }
-
   void store_tables(const Digest& hash, const std::vector<std::uint8_t>& bytes) {
-    const KnownAtmosphere& known = this->known(hash);
+    const KnownAtmospheres::Entry& known = atmospheres.find(hash);
     const atmosphere::lut::TableCache cache(options.cache_directory);
     const auto path = cache.path_for(atmosphere::lut::table_set_key(known.loaded.model, table_options));
     write_file_atomically(path, bytes);
@@ -359,12 +277,7 @@ struct Node::Impl {
   /// ends the inventory. The master sends such sets as a bare TableAnnounce.
   void send_inventory() {
     const atmosphere::lut::TableCache cache(options.cache_directory);
-    std::map<Digest, KnownAtmosphere> snapshot;
-    {
-      std::lock_guard lock(known_mutex);
-      snapshot = known_tables;
-    }
-    for (const auto& [hash, known] : snapshot) {
+    for (const auto& [hash, known] : atmospheres.snapshot()) {
       const auto path = cache.path_for(atmosphere::lut::table_set_key(known.loaded.model, table_options));
       std::error_code ec;
       if (!std::filesystem::exists(path, ec)) continue;
@@ -559,7 +472,7 @@ struct Node::Impl {
 
   /// The scene with body `body`'s atmosphere replaced by table version `hash`.
   void use_table_version(scene::Scene& scene, const std::string& body, const Digest& hash) const {
-    const KnownAtmosphere& known = this->known(hash);
+    const KnownAtmospheres::Entry& known = atmospheres.find(hash);
     for (scene::Body& b : scene.bodies)
       if (b.name == body && b.atmosphere) {
         b.atmosphere->loaded = known.loaded;
@@ -621,14 +534,14 @@ struct Node::Impl {
     ensure_renderer(render_flags_of(render::RenderOptions{}));
     const auto t0 = Clock::now();
     scene::Scene scene = base_scene;
-    use_table_version(scene, known(hash).body, hash);
+    use_table_version(scene, atmospheres.find(hash).body, hash);
     for (const std::size_t i : outputs) {
       renderer->render_image(scene, *viewports.outputs[i].projection);
       if (warmed_up) break;
     }
     warmed_up = true;
     spdlog::info("node '{}': tables of '{}' version {} loaded and rendered once ({:.0f} ms)", options.node_name,
-                 known(hash).body, short_hex(hash), ms_since(t0));
+                 atmospheres.find(hash).body, short_hex(hash), ms_since(t0));
     asio::post(io, [this, hash] { send_table_ready(hash); });
   }
 
@@ -675,32 +588,6 @@ struct Node::Impl {
 
   // =========================================================================
 
-  /// known_tables: for each body with an atmosphere, the scene's atmosphere,
-  /// every preset and every --atmosphere file that fits it (ground radius).
-  void build_known_tables() {
-    const atmosphere::LoadOptions load_options{base_scene.wavelengths_nm};
-    std::vector<atmosphere::LoadedAtmosphere> candidates;
-    for (const std::string& name : atmosphere::preset_names()) {
-      try {
-        candidates.push_back(atmosphere::load_preset(name, load_options));
-      } catch (const std::exception& e) {
-        spdlog::debug("node '{}': preset {} not usable here: {}", options.node_name, name, e.what());
-      }
-    }
-    for (const std::filesystem::path& file : options.atmosphere_files)
-      candidates.push_back(atmosphere::load_atmosphere_file(file.string(), load_options));  // errors are fatal
-    for (const scene::Body& body : base_scene.bodies) {
-      if (!body.atmosphere) continue;
-      auto add = [&](const atmosphere::LoadedAtmosphere& loaded) {
-        known_tables.emplace(digest_from_hex(atmosphere::lookup_table_hash(loaded.model)),
-                             KnownAtmosphere{body.name, loaded});
-      };
-      add(body.atmosphere->loaded);
-      for (const atmosphere::LoadedAtmosphere& c : candidates)
-        if (std::abs(c.model.ground_radius_m - body.radius_m) <= 1.0) add(c);
-    }
-  }
-
   int run() {
     const ClusterNodeConfig* me = options.config.find_node(options.node_name);
     if (me == nullptr)
@@ -711,8 +598,8 @@ struct Node::Impl {
     rendered_display.resize(outputs.size());
     table_options.sizes = render::table_sizes_by_name(options.config.table_sizes);
     table_options.max_orders = options.config.table_orders;
-    build_known_tables();
-    load_kept_definitions();
+    atmospheres.add_scene_and_candidates(options.atmosphere_files);
+    atmospheres.load_kept_definitions();
     node_directory = options.layout == FrameFileLayout::offline
                          ? options.output_directory / "nodes" / options.node_name
                          : options.output_directory / options.node_name;
