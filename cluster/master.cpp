@@ -11,22 +11,22 @@
 #include <sstream>
 #include <thread>
 
-#include <unistd.h>
-
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
-#include <boost/asio/posix/stream_descriptor.hpp>
 #include <boost/asio/post.hpp>
-#include <boost/asio/read_until.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <boost/asio/streambuf.hpp>
-#include <boost/asio/write.hpp>
 
 #include "render/lut/table_provider.h"
 #include "atmosphere/model_hash.h"
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
+#include "cluster/heartbeat.h"
+#include "cluster/master/frame_barrier.h"
+#include "cluster/master/heartbeat_monitor.h"
+#include "cluster/master/node_sessions.h"
+#include "cluster/master/operator_input.h"
+#include "cluster/master/table_versions.h"
 #include "cluster/show/playback_clock.h"
 #include "cluster/show/show.h"
 #include "cluster/show/table_plan.h"
@@ -51,75 +51,35 @@ using core::ms_since;
 
 
 struct Master::Impl {
-  /// One node's connection.
-  struct Session {
-    std::uint32_t id = 0;
-    std::shared_ptr<Connection> connection;
-    std::optional<MasterHandshake> handshake;
-    enum class State { handshake, tables, ready } state = State::handshake;
-    std::string name;  ///< from Hello
-    /// The node's cache inventory: the TableReady messages it sends right after
-    /// Welcome, up to its first other message (a Heartbeat), name the sets it
-    /// already holds; those are announced to it but never sent again.
-    bool inventory_done = false;
-    std::set<Digest> cached;
-    std::set<Digest> tables_ready;  ///< TableReady after the inventory: held, verified and loaded
-    std::uint64_t chunks_sent = 0;
-    bool lagging = false;  ///< dropped from a barrier; back at the next boundary once it reports
-    Clock::time_point connected_at = Clock::now();
-  };
-
   MasterOptions options;
   SharedSecret secret;
   scene::Scene scene;
-  /// Every table set prepared so far (current, pending and superseded versions), by table hash.
-  std::map<Digest, TableSetFile> table_sets;
-  /// The current version of every atmosphere, as FrameStates carry it.
-  std::vector<AtmosphereTableRef> table_refs;
-
-  /// A new table version on its way (docs/cluster.md, "Table versions"):
-  /// prepared on `worker` while frames go on with the old one, then sent to
-  /// every node; it takes effect once every ready node sent TableReady for it.
-  struct PendingVersion {
-    std::size_t ref_index = 0;  ///< into table_refs
-    Digest hash{};
-    bool distributed = false;   ///< prepared and sent to the nodes
-    Clock::time_point distributed_at{};
-  };
-  std::optional<PendingVersion> pending;
+  /// Table sets, the current version of every atmosphere, the pending one
+  /// (prepared on `worker` while frames go on with the old one).
+  TableVersions tables;
   std::size_t next_switch = 0;  ///< into options.atmosphere_switches (sorted by frame)
   std::thread worker;
   std::uint32_t render_flags = 0;
-
-  /// Every atmosphere version prepared so far (the scene's, switches', the
-  /// show's), by table hash: for AtmosphereDefinitions and the recording.
-  std::map<Digest, show::AtmosphereVersion> versions;
-  /// Encoded AtmosphereDefinition of each version, sent before its TableAnnounce.
-  std::map<Digest, std::shared_ptr<const std::vector<std::uint8_t>>> definitions;
 
   // ---- the show (docs/shows.md) ----
   std::optional<show::Show> show;
   std::optional<show::PlaybackClock> clock;
   double fps = 30.0;             ///< frames per second of show time (and of pacing)
-  std::vector<Digest> show_sets; ///< with a show: every table set it uses, all distributed before frame 0
   std::unique_ptr<show::ShowRecorder> recorder;
   FrameState frame_in_flight;    ///< the state of the frame in flight (recorded once presented)
-  std::optional<asio::posix::stream_descriptor> console_in;
-  asio::streambuf console_buffer;
-  std::optional<tcp::acceptor> control_acceptor;
 
   asio::io_context io;
   tcp::acceptor acceptor{io};
   /// Installed once the tables are ready: until then SIGINT/SIGTERM end the process at once.
   std::optional<asio::signal_set> signals;
   asio::steady_timer heartbeat_timer{io}, barrier_timer{io}, frame_timer{io};
-  std::map<std::uint32_t, std::unique_ptr<Session>> sessions;
-  std::uint32_t next_id = 1;
+  NodeSessions sessions;  ///< every node connection, from accept to close
 
   // The frame loop.
-  std::uint64_t frame = 0;           ///< the frame in flight, or the next one to start
-  bool in_flight = false;
-  std::map<std::uint32_t, bool> participants;  ///< session id → RenderDone received
+  FrameBarrier barrier;  ///< the frame in flight (or the next one), its participants, lagging nodes
+  HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
+  /// Playback commands from the console and the control socket.
+  OperatorInput operator_input{io, [this](std::string line) { return on_command(std::move(line)); }};
   Clock::time_point frame_started, show_started, waiting_since;
   bool started = false, stopping = false, waiting_logged = false;
   std::uint64_t presented = 0;
@@ -155,7 +115,7 @@ struct Master::Impl {
   /// The atmosphere a switch names, resolved at the scene's wavelengths and
   /// checked against its body. Throws std::invalid_argument / ConfigError.
   std::pair<std::size_t, atmosphere::LoadedAtmosphere> resolve_switch(const AtmosphereSwitch& sw) const {
-    // table_refs lists the bodies with an atmosphere in scene order (prepare_tables).
+    // tables.current() lists the bodies with an atmosphere in scene order (prepare_tables).
     std::optional<std::size_t> index;
     std::size_t with_atmosphere = 0;
     for (const scene::Body& body : scene.bodies) {
@@ -179,19 +139,6 @@ struct Master::Impl {
     return {*index, std::move(loaded)};
   }
 
-  /// Remembers a version and encodes its AtmosphereDefinition.
-  void add_version(const std::string& body, const atmosphere::LoadedAtmosphere& loaded, const Digest& hash) {
-    if (versions.count(hash)) return;
-    show::AtmosphereVersion v;
-    v.body = body;
-    v.parameters = loaded.parameters;
-    v.table_hash = hash;
-    v.loaded = loaded;
-    definitions.emplace(hash, std::make_shared<const std::vector<std::uint8_t>>(
-                                  encode(AtmosphereDefinition{body, hash, loaded.parameters.dump()})));
-    versions.emplace(hash, std::move(v));
-  }
-
   // ---- preparation ----------------------------------------------------------
 
   void prepare_tables() {
@@ -200,15 +147,11 @@ struct Master::Impl {
     for (const scene::Body& body : scene.bodies) {
       if (!body.atmosphere) continue;
       TableSetFile set = obtain_table_set(body.name, body.atmosphere->loaded.model, request);
-      AtmosphereTableRef ref;
-      ref.body_name = body.name;
-      ref.table_hash = set.table_hash;
-      ref.effective_from_frame = 0;
-      table_refs.push_back(ref);
-      add_version(body.name, body.atmosphere->loaded, set.table_hash);
+      tables.add_current(body.name, set.table_hash);
+      tables.add_version(body.name, body.atmosphere->loaded, set.table_hash);
       spdlog::info("master: tables of '{}' ready to share: version {} ({} bytes, sha256 {}…)", body.name,
                    short_hex(set.table_hash), set.bytes->size(), to_hex(set.content_sha256).substr(0, 12));
-      table_sets.insert_or_assign(set.table_hash, std::move(set));
+      tables.add_set(std::move(set));
     }
   }
 
@@ -221,37 +164,27 @@ struct Master::Impl {
                           atmosphere::lut::TableCache(request.cache_directory.value_or(atmosphere::lut::default_cache_directory())));
     spdlog::info("master: show '{}' at {} fps needs {} table set{} ({} to precompute):\n{}", show->name(), fps,
                  plan.sets.size(), plan.sets.size() == 1 ? "" : "s", plan.missing(), show::describe(plan));
+    std::vector<Digest> show_sets;  // every set it uses, all distributed before frame 0
     std::size_t index = 0;
     for (const show::TablePlanEntry& entry : plan.sets) {
       ++index;
       const auto t0 = Clock::now();
       TableSetFile set = obtain_table_set(entry.version.body, entry.version.loaded.model, request);
-      add_version(entry.version.body, entry.version.loaded, set.table_hash);
+      tables.add_version(entry.version.body, entry.version.loaded, set.table_hash);
       show_sets.push_back(set.table_hash);
       spdlog::info("master: table set {} of {} ('{}', version {}) ready ({:.1f} s)", index, plan.sets.size(),
                    entry.version.body, short_hex(set.table_hash), ms_since(t0) / 1000.0);
-      table_sets.insert_or_assign(set.table_hash, std::move(set));
+      tables.add_set(std::move(set));
     }
-    table_refs = show->state_at(0.0, 0, render_flags).atmospheres;
+    tables.use_show_sets(std::move(show_sets), show->state_at(0.0, 0, render_flags).atmospheres);
   }
 
   // ---- table versions -------------------------------------------------------
 
-  /// The sets a node must hold: the current versions and a distributed pending one.
-  std::vector<Digest> wanted_sets() const {
-    if (show) return show_sets;
-    std::vector<Digest> wanted;
-    for (const AtmosphereTableRef& r : table_refs)
-      if (std::find(wanted.begin(), wanted.end(), r.table_hash) == wanted.end()) wanted.push_back(r.table_hash);
-    if (pending && pending->distributed && std::find(wanted.begin(), wanted.end(), pending->hash) == wanted.end())
-      wanted.push_back(pending->hash);
-    return wanted;
-  }
-
   /// Sends one set: the whole transfer, or only its TableAnnounce when the
   /// node's inventory holds it (the node then loads its cached copy).
-  void send_table_set(Session& s, const TableSetFile& set) {
-    if (auto d = definitions.find(set.table_hash); d != definitions.end()) s.connection->send_encoded(d->second);
+  void send_table_set(NodeSession& s, const TableSetFile& set) {
+    if (auto definition = tables.definition(set.table_hash)) s.connection->send_encoded(definition);
     if (s.cached.count(set.table_hash)) {
       s.connection->send_encoded(set.frames.front());
       return;
@@ -261,14 +194,14 @@ struct Master::Impl {
   }
 
   /// The node's inventory is complete: send what it lacks.
-  void finish_inventory(Session& s) {
+  void finish_inventory(NodeSession& s) {
     s.inventory_done = true;
-    const std::vector<Digest> wanted = wanted_sets();
+    const std::vector<Digest> wanted = tables.wanted_sets();
     const std::uint64_t chunks_before = s.chunks_sent;
     std::size_t cached = 0;
     for (const Digest& h : wanted) {
       cached += s.cached.count(h);
-      send_table_set(s, table_sets.at(h));
+      send_table_set(s, tables.set(h));
     }
     spdlog::info("master: node '{}' holds {} of its {} table set{} in its cache: sent {} table chunk{}", s.name, cached,
                  wanted.size(), wanted.size() == 1 ? "" : "s", s.chunks_sent - chunks_before,
@@ -276,36 +209,32 @@ struct Master::Impl {
     maybe_become_ready(s);
   }
 
-  void maybe_become_ready(Session& s) {
-    if (s.state != Session::State::tables || !s.inventory_done) return;
-    for (const AtmosphereTableRef& r : table_refs)
-      if (!s.tables_ready.count(r.table_hash)) return;
-    for (const Digest& h : show_sets)
-      if (!s.tables_ready.count(h)) return;
-    become_ready(s);
+  void maybe_become_ready(NodeSession& s) {
+    if (s.state != NodeSession::State::tables || !s.inventory_done) return;
+    if (tables.ready_with(s.tables_ready)) become_ready(s);
   }
 
   /// Starts the next switch whose frame has come (one version in flight at a time).
   void maybe_start_switch() {
-    if (pending || next_switch >= options.atmosphere_switches.size()) return;
+    if (tables.pending() || next_switch >= options.atmosphere_switches.size()) return;
     const AtmosphereSwitch& sw = options.atmosphere_switches[next_switch];
+    const std::uint64_t frame = barrier.frame();
     if (sw.frame > frame) return;
     ++next_switch;
     auto [index, loaded] = resolve_switch(sw);  // checked at start-up: does not throw here
     const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
-    if (hash == table_refs[index].table_hash) {
+    if (hash == tables.current()[index].table_hash) {
       spdlog::info("master: frame {}: '{}' already uses {}; nothing to switch", frame, sw.body, sw.atmosphere);
       maybe_start_switch();
       return;
     }
-    add_version(sw.body, loaded, hash);
-    pending = PendingVersion{index, hash, false};
+    tables.add_version(sw.body, loaded, hash);
+    tables.begin_pending(index, hash);
     spdlog::info("master: frame {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
                  "version {}",
-                 frame, short_hex(hash), sw.body, sw.atmosphere, short_hex(table_refs[index].table_hash));
+                 frame, short_hex(hash), sw.body, sw.atmosphere, short_hex(tables.current()[index].table_hash));
     if (worker.joinable()) worker.join();  // the previous switch's worker has posted its result already
-    auto known = table_sets.find(hash);
-    if (known != table_sets.end()) {  // an earlier version again: already encoded
+    if (tables.has_set(hash)) {  // an earlier version again: already encoded
       asio::post(io, [this] { on_version_prepared(std::nullopt); });
       return;
     }
@@ -317,7 +246,7 @@ struct Master::Impl {
         asio::post(io, [this, what = std::string(e.what())] {
           spdlog::error("master: the new tables could not be prepared: {}; the show goes on with the current version",
                         what);
-          pending.reset();
+          tables.abandon_pending();
           maybe_start_switch();
         });
       }
@@ -326,44 +255,42 @@ struct Master::Impl {
 
   /// Networking thread: the pending version's tables are ready; send them to every node.
   void on_version_prepared(std::optional<TableSetFile> set) {
-    if (!pending || stopping) return;
-    if (set) table_sets.insert_or_assign(set->table_hash, std::move(*set));
-    const TableSetFile& prepared = table_sets.at(pending->hash);
-    pending->distributed = true;
-    pending->distributed_at = Clock::now();
+    if (!tables.pending() || stopping) return;
+    if (set) tables.add_set(std::move(*set));
+    const Digest hash = tables.pending()->hash;
+    const TableSetFile& prepared = tables.set(hash);
+    tables.mark_distributed(Clock::now());
     std::size_t receivers = 0;
-    for (auto& [id, s] : sessions) {
-      if (s->state == Session::State::handshake || !s->inventory_done) continue;  // gets it with its inventory
-      send_table_set(*s, prepared);
+    sessions.for_each([&](NodeSession& s) {
+      if (s.state == NodeSession::State::handshake || !s.inventory_done) return;  // gets it with its inventory
+      send_table_set(s, prepared);
       ++receivers;
-    }
-    spdlog::info("master: table version {} of '{}' prepared ({} bytes); sent to {} node{}", short_hex(pending->hash),
+    });
+    spdlog::info("master: table version {} of '{}' prepared ({} bytes); sent to {} node{}", short_hex(hash),
                  prepared.body_name, prepared.bytes->size(), receivers, receivers == 1 ? "" : "s");
     maybe_apply_pending();
   }
 
   /// Once every ready node holds the pending version, it takes effect at the next frame to start.
   void maybe_apply_pending() {
-    if (!pending || !pending->distributed || stopping) return;
+    if (!tables.pending() || !tables.pending()->distributed || stopping) return;
+    const Digest hash = tables.pending()->hash;
     std::size_t ready = 0;
-    for (const auto& [id, s] : sessions) {
-      if (s->state != Session::State::ready) continue;
-      if (!s->tables_ready.count(pending->hash)) return;
+    bool all_hold_it = true;
+    sessions.for_each([&](const NodeSession& s) {
+      if (s.state != NodeSession::State::ready) return;
+      if (!s.tables_ready.count(hash)) all_hold_it = false;
       ++ready;
-    }
-    AtmosphereTableRef& ref = table_refs[pending->ref_index];
-    const std::uint64_t effective = in_flight ? frame + 1 : frame;
+    });
+    if (!all_hold_it) return;
+    const std::uint64_t effective = barrier.next_boundary();
+    const AtmosphereTableRef before = tables.apply_pending(effective);
     spdlog::info("master: table version {} of '{}' takes effect at frame {} on all {} ready node{} (was {})",
-                 short_hex(pending->hash), ref.body_name, effective, ready, ready == 1 ? "" : "s",
-                 short_hex(ref.table_hash));
-    ref.table_hash = pending->hash;
-    ref.effective_from_frame = effective;
-    pending.reset();
+                 short_hex(hash), before.body_name, effective, ready, ready == 1 ? "" : "s",
+                 short_hex(before.table_hash));
     // Nodes still joining now need the new version (they were sent it) and no longer the old one.
-    std::vector<std::uint32_t> ids;
-    for (const auto& [id, s] : sessions) ids.push_back(id);
-    for (const std::uint32_t id : ids)
-      if (Session* s = find(id)) maybe_become_ready(*s);
+    for (const std::uint32_t id : sessions.ids())
+      if (NodeSession* s = sessions.find(id)) maybe_become_ready(*s);
     maybe_start_switch();
   }
 
@@ -373,17 +300,19 @@ struct Master::Impl {
   /// naming it, the switch goes ahead on the others, and the node rejoins at a
   /// frame boundary with the new version when it reconnects.
   void check_pending_confirmations() {
-    if (!pending || !pending->distributed || stopping) return;
+    if (!tables.pending() || !tables.pending()->distributed || stopping) return;
+    const Digest hash = tables.pending()->hash;
     const double limit_ms = std::max(60000.0, static_cast<double>(options.config.barrier_timeout_ms));
-    if (ms_since(pending->distributed_at) <= limit_ms) return;
+    if (ms_since(tables.pending()->distributed_at) <= limit_ms) return;
     std::vector<std::shared_ptr<Connection>> late;
-    for (auto& [id, s] : sessions)
-      if (s->state == Session::State::ready && !s->tables_ready.count(pending->hash)) {
+    sessions.for_each([&](const NodeSession& s) {
+      if (s.state == NodeSession::State::ready && !s.tables_ready.count(hash)) {
         spdlog::warn("master: node '{}' did not confirm table version {} within {:.0f} ms: disconnecting it so the "
                      "switch can take effect (it rejoins with the new version when it reconnects)",
-                     s->name, short_hex(pending->hash), limit_ms);
-        late.push_back(s->connection);
+                     s.name, short_hex(hash), limit_ms);
+        late.push_back(s.connection);
       }
+    });
     for (const auto& connection : late) connection->close("table version not confirmed in time");
     maybe_apply_pending();
   }
@@ -403,100 +332,50 @@ struct Master::Impl {
     boost::system::error_code ec;
     const tcp::endpoint remote = socket.remote_endpoint(ec);
     const std::string peer = ec ? std::string("unknown peer") : cat(remote.address().to_string(), ":", remote.port());
-    auto session = std::make_unique<Session>();
-    session->id = next_id++;
-    session->handshake.emplace(secret, options.config.name);
-    session->connection = std::make_shared<Connection>(std::move(socket), peer);
-    const std::uint32_t id = session->id;
-    Session* raw = session.get();
-    sessions.emplace(id, std::move(session));
+    NodeSession& session = sessions.add(std::make_shared<Connection>(std::move(socket), peer),
+                                        MasterHandshake(secret, options.config.name));
+    const std::uint32_t id = session.id;
     spdlog::debug("master: connection from {}", peer);
-    raw->connection->start([this, id](Message&& m) { on_message(id, std::move(m)); },
-                           [this, id](const std::string& reason) { on_closed(id, reason); });
-  }
-
-  Session* find(std::uint32_t id) {
-    auto it = sessions.find(id);
-    return it == sessions.end() ? nullptr : it->second.get();
-  }
-
-  static std::string who(const Session& s) {
-    return s.name.empty() ? cat("connection from ", s.connection->peer()) : cat("node '", s.name, "' (", s.connection->peer(), ")");
-  }
-
-  void refuse(Session& s, RejectReason reason, const std::string& text) {
-    spdlog::warn("master: refused {}: {}", who(s), text);
-    s.connection->send(Reject{reason, text.substr(0, kMaxReasonBytes)});
-    s.connection->close_after_flush(cat("refused: ", text));
+    session.connection->start([this, id](Message&& m) { on_message(id, std::move(m)); },
+                              [this, id](const std::string& reason) { on_closed(id, reason); });
   }
 
   void on_closed(std::uint32_t id, const std::string& reason) {
-    auto it = sessions.find(id);
-    if (it == sessions.end()) return;
-    Session& s = *it->second;
+    NodeSession* found = sessions.find(id);
+    if (found == nullptr) return;
+    const NodeSession& s = *found;
     const bool bad_peer = reason.starts_with("protocol error") || reason.find("truncated") != std::string::npos;
-    if (s.state == Session::State::ready || !s.name.empty())
-      spdlog::log(stopping ? spdlog::level::info : spdlog::level::warn, "master: {} disconnected: {}", who(s), reason);
+    if (s.state == NodeSession::State::ready || !s.name.empty())
+      spdlog::log(stopping ? spdlog::level::info : spdlog::level::warn, "master: {} disconnected: {}", s.who(), reason);
     else
-      spdlog::log(bad_peer ? spdlog::level::warn : spdlog::level::info, "master: {} closed: {}", who(s), reason);
+      spdlog::log(bad_peer ? spdlog::level::warn : spdlog::level::info, "master: {} closed: {}", s.who(), reason);
     // Release the session after the connection's handlers have returned.
-    std::shared_ptr<Session> keep(it->second.release());
-    sessions.erase(it);
-    asio::post(io, [keep] {});
-    if (in_flight && participants.erase(id) > 0) check_barrier();
+    asio::post(io, [keep = sessions.take(id)] {});
+    if (barrier.remove(id) && barrier.complete()) complete_frame();
     maybe_apply_pending();  // it may have been the last node without the pending version
   }
 
   void on_message(std::uint32_t id, Message&& message) {
-    Session* s = find(id);
+    NodeSession* s = sessions.find(id);
     if (s == nullptr) return;
     try {
-      if (s->state == Session::State::handshake) on_handshake_message(*s, message);
-      else on_running_message(*s, message);
+      if (s->state == NodeSession::State::handshake)
+        sessions.on_handshake_message(*s, message, options.config, barrier.frame());
+      else
+        on_running_message(*s, message);
     } catch (const HandshakeError& e) {
-      refuse(*s, e.reason(), e.what());
+      s->refuse(e.reason(), e.what());
     }
   }
 
-  void on_handshake_message(Session& s, const Message& message) {
-    if (const auto* hello = std::get_if<Hello>(&message)) {
-      s.name = hello->node_name;
-      const Challenge challenge = s.handshake->on_hello(*hello);  // wrong cluster / version
-      if (options.config.find_node(hello->node_name) == nullptr)
-        throw HandshakeError(RejectReason::unspecified,
-                             cat("node '", hello->node_name, "' is not in the cluster config ", options.config.source));
-      s.connection->send(challenge);
-    } else if (const auto* auth = std::get_if<Authenticate>(&message)) {
-      s.handshake->on_authenticate(*auth);  // wrong secret → HandshakeError
-      // A node that reconnects replaces its old connection (it proved the secret).
-      for (auto& [other_id, other] : sessions) {
-        if (other_id != s.id && other->name == s.name && other->state != Session::State::handshake) {
-          spdlog::warn("master: node '{}' reconnected from {}: closing its old connection", s.name, s.connection->peer());
-          other->connection->close("replaced by a new connection of the same node");
-          break;
-        }
-      }
-      s.connection->send(s.handshake->welcome(s.id, frame, options.config.heartbeat_ms, options.config.barrier_timeout_ms));
-      s.state = Session::State::tables;
-      spdlog::info("master: node '{}' authenticated from {} (id {}); waiting for its table inventory", s.name,
-                   s.connection->peer(), s.id);
-    } else if (std::holds_alternative<Goodbye>(message)) {
-      s.connection->close(cat("Goodbye during the handshake: ", std::get<Goodbye>(message).reason));
-    } else {
-      throw HandshakeError(RejectReason::protocol_error,
-                           cat(to_string(message_type(message)), " before the handshake completed"));
-    }
-  }
-
-  void become_ready(Session& s) {
-    s.state = Session::State::ready;
-    s.lagging = false;
+  void become_ready(NodeSession& s) {
+    s.state = NodeSession::State::ready;
     spdlog::info("master: node '{}' is ready: it joins the barrier at the next frame boundary (frame {})", s.name,
-                 in_flight ? frame + 1 : frame);
+                 barrier.next_boundary());
     maybe_start_show();
   }
 
-  void on_running_message(Session& s, const Message& message) {
+  void on_running_message(NodeSession& s, const Message& message) {
     if (!s.inventory_done) {
       if (const auto* held = std::get_if<TableReady>(&message)) {
         s.cached.insert(held->table_hash);  // any set, even one this show does not use
@@ -509,8 +388,8 @@ struct Master::Impl {
           using T = std::decay_t<decltype(m)>;
           if constexpr (std::is_same_v<T, Heartbeat>) {
           } else if constexpr (std::is_same_v<T, TableReady>) {
-            if (!table_sets.count(m.table_hash)) {
-              protocol_violation(s, "TableReady for a table set that was never sent");
+            if (!tables.has_set(m.table_hash)) {
+              s.close_for_protocol_violation("TableReady for a table set that was never sent");
               return;
             }
             s.tables_ready.insert(m.table_hash);
@@ -522,29 +401,17 @@ struct Master::Impl {
             spdlog::info("master: node '{}' said goodbye: {}", s.name, m.reason);
             s.connection->close(cat("Goodbye: ", m.reason));
           } else {
-            protocol_violation(s, cat(to_string(message_type(message)), " is not sent by nodes"));
+            s.close_for_protocol_violation(cat(to_string(message_type(message)), " is not sent by nodes"));
           }
         },
         message);
   }
 
-  void protocol_violation(Session& s, const std::string& what) {
-    spdlog::warn("master: closing {}: {}", who(s), what);
-    s.connection->send(Goodbye{cat("protocol error: ", what).substr(0, kMaxReasonBytes)});
-    s.connection->close_after_flush(cat("protocol error: ", what));
-  }
-
   // ---- the frame loop -------------------------------------------------------
-
-  std::size_t ready_count() const {
-    return static_cast<std::size_t>(std::count_if(sessions.begin(), sessions.end(), [](const auto& p) {
-      return p.second->state == Session::State::ready;
-    }));
-  }
 
   void maybe_start_show() {
     if (started || stopping) return;
-    const std::size_t ready = ready_count();
+    const std::size_t ready = sessions.ready_count();
     const bool waited = ms_since(waiting_since) >= options.wait_for_nodes_ms;
     if (ready == options.config.nodes.size() || (waited && ready > 0)) {
       started = true;
@@ -561,11 +428,9 @@ struct Master::Impl {
 
   void start_frame() {
     if (stopping) return;
-    participants.clear();
-    for (auto& [id, s] : sessions)
-      if (s->state == Session::State::ready && !s->lagging && s->connection->is_open()) participants.emplace(id, false);
+    const std::vector<std::uint32_t> participants = barrier.participants_among(sessions.ready_ids());
     if (participants.empty()) {
-      if (!waiting_logged) spdlog::warn("master: no node is ready for frame {}; waiting", frame);
+      if (!waiting_logged) spdlog::warn("master: no node is ready for frame {}; waiting", barrier.frame());
       waiting_logged = true;
       frame_timer.expires_after(milliseconds(20));
       frame_timer.async_wait([this](const boost::system::error_code& ec) {
@@ -575,6 +440,7 @@ struct Master::Impl {
     }
     waiting_logged = false;
     maybe_start_switch();
+    std::uint64_t frame = barrier.frame();  // the next one, or the feed's
     if (options.feed) {
       switch (options.feed->pop(frame_in_flight)) {
         case FrameFeed::Next::finished: stop("every frame of the feed was presented"); return;
@@ -589,76 +455,61 @@ struct Master::Impl {
       frame = frame_in_flight.frame;
     } else {
       frame_in_flight = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
-                           : default_show_frame(scene, frame, options.sun_step_deg, table_refs, render_flags);
+                           : default_show_frame(scene, frame, options.sun_step_deg, tables.current(), render_flags);
       if (!show) frame_in_flight.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
     }
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
-    for (const auto& [id, done] : participants) sessions.at(id)->connection->send_encoded(encoded);
-    in_flight = true;
+    for (const std::uint32_t id : participants) sessions.find(id)->connection->send_encoded(encoded);
+    barrier.begin(frame, participants);
     frame_started = Clock::now();
     spdlog::debug("master: frame {} sent to {} node{}", frame, participants.size(), participants.size() == 1 ? "" : "s");
     barrier_timer.expires_after(milliseconds(options.config.barrier_timeout_ms));
-    const std::uint64_t this_frame = frame;
-    barrier_timer.async_wait([this, this_frame](const boost::system::error_code& ec) {
-      if (!ec && in_flight && frame == this_frame) on_barrier_timeout();
+    barrier_timer.async_wait([this, frame](const boost::system::error_code& ec) {
+      if (!ec && barrier.in_flight() && barrier.frame() == frame) on_barrier_timeout();
     });
   }
 
-  void on_render_done(Session& s, const RenderDone& done) {
-    if (s.lagging) {
-      // A node dropped from an earlier barrier reports: it is back at the next boundary.
-      if (done.frame < frame || !in_flight) {
-        s.lagging = false;
+  void on_render_done(NodeSession& s, const RenderDone& done) {
+    switch (barrier.on_render_done(s.id, done.frame)) {
+      case FrameBarrier::Report::counted:
+        if (barrier.complete()) complete_frame();
+        return;
+      case FrameBarrier::Report::rejoins:
         spdlog::info("master: node '{}' finished frame {} late; it rejoins the barrier at frame {}", s.name,
-                     done.frame, in_flight ? frame + 1 : frame);
-      }
-      return;
+                     done.frame, barrier.next_boundary());
+        return;
+      case FrameBarrier::Report::ignored_lagging: return;
+      case FrameBarrier::Report::ignored:
+        spdlog::debug("master: ignoring RenderDone {} from node '{}' (frame {} in flight)", done.frame, s.name,
+                      barrier.frame());
+        return;
     }
-    auto it = participants.find(s.id);
-    if (!in_flight || it == participants.end() || done.frame != frame) {
-      spdlog::debug("master: ignoring RenderDone {} from node '{}' (frame {} in flight)", done.frame, s.name, frame);
-      return;
-    }
-    it->second = true;
-    check_barrier();
-  }
-
-  void check_barrier() {
-    if (!in_flight) return;
-    if (!std::all_of(participants.begin(), participants.end(), [](const auto& p) { return p.second; })) return;
-    complete_frame();
   }
 
   void on_barrier_timeout() {
-    for (auto& [id, done] : participants) {
-      if (done) continue;
-      Session* s = find(id);
-      if (s == nullptr) continue;
-      s->lagging = true;
-      spdlog::warn("master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
-                   "barrier; the show goes on without it",
-                   s->name, frame, options.config.barrier_timeout_ms);
-    }
-    std::erase_if(participants, [](const auto& p) { return !p.second; });
+    for (const std::uint32_t id : barrier.drop_unfinished())
+      if (const NodeSession* s = sessions.find(id))
+        spdlog::warn("master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
+                     "barrier; the show goes on without it",
+                     s->name, barrier.frame(), options.config.barrier_timeout_ms);
     complete_frame();
   }
 
   void complete_frame() {
     barrier_timer.cancel();
-    in_flight = false;
+    const FrameBarrier::Release release = barrier.release();
+    const std::uint64_t frame = release.frame;
     const Present present{frame};
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(present));
-    for (const auto& [id, done] : participants)
-      if (Session* s = find(id)) s->connection->send_encoded(encoded);
-    spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, participants.size(),
-                 participants.size() == 1 ? "" : "s", ms_since(frame_started));
-    participants.clear();
+    for (const std::uint32_t id : release.present_to)
+      if (NodeSession* s = sessions.find(id)) s->connection->send_encoded(encoded);
+    spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, release.present_to.size(),
+                 release.present_to.size() == 1 ? "" : "s", ms_since(frame_started));
     if (recorder) {
-      for (const AtmosphereTableRef& r : frame_in_flight.atmospheres) recorder->add_version(versions.at(r.table_hash));
+      for (const AtmosphereTableRef& r : frame_in_flight.atmospheres) recorder->add_version(tables.version(r.table_hash));
       recorder->record(frame_in_flight);
     }
     if (options.feed) options.feed->presented(frame);
-    ++frame;
     ++presented;
     if (options.frames != 0 && presented >= options.frames) {
       stop(cat("show finished after ", presented, " frames"));
@@ -694,7 +545,7 @@ struct Master::Impl {
       return "stopping";
     }
     if (!clock) {
-      if (line == "status") return cat("default show at frame ", frame, " (no show file: only status and quit)");
+      if (line == "status") return cat("default show at frame ", barrier.frame(), " (no show file: only status and quit)");
       return "no show is playing: only 'status' and 'quit' are available";
     }
     try {
@@ -706,65 +557,13 @@ struct Master::Impl {
     }
   }
 
-  void read_console() {
-    asio::async_read_until(*console_in, console_buffer, '\n', [this](const boost::system::error_code& ec, std::size_t) {
-      if (ec || stopping) return;  // end of input: the show goes on without a console
-      std::istream in(&console_buffer);
-      std::string line;
-      std::getline(in, line);
-      const std::string reply = on_command(line);
-      if (!reply.empty()) spdlog::info("master: {}", reply);
-      read_console();
-    });
-  }
-
-  /// One control-socket client: lines in, one reply line out per command.
-  struct ControlClient {
-    tcp::socket socket;
-    asio::streambuf buffer;
-    explicit ControlClient(tcp::socket s) : socket(std::move(s)) {}
-  };
-
-  void accept_control() {
-    control_acceptor->async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
-      if (ec || stopping) return;
-      serve_control(std::make_shared<ControlClient>(std::move(socket)));
-      accept_control();
-    });
-  }
-
-  void serve_control(std::shared_ptr<ControlClient> client) {
-    asio::async_read_until(client->socket, client->buffer, '\n',
-                           [this, client](const boost::system::error_code& ec, std::size_t bytes) {
-                             if (ec) return;
-                             if (bytes > 1024) return;  // not an operator command: drop the client
-                             std::istream in(&client->buffer);
-                             std::string line;
-                             std::getline(in, line);
-                             auto reply = std::make_shared<std::string>(on_command(line) + "\n");
-                             asio::async_write(client->socket, asio::buffer(*reply),
-                                               [this, client, reply](const boost::system::error_code& e, std::size_t) {
-                                                 if (!e && !stopping) serve_control(client);
-                                               });
-                           });
-  }
-
   void start_operator_inputs() {
     if (options.console) {
-      console_in.emplace(io, ::dup(STDIN_FILENO));
-      read_console();
+      operator_input.read_console();
       spdlog::info("master: console commands: play, pause, toggle, seek SECONDS, rate FACTOR, loop on|off, status, quit");
     }
     if (options.control_port) {
-      const tcp::endpoint endpoint(asio::ip::make_address("127.0.0.1"), *options.control_port);
-      control_acceptor.emplace(io);
-      control_acceptor->open(endpoint.protocol());
-      control_acceptor->set_option(tcp::acceptor::reuse_address(true));
-      boost::system::error_code ec;
-      control_acceptor->bind(endpoint, ec);
-      if (ec) throw std::runtime_error(cat("master: cannot open the control socket on 127.0.0.1:", *options.control_port, ": ", ec.message()));
-      control_acceptor->listen();
-      accept_control();
+      operator_input.listen_for_control(*options.control_port);
       spdlog::info("master: control socket on 127.0.0.1:{} (zenith show control --port {} COMMAND)",
                    *options.control_port, *options.control_port);
     }
@@ -774,38 +573,32 @@ struct Master::Impl {
 
   void heartbeat_tick() {
     const auto now = Clock::now();
-    const double silent_limit_ms = silence_limit_ms(options.config.heartbeat_ms);
-    const double handshake_limit_ms = std::max(5000.0, silent_limit_ms);
-    const Heartbeat beat{static_cast<std::uint64_t>(
-        std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count())};
-    auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(beat));
-    std::vector<std::uint32_t> ids;
-    for (auto& [id, s] : sessions) ids.push_back(id);
-    for (const std::uint32_t id : ids) {
-      Session* s = find(id);
+    auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(heartbeat_at(now)));
+    for (const std::uint32_t id : sessions.ids()) {
+      NodeSession* s = sessions.find(id);
       if (s == nullptr || !s->connection->is_open()) continue;
-      if (s->state == Session::State::handshake) {
-        if (ms_since(s->connected_at) > handshake_limit_ms) {
-          spdlog::warn("master: closing {}: no handshake within {:.0f} ms", who(*s), handshake_limit_ms);
+      switch (heartbeats.check(s->state == NodeSession::State::handshake, s->connected_at, s->connection->last_received(),
+                               now)) {
+        case HeartbeatMonitor::Verdict::awaiting_handshake: break;
+        case HeartbeatMonitor::Verdict::handshake_overdue:
+          spdlog::warn("master: closing {}: no handshake within {:.0f} ms", s->who(), heartbeats.handshake_limit_ms());
           s->connection->close("handshake timeout");
-        }
-        continue;
+          break;
+        case HeartbeatMonitor::Verdict::silent:
+          spdlog::warn("master: closing {}: nothing received for {:.0f} ms", s->who(), heartbeats.silence_limit_ms());
+          s->connection->close("heartbeat timeout");
+          break;
+        case HeartbeatMonitor::Verdict::send_heartbeat: s->connection->send_encoded(encoded); break;
       }
-      if (ms_since(s->connection->last_received()) > silent_limit_ms) {
-        spdlog::warn("master: closing {}: nothing received for {:.0f} ms", who(*s), silent_limit_ms);
-        s->connection->close("heartbeat timeout");
-        continue;
-      }
-      s->connection->send_encoded(encoded);
     }
-    if (options.feed && options.feed->done() && !in_flight) {  // the feeding side ended (or gave up)
+    if (options.feed && options.feed->done() && !barrier.in_flight()) {  // the feeding side ended (or gave up)
       stop("the frame feed ended");
       return;
     }
     if (!started) maybe_start_show();
     if (started) maybe_start_switch();
     check_pending_confirmations();
-    heartbeat_timer.expires_after(milliseconds(options.config.heartbeat_ms));
+    heartbeat_timer.expires_after(milliseconds(heartbeats.interval_ms()));
     heartbeat_timer.async_wait([this](const boost::system::error_code& ec) {
       if (!ec && !stopping) heartbeat_tick();
     });
@@ -818,15 +611,16 @@ struct Master::Impl {
     spdlog::info("master: stopping: {}", reason);
     boost::system::error_code ec;
     acceptor.close(ec);
-    if (control_acceptor) control_acceptor->close(ec);
-    if (console_in) console_in->close(ec);
+    operator_input.close();
     if (signals) signals->cancel(ec);
     heartbeat_timer.cancel();
     barrier_timer.cancel();
     frame_timer.cancel();
     // Closing may erase a session (its close handler): work on a copy.
     std::vector<std::pair<std::shared_ptr<Connection>, bool>> connections;
-    for (auto& [id, s] : sessions) connections.emplace_back(s->connection, s->state == Session::State::handshake);
+    sessions.for_each([&](const NodeSession& s) {
+      connections.emplace_back(s.connection, s.state == NodeSession::State::handshake);
+    });
     for (auto& [connection, in_handshake] : connections) {
       if (in_handshake) connection->send(Reject{RejectReason::shutting_down, "the master is stopping"});
       else connection->send(Goodbye{reason});

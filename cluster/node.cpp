@@ -1,18 +1,10 @@
 #include "core/json_reader.h"
 #include "cluster/node.h"
 
-#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <cmath>
-#include <condition_variable>
-#include <deque>
-#include <fstream>
-#include <map>
-#include <mutex>
 #include <set>
-#include <sstream>
 #include <thread>
 
 #include <boost/asio/connect.hpp>
@@ -24,19 +16,13 @@
 
 #include "render/lut/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
-#include "atmosphere/model_hash.h"
-#include "atmosphere/parameters.h"
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
+#include "cluster/heartbeat.h"
+#include "cluster/node/known_atmospheres.h"
+#include "cluster/node/render_worker.h"
 #include "cluster/table_transfer.h"
-#include "render/gl/egl_context.h"
-#include "image/image_writer.h"
-#include "image/tone_mapping.h"
-#include "render/renderer.h"
 #include "scene/scene_loader.h"
-#include "render/window/frame_presenter.h"
-#include "render/window/window_context.h"
-#include "warp/blending.h"
 #include "warp/viewport_config.h"
 #include "core/timing.h"
 
@@ -53,15 +39,6 @@ using config::cat;  // core/json_reader.h
 
 using core::ms_since;
 
-/// Work for the render thread.
-struct Job {
-  enum class Kind { prepare, render, present, stop } kind = Kind::stop;
-  FrameState state;         ///< render
-  std::uint64_t frame = 0;  ///< present
-  Digest table_hash{};      ///< prepare: load this table set, render once, then TableReady
-};
-
-
 }  // namespace
 
 struct Node::Impl {
@@ -70,18 +47,8 @@ struct Node::Impl {
   scene::Scene base_scene;
   warp::ViewportConfig viewports;
   std::vector<std::size_t> outputs;  ///< indices into viewports.outputs
-  /// Every atmosphere this node can render, by table hash: the scene's, the
-  /// presets that fit a body, and NodeOptions::atmosphere_files. Built before
-  /// the threads start and read-only after, so both threads use it.
-  struct KnownAtmosphere {
-    std::string body;
-    atmosphere::LoadedAtmosphere loaded;
-  };
-  /// The network thread adds AtmosphereDefinitions while the render thread
-  /// looks versions up: lookups and inserts hold known_mutex; entries are
-  /// never changed or erased, so references to them stay valid.
-  std::map<Digest, KnownAtmosphere> known_tables;
-  mutable std::mutex known_mutex;
+  /// Every atmosphere this node can render, by table hash (both threads use it).
+  KnownAtmospheres atmospheres{base_scene, options.cache_directory, options.node_name};
   atmosphere::lut::PrecomputeOptions table_options;
   std::filesystem::path node_directory;
 
@@ -100,45 +67,10 @@ struct Node::Impl {
   int exit_code = kNodeExitDone;
   std::string master_address;
 
-  // ---- shared: the job queue ----
-  std::mutex mutex;
-  std::condition_variable wake;
-  std::deque<Job> jobs;
-
-  // ---- render thread only ----
-  std::optional<render::gl::HeadlessContext> context;
-  /// With --window: the GL context is a window's, and each presented frame is
-  /// shown in it (the node's outputs side by side, as written to the files).
-  std::optional<render::window::WindowContext> window;
-  std::optional<render::window::FramePresenter> presenter;
-  std::vector<std::vector<float>> rendered_display;  ///< per output: display-linear values of the rendered frame
-  std::unique_ptr<render::Renderer> renderer;
-  std::uint32_t renderer_flags = 0;
-  std::optional<std::uint64_t> rendered_frame;
-  std::string rendered_digest, rendered_tables;
-  double rendered_show_time_s = 0.0;
-  bool warmed_up = false;
-  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> partials;  ///< partial → final
+  // ---- the render thread: GL, the renderer, the frame files ----
+  std::optional<RenderWorker> worker;  ///< set up in run(), before the threads start
 
   Impl(NodeOptions o, SharedSecret s) : options(std::move(o)), secret(std::move(s)) {}
-
-  /// The atmosphere of table version `hash`; throws std::out_of_range if unknown.
-  const KnownAtmosphere& known(const Digest& hash) const {
-    std::lock_guard lock(known_mutex);
-    return known_tables.at(hash);
-  }
-  bool knows(const Digest& hash) const {
-    std::lock_guard lock(known_mutex);
-    return known_tables.count(hash) > 0;
-  }
-
-  void push(Job job) {
-    {
-      std::lock_guard lock(mutex);
-      jobs.push_back(std::move(job));
-    }
-    wake.notify_one();
-  }
 
   // =========================================================================
   // Networking thread.
@@ -248,23 +180,23 @@ struct Node::Impl {
           throw std::runtime_error(cat("FrameState ", fs->frame, " uses table set ", to_hex(ref.table_hash).substr(0, 12),
                                        "… (effective from frame ", ref.effective_from_frame, ") for '", ref.body_name,
                                        "', which this node does not hold or may not use yet"));
-      push(Job{Job::Kind::render, *fs, fs->frame, {}});
+      worker->render(*fs);
     } else if (const auto* p = std::get_if<Present>(&message)) {
-      push(Job{Job::Kind::present, {}, p->frame, {}});
+      worker->present(p->frame);
     } else if (const auto* a = std::get_if<TableAnnounce>(&message)) {
-      if (!knows(a->table_hash))
+      if (!atmospheres.knows(a->table_hash))
         throw std::runtime_error(cat("TableAnnounce of table set ", to_hex(a->table_hash).substr(0, 12),
                                      "…, which no atmosphere this node knows uses (the scene's, the presets, the atmosphere "
                                      "files it was given: do master and node read the same scene and files?)"));
       if (inventory.count(a->table_hash)) {
         // Declared in the inventory: the master sends no chunks; use the cached copy.
         held_tables.insert(a->table_hash);
-        push(Job{Job::Kind::prepare, {}, 0, a->table_hash});
+        worker->prepare(a->table_hash);
       } else {
         receiver.on_announce(*a);
       }
     } else if (const auto* d = std::get_if<AtmosphereDefinition>(&message)) {
-      define_atmosphere(*d, true);
+      atmospheres.define(*d, true);
     } else if (const auto* c = std::get_if<TableChunk>(&message)) {
       if (std::optional<std::vector<std::uint8_t>> bytes = receiver.on_chunk(*c)) store_tables(c->table_hash, *bytes);
     } else if (std::holds_alternative<Heartbeat>(message)) {
@@ -278,71 +210,8 @@ struct Node::Impl {
     }
   }
 
-  /// Where received definitions are kept, so that after a restart the node
-  /// knows (and declares in its inventory) the versions it has cached.
-  std::filesystem::path definitions_directory() const { return options.cache_directory / "definitions"; }
-
-  /// An AtmosphereDefinition from the master (or one kept from an earlier
-  /// run): resolves the parameters at the scene's wavelengths, checks the body
-  /// and the hash, and adds the version to known_tables. Throws naming the
-  /// body and both hashes.
-  void define_atmosphere(const AtmosphereDefinition& d, bool keep) {
-    const scene::Body* body = base_scene.find_body(d.body_name);
-    if (body == nullptr || !body->atmosphere)
-      throw std::runtime_error(cat("AtmosphereDefinition for body '", d.body_name, "', which has no atmosphere in ",
-                                   base_scene.source.string()));
-    nlohmann::json parameters;
-    try {
-      parameters = nlohmann::json::parse(d.parameters_json);
-    } catch (const nlohmann::json::exception& e) {
-      throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': not JSON: ", e.what()));
-    }
-    atmosphere::LoadedAtmosphere loaded = atmosphere::resolve_atmosphere(
-        parameters, cat("the master's definition of the atmosphere of '", d.body_name, "'"),
-        atmosphere::LoadOptions{base_scene.wavelengths_nm});
-    if (std::abs(loaded.model.ground_radius_m - body->radius_m) > 1.0)
-      throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': ground radius ",
-                                   loaded.model.ground_radius_m, " m, the body's radius is ", body->radius_m, " m"));
-    const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
-    if (hash != d.table_hash)
-      throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': the parameters hash to ",
-                                   short_hex(hash), " here, the master says ", short_hex(d.table_hash),
-                                   " (do master and node read the same scene, with the same wavelengths?)"));
-    bool added = false;
-    {
-      std::lock_guard lock(known_mutex);
-      added = known_tables.emplace(hash, KnownAtmosphere{d.body_name, std::move(loaded)}).second;
-    }
-    if (added) spdlog::debug("node '{}': atmosphere version {} of '{}' defined", options.node_name, short_hex(hash), d.body_name);
-    if (keep && added) {
-      std::filesystem::create_directories(definitions_directory());
-      const std::string text = nlohmann::json{{"body", d.body_name}, {"parameters", parameters}}.dump(1);
-      write_file_atomically(definitions_directory() / (to_hex(hash) + ".json"),
-                            std::vector<std::uint8_t>(text.begin(), text.end()));
-    }
-  }
-
-  /// Definitions kept by earlier runs; an unreadable or stale one is skipped with a log line.
-  void load_kept_definitions() {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(definitions_directory(), ec)) return;
-    for (const auto& entry : std::filesystem::directory_iterator(definitions_directory(), ec)) {
-      if (entry.path().extension() != ".json") continue;
-      try {
-        std::ifstream in(entry.path());
-        const nlohmann::json kept = nlohmann::json::parse(in);
-        define_atmosphere(AtmosphereDefinition{kept.at("body").get<std::string>(),
-                                               digest_from_hex(entry.path().stem().string()),
-                                               kept.at("parameters").dump()},
-                          false);
-      } catch (const std::exception& e) {
-        spdlog::debug("node '{}': kept definition {} not used: {}", options.node_name, entry.path().string(), e.what());
-      }
-    }
-  }
-
   void store_tables(const Digest& hash, const std::vector<std::uint8_t>& bytes) {
-    const KnownAtmosphere& known = this->known(hash);
+    const KnownAtmospheres::Entry& known = atmospheres.find(hash);
     const atmosphere::lut::TableCache cache(options.cache_directory);
     const auto path = cache.path_for(atmosphere::lut::table_set_key(known.loaded.model, table_options));
     write_file_atomically(path, bytes);
@@ -350,7 +219,7 @@ struct Node::Impl {
     spdlog::info("node '{}': tables of '{}' version {} received ({} bytes, SHA-256 verified) and cached as {}",
                  options.node_name, known.body, short_hex(hash), bytes.size(), path.string());
     // The render thread loads them and renders once (shaders, uploads); then TableReady.
-    push(Job{Job::Kind::prepare, {}, 0, hash});
+    worker->prepare(hash);
   }
 
   /// Right after Welcome: a TableReady for every set this node knows that its
@@ -358,12 +227,7 @@ struct Node::Impl {
   /// ends the inventory. The master sends such sets as a bare TableAnnounce.
   void send_inventory() {
     const atmosphere::lut::TableCache cache(options.cache_directory);
-    std::map<Digest, KnownAtmosphere> snapshot;
-    {
-      std::lock_guard lock(known_mutex);
-      snapshot = known_tables;
-    }
-    for (const auto& [hash, known] : snapshot) {
+    for (const auto& [hash, known] : atmospheres.snapshot()) {
       const auto path = cache.path_for(atmosphere::lut::table_set_key(known.loaded.model, table_options));
       std::error_code ec;
       if (!std::filesystem::exists(path, ec)) continue;
@@ -376,8 +240,7 @@ struct Node::Impl {
       inventory.insert(hash);
       connection->send(TableReady{hash});
     }
-    connection->send(Heartbeat{static_cast<std::uint64_t>(
-        std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count())});
+    connection->send(heartbeat_at(Clock::now()));
     spdlog::info("node '{}': {} table set{} already in the cache", options.node_name, inventory.size(),
                  inventory.size() == 1 ? "" : "s");
   }
@@ -401,8 +264,7 @@ struct Node::Impl {
       return;
     }
     if (welcomed)
-      connection->send(Heartbeat{static_cast<std::uint64_t>(
-          std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count())});
+      connection->send(heartbeat_at(Clock::now()));
     heartbeat_timer.expires_after(milliseconds(heartbeat_ms));
     heartbeat_timer.async_wait([this](const boost::system::error_code& ec) {
       if (!ec) heartbeat_tick();
@@ -422,7 +284,7 @@ struct Node::Impl {
     heartbeat_timer.cancel();
     retry_timer.cancel();
     if (connection && connection->is_open()) connection->close_after_flush("node stopping");
-    push(Job{Job::Kind::stop, {}, 0, {}});
+    worker->stop();
   }
   bool finished = false;
 
@@ -436,272 +298,6 @@ struct Node::Impl {
     asio::post(io, [this, what] { say_goodbye_and_finish(cat("node failed: ", what), kNodeExitFailed); });
   }
 
-  // =========================================================================
-  // Render thread.
-
-  void make_current() const {
-    if (window) window->make_current();
-    else context->make_current();
-  }
-
-  void ensure_renderer(std::uint32_t flags) {
-    if (options.window && !window) {
-      render::window::WindowOptions w;
-      w.title = cat("zenith node ", options.node_name);
-      w.width = 0;
-      w.height = 0;
-      for (const std::size_t i : outputs) {
-        w.width += viewports.outputs[i].width_px;
-        w.height = std::max(w.height, viewports.outputs[i].height_px);
-      }
-      // Fit a 1280 × 1024 screen area at first; the window can be resized (or made full screen).
-      const double shrink = std::min(1.0, std::min(1280.0 / w.width, 1024.0 / w.height));
-      w.width = std::max(1, static_cast<int>(w.width * shrink));
-      w.height = std::max(1, static_cast<int>(w.height * shrink));
-      w.swap_interval = 0;  // the cluster's barrier paces the frames
-      window.emplace(w);
-      presenter.emplace();
-      spdlog::info("node '{}': rendering on {} into a window", options.node_name, window->renderer());
-    } else if (!options.window && !context) {
-      context.emplace();
-      spdlog::info("node '{}': rendering on {}", options.node_name, context->renderer());
-    }
-    if (renderer && flags == renderer_flags) return;
-    renderer.reset();
-    renderer_flags = flags;
-    const atmosphere::lut::TableCache cache(options.cache_directory);
-    renderer = std::make_unique<render::Renderer>(
-        render_options_of(flags), [this, cache](const atmosphere::AtmosphereModel& model) {
-          std::string problem;
-          std::optional<atmosphere::lut::LookupTables> tables = cache.load(model, table_options, &problem);
-          if (!tables)
-            throw std::runtime_error(cat("the tables the master sent are not usable from ", cache.directory().string(),
-                                         problem.empty() ? std::string() : cat(": ", problem)));
-          make_current();
-          return std::move(*tables);
-        });
-  }
-
-  std::filesystem::path frame_path(const warp::OutputConfig& o, std::uint64_t frame) const {
-    if (options.layout == FrameFileLayout::offline)  // apps/offline_render.h: frame_file_path()
-      return options.output_directory / o.name / fmt::format("{}.{:06d}.{}", o.name, frame, options.config.output_format);
-    return node_directory / o.name / fmt::format("frame-{:06d}.{}", frame, options.config.output_format);
-  }
-
-  void write_output(const warp::OutputConfig& o, std::size_t index, const scene::Scene& scene,
-                    const std::filesystem::path& path) {
-    std::vector<float> rgb = renderer->render_image(scene, *o.projection);
-    const image::ImageAttributes attributes = {
-        {"zenith:scene", scene.name},
-        {"zenith:projection", o.projection->describe()},
-        {"zenith:exposure", fmt::format("{}", scene.camera.exposure)},
-        {"zenith:viewport", fmt::format("{}#{}", viewports.source, o.name)},
-    };
-    const bool blended = o.blend.mode != warp::BlendMode::none || o.black_level != 0.0;
-    if (window) {  // what the projector shows: tone mapped, then the output stage (docs/viewports.md)
-      std::vector<float>& display = rendered_display[index_in_node(index)];
-      display = rgb;
-      for (float& v : display) v = image::tone_map(v, image::ToneMapping::exponential);
-      if (blended) warp::apply_blend(display, 0, o.height_px, warp::output_blend_mask(viewports, index), o.black_level);
-    }
-    if (options.config.output_format == "exr") {
-      if (blended) warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports, index), o.black_level);
-      image::write_exr(path, o.width_px, o.height_px, rgb, image::ExrPixelType::half, attributes);
-      return;
-    }
-    if (!blended) {
-      image::write_png(path, o.width_px, o.height_px, rgb, image::ToneMapping::exponential, attributes);
-      return;
-    }
-    // As `zenith render --viewport`: tone map, then the output stage, then sRGB (docs/viewports.md).
-    for (float& v : rgb) v = image::tone_map(v, image::ToneMapping::exponential);
-    warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports, index), o.black_level);
-    image::write_png(path, o.width_px, o.height_px, rgb, image::ToneMapping::clamp, attributes);
-  }
-
-  std::size_t index_in_node(std::size_t viewport_index) const {
-    return static_cast<std::size_t>(std::find(outputs.begin(), outputs.end(), viewport_index) - outputs.begin());
-  }
-
-  /// Shows the presented frame in the window: the node's outputs side by side.
-  void show_in_window() {
-    int width = 0, height = 0;
-    for (const std::size_t i : outputs) {
-      width += viewports.outputs[i].width_px;
-      height = std::max(height, viewports.outputs[i].height_px);
-    }
-    std::vector<float> picture(static_cast<std::size_t>(width) * height * 3, 0.0f);
-    int x0 = 0;
-    for (std::size_t k = 0; k < outputs.size(); ++k) {
-      const warp::OutputConfig& o = viewports.outputs[outputs[k]];
-      const std::vector<float>& display = rendered_display[k];
-      for (int y = 0; y < o.height_px && !display.empty(); ++y)
-        std::copy_n(display.begin() + static_cast<std::ptrdiff_t>(y) * o.width_px * 3, o.width_px * 3,
-                    picture.begin() + (static_cast<std::ptrdiff_t>(y) * width + x0) * 3);
-      x0 += o.width_px;
-    }
-    window->make_current();
-    const render::window::FramebufferSize size = window->framebuffer_size();
-    presenter->present(picture, width, height, image::ToneMapping::clamp, {0, size.width, size.height});
-    window->swap_buffers();
-    window->poll_events();
-    if (window->should_close()) {
-      spdlog::info("node '{}': window closed: leaving the cluster", options.node_name);
-      asio::post(io, [this] { say_goodbye_and_finish("the node's window was closed", kNodeExitDone); });
-    }
-  }
-
-  void discard_partials() {
-    std::error_code ec;
-    for (const auto& [partial, final_path] : partials) std::filesystem::remove(partial, ec);
-    partials.clear();
-    rendered_frame.reset();
-  }
-
-  /// The scene with body `body`'s atmosphere replaced by table version `hash`.
-  void use_table_version(scene::Scene& scene, const std::string& body, const Digest& hash) const {
-    const KnownAtmosphere& known = this->known(hash);
-    for (scene::Body& b : scene.bodies)
-      if (b.name == body && b.atmosphere) {
-        b.atmosphere->loaded = known.loaded;
-        return;
-      }
-    throw std::runtime_error(cat("FrameState names body '", body, "', which has no atmosphere in ", base_scene.source));
-  }
-
-  void render_frame(const FrameState& state) {
-    discard_partials();
-    if (options.debug_render_delay_ms > 0)
-      std::this_thread::sleep_for(milliseconds(options.debug_render_delay_ms));  // test hook: a slow node
-    const auto t0 = Clock::now();
-    scene::Scene scene = base_scene;
-    apply_frame_state(state, scene);
-    rendered_tables.clear();
-    for (const AtmosphereTableRef& ref : state.atmospheres) {
-      use_table_version(scene, ref.body_name, ref.table_hash);
-      rendered_tables += cat(rendered_tables.empty() ? "" : ",", ref.body_name, "=", to_hex(ref.table_hash).substr(0, 16));
-    }
-    if (rendered_tables.empty()) rendered_tables = "-";
-    ensure_renderer(state.render_flags);
-    for (const std::size_t i : outputs) {
-      const warp::OutputConfig& o = viewports.outputs[i];
-      std::filesystem::path final_path = frame_path(o, state.frame);
-      std::filesystem::path partial = final_path;
-      partial += ".partial";
-      std::filesystem::create_directories(final_path.parent_path());
-      write_output(o, i, scene, partial);
-      partials.emplace_back(partial, final_path);
-    }
-    rendered_frame = state.frame;
-    rendered_digest = state_digest(state);
-    rendered_show_time_s = state.show_time_s;
-    const double render_ms = ms_since(t0);
-    spdlog::debug("node '{}': frame {} rendered in {:.1f} ms", options.node_name, state.frame, render_ms);
-    report_render_done(state.frame, render_ms);
-  }
-
-  void present_frame(std::uint64_t frame) {
-    if (rendered_frame != frame) {
-      spdlog::warn("node '{}': Present {} for a frame this node has not rendered; ignored", options.node_name, frame);
-      return;
-    }
-    for (const auto& [partial, final_path] : partials) std::filesystem::rename(partial, final_path);
-    partials.clear();
-    rendered_frame.reset();
-    std::ofstream log(node_directory / "presented.log", std::ios::app);
-    if (window) show_in_window();
-    log << "frame " << frame << " state " << rendered_digest << " tables " << rendered_tables << " show_time_s "
-        << fmt::format("{}", rendered_show_time_s) << "\n";
-    spdlog::debug("node '{}': presented frame {}", options.node_name, frame);
-  }
-
-  /// Loads table set `hash` (TableCache::load checks every part's checksum)
-  /// and renders with it once: every output the first time (shaders), then
-  /// the first output only (table upload). Then TableReady.
-  void prepare(const Digest& hash) {
-    ensure_renderer(render_flags_of(render::RenderOptions{}));
-    const auto t0 = Clock::now();
-    scene::Scene scene = base_scene;
-    use_table_version(scene, known(hash).body, hash);
-    for (const std::size_t i : outputs) {
-      renderer->render_image(scene, *viewports.outputs[i].projection);
-      if (warmed_up) break;
-    }
-    warmed_up = true;
-    spdlog::info("node '{}': tables of '{}' version {} loaded and rendered once ({:.0f} ms)", options.node_name,
-                 known(hash).body, short_hex(hash), ms_since(t0));
-    asio::post(io, [this, hash] { send_table_ready(hash); });
-  }
-
-  void render_loop() {
-    for (;;) {
-      Job job;
-      {
-        std::unique_lock lock(mutex);
-        if (window) {  // keep the window responsive between frames
-          while (!wake.wait_for(lock, milliseconds(30), [this] { return !jobs.empty(); })) {
-            lock.unlock();
-            window->poll_events();
-            if (window->take_redraw_request() && presenter->frame_width() > 0) {
-              const render::window::FramebufferSize size = window->framebuffer_size();
-              presenter->draw(image::ToneMapping::clamp, {0, size.width, size.height});
-              window->swap_buffers();
-            }
-            lock.lock();
-          }
-        } else {
-          wake.wait(lock, [this] { return !jobs.empty(); });
-        }
-        job = std::move(jobs.front());
-        jobs.pop_front();
-        if (job.kind == Job::Kind::render &&
-            std::any_of(jobs.begin(), jobs.end(), [](const Job& j) { return j.kind == Job::Kind::render; })) {
-          spdlog::warn("node '{}': skipping frame {}: a newer frame is queued", options.node_name, job.frame);
-          continue;
-        }
-      }
-      try {
-        switch (job.kind) {
-          case Job::Kind::prepare: prepare(job.table_hash); break;
-          case Job::Kind::render: render_frame(job.state); break;
-          case Job::Kind::present: present_frame(job.frame); break;
-          case Job::Kind::stop: discard_partials(); return;
-        }
-      } catch (const std::exception& e) {
-        spdlog::error("node '{}': {}", options.node_name, e.what());
-        report_failure(e.what());
-      }
-    }
-  }
-
-  // =========================================================================
-
-  /// known_tables: for each body with an atmosphere, the scene's atmosphere,
-  /// every preset and every --atmosphere file that fits it (ground radius).
-  void build_known_tables() {
-    const atmosphere::LoadOptions load_options{base_scene.wavelengths_nm};
-    std::vector<atmosphere::LoadedAtmosphere> candidates;
-    for (const std::string& name : atmosphere::preset_names()) {
-      try {
-        candidates.push_back(atmosphere::load_preset(name, load_options));
-      } catch (const std::exception& e) {
-        spdlog::debug("node '{}': preset {} not usable here: {}", options.node_name, name, e.what());
-      }
-    }
-    for (const std::filesystem::path& file : options.atmosphere_files)
-      candidates.push_back(atmosphere::load_atmosphere_file(file.string(), load_options));  // errors are fatal
-    for (const scene::Body& body : base_scene.bodies) {
-      if (!body.atmosphere) continue;
-      auto add = [&](const atmosphere::LoadedAtmosphere& loaded) {
-        known_tables.emplace(digest_from_hex(atmosphere::lookup_table_hash(loaded.model)),
-                             KnownAtmosphere{body.name, loaded});
-      };
-      add(body.atmosphere->loaded);
-      for (const atmosphere::LoadedAtmosphere& c : candidates)
-        if (std::abs(c.model.ground_radius_m - body.radius_m) <= 1.0) add(c);
-    }
-  }
-
   int run() {
     const ClusterNodeConfig* me = options.config.find_node(options.node_name);
     if (me == nullptr)
@@ -709,16 +305,23 @@ struct Node::Impl {
     base_scene = scene::load_scene(options.scene ? *options.scene : options.config.scene);
     viewports = warp::load_viewport_config(options.config.viewports);
     for (const std::string& name : me->outputs) outputs.push_back(viewports.index_of(name));
-    rendered_display.resize(outputs.size());
     table_options.sizes = render::table_sizes_by_name(options.config.table_sizes);
     table_options.max_orders = options.config.table_orders;
-    build_known_tables();
-    load_kept_definitions();
+    atmospheres.add_scene_and_candidates(options.atmosphere_files);
+    atmospheres.load_kept_definitions();
     node_directory = options.layout == FrameFileLayout::offline
                          ? options.output_directory / "nodes" / options.node_name
                          : options.output_directory / options.node_name;
     std::filesystem::create_directories(node_directory);
     heartbeat_ms = options.config.heartbeat_ms;
+    worker.emplace(RenderWorker::Setup{options, base_scene, viewports, outputs, atmospheres, table_options, node_directory},
+                   RenderWorker::Events{
+                       [this](std::uint64_t frame, double render_ms) { report_render_done(frame, render_ms); },
+                       [this](const Digest& hash) { asio::post(io, [this, hash] { send_table_ready(hash); }); },
+                       [this](const std::string& what) { report_failure(what); },
+                       [this] {
+                         asio::post(io, [this] { say_goodbye_and_finish("the node's window was closed", kNodeExitDone); });
+                       }});
 
     signals.async_wait([this](const boost::system::error_code& ec, int signal) {
       if (ec || finished) return;
@@ -733,17 +336,16 @@ struct Node::Impl {
       } catch (const std::exception& e) {
         spdlog::error("node '{}': networking failed: {}", options.node_name, e.what());
         exit_code = kNodeExitFailed;
-        push(Job{Job::Kind::stop, {}, 0, {}});
+        worker->stop();
       }
     });
-    render_loop();
+    worker->run();
     // The network thread ends once the connection flushed and closed.
     asio::post(io, [this] {
       if (!finished) finish(exit_code);
     });
     network.join();
-    renderer.reset();
-    context.reset();
+    worker->release_gl();
     return exit_code;
   }
 };

@@ -1,0 +1,27 @@
+#include "cluster/master/node_session.h"
+
+#include <spdlog/spdlog.h>
+
+#include "core/json_reader.h"
+
+namespace zenith::cluster {
+
+using config::cat;  // core/json_reader.h
+
+std::string NodeSession::who() const {
+  return name.empty() ? cat("connection from ", connection->peer()) : cat("node '", name, "' (", connection->peer(), ")");
+}
+
+void NodeSession::refuse(RejectReason reason, const std::string& text) {
+  spdlog::warn("master: refused {}: {}", who(), text);
+  connection->send(Reject{reason, text.substr(0, kMaxReasonBytes)});
+  connection->close_after_flush(cat("refused: ", text));
+}
+
+void NodeSession::close_for_protocol_violation(const std::string& what) {
+  spdlog::warn("master: closing {}: {}", who(), what);
+  connection->send(Goodbye{cat("protocol error: ", what).substr(0, kMaxReasonBytes)});
+  connection->close_after_flush(cat("protocol error: ", what));
+}
+
+}  // namespace zenith::cluster

@@ -1,0 +1,48 @@
+#pragma once
+// One node's connection to the master and what the master knows about it
+// (docs/cluster.md, "Join, rejoin and failures"): where it is in the
+// handshake, its name, and which table sets it holds.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "cluster/connection.h"
+#include "cluster/handshake.h"
+
+namespace zenith::cluster {
+
+/// A session lives from the accepted connection to its close; a node that
+/// reconnects gets a new session with a new id.
+///
+/// States: `handshake` (Hello … Authenticate) → `tables` (Welcome sent: the
+/// inventory, then the sets it lacks) → `ready` (holds every current set:
+/// takes part in frames from the next boundary). A session never goes back.
+struct NodeSession {
+  enum class State { handshake, tables, ready };
+
+  std::uint32_t id = 0;  ///< never reused within a master's run
+  std::shared_ptr<Connection> connection;
+  std::optional<MasterHandshake> handshake;
+  State state = State::handshake;
+  std::string name;  ///< from Hello (empty before)
+  /// The node's cache inventory: the TableReady messages it sends right after
+  /// Welcome, up to its first other message (a Heartbeat), name the sets it
+  /// already holds; those are announced to it but never sent again.
+  bool inventory_done = false;
+  std::set<Digest> cached;
+  std::set<Digest> tables_ready;  ///< TableReady after the inventory: held, verified and loaded
+  std::uint64_t chunks_sent = 0;
+  std::chrono::steady_clock::time_point connected_at = std::chrono::steady_clock::now();
+
+  /// "node 'a' (127.0.0.1:5000)", or "connection from 127.0.0.1:5000" before Hello: for logs.
+  std::string who() const;
+  /// Refuses the handshake: Reject with `reason` and `text`, then close (log line).
+  void refuse(RejectReason reason, const std::string& text);
+  /// Closes for a message a node must not send: Goodbye naming it, then close (log line).
+  void close_for_protocol_violation(const std::string& what);
+};
+
+}  // namespace zenith::cluster

@@ -1,0 +1,86 @@
+#include "cluster/master/node_sessions.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "core/json_reader.h"
+
+namespace zenith::cluster {
+
+using config::cat;  // core/json_reader.h
+
+NodeSession& NodeSessions::add(std::shared_ptr<Connection> connection, MasterHandshake handshake) {
+  auto session = std::make_shared<NodeSession>();
+  session->id = next_id_++;
+  session->handshake.emplace(std::move(handshake));
+  session->connection = std::move(connection);
+  NodeSession& added = *session;
+  sessions_.emplace(added.id, std::move(session));
+  return added;
+}
+
+NodeSession* NodeSessions::find(Id id) {
+  auto it = sessions_.find(id);
+  return it == sessions_.end() ? nullptr : it->second.get();
+}
+
+std::shared_ptr<NodeSession> NodeSessions::take(Id id) {
+  auto it = sessions_.find(id);
+  if (it == sessions_.end()) return nullptr;
+  std::shared_ptr<NodeSession> taken = std::move(it->second);
+  sessions_.erase(it);
+  return taken;
+}
+
+std::vector<NodeSessions::Id> NodeSessions::ids() const {
+  std::vector<Id> ids;
+  for (const auto& [id, session] : sessions_) ids.push_back(id);
+  return ids;
+}
+
+std::vector<NodeSessions::Id> NodeSessions::ready_ids() const {
+  std::vector<Id> ready;
+  for (const auto& [id, session] : sessions_)
+    if (session->state == NodeSession::State::ready && session->connection->is_open()) ready.push_back(id);
+  return ready;
+}
+
+std::size_t NodeSessions::ready_count() const {
+  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [](const auto& p) {
+    return p.second->state == NodeSession::State::ready;
+  }));
+}
+
+void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, const ClusterConfig& config,
+                                        std::uint64_t current_frame) {
+  if (const auto* hello = std::get_if<Hello>(&message)) {
+    s.name = hello->node_name;
+    const Challenge challenge = s.handshake->on_hello(*hello);  // wrong cluster / version
+    if (config.find_node(hello->node_name) == nullptr)
+      throw HandshakeError(RejectReason::unspecified,
+                           cat("node '", hello->node_name, "' is not in the cluster config ", config.source));
+    s.connection->send(challenge);
+  } else if (const auto* auth = std::get_if<Authenticate>(&message)) {
+    s.handshake->on_authenticate(*auth);  // wrong secret → HandshakeError
+    // A node that reconnects replaces its old connection (it proved the secret).
+    for (auto& [other_id, other] : sessions_) {
+      if (other_id != s.id && other->name == s.name && other->state != NodeSession::State::handshake) {
+        spdlog::warn("master: node '{}' reconnected from {}: closing its old connection", s.name, s.connection->peer());
+        other->connection->close("replaced by a new connection of the same node");
+        break;
+      }
+    }
+    s.connection->send(s.handshake->welcome(s.id, current_frame, config.heartbeat_ms, config.barrier_timeout_ms));
+    s.state = NodeSession::State::tables;
+    spdlog::info("master: node '{}' authenticated from {} (id {}); waiting for its table inventory", s.name,
+                 s.connection->peer(), s.id);
+  } else if (std::holds_alternative<Goodbye>(message)) {
+    s.connection->close(cat("Goodbye during the handshake: ", std::get<Goodbye>(message).reason));
+  } else {
+    throw HandshakeError(RejectReason::protocol_error,
+                         cat(to_string(message_type(message)), " before the handshake completed"));
+  }
+}
+
+}  // namespace zenith::cluster

@@ -1,0 +1,62 @@
+#pragma once
+// Every node connection of the master, by session id, and the handshake that
+// turns a new connection into an authenticated node (docs/protocol.md,
+// "Handshake"; docs/cluster.md, "Join, rejoin and failures").
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "cluster/cluster_config.h"
+#include "cluster/master/node_session.h"
+#include "cluster/messages.h"
+
+namespace zenith::cluster {
+
+/// Owns the sessions; ids count up from 1 and are never reused. Used on the
+/// master's networking thread only. Invariant: at most one authenticated
+/// session per node name once a handshake completes (a node that reconnects
+/// replaces its old connection, which is closed).
+class NodeSessions {
+ public:
+  using Id = std::uint32_t;
+
+  /// A new connection, in the handshake (`handshake` not yet started).
+  NodeSession& add(std::shared_ptr<Connection> connection, MasterHandshake handshake);
+  /// nullptr when the session is gone.
+  NodeSession* find(Id id);
+  /// Removes a session and hands it over: its connection is calling back, so
+  /// the caller releases it once that handler has returned.
+  std::shared_ptr<NodeSession> take(Id id);
+
+  /// Every session's id, in order: a snapshot to iterate while handlers may close sessions.
+  std::vector<Id> ids() const;
+  /// The ready sessions whose connection is open, in id order.
+  std::vector<Id> ready_ids() const;
+  std::size_t ready_count() const;
+  bool empty() const { return sessions_.empty(); }
+
+  /// Calls `f(NodeSession&)` for every session, in id order; `f` must not add or remove sessions.
+  template <typename F>
+  void for_each(F&& f) {
+    for (auto& [id, session] : sessions_) f(*session);
+  }
+  template <typename F>
+  void for_each(F&& f) const {
+    for (const auto& [id, session] : sessions_) f(static_cast<const NodeSession&>(*session));
+  }
+
+  /// One handshake message from `session` (state `handshake`): Hello →
+  /// Challenge (a node must be in `config`), Authenticate → Welcome (at
+  /// `current_frame`) and state `tables`, closing an older connection of the
+  /// same node; Goodbye closes. Throws HandshakeError for a wrong cluster,
+  /// version, secret or node, or any other message.
+  void on_handshake_message(NodeSession& session, const Message& message, const ClusterConfig& config,
+                            std::uint64_t current_frame);
+
+ private:
+  std::map<Id, std::shared_ptr<NodeSession>> sessions_;
+  Id next_id_ = 1;
+};
+
+}  // namespace zenith::cluster

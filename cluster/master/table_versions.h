@@ -1,0 +1,88 @@
+#pragma once
+// The master's table versions (docs/cluster.md, "Shared tables" and "Table
+// versions"): every table set prepared so far, the current version of every
+// atmosphere as FrameStates carry it, and at most one pending version on its
+// way to the nodes. Bookkeeping only: preparing sets (cache or precompute)
+// and sending them are the master's.
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cluster/messages.h"
+#include "cluster/show/show.h"
+#include "cluster/table_transfer.h"
+
+namespace zenith::cluster {
+
+/// Invariants: every version named by current() or pending() has a set (once
+/// prepared) and a definition; with a show, the sets a node must hold are the
+/// show's, fixed before the first frame, and there is no pending version.
+class TableVersions {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// A new version of one atmosphere on its way: prepared while frames go on
+  /// with the old one, then sent to every node; it takes effect once every
+  /// ready node sent TableReady for it.
+  struct Pending {
+    std::size_t ref_index = 0;  ///< into current()
+    Digest hash{};
+    bool distributed = false;   ///< prepared and sent to the nodes
+    Clock::time_point distributed_at{};
+  };
+
+  // ---- versions and their sets ----
+  /// Remembers a version (idempotent) and encodes its AtmosphereDefinition.
+  void add_version(const std::string& body, const atmosphere::LoadedAtmosphere& loaded, const Digest& hash);
+  /// A version added before; throws std::out_of_range otherwise.
+  const show::AtmosphereVersion& version(const Digest& hash) const { return versions_.at(hash); }
+  /// The encoded AtmosphereDefinition of a version; nullptr for an unknown one.
+  std::shared_ptr<const std::vector<std::uint8_t>> definition(const Digest& hash) const;
+  /// Keeps a prepared set (replacing one of the same hash).
+  void add_set(TableSetFile set);
+  bool has_set(const Digest& hash) const { return sets_.count(hash) > 0; }
+  /// A prepared set; throws std::out_of_range otherwise.
+  const TableSetFile& set(const Digest& hash) const { return sets_.at(hash); }
+
+  // ---- current versions ----
+  /// The current version of every atmosphere, in scene order, as FrameStates carry it.
+  const std::vector<AtmosphereTableRef>& current() const { return current_; }
+  /// Adds the next atmosphere's version, effective from frame 0.
+  void add_current(const std::string& body, const Digest& hash);
+  /// A show: these sets are every one it uses (a node holds them all before
+  /// it is ready), `current` the versions of its first frame.
+  void use_show_sets(std::vector<Digest> sets, std::vector<AtmosphereTableRef> current);
+  /// The sets a node must be sent: the show's, or the current versions and a distributed pending one.
+  std::vector<Digest> wanted_sets() const;
+  /// A node that holds `held` (TableReady) holds every current version and every set of the show.
+  bool ready_with(const std::set<Digest>& held) const;
+
+  // ---- the pending version ----
+  const std::optional<Pending>& pending() const { return pending_; }
+  /// Version `hash` of atmosphere current()[ref_index] starts on its way. Precondition: none pending.
+  void begin_pending(std::size_t ref_index, const Digest& hash);
+  /// The pending version was prepared and sent to the nodes at `now`.
+  void mark_distributed(Clock::time_point now);
+  /// The pending version could not be prepared: the show goes on with the current one.
+  void abandon_pending() { pending_.reset(); }
+  /// The pending version takes effect from `frame`: returns the atmosphere's
+  /// reference as it was before. Precondition: a pending version.
+  AtmosphereTableRef apply_pending(std::uint64_t frame);
+
+ private:
+  std::map<Digest, TableSetFile> sets_;  ///< current, pending and superseded versions, by table hash
+  std::vector<AtmosphereTableRef> current_;
+  std::optional<std::vector<Digest>> show_sets_;
+  std::optional<Pending> pending_;
+  /// Every version prepared so far (the scene's, switches', the show's): for
+  /// AtmosphereDefinitions and the recording.
+  std::map<Digest, show::AtmosphereVersion> versions_;
+  std::map<Digest, std::shared_ptr<const std::vector<std::uint8_t>>> definitions_;
+};
+
+}  // namespace zenith::cluster

@@ -1,0 +1,84 @@
+#include "cluster/node/output_writer.h"
+
+#include <fmt/format.h>
+
+#include <fstream>
+
+#include "image/tone_mapping.h"
+#include "warp/blending.h"
+
+namespace zenith::cluster {
+
+namespace {
+
+bool is_blended(const warp::OutputConfig& o) { return o.blend.mode != warp::BlendMode::none || o.black_level != 0.0; }
+
+}  // namespace
+
+OutputWriter::OutputWriter(const warp::ViewportConfig& viewports, FrameFileLayout layout,
+                           std::filesystem::path output_directory, std::filesystem::path node_directory,
+                           std::string format)
+    : viewports_(viewports),
+      layout_(layout),
+      output_directory_(std::move(output_directory)),
+      node_directory_(std::move(node_directory)),
+      format_(std::move(format)) {}
+
+std::filesystem::path OutputWriter::frame_path(const warp::OutputConfig& o, std::uint64_t frame) const {
+  if (layout_ == FrameFileLayout::offline)  // apps/offline_render.h: frame_file_path()
+    return output_directory_ / o.name / fmt::format("{}.{:06d}.{}", o.name, frame, format_);
+  return node_directory_ / o.name / fmt::format("frame-{:06d}.{}", frame, format_);
+}
+
+std::vector<float> OutputWriter::display_image(std::size_t viewport_index, std::vector<float> rgb) const {
+  const warp::OutputConfig& o = viewports_.outputs[viewport_index];
+  for (float& v : rgb) v = image::tone_map(v, image::ToneMapping::exponential);
+  if (is_blended(o))
+    warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports_, viewport_index), o.black_level);
+  return rgb;
+}
+
+void OutputWriter::write(std::size_t viewport_index, std::uint64_t frame, std::vector<float> rgb,
+                         const image::ImageAttributes& attributes) {
+  const warp::OutputConfig& o = viewports_.outputs[viewport_index];
+  const std::filesystem::path final_path = frame_path(o, frame);
+  std::filesystem::path partial = final_path;
+  partial += ".partial";
+  std::filesystem::create_directories(final_path.parent_path());
+  const bool blended = is_blended(o);
+  if (format_ == "exr") {
+    if (blended)
+      warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports_, viewport_index), o.black_level);
+    image::write_exr(partial, o.width_px, o.height_px, rgb, image::ExrPixelType::half, attributes);
+  } else if (!blended) {
+    image::write_png(partial, o.width_px, o.height_px, rgb, image::ToneMapping::exponential, attributes);
+  } else {
+    // As `zenith render --viewport`: tone map, then the output stage, then sRGB (docs/viewports.md).
+    image::write_png(partial, o.width_px, o.height_px, display_image(viewport_index, std::move(rgb)),
+                     image::ToneMapping::clamp, attributes);
+  }
+  partials_.emplace_back(partial, final_path);
+}
+
+void OutputWriter::finish_frame(RenderedFrame rendered) { rendered_ = std::move(rendered); }
+
+bool OutputWriter::present(std::uint64_t frame) {
+  if (!rendered_ || rendered_->frame != frame) return false;
+  for (const auto& [partial, final_path] : partials_) std::filesystem::rename(partial, final_path);
+  partials_.clear();
+  const RenderedFrame rendered = std::move(*rendered_);
+  rendered_.reset();
+  std::ofstream log(node_directory_ / "presented.log", std::ios::app);
+  log << "frame " << frame << " state " << rendered.state_digest << " tables " << rendered.tables << " show_time_s "
+      << fmt::format("{}", rendered.show_time_s) << "\n";
+  return true;
+}
+
+void OutputWriter::discard() {
+  std::error_code ec;
+  for (const auto& [partial, final_path] : partials_) std::filesystem::remove(partial, ec);
+  partials_.clear();
+  rendered_.reset();
+}
+
+}  // namespace zenith::cluster
