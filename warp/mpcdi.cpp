@@ -101,8 +101,8 @@ std::string_view base_name(std::string_view member) {
 /// Reads the elements of mpcdi.xml; every error names the archive, the member and the line.
 class MpcdiReader {
  public:
-  MpcdiReader(const ZipArchive& zip, std::string xml_member)
-      : zip_(zip), xml_member_(std::move(xml_member)), source_(zip.name() + ":" + xml_member_) {
+  MpcdiReader(const ZipArchive& zip, std::string xml_member, const MpcdiLoadOptions& options)
+      : zip_(zip), xml_member_(std::move(xml_member)), source_(zip.name() + ":" + xml_member_), options_(options) {
     const std::size_t slash = xml_member_.find_last_of('/');
     folder_ = slash == std::string::npos ? "" : xml_member_.substr(0, slash + 1);
   }
@@ -284,7 +284,9 @@ class MpcdiReader {
       if (result.map.channels != 3)
         fail(*warp, "region '" + region.id + "': geometry warp '" + result.path +
                         "' has 1 channel ('Pf'); MPCDI warps have 3 ('PF')");
-      if (!points_3d) region.warp_mesh = warp_mesh_from_pfm(result.map, member_name, interpolation);
+      if (!points_3d)
+        region.warp_mesh = warp_mesh_from_pfm(result.map, member_name, interpolation,
+                                              WarpMapConventions{options_.warp_values, WarpVDirection::down});
       region.geometry_warp = std::move(result);
     }
     if (const XmlElement* alpha = fileset.child("alphaMap"))
@@ -325,6 +327,7 @@ class MpcdiReader {
   const ZipArchive& zip_;
   std::string xml_member_;
   std::string source_;
+  MpcdiLoadOptions options_;
   std::string folder_;
 };
 
@@ -351,7 +354,7 @@ const MpcdiRegion* MpcdiFile::find_region(const std::string& id) const {
   return nullptr;
 }
 
-MpcdiFile load_mpcdi(const std::filesystem::path& path) {
+MpcdiFile load_mpcdi(const std::filesystem::path& path, const MpcdiLoadOptions& options) {
   const ZipArchive zip(path);
   // mpcdi.xml, ignoring case, preferring the shallowest one.
   std::string xml_member;
@@ -364,7 +367,7 @@ MpcdiFile load_mpcdi(const std::filesystem::path& path) {
   if (xml_member.empty())
     throw std::runtime_error(zip.name() + ": no mpcdi.xml in the archive (" + std::to_string(zip.names().size()) +
                              " members)");
-  return MpcdiReader(zip, xml_member).read();
+  return MpcdiReader(zip, xml_member, options).read();
 }
 
 }  // namespace zenith::warp

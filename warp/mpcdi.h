@@ -38,6 +38,7 @@
 #include "warp/blend_map.h"
 #include "warp/pfm.h"
 #include "warp/planar_projection.h"
+#include "warp/warp_map_conventions.h"
 #include "warp/warp_mesh.h"
 
 namespace zenith::warp {
@@ -108,6 +109,14 @@ struct MpcdiFile {
   const MpcdiRegion* find_region(const std::string& id) const;
 };
 
+/// Options of load_mpcdi().
+struct MpcdiLoadOptions {
+  /// What the geometry warps of the 2d and 3d profiles hold: absolute positions
+  /// in the region's image (VESA MPCDI) or offsets from each sample's place on
+  /// the regular grid (Evans & Sutherland exports: all zeros = no distortion).
+  WarpValues warp_values = WarpValues::absolute;
+};
+
 /// Reads an .mpcdi archive. Throws std::runtime_error naming the archive, the
 /// member and the line of mpcdi.xml where it applies, e.g.
 /// "show.mpcdi:mpcdi.xml:7: <region> has no attribute 'xsize'", for: an archive
@@ -117,6 +126,6 @@ struct MpcdiFile {
 /// a fileset naming an unknown region; a warp or blend file missing from the
 /// archive; a broken PFM (truncated, bad header) or PNG; and a NaN-only warp
 /// (std::invalid_argument from WarpMesh, message "<archive>:<member>: ... NaN-only mesh").
-MpcdiFile load_mpcdi(const std::filesystem::path& path);
+MpcdiFile load_mpcdi(const std::filesystem::path& path, const MpcdiLoadOptions& options = {});
 
 }  // namespace zenith::warp

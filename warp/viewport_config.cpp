@@ -63,8 +63,9 @@ std::pair<int, int> read_size(JsonReader& r) {
 WarpMesh load_warp(JsonReader& w, const WarpSource& source) {
   try {
     if (source.format == "bourke") return load_bourke_mesh(source.file);
-    if (source.format == "pfm") return load_pfm_warp_mesh(source.file);
-    const MpcdiFile mpcdi = load_mpcdi(source.file);
+    if (source.format == "pfm")
+      return load_pfm_warp_mesh(source.file, source.row_order, WarpInterpolation::catmull_rom, source.conventions);
+    const MpcdiFile mpcdi = load_mpcdi(source.file, MpcdiLoadOptions{source.conventions.values});
     const MpcdiRegion* region = mpcdi.find_region(source.region);
     if (region == nullptr) {
       std::string ids;
@@ -82,6 +83,35 @@ WarpMesh load_warp(JsonReader& w, const WarpSource& source) {
   } catch (const std::exception& e) {  // the loaders' runtime_error / invalid_argument
     w.fail("file", cat("cannot use the warp: ", e.what()));
   }
+}
+
+/// The "warp" object: {"file", "format", "region" (mpcdi), "values" (pfm,
+/// mpcdi), "row_order", "v_direction" (pfm)}.
+WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& base_dir) {
+  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction"});
+  WarpSource source;
+  source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
+  source.file = w.existing_file("file", base_dir);
+  const auto only_for = [&](const char* key, std::string_view formats) {
+    if (w.has(key)) w.fail(key, cat("applies to \"format\": ", formats, " only (format is \"", source.format, "\")"));
+  };
+  if (source.format == "mpcdi") {
+    source.region = w.string("region");
+    if (source.region.empty()) w.fail("region", "= \"\": must name a region of the MPCDI file");
+  } else {
+    only_for("region", "\"mpcdi\"");
+  }
+  if (source.format == "bourke") only_for("values", "\"pfm\" and \"mpcdi\"");
+  if (source.format != "pfm") {
+    only_for("row_order", "\"pfm\"");
+    only_for("v_direction", "\"pfm\"");
+  }
+  if (w.string_or("values", "absolute", {"absolute", "offsets"}) == "offsets")
+    source.conventions.values = WarpValues::offsets;
+  if (w.string_or("row_order", "bottom_to_top", {"bottom_to_top", "top_to_bottom"}) == "top_to_bottom")
+    source.row_order = PfmRowOrder::top_to_bottom;
+  if (w.string_or("v_direction", "down", {"down", "up"}) == "up") source.conventions.v_direction = WarpVDirection::up;
+  return source;
 }
 
 BlendSource read_blend(JsonReader& o, const fs::path& base_dir) {
@@ -133,16 +163,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir) {
     const json& wv = o.raw("warp");
     if (!wv.is_object()) o.fail("warp", cat("must be an object {\"file\", \"format\", \"region\"}, got ", brief(wv)));
     JsonReader w(wv, o.file(), o.key_path("warp"));
-    allow_keys(w, wv, {"file", "format", "region"});
-    WarpSource source;
-    source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
-    source.file = w.existing_file("file", base_dir);
-    if (source.format == "mpcdi") {
-      source.region = w.string("region");
-      if (source.region.empty()) w.fail("region", "= \"\": must name a region of the MPCDI file");
-    } else if (w.has("region")) {
-      w.fail("region", cat("applies to \"format\": \"mpcdi\" only (format is \"", source.format, "\")"));
-    }
+    WarpSource source = read_warp_source(w, wv, base_dir);
     WarpMesh mesh = load_warp(w, source);
     out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(mesh), base);
     out.warp = std::move(source);

@@ -10,7 +10,8 @@
 //     "outputs": [
 //       {"name": "p1", "size": [1920, 1200],
 //        "projection": {"type": "planar", "left_deg": -45, ...},          make_projection() spec
-//        "warp": {"file": "p1.data", "format": "bourke"},                 optional
+//        "warp": {"file": "p1.data", "format": "bourke"},                 optional; pfm and mpcdi
+//                                                                         also "values", pfm "row_order", "v_direction"
 //        "blend": "auto",                                                 "none" | "auto" | object
 //        "black_level": 0.02}                                             β in [0, 0.5]
 //     ]
@@ -28,8 +29,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "warp/pfm.h"
 #include "warp/planar_projection.h"
 #include "warp/projection.h"
+#include "warp/warp_map_conventions.h"
 
 namespace zenith::warp {
 
@@ -65,6 +68,12 @@ struct WarpSource {
   std::filesystem::path file;  ///< resolved against the config's folder
   std::string format;          ///< "bourke", "pfm" or "mpcdi"
   std::string region;          ///< mpcdi: the region id; empty otherwise
+  /// pfm: "row_order", the order the file stores its rows in; default
+  /// bottom_to_top (the classic PFM; SGCT and E&S surface files: top_to_bottom).
+  PfmRowOrder row_order = PfmRowOrder::bottom_to_top;
+  /// pfm: "values" and "v_direction" (defaults absolute, down); mpcdi: "values"
+  /// (MPCDI fixes v down). warp/warp_map_conventions.h has the formulas.
+  WarpMapConventions conventions;
 };
 
 struct OutputConfig {

@@ -1,7 +1,9 @@
 #pragma once
-// Helpers shared by the warp-file tests: a scratch folder, hand-made PFMs, and
-// checks of error messages.
+// Helpers shared by the warp-file tests: a scratch folder, hand-made PFMs,
+// checks of error messages, and a capture of logged warnings.
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <atomic>
 #include <bit>
@@ -10,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -55,6 +58,43 @@ inline void expect_error(const std::function<void()>& action, const std::vector<
       EXPECT_NE(message.find(part), std::string::npos) << "message: " << message << "\nmissing: " << part;
   }
 }
+
+/// Collects what is logged at level warn (or above) through spdlog's default
+/// logger while it lives (the warp loaders' warnings), and restores the logger.
+class LogCapture {
+ public:
+  LogCapture() : sink_(std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(256)), previous_(spdlog::default_logger()) {
+    spdlog::set_default_logger(std::make_shared<spdlog::logger>("capture", sink_));
+  }
+  ~LogCapture() { spdlog::set_default_logger(previous_); }
+  LogCapture(const LogCapture&) = delete;
+  LogCapture& operator=(const LogCapture&) = delete;
+
+  /// The messages logged at warn or above, oldest first.
+  std::vector<std::string> warnings() const {
+    std::vector<std::string> out;
+    for (const auto& message : sink_->last_raw())
+      if (message.level >= spdlog::level::warn) out.emplace_back(message.payload.data(), message.payload.size());
+    return out;
+  }
+  /// The one warning that contains every one of `parts`; fails the test when
+  /// there is none.
+  std::string expect_warning(const std::vector<std::string>& parts) const {
+    for (const std::string& warning : warnings()) {
+      bool all = true;
+      for (const std::string& part : parts) all = all && warning.find(part) != std::string::npos;
+      if (all) return warning;
+    }
+    std::string logged;
+    for (const std::string& warning : warnings()) logged += "\n  " + warning;
+    ADD_FAILURE() << "no warning mentions '" << parts.front() << "'; logged:" << logged;
+    return {};
+  }
+
+ private:
+  std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> sink_;
+  std::shared_ptr<spdlog::logger> previous_;
+};
 
 /// A PFM with `channels` channels; `value(x, y, c)` gives the sample of the
 /// pixel at column x, row y counted from the top. `stored_top_first` writes the
