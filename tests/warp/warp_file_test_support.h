@@ -1,7 +1,8 @@
 #pragma once
-// Helpers shared by the warp-file tests: a scratch folder, hand-made PFMs,
-// checks of error messages, and a capture of logged warnings.
+// Helpers shared by the warp-file tests: a scratch folder, hand-made PFMs and
+// PNGs, checks of error messages, and a capture of logged warnings.
 #include <gtest/gtest.h>
+#include <png.h>
 #include <spdlog/sinks/ringbuffer_sink.h>
 #include <spdlog/spdlog.h>
 
@@ -14,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <unistd.h>
 #include <vector>
 
@@ -114,6 +116,24 @@ inline std::string make_pfm(int width, int height, int channels, const std::func
         bytes.append(reinterpret_cast<const char*>(b), 4);
       }
   }
+  return bytes;
+}
+
+/// A grey PNG (libpng's simplified API): 8-bit for unsigned char samples,
+/// 16-bit for std::uint16_t ones; width · height samples, row 0 at the top.
+template <typename Sample>
+std::string make_grey_png(int width, int height, const std::vector<Sample>& grey) {
+  static_assert(std::is_same_v<Sample, unsigned char> || std::is_same_v<Sample, std::uint16_t>);
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(width);
+  image.height = static_cast<png_uint_32>(height);
+  image.format = sizeof(Sample) == 1 ? PNG_FORMAT_GRAY : PNG_FORMAT_LINEAR_Y;
+  png_alloc_size_t size = 0;
+  EXPECT_TRUE(png_image_write_to_memory(&image, nullptr, &size, 0, grey.data(), 0, nullptr));
+  std::string bytes(size, '\0');
+  EXPECT_TRUE(png_image_write_to_memory(&image, bytes.data(), &size, 0, grey.data(), 0, nullptr));
+  bytes.resize(size);
   return bytes;
 }
 
