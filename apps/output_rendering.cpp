@@ -54,12 +54,15 @@ ViewportSelection select_viewport_outputs(const std::string& spec) {
   ViewportSelection s;
   s.file = spec.substr(0, hash);
   if (s.file.empty()) throw std::invalid_argument(fmt::format("--viewport '{}': expected CONFIG.json[#NAME]", spec));
-  s.config = warp::load_viewport_config(s.file);
+  // One broken output must not stop another: warps that cannot be used fail
+  // only the outputs that need them.
+  s.config = warp::load_viewport_config(s.file, {.keep_broken_warps = true});
   if (hash != std::string::npos) {
     s.indices.push_back(s.config.index_of(spec.substr(hash + 1)));
   } else {
     for (std::size_t i = 0; i < s.config.outputs.size(); ++i) s.indices.push_back(i);
   }
+  for (const std::size_t i : s.indices) s.config.require_renderable(i);
   return s;
 }
 

@@ -42,7 +42,9 @@ struct ViewportSelection {
   std::vector<std::size_t> indices;  ///< into config.outputs
 };
 /// Loads CONFIG; throws std::invalid_argument for an empty CONFIG or an
-/// unknown NAME (listing the names), zenith::ConfigError for a bad config.
+/// unknown NAME (listing the names), zenith::ConfigError for a bad config and
+/// for a selected output whose warp cannot be used. Another output's broken
+/// warp does not stop NAME (warp::ViewportLoadOptions::keep_broken_warps).
 ViewportSelection select_viewport_outputs(const std::string& spec);
 
 /// The render::TableRequest of --tables NAME, --orders N, --cpu-precompute, --no-cache

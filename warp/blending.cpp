@@ -103,6 +103,7 @@ AutoBlend::AutoBlend(const ViewportConfig& config) : config_(config), outputs_(c
     o.config = &oc;
     o.participates = oc.blend.mode == BlendMode::automatic;
     if (!o.participates) continue;
+    if (oc.warp_error) config.require_renderable(i);  // a broken warp has no coverage to blend with
     o.ramp_px = std::max(1.0, oc.blend.width_fraction * std::min(oc.width_px, oc.height_px));
     // Pixels without a ray (a fisheye's corners, unmapped parts of a mesh)
     // bound the coverage like the image border does.
@@ -207,6 +208,7 @@ BlendMask load_blend_mask(const std::filesystem::path& path, double gamma, int w
 
 BlendMask output_blend_mask(const ViewportConfig& config, std::size_t output_index) {
   const OutputConfig& oc = config.outputs.at(output_index);
+  config.require_renderable(output_index);
   BlendMask mask;
   switch (oc.blend.mode) {
     case BlendMode::none:

@@ -85,7 +85,9 @@ BlendMask compute_auto_blend(const ViewportConfig& config, std::size_t output_in
 
 /// The mask an output's blend source gives, times the warp mesh's intensity
 /// where the output has a warp (WarpedProjection::intensity at pixel centres):
-/// none → 1, automatic → compute_auto_blend, file → load_blend_mask.
+/// none → 1, automatic → compute_auto_blend, file → load_blend_mask. Throws
+/// what ViewportConfig::require_renderable() throws for an output whose warp,
+/// or whose automatic blend partner's warp, is broken.
 BlendMask output_blend_mask(const ViewportConfig& config, std::size_t output_index);
 
 /// Reads a mask PNG: α = stored^gamma, stored = integer / (2^bits − 1), channel

@@ -6,11 +6,15 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <set>
 #include <stdexcept>
 
+#include <spdlog/spdlog.h>
+
+#include "warp/orientation_angles.h"
 #include "warp/xml_reader.h"
 
 namespace zenith::warp {
@@ -18,11 +22,26 @@ namespace {
 
 constexpr zip_uint64_t kMaxMemberBytes = zip_uint64_t{1} << 30;  // 1 GiB: far past any warp or blend file
 constexpr int kMaxResolutionPx = 65536;
+constexpr double kMaxOrientationDeg = 360.0;
+constexpr std::size_t kListedMembers = 12;  // members named in the "no mpcdi.xml" message
 
 std::string number(double value) {
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   return std::string(buffer, result.ptr);
+}
+
+/// Whether the file begins with a ZIP local file header ("PK\3\4").
+bool starts_like_a_zip(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  return in.read(magic, 4) && magic[0] == 'P' && magic[1] == 'K' && magic[2] == 3 && magic[3] == 4;
+}
+
+std::uintmax_t file_size_or_zero(const std::filesystem::path& path) {
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  return error ? 0 : size;
 }
 
 /// A read-only ZIP archive (libzip).
@@ -36,7 +55,11 @@ class ZipArchive {
       zip_error_init_with_code(&error, code);
       const std::string reason = zip_error_strerror(&error);
       zip_error_fini(&error);
-      throw std::runtime_error(name_ + ": cannot open as a ZIP archive (" + reason + ")");
+      std::string hint;
+      if ((code == ZIP_ER_NOZIP || code == ZIP_ER_INCONS) && starts_like_a_zip(path))
+        hint = ": it starts like one, so it may be truncated (the directory at the end of a ZIP is missing or "
+               "damaged; " + std::to_string(file_size_or_zero(path)) + " bytes; copy or download it again)";
+      throw std::runtime_error(name_ + ": cannot open as a ZIP archive (" + reason + ")" + hint);
     }
     const zip_int64_t count = zip_get_num_entries(archive_, 0);
     for (zip_int64_t k = 0; k < count; ++k) {
@@ -78,11 +101,14 @@ class ZipArchive {
     while (done < stat.size) {
       const zip_int64_t got = zip_fread(file.get(), bytes.data() + done, stat.size - done);
       if (got < 0)
-        throw std::runtime_error(name_ + ":" + member + ": corrupt (" + zip_file_strerror(file.get()) + ")");
+        throw std::runtime_error(name_ + ":" + member + ": corrupt (" + zip_file_strerror(file.get()) +
+                                 "): the archive may be truncated or damaged");
       if (got == 0) break;
       done += static_cast<zip_uint64_t>(got);
     }
-    if (done != stat.size) throw std::runtime_error(name_ + ":" + member + ": truncated in the archive");
+    if (done != stat.size)
+      throw std::runtime_error(name_ + ":" + member + ": " + std::to_string(done) + " of " + std::to_string(stat.size) +
+                               " bytes: the archive may be truncated");
     return bytes;
   }
 
@@ -91,6 +117,14 @@ class ZipArchive {
   zip_t* archive_ = nullptr;
   std::vector<std::string> names_;
 };
+
+/// `text` without leading and trailing whitespace.
+std::string_view trimmed(std::string_view text) {
+  const auto space = [](unsigned char c) { return std::isspace(c) != 0; };
+  while (!text.empty() && space(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && space(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  return text;
+}
 
 /// The base name of a member path.
 std::string_view base_name(std::string_view member) {
@@ -101,8 +135,8 @@ std::string_view base_name(std::string_view member) {
 /// Reads the elements of mpcdi.xml; every error names the archive, the member and the line.
 class MpcdiReader {
  public:
-  MpcdiReader(const ZipArchive& zip, std::string xml_member)
-      : zip_(zip), xml_member_(std::move(xml_member)), source_(zip.name() + ":" + xml_member_) {
+  MpcdiReader(const ZipArchive& zip, std::string xml_member, const MpcdiLoadOptions& options)
+      : zip_(zip), xml_member_(std::move(xml_member)), source_(zip.name() + ":" + xml_member_), options_(options) {
     const std::size_t slash = xml_member_.find_last_of('/');
     folder_ = slash == std::string::npos ? "" : xml_member_.substr(0, slash + 1);
   }
@@ -112,6 +146,7 @@ class MpcdiReader {
     if (!root.is("MPCDI")) fail(root, "the root element is <" + root.name + ">, expected <MPCDI>");
     MpcdiFile file;
     file.path = zip_.name();
+    file.descriptor = xml_member_;
     const std::string& profile = required_attribute(root, "profile");
     if (equals_ignoring_case(profile, "2d")) {
       file.profile = MpcdiProfile::media_2d;
@@ -174,13 +209,11 @@ class MpcdiReader {
   }
 
   double parse_real(const XmlElement& element, std::string_view what, const std::string& text) const {
-    std::string_view trimmed = text;
-    while (!trimmed.empty() && std::isspace(static_cast<unsigned char>(trimmed.front()))) trimmed.remove_prefix(1);
-    while (!trimmed.empty() && std::isspace(static_cast<unsigned char>(trimmed.back()))) trimmed.remove_suffix(1);
-    if (!trimmed.empty() && trimmed.front() == '+') trimmed.remove_prefix(1);
+    std::string_view digits = trimmed(text);
+    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
     double value = 0.0;
-    const auto [end, error] = std::from_chars(trimmed.data(), trimmed.data() + trimmed.size(), value);
-    if (trimmed.empty() || error != std::errc() || end != trimmed.data() + trimmed.size() || !std::isfinite(value))
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
       fail(element, "<" + element.name + "> " + std::string(what) + " = '" + text + "' is not a finite number");
     return value;
   }
@@ -207,12 +240,18 @@ class MpcdiReader {
     return parse_real(child, "value", child.text);
   }
   std::string child_text(const XmlElement& parent, std::string_view name) const {
-    const XmlElement& child = required_child(parent, name);
-    std::string text = child.text;
-    const auto space = [](unsigned char c) { return std::isspace(c) != 0; };
-    text.erase(text.begin(), std::find_if_not(text.begin(), text.end(), space));
-    text.erase(std::find_if_not(text.rbegin(), text.rend(), space).base(), text.end());
-    return text;
+    return std::string(trimmed(required_child(parent, name).text));
+  }
+
+  /// <yaw>, <pitch> or <roll> of a <frustum>: degrees in [−360, 360] (vendors
+  /// write [0, 360) as often as (−180, 180]); normalized by the caller.
+  double orientation_angle(const XmlElement& frustum, std::string_view name) const {
+    const XmlElement& child = required_child(frustum, name);
+    const double value = parse_real(child, "value", child.text);
+    if (value < -kMaxOrientationDeg || value > kMaxOrientationDeg)
+      fail(child, "<frustum> <" + child.name + "> = " + number(value) + ": must be in [" + number(-kMaxOrientationDeg) +
+                      ", " + number(kMaxOrientationDeg) + "] degrees");
+    return value;
   }
 
   MpcdiRegion read_region(const XmlElement& element, MpcdiProfile profile) const {
@@ -231,9 +270,11 @@ class MpcdiReader {
                                            1, kMaxResolutionPx);
     if (const XmlElement* frustum = element.child("frustum")) {
       MpcdiFrustum f;
-      f.yaw_deg = child_real(*frustum, "yaw");
-      f.pitch_deg = child_real(*frustum, "pitch");
-      f.roll_deg = child_real(*frustum, "roll");
+      const YawPitchRollDeg orientation = normalized_yaw_pitch_roll(
+          {orientation_angle(*frustum, "yaw"), orientation_angle(*frustum, "pitch"), orientation_angle(*frustum, "roll")});
+      f.yaw_deg = orientation.yaw_deg;
+      f.pitch_deg = orientation.pitch_deg;
+      f.roll_deg = orientation.roll_deg;
       f.left_deg = child_real(*frustum, "leftAngle");
       f.right_deg = child_real(*frustum, "rightAngle");
       f.up_deg = child_real(*frustum, "upAngle");
@@ -258,8 +299,21 @@ class MpcdiReader {
     return index;
   }
 
+  /// Whether a <geometryWarpFile>, <alphaMap> or <betaMap> names no file: an
+  /// empty element (`<alphaMap />`) or an empty <path>. Vendors write these
+  /// for "none"; logged as a warning and ignored.
+  bool names_no_file(const XmlElement& element, const std::string& region_id) const {
+    const XmlElement* path = element.child("path");
+    const bool empty_element = element.children.empty() && trimmed(element.text).empty();
+    if (!empty_element && !(path && trimmed(path->text).empty())) return false;
+    spdlog::warn("{}:{}: region '{}': <{}> names no file ({}): ignored", source_, element.line, region_id,
+                 element.name, empty_element ? "an empty element" : "an empty <path>");
+    return true;
+  }
+
   void read_fileset(const XmlElement& fileset, MpcdiRegion& region, MpcdiProfile profile) const {
-    if (const XmlElement* warp = fileset.child("geometryWarpFile")) {
+    const XmlElement* warp = fileset.child("geometryWarpFile");
+    if (warp && !names_no_file(*warp, region.id)) {
       MpcdiGeometryWarp result;
       result.path = child_text(*warp, "path");
       const long long index = member_for(*warp, result.path, region.id, "geometry warp file");
@@ -284,13 +338,15 @@ class MpcdiReader {
       if (result.map.channels != 3)
         fail(*warp, "region '" + region.id + "': geometry warp '" + result.path +
                         "' has 1 channel ('Pf'); MPCDI warps have 3 ('PF')");
-      if (!points_3d) region.warp_mesh = warp_mesh_from_pfm(result.map, member_name, interpolation);
+      if (!points_3d)
+        region.warp_mesh = warp_mesh_from_pfm(result.map, member_name, interpolation,
+                                              WarpMapConventions{options_.warp_values, WarpVDirection::down});
       region.geometry_warp = std::move(result);
     }
-    if (const XmlElement* alpha = fileset.child("alphaMap"))
-      region.alpha_map = read_blend_map(*alpha, region.id, "alpha map", true);
-    if (const XmlElement* beta = fileset.child("betaMap"))
-      region.beta_map = read_blend_map(*beta, region.id, "beta map", false);
+    const XmlElement* alpha = fileset.child("alphaMap");
+    if (alpha && !names_no_file(*alpha, region.id)) region.alpha_map = read_blend_map(*alpha, region.id, "alpha map", true);
+    const XmlElement* beta = fileset.child("betaMap");
+    if (beta && !names_no_file(*beta, region.id)) region.beta_map = read_blend_map(*beta, region.id, "beta map", false);
   }
 
   MpcdiBlendMap read_blend_map(const XmlElement& element, const std::string& region_id, const char* what,
@@ -325,8 +381,62 @@ class MpcdiReader {
   const ZipArchive& zip_;
   std::string xml_member_;
   std::string source_;
+  MpcdiLoadOptions options_;
   std::string folder_;
 };
+
+/// A member that is the debris of an archiver, not content (macOS resource forks).
+bool is_archiver_debris(const std::string& member) {
+  return member.rfind("__MACOSX/", 0) == 0 || base_name(member).substr(0, 2) == "._";
+}
+
+/// The shallowest member whose base name is `name` (ignoring case); "" when none.
+std::string shallowest_named(const ZipArchive& zip, std::string_view name) {
+  std::string found;
+  std::size_t best_depth = std::numeric_limits<std::size_t>::max();
+  for (const std::string& member : zip.names()) {
+    if (is_archiver_debris(member) || !equals_ignoring_case(base_name(member), name)) continue;
+    const auto depth = static_cast<std::size_t>(std::count(member.begin(), member.end(), '/'));
+    if (depth < best_depth) best_depth = depth, found = member;
+  }
+  return found;
+}
+
+/// "'a', 'b', 'c'", at most kListedMembers of them, then "and N more".
+std::string listed(const std::vector<std::string>& members) {
+  std::string text;
+  for (std::size_t k = 0; k < members.size() && k < kListedMembers; ++k)
+    text += (k == 0 ? "'" : ", '") + members[k] + "'";
+  if (members.size() > kListedMembers) text += " and " + std::to_string(members.size() - kListedMembers) + " more";
+  return text.empty() ? "none" : text;
+}
+
+/// The member holding the descriptor: mpcdi.xml (VESA; in any folder, the
+/// shallowest, ignoring case), else mpacs.xml, else the archive's only .xml
+/// member (older Evans & Sutherland exports name it after the show). Throws
+/// naming the archive's members when there is none or more than one candidate.
+std::string descriptor_member(const ZipArchive& zip) {
+  std::string member = shallowest_named(zip, "mpcdi.xml");
+  if (!member.empty()) return member;
+  member = shallowest_named(zip, "mpacs.xml");
+  if (member.empty()) {
+    std::vector<std::string> xml;
+    for (const std::string& name : zip.names()) {
+      const std::string_view base = base_name(name);
+      if (!is_archiver_debris(name) && base.size() > 4 && equals_ignoring_case(base.substr(base.size() - 4), ".xml"))
+        xml.push_back(name);
+    }
+    if (xml.size() != 1)
+      throw std::runtime_error(
+          zip.name() + ": no mpcdi.xml in the archive; its " + std::to_string(zip.names().size()) + " members: " +
+          listed(zip.names()) +
+          (xml.empty() ? std::string(" (no .xml member to read instead)")
+                       : " (" + std::to_string(xml.size()) + " .xml members: cannot tell which one is the descriptor)"));
+    member = xml.front();
+  }
+  spdlog::info("{}: no mpcdi.xml; reading '{}' as the MPCDI descriptor", zip.name(), member);
+  return member;
+}
 
 }  // namespace
 
@@ -351,20 +461,9 @@ const MpcdiRegion* MpcdiFile::find_region(const std::string& id) const {
   return nullptr;
 }
 
-MpcdiFile load_mpcdi(const std::filesystem::path& path) {
+MpcdiFile load_mpcdi(const std::filesystem::path& path, const MpcdiLoadOptions& options) {
   const ZipArchive zip(path);
-  // mpcdi.xml, ignoring case, preferring the shallowest one.
-  std::string xml_member;
-  std::size_t best_depth = std::numeric_limits<std::size_t>::max();
-  for (const std::string& member : zip.names()) {
-    if (!equals_ignoring_case(base_name(member), "mpcdi.xml")) continue;
-    const auto depth = static_cast<std::size_t>(std::count(member.begin(), member.end(), '/'));
-    if (depth < best_depth) best_depth = depth, xml_member = member;
-  }
-  if (xml_member.empty())
-    throw std::runtime_error(zip.name() + ": no mpcdi.xml in the archive (" + std::to_string(zip.names().size()) +
-                             " members)");
-  return MpcdiReader(zip, xml_member).read();
+  return MpcdiReader(zip, descriptor_member(zip), options).read();
 }
 
 }  // namespace zenith::warp

@@ -1,6 +1,7 @@
 #pragma once
 // MPCDI (VESA Multiple Projector Common Data Interchange, v1 and v2) files: a
-// ZIP archive holding mpcdi.xml and the warp and blend files it names.
+// ZIP archive holding mpcdi.xml and the warp and blend files it names
+// (vendors also write mpacs.xml, or a single differently named .xml).
 // docs/warp-meshes.md describes what is read and how.
 //
 //   <MPCDI profile="2d|3d|a3|sl" geometry=".." version="2.0">
@@ -38,6 +39,7 @@
 #include "warp/blend_map.h"
 #include "warp/pfm.h"
 #include "warp/planar_projection.h"
+#include "warp/warp_map_conventions.h"
 #include "warp/warp_mesh.h"
 
 namespace zenith::warp {
@@ -54,6 +56,9 @@ const char* to_string(MpcdiProfile profile);
 /// A region's view frustum, angles in degrees, MPCDI's conventions: yaw turns
 /// right, pitch up, roll raises the left wing; leftAngle and downAngle are
 /// normally negative. These are PlanarFrustum's conventions, so planar() copies.
+/// Yaw, pitch and roll are read in [−360, 360] (vendors write [0, 360) as often
+/// as (−180, 180]) and kept normalized (warp/orientation_angles.h): yaw and roll
+/// in (−180, 180], pitch in [−90, 90], the same rotation.
 struct MpcdiFrustum {
   double yaw_deg = 0, pitch_deg = 0, roll_deg = 0;
   double left_deg = 0, right_deg = 0, up_deg = 0, down_deg = 0;
@@ -99,7 +104,8 @@ struct MpcdiBuffer {
 };
 
 struct MpcdiFile {
-  std::string path;  ///< the archive
+  std::string path;        ///< the archive
+  std::string descriptor;  ///< the member read as mpcdi.xml (also mpacs.xml, or the only .xml member)
   MpcdiProfile profile = MpcdiProfile::media_2d;
   std::string version;  ///< as written, "" when absent
   std::vector<MpcdiBuffer> buffers;
@@ -108,15 +114,28 @@ struct MpcdiFile {
   const MpcdiRegion* find_region(const std::string& id) const;
 };
 
-/// Reads an .mpcdi archive. Throws std::runtime_error naming the archive, the
-/// member and the line of mpcdi.xml where it applies, e.g.
+/// Options of load_mpcdi().
+struct MpcdiLoadOptions {
+  /// What the geometry warps of the 2d and 3d profiles hold: absolute positions
+  /// in the region's image (VESA MPCDI) or offsets from each sample's place on
+  /// the regular grid (Evans & Sutherland exports: all zeros = no distortion).
+  WarpValues warp_values = WarpValues::absolute;
+};
+
+/// Reads an .mpcdi archive. The descriptor is mpcdi.xml (matched ignoring case,
+/// in any folder of the archive, the shallowest), else mpacs.xml, else the
+/// archive's only .xml member (older E&S exports). A <geometryWarpFile>,
+/// <alphaMap> or <betaMap> that names no file (`<alphaMap />`, an empty <path>)
+/// is ignored with a warning (spdlog). Throws std::runtime_error naming the
+/// archive, the member and the line of the descriptor where it applies, e.g.
 /// "show.mpcdi:mpcdi.xml:7: <region> has no attribute 'xsize'", for: an archive
-/// that cannot be opened or is not a ZIP; no mpcdi.xml (matched ignoring case,
-/// in any folder of the archive); malformed XML; a missing required attribute or
+/// that cannot be opened or is not a ZIP (one that starts like a ZIP: "may be
+/// truncated"); no descriptor (the message lists the archive's members); malformed XML;
+/// a frustum's yaw, pitch or roll outside [−360, 360]; a missing required attribute or
 /// element, or a value out of range; an unknown profile; a duplicate region id;
 /// a fileset naming an unknown region; a warp or blend file missing from the
 /// archive; a broken PFM (truncated, bad header) or PNG; and a NaN-only warp
 /// (std::invalid_argument from WarpMesh, message "<archive>:<member>: ... NaN-only mesh").
-MpcdiFile load_mpcdi(const std::filesystem::path& path);
+MpcdiFile load_mpcdi(const std::filesystem::path& path, const MpcdiLoadOptions& options = {});
 
 }  // namespace zenith::warp

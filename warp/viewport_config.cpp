@@ -60,11 +60,15 @@ std::pair<int, int> read_size(JsonReader& r) {
   return {side[0], side[1]};
 }
 
-WarpMesh load_warp(JsonReader& w, const WarpSource& source) {
+/// The mesh of a warp; resolves source.file against `base_dir` (it must exist).
+/// Every failure is a ConfigError at /outputs/<i>/warp/file (or .../region).
+WarpMesh load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir) {
+  source.file = w.existing_file("file", base_dir);
   try {
     if (source.format == "bourke") return load_bourke_mesh(source.file);
-    if (source.format == "pfm") return load_pfm_warp_mesh(source.file);
-    const MpcdiFile mpcdi = load_mpcdi(source.file);
+    if (source.format == "pfm")
+      return load_pfm_warp_mesh(source.file, source.row_order, WarpInterpolation::catmull_rom, source.conventions);
+    const MpcdiFile mpcdi = load_mpcdi(source.file, MpcdiLoadOptions{source.conventions.values});
     const MpcdiRegion* region = mpcdi.find_region(source.region);
     if (region == nullptr) {
       std::string ids;
@@ -82,6 +86,36 @@ WarpMesh load_warp(JsonReader& w, const WarpSource& source) {
   } catch (const std::exception& e) {  // the loaders' runtime_error / invalid_argument
     w.fail("file", cat("cannot use the warp: ", e.what()));
   }
+}
+
+/// The "warp" object: {"file", "format", "region" (mpcdi), "values" (pfm,
+/// mpcdi), "row_order", "v_direction" (pfm)}: its keys and values; the file is
+/// looked for by load_warp().
+WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& base_dir) {
+  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction"});
+  WarpSource source;
+  source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
+  source.file = base_dir / w.string("file");  // checked, made absolute and read by load_warp()
+  const auto only_for = [&](const char* key, std::string_view formats) {
+    if (w.has(key)) w.fail(key, cat("applies to \"format\": ", formats, " only (format is \"", source.format, "\")"));
+  };
+  if (source.format == "mpcdi") {
+    source.region = w.string("region");
+    if (source.region.empty()) w.fail("region", "= \"\": must name a region of the MPCDI file");
+  } else {
+    only_for("region", "\"mpcdi\"");
+  }
+  if (source.format == "bourke") only_for("values", "\"pfm\" and \"mpcdi\"");
+  if (source.format != "pfm") {
+    only_for("row_order", "\"pfm\"");
+    only_for("v_direction", "\"pfm\"");
+  }
+  if (w.string_or("values", "absolute", {"absolute", "offsets"}) == "offsets")
+    source.conventions.values = WarpValues::offsets;
+  if (w.string_or("row_order", "bottom_to_top", {"bottom_to_top", "top_to_bottom"}) == "top_to_bottom")
+    source.row_order = PfmRowOrder::top_to_bottom;
+  if (w.string_or("v_direction", "down", {"down", "up"}) == "up") source.conventions.v_direction = WarpVDirection::up;
+  return source;
 }
 
 BlendSource read_blend(JsonReader& o, const fs::path& base_dir) {
@@ -115,7 +149,7 @@ BlendSource read_blend(JsonReader& o, const fs::path& base_dir) {
   return blend;
 }
 
-OutputConfig read_output(JsonReader& o, const fs::path& base_dir) {
+OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const ViewportLoadOptions& options) {
   OutputConfig out;
   out.name = o.string("name");
   if (!valid_name(out.name))
@@ -133,18 +167,14 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir) {
     const json& wv = o.raw("warp");
     if (!wv.is_object()) o.fail("warp", cat("must be an object {\"file\", \"format\", \"region\"}, got ", brief(wv)));
     JsonReader w(wv, o.file(), o.key_path("warp"));
-    allow_keys(w, wv, {"file", "format", "region"});
-    WarpSource source;
-    source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
-    source.file = w.existing_file("file", base_dir);
-    if (source.format == "mpcdi") {
-      source.region = w.string("region");
-      if (source.region.empty()) w.fail("region", "= \"\": must name a region of the MPCDI file");
-    } else if (w.has("region")) {
-      w.fail("region", cat("applies to \"format\": \"mpcdi\" only (format is \"", source.format, "\")"));
+    WarpSource source = read_warp_source(w, wv, base_dir);
+    try {
+      WarpMesh mesh = load_warp(w, source, base_dir);
+      out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(mesh), base);
+    } catch (const ConfigError&) {
+      if (!options.keep_broken_warps) throw;
+      out.warp_error = std::current_exception();  // out.projection stays null
     }
-    WarpMesh mesh = load_warp(w, source);
-    out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(mesh), base);
     out.warp = std::move(source);
   } else {
     out.projection = std::move(base);
@@ -180,7 +210,25 @@ std::size_t ViewportConfig::index_of(const std::string& output_name) const {
   throw std::invalid_argument(cat(source, ": no output named '", output_name, "' (outputs: ", names, ")"));
 }
 
-ViewportConfig parse_viewport_config(const json& config, const std::string& source, const fs::path& base_dir) {
+void ViewportConfig::require_renderable(std::size_t index) const {
+  const OutputConfig& output = outputs.at(index);
+  if (output.warp_error) std::rethrow_exception(output.warp_error);
+  if (output.blend.mode != BlendMode::automatic) return;
+  for (std::size_t j = 0; j < outputs.size(); ++j) {
+    const OutputConfig& other = outputs[j];
+    if (j == index || other.blend.mode != BlendMode::automatic || !other.warp_error) continue;
+    try {
+      std::rethrow_exception(other.warp_error);
+    } catch (const std::exception& e) {
+      throw ConfigError(source, cat("/outputs/", index, "/blend"),
+                        cat("output '", output.name, "' blends automatically with output '", other.name,
+                            "', whose warp cannot be used, so its mask cannot be computed: ", e.what()));
+    }
+  }
+}
+
+ViewportConfig parse_viewport_config(const json& config, const std::string& source, const fs::path& base_dir,
+                                     const ViewportLoadOptions& options) {
   JsonReader root(config, source);
   allow_keys(root, config, {"zenith_viewports", "name", "description", "outputs"});
   if (!root.has("zenith_viewports"))
@@ -204,7 +252,7 @@ ViewportConfig parse_viewport_config(const json& config, const std::string& sour
     if (!ov.is_object()) throw ConfigError(source, pointer, cat("must be an object, got ", brief(ov)));
     JsonReader o(ov, source, pointer);
     allow_keys(o, ov, {"name", "size", "projection", "warp", "blend", "black_level"});
-    OutputConfig out = read_output(o, base_dir);
+    OutputConfig out = read_output(o, base_dir, options);
     if (!names.insert(out.name).second)
       o.fail("name", cat("= \"", out.name, "\": duplicate output name (names must be unique)"));
     vc.outputs.push_back(std::move(out));
@@ -212,12 +260,12 @@ ViewportConfig parse_viewport_config(const json& config, const std::string& sour
   return vc;
 }
 
-ViewportConfig load_viewport_config(const fs::path& path) {
+ViewportConfig load_viewport_config(const fs::path& path, const ViewportLoadOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path.string(), "", "cannot open file");
   std::stringstream text;
   text << in.rdbuf();
-  return parse_viewport_config(parse_json(text.str(), path.string()), path.string(), path.parent_path());
+  return parse_viewport_config(parse_json(text.str(), path.string()), path.string(), path.parent_path(), options);
 }
 
 PlanarFrustum display_wall_frustum(const DisplayWall& wall, int column, int row) {

@@ -10,7 +10,8 @@
 //     "outputs": [
 //       {"name": "p1", "size": [1920, 1200],
 //        "projection": {"type": "planar", "left_deg": -45, ...},          make_projection() spec
-//        "warp": {"file": "p1.data", "format": "bourke"},                 optional
+//        "warp": {"file": "p1.data", "format": "bourke"},                 optional; pfm and mpcdi
+//                                                                         also "values", pfm "row_order", "v_direction"
 //        "blend": "auto",                                                 "none" | "auto" | object
 //        "black_level": 0.02}                                             β in [0, 0.5]
 //     ]
@@ -20,6 +21,7 @@
 // JSON pointer of the key, the value and the allowed range, e.g.
 //   dome.json: /outputs/2/black_level = 0.8: must be in [0, 0.5]
 #include <cstddef>
+#include <exception>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -28,8 +30,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "warp/pfm.h"
 #include "warp/planar_projection.h"
 #include "warp/projection.h"
+#include "warp/warp_map_conventions.h"
 
 namespace zenith::warp {
 
@@ -65,6 +69,12 @@ struct WarpSource {
   std::filesystem::path file;  ///< resolved against the config's folder
   std::string format;          ///< "bourke", "pfm" or "mpcdi"
   std::string region;          ///< mpcdi: the region id; empty otherwise
+  /// pfm: "row_order", the order the file stores its rows in; default
+  /// bottom_to_top (the classic PFM; SGCT and E&S surface files: top_to_bottom).
+  PfmRowOrder row_order = PfmRowOrder::bottom_to_top;
+  /// pfm: "values" and "v_direction" (defaults absolute, down); mpcdi: "values"
+  /// (MPCDI fixes v down). warp/warp_map_conventions.h has the formulas.
+  WarpMapConventions conventions;
 };
 
 struct OutputConfig {
@@ -80,6 +90,10 @@ struct OutputConfig {
   /// β: the projector's black level as a fraction of its full white, in
   /// [0, 0.5]; the output stage writes P·α·(1 − β) + β (docs/viewports.md).
   double black_level = 0.0;
+  /// Only with ViewportLoadOptions::keep_broken_warps: why the warp cannot be
+  /// used (the ConfigError a strict load throws, e.g. ".../warp/file: cannot
+  /// use the warp: p2.pfm: PFM: truncated ..."); projection is then null.
+  std::exception_ptr warp_error;
 };
 
 struct ViewportConfig {
@@ -92,6 +106,24 @@ struct ViewportConfig {
   const OutputConfig* find(const std::string& output_name) const;
   /// Its index in outputs; throws std::invalid_argument listing the names when none.
   std::size_t index_of(const std::string& output_name) const;
+  /// Throws what stops output `index` from being rendered: its own warp_error,
+  /// or, when it blends automatically, a ConfigError at /outputs/<index>/blend
+  /// naming the automatically blended output whose warp is broken (its
+  /// coverage shapes this output's mask) and that output's error. Returns for
+  /// a renderable output (always, for a config loaded strictly).
+  void require_renderable(std::size_t index) const;
+};
+
+/// Options of parse_viewport_config() and load_viewport_config().
+struct ViewportLoadOptions {
+  /// false (the default): a warp that cannot be used (a missing or broken
+  /// file, an unknown MPCDI region) fails the whole config. true: the error is
+  /// kept in its output (OutputConfig::warp_error, projection null) and the
+  /// other outputs load, so that one broken output does not stop another
+  /// (`zenith render --viewport FILE#good`); ViewportConfig::require_renderable()
+  /// gives the error when the broken output is asked for. Errors in the config's
+  /// own keys and values fail the load either way.
+  bool keep_broken_warps = false;
 };
 
 /// Parses a viewport config held in `config`. `source` names the file in
@@ -99,11 +131,12 @@ struct ViewportConfig {
 /// Throws zenith::ConfigError for anything invalid: a missing or wrong version,
 /// unknown keys, a bad size, projection, warp, blend or black level, duplicate
 /// or invalid names, a missing warp or blend file, and a warp file that cannot
-/// be read (its loader's message, pointing at /outputs/<i>/warp/file).
+/// be read (its loader's message, pointing at /outputs/<i>/warp/file; kept in
+/// the output instead with options.keep_broken_warps).
 ViewportConfig parse_viewport_config(const nlohmann::json& config, const std::string& source,
-                                     const std::filesystem::path& base_dir);
+                                     const std::filesystem::path& base_dir, const ViewportLoadOptions& options = {});
 /// Reads and parses a file (ConfigError "cannot open file" when unreadable).
-ViewportConfig load_viewport_config(const std::filesystem::path& path);
+ViewportConfig load_viewport_config(const std::filesystem::path& path, const ViewportLoadOptions& options = {});
 
 // ---------------------------------------------------------------------------
 // Display walls with bezel compensation.

@@ -8,7 +8,10 @@
 #include <stdexcept>
 #include <string_view>
 
+#include <spdlog/spdlog.h>
+
 #include "warp/file_bytes.h"
+#include "warp/warp_map_checks.h"
 
 namespace zenith::warp {
 namespace {
@@ -414,7 +417,8 @@ WarpMesh load_bourke_mesh(const std::filesystem::path& path, const BourkeMeshOpt
   return WarpMesh(nx, ny, std::move(grid), parser.name(), WarpInterpolation::catmull_rom, extent);
 }
 
-WarpMesh warp_mesh_from_pfm(const PfmImage& map, const std::string& source, WarpInterpolation interpolation) {
+WarpMesh warp_mesh_from_pfm(const PfmImage& map, const std::string& source, WarpInterpolation interpolation,
+                            const WarpMapConventions& conventions) {
   if (map.channels != 3)
     throw std::invalid_argument(source + ": a warp map needs 3 channels ('PF'), this one has " +
                                 std::to_string(map.channels));
@@ -425,14 +429,18 @@ WarpMesh warp_mesh_from_pfm(const PfmImage& map, const std::string& source, Warp
   for (int y = 0; y < map.height; ++y)
     for (int x = 0; x < map.width; ++x) {
       const double u = map.at(x, y, 0), v = map.at(x, y, 1);
-      if (std::isfinite(u) && std::isfinite(v)) nodes[static_cast<std::size_t>(y) * map.width + x] = {u, v, 1.0, true};
+      if (!std::isfinite(u) || !std::isfinite(v)) continue;
+      const WarpSourcePoint p = to_source_point(u, v, x, map.width, y, map.height, conventions);
+      nodes[static_cast<std::size_t>(y) * map.width + x] = {p.u, p.v, 1.0, true};
     }
-  return WarpMesh(map.width, map.height, std::move(nodes), source, interpolation);
+  WarpMesh mesh(map.width, map.height, std::move(nodes), source, interpolation);
+  for (const std::string& warning : warp_map_warnings(map, conventions, source)) spdlog::warn("{}", warning);
+  return mesh;
 }
 
 WarpMesh load_pfm_warp_mesh(const std::filesystem::path& path, PfmRowOrder stored_rows,
-                            WarpInterpolation interpolation) {
-  return warp_mesh_from_pfm(read_pfm(path, stored_rows), path.string(), interpolation);
+                            WarpInterpolation interpolation, const WarpMapConventions& conventions) {
+  return warp_mesh_from_pfm(read_pfm(path, stored_rows), path.string(), interpolation, conventions);
 }
 
 }  // namespace zenith::warp

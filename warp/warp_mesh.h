@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "warp/pfm.h"
+#include "warp/warp_map_conventions.h"
 
 namespace zenith::warp {
 
@@ -130,16 +131,25 @@ WarpMesh load_bourke_mesh(const std::filesystem::path& path, const BourkeMeshOpt
 
 /// A warp mesh from a 3-channel PFM (e.g. an MPCDI geometry warp, or a plain
 /// PFM warp map): pixel (i, j) of `map` (row 0 at the top) is node (i, j), the
-/// nodes spanning the projector's image edge to edge; channels 0 and 1 are
-/// (u, v), channel 2 is ignored; a node with a non-finite u or v has no data.
-/// Intensity 1 everywhere. Throws std::invalid_argument "<source>: ..." for a
+/// nodes spanning the projector's image edge to edge; channels 0 and 1 are the
+/// stored (u, v), turned into zenith's convention by `conventions` (absolute
+/// values or offsets from the regular grid, v down or up:
+/// warp/warp_map_conventions.h); channel 2 is ignored; a node with a non-finite
+/// u or v has no data. Intensity 1 everywhere. Logs the warnings of
+/// warp_map_warnings() (spdlog, level warn): a map that collapses to one
+/// point, looks like offsets read as absolute values, or maps most samples
+/// outside the source image. Throws std::invalid_argument "<source>: ..." for a
 /// 1-channel map, a map narrower or lower than 2, and a map without any finite node.
 WarpMesh warp_mesh_from_pfm(const PfmImage& map, const std::string& source,
-                            WarpInterpolation interpolation = WarpInterpolation::catmull_rom);
+                            WarpInterpolation interpolation = WarpInterpolation::catmull_rom,
+                            const WarpMapConventions& conventions = {});
 
 /// read_pfm(path, stored_rows) then warp_mesh_from_pfm(). Plain PFM warp maps
-/// follow the classic PFM row order unless told otherwise.
+/// follow the classic PFM row order (first stored row = the bottom), absolute
+/// values and v down unless told otherwise; SGCT and E&S surface files store
+/// the top row first with v up (docs/warp-meshes.md has the table).
 WarpMesh load_pfm_warp_mesh(const std::filesystem::path& path, PfmRowOrder stored_rows = PfmRowOrder::bottom_to_top,
-                            WarpInterpolation interpolation = WarpInterpolation::catmull_rom);
+                            WarpInterpolation interpolation = WarpInterpolation::catmull_rom,
+                            const WarpMapConventions& conventions = {});
 
 }  // namespace zenith::warp

@@ -14,8 +14,6 @@
 #include <numbers>
 #include <vector>
 
-#include <png.h>
-
 #include "warp/fisheye_projection.h"
 #include "warp_file_test_support.h"
 
@@ -25,6 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using testing::expect_error;
+using testing::make_grey_png;
 using testing::ScratchDir;
 
 const fs::path kViewports = fs::path(ZENITH_SOURCE_DIR) / "configs" / "viewports";
@@ -209,25 +208,10 @@ TEST(Blending, FisheyeCoverageEndsAtTheImageCircle) {
     }
 }
 
-/// A 16-bit grey PNG.
-std::string make_grey16_png(int width, int height, const std::vector<std::uint16_t>& grey) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  image.width = static_cast<png_uint_32>(width);
-  image.height = static_cast<png_uint_32>(height);
-  image.format = PNG_FORMAT_LINEAR_Y;  // 16-bit grey
-  png_alloc_size_t size = 0;
-  EXPECT_TRUE(png_image_write_to_memory(&image, nullptr, &size, 0, grey.data(), 0, nullptr));
-  std::string bytes(size, '\0');
-  EXPECT_TRUE(png_image_write_to_memory(&image, bytes.data(), &size, 0, grey.data(), 0, nullptr));
-  bytes.resize(size);
-  return bytes;
-}
-
 TEST(Blending, FileMasksDecodeWithTheirGamma) {
   ScratchDir dir("blend_mask");
   std::vector<std::uint16_t> grey = {0, 16384, 32768, 65535, 65535, 0};
-  const fs::path path = dir.write("mask.png", make_grey16_png(3, 2, grey));
+  const fs::path path = dir.write("mask.png", make_grey_png(3, 2, grey));
   const BlendMask linear = load_blend_mask(path, 1.0, 3, 2);
   const BlendMask gamma = load_blend_mask(path, 2.2, 3, 2);
   for (int y = 0; y < 2; ++y)

@@ -1,7 +1,10 @@
 #pragma once
-// Helpers shared by the warp-file tests: a scratch folder, hand-made PFMs, and
-// checks of error messages.
+// Helpers shared by the warp-file tests: a scratch folder, hand-made PFMs and
+// PNGs, checks of error messages, and a capture of logged warnings.
 #include <gtest/gtest.h>
+#include <png.h>
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <atomic>
 #include <bit>
@@ -10,7 +13,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <string>
+#include <type_traits>
 #include <unistd.h>
 #include <vector>
 
@@ -56,6 +61,43 @@ inline void expect_error(const std::function<void()>& action, const std::vector<
   }
 }
 
+/// Collects what is logged at level warn (or above) through spdlog's default
+/// logger while it lives (the warp loaders' warnings), and restores the logger.
+class LogCapture {
+ public:
+  LogCapture() : sink_(std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(256)), previous_(spdlog::default_logger()) {
+    spdlog::set_default_logger(std::make_shared<spdlog::logger>("capture", sink_));
+  }
+  ~LogCapture() { spdlog::set_default_logger(previous_); }
+  LogCapture(const LogCapture&) = delete;
+  LogCapture& operator=(const LogCapture&) = delete;
+
+  /// The messages logged at warn or above, oldest first.
+  std::vector<std::string> warnings() const {
+    std::vector<std::string> out;
+    for (const auto& message : sink_->last_raw())
+      if (message.level >= spdlog::level::warn) out.emplace_back(message.payload.data(), message.payload.size());
+    return out;
+  }
+  /// The one warning that contains every one of `parts`; fails the test when
+  /// there is none.
+  std::string expect_warning(const std::vector<std::string>& parts) const {
+    for (const std::string& warning : warnings()) {
+      bool all = true;
+      for (const std::string& part : parts) all = all && warning.find(part) != std::string::npos;
+      if (all) return warning;
+    }
+    std::string logged;
+    for (const std::string& warning : warnings()) logged += "\n  " + warning;
+    ADD_FAILURE() << "no warning mentions '" << parts.front() << "'; logged:" << logged;
+    return {};
+  }
+
+ private:
+  std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> sink_;
+  std::shared_ptr<spdlog::logger> previous_;
+};
+
 /// A PFM with `channels` channels; `value(x, y, c)` gives the sample of the
 /// pixel at column x, row y counted from the top. `stored_top_first` writes the
 /// top row first (MPCDI), else the bottom row first (classic PFM).
@@ -74,6 +116,24 @@ inline std::string make_pfm(int width, int height, int channels, const std::func
         bytes.append(reinterpret_cast<const char*>(b), 4);
       }
   }
+  return bytes;
+}
+
+/// A grey PNG (libpng's simplified API): 8-bit for unsigned char samples,
+/// 16-bit for std::uint16_t ones; width · height samples, row 0 at the top.
+template <typename Sample>
+std::string make_grey_png(int width, int height, const std::vector<Sample>& grey) {
+  static_assert(std::is_same_v<Sample, unsigned char> || std::is_same_v<Sample, std::uint16_t>);
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(width);
+  image.height = static_cast<png_uint_32>(height);
+  image.format = sizeof(Sample) == 1 ? PNG_FORMAT_GRAY : PNG_FORMAT_LINEAR_Y;
+  png_alloc_size_t size = 0;
+  EXPECT_TRUE(png_image_write_to_memory(&image, nullptr, &size, 0, grey.data(), 0, nullptr));
+  std::string bytes(size, '\0');
+  EXPECT_TRUE(png_image_write_to_memory(&image, bytes.data(), &size, 0, grey.data(), 0, nullptr));
+  bytes.resize(size);
   return bytes;
 }
 

@@ -1,0 +1,26 @@
+#pragma once
+// Yaw, pitch and roll as calibration tools write them, brought into the ranges
+// PlanarFrustum takes (yaw and roll in [−180, 180], pitch in [−90, 90]) without
+// changing the rotation they describe.
+//
+// Vendors write angles in [0, 360) (350° for −10°) as often as in
+// (−180, 180]. Wrapping each angle by 360° keeps the rotation. A pitch past
+// ±90° (looking over the top and backwards) is the same rotation as the pitch
+// mirrored about ±90° with the yaw and the roll turned half way round:
+//     R_yaw(ψ) · R_pitch(θ) · R_roll(φ) = R_yaw(ψ + 180°) · R_pitch(±180° − θ) · R_roll(φ + 180°),
+// the identity of Tait–Bryan angles this order uses (warp/planar_projection.h:
+// R_yaw · R_pitch · R_roll).
+
+namespace zenith::warp {
+
+/// Angles in degrees, PlanarFrustum's conventions (yaw turns right, pitch up,
+/// roll banks right).
+struct YawPitchRollDeg {
+  double yaw_deg = 0.0, pitch_deg = 0.0, roll_deg = 0.0;
+};
+
+/// The same rotation with yaw and roll in (−180, 180] and pitch in [−90, 90].
+/// Finite input expected (non-finite angles stay non-finite).
+YawPitchRollDeg normalized_yaw_pitch_roll(const YawPitchRollDeg& angles);
+
+}  // namespace zenith::warp
