@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <tuple>
+#include <utility>
 
 #include "core/json_reader.h"
 #include "warp/mpcdi.h"
@@ -30,6 +32,7 @@ constexpr double kMaxBlackLevel = 0.5;
 constexpr double kMinBlendWidthFraction = 1e-3, kMaxBlendWidthFraction = 0.5;
 constexpr double kMinMaskGamma = 0.1, kMaxMaskGamma = 10.0;
 constexpr std::size_t kMaxNameLength = 64;
+constexpr double kMinSourceAspect = 0.1, kMaxSourceAspect = 10.0;
 
 void allow_keys(const JsonReader& r, const json& object, std::initializer_list<std::string_view> allowed) {
   config::reject_unknown_keys(r, object, allowed, "docs/viewports.md");
@@ -43,15 +46,15 @@ bool valid_name(const std::string& name) {
          });
 }
 
-/// "size": [width, height], integers in [1, 16384].
-std::pair<int, int> read_size(JsonReader& r) {
-  const json& v = r.raw("size");
+/// `key` ("size", "size_px"): [width, height], integers in [1, 16384].
+std::pair<int, int> read_size(JsonReader& r, const std::string& size_key = "size") {
+  const json& v = r.raw(size_key);
   if (!v.is_array() || v.size() != 2)
-    r.fail("size", cat("= ", brief(v), ": must be [width, height] in pixels"));
+    r.fail(size_key, cat("= ", brief(v), ": must be [width, height] in pixels"));
   int side[2] = {0, 0};
   for (std::size_t k = 0; k < 2; ++k) {
     const json& s = v[k];
-    const std::string key = cat("size/", k);
+    const std::string key = cat(size_key, "/", k);
     if (!s.is_number_integer()) r.fail(key, cat("= ", brief(s), ": must be an integer in [1, ", kMaxSidePx, "] px"));
     const auto x = s.get<long long>();
     if (x < 1 || x > kMaxSidePx) r.fail(key, cat("= ", x, ": must be in [1, ", kMaxSidePx, "] px"));
@@ -88,11 +91,40 @@ WarpMesh load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir) 
   }
 }
 
+/// The warp's "source" object, {"size_px": [w, h]} or {"aspect": a}: the size
+/// of the image the mesh's (u, v) address, for an output of width × height px
+/// whose projection spec is `spec`. Absent: square (side = the output's height)
+/// for a fisheye source, the output's size for any other.
+std::pair<int, int> read_warp_source_size(JsonReader& w, const json& spec, int width_px, int height_px) {
+  if (!w.has("source")) {
+    const bool fisheye = spec.is_object() && spec.value("type", json()) == json("fisheye");
+    return fisheye ? std::pair{height_px, height_px} : std::pair{width_px, height_px};
+  }
+  const json& v = w.raw("source");
+  if (!v.is_object())
+    w.fail("source", cat("= ", brief(v), ": must be an object, {\"size_px\": [width, height]} or {\"aspect\": "
+                                          "width / height} (docs/warp-meshes.md)"));
+  JsonReader s(v, w.file(), w.key_path("source"));
+  allow_keys(s, v, {"size_px", "aspect"});
+  if (s.has("size_px") && s.has("aspect"))
+    s.fail("aspect", "give either size_px or aspect, not both (size_px fixes the aspect)");
+  if (s.has("size_px")) return read_size(s, "size_px");
+  if (!s.has("aspect")) s.fail("", "give size_px ([width, height] px) or aspect (width / height)");
+  const double aspect = s.number("aspect", kMinSourceAspect, kMaxSourceAspect, "(width / height)");
+  const long long source_width = std::max(1LL, std::llround(aspect * height_px));
+  if (source_width > kMaxSidePx)
+    s.fail("aspect", cat("= ", aspect, ": the source would be ", source_width, " px wide at the output's height of ",
+                         height_px, " px, more than ", kMaxSidePx, ": give size_px instead"));
+  return {static_cast<int>(source_width), height_px};
+}
+
 /// The "warp" object: {"file", "format", "region" (mpcdi), "values" (pfm,
-/// mpcdi), "row_order", "v_direction" (pfm)}: its keys and values; the file is
-/// looked for by load_warp().
-WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& base_dir) {
-  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction"});
+/// mpcdi), "row_order", "v_direction" (pfm), "source"}: its keys and values;
+/// the file is looked for by load_warp(). The source's size defaults as
+/// read_warp_source_size() says.
+WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& base_dir, const json& spec,
+                            int width_px, int height_px) {
+  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction", "source"});
   WarpSource source;
   source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
   source.file = base_dir / w.string("file");  // checked, made absolute and read by load_warp()
@@ -115,6 +147,7 @@ WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& b
   if (w.string_or("row_order", "bottom_to_top", {"bottom_to_top", "top_to_bottom"}) == "top_to_bottom")
     source.row_order = PfmRowOrder::top_to_bottom;
   if (w.string_or("v_direction", "down", {"down", "up"}) == "up") source.conventions.v_direction = WarpVDirection::up;
+  std::tie(source.source_width_px, source.source_height_px) = read_warp_source_size(w, spec, width_px, height_px);
   return source;
 }
 
@@ -160,14 +193,15 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
   const json& spec = o.raw("projection");
   if (!spec.is_object()) o.fail("projection", cat("must be an object (docs/projections.md), got ", brief(spec)));
   out.projection_spec = spec;
-  std::shared_ptr<const Projection> base =
-      make_projection(spec, out.width_px, out.height_px, o.file(), o.key_path("projection"));
 
   if (o.has("warp")) {
     const json& wv = o.raw("warp");
     if (!wv.is_object()) o.fail("warp", cat("must be an object {\"file\", \"format\", \"region\"}, got ", brief(wv)));
     JsonReader w(wv, o.file(), o.key_path("warp"));
-    WarpSource source = read_warp_source(w, wv, base_dir);
+    WarpSource source = read_warp_source(w, wv, base_dir, spec, out.width_px, out.height_px);
+    // The base projection renders the warp's source image, at the source's size.
+    std::shared_ptr<const Projection> base = make_projection(spec, source.source_width_px, source.source_height_px,
+                                                             o.file(), o.key_path("projection"));
     try {
       WarpMesh mesh = load_warp(w, source, base_dir);
       out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(mesh), base);
@@ -177,7 +211,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
     }
     out.warp = std::move(source);
   } else {
-    out.projection = std::move(base);
+    out.projection = make_projection(spec, out.width_px, out.height_px, o.file(), o.key_path("projection"));
   }
 
   out.blend = read_blend(o, base_dir);

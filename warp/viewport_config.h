@@ -10,8 +10,8 @@
 //     "outputs": [
 //       {"name": "p1", "size": [1920, 1200],
 //        "projection": {"type": "planar", "left_deg": -45, ...},          make_projection() spec
-//        "warp": {"file": "p1.data", "format": "bourke"},                 optional; pfm and mpcdi
-//                                                                         also "values", pfm "row_order", "v_direction"
+//        "warp": {"file": "p1.data", "format": "bourke",                  optional; pfm and mpcdi
+//                 "source": {"size_px": [1080, 1080]}},                   also "values", pfm "row_order", "v_direction"
 //        "blend": "auto",                                                 "none" | "auto" | object
 //        "black_level": 0.02}                                             β in [0, 0.5]
 //     ]
@@ -75,6 +75,13 @@ struct WarpSource {
   /// pfm: "values" and "v_direction" (defaults absolute, down); mpcdi: "values"
   /// (MPCDI fixes v down). warp/warp_map_conventions.h has the formulas.
   WarpMapConventions conventions;
+  /// "source": the size of the source image the mesh's (u, v) address (the
+  /// output's "projection" renders it at this size), {"size_px": [w, h]}
+  /// (each in [1, 16384]) or {"aspect": a} (a in [0.1, 10]: the output's
+  /// height, a · height wide). Default: square, side = the output's height, for
+  /// a "fisheye" projection (a dome master, as Bourke meshes and the
+  /// spherical-mirror setup mean it); the output's size for any other.
+  int source_width_px = 0, source_height_px = 0;
 };
 
 struct OutputConfig {
@@ -82,8 +89,9 @@ struct OutputConfig {
   int width_px = 0, height_px = 0;
   nlohmann::json projection_spec;  ///< the "projection" object as given
   /// The output's rays: make_projection(projection_spec, size) or, with a warp,
-  /// a WarpedProjection of the output's size over that projection (the warp's
-  /// source image is rendered through the spec's projection at the same size).
+  /// a WarpedProjection of the output's size over make_projection(projection_spec,
+  /// the warp's source size) (WarpSource::source_width_px: by default square
+  /// for a fisheye, the output's size otherwise).
   std::shared_ptr<const Projection> projection;
   std::optional<WarpSource> warp;
   BlendSource blend;
