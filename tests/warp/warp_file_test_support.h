@@ -19,6 +19,8 @@
 #include <unistd.h>
 #include <vector>
 
+#include "core/json_reader.h"
+
 namespace zenith::warp::testing {
 
 /// A fresh folder under the system's temp folder, removed with its contents.
@@ -58,6 +60,21 @@ inline void expect_error(const std::function<void()>& action, const std::vector<
     const std::string message = error.what();
     for (const std::string& part : parts)
       EXPECT_NE(message.find(part), std::string::npos) << "message: " << message << "\nmissing: " << part;
+  }
+}
+
+/// Runs `action`, expects it to throw a zenith::ConfigError in `file` at the
+/// JSON pointer `pointer` whose message contains `reason`.
+inline void expect_config_error(const std::function<void()>& action, const std::string& file,
+                                const std::string& pointer, const std::string& reason) {
+  try {
+    action();
+    ADD_FAILURE() << "accepted; expected an error at " << pointer << ": " << reason;
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(e.file(), file) << message;
+    EXPECT_EQ(e.key(), pointer) << message;
+    EXPECT_NE(message.find(reason), std::string::npos) << message << "\nmissing: " << reason;
   }
 }
 
