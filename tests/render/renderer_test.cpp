@@ -628,6 +628,47 @@ TEST(RendererWarp, TheSunKeepsItsEnergyAndSizeThroughAMeshWithParkedNodes) {
   }
 }
 
+TEST(RendererWarp, TheAlbedoKeepsItsDetailThroughAMeshWithParkedNodes) {
+  // The albedo's mip level comes from each pixel's footprint: through a warp,
+  // from the ray table's neighbouring rays, not the mesh's worst case (here
+  // 20 times the dome master's pixel, from one node parked at (0, 0)), which
+  // would blur a 30° checker to grey. Away from the parked node the projector
+  // (an identity mesh) shows the dome master's pixels.
+  TestRenderer t;
+  scene::Scene s = sun_only_scene();
+  scene::Body moon;
+  moon.name = "moon";
+  moon.radius_m = 1.7374e6;
+  moon.position_m = s.sun.direction * (1.25 * moon.radius_m);  // 53° in radius, lit from behind the camera
+  moon.albedo.kind = scene::AlbedoSource::Kind::procedural;
+  moon.albedo.procedural = "checker";
+  s.bodies.push_back(moon);
+  s.sun.direction = -s.sun.direction;
+  const auto dome = std::make_shared<warp::FisheyeProjection>(64, 64);
+  std::vector<warp::WarpNode> nodes;
+  for (int j = 0; j < 17; ++j)
+    for (int i = 0; i < 17; ++i)
+      nodes.push_back(i == 16 && j == 0 ? warp::WarpNode{0.0, 0.0, 0.02, true} : warp::WarpNode{i / 16.0, j / 16.0, 1.0, true});
+  const warp::WarpedProjection projector(
+      64, 64, warp::WarpMesh(17, 17, std::move(nodes), "parked", warp::WarpInterpolation::catmull_rom), dome);
+  ASSERT_GT(projector.max_pixel_angle_rad(), 15.0 * dome->max_pixel_angle_rad());
+  const auto master = t.renderer.render_image(s, *dome);
+  const auto image = t.renderer.render_image(s, projector);
+  // Pixels the parked node's cells and their cubic's stencil do not reach.
+  double difference = 0.0, level = 0.0;
+  int compared = 0;
+  for (int y = 12; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const Rgb a = pixel(master, 64, x, y), b = pixel(image, 64, x, y);
+      if (a.g <= 1e-4) continue;
+      difference += std::abs(b.g - a.g);
+      level += a.g;
+      ++compared;
+    }
+  ASSERT_GT(compared, 500);
+  EXPECT_LT(difference / level, 0.02);
+}
+
 // ---------------------------------------------------------------- skipping work
 
 TEST(RendererSkipping, UnchangedTablesAreNotRequestedAgain) {
