@@ -315,8 +315,9 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   const glm::dmat3 world_to_camera = glm::transpose(camera_to_world);
   const glm::dvec3 sun = glm::normalize(scene.sun.direction);
   const double sun_radius = scene.sun.angular_radius_rad;
-  // The worst-case footprint over the image bounds culling and the albedo's
-  // level of detail; the sun is sized from the footprint where it lands (a
+  // The worst-case footprint over the image bounds culling and decides
+  // ALBEDO_LOD0 (the shaders take each pixel's own footprint for the level of
+  // detail, frame.glsl); the sun is sized from the footprint where it lands (a
   // warp mesh's worst case can be tens of times the local one: issue 14).
   const double pixel_angle = projection.max_pixel_angle_rad();
   const glm::dvec3 sun_camera = world_to_camera * sun;
