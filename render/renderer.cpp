@@ -315,7 +315,13 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   const glm::dmat3 world_to_camera = glm::transpose(camera_to_world);
   const glm::dvec3 sun = glm::normalize(scene.sun.direction);
   const double sun_radius = scene.sun.angular_radius_rad;
+  // The worst-case footprint over the image bounds culling and decides
+  // ALBEDO_LOD0 (the shaders take each pixel's own footprint for the level of
+  // detail, frame.glsl); the sun is sized from the footprint where it lands (a
+  // warp mesh's worst case can be tens of times the local one: issue 14).
   const double pixel_angle = projection.max_pixel_angle_rad();
+  const glm::dvec3 sun_camera = world_to_camera * sun;
+  const double sun_pixel_angle = projection.pixel_angle_rad_at(sun_camera);
 
   const auto rgb_weights = image::spectral_to_rgb_weights(scene.wavelengths_nm, options_.colour);
   const auto albedo_weights = image::rgb_to_spectral_weights(scene.wavelengths_nm, options_.colour);
@@ -323,7 +329,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   // under 1.5 pixels in radius as a Gaussian of σ = 0.7 pixel carrying the
   // same irradiance (exp(−θ²/2σ²) E / 2πσ²): a disc sampled at pixel centres
   // would flicker and lose or gain light with its sub-pixel position.
-  const double sun_point_sigma = sun_radius < 1.5 * pixel_angle ? 0.7 * pixel_angle : 0.0;
+  const double sun_point_sigma = sun_radius < 1.5 * sun_pixel_angle ? 0.7 * sun_pixel_angle : 0.0;
   std::vector<double> sun_centre(n), limb_exponent(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double e = scene.sun.irradiance_W_m2_nm[i];
@@ -500,6 +506,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
     for (int k = 0; k < 4; ++k)
       p.set_uniform(fmt::format("projection_params[{}]", k), gpu_projection.params[static_cast<std::size_t>(k)]);
     p.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
+    p.set_uniform("sun_pixel_angle", static_cast<float>(sun_pixel_angle));
     p.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
     for (const auto& [name, k] : {std::pair{"world_ray_x", 0}, std::pair{"world_ray_y", 1}, std::pair{"world_ray_centre", 2}})
       p.set_uniform(name, world_ray[static_cast<std::size_t>(k)]);
@@ -561,8 +568,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   }
   // Where the sun can be drawn: a cone of the disc's radius plus a pixel (or 6σ of the Gaussian).
   const double sun_reach = std::min(std::numbers::pi / 2, sun_point_sigma > 0.0 ? 6.0 * sun_point_sigma
-                                                                                : sun_radius + pixel_angle);
-  const glm::dvec3 sun_camera = world_to_camera * sun;
+                                                                                : sun_radius + sun_pixel_angle);
 
   // ---- bands
   const int width = projection.width(), height = projection.height();

@@ -72,6 +72,19 @@ class Projection {
   /// the same pixel (hence also between the rays of two adjacent pixel centres,
   /// horizontally, vertically or diagonally); the renderer widens its culling by it.
   virtual double max_pixel_angle_rad() const = 0;
+  /// The pixel footprint where `direction` (camera frame, need not be unit)
+  /// lands: an upper bound of the angle between the rays of two points of that
+  /// pixel, in radians. What is drawn at a known direction (the sun's disc and
+  /// its antialiasing) is sized from this; max_pixel_angle_rad() is the bound
+  /// over the whole image, for culling only. The default returns
+  /// max_pixel_angle_rad(): right for projections whose footprint varies
+  /// little over the image (planar, fisheye, cylindrical, ...). A warped
+  /// projection returns the footprint of the pixel the direction lands in
+  /// (WarpedProjection), which can be far below its worst case.
+  virtual double pixel_angle_rad_at(const glm::dvec3& direction) const {
+    (void)direction;
+    return max_pixel_angle_rad();
+  }
 
  protected:
   Projection(int width_px, int height_px);  ///< throws std::invalid_argument unless both are in [1, 65536]

@@ -160,4 +160,48 @@ std::string WarpedProjection::describe() const {
 
 double WarpedProjection::max_pixel_angle_rad() const { return max_pixel_angle_rad_; }
 
+std::optional<double> WarpedProjection::local_stretch(double x_px, double y_px) const {
+  const auto centre = source_pixel(x_px, y_px);
+  // ∂(source px)/∂(projector px) along one axis over ±½ px: central where both
+  // sides have data, one-sided (over ½ px) where one has, nothing where neither.
+  const auto column = [&](double dx, double dy) -> std::optional<glm::dvec2> {
+    const auto plus = source_pixel(x_px + 0.5 * dx, y_px + 0.5 * dy);
+    const auto minus = source_pixel(x_px - 0.5 * dx, y_px - 0.5 * dy);
+    if (plus && minus) return *plus - *minus;
+    if (plus && centre) return 2.0 * (*plus - *centre);
+    if (minus && centre) return 2.0 * (*centre - *minus);
+    return std::nullopt;
+  };
+  const auto jx = column(1.0, 0.0), jy = column(0.0, 1.0);
+  if (!jx || !jy) return std::nullopt;
+  // Largest singular value of J = [jx jy]: σ² = (S + √(S² − 4D²)) / 2 with
+  // S = ‖J‖²_F and D = det J.
+  const double frobenius2 = glm::dot(*jx, *jx) + glm::dot(*jy, *jy);
+  const double det = jx->x * jy->y - jx->y * jy->x;
+  const double sigma = std::sqrt(0.5 * (frobenius2 + std::sqrt(std::max(0.0, frobenius2 * frobenius2 - 4.0 * det * det))));
+  if (!std::isfinite(sigma)) return std::nullopt;
+  return sigma;
+}
+
+double WarpedProjection::pixel_angle_rad_at(const glm::dvec3& direction) const {
+  const double base_angle = base_->pixel_angle_rad_at(direction);
+  // A degenerate spot (the mesh constant there) would give a zero footprint,
+  // and the renderer divides by it: a hundredth of a base footprint at least.
+  const auto sized = [&](double stretch) { return base_angle * std::max(stretch, 1e-2); };
+  if (const auto p = pixel(direction))
+    if (const auto k = local_stretch(p->x, p->y)) return sized(*k);
+  // Off the mesh: the valid coarse node whose ray is nearest to the direction.
+  const glm::dvec3 d = glm::normalize(direction);
+  double best_cos = -2.0;
+  std::optional<double> best;
+  for (const glm::dvec4& node : coarse_nodes_) {
+    const auto r = base_->ray(node.z * base_->width(), node.w * base_->height());
+    if (!r) continue;
+    const double c = glm::dot(*r, d);
+    if (c <= best_cos) continue;
+    if (const auto k = local_stretch(node.x * width(), node.y * height())) best_cos = c, best = *k;
+  }
+  return best ? sized(*best) : max_pixel_angle_rad();
+}
+
 }  // namespace zenith::warp

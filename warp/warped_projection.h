@@ -60,6 +60,26 @@ class WarpedProjection final : public Projection {
   /// nodes. Relies on the base bound growing linearly with distance (as the
   /// fisheye's and the planar bounds do).
   double max_pixel_angle_rad() const override;
+  /// The footprint of the projector pixel the direction lands in:
+  ///
+  ///   base.pixel_angle_rad_at(direction) · σ_max(J),
+  ///   J = ∂(source px) / ∂(projector px) by central differences over ±½ px,
+  ///
+  /// σ_max the largest singular value of the 2 × 2 Jacobian, i.e. the longest a
+  /// projector pixel's unit side or diagonal-per-√2 becomes in base pixels (a
+  /// pixel maps to the parallelogram J·[−½, ½]², whose diagonal is at most
+  /// √2 σ_max base pixels; the base bound already covers √2 base pixels). Only
+  /// the mesh around that pixel counts, so nodes parked far away (Bourke's
+  /// unused nodes at (0, 0)) do not widen it; no bulge margin is needed, the
+  /// differences are taken of the interpolated mesh itself. Where the direction
+  /// misses the mesh (a sun just off the frame) the footprint is that of the
+  /// valid coarse node whose ray is nearest to it; max_pixel_angle_rad() only
+  /// when no node has a ray.
+  double pixel_angle_rad_at(const glm::dvec3& direction) const override;
+  /// σ_max(J) at the projector pixel position (x, y) (see pixel_angle_rad_at),
+  /// one-sided where a side has no data; nothing where neither side has data
+  /// along x or along y.
+  std::optional<double> local_stretch(double x_px, double y_px) const;
 
  private:
   std::optional<glm::dvec2> source_uv(double s, double t) const;

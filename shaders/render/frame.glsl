@@ -35,6 +35,12 @@ uniform ivec2 band_size;
 uniform vec3 sun_direction;        // world, unit
 uniform float sun_angular_radius;  // [rad]
 uniform float pixel_angle;         // upper bound of one pixel's angular size [rad] (Projection::max_pixel_angle_rad)
+/// The footprint of the pixel pixel_ray() last gave a ray for [rad]: what is
+/// sized per pixel (the albedo's level of detail) uses it, not the bound over
+/// the image. pixel_angle for the closed-form projections (uniform enough); for
+/// a ray table (a warp mesh, whose bound can be tens of degrees where it parks
+/// unused nodes: issue 14) the local value from the neighbouring rays.
+float pixel_footprint = 0.0;
 
 /// The 16×16 tiles of band pixels a pass covers, one work group per tile:
 /// tiles[tile_offset + i] for i < tile_count, packed as column | row << 16
@@ -66,7 +72,34 @@ bool tile_pixel(out ivec2 p) {
 uniform vec3 world_ray_x, world_ray_y, world_ray_centre;
 #endif
 
+/// A ray-table pixel's footprint from the table's rays of its neighbours: with
+/// Δx, Δy the differences to the next pixel across and down (the one before
+/// where the next has no ray or lies past the band), the longer diagonal of
+/// the parallelogram they span, max(|Δx + Δy|, |Δx − Δy|) (chords, within
+/// 1e-4 of the angles at a few degrees). The image's bound where a pixel has no
+/// neighbour with a ray on either side, and never more than the bound.
+float ray_table_footprint(ivec2 image_pixel, vec3 d) {
+  const ivec2 q = image_pixel - projection_table_origin, size = textureSize(projection_ray_table, 0);
+  vec3 delta[2];
+  for (int axis = 0; axis < 2; ++axis) {
+    const ivec2 step = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+    bool found = false;
+    for (int side = 1; side >= -1 && !found; side -= 2) {
+      const ivec2 n = q + side * step;
+      if (any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, size))) continue;
+      const vec4 t = texelFetch(projection_ray_table, n, 0);
+      if (t.w > 0.0) {
+        delta[axis] = float(side) * (t.xyz - d);
+        found = true;
+      }
+    }
+    if (!found) return pixel_angle;
+  }
+  return min(pixel_angle, max(length(delta[0] + delta[1]), length(delta[0] - delta[1])));
+}
+
 bool pixel_ray(ivec2 p, out vec3 ray) {
+  pixel_footprint = pixel_angle;
 #if defined(PROJECTION_KIND) && (PROJECTION_KIND == PROJECTION_KIND_PLANAR || PROJECTION_KIND == PROJECTION_KIND_CUBE_FACE)
   const vec2 from_centre = vec2(band_origin + p) + vec2(0.5) - vec2(projection_params[0].w, projection_params[1].w);
   ray = normalize(from_centre.x * world_ray_x + from_centre.y * world_ray_y + world_ray_centre);
@@ -74,6 +107,7 @@ bool pixel_ray(ivec2 p, out vec3 ray) {
 #else
   vec3 d;
   if (!projection_ray(vec2(band_origin + p) + vec2(0.5), d)) return false;
+  if (projection_kind == PROJECTION_KIND_RAY_TABLE) pixel_footprint = ray_table_footprint(band_origin + p, d);
   ray = normalize(camera_to_world * d);
   return true;
 #endif

@@ -9,6 +9,11 @@
 
 uniform float sun_draw_radius;  // the disc's radius [rad]
 uniform float sun_point_sigma;  // > 0: the sun is smaller than the pixels; drawn as a Gaussian of this σ [rad]
+// The footprint of the pixels where the sun lands [rad]
+// (Projection::pixel_angle_rad_at(sun)): the disc's edge is antialiased over it.
+// Not frame.glsl's pixel_angle, the worst case over the image, which through a
+// warp mesh can be tens of degrees (issue 14).
+uniform float sun_pixel_angle;
 
 struct SunSample {
   float weight;  // coverage of the pixel by the disc, or the Gaussian's value; 0: no sun
@@ -22,8 +27,8 @@ SunSample sun_sample(vec3 ray) {
     return SunSample(x < 6.0 ? exp(-0.5 * x * x) : 0.0, 1.0);
   }
   const float R = sun_draw_radius;
-  if (theta >= R + pixel_angle) return SunSample(0.0, 1.0);
-  const float coverage = clamp((R - theta) / pixel_angle + 0.5, 0.0, 1.0);
+  if (theta >= R + sun_pixel_angle) return SunSample(0.0, 1.0);
+  const float coverage = clamp((R - theta) / sun_pixel_angle + 0.5, 0.0, 1.0);
   const float s = min(sin(theta) / sin(R), 1.0);
   return SunSample(coverage, sqrt(max(1.0 - s * s, 0.0)));
 }

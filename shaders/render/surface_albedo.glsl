@@ -20,7 +20,8 @@ vec3 surface_albedo(Body body, vec3 ray, float t, vec3 n) {
   // Level of detail: the pixel's footprint on the surface (stretched by the
   // incidence angle) in texels of the map's level 0 (2π R per map width).
   const float cos_incidence = max(abs(dot(n, ray)), 0.05);
-  const float footprint_m = pixel_angle * t / cos_incidence;
+  // pixel_footprint: this pixel's own (frame.glsl), not the image's bound.
+  const float footprint_m = pixel_footprint * t / cos_incidence;
   const float texel_m = 2.0 * PI_F * body.shape.x / max(body.albedo_map.x, 1.0);
   const float lod = max(0.0, log2(max(footprint_m / texel_m, 1e-6)));
   return textureLod(albedo_maps, vec3(uv, body.shape.w), lod).rgb;

@@ -4,7 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -471,6 +477,90 @@ TEST(WarpedProjection, IsTabulatedOnTheGpuAndNeedsABase) {
   EXPECT_EQ(warped.gpu().kind, ProjectionKind::ray_table);
   expect_error([&] { WarpedProjection(64, 64, mesh, nullptr); }, {"base projection is null"});
   expect_error([&] { WarpedProjection(0, 64, mesh, std::make_shared<FisheyeProjection>(64, 64)); }, {"width_px"});
+}
+
+// ---------------------------------------------------------------- local pixel footprint (issue 14)
+
+/// A mesh whose source pixel is affine in the projector pixel: source px =
+/// c + J (x − w/2, y − h/2) for a w × h projector over a base of size (wb, hb),
+/// so σ_max(J) is the closed-form local stretch everywhere.
+WarpMesh affine_mesh(int w, int h, int wb, int hb, const std::array<double, 4>& jacobian, WarpInterpolation interpolation,
+                     const std::function<std::optional<WarpNode>(int i, int j)>& override_node = {}) {
+  const int n = 9;
+  std::vector<WarpNode> nodes;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (override_node)
+        if (const auto o = override_node(i, j)) {
+          nodes.push_back(*o);
+          continue;
+        }
+      const double dx = (double(i) / (n - 1) - 0.5) * w, dy = (double(j) / (n - 1) - 0.5) * h;
+      const double u_px = 0.5 * wb + jacobian[0] * dx + jacobian[1] * dy;
+      const double v_px = 0.5 * hb + jacobian[2] * dx + jacobian[3] * dy;
+      nodes.push_back({u_px / wb, v_px / hb, 1.0, true});
+    }
+  return WarpMesh(n, n, std::move(nodes), "affine", interpolation);
+}
+
+/// σ_max of [[a, b], [c, d]] by the eigenvalues of JᵀJ written out for the test.
+double largest_singular_value(const std::array<double, 4>& j) {
+  const double p = j[0] * j[0] + j[2] * j[2], q = j[0] * j[1] + j[2] * j[3], r = j[1] * j[1] + j[3] * j[3];
+  return std::sqrt(0.5 * (p + r) + std::sqrt(0.25 * (p - r) * (p - r) + q * q));
+}
+
+TEST(WarpedProjectionFootprint, IsTheBaseFootprintTimesTheLocalStretch) {
+  const auto fisheye = std::make_shared<FisheyeProjection>(400, 400);
+  const double base = fisheye->max_pixel_angle_rad();
+  // A projection without a warp answers its bound everywhere.
+  EXPECT_EQ(fisheye->pixel_angle_rad_at({0.3, 0.2, -1.0}), base);
+  const double c = std::cos(0.6), s = std::sin(0.6);
+  for (const auto& [name, jacobian] : std::vector<std::pair<std::string, std::array<double, 4>>>{
+           {"axis-aligned 0.4 × 1.2", {0.4, 0.0, 0.0, 1.2}},
+           {"rotated, scaled 1.5", {1.5 * c, -1.5 * s, 1.5 * s, 1.5 * c}},
+           {"sheared", {0.5, 0.7, 0.1, 0.9}},
+           {"shrunk 0.3", {0.3, 0.0, 0.0, 0.3}}}) {
+    const WarpedProjection warped(200, 160, affine_mesh(200, 160, 400, 400, jacobian, WarpInterpolation::bilinear),
+                                  fisheye);
+    const double expected = base * largest_singular_value(jacobian);
+    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{100, 80}, {37.5, 20.5}, {180.2, 150.9}, {5, 155}}) {
+      const auto ray = warped.ray(x, y);
+      ASSERT_TRUE(ray) << name;
+      EXPECT_NEAR(warped.pixel_angle_rad_at(*ray), expected, 1e-7 * expected) << name << " at " << x << ", " << y;
+    }
+  }
+}
+
+TEST(WarpedProjectionFootprint, ParkedNodesDoNotInflateIt) {
+  // Bourke's meshes park unused projector nodes at (0, 0) with a faint but
+  // valid intensity: the worst-case bound sees the jump to (0, 0) as a stretch,
+  // the footprint where something lands does not.
+  const auto fisheye = std::make_shared<FisheyeProjection>(400, 400);
+  const double base = fisheye->max_pixel_angle_rad();
+  const std::array<double, 4> jacobian{0.8, 0.0, 0.0, 0.8};
+  for (const WarpInterpolation interpolation : {WarpInterpolation::bilinear, WarpInterpolation::catmull_rom}) {
+    const WarpedProjection warped(
+        200, 200,
+        affine_mesh(200, 200, 400, 400, jacobian, interpolation,
+                    [](int i, int j) -> std::optional<WarpNode> {
+                      if ((i == 0 || i == 8) && j == 0) return WarpNode{0.0, 0.0, 0.02, true};
+                      return std::nullopt;
+                    }),
+        fisheye);
+    // The node next to a parked one is 184 base px from (0, 0), 25 projector px away: k = 7.4.
+    EXPECT_GT(warped.max_pixel_angle_rad(), 8.0 * base * 0.8) << "the bound keeps the worst case, for culling";
+    // Directions in the middle of the image, and one the projector never shows
+    // (beyond its frame, still in the dome): the local stretch, 0.8.
+    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{100, 100}, {60, 140}, {150, 120}}) {
+      const auto ray = warped.ray(x, y);
+      ASSERT_TRUE(ray);
+      EXPECT_NEAR(warped.pixel_angle_rad_at(*ray), 0.8 * base, 1e-7 * base) << x << ", " << y;
+    }
+    const auto off_frame = fisheye->ray(200 + 0.8 * 160, 200 + 0.8 * 60);  // the projector's x = 260 px: off its frame
+    ASSERT_TRUE(off_frame);
+    ASSERT_FALSE(warped.pixel(*off_frame));
+    EXPECT_NEAR(warped.pixel_angle_rad_at(*off_frame), 0.8 * base, 1e-7 * base);
+  }
 }
 
 }  // namespace
