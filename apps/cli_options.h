@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "atmosphere/lut/precompute_options.h"
+
 namespace zenith::app {
 
 inline void add_image_options(CLI::App* cmd, std::string& exr_type, std::string& tone, std::string& colour) {
@@ -21,7 +23,9 @@ inline void add_image_options(CLI::App* cmd, std::string& exr_type, std::string&
 inline void add_table_options(CLI::App* cmd, std::string& tables, int& orders, std::string& cache_dir) {
   cmd->add_option("--tables", tables, "Table sizes: paper (default), small, large")
       ->check(CLI::IsMember({"paper", "small", "large"}));
-  cmd->add_option("--orders", orders, "Scattering orders of the tables (default 4)")->check(CLI::Range(1, 50));
+  const std::string orders_help =
+      "Scattering orders of the tables (default " + std::to_string(atmosphere::lut::kDefaultScatteringOrders) + ")";
+  cmd->add_option("--orders", orders, orders_help)->check(CLI::Range(1, 50));
   cmd->add_option("--cache", cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
 }
 

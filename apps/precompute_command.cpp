@@ -14,7 +14,7 @@ namespace {
 struct PrecomputeArgs {
   std::string atmosphere, out_dir, tables = "paper", cache_dir;
   bool cpu = false, no_cache = false;
-  int orders = 4;
+  int orders = atmosphere::lut::kDefaultScatteringOrders;
   double tolerance = 0.0;
   unsigned threads = 0;
 };

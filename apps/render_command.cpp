@@ -46,7 +46,7 @@ struct RenderArgs {
   std::optional<double> fov_deg, tilt_deg, exposure;
   bool no_cache = false, cpu_precompute = false, no_sun_disc = false, no_limb_darkening = false;
   bool single_scattering = false, bodies_only = false, no_eclipses = false, fp64 = false;
-  int orders = 4;
+  int orders = atmosphere::lut::kDefaultScatteringOrders;
   bool window = false;        ///< show the frame in a window and explore the scene
   std::optional<int> frames;  ///< --window: close after this many presented frames
   std::string viewport;       ///< --viewport CONFIG[#NAME]

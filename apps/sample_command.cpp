@@ -22,7 +22,7 @@ struct SampleArgs {
   double altitude_m = 0.0, sun_zenith_deg = 30.0, sun_azimuth_deg = 0.0, sun_radius_deg = 0.2666;
   std::uint64_t seed = 1;
   std::size_t samples = 4096;
-  int orders = 4;
+  int orders = atmosphere::lut::kDefaultScatteringOrders;
   bool cpu = false;
   unsigned threads = 0;
 };

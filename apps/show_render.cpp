@@ -39,7 +39,7 @@ using config::cat;
 /// The options `show render` and `show plan` share.
 struct TableArgs {
   std::string tables = "paper", cache_dir;
-  int orders = 4;
+  int orders = atmosphere::lut::kDefaultScatteringOrders;
   bool cpu_precompute = false;
 };
 

@@ -57,7 +57,7 @@ struct ValidateCieArgs {
   std::string out_dir = "out/validate/cie", tables = "paper", cache_dir;
   double zenith_step_deg = 2.5;
   double exclude_sun_deg = 5.0;
-  int orders = 4;
+  int orders = atmosphere::lut::kDefaultScatteringOrders;
   unsigned threads = 0;
   bool cpu = false, no_cache = false, csv_stdout = false, no_variants = false, no_plots = false;
 };

@@ -98,7 +98,7 @@ struct Options {
   bool gbuffer_path = false;
   double planar_fov_deg = kPlanarFovDeg;
   std::string tables = "paper", device = "auto";
-  int orders = 4, iterations = 3, rounds = 3;
+  int orders = atmosphere::lut::kDefaultScatteringOrders, iterations = 3, rounds = 3;
   double budget_s = 120.0;
   std::vector<std::pair<int, int>> sizes;  // empty: the defaults (see default_sizes)
   std::filesystem::path csv = std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/render_frame_times.csv";
@@ -120,7 +120,7 @@ constexpr const char* kUsage =
     "                    [Google Benchmark flags, e.g. --benchmark_filter=planar]\n"
     "  --quick        only the planar 1280x720 and 1920x1080 cases (a smoke run)\n"
     "  --tables       lookup-table sizes: paper (default) or small\n"
-    "  --orders       scattering orders of the tables (default 4)\n"
+    "  --orders       scattering orders of the tables (default 8)\n"
     "  --sizes        replace the resolutions; square sizes are 180 deg dome masters,\n"
     "                 the others planar views with a 90 deg horizontal field\n"
     "  --iterations   timed frames per case and round, at most (default 3)\n"

@@ -12,7 +12,7 @@
 //     "viewports": "../viewports/dome-quadrants.json",     relative to this file
 //     "timing": {"heartbeat_ms": 250, "barrier_timeout_ms": 5000, "frame_rate_hz": 10},
 //     "secret": {"env": "ZENITH_CLUSTER_SECRET"},          or {"file": "secret.key"}; never the secret itself
-//     "tables": {"sizes": "paper", "orders": 4},           optional
+//     "tables": {"sizes": "paper", "orders": 8},           optional (default orders: kDefaultScatteringOrders)
 //     "nodes": [{"name": "q1", "host": "127.0.0.1", "outputs": ["top-left"]}, ...],
 //     "output": {"directory": "out/cluster", "format": "png"}
 //   }
@@ -27,6 +27,8 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "atmosphere/lut/precompute_options.h"
 
 namespace zenith::cluster {
 
@@ -56,7 +58,7 @@ struct ClusterConfig {
   std::optional<std::filesystem::path> secret_file;
   std::string secret_env = "ZENITH_CLUSTER_SECRET";
   std::string table_sizes = "paper";  ///< "paper", "small", "large" (render/lut/table_provider.h)
-  int table_orders = 4;               ///< scattering orders of the tables, [1, 50]
+  int table_orders = atmosphere::lut::kDefaultScatteringOrders;  ///< scattering orders of the tables, [1, 50]
   std::vector<ClusterNodeConfig> nodes;
   std::filesystem::path output_directory = "out/cluster";  ///< relative: to the working directory
   std::string output_format = "png";                       ///< "png" or "exr"

@@ -217,8 +217,8 @@ TEST_F(ClusterProcess, ThreeNodesPresentEveryFrameAndStitchToASingleRender) {
   // The quadrants of frame 0 equal a single-process render of the whole dome master, bit for bit.
   const fs::path single = dir_ / "single.png";
   const Child render = spawn({"render", "--scene", (kSource / "configs/scenes/earth-sunset.json").string(),
-                              "--projection", "fisheye", "--size", "128x128", "--tables", "small", "--cache",
-                              cache_.string(), "--out", single.string()},
+                              "--projection", "fisheye", "--size", "128x128", "--tables", "small", "--orders", "4",
+                              "--cache", cache_.string(), "--out", single.string()},
                              dir_ / "render.log");
   children_.push_back(render);
   ASSERT_EQ(wait_exit(render, 200s), std::optional<int>(0)) << read_text(dir_ / "render.log");
@@ -310,7 +310,7 @@ void expect_frame_equals_single_render(const fs::path& dir, const fs::path& cach
                                        std::uint64_t frame, std::vector<Child>& children) {
   const fs::path single = dir / "single.png";
   const Child render = spawn({"render", "--scene", scene.string(), "--projection", "fisheye", "--size", "128x128",
-                              "--tables", "small", "--cache", cache.string(), "--out", single.string()},
+                              "--tables", "small", "--orders", "4", "--cache", cache.string(), "--out", single.string()},
                              dir / "render.log");
   children.push_back(render);
   ASSERT_EQ(wait_exit(render, 200s), std::optional<int>(0)) << read_text(dir / "render.log");
@@ -558,7 +558,7 @@ TEST_F(ClusterProcess, ShowRendersOfflineOnTheNodesResumesAndMatchesASingleProce
   // The quadrants of frame 5 (after the turbidity step) equal one process rendering the whole dome master.
   const fs::path single = dir_ / "single";
   std::tie(status, text) = render(single, {"--projection", "fisheye", "--size", "128x128", "--tables", "small",
-                                           "--from", "5", "--to", "5"},
+                                           "--orders", "4", "--from", "5", "--to", "5"},
                                   "render-single.log");
   ASSERT_EQ(status, std::optional<int>(0)) << text;
   const image::LinearImage whole = image::read_image(single / "fisheye/fisheye.000005.png");
