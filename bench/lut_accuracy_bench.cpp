@@ -215,13 +215,20 @@ lut::TableSizes sizes_by_name(const std::string& name) {
 }
 
 struct Variant {
-  Variant(int orders_, bool trapezoid_ = false, int ray_samples_ = 50, int sphere_ = 16, bool direct_ = false)
-      : orders(orders_), trapezoid(trapezoid_), ray_samples(ray_samples_), sphere(sphere_), direct_density(direct_) {}
+  Variant(int orders_, bool trapezoid_ = false, int ray_samples_ = 50, int sphere_ = 16, bool direct_ = false,
+          int coarse_stride_ = lut::PrecomputeOptions{}.coarse_ray_stride)
+      : orders(orders_),
+        trapezoid(trapezoid_),
+        ray_samples(ray_samples_),
+        sphere(sphere_),
+        direct_density(direct_),
+        coarse_stride(coarse_stride_) {}
   int orders;
   bool trapezoid;
   int ray_samples;      ///< PrecomputeOptions::scattering_samples
   int sphere;           ///< PrecomputeOptions::sphere_zenith_samples
   bool direct_density;  ///< PrecomputeOptions::DensityMethod::Direct (else Harmonics)
+  int coarse_stride;    ///< PrecomputeOptions::coarse_ray_stride
 };
 
 Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
@@ -234,6 +241,7 @@ Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
       v.trapezoid ? lut::PrecomputeOptions::Quadrature::Trapezoid : lut::PrecomputeOptions::Quadrature::LogLinear;
   s.options.scattering_samples = v.ray_samples;
   s.options.sphere_zenith_samples = v.sphere;
+  s.options.coarse_ray_stride = v.coarse_stride;
   s.options.density_method =
       v.direct_density ? lut::PrecomputeOptions::DensityMethod::Direct : lut::PrecomputeOptions::DensityMethod::Harmonics;
   s.label = fmt::format("{} {} order{}", sizes, v.orders, v.orders == 1 ? "" : "s");
@@ -241,10 +249,13 @@ Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
   if (v.ray_samples != 50) s.label = fmt::format("{} {} ray samples", s.label, v.ray_samples);
   if (v.sphere != 16) s.label = fmt::format("{} sphere {}", s.label, v.sphere);
   if (v.direct_density) s.label = fmt::format("{} direct density", s.label);
-  s.label = fmt::format("{} {}", s.label, gpu ? "GPU" : "CPU");
   const lut::PrecomputeOptions defaults;
+  if (v.coarse_stride != defaults.coarse_ray_stride)
+    s.label = fmt::format("{} coarse rays every {}", s.label, v.coarse_stride);
+  s.label = fmt::format("{} {}", s.label, gpu ? "GPU" : "CPU");
   s.project_default = gpu && sizes == "paper" && v.orders == defaults.max_orders && !v.trapezoid && !v.direct_density &&
-                      v.ray_samples == defaults.scattering_samples && v.sphere == defaults.sphere_zenith_samples;
+                      v.ray_samples == defaults.scattering_samples && v.sphere == defaults.sphere_zenith_samples &&
+                      v.coarse_stride == defaults.coarse_ray_stride;
   return s;
 }
 
@@ -285,6 +296,7 @@ std::vector<Setting> settings_for(const Options& o) {
   add("paper", {4}, true);
   add("paper", {6}, true);
   add("paper", {lut::kDefaultScatteringOrders}, true);
+  add("paper", {lut::kDefaultScatteringOrders, false, 50, 16, false, 1}, true);  // every sample at every order
   add("paper", {4, false, 50, 8}, true);
   add("paper", {4, false, 50, 32}, true);
   // The scattering density of the method before (issue 13): the per-texel sphere sum.

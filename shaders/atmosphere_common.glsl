@@ -802,6 +802,15 @@ real ray_sample_distance(int i, int n, real d, real lowest) {
   return t;
 }
 
+/// The sample after i when a ray of n intervals is read every `stride`-th
+/// sample and at its end (next_ray_sample, quadrature.h).
+int next_ray_sample(int i, int stride, int n) { return i >= n ? n + 1 : min(i + stride, n); }
+/// The stride of a coarse ray: every sample on a ray that dips to a tangent
+/// point and climbs again (coarse_ray_stride_for, quadrature.h).
+int coarse_ray_stride_for(real mu, bool ray_hits_ground, int stride) {
+  return mu < real(0) && !ray_hits_ground ? 1 : stride;
+}
+
 real4 exp_r4(real4 x) { return real4(exp_r(x.x), exp_r(x.y), exp_r(x.z), exp_r(x.w)); }
 
 // ------------------------------------------------------------ vectors (vec3.h), in the CPU's operation order

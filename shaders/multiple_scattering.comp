@@ -1,7 +1,7 @@
 #version 450 core
 // Radiance of order n, L_n(r, μ, μs, ν) = ∫₀^d T(x, y) J_n(y) dy along the ray with
-// the rule of single scattering (T(x, y) from the view ray's samples, view_ray.glsl),
-// for one group of 4 wavelengths; written as the delta of this order and added
+// the rule of single scattering (T(x, y) from the view ray's samples, view_ray.glsl,
+// every sample_stride-th of them and the last), for one group of 4 wavelengths; written as the delta of this order and added
 // to the multiple-scattering table
 // (cpu_precompute.cpp, compute_multiple_scattering).
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -12,6 +12,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 5) uniform sampler3D density_texture;
 layout(binding = 0, rgba32f) uniform writeonly image3D delta_radiance_image;
 layout(binding = 1, rgba32f) uniform image3D multiple_image;
+uniform int sample_stride;  // PrecomputeOptions::ray_sample_stride(order)
 
 void main() {
   const ivec3 p = ivec3(gl_GlobalInvocationID.xy, z_offset + int(gl_GlobalInvocationID.z));
@@ -25,7 +26,8 @@ void main() {
   ScatteringUV uv;
   uv.u_nu = unit_from_nu(c.nu);
   const real theta_max = sun_theta_max();
-  for (int i = 0; i <= SCATTERING_SAMPLES; ++i) {
+  const int stride = coarse_ray_stride_for(c.mu, c.hits_ground, sample_stride);
+  for (int i = 0; i <= SCATTERING_SAMPLES; i = next_ray_sample(i, stride, SCATTERING_SAMPLES)) {
     const real t = ray_sample_distance(i, SCATTERING_SAMPLES, d, lowest);
     PRECISE real dx = t - previous_t;
     previous_t = t;

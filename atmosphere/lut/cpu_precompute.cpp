@@ -33,7 +33,7 @@ class Precompute {
         tables_(LookupTables::allocate({model.ground_radius_m, model.top_radius_m}, options.sizes, n_)),
         queries_(model, tables_) {
     if (n_ > kMaxChannels) throw std::invalid_argument("too many wavelengths for the lookup tables");
-    if (options.max_orders < 1) throw std::invalid_argument("max_orders must be >= 1");
+    check_precompute_options(options);
   }
 
   LookupTables run();
@@ -63,7 +63,7 @@ class Precompute {
   /// Sky irradiance of order n−1 on horizontal surfaces, added to the irradiance table.
   void compute_indirect_irradiance(int order);
   /// Radiance of order n: J_n integrated along every ray; returns Σ L_n.
-  double compute_multiple_scattering(const Table3D& density);
+  double compute_multiple_scattering(const Table3D& density, int sample_stride);
 
   /// Radiance of order (order−1) arriving at (r) from direction (μ, ν_sun = nu).
   void previous_order_radiance(int order, double r, double mu, double mu_s, double nu, double* out) const;
@@ -490,9 +490,10 @@ void Precompute::compute_indirect_irradiance(int order) {
   delta_irradiance_ = std::move(next);
 }
 
-double Precompute::compute_multiple_scattering(const Table3D& density) {
+double Precompute::compute_multiple_scattering(const Table3D& density, int sample_stride) {
   // L_n(x, v) = ∫₀^d T(x, y) J_n(y, v) dy along the ray (same rule as single
-  // scattering, the row's samples and T(x, y) from view_ray_samples).
+  // scattering, the row's samples and T(x, y) from view_ray_samples; every
+  // sample_stride-th of them and the last, next_ray_sample).
   const TableSizes& s = sizes();
   const int samples = options_.scattering_samples;
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;
@@ -505,6 +506,7 @@ double Precompute::compute_multiple_scattering(const Table3D& density) {
     // the same for every (μs, ν) texel (view_ray.glsl on the GPU).
     const ScatteringCoordinates ray = scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Blended);
     const ViewRaySamples view = view_ray_samples(model_, geometry(), n_, ray, samples, options_.scattering_quadrature);
+    const int stride = coarse_ray_stride_for(ray.mu, ray.ray_hits_ground, sample_stride);
     std::vector<ScatteringUVWZ> ray_uv(static_cast<std::size_t>(samples) + 1);
     {
       for (int i = 0; i <= samples; ++i) {
@@ -519,9 +521,11 @@ double Precompute::compute_multiple_scattering(const Table3D& density) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
       const double u_nu = scattering_u_nu(c.nu);  // ν is constant along the ray
       std::fill(sum.begin(), sum.end(), 0.0);
-      for (int i = 0; i <= samples; ++i) {
+      double previous_t = 0.0;
+      for (int i = 0; i <= samples; i = next_ray_sample(i, stride, samples)) {
         const double t = view.distance_m[static_cast<std::size_t>(i)];
-        const double dx = i > 0 ? t - view.distance_m[static_cast<std::size_t>(i) - 1] : 0.0;
+        const double dx = t - previous_t;
+        previous_t = t;
         const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m),
                                       geometry().bottom_radius_m, geometry().top_radius_m);
         const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / r_t, -1.0, 1.0);
@@ -583,7 +587,7 @@ LookupTables Precompute::run() {
     stage(prefix + "scattering density", share_multiple * 0.6, [&] { compute_scattering_density(order, density); });
     stage(prefix + "sky irradiance", share_multiple * 0.1, [&] { compute_indirect_irradiance(order); });
     double added = 0.0;
-    stage(prefix + "multiple scattering", share_multiple * 0.3, [&] { added = compute_multiple_scattering(density); });
+    stage(prefix + "multiple scattering", share_multiple * 0.3, [&] { added = compute_multiple_scattering(density, options_.ray_sample_stride(order)); });
     order_sums.push_back(added);
     used = order;
     double total = 0.0;

@@ -37,6 +37,19 @@ struct PrecomputeOptions {
   // Quadrature: the same on CPU and GPU.
   int transmittance_samples = 500;   ///< Simpson intervals along each transmittance ray (rounded up to even)
   int scattering_samples = 50;       ///< samples along each single/multiple scattering ray
+  /// From order `coarse_ray_first_order` on, the multiple-scattering rays read
+  /// every `coarse_ray_stride`-th of their scattering_samples samples (and the
+  /// last). The higher orders are smooth along a ray and small (order 3 is 7 % of
+  /// Earth's in-scattered radiance, order 5 1 %), and the samples stay crowded
+  /// toward the ray's lowest point (quadrature.h), so a stride of 2 moves the
+  /// tables by much less than their own error while the ray integrals of those
+  /// orders cost half (docs/lookup-tables.md, "Samples along the rays").
+  int coarse_ray_stride = 2;       ///< ≥ 1; 1 keeps every sample at every order
+  int coarse_ray_first_order = 3;  ///< ≥ 2
+
+  /// The stride through the ray's samples of the multiple scattering of `order` (≥ 2).
+  int ray_sample_stride(int order) const { return order >= coarse_ray_first_order ? coarse_ray_stride : 1; }
+
   /// How the integrand is interpolated between samples along scattering rays:
   /// trapezoid (linear, as Bruneton & Neyret), or log-linear (exact for an
   /// exponential integrand: on a vertical ray through a 1.2 km Mie layer with
@@ -69,6 +82,10 @@ struct PrecomputeOptions {
 
   std::function<void(const PrecomputeProgress&)> progress;  ///< optional
 };
+
+/// Throws std::invalid_argument naming the option and its allowed range when
+/// `o` cannot be computed (the CPU and GPU precomputes check the same).
+void check_precompute_options(const PrecomputeOptions& o);
 
 struct StageTiming {
   std::string stage;

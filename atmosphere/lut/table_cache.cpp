@@ -82,6 +82,7 @@ std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions&
     << o.sizes.describe() << '\n'
     << "orders " << o.max_orders << " tolerance " << o.tolerance << '\n'
     << "samples " << o.transmittance_samples << ' ' << o.scattering_samples << ' ' << o.sphere_zenith_samples << '\n'
+    << "coarse rays " << o.coarse_ray_stride << " from order " << o.coarse_ray_first_order << '\n'
     << "quadrature " << int(o.scattering_quadrature) << '\n'
     << "density " << (o.density_method == PrecomputeOptions::DensityMethod::Harmonics ? "harmonics " : "direct ")
     << o.harmonic_degree << '\n';

@@ -116,7 +116,7 @@ class GpuPrecompute {
   /// DensityMethod::Direct: scattering_density.comp.
   void compute_scattering_density_direct(int order);
   void compute_indirect_irradiance(int order);
-  double compute_multiple_scattering();
+  double compute_multiple_scattering(int sample_stride);
   /// Σ over texels and wavelengths: single scattering with phases, or the last order's radiance.
   double radiance_sum(bool single);
   void read_back_multiple_orders();
@@ -148,9 +148,7 @@ GpuPrecompute::GpuPrecompute(const AtmosphereModel& model, const PrecomputeOptio
       tables_(LookupTables::allocate({model.ground_radius_m, model.top_radius_m}, options.sizes, n_)) {
   if (n_ > atmosphere::lut::kMaxChannels) throw std::invalid_argument("too many wavelengths for the lookup tables");
   if (n_ == 0) throw std::invalid_argument("the atmosphere has no wavelengths");
-  if (options.max_orders < 1) throw std::invalid_argument("max_orders must be >= 1");
-  if (options.transmittance_samples < 1 || options.scattering_samples < 1 || options.sphere_zenith_samples < 1)
-    throw std::invalid_argument("transmittance_samples, scattering_samples and sphere_zenith_samples must be >= 1");
+  atmosphere::lut::check_precompute_options(options);
   groups_.resize((n_ + kLanes - 1) / kLanes);
   check_limits();
   prepare_model_data();
@@ -377,7 +375,7 @@ void GpuPrecompute::compute_indirect_irradiance(int order) {
   barrier();
 }
 
-double GpuPrecompute::compute_multiple_scattering() {
+double GpuPrecompute::compute_multiple_scattering(int sample_stride) {
   const ShaderProgram& p = program("multiple_scattering.comp");
   for (std::size_t g = 0; g < group_count(); ++g) {
     GroupTables& t = groups_[g];
@@ -391,6 +389,7 @@ double GpuPrecompute::compute_multiple_scattering() {
     t.density.bind(kDensityUnit);
     compute_view_transmittance(g, false);
     p.set_uniform("wavelength_group", to_int(g));
+    p.set_uniform("sample_stride", sample_stride);
     dispatch_scattering(p);
     barrier();  // before the next group's view transmittance overwrites this one's
   }
@@ -448,7 +447,7 @@ LookupTables GpuPrecompute::run() {
     stage(prefix + "sky irradiance", share_multiple * 0.1, [&] { compute_indirect_irradiance(order); });
     bool last = false;
     stage(prefix + "multiple scattering", share_multiple * 0.3, [&] {
-      const double added = compute_multiple_scattering();
+      const double added = compute_multiple_scattering(options_.ray_sample_stride(order));
       order_sums.push_back(added);
       double total = 0.0;
       for (double v : order_sums) total += v;
