@@ -481,8 +481,25 @@ real mu_s_from_unit(real x, int mapping) {
   return real(0.5) * (lo + hi);
 }
 
-real unit_from_nu(real nu) { return real(1) - acos_r(clamp(nu, real(-1), real(1))) / PI; }
-real nu_from_unit(real x) { return cos_r(PI * (real(1) - x)); }
+/// √((1 − μ²)(1 − μs²)), the half-width of the range of ν at μ, μs (nu_spread).
+real nu_spread(real mu, real mu_s) {
+  PRECISE real s = sqrt(max(real(0), (real(1) - mu * mu) * (real(1) - mu_s * mu_s)));
+  return s;
+}
+
+/// u_ν = φ/π, φ the azimuth between view and sun at μ, μs (scattering_u_nu).
+real scattering_u_nu(real mu, real mu_s, real nu) {
+  const real spread = nu_spread(mu, mu_s);
+  if (!(spread > real(NU_SPREAD_MIN))) return real(0);
+  PRECISE real cos_phi = clamp((nu - mu * mu_s) / spread, real(-1), real(1));
+  return acos_r(cos_phi) / PI;
+}
+
+/// ν at u_ν = x for μ, μs (scattering_nu_from_unit).
+real scattering_nu_from_unit(real mu, real mu_s, real x) {
+  PRECISE real nu = mu * mu_s + nu_spread(mu, mu_s) * cos_r(PI * x);
+  return clamp(nu, real(-1), real(1));
+}
 
 /// μ ↔ [0, 1] for rays that do not hit the ground (unit_from_mu_sky).
 real unit_from_mu_sky(real r, real mu, int mapping) {
@@ -574,7 +591,7 @@ ScatteringUV scattering_uvwz(real r, real mu, real mu_s, real nu, bool hits_grou
   uv.u_r = scattering_u_r(r);
   uv.u_mu = scattering_u_mu(r, mu, hits_ground, mapping);
   uv.u_mu_s = scattering_u_mu_s(mu_s, mapping);
-  uv.u_nu = unit_from_nu(nu);
+  uv.u_nu = scattering_u_nu(mu, mu_s, nu);
   return uv;
 }
 
@@ -605,10 +622,7 @@ ScatteringCoordinates scattering_texel_coordinates(int x, int y, int z, int mapp
     c.hits_ground = false;
   }
   c.mu_s = texel_values[TEXEL_MU_S + mapping * SCATTERING_MU_S + mu_s_index];
-  PRECISE real nu = nu_from_unit(x_nu);
-  PRECISE real spread = sqrt((real(1) - c.mu * c.mu) * (real(1) - c.mu_s * c.mu_s));
-  PRECISE real nu_clamped = clamp(nu, c.mu * c.mu_s - spread, c.mu * c.mu_s + spread);
-  c.nu = nu_clamped;
+  c.nu = scattering_nu_from_unit(c.mu, c.mu_s, x_nu);
   return c;
 }
 

@@ -36,7 +36,7 @@ void main() {
       sincos_r((real(ip) + real(0.5)) * d_phi, sin_phi, cos_phi);
       const real3 omega = real3(sin_theta * cos_phi, sin_theta * sin_phi, mu);
       const real nu = clamp(dot3(omega, sun), real(-1), real(1));
-      uv.u_nu = unit_from_nu(nu);
+      uv.u_nu = scattering_u_nu(mu, mu_s, nu);
       const real4 incoming = previous_order_radiance(uv, nu);
       const real w = mu * real(0.5) * weight * d_phi;
       e += incoming * w;

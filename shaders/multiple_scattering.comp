@@ -22,9 +22,9 @@ void main() {
   const real lowest = lowest_point_distance(c.r, c.mu, d, c.hits_ground);
   real previous_t = real(0);
   real4 sum = real4(0), prev = real4(0);
-  // ν is constant along the ray; r and μ at the samples come from the ray's row (view_ray.glsl).
+  // ν is constant along the ray, the azimuth (u_ν) is not; r and μ at the
+  // samples come from the ray's row (view_ray.glsl).
   ScatteringUV uv;
-  uv.u_nu = unit_from_nu(c.nu);
   const real theta_max = sun_theta_max();
   const int stride = coarse_ray_stride_for(c.mu, c.hits_ground, sample_stride);
   for (int i = 0; i <= SCATTERING_SAMPLES; i = next_ray_sample(i, stride, SCATTERING_SAMPLES)) {
@@ -33,10 +33,12 @@ void main() {
     previous_t = t;
     PRECISE real r_t = clamp(sqrt(t * t + real(2) * c.r * c.mu * t + c.r * c.r), RB, RT);
     PRECISE real mu_s_t = clamp((c.r * c.mu_s + t * c.nu) / r_t, real(-1), real(1));
+    PRECISE real mu_t = clamp((c.r * c.mu + t) / r_t, real(-1), real(1));
     const int sample_index = view_ray_sample_index(p.z, p.y, i);
     uv.u_r = view_ray_uv[sample_index].x;
     uv.u_mu = view_ray_uv[sample_index].y;
     uv.u_mu_s = texture_coord_from_unit(unit_from_mu_s(mu_s_t, ANGLE_MAPPING_BLENDED, theta_max), SCATTERING_MU_S);
+    uv.u_nu = scattering_u_nu(mu_t, mu_s_t, c.nu);
     const real4 j = sample_scattering_table(density_texture, uv);
     const real4 f = view_transmittance[sample_index] * j;
     if (i > 0) sum += integrate_interval(prev, f, dx);

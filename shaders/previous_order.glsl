@@ -6,7 +6,7 @@
 //   FIRST_ORDER 0 (n ≥ 3): the multiple-scattering table of the last order.
 // Each is read with its own angle mapping, PREVIOUS_ORDER_MAPPING. The caller
 // computes the texture coordinates (scattering_u_r, scattering_u_mu,
-// scattering_u_mu_s, unit_from_nu with PREVIOUS_ORDER_MAPPING), each in the loop
+// scattering_u_mu_s, scattering_u_nu with PREVIOUS_ORDER_MAPPING), each in the loop
 // where it changes: in a sphere integral r and μs are fixed, μ per zenith step.
 #if FIRST_ORDER
 const int PREVIOUS_ORDER_MAPPING = ANGLE_MAPPING_DISTANCE;

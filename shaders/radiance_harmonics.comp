@@ -48,7 +48,7 @@ void main() {
     sincos_r((real(k) + real(0.5)) * d_phi, sin_phi, cos_phi);
     const real3 omega = real3(sin_theta * cos_phi, sin_theta * sin_phi, mu);
     const real nu_i = clamp(dot3(omega, sun), real(-1), real(1));
-    uv.u_nu = unit_from_nu(nu_i);
+    uv.u_nu = scattering_u_nu(mu, c.mu_s, nu_i);
     real4 incoming = previous_order_radiance(uv, nu_i);
     if (hits_ground) {
       const real3 ground_normal =

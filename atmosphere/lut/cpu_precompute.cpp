@@ -519,7 +519,6 @@ double Precompute::compute_multiple_scattering(const Table3D& density, int sampl
     }
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
-      const double u_nu = scattering_u_nu(c.nu);  // ν is constant along the ray
       std::fill(sum.begin(), sum.end(), 0.0);
       double previous_t = 0.0;
       for (int i = 0; i <= samples; i = next_ray_sample(i, stride, samples)) {
@@ -531,7 +530,8 @@ double Precompute::compute_multiple_scattering(const Table3D& density, int sampl
         const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / r_t, -1.0, 1.0);
         ScatteringUVWZ uv = ray_uv[i];
         uv.u_mu_s = scattering_u_mu_s(geometry(), s, mu_s_t, AngleMapping::Blended);
-        uv.u_nu = u_nu;
+        const double mu_t = std::clamp((c.r_m * c.mu + t) / r_t, -1.0, 1.0);
+        uv.u_nu = scattering_u_nu(mu_t, mu_s_t, c.nu);  // ν is constant along the ray, the azimuth is not
         sample_scattering_table(density, s, uv, j.data());
         const double* t_view_i = view.transmittance.data() + static_cast<std::size_t>(i) * n_;
         for (std::size_t ch = 0; ch < n_; ++ch) {

@@ -170,13 +170,33 @@ double mu_s_from_unit(const ShellGeometry& g, double x, AngleMapping mapping) {
   return 0.5 * (lo + hi);
 }
 
-/// ν ↔ [0, 1] uniform in the scattering angle: slices every 180°/(n−1), so a
-/// forward-peaked aerosol phase baked into multiple scattering is resolved near
-/// the sun as well as elsewhere (uniform in ν, the first slice spans 44°).
-double unit_from_nu(double nu) { return 1.0 - std::acos(std::clamp(nu, -1.0, 1.0)) / kPi; }
-double nu_from_unit(double x) { return std::cos(kPi * (1.0 - x)); }
+/// sin θv · sin θs = √((1 − μ²)(1 − μs²)): the half-width of the range of ν
+/// that μ and μs allow, ν = μ μs + spread · cos φ with φ ∈ [0, π] the azimuth
+/// between the view and the sun.
+double nu_spread(double mu, double mu_s) { return std::sqrt(std::max(0.0, (1.0 - mu * mu) * (1.0 - mu_s * mu_s))); }
 
 }  // namespace
+
+/// ν ↔ [0, 1] uniform in the azimuth φ between the view and the sun at this μ
+/// and μs: every ν slice lies inside the range of ν that μ and μs allow. The
+/// paper's mapping (uniform in ν, or, as this table had it, uniform in the
+/// scattering angle over [0°, 180°]) gives a view near the horizon under a high
+/// sun one or two of the 8 slices for the whole azimuth circle (sun 20° from the
+/// zenith: scattering angles 70°–110°), and the second order came out 9–20 %
+/// dark toward the sun's azimuth. Across μ and μs texels the same u is the same
+/// azimuth, along which the radiance varies smoothly; in the scattering angle
+/// the slices are never farther apart than the paper's (dΘ/dφ ≤ 1).
+double scattering_u_nu(double mu, double mu_s, double nu) {
+  const double spread = nu_spread(mu, mu_s);
+  if (!(spread > kNuSpreadMin)) return 0.0;  // view or sun at the zenith: every azimuth is the same ν
+  const double cos_phi = std::clamp((nu - mu * mu_s) / spread, -1.0, 1.0);
+  return std::acos(cos_phi) / kPi;
+}
+
+/// Inverse of scattering_u_nu at this μ and μs.
+double scattering_nu_from_unit(double mu, double mu_s, double x) {
+  return std::clamp(mu * mu_s + nu_spread(mu, mu_s) * std::cos(kPi * x), -1.0, 1.0);
+}
 
 /// μ ↔ [0, 1] for rays that do not hit the ground (see AngleMapping).
 double unit_from_mu_sky(const ShellGeometry& g, double r_m, double mu, AngleMapping mapping) {
@@ -228,14 +248,12 @@ ScatteringUVWZ scattering_uvwz(const ShellGeometry& g, const TableSizes& s, doub
     // ground), blended with the zenith angle for AngleMapping::Blended.
     u_mu = 0.5 + 0.5 * texture_coord_from_unit(unit_from_mu_sky(g, r_m, mu, mapping), half);
   }
-  return {scattering_u_nu(nu), scattering_u_mu_s(g, s, mu_s, mapping), u_mu, u_r};
+  return {scattering_u_nu(mu, mu_s, nu), scattering_u_mu_s(g, s, mu_s, mapping), u_mu, u_r};
 }
 
 double scattering_u_mu_s(const ShellGeometry& g, const TableSizes& s, double mu_s, AngleMapping mapping) {
   return texture_coord_from_unit(unit_from_mu_s(g, mu_s, mapping), s.scattering_mu_s);
 }
-
-double scattering_u_nu(double nu) { return unit_from_nu(nu); }
 
 ScatteringCoordinates scattering_texel_coordinates(const ShellGeometry& g, const TableSizes& s, std::size_t x,
                                                    std::size_t y, std::size_t z, AngleMapping mapping) {
@@ -260,9 +278,7 @@ ScatteringCoordinates scattering_texel_coordinates(const ShellGeometry& g, const
     c.ray_hits_ground = false;
   }
   c.mu_s = mu_s_from_unit(g, unit_from_texture_coord(u_mu_s, s.scattering_mu_s), mapping);
-  const double nu = nu_from_unit(x_nu);
-  const double spread = std::sqrt((1.0 - c.mu * c.mu) * (1.0 - c.mu_s * c.mu_s));
-  c.nu = std::clamp(nu, c.mu * c.mu_s - spread, c.mu * c.mu_s + spread);
+  c.nu = scattering_nu_from_unit(c.mu, c.mu_s, x_nu);
   return c;
 }
 

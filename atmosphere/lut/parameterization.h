@@ -79,7 +79,7 @@ enum class AngleMapping { Distance, Blended };
 // ---- scattering S(r, μ, μs, ν), 4D packed into 3D:
 // x = ν index · mu_s_size + μs, y = μ, z = r (ν is interpolated by hand).
 struct ScatteringUVWZ {
-  double u_nu;    ///< [0, 1], linear in the scattering angle acos ν
+  double u_nu;    ///< [0, 1], linear in the azimuth between view and sun (scattering_u_nu)
   double u_mu_s;  ///< [0, 1], texel-centred
   double u_mu;    ///< [0, 1]; < 0.5 for rays that hit the ground
   double u_r;     ///< [0, 1], texel-centred
@@ -89,14 +89,19 @@ ScatteringUVWZ scattering_uvwz(const ShellGeometry& g, const TableSizes& s, doub
 /// The μs and ν parts of scattering_uvwz alone (equal to its u_mu_s and u_nu),
 /// for integrators that compute the r and μ parts once per ray.
 double scattering_u_mu_s(const ShellGeometry& g, const TableSizes& s, double mu_s, AngleMapping mapping);
-double scattering_u_nu(double nu);
+/// u_ν = φ/π, φ ∈ [0, π] the azimuth between the view and the sun:
+/// ν = μ μs + √((1 − μ²)(1 − μs²)) cos φ. 0 where that root is below kNuSpreadMin
+/// (view or sun at the zenith, where ν = μ μs whatever the azimuth).
+double scattering_u_nu(double mu, double mu_s, double nu);
+/// ν at u_ν = x for this μ and μs (the inverse of scattering_u_nu).
+double scattering_nu_from_unit(double mu, double mu_s, double x);
+constexpr double kNuSpreadMin = 1e-9;
 
 struct ScatteringCoordinates {
   double r_m, mu, mu_s, nu;
   bool ray_hits_ground;
 };
 /// Physical coordinates at the centre of texel (x, y, z) of the packed 3D table.
-/// ν is clamped to the range that μ and μs allow.
 ScatteringCoordinates scattering_texel_coordinates(const ShellGeometry& g, const TableSizes& s, std::size_t x,
                                                    std::size_t y, std::size_t z, AngleMapping mapping);
 

@@ -72,8 +72,9 @@ std::filesystem::path default_cache_directory() {
 /// 3: the second order's source reads the single-scattering tables
 /// geometrically in μs (sample_scattering_table_geometric_mu_s); 4: view-ray
 /// samples crowded toward the ray's lowest point, T accumulated along the ray
-/// (quadrature.h, view_ray_samples).
-constexpr int kPrecomputeMethodRevision = 4;
+/// (quadrature.h, view_ray_samples); 5: ν slices uniform in the azimuth
+/// between view and sun at each μ, μs (scattering_u_nu).
+constexpr int kPrecomputeMethodRevision = 5;
 
 std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions& o) {
   std::ostringstream s;

@@ -173,6 +173,7 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("SCATTERING_MU", s.scattering_mu);
   define("SCATTERING_MU_S", s.scattering_mu_s);
   define("SCATTERING_NU", s.scattering_nu);
+  define("NU_SPREAD_MIN", glsl_literal(atmosphere::lut::kNuSpreadMin, fp64));
   define("GEOMETRIC_BLEND_FULL_LOG_RATIO", glsl_literal(double(atmosphere::lut::kGeometricBlendFullLogRatio), false));
   define("RAYLEIGH_PHASE", rayleigh_phase());
   define("RAYLEIGH_DEPOLARIZATION", glsl_literal(model.rayleigh_depolarization, fp64));

@@ -50,7 +50,7 @@ ScatteringUV frame_scattering_uvwz(real r, real mu, real mu_s, real nu, bool hit
   uv.u_r = scattering_u_r(r);
   uv.u_mu = scattering_u_mu(r, mu, hits_ground, mapping);
   uv.u_mu_s = texture_coord_from_unit(unit_from_mu_s(mu_s, mapping, table_sun_theta_max), SCATTERING_MU_S);
-  uv.u_nu = unit_from_nu(nu);
+  uv.u_nu = scattering_u_nu(mu, mu_s, nu);
   return uv;
 #endif
 }
