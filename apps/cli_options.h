@@ -1,8 +1,9 @@
 #pragma once
 // Command-line options shared by several commands: the images they write
 // (`zenith render`, `zenith show render`: EXR pixel type, PNG tone mapping,
-// spectral-to-RGB mapping; docs/colour.md) and the lookup tables they use
-// (sizes, orders, cache; docs/lookup-tables.md).
+// spectral-to-RGB mapping; docs/colour.md), the lookup tables they use
+// (sizes, orders, cache, where missing ones are computed; docs/lookup-tables.md)
+// and the GL device they render on.
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -27,6 +28,17 @@ inline void add_table_options(CLI::App* cmd, std::string& tables, int& orders, s
       "Scattering orders of the tables (default " + std::to_string(atmosphere::lut::kDefaultScatteringOrders) + ")";
   cmd->add_option("--orders", orders, orders_help)->check(CLI::Range(1, 50));
   cmd->add_option("--cache", cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
+}
+
+/// --cpu-precompute: compute missing tables on the CPU instead of the GPU.
+inline void add_cpu_precompute_flag(CLI::App* cmd, bool& cpu_precompute) {
+  cmd->add_flag("--cpu-precompute", cpu_precompute, "Precompute missing tables on the CPU");
+}
+
+/// --device auto|software|hardware: the GL device to render on.
+inline void add_gl_device_option(CLI::App* cmd, std::string& device) {
+  cmd->add_option("--device", device, "GL device: auto, software (llvmpipe), hardware")
+      ->check(CLI::IsMember({"auto", "software", "hardware"}));
 }
 
 }  // namespace zenith::app

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "apps/child_process.h"
+#include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "apps/default_configs.h"
 #include "atmosphere/lut/table_cache.h"
@@ -345,7 +346,7 @@ void register_cluster_commands(CLI::App& app) {
                     "Present this many frames, then stop the nodes (default 0: until SIGTERM, or the end of a show)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--cache", a->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
-    cmd->add_flag("--cpu-precompute", a->cpu_precompute, "Precompute missing tables on the CPU");
+    add_cpu_precompute_flag(cmd, a->cpu_precompute);
     cmd->add_option("--sun-step-deg", a->sun_step_deg, "Default show: the sun turns this much per frame (default 0.1)")
         ->check(CLI::Range(-10.0, 10.0));
     cmd->add_option("--wait-for-nodes-ms", a->wait_for_nodes_ms,

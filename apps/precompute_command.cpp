@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/commands.h"
+#include "apps/output_rendering.h"
 #include "render/lut/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
@@ -21,14 +22,9 @@ struct PrecomputeArgs {
 
 void run_precompute(const PrecomputeArgs& a) {
   const auto loaded = render::load_atmosphere_argument(a.atmosphere);
-  render::TableRequest request;
-  request.options.sizes = render::table_sizes_by_name(a.tables);
-  request.options.max_orders = a.orders;
+  render::TableRequest request = make_table_request(a.tables, a.orders, a.cpu, !a.no_cache, a.cache_dir);
   request.options.tolerance = a.tolerance;
   request.options.threads = a.threads;
-  request.backend = a.cpu ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
-  request.use_cache = !a.no_cache;
-  if (!a.cache_dir.empty()) request.cache_directory = a.cache_dir;
 
   const render::ObtainedTables t = render::obtain_tables(loaded.model, request);
   fmt::print("atmosphere      {}\n", loaded.model.name);

@@ -418,9 +418,8 @@ void register_render_command(CLI::App& app) {
   cmd->add_option("--exposure", a->exposure, "Override the scene camera's exposure");
   add_table_options(cmd, a->tables, a->orders, a->cache_dir);
   cmd->add_flag("--no-cache", a->no_cache, "Neither read nor write the table cache");
-  cmd->add_flag("--cpu-precompute", a->cpu_precompute, "Precompute missing tables on the CPU");
-  cmd->add_option("--device", a->device, "GL device: auto, software (llvmpipe), hardware")
-      ->check(CLI::IsMember({"auto", "software", "hardware"}));
+  add_cpu_precompute_flag(cmd, a->cpu_precompute);
+  add_gl_device_option(cmd, a->device);
   cmd->add_flag("--no-sun-disc", a->no_sun_disc, "Do not draw the sun's disc");
   cmd->add_flag("--no-limb-darkening", a->no_limb_darkening, "Draw the sun as a uniform disc");
   cmd->add_flag("--single-scattering", a->single_scattering, "Drop multiple scattering at render time");

@@ -311,9 +311,8 @@ void register_show_render(CLI::App& show_command) {
                   "Contact sheet PNG of 24 evenly spaced frames (default DIR/contact-sheet.png; none: no sheet)");
   add_image_options(cmd, a->exr_type, a->tone, a->colour);
   add_table_options(cmd, a->tables.tables, a->tables.orders, a->tables.cache_dir);
-  cmd->add_flag("--cpu-precompute", a->tables.cpu_precompute, "Precompute missing tables on the CPU");
-  cmd->add_option("--device", a->device, "GL device: auto, software (llvmpipe), hardware")
-      ->check(CLI::IsMember({"auto", "software", "hardware"}));
+  add_cpu_precompute_flag(cmd, a->tables.cpu_precompute);
+  add_gl_device_option(cmd, a->device);
   cmd->callback([a, cmd] { run_show_render(*a, cmd->count("--size") > 0, cmd->count("--format") > 0); });
 }
 

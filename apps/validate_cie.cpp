@@ -29,6 +29,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/output_rendering.h"
 #include "render/lut/table_provider.h"
 #include "atmosphere/cie_sky.h"
 #include "atmosphere/constants.h"
@@ -197,13 +198,8 @@ std::size_t type_index(const std::vector<CieSkyType>& types, int number) {
 
 VariantResult evaluate_variant(const Variant& v, const ValidateCieArgs& a, const std::vector<CieSkyType>& types) {
   const atmosphere::LoadedAtmosphere loaded = atmosphere::resolve_atmosphere(v.parameters, cat("preset:", v.preset));
-  render::TableRequest request;
-  request.options.sizes = render::table_sizes_by_name(a.tables);
-  request.options.max_orders = a.orders;
+  render::TableRequest request = make_table_request(a.tables, a.orders, a.cpu, !a.no_cache, a.cache_dir);
   request.options.threads = a.threads;
-  request.backend = a.cpu ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
-  request.use_cache = !a.no_cache;
-  if (!a.cache_dir.empty()) request.cache_directory = a.cache_dir;
   const render::ObtainedTables t = render::obtain_tables(loaded.model, request);
   const atmosphere::lut::TableQueries queries(loaded.model, t.tables);
 

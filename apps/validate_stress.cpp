@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "core/progress_bar.h"
 #include "apps/stress/cpu_stress.h"
@@ -246,7 +247,7 @@ void register_validate_stress(CLI::App& validate) {
   cmd->add_option("--floor", args->floor_sr, "Absolute floor of relative errors [sr^-1 per unit solar irradiance]")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--gpu,!--no-gpu", args->gpu, "Also render frames on the GPU path (default on)");
-  cmd->add_flag("--cpu-precompute", args->cpu_precompute, "Precompute missing tables on the CPU");
+  add_cpu_precompute_flag(cmd, args->cpu_precompute);
   cmd->add_option("--cache", args->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
   cmd->add_option("--threads", args->threads, "CPU threads (default: all)");
   cmd->add_option("--out", args->out, "Write stress_regions.csv and stress_gpu.csv into this directory");

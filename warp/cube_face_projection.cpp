@@ -34,6 +34,16 @@ int checked_index(CubeFace face) {
   return index;
 }
 
+/// CubeFaceProjection's gpu() (the layout documented there).
+GpuProjection cube_face_gpu(const glm::dmat3& frame, int size_px) {
+  const double centre_px = 0.5 * size_px;
+  GpuProjection out;
+  out.kind = ProjectionKind::cube_face;
+  out.params = {gpu_vec4(frame[0] * (2.0 / size_px), centre_px), gpu_vec4(frame[1] * (2.0 / size_px), centre_px),
+                gpu_vec4(frame[2], 0.0), std::array<float, 4>{}};
+  return out;
+}
+
 }  // namespace
 
 std::string_view cube_face_name(CubeFace face) { return kFaces[static_cast<std::size_t>(checked_index(face))].name; }
@@ -44,9 +54,15 @@ std::optional<CubeFace> cube_face_from_name(std::string_view name) {
   return std::nullopt;
 }
 
-CubeFaceProjection::CubeFaceProjection(int size_px, CubeFace face) : Projection(size_px, size_px), face_(face) {
+CubeFaceProjection::CubeFaceProjection(int size_px, CubeFace face)
+    : ClosedFormProjection(size_px, size_px), face_(face) {
   const FaceFrame& f = kFaces[static_cast<std::size_t>(checked_index(face))];
   frame_ = glm::dmat3(f.e_s, f.e_t, f.axis);
+  const std::string size = std::to_string(size_px);
+  // PlanarProjection's pixel-angle bound with the axis inside the face (ρ = 0):
+  // a displacement δ on the plane at unit distance turns the ray by at most |δ|.
+  set_closed_form(cube_face_gpu(frame_, size_px), "cube face " + std::string(f.name) + " " + size + "×" + size,
+                  std::numbers::sqrt2 * 2.0 / size_px);
 }
 
 std::optional<glm::dvec3> CubeFaceProjection::ray(double x_px, double y_px) const {
@@ -65,30 +81,6 @@ std::optional<glm::dvec2> CubeFaceProjection::pixel(const glm::dvec3& direction)
   const double sc = glm::dot(frame_[0], direction) / m;
   const double tc = glm::dot(frame_[1], direction) / m;
   return glm::dvec2(0.5 * (sc + 1.0) * width(), 0.5 * (tc + 1.0) * height());
-}
-
-GpuProjection CubeFaceProjection::gpu() const {
-  const double centre_px = 0.5 * width();
-  auto pack = [](const glm::dvec3& v, double w) {
-    return std::array<float, 4>{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
-                                static_cast<float>(w)};
-  };
-  GpuProjection out;
-  out.kind = ProjectionKind::cube_face;
-  out.params = {pack(frame_[0] * (2.0 / width()), centre_px), pack(frame_[1] * (2.0 / height()), centre_px),
-                pack(frame_[2], 0.0), std::array<float, 4>{}};
-  return out;
-}
-
-std::string CubeFaceProjection::describe() const {
-  return "cube face " + std::string(cube_face_name(face_)) + " " + std::to_string(width()) + "×" +
-         std::to_string(height());
-}
-
-double CubeFaceProjection::max_pixel_angle_rad() const {
-  // PlanarProjection's bound with the axis inside the face (ρ = 0): a
-  // displacement δ on the plane at unit distance turns the ray by at most |δ|.
-  return std::numbers::sqrt2 * 2.0 / width();
 }
 
 }  // namespace zenith::warp

@@ -58,7 +58,20 @@ std::string_view cube_face_name(CubeFace face);
 /// The face named "+x" ... "-z"; nothing for any other text.
 std::optional<CubeFace> cube_face_from_name(std::string_view name);
 
-class CubeFaceProjection final : public Projection {
+/// What gpu(), describe() and max_pixel_angle_rad() return, computed once when
+/// the projection is built (ClosedFormProjection):
+///  * gpu(): kind cube_face with PlanarProjection's layout (the ray is affine in the
+///    pixel, taken about the centre c = size / 2; d = (x − c) · A + (y − c) · B + C):
+///      params[0] = (A = e_s · 2 / size, c)
+///      params[1] = (B = e_t · 2 / size, c)
+///      params[2] = (C = axis, 0)
+///      params[3] = (0, 0, 0, 0)
+///    Every float is exact for sizes that are powers of two.
+///  * describe(): "cube face +x 512×512".
+///  * max_pixel_angle_rad(): sqrt(2) · 2 / size: a central projection moves a ray by at most one
+///    radian per unit of its plane (at the axis), and a pixel's diagonal is
+///    sqrt(2) · 2 / size plane units long.
+class CubeFaceProjection final : public ClosedFormProjection {
  public:
   /// A face `size_px` × `size_px` pixels (cube map faces are square). Throws
   /// std::invalid_argument when the size is outside [1, 65536] px or `face` is
@@ -76,20 +89,6 @@ class CubeFaceProjection final : public Projection {
   /// [0, size], when its major axis is the face's; random directions fall in
   /// [0, size) × [0, size) of exactly one face.
   std::optional<glm::dvec2> pixel(const glm::dvec3& direction) const override;
-  /// kind cube_face with PlanarProjection's layout (the ray is affine in the
-  /// pixel, taken about the centre c = size / 2; d = (x − c) · A + (y − c) · B + C):
-  ///   params[0] = (A = e_s · 2 / size, c)
-  ///   params[1] = (B = e_t · 2 / size, c)
-  ///   params[2] = (C = axis, 0)
-  ///   params[3] = (0, 0, 0, 0)
-  /// Every float is exact for sizes that are powers of two.
-  GpuProjection gpu() const override;
-  /// "cube face +x 512×512".
-  std::string describe() const override;
-  /// sqrt(2) · 2 / size: a central projection moves a ray by at most one
-  /// radian per unit of its plane (at the axis), and a pixel's diagonal is
-  /// sqrt(2) · 2 / size plane units long.
-  double max_pixel_angle_rad() const override;
 
  private:
   CubeFace face_;

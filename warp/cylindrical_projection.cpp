@@ -35,10 +35,44 @@ void check_range(const char* name, double value, double lo, bool open_lo, double
          number(hi) + (open_hi ? ")" : "]") + " degrees");
 }
 
+/// CylindricalProjection's gpu() (the layout documented there): `rad_per_px` is
+/// k_φ, `tan_per_px_y` k_v, `half_turn_px` h.
+GpuProjection cylindrical_gpu(const glm::dmat3& rotation, double tan_down, double tan_up, double rad_per_px,
+                              double tan_per_px_y, double half_turn_px, int width_px, int height_px) {
+  GpuProjection out;
+  out.kind = ProjectionKind::cylindrical;
+  out.params = {std::array<float, 4>{static_cast<float>(0.5 * width_px), static_cast<float>(rad_per_px),
+                                     static_cast<float>(0.5 * height_px), static_cast<float>(tan_per_px_y)},
+                gpu_vec4(rotation[0], 0.5 * (tan_up + tan_down)), gpu_vec4(rotation[1], half_turn_px),
+                gpu_vec4(rotation[2], 0.0)};
+  return out;
+}
+
+/// CylindricalProjection's describe().
+std::string cylindrical_description(const CylindricalParameters& p, int width_px, int height_px) {
+  std::ostringstream out;  // 6 significant digits: "73.7398°"
+  out << "cylindrical " << p.horizontal_fov_deg << "°×" << p.up_deg - p.down_deg << "° (down " << p.down_deg
+      << "° up " << p.up_deg << "°) " << width_px << "×" << height_px;
+  if (p.yaw_deg != 0.0 || p.pitch_deg != 0.0 || p.roll_deg != 0.0)
+    out << ", yaw " << p.yaw_deg << "° pitch " << p.pitch_deg << "° roll " << p.roll_deg << "°";
+  return out.str();
+}
+
+/// CylindricalProjection's max_pixel_angle_rad().
+double cylindrical_max_pixel_angle_rad(double tan_down, double tan_up, double rad_per_px, double tan_per_px_y) {
+  // With elevation α = atan v, the sphere's metric dα² + cos²α dφ² reads
+  // dv² / (1 + v²)² + dφ² / (1 + v²): both factors are largest where |v| is
+  // smallest. A straight segment between two points of one pixel stays in the
+  // image rectangle (where |v| ≥ ρ) and moves at most one pixel in x and in y.
+  const double nearest_v = std::clamp(0.0, tan_down, tan_up);
+  const double stretch = 1.0 + nearest_v * nearest_v;
+  return std::sqrt(rad_per_px * rad_per_px / stretch + tan_per_px_y * tan_per_px_y / (stretch * stretch));
+}
+
 }  // namespace
 
 CylindricalProjection::CylindricalProjection(int width_px, int height_px, const CylindricalParameters& parameters)
-    : Projection(width_px, height_px), parameters_(parameters) {
+    : ClosedFormProjection(width_px, height_px), parameters_(parameters) {
   const CylindricalParameters& p = parameters;
   check_range("horizontal_fov_deg", p.horizontal_fov_deg, 0.0, true, 360.0, false);
   check_range("down_deg", p.down_deg, -kMaxEdgeDeg, true, kMaxEdgeDeg, true);
@@ -59,6 +93,11 @@ CylindricalProjection::CylindricalProjection(int width_px, int height_px, const 
   // The same frame as a PlanarFrustum with these yaw, pitch and roll (the edge
   // angles do not enter the rotation).
   rotation_ = PlanarProjection(1, 1, PlanarFrustum{-1.0, 1.0, -1.0, 1.0, p.yaw_deg, p.pitch_deg, p.roll_deg}).rotation();
+
+  set_closed_form(
+      cylindrical_gpu(rotation_, tan_down_, tan_up_, rad_per_px_, tan_per_px_y_, half_turn_px_, width_px, height_px),
+      cylindrical_description(p, width_px, height_px),
+      cylindrical_max_pixel_angle_rad(tan_down_, tan_up_, rad_per_px_, tan_per_px_y_));
 }
 
 std::optional<glm::dvec3> CylindricalProjection::ray(double x_px, double y_px) const {
@@ -89,40 +128,6 @@ std::optional<glm::dvec2> CylindricalProjection::pixel(const glm::dvec3& directi
   }
   const double v = d.y / across;
   return glm::dvec2(x_px, (v - tan_up_) / tan_per_px_y_);
-}
-
-GpuProjection CylindricalProjection::gpu() const {
-  auto pack = [](const glm::dvec3& v, double w) {
-    return std::array<float, 4>{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
-                                static_cast<float>(w)};
-  };
-  GpuProjection out;
-  out.kind = ProjectionKind::cylindrical;
-  out.params = {std::array<float, 4>{static_cast<float>(0.5 * width()), static_cast<float>(rad_per_px_),
-                                     static_cast<float>(0.5 * height()), static_cast<float>(tan_per_px_y_)},
-                pack(rotation_[0], 0.5 * (tan_up_ + tan_down_)), pack(rotation_[1], half_turn_px_),
-                pack(rotation_[2], 0.0)};
-  return out;
-}
-
-std::string CylindricalProjection::describe() const {
-  const CylindricalParameters& p = parameters_;
-  std::ostringstream out;  // 6 significant digits: "73.7398°"
-  out << "cylindrical " << p.horizontal_fov_deg << "°×" << p.up_deg - p.down_deg << "° (down " << p.down_deg
-      << "° up " << p.up_deg << "°) " << width() << "×" << height();
-  if (p.yaw_deg != 0.0 || p.pitch_deg != 0.0 || p.roll_deg != 0.0)
-    out << ", yaw " << p.yaw_deg << "° pitch " << p.pitch_deg << "° roll " << p.roll_deg << "°";
-  return out.str();
-}
-
-double CylindricalProjection::max_pixel_angle_rad() const {
-  // With elevation α = atan v, the sphere's metric dα² + cos²α dφ² reads
-  // dv² / (1 + v²)² + dφ² / (1 + v²): both factors are largest where |v| is
-  // smallest. A straight segment between two points of one pixel stays in the
-  // image rectangle (where |v| ≥ ρ) and moves at most one pixel in x and in y.
-  const double nearest_v = std::clamp(0.0, tan_down_, tan_up_);
-  const double stretch = 1.0 + nearest_v * nearest_v;
-  return std::sqrt(rad_per_px_ * rad_per_px_ / stretch + tan_per_px_y_ * tan_per_px_y_ / (stretch * stretch));
 }
 
 }  // namespace zenith::warp

@@ -39,7 +39,23 @@ struct CylindricalParameters {
   double roll_deg = 0.0;    ///< in [−180, 180]; positive banks right, as PlanarFrustum
 };
 
-class CylindricalProjection final : public Projection {
+/// What gpu(), describe() and max_pixel_angle_rad() return, computed once when
+/// the projection is built (ClosedFormProjection):
+///  * gpu(): kind cylindrical, about the image centre (x_c, y_c) = (width / 2, height / 2):
+///      φ = (x − x_c) · k_φ,   v = v_c + (y − y_c) · k_v,
+///      ray = normalize(sin φ · e_right + v · e_axis − cos φ · e_back),  no ray where |x − x_c| > h
+///      params[0] = (x_c, k_φ = horizontal_fov / width (rad/px), y_c, k_v = (tan(down) − tan(up)) / height)
+///      params[1] = (e_right.x, e_right.y, e_right.z, v_c = (tan(up) + tan(down)) / 2)
+///      params[2] = (e_axis.x,  e_axis.y,  e_axis.z,  h = π / k_φ = width / 2 · 360° / horizontal_fov (px))
+///      params[3] = (e_back.x,  e_back.y,  e_back.z,  0)
+///    with e_right, e_axis, e_back the columns of rotation().
+///  * describe(): "cylindrical 360°×90° (down -45° up 45°) 4096×1024", with
+///    ", yaw 10° pitch 0° roll 0°" appended when the cylinder is turned.
+///  * max_pixel_angle_rad(): sqrt(k_φ² / (1 + ρ²) + k_v² / (1 + ρ²)²), ρ the smallest |v| over the image
+///    (0 when the horizon is in it): the ray's elevation α = atan v and azimuth φ
+///    have the metric dα² + cos²α dφ² = dv² / (1 + v²)² + dφ² / (1 + v²), and two
+///    points of one pixel differ by at most one pixel in x and in y.
+class CylindricalProjection final : public ClosedFormProjection {
  public:
   /// Throws std::invalid_argument naming the parameter, its value and the
   /// allowed range when a size or a parameter is out of range (or not finite),
@@ -58,23 +74,6 @@ class CylindricalProjection final : public Projection {
   /// vector and non-finite input. x from the azimuth in [−π, π]; a 360°
   /// cylinder returns x in [0, width) (the seam direction, φ = ±π, at x = 0).
   std::optional<glm::dvec2> pixel(const glm::dvec3& direction) const override;
-  /// kind cylindrical, about the image centre (x_c, y_c) = (width / 2, height / 2):
-  ///   φ = (x − x_c) · k_φ,   v = v_c + (y − y_c) · k_v,
-  ///   ray = normalize(sin φ · e_right + v · e_axis − cos φ · e_back),  no ray where |x − x_c| > h
-  ///   params[0] = (x_c, k_φ = horizontal_fov / width (rad/px), y_c, k_v = (tan(down) − tan(up)) / height)
-  ///   params[1] = (e_right.x, e_right.y, e_right.z, v_c = (tan(up) + tan(down)) / 2)
-  ///   params[2] = (e_axis.x,  e_axis.y,  e_axis.z,  h = π / k_φ = width / 2 · 360° / horizontal_fov (px))
-  ///   params[3] = (e_back.x,  e_back.y,  e_back.z,  0)
-  /// with e_right, e_axis, e_back the columns of rotation().
-  GpuProjection gpu() const override;
-  /// "cylindrical 360°×90° (down -45° up 45°) 4096×1024", with
-  /// ", yaw 10° pitch 0° roll 0°" appended when the cylinder is turned.
-  std::string describe() const override;
-  /// sqrt(k_φ² / (1 + ρ²) + k_v² / (1 + ρ²)²), ρ the smallest |v| over the image
-  /// (0 when the horizon is in it): the ray's elevation α = atan v and azimuth φ
-  /// have the metric dα² + cos²α dφ² = dv² / (1 + v²)² + dφ² / (1 + v²), and two
-  /// points of one pixel differ by at most one pixel in x and in y.
-  double max_pixel_angle_rad() const override;
 
  private:
   CylindricalParameters parameters_;

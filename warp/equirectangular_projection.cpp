@@ -31,11 +31,33 @@ void check_range(const char* name, double value, double lo, double hi) {
     fail(std::string(name) + " = " + number(value) + ": must be in [" + number(lo) + ", " + number(hi) + "] degrees");
 }
 
+/// EquirectangularProjection's describe().
+std::string equirectangular_description(const EquirectangularParameters& p, int width_px, int height_px) {
+  std::ostringstream out;  // 6 significant digits
+  out << "equirectangular " << p.longitude_max_deg - p.longitude_min_deg << "°×"
+      << p.latitude_max_deg - p.latitude_min_deg << "° (longitude " << p.longitude_min_deg << "° to "
+      << p.longitude_max_deg << "°, latitude " << p.latitude_min_deg << "° to " << p.latitude_max_deg << "°) "
+      << width_px << "×" << height_px;
+  return out.str();
+}
+
+/// EquirectangularProjection's max_pixel_angle_rad(), with k_λ = `rad_per_px_x`
+/// and k_β = `rad_per_px_y`.
+double equirectangular_max_pixel_angle_rad(const EquirectangularParameters& p, double rad_per_px_x,
+                                           double rad_per_px_y) {
+  // The sphere's metric dβ² + cos²β dλ² is largest across where |β| is smallest;
+  // a straight segment between two points of one pixel stays in the image
+  // rectangle and moves at most one pixel in x and in y.
+  const double nearest_latitude_rad = std::clamp(0.0, p.latitude_min_deg, p.latitude_max_deg) * kDegToRad;
+  const double across = std::cos(nearest_latitude_rad) * rad_per_px_x;
+  return std::hypot(across, rad_per_px_y);
+}
+
 }  // namespace
 
 EquirectangularProjection::EquirectangularProjection(int width_px, int height_px,
                                                      const EquirectangularParameters& parameters)
-    : Projection(width_px, height_px), parameters_(parameters) {
+    : ClosedFormProjection(width_px, height_px), parameters_(parameters) {
   const EquirectangularParameters& p = parameters;
   check_range("longitude_min_deg", p.longitude_min_deg, -360.0, 360.0);
   check_range("longitude_max_deg", p.longitude_max_deg, -360.0, 360.0);
@@ -58,6 +80,17 @@ EquirectangularProjection::EquirectangularProjection(int width_px, int height_px
   rad_per_px_x_ = longitude_range_deg * kDegToRad / width_px;
   rad_per_px_y_ = -(p.latitude_max_deg - p.latitude_min_deg) * kDegToRad / height_px;
   half_turn_px_ = 0.5 * width_px * (360.0 / longitude_range_deg);  // exactly width / 2 for 360°
+
+  GpuProjection gpu;
+  gpu.kind = ProjectionKind::equirectangular;
+  gpu.params = {std::array<float, 4>{static_cast<float>(0.5 * width_px), static_cast<float>(rad_per_px_x_),
+                                     static_cast<float>(0.5 * height_px), static_cast<float>(rad_per_px_y_)},
+                std::array<float, 4>{static_cast<float>(centre_longitude_rad_),
+                                     static_cast<float>(centre_latitude_rad_), static_cast<float>(half_turn_px_),
+                                     static_cast<float>(0.5 * kPi)},
+                std::array<float, 4>{}, std::array<float, 4>{}};
+  set_closed_form(gpu, equirectangular_description(p, width_px, height_px),
+                  equirectangular_max_pixel_angle_rad(p, rad_per_px_x_, rad_per_px_y_));
 }
 
 std::optional<glm::dvec3> EquirectangularProjection::ray(double x_px, double y_px) const {
@@ -94,38 +127,6 @@ std::optional<glm::dvec2> EquirectangularProjection::pixel(const glm::dvec3& d) 
     }
   }
   return glm::dvec2(x_px, 0.5 * height() + (beta - centre_latitude_rad_) / rad_per_px_y_);
-}
-
-GpuProjection EquirectangularProjection::gpu() const {
-  GpuProjection out;
-  out.kind = ProjectionKind::equirectangular;
-  out.params = {std::array<float, 4>{static_cast<float>(0.5 * width()), static_cast<float>(rad_per_px_x_),
-                                     static_cast<float>(0.5 * height()), static_cast<float>(rad_per_px_y_)},
-                std::array<float, 4>{static_cast<float>(centre_longitude_rad_),
-                                     static_cast<float>(centre_latitude_rad_), static_cast<float>(half_turn_px_),
-                                     static_cast<float>(0.5 * kPi)},
-                std::array<float, 4>{}, std::array<float, 4>{}};
-  return out;
-}
-
-std::string EquirectangularProjection::describe() const {
-  const EquirectangularParameters& p = parameters_;
-  std::ostringstream out;  // 6 significant digits
-  out << "equirectangular " << p.longitude_max_deg - p.longitude_min_deg << "°×"
-      << p.latitude_max_deg - p.latitude_min_deg << "° (longitude " << p.longitude_min_deg << "° to "
-      << p.longitude_max_deg << "°, latitude " << p.latitude_min_deg << "° to " << p.latitude_max_deg << "°) "
-      << width() << "×" << height();
-  return out.str();
-}
-
-double EquirectangularProjection::max_pixel_angle_rad() const {
-  // The sphere's metric dβ² + cos²β dλ² is largest across where |β| is smallest;
-  // a straight segment between two points of one pixel stays in the image
-  // rectangle and moves at most one pixel in x and in y.
-  const double nearest_latitude_rad =
-      std::clamp(0.0, parameters_.latitude_min_deg, parameters_.latitude_max_deg) * kDegToRad;
-  const double across = std::cos(nearest_latitude_rad) * rad_per_px_x_;
-  return std::hypot(across, rad_per_px_y_);
 }
 
 }  // namespace zenith::warp

@@ -35,7 +35,21 @@ struct EquirectangularParameters {
   double latitude_max_deg = 90.0;   ///< latitude of the top edge (y = 0), in [−90, 90]
 };
 
-class EquirectangularProjection final : public Projection {
+/// What gpu(), describe() and max_pixel_angle_rad() return, computed once when
+/// the projection is built (ClosedFormProjection):
+///  * gpu(): kind equirectangular, about the image centre (x_c, y_c) = (width / 2, height / 2):
+///      λ' = (x − x_c) · k_λ  (λ − λ_c),   β = β_c + (y − y_c) · k_β,
+///      no ray where |x − x_c| > h or |β| > π/2, else with λ = λ_c + λ':
+///      ray = (cos β · sin λ, sin β, −cos β · cos λ)
+///      params[0] = (x_c, k_λ = (longitude_max − longitude_min) / width (rad/px),
+///                   y_c, k_β = −(latitude_max − latitude_min) / height (rad/px))
+///      params[1] = (λ_c, β_c (rad), h = π / k_λ (px), π/2)
+///      params[2] = params[3] = (0, 0, 0, 0)
+///  * describe(): "equirectangular 360°×180° (longitude -180° to 180°, latitude -90° to 90°) 2048×1024".
+///  * max_pixel_angle_rad(): sqrt(k_β² + cos²β₀ · k_λ²), β₀ the latitude of the image nearest the
+///    equator: the sphere's metric is dβ² + cos²β dλ², and two points of one pixel
+///    differ by at most one pixel in x and in y.
+class EquirectangularProjection final : public ClosedFormProjection {
  public:
   /// Throws std::invalid_argument naming the parameter, its value and the
   /// allowed range when a size or a parameter is out of range (or not finite),
@@ -50,21 +64,6 @@ class EquirectangularProjection final : public Projection {
   /// λ is taken within 180° of λ_c and lands in [0, width) for a 360° range;
   /// β ∈ [−90°, 90°]. Straight up or down (λ undefined) maps to x = width / 2.
   std::optional<glm::dvec2> pixel(const glm::dvec3& direction) const override;
-  /// kind equirectangular, about the image centre (x_c, y_c) = (width / 2, height / 2):
-  ///   λ' = (x − x_c) · k_λ  (λ − λ_c),   β = β_c + (y − y_c) · k_β,
-  ///   no ray where |x − x_c| > h or |β| > π/2, else with λ = λ_c + λ':
-  ///   ray = (cos β · sin λ, sin β, −cos β · cos λ)
-  ///   params[0] = (x_c, k_λ = (longitude_max − longitude_min) / width (rad/px),
-  ///                y_c, k_β = −(latitude_max − latitude_min) / height (rad/px))
-  ///   params[1] = (λ_c, β_c (rad), h = π / k_λ (px), π/2)
-  ///   params[2] = params[3] = (0, 0, 0, 0)
-  GpuProjection gpu() const override;
-  /// "equirectangular 360°×180° (longitude -180° to 180°, latitude -90° to 90°) 2048×1024".
-  std::string describe() const override;
-  /// sqrt(k_β² + cos²β₀ · k_λ²), β₀ the latitude of the image nearest the
-  /// equator: the sphere's metric is dβ² + cos²β dλ², and two points of one pixel
-  /// differ by at most one pixel in x and in y.
-  double max_pixel_angle_rad() const override;
 
  private:
   EquirectangularParameters parameters_;

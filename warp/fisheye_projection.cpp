@@ -37,7 +37,7 @@ void check_range(const char* name, double value, double lo, double hi, const cha
 }  // namespace
 
 FisheyeProjection::FisheyeProjection(int width_px, int height_px, const FisheyeParameters& parameters)
-    : Projection(width_px, height_px),
+    : ClosedFormProjection(width_px, height_px),
       fov_deg_(parameters.fov_deg),
       tilt_deg_(parameters.tilt_deg),
       rotation_deg_(parameters.rotation_deg),
@@ -70,6 +70,26 @@ FisheyeProjection::FisheyeProjection(int width_px, int height_px, const FisheyeP
     return glm::dvec3(v.x, v.y * cos_t + v.z * sin_t, -v.y * sin_t + v.z * cos_t);
   };
   frame_ = glm::dmat3(tilt(right), tilt(up), tilt(axis));
+
+  GpuProjection gpu;
+  gpu.kind = ProjectionKind::fisheye;
+  gpu.params = {std::array<float, 4>{static_cast<float>(centre_x_px_), static_cast<float>(centre_y_px_),
+                                     static_cast<float>(rad_per_px_), static_cast<float>(half_fov_rad_)},
+                gpu_vec4(frame_[0], 0.0), gpu_vec4(frame_[1], 0.0), gpu_vec4(frame_[2], 0.0)};
+
+  std::ostringstream description;  // 6 significant digits: "73.7398°"
+  description << "fisheye " << fov_deg_ << "° " << width_px << "×" << height_px;
+  if (tilt_deg_ != 0.0) description << ", tilt " << tilt_deg_ << "°";
+  if (rotation_deg_ != 0.0) description << ", rotation " << rotation_deg_ << "°";
+  if (centre_x_px_ != 0.5 * width_px || centre_y_px_ != 0.5 * height_px ||
+      radius_px_ != 0.5 * std::min(width_px, height_px))
+    description << ", circle r=" << radius_px_ << " px at (" << centre_x_px_ << ", " << centre_y_px_ << ")";
+
+  // The metric of the map is dθ² + sin²θ dφ² = k² dr² + sin²(k r) dφ² with
+  // k = rad_per_px, at most k² (dr² + r² dφ²): no path turns the ray by more
+  // than k radians per pixel. The straight segment between two points of one
+  // pixel stays in the (convex) circle and is at most sqrt(2) px long.
+  set_closed_form(gpu, description.str(), std::numbers::sqrt2 * rad_per_px_);
 }
 
 std::optional<glm::dvec3> FisheyeProjection::ray(double x_px, double y_px) const {
@@ -106,37 +126,6 @@ std::optional<glm::dvec2> FisheyeProjection::pixel(const glm::dvec3& direction) 
     dy = -r;  // exactly opposite the axis (fov 360): the rim point below the centre
   }
   return glm::dvec2(centre_x_px_ + dx, centre_y_px_ - dy);
-}
-
-GpuProjection FisheyeProjection::gpu() const {
-  auto pack = [](const glm::dvec3& v) {
-    return std::array<float, 4>{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), 0.0f};
-  };
-  GpuProjection out;
-  out.kind = ProjectionKind::fisheye;
-  out.params = {std::array<float, 4>{static_cast<float>(centre_x_px_), static_cast<float>(centre_y_px_),
-                                     static_cast<float>(rad_per_px_), static_cast<float>(half_fov_rad_)},
-                pack(frame_[0]), pack(frame_[1]), pack(frame_[2])};
-  return out;
-}
-
-std::string FisheyeProjection::describe() const {
-  std::ostringstream out;  // 6 significant digits: "73.7398°"
-  out << "fisheye " << fov_deg_ << "° " << width() << "×" << height();
-  if (tilt_deg_ != 0.0) out << ", tilt " << tilt_deg_ << "°";
-  if (rotation_deg_ != 0.0) out << ", rotation " << rotation_deg_ << "°";
-  if (centre_x_px_ != 0.5 * width() || centre_y_px_ != 0.5 * height() ||
-      radius_px_ != 0.5 * std::min(width(), height()))
-    out << ", circle r=" << radius_px_ << " px at (" << centre_x_px_ << ", " << centre_y_px_ << ")";
-  return out.str();
-}
-
-double FisheyeProjection::max_pixel_angle_rad() const {
-  // The metric of the map is dθ² + sin²θ dφ² = k² dr² + sin²(k r) dφ² with
-  // k = rad_per_px, at most k² (dr² + r² dφ²): no path turns the ray by more
-  // than k radians per pixel. The straight segment between two points of one
-  // pixel stays in the (convex) circle and is at most sqrt(2) px long.
-  return std::numbers::sqrt2 * rad_per_px_;
 }
 
 }  // namespace zenith::warp

@@ -58,7 +58,21 @@ struct FisheyeParameters {
   double rotation_deg = 0.0;  ///< picture spun counter-clockwise on screen about the centre, in [−360, 360] degrees
 };
 
-class FisheyeProjection final : public Projection {
+/// What gpu(), describe() and max_pixel_angle_rad() return, computed once when
+/// the projection is built (ClosedFormProjection):
+///  * gpu(): kind fisheye:
+///      params[0] = (centre_x_px, centre_y_px, radians per pixel = (fov/2) / radius_px, fov/2 in radians)
+///      params[1] = (e_right.x, e_right.y, e_right.z, 0)
+///      params[2] = (e_up.x,    e_up.y,    e_up.z,    0)
+///      params[3] = (e_axis.x,  e_axis.y,  e_axis.z,  0)
+///    in the camera frame (the columns of optical_frame()).
+///  * describe(): "fisheye 180° 1024×1024", with ", tilt 30°", ", rotation 90°" and
+///    ", circle r=600 px at (512, 512)" appended where not the defaults.
+///  * max_pixel_angle_rad(): sqrt(2) · (fov / 2) / radius_px: the map moves a ray by at most
+///    (fov / 2) / radius_px radians per pixel in any direction (radially exactly
+///    that, tangentially sin θ / r ≤ θ / r), and two points of one pixel lie at
+///    most a diagonal (sqrt(2) px) apart along a segment inside the circle.
+class FisheyeProjection final : public ClosedFormProjection {
  public:
   /// Throws std::invalid_argument naming the parameter, its value and the
   /// allowed range when a size or a parameter is out of range (or not finite).
@@ -80,21 +94,6 @@ class FisheyeProjection final : public Projection {
   /// zero vector or non-finite input. The direction opposite the axis (fov 360
   /// only) maps to the rim point below the centre on screen.
   std::optional<glm::dvec2> pixel(const glm::dvec3& direction) const override;
-  /// kind fisheye:
-  ///   params[0] = (centre_x_px, centre_y_px, radians per pixel = (fov/2) / radius_px, fov/2 in radians)
-  ///   params[1] = (e_right.x, e_right.y, e_right.z, 0)
-  ///   params[2] = (e_up.x,    e_up.y,    e_up.z,    0)
-  ///   params[3] = (e_axis.x,  e_axis.y,  e_axis.z,  0)
-  /// in the camera frame (the columns of optical_frame()).
-  GpuProjection gpu() const override;
-  /// "fisheye 180° 1024×1024", with ", tilt 30°", ", rotation 90°" and
-  /// ", circle r=600 px at (512, 512)" appended where not the defaults.
-  std::string describe() const override;
-  /// sqrt(2) · (fov / 2) / radius_px: the map moves a ray by at most
-  /// (fov / 2) / radius_px radians per pixel in any direction (radially exactly
-  /// that, tangentially sin θ / r ≤ θ / r), and two points of one pixel lie at
-  /// most a diagonal (sqrt(2) px) apart along a segment inside the circle.
-  double max_pixel_angle_rad() const override;
 
  private:
   double fov_deg_, tilt_deg_, rotation_deg_;

@@ -46,10 +46,52 @@ glm::dmat3 rotation_about(const glm::dvec3& axis, double angle_rad) {
                     t * x * z + s * y, t * y * z - s * x, t * z * z + c);  // column 2
 }
 
+/// The image plane of a frustum in tangent units: its edges and the extent of a pixel.
+struct TangentWindow {
+  double left, right, down, up;
+  double per_px_x, per_px_y;  // du/dx > 0, dv/dy < 0
+};
+
+/// PlanarProjection's gpu() (the layout documented there).
+GpuProjection planar_gpu(const glm::dmat3& rotation, const TangentWindow& t, int width_px, int height_px) {
+  const double centre_x_px = 0.5 * width_px, centre_y_px = 0.5 * height_px;
+  const glm::dvec3 a = rotation[0] * t.per_px_x;
+  const glm::dvec3 b = rotation[1] * t.per_px_y;
+  const glm::dvec3 c = rotation * glm::dvec3(0.5 * (t.left + t.right), 0.5 * (t.up + t.down), -1.0);  // d(x_c, y_c)
+  GpuProjection out;
+  out.kind = ProjectionKind::planar;
+  out.params = {gpu_vec4(a, centre_x_px), gpu_vec4(b, centre_y_px), gpu_vec4(c, 0.0), std::array<float, 4>{}};
+  return out;
+}
+
+/// PlanarProjection's describe().
+std::string planar_description(const PlanarFrustum& f, int width_px, int height_px) {
+  std::ostringstream out;  // 6 significant digits: "73.7398°"
+  out << "planar " << f.right_deg - f.left_deg << "°×" << f.up_deg - f.down_deg << "° (left " << f.left_deg
+      << "° right " << f.right_deg << "° down " << f.down_deg << "° up " << f.up_deg << "°) " << width_px << "×"
+      << height_px;
+  if (f.yaw_deg != 0.0 || f.pitch_deg != 0.0 || f.roll_deg != 0.0)
+    out << ", yaw " << f.yaw_deg << "° pitch " << f.pitch_deg << "° roll " << f.roll_deg << "°";
+  return out.str();
+}
+
+/// PlanarProjection's max_pixel_angle_rad().
+double planar_max_pixel_angle_rad(const TangentWindow& t) {
+  // A displacement δ on the plane z = −1 at distance ρ from the axis turns the ray
+  // by at most |δ| / sqrt(1 + ρ²) (only the part of δ across the ray counts, and
+  // the ray's point lies sqrt(1 + ρ²) from the eye). Two points of one pixel are
+  // joined by a segment inside the image rectangle, no longer than the pixel's
+  // diagonal, on which ρ is at least the rectangle's distance from the axis.
+  const double diagonal = std::hypot(t.per_px_x, t.per_px_y);
+  const double nearest_u = std::clamp(0.0, t.left, t.right);
+  const double nearest_v = std::clamp(0.0, t.down, t.up);
+  return diagonal / std::sqrt(1.0 + nearest_u * nearest_u + nearest_v * nearest_v);
+}
+
 }  // namespace
 
 PlanarProjection::PlanarProjection(int width_px, int height_px, const PlanarFrustum& frustum)
-    : Projection(width_px, height_px), frustum_(frustum) {
+    : ClosedFormProjection(width_px, height_px), frustum_(frustum) {
   check_range("left_deg", frustum.left_deg, -kMaxEdgeDeg, kMaxEdgeDeg, true);
   check_range("right_deg", frustum.right_deg, -kMaxEdgeDeg, kMaxEdgeDeg, true);
   check_range("down_deg", frustum.down_deg, -kMaxEdgeDeg, kMaxEdgeDeg, true);
@@ -75,6 +117,10 @@ PlanarProjection::PlanarProjection(int width_px, int height_px, const PlanarFrus
   const glm::dmat3 pitch = rotation_about({1.0, 0.0, 0.0}, frustum.pitch_deg * kDegToRad);
   const glm::dmat3 roll = rotation_about({0.0, 0.0, -1.0}, frustum.roll_deg * kDegToRad);
   rotation_ = yaw * pitch * roll;
+
+  const TangentWindow window{tan_left_, tan_right_, tan_down_, tan_up_, tan_per_px_x_, tan_per_px_y_};
+  set_closed_form(planar_gpu(rotation_, window, width_px, height_px),
+                  planar_description(frustum, width_px, height_px), planar_max_pixel_angle_rad(window));
 }
 
 PlanarProjection PlanarProjection::symmetric(int width_px, int height_px, double horizontal_fov_deg) {
@@ -109,45 +155,6 @@ std::optional<glm::dvec2> PlanarProjection::pixel(const glm::dvec3& direction) c
   if (!(d.z < 0.0)) return std::nullopt;
   const double u = d.x / -d.z, v = d.y / -d.z;
   return glm::dvec2((u - tan_left_) / tan_per_px_x_, (v - tan_up_) / tan_per_px_y_);
-}
-
-GpuProjection PlanarProjection::gpu() const {
-  const double centre_x_px = 0.5 * width(), centre_y_px = 0.5 * height();
-  const glm::dvec3 a = rotation_[0] * tan_per_px_x_;
-  const glm::dvec3 b = rotation_[1] * tan_per_px_y_;
-  const glm::dvec3 c =
-      rotation_ * glm::dvec3(0.5 * (tan_left_ + tan_right_), 0.5 * (tan_up_ + tan_down_), -1.0);  // d(x_c, y_c)
-  auto pack = [](const glm::dvec3& v, double w) {
-    return std::array<float, 4>{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
-                                static_cast<float>(w)};
-  };
-  GpuProjection out;
-  out.kind = ProjectionKind::planar;
-  out.params = {pack(a, centre_x_px), pack(b, centre_y_px), pack(c, 0.0), std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f}};
-  return out;
-}
-
-std::string PlanarProjection::describe() const {
-  const PlanarFrustum& f = frustum_;
-  std::ostringstream out;  // 6 significant digits: "73.7398°"
-  out << "planar " << f.right_deg - f.left_deg << "°×" << f.up_deg - f.down_deg << "° (left " << f.left_deg
-      << "° right " << f.right_deg << "° down " << f.down_deg << "° up " << f.up_deg << "°) " << width() << "×"
-      << height();
-  if (f.yaw_deg != 0.0 || f.pitch_deg != 0.0 || f.roll_deg != 0.0)
-    out << ", yaw " << f.yaw_deg << "° pitch " << f.pitch_deg << "° roll " << f.roll_deg << "°";
-  return out.str();
-}
-
-double PlanarProjection::max_pixel_angle_rad() const {
-  // A displacement δ on the plane z = −1 at distance ρ from the axis turns the ray
-  // by at most |δ| / sqrt(1 + ρ²) (only the part of δ across the ray counts, and
-  // the ray's point lies sqrt(1 + ρ²) from the eye). Two points of one pixel are
-  // joined by a segment inside the image rectangle, no longer than the pixel's
-  // diagonal, on which ρ is at least the rectangle's distance from the axis.
-  const double diagonal = std::hypot(tan_per_px_x_, tan_per_px_y_);
-  const double nearest_u = std::clamp(0.0, tan_left_, tan_right_);
-  const double nearest_v = std::clamp(0.0, tan_down_, tan_up_);
-  return diagonal / std::sqrt(1.0 + nearest_u * nearest_u + nearest_v * nearest_v);
 }
 
 }  // namespace zenith::warp

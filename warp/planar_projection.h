@@ -42,7 +42,24 @@ struct PlanarFrustum {
   double roll_deg = 0.0;   ///< in [−180, 180]; positive banks right (the frustum's up tilts toward +x)
 };
 
-class PlanarProjection final : public Projection {
+/// What gpu(), describe() and max_pixel_angle_rad() return, computed once when
+/// the projection is built (ClosedFormProjection):
+///  * gpu(): kind planar; the unnormalized ray is affine in the pixel position. Taken
+///    about the image centre (x_c, y_c) = (width / 2, height / 2), where float
+///    loses least (x − x_c is exact, and the terms stay small near the centre):
+///      d(x, y) = (x − x_c) · A + (y − y_c) · B + C,   ray = normalize(d),
+///    with A = ∂d/∂x, B = ∂d/∂y and C = d(x_c, y_c) in the camera frame (R = rotation()):
+///      params[0] = (A.x, A.y, A.z, x_c)   A = R · ((tan(right) − tan(left)) / width, 0, 0)
+///      params[1] = (B.x, B.y, B.z, y_c)   B = R · (0, (tan(down) − tan(up)) / height, 0)
+///      params[2] = (C.x, C.y, C.z, 0)     C = R · ((tan(left) + tan(right)) / 2, (tan(up) + tan(down)) / 2, −1)
+///      params[3] = (0, 0, 0, 0)
+///    Float keeps the ray within about 1e-7 · (1 + the frustum's largest |tan|) radians.
+///  * describe(): "planar 60°×40° (left -30° right 30° down -20° up 20°) 1920×1080", with
+///    ", yaw 10° pitch 0° roll 0°" appended when the frustum is rotated.
+///  * max_pixel_angle_rad(): (pixel diagonal in tangent units) / sqrt(1 + ρ²), ρ the smallest distance
+///    of the image rectangle from the axis in tangent units: the gnomonic map
+///    moves the ray by at most 1 / sqrt(1 + ρ²) radians per tangent unit.
+class PlanarProjection final : public ClosedFormProjection {
  public:
   /// Throws std::invalid_argument naming the parameter, its value and the allowed
   /// range when a size or a frustum angle is out of range, or when
@@ -67,24 +84,6 @@ class PlanarProjection final : public Projection {
   /// Nothing for directions at or beyond 90° from the frustum's axis (they do
   /// not cross its image plane), for the zero vector and for non-finite input.
   std::optional<glm::dvec2> pixel(const glm::dvec3& direction) const override;
-  /// kind planar; the unnormalized ray is affine in the pixel position. Taken
-  /// about the image centre (x_c, y_c) = (width / 2, height / 2), where float
-  /// loses least (x − x_c is exact, and the terms stay small near the centre):
-  ///   d(x, y) = (x − x_c) · A + (y − y_c) · B + C,   ray = normalize(d),
-  /// with A = ∂d/∂x, B = ∂d/∂y and C = d(x_c, y_c) in the camera frame (R = rotation()):
-  ///   params[0] = (A.x, A.y, A.z, x_c)   A = R · ((tan(right) − tan(left)) / width, 0, 0)
-  ///   params[1] = (B.x, B.y, B.z, y_c)   B = R · (0, (tan(down) − tan(up)) / height, 0)
-  ///   params[2] = (C.x, C.y, C.z, 0)     C = R · ((tan(left) + tan(right)) / 2, (tan(up) + tan(down)) / 2, −1)
-  ///   params[3] = (0, 0, 0, 0)
-  /// Float keeps the ray within about 1e-7 · (1 + the frustum's largest |tan|) radians.
-  GpuProjection gpu() const override;
-  /// "planar 60°×40° (left -30° right 30° down -20° up 20°) 1920×1080", with
-  /// ", yaw 10° pitch 0° roll 0°" appended when the frustum is rotated.
-  std::string describe() const override;
-  /// (pixel diagonal in tangent units) / sqrt(1 + ρ²), ρ the smallest distance
-  /// of the image rectangle from the axis in tangent units: the gnomonic map
-  /// moves the ray by at most 1 / sqrt(1 + ρ²) radians per tangent unit.
-  double max_pixel_angle_rad() const override;
 
  private:
   PlanarFrustum frustum_;

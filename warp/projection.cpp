@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace zenith::warp {
 namespace {
@@ -21,6 +22,17 @@ void check_size(const char* name, int value_px) {
 Projection::Projection(int width_px, int height_px) : width_(width_px), height_(height_px) {
   check_size("width_px", width_px);
   check_size("height_px", height_px);
+}
+
+void ClosedFormProjection::set_closed_form(const GpuProjection& gpu, std::string description,
+                                           double max_pixel_angle_rad) {
+  gpu_ = gpu;
+  description_ = std::move(description);
+  max_pixel_angle_rad_ = max_pixel_angle_rad;
+}
+
+std::array<float, 4> gpu_vec4(const glm::dvec3& v, double w) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), static_cast<float>(w)};
 }
 
 }  // namespace zenith::warp

@@ -93,4 +93,31 @@ class Projection {
   int width_, height_;
 };
 
+/// The projections with a closed form on the GPU (every kind but ray_table:
+/// planar, fisheye, cylindrical, equirectangular, cube face). Their rays follow
+/// from a few parameters fixed when they are built, and so do their GPU
+/// description, their log line and their pixel-angle bound: the derived
+/// constructor computes those three once, last, and hands them to
+/// set_closed_form(); the derived class implements ray() and pixel() only.
+class ClosedFormProjection : public Projection {
+ public:
+  GpuProjection gpu() const final { return gpu_; }
+  std::string describe() const final { return description_; }
+  double max_pixel_angle_rad() const final { return max_pixel_angle_rad_; }
+
+ protected:
+  ClosedFormProjection(int width_px, int height_px) : Projection(width_px, height_px) {}
+  /// What gpu(), describe() and max_pixel_angle_rad() return; called once, by
+  /// the derived constructor, when its own state is complete.
+  void set_closed_form(const GpuProjection& gpu, std::string description, double max_pixel_angle_rad);
+
+ private:
+  GpuProjection gpu_;
+  std::string description_;
+  double max_pixel_angle_rad_ = 0.0;
+};
+
+/// (v.x, v.y, v.z, w) in float: one vec4 of GpuProjection::params.
+std::array<float, 4> gpu_vec4(const glm::dvec3& v, double w);
+
 }  // namespace zenith::warp

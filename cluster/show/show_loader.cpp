@@ -71,6 +71,22 @@ json without_time(const json& key) {
   return object;
 }
 
+/// The keys of the camera or sun track (`track`: "camera", "sun"), in order:
+/// the time of each (key_time: after the previous key's), then the rest of it
+/// by `read_key(object, pointer, t_s, earlier)`, `earlier` the keys before it.
+template <class Key, class ReadKey>
+std::vector<Key> read_object_keys(JsonReader& root, const json& keys, const std::string& track, ReadKey&& read_key) {
+  std::vector<Key> out;
+  double previous = -1.0;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::string pointer = cat("/", track, "/", i);
+    JsonReader key(keys[i], root.file(), pointer);
+    previous = key_time(key, previous);
+    out.push_back(read_key(key, keys[i], pointer, previous, out));
+  }
+  return out;
+}
+
 // ------------------------------------------------------------------ camera
 
 void check_clearance(const CameraTrack& track, const scene::Scene& scene, const std::string& file) {
@@ -94,19 +110,16 @@ void check_clearance(const CameraTrack& track, const scene::Scene& scene, const 
 
 CameraTrack read_camera_track(JsonReader& root, const scene::Scene& scene) {
   const json& keys = track_array(root, "camera", "{\"t_s\", camera object as in a scene}");
-  std::vector<CameraKey> out;
-  double previous = -1.0;
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    const std::string pointer = cat("/camera/", i);
-    JsonReader key(keys[i], root.file(), pointer);
-    CameraKey k;
-    k.t_s = key_time(key, previous);
-    previous = k.t_s;
-    if (keys[i].contains("exposure"))
-      key.fail("exposure", "the exposure has its own track, /exposure (docs/shows.md)");
-    k.placement = scene::parse_camera(without_time(keys[i]), scene, root.file(), pointer);
-    out.push_back(std::move(k));
-  }
+  std::vector<CameraKey> out = read_object_keys<CameraKey>(
+      root, keys, "camera",
+      [&](JsonReader& key, const json& object, const std::string& pointer, double t_s, const std::vector<CameraKey>&) {
+        if (object.contains("exposure"))
+          key.fail("exposure", "the exposure has its own track, /exposure (docs/shows.md)");
+        CameraKey k;
+        k.t_s = t_s;
+        k.placement = scene::parse_camera(without_time(object), scene, root.file(), pointer);
+        return k;
+      });
   // Surface paths: consecutive keys less than kMaxSurfaceKeyAngle_deg apart.
   bool surface = true;
   for (const CameraKey& k : out)
@@ -143,25 +156,21 @@ scene::CameraPlacement camera_at(const std::optional<CameraTrack>& camera, const
 
 SunTrack read_sun_track(JsonReader& root, const scene::Scene& scene, const std::optional<CameraTrack>& camera) {
   const json& keys = track_array(root, "sun", "{\"t_s\", sun object as in a scene}");
-  std::vector<SunKey> out;
-  double previous = -1.0;
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    const std::string pointer = cat("/sun/", i);
-    JsonReader key(keys[i], root.file(), pointer);
-    SunKey k;
-    k.t_s = key_time(key, previous);
-    previous = k.t_s;
-    k.sun = scene::parse_sun(without_time(keys[i]), scene, camera_at(camera, scene, k.t_s), root.file(), pointer);
-    if (!out.empty()) {
-      const double angle = angle_between_rad(out.back().sun.direction, k.sun.direction);
-      if (angle >= kMaxSunKeyAngle_deg * kDeg)
-        throw ConfigError(root.file(), pointer,
-                          cat("the sun is ", angle / kDeg, " deg from the previous key's; consecutive sun keys must "
-                              "be less than ", kMaxSunKeyAngle_deg, " deg apart (add keys in between)"));
-    }
-    out.push_back(std::move(k));
-  }
-  return SunTrack(out);
+  return SunTrack(read_object_keys<SunKey>(
+      root, keys, "sun",
+      [&](JsonReader&, const json& object, const std::string& pointer, double t_s, const std::vector<SunKey>& earlier) {
+        SunKey k;
+        k.t_s = t_s;
+        k.sun = scene::parse_sun(without_time(object), scene, camera_at(camera, scene, t_s), root.file(), pointer);
+        if (!earlier.empty()) {
+          const double angle = angle_between_rad(earlier.back().sun.direction, k.sun.direction);
+          if (angle >= kMaxSunKeyAngle_deg * kDeg)
+            throw ConfigError(root.file(), pointer,
+                              cat("the sun is ", angle / kDeg, " deg from the previous key's; consecutive sun keys "
+                                  "must be less than ", kMaxSunKeyAngle_deg, " deg apart (add keys in between)"));
+        }
+        return k;
+      }));
 }
 
 MonotoneCubic read_exposure_track(JsonReader& root) {

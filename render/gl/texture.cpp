@@ -33,6 +33,23 @@ GLenum pixel_format(TextureFormat f) {
   return GL_RGBA;
 }
 
+/// The levels of a full mipmap chain of a width × height image, down to 1 × 1.
+int full_mip_levels(int width, int height) {
+  int levels = 1;
+  for (int extent = std::max(width, height); extent > 1; extent /= 2) ++levels;
+  return levels;
+}
+
+/// Fills `texture` with `data`, or with zeros when `data` is empty.
+void upload_or_zero(Texture& texture, TextureFormat format, std::span<const float> data) {
+  if (data.empty()) {
+    const float zero[4] = {0, 0, 0, 0};
+    glClearTexImage(texture.id(), 0, pixel_format(format), GL_FLOAT, zero);
+  } else {
+    texture.upload(data);
+  }
+}
+
 GLenum access_enum(ImageAccess a) {
   switch (a) {
     case ImageAccess::read_only: return GL_READ_ONLY;
@@ -94,19 +111,12 @@ Texture::Texture(TextureFormat format, int width, int height, int depth, int lev
 
 Texture Texture::create_2d(TextureFormat format, int width, int height, std::span<const float> data) {
   Texture t(format, width, height, 0);
-  if (data.empty()) {
-    const float zero[4] = {0, 0, 0, 0};
-    glClearTexImage(t.id_, 0, pixel_format(format), GL_FLOAT, zero);
-  } else {
-    t.upload(data);
-  }
+  upload_or_zero(t, format, data);
   return t;
 }
 
 Texture Texture::create_2d_mipmapped(TextureFormat format, int width, int height, std::span<const float> data) {
-  int levels = 1;
-  for (int extent = std::max(width, height); extent > 1; extent /= 2) ++levels;
-  Texture t(format, width, height, 0, levels);
+  Texture t(format, width, height, 0, full_mip_levels(width, height));
   t.upload(data);
   glGenerateTextureMipmap(t.id_);
   check_gl_error("Texture: generating mipmaps");
@@ -116,9 +126,7 @@ Texture Texture::create_2d_mipmapped(TextureFormat format, int width, int height
 Texture Texture::create_2d_array_mipmapped(TextureFormat format, int width, int height, int layers,
                                            std::span<const float> data) {
   if (layers < 1) throw std::invalid_argument(fmt::format("Texture: invalid layer count {}", layers));
-  int levels = 1;
-  for (int extent = std::max(width, height); extent > 1; extent /= 2) ++levels;
-  Texture t(format, width, height, layers, levels, true);
+  Texture t(format, width, height, layers, full_mip_levels(width, height), true);
   t.upload(data);
   glGenerateTextureMipmap(t.id_);
   check_gl_error("Texture: generating mipmaps of an array texture");
@@ -128,8 +136,7 @@ Texture Texture::create_2d_array_mipmapped(TextureFormat format, int width, int 
 Texture Texture::create_2d_array(TextureFormat format, int width, int height, int layers) {
   if (layers < 1) throw std::invalid_argument(fmt::format("Texture: invalid layer count {}", layers));
   Texture t(format, width, height, layers, 1, true);
-  const float zero[4] = {0, 0, 0, 0};
-  glClearTexImage(t.id_, 0, pixel_format(format), GL_FLOAT, zero);
+  upload_or_zero(t, format, {});
   return t;
 }
 
@@ -140,12 +147,7 @@ void Texture::set_repeat_s(bool repeat) {
 Texture Texture::create_3d(TextureFormat format, int width, int height, int depth, std::span<const float> data) {
   if (depth < 1) throw std::invalid_argument(fmt::format("Texture: invalid 3D depth {}", depth));
   Texture t(format, width, height, depth);
-  if (data.empty()) {
-    const float zero[4] = {0, 0, 0, 0};
-    glClearTexImage(t.id_, 0, pixel_format(format), GL_FLOAT, zero);
-  } else {
-    t.upload(data);
-  }
+  upload_or_zero(t, format, data);
   return t;
 }
 

@@ -4,6 +4,7 @@
 # 1024 x 1024 dome master. Called with ZENITH and WORK_DIR. The first run
 # precomputes the paper-size tables of earth-advanced into WORK_DIR's cache
 # (about 1.5 minutes on 2 cores with llvmpipe); later runs take seconds.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(dir "${WORK_DIR}/cluster-default")
 file(REMOVE_RECURSE "${dir}/run")
 file(MAKE_DIRECTORY "${dir}/run")
@@ -19,7 +20,4 @@ string(FIND "${err}" "using the built-in copy ${dir}/cache/embedded-configs/" at
 if(at EQUAL -1)
   message(FATAL_ERROR "the built-in cluster config was not used:\n${err}")
 endif()
-file(READ "${dir}/run/out/stitched/frame-000001.png" ihdr OFFSET 16 LIMIT 8 HEX)
-if(NOT ihdr STREQUAL "0000040000000400")
-  message(FATAL_ERROR "the stitched frame is not the 1024 x 1024 dome master: IHDR ${ihdr}")
-endif()
+expect_png_size("${dir}/run/out/stitched/frame-000001.png" 1024 1024 "the stitched frame")

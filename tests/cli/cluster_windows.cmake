@@ -2,6 +2,7 @@
 # halves of a dome master, show every presented frame in a window and write it;
 # the stitched last frame is the whole dome. Called with XVFB_RUN, ZENITH,
 # SOURCE_DIR and WORK_DIR.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(dir "${WORK_DIR}/cluster-windows")
 file(REMOVE_RECURSE "${dir}")
 file(MAKE_DIRECTORY "${dir}")
@@ -28,7 +29,4 @@ list(LENGTH windows count)
 if(NOT count EQUAL 2)
   message(FATAL_ERROR "expected 2 nodes rendering into windows, found ${count}:\n${err}")
 endif()
-file(READ "${dir}/out/stitched/frame-000002.png" ihdr OFFSET 16 LIMIT 8 HEX)
-if(NOT ihdr STREQUAL "0000006000000060")
-  message(FATAL_ERROR "the stitched frame is not the 96 x 96 dome: IHDR ${ihdr}")
-endif()
+expect_png_size("${dir}/out/stitched/frame-000002.png" 96 96 "the stitched frame")

@@ -1,6 +1,7 @@
 # `zenith render` end to end: a small fisheye and planar frame of a scene to
 # EXR + PNG (small tables, private cache), then bad arguments are refused with
 # a message naming the argument.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(cache "${WORK_DIR}/cache")  # shared with cli.render_window: tables computed once
 set(out "${WORK_DIR}/render-out")
 file(REMOVE_RECURSE "${out}")
@@ -40,10 +41,7 @@ execute_process(COMMAND ${ZENITH} render --scene "${SOURCE_DIR}/configs/scenes/e
 if(NOT rc EQUAL 0 OR NOT EXISTS "${out}/p2.png")
   message(FATAL_ERROR "viewport render failed (${rc}): ${err}")
 endif()
-file(READ "${out}/p2.png" ihdr OFFSET 16 LIMIT 8 HEX)
-if(NOT ihdr STREQUAL "00000780000004b0")  # 1920 x 1200 from the viewport config
-  message(FATAL_ERROR "p2.png is not 1920x1200: IHDR ${ihdr}")
-endif()
+expect_png_size("${out}/p2.png" 1920 1200 "p2.png")  # from the viewport config
 
 # An 8192² dome master streams through bands and the PNG writer within CI memory.
 execute_process(COMMAND ${ZENITH} render --scene "${SOURCE_DIR}/configs/scenes/earth-ground-noon.json"
@@ -53,18 +51,11 @@ execute_process(COMMAND ${ZENITH} render --scene "${SOURCE_DIR}/configs/scenes/e
 if(NOT rc EQUAL 0 OR NOT EXISTS "${out}/dome-8k.png")
   message(FATAL_ERROR "8K render failed (${rc}): ${err}")
 endif()
-file(READ "${out}/dome-8k.png" ihdr OFFSET 16 LIMIT 8 HEX)
-if(NOT ihdr STREQUAL "0000200000002000")
-  message(FATAL_ERROR "dome-8k.png is not 8192x8192: IHDR ${ihdr}")
-endif()
+expect_png_size("${out}/dome-8k.png" 8192 8192 "dome-8k.png")
 
 # Bad input: each refused with a message naming what is wrong.
 function(expect_refused needle)
-  execute_process(COMMAND ${ZENITH} render ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
-  string(FIND "${o}${e}" "${needle}" pos)
-  if(rc EQUAL 0 OR pos EQUAL -1)
-    message(FATAL_ERROR "render ${ARGN}: expected a failure mentioning '${needle}', got (${rc}):\n${o}\n${e}")
-  endif()
+  expect_zenith_refuses("${needle}" render ${ARGN})
 endfunction()
 set(scene --scene "${SOURCE_DIR}/configs/scenes/earth-sunset.json")
 expect_refused("--size" ${scene} --size 12by12 --out "${out}/x.png")

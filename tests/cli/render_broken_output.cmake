@@ -2,6 +2,7 @@
 # FILE#good` renders `good` while another output of FILE has a broken warp;
 # asking for the broken output, or for every output, gives its error naming
 # the config, the key, the warp file, the line and the field.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(cache "${WORK_DIR}/cache")  # shared with cli.render: tables computed once
 set(out "${WORK_DIR}/render-broken-output")
 file(REMOVE_RECURSE "${out}")
@@ -24,10 +25,7 @@ execute_process(COMMAND ${ZENITH} render ${scene} --viewport "${out}/show.json#g
 if(NOT rc EQUAL 0 OR NOT EXISTS "${out}/good.png")
   message(FATAL_ERROR "rendering the good output failed (${rc}): ${stdout}\n${err}")
 endif()
-file(READ "${out}/good.png" ihdr OFFSET 16 LIMIT 8 HEX)
-if(NOT ihdr STREQUAL "0000002800000018")  # 40 x 24 from the viewport config
-  message(FATAL_ERROR "good.png is not 40x24: IHDR ${ihdr}")
-endif()
+expect_png_size("${out}/good.png" 40 24 "good.png")  # from the viewport config
 
 set(reason "show.json: /outputs/1/warp/file: cannot use the warp: ${out}/bad.data:4: field 'u' = 'abc' is not a number")
 function(expect_broken what)

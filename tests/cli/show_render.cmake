@@ -9,6 +9,7 @@
 #      a dropped format nothing;
 #   5. a viewport config's outputs get a folder each;
 #   6. bad arguments are refused with a message naming the argument.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(cache "${WORK_DIR}/cache")  # shared with cli.render: tables computed once
 set(root "${WORK_DIR}/show-render-out")
 set(show "${SOURCE_DIR}/tests/data/shows/offline-sunset.json")
@@ -60,11 +61,8 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${root}/a/contact-she
 if(NOT differ EQUAL 0)
   message(FATAL_ERROR "the two contact sheets differ")
 endif()
-file(READ "${root}/a/contact-sheet.png" ihdr OFFSET 16 LIMIT 8 HEX)
 # 6 frames of 48x48 cells, round(sqrt(6)) = 2 columns, 3 rows, 4 px gaps: 108 x 160.
-if(NOT ihdr STREQUAL "0000006c000000a0")
-  message(FATAL_ERROR "contact-sheet.png is not 108x160: IHDR ${ihdr}")
-endif()
+expect_png_size("${root}/a/contact-sheet.png" 108 160 "contact-sheet.png")
 foreach(f manifest.json.partial fisheye/fisheye.000000.png.partial)
   if(EXISTS "${root}/a/${f}")
     message(FATAL_ERROR "${f} left behind")
@@ -126,19 +124,12 @@ foreach(f left/left.000004.png left/left.000005.png right/right.000004.png right
     message(FATAL_ERROR "viewport render did not write ${f}")
   endif()
 endforeach()
-file(READ "${root}/v/contact-sheet.png" ihdr OFFSET 16 LIMIT 8 HEX)
 # 2 frames, each cell the whole 48 x 48 dome (not 24 + 4 + 24 side by side): 1 column, 2 rows: 56 x 108.
-if(NOT ihdr STREQUAL "000000380000006c")
-  message(FATAL_ERROR "the viewport contact sheet is not 56x108: IHDR ${ihdr}")
-endif()
+expect_png_size("${root}/v/contact-sheet.png" 56 108 "the viewport contact sheet")
 
 # 6. Bad input: each refused with a message naming what is wrong.
 function(expect_refused needle)
-  execute_process(COMMAND ${ZENITH} show render ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
-  string(FIND "${o}${e}" "${needle}" pos)
-  if(rc EQUAL 0 OR pos EQUAL -1)
-    message(FATAL_ERROR "show render ${ARGN}: expected a failure mentioning '${needle}', got (${rc}):\n${o}\n${e}")
-  endif()
+  expect_zenith_refuses("${needle}" show render ${ARGN})
 endfunction()
 set(s --show "${show}")
 set(x "${root}/refused")

@@ -11,6 +11,7 @@
 # Mie forward peak is far above the CIE indicatrix); the χ ≥ 30° RMS is the sky.
 # Bounds: about 20 % above the measured values, so a change of physics or
 # tables that makes the sky's shape worse fails, while a GPU's rounding does not.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(cache "${WORK_DIR}/cache")  # shared with cli.render: small tables computed once
 set(out "${WORK_DIR}/validate-cie-out")
 file(REMOVE_RECURSE "${out}")
@@ -78,11 +79,7 @@ if(NOT rc EQUAL 0 OR NOT n EQUAL 5)
 endif()
 
 function(expect_refused needle)
-  execute_process(COMMAND ${ZENITH} validate cie ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
-  string(FIND "${o}${e}" "${needle}" pos)
-  if(rc EQUAL 0 OR pos EQUAL -1)
-    message(FATAL_ERROR "validate cie ${ARGN}: expected a failure mentioning '${needle}', got (${rc}):\n${o}\n${e}")
-  endif()
+  expect_zenith_refuses("${needle}" validate cie ${ARGN})
 endfunction()
 expect_refused("--sun-zenith" --sun-zenith 95 --out "${out}/x")
 expect_refused("--tables" --tables huge --out "${out}/x")

@@ -164,6 +164,14 @@ class ClusterProcess : public ::testing::Test {
     children_.push_back(spawn(args, dir_ / (name + ".log")));
     return children_.back();
   }
+  /// Expects every child but `master` (the nodes) to exit with status 0 within 20 s.
+  void expect_nodes_exit_cleanly(const Child& master) const {
+    for (const Child& c : children_) {
+      if (c.pid != master.pid) {
+        EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
+      }
+    }
+  }
   std::string logs() const {
     std::string all;
     for (const char* n : {"master", "a", "b", "c", "cluster"})
@@ -176,6 +184,17 @@ class ClusterProcess : public ::testing::Test {
   int port_ = 0;
   std::vector<Child> children_;
 };
+
+/// How many values of `tile` differ from those of quadrant `q` of `whole` (0
+/// top-left, 1 top-right, 2 bottom-left, 3 bottom-right; tiles of kQuadrantPx²).
+int values_differing_from_quadrant(const image::LinearImage& tile, const image::LinearImage& whole, std::size_t q) {
+  const int x0 = (q % 2) * kQuadrantPx, y0 = (q / 2) * kQuadrantPx;
+  int differing = 0;
+  for (int y = 0; y < kQuadrantPx; ++y)
+    for (int x = 0; x < kQuadrantPx * 3; ++x)
+      differing += tile.rgb[y * kQuadrantPx * 3 + x] != whole.rgb[(y0 + y) * whole.width * 3 + x0 * 3 + x];
+  return differing;
+}
 
 /// Frames 0..n-1 in order, each once.
 void expect_contiguous(const std::vector<Presented>& p, std::uint64_t first, std::uint64_t last, const std::string& who) {
@@ -228,11 +247,7 @@ TEST_F(ClusterProcess, ThreeNodesPresentEveryFrameAndStitchToASingleRender) {
     const auto& [node, output] = files[q];
     const image::LinearImage tile = image::read_image(dir_ / "out" / node / output / "frame-000000.png");
     ASSERT_EQ(tile.width, kQuadrantPx);
-    const int x0 = (q % 2) * kQuadrantPx, y0 = (q / 2) * kQuadrantPx;
-    int differing = 0;
-    for (int y = 0; y < kQuadrantPx; ++y)
-      for (int x = 0; x < kQuadrantPx * 3; ++x)
-        differing += tile.rgb[y * kQuadrantPx * 3 + x] != whole.rgb[(y0 + y) * whole.width * 3 + x0 * 3 + x];
+    const int differing = values_differing_from_quadrant(tile, whole, q);
     EXPECT_EQ(differing, 0) << output << ": values differing from the single-process render";
   }
   // And so does the stitched image `zenith cluster` wrote.
@@ -322,11 +337,7 @@ void expect_frame_equals_single_render(const fs::path& dir, const fs::path& cach
   for (std::size_t q = 0; q < files.size(); ++q) {
     const image::LinearImage tile = image::read_image(dir / "out" / files[q].first / files[q].second / name);
     ASSERT_EQ(tile.width, kQuadrantPx);
-    const int x0 = (q % 2) * kQuadrantPx, y0 = (q / 2) * kQuadrantPx;
-    int differing = 0;
-    for (int y = 0; y < kQuadrantPx; ++y)
-      for (int x = 0; x < kQuadrantPx * 3; ++x)
-        differing += tile.rgb[y * kQuadrantPx * 3 + x] != whole.rgb[(y0 + y) * whole.width * 3 + x0 * 3 + x];
+    const int differing = values_differing_from_quadrant(tile, whole, q);
     EXPECT_EQ(differing, 0) << files[q].second << " of " << name << ": values differing from the single render";
   }
 }
@@ -346,11 +357,7 @@ TEST_F(ClusterProcess, AtmosphereSwitchTakesEffectAtTheSameFrameOnEveryNode) {
       << logs();
   kill(master.pid, SIGTERM);
   ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  for (const Child& c : children_) {
-    if (c.pid != master.pid) {
-      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
-    }
-  }
+  expect_nodes_exit_cleanly(master);
 
   const auto a = presented(dir_ / "out/a");
   ASSERT_FALSE(a.empty());
@@ -413,11 +420,7 @@ TEST_F(ClusterProcess, ShowPlaysInSyncAndItsRecordingPlaysBackIdentically) {
                                     {"--show", show.string(), "--fps", "2", "--unpaced", "--record", recording.string()});
   for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", scene.string()});
   ASSERT_EQ(wait_exit(master, 400s), std::optional<int>(0)) << logs();
-  for (const Child& c : children_) {
-    if (c.pid != master.pid) {
-      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
-    }
-  }
+  expect_nodes_exit_cleanly(master);
   const auto played = expect_in_sync(dir_ / "out", 5);
   ASSERT_EQ(played.size(), 6u);
   EXPECT_NE(played.front().tables, played.back().tables) << "the turbidity track switches table versions";
@@ -434,11 +437,7 @@ TEST_F(ClusterProcess, ShowPlaysInSyncAndItsRecordingPlaysBackIdentically) {
   const Child replay = start_master(config, 0, 120000, {"--show", recording.string(), "--unpaced"});
   for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", scene.string()});
   ASSERT_EQ(wait_exit(replay, 400s), std::optional<int>(0)) << logs();
-  for (const Child& c : children_) {
-    if (c.pid != replay.pid) {
-      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
-    }
-  }
+  expect_nodes_exit_cleanly(replay);
   const auto replayed = expect_in_sync(dir_ / "out", 5);
   ASSERT_EQ(replayed.size(), played.size());
   for (std::size_t i = 0; i < played.size(); ++i) {
@@ -489,11 +488,7 @@ TEST_F(ClusterProcess, OperatorPausesSeeksAndQuitsThroughTheControlSocket) {
   std::tie(status, reply) = control("quit");
   EXPECT_EQ(status, std::optional<int>(0)) << reply;
   ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  for (const Child& c : children_) {
-    if (c.pid != master.pid) {
-      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
-    }
-  }
+  expect_nodes_exit_cleanly(master);
 
   const auto a = expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
   const std::string master_log = read_text(dir_ / "master.log");
@@ -565,11 +560,7 @@ TEST_F(ClusterProcess, ShowRendersOfflineOnTheNodesResumesAndMatchesASingleProce
   ASSERT_EQ(whole.width, 2 * kQuadrantPx);
   for (int q = 0; q < 4; ++q) {
     const image::LinearImage tile = image::read_image(out / outputs[q] / (std::string(outputs[q]) + ".000005.png"));
-    const int x0 = (q % 2) * kQuadrantPx, y0 = (q / 2) * kQuadrantPx;
-    int differing = 0;
-    for (int y = 0; y < kQuadrantPx; ++y)
-      for (int x = 0; x < kQuadrantPx * 3; ++x)
-        differing += tile.rgb[y * kQuadrantPx * 3 + x] != whole.rgb[(y0 + y) * whole.width * 3 + x0 * 3 + x];
+    const int differing = values_differing_from_quadrant(tile, whole, q);
     EXPECT_EQ(differing, 0) << outputs[q];
   }
 }

@@ -26,6 +26,7 @@
 #include "atmosphere/model_hash.h"
 #include "atmosphere/photometry.h"
 #include "render/gl/egl_context.h"
+#include "tests/render/render_test_support.h"
 #include "render/renderer.h"
 #include "warp/blending.h"
 #include "warp/fisheye_projection.h"
@@ -37,20 +38,8 @@ namespace {
 namespace fs = std::filesystem;
 using atmosphere::lut::SmallTables;
 constexpr double kDeg = std::numbers::pi / 180.0;
-
-gl::HeadlessContext& context() {
-  static gl::HeadlessContext c;
-  c.make_current();
-  return c;
-}
-
-/// Camera frame (+x right, +y up, −z forward) → world, looking along `forward` with `up` above.
-glm::dquat look_rotation(const glm::dvec3& forward, const glm::dvec3& up) {
-  const glm::dvec3 z = -glm::normalize(forward);
-  const glm::dvec3 x = glm::normalize(glm::cross(up, z));
-  const glm::dvec3 y = glm::cross(z, x);
-  return glm::quat_cast(glm::dmat3(x, y, z));
-}
+using testing::context;
+using testing::look_rotation;
 
 /// Earth (advanced preset), the camera 2 m above the north pole with its +y
 /// (the dome's zenith) along the local vertical, the sun 60° from the zenith.

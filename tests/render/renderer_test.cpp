@@ -28,6 +28,7 @@
 #include "atmosphere/photometry.h"
 #include "atmosphere/reference/path_tracer.h"
 #include "render/gl/egl_context.h"
+#include "tests/render/render_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/warped_projection.h"
@@ -37,20 +38,8 @@ namespace {
 
 using atmosphere::lut::SmallTables;
 constexpr double kDeg = std::numbers::pi / 180.0;
-
-gl::HeadlessContext& context() {
-  static gl::HeadlessContext c;
-  c.make_current();
-  return c;
-}
-
-/// Camera frame (+x right, +y up, −z forward) → world, for a camera looking along `forward` with `up` above.
-glm::dquat look_rotation(const glm::dvec3& forward, const glm::dvec3& up) {
-  const glm::dvec3 z = -glm::normalize(forward);
-  const glm::dvec3 x = glm::normalize(glm::cross(up, z));
-  const glm::dvec3 y = glm::cross(z, x);
-  return glm::quat_cast(glm::dmat3(x, y, z));
-}
+using testing::context;
+using testing::look_rotation;
 
 /// World direction at zenith angle θ and azimuth φ for an observer on the +z axis (sky_sampling.h's frame).
 glm::dvec3 sky_direction(double zenith_deg, double azimuth_deg) {

@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/json_reader.h"
+#include "tests/warp/projection_test_support.h"
 #include "warp/cube_face_projection.h"
 #include "warp/cylindrical_projection.h"
 #include "warp/equirectangular_projection.h"
@@ -35,32 +36,14 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kPi = std::numbers::pi;
 
-double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
-  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
-}
-
-void expect_direction(const std::optional<glm::dvec3>& actual, const glm::dvec3& expected, const std::string& what) {
-  ASSERT_TRUE(actual.has_value()) << what;
-  EXPECT_NEAR(glm::length(*actual), 1.0, 1e-14) << what;
-  EXPECT_LT(angle_between(*actual, expected), 1e-12)
-      << what << ": (" << actual->x << ", " << actual->y << ", " << actual->z << ") expected (" << expected.x << ", "
-      << expected.y << ", " << expected.z << ")";
-}
-
-void expect_pixel(const std::optional<glm::dvec2>& actual, double x, double y, const std::string& what) {
-  ASSERT_TRUE(actual.has_value()) << what;
-  EXPECT_NEAR(actual->x, x, 1e-9) << what;
-  EXPECT_NEAR(actual->y, y, 1e-9) << what;
-}
-
-/// A regular grid along one axis plus points within a hair of both edges and the centre.
-std::vector<double> sample_positions(int size) {
-  const double n = size;
-  std::vector<double> out = {0.0, 1e-9, 1e-6, 1e-3, 0.5, n / 2 - 1e-7, n / 2, n / 2 + 1e-7, n - 0.5, n - 1e-3, n - 1e-6,
-                             n};
-  for (int i = 0; i <= 40; ++i) out.push_back(n * i / 40.0);
-  return out;
-}
+using testing::angle_between;
+using testing::emulate_glsl;
+using testing::expect_direction;
+using testing::expect_invalid;
+using testing::expect_pixel;
+using testing::max_neighbour_angle;
+using testing::Named;
+using testing::sample_positions;
 
 /// Uniform random unit vectors (fixed seed).
 std::vector<glm::dvec3> random_directions(int count, unsigned seed) {
@@ -73,11 +56,6 @@ std::vector<glm::dvec3> random_directions(int count, unsigned seed) {
   }
   return out;
 }
-
-struct Named {
-  std::string name;
-  std::shared_ptr<const Projection> projection;
-};
 
 std::vector<Named> cylindrical_cases() {
   auto make = [](int w, int h, CylindricalParameters p) { return std::make_shared<CylindricalProjection>(w, h, p); };
@@ -428,16 +406,6 @@ TEST(CubeFaceProjection, SixFacesCoverTheSphereExactlyOnce) {
   }
 }
 
-void expect_invalid(const std::function<void()>& make, const std::vector<std::string>& parts) {
-  try {
-    make();
-    ADD_FAILURE() << "no exception; expected one naming " << parts.front();
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    for (const std::string& part : parts) EXPECT_NE(what.find(part), std::string::npos) << what << " lacks " << part;
-  }
-}
-
 TEST(MoreProjections, InvalidParametersThrowNamingThem) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto cylinder = [](int w, int h, CylindricalParameters p) { return [=] { CylindricalProjection(w, h, p); }; };
@@ -467,25 +435,6 @@ TEST(MoreProjections, InvalidParametersThrowNamingThem) {
   expect_invalid([] { CubeFaceProjection(8, static_cast<CubeFace>(6)); }, {"face", "6", "+x, -x, +y, -y, +z, -z"});
 }
 
-double max_neighbour_angle(const Projection& p) {
-  double worst = 0.0;
-  auto pair = [&](double x0, double y0, double x1, double y1) {
-    const auto a = p.ray(x0, y0), b = p.ray(x1, y1);
-    if (a && b) worst = std::max(worst, angle_between(*a, *b));
-  };
-  for (int j = 0; j < p.height(); ++j)
-    for (int i = 0; i < p.width(); ++i) {
-      const double x = i + 0.5, y = j + 0.5;
-      pair(x, y, x + 1.0, y);
-      pair(x, y, x, y + 1.0);
-      pair(x, y, x + 1.0, y + 1.0);
-      pair(x + 1.0, y, x, y + 1.0);
-      pair(i, j, i + 1.0, j + 1.0);
-      pair(i + 1.0, j, i, j + 1.0);
-    }
-  return worst;
-}
-
 TEST(MoreProjections, MaxPixelAngleBoundsNeighbouringRays) {
   for (const Named& c : all_cases()) {
     const double bound = c.projection->max_pixel_angle_rad();
@@ -495,41 +444,6 @@ TEST(MoreProjections, MaxPixelAngleBoundsNeighbouringRays) {
     std::printf("%-28s max neighbour angle %.6g rad, bound %.6g rad (ratio %.4f)\n", c.name.c_str(), measured, bound,
                 measured / bound);
   }
-}
-
-/// shaders/projection.glsl's branches for the new kinds, transcribed to C++ float.
-std::optional<glm::vec3> emulate_glsl(const GpuProjection& g, glm::vec2 pixel) {
-  auto xyz = [&](int i) { return glm::vec3(g.params[i][0], g.params[i][1], g.params[i][2]); };
-  switch (g.kind) {
-    case ProjectionKind::ray_table:
-      ADD_FAILURE() << "ray tables have no closed form to emulate";
-      return std::nullopt;
-    case ProjectionKind::planar:
-    case ProjectionKind::cube_face:
-      return glm::normalize((pixel.x - g.params[0][3]) * xyz(0) + (pixel.y - g.params[1][3]) * xyz(1) + xyz(2));
-    case ProjectionKind::cylindrical: {
-      const auto& grid = g.params[0];
-      const float from_centre_x = pixel.x - grid[0];
-      if (std::abs(from_centre_x) > g.params[2][3]) return std::nullopt;
-      const float phi = from_centre_x * grid[1];
-      const float v = g.params[1][3] + (pixel.y - grid[2]) * grid[3];
-      return glm::normalize(std::sin(phi) * xyz(1) + v * xyz(2) - std::cos(phi) * xyz(3));
-    }
-    case ProjectionKind::equirectangular: {
-      const auto& grid = g.params[0];
-      const auto& centre = g.params[1];
-      const float from_centre_x = pixel.x - grid[0];
-      const float latitude = centre[1] + (pixel.y - grid[2]) * grid[3];
-      if (std::abs(from_centre_x) > centre[2] || std::abs(latitude) > centre[3]) return std::nullopt;
-      const float longitude = centre[0] + from_centre_x * grid[1];
-      const float cos_latitude = std::cos(latitude);
-      return glm::normalize(
-          glm::vec3(cos_latitude * std::sin(longitude), std::sin(latitude), -cos_latitude * std::cos(longitude)));
-    }
-    case ProjectionKind::fisheye:
-      break;
-  }
-  return std::nullopt;
 }
 
 TEST(MoreProjections, GpuLayoutReproducesTheRaysInFloat) {

@@ -17,6 +17,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tests/warp/projection_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 
@@ -25,39 +26,14 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-/// Angle between two directions (need not be unit), accurate at small and large angles.
-double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
-  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
-}
-
-void expect_direction(const std::optional<glm::dvec3>& actual, const glm::dvec3& expected, const std::string& what) {
-  ASSERT_TRUE(actual.has_value()) << what;
-  EXPECT_NEAR(glm::length(*actual), 1.0, 1e-14) << what;
-  EXPECT_LT(angle_between(*actual, expected), 1e-12)
-      << what << ": (" << actual->x << ", " << actual->y << ", " << actual->z << ") expected (" << expected.x << ", "
-      << expected.y << ", " << expected.z << ")";
-}
-
-void expect_pixel(const std::optional<glm::dvec2>& actual, double x, double y, const std::string& what) {
-  ASSERT_TRUE(actual.has_value()) << what;
-  EXPECT_NEAR(actual->x, x, 1e-9) << what;
-  EXPECT_NEAR(actual->y, y, 1e-9) << what;
-}
-
-/// Sample positions along one axis of an image `size` pixels long: a regular
-/// grid plus points within a hair of both edges and of the centre.
-std::vector<double> sample_positions(int size) {
-  const double n = size;
-  std::vector<double> out = {0.0, 1e-9, 1e-6, 1e-3, 0.5, n / 2 - 1e-7, n / 2, n / 2 + 1e-7, n - 0.5, n - 1e-3, n - 1e-6,
-                             n};
-  for (int i = 0; i <= 40; ++i) out.push_back(n * i / 40.0);
-  return out;
-}
-
-struct Named {
-  std::string name;
-  std::shared_ptr<const Projection> projection;
-};
+using testing::angle_between;
+using testing::emulate_glsl;
+using testing::expect_direction;
+using testing::expect_invalid;
+using testing::expect_pixel;
+using testing::max_neighbour_angle;
+using testing::Named;
+using testing::sample_positions;
 
 std::vector<Named> planar_cases() {
   return {
@@ -311,18 +287,6 @@ TEST(FisheyeProjection, PixelsOutsideTheCircleHaveNoRay) {
   expect_pixel(cropped.pixel({0.0, 0.0, -1.0}), 50.0, 130.0, "cropped: forward horizon off the image, as it is");
 }
 
-/// Expects `make` to throw std::invalid_argument whose message contains every
-/// string of `parts` (the parameter's name, its value, the range).
-void expect_invalid(const std::function<void()>& make, const std::vector<std::string>& parts) {
-  try {
-    make();
-    ADD_FAILURE() << "no exception; expected one naming " << parts.front();
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    for (const std::string& part : parts) EXPECT_NE(what.find(part), std::string::npos) << what << " lacks " << part;
-  }
-}
-
 TEST(PlanarProjection, InvalidParametersThrowNamingThem) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto planar = [](int w, int h, PlanarFrustum f) { return [=] { PlanarProjection(w, h, f); }; };
@@ -361,28 +325,6 @@ TEST(FisheyeProjection, InvalidParametersThrowNamingThem) {
   EXPECT_NO_THROW(FisheyeProjection(1, 1, {.fov_deg = 360.0, .tilt_deg = -90.0, .rotation_deg = -360.0}));
 }
 
-/// The largest angle between the rays of two points of one pixel, over
-/// neighbouring pixel centres (horizontal, vertical, both diagonals) and each
-/// pixel's opposite corners, where both have rays.
-double max_neighbour_angle(const Projection& p) {
-  double worst = 0.0;
-  auto pair = [&](double x0, double y0, double x1, double y1) {
-    const auto a = p.ray(x0, y0), b = p.ray(x1, y1);
-    if (a && b) worst = std::max(worst, angle_between(*a, *b));
-  };
-  for (int j = 0; j < p.height(); ++j)
-    for (int i = 0; i < p.width(); ++i) {
-      const double x = i + 0.5, y = j + 0.5;
-      pair(x, y, x + 1.0, y);
-      pair(x, y, x, y + 1.0);
-      pair(x, y, x + 1.0, y + 1.0);
-      pair(x + 1.0, y, x, y + 1.0);
-      pair(i, j, i + 1.0, j + 1.0);
-      pair(i + 1.0, j, i, j + 1.0);
-    }
-  return worst;
-}
-
 TEST(Projection, MaxPixelAngleBoundsNeighbouringRays) {
   std::vector<Named> all = planar_cases();
   for (Named& c : fisheye_cases())
@@ -395,22 +337,6 @@ TEST(Projection, MaxPixelAngleBoundsNeighbouringRays) {
     std::printf("%-30s max neighbour angle %.6g rad, bound %.6g rad (ratio %.4f)\n", c.name.c_str(), measured, bound,
                 measured / bound);
   }
-}
-
-/// shaders/projection.glsl, transcribed to C++ float: the same operations on the
-/// 16 floats of gpu(). The GPU test (tests/render/projection_gpu_test.cpp) runs
-/// the shader itself.
-std::optional<glm::vec3> emulate_glsl(const GpuProjection& g, glm::vec2 pixel) {
-  auto xyz = [&](int i) { return glm::vec3(g.params[i][0], g.params[i][1], g.params[i][2]); };
-  if (g.kind == ProjectionKind::planar)
-    return glm::normalize((pixel.x - g.params[0][3]) * xyz(0) + (pixel.y - g.params[1][3]) * xyz(1) + xyz(2));
-  const auto& circle = g.params[0];
-  const glm::vec2 offset(pixel.x - circle[0], circle[1] - pixel.y);
-  const float r = glm::length(offset);
-  const float theta = r * circle[2];
-  if (theta > circle[3]) return std::nullopt;
-  const float s = r > 0.0f ? std::sin(theta) / r : circle[2];
-  return glm::normalize(s * (offset.x * xyz(1) + offset.y * xyz(2)) + std::cos(theta) * xyz(3));
 }
 
 TEST(Projection, GpuLayoutReproducesTheRaysInFloat) {

@@ -1,0 +1,31 @@
+# The checks the command-line tests (tests/cli/*.cmake, run with cmake -P) make
+# again and again; each of them includes this file first.
+
+# Fails unless `png` is a PNG of `width` x `height` pixels, as its IHDR chunk
+# states them (bytes 16 to 23 of the file: width, then height, each 4 bytes
+# big-endian); `what` names the image in the message.
+function(expect_png_size png width height what)
+  file(READ "${png}" ihdr OFFSET 16 LIMIT 8 HEX)
+  set(expected "")
+  foreach(side ${width} ${height})
+    math(EXPR hex "${side}" OUTPUT_FORMAT HEXADECIMAL)  # "0x4b0"
+    string(SUBSTRING "${hex}" 2 -1 digits)
+    string(LENGTH "${digits}" count)
+    math(EXPR padding "8 - ${count}")
+    string(REPEAT "0" ${padding} zeros)
+    string(APPEND expected "${zeros}${digits}")
+  endforeach()
+  if(NOT ihdr STREQUAL expected)
+    message(FATAL_ERROR "${what} is not ${width} x ${height}: IHDR ${ihdr}")
+  endif()
+endfunction()
+
+# Fails unless `zenith ARGN` fails with a message (on stdout or stderr) that
+# mentions `needle`.
+function(expect_zenith_refuses needle)
+  execute_process(COMMAND ${ZENITH} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+  string(FIND "${o}${e}" "${needle}" pos)
+  if(rc EQUAL 0 OR pos EQUAL -1)
+    message(FATAL_ERROR "${ARGN}: expected a failure mentioning '${needle}', got (${rc}):\n${o}\n${e}")
+  endif()
+endfunction()
