@@ -1,9 +1,16 @@
-// PNG: tone-mapped 8-bit sRGB previews, and reading every PNG layout back to linear.
+// PNG: tone-mapped 8-bit sRGB previews, reading every PNG layout back to linear, and 16-bit grey maps.
 #include <gtest/gtest.h>
 
+#include <png.h>
+
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <random>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "image/image_io.h"
 #include "image/image_writer.h"
@@ -169,6 +176,64 @@ TEST(Png, ReadsEveryLayoutAndDecodesSrgbExactly) {
           }
           ASSERT_EQ(image.rgb[(std::size_t(y) * w + x) * 3 + c], expected) << x << "," << y << "," << c;
         }
+  }
+}
+
+/// A 16-bit grey PNG read with libpng's low-level API: its samples, as stored,
+/// and its gAMA chunk (0 when absent).
+struct Grey16Png {
+  int width = 0, height = 0, bit_depth = 0, colour_type = -1;
+  double file_gamma = 0.0;
+  std::vector<std::uint16_t> samples;
+};
+Grey16Png read_grey16_png(const std::filesystem::path& path) {
+  Grey16Png out;
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) return out;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  png_init_io(png, file);
+  png_read_info(png, info);
+  out.width = int(png_get_image_width(png, info));
+  out.height = int(png_get_image_height(png, info));
+  out.bit_depth = png_get_bit_depth(png, info);
+  out.colour_type = png_get_color_type(png, info);
+  if (png_get_valid(png, info, PNG_INFO_gAMA)) png_get_gAMA(png, info, &out.file_gamma);
+  std::vector<png_byte> row(png_get_rowbytes(png, info));
+  for (int y = 0; y < out.height; ++y) {
+    png_read_row(png, row.data(), nullptr);
+    for (int x = 0; x < out.width; ++x) out.samples.push_back(std::uint16_t(row[2 * x] << 8 | row[2 * x + 1]));
+  }
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(file);
+  return out;
+}
+
+TEST(Png, Grey16KeepsEverySampleAndStatesItsGamma) {
+  TempDir dir;
+  const int w = 300, h = 7;
+  std::vector<std::uint16_t> grey(std::size_t(w) * h);
+  for (std::size_t k = 0; k < grey.size(); ++k) grey[k] = std::uint16_t((k * 2311u) % 65536u);
+  grey[0] = 0;
+  grey[1] = 65535;
+  for (const double gamma : {1.0, 2.2}) {
+    write_png_grey16(dir / "m.png", w, h, grey, gamma, {{"zenith:map", "blend mask"}});
+    const Grey16Png png = read_grey16_png(dir / "m.png");
+    EXPECT_EQ(png.width, w);
+    EXPECT_EQ(png.height, h);
+    EXPECT_EQ(png.bit_depth, 16);
+    EXPECT_EQ(png.colour_type, PNG_COLOR_TYPE_GRAY);
+    EXPECT_NEAR(png.file_gamma, 1.0 / gamma, 1e-5);
+    EXPECT_EQ(png.samples, grey);
+  }
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"m.png"});  // no .partial left
+  EXPECT_THROW(write_png_grey16(dir / "n.png", w, h, std::span(grey).first(10), 1.0), std::invalid_argument);
+  EXPECT_THROW(write_png_grey16(dir / "n.png", w, h, grey, 0.0), std::invalid_argument);
+  try {
+    write_png_grey16(dir / "no" / "n.png", w, h, grey, 1.0);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir / "no" / "n.png").string()), std::string::npos) << e.what();
   }
 }
 
