@@ -37,6 +37,22 @@ struct ZipDiscard {
   }
 };
 
+/// A number in full precision.
+std::string number(double value) {
+  std::ostringstream text;
+  text.precision(17);
+  text << value;
+  return text.str();
+}
+
+/// An <alphaMap> or <betaMap> element of a 1-channel 16-bit PNG member, with
+/// `extra` children.
+std::string grey16_map_element(const std::string& element, const std::string& member, const std::string& extra) {
+  return "      <" + element + ">\n        <path>" + member +
+         "</path>\n        <componentDepth>1</componentDepth>\n        <bitDepth>16</bitDepth>\n" + extra + "      </" +
+         element + ">\n";
+}
+
 }  // namespace
 
 std::string mpcdi_descriptor(const MpcdiRegionExport& r) {
@@ -73,17 +89,9 @@ std::string mpcdi_descriptor(const MpcdiRegionExport& r) {
       << "        <ySamples>" << r.warp_rows << "</ySamples>\n"
       << "        <originOf2DData>topLeftCorner</originOf2DData>\n"
       << "      </geometryWarpFile>\n"
-      << "      <alphaMap>\n"
-      << "        <path>" << r.alpha_member << "</path>\n"
-      << "        <componentDepth>1</componentDepth>\n"
-      << "        <bitDepth>16</bitDepth>\n"
-      << "        <gammaEmbedded>" << r.alpha_gamma_embedded << "</gammaEmbedded>\n"
-      << "      </alphaMap>\n"
-      << "      <betaMap>\n"
-      << "        <path>" << r.beta_member << "</path>\n"
-      << "        <componentDepth>1</componentDepth>\n"
-      << "        <bitDepth>16</bitDepth>\n"
-      << "      </betaMap>\n"
+      << grey16_map_element("alphaMap", r.alpha_member, "        <gammaEmbedded>" +
+                                                             number(r.alpha_gamma_embedded) + "</gammaEmbedded>\n")
+      << grey16_map_element("betaMap", r.beta_member, "")
       << "    </fileset>\n"
       << "  </files>\n"
       << "</MPCDI>\n";
