@@ -33,7 +33,9 @@ void write_file(const fs::path& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (out) out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   if (out) out.close();
-  if (!out) throw std::runtime_error(path.string() + ": cannot write the file (" + std::error_code(errno, std::generic_category()).message() + ")");
+  if (!out)
+    throw std::runtime_error(path.string() + ": cannot write the file (" +
+                             std::error_code(errno, std::generic_category()).message() + ")");
 }
 
 /// One 16-bit map in both encodings; their sidecar entries.
@@ -122,8 +124,9 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
     region.alpha_gamma_embedded = 1.0;
     region.beta_member = beta_file;
     const std::string mpcdi_file = o.name + ".mpcdi";
-    warp::write_mpcdi_archive(dir / mpcdi_file, warp::mpcdi_descriptor(region),
-                              {{warp_file, dir / warp_file}, {alpha_file, dir / alpha_file}, {beta_file, dir / beta_file}});
+    warp::write_mpcdi_archive(
+        dir / mpcdi_file, warp::mpcdi_descriptor(region),
+        {{warp_file, dir / warp_file}, {alpha_file, dir / alpha_file}, {beta_file, dir / beta_file}});
     written.push_back({dir / mpcdi_file, fmt::format("MPCDI 2d profile, region '{}' {} x {} px: mpcdi.xml, {}, {} "
                                                      "(gammaEmbedded 1), {}",
                                                      o.name, width, height, warp_file, alpha_file, beta_file)});

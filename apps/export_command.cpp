@@ -22,7 +22,8 @@ void register_export_calibration_command(CLI::App& app) {
       "export-calibration",
       "Export the warp (PFM, MPCDI), blend mask and black-level map (16-bit PNG, linear and gamma 2.2) of each "
       "output of a viewport config for hardware that warps and blends itself (docs/warp-meshes.md)");
-  cmd->add_option("--viewport", args->viewport, "The viewport config, CONFIG.json#NAME for one output, CONFIG.json for all")
+  cmd->add_option("--viewport", args->viewport,
+                  "The viewport config, CONFIG.json#NAME for one output, CONFIG.json for all")
       ->required();
   cmd->add_option("--out", args->out, "The folder to write into (created when missing)")->required();
   cmd->callback([args] {

@@ -132,9 +132,12 @@ inline WrittenPng read_written_png(const std::filesystem::path& path) {
       const std::size_t row_bytes = std::size_t(out.width) * (rgb8 ? 3 : 2);
       std::vector<unsigned char> rows(row_bytes * out.height);
       for (int y = 0; y < out.height; ++y) png_read_row(p, rows.data() + std::size_t(y) * row_bytes, nullptr);
-      if (rgb8) out.bytes = std::move(rows);
-      else
-        for (std::size_t k = 0; k + 1 < rows.size(); k += 2) out.grey.push_back(std::uint16_t(rows[k] << 8 | rows[k + 1]));
+      if (rgb8) {
+        out.bytes = std::move(rows);
+      } else {
+        for (std::size_t k = 0; k + 1 < rows.size(); k += 2)
+          out.grey.push_back(std::uint16_t(rows[k] << 8 | rows[k + 1]));  // big endian
+      }
       png_read_end(p, info);
       png_textp text = nullptr;
       const int n = png_get_text(p, info, &text, nullptr);
