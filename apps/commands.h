@@ -12,6 +12,8 @@ void register_precompute_command(CLI::App& app);
 void register_sample_command(CLI::App& app);
 /// `zenith render`.
 void register_render_command(CLI::App& app);
+/// `zenith export-calibration` (apps/export_command.cpp).
+void register_export_calibration_command(CLI::App& app);
 /// `zenith master`, `zenith node`, `zenith cluster` (apps/cluster_commands.cpp).
 void register_cluster_commands(CLI::App& app);
 /// `zenith validate cie|stress` (apps/validate_command.cpp).

@@ -1,9 +1,11 @@
 #pragma once
-// Writing rendered frames: linear HDR OpenEXR and 8-bit sRGB PNG previews.
+// Writing rendered frames: linear HDR OpenEXR and 8-bit sRGB PNG previews; and
+// 16-bit greyscale PNG maps (write_png_grey16).
 // Writers stream rows (top to bottom) so an 8192² frame never needs a second
 // full copy in memory, and publish the file atomically: they write NAME.partial
 // and rename it to NAME in finish(), so an interrupted render never leaves a
 // truncated file under the final name.
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -63,5 +65,16 @@ void write_exr(const std::filesystem::path& path, int width, int height, std::sp
                ExrPixelType type, const ImageAttributes& attributes = {});
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const float> rgb,
                ToneMapping tone, const ImageAttributes& attributes = {});
+
+/// A 16-bit greyscale PNG of samples already encoded (width · height values,
+/// row 0 at the top, x fastest), e.g. a projector's blend mask or black-level
+/// map: no tone mapping, no transfer function applied here. `gamma` states the
+/// encoding in a gAMA chunk of 1 / gamma: 1 for samples proportional to linear
+/// light (value = sample / 65535), 2.2 for samples holding value^(1 / 2.2);
+/// in (0, 10]. Published atomically like the writers above; throws
+/// std::invalid_argument for a bad size, sample count, gamma or attribute name,
+/// std::runtime_error naming the file when it cannot be created or written.
+void write_png_grey16(const std::filesystem::path& path, int width, int height, std::span<const std::uint16_t> grey,
+                      double gamma, const ImageAttributes& attributes = {});
 
 }  // namespace zenith::image

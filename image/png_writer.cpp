@@ -8,9 +8,15 @@
 // filter heuristics, attributes in the order given. It carries an sRGB chunk
 // (perceptual intent) and one tEXt chunk per attribute (iTXt, UTF-8, where the
 // value is not plain ASCII).
+//
+// 16-bit greyscale maps (write_png_grey16: blend masks and black-level maps for
+// projectors, docs/warp-meshes.md) go through the same PngStream with a gAMA
+// chunk stating their encoding instead of the sRGB chunk.
 #include <cerrno>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
@@ -58,15 +64,18 @@ void write_to_file(png_structp png, png_bytep data, std::size_t length) {
 
 void flush_file(png_structp png) { std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png))); }
 
-class PngWriter final : public ImageWriter {
+/// One PNG file being written: the libpng state, the .partial file and its
+/// publication. The header (size, bit depth, colour type, the colour chunk and
+/// the attributes as text chunks) is written on construction; rows of encoded
+/// bytes follow; finish() ends the file and renames it into place. Without
+/// finish() (an exception, an abandoned writer) the partial file is removed.
+class PngStream {
  public:
-  PngWriter(const std::filesystem::path& path, int width, int height, ToneMapping tone,
+  /// `gamma`: 0 writes an sRGB chunk (perceptual intent); > 0 a gAMA chunk of
+  /// 1 / gamma (stored values are linear values^(1 / gamma)).
+  PngStream(const std::filesystem::path& path, int width, int height, int bit_depth, int colour_type, double gamma,
             const ImageAttributes& attributes)
-      : ImageWriter(width, height),
-        path_(path),
-        partial_(detail::partial_path_for(path)),
-        tone_(tone),
-        row_(std::size_t(width) * 3) {
+      : path_(path), partial_(detail::partial_path_for(path)) {
     for (const auto& [name, value] : attributes) {
       check_keyword(path_, name);
       if (value.find('\0') != std::string::npos)
@@ -99,9 +108,10 @@ class PngWriter final : public ImageWriter {
     const int text_count = static_cast<int>(text.size());
     const bool ok = detail::png_guarded(png, [=] {
       png_set_write_fn(png, file, write_to_file, flush_file);
-      png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+      png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), bit_depth, colour_type, PNG_INTERLACE_NONE,
                    PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-      png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+      if (gamma > 0.0) png_set_gAMA(png, info, 1.0 / gamma);
+      else png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
       if (text_count > 0) png_set_text(png, info, text_data, text_count);
       png_write_info(png, info);
     });
@@ -111,26 +121,23 @@ class PngWriter final : public ImageWriter {
       throw std::runtime_error(detail::prefix(path_) + "PNG: " + reason);
     }
   }
+  PngStream(const PngStream&) = delete;
+  PngStream& operator=(const PngStream&) = delete;
 
-  ~PngWriter() override {
+  ~PngStream() {
     if (!finished_) abandon();
   }
 
-  void write_rows(int row_count, std::span<const float> rgb) override {
-    detail::check_row_block(path_, width(), height(), rows_written_, row_count, rgb.size(), open());
-    const std::size_t row_values = std::size_t(width()) * 3;
-    for (int r = 0; r < row_count; ++r) {
-      const float* in = rgb.data() + std::size_t(r) * row_values;
-      for (std::size_t k = 0; k < row_values; ++k) row_[k] = quantize_(tone_map(in[k], tone_));
-      png_structp png = png_;
-      png_bytep row = row_.data();
-      if (!detail::png_guarded(png, [=] { png_write_row(png, row); })) fail();
-      ++rows_written_;
-    }
+  const std::filesystem::path& path() const { return path_; }
+  bool open() const { return !finished_ && !failed_; }
+
+  /// One row of encoded bytes (16-bit samples big endian, as PNG stores them).
+  void write_row(png_bytep row) {
+    png_structp png = png_;
+    if (!detail::png_guarded(png, [=] { png_write_row(png, row); })) fail();
   }
 
-  void finish() override {
-    detail::check_complete(path_, height(), rows_written_, open());
+  void finish() {
     png_structp png = png_;
     png_infop info = info_;
     if (!detail::png_guarded(png, [=] { png_write_end(png, info); })) fail();
@@ -147,8 +154,6 @@ class PngWriter final : public ImageWriter {
   }
 
  private:
-  bool open() const { return !finished_ && !failed_; }
-
   [[noreturn]] void fail() {
     failed_ = true;
     throw std::runtime_error(detail::prefix(path_) + "PNG: " + errors_.message);
@@ -165,15 +170,44 @@ class PngWriter final : public ImageWriter {
   }
 
   std::filesystem::path path_, partial_;
-  ToneMapping tone_;
-  SrgbQuantizer quantize_;
-  std::vector<png_byte> row_;  ///< one row of 8-bit RGB
   detail::PngErrorState errors_;
   std::FILE* file_ = nullptr;
   png_structp png_ = nullptr;
   png_infop info_ = nullptr;
-  int rows_written_ = 0;
   bool finished_ = false, failed_ = false;
+};
+
+class PngWriter final : public ImageWriter {
+ public:
+  PngWriter(const std::filesystem::path& path, int width, int height, ToneMapping tone,
+            const ImageAttributes& attributes)
+      : ImageWriter(width, height),
+        stream_(path, width, height, 8, PNG_COLOR_TYPE_RGB, 0.0, attributes),
+        tone_(tone),
+        row_(std::size_t(width) * 3) {}
+
+  void write_rows(int row_count, std::span<const float> rgb) override {
+    detail::check_row_block(stream_.path(), width(), height(), rows_written_, row_count, rgb.size(), stream_.open());
+    const std::size_t row_values = std::size_t(width()) * 3;
+    for (int r = 0; r < row_count; ++r) {
+      const float* in = rgb.data() + std::size_t(r) * row_values;
+      for (std::size_t k = 0; k < row_values; ++k) row_[k] = quantize_(tone_map(in[k], tone_));
+      stream_.write_row(row_.data());
+      ++rows_written_;
+    }
+  }
+
+  void finish() override {
+    detail::check_complete(stream_.path(), height(), rows_written_, stream_.open());
+    stream_.finish();
+  }
+
+ private:
+  PngStream stream_;
+  ToneMapping tone_;
+  SrgbQuantizer quantize_;
+  std::vector<png_byte> row_;  ///< one row of 8-bit RGB
+  int rows_written_ = 0;
 };
 
 }  // namespace
@@ -183,6 +217,28 @@ std::unique_ptr<ImageWriter> open_png_writer(const std::filesystem::path& path, 
   detail::check_dimensions(path, width, height, kMaxSide_px);
   detail::check_unique_names(path, attributes);
   return std::make_unique<PngWriter>(path, width, height, tone, attributes);
+}
+
+void write_png_grey16(const std::filesystem::path& path, int width, int height, std::span<const std::uint16_t> grey,
+                      double gamma, const ImageAttributes& attributes) {
+  detail::check_dimensions(path, width, height, kMaxSide_px);
+  detail::check_unique_names(path, attributes);
+  if (grey.size() != std::size_t(width) * std::size_t(height))
+    throw std::invalid_argument(detail::prefix(path) + std::to_string(grey.size()) + " samples for a " +
+                                std::to_string(width) + "x" + std::to_string(height) + " image");
+  if (!(gamma > 0.0 && gamma <= 10.0))
+    throw std::invalid_argument(detail::prefix(path) + "gamma " + std::to_string(gamma) + ": must be in (0, 10]");
+  PngStream stream(path, width, height, 16, PNG_COLOR_TYPE_GRAY, gamma, attributes);
+  std::vector<png_byte> row(std::size_t(width) * 2);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const std::uint16_t value = grey[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+      row[std::size_t(x) * 2] = static_cast<png_byte>(value >> 8);  // PNG: big endian
+      row[std::size_t(x) * 2 + 1] = static_cast<png_byte>(value & 0xFF);
+    }
+    stream.write_row(row.data());
+  }
+  stream.finish();
 }
 
 }  // namespace zenith::image

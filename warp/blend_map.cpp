@@ -2,12 +2,15 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <csetjmp>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 namespace zenith::warp {
 namespace {
@@ -136,6 +139,18 @@ BlendMap decode_png_map(std::string_view bytes, const std::string& name) {
     }
   }
   return map;
+}
+
+std::vector<std::uint16_t> encode_map_16(std::span<const float> values, double gamma) {
+  if (!(gamma > 0.0 && gamma <= 10.0))
+    throw std::invalid_argument("encode_map_16: gamma " + std::to_string(gamma) + ": must be in (0, 10]");
+  std::vector<std::uint16_t> stored(values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const double value = std::isnan(values[k]) ? 0.0 : std::clamp(static_cast<double>(values[k]), 0.0, 1.0);
+    const double encoded = gamma == 1.0 ? value : std::pow(value, 1.0 / gamma);
+    stored[k] = static_cast<std::uint16_t>(std::lround(encoded * 65535.0));
+  }
+  return stored;
 }
 
 }  // namespace zenith::warp

@@ -3,6 +3,8 @@
 // stored values are used as they are, with no colour decoding. (image::read_image
 // decodes sRGB to linear light: right for pictures, wrong for these maps, whose
 // encoding is told by the file that references them, e.g. MPCDI's gammaEmbedded.)
+#include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,5 +26,12 @@ struct BlendMap {
 /// wrong>" for data that is not a PNG, truncated or corrupt data (libpng's
 /// message), and images larger than 16384 px per side.
 BlendMap decode_png_map(std::string_view bytes, const std::string& name);
+
+/// The inverse for 16-bit maps: each value in [0, 1] (clamped; NaN → 0) encoded
+/// as stored = round(value^(1 / gamma) · 65535), so that a reader recovers
+/// value = (stored / 65535)^gamma (MPCDI's gammaEmbedded, a viewport blend
+/// file's "gamma"). gamma 1: linear; 2.2: the display encoding of projector
+/// blend maps. Throws std::invalid_argument for gamma outside (0, 10].
+std::vector<std::uint16_t> encode_map_16(std::span<const float> values, double gamma);
 
 }  // namespace zenith::warp

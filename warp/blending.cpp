@@ -226,6 +226,11 @@ BlendMask output_blend_mask(const ViewportConfig& config, std::size_t output_ind
   return mask;
 }
 
+std::vector<float> black_level_map(const OutputConfig& output) {
+  return std::vector<float>(static_cast<std::size_t>(output.width_px) * static_cast<std::size_t>(output.height_px),
+                            static_cast<float>(output.black_level));
+}
+
 void apply_blend(std::span<float> rgb, int first_row, int row_count, const BlendMask& mask, double black_level) {
   if (first_row < 0 || row_count < 0 || first_row + row_count > mask.height ||
       rgb.size() != static_cast<std::size_t>(row_count) * mask.width * 3)

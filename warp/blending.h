@@ -95,6 +95,14 @@ BlendMask output_blend_mask(const ViewportConfig& config, std::size_t output_ind
 /// or decoded and for a size other than width_px × height_px.
 BlendMask load_blend_mask(const std::filesystem::path& path, double gamma, int width_px, int height_px);
 
+/// The black-level map of an output, one value per pixel (row 0 at the top, x
+/// fastest): what the output stage adds to a pixel whatever the picture,
+/// P' − P·α·(1 − β) = β. The model takes β as one number per output
+/// (OutputConfig::black_level), added to every pixel, covered or not, so the
+/// map is β everywhere; it is what a projector applying MPCDI's beta map must
+/// add to show what `zenith render --viewport` writes.
+std::vector<float> black_level_map(const OutputConfig& output);
+
 /// The output stage of one display-linear value P (a fraction of full white):
 /// P · α · (1 − β) + β.
 inline double blend_display_value(double p, double alpha, double black_level) {

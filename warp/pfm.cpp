@@ -129,4 +129,34 @@ PfmImage read_pfm(const std::filesystem::path& path, PfmRowOrder stored_rows) {
   return parse_pfm(read_file_bytes(path), path.string(), stored_rows);
 }
 
+std::string encode_pfm(const PfmImage& image, PfmRowOrder stored_rows) {
+  if (image.channels != 1 && image.channels != 3)
+    throw std::invalid_argument("encode_pfm: " + std::to_string(image.channels) + " channels: must be 1 or 3");
+  if (image.width < 1 || image.width > kMaxPfmSizePx || image.height < 1 || image.height > kMaxPfmSizePx)
+    throw std::invalid_argument("encode_pfm: size " + std::to_string(image.width) + "x" +
+                                std::to_string(image.height) + ": each side must be in [1, " +
+                                std::to_string(kMaxPfmSizePx) + "]");
+  const std::size_t row_values = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels);
+  const std::size_t count = row_values * static_cast<std::size_t>(image.height);
+  if (image.samples.size() != count)
+    throw std::invalid_argument("encode_pfm: " + std::to_string(image.samples.size()) + " samples, expected " +
+                                std::to_string(count));
+  // Scale -1: little-endian samples.
+  std::string bytes = std::string(image.channels == 3 ? "PF" : "Pf") + "\n" + std::to_string(image.width) + " " +
+                      std::to_string(image.height) + "\n-1\n";
+  const std::size_t header = bytes.size();
+  bytes.resize(header + count * sizeof(float));
+  for (int stored = 0; stored < image.height; ++stored) {
+    const int row = stored_rows == PfmRowOrder::top_to_bottom ? stored : image.height - 1 - stored;
+    const float* source = image.samples.data() + static_cast<std::size_t>(row) * row_values;
+    char* target = bytes.data() + header + static_cast<std::size_t>(stored) * row_values * sizeof(float);
+    for (std::size_t k = 0; k < row_values; ++k) {
+      const auto word = std::bit_cast<std::uint32_t>(source[k]);
+      for (std::size_t b = 0; b < sizeof(float); ++b)
+        target[k * sizeof(float) + b] = static_cast<char>((word >> (8 * b)) & 0xFFu);
+    }
+  }
+  return bytes;
+}
+
 }  // namespace zenith::warp

@@ -53,4 +53,11 @@ PfmImage parse_pfm(std::string_view bytes, const std::string& name, PfmRowOrder 
 /// open" when the file cannot be read.
 PfmImage read_pfm(const std::filesystem::path& path, PfmRowOrder stored_rows = PfmRowOrder::bottom_to_top);
 
+/// The bytes of a PFM holding `image` (row 0 = its top), its rows stored in
+/// `stored_rows` order, samples little endian (scale −1), NaN kept: what
+/// parse_pfm(bytes, name, stored_rows) reads back bit for bit. Throws
+/// std::invalid_argument for a channel count other than 1 or 3, a size outside
+/// [1, 16384] or a sample count that does not match.
+std::string encode_pfm(const PfmImage& image, PfmRowOrder stored_rows);
+
 }  // namespace zenith::warp

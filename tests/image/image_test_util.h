@@ -15,6 +15,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace zenith::image::testing {
@@ -98,15 +99,18 @@ inline bool write_raw_png(const std::filesystem::path& path, const RawPng& png) 
   return ok;
 }
 
-/// Reads an 8-bit RGB PNG's bytes and its text chunks (keyword → text) with libpng, no transforms.
-struct Rgb8Png {
+/// Reads an 8-bit RGB or a 16-bit grey PNG's samples and its text chunks
+/// (keyword → text) with libpng, no transforms.
+struct WrittenPng {
   int width = 0, height = 0, bit_depth = 0, colour_type = 0;
   bool has_srgb_chunk = false;
-  std::vector<unsigned char> bytes;  ///< width · height · 3
+  double file_gamma = 0.0;           ///< the gAMA chunk's value, 0 when absent
+  std::vector<unsigned char> bytes;  ///< 8-bit RGB: width · height · 3
+  std::vector<std::uint16_t> grey;   ///< 16-bit grey: width · height
   std::vector<std::pair<std::string, std::string>> text;
 };
-inline Rgb8Png read_rgb8_png(const std::filesystem::path& path) {
-  Rgb8Png out;
+inline WrittenPng read_written_png(const std::filesystem::path& path) {
+  WrittenPng out;
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw std::runtime_error("cannot open " + path.string());
   png_structp p = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
@@ -121,9 +125,19 @@ inline Rgb8Png read_rgb8_png(const std::filesystem::path& path) {
     out.colour_type = png_get_color_type(p, info);
     int intent = 0;
     out.has_srgb_chunk = png_get_sRGB(p, info, &intent) != 0;
-    if (out.bit_depth == 8 && out.colour_type == PNG_COLOR_TYPE_RGB) {
-      out.bytes.resize(std::size_t(out.width) * out.height * 3);
-      for (int y = 0; y < out.height; ++y) png_read_row(p, out.bytes.data() + std::size_t(y) * out.width * 3, nullptr);
+    if (png_get_valid(p, info, PNG_INFO_gAMA)) png_get_gAMA(p, info, &out.file_gamma);
+    const bool rgb8 = out.bit_depth == 8 && out.colour_type == PNG_COLOR_TYPE_RGB;
+    const bool grey16 = out.bit_depth == 16 && out.colour_type == PNG_COLOR_TYPE_GRAY;
+    if (rgb8 || grey16) {
+      const std::size_t row_bytes = std::size_t(out.width) * (rgb8 ? 3 : 2);
+      std::vector<unsigned char> rows(row_bytes * out.height);
+      for (int y = 0; y < out.height; ++y) png_read_row(p, rows.data() + std::size_t(y) * row_bytes, nullptr);
+      if (rgb8) {
+        out.bytes = std::move(rows);
+      } else {
+        for (std::size_t k = 0; k + 1 < rows.size(); k += 2)
+          out.grey.push_back(std::uint16_t(rows[k] << 8 | rows[k + 1]));  // big endian
+      }
       png_read_end(p, info);
       png_textp text = nullptr;
       const int n = png_get_text(p, info, &text, nullptr);
@@ -133,7 +147,7 @@ inline Rgb8Png read_rgb8_png(const std::filesystem::path& path) {
   }
   png_destroy_read_struct(&p, &info, nullptr);
   std::fclose(f);
-  if (!ok) throw std::runtime_error("not an 8-bit RGB PNG: " + path.string());
+  if (!ok) throw std::runtime_error("not an 8-bit RGB or 16-bit grey PNG: " + path.string());
   return out;
 }
 

@@ -1,9 +1,13 @@
-// PNG: tone-mapped 8-bit sRGB previews, and reading every PNG layout back to linear.
+// PNG: tone-mapped 8-bit sRGB previews, reading every PNG layout back to linear, and 16-bit grey maps.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "image/image_io.h"
 #include "image/image_writer.h"
@@ -37,7 +41,7 @@ TEST(Png, BytesAreTheToneMappedSrgbFormula) {
   for (ToneMapping tone : {ToneMapping::exponential, ToneMapping::clamp}) {
     const auto path = dir / (std::string(to_string(tone)) + ".png");
     write_png(path, w, h, rgb, tone);
-    const testing::Rgb8Png png = testing::read_rgb8_png(path);
+    const testing::WrittenPng png = testing::read_written_png(path);
     ASSERT_EQ(png.width, w);
     ASSERT_EQ(png.height, h);
     EXPECT_TRUE(png.has_srgb_chunk);
@@ -67,7 +71,7 @@ TEST(Png, AttributesBecomeTextChunks) {
   TempDir dir;
   const ImageAttributes attributes{{"zenith:scene", "earth-moon"}, {"Comment", "exposure 1.5e-5 × radiance"}};
   write_png(dir / "t.png", 3, 2, testing::test_pattern(3, 2), ToneMapping::exponential, attributes);
-  const testing::Rgb8Png png = testing::read_rgb8_png(dir / "t.png");
+  const testing::WrittenPng png = testing::read_written_png(dir / "t.png");
   ASSERT_EQ(png.text.size(), 2u);
   EXPECT_EQ(png.text[0], attributes[0]);
   EXPECT_EQ(png.text[1], attributes[1]);
@@ -169,6 +173,35 @@ TEST(Png, ReadsEveryLayoutAndDecodesSrgbExactly) {
           }
           ASSERT_EQ(image.rgb[(std::size_t(y) * w + x) * 3 + c], expected) << x << "," << y << "," << c;
         }
+  }
+}
+
+TEST(Png, Grey16KeepsEverySampleAndStatesItsGamma) {
+  TempDir dir;
+  const int w = 300, h = 7;
+  std::vector<std::uint16_t> grey(std::size_t(w) * h);
+  for (std::size_t k = 0; k < grey.size(); ++k) grey[k] = std::uint16_t((k * 2311u) % 65536u);
+  grey[0] = 0;
+  grey[1] = 65535;
+  for (const double gamma : {1.0, 2.2}) {
+    write_png_grey16(dir / "m.png", w, h, grey, gamma, {{"zenith:map", "blend mask"}});
+    const testing::WrittenPng png = testing::read_written_png(dir / "m.png");
+    EXPECT_EQ(png.width, w);
+    EXPECT_EQ(png.height, h);
+    EXPECT_EQ(png.bit_depth, 16);
+    EXPECT_EQ(png.colour_type, PNG_COLOR_TYPE_GRAY);
+    EXPECT_NEAR(png.file_gamma, 1.0 / gamma, 1e-5);
+    EXPECT_EQ(png.grey, grey);
+    EXPECT_EQ(png.text, (ImageAttributes{{"zenith:map", "blend mask"}}));
+  }
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"m.png"});  // no .partial left
+  EXPECT_THROW(write_png_grey16(dir / "n.png", w, h, std::span(grey).first(10), 1.0), std::invalid_argument);
+  EXPECT_THROW(write_png_grey16(dir / "n.png", w, h, grey, 0.0), std::invalid_argument);
+  try {
+    write_png_grey16(dir / "no" / "n.png", w, h, grey, 1.0);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir / "no" / "n.png").string()), std::string::npos) << e.what();
   }
 }
 

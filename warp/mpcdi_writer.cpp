@@ -1,0 +1,131 @@
+#include "warp/mpcdi_writer.h"
+
+#include <zip.h>
+
+#include <algorithm>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+namespace zenith::warp {
+namespace {
+
+bool plain_id(const std::string& id) {
+  return !id.empty() && std::all_of(id.begin(), id.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' ||
+           c == '.';
+  });
+}
+
+/// Member names are written as element text: no markup characters.
+bool plain_member(const std::string& name) {
+  return !name.empty() && name.find_first_of("<>&\"'") == std::string::npos;
+}
+
+/// libzip's message for an archive that could not be opened.
+std::string zip_open_error(int code) {
+  zip_error_t error;
+  zip_error_init_with_code(&error, code);
+  std::string message = zip_error_strerror(&error);
+  zip_error_fini(&error);
+  return message;
+}
+
+struct ZipDiscard {
+  void operator()(zip_t* archive) const {
+    if (archive) zip_discard(archive);
+  }
+};
+
+/// A number in full precision.
+std::string number(double value) {
+  std::ostringstream text;
+  text.precision(17);
+  text << value;
+  return text.str();
+}
+
+/// An <alphaMap> or <betaMap> element of a 1-channel 16-bit PNG member, with
+/// `extra` children.
+std::string grey16_map_element(const std::string& element, const std::string& member, const std::string& extra) {
+  return "      <" + element + ">\n        <path>" + member +
+         "</path>\n        <componentDepth>1</componentDepth>\n        <bitDepth>16</bitDepth>\n" + extra + "      </" +
+         element + ">\n";
+}
+
+}  // namespace
+
+std::string mpcdi_descriptor(const MpcdiRegionExport& r) {
+  if (!plain_id(r.id))
+    throw std::invalid_argument("MPCDI export: region id '" + r.id +
+                                "': must be letters, digits, '-', '_' or '.' (it is written into XML attributes)");
+  if (r.width_px < 1 || r.height_px < 1 || r.warp_columns < 1 || r.warp_rows < 1)
+    throw std::invalid_argument("MPCDI export: region '" + r.id + "': resolution and warp size must be at least 1");
+  for (const std::string* member : {&r.warp_member, &r.alpha_member, &r.beta_member})
+    if (!plain_member(*member))
+      throw std::invalid_argument("MPCDI export: region '" + r.id + "': member name '" + *member +
+                                  "' is empty or holds XML markup characters");
+  std::ostringstream xml;
+  xml.precision(17);
+  xml << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+      << "<!-- written by zenith (docs/warp-meshes.md, \"Exporting to warp engines and media servers\") -->\n"
+      << "<MPCDI profile=\"2d\" geometry=\"1\" color=\"1\" version=\"2.0\">\n"
+      << "  <display>\n"
+      << "    <buffer id=\"" << r.id << "\" xResolution=\"" << r.width_px << "\" yResolution=\"" << r.height_px
+      << "\">\n"
+      << "      <region id=\"" << r.id << "\" x=\"0\" y=\"0\" xsize=\"1\" ysize=\"1\" xResolution=\"" << r.width_px
+      << "\" yResolution=\"" << r.height_px << "\"/>\n"
+      << "    </buffer>\n"
+      << "  </display>\n"
+      << "  <files>\n"
+      << "    <fileset region=\"" << r.id << "\">\n"
+      << "      <geometryWarpFile>\n"
+      << "        <path>" << r.warp_member << "</path>\n"
+      << "        <interpolation>" << (r.interpolation == WarpInterpolation::bilinear ? "linear" : "cubic")
+      << "</interpolation>\n"
+      << "        <componentDepth>2</componentDepth>\n"
+      << "        <bitDepth>32</bitDepth>\n"
+      << "        <xSamples>" << r.warp_columns << "</xSamples>\n"
+      << "        <ySamples>" << r.warp_rows << "</ySamples>\n"
+      << "        <originOf2DData>topLeftCorner</originOf2DData>\n"
+      << "      </geometryWarpFile>\n"
+      << grey16_map_element("alphaMap", r.alpha_member, "        <gammaEmbedded>" +
+                                                             number(r.alpha_gamma_embedded) + "</gammaEmbedded>\n")
+      << grey16_map_element("betaMap", r.beta_member, "")
+      << "    </fileset>\n"
+      << "  </files>\n"
+      << "</MPCDI>\n";
+  return xml.str();
+}
+
+void write_mpcdi_archive(const std::filesystem::path& path, const std::string& descriptor,
+                         const std::vector<std::pair<std::string, std::filesystem::path>>& members) {
+  const std::string name = path.string();
+  int code = 0;
+  std::unique_ptr<zip_t, ZipDiscard> archive(zip_open(name.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &code));
+  if (!archive) throw std::runtime_error(name + ": cannot create the MPCDI archive (" + zip_open_error(code) + ")");
+  const auto add = [&](const std::string& member, zip_source_t* source, const std::string& what) {
+    if (source == nullptr)
+      throw std::runtime_error(name + ": cannot add " + what + " (" + zip_strerror(archive.get()) + ")");
+    const zip_int64_t index = zip_file_add(archive.get(), member.c_str(), source, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8);
+    if (index < 0) {
+      zip_source_free(source);
+      throw std::runtime_error(name + ": cannot add " + what + " (" + zip_strerror(archive.get()) + ")");
+    }
+    // Deflate at its fastest level: a 1920 x 1200 output's warp is 110 MB of
+    // floats, which the default level takes several times longer to pack.
+    if (zip_set_file_compression(archive.get(), static_cast<zip_uint64_t>(index), ZIP_CM_DEFLATE, 1) != 0)
+      throw std::runtime_error(name + ": cannot set the compression of " + what + " (" +
+                               zip_strerror(archive.get()) + ")");
+  };
+  // The descriptor's bytes must outlive zip_close: libzip reads sources then.
+  add("mpcdi.xml", zip_source_buffer(archive.get(), descriptor.data(), descriptor.size(), 0), "mpcdi.xml");
+  for (const auto& [member, file] : members)
+    add(member, zip_source_file(archive.get(), file.c_str(), 0, 0),
+        "member '" + member + "' from " + file.string());
+  if (zip_close(archive.get()) != 0)
+    throw std::runtime_error(name + ": cannot write the MPCDI archive (" + zip_strerror(archive.get()) + ")");
+  archive.release();  // zip_close freed it
+}
+
+}  // namespace zenith::warp

@@ -1,0 +1,61 @@
+#pragma once
+// Writing MPCDI archives (VESA Multiple Projector Common Data Interchange) for
+// projectors and media servers that warp and blend themselves: one output
+// becomes one archive of the "2d" profile holding one buffer with one region
+// that spans it, and that region's geometry warp (PFM), alpha map and beta map
+// (16-bit grey PNG). What load_mpcdi() (warp/mpcdi.h) reads back:
+//
+//   <MPCDI profile="2d" geometry="1" color="1" version="2.0">
+//     <display>
+//       <buffer id="ID" xResolution="W" yResolution="H">
+//         <region id="ID" x="0" y="0" xsize="1" ysize="1" xResolution="W" yResolution="H"/>
+//       </buffer>
+//     </display>
+//     <files>
+//       <fileset region="ID">
+//         <geometryWarpFile> path, interpolation, componentDepth 2, bitDepth 32, xSamples, ySamples,
+//                            originOf2DData topLeftCorner </geometryWarpFile>
+//         <alphaMap> path, componentDepth 1, bitDepth 16, gammaEmbedded </alphaMap>
+//         <betaMap> path, componentDepth 1, bitDepth 16 </betaMap>
+//       </fileset>
+//     </files>
+//   </MPCDI>
+//
+// The geometry warp's samples start top-left and hold absolute (x, y)
+// normalized in the region's source image, (0, 0) its top-left, y down; NaN =
+// no data (docs/warp-meshes.md, "MPCDI").
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "warp/warp_mesh.h"
+
+namespace zenith::warp {
+
+/// The one region of an exported 2d-profile archive and the members holding its maps.
+struct MpcdiRegionExport {
+  std::string id;                  ///< the buffer's and the region's id: letters, digits, '-', '_', '.'
+  int width_px = 0, height_px = 0;  ///< the region's (the projector's) resolution
+  std::string warp_member;          ///< the geometry warp PFM (3 channels, top row first)
+  int warp_columns = 0, warp_rows = 0;
+  WarpInterpolation interpolation = WarpInterpolation::bilinear;  ///< "linear" or "cubic"
+  std::string alpha_member;          ///< 16-bit grey PNG
+  double alpha_gamma_embedded = 1.0;  ///< the alpha map's blend weight in linear light is value^gamma
+  std::string beta_member;           ///< 16-bit grey PNG
+};
+
+/// The mpcdi.xml text describing `region` (the layout above). Throws
+/// std::invalid_argument for an id with other characters (it is written into
+/// XML attributes unescaped), a resolution or warp size below 1, or an empty member name.
+std::string mpcdi_descriptor(const MpcdiRegionExport& region);
+
+/// Writes a ZIP archive at `path` holding "mpcdi.xml" = `descriptor` and, for
+/// each (member, file), the file's bytes under that member name. libzip writes
+/// a temporary file next to `path` and renames it on success, so a failed write
+/// leaves no archive. Throws std::runtime_error "<path>: <libzip's reason>"
+/// when the archive cannot be created or written, or a file cannot be read.
+void write_mpcdi_archive(const std::filesystem::path& path, const std::string& descriptor,
+                         const std::vector<std::pair<std::string, std::filesystem::path>>& members);
+
+}  // namespace zenith::warp
