@@ -6,8 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "cluster/show/show.h"
-#include "cluster/table_transfer.h"
+#include "show/show.h"
 
 namespace zenith::cluster {
 namespace {
@@ -54,30 +53,6 @@ void apply_frame_state(const FrameState& state, scene::Scene& scene) {
   FrameState parts = state;
   parts.atmospheres.clear();
   show::apply_state(parts, {}, scene);
-}
-
-std::uint32_t render_flags_of(const render::RenderOptions& o) {
-  std::uint32_t flags = 0;
-  if (o.sun_disc) flags |= kRenderSunDisc;
-  if (o.limb_darkening) flags |= kRenderLimbDarkening;
-  if (o.atmosphere.multiple_scattering) flags |= kRenderMultipleScattering;
-  if (o.atmosphere.eclipses) flags |= kRenderEclipses;
-  flags |= kRenderBodies;  // bodies are always drawn
-  return flags;
-}
-
-render::RenderOptions render_options_of(std::uint32_t flags) {
-  render::RenderOptions o;
-  o.sun_disc = (flags & kRenderSunDisc) != 0;
-  o.limb_darkening = (flags & kRenderLimbDarkening) != 0;
-  o.atmosphere.multiple_scattering = (flags & kRenderMultipleScattering) != 0;
-  o.atmosphere.eclipses = (flags & kRenderEclipses) != 0;
-  return o;
-}
-
-std::string state_digest(const FrameState& state) {
-  const std::vector<std::uint8_t> payload = encode_payload(state);
-  return to_hex(sha256(payload)).substr(0, 16);
 }
 
 }  // namespace zenith::cluster

@@ -6,12 +6,12 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "cluster/show/catmull_rom.h"
-#include "cluster/show/key_span.h"
-#include "cluster/show/monotone_cubic.h"
-#include "cluster/show/parameter_track.h"
-#include "cluster/show/squad.h"
-#include "cluster/show/sun_track.h"
+#include "show/catmull_rom.h"
+#include "show/key_span.h"
+#include "show/monotone_cubic.h"
+#include "show/parameter_track.h"
+#include "show/squad.h"
+#include "show/sun_track.h"
 
 namespace zenith::show {
 namespace {
