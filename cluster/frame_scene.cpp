@@ -1,12 +1,12 @@
 #include "cluster/frame_scene.h"
 
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
 #include "show/show.h"
+#include "core/units.h"
 
 namespace zenith::cluster {
 namespace {
@@ -36,7 +36,7 @@ FrameState default_show_frame(const scene::Scene& scene, std::uint64_t frame, do
   s.camera_orientation = scene.camera.orientation;
   s.exposure = scene.camera.exposure;
   // Negative: westward, as the day advances on a prograde-rotating body.
-  const double angle_rad = -static_cast<double>(frame) * sun_step_deg * std::numbers::pi / 180.0;
+  const double angle_rad = -static_cast<double>(frame) * sun_step_deg * core::kPi / 180.0;
   // Frame 0 (and every frame of a still sun) is the scene exactly as configured.
   s.sun_direction = frame == 0 || sun_step_deg == 0.0 ? scene.sun.direction
                                : glm::normalize(glm::angleAxis(angle_rad, sun_axis(scene)) * scene.sun.direction);

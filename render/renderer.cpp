@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <numbers>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -19,6 +18,7 @@
 #include <glm/mat3x3.hpp>
 
 #include "core/parallel_for.h"
+#include "core/units.h"
 #include "atmosphere/model_hash.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/tile_culling.h"
@@ -91,7 +91,7 @@ bool albedo_at_full_resolution(const scene::Scene& scene, double pixel_angle, in
   for (const scene::Body& body : scene.bodies) {
     const double D = glm::length(body.position_m - scene.camera.position_m), R = body.radius_m;
     const double farthest = std::sqrt(std::max((D - R) * (D + R), 0.0));
-    const double texel = 2.0 * std::numbers::pi * R / std::max(map_width, 1);
+    const double texel = 2.0 * core::kPi * R / std::max(map_width, 1);
     if (20.0 * pixel_angle * farthest > 0.99 * texel) return false;
   }
   return true;
@@ -523,7 +523,7 @@ Renderer::Frame Renderer::frame_constants(const scene::Scene& scene, const warp:
   for (std::size_t i = 0; i < f.n; ++i) {
     const double e = scene.sun.irradiance_W_m2_nm[i];
     if (f.sun_point_sigma > 0.0)
-      f.sun_centre[i] = e / (2.0 * std::numbers::pi * f.sun_point_sigma * f.sun_point_sigma);
+      f.sun_centre[i] = e / (2.0 * core::kPi * f.sun_point_sigma * f.sun_point_sigma);
     else
       f.sun_centre[i] = options_.limb_darkening
                             ? scene::disc_centre_radiance(e, f.sun_radius, scene.wavelengths_nm[i])
@@ -700,7 +700,7 @@ void Renderer::set_direct_light_uniforms(Frame& frame) {
     }
   }
   // Where the sun can be drawn: a cone of the disc's radius plus a pixel (or 6σ of the Gaussian).
-  frame.sun_reach = std::min(std::numbers::pi / 2, frame.sun_point_sigma > 0.0 ? 6.0 * frame.sun_point_sigma
+  frame.sun_reach = std::min(core::kPi / 2, frame.sun_point_sigma > 0.0 ? 6.0 * frame.sun_point_sigma
                                                                        : frame.sun_radius + frame.sun_pixel_angle);
 }
 

@@ -1,13 +1,13 @@
 #include "show/recording_json.h"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
 #include "core/json_reader.h"
 #include "core/sha256.h"
+#include "core/units.h"
 
 namespace zenith::show {
 namespace {
@@ -18,7 +18,7 @@ using nlohmann::json;
 
 constexpr double kMaxShowTime_s = 1e9;
 constexpr double kMaxExposure = 1e6;
-constexpr double kMaxSunAngularRadius_rad = 15.0 * std::numbers::pi / 180.0;
+constexpr double kMaxSunAngularRadius_rad = 15.0 * core::kPi / 180.0;
 
 json vec3_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 

@@ -12,11 +12,12 @@
 #include "show/parameter_track.h"
 #include "show/squad.h"
 #include "show/sun_track.h"
+#include "core/units.h"
 
 namespace zenith::show {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using core::kPi;
 
 TEST(KeySpan, LocatesTimesAmongKeys) {
   const std::vector<double> t{0.0, 2.0, 6.0};

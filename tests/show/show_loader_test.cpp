@@ -11,6 +11,7 @@
 #include "show/table_plan.h"
 #include "scene/scene_loader.h"
 #include "show_test_support.h"
+#include "core/units.h"
 
 namespace zenith::show {
 namespace {
@@ -135,7 +136,7 @@ TEST(ShowLoader, SunKeysInTheSkyFollowTheGreatCircle) {
   const glm::dvec3 up = glm::normalize(show.scene().camera.position_m);
   for (int i = 0; i <= 20; ++i) {
     const scene::FrameDescription s = show.state_at(i, 0, 0);
-    const double elevation_deg = std::asin(glm::dot(s.sun_direction, up)) * 180.0 / M_PI;
+    const double elevation_deg = std::asin(glm::dot(s.sun_direction, up)) * 180.0 / zenith::core::kPi;
     EXPECT_NEAR(elevation_deg, -8.0 + 18.0 * i / 20.0, 1e-9) << i;  // a vertical great circle, constant speed
   }
 }
