@@ -28,7 +28,7 @@
 #include "cluster/handshake.h"
 #include "cluster/master.h"
 #include "cluster/node.h"
-#include "cluster/show/show.h"
+#include "show/show.h"
 #include "core/json_reader.h"
 #include "image/image_io.h"
 #include "image/image_writer.h"

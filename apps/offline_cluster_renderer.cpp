@@ -10,7 +10,7 @@
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/handshake.h"
 #include "cluster/master.h"
-#include "cluster/show/show.h"
+#include "show/show.h"
 
 namespace zenith::app::offline {
 
@@ -75,7 +75,7 @@ void ClusterFrameRenderer::stop() {
   }
 }
 
-void ClusterFrameRenderer::render_frame(const cluster::FrameState& state,
+void ClusterFrameRenderer::render_frame(const scene::FrameDescription& state,
                                         const std::vector<std::vector<fs::path>>& files) {
   feed_->push(state);
   // Table preparation and the nodes' start come before the first frame: be patient, but not forever,

@@ -39,7 +39,7 @@ class ClusterFrameRenderer final : public FrameRenderer {
   /// (stopping any that linger).
   ~ClusterFrameRenderer() override;
 
-  void render_frame(const cluster::FrameState& state,
+  void render_frame(const scene::FrameDescription& state,
                     const std::vector<std::vector<std::filesystem::path>>& files) override;
 
  private:

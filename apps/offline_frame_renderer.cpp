@@ -7,12 +7,12 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "cluster/frame_scene.h"
+#include "render/render_flags.h"
 
 namespace zenith::app::offline {
 
 LocalFrameRenderer::LocalFrameRenderer(const show::Show& show,
-                                       std::map<cluster::Digest, show::AtmosphereVersion> versions,
+                                       std::map<scene::TableHash, show::AtmosphereVersion> versions,
                                        std::vector<LocalOutput> outputs, const OutputStage& stage,
                                        image::ColourMapping colour, render::TableRequest tables,
                                        const render::gl::ContextOptions& context)
@@ -30,7 +30,7 @@ LocalFrameRenderer::~LocalFrameRenderer() {
 }
 
 void LocalFrameRenderer::precompute_missing(const show::TablePlan& plan,
-                                            const std::set<cluster::Digest>& table_hashes) {
+                                            const std::set<scene::TableHash>& table_hashes) {
   auto needed = [&](const show::TablePlanEntry& e) { return !e.cached && table_hashes.count(e.version.table_hash) > 0; };
   const auto missing = std::count_if(plan.sets.begin(), plan.sets.end(), needed);
   std::ptrdiff_t done = 0;
@@ -51,7 +51,7 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
     // A recording may change flags between frames: a renderer per run of equal flags.
     context_.make_current();
     renderer_.reset();
-    render::RenderOptions options = cluster::render_options_of(render_flags);
+    render::RenderOptions options = render::render_options_of(render_flags);
     options.colour = colour_;
     renderer_ = std::make_unique<render::Renderer>(options, [this](const atmosphere::AtmosphereModel& model) {
       render::ObtainedTables t = render::obtain_tables(model, tables_);
@@ -63,7 +63,7 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
   return *renderer_;
 }
 
-void LocalFrameRenderer::render_frame(const cluster::FrameState& state,
+void LocalFrameRenderer::render_frame(const scene::FrameDescription& state,
                                       const std::vector<std::vector<std::filesystem::path>>& files) {
   if (files.size() != outputs_.size())
     throw std::invalid_argument(

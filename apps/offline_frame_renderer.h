@@ -14,8 +14,8 @@
 #include "apps/offline_render.h"
 #include "apps/output_rendering.h"
 #include "render/lut/table_provider.h"
-#include "cluster/show/show.h"
-#include "cluster/show/table_plan.h"
+#include "show/show.h"
+#include "show/table_plan.h"
 #include "render/gl/egl_context.h"
 #include "image/colour.h"
 #include "render/renderer.h"
@@ -35,7 +35,7 @@ class LocalFrameRenderer final : public FrameRenderer {
  public:
   /// `versions`: every atmosphere version the frames use, by table hash.
   /// `stage`: its blend fields are ignored (each output's own apply).
-  LocalFrameRenderer(const show::Show& show, std::map<cluster::Digest, show::AtmosphereVersion> versions,
+  LocalFrameRenderer(const show::Show& show, std::map<scene::TableHash, show::AtmosphereVersion> versions,
                      std::vector<LocalOutput> outputs, const OutputStage& stage, image::ColourMapping colour,
                      render::TableRequest tables, const render::gl::ContextOptions& context);
   ~LocalFrameRenderer() override;
@@ -45,16 +45,16 @@ class LocalFrameRenderer final : public FrameRenderer {
   /// Obtains every set of `plan` among `table_hashes` that is not cached yet
   /// (precomputed and stored in the cache), with a line per set; the renderer
   /// then loads each from the cache when a frame first needs it.
-  void precompute_missing(const show::TablePlan& plan, const std::set<cluster::Digest>& table_hashes);
+  void precompute_missing(const show::TablePlan& plan, const std::set<scene::TableHash>& table_hashes);
 
-  void render_frame(const cluster::FrameState& state,
+  void render_frame(const scene::FrameDescription& state,
                     const std::vector<std::vector<std::filesystem::path>>& files) override;
 
  private:
   render::Renderer& renderer_for(std::uint32_t render_flags);
 
   const show::Show& show_;
-  std::map<cluster::Digest, show::AtmosphereVersion> versions_;
+  std::map<scene::TableHash, show::AtmosphereVersion> versions_;
   std::vector<LocalOutput> outputs_;
   OutputStage stage_;
   image::ColourMapping colour_;

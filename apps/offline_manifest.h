@@ -38,7 +38,7 @@ struct ManifestFile {
 };
 
 struct ManifestFrame {
-  std::string state_digest;  ///< cluster::state_digest of the state it was rendered from
+  std::string state_digest;  ///< RenderJob::frame_digest of the state it was rendered from
   std::vector<ManifestFile> files;
   bool operator==(const ManifestFrame&) const = default;
 };

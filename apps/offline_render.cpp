@@ -14,7 +14,6 @@
 #include "core/progress_bar.h"
 #include "core/json_reader.h"
 #include "core/sha256.h"
-#include "cluster/frame_scene.h"
 #include "image/contact_sheet.h"
 #include "core/timing.h"
 
@@ -37,6 +36,7 @@ std::string format_duration(double seconds) {
 
 void check_job(const RenderJob& job) {
   if (job.show == nullptr) throw std::invalid_argument("offline render: no show");
+  if (!job.frame_digest) throw std::invalid_argument("offline render: no frame digest");
   if (!(job.fps > 0.0 && job.fps <= 1000.0))
     throw std::invalid_argument(fmt::format("--fps {}: must be in (0, 1000] frames per second", job.fps));
   const std::uint64_t count = job.show->frame_count(job.fps);
@@ -159,22 +159,22 @@ RenderSummary run_render_job(const RenderJob& job, FrameRenderer& renderer) {
   RenderSummary summary;
   summary.frames = job.last_frame - job.first_frame + 1;
   std::vector<std::uint64_t> pending;
-  std::set<cluster::Digest> pending_tables;  // the table sets the pending frames use
+  std::set<scene::TableHash> pending_tables;  // the table sets the pending frames use
   {
     core::ProgressBar bar("checking");
     std::uint64_t in_manifest = 0;
     for (std::uint64_t frame = job.first_frame; frame <= job.last_frame; ++frame) {
-      const cluster::FrameState state =
+      const scene::FrameDescription state =
           job.show->state_at(job.show->frame_time_s(frame, job.fps), frame, job.render_flags);
       const FrameFiles files = files_of(job, keys, frame);
       const FrameCheck check =
-          check_frame(manifest, frame, cluster::state_digest(state), files.expected, job.out_dir);
+          check_frame(manifest, frame, job.frame_digest(state), files.expected, job.out_dir);
       if (check.skip) {
         ++summary.skipped;
         manifest.frames[frame].files = check.files;  // only what this run would write
       } else {
         pending.push_back(frame);
-        for (const cluster::AtmosphereTableRef& ref : state.atmospheres) pending_tables.insert(ref.table_hash);
+        for (const scene::AtmosphereTableRef& ref : state.atmospheres) pending_tables.insert(ref.table_hash);
         if (manifest.frames.count(frame) > 0) {
           ++in_manifest;
           spdlog::info("frame {}: rendering again: {}", frame, check.reason);
@@ -199,13 +199,13 @@ RenderSummary run_render_job(const RenderJob& job, FrameRenderer& renderer) {
     try {
       for (std::size_t n = 0; n < pending.size(); ++n) {
         const std::uint64_t frame = pending[n];
-        const cluster::FrameState state =
+        const scene::FrameDescription state =
             job.show->state_at(job.show->frame_time_s(frame, job.fps), frame, job.render_flags);
         const FrameFiles files = files_of(job, keys, frame);
         manifest.frames.erase(frame);  // until its files are hashed
         renderer.render_frame(state, files.paths);
         ManifestFrame& record = manifest.frames[frame];
-        record.state_digest = cluster::state_digest(state);
+        record.state_digest = job.frame_digest(state);
         for (std::size_t k = 0; k < files.expected.size(); ++k) {
           const std::filesystem::path& path =
               files.paths[k / job.formats.size()][k % job.formats.size()];

@@ -22,8 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cluster/messages.h"
-#include "cluster/show/show.h"
+#include "scene/frame_description.h"
+#include "show/show.h"
 #include "image/tone_mapping.h"
 
 namespace zenith::app::offline {
@@ -57,7 +57,7 @@ std::string frame_file_path(const std::string& output, std::uint64_t frame, Imag
 class FrameRenderer {
  public:
   virtual ~FrameRenderer() = default;
-  virtual void render_frame(const cluster::FrameState& state,
+  virtual void render_frame(const scene::FrameDescription& state,
                             const std::vector<std::vector<std::filesystem::path>>& files) = 0;
 };
 
@@ -83,8 +83,12 @@ struct RenderJob {
   /// Called once the frames to render are known, before the first renders,
   /// with their number and the table sets (hashes) their states use; not
   /// called when there are none. E.g. to precompute those tables ahead.
-  std::function<void(std::uint64_t frames_to_render, const std::set<cluster::Digest>& table_hashes)>
+  std::function<void(std::uint64_t frames_to_render, const std::set<scene::TableHash>& table_hashes)>
       before_rendering;
+  /// The fingerprint of a frame's description that the manifest stores and a
+  /// resume compares (required). `zenith show render` passes
+  /// cluster::state_digest, the one the cluster nodes write to presented.log.
+  std::function<std::string(const scene::FrameDescription&)> frame_digest;
 };
 
 struct RenderSummary {

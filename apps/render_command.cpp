@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -35,6 +34,7 @@
 #include "render/window/window_context.h"
 #include "warp/blending.h"
 #include "warp/viewport_config.h"
+#include "core/units.h"
 
 namespace zenith::app {
 namespace {
@@ -112,7 +112,7 @@ void render_to_files(render::Renderer& renderer, const scene::Scene& scene, cons
 // ---------------------------------------------------------------------------
 // The window's view controls: how keys move the camera and the sun.
 
-constexpr double kTurnStepRad = 2.0 * std::numbers::pi / 180.0;  ///< arrows, ',' and '.'
+constexpr double kTurnStepRad = 2.0 * core::kPi / 180.0;  ///< arrows, ',' and '.'
 constexpr double kFastTurnFactor = 5.0;                          ///< with Shift
 constexpr double kMoveFraction = 0.1;                            ///< PageUp/PageDown: of the altitude
 constexpr double kMinAltitudeM = 1.0;                            ///< the camera stays this high above every body

@@ -25,9 +25,10 @@
 #include "core/json_reader.h"
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/cluster_config.h"
-#include "cluster/frame_scene.h"
-#include "cluster/show/show.h"
-#include "cluster/show/table_plan.h"
+#include "cluster/state_digest.h"
+#include "render/render_flags.h"
+#include "show/show.h"
+#include "show/table_plan.h"
 #include "image/colour.h"
 #include "warp/dome_tiles.h"
 
@@ -192,7 +193,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   fmt::print("{}", show::describe(plan));
   std::fflush(stdout);
 
-  std::map<cluster::Digest, show::AtmosphereVersion> versions;
+  std::map<scene::TableHash, show::AtmosphereVersion> versions;
   for (const show::TablePlanEntry& entry : plan.sets) versions.emplace(entry.version.table_hash, entry.version);
 
   offline::RenderJob job;
@@ -200,7 +201,8 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   job.fps = fps;
   job.first_frame = first;
   job.last_frame = last;
-  job.render_flags = cluster::render_flags_of(render::RenderOptions{});
+  job.render_flags = render::render_flags_of(render::RenderOptions{});
+  job.frame_digest = cluster::state_digest;
   job.outputs = outputs.specs;
   job.formats = formats;
   job.settings = cat("scene sha256 ", offline::file_sha256(show.scene_path()), "; tables ", table_args.tables,
@@ -251,7 +253,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
     if (!a.tables.cache_dir.empty()) settings.cache_directory = std::filesystem::path(a.tables.cache_dir);
     settings.cpu_precompute = a.tables.cpu_precompute;
     std::optional<offline::ClusterFrameRenderer> cluster_renderer;
-    job.before_rendering = [&](std::uint64_t frames, const std::set<cluster::Digest>&) {
+    job.before_rendering = [&](std::uint64_t frames, const std::set<scene::TableHash>&) {
       spdlog::info("rendering {} frame{} of '{}' at {} fps on the nodes of {} into {}/<output>/<output>.NNNNNN.{}",
                    frames, frames == 1 ? "" : "s", show.name(), fps, a.cluster, a.out, cluster_config->output_format);
       cluster_renderer.emplace(settings);
@@ -260,7 +262,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
     struct Deferred final : offline::FrameRenderer {
       std::optional<offline::ClusterFrameRenderer>& renderer;
       explicit Deferred(std::optional<offline::ClusterFrameRenderer>& r) : renderer(r) {}
-      void render_frame(const cluster::FrameState& state,
+      void render_frame(const scene::FrameDescription& state,
                         const std::vector<std::vector<std::filesystem::path>>& files) override {
         renderer->render_frame(state, files);
       }
@@ -275,7 +277,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   context_options.prefer = render::gl::parse_device_preference(a.device);
   offline::LocalFrameRenderer renderer(show, std::move(versions), std::move(outputs.local), OutputStage{tone, exr_type},
                                        colour, request, context_options);
-  job.before_rendering = [&](std::uint64_t frames, const std::set<cluster::Digest>& table_hashes) {
+  job.before_rendering = [&](std::uint64_t frames, const std::set<scene::TableHash>& table_hashes) {
     spdlog::info("rendering {} frame{} of '{}' at {} fps into {}/<output>/<output>.NNNNNN.{} on {}", frames,
                  frames == 1 ? "" : "s", show.name(), fps, a.out, a.format, renderer.device());
     renderer.precompute_missing(plan, table_hashes);

@@ -36,6 +36,7 @@
 #include "core/json_reader.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/sky_sampling.h"
+#include "core/units.h"
 
 namespace zenith::app {
 namespace {
@@ -43,7 +44,7 @@ namespace {
 using atmosphere::CieSkyType;
 using config::cat;
 
-constexpr double kDegree = atmosphere::kPi / 180.0;
+using core::kDeg;
 constexpr double kObserverAltitude_m = 1.5;  ///< a person standing on the ground
 constexpr double kMaxViewZenith_deg = 85.0;
 /// Beyond this distance from the sun the sky is outside the aureole (the Mie
@@ -232,8 +233,8 @@ VariantResult evaluate_variant(const Variant& v, const ValidateCieArgs& a, const
     SunCase c{sun_zenith, {}};
     for (std::size_t i = 1; i < samples.size(); ++i) {
       const auto& d = samples[i].direction;
-      const double z = d.zenith_deg * kDegree, az = d.azimuth_deg * kDegree, zs = sun_zenith * kDegree;
-      Point p{d.zenith_deg, d.azimuth_deg, atmosphere::cie_sun_distance_rad(z, az, zs) / kDegree,
+      const double z = d.zenith_deg * kDeg, az = d.azimuth_deg * kDeg, zs = sun_zenith * kDeg;
+      Point p{d.zenith_deg, d.azimuth_deg, atmosphere::cie_sun_distance_rad(z, az, zs) / kDeg,
               luminance(samples[i].radiance) / zenith_luminance, {}, false};
       p.excluded = p.sun_distance_deg < a.exclude_sun_deg - 1e-6;
       for (const CieSkyType& type : types) p.cie.push_back(atmosphere::cie_relative_luminance(type, z, az, zs));

@@ -4,19 +4,20 @@
 
 #include "atmosphere/constants.h"
 #include "atmosphere/photometry.h"
+#include "core/units.h"
 
 namespace zenith::atmosphere {
 
 namespace {
-constexpr double kDegree = kPi / 180.0;
+using core::kDeg;
 }
 
 Vec3 SkyGeometry::sun_direction() const {
-  return direction_from_angles(sun_zenith_deg * kDegree, sun_azimuth_deg * kDegree);
+  return direction_from_angles(sun_zenith_deg * kDeg, sun_azimuth_deg * kDeg);
 }
 
 Vec3 view_vector(const ViewDirection& d) {
-  return direction_from_angles(d.zenith_deg * kDegree, d.azimuth_deg * kDegree);
+  return direction_from_angles(d.zenith_deg * kDeg, d.azimuth_deg * kDeg);
 }
 
 std::vector<RadianceSample> sample_radiance(const lut::TableQueries& tables, const SkyGeometry& geometry,

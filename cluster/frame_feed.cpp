@@ -5,7 +5,7 @@
 
 namespace zenith::cluster {
 
-void FrameFeed::push(FrameState state) {
+void FrameFeed::push(scene::FrameDescription state) {
   {
     std::lock_guard lock(mutex_);
     const std::optional<std::uint64_t> previous =
@@ -37,7 +37,7 @@ bool FrameFeed::stopped() const {
   return stopped_;
 }
 
-FrameFeed::Next FrameFeed::pop(FrameState& state) {
+FrameFeed::Next FrameFeed::pop(scene::FrameDescription& state) {
   std::lock_guard lock(mutex_);
   if (!queue_.empty()) {
     state = std::move(queue_.front());

@@ -11,7 +11,7 @@
 #include <mutex>
 #include <optional>
 
-#include "cluster/messages.h"
+#include "scene/frame_description.h"
 
 namespace zenith::cluster {
 
@@ -19,7 +19,7 @@ class FrameFeed {
  public:
   // ---- the producer ----
   /// Queues a frame's state (frame numbers must increase).
-  void push(FrameState state);
+  void push(scene::FrameDescription state);
   /// No more frames: the master says Goodbye once the queue is empty.
   void finish();
   /// Blocks until frame `frame` was presented (true), the master stopped or
@@ -31,7 +31,7 @@ class FrameFeed {
   // ---- the master ----
   enum class Next { frame, wait, finished };
   /// The next state to render, if any: Next::frame fills `state`.
-  Next pop(FrameState& state);
+  Next pop(scene::FrameDescription& state);
   void presented(std::uint64_t frame);
   void master_stopped();
   /// finish() was called and every queued frame was taken.
@@ -40,7 +40,7 @@ class FrameFeed {
  private:
   mutable std::mutex mutex_;
   std::condition_variable changed_;
-  std::deque<FrameState> queue_;
+  std::deque<scene::FrameDescription> queue_;
   std::optional<std::uint64_t> last_presented_;
   bool finished_ = false, stopped_ = false;
 };

@@ -1,13 +1,12 @@
 #include "cluster/frame_scene.h"
 
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
-#include "cluster/show/show.h"
-#include "cluster/table_transfer.h"
+#include "show/show.h"
+#include "core/units.h"
 
 namespace zenith::cluster {
 namespace {
@@ -37,7 +36,7 @@ FrameState default_show_frame(const scene::Scene& scene, std::uint64_t frame, do
   s.camera_orientation = scene.camera.orientation;
   s.exposure = scene.camera.exposure;
   // Negative: westward, as the day advances on a prograde-rotating body.
-  const double angle_rad = -static_cast<double>(frame) * sun_step_deg * std::numbers::pi / 180.0;
+  const double angle_rad = -static_cast<double>(frame) * sun_step_deg * core::kPi / 180.0;
   // Frame 0 (and every frame of a still sun) is the scene exactly as configured.
   s.sun_direction = frame == 0 || sun_step_deg == 0.0 ? scene.sun.direction
                                : glm::normalize(glm::angleAxis(angle_rad, sun_axis(scene)) * scene.sun.direction);
@@ -54,30 +53,6 @@ void apply_frame_state(const FrameState& state, scene::Scene& scene) {
   FrameState parts = state;
   parts.atmospheres.clear();
   show::apply_state(parts, {}, scene);
-}
-
-std::uint32_t render_flags_of(const render::RenderOptions& o) {
-  std::uint32_t flags = 0;
-  if (o.sun_disc) flags |= kRenderSunDisc;
-  if (o.limb_darkening) flags |= kRenderLimbDarkening;
-  if (o.atmosphere.multiple_scattering) flags |= kRenderMultipleScattering;
-  if (o.atmosphere.eclipses) flags |= kRenderEclipses;
-  flags |= kRenderBodies;  // bodies are always drawn
-  return flags;
-}
-
-render::RenderOptions render_options_of(std::uint32_t flags) {
-  render::RenderOptions o;
-  o.sun_disc = (flags & kRenderSunDisc) != 0;
-  o.limb_darkening = (flags & kRenderLimbDarkening) != 0;
-  o.atmosphere.multiple_scattering = (flags & kRenderMultipleScattering) != 0;
-  o.atmosphere.eclipses = (flags & kRenderEclipses) != 0;
-  return o;
-}
-
-std::string state_digest(const FrameState& state) {
-  const std::vector<std::uint8_t> payload = encode_payload(state);
-  return to_hex(sha256(payload)).substr(0, 16);
 }
 
 }  // namespace zenith::cluster

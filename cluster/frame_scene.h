@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "cluster/messages.h"
-#include "render/renderer.h"
 #include "scene/scene.h"
 
 namespace zenith::cluster {
@@ -25,13 +24,5 @@ FrameState default_show_frame(const scene::Scene& scene, std::uint64_t frame, do
 /// Throws std::invalid_argument when the state's irradiance does not hold one
 /// value per scene wavelength (master and node read different scenes).
 void apply_frame_state(const FrameState& state, scene::Scene& scene);
-
-/// RenderFlag bits ↔ renderer options.
-std::uint32_t render_flags_of(const render::RenderOptions& options);
-render::RenderOptions render_options_of(std::uint32_t render_flags);
-
-/// First 16 hex digits of the SHA-256 of the state's wire payload: equal on
-/// every node that received the same state (written to presented.log).
-std::string state_digest(const FrameState& state);
 
 }  // namespace zenith::cluster

@@ -27,9 +27,10 @@
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/operator_input.h"
 #include "cluster/master/table_versions.h"
-#include "cluster/show/playback_clock.h"
-#include "cluster/show/show.h"
-#include "cluster/show/table_plan.h"
+#include "show/playback_clock.h"
+#include "show/show.h"
+#include "show/table_plan.h"
+#include "render/render_flags.h"
 #include "cluster/table_transfer.h"
 #include "scene/scene_loader.h"
 #include "core/timing.h"
@@ -630,7 +631,7 @@ struct Master::Impl {
   }
 
   int run() {
-    render_flags = render_flags_of(render::RenderOptions{});
+    render_flags = render::render_flags_of(render::RenderOptions{});
     fps = options.config.frame_rate_hz;
     if (options.show) {
       if (!options.atmosphere_switches.empty())

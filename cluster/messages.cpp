@@ -312,32 +312,7 @@ void put_be32(std::uint8_t* p, std::uint32_t v) {
 
 }  // namespace
 
-std::string to_hex(const Digest& digest) {
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string out;
-  out.reserve(64);
-  for (std::uint8_t b : digest) {
-    out += kHex[b >> 4];
-    out += kHex[b & 15];
-  }
-  return out;
-}
-
 std::string short_hex(const Digest& digest) { return to_hex(digest).substr(0, 12) + "…"; }
-
-Digest digest_from_hex(std::string_view hex) {
-  if (hex.size() != 64)
-    throw std::invalid_argument("digest: expected 64 hex digits, got " + std::to_string(hex.size()) + " characters");
-  const auto nibble = [&](char c) -> std::uint8_t {
-    if (c >= '0' && c <= '9') return static_cast<std::uint8_t>(c - '0');
-    if (c >= 'a' && c <= 'f') return static_cast<std::uint8_t>(c - 'a' + 10);
-    if (c >= 'A' && c <= 'F') return static_cast<std::uint8_t>(c - 'A' + 10);
-    throw std::invalid_argument("digest: '" + std::string(hex) + "' is not hexadecimal");
-  };
-  Digest d{};
-  for (std::size_t i = 0; i < 32; ++i) d[i] = static_cast<std::uint8_t>(nibble(hex[2 * i]) << 4 | nibble(hex[2 * i + 1]));
-  return d;
-}
 
 const char* to_string(MessageType type) {
   switch (type) {

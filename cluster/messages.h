@@ -26,10 +26,9 @@
 #include <variant>
 #include <vector>
 
-#include <glm/gtc/quaternion.hpp>
-#include <glm/vec3.hpp>
-
 #include "cluster/protocol_error.h"
+#include "core/sha256.h"
+#include "scene/frame_description.h"
 
 namespace zenith::cluster {
 
@@ -41,23 +40,23 @@ inline constexpr std::size_t kHeaderBytes = 20;
 // Field limits.
 inline constexpr std::size_t kMaxNameBytes = 64;          ///< cluster, node and body names (UTF-8 bytes)
 inline constexpr std::size_t kMaxReasonBytes = 1024;      ///< Reject / Goodbye text (UTF-8 bytes)
-inline constexpr std::size_t kMaxWavelengths = 64;        ///< FrameState sun irradiance samples
-inline constexpr std::size_t kMaxAtmospheres = 8;         ///< FrameState atmosphere table references
+using scene::kMaxWavelengths;                             ///< FrameState sun irradiance samples
+using scene::kMaxAtmospheres;                             ///< FrameState atmosphere table references
 inline constexpr std::size_t kMaxTableChunkBytes = std::size_t{1} << 20;        ///< 1 MiB per TableChunk
 inline constexpr std::uint64_t kMaxTableTotalBytes = std::uint64_t{1} << 31;    ///< 2 GiB per table set
 inline constexpr std::size_t kMaxDefinitionBytes = std::size_t{256} << 10;     ///< 256 KiB of atmosphere JSON
 /// Tolerance on |q| − 1 and |sun direction| − 1 accepted from the wire.
-inline constexpr double kUnitTolerance = 1e-6;
+using scene::kUnitTolerance;
 
-using Digest = std::array<std::uint8_t, 32>;  ///< SHA-256 / HMAC-SHA256 output
+using Digest = core::Sha256Digest;            ///< SHA-256 / HMAC-SHA256 output
 using Nonce = std::array<std::uint8_t, 32>;   ///< handshake nonce (RAND_bytes)
 
-/// 64 lowercase hex digits.
-std::string to_hex(const Digest& digest);
+/// 64 lowercase hex digits (core/sha256.h).
+using core::to_hex;
 /// The first 12 hex digits and "…": a table version in log lines.
 std::string short_hex(const Digest& digest);
-/// Parses 64 hex digits (either case); throws std::invalid_argument otherwise.
-Digest digest_from_hex(std::string_view hex);
+/// Parses 64 hex digits (either case); throws std::invalid_argument otherwise (core/sha256.h).
+using core::digest_from_hex;
 
 /// Wire values of the message types. Values are never reused.
 enum class MessageType : std::uint16_t {
@@ -127,39 +126,25 @@ struct Reject {
 
 // ---- frames ----------------------------------------------------------------
 
-/// Bits of FrameState::render_flags. Bits outside kKnownRenderFlags must be 0.
-enum RenderFlag : std::uint32_t {
-  kRenderSunDisc = 1u << 0,
-  kRenderLimbDarkening = 1u << 1,
-  kRenderMultipleScattering = 1u << 2,
-  kRenderEclipses = 1u << 3,
-  kRenderBodies = 1u << 4,
-};
-inline constexpr std::uint32_t kKnownRenderFlags = (1u << 5) - 1;
+/// Bits of FrameState::render_flags (scene/frame_description.h). Bits
+/// outside kKnownRenderFlags must be 0.
+using scene::RenderFlag;
+using scene::kRenderSunDisc;
+using scene::kRenderLimbDarkening;
+using scene::kRenderMultipleScattering;
+using scene::kRenderEclipses;
+using scene::kRenderBodies;
+using scene::kKnownRenderFlags;
 
-/// Which lookup-table set an atmosphere uses, from which frame on.
-struct AtmosphereTableRef {
-  std::string body_name;                  ///< 1..kMaxNameBytes UTF-8 bytes; the scene's body
-  Digest table_hash{};                    ///< atmosphere::lookup_table_hash as 32 raw bytes
-  std::uint64_t effective_from_frame = 0; ///< nodes switch tables at this frame (all at once)
-  bool operator==(const AtmosphereTableRef&) const = default;
-};
+/// Which lookup-table set an atmosphere uses, from which frame on. body_name:
+/// 1..kMaxNameBytes UTF-8 bytes.
+using AtmosphereTableRef = scene::AtmosphereTableRef;
 
-/// Everything a node needs to render one frame. Vectors in the scene's world
-/// frame (scene/scene.h). Every f64 must be finite.
-struct FrameState {
-  std::uint64_t frame = 0;
-  double show_time_s = 0.0;
-  glm::dvec3 camera_position_m{0.0};
-  glm::dquat camera_orientation{1, 0, 0, 0};  ///< camera → world, unit; wire order w, x, y, z
-  double exposure = 10.0;                     ///< radiance multiplier before tone mapping, > 0
-  glm::dvec3 sun_direction{0, 0, 1};          ///< unit, toward the sun
-  double sun_angular_radius_rad = 0.0;        ///< ≥ 0
-  std::vector<double> sun_irradiance_W_m2_nm; ///< ≤ kMaxWavelengths values, each ≥ 0
-  std::vector<AtmosphereTableRef> atmospheres;  ///< ≤ kMaxAtmospheres
-  std::uint32_t render_flags = 0;             ///< RenderFlag bits
-  bool operator==(const FrameState&) const = default;
-};
+/// Everything a node needs to render one frame: the frame's description, which
+/// the protocol serializes field by field (docs/protocol.md; wire order of the
+/// camera orientation w, x, y, z). Every f64 must be finite.
+using FrameState = scene::FrameDescription;
+
 struct RenderDone {
   std::uint64_t frame = 0;
   double render_ms = 0.0;  ///< finite, ≥ 0

@@ -9,5 +9,7 @@ namespace zenith::core {
 inline constexpr double kPi = std::numbers::pi;
 /// Radians per degree: angle_rad = angle_deg * kDeg.
 inline constexpr double kDeg = kPi / 180.0;
+/// Degrees per radian: angle_deg = angle_rad * kRadToDeg.
+inline constexpr double kRadToDeg = 180.0 / kPi;
 
 }  // namespace zenith::core

@@ -41,6 +41,8 @@
 
 namespace zenith::render {
 
+class PassTimer;  // render/frame/pass_timer.h
+
 /// Whether an atmosphere whose shell holds the camera reads the in-scattering
 /// (and the ground's light) along view rays from a per-frame sky-view table
 /// (render/frame/sky_view_table.h, docs/rendering-performance.md) instead of the 4D tables.
@@ -118,6 +120,53 @@ class Renderer {
 
  private:
   struct Impl;
+  struct Frame;      ///< one frame in progress: constants, bodies, atmospheres, programs (renderer.cpp)
+  struct BandTiles;  ///< one band's tiles sorted by how they are drawn (renderer.cpp)
+
+  // The steps of render(), in this order. Each issues its GL calls in the
+  // order the one function did, so the images stay the same bit for bit.
+
+  /// Throws std::invalid_argument for a scene the renderer cannot draw
+  /// (no wavelengths, too many bodies, a sun spectrum of another length).
+  void check_scene(const scene::Scene& scene) const;
+  /// The frame's constants in double on the CPU: camera and sun, pixel
+  /// footprints, colour weights, the sun's centre radiance and limb exponents.
+  Frame frame_constants(const scene::Scene& scene, const warp::Projection& projection) const;
+  /// The projection's tile cones, rebuilt (and the ray tables dropped) when the projection changed.
+  void update_tile_cones(Frame& frame);
+  /// The bodies camera-relative for the GPU, the atmosphere passes front to
+  /// back, the albedo array texture; uploads and binds the bodies buffer.
+  void prepare_bodies(Frame& frame);
+  /// The tables of every atmosphere the view touches, uploaded when not resident.
+  void make_tables_resident(Frame& frame);
+  /// The sky-view table of each atmosphere whose shell holds the camera (once per table set).
+  void fill_sky_view_tables(Frame& frame, PassTimer& timer);
+  /// The uniforms every pass shares and the frame's programs (compiled on first use).
+  void prepare_programs(Frame& frame);
+  /// direct_light.comp's colour matrix and sun spectrum; where the sun can be drawn.
+  void set_direct_light_uniforms(Frame& frame);
+  /// The frame band by band: each band's tiles drawn, read back and handed to `sink`.
+  void render_bands(Frame& frame, const RowSink& sink, PassTimer& timer);
+
+  // The steps of one band, in this order.
+
+  /// Rays of a ray-table projection for this band (computed once, kept), uploaded and bound.
+  void upload_ray_table(const Frame& frame, int first_row, int rows);
+  /// Which tiles of the band each pass draws (no GL): one-pass atmosphere
+  /// tiles by variant, G-buffer path tiles, direct tiles, black tiles.
+  BandTiles classify_band_tiles(Frame& frame, int first_row, int rows);
+  /// The band's tile lists into the tiles buffer; binds it and the output buffer.
+  void upload_tile_lists(const BandTiles& band);
+  /// Tiles no atmosphere touches: bodies and the sun, one pass each, every wavelength.
+  void draw_direct_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
+  /// Tiles one atmosphere touches: a pass per wavelength group and variant, straight to the output.
+  void draw_one_pass_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
+  /// Tiles where shells overlap: the G-buffer, then per wavelength group the
+  /// atmospheres front to back and the resolve.
+  void draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
+  /// The band's rows as RGB floats from the output buffer (zeros for black tiles) into `rows_rgb`.
+  void read_back_band(const Frame& frame, const BandTiles& band, std::vector<float>& rows_rgb, PassTimer& timer);
+
   RenderOptions options_;
   TableSource table_source_;
   std::unique_ptr<Impl> impl_;

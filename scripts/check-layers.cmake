@@ -7,9 +7,10 @@
 #   image/       core                       EXR/PNG files, tone mapping, colour
 #   atmosphere/  core                       the physics; no GL
 #   warp/        core                       projections, warp meshes, blending; no GL
-#   scene/       core, image, atmosphere    scenes, albedo maps, the sun's disc; no GL
-#   render/      the above                  GL, tables on the GPU, the frame renderer
-#   cluster/     the above and render       master, node, protocol, shows
+#   scene/       core, image, atmosphere    scenes, albedo maps, the sun's disc, frame descriptions; no GL
+#   show/        core, image, atmosphere, scene   shows, playback clock, table plans; no GL, no protocol
+#   render/      core … scene (not show)    GL, tables on the GPU, the frame renderer
+#   cluster/     the above, show and render master, node, protocol
 #   apps/        all of the above           the `zenith` command
 #   (bench/ and tests/ may include anything)
 #
@@ -27,15 +28,16 @@ if(NOT SOURCE_DIR)
 endif()
 get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 
-set(modules core image atmosphere warp scene render cluster apps)
+set(modules core image atmosphere warp scene show render cluster apps)
 set(allowed_core "")
 set(allowed_image core)
 set(allowed_atmosphere core)
 set(allowed_warp core)
 set(allowed_scene core image atmosphere)
+set(allowed_show core image atmosphere scene)
 set(allowed_render core image atmosphere warp scene)
-set(allowed_cluster core image atmosphere warp scene render)
-set(allowed_apps core image atmosphere warp scene render cluster)
+set(allowed_cluster core image atmosphere warp scene show render)
+set(allowed_apps core image atmosphere warp scene show render cluster)
 
 set(violations 0)
 set(files 0)

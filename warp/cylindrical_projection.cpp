@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -11,11 +10,12 @@
 #include <glm/geometric.hpp>
 
 #include "warp/planar_projection.h"
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
+using core::kDeg;
 constexpr double kMaxEdgeDeg = 89.0;  // |down|, |up| < 89°: tan stays below 57.3, as PlanarFrustum
 
 /// The shortest text that reads back as `value` ("-30", "89.0000001").
@@ -83,9 +83,9 @@ CylindricalProjection::CylindricalProjection(int width_px, int height_px, const 
   check_range("pitch_deg", p.pitch_deg, -90.0, false, 90.0, false);
   check_range("roll_deg", p.roll_deg, -180.0, false, 180.0, false);
 
-  tan_down_ = std::tan(p.down_deg * kDegToRad);
-  tan_up_ = std::tan(p.up_deg * kDegToRad);
-  rad_per_px_ = p.horizontal_fov_deg * kDegToRad / width_px;
+  tan_down_ = std::tan(p.down_deg * kDeg);
+  tan_up_ = std::tan(p.up_deg * kDeg);
+  rad_per_px_ = p.horizontal_fov_deg * kDeg / width_px;
   tan_per_px_y_ = (tan_down_ - tan_up_) / height_px;
   // Half a turn in pixels, from the degrees so that a 360° cylinder gets exactly
   // width / 2 (π / k_φ may round either way).

@@ -1,9 +1,9 @@
 #include "warp/equirectangular_projection.h"
+#include "core/units.h"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -13,8 +13,8 @@
 namespace zenith::warp {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-constexpr double kPi = std::numbers::pi;
+using core::kPi;
+using core::kDeg;
 
 /// The shortest text that reads back as `value` ("-180", "89.5").
 std::string number(double value) {
@@ -48,7 +48,7 @@ double equirectangular_max_pixel_angle_rad(const EquirectangularParameters& p, d
   // The sphere's metric dβ² + cos²β dλ² is largest across where |β| is smallest;
   // a straight segment between two points of one pixel stays in the image
   // rectangle and moves at most one pixel in x and in y.
-  const double nearest_latitude_rad = std::clamp(0.0, p.latitude_min_deg, p.latitude_max_deg) * kDegToRad;
+  const double nearest_latitude_rad = std::clamp(0.0, p.latitude_min_deg, p.latitude_max_deg) * kDeg;
   const double across = std::cos(nearest_latitude_rad) * rad_per_px_x;
   return std::hypot(across, rad_per_px_y);
 }
@@ -75,10 +75,10 @@ EquirectangularProjection::EquirectangularProjection(int width_px, int height_px
          number(p.latitude_max_deg));
 
   const double longitude_range_deg = p.longitude_max_deg - p.longitude_min_deg;
-  centre_longitude_rad_ = 0.5 * (p.longitude_min_deg + p.longitude_max_deg) * kDegToRad;
-  centre_latitude_rad_ = 0.5 * (p.latitude_min_deg + p.latitude_max_deg) * kDegToRad;
-  rad_per_px_x_ = longitude_range_deg * kDegToRad / width_px;
-  rad_per_px_y_ = -(p.latitude_max_deg - p.latitude_min_deg) * kDegToRad / height_px;
+  centre_longitude_rad_ = 0.5 * (p.longitude_min_deg + p.longitude_max_deg) * kDeg;
+  centre_latitude_rad_ = 0.5 * (p.latitude_min_deg + p.latitude_max_deg) * kDeg;
+  rad_per_px_x_ = longitude_range_deg * kDeg / width_px;
+  rad_per_px_y_ = -(p.latitude_max_deg - p.latitude_min_deg) * kDeg / height_px;
   half_turn_px_ = 0.5 * width_px * (360.0 / longitude_range_deg);  // exactly width / 2 for 360°
 
   GpuProjection gpu;
@@ -103,7 +103,7 @@ std::optional<glm::dvec3> EquirectangularProjection::ray(double x_px, double y_p
   const double latitude_deg = (1.0 - t) * parameters_.latitude_max_deg + t * parameters_.latitude_min_deg;
   if (!(std::abs(latitude_deg) <= 90.0)) return std::nullopt;
   const double lambda = centre_longitude_rad_ + from_centre_px * rad_per_px_x_;
-  const double beta = latitude_deg * kDegToRad;
+  const double beta = latitude_deg * kDeg;
   const double cos_beta = std::cos(beta);
   return glm::normalize(glm::dvec3(cos_beta * std::sin(lambda), std::sin(beta), -cos_beta * std::cos(lambda)));
 }

@@ -1,4 +1,5 @@
 #include "warp/fisheye_projection.h"
+#include "core/units.h"
 
 #include <algorithm>
 #include <charconv>
@@ -13,7 +14,7 @@
 namespace zenith::warp {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
+using core::kDeg;
 constexpr double kMaxPositionPx = 1e6;  // centre and radius: far beyond any image, finite
 // pixel() accepts directions this far past fov / 2 (radians), so that the rays
 // ray() gives on the rim, whose angle atan2 may round up, map back.
@@ -51,7 +52,7 @@ FisheyeProjection::FisheyeProjection(int width_px, int height_px, const FisheyeP
   check_range("centre_y_px", centre_y_px_, -kMaxPositionPx, kMaxPositionPx, "px");
   check_range("radius_px", radius_px_, 0.0, kMaxPositionPx, "px", /*open_lo=*/true);
 
-  half_fov_rad_ = 0.5 * fov_deg_ * kDegToRad;
+  half_fov_rad_ = 0.5 * fov_deg_ * kDeg;
   rad_per_px_ = half_fov_rad_ / radius_px_;
 
   // The untilted dome: axis up (+y), image right +x, image up +z (backward), so
@@ -59,13 +60,13 @@ FisheyeProjection::FisheyeProjection(int width_px, int height_px, const FisheyeP
   // by ρ: the pixel offset (dx, dy) shows what the unspun image has at the offset
   // turned back by −ρ, (dx cos ρ + dy sin ρ, −dx sin ρ + dy cos ρ); collecting
   // dx and dy gives the spun basis vectors below.
-  const double cos_rho = std::cos(rotation_deg_ * kDegToRad), sin_rho = std::sin(rotation_deg_ * kDegToRad);
+  const double cos_rho = std::cos(rotation_deg_ * kDeg), sin_rho = std::sin(rotation_deg_ * kDeg);
   const glm::dvec3 right(cos_rho, 0.0, -sin_rho);  // cos ρ · x̂ − sin ρ · ẑ
   const glm::dvec3 up(sin_rho, 0.0, cos_rho);      // sin ρ · x̂ + cos ρ · ẑ
   const glm::dvec3 axis(0.0, 1.0, 0.0);
   // The tilt turns +y toward −z: a right-handed turn by −tilt about +x,
   // (x, y, z) → (x, y cos t + z sin t, −y sin t + z cos t).
-  const double cos_t = std::cos(tilt_deg_ * kDegToRad), sin_t = std::sin(tilt_deg_ * kDegToRad);
+  const double cos_t = std::cos(tilt_deg_ * kDeg), sin_t = std::sin(tilt_deg_ * kDeg);
   auto tilt = [&](const glm::dvec3& v) {
     return glm::dvec3(v.x, v.y * cos_t + v.z * sin_t, -v.y * sin_t + v.z * cos_t);
   };

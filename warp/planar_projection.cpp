@@ -1,9 +1,9 @@
 #include "warp/planar_projection.h"
+#include "core/units.h"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -13,8 +13,8 @@
 namespace zenith::warp {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+using core::kDeg;
+using core::kRadToDeg;
 constexpr double kMaxEdgeDeg = 89.0;      // |edge angle| < 89°: tan stays below 57.3
 constexpr double kMaxSymmetricFovDeg = 2.0 * kMaxEdgeDeg;
 
@@ -104,18 +104,18 @@ PlanarProjection::PlanarProjection(int width_px, int height_px, const PlanarFrus
   check_range("pitch_deg", frustum.pitch_deg, -90.0, 90.0, false);
   check_range("roll_deg", frustum.roll_deg, -180.0, 180.0, false);
 
-  tan_left_ = std::tan(frustum.left_deg * kDegToRad);
-  tan_right_ = std::tan(frustum.right_deg * kDegToRad);
-  tan_down_ = std::tan(frustum.down_deg * kDegToRad);
-  tan_up_ = std::tan(frustum.up_deg * kDegToRad);
+  tan_left_ = std::tan(frustum.left_deg * kDeg);
+  tan_right_ = std::tan(frustum.right_deg * kDeg);
+  tan_down_ = std::tan(frustum.down_deg * kDeg);
+  tan_up_ = std::tan(frustum.up_deg * kDeg);
   tan_per_px_x_ = (tan_right_ - tan_left_) / width_px;
   tan_per_px_y_ = (tan_down_ - tan_up_) / height_px;
 
   // Yaw turns right: a right-handed turn by −ψ about +y. Pitch looks up: +θ about
   // +x. Roll banks right: a right-handed turn by +φ about the view direction −z.
-  const glm::dmat3 yaw = rotation_about({0.0, 1.0, 0.0}, -frustum.yaw_deg * kDegToRad);
-  const glm::dmat3 pitch = rotation_about({1.0, 0.0, 0.0}, frustum.pitch_deg * kDegToRad);
-  const glm::dmat3 roll = rotation_about({0.0, 0.0, -1.0}, frustum.roll_deg * kDegToRad);
+  const glm::dmat3 yaw = rotation_about({0.0, 1.0, 0.0}, -frustum.yaw_deg * kDeg);
+  const glm::dmat3 pitch = rotation_about({1.0, 0.0, 0.0}, frustum.pitch_deg * kDeg);
+  const glm::dmat3 roll = rotation_about({0.0, 0.0, -1.0}, frustum.roll_deg * kDeg);
   rotation_ = yaw * pitch * roll;
 
   const TangentWindow window{tan_left_, tan_right_, tan_down_, tan_up_, tan_per_px_x_, tan_per_px_y_};
@@ -128,7 +128,7 @@ PlanarProjection PlanarProjection::symmetric(int width_px, int height_px, double
     fail("horizontal_fov_deg = " + number(horizontal_fov_deg) + ": must be in (0, " + number(kMaxSymmetricFovDeg) +
          ") degrees");
   // Square pixels: the tangent extent per pixel is the same both ways.
-  const double half_h_rad = 0.5 * horizontal_fov_deg * kDegToRad;
+  const double half_h_rad = 0.5 * horizontal_fov_deg * kDeg;
   const double tan_half_v = std::tan(half_h_rad) * height_px / std::max(width_px, 1);
   const double half_v_deg = std::atan(tan_half_v) * kRadToDeg;
   if (!(half_v_deg < kMaxEdgeDeg))

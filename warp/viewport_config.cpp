@@ -16,6 +16,7 @@
 #include "warp/projection_factory.h"
 #include "warp/warp_mesh.h"
 #include "warp/warped_projection.h"
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -318,13 +319,12 @@ PlanarFrustum display_wall_frustum(const DisplayWall& wall, int column, int row)
   const double total_h = wall.rows * wall.screen_height_mm + (wall.rows - 1) * gap_mm;
   const double x_left = -0.5 * total_w + column * (wall.screen_width_mm + gap_mm);
   const double y_top = 0.5 * total_h - row * (wall.screen_height_mm + gap_mm);
-  constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
   const double d = wall.distance_mm;
   PlanarFrustum f{};
-  f.left_deg = std::atan(x_left / d) * kDegPerRad;
-  f.right_deg = std::atan((x_left + wall.screen_width_mm) / d) * kDegPerRad;
-  f.up_deg = std::atan(y_top / d) * kDegPerRad;
-  f.down_deg = std::atan((y_top - wall.screen_height_mm) / d) * kDegPerRad;
+  f.left_deg = std::atan(x_left / d) * core::kRadToDeg;
+  f.right_deg = std::atan((x_left + wall.screen_width_mm) / d) * core::kRadToDeg;
+  f.up_deg = std::atan(y_top / d) * core::kRadToDeg;
+  f.down_deg = std::atan((y_top - wall.screen_height_mm) / d) * core::kRadToDeg;
   return f;
 }
 

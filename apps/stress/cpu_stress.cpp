@@ -4,12 +4,12 @@
 #include <array>
 #include <cmath>
 #include <mutex>
-#include <numbers>
 #include <vector>
 
 #include "core/json_reader.h"
 #include "core/parallel_for.h"
 #include "atmosphere/reference/geometry.h"
+#include "core/units.h"
 
 namespace zenith::stress {
 namespace {
@@ -20,7 +20,7 @@ constexpr std::size_t kChunk = 2048;  ///< configurations per work item
 std::string describe(const std::string& label, const Configuration& c, double ground_radius_m, double epsilon_rad) {
   const double r = atmosphere::length(c.camera_m);
   const double sun_zenith_deg = std::acos(std::clamp(atmosphere::dot(c.camera_m, c.sun) / r, -1.0, 1.0)) * 180.0 /
-                                std::numbers::pi;
+                                core::kPi;
   return config::cat(label, " altitude ", r - ground_radius_m, " m, sun zenith ", sun_zenith_deg, " deg, eps ",
                      epsilon_rad, " rad");
 }

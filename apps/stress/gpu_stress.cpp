@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -54,7 +53,7 @@ std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std
 
   const Vec3 up{0.0, 0.0, 1.0};
   const Vec3 east = tangent_at_azimuth(up, 0.0);         // the sun's azimuth
-  const Vec3 north = tangent_at_azimuth(up, 0.5 * std::numbers::pi);  // the view's azimuth
+  const Vec3 north = tangent_at_azimuth(up, 0.5 * core::kPi);  // the view's azimuth
   std::vector<GpuFrameResult> results;
   for (double altitude : {1.0, 0.5 * H, H + 1e6, kMaxCameraDistance_m - R}) {
     const double r = R + altitude;

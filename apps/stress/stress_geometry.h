@@ -24,6 +24,7 @@
 #include <string_view>
 
 #include "atmosphere/vec3.h"
+#include "core/units.h"
 
 namespace zenith::stress {
 
@@ -36,9 +37,9 @@ inline constexpr double kMaxCameraDistance_m = 40.0 * kAstronomicalUnit_m;
 /// The lowest camera: 1 m above the ground.
 inline constexpr double kMinCameraAltitude_m = 1.0;
 /// Half-width of the horizon band [rad]: |δ| < 1°.
-inline constexpr double kHorizonBandHalfWidth_rad = 1.0 * 3.14159265358979323846 / 180.0;
+inline constexpr double kHorizonBandHalfWidth_rad = 1.0 * core::kPi / 180.0;
 /// Sun zenith angle [rad] where twilight ends and night begins (astronomical twilight: 108°).
-inline constexpr double kTwilightEndZenith_rad = 108.0 * 3.14159265358979323846 / 180.0;
+inline constexpr double kTwilightEndZenith_rad = 108.0 * core::kPi / 180.0;
 
 /// β(r): nadir angle of the geometric horizon [rad] for a camera at r ≥ R from the centre.
 double horizon_nadir_angle_rad(double r_m, double ground_radius_m);

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "cluster/messages.h"
-#include "cluster/show/show.h"
+#include "show/show.h"
 #include "cluster/table_transfer.h"
 
 namespace zenith::cluster {

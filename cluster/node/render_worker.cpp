@@ -9,9 +9,11 @@
 
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/frame_scene.h"
+#include "cluster/state_digest.h"
 #include "core/json_reader.h"
 #include "core/timing.h"
 #include "image/tone_mapping.h"
+#include "render/render_flags.h"
 
 namespace zenith::cluster {
 
@@ -127,7 +129,7 @@ void RenderWorker::ensure_renderer(std::uint32_t flags) {
   renderer_flags_ = flags;
   const atmosphere::lut::TableCache cache(options.cache_directory);
   renderer_ = std::make_unique<render::Renderer>(
-      render_options_of(flags), [this, cache](const atmosphere::AtmosphereModel& model) {
+      render::render_options_of(flags), [this, cache](const atmosphere::AtmosphereModel& model) {
         std::string problem;
         std::optional<atmosphere::lut::LookupTables> tables = cache.load(model, setup_.table_options, &problem);
         if (!tables)
@@ -197,7 +199,7 @@ void RenderWorker::present_frame(std::uint64_t frame) {
 /// Renders with the set once: every output the first time (shaders), then the
 /// first output only (table upload).
 void RenderWorker::prepare_tables(const Digest& hash) {
-  ensure_renderer(render_flags_of(render::RenderOptions{}));
+  ensure_renderer(render::render_flags_of(render::RenderOptions{}));
   const auto t0 = Clock::now();
   scene::Scene scene = setup_.base_scene;
   const KnownAtmospheres::Entry& known = setup_.atmospheres.find(hash);

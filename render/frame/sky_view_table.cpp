@@ -1,10 +1,10 @@
 #include "render/frame/sky_view_table.h"
+#include "core/units.h"
 
 #include <epoxy/gl.h>
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 namespace zenith::render {
@@ -17,7 +17,7 @@ SkyViewTable::SkyViewTable(std::span<const gl::ShaderDefine> atmosphere_defines,
 void SkyViewTable::set_camera(double camera_radius_m, double ground_radius_m, double sun_cosine,
                               double sun_angular_radius_rad) {
   const double r = std::max(camera_radius_m, ground_radius_m);
-  theta_horizon_rad_ = std::numbers::pi - std::asin(std::min(ground_radius_m / r, 1.0));
+  theta_horizon_rad_ = core::kPi - std::asin(std::min(ground_radius_m / r, 1.0));
   fill_.set_uniform("camera_r", static_cast<float>(r));
   fill_.set_uniform("camera_ground_power", static_cast<float>((r - ground_radius_m) * (r + ground_radius_m)));
   fill_.set_uniform("camera_mu_s", static_cast<float>(std::clamp(sun_cosine, -1.0, 1.0)));

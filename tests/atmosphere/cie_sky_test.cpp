@@ -8,12 +8,11 @@
 #include <stdexcept>
 
 #include "atmosphere/constants.h"
+#include "core/units.h"
 
 using namespace zenith::atmosphere;
 
-namespace {
-constexpr double kDeg = kPi / 180.0;
-}
+using zenith::core::kDeg;
 
 TEST(CieSky, TableHasTheFifteenTypesOfTheStandard) {
   const auto types = cie_general_sky_types();

@@ -31,13 +31,14 @@
 #include "warp/blending.h"
 #include "warp/fisheye_projection.h"
 #include "warp/viewport_config.h"
+#include "core/units.h"
 
 namespace zenith::render {
 namespace {
 
 namespace fs = std::filesystem;
 using atmosphere::lut::SmallTables;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kDeg;
 using testing::context;
 using testing::look_rotation;
 

@@ -32,12 +32,13 @@
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/warped_projection.h"
+#include "core/units.h"
 
 namespace zenith::render {
 namespace {
 
 using atmosphere::lut::SmallTables;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kDeg;
 using testing::context;
 using testing::look_rotation;
 

@@ -1,4 +1,5 @@
 #include "scene/albedo_map.h"
+#include "core/units.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +9,7 @@
 namespace zenith::scene {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 
 struct Pixel {
   double r, g, b;

@@ -10,6 +10,7 @@
 #include "atmosphere/photometry.h"
 #include "scene/scene_loader.h"
 #include "scene/sun_disc.h"
+#include "core/units.h"
 
 namespace zenith::scene {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 using glm::dvec3;
 namespace fs = std::filesystem;
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+using core::kDeg;
 
 const fs::path kScenes = fs::path(ZENITH_SOURCE_DIR) / "configs" / "scenes";
 

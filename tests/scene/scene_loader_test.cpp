@@ -13,6 +13,7 @@
 #include "core/json_reader.h"
 #include "atmosphere/photometry.h"
 #include "scene/sun_disc.h"
+#include "core/units.h"
 
 namespace zenith::scene {
 namespace {
@@ -21,8 +22,8 @@ using glm::dvec3;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
+using core::kDeg;
+using core::kPi;
 
 /// A folder of its own for files the tests write.
 fs::path test_dir() {

@@ -1,4 +1,5 @@
 #include "scene/sun_disc.h"
+#include "core/units.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +9,7 @@
 namespace zenith::scene {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 
 /// ∫_disc L(θ) cos θ dΩ = 2π ∫_0^θs L(θ) cos θ sin θ dθ by composite Gauss–Legendre
 /// in w with θ = θs (1 − w²): the substitution removes the (θs − θ)^(α/2)

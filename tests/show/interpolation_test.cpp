@@ -6,17 +6,18 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "cluster/show/catmull_rom.h"
-#include "cluster/show/key_span.h"
-#include "cluster/show/monotone_cubic.h"
-#include "cluster/show/parameter_track.h"
-#include "cluster/show/squad.h"
-#include "cluster/show/sun_track.h"
+#include "show/catmull_rom.h"
+#include "show/key_span.h"
+#include "show/monotone_cubic.h"
+#include "show/parameter_track.h"
+#include "show/squad.h"
+#include "show/sun_track.h"
+#include "core/units.h"
 
 namespace zenith::show {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using core::kPi;
 
 TEST(KeySpan, LocatesTimesAmongKeys) {
   const std::vector<double> t{0.0, 2.0, 6.0};

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cluster/show/show.h"
+#include "show/show.h"
 #include "show_test_support.h"
 
 namespace zenith::show {
@@ -45,12 +45,12 @@ TEST(ShowRecorder, RecordedFramesReadBackExactly) {
   const auto dir = test::temp_folder("recorder");
   const Show live = live_show(dir);
   const auto path = dir / "session.json";
-  std::vector<cluster::FrameState> recorded;
+  std::vector<scene::FrameDescription> recorded;
   {
     ShowRecorder recorder(path, live.scene_path(), "session", 30.0);
     for (const AtmosphereVersion& v : live.atmosphere_versions(30.0)) recorder.add_version(v);
     for (std::uint64_t i = 0; i < 61; ++i) {
-      cluster::FrameState s = live.state_at(live.frame_time_s(i, 30.0), 1000 + i, cluster::kRenderSunDisc);
+      scene::FrameDescription s = live.state_at(live.frame_time_s(i, 30.0), 1000 + i, scene::kRenderSunDisc);
       s.show_time_s = i / 30.0;
       // Awkward doubles, still a valid state.
       s.camera_position_m.x += i == 3 ? 1.0 / 3.0 : 0.1;
@@ -72,13 +72,13 @@ TEST(ShowRecorder, RecordedFramesReadBackExactly) {
   EXPECT_EQ(replay.duration_s(), 2.0);
   EXPECT_EQ(replay.scene_path(), live.scene_path());
   for (std::uint64_t i = 0; i < 61; ++i) {
-    cluster::FrameState expected = recorded[i];
+    scene::FrameDescription expected = recorded[i];
     const std::uint64_t frame = 1000 + i;
     EXPECT_EQ(replay.state_at(replay.frame_time_s(i, 0.0), frame, 0), expected) << i;
   }
   EXPECT_TRUE(same_bits(replay.state_at(replay.frame_time_s(8, 0.0), 0, 0).sun_irradiance_W_m2_nm[2], -0.0));
   // Effective frames are clamped to the frame asked for; times between frames hold the earlier one.
-  const cluster::FrameState early = replay.state_at(replay.frame_time_s(10, 0.0) + 0.01, 3, 0);
+  const scene::FrameDescription early = replay.state_at(replay.frame_time_s(10, 0.0) + 0.01, 3, 0);
   EXPECT_EQ(early.atmospheres[0].effective_from_frame, 3u);
   EXPECT_EQ(early.camera_position_m, recorded[10].camera_position_m);
   EXPECT_EQ(replay.atmosphere_versions(0.0).size(), 3u);
@@ -89,7 +89,7 @@ TEST(ShowRecorder, RefusesUnknownVersionsAndInvalidStates) {
   const auto dir = test::temp_folder("recorder_refuses");
   const Show live = live_show(dir);
   ShowRecorder recorder(dir / "r.json", live.scene_path(), "r", 30.0);
-  cluster::FrameState s = live.state_at(0.0, 0, 0);
+  scene::FrameDescription s = live.state_at(0.0, 0, 0);
   EXPECT_THROW(recorder.record(s), std::invalid_argument);  // version not added
   for (const AtmosphereVersion& v : live.atmosphere_versions(30.0)) recorder.add_version(v);
   recorder.record(s);

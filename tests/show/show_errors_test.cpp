@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cluster/show/show.h"
+#include "show/show.h"
 #include "show_test_support.h"
 
 namespace zenith::show {

@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "cluster/show/show.h"
+#include "show/show.h"
 
 namespace zenith::show {
 namespace {
@@ -41,7 +41,7 @@ TEST(ShowFiles, EveryFrameOfEveryShowIsSound) {
     const std::uint64_t frames = show.frame_count(fps);
     double lowest_m = 1e300;
     for (std::uint64_t i = 0; i < frames; ++i) {
-      const cluster::FrameState s = show.state_at(show.frame_time_s(i, fps), i, 0);
+      const scene::FrameDescription s = show.state_at(show.frame_time_s(i, fps), i, 0);
       ASSERT_TRUE(finite(s.camera_position_m)) << i;
       ASSERT_NEAR(glm::length(s.camera_orientation), 1.0, 1e-12) << i;
       ASSERT_NEAR(glm::length(s.sun_direction), 1.0, 1e-12) << i;

@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include "atmosphere/model_hash.h"
-#include "cluster/show/show.h"
-#include "cluster/show/table_plan.h"
+#include "core/sha256.h"
+#include "show/show.h"
+#include "show/table_plan.h"
 #include "scene/scene_loader.h"
 #include "show_test_support.h"
+#include "core/units.h"
 
 namespace zenith::show {
 namespace {
@@ -40,7 +42,7 @@ TEST(ShowLoader, WithoutTracksEveryFrameIsTheScene) {
   EXPECT_EQ(show.duration_s(), 0.0);
   EXPECT_EQ(show.frame_rate_hz(), 30.0);
   EXPECT_EQ(show.frame_count(30.0), 1u);
-  const cluster::FrameState s = show.state_at(5.0, 7, cluster::kRenderSunDisc);
+  const scene::FrameDescription s = show.state_at(5.0, 7, scene::kRenderSunDisc);
   EXPECT_EQ(s.frame, 7u);
   EXPECT_EQ(s.show_time_s, 0.0);
   EXPECT_EQ(s.camera_position_m, show.scene().camera.position_m);
@@ -48,10 +50,10 @@ TEST(ShowLoader, WithoutTracksEveryFrameIsTheScene) {
   EXPECT_EQ(s.exposure, 25.0);
   EXPECT_EQ(s.sun_direction, show.scene().sun.direction);
   EXPECT_EQ(s.sun_irradiance_W_m2_nm, show.scene().sun.irradiance_W_m2_nm);
-  EXPECT_EQ(s.render_flags, cluster::kRenderSunDisc);
+  EXPECT_EQ(s.render_flags, scene::kRenderSunDisc);
   ASSERT_EQ(s.atmospheres.size(), 1u);
   EXPECT_EQ(s.atmospheres[0].body_name, "Earth");
-  EXPECT_EQ(cluster::to_hex(s.atmospheres[0].table_hash),
+  EXPECT_EQ(core::to_hex(s.atmospheres[0].table_hash),
             atmosphere::lookup_table_hash(show.scene().bodies[0].atmosphere->loaded.model));
 }
 
@@ -105,7 +107,7 @@ TEST(ShowLoader, CameraKeysAreHitExactlyAtTheirTimes) {
     json object = keys[i];
     object.erase("t_s");
     const scene::CameraPlacement key = scene::parse_camera(object, show.scene(), "key", "");
-    const cluster::FrameState s = show.state_at(keys[i]["t_s"].get<double>(), 0, 0);
+    const scene::FrameDescription s = show.state_at(keys[i]["t_s"].get<double>(), 0, 0);
     EXPECT_NEAR(glm::length(s.camera_position_m - key.camera.position_m), 0.0, 1e-6) << i;
     EXPECT_NEAR(std::abs(glm::dot(s.camera_orientation, key.camera.orientation)), 1.0, 1e-15) << i;
   }
@@ -133,8 +135,8 @@ TEST(ShowLoader, SunKeysInTheSkyFollowTheGreatCircle) {
   // The local zenith at the (fixed) camera.
   const glm::dvec3 up = glm::normalize(show.scene().camera.position_m);
   for (int i = 0; i <= 20; ++i) {
-    const cluster::FrameState s = show.state_at(i, 0, 0);
-    const double elevation_deg = std::asin(glm::dot(s.sun_direction, up)) * 180.0 / M_PI;
+    const scene::FrameDescription s = show.state_at(i, 0, 0);
+    const double elevation_deg = std::asin(glm::dot(s.sun_direction, up)) * 180.0 / zenith::core::kPi;
     EXPECT_NEAR(elevation_deg, -8.0 + 18.0 * i / 20.0, 1e-9) << i;  // a vertical great circle, constant speed
   }
 }
@@ -151,19 +153,19 @@ json turbidity_show(double step) {
 TEST(ShowLoader, AtmosphereHashChangesExactlyWhenTheQuantizedValueDoes) {
   const Show show = load("turbidity", turbidity_show(0.25));
   // Raw turbidity 3 − t/10; quantized to 0.25: 3 until t = 1.25, then 2.75, ...
-  cluster::Digest previous = show.state_at(0.0, 0, 0).atmospheres[0].table_hash;
+  scene::TableHash previous = show.state_at(0.0, 0, 0).atmospheres[0].table_hash;
   double previous_level = 3.0;
   int changes = 0;
   for (int i = 1; i <= 1000; ++i) {
     const double t = i * 0.01;
-    const cluster::Digest hash = show.state_at(t, 0, 0).atmospheres[0].table_hash;
+    const scene::TableHash hash = show.state_at(t, 0, 0).atmospheres[0].table_hash;
     const double level = std::round((3.0 - t / 10.0) / 0.25) * 0.25;
     EXPECT_EQ(hash != previous, level != previous_level) << t;
     changes += hash != previous;
     const AtmosphereVersion* version = show.find_version(hash);
     ASSERT_NE(version, nullptr);
     EXPECT_EQ(version->parameters["aerosol"]["scattering"]["turbidity"].get<double>(), level) << t;
-    EXPECT_EQ(cluster::to_hex(hash), atmosphere::lookup_table_hash(version->loaded.model));
+    EXPECT_EQ(core::to_hex(hash), atmosphere::lookup_table_hash(version->loaded.model));
     previous = hash;
     previous_level = level;
   }
@@ -173,14 +175,14 @@ TEST(ShowLoader, AtmosphereHashChangesExactlyWhenTheQuantizedValueDoes) {
   EXPECT_EQ(versions.front().parameters["aerosol"]["scattering"]["turbidity"], 3.0);
   EXPECT_EQ(versions.back().parameters["aerosol"]["scattering"]["turbidity"], 2.0);
   // The scene's own set (turbidity 2.0) is the last one.
-  EXPECT_EQ(cluster::to_hex(versions.back().table_hash),
+  EXPECT_EQ(core::to_hex(versions.back().table_hash),
             atmosphere::lookup_table_hash(show.scene().bodies[0].atmosphere->loaded.model));
   EXPECT_EQ(load("turbidity_coarse", turbidity_show(0.5)).atmosphere_versions(30.0).size(), 3u);
 }
 
 TEST(ShowLoader, StateAtIsSafeFromSeveralThreads) {
   const Show show = load("threads", turbidity_show(0.125));
-  std::vector<std::vector<cluster::Digest>> seen(4);
+  std::vector<std::vector<scene::TableHash>> seen(4);
   std::vector<std::thread> threads;
   for (int k = 0; k < 4; ++k)
     threads.emplace_back([&, k] {
@@ -205,26 +207,26 @@ TEST(ShowLoader, HeldTrackRemovesOzone) {
   EXPECT_TRUE(with->parameters.contains("ozone"));
   EXPECT_NE(without->table_hash, with->table_hash);
   // With ozone back as the scene has it, the tables are the scene's.
-  EXPECT_EQ(cluster::to_hex(with->table_hash),
+  EXPECT_EQ(core::to_hex(with->table_hash),
             atmosphere::lookup_table_hash(show.scene().bodies[0].atmosphere->loaded.model));
 }
 
 TEST(ApplyState, CopiesTheFrameAndSwapsAtmospheres) {
   const Show show = load("apply", turbidity_show(0.5));
-  std::map<cluster::Digest, AtmosphereVersion> versions;
+  std::map<scene::TableHash, AtmosphereVersion> versions;
   for (const AtmosphereVersion& v : show.atmosphere_versions(30.0)) versions.emplace(v.table_hash, v);
   scene::Scene scene = show.scene();
-  const cluster::FrameState s = show.state_at(0.0, 0, 0);
+  const scene::FrameDescription s = show.state_at(0.0, 0, 0);
   apply_state(s, versions, scene);
   EXPECT_EQ(scene.bodies[0].atmosphere->loaded.parameters["aerosol"]["scattering"]["turbidity"], 3.0);
   EXPECT_EQ(scene.camera.exposure, s.exposure);
-  cluster::FrameState unknown = s;
+  scene::FrameDescription unknown = s;
   unknown.atmospheres[0].table_hash[0] ^= 1;
   EXPECT_THROW(apply_state(unknown, versions, scene), std::invalid_argument);
-  cluster::FrameState other_body = s;
+  scene::FrameDescription other_body = s;
   other_body.atmospheres[0].body_name = "Mars";
   EXPECT_THROW(apply_state(other_body, versions, scene), std::invalid_argument);
-  cluster::FrameState wrong_owner = s;
+  scene::FrameDescription wrong_owner = s;
   versions.begin()->second.body = "Mars";
   wrong_owner.atmospheres[0].table_hash = versions.begin()->first;
   EXPECT_THROW(apply_state(wrong_owner, versions, scene), std::invalid_argument);

@@ -12,6 +12,7 @@
 #include "atmosphere/lut/parameterization.h"
 #include "atmosphere/parameters.h"
 #include "atmosphere/reference/geometry.h"
+#include "core/units.h"
 
 namespace zenith::stress {
 namespace {
@@ -56,10 +57,10 @@ TEST(StressGeometry, HorizonDirectionsAreOnTheRightSideFrom1mTo40au) {
 
 TEST(StressGeometry, HorizonNadirAngleKeepsItsPrecisionAtBothEnds) {
   // 1 m up: β = π/2 − √(2h/R) to first order (5.6e-4 rad); 40 au: β = R/r.
-  EXPECT_NEAR(0.5 * M_PI - horizon_nadir_angle_rad(kR + 1.0, kR), std::sqrt(2.0 / kR), 1e-10);
+  EXPECT_NEAR(0.5 * zenith::core::kPi - horizon_nadir_angle_rad(kR + 1.0, kR), std::sqrt(2.0 / kR), 1e-10);
   const double far = kMaxCameraDistance_m;
   EXPECT_NEAR(horizon_nadir_angle_rad(far, kR) / (kR / far), 1.0, 1e-12);
-  EXPECT_DOUBLE_EQ(horizon_nadir_angle_rad(kR, kR), 0.5 * M_PI);
+  EXPECT_DOUBLE_EQ(horizon_nadir_angle_rad(kR, kR), 0.5 * zenith::core::kPi);
 }
 
 TEST(StressGeometry, RegionsFollowTheirDefinitions) {
@@ -67,7 +68,7 @@ TEST(StressGeometry, RegionsFollowTheirDefinitions) {
   const Vec3 t = tangent_at_azimuth(up, 0.0);
   const Vec3 camera = (kR + 10.0) * up;
   auto sun_at = [&](double zenith_deg) {
-    const double z = zenith_deg * M_PI / 180.0;
+    const double z = zenith_deg * zenith::core::kPi / 180.0;
     return std::cos(z) * up + std::sin(z) * t;
   };
   EXPECT_EQ(classify({camera, up, sun_at(30)}, kR, kTop), Region::sky);

@@ -16,6 +16,7 @@
 
 #include "warp/fisheye_projection.h"
 #include "warp_file_test_support.h"
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -27,7 +28,7 @@ using testing::make_grey_png;
 using testing::ScratchDir;
 
 const fs::path kViewports = fs::path(ZENITH_SOURCE_DIR) / "configs" / "viewports";
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kDeg;
 
 /// The six-projector dome at another output size (the frusta are size-independent).
 ViewportConfig dome6(int width_px, int height_px) {

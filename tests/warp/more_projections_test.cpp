@@ -29,12 +29,13 @@
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/projection_factory.h"
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kPi = std::numbers::pi;
+using core::kDeg;
+using core::kPi;
 
 using testing::angle_between;
 using testing::emulate_glsl;

@@ -19,6 +19,7 @@
 #include "warp/mpcdi.h"
 #include "warp/planar_projection.h"
 #include "warp/viewport_config.h"
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -257,7 +258,7 @@ MpcdiFrustum load_frustum(const ScratchDir& dir, double yaw, double pitch, doubl
 
 /// Right-handed rotation of v about the unit `axis` by `angle_deg` (Rodrigues).
 glm::dvec3 rotated(const glm::dvec3& v, const glm::dvec3& axis, double angle_deg) {
-  const double a = angle_deg * 3.14159265358979323846 / 180.0;
+  const double a = angle_deg * zenith::core::kPi / 180.0;
   return v * std::cos(a) + glm::cross(axis, v) * std::sin(a) + axis * glm::dot(axis, v) * (1.0 - std::cos(a));
 }
 

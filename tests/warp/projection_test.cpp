@@ -10,7 +10,6 @@
 #include <functional>
 #include <limits>
 #include <memory>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,11 +19,12 @@
 #include "tests/warp/projection_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kDeg;
 
 using testing::angle_between;
 using testing::emulate_glsl;
@@ -120,7 +120,7 @@ TEST(FisheyeProjection, RoundTripsAtTheRimExactly) {
   for (double fov : {1.0, 90.0, 180.0, 210.0, 359.0}) {
     const FisheyeProjection f(200, 100, {.fov_deg = fov, .tilt_deg = 10.0, .rotation_deg = 5.0});
     for (int i = 0; i < 64; ++i) {
-      const double phi = 2.0 * std::numbers::pi * i / 64.0;
+      const double phi = 2.0 * zenith::core::kPi * i / 64.0;
       const double x = f.centre_x_px() + f.radius_px() * std::cos(phi);
       const double y = f.centre_y_px() + f.radius_px() * std::sin(phi);
       const auto ray = f.ray(x, y);
@@ -276,7 +276,7 @@ TEST(FisheyeProjection, PixelsOutsideTheCircleHaveNoRay) {
   int with_ray = 0;
   for (int j = 0; j < 48; ++j)
     for (int i = 0; i < 64; ++i) with_ray += f.ray(i + 0.5, j + 0.5).has_value();
-  EXPECT_NEAR(with_ray, std::numbers::pi * 24.0 * 24.0, 40.0);
+  EXPECT_NEAR(with_ray, zenith::core::kPi * 24.0 * 24.0, 40.0);
 
   // A cropped dome master: the circle runs past the image; its centre may lie outside.
   const FisheyeProjection cropped(100, 50, {.centre_x_px = 50.0, .centre_y_px = 70.0, .radius_px = 60.0});

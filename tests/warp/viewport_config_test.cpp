@@ -16,6 +16,7 @@
 #include "warp/planar_projection.h"
 #include "warp/warped_projection.h"
 #include "warp_file_test_support.h"
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -123,7 +124,7 @@ TEST(ViewportConfig, DisplayWallHelperChecksItsInput) {
   DisplayWall wall{3, 2, 1000.0, 500.0, 5.0, 2000.0};
   const PlanarFrustum mid = display_wall_frustum(wall, 1, 0);
   EXPECT_NEAR(mid.left_deg, -mid.right_deg, 1e-12);
-  EXPECT_NEAR(std::tan(mid.down_deg * M_PI / 180.0) * 2000.0, 5.0, 1e-9);  // the bottom edge 5 mm above centre
+  EXPECT_NEAR(std::tan(mid.down_deg * zenith::core::kPi / 180.0) * 2000.0, 5.0, 1e-9);  // the bottom edge 5 mm above centre
   expect_error([&] { (void)display_wall_frustum(wall, 3, 0); }, {"outside 3 x 2"});
   wall.distance_mm = 0.0;
   expect_error([&] { (void)display_wall_frustum(wall, 0, 0); }, {"distance"});

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -22,6 +21,7 @@
 #include "warp/viewport_config.h"
 #include "warp/warped_projection.h"
 #include "warp_file_test_support.h"
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -89,7 +89,7 @@ std::optional<glm::dvec3> expected_ray(const std::vector<Node>& nodes, double px
   const double radius = side / 2.0;
   const double dx = sx - radius, dy = radius - sy, r = std::hypot(dx, dy);
   if (r > radius) return std::nullopt;
-  const double theta = r / radius * std::numbers::pi / 2.0;
+  const double theta = r / radius * zenith::core::kPi / 2.0;
   if (r == 0.0) return glm::dvec3(0, 1, 0);
   // image right → +x, image up → +z (toward the back), axis → +y.
   return glm::dvec3(std::sin(theta) * dx / r, std::cos(theta), std::sin(theta) * dy / r);

@@ -9,9 +9,10 @@
 #include <glm/geometric.hpp>
 
 #include "core/json_reader.h"
-#include "cluster/show/recording_json.h"
-#include "cluster/show/show.h"
-#include "cluster/show/show_impl.h"
+#include "core/sha256.h"
+#include "show/recording_json.h"
+#include "show/show.h"
+#include "show/show_impl.h"
 #include "scene/scene_loader.h"
 #include "core/units.h"
 
@@ -309,9 +310,9 @@ void read_recording(JsonReader& root, Show::Impl& show) {
     const scene::Body* body = show.scene.find_body(version.body);
     if (body == nullptr || !body->atmosphere)
       v.fail("body", cat("= \"", version.body, "\": the scene has no body of that name with an atmosphere"));
-    cluster::Digest listed{};
+    scene::TableHash listed{};
     try {
-      listed = cluster::digest_from_hex(v.string("table_hash"));
+      listed = core::digest_from_hex(v.string("table_hash"));
     } catch (const std::invalid_argument&) {
       v.fail("table_hash", cat("= ", brief(v.raw("table_hash")), ": must be 64 hexadecimal digits"));
     }
@@ -325,8 +326,8 @@ void read_recording(JsonReader& root, Show::Impl& show) {
     }
     version.table_hash = table_hash_of(version.loaded);
     if (version.table_hash != listed)
-      v.fail("table_hash", cat("= \"", cluster::to_hex(listed), "\": does not match the parameters, whose tables hash to ",
-                               cluster::to_hex(version.table_hash),
+      v.fail("table_hash", cat("= \"", core::to_hex(listed), "\": does not match the parameters, whose tables hash to ",
+                               core::to_hex(version.table_hash),
                                " (edited parameters, or recorded by a build with another table format)"));
     if (std::find(show.recorded_versions.begin(), show.recorded_versions.end(), listed) != show.recorded_versions.end())
       v.fail("table_hash", "is listed twice");
@@ -340,14 +341,14 @@ void read_recording(JsonReader& root, Show::Impl& show) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const std::string pointer = r.key_path(cat("frames/", i));
     if (!frames[i].is_object()) throw ConfigError(root.file(), pointer, cat("must be an object, got ", brief(frames[i])));
-    cluster::FrameState frame = frame_from_json(frames[i], show.scene, root.file(), pointer);
+    scene::FrameDescription frame = frame_from_json(frames[i], show.scene, root.file(), pointer);
     for (std::size_t a = 0; a < frame.atmospheres.size(); ++a) {
       const auto version = show.versions.find(frame.atmospheres[a].table_hash);
       const std::string key = cat(pointer, "/atmospheres/", a, "/table_hash");
       const bool listed = std::find(show.recorded_versions.begin(), show.recorded_versions.end(),
                                     frame.atmospheres[a].table_hash) != show.recorded_versions.end();
       if (!listed)
-        throw ConfigError(root.file(), key, cat("= \"", cluster::to_hex(frame.atmospheres[a].table_hash),
+        throw ConfigError(root.file(), key, cat("= \"", core::to_hex(frame.atmospheres[a].table_hash),
                                                 "\": not among the recording's /recording/versions"));
       if (version->second.body != frame.atmospheres[a].body_name)
         throw ConfigError(root.file(), key, cat("is the version of body \"", version->second.body, "\", not of \"",

@@ -13,7 +13,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "cluster/show/monotone_cubic.h"
+#include "show/monotone_cubic.h"
 #include "scene/scene.h"
 
 namespace zenith::show {

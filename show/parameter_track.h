@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cluster/show/monotone_cubic.h"
+#include "show/monotone_cubic.h"
 
 namespace zenith::show {
 

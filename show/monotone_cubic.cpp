@@ -1,9 +1,9 @@
-#include "cluster/show/monotone_cubic.h"
+#include "show/monotone_cubic.h"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "cluster/show/key_span.h"
+#include "show/key_span.h"
 
 namespace zenith::show {
 

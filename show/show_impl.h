@@ -1,5 +1,5 @@
 #pragma once
-// Show::Impl: what load_show fills in and Show reads (private to cluster/show/).
+// Show::Impl: what load_show fills in and Show reads (private to show/).
 #include <cstddef>
 #include <filesystem>
 #include <map>
@@ -10,12 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cluster/messages.h"
-#include "cluster/show/camera_track.h"
-#include "cluster/show/monotone_cubic.h"
-#include "cluster/show/parameter_track.h"
-#include "cluster/show/show.h"
-#include "cluster/show/sun_track.h"
+#include "scene/frame_description.h"
+#include "show/camera_track.h"
+#include "show/monotone_cubic.h"
+#include "show/parameter_track.h"
+#include "show/show.h"
+#include "show/sun_track.h"
 
 namespace zenith::show {
 
@@ -46,32 +46,32 @@ struct Show::Impl {
   std::optional<MonotoneCubic> log_exposure;  ///< ln(exposure)
   std::vector<AtmosphereTracks> atmosphere_tracks;
   /// Body → the table hash of the scene's own atmosphere, for bodies without tracks.
-  std::map<std::string, cluster::Digest> fixed_atmospheres;
+  std::map<std::string, scene::TableHash> fixed_atmospheres;
 
   // Recordings.
-  std::vector<cluster::FrameState> frames;
-  std::vector<cluster::Digest> recorded_versions;  ///< in the order of /recording/versions
+  std::vector<scene::FrameDescription> frames;
+  std::vector<scene::TableHash> recorded_versions;  ///< in the order of /recording/versions
 
   /// Every version produced or recorded so far, by table hash. Guarded by
   /// `mutex`: state_at may run on several threads. Map nodes are stable, so
   /// pointers into it stay valid for the Show's life.
   mutable std::mutex mutex;
-  mutable std::map<cluster::Digest, AtmosphereVersion> versions;
+  mutable std::map<scene::TableHash, AtmosphereVersion> versions;
   /// Body + canonical JSON text of a parameter set → its table hash, so each
   /// set is resolved once.
-  mutable std::map<std::string, cluster::Digest> hash_by_parameters;
+  mutable std::map<std::string, scene::TableHash> hash_by_parameters;
 
   /// The table hash of a body's tracked parameters at t, resolving (and
   /// remembering) the set when new. Throws ConfigError naming the show's
   /// "atmospheres" entry and the time when the set does not resolve.
-  cluster::Digest tracked_hash(const AtmosphereTracks& tracks, double t_s) const;
+  scene::TableHash tracked_hash(const AtmosphereTracks& tracks, double t_s) const;
   /// Remembers a version; returns its hash.
-  cluster::Digest remember(AtmosphereVersion version) const;
-  cluster::FrameState keyframed_state(double t_s, std::uint64_t frame, std::uint32_t render_flags) const;
-  cluster::FrameState recorded_state(double t_s, std::uint64_t frame) const;
+  scene::TableHash remember(AtmosphereVersion version) const;
+  scene::FrameDescription keyframed_state(double t_s, std::uint64_t frame, std::uint32_t render_flags) const;
+  scene::FrameDescription recorded_state(double t_s, std::uint64_t frame) const;
 };
 
 /// The table hash of a resolved atmosphere, as raw bytes.
-cluster::Digest table_hash_of(const atmosphere::LoadedAtmosphere& loaded);
+scene::TableHash table_hash_of(const atmosphere::LoadedAtmosphere& loaded);
 
 }  // namespace zenith::show

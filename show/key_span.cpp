@@ -1,4 +1,4 @@
-#include "cluster/show/key_span.h"
+#include "show/key_span.h"
 
 #include <algorithm>
 

@@ -9,9 +9,10 @@
 //     a bounded number of lookup-table sets);
 //   - recordings: every frame state a live session presented, stored so that
 //     each double reads back bit for bit.
-// Either is evaluated into cluster::FrameState, the message the master sends
-// every frame; so the cluster, the offline renderer and the tests all see a
-// show the same way.
+// Either is evaluated into scene::FrameDescription (scene/frame_description.h),
+// the frame's camera, sun, exposure and atmosphere versions: the cluster sends
+// it as its FrameState message, the offline renderer renders it, and the tests
+// check it, so all see a show the same way.
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -22,7 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cluster/messages.h"
+#include "scene/frame_description.h"
 #include "scene/scene.h"
 
 namespace zenith::show {
@@ -37,7 +38,7 @@ inline constexpr int kShowFormatVersion = 1;
 struct AtmosphereVersion {
   std::string body;
   nlohmann::json parameters;
-  cluster::Digest table_hash{};  ///< atmosphere::lookup_table_hash of the resolved model, raw bytes
+  scene::TableHash table_hash{};  ///< atmosphere::lookup_table_hash of the resolved model, raw bytes
   atmosphere::LoadedAtmosphere loaded;  ///< the resolved atmosphere
 };
 
@@ -82,7 +83,7 @@ class Show {
   /// recorded state number ⌊t · frame_rate_hz()⌋ (+1e-9 s of slack), exactly as
   /// recorded except the frame number (and table references' effective frames
   /// clamped to ≤ `frame`); `render_flags` is ignored.
-  cluster::FrameState state_at(double show_time_s, std::uint64_t frame, std::uint32_t render_flags) const;
+  scene::FrameDescription state_at(double show_time_s, std::uint64_t frame, std::uint32_t render_flags) const;
 
   /// Every distinct atmosphere version the show uses when sampled at `fps`
   /// (keyframed: every frame of frame_count(fps); recordings: the recorded
@@ -91,7 +92,7 @@ class Show {
   std::vector<AtmosphereVersion> atmosphere_versions(double fps) const;
   /// The version with this table hash (any the show produced so far or
   /// recorded); nullptr if unknown.
-  const AtmosphereVersion* find_version(const cluster::Digest& table_hash) const;
+  const AtmosphereVersion* find_version(const scene::TableHash& table_hash) const;
 
   struct Impl;
   explicit Show(std::unique_ptr<Impl> impl);
@@ -109,7 +110,7 @@ Show load_show(const std::filesystem::path& path);
 /// and each body's atmosphere replaced by the version `versions` holds for the
 /// table hash the state names. Throws std::invalid_argument naming the body and
 /// hash when a version is missing or belongs to another body.
-void apply_state(const cluster::FrameState& state, const std::map<cluster::Digest, AtmosphereVersion>& versions,
+void apply_state(const scene::FrameDescription& state, const std::map<scene::TableHash, AtmosphereVersion>& versions,
                  scene::Scene& scene);
 
 /// Records a live session (docs/shows.md, "Recordings"): every presented frame
@@ -127,7 +128,7 @@ class ShowRecorder {
   /// Remembers a version (once per table hash) so playback can rebuild its tables.
   void add_version(const AtmosphereVersion& version);
   /// Appends a presented frame. Every referenced table hash must have been added.
-  void record(const cluster::FrameState& state);
+  void record(const scene::FrameDescription& state);
   std::size_t frames() const;
   /// Writes the file; returns its path. Throws std::runtime_error on I/O errors.
   std::filesystem::path finish();

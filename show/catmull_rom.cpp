@@ -1,4 +1,4 @@
-#include "cluster/show/catmull_rom.h"
+#include "show/catmull_rom.h"
 
 #include <cmath>
 #include <stdexcept>

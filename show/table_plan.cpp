@@ -1,10 +1,11 @@
-#include "cluster/show/table_plan.h"
+#include "show/table_plan.h"
 
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
 #include "core/json_reader.h"
+#include "core/sha256.h"
 
 namespace zenith::show {
 namespace {
@@ -56,8 +57,8 @@ TablePlan plan_tables(const Show& show, double fps, const atmosphere::lut::Preco
   plan.fps = fps;
   plan.frame_count = show.frame_count(fps);
   for (std::uint64_t i = 0; i < plan.frame_count; ++i) {
-    const cluster::FrameState state = show.state_at(show.frame_time_s(i, fps), i, 0);
-    for (const cluster::AtmosphereTableRef& ref : state.atmospheres) {
+    const scene::FrameDescription state = show.state_at(show.frame_time_s(i, fps), i, 0);
+    for (const scene::AtmosphereTableRef& ref : state.atmospheres) {
       TablePlanEntry* entry = nullptr;
       for (TablePlanEntry& e : plan.sets)
         if (e.version.table_hash == ref.table_hash) entry = &e;
@@ -93,7 +94,7 @@ std::string describe(const TablePlan& plan, double seconds_per_set) {
       if (plan.sets[j].version.body == e.version.body) first_of_body = &plan.sets[j].version.parameters;
     if (first_of_body != nullptr) differences(e.version.parameters, *first_of_body, "", changed);
     std::snprintf(line, sizeof line, "%.1f MiB", static_cast<double>(e.bytes) / (1024.0 * 1024.0));
-    out << "  " << e.version.body << " " << cluster::to_hex(e.version.table_hash).substr(0, 12) << ": frames "
+    out << "  " << e.version.body << " " << core::to_hex(e.version.table_hash).substr(0, 12) << ": frames "
         << e.first_frame << "+ (" << e.frames << "), " << (e.cached ? "cached" : "to compute") << ", " << line;
     if (first_of_body == nullptr) out << ", as first used";
     for (std::size_t k = 0; k < changed.size() && k < 3; ++k) out << (k == 0 ? ", " : "; ") << changed[k];

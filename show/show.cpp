@@ -1,19 +1,20 @@
-#include "cluster/show/show.h"
+#include "show/show.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "core/json_reader.h"
+#include "core/sha256.h"
 #include "atmosphere/model_hash.h"
-#include "cluster/show/show_impl.h"
+#include "show/show_impl.h"
 
 namespace zenith::show {
 
 using config::cat;
 
-cluster::Digest table_hash_of(const atmosphere::LoadedAtmosphere& loaded) {
-  return cluster::digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
+scene::TableHash table_hash_of(const atmosphere::LoadedAtmosphere& loaded) {
+  return core::digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
 }
 
 nlohmann::json AtmosphereTracks::parameters_at(double t_s) const {
@@ -22,14 +23,14 @@ nlohmann::json AtmosphereTracks::parameters_at(double t_s) const {
   return parameters;
 }
 
-cluster::Digest Show::Impl::remember(AtmosphereVersion version) const {
-  const cluster::Digest hash = version.table_hash;
+scene::TableHash Show::Impl::remember(AtmosphereVersion version) const {
+  const scene::TableHash hash = version.table_hash;
   std::lock_guard lock(mutex);
   versions.try_emplace(hash, std::move(version));
   return hash;
 }
 
-cluster::Digest Show::Impl::tracked_hash(const AtmosphereTracks& body, double t_s) const {
+scene::TableHash Show::Impl::tracked_hash(const AtmosphereTracks& body, double t_s) const {
   nlohmann::json parameters = body.parameters_at(t_s);
   const std::string key = cat(body.body, '\n', parameters.dump());
   {
@@ -53,14 +54,14 @@ cluster::Digest Show::Impl::tracked_hash(const AtmosphereTracks& body, double t_
   }
   version.parameters = std::move(parameters);
   version.table_hash = table_hash_of(version.loaded);
-  const cluster::Digest hash = remember(std::move(version));
+  const scene::TableHash hash = remember(std::move(version));
   std::lock_guard lock(mutex);
   hash_by_parameters.emplace(key, hash);
   return hash;
 }
 
-cluster::FrameState Show::Impl::keyframed_state(double t_s, std::uint64_t frame, std::uint32_t render_flags) const {
-  cluster::FrameState s;
+scene::FrameDescription Show::Impl::keyframed_state(double t_s, std::uint64_t frame, std::uint32_t render_flags) const {
+  scene::FrameDescription s;
   s.frame = frame;
   s.show_time_s = t_s;
   s.camera_position_m = camera ? camera->position_m(t_s) : scene.camera.position_m;
@@ -72,7 +73,7 @@ cluster::FrameState Show::Impl::keyframed_state(double t_s, std::uint64_t frame,
   s.sun_irradiance_W_m2_nm = sun_now.irradiance_W_m2_nm;
   for (const scene::Body& body : scene.bodies) {
     if (!body.atmosphere) continue;
-    cluster::AtmosphereTableRef ref;
+    scene::AtmosphereTableRef ref;
     ref.body_name = body.name;
     const auto tracked = std::find_if(atmosphere_tracks.begin(), atmosphere_tracks.end(),
                                       [&](const AtmosphereTracks& a) { return a.body == body.name; });
@@ -84,14 +85,14 @@ cluster::FrameState Show::Impl::keyframed_state(double t_s, std::uint64_t frame,
   return s;
 }
 
-cluster::FrameState Show::Impl::recorded_state(double t_s, std::uint64_t frame) const {
+scene::FrameDescription Show::Impl::recorded_state(double t_s, std::uint64_t frame) const {
   // Frames were recorded at a constant rate: frame i belongs to [i, i + 1) / fps
   // of the recording's timeline (1e-9 s of slack for times computed as i / fps).
   const double position = std::floor(t_s * frame_rate_hz + 1e-9 * frame_rate_hz);
   const std::size_t index = std::min(frames.size() - 1, static_cast<std::size_t>(std::max(0.0, position)));
-  cluster::FrameState s = frames[index];
+  scene::FrameDescription s = frames[index];
   s.frame = frame;
-  for (cluster::AtmosphereTableRef& ref : s.atmospheres)
+  for (scene::AtmosphereTableRef& ref : s.atmospheres)
     ref.effective_from_frame = std::min(ref.effective_from_frame, frame);
   return s;
 }
@@ -129,7 +130,7 @@ double Show::frame_time_s(std::uint64_t index, double fps) const {
   return static_cast<double>(index) / fps;
 }
 
-cluster::FrameState Show::state_at(double show_time_s, std::uint64_t frame, std::uint32_t render_flags) const {
+scene::FrameDescription Show::state_at(double show_time_s, std::uint64_t frame, std::uint32_t render_flags) const {
   if (std::isnan(show_time_s)) throw std::invalid_argument("Show::state_at: show time is NaN");
   const double t = std::clamp(show_time_s, 0.0, impl_->duration_s);
   return impl_->kind == Kind::recording ? impl_->recorded_state(t, frame)
@@ -137,27 +138,27 @@ cluster::FrameState Show::state_at(double show_time_s, std::uint64_t frame, std:
 }
 
 std::vector<AtmosphereVersion> Show::atmosphere_versions(double fps) const {
-  std::vector<cluster::Digest> order;
-  auto note = [&order](const cluster::Digest& hash) {
+  std::vector<scene::TableHash> order;
+  auto note = [&order](const scene::TableHash& hash) {
     if (std::find(order.begin(), order.end(), hash) == order.end()) order.push_back(hash);
   };
   if (impl_->kind == Kind::recording) {
-    for (const cluster::FrameState& f : impl_->frames)
-      for (const cluster::AtmosphereTableRef& ref : f.atmospheres) note(ref.table_hash);
-    for (const cluster::Digest& hash : impl_->recorded_versions) note(hash);
+    for (const scene::FrameDescription& f : impl_->frames)
+      for (const scene::AtmosphereTableRef& ref : f.atmospheres) note(ref.table_hash);
+    for (const scene::TableHash& hash : impl_->recorded_versions) note(hash);
   } else {
     const std::uint64_t frames = frame_count(fps);
     for (std::uint64_t i = 0; i < frames; ++i)
-      for (const cluster::AtmosphereTableRef& ref : state_at(frame_time_s(i, fps), i, 0).atmospheres)
+      for (const scene::AtmosphereTableRef& ref : state_at(frame_time_s(i, fps), i, 0).atmospheres)
         note(ref.table_hash);
   }
   std::vector<AtmosphereVersion> out;
   std::lock_guard lock(impl_->mutex);
-  for (const cluster::Digest& hash : order) out.push_back(impl_->versions.at(hash));
+  for (const scene::TableHash& hash : order) out.push_back(impl_->versions.at(hash));
   return out;
 }
 
-const AtmosphereVersion* Show::find_version(const cluster::Digest& table_hash) const {
+const AtmosphereVersion* Show::find_version(const scene::TableHash& table_hash) const {
   std::lock_guard lock(impl_->mutex);
   const auto found = impl_->versions.find(table_hash);
   return found == impl_->versions.end() ? nullptr : &found->second;
@@ -165,26 +166,26 @@ const AtmosphereVersion* Show::find_version(const cluster::Digest& table_hash) c
 
 // ---------------------------------------------------------------------------- apply_state
 
-void apply_state(const cluster::FrameState& state, const std::map<cluster::Digest, AtmosphereVersion>& versions,
+void apply_state(const scene::FrameDescription& state, const std::map<scene::TableHash, AtmosphereVersion>& versions,
                  scene::Scene& scene) {
-  // The per-frame parts (cluster::apply_frame_state, frame_scene.h, is this
-  // without atmospheres), then each body's atmosphere version.
+  // The per-frame parts (the cluster node's apply_frame_state, cluster/frame_scene.h,
+  // is this without atmospheres), then each body's atmosphere version.
   if (state.sun_irradiance_W_m2_nm.size() != scene.wavelengths_nm.size())
     throw std::invalid_argument(cat("apply_state: ", state.sun_irradiance_W_m2_nm.size(),
                                     " sun irradiance values for a scene of ", scene.wavelengths_nm.size(),
                                     " wavelengths (do master and node read the same scene?)"));
-  for (const cluster::AtmosphereTableRef& ref : state.atmospheres) {
+  for (const scene::AtmosphereTableRef& ref : state.atmospheres) {
     const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(),
                                    [&](const scene::Body& b) { return b.name == ref.body_name; });
     if (body == scene.bodies.end() || !body->atmosphere)
       throw std::invalid_argument(cat("apply_state: the scene has no body \"", ref.body_name,
-                                      "\" with an atmosphere (table ", cluster::to_hex(ref.table_hash), ")"));
+                                      "\" with an atmosphere (table ", core::to_hex(ref.table_hash), ")"));
     const auto version = versions.find(ref.table_hash);
     if (version == versions.end())
       throw std::invalid_argument(cat("apply_state: no atmosphere version with table hash ",
-                                      cluster::to_hex(ref.table_hash), " for body \"", ref.body_name, "\""));
+                                      core::to_hex(ref.table_hash), " for body \"", ref.body_name, "\""));
     if (version->second.body != ref.body_name)
-      throw std::invalid_argument(cat("apply_state: table hash ", cluster::to_hex(ref.table_hash), " belongs to body \"",
+      throw std::invalid_argument(cat("apply_state: table hash ", core::to_hex(ref.table_hash), " belongs to body \"",
                                       version->second.body, "\", not \"", ref.body_name, "\""));
   }
   scene.camera.position_m = state.camera_position_m;
@@ -193,12 +194,12 @@ void apply_state(const cluster::FrameState& state, const std::map<cluster::Diges
   scene.sun.direction = state.sun_direction;
   scene.sun.angular_radius_rad = state.sun_angular_radius_rad;
   scene.sun.irradiance_W_m2_nm = state.sun_irradiance_W_m2_nm;
-  for (const cluster::AtmosphereTableRef& ref : state.atmospheres) {
+  for (const scene::AtmosphereTableRef& ref : state.atmospheres) {
     scene::Body& body = *std::find_if(scene.bodies.begin(), scene.bodies.end(),
                                       [&](const scene::Body& b) { return b.name == ref.body_name; });
     const AtmosphereVersion& version = versions.at(ref.table_hash);
     body.atmosphere->loaded = version.loaded;
-    body.atmosphere->source = cat("show version ", cluster::to_hex(ref.table_hash).substr(0, 12));
+    body.atmosphere->source = cat("show version ", core::to_hex(ref.table_hash).substr(0, 12));
   }
 }
 

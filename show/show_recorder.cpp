@@ -7,8 +7,9 @@
 #include <spdlog/spdlog.h>
 
 #include "core/json_reader.h"
-#include "cluster/show/recording_json.h"
-#include "cluster/show/show.h"
+#include "core/sha256.h"
+#include "show/recording_json.h"
+#include "show/show.h"
 
 namespace zenith::show {
 
@@ -21,9 +22,9 @@ struct ShowRecorder::Impl {
   std::string scene_text;  ///< the "scene" value: relative to the recording's folder when possible
   std::string name;
   double frame_rate_hz = 0.0;
-  std::map<cluster::Digest, json> versions;
-  std::vector<cluster::Digest> version_order;
-  std::vector<cluster::FrameState> frames;
+  std::map<scene::TableHash, json> versions;
+  std::vector<scene::TableHash> version_order;
+  std::vector<scene::FrameDescription> frames;
   bool finished = false;
 };
 
@@ -61,16 +62,16 @@ void ShowRecorder::add_version(const AtmosphereVersion& version) {
   impl_->version_order.push_back(version.table_hash);
 }
 
-void ShowRecorder::record(const cluster::FrameState& state) {
+void ShowRecorder::record(const scene::FrameDescription& state) {
   try {
     check_recordable(state);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(cat("ShowRecorder: frame ", state.frame, ": ", e.what()));
   }
-  for (const cluster::AtmosphereTableRef& ref : state.atmospheres)
+  for (const scene::AtmosphereTableRef& ref : state.atmospheres)
     if (!impl_->versions.contains(ref.table_hash))
       throw std::invalid_argument(cat("ShowRecorder: frame ", state.frame, " uses table ",
-                                      cluster::to_hex(ref.table_hash), " of body \"", ref.body_name,
+                                      core::to_hex(ref.table_hash), " of body \"", ref.body_name,
                                       "\", which was not added (add_version)"));
   impl_->frames.push_back(state);
 }
@@ -86,7 +87,7 @@ fs::path ShowRecorder::finish() {
                  {"scene", impl_->scene_text},
                  {"loop", false}};
   json versions = json::array();
-  for (const cluster::Digest& hash : impl_->version_order) versions.push_back(impl_->versions.at(hash));
+  for (const scene::TableHash& hash : impl_->version_order) versions.push_back(impl_->versions.at(hash));
 
   // One frame per line: readable, diffable, and still plain JSON.
   std::string text = header.dump(2);

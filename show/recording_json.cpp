@@ -1,12 +1,13 @@
-#include "cluster/show/recording_json.h"
+#include "show/recording_json.h"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
 #include "core/json_reader.h"
+#include "core/sha256.h"
+#include "core/units.h"
 
 namespace zenith::show {
 namespace {
@@ -17,7 +18,7 @@ using nlohmann::json;
 
 constexpr double kMaxShowTime_s = 1e9;
 constexpr double kMaxExposure = 1e6;
-constexpr double kMaxSunAngularRadius_rad = 15.0 * std::numbers::pi / 180.0;
+constexpr double kMaxSunAngularRadius_rad = 15.0 * core::kPi / 180.0;
 
 json vec3_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 
@@ -45,11 +46,11 @@ std::uint64_t unsigned_integer(JsonReader& r, const std::string& key, std::uint6
 
 }  // namespace
 
-json frame_to_json(const cluster::FrameState& s) {
+json frame_to_json(const scene::FrameDescription& s) {
   json atmospheres = json::array();
-  for (const cluster::AtmosphereTableRef& ref : s.atmospheres)
+  for (const scene::AtmosphereTableRef& ref : s.atmospheres)
     atmospheres.push_back({{"body", ref.body_name},
-                           {"table_hash", cluster::to_hex(ref.table_hash)},
+                           {"table_hash", core::to_hex(ref.table_hash)},
                            {"effective_from_frame", ref.effective_from_frame}});
   const glm::dquat& q = s.camera_orientation;
   return {{"frame", s.frame},
@@ -65,32 +66,32 @@ json frame_to_json(const cluster::FrameState& s) {
 }
 
 json version_to_json(const AtmosphereVersion& version) {
-  return {{"body", version.body}, {"table_hash", cluster::to_hex(version.table_hash)}, {"parameters", version.parameters}};
+  return {{"body", version.body}, {"table_hash", core::to_hex(version.table_hash)}, {"parameters", version.parameters}};
 }
 
-void check_recordable(const cluster::FrameState& s) {
+void check_recordable(const scene::FrameDescription& s) {
   auto finite = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   const glm::dquat& q = s.camera_orientation;
   if (!(std::isfinite(s.show_time_s) && s.show_time_s >= 0.0))
     throw std::invalid_argument(cat("show_time_s = ", s.show_time_s, ": must be finite and >= 0"));
   if (!finite(s.camera_position_m)) throw std::invalid_argument("camera_position_m: must be finite");
-  if (!(std::abs(glm::length(q) - 1.0) <= cluster::kUnitTolerance))
+  if (!(std::abs(glm::length(q) - 1.0) <= scene::kUnitTolerance))
     throw std::invalid_argument("camera_orientation: must be a unit quaternion");
   if (!(s.exposure > 0.0 && s.exposure <= kMaxExposure))
     throw std::invalid_argument(cat("exposure = ", s.exposure, ": must be in (0, 1e+06]"));
-  if (!(finite(s.sun_direction) && std::abs(glm::length(s.sun_direction) - 1.0) <= cluster::kUnitTolerance))
+  if (!(finite(s.sun_direction) && std::abs(glm::length(s.sun_direction) - 1.0) <= scene::kUnitTolerance))
     throw std::invalid_argument("sun_direction: must be a unit vector");
   if (!(s.sun_angular_radius_rad >= 0.0 && s.sun_angular_radius_rad <= kMaxSunAngularRadius_rad))
     throw std::invalid_argument(cat("sun_angular_radius_rad = ", s.sun_angular_radius_rad, ": must be in [0, 15 deg]"));
-  if (s.sun_irradiance_W_m2_nm.size() > cluster::kMaxWavelengths)
+  if (s.sun_irradiance_W_m2_nm.size() > scene::kMaxWavelengths)
     throw std::invalid_argument("sun_irradiance_W_m2_nm: too many values");
   for (double e : s.sun_irradiance_W_m2_nm)
     if (!(std::isfinite(e) && e >= 0.0)) throw std::invalid_argument("sun_irradiance_W_m2_nm: must be finite, >= 0");
-  if (s.atmospheres.size() > cluster::kMaxAtmospheres) throw std::invalid_argument("atmospheres: too many");
-  if ((s.render_flags & ~cluster::kKnownRenderFlags) != 0) throw std::invalid_argument("render_flags: unknown bits");
+  if (s.atmospheres.size() > scene::kMaxAtmospheres) throw std::invalid_argument("atmospheres: too many");
+  if ((s.render_flags & ~scene::kKnownRenderFlags) != 0) throw std::invalid_argument("render_flags: unknown bits");
 }
 
-cluster::FrameState frame_from_json(const json& frame, const scene::Scene& scene, const std::string& file,
+scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& scene, const std::string& file,
                                     const std::string& pointer) {
   JsonReader r(frame, file, pointer);
   config::reject_unknown_keys(r, frame,
@@ -98,21 +99,21 @@ cluster::FrameState frame_from_json(const json& frame, const scene::Scene& scene
                                "sun_direction", "sun_angular_radius_rad", "sun_irradiance_W_m2_nm", "atmospheres",
                                "render_flags"},
                               "docs/shows.md");
-  cluster::FrameState s;
+  scene::FrameDescription s;
   s.frame = unsigned_integer(r, "frame", std::uint64_t{1} << 53);
   s.show_time_s = r.number("show_time_s", 0.0, kMaxShowTime_s, "s");
   const std::vector<double> p = numbers(r, "camera_position_m", 3, "[x, y, z] m");
   s.camera_position_m = {p[0], p[1], p[2]};
   const std::vector<double> q = numbers(r, "camera_orientation", 4, "[w, x, y, z] (a unit quaternion)");
   s.camera_orientation = glm::dquat(q[0], q[1], q[2], q[3]);
-  if (!(std::abs(glm::length(s.camera_orientation) - 1.0) <= cluster::kUnitTolerance))
+  if (!(std::abs(glm::length(s.camera_orientation) - 1.0) <= scene::kUnitTolerance))
     r.fail("camera_orientation", cat("= ", brief(r.raw("camera_orientation")), ": must be a unit quaternion (|q| - 1 within ",
-                                     cluster::kUnitTolerance, ")"));
+                                     scene::kUnitTolerance, ")"));
   s.exposure = r.number("exposure", 0.0, kMaxExposure);
   if (!(s.exposure > 0.0)) r.fail("exposure", cat("= ", brief(r.raw("exposure")), ": must be in (0, 1e+06]"));
   const std::vector<double> d = numbers(r, "sun_direction", 3, "[x, y, z] (a unit vector)");
   s.sun_direction = {d[0], d[1], d[2]};
-  if (!(std::abs(glm::length(s.sun_direction) - 1.0) <= cluster::kUnitTolerance))
+  if (!(std::abs(glm::length(s.sun_direction) - 1.0) <= scene::kUnitTolerance))
     r.fail("sun_direction", cat("= ", brief(r.raw("sun_direction")), ": must be a unit vector"));
   s.sun_angular_radius_rad = r.number("sun_angular_radius_rad", 0.0, kMaxSunAngularRadius_rad, "rad");
   s.sun_irradiance_W_m2_nm =
@@ -120,19 +121,19 @@ cluster::FrameState frame_from_json(const json& frame, const scene::Scene& scene
   for (double e : s.sun_irradiance_W_m2_nm)
     if (!(e >= 0.0)) r.fail("sun_irradiance_W_m2_nm", "values must be >= 0 W m^-2 nm^-1");
   const json& atmospheres = r.raw("atmospheres");
-  if (!atmospheres.is_array() || atmospheres.size() > cluster::kMaxAtmospheres)
-    r.fail("atmospheres", cat("= ", brief(atmospheres), ": must be an array of at most ", cluster::kMaxAtmospheres,
+  if (!atmospheres.is_array() || atmospheres.size() > scene::kMaxAtmospheres)
+    r.fail("atmospheres", cat("= ", brief(atmospheres), ": must be an array of at most ", scene::kMaxAtmospheres,
                               " {\"body\", \"table_hash\", \"effective_from_frame\"}"));
   for (std::size_t i = 0; i < atmospheres.size(); ++i) {
     JsonReader a(atmospheres[i], file, r.key_path(cat("atmospheres/", i)));
     config::reject_unknown_keys(a, atmospheres[i], {"body", "table_hash", "effective_from_frame"}, "docs/shows.md");
-    cluster::AtmosphereTableRef ref;
+    scene::AtmosphereTableRef ref;
     ref.body_name = a.string("body");
     const scene::Body* body = scene.find_body(ref.body_name);
     if (body == nullptr || !body->atmosphere)
       a.fail("body", cat("= \"", ref.body_name, "\": the scene has no body of that name with an atmosphere"));
     try {
-      ref.table_hash = cluster::digest_from_hex(a.string("table_hash"));
+      ref.table_hash = core::digest_from_hex(a.string("table_hash"));
     } catch (const std::invalid_argument&) {
       a.fail("table_hash", cat("= ", brief(a.raw("table_hash")), ": must be 64 hexadecimal digits"));
     }
@@ -140,7 +141,7 @@ cluster::FrameState frame_from_json(const json& frame, const scene::Scene& scene
     a.finish();
     s.atmospheres.push_back(std::move(ref));
   }
-  s.render_flags = static_cast<std::uint32_t>(unsigned_integer(r, "render_flags", cluster::kKnownRenderFlags));
+  s.render_flags = static_cast<std::uint32_t>(unsigned_integer(r, "render_flags", scene::kKnownRenderFlags));
   r.finish();
   return s;
 }

@@ -1,4 +1,4 @@
-#include "cluster/show/camera_track.h"
+#include "show/camera_track.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "cluster/show/key_span.h"
+#include "show/key_span.h"
 
 namespace zenith::show {
 namespace {

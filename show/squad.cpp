@@ -1,4 +1,4 @@
-#include "cluster/show/squad.h"
+#include "show/squad.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "cluster/show/parameter_track.h"
+#include "show/parameter_track.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "cluster/show/key_span.h"
+#include "show/key_span.h"
 
 namespace zenith::show {
 

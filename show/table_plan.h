@@ -8,7 +8,7 @@
 
 #include "atmosphere/lut/precompute_options.h"
 #include "atmosphere/lut/table_cache.h"
-#include "cluster/show/show.h"
+#include "show/show.h"
 
 namespace zenith::show {
 

@@ -26,9 +26,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
-#include "cluster/show/catmull_rom.h"
-#include "cluster/show/monotone_cubic.h"
-#include "cluster/show/squad.h"
+#include "show/catmull_rom.h"
+#include "show/monotone_cubic.h"
+#include "show/squad.h"
 #include "scene/scene.h"
 #include "scene/scene_loader.h"
 

@@ -1,11 +1,11 @@
-#include "cluster/show/sun_track.h"
+#include "show/sun_track.h"
 
 #include <cmath>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
-#include "cluster/show/key_span.h"
+#include "show/key_span.h"
 
 namespace zenith::show {
 namespace {

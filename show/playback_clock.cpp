@@ -1,4 +1,4 @@
-#include "cluster/show/playback_clock.h"
+#include "show/playback_clock.h"
 
 #include <algorithm>
 #include <charconv>

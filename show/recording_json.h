@@ -8,22 +8,22 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cluster/messages.h"
-#include "cluster/show/show.h"
+#include "scene/frame_description.h"
+#include "show/show.h"
 #include "scene/scene.h"
 
 namespace zenith::show {
 
-nlohmann::json frame_to_json(const cluster::FrameState& state);
+nlohmann::json frame_to_json(const scene::FrameDescription& state);
 /// Reads and checks one recorded frame at `pointer` of `file` against `scene`
 /// (wavelength count, bodies with an atmosphere). Throws ConfigError.
-cluster::FrameState frame_from_json(const nlohmann::json& frame, const scene::Scene& scene, const std::string& file,
+scene::FrameDescription frame_from_json(const nlohmann::json& frame, const scene::Scene& scene, const std::string& file,
                                     const std::string& pointer);
 
 nlohmann::json version_to_json(const AtmosphereVersion& version);
 
 /// Checks that a frame state could be recorded (finite, unit vectors, limits);
 /// throws std::invalid_argument naming the field.
-void check_recordable(const cluster::FrameState& state);
+void check_recordable(const scene::FrameDescription& state);
 
 }  // namespace zenith::show

@@ -1,0 +1,65 @@
+#pragma once
+// What varies from one frame of a scene to the next: the camera, the sun, the
+// exposure, the show time and which lookup-table version each atmosphere uses.
+// Shows evaluate into it (show/show.h), renderers apply it to their copy of the
+// scene, recordings store it (show/recording_json.h) and the cluster protocol
+// sends it as the FrameState message (cluster/messages.h), byte for byte as
+// documented in docs/protocol.md. The static parts of a scene (bodies, albedo,
+// the atmospheres' parameters) are in scene::Scene.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/sha256.h"
+
+namespace zenith::scene {
+
+/// Identity of a lookup-table set: atmosphere::lookup_table_hash as 32 raw bytes.
+using TableHash = core::Sha256Digest;
+
+// Limits of a frame description (the wire and the recordings refuse more).
+inline constexpr std::size_t kMaxWavelengths = 64;  ///< sun irradiance samples
+inline constexpr std::size_t kMaxAtmospheres = 8;   ///< atmosphere table references
+/// Tolerance on |q| − 1 and |sun direction| − 1.
+inline constexpr double kUnitTolerance = 1e-6;
+
+/// Bits of FrameDescription::render_flags (also their wire and recording
+/// values). Bits outside kKnownRenderFlags must be 0.
+enum RenderFlag : std::uint32_t {
+  kRenderSunDisc = 1u << 0,
+  kRenderLimbDarkening = 1u << 1,
+  kRenderMultipleScattering = 1u << 2,
+  kRenderEclipses = 1u << 3,
+  kRenderBodies = 1u << 4,
+};
+inline constexpr std::uint32_t kKnownRenderFlags = (1u << 5) - 1;
+
+/// Which lookup-table set an atmosphere uses, from which frame on.
+struct AtmosphereTableRef {
+  std::string body_name;                  ///< the scene's body (1..64 UTF-8 bytes on the wire)
+  TableHash table_hash{};                 ///< atmosphere::lookup_table_hash as 32 raw bytes
+  std::uint64_t effective_from_frame = 0; ///< renderers switch tables at this frame (all at once)
+  bool operator==(const AtmosphereTableRef&) const = default;
+};
+
+/// Everything that varies per frame. Vectors in the scene's world frame
+/// (scene/scene.h). Every double must be finite.
+struct FrameDescription {
+  std::uint64_t frame = 0;
+  double show_time_s = 0.0;
+  glm::dvec3 camera_position_m{0.0};
+  glm::dquat camera_orientation{1, 0, 0, 0};  ///< camera → world, unit
+  double exposure = 10.0;                     ///< radiance multiplier before tone mapping, > 0
+  glm::dvec3 sun_direction{0, 0, 1};          ///< unit, toward the sun
+  double sun_angular_radius_rad = 0.0;        ///< ≥ 0
+  std::vector<double> sun_irradiance_W_m2_nm; ///< ≤ kMaxWavelengths values, each ≥ 0
+  std::vector<AtmosphereTableRef> atmospheres;  ///< ≤ kMaxAtmospheres
+  std::uint32_t render_flags = 0;             ///< RenderFlag bits
+  bool operator==(const FrameDescription&) const = default;
+};
+
+}  // namespace zenith::scene
