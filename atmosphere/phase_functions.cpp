@@ -6,14 +6,10 @@
 
 namespace zenith::atmosphere {
 
-namespace {
-constexpr double kInv4Pi = 1.0 / (4.0 * kPi);
-}
-
 double rayleigh_phase_classic(double cos_theta) { return 0.75 * (1.0 + cos_theta * cos_theta) * kInv4Pi; }
 
 double rayleigh_phase_penndorf(double cos_theta) {
-  return 0.7629 * (1.0 + 0.932 * cos_theta * cos_theta) * kInv4Pi;
+  return kPenndorfA * (1.0 + kPenndorfB * cos_theta * cos_theta) * kInv4Pi;
 }
 
 double rayleigh_phase_depolarized(double cos_theta, double depolarization) {

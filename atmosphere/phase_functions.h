@@ -2,8 +2,16 @@
 // Scattering phase functions P(cos θ) [sr^-1], each normalized so that
 // ∫_{4π} P dω = 1 (Penndorf's fit integrates to 0.99991, see below).
 // θ is the scattering angle: θ = 0 is forward scattering.
+#include "core/units.h"
 
 namespace zenith::atmosphere {
+
+/// 1/4π [sr^-1], the factor of every phase function below (INV_4PI in the shaders).
+inline constexpr double kInv4Pi = 1.0 / (4.0 * core::kPi);
+/// Penndorf's fit (rayleigh_phase_penndorf): P_R = kPenndorfA (1 + kPenndorfB cos²θ) / 4π
+/// (PENNDORF_A, PENNDORF_B in the shaders).
+inline constexpr double kPenndorfA = 0.7629;
+inline constexpr double kPenndorfB = 0.932;
 
 /// Classic Rayleigh phase function, paper eq. (9):
 ///   P_R(θ) = 3/4 (1 + cos²θ) / 4π.

@@ -1,7 +1,7 @@
 #pragma once
 // Mathematical constants and unit conversions shared by every module. One
-// spelling of π for the whole code base (GLSL has its own, in
-// shaders/atmosphere_common.glsl).
+// spelling of π for the whole code base, the shaders' included (PI of
+// render/lut/shader_model.cpp, PI_F of render/shader_bindings.cpp).
 #include <numbers>
 
 namespace zenith::core {

@@ -20,6 +20,7 @@
 #include "core/parallel_for.h"
 #include "core/units.h"
 #include "atmosphere/model_hash.h"
+#include "render/frame/gpu_body.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
@@ -27,6 +28,7 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
+#include "render/shader_bindings.h"
 #include "scene/albedo_map.h"
 #include "scene/sun_disc.h"
 
@@ -39,23 +41,16 @@ using gl::TextureFormat;
 using Vec4 = std::array<float, 4>;
 
 using scene::kMaxBodies;
-constexpr unsigned kAlbedoMapUnit = 8;  // albedo_maps (a 2D array texture)
-constexpr unsigned kRayTableUnit = 7;   // projection_ray_table of projection.glsl
 constexpr std::size_t kLanes = kWavelengthLanes;
 
-// Storage bindings and image units of the render passes (frame.glsl, *.comp).
-enum StorageBinding : unsigned { kBodies = 4, kTiles = 5, kFrameRgb = 6 };
-enum ImageUnit : unsigned { kGbufferHit = 0, kGbufferAlbedo = 1, kRadianceSum = 2, kTransmittance = 3 };
-constexpr int kMaxSpectrumUniforms = 64;  // direct_light.comp's sun_spectrum[]: a scene's wavelengths at most
-
-/// frame.glsl's Body, std430 layout (6 vec4).
-struct GpuBody {
-  Vec4 centre;  // direction camera → centre, distance
-  Vec4 shape;   // R, |c|² − R², atmosphere slot, albedo layer
-  Vec4 albedo_map;
-  Vec4 world_to_body[3];
-};
-static_assert(sizeof(GpuBody) == 6 * 16);
+// Texture units, storage bindings and image units of the render passes
+// (frame.glsl, *.comp), from render/shader_bindings.h.
+constexpr unsigned kAlbedoMapUnit = binding::kAlbedoMapsUnit;  // albedo_maps (a 2D array texture)
+constexpr unsigned kRayTableUnit = binding::kRayTableUnit;     // projection_ray_table of projection.glsl
+using binding::kBodies, binding::kTiles, binding::kFrameRgb;
+constexpr unsigned kGbufferHit = binding::kGbufferHitImage, kGbufferAlbedo = binding::kGbufferAlbedoImage,
+                   kRadianceSum = binding::kRadianceSumImage, kTransmittance = binding::kTransmittanceProductImage;
+constexpr int kMaxSpectrumUniforms = kSunSpectrumSize;  // direct_light.comp's sun_spectrum[]
 
 /// Whether some body's shadow (its penumbra) can fall on another: then the
 /// passes are compiled with the eclipse code (frame.glsl's sun_visibility),

@@ -1,5 +1,4 @@
 #include "scene/scene.h"
-#include "core/units.h"
 
 #include <cmath>
 #include <set>
@@ -7,6 +6,8 @@
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+
+#include "core/units.h"
 
 namespace zenith::scene {
 namespace {

@@ -1,10 +1,11 @@
 #include "scene/sun_disc.h"
-#include "core/units.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/units.h"
 
 namespace zenith::scene {
 namespace {

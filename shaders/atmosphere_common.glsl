@@ -37,6 +37,12 @@
 //   SCATTERING_SAMPLES, TRANSMITTANCE_SAMPLES (even)
 //   SPHERE_ZENITH_SAMPLES, SPHERE_RULE     Gauss–Legendre rule of the scattering density
 //   HEMISPHERE_ZENITH_SAMPLES, HEMISPHERE_RULE   and of the sky irradiance (nodes, weights in TableData)
+//   PI, INV_4PI, PENNDORF_A, PENNDORF_B, SERIES_LIMIT   literals of type real: core/units.h,
+//                                          atmosphere/phase_functions.h, atmosphere/lut/quadrature.h
+//   FIELD_*                                real4 fields of WavelengthData (shader_model.cpp)
+//   TEXEL_MU_S, TEXEL_SUN_THETA_MAX, TEXEL_MU_SKY, TEXEL_VALUE_COUNT   TexelCoordinates layout
+// and, for every shader loaded from shaders/, the binding points (*_BINDING,
+// *_UNIT, *_IMAGE) of render/shader_bindings.h.
 
 // ------------------------------------------------------------ precision
 
@@ -45,11 +51,6 @@
 #define real2 dvec2
 #define real3 dvec3
 #define real4 dvec4
-const double PI = 3.14159265358979323846LF;
-const double INV_4PI = 1.0LF / (4.0LF * 3.14159265358979323846LF);  // kInv4Pi of phase_functions.cpp
-const double PENNDORF_A = 0.7629LF;
-const double PENNDORF_B = 0.932LF;
-const double SERIES_LIMIT = 1e-4LF;  // quadrature.h
 
 // ---- double-precision elementary functions (GLSL has them for float only)
 
@@ -176,11 +177,6 @@ double acos_r(double x) {
 #define real2 vec2
 #define real3 vec3
 #define real4 vec4
-const float PI = 3.14159265358979323846;
-const float INV_4PI = 1.0 / (4.0 * 3.14159265358979323846);
-const float PENNDORF_A = 0.7629;
-const float PENNDORF_B = 0.932;
-const float SERIES_LIMIT = 1e-4;
 #define exp_r exp
 #define log_r log
 #define cos_r cos
@@ -204,23 +200,14 @@ void sincos_r(float x, out float s, out float c) {
 // ------------------------------------------------------------ model data
 
 /// Per wavelength group g, WAVELENGTH_FIELDS real4s from g·WAVELENGTH_FIELDS
-/// (the FIELD_* indices), one lane per wavelength.
-layout(std430, binding = 0) readonly buffer WavelengthData { real4 wavelength_data[]; };
+/// (the FIELD_* indices, defined by the shader model), one lane per wavelength.
+layout(std430, binding = WAVELENGTH_DATA_BINDING) readonly buffer WavelengthData { real4 wavelength_data[]; };
 /// Profile descriptors (kind, scale height, first knot, knot count), spline
 /// knots (x[], y[], slope[]), the direction quadratures (nodes[], weights[]) and
 /// the air-mass table (cos zenith[], stretch[]).
-layout(std430, binding = 1) readonly buffer TableData { real table_data[]; };
+layout(std430, binding = TABLE_DATA_BINDING) readonly buffer TableData { real table_data[]; };
 
 uniform int wavelength_group;
-
-const int FIELD_RAYLEIGH_SCATTERING = 0;
-const int FIELD_MIE_SCATTERING = 1;
-const int FIELD_MIE_EXTINCTION = 2;
-const int FIELD_MIE_G1 = 3;
-const int FIELD_MIE_G2 = 4;
-const int FIELD_MIE_ALPHA = 5;
-const int FIELD_GROUND_ALBEDO = 6;
-const int FIELD_ABSORBERS = 7;  // absorber k: FIELD_ABSORBERS + k
 
 real4 wavelength_field(int field) { return wavelength_data[wavelength_group * WAVELENGTH_FIELDS + field]; }
 
@@ -445,12 +432,11 @@ const int ANGLE_MAPPING_BLENDED = 1;
 
 /// Texel-coordinate values computed once per precompute by texel_coordinates.comp:
 /// μs of each μs index per mapping, acos(μs_min), then μ of each sky (upper-half)
-/// μ index per mapping and r layer.
-layout(std430, binding = 2) buffer TexelCoordinates { real texel_values[]; };
-const int TEXEL_MU_S = 0;                                  // [mapping][μs index]
-const int TEXEL_SUN_THETA_MAX = 2 * SCATTERING_MU_S;       // acos(μs_min)
-const int TEXEL_MU_SKY = 2 * SCATTERING_MU_S + 1;          // [mapping][z][y − SCATTERING_MU/2]
-const int TEXEL_VALUE_COUNT = TEXEL_MU_SKY + 2 * SCATTERING_R * (SCATTERING_MU / 2);
+/// μ index per mapping and r layer. Offsets (TexelCoordinateLayout of
+/// render/lut/shader_model.h, defined by the shader model): TEXEL_MU_S
+/// [mapping][μs index], TEXEL_SUN_THETA_MAX acos(μs_min), TEXEL_MU_SKY
+/// [mapping][z][y − SCATTERING_MU/2], TEXEL_VALUE_COUNT in all.
+layout(std430, binding = TEXEL_COORDINATES_BINDING) buffer TexelCoordinates { real texel_values[]; };
 
 real distance_mapping_mu_s(real mu_s) {
   PRECISE real d_min = RT - RB, d_max = horizon_distance_at_top();
@@ -731,7 +717,7 @@ real4 sample_scattering_table_geometric_mu_s(sampler3D table, ScatteringUV uv) {
 
 // ------------------------------------------------------------ transmittance queries (lookup_tables.cpp)
 
-layout(binding = 0) uniform sampler2D transmittance_texture;
+layout(binding = TRANSMITTANCE_UNIT) uniform sampler2D transmittance_texture;
 
 real4 transmittance_to_top(real r, real mu) {
   const real2 uv = transmittance_uv(r, mu);

@@ -10,7 +10,7 @@ layout(local_size_x = 64) in;
 #include "atmosphere_common.glsl"
 #include "harmonics.glsl"
 
-layout(binding = 0, rgba32f) uniform writeonly image3D density_image;
+layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image3D density_image;
 
 void main() {
   const int invocation = int(gl_GlobalInvocationID.x);

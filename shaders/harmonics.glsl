@@ -18,9 +18,9 @@ const int HARMONIC_COUNT = (HARMONIC_DEGREE + 1) * (HARMONIC_DEGREE + 2) / 2;
 const int COLUMNS = SCATTERING_R * SCATTERING_MU_S;
 
 /// C_m(μ_j) = ∫ L(μ_j, φ) cos(mφ) dφ per column, node and m (radiance_harmonics.comp).
-layout(std430, binding = 6) buffer AzimuthMoments { real4 azimuth_moments[]; };
+layout(std430, binding = AZIMUTH_MOMENTS_BINDING) buffer AzimuthMoments { real4 azimuth_moments[]; };
 /// a_lm per column, m-major (harmonic_projection.comp).
-layout(std430, binding = 7) buffer HarmonicCoefficients { real4 harmonic_coefficients[]; };
+layout(std430, binding = HARMONIC_COEFFICIENTS_BINDING) buffer HarmonicCoefficients { real4 harmonic_coefficients[]; };
 
 int azimuth_moment_index(int column, int node, int m) { return (column * HARMONIC_NODES + node) * HARMONIC_ORDERS + m; }
 

@@ -8,8 +8,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "atmosphere_common.glsl"
 #include "previous_order.glsl"
 
-layout(binding = 0, rgba32f) uniform writeonly image2D delta_irradiance_image;
-layout(binding = 1, rgba32f) uniform image2D irradiance_image;
+layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image2D delta_irradiance_image;
+layout(binding = SECOND_OUTPUT_IMAGE, rgba32f) uniform image2D irradiance_image;
 
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -9,9 +9,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "atmosphere_common.glsl"
 #include "view_ray.glsl"
 
-layout(binding = 5) uniform sampler3D density_texture;
-layout(binding = 0, rgba32f) uniform writeonly image3D delta_radiance_image;
-layout(binding = 1, rgba32f) uniform image3D multiple_image;
+layout(binding = DENSITY_UNIT) uniform sampler3D density_texture;
+layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image3D delta_radiance_image;
+layout(binding = SECOND_OUTPUT_IMAGE, rgba32f) uniform image3D multiple_image;
 uniform int sample_stride;  // PrecomputeOptions::ray_sample_stride(order)
 
 void main() {

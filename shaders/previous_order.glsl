@@ -10,13 +10,13 @@
 // where it changes: in a sphere integral r and μs are fixed, μ per zenith step.
 #if FIRST_ORDER
 const int PREVIOUS_ORDER_MAPPING = ANGLE_MAPPING_DISTANCE;
-layout(binding = 1) uniform sampler3D single_rayleigh_texture;
+layout(binding = SINGLE_RAYLEIGH_UNIT) uniform sampler3D single_rayleigh_texture;
 #if HAS_MIE
-layout(binding = 2) uniform sampler3D single_mie_texture;
+layout(binding = SINGLE_MIE_UNIT) uniform sampler3D single_mie_texture;
 #endif
 #else
 const int PREVIOUS_ORDER_MAPPING = ANGLE_MAPPING_BLENDED;
-layout(binding = 3) uniform sampler3D delta_radiance_texture;
+layout(binding = DELTA_RADIANCE_UNIT) uniform sampler3D delta_radiance_texture;
 #endif
 
 /// `uv`: scattering_uvwz(r, μ, μs, ν) with PREVIOUS_ORDER_MAPPING; ν for the phase functions.

@@ -34,7 +34,7 @@ uniform vec4 projection_params[4];
 /// PROJECTION_KIND_RAY_TABLE: the rays of the current band's pixels, computed on
 /// the CPU (xyz: the camera-frame ray, w: 1 where there is one, 0 where not);
 /// texel (0, 0) is pixel projection_table_origin of the image.
-layout(binding = 7) uniform sampler2D projection_ray_table;
+layout(binding = RAY_TABLE_UNIT) uniform sampler2D projection_ray_table;
 uniform ivec2 projection_table_origin;
 
 // False (and direction = 0) where the pixel has no ray: outside a fisheye's

@@ -13,7 +13,7 @@ layout(local_size_x = 64) in;
 #include "harmonics.glsl"
 
 #if !FIRST_ORDER
-layout(binding = 4) uniform sampler2D delta_irradiance_texture;
+layout(binding = DELTA_IRRADIANCE_UNIT) uniform sampler2D delta_irradiance_texture;
 #endif
 
 void main() {

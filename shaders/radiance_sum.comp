@@ -9,15 +9,15 @@ layout(local_size_x = 64) in;
 
 #include "atmosphere_common.glsl"
 
-layout(std430, binding = 3) writeonly buffer RowSums { real row_sums[]; };
+layout(std430, binding = ROW_SUMS_BINDING) writeonly buffer RowSums { real row_sums[]; };
 uniform int lanes;
 #if SINGLE
-layout(binding = 1) uniform sampler3D single_rayleigh_texture;
+layout(binding = SINGLE_RAYLEIGH_UNIT) uniform sampler3D single_rayleigh_texture;
 #if HAS_MIE
-layout(binding = 2) uniform sampler3D single_mie_texture;
+layout(binding = SINGLE_MIE_UNIT) uniform sampler3D single_mie_texture;
 #endif
 #else
-layout(binding = 3) uniform sampler3D delta_radiance_texture;
+layout(binding = DELTA_RADIANCE_UNIT) uniform sampler3D delta_radiance_texture;
 #endif
 
 void main() {

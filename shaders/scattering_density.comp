@@ -9,9 +9,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "atmosphere_common.glsl"
 #include "previous_order.glsl"
 
-layout(binding = 0, rgba32f) uniform writeonly image3D density_image;
+layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image3D density_image;
 #if !FIRST_ORDER
-layout(binding = 4) uniform sampler2D delta_irradiance_texture;
+layout(binding = DELTA_IRRADIANCE_UNIT) uniform sampler2D delta_irradiance_texture;
 #endif
 
 void main() {

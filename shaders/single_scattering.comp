@@ -9,9 +9,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "atmosphere_common.glsl"
 #include "view_ray.glsl"
 
-layout(binding = 0, rgba32f) uniform writeonly image3D single_rayleigh_image;
+layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image3D single_rayleigh_image;
 #if HAS_MIE
-layout(binding = 1, rgba32f) uniform writeonly image3D single_mie_image;
+layout(binding = SECOND_OUTPUT_IMAGE, rgba32f) uniform writeonly image3D single_mie_image;
 #endif
 
 void main() {

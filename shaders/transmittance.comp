@@ -7,7 +7,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "atmosphere_common.glsl"
 
-layout(binding = 0, rgba32f) uniform writeonly image2D transmittance_image;
+layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image2D transmittance_image;
 
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);

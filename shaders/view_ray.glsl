@@ -9,7 +9,7 @@
 //    scattering_uvwz, with the μ mapping of the stage), which cost two acos each.
 // Needs atmosphere_common.glsl.
 
-layout(std430, binding = 8) buffer ViewTransmittance { real4 view_transmittance[]; };
-layout(std430, binding = 9) buffer ViewRayCoordinates { real2 view_ray_uv[]; };
+layout(std430, binding = VIEW_TRANSMITTANCE_BINDING) buffer ViewTransmittance { real4 view_transmittance[]; };
+layout(std430, binding = VIEW_RAY_COORDINATES_BINDING) buffer ViewRayCoordinates { real2 view_ray_uv[]; };
 
 int view_ray_sample_index(int z, int y, int i) { return (z * SCATTERING_MU + y) * (SCATTERING_SAMPLES + 1) + i; }

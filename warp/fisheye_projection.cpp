@@ -1,5 +1,4 @@
 #include "warp/fisheye_projection.h"
-#include "core/units.h"
 
 #include <algorithm>
 #include <charconv>
@@ -10,6 +9,8 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {

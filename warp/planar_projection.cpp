@@ -1,5 +1,4 @@
 #include "warp/planar_projection.h"
-#include "core/units.h"
 
 #include <algorithm>
 #include <charconv>
@@ -9,6 +8,8 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+
+#include "core/units.h"
 
 namespace zenith::warp {
 namespace {

@@ -8,6 +8,10 @@
 
 namespace zenith::atmosphere::lut {
 
+/// |ln(f1/f0)| below which integrate_interval uses the series of (e^x − 1)/x
+/// (SERIES_LIMIT in the shaders).
+inline constexpr double kLogLinearSeriesLimit = 1e-4;
+
 /// ∫ f over an interval of length h from its end values f0, f1 ≥ 0.
 ///  * Trapezoid: h (f0 + f1)/2.
 ///  * LogLinear: f interpolated as an exponential, ∫ = h (f1 − f0)/ln(f1/f0),
@@ -17,7 +21,7 @@ namespace zenith::atmosphere::lut {
 inline double integrate_interval(double f0, double f1, double h, PrecomputeOptions::Quadrature rule) {
   if (rule == PrecomputeOptions::Quadrature::Trapezoid || f0 <= 0.0 || f1 <= 0.0) return 0.5 * h * (f0 + f1);
   const double x = std::log(f1 / f0);
-  if (std::abs(x) < 1e-4) return h * f0 * (1.0 + x / 2.0 + x * x / 6.0);  // (e^x − 1)/x
+  if (std::abs(x) < kLogLinearSeriesLimit) return h * f0 * (1.0 + x / 2.0 + x * x / 6.0);  // (e^x − 1)/x
   return h * (f1 - f0) / x;
 }
 

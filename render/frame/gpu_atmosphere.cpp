@@ -11,6 +11,7 @@
 #include "atmosphere/model_hash.h"
 #include "render/gl/gl_error.h"
 #include "render/lut/shader_model.h"
+#include "render/shader_bindings.h"
 
 namespace zenith::render {
 namespace {
@@ -20,12 +21,9 @@ using atmosphere::lut::Table3D;
 
 constexpr std::size_t kLanes = kWavelengthLanes;
 
-// Texture units and storage bindings of atmosphere_segment.glsl / atmosphere_common.glsl,
-// and the sky-view table of atmosphere_tile.comp.
-enum TextureUnit : unsigned {
-  kTransmittance = 0, kSingleRayleigh = 1, kSingleMie = 2, kMultiple = 3, kIrradiance = 4, kSkyView = 5
-};
-enum StorageBinding : unsigned { kWavelengthData = 0, kTableData = 1, kTexelCoordinates = 2 };
+// Texture units and storage bindings of atmosphere_segment.glsl / atmosphere_common.glsl
+// and the sky-view table of atmosphere_tile.comp: render/shader_bindings.h.
+using namespace binding;
 
 /// Lanes 4g..4g+3 of a channel-interleaved table, as RGBA texels (missing lanes 0).
 std::vector<float> group_lanes(const std::vector<float>& data, std::size_t texels, std::size_t channels,
@@ -80,13 +78,12 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   wavelength_data_ = real_buffer(shader.wavelength_data, features.fp64);
   table_data_ = real_buffer(shader.table_data, features.fp64);
   // Of the texel-coordinate values the precompute derives, rendering reads one:
-  // acos(μs_min) at TEXEL_SUN_THETA_MAX = 2 · SCATTERING_MU_S (atmosphere_common.glsl).
-  const std::size_t mu_s = tables.sizes.scattering_mu_s;
-  std::vector<double> texel_values(2 * mu_s + 1 + 2 * tables.sizes.scattering_r * (tables.sizes.scattering_mu / 2), 0.0);
-  texel_values[2 * mu_s] = std::acos(tables.geometry.min_sun_cosine());
+  // acos(μs_min) at TEXEL_SUN_THETA_MAX (ShaderModel::texel_layout).
+  std::vector<double> texel_values(shader.texel_layout.count, 0.0);
+  texel_values[shader.texel_layout.sun_theta_max] = std::acos(tables.geometry.min_sun_cosine());
   texel_coordinates_ = real_buffer(texel_values, features.fp64);
   // The same values as uniforms for the render passes (atmosphere_segment.glsl).
-  sun_theta_max_ = static_cast<float>(texel_values[2 * mu_s]);
+  sun_theta_max_ = static_cast<float>(texel_values[shader.texel_layout.sun_theta_max]);
   auto lanes = [&](const atmosphere::Spectrum& values, std::size_t group) {
     std::array<float, 4> out{0, 0, 0, 0};
     for (std::size_t k = 0; k < kLanes && group * kLanes + k < values.size(); ++k)
@@ -100,6 +97,7 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   }
 
   std::vector<gl::ShaderDefine> defines = shader.defines;
+  for (const gl::ShaderDefine& d : SkyViewTable::defines()) defines.push_back(d);
   defines.push_back({"MULTIPLE_SCATTERING", features.multiple_scattering && tables.scattering_orders >= 2 ? "1" : "0"});
   eclipses_ = features.eclipses;
   defines_ = defines;
@@ -112,11 +110,11 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
 
 void GpuAtmosphere::bind_tables(std::size_t group) const {
   const GroupTextures& t = groups_.at(group);
-  t.transmittance.bind(kTransmittance);
-  t.single_rayleigh.bind(kSingleRayleigh);
-  t.single_mie.bind(kSingleMie);
-  t.multiple.bind(kMultiple);
-  t.irradiance.bind(kIrradiance);
+  t.transmittance.bind(kTransmittanceUnit);
+  t.single_rayleigh.bind(kSingleRayleighUnit);
+  t.single_mie.bind(kSingleMieUnit);
+  t.multiple.bind(kMultipleUnit);
+  t.irradiance.bind(kIrradianceUnit);
   wavelength_data_.bind_storage(kWavelengthData);
   table_data_.bind_storage(kTableData);
   texel_coordinates_.bind_storage(kTexelCoordinates);
@@ -124,7 +122,7 @@ void GpuAtmosphere::bind_tables(std::size_t group) const {
 
 void GpuAtmosphere::bind(std::size_t group) const {
   bind_tables(group);
-  sky_view_->bind(kSkyView);
+  sky_view_->bind(kSkyViewUnit);
 }
 
 void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t group) const {

@@ -1,13 +1,22 @@
 #include "render/frame/sky_view_table.h"
-#include "core/units.h"
 
 #include <epoxy/gl.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include "core/units.h"
+#include "render/shader_bindings.h"
+
 namespace zenith::render {
+
+std::vector<gl::ShaderDefine> SkyViewTable::defines() {
+  return {{"SKY_VIEW_AZIMUTH_TEXELS", std::to_string(kAzimuthTexels)},
+          {"SKY_VIEW_ZENITH_TEXELS", std::to_string(kZenithTexels)},
+          {"SKY_VIEW_LAYERS", std::to_string(kLayersPerGroup)}};
+}
 
 SkyViewTable::SkyViewTable(std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups)
     : fill_(gl::ShaderProgram::load_compute("render/sky_view.comp", atmosphere_defines)),
@@ -27,7 +36,7 @@ void SkyViewTable::set_camera(double camera_radius_m, double ground_radius_m, do
 
 void SkyViewTable::fill_group(std::size_t group) const {
   fill_.set_uniform("layer_base", static_cast<int>(group) * kLayersPerGroup);
-  table_.bind_image(0, gl::ImageAccess::write_only);
+  table_.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
   fill_.dispatch_covering(kAzimuthTexels, kZenithTexels);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }

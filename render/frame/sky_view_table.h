@@ -16,6 +16,7 @@
 // (RendererSkyView) and docs/rendering-performance.md.
 #include <cstddef>
 #include <span>
+#include <vector>
 
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
@@ -27,6 +28,10 @@ class SkyViewTable {
   static constexpr int kAzimuthTexels = 128;  ///< SKY_VIEW_AZIMUTH_TEXELS
   static constexpr int kZenithTexels = 64;    ///< SKY_VIEW_ZENITH_TEXELS, per half
   static constexpr int kLayersPerGroup = 6;   ///< SKY_VIEW_LAYERS
+
+  /// SKY_VIEW_AZIMUTH_TEXELS, SKY_VIEW_ZENITH_TEXELS and SKY_VIEW_LAYERS from the
+  /// constants above, for the shaders that include render/sky_view_mapping.glsl.
+  static std::vector<gl::ShaderDefine> defines();
 
   /// Compiles the fill shader with the atmosphere's defines and allocates the
   /// table for `groups` wavelength groups. Needs a current GL context.

@@ -21,6 +21,7 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
+#include "render/shader_bindings.h"
 
 namespace zenith::render {
 
@@ -49,25 +50,8 @@ using gl::TextureFormat;
 
 constexpr std::size_t kLanes = kWavelengthLanes;
 
-// Binding points shared with the shaders (atmosphere_common.glsl, previous_order.glsl, *.comp).
-enum StorageBinding : unsigned {
-  kWavelengthData = 0,
-  kTableData = 1,
-  kTexelCoordinates = 2,
-  kRowSums = 3,
-  kAzimuthMoments = 6,        // harmonics.glsl
-  kHarmonicCoefficients = 7,  // harmonics.glsl
-  kViewTransmittance = 8,     // view_ray.glsl
-  kViewRayCoordinates = 9,    // view_ray.glsl
-};
-enum TextureUnit : unsigned {
-  kTransmittanceUnit = 0,
-  kSingleRayleighUnit = 1,
-  kSingleMieUnit = 2,
-  kDeltaRadianceUnit = 3,
-  kDeltaIrradianceUnit = 4,
-  kDensityUnit = 5,
-};
+// Binding points shared with the shaders: render/shader_bindings.h.
+using namespace binding;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -90,10 +74,8 @@ class GpuPrecompute {
  private:
   const TableSizes& sizes() const { return options_.sizes; }
   std::size_t group_count() const { return groups_.size(); }
-  /// TEXEL_VALUE_COUNT of atmosphere_common.glsl: μs per mapping, acos(μs_min), sky μ per mapping and r.
-  std::size_t texel_coordinate_count() const {
-    return 2 * sizes().scattering_mu_s + 1 + 2 * sizes().scattering_r * (sizes().scattering_mu / 2);
-  }
+  /// TEXEL_VALUE_COUNT: μs per mapping, acos(μs_min), sky μ per mapping and r.
+  std::size_t texel_coordinate_count() const { return texel_layout_.count; }
   void prepare_model_data();
   void check_limits() const;
   const ShaderProgram& program(const std::string& file, std::vector<ShaderDefine> extra = {});
@@ -129,6 +111,7 @@ class GpuPrecompute {
   std::size_t n_;
   LookupTables tables_;
   std::vector<ShaderDefine> defines_;
+  TexelCoordinateLayout texel_layout_;
   gl::Buffer wavelength_data_, table_data_, texel_coordinates_, row_sums_;
   gl::Buffer azimuth_moments_, harmonic_coefficients_;  // DensityMethod::Harmonics, one group at a time
   gl::Buffer view_transmittance_, view_ray_uv_;         // view_ray.glsl, one group at a time
@@ -174,6 +157,7 @@ void GpuPrecompute::check_limits() const {
 void GpuPrecompute::prepare_model_data() {
   ShaderModel m = shader_model(model_, options_, fp64_);
   defines_ = std::move(m.defines);
+  texel_layout_ = m.texel_layout;
   wavelength_data_ = real_buffer(m.wavelength_data, fp64_);
   table_data_ = real_buffer(m.table_data, fp64_);
   const std::size_t real_size = fp64_ ? sizeof(double) : sizeof(float);
@@ -254,7 +238,7 @@ void GpuPrecompute::compute_transmittance() {
   for (std::size_t g = 0; g < group_count(); ++g) {
     groups_[g].transmittance =
         Texture::create_2d(TextureFormat::rgba32f, to_int(s.transmittance_mu), to_int(s.transmittance_r));
-    groups_[g].transmittance.bind_image(0, gl::ImageAccess::write_only);
+    groups_[g].transmittance.bind_image(kOutputImage, gl::ImageAccess::write_only);
     p.set_uniform("wavelength_group", to_int(g));
     p.dispatch_covering(to_int(s.transmittance_mu), to_int(s.transmittance_r));
   }
@@ -272,10 +256,10 @@ void GpuPrecompute::compute_single_scattering() {
   for (std::size_t g = 0; g < group_count(); ++g) {
     GroupTables& t = groups_[g];
     t.single_rayleigh = new_scattering_texture();
-    t.single_rayleigh.bind_image(0, gl::ImageAccess::write_only);
+    t.single_rayleigh.bind_image(kOutputImage, gl::ImageAccess::write_only);
     if (model_.has_mie()) {
       t.single_mie = new_scattering_texture();
-      t.single_mie.bind_image(1, gl::ImageAccess::write_only);
+      t.single_mie.bind_image(kSecondOutputImage, gl::ImageAccess::write_only);
     }
     t.transmittance.bind(kTransmittanceUnit);
     compute_view_transmittance(g, true);
@@ -334,7 +318,7 @@ void GpuPrecompute::compute_scattering_density_harmonics(int order) {
     projection.set_uniform("wavelength_group", to_int(g));
     projection.dispatch_covering(to_int(columns * (degree + 1)));
     barrier();
-    t.density.bind_image(0, gl::ImageAccess::write_only);
+    t.density.bind_image(kOutputImage, gl::ImageAccess::write_only);
     density.set_uniform("wavelength_group", to_int(g));
     density.dispatch_covering(to_int(columns * s.scattering_mu));
     barrier();
@@ -346,7 +330,7 @@ void GpuPrecompute::compute_scattering_density_direct(int order) {
   for (std::size_t g = 0; g < group_count(); ++g) {
     GroupTables& t = groups_[g];
     if (t.density.id() == 0) t.density = new_scattering_texture();
-    t.density.bind_image(0, gl::ImageAccess::write_only);
+    t.density.bind_image(kOutputImage, gl::ImageAccess::write_only);
     t.transmittance.bind(kTransmittanceUnit);
     bind_previous_order_radiance(t, order);
     if (order > 2) t.delta_irradiance.bind(kDeltaIrradianceUnit);
@@ -365,8 +349,8 @@ void GpuPrecompute::compute_indirect_irradiance(int order) {
       t.irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
       t.delta_irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
     }
-    t.delta_irradiance.bind_image(0, gl::ImageAccess::write_only);
-    t.irradiance.bind_image(1, gl::ImageAccess::read_write);
+    t.delta_irradiance.bind_image(kOutputImage, gl::ImageAccess::write_only);
+    t.irradiance.bind_image(kSecondOutputImage, gl::ImageAccess::read_write);
     t.transmittance.bind(kTransmittanceUnit);
     bind_previous_order_radiance(t, order);
     p.set_uniform("wavelength_group", to_int(g));
@@ -383,8 +367,8 @@ double GpuPrecompute::compute_multiple_scattering(int sample_stride) {
       t.multiple = new_scattering_texture();
       t.delta_radiance = new_scattering_texture();
     }
-    t.delta_radiance.bind_image(0, gl::ImageAccess::write_only);
-    t.multiple.bind_image(1, gl::ImageAccess::read_write);
+    t.delta_radiance.bind_image(kOutputImage, gl::ImageAccess::write_only);
+    t.multiple.bind_image(kSecondOutputImage, gl::ImageAccess::read_write);
     t.transmittance.bind(kTransmittanceUnit);
     t.density.bind(kDensityUnit);
     compute_view_transmittance(g, false);

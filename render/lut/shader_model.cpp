@@ -10,6 +10,8 @@
 #include "atmosphere/lut/parameterization.h"
 #include "atmosphere/lut/quadrature.h"
 #include "atmosphere/lut/spherical_harmonics.h"
+#include "atmosphere/phase_functions.h"
+#include "core/units.h"
 
 namespace zenith::render {
 
@@ -37,6 +39,15 @@ enum WavelengthField : std::size_t {
 };
 
 }  // namespace
+
+TexelCoordinateLayout texel_coordinate_layout(const TableSizes& sizes) {
+  TexelCoordinateLayout l;
+  l.mu_s = 0;
+  l.sun_theta_max = l.mu_s + 2 * sizes.scattering_mu_s;  // both angle mappings
+  l.mu_sky = l.sun_theta_max + 1;
+  l.count = l.mu_sky + 2 * sizes.scattering_r * (sizes.scattering_mu / 2);
+  return l;
+}
 
 std::string glsl_literal(double v, bool fp64) {
   // 17 significant digits round-trip a double exactly; 9 a float.
@@ -175,6 +186,25 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("SCATTERING_NU", s.scattering_nu);
   define("NU_SPREAD_MIN", glsl_literal(atmosphere::lut::kNuSpreadMin, fp64));
   define("GEOMETRIC_BLEND_FULL_LOG_RATIO", glsl_literal(double(atmosphere::lut::kGeometricBlendFullLogRatio), false));
+  // Constants shared with the CPU code, from their C++ definitions.
+  define("PI", glsl_literal(core::kPi, fp64));
+  define("INV_4PI", glsl_literal(atmosphere::kInv4Pi, fp64));
+  define("PENNDORF_A", glsl_literal(atmosphere::kPenndorfA, fp64));
+  define("PENNDORF_B", glsl_literal(atmosphere::kPenndorfB, fp64));
+  define("SERIES_LIMIT", glsl_literal(atmosphere::lut::kLogLinearSeriesLimit, fp64));
+  define("FIELD_RAYLEIGH_SCATTERING", std::size_t{kRayleighScattering});
+  define("FIELD_MIE_SCATTERING", std::size_t{kMieScattering});
+  define("FIELD_MIE_EXTINCTION", std::size_t{kMieExtinction});
+  define("FIELD_MIE_G1", std::size_t{kMieG1});
+  define("FIELD_MIE_G2", std::size_t{kMieG2});
+  define("FIELD_MIE_ALPHA", std::size_t{kMieAlpha});
+  define("FIELD_GROUND_ALBEDO", std::size_t{kGroundAlbedo});
+  define("FIELD_ABSORBERS", std::size_t{kAbsorbers});
+  out.texel_layout = texel_coordinate_layout(s);
+  define("TEXEL_MU_S", out.texel_layout.mu_s);
+  define("TEXEL_SUN_THETA_MAX", out.texel_layout.sun_theta_max);
+  define("TEXEL_MU_SKY", out.texel_layout.mu_sky);
+  define("TEXEL_VALUE_COUNT", out.texel_layout.count);
   define("RAYLEIGH_PHASE", rayleigh_phase());
   define("RAYLEIGH_DEPOLARIZATION", glsl_literal(model.rayleigh_depolarization, fp64));
   define("HAS_MIE", model.has_mie() ? 1 : 0);

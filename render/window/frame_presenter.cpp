@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "render/gl/gl_error.h"
+#include "render/shader_bindings.h"
 
 namespace zenith::render::window {
 
@@ -101,7 +102,7 @@ void FramePresenter::draw(image::ToneMapping tone, const PresentTarget& target) 
   glViewport(box.x, box.y, box.width, box.height);
   program_.set_uniform("tone_mapping", tone == image::ToneMapping::clamp ? 1 : 0);
   program_.use();
-  texture_.bind(0);
+  texture_.bind(binding::kPresentFrameUnit);
   glBindVertexArray(vertex_array_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);

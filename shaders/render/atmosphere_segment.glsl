@@ -26,10 +26,10 @@
 #define TILE_OTHERS 2
 #endif
 
-layout(binding = 1) uniform sampler3D single_rayleigh_texture;
-layout(binding = 2) uniform sampler3D single_mie_texture;
-layout(binding = 3) uniform sampler3D multiple_texture;
-layout(binding = 4) uniform sampler2D irradiance_texture;
+layout(binding = SINGLE_RAYLEIGH_UNIT) uniform sampler3D single_rayleigh_texture;
+layout(binding = SINGLE_MIE_UNIT) uniform sampler3D single_mie_texture;
+layout(binding = MULTIPLE_UNIT) uniform sampler3D multiple_texture;
+layout(binding = IRRADIANCE_UNIT) uniform sampler2D irradiance_texture;
 
 uniform int planet;              // index of the body this atmosphere surrounds (its data: the_body, frame.glsl)
 uniform float camera_top_power;  // |c|² − RT² [m²], in double on the CPU
@@ -143,7 +143,7 @@ real4 direct_irradiance(real r, real mu_s) {
   const float mu_horizon = -sqrt(max(0.0, 1.0 - float(RB / r) * float(RB / r)));
   const float elevation = asin(clamp(float(mu_s), -1.0, 1.0)) - asin(mu_horizon);
   const float x = clamp(elevation / max(sun_angular_radius, 1e-6), -1.0, 1.0);
-  const float fraction = (acos(-x) + x * sqrt(1.0 - x * x)) / 3.14159265;
+  const float fraction = (acos(-x) + x * sqrt(1.0 - x * x)) / PI_F;
   if (fraction <= 0.0 || mu_s <= real(0)) return real4(0);
   return transmittance_to_top(r, max(mu_s, real(mu_horizon))) * real(fraction) * mu_s;
 }

@@ -37,7 +37,7 @@
 #include "group_light.glsl"
 #include "surface_albedo.glsl"
 
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
 // Something can lie behind the atmosphere in these tiles: light seen through T.
 #define BEHIND ((SUN && TILE_GROUND != 1) || TILE_OTHERS != 0)
@@ -45,7 +45,7 @@ layout(local_size_x = 16, local_size_y = 16) in;
 #if SKY_VIEW
 #include "sky_view_mapping.glsl"
 /// The frame's sky-view table (sky_view.comp): SKY_VIEW_LAYERS layers per group.
-layout(binding = 5) uniform sampler2DArray sky_view_table;
+layout(binding = SKY_VIEW_UNIT) uniform sampler2DArray sky_view_table;
 uniform int sky_view_layer_base;       // SKY_VIEW_LAYERS · wavelength group
 uniform float sky_view_theta_horizon;  // zenith angle of the geometric horizon at the camera [rad]
 

@@ -24,12 +24,12 @@
 #include "sun_disc.glsl"
 #include "surface_albedo.glsl"
 
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
 uniform mat3 rgb_from_albedo;  // M above, exposure included
 #if SUN
 uniform int wavelength_count;
-uniform vec4 sun_spectrum[64];  // per wavelength: xyz = exposure · w(λ) · I_centre(λ), w = α(λ)
+uniform vec4 sun_spectrum[SUN_SPECTRUM_SIZE];  // per wavelength: xyz = exposure · w(λ) · I_centre(λ), w = α(λ)
 #endif
 
 #if ONE_BODY
@@ -49,7 +49,7 @@ void main() {
       const vec3 n = body_normal(the_body, ray, t);
       const float cos_i = max(dot(n, sun_direction), 0.0);
       rgb = rgb_from_albedo * surface_albedo(the_body, ray, t, n) *
-            (cos_i * sun_visibility(ray * t, one_body) * (1.0 / 3.14159265));
+            (cos_i * sun_visibility(ray * t, one_body) * (1.0 / PI_F));
     }
 #else
     float t;
@@ -57,7 +57,7 @@ void main() {
     if (b >= 0) {
       const vec3 n = body_normal(b, ray, t);
       const float cos_i = max(dot(n, sun_direction), 0.0);
-      rgb = rgb_from_albedo * surface_albedo(b, ray, t, n) * (cos_i * sun_visibility(ray * t, b) * (1.0 / 3.14159265));
+      rgb = rgb_from_albedo * surface_albedo(b, ray, t, n) * (cos_i * sun_visibility(ray * t, b) * (1.0 / PI_F));
     }
 #endif
 #if SUN

@@ -12,16 +12,9 @@
 
 #include "projection.glsl"
 
-/// One analytic sphere (render/renderer.cpp: GpuBody, same layout).
-struct Body {
-  vec4 centre;          // xyz: unit direction camera → centre (world); w: distance camera → centre [m]
-  vec4 shape;           // x: radius R [m]; y: |c|² − R² [m²]; z: atmosphere slot or −1; w: albedo map layer
-  vec4 albedo_map;      // x: width of the albedo maps' level 0 [texels]; yzw: unused
-  vec4 world_to_body0;  // rows of the rotation world → body frame
-  vec4 world_to_body1;
-  vec4 world_to_body2;
-};
-layout(std430, binding = 4) readonly buffer Bodies { Body bodies[]; };
+#include "body.glsl"  // struct Body (render/frame/gpu_body.h's GpuBody)
+
+layout(std430, binding = BODIES_BINDING) readonly buffer Bodies { Body bodies[]; };
 /// The one body a pass is about, as plain uniforms (render/renderer.cpp sets
 /// it to bodies[i]): the planet of an atmosphere's passes, the only body of a
 /// direct-light tile list. llvmpipe reads storage buffers lane by lane inside
@@ -42,14 +35,15 @@ uniform float pixel_angle;         // upper bound of one pixel's angular size [r
 /// unused nodes: issue 14) the local value from the neighbouring rays.
 float pixel_footprint = 0.0;
 
-/// The 16×16 tiles of band pixels a pass covers, one work group per tile:
+/// The TILE_SIZE² tiles (kTileSize of render/frame/tile_culling.h) of band
+/// pixels a pass covers, one work group per tile:
 /// tiles[tile_offset + i] for i < tile_count, packed as column | row << 16
 /// (render/frame/tile_culling.h). The renderer classifies tiles on the CPU
 /// (one atmosphere, several, surface or sun only, empty) and dispatches each
 /// pass over its own list, so a pass holds only the code its tiles need: on a
 /// CPU rasterizer (llvmpipe runs 8 invocations per SIMD vector under a mask) a
 /// branch skipped by every pixel still costs, a tile not dispatched does not.
-layout(std430, binding = 5) readonly buffer Tiles { uint tiles[]; };
+layout(std430, binding = TILES_BINDING) readonly buffer Tiles { uint tiles[]; };
 uniform int tile_offset;
 uniform int tile_count;
 
@@ -59,7 +53,7 @@ bool tile_pixel(out ivec2 p) {
   p = ivec2(0);
   if (tile_index >= uint(tile_count)) return false;
   const uint tile = tiles[uint(tile_offset) + tile_index];
-  p = ivec2(int(tile & 0xffffu), int(tile >> 16)) * 16 + ivec2(gl_LocalInvocationID.xy);
+  p = ivec2(int(tile & 0xffffu), int(tile >> 16)) * TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   return all(lessThan(p, band_size));
 }
 
@@ -178,7 +172,6 @@ float angle_between(vec3 a, vec3 b) {
 /// Area of the intersection of two discs of radii a and b whose centres are d
 /// apart (all angles in radians, small-angle plane geometry).
 float disc_overlap_area(float a, float b, float d) {
-  const float PI_F = 3.14159265;
   if (d >= a + b) return 0.0;
   if (d <= abs(a - b)) return PI_F * min(a, b) * min(a, b);
   const float ca = clamp((d * d + a * a - b * b) / (2.0 * d * a), -1.0, 1.0);
@@ -194,7 +187,7 @@ float disc_overlap_area(float a, float b, float d) {
 float sun_visibility(vec3 p, int self) {
 #if ECLIPSES
   float visible = 1.0;
-  const float sun_area = 3.14159265 * sun_angular_radius * sun_angular_radius;
+  const float sun_area = PI_F * sun_angular_radius * sun_angular_radius;
   for (int b = 0; b < body_count; ++b) {
     if (b == self) continue;
     const vec3 to_centre = body_centre(b) - p;

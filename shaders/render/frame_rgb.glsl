@@ -8,7 +8,7 @@
 // Out-of-gamut colours (the CIE mapping's negative lobes) are clipped to 0 as
 // the last write of a pixel does; a NaN stays visible (a comparison with NaN
 // is false), so the stress tests still see it.
-layout(std430, binding = 6) buffer FrameRgb { vec4 frame_rgb[]; };
+layout(std430, binding = FRAME_RGB_BINDING) buffer FrameRgb { vec4 frame_rgb[]; };
 
 uint frame_rgb_index(ivec2 p) { return uint(p.y) * uint(band_size.x) + uint(p.x); }
 

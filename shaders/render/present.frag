@@ -12,7 +12,7 @@ layout(location = 0) out vec4 colour;
 
 // The frame as uploaded: row 0 of the data (the top of the image) at t = 0,
 // i.e. upside down for GL; flipped when sampling below.
-layout(binding = 0) uniform sampler2D frame;
+layout(binding = PRESENT_FRAME_UNIT) uniform sampler2D frame;
 // image::ToneMapping: 0 exponential (1 − exp(−x), Costa et al.), 1 clamp (min(x, 1)).
 uniform int tone_mapping;
 

@@ -10,12 +10,12 @@
 #include "frame.glsl"
 #include "group_light.glsl"
 
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
-layout(binding = 0, rgba32f) uniform readonly image2D gbuffer_hit;
-layout(binding = 1, rgba16f) uniform readonly image2D gbuffer_albedo;
-layout(binding = 2, rgba32f) uniform image2D radiance_sum;
-layout(binding = 3, rgba32f) uniform image2D transmittance_product;
+layout(binding = GBUFFER_HIT_IMAGE, rgba32f) uniform readonly image2D gbuffer_hit;
+layout(binding = GBUFFER_ALBEDO_IMAGE, rgba16f) uniform readonly image2D gbuffer_albedo;
+layout(binding = RADIANCE_SUM_IMAGE, rgba32f) uniform image2D radiance_sum;
+layout(binding = TRANSMITTANCE_PRODUCT_IMAGE, rgba32f) uniform image2D transmittance_product;
 
 void main() {
   ivec2 p;

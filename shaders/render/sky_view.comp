@@ -31,7 +31,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 0, rgba32f) uniform writeonly image2DArray sky_view_table;
+layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image2DArray sky_view_table;
 
 uniform float camera_r;             // [m], in [RB, RT)
 uniform float camera_ground_power;  // r² − RB² [m²], in double on the CPU

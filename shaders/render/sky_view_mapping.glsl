@@ -22,15 +22,12 @@
 // horizon, the nadir, toward or away from the sun).
 // Include after atmosphere_common.glsl (RB).
 
-#define SKY_VIEW_AZIMUTH_TEXELS 128
-#define SKY_VIEW_ZENITH_TEXELS 64
-/// Layers per wavelength group (sky_view.comp): the sky half's A and M, then
-/// the ground half's A, M, G_sun and G_sky.
-#define SKY_VIEW_LAYERS 6
+// SKY_VIEW_AZIMUTH_TEXELS, SKY_VIEW_ZENITH_TEXELS (per half) and SKY_VIEW_LAYERS
+// (per wavelength group: the sky half's A and M, then the ground half's A, M,
+// G_sun and G_sky) are defined by the C++ side (SkyViewTable::defines()).
 #define SKY_VIEW_SKY 0
 #define SKY_VIEW_GROUND 2
 
-const float SKY_VIEW_PI = 3.14159265358979;
 
 float sky_view_u(float x) { return 0.5 / float(SKY_VIEW_AZIMUTH_TEXELS) + x * (1.0 - 1.0 / float(SKY_VIEW_AZIMUTH_TEXELS)); }
 float sky_view_v(float x) { return 0.5 / float(SKY_VIEW_ZENITH_TEXELS) + x * (1.0 - 1.0 / float(SKY_VIEW_ZENITH_TEXELS)); }
@@ -38,7 +35,7 @@ float sky_view_v(float x) { return 0.5 / float(SKY_VIEW_ZENITH_TEXELS) + x * (1.
 /// Texture coordinates (u, v) of zenith angle θ and cos φ in the sky (ground = false) or ground half.
 vec2 sky_view_uv(float theta, float cos_phi, float theta_horizon, bool ground) {
   const float x_phi = sqrt(clamp(0.5 - 0.5 * cos_phi, 0.0, 1.0));
-  const float x_theta = ground ? sqrt(clamp((theta - theta_horizon) / (SKY_VIEW_PI - theta_horizon), 0.0, 1.0))
+  const float x_theta = ground ? sqrt(clamp((theta - theta_horizon) / (PI_F - theta_horizon), 0.0, 1.0))
                                : 1.0 - sqrt(clamp(1.0 - theta / theta_horizon, 0.0, 1.0));
   return vec2(sky_view_u(x_phi), sky_view_v(x_theta));
 }
@@ -48,6 +45,6 @@ void sky_view_direction(ivec2 texel, float theta_horizon, bool ground, out float
   const float x_phi = float(texel.x) / float(SKY_VIEW_AZIMUTH_TEXELS - 1);
   const float x_theta = float(texel.y) / float(SKY_VIEW_ZENITH_TEXELS - 1);
   cos_phi = 1.0 - 2.0 * x_phi * x_phi;
-  theta = ground ? theta_horizon + (SKY_VIEW_PI - theta_horizon) * x_theta * x_theta
+  theta = ground ? theta_horizon + (PI_F - theta_horizon) * x_theta * x_theta
                  : theta_horizon * (1.0 - (1.0 - x_theta) * (1.0 - x_theta));
 }

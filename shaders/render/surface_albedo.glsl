@@ -5,13 +5,12 @@
 // surface looks the same whichever pass draws its tile.
 // Include after frame.glsl.
 
-layout(binding = 8) uniform sampler2DArray albedo_maps;
+layout(binding = ALBEDO_MAPS_UNIT) uniform sampler2DArray albedo_maps;
 
 /// Linear sRGB albedo of a body at distance t along `ray`, n its outward normal there.
 vec3 surface_albedo(Body body, vec3 ray, float t, vec3 n) {
   // Equirectangular map in the body frame: u from longitude −180°, v from the north pole.
   const vec3 nb = to_body_frame(body, n);
-  const float PI_F = 3.14159265;
   const vec2 uv = vec2(atan(nb.y, nb.x) / (2.0 * PI_F) + 0.5, acos(clamp(nb.z, -1.0, 1.0)) / PI_F);
 #if defined(ALBEDO_LOD0) && ALBEDO_LOD0
   // The renderer found every footprint of the frame under a texel (albedo_at_full_resolution).

@@ -1,10 +1,11 @@
 #include "scene/albedo_map.h"
-#include "core/units.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
+
+#include "core/units.h"
 
 namespace zenith::scene {
 namespace {

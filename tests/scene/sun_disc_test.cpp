@@ -1,10 +1,11 @@
 #include "scene/sun_disc.h"
-#include "core/units.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
+
+#include "core/units.h"
 
 namespace zenith::scene {
 namespace {

@@ -1,0 +1,56 @@
+#include "render/shader_bindings.h"
+
+#include <fmt/format.h>
+
+#include "core/units.h"
+#include "render/frame/tile_culling.h"
+
+namespace zenith::render {
+
+std::vector<gl::ShaderDefine> shader_interface_defines() {
+  using namespace binding;
+  struct Point {
+    const char* name;
+    unsigned value;
+  };
+  constexpr Point kPoints[] = {
+      {"WAVELENGTH_DATA_BINDING", kWavelengthData},
+      {"TABLE_DATA_BINDING", kTableData},
+      {"TEXEL_COORDINATES_BINDING", kTexelCoordinates},
+      {"ROW_SUMS_BINDING", kRowSums},
+      {"BODIES_BINDING", kBodies},
+      {"TILES_BINDING", kTiles},
+      {"FRAME_RGB_BINDING", kFrameRgb},
+      {"AZIMUTH_MOMENTS_BINDING", kAzimuthMoments},
+      {"HARMONIC_COEFFICIENTS_BINDING", kHarmonicCoefficients},
+      {"VIEW_TRANSMITTANCE_BINDING", kViewTransmittance},
+      {"VIEW_RAY_COORDINATES_BINDING", kViewRayCoordinates},
+      {"TRANSMITTANCE_UNIT", kTransmittanceUnit},
+      {"SINGLE_RAYLEIGH_UNIT", kSingleRayleighUnit},
+      {"SINGLE_MIE_UNIT", kSingleMieUnit},
+      {"DELTA_RADIANCE_UNIT", kDeltaRadianceUnit},
+      {"MULTIPLE_UNIT", kMultipleUnit},
+      {"DELTA_IRRADIANCE_UNIT", kDeltaIrradianceUnit},
+      {"IRRADIANCE_UNIT", kIrradianceUnit},
+      {"DENSITY_UNIT", kDensityUnit},
+      {"SKY_VIEW_UNIT", kSkyViewUnit},
+      {"RAY_TABLE_UNIT", kRayTableUnit},
+      {"ALBEDO_MAPS_UNIT", kAlbedoMapsUnit},
+      {"PRESENT_FRAME_UNIT", kPresentFrameUnit},
+      {"OUTPUT_IMAGE", kOutputImage},
+      {"SECOND_OUTPUT_IMAGE", kSecondOutputImage},
+      {"GBUFFER_HIT_IMAGE", kGbufferHitImage},
+      {"GBUFFER_ALBEDO_IMAGE", kGbufferAlbedoImage},
+      {"RADIANCE_SUM_IMAGE", kRadianceSumImage},
+      {"TRANSMITTANCE_PRODUCT_IMAGE", kTransmittanceProductImage},
+  };
+  std::vector<gl::ShaderDefine> defines;
+  for (const Point& p : kPoints) defines.push_back({p.name, fmt::format("{}", p.value)});
+  defines.push_back({"TILE_SIZE", fmt::format("{}", kTileSize)});
+  defines.push_back({"SUN_SPECTRUM_SIZE", fmt::format("{}", kSunSpectrumSize)});
+  // 9 significant digits round-trip a float (as render/lut/shader_model.cpp's glsl_literal).
+  defines.push_back({"PI_F", fmt::format("{:.8e}", static_cast<float>(core::kPi))});
+  return defines;
+}
+
+}  // namespace zenith::render

@@ -1,0 +1,73 @@
+#pragma once
+// The binding points (and a few sizes) that the C++ side and the GLSL shaders share: storage
+// buffers (layout(std430, binding = ...)), texture units (samplers) and image
+// units. This is the only place their numbers are written: ShaderProgram's
+// load_compute / load_graphics inject each one as `#define <NAME> <value>`
+// into every shader loaded from shaders/ (shader_interface_defines()), and the
+// shaders declare `layout(binding = <NAME>)`.
+//
+// GL keeps storage bindings, texture units and image units apart; numbers need
+// only differ within one kind among the resources of one program (the
+// precompute's harmonic buffers and the frame's FrameRgb share 6, for example,
+// and never meet in a program).
+#include <vector>
+
+#include "render/gl/shader_program.h"
+
+namespace zenith::render::binding {
+
+// ---- storage buffers
+inline constexpr unsigned kWavelengthData = 0;        ///< WAVELENGTH_DATA_BINDING (atmosphere_common.glsl)
+inline constexpr unsigned kTableData = 1;             ///< TABLE_DATA_BINDING (atmosphere_common.glsl)
+inline constexpr unsigned kTexelCoordinates = 2;      ///< TEXEL_COORDINATES_BINDING (atmosphere_common.glsl)
+inline constexpr unsigned kRowSums = 3;               ///< ROW_SUMS_BINDING (radiance_sum.comp)
+inline constexpr unsigned kBodies = 4;                ///< BODIES_BINDING (render/frame.glsl)
+inline constexpr unsigned kTiles = 5;                 ///< TILES_BINDING (render/frame.glsl)
+inline constexpr unsigned kFrameRgb = 6;              ///< FRAME_RGB_BINDING (render/frame_rgb.glsl)
+inline constexpr unsigned kAzimuthMoments = 6;        ///< AZIMUTH_MOMENTS_BINDING (harmonics.glsl)
+inline constexpr unsigned kHarmonicCoefficients = 7;  ///< HARMONIC_COEFFICIENTS_BINDING (harmonics.glsl)
+inline constexpr unsigned kViewTransmittance = 8;     ///< VIEW_TRANSMITTANCE_BINDING (view_ray.glsl)
+inline constexpr unsigned kViewRayCoordinates = 9;    ///< VIEW_RAY_COORDINATES_BINDING (view_ray.glsl)
+
+// ---- texture units: the tables (precompute and render passes), then the frame's own
+inline constexpr unsigned kTransmittanceUnit = 0;     ///< TRANSMITTANCE_UNIT (atmosphere_common.glsl)
+inline constexpr unsigned kSingleRayleighUnit = 1;    ///< SINGLE_RAYLEIGH_UNIT
+inline constexpr unsigned kSingleMieUnit = 2;         ///< SINGLE_MIE_UNIT
+inline constexpr unsigned kDeltaRadianceUnit = 3;     ///< DELTA_RADIANCE_UNIT (precompute, previous_order.glsl)
+inline constexpr unsigned kMultipleUnit = 3;          ///< MULTIPLE_UNIT (render/atmosphere_segment.glsl)
+inline constexpr unsigned kDeltaIrradianceUnit = 4;   ///< DELTA_IRRADIANCE_UNIT (precompute)
+inline constexpr unsigned kIrradianceUnit = 4;        ///< IRRADIANCE_UNIT (render/atmosphere_segment.glsl)
+inline constexpr unsigned kDensityUnit = 5;           ///< DENSITY_UNIT (multiple_scattering.comp)
+inline constexpr unsigned kSkyViewUnit = 5;           ///< SKY_VIEW_UNIT (render/atmosphere_tile.comp)
+inline constexpr unsigned kRayTableUnit = 7;          ///< RAY_TABLE_UNIT (projection.glsl)
+inline constexpr unsigned kAlbedoMapsUnit = 8;        ///< ALBEDO_MAPS_UNIT (render/surface_albedo.glsl)
+inline constexpr unsigned kPresentFrameUnit = 0;      ///< PRESENT_FRAME_UNIT (render/present.frag)
+
+// ---- image units: what a compute pass writes (the precompute's tables, the sky-view table)
+inline constexpr unsigned kOutputImage = 0;        ///< OUTPUT_IMAGE
+inline constexpr unsigned kSecondOutputImage = 1;  ///< SECOND_OUTPUT_IMAGE (single Mie, accumulated sums)
+// ---- image units of the render passes' G-buffer (gbuffer.comp, atmosphere_pass.comp, resolve.comp)
+inline constexpr unsigned kGbufferHitImage = 0;            ///< GBUFFER_HIT_IMAGE
+inline constexpr unsigned kGbufferAlbedoImage = 1;         ///< GBUFFER_ALBEDO_IMAGE
+inline constexpr unsigned kRadianceSumImage = 2;           ///< RADIANCE_SUM_IMAGE
+inline constexpr unsigned kTransmittanceProductImage = 3;  ///< TRANSMITTANCE_PRODUCT_IMAGE
+
+}  // namespace zenith::render::binding
+
+namespace zenith::render {
+
+/// Entries of direct_light.comp's sun_spectrum[] uniform array (SUN_SPECTRUM_SIZE):
+/// a scene's wavelengths at most.
+inline constexpr int kSunSpectrumSize = 64;
+
+}  // namespace zenith::render
+
+namespace zenith::render {
+
+/// The defines every shader loaded from shaders/ gets before its own: each
+/// binding point above, SUN_SPECTRUM_SIZE, TILE_SIZE (render/frame/tile_culling.h:
+/// the render passes' work groups and tiles), and PI_F, π as a float literal
+/// (core/units.h's kPi).
+std::vector<gl::ShaderDefine> shader_interface_defines();
+
+}  // namespace zenith::render

@@ -1,0 +1,273 @@
+// The table parameterization of shaders/atmosphere_common.glsl against the C++
+// one it mirrors (atmosphere/lut/parameterization.h), on the GPU, where the
+// mappings are least forgiving: μ at the horizon and 1e-6 either side of it
+// (μ_h = −√(1 − (rb/r)²)) at the ground, 1 m above it, mid-shell, 1 m below
+// the top and at the top; μs at μs_min (ShellGeometry::min_sun_cosine), 1e-6
+// above it, below it (clamped), at the horizon and the zenith; ν at both ends
+// of the range that μ and μs allow and between (u_ν = φ/π, the azimuth between
+// view and sun); view and sun at the zenith (μ = ±1, μs = 1, where every ν is
+// u_ν = 0); both angle mappings; scattering_u_mu for rays that hit the ground
+// and rays that do not, both at the horizon itself. Then the inverse texel
+// functions: transmittance_r_mu, irradiance_r_mu_s at the C++ coordinates, and
+// scattering_texel_coordinates (μs and sky μ found by bisection in
+// texel_coordinates.comp, ν from scattering_nu_from_unit) for every texel of
+// the lowest and highest r layers. Earth and Mars presets, TableSizes::small().
+//
+// Tolerances (|GPU − C++| ≤ tolerance · max(1, |C++|): absolute for the unit
+// coordinates, relative for r in metres):
+//  * fp64: 1e-12. The shaders repeat the C++ operations in double in the same
+//    order; only acos and cos differ (acos_r, cos_r of atmosphere_common.glsl,
+//    within a few ulp of the C library: the blended μ and μs mappings, u_ν,
+//    the texels' ν). Measured on Mesa llvmpipe (Mesa 22.3.6): every function
+//    at the edge cases within 1.2e-16 (most bit-identical), the texel
+//    coordinates within 1.2e-15.
+//  * fp32: 5e-2. Geometry in float: r² − rb² cancels near the ground and at
+//    the horizon. Measured: u_μ 2.7e-2 (Earth) and 2.3e-2 (Mars) 1 m above the
+//    ground, 6e-4 below the horizon; transmittance_r_mu's μ 1.8e-2 at the top;
+//    texel ν 1.3e-3, the rest ≤ 2.3e-4. ray_hits_ground is not compared within
+//    1e-5 of the horizon, where float rounding decides it. The C++ reference
+//    is evaluated at the inputs rounded to float, so input rounding is not counted.
+#include <gtest/gtest.h>
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "atmosphere/lut/parameterization.h"
+#include "atmosphere/parameters.h"
+#include "render/gl/buffer.h"
+#include "render/gl/shader_program.h"
+#include "render/lut/shader_model.h"
+#include "render/shader_bindings.h"
+#include "tests/render/render_test_support.h"
+
+namespace zenith::render {
+namespace {
+
+using atmosphere::lut::AngleMapping;
+using atmosphere::lut::ShellGeometry;
+using atmosphere::lut::TableSizes;
+
+constexpr double kFp64Tolerance = 1e-12;
+constexpr double kFp32Tolerance = 5e-2;
+/// fp32: within this of the horizon, ray_hits_ground may go either way (r²(μ² − 1) + rb² cancels).
+constexpr double kFp32HorizonBand = 1e-5;
+constexpr int kRayHitsGround = 17;  ///< its index in kQuantities
+
+// The test shader's buffers (not atmosphere_common.glsl's 0–2) and strides.
+constexpr unsigned kCasesBinding = 3, kResultsBinding = 4;
+constexpr int kCaseStride = 11, kResultStride = 19;
+
+/// The quantities of one mode-0 result, in the shader's order.
+constexpr const char* kQuantities[kResultStride] = {
+    "transmittance_uv u_mu", "transmittance_uv v_r", "transmittance_r_mu r", "transmittance_r_mu mu",
+    "irradiance_uv u_mu_s",  "irradiance_uv v_r",    "irradiance_r_mu_s r",  "irradiance_r_mu_s mu_s",
+    "scattering_uvwz u_nu",  "scattering_uvwz u_mu_s", "scattering_uvwz u_mu", "scattering_uvwz u_r",
+    "scattering_u_r",        "scattering_u_mu",      "scattering_u_mu_s",    "scattering_u_nu",
+    "scattering_nu_from_unit", "ray_hits_ground",    "min_sun_cosine"};
+constexpr const char* kTexelQuantities[5] = {"texel r", "texel mu", "texel mu_s", "texel nu", "texel hits_ground"};
+
+struct Case {
+  double r, mu, mu_s, nu;
+  bool hits_ground;
+  AngleMapping mapping;
+  double x_nu;  ///< the input of scattering_nu_from_unit
+  double horizon_mu;  ///< μ_h at r
+};
+
+double clamp_cosine(double x) { return std::clamp(x, -1.0, 1.0); }
+
+/// The cases described at the top, for a shell.
+std::vector<Case> edge_cases(const ShellGeometry& g) {
+  const double rb = g.bottom_radius_m, rt = g.top_radius_m;
+  const double mu_s_min = g.min_sun_cosine();
+  std::vector<Case> cases;
+  for (double r : {rb, rb + 1.0, 0.5 * (rb + rt), rt - 1.0, rt}) {
+    const double mu_h = -std::sqrt(std::max(0.0, 1.0 - (rb / r) * (rb / r)));
+    for (double mu : {mu_h - 1e-6, mu_h, mu_h + 1e-6, -1.0, 1.0, 0.25}) {
+      mu = clamp_cosine(mu);
+      std::vector<bool> flags = {g.ray_hits_ground(r, mu)};
+      if (mu == mu_h) flags.push_back(!flags[0]);  // the horizon: both halves of the table
+      for (bool hits : flags)
+        for (double mu_s : {mu_s_min, mu_s_min + 1e-6, mu_s_min - 1e-3, 0.0, 0.5, 1.0}) {
+          mu_s = clamp_cosine(mu_s);
+          const double spread = std::sqrt(std::max(0.0, (1.0 - mu * mu) * (1.0 - mu_s * mu_s)));
+          const double nus[3] = {clamp_cosine(mu * mu_s + spread), mu * mu_s, clamp_cosine(mu * mu_s - spread)};
+          for (int k = 0; k < 3; ++k)
+            for (AngleMapping mapping : {AngleMapping::Distance, AngleMapping::Blended})
+              cases.push_back({r, mu, mu_s, nus[k], hits, mapping, 0.5 * k, mu_h});
+        }
+    }
+  }
+  return cases;
+}
+
+/// The worst difference of one quantity.
+struct Worst {
+  double difference = 0.0;
+  std::string where;
+};
+
+class GpuParameterization {
+ public:
+  GpuParameterization(const atmosphere::AtmosphereModel& model, const TableSizes& sizes, bool fp64)
+      : fp64_(fp64), sizes_(sizes) {
+    testing::context();
+    atmosphere::lut::PrecomputeOptions options;
+    options.sizes = sizes;
+    const ShaderModel m = shader_model(model, options, fp64);
+    wavelength_data_ = real_buffer(m.wavelength_data, fp64);
+    table_data_ = real_buffer(m.table_data, fp64);
+    texel_values_ = gl::Buffer(m.texel_layout.count * real_size());
+    wavelength_data_.bind_storage(binding::kWavelengthData);
+    table_data_.bind_storage(binding::kTableData);
+    texel_values_.bind_storage(binding::kTexelCoordinates);
+    // As the precompute does before its scattering stages.
+    gl::ShaderProgram::load_compute("texel_coordinates.comp", m.defines)
+        .dispatch_covering(static_cast<int>(m.texel_layout.count));
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    std::vector<gl::ShaderDefine> defines = m.defines;
+    defines.insert(defines.end(), {{"CASES_BINDING", std::to_string(kCasesBinding)},
+                                   {"RESULTS_BINDING", std::to_string(kResultsBinding)},
+                                   {"CASE_STRIDE", std::to_string(kCaseStride)},
+                                   {"RESULT_STRIDE", std::to_string(kResultStride)}});
+    program_ = gl::ShaderProgram::load_compute("test_parameterization.comp", defines);
+  }
+
+  /// The input as the shader holds it (rounded to float in fp32).
+  double real(double v) const { return fp64_ ? v : static_cast<double>(static_cast<float>(v)); }
+
+  /// Runs `mode` over `inputs` (kCaseStride reals per case); kResultStride reals per case back.
+  std::vector<double> run(int mode, const std::vector<double>& inputs) const {
+    const std::size_t count = inputs.size() / kCaseStride;
+    const gl::Buffer in = real_buffer(inputs, fp64_);
+    const gl::Buffer out(count * kResultStride * real_size());
+    in.bind_storage(kCasesBinding);
+    out.bind_storage(kResultsBinding);
+    program_.set_uniform("case_count", static_cast<int>(count));
+    program_.set_uniform("mode", mode);
+    program_.dispatch_covering(static_cast<int>(count));
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    if (fp64_) return out.read<double>();
+    const std::vector<float> f = out.read<float>();
+    return std::vector<double>(f.begin(), f.end());
+  }
+
+  const TableSizes& sizes() const { return sizes_; }
+
+ private:
+  std::size_t real_size() const { return fp64_ ? sizeof(double) : sizeof(float); }
+  bool fp64_;
+  TableSizes sizes_;
+  gl::Buffer wavelength_data_, table_data_, texel_values_;
+  gl::ShaderProgram program_;
+};
+
+std::string describe(const Case& c) {
+  char text[256];
+  std::snprintf(text, sizeof text, "r=%.17g mu=%.17g mu_s=%.17g nu=%.17g hits_ground=%d mapping=%s x_nu=%g", c.r,
+                c.mu, c.mu_s, c.nu, c.hits_ground ? 1 : 0,
+                c.mapping == AngleMapping::Distance ? "distance" : "blended", c.x_nu);
+  return text;
+}
+
+/// Checks every quantity of every case within `tolerance`; prints the worst
+/// difference of each (the measured figures of the comment at the top).
+void compare_parameterization(const std::string& preset, bool fp64, double tolerance) {
+  SCOPED_TRACE(preset + (fp64 ? " fp64" : " fp32"));
+  const atmosphere::AtmosphereModel model = atmosphere::load_preset(preset).model;
+  const ShellGeometry g{model.ground_radius_m, model.top_radius_m};
+  const GpuParameterization gpu(model, TableSizes::small(), fp64);
+  const TableSizes& s = gpu.sizes();
+
+  // Mode 0: the functions at the edge cases (inputs rounded to what the shader holds).
+  std::vector<Case> cases = edge_cases(g);
+  for (Case& c : cases) {
+    c.r = gpu.real(c.r);
+    c.mu = gpu.real(c.mu);
+    c.mu_s = gpu.real(c.mu_s);
+    c.nu = gpu.real(c.nu);
+  }
+  std::vector<double> inputs, expected;
+  for (const Case& c : cases) {
+    const atmosphere::lut::TransmittanceUV t = atmosphere::lut::transmittance_uv(g, s, c.r, c.mu);
+    const atmosphere::lut::IrradianceUV e = atmosphere::lut::irradiance_uv(g, s, c.r, c.mu_s);
+    const double t_u = gpu.real(t.u_mu), t_v = gpu.real(t.v_r), e_u = gpu.real(e.u_mu_s), e_v = gpu.real(e.v_r);
+    inputs.insert(inputs.end(), {c.r, c.mu, c.mu_s, c.nu, c.hits_ground ? 1.0 : 0.0,
+                                 c.mapping == AngleMapping::Distance ? 0.0 : 1.0, t_u, t_v, e_u, e_v, c.x_nu});
+    double t_r, t_mu, e_r, e_mu_s;
+    atmosphere::lut::transmittance_r_mu(g, s, t_u, t_v, &t_r, &t_mu);
+    atmosphere::lut::irradiance_r_mu_s(g, s, e_u, e_v, &e_r, &e_mu_s);
+    const atmosphere::lut::ScatteringUVWZ uv =
+        atmosphere::lut::scattering_uvwz(g, s, c.r, c.mu, c.mu_s, c.nu, c.hits_ground, c.mapping);
+    expected.insert(expected.end(),
+                    {t.u_mu, t.v_r, t_r, t_mu, e.u_mu_s, e.v_r, e_r, e_mu_s, uv.u_nu, uv.u_mu_s, uv.u_mu, uv.u_r,
+                     uv.u_r, uv.u_mu, atmosphere::lut::scattering_u_mu_s(g, s, c.mu_s, c.mapping),
+                     atmosphere::lut::scattering_u_nu(c.mu, c.mu_s, c.nu),
+                     atmosphere::lut::scattering_nu_from_unit(c.mu, c.mu_s, c.x_nu),
+                     g.ray_hits_ground(c.r, c.mu) ? 1.0 : 0.0, g.min_sun_cosine()});
+  }
+  const std::vector<double> results = gpu.run(0, inputs);
+  ASSERT_EQ(results.size(), expected.size());
+  Worst worst[kResultStride];
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    for (int q = 0; q < kResultStride; ++q) {
+      const double c = expected[i * kResultStride + q], v = results[i * kResultStride + q];
+      const double difference = std::abs(v - c) / std::max(1.0, std::abs(c));
+      if (!fp64 && q == kRayHitsGround && std::abs(cases[i].mu - cases[i].horizon_mu) <= kFp32HorizonBand) continue;
+      if (!(difference <= worst[q].difference)) worst[q] = {difference, describe(cases[i])};
+      EXPECT_LE(difference, tolerance) << kQuantities[q] << ": GPU " << v << ", C++ " << c << " at "
+                                       << describe(cases[i]);
+    }
+
+  // Mode 1: scattering_texel_coordinates of every texel of the lowest and highest r layers.
+  std::vector<double> texels;
+  std::vector<double> texel_expected;
+  for (AngleMapping mapping : {AngleMapping::Distance, AngleMapping::Blended})
+    for (std::size_t z : {std::size_t{0}, s.scattering_r - 1})
+      for (std::size_t y = 0; y < s.scattering_mu; ++y)
+        for (std::size_t x = 0; x < s.scattering_width(); ++x) {
+          texels.insert(texels.end(), {double(x), double(y), double(z), mapping == AngleMapping::Distance ? 0.0 : 1.0});
+          texels.resize(texels.size() + (kCaseStride - 4), 0.0);
+          const atmosphere::lut::ScatteringCoordinates c =
+              atmosphere::lut::scattering_texel_coordinates(g, s, x, y, z, mapping);
+          texel_expected.insert(texel_expected.end(), {c.r_m, c.mu, c.mu_s, c.nu, c.ray_hits_ground ? 1.0 : 0.0});
+        }
+  const std::vector<double> texel_results = gpu.run(1, texels);
+  Worst texel_worst[5];
+  const std::size_t texel_count = texels.size() / kCaseStride;
+  for (std::size_t i = 0; i < texel_count; ++i)
+    for (int q = 0; q < 5; ++q) {
+      const double c = texel_expected[i * 5 + q], v = texel_results[i * kResultStride + q];
+      const double difference = std::abs(v - c) / std::max(1.0, std::abs(c));
+      const std::string where = "texel (" + std::to_string(int(texels[i * kCaseStride])) + ", " +
+                                std::to_string(int(texels[i * kCaseStride + 1])) + ", " +
+                                std::to_string(int(texels[i * kCaseStride + 2])) + "), mapping " +
+                                std::to_string(int(texels[i * kCaseStride + 3]));
+      if (!(difference <= texel_worst[q].difference)) texel_worst[q] = {difference, where};
+      EXPECT_LE(difference, tolerance) << kTexelQuantities[q] << ": GPU " << v << ", C++ " << c << " at " << where;
+    }
+
+  std::printf("%s %s: %zu cases, %zu texels; worst |GPU - C++| / max(1, |C++|):\n", preset.c_str(),
+              fp64 ? "fp64" : "fp32", cases.size(), texel_count);
+  for (int q = 0; q < kResultStride; ++q)
+    std::printf("  %-26s %.3g  (%s)\n", kQuantities[q], worst[q].difference, worst[q].where.c_str());
+  for (int q = 0; q < 5; ++q)
+    std::printf("  %-26s %.3g  (%s)\n", kTexelQuantities[q], texel_worst[q].difference, texel_worst[q].where.c_str());
+}
+
+TEST(ParameterizationGpu, MatchesCppAtTheEdgesForEarthInFp64) {
+  compare_parameterization("earth-advanced", true, kFp64Tolerance);
+}
+TEST(ParameterizationGpu, MatchesCppAtTheEdgesForMarsInFp64) { compare_parameterization("mars", true, kFp64Tolerance); }
+TEST(ParameterizationGpu, MatchesCppAtTheEdgesForEarthInFp32) {
+  compare_parameterization("earth-advanced", false, kFp32Tolerance);
+}
+TEST(ParameterizationGpu, MatchesCppAtTheEdgesForMarsInFp32) { compare_parameterization("mars", false, kFp32Tolerance); }
+
+}  // namespace
+}  // namespace zenith::render

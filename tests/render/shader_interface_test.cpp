@@ -1,0 +1,150 @@
+// What the C++ side and the shaders share, checked on the GPU
+// (render/shader_bindings.h, render/lut/shader_model.h, render/frame/gpu_body.h):
+//  * the std430 layout of render/body.glsl's Body against GpuBody, field by
+//    field: a distinct value in every float of a GpuBody array, each Body field
+//    read back by the shader and located in that array, so a field moved on
+//    either side fails naming it, with both byte offsets;
+//  * the constants of the shader model as atmosphere_common.glsl sees them
+//    (PI, INV_4PI, PENNDORF_A/B, SERIES_LIMIT), exactly the C++ values (rounded
+//    to float in fp32);
+//  * the WavelengthData fields by name (FIELD_*): each the model's spectrum.
+#include <gtest/gtest.h>
+
+#include <epoxy/gl.h>
+
+#include <cstddef>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "atmosphere/lut/quadrature.h"
+#include "atmosphere/parameters.h"
+#include "atmosphere/phase_functions.h"
+#include "core/units.h"
+#include "render/frame/gpu_body.h"
+#include "render/gl/buffer.h"
+#include "render/gl/shader_program.h"
+#include "render/lut/shader_model.h"
+#include "render/shader_bindings.h"
+#include "tests/render/render_test_support.h"
+
+namespace zenith::render {
+namespace {
+
+constexpr unsigned kTestOutputBinding = 3;  ///< not one of atmosphere_common.glsl's (0–2)
+
+/// A buffer of reals (double in fp64, float otherwise) read back as doubles.
+std::vector<double> read_reals(const gl::Buffer& buffer, bool fp64) {
+  if (fp64) return buffer.read<double>();
+  const std::vector<float> f = buffer.read<float>();
+  return std::vector<double>(f.begin(), f.end());
+}
+
+/// `value` as the shader holds it: a double, or rounded to float.
+double as_real(double value, bool fp64) { return fp64 ? value : static_cast<double>(static_cast<float>(value)); }
+
+TEST(ShaderInterface, BodyLayoutMatchesGpuBodyFieldByField) {
+  testing::context();
+  constexpr std::size_t kBodies = 3, kFloatsPerBody = sizeof(GpuBody) / sizeof(float);
+  // Float j of the array holds j + 1 (exact in float): a value names its byte offset.
+  std::vector<float> raw(kBodies * kFloatsPerBody);
+  std::iota(raw.begin(), raw.end(), 1.0f);
+  const gl::Buffer bodies = gl::Buffer::from(std::span<const float>(raw));
+  bodies.bind_storage(binding::kBodies);
+  const gl::Buffer fields(kBodies * 6 * 4 * sizeof(float));
+  fields.bind_storage(kTestOutputBinding);
+  const gl::ShaderProgram program = gl::ShaderProgram::load_compute(
+      "test_body_layout.comp", std::vector<gl::ShaderDefine>{{"FIELDS_BINDING", std::to_string(kTestOutputBinding)}});
+  ASSERT_TRUE(program.set_uniform("body_count", static_cast<int>(kBodies)));
+  program.dispatch_covering(1);
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  const std::vector<float> out = fields.read<float>();
+
+  struct Field {
+    const char* glsl_name;
+    std::size_t cpp_offset;  ///< bytes from the start of GpuBody
+  };
+  const std::size_t vec4_bytes = sizeof(GpuBody::Vec4);
+  const Field declared[6] = {{"centre", offsetof(GpuBody, centre)},
+                             {"shape", offsetof(GpuBody, shape)},
+                             {"albedo_map", offsetof(GpuBody, albedo_map)},
+                             {"world_to_body0", offsetof(GpuBody, world_to_body)},
+                             {"world_to_body1", offsetof(GpuBody, world_to_body) + vec4_bytes},
+                             {"world_to_body2", offsetof(GpuBody, world_to_body) + 2 * vec4_bytes}};
+  for (std::size_t b = 0; b < kBodies; ++b)
+    for (std::size_t k = 0; k < 6; ++k)
+      for (std::size_t c = 0; c < 4; ++c) {
+        // The byte offset in the buffer that GLSL read Body.<field>[c] of body b from.
+        const double read = out[(b * 6 + k) * 4 + c];
+        const double glsl_offset = (read - 1.0) * sizeof(float);
+        const double cpp_offset = double(b * sizeof(GpuBody) + declared[k].cpp_offset + c * sizeof(float));
+        EXPECT_EQ(glsl_offset, cpp_offset)
+            << "Body." << declared[k].glsl_name << "[" << c << "] of body " << b << ": the shader reads byte "
+            << glsl_offset << " of the Bodies buffer, GpuBody puts it at byte " << cpp_offset;
+      }
+}
+
+void expect_shader_model_constants(const std::string& preset, bool fp64) {
+  SCOPED_TRACE(preset + (fp64 ? " fp64" : " fp32"));
+  testing::context();
+  const atmosphere::AtmosphereModel model = atmosphere::load_preset(preset).model;
+  atmosphere::lut::PrecomputeOptions options;
+  options.sizes = atmosphere::lut::TableSizes::small();
+  const ShaderModel m = shader_model(model, options, fp64);
+  const gl::Buffer wavelength_data = real_buffer(m.wavelength_data, fp64);
+  const gl::Buffer table_data = real_buffer(m.table_data, fp64);
+  wavelength_data.bind_storage(binding::kWavelengthData);
+  table_data.bind_storage(binding::kTableData);
+  const std::size_t real_size = fp64 ? sizeof(double) : sizeof(float);
+  const gl::Buffer texel_values(m.texel_layout.count * real_size);
+  texel_values.bind_storage(binding::kTexelCoordinates);
+  const gl::Buffer values((8 + 4 * 8) * real_size);
+  values.bind_storage(kTestOutputBinding);
+  std::vector<gl::ShaderDefine> defines = m.defines;
+  defines.push_back({"VALUES_BINDING", std::to_string(kTestOutputBinding)});
+  const gl::ShaderProgram program = gl::ShaderProgram::load_compute("test_shader_model.comp", defines);
+  program.set_uniform("wavelength_group", 0);
+  program.dispatch_covering(1);
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  const std::vector<double> v = read_reals(values, fp64);
+
+  EXPECT_EQ(v[0], as_real(core::kPi, fp64)) << "PI";
+  EXPECT_EQ(v[1], as_real(atmosphere::kInv4Pi, fp64)) << "INV_4PI";
+  EXPECT_EQ(v[2], as_real(atmosphere::kPenndorfA, fp64)) << "PENNDORF_A";
+  EXPECT_EQ(v[3], as_real(atmosphere::kPenndorfB, fp64)) << "PENNDORF_B";
+  EXPECT_EQ(v[4], as_real(atmosphere::lut::kLogLinearSeriesLimit, fp64)) << "SERIES_LIMIT";
+
+  struct Field {
+    const char* name;
+    const atmosphere::Spectrum* spectrum;
+  };
+  std::vector<Field> named = {{"FIELD_RAYLEIGH_SCATTERING", &model.rayleigh_scattering_m1},
+                              {"FIELD_MIE_SCATTERING", &model.mie_scattering_m1},
+                              {"FIELD_MIE_EXTINCTION", &model.mie_extinction_m1},
+                              {"FIELD_MIE_G1", &model.mie_phase.g1},
+                              {"FIELD_MIE_G2", &model.mie_phase.g2},
+                              {"FIELD_MIE_ALPHA", &model.mie_phase.alpha},
+                              {"FIELD_GROUND_ALBEDO", &model.ground_albedo}};
+  if (!model.absorbers.empty()) named.push_back({"FIELD_ABSORBERS", &model.absorbers[0].absorption_m1});
+  std::size_t nonzero = 0;
+  for (std::size_t f = 0; f < named.size(); ++f)
+    for (std::size_t k = 0; k < kWavelengthLanes && k < named[f].spectrum->size(); ++k) {
+      const double expected = as_real((*named[f].spectrum)[k], fp64);
+      nonzero += expected != 0.0;
+      EXPECT_EQ(v[8 + 4 * f + k], expected) << named[f].name << ", wavelength " << k;
+    }
+  EXPECT_GT(nonzero, 4 * 4u) << "the model's fields should not all be zero";
+}
+
+TEST(ShaderInterface, ShaderModelConstantsAndFieldsAreTheCppOnesInFp64) {
+  expect_shader_model_constants("earth-advanced", true);
+  expect_shader_model_constants("mars", true);
+}
+
+TEST(ShaderInterface, ShaderModelConstantsAndFieldsAreTheCppOnesInFp32) {
+  expect_shader_model_constants("earth-advanced", false);
+  expect_shader_model_constants("mars", false);
+}
+
+}  // namespace
+}  // namespace zenith::render
