@@ -1,8 +1,9 @@
 #version 450 core
 // Radiance of order n, L_n(r, μ, μs, ν) = ∫₀^d T(x, y) J_n(y) dy along the ray with
-// the rule of single scattering (T(x, y) from the view ray's samples, view_ray.glsl,
-// every sample_stride-th of them and the last), for one group of 4 wavelengths; written as the delta of this order and added
-// to the multiple-scattering table
+// the rule of single scattering (T(x, y) from the view ray's samples, view_ray.glsl;
+// from coarse_ray_first_order on every sample_stride-th of them and the last,
+// next_ray_sample), for one group of 4 wavelengths; written as the delta of this
+// order and added to the multiple-scattering table
 // (cpu_precompute.cpp, compute_multiple_scattering).
 layout(local_size_x = 8, local_size_y = 8) in;
 
