@@ -315,8 +315,9 @@ TEST(RendererAccuracy, SkyPixelsMatchTheReferencePathTracer) {
       // integral exact, where the 8-node sum was ~20 % low on the second order)
       // these small tables read up to 15.7 % above the reference here (pixel
       // (3, 12) at 440 nm, (12, 12) at 550–680 nm): their own excess, no longer
-      // masked. Paper-size tables: docs/lookup-tables.md, "Accuracy before and after".
-      EXPECT_LT(error, 3.0 * sigma + 0.17 * expected)
+      // masked. With the ν slices in azimuth (scattering_u_nu) the worst is 6.6 %
+      // (0.09 here). Paper-size tables: docs/lookup-tables.md, "ν slices in azimuth".
+      EXPECT_LT(error, 3.0 * sigma + 0.09 * expected)
           << "pixel (" << x << ", " << y << ") channel " << c << ": rendered " << values[c] << ", reference "
           << expected << " ± " << sigma;
     }
