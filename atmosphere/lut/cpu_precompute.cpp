@@ -502,20 +502,21 @@ double Precompute::compute_multiple_scattering(const Table3D& density, int sampl
   core::parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
     const std::size_t z = row / height, y = row % height;
     Channels j{}, sum{}, prev{};
-    // The row's ray: T and the (u_r, u_μ) texture coordinates at its samples,
-    // the same for every (μs, ν) texel (view_ray.glsl on the GPU).
+    // The row's ray: T, r and μ and the (u_r, u_μ) texture coordinates at its
+    // samples, the same for every (μs, ν) texel (view_ray.glsl on the GPU).
     const ScatteringCoordinates ray = scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Blended);
     const ViewRaySamples view = view_ray_samples(model_, geometry(), n_, ray, samples, options_.scattering_quadrature);
     const int stride = coarse_ray_stride_for(ray.mu, ray.ray_hits_ground, sample_stride);
-    std::vector<ScatteringUVWZ> ray_uv(static_cast<std::size_t>(samples) + 1);
-    {
-      for (int i = 0; i <= samples; ++i) {
-        const double t = view.distance_m[static_cast<std::size_t>(i)];
-        const double r_t = std::clamp(std::sqrt(t * t + 2.0 * ray.r_m * ray.mu * t + ray.r_m * ray.r_m),
-                                      geometry().bottom_radius_m, geometry().top_radius_m);
-        const double mu_t = std::clamp((ray.r_m * ray.mu + t) / r_t, -1.0, 1.0);
-        ray_uv[i] = scattering_uvwz(geometry(), s, r_t, mu_t, ray.mu_s, ray.nu, ray.ray_hits_ground, AngleMapping::Blended);
-      }
+    const std::size_t sample_count = static_cast<std::size_t>(samples) + 1;
+    std::vector<ScatteringUVWZ> ray_uv(sample_count);
+    std::vector<double> ray_r_m(sample_count), ray_mu(sample_count);
+    for (std::size_t i = 0; i < sample_count; ++i) {
+      const double t = view.distance_m[i];
+      ray_r_m[i] = std::clamp(std::sqrt(t * t + 2.0 * ray.r_m * ray.mu * t + ray.r_m * ray.r_m),
+                              geometry().bottom_radius_m, geometry().top_radius_m);
+      ray_mu[i] = std::clamp((ray.r_m * ray.mu + t) / ray_r_m[i], -1.0, 1.0);
+      ray_uv[i] =
+          scattering_uvwz(geometry(), s, ray_r_m[i], ray_mu[i], ray.mu_s, ray.nu, ray.ray_hits_ground, AngleMapping::Blended);
     }
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
@@ -525,13 +526,10 @@ double Precompute::compute_multiple_scattering(const Table3D& density, int sampl
         const double t = view.distance_m[static_cast<std::size_t>(i)];
         const double dx = t - previous_t;
         previous_t = t;
-        const double r_t = std::clamp(std::sqrt(t * t + 2.0 * c.r_m * c.mu * t + c.r_m * c.r_m),
-                                      geometry().bottom_radius_m, geometry().top_radius_m);
-        const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / r_t, -1.0, 1.0);
+        const double mu_s_t = std::clamp((c.r_m * c.mu_s + t * c.nu) / ray_r_m[i], -1.0, 1.0);
         ScatteringUVWZ uv = ray_uv[i];
         uv.u_mu_s = scattering_u_mu_s(geometry(), s, mu_s_t, AngleMapping::Blended);
-        const double mu_t = std::clamp((c.r_m * c.mu + t) / r_t, -1.0, 1.0);
-        uv.u_nu = scattering_u_nu(mu_t, mu_s_t, c.nu);  // ν is constant along the ray, the azimuth is not
+        uv.u_nu = scattering_u_nu(ray_mu[i], mu_s_t, c.nu);  // ν is constant along the ray, the azimuth is not
         sample_scattering_table(density, s, uv, j.data());
         const double* t_view_i = view.transmittance.data() + static_cast<std::size_t>(i) * n_;
         for (std::size_t ch = 0; ch < n_; ++ch) {
