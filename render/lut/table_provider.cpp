@@ -60,7 +60,10 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
   std::optional<core::ProgressBar> bar;
   if (request.show_progress) {
     bar.emplace("precompute");
-    options.progress = [&bar](const PrecomputeProgress& p) { bar->update(p.stage, p.fraction); };
+    options.progress = [&bar, caller = request.options.progress](const PrecomputeProgress& p) {
+      bar->update(p.stage, p.fraction);
+      if (caller) caller(p);  // the caller's own callback (the master's cancellation) still runs
+    };
   }
   if (context) {
     spdlog::debug("precomputing on {} ({})", context->renderer(), context->source());

@@ -1,0 +1,100 @@
+#include "cluster/master/table_preparer.h"
+
+#include <chrono>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+
+#include "core/json_reader.h"
+
+namespace zenith::cluster {
+
+namespace {
+
+/// Thrown from a precompute's progress report to end it early (stop()).
+struct PreparationCancelled : std::runtime_error {
+  PreparationCancelled() : std::runtime_error("table preparation cancelled: the master is stopping") {}
+};
+
+}  // namespace
+
+TablePreparer::TablePreparer(Prepared on_prepared, Failed on_failed, Obtain obtain)
+    : on_prepared_(std::move(on_prepared)), on_failed_(std::move(on_failed)), obtain_(std::move(obtain)) {}
+
+TablePreparer::~TablePreparer() {
+  stop();
+  if (worker_.joinable()) worker_.join();
+}
+
+void TablePreparer::enqueue(Job job) {
+  std::lock_guard lock(mutex_);
+  if (stopping_) return;
+  jobs_.push_back(std::move(job));
+  if (!worker_.joinable()) worker_ = std::thread([this] { run(); });
+  wake_.notify_one();
+}
+
+std::size_t TablePreparer::outstanding() const {
+  std::lock_guard lock(mutex_);
+  return jobs_.size() + (running_job_ ? 1 : 0);
+}
+
+void TablePreparer::stop() {
+  std::lock_guard lock(mutex_);
+  stopping_ = true;
+  jobs_.clear();
+  wake_.notify_one();
+}
+
+TableSetFile TablePreparer::obtain_set(const Job& job, bool* from_cache, const std::function<bool()>& cancelled) {
+  render::TableRequest request = job.request;
+  if (cancelled) {
+    request.options.progress = [cancelled, caller = request.options.progress](const atmosphere::lut::PrecomputeProgress& p) {
+      if (caller) caller(p);
+      if (cancelled()) throw PreparationCancelled();
+    };
+  }
+  render::ObtainedTables obtained = render::obtain_tables(job.model, request);
+  if (obtained.cache_file.empty())
+    throw std::runtime_error(config::cat("the tables of '", job.body, "' could not be stored in the cache: nodes get "
+                                         "the cache file's bytes, so the master needs a writable table cache directory"));
+  if (from_cache != nullptr) *from_cache = obtained.from_cache;
+  return make_table_set_file(job.body, job.table_hash, obtained.cache_file);
+}
+
+void TablePreparer::run() {
+  const auto cancelled = [this] {
+    std::lock_guard lock(mutex_);
+    return stopping_;
+  };
+  for (;;) {
+    Job job;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
+      if (stopping_) return;
+      job = std::move(jobs_.front());
+      jobs_.pop_front();
+      running_job_ = true;
+    }
+    const auto started = std::chrono::steady_clock::now();
+    bool from_cache = false;
+    std::optional<TableSetFile> set;
+    std::exception_ptr error;
+    try {
+      set = obtain_ ? obtain_(job, &from_cache) : obtain_set(job, &from_cache, cancelled);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    {
+      std::lock_guard lock(mutex_);
+      running_job_ = false;  // done: the callback only reports it
+      if (stopping_) return;
+    }
+    if (set) on_prepared_(std::move(*set), seconds, from_cache);
+    else on_failed_(job.table_hash, error);
+  }
+}
+
+}  // namespace zenith::cluster
