@@ -1,6 +1,7 @@
 #include "core/json_reader.h"
 #include "cluster/master.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -9,7 +10,6 @@
 #include <memory>
 #include <set>
 #include <sstream>
-#include <thread>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -26,6 +26,8 @@
 #include "cluster/master/heartbeat_monitor.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/operator_input.h"
+#include "cluster/master/show_start_rule.h"
+#include "cluster/master/table_preparer.h"
 #include "cluster/master/table_versions.h"
 #include "show/playback_clock.h"
 #include "show/show.h"
@@ -56,10 +58,9 @@ struct Master::Impl {
   SharedSecret secret;
   scene::Scene scene;
   /// Table sets, the current version of every atmosphere, the pending one
-  /// (prepared on `worker` while frames go on with the old one).
+  /// (prepared by `preparer` while frames go on with the old one).
   TableVersions tables;
   std::size_t next_switch = 0;  ///< into options.atmosphere_switches (sorted by frame)
-  std::thread worker;
   std::uint32_t render_flags = 0;
 
   // ---- the show (docs/shows.md) ----
@@ -68,10 +69,20 @@ struct Master::Impl {
   double fps = 30.0;             ///< frames per second of show time (and of pacing)
   std::unique_ptr<show::ShowRecorder> recorder;
   FrameState frame_in_flight;    ///< the state of the frame in flight (recorded once presented)
+  /// While the show's later table sets are prepared: when frame 0 may start.
+  std::optional<ShowStartRule> show_start;
+  /// The next frame, evaluated but not yet sent: it uses a table set that is
+  /// still being prepared, or that a participant has not confirmed yet.
+  std::optional<FrameState> held_frame;
+  Clock::time_point held_since;
+  bool held_logged = false;
+  /// Why a table set of the show could not be prepared: run() rethrows it.
+  std::exception_ptr preparation_error;
 
   asio::io_context io;
   tcp::acceptor acceptor{io};
-  /// Installed once the tables are ready: until then SIGINT/SIGTERM end the process at once.
+  /// Installed once the scene's tables are ready (a show's are prepared after
+  /// it: SIGINT then cancels their precompute); before, SIGINT/SIGTERM end the process at once.
   std::optional<asio::signal_set> signals;
   asio::steady_timer heartbeat_timer{io}, barrier_timer{io}, frame_timer{io};
   NodeSessions sessions;  ///< every node connection, from accept to close
@@ -81,17 +92,31 @@ struct Master::Impl {
   HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
   /// Playback commands from the console and the control socket.
   OperatorInput operator_input{io, [this](std::string line) { return on_command(std::move(line)); }};
-  Clock::time_point frame_started, show_started, waiting_since;
+  Clock::time_point frame_started, show_started;
+  /// Since when frame 0 could start as far as the tables go (the wait for nodes counts from here).
+  std::optional<Clock::time_point> waiting_since;
+  /// When each table set of the show was sent to the nodes (for the confirmation limit).
+  std::map<Digest, Clock::time_point> show_set_sent_at;
   bool started = false, stopping = false, waiting_logged = false;
   std::uint64_t presented = 0;
+
+  /// Obtains table sets on its own thread, in order; results come back to the
+  /// networking thread. Last member: stopped and joined before the rest goes.
+  TablePreparer preparer{
+      [this](TableSetFile set, double seconds, bool from_cache) {
+        asio::post(io, [this, set = std::move(set), seconds, from_cache]() mutable {
+          on_set_prepared(std::move(set), seconds, from_cache);
+        });
+      },
+      [this](const Digest& hash, std::exception_ptr error) {
+        asio::post(io, [this, hash, error] { on_set_failed(hash, error); });
+      }};
 
   Impl(MasterOptions o, SharedSecret s) : options(std::move(o)), secret(std::move(s)) {
     std::stable_sort(options.atmosphere_switches.begin(), options.atmosphere_switches.end(),
                      [](const AtmosphereSwitch& a, const AtmosphereSwitch& b) { return a.frame < b.frame; });
   }
-  ~Impl() {
-    if (worker.joinable()) worker.join();
-  }
+  ~Impl() { preparer.stop(); }
 
   render::TableRequest table_request() const {
     render::TableRequest request;
@@ -103,14 +128,9 @@ struct Master::Impl {
     return request;
   }
 
-  /// Obtains (cache or precompute) and encodes one set; any thread.
-  static TableSetFile obtain_table_set(const std::string& body, const atmosphere::AtmosphereModel& model,
-                                       const render::TableRequest& request) {
-    render::ObtainedTables obtained = render::obtain_tables(model, request);
-    if (obtained.cache_file.empty())
-      throw std::runtime_error(cat("the tables of '", body, "' could not be stored in the cache: nodes get "
-                                   "the cache file's bytes, so the master needs a writable table cache directory"));
-    return make_table_set_file(body, digest_from_hex(atmosphere::lookup_table_hash(model)), obtained.cache_file);
+  /// A job for the preparer: the set of `model` for `body`.
+  TablePreparer::Job preparation_job(const std::string& body, const atmosphere::AtmosphereModel& model) const {
+    return TablePreparer::Job{body, digest_from_hex(atmosphere::lookup_table_hash(model)), model, table_request()};
   }
 
   /// The atmosphere a switch names, resolved at the scene's wavelengths and
@@ -147,7 +167,7 @@ struct Master::Impl {
     if (show) return prepare_show_tables(request);
     for (const scene::Body& body : scene.bodies) {
       if (!body.atmosphere) continue;
-      TableSetFile set = obtain_table_set(body.name, body.atmosphere->loaded.model, request);
+      TableSetFile set = TablePreparer::obtain_set(preparation_job(body.name, body.atmosphere->loaded.model), nullptr);
       tables.add_current(body.name, set.table_hash);
       tables.add_version(body.name, body.atmosphere->loaded, set.table_hash);
       spdlog::info("master: tables of '{}' ready to share: version {} ({} bytes, sha256 {}…)", body.name,
@@ -156,28 +176,89 @@ struct Master::Impl {
     }
   }
 
-  /// With a show: reports its table plan, then obtains every set it uses
-  /// (cache or precompute) before the first frame, so playback, seeking and
-  /// looping never wait for tables.
+  /// With a show: reports its table plan and hands every set it uses to the
+  /// preparer, in order of first use. Frame 0 starts once its own sets are
+  /// ready (offline) or once the rest are predicted ready in time (live:
+  /// ShowStartRule); the later sets reach the nodes while frames go on.
   void prepare_show_tables(const render::TableRequest& request) {
     const show::TablePlan plan =
         show::plan_tables(*show, fps, request.options,
                           atmosphere::lut::TableCache(request.cache_directory.value_or(atmosphere::lut::default_cache_directory())));
     spdlog::info("master: show '{}' at {} fps needs {} table set{} ({} to precompute):\n{}", show->name(), fps,
                  plan.sets.size(), plan.sets.size() == 1 ? "" : "s", plan.missing(), show::describe(plan));
-    std::vector<Digest> show_sets;  // every set it uses, all distributed before frame 0
-    std::size_t index = 0;
+    std::vector<Digest> show_sets;
+    std::vector<ShowStartRule::Set> schedule;
     for (const show::TablePlanEntry& entry : plan.sets) {
-      ++index;
-      const auto t0 = Clock::now();
-      TableSetFile set = obtain_table_set(entry.version.body, entry.version.loaded.model, request);
-      tables.add_version(entry.version.body, entry.version.loaded, set.table_hash);
-      show_sets.push_back(set.table_hash);
-      spdlog::info("master: table set {} of {} ('{}', version {}) ready ({:.1f} s)", index, plan.sets.size(),
-                   entry.version.body, short_hex(set.table_hash), ms_since(t0) / 1000.0);
-      tables.add_set(std::move(set));
+      tables.add_version(entry.version.body, entry.version.loaded, entry.version.table_hash);
+      show_sets.push_back(entry.version.table_hash);
+      schedule.push_back({entry.version.table_hash, entry.first_frame, entry.cached, false});
+      preparer.enqueue(preparation_job(entry.version.body, entry.version.loaded.model));
     }
     tables.use_show_sets(std::move(show_sets), show->state_at(0.0, 0, render_flags).atmospheres);
+    show_start.emplace(std::move(schedule), fps, options.paced);
+    spdlog::info("master: preparing the show's table sets in the background; frame 0 starts {}",
+                 options.paced ? "once the sets it uses are ready and the others are predicted ready before they "
+                                 "are needed"
+                               : "once the sets it uses are ready");
+  }
+
+  /// Networking thread: a set from the preparer.
+  void on_set_prepared(TableSetFile set, double seconds, bool from_cache) {
+    if (stopping) return;
+    if (!show_start) {
+      on_version_prepared(std::move(set));
+      return;
+    }
+    const Digest hash = set.table_hash;
+    const auto& sets = show_start->sets();
+    const auto index = std::find_if(sets.begin(), sets.end(), [&](const auto& e) { return e.table_hash == hash; }) -
+                       sets.begin() + 1;
+    show_start->prepared(hash, seconds, from_cache);
+    tables.add_set(std::move(set));
+    const TableSetFile& prepared = tables.set(hash);
+    show_set_sent_at[hash] = Clock::now();
+    std::size_t receivers = 0;
+    sessions.for_each([&](NodeSession& s) {
+      if (s.state == NodeSession::State::handshake || !s.inventory_done) return;  // gets it with its inventory
+      send_table_set(s, prepared);
+      ++receivers;
+    });
+    spdlog::info("master: table set {} of {} ('{}', version {}) ready ({:.1f} s, {}); sent to {} node{}", index,
+                 sets.size(), prepared.body_name, short_hex(hash), seconds, from_cache ? "from the cache" : "precomputed",
+                 receivers, receivers == 1 ? "" : "s");
+    for (const std::uint32_t id : sessions.ids())
+      if (NodeSession* s = sessions.find(id)) maybe_become_ready(*s);
+    maybe_start_show();
+    if (!started && !show_start->may_start() && std::none_of(sets.begin(), sets.end(), [](const auto& e) {
+          return e.first_frame == 0 && !e.prepared;
+        })) {
+      const std::optional<double> remaining = show_start->predicted_remaining_s();
+      spdlog::info("master: live show: frame 0 waits until the remaining table sets are predicted ready before they "
+                   "are needed ({}), so that playback does not stall",
+                   remaining ? fmt::format("about {:.0f} s of preparation left", *remaining) : "no estimate yet");
+    }
+  }
+
+  /// Networking thread: the preparer could not prepare a set. A show cannot
+  /// go on without it (the master stops and run() throws); a switch of the
+  /// default show is abandoned and the show goes on with the current version.
+  void on_set_failed(const Digest& hash, std::exception_ptr error) {
+    if (stopping) return;
+    std::string what = "unknown error";
+    try {
+      std::rethrow_exception(error);
+    } catch (const std::exception& e) {
+      what = e.what();
+    } catch (...) {
+    }
+    if (show_start) {
+      preparation_error = error;
+      stop(cat("table set ", short_hex(hash), " of the show could not be prepared: ", what));
+      return;
+    }
+    spdlog::error("master: the new tables could not be prepared: {}; the show goes on with the current version", what);
+    tables.abandon_pending();
+    maybe_start_switch();
   }
 
   // ---- table versions -------------------------------------------------------
@@ -234,24 +315,11 @@ struct Master::Impl {
     spdlog::info("master: frame {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
                  "version {}",
                  frame, short_hex(hash), sw.body, sw.atmosphere, short_hex(tables.current()[index].table_hash));
-    if (worker.joinable()) worker.join();  // the previous switch's worker has posted its result already
     if (tables.has_set(hash)) {  // an earlier version again: already encoded
       asio::post(io, [this] { on_version_prepared(std::nullopt); });
       return;
     }
-    worker = std::thread([this, body = sw.body, model = loaded.model, request = table_request()] {
-      try {
-        TableSetFile set = obtain_table_set(body, model, request);
-        asio::post(io, [this, set = std::move(set)]() mutable { on_version_prepared(std::move(set)); });
-      } catch (const std::exception& e) {
-        asio::post(io, [this, what = std::string(e.what())] {
-          spdlog::error("master: the new tables could not be prepared: {}; the show goes on with the current version",
-                        what);
-          tables.abandon_pending();
-          maybe_start_switch();
-        });
-      }
-    });
+    preparer.enqueue(preparation_job(sw.body, loaded.model));
   }
 
   /// Networking thread: the pending version's tables are ready; send them to every node.
@@ -412,8 +480,10 @@ struct Master::Impl {
 
   void maybe_start_show() {
     if (started || stopping) return;
+    if (show_start && !show_start->may_start()) return;
+    if (!waiting_since) waiting_since = Clock::now();
     const std::size_t ready = sessions.ready_count();
-    const bool waited = ms_since(waiting_since) >= options.wait_for_nodes_ms;
+    const bool waited = ms_since(*waiting_since) >= options.wait_for_nodes_ms;
     if (ready == options.config.nodes.size() || (waited && ready > 0)) {
       started = true;
       show_started = Clock::now();
@@ -441,24 +511,42 @@ struct Master::Impl {
     }
     waiting_logged = false;
     maybe_start_switch();
-    std::uint64_t frame = barrier.frame();  // the next one, or the feed's
-    if (options.feed) {
-      switch (options.feed->pop(frame_in_flight)) {
-        case FrameFeed::Next::finished: stop("every frame of the feed was presented"); return;
-        case FrameFeed::Next::wait:
-          frame_timer.expires_after(milliseconds(2));
-          frame_timer.async_wait([this](const boost::system::error_code& ec) {
-            if (!ec) start_frame();
-          });
-          return;
-        case FrameFeed::Next::frame: break;
+    if (!held_frame) {
+      FrameState next;
+      if (options.feed) {
+        switch (options.feed->pop(next)) {
+          case FrameFeed::Next::finished: stop("every frame of the feed was presented"); return;
+          case FrameFeed::Next::wait:
+            frame_timer.expires_after(milliseconds(2));
+            frame_timer.async_wait([this](const boost::system::error_code& ec) {
+              if (!ec) start_frame();
+            });
+            return;
+          case FrameFeed::Next::frame: break;
+        }
+      } else {
+        const std::uint64_t frame = barrier.frame();
+        next = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
+                    : default_show_frame(scene, frame, options.sun_step_deg, tables.current(), render_flags);
+        if (!show) next.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
       }
-      frame = frame_in_flight.frame;
-    } else {
-      frame_in_flight = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
-                           : default_show_frame(scene, frame, options.sun_step_deg, tables.current(), render_flags);
-      if (!show) frame_in_flight.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
+      held_frame = std::move(next);
+      held_since = Clock::now();
+      held_logged = false;
     }
+    if (!participants_hold_tables(*held_frame, participants)) {
+      frame_timer.expires_after(milliseconds(20));
+      frame_timer.async_wait([this](const boost::system::error_code& ec) {
+        if (!ec) start_frame();
+      });
+      return;
+    }
+    if (held_logged)
+      spdlog::info("master: frame {} goes on after waiting {:.1f} s for its tables", held_frame->frame,
+                   ms_since(held_since) / 1000.0);
+    frame_in_flight = std::move(*held_frame);
+    held_frame.reset();
+    const std::uint64_t frame = options.feed ? frame_in_flight.frame : barrier.frame();
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
     for (const std::uint32_t id : participants) sessions.find(id)->connection->send_encoded(encoded);
     barrier.begin(frame, participants);
@@ -468,6 +556,47 @@ struct Master::Impl {
     barrier_timer.async_wait([this, frame](const boost::system::error_code& ec) {
       if (!ec && barrier.in_flight() && barrier.frame() == frame) on_barrier_timeout();
     });
+  }
+
+  /// Whether every participant holds (TableReady) every table set `state`
+  /// uses. A set of the show may still be being prepared, or just sent: the
+  /// frame then waits (logged once). A node that has not confirmed a sent set
+  /// within max(60 s, the barrier timeout) is disconnected, as for switches.
+  bool participants_hold_tables(const FrameState& state, const std::vector<std::uint32_t>& participants) {
+    for (const AtmosphereTableRef& ref : state.atmospheres) {
+      if (!tables.has_set(ref.table_hash)) {
+        if (!held_logged)
+          spdlog::info("master: frame {} waits for table set {} of '{}', still being prepared", state.frame,
+                       short_hex(ref.table_hash), ref.body_name);
+        held_logged = true;
+        return false;
+      }
+      std::vector<std::string> missing;
+      std::vector<std::shared_ptr<Connection>> late;
+      const auto sent = show_set_sent_at.find(ref.table_hash);
+      const double limit_ms = std::max(60000.0, static_cast<double>(options.config.barrier_timeout_ms));
+      for (const std::uint32_t id : participants) {
+        NodeSession* s = sessions.find(id);
+        if (s == nullptr || s->tables_ready.count(ref.table_hash)) continue;
+        missing.push_back(s->name);
+        if (sent != show_set_sent_at.end() && ms_since(sent->second) > limit_ms) {
+          spdlog::warn("master: node '{}' did not confirm table set {} within {:.0f} ms: disconnecting it so that "
+                       "frame {} can go on (it rejoins with the set when it reconnects)",
+                       s->name, short_hex(ref.table_hash), limit_ms, state.frame);
+          late.push_back(s->connection);
+        }
+      }
+      for (const auto& connection : late) connection->close("table set not confirmed in time");
+      if (!missing.empty()) {
+        if (!held_logged)
+          spdlog::info("master: frame {} waits for node{} '{}' to load table set {} of '{}'", state.frame,
+                       missing.size() == 1 ? "" : "s", fmt::join(missing, "', '"), short_hex(ref.table_hash),
+                       ref.body_name);
+        held_logged = true;
+        return false;
+      }
+    }
+    return true;
   }
 
   void on_render_done(NodeSession& s, const RenderDone& done) {
@@ -610,6 +739,7 @@ struct Master::Impl {
     stopping = true;
     if (options.feed) options.feed->master_stopped();
     spdlog::info("master: stopping: {}", reason);
+    preparer.stop();  // a precompute in progress ends at its next progress report
     boost::system::error_code ec;
     acceptor.close(ec);
     operator_input.close();
@@ -669,7 +799,7 @@ struct Master::Impl {
                  options.config.name, options.config.master_host, port, options.config.nodes.size(),
                  options.config.nodes.size() == 1 ? "" : "s", options.config.heartbeat_ms,
                  options.config.barrier_timeout_ms, fps);
-    waiting_since = Clock::now();
+    if (!show_start) waiting_since = Clock::now();  // a show: once its first sets are ready (maybe_start_show)
     accept();
     signals.emplace(io, SIGINT, SIGTERM);
     signals->async_wait([this](const boost::system::error_code& e, int signal) {
@@ -678,7 +808,8 @@ struct Master::Impl {
     start_operator_inputs();
     heartbeat_tick();
     io.run();
-    if (worker.joinable()) worker.join();
+    preparer.stop();
+    if (preparation_error) std::rethrow_exception(preparation_error);
     if (recorder)
       spdlog::info("master: {} frame{} recorded in {}", recorder->frames(), recorder->frames() == 1 ? "" : "s",
                    recorder->finish().string());

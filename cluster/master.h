@@ -10,10 +10,14 @@
 // Nodes join or rejoin at any time; they get the tables (only those their
 // cache lacks: the inventory), then enter at the next frame boundary. All
 // networking runs on one thread (the io_context's); the caller's thread
-// prepares the first tables and then runs that loop. A new table version
-// (AtmosphereSwitch) is prepared on a worker thread while the show goes on,
-// sent to every node, and takes effect at one frame on all of them once every
-// ready node holds it (docs/cluster.md, "Table versions").
+// prepares the scene's tables and then runs that loop. Table sets prepared
+// while frames go on — a show's later sets, a new version of an atmosphere
+// (AtmosphereSwitch) — are obtained in order on one worker thread
+// (master/table_preparer.h) and sent to every node as they are ready. A show
+// starts once the sets of its first frame are ready (live: once the rest are
+// predicted ready in time, master/show_start_rule.h); a frame whose set is not
+// yet held by every node waits for it. A switch takes effect at one frame on
+// all nodes once every ready node holds it (docs/cluster.md, "Table versions").
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -52,8 +56,9 @@ struct MasterOptions {
 
   // ---- shows (docs/shows.md) ----
   /// Plays this show file instead of the default show; its scene replaces the
-  /// configuration's. Every table set it uses is prepared and distributed
-  /// before the first frame. Not combined with atmosphere_switches.
+  /// configuration's. Its table sets are prepared in order of first use while
+  /// frames go on; frame 0 waits for its own sets (and, paced, until the rest
+  /// are predicted ready in time). Not combined with atmosphere_switches.
   std::optional<std::filesystem::path> show;
   /// Frames per second of show time; 0: the show's own rate for recordings,
   /// the configuration's frame_rate_hz otherwise.

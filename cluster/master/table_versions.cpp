@@ -41,8 +41,12 @@ void TableVersions::use_show_sets(std::vector<Digest> sets, std::vector<Atmosphe
 }
 
 std::vector<Digest> TableVersions::wanted_sets() const {
-  if (show_sets_) return *show_sets_;
   std::vector<Digest> wanted;
+  if (show_sets_) {
+    for (const Digest& h : *show_sets_)
+      if (has_set(h)) wanted.push_back(h);
+    return wanted;
+  }
   for (const AtmosphereTableRef& r : current_)
     if (std::find(wanted.begin(), wanted.end(), r.table_hash) == wanted.end()) wanted.push_back(r.table_hash);
   if (pending_ && pending_->distributed && std::find(wanted.begin(), wanted.end(), pending_->hash) == wanted.end())
@@ -55,7 +59,7 @@ bool TableVersions::ready_with(const std::set<Digest>& held) const {
     if (!held.count(r.table_hash)) return false;
   if (show_sets_)
     for (const Digest& h : *show_sets_)
-      if (!held.count(h)) return false;
+      if (has_set(h) && !held.count(h)) return false;
   return true;
 }
 

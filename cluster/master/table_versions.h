@@ -21,7 +21,9 @@ namespace zenith::cluster {
 
 /// Invariants: every version named by current() or pending() has a set (once
 /// prepared) and a definition; with a show, the sets a node must hold are the
-/// show's, fixed before the first frame, and there is no pending version.
+/// show's sets prepared so far (the show's plan is fixed before the first
+/// frame; its sets are prepared in the background, in order of first use),
+/// and there is no pending version.
 class TableVersions {
  public:
   using Clock = std::chrono::steady_clock;
@@ -54,12 +56,15 @@ class TableVersions {
   const std::vector<AtmosphereTableRef>& current() const { return current_; }
   /// Adds the next atmosphere's version, effective from frame 0.
   void add_current(const std::string& body, const Digest& hash);
-  /// A show: these sets are every one it uses (a node holds them all before
-  /// it is ready), `current` the versions of its first frame.
+  /// A show: these sets are every one it uses, in the order they are
+  /// prepared; `current` the versions of its first frame. A set counts for
+  /// the nodes once it is prepared (add_set).
   void use_show_sets(std::vector<Digest> sets, std::vector<AtmosphereTableRef> current);
-  /// The sets a node must be sent: the show's, or the current versions and a distributed pending one.
+  /// The sets a node must be sent: the show's prepared so far, or the current
+  /// versions and a distributed pending one.
   std::vector<Digest> wanted_sets() const;
-  /// A node that holds `held` (TableReady) holds every current version and every set of the show.
+  /// A node that holds `held` (TableReady) holds every current version and
+  /// every set of the show prepared so far.
   bool ready_with(const std::set<Digest>& held) const;
 
   // ---- the pending version ----

@@ -80,15 +80,32 @@ TEST(TableVersions, AnAbandonedVersionLeavesTheCurrentOne) {
   EXPECT_EQ(versions.current()[0].table_hash, digest(1));
 }
 
-TEST(TableVersions, AShowWantsEverySetItUses) {
+TableSetFile set_of(const Digest& hash) {
+  TableSetFile set;
+  set.body_name = "Earth";
+  set.table_hash = hash;
+  return set;
+}
+
+TEST(TableVersions, AShowWantsEverySetItUsesOnceItIsPrepared) {
   TableVersions versions;
   AtmosphereTableRef first;
   first.body_name = "Earth";
   first.table_hash = digest(1);
   versions.use_show_sets({digest(1), digest(2), digest(3)}, {first});
-  EXPECT_EQ(versions.wanted_sets(), (std::vector<Digest>{digest(1), digest(2), digest(3)}));
   EXPECT_EQ(versions.current().size(), 1u);
-  EXPECT_FALSE(versions.ready_with({digest(1)})) << "every set of the show before the first frame";
+  EXPECT_TRUE(versions.wanted_sets().empty()) << "nothing prepared yet";
+  EXPECT_FALSE(versions.ready_with({})) << "the first frame's versions, always";
+
+  versions.add_set(set_of(digest(1)));
+  EXPECT_EQ(versions.wanted_sets(), (std::vector<Digest>{digest(1)}));
+  EXPECT_TRUE(versions.ready_with({digest(1)})) << "sets still being prepared do not hold a node back";
+
+  versions.add_set(set_of(digest(3)));  // out of order: wanted in the show's order all the same
+  versions.add_set(set_of(digest(2)));
+  EXPECT_EQ(versions.wanted_sets(), (std::vector<Digest>{digest(1), digest(2), digest(3)}));
+  EXPECT_FALSE(versions.ready_with({digest(1)})) << "every prepared set of the show";
+  EXPECT_FALSE(versions.ready_with({digest(2), digest(3)}));
   EXPECT_TRUE(versions.ready_with({digest(1), digest(2), digest(3)}));
 }
 
