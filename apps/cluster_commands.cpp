@@ -133,6 +133,7 @@ struct MasterArgs {
   std::uint32_t wait_for_nodes_ms = 30000;
   bool cpu_precompute = false;
   std::vector<std::string> switches;  ///< --switch-atmosphere FRAME:BODY:PRESET_OR_FILE
+  std::uint32_t debug_table_delay_ms = 0;
 };
 
 void run_master(const MasterArgs& a) {
@@ -145,6 +146,7 @@ void run_master(const MasterArgs& a) {
   if (!a.cache_dir.empty()) options.cache_directory = fs::path(a.cache_dir);
   options.cpu_precompute = a.cpu_precompute;
   options.wait_for_nodes_ms = a.wait_for_nodes_ms;
+  options.debug_table_delay_ms = a.debug_table_delay_ms;
   for (const std::string& text : a.switches) options.atmosphere_switches.push_back(parse_atmosphere_switch(text));
   cluster::SharedSecret secret = load_secret(options.config);
   spdlog::info("master: shared secret from {}", secret.source());
@@ -354,6 +356,9 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--switch-atmosphere", a->switches,
                     "FRAME:BODY:PRESET_OR_FILE: from FRAME on, prepare that atmosphere's tables in the background and "
                     "switch every node to them at one frame (repeatable; docs/cluster.md)");
+    cmd->add_option("--debug-table-delay-ms", a->debug_table_delay_ms,
+                    "Test hook: every table set prepared in the background after the first takes this much longer "
+                    "(plays a slow precompute)");
     cmd->callback([a] { run_master(*a); });
   }
   {

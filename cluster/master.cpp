@@ -5,6 +5,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <atomic>
+#include <thread>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -110,6 +112,13 @@ struct Master::Impl {
       },
       [this](const Digest& hash, std::exception_ptr error) {
         asio::post(io, [this, hash, error] { on_set_failed(hash, error); });
+      },
+      [this, jobs = std::make_shared<std::atomic<int>>(0)](const TablePreparer::Job& job, bool* from_cache,
+                                                           const TablePreparer::Cancelled& cancelled) {
+        if (options.debug_table_delay_ms > 0 && (*jobs)++ > 0)
+          for (std::uint32_t ms = 0; ms < options.debug_table_delay_ms && !cancelled(); ms += 10)
+            std::this_thread::sleep_for(milliseconds(10));
+        return TablePreparer::obtain_set(job, from_cache, cancelled);
       }};
 
   Impl(MasterOptions o, SharedSecret s) : options(std::move(o)), secret(std::move(s)) {

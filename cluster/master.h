@@ -78,6 +78,9 @@ struct MasterOptions {
   /// show still names the table sets to prepare); the master stops when the
   /// feed is finished and empty. Not combined with a show clock's commands.
   std::shared_ptr<FrameFeed> feed;
+  /// Test hook (`--debug-table-delay-ms`): every table set prepared in the
+  /// background after the first takes this much longer (plays a slow precompute).
+  std::uint32_t debug_table_delay_ms = 0;
 };
 
 class Master {

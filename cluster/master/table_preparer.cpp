@@ -46,7 +46,7 @@ void TablePreparer::stop() {
   wake_.notify_one();
 }
 
-TableSetFile TablePreparer::obtain_set(const Job& job, bool* from_cache, const std::function<bool()>& cancelled) {
+TableSetFile TablePreparer::obtain_set(const Job& job, bool* from_cache, const Cancelled& cancelled) {
   render::TableRequest request = job.request;
   if (cancelled) {
     request.options.progress = [cancelled, caller = request.options.progress](const atmosphere::lut::PrecomputeProgress& p) {
@@ -63,7 +63,7 @@ TableSetFile TablePreparer::obtain_set(const Job& job, bool* from_cache, const s
 }
 
 void TablePreparer::run() {
-  const auto cancelled = [this] {
+  const Cancelled cancelled = [this] {
     std::lock_guard lock(mutex_);
     return stopping_;
   };
@@ -82,7 +82,7 @@ void TablePreparer::run() {
     std::optional<TableSetFile> set;
     std::exception_ptr error;
     try {
-      set = obtain_ ? obtain_(job, &from_cache) : obtain_set(job, &from_cache, cancelled);
+      set = obtain_ ? obtain_(job, &from_cache, cancelled) : obtain_set(job, &from_cache, cancelled);
     } catch (...) {
       error = std::current_exception();
     }

@@ -41,9 +41,11 @@ class TablePreparer {
   using Prepared = std::function<void(TableSetFile set, double seconds, bool from_cache)>;
   /// A job that failed: its hash and the error (std::exception_ptr to rethrow).
   using Failed = std::function<void(const Digest& table_hash, std::exception_ptr error)>;
-  /// How a job obtains its set; the default reads the cache or precomputes
-  /// (render::obtain_tables) and encodes the cache file. Tests pass their own.
-  using Obtain = std::function<TableSetFile(const Job& job, bool* from_cache)>;
+  /// Whether the preparer was stopped (a running job should end early).
+  using Cancelled = std::function<bool()>;
+  /// How a job obtains its set; the default is obtain_set (cache or
+  /// precompute, then the wire encoding). Tests pass their own.
+  using Obtain = std::function<TableSetFile(const Job& job, bool* from_cache, const Cancelled& cancelled)>;
 
   TablePreparer(Prepared on_prepared, Failed on_failed, Obtain obtain = {});
   /// Stops (see stop()) and joins the worker.
@@ -65,7 +67,7 @@ class TablePreparer {
   /// leave a cache file (the nodes get its bytes), then the wire encoding.
   /// `cancelled` is polled at every progress report of a precompute. Throws
   /// std::runtime_error when the set cannot be stored in the cache.
-  static TableSetFile obtain_set(const Job& job, bool* from_cache, const std::function<bool()>& cancelled = {});
+  static TableSetFile obtain_set(const Job& job, bool* from_cache, const Cancelled& cancelled = {});
 
  private:
   void run();

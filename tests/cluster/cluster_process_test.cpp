@@ -2,6 +2,7 @@
 // and nodes on loopback, headless, with tiny outputs and small tables
 // (docs/cluster.md, "Tests"). Each test is bounded in time.
 #include <arpa/inet.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -450,6 +451,41 @@ TEST_F(ClusterProcess, ShowPlaysInSyncAndItsRecordingPlaysBackIdentically) {
     const fs::path live = dir_ / "out-live" / fs::relative(entry.path(), dir_ / "out");
     EXPECT_EQ(read_text(entry.path()), read_text(live)) << entry.path();
   }
+}
+
+TEST_F(ClusterProcess, ShowStartsBeforeItsLaterTablesAreReadyAndTheirFrameWaitsForThem) {
+  // The sunset fixture's second table set (turbidity 3) is first used part of
+  // the way through its 6 frames. It takes 4 s more to prepare here
+  // (--debug-table-delay-ms): the frames before are presented meanwhile, the
+  // first frame that uses it waits for it, and every node still presents
+  // every frame with one state.
+  const fs::path config = write_config(10);
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const Child master = start_master(config, 0, 120000,
+                                    {"--show", show.string(), "--fps", "2", "--unpaced", "--debug-table-delay-ms", "4000"});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  ASSERT_EQ(wait_exit(master, 400s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  const auto played = expect_in_sync(dir_ / "out", 5);
+  ASSERT_EQ(played.size(), 6u);
+  std::size_t first_of_second = 1;
+  while (first_of_second < played.size() && played[first_of_second].tables == played[0].tables) ++first_of_second;
+  ASSERT_LT(first_of_second, played.size()) << "the turbidity track switches table versions";
+  const std::string master_log = read_text(dir_ / "master.log");
+  const auto at = [&](const std::string& text) {
+    const std::size_t position = master_log.find(text);
+    EXPECT_NE(position, std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+    return position;
+  };
+  const std::size_t started = at("starting the show");
+  const std::size_t before = at(fmt::format("present frame {} ", first_of_second - 1));
+  const std::size_t waits = at(fmt::format("frame {} waits for table set", first_of_second));
+  const std::size_t second_set = at("table set 2 of 2");
+  const std::size_t goes_on = at(fmt::format("frame {} goes on after waiting", first_of_second));
+  EXPECT_LT(started, second_set) << "frame 0 does not wait for the last set";
+  EXPECT_LT(before, second_set) << "the frames before it are presented while the second set is prepared";
+  EXPECT_LT(waits, second_set);
+  EXPECT_LT(second_set, goes_on);
 }
 
 TEST_F(ClusterProcess, OperatorPausesSeeksAndQuitsThroughTheControlSocket) {

@@ -62,7 +62,7 @@ TEST(TablePreparer, PreparesInOrderOnItsOwnThreadAndReportsFailures) {
         results.on_prepared(set);
       },
       [&](const Digest& hash, std::exception_ptr error) { results.on_failed(hash, error); },
-      [&](const TablePreparer::Job& j, bool* from_cache) {
+      [&](const TablePreparer::Job& j, bool* from_cache, const TablePreparer::Cancelled&) {
         worker_id = std::this_thread::get_id();
         if (j.table_hash[0] == 3) throw std::runtime_error("the tables of 'Mars' could not be stored in the cache");
         *from_cache = j.table_hash[0] == 2;
@@ -93,7 +93,7 @@ TEST(TablePreparer, StopDropsWaitingJobsAndCallsNothingMore) {
   {
     TablePreparer preparer([&](TableSetFile set, double, bool) { results.on_prepared(set); },
                            [&](const Digest& hash, std::exception_ptr e) { results.on_failed(hash, e); },
-                           [&](const TablePreparer::Job& j, bool*) {
+                           [&](const TablePreparer::Job& j, bool*, const TablePreparer::Cancelled&) {
                              std::unique_lock lock(gate_mutex);
                              started = true;
                              gate.notify_all();
@@ -128,7 +128,7 @@ TEST(TablePreparer, AnIdlePreparerStopsAtOnce) {
   const auto t0 = std::chrono::steady_clock::now();
   {
     TablePreparer preparer([](TableSetFile, double, bool) {}, [](const Digest&, std::exception_ptr) {},
-                           [](const TablePreparer::Job& j, bool*) {
+                           [](const TablePreparer::Job& j, bool*, const TablePreparer::Cancelled&) {
                              TableSetFile set;
                              set.table_hash = j.table_hash;
                              return set;
@@ -137,7 +137,7 @@ TEST(TablePreparer, AnIdlePreparerStopsAtOnce) {
   {
     std::atomic<int> prepared{0};
     TablePreparer preparer([&](TableSetFile, double, bool) { ++prepared; }, [](const Digest&, std::exception_ptr) {},
-                           [](const TablePreparer::Job& j, bool*) {
+                           [](const TablePreparer::Job& j, bool*, const TablePreparer::Cancelled&) {
                              TableSetFile set;
                              set.table_hash = j.table_hash;
                              return set;
