@@ -230,14 +230,7 @@ std::vector<ShaderDefine> with_interface_defines(std::span<const ShaderDefine> d
 
 }  // namespace
 
-std::string inject_defines(std::string_view name, std::string_view text, std::span<const ShaderDefine> defines) {
-  for (const ShaderDefine& d : defines) {
-    if (!is_identifier(d.name) || d.name.substr(0, 3) == "GL_" || d.name.find("__") != std::string::npos)
-      throw std::invalid_argument(
-          fmt::format("shader '{}': #define name '{}' is not a usable GLSL identifier", name, d.name));
-    if (d.value.find_first_of("\r\n") != std::string::npos)
-      throw std::invalid_argument(fmt::format("shader '{}': #define {} has a multi-line value", name, d.name));
-  }
+std::string insert_after_version(std::string_view name, std::string_view text, std::span<const std::string> lines) {
   std::size_t pos = 0;
   int line = 0;
   while (pos < text.size()) {
@@ -246,10 +239,10 @@ std::string inject_defines(std::string_view name, std::string_view text, std::sp
     ++line;
     const std::vector<std::string_view> words = directive_words(text.substr(pos, end - pos));
     if (!words.empty() && words[0] == "version") {
-      if (defines.empty()) return std::string(text);
+      if (lines.empty()) return std::string(text);
       std::string out(text.substr(0, end));
       out += '\n';
-      for (const ShaderDefine& d : defines) out += fmt::format("#define {} {}\n", d.name, d.value);
+      for (const std::string& l : lines) out += l + '\n';
       out += fmt::format("#line {} 0\n", line + 1);
       if (newline != std::string_view::npos) out.append(text.substr(newline + 1));
       return out;
@@ -260,10 +253,38 @@ std::string inject_defines(std::string_view name, std::string_view text, std::sp
   throw std::invalid_argument(fmt::format("shader '{}' has no #version line", name));
 }
 
+std::string inject_defines(std::string_view name, std::string_view text, std::span<const ShaderDefine> defines) {
+  std::vector<std::string> lines;
+  for (const ShaderDefine& d : defines) {
+    if (!is_identifier(d.name) || d.name.substr(0, 3) == "GL_" || d.name.find("__") != std::string::npos)
+      throw std::invalid_argument(
+          fmt::format("shader '{}': #define name '{}' is not a usable GLSL identifier", name, d.name));
+    if (d.value.find_first_of("\r\n") != std::string::npos)
+      throw std::invalid_argument(fmt::format("shader '{}': #define {} has a multi-line value", name, d.name));
+    lines.push_back(fmt::format("#define {} {}", d.name, d.value));
+  }
+  return insert_after_version(name, text, lines);
+}
+
+bool is_nvidia_unroll_failure(std::string_view message) { return message.find("C5025") != std::string_view::npos; }
+
 ShaderProgram ShaderProgram::compute(const ShaderCode& code, std::span<const ShaderDefine> defines) {
-  const GLuint shader = compile(ShaderStage::compute, code, defines);
   ShaderProgram p;
-  p.id_ = link(code.name, std::span<const GLuint>(&shader, 1));
+  try {
+    const GLuint shader = compile(ShaderStage::compute, code, defines);
+    p.id_ = link(code.name, std::span<const GLuint>(&shader, 1));
+  } catch (const std::runtime_error& e) {
+    if (!is_nvidia_unroll_failure(e.what())) throw;
+    // NVIDIA's compiler could not unroll a loop (kNvidiaLoopUnrollOff): the same
+    // program again with its loop unrolling off, at every line number unchanged.
+    spdlog::info("shader program '{}': NVIDIA's GLSL compiler failed on an unrolled loop (C5025); compiling it "
+                 "again with loop unrolling off",
+                 code.name);
+    const std::string pragma[] = {std::string(kNvidiaLoopUnrollOff)};
+    const ShaderCode rolled{code.name, insert_after_version(code.name, code.text, pragma), code.files};
+    const GLuint shader = compile(ShaderStage::compute, rolled, defines);
+    p.id_ = link(code.name, std::span<const GLuint>(&shader, 1));
+  }
   p.name_ = code.name;
   p.compute_ = true;
   glGetProgramiv(p.id_, GL_COMPUTE_WORK_GROUP_SIZE, p.local_size_.data());

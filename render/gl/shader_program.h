@@ -35,6 +35,24 @@ struct ShaderCode {
 /// not a valid identifier / has a multi-line value.
 std::string inject_defines(std::string_view name, std::string_view text, std::span<const ShaderDefine> defines);
 
+/// `text` with `lines` inserted right after its #version line, followed by
+/// `#line <n> 0` so that later lines keep their numbers (inject_defines
+/// inserts its #define lines this way). Throws std::invalid_argument naming
+/// the shader when there is no #version line.
+std::string insert_after_version(std::string_view name, std::string_view text, std::span<const std::string> lines);
+
+/// NVIDIA's pragma that turns its GLSL compiler's loop unrolling off. Driver
+/// 580.159.04 (an H200, 2026-11-26) fails to link some programs whose loops
+/// it unrolls — harmonic_density.comp with 64 wavelengths or the fp32 model,
+/// transmittance.comp with absorbers, test_shader_model.comp — with "error
+/// C5025: lvalue in array access too complex"; with this pragma every one of
+/// them probed (9 of 9) linked. Other compilers ignore pragmas they do not
+/// know (GLSL 4.50, section 3.3).
+inline constexpr std::string_view kNvidiaLoopUnrollOff = "#pragma optionNV(unroll none)";
+
+/// Whether a compile or link message is that NVIDIA failure (its error code C5025).
+bool is_nvidia_unroll_failure(std::string_view message);
+
 class ShaderProgram {
  public:
   /// Compiles and links. On a compile or link failure throws std::runtime_error:
