@@ -5,14 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 namespace zenith::cluster {
 namespace {
 
-Digest digest(std::uint8_t first) {
-  Digest d{};
-  d[0] = first;
-  return d;
-}
+using test::digest;
 
 // The Earth sunrise show at 2 fps: three sets, first used at frames 0, 44 and 68.
 std::vector<ShowStartRule::Set> sunrise(bool cached = false) {

@@ -4,14 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 namespace zenith::cluster {
 namespace {
 
-Digest digest(std::uint8_t first) {
-  Digest d{};
-  d[0] = first;
-  return d;
-}
+using test::digest;
 
 atmosphere::LoadedAtmosphere atmosphere_with(const char* name) {
   atmosphere::LoadedAtmosphere loaded;

@@ -1,5 +1,5 @@
 #pragma once
-// Helpers shared by the cluster tests: crafting frames byte by byte.
+// Helpers shared by the cluster tests: crafting frames byte by byte, digests.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -8,6 +8,13 @@
 #include "cluster/messages.h"
 
 namespace zenith::cluster::test {
+
+/// A digest told apart by its first byte (table hashes in the master's bookkeeping tests).
+inline Digest digest(std::uint8_t first) {
+  Digest d{};
+  d[0] = first;
+  return d;
+}
 
 inline void put_be16(std::vector<std::uint8_t>& b, std::size_t at, std::uint16_t v) {
   b[at] = static_cast<std::uint8_t>(v >> 8);
