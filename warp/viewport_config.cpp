@@ -34,6 +34,8 @@ constexpr double kMinBlendWidthFraction = 1e-3, kMaxBlendWidthFraction = 0.5;
 constexpr double kMinMaskGamma = 0.1, kMaxMaskGamma = 10.0;
 constexpr std::size_t kMaxNameLength = 64;
 constexpr double kMinSourceAspect = 0.1, kMaxSourceAspect = 10.0;
+/// The values of a Bourke warp's "fit", in the order the errors list them.
+constexpr MeshFit kMeshFits[] = {MeshFit::height, MeshFit::width, MeshFit::crop, MeshFit::letterbox, MeshFit::stretch};
 
 void allow_keys(const JsonReader& r, const json& object, std::initializer_list<std::string_view> allowed) {
   config::reject_unknown_keys(r, object, allowed, "docs/viewports.md");
@@ -64,12 +66,18 @@ std::pair<int, int> read_size(JsonReader& r, const std::string& size_key = "size
   return {side[0], side[1]};
 }
 
-/// The mesh of a warp; resolves source.file against `base_dir` (it must exist).
-/// Every failure is a ConfigError at /outputs/<i>/warp/file (or .../region).
-WarpMesh load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir) {
+/// The mesh of a warp for an output of width × height px; resolves source.file
+/// against `base_dir` (it must exist). Every failure is a ConfigError at
+/// /outputs/<i>/warp/file (or .../region).
+WarpMesh load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir, int width_px, int height_px) {
   source.file = w.existing_file("file", base_dir);
   try {
-    if (source.format == "bourke") return load_bourke_mesh(source.file);
+    if (source.format == "bourke") {
+      BourkeMeshOptions options;
+      options.aspect = static_cast<double>(width_px) / height_px;  // square pixels
+      options.fit = source.fit;
+      return load_bourke_mesh(source.file, options);
+    }
     if (source.format == "pfm")
       return load_pfm_warp_mesh(source.file, source.row_order, WarpInterpolation::catmull_rom, source.conventions);
     const MpcdiFile mpcdi = load_mpcdi(source.file, MpcdiLoadOptions{source.conventions.values});
@@ -120,12 +128,12 @@ std::pair<int, int> read_warp_source_size(JsonReader& w, const json& spec, int w
 }
 
 /// The "warp" object: {"file", "format", "region" (mpcdi), "values" (pfm,
-/// mpcdi), "row_order", "v_direction" (pfm), "source"}: its keys and values;
+/// mpcdi), "row_order", "v_direction" (pfm), "fit" (bourke), "source"}: its keys and values;
 /// the file is looked for by load_warp(). The source's size defaults as
 /// read_warp_source_size() says.
 WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& base_dir, const json& spec,
                             int width_px, int height_px) {
-  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction", "source"});
+  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction", "fit", "source"});
   WarpSource source;
   source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
   source.file = base_dir / w.string("file");  // checked, made absolute and read by load_warp()
@@ -139,6 +147,7 @@ WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& b
     only_for("region", "\"mpcdi\"");
   }
   if (source.format == "bourke") only_for("values", "\"pfm\" and \"mpcdi\"");
+  if (source.format != "bourke") only_for("fit", "\"bourke\"");
   if (source.format != "pfm") {
     only_for("row_order", "\"pfm\"");
     only_for("v_direction", "\"pfm\"");
@@ -148,6 +157,11 @@ WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& b
   if (w.string_or("row_order", "bottom_to_top", {"bottom_to_top", "top_to_bottom"}) == "top_to_bottom")
     source.row_order = PfmRowOrder::top_to_bottom;
   if (w.string_or("v_direction", "down", {"down", "up"}) == "up") source.conventions.v_direction = WarpVDirection::up;
+  std::vector<std::string> fit_names;
+  for (const MeshFit f : kMeshFits) fit_names.emplace_back(to_string(f));
+  const std::string fit = w.string_or("fit", to_string(source.fit), fit_names);
+  for (const MeshFit f : kMeshFits)
+    if (fit == to_string(f)) source.fit = f;
   std::tie(source.source_width_px, source.source_height_px) = read_warp_source_size(w, spec, width_px, height_px);
   return source;
 }
@@ -204,7 +218,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
     std::shared_ptr<const Projection> base = make_projection(spec, source.source_width_px, source.source_height_px,
                                                              o.file(), o.key_path("projection"));
     try {
-      WarpMesh mesh = load_warp(w, source, base_dir);
+      WarpMesh mesh = load_warp(w, source, base_dir, out.width_px, out.height_px);
       out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(mesh), base);
     } catch (const ConfigError&) {
       if (!options.keep_broken_warps) throw;

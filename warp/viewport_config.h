@@ -10,8 +10,8 @@
 //     "outputs": [
 //       {"name": "p1", "size": [1920, 1200],
 //        "projection": {"type": "planar", "left_deg": -45, ...},          make_projection() spec
-//        "warp": {"file": "p1.data", "format": "bourke",                  optional; pfm and mpcdi
-//                 "source": {"size_px": [1080, 1080]}},                   also "values", pfm "row_order", "v_direction"
+//        "warp": {"file": "p1.data", "format": "bourke",                  optional; bourke "fit", pfm and
+//                 "source": {"size_px": [1080, 1080]}},                   mpcdi "values", pfm "row_order", "v_direction"
 //        "blend": "auto",                                                 "none" | "auto" | object
 //        "black_level": 0.02}                                             β in [0, 0.5]
 //     ]
@@ -34,6 +34,7 @@
 #include "warp/planar_projection.h"
 #include "warp/projection.h"
 #include "warp/warp_map_conventions.h"
+#include "warp/warp_mesh.h"
 
 namespace zenith::warp {
 
@@ -75,6 +76,11 @@ struct WarpSource {
   /// pfm: "values" and "v_direction" (defaults absolute, down); mpcdi: "values"
   /// (MPCDI fixes v down). warp/warp_map_conventions.h has the formulas.
   WarpMapConventions conventions;
+  /// bourke: "fit", how a mesh made for another aspect ratio meets the output
+  /// (a 16:9 mesh at a 4:3 output): "height" (the default: y spans the
+  /// output's height, x in the same units, as Bourke's tools and SGCT do),
+  /// "width", "crop", "letterbox", "stretch" (warp/warp_mesh.h, MeshFit).
+  MeshFit fit = MeshFit::height;
   /// "source": the size of the source image the mesh's (u, v) address (the
   /// output's "projection" renders it at this size), {"size_px": [w, h]}
   /// (each in [1, 16384]) or {"aspect": a} (a in [0.1, 10]: the output's

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -41,17 +42,17 @@ struct Node {
 };
 
 /// A spherical-mirror-like fan over the dome master's circle, narrower toward
-/// the bottom of the projector image; u and v are bilinear in (x, y), so
-/// Catmull–Rom and bilinear interpolation agree with the sampler below exactly.
-/// Every used (u, v) lies inside the circle of a square source. The two bottom
-/// corner nodes are unused (intensity −1).
-std::vector<Node> mirror_mesh() {
+/// the bottom of the projector image, x ∈ [−aspect, aspect]; u and v are
+/// bilinear in (x, y), so Catmull–Rom and bilinear interpolation agree with the
+/// sampler below exactly. Every used (u, v) lies inside the circle of a square
+/// source. The two bottom corner nodes are unused (intensity −1).
+std::vector<Node> mirror_mesh(double aspect = kAspect) {
   std::vector<Node> nodes;
   for (int j = 0; j < kNy; ++j)
     for (int i = 0; i < kNx; ++i) {
-      const double x = -kAspect + 2.0 * kAspect * i / (kNx - 1), y = -1.0 + 2.0 * j / (kNy - 1);
+      const double x = -aspect + 2.0 * aspect * i / (kNx - 1), y = -1.0 + 2.0 * j / (kNy - 1);
       const double up = (y + 1.0) / 2.0;  // 0 at the bottom, 1 at the top
-      Node n{x, y, 0.5 + (x / kAspect) * (0.3 + 0.05 * up), 0.1 + 0.75 * up, 0.5 + 0.5 * up};
+      Node n{x, y, 0.5 + (x / aspect) * (0.3 + 0.05 * up), 0.1 + 0.75 * up, 0.5 + 0.5 * up};
       if (j == 0 && (i == 0 || i == kNx - 1)) n.intensity = -1.0;
       nodes.push_back(n);
     }
@@ -66,13 +67,25 @@ std::string bourke_file(const std::vector<Node>& nodes) {
   return text.str();
 }
 
-/// The independent sampler. Output pixel (px, py) of a W × H output → Bourke
-/// (x, y) → the node cell → bilinear (u, v) (nothing when a corner is unused)
-/// → the source pixel of a side × side dome master (v up → down) → the 180°
-/// angular fisheye's ray (centre → +y, bottom of the rim → −z, right → +x).
-std::optional<glm::dvec3> expected_ray(const std::vector<Node>& nodes, double px, double py, double side) {
-  const double x = -kAspect + 2.0 * kAspect * px / kWidth, y = 1.0 - 2.0 * py / kHeight;
-  const double fi = (x + kAspect) / (2.0 * kAspect) * (kNx - 1), fj = (y + 1.0) / 2.0 * (kNy - 1);
+/// What an output shows of a mesh's (x, y) plane: a width_px × height_px image
+/// spanning x ∈ [−half_x, half_x], y ∈ [−half_y, half_y], of a mesh whose nodes
+/// span x ∈ [−mesh_aspect, mesh_aspect], y ∈ [−1, 1].
+struct Frame {
+  int width_px = kWidth, height_px = kHeight;
+  double half_x = kAspect, half_y = 1.0, mesh_aspect = kAspect;
+};
+
+/// The independent sampler. Output pixel (px, py) of the frame's output →
+/// Bourke (x, y) → the node cell → bilinear (u, v) (nothing off the mesh or
+/// when a corner is unused) → the source pixel of a side × side dome master
+/// (v up → down) → the 180° angular fisheye's ray (centre → +y, bottom of the
+/// rim → −z, right → +x).
+std::optional<glm::dvec3> expected_ray(const std::vector<Node>& nodes, double px, double py, double side,
+                                       const Frame& frame = {}) {
+  const double x = frame.half_x * (2.0 * px / frame.width_px - 1.0), y = frame.half_y * (1.0 - 2.0 * py / frame.height_px);
+  const double a_m = frame.mesh_aspect;
+  if (std::abs(x) > a_m || std::abs(y) > 1.0) return std::nullopt;
+  const double fi = (x + a_m) / (2.0 * a_m) * (kNx - 1), fj = (y + 1.0) / 2.0 * (kNy - 1);
   const int i = std::min(static_cast<int>(std::floor(fi)), kNx - 2), j = std::min(static_cast<int>(std::floor(fj)), kNy - 2);
   const double a = fi - i, b = fj - j;
   const Node& n00 = nodes[static_cast<std::size_t>(j * kNx + i)];
@@ -97,14 +110,23 @@ std::optional<glm::dvec3> expected_ray(const std::vector<Node>& nodes, double px
 
 struct MirrorSetup {
   ScratchDir dir{"warp_source"};
-  std::vector<Node> nodes = mirror_mesh();
-  MirrorSetup() { dir.write("mirror.data", bourke_file(nodes)); }
+  std::vector<Node> nodes;
+  explicit MirrorSetup(double mesh_aspect = kAspect) : nodes(mirror_mesh(mesh_aspect)) {
+    dir.write("mirror.data", bourke_file(nodes));
+  }
 
   json config(const json& source = nullptr) const {
     json j = json::parse(R"({"zenith_viewports": 1, "name": "mirror", "outputs": [
       {"name": "p", "size": [160, 90], "projection": {"type": "fisheye", "fov_deg": 180},
        "warp": {"file": "mirror.data", "format": "bourke"}}]})");
     if (!source.is_null()) j["outputs"][0]["warp"]["source"] = source;
+    return j;
+  }
+  /// config() at another output size, with "fit" when given.
+  json config_at(int width_px, int height_px, const std::string& fit = "") const {
+    json j = config();
+    j["outputs"][0]["size"] = json{width_px, height_px};
+    if (!fit.empty()) j["outputs"][0]["warp"]["fit"] = fit;
     return j;
   }
   ViewportConfig parse(const json& j) const { return parse_viewport_config(j, "mirror.json", dir.path()); }
@@ -114,6 +136,37 @@ const WarpedProjection& warped_of(const ViewportConfig& c) {
   const auto* w = dynamic_cast<const WarpedProjection*>(c.outputs.at(0).projection.get());
   if (w == nullptr) throw std::logic_error("not a warped projection");
   return *w;
+}
+
+/// The warped projection of the config's first output, kept alive past the config.
+std::shared_ptr<const WarpedProjection> warped_output(const ViewportConfig& c) {
+  auto w = std::dynamic_pointer_cast<const WarpedProjection>(c.outputs.at(0).projection);
+  if (!w) throw std::logic_error("not a warped projection");
+  return w;
+}
+
+/// Pixels of `warped` compared with the sampler (within 1e-6), and those
+/// without a ray in both; a pixel with a ray in one and not the other fails.
+struct Agreement {
+  int compared = 0, without_ray = 0;
+};
+Agreement compare_with_sampler(const WarpedProjection& warped, const std::vector<Node>& nodes, const Frame& frame) {
+  Agreement agreement;
+  for (int py = 0; py < warped.height(); ++py)
+    for (int px = 0; px < warped.width(); ++px) {
+      const double x = px + 0.5, y = py + 0.5;
+      const auto expected = expected_ray(nodes, x, y, warped.base().height(), frame);
+      const auto actual = warped.ray(x, y);
+      EXPECT_EQ(expected.has_value(), actual.has_value()) << x << " " << y;
+      if (expected.has_value() != actual.has_value()) return agreement;
+      if (!expected) {
+        ++agreement.without_ray;
+        continue;
+      }
+      EXPECT_LT(glm::length(*expected - *actual), 1e-6) << x << " " << y;
+      ++agreement.compared;
+    }
+  return agreement;
 }
 
 TEST(WarpSource, FisheyeSourceIsSquareByDefaultAndMatchesTheIndependentSampler) {
@@ -129,22 +182,9 @@ TEST(WarpSource, FisheyeSourceIsSquareByDefaultAndMatchesTheIndependentSampler) 
   EXPECT_EQ(c.outputs[0].warp->source_width_px, kHeight);
   EXPECT_EQ(c.outputs[0].warp->source_height_px, kHeight);
 
-  int compared = 0, agree_no_ray = 0;
-  for (int py = 0; py < kHeight; ++py)
-    for (int px = 0; px < kWidth; ++px) {
-      const double x = px + 0.5, y = py + 0.5;
-      const auto expected = expected_ray(setup.nodes, x, y, kHeight);
-      const auto actual = warped.ray(x, y);
-      ASSERT_EQ(expected.has_value(), actual.has_value()) << x << " " << y;
-      if (!expected) {
-        ++agree_no_ray;
-        continue;
-      }
-      ASSERT_LT(glm::length(*expected - *actual), 1e-6) << x << " " << y;
-      ++compared;
-    }
-  EXPECT_GT(compared, kWidth * kHeight * 9 / 10);
-  EXPECT_GT(agree_no_ray, 0);  // the unused corner cells
+  const Agreement agreement = compare_with_sampler(warped, setup.nodes, Frame{});
+  EXPECT_GT(agreement.compared, kWidth * kHeight * 9 / 10);
+  EXPECT_GT(agreement.without_ray, 0);  // the unused corner cells
 }
 
 TEST(WarpSource, SixteenByNineOutputIsCoveredWhereTheMeshCovers) {
@@ -246,5 +286,163 @@ TEST(WarpSource, BadSourcesAreRefusedNamingTheKeyAndRange) {
                         {"mirror.json: /outputs/0/warp/source/aspect", "18000 px wide", "more than 16384"});
 }
 
+
+// ---- "fit": a mesh made for another aspect ratio ---------------------------------
+
+/// Counts the rows of column `px` without a ray, and the columns of row `py`.
+int rows_without_ray(const WarpedProjection& w, int px) {
+  int n = 0;
+  for (int py = 0; py < w.height(); ++py) n += !w.ray(px + 0.5, py + 0.5).has_value();
+  return n;
+}
+int columns_without_ray(const WarpedProjection& w, int py) {
+  int n = 0;
+  for (int px = 0; px < w.width(); ++px) n += !w.ray(px + 0.5, py + 0.5).has_value();
+  return n;
+}
+
+TEST(WarpFit, ASixteenByNineMeshAtFourByThreeIsCroppedAtTheSidesByDefault) {
+  // Bourke's tools and SGCT put y ∈ [−1, 1] across the output's height and x
+  // in the same units (x / aspect of the window), so a 16:9 mesh at a 4:3
+  // output loses its sides: a 120 × 90 output shows x ∈ [−4/3, 4/3], the
+  // middle 120 columns of the same mesh at 160 × 90, pixel for pixel.
+  const MirrorSetup setup;
+  const ViewportConfig wide = setup.parse(setup.config());
+  const ViewportConfig narrow = setup.parse(setup.config_at(120, 90));
+  ASSERT_EQ(narrow.outputs[0].warp->fit, MeshFit::height);
+  const WarpedProjection& w = warped_of(wide);
+  const WarpedProjection& n = warped_of(narrow);
+  EXPECT_EQ(n.base().width(), 90);  // the square dome master, as at 16:9
+  const Agreement agreement = compare_with_sampler(n, setup.nodes, {120, 90, 4.0 / 3.0, 1.0, kAspect});
+  EXPECT_EQ(agreement.compared + agreement.without_ray, 120 * 90);
+  EXPECT_GT(agreement.compared, 120 * 90 * 95 / 100);
+  int same = 0;
+  for (int py = 0; py < 90; ++py)
+    for (int px = 0; px < 120; ++px) {
+      const auto a = n.ray(px + 0.5, py + 0.5), b = w.ray(px + 20.5, py + 0.5);
+      ASSERT_EQ(a.has_value(), b.has_value()) << px << " " << py;
+      if (!a) continue;
+      ASSERT_LT(glm::length(*a - *b), 1e-9) << px << " " << py;
+      ++same;
+    }
+  EXPECT_EQ(same, agreement.compared);
+  // Every column has its rays down to the mesh's bottom: nothing is squeezed
+  // off, nothing is black at the sides.
+  EXPECT_EQ(rows_without_ray(n, 0), 0);
+  EXPECT_EQ(rows_without_ray(n, 119), 0);
+  // "crop" is the same for a mesh wider than the output.
+  const ViewportConfig crop = setup.parse(setup.config_at(120, 90, "crop"));
+  const Agreement cropped = compare_with_sampler(warped_of(crop), setup.nodes, {120, 90, 4.0 / 3.0, 1.0, kAspect});
+  EXPECT_EQ(cropped.compared, agreement.compared);
+}
+
+TEST(WarpFit, StretchSqueezesTheMeshIntoTheOutputAsBefore) {
+  // What zenith did before "fit": the mesh's x ∈ [−16/9, 16/9] across the 4:3
+  // output's width, squeezing the dome by 0.75 across.
+  const MirrorSetup setup;
+  const auto s_output = warped_output(setup.parse(setup.config_at(120, 90, "stretch")));
+  const WarpedProjection& s = *s_output;
+  const Agreement agreement = compare_with_sampler(s, setup.nodes, {120, 90, kAspect, 1.0, kAspect});
+  EXPECT_GT(agreement.compared, 120 * 90 * 9 / 10);
+  // Its left column shows the mesh's left edge, which height cuts off: at mid
+  // height the stretched output's column 0 and the 16:9 output's column 0
+  // have the same ray (x = −16/9 · 119/120 and −16/9 · 159/160 are 0.0037
+  // apart: within 0.6° of each other).
+  const auto w_output = warped_output(setup.parse(setup.config()));
+  const WarpedProjection& w = *w_output;
+  const auto a = s.ray(0.5, 45.5), b = w.ray(0.5, 45.5);
+  ASSERT_TRUE(a && b);
+  EXPECT_LT(std::acos(std::min(1.0, glm::dot(*a, *b))), 0.6 * zenith::core::kDeg);
+}
+
+TEST(WarpFit, WidthAndLetterboxShowTheWholeWideMeshWithBarsTopAndBottom) {
+  // x ∈ [−16/9, 16/9] across 120 px: y ∈ [−4/3, 4/3] down 90 px, so a bar of
+  // 90 · (1 − 3/4) / 2 = 11.25 rows above and below the mesh.
+  const MirrorSetup setup;
+  for (const char* fit : {"width", "letterbox"}) {
+    SCOPED_TRACE(fit);
+    const auto l_output = warped_output(setup.parse(setup.config_at(120, 90, fit)));
+    const WarpedProjection& l = *l_output;
+    const Agreement agreement = compare_with_sampler(l, setup.nodes, {120, 90, kAspect, 4.0 / 3.0, kAspect});
+    EXPECT_GT(agreement.compared, 120 * 90 * 7 / 10);
+    EXPECT_EQ(rows_without_ray(l, 60), 2 * 11);  // rows 0–10 and 79–89 (centres 0.5 … 10.5, 79.5 … 89.5)
+    EXPECT_FALSE(l.ray(60.5, 10.5));
+    EXPECT_TRUE(l.ray(60.5, 11.5));
+    EXPECT_TRUE(l.ray(60.5, 78.5));
+    EXPECT_FALSE(l.ray(60.5, 79.5));
+    EXPECT_EQ(columns_without_ray(l, 45), 0);  // the full width
+  }
+}
+
+TEST(WarpFit, ANarrowerMeshGetsBarsAtTheSidesByDefaultAndIsCroppedTopAndBottomByCrop) {
+  // A 4:3 mesh at the 16:9 output (160 × 90): height shows x ∈ [−16/9, 16/9],
+  // the mesh's x ∈ [−4/3, 4/3] in the middle 120 columns, 20 black columns on
+  // each side (SGCT's behaviour); crop (= width for a narrower mesh) fills the
+  // width and cuts y to ±3/4; letterbox = height; stretch spans it edge to edge.
+  const MirrorSetup setup(4.0 / 3.0);
+  const auto h_output = warped_output(setup.parse(setup.config()));
+  const WarpedProjection& h = *h_output;
+  compare_with_sampler(h, setup.nodes, {160, 90, kAspect, 1.0, 4.0 / 3.0});
+  EXPECT_EQ(columns_without_ray(h, 45), 40);
+  EXPECT_FALSE(h.ray(19.5, 45.5));
+  EXPECT_TRUE(h.ray(20.5, 45.5));
+  EXPECT_TRUE(h.ray(139.5, 45.5));
+  EXPECT_FALSE(h.ray(140.5, 45.5));
+  const auto l_output = warped_output(setup.parse(setup.config_at(160, 90, "letterbox")));
+  const WarpedProjection& l = *l_output;
+  EXPECT_EQ(compare_with_sampler(l, setup.nodes, {160, 90, kAspect, 1.0, 4.0 / 3.0}).compared,
+            compare_with_sampler(h, setup.nodes, {160, 90, kAspect, 1.0, 4.0 / 3.0}).compared);
+
+  const auto c_output = warped_output(setup.parse(setup.config_at(160, 90, "crop")));
+  const WarpedProjection& c = *c_output;
+  const Agreement cropped = compare_with_sampler(c, setup.nodes, {160, 90, 4.0 / 3.0, 0.75, 4.0 / 3.0});
+  EXPECT_EQ(cropped.without_ray, 0);  // the mesh's unused bottom corners lie below the output
+  EXPECT_EQ(columns_without_ray(c, 0), 0);
+  EXPECT_EQ(columns_without_ray(c, 89), 0);
+
+  const auto s_output = warped_output(setup.parse(setup.config_at(160, 90, "stretch")));
+  const WarpedProjection& s = *s_output;
+  compare_with_sampler(s, setup.nodes, {160, 90, 4.0 / 3.0, 1.0, 4.0 / 3.0});
+  EXPECT_EQ(columns_without_ray(s, 45), 0);
+}
+
+TEST(WarpFit, ABadFitIsRefusedNamingTheKeyAndTheValues) {
+  const MirrorSetup setup;
+  testing::expect_config_error([&] { setup.parse(setup.config_at(160, 90, "squeeze")); }, "mirror.json",
+                               "/outputs/0/warp/fit",
+                               "= \"squeeze\": must be one of \"height\", \"width\", \"crop\", \"letterbox\", \"stretch\"");
+  json number = setup.config();
+  number["outputs"][0]["warp"]["fit"] = 1;
+  testing::expect_config_error([&] { setup.parse(number); }, "mirror.json", "/outputs/0/warp/fit", "must be a string");
+  // A PFM or MPCDI map spans its output edge to edge by definition.
+  setup.dir.write("map.pfm", testing::make_pfm(2, 2, 3, [](int x, int y, int c) {
+    return c == 0 ? static_cast<float>(x) : c == 1 ? static_cast<float>(y) : 0.0f;
+  }, true, false));
+  json pfm = setup.config_at(160, 90, "crop");
+  pfm["outputs"][0]["warp"]["file"] = "map.pfm";
+  pfm["outputs"][0]["warp"]["format"] = "pfm";
+  testing::expect_config_error([&] { setup.parse(pfm); }, "mirror.json", "/outputs/0/warp/fit",
+                               "applies to \"format\": \"bourke\" only (format is \"pfm\")");
+}
+
+TEST(WarpFit, FramesOfEachFit) {
+  // bourke_frame(fit, mesh aspect, output aspect): the half-extents shown.
+  const auto expect_frame = [](MeshFit fit, double mesh, double output, double half_x, double half_y) {
+    const BourkeFrame f = bourke_frame(fit, mesh, output);
+    EXPECT_DOUBLE_EQ(f.half_x, half_x) << to_string(fit);
+    EXPECT_DOUBLE_EQ(f.half_y, half_y) << to_string(fit);
+  };
+  const double wide = 16.0 / 9.0, narrow = 4.0 / 3.0;
+  expect_frame(MeshFit::height, wide, narrow, narrow, 1.0);
+  expect_frame(MeshFit::width, wide, narrow, wide, wide / narrow);
+  expect_frame(MeshFit::crop, wide, narrow, narrow, 1.0);
+  expect_frame(MeshFit::letterbox, wide, narrow, wide, wide / narrow);
+  expect_frame(MeshFit::stretch, wide, narrow, wide, 1.0);
+  expect_frame(MeshFit::crop, narrow, wide, narrow, narrow / wide);
+  expect_frame(MeshFit::letterbox, narrow, wide, wide, 1.0);
+  for (const MeshFit fit : {MeshFit::height, MeshFit::width, MeshFit::crop, MeshFit::letterbox, MeshFit::stretch})
+    expect_frame(fit, wide, wide, wide, 1.0);  // equal aspects: every fit is the same
+  EXPECT_THROW(bourke_frame(MeshFit::height, 0.0, 1.0), std::invalid_argument);
+}
 }  // namespace
 }  // namespace zenith::warp
