@@ -84,10 +84,14 @@ struct WarpSource {
   /// "source": the size of the source image the mesh's (u, v) address (the
   /// output's "projection" renders it at this size), {"size_px": [w, h]}
   /// (each in [1, 16384]) or {"aspect": a} (a in [0.1, 10]: the output's
-  /// height, a · height wide). Default: square, side = the output's height, for
-  /// a "fisheye" projection (a dome master, as Bourke meshes and the
-  /// spherical-mirror setup mean it); the output's size for any other.
+  /// height, a · height wide). Default: for MPCDI the region's xResolution ×
+  /// yResolution (the region's image, which its warp addresses); else square,
+  /// side = the output's height, for a "fisheye" projection (a dome master, as
+  /// Bourke meshes and the spherical-mirror setup mean it); the output's size
+  /// for any other.
   int source_width_px = 0, source_height_px = 0;
+  /// Whether the config gave "source" (which then wins over the MPCDI region's resolution).
+  bool source_size_given = false;
 };
 
 struct OutputConfig {
@@ -96,8 +100,8 @@ struct OutputConfig {
   nlohmann::json projection_spec;  ///< the "projection" object as given
   /// The output's rays: make_projection(projection_spec, size) or, with a warp,
   /// a WarpedProjection of the output's size over make_projection(projection_spec,
-  /// the warp's source size) (WarpSource::source_width_px: by default square
-  /// for a fisheye, the output's size otherwise).
+  /// the warp's source size) (WarpSource::source_width_px: by default the
+  /// MPCDI region's resolution, square for a fisheye, the output's size otherwise).
   std::shared_ptr<const Projection> projection;
   std::optional<WarpSource> warp;
   BlendSource blend;

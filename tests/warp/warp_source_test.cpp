@@ -21,6 +21,7 @@
 #include "core/json_reader.h"
 #include "warp/viewport_config.h"
 #include "warp/warped_projection.h"
+#include "tests/warp/mpcdi_test_support.h"
 #include "warp_file_test_support.h"
 #include "core/units.h"
 
@@ -67,6 +68,19 @@ std::string bourke_file(const std::vector<Node>& nodes) {
   return text.str();
 }
 
+/// The ray of source pixel (sx, sy) of a w × h, 180° angular fisheye (the
+/// circle's centre (w/2, h/2), radius `radius_px`, min(w, h)/2 when 0; centre
+/// → +y, bottom of the rim → −z, right → +x); nothing outside the circle.
+std::optional<glm::dvec3> fisheye_ray(double sx, double sy, double w, double h, double radius_px = 0.0) {
+  const double radius = radius_px > 0.0 ? radius_px : std::min(w, h) / 2.0;
+  const double dx = sx - w / 2.0, dy = h / 2.0 - sy, r = std::hypot(dx, dy);
+  if (r > radius) return std::nullopt;
+  const double theta = r / radius * zenith::core::kPi / 2.0;
+  if (r == 0.0) return glm::dvec3(0, 1, 0);
+  // image right → +x, image up → +z (toward the back), axis → +y.
+  return glm::dvec3(std::sin(theta) * dx / r, std::cos(theta), std::sin(theta) * dy / r);
+}
+
 /// What an output shows of a mesh's (x, y) plane: a width_px × height_px image
 /// spanning x ∈ [−half_x, half_x], y ∈ [−half_y, half_y], of a mesh whose nodes
 /// span x ∈ [−mesh_aspect, mesh_aspect], y ∈ [−1, 1].
@@ -98,14 +112,7 @@ std::optional<glm::dvec3> expected_ray(const std::vector<Node>& nodes, double px
     return (1 - a) * (1 - b) * n00.*field + a * (1 - b) * n10.*field + (1 - a) * b * n01.*field + a * b * n11.*field;
   };
   const double u = lerp2(&Node::u), v_up = lerp2(&Node::v);
-  const double sx = u * side, sy = (1.0 - v_up) * side;  // source pixel, y down
-  const double radius = side / 2.0;
-  const double dx = sx - radius, dy = radius - sy, r = std::hypot(dx, dy);
-  if (r > radius) return std::nullopt;
-  const double theta = r / radius * zenith::core::kPi / 2.0;
-  if (r == 0.0) return glm::dvec3(0, 1, 0);
-  // image right → +x, image up → +z (toward the back), axis → +y.
-  return glm::dvec3(std::sin(theta) * dx / r, std::cos(theta), std::sin(theta) * dy / r);
+  return fisheye_ray(u * side, (1.0 - v_up) * side, side, side);  // source pixel, y down
 }
 
 struct MirrorSetup {
@@ -145,17 +152,18 @@ std::shared_ptr<const WarpedProjection> warped_output(const ViewportConfig& c) {
   return w;
 }
 
-/// Pixels of `warped` compared with the sampler (within 1e-6), and those
-/// without a ray in both; a pixel with a ray in one and not the other fails.
+/// Pixels of `warped` compared with an independent sampler (within 1e-6), and
+/// those without a ray in both; a pixel with a ray in one and not the other fails.
 struct Agreement {
   int compared = 0, without_ray = 0;
 };
-Agreement compare_with_sampler(const WarpedProjection& warped, const std::vector<Node>& nodes, const Frame& frame) {
+Agreement compare_rays(const Projection& warped,
+                       const std::function<std::optional<glm::dvec3>(double x_px, double y_px)>& sampler) {
   Agreement agreement;
   for (int py = 0; py < warped.height(); ++py)
     for (int px = 0; px < warped.width(); ++px) {
       const double x = px + 0.5, y = py + 0.5;
-      const auto expected = expected_ray(nodes, x, y, warped.base().height(), frame);
+      const auto expected = sampler(x, y);
       const auto actual = warped.ray(x, y);
       EXPECT_EQ(expected.has_value(), actual.has_value()) << x << " " << y;
       if (expected.has_value() != actual.has_value()) return agreement;
@@ -167,6 +175,10 @@ Agreement compare_with_sampler(const WarpedProjection& warped, const std::vector
       ++agreement.compared;
     }
   return agreement;
+}
+/// compare_rays() with the Bourke sampler of `nodes` seen through `frame`.
+Agreement compare_with_sampler(const WarpedProjection& warped, const std::vector<Node>& nodes, const Frame& frame) {
+  return compare_rays(warped, [&](double x, double y) { return expected_ray(nodes, x, y, warped.base().height(), frame); });
 }
 
 TEST(WarpSource, FisheyeSourceIsSquareByDefaultAndMatchesTheIndependentSampler) {
@@ -444,5 +456,111 @@ TEST(WarpFit, FramesOfEachFit) {
     expect_frame(fit, wide, wide, wide, 1.0);  // equal aspects: every fit is the same
   EXPECT_THROW(bourke_frame(MeshFit::height, 0.0, 1.0), std::invalid_argument);
 }
+
+// ---- MPCDI: the region's resolution is the source ------------------------------
+
+/// A one-region archive of `profile` ("2d", or "3d" with a frustum of ±40° ×
+/// ±25°): region "r" of x_res × y_res px spanning its buffer, its 5 × 4
+/// geometry warp (linear) (x, y) = (0.05 + 0.9 s, 0.1 + 0.8 t), s, t ∈ [0, 1]
+/// across the projector.
+void region_archive(const ScratchDir& dir, const std::string& name, const std::string& profile, int x_res,
+                    int y_res) {
+  const std::string resolution =
+      "xResolution=\"" + std::to_string(x_res) + "\" yResolution=\"" + std::to_string(y_res) + "\"";
+  const std::string frustum = profile == "3d" ? "<frustum><yaw>0</yaw><pitch>0</pitch><roll>0</roll>"
+                                                "<leftAngle>-40</leftAngle><rightAngle>40</rightAngle>"
+                                                "<upAngle>25</upAngle><downAngle>-25</downAngle></frustum>"
+                                              : "";
+  const std::string xml = "<?xml version=\"1.0\"?>\n<MPCDI profile=\"" + profile + "\" geometry=\"1\" version=\"2.0\">\n"
+                          "<display><buffer id=\"b\" " + resolution + ">\n"
+                          "<region id=\"r\" x=\"0\" y=\"0\" xsize=\"1\" ysize=\"1\" " + resolution + ">" + frustum +
+                          "</region>\n</buffer></display>\n"
+                          "<files><fileset region=\"r\"><geometryWarpFile><path>r.pfm</path>"
+                          "<interpolation>linear</interpolation></geometryWarpFile></fileset></files>\n</MPCDI>\n";
+  const auto warp = [](int x, int y, int c) {
+    return c == 0 ? 0.05f + 0.9f * static_cast<float>(x) / 4.0f : c == 1 ? 0.1f + 0.8f * static_cast<float>(y) / 3.0f : 0.0f;
+  };
+  testing::make_zip(dir, name, {{"mpcdi.xml", xml}, {"r.pfm", testing::make_pfm(5, 4, 3, warp, true, true)}});
+}
+
+/// The region's warp at output pixel (x, y) of a w × h output: (x, y) normalized in the region's image.
+glm::dvec2 region_point(double x_px, double y_px, int w, int h) {
+  // The stored samples are binary32: the sampler uses the same rounded ends.
+  const double x0 = 0.05f, x1 = 0.05f + 0.9f, y0 = 0.1f, y1 = 0.1f + 0.8f;
+  return {x0 + (x1 - x0) * x_px / w, y0 + (y1 - y0) * y_px / h};
+}
+
+TEST(WarpSource, AnMpcdiRegionsResolutionIsTheSourceUnlessTheConfigGivesOne) {
+  // A 2d region of 640 × 400 px shown by an 80 × 60 projector through a 180°
+  // fisheye source: the source is the region's 16:10 image (the circle of
+  // radius 200 px in its middle), not the square fisheye default (60 × 60).
+  ScratchDir dir("warp_source_mpcdi");
+  region_archive(dir, "show.mpcdi", "2d", 640, 400);
+  json j = json::parse(R"({"zenith_viewports": 1, "name": "show", "outputs": [
+    {"name": "r", "size": [80, 60], "projection": {"type": "fisheye", "fov_deg": 180},
+     "warp": {"file": "show.mpcdi", "format": "mpcdi", "region": "r"}}]})");
+  const ViewportConfig region_sized = parse_viewport_config(j, "show.json", dir.path());
+  ASSERT_TRUE(region_sized.outputs[0].warp);
+  EXPECT_EQ(region_sized.outputs[0].warp->source_width_px, 640);
+  EXPECT_EQ(region_sized.outputs[0].warp->source_height_px, 400);
+  EXPECT_FALSE(region_sized.outputs[0].warp->source_size_given);
+  const auto w = warped_output(region_sized);
+  EXPECT_EQ(w->base().width(), 640);
+  EXPECT_EQ(w->base().height(), 400);
+  const Agreement a = compare_rays(*w, [](double x, double y) {
+    const glm::dvec2 p = region_point(x, y, 80, 60);
+    return fisheye_ray(640.0 * p.x, 400.0 * p.y, 640.0, 400.0);
+  });
+  // The circle spans x ∈ [0.1875, 0.8125] of the region, x = 0.05 + 0.9 s:
+  // the projector's columns from 12.2 to 67.8 px (at mid height).
+  EXPECT_GT(a.compared, 0);
+  EXPECT_GT(a.without_ray, 0);
+  EXPECT_FALSE(w->ray(11.5, 30.5));
+  EXPECT_TRUE(w->ray(12.5, 30.5));
+  EXPECT_TRUE(w->ray(67.5, 30.5));
+  EXPECT_FALSE(w->ray(68.5, 30.5));
+
+  // The config's "source" wins: the square the fisheye default would give.
+  j["outputs"][0]["warp"]["source"] = json{{"size_px", {60, 60}}};
+  const ViewportConfig given = parse_viewport_config(j, "show.json", dir.path());
+  EXPECT_TRUE(given.outputs[0].warp->source_size_given);
+  const auto g = warped_output(given);
+  EXPECT_EQ(g->base().width(), 60);
+  EXPECT_EQ(g->base().height(), 60);
+  const Agreement b = compare_rays(*g, [](double x, double y) {
+    const glm::dvec2 p = region_point(x, y, 80, 60);
+    return fisheye_ray(60.0 * p.x, 60.0 * p.y, 60.0, 60.0);
+  });
+  EXPECT_GT(b.compared, a.compared);  // the square's circle covers more of the warp
+  j["outputs"][0]["warp"]["source"] = json{{"aspect", 2.0}};
+  EXPECT_EQ(warped_output(parse_viewport_config(j, "show.json", dir.path()))->base().width(), 120);
+
+  // The fisheye's pixel keys count in the region's pixels.
+  j["outputs"][0]["warp"].erase("source");
+  j["outputs"][0]["projection"]["radius_px"] = 150;
+  const auto r = warped_output(parse_viewport_config(j, "show.json", dir.path()));
+  const Agreement c = compare_rays(*r, [](double x, double y) {
+    const glm::dvec2 p = region_point(x, y, 80, 60);
+    return fisheye_ray(640.0 * p.x, 400.0 * p.y, 640.0, 400.0, 150.0);
+  });
+  EXPECT_LT(c.compared, a.compared);
+
+  // A 3d region: the frustum image the region's warp addresses has the
+  // region's resolution too (its rays do not depend on it; its pixel size does).
+  region_archive(dir, "show3d.mpcdi", "3d", 1280, 800);
+  json k = json::parse(R"({"zenith_viewports": 1, "name": "show", "outputs": [
+    {"name": "r", "size": [80, 60],
+     "projection": {"type": "planar", "left_deg": -40, "right_deg": 40, "down_deg": -25, "up_deg": 25},
+     "warp": {"file": "show3d.mpcdi", "format": "mpcdi", "region": "r"}}]})");
+  const auto f = warped_output(parse_viewport_config(k, "show.json", dir.path()));
+  EXPECT_EQ(f->base().width(), 1280);
+  EXPECT_EQ(f->base().height(), 800);
+  const double t_lr = std::tan(40.0 * zenith::core::kDeg), t_ud = std::tan(25.0 * zenith::core::kDeg);
+  compare_rays(*f, [&](double x, double y) -> std::optional<glm::dvec3> {
+    const glm::dvec2 p = region_point(x, y, 80, 60);
+    return glm::normalize(glm::dvec3(-t_lr + 2.0 * t_lr * p.x, t_ud - 2.0 * t_ud * p.y, -1.0));
+  });
+}
+
 }  // namespace
 }  // namespace zenith::warp
