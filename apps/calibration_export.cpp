@@ -112,10 +112,12 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
 
     // The MPCDI archive of the same files (the linear maps).
     const std::string alpha_file = o.name + ".alpha-linear.png", beta_file = o.name + ".beta-linear.png";
+    // MPCDI: the region's resolution is the size of its image, which the warp
+    // addresses (a reader takes it as the source's size).
     warp::MpcdiRegionExport region;
     region.id = o.name;
-    region.width_px = width;
-    region.height_px = height;
+    region.width_px = warp_map.source_width_px;
+    region.height_px = warp_map.source_height_px;
     region.warp_member = warp_file;
     region.warp_columns = warp_map.map.width;
     region.warp_rows = warp_map.map.height;
@@ -127,9 +129,10 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
     warp::write_mpcdi_archive(
         dir / mpcdi_file, warp::mpcdi_descriptor(region),
         {{warp_file, dir / warp_file}, {alpha_file, dir / alpha_file}, {beta_file, dir / beta_file}});
-    written.push_back({dir / mpcdi_file, fmt::format("MPCDI 2d profile, region '{}' {} x {} px: mpcdi.xml, {}, {} "
-                                                     "(gammaEmbedded 1), {}",
-                                                     o.name, width, height, warp_file, alpha_file, beta_file)});
+    written.push_back({dir / mpcdi_file, fmt::format("MPCDI 2d profile, region '{}' {} x {} px (the source): "
+                                                     "mpcdi.xml, {}, {} (gammaEmbedded 1), {}",
+                                                     o.name, region.width_px, region.height_px, warp_file, alpha_file,
+                                                     beta_file)});
     files.push_back({{"file", mpcdi_file},
                      {"kind", "MPCDI"},
                      {"format", "ZIP: mpcdi.xml (profile 2d, version 2.0), geometry warp PFM (interpolation linear), "

@@ -36,7 +36,9 @@ namespace zenith::warp {
 /// The one region of an exported 2d-profile archive and the members holding its maps.
 struct MpcdiRegionExport {
   std::string id;                  ///< the buffer's and the region's id: letters, digits, '-', '_', '.'
-  int width_px = 0, height_px = 0;  ///< the region's (the projector's) resolution
+  /// The region's resolution: the size of the region's image, the source the
+  /// warp's (x, y) address (zenith reads it back as the warp's source size).
+  int width_px = 0, height_px = 0;
   std::string warp_member;          ///< the geometry warp PFM (3 channels, top row first)
   int warp_columns = 0, warp_rows = 0;
   WarpInterpolation interpolation = WarpInterpolation::bilinear;  ///< "linear" or "cubic"

@@ -85,6 +85,18 @@ class Projection {
     (void)direction;
     return max_pixel_angle_rad();
   }
+  /// max_pixel_angle_rad() over the pixels of the rectangle [x0_px, x1_px) ×
+  /// [y0_px, y1_px) (continuous pixel positions; a tile of pixels x0 … x1 − 1) only: what the renderer widens
+  /// the culling cone of a tile with (render/frame/tile_culling.h). Never
+  /// above max_pixel_angle_rad(). The default returns max_pixel_angle_rad(),
+  /// right for projections whose bound varies little over the image; a warped
+  /// projection bounds it from the mesh nodes whose interpolation reaches the
+  /// rectangle (WarpedProjection), so a node parked far away widens only the
+  /// tiles its cells reach.
+  virtual double max_pixel_angle_rad_within(double x0_px, double y0_px, double x1_px, double y1_px) const {
+    (void)x0_px, (void)y0_px, (void)x1_px, (void)y1_px;
+    return max_pixel_angle_rad();
+  }
 
  protected:
   Projection(int width_px, int height_px);  ///< throws std::invalid_argument unless both are in [1, 65536]

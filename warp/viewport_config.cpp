@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -34,6 +35,8 @@ constexpr double kMinBlendWidthFraction = 1e-3, kMaxBlendWidthFraction = 0.5;
 constexpr double kMinMaskGamma = 0.1, kMaxMaskGamma = 10.0;
 constexpr std::size_t kMaxNameLength = 64;
 constexpr double kMinSourceAspect = 0.1, kMaxSourceAspect = 10.0;
+/// The values of a Bourke warp's "fit", in the order the errors list them.
+constexpr MeshFit kMeshFits[] = {MeshFit::height, MeshFit::width, MeshFit::crop, MeshFit::letterbox, MeshFit::stretch};
 
 void allow_keys(const JsonReader& r, const json& object, std::initializer_list<std::string_view> allowed) {
   config::reject_unknown_keys(r, object, allowed, "docs/viewports.md");
@@ -64,14 +67,29 @@ std::pair<int, int> read_size(JsonReader& r, const std::string& size_key = "size
   return {side[0], side[1]};
 }
 
-/// The mesh of a warp; resolves source.file against `base_dir` (it must exist).
-/// Every failure is a ConfigError at /outputs/<i>/warp/file (or .../region).
-WarpMesh load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir) {
+/// A warp's mesh and what its file says about the source image.
+struct LoadedWarp {
+  WarpMesh mesh;
+  /// MPCDI: the region's xResolution × yResolution, the size of the region's
+  /// image the warp's (x, y) address; nothing for the other formats.
+  std::optional<std::pair<int, int>> source_size_px;
+};
+
+/// The mesh of a warp for an output of width × height px; resolves source.file
+/// against `base_dir` (it must exist). Every failure is a ConfigError at
+/// /outputs/<i>/warp/file (or .../region).
+LoadedWarp load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir, int width_px, int height_px) {
   source.file = w.existing_file("file", base_dir);
   try {
-    if (source.format == "bourke") return load_bourke_mesh(source.file);
+    if (source.format == "bourke") {
+      BourkeMeshOptions options;
+      options.aspect = static_cast<double>(width_px) / height_px;  // square pixels
+      options.fit = source.fit;
+      return {load_bourke_mesh(source.file, options), std::nullopt};
+    }
     if (source.format == "pfm")
-      return load_pfm_warp_mesh(source.file, source.row_order, WarpInterpolation::catmull_rom, source.conventions);
+      return {load_pfm_warp_mesh(source.file, source.row_order, WarpInterpolation::catmull_rom, source.conventions),
+              std::nullopt};
     const MpcdiFile mpcdi = load_mpcdi(source.file, MpcdiLoadOptions{source.conventions.values});
     const MpcdiRegion* region = mpcdi.find_region(source.region);
     if (region == nullptr) {
@@ -84,7 +102,7 @@ WarpMesh load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir) 
     if (!region->warp_mesh)
       w.fail("region", cat("= \"", source.region, "\": the region has no 2D geometry warp (profile ",
                            to_string(mpcdi.profile), ")"));
-    return *region->warp_mesh;
+    return {*region->warp_mesh, std::pair{region->x_resolution_px, region->y_resolution_px}};
   } catch (const ConfigError&) {
     throw;
   } catch (const std::exception& e) {  // the loaders' runtime_error / invalid_argument
@@ -95,7 +113,8 @@ WarpMesh load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir) 
 /// The warp's "source" object, {"size_px": [w, h]} or {"aspect": a}: the size
 /// of the image the mesh's (u, v) address, for an output of width × height px
 /// whose projection spec is `spec`. Absent: square (side = the output's height)
-/// for a fisheye source, the output's size for any other.
+/// for a fisheye source, the output's size for any other (for MPCDI, the
+/// region's resolution replaces this default once the file is read).
 std::pair<int, int> read_warp_source_size(JsonReader& w, const json& spec, int width_px, int height_px) {
   if (!w.has("source")) {
     const bool fisheye = spec.is_object() && spec.value("type", json()) == json("fisheye");
@@ -120,12 +139,12 @@ std::pair<int, int> read_warp_source_size(JsonReader& w, const json& spec, int w
 }
 
 /// The "warp" object: {"file", "format", "region" (mpcdi), "values" (pfm,
-/// mpcdi), "row_order", "v_direction" (pfm), "source"}: its keys and values;
+/// mpcdi), "row_order", "v_direction" (pfm), "fit" (bourke), "source"}: its keys and values;
 /// the file is looked for by load_warp(). The source's size defaults as
 /// read_warp_source_size() says.
 WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& base_dir, const json& spec,
                             int width_px, int height_px) {
-  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction", "source"});
+  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction", "fit", "source"});
   WarpSource source;
   source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
   source.file = base_dir / w.string("file");  // checked, made absolute and read by load_warp()
@@ -139,6 +158,7 @@ WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& b
     only_for("region", "\"mpcdi\"");
   }
   if (source.format == "bourke") only_for("values", "\"pfm\" and \"mpcdi\"");
+  if (source.format != "bourke") only_for("fit", "\"bourke\"");
   if (source.format != "pfm") {
     only_for("row_order", "\"pfm\"");
     only_for("v_direction", "\"pfm\"");
@@ -148,6 +168,12 @@ WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& b
   if (w.string_or("row_order", "bottom_to_top", {"bottom_to_top", "top_to_bottom"}) == "top_to_bottom")
     source.row_order = PfmRowOrder::top_to_bottom;
   if (w.string_or("v_direction", "down", {"down", "up"}) == "up") source.conventions.v_direction = WarpVDirection::up;
+  std::vector<std::string> fit_names;
+  for (const MeshFit f : kMeshFits) fit_names.emplace_back(to_string(f));
+  const std::string fit = w.string_or("fit", to_string(source.fit), fit_names);
+  for (const MeshFit f : kMeshFits)
+    if (fit == to_string(f)) source.fit = f;
+  source.source_size_given = w.has("source");
   std::tie(source.source_width_px, source.source_height_px) = read_warp_source_size(w, spec, width_px, height_px);
   return source;
 }
@@ -200,12 +226,22 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
     if (!wv.is_object()) o.fail("warp", cat("must be an object {\"file\", \"format\", \"region\"}, got ", brief(wv)));
     JsonReader w(wv, o.file(), o.key_path("warp"));
     WarpSource source = read_warp_source(w, wv, base_dir, spec, out.width_px, out.height_px);
-    // The base projection renders the warp's source image, at the source's size.
+    // The base projection renders the warp's source image, at the source's
+    // size. Made here first so that a bad spec fails the load even where the
+    // warp file is broken.
     std::shared_ptr<const Projection> base = make_projection(spec, source.source_width_px, source.source_height_px,
                                                              o.file(), o.key_path("projection"));
     try {
-      WarpMesh mesh = load_warp(w, source, base_dir);
-      out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(mesh), base);
+      LoadedWarp loaded = load_warp(w, source, base_dir, out.width_px, out.height_px);
+      // An MPCDI region's resolution is its image's size: the source, unless
+      // the config's "source" says otherwise.
+      if (loaded.source_size_px && !source.source_size_given &&
+          *loaded.source_size_px != std::pair{source.source_width_px, source.source_height_px}) {
+        std::tie(source.source_width_px, source.source_height_px) = *loaded.source_size_px;
+        base = make_projection(spec, source.source_width_px, source.source_height_px, o.file(),
+                               o.key_path("projection"));
+      }
+      out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(loaded.mesh), base);
     } catch (const ConfigError&) {
       if (!options.keep_broken_warps) throw;
       out.warp_error = std::current_exception();  // out.projection stays null

@@ -10,8 +10,8 @@
 //     "outputs": [
 //       {"name": "p1", "size": [1920, 1200],
 //        "projection": {"type": "planar", "left_deg": -45, ...},          make_projection() spec
-//        "warp": {"file": "p1.data", "format": "bourke",                  optional; pfm and mpcdi
-//                 "source": {"size_px": [1080, 1080]}},                   also "values", pfm "row_order", "v_direction"
+//        "warp": {"file": "p1.data", "format": "bourke",                  optional; bourke "fit", pfm and
+//                 "source": {"size_px": [1080, 1080]}},                   mpcdi "values", pfm "row_order", "v_direction"
 //        "blend": "auto",                                                 "none" | "auto" | object
 //        "black_level": 0.02}                                             β in [0, 0.5]
 //     ]
@@ -34,6 +34,7 @@
 #include "warp/planar_projection.h"
 #include "warp/projection.h"
 #include "warp/warp_map_conventions.h"
+#include "warp/warp_mesh.h"
 
 namespace zenith::warp {
 
@@ -75,13 +76,22 @@ struct WarpSource {
   /// pfm: "values" and "v_direction" (defaults absolute, down); mpcdi: "values"
   /// (MPCDI fixes v down). warp/warp_map_conventions.h has the formulas.
   WarpMapConventions conventions;
+  /// bourke: "fit", how a mesh made for another aspect ratio meets the output
+  /// (a 16:9 mesh at a 4:3 output): "height" (the default: y spans the
+  /// output's height, x in the same units, as Bourke's tools and SGCT do),
+  /// "width", "crop", "letterbox", "stretch" (warp/warp_mesh.h, MeshFit).
+  MeshFit fit = MeshFit::height;
   /// "source": the size of the source image the mesh's (u, v) address (the
   /// output's "projection" renders it at this size), {"size_px": [w, h]}
   /// (each in [1, 16384]) or {"aspect": a} (a in [0.1, 10]: the output's
-  /// height, a · height wide). Default: square, side = the output's height, for
-  /// a "fisheye" projection (a dome master, as Bourke meshes and the
-  /// spherical-mirror setup mean it); the output's size for any other.
+  /// height, a · height wide). Default: for MPCDI the region's xResolution ×
+  /// yResolution (the region's image, which its warp addresses); else square,
+  /// side = the output's height, for a "fisheye" projection (a dome master, as
+  /// Bourke meshes and the spherical-mirror setup mean it); the output's size
+  /// for any other.
   int source_width_px = 0, source_height_px = 0;
+  /// Whether the config gave "source" (which then wins over the MPCDI region's resolution).
+  bool source_size_given = false;
 };
 
 struct OutputConfig {
@@ -90,8 +100,8 @@ struct OutputConfig {
   nlohmann::json projection_spec;  ///< the "projection" object as given
   /// The output's rays: make_projection(projection_spec, size) or, with a warp,
   /// a WarpedProjection of the output's size over make_projection(projection_spec,
-  /// the warp's source size) (WarpSource::source_width_px: by default square
-  /// for a fisheye, the output's size otherwise).
+  /// the warp's source size) (WarpSource::source_width_px: by default the
+  /// MPCDI region's resolution, square for a fisheye, the output's size otherwise).
   std::shared_ptr<const Projection> projection;
   std::optional<WarpSource> warp;
   BlendSource blend;

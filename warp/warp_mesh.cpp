@@ -312,6 +312,31 @@ std::optional<WarpMesh::Sample> WarpMesh::sample(double s, double t) const {
 
 // ---- Loaders ------------------------------------------------------------------------
 
+const char* to_string(MeshFit fit) {
+  switch (fit) {
+    case MeshFit::height: return "height";
+    case MeshFit::width: return "width";
+    case MeshFit::crop: return "crop";
+    case MeshFit::letterbox: return "letterbox";
+    case MeshFit::stretch: return "stretch";
+  }
+  return "?";
+}
+
+BourkeFrame bourke_frame(MeshFit fit, double mesh_aspect, double output_aspect) {
+  if (!(mesh_aspect > 0.0 && output_aspect > 0.0 && std::isfinite(mesh_aspect) && std::isfinite(output_aspect)))
+    throw std::invalid_argument("bourke_frame: aspect ratios must be finite and > 0, got mesh " + number(mesh_aspect) +
+                                ", output " + number(output_aspect));
+  const bool wider = mesh_aspect >= output_aspect;
+  if (fit == MeshFit::crop) fit = wider ? MeshFit::height : MeshFit::width;
+  if (fit == MeshFit::letterbox) fit = wider ? MeshFit::width : MeshFit::height;
+  switch (fit) {
+    case MeshFit::height: return {output_aspect, 1.0};
+    case MeshFit::width: return {mesh_aspect, mesh_aspect / output_aspect};
+    default: return {mesh_aspect, 1.0};  // stretch
+  }
+}
+
 WarpMesh load_bourke_mesh(const std::filesystem::path& path, const BourkeMeshOptions& options) {
   const BourkeParser parser(path);
   const std::string bytes = read_file_bytes(path);
@@ -385,19 +410,20 @@ WarpMesh load_bourke_mesh(const std::filesystem::path& path, const BourkeMeshOpt
     parser.fail("the warp mesh has no used node (NaN-only mesh): every node has u or v outside [0, 1], a "
                 "negative intensity or a non-finite field");
 
-  // Projector coordinates → (s, t).
-  double aspect = 0.0;
+  // Projector coordinates → (s, t), through the fit's frame.
+  double mesh_aspect = 0.0;
+  for (const BourkeNode& node : nodes) mesh_aspect = std::max(mesh_aspect, std::abs(node.s));
+  if (!(mesh_aspect > 0.0)) parser.fail("cannot infer the mesh's aspect ratio: every node has x = 0");
+  double output_aspect = mesh_aspect;
   if (options.aspect) {
-    aspect = *options.aspect;
-    if (!(aspect > 0.0 && aspect <= 100.0))
-      throw std::invalid_argument(parser.name() + ": aspect = " + number(aspect) + ": must be in (0, 100]");
-  } else {
-    for (const BourkeNode& node : nodes) aspect = std::max(aspect, std::abs(node.s));
-    if (!(aspect > 0.0)) parser.fail("cannot infer the projector's aspect ratio: every node has x = 0");
+    output_aspect = *options.aspect;
+    if (!(output_aspect > 0.0 && output_aspect <= 100.0))
+      throw std::invalid_argument(parser.name() + ": aspect = " + number(output_aspect) + ": must be in (0, 100]");
   }
+  const BourkeFrame frame = bourke_frame(options.fit, mesh_aspect, output_aspect);
   for (BourkeNode& node : nodes) {
-    node.s = (node.s + aspect) / (2.0 * aspect);
-    node.t = (1.0 - node.t) / 2.0;
+    node.s = (node.s + frame.half_x) / (2.0 * frame.half_x);
+    node.t = (frame.half_y - node.t) / (2.0 * frame.half_y);
   }
 
   // A regular grid in (x, y), the usual case: use the nodes as they are.

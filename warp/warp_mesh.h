@@ -93,13 +93,52 @@ class WarpMesh {
   int valid_count_ = 0;
 };
 
+/// How a Bourke mesh meets a projector image of another aspect ratio (a 16:9
+/// mesh at a 4:3 output). The mesh's frame is x ∈ [−a, a], y ∈ [−1, 1], a the
+/// mesh's own aspect ratio (its largest |x|); the projector's aspect is A
+/// (width / height, square pixels). Each fit shows the frame's part
+/// x ∈ [−half_x, half_x], y ∈ [−half_y, half_y] across the projector's image,
+/// centred (BourkeFrame):
+enum class MeshFit {
+  /// half = (A, 1): y ∈ [−1, 1] spans the image's height, x in the same units
+  /// (what Bourke's tools and SGCT do): a wider mesh is cut off left and right,
+  /// a narrower one leaves black bars left and right.
+  height,
+  /// half = (a, a / A): x ∈ [−a, a] spans the image's width, y in the same units:
+  /// a wider mesh leaves black bars top and bottom, a narrower one is cut off
+  /// top and bottom.
+  width,
+  /// The mesh fills the image keeping its shape, cut off where it overhangs:
+  /// height for a wider mesh (a ≥ A), width for a narrower one.
+  crop,
+  /// The whole mesh is shown keeping its shape, black bars where it falls
+  /// short: width for a wider mesh (a ≥ A), height for a narrower one.
+  letterbox,
+  /// half = (a, 1): the mesh's frame spans the image edge to edge both ways,
+  /// squeezed or stretched across unless a = A.
+  stretch,
+};
+/// "height", "width", "crop", "letterbox", "stretch".
+const char* to_string(MeshFit fit);
+
+/// The part of a Bourke mesh's (x, y) plane a projector image shows,
+/// x ∈ [−half_x, half_x], y ∈ [−half_y, half_y]: s = (x + half_x) / (2 half_x),
+/// t = (half_y − y) / (2 half_y).
+struct BourkeFrame {
+  double half_x = 1.0, half_y = 1.0;
+};
+/// The frame of `fit` for a mesh of aspect ratio mesh_aspect shown on a
+/// projector image of aspect ratio output_aspect (both width / height, > 0).
+BourkeFrame bourke_frame(MeshFit fit, double mesh_aspect, double output_aspect);
+
 /// Options of load_bourke_mesh().
 struct BourkeMeshOptions {
-  /// The projector's aspect ratio (width / height): its image spans
-  /// x ∈ [−aspect, aspect], y ∈ [−1, 1]. Unset: the largest |x| of the nodes,
-  /// right for meshes that span the image edge to edge (set it for a mesh
-  /// that extends past the image or stops short of it).
+  /// The projector's aspect ratio (width / height), in (0, 100]. Unset: the
+  /// mesh's own (its largest |x|), and then every fit is the same.
   std::optional<double> aspect;
+  /// How the mesh meets a projector of another aspect ratio; height, as
+  /// Bourke's tools and SGCT show it, unless told.
+  MeshFit fit = MeshFit::height;
   /// Nodes per side of the regular grid a mesh whose x, y positions do not form
   /// one is resampled onto, in [2, 4096]; unset: 4 · (n − 1) + 1 per side, at most 1025.
   std::optional<int> resample_columns, resample_rows;
@@ -112,7 +151,7 @@ struct BourkeMeshOptions {
 ///   then nx · ny lines "x y u v intensity", rows from the bottom, left to right in a row
 ///
 /// x, y: the node's position in the projector's image, x ∈ [−aspect, aspect] to
-/// the right, y ∈ [−1, 1] up; u, v: its texture coordinate in the source image,
+/// the right, y ∈ [−1, 1] up (shown through options.fit's frame, BourkeFrame); u, v: its texture coordinate in the source image,
 /// [0, 1], v up; intensity in [0, 1] (values a little above 1 are clamped). A node
 /// with u or v outside [0, 1], a negative intensity or a non-finite u, v or
 /// intensity is unused. Blank lines and CR LF line ends are accepted.

@@ -26,25 +26,9 @@ WarpedProjection::WarpedProjection(int width_px, int height_px, WarpMesh mesh, s
   const auto node_s = [&](int i) { return e.s_min + (e.s_max - e.s_min) * i / (mesh_.columns() - 1); };
   const auto node_t = [&](int j) { return e.t_min + (e.t_max - e.t_min) * j / (mesh_.rows() - 1); };
 
-  // The largest stretch, in base pixels per projector pixel.
-  double stretch = 0.0;
-  const double wb = base_->width(), hb = base_->height();
-  const std::array<std::array<int, 2>, 4> neighbours{{{1, 0}, {0, 1}, {1, 1}, {1, -1}}};
-  for (int j = 0; j < mesh_.rows(); ++j)
-    for (int i = 0; i < mesh_.columns(); ++i) {
-      const WarpNode& a = mesh_.node(i, j);
-      if (!a.valid) continue;
-      for (const auto& [di, dj] : neighbours) {
-        const int i2 = i + di, j2 = j + dj;
-        if (i2 >= mesh_.columns() || j2 < 0 || j2 >= mesh_.rows()) continue;
-        const WarpNode& b = mesh_.node(i2, j2);
-        if (!b.valid) continue;
-        const double projector_px = std::hypot((node_s(i2) - node_s(i)) * width(), (node_t(j2) - node_t(j)) * height());
-        const double base_px = std::hypot((b.u - a.u) * wb, (b.v - a.v) * hb);
-        stretch = std::max(stretch, base_px / projector_px);
-      }
-    }
-  max_pixel_angle_rad_ = base_->max_pixel_angle_rad() * std::max(1.0, stretch) * kBulgeMargin;
+  // The nodes that reach the image: a mesh running past the image's edges
+  // (a Bourke mesh fitted to a narrower output) has nodes no pixel shows.
+  max_pixel_angle_rad_ = bound_within(0.0, 0.0, width(), height());
 
   const int step_i = std::max(1, (mesh_.columns() + kCoarseSide - 1) / kCoarseSide);
   const int step_j = std::max(1, (mesh_.rows() + kCoarseSide - 1) / kCoarseSide);
@@ -55,6 +39,35 @@ WarpedProjection::WarpedProjection(int width_px, int height_px, WarpMesh mesh, s
     for (int j = 0; j < mesh_.rows(); ++j)
       for (int i = 0; i < mesh_.columns(); ++i)
         if (const WarpNode& n = mesh_.node(i, j); n.valid) coarse_nodes_.emplace_back(node_s(i), node_t(j), n.u, n.v);
+}
+
+double WarpedProjection::stretch_between_nodes(int i0, int i1, int j0, int j1) const {
+  const WarpMesh::Extent& e = mesh_.extent();
+  // Projector pixels between neighbouring nodes across and down.
+  const double step_x_px = (e.s_max - e.s_min) / (mesh_.columns() - 1) * width();
+  const double step_y_px = (e.t_max - e.t_min) / (mesh_.rows() - 1) * height();
+  const double wb = base_->width(), hb = base_->height();
+  const std::array<std::array<int, 2>, 4> neighbours{{{1, 0}, {0, 1}, {1, 1}, {1, -1}}};
+  double stretch = 0.0;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const WarpNode& a = mesh_.node(i, j);
+      if (!a.valid) continue;
+      for (const auto& [di, dj] : neighbours) {
+        const int i2 = i + di, j2 = j + dj;
+        if (i2 > i1 || j2 < j0 || j2 > j1) continue;
+        const WarpNode& b = mesh_.node(i2, j2);
+        if (!b.valid) continue;
+        const double projector_px = std::hypot(di * step_x_px, dj * step_y_px);
+        const double base_px = std::hypot((b.u - a.u) * wb, (b.v - a.v) * hb);
+        stretch = std::max(stretch, base_px / projector_px);
+      }
+    }
+  return stretch;
+}
+
+double WarpedProjection::pixel_angle_bound(double stretch) const {
+  return base_->max_pixel_angle_rad() * std::max(1.0, stretch) * kBulgeMargin;
 }
 
 std::optional<glm::dvec2> WarpedProjection::source_uv(double s, double t) const {
@@ -159,6 +172,38 @@ std::string WarpedProjection::describe() const {
 }
 
 double WarpedProjection::max_pixel_angle_rad() const { return max_pixel_angle_rad_; }
+
+double WarpedProjection::max_pixel_angle_rad_within(double x0_px, double y0_px, double x1_px, double y1_px) const {
+  if (!(std::isfinite(x0_px) && std::isfinite(y0_px) && std::isfinite(x1_px) && std::isfinite(y1_px)))
+    return max_pixel_angle_rad_;
+  // Within the image: what lies outside it has no pixel.
+  const double x0 = std::clamp(std::min(x0_px, x1_px), 0.0, double(width()));
+  const double x1 = std::clamp(std::max(x0_px, x1_px), 0.0, double(width()));
+  const double y0 = std::clamp(std::min(y0_px, y1_px), 0.0, double(height()));
+  const double y1 = std::clamp(std::max(y0_px, y1_px), 0.0, double(height()));
+  if (!(x0 < x1 && y0 < y1)) return pixel_angle_bound(0.0);  // no pixel of the image
+  return bound_within(x0, y0, x1, y1);
+}
+
+double WarpedProjection::bound_within(double x0_px, double y0_px, double x1_px, double y1_px) const {
+  // The rectangle in cells: fractional node indices of its corners.
+  const WarpMesh::Extent& e = mesh_.extent();
+  const int columns = mesh_.columns(), rows = mesh_.rows();
+  const double f_x0 = (x0_px / width() - e.s_min) / (e.s_max - e.s_min) * (columns - 1);
+  const double f_x1 = (x1_px / width() - e.s_min) / (e.s_max - e.s_min) * (columns - 1);
+  const double f_y0 = (y0_px / height() - e.t_min) / (e.t_max - e.t_min) * (rows - 1);
+  const double f_y1 = (y1_px / height() - e.t_min) / (e.t_max - e.t_min) * (rows - 1);
+  if (f_x1 < 0.0 || f_y1 < 0.0 || f_x0 > columns - 1 || f_y0 > rows - 1) return pixel_angle_bound(0.0);
+  // The cells the half-open rectangle [x0, x1) × [y0, y1) overlaps (a pixel
+  // ending on a node does not reach the next cell), then the nodes of their
+  // 4 × 4 stencils.
+  const auto first_cell = [](double f, int cells) { return std::clamp(static_cast<int>(std::floor(f)), 0, cells - 1); };
+  const auto last_cell = [](double f, int cells) { return std::clamp(static_cast<int>(std::ceil(f)) - 1, 0, cells - 1); };
+  const int c0 = first_cell(f_x0, columns - 1), c1 = std::max(c0, last_cell(f_x1, columns - 1));
+  const int r0 = first_cell(f_y0, rows - 1), r1 = std::max(r0, last_cell(f_y1, rows - 1));
+  return pixel_angle_bound(stretch_between_nodes(std::max(0, c0 - 1), std::min(columns - 1, c1 + 2), std::max(0, r0 - 1),
+                                                 std::min(rows - 1, r1 + 2)));
+}
 
 std::optional<double> WarpedProjection::local_stretch(double x_px, double y_px) const {
   const auto centre = source_pixel(x_px, y_px);

@@ -56,10 +56,22 @@ class WarpedProjection final : public Projection {
   std::string describe() const override;
   /// base.max_pixel_angle_rad() · max(1, k) · 1.25, k the largest stretch of the
   /// mesh (base pixels per projector pixel between neighbouring valid nodes,
-  /// along rows, columns and diagonals); 1.25 covers the cubic's bulge between
-  /// nodes. Relies on the base bound growing linearly with distance (as the
-  /// fisheye's and the planar bounds do).
+  /// along rows, columns and diagonals) among the nodes that reach the image;
+  /// 1.25 covers the cubic's bulge between nodes. Relies on the base bound
+  /// growing linearly with distance (as the fisheye's and the planar bounds
+  /// do). A worst case over the image, nodes parked far away included:
+  /// max_pixel_angle_rad_within() of the whole image.
   double max_pixel_angle_rad() const override;
+  /// The same bound with k taken over the nodes whose interpolation reaches
+  /// the rectangle only: the grid cells the rectangle overlaps and one more
+  /// node on each side (the 4 × 4 nodes of a Catmull–Rom cell; the linear
+  /// extrapolation past the mesh's border adds no new differences). So a node
+  /// parked far away (Bourke's unused nodes at (0, 0)) widens the culling of
+  /// the tiles its cells reach, not of the others; the pixels of those tiles
+  /// do show rays that sweep across the source, so they keep the large bound.
+  /// The rectangle is clipped to the image first; one that holds no pixel of
+  /// the image or misses the mesh: base.max_pixel_angle_rad() · 1.25.
+  double max_pixel_angle_rad_within(double x0_px, double y0_px, double x1_px, double y1_px) const override;
   /// The footprint of the projector pixel the direction lands in:
   ///
   ///   base.pixel_angle_rad_at(direction) · σ_max(J),
@@ -83,6 +95,14 @@ class WarpedProjection final : public Projection {
 
  private:
   std::optional<glm::dvec2> source_uv(double s, double t) const;
+  /// The largest stretch (base px per projector px) between neighbouring valid
+  /// nodes (rows, columns, diagonals), both within columns [i0, i1] and rows [j0, j1].
+  double stretch_between_nodes(int i0, int i1, int j0, int j1) const;
+  /// base.max_pixel_angle_rad() · max(1, stretch) · the bulge margin.
+  double pixel_angle_bound(double stretch) const;
+  /// pixel_angle_bound() of the nodes that reach the rectangle (finite, within
+  /// the image, x0 < x1, y0 < y1).
+  double bound_within(double x0_px, double y0_px, double x1_px, double y1_px) const;
 
   WarpMesh mesh_;
   std::shared_ptr<const Projection> base_;

@@ -11,7 +11,6 @@ TileCones::TileCones(const warp::Projection& projection)
     : columns_((projection.width() + kTileSize - 1) / kTileSize),
       rows_((projection.height() + kTileSize - 1) / kTileSize),
       cones_(static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_)) {
-  const double margin = projection.max_pixel_angle_rad();
   std::vector<glm::dvec3> rays;
   for (int ty = 0; ty < rows_; ++ty)
     for (int tx = 0; tx < columns_; ++tx) {
@@ -32,6 +31,9 @@ TileCones::TileCones(const warp::Projection& projection)
       }
       TileCone& cone = cones_[static_cast<std::size_t>(ty) * columns_ + tx];
       if (rays.empty()) continue;
+      // The tile's own bound: through a warp mesh, a node parked far away
+      // widens the tiles its cells reach, not every tile.
+      const double margin = projection.max_pixel_angle_rad_within(x0, y0, x1 + 1, y1 + 1);
       glm::dvec3 sum(0.0);
       for (const glm::dvec3& r : rays) sum += r;
       // Rays spread over more than a hemisphere (a 360° fisheye's rim): the cone is everything.

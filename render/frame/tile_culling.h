@@ -5,7 +5,9 @@
 // A tile's rays fill a cone: TileCones computes, once per projection, each
 // tile's cone in the camera frame (axis and half-angle) from the rays of the
 // ring of pixel centres on the tile's border (for the continuous projections
-// here the border's rays enclose the interior's), widened by one pixel's angle.
+// here the border's rays enclose the interior's), widened by one pixel's angle
+// (the projection's bound over the tile's pixels, max_pixel_angle_rad_within:
+// through a warp mesh, the bound of the mesh nodes that reach the tile).
 // A sphere of radius R at distance D in direction ĉ can touch the tile when
 //   angle(axis, ĉ) ≤ half_angle + asin(R / D),
 // and always when the camera is inside it (D ≤ R). Tiles whose border has no

@@ -27,6 +27,7 @@
 #include "atmosphere/model_hash.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/reference/path_tracer.h"
+#include "render/frame/tile_culling.h"
 #include "render/gl/egl_context.h"
 #include "tests/render/render_test_support.h"
 #include "warp/fisheye_projection.h"
@@ -658,6 +659,92 @@ TEST(RendererWarp, TheAlbedoKeepsItsDetailThroughAMeshWithParkedNodes) {
     }
   ASSERT_GT(compared, 500);
   EXPECT_LT(difference / level, 0.02);
+}
+
+/// Answers like `inner` but culls every tile with the worst case over the
+/// whole image (Projection's default max_pixel_angle_rad_within): how the
+/// renderer culled through a warp mesh before issue 14's per-tile bound.
+class WorstCaseCulling final : public warp::Projection {
+ public:
+  explicit WorstCaseCulling(const warp::Projection& inner) : Projection(inner.width(), inner.height()), inner_(inner) {}
+  std::optional<glm::dvec3> ray(double x_px, double y_px) const override { return inner_.ray(x_px, y_px); }
+  std::optional<glm::dvec2> pixel(const glm::dvec3& d) const override { return inner_.pixel(d); }
+  warp::GpuProjection gpu() const override { return inner_.gpu(); }
+  std::string describe() const override { return inner_.describe() + " (culled by its worst case)"; }
+  double max_pixel_angle_rad() const override { return inner_.max_pixel_angle_rad(); }
+  double pixel_angle_rad_at(const glm::dvec3& d) const override { return inner_.pixel_angle_rad_at(d); }
+
+ private:
+  const warp::Projection& inner_;
+};
+
+/// A 17 × 17 identity mesh over a size × size projector, node (16, 0) (the
+/// top-right corner) parked at (0, 0) with intensity 0.02 when `parked`.
+warp::WarpMesh corner_parked_mesh(bool parked) {
+  std::vector<warp::WarpNode> nodes;
+  for (int j = 0; j < 17; ++j)
+    for (int i = 0; i < 17; ++i)
+      nodes.push_back(parked && i == 16 && j == 0 ? warp::WarpNode{0.0, 0.0, 0.02, true}
+                                                  : warp::WarpNode{i / 16.0, j / 16.0, 1.0, true});
+  return warp::WarpMesh(17, 17, std::move(nodes), parked ? "parked" : "unparked", warp::WarpInterpolation::catmull_rom);
+}
+
+TEST(TileCulling, AParkedNodeWidensOnlyTheTilesItsCellsReach) {
+  // issue 14: the culling cone of a tile is widened by the bound of the mesh
+  // nodes that reach the tile. The parked node's cells (the top-right 2 × 2
+  // of 8 px each, and their cubic's stencil: 16 px) lie in the top-right tile;
+  // every other tile has the cone it has without the parked node. (A 90°
+  // frustum as the source, so that every tile, the corners too, has rays.)
+  const std::shared_ptr<const warp::Projection> frustum =
+      std::make_shared<warp::PlanarProjection>(warp::PlanarProjection::symmetric(128, 128, 90.0));
+  const warp::WarpedProjection parked(128, 128, corner_parked_mesh(true), frustum);
+  const warp::WarpedProjection clean(128, 128, corner_parked_mesh(false), frustum);
+  ASSERT_GT(parked.max_pixel_angle_rad(), 10.0 * clean.max_pixel_angle_rad()) << "the worst case is inflated";
+  const WorstCaseCulling parked_worst(parked);
+  const TileCones a(parked), b(clean), worst(parked_worst);
+  int same = 0;
+  for (int ty = 0; ty < a.rows(); ++ty)
+    for (int tx = 0; tx < a.columns(); ++tx) {
+      const TileCone &p = a.cone(tx, ty), &c = b.cone(tx, ty), &w = worst.cone(tx, ty);
+      ASSERT_TRUE(p.has_rays && c.has_rays);
+      if (tx == a.columns() - 1 && ty == 0) {
+        EXPECT_GT(p.half_angle_rad, c.half_angle_rad + 10.0 * kDeg) << "the tile the parked node reaches";
+        EXPECT_EQ(p.half_angle_rad, w.half_angle_rad);
+        continue;
+      }
+      EXPECT_EQ(p.half_angle_rad, c.half_angle_rad) << tx << ", " << ty;
+      EXPECT_EQ(glm::length(p.axis - c.axis), 0.0f) << tx << ", " << ty;
+      EXPECT_GT(w.half_angle_rad, p.half_angle_rad + 10.0 * kDeg) << "the worst case widened every tile";
+      same += p.half_angle_rad == c.half_angle_rad;
+    }
+  EXPECT_EQ(same, a.columns() * a.rows() - 1);
+}
+
+TEST(RendererWarp, CullingThroughAMeshWithAParkedNodeTouchesFewerTilesAndRendersTheSame) {
+  // The planet and its shell seen from 10 Earth radii (5.8° in radius) in the
+  // middle of a dome master, shown by a projector through the mesh above. The
+  // per-tile bound lists the tiles the shell can touch; the worst case (37°
+  // from the parked node) listed most of the image. The pixels are the same.
+  TestRenderer per_tile, worst_case;
+  const double R = SmallTables::get("earth-advanced").model.ground_radius_m;
+  const scene::Scene s = planet_scene("earth-advanced", 9.0 * R, 30.0, {0.0, 0.0, -1.0});
+  const auto dome = std::make_shared<warp::FisheyeProjection>(128, 128);
+  const warp::WarpedProjection projector(128, 128, corner_parked_mesh(true), dome);
+  const WorstCaseCulling worst(projector);
+  const auto a = per_tile.renderer.render_image(s, projector);
+  const auto b = worst_case.renderer.render_image(s, worst);
+  EXPECT_EQ(a, b) << "the tighter culling changes no pixel";
+  const FrameStats &fa = per_tile.renderer.last_frame(), &fb = worst_case.renderer.last_frame();
+  ASSERT_EQ(fa.atmospheres.size(), 1u);
+  std::printf("shell tiles of %zu: %zu per tile, %zu with the worst case; black tiles %zu, %zu\n",
+              fa.atmospheres[0].tiles_total, fa.atmospheres[0].tiles, fb.atmospheres[0].tiles, fa.tiles_black,
+              fb.tiles_black);
+  EXPECT_GT(fa.atmospheres[0].tiles, 0u);
+  EXPECT_LE(fa.atmospheres[0].tiles, 8u);
+  EXPECT_GE(fb.atmospheres[0].tiles, 4 * fa.atmospheres[0].tiles);
+  double lit = 0.0;
+  for (const float v : a) lit += v;
+  EXPECT_GT(lit, 0.0) << "the planet is in the picture";
 }
 
 // ---------------------------------------------------------------- skipping work

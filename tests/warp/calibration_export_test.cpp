@@ -190,7 +190,22 @@ TEST_F(CalibrationExport, BlendMasksAndBlackLevelsRoundTripInBothEncodings) {
     const MpcdiRegion* region = mpcdi.find_region(o.name);
     ASSERT_NE(region, nullptr);
     ASSERT_TRUE(region->alpha_map && region->beta_map && region->warp_mesh);
-    EXPECT_EQ(region->x_resolution_px, o.width_px);
+    // The region's resolution is the warp's source, the size a reader takes.
+    ASSERT_TRUE(o.warp || o.name == "left" || o.name == "right");
+    EXPECT_EQ(region->x_resolution_px, o.warp ? o.warp->source_width_px : o.width_px);
+    EXPECT_EQ(region->y_resolution_px, o.warp ? o.warp->source_height_px : o.height_px);
+    // So the archive read without "source" gives the same rays.
+    const nlohmann::json alone = {
+        {"zenith_viewports", 1},
+        {"name", "alone"},
+        {"outputs", nlohmann::json::array({{{"name", o.name},
+                                             {"size", {o.width_px, o.height_px}},
+                                             {"projection", o.projection_spec},
+                                             {"warp", {{"file", o.name + ".mpcdi"}, {"format", "mpcdi"}, {"region", o.name}}}}})}};
+    const ViewportConfig read_alone = parse_viewport_config(alone, "alone.json", out);
+    const RayComparison rays_alone = compare_rays(read_alone.outputs[0], o);
+    EXPECT_EQ(rays_alone.mismatched, 0) << o.name;
+    EXPECT_LT(rays_alone.max_difference, 1e-6) << o.name;
     EXPECT_EQ(region->warp_mesh->columns(), 2 * o.width_px + 1);
     EXPECT_EQ(region->warp_mesh->rows(), 2 * o.height_px + 1);
     double alpha_difference = 0.0, beta_difference = 0.0;

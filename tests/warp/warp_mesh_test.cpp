@@ -563,5 +563,75 @@ TEST(WarpedProjectionFootprint, ParkedNodesDoNotInflateIt) {
   }
 }
 
+// ---------------------------------------------------------------- culling bound per tile (issue 14)
+
+TEST(WarpedProjectionCulling, ARectanglesBoundComesFromTheNodesThatReachIt) {
+  // A 200 × 200 projector, 9 × 9 nodes (cells of 25 px), source px = 1.5 ×
+  // projector px over a 400² fisheye; in the parked mesh node (0, 0) is parked
+  // at (0, 0) with intensity 0.02, as Bourke's meshes do. A 16 px tile's bound
+  // comes from the nodes of its cells' 4 × 4 stencils: the parked node reaches
+  // cells 0 and 1 (pixels [0, 50)) in each direction, so the tiles starting
+  // there take the large bound and every other tile has the bound of the mesh
+  // without it, base · 1.5 · 1.25.
+  const auto fisheye = std::make_shared<FisheyeProjection>(400, 400);
+  const double base = fisheye->max_pixel_angle_rad();
+  const std::array<double, 4> jacobian{1.5, 0.0, 0.0, 1.5};
+  const auto park = [](int i, int j) -> std::optional<WarpNode> {
+    if (i == 0 && j == 0) return WarpNode{0.0, 0.0, 0.02, true};
+    return std::nullopt;
+  };
+  for (const WarpInterpolation interpolation : {WarpInterpolation::bilinear, WarpInterpolation::catmull_rom}) {
+    const WarpedProjection clean(200, 200, affine_mesh(200, 200, 400, 400, jacobian, interpolation), fisheye);
+    const WarpedProjection parked(200, 200, affine_mesh(200, 200, 400, 400, jacobian, interpolation, park), fisheye);
+    EXPECT_NEAR(clean.max_pixel_angle_rad(), base * 1.5 * 1.25, 1e-12);
+    EXPECT_GT(parked.max_pixel_angle_rad(), 2.0 * clean.max_pixel_angle_rad()) << "the worst case, as before";
+    EXPECT_EQ(parked.max_pixel_angle_rad_within(0, 0, 200, 200), parked.max_pixel_angle_rad());
+    int same = 0, widened = 0;
+    for (int y0 = 0; y0 < 200; y0 += 16)
+      for (int x0 = 0; x0 < 200; x0 += 16) {
+        const int x1 = std::min(x0 + 16, 200), y1 = std::min(y0 + 16, 200);
+        const double p = parked.max_pixel_angle_rad_within(x0, y0, x1, y1);
+        const double c = clean.max_pixel_angle_rad_within(x0, y0, x1, y1);
+        EXPECT_NEAR(c, clean.max_pixel_angle_rad(), 1e-12);
+        EXPECT_LE(p, parked.max_pixel_angle_rad());
+        if (x0 < 50 && y0 < 50) {
+          EXPECT_GT(p, 2.0 * c) << x0 << ", " << y0;
+          ++widened;
+        } else {
+          EXPECT_EQ(p, c) << x0 << ", " << y0;
+          ++same;
+        }
+        // Conservative: neighbouring pixel centres of the tile (across, down,
+        // diagonally) are never farther apart than the tile's bound.
+        for (const WarpedProjection* w : {&parked, &clean}) {
+          const double bound = w->max_pixel_angle_rad_within(x0, y0, x1, y1);
+          for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+              const auto r = w->ray(x + 0.5, y + 0.5);
+              if (!r) continue;
+              for (const auto& [dx, dy] : std::vector<std::pair<int, int>>{{1, 0}, {0, 1}, {1, 1}, {1, -1}}) {
+                if (x + dx >= x1 || y + dy < y0 || y + dy >= y1) continue;
+                const auto q = w->ray(x + dx + 0.5, y + dy + 0.5);
+                if (!q) continue;
+                ASSERT_LE(std::acos(std::min(1.0, glm::dot(*r, *q))), bound) << x << ", " << y << " +" << dx << "," << dy;
+              }
+            }
+        }
+      }
+    EXPECT_EQ(widened, 16);  // tiles starting at 0, 16, 32, 48 in each direction
+    EXPECT_EQ(same, 13 * 13 - 16);
+    // A rectangle off the image: nothing there has a ray.
+    EXPECT_EQ(parked.max_pixel_angle_rad_within(300, 300, 316, 316), base * 1.25);
+    // A mesh running past the image (a Bourke mesh fitted to a narrower
+    // output): over s ∈ [−0.5, 1.5] the parked node's cells end at the image's
+    // left edge, so no pixel shows them and even the worst case leaves them out.
+    const WarpMesh::Extent wide{-0.5, 1.5, 0.0, 1.0};
+    const WarpedProjection wide_clean(200, 200, WarpMesh(9, 9, clean.mesh().nodes(), "wide", interpolation, wide), fisheye);
+    const WarpedProjection wide_parked(200, 200, WarpMesh(9, 9, parked.mesh().nodes(), "wide", interpolation, wide),
+                                       fisheye);
+    EXPECT_EQ(wide_parked.max_pixel_angle_rad(), wide_clean.max_pixel_angle_rad());
+  }
+}
+
 }  // namespace
 }  // namespace zenith::warp
