@@ -47,6 +47,8 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
   std::vector<gl::ShaderDefine> defines;
   for (const Point& p : kPoints) defines.push_back({p.name, fmt::format("{}", p.value)});
   defines.push_back({"TILE_SIZE", fmt::format("{}", kTileSize)});
+  defines.push_back({"TILE_ROW_SHIFT", fmt::format("{}u", kTileRowShift)});
+  defines.push_back({"TILE_COLUMN_MASK", fmt::format("{:#x}u", kTileColumnMask)});
   defines.push_back({"SUN_SPECTRUM_SIZE", fmt::format("{}", kSunSpectrumSize)});
   // 9 significant digits round-trip a float (as render/lut/shader_model.cpp's glsl_literal).
   defines.push_back({"PI_F", fmt::format("{:.8e}", static_cast<float>(core::kPi))});
