@@ -778,7 +778,9 @@ Renderer::BandTiles Renderer::classify_band_tiles(Frame& frame, int first_row, i
   band.tile_rows = (rows + kTileSize - 1) / kTileSize;
   band.tiles = static_cast<std::size_t>(cones.columns()) * band.tile_rows;
   const std::size_t band_tiles = band.tiles;
-  auto tile_index = [&](std::uint32_t t) { return (t >> 16) * static_cast<std::size_t>(cones.columns()) + (t & 0xffffu); };
+  auto tile_index = [&](std::uint32_t t) {
+    return tile_band_row(t) * static_cast<std::size_t>(cones.columns()) + tile_column(t);
+  };
   auto body_touches = [&](std::size_t b) {
     const glm::dvec3 c = scene.bodies[b].position_m - scene.camera.position_m;
     return cones.tiles_touching_sphere(frame.world_to_camera * glm::normalize(c), glm::length(c),
@@ -866,8 +868,8 @@ Renderer::BandTiles Renderer::classify_band_tiles(Frame& frame, int first_row, i
     TileList l{all_tiles.size(), 0};
     for (std::size_t i = 0; i < band_tiles; ++i)
       if (keep(i)) {
-        all_tiles.push_back(static_cast<std::uint32_t>(i % static_cast<std::size_t>(cones.columns())) |
-                            static_cast<std::uint32_t>(i / static_cast<std::size_t>(cones.columns())) << 16);
+        all_tiles.push_back(pack_tile(static_cast<std::uint32_t>(i % static_cast<std::size_t>(cones.columns())),
+                                      static_cast<std::uint32_t>(i / static_cast<std::size_t>(cones.columns()))));
         ++l.count;
       }
     return l;

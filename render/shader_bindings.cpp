@@ -4,6 +4,7 @@
 
 #include "core/units.h"
 #include "render/frame/tile_culling.h"
+#include "warp/projection.h"
 
 namespace zenith::render {
 
@@ -47,7 +48,22 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
   std::vector<gl::ShaderDefine> defines;
   for (const Point& p : kPoints) defines.push_back({p.name, fmt::format("{}", p.value)});
   defines.push_back({"TILE_SIZE", fmt::format("{}", kTileSize)});
+  defines.push_back({"TILE_ROW_SHIFT", fmt::format("{}u", kTileRowShift)});
+  defines.push_back({"TILE_COLUMN_MASK", fmt::format("{:#x}u", kTileColumnMask)});
   defines.push_back({"SUN_SPECTRUM_SIZE", fmt::format("{}", kSunSpectrumSize)});
+  struct Kind {
+    const char* name;
+    warp::ProjectionKind kind;
+  };
+  constexpr Kind kKinds[] = {
+      {"PROJECTION_KIND_PLANAR", warp::ProjectionKind::planar},
+      {"PROJECTION_KIND_FISHEYE", warp::ProjectionKind::fisheye},
+      {"PROJECTION_KIND_CYLINDRICAL", warp::ProjectionKind::cylindrical},
+      {"PROJECTION_KIND_EQUIRECTANGULAR", warp::ProjectionKind::equirectangular},
+      {"PROJECTION_KIND_CUBE_FACE", warp::ProjectionKind::cube_face},
+      {"PROJECTION_KIND_RAY_TABLE", warp::ProjectionKind::ray_table},
+  };
+  for (const Kind& k : kKinds) defines.push_back({k.name, fmt::format("{}", static_cast<int>(k.kind))});
   // 9 significant digits round-trip a float (as render/lut/shader_model.cpp's glsl_literal).
   defines.push_back({"PI_F", fmt::format("{:.8e}", static_cast<float>(core::kPi))});
   return defines;

@@ -65,8 +65,10 @@ inline constexpr int kSunSpectrumSize = 64;
 namespace zenith::render {
 
 /// The defines every shader loaded from shaders/ gets before its own: each
-/// binding point above, SUN_SPECTRUM_SIZE, TILE_SIZE (render/frame/tile_culling.h:
-/// the render passes' work groups and tiles), and PI_F, π as a float literal
+/// binding point above, SUN_SPECTRUM_SIZE, TILE_SIZE, TILE_ROW_SHIFT and
+/// TILE_COLUMN_MASK (render/frame/tile_culling.h: the render passes' work
+/// groups and tiles, the packing of a tile list's words), PROJECTION_KIND_*
+/// (warp/projection.h's ProjectionKind), and PI_F, π as a float literal
 /// (core/units.h's kPi).
 std::vector<gl::ShaderDefine> shader_interface_defines();
 

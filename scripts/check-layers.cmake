@@ -22,6 +22,13 @@
 #   cmake -DSOURCE_DIR=. -P scripts/check-layers.cmake
 #
 # CTest runs it as layers.include_graph.
+#
+# With -DLINK_GRAPH=FILE it checks the libraries' links instead: FILE holds one
+# edge a line, "module target linked_module linked_target", as
+# tests/layers/CMakeLists.txt writes it for every target of the build. A
+# library sees the include roots of what it links (cmake/ModuleIncludes.cmake),
+# so a link up the layers would open them: it fails on every edge from a module
+# to one it may not include. CTest runs it as layers.link_graph.
 cmake_minimum_required(VERSION 3.20)
 if(NOT SOURCE_DIR)
   set(SOURCE_DIR "${CMAKE_CURRENT_LIST_DIR}/..")
@@ -38,6 +45,32 @@ set(allowed_show core image atmosphere scene)
 set(allowed_render core image atmosphere warp scene)
 set(allowed_cluster core image atmosphere warp scene show render)
 set(allowed_apps core image atmosphere warp scene show render cluster)
+
+if(LINK_GRAPH)
+  file(STRINGS "${LINK_GRAPH}" edges)
+  set(violations 0)
+  list(LENGTH edges count)
+  foreach(edge IN LISTS edges)
+    string(REPLACE " " ";" edge "${edge}")
+    list(GET edge 0 module)
+    list(GET edge 1 target)
+    list(GET edge 2 linked_module)
+    list(GET edge 3 linked_target)
+    if(module IN_LIST modules AND NOT linked_module STREQUAL module AND NOT linked_module IN_LIST allowed_${module})
+      string(REPLACE ";" ", " may "${allowed_${module}}")
+      if(may STREQUAL "")
+        set(may "nothing of zenith")
+      endif()
+      message("${target} (${module}/) links ${linked_target} (${linked_module}/)  (${module}/ may include ${may})")
+      math(EXPR violations "${violations} + 1")
+    endif()
+  endforeach()
+  message("check-layers: ${count} links, ${violations} upward or sideways")
+  if(violations GREATER 0)
+    message(FATAL_ERROR "check-layers: the link graph does not follow the layers (docs/architecture.md)")
+  endif()
+  return()
+endif()
 
 set(violations 0)
 set(files 0)

@@ -14,12 +14,9 @@
 // vec2(gl_FragCoord.x, float(height) - gl_FragCoord.y).
 // `direction` is the unit ray in the camera frame (+x right, +y up, −z forward).
 
-#define PROJECTION_KIND_PLANAR 0
-#define PROJECTION_KIND_FISHEYE 1
-#define PROJECTION_KIND_CYLINDRICAL 2
-#define PROJECTION_KIND_EQUIRECTANGULAR 3
-#define PROJECTION_KIND_CUBE_FACE 4
-#define PROJECTION_KIND_RAY_TABLE 5
+// PROJECTION_KIND_PLANAR, _FISHEYE, _CYLINDRICAL, _EQUIRECTANGULAR, _CUBE_FACE
+// and _RAY_TABLE are warp/projection.h's ProjectionKind, defined by the C++
+// side in every shader (render/shader_bindings.h's shader_interface_defines()).
 
 #ifdef PROJECTION_KIND
 // Specialised for one kind (render/renderer.cpp compiles its passes per kind

@@ -6,7 +6,7 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 2) in;
 
 #include "test_common.glsl"
 
-layout(binding = 0, rgba32f) uniform writeonly image3D pattern_image;
+layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image3D pattern_image;
 
 void main() {
   ivec3 size = imageSize(pattern_image);

@@ -6,7 +6,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "projection.glsl"
 
-layout(binding = 0, rgba32f) uniform writeonly image2D ray_image;
+layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image2D ray_image;
 
 void main() {
   ivec2 size = imageSize(ray_image);

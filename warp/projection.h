@@ -27,7 +27,8 @@
 
 namespace zenith::warp {
 
-/// The kinds shaders/projection.glsl knows (PROJECTION_KIND_* there, same values).
+/// The kinds shaders/projection.glsl knows: the shaders get each value as
+/// PROJECTION_KIND_<NAME> (render/shader_bindings.h's shader_interface_defines()).
 enum class ProjectionKind : int {
   planar = 0,           ///< pinhole with an asymmetric frustum
   fisheye = 1,          ///< angular (azimuthal equidistant) fisheye

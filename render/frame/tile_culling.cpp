@@ -56,7 +56,7 @@ std::vector<std::uint32_t> TileCones::tiles_touching_sphere(const glm::dvec3& ce
     if (cover[i] != TileCover::none) {
       const auto tx = static_cast<std::uint32_t>(i % static_cast<std::size_t>(columns_));
       const auto band_ty = static_cast<std::uint32_t>(i / static_cast<std::size_t>(columns_));
-      out.push_back(tx | (band_ty << 16));
+      out.push_back(pack_tile(tx, band_ty));
     }
   return out;
 }

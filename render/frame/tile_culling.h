@@ -23,6 +23,19 @@ namespace zenith::render {
 
 inline constexpr int kTileSize = 16;  ///< pixels; the local size of the render passes
 
+/// A tile of a band's tile list as one 32-bit word (the render passes' Tiles
+/// buffer, shaders/render/frame.glsl's tile_pixel()): its column in the low
+/// kTileRowShift bits, its row within the band above them. The shaders get
+/// both constants as TILE_ROW_SHIFT and TILE_COLUMN_MASK
+/// (render/shader_bindings.h's shader_interface_defines()).
+inline constexpr unsigned kTileRowShift = 16;
+inline constexpr std::uint32_t kTileColumnMask = (std::uint32_t{1} << kTileRowShift) - 1u;
+constexpr std::uint32_t pack_tile(std::uint32_t column, std::uint32_t band_row) {
+  return column | band_row << kTileRowShift;
+}
+constexpr std::uint32_t tile_column(std::uint32_t word) { return word & kTileColumnMask; }
+constexpr std::uint32_t tile_band_row(std::uint32_t word) { return word >> kTileRowShift; }
+
 /// How a tile's rays meet a sphere (TileCones::sphere_cover).
 enum class TileCover : std::uint8_t {
   none = 0,  ///< no ray of the tile can meet it
@@ -48,7 +61,7 @@ class TileCones {
 
   /// Tiles of rows [first_row, first_row + row_count) that a sphere (camera-frame
   /// unit direction to its centre, distance and radius in metres) can touch,
-  /// packed as x | (y − first_row) << 16 (the tile's column and its row within the band).
+  /// packed by pack_tile (the tile's column and its row within the band).
   std::vector<std::uint32_t> tiles_touching_sphere(const glm::dvec3& centre_direction, double distance_m,
                                                    double radius_m, int first_row, int row_count) const;
   /// For every tile of rows [first_row, first_row + row_count), column fastest,

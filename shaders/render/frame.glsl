@@ -37,8 +37,9 @@ float pixel_footprint = 0.0;
 
 /// The TILE_SIZE² tiles (kTileSize of render/frame/tile_culling.h) of band
 /// pixels a pass covers, one work group per tile:
-/// tiles[tile_offset + i] for i < tile_count, packed as column | row << 16
-/// (render/frame/tile_culling.h). The renderer classifies tiles on the CPU
+/// tiles[tile_offset + i] for i < tile_count, packed as column | row <<
+/// TILE_ROW_SHIFT (render/frame/tile_culling.h's pack_tile, which also defines
+/// TILE_COLUMN_MASK). The renderer classifies tiles on the CPU
 /// (one atmosphere, several, surface or sun only, empty) and dispatches each
 /// pass over its own list, so a pass holds only the code its tiles need: on a
 /// CPU rasterizer (llvmpipe runs 8 invocations per SIMD vector under a mask) a
@@ -53,7 +54,7 @@ bool tile_pixel(out ivec2 p) {
   p = ivec2(0);
   if (tile_index >= uint(tile_count)) return false;
   const uint tile = tiles[uint(tile_offset) + tile_index];
-  p = ivec2(int(tile & 0xffffu), int(tile >> 16)) * TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
+  p = ivec2(int(tile & TILE_COLUMN_MASK), int(tile >> TILE_ROW_SHIFT)) * TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   return all(lessThan(p, band_size));
 }
 

@@ -20,6 +20,7 @@
 #include "render/gl/gl_limits.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/shader_bindings.h"
 #include "render/shader_source.h"
 
 namespace zenith::render {
@@ -46,7 +47,7 @@ std::vector<float> expected_pattern(int w, int h, int d, float scale = 1.0f, boo
 
 std::vector<float> run_pattern(const ShaderProgram& program, int w, int h, int d) {
   Texture image = Texture::create_3d(TextureFormat::rgba32f, w, h, d);
-  image.bind_image(0, gl::ImageAccess::write_only);
+  image.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
   program.dispatch_covering(w, h, d);
   std::vector<float> out = image.read();
   gl::check_gl_error("test pattern dispatch");

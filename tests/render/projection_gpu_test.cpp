@@ -18,6 +18,7 @@
 #include "render/gl/gl_error.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/shader_bindings.h"
 #include "warp/cube_face_projection.h"
 #include "warp/cylindrical_projection.h"
 #include "warp/equirectangular_projection.h"
@@ -49,7 +50,7 @@ std::vector<float> gpu_rays(const gl::ShaderProgram& program, const Projection& 
   for (int i = 0; i < 4; ++i)
     EXPECT_TRUE(program.set_uniform("projection_params[" + std::to_string(i) + "]", g.params[i])) << i;
   gl::Texture image = gl::Texture::create_2d(gl::TextureFormat::rgba32f, projection.width(), projection.height());
-  image.bind_image(0, gl::ImageAccess::write_only);
+  image.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
   program.dispatch_covering(projection.width(), projection.height());
   std::vector<float> out = image.read();
   gl::check_gl_error("test_projection.comp");

@@ -7,12 +7,17 @@
 //  * the constants of the shader model as atmosphere_common.glsl sees them
 //    (PI, INV_4PI, PENNDORF_A/B, SERIES_LIMIT), exactly the C++ values (rounded
 //    to float in fp32);
-//  * the WavelengthData fields by name (FIELD_*): each the model's spectrum.
+//  * the WavelengthData fields by name (FIELD_*): each the model's spectrum;
+//  * the tile words of the render passes' tile lists (render/frame/tile_culling.h's
+//    pack_tile): frame.glsl's tile_pixel() finds the pixels of the tile the C++
+//    side packed, at both ends of the column's and the row's bits.
 #include <gtest/gtest.h>
 
 #include <epoxy/gl.h>
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -22,6 +27,7 @@
 #include "atmosphere/phase_functions.h"
 #include "core/units.h"
 #include "render/frame/gpu_body.h"
+#include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
 #include "render/gl/shader_program.h"
 #include "render/lut/shader_model.h"
@@ -144,6 +150,51 @@ TEST(ShaderInterface, ShaderModelConstantsAndFieldsAreTheCppOnesInFp64) {
 TEST(ShaderInterface, ShaderModelConstantsAndFieldsAreTheCppOnesInFp32) {
   expect_shader_model_constants("earth-advanced", false);
   expect_shader_model_constants("mars", false);
+}
+
+TEST(ShaderInterface, TileWordsReachTheShadersAsTheCppPacksThem) {
+  testing::context();
+  struct Tile {
+    std::uint32_t column, band_row;
+  };
+  // Inside the band, straddling its corner, and at both ends of the column's and the row's bits.
+  const std::vector<Tile> tiles = {{0, 0}, {3, 2}, {4, 3}, {kTileColumnMask, 1}, {1, 0xfffe}, {kTileColumnMask, 0xffff}};
+  const std::array<int, 2> band_size = {4 * kTileSize + 5, 3 * kTileSize + 7};
+  // Word 0 is not the pass's: tile_offset skips it.
+  std::vector<std::uint32_t> words = {pack_tile(9, 9)};
+  for (const Tile& t : tiles) {
+    words.push_back(pack_tile(t.column, t.band_row));
+    ASSERT_EQ(tile_column(words.back()), t.column);
+    ASSERT_EQ(tile_band_row(words.back()), t.band_row);
+  }
+  const gl::Buffer tile_words = gl::Buffer::from(std::span<const std::uint32_t>(words));
+  tile_words.bind_storage(binding::kTiles);
+  constexpr std::size_t kPixelsPerTile = std::size_t{kTileSize} * kTileSize;
+  const gl::Buffer pixels(tiles.size() * kPixelsPerTile * 4 * sizeof(std::int32_t));
+  pixels.bind_storage(kTestOutputBinding);
+  const gl::ShaderProgram program = gl::ShaderProgram::load_compute(
+      "test_tile_words.comp", std::vector<gl::ShaderDefine>{{"PIXELS_BINDING", std::to_string(kTestOutputBinding)}});
+  ASSERT_TRUE(program.set_uniform("band_size", band_size));
+  ASSERT_TRUE(program.set_uniform("tile_offset", 1));
+  ASSERT_TRUE(program.set_uniform("tile_count", static_cast<int>(tiles.size())));
+  program.dispatch(static_cast<unsigned>(tiles.size()));
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  const std::vector<std::int32_t> out = pixels.read<std::int32_t>();
+  ASSERT_EQ(out.size(), tiles.size() * kPixelsPerTile * 4);
+
+  std::size_t inside = 0;
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    for (std::size_t i = 0; i < kPixelsPerTile; ++i) {
+      const std::int32_t* p = &out[(t * kPixelsPerTile + i) * 4];
+      const auto x = static_cast<std::int64_t>(tiles[t].column) * kTileSize + static_cast<std::int64_t>(i % kTileSize);
+      const auto y = static_cast<std::int64_t>(tiles[t].band_row) * kTileSize + static_cast<std::int64_t>(i / kTileSize);
+      ASSERT_EQ(p[0], x) << "tile " << tiles[t].column << ", " << tiles[t].band_row << ", invocation " << i;
+      ASSERT_EQ(p[1], y) << "tile " << tiles[t].column << ", " << tiles[t].band_row << ", invocation " << i;
+      const bool in_band = x < band_size[0] && y < band_size[1];
+      ASSERT_EQ(p[2], in_band ? 1 : 0) << "tile " << tiles[t].column << ", " << tiles[t].band_row << ", invocation " << i;
+      inside += in_band;
+    }
+  EXPECT_EQ(inside, 2 * kPixelsPerTile + 5u * 7u) << "tiles (0, 0) and (3, 2) whole, 5 × 7 pixels of (4, 3)";
 }
 
 }  // namespace
