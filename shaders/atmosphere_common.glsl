@@ -343,6 +343,15 @@ real horizon_distance(real r) {
   PRECISE real rho = safe_sqrt(r * r - RB * RB);
   return rho;
 }
+/// r from ρ, the inverse of horizon_distance (radius_from_horizon_distance):
+/// exactly RB at ρ = 0. A correctly rounded sqrt gives that by itself;
+/// NVIDIA's fp64 sqrt (driver 580.159.04) is 1 ulp off there, which made
+/// r − RB = 9e-10 m at the ground layer and its ground-hitting texels μ ≈ 0
+/// instead of −1.
+real radius_from_horizon_distance(real rho) {
+  PRECISE real r = rho == real(0) ? RB : sqrt(rho * rho + RB * RB);
+  return r;
+}
 /// μs_min = cos(90° + 3α) = −sin 3α, α = acos(rb/rt), −1 when 3α ≥ 90°: below
 /// that sun no point of any ray in the shell is lit (the 3α argument is at
 /// ShellGeometry::min_sun_cosine, parameterization.cpp). With s = sin α = H/rt,
@@ -398,7 +407,7 @@ real2 transmittance_uv(real r, real mu) {
 void transmittance_r_mu(real u_mu, real v_r, out real r_out, out real mu_out) {
   PRECISE real H = horizon_distance_at_top();
   PRECISE real rho = H * unit_from_texture_coord(v_r, TRANSMITTANCE_R);
-  PRECISE real r = sqrt(rho * rho + RB * RB);
+  PRECISE real r = radius_from_horizon_distance(rho);
   PRECISE real d_min = RT - r, d_max = rho + H;
   PRECISE real d = d_min + unit_from_texture_coord(u_mu, TRANSMITTANCE_MU) * (d_max - d_min);
   PRECISE real mu = d == real(0) ? real(1) : clamp_cosine((H * H - rho * rho - d * d) / (real(2) * r * d));
@@ -523,7 +532,7 @@ real mu_sky_from_unit(real r, real x, int mapping) {
 real texel_r(int z, out real rho_out) {
   PRECISE real u_r = (real(z) + real(0.5)) / real(SCATTERING_R);
   PRECISE real rho = horizon_distance_at_top() * unit_from_texture_coord(u_r, SCATTERING_R);
-  PRECISE real r = sqrt(rho * rho + RB * RB);
+  PRECISE real r = radius_from_horizon_distance(rho);
   rho_out = rho;
   return r;
 }

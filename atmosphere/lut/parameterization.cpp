@@ -11,6 +11,14 @@
 namespace zenith::atmosphere::lut {
 
 namespace {
+
+/// r from ρ, the inverse of horizon_distance: exactly rb at ρ = 0 (what a
+/// correctly rounded sqrt gives; the shaders spell it out for GPUs whose fp64
+/// sqrt is not correctly rounded, atmosphere_common.glsl).
+double radius_from_horizon_distance(const ShellGeometry& g, double rho) {
+  return rho == 0.0 ? g.bottom_radius_m : std::sqrt(rho * rho + g.bottom_radius_m * g.bottom_radius_m);
+}
+
 double clamp_cosine(double mu) { return std::clamp(mu, -1.0, 1.0); }
 double safe_sqrt(double a) { return std::sqrt(std::max(a, 0.0)); }
 }  // namespace
@@ -108,7 +116,7 @@ void transmittance_r_mu(const ShellGeometry& g, const TableSizes& s, double u_mu
                         double* mu) {
   const double H = g.horizon_distance_at_top_m();
   const double rho = H * unit_from_texture_coord(v_r, s.transmittance_r);
-  const double r = std::sqrt(rho * rho + g.bottom_radius_m * g.bottom_radius_m);
+  const double r = radius_from_horizon_distance(g, rho);
   const double d_min = g.top_radius_m - r, d_max = rho + H;
   const double d = d_min + unit_from_texture_coord(u_mu, s.transmittance_mu) * (d_max - d_min);
   // Law of cosines in the triangle (centre, x, exit point): rt² = r² + d² + 2 r d μ.
@@ -266,7 +274,7 @@ ScatteringCoordinates scattering_texel_coordinates(const ShellGeometry& g, const
   ScatteringCoordinates c{};
   const double H = g.horizon_distance_at_top_m();
   const double rho = H * unit_from_texture_coord(u_r, s.scattering_r);
-  c.r_m = std::sqrt(rho * rho + g.bottom_radius_m * g.bottom_radius_m);
+  c.r_m = radius_from_horizon_distance(g, rho);
   const std::size_t half = s.scattering_mu / 2;
   if (u_mu < 0.5) {
     const double d_min = c.r_m - g.bottom_radius_m, d_max = rho;
