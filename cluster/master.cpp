@@ -550,9 +550,13 @@ struct Master::Impl {
       });
       return;
     }
-    if (held_logged)
+    if (held_logged) {
       spdlog::info("master: frame {} goes on after waiting {:.1f} s for its tables", held_frame->frame,
                    ms_since(held_since) / 1000.0);
+      // Paced: the frames after the wait keep the frame rate instead of
+      // catching up on the time spent waiting.
+      show_started += Clock::now() - held_since;
+    }
     frame_in_flight = std::move(*held_frame);
     held_frame.reset();
     const std::uint64_t frame = options.feed ? frame_in_flight.frame : barrier.frame();
