@@ -161,6 +161,7 @@ struct NodeArgs {
   std::string cluster, name, out, cache_dir, scene, layout = "per-node";
   std::optional<int> port;
   std::uint32_t connect_timeout_ms = 15000;
+  std::optional<double> reconnect_s;
   std::vector<std::string> atmosphere_files;
   std::uint32_t debug_render_delay_ms = 0;
   bool window = false;
@@ -174,6 +175,7 @@ int run_node(const NodeArgs& a) {
   options.cache_directory = a.cache_dir.empty() ? default_node_cache(options.config, a.name) : fs::path(a.cache_dir);
   if (a.port) options.port = static_cast<std::uint16_t>(*a.port);
   options.connect_timeout_ms = a.connect_timeout_ms;
+  if (a.reconnect_s) options.reconnect_ms = static_cast<std::uint32_t>(std::lround(*a.reconnect_s * 1000.0));
   for (const std::string& f : a.atmosphere_files) options.atmosphere_files.emplace_back(f);
   options.debug_render_delay_ms = a.debug_render_delay_ms;
   if (!a.scene.empty()) options.scene = fs::path(a.scene);
@@ -370,6 +372,10 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--cache", a->cache_dir, "This node's table cache (default $XDG_CACHE_HOME/zenith/cluster-nodes/<cluster>/<node>)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms, "Keep trying to reach the master this long (default 15000)");
+    cmd->add_option("--reconnect-s", a->reconnect_s,
+                    "After losing the master, keep the last frame and try to rejoin this long before exiting with "
+                    "status 3 (default: the config's timing.reconnect_s, 300; 0: exit at once)")
+        ->check(CLI::Range(0.0, cluster::kMaxReconnectS));
     cmd->add_option("--scene", a->scene, "Render this scene instead of the config's (a show's scene)");
     cmd->add_option("--layout", a->layout,
                     "per-node: OUT/<node>/<output>/frame-N.png (default); offline: OUT/<output>/<output>.N.png "
