@@ -455,6 +455,81 @@ TEST_F(ClusterProcess, MasterRestartedOnTheSamePortGetsItsNodesBackWithTheirCach
   }
 }
 
+/// The pids `zenith cluster` logged for node `name`: "node 'b' started (pid N)", then one per "restarted it (pid N".
+std::vector<pid_t> launcher_pids(const std::string& log, const std::string& name) {
+  std::vector<pid_t> pids;
+  const std::string started = "cluster: node '" + name + "' started (pid ";
+  if (const auto at = log.find(started); at != std::string::npos) pids.push_back(std::stoi(log.substr(at + started.size())));
+  const std::string restarted = "cluster: node '" + name + "' died (";
+  for (auto at = log.find(restarted); at != std::string::npos; at = log.find(restarted, at + 1)) {
+    const auto pid_at = log.find("restarted it (pid ", at);
+    const auto line_end = log.find('\n', at);
+    if (pid_at != std::string::npos && pid_at < line_end) pids.push_back(std::stoi(log.substr(pid_at + 18)));
+  }
+  return pids;
+}
+
+TEST_F(ClusterProcess, LauncherRestartsAKilledNodeWhichRejoins) {
+  const fs::path config = write_config(10, 5000, 200);
+  const Child cluster = spawn({"cluster", "--cluster", config.string(), "--frames", "250", "--out",
+                               (dir_ / "out").string(), "--cache", cache_.string(), "--restart-nodes"},
+                              dir_ / "cluster.log");
+  children_.push_back(cluster);
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/b").size() >= 3; }, 240s)) << logs();
+  const std::vector<pid_t> pids = launcher_pids(read_text(dir_ / "cluster.log"), "b");
+  ASSERT_EQ(pids.size(), 1u) << logs();
+  ASSERT_EQ(kill(pids[0], SIGKILL), 0);
+  const auto killed = Clock::now();
+  const std::uint64_t last_before = presented(dir_ / "out/b").back().frame;
+  ASSERT_TRUE(wait_until([&] { return launcher_pids(read_text(dir_ / "cluster.log"), "b").size() == 2; }, 30s))
+      << logs();
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/b").back().frame > last_before; }, 120s)) << logs();
+  std::printf("[ measured ] the relaunched node b presented again %.2f s after kill -9\n",
+              std::chrono::duration<double>(Clock::now() - killed).count());
+  ASSERT_EQ(wait_exit(cluster, 400s), std::optional<int>(0)) << logs();
+  const std::string log = read_text(dir_ / "cluster.log");
+  EXPECT_NE(log.find("cluster: node 'b' died (killed by signal 9"), std::string::npos) << log;
+  EXPECT_NE(log.find("restart 1, 1 of at most 5 within 60 s"), std::string::npos) << log;
+  const auto a = presented(dir_ / "out/a"), c = presented(dir_ / "out/c");
+  expect_contiguous(a, 0, 249, "a");
+  expect_contiguous(c, 0, 249, "c");
+  const auto bp = presented(dir_ / "out/b");
+  for (const Presented& p : bp) EXPECT_EQ(p.digest, a[p.frame].digest) << "frame " << p.frame;
+  EXPECT_EQ(bp.back().frame, 249u) << "b rejoined and stayed to the end";
+}
+
+TEST_F(ClusterProcess, LauncherStopsRestartingACrashLoopAtTheLimit) {
+  const fs::path config = write_config(10, 5000, 200);
+  const Child cluster = spawn({"cluster", "--cluster", config.string(), "--frames", "120", "--out",
+                               (dir_ / "out").string(), "--cache", cache_.string(), "--restart-nodes",
+                               "--max-restarts", "2", "--restart-window-s", "60"},
+                              dir_ / "cluster.log");
+  children_.push_back(cluster);
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/b").size() >= 1; }, 240s)) << logs();
+  // b dies three times in a row, as fast as it is restarted: the third death is one too many.
+  for (std::size_t death = 1; death <= 3; ++death) {
+    std::vector<pid_t> pids;
+    ASSERT_TRUE(wait_until([&] { return (pids = launcher_pids(read_text(dir_ / "cluster.log"), "b")).size() == death; },
+                           30s))
+        << logs();
+    ASSERT_EQ(kill(pids.back(), SIGKILL), 0);
+  }
+  ASSERT_TRUE(wait_until([&] { return read_text(dir_ / "cluster.log").find("giving up on it") != std::string::npos; },
+                         30s))
+      << logs();
+  // The show goes on with a and c; the launcher reports the failed node at the end.
+  EXPECT_EQ(wait_exit(cluster, 400s), std::optional<int>(1)) << logs();
+  const std::string log = read_text(dir_ / "cluster.log");
+  EXPECT_EQ(launcher_pids(log, "b").size(), 3u) << "started once, restarted twice: " << log;
+  EXPECT_NE(log.find("cluster: node 'b' died (killed by signal 9 (Killed)) after 2 restarts within 60 s: giving up on "
+                     "it, it stays down"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("1 node failed"), std::string::npos) << log;
+  expect_contiguous(presented(dir_ / "out/a"), 0, 119, "a");
+  expect_contiguous(presented(dir_ / "out/c"), 0, 119, "c");
+}
+
 /// The quadrants of `frame` equal a single-process 128² render of `scene`, bit for bit.
 void expect_frame_equals_single_render(const fs::path& dir, const fs::path& cache, const fs::path& scene,
                                        std::uint64_t frame, std::vector<Child>& children) {
