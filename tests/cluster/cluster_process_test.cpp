@@ -281,6 +281,24 @@ TEST_F(ClusterProcess, ThreeNodesPresentEveryFrameAndStitchToASingleRender) {
   EXPECT_EQ(stitched.rgb, whole.rgb);
 }
 
+/// Nodes a and c presented every frame up to the same last one; b presented
+/// 0..last_before, then — back after a kill or a stall — a contiguous run from
+/// a later frame boundary; every frame b presented has a's state.
+void expect_b_rejoined(const fs::path& out, std::uint64_t last_before) {
+  const auto a = presented(out / "a"), bp = presented(out / "b"), c = presented(out / "c");
+  ASSERT_FALSE(a.empty());
+  expect_contiguous(a, 0, a.back().frame, "a");
+  expect_contiguous(c, 0, c.back().frame, "c");
+  EXPECT_EQ(a.back().frame, c.back().frame);
+  std::size_t split = 0;
+  while (split < bp.size() && bp[split].frame <= last_before) ++split;
+  ASSERT_LT(split, bp.size());
+  expect_contiguous(std::vector<Presented>(bp.begin(), bp.begin() + split), 0, last_before, "b before");
+  EXPECT_GT(bp[split].frame, last_before + 1) << "b rejoined later, at a frame boundary";
+  expect_contiguous(std::vector<Presented>(bp.begin() + split, bp.end()), bp[split].frame, bp.back().frame, "b after");
+  for (const Presented& p : bp) EXPECT_EQ(p.digest, a[p.frame].digest) << "frame " << p.frame;
+}
+
 TEST_F(ClusterProcess, KilledNodeRestartsAndRejoinsWhileTheOthersSkipNoFrame) {
   const fs::path config = write_config(10);
   const Child master = start_master(config, 0);
@@ -303,20 +321,7 @@ TEST_F(ClusterProcess, KilledNodeRestartsAndRejoinsWhileTheOthersSkipNoFrame) {
       EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
     }
 
-  const auto a = presented(dir_ / "out/a"), bp = presented(dir_ / "out/b"), c = presented(dir_ / "out/c");
-  ASSERT_FALSE(a.empty());
-  expect_contiguous(a, 0, a.back().frame, "a");
-  expect_contiguous(c, 0, c.back().frame, "c");
-  EXPECT_EQ(a.back().frame, c.back().frame);
-  // b: frames 0..last_before, then (after the restart) a contiguous run from a later frame boundary.
-  std::size_t split = 0;
-  while (split < bp.size() && bp[split].frame <= last_before) ++split;
-  ASSERT_LT(split, bp.size());
-  expect_contiguous(std::vector<Presented>(bp.begin(), bp.begin() + split), 0, last_before, "b before");
-  EXPECT_GT(bp[split].frame, last_before + 1) << "b rejoined later, at a frame boundary";
-  expect_contiguous(std::vector<Presented>(bp.begin() + split, bp.end()), bp[split].frame, bp.back().frame, "b after");
-  // Same frame, same state, on every node.
-  for (const Presented& p : bp) EXPECT_EQ(p.digest, a[p.frame].digest) << "frame " << p.frame;
+  expect_b_rejoined(dir_ / "out", last_before);
   const std::string master_log = read_text(dir_ / "master.log");
   EXPECT_NE(master_log.find("node 'b'"), std::string::npos);
   EXPECT_NE(master_log.find("disconnected"), std::string::npos) << master_log;
@@ -389,16 +394,7 @@ TEST_F(ClusterProcess, StalledNodeReconnectsAndRejoinsWhileTheOthersSkipNoFrame)
   ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
   expect_nodes_exit_cleanly(master);
 
-  const auto a = presented(dir_ / "out/a"), bp = presented(dir_ / "out/b"), c = presented(dir_ / "out/c");
-  expect_contiguous(a, 0, a.back().frame, "a");
-  expect_contiguous(c, 0, c.back().frame, "c");
-  EXPECT_EQ(a.back().frame, c.back().frame);
-  std::size_t split = 0;
-  while (split < bp.size() && bp[split].frame <= last_before) ++split;
-  ASSERT_LT(split, bp.size());
-  expect_contiguous(std::vector<Presented>(bp.begin(), bp.begin() + split), 0, last_before, "b before");
-  expect_contiguous(std::vector<Presented>(bp.begin() + split, bp.end()), bp[split].frame, bp.back().frame, "b after");
-  for (const Presented& p : bp) EXPECT_EQ(p.digest, a[p.frame].digest) << "frame " << p.frame;
+  expect_b_rejoined(dir_ / "out", last_before);
 
   const std::string b_log = read_text(dir_ / "b.log");
   EXPECT_NE(b_log.find("lost the connection to the master"), std::string::npos) << b_log;
