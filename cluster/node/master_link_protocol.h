@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "cluster/cluster_config.h"
 #include "cluster/handshake.h"
 #include "cluster/messages.h"
 
@@ -25,7 +26,7 @@ struct ReconnectRules {
   std::uint32_t connect_timeout_ms = 15000;
   /// After a welcomed connection is lost, a new one must be welcomed within
   /// this; 0: no reconnection, the node exits at once.
-  std::uint32_t reconnect_ms = 300000;
+  std::uint32_t reconnect_ms = kDefaultReconnectMs;
   /// The wait before the second attempt; it doubles with every failed
   /// attempt up to max_retry_ms. The first attempt after a loss is immediate.
   std::uint32_t first_retry_ms = 100;
