@@ -257,6 +257,7 @@ RunLogs run_cluster(const Options& opt, const RunSetup& setup, const fs::path& c
   fs::create_directories(dir);
 
   // N tiny fisheye outputs, one per node.
+  port = zenith::core::free_loopback_port(port);  // other runs share the machine
   const fs::path config = zenith::bench::write_tiny_cluster(
       dir, {"bench", setup.nodes, opt.size_px, port,
             R"({"heartbeat_ms": 250, "barrier_timeout_ms": 60000, "frame_rate_hz": 1000})", kSecretVar, setup.tables,

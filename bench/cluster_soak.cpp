@@ -245,7 +245,7 @@ int run(const Options& opt) {
   fs::create_directories(dir);
   const fs::path cache = opt.cache.value_or(opt.work.parent_path() / "zenith-cluster-soak-cache");
   setenv(kSecretVar, "cluster-soak-secret-0123456789abcdef", 1);
-  const int port = static_cast<int>(20000 + (getpid() * 17) % 29000);
+  const int port = zenith::core::free_loopback_port(static_cast<int>(20000 + (getpid() * 17) % 29000));
   std::mt19937 rng(opt.seed);
   const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
 

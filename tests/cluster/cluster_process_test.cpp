@@ -112,21 +112,6 @@ bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds tim
   return done();
 }
 
-/// Whether a listener could bind 127.0.0.1:`port` now (as the master does, with SO_REUSEADDR).
-bool port_free(int port) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  if (fd < 0) return false;
-  const int yes = 1;
-  setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  const bool free = bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0 && listen(fd, 1) == 0;
-  close(fd);
-  return free;
-}
-
 /// A cluster of 3 nodes on loopback rendering a 128² dome master as four 64²
 /// quadrants: node a renders two, b and c one each.
 class ClusterProcess : public ::testing::Test {
@@ -139,8 +124,7 @@ class ClusterProcess : public ::testing::Test {
     cache_ = kWork / "table-cache";  // shared by the tests (same small tables)
     port_ = static_cast<int>(20000 + (getpid() * 7 + std::hash<std::string>{}(info->name())) % 30000);
     // Other test runs share this machine: move on while the port (or the control port after it) is taken.
-    for (int tries = 0; tries < 200 && !(port_free(port_) && port_free(port_ + 1)); ++tries)
-      port_ = 20000 + (port_ - 20000 + 2) % 30000;
+    port_ = core::free_loopback_port(port_, 2);
     setenv(kSecretVar, "cluster-test-secret-0123456789", 1);
   }
   void TearDown() override {
