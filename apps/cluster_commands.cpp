@@ -23,6 +23,7 @@
 #include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "apps/default_configs.h"
+#include "apps/restart_limit.h"
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/cluster_config.h"
 #include "cluster/handshake.h"
@@ -161,6 +162,7 @@ struct NodeArgs {
   std::string cluster, name, out, cache_dir, scene, layout = "per-node";
   std::optional<int> port;
   std::uint32_t connect_timeout_ms = 15000;
+  std::optional<double> reconnect_s;
   std::vector<std::string> atmosphere_files;
   std::uint32_t debug_render_delay_ms = 0;
   bool window = false;
@@ -174,6 +176,7 @@ int run_node(const NodeArgs& a) {
   options.cache_directory = a.cache_dir.empty() ? default_node_cache(options.config, a.name) : fs::path(a.cache_dir);
   if (a.port) options.port = static_cast<std::uint16_t>(*a.port);
   options.connect_timeout_ms = a.connect_timeout_ms;
+  if (a.reconnect_s) options.reconnect_ms = static_cast<std::uint32_t>(std::lround(*a.reconnect_s * 1000.0));
   for (const std::string& f : a.atmosphere_files) options.atmosphere_files.emplace_back(f);
   options.debug_render_delay_ms = a.debug_render_delay_ms;
   if (!a.scene.empty()) options.scene = fs::path(a.scene);
@@ -196,6 +199,25 @@ struct ClusterArgs {
   std::optional<std::uint64_t> stitch_frame;
   std::vector<std::string> switches;  ///< passed to the master
   bool windows = false;               ///< local nodes show their frames in windows
+  bool restart_nodes = false;         ///< restart a local node that died
+  std::uint32_t max_restarts = 5;     ///< … at most this often
+  double restart_window_s = 60.0;     ///< … within this many seconds
+};
+
+/// "exit status 3", "killed by signal 9 (Killed)": a child's end, for logs.
+std::string describe_exit(int status) {
+  if (status > 128 && status < 128 + 65)
+    return fmt::format("killed by signal {} ({})", status - 128, ::strsignal(status - 128));
+  return fmt::format("exit status {}", status);
+}
+
+/// A node process of the local cluster and its restarts.
+struct LocalNode {
+  std::string name;
+  std::vector<std::string> args;
+  pid_t pid = -1;
+  std::optional<int> status;  ///< set once it ended for good
+  RestartLimit limit;
 };
 
 /// Stitches frame `frame` of fisheye outputs that share one image circle (a dome
@@ -279,7 +301,7 @@ void run_cluster(const ClusterArgs& a) {
   const pid_t master = spawn_self(master_args);
   spdlog::info("cluster: master started (pid {})", master);
 
-  std::vector<std::pair<pid_t, std::string>> nodes;
+  std::vector<LocalNode> nodes;
   for (const auto& node : config.nodes) {
     if (!is_local_host(node.host)) {
       spdlog::info("cluster: node '{}' runs on {}: start it there with `zenith node --cluster {} --name {}`", node.name,
@@ -293,21 +315,42 @@ void run_cluster(const ClusterArgs& a) {
     if (show_scene) args.insert(args.end(), {"--scene", show_scene->string()});
     if (a.windows) args.push_back("--window");
     if (!a.cache_dir.empty()) args.insert(args.end(), {"--cache", (fs::path(a.cache_dir) / "nodes" / node.name).string()});
-    nodes.emplace_back(spawn_self(args), node.name);
-    spdlog::info("cluster: node '{}' started (pid {})", node.name, nodes.back().first);
+    const pid_t pid = spawn_self(args);
+    nodes.push_back(LocalNode{node.name, std::move(args), pid, std::nullopt,
+                              RestartLimit(a.max_restarts, std::chrono::milliseconds(std::llround(a.restart_window_s * 1000.0)))});
+    spdlog::info("cluster: node '{}' started (pid {})", node.name, pid);
   }
+  if (a.restart_nodes)
+    spdlog::info("cluster: a local node that dies is restarted, at most {} time{} within {} s", a.max_restarts,
+                 a.max_restarts == 1 ? "" : "s", a.restart_window_s);
 
   // Wait for the master; if every local node ends first (they could not join), stop it.
   int status = -1;
-  std::vector<std::optional<int>> node_status(nodes.size());
   for (;;) {
     if (auto s = wait_for(master, std::chrono::milliseconds(200))) {
       status = *s;
       break;
     }
-    for (std::size_t i = 0; i < nodes.size(); ++i)
-      if (!node_status[i]) node_status[i] = wait_for(nodes[i].first, std::chrono::milliseconds(0));
-    if (!nodes.empty() && std::all_of(node_status.begin(), node_status.end(), [](const auto& s) { return s.has_value(); })) {
+    for (LocalNode& n : nodes) {
+      if (n.status) continue;
+      const std::optional<int> ended = wait_for(n.pid, std::chrono::milliseconds(0));
+      if (!ended) continue;
+      if (a.restart_nodes && RestartLimit::died(*ended)) {
+        if (n.limit.allow(Clock::now())) {
+          n.pid = spawn_self(n.args);
+          spdlog::warn("cluster: node '{}' died ({}): restarted it (pid {}; restart {}, {} of at most {} within {} s)",
+                       n.name, describe_exit(*ended), n.pid, n.limit.total(), n.limit.recent(Clock::now()),
+                       n.limit.max_restarts(), a.restart_window_s);
+          continue;
+        }
+        spdlog::error("cluster: node '{}' died ({}) after {} restarts within {} s: giving up on it, it stays down "
+                      "(--max-restarts {}, --restart-window-s {})",
+                      n.name, describe_exit(*ended), n.limit.max_restarts(), a.restart_window_s, a.max_restarts,
+                      a.restart_window_s);
+      }
+      n.status = ended;
+    }
+    if (!nodes.empty() && std::all_of(nodes.begin(), nodes.end(), [](const LocalNode& n) { return n.status.has_value(); })) {
       spdlog::error("cluster: every local node has exited; stopping the master");
       ::kill(master, SIGTERM);
       stop_child(master, "the master", std::chrono::milliseconds(5000));
@@ -316,12 +359,11 @@ void run_cluster(const ClusterArgs& a) {
   }
   // The master's Goodbye ends the nodes; stop any that linger.
   int failed_nodes = 0;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const auto& [pid, name] = nodes[i];
+  for (const LocalNode& n : nodes) {
     const int exit_status =
-        node_status[i] ? *node_status[i] : stop_child(pid, fmt::format("node '{}'", name), std::chrono::milliseconds(5000));
+        n.status ? *n.status : stop_child(n.pid, fmt::format("node '{}'", n.name), std::chrono::milliseconds(5000));
     if (exit_status != 0) {
-      spdlog::warn("cluster: node '{}' exited with status {}", name, exit_status);
+      spdlog::warn("cluster: node '{}' ended with {}", n.name, describe_exit(exit_status));
       ++failed_nodes;
     }
   }
@@ -370,6 +412,10 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--cache", a->cache_dir, "This node's table cache (default $XDG_CACHE_HOME/zenith/cluster-nodes/<cluster>/<node>)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms, "Keep trying to reach the master this long (default 15000)");
+    cmd->add_option("--reconnect-s", a->reconnect_s,
+                    "After losing the master, keep the last frame and try to rejoin this long before exiting with "
+                    "status 3 (default: the config's timing.reconnect_s, 300; 0: exit at once)")
+        ->check(CLI::Range(0.0, cluster::kMaxReconnectS));
     cmd->add_option("--scene", a->scene, "Render this scene instead of the config's (a show's scene)");
     cmd->add_option("--layout", a->layout,
                     "per-node: OUT/<node>/<output>/frame-N.png (default); offline: OUT/<output>/<output>.N.png "
@@ -402,6 +448,13 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--stitch-frame", a->stitch_frame, "Frame to stitch into OUT/stitched/ (default: the last)");
     cmd->add_option("--switch-atmosphere", a->switches,
                     "FRAME:BODY:PRESET_OR_FILE: switch that atmosphere mid-show (passed to the master; repeatable)");
+    cmd->add_flag("--restart-nodes", a->restart_nodes,
+                  "Restart a local node that dies (non-zero exit or a signal); it rejoins with its cached tables");
+    cmd->add_option("--max-restarts", a->max_restarts,
+                    "With --restart-nodes: a node that died this often within --restart-window-s stays down (default 5)")
+        ->check(CLI::Range(1, 1000));
+    cmd->add_option("--restart-window-s", a->restart_window_s, "With --restart-nodes: the window of --max-restarts (default 60)")
+        ->check(CLI::Range(1.0, 86400.0));
     cmd->callback([a] { run_cluster(*a); });
   }
 }

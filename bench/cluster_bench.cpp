@@ -69,6 +69,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/tiny_cluster.h"
 #include "core/process.h"
 
 namespace {
@@ -247,7 +248,7 @@ struct RunLogs {
   double run_s = 0;
 };
 
-std::string node_name(int i) { return fmt::format("n{}", i); }
+using zenith::bench::tiny_node_name;
 
 /// Writes the configs, runs master + nodes to the end of the show, returns the logs.
 RunLogs run_cluster(const Options& opt, const RunSetup& setup, const fs::path& cache, int port) {
@@ -256,32 +257,11 @@ RunLogs run_cluster(const Options& opt, const RunSetup& setup, const fs::path& c
   fs::create_directories(dir);
 
   // N tiny fisheye outputs, one per node.
-  {
-    std::ofstream v(dir / "viewports.json");
-    v << R"({"zenith_viewports": 1, "name": "bench", "outputs": [)";
-    for (int i = 0; i < setup.nodes; ++i) {
-      const int half = opt.size_px / 2;
-      v << (i ? "," : "") << fmt::format(R"({{"name": "o{}", "size": [{}, {}], "projection": {{"type": "fisheye", )"
-                                         R"("fov_deg": 180, "centre_x_px": {}, "centre_y_px": {}, "radius_px": {}}}}})",
-                                         i, opt.size_px, opt.size_px, half, half, std::max(half, 1));
-    }
-    v << "]}\n";
-  }
-  {
-    std::ofstream c(dir / "cluster.json");
-    c << fmt::format(R"({{"zenith_cluster": 1, "name": "bench", "master": {{"host": "127.0.0.1", "port": {}}},)", port)
-      << fmt::format(R"( "scene": "{}", "viewports": "viewports.json",)",
-                     (fs::path(ZENITH_SOURCE_DIR) / "configs/scenes/earth-sunset.json").string())
-      << R"( "timing": {"heartbeat_ms": 250, "barrier_timeout_ms": 60000, "frame_rate_hz": 1000},)"
-      << fmt::format(R"( "secret": {{"env": "{}"}}, "tables": {{"sizes": "{}", "orders": {}}}, "nodes": [)", kSecretVar,
-                     setup.tables, opt.orders);
-    for (int i = 0; i < setup.nodes; ++i)
-      c << (i ? "," : "")
-        << fmt::format(R"({{"name": "{}", "host": "127.0.0.1", "outputs": ["o{}"]}})", node_name(i), i);
-    c << R"(], "output": {"directory": "out", "format": "png"}})" << "\n";
-  }
-
-  const fs::path config = dir / "cluster.json";
+  port = zenith::core::free_loopback_port(port);  // other runs share the machine
+  const fs::path config = zenith::bench::write_tiny_cluster(
+      dir, {"bench", setup.nodes, opt.size_px, port,
+            R"({"heartbeat_ms": 250, "barrier_timeout_ms": 60000, "frame_rate_hz": 1000})", kSecretVar, setup.tables,
+            opt.orders});
   std::vector<Child> children;
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::seconds(opt.timeout_s);
@@ -292,10 +272,10 @@ RunLogs run_cluster(const Options& opt, const RunSetup& setup, const fs::path& c
                            dir / "master.log"));
   for (int i = 0; i < setup.nodes; ++i)
     children.push_back(spawn(opt.zenith,
-                             {"--log-level", "debug", "node", "--cluster", config.string(), "--name", node_name(i),
-                              "--out", (dir / "out").string(), "--cache", (dir / "node-cache" / node_name(i)).string(),
+                             {"--log-level", "debug", "node", "--cluster", config.string(), "--name", tiny_node_name(i),
+                              "--out", (dir / "out").string(), "--cache", (dir / "node-cache" / tiny_node_name(i)).string(),
                               "--connect-timeout-ms", std::to_string(opt.timeout_s * 1000)},
-                             dir / (node_name(i) + ".log")));
+                             dir / (tiny_node_name(i) + ".log")));
 
   std::string failure;
   for (std::size_t i = 0; i < children.size(); ++i) {
@@ -312,7 +292,7 @@ RunLogs run_cluster(const Options& opt, const RunSetup& setup, const fs::path& c
   RunLogs logs;
   logs.run_s = std::chrono::duration<double>(Clock::now() - start).count();
   logs.master = read_log(dir / "master.log");
-  for (int i = 0; i < setup.nodes; ++i) logs.nodes[node_name(i)] = read_log(dir / (node_name(i) + ".log"));
+  for (int i = 0; i < setup.nodes; ++i) logs.nodes[tiny_node_name(i)] = read_log(dir / (tiny_node_name(i) + ".log"));
   if (!opt.keep) fs::remove_all(dir);
   return logs;
 }

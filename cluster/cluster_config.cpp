@@ -1,6 +1,7 @@
 #include "cluster/cluster_config.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -46,6 +47,8 @@ void read_timing(JsonReader& t, ClusterConfig& c) {
   c.heartbeat_ms = static_cast<std::uint32_t>(t.integer("heartbeat_ms", 10, 60000));
   c.barrier_timeout_ms = static_cast<std::uint32_t>(t.integer("barrier_timeout_ms", 10, 600000));
   c.frame_rate_hz = t.number("frame_rate_hz", 0.01, 1000.0, "Hz");
+  c.reconnect_ms = static_cast<std::uint32_t>(
+      std::lround(1000.0 * t.number_or("reconnect_s", kDefaultReconnectMs / 1000.0, 0.0, kMaxReconnectS, "s")));
   t.finish();
 }
 

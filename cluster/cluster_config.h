@@ -10,7 +10,8 @@
 //     "master": {"host": "127.0.0.1", "port": 47100},
 //     "scene": "../scenes/earth-sunset.json",              relative to this file
 //     "viewports": "../viewports/dome-quadrants.json",     relative to this file
-//     "timing": {"heartbeat_ms": 250, "barrier_timeout_ms": 5000, "frame_rate_hz": 10},
+//     "timing": {"heartbeat_ms": 250, "barrier_timeout_ms": 5000, "frame_rate_hz": 10,
+//                "reconnect_s": 300},                       optional: a node's time to reconnect after a loss
 //     "secret": {"env": "ZENITH_CLUSTER_SECRET"},          or {"file": "secret.key"}; never the secret itself
 //     "tables": {"sizes": "paper", "orders": 8},           optional (default orders: kDefaultScatteringOrders)
 //     "nodes": [{"name": "q1", "host": "127.0.0.1", "outputs": ["top-left"]}, ...],
@@ -34,6 +35,12 @@ namespace zenith::cluster {
 
 /// The schema version this reader understands ("zenith_cluster": 1).
 inline constexpr int kClusterConfigVersion = 1;
+/// timing.reconnect_s when the configuration does not say (5 minutes: a
+/// master restarted from its table cache is back in seconds, a rebooted
+/// machine in a minute or two).
+inline constexpr std::uint32_t kDefaultReconnectMs = 300000;
+/// The largest timing.reconnect_s (and `zenith node --reconnect-s`): a day.
+inline constexpr double kMaxReconnectS = 86400.0;
 
 /// One render node: a process on `host` rendering `outputs` (names of outputs
 /// of the viewport config).
@@ -53,6 +60,9 @@ struct ClusterConfig {
   std::uint32_t heartbeat_ms = 250;         ///< each side sends a Heartbeat at least this often; 3× silent = gone
   std::uint32_t barrier_timeout_ms = 5000;  ///< a node not done with a frame within this is dropped from it
   double frame_rate_hz = 30.0;              ///< the master starts frames no faster than this
+  /// A node that lost its connection to the master tries to be welcomed again
+  /// for this long, then exits (timing.reconnect_s, [0, 86400] s; 0: it exits at once).
+  std::uint32_t reconnect_ms = kDefaultReconnectMs;
   /// The shared secret: a file (resolved against the config's folder) or else
   /// the environment variable `secret_env`.
   std::optional<std::filesystem::path> secret_file;

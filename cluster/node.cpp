@@ -48,9 +48,13 @@ struct Node::Impl {
   asio::signal_set signals{io, SIGINT, SIGTERM};
   /// The connection to the master: connect, handshake, heartbeats, Goodbye.
   MasterLink link;
-  TableReceiver receiver;
-  std::set<Digest> inventory;     ///< sets found valid in the cache at Welcome (declared to the master)
+  TableReceiver receiver;         ///< transfers of this connection (a new one starts them afresh)
+  std::set<Digest> inventory;     ///< sets found valid in the cache at the last Welcome (declared to the master)
   std::set<Digest> held_tables;   ///< sets this node holds (cached or received) and may render with
+  /// Counts Welcomes: the render thread's answers carry the session of their
+  /// job, and only those of the current connection go to the master.
+  std::uint64_t session = 0;
+  bool connected = false;  ///< welcomed, and the connection not lost since
   int exit_code = kNodeExitDone;
   bool finished = false;
 
@@ -60,7 +64,8 @@ struct Node::Impl {
   Impl(NodeOptions o, SharedSecret secret)
       : options(std::move(o)),
         link(io, options, std::move(secret),
-             MasterLink::Events{[this](const Welcome&) { send_inventory(); },
+             MasterLink::Events{[this](const Welcome&) { on_welcomed(); },
+                                [this](const std::string&) { on_lost(); },
                                 [this](const Message& m) { on_master_message(m); },
                                 [this](int code) { finish(code); }}) {}
 
@@ -72,6 +77,24 @@ struct Node::Impl {
     finish(code);
   }
 
+  /// Welcomed (first, or again after a loss): a new session; the inventory
+  /// tells the master which tables not to send again.
+  void on_welcomed() {
+    ++session;
+    connected = true;
+    receiver = TableReceiver{};
+    send_inventory();
+  }
+
+  /// The connection is lost (MasterLink reconnects): forget the frame in
+  /// flight and the transfers of that connection; the last presented frame
+  /// stays on the outputs and in the window.
+  void on_lost() {
+    connected = false;
+    receiver = TableReceiver{};
+    worker->abandon_frames();
+  }
+
   /// A message of the master after Welcome (MasterLink: not Heartbeat, not Goodbye).
   void on_master_message(const Message& message) {
     if (const auto* fs = std::get_if<FrameState>(&message)) {
@@ -80,7 +103,7 @@ struct Node::Impl {
           throw std::runtime_error(cat("FrameState ", fs->frame, " uses table set ", to_hex(ref.table_hash).substr(0, 12),
                                        "… (effective from frame ", ref.effective_from_frame, ") for '", ref.body_name,
                                        "', which this node does not hold or may not use yet"));
-      worker->render(*fs);
+      worker->render(*fs, session);
     } else if (const auto* p = std::get_if<Present>(&message)) {
       worker->present(p->frame);
     } else if (const auto* a = std::get_if<TableAnnounce>(&message)) {
@@ -91,7 +114,7 @@ struct Node::Impl {
       if (inventory.count(a->table_hash)) {
         // Declared in the inventory: the master sends no chunks; use the cached copy.
         held_tables.insert(a->table_hash);
-        worker->prepare(a->table_hash);
+        worker->prepare(a->table_hash, session);
       } else {
         receiver.on_announce(*a);
       }
@@ -113,13 +136,14 @@ struct Node::Impl {
     spdlog::info("node '{}': tables of '{}' version {} received ({} bytes, SHA-256 verified) and cached as {}",
                  options.node_name, known.body, short_hex(hash), bytes.size(), path.string());
     // The render thread loads them and renders once (shaders, uploads); then TableReady.
-    worker->prepare(hash);
+    worker->prepare(hash, session);
   }
 
   /// Right after Welcome: a TableReady for every set this node knows that its
   /// cache holds and that loads with valid checksums, then a Heartbeat that
   /// ends the inventory. The master sends such sets as a bare TableAnnounce.
   void send_inventory() {
+    inventory.clear();
     const atmosphere::lut::TableCache cache(options.cache_directory);
     for (const auto& [hash, known] : atmospheres.snapshot()) {
       const auto path = cache.path_for(atmosphere::lut::table_set_key(known.loaded.model, table_options));
@@ -139,8 +163,8 @@ struct Node::Impl {
                  inventory.size() == 1 ? "" : "s");
   }
 
-  void send_table_ready(const Digest& hash) {
-    if (!link.send(TableReady{hash})) return;
+  void send_table_ready(const Digest& hash, std::uint64_t of_session) {
+    if (!connected || of_session != session || !link.send(TableReady{hash})) return;
     spdlog::info("node '{}': table version {} ready", options.node_name, short_hex(hash));
   }
 
@@ -157,8 +181,10 @@ struct Node::Impl {
   }
 
   /// Render thread → networking thread.
-  void report_render_done(std::uint64_t frame, double render_ms) {
-    asio::post(io, [this, frame, render_ms] { link.send(RenderDone{frame, render_ms}); });
+  void report_render_done(std::uint64_t frame, double render_ms, std::uint64_t of_session) {
+    asio::post(io, [this, frame, render_ms, of_session] {
+      if (connected && of_session == session) link.send(RenderDone{frame, render_ms});
+    });
   }
   void report_failure(const std::string& what) {
     asio::post(io, [this, what] { say_goodbye_and_finish(cat("node failed: ", what), kNodeExitFailed); });
@@ -181,8 +207,12 @@ struct Node::Impl {
     std::filesystem::create_directories(node_directory);
     worker.emplace(RenderWorker::Setup{options, base_scene, viewports, outputs, atmospheres, table_options, node_directory},
                    RenderWorker::Events{
-                       [this](std::uint64_t frame, double render_ms) { report_render_done(frame, render_ms); },
-                       [this](const Digest& hash) { asio::post(io, [this, hash] { send_table_ready(hash); }); },
+                       [this](std::uint64_t frame, double render_ms, std::uint64_t of_session) {
+                         report_render_done(frame, render_ms, of_session);
+                       },
+                       [this](const Digest& hash, std::uint64_t of_session) {
+                         asio::post(io, [this, hash, of_session] { send_table_ready(hash, of_session); });
+                       },
                        [this](const std::string& what) { report_failure(what); },
                        [this] {
                          asio::post(io, [this] { say_goodbye_and_finish("the node's window was closed", kNodeExitDone); });

@@ -7,6 +7,11 @@
 //   <out>/<node>/<output>/frame-000042.png     (written as ….png.partial, renamed on Present)
 //   <out>/<node>/presented.log                 one line per presented frame: "frame N state DIGEST tables B=H,... show_time_s T"
 //
+// When the connection to the master is lost without a Goodbye, the node keeps
+// its last presented frame and reconnects (MasterLink), then rejoins at a
+// frame boundary with its cached tables; it exits when the reconnect time runs
+// out (kNodeExitMasterLost).
+//
 // Two threads: the networking thread runs the Boost.Asio io_context (all
 // socket work, heartbeats, table reassembly); the caller's thread owns the GL
 // context and the renderer. They talk through a job queue (network → render)
@@ -28,7 +33,9 @@ enum NodeExit : int {
   kNodeExitDone = 0,         ///< the master said Goodbye (show over), or SIGINT/SIGTERM
   kNodeExitFailed = 1,       ///< rendering or writing failed
   kNodeExitRefused = 2,      ///< the master refused us (Reject), or failed to prove the secret
-  kNodeExitMasterLost = 3,   ///< the master is unreachable or vanished without a Goodbye
+  /// The master could not be reached within the connect timeout, or a lost
+  /// connection could not be re-established within the reconnect time.
+  kNodeExitMasterLost = 3,
 };
 
 /// Where a node writes its frames.
@@ -44,6 +51,9 @@ struct NodeOptions {
   std::filesystem::path cache_directory;       ///< the node's own table cache
   std::optional<std::uint16_t> port;           ///< overrides config.master.port
   std::uint32_t connect_timeout_ms = 15000;    ///< keep trying to reach the master this long
+  /// After losing a welcomed connection, keep trying to be welcomed again
+  /// this long (`--reconnect-s`); unset: the configuration's timing.reconnect_s.
+  std::optional<std::uint32_t> reconnect_ms;
   /// Atmosphere files (besides the scene's atmospheres and the built-in
   /// presets) whose tables the master may switch to during the show: a node
   /// can only use a table version whose parameters it knows (docs/cluster.md).
@@ -68,7 +78,8 @@ class Node {
   Node(const Node&) = delete;
   Node& operator=(const Node&) = delete;
 
-  /// Runs until the master says Goodbye, a signal, or a failure; returns a NodeExit code.
+  /// Runs until the master says Goodbye, a signal, a failure, or the reconnect
+  /// time runs out after a lost connection; returns a NodeExit code.
   int run();
 
  private:

@@ -1,8 +1,12 @@
 #include "core/process.h"
 
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstring>
 #include <stdexcept>
@@ -43,6 +47,33 @@ std::optional<int> wait_for_exit(pid_t pid, std::chrono::milliseconds timeout) {
     if (std::chrono::steady_clock::now() >= deadline) return std::nullopt;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+}
+
+bool loopback_port_free(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) return false;
+  const int yes = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const bool free = ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0 && ::listen(fd, 1) == 0;
+  ::close(fd);
+  return free;
+}
+
+int free_loopback_port(int first, int span) {
+  constexpr int kLow = 20000, kHigh = 50000;
+  int port = first;
+  for (int tries = 0; tries < 500; ++tries) {
+    if (port < kLow || port + span > kHigh) port = kLow;
+    bool free = true;
+    for (int k = 0; k < span && free; ++k) free = loopback_port_free(port + k);
+    if (free) return port;
+    port += span;
+  }
+  return first;
 }
 
 }  // namespace zenith::core

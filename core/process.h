@@ -1,7 +1,8 @@
 #pragma once
 // Child processes: start a program with its output in a log file, wait for it
-// with a deadline. Used by the local cluster launcher (apps/child_process.h),
-// the cluster benchmark and the multi-process tests.
+// with a deadline, find a free loopback port for it. Used by the local cluster
+// launcher (apps/child_process.h), the cluster benchmark and soak and the
+// multi-process tests.
 #include <sys/types.h>
 
 #include <chrono>
@@ -25,5 +26,13 @@ pid_t spawn_process(const std::filesystem::path& program, const std::vector<std:
 /// waitpid with a deadline: the exit status (128 + signal when killed), −1 when
 /// `pid` is no child of this process, nullopt when it is still running.
 std::optional<int> wait_for_exit(pid_t pid, std::chrono::milliseconds timeout);
+
+/// Whether a child server could listen on 127.0.0.1:`port` now (a bind with
+/// SO_REUSEADDR, as the cluster's master makes).
+bool loopback_port_free(int port);
+/// For test and benchmark clusters that share the machine with other runs:
+/// the first port from `first` on, wrapping within [20000, 50000), that is
+/// free together with the `span` − 1 ports after it; `first` when none is.
+int free_loopback_port(int first, int span = 1);
 
 }  // namespace zenith::core

@@ -1,5 +1,6 @@
 #include "cluster/node/master_link.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <boost/asio/connect.hpp>
@@ -16,12 +17,23 @@ using config::cat;  // core/json_reader.h
 using core::ms_since;
 using std::chrono::milliseconds;
 
+namespace {
+
+ReconnectRules reconnect_rules(const NodeOptions& options) {
+  ReconnectRules rules;
+  rules.connect_timeout_ms = options.connect_timeout_ms;
+  rules.reconnect_ms = options.reconnect_ms.value_or(options.config.reconnect_ms);
+  return rules;
+}
+
+}  // namespace
+
 MasterLink::MasterLink(asio::io_context& io, const NodeOptions& options, SharedSecret secret, Events events)
     : io_(io),
       options_(options),
       events_(std::move(events)),
       protocol_(std::move(secret), options.config.name, options.node_name, options.config.heartbeat_ms,
-                options.connect_timeout_ms),
+                reconnect_rules(options)),
       port_(options.port.value_or(options.config.master_port)),
       master_address_(cat(options.config.master_host, ":", port_)),
       heartbeat_timer_(io),
@@ -29,58 +41,105 @@ MasterLink::MasterLink(asio::io_context& io, const NodeOptions& options, SharedS
 
 void MasterLink::start() {
   connect_started_ = std::chrono::steady_clock::now();
+  protocol_.begin(connect_started_);
   connect();
 }
 
 void MasterLink::connect() {
+  const std::uint64_t generation = ++generation_;
   auto socket = std::make_shared<tcp::socket>(io_);
   tcp::resolver resolver(io_);
   boost::system::error_code ec;
   const auto endpoints = resolver.resolve(options_.config.master_host, std::to_string(port_), ec);
-  if (ec) {
-    spdlog::error("node '{}': cannot resolve the master's host {}: {}", options_.node_name, master_address_,
-                  ec.message());
-    events_.ended(kNodeExitMasterLost);
+  if (ec) {  // a name server may be unreachable for a while too: an attempt that failed
+    connection_failed(cat("cannot resolve the master's host: ", ec.message()));
     return;
   }
-  asio::async_connect(*socket, endpoints, [this, socket](const boost::system::error_code& e, const tcp::endpoint&) {
-    if (stopping_) return;
-    if (e) {
-      if (ms_since(connect_started_) > options_.connect_timeout_ms) {
-        spdlog::error("node '{}': cannot reach the master at {} within {} ms ({}): exiting", options_.node_name,
-                      master_address_, options_.connect_timeout_ms, e.message());
-        events_.ended(kNodeExitMasterLost);
-        return;
-      }
-      retry_timer_.expires_after(milliseconds(200));
-      retry_timer_.async_wait([this](const boost::system::error_code& te) {
-        if (!te && !stopping_) connect();
-      });
-      return;
-    }
-    on_connected(std::move(*socket));
-  });
+  asio::async_connect(*socket, endpoints,
+                      [this, socket, generation](const boost::system::error_code& e, const tcp::endpoint&) {
+                        if (stopping_ || generation != generation_) return;
+                        if (e) {
+                          connection_failed(e.message());
+                          return;
+                        }
+                        on_connected(std::move(*socket));
+                      });
 }
 
 void MasterLink::on_connected(tcp::socket socket) {
+  const std::uint64_t generation = generation_;
   connection_ = std::make_shared<Connection>(std::move(socket), cat("master ", master_address_));
-  connection_->start([this](Message&& m) { on_message(std::move(m)); },
-                     [this](const std::string& reason) { on_closed(reason); });
+  connection_->start(
+      [this, generation](Message&& m) {
+        if (generation == generation_) on_message(std::move(m));
+      },
+      [this, generation](const std::string& reason) {
+        if (generation == generation_) on_closed(reason);
+      });
   connection_->send(protocol_.start());
-  spdlog::info("node '{}': connected to the master at {}", options_.node_name, master_address_);
-  heartbeat_tick();
+  if (protocol_.reconnecting())
+    spdlog::info("node '{}': connected to the master at {} again after {:.1f} s; authenticating", options_.node_name,
+                 master_address_, ms_since(lost_at_) / 1000.0);
+  else
+    spdlog::info("node '{}': connected to the master at {}", options_.node_name, master_address_);
+  heartbeat_tick(generation);
 }
 
 void MasterLink::on_closed(const std::string& reason) {
   if (stopping_) return;
-  spdlog::error("node '{}': lost the connection to the master at {} without a Goodbye ({}): the master is gone; "
-                "exiting",
-                options_.node_name, master_address_, reason);
-  events_.ended(kNodeExitMasterLost);
+  connection_failed(protocol_.welcomed() ? cat("the connection closed without a Goodbye: ", reason)
+                                         : cat("closed before Welcome: ", reason));
+}
+
+void MasterLink::connection_failed(const std::string& reason) {
+  const bool was_welcomed = protocol_.welcomed();
+  ++generation_;  // the handlers and timers of this connection do nothing any more
+  heartbeat_timer_.cancel();
+  if (connection_) {
+    connection_->close(reason);
+    connection_.reset();
+  }
+  const auto now = std::chrono::steady_clock::now();
+  const MasterLinkProtocol::Retry retry = protocol_.connection_failed(now);
+  last_failure_ = reason;
+  if (was_welcomed) {
+    lost_at_ = now;
+    if (retry.give_up) {  // reconnect time 0
+      spdlog::error("node '{}': lost the connection to the master at {} ({}); reconnecting is off "
+                    "(reconnect time 0): the master is gone; exiting",
+                    options_.node_name, master_address_, reason);
+      events_.ended(kNodeExitMasterLost);
+      return;
+    }
+    spdlog::warn("node '{}': lost the connection to the master at {} ({}): keeping the last frame, reconnecting for "
+                 "up to {:.0f} s",
+                 options_.node_name, master_address_, reason, protocol_.rules().reconnect_ms / 1000.0);
+    events_.lost(reason);
+    if (stopping_) return;  // the node stopped on the news
+  } else if (retry.give_up) {
+    if (protocol_.reconnecting())
+      spdlog::error("node '{}': could not reconnect to the master at {} within {:.0f} s ({} attempts; last: {}): "
+                    "the master is gone; exiting",
+                    options_.node_name, master_address_, protocol_.rules().reconnect_ms / 1000.0,
+                    protocol_.failed_attempts() + 1, reason);
+    else
+      spdlog::error("node '{}': cannot reach the master at {} within {} ms ({}): exiting", options_.node_name,
+                    master_address_, protocol_.rules().connect_timeout_ms, reason);
+    events_.ended(kNodeExitMasterLost);
+    return;
+  } else {
+    spdlog::debug("node '{}': attempt to reach the master at {} failed ({}); next in {} ms", options_.node_name,
+                  master_address_, reason, retry.delay.count());
+  }
+  const std::uint64_t generation = generation_;
+  retry_timer_.expires_after(retry.delay);
+  retry_timer_.async_wait([this, generation](const boost::system::error_code& te) {
+    if (!te && !stopping_ && generation == generation_) connect();
+  });
 }
 
 bool MasterLink::send(const Message& message) {
-  if (stopping_ || !connection_) return false;
+  if (stopping_ || !connection_ || !protocol_.welcomed()) return false;
   connection_->send(message);
   return true;
 }
@@ -111,6 +170,7 @@ void MasterLink::on_message(Message&& message) {
   using Meaning = MasterLinkProtocol::Meaning;
   try {
     const bool welcomed = protocol_.welcomed();
+    const bool rejoining = protocol_.reconnecting();
     MasterLinkProtocol::Step step = protocol_.on_message(message);
     switch (step.meaning) {
       case Meaning::reply:
@@ -118,8 +178,14 @@ void MasterLink::on_message(Message&& message) {
         break;
       case Meaning::welcomed: {
         const Welcome& w = std::get<Welcome>(message);
-        spdlog::info("node '{}': welcomed by the master as id {} at frame {} (heartbeat {} ms, barrier timeout {} ms)",
-                     options_.node_name, w.node_id, w.current_frame, w.heartbeat_interval_ms, w.barrier_timeout_ms);
+        if (rejoining)
+          spdlog::info("node '{}': welcomed again by the master as id {} at frame {} {:.1f} s after the loss "
+                       "(rejoin {}): it rejoins at a frame boundary",
+                       options_.node_name, w.node_id, w.current_frame, ms_since(lost_at_) / 1000.0,
+                       protocol_.rejoins());
+        else
+          spdlog::info("node '{}': welcomed by the master as id {} at frame {} (heartbeat {} ms, barrier timeout {} ms)",
+                       options_.node_name, w.node_id, w.current_frame, w.heartbeat_interval_ms, w.barrier_timeout_ms);
         events_.welcomed(w);
         break;
       }
@@ -159,16 +225,17 @@ void MasterLink::on_message(Message&& message) {
   }
 }
 
-void MasterLink::heartbeat_tick() {
-  if (stopping_ || !connection_) return;
+void MasterLink::heartbeat_tick(std::uint64_t generation) {
+  if (stopping_ || !connection_ || generation != generation_) return;
   const auto now = std::chrono::steady_clock::now();
   switch (protocol_.tick(connection_->last_received(), now)) {
-    case MasterLinkProtocol::Tick::master_gone:
-      // Before Welcome the master may still be preparing tables: the connect timeout applies.
-      spdlog::error("node '{}': nothing from the master at {} for {:.0f} ms{}: the master is gone; exiting",
-                    options_.node_name, master_address_, protocol_.silence_limit_ms(),
-                    protocol_.welcomed() ? "" : " (no Welcome)");
-      end("heartbeat timeout", kNodeExitMasterLost);
+    case MasterLinkProtocol::Tick::silent:
+      if (protocol_.welcomed())
+        connection_failed(fmt::format("nothing from the master for {:.1f} s, past its silence limit of {:.0f} s",
+                                      ms_since(connection_->last_received()) / 1000.0,
+                                      protocol_.silence_limit_ms() / 1000.0));
+      else
+        connection_failed("no Welcome in time");
       return;
     case MasterLinkProtocol::Tick::send_heartbeat:
       connection_->send(heartbeat_at(now));
@@ -177,8 +244,8 @@ void MasterLink::heartbeat_tick() {
       break;
   }
   heartbeat_timer_.expires_after(milliseconds(protocol_.heartbeat_ms()));
-  heartbeat_timer_.async_wait([this](const boost::system::error_code& ec) {
-    if (!ec) heartbeat_tick();
+  heartbeat_timer_.async_wait([this, generation](const boost::system::error_code& ec) {
+    if (!ec) heartbeat_tick(generation);
   });
 }
 

@@ -1,11 +1,14 @@
 #pragma once
 // A render node's link to its master, on the node's networking thread
-// (docs/cluster.md, "Architecture"): resolves the master's address and
-// connects, retrying every 200 ms up to the connect timeout; runs the
-// handshake and the heartbeats (MasterLinkProtocol: the rules, without
-// sockets); hands the node every message of the master after Welcome, and
-// tells it when the link ends and with which exit code. What the messages
-// mean for tables, frames and files is the node's (cluster/node.cpp).
+// (docs/cluster.md, "Architecture"; "Join, rejoin and failures"): resolves
+// the master's address and connects, retrying with backoff up to the connect
+// timeout; runs the handshake and the heartbeats; when a welcomed connection
+// is lost (closed, or the master silent), tells the node and reconnects —
+// a full handshake again — until the reconnect time runs out
+// (MasterLinkProtocol: the rules, without sockets). It hands the node every
+// message of the master after each Welcome, and tells it when the link ends
+// and with which exit code. What the messages mean for tables, frames and
+// files is the node's (cluster/node.cpp).
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -24,17 +27,23 @@ namespace zenith::cluster {
 
 /// Every member function, and every event, runs on the thread running the
 /// io_context. Invariants: events come only until the link stops (stop(),
-/// or the end it reports through Events::ended); Events::message only after
-/// Events::welcomed.
+/// or the end it reports through Events::ended); Events::message only
+/// between an Events::welcomed and the next Events::lost; at most one
+/// connection at a time, and the handlers and timers of an earlier one do
+/// nothing.
 class MasterLink {
  public:
   struct Events {
     /// The master proved the secret (the node declares its tables: send()).
+    /// Again after every reconnection.
     std::function<void(const Welcome& welcome)> welcomed;
+    /// A welcomed connection was lost without Goodbye; the link reconnects
+    /// (the node forgets the frame in flight and keeps showing the last one).
+    std::function<void(const std::string& reason)> lost;
     /// A message of the master after Welcome, but Heartbeat and Goodbye. A
     /// throw closes the link with a Goodbye naming the error (kNodeExitFailed).
     std::function<void(const Message& message)> message;
-    /// The link ended (the master's Goodbye, refused, lost, silent, an error):
+    /// The link ended (the master's Goodbye, refused, the reconnect time ran out, an error):
     /// the node finishes with `exit_code` (NodeExit) and calls stop().
     std::function<void(int exit_code)> ended;
   };
@@ -45,7 +54,8 @@ class MasterLink {
 
   /// Starts connecting; the connect timeout counts from here.
   void start();
-  /// Queues `message` for the master: false (and nothing sent) when not connected or stopping.
+  /// Queues `message` for the master: false (and nothing sent) when not
+  /// connected and welcomed, or stopping.
   bool send(const Message& message);
   /// Leaving: sends Goodbye{reason} and closes once it is flushed (when connected).
   void say_goodbye(const std::string& reason);
@@ -61,8 +71,11 @@ class MasterLink {
   void on_connected(boost::asio::ip::tcp::socket socket);
   void on_closed(const std::string& reason);
   void on_message(Message&& message);
-  void heartbeat_tick();
-  /// The link ends here: stopping, closed now (Reject, Goodbye, silence), then Events::ended.
+  void heartbeat_tick(std::uint64_t generation);
+  /// The connection (or an attempt) failed without Reject or Goodbye: closes
+  /// it, tells the node of a loss, and retries or gives up (MasterLinkProtocol).
+  void connection_failed(const std::string& reason);
+  /// The link ends here: stopping, closed now (Reject, Goodbye), then Events::ended.
   void end(const std::string& close_reason, int exit_code);
 
   boost::asio::io_context& io_;
@@ -73,7 +86,10 @@ class MasterLink {
   std::string master_address_;
   boost::asio::steady_timer heartbeat_timer_, retry_timer_;
   std::shared_ptr<Connection> connection_;
-  std::chrono::steady_clock::time_point connect_started_;
+  /// Counts connections and attempts: handlers of an earlier one see another number and do nothing.
+  std::uint64_t generation_ = 0;
+  std::chrono::steady_clock::time_point connect_started_, lost_at_;
+  std::string last_failure_;  ///< why the last attempt failed, for the give-up message
   bool stopping_ = false;
 };
 

@@ -39,10 +39,23 @@ void RenderWorker::push(Job job) {
   wake_.notify_one();
 }
 
-void RenderWorker::prepare(const Digest& hash) { push(Job{Job::Kind::prepare, {}, 0, hash}); }
-void RenderWorker::render(const FrameState& state) { push(Job{Job::Kind::render, state, state.frame, {}}); }
-void RenderWorker::present(std::uint64_t frame) { push(Job{Job::Kind::present, {}, frame, {}}); }
-void RenderWorker::stop() { push(Job{Job::Kind::stop, {}, 0, {}}); }
+void RenderWorker::prepare(const Digest& hash, std::uint64_t session) {
+  push(Job{Job::Kind::prepare, {}, 0, hash, session});
+}
+void RenderWorker::render(const FrameState& state, std::uint64_t session) {
+  push(Job{Job::Kind::render, state, state.frame, {}, session});
+}
+void RenderWorker::present(std::uint64_t frame) { push(Job{Job::Kind::present, {}, frame, {}, 0}); }
+void RenderWorker::stop() { push(Job{Job::Kind::stop, {}, 0, {}, 0}); }
+
+void RenderWorker::abandon_frames() {
+  {
+    std::lock_guard lock(mutex_);
+    std::erase_if(jobs_, [](const Job& j) { return j.kind == Job::Kind::render || j.kind == Job::Kind::present; });
+    jobs_.push_back(Job{Job::Kind::discard, {}, 0, {}, 0});
+  }
+  wake_.notify_one();
+}
 
 RenderWorker::Job RenderWorker::next_job() {
   for (;;) {
@@ -77,9 +90,10 @@ void RenderWorker::run() {
     const Job job = next_job();
     try {
       switch (job.kind) {
-        case Job::Kind::prepare: prepare_tables(job.table_hash); break;
-        case Job::Kind::render: render_frame(job.state); break;
+        case Job::Kind::prepare: prepare_tables(job.table_hash, job.session); break;
+        case Job::Kind::render: render_frame(job.state, job.session); break;
         case Job::Kind::present: present_frame(job.frame); break;
+        case Job::Kind::discard: writer_.discard(); break;
         case Job::Kind::stop: writer_.discard(); return;
       }
     } catch (const std::exception& e) {
@@ -153,7 +167,7 @@ void RenderWorker::use_table_version(scene::Scene& scene, const std::string& bod
 
 // ---- jobs -------------------------------------------------------------------
 
-void RenderWorker::render_frame(const FrameState& state) {
+void RenderWorker::render_frame(const FrameState& state, std::uint64_t session) {
   writer_.discard();
   if (setup_.options.debug_render_delay_ms > 0)
     std::this_thread::sleep_for(milliseconds(setup_.options.debug_render_delay_ms));  // test hook: a slow node
@@ -183,7 +197,7 @@ void RenderWorker::render_frame(const FrameState& state) {
   writer_.finish_frame({state.frame, state_digest(state), tables, state.show_time_s});
   const double render_ms = ms_since(t0);
   spdlog::debug("node '{}': frame {} rendered in {:.1f} ms", setup_.options.node_name, state.frame, render_ms);
-  events_.rendered(state.frame, render_ms);
+  events_.rendered(state.frame, render_ms, session);
 }
 
 void RenderWorker::present_frame(std::uint64_t frame) {
@@ -198,7 +212,7 @@ void RenderWorker::present_frame(std::uint64_t frame) {
 
 /// Renders with the set once: every output the first time (shaders), then the
 /// first output only (table upload).
-void RenderWorker::prepare_tables(const Digest& hash) {
+void RenderWorker::prepare_tables(const Digest& hash, std::uint64_t session) {
   ensure_renderer(render::render_flags_of(render::RenderOptions{}));
   const auto t0 = Clock::now();
   scene::Scene scene = setup_.base_scene;
@@ -211,7 +225,7 @@ void RenderWorker::prepare_tables(const Digest& hash) {
   warmed_up_ = true;
   spdlog::info("node '{}': tables of '{}' version {} loaded and rendered once ({:.0f} ms)", setup_.options.node_name,
                known.body, short_hex(hash), ms_since(t0));
-  events_.tables_ready(hash);
+  events_.tables_ready(hash, session);
 }
 
 void RenderWorker::show_in_window() {

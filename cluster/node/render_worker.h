@@ -32,13 +32,17 @@ namespace zenith::cluster {
 /// Invariants: only run() touches GL, the renderer and the files; the queue
 /// is the only state shared with other threads. A render job is skipped when
 /// a newer one is queued behind it (the master moved on). A job that throws
-/// reports Events::failed and the worker goes on with the next job.
+/// reports Events::failed and the worker goes on with the next job. Every
+/// answer carries the `session` its job was queued with (the node's count of
+/// Welcomes), so that the node can drop answers meant for a connection that
+/// is gone. abandon_frames() leaves the last presented frame (files, window)
+/// as it is.
 class RenderWorker {
  public:
   /// The worker's answers, called on the render thread.
   struct Events {
-    std::function<void(std::uint64_t frame, double render_ms)> rendered;  ///< RenderDone
-    std::function<void(const Digest& table_hash)> tables_ready;           ///< TableReady
+    std::function<void(std::uint64_t frame, double render_ms, std::uint64_t session)> rendered;  ///< RenderDone
+    std::function<void(const Digest& table_hash, std::uint64_t session)> tables_ready;           ///< TableReady
     std::function<void(const std::string& what)> failed;
     std::function<void()> window_closed;  ///< the operator closed the node's window
   };
@@ -60,9 +64,14 @@ class RenderWorker {
 
   // ---- any thread: queue a job ----
   /// Load table set `hash` (checksums checked) and render with it once; then Events::tables_ready.
-  void prepare(const Digest& hash);
-  void render(const FrameState& state);
+  void prepare(const Digest& hash, std::uint64_t session);
+  void render(const FrameState& state, std::uint64_t session);
   void present(std::uint64_t frame);
+  /// The connection to the master is lost: drops the queued render and
+  /// present jobs and, after the frame being rendered (if any), its partial
+  /// files. The presented frames stay (files and window): the projector
+  /// keeps showing the last one.
+  void abandon_frames();
   /// run() returns after the jobs queued before this one.
   void stop();
 
@@ -74,10 +83,11 @@ class RenderWorker {
 
  private:
   struct Job {
-    enum class Kind { prepare, render, present, stop } kind = Kind::stop;
+    enum class Kind { prepare, render, present, discard, stop } kind = Kind::stop;
     FrameState state;         ///< render
     std::uint64_t frame = 0;  ///< render, present
     Digest table_hash{};      ///< prepare
+    std::uint64_t session = 0;  ///< render, prepare: passed back with the answer
   };
   void push(Job job);
   Job next_job();
@@ -86,9 +96,9 @@ class RenderWorker {
   void ensure_renderer(std::uint32_t flags);
   /// The scene with body `body`'s atmosphere replaced by table version `hash`.
   void use_table_version(scene::Scene& scene, const std::string& body, const Digest& hash) const;
-  void render_frame(const FrameState& state);
+  void render_frame(const FrameState& state, std::uint64_t session);
   void present_frame(std::uint64_t frame);
-  void prepare_tables(const Digest& hash);
+  void prepare_tables(const Digest& hash, std::uint64_t session);
   /// Shows the presented frame in the window: the node's outputs side by side.
   void show_in_window();
 

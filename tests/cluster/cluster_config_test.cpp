@@ -81,6 +81,20 @@ TEST(ClusterConfig, ErrorsNameFilePointerAndRange) {
   EXPECT_NE(error_of(j).find("duplicate node name"), std::string::npos) << error_of(j);
 }
 
+TEST(ClusterConfig, ReconnectTimeIsOptionalInSecondsAndChecked) {
+  EXPECT_EQ(parse(valid()).reconnect_ms, kDefaultReconnectMs) << "5 minutes unless said";
+  auto j = valid();
+  j["timing"]["reconnect_s"] = 2.5;
+  EXPECT_EQ(parse(j).reconnect_ms, 2500u);
+  j["timing"]["reconnect_s"] = 0;
+  EXPECT_EQ(parse(j).reconnect_ms, 0u) << "0: no reconnection";
+  j["timing"]["reconnect_s"] = 90000;
+  EXPECT_NE(error_of(j).find("t.json: /timing/reconnect_s = 90000"), std::string::npos) << error_of(j);
+  EXPECT_NE(error_of(j).find("86400"), std::string::npos) << error_of(j);
+  j["timing"]["reconnect_s"] = -1;
+  EXPECT_NE(error_of(j).find("/timing/reconnect_s"), std::string::npos) << error_of(j);
+}
+
 TEST(ClusterConfig, UnknownKeysAndInlineSecretsAreRefused) {
   auto j = valid();
   j["timing"]["heartbeat"] = 5;

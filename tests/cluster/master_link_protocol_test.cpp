@@ -20,8 +20,23 @@ const MasterLinkProtocol::Clock::time_point t0 = MasterLinkProtocol::Clock::now(
 
 SharedSecret secret(char fill = 's') { return SharedSecret(std::vector<std::uint8_t>(32, std::uint8_t(fill)), "test"); }
 
-/// A node (heartbeat 250 ms in its configuration, connect timeout 20 s).
-MasterLinkProtocol node_link() { return MasterLinkProtocol(secret(), "dome", "left", 250, 20000); }
+/// Connect timeout 20 s, reconnect time 30 s, waits from 100 ms doubling to 2 s, ±20 %.
+ReconnectRules rules(std::uint32_t reconnect_ms = 30000) {
+  ReconnectRules r;
+  r.connect_timeout_ms = 20000;
+  r.reconnect_ms = reconnect_ms;
+  r.first_retry_ms = 100;
+  r.max_retry_ms = 2000;
+  r.jitter = 0.2;
+  return r;
+}
+
+/// A node (heartbeat 250 ms in its configuration), begun at t0.
+MasterLinkProtocol node_link(ReconnectRules r = rules(), const std::string& name = "left") {
+  MasterLinkProtocol link(secret(), "dome", name, 250, r);
+  link.begin(t0);
+  return link;
+}
 
 /// The handshake up to the master's Welcome, the master's side played by MasterHandshake.
 Welcome handshake(MasterLinkProtocol& link, MasterHandshake& master, std::uint32_t heartbeat_ms = 500) {
@@ -89,10 +104,11 @@ TEST(MasterLinkProtocol, AfterWelcomeTheMastersMessagesAreTheNodesWork) {
 TEST(MasterLinkProtocol, BeforeWelcomeTheConnectTimeoutAppliesAndNoHeartbeatIsSent) {
   MasterLinkProtocol link = node_link();
   (void)link.start();
-  EXPECT_DOUBLE_EQ(link.silence_limit_ms(), 20000.0);
+  EXPECT_EQ(link.deadline(), t0 + milliseconds(20000));
   EXPECT_EQ(link.tick(t0, t0 + milliseconds(20000)), Tick::wait) << "the master may still be preparing tables";
-  EXPECT_EQ(link.tick(t0, t0 + milliseconds(20001)), Tick::master_gone);
+  EXPECT_EQ(link.tick(t0, t0 + milliseconds(20001)), Tick::silent);
   EXPECT_EQ(link.heartbeat_ms(), 250u) << "the configuration's interval until Welcome";
+  EXPECT_TRUE(link.connection_failed(t0 + milliseconds(20001)).give_up) << "no Welcome within the connect timeout";
 }
 
 TEST(MasterLinkProtocol, AfterWelcomeAHeartbeatPerTickUntilTheMasterFallsSilent) {
@@ -101,9 +117,143 @@ TEST(MasterLinkProtocol, AfterWelcomeAHeartbeatPerTickUntilTheMasterFallsSilent)
   (void)link.on_message(handshake(link, master, 5000));
   EXPECT_DOUBLE_EQ(link.silence_limit_ms(), 15000.0) << "3 heartbeats of the master's, at least 10 s";
   EXPECT_EQ(link.tick(t0, t0 + milliseconds(15000)), Tick::send_heartbeat);
-  EXPECT_EQ(link.tick(t0, t0 + milliseconds(15001)), Tick::master_gone);
+  EXPECT_EQ(link.tick(t0, t0 + milliseconds(15001)), Tick::silent);
   EXPECT_EQ(link.tick(t0 + milliseconds(10000), t0 + milliseconds(20000)), Tick::send_heartbeat)
       << "what counts is the last bytes received";
+}
+
+// ---- reconnection ----------------------------------------------------------
+
+/// The waits of `n` failed attempts in a row starting at `now`, each made when the last wait is over.
+std::vector<std::int64_t> waits(MasterLinkProtocol& link, MasterLinkProtocol::Clock::time_point now, int n) {
+  std::vector<std::int64_t> out;
+  for (int i = 0; i < n; ++i) {
+    const MasterLinkProtocol::Retry r = link.connection_failed(now);
+    if (r.give_up) break;
+    out.push_back(r.delay.count());
+    now += r.delay;
+  }
+  return out;
+}
+
+TEST(MasterLinkProtocol, TheWaitDoublesFrom100MsUpTo2SWithJitterOfAFifthEitherWay) {
+  const ReconnectRules r = rules();
+  const std::vector<std::int64_t> nominal = {100, 200, 400, 800, 1600, 2000, 2000, 2000};
+  for (std::uint32_t failed = 1; failed <= nominal.size(); ++failed)
+    EXPECT_EQ(MasterLinkProtocol::backoff(r, failed).count(), nominal[failed - 1]) << failed;
+  EXPECT_EQ(MasterLinkProtocol::backoff(r, 1000).count(), 2000) << "no overflow";
+
+  MasterLinkProtocol link = node_link();  // the first connection: refused again and again
+  const std::vector<std::int64_t> w = waits(link, t0, 8);
+  ASSERT_EQ(w.size(), 8u);
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    EXPECT_GE(w[i], static_cast<std::int64_t>(0.8 * nominal[i]) - 1) << "attempt " << i + 1;
+    EXPECT_LE(w[i], static_cast<std::int64_t>(1.2 * nominal[i])) << "attempt " << i + 1;
+  }
+  EXPECT_EQ(link.failed_attempts(), 8u);
+  // The jitter is the node's own: the same for the same name, spread across names.
+  MasterLinkProtocol again = node_link();
+  EXPECT_EQ(waits(again, t0, 8), w);
+  int differing = 0;
+  for (const char* name : {"a", "b", "c", "d", "e", "f"}) {
+    MasterLinkProtocol other = node_link(rules(), name);
+    differing += waits(other, t0, 8) != w;
+  }
+  EXPECT_GE(differing, 5) << "nodes of a restarted master do not knock in step";
+}
+
+TEST(MasterLinkProtocol, ALostConnectionIsRetriedAtOnceThenWithBackoffUntilTheReconnectTime) {
+  MasterLinkProtocol link = node_link();
+  MasterHandshake master(secret(), "dome");
+  (void)link.on_message(handshake(link, master));
+  ASSERT_TRUE(link.welcomed());
+  const auto lost = t0 + std::chrono::seconds(100);
+  const MasterLinkProtocol::Retry first = link.connection_failed(lost);
+  EXPECT_FALSE(first.give_up);
+  EXPECT_EQ(first.delay.count(), 0) << "the first attempt after a loss is immediate";
+  EXPECT_TRUE(link.reconnecting());
+  EXPECT_FALSE(link.welcomed());
+  EXPECT_EQ(link.deadline(), lost + milliseconds(30000)) << "the reconnect time counts from the loss";
+  EXPECT_EQ(link.tick(lost, lost + milliseconds(29999)), Tick::wait) << "a master may welcome late (tables)";
+  EXPECT_EQ(link.tick(lost, lost + milliseconds(30001)), Tick::silent);
+
+  // Refused until the reconnect time runs out: the waits never pass the deadline.
+  auto now = lost;
+  std::int64_t total = 0;
+  int attempts = 1;
+  for (;;) {
+    const MasterLinkProtocol::Retry r = link.connection_failed(now);
+    if (r.give_up) break;
+    ++attempts;
+    total += r.delay.count();
+    now += r.delay;
+    ASSERT_LE(now, link.deadline());
+    ASSERT_LT(attempts, 100);
+  }
+  EXPECT_EQ(now, lost + milliseconds(30000)) << "the last attempt is made at the deadline";
+  EXPECT_EQ(total, 30000);
+  // 0, then ~0.1 + 0.2 + 0.4 + 0.8 + 1.6 s = 3.1 s, then every ~2 s: about 15 attempts in 30 s.
+  EXPECT_GE(attempts, 13);
+  EXPECT_LE(attempts, 20);
+}
+
+TEST(MasterLinkProtocol, AWelcomeResetsTheAttemptsAndTheNextLossGetsTheWholeReconnectTime) {
+  MasterLinkProtocol link = node_link();
+  MasterHandshake master(secret(), "dome");
+  (void)link.on_message(handshake(link, master));
+  auto now = t0 + std::chrono::seconds(10);
+  (void)link.connection_failed(now);  // lost
+  for (int i = 0; i < 5; ++i) now += link.connection_failed(now).delay;
+  EXPECT_EQ(link.failed_attempts(), 5u);
+  EXPECT_EQ(link.rejoins(), 0u);
+
+  // A new connection: the full handshake again, with a new nonce; the Welcome is the success.
+  MasterHandshake restarted(secret(), "dome");
+  const Welcome welcome = handshake(link, restarted);
+  EXPECT_TRUE(link.reconnecting()) << "only a Welcome counts as success, not a connection";
+  EXPECT_EQ(link.on_message(welcome).meaning, Meaning::welcomed);
+  EXPECT_FALSE(link.reconnecting());
+  EXPECT_EQ(link.failed_attempts(), 0u);
+  EXPECT_EQ(link.rejoins(), 1u);
+
+  // Lost again much later: the whole reconnect time again, and again at once.
+  now += std::chrono::seconds(1000);
+  const MasterLinkProtocol::Retry r = link.connection_failed(now);
+  EXPECT_FALSE(r.give_up);
+  EXPECT_EQ(r.delay.count(), 0);
+  EXPECT_EQ(link.deadline(), now + milliseconds(30000));
+  EXPECT_EQ(link.connection_failed(now).delay.count(),
+            static_cast<std::int64_t>(100 * MasterLinkProtocol::jitter_factor(link.rules(), "left", 1)))
+      << "the backoff starts from the first wait again";
+}
+
+TEST(MasterLinkProtocol, EachConnectionRunsTheWholeHandshakeWithAFreshNonce) {
+  MasterLinkProtocol link = node_link();
+  const Hello one = link.start();
+  const Hello two = link.start();
+  EXPECT_NE(one.node_nonce, two.node_nonce);
+  MasterHandshake master(secret(), "dome");
+  EXPECT_EQ(link.on_message(handshake(link, master)).meaning, Meaning::welcomed)
+      << "a Welcome answers the handshake of the connection in use";
+}
+
+TEST(MasterLinkProtocol, AReconnectTimeOfZeroGivesUpAtTheFirstLoss) {
+  MasterLinkProtocol link = node_link(rules(0));
+  MasterHandshake master(secret(), "dome");
+  (void)link.on_message(handshake(link, master));
+  EXPECT_TRUE(link.connection_failed(t0 + std::chrono::seconds(5)).give_up);
+}
+
+TEST(MasterLinkProtocol, BeforeTheFirstWelcomeFailuresCountAgainstTheConnectTimeout) {
+  MasterLinkProtocol link = node_link();
+  EXPECT_FALSE(link.reconnecting());
+  auto now = t0;
+  for (;;) {
+    const MasterLinkProtocol::Retry r = link.connection_failed(now);
+    if (r.give_up) break;
+    now += r.delay;
+  }
+  EXPECT_EQ(now, t0 + milliseconds(20000)) << "the connect timeout, not the reconnect time";
 }
 
 }  // namespace
