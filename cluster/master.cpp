@@ -24,9 +24,11 @@
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
 #include "cluster/heartbeat.h"
+#include "cluster/master/atmosphere_edits.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/heartbeat_monitor.h"
 #include "cluster/master/node_sessions.h"
+#include "cluster/master/operator_command.h"
 #include "cluster/master/operator_input.h"
 #include "cluster/master/show_start_rule.h"
 #include "cluster/master/table_preparer.h"
@@ -63,6 +65,11 @@ struct Master::Impl {
   /// (prepared by `preparer` while frames go on with the old one).
   TableVersions tables;
   std::size_t next_switch = 0;  ///< into options.atmosphere_switches (sorted by frame)
+  /// The operator's atmosphere changes waiting to become table versions (the default show only).
+  std::optional<AtmosphereEdits> edits;
+  std::string pending_change;  ///< what the pending version changes (a preset, a file, an operator's change)
+  /// The operator's exposure, replacing the show's (or scene's) from the next frame on.
+  std::optional<double> exposure_override;
   std::uint32_t render_flags = 0;
 
   // ---- the show (docs/shows.md) ----
@@ -305,30 +312,43 @@ struct Master::Impl {
     if (tables.ready_with(s.tables_ready)) become_ready(s);
   }
 
-  /// Starts the next switch whose frame has come (one version in flight at a time).
+  /// Starts the next switch whose frame has come, else the operator's next
+  /// change (one version in flight at a time).
   void maybe_start_switch() {
-    if (tables.pending() || next_switch >= options.atmosphere_switches.size()) return;
-    const AtmosphereSwitch& sw = options.atmosphere_switches[next_switch];
-    const std::uint64_t frame = barrier.frame();
-    if (sw.frame > frame) return;
-    ++next_switch;
-    auto [index, loaded] = resolve_switch(sw);  // checked at start-up: does not throw here
+    if (tables.pending()) return;
+    if (next_switch < options.atmosphere_switches.size() &&
+        options.atmosphere_switches[next_switch].frame <= barrier.frame()) {
+      const AtmosphereSwitch& sw = options.atmosphere_switches[next_switch++];
+      auto [index, loaded] = resolve_switch(sw);  // checked at start-up: does not throw here
+      begin_version(index, std::move(loaded), cat("frame ", barrier.frame()), sw.atmosphere);
+    } else if (std::optional<AtmosphereEdits::Edit> edit = edits ? edits->take_next() : std::nullopt) {
+      begin_version(edit->index, std::move(edit->loaded), "operator", edit->change);
+    }
+  }
+
+  /// Atmosphere current()[index] is to become `loaded` (`why`: when or who
+  /// asked; `what`: the preset, file or change, for the log): prepares its
+  /// table version in the background unless it is the current one.
+  void begin_version(std::size_t index, atmosphere::LoadedAtmosphere loaded, const std::string& why,
+                     const std::string& what) {
+    const std::string body = tables.current()[index].body_name;
     const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
     if (hash == tables.current()[index].table_hash) {
-      spdlog::info("master: frame {}: '{}' already uses {}; nothing to switch", frame, sw.body, sw.atmosphere);
+      spdlog::info("master: {}: '{}' already uses {}; nothing to switch", why, body, what);
       maybe_start_switch();
       return;
     }
-    tables.add_version(sw.body, loaded, hash);
+    tables.add_version(body, loaded, hash);
     tables.begin_pending(index, hash);
-    spdlog::info("master: frame {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
+    pending_change = what;
+    spdlog::info("master: {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
                  "version {}",
-                 frame, short_hex(hash), sw.body, sw.atmosphere, short_hex(tables.current()[index].table_hash));
+                 why, short_hex(hash), body, what, short_hex(tables.current()[index].table_hash));
     if (tables.has_set(hash)) {  // an earlier version again: already encoded
       asio::post(io, [this] { on_version_prepared(std::nullopt); });
       return;
     }
-    preparer.enqueue(preparation_job(sw.body, loaded.model));
+    preparer.enqueue(preparation_job(body, loaded.model));
   }
 
   /// Networking thread: the pending version's tables are ready; send them to every node.
@@ -538,6 +558,7 @@ struct Master::Impl {
         next = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
                     : default_show_frame(scene, frame, options.sun_step_deg, tables.current(), render_flags);
         if (!show) next.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
+        if (exposure_override) next.exposure = *exposure_override;
       }
       held_frame = std::move(next);
       held_since = Clock::now();
@@ -671,14 +692,23 @@ struct Master::Impl {
     });
   }
 
-  // ---- operator commands (docs/shows.md, "Playback") -------------------------
+  // ---- operator commands (docs/shows.md, "Playback"; docs/operator.md) ----------
 
   /// One command line from the console or the control socket; the reply line.
+  /// A line that starts with "{" is a JSON command (docs/operator.md).
   /// Commands change the clock between frames, so every node gets one
   /// consistent state per frame.
   std::string on_command(std::string line) {
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
     if (line.empty()) return "";
+    if (line.front() == '{') {
+      try {
+        return run_operator_command(parse_operator_command_text(line), "control");
+      } catch (const std::exception& e) {
+        spdlog::info("master: operator (control): command refused: {}", e.what());
+        return cat("error: ", e.what());
+      }
+    }
     if (line == "quit" || line == "stop") {
       stop("stopped by the operator");
       return "stopping";
@@ -694,6 +724,69 @@ struct Master::Impl {
     } catch (const std::invalid_argument& e) {
       return cat("error: ", e.what());
     }
+  }
+
+  /// Applies one operator command from `source` ("control", "http 127.0.0.1",
+  /// "osc 10.0.0.5") with a log line either way; returns the reply. Throws
+  /// (std::invalid_argument, ConfigError) when the command is refused: then
+  /// nothing was applied.
+  std::string run_operator_command(const OperatorCommand& command, const std::string& source) {
+    namespace oc = operator_command;
+    try {
+      std::string reply;
+      if (std::holds_alternative<oc::Quit>(command)) {
+        stop("stopped by the operator");
+        reply = "stopping";
+      } else if (const auto* exposure = std::get_if<oc::Exposure>(&command)) {
+        exposure_override = exposure->exposure;
+        reply = exposure->exposure ? cat("exposure ", *exposure->exposure, " from the next frame on")
+                                   : std::string("the show's own exposure from the next frame on");
+      } else if (const auto* set = std::get_if<oc::Set>(&command)) {
+        reply = apply_set(*set);
+      } else if (!clock) {
+        if (!std::holds_alternative<oc::Status>(command))
+          throw std::invalid_argument(cat(describe(command), ": no show is playing (the default show has no clock: start "
+                                                             "the master with --show FILE for play, pause, seek, rate and loop)"));
+        reply = cat("default show at frame ", barrier.frame());
+      } else {
+        if (const auto* seek = std::get_if<oc::Seek>(&command); seek && seek->seconds > clock->duration_s())
+          throw std::invalid_argument(cat("command: /seconds = ", seek->seconds, ": must be in [0, ", clock->duration_s(),
+                                          "] s (the show's duration)"));
+        reply = clock->apply_command(describe(command));  // the clock's own words: "seek 12.5", "loop on"
+      }
+      spdlog::info("master: operator ({}): {} → {}", source, describe(command), reply);
+      return reply;
+    } catch (const std::exception& e) {
+      spdlog::info("master: operator ({}): {} refused: {}", source, describe(command), e.what());
+      throw;
+    }
+  }
+
+  /// An operator's `set`: checked like an atmosphere file, then prepared as a
+  /// new table version in the background and switched on every node at one
+  /// frame (docs/operator.md, "Live atmosphere parameters").
+  std::string apply_set(const operator_command::Set& set) {
+    if (!edits)
+      throw std::invalid_argument(cat(describe(set), ": a show's atmospheres follow its tracks (docs/shows.md); live "
+                                                     "changes are for the default show (a master without --show)"));
+    const std::size_t index = edits->index_of(set.body);
+    const AtmosphereEdits::Edit* waiting = edits->waiting(set.body);
+    const std::optional<TableVersions::Pending>& pending = tables.pending();
+    const Digest latest = waiting ? digest_from_hex(atmosphere::lookup_table_hash(waiting->loaded.model))
+                          : pending && pending->ref_index == index ? pending->hash
+                                                                   : tables.current()[index].table_hash;
+    AtmosphereEdits::Edit edit = edits->resolve(set, waiting ? waiting->loaded.parameters : tables.version(latest).parameters);
+    const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(edit.loaded.model));
+    if (hash == latest)
+      return cat("'", set.body, "' ", edit.change, ": the tables stay version ", short_hex(hash),
+                 " (the change does not shape them)");
+    const std::string change = edit.change;
+    edits->enqueue(std::move(edit));
+    maybe_start_switch();
+    const bool started_now = tables.pending() && tables.pending()->hash == hash;
+    return cat("'", set.body, "' ", change, ": table version ", short_hex(hash),
+               started_now ? " is being prepared" : " waits for the version before it",
+               "; every node switches to it at one frame once all hold it");
   }
 
   void start_operator_inputs() {
@@ -785,6 +878,7 @@ struct Master::Impl {
                    show->frame_count(fps), clock->looping() ? ", looping" : "");
     } else {
       scene = scene::load_scene(options.config.scene);
+      edits.emplace(scene);
     }
     if (options.record)
       recorder = std::make_unique<show::ShowRecorder>(*options.record, show ? show->scene_path() : options.config.scene,
