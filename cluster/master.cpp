@@ -27,8 +27,11 @@
 #include "cluster/master/atmosphere_edits.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/heartbeat_monitor.h"
+#include "cluster/master/master_status.h"
 #include "cluster/master/node_sessions.h"
+#include "cluster/master/node_statistics.h"
 #include "cluster/master/operator_command.h"
+#include "cluster/master/operator_http_server.h"
 #include "cluster/master/operator_input.h"
 #include "cluster/master/show_start_rule.h"
 #include "cluster/master/table_preparer.h"
@@ -101,6 +104,10 @@ struct Master::Impl {
   HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
   /// Playback commands from the console and the control socket.
   OperatorInput operator_input{io, [this](std::string line) { return on_command(std::move(line)); }};
+  /// The operator console (docs/operator.md): the web page and JSON API.
+  std::optional<OperatorHttpServer> http_console;
+  NodeStatistics node_statistics;  ///< per node name, for the console's status
+  std::string last_version_error;  ///< the latest table version that could not be prepared, and why
   Clock::time_point frame_started, show_started;
   /// Since when frame 0 could start as far as the tables go (the wait for nodes counts from here).
   std::optional<Clock::time_point> waiting_since;
@@ -273,6 +280,7 @@ struct Master::Impl {
       return;
     }
     spdlog::error("master: the new tables could not be prepared: {}; the show goes on with the current version", what);
+    last_version_error = cat("table version ", short_hex(hash), " (", pending_change, "): ", what);
     tables.abandon_pending();
     maybe_start_switch();
   }
@@ -468,6 +476,7 @@ struct Master::Impl {
 
   void become_ready(NodeSession& s) {
     s.state = NodeSession::State::ready;
+    node_statistics.joined(s.name);
     spdlog::info("master: node '{}' is ready: it joins the barrier at the next frame boundary (frame {})", s.name,
                  barrier.next_boundary());
     maybe_start_show();
@@ -632,9 +641,12 @@ struct Master::Impl {
   void on_render_done(NodeSession& s, const RenderDone& done) {
     switch (barrier.on_render_done(s.id, done.frame)) {
       case FrameBarrier::Report::counted:
+        node_statistics.rendered(s.name, done.render_ms, barrier.complete() && barrier.participant_count() > 1);
         if (barrier.complete()) complete_frame();
         return;
       case FrameBarrier::Report::rejoins:
+        node_statistics.rendered(s.name, done.render_ms, false);
+        node_statistics.rejoined(s.name);
         spdlog::info("master: node '{}' finished frame {} late; it rejoins the barrier at frame {}", s.name,
                      done.frame, barrier.next_boundary());
         return;
@@ -648,10 +660,12 @@ struct Master::Impl {
 
   void on_barrier_timeout() {
     for (const std::uint32_t id : barrier.drop_unfinished())
-      if (const NodeSession* s = sessions.find(id))
+      if (const NodeSession* s = sessions.find(id)) {
+        node_statistics.dropped(s->name);
         spdlog::warn("master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
                      "barrier; the show goes on without it",
                      s->name, barrier.frame(), options.config.barrier_timeout_ms);
+      }
     complete_frame();
   }
 
@@ -789,7 +803,26 @@ struct Master::Impl {
                "; every node switches to it at one frame once all hold it");
   }
 
+  /// The console's status (GET /api/status; docs/operator.md, "Status").
+  nlohmann::json operator_status() const {
+    return master_status(StatusSources{options.config, sessions, barrier, tables, preparer.running(), node_statistics,
+                                       edits ? &*edits : nullptr, show ? &*show : nullptr, clock ? &*clock : nullptr,
+                                       started, stopping, started ? &frame_in_flight : nullptr, presented, fps,
+                                       exposure_override, pending_change, last_version_error});
+  }
+
   void start_operator_inputs() {
+    const OperatorConsoleOptions& console = options.operator_console;
+    const auto command = [this](const OperatorCommand& c, const std::string& source) {
+      return run_operator_command(c, source);
+    };
+    if (console.http_port) {
+      http_console.emplace(io, OperatorHttpServer::Options{console.http_host, *console.http_port, console.token},
+                           OperatorHttpServer::Handlers{[this] { return operator_status(); }, command});
+      http_console->start();
+      spdlog::info("master: operator console at {} ({}; docs/operator.md)", http_console->url(),
+                   console.token ? "operator token required" : "loopback only, no token");
+    }
     if (options.console) {
       operator_input.read_console();
       spdlog::info("master: console commands: play, pause, toggle, seek SECONDS, rate FACTOR, loop on|off, status, quit");
@@ -845,6 +878,7 @@ struct Master::Impl {
     boost::system::error_code ec;
     acceptor.close(ec);
     operator_input.close();
+    if (http_console) http_console->close();
     if (signals) signals->cancel(ec);
     heartbeat_timer.cancel();
     barrier_timer.cancel();

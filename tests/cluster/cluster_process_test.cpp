@@ -23,6 +23,12 @@
 #include <thread>
 #include <vector>
 
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core/flat_buffer.hpp>
+#include <boost/beast/http.hpp>
+#include <nlohmann/json.hpp>
+
 #include "cluster/frame_decoder.h"
 #include "cluster/handshake.h"
 #include "cluster/messages.h"
@@ -827,6 +833,239 @@ TEST_F(ClusterProcess, NodeRefusesAMasterThatProvesTheWrongSecret) {
   const std::string log = read_text(dir_ / "a.log");
   EXPECT_NE(log.find("failed to authenticate"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir_ / "out/a/presented.log"));
+}
+
+// ---- the operator console (docs/operator.md) ----------------------------------
+
+struct HttpReply {
+  int status = 0;  ///< 0: no connection
+  std::string body;
+  nlohmann::json json() const { return nlohmann::json::parse(body, nullptr, false); }
+};
+
+/// One HTTP/1.1 request to the master's operator console on 127.0.0.1:`port`.
+HttpReply http_request(int port, boost::beast::http::verb verb, const std::string& target, const std::string& body = "",
+                       const std::string& content_type = "application/json") {
+  namespace http = boost::beast::http;
+  try {
+    boost::asio::io_context io;
+    boost::asio::ip::tcp::socket socket(io);
+    socket.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<std::uint16_t>(port)});
+    const timeval timeout{30, 0};
+    setsockopt(socket.native_handle(), SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    http::request<http::string_body> request{verb, target, 11};
+    request.set(http::field::host, "127.0.0.1:" + std::to_string(port));
+    if (!body.empty()) {
+      request.set(http::field::content_type, content_type);
+      request.body() = body;
+    }
+    request.prepare_payload();
+    http::write(socket, request);
+    boost::beast::flat_buffer buffer;
+    http::response<http::string_body> response;
+    http::read(socket, buffer, response);
+    return {static_cast<int>(response.result_int()), response.body()};
+  } catch (const std::exception&) {
+    return {};
+  }
+}
+
+/// The console's status, or an empty object when it cannot be had.
+nlohmann::json console_status(int port) {
+  const HttpReply r = http_request(port, boost::beast::http::verb::get, "/api/status");
+  nlohmann::json status = r.status == 200 ? r.json() : nlohmann::json();
+  return status.is_object() ? status : nlohmann::json::object();
+}
+
+HttpReply console_command(int port, const std::string& command) {
+  return http_request(port, boost::beast::http::verb::post, "/api/command", command);
+}
+
+bool all_nodes(const nlohmann::json& status, const std::string& state) {
+  if (!status.is_object() || status["nodes"].size() != 3) return false;
+  for (const auto& n : status["nodes"])
+    if (n["state"] != state) return false;
+  return true;
+}
+
+TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameAndRefusesBadCommands) {
+  const fs::path config = write_config(10);
+  const int http = port_ + 2;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--debug-table-delay-ms", "3000"});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready"); }, 400s)) << logs();
+  const nlohmann::json first = console_status(http);
+  EXPECT_EQ(first["state"], "playing");
+  EXPECT_EQ(first["show"], nullptr);
+  EXPECT_TRUE(first["live_atmospheres"]);
+  ASSERT_EQ(first["atmospheres"].size(), 1u);
+  EXPECT_EQ(first["atmospheres"][0]["body"], "Earth");
+  EXPECT_EQ(first["atmospheres"][0]["parameters"]["aerosol"]["scattering"]["turbidity"], 2.0);
+  const std::string old_version = first["atmospheres"][0]["version"];
+  for (const auto& node : first["nodes"]) EXPECT_EQ(node["tables_held"], nlohmann::json::array({old_version})) << node;
+
+  // The page, from the binary.
+  const HttpReply page = http_request(http, boost::beast::http::verb::get, "/");
+  EXPECT_EQ(page.status, 200);
+  EXPECT_NE(page.body.find("operator console"), std::string::npos);
+
+  // Refused, each with its reason; nothing applied.
+  HttpReply r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 100})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_EQ(r.json()["error"], "set Earth: /aerosol/scattering/turbidity = 100: must be in [1, 64]") << r.body;
+  r = console_command(http, R"({"command": "pause"})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(r.body.find("no show is playing"), std::string::npos) << r.body;
+  r = http_request(http, boost::beast::http::verb::post, "/api/command", R"({"command": "quit"})", "text/plain");
+  EXPECT_EQ(r.status, 415) << r.body;
+
+  r = console_command(http, R"({"command": "exposure", "exposure": 40})");
+  EXPECT_EQ(r.status, 200) << r.body;
+  ASSERT_TRUE(wait_until([&] { return console_status(http)["exposure"] == 40.0; }, 60s)) << logs();
+  EXPECT_EQ(console_status(http)["exposure_override"], 40.0);
+  EXPECT_EQ(console_status(http)["atmospheres"][0]["version"], old_version);
+
+  // Live changes: each a new table version, on every node from one frame on.
+  struct Version {
+    std::string hex;
+    std::uint64_t from_frame = 0;
+  };
+  std::vector<Version> versions{{old_version, 0}};
+  nlohmann::json now;
+  const auto atmosphere = [&] { return now["atmospheres"][0]; };
+  /// Waits until the version after versions.back() is in effect, and records it (a waiting change may
+  /// then be pending already).
+  const auto next_version = [&] {
+    const bool switched = wait_until(
+        [&] {
+          now = console_status(http);
+          return now.contains("atmospheres") && atmosphere()["version"] != versions.back().hex;
+        },
+        400s);
+    if (switched) versions.push_back({atmosphere()["version"], atmosphere()["effective_from_frame"]});
+    return switched;
+  };
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 3})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.json()["reply"].get<std::string>().find("table version"), std::string::npos) << r.body;
+  ASSERT_TRUE(next_version()) << logs();
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scattering"]["turbidity"], 3);
+  EXPECT_TRUE(atmosphere()["pending"].is_null());
+  for (const auto& node : now["nodes"]) {
+    const auto& held = node["tables_held"];
+    EXPECT_NE(std::find(held.begin(), held.end(), versions.back().hex), held.end()) << node;
+    EXPECT_GT(node["frames_rendered"].get<std::uint64_t>(), 0u) << node;
+    EXPECT_TRUE(node["last_render_ms"].is_number()) << node;
+  }
+  // The next version takes 3 s more to prepare (--debug-table-delay-ms): its progress shows, and a
+  // change made meanwhile waits for it, then becomes the version after it.
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 2.5})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_TRUE(wait_until(
+      [&] {
+        now = console_status(http);
+        return now.contains("atmospheres") && atmosphere()["pending"].is_object() &&
+               atmosphere()["pending"]["stage"] == "preparing";
+      },
+      10s))
+      << now.dump();
+  EXPECT_EQ(atmosphere()["pending"]["change"], "/aerosol/scattering/turbidity = 2.5") << now.dump();
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": 1500})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.body.find("waits for the version before it"), std::string::npos) << r.body;
+  EXPECT_EQ(console_status(http)["atmospheres"][0]["waiting"], "/aerosol/scale_height_m = 1500");
+  ASSERT_TRUE(next_version()) << logs();
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scattering"]["turbidity"], 2.5);
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scale_height_m"], 1200) << "not yet: it waits";
+  ASSERT_TRUE(next_version()) << logs();
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scattering"]["turbidity"], 2.5);
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scale_height_m"], 1500);
+  EXPECT_TRUE(atmosphere()["waiting"].is_null());
+  EXPECT_TRUE(atmosphere()["pending"].is_null());
+  const std::uint64_t last_switch = versions.back().from_frame;
+  ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > last_switch + 2; }, 120s))
+      << logs();
+  r = console_command(http, R"({"command": "quit"})");
+  EXPECT_EQ(r.status, 200) << r.body;
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+
+  // Every node rendered each version from the same frame on, never before.
+  ASSERT_EQ(versions.size(), 4u);
+  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  for (const char* node : {"a", "b", "c"})
+    for (const Presented& p : presented(dir_ / "out" / node)) {
+      std::size_t v = 0;
+      while (v + 1 < versions.size() && versions[v + 1].from_frame <= p.frame) ++v;
+      EXPECT_EQ(p.tables, "Earth=" + versions[v].hex) << node << " frame " << p.frame;
+    }
+  const std::string master_log = read_text(dir_ / "master.log");
+  for (const std::string& text :
+       {"operator console at http://127.0.0.1:" + std::to_string(http) + "/",
+        std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 100 refused: set Earth: "
+                    "/aerosol/scattering/turbidity = 100: must be in [1, 64]"),
+        std::string("operator (http 127.0.0.1): exposure 40.0 → exposure 40 from the next frame on"),
+        std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 3 → 'Earth'"),
+        "takes effect at frame " + std::to_string(last_switch)})
+    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+}
+
+TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttp) {
+  const fs::path config = write_config(5);
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const int http = port_ + 2;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--show", show.string(), "--fps", "2", "--loop", "--operator-port",
+                                     std::to_string(http)});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 3; }, 400s)) << logs();
+  nlohmann::json s = console_status(http);
+  EXPECT_EQ(s["state"], "playing");
+  EXPECT_EQ(s["show"]["duration_s"], 2.5);
+  EXPECT_FALSE(s["live_atmospheres"]);
+
+  HttpReply r = console_command(http, R"({"command": "pause"})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.body.find("paused"), std::string::npos) << r.body;
+  // Frames go on, the show time holds.
+  const auto frames = [&] { return console_status(http).value("frames_presented", -1); };
+  int at = frames();
+  ASSERT_TRUE(wait_until([&] { return frames() >= at + 2; }, 60s)) << logs();
+  const double held = console_status(http)["show_time_s"];
+  at = frames();
+  ASSERT_TRUE(wait_until([&] { return frames() >= at + 3; }, 60s)) << logs();
+  s = console_status(http);
+  EXPECT_EQ(s["state"], "paused");
+  EXPECT_EQ(s["show_time_s"], held) << "paused: the show time stops";
+
+  r = console_command(http, R"({"command": "seek", "seconds": 99})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_EQ(r.json()["error"], "command: /seconds = 99: must be in [0, 2.5] s (the show's duration)") << r.body;
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 3})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(r.body.find("a show's atmospheres follow its tracks"), std::string::npos) << r.body;
+  r = console_command(http, R"({"command": "seek", "seconds": 0.5})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_TRUE(wait_until([&] { return console_status(http)["show_time_s"] == 0.5; }, 60s)) << logs();
+
+  r = console_command(http, R"({"command": "rate", "rate": 2})");
+  EXPECT_EQ(r.status, 200) << r.body;
+  r = console_command(http, R"({"command": "play"})");
+  EXPECT_EQ(r.status, 200) << r.body;
+  EXPECT_TRUE(wait_until([&] {
+    const nlohmann::json now = console_status(http);
+    return now["state"] == "playing" && now["show"]["rate"] == 2.0 && now["show_time_s"] != 0.5;
+  }, 60s)) << logs();
+
+  r = console_command(http, R"({"command": "quit"})");
+  EXPECT_EQ(r.status, 200) << r.body;
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_NE(master_log.find("operator (http 127.0.0.1): pause → paused"), std::string::npos) << master_log;
+  EXPECT_NE(master_log.find("operator (http 127.0.0.1): play → playing"), std::string::npos) << master_log;
 }
 
 }  // namespace
