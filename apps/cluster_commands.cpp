@@ -128,8 +128,9 @@ struct PlaybackArgs {
 /// cluster` (docs/operator.md). The token is never an argument: a file or
 /// the environment.
 struct OperatorArgs {
-  std::optional<int> http_port;
-  std::string http_host = "127.0.0.1", token_file;
+  std::optional<int> http_port, osc_port;
+  std::string http_host = "127.0.0.1", token_file, osc_host = "127.0.0.1";
+  std::vector<std::string> osc_allow;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--operator-port", http_port, "Serve the operator console (web page, JSON API) on this port (docs/operator.md)")
@@ -138,12 +139,18 @@ struct OperatorArgs {
                    "Address the console listens on (default 127.0.0.1; any other needs an operator token)");
     cmd.add_option("--operator-token-file", token_file,
                    "File (mode 600) holding the operator token (default: the environment variable ZENITH_OPERATOR_TOKEN)");
+    cmd.add_option("--osc-port", osc_port, "Receive OSC cues on this UDP port (docs/operator.md)")->check(CLI::Range(1, 65535));
+    cmd.add_option("--osc-host", osc_host, "Address OSC is received on (default 127.0.0.1; any other needs --osc-allow)");
+    cmd.add_option("--osc-allow", osc_allow, "Accept OSC only from this sender address (repeatable)");
   }
   void apply(cluster::MasterOptions& options) const {
     cluster::OperatorConsoleOptions& console = options.operator_console;
     if (http_port) console.http_port = static_cast<std::uint16_t>(*http_port);
     console.http_host = http_host;
     console.token = load_operator_token();
+    if (osc_port) console.osc_port = static_cast<std::uint16_t>(*osc_port);
+    console.osc_host = osc_host;
+    console.osc_allow = osc_allow;
   }
   /// The token from --operator-token-file or ZENITH_OPERATOR_TOKEN, if either is given.
   std::optional<cluster::SharedSecret> load_operator_token() const {
@@ -165,6 +172,8 @@ struct OperatorArgs {
     std::vector<std::string> args;
     if (http_port) args.insert(args.end(), {"--operator-port", std::to_string(*http_port), "--operator-host", http_host});
     if (!token_file.empty()) args.insert(args.end(), {"--operator-token-file", token_file});
+    if (osc_port) args.insert(args.end(), {"--osc-port", std::to_string(*osc_port), "--osc-host", osc_host});
+    for (const std::string& a : osc_allow) args.insert(args.end(), {"--osc-allow", a});
     return args;
   }
   static constexpr const char* kOperatorTokenVariable = "ZENITH_OPERATOR_TOKEN";

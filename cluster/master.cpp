@@ -33,6 +33,7 @@
 #include "cluster/master/operator_command.h"
 #include "cluster/master/operator_http_server.h"
 #include "cluster/master/operator_input.h"
+#include "cluster/master/osc_receiver.h"
 #include "cluster/master/show_start_rule.h"
 #include "cluster/master/table_preparer.h"
 #include "cluster/master/table_versions.h"
@@ -104,8 +105,9 @@ struct Master::Impl {
   HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
   /// Playback commands from the console and the control socket.
   OperatorInput operator_input{io, [this](std::string line) { return on_command(std::move(line)); }};
-  /// The operator console (docs/operator.md): the web page and JSON API.
+  /// The operator console (docs/operator.md): the web page and JSON API, and OSC from show-control desks.
   std::optional<OperatorHttpServer> http_console;
+  std::optional<OscReceiver> osc;
   NodeStatistics node_statistics;  ///< per node name, for the console's status
   std::string last_version_error;  ///< the latest table version that could not be prepared, and why
   Clock::time_point frame_started, show_started;
@@ -823,6 +825,13 @@ struct Master::Impl {
       spdlog::info("master: operator console at {} ({}; docs/operator.md)", http_console->url(),
                    console.token ? "operator token required" : "loopback only, no token");
     }
+    if (console.osc_port) {
+      osc.emplace(io, OscReceiver::Options{console.osc_host, *console.osc_port, console.osc_allow}, command);
+      osc->start();
+      spdlog::info("master: OSC on udp {}:{} (/zenith/play, /zenith/pause, /zenith/seek, /zenith/rate, /zenith/exposure, "
+                   "/zenith/atmosphere/BODY/PARAMETER; docs/operator.md)",
+                   console.osc_host, osc->port());
+    }
     if (options.console) {
       operator_input.read_console();
       spdlog::info("master: console commands: play, pause, toggle, seek SECONDS, rate FACTOR, loop on|off, status, quit");
@@ -879,6 +888,7 @@ struct Master::Impl {
     acceptor.close(ec);
     operator_input.close();
     if (http_console) http_console->close();
+    if (osc) osc->close();
     if (signals) signals->cancel(ec);
     heartbeat_timer.cancel();
     barrier_timer.cancel();

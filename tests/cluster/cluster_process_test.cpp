@@ -25,12 +25,14 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ip/udp.hpp>
 #include <boost/beast/core/flat_buffer.hpp>
 #include <boost/beast/http.hpp>
 #include <nlohmann/json.hpp>
 
 #include "cluster/frame_decoder.h"
 #include "cluster/handshake.h"
+#include "cluster/master/osc_packet.h"
 #include "cluster/messages.h"
 #include "core/process.h"
 #include "image/image_io.h"
@@ -881,6 +883,13 @@ HttpReply console_command(int port, const std::string& command) {
   return http_request(port, boost::beast::http::verb::post, "/api/command", command);
 }
 
+/// One OSC datagram to 127.0.0.1:`port`.
+void send_osc(int port, const std::vector<std::uint8_t>& packet) {
+  boost::asio::io_context io;
+  boost::asio::ip::udp::socket socket(io, boost::asio::ip::udp::v4());
+  socket.send_to(boost::asio::buffer(packet), {boost::asio::ip::make_address("127.0.0.1"), static_cast<std::uint16_t>(port)});
+}
+
 bool all_nodes(const nlohmann::json& status, const std::string& state) {
   if (!status.is_object() || status["nodes"].size() != 3) return false;
   for (const auto& n : status["nodes"])
@@ -890,9 +899,10 @@ bool all_nodes(const nlohmann::json& status, const std::string& state) {
 
 TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameAndRefusesBadCommands) {
   const fs::path config = write_config(10);
-  const int http = port_ + 2;
+  const int http = port_ + 2, osc = port_ + 3;
   const Child master = start_master(config, 0, 120000,
-                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--debug-table-delay-ms", "3000"});
+                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
+                                     std::to_string(osc), "--debug-table-delay-ms", "3000"});
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
   ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready"); }, 400s)) << logs();
   const nlohmann::json first = console_status(http);
@@ -920,8 +930,10 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
   r = http_request(http, boost::beast::http::verb::post, "/api/command", R"({"command": "quit"})", "text/plain");
   EXPECT_EQ(r.status, 415) << r.body;
 
-  r = console_command(http, R"({"command": "exposure", "exposure": 40})");
-  EXPECT_EQ(r.status, 200) << r.body;
+  // OSC: an exposure applied, a turbidity out of range and a malformed packet refused.
+  send_osc(osc, encode_osc_message({"/zenith/exposure", {40.0f}}));
+  send_osc(osc, encode_osc_message({"/zenith/atmosphere/Earth/aerosol/scattering/turbidity", {200.0f}}));
+  send_osc(osc, {'/', 'z', 'e', 'n'});
   ASSERT_TRUE(wait_until([&] { return console_status(http)["exposure"] == 40.0; }, 60s)) << logs();
   EXPECT_EQ(console_status(http)["exposure_override"], 40.0);
   EXPECT_EQ(console_status(http)["atmospheres"][0]["version"], old_version);
@@ -1005,19 +1017,21 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
        {"operator console at http://127.0.0.1:" + std::to_string(http) + "/",
         std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 100 refused: set Earth: "
                     "/aerosol/scattering/turbidity = 100: must be in [1, 64]"),
-        std::string("operator (http 127.0.0.1): exposure 40.0 → exposure 40 from the next frame on"),
+        std::string("operator (osc 127.0.0.1): exposure 40.0 → exposure 40 from the next frame on"),
+        std::string("operator (osc 127.0.0.1): set Earth /aerosol/scattering/turbidity = 200.0 refused"),
+        std::string("OSC from 127.0.0.1: refused 4 bytes"),
         std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 3 → 'Earth'"),
         "takes effect at frame " + std::to_string(last_switch)})
     EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
 }
 
-TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttp) {
+TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
   const fs::path config = write_config(5);
   const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
-  const int http = port_ + 2;
+  const int http = port_ + 2, osc = port_ + 3;
   const Child master = start_master(config, 0, 120000,
                                     {"--show", show.string(), "--fps", "2", "--loop", "--operator-port",
-                                     std::to_string(http)});
+                                     std::to_string(http), "--osc-port", std::to_string(osc)});
   for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
   ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 3; }, 400s)) << logs();
   nlohmann::json s = console_status(http);
@@ -1049,10 +1063,9 @@ TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttp) {
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_TRUE(wait_until([&] { return console_status(http)["show_time_s"] == 0.5; }, 60s)) << logs();
 
-  r = console_command(http, R"({"command": "rate", "rate": 2})");
-  EXPECT_EQ(r.status, 200) << r.body;
-  r = console_command(http, R"({"command": "play"})");
-  EXPECT_EQ(r.status, 200) << r.body;
+  // OSC: rate and play.
+  send_osc(osc, encode_osc_message({"/zenith/rate", {std::int32_t{2}}}));
+  send_osc(osc, encode_osc_message({"/zenith/play", {1.0f}}));
   EXPECT_TRUE(wait_until([&] {
     const nlohmann::json now = console_status(http);
     return now["state"] == "playing" && now["show"]["rate"] == 2.0 && now["show_time_s"] != 0.5;
@@ -1065,7 +1078,7 @@ TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttp) {
   expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
   const std::string master_log = read_text(dir_ / "master.log");
   EXPECT_NE(master_log.find("operator (http 127.0.0.1): pause → paused"), std::string::npos) << master_log;
-  EXPECT_NE(master_log.find("operator (http 127.0.0.1): play → playing"), std::string::npos) << master_log;
+  EXPECT_NE(master_log.find("operator (osc 127.0.0.1): play → playing"), std::string::npos) << master_log;
 }
 
 }  // namespace
