@@ -108,9 +108,11 @@ function render(s) {
     $('loop').checked = s.show.loop;
   }
 
-  $('exposure-now').textContent = s.exposure === null ? '–' : s.exposure;
+  // Four significant digits: a show's exposure track interpolates.
+  const exposure = s.exposure === null ? null : Number(s.exposure.toPrecision(4));
+  $('exposure-now').textContent = exposure === null ? '–' : exposure;
   $('exposure-source').textContent = s.exposure_override === null ? "(the show's)" : '(operator)';
-  if (!editing($('exposure')) && $('exposure').value === '' && s.exposure !== null) $('exposure').value = s.exposure;
+  if (!editing($('exposure')) && $('exposure').value === '' && exposure !== null) $('exposure').value = exposure;
 
   $('no-live').hidden = s.live_atmospheres;
   for (const a of s.atmospheres) renderAtmosphere(a, s.live_atmospheres);
