@@ -813,7 +813,10 @@ struct Master::Impl {
                                        exposure_override, pending_change, last_version_error});
   }
 
-  void start_operator_inputs() {
+  /// The operator console (HTTP, OSC): listening from before the tables are
+  /// prepared, so a bad address or a missing token stops the master at once.
+  /// Requests wait in the backlog until the networking loop runs.
+  void start_operator_console() {
     const OperatorConsoleOptions& console = options.operator_console;
     const auto command = [this](const OperatorCommand& c, const std::string& source) {
       return run_operator_command(c, source);
@@ -832,6 +835,9 @@ struct Master::Impl {
                    "/zenith/atmosphere/BODY/PARAMETER; docs/operator.md)",
                    console.osc_host, osc->port());
     }
+  }
+
+  void start_operator_inputs() {
     if (options.console) {
       operator_input.read_console();
       spdlog::info("master: console commands: play, pause, toggle, seek SECONDS, rate FACTOR, loop on|off, status, quit");
@@ -940,6 +946,7 @@ struct Master::Impl {
     acceptor.bind(endpoint, ec);
     if (ec) throw std::runtime_error(cat("master: cannot listen on ", options.config.master_host, ":", port, ": ", ec.message()));
     acceptor.listen();
+    start_operator_console();
     for (const AtmosphereSwitch& sw : options.atmosphere_switches) resolve_switch(sw);  // fail before any precompute
     prepare_tables();
     spdlog::info("master: cluster '{}' listening on {}:{} for {} node{} (heartbeat {} ms, barrier timeout {} ms, {} Hz)",

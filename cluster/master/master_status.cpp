@@ -10,6 +10,7 @@ namespace {
 
 using nlohmann::json;
 
+/// "starting", "playing", "paused", "finished" or "stopping".
 std::string playback_state(const StatusSources& s) {
   if (s.stopping) return "stopping";
   if (!s.started) return "starting";
@@ -28,6 +29,7 @@ std::string node_state(const NodeSession& session, const FrameBarrier& barrier) 
   return "unknown";
 }
 
+/// One configured node: its newest open session, if any, and its statistics.
 json node_status(const StatusSources& s, const ClusterNodeConfig& node) {
   // The newest session of the node (a reconnecting node replaces its old one).
   const NodeSession* session = nullptr;
@@ -51,6 +53,7 @@ json node_status(const StatusSources& s, const ClusterNodeConfig& node) {
           {"tables_held", std::move(held)}};
 }
 
+/// The version on its way: its stage, the precompute's progress, the nodes holding it.
 json pending_status(const StatusSources& s, const TableVersions::Pending& pending) {
   std::size_t ready = 0, holding = 0;
   s.sessions.for_each([&](const NodeSession& session) {
@@ -78,6 +81,7 @@ json pending_status(const StatusSources& s, const TableVersions::Pending& pendin
           {"nodes_ready", ready}};
 }
 
+/// One atmosphere (current()[index] or the latest frame's): version, parameters, pending and waiting changes.
 json atmosphere_status(const StatusSources& s, std::size_t index, const AtmosphereTableRef& ref) {
   json parameters = nullptr;
   try {

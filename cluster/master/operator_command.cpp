@@ -59,6 +59,7 @@ std::optional<double> read_exposure(JsonReader& r) {
   return x;
 }
 
+/// `set`: a body, a JSON pointer that is not the root, any value.
 oc::Set read_set(JsonReader& r) {
   oc::Set set;
   set.body = r.string("body");

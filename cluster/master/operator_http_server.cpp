@@ -52,6 +52,7 @@ constexpr const char* kContentSecurityPolicy =
     "default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data:; connect-src 'self'; "
     "frame-ancestors 'none'; base-uri 'none'; form-action 'none'";
 
+/// A response to `request` with the console's headers (no caching, no sniffing, no referrer).
 OperatorHttpServer::Response make_response(const OperatorHttpServer::Request& request, http::status status,
                                            std::string content_type, std::string body) {
   OperatorHttpServer::Response response{status, request.version()};
@@ -66,11 +67,13 @@ OperatorHttpServer::Response make_response(const OperatorHttpServer::Request& re
   return response;
 }
 
+/// A JSON response (invalid UTF-8, which cannot occur in our replies, would be replaced).
 OperatorHttpServer::Response json_response(const OperatorHttpServer::Request& request, http::status status,
                                            const nlohmann::json& body) {
   return make_response(request, status, "application/json", body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }
 
+/// {"ok": false, "error": message} with `status`.
 OperatorHttpServer::Response error_response(const OperatorHttpServer::Request& request, http::status status,
                                             const std::string& message) {
   return json_response(request, status, {{"ok", false}, {"error", message}});
@@ -88,6 +91,7 @@ std::string_view host_name(std::string_view host) {
   return host.substr(0, host.find(':'));
 }
 
+/// Whether a Host name names this machine's loopback interface.
 bool is_loopback_name(std::string_view name) {
   return name == "localhost" || name == "[::1]" || name.starts_with("127.");
 }
@@ -106,6 +110,7 @@ struct OperatorHttpServer::Session : std::enable_shared_from_this<OperatorHttpSe
   Session(tcp::socket socket, OperatorHttpServer& owner, std::string address)
       : stream(std::move(socket)), server(owner), peer(std::move(address)) {}
 
+  /// Reads the next request (headers and body within their limits, in kRequestTimeout).
   void read() {
     parser.emplace();
     parser->header_limit(kMaxHeaderBytes);
@@ -116,6 +121,7 @@ struct OperatorHttpServer::Session : std::enable_shared_from_this<OperatorHttpSe
     });
   }
 
+  /// A request arrived (or the read failed): answer it, or close.
   void on_read(beast::error_code ec) {
     if (server.closed_) return;
     if (ec == http::error::body_limit) {
@@ -134,6 +140,7 @@ struct OperatorHttpServer::Session : std::enable_shared_from_this<OperatorHttpSe
     write();
   }
 
+  /// Sends `r`, then closes.
   void respond_and_close(Response r) {
     responding = true;
     response = std::move(r);
@@ -141,6 +148,7 @@ struct OperatorHttpServer::Session : std::enable_shared_from_this<OperatorHttpSe
     write();
   }
 
+  /// Sends the response; then the next request, unless it closes.
   void write() {
     stream.expires_after(kRequestTimeout);
     http::async_write(stream, response, [self = shared_from_this()](beast::error_code ec, std::size_t) {
@@ -153,6 +161,7 @@ struct OperatorHttpServer::Session : std::enable_shared_from_this<OperatorHttpSe
     });
   }
 
+  /// Closes the connection (both directions).
   void close() {
     beast::error_code ignored;
     stream.socket().shutdown(tcp::socket::shutdown_both, ignored);

@@ -26,6 +26,7 @@ class Reader {
     throw OscError(cat("OSC packet, byte ", base_ + at_, ": ", what));
   }
 
+  /// A big-endian 32-bit word.
   std::uint32_t u32() {
     if (remaining() < 4) fail("4 bytes needed, the packet ends");
     const std::uint32_t v = std::uint32_t{bytes_[at_]} << 24 | std::uint32_t{bytes_[at_ + 1]} << 16 |
@@ -33,6 +34,7 @@ class Reader {
     at_ += 4;
     return v;
   }
+  /// A big-endian 64-bit word.
   std::uint64_t u64() {
     const std::uint64_t high = u32();
     return high << 32 | u32();
@@ -52,6 +54,7 @@ class Reader {
     at_ = start + padded;
     return text;
   }
+  /// A blob: its size (32 bits), the bytes, NULs up to a multiple of 4.
   std::vector<std::uint8_t> blob() {
     const std::uint32_t size = u32();
     if (size > remaining()) fail(cat("a blob of ", size, " bytes; ", remaining(), " are left"));
@@ -62,6 +65,7 @@ class Reader {
     at_ += padded;
     return out;
   }
+  /// The next `n` bytes.
   std::span<const std::uint8_t> take(std::size_t n) {
     if (n > remaining()) fail(cat(n, " bytes needed, ", remaining(), " are left"));
     const auto out = bytes_.subspan(at_, n);
@@ -84,6 +88,7 @@ bool valid_address(const std::string& address) {
   return true;
 }
 
+/// One message: address, type tags, arguments; nothing may follow.
 OscMessage decode_message(Reader& r) {
   OscMessage message;
   message.address = r.string(kMaxAddressBytes);
@@ -117,6 +122,7 @@ OscMessage decode_message(Reader& r) {
   return message;
 }
 
+/// A message or a bundle at byte `base` of the packet, `depth` bundles deep; its messages go to `out`.
 void decode_element(std::span<const std::uint8_t> bytes, std::size_t base, int depth, std::vector<OscMessage>& out) {
   Reader r(bytes, base);
   if (bytes.size() % 4 != 0) r.fail(cat("an element of ", bytes.size(), " bytes: OSC sizes are multiples of 4"));
@@ -135,13 +141,16 @@ void decode_element(std::span<const std::uint8_t> bytes, std::size_t base, int d
   out.push_back(decode_message(r));
 }
 
+/// Appends a big-endian 32-bit word.
 void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
   for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<std::uint8_t>(v >> shift));
 }
+/// Appends a big-endian 64-bit word.
 void put_u64(std::vector<std::uint8_t>& out, std::uint64_t v) {
   put_u32(out, static_cast<std::uint32_t>(v >> 32));
   put_u32(out, static_cast<std::uint32_t>(v));
 }
+/// Appends an OSC string: the bytes, then 1 to 4 NULs up to a multiple of 4.
 void put_string(std::vector<std::uint8_t>& out, const std::string& s) {
   out.insert(out.end(), s.begin(), s.end());
   do out.push_back(0);
