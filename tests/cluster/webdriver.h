@@ -53,8 +53,10 @@ inline std::vector<std::uint8_t> decode_base64(const std::string& text) {
 /// throws std::runtime_error with the driver's answer when it fails.
 class WebDriver {
  public:
-  /// Starts chromedriver on `port` (its log in `log`) and a headless session.
-  WebDriver(int port, const std::filesystem::path& log) : port_(port) {
+  /// Starts chromedriver on `port` (its log in `log`) and a headless session
+  /// whose DevTools listen on `browser_port` (by default the browser picks a
+  /// free port among the ephemeral ones, which the tests' own ports overlap).
+  WebDriver(int port, int browser_port, const std::filesystem::path& log) : port_(port) {
     driver_ = core::spawn_process(kChromedriver, {"--port=" + std::to_string(port)}, log);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
     while (http_request(port_, boost::beast::http::verb::get, "/status", "", "application/json", 5).status != 200) {
@@ -68,7 +70,8 @@ class WebDriver {
             {"goog:chromeOptions",
              {{"binary", kChromium.string()},
               {"args", {"--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                        "--window-size=1280,1050"}}}}}}}}};
+                        "--window-size=1280,1050",
+                        "--remote-debugging-port=" + std::to_string(browser_port)}}}}}}}}};
     session_ = call(boost::beast::http::verb::post, "/session", capabilities)["sessionId"];
   }
   ~WebDriver() {
