@@ -125,9 +125,65 @@ struct PlaybackArgs {
   }
 };
 
+/// The operator console's options, shared by `zenith master` and `zenith
+/// cluster` (docs/operator.md). The token is never an argument: a file or
+/// the environment.
+struct OperatorArgs {
+  std::optional<int> http_port, osc_port;
+  std::string http_host = "127.0.0.1", token_file, osc_host = "127.0.0.1";
+  std::vector<std::string> osc_allow;
+
+  void add_to(CLI::App& cmd) {
+    cmd.add_option("--operator-port", http_port, "Serve the operator console (web page, JSON API) on this port (docs/operator.md)")
+        ->check(CLI::Range(1, 65535));
+    cmd.add_option("--operator-host", http_host,
+                   "Address the console listens on (default 127.0.0.1; any other needs an operator token)");
+    cmd.add_option("--operator-token-file", token_file,
+                   "File (mode 600) holding the operator token (default: the environment variable ZENITH_OPERATOR_TOKEN)");
+    cmd.add_option("--osc-port", osc_port, "Receive OSC cues on this UDP port (docs/operator.md)")->check(CLI::Range(1, 65535));
+    cmd.add_option("--osc-host", osc_host, "Address OSC is received on (default 127.0.0.1; any other needs --osc-allow)");
+    cmd.add_option("--osc-allow", osc_allow, "Accept OSC only from this sender address (repeatable)");
+  }
+  void apply(cluster::MasterOptions& options) const {
+    cluster::OperatorConsoleOptions& console = options.operator_console;
+    if (http_port) console.http_port = static_cast<std::uint16_t>(*http_port);
+    console.http_host = http_host;
+    console.token = load_operator_token();
+    if (osc_port) console.osc_port = static_cast<std::uint16_t>(*osc_port);
+    console.osc_host = osc_host;
+    console.osc_allow = osc_allow;
+  }
+  /// The token from --operator-token-file or ZENITH_OPERATOR_TOKEN, if either is given.
+  std::optional<cluster::SharedSecret> load_operator_token() const {
+    if (token_file.empty() && std::getenv(kOperatorTokenVariable) == nullptr) return std::nullopt;
+    try {
+      cluster::SharedSecret token = cluster::load_shared_secret(
+          token_file.empty() ? std::nullopt : std::optional<fs::path>(token_file), kOperatorTokenVariable);
+      for (const std::uint8_t c : token.bytes())
+        if (c < 0x21 || c > 0x7e)
+          throw std::runtime_error("must be printable ASCII without spaces (it travels in an HTTP header)");
+      return token;
+    } catch (const std::exception& e) {
+      throw std::runtime_error(cat("operator token (", token_file.empty() ? std::string(kOperatorTokenVariable) : token_file,
+                                   "): ", e.what()));
+    }
+  }
+  /// The same options as command-line arguments for a child master.
+  std::vector<std::string> arguments() const {
+    std::vector<std::string> args;
+    if (http_port) args.insert(args.end(), {"--operator-port", std::to_string(*http_port), "--operator-host", http_host});
+    if (!token_file.empty()) args.insert(args.end(), {"--operator-token-file", token_file});
+    if (osc_port) args.insert(args.end(), {"--osc-port", std::to_string(*osc_port), "--osc-host", osc_host});
+    for (const std::string& a : osc_allow) args.insert(args.end(), {"--osc-allow", a});
+    return args;
+  }
+  static constexpr const char* kOperatorTokenVariable = "ZENITH_OPERATOR_TOKEN";
+};
+
 struct MasterArgs {
   std::string cluster, cache_dir;
   PlaybackArgs playback;
+  OperatorArgs operator_console;
   std::uint64_t frames = 0;
   std::optional<int> port;
   double sun_step_deg = 0.1;
@@ -140,6 +196,7 @@ struct MasterArgs {
 void run_master(const MasterArgs& a) {
   cluster::MasterOptions options;
   a.playback.apply(options);
+  a.operator_console.apply(options);
   options.config = cluster::load_cluster_config(cluster_path(a.cluster));
   options.frames = a.frames;
   options.sun_step_deg = a.sun_step_deg;
@@ -193,6 +250,7 @@ int run_node(const NodeArgs& a) {
 struct ClusterArgs {
   std::string cluster, out, cache_dir;
   PlaybackArgs playback;
+  OperatorArgs operator_console;
   std::optional<std::uint64_t> frames;  ///< default 10 without a show, the whole show with one
   std::optional<int> port;
   double sun_step_deg = 0.1;
@@ -295,6 +353,8 @@ void run_cluster(const ClusterArgs& a) {
   master_args.insert(master_args.end(), common.begin(), common.end());
   const std::vector<std::string> playback = a.playback.arguments();
   master_args.insert(master_args.end(), playback.begin(), playback.end());
+  const std::vector<std::string> console = a.operator_console.arguments();
+  master_args.insert(master_args.end(), console.begin(), console.end());
   if (!a.cache_dir.empty()) master_args.insert(master_args.end(), {"--cache", a.cache_dir});
   // Nodes need no atmosphere files: the master sends each version's parameters (AtmosphereDefinition).
   for (const std::string& text : a.switches) master_args.insert(master_args.end(), {"--switch-atmosphere", text});
@@ -386,6 +446,7 @@ void register_cluster_commands(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("master", "Run the master of a cluster: tables, frame barrier (docs/cluster.md)");
     cmd->add_option("--cluster", a->cluster, "Cluster config JSON (configs/clusters/)")->required();
     a->playback.add_to(*cmd);
+    a->operator_console.add_to(*cmd);
     cmd->add_option("--frames", a->frames,
                     "Present this many frames, then stop the nodes (default 0: until SIGTERM, or the end of a show)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
@@ -437,6 +498,7 @@ void register_cluster_commands(CLI::App& app) {
         "cluster", "Run a local cluster: the master and every node of this machine as child processes (docs/cluster.md)");
     cmd->add_option("--cluster", a->cluster, fmt::format("Cluster config JSON (default configs/{}, built in)", kDefaultClusterName));
     a->playback.add_to(*cmd);
+    a->operator_console.add_to(*cmd);
     cmd->add_option("--frames", a->frames, "Frames to present (default 10; with --show, the whole show)")
         ->check(CLI::Range(1, 100000000));
     cmd->add_option("--out", a->out, "Output folder (default: the config's)");

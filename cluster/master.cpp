@@ -24,10 +24,16 @@
 #include "cluster/connection.h"
 #include "cluster/frame_scene.h"
 #include "cluster/heartbeat.h"
+#include "cluster/master/atmosphere_edits.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/heartbeat_monitor.h"
+#include "cluster/master/master_status.h"
 #include "cluster/master/node_sessions.h"
+#include "cluster/master/node_statistics.h"
+#include "cluster/master/operator_command.h"
+#include "cluster/master/operator_http_server.h"
 #include "cluster/master/operator_input.h"
+#include "cluster/master/osc_receiver.h"
 #include "cluster/master/show_start_rule.h"
 #include "cluster/master/table_preparer.h"
 #include "cluster/master/table_versions.h"
@@ -63,6 +69,11 @@ struct Master::Impl {
   /// (prepared by `preparer` while frames go on with the old one).
   TableVersions tables;
   std::size_t next_switch = 0;  ///< into options.atmosphere_switches (sorted by frame)
+  /// The operator's atmosphere changes waiting to become table versions (the default show only).
+  std::optional<AtmosphereEdits> edits;
+  std::string pending_change;  ///< what the pending version changes (a preset, a file, an operator's change)
+  /// The operator's exposure, replacing the show's (or scene's) from the next frame on.
+  std::optional<double> exposure_override;
   std::uint32_t render_flags = 0;
 
   // ---- the show (docs/shows.md) ----
@@ -94,6 +105,11 @@ struct Master::Impl {
   HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
   /// Playback commands from the console and the control socket.
   OperatorInput operator_input{io, [this](std::string line) { return on_command(std::move(line)); }};
+  /// The operator console (docs/operator.md): the web page and JSON API, and OSC from show-control desks.
+  std::optional<OperatorHttpServer> http_console;
+  std::optional<OscReceiver> osc;
+  NodeStatistics node_statistics;  ///< per node name, for the console's status
+  std::string last_version_error;  ///< the latest table version that could not be prepared, and why
   Clock::time_point frame_started, show_started;
   /// Since when frame 0 could start as far as the tables go (the wait for nodes counts from here).
   std::optional<Clock::time_point> waiting_since;
@@ -266,6 +282,7 @@ struct Master::Impl {
       return;
     }
     spdlog::error("master: the new tables could not be prepared: {}; the show goes on with the current version", what);
+    last_version_error = cat("table version ", short_hex(hash), " (", pending_change, "): ", what);
     tables.abandon_pending();
     maybe_start_switch();
   }
@@ -305,30 +322,43 @@ struct Master::Impl {
     if (tables.ready_with(s.tables_ready)) become_ready(s);
   }
 
-  /// Starts the next switch whose frame has come (one version in flight at a time).
+  /// Starts the next switch whose frame has come, else the operator's next
+  /// change (one version in flight at a time).
   void maybe_start_switch() {
-    if (tables.pending() || next_switch >= options.atmosphere_switches.size()) return;
-    const AtmosphereSwitch& sw = options.atmosphere_switches[next_switch];
-    const std::uint64_t frame = barrier.frame();
-    if (sw.frame > frame) return;
-    ++next_switch;
-    auto [index, loaded] = resolve_switch(sw);  // checked at start-up: does not throw here
+    if (tables.pending()) return;
+    if (next_switch < options.atmosphere_switches.size() &&
+        options.atmosphere_switches[next_switch].frame <= barrier.frame()) {
+      const AtmosphereSwitch& sw = options.atmosphere_switches[next_switch++];
+      auto [index, loaded] = resolve_switch(sw);  // checked at start-up: does not throw here
+      begin_version(index, std::move(loaded), cat("frame ", barrier.frame()), sw.atmosphere);
+    } else if (std::optional<AtmosphereEdits::Edit> edit = edits ? edits->take_next() : std::nullopt) {
+      begin_version(edit->index, std::move(edit->loaded), "operator", edit->change);
+    }
+  }
+
+  /// Atmosphere current()[index] is to become `loaded` (`why`: when or who
+  /// asked; `what`: the preset, file or change, for the log): prepares its
+  /// table version in the background unless it is the current one.
+  void begin_version(std::size_t index, atmosphere::LoadedAtmosphere loaded, const std::string& why,
+                     const std::string& what) {
+    const std::string body = tables.current()[index].body_name;
     const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
     if (hash == tables.current()[index].table_hash) {
-      spdlog::info("master: frame {}: '{}' already uses {}; nothing to switch", frame, sw.body, sw.atmosphere);
+      spdlog::info("master: {}: '{}' already uses {}; nothing to switch", why, body, what);
       maybe_start_switch();
       return;
     }
-    tables.add_version(sw.body, loaded, hash);
+    tables.add_version(body, loaded, hash);
     tables.begin_pending(index, hash);
-    spdlog::info("master: frame {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
+    pending_change = what;
+    spdlog::info("master: {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
                  "version {}",
-                 frame, short_hex(hash), sw.body, sw.atmosphere, short_hex(tables.current()[index].table_hash));
+                 why, short_hex(hash), body, what, short_hex(tables.current()[index].table_hash));
     if (tables.has_set(hash)) {  // an earlier version again: already encoded
       asio::post(io, [this] { on_version_prepared(std::nullopt); });
       return;
     }
-    preparer.enqueue(preparation_job(sw.body, loaded.model));
+    preparer.enqueue(preparation_job(body, loaded.model));
   }
 
   /// Networking thread: the pending version's tables are ready; send them to every node.
@@ -448,6 +478,7 @@ struct Master::Impl {
 
   void become_ready(NodeSession& s) {
     s.state = NodeSession::State::ready;
+    node_statistics.joined(s.name);
     spdlog::info("master: node '{}' is ready: it joins the barrier at the next frame boundary (frame {})", s.name,
                  barrier.next_boundary());
     maybe_start_show();
@@ -538,6 +569,7 @@ struct Master::Impl {
         next = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
                     : default_show_frame(scene, frame, options.sun_step_deg, tables.current(), render_flags);
         if (!show) next.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
+        if (exposure_override) next.exposure = *exposure_override;
       }
       held_frame = std::move(next);
       held_since = Clock::now();
@@ -615,9 +647,12 @@ struct Master::Impl {
   void on_render_done(NodeSession& s, const RenderDone& done) {
     switch (barrier.on_render_done(s.id, done.frame)) {
       case FrameBarrier::Report::counted:
+        node_statistics.rendered(s.name, done.render_ms, barrier.complete() && barrier.participant_count() > 1);
         if (barrier.complete()) complete_frame();
         return;
       case FrameBarrier::Report::rejoins:
+        node_statistics.rendered(s.name, done.render_ms, false);
+        node_statistics.rejoined(s.name);
         spdlog::info("master: node '{}' finished frame {} late; it rejoins the barrier at frame {}", s.name,
                      done.frame, barrier.next_boundary());
         return;
@@ -631,10 +666,12 @@ struct Master::Impl {
 
   void on_barrier_timeout() {
     for (const std::uint32_t id : barrier.drop_unfinished())
-      if (const NodeSession* s = sessions.find(id))
+      if (const NodeSession* s = sessions.find(id)) {
+        node_statistics.dropped(s->name);
         spdlog::warn("master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
                      "barrier; the show goes on without it",
                      s->name, barrier.frame(), options.config.barrier_timeout_ms);
+      }
     complete_frame();
   }
 
@@ -675,14 +712,23 @@ struct Master::Impl {
     });
   }
 
-  // ---- operator commands (docs/shows.md, "Playback") -------------------------
+  // ---- operator commands (docs/shows.md, "Playback"; docs/operator.md) ----------
 
   /// One command line from the console or the control socket; the reply line.
+  /// A line that starts with "{" is a JSON command (docs/operator.md).
   /// Commands change the clock between frames, so every node gets one
   /// consistent state per frame.
   std::string on_command(std::string line) {
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
     if (line.empty()) return "";
+    if (line.front() == '{') {
+      try {
+        return run_operator_command(parse_operator_command_text(line), "control");
+      } catch (const std::exception& e) {
+        spdlog::info("master: operator (control): command refused: {}", e.what());
+        return cat("error: ", e.what());
+      }
+    }
     if (line == "quit" || line == "stop") {
       stop("stopped by the operator");
       return "stopping";
@@ -697,6 +743,101 @@ struct Master::Impl {
       return reply;
     } catch (const std::invalid_argument& e) {
       return cat("error: ", e.what());
+    }
+  }
+
+  /// Applies one operator command from `source` ("control", "http 127.0.0.1",
+  /// "osc 10.0.0.5") with a log line either way; returns the reply. Throws
+  /// (std::invalid_argument, ConfigError) when the command is refused: then
+  /// nothing was applied.
+  std::string run_operator_command(const OperatorCommand& command, const std::string& source) {
+    namespace oc = operator_command;
+    try {
+      std::string reply;
+      if (std::holds_alternative<oc::Quit>(command)) {
+        stop("stopped by the operator");
+        reply = "stopping";
+      } else if (const auto* exposure = std::get_if<oc::Exposure>(&command)) {
+        exposure_override = exposure->exposure;
+        reply = exposure->exposure ? cat("exposure ", *exposure->exposure, " from the next frame on")
+                                   : std::string("the show's own exposure from the next frame on");
+      } else if (const auto* set = std::get_if<oc::Set>(&command)) {
+        reply = apply_set(*set);
+      } else if (!clock) {
+        if (!std::holds_alternative<oc::Status>(command))
+          throw std::invalid_argument(cat(describe(command), ": no show is playing (the default show has no clock: start "
+                                                             "the master with --show FILE for play, pause, seek, rate and loop)"));
+        reply = cat("default show at frame ", barrier.frame());
+      } else {
+        if (const auto* seek = std::get_if<oc::Seek>(&command); seek && seek->seconds > clock->duration_s())
+          throw std::invalid_argument(cat("command: /seconds = ", seek->seconds, ": must be in [0, ", clock->duration_s(),
+                                          "] s (the show's duration)"));
+        reply = clock->apply_command(describe(command));  // the clock's own words: "seek 12.5", "loop on"
+      }
+      spdlog::info("master: operator ({}): {} → {}", source, describe(command), reply);
+      return reply;
+    } catch (const std::exception& e) {
+      spdlog::info("master: operator ({}): {} refused: {}", source, describe(command), e.what());
+      throw;
+    }
+  }
+
+  /// An operator's `set`: checked like an atmosphere file, then prepared as a
+  /// new table version in the background and switched on every node at one
+  /// frame (docs/operator.md, "Live atmosphere parameters").
+  std::string apply_set(const operator_command::Set& set) {
+    if (!edits)
+      throw std::invalid_argument(cat(describe(set), ": a show's atmospheres follow its tracks (docs/shows.md); live "
+                                                     "changes are for the default show (a master without --show)"));
+    const std::size_t index = edits->index_of(set.body);
+    const AtmosphereEdits::Edit* waiting = edits->waiting(set.body);
+    const std::optional<TableVersions::Pending>& pending = tables.pending();
+    const Digest latest = waiting ? digest_from_hex(atmosphere::lookup_table_hash(waiting->loaded.model))
+                          : pending && pending->ref_index == index ? pending->hash
+                                                                   : tables.current()[index].table_hash;
+    AtmosphereEdits::Edit edit = edits->resolve(set, waiting ? waiting->loaded.parameters : tables.version(latest).parameters);
+    const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(edit.loaded.model));
+    if (hash == latest)
+      return cat("'", set.body, "' ", edit.change, ": the tables stay version ", short_hex(hash),
+                 " (the change does not shape them)");
+    const std::string change = edit.change;
+    edits->enqueue(std::move(edit));
+    maybe_start_switch();
+    const bool started_now = tables.pending() && tables.pending()->hash == hash;
+    return cat("'", set.body, "' ", change, ": table version ", short_hex(hash),
+               started_now ? " is being prepared" : " waits for the version before it",
+               "; every node switches to it at one frame once all hold it");
+  }
+
+  /// The console's status (GET /api/status; docs/operator.md, "Status").
+  nlohmann::json operator_status() const {
+    return master_status(StatusSources{options.config, sessions, barrier, tables, preparer.running(), node_statistics,
+                                       edits ? &*edits : nullptr, show ? &*show : nullptr, clock ? &*clock : nullptr,
+                                       started, stopping, started ? &frame_in_flight : nullptr, presented, fps,
+                                       exposure_override, pending_change, last_version_error});
+  }
+
+  /// The operator console (HTTP, OSC): listening from before the tables are
+  /// prepared, so a bad address or a missing token stops the master at once.
+  /// Requests wait in the backlog until the networking loop runs.
+  void start_operator_console() {
+    const OperatorConsoleOptions& console = options.operator_console;
+    const auto command = [this](const OperatorCommand& c, const std::string& source) {
+      return run_operator_command(c, source);
+    };
+    if (console.http_port) {
+      http_console.emplace(io, OperatorHttpServer::Options{console.http_host, *console.http_port, console.token},
+                           OperatorHttpServer::Handlers{[this] { return operator_status(); }, command});
+      http_console->start();
+      spdlog::info("master: operator console at {} ({}; docs/operator.md)", http_console->url(),
+                   console.token ? "operator token required" : "loopback only, no token");
+    }
+    if (console.osc_port) {
+      osc.emplace(io, OscReceiver::Options{console.osc_host, *console.osc_port, console.osc_allow}, command);
+      osc->start();
+      spdlog::info("master: OSC on udp {}:{} (/zenith/play, /zenith/pause, /zenith/seek, /zenith/rate, /zenith/exposure, "
+                   "/zenith/atmosphere/BODY/PARAMETER; docs/operator.md)",
+                   console.osc_host, osc->port());
     }
   }
 
@@ -756,6 +897,8 @@ struct Master::Impl {
     boost::system::error_code ec;
     acceptor.close(ec);
     operator_input.close();
+    if (http_console) http_console->close();
+    if (osc) osc->close();
     if (signals) signals->cancel(ec);
     heartbeat_timer.cancel();
     barrier_timer.cancel();
@@ -789,6 +932,7 @@ struct Master::Impl {
                    show->frame_count(fps), clock->looping() ? ", looping" : "");
     } else {
       scene = scene::load_scene(options.config.scene);
+      edits.emplace(scene);
     }
     if (options.record)
       recorder = std::make_unique<show::ShowRecorder>(*options.record, show ? show->scene_path() : options.config.scene,
@@ -806,6 +950,7 @@ struct Master::Impl {
     acceptor.bind(endpoint, ec);
     if (ec) throw std::runtime_error(cat("master: cannot listen on ", options.config.master_host, ":", port, ": ", ec.message()));
     acceptor.listen();
+    start_operator_console();
     for (const AtmosphereSwitch& sw : options.atmosphere_switches) resolve_switch(sw);  // fail before any precompute
     prepare_tables();
     spdlog::info("master: cluster '{}' listening on {}:{} for {} node{} (heartbeat {} ms, barrier timeout {} ms, {} Hz)",

@@ -41,6 +41,18 @@ struct AtmosphereSwitch {
   std::string atmosphere;   ///< a preset name or an atmosphere file (as `zenith render --atmosphere`)
 };
 
+/// The operator console (docs/operator.md): a web page and JSON API over HTTP,
+/// and OSC over UDP for show-control desks, both on the master's event loop.
+struct OperatorConsoleOptions {
+  std::optional<std::uint16_t> http_port;  ///< serve the console on this port (0: any free port, logged)
+  std::string http_host = "127.0.0.1";     ///< a numeric address; anything but loopback needs `token`
+  /// When set, every /api request must carry it ("Authorization: Bearer TOKEN").
+  std::optional<SharedSecret> token;
+  std::optional<std::uint16_t> osc_port;   ///< receive OSC on this UDP port (0: any free port, logged)
+  std::string osc_host = "127.0.0.1";      ///< a numeric address; anything but loopback needs `osc_allow`
+  std::vector<std::string> osc_allow;      ///< the only senders accepted (numeric addresses)
+};
+
 struct MasterOptions {
   ClusterConfig config;
   std::uint64_t frames = 0;          ///< frames to present, then say Goodbye and return; 0: run until stopped
@@ -74,6 +86,8 @@ struct MasterOptions {
   bool console = false;
   /// Playback commands on a TCP control socket at 127.0.0.1:PORT (`zenith show control`).
   std::optional<std::uint16_t> control_port;
+  /// The operator console: HTTP and OSC (docs/operator.md).
+  OperatorConsoleOptions operator_console;
   /// Offline rendering through the cluster: frames come from this feed (the
   /// show still names the table sets to prepare); the master stops when the
   /// feed is finished and empty. Not combined with a show clock's commands.

@@ -59,6 +59,10 @@ struct Sun {
   std::vector<double> irradiance_W_m2_nm;
 };
 
+/// The largest exposure of a scene, a show's exposure track, a recording or an
+/// operator's command: exposure is in (0, kMaxExposure].
+inline constexpr double kMaxExposure = 1e6;
+
 struct Camera {
   glm::dvec3 position_m{0.0};          ///< world frame
   glm::dquat orientation{1, 0, 0, 0};  ///< camera frame (+x right, +y up, −z forward) → world (unit)

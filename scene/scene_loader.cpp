@@ -61,7 +61,6 @@ constexpr Range kSunDistance{0.02, 1000.0, "AU"};
 constexpr double kMaxSunAngularDiameter_deg = 30.0;
 constexpr Range kIrradianceScale{0.0, 1e6, ""};
 constexpr Range kIrradiance{0.0, 1e4, "W m^-2 nm^-1"};
-constexpr double kMaxExposure = 1e6;
 constexpr double kDefaultExposure = 10.0;
 constexpr int kMaxMapWidth_px = 16384, kMaxMapHeight_px = 8192;
 /// Two directions closer than this (radians) count as parallel.

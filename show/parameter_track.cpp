@@ -5,10 +5,79 @@
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "core/json_reader.h"
 #include "show/key_span.h"
 
 namespace zenith::show {
+namespace {
+
+using config::cat;
+
+/// An array index token of a JSON pointer: digits without a leading zero,
+/// below 2^31; "-" is `size` (one past the end).
+std::size_t array_index(const std::string& token, std::size_t size, const std::string& pointer) {
+  if (token == "-") return size;
+  const bool digits = !token.empty() && token.size() <= 10 &&
+                      token.find_first_not_of("0123456789") == std::string::npos && (token == "0" || token[0] != '0');
+  if (!digits || std::stoull(token) > 0x7fffffffULL)
+    throw std::invalid_argument(cat(pointer, ": \"", token, "\" is not an index of an array of ", size, " elements"));
+  return static_cast<std::size_t>(std::stoull(token));
+}
+
+}  // namespace
+
+void write_parameter(nlohmann::json& parameters, const nlohmann::json::json_pointer& pointer, nlohmann::json value) {
+  const std::string where = pointer.to_string();
+  if (pointer.empty()) throw std::invalid_argument("the pointer \"\" names the whole parameter set, not one parameter");
+  std::vector<std::string> tokens;
+  for (nlohmann::json::json_pointer p = pointer; !p.empty(); p = p.parent_pointer()) tokens.insert(tokens.begin(), p.back());
+  nlohmann::json* node = &parameters;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const std::string& token = tokens[i];
+    const bool last = i + 1 == tokens.size();
+    if (node->is_null()) {
+      if (value.is_null()) return;  // nothing to remove
+      *node = nlohmann::json::object();
+    }
+    if (node->is_object()) {
+      const auto it = node->find(token);
+      if (last) {
+        if (value.is_null()) {
+          if (it != node->end()) node->erase(it);
+        } else {
+          (*node)[token] = std::move(value);
+        }
+        return;
+      }
+      if (it == node->end() && value.is_null()) return;
+      node = &(*node)[token];
+    } else if (node->is_array()) {
+      const std::size_t index = array_index(token, node->size(), where);
+      if (last) {
+        if (index < node->size()) {
+          if (value.is_null()) node->erase(index);
+          else (*node)[index] = std::move(value);
+        } else if (index == node->size() && !value.is_null()) {
+          node->push_back(std::move(value));
+        } else if (!value.is_null()) {
+          throw std::invalid_argument(cat(where, ": index ", token, " is past the end of an array of ", node->size(),
+                                          " elements"));
+        }
+        return;
+      }
+      if (index >= node->size())
+        throw std::invalid_argument(cat(where, ": index ", token, " is past the end of an array of ", node->size(),
+                                        " elements"));
+      node = &(*node)[index];
+    } else {
+      throw std::invalid_argument(cat(where, ": \"", token, "\" cannot be looked up in a ", node->type_name(),
+                                      " (only objects and arrays have keys)"));
+    }
+  }
+}
 
 std::int64_t quantize(double value, double step) {
   const double steps = std::round(value / step);
@@ -57,16 +126,7 @@ nlohmann::json ParameterTrack::value_at(double t_s) const {
 }
 
 void ParameterTrack::apply(nlohmann::json& parameters, double t_s) const {
-  nlohmann::json value = value_at(t_s);
-  if (!value.is_null()) {
-    parameters[pointer_] = std::move(value);
-    return;
-  }
-  if (!parameters.contains(pointer_)) return;
-  nlohmann::json& parent = parameters[pointer_.parent_pointer()];
-  const std::string& last = pointer_.back();
-  if (parent.is_object()) parent.erase(last);
-  else if (parent.is_array()) parent.erase(static_cast<std::size_t>(std::stoul(last)));
+  write_parameter(parameters, pointer_, value_at(t_s));
 }
 
 }  // namespace zenith::show

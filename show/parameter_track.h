@@ -32,6 +32,14 @@ std::int64_t quantize(double value, double step);
 /// level · step, rounded to 15 significant digits so that 3 × 0.1 reads 0.3.
 double quantized_value(std::int64_t level, double step);
 
+/// Writes `value` into `parameters` at `pointer` (into an atmosphere's
+/// parameter set: tracks, the operator's `set`), creating objects on the way;
+/// null removes the key (nothing happens when it is absent). "-" or the size
+/// of an array appends to it. Throws std::invalid_argument, naming the
+/// pointer, for the root pointer, a step through a value that is neither an
+/// object nor an array, and an array index that is not a number in range.
+void write_parameter(nlohmann::json& parameters, const nlohmann::json::json_pointer& pointer, nlohmann::json value);
+
 class ParameterTrack {
  public:
   /// Keys strictly increasing in t_s, at least one. A step (finite, > 0)

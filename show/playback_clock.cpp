@@ -13,7 +13,7 @@ namespace {
 
 using config::cat;
 
-constexpr double kMaxRate = 16.0;
+constexpr double kMaxRate = PlaybackClock::kMaxRate;
 constexpr const char* kUsage =
     "commands: play | pause | toggle | seek SECONDS | rate FACTOR (-16..16) | loop on|off | status | quit";
 

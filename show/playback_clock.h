@@ -12,6 +12,9 @@ namespace zenith::show {
 
 class PlaybackClock {
  public:
+  /// The fastest playback either way: rates are in [−kMaxRate, kMaxRate].
+  static constexpr double kMaxRate = 16.0;
+
   /// `duration_s` ≥ 0, `fps` in (0, 1000]. Starts playing at time 0, rate 1.
   PlaybackClock(double duration_s, double fps, bool loop);
 

@@ -7,6 +7,7 @@
 
 #include "core/json_reader.h"
 #include "core/sha256.h"
+#include "scene/scene.h"
 #include "core/units.h"
 
 namespace zenith::show {
@@ -14,10 +15,10 @@ namespace {
 
 using config::brief;
 using config::cat;
+using scene::kMaxExposure;
 using nlohmann::json;
 
 constexpr double kMaxShowTime_s = 1e9;
-constexpr double kMaxExposure = 1e6;
 constexpr double kMaxSunAngularRadius_rad = 15.0 * core::kPi / 180.0;
 
 json vec3_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }

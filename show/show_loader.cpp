@@ -10,6 +10,7 @@
 
 #include "core/json_reader.h"
 #include "core/sha256.h"
+#include "scene/scene.h"
 #include "show/recording_json.h"
 #include "show/show.h"
 #include "show/show_impl.h"
@@ -21,6 +22,7 @@ namespace {
 
 using config::brief;
 using config::cat;
+using scene::kMaxExposure;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
@@ -29,7 +31,6 @@ constexpr std::size_t kMaxKeys = 100000;
 constexpr double kMaxFps = 240.0;
 constexpr double kDefaultFps = 30.0;
 constexpr double kMaxRecordingFps = 1000.0;
-constexpr double kMaxExposure = 1e6;
 constexpr double kMinCameraClearance_m = 0.1;  // as scenes
 /// Samples per segment when checking that a free camera path clears every body.
 constexpr int kClearanceSamples = 64;

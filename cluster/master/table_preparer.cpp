@@ -36,7 +36,12 @@ void TablePreparer::enqueue(Job job) {
 
 std::size_t TablePreparer::outstanding() const {
   std::lock_guard lock(mutex_);
-  return jobs_.size() + (running_job_ ? 1 : 0);
+  return jobs_.size() + (running_ ? 1 : 0);
+}
+
+std::optional<TablePreparer::Progress> TablePreparer::running() const {
+  std::lock_guard lock(mutex_);
+  return running_;
 }
 
 void TablePreparer::stop() {
@@ -75,8 +80,18 @@ void TablePreparer::run() {
       if (stopping_) return;
       job = std::move(jobs_.front());
       jobs_.pop_front();
-      running_job_ = true;
+      running_ = Progress{job.table_hash, "starting", 0.0};
     }
+    job.request.options.progress = [this, caller = job.request.options.progress](const atmosphere::lut::PrecomputeProgress& p) {
+      {
+        std::lock_guard lock(mutex_);
+        if (running_) {
+          running_->stage = p.stage;
+          running_->fraction = p.fraction;
+        }
+      }
+      if (caller) caller(p);
+    };
     const auto started = std::chrono::steady_clock::now();
     bool from_cache = false;
     std::optional<TableSetFile> set;
@@ -89,7 +104,7 @@ void TablePreparer::run() {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     {
       std::lock_guard lock(mutex_);
-      running_job_ = false;  // done: the callback only reports it
+      running_.reset();  // done: the callback only reports it
       if (stopping_) return;
     }
     if (set) on_prepared_(std::move(*set), seconds, from_cache);

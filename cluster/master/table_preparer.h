@@ -15,6 +15,7 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -57,6 +58,17 @@ class TablePreparer {
   void enqueue(Job job);
   /// Jobs waiting or running.
   std::size_t outstanding() const;
+
+  /// How far the running job is: its table hash and the precompute's last
+  /// progress report (stage "starting", fraction 0, before the first; a cache
+  /// read reports none).
+  struct Progress {
+    Digest table_hash{};
+    std::string stage;
+    double fraction = 0.0;  ///< of the whole precompute, [0, 1]
+  };
+  /// The running job's progress; nullopt when no job runs. Any thread.
+  std::optional<Progress> running() const;
   /// Drops the waiting jobs and asks the running one to end: a precompute
   /// stops at its next progress report (a fraction of a second on the GPU,
   /// a few seconds at most on the CPU); a cache read finishes. No callback
@@ -78,7 +90,7 @@ class TablePreparer {
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<Job> jobs_;
-  bool running_job_ = false;
+  std::optional<Progress> running_;  ///< the job running now
   bool stopping_ = false;
   std::thread worker_;
 };

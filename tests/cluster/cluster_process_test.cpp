@@ -23,12 +23,19 @@
 #include <thread>
 #include <vector>
 
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <nlohmann/json.hpp>
+
 #include "cluster/frame_decoder.h"
 #include "cluster/handshake.h"
+#include "cluster/master/osc_packet.h"
 #include "cluster/messages.h"
 #include "core/process.h"
 #include "image/image_io.h"
 #include "test_support.h"
+#include "tests/cluster/http_client.h"
+#include "tests/cluster/webdriver.h"
 
 namespace zenith::cluster {
 namespace {
@@ -1016,6 +1023,325 @@ TEST_F(ClusterProcess, NodeRefusesAMasterThatProvesTheWrongSecret) {
   const std::string log = read_text(dir_ / "a.log");
   EXPECT_NE(log.find("failed to authenticate"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir_ / "out/a/presented.log"));
+}
+
+// ---- the operator console (docs/operator.md) ----------------------------------
+
+/// The console's status, or an empty object when it cannot be had.
+nlohmann::json console_status(int port) {
+  const test::HttpReply r = test::http_request(port, boost::beast::http::verb::get, "/api/status");
+  nlohmann::json status = r.status == 200 ? r.json() : nlohmann::json();
+  return status.is_object() ? status : nlohmann::json::object();
+}
+
+/// POSTs one JSON command to the console on 127.0.0.1:`port`.
+test::HttpReply console_command(int port, const std::string& command) {
+  return test::http_request(port, boost::beast::http::verb::post, "/api/command", command);
+}
+
+/// One OSC datagram to 127.0.0.1:`port`.
+void send_osc(int port, const std::vector<std::uint8_t>& packet) {
+  boost::asio::io_context io;
+  boost::asio::ip::udp::socket socket(io, boost::asio::ip::udp::v4());
+  socket.send_to(boost::asio::buffer(packet), {boost::asio::ip::make_address("127.0.0.1"), static_cast<std::uint16_t>(port)});
+}
+
+/// Paused: frames go on while the show time holds (expected). The held show
+/// time, or nullopt when the frames did not go on.
+std::optional<double> held_show_time(int port) {
+  const auto frames = [&] { return console_status(port).value("frames_presented", -1); };
+  int at = frames();
+  if (!wait_until([&] { return frames() >= at + 2; }, 60s)) return std::nullopt;
+  const double held = console_status(port).value("show_time_s", -1.0);
+  at = frames();
+  if (!wait_until([&] { return frames() >= at + 3; }, 60s)) return std::nullopt;
+  EXPECT_EQ(console_status(port).value("show_time_s", -2.0), held) << "paused: the show time stops";
+  return held;
+}
+
+/// Whether the status lists the three nodes, all in `state`.
+bool all_nodes(const nlohmann::json& status, const std::string& state) {
+  if (!status.is_object() || status["nodes"].size() != 3) return false;
+  for (const auto& n : status["nodes"])
+    if (n["state"] != state) return false;
+  return true;
+}
+
+TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameAndRefusesBadCommands) {
+  const fs::path config = write_config(10);
+  const int http = port_ + 2, osc = port_ + 3;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
+                                     std::to_string(osc), "--debug-table-delay-ms", "3000"});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready"); }, 400s)) << logs();
+  const nlohmann::json first = console_status(http);
+  EXPECT_EQ(first["state"], "playing");
+  EXPECT_EQ(first["show"], nullptr);
+  EXPECT_TRUE(first["live_atmospheres"]);
+  ASSERT_EQ(first["atmospheres"].size(), 1u);
+  EXPECT_EQ(first["atmospheres"][0]["body"], "Earth");
+  EXPECT_EQ(first["atmospheres"][0]["parameters"]["aerosol"]["scattering"]["turbidity"], 2.0);
+  const std::string old_version = first["atmospheres"][0]["version"];
+  for (const auto& node : first["nodes"]) EXPECT_EQ(node["tables_held"], nlohmann::json::array({old_version})) << node;
+
+  // The page, from the binary.
+  const test::HttpReply page = test::http_request(http, boost::beast::http::verb::get, "/");
+  EXPECT_EQ(page.status, 200);
+  EXPECT_NE(page.body.find("operator console"), std::string::npos);
+
+  // Refused, each with its reason; nothing applied.
+  test::HttpReply r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 100})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_EQ(r.json()["error"], "set Earth: /aerosol/scattering/turbidity = 100: must be in [1, 64]") << r.body;
+  r = console_command(http, R"({"command": "pause"})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(r.body.find("no show is playing"), std::string::npos) << r.body;
+  r = test::http_request(http, boost::beast::http::verb::post, "/api/command", R"({"command": "quit"})", "text/plain");
+  EXPECT_EQ(r.status, 415) << r.body;
+
+  // OSC: an exposure applied, a turbidity out of range and a malformed packet refused.
+  send_osc(osc, encode_osc_message({"/zenith/exposure", {40.0f}}));
+  send_osc(osc, encode_osc_message({"/zenith/atmosphere/Earth/aerosol/scattering/turbidity", {200.0f}}));
+  send_osc(osc, {'/', 'z', 'e', 'n'});
+  ASSERT_TRUE(wait_until([&] { return console_status(http)["exposure"] == 40.0; }, 60s)) << logs();
+  EXPECT_EQ(console_status(http)["exposure_override"], 40.0);
+  EXPECT_EQ(console_status(http)["atmospheres"][0]["version"], old_version);
+
+  // Live changes: each a new table version, on every node from one frame on.
+  struct Version {
+    std::string hex;
+    std::uint64_t from_frame = 0;
+  };
+  std::vector<Version> versions{{old_version, 0}};
+  nlohmann::json now;
+  const auto atmosphere = [&] { return now["atmospheres"][0]; };
+  /// Waits until the version after versions.back() is in effect, and records it (a waiting change may
+  /// then be pending already).
+  const auto next_version = [&] {
+    const bool switched = wait_until(
+        [&] {
+          now = console_status(http);
+          return now.contains("atmospheres") && atmosphere()["version"] != versions.back().hex;
+        },
+        400s);
+    if (switched) versions.push_back({atmosphere()["version"], atmosphere()["effective_from_frame"]});
+    return switched;
+  };
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 3})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.json()["reply"].get<std::string>().find("table version"), std::string::npos) << r.body;
+  ASSERT_TRUE(next_version()) << logs();
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scattering"]["turbidity"], 3);
+  EXPECT_TRUE(atmosphere()["pending"].is_null());
+  for (const auto& node : now["nodes"]) {
+    const auto& held = node["tables_held"];
+    EXPECT_NE(std::find(held.begin(), held.end(), versions.back().hex), held.end()) << node;
+    EXPECT_GT(node["frames_rendered"].get<std::uint64_t>(), 0u) << node;
+    EXPECT_TRUE(node["last_render_ms"].is_number()) << node;
+  }
+  // The next version takes 3 s more to prepare (--debug-table-delay-ms): its progress shows, and a
+  // change made meanwhile waits for it, then becomes the version after it.
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 2.5})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_TRUE(wait_until(
+      [&] {
+        now = console_status(http);
+        return now.contains("atmospheres") && atmosphere()["pending"].is_object() &&
+               atmosphere()["pending"]["stage"] == "preparing";
+      },
+      10s))
+      << now.dump();
+  EXPECT_EQ(atmosphere()["pending"]["change"], "/aerosol/scattering/turbidity = 2.5") << now.dump();
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": 1500})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.body.find("waits for the version before it"), std::string::npos) << r.body;
+  EXPECT_EQ(console_status(http)["atmospheres"][0]["waiting"], "/aerosol/scale_height_m = 1500");
+  ASSERT_TRUE(next_version()) << logs();
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scattering"]["turbidity"], 2.5);
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scale_height_m"], 1200) << "not yet: it waits";
+  ASSERT_TRUE(next_version()) << logs();
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scattering"]["turbidity"], 2.5);
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scale_height_m"], 1500);
+  EXPECT_TRUE(atmosphere()["waiting"].is_null());
+  EXPECT_TRUE(atmosphere()["pending"].is_null());
+  const std::uint64_t last_switch = versions.back().from_frame;
+  ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > last_switch + 2; }, 120s))
+      << logs();
+  r = console_command(http, R"({"command": "quit"})");
+  EXPECT_EQ(r.status, 200) << r.body;
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+
+  // Every node rendered each version from the same frame on, never before.
+  ASSERT_EQ(versions.size(), 4u);
+  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  for (const char* node : {"a", "b", "c"})
+    for (const Presented& p : presented(dir_ / "out" / node)) {
+      std::size_t v = 0;
+      while (v + 1 < versions.size() && versions[v + 1].from_frame <= p.frame) ++v;
+      EXPECT_EQ(p.tables, "Earth=" + versions[v].hex) << node << " frame " << p.frame;
+    }
+  const std::string master_log = read_text(dir_ / "master.log");
+  for (const std::string& text :
+       {"operator console at http://127.0.0.1:" + std::to_string(http) + "/",
+        std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 100 refused: set Earth: "
+                    "/aerosol/scattering/turbidity = 100: must be in [1, 64]"),
+        std::string("operator (osc 127.0.0.1): exposure 40.0 → exposure 40 from the next frame on"),
+        std::string("operator (osc 127.0.0.1): set Earth /aerosol/scattering/turbidity = 200.0 refused"),
+        std::string("OSC from 127.0.0.1: refused 4 bytes"),
+        std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 3 → 'Earth'"),
+        "takes effect at frame " + std::to_string(last_switch)})
+    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+}
+
+TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
+  const fs::path config = write_config(5);
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const int http = port_ + 2, osc = port_ + 3;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--show", show.string(), "--fps", "2", "--loop", "--operator-port",
+                                     std::to_string(http), "--osc-port", std::to_string(osc)});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 3; }, 400s)) << logs();
+  nlohmann::json s = console_status(http);
+  EXPECT_EQ(s["state"], "playing");
+  EXPECT_EQ(s["show"]["duration_s"], 2.5);
+  EXPECT_FALSE(s["live_atmospheres"]);
+
+  test::HttpReply r = console_command(http, R"({"command": "pause"})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.body.find("paused"), std::string::npos) << r.body;
+  ASSERT_TRUE(held_show_time(http)) << logs();
+  EXPECT_EQ(console_status(http)["state"], "paused");
+
+  r = console_command(http, R"({"command": "seek", "seconds": 99})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_EQ(r.json()["error"], "command: /seconds = 99: must be in [0, 2.5] s (the show's duration)") << r.body;
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 3})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(r.body.find("a show's atmospheres follow its tracks"), std::string::npos) << r.body;
+  r = console_command(http, R"({"command": "seek", "seconds": 0.5})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_TRUE(wait_until([&] { return console_status(http)["show_time_s"] == 0.5; }, 60s)) << logs();
+
+  // OSC: rate and play.
+  send_osc(osc, encode_osc_message({"/zenith/rate", {std::int32_t{2}}}));
+  send_osc(osc, encode_osc_message({"/zenith/play", {1.0f}}));
+  EXPECT_TRUE(wait_until([&] {
+    const nlohmann::json now = console_status(http);
+    return now["state"] == "playing" && now["show"]["rate"] == 2.0 && now["show_time_s"] != 0.5;
+  }, 60s)) << logs();
+
+  r = console_command(http, R"({"command": "quit"})");
+  EXPECT_EQ(r.status, 200) << r.body;
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_NE(master_log.find("operator (http 127.0.0.1): pause → paused"), std::string::npos) << master_log;
+  EXPECT_NE(master_log.find("operator (osc 127.0.0.1): play → playing"), std::string::npos) << master_log;
+}
+
+// ---- the operator console in a real browser (chromium headless) ----------------
+
+/// Waits until the JavaScript expression `condition` is true in the page.
+bool wait_in_page(test::WebDriver& browser, const std::string& condition, std::chrono::milliseconds timeout) {
+  return wait_until(
+      [&] {
+        try {
+          return browser.script("return " + condition + ";") == true;
+        } catch (const std::exception&) {
+          return false;
+        }
+      },
+      timeout);
+}
+
+TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) {
+  if (!test::browser_available()) GTEST_SKIP() << "chromium and chromium-driver are not installed (scripts/bootstrap)";
+  const fs::path config = write_config(5);
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const int http = port_ + 2;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--show", show.string(), "--fps", "2", "--loop", "--operator-port", std::to_string(http)});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 2; }, 400s)) << logs();
+
+  test::WebDriver browser(port_ + 4, port_ + 5, dir_ / "chromedriver.log");
+  browser.open("http://127.0.0.1:" + std::to_string(http) + "/");
+  ASSERT_TRUE(wait_in_page(browser, "document.getElementById('state').textContent === 'playing'", 60s));
+  EXPECT_EQ(browser.script("return document.getElementById('show-name').textContent;"), "offline-sunset");
+  EXPECT_TRUE(wait_in_page(browser, "document.querySelectorAll('#nodes tbody tr').length === 3", 30s));
+  browser.click(browser.element("#pause"));
+  ASSERT_TRUE(wait_in_page(browser, "document.getElementById('state').textContent === 'paused'", 30s)) << logs();
+  // Frames go on; the show time stops, in the API and on the page.
+  const std::optional<double> held = held_show_time(http);
+  ASSERT_TRUE(held) << logs();
+  EXPECT_TRUE(wait_in_page(browser, "document.getElementById('show-time').textContent === '" + fmt::format("{:.3f}", *held) + " s'", 10s));
+  browser.screenshot(dir_ / "operator-console-show.png");
+  browser.click(browser.element("#play"));
+  EXPECT_TRUE(wait_in_page(browser, "document.getElementById('state').textContent === 'playing'", 30s));
+
+  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+}
+
+TEST_F(ClusterProcess, OperatorConsoleInABrowserChangesTurbidityAndTheNewVersionReachesEveryNode) {
+  if (!test::browser_available()) GTEST_SKIP() << "chromium and chromium-driver are not installed (scripts/bootstrap)";
+  const fs::path config = write_config(10);
+  const int http = port_ + 2;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--debug-table-delay-ms", "4000"});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready"); }, 400s)) << logs();
+  const std::string first_version = console_status(http)["atmospheres"][0]["version"];
+
+  test::WebDriver browser(port_ + 4, port_ + 5, dir_ / "chromedriver.log");
+  browser.open("http://127.0.0.1:" + std::to_string(http) + "/");
+  const std::string version_in_page = "document.querySelector('.atmosphere[data-body=\"Earth\"] .row[data-version]').dataset.version";
+  ASSERT_TRUE(wait_in_page(browser, version_in_page + " === '" + first_version + "'", 60s));
+  const std::string turbidity = "input[type=number][data-pointer=\"/aerosol/scattering/turbidity\"]";
+  /// Types a turbidity into the page's box over what it holds, and leaves it (Tab): the change event
+  /// sends the command. WebDriver keys: \ue009 Control (held until \ue000), \ue004 Tab.
+  const auto type_turbidity = [&](const std::string& value) {
+    const std::string box = browser.element(turbidity);
+    browser.click(box);
+    browser.type(box, "\ue009a\ue000" + value + "\ue004");
+  };
+  // The first change (its tables prepared at once), then a second whose preparation takes 4 s
+  // longer: the page shows its progress, then the version every node switched to.
+  type_turbidity("2.75");
+  ASSERT_TRUE(wait_in_page(browser, version_in_page + " !== '" + first_version + "'", 400s)) << logs();
+  const std::string second_version = browser.script("return " + version_in_page + ";");
+  type_turbidity("3.25");
+  ASSERT_TRUE(wait_in_page(browser, "document.querySelector('.pending').dataset.stage === 'preparing'", 30s)) << logs();
+  EXPECT_TRUE(wait_in_page(browser, "document.querySelector('.pending progress') !== null", 5s));
+  browser.screenshot(dir_ / "operator-console-atmosphere.png");
+  ASSERT_TRUE(wait_in_page(browser, version_in_page + " !== '" + second_version + "'", 400s)) << logs();
+  const nlohmann::json status = console_status(http);
+  const std::string third_version = status["atmospheres"][0]["version"];
+  EXPECT_EQ(browser.script("return " + version_in_page + ";"), third_version);
+  EXPECT_EQ(status["atmospheres"][0]["parameters"]["aerosol"]["scattering"]["turbidity"], 3.25);
+  for (const auto& node : status["nodes"]) {
+    const auto& held = node["tables_held"];
+    EXPECT_NE(std::find(held.begin(), held.end(), third_version), held.end()) << node;
+  }
+  const std::uint64_t effective = status["atmospheres"][0]["effective_from_frame"];
+  ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > effective + 2; }, 120s));
+
+  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  // Every node shows the three versions in order, each from the same frame on (in sync: the same
+  // tables on every node at every frame).
+  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  std::vector<std::string> seen;
+  for (const Presented& p : presented(dir_ / "out/a"))
+    if (seen.empty() || seen.back() != p.tables) seen.push_back(p.tables);
+  EXPECT_EQ(seen, (std::vector<std::string>{"Earth=" + first_version, "Earth=" + second_version, "Earth=" + third_version}));
 }
 
 }  // namespace

@@ -149,5 +149,40 @@ TEST(TablePreparer, AnIdlePreparerStopsAtOnce) {
   EXPECT_LT(std::chrono::steady_clock::now() - t0, 5s);
 }
 
+TEST(TablePreparer, ReportsTheRunningJobsProgress) {
+  Results results;
+  std::mutex step;
+  std::condition_variable stepped;
+  int stage = 0;  // 0: reported; 1: the test looked; the job then ends
+  TablePreparer preparer([&](TableSetFile set, double, bool) { results.on_prepared(set); },
+                         [&](const Digest& hash, std::exception_ptr error) { results.on_failed(hash, error); },
+                         [&](const TablePreparer::Job& j, bool*, const TablePreparer::Cancelled&) {
+                           j.request.options.progress({"single scattering", 0.25});
+                           std::unique_lock lock(step);
+                           stepped.wait_for(lock, 10s, [&] { return stage == 1; });
+                           TableSetFile set;
+                           set.table_hash = j.table_hash;
+                           return set;
+                         });
+  EXPECT_FALSE(preparer.running());
+  preparer.enqueue(job(7));
+  std::optional<TablePreparer::Progress> seen;
+  for (int i = 0; i < 1000 && !(seen && seen->fraction > 0.0); ++i) {
+    seen = preparer.running();
+    std::this_thread::sleep_for(5ms);
+  }
+  ASSERT_TRUE(seen);
+  EXPECT_EQ(seen->table_hash[0], 7);
+  EXPECT_EQ(seen->stage, "single scattering");
+  EXPECT_EQ(seen->fraction, 0.25);
+  {
+    std::lock_guard lock(step);
+    stage = 1;
+  }
+  stepped.notify_all();
+  ASSERT_TRUE(results.wait_for(1));
+  EXPECT_FALSE(preparer.running());
+}
+
 }  // namespace
 }  // namespace zenith::cluster

@@ -247,6 +247,28 @@ TEST(ParameterTrack, RejectsMixedKinds) {
   EXPECT_THROW(ParameterTrack(p, -1.0, {{0.0, 1.0}}), std::invalid_argument);
 }
 
+TEST(WriteParameter, WritesCreatesRemovesAndRefusesWhatIsNotAContainer) {
+  using Pointer = nlohmann::json::json_pointer;
+  nlohmann::json p = {{"aerosol", {{"scattering", {{"turbidity", 2.0}}}}}, {"list", {1, 2}}, {"name", "x"}};
+  write_parameter(p, Pointer("/aerosol/scattering/turbidity"), 3.0);
+  EXPECT_EQ(p["aerosol"]["scattering"]["turbidity"], 3.0);
+  write_parameter(p, Pointer("/ozone/profile"), "us_standard_1976");  // objects created on the way
+  EXPECT_EQ(p["ozone"]["profile"], "us_standard_1976");
+  write_parameter(p, Pointer("/ozone"), nullptr);  // null removes
+  EXPECT_FALSE(p.contains("ozone"));
+  write_parameter(p, Pointer("/oxygen/x"), nullptr);  // removing what is absent changes nothing
+  EXPECT_FALSE(p.contains("oxygen"));
+  write_parameter(p, Pointer("/list/1"), 5);
+  write_parameter(p, Pointer("/list/-"), 6);
+  write_parameter(p, Pointer("/list/0"), nullptr);
+  EXPECT_EQ(p["list"], nlohmann::json({5, 6}));
+  EXPECT_THROW(write_parameter(p, Pointer("/name/x"), 1), std::invalid_argument);
+  EXPECT_THROW(write_parameter(p, Pointer("/list/7"), 1), std::invalid_argument);
+  EXPECT_THROW(write_parameter(p, Pointer("/list/01"), 1), std::invalid_argument);
+  EXPECT_THROW(write_parameter(p, Pointer("/list/x/y"), 1), std::invalid_argument);
+  EXPECT_THROW(write_parameter(p, Pointer(""), 1), std::invalid_argument);
+}
+
 scene::Sun sun_towards(double azimuth_rad, double radius_rad, double irradiance) {
   scene::Sun s;
   s.direction = {std::cos(azimuth_rad), std::sin(azimuth_rad), 0.0};

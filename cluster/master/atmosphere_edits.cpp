@@ -1,0 +1,79 @@
+#include "cluster/master/atmosphere_edits.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+#include "core/json_reader.h"
+#include "show/parameter_track.h"
+
+namespace zenith::cluster {
+
+using config::brief;
+using config::cat;
+
+AtmosphereEdits::AtmosphereEdits(scene::Scene scene) : scene_(std::move(scene)) {
+  for (const scene::Body& body : scene_.bodies)
+    if (body.atmosphere) bodies_.push_back(body.name);
+}
+
+std::size_t AtmosphereEdits::index_of(const std::string& body) const {
+  const auto it = std::find(bodies_.begin(), bodies_.end(), body);
+  if (it != bodies_.end()) return static_cast<std::size_t>(it - bodies_.begin());
+  std::string list;
+  for (const std::string& b : bodies_) list += cat(list.empty() ? "" : ", ", "'", b, "'");
+  throw std::invalid_argument(cat("command: /body = ", brief(nlohmann::json(body)), ": the scene ", scene_.source,
+                                  " has no body of that name with an atmosphere (bodies with one: ",
+                                  list.empty() ? "none" : list, ")"));
+}
+
+AtmosphereEdits::Edit AtmosphereEdits::resolve(const operator_command::Set& set, const nlohmann::json& parameters) const {
+  Edit edit;
+  edit.index = index_of(set.body);
+  edit.body = set.body;
+  nlohmann::json changed = parameters;
+  try {
+    show::write_parameter(changed, set.pointer, set.value);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(cat("command: /pointer: ", e.what(), " (in the atmosphere parameters of '", set.body,
+                                    "'; docs/atmosphere-config.md)"));
+  }
+  // The same loader as a file, at the scene's wavelengths: its errors name the pointer and the range.
+  edit.loaded = atmosphere::resolve_atmosphere(changed, cat("set ", set.body), {scene_.wavelengths_nm});
+  scene::Scene with_edit = scene_;
+  for (scene::Body& body : with_edit.bodies)
+    if (body.name == set.body) body.atmosphere->loaded = edit.loaded;
+  try {
+    scene::check_scene(with_edit);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(cat("set ", set.body, ": ", set.pointer.to_string(), " = ", brief(set.value),
+                                    ": the atmosphere no longer fits its body: ", e.what()));
+  }
+  edit.change = cat(set.pointer.to_string(), " = ", set.value.is_null() ? std::string("removed") : brief(set.value));
+  return edit;
+}
+
+void AtmosphereEdits::enqueue(Edit edit) {
+  for (Edit& waiting : queue_) {
+    if (waiting.body != edit.body) continue;
+    edit.change = cat(waiting.change, ", ", edit.change);
+    waiting = std::move(edit);
+    return;
+  }
+  queue_.push_back(std::move(edit));
+}
+
+std::optional<AtmosphereEdits::Edit> AtmosphereEdits::take_next() {
+  if (queue_.empty()) return std::nullopt;
+  Edit next = std::move(queue_.front());
+  queue_.pop_front();
+  return next;
+}
+
+const AtmosphereEdits::Edit* AtmosphereEdits::waiting(const std::string& body) const {
+  for (const Edit& e : queue_)
+    if (e.body == body) return &e;
+  return nullptr;
+}
+
+}  // namespace zenith::cluster

@@ -1,0 +1,322 @@
+// The zenith operator console (docs/operator.md): polls GET /api/status and
+// sends POST /api/command. Plain JavaScript, nothing fetched from elsewhere.
+'use strict';
+
+const POLL_MS = 500;
+
+/// Parameters that make sense live, shown for an atmosphere when its
+/// parameters have them (advanced mode: aerosol; standard mode: mie). The
+/// ranges of the sliders are convenient ones; the master checks the real
+/// ranges (docs/atmosphere-config.md) and answers with its error.
+const LIVE_PARAMETERS = [
+  {label: 'turbidity', pointer: '/aerosol/scattering/turbidity', min: 1, max: 10, step: 0.25},
+  {label: 'aerosol scale height (m)', pointer: '/aerosol/scale_height_m', min: 100, max: 5000, step: 50},
+  {label: 'Mie scale height (m)', pointer: '/mie/scale_height_m', min: 100, max: 5000, step: 50},
+  {label: 'gas scale height (m)', pointer: '/gas/scale_height_m', min: 1000, max: 20000, step: 100},
+  {label: 'ground albedo', pointer: '/planet/ground_albedo', min: 0, max: 1, step: 0.01},
+  {label: 'air mass', pointer: '/air_mass', choices: ['geometric', 'pickering']},
+  {label: 'ozone', pointer: '/ozone', toggle: true},
+];
+
+let token = sessionStorage.getItem('zenith-operator-token') || '';
+let lastStatus = null;
+const atmosphereViews = new Map();  // body → its controls
+const removedBlocks = new Map();    // "body pointer" → the block a toggle removed (to put it back)
+
+const $ = (id) => document.getElementById(id);
+
+function headers(extra) {
+  const h = Object.assign({}, extra);
+  if (token) h.Authorization = 'Bearer ' + token;
+  return h;
+}
+
+function showMessage(text, ok) {
+  const m = $('message');
+  m.textContent = text;
+  m.className = ok ? 'ok' : 'error';
+}
+
+/// The value at a JSON pointer of `object`, or undefined.
+function at(object, pointer) {
+  let v = object;
+  for (const token of pointer.split('/').slice(1)) {
+    const key = token.replace(/~1/g, '/').replace(/~0/g, '~');
+    if (v === null || typeof v !== 'object' || !(key in v)) return undefined;
+    v = v[key];
+  }
+  return v;
+}
+
+async function send(command) {
+  try {
+    const response = await fetch('/api/command', {
+      method: 'POST', headers: headers({'Content-Type': 'application/json'}), body: JSON.stringify(command)});
+    const reply = await response.json();
+    if (response.status === 401) askForToken();
+    showMessage(reply.ok ? reply.reply : reply.error, reply.ok);
+  } catch (e) {
+    showMessage('cannot reach the master: ' + e, false);
+  }
+  poll();
+}
+
+function askForToken() {
+  $('token-box').hidden = false;
+}
+
+async function poll() {
+  try {
+    const response = await fetch('/api/status', {headers: headers({}), cache: 'no-store'});
+    if (response.status === 401) {
+      askForToken();
+      $('state').textContent = 'token needed';
+      return;
+    }
+    render(await response.json());
+  } catch (e) {
+    $('state').textContent = 'offline';
+    $('state').className = 'badge offline';
+  }
+}
+
+function number(x, digits) {
+  return typeof x === 'number' ? x.toFixed(digits) : '–';
+}
+
+function editing(element) {
+  return document.activeElement === element || element.dataset.dragging === '1';
+}
+
+function render(s) {
+  lastStatus = s;
+  $('state').textContent = s.state;
+  $('state').className = 'badge ' + s.state;
+  $('frame').textContent = s.frame === null ? '–' : s.frame;
+  $('show-time').textContent = number(s.show_time_s, 3) + ' s';
+  $('show-name').textContent = s.show ? s.show.name : 'default show';
+
+  $('no-clock').hidden = s.show !== null;
+  $('clock-controls').hidden = s.show === null;
+  if (s.show) {
+    const seek = $('seek');
+    seek.max = s.show.duration_s;
+    if (!editing(seek)) seek.value = s.show_time_s;
+    $('time-now').textContent = number(s.show_time_s, 2);
+    $('duration').textContent = number(s.show.duration_s, 2);
+    if (!editing($('rate'))) $('rate').value = s.show.rate;
+    $('loop').checked = s.show.loop;
+  }
+
+  // Four significant digits: a show's exposure track interpolates.
+  const exposure = s.exposure === null ? null : Number(s.exposure.toPrecision(4));
+  $('exposure-now').textContent = exposure === null ? '–' : exposure;
+  $('exposure-source').textContent = s.exposure_override === null ? "(the show's)" : '(operator)';
+  if (!editing($('exposure')) && $('exposure').value === '' && exposure !== null) $('exposure').value = exposure;
+
+  $('no-live').hidden = s.live_atmospheres;
+  for (const a of s.atmospheres) renderAtmosphere(a, s.live_atmospheres);
+  renderNodes(s.nodes);
+}
+
+function makeControl(body, p, parameters) {
+  const row = document.createElement('div');
+  row.className = 'row control';
+  const label = document.createElement('label');
+  label.textContent = p.label;
+  row.appendChild(label);
+  const set = (value) => send({command: 'set', body: body, pointer: p.pointer, value: value});
+  let update;
+  if (p.choices) {
+    const select = document.createElement('select');
+    select.dataset.pointer = p.pointer;
+    for (const c of p.choices) {
+      const o = document.createElement('option');
+      o.value = o.textContent = c;
+      select.appendChild(o);
+    }
+    select.addEventListener('change', () => set(select.value));
+    row.appendChild(select);
+    update = (v) => { if (!editing(select) && v !== undefined) select.value = v; };
+  } else if (p.toggle) {
+    const box = document.createElement('input');
+    box.type = 'checkbox';
+    box.dataset.pointer = p.pointer;
+    const key = body + ' ' + p.pointer;
+    box.addEventListener('change', () => {
+      if (box.checked) {
+        if (removedBlocks.has(key)) set(removedBlocks.get(key));
+      } else {
+        const now = at(currentParameters(body), p.pointer);
+        if (now !== undefined) removedBlocks.set(key, now);
+        set(null);
+      }
+    });
+    row.appendChild(box);
+    update = (v) => {
+      box.checked = v !== undefined;
+      box.disabled = v === undefined && !removedBlocks.has(key);
+    };
+  } else {
+    const range = document.createElement('input');
+    range.type = 'range';
+    const box = document.createElement('input');
+    box.type = 'number';
+    box.dataset.pointer = p.pointer;
+    for (const e of [range, box]) {
+      e.min = p.min;
+      e.max = p.max;
+      e.step = p.step;
+    }
+    box.step = 'any';
+    range.addEventListener('pointerdown', () => { range.dataset.dragging = '1'; });
+    range.addEventListener('input', () => { box.value = range.value; });
+    range.addEventListener('change', () => {
+      range.dataset.dragging = '0';
+      set(Number(range.value));
+    });
+    box.addEventListener('change', () => set(Number(box.value)));
+    row.appendChild(range);
+    row.appendChild(box);
+    update = (v) => {
+      if (typeof v !== 'number') return;
+      if (!editing(range)) range.value = v;
+      if (!editing(box)) box.value = v;
+    };
+  }
+  update(at(parameters, p.pointer));
+  return {row, update, pointer: p.pointer};
+}
+
+function currentParameters(body) {
+  const a = lastStatus && lastStatus.atmospheres.find((x) => x.body === body);
+  return a ? a.parameters : null;
+}
+
+function makeAtmosphere(a, live) {
+  const view = document.createElement('div');
+  view.className = 'atmosphere';
+  view.dataset.body = a.body;
+  const title = document.createElement('h3');
+  title.textContent = a.body;
+  view.appendChild(title);
+  const version = document.createElement('div');
+  version.className = 'row';
+  view.appendChild(version);
+  const controls = [];
+  if (live) {
+    for (const p of LIVE_PARAMETERS) {
+      if (!p.toggle && at(a.parameters, p.pointer) === undefined) continue;
+      if (p.min !== undefined && typeof at(a.parameters, p.pointer) !== 'number') continue;
+      const c = makeControl(a.body, p, a.parameters);
+      controls.push(c);
+      view.appendChild(c.row);
+    }
+    // Any other parameter: a JSON pointer and a JSON value.
+    const any = document.createElement('form');
+    any.className = 'row';
+    const pointer = document.createElement('input');
+    pointer.type = 'text';
+    pointer.className = 'wide';
+    pointer.placeholder = '/aerosol/phase/g1';
+    const value = document.createElement('input');
+    value.type = 'text';
+    value.placeholder = 'JSON value';
+    const button = document.createElement('button');
+    button.type = 'submit';
+    button.textContent = 'Set';
+    any.append('parameter ', pointer, ' = ', value, button);
+    any.addEventListener('submit', (e) => {
+      e.preventDefault();
+      let v;
+      try {
+        v = JSON.parse(value.value);
+      } catch (err) {
+        showMessage('the value is not JSON: ' + err.message, false);
+        return;
+      }
+      send({command: 'set', body: a.body, pointer: pointer.value, value: v});
+    });
+    view.appendChild(any);
+  }
+  const pending = document.createElement('div');
+  pending.className = 'row pending';
+  view.appendChild(pending);
+  $('atmospheres').appendChild(view);
+  return {view, version, pending, controls};
+}
+
+function renderAtmosphere(a, live) {
+  let v = atmosphereViews.get(a.body);
+  if (!v) {
+    v = makeAtmosphere(a, live);
+    atmosphereViews.set(a.body, v);
+  }
+  v.version.replaceChildren('table version ', Object.assign(document.createElement('span'), {
+    className: 'version', textContent: a.version}), ' since frame ' + a.effective_from_frame);
+  v.version.dataset.version = a.version;
+  for (const c of v.controls) c.update(at(a.parameters, c.pointer));
+  const parts = [];
+  if (a.pending) {
+    const p = a.pending;
+    const bar = document.createElement('progress');
+    bar.max = 1;
+    bar.value = p.stage === 'loading on the nodes' ? (p.nodes_ready ? p.nodes_holding / p.nodes_ready : 0) : p.fraction;
+    const detail = p.stage === 'preparing' ? (p.precompute_stage || '') + ' ' + Math.round(100 * p.fraction) + ' %'
+                 : p.stage === 'loading on the nodes' ? p.nodes_holding + ' of ' + p.nodes_ready + ' nodes hold it'
+                 : '';
+    parts.push('new version ', Object.assign(document.createElement('span'), {className: 'version', textContent: p.version}),
+               ' (' + p.change + '): ' + p.stage + ' ', bar, ' ' + detail);
+  }
+  if (a.waiting) parts.push(' next: ' + a.waiting);
+  v.pending.replaceChildren(...parts);
+  v.pending.dataset.stage = a.pending ? a.pending.stage : '';
+}
+
+function renderNodes(nodes) {
+  const body = $('nodes').tBodies[0];
+  const rows = nodes.map((n) => {
+    const tr = document.createElement('tr');
+    tr.dataset.node = n.name;
+    const cells = [n.name, n.host, n.state, n.last_render_ms === null ? '–' : n.last_render_ms.toFixed(1) + ' ms',
+                   n.frames_rendered, n.barrier_waits, n.drops, n.rejoins, n.tables_held.join(', ')];
+    cells.forEach((c, i) => {
+      const td = document.createElement('td');
+      td.textContent = c;
+      if (i === 2) td.className = 'state-' + String(n.state).split(' ')[0];
+      tr.appendChild(td);
+    });
+    return tr;
+  });
+  body.replaceChildren(...rows);
+}
+
+function wire() {
+  $('play').addEventListener('click', () => send({command: 'play'}));
+  $('pause').addEventListener('click', () => send({command: 'pause'}));
+  $('toggle').addEventListener('click', () => send({command: 'toggle'}));
+  $('loop').addEventListener('change', () => send({command: 'loop', loop: $('loop').checked}));
+  const seek = $('seek');
+  seek.addEventListener('pointerdown', () => { seek.dataset.dragging = '1'; });
+  seek.addEventListener('change', () => {
+    seek.dataset.dragging = '0';
+    send({command: 'seek', seconds: Number(seek.value)});
+  });
+  $('rate-apply').addEventListener('click', () => send({command: 'rate', rate: Number($('rate').value)}));
+  $('exposure-apply').addEventListener('click', () => send({command: 'exposure', exposure: Number($('exposure').value)}));
+  $('exposure-reset').addEventListener('click', () => {
+    $('exposure').value = '';
+    send({command: 'exposure', exposure: null});
+  });
+  $('token-form').addEventListener('submit', (e) => {
+    e.preventDefault();
+    token = $('token').value;
+    sessionStorage.setItem('zenith-operator-token', token);
+    $('token-box').hidden = true;
+    poll();
+  });
+  poll();
+  setInterval(poll, POLL_MS);
+}
+
+wire();

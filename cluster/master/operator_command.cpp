@@ -1,0 +1,153 @@
+#include "cluster/master/operator_command.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/json_reader.h"
+#include "scene/scene.h"
+#include "show/playback_clock.h"
+
+namespace zenith::cluster {
+namespace {
+
+using config::brief;
+using config::cat;
+using nlohmann::json;
+namespace oc = operator_command;
+
+/// The name errors give as their "file".
+constexpr const char* kSource = "command";
+/// The furthest a seek may ask for (s); the master then checks the show's duration.
+constexpr double kMaxSeekSeconds = 1e9;
+/// The deepest nesting of arrays and objects a command may have (a `set` value
+/// is at most a block of the atmosphere parameters, three or four levels).
+constexpr int kMaxDepth = 16;
+/// Body names: 1..64 bytes, as on the wire (AtmosphereTableRef).
+constexpr std::size_t kMaxBodyBytes = 64;
+
+const std::vector<std::string> kCommands = {"play", "pause", "toggle", "status", "quit",
+                                            "seek", "rate",  "loop",   "exposure", "set"};
+
+/// Whether `value` nests arrays and objects deeper than `limit` levels.
+bool deeper_than(const json& value, int limit) {
+  if (!value.is_structured()) return false;
+  if (limit == 0) return true;
+  for (const json& child : value)
+    if (deeper_than(child, limit - 1)) return true;
+  return false;
+}
+
+/// `{"loop": true}`, or "on" / "off".
+bool read_on_off(JsonReader& r, const std::string& key) {
+  const json& v = r.raw(key);
+  if (v.is_boolean()) return v.get<bool>();
+  if (v.is_string() && v.get<std::string>() == "on") return true;
+  if (v.is_string() && v.get<std::string>() == "off") return false;
+  r.fail(key, cat("= ", brief(v), ": must be true, false, \"on\" or \"off\""));
+}
+
+/// An exposure in (0, kMaxExposure], or null for the show's own.
+std::optional<double> read_exposure(JsonReader& r) {
+  const json& v = r.raw("exposure");
+  if (v.is_null()) return std::nullopt;
+  std::ostringstream range;
+  range << "(0, " << scene::kMaxExposure << "]";
+  if (!v.is_number()) r.fail("exposure", cat("= ", brief(v), ": must be a number in ", range.str(), " or null"));
+  const double x = v.get<double>();
+  if (!(std::isfinite(x) && x > 0.0 && x <= scene::kMaxExposure))
+    r.fail("exposure", cat("= ", brief(v), ": must be in ", range.str()));
+  return x;
+}
+
+/// `set`: a body, a JSON pointer that is not the root, any value.
+oc::Set read_set(JsonReader& r) {
+  oc::Set set;
+  set.body = r.string("body");
+  if (set.body.empty() || set.body.size() > kMaxBodyBytes)
+    r.fail("body", cat("= ", brief(json(set.body)), ": must name a body of the scene (1 to ", kMaxBodyBytes, " bytes)"));
+  const std::string text = r.string("pointer");
+  try {
+    set.pointer = json::json_pointer(text);
+  } catch (const json::exception&) {
+    r.fail("pointer", cat("= ", brief(json(text)), ": must be a JSON pointer into the atmosphere's parameters, such as "
+                                                   "\"/aerosol/scattering/turbidity\" (docs/atmosphere-config.md)"));
+  }
+  if (set.pointer.empty())
+    r.fail("pointer", "= \"\": must name one parameter, such as \"/aerosol/scattering/turbidity\", not the whole set");
+  set.value = r.raw("value");
+  return set;
+}
+
+/// "1.5" for 1.5, as JSON writes numbers.
+std::string number_text(double x) { return json(x).dump(); }
+
+}  // namespace
+
+OperatorCommand parse_operator_command(const json& request) {
+  if (!request.is_object())
+    throw ConfigError(kSource, "", cat("must be a JSON object such as {\"command\": \"pause\"}, got ", brief(request)));
+  if (deeper_than(request, kMaxDepth))
+    throw ConfigError(kSource, "", cat("nests arrays and objects more than ", kMaxDepth, " levels deep"));
+  JsonReader r(request, kSource);
+  const std::string name = r.string("command", kCommands);
+  OperatorCommand command;
+  if (name == "play") command = oc::Play{};
+  else if (name == "pause") command = oc::Pause{};
+  else if (name == "toggle") command = oc::Toggle{};
+  else if (name == "status") command = oc::Status{};
+  else if (name == "quit") command = oc::Quit{};
+  else if (name == "seek") command = oc::Seek{r.number("seconds", 0.0, kMaxSeekSeconds, "s")};
+  else if (name == "rate") command = oc::Rate{r.number("rate", -show::PlaybackClock::kMaxRate, show::PlaybackClock::kMaxRate)};
+  else if (name == "loop") command = oc::Loop{read_on_off(r, "loop")};
+  else if (name == "exposure") command = oc::Exposure{read_exposure(r)};
+  else command = read_set(r);
+  r.finish();
+  return command;
+}
+
+OperatorCommand parse_operator_command_text(std::string_view text) {
+  if (text.size() > kMaxOperatorCommandBytes)
+    throw ConfigError(kSource, "", cat("is ", text.size(), " bytes long: at most ", kMaxOperatorCommandBytes, " are read"));
+  return parse_operator_command(parse_json(std::string(text), kSource));
+}
+
+json to_json(const OperatorCommand& command) {
+  return std::visit(
+      [](const auto& c) -> json {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<T, oc::Play>) return {{"command", "play"}};
+        else if constexpr (std::is_same_v<T, oc::Pause>) return {{"command", "pause"}};
+        else if constexpr (std::is_same_v<T, oc::Toggle>) return {{"command", "toggle"}};
+        else if constexpr (std::is_same_v<T, oc::Status>) return {{"command", "status"}};
+        else if constexpr (std::is_same_v<T, oc::Quit>) return {{"command", "quit"}};
+        else if constexpr (std::is_same_v<T, oc::Seek>) return {{"command", "seek"}, {"seconds", c.seconds}};
+        else if constexpr (std::is_same_v<T, oc::Rate>) return {{"command", "rate"}, {"rate", c.rate}};
+        else if constexpr (std::is_same_v<T, oc::Loop>) return {{"command", "loop"}, {"loop", c.on}};
+        else if constexpr (std::is_same_v<T, oc::Exposure>)
+          return {{"command", "exposure"}, {"exposure", c.exposure ? json(*c.exposure) : json(nullptr)}};
+        else
+          return {{"command", "set"}, {"body", c.body}, {"pointer", c.pointer.to_string()}, {"value", c.value}};
+      },
+      command);
+}
+
+std::string describe(const OperatorCommand& command) {
+  return std::visit(
+      [](const auto& c) -> std::string {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<T, oc::Play>) return "play";
+        else if constexpr (std::is_same_v<T, oc::Pause>) return "pause";
+        else if constexpr (std::is_same_v<T, oc::Toggle>) return "toggle";
+        else if constexpr (std::is_same_v<T, oc::Status>) return "status";
+        else if constexpr (std::is_same_v<T, oc::Quit>) return "quit";
+        else if constexpr (std::is_same_v<T, oc::Seek>) return cat("seek ", number_text(c.seconds));
+        else if constexpr (std::is_same_v<T, oc::Rate>) return cat("rate ", number_text(c.rate));
+        else if constexpr (std::is_same_v<T, oc::Loop>) return cat("loop ", c.on ? "on" : "off");
+        else if constexpr (std::is_same_v<T, oc::Exposure>)
+          return c.exposure ? cat("exposure ", number_text(*c.exposure)) : std::string("exposure of the show");
+        else return cat("set ", c.body, " ", c.pointer.to_string(), " = ", brief(c.value));
+      },
+      command);
+}
+
+}  // namespace zenith::cluster

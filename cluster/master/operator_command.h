@@ -1,0 +1,93 @@
+#pragma once
+// The operator's commands as data (docs/operator.md, "Commands"): what the web
+// console, scripts (POST /api/command), OSC desks and JSON lines on the control
+// socket ask the master to do. Parsing only: no clock, no show, no sockets.
+// What a command does is the master's; this file says what is a well-formed
+// command, with the same kind of error as the configuration files
+// ("command: /rate = 20: must be in [-16, 16]").
+//
+// The JSON form, one object:
+//   {"command": "play"} | "pause" | "toggle" | "status" | "quit"
+//   {"command": "seek", "seconds": S}          S finite, ≥ 0 (the master checks ≤ the show's duration)
+//   {"command": "rate", "rate": R}             R in [−16, 16] (the playback clock's range)
+//   {"command": "loop", "loop": true|false}    also "on" / "off"
+//   {"command": "exposure", "exposure": E}     E in (0, 1e6] as in scenes; null: the show's own again
+//   {"command": "set", "body": B, "pointer": P, "value": V}
+//       P a JSON pointer into body B's atmosphere parameters (docs/atmosphere-config.md),
+//       V any JSON value (null removes the key); checked by the atmosphere loader when applied
+// Unknown keys are errors.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include <nlohmann/json.hpp>
+
+namespace zenith::cluster {
+
+/// The longest command text accepted (bytes): a command is a few words, a
+/// `set` value at most a small object of the atmosphere parameters.
+inline constexpr std::size_t kMaxOperatorCommandBytes = 16 * 1024;
+
+namespace operator_command {
+struct Play {
+  bool operator==(const Play&) const = default;
+};
+struct Pause {
+  bool operator==(const Pause&) const = default;
+};
+struct Toggle {
+  bool operator==(const Toggle&) const = default;
+};
+struct Status {
+  bool operator==(const Status&) const = default;
+};
+struct Quit {
+  bool operator==(const Quit&) const = default;
+};
+struct Seek {
+  double seconds = 0.0;  ///< show time, finite, ≥ 0
+  bool operator==(const Seek&) const = default;
+};
+struct Rate {
+  double rate = 1.0;  ///< in [−16, 16]
+  bool operator==(const Rate&) const = default;
+};
+struct Loop {
+  bool on = false;
+  bool operator==(const Loop&) const = default;
+};
+struct Exposure {
+  std::optional<double> exposure;  ///< (0, 1e6]; nullopt: the show's (or scene's) exposure again
+  bool operator==(const Exposure&) const = default;
+};
+struct Set {
+  std::string body;                        ///< a body of the scene, 1..64 bytes
+  nlohmann::json::json_pointer pointer;    ///< into the body's atmosphere parameters, not the root
+  nlohmann::json value;                    ///< null removes the key
+  bool operator==(const Set&) const = default;
+};
+}  // namespace operator_command
+
+using OperatorCommand =
+    std::variant<operator_command::Play, operator_command::Pause, operator_command::Toggle, operator_command::Status,
+                 operator_command::Quit, operator_command::Seek, operator_command::Rate, operator_command::Loop,
+                 operator_command::Exposure, operator_command::Set>;
+
+/// Reads one command object. Throws zenith::ConfigError (file "command", the
+/// key as a JSON pointer, the value and the allowed range) for anything else.
+OperatorCommand parse_operator_command(const nlohmann::json& request);
+
+/// Reads one command from JSON text (at most kMaxOperatorCommandBytes).
+/// Throws zenith::ConfigError for syntax errors and everything
+/// parse_operator_command refuses.
+OperatorCommand parse_operator_command_text(std::string_view text);
+
+/// The command as the JSON object parse_operator_command reads (its inverse).
+nlohmann::json to_json(const OperatorCommand& command);
+
+/// One line for logs and replies: "pause", "seek 12.5", "set Earth /aerosol/scattering/turbidity = 3".
+std::string describe(const OperatorCommand& command);
+
+}  // namespace zenith::cluster

@@ -1,0 +1,90 @@
+#pragma once
+// The operator console's HTTP server (docs/operator.md), on the master's own
+// io_context (Boost.Beast): the web page compiled into the binary at `/`,
+// GET /api/status (the master's state as JSON) and POST /api/command (one
+// JSON command, cluster/master/operator_command.h). Commands are handed to the
+// master on its networking thread, between frames, like console commands.
+//
+// Security: it listens on the loopback interface unless told otherwise; on
+// any other interface it needs an operator token, which every /api request
+// must then carry as "Authorization: Bearer TOKEN" (the page asks for it).
+// On loopback without a token it accepts only Host names of the loopback
+// (no DNS rebinding), and in every case commands only with Content-Type
+// application/json and an Origin, when a browser sends one, of the console
+// itself (no cross-site requests).
+#include <cstdint>
+#include <functional>
+#include <list>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/http/message.hpp>
+#include <boost/beast/http/string_body.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cluster/handshake.h"
+#include "cluster/master/operator_command.h"
+
+namespace zenith::cluster {
+
+/// Invariants: after close() nothing is accepted and every open connection is
+/// closed (the master's io_context can then run out of work and return).
+class OperatorHttpServer {
+ public:
+  using Request = boost::beast::http::request<boost::beast::http::string_body>;
+  using Response = boost::beast::http::response<boost::beast::http::string_body>;
+
+  struct Options {
+    std::string host = "127.0.0.1";  ///< address to listen on; anything but a loopback address needs `token`
+    std::uint16_t port = 0;          ///< 0: any free port (see port())
+    std::optional<SharedSecret> token;  ///< when set, every /api request must carry it
+  };
+  struct Handlers {
+    /// The master's status (GET /api/status).
+    std::function<nlohmann::json()> status;
+    /// Applies a command from `peer` and returns the reply; throws (its
+    /// message is the error) when the command is refused.
+    std::function<std::string(const OperatorCommand& command, const std::string& peer)> command;
+  };
+
+  /// The most connections served at once; more are closed at once.
+  static constexpr std::size_t kMaxConnections = 32;
+
+  OperatorHttpServer(boost::asio::io_context& io, Options options, Handlers handlers);
+  OperatorHttpServer(const OperatorHttpServer&) = delete;
+  OperatorHttpServer& operator=(const OperatorHttpServer&) = delete;
+
+  /// Listens. Throws std::runtime_error when the address is not a numeric IP,
+  /// the port cannot be bound, or the address is not a loopback one and there
+  /// is no token.
+  void start();
+  /// The port listened on (after start()).
+  std::uint16_t port() const { return port_; }
+  /// "http://127.0.0.1:8080/".
+  std::string url() const;
+  /// Stops listening and closes every connection.
+  void close();
+
+  /// The reply to one request from `peer` (no socket: the tests call it).
+  Response respond(const Request& request, const std::string& peer) const;
+
+ private:
+  struct Session;
+  void accept();
+  /// Why the request may not be served (the response to send), or nullopt.
+  std::optional<Response> refuse(const Request& request) const;
+
+  boost::asio::io_context& io_;
+  Options options_;
+  Handlers handlers_;
+  bool loopback_ = true;
+  std::uint16_t port_ = 0;
+  std::optional<boost::asio::ip::tcp::acceptor> acceptor_;
+  std::list<std::weak_ptr<Session>> sessions_;
+  bool closed_ = false;
+};
+
+}  // namespace zenith::cluster

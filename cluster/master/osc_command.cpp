@@ -1,0 +1,89 @@
+#include "cluster/master/osc_command.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string_view>
+
+#include "core/json_reader.h"
+
+namespace zenith::cluster {
+namespace {
+
+using config::cat;
+using nlohmann::json;
+
+constexpr std::string_view kPrefix = "/zenith/";
+constexpr std::string_view kAtmosphere = "/zenith/atmosphere/";
+
+[[noreturn]] void refuse(const OscMessage& m, const std::string& why) {
+  throw std::invalid_argument(cat("OSC ", m.address, ": ", why));
+}
+
+/// A float as the decimal it was typed as: 7 significant digits (3.1f is 3.1, not 3.0999999).
+double float_value(float f) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.7g", static_cast<double>(f));
+  return std::strtod(text, nullptr);
+}
+
+/// Printable ASCII (strings become JSON, which must be valid UTF-8).
+bool printable(const std::string& s) {
+  for (const char c : s)
+    if (c < 0x20 || c > 0x7e) return false;
+  return true;
+}
+
+/// The single argument as a JSON value: numbers, booleans, printable strings, nil as null.
+json value_of(const OscMessage& m) {
+  if (m.arguments.size() != 1) refuse(m, cat("takes one argument, got ", m.arguments.size()));
+  return std::visit(
+      [&](const auto& v) -> json {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, std::monostate>) return nullptr;
+        else if constexpr (std::is_same_v<T, std::int32_t> || std::is_same_v<T, std::int64_t> || std::is_same_v<T, bool> ||
+                           std::is_same_v<T, double>)
+          return v;
+        else if constexpr (std::is_same_v<T, float>) return float_value(v);
+        else if constexpr (std::is_same_v<T, std::string>) {
+          if (!printable(v)) refuse(m, "a string argument must be printable ASCII");
+          return v;
+        } else {
+          refuse(m, cat("cannot take ", describe(OscArgument(v)), " (a number, T, F, a string or N)"));
+        }
+      },
+      m.arguments[0]);
+}
+
+}  // namespace
+
+OperatorCommand osc_command(const OscMessage& m) {
+  if (!m.address.starts_with(kPrefix)) refuse(m, "not a zenith address (they start with /zenith/)");
+  const std::string name = m.address.substr(kPrefix.size());
+  json request;
+  if (name == "play" || name == "pause" || name == "toggle") {
+    request = {{"command", name}};
+  } else if (name == "seek") {
+    request = {{"command", "seek"}, {"seconds", value_of(m)}};
+  } else if (name == "rate") {
+    request = {{"command", "rate"}, {"rate", value_of(m)}};
+  } else if (name == "exposure") {
+    request = {{"command", "exposure"}, {"exposure", value_of(m)}};
+  } else if (name == "loop") {
+    json on = value_of(m);
+    if (on.is_number_integer()) on = on.get<std::int64_t>() != 0;
+    request = {{"command", "loop"}, {"loop", on}};
+  } else if (m.address.starts_with(kAtmosphere)) {
+    const std::string rest = m.address.substr(kAtmosphere.size());  // "<body>/<pointer>"
+    const std::size_t slash = rest.find('/');
+    if (slash == std::string::npos || slash == 0 || slash + 1 == rest.size())
+      refuse(m, "expected /zenith/atmosphere/<body>/<parameter>, such as /zenith/atmosphere/Earth/aerosol/scattering/turbidity");
+    request = {{"command", "set"}, {"body", rest.substr(0, slash)}, {"pointer", rest.substr(slash)}, {"value", value_of(m)}};
+  } else {
+    refuse(m, "unknown address (known: /zenith/play, /zenith/pause, /zenith/toggle, /zenith/seek, /zenith/rate, "
+              "/zenith/exposure, /zenith/loop, /zenith/atmosphere/<body>/<parameter>)");
+  }
+  return parse_operator_command(request);
+}
+
+}  // namespace zenith::cluster
