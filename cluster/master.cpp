@@ -35,6 +35,7 @@
 #include "cluster/master/operator_input.h"
 #include "cluster/master/osc_receiver.h"
 #include "cluster/master/show_start_rule.h"
+#include "cluster/master/sun_override.h"
 #include "cluster/master/table_preparer.h"
 #include "cluster/master/table_versions.h"
 #include "show/playback_clock.h"
@@ -74,6 +75,8 @@ struct Master::Impl {
   std::string pending_change;  ///< what the pending version changes (a preset, a file, an operator's change)
   /// The operator's exposure, replacing the show's (or scene's) from the next frame on.
   std::optional<double> exposure_override;
+  /// The operator's sun, replacing the show's (or the default show's) from the next frame on.
+  std::optional<SunOverride> sun_override;
   std::uint32_t render_flags = 0;
 
   // ---- the show (docs/shows.md) ----
@@ -570,6 +573,7 @@ struct Master::Impl {
                     : default_show_frame(scene, frame, options.sun_step_deg, tables.current(), render_flags);
         if (!show) next.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
         if (exposure_override) next.exposure = *exposure_override;
+        sun_override->apply(next);
       }
       held_frame = std::move(next);
       held_since = Clock::now();
@@ -763,6 +767,10 @@ struct Master::Impl {
                                    : std::string("the show's own exposure from the next frame on");
       } else if (const auto* set = std::get_if<oc::Set>(&command)) {
         reply = apply_set(*set);
+      } else if (const auto* sun = std::get_if<oc::Sun>(&command)) {
+        reply = apply_sun(*sun);
+      } else if (const auto* clear = std::get_if<oc::Clear>(&command)) {
+        reply = apply_clear(*clear);
       } else if (!clock) {
         if (!std::holds_alternative<oc::Status>(command))
           throw std::invalid_argument(cat(describe(command), ": no show is playing (the default show has no clock: start "
@@ -809,12 +817,33 @@ struct Master::Impl {
                "; every node switches to it at one frame once all hold it");
   }
 
+  /// An operator's `sun` (docs/operator.md, "Sun"): the show's sun replaced from the next frame on.
+  std::string apply_sun(const operator_command::Sun& sun) {
+    if (options.feed)
+      throw std::invalid_argument(cat(describe(sun), ": the frames come from an offline render's feed"));
+    const scene::SkyAngles angles = sun_override->set(sun, started ? &frame_in_flight : nullptr);
+    return fmt::format("sun at elevation {}°, azimuth {}° from the next frame on, until cleared", angles.elevation_deg,
+                       angles.azimuth_deg);
+  }
+
+  /// An operator's `clear`: the show's (or scene's) own sun or exposure again.
+  std::string apply_clear(const operator_command::Clear& clear) {
+    if (clear.what == operator_command::Clear::What::exposure) {
+      exposure_override.reset();
+      return "the show's own exposure from the next frame on";
+    }
+    sun_override->clear();
+    return show ? "the show's sun track from the next frame on" : "the default show's sun from the next frame on";
+  }
+
   /// The console's status (GET /api/status; docs/operator.md, "Status").
   nlohmann::json operator_status() const {
     return master_status(StatusSources{options.config, sessions, barrier, tables, preparer.running(), node_statistics,
                                        edits ? &*edits : nullptr, show ? &*show : nullptr, clock ? &*clock : nullptr,
                                        started, stopping, started ? &frame_in_flight : nullptr, presented, fps,
-                                       exposure_override, pending_change, last_version_error});
+                                       exposure_override, pending_change, last_version_error,
+                                       started ? std::optional(sun_override->angles_of(frame_in_flight)) : std::nullopt,
+                                       sun_override->angles()});
   }
 
   /// The operator console (HTTP, OSC): listening from before the tables are
@@ -836,7 +865,7 @@ struct Master::Impl {
       osc.emplace(io, OscReceiver::Options{console.osc_host, *console.osc_port, console.osc_allow}, command);
       osc->start();
       spdlog::info("master: OSC on udp {}:{} (/zenith/play, /zenith/pause, /zenith/seek, /zenith/rate, /zenith/exposure, "
-                   "/zenith/atmosphere/BODY/PARAMETER; docs/operator.md)",
+                   "/zenith/sun/elevation, /zenith/sun/azimuth, /zenith/atmosphere/BODY/PARAMETER; docs/operator.md)",
                    console.osc_host, osc->port());
     }
   }
@@ -934,6 +963,7 @@ struct Master::Impl {
       scene = scene::load_scene(options.config.scene);
       edits.emplace(scene);
     }
+    sun_override.emplace(scene);
     if (options.record)
       recorder = std::make_unique<show::ShowRecorder>(*options.record, show ? show->scene_path() : options.config.scene,
                                                       show ? cat(show->name(), " (recorded)") : cat(options.config.name, " session"),

@@ -17,6 +17,7 @@
 #include "atmosphere/photometry.h"
 #include "atmosphere/spectrum.h"
 #include "scene/albedo_map.h"
+#include "scene/local_horizon.h"
 #include "scene/sun_disc.h"
 #include "core/units.h"
 
@@ -389,39 +390,6 @@ std::vector<Body> read_bodies(JsonReader& root, const Context& ctx) {
 
 // ------------------------------------------------------------------ camera and the local horizon
 
-/// The local horizon frame at the camera: `up` from the body's centre through
-/// the camera, `north` the body's north pole (+z) projected onto the horizon
-/// plane, `east` = north × up (so east, north, up is right-handed). At a pole,
-/// where north is undefined, north is its limit along the prime meridian:
-/// body −x at the north pole, +x at the south pole.
-struct Horizon {
-  std::size_t body = 0;
-  dvec3 up, north, east;
-
-  /// The unit vector at `azimuth` (from north, clockwise seen from above,
-  /// i.e. toward east) and `elevation` above the horizon.
-  dvec3 direction(double azimuth_rad, double elevation_rad) const {
-    const dvec3 horizontal = std::cos(azimuth_rad) * north + std::sin(azimuth_rad) * east;
-    return std::cos(elevation_rad) * horizontal + std::sin(elevation_rad) * up;
-  }
-};
-
-Horizon horizon_at(const dvec3& camera_m, std::size_t body_index, const Body& body) {
-  Horizon h;
-  h.body = body_index;
-  h.up = glm::normalize(camera_m - body.position_m);
-  const dvec3 pole = body.orientation * dvec3(0, 0, 1);
-  const dvec3 north = pole - glm::dot(pole, h.up) * h.up;
-  if (glm::length(north) > 1e-12) {
-    h.north = glm::normalize(north);
-  } else {
-    const dvec3 prime = body.orientation * dvec3(1, 0, 0);
-    h.north = glm::dot(pole, h.up) > 0.0 ? -prime : prime;
-  }
-  h.east = glm::cross(h.north, h.up);
-  return h;
-}
-
 /// Camera frame (+x right, +y up, −z forward) → world, from a forward and an up
 /// that are not parallel (up is made perpendicular to forward).
 glm::dquat camera_rotation(const dvec3& forward, const dvec3& up) {
@@ -475,7 +443,7 @@ CameraPlacement read_camera(JsonReader& r, const std::vector<Body>& bodies, cons
                             "; it must be at least ", kMinCameraClearance_m, " m above every body's surface"));
   }
   out.reference_body = reference;
-  const Horizon h = horizon_at(cam.position_m, reference, bodies[reference]);
+  const LocalHorizon h = local_horizon_at(cam.position_m, bodies[reference]);
 
   // Orientation.
   if (exactly_one(r, {"look_at", "look", "forward"}) == 1) {
@@ -511,7 +479,7 @@ CameraPlacement read_camera(JsonReader& r, const std::vector<Body>& bodies, cons
     } else {
       // Default up: the local zenith; looking (nearly) straight up or down, the
       // reference body's north pole; failing that, the horizon's north.
-      const dvec3 pole = bodies[h.body].orientation * dvec3(0, 0, 1);
+      const dvec3 pole = bodies[reference].orientation * dvec3(0, 0, 1);
       up = h.up;
       if (angle_between(forward, up) < 1e-3 || angle_between(forward, up) > kPi - 1e-3) up = pole;
       if (angle_between(forward, up) < 1e-3 || angle_between(forward, up) > kPi - 1e-3) up = h.north;
@@ -591,7 +559,7 @@ JsonReader open_unchecked(JsonReader& parent, const std::string& key) {
 /// the local horizon of `camera`.
 Sun read_sun(JsonReader& r, const std::vector<Body>& bodies, const CameraPlacement& placement, const Context& ctx) {
   const Camera& camera = placement.camera;
-  const Horizon horizon = horizon_at(camera.position_m, placement.reference_body, bodies.at(placement.reference_body));
+  const LocalHorizon horizon = local_horizon_at(camera.position_m, bodies.at(placement.reference_body));
   Sun sun;
   double distance_au = 1.0;
   switch (exactly_one(r, {"direction", "position_m", "sky"})) {

@@ -98,6 +98,12 @@ json atmosphere_status(const StatusSources& s, std::size_t index, const Atmosphe
           {"waiting", waiting != nullptr ? json(waiting->change) : json(nullptr)}};
 }
 
+/// {"elevation_deg", "azimuth_deg"}, or null.
+json sky_angles(const std::optional<scene::SkyAngles>& angles) {
+  if (!angles) return nullptr;
+  return {{"elevation_deg", angles->elevation_deg}, {"azimuth_deg", angles->azimuth_deg}};
+}
+
 }  // namespace
 
 std::string version_hex16(const Digest& hash) { return core::to_hex(hash).substr(0, 16); }
@@ -126,6 +132,8 @@ json master_status(const StatusSources& s) {
           {"show", std::move(show)},
           {"exposure", s.last_frame != nullptr ? json(s.last_frame->exposure) : json(nullptr)},
           {"exposure_override", s.exposure_override ? json(*s.exposure_override) : json(nullptr)},
+          {"sun", sky_angles(s.sun)},
+          {"sun_override", sky_angles(s.sun_override)},
           {"live_atmospheres", s.edits != nullptr},
           {"nodes", std::move(nodes)},
           {"atmospheres", std::move(atmospheres)},

@@ -20,6 +20,7 @@
 #include "cluster/master/table_preparer.h"
 #include "cluster/master/table_versions.h"
 #include "cluster/messages.h"
+#include "scene/local_horizon.h"
 #include "show/playback_clock.h"
 #include "show/show.h"
 
@@ -45,11 +46,14 @@ struct StatusSources {
   std::optional<double> exposure_override;
   std::string pending_change;  ///< what the pending version changes
   std::string last_error;      ///< the latest table version that could not be prepared, and why
+  std::optional<scene::SkyAngles> sun;           ///< the latest frame's sun in its camera's sky; nullopt before frame 0
+  std::optional<scene::SkyAngles> sun_override;  ///< the operator's sun, nullopt: the show's
 };
 
 /// The status as JSON (schema in docs/operator.md, "Status"):
 ///   {"state": "starting"|"playing"|"paused"|"finished"|"stopping", "show_time_s", "frame",
 ///    "frames_presented", "frame_rate_hz", "show": {...}|null, "exposure", "exposure_override",
+///    "sun": {"elevation_deg", "azimuth_deg"}|null, "sun_override": {...}|null,
 ///    "live_atmospheres", "nodes": [...], "atmospheres": [...], "last_error"}
 /// Table versions are the first 16 hex digits of the table hash, as in presented.log.
 nlohmann::json master_status(const StatusSources& sources);

@@ -25,8 +25,13 @@ constexpr int kMaxDepth = 16;
 /// Body names: 1..64 bytes, as on the wire (AtmosphereTableRef).
 constexpr std::size_t kMaxBodyBytes = 64;
 
-const std::vector<std::string> kCommands = {"play", "pause", "toggle", "status", "quit",
-                                            "seek", "rate",  "loop",   "exposure", "set"};
+const std::vector<std::string> kCommands = {"play", "pause", "toggle", "status", "quit", "seek",
+                                            "rate", "loop",  "exposure", "set",  "sun",  "clear"};
+/// What `clear` ends.
+const std::vector<std::string> kClearable = {"sun", "exposure"};
+/// The ranges of a sun given in the sky, as in scene files (docs/scenes.md).
+constexpr double kMaxElevationDeg = 90.0;
+constexpr double kMaxAzimuthDeg = 360.0;
 
 /// Whether `value` nests arrays and objects deeper than `limit` levels.
 bool deeper_than(const json& value, int limit) {
@@ -59,12 +64,45 @@ std::optional<double> read_exposure(JsonReader& r) {
   return x;
 }
 
+/// The JSON name of what `clear` ends.
+const char* clear_target(oc::Clear::What what) {
+  switch (what) {
+    case oc::Clear::What::sun: return "sun";
+    case oc::Clear::What::exposure: return "exposure";
+  }
+  return "sun";
+}
+
+/// A body name of a command: 1..kMaxBodyBytes bytes.
+std::string read_body(JsonReader& r) {
+  std::string body = r.string("body");
+  if (body.empty() || body.size() > kMaxBodyBytes)
+    r.fail("body", cat("= ", brief(json(body)), ": must name a body of the scene (1 to ", kMaxBodyBytes, " bytes)"));
+  return body;
+}
+
+/// `sun`: an elevation, an azimuth, or both.
+oc::Sun read_sun(JsonReader& r) {
+  oc::Sun sun;
+  if (r.has("elevation_deg")) sun.elevation_deg = r.number("elevation_deg", -kMaxElevationDeg, kMaxElevationDeg, "deg");
+  if (r.has("azimuth_deg")) sun.azimuth_deg = r.number("azimuth_deg", -kMaxAzimuthDeg, kMaxAzimuthDeg, "deg");
+  if (!sun.elevation_deg && !sun.azimuth_deg)
+    r.fail("elevation_deg", "missing required key (a sun command gives \"elevation_deg\" in [-90, 90], \"azimuth_deg\" in "
+                            "[-360, 360], or both; the sun's own again: {\"command\": \"clear\", \"what\": \"sun\"})");
+  return sun;
+}
+
+/// `clear`: what.
+oc::Clear read_clear(JsonReader& r) {
+  oc::Clear clear;
+  clear.what = r.string("what", kClearable) == "sun" ? oc::Clear::What::sun : oc::Clear::What::exposure;
+  return clear;
+}
+
 /// `set`: a body, a JSON pointer that is not the root, any value.
 oc::Set read_set(JsonReader& r) {
   oc::Set set;
-  set.body = r.string("body");
-  if (set.body.empty() || set.body.size() > kMaxBodyBytes)
-    r.fail("body", cat("= ", brief(json(set.body)), ": must name a body of the scene (1 to ", kMaxBodyBytes, " bytes)"));
+  set.body = read_body(r);
   const std::string text = r.string("pointer");
   try {
     set.pointer = json::json_pointer(text);
@@ -100,6 +138,8 @@ OperatorCommand parse_operator_command(const json& request) {
   else if (name == "rate") command = oc::Rate{r.number("rate", -show::PlaybackClock::kMaxRate, show::PlaybackClock::kMaxRate)};
   else if (name == "loop") command = oc::Loop{read_on_off(r, "loop")};
   else if (name == "exposure") command = oc::Exposure{read_exposure(r)};
+  else if (name == "sun") command = read_sun(r);
+  else if (name == "clear") command = read_clear(r);
   else command = read_set(r);
   r.finish();
   return command;
@@ -125,8 +165,15 @@ json to_json(const OperatorCommand& command) {
         else if constexpr (std::is_same_v<T, oc::Loop>) return {{"command", "loop"}, {"loop", c.on}};
         else if constexpr (std::is_same_v<T, oc::Exposure>)
           return {{"command", "exposure"}, {"exposure", c.exposure ? json(*c.exposure) : json(nullptr)}};
-        else
+        else if constexpr (std::is_same_v<T, oc::Set>)
           return {{"command", "set"}, {"body", c.body}, {"pointer", c.pointer.to_string()}, {"value", c.value}};
+        else if constexpr (std::is_same_v<T, oc::Sun>) {
+          json j = {{"command", "sun"}};
+          if (c.elevation_deg) j["elevation_deg"] = *c.elevation_deg;
+          if (c.azimuth_deg) j["azimuth_deg"] = *c.azimuth_deg;
+          return j;
+        } else
+          return {{"command", "clear"}, {"what", clear_target(c.what)}};
       },
       command);
 }
@@ -145,7 +192,15 @@ std::string describe(const OperatorCommand& command) {
         else if constexpr (std::is_same_v<T, oc::Loop>) return cat("loop ", c.on ? "on" : "off");
         else if constexpr (std::is_same_v<T, oc::Exposure>)
           return c.exposure ? cat("exposure ", number_text(*c.exposure)) : std::string("exposure of the show");
-        else return cat("set ", c.body, " ", c.pointer.to_string(), " = ", brief(c.value));
+        else if constexpr (std::is_same_v<T, oc::Set>)
+          return cat("set ", c.body, " ", c.pointer.to_string(), " = ", brief(c.value));
+        else if constexpr (std::is_same_v<T, oc::Sun>) {
+          std::string text = "sun";
+          if (c.elevation_deg) text += cat(" elevation ", number_text(*c.elevation_deg), "°");
+          if (c.azimuth_deg) text += cat(" azimuth ", number_text(*c.azimuth_deg), "°");
+          return text;
+        } else
+          return cat("clear ", clear_target(c.what));
       },
       command);
 }

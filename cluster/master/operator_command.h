@@ -15,6 +15,10 @@
 //   {"command": "set", "body": B, "pointer": P, "value": V}
 //       P a JSON pointer into body B's atmosphere parameters (docs/atmosphere-config.md),
 //       V any JSON value (null removes the key); checked by the atmosphere loader when applied
+//   {"command": "sun", "elevation_deg": E, "azimuth_deg": A}
+//       E in [−90, 90], A in [−360, 360] as in scenes; either may be left out (it keeps its value)
+//   {"command": "clear", "what": "sun" | "exposure"}
+//       the operator's override ends: the show's (or scene's) own again
 // Unknown keys are errors.
 #include <cstddef>
 #include <optional>
@@ -68,12 +72,25 @@ struct Set {
   nlohmann::json value;                    ///< null removes the key
   bool operator==(const Set&) const = default;
 };
+/// The sun in the camera's local horizon (docs/scenes.md, "Frames and
+/// conventions"); at least one of the two is given, the other keeps its value.
+struct Sun {
+  std::optional<double> elevation_deg;  ///< [−90, 90]
+  std::optional<double> azimuth_deg;    ///< [−360, 360]
+  bool operator==(const Sun&) const = default;
+};
+/// Ends one of the operator's overrides: the show's (or scene's) own again.
+struct Clear {
+  enum class What { sun, exposure };
+  What what = What::sun;
+  bool operator==(const Clear&) const = default;
+};
 }  // namespace operator_command
 
 using OperatorCommand =
     std::variant<operator_command::Play, operator_command::Pause, operator_command::Toggle, operator_command::Status,
                  operator_command::Quit, operator_command::Seek, operator_command::Rate, operator_command::Loop,
-                 operator_command::Exposure, operator_command::Set>;
+                 operator_command::Exposure, operator_command::Set, operator_command::Sun, operator_command::Clear>;
 
 /// Reads one command object. Throws zenith::ConfigError (file "command", the
 /// key as a JSON pointer, the value and the allowed range) for anything else.

@@ -73,6 +73,12 @@ OperatorCommand osc_command(const OscMessage& m) {
     json on = value_of(m);
     if (on.is_number_integer()) on = on.get<std::int64_t>() != 0;
     request = {{"command", "loop"}, {"loop", on}};
+  } else if (name == "sun/elevation") {
+    request = {{"command", "sun"}, {"elevation_deg", value_of(m)}};
+  } else if (name == "sun/azimuth") {
+    request = {{"command", "sun"}, {"azimuth_deg", value_of(m)}};
+  } else if (name == "clear/sun" || name == "clear/exposure") {
+    request = {{"command", "clear"}, {"what", name.substr(6)}};
   } else if (m.address.starts_with(kAtmosphere)) {
     const std::string rest = m.address.substr(kAtmosphere.size());  // "<body>/<pointer>"
     const std::size_t slash = rest.find('/');
@@ -81,7 +87,8 @@ OperatorCommand osc_command(const OscMessage& m) {
     request = {{"command", "set"}, {"body", rest.substr(0, slash)}, {"pointer", rest.substr(slash)}, {"value", value_of(m)}};
   } else {
     refuse(m, "unknown address (known: /zenith/play, /zenith/pause, /zenith/toggle, /zenith/seek, /zenith/rate, "
-              "/zenith/exposure, /zenith/loop, /zenith/atmosphere/<body>/<parameter>)");
+              "/zenith/exposure, /zenith/loop, /zenith/sun/elevation, /zenith/sun/azimuth, /zenith/clear/sun, "
+              "/zenith/clear/exposure, /zenith/atmosphere/<body>/<parameter>)");
   }
   return parse_operator_command(request);
 }

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -1243,6 +1244,111 @@ TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
   EXPECT_NE(master_log.find("operator (osc 127.0.0.1): play → playing"), std::string::npos) << master_log;
 }
 
+/// The latest frame's sun in the status: {elevation_deg, azimuth_deg}, or nullopt.
+std::optional<std::pair<double, double>> status_sun(const nlohmann::json& status) {
+  if (!status.contains("sun") || !status["sun"].is_object()) return std::nullopt;
+  return std::pair{status["sun"]["elevation_deg"].get<double>(), status["sun"]["azimuth_deg"].get<double>()};
+}
+
+/// Whether the latest frame's sun is within 1e-6° of (elevation, azimuth).
+bool sun_is(int port, double elevation_deg, double azimuth_deg) {
+  const auto sun = status_sun(console_status(port));
+  return sun && std::abs(sun->first - elevation_deg) < 1e-6 && std::abs(sun->second - azimuth_deg) < 1e-6;
+}
+
+TEST_F(ClusterProcess, OperatorConsoleSetsTheSunOfTheDefaultShowOverHttpAndOscUntilCleared) {
+  const fs::path config = write_config(10);
+  const int http = port_ + 2, osc = port_ + 3;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
+                                     std::to_string(osc)});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready") && status_sun(console_status(http)); }, 400s))
+      << logs();
+  // The scene's sun: 1° above the horizon at azimuth 272°.
+  EXPECT_TRUE(sun_is(http, 1.0, 272.0)) << console_status(http).dump();
+  EXPECT_TRUE(console_status(http)["sun_override"].is_null());
+
+  test::HttpReply r = console_command(http, R"({"command": "sun", "elevation_deg": 91})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_EQ(r.json()["error"], "command: /elevation_deg = 91: must be in [-90, 90] deg") << r.body;
+  r = console_command(http, R"({"command": "sun", "elevation_deg": -4, "azimuth_deg": 250})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.json()["reply"], "sun at elevation -4°, azimuth 250° from the next frame on, until cleared");
+  ASSERT_TRUE(wait_until([&] { return sun_is(http, -4.0, 250.0); }, 60s)) << console_status(http).dump();
+  EXPECT_EQ(console_status(http)["sun_override"], (nlohmann::json{{"elevation_deg", -4.0}, {"azimuth_deg", 250.0}}));
+  const auto frame_now = [&] { return console_status(http)["frame"].get<std::uint64_t>(); };
+  const std::uint64_t set_by_http = frame_now();
+
+  // OSC: the azimuth alone (the elevation stays the operator's), then the scene's sun again.
+  send_osc(osc, encode_osc_message({"/zenith/sun/azimuth", {200.0f}}));
+  ASSERT_TRUE(wait_until([&] { return sun_is(http, -4.0, 200.0); }, 60s)) << console_status(http).dump();
+  const std::uint64_t set_by_osc = frame_now();
+  send_osc(osc, encode_osc_message({"/zenith/clear/sun", {1.0f}}));
+  ASSERT_TRUE(wait_until([&] { return sun_is(http, 1.0, 272.0); }, 60s)) << console_status(http).dump();
+  EXPECT_TRUE(console_status(http)["sun_override"].is_null());
+  const std::uint64_t cleared = frame_now();
+  ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > cleared + 1; }, 120s))
+      << logs();
+
+  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  // Every node rendered one state per frame, the same on all of them; the pixels show each sun
+  // (a frame under the scene's sun again equals frame 0 byte for byte).
+  const auto played = expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  ASSERT_GT(played.size(), cleared + 1);
+  const auto picture = [&](std::uint64_t frame) {
+    return read_text(dir_ / "out/b/bottom-left" / fmt::format("frame-{:06d}.png", frame));
+  };
+  EXPECT_NE(picture(set_by_http), picture(0));
+  EXPECT_NE(picture(set_by_osc), picture(set_by_http));
+  EXPECT_EQ(picture(cleared), picture(0));
+  const std::string master_log = read_text(dir_ / "master.log");
+  for (const std::string text : {"operator (http 127.0.0.1): sun elevation -4.0° azimuth 250.0° → sun at elevation -4°, azimuth 250°",
+                                 "operator (osc 127.0.0.1): sun azimuth 200.0° → sun at elevation -4°, azimuth 200°",
+                                 "operator (osc 127.0.0.1): clear sun → the default show's sun from the next frame on"})
+    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+}
+
+TEST_F(ClusterProcess, OperatorConsoleOverridesTheSunTrackOfAShowUntilCleared) {
+  const fs::path config = write_config(5);
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const int http = port_ + 2;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--show", show.string(), "--fps", "2", "--loop", "--operator-port", std::to_string(http)});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 2; }, 400s)) << logs();
+  // Paused, the sun track holds still: the override and the track's sun are both steady.
+  ASSERT_EQ(console_command(http, R"({"command": "pause"})").status, 200);
+  ASSERT_TRUE(held_show_time(http)) << logs();
+  const auto track = status_sun(console_status(http));
+  ASSERT_TRUE(track);
+  EXPECT_NEAR(track->second, 272.0, 1e-6) << "the track's azimuth";
+  EXPECT_LE(track->first, 4.0) << "the track's elevation, sinking from 4° to 0.5°";
+
+  ASSERT_EQ(console_command(http, R"({"command": "sun", "elevation_deg": 20})").status, 200);
+  ASSERT_TRUE(wait_until([&] { return sun_is(http, 20.0, 272.0); }, 60s)) << console_status(http).dump();
+  // The override holds while the show plays on, until cleared.
+  ASSERT_EQ(console_command(http, R"({"command": "play"})").status, 200);
+  const auto frames = [&] { return console_status(http).value("frames_presented", -1); };
+  const int at = frames();
+  ASSERT_TRUE(wait_until([&] { return frames() >= at + 3; }, 60s)) << logs();
+  EXPECT_TRUE(sun_is(http, 20.0, 272.0)) << console_status(http).dump();
+  const test::HttpReply r = console_command(http, R"({"command": "clear", "what": "sun"})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.json()["reply"], "the show's sun track from the next frame on");
+  ASSERT_TRUE(wait_until([&] {
+    const auto sun = status_sun(console_status(http));
+    return sun && sun->first <= 4.0 + 1e-9 && console_status(http)["sun_override"].is_null();
+  }, 60s)) << console_status(http).dump();
+
+  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+}
+
 // ---- the operator console in a real browser (chromium headless) ----------------
 
 /// Waits until the JavaScript expression `condition` is true in the page.
@@ -1279,7 +1385,18 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) 
   const std::optional<double> held = held_show_time(http);
   ASSERT_TRUE(held) << logs();
   EXPECT_TRUE(wait_in_page(browser, "document.getElementById('show-time').textContent === '" + fmt::format("{:.3f}", *held) + " s'", 10s));
+  // The sun: an elevation typed into its box replaces the track's (WebDriver keys: \ue009 Control
+  // held until \ue000, \ue004 Tab), the button gives the track back.
+  const std::string elevation = browser.element("#sun-elevation");
+  browser.click(elevation);
+  browser.type(elevation, "\ue009a\ue00020\ue004");
+  ASSERT_TRUE(wait_in_page(browser, "document.getElementById('sun-source').textContent === '(operator)'", 30s)) << logs();
+  EXPECT_TRUE(wait_until([&] { return sun_is(http, 20.0, 272.0); }, 30s)) << console_status(http).dump();
+  EXPECT_TRUE(wait_in_page(browser, "document.getElementById('sun-elevation-now').textContent === '20.00'", 30s));
   browser.screenshot(dir_ / "operator-console-show.png");
+  browser.click(browser.element("#sun-reset"));
+  EXPECT_TRUE(wait_in_page(browser, "document.getElementById('sun-source').textContent === \"(the show's)\"", 30s));
+  EXPECT_TRUE(console_status(http)["sun_override"].is_null());
   browser.click(browser.element("#play"));
   EXPECT_TRUE(wait_in_page(browser, "document.getElementById('state').textContent === 'playing'", 30s));
 

@@ -49,6 +49,13 @@ TEST(OperatorCommand, ReadsEveryCommand) {
   EXPECT_EQ(std::get<oc::Set>(set).value, json(3));
   EXPECT_EQ(describe(set), "set Earth /aerosol/scattering/turbidity = 3");
   EXPECT_EQ(describe(parse(R"({"command": "seek", "seconds": 1.5})")), "seek 1.5");
+  EXPECT_EQ(parse(R"({"command": "sun", "elevation_deg": -6, "azimuth_deg": 270})"),
+            OperatorCommand(oc::Sun{-6.0, 270.0}));
+  EXPECT_EQ(parse(R"({"command": "sun", "azimuth_deg": -90})"), OperatorCommand(oc::Sun{std::nullopt, -90.0}));
+  EXPECT_EQ(describe(parse(R"({"command": "sun", "elevation_deg": 12.5})")), "sun elevation 12.5°");
+  EXPECT_EQ(parse(R"({"command": "clear", "what": "sun"})"), OperatorCommand(oc::Clear{oc::Clear::What::sun}));
+  EXPECT_EQ(parse(R"({"command": "clear", "what": "exposure"})"), OperatorCommand(oc::Clear{oc::Clear::What::exposure}));
+  EXPECT_EQ(describe(parse(R"({"command": "clear", "what": "sun"})")), "clear sun");
   EXPECT_EQ(describe(parse(R"({"command": "set", "body": "Earth", "pointer": "/ozone", "value": null})")),
             "set Earth /ozone = null");
 }
@@ -74,6 +81,12 @@ TEST(OperatorCommand, ErrorsNameTheKeyTheValueAndTheRange) {
   EXPECT_EQ(error_of(R"({"command": "set", "body": "Earth", "pointer": "/a"})"), "command: /value: missing required key");
   EXPECT_NE(error_of(R"({"command": "set", "body": "", "pointer": "/a", "value": 1})").find("must name a body"),
             std::string::npos);
+  EXPECT_EQ(error_of(R"({"command": "sun", "elevation_deg": 91})"), "command: /elevation_deg = 91: must be in [-90, 90] deg");
+  EXPECT_EQ(error_of(R"({"command": "sun", "azimuth_deg": 400})"), "command: /azimuth_deg = 400: must be in [-360, 360] deg");
+  EXPECT_NE(error_of(R"({"command": "sun"})").find("command: /elevation_deg: missing required key (a sun command gives"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"command": "clear", "what": "moon"})").find("command: /what = \"moon\": must be one of \"sun\""),
+            std::string::npos);
   EXPECT_NE(error_of(R"(["pause"])").find("must be a JSON object"), std::string::npos);
   EXPECT_NE(error_of(R"({"command": "pause")").find("command: (top level): not valid JSON"), std::string::npos);
   EXPECT_NE(error_of(std::string(kMaxOperatorCommandBytes + 1, ' ')).find("at most"), std::string::npos);
@@ -86,6 +99,8 @@ TEST(OperatorCommand, ToJsonIsTheInverseOfParsing) {
   for (const char* text : {R"({"command": "play"})", R"({"command": "seek", "seconds": 3})",
                            R"({"command": "rate", "rate": 0.5})", R"({"command": "loop", "loop": "on"})",
                            R"({"command": "exposure", "exposure": null})", R"({"command": "exposure", "exposure": 1e6})",
+                           R"({"command": "sun", "elevation_deg": 5})", R"({"command": "sun", "elevation_deg": -5, "azimuth_deg": 90})",
+                           R"({"command": "clear", "what": "exposure"})",
                            R"({"command": "set", "body": "Mars", "pointer": "/planet/ground_albedo", "value": {"680": 0.3}})"}) {
     const OperatorCommand command = parse(text);
     EXPECT_EQ(parse_operator_command(to_json(command)), command) << text;
@@ -106,6 +121,8 @@ const std::vector<std::string> kSeeds = {
     R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 3})",
     R"({"command": "set", "body": "Earth", "pointer": "/ozone", "value": {"profile": "us_standard_1976"}})",
     R"({"command": "quit"})",
+    R"({"command": "sun", "elevation_deg": 10, "azimuth_deg": 250})",
+    R"({"command": "clear", "what": "sun"})",
 };
 
 /// Pieces a mutation inserts: JSON punctuation, keys, values at and beyond the ranges' edges.
@@ -113,7 +130,7 @@ const std::vector<std::string> kPieces = {
     "{",  "}",  "[",    "]",     ",",       ":",        "\"",       "\\",         "null",       "true",  "false",
     "-",  "0",  "1e999", "-1e-999", "16.0000001", "1e6", "1e309", "NaN", "\"command\"", "\"seconds\"", "\"rate\"",
     "\"value\"", "\"pointer\"", "\"/\"", "\"~\"", "\"/~2\"", "\"\\u0000\"", "\"\\ud800\"", "\xff", "\xc3\x28",
-    "18446744073709551616", "-9223372036854775809", "[[[[[[[[[[[[[[[[[[", "\"set\"", "\"loop\"", "\"on\""};
+    "18446744073709551616", "-9223372036854775809", "[[[[[[[[[[[[[[[[[[", "\"set\"", "\"loop\"", "\"on\"", "\"elevation_deg\"", "\"azimuth_deg\"", "90.0000001", "-360", "\"what\"", "\"sun\""};
 
 std::string mutate(std::string text, std::mt19937_64& rng) {
   const auto below = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };

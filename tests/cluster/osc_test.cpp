@@ -141,6 +141,10 @@ TEST(OscCommand, AddressesBecomeTheApisCommandsWithItsRanges) {
   EXPECT_EQ(std::get<oc::Set>(set).value, nlohmann::json(3.1)) << "a float reads as the decimal it was typed as";
   EXPECT_EQ(std::get<oc::Set>(osc_command({"/zenith/atmosphere/Earth/air_mass", {std::string("geometric")}})).value,
             nlohmann::json("geometric"));
+  EXPECT_EQ(osc_command({"/zenith/sun/elevation", {-3.5f}}), OperatorCommand(oc::Sun{-3.5, std::nullopt}));
+  EXPECT_EQ(osc_command({"/zenith/sun/azimuth", {std::int32_t{270}}}), OperatorCommand(oc::Sun{std::nullopt, 270.0}));
+  EXPECT_EQ(osc_command({"/zenith/clear/sun", {1.0f}}), OperatorCommand(oc::Clear{oc::Clear::What::sun}));
+  EXPECT_EQ(osc_command({"/zenith/clear/exposure", {}}), OperatorCommand(oc::Clear{oc::Clear::What::exposure}));
   const auto error_of = [](const OscMessage& m) {
     try {
       osc_command(m);
@@ -151,6 +155,7 @@ TEST(OscCommand, AddressesBecomeTheApisCommandsWithItsRanges) {
   };
   EXPECT_EQ(error_of({"/zenith/rate", {20.0f}}), "command: /rate = 20.0: must be in [-16, 16]");
   EXPECT_EQ(error_of({"/zenith/seek", {}}), "OSC /zenith/seek: takes one argument, got 0");
+  EXPECT_EQ(error_of({"/zenith/sun/elevation", {95.0f}}), "command: /elevation_deg = 95.0: must be in [-90, 90] deg");
   EXPECT_NE(error_of({"/zenith/quit", {}}).find("OSC /zenith/quit: unknown address"), std::string::npos);
   EXPECT_NE(error_of({"/other/play", {}}).find("not a zenith address"), std::string::npos);
   EXPECT_NE(error_of({"/zenith/atmosphere/Earth", {1.0f}}).find("expected /zenith/atmosphere/<body>/<parameter>"),

@@ -114,9 +114,39 @@ function render(s) {
   $('exposure-source').textContent = s.exposure_override === null ? "(the show's)" : '(operator)';
   if (!editing($('exposure')) && $('exposure').value === '' && exposure !== null) $('exposure').value = exposure;
 
+  renderSun(s);
+
   $('no-live').hidden = s.live_atmospheres;
   for (const a of s.atmospheres) renderAtmosphere(a, s.live_atmospheres);
   renderNodes(s.nodes);
+}
+
+/// The sun's angles now (the latest frame's) and whether they are the operator's.
+function renderSun(s) {
+  const now = s.sun;
+  $('sun-elevation-now').textContent = now ? number(now.elevation_deg, 2) : '–';
+  $('sun-azimuth-now').textContent = now ? number(now.azimuth_deg, 2) : '–';
+  $('sun-source').textContent = s.sun_override ? '(operator)' : "(the show's)";
+  if (!now) return;
+  for (const [key, ids] of [['elevation_deg', ['sun-elevation-range', 'sun-elevation']],
+                            ['azimuth_deg', ['sun-azimuth-range', 'sun-azimuth']]]) {
+    const value = Number(now[key].toFixed(2));
+    for (const id of ids)
+      if (!editing($(id))) $(id).value = value;
+  }
+}
+
+/// A slider and a number box for one of the sun's angles; a change sends it alone.
+function wireSunAngle(rangeId, boxId, key) {
+  const range = $(rangeId), box = $(boxId);
+  const sendAngle = (value) => send(Object.assign({command: 'sun'}, {[key]: value}));
+  range.addEventListener('pointerdown', () => { range.dataset.dragging = '1'; });
+  range.addEventListener('input', () => { box.value = range.value; });
+  range.addEventListener('change', () => {
+    range.dataset.dragging = '0';
+    sendAngle(Number(range.value));
+  });
+  box.addEventListener('change', () => sendAngle(Number(box.value)));
 }
 
 function makeControl(body, p, parameters) {
@@ -308,6 +338,9 @@ function wire() {
     $('exposure').value = '';
     send({command: 'exposure', exposure: null});
   });
+  wireSunAngle('sun-elevation-range', 'sun-elevation', 'elevation_deg');
+  wireSunAngle('sun-azimuth-range', 'sun-azimuth', 'azimuth_deg');
+  $('sun-reset').addEventListener('click', () => send({command: 'clear', what: 'sun'}));
   $('token-form').addEventListener('submit', (e) => {
     e.preventDefault();
     token = $('token').value;
