@@ -25,6 +25,7 @@
 #include "cluster/frame_scene.h"
 #include "cluster/heartbeat.h"
 #include "cluster/master/atmosphere_edits.h"
+#include "cluster/master/atmosphere_overrides.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/heartbeat_monitor.h"
 #include "cluster/master/master_status.h"
@@ -70,8 +71,12 @@ struct Master::Impl {
   /// (prepared by `preparer` while frames go on with the old one).
   TableVersions tables;
   std::size_t next_switch = 0;  ///< into options.atmosphere_switches (sorted by frame)
-  /// The operator's atmosphere changes waiting to become table versions (the default show only).
+  /// The operator's atmosphere changes waiting to become table versions (not with a frame feed).
   std::optional<AtmosphereEdits> edits;
+  /// A show: the operator's parameter changes applied on top of its atmospheres, and the show's
+  /// own versions of the latest frame started (before the overrides).
+  AtmosphereOverrides overrides;
+  std::vector<AtmosphereTableRef> show_versions;
   std::string pending_change;  ///< what the pending version changes (a preset, a file, an operator's change)
   /// The operator's exposure, replacing the show's (or scene's) from the next frame on.
   std::optional<double> exposure_override;
@@ -233,7 +238,7 @@ struct Master::Impl {
   /// Networking thread: a set from the preparer.
   void on_set_prepared(TableSetFile set, double seconds, bool from_cache) {
     if (stopping) return;
-    if (!show_start) {
+    if (!show_start || !tables.is_show_set(set.table_hash)) {  // a switch or an operator's version
       on_version_prepared(std::move(set));
       return;
     }
@@ -254,6 +259,8 @@ struct Master::Impl {
     spdlog::info("master: table set {} of {} ('{}', version {}) ready ({:.1f} s, {}); sent to {} node{}", index,
                  sets.size(), prepared.body_name, short_hex(hash), seconds, from_cache ? "from the cache" : "precomputed",
                  receivers, receivers == 1 ? "" : "s");
+    // An operator's version that is one of the show's own was waiting for it.
+    if (tables.pending() && tables.pending()->hash == hash && !tables.pending()->distributed) on_version_prepared(std::nullopt);
     for (const std::uint32_t id : sessions.ids())
       if (NodeSession* s = sessions.find(id)) maybe_become_ready(*s);
     maybe_start_show();
@@ -279,11 +286,12 @@ struct Master::Impl {
       what = e.what();
     } catch (...) {
     }
-    if (show_start) {
+    if (show_start && tables.is_show_set(hash)) {
       preparation_error = error;
       stop(cat("table set ", short_hex(hash), " of the show could not be prepared: ", what));
       return;
     }
+    if (!tables.pending() || tables.pending()->hash != hash) return;  // abandoned meanwhile (clear)
     spdlog::error("master: the new tables could not be prepared: {}; the show goes on with the current version", what);
     last_version_error = cat("table version ", short_hex(hash), " (", pending_change, "): ", what);
     tables.abandon_pending();
@@ -325,6 +333,65 @@ struct Master::Impl {
     if (tables.ready_with(s.tables_ready)) become_ready(s);
   }
 
+  /// The version atmosphere current()[index] renders with now: the default
+  /// show's current one; in a show the operator's override, else the show's
+  /// own of the latest frame started.
+  Digest effective_version(std::size_t index) const {
+    if (!show) return tables.current()[index].table_hash;
+    if (const auto& o = tables.override_of(index)) return o->table_hash;
+    return show_version_of(index).table_hash;
+  }
+
+  /// A show: the show's own version of atmosphere current()[index] in the
+  /// latest frame started (before frame 0: the first frame's).
+  const AtmosphereTableRef& show_version_of(std::size_t index) const {
+    const std::string& body = tables.current()[index].body_name;
+    for (const AtmosphereTableRef& ref : show_versions)
+      if (ref.body_name == body) return ref;
+    return tables.current()[index];
+  }
+
+  /// The newest version asked for atmosphere current()[index]: its waiting
+  /// change's, else its pending version, else the one it renders with.
+  Digest latest_version(std::size_t index) const {
+    if (const AtmosphereEdits::Edit* waiting = edits->waiting(tables.current()[index].body_name))
+      return digest_from_hex(atmosphere::lookup_table_hash(waiting->loaded.model));
+    if (tables.pending() && tables.pending()->ref_index == index) return tables.pending()->hash;
+    return effective_version(index);
+  }
+
+  /// A show's frame about to be sent (docs/operator.md, "set during a show"):
+  /// remembers the show's own versions, asks for a new operator version of
+  /// every overridden body whose track has moved on (the show's new version
+  /// with the operator's changes), and puts the overrides in effect in place
+  /// of the show's versions.
+  void apply_atmosphere_overrides(FrameState& state) {
+    show_versions = state.atmospheres;
+    for (const AtmosphereTableRef& ref : show_versions) {
+      const std::string& body = ref.body_name;
+      if (!overrides.active(body) || overrides.base(body) == ref.table_hash) continue;
+      const std::size_t index = edits->index_of(body);
+      // A change on its way was built on an earlier show version: follow once it is in.
+      if (edits->waiting(body) || (tables.pending() && tables.pending()->ref_index == index)) continue;
+      overrides.set_base(body, ref.table_hash);
+      try {
+        AtmosphereEdits::Edit edit = edits->resolve_parameters(
+            body, overrides.apply(body, tables.version(ref.table_hash).parameters),
+            cat("the show's version ", short_hex(ref.table_hash), " with ", overrides.describe(body)));
+        if (digest_from_hex(atmosphere::lookup_table_hash(edit.loaded.model)) == effective_version(index)) continue;
+        spdlog::info("master: the show's track of '{}' moved on to version {}: preparing it with the operator's changes",
+                     body, short_hex(ref.table_hash));
+        edits->enqueue(std::move(edit));
+      } catch (const std::exception& e) {
+        spdlog::warn("master: the show's track of '{}' moved on to version {}, but the operator's changes do not fit "
+                     "it ({}); '{}' keeps the operator's version until cleared",
+                     body, short_hex(ref.table_hash), e.what(), body);
+      }
+    }
+    state.atmospheres = tables.with_overrides(std::move(state.atmospheres));
+    maybe_start_switch();
+  }
+
   /// Starts the next switch whose frame has come, else the operator's next
   /// change (one version in flight at a time).
   void maybe_start_switch() {
@@ -346,7 +413,7 @@ struct Master::Impl {
                      const std::string& what) {
     const std::string body = tables.current()[index].body_name;
     const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
-    if (hash == tables.current()[index].table_hash) {
+    if (hash == effective_version(index)) {
       spdlog::info("master: {}: '{}' already uses {}; nothing to switch", why, body, what);
       maybe_start_switch();
       return;
@@ -356,17 +423,23 @@ struct Master::Impl {
     pending_change = what;
     spdlog::info("master: {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
                  "version {}",
-                 why, short_hex(hash), body, what, short_hex(tables.current()[index].table_hash));
+                 why, short_hex(hash), body, what, short_hex(effective_version(index)));
     if (tables.has_set(hash)) {  // an earlier version again: already encoded
       asio::post(io, [this] { on_version_prepared(std::nullopt); });
       return;
     }
+    if (tables.is_show_set(hash)) return;  // the show's own, still being prepared: on_set_prepared goes on
     preparer.enqueue(preparation_job(body, loaded.model));
   }
 
   /// Networking thread: the pending version's tables are ready; send them to every node.
+  /// A set of a version abandoned meanwhile (cleared) is kept for later.
   void on_version_prepared(std::optional<TableSetFile> set) {
-    if (!tables.pending() || stopping) return;
+    if (stopping) return;
+    if (!tables.pending() || (set && set->table_hash != tables.pending()->hash)) {
+      if (set) tables.add_set(std::move(*set));
+      return;
+    }
     if (set) tables.add_set(std::move(*set));
     const Digest hash = tables.pending()->hash;
     const TableSetFile& prepared = tables.set(hash);
@@ -374,6 +447,8 @@ struct Master::Impl {
     std::size_t receivers = 0;
     sessions.for_each([&](NodeSession& s) {
       if (s.state == NodeSession::State::handshake || !s.inventory_done) return;  // gets it with its inventory
+      // A node that holds it (an earlier version again, a show's own set) is not sent it again.
+      if (s.tables_ready.count(hash) || tables.is_show_set(hash)) return;
       send_table_set(s, prepared);
       ++receivers;
     });
@@ -595,6 +670,7 @@ struct Master::Impl {
     }
     frame_in_flight = std::move(*held_frame);
     held_frame.reset();
+    if (show && !options.feed) apply_atmosphere_overrides(frame_in_flight);
     const std::uint64_t frame = options.feed ? frame_in_flight.frame : barrier.frame();
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
     for (const std::uint32_t id : participants) sessions.find(id)->connection->send_encoded(encoded);
@@ -792,18 +868,24 @@ struct Master::Impl {
 
   /// An operator's `set`: checked like an atmosphere file, then prepared as a
   /// new table version in the background and switched on every node at one
-  /// frame (docs/operator.md, "Live atmosphere parameters").
+  /// frame (docs/operator.md, "Live atmosphere parameters"). In a show it
+  /// changes the show's parameters of the body, which then follows the
+  /// show's track with the operator's changes until cleared ("set during a show").
   std::string apply_set(const operator_command::Set& set) {
     if (!edits)
-      throw std::invalid_argument(cat(describe(set), ": a show's atmospheres follow its tracks (docs/shows.md); live "
-                                                     "changes are for the default show (a master without --show)"));
+      throw std::invalid_argument(cat(describe(set), ": the frames come from an offline render's feed"));
     const std::size_t index = edits->index_of(set.body);
+    const Digest latest = latest_version(index);
     const AtmosphereEdits::Edit* waiting = edits->waiting(set.body);
-    const std::optional<TableVersions::Pending>& pending = tables.pending();
-    const Digest latest = waiting ? digest_from_hex(atmosphere::lookup_table_hash(waiting->loaded.model))
-                          : pending && pending->ref_index == index ? pending->hash
-                                                                   : tables.current()[index].table_hash;
-    AtmosphereEdits::Edit edit = edits->resolve(set, waiting ? waiting->loaded.parameters : tables.version(latest).parameters);
+    // The parameters the change is made to: in a show its own version's with the operator's changes so far.
+    const nlohmann::json base = show ? overrides.apply(set.body, tables.version(show_version_of(index).table_hash).parameters)
+                                : waiting ? waiting->loaded.parameters
+                                          : tables.version(latest).parameters;
+    AtmosphereEdits::Edit edit = edits->resolve(set, base);
+    if (show) {
+      overrides.add(set);
+      overrides.set_base(set.body, show_version_of(index).table_hash);
+    }
     const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(edit.loaded.model));
     if (hash == latest)
       return cat("'", set.body, "' ", edit.change, ": the tables stay version ", short_hex(hash),
@@ -814,6 +896,33 @@ struct Master::Impl {
     const bool started_now = tables.pending() && tables.pending()->hash == hash;
     return cat("'", set.body, "' ", change, ": table version ", short_hex(hash),
                started_now ? " is being prepared" : " waits for the version before it",
+               "; every node switches to it at one frame once all hold it",
+               show ? " (it replaces the show's track of the body until cleared)" : "");
+  }
+
+  /// An operator's `clear` of an atmosphere: in a show, the body follows the
+  /// show's track again from the next frame (every node holds the show's
+  /// sets); in the default show, the scene's own atmosphere comes back as a
+  /// new table version like a `set`.
+  std::string clear_atmosphere(const std::string& body) {
+    if (!edits) throw std::invalid_argument(cat("clear atmosphere of ", body, ": the frames come from an offline render's feed"));
+    const std::size_t index = edits->index_of(body);
+    const bool dropped = edits->drop(body);
+    if (show) {
+      const bool had = overrides.active(body) || tables.override_of(index).has_value();
+      overrides.clear(body);
+      if (tables.pending() && tables.pending()->ref_index == index) tables.abandon_pending();  // its set is kept when it comes
+      tables.clear_override(index);
+      maybe_start_switch();
+      return had || dropped ? cat("'", body, "' follows the show's track again from the next frame")
+                            : cat("'", body, "' has no operator changes: it follows the show's track");
+    }
+    AtmosphereEdits::Edit original = edits->original(body);
+    const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(original.loaded.model));
+    if (hash == latest_version(index)) return cat("'", body, "' has the scene's own atmosphere (table version ", short_hex(hash), ")");
+    edits->enqueue(std::move(original));
+    maybe_start_switch();
+    return cat("'", body, "': the scene's own atmosphere, table version ", short_hex(hash),
                "; every node switches to it at one frame once all hold it");
   }
 
@@ -826,8 +935,9 @@ struct Master::Impl {
                        angles.azimuth_deg);
   }
 
-  /// An operator's `clear`: the show's (or scene's) own sun or exposure again.
+  /// An operator's `clear`: the show's (or scene's) own sun, exposure or atmosphere again.
   std::string apply_clear(const operator_command::Clear& clear) {
+    if (clear.what == operator_command::Clear::What::atmosphere) return clear_atmosphere(clear.body);
     if (clear.what == operator_command::Clear::What::exposure) {
       exposure_override.reset();
       return "the show's own exposure from the next frame on";
@@ -843,7 +953,7 @@ struct Master::Impl {
                                        started, stopping, started ? &frame_in_flight : nullptr, presented, fps,
                                        exposure_override, pending_change, last_version_error,
                                        started ? std::optional(sun_override->angles_of(frame_in_flight)) : std::nullopt,
-                                       sun_override->angles()});
+                                       sun_override->angles(), show ? &overrides : nullptr, show_versions});
   }
 
   /// The operator console (HTTP, OSC): listening from before the tables are
@@ -954,6 +1064,7 @@ struct Master::Impl {
             "atmosphere switches cannot be combined with a show: use the show's atmosphere tracks");
       show.emplace(show::load_show(*options.show));
       scene = show->scene();
+      if (!options.feed) edits.emplace(scene);
       if (options.show_fps > 0.0) fps = options.show_fps;
       else if (show->kind() == show::Show::Kind::recording) fps = show->frame_rate_hz();
       clock.emplace(show->duration_s(), fps, options.loop.value_or(show->loop()));

@@ -28,9 +28,7 @@ std::size_t AtmosphereEdits::index_of(const std::string& body) const {
 }
 
 AtmosphereEdits::Edit AtmosphereEdits::resolve(const operator_command::Set& set, const nlohmann::json& parameters) const {
-  Edit edit;
-  edit.index = index_of(set.body);
-  edit.body = set.body;
+  index_of(set.body);  // an unknown body first, before the pointer
   nlohmann::json changed = parameters;
   try {
     show::write_parameter(changed, set.pointer, set.value);
@@ -38,18 +36,37 @@ AtmosphereEdits::Edit AtmosphereEdits::resolve(const operator_command::Set& set,
     throw std::invalid_argument(cat("command: /pointer: ", e.what(), " (in the atmosphere parameters of '", set.body,
                                     "'; docs/atmosphere-config.md)"));
   }
+  const std::string change =
+      cat(set.pointer.to_string(), " = ", set.value.is_null() ? std::string("removed") : brief(set.value));
+  return resolve_parameters(set.body, changed, change);
+}
+
+AtmosphereEdits::Edit AtmosphereEdits::resolve_parameters(const std::string& body, const nlohmann::json& parameters,
+                                                          const std::string& change) const {
+  Edit edit;
+  edit.index = index_of(body);
+  edit.body = body;
   // The same loader as a file, at the scene's wavelengths: its errors name the pointer and the range.
-  edit.loaded = atmosphere::resolve_atmosphere(changed, cat("set ", set.body), {scene_.wavelengths_nm});
+  edit.loaded = atmosphere::resolve_atmosphere(parameters, cat("set ", body), {scene_.wavelengths_nm});
   scene::Scene with_edit = scene_;
-  for (scene::Body& body : with_edit.bodies)
-    if (body.name == set.body) body.atmosphere->loaded = edit.loaded;
+  for (scene::Body& b : with_edit.bodies)
+    if (b.name == body) b.atmosphere->loaded = edit.loaded;
   try {
     scene::check_scene(with_edit);
   } catch (const std::exception& e) {
-    throw std::invalid_argument(cat("set ", set.body, ": ", set.pointer.to_string(), " = ", brief(set.value),
-                                    ": the atmosphere no longer fits its body: ", e.what()));
+    throw std::invalid_argument(cat("set ", body, ": ", change, ": the atmosphere no longer fits its body: ", e.what()));
   }
-  edit.change = cat(set.pointer.to_string(), " = ", set.value.is_null() ? std::string("removed") : brief(set.value));
+  edit.change = change;
+  return edit;
+}
+
+AtmosphereEdits::Edit AtmosphereEdits::original(const std::string& body) const {
+  Edit edit;
+  edit.index = index_of(body);
+  edit.body = body;
+  for (const scene::Body& b : scene_.bodies)
+    if (b.name == body) edit.loaded = b.atmosphere->loaded;
+  edit.change = "the scene's own atmosphere";
   return edit;
 }
 
@@ -68,6 +85,10 @@ std::optional<AtmosphereEdits::Edit> AtmosphereEdits::take_next() {
   Edit next = std::move(queue_.front());
   queue_.pop_front();
   return next;
+}
+
+bool AtmosphereEdits::drop(const std::string& body) {
+  return std::erase_if(queue_, [&](const Edit& e) { return e.body == body; }) > 0;
 }
 
 const AtmosphereEdits::Edit* AtmosphereEdits::waiting(const std::string& body) const {

@@ -1,6 +1,7 @@
 #pragma once
-// The operator's live changes to the atmospheres of the default show
-// (docs/operator.md, "Live atmosphere parameters"). A `set` command names a
+// The operator's live changes to the atmospheres of the default show or of a
+// show file (docs/operator.md, "Live atmosphere parameters", "set during a
+// show"; a show's changes are kept by AtmosphereOverrides). A `set` command names a
 // body, a JSON pointer into its atmosphere parameters and a value; the change
 // is written into the body's latest parameter set and the result goes through
 // the same loader as an atmosphere file (atmosphere::resolve_atmosphere, at the
@@ -51,6 +52,12 @@ class AtmosphereEdits {
   /// unknown body, a pointer that cannot be written or an atmosphere that
   /// does not fit its body.
   Edit resolve(const operator_command::Set& set, const nlohmann::json& parameters) const;
+  /// A whole new parameter set of `body`, checked the same way (source "set
+  /// BODY"); `change` describes it. Throws as resolve().
+  Edit resolve_parameters(const std::string& body, const nlohmann::json& parameters, const std::string& change) const;
+  /// The scene's own atmosphere of `body` as an edit (`clear` in the default
+  /// show). Throws std::invalid_argument for an unknown body.
+  Edit original(const std::string& body) const;
 
   /// Queues an edit; it replaces the waiting edit of the same body (keeping
   /// that one's place and joining the two changes' descriptions).
@@ -59,6 +66,8 @@ class AtmosphereEdits {
   std::optional<Edit> take_next();
   /// The waiting edit of `body`, nullptr when none.
   const Edit* waiting(const std::string& body) const;
+  /// Drops the waiting edit of `body` (if any); true when there was one.
+  bool drop(const std::string& body);
   std::size_t waiting_count() const { return queue_.size(); }
 
  private:

@@ -90,12 +90,18 @@ json atmosphere_status(const StatusSources& s, std::size_t index, const Atmosphe
   }
   const auto& pending = s.tables.pending();
   const AtmosphereEdits::Edit* waiting = s.edits != nullptr ? s.edits->waiting(ref.body_name) : nullptr;
+  json show_version = nullptr;
+  for (const AtmosphereTableRef& own : s.show_versions)
+    if (own.body_name == ref.body_name) show_version = version_hex16(own.table_hash);
+  const bool overridden = s.overrides != nullptr && s.overrides->active(ref.body_name);
   return {{"body", ref.body_name},
           {"version", version_hex16(ref.table_hash)},
           {"effective_from_frame", ref.effective_from_frame},
           {"parameters", std::move(parameters)},
           {"pending", pending && pending->ref_index == index ? pending_status(s, *pending) : json(nullptr)},
-          {"waiting", waiting != nullptr ? json(waiting->change) : json(nullptr)}};
+          {"waiting", waiting != nullptr ? json(waiting->change) : json(nullptr)},
+          {"show_version", std::move(show_version)},
+          {"operator_changes", overridden ? json(s.overrides->describe(ref.body_name)) : json(nullptr)}};
 }
 
 /// {"elevation_deg", "azimuth_deg"}, or null.

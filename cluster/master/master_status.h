@@ -14,6 +14,7 @@
 
 #include "cluster/cluster_config.h"
 #include "cluster/master/atmosphere_edits.h"
+#include "cluster/master/atmosphere_overrides.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
@@ -48,6 +49,8 @@ struct StatusSources {
   std::string last_error;      ///< the latest table version that could not be prepared, and why
   std::optional<scene::SkyAngles> sun;           ///< the latest frame's sun in its camera's sky; nullopt before frame 0
   std::optional<scene::SkyAngles> sun_override;  ///< the operator's sun, nullopt: the show's
+  const AtmosphereOverrides* overrides = nullptr;   ///< a show's: the operator's changes of its atmospheres
+  std::vector<AtmosphereTableRef> show_versions;    ///< a show's own versions of the latest frame
 };
 
 /// The status as JSON (schema in docs/operator.md, "Status"):

@@ -28,7 +28,7 @@ constexpr std::size_t kMaxBodyBytes = 64;
 const std::vector<std::string> kCommands = {"play", "pause", "toggle", "status", "quit", "seek",
                                             "rate", "loop",  "exposure", "set",  "sun",  "clear"};
 /// What `clear` ends.
-const std::vector<std::string> kClearable = {"sun", "exposure"};
+const std::vector<std::string> kClearable = {"sun", "exposure", "atmosphere"};
 /// The ranges of a sun given in the sky, as in scene files (docs/scenes.md).
 constexpr double kMaxElevationDeg = 90.0;
 constexpr double kMaxAzimuthDeg = 360.0;
@@ -69,6 +69,7 @@ const char* clear_target(oc::Clear::What what) {
   switch (what) {
     case oc::Clear::What::sun: return "sun";
     case oc::Clear::What::exposure: return "exposure";
+    case oc::Clear::What::atmosphere: return "atmosphere";
   }
   return "sun";
 }
@@ -92,10 +93,12 @@ oc::Sun read_sun(JsonReader& r) {
   return sun;
 }
 
-/// `clear`: what.
+/// `clear`: what, and the body of an atmosphere.
 oc::Clear read_clear(JsonReader& r) {
   oc::Clear clear;
-  clear.what = r.string("what", kClearable) == "sun" ? oc::Clear::What::sun : oc::Clear::What::exposure;
+  const std::string what = r.string("what", kClearable);
+  clear.what = what == "sun" ? oc::Clear::What::sun : what == "exposure" ? oc::Clear::What::exposure : oc::Clear::What::atmosphere;
+  if (clear.what == oc::Clear::What::atmosphere) clear.body = read_body(r);
   return clear;
 }
 
@@ -172,8 +175,11 @@ json to_json(const OperatorCommand& command) {
           if (c.elevation_deg) j["elevation_deg"] = *c.elevation_deg;
           if (c.azimuth_deg) j["azimuth_deg"] = *c.azimuth_deg;
           return j;
-        } else
-          return {{"command", "clear"}, {"what", clear_target(c.what)}};
+        } else {
+          json j = {{"command", "clear"}, {"what", clear_target(c.what)}};
+          if (c.what == oc::Clear::What::atmosphere) j["body"] = c.body;
+          return j;
+        }
       },
       command);
 }
@@ -200,7 +206,8 @@ std::string describe(const OperatorCommand& command) {
           if (c.azimuth_deg) text += cat(" azimuth ", number_text(*c.azimuth_deg), "°");
           return text;
         } else
-          return cat("clear ", clear_target(c.what));
+          return c.what == oc::Clear::What::atmosphere ? cat("clear atmosphere of ", c.body)
+                                                       : cat("clear ", clear_target(c.what));
       },
       command);
 }

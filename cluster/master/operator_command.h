@@ -17,8 +17,8 @@
 //       V any JSON value (null removes the key); checked by the atmosphere loader when applied
 //   {"command": "sun", "elevation_deg": E, "azimuth_deg": A}
 //       E in [−90, 90], A in [−360, 360] as in scenes; either may be left out (it keeps its value)
-//   {"command": "clear", "what": "sun" | "exposure"}
-//       the operator's override ends: the show's (or scene's) own again
+//   {"command": "clear", "what": "sun" | "exposure" | "atmosphere", "body": B}
+//       the operator's override ends: the show's (or scene's) own again; "body" with "atmosphere" only
 // Unknown keys are errors.
 #include <cstddef>
 #include <optional>
@@ -81,8 +81,9 @@ struct Sun {
 };
 /// Ends one of the operator's overrides: the show's (or scene's) own again.
 struct Clear {
-  enum class What { sun, exposure };
+  enum class What { sun, exposure, atmosphere };
   What what = What::sun;
+  std::string body;  ///< What::atmosphere: a body of the scene, 1..64 bytes; empty otherwise
   bool operator==(const Clear&) const = default;
 };
 }  // namespace operator_command

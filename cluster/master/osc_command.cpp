@@ -79,6 +79,8 @@ OperatorCommand osc_command(const OscMessage& m) {
     request = {{"command", "sun"}, {"azimuth_deg", value_of(m)}};
   } else if (name == "clear/sun" || name == "clear/exposure") {
     request = {{"command", "clear"}, {"what", name.substr(6)}};
+  } else if (name.starts_with("clear/atmosphere/")) {
+    request = {{"command", "clear"}, {"what", "atmosphere"}, {"body", name.substr(17)}};
   } else if (m.address.starts_with(kAtmosphere)) {
     const std::string rest = m.address.substr(kAtmosphere.size());  // "<body>/<pointer>"
     const std::size_t slash = rest.find('/');
@@ -88,7 +90,7 @@ OperatorCommand osc_command(const OscMessage& m) {
   } else {
     refuse(m, "unknown address (known: /zenith/play, /zenith/pause, /zenith/toggle, /zenith/seek, /zenith/rate, "
               "/zenith/exposure, /zenith/loop, /zenith/sun/elevation, /zenith/sun/azimuth, /zenith/clear/sun, "
-              "/zenith/clear/exposure, /zenith/atmosphere/<body>/<parameter>)");
+              "/zenith/clear/exposure, /zenith/clear/atmosphere/<body>, /zenith/atmosphere/<body>/<parameter>)");
   }
   return parse_operator_command(request);
 }

@@ -3,7 +3,8 @@
 //   /zenith/play  /zenith/pause  /zenith/toggle      any arguments ignored (a button sends 1 on press, 0 on release)
 //   /zenith/seek f   /zenith/rate f   /zenith/exposure f (N: the show's own)   /zenith/loop T|F|i
 //   /zenith/sun/elevation f   /zenith/sun/azimuth f (degrees in the camera's sky; the other angle stays)
-//   /zenith/clear/sun   /zenith/clear/exposure       any arguments ignored: the show's own again
+//   /zenith/clear/sun   /zenith/clear/exposure   /zenith/clear/atmosphere/<body>
+//                                                    any arguments ignored: the show's (or scene's) own again
 //   /zenith/atmosphere/<body>/<pointer> v            a `set`: the rest of the address is the JSON
 //                                                    pointer into the body's atmosphere parameters
 //                                                    (/zenith/atmosphere/Earth/aerosol/scattering/turbidity 3),

@@ -38,29 +38,49 @@ void TableVersions::add_current(const std::string& body, const Digest& hash) {
 void TableVersions::use_show_sets(std::vector<Digest> sets, std::vector<AtmosphereTableRef> current) {
   show_sets_ = std::move(sets);
   current_ = std::move(current);
+  overrides_.assign(current_.size(), std::nullopt);
+}
+
+bool TableVersions::is_show_set(const Digest& hash) const {
+  return show_sets_ && std::find(show_sets_->begin(), show_sets_->end(), hash) != show_sets_->end();
 }
 
 std::vector<Digest> TableVersions::wanted_sets() const {
   std::vector<Digest> wanted;
+  const auto want = [&](const Digest& h) {
+    if (std::find(wanted.begin(), wanted.end(), h) == wanted.end()) wanted.push_back(h);
+  };
   if (show_sets_) {
     for (const Digest& h : *show_sets_)
-      if (has_set(h)) wanted.push_back(h);
-    return wanted;
+      if (has_set(h)) want(h);
+    for (const auto& o : overrides_)
+      if (o) want(o->table_hash);
+  } else {
+    for (const AtmosphereTableRef& r : current_) want(r.table_hash);
   }
-  for (const AtmosphereTableRef& r : current_)
-    if (std::find(wanted.begin(), wanted.end(), r.table_hash) == wanted.end()) wanted.push_back(r.table_hash);
-  if (pending_ && pending_->distributed && std::find(wanted.begin(), wanted.end(), pending_->hash) == wanted.end())
-    wanted.push_back(pending_->hash);
+  if (pending_ && pending_->distributed) want(pending_->hash);
   return wanted;
 }
 
 bool TableVersions::ready_with(const std::set<Digest>& held) const {
   for (const AtmosphereTableRef& r : current_)
     if (!held.count(r.table_hash)) return false;
-  if (show_sets_)
+  if (show_sets_) {
     for (const Digest& h : *show_sets_)
       if (has_set(h) && !held.count(h)) return false;
+    for (const auto& o : overrides_)
+      if (o && !held.count(o->table_hash)) return false;
+  }
   return true;
+}
+
+std::vector<AtmosphereTableRef> TableVersions::with_overrides(std::vector<AtmosphereTableRef> refs) const {
+  for (const auto& o : overrides_) {
+    if (!o) continue;
+    for (AtmosphereTableRef& r : refs)
+      if (r.body_name == o->body_name) r = *o;
+  }
+  return refs;
 }
 
 void TableVersions::begin_pending(std::size_t ref_index, const Digest& hash) {
@@ -73,11 +93,18 @@ void TableVersions::mark_distributed(Clock::time_point now) {
 }
 
 AtmosphereTableRef TableVersions::apply_pending(std::uint64_t frame) {
-  AtmosphereTableRef& ref = current_[pending_->ref_index];
-  const AtmosphereTableRef before = ref;
-  ref.table_hash = pending_->hash;
-  ref.effective_from_frame = frame;
+  const std::size_t index = pending_->ref_index;
+  AtmosphereTableRef next = current_[index];
+  next.table_hash = pending_->hash;
+  next.effective_from_frame = frame;
   pending_.reset();
+  if (show_sets_) {
+    const AtmosphereTableRef before = overrides_[index].value_or(current_[index]);
+    overrides_[index] = next;
+    return before;
+  }
+  const AtmosphereTableRef before = current_[index];
+  current_[index] = next;
   return before;
 }
 

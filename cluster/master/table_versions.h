@@ -19,11 +19,16 @@
 
 namespace zenith::cluster {
 
-/// Invariants: every version named by current() or pending() has a set (once
-/// prepared) and a definition; with a show, the sets a node must hold are the
-/// show's sets prepared so far (the show's plan is fixed before the first
-/// frame; its sets are prepared in the background, in order of first use),
-/// and there is no pending version.
+/// Invariants: every version named by current(), pending() or an override
+/// has a set (once prepared) and a definition; at most one version is
+/// pending. Without a show, current() is what every FrameState carries and a
+/// pending version replaces an entry of it. With a show, the show's frames
+/// carry its own versions; the sets a node must hold are the show's sets
+/// prepared so far (its plan is fixed before the first frame; they are
+/// prepared in the background, in order of first use) and every operator
+/// override in effect, and a pending version becomes an override: from its
+/// frame on, it replaces the body's version in every frame of the show
+/// (with_overrides) until cleared (docs/operator.md, "set during a show").
 class TableVersions {
  public:
   using Clock = std::chrono::steady_clock;
@@ -57,15 +62,31 @@ class TableVersions {
   /// Adds the next atmosphere's version, effective from frame 0.
   void add_current(const std::string& body, const Digest& hash);
   /// A show: these sets are every one it uses, in the order they are
-  /// prepared; `current` the versions of its first frame. A set counts for
-  /// the nodes once it is prepared (add_set).
+  /// prepared; `current` the versions of its first frame (every body with an
+  /// atmosphere, in scene order: the indices of begin_pending). A set counts
+  /// for the nodes once it is prepared (add_set).
   void use_show_sets(std::vector<Digest> sets, std::vector<AtmosphereTableRef> current);
-  /// The sets a node must be sent: the show's prepared so far, or the current
-  /// versions and a distributed pending one.
+  /// Whether a show is played (use_show_sets).
+  bool show_mode() const { return show_sets_.has_value(); }
+  /// Whether `hash` is one of the show's own sets.
+  bool is_show_set(const Digest& hash) const;
+  /// The sets a node must be sent: the show's prepared so far and the
+  /// operator's overrides, or the current versions; and a distributed pending one.
   std::vector<Digest> wanted_sets() const;
-  /// A node that holds `held` (TableReady) holds every current version and
-  /// every set of the show prepared so far.
+  /// A node that holds `held` (TableReady) holds every current version, every
+  /// set of the show prepared so far and every override.
   bool ready_with(const std::set<Digest>& held) const;
+
+  // ---- the operator's overrides of a show's atmospheres ----
+  /// Show: the operator's version of atmosphere current()[index] and the
+  /// frame it took effect at; nullopt: the show's own.
+  const std::optional<AtmosphereTableRef>& override_of(std::size_t index) const { return overrides_.at(index); }
+  /// Show: a frame's versions with every override in place of the body's
+  /// (matched by body name).
+  std::vector<AtmosphereTableRef> with_overrides(std::vector<AtmosphereTableRef> refs) const;
+  /// Show: atmosphere current()[index] follows the show's track again; its
+  /// override's set stays kept.
+  void clear_override(std::size_t index) { overrides_.at(index).reset(); }
 
   // ---- the pending version ----
   const std::optional<Pending>& pending() const { return pending_; }
@@ -75,8 +96,10 @@ class TableVersions {
   void mark_distributed(Clock::time_point now);
   /// The pending version could not be prepared: the show goes on with the current one.
   void abandon_pending() { pending_.reset(); }
-  /// The pending version takes effect from `frame`: returns the atmosphere's
-  /// reference as it was before. Precondition: a pending version.
+  /// The pending version takes effect from `frame`: it becomes the current
+  /// version of its atmosphere, or with a show its override. Returns the
+  /// reference it replaces (with a show: the override before, else the
+  /// show's first frame's). Precondition: a pending version.
   AtmosphereTableRef apply_pending(std::uint64_t frame);
 
  private:
@@ -84,6 +107,7 @@ class TableVersions {
   std::vector<AtmosphereTableRef> current_;
   std::optional<std::vector<Digest>> show_sets_;
   std::optional<Pending> pending_;
+  std::vector<std::optional<AtmosphereTableRef>> overrides_;  ///< show: one per current() entry
   /// Every version prepared so far (the scene's, switches', the show's): for
   /// AtmosphereDefinitions and the recording.
   std::map<Digest, show::AtmosphereVersion> versions_;

@@ -91,6 +91,28 @@ TEST_F(AtmosphereEditsTest, ALaterEditOfTheSameBodyReplacesTheWaitingOneAndKeeps
   EXPECT_FALSE(edits_.take_next());
 }
 
+TEST_F(AtmosphereEditsTest, AWholeParameterSetTheScenesOwnAndDroppingAWaitingEdit) {
+  json changed = earth_parameters();
+  changed["aerosol"]["scattering"]["turbidity"] = 4.0;
+  const AtmosphereEdits::Edit edit = edits_.resolve_parameters("Earth", changed, "the show's version with turbidity 4");
+  EXPECT_EQ(edit.change, "the show's version with turbidity 4");
+  EXPECT_EQ(edit.loaded.parameters["aerosol"]["scattering"]["turbidity"], 4.0);
+  changed["aerosol"]["scattering"]["turbidity"] = 100;
+  EXPECT_THROW(edits_.resolve_parameters("Earth", changed, "too turbid"), ConfigError);
+
+  const AtmosphereEdits::Edit original = edits_.original("Earth");
+  EXPECT_EQ(original.change, "the scene's own atmosphere");
+  EXPECT_EQ(atmosphere::lookup_table_hash(original.loaded.model),
+            atmosphere::lookup_table_hash(scene_.bodies[0].atmosphere->loaded.model));
+  EXPECT_THROW(edits_.original("Mars"), std::invalid_argument);
+
+  EXPECT_FALSE(edits_.drop("Earth"));
+  edits_.enqueue(edit);
+  EXPECT_TRUE(edits_.drop("Earth"));
+  EXPECT_EQ(edits_.waiting("Earth"), nullptr);
+  EXPECT_FALSE(edits_.take_next());
+}
+
 /// Every pointer to a leaf or block of `value`, as "/a/b".
 void pointers(const json& value, const std::string& prefix, std::vector<std::string>& out) {
   if (!value.is_structured()) return;

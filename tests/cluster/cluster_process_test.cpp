@@ -19,6 +19,7 @@
 #include <fstream>
 #include <functional>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -1166,6 +1167,13 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
   EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scale_height_m"], 1500);
   EXPECT_TRUE(atmosphere()["waiting"].is_null());
   EXPECT_TRUE(atmosphere()["pending"].is_null());
+  // Clear: the scene's own atmosphere again, a version every node still holds.
+  r = console_command(http, R"({"command": "clear", "what": "atmosphere", "body": "Earth"})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.body.find("the scene's own atmosphere, table version"), std::string::npos) << r.body;
+  ASSERT_TRUE(next_version()) << logs();
+  EXPECT_EQ(versions.back().hex, old_version);
+  EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scattering"]["turbidity"], 2.0);
   const std::uint64_t last_switch = versions.back().from_frame;
   ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > last_switch + 2; }, 120s))
       << logs();
@@ -1175,7 +1183,7 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
   expect_nodes_exit_cleanly(master);
 
   // Every node rendered each version from the same frame on, never before.
-  ASSERT_EQ(versions.size(), 4u);
+  ASSERT_EQ(versions.size(), 5u);
   expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
   for (const char* node : {"a", "b", "c"})
     for (const Presented& p : presented(dir_ / "out" / node)) {
@@ -1208,7 +1216,7 @@ TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
   nlohmann::json s = console_status(http);
   EXPECT_EQ(s["state"], "playing");
   EXPECT_EQ(s["show"]["duration_s"], 2.5);
-  EXPECT_FALSE(s["live_atmospheres"]);
+  EXPECT_TRUE(s["live_atmospheres"]) << "set works during a show too";
 
   test::HttpReply r = console_command(http, R"({"command": "pause"})");
   ASSERT_EQ(r.status, 200) << r.body;
@@ -1219,9 +1227,9 @@ TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
   r = console_command(http, R"({"command": "seek", "seconds": 99})");
   EXPECT_EQ(r.status, 400);
   EXPECT_EQ(r.json()["error"], "command: /seconds = 99: must be in [0, 2.5] s (the show's duration)") << r.body;
-  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 3})");
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 100})");
   EXPECT_EQ(r.status, 400);
-  EXPECT_NE(r.body.find("a show's atmospheres follow its tracks"), std::string::npos) << r.body;
+  EXPECT_EQ(r.json()["error"], "set Earth: /aerosol/scattering/turbidity = 100: must be in [1, 64]") << r.body;
   r = console_command(http, R"({"command": "seek", "seconds": 0.5})");
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_TRUE(wait_until([&] { return console_status(http)["show_time_s"] == 0.5; }, 60s)) << logs();
@@ -1347,6 +1355,76 @@ TEST_F(ClusterProcess, OperatorConsoleOverridesTheSunTrackOfAShowUntilCleared) {
   ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
   expect_nodes_exit_cleanly(master);
   expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+}
+
+TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsTheTrackUntilCleared) {
+  // The sunset fixture loops through two table versions (turbidity 2, then 3). The operator's
+  // scale height goes on top of either: a version of its own on every node from one frame on, a
+  // new one when the track moves on, and clear gives the show's versions back.
+  const fs::path config = write_config(5);
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const int http = port_ + 2, osc = port_ + 3;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--show", show.string(), "--fps", "2", "--loop", "--operator-port",
+                                     std::to_string(http), "--osc-port", std::to_string(osc)});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  // A whole loop (6 frames): both of the show's versions seen.
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= 7; }, 400s)) << logs();
+  std::set<std::string> show_versions;
+  for (const Presented& p : presented(dir_ / "out/a")) show_versions.insert(p.tables.substr(6));  // "Earth=…"
+  ASSERT_EQ(show_versions.size(), 2u);
+
+  test::HttpReply r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": 1500})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.body.find("it replaces the show's track of the body until cleared"), std::string::npos) << r.body;
+  nlohmann::json now;
+  const auto earth = [&] { return now["atmospheres"][0]; };
+  const auto in_show = [&](const nlohmann::json& version) { return show_versions.count(version.get<std::string>()) > 0; };
+  // The operator's version of the show's version of the moment, then the one of the other.
+  std::set<std::string> operator_versions;
+  ASSERT_TRUE(wait_until([&] {
+    now = console_status(http);
+    if (!now.contains("atmospheres") || in_show(earth()["version"])) return false;
+    operator_versions.insert(earth()["version"].get<std::string>());
+    return operator_versions.size() == 2;
+  }, 400s)) << logs();
+  EXPECT_EQ(earth()["operator_changes"], "/aerosol/scale_height_m = 1500");
+  EXPECT_EQ(earth()["parameters"]["aerosol"]["scale_height_m"], 1500);
+  EXPECT_TRUE(in_show(earth()["show_version"])) << now.dump();
+  for (const auto& node : now["nodes"]) {
+    const auto& held = node["tables_held"];
+    EXPECT_NE(std::find(held.begin(), held.end(), earth()["version"]), held.end()) << node;
+  }
+  // Refused: out of range; over OSC, the show's own again.
+  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": -5})");
+  EXPECT_EQ(r.status, 400) << r.body;
+  send_osc(osc, encode_osc_message({"/zenith/clear/atmosphere/Earth", {}}));
+  ASSERT_TRUE(wait_until([&] {
+    now = console_status(http);
+    return now.contains("atmospheres") && in_show(earth()["version"]) && earth()["operator_changes"].is_null();
+  }, 60s)) << now.dump();
+  EXPECT_EQ(earth()["version"], earth()["show_version"]);
+  const std::uint64_t cleared = now["frame"];
+  ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > cleared + 3; }, 120s))
+      << logs();
+
+  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  // On every node, the same tables at every frame: the show's, then one block of the operator's
+  // (each of its versions from one frame on), then the show's again.
+  const auto played = expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  std::string phases;
+  for (const Presented& p : played) {
+    const char phase = show_versions.count(p.tables.substr(6)) ? 's' : operator_versions.count(p.tables.substr(6)) ? 'o' : '?';
+    if (phases.empty() || phases.back() != phase) phases += phase;
+  }
+  EXPECT_EQ(phases, "sos");
+  const std::string master_log = read_text(dir_ / "master.log");
+  for (const std::string text : {"operator (http 127.0.0.1): set Earth /aerosol/scale_height_m = 1500 → 'Earth'",
+                                 "the show's track of 'Earth' moved on to version",
+                                 "operator (osc 127.0.0.1): clear atmosphere of Earth → 'Earth' follows the show's track again"})
+    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
 }
 
 // ---- the operator console in a real browser (chromium headless) ----------------

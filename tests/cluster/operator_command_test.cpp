@@ -53,9 +53,12 @@ TEST(OperatorCommand, ReadsEveryCommand) {
             OperatorCommand(oc::Sun{-6.0, 270.0}));
   EXPECT_EQ(parse(R"({"command": "sun", "azimuth_deg": -90})"), OperatorCommand(oc::Sun{std::nullopt, -90.0}));
   EXPECT_EQ(describe(parse(R"({"command": "sun", "elevation_deg": 12.5})")), "sun elevation 12.5°");
-  EXPECT_EQ(parse(R"({"command": "clear", "what": "sun"})"), OperatorCommand(oc::Clear{oc::Clear::What::sun}));
-  EXPECT_EQ(parse(R"({"command": "clear", "what": "exposure"})"), OperatorCommand(oc::Clear{oc::Clear::What::exposure}));
+  EXPECT_EQ(parse(R"({"command": "clear", "what": "sun"})"), OperatorCommand(oc::Clear{oc::Clear::What::sun, ""}));
+  EXPECT_EQ(parse(R"({"command": "clear", "what": "exposure"})"), OperatorCommand(oc::Clear{oc::Clear::What::exposure, ""}));
   EXPECT_EQ(describe(parse(R"({"command": "clear", "what": "sun"})")), "clear sun");
+  EXPECT_EQ(parse(R"({"command": "clear", "what": "atmosphere", "body": "Earth"})"),
+            OperatorCommand(oc::Clear{oc::Clear::What::atmosphere, "Earth"}));
+  EXPECT_EQ(describe(parse(R"({"command": "clear", "what": "atmosphere", "body": "Earth"})")), "clear atmosphere of Earth");
   EXPECT_EQ(describe(parse(R"({"command": "set", "body": "Earth", "pointer": "/ozone", "value": null})")),
             "set Earth /ozone = null");
 }
@@ -87,6 +90,9 @@ TEST(OperatorCommand, ErrorsNameTheKeyTheValueAndTheRange) {
             std::string::npos);
   EXPECT_NE(error_of(R"({"command": "clear", "what": "moon"})").find("command: /what = \"moon\": must be one of \"sun\""),
             std::string::npos);
+  EXPECT_EQ(error_of(R"({"command": "clear", "what": "atmosphere"})"), "command: /body: missing required key");
+  EXPECT_EQ(error_of(R"({"command": "clear", "what": "sun", "body": "Earth"})"),
+            "command: /body: unknown key (check the spelling; see docs/atmosphere-config.md)");
   EXPECT_NE(error_of(R"(["pause"])").find("must be a JSON object"), std::string::npos);
   EXPECT_NE(error_of(R"({"command": "pause")").find("command: (top level): not valid JSON"), std::string::npos);
   EXPECT_NE(error_of(std::string(kMaxOperatorCommandBytes + 1, ' ')).find("at most"), std::string::npos);
@@ -101,6 +107,7 @@ TEST(OperatorCommand, ToJsonIsTheInverseOfParsing) {
                            R"({"command": "exposure", "exposure": null})", R"({"command": "exposure", "exposure": 1e6})",
                            R"({"command": "sun", "elevation_deg": 5})", R"({"command": "sun", "elevation_deg": -5, "azimuth_deg": 90})",
                            R"({"command": "clear", "what": "exposure"})",
+                           R"({"command": "clear", "what": "atmosphere", "body": "Earth"})",
                            R"({"command": "set", "body": "Mars", "pointer": "/planet/ground_albedo", "value": {"680": 0.3}})"}) {
     const OperatorCommand command = parse(text);
     EXPECT_EQ(parse_operator_command(to_json(command)), command) << text;
@@ -123,6 +130,7 @@ const std::vector<std::string> kSeeds = {
     R"({"command": "quit"})",
     R"({"command": "sun", "elevation_deg": 10, "azimuth_deg": 250})",
     R"({"command": "clear", "what": "sun"})",
+    R"({"command": "clear", "what": "atmosphere", "body": "Earth"})",
 };
 
 /// Pieces a mutation inserts: JSON punctuation, keys, values at and beyond the ranges' edges.

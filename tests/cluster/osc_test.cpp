@@ -143,8 +143,10 @@ TEST(OscCommand, AddressesBecomeTheApisCommandsWithItsRanges) {
             nlohmann::json("geometric"));
   EXPECT_EQ(osc_command({"/zenith/sun/elevation", {-3.5f}}), OperatorCommand(oc::Sun{-3.5, std::nullopt}));
   EXPECT_EQ(osc_command({"/zenith/sun/azimuth", {std::int32_t{270}}}), OperatorCommand(oc::Sun{std::nullopt, 270.0}));
-  EXPECT_EQ(osc_command({"/zenith/clear/sun", {1.0f}}), OperatorCommand(oc::Clear{oc::Clear::What::sun}));
-  EXPECT_EQ(osc_command({"/zenith/clear/exposure", {}}), OperatorCommand(oc::Clear{oc::Clear::What::exposure}));
+  EXPECT_EQ(osc_command({"/zenith/clear/sun", {1.0f}}), OperatorCommand(oc::Clear{oc::Clear::What::sun, ""}));
+  EXPECT_EQ(osc_command({"/zenith/clear/exposure", {}}), OperatorCommand(oc::Clear{oc::Clear::What::exposure, ""}));
+  EXPECT_EQ(osc_command({"/zenith/clear/atmosphere/Earth", {1.0f}}),
+            OperatorCommand(oc::Clear{oc::Clear::What::atmosphere, "Earth"}));
   const auto error_of = [](const OscMessage& m) {
     try {
       osc_command(m);

@@ -67,6 +67,7 @@ TEST(TableVersions, ApplyingThePendingVersionChangesTheCurrentOneFromAFrame) {
   EXPECT_EQ(versions.current()[0].table_hash, digest(1));
   EXPECT_FALSE(versions.ready_with({digest(1), digest(2)}));
   EXPECT_TRUE(versions.ready_with({digest(1), digest(7)}));
+  EXPECT_FALSE(versions.show_mode());
 }
 
 TEST(TableVersions, AnAbandonedVersionLeavesTheCurrentOne) {
@@ -105,6 +106,83 @@ TEST(TableVersions, AShowWantsEverySetItUsesOnceItIsPrepared) {
   EXPECT_FALSE(versions.ready_with({digest(1)})) << "every prepared set of the show";
   EXPECT_FALSE(versions.ready_with({digest(2), digest(3)}));
   EXPECT_TRUE(versions.ready_with({digest(1), digest(2), digest(3)}));
+}
+
+/// A show of Earth (sets 1, 2, 3; its first frame uses 1) and Mars (set 4).
+TableVersions show_of_earth_and_mars() {
+  TableVersions versions;
+  AtmosphereTableRef earth, mars;
+  earth.body_name = "Earth";
+  earth.table_hash = digest(1);
+  mars.body_name = "Mars";
+  mars.table_hash = digest(4);
+  versions.use_show_sets({digest(1), digest(2), digest(3), digest(4)}, {earth, mars});
+  for (int i = 1; i <= 4; ++i) versions.add_set(set_of(digest(i)));
+  return versions;
+}
+
+/// A show frame's versions: Earth `earth`, Mars 4, both effective from frame 0.
+std::vector<AtmosphereTableRef> show_frame(int earth) {
+  AtmosphereTableRef e, m;
+  e.body_name = "Earth";
+  e.table_hash = digest(earth);
+  m.body_name = "Mars";
+  m.table_hash = digest(4);
+  return {e, m};
+}
+
+TEST(TableVersions, AnOperatorVersionOverridesAShowsAtmosphereFromItsFrameUntilCleared) {
+  TableVersions versions = show_of_earth_and_mars();
+  EXPECT_TRUE(versions.show_mode());
+  EXPECT_TRUE(versions.is_show_set(digest(2)));
+  EXPECT_FALSE(versions.is_show_set(digest(8)));
+  EXPECT_FALSE(versions.override_of(0));
+  EXPECT_EQ(versions.with_overrides(show_frame(2)), show_frame(2)) << "no override: the show's versions";
+
+  // The operator's version of Earth: prepared, distributed, then in effect from frame 30.
+  versions.begin_pending(0, digest(8));
+  versions.add_set(set_of(digest(8)));
+  EXPECT_EQ(versions.wanted_sets(), (std::vector<Digest>{digest(1), digest(2), digest(3), digest(4)}))
+      << "not before it is distributed";
+  versions.mark_distributed(TableVersions::Clock::now());
+  EXPECT_EQ(versions.wanted_sets(), (std::vector<Digest>{digest(1), digest(2), digest(3), digest(4), digest(8)}));
+  const std::set<Digest> show_sets = {digest(1), digest(2), digest(3), digest(4)};
+  EXPECT_TRUE(versions.ready_with(show_sets)) << "a pending version does not hold a node back";
+  const AtmosphereTableRef before = versions.apply_pending(30);
+  EXPECT_EQ(before.table_hash, digest(1)) << "the show's first frame's";
+  EXPECT_FALSE(versions.pending());
+  ASSERT_TRUE(versions.override_of(0));
+  EXPECT_EQ(versions.override_of(0)->table_hash, digest(8));
+  EXPECT_EQ(versions.override_of(0)->effective_from_frame, 30u);
+  EXPECT_FALSE(versions.override_of(1));
+  EXPECT_EQ(versions.current()[0].table_hash, digest(1)) << "the show's own versions stay";
+
+  // Every frame of the show has the override in Earth's place, whatever the track gives Earth.
+  for (const int earth : {1, 2, 3}) {
+    const std::vector<AtmosphereTableRef> refs = versions.with_overrides(show_frame(earth));
+    EXPECT_EQ(refs[0].table_hash, digest(8));
+    EXPECT_EQ(refs[0].effective_from_frame, 30u);
+    EXPECT_EQ(refs[1], show_frame(earth)[1]);
+  }
+  // Nodes need it: joining ones are sent it and are ready only with it.
+  EXPECT_EQ(versions.wanted_sets(), (std::vector<Digest>{digest(1), digest(2), digest(3), digest(4), digest(8)}));
+  EXPECT_FALSE(versions.ready_with(show_sets));
+  std::set<Digest> with_override = show_sets;
+  with_override.insert(digest(8));
+  EXPECT_TRUE(versions.ready_with(with_override));
+
+  // A later operator version replaces the override; a version of the show's own may be one.
+  versions.begin_pending(0, digest(3));
+  versions.mark_distributed(TableVersions::Clock::now());
+  EXPECT_EQ(versions.apply_pending(41).table_hash, digest(8)) << "the override it replaces";
+  EXPECT_EQ(versions.with_overrides(show_frame(1))[0].table_hash, digest(3));
+  EXPECT_EQ(versions.with_overrides(show_frame(1))[0].effective_from_frame, 41u);
+
+  versions.clear_override(0);
+  EXPECT_FALSE(versions.override_of(0));
+  EXPECT_EQ(versions.with_overrides(show_frame(2)), show_frame(2)) << "the show's track again";
+  EXPECT_TRUE(versions.ready_with(show_sets));
+  EXPECT_TRUE(versions.has_set(digest(8))) << "kept for a later override";
 }
 
 TEST(TableVersions, VersionsAndTheirDefinitions) {

@@ -268,6 +268,19 @@ function makeAtmosphere(a, live) {
       send({command: 'set', body: a.body, pointer: pointer.value, value: v});
     });
     view.appendChild(any);
+    // The operator's changes end: a show's track (or the scene's atmosphere) again.
+    const own = document.createElement('div');
+    own.className = 'row';
+    const clear = document.createElement('button');
+    clear.type = 'button';
+    clear.className = 'clear-atmosphere';
+    clear.textContent = lastStatus && lastStatus.show ? "The show's own" : "The scene's own";
+    clear.addEventListener('click', () => send({command: 'clear', what: 'atmosphere', body: a.body}));
+    const changes = document.createElement('span');
+    changes.className = 'muted operator-changes';
+    own.append(clear, changes);
+    view.appendChild(own);
+    view.changes = changes;
   }
   const pending = document.createElement('div');
   pending.className = 'row pending';
@@ -285,6 +298,12 @@ function renderAtmosphere(a, live) {
   v.version.replaceChildren('table version ', Object.assign(document.createElement('span'), {
     className: 'version', textContent: a.version}), ' since frame ' + a.effective_from_frame);
   v.version.dataset.version = a.version;
+  if (v.view.changes) {
+    v.view.changes.textContent = a.operator_changes ? "operator's changes on the show's version " + a.show_version + ': ' +
+                                                      a.operator_changes
+                               : a.show_version ? "the show's track" : '';
+    v.view.dataset.overridden = a.operator_changes ? '1' : '0';
+  }
   for (const c of v.controls) c.update(at(a.parameters, c.pointer));
   const parts = [];
   if (a.pending) {
