@@ -26,6 +26,7 @@
 #include "cluster/heartbeat.h"
 #include "cluster/master/atmosphere_edits.h"
 #include "cluster/master/atmosphere_overrides.h"
+#include "cluster/master/dome_preview.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/heartbeat_monitor.h"
 #include "cluster/master/master_status.h"
@@ -46,6 +47,8 @@
 #include "cluster/table_transfer.h"
 #include "scene/scene_loader.h"
 #include "core/timing.h"
+#include "image/png_encoder.h"
+#include "warp/viewport_config.h"
 
 namespace zenith::cluster {
 
@@ -116,6 +119,9 @@ struct Master::Impl {
   /// The operator console (docs/operator.md): the web page and JSON API, and OSC from show-control desks.
   std::optional<OperatorHttpServer> http_console;
   std::optional<OscReceiver> osc;
+  /// The dome preview from the nodes' thumbnails (with the HTTP console); asked for only while on.
+  std::optional<DomePreview> preview;
+  bool preview_on = false;
   NodeStatistics node_statistics;  ///< per node name, for the console's status
   std::string last_version_error;  ///< the latest table version that could not be prepared, and why
   Clock::time_point frame_started, show_started;
@@ -584,6 +590,13 @@ struct Master::Impl {
             maybe_apply_pending();
           } else if constexpr (std::is_same_v<T, RenderDone>) {
             on_render_done(s, m);
+          } else if constexpr (std::is_same_v<T, Thumbnail>) {
+            if (!preview_on) return;  // sent before the preview was turned off
+            try {
+              preview->add(s.name, m);
+            } catch (const std::invalid_argument& e) {
+              s.close_for_protocol_violation(e.what());
+            }
           } else if constexpr (std::is_same_v<T, Goodbye>) {
             spdlog::info("master: node '{}' said goodbye: {}", s.name, m.reason);
             s.connection->close(cat("Goodbye: ", m.reason));
@@ -673,6 +686,10 @@ struct Master::Impl {
     if (show && !options.feed) apply_atmosphere_overrides(frame_in_flight);
     const std::uint64_t frame = options.feed ? frame_in_flight.frame : barrier.frame();
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
+    if (preview_on && frame % preview_interval_frames() == 0) {  // before the FrameState it names
+      auto request = std::make_shared<const std::vector<std::uint8_t>>(encode(PreviewRequest{frame, kMaxThumbnailEdgePx}));
+      for (const std::uint32_t id : participants) sessions.find(id)->connection->send_encoded(request);
+    }
     for (const std::uint32_t id : participants) sessions.find(id)->connection->send_encoded(encoded);
     barrier.begin(frame, participants);
     frame_started = Clock::now();
@@ -847,6 +864,8 @@ struct Master::Impl {
         reply = apply_sun(*sun);
       } else if (const auto* clear = std::get_if<oc::Clear>(&command)) {
         reply = apply_clear(*clear);
+      } else if (const auto* on = std::get_if<oc::Preview>(&command)) {
+        reply = apply_preview(*on);
       } else if (!clock) {
         if (!std::holds_alternative<oc::Status>(command))
           throw std::invalid_argument(cat(describe(command), ": no show is playing (the default show has no clock: start "
@@ -935,6 +954,37 @@ struct Master::Impl {
                        angles.azimuth_deg);
   }
 
+  /// An operator's `preview`: the nodes send thumbnails with their RenderDone
+  /// (every preview_interval_frames() frames) while it is on, never while off.
+  std::string apply_preview(const operator_command::Preview& on) {
+    if (!preview)
+      throw std::invalid_argument("preview: the dome preview is served at /api/preview: start the master with --operator-port");
+    preview_on = on.on;
+    if (!on.on) {
+      preview->clear();
+      return "dome preview off: the nodes send no thumbnails";
+    }
+    const std::uint64_t every = preview_interval_frames();
+    return cat("dome preview on: every node sends a thumbnail of each output every ",
+               every == 1 ? std::string("frame") : cat(every, " frames"), " (",
+               preview->layout() == DomePreview::Layout::dome ? "placed in the dome master" : "in a grid", ", ",
+               preview->width_px(), "x", preview->height_px(), " px at /api/preview)");
+  }
+
+  /// Frames between two thumbnail requests: about kPreviewsPerSecond a second.
+  std::uint64_t preview_interval_frames() const {
+    constexpr double kPreviewsPerSecond = 2.0;
+    return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::lround(fps / kPreviewsPerSecond)));
+  }
+
+  /// The dome preview as PNG bytes (GET /api/preview), nullopt while off or empty.
+  std::optional<std::string> preview_png() const {
+    if (!preview_on || preview->empty()) return std::nullopt;
+    const DomePreview::Picture picture = preview->compose();
+    const std::vector<std::uint8_t> png = image::encode_png_rgb8(picture.width_px, picture.height_px, picture.rgb);
+    return std::string(png.begin(), png.end());
+  }
+
   /// An operator's `clear`: the show's (or scene's) own sun, exposure or atmosphere again.
   std::string apply_clear(const operator_command::Clear& clear) {
     if (clear.what == operator_command::Clear::What::atmosphere) return clear_atmosphere(clear.body);
@@ -953,7 +1003,8 @@ struct Master::Impl {
                                        started, stopping, started ? &frame_in_flight : nullptr, presented, fps,
                                        exposure_override, pending_change, last_version_error,
                                        started ? std::optional(sun_override->angles_of(frame_in_flight)) : std::nullopt,
-                                       sun_override->angles(), show ? &overrides : nullptr, show_versions});
+                                       sun_override->angles(), show ? &overrides : nullptr, show_versions,
+                                       preview ? &*preview : nullptr, preview_on});
   }
 
   /// The operator console (HTTP, OSC): listening from before the tables are
@@ -965,8 +1016,10 @@ struct Master::Impl {
       return run_operator_command(c, source);
     };
     if (console.http_port) {
+      preview.emplace(options.config, warp::load_viewport_config(options.config.viewports));
       http_console.emplace(io, OperatorHttpServer::Options{console.http_host, *console.http_port, console.token},
-                           OperatorHttpServer::Handlers{[this] { return operator_status(); }, command});
+                           OperatorHttpServer::Handlers{[this] { return operator_status(); }, command,
+                                                        [this] { return preview_png(); }});
       http_console->start();
       spdlog::info("master: operator console at {} ({}; docs/operator.md)", http_console->url(),
                    console.token ? "operator token required" : "loopback only, no token");

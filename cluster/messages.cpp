@@ -26,6 +26,10 @@ constexpr std::size_t kTableAnnounceMax = kDigestBytes + 8 + 4 + 4 + kDigestByte
 constexpr std::size_t kTableChunkMax = kDigestBytes + 4 + 4 + kMaxTableChunkBytes;
 constexpr std::size_t kGoodbyeMax = kStringMax(kMaxReasonBytes);
 constexpr std::size_t kDefinitionMax = kStringMax(kMaxNameBytes) + kDigestBytes + 4 + kMaxDefinitionBytes;
+constexpr std::size_t kPreviewRequestMax = 8 + 2;
+constexpr std::size_t kThumbnailMax =
+    8 + kStringMax(kMaxNameBytes) + 2 + 2 + 4 + std::size_t{kMaxThumbnailEdgePx} * kMaxThumbnailEdgePx * 3;
+static_assert(kThumbnailMax == 12370);
 static_assert(kFrameStateMax == 1478);
 static_assert(kTableChunkMax == 1048616);
 
@@ -99,6 +103,19 @@ void validate(const AtmosphereDefinition& m, const Check& check) {
   check(m.parameters_json.size() >= 2 && m.parameters_json.front() == '{' && m.parameters_json.back() == '}',
         "AtmosphereDefinition.parameters_json: not a JSON object ({...})");
 }
+void validate(const PreviewRequest& m, const Check& check) {
+  check(m.edge_px >= 1 && m.edge_px <= kMaxThumbnailEdgePx,
+        "PreviewRequest.edge_px: " + std::to_string(m.edge_px) + " outside [1, " + std::to_string(kMaxThumbnailEdgePx) + "]");
+}
+void validate(const Thumbnail& m, const Check& check) {
+  check(!m.output.empty(), "Thumbnail.output: empty");
+  check(m.width_px >= 1 && m.width_px <= kMaxThumbnailEdgePx && m.height_px >= 1 && m.height_px <= kMaxThumbnailEdgePx,
+        "Thumbnail size: " + std::to_string(m.width_px) + "x" + std::to_string(m.height_px) + ", each side in [1, " +
+            std::to_string(kMaxThumbnailEdgePx) + "]");
+  const std::size_t expected = std::size_t{m.width_px} * m.height_px * 3;
+  check(m.rgb.size() == expected, "Thumbnail.rgb: " + std::to_string(m.rgb.size()) + " bytes, expected width · height · 3 = " +
+                                      std::to_string(expected));
+}
 template <class T>
 void validate(const T&, const Check&) {}
 
@@ -149,6 +166,18 @@ void write(ByteWriter& w, const RenderDone& m) {
   w.f64(m.render_ms);
 }
 void write(ByteWriter& w, const Present& m) { w.u64(m.frame); }
+void write(ByteWriter& w, const PreviewRequest& m) {
+  w.u64(m.frame);
+  w.u16(m.edge_px);
+}
+void write(ByteWriter& w, const Thumbnail& m) {
+  w.u64(m.frame);
+  w.string(m.output, kMaxNameBytes, "Thumbnail.output");
+  w.u16(m.width_px);
+  w.u16(m.height_px);
+  w.u32(static_cast<std::uint32_t>(m.rgb.size()));
+  w.bytes(m.rgb);
+}
 void write(ByteWriter& w, const TableAnnounce& m) {
   w.bytes(m.table_hash);
   w.u64(m.total_bytes);
@@ -249,6 +278,21 @@ TableChunk read_table_chunk(ByteReader& r) {
   return m;
 }
 
+Thumbnail read_thumbnail(ByteReader& r) {
+  Thumbnail m;
+  m.frame = r.u64("Thumbnail.frame");
+  m.output = r.string(kMaxNameBytes, "Thumbnail.output");
+  m.width_px = r.u16("Thumbnail.width_px");
+  m.height_px = r.u16("Thumbnail.height_px");
+  const std::size_t length = r.u32("Thumbnail.rgb length");
+  const std::size_t limit = std::size_t{kMaxThumbnailEdgePx} * kMaxThumbnailEdgePx * 3;
+  if (length > limit)
+    ByteReader::fail("Thumbnail.rgb length: " + std::to_string(length) + ", at most " + std::to_string(limit));
+  auto view = r.bytes(length, "Thumbnail.rgb");  // checked against the payload before copying
+  m.rgb.assign(view.begin(), view.end());
+  return m;
+}
+
 Message read(MessageType type, ByteReader& r) {
   switch (type) {
     case MessageType::hello: return read_hello(r);
@@ -269,6 +313,13 @@ Message read(MessageType type, ByteReader& r) {
       return m;
     }
     case MessageType::present: return Present{r.u64("Present.frame")};
+    case MessageType::preview_request: {
+      PreviewRequest m;
+      m.frame = r.u64("PreviewRequest.frame");
+      m.edge_px = r.u16("PreviewRequest.edge_px");
+      return m;
+    }
+    case MessageType::thumbnail: return read_thumbnail(r);
     case MessageType::table_announce: return read_table_announce(r);
     case MessageType::table_chunk: return read_table_chunk(r);
     case MessageType::table_ready: return TableReady{r.array<32>("TableReady.table_hash")};
@@ -300,6 +351,8 @@ constexpr MessageType type_of() {
   else if constexpr (std::is_same_v<T, TableReady>) return MessageType::table_ready;
   else if constexpr (std::is_same_v<T, Heartbeat>) return MessageType::heartbeat;
   else if constexpr (std::is_same_v<T, AtmosphereDefinition>) return MessageType::atmosphere_definition;
+  else if constexpr (std::is_same_v<T, PreviewRequest>) return MessageType::preview_request;
+  else if constexpr (std::is_same_v<T, Thumbnail>) return MessageType::thumbnail;
   else {
     static_assert(std::is_same_v<T, Goodbye>);
     return MessageType::goodbye;
@@ -324,6 +377,8 @@ const char* to_string(MessageType type) {
     case MessageType::frame_state: return "FrameState";
     case MessageType::render_done: return "RenderDone";
     case MessageType::present: return "Present";
+    case MessageType::preview_request: return "PreviewRequest";
+    case MessageType::thumbnail: return "Thumbnail";
     case MessageType::table_announce: return "TableAnnounce";
     case MessageType::table_chunk: return "TableChunk";
     case MessageType::table_ready: return "TableReady";
@@ -344,6 +399,8 @@ std::optional<std::size_t> max_payload_bytes(std::uint16_t type_value) {
     case MessageType::frame_state: return kFrameStateMax;
     case MessageType::render_done: return 16;
     case MessageType::present: return 8;
+    case MessageType::preview_request: return kPreviewRequestMax;
+    case MessageType::thumbnail: return kThumbnailMax;
     case MessageType::table_announce: return kTableAnnounceMax;
     case MessageType::table_chunk: return kTableChunkMax;
     case MessageType::table_ready: return kDigestBytes;

@@ -33,7 +33,7 @@
 namespace zenith::cluster {
 
 /// Bumped on any change to the header or to any payload layout (docs/protocol.md, "Versioning").
-inline constexpr std::uint16_t kProtocolVersion = 2;
+inline constexpr std::uint16_t kProtocolVersion = 3;
 inline constexpr std::array<std::uint8_t, 4> kMagic = {'Z', 'N', 'T', 'H'};
 inline constexpr std::size_t kHeaderBytes = 20;
 
@@ -45,6 +45,7 @@ using scene::kMaxAtmospheres;                             ///< FrameState atmosp
 inline constexpr std::size_t kMaxTableChunkBytes = std::size_t{1} << 20;        ///< 1 MiB per TableChunk
 inline constexpr std::uint64_t kMaxTableTotalBytes = std::uint64_t{1} << 31;    ///< 2 GiB per table set
 inline constexpr std::size_t kMaxDefinitionBytes = std::size_t{256} << 10;     ///< 256 KiB of atmosphere JSON
+inline constexpr std::uint16_t kMaxThumbnailEdgePx = 64;  ///< a Thumbnail's width and height, at most
 /// Tolerance on |q| − 1 and |sun direction| − 1 accepted from the wire.
 using scene::kUnitTolerance;
 
@@ -68,6 +69,8 @@ enum class MessageType : std::uint16_t {
   frame_state = 16,    ///< master → node, once per frame
   render_done = 17,    ///< node → master
   present = 18,        ///< master → node: every node is done, swap now
+  preview_request = 19,  ///< master → node, before a FrameState: send thumbnails of that frame
+  thumbnail = 20,        ///< node → master, before the RenderDone of a frame the master asked thumbnails of
   table_announce = 32, ///< master → node
   table_chunk = 33,    ///< master → node
   table_ready = 34,    ///< node → master
@@ -155,6 +158,27 @@ struct Present {
   bool operator==(const Present&) const = default;
 };
 
+/// Master → node, right before the FrameState of `frame`: send a thumbnail
+/// of every output of that frame (at most `edge_px` on its longer side) with
+/// its RenderDone, for the operator console's dome preview. Never sent while
+/// the preview is off, so it costs nothing then.
+struct PreviewRequest {
+  std::uint64_t frame = 0;
+  std::uint16_t edge_px = kMaxThumbnailEdgePx;  ///< 1..kMaxThumbnailEdgePx
+  bool operator==(const PreviewRequest&) const = default;
+};
+/// Node → master, before the RenderDone of a frame a PreviewRequest named:
+/// one output of it, box-filtered down, as displayed (tone mapped, blended),
+/// 8-bit sRGB, rows top to bottom, RGB interleaved.
+struct Thumbnail {
+  std::uint64_t frame = 0;
+  std::string output;        ///< 1..kMaxNameBytes UTF-8 bytes: the output's name in the viewport config
+  std::uint16_t width_px = 0;   ///< 1..kMaxThumbnailEdgePx
+  std::uint16_t height_px = 0;  ///< 1..kMaxThumbnailEdgePx
+  std::vector<std::uint8_t> rgb;  ///< width_px · height_px · 3 bytes
+  bool operator==(const Thumbnail&) const = default;
+};
+
 // ---- lookup-table distribution ---------------------------------------------
 
 /// A table set (the cache file of atmosphere/lut/table_cache.h) is about to be sent.
@@ -203,7 +227,8 @@ struct Goodbye {
 };
 
 using Message = std::variant<Hello, Challenge, Authenticate, Welcome, Reject, FrameState, RenderDone, Present,
-                             TableAnnounce, TableChunk, TableReady, Heartbeat, Goodbye, AtmosphereDefinition>;
+                             TableAnnounce, TableChunk, TableReady, Heartbeat, Goodbye, AtmosphereDefinition,
+                             PreviewRequest, Thumbnail>;
 
 MessageType message_type(const Message& message);
 

@@ -55,6 +55,8 @@ struct Node::Impl {
   /// job, and only those of the current connection go to the master.
   std::uint64_t session = 0;
   bool connected = false;  ///< welcomed, and the connection not lost since
+  /// The master's latest PreviewRequest: thumbnails of that frame go with its RenderDone.
+  std::optional<PreviewRequest> preview_request;
   int exit_code = kNodeExitDone;
   bool finished = false;
 
@@ -91,6 +93,7 @@ struct Node::Impl {
   /// stays on the outputs and in the window.
   void on_lost() {
     connected = false;
+    preview_request.reset();
     receiver = TableReceiver{};
     worker->abandon_frames();
   }
@@ -103,7 +106,11 @@ struct Node::Impl {
           throw std::runtime_error(cat("FrameState ", fs->frame, " uses table set ", to_hex(ref.table_hash).substr(0, 12),
                                        "… (effective from frame ", ref.effective_from_frame, ") for '", ref.body_name,
                                        "', which this node does not hold or may not use yet"));
-      worker->render(*fs, session);
+      const bool thumbnails = preview_request && preview_request->frame == fs->frame;
+      worker->render(*fs, session, thumbnails ? preview_request->edge_px : 0);
+      if (thumbnails) preview_request.reset();
+    } else if (const auto* request = std::get_if<PreviewRequest>(&message)) {
+      preview_request = *request;  // for the FrameState that follows it
     } else if (const auto* p = std::get_if<Present>(&message)) {
       worker->present(p->frame);
     } else if (const auto* a = std::get_if<TableAnnounce>(&message)) {
@@ -180,10 +187,14 @@ struct Node::Impl {
     worker->stop();
   }
 
-  /// Render thread → networking thread.
-  void report_render_done(std::uint64_t frame, double render_ms, std::uint64_t of_session) {
-    asio::post(io, [this, frame, render_ms, of_session] {
-      if (connected && of_session == session) link.send(RenderDone{frame, render_ms});
+  /// Render thread → networking thread: the frame's thumbnails (when the
+  /// master asked for them), then its RenderDone.
+  void report_render_done(std::uint64_t frame, double render_ms, std::uint64_t of_session,
+                          std::vector<Thumbnail> thumbnails) {
+    asio::post(io, [this, frame, render_ms, of_session, thumbnails = std::move(thumbnails)]() mutable {
+      if (!connected || of_session != session) return;
+      for (Thumbnail& t : thumbnails) link.send(std::move(t));
+      link.send(RenderDone{frame, render_ms});
     });
   }
   void report_failure(const std::string& what) {
@@ -207,8 +218,9 @@ struct Node::Impl {
     std::filesystem::create_directories(node_directory);
     worker.emplace(RenderWorker::Setup{options, base_scene, viewports, outputs, atmospheres, table_options, node_directory},
                    RenderWorker::Events{
-                       [this](std::uint64_t frame, double render_ms, std::uint64_t of_session) {
-                         report_render_done(frame, render_ms, of_session);
+                       [this](std::uint64_t frame, double render_ms, std::uint64_t of_session,
+                              std::vector<Thumbnail> thumbnails) {
+                         report_render_done(frame, render_ms, of_session, std::move(thumbnails));
                        },
                        [this](const Digest& hash, std::uint64_t of_session) {
                          asio::post(io, [this, hash, of_session] { send_table_ready(hash, of_session); });

@@ -53,6 +53,11 @@ std::vector<Message> sample_messages() {
   out.push_back(Heartbeat{987654321ull});
   out.push_back(Goodbye{"shutting down: show ended"});
   out.push_back(AtmosphereDefinition{"Mars", pattern<32>(7), R"({"zenith_atmosphere": 1, "mode": "standard"})"});
+  out.push_back(PreviewRequest{123456789013ull, 64});
+  Thumbnail thumbnail{123456789013ull, "top-left", 4, 3, {}};
+  thumbnail.rgb.resize(4 * 3 * 3);
+  std::iota(thumbnail.rgb.begin(), thumbnail.rgb.end(), std::uint8_t{200});
+  out.push_back(thumbnail);
   return out;
 }
 
@@ -86,6 +91,11 @@ std::vector<Message> max_size_messages() {
   while (json.size() < kMaxDefinitionBytes - 2) json += "\xC3\xA9";
   json += "\"}";
   out.push_back(AtmosphereDefinition{name, pattern<32>(18), json});
+  out.push_back(PreviewRequest{~std::uint64_t{0}, kMaxThumbnailEdgePx});
+  Thumbnail thumbnail{~std::uint64_t{0}, name, kMaxThumbnailEdgePx, kMaxThumbnailEdgePx, {}};
+  thumbnail.rgb.resize(std::size_t{kMaxThumbnailEdgePx} * kMaxThumbnailEdgePx * 3);
+  for (std::size_t i = 0; i < thumbnail.rgb.size(); ++i) thumbnail.rgb[i] = static_cast<std::uint8_t>(i * 13);
+  out.push_back(std::move(thumbnail));
   return out;
 }
 

@@ -104,6 +104,20 @@ json atmosphere_status(const StatusSources& s, std::size_t index, const Atmosphe
           {"operator_changes", overridden ? json(s.overrides->describe(ref.body_name)) : json(nullptr)}};
 }
 
+/// {"on", "layout", "width_px", "height_px", "tiles", "outputs", "frame", "oldest_frame"}, or null without a preview.
+json preview_status(const StatusSources& s) {
+  if (s.preview == nullptr) return nullptr;
+  const auto frame = [](std::optional<std::uint64_t> f) { return f ? json(*f) : json(nullptr); };
+  return {{"on", s.preview_on},
+          {"layout", s.preview->layout() == DomePreview::Layout::dome ? "dome" : "grid"},
+          {"width_px", s.preview->width_px()},
+          {"height_px", s.preview->height_px()},
+          {"tiles", s.preview->tiles()},
+          {"outputs", s.preview->outputs()},
+          {"frame", frame(s.preview->newest_frame())},
+          {"oldest_frame", frame(s.preview->oldest_frame())}};
+}
+
 /// {"elevation_deg", "azimuth_deg"}, or null.
 json sky_angles(const std::optional<scene::SkyAngles>& angles) {
   if (!angles) return nullptr;
@@ -140,6 +154,7 @@ json master_status(const StatusSources& s) {
           {"exposure_override", s.exposure_override ? json(*s.exposure_override) : json(nullptr)},
           {"sun", sky_angles(s.sun)},
           {"sun_override", sky_angles(s.sun_override)},
+          {"preview", preview_status(s)},
           {"live_atmospheres", s.edits != nullptr},
           {"nodes", std::move(nodes)},
           {"atmospheres", std::move(atmospheres)},

@@ -15,6 +15,7 @@
 #include "cluster/cluster_config.h"
 #include "cluster/master/atmosphere_edits.h"
 #include "cluster/master/atmosphere_overrides.h"
+#include "cluster/master/dome_preview.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
@@ -51,12 +52,14 @@ struct StatusSources {
   std::optional<scene::SkyAngles> sun_override;  ///< the operator's sun, nullopt: the show's
   const AtmosphereOverrides* overrides = nullptr;   ///< a show's: the operator's changes of its atmospheres
   std::vector<AtmosphereTableRef> show_versions;    ///< a show's own versions of the latest frame
+  const DomePreview* preview = nullptr;             ///< the dome preview; nullptr without the HTTP console
+  bool preview_on = false;
 };
 
 /// The status as JSON (schema in docs/operator.md, "Status"):
 ///   {"state": "starting"|"playing"|"paused"|"finished"|"stopping", "show_time_s", "frame",
 ///    "frames_presented", "frame_rate_hz", "show": {...}|null, "exposure", "exposure_override",
-///    "sun": {"elevation_deg", "azimuth_deg"}|null, "sun_override": {...}|null,
+///    "sun": {"elevation_deg", "azimuth_deg"}|null, "sun_override": {...}|null, "preview": {...}|null,
 ///    "live_atmospheres", "nodes": [...], "atmospheres": [...], "last_error"}
 /// Table versions are the first 16 hex digits of the table hash, as in presented.log.
 nlohmann::json master_status(const StatusSources& sources);

@@ -26,7 +26,7 @@ constexpr int kMaxDepth = 16;
 constexpr std::size_t kMaxBodyBytes = 64;
 
 const std::vector<std::string> kCommands = {"play", "pause", "toggle", "status", "quit", "seek",
-                                            "rate", "loop",  "exposure", "set",  "sun",  "clear"};
+                                            "rate", "loop",  "exposure", "set",  "sun",  "clear", "preview"};
 /// What `clear` ends.
 const std::vector<std::string> kClearable = {"sun", "exposure", "atmosphere"};
 /// The ranges of a sun given in the sky, as in scene files (docs/scenes.md).
@@ -143,6 +143,7 @@ OperatorCommand parse_operator_command(const json& request) {
   else if (name == "exposure") command = oc::Exposure{read_exposure(r)};
   else if (name == "sun") command = read_sun(r);
   else if (name == "clear") command = read_clear(r);
+  else if (name == "preview") command = oc::Preview{read_on_off(r, "preview")};
   else command = read_set(r);
   r.finish();
   return command;
@@ -175,11 +176,12 @@ json to_json(const OperatorCommand& command) {
           if (c.elevation_deg) j["elevation_deg"] = *c.elevation_deg;
           if (c.azimuth_deg) j["azimuth_deg"] = *c.azimuth_deg;
           return j;
-        } else {
+        } else if constexpr (std::is_same_v<T, oc::Clear>) {
           json j = {{"command", "clear"}, {"what", clear_target(c.what)}};
           if (c.what == oc::Clear::What::atmosphere) j["body"] = c.body;
           return j;
-        }
+        } else
+          return {{"command", "preview"}, {"preview", c.on}};
       },
       command);
 }
@@ -205,9 +207,11 @@ std::string describe(const OperatorCommand& command) {
           if (c.elevation_deg) text += cat(" elevation ", number_text(*c.elevation_deg), "°");
           if (c.azimuth_deg) text += cat(" azimuth ", number_text(*c.azimuth_deg), "°");
           return text;
-        } else
+        } else if constexpr (std::is_same_v<T, oc::Clear>)
           return c.what == oc::Clear::What::atmosphere ? cat("clear atmosphere of ", c.body)
                                                        : cat("clear ", clear_target(c.what));
+        else
+          return cat("preview ", c.on ? "on" : "off");
       },
       command);
 }

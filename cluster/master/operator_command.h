@@ -19,6 +19,7 @@
 //       E in [−90, 90], A in [−360, 360] as in scenes; either may be left out (it keeps its value)
 //   {"command": "clear", "what": "sun" | "exposure" | "atmosphere", "body": B}
 //       the operator's override ends: the show's (or scene's) own again; "body" with "atmosphere" only
+//   {"command": "preview", "preview": true|false}   also "on" / "off": the dome preview from node thumbnails
 // Unknown keys are errors.
 #include <cstddef>
 #include <optional>
@@ -86,12 +87,18 @@ struct Clear {
   std::string body;  ///< What::atmosphere: a body of the scene, 1..64 bytes; empty otherwise
   bool operator==(const Clear&) const = default;
 };
+/// The dome preview from the nodes' thumbnails on or off (off costs nothing).
+struct Preview {
+  bool on = false;
+  bool operator==(const Preview&) const = default;
+};
 }  // namespace operator_command
 
 using OperatorCommand =
     std::variant<operator_command::Play, operator_command::Pause, operator_command::Toggle, operator_command::Status,
                  operator_command::Quit, operator_command::Seek, operator_command::Rate, operator_command::Loop,
-                 operator_command::Exposure, operator_command::Set, operator_command::Sun, operator_command::Clear>;
+                 operator_command::Exposure, operator_command::Set, operator_command::Sun, operator_command::Clear,
+                 operator_command::Preview>;
 
 /// Reads one command object. Throws zenith::ConfigError (file "command", the
 /// key as a JSON pointer, the value and the allowed range) for anything else.

@@ -49,7 +49,7 @@ constexpr PageFile kPageFiles[] = {
 
 /// Everything the page needs comes from the master itself.
 constexpr const char* kContentSecurityPolicy =
-    "default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data:; connect-src 'self'; "
+    "default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data: blob:; connect-src 'self'; "
     "frame-ancestors 'none'; base-uri 'none'; form-action 'none'";
 
 /// A response to `request` with the console's headers (no caching, no sniffing, no referrer).
@@ -300,6 +300,15 @@ OperatorHttpServer::Response OperatorHttpServer::respond(const Request& request,
       return error_response(request, http::status::bad_request, e.what());
     }
   }
+  if (path == "/api/preview") {
+    if (!get) return not_allowed("GET");
+    std::optional<std::string> png = handlers_.preview ? handlers_.preview() : std::nullopt;
+    if (!png)
+      return error_response(request, http::status::not_found,
+                            "no dome preview: it is off (turn it on with {\"command\": \"preview\", \"preview\": true}) "
+                            "or no node has sent a thumbnail yet");
+    return make_response(request, http::status::ok, "image/png", std::move(*png));
+  }
   for (const PageFile& file : kPageFiles) {
     if (path != file.path) continue;
     if (!get) return not_allowed("GET");
@@ -311,7 +320,7 @@ OperatorHttpServer::Response OperatorHttpServer::respond(const Request& request,
     return r;
   }
   return error_response(request, http::status::not_found,
-                        cat(path, ": not found (the console is at /, its API at /api/status and /api/command)"));
+                        cat(path, ": not found (the console is at /, its API at /api/status, /api/command and /api/preview)"));
 }
 
 }  // namespace zenith::cluster

@@ -1,8 +1,9 @@
 #pragma once
 // The operator console's HTTP server (docs/operator.md), on the master's own
 // io_context (Boost.Beast): the web page compiled into the binary at `/`,
-// GET /api/status (the master's state as JSON) and POST /api/command (one
-// JSON command, cluster/master/operator_command.h). Commands are handed to the
+// GET /api/status (the master's state as JSON), POST /api/command (one
+// JSON command, cluster/master/operator_command.h) and GET /api/preview (the
+// dome preview as PNG, while it is on). Commands are handed to the
 // master on its networking thread, between frames, like console commands.
 //
 // Security: it listens on the loopback interface unless told otherwise; on
@@ -48,6 +49,9 @@ class OperatorHttpServer {
     /// Applies a command from `peer` and returns the reply; throws (its
     /// message is the error) when the command is refused.
     std::function<std::string(const OperatorCommand& command, const std::string& peer)> command;
+    /// The dome preview as the bytes of a PNG file (GET /api/preview); nullopt
+    /// while it is off or before the first thumbnails. May be empty: no preview.
+    std::function<std::optional<std::string>()> preview;
   };
 
   /// The most connections served at once; more are closed at once.

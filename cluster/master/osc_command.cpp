@@ -73,6 +73,10 @@ OperatorCommand osc_command(const OscMessage& m) {
     json on = value_of(m);
     if (on.is_number_integer()) on = on.get<std::int64_t>() != 0;
     request = {{"command", "loop"}, {"loop", on}};
+  } else if (name == "preview") {
+    json on = value_of(m);
+    if (on.is_number_integer()) on = on.get<std::int64_t>() != 0;
+    request = {{"command", "preview"}, {"preview", on}};
   } else if (name == "sun/elevation") {
     request = {{"command", "sun"}, {"elevation_deg", value_of(m)}};
   } else if (name == "sun/azimuth") {
@@ -89,7 +93,7 @@ OperatorCommand osc_command(const OscMessage& m) {
     request = {{"command", "set"}, {"body", rest.substr(0, slash)}, {"pointer", rest.substr(slash)}, {"value", value_of(m)}};
   } else {
     refuse(m, "unknown address (known: /zenith/play, /zenith/pause, /zenith/toggle, /zenith/seek, /zenith/rate, "
-              "/zenith/exposure, /zenith/loop, /zenith/sun/elevation, /zenith/sun/azimuth, /zenith/clear/sun, "
+              "/zenith/exposure, /zenith/loop, /zenith/preview, /zenith/sun/elevation, /zenith/sun/azimuth, /zenith/clear/sun, "
               "/zenith/clear/exposure, /zenith/clear/atmosphere/<body>, /zenith/atmosphere/<body>/<parameter>)");
   }
   return parse_operator_command(request);

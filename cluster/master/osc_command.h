@@ -2,6 +2,7 @@
 // What an OSC message asks of the master (docs/operator.md, "OSC"):
 //   /zenith/play  /zenith/pause  /zenith/toggle      any arguments ignored (a button sends 1 on press, 0 on release)
 //   /zenith/seek f   /zenith/rate f   /zenith/exposure f (N: the show's own)   /zenith/loop T|F|i
+//   /zenith/preview T|F|i                            the dome preview on or off
 //   /zenith/sun/elevation f   /zenith/sun/azimuth f (degrees in the camera's sky; the other angle stays)
 //   /zenith/clear/sun   /zenith/clear/exposure   /zenith/clear/atmosphere/<body>
 //                                                    any arguments ignored: the show's (or scene's) own again

@@ -9,6 +9,7 @@
 
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/frame_scene.h"
+#include "cluster/node/thumbnail.h"
 #include "cluster/state_digest.h"
 #include "core/json_reader.h"
 #include "core/timing.h"
@@ -42,8 +43,8 @@ void RenderWorker::push(Job job) {
 void RenderWorker::prepare(const Digest& hash, std::uint64_t session) {
   push(Job{Job::Kind::prepare, {}, 0, hash, session});
 }
-void RenderWorker::render(const FrameState& state, std::uint64_t session) {
-  push(Job{Job::Kind::render, state, state.frame, {}, session});
+void RenderWorker::render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px) {
+  push(Job{Job::Kind::render, state, state.frame, {}, session, thumbnail_edge_px});
 }
 void RenderWorker::present(std::uint64_t frame) { push(Job{Job::Kind::present, {}, frame, {}, 0}); }
 void RenderWorker::stop() { push(Job{Job::Kind::stop, {}, 0, {}, 0}); }
@@ -91,7 +92,7 @@ void RenderWorker::run() {
     try {
       switch (job.kind) {
         case Job::Kind::prepare: prepare_tables(job.table_hash, job.session); break;
-        case Job::Kind::render: render_frame(job.state, job.session); break;
+        case Job::Kind::render: render_frame(job.state, job.session, job.thumbnail_edge_px); break;
         case Job::Kind::present: present_frame(job.frame); break;
         case Job::Kind::discard: writer_.discard(); break;
         case Job::Kind::stop: writer_.discard(); return;
@@ -167,7 +168,7 @@ void RenderWorker::use_table_version(scene::Scene& scene, const std::string& bod
 
 // ---- jobs -------------------------------------------------------------------
 
-void RenderWorker::render_frame(const FrameState& state, std::uint64_t session) {
+void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, int thumbnail_edge_px) {
   writer_.discard();
   if (setup_.options.debug_render_delay_ms > 0)
     std::this_thread::sleep_for(milliseconds(setup_.options.debug_render_delay_ms));  // test hook: a slow node
@@ -181,6 +182,7 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session) 
   }
   if (tables.empty()) tables = "-";
   ensure_renderer(state.render_flags);
+  std::vector<Thumbnail> thumbnails;
   for (std::size_t k = 0; k < setup_.outputs.size(); ++k) {
     const std::size_t i = setup_.outputs[k];
     const warp::OutputConfig& o = setup_.viewports.outputs[i];
@@ -192,12 +194,15 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session) 
         {"zenith:viewport", fmt::format("{}#{}", setup_.viewports.source, o.name)},
     };
     if (window_) rendered_display_[k] = writer_.display_image(i, rgb);  // what the projector shows
+    if (thumbnail_edge_px > 0)  // only for a frame the master asked thumbnails of
+      thumbnails.push_back(make_thumbnail(state.frame, o.name, window_ ? rendered_display_[k] : writer_.display_image(i, rgb),
+                                          o.width_px, o.height_px, thumbnail_edge_px));
     writer_.write(i, state.frame, std::move(rgb), attributes);
   }
   writer_.finish_frame({state.frame, state_digest(state), tables, state.show_time_s});
   const double render_ms = ms_since(t0);
   spdlog::debug("node '{}': frame {} rendered in {:.1f} ms", setup_.options.node_name, state.frame, render_ms);
-  events_.rendered(state.frame, render_ms, session);
+  events_.rendered(state.frame, render_ms, session, std::move(thumbnails));
 }
 
 void RenderWorker::present_frame(std::uint64_t frame) {

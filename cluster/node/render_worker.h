@@ -41,7 +41,9 @@ class RenderWorker {
  public:
   /// The worker's answers, called on the render thread.
   struct Events {
-    std::function<void(std::uint64_t frame, double render_ms, std::uint64_t session)> rendered;  ///< RenderDone
+    /// RenderDone, after the frame's thumbnails when they were asked for (else none).
+    std::function<void(std::uint64_t frame, double render_ms, std::uint64_t session, std::vector<Thumbnail> thumbnails)>
+        rendered;
     std::function<void(const Digest& table_hash, std::uint64_t session)> tables_ready;           ///< TableReady
     std::function<void(const std::string& what)> failed;
     std::function<void()> window_closed;  ///< the operator closed the node's window
@@ -65,7 +67,9 @@ class RenderWorker {
   // ---- any thread: queue a job ----
   /// Load table set `hash` (checksums checked) and render with it once; then Events::tables_ready.
   void prepare(const Digest& hash, std::uint64_t session);
-  void render(const FrameState& state, std::uint64_t session);
+  /// Render a frame; with `thumbnail_edge_px` > 0 also a thumbnail of every
+  /// output (thumbnail.h) for the master's dome preview.
+  void render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px = 0);
   void present(std::uint64_t frame);
   /// The connection to the master is lost: drops the queued render and
   /// present jobs and, after the frame being rendered (if any), its partial
@@ -88,6 +92,7 @@ class RenderWorker {
     std::uint64_t frame = 0;  ///< render, present
     Digest table_hash{};      ///< prepare
     std::uint64_t session = 0;  ///< render, prepare: passed back with the answer
+    int thumbnail_edge_px = 0;  ///< render: > 0 for thumbnails of the frame
   };
   void push(Job job);
   Job next_job();
@@ -96,7 +101,7 @@ class RenderWorker {
   void ensure_renderer(std::uint32_t flags);
   /// The scene with body `body`'s atmosphere replaced by table version `hash`.
   void use_table_version(scene::Scene& scene, const std::string& body, const Digest& hash) const;
-  void render_frame(const FrameState& state, std::uint64_t session);
+  void render_frame(const FrameState& state, std::uint64_t session, int thumbnail_edge_px);
   void present_frame(std::uint64_t frame);
   void prepare_tables(const Digest& hash, std::uint64_t session);
   /// Shows the presented frame in the window: the node's outputs side by side.

@@ -1427,6 +1427,73 @@ TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsThe
     EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
 }
 
+TEST_F(ClusterProcess, OperatorConsoleShowsTheDomeFromTheNodesThumbnailsOnlyWhileThePreviewIsOn) {
+  const fs::path config = write_config(10);
+  const int http = port_ + 2, osc = port_ + 3;
+  const Child master = start_master(config, 0, 120000,
+                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
+                                     std::to_string(osc)});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 3; }, 400s)) << logs();
+  // Off by default: no thumbnails, no preview.
+  nlohmann::json preview = console_status(http)["preview"];
+  EXPECT_EQ(preview["on"], false);
+  EXPECT_EQ(preview["layout"], "dome");
+  EXPECT_EQ(preview["width_px"], 128);
+  EXPECT_EQ(preview["outputs"], 4);
+  EXPECT_EQ(preview["tiles"], 0);
+  EXPECT_TRUE(preview["frame"].is_null());
+  EXPECT_EQ(test::http_request(http, boost::beast::http::verb::get, "/api/preview").status, 404);
+
+  const test::HttpReply r = console_command(http, R"({"command": "preview", "preview": true})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.json()["reply"],
+            "dome preview on: every node sends a thumbnail of each output every 5 frames (placed in the dome master, "
+            "128x128 px at /api/preview)");
+  // Every node's tiles arrive (the oldest tile is of a frame after the preview went on).
+  const std::uint64_t on_at = console_status(http)["frame"];
+  ASSERT_TRUE(wait_until([&] {
+    preview = console_status(http)["preview"];
+    return preview["tiles"] == 4 && preview["oldest_frame"].get<std::uint64_t>() > on_at &&
+           preview["frame"] == preview["oldest_frame"];
+  }, 60s)) << preview.dump();
+  const test::HttpReply png = test::http_request(http, boost::beast::http::verb::get, "/api/preview");
+  ASSERT_EQ(png.status, 200);
+  const fs::path preview_file = dir_ / "preview.png";
+  std::ofstream(preview_file, std::ios::binary) << png.body;
+  const image::LinearImage picture = image::read_image(preview_file);
+  ASSERT_EQ(picture.width, 2 * kQuadrantPx);
+  ASSERT_EQ(picture.height, 2 * kQuadrantPx);
+  // 64² quadrants give 64² thumbnails: the preview is the dome master the nodes wrote, pixel for
+  // pixel (a still scene: every frame is the same).
+  const std::uint64_t frame = preview["frame"];
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/c").size() > frame; }, 60s));
+  const std::pair<const char*, const char*> tiles[4] = {
+      {"a", "top-left"}, {"a", "top-right"}, {"b", "bottom-left"}, {"c", "bottom-right"}};
+  for (std::size_t q = 0; q < 4; ++q) {
+    const image::LinearImage tile =
+        image::read_image(dir_ / "out" / tiles[q].first / tiles[q].second / fmt::format("frame-{:06d}.png", frame));
+    EXPECT_EQ(values_differing_from_quadrant(tile, picture, q), 0) << tiles[q].second;
+  }
+
+  // Over OSC, off again: the thumbnails are dropped and no more come.
+  send_osc(osc, encode_osc_message({"/zenith/preview", {false}}));
+  ASSERT_TRUE(wait_until([&] { return console_status(http)["preview"]["on"] == false; }, 60s));
+  const int at = console_status(http).value("frames_presented", -1);
+  ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= at + 12; }, 60s));
+  EXPECT_TRUE(console_status(http)["preview"]["frame"].is_null());
+  EXPECT_EQ(console_status(http)["preview"]["tiles"], 0);
+  EXPECT_EQ(test::http_request(http, boost::beast::http::verb::get, "/api/preview").status, 404);
+
+  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_EQ(master_log.find("protocol"), std::string::npos) << master_log;
+  EXPECT_NE(master_log.find("operator (osc 127.0.0.1): preview off → dome preview off"), std::string::npos) << master_log;
+}
+
 // ---- the operator console in a real browser (chromium headless) ----------------
 
 /// Waits until the JavaScript expression `condition` is true in the page.
@@ -1498,6 +1565,10 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserChangesTurbidityAndTheNewVersion
   browser.open("http://127.0.0.1:" + std::to_string(http) + "/");
   const std::string version_in_page = "document.querySelector('.atmosphere[data-body=\"Earth\"] .row[data-version]').dataset.version";
   ASSERT_TRUE(wait_in_page(browser, version_in_page + " === '" + first_version + "'", 60s));
+  // The dome preview: on from the page, then the nodes' thumbnails in it (four 64² tiles: 128²).
+  browser.click(browser.element("#preview-on"));
+  ASSERT_TRUE(wait_in_page(browser, "document.getElementById('preview-image').naturalWidth === 128", 60s)) << logs();
+  EXPECT_TRUE(wait_in_page(browser, "!document.getElementById('preview-image').hidden", 10s));
   const std::string turbidity = "input[type=number][data-pointer=\"/aerosol/scattering/turbidity\"]";
   /// Types a turbidity into the page's box over what it holds, and leaves it (Tab): the change event
   /// sends the command. WebDriver keys: \ue009 Control (held until \ue000), \ue004 Tab.

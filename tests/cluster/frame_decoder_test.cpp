@@ -111,6 +111,8 @@ TEST(FrameDecoder, UnsupportedVersionInTheHeader) {
   Bytes f = heartbeat_frame();
   put_be16(f, 4, 1);  // the first release: no AtmosphereDefinition
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 1");
+  put_be16(f, 4, 2);  // no PreviewRequest and Thumbnail: a node of version 2 is refused, not half served
+  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 3");
 }
 
 TEST(FrameDecoder, UnsupportedVersionInHello) {

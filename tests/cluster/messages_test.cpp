@@ -36,7 +36,7 @@ TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
   const Bytes payload(frame.begin() + kHeaderBytes, frame.end());
   const std::uint32_t crc = crc32c(payload);
   const Bytes expected_header = {'Z', 'N', 'T', 'H',  // magic
-                                 0x00, 0x02,          // version 2
+                                 0x00, 0x03,          // version 3
                                  0x00, 0x10,          // type 16 = FrameState
                                  0x00, 0x00, 0x00, static_cast<std::uint8_t>(payload_bytes),  // length
                                  // payload CRC-32C
@@ -104,6 +104,8 @@ TEST(Messages, DocumentedMaximumPayloads) {
   EXPECT_EQ(max(MessageType::heartbeat), 8u);
   EXPECT_EQ(max(MessageType::goodbye), 1026u);
   EXPECT_EQ(max(MessageType::atmosphere_definition), 66u + 32u + 4u + 262144u);
+  EXPECT_EQ(max(MessageType::preview_request), 10u);
+  EXPECT_EQ(max(MessageType::thumbnail), 8u + 66u + 2u + 2u + 4u + 64u * 64u * 3u);
   EXPECT_FALSE(max_payload_bytes(0).has_value());
   EXPECT_FALSE(max_payload_bytes(6).has_value());
   EXPECT_FALSE(max_payload_bytes(0xFFFF).has_value());
@@ -141,6 +143,34 @@ TEST(Messages, EncoderRefusesWhatTheDecoderWouldRefuse) {
   EXPECT_THROW(encode(AtmosphereDefinition{"", {}, "{}"}), std::invalid_argument);
   EXPECT_THROW(encode(AtmosphereDefinition{"Earth", {}, "{" + std::string(kMaxDefinitionBytes, ' ') + "}"}),
                std::length_error);
+
+  EXPECT_THROW(encode(PreviewRequest{1, 0}), std::invalid_argument);
+  EXPECT_THROW(encode(PreviewRequest{1, kMaxThumbnailEdgePx + 1}), std::invalid_argument);
+  EXPECT_THROW(encode(Thumbnail{1, "", 1, 1, {0, 0, 0}}), std::invalid_argument);
+  EXPECT_THROW(encode(Thumbnail{1, "a", 0, 1, {}}), std::invalid_argument);
+  EXPECT_THROW(encode(Thumbnail{1, "a", 65, 1, std::vector<std::uint8_t>(65 * 3)}), std::invalid_argument);
+  EXPECT_THROW(encode(Thumbnail{1, "a", 2, 2, std::vector<std::uint8_t>(11)}), std::invalid_argument);
+}
+
+TEST(Messages, PreviewRequestAndThumbnailLayout) {
+  EXPECT_EQ(encode_payload(PreviewRequest{0x0102030405060708ull, 64}), (Bytes{1, 2, 3, 4, 5, 6, 7, 8, 0, 64}));
+  // u64 frame, u16 name length, name, u16 width, u16 height, u32 byte count, bytes.
+  const Thumbnail t{9, "q", 2, 1, {10, 11, 12, 13, 14, 15}};
+  const Bytes payload = encode_payload(t);
+  const Bytes expected = {0, 0, 0, 0, 0, 0, 0, 9, 0, 1, 'q', 0, 2, 0, 1, 0, 0, 0, 6, 10, 11, 12, 13, 14, 15};
+  EXPECT_EQ(payload, expected);
+  EXPECT_EQ(std::get<Thumbnail>(decode_payload(static_cast<std::uint16_t>(MessageType::thumbnail), payload)), t);
+  // Bytes that do not match the size are refused, as is a count beyond 64 × 64 × 3.
+  Bytes short_count = payload;
+  short_count[18] = 3;
+  short_count.resize(short_count.size() - 3);
+  EXPECT_THROW(decode_payload(static_cast<std::uint16_t>(MessageType::thumbnail), short_count), ProtocolError);
+  Bytes huge = payload;
+  huge[16] = 0x01;  // 65542 bytes
+  EXPECT_THROW(decode_payload(static_cast<std::uint16_t>(MessageType::thumbnail), huge), ProtocolError);
+  Bytes zero_edge = encode_payload(PreviewRequest{1, 1});
+  zero_edge[9] = 0;
+  EXPECT_THROW(decode_payload(static_cast<std::uint16_t>(MessageType::preview_request), zero_edge), ProtocolError);
 }
 
 TEST(Messages, AtmosphereDefinitionLayout) {

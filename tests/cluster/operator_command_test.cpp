@@ -59,6 +59,9 @@ TEST(OperatorCommand, ReadsEveryCommand) {
   EXPECT_EQ(parse(R"({"command": "clear", "what": "atmosphere", "body": "Earth"})"),
             OperatorCommand(oc::Clear{oc::Clear::What::atmosphere, "Earth"}));
   EXPECT_EQ(describe(parse(R"({"command": "clear", "what": "atmosphere", "body": "Earth"})")), "clear atmosphere of Earth");
+  EXPECT_EQ(parse(R"({"command": "preview", "preview": true})"), OperatorCommand(oc::Preview{true}));
+  EXPECT_EQ(parse(R"({"command": "preview", "preview": "off"})"), OperatorCommand(oc::Preview{false}));
+  EXPECT_EQ(describe(parse(R"({"command": "preview", "preview": "on"})")), "preview on");
   EXPECT_EQ(describe(parse(R"({"command": "set", "body": "Earth", "pointer": "/ozone", "value": null})")),
             "set Earth /ozone = null");
 }
@@ -91,6 +94,8 @@ TEST(OperatorCommand, ErrorsNameTheKeyTheValueAndTheRange) {
   EXPECT_NE(error_of(R"({"command": "clear", "what": "moon"})").find("command: /what = \"moon\": must be one of \"sun\""),
             std::string::npos);
   EXPECT_EQ(error_of(R"({"command": "clear", "what": "atmosphere"})"), "command: /body: missing required key");
+  EXPECT_EQ(error_of(R"({"command": "preview", "preview": 1})"),
+            "command: /preview = 1: must be true, false, \"on\" or \"off\"");
   EXPECT_EQ(error_of(R"({"command": "clear", "what": "sun", "body": "Earth"})"),
             "command: /body: unknown key (check the spelling; see docs/atmosphere-config.md)");
   EXPECT_NE(error_of(R"(["pause"])").find("must be a JSON object"), std::string::npos);
@@ -108,6 +113,7 @@ TEST(OperatorCommand, ToJsonIsTheInverseOfParsing) {
                            R"({"command": "sun", "elevation_deg": 5})", R"({"command": "sun", "elevation_deg": -5, "azimuth_deg": 90})",
                            R"({"command": "clear", "what": "exposure"})",
                            R"({"command": "clear", "what": "atmosphere", "body": "Earth"})",
+                           R"({"command": "preview", "preview": false})",
                            R"({"command": "set", "body": "Mars", "pointer": "/planet/ground_albedo", "value": {"680": 0.3}})"}) {
     const OperatorCommand command = parse(text);
     EXPECT_EQ(parse_operator_command(to_json(command)), command) << text;
@@ -131,6 +137,7 @@ const std::vector<std::string> kSeeds = {
     R"({"command": "sun", "elevation_deg": 10, "azimuth_deg": 250})",
     R"({"command": "clear", "what": "sun"})",
     R"({"command": "clear", "what": "atmosphere", "body": "Earth"})",
+    R"({"command": "preview", "preview": true})",
 };
 
 /// Pieces a mutation inserts: JSON punctuation, keys, values at and beyond the ranges' edges.

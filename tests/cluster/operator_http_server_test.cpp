@@ -25,7 +25,8 @@ class OperatorHttpServerTest : public ::testing::Test {
                                  if (std::holds_alternative<operator_command::Pause>(c))
                                    throw std::invalid_argument("pause: no show is playing");
                                  return std::string("done");
-                               }});
+                               },
+                               [this] { return preview_; }});
   }
   static Request request(http::verb verb, const std::string& target, const std::string& body = "",
                          const std::string& content_type = "application/json") {
@@ -42,6 +43,7 @@ class OperatorHttpServerTest : public ::testing::Test {
 
   boost::asio::io_context io_;
   std::vector<std::string> commands_;
+  std::optional<std::string> preview_;
 };
 
 TEST_F(OperatorHttpServerTest, ServesThePageItsFilesAndTheStatus) {
@@ -60,6 +62,23 @@ TEST_F(OperatorHttpServerTest, ServesThePageItsFilesAndTheStatus) {
   EXPECT_EQ(server.respond(request(http::verb::post, "/api/status", "{}"), "x").result(),
             http::status::method_not_allowed);
   EXPECT_EQ(server.respond(request(http::verb::get, "/api/command"), "x").result(), http::status::method_not_allowed);
+}
+
+TEST_F(OperatorHttpServerTest, ServesTheDomePreviewAsPngWhileThereIsOne) {
+  const OperatorHttpServer server = make();
+  const Response off = server.respond(request(http::verb::get, "/api/preview"), "x");
+  EXPECT_EQ(off.result(), http::status::not_found);
+  EXPECT_NE(body_of(off)["error"].get<std::string>().find("no dome preview: it is off"), std::string::npos);
+  preview_ = std::string("\x89PNG-bytes");
+  const Response on = server.respond(request(http::verb::get, "/api/preview?t=3"), "x");
+  EXPECT_EQ(on.result(), http::status::ok);
+  EXPECT_EQ(on[http::field::content_type], "image/png");
+  EXPECT_EQ(on[http::field::cache_control], "no-store");
+  EXPECT_EQ(on.body(), "\x89PNG-bytes");
+  EXPECT_EQ(server.respond(request(http::verb::post, "/api/preview", "{}"), "x").result(), http::status::method_not_allowed);
+  // The page shows it from a blob: URL (fetched with the token), which its policy allows.
+  EXPECT_NE(std::string(server.respond(request(http::verb::get, "/"), "x")["Content-Security-Policy"]).find("img-src 'self' data: blob:"),
+            std::string::npos);
 }
 
 TEST_F(OperatorHttpServerTest, CommandsAreAnsweredWithTheReplyOrA400NamingTheError) {
@@ -103,6 +122,7 @@ TEST_F(OperatorHttpServerTest, WithATokenEveryApiRequestMustCarryIt) {
   const std::string token(20, 'k');
   // The page holds no secret: served without the token.
   EXPECT_EQ(server.respond(request(http::verb::get, "/"), "x").result(), http::status::ok);
+  EXPECT_EQ(server.respond(request(http::verb::get, "/api/preview"), "x").result(), http::status::unauthorized);
   const Response missing = server.respond(request(http::verb::get, "/api/status"), "x");
   EXPECT_EQ(missing.result(), http::status::unauthorized);
   EXPECT_EQ(missing[http::field::www_authenticate], "Bearer realm=\"zenith operator console\"");

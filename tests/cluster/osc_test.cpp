@@ -142,6 +142,8 @@ TEST(OscCommand, AddressesBecomeTheApisCommandsWithItsRanges) {
   EXPECT_EQ(std::get<oc::Set>(osc_command({"/zenith/atmosphere/Earth/air_mass", {std::string("geometric")}})).value,
             nlohmann::json("geometric"));
   EXPECT_EQ(osc_command({"/zenith/sun/elevation", {-3.5f}}), OperatorCommand(oc::Sun{-3.5, std::nullopt}));
+  EXPECT_EQ(osc_command({"/zenith/preview", {std::int32_t{1}}}), OperatorCommand(oc::Preview{true}));
+  EXPECT_EQ(osc_command({"/zenith/preview", {false}}), OperatorCommand(oc::Preview{false}));
   EXPECT_EQ(osc_command({"/zenith/sun/azimuth", {std::int32_t{270}}}), OperatorCommand(oc::Sun{std::nullopt, 270.0}));
   EXPECT_EQ(osc_command({"/zenith/clear/sun", {1.0f}}), OperatorCommand(oc::Clear{oc::Clear::What::sun, ""}));
   EXPECT_EQ(osc_command({"/zenith/clear/exposure", {}}), OperatorCommand(oc::Clear{oc::Clear::What::exposure, ""}));

@@ -70,7 +70,7 @@ class WebDriver {
             {"goog:chromeOptions",
              {{"binary", kChromium.string()},
               {"args", {"--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                        "--window-size=1280,1050",
+                        "--window-size=1280,1500",
                         "--remote-debugging-port=" + std::to_string(browser_port)}}}}}}}}};
     session_ = call(boost::beast::http::verb::post, "/session", capabilities)["sessionId"];
   }

@@ -3,6 +3,7 @@
 'use strict';
 
 const POLL_MS = 500;
+const PREVIEW_MS = 1000;
 
 /// Parameters that make sense live, shown for an atmosphere when its
 /// parameters have them (advanced mode: aerosol; standard mode: mie). The
@@ -115,6 +116,7 @@ function render(s) {
   if (!editing($('exposure')) && $('exposure').value === '' && exposure !== null) $('exposure').value = exposure;
 
   renderSun(s);
+  renderPreview(s.preview);
 
   $('no-live').hidden = s.live_atmospheres;
   for (const a of s.atmospheres) renderAtmosphere(a, s.live_atmospheres);
@@ -133,6 +135,35 @@ function renderSun(s) {
     const value = Number(now[key].toFixed(2));
     for (const id of ids)
       if (!editing($(id))) $(id).value = value;
+  }
+}
+
+/// The dome preview's switch and what it shows.
+function renderPreview(p) {
+  $('preview-box').hidden = p === null;
+  if (p === null) return;
+  if (!editing($('preview-on'))) $('preview-on').checked = p.on;
+  $('preview-image').hidden = !p.on || p.frame === null;
+  $('preview-info').textContent = !p.on ? 'Off: the nodes send no thumbnails.'
+      : p.frame === null ? 'Waiting for the first thumbnails…'
+      : (p.layout === 'dome' ? 'The dome master' : 'The outputs side by side') + ', ' + p.width_px + '×' + p.height_px +
+        ' px, ' + p.tiles + ' of ' + p.outputs + ' outputs, frame ' +
+        (p.oldest_frame === p.frame ? p.frame : p.oldest_frame + '–' + p.frame);
+}
+
+let previewUrl = null;
+/// Fetches the preview (with the token, so not as a plain image URL) while it is on.
+async function refreshPreview() {
+  if (!lastStatus || !lastStatus.preview || !lastStatus.preview.on || lastStatus.preview.frame === null) return;
+  try {
+    const response = await fetch('/api/preview', {headers: headers({}), cache: 'no-store'});
+    if (!response.ok) return;
+    const url = URL.createObjectURL(await response.blob());
+    $('preview-image').src = url;
+    if (previewUrl) URL.revokeObjectURL(previewUrl);
+    previewUrl = url;
+  } catch (e) {
+    // the status shows that the master is offline
   }
 }
 
@@ -360,6 +391,8 @@ function wire() {
   wireSunAngle('sun-elevation-range', 'sun-elevation', 'elevation_deg');
   wireSunAngle('sun-azimuth-range', 'sun-azimuth', 'azimuth_deg');
   $('sun-reset').addEventListener('click', () => send({command: 'clear', what: 'sun'}));
+  $('preview-on').addEventListener('change', () => send({command: 'preview', preview: $('preview-on').checked}));
+  setInterval(refreshPreview, PREVIEW_MS);
   $('token-form').addEventListener('submit', (e) => {
     e.preventDefault();
     token = $('token').value;
