@@ -6,13 +6,12 @@
 #include <span>
 #include <string_view>
 
-#include <openssl/crypto.h>
-
 #include <boost/asio/ip/address.hpp>
 #include <boost/beast/core/flat_buffer.hpp>
 #include <boost/beast/core/tcp_stream.hpp>
 #include <boost/beast/http/read.hpp>
 #include <boost/beast/http/write.hpp>
+#include <boost/beast/websocket/rfc6455.hpp>
 
 #include "core/embedded_file.h"
 #include "core/json_reader.h"
@@ -134,10 +133,32 @@ struct OperatorHttpServer::Session : std::enable_shared_from_this<OperatorHttpSe
       close();
       return;
     }
+    if (beast::websocket::is_upgrade(parser->get())) {
+      upgrade();
+      return;
+    }
     // Answered even when the command stops the master (quit closes the server meanwhile).
     responding = true;
     response = server.respond(parser->get(), peer);
     write();
+  }
+
+  /// A WebSocket upgrade: handed to the status push (which then owns the
+  /// connection), or refused with an HTTP error.
+  void upgrade() {
+    const Request& request = parser->get();
+    bool authenticated = false;
+    std::optional<Response> refused = server.refuse_push(request, authenticated);
+    if (!refused && !server.push_.has_room())
+      refused = error_response(request, http::status::service_unavailable,
+                               cat("the console pushes its status to at most ", StatusPush::kMaxConnections,
+                                   " connections at once; poll /api/status"));
+    if (refused) {
+      spdlog::info("master: operator console: refused the status push to {}: {}", peer, refused->body());
+      respond_and_close(std::move(*refused));
+      return;
+    }
+    server.push_.accept(std::move(stream), request, authenticated, peer);
   }
 
   /// Sends `r`, then closes.
@@ -178,7 +199,10 @@ struct OperatorHttpServer::Session : std::enable_shared_from_this<OperatorHttpSe
 };
 
 OperatorHttpServer::OperatorHttpServer(asio::io_context& io, Options options, Handlers handlers)
-    : io_(io), options_(std::move(options)), handlers_(std::move(handlers)) {}
+    : io_(io),
+      options_(std::move(options)),
+      handlers_(std::move(handlers)),
+      push_(io, [this] { return handlers_.status ? handlers_.status() : nlohmann::json::object(); }, options_.token) {}
 
 void OperatorHttpServer::start() {
   boost::system::error_code ec;
@@ -241,9 +265,30 @@ void OperatorHttpServer::close() {
   for (const std::weak_ptr<Session>& weak : sessions_)
     if (const std::shared_ptr<Session> session = weak.lock(); session && !session->responding) session->close();
   sessions_.clear();
+  push_.close();
 }
 
 std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse(const Request& request) const {
+  if (std::optional<Response> foreign = refuse_foreign(request)) return foreign;
+  if (options_.token && view(request.target()).starts_with("/api/")) return refuse_without_token(request);
+  return std::nullopt;
+}
+
+std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse_push(const Request& request,
+                                                                            bool& authenticated) const {
+  const std::string_view target = view(request.target());
+  if (target.substr(0, target.find('?')) != "/api/events")
+    return error_response(request, http::status::not_found, "WebSocket connections are made to /api/events");
+  if (std::optional<Response> foreign = refuse_foreign(request)) return foreign;
+  authenticated = !options_.token;
+  if (options_.token && !request[http::field::authorization].empty()) {
+    if (std::optional<Response> wrong = refuse_without_token(request)) return wrong;
+    authenticated = true;
+  }
+  return std::nullopt;
+}
+
+std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse_foreign(const Request& request) const {
   const std::string_view host = view(request[http::field::host]);
   if (!options_.token && !is_loopback_name(host_name(host)))
     return error_response(request, http::status::forbidden,
@@ -253,19 +298,17 @@ std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse(const Req
   if (!origin.empty() && origin != cat("http://", host))
     return error_response(request, http::status::forbidden,
                           cat("Origin \"", origin, "\" is not this console (http://", host, "): cross-site requests are refused"));
-  if (options_.token && view(request.target()).starts_with("/api/")) {
-    const std::string_view given = bearer(view(request[http::field::authorization]));
-    const auto expected = options_.token->bytes();
-    const bool match = given.size() == expected.size() && CRYPTO_memcmp(given.data(), expected.data(), given.size()) == 0;
-    if (!match) {
-      Response r = error_response(request, http::status::unauthorized,
-                                  given.empty() ? "this console needs the operator token (Authorization: Bearer TOKEN)"
-                                                : "wrong operator token");
-      r.set(http::field::www_authenticate, "Bearer realm=\"zenith operator console\"");
-      return r;
-    }
-  }
   return std::nullopt;
+}
+
+std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse_without_token(const Request& request) const {
+  const std::string_view given = bearer(view(request[http::field::authorization]));
+  if (push_.token_matches(given)) return std::nullopt;
+  Response r = error_response(request, http::status::unauthorized,
+                              given.empty() ? "this console needs the operator token (Authorization: Bearer TOKEN)"
+                                            : "wrong operator token");
+  r.set(http::field::www_authenticate, "Bearer realm=\"zenith operator console\"");
+  return r;
 }
 
 OperatorHttpServer::Response OperatorHttpServer::respond(const Request& request, const std::string& peer) const {
@@ -300,6 +343,10 @@ OperatorHttpServer::Response OperatorHttpServer::respond(const Request& request,
       return error_response(request, http::status::bad_request, e.what());
     }
   }
+  if (path == "/api/events")
+    return error_response(request, http::status::upgrade_required,
+                          "/api/events is a WebSocket that pushes the status: connect with Upgrade: websocket "
+                          "(docs/operator.md, \"Status pushes\"), or poll /api/status");
   if (path == "/api/preview") {
     if (!get) return not_allowed("GET");
     std::optional<std::string> png = handlers_.preview ? handlers_.preview() : std::nullopt;
@@ -320,7 +367,7 @@ OperatorHttpServer::Response OperatorHttpServer::respond(const Request& request,
     return r;
   }
   return error_response(request, http::status::not_found,
-                        cat(path, ": not found (the console is at /, its API at /api/status, /api/command and /api/preview)"));
+                        cat(path, ": not found (the console is at /, its API at /api/status, /api/command, /api/preview and /api/events)"));
 }
 
 }  // namespace zenith::cluster

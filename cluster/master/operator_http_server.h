@@ -2,8 +2,9 @@
 // The operator console's HTTP server (docs/operator.md), on the master's own
 // io_context (Boost.Beast): the web page compiled into the binary at `/`,
 // GET /api/status (the master's state as JSON), POST /api/command (one
-// JSON command, cluster/master/operator_command.h) and GET /api/preview (the
-// dome preview as PNG, while it is on). Commands are handed to the
+// JSON command, cluster/master/operator_command.h), GET /api/preview (the
+// dome preview as PNG, while it is on) and the WebSocket /api/events that
+// pushes the status whenever it changes (status_push.h). Commands are handed to the
 // master on its networking thread, between frames, like console commands.
 //
 // Security: it listens on the loopback interface unless told otherwise; on
@@ -28,6 +29,7 @@
 
 #include "cluster/handshake.h"
 #include "cluster/master/operator_command.h"
+#include "cluster/master/status_push.h"
 
 namespace zenith::cluster {
 
@@ -74,12 +76,20 @@ class OperatorHttpServer {
 
   /// The reply to one request from `peer` (no socket: the tests call it).
   Response respond(const Request& request, const std::string& peer) const;
+  /// Why a WebSocket upgrade request may not become a status push (the
+  /// response to send), or nullopt; then `authenticated` says whether it
+  /// carried the token (or none is needed) — else its first message must.
+  std::optional<Response> refuse_push(const Request& request, bool& authenticated) const;
 
  private:
   struct Session;
   void accept();
   /// Why the request may not be served (the response to send), or nullopt.
   std::optional<Response> refuse(const Request& request) const;
+  /// The Host and Origin rules (every request, WebSockets too).
+  std::optional<Response> refuse_foreign(const Request& request) const;
+  /// The token rule: the 401 for a missing or wrong "Authorization: Bearer", or nullopt.
+  std::optional<Response> refuse_without_token(const Request& request) const;
 
   boost::asio::io_context& io_;
   Options options_;
@@ -88,6 +98,7 @@ class OperatorHttpServer {
   std::uint16_t port_ = 0;
   std::optional<boost::asio::ip::tcp::acceptor> acceptor_;
   std::list<std::weak_ptr<Session>> sessions_;
+  StatusPush push_;
   bool closed_ = false;
 };
 

@@ -8,6 +8,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -26,7 +27,11 @@
 #include <vector>
 
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/ip/udp.hpp>
+#include <boost/beast/core/buffers_to_string.hpp>
+#include <boost/beast/core/flat_buffer.hpp>
+#include <boost/beast/websocket.hpp>
 #include <nlohmann/json.hpp>
 
 #include "cluster/frame_decoder.h"
@@ -132,8 +137,10 @@ class ClusterProcess : public ::testing::Test {
     fs::create_directories(dir_);
     cache_ = kWork / "table-cache";  // shared by the tests (same small tables)
     port_ = static_cast<int>(20000 + (getpid() * 7 + std::hash<std::string>{}(info->name())) % 30000);
-    // Other test runs share this machine: move on while the port (or the control port after it) is taken.
-    port_ = core::free_loopback_port(port_, 2);
+    // Other test runs share this machine: move on while the port or one after it is taken (the
+    // control port + 1, the operator console + 2, OSC + 3, the browser tests' chromedriver + 4 and
+    // DevTools + 5).
+    port_ = core::free_loopback_port(port_, 6);
     setenv(kSecretVar, "cluster-test-secret-0123456789", 1);
   }
   void TearDown() override {
@@ -1494,6 +1501,56 @@ TEST_F(ClusterProcess, OperatorConsoleShowsTheDomeFromTheNodesThumbnailsOnlyWhil
   EXPECT_NE(master_log.find("operator (osc 127.0.0.1): preview off → dome preview off"), std::string::npos) << master_log;
 }
 
+TEST_F(ClusterProcess, OperatorConsolePushesTheStatusOverAWebSocketUntilTheMasterStops) {
+  namespace websocket = boost::beast::websocket;
+  const fs::path config = write_config(10);
+  const int http = port_ + 2;
+  const Child master = start_master(config, 0, 120000, {"--sun-step-deg", "0", "--operator-port", std::to_string(http)});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 2; }, 400s)) << logs();
+
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::socket socket(io);
+  socket.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<std::uint16_t>(http)});
+  const timeval timeout{10, 0};
+  setsockopt(socket.native_handle(), SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  websocket::stream<boost::asio::ip::tcp::socket> ws(std::move(socket));
+  ws.handshake("127.0.0.1:" + std::to_string(http), "/api/events");
+  const auto next = [&] {
+    boost::beast::flat_buffer buffer;
+    ws.read(buffer);
+    return nlohmann::json::parse(boost::beast::buffers_to_string(buffer.data()));
+  };
+  // The status at once, then a new one as frames are presented: the same document as /api/status.
+  nlohmann::json first = next();
+  EXPECT_EQ(first["state"], "playing");
+  EXPECT_EQ(first["nodes"].size(), 3u);
+  const int start = first["frames_presented"];
+  nlohmann::json previous = first;
+  for (int i = 0; i < 5; ++i) {
+    const nlohmann::json pushed = next();
+    EXPECT_NE(pushed, previous) << "only changes are pushed";
+    EXPECT_GE(pushed["frames_presented"].get<int>(), previous["frames_presented"].get<int>()) << pushed.dump();
+    previous = pushed;
+  }
+  EXPECT_GT(previous["frames_presented"].get<int>(), start);
+  // A command's effect arrives by push too.
+  ASSERT_EQ(console_command(http, R"({"command": "exposure", "exposure": 33})").status, 200);
+  ASSERT_TRUE(wait_until([&] { return next()["exposure_override"] == 33.0; }, 30s));
+
+  // quit: the master closes the WebSocket (going away) and exits.
+  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
+  boost::beast::error_code ec;
+  for (int i = 0; i < 100 && !ec; ++i) {
+    boost::beast::flat_buffer buffer;
+    ws.read(buffer, ec);
+  }
+  EXPECT_EQ(ec, websocket::error::closed) << ec.message();
+  EXPECT_EQ(ws.reason().code, websocket::close_code::going_away);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+}
+
 // ---- the operator console in a real browser (chromium headless) ----------------
 
 /// Waits until the JavaScript expression `condition` is true in the page.
@@ -1523,6 +1580,15 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) 
   browser.open("http://127.0.0.1:" + std::to_string(http) + "/");
   ASSERT_TRUE(wait_in_page(browser, "document.getElementById('state').textContent === 'playing'", 60s));
   EXPECT_EQ(browser.script("return document.getElementById('show-name').textContent;"), "offline-sunset");
+  // The status comes by push over the WebSocket; without it the page polls, and connects again.
+  ASSERT_TRUE(wait_in_page(browser, "document.getElementById('transport').textContent === 'push'", 30s));
+  browser.script("pushSocket.close(); return true;");
+  ASSERT_TRUE(wait_in_page(browser, "document.getElementById('transport').textContent === 'polling'", 10s));
+  const std::string frame_in_page = browser.script("return document.getElementById('frame').textContent;");
+  EXPECT_TRUE(wait_in_page(browser, "document.getElementById('frame').textContent !== '" + frame_in_page +
+                                        "' && document.getElementById('transport').textContent === 'polling'",
+                           4s)) << "polled while the push is away";
+  EXPECT_TRUE(wait_in_page(browser, "document.getElementById('transport').textContent === 'push'", 30s));
   EXPECT_TRUE(wait_in_page(browser, "document.querySelectorAll('#nodes tbody tr').length === 3", 30s));
   browser.click(browser.element("#pause"));
   ASSERT_TRUE(wait_in_page(browser, "document.getElementById('state').textContent === 'paused'", 30s)) << logs();

@@ -1,8 +1,11 @@
-// The zenith operator console (docs/operator.md): polls GET /api/status and
-// sends POST /api/command. Plain JavaScript, nothing fetched from elsewhere.
+// The zenith operator console (docs/operator.md): the status pushed over the
+// WebSocket /api/events, or polled from GET /api/status while that is not
+// connected; commands with POST /api/command. Plain JavaScript, nothing
+// fetched from elsewhere.
 'use strict';
 
 const POLL_MS = 500;
+const RECONNECT_MS = 5000;  // a lost status push is tried again after this (polling meanwhile)
 const PREVIEW_MS = 1000;
 
 /// Parameters that make sense live, shown for an atmosphere when its
@@ -20,6 +23,8 @@ const LIVE_PARAMETERS = [
 ];
 
 let token = sessionStorage.getItem('zenith-operator-token') || '';
+let pushed = false;  // the status arrives over the WebSocket: no polling
+let pushSocket = null;
 let lastStatus = null;
 const atmosphereViews = new Map();  // body → its controls
 const removedBlocks = new Map();    // "body pointer" → the block a toggle removed (to put it back)
@@ -64,6 +69,32 @@ async function send(command) {
 
 function askForToken() {
   $('token-box').hidden = false;
+}
+
+/// The status pushes: while connected the page renders every pushed status and
+/// does not poll; when the connection fails or drops it polls and tries again.
+function connectPush() {
+  let socket;
+  try {
+    socket = new WebSocket((location.protocol === 'https:' ? 'wss://' : 'ws://') + location.host + '/api/events');
+  } catch (e) {
+    setTimeout(connectPush, RECONNECT_MS);
+    return;
+  }
+  pushSocket = socket;
+  socket.addEventListener('open', () => {
+    if (token) socket.send(JSON.stringify({token: token}));
+  });
+  socket.addEventListener('message', (event) => {
+    pushed = true;
+    $('transport').textContent = 'push';
+    render(JSON.parse(event.data));
+  });
+  socket.addEventListener('close', () => {
+    pushed = false;
+    $('transport').textContent = 'polling';
+    setTimeout(connectPush, RECONNECT_MS);
+  });
 }
 
 async function poll() {
@@ -399,9 +430,11 @@ function wire() {
     sessionStorage.setItem('zenith-operator-token', token);
     $('token-box').hidden = true;
     poll();
+    if (pushSocket && pushSocket.readyState === WebSocket.OPEN) pushSocket.send(JSON.stringify({token: token}));
   });
   poll();
-  setInterval(poll, POLL_MS);
+  setInterval(() => { if (!pushed) poll(); }, POLL_MS);
+  connectPush();
 }
 
 wire();
