@@ -126,6 +126,8 @@ bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds tim
   return done();
 }
 
+std::vector<Presented> expect_in_sync(const fs::path& out, std::uint64_t last);
+
 /// A cluster of 3 nodes on loopback rendering a 128² dome master as four 64²
 /// quadrants: node a renders two, b and c one each.
 class ClusterProcess : public ::testing::Test {
@@ -189,6 +191,31 @@ class ClusterProcess : public ::testing::Test {
     args.insert(args.end(), extra.begin(), extra.end());
     children_.push_back(spawn(args, dir_ / (name + ".log")));
     return children_.back();
+  }
+  /// The sunset fixture (tests/data/shows/offline-sunset.json: 2.5 s, two table versions) played
+  /// live at 2 fps, looping, with the operator console on `http` (and OSC on `osc`), and the three
+  /// nodes rendering its scene.
+  Child start_sunset_show(const fs::path& config, int http, std::optional<int> osc = std::nullopt) {
+    std::vector<std::string> args = {"--show", (kSource / "tests/data/shows/offline-sunset.json").string(), "--fps", "2",
+                                      "--loop", "--operator-port", std::to_string(http)};
+    if (osc) args.insert(args.end(), {"--osc-port", std::to_string(*osc)});
+    const Child master = start_master(config, 0, 120000, args);
+    for (const char* n : {"a", "b", "c"})
+      start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+    return master;
+  }
+  /// Waits until node c presented a frame after `after_frame` (when given), quits the master
+  /// through the operator console on `http`, and expects master and nodes to exit with status 0
+  /// and every node to have presented the same frames in sync; node a's presented frames.
+  std::vector<Presented> quit_in_sync(int http, const Child& master, std::optional<std::uint64_t> after_frame = std::nullopt) {
+    if (after_frame)
+      EXPECT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > *after_frame; },
+                             120s)) << logs();
+    const test::HttpReply quit = test::http_request(http, boost::beast::http::verb::post, "/api/command", R"({"command": "quit"})");
+    EXPECT_EQ(quit.status, 200) << quit.body;
+    EXPECT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+    expect_nodes_exit_cleanly(master);
+    return expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
   }
   /// Expects every child but `master` (the nodes) to exit with status 0 within 20 s.
   void expect_nodes_exit_cleanly(const Child& master) const {
@@ -1182,16 +1209,10 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
   EXPECT_EQ(versions.back().hex, old_version);
   EXPECT_EQ(atmosphere()["parameters"]["aerosol"]["scattering"]["turbidity"], 2.0);
   const std::uint64_t last_switch = versions.back().from_frame;
-  ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > last_switch + 2; }, 120s))
-      << logs();
-  r = console_command(http, R"({"command": "quit"})");
-  EXPECT_EQ(r.status, 200) << r.body;
-  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  expect_nodes_exit_cleanly(master);
+  quit_in_sync(http, master, last_switch + 2);
 
   // Every node rendered each version from the same frame on, never before.
   ASSERT_EQ(versions.size(), 5u);
-  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
   for (const char* node : {"a", "b", "c"})
     for (const Presented& p : presented(dir_ / "out" / node)) {
       std::size_t v = 0;
@@ -1213,12 +1234,8 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
 
 TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
   const fs::path config = write_config(5);
-  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
   const int http = port_ + 2, osc = port_ + 3;
-  const Child master = start_master(config, 0, 120000,
-                                    {"--show", show.string(), "--fps", "2", "--loop", "--operator-port",
-                                     std::to_string(http), "--osc-port", std::to_string(osc)});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  const Child master = start_sunset_show(config, http, osc);
   ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 3; }, 400s)) << logs();
   nlohmann::json s = console_status(http);
   EXPECT_EQ(s["state"], "playing");
@@ -1249,11 +1266,7 @@ TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
     return now["state"] == "playing" && now["show"]["rate"] == 2.0 && now["show_time_s"] != 0.5;
   }, 60s)) << logs();
 
-  r = console_command(http, R"({"command": "quit"})");
-  EXPECT_EQ(r.status, 200) << r.body;
-  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  expect_nodes_exit_cleanly(master);
-  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  quit_in_sync(http, master);
   const std::string master_log = read_text(dir_ / "master.log");
   EXPECT_NE(master_log.find("operator (http 127.0.0.1): pause → paused"), std::string::npos) << master_log;
   EXPECT_NE(master_log.find("operator (osc 127.0.0.1): play → playing"), std::string::npos) << master_log;
@@ -1303,15 +1316,9 @@ TEST_F(ClusterProcess, OperatorConsoleSetsTheSunOfTheDefaultShowOverHttpAndOscUn
   ASSERT_TRUE(wait_until([&] { return sun_is(http, 1.0, 272.0); }, 60s)) << console_status(http).dump();
   EXPECT_TRUE(console_status(http)["sun_override"].is_null());
   const std::uint64_t cleared = frame_now();
-  ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > cleared + 1; }, 120s))
-      << logs();
-
-  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
-  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  expect_nodes_exit_cleanly(master);
   // Every node rendered one state per frame, the same on all of them; the pixels show each sun
   // (a frame under the scene's sun again equals frame 0 byte for byte).
-  const auto played = expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  const auto played = quit_in_sync(http, master, cleared + 1);
   ASSERT_GT(played.size(), cleared + 1);
   const auto picture = [&](std::uint64_t frame) {
     return read_text(dir_ / "out/b/bottom-left" / fmt::format("frame-{:06d}.png", frame));
@@ -1328,11 +1335,8 @@ TEST_F(ClusterProcess, OperatorConsoleSetsTheSunOfTheDefaultShowOverHttpAndOscUn
 
 TEST_F(ClusterProcess, OperatorConsoleOverridesTheSunTrackOfAShowUntilCleared) {
   const fs::path config = write_config(5);
-  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
   const int http = port_ + 2;
-  const Child master = start_master(config, 0, 120000,
-                                    {"--show", show.string(), "--fps", "2", "--loop", "--operator-port", std::to_string(http)});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  const Child master = start_sunset_show(config, http);
   ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 2; }, 400s)) << logs();
   // Paused, the sun track holds still: the override and the track's sun are both steady.
   ASSERT_EQ(console_command(http, R"({"command": "pause"})").status, 200);
@@ -1358,10 +1362,7 @@ TEST_F(ClusterProcess, OperatorConsoleOverridesTheSunTrackOfAShowUntilCleared) {
     return sun && sun->first <= 4.0 + 1e-9 && console_status(http)["sun_override"].is_null();
   }, 60s)) << console_status(http).dump();
 
-  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
-  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  expect_nodes_exit_cleanly(master);
-  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  quit_in_sync(http, master);
 }
 
 TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsTheTrackUntilCleared) {
@@ -1369,12 +1370,8 @@ TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsThe
   // scale height goes on top of either: a version of its own on every node from one frame on, a
   // new one when the track moves on, and clear gives the show's versions back.
   const fs::path config = write_config(5);
-  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
   const int http = port_ + 2, osc = port_ + 3;
-  const Child master = start_master(config, 0, 120000,
-                                    {"--show", show.string(), "--fps", "2", "--loop", "--operator-port",
-                                     std::to_string(http), "--osc-port", std::to_string(osc)});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  const Child master = start_sunset_show(config, http, osc);
   // A whole loop (6 frames): both of the show's versions seen.
   ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= 7; }, 400s)) << logs();
   std::set<std::string> show_versions;
@@ -1412,15 +1409,9 @@ TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsThe
   }, 60s)) << now.dump();
   EXPECT_EQ(earth()["version"], earth()["show_version"]);
   const std::uint64_t cleared = now["frame"];
-  ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > cleared + 3; }, 120s))
-      << logs();
-
-  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
-  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  expect_nodes_exit_cleanly(master);
   // On every node, the same tables at every frame: the show's, then one block of the operator's
   // (each of its versions from one frame on), then the show's again.
-  const auto played = expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  const auto played = quit_in_sync(http, master, cleared + 3);
   std::string phases;
   for (const Presented& p : played) {
     const char phase = show_versions.count(p.tables.substr(6)) ? 's' : operator_versions.count(p.tables.substr(6)) ? 'o' : '?';
@@ -1492,10 +1483,7 @@ TEST_F(ClusterProcess, OperatorConsoleShowsTheDomeFromTheNodesThumbnailsOnlyWhil
   EXPECT_EQ(console_status(http)["preview"]["tiles"], 0);
   EXPECT_EQ(test::http_request(http, boost::beast::http::verb::get, "/api/preview").status, 404);
 
-  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
-  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  expect_nodes_exit_cleanly(master);
-  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  quit_in_sync(http, master);
   const std::string master_log = read_text(dir_ / "master.log");
   EXPECT_EQ(master_log.find("protocol"), std::string::npos) << master_log;
   EXPECT_NE(master_log.find("operator (osc 127.0.0.1): preview off → dome preview off"), std::string::npos) << master_log;
@@ -1569,11 +1557,8 @@ bool wait_in_page(test::WebDriver& browser, const std::string& condition, std::c
 TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) {
   if (!test::browser_available()) GTEST_SKIP() << "chromium and chromium-driver are not installed (scripts/bootstrap)";
   const fs::path config = write_config(5);
-  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
   const int http = port_ + 2;
-  const Child master = start_master(config, 0, 120000,
-                                    {"--show", show.string(), "--fps", "2", "--loop", "--operator-port", std::to_string(http)});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  const Child master = start_sunset_show(config, http);
   ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 2; }, 400s)) << logs();
 
   test::WebDriver browser(port_ + 4, port_ + 5, dir_ / "chromedriver.log");
@@ -1611,10 +1596,7 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) 
   browser.click(browser.element("#play"));
   EXPECT_TRUE(wait_in_page(browser, "document.getElementById('state').textContent === 'playing'", 30s));
 
-  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
-  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  expect_nodes_exit_cleanly(master);
-  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  quit_in_sync(http, master);
 }
 
 TEST_F(ClusterProcess, OperatorConsoleInABrowserChangesTurbidityAndTheNewVersionReachesEveryNode) {
@@ -1662,14 +1644,9 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserChangesTurbidityAndTheNewVersion
     EXPECT_NE(std::find(held.begin(), held.end(), third_version), held.end()) << node;
   }
   const std::uint64_t effective = status["atmospheres"][0]["effective_from_frame"];
-  ASSERT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > effective + 2; }, 120s));
-
-  EXPECT_EQ(console_command(http, R"({"command": "quit"})").status, 200);
-  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
-  expect_nodes_exit_cleanly(master);
   // Every node shows the three versions in order, each from the same frame on (in sync: the same
   // tables on every node at every frame).
-  expect_in_sync(dir_ / "out", presented(dir_ / "out/a").back().frame);
+  quit_in_sync(http, master, effective + 2);
   std::vector<std::string> seen;
   for (const Presented& p : presented(dir_ / "out/a"))
     if (seen.empty() || seen.back() != p.tables) seen.push_back(p.tables);

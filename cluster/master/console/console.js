@@ -198,17 +198,22 @@ async function refreshPreview() {
   }
 }
 
-/// A slider and a number box for one of the sun's angles; a change sends it alone.
-function wireSunAngle(rangeId, boxId, key) {
-  const range = $(rangeId), box = $(boxId);
-  const sendAngle = (value) => send(Object.assign({command: 'sun'}, {[key]: value}));
+/// A slider and its number box for one value: the box follows the slider
+/// while it is dragged; `apply` gets the number once the slider is let go or
+/// the box is changed (so a drag sends one command, not one per step).
+function wireSliderAndBox(range, box, apply) {
   range.addEventListener('pointerdown', () => { range.dataset.dragging = '1'; });
   range.addEventListener('input', () => { box.value = range.value; });
   range.addEventListener('change', () => {
     range.dataset.dragging = '0';
-    sendAngle(Number(range.value));
+    apply(Number(range.value));
   });
-  box.addEventListener('change', () => sendAngle(Number(box.value)));
+  box.addEventListener('change', () => apply(Number(box.value)));
+}
+
+/// A slider and a number box for one of the sun's angles; a change sends it alone.
+function wireSunAngle(rangeId, boxId, key) {
+  wireSliderAndBox($(rangeId), $(boxId), (value) => send(Object.assign({command: 'sun'}, {[key]: value})));
 }
 
 function makeControl(body, p, parameters) {
@@ -261,13 +266,7 @@ function makeControl(body, p, parameters) {
       e.step = p.step;
     }
     box.step = 'any';
-    range.addEventListener('pointerdown', () => { range.dataset.dragging = '1'; });
-    range.addEventListener('input', () => { box.value = range.value; });
-    range.addEventListener('change', () => {
-      range.dataset.dragging = '0';
-      set(Number(range.value));
-    });
-    box.addEventListener('change', () => set(Number(box.value)));
+    wireSliderAndBox(range, box, set);
     row.appendChild(range);
     row.appendChild(box);
     update = (v) => {
