@@ -311,14 +311,14 @@ struct Master::Impl {
       cached += s.cached.count(h);
       send_table_set(s, tables.set(h));
     }
-    spdlog::info("master: node '{}' holds {} of its {} table set{} in its cache: sent {} table chunk{}", s.name, cached,
-                 wanted.size(), wanted.size() == 1 ? "" : "s", s.chunks_sent - chunks_before,
+    spdlog::info("master: {} '{}' holds {} of its {} table set{} in its cache: sent {} table chunk{}", to_string(s.role),
+                 s.name, cached, wanted.size(), wanted.size() == 1 ? "" : "s", s.chunks_sent - chunks_before,
                  s.chunks_sent - chunks_before == 1 ? "" : "s");
     maybe_become_ready(s);
   }
 
   void maybe_become_ready(NodeSession& s) {
-    if (s.state != NodeSession::State::tables || !s.inventory_done) return;
+    if (s.state != NodeSession::State::tables || !s.inventory_done || s.role != PeerRole::node) return;
     if (tables.ready_with(s.tables_ready)) become_ready(s);
   }
 
@@ -484,7 +484,23 @@ struct Master::Impl {
     maybe_start_show();
   }
 
+  /// A standby master past its handshake (docs/cluster.md, "Standby master"):
+  /// its first Heartbeat ends an empty inventory, so it is sent every set a
+  /// node would be, then every new set, FrameState and Present. It sends only
+  /// Heartbeats and Goodbye, and never joins the barrier.
+  void on_standby_message(NodeSession& s, const Message& message) {
+    if (std::holds_alternative<Heartbeat>(message)) {
+      if (!s.inventory_done) finish_inventory(s);
+    } else if (const auto* goodbye = std::get_if<Goodbye>(&message)) {
+      spdlog::info("master: the standby said goodbye: {}", goodbye->reason);
+      s.connection->close(cat("Goodbye: ", goodbye->reason));
+    } else {
+      s.close_for_protocol_violation(cat(to_string(message_type(message)), " is not sent by a standby master"));
+    }
+  }
+
   void on_running_message(NodeSession& s, const Message& message) {
+    if (s.role == PeerRole::standby) return on_standby_message(s, message);
     if (!s.inventory_done) {
       if (const auto* held = std::get_if<TableReady>(&message)) {
         s.cached.insert(held->table_hash);  // any set, even one this show does not use
@@ -594,6 +610,7 @@ struct Master::Impl {
     const std::uint64_t frame = options.feed ? frame_in_flight.frame : barrier.frame();
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(frame_in_flight));
     for (const std::uint32_t id : participants) sessions.find(id)->connection->send_encoded(encoded);
+    sessions.send_to_standbys(encoded);
     barrier.begin(frame, participants);
     frame_started = Clock::now();
     spdlog::debug("master: frame {} sent to {} node{}", frame, participants.size(), participants.size() == 1 ? "" : "s");
@@ -683,6 +700,7 @@ struct Master::Impl {
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(present));
     for (const std::uint32_t id : release.present_to)
       if (NodeSession* s = sessions.find(id)) s->connection->send_encoded(encoded);
+    sessions.send_to_standbys(encoded);
     spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, release.present_to.size(),
                  release.present_to.size() == 1 ? "" : "s", ms_since(frame_started));
     if (recorder) {
