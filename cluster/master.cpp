@@ -35,6 +35,7 @@
 #include "cluster/master/operator_input.h"
 #include "cluster/master/osc_receiver.h"
 #include "cluster/master/show_start_rule.h"
+#include "cluster/master/takeover.h"
 #include "cluster/master/table_preparer.h"
 #include "cluster/master/table_versions.h"
 #include "show/playback_clock.h"
@@ -216,8 +217,9 @@ struct Master::Impl {
     for (const show::TablePlanEntry& entry : plan.sets) {
       tables.add_version(entry.version.body, entry.version.loaded, entry.version.table_hash);
       show_sets.push_back(entry.version.table_hash);
-      schedule.push_back({entry.version.table_hash, entry.first_frame, entry.cached, false});
-      preparer.enqueue(preparation_job(entry.version.body, entry.version.loaded.model));
+      const bool held = tables.has_set(entry.version.table_hash);  // a standby's, from the active master
+      schedule.push_back({entry.version.table_hash, entry.first_frame, entry.cached, held});
+      if (!held) preparer.enqueue(preparation_job(entry.version.body, entry.version.loaded.model));
     }
     tables.use_show_sets(std::move(show_sets), show->state_at(0.0, 0, render_flags).atmospheres);
     show_start.emplace(std::move(schedule), fps, options.paced);
@@ -285,6 +287,33 @@ struct Master::Impl {
     last_version_error = cat("table version ", short_hex(hash), " (", pending_change, "): ", what);
     tables.abandon_pending();
     maybe_start_switch();
+  }
+
+  /// A standby taking over (docs/cluster.md, "Standby master"): the table
+  /// versions the active master distributed instead of preparing them, and the
+  /// show from the frame after the last one it sent, its show time going on
+  /// at the same step (the operator's exposure kept).
+  void adopt_takeover() {
+    const TakeoverState& t = *options.takeover;
+    adopt_takeover_tables(t, scene, tables, !show);
+    if (show) prepare_show_tables(table_request());  // the sets not received are prepared as at the start
+    const FrameState& last = *t.last_frame;
+    const Continuation c = continuation_of(
+        t, show ? show->state_at(last.show_time_s, last.frame, render_flags)
+                : default_show_frame(scene, last.frame, options.sun_step_deg, tables.current(), render_flags),
+        fps);
+    barrier.start_at(c.next_frame);
+    exposure_override = c.exposure;
+    if (clock) continue_clock(c, *clock);
+    for (const std::string& what : c.mismatches)
+      spdlog::warn("master: taking over: the {} of frame {} differs from this standby's show (are its scene, show "
+                   "and --sun-step-deg the active master's?): the picture jumps at the takeover",
+                   what, last.frame);
+    spdlog::info("master: taking over the show at frame {} (the active master's last was frame {}, show time {:.3f} s, "
+                 "{}) with the {} table version{} it distributed",
+                 c.next_frame, last.frame, last.show_time_s,
+                 t.frame_in_flight() ? "in flight, not seen presented" : "presented", t.versions.size(),
+                 t.versions.size() == 1 ? "" : "s");
   }
 
   // ---- table versions -------------------------------------------------------
@@ -536,7 +565,7 @@ struct Master::Impl {
 
   void maybe_start_show() {
     if (started || stopping) return;
-    if (show_start && !show_start->may_start()) return;
+    if (show_start && !show_start->may_start() && !options.takeover) return;
     if (!waiting_since) waiting_since = Clock::now();
     const std::size_t ready = sessions.ready_count();
     const bool waited = ms_since(*waiting_since) >= options.wait_for_nodes_ms;
@@ -970,7 +999,8 @@ struct Master::Impl {
     acceptor.listen();
     start_operator_console();
     for (const AtmosphereSwitch& sw : options.atmosphere_switches) resolve_switch(sw);  // fail before any precompute
-    prepare_tables();
+    if (options.takeover && options.takeover->last_frame) adopt_takeover();
+    else prepare_tables();
     spdlog::info("master: cluster '{}' listening on {}:{} for {} node{} (heartbeat {} ms, barrier timeout {} ms, {} Hz)",
                  options.config.name, options.config.master_host, port, options.config.nodes.size(),
                  options.config.nodes.size() == 1 ? "" : "s", options.config.heartbeat_ms,
