@@ -40,8 +40,8 @@ struct Standby::Impl {
   const ClusterConfig& config() const { return options.master.config; }
 
   /// The link to the active master: the standby role, the active master alone,
-  /// and one attempt of at most 3 s after a loss to tell a dead master from a
-  /// lost connection.
+  /// and one attempt of at most check_attempt_ms after a loss to tell a dead
+  /// master from a lost connection.
   MasterLink::Setup link_setup() const {
     MasterLink::Setup setup;
     setup.cluster_name = config().name;
@@ -52,7 +52,7 @@ struct Standby::Impl {
     setup.heartbeat_ms = config().heartbeat_ms;
     setup.rules.connect_timeout_ms = options.connect_timeout_ms;
     setup.rules.reconnect_ms = kDefaultReconnectMs;  // never reached: the first failed attempt decides
-    setup.rules.attempt_timeout_ms = attempt_timeout_ms_for(2);
+    setup.rules.attempt_timeout_ms = options.check_attempt_ms;
     return setup;
   }
 
@@ -141,8 +141,8 @@ struct Standby::Impl {
                                       lost_at = Clock::now();
                                       rule.lost();
                                       spdlog::info("standby: checking whether the active master is gone (one more "
-                                                   "attempt, at most {:.0f} s)",
-                                                   attempt_timeout_ms_for(2) / 1000.0);
+                                                   "attempt, at most {:.1f} s)",
+                                                   options.check_attempt_ms / 1000.0);
                                     },
                                     [this](const Message& m) { on_message(m); },
                                     [this](int code) { finish(code); },

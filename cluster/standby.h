@@ -28,6 +28,11 @@ struct StandbyOptions {
   /// How long to try to reach the active master at the start (it may be
   /// preparing its tables for minutes).
   std::uint32_t connect_timeout_ms = 900000;
+  /// After a loss, the one more attempt that tells a dead master from a lost
+  /// connection gets this long to be welcomed. Shorter than the nodes'
+  /// attempt limit (3 s, attempt_timeout_ms_for()), so that with a stopped
+  /// master the standby listens before the nodes turn to it.
+  std::uint32_t check_attempt_ms = 2000;
   /// After a takeover the show goes on once every configured node is ready
   /// again, or after this long with those that are.
   std::uint32_t takeover_wait_ms = 10000;

@@ -203,6 +203,14 @@ class ClusterProcess : public ::testing::Test {
       }
     }
   }
+  /// Whether every node (a, b, c) presented frame `frame` or a later one.
+  bool all_nodes_past(std::uint64_t frame) const {
+    for (const char* n : {"a", "b", "c"}) {
+      const auto p = presented(dir_ / "out" / n);
+      if (p.empty() || p.back().frame < frame) return false;
+    }
+    return true;
+  }
   std::string logs() const {
     std::string all;
     for (const char* n : {"master", "standby", "standby-2", "a", "b", "c", "cluster"})
@@ -596,11 +604,7 @@ TEST_F(ClusterProcess, StandbyKilledAndRestartedFollowsAgainWhileTheShowGoesOnTh
   kill(master.pid, SIGKILL);
   ASSERT_EQ(wait_exit(master, 5s), std::optional<int>(128 + SIGKILL));
   const std::uint64_t master_killed_at = presented(dir_ / "out/a").back().frame;
-  ASSERT_TRUE(wait_until([&] {
-    for (const char* n : {"a", "b", "c"})
-      if (presented(dir_ / "out" / n).back().frame < master_killed_at + 10) return false;
-    return true;
-  }, 60s)) << logs();
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(master_killed_at + 10); }, 60s)) << logs();
   kill(standby.pid, SIGTERM);
   ASSERT_EQ(wait_exit(standby, 30s), std::optional<int>(0)) << logs();
   for (const Child& c : children_)
@@ -625,6 +629,51 @@ TEST_F(ClusterProcess, StandbyKilledAndRestartedFollowsAgainWhileTheShowGoesOnTh
   EXPECT_EQ(read_text(dir_ / "standby.log").find("master: taking over"), std::string::npos) << "the killed one never did";
 }
 
+TEST_F(ClusterProcess, StandbyTakesOverFromAStoppedMasterAfterTheSilenceLimit) {
+  // SIGSTOP of the master closes no socket: the standby and the nodes find it
+  // silent past the silence limit (max(3 × 200 ms, 10 s)). The stopped
+  // master's kernel still accepts connections, so the standby's one more
+  // attempt ends at its 2 s limit, and the nodes' attempts on the master at
+  // their 3 s limit, without a Welcome: the standby takes over, the nodes
+  // then reach it.
+  const fs::path config = write_config(10, 20000, 200, standby_port_);
+  const Child master = start_master(config, 0);
+  const Child standby = start_standby(config, 0);
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_TRUE(wait_until([&] {
+    return all_nodes_past(5) && read_text(dir_ / "standby.log").find("standby: the show runs") != std::string::npos;
+  }, 300s)) << logs();
+  ASSERT_EQ(kill(master.pid, SIGSTOP), 0);
+  const auto stopped = Clock::now();
+  const std::uint64_t stopped_at = presented(dir_ / "out/a").back().frame;
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(stopped_at + 2); }, 90s)) << logs();
+  const double takeover_s = std::chrono::duration<double>(Clock::now() - stopped).count();
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(stopped_at + 10); }, 60s)) << logs();
+  kill(master.pid, SIGKILL);  // a stopped process dies too
+  ASSERT_EQ(wait_exit(master, 5s), std::optional<int>(128 + SIGKILL));
+  kill(standby.pid, SIGTERM);
+  ASSERT_EQ(wait_exit(standby, 30s), std::optional<int>(0)) << logs();
+  for (const Child& c : children_)
+    if (c.pid != master.pid && c.pid != standby.pid) {
+      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
+    }
+  const auto a = presented(dir_ / "out/a");
+  for (const char* n : {"a", "b", "c"}) {
+    const auto p = presented(dir_ / "out" / n);
+    expect_show_goes_on(p, p.back().frame, 10.0, 1, n);
+    expect_same_states(a, p, n);
+  }
+  std::printf("[ measured ] every node presented again %.1f s after SIGSTOP of the master (silence limit 10 s, "
+              "attempt limits 2 s (standby) and 3 s (nodes))\n",
+              takeover_s);
+  EXPECT_GT(takeover_s, 10.0) << "not before the silence limit";
+  EXPECT_LT(takeover_s, 30.0);
+  const std::string log = read_text(dir_ / "standby.log");
+  EXPECT_NE(log.find("past its silence limit of 10 s"), std::string::npos) << log;
+  EXPECT_NE(log.find("the active master is gone"), std::string::npos) << log;
+  EXPECT_NE(log.find("no Welcome within 2.0 s"), std::string::npos) << log;
+}
+
 TEST_F(ClusterProcess, StandbyTakingOverAShowContinuesItsShowTime) {
   // A show file (2.5 s at 5 fps, looping: 14 frames a loop, 0, 0.2, …, 2.4,
   // 2.5) on master and standby: after the kill the standby's clock goes on
@@ -643,11 +692,7 @@ TEST_F(ClusterProcess, StandbyTakingOverAShowContinuesItsShowTime) {
   kill(master.pid, SIGKILL);
   ASSERT_EQ(wait_exit(master, 5s), std::optional<int>(128 + SIGKILL));
   const std::uint64_t killed_at = presented(dir_ / "out/a").back().frame;
-  ASSERT_TRUE(wait_until([&] {
-    for (const char* n : {"a", "b", "c"})
-      if (presented(dir_ / "out" / n).back().frame < killed_at + 16) return false;
-    return true;
-  }, 60s)) << logs();
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(killed_at + 16); }, 60s)) << logs();
   kill(standby.pid, SIGTERM);
   ASSERT_EQ(wait_exit(standby, 30s), std::optional<int>(0)) << logs();
   const auto a = presented(dir_ / "out/a");
