@@ -29,6 +29,7 @@
 #include "cluster/handshake.h"
 #include "cluster/master.h"
 #include "cluster/node.h"
+#include "cluster/standby.h"
 #include "show/show.h"
 #include "core/json_reader.h"
 #include "image/image_io.h"
@@ -189,11 +190,13 @@ struct MasterArgs {
   double sun_step_deg = 0.1;
   std::uint32_t wait_for_nodes_ms = 30000;
   bool cpu_precompute = false;
+  bool standby = false;               ///< run the config's standby master instead
   std::vector<std::string> switches;  ///< --switch-atmosphere FRAME:BODY:PRESET_OR_FILE
   std::uint32_t debug_table_delay_ms = 0;
 };
 
-void run_master(const MasterArgs& a) {
+/// Runs the master, or with --standby the standby master; returns the exit code.
+int run_master(const MasterArgs& a) {
   cluster::MasterOptions options;
   a.playback.apply(options);
   a.operator_console.apply(options);
@@ -207,9 +210,13 @@ void run_master(const MasterArgs& a) {
   options.debug_table_delay_ms = a.debug_table_delay_ms;
   for (const std::string& text : a.switches) options.atmosphere_switches.push_back(parse_atmosphere_switch(text));
   cluster::SharedSecret secret = load_secret(options.config);
-  spdlog::info("master: shared secret from {}", secret.source());
+  spdlog::info("{}: shared secret from {}", a.standby ? "standby" : "master", secret.source());
+  if (a.standby) {
+    cluster::Standby standby(cluster::StandbyOptions{std::move(options)}, std::move(secret));
+    return standby.run();
+  }
   cluster::Master master(std::move(options), std::move(secret));
-  master.run();
+  return master.run();
 }
 
 // ---------------------------------------------------------------------------
@@ -269,7 +276,7 @@ std::string describe_exit(int status) {
   return fmt::format("exit status {}", status);
 }
 
-/// A node process of the local cluster and its restarts.
+/// A node process of the local cluster (or its standby master) and its restarts.
 struct LocalNode {
   std::string name;
   std::vector<std::string> args;
@@ -358,8 +365,25 @@ void run_cluster(const ClusterArgs& a) {
   if (!a.cache_dir.empty()) master_args.insert(master_args.end(), {"--cache", a.cache_dir});
   // Nodes need no atmosphere files: the master sends each version's parameters (AtmosphereDefinition).
   for (const std::string& text : a.switches) master_args.insert(master_args.end(), {"--switch-atmosphere", text});
-  const pid_t master = spawn_self(master_args);
+  pid_t master = spawn_self(master_args);
   spdlog::info("cluster: master started (pid {})", master);
+  // The standby master, when the config has one on this machine: the master's
+  // arguments but the recording (one file, the active master's).
+  std::optional<LocalNode> standby;
+  if (config.standby && is_local_host(config.standby->host)) {
+    std::vector<std::string> args = master_args;
+    const auto record = std::find(args.begin(), args.end(), "--record");
+    if (record != args.end()) args.erase(record, record + 2);
+    args.insert(std::find(args.begin(), args.end(), "master") + 1, "--standby");
+    const pid_t pid = spawn_self(args);
+    standby = LocalNode{"standby", std::move(args), pid, std::nullopt,
+                        RestartLimit(a.max_restarts, std::chrono::milliseconds(std::llround(a.restart_window_s * 1000.0)))};
+    spdlog::info("cluster: standby master started (pid {}; it takes over on {} if the master dies)", pid,
+                 config.standby->text());
+  } else if (config.standby) {
+    spdlog::info("cluster: the standby master runs on {}: start it there with `zenith master --standby --cluster {}`",
+                 config.standby->host, config_path);
+  }
 
   std::vector<LocalNode> nodes;
   for (const auto& node : config.nodes) {
@@ -388,8 +412,30 @@ void run_cluster(const ClusterArgs& a) {
   int status = -1;
   for (;;) {
     if (auto s = wait_for(master, std::chrono::milliseconds(200))) {
+      // Killed (a crash, kill -9): the standby takes over and is the master
+      // now. A master that exits with an error status reported it (a bad
+      // option, a port in use): the cluster ends as without a standby.
+      if (*s > 128 && standby && !standby->status) {
+        spdlog::warn("cluster: the master died ({}): the standby master (pid {}) takes over", describe_exit(*s),
+                     standby->pid);
+        master = standby->pid;
+        standby.reset();
+        continue;
+      }
       status = *s;
       break;
+    }
+    if (standby && !standby->status) {
+      if (const std::optional<int> ended = wait_for(standby->pid, std::chrono::milliseconds(0))) {
+        if (a.restart_nodes && RestartLimit::died(*ended) && standby->limit.allow(Clock::now())) {
+          standby->pid = spawn_self(standby->args);
+          spdlog::warn("cluster: the standby master died ({}): restarted it (pid {}); it follows the master again",
+                       describe_exit(*ended), standby->pid);
+        } else {
+          standby->status = ended;
+          spdlog::warn("cluster: the standby master ended ({}): no takeover if the master dies", describe_exit(*ended));
+        }
+      }
     }
     for (LocalNode& n : nodes) {
       if (n.status) continue;
@@ -414,10 +460,18 @@ void run_cluster(const ClusterArgs& a) {
       spdlog::error("cluster: every local node has exited; stopping the master");
       ::kill(master, SIGTERM);
       stop_child(master, "the master", std::chrono::milliseconds(5000));
+      if (standby && !standby->status) {
+        ::kill(standby->pid, SIGTERM);
+        stop_child(standby->pid, "the standby master", std::chrono::milliseconds(5000));
+      }
       throw std::runtime_error("the nodes exited before the show ended (see their log lines above)");
     }
   }
-  // The master's Goodbye ends the nodes; stop any that linger.
+  // The master's Goodbye ends the nodes and the standby; stop any that linger.
+  if (standby && !standby->status) {
+    if (status != 0) ::kill(standby->pid, SIGTERM);
+    stop_child(standby->pid, "the standby master", std::chrono::milliseconds(5000));
+  }
   int failed_nodes = 0;
   for (const LocalNode& n : nodes) {
     const int exit_status =
@@ -462,7 +516,13 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--debug-table-delay-ms", a->debug_table_delay_ms,
                     "Test hook: every table set prepared in the background after the first takes this much longer "
                     "(plays a slow precompute)");
-    cmd->callback([a] { run_master(*a); });
+    cmd->add_flag("--standby", a->standby,
+                  "Run the config's standby master: follow the master, take over on the standby's address when it "
+                  "is gone (give it the master's options; docs/cluster.md, \"Standby master\")");
+    cmd->callback([a] {
+      const int code = run_master(*a);
+      if (code != 0) std::exit(code);  // a standby's NodeExit code (docs/cluster.md)
+    });
   }
   {
     auto a = std::make_shared<NodeArgs>();

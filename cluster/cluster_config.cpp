@@ -71,6 +71,17 @@ void read_secret(JsonReader& s, const json& v, const fs::path& base_dir, Cluster
   s.finish();
 }
 
+/// {"host": …, "port": …} of the active master or the standby.
+MasterAddress read_address(JsonReader& m) {
+  MasterAddress address;
+  address.host = m.string("host");
+  if (address.host.empty() || address.host.size() > 253)
+    m.fail("host", cat("= \"", address.host, "\": must be a host name or address"));
+  address.port = static_cast<std::uint16_t>(m.integer("port", 1, 65535));
+  m.finish();
+  return address;
+}
+
 ClusterNodeConfig read_node(JsonReader& n) {
   ClusterNodeConfig node;
   node.name = checked_name(n, "name", "a node name");
@@ -89,6 +100,12 @@ ClusterNodeConfig read_node(JsonReader& n) {
 
 }  // namespace
 
+std::string MasterAddress::text() const { return cat(host, ":", port); }
+
+std::string standby_name(const MasterAddress& standby) {
+  return cat("standby@", standby.text()).substr(0, kMaxNameLength);
+}
+
 const ClusterNodeConfig* ClusterConfig::find_node(const std::string& node_name) const {
   for (const auto& n : nodes)
     if (n.name == node_name) return &n;
@@ -106,10 +123,16 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
   if (r.has("description")) r.string("description");
 
   JsonReader m = child(r, "master");
-  c.master_host = m.string("host");
-  if (c.master_host.empty()) m.fail("host", "= \"\": must be a host name or address");
-  c.master_port = static_cast<std::uint16_t>(m.integer("port", 1, 65535));
-  m.finish();
+  const MasterAddress master = read_address(m);
+  c.master_host = master.host;
+  c.master_port = master.port;
+  if (r.has("standby")) {
+    JsonReader s = child(r, "standby");
+    c.standby = read_address(s);
+    if (*c.standby == master)
+      r.fail("standby/port", cat("= ", master.port, ": the standby must listen on another address than the master (",
+                                 "/master is ", master.text(), ")"));
+  }
 
   c.scene = r.existing_file("scene", base_dir);
   c.viewports = r.existing_file("viewports", base_dir);

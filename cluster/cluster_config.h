@@ -8,6 +8,7 @@
 //     "zenith_cluster": 1,
 //     "name": "local-dome",
 //     "master": {"host": "127.0.0.1", "port": 47100},
+//     "standby": {"host": "127.0.0.1", "port": 47101},      optional: a standby master (docs/cluster.md, "Standby master")
 //     "scene": "../scenes/earth-sunset.json",              relative to this file
 //     "viewports": "../viewports/dome-quadrants.json",     relative to this file
 //     "timing": {"heartbeat_ms": 250, "barrier_timeout_ms": 5000, "frame_rate_hz": 10,
@@ -42,6 +43,20 @@ inline constexpr std::uint32_t kDefaultReconnectMs = 300000;
 /// The largest timing.reconnect_s (and `zenith node --reconnect-s`): a day.
 inline constexpr double kMaxReconnectS = 86400.0;
 
+/// Where a master listens and nodes connect: the active master or the standby.
+struct MasterAddress {
+  std::string host;        ///< a host name or address
+  std::uint16_t port = 0;  ///< TCP port, in [1, 65535]
+  /// "host:port", for logs.
+  std::string text() const;
+  bool operator==(const MasterAddress&) const = default;
+};
+
+/// The name a standby master listening at `standby` gives in its Hello:
+/// "standby@HOST:PORT" (at most 64 bytes). '@' and ':' are not allowed in node
+/// names, so it never names a node.
+std::string standby_name(const MasterAddress& standby);
+
 /// One render node: a process on `host` rendering `outputs` (names of outputs
 /// of the viewport config).
 struct ClusterNodeConfig {
@@ -55,6 +70,9 @@ struct ClusterConfig {
   std::string source;                ///< the file it came from (messages)
   std::string master_host;           ///< where nodes connect (the master listens on it)
   std::uint16_t master_port = 0;     ///< TCP port, in [1, 65535]
+  /// The standby master ("standby"): it follows the active master and takes
+  /// over when that one is gone; nodes try the active master, then it.
+  std::optional<MasterAddress> standby;
   std::filesystem::path scene;       ///< resolved against the config's folder
   std::filesystem::path viewports;   ///< resolved against the config's folder
   std::uint32_t heartbeat_ms = 250;         ///< each side sends a Heartbeat at least this often; 3× silent = gone
@@ -73,6 +91,8 @@ struct ClusterConfig {
   std::filesystem::path output_directory = "out/cluster";  ///< relative: to the working directory
   std::string output_format = "png";                       ///< "png" or "exr"
 
+  /// The active master's address (master_host, master_port).
+  MasterAddress master_address() const { return {master_host, master_port}; }
   /// The node with that name; nullptr when none.
   const ClusterNodeConfig* find_node(const std::string& node_name) const;
 };

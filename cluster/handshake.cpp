@@ -38,6 +38,12 @@ std::vector<std::uint8_t> mac_input(const char* label, std::string_view cluster_
   return out;
 }
 
+/// The MAC labels of each role: distinct, so no MAC serves another role or direction.
+const char* peer_label(PeerRole role) { return role == PeerRole::standby ? "zenith standby v1" : "zenith node v1"; }
+const char* master_label(PeerRole role) {
+  return role == PeerRole::standby ? "zenith master to standby v1" : "zenith master v1";
+}
+
 }  // namespace
 
 SharedSecret::SharedSecret(std::vector<std::uint8_t> bytes, std::string source)
@@ -118,32 +124,32 @@ Nonce random_nonce() {
 }
 
 std::vector<std::uint8_t> node_mac_input(std::string_view cluster_name, std::string_view node_name,
-                                         const Nonce& master_nonce, const Nonce& node_nonce) {
-  return mac_input("zenith node v1", cluster_name, node_name, master_nonce, node_nonce);
+                                         const Nonce& master_nonce, const Nonce& node_nonce, PeerRole role) {
+  return mac_input(peer_label(role), cluster_name, node_name, master_nonce, node_nonce);
 }
 std::vector<std::uint8_t> master_mac_input(std::string_view cluster_name, std::string_view node_name,
-                                           const Nonce& node_nonce, const Nonce& master_nonce) {
-  return mac_input("zenith master v1", cluster_name, node_name, node_nonce, master_nonce);
+                                           const Nonce& node_nonce, const Nonce& master_nonce, PeerRole role) {
+  return mac_input(master_label(role), cluster_name, node_name, node_nonce, master_nonce);
 }
 Digest node_mac(const SharedSecret& secret, std::string_view cluster_name, std::string_view node_name,
-                const Nonce& master_nonce, const Nonce& node_nonce) {
-  return hmac_sha256(secret.bytes(), node_mac_input(cluster_name, node_name, master_nonce, node_nonce));
+                const Nonce& master_nonce, const Nonce& node_nonce, PeerRole role) {
+  return hmac_sha256(secret.bytes(), node_mac_input(cluster_name, node_name, master_nonce, node_nonce, role));
 }
 Digest master_mac(const SharedSecret& secret, std::string_view cluster_name, std::string_view node_name,
-                  const Nonce& node_nonce, const Nonce& master_nonce) {
-  return hmac_sha256(secret.bytes(), master_mac_input(cluster_name, node_name, node_nonce, master_nonce));
+                  const Nonce& node_nonce, const Nonce& master_nonce, PeerRole role) {
+  return hmac_sha256(secret.bytes(), master_mac_input(cluster_name, node_name, node_nonce, master_nonce, role));
 }
 
 // ---- node ------------------------------------------------------------------------
 
-NodeHandshake::NodeHandshake(SharedSecret secret, std::string cluster_name, std::string node_name)
-    : secret_(std::move(secret)), cluster_name_(std::move(cluster_name)), node_name_(std::move(node_name)) {}
+NodeHandshake::NodeHandshake(SharedSecret secret, std::string cluster_name, std::string node_name, PeerRole role)
+    : secret_(std::move(secret)), cluster_name_(std::move(cluster_name)), node_name_(std::move(node_name)), role_(role) {}
 
 Hello NodeHandshake::start() {
   if (state_ != State::initial) throw std::logic_error("NodeHandshake::start called twice");
   node_nonce_ = random_nonce();
   state_ = State::hello_sent;
-  return Hello{kProtocolVersion, cluster_name_, node_name_, node_nonce_};
+  return Hello{kProtocolVersion, cluster_name_, node_name_, node_nonce_, role_};
 }
 
 Authenticate NodeHandshake::on_challenge(const Challenge& challenge) {
@@ -151,13 +157,13 @@ Authenticate NodeHandshake::on_challenge(const Challenge& challenge) {
     throw HandshakeError(RejectReason::protocol_error, "handshake: unexpected Challenge from the master");
   master_nonce_ = challenge.master_nonce;
   state_ = State::authenticate_sent;
-  return Authenticate{node_mac(secret_, cluster_name_, node_name_, master_nonce_, node_nonce_)};
+  return Authenticate{node_mac(secret_, cluster_name_, node_name_, master_nonce_, node_nonce_, role_)};
 }
 
 void NodeHandshake::on_welcome(const Welcome& welcome) {
   if (state_ != State::authenticate_sent)
     throw HandshakeError(RejectReason::protocol_error, "handshake: unexpected Welcome from the master");
-  const Digest expected = master_mac(secret_, cluster_name_, node_name_, node_nonce_, master_nonce_);
+  const Digest expected = master_mac(secret_, cluster_name_, node_name_, node_nonce_, master_nonce_, role_);
   if (!digests_equal(expected, welcome.master_mac))
     throw HandshakeError(RejectReason::authentication_failed,
                          "handshake: the master's MAC is wrong (it does not hold the shared secret from " +
@@ -174,13 +180,16 @@ Challenge MasterHandshake::on_hello(const Hello& hello) {
   if (state_ != State::initial) throw HandshakeError(RejectReason::protocol_error, "handshake: second Hello");
   if (hello.protocol_version != kProtocolVersion)
     throw HandshakeError(RejectReason::unsupported_version,
-                         "handshake: node '" + hello.node_name + "' speaks protocol version " +
+                         std::string("handshake: ") + to_string(hello.role) + " '" + hello.node_name +
+                             "' speaks protocol version " +
                              std::to_string(hello.protocol_version) + ", this master " +
                              std::to_string(kProtocolVersion));
   if (hello.cluster_name != cluster_name_)
-    throw HandshakeError(RejectReason::wrong_cluster, "handshake: node '" + hello.node_name + "' wants cluster '" +
-                                                          hello.cluster_name + "', this is '" + cluster_name_ + "'");
+    throw HandshakeError(RejectReason::wrong_cluster, std::string("handshake: ") + to_string(hello.role) + " '" +
+                                                          hello.node_name + "' wants cluster '" + hello.cluster_name +
+                                                          "', this is '" + cluster_name_ + "'");
   node_name_ = hello.node_name;
+  role_ = hello.role;
   node_nonce_ = hello.node_nonce;
   master_nonce_ = random_nonce();
   state_ = State::challenge_sent;
@@ -190,17 +199,18 @@ Challenge MasterHandshake::on_hello(const Hello& hello) {
 void MasterHandshake::on_authenticate(const Authenticate& authenticate) {
   if (state_ != State::challenge_sent)
     throw HandshakeError(RejectReason::protocol_error, "handshake: unexpected Authenticate");
-  const Digest expected = node_mac(secret_, cluster_name_, node_name_, master_nonce_, node_nonce_);
+  const Digest expected = node_mac(secret_, cluster_name_, node_name_, master_nonce_, node_nonce_, role_);
   if (!digests_equal(expected, authenticate.node_mac))
-    throw HandshakeError(RejectReason::authentication_failed,
-                         "handshake: node '" + node_name_ + "' failed authentication (wrong shared secret)");
+    throw HandshakeError(RejectReason::authentication_failed, std::string("handshake: ") + to_string(role_) + " '" +
+                                                                  node_name_ +
+                                                                  "' failed authentication (wrong shared secret)");
   state_ = State::done;
 }
 
 Welcome MasterHandshake::welcome(std::uint32_t node_id, std::uint64_t current_frame,
                                  std::uint32_t heartbeat_interval_ms, std::uint32_t barrier_timeout_ms) const {
   if (state_ != State::done) throw std::logic_error("MasterHandshake::welcome before the node authenticated");
-  return Welcome{node_id, master_mac(secret_, cluster_name_, node_name_, node_nonce_, master_nonce_), current_frame,
+  return Welcome{node_id, master_mac(secret_, cluster_name_, node_name_, node_nonce_, master_nonce_, role_), current_frame,
                  heartbeat_interval_ms, barrier_timeout_ms};
 }
 

@@ -12,7 +12,10 @@
 //   node_mac   = HMAC(secret, str("zenith node v1")   ‖ str(cluster) ‖ str(node) ‖ Nm ‖ Nn)
 //   master_mac = HMAC(secret, str("zenith master v1") ‖ str(cluster) ‖ str(node) ‖ Nn ‖ Nm)
 //
-// where str(s) is a big-endian u16 byte count followed by the bytes. Both
+// where str(s) is a big-endian u16 byte count followed by the bytes. A standby
+// master (Hello.role = standby) uses the labels "zenith standby v1" and
+// "zenith master to standby v1" instead, so a MAC of one role never serves
+// the other and the role in the Hello is authenticated with the secret. Both
 // nonces are fresh 32-byte RAND_bytes values, so neither MAC can be replayed,
 // and the different labels keep one side's MAC from ever serving as the other's.
 // The secret never travels.
@@ -71,15 +74,19 @@ bool digests_equal(const Digest& a, const Digest& b);
 /// 32 bytes from RAND_bytes; throws std::runtime_error if the CSPRNG fails.
 Nonce random_nonce();
 
-/// The exact bytes the MACs cover (exposed for tests and docs).
+/// The exact bytes the MACs cover (exposed for tests and docs); the label depends on the connecting peer's role.
 std::vector<std::uint8_t> node_mac_input(std::string_view cluster_name, std::string_view node_name,
-                                         const Nonce& master_nonce, const Nonce& node_nonce);
+                                         const Nonce& master_nonce, const Nonce& node_nonce,
+                                         PeerRole role = PeerRole::node);
 std::vector<std::uint8_t> master_mac_input(std::string_view cluster_name, std::string_view node_name,
-                                           const Nonce& node_nonce, const Nonce& master_nonce);
+                                           const Nonce& node_nonce, const Nonce& master_nonce,
+                                           PeerRole role = PeerRole::node);
+/// The connecting peer's proof (a node's, or a standby's with `role` standby).
 Digest node_mac(const SharedSecret& secret, std::string_view cluster_name, std::string_view node_name,
-                const Nonce& master_nonce, const Nonce& node_nonce);
+                const Nonce& master_nonce, const Nonce& node_nonce, PeerRole role = PeerRole::node);
+/// The master's proof to a peer of `role`.
 Digest master_mac(const SharedSecret& secret, std::string_view cluster_name, std::string_view node_name,
-                  const Nonce& node_nonce, const Nonce& master_nonce);
+                  const Nonce& node_nonce, const Nonce& master_nonce, PeerRole role = PeerRole::node);
 
 /// The handshake failed: the connection is refused (master: send Reject with
 /// `reason()`, then close; node: send Goodbye, then close) and logged.
@@ -92,11 +99,12 @@ class HandshakeError : public std::runtime_error {
   RejectReason reason_;
 };
 
-/// The node's side: start() → Hello; on Challenge → Authenticate; on Welcome →
-/// verify the master. Not thread-safe; one per connection.
+/// The connecting side (a node, or a standby master with `role` standby):
+/// start() → Hello; on Challenge → Authenticate; on Welcome → verify the
+/// master. Not thread-safe; one per connection.
 class NodeHandshake {
  public:
-  NodeHandshake(SharedSecret secret, std::string cluster_name, std::string node_name);
+  NodeHandshake(SharedSecret secret, std::string cluster_name, std::string node_name, PeerRole role = PeerRole::node);
   Hello start();
   Authenticate on_challenge(const Challenge& challenge);
   /// Throws HandshakeError(authentication_failed) when the master's MAC is
@@ -108,6 +116,7 @@ class NodeHandshake {
   enum class State { initial, hello_sent, authenticate_sent, done };
   SharedSecret secret_;
   std::string cluster_name_, node_name_;
+  PeerRole role_;
   Nonce node_nonce_{}, master_nonce_{};
   State state_ = State::initial;
 };
@@ -128,11 +137,14 @@ class MasterHandshake {
   bool authenticated() const { return state_ == State::done; }
   /// The node's name from its Hello (empty before).
   const std::string& node_name() const { return node_name_; }
+  /// The peer's role from its Hello (node before).
+  PeerRole role() const { return role_; }
 
  private:
   enum class State { initial, challenge_sent, done };
   SharedSecret secret_;
   std::string cluster_name_, node_name_;
+  PeerRole role_ = PeerRole::node;
   Nonce node_nonce_{}, master_nonce_{};
   State state_ = State::initial;
 };

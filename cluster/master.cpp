@@ -38,6 +38,7 @@
 #include "cluster/master/osc_receiver.h"
 #include "cluster/master/show_start_rule.h"
 #include "cluster/master/sun_override.h"
+#include "cluster/master/takeover.h"
 #include "cluster/master/table_preparer.h"
 #include "cluster/master/table_versions.h"
 #include "show/playback_clock.h"
@@ -230,8 +231,9 @@ struct Master::Impl {
     for (const show::TablePlanEntry& entry : plan.sets) {
       tables.add_version(entry.version.body, entry.version.loaded, entry.version.table_hash);
       show_sets.push_back(entry.version.table_hash);
-      schedule.push_back({entry.version.table_hash, entry.first_frame, entry.cached, false});
-      preparer.enqueue(preparation_job(entry.version.body, entry.version.loaded.model));
+      const bool held = tables.has_set(entry.version.table_hash);  // a standby's, from the active master
+      schedule.push_back({entry.version.table_hash, entry.first_frame, entry.cached, held});
+      if (!held) preparer.enqueue(preparation_job(entry.version.body, entry.version.loaded.model));
     }
     tables.use_show_sets(std::move(show_sets), show->state_at(0.0, 0, render_flags).atmospheres);
     show_start.emplace(std::move(schedule), fps, options.paced);
@@ -304,6 +306,33 @@ struct Master::Impl {
     maybe_start_switch();
   }
 
+  /// A standby taking over (docs/cluster.md, "Standby master"): the table
+  /// versions the active master distributed instead of preparing them, and the
+  /// show from the frame after the last one it sent, its show time going on
+  /// at the same step (the operator's exposure kept).
+  void adopt_takeover() {
+    const TakeoverState& t = *options.takeover;
+    adopt_takeover_tables(t, scene, tables, !show);
+    if (show) prepare_show_tables(table_request());  // the sets not received are prepared as at the start
+    const FrameState& last = *t.last_frame;
+    const Continuation c = continuation_of(
+        t, show ? show->state_at(last.show_time_s, last.frame, render_flags)
+                : default_show_frame(scene, last.frame, options.sun_step_deg, tables.current(), render_flags),
+        fps);
+    barrier.start_at(c.next_frame);
+    exposure_override = c.exposure;
+    if (clock) continue_clock(c, *clock);
+    for (const std::string& what : c.mismatches)
+      spdlog::warn("master: taking over: the {} of frame {} differs from this standby's show (are its scene, show "
+                   "and --sun-step-deg the active master's?): the picture jumps at the takeover",
+                   what, last.frame);
+    spdlog::info("master: taking over the show at frame {} (the active master's last was frame {}, show time {:.3f} s, "
+                 "{}) with the {} table version{} it distributed",
+                 c.next_frame, last.frame, last.show_time_s,
+                 t.frame_in_flight() ? "in flight, not seen presented" : "presented", t.versions.size(),
+                 t.versions.size() == 1 ? "" : "s");
+  }
+
   // ---- table versions -------------------------------------------------------
 
   /// Sends one set: the whole transfer, or only its TableAnnounce when the
@@ -328,14 +357,14 @@ struct Master::Impl {
       cached += s.cached.count(h);
       send_table_set(s, tables.set(h));
     }
-    spdlog::info("master: node '{}' holds {} of its {} table set{} in its cache: sent {} table chunk{}", s.name, cached,
-                 wanted.size(), wanted.size() == 1 ? "" : "s", s.chunks_sent - chunks_before,
+    spdlog::info("master: {} '{}' holds {} of its {} table set{} in its cache: sent {} table chunk{}", to_string(s.role),
+                 s.name, cached, wanted.size(), wanted.size() == 1 ? "" : "s", s.chunks_sent - chunks_before,
                  s.chunks_sent - chunks_before == 1 ? "" : "s");
     maybe_become_ready(s);
   }
 
   void maybe_become_ready(NodeSession& s) {
-    if (s.state != NodeSession::State::tables || !s.inventory_done) return;
+    if (s.state != NodeSession::State::tables || !s.inventory_done || s.role != PeerRole::node) return;
     if (tables.ready_with(s.tables_ready)) become_ready(s);
   }
 
@@ -568,7 +597,23 @@ struct Master::Impl {
     maybe_start_show();
   }
 
+  /// A standby master past its handshake (docs/cluster.md, "Standby master"):
+  /// its first Heartbeat ends an empty inventory, so it is sent every set a
+  /// node would be, then every new set, FrameState and Present. It sends only
+  /// Heartbeats and Goodbye, and never joins the barrier.
+  void on_standby_message(NodeSession& s, const Message& message) {
+    if (std::holds_alternative<Heartbeat>(message)) {
+      if (!s.inventory_done) finish_inventory(s);
+    } else if (const auto* goodbye = std::get_if<Goodbye>(&message)) {
+      spdlog::info("master: the standby said goodbye: {}", goodbye->reason);
+      s.connection->close(cat("Goodbye: ", goodbye->reason));
+    } else {
+      s.close_for_protocol_violation(cat(to_string(message_type(message)), " is not sent by a standby master"));
+    }
+  }
+
   void on_running_message(NodeSession& s, const Message& message) {
+    if (s.role == PeerRole::standby) return on_standby_message(s, message);
     if (!s.inventory_done) {
       if (const auto* held = std::get_if<TableReady>(&message)) {
         s.cached.insert(held->table_hash);  // any set, even one this show does not use
@@ -611,7 +656,7 @@ struct Master::Impl {
 
   void maybe_start_show() {
     if (started || stopping) return;
-    if (show_start && !show_start->may_start()) return;
+    if (show_start && !show_start->may_start() && !options.takeover) return;
     if (!waiting_since) waiting_since = Clock::now();
     const std::size_t ready = sessions.ready_count();
     const bool waited = ms_since(*waiting_since) >= options.wait_for_nodes_ms;
@@ -691,6 +736,7 @@ struct Master::Impl {
       for (const std::uint32_t id : participants) sessions.find(id)->connection->send_encoded(request);
     }
     for (const std::uint32_t id : participants) sessions.find(id)->connection->send_encoded(encoded);
+    sessions.send_to_standbys(encoded);
     barrier.begin(frame, participants);
     frame_started = Clock::now();
     spdlog::debug("master: frame {} sent to {} node{}", frame, participants.size(), participants.size() == 1 ? "" : "s");
@@ -780,6 +826,7 @@ struct Master::Impl {
     auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(present));
     for (const std::uint32_t id : release.present_to)
       if (NodeSession* s = sessions.find(id)) s->connection->send_encoded(encoded);
+    sessions.send_to_standbys(encoded);
     spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, release.present_to.size(),
                  release.present_to.size() == 1 ? "" : "s", ms_since(frame_started));
     if (recorder) {
@@ -1146,7 +1193,8 @@ struct Master::Impl {
     acceptor.listen();
     start_operator_console();
     for (const AtmosphereSwitch& sw : options.atmosphere_switches) resolve_switch(sw);  // fail before any precompute
-    prepare_tables();
+    if (options.takeover && options.takeover->last_frame) adopt_takeover();
+    else prepare_tables();
     spdlog::info("master: cluster '{}' listening on {}:{} for {} node{} (heartbeat {} ms, barrier timeout {} ms, {} Hz)",
                  options.config.name, options.config.master_host, port, options.config.nodes.size(),
                  options.config.nodes.size() == 1 ? "" : "s", options.config.heartbeat_ms,

@@ -28,6 +28,7 @@
 #include "cluster/cluster_config.h"
 #include "cluster/frame_feed.h"
 #include "cluster/handshake.h"
+#include "cluster/standby/takeover_state.h"
 
 namespace zenith::cluster {
 
@@ -95,6 +96,13 @@ struct MasterOptions {
   /// Test hook (`--debug-table-delay-ms`): every table set prepared in the
   /// background after the first takes this much longer (plays a slow precompute).
   std::uint32_t debug_table_delay_ms = 0;
+  /// A standby master taking over (docs/cluster.md, "Standby master"; set by
+  /// cluster/standby.h, not on the command line): with a last frame, the
+  /// active master's table versions are used instead of prepared (a show's
+  /// sets not received are prepared as at the start) and the show continues
+  /// from the frame after the last one it sent, at the same show-time step,
+  /// as soon as every configured node is ready (or wait_for_nodes_ms passed).
+  std::shared_ptr<const TakeoverState> takeover;
 };
 
 class Master {

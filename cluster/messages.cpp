@@ -16,7 +16,7 @@ namespace {
 constexpr std::size_t kStringMax(std::size_t max_bytes) { return 2 + max_bytes; }
 constexpr std::size_t kDigestBytes = 32;
 
-constexpr std::size_t kHelloMax = 2 + kStringMax(kMaxNameBytes) * 2 + kDigestBytes;
+constexpr std::size_t kHelloMax = 2 + kStringMax(kMaxNameBytes) * 2 + kDigestBytes + 1;
 constexpr std::size_t kWelcomeMax = 4 + kDigestBytes + 8 + 4 + 4;
 constexpr std::size_t kRejectMax = 2 + kStringMax(kMaxReasonBytes);
 constexpr std::size_t kAtmosphereRefMax = kStringMax(kMaxNameBytes) + kDigestBytes + 8;
@@ -51,6 +51,8 @@ void validate(const Hello& m, const Check& check) {
                                                     ", this build speaks " + std::to_string(kProtocolVersion));
   check(!m.cluster_name.empty(), "Hello.cluster_name: empty");
   check(!m.node_name.empty(), "Hello.node_name: empty");
+  check(m.role == PeerRole::node || m.role == PeerRole::standby,
+        "Hello.role: " + std::to_string(static_cast<int>(m.role)) + ", must be 0 (node) or 1 (standby)");
 }
 void validate(const FrameState& m, const Check& check) {
   const auto finite = [&](double v, const char* field) {
@@ -126,6 +128,7 @@ void write(ByteWriter& w, const Hello& m) {
   w.string(m.cluster_name, kMaxNameBytes, "Hello.cluster_name");
   w.string(m.node_name, kMaxNameBytes, "Hello.node_name");
   w.bytes(m.node_nonce);
+  w.u8(static_cast<std::uint8_t>(m.role));
 }
 void write(ByteWriter& w, const Challenge& m) { w.bytes(m.master_nonce); }
 void write(ByteWriter& w, const Authenticate& m) { w.bytes(m.node_mac); }
@@ -212,6 +215,7 @@ Hello read_hello(ByteReader& r) {
   m.cluster_name = r.string(kMaxNameBytes, "Hello.cluster_name");
   m.node_name = r.string(kMaxNameBytes, "Hello.node_name");
   m.node_nonce = r.array<32>("Hello.node_nonce");
+  m.role = static_cast<PeerRole>(r.u8("Hello.role"));
   return m;
 }
 Welcome read_welcome(ByteReader& r) {
@@ -366,6 +370,14 @@ void put_be32(std::uint8_t* p, std::uint32_t v) {
 }  // namespace
 
 std::string short_hex(const Digest& digest) { return to_hex(digest).substr(0, 12) + "…"; }
+
+const char* to_string(PeerRole role) {
+  switch (role) {
+    case PeerRole::node: return "node";
+    case PeerRole::standby: return "standby";
+  }
+  return "unknown role";
+}
 
 const char* to_string(MessageType type) {
   switch (type) {

@@ -85,12 +85,21 @@ std::optional<std::size_t> max_payload_bytes(std::uint16_t type_value);
 
 // ---- handshake -------------------------------------------------------------
 
+/// What the peer that opens a connection is to the master (Hello.role; docs/protocol.md, "Roles").
+enum class PeerRole : std::uint8_t {
+  node = 0,     ///< a render node: takes part in the frame barrier
+  standby = 1,  ///< a standby master: follows every frame and table version, never renders
+};
+/// "node", "standby".
+const char* to_string(PeerRole role);
+
 /// Opens a connection. The node proves the shared secret in Authenticate.
 struct Hello {
   std::uint16_t protocol_version = kProtocolVersion;  ///< must equal the header's (and kProtocolVersion)
   std::string cluster_name;  ///< 1..kMaxNameBytes UTF-8 bytes; must match the master's
-  std::string node_name;     ///< 1..kMaxNameBytes UTF-8 bytes; unique in the cluster
+  std::string node_name;     ///< 1..kMaxNameBytes UTF-8 bytes; unique in the cluster (a standby: standby_name())
   Nonce node_nonce{};        ///< fresh random bytes
+  PeerRole role = PeerRole::node;  ///< 0 node, 1 standby; other values are malformed
   bool operator==(const Hello&) const = default;
 };
 struct Challenge {
@@ -120,6 +129,7 @@ enum class RejectReason : std::uint16_t {
   duplicate_node = 4,
   protocol_error = 5,
   shutting_down = 6,
+  wrong_role = 7,  ///< a standby the master has no place for (no standby configured, another standby's name)
 };
 struct Reject {
   RejectReason reason = RejectReason::unspecified;

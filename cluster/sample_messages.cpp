@@ -58,6 +58,8 @@ std::vector<Message> sample_messages() {
   thumbnail.rgb.resize(4 * 3 * 3);
   std::iota(thumbnail.rgb.begin(), thumbnail.rgb.end(), std::uint8_t{200});
   out.push_back(thumbnail);
+  out.push_back(Hello{kProtocolVersion, "dome-a", "standby@10.0.0.2:47101", pattern<32>(8), PeerRole::standby});
+  out.push_back(Reject{RejectReason::wrong_role, "the cluster config has no standby"});
   return out;
 }
 
@@ -67,7 +69,7 @@ std::vector<Message> max_size_messages() {
   std::string reason;
   while (reason.size() < kMaxReasonBytes) reason += "\xC3\xA9";
   std::vector<Message> out;
-  out.push_back(Hello{kProtocolVersion, name, name, pattern<32>(11)});
+  out.push_back(Hello{kProtocolVersion, name, name, pattern<32>(11), PeerRole::standby});
   out.push_back(Challenge{pattern<32>(12)});
   out.push_back(Authenticate{pattern<32>(13)});
   out.push_back(Welcome{0xFFFFFFFFu, pattern<32>(14), ~std::uint64_t{0}, 0xFFFFFFFFu, 0xFFFFFFFFu});

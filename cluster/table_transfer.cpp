@@ -18,6 +18,37 @@ using config::cat;
 
 Digest sha256(std::span<const std::uint8_t> bytes) { return core::sha256(bytes.data(), bytes.size()); }
 
+TableSetFile make_table_set(const std::string& body_name, const Digest& table_hash,
+                            std::shared_ptr<const std::vector<std::uint8_t>> bytes, std::uint32_t chunk_bytes) {
+  if (!bytes || bytes->empty() || bytes->size() > kMaxTableTotalBytes)
+    throw std::runtime_error(cat("table set ", short_hex(table_hash), ": ", bytes ? bytes->size() : 0,
+                                 " bytes: a table set must hold 1 to ", kMaxTableTotalBytes, " bytes"));
+  if (chunk_bytes == 0 || chunk_bytes > kMaxTableChunkBytes) throw std::invalid_argument("table chunk size out of range");
+  TableSetFile set;
+  set.body_name = body_name;
+  set.table_hash = table_hash;
+  set.content_sha256 = sha256(*bytes);
+  TableAnnounce announce;
+  announce.table_hash = table_hash;
+  announce.total_bytes = bytes->size();
+  announce.chunk_bytes = chunk_bytes;
+  announce.chunk_count = static_cast<std::uint32_t>((bytes->size() + chunk_bytes - 1) / chunk_bytes);
+  announce.content_sha256 = set.content_sha256;
+  set.frames.push_back(std::make_shared<const std::vector<std::uint8_t>>(encode(announce)));
+  for (std::uint32_t i = 0; i < announce.chunk_count; ++i) {
+    TableChunk chunk;
+    chunk.table_hash = table_hash;
+    chunk.index = i;
+    const std::size_t begin = std::size_t{i} * chunk_bytes;
+    const std::size_t end = std::min(bytes->size(), begin + chunk_bytes);
+    chunk.bytes.assign(bytes->begin() + static_cast<std::ptrdiff_t>(begin),
+                       bytes->begin() + static_cast<std::ptrdiff_t>(end));
+    set.frames.push_back(std::make_shared<const std::vector<std::uint8_t>>(encode(chunk)));
+  }
+  set.bytes = std::move(bytes);
+  return set;
+}
+
 TableSetFile make_table_set_file(const std::string& body_name, const Digest& table_hash,
                                  const std::filesystem::path& cache_file, std::uint32_t chunk_bytes) {
   std::ifstream in(cache_file, std::ios::binary);
@@ -26,29 +57,8 @@ TableSetFile make_table_set_file(const std::string& body_name, const Digest& tab
   if (bytes.empty() || bytes.size() > kMaxTableTotalBytes)
     throw std::runtime_error(cat(cache_file.string(), ": ", bytes.size(), " bytes: a table set must hold 1 to ",
                                  kMaxTableTotalBytes, " bytes"));
-  if (chunk_bytes == 0 || chunk_bytes > kMaxTableChunkBytes) throw std::invalid_argument("table chunk size out of range");
-  TableSetFile set;
-  set.body_name = body_name;
-  set.table_hash = table_hash;
-  set.content_sha256 = sha256(bytes);
-  TableAnnounce announce;
-  announce.table_hash = table_hash;
-  announce.total_bytes = bytes.size();
-  announce.chunk_bytes = chunk_bytes;
-  announce.chunk_count = static_cast<std::uint32_t>((bytes.size() + chunk_bytes - 1) / chunk_bytes);
-  announce.content_sha256 = set.content_sha256;
-  set.frames.push_back(std::make_shared<const std::vector<std::uint8_t>>(encode(announce)));
-  for (std::uint32_t i = 0; i < announce.chunk_count; ++i) {
-    TableChunk chunk;
-    chunk.table_hash = table_hash;
-    chunk.index = i;
-    const std::size_t begin = std::size_t{i} * chunk_bytes;
-    const std::size_t end = std::min(bytes.size(), begin + chunk_bytes);
-    chunk.bytes.assign(bytes.begin() + static_cast<std::ptrdiff_t>(begin), bytes.begin() + static_cast<std::ptrdiff_t>(end));
-    set.frames.push_back(std::make_shared<const std::vector<std::uint8_t>>(encode(chunk)));
-  }
-  set.bytes = std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes));
-  return set;
+  return make_table_set(body_name, table_hash, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes)),
+                        chunk_bytes);
 }
 
 void TableReceiver::on_announce(const TableAnnounce& announce) {

@@ -32,6 +32,13 @@ struct TableSetFile {
   std::vector<std::shared_ptr<const std::vector<std::uint8_t>>> frames;
 };
 
+/// Encodes the transfer of a table set held in memory (a standby's received
+/// sets). Throws std::runtime_error when `bytes` is empty or larger than
+/// kMaxTableTotalBytes, std::invalid_argument for a chunk size out of range.
+TableSetFile make_table_set(const std::string& body_name, const Digest& table_hash,
+                            std::shared_ptr<const std::vector<std::uint8_t>> bytes,
+                            std::uint32_t chunk_bytes = kTableChunkBytes);
+
 /// Reads `cache_file` and encodes its transfer. Throws std::runtime_error when
 /// the file cannot be read or is empty or larger than kMaxTableTotalBytes.
 TableSetFile make_table_set_file(const std::string& body_name, const Digest& table_hash,

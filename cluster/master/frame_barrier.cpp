@@ -1,8 +1,14 @@
 #include "cluster/master/frame_barrier.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace zenith::cluster {
+
+void FrameBarrier::start_at(std::uint64_t frame) {
+  if (in_flight_) throw std::logic_error("FrameBarrier::start_at with a frame in flight");
+  frame_ = frame;
+}
 
 std::vector<FrameBarrier::NodeId> FrameBarrier::participants_among(const std::vector<NodeId>& ready) const {
   std::vector<NodeId> participants;

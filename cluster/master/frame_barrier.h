@@ -46,6 +46,10 @@ class FrameBarrier {
   /// The participants of the frame in flight (all of them, done or not).
   std::size_t participant_count() const { return participants_.size(); }
 
+  /// Numbers the next frame `frame` instead of 0 (a standby master taking
+  /// over continues the active master's numbering). Precondition: no frame in flight.
+  void start_at(std::uint64_t frame);
+
   /// Of the nodes that are ready (tables held, connection open), those that
   /// take part in the next frame: every one that is not lagging, in order.
   std::vector<NodeId> participants_among(const std::vector<NodeId>& ready) const;

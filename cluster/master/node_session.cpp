@@ -9,6 +9,7 @@ namespace zenith::cluster {
 using config::cat;  // core/json_reader.h
 
 std::string NodeSession::who() const {
+  if (role == PeerRole::standby) return cat("the standby (", connection->peer(), ")");
   return name.empty() ? cat("connection from ", connection->peer()) : cat("node '", name, "' (", connection->peer(), ")");
 }
 

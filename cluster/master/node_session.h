@@ -28,6 +28,9 @@ struct NodeSession {
   std::optional<MasterHandshake> handshake;
   State state = State::handshake;
   std::string name;  ///< from Hello (empty before)
+  /// From Hello: a render node, or a standby master (docs/cluster.md, "Standby
+  /// master"), which is sent every table set and frame but never becomes ready.
+  PeerRole role = PeerRole::node;
   /// The node's cache inventory: the TableReady messages it sends right after
   /// Welcome, up to its first other message (a Heartbeat), name the sets it
   /// already holds; those are announced to it but never sent again.
@@ -37,7 +40,7 @@ struct NodeSession {
   std::uint64_t chunks_sent = 0;
   std::chrono::steady_clock::time_point connected_at = std::chrono::steady_clock::now();
 
-  /// "node 'a' (127.0.0.1:5000)", or "connection from 127.0.0.1:5000" before Hello: for logs.
+  /// "node 'a' (127.0.0.1:5000)", "the standby (127.0.0.1:5000)", or "connection from 127.0.0.1:5000" before Hello: for logs.
   std::string who() const;
   /// Refuses the handshake: Reject with `reason` and `text`, then close (log line).
   void refuse(RejectReason reason, const std::string& text);

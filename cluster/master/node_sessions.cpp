@@ -52,29 +52,52 @@ std::size_t NodeSessions::ready_count() const {
   }));
 }
 
+void NodeSessions::send_to_standbys(const std::shared_ptr<const std::vector<std::uint8_t>>& frame) {
+  for (auto& [id, session] : sessions_)
+    if (session->role == PeerRole::standby && session->inventory_done && session->connection->is_open())
+      session->connection->send_encoded(frame);
+}
+
 void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, const ClusterConfig& config,
                                         std::uint64_t current_frame) {
   if (const auto* hello = std::get_if<Hello>(&message)) {
     s.name = hello->node_name;
+    s.role = hello->role;
     const Challenge challenge = s.handshake->on_hello(*hello);  // wrong cluster / version
-    if (config.find_node(hello->node_name) == nullptr)
+    if (hello->role == PeerRole::standby) {
+      if (!config.standby)
+        throw HandshakeError(RejectReason::wrong_role, cat("standby '", hello->node_name, "': the cluster config ",
+                                                           config.source, " has no standby"));
+      if (hello->node_name != standby_name(*config.standby))
+        throw HandshakeError(RejectReason::wrong_role,
+                             cat("standby '", hello->node_name, "' is not this cluster's standby ('",
+                                 standby_name(*config.standby), "' in ", config.source,
+                                 "): do the master and the standby read the same cluster config?"));
+    } else if (config.find_node(hello->node_name) == nullptr) {
       throw HandshakeError(RejectReason::unspecified,
                            cat("node '", hello->node_name, "' is not in the cluster config ", config.source));
+    }
     s.connection->send(challenge);
   } else if (const auto* auth = std::get_if<Authenticate>(&message)) {
     s.handshake->on_authenticate(*auth);  // wrong secret → HandshakeError
     // A node that reconnects replaces its old connection (it proved the secret).
     for (auto& [other_id, other] : sessions_) {
       if (other_id != s.id && other->name == s.name && other->state != NodeSession::State::handshake) {
-        spdlog::warn("master: node '{}' reconnected from {}: closing its old connection", s.name, s.connection->peer());
+        spdlog::warn("master: {} '{}' reconnected from {}: closing its old connection", to_string(s.role), s.name,
+                     s.connection->peer());
         other->connection->close("replaced by a new connection of the same node");
         break;
       }
     }
     s.connection->send(s.handshake->welcome(s.id, current_frame, config.heartbeat_ms, config.barrier_timeout_ms));
     s.state = NodeSession::State::tables;
-    spdlog::info("master: node '{}' authenticated from {} (id {}); waiting for its table inventory", s.name,
-                 s.connection->peer(), s.id);
+    if (s.role == PeerRole::standby)
+      spdlog::info("master: the standby master '{}' authenticated from {} (id {}): it follows every table version "
+                   "and frame",
+                   s.name, s.connection->peer(), s.id);
+    else
+      spdlog::info("master: node '{}' authenticated from {} (id {}); waiting for its table inventory", s.name,
+                   s.connection->peer(), s.id);
   } else if (std::holds_alternative<Goodbye>(message)) {
     s.connection->close(cat("Goodbye during the handshake: ", std::get<Goodbye>(message).reason));
   } else {

@@ -34,6 +34,9 @@ class NodeSessions {
   /// The ready sessions whose connection is open, in id order.
   std::vector<Id> ready_ids() const;
   std::size_t ready_count() const;
+  /// Queues `frame` for every standby master that has been sent the table
+  /// sets (its inventory ended): each FrameState and Present (docs/cluster.md, "Standby master").
+  void send_to_standbys(const std::shared_ptr<const std::vector<std::uint8_t>>& frame);
   bool empty() const { return sessions_.empty(); }
 
   /// Calls `f(NodeSession&)` for every session, in id order; `f` must not add or remove sessions.
@@ -47,7 +50,8 @@ class NodeSessions {
   }
 
   /// One handshake message from `session` (state `handshake`): Hello →
-  /// Challenge (a node must be in `config`), Authenticate → Welcome (at
+  /// Challenge (a node must be in `config`; a standby must be the config's
+  /// standby, by standby_name()), Authenticate → Welcome (at
   /// `current_frame`) and state `tables`, closing an older connection of the
   /// same node; Goodbye closes. Throws HandshakeError for a wrong cluster,
   /// version, secret or node, or any other message.

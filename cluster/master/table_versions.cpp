@@ -27,11 +27,11 @@ void TableVersions::add_set(TableSetFile set) {
   sets_.insert_or_assign(hash, std::move(set));
 }
 
-void TableVersions::add_current(const std::string& body, const Digest& hash) {
+void TableVersions::add_current(const std::string& body, const Digest& hash, std::uint64_t effective_from_frame) {
   AtmosphereTableRef ref;
   ref.body_name = body;
   ref.table_hash = hash;
-  ref.effective_from_frame = 0;
+  ref.effective_from_frame = effective_from_frame;
   current_.push_back(ref);
 }
 

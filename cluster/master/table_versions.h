@@ -59,8 +59,9 @@ class TableVersions {
   // ---- current versions ----
   /// The current version of every atmosphere, in scene order, as FrameStates carry it.
   const std::vector<AtmosphereTableRef>& current() const { return current_; }
-  /// Adds the next atmosphere's version, effective from frame 0.
-  void add_current(const std::string& body, const Digest& hash);
+  /// Adds the next atmosphere's version, effective from `effective_from_frame`
+  /// (0 at the start; a standby that takes over keeps the active master's).
+  void add_current(const std::string& body, const Digest& hash, std::uint64_t effective_from_frame = 0);
   /// A show: these sets are every one it uses, in the order they are
   /// prepared; `current` the versions of its first frame (every body with an
   /// atmosphere, in scene order: the indices of begin_pending). A set counts

@@ -2,25 +2,16 @@
 
 #include <spdlog/spdlog.h>
 
-#include <cmath>
 #include <fstream>
 
 #include "atmosphere/model_hash.h"
+#include "cluster/atmosphere_definition.h"
 #include "cluster/table_transfer.h"
 #include "core/json_reader.h"
 
 namespace zenith::cluster {
 
 using config::cat;  // core/json_reader.h
-
-namespace {
-
-/// A candidate atmosphere fits a body when its ground radius is the body's (within 1 m).
-bool fits(const atmosphere::LoadedAtmosphere& loaded, const scene::Body& body) {
-  return std::abs(loaded.model.ground_radius_m - body.radius_m) <= 1.0;
-}
-
-}  // namespace
 
 KnownAtmospheres::KnownAtmospheres(const scene::Scene& scene, std::filesystem::path cache_directory,
                                    std::string node_name)
@@ -46,32 +37,13 @@ void KnownAtmospheres::add_scene_and_candidates(const std::vector<std::filesyste
     };
     add(body.atmosphere->loaded);
     for (const atmosphere::LoadedAtmosphere& c : candidates)
-      if (fits(c, body)) add(c);
+      if (fits_body(c, body)) add(c);
   }
 }
 
 void KnownAtmospheres::define(const AtmosphereDefinition& d, bool keep) {
-  const scene::Body* body = scene_.find_body(d.body_name);
-  if (body == nullptr || !body->atmosphere)
-    throw std::runtime_error(cat("AtmosphereDefinition for body '", d.body_name, "', which has no atmosphere in ",
-                                 scene_.source.string()));
-  nlohmann::json parameters;
-  try {
-    parameters = nlohmann::json::parse(d.parameters_json);
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': not JSON: ", e.what()));
-  }
-  atmosphere::LoadedAtmosphere loaded = atmosphere::resolve_atmosphere(
-      parameters, cat("the master's definition of the atmosphere of '", d.body_name, "'"),
-      atmosphere::LoadOptions{scene_.wavelengths_nm});
-  if (!fits(loaded, *body))
-    throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': ground radius ",
-                                 loaded.model.ground_radius_m, " m, the body's radius is ", body->radius_m, " m"));
-  const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
-  if (hash != d.table_hash)
-    throw std::runtime_error(cat("AtmosphereDefinition of '", d.body_name, "': the parameters hash to ",
-                                 short_hex(hash), " here, the master says ", short_hex(d.table_hash),
-                                 " (do master and node read the same scene, with the same wavelengths?)"));
+  atmosphere::LoadedAtmosphere loaded = resolve_definition(d, scene_);
+  const Digest hash = d.table_hash;  // resolve_definition checked it
   bool added = false;
   {
     std::lock_guard lock(mutex_);
@@ -80,7 +52,8 @@ void KnownAtmospheres::define(const AtmosphereDefinition& d, bool keep) {
   if (added) spdlog::debug("node '{}': atmosphere version {} of '{}' defined", node_name_, short_hex(hash), d.body_name);
   if (keep && added) {
     std::filesystem::create_directories(definitions_directory());
-    const std::string text = nlohmann::json{{"body", d.body_name}, {"parameters", parameters}}.dump(1);
+    const std::string text =
+        nlohmann::json{{"body", d.body_name}, {"parameters", nlohmann::json::parse(d.parameters_json)}}.dump(1);
     write_file_atomically(definitions_directory() / (to_hex(hash) + ".json"),
                           std::vector<std::uint8_t>(text.begin(), text.end()));
   }

@@ -19,25 +19,43 @@ using std::chrono::milliseconds;
 
 namespace {
 
-ReconnectRules reconnect_rules(const NodeOptions& options) {
-  ReconnectRules rules;
-  rules.connect_timeout_ms = options.connect_timeout_ms;
-  rules.reconnect_ms = options.reconnect_ms.value_or(options.config.reconnect_ms);
-  return rules;
-}
-
 }  // namespace
 
+MasterLink::Setup MasterLink::node_setup(const NodeOptions& options) {
+  Setup setup;
+  setup.cluster_name = options.config.name;
+  setup.peer_name = options.node_name;
+  setup.who = cat("node '", options.node_name, "'");
+  setup.masters = listed_masters(options.config, options.port);
+  setup.heartbeat_ms = options.config.heartbeat_ms;
+  setup.rules.connect_timeout_ms = options.connect_timeout_ms;
+  setup.rules.reconnect_ms = options.reconnect_ms.value_or(options.config.reconnect_ms);
+  setup.rules.attempt_timeout_ms = attempt_timeout_ms_for(setup.masters.size());
+  return setup;
+}
+
 MasterLink::MasterLink(asio::io_context& io, const NodeOptions& options, SharedSecret secret, Events events)
+    : MasterLink(io, node_setup(options), std::move(secret), std::move(events)) {}
+
+MasterLink::MasterLink(asio::io_context& io, Setup setup, SharedSecret secret, Events events)
     : io_(io),
-      options_(options),
+      setup_(std::move(setup)),
       events_(std::move(events)),
-      protocol_(std::move(secret), options.config.name, options.node_name, options.config.heartbeat_ms,
-                reconnect_rules(options)),
-      port_(options.port.value_or(options.config.master_port)),
-      master_address_(cat(options.config.master_host, ":", port_)),
+      protocol_(std::move(secret), setup_.cluster_name, setup_.peer_name, setup_.heartbeat_ms, setup_.rules,
+                setup_.masters.size(), setup_.role),
       heartbeat_timer_(io),
-      retry_timer_(io) {}
+      retry_timer_(io),
+      attempt_timer_(io) {
+  if (setup_.masters.empty()) throw std::invalid_argument("MasterLink: no master to connect to");
+}
+
+std::string MasterLink::master_address() const { return setup_.masters.at(protocol_.master_index()).text(); }
+
+std::string MasterLink::listed() const {
+  std::string text;
+  for (const MasterAddress& m : setup_.masters) text += cat(text.empty() ? "" : ", ", m.text());
+  return text;
+}
 
 void MasterLink::start() {
   connect_started_ = std::chrono::steady_clock::now();
@@ -47,10 +65,18 @@ void MasterLink::start() {
 
 void MasterLink::connect() {
   const std::uint64_t generation = ++generation_;
+  const MasterAddress& master = setup_.masters.at(protocol_.master_index());
+  if (const std::optional<milliseconds> limit = protocol_.attempt_limit()) {
+    attempt_timer_.expires_after(*limit);
+    attempt_timer_.async_wait([this, generation, limit](const boost::system::error_code& te) {
+      if (te || stopping_ || generation != generation_ || protocol_.welcomed()) return;
+      connection_failed(fmt::format("no Welcome within {:.1f} s", static_cast<double>(limit->count()) / 1000.0));
+    });
+  }
   auto socket = std::make_shared<tcp::socket>(io_);
   tcp::resolver resolver(io_);
   boost::system::error_code ec;
-  const auto endpoints = resolver.resolve(options_.config.master_host, std::to_string(port_), ec);
+  const auto endpoints = resolver.resolve(master.host, std::to_string(master.port), ec);
   if (ec) {  // a name server may be unreachable for a while too: an attempt that failed
     connection_failed(cat("cannot resolve the master's host: ", ec.message()));
     return;
@@ -68,7 +94,7 @@ void MasterLink::connect() {
 
 void MasterLink::on_connected(tcp::socket socket) {
   const std::uint64_t generation = generation_;
-  connection_ = std::make_shared<Connection>(std::move(socket), cat("master ", master_address_));
+  connection_ = std::make_shared<Connection>(std::move(socket), cat("master ", master_address()));
   connection_->start(
       [this, generation](Message&& m) {
         if (generation == generation_) on_message(std::move(m));
@@ -78,10 +104,10 @@ void MasterLink::on_connected(tcp::socket socket) {
       });
   connection_->send(protocol_.start());
   if (protocol_.reconnecting())
-    spdlog::info("node '{}': connected to the master at {} again after {:.1f} s; authenticating", options_.node_name,
-                 master_address_, ms_since(lost_at_) / 1000.0);
+    spdlog::info("{}: connected to the master at {} again after {:.1f} s; authenticating", setup_.who,
+                 master_address(), ms_since(lost_at_) / 1000.0);
   else
-    spdlog::info("node '{}': connected to the master at {}", options_.node_name, master_address_);
+    spdlog::info("{}: connected to the master at {}", setup_.who, master_address());
   heartbeat_tick(generation);
 }
 
@@ -95,6 +121,8 @@ void MasterLink::connection_failed(const std::string& reason) {
   const bool was_welcomed = protocol_.welcomed();
   ++generation_;  // the handlers and timers of this connection do nothing any more
   heartbeat_timer_.cancel();
+  attempt_timer_.cancel();
+  const std::string address = master_address();  // the master that failed (the protocol moves on below)
   if (connection_) {
     connection_->close(reason);
     connection_.reset();
@@ -105,31 +133,39 @@ void MasterLink::connection_failed(const std::string& reason) {
   if (was_welcomed) {
     lost_at_ = now;
     if (retry.give_up) {  // reconnect time 0
-      spdlog::error("node '{}': lost the connection to the master at {} ({}); reconnecting is off "
+      spdlog::error("{}: lost the connection to the master at {} ({}); reconnecting is off "
                     "(reconnect time 0): the master is gone; exiting",
-                    options_.node_name, master_address_, reason);
+                    setup_.who, address, reason);
       events_.ended(kNodeExitMasterLost);
       return;
     }
-    spdlog::warn("node '{}': lost the connection to the master at {} ({}): keeping the last frame, reconnecting for "
-                 "up to {:.0f} s",
-                 options_.node_name, master_address_, reason, protocol_.rules().reconnect_ms / 1000.0);
+    if (setup_.role == PeerRole::node)
+      spdlog::warn("{}: lost the connection to the master at {} ({}): keeping the last frame, reconnecting for "
+                   "up to {:.0f} s{}",
+                   setup_.who, address, reason, protocol_.rules().reconnect_ms / 1000.0,
+                   setup_.masters.size() > 1 ? cat(" (the listed masters in order: ", listed(), ")") : std::string());
+    else
+      spdlog::warn("{}: lost the connection to the active master at {} ({})", setup_.who, address, reason);
     events_.lost(reason);
     if (stopping_) return;  // the node stopped on the news
   } else if (retry.give_up) {
     if (protocol_.reconnecting())
-      spdlog::error("node '{}': could not reconnect to the master at {} within {:.0f} s ({} attempts; last: {}): "
+      spdlog::error("{}: could not reconnect to the master at {} within {:.0f} s ({} attempts; last: {}): "
                     "the master is gone; exiting",
-                    options_.node_name, master_address_, protocol_.rules().reconnect_ms / 1000.0,
-                    protocol_.failed_attempts() + 1, reason);
+                    setup_.who, listed(), protocol_.rules().reconnect_ms / 1000.0, protocol_.failed_attempts() + 1,
+                    reason);
     else
-      spdlog::error("node '{}': cannot reach the master at {} within {} ms ({}): exiting", options_.node_name,
-                    master_address_, protocol_.rules().connect_timeout_ms, reason);
+      spdlog::error("{}: cannot reach the master at {} within {} ms ({}): exiting", setup_.who, listed(),
+                    protocol_.rules().connect_timeout_ms, reason);
     events_.ended(kNodeExitMasterLost);
     return;
   } else {
-    spdlog::debug("node '{}': attempt to reach the master at {} failed ({}); next in {} ms", options_.node_name,
-                  master_address_, reason, retry.delay.count());
+    spdlog::debug("{}: attempt to reach the master at {} failed ({}); next: {} in {} ms", setup_.who, address, reason,
+                  master_address(), retry.delay.count());
+    if (events_.attempt_failed) {
+      events_.attempt_failed(reason);
+      if (stopping_) return;  // stopped on the news
+    }
   }
   const std::uint64_t generation = generation_;
   retry_timer_.expires_after(retry.delay);
@@ -156,6 +192,7 @@ void MasterLink::stop() {
   stopping_ = true;
   heartbeat_timer_.cancel();
   retry_timer_.cancel();
+  attempt_timer_.cancel();
   if (connection_ && connection_->is_open()) connection_->close_after_flush("node stopping");
 }
 
@@ -179,13 +216,14 @@ void MasterLink::on_message(Message&& message) {
       case Meaning::welcomed: {
         const Welcome& w = std::get<Welcome>(message);
         if (rejoining)
-          spdlog::info("node '{}': welcomed again by the master as id {} at frame {} {:.1f} s after the loss "
+          spdlog::info("{}: welcomed again by the master at {} as id {} at frame {} {:.1f} s after the loss "
                        "(rejoin {}): it rejoins at a frame boundary",
-                       options_.node_name, w.node_id, w.current_frame, ms_since(lost_at_) / 1000.0,
+                       setup_.who, master_address(), w.node_id, w.current_frame, ms_since(lost_at_) / 1000.0,
                        protocol_.rejoins());
         else
-          spdlog::info("node '{}': welcomed by the master as id {} at frame {} (heartbeat {} ms, barrier timeout {} ms)",
-                       options_.node_name, w.node_id, w.current_frame, w.heartbeat_interval_ms, w.barrier_timeout_ms);
+          spdlog::info("{}: welcomed by the master at {} as id {} at frame {} (heartbeat {} ms, barrier timeout {} ms)",
+                       setup_.who, master_address(), w.node_id, w.current_frame, w.heartbeat_interval_ms,
+                       w.barrier_timeout_ms);
         events_.welcomed(w);
         break;
       }
@@ -196,7 +234,7 @@ void MasterLink::on_message(Message&& message) {
         break;
       case Meaning::rejected: {
         const Reject& r = std::get<Reject>(message);
-        spdlog::error("node '{}': the master refused the connection ({}): {}", options_.node_name,
+        spdlog::error("{}: the master at {} refused the connection ({}): {}", setup_.who, master_address(),
                       static_cast<int>(r.reason), r.text);
         end("rejected", kNodeExitRefused);
         break;
@@ -204,22 +242,21 @@ void MasterLink::on_message(Message&& message) {
       case Meaning::goodbye: {
         const Goodbye& g = std::get<Goodbye>(message);
         if (welcomed) {
-          spdlog::info("node '{}': the master said goodbye: {}", options_.node_name, g.reason);
+          spdlog::info("{}: the master said goodbye: {}", setup_.who, g.reason);
           end("goodbye", kNodeExitDone);
         } else {
-          spdlog::error("node '{}': the master said goodbye during the handshake: {}", options_.node_name, g.reason);
+          spdlog::error("{}: the master said goodbye during the handshake: {}", setup_.who, g.reason);
           end("goodbye", kNodeExitRefused);
         }
         break;
       }
     }
   } catch (const HandshakeError& e) {
-    spdlog::error("node '{}': the master at {} failed to authenticate: {}", options_.node_name, master_address_,
-                  e.what());
+    spdlog::error("{}: the master at {} failed to authenticate: {}", setup_.who, master_address(), e.what());
     say_goodbye(cat("authentication failed: ", e.what()));
     events_.ended(kNodeExitRefused);
   } catch (const std::exception& e) {
-    spdlog::error("node '{}': closing the connection to the master: {}", options_.node_name, e.what());
+    spdlog::error("{}: closing the connection to the master: {}", setup_.who, e.what());
     say_goodbye(cat("error: ", e.what()));
     events_.ended(kNodeExitFailed);
   }

@@ -1,19 +1,21 @@
 #pragma once
 // A render node's link to its master, on the node's networking thread
 // (docs/cluster.md, "Architecture"; "Join, rejoin and failures"): resolves
-// the master's address and connects, retrying with backoff up to the connect
-// timeout; runs the handshake and the heartbeats; when a welcomed connection
+// the address of a listed master (the active master, then the standby) and
+// connects, retrying with backoff up to the connect timeout; runs the handshake and the heartbeats; when a welcomed connection
 // is lost (closed, or the master silent), tells the node and reconnects —
 // a full handshake again — until the reconnect time runs out
 // (MasterLinkProtocol: the rules, without sockets). It hands the node every
 // message of the master after each Welcome, and tells it when the link ends
 // and with which exit code. What the messages mean for tables, frames and
-// files is the node's (cluster/node.cpp).
+// files is the node's (cluster/node.cpp). A standby master follows its active
+// master through the same link, in the standby role (cluster/standby.h).
 #include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -46,9 +48,27 @@ class MasterLink {
     /// The link ended (the master's Goodbye, refused, the reconnect time ran out, an error):
     /// the node finishes with `exit_code` (NodeExit) and calls stop().
     std::function<void(int exit_code)> ended;
+    /// Optional: an attempt failed (refused, unreachable, closed or no Welcome
+    /// in time; not a loss) and the link is about to retry. The handler may
+    /// call stop() to end the link here (a standby takes over).
+    std::function<void(const std::string& reason)> attempt_failed = nullptr;
   };
 
+  /// Who connects to which masters, and how.
+  struct Setup {
+    std::string cluster_name;
+    std::string peer_name;                ///< the name in the Hello
+    PeerRole role = PeerRole::node;
+    std::string who;                      ///< "node 'a'", "standby": the start of every log line
+    std::vector<MasterAddress> masters;   ///< tried in order (listed_masters())
+    std::uint32_t heartbeat_ms = 250;     ///< the configuration's, until the Welcome brings the master's
+    ReconnectRules rules;
+  };
+  /// A node's link: its configuration's masters (the port overridden), its timeouts.
+  static Setup node_setup(const NodeOptions& options);
+
   MasterLink(boost::asio::io_context& io, const NodeOptions& options, SharedSecret secret, Events events);
+  MasterLink(boost::asio::io_context& io, Setup setup, SharedSecret secret, Events events);
   MasterLink(const MasterLink&) = delete;
   MasterLink& operator=(const MasterLink&) = delete;
 
@@ -63,8 +83,8 @@ class MasterLink {
   void stop();
 
   bool stopping() const { return stopping_; }
-  /// "host:port", for logs.
-  const std::string& master_address() const { return master_address_; }
+  /// "host:port" of the master in use (or tried next), for logs.
+  std::string master_address() const;
 
  private:
   void connect();
@@ -77,14 +97,16 @@ class MasterLink {
   void connection_failed(const std::string& reason);
   /// The link ends here: stopping, closed now (Reject, Goodbye), then Events::ended.
   void end(const std::string& close_reason, int exit_code);
+  /// Every listed master, "host:port, host:port", for logs.
+  std::string listed() const;
 
   boost::asio::io_context& io_;
-  const NodeOptions& options_;
+  Setup setup_;
   Events events_;
   MasterLinkProtocol protocol_;
-  std::uint16_t port_;
-  std::string master_address_;
-  boost::asio::steady_timer heartbeat_timer_, retry_timer_;
+  /// heartbeat_timer_ ticks while connected; retry_timer_ waits between
+  /// attempts; attempt_timer_ ends an attempt past the protocol's attempt limit.
+  boost::asio::steady_timer heartbeat_timer_, retry_timer_, attempt_timer_;
   std::shared_ptr<Connection> connection_;
   /// Counts connections and attempts: handlers of an earlier one see another number and do nothing.
   std::uint64_t generation_ = 0;

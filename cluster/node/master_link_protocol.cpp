@@ -11,23 +11,41 @@ namespace zenith::cluster {
 
 using std::chrono::milliseconds;
 
+std::vector<MasterAddress> listed_masters(const ClusterConfig& config, std::optional<std::uint16_t> port) {
+  std::vector<MasterAddress> masters = {{config.master_host, port.value_or(config.master_port)}};
+  if (config.standby) masters.push_back(*config.standby);
+  return masters;
+}
+
+std::uint32_t attempt_timeout_ms_for(std::size_t masters) { return masters > 1 ? 3000 : 0; }
+
 MasterLinkProtocol::MasterLinkProtocol(SharedSecret secret, std::string cluster_name, std::string node_name,
-                                       std::uint32_t heartbeat_ms, ReconnectRules rules)
+                                       std::uint32_t heartbeat_ms, ReconnectRules rules, std::size_t masters,
+                                       PeerRole role)
     : secret_(std::move(secret)),
       cluster_name_(std::move(cluster_name)),
       node_name_(std::move(node_name)),
       heartbeat_ms_(heartbeat_ms),
-      rules_(rules) {}
+      rules_(rules),
+      masters_(std::max<std::size_t>(masters, 1)),
+      role_(role) {}
 
 void MasterLinkProtocol::begin(Clock::time_point now) {
   welcomed_ = false;
   reconnecting_ = false;
   failed_attempts_ = 0;
+  failed_rounds_ = 0;
+  master_index_ = 0;
   deadline_ = now + milliseconds(rules_.connect_timeout_ms);
 }
 
+std::optional<milliseconds> MasterLinkProtocol::attempt_limit() const {
+  if (!reconnecting_ || rules_.attempt_timeout_ms == 0) return std::nullopt;
+  return milliseconds(rules_.attempt_timeout_ms);
+}
+
 Hello MasterLinkProtocol::start() {
-  handshake_.emplace(secret_, cluster_name_, node_name_);
+  handshake_.emplace(secret_, cluster_name_, node_name_, role_);
   welcomed_ = false;
   return handshake_->start();
 }
@@ -48,6 +66,7 @@ MasterLinkProtocol::Step MasterLinkProtocol::on_message(const Message& message) 
     // Success: the attempts and the deadline start afresh at the next loss.
     reconnecting_ = false;
     failed_attempts_ = 0;
+    failed_rounds_ = 0;
     heartbeat_ms_ = w->heartbeat_interval_ms;
     return {Meaning::welcomed, std::nullopt};
   }
@@ -69,14 +88,22 @@ MasterLinkProtocol::Retry MasterLinkProtocol::connection_failed(Clock::time_poin
     welcomed_ = false;
     reconnecting_ = true;
     failed_attempts_ = 0;
+    failed_rounds_ = 0;
+    master_index_ = 0;  // the active master first again
     deadline_ = now + milliseconds(rules_.reconnect_ms);
     if (rules_.reconnect_ms == 0) return {true, milliseconds(0)};
     return {false, milliseconds(0)};
   }
   ++failed_attempts_;
   if (now >= deadline_) return {true, milliseconds(0)};
-  const double nominal = static_cast<double>(backoff(rules_, failed_attempts_).count());
-  const auto wait = milliseconds(static_cast<std::int64_t>(nominal * jitter_factor(rules_, node_name_, failed_attempts_)));
+  if (master_index_ + 1 < masters_) {  // the next listed master, at once
+    ++master_index_;
+    return {false, milliseconds(0)};
+  }
+  master_index_ = 0;
+  ++failed_rounds_;
+  const double nominal = static_cast<double>(backoff(rules_, failed_rounds_).count());
+  const auto wait = milliseconds(static_cast<std::int64_t>(nominal * jitter_factor(rules_, node_name_, failed_rounds_)));
   const auto left = std::chrono::duration_cast<milliseconds>(deadline_ - now);
   // The last attempt is made at the deadline, not after it.
   return {false, std::min(wait, left)};

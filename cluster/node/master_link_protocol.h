@@ -3,14 +3,16 @@
 // "Join, rejoin and failures"; docs/protocol.md, "Handshake"): the handshake
 // (Hello, Authenticate, the master's proof in Welcome), what each message from
 // the master means for the link, when the master counts as silent, and the
-// reconnection rules — when to try again after a failed attempt or a lost
-// connection, and when to give up. No sockets and no clock: MasterLink
+// reconnection rules — which listed master to try (the active master, then
+// the standby: docs/cluster.md, "Standby master"), when to try again after a
+// failed attempt or a lost connection, and when to give up. No sockets and no clock: MasterLink
 // (cluster/node/master_link.h) feeds it the messages and the clock readings
 // and does what it answers.
 #include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cluster/cluster_config.h"
 #include "cluster/handshake.h"
@@ -35,7 +37,22 @@ struct ReconnectRules {
   /// the node's name and the attempt, so that the nodes of a restarted master
   /// do not all knock at the same instant (and a test can predict it).
   double jitter = 0.2;
+  /// While reconnecting after a loss, an attempt that brings no Welcome within
+  /// this is given up and the next listed master tried (a master that is
+  /// stopped, not dead, still accepts connections in its kernel backlog);
+  /// 0: no limit but the deadline. Not applied to the first connection, whose
+  /// master may be preparing its tables for minutes before its Welcome.
+  std::uint32_t attempt_timeout_ms = 0;
 };
+
+/// Where a node looks for its master (docs/cluster.md, "Standby master"): the
+/// active master (its port replaced by `port` when given), then the standby
+/// when the configuration has one.
+std::vector<MasterAddress> listed_masters(const ClusterConfig& config, std::optional<std::uint16_t> port);
+
+/// The attempt limit a node uses with `masters` listed masters: 3 s when there
+/// is a standby to turn to, none otherwise (ReconnectRules::attempt_timeout_ms).
+std::uint32_t attempt_timeout_ms_for(std::size_t masters);
 
 /// Invariants: before Welcome only the handshake's messages are accepted
 /// (anything else throws) and the node sends no Heartbeat; the master may stay
@@ -47,13 +64,21 @@ struct ReconnectRules {
 /// Welcome) or a loss (after it), and the link tries again until its deadline:
 /// the connect timeout from begin(), the reconnect time from a loss. Only a
 /// Welcome counts as success: it resets the attempts and the deadline.
+///
+/// With several listed masters (the active master, then the standby), every
+/// attempt goes to master_index(): after a failed attempt the next listed
+/// master is tried at once, and only after the last one does the link wait
+/// (the backoff counts these rounds through the list); a loss starts again at
+/// the first. With one master this is the plain backoff above.
 class MasterLinkProtocol {
  public:
   using Clock = std::chrono::steady_clock;
 
-  /// `heartbeat_ms`: the configuration's, until Welcome brings the master's.
+  /// `heartbeat_ms`: the configuration's, until Welcome brings the master's;
+  /// `masters`: how many masters are listed (at least 1); `role`: what this
+  /// side says it is in its Hello (a node, or a standby following its master).
   MasterLinkProtocol(SharedSecret secret, std::string cluster_name, std::string node_name, std::uint32_t heartbeat_ms,
-                     ReconnectRules rules);
+                     ReconnectRules rules, std::size_t masters = 1, PeerRole role = PeerRole::node);
 
   /// The link starts (before its first attempt): the connect timeout counts from `now`.
   void begin(Clock::time_point now);
@@ -103,14 +128,24 @@ class MasterLinkProtocol {
   /// error), or an attempt failed (refused, unreachable, closed before
   /// Welcome). After Welcome this is a loss: the reconnect time starts and the
   /// first new attempt is immediate (give up at once when it is 0). Otherwise
-  /// the wait doubles from first_retry_ms up to max_retry_ms (with jitter),
-  /// never past the deadline; at the deadline, give up.
+  /// the next listed master is tried at once; after the last, the wait
+  /// doubles per round from first_retry_ms up to max_retry_ms (with jitter),
+  /// never past the deadline; at the deadline, give up. A loss goes back to
+  /// the first listed master.
   Retry connection_failed(Clock::time_point now);
 
   /// A welcomed connection was lost and no new one is welcomed yet.
   bool reconnecting() const { return reconnecting_; }
   /// Failed attempts since the last Welcome (or begin()).
   std::uint32_t failed_attempts() const { return failed_attempts_; }
+  /// The listed master the next (or current) attempt goes to: 0 the active
+  /// master, 1 the standby. After a Welcome, the one that welcomed.
+  std::size_t master_index() const { return master_index_; }
+  std::size_t master_count() const { return masters_; }
+  /// The time an attempt (connect and handshake) may take before it is given
+  /// up: rules().attempt_timeout_ms while reconnecting after a loss; none
+  /// otherwise, or when it is 0.
+  std::optional<std::chrono::milliseconds> attempt_limit() const;
   /// Welcomes after the first: how often the node rejoined.
   std::uint32_t rejoins() const { return rejoins_; }
   /// The time by which a connection must be welcomed (meaningless after Welcome).
@@ -129,11 +164,15 @@ class MasterLinkProtocol {
   std::string cluster_name_, node_name_;
   std::uint32_t heartbeat_ms_;
   ReconnectRules rules_;
+  std::size_t masters_;
+  PeerRole role_;
   std::optional<NodeHandshake> handshake_;
   bool welcomed_ = false;
   bool ever_welcomed_ = false;
   bool reconnecting_ = false;
   std::uint32_t failed_attempts_ = 0;
+  std::uint32_t failed_rounds_ = 0;  ///< times through the whole list since the last Welcome (or begin())
+  std::size_t master_index_ = 0;
   std::uint32_t rejoins_ = 0;
   Clock::time_point deadline_{};
 };

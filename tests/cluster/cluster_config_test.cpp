@@ -95,6 +95,29 @@ TEST(ClusterConfig, ReconnectTimeIsOptionalInSecondsAndChecked) {
   EXPECT_NE(error_of(j).find("/timing/reconnect_s"), std::string::npos) << error_of(j);
 }
 
+TEST(ClusterConfig, StandbyIsOptionalAndChecked) {
+  EXPECT_FALSE(parse(valid()).standby.has_value()) << "no standby unless configured";
+  auto j = valid();
+  j["standby"] = {{"host", "10.0.0.2"}, {"port", 47001}};
+  const ClusterConfig c = parse(j);
+  ASSERT_TRUE(c.standby.has_value());
+  EXPECT_EQ(c.standby->text(), "10.0.0.2:47001");
+  EXPECT_EQ(c.master_address().text(), "127.0.0.1:47000");
+  j["standby"]["port"] = 0;
+  EXPECT_NE(error_of(j).find("t.json: /standby/port = 0: must be in [1, 65535]"), std::string::npos) << error_of(j);
+  j["standby"] = {{"host", ""}, {"port", 47001}};
+  EXPECT_NE(error_of(j).find("t.json: /standby/host = \"\": must be a host name or address"), std::string::npos)
+      << error_of(j);
+  j["standby"] = {{"host", "127.0.0.1"}, {"port", 47000}};
+  EXPECT_NE(error_of(j).find("t.json: /standby/port = 47000: the standby must listen on another address than the master"),
+            std::string::npos)
+      << error_of(j);
+  j["standby"] = {{"host", "127.0.0.1"}, {"port", 47001}, {"weight", 2}};
+  EXPECT_NE(error_of(j).find("/standby/weight"), std::string::npos) << error_of(j);
+  j["standby"] = "127.0.0.1:47001";
+  EXPECT_NE(error_of(j).find("/standby"), std::string::npos) << error_of(j);
+}
+
 TEST(ClusterConfig, UnknownKeysAndInlineSecretsAreRefused) {
   auto j = valid();
   j["timing"]["heartbeat"] = 5;

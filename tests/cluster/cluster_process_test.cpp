@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -139,10 +140,10 @@ class ClusterProcess : public ::testing::Test {
     fs::create_directories(dir_);
     cache_ = kWork / "table-cache";  // shared by the tests (same small tables)
     port_ = static_cast<int>(20000 + (getpid() * 7 + std::hash<std::string>{}(info->name())) % 30000);
-    // Other test runs share this machine: move on while the port or one after it is taken (the
-    // control port + 1, the operator console + 2, OSC + 3, the browser tests' chromedriver + 4 and
-    // DevTools + 5).
-    port_ = core::free_loopback_port(port_, 6);
+    // Other test runs share this machine: move on while a port of the test's is taken. Its ports:
+    // the master's, the control port, the console's HTTP and OSC, the browser's two, the standby's.
+    port_ = core::free_loopback_port(port_, 7);
+    standby_port_ = port_ + 6;
     setenv(kSecretVar, "cluster-test-secret-0123456789", 1);
   }
   void TearDown() override {
@@ -150,7 +151,9 @@ class ClusterProcess : public ::testing::Test {
       if (kill(c.pid, 0) == 0) kill_hard(c);
   }
 
-  fs::path write_config(int frame_rate_hz, int barrier_timeout_ms = 20000, int heartbeat_ms = 200) {
+  /// The cluster config: 3 nodes, small tables; `standby_port` > 0 adds a standby master on 127.0.0.1 there.
+  fs::path write_config(int frame_rate_hz, int barrier_timeout_ms = 20000, int heartbeat_ms = 200,
+                        int standby_port = 0, const std::string& file = "cluster.json") {
     std::ofstream v(dir_ / "quadrants.json");
     v << R"({"zenith_viewports": 1, "name": "q", "outputs": [)";
     const char* names[4] = {"top-left", "top-right", "bottom-left", "bottom-right"};
@@ -162,8 +165,10 @@ class ClusterProcess : public ::testing::Test {
     }
     v << "]}";
     v.close();
-    std::ofstream c(dir_ / "cluster.json");
-    c << R"({"zenith_cluster": 1, "name": "test-dome", "master": {"host": "127.0.0.1", "port": )" << port_ << R"(},
+    std::ofstream c(dir_ / file);
+    c << R"({"zenith_cluster": 1, "name": "test-dome", "master": {"host": "127.0.0.1", "port": )" << port_ << R"(},)"
+      << (standby_port > 0 ? R"("standby": {"host": "127.0.0.1", "port": )" + std::to_string(standby_port) + "}," : "")
+      << R"(
       "scene": ")" << (kSource / "configs/scenes/earth-sunset.json").string() << R"(", "viewports": "quadrants.json",
       "timing": {"heartbeat_ms": )" << heartbeat_ms << R"(, "barrier_timeout_ms": )" << barrier_timeout_ms
       << R"(, "frame_rate_hz": )" << frame_rate_hz << R"(},
@@ -173,7 +178,7 @@ class ClusterProcess : public ::testing::Test {
                 {"name": "c", "host": "127.0.0.1", "outputs": ["bottom-right"]}],
       "output": {"directory": "out", "format": "png"}})";
     c.close();
-    return dir_ / "cluster.json";
+    return dir_ / file;
   }
 
   Child start_master(const fs::path& config, std::uint64_t frames, int wait_for_nodes_ms = 120000,
@@ -182,6 +187,13 @@ class ClusterProcess : public ::testing::Test {
                                      "--cache", cache_.string(), "--wait-for-nodes-ms", std::to_string(wait_for_nodes_ms)};
     args.insert(args.end(), extra.begin(), extra.end());
     children_.push_back(spawn(args, dir_ / "master.log"));
+    return children_.back();
+  }
+  /// `zenith master --standby` with the master's arguments, logging to `log`.
+  Child start_standby(const fs::path& config, std::uint64_t frames, const std::string& log = "standby.log") {
+    children_.push_back(spawn({"master", "--standby", "--cluster", config.string(), "--frames", std::to_string(frames),
+                               "--cache", (dir_ / "standby-cache").string(), "--wait-for-nodes-ms", "120000"},
+                              dir_ / log));
     return children_.back();
   }
   Child start_node(const fs::path& config, const std::string& name, const std::vector<std::string>& extra = {}) {
@@ -208,9 +220,10 @@ class ClusterProcess : public ::testing::Test {
   /// through the operator console on `http`, and expects master and nodes to exit with status 0
   /// and every node to have presented the same frames in sync; node a's presented frames.
   std::vector<Presented> quit_in_sync(int http, const Child& master, std::optional<std::uint64_t> after_frame = std::nullopt) {
-    if (after_frame)
+    if (after_frame) {
       EXPECT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > *after_frame; },
                              120s)) << logs();
+    }
     const test::HttpReply quit = test::http_request(http, boost::beast::http::verb::post, "/api/command", R"({"command": "quit"})");
     EXPECT_EQ(quit.status, 200) << quit.body;
     EXPECT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
@@ -225,16 +238,24 @@ class ClusterProcess : public ::testing::Test {
       }
     }
   }
+  /// Whether every node (a, b, c) presented frame `frame` or a later one.
+  bool all_nodes_past(std::uint64_t frame) const {
+    for (const char* n : {"a", "b", "c"}) {
+      const auto p = presented(dir_ / "out" / n);
+      if (p.empty() || p.back().frame < frame) return false;
+    }
+    return true;
+  }
   std::string logs() const {
     std::string all;
-    for (const char* n : {"master", "a", "b", "c", "cluster"})
+    for (const char* n : {"master", "standby", "standby-2", "a", "b", "c", "cluster"})
       if (fs::exists(dir_ / (std::string(n) + ".log")))
         all += "---- " + std::string(n) + ".log\n" + read_text(dir_ / (std::string(n) + ".log"));
     return all;
   }
 
   fs::path dir_, cache_;
-  int port_ = 0;
+  int port_ = 0, standby_port_ = 0;
   std::vector<Child> children_;
 };
 
@@ -476,6 +497,291 @@ TEST_F(ClusterProcess, MasterRestartedOnTheSamePortGetsItsNodesBackWithTheirCach
     ASSERT_LT(first_new, p.size());
     expect_contiguous(std::vector<Presented>(p.begin() + first_new, p.end()), p[first_new].frame, p.back().frame, n);
   }
+}
+
+// ---- the standby master (docs/cluster.md, "Standby master") ------------------
+
+/// Node `who` presented frames 0..last in order, none twice, with show time
+/// frame / fps throughout (no jump), missing at most `max_lost` frames (the
+/// frame in flight at a takeover). Returns the frames it did not present.
+std::vector<std::uint64_t> expect_show_goes_on(const std::vector<Presented>& p, std::uint64_t last, double fps,
+                                               std::size_t max_lost, const std::string& who) {
+  std::vector<std::uint64_t> lost;
+  std::uint64_t expected = 0;
+  for (const Presented& x : p) {
+    EXPECT_GE(x.frame, expected) << who << ": frame " << x.frame << " presented again, or out of order";
+    for (; expected < x.frame; ++expected) lost.push_back(expected);
+    expected = x.frame + 1;
+    EXPECT_EQ(x.show_time_s, static_cast<double>(x.frame) / fps) << who << " frame " << x.frame;
+  }
+  EXPECT_FALSE(p.empty()) << who;
+  if (!p.empty()) {
+    EXPECT_EQ(p.back().frame, last) << who;
+  }
+  EXPECT_LE(lost.size(), max_lost) << who << " did not present frames " << fmt::format("{}", fmt::join(lost, ", "));
+  return lost;
+}
+
+/// Frames presented by two nodes have the same state.
+void expect_same_states(const std::vector<Presented>& a, const std::vector<Presented>& b, const std::string& who) {
+  std::map<std::uint64_t, std::string> by_frame;
+  for (const Presented& x : a) by_frame[x.frame] = x.digest;
+  for (const Presented& x : b)
+    if (by_frame.count(x.frame)) {
+      EXPECT_EQ(x.digest, by_frame[x.frame]) << who << " frame " << x.frame;
+    }
+}
+
+/// The pid `zenith cluster` logged for its master ("cluster: master started (pid N)"), or -1.
+pid_t launcher_master_pid(const std::string& log) {
+  const std::string started = "cluster: master started (pid ";
+  const auto at = log.find(started);
+  return at == std::string::npos ? -1 : std::stoi(log.substr(at + started.size()));
+}
+
+TEST_F(ClusterProcess, StandbyTakesOverWhenTheMasterIsKilledAndEveryNodePresentsEveryLaterFrame) {
+  // `zenith cluster` with a standby in the config starts it too. kill -9 of
+  // the master mid-show: the standby takes over on its own port, the nodes
+  // (which keep their last frame) try the master, then the standby, rejoin
+  // with their cached tables, and the show goes on from the frame after the
+  // last one the master sent: every node presents every later frame, the
+  // frame numbers and the show time go on, at most the frame in flight is
+  // never presented.
+  const fs::path config = write_config(10, 20000, 200, standby_port_);
+  const Child cluster = spawn({"cluster", "--cluster", config.string(), "--frames", "100", "--out",
+                               (dir_ / "out").string(), "--cache", cache_.string()},
+                              dir_ / "cluster.log");
+  children_.push_back(cluster);
+  const auto all_presented = [&](std::size_t n) {
+    return presented(dir_ / "out/a").size() >= n && presented(dir_ / "out/b").size() >= n &&
+           presented(dir_ / "out/c").size() >= n;
+  };
+  ASSERT_TRUE(wait_until([&] {
+    return all_presented(15) && read_text(dir_ / "cluster.log").find("standby: the show runs") != std::string::npos;
+  }, 300s)) << logs();
+  const pid_t master = launcher_master_pid(read_text(dir_ / "cluster.log"));
+  ASSERT_GT(master, 0) << logs();
+  ASSERT_EQ(kill(master, SIGKILL), 0);
+  const auto killed = Clock::now();
+  std::uint64_t at_kill[3];
+  for (int i = 0; i < 3; ++i) at_kill[i] = presented(dir_ / "out" / std::string(1, "abc"[i])).back().frame;
+  ASSERT_TRUE(wait_until([&] {
+    for (int i = 0; i < 3; ++i)
+      if (presented(dir_ / "out" / std::string(1, "abc"[i])).back().frame <= at_kill[i] + 1) return false;
+    return true;
+  }, 60s)) << logs();
+  const double takeover_s = std::chrono::duration<double>(Clock::now() - killed).count();
+  ASSERT_EQ(wait_exit(cluster, 300s), std::optional<int>(0)) << logs();
+
+  const auto a = presented(dir_ / "out/a"), b = presented(dir_ / "out/b"), c = presented(dir_ / "out/c");
+  const auto lost_a = expect_show_goes_on(a, 99, 10.0, 1, "a");
+  const auto lost_b = expect_show_goes_on(b, 99, 10.0, 1, "b");
+  const auto lost_c = expect_show_goes_on(c, 99, 10.0, 1, "c");
+  expect_same_states(a, b, "b");
+  expect_same_states(a, c, "c");
+  std::printf("[ measured ] every node presented again %.2f s after kill -9 of the master (frames lost: a %zu, b %zu, "
+              "c %zu; none repeated)\n",
+              takeover_s, lost_a.size(), lost_b.size(), lost_c.size());
+  EXPECT_LT(takeover_s, 15.0);
+
+  const std::string log = read_text(dir_ / "cluster.log");
+  EXPECT_NE(log.find("cluster: standby master started (pid"), std::string::npos) << log;
+  EXPECT_NE(log.find("cluster: the master died (killed by signal 9 (Killed)): the standby master"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("standby: the active master is gone"), std::string::npos) << log;
+  const auto took_over = log.find("master: taking over the show at frame ");
+  ASSERT_NE(took_over, std::string::npos) << log;
+  const std::string after = log.substr(took_over);
+  EXPECT_NE(after.find(fmt::format("listening on 127.0.0.1:{}", standby_port_)), std::string::npos) << after;
+  for (const char* n : {"a", "b", "c"})
+    EXPECT_NE(after.find(fmt::format("node '{}' holds 1 of its 1 table set in its cache: sent 0 table chunks", n)),
+              std::string::npos)
+        << "the nodes rejoin the standby with their cached tables: " << after;
+  EXPECT_NE(after.find(fmt::format("welcomed again by the master at 127.0.0.1:{}", standby_port_)), std::string::npos)
+      << after;
+}
+
+TEST_F(ClusterProcess, StandbyKilledAndRestartedFollowsAgainWhileTheShowGoesOnThenTakesOver) {
+  // kill -9 of the standby while the master runs: the show is undisturbed
+  // (the master never waits for a standby); a new standby follows again, and
+  // it is the one that takes over when the master is killed afterwards. The
+  // nodes take 250 ms per frame, so that a frame is in flight most of the
+  // time: the kill of the master loses it (the stated bound), no more.
+  const fs::path config = write_config(10, 20000, 200, standby_port_);
+  const Child master = start_master(config, 0);
+  Child standby = start_standby(config, 0);
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--debug-render-delay-ms", "250"});
+  ASSERT_TRUE(wait_until([&] {
+    return presented(dir_ / "out/c").size() >= 5 &&
+           read_text(dir_ / "standby.log").find("standby: the show runs") != std::string::npos;
+  }, 300s)) << logs();
+  kill(standby.pid, SIGKILL);
+  ASSERT_EQ(wait_exit(standby, 5s), std::optional<int>(128 + SIGKILL));
+  const std::uint64_t standby_killed_at = presented(dir_ / "out/a").back().frame;
+  ASSERT_TRUE(wait_until([&] { return read_text(dir_ / "master.log").find("the standby (") != std::string::npos &&
+                                      read_text(dir_ / "master.log").find("disconnected") != std::string::npos; },
+                         30s))
+      << logs();
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").back().frame >= standby_killed_at + 10; }, 60s))
+      << logs();
+  standby = start_standby(config, 0, "standby-2.log");
+  ASSERT_TRUE(wait_until([&] { return read_text(dir_ / "standby-2.log").find("standby: the show runs") != std::string::npos; },
+                         60s))
+      << logs();
+  const std::uint64_t restarted_at = presented(dir_ / "out/a").back().frame;
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").back().frame >= restarted_at + 5; }, 60s)) << logs();
+  // Undisturbed so far: every node presented every frame.
+  for (const char* n : {"a", "b", "c"}) {
+    const auto p = presented(dir_ / "out" / n);
+    expect_contiguous(p, 0, p.back().frame, n);
+  }
+
+  kill(master.pid, SIGKILL);
+  ASSERT_EQ(wait_exit(master, 5s), std::optional<int>(128 + SIGKILL));
+  const std::uint64_t master_killed_at = presented(dir_ / "out/a").back().frame;
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(master_killed_at + 10); }, 60s)) << logs();
+  kill(standby.pid, SIGTERM);
+  ASSERT_EQ(wait_exit(standby, 30s), std::optional<int>(0)) << logs();
+  for (const Child& c : children_)
+    if (c.pid != master.pid && c.pid != standby.pid && c.pid != children_[1].pid) {
+      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
+    }
+  const auto a = presented(dir_ / "out/a");
+  for (const char* n : {"a", "b", "c"}) {
+    const auto p = presented(dir_ / "out" / n);
+    const auto lost = expect_show_goes_on(p, p.back().frame, 10.0, 1, n);
+    expect_same_states(a, p, n);
+    std::printf("[ measured ] node %s: frames not presented at the takeover: %s\n", n,
+                lost.empty() ? "none" : fmt::format("{}", fmt::join(lost, ", ")).c_str());
+  }
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_EQ(count_of(master_log, "the standby master 'standby@127.0.0.1:" + std::to_string(standby_port_) +
+                                     "' authenticated"),
+            2u)
+      << master_log;
+  const std::string second = read_text(dir_ / "standby-2.log");
+  EXPECT_NE(second.find("master: taking over the show at frame"), std::string::npos) << second;
+  EXPECT_EQ(read_text(dir_ / "standby.log").find("master: taking over"), std::string::npos) << "the killed one never did";
+}
+
+TEST_F(ClusterProcess, StandbyTakesOverFromAStoppedMasterAfterTheSilenceLimit) {
+  // SIGSTOP of the master closes no socket: the standby and the nodes find it
+  // silent past the silence limit (max(3 × 200 ms, 10 s)). The stopped
+  // master's kernel still accepts connections, so the standby's one more
+  // attempt ends at its 2 s limit, and the nodes' attempts on the master at
+  // their 3 s limit, without a Welcome: the standby takes over, the nodes
+  // then reach it.
+  const fs::path config = write_config(10, 20000, 200, standby_port_);
+  const Child master = start_master(config, 0);
+  const Child standby = start_standby(config, 0);
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_TRUE(wait_until([&] {
+    return all_nodes_past(5) && read_text(dir_ / "standby.log").find("standby: the show runs") != std::string::npos;
+  }, 300s)) << logs();
+  ASSERT_EQ(kill(master.pid, SIGSTOP), 0);
+  const auto stopped = Clock::now();
+  const std::uint64_t stopped_at = presented(dir_ / "out/a").back().frame;
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(stopped_at + 2); }, 90s)) << logs();
+  const double takeover_s = std::chrono::duration<double>(Clock::now() - stopped).count();
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(stopped_at + 10); }, 60s)) << logs();
+  kill(master.pid, SIGKILL);  // a stopped process dies too
+  ASSERT_EQ(wait_exit(master, 5s), std::optional<int>(128 + SIGKILL));
+  kill(standby.pid, SIGTERM);
+  ASSERT_EQ(wait_exit(standby, 30s), std::optional<int>(0)) << logs();
+  for (const Child& c : children_)
+    if (c.pid != master.pid && c.pid != standby.pid) {
+      EXPECT_EQ(wait_exit(c, 20s), std::optional<int>(0)) << logs();
+    }
+  const auto a = presented(dir_ / "out/a");
+  for (const char* n : {"a", "b", "c"}) {
+    const auto p = presented(dir_ / "out" / n);
+    expect_show_goes_on(p, p.back().frame, 10.0, 1, n);
+    expect_same_states(a, p, n);
+  }
+  std::printf("[ measured ] every node presented again %.1f s after SIGSTOP of the master (silence limit 10 s, "
+              "attempt limits 2 s (standby) and 3 s (nodes))\n",
+              takeover_s);
+  EXPECT_GT(takeover_s, 10.0) << "not before the silence limit";
+  EXPECT_LT(takeover_s, 30.0);
+  const std::string log = read_text(dir_ / "standby.log");
+  EXPECT_NE(log.find("past its silence limit of 10 s"), std::string::npos) << log;
+  EXPECT_NE(log.find("the active master is gone"), std::string::npos) << log;
+  EXPECT_NE(log.find("no Welcome within 2.0 s"), std::string::npos) << log;
+}
+
+TEST_F(ClusterProcess, StandbyTakingOverAShowContinuesItsShowTime) {
+  // A show file (2.5 s at 5 fps, looping: 14 frames a loop, 0, 0.2, …, 2.4,
+  // 2.5) on master and standby: after the kill the standby's clock goes on
+  // where the master's was, at its step, through the loop's wrap.
+  const fs::path config = write_config(10, 20000, 200, standby_port_);
+  const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
+  const std::vector<std::string> playback = {"--show", show.string(), "--fps", "5", "--loop"};
+  const Child master = start_master(config, 0, 120000, playback);
+  std::vector<std::string> standby_args = {"master", "--standby", "--cluster", config.string(), "--cache",
+                                           (dir_ / "standby-cache").string()};
+  standby_args.insert(standby_args.end(), playback.begin(), playback.end());
+  children_.push_back(spawn(standby_args, dir_ / "standby.log"));
+  const Child standby = children_.back();
+  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/c").size() >= 17; }, 300s)) << logs();
+  kill(master.pid, SIGKILL);
+  ASSERT_EQ(wait_exit(master, 5s), std::optional<int>(128 + SIGKILL));
+  const std::uint64_t killed_at = presented(dir_ / "out/a").back().frame;
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(killed_at + 16); }, 60s)) << logs();
+  kill(standby.pid, SIGTERM);
+  ASSERT_EQ(wait_exit(standby, 30s), std::optional<int>(0)) << logs();
+  const auto a = presented(dir_ / "out/a");
+  ASSERT_GE(a.size(), 14u);
+  for (const char* n : {"a", "b", "c"}) {
+    const auto p = presented(dir_ / "out" / n);
+    std::uint64_t expected = 0;
+    std::size_t lost = 0;
+    for (const Presented& x : p) {
+      EXPECT_GE(x.frame, expected) << n << ": frame " << x.frame << " presented again";
+      lost += x.frame - std::min(x.frame, expected);
+      expected = x.frame + 1;
+      // Every loop shows the first loop's times, frame for frame, on the master and after the takeover alike.
+      EXPECT_NEAR(x.show_time_s, a[x.frame % 14].show_time_s, 1e-9) << n << " frame " << x.frame;
+    }
+    EXPECT_LE(lost, 1u) << n;
+    expect_same_states(a, p, n);
+  }
+  EXPECT_NE(read_text(dir_ / "standby.log").find("master: taking over the show at frame"), std::string::npos) << logs();
+}
+
+TEST_F(ClusterProcess, StandbyWithTheWrongSecretOrAnotherStandbyAddressIsRefused) {
+  const fs::path config = write_config(10, 20000, 200, standby_port_);
+  const Child master = start_master(config, 0, 600000);
+  setenv(kSecretVar, "not-the-cluster-secret-at-all-0123", 1);
+  const Child wrong_secret = start_standby(config, 0);
+  setenv(kSecretVar, "cluster-test-secret-0123456789", 1);
+  EXPECT_EQ(wait_exit(wrong_secret, 200s), std::optional<int>(2)) << logs();
+  const std::string standby_log = read_text(dir_ / "standby.log");
+  EXPECT_NE(standby_log.find("standby: the master at 127.0.0.1:" + std::to_string(port_) + " refused the connection (3)"),
+            std::string::npos)
+      << standby_log;
+  EXPECT_NE(standby_log.find("failed authentication (wrong shared secret)"), std::string::npos) << standby_log;
+  EXPECT_EQ(standby_log.find("master: taking over"), std::string::npos) << standby_log;
+
+  // A standby whose config names another standby address is not this cluster's standby.
+  const fs::path other = write_config(10, 20000, 200, standby_port_ + 1, "other-standby.json");
+  const Child stranger = start_standby(other, 0, "standby-2.log");
+  EXPECT_EQ(wait_exit(stranger, 60s), std::optional<int>(2)) << logs();
+  const std::string stranger_log = read_text(dir_ / "standby-2.log");
+  EXPECT_NE(stranger_log.find("refused the connection (7)"), std::string::npos) << stranger_log;
+  EXPECT_NE(stranger_log.find("is not this cluster's standby"), std::string::npos) << stranger_log;
+
+  kill(master.pid, SIGTERM);
+  EXPECT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  const std::string master_log = read_text(dir_ / "master.log");
+  EXPECT_NE(master_log.find("refused the standby (127.0.0.1:"), std::string::npos) << master_log;
+  EXPECT_NE(master_log.find(": handshake: standby 'standby@127.0.0.1:" + std::to_string(standby_port_) +
+                            "' failed authentication (wrong shared secret)"),
+            std::string::npos)
+      << master_log;
+  EXPECT_NE(master_log.find("is not this cluster's standby ('standby@127.0.0.1:" + std::to_string(standby_port_)),
+            std::string::npos)
+      << master_log;
 }
 
 /// The pids `zenith cluster` logged for node `name`: "node 'b' started (pid N)", then one per "restarted it (pid N".

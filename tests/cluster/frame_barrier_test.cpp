@@ -29,6 +29,18 @@ TEST(FrameBarrier, StartsAtFrameZeroWithNothingInFlight) {
   EXPECT_EQ(barrier.participants_among({4, 2, 7}), (Ids{4, 2, 7}));
 }
 
+TEST(FrameBarrier, AStandbyTakingOverContinuesTheNumbering) {
+  FrameBarrier barrier;
+  barrier.start_at(42);
+  EXPECT_EQ(barrier.frame(), 42u);
+  EXPECT_EQ(barrier.next_boundary(), 42u);
+  barrier.begin(barrier.frame(), {1});
+  EXPECT_THROW(barrier.start_at(7), std::logic_error) << "not with a frame in flight";
+  EXPECT_EQ(barrier.on_render_done(1, 42), Report::counted);
+  EXPECT_EQ(barrier.release().frame, 42u);
+  EXPECT_EQ(barrier.frame(), 43u);
+}
+
 TEST(FrameBarrier, ReleasesOnlyWhenEveryParticipantReported) {
   FrameBarrier barrier = three_nodes_at(0);
   EXPECT_TRUE(barrier.in_flight());

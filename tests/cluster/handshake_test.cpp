@@ -67,6 +67,52 @@ TEST(Handshake, CorrectSecretAuthenticatesBothWays) {
   EXPECT_TRUE(node.authenticated());
 }
 
+TEST(Handshake, StandbyAuthenticatesWithItsOwnLabels) {
+  const SharedSecret secret = secret_of("correct horse battery staple");
+  NodeHandshake standby(secret, "dome", "standby@10.0.0.2:47101", PeerRole::standby);
+  MasterHandshake master(secret, "dome");
+  const Hello hello = standby.start();
+  EXPECT_EQ(hello.role, PeerRole::standby);
+  const Authenticate auth = standby.on_challenge(master.on_hello(hello));
+  EXPECT_NO_THROW(master.on_authenticate(auth));
+  EXPECT_EQ(master.role(), PeerRole::standby);
+  EXPECT_NO_THROW(standby.on_welcome(master.welcome(3, 0, 250, 2000)));
+  EXPECT_TRUE(standby.authenticated());
+
+  Nonce a{}, b{};
+  a.fill(0xAA);
+  b.fill(0xBB);
+  const Bytes input = node_mac_input("c", "nd", a, b, PeerRole::standby);
+  EXPECT_EQ(Bytes(input.begin(), input.begin() + 19), bytes_of(std::string("\0\x11zenith standby v1", 19)));
+  const Bytes m = master_mac_input("c", "nd", b, a, PeerRole::standby);
+  EXPECT_EQ(Bytes(m.begin(), m.begin() + 29), bytes_of(std::string("\0\x1bzenith master to standby v1", 29)));
+  EXPECT_NE(node_mac(secret, "c", "nd", a, b, PeerRole::standby), node_mac(secret, "c", "nd", a, b));
+  EXPECT_NE(master_mac(secret, "c", "nd", b, a, PeerRole::standby), master_mac(secret, "c", "nd", b, a));
+}
+
+TEST(Handshake, ARoleChangedInTransitFailsAuthentication) {
+  // The role is bound by the MAC labels: a node's proof does not pass as a standby's, nor the other way.
+  const SharedSecret secret = secret_of("correct horse battery staple");
+  NodeHandshake node(secret, "dome", "node-1");
+  MasterHandshake master(secret, "dome");
+  Hello hello = node.start();
+  hello.role = PeerRole::standby;
+  const Authenticate auth = node.on_challenge(master.on_hello(hello));
+  try {
+    master.on_authenticate(auth);
+    FAIL() << "a node's MAC must not authenticate a standby";
+  } catch (const HandshakeError& e) {
+    EXPECT_EQ(e.reason(), RejectReason::authentication_failed);
+    EXPECT_NE(std::string(e.what()).find("standby 'node-1' failed authentication"), std::string::npos) << e.what();
+  }
+
+  NodeHandshake standby(secret, "dome", "standby@h:1", PeerRole::standby);
+  MasterHandshake master2(secret, "dome");
+  Hello as_node = standby.start();
+  as_node.role = PeerRole::node;
+  EXPECT_THROW(master2.on_authenticate(standby.on_challenge(master2.on_hello(as_node))), HandshakeError);
+}
+
 TEST(Handshake, WrongSecretOnTheNodeIsRejectedByTheMaster) {
   NodeHandshake node(secret_of("this is not the secret"), "dome", "node-1");
   MasterHandshake master(secret_of("correct horse battery staple"), "dome");

@@ -256,5 +256,108 @@ TEST(MasterLinkProtocol, BeforeTheFirstWelcomeFailuresCountAgainstTheConnectTime
   EXPECT_EQ(now, t0 + milliseconds(20000)) << "the connect timeout, not the reconnect time";
 }
 
+// ---- the listed masters: the active master, then the standby ----------------
+
+/// A node of a cluster with a standby (two listed masters, the node's attempt limit), begun at t0.
+MasterLinkProtocol node_with_standby(ReconnectRules r = rules()) {
+  r.attempt_timeout_ms = attempt_timeout_ms_for(2);
+  MasterLinkProtocol link(secret(), "dome", "left", 250, r, 2);
+  link.begin(t0);
+  return link;
+}
+
+TEST(MasterLinkProtocol, TheListedMastersAreTheActiveThenTheStandby) {
+  ClusterConfig config;
+  config.master_host = "10.0.0.1";
+  config.master_port = 47100;
+  EXPECT_EQ(listed_masters(config, std::nullopt), (std::vector<MasterAddress>{{"10.0.0.1", 47100}}));
+  EXPECT_EQ(listed_masters(config, 5000), (std::vector<MasterAddress>{{"10.0.0.1", 5000}})) << "--port";
+  config.standby = MasterAddress{"10.0.0.2", 47101};
+  EXPECT_EQ(listed_masters(config, 5000), (std::vector<MasterAddress>{{"10.0.0.1", 5000}, {"10.0.0.2", 47101}}))
+      << "--port overrides the active master's port only";
+  EXPECT_EQ(attempt_timeout_ms_for(1), 0u) << "one master: as without standbys";
+  EXPECT_EQ(attempt_timeout_ms_for(2), 3000u);
+}
+
+TEST(MasterLinkProtocol, EachListedMasterIsTriedInTurnAndTheBackoffCountsRounds) {
+  MasterLinkProtocol link = node_with_standby();
+  EXPECT_EQ(link.master_count(), 2u);
+  EXPECT_EQ(link.master_index(), 0u) << "the active master first";
+  auto now = t0;
+  for (std::uint32_t round = 1; round <= 6; ++round) {
+    const MasterLinkProtocol::Retry to_standby = link.connection_failed(now);
+    EXPECT_FALSE(to_standby.give_up);
+    EXPECT_EQ(to_standby.delay.count(), 0) << "the standby at once after the active master, round " << round;
+    EXPECT_EQ(link.master_index(), 1u);
+    const MasterLinkProtocol::Retry to_active = link.connection_failed(now);
+    EXPECT_EQ(link.master_index(), 0u) << "then the active master again, after the wait";
+    EXPECT_EQ(to_active.delay.count(),
+              static_cast<std::int64_t>(static_cast<double>(MasterLinkProtocol::backoff(link.rules(), round).count()) *
+                                        MasterLinkProtocol::jitter_factor(link.rules(), "left", round)))
+        << "round " << round;
+    now += to_active.delay;
+  }
+  EXPECT_EQ(link.failed_attempts(), 12u);
+  EXPECT_EQ(link.attempt_limit(), std::nullopt) << "the first connection may wait for a master preparing its tables";
+}
+
+TEST(MasterLinkProtocol, AfterALossTheActiveMasterIsTriedFirstThenTheStandbyEachWithinTheAttemptLimit) {
+  MasterLinkProtocol link = node_with_standby();
+  MasterHandshake active(secret(), "dome");
+  (void)link.on_message(handshake(link, active));
+  const auto lost = t0 + std::chrono::seconds(60);
+  const MasterLinkProtocol::Retry first = link.connection_failed(lost);  // the active master is gone
+  EXPECT_EQ(first.delay.count(), 0);
+  EXPECT_EQ(link.master_index(), 0u) << "it may have restarted: the active master first";
+  EXPECT_EQ(link.attempt_limit(), std::optional<milliseconds>(3000)) << "a stopped master must not hold the node";
+  const MasterLinkProtocol::Retry refused = link.connection_failed(lost + milliseconds(2));
+  EXPECT_EQ(refused.delay.count(), 0);
+  EXPECT_EQ(link.master_index(), 1u) << "then the standby, at once";
+
+  // The standby (which took over) welcomes it: it is the master in use now.
+  MasterHandshake standby(secret(), "dome");
+  EXPECT_EQ(link.on_message(handshake(link, standby)).meaning, Meaning::welcomed);
+  EXPECT_EQ(link.master_index(), 1u);
+  EXPECT_EQ(link.rejoins(), 1u);
+  EXPECT_EQ(link.attempt_limit(), std::nullopt);
+
+  // Lost again: the list from the top (the active master, then the standby).
+  (void)link.connection_failed(lost + std::chrono::seconds(100));
+  EXPECT_EQ(link.master_index(), 0u);
+  EXPECT_EQ(link.deadline(), lost + std::chrono::seconds(100) + milliseconds(30000));
+}
+
+TEST(MasterLinkProtocol, WithTwoMastersTheReconnectTimeStillEndsTheLink) {
+  MasterLinkProtocol link = node_with_standby();
+  MasterHandshake active(secret(), "dome");
+  (void)link.on_message(handshake(link, active));
+  auto now = t0 + std::chrono::seconds(1);
+  (void)link.connection_failed(now);  // lost
+  int attempts = 0;
+  for (;;) {
+    const MasterLinkProtocol::Retry r = link.connection_failed(now);
+    if (r.give_up) break;
+    now += r.delay;
+    ASSERT_LT(++attempts, 200);
+  }
+  EXPECT_EQ(now, t0 + std::chrono::seconds(1) + milliseconds(30000));
+}
+
+TEST(MasterLinkProtocol, AStandbyFollowsItsMasterInTheStandbyRole) {
+  ReconnectRules r = rules();
+  r.attempt_timeout_ms = 1000;
+  MasterLinkProtocol link(secret(), "dome", "standby@h:2", 250, r, 1, PeerRole::standby);
+  link.begin(t0);
+  const Hello hello = link.start();
+  EXPECT_EQ(hello.role, PeerRole::standby);
+  MasterHandshake master(secret(), "dome");
+  const MasterLinkProtocol::Step answer = link.on_message(master.on_hello(hello));
+  ASSERT_TRUE(answer.reply.has_value());
+  EXPECT_NO_THROW(master.on_authenticate(std::get<Authenticate>(*answer.reply)));
+  EXPECT_EQ(link.on_message(master.welcome(1, 5, 250, 1000)).meaning, Meaning::welcomed);
+  (void)link.connection_failed(t0 + std::chrono::seconds(1));
+  EXPECT_EQ(link.attempt_limit(), std::optional<milliseconds>(1000)) << "its check that the master is gone";
+}
+
 }  // namespace
 }  // namespace zenith::cluster

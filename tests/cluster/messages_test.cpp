@@ -90,7 +90,7 @@ TEST(Messages, MaximumSizeMessagesRoundTripAndReachTheirDocumentedLimitExactly) 
 
 TEST(Messages, DocumentedMaximumPayloads) {
   const auto max = [](MessageType t) { return *max_payload_bytes(static_cast<std::uint16_t>(t)); };
-  EXPECT_EQ(max(MessageType::hello), 166u);
+  EXPECT_EQ(max(MessageType::hello), 167u);
   EXPECT_EQ(max(MessageType::challenge), 32u);
   EXPECT_EQ(max(MessageType::authenticate), 32u);
   EXPECT_EQ(max(MessageType::welcome), 52u);
@@ -109,6 +109,25 @@ TEST(Messages, DocumentedMaximumPayloads) {
   EXPECT_FALSE(max_payload_bytes(0).has_value());
   EXPECT_FALSE(max_payload_bytes(6).has_value());
   EXPECT_FALSE(max_payload_bytes(0xFFFF).has_value());
+}
+
+TEST(Messages, HelloCarriesTheRoleAsItsLastByte) {
+  Hello hello{kProtocolVersion, "dome", "standby@h:1", {}, PeerRole::standby};
+  Bytes payload = encode_payload(hello);
+  EXPECT_EQ(payload.back(), 1);
+  EXPECT_EQ(decode_payload(static_cast<std::uint16_t>(MessageType::hello), payload), Message{hello});
+  EXPECT_EQ(encode_payload(Hello{kProtocolVersion, "dome", "a", {}}).back(), 0) << "a node by default";
+  payload.back() = 2;
+  try {
+    decode_payload(static_cast<std::uint16_t>(MessageType::hello), payload);
+    FAIL() << "role 2 must be refused";
+  } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.code(), ProtocolErrorCode::malformed_payload);
+    EXPECT_NE(std::string(e.what()).find("Hello.role: 2, must be 0 (node) or 1 (standby)"), std::string::npos)
+        << e.what();
+  }
+  hello.role = static_cast<PeerRole>(9);
+  EXPECT_THROW(encode(hello), std::invalid_argument);
 }
 
 TEST(Messages, EncoderRefusesWhatTheDecoderWouldRefuse) {
