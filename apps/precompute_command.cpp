@@ -14,7 +14,7 @@ namespace {
 
 struct PrecomputeArgs {
   std::string atmosphere, out_dir, tables = "paper", cache_dir;
-  bool cpu = false, no_cache = false;
+  bool cpu = false, no_cache = false, no_series_tail = false;
   int orders = atmosphere::lut::kDefaultScatteringOrders;
   double tolerance = 0.0;
   unsigned threads = 0;
@@ -24,6 +24,7 @@ void run_precompute(const PrecomputeArgs& a) {
   const auto loaded = render::load_atmosphere_argument(a.atmosphere);
   render::TableRequest request = make_table_request(a.tables, a.orders, a.cpu, !a.no_cache, a.cache_dir);
   request.options.tolerance = a.tolerance;
+  request.options.series_tail = !a.no_series_tail;
   request.options.threads = a.threads;
 
   const render::ObtainedTables t = render::obtain_tables(loaded.model, request);
@@ -40,6 +41,8 @@ void run_precompute(const PrecomputeArgs& a) {
     std::string fractions;
     for (std::size_t i = 0; i < t.report.order_fraction.size(); ++i)
       fractions += fmt::format("{}{}: {:.4f}", i ? ", " : "", i + 1, t.report.order_fraction[i]);
+    if (t.report.tail_fraction > 0.0)
+      fractions += fmt::format(", orders {}–∞ as the series tail: {:.4f}", t.report.orders_used + 1, t.report.tail_fraction);
     fmt::print("orders used     {} (share of in-scattered radiance per order: {})\n", t.report.orders_used, fractions);
     if (!t.cache_file.empty()) fmt::print("cached in       {}\n", t.cache_file.string());
   }
@@ -66,6 +69,8 @@ void register_precompute_command(CLI::App& app) {
                               "Stop when an order adds less than this fraction of the total (caps at 50 orders)")
                   ->check(CLI::Range(1e-9, 1.0));
   orders->excludes(tol);
+  cmd->add_flag("--no-series-tail", args->no_series_tail,
+               "Drop the orders after the last one instead of adding their geometric tail");
   cmd->add_option("--tables", args->tables, "Table sizes: paper (default), small, large")
       ->check(CLI::IsMember({"paper", "small", "large"}));
   cmd->add_option("--cache", args->cache_dir, "Cache directory (default $XDG_CACHE_HOME/zenith)");

@@ -229,6 +229,12 @@ struct Variant {
   int sphere;           ///< PrecomputeOptions::sphere_zenith_samples
   bool direct_density;  ///< PrecomputeOptions::DensityMethod::Direct (else Harmonics)
   int coarse_stride;    ///< PrecomputeOptions::coarse_ray_stride
+  bool series_tail = lut::PrecomputeOptions{}.series_tail;  ///< PrecomputeOptions::series_tail
+  Variant without_tail() const {
+    Variant v = *this;
+    v.series_tail = false;
+    return v;
+  }
 };
 
 Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
@@ -242,6 +248,7 @@ Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
   s.options.scattering_samples = v.ray_samples;
   s.options.sphere_zenith_samples = v.sphere;
   s.options.coarse_ray_stride = v.coarse_stride;
+  s.options.series_tail = v.series_tail;
   s.options.density_method =
       v.direct_density ? lut::PrecomputeOptions::DensityMethod::Direct : lut::PrecomputeOptions::DensityMethod::Harmonics;
   s.label = fmt::format("{} {} order{}", sizes, v.orders, v.orders == 1 ? "" : "s");
@@ -252,10 +259,12 @@ Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
   const lut::PrecomputeOptions defaults;
   if (v.coarse_stride != defaults.coarse_ray_stride)
     s.label = fmt::format("{} coarse rays every {}", s.label, v.coarse_stride);
+  if (v.series_tail != defaults.series_tail && v.orders >= 3)
+    s.label = fmt::format("{} {}", s.label, v.series_tail ? "series tail" : "no tail");
   s.label = fmt::format("{} {}", s.label, gpu ? "GPU" : "CPU");
   s.project_default = gpu && sizes == "paper" && v.orders == defaults.max_orders && !v.trapezoid && !v.direct_density &&
                       v.ray_samples == defaults.scattering_samples && v.sphere == defaults.sphere_zenith_samples &&
-                      v.coarse_stride == defaults.coarse_ray_stride;
+                      v.coarse_stride == defaults.coarse_ray_stride && v.series_tail == defaults.series_tail;
   return s;
 }
 
@@ -294,8 +303,15 @@ std::vector<Setting> settings_for(const Options& o) {
   add("medium", {4, false, 50, 8}, true);
   add("paper", {2}, true);
   add("paper", {4}, true);
+  add("paper", {5}, true);
   add("paper", {6}, true);
-  add("paper", {lut::kDefaultScatteringOrders}, true);
+  add("paper", {8}, true);
+  if (lut::kDefaultScatteringOrders != 5 && lut::kDefaultScatteringOrders != 6 && lut::kDefaultScatteringOrders != 8)
+    add("paper", {lut::kDefaultScatteringOrders}, true);
+  // The orders after the last dropped, as before the series tail (issue 13).
+  add("paper", Variant{4}.without_tail(), true);
+  add("paper", Variant{8}.without_tail(), true);
+  add("paper", Variant{16}.without_tail(), true);  // the series summed to 16 orders: what the tail stands for
   add("paper", {lut::kDefaultScatteringOrders, false, 50, 16, false, 1}, true);  // every sample at every order
   add("paper", {4, false, 50, 8}, true);
   add("paper", {4, false, 50, 32}, true);

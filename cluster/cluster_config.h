@@ -14,7 +14,7 @@
 //     "timing": {"heartbeat_ms": 250, "barrier_timeout_ms": 5000, "frame_rate_hz": 10,
 //                "reconnect_s": 300},                       optional: a node's time to reconnect after a loss
 //     "secret": {"env": "ZENITH_CLUSTER_SECRET"},          or {"file": "secret.key"}; never the secret itself
-//     "tables": {"sizes": "paper", "orders": 8},           optional (default orders: kDefaultScatteringOrders)
+//     "tables": {"sizes": "paper", "orders": 6},           optional (default orders: kDefaultScatteringOrders)
 //     "nodes": [{"name": "q1", "host": "127.0.0.1", "outputs": ["top-left"]}, ...],
 //     "output": {"directory": "out/cluster", "format": "png"}
 //   }

@@ -1,10 +1,12 @@
 #version 450 core
-// Per-row sums of in-scattered radiance over one group's wavelengths, for the
-// share of each scattering order (PrecomputeReport::order_fraction) and the
-// tolerance stop: one invocation per (μ, r) row of the scattering tables.
+// Per-row sums of in-scattered radiance of each of one group's wavelengths,
+// for the share of each scattering order (PrecomputeReport::order_fraction),
+// the tolerance stop and the series tail's caps (series_tail.h): one
+// invocation per (μ, r) row of the scattering tables.
 //   SINGLE 1: single scattering with its phase functions (total_radiance_sum);
 //   SINGLE 0: the radiance of the last order (delta_radiance_texture).
-// row_sums[wavelength_group · rows + row]; `lanes`: wavelengths in this group.
+// row_sums[(wavelength_group · rows + row) · 4 + lane]; `lanes`: wavelengths in
+// this group (the others' sums are 0).
 layout(local_size_x = 64) in;
 
 #include "atmosphere_common.glsl"
@@ -25,7 +27,7 @@ void main() {
   const int row = int(gl_GlobalInvocationID.x);
   if (row >= rows) return;
   const int z = row / SCATTERING_MU, y = row % SCATTERING_MU;
-  real sum = real(0);
+  real4 sum = real4(0);
   for (int x = 0; x < SCATTERING_NU * SCATTERING_MU_S; ++x) {
     const ivec3 p = ivec3(x, y, z);
 #if SINGLE
@@ -37,7 +39,7 @@ void main() {
 #else
     const real4 v = real4(texelFetch(delta_radiance_texture, p, 0));
 #endif
-    for (int k = 0; k < lanes; ++k) sum += v[k];
+    for (int k = 0; k < lanes; ++k) sum[k] += v[k];
   }
-  row_sums[wavelength_group * rows + row] = sum;
+  for (int k = 0; k < 4; ++k) row_sums[(wavelength_group * rows + row) * 4 + k] = sum[k];
 }

@@ -10,6 +10,7 @@
 #include "atmosphere/lut/gauss_legendre.h"
 #include "core/parallel_for.h"
 #include "atmosphere/lut/quadrature.h"
+#include "atmosphere/lut/series_tail.h"
 #include "atmosphere/lut/spherical_harmonics.h"
 #include "atmosphere/model_hash.h"
 
@@ -77,6 +78,9 @@ class Precompute {
   TableQueries queries_;
   Table3D delta_radiance_;    ///< multiple-scattering radiance of the last order
   Table2D delta_irradiance_;  ///< sky irradiance of the last order
+  /// The same of the order before (for the series tail, series_tail.h; kept only with it).
+  Table3D previous_delta_radiance_;
+  Table2D previous_delta_irradiance_;
   double fraction_done_ = 0.0;
 };
 
@@ -487,6 +491,7 @@ void Precompute::compute_indirect_irradiance(int order) {
       }
     }
   });
+  if (options_.series_tail) previous_delta_irradiance_ = std::move(delta_irradiance_);
   delta_irradiance_ = std::move(next);
 }
 
@@ -547,6 +552,7 @@ double Precompute::compute_multiple_scattering(const Table3D& density, int sampl
       }
     }
   });
+  if (options_.series_tail) previous_delta_radiance_ = std::move(delta_radiance_);
   delta_radiance_ = std::move(next);
   double total = 0.0;
   for (double v : row_sums) total += v;
@@ -592,10 +598,19 @@ LookupTables Precompute::run() {
     for (double v : order_sums) total += v;
     if (options_.tolerance > 0.0 && total > 0.0 && added < options_.tolerance * total) break;
   }
+  // The orders after the last one, as its geometric tail (series_tail.h): from
+  // the third order on, where the two last orders are both multiple scattering.
+  double tail_sum = 0.0;
+  if (options_.series_tail && used >= 3) {
+    stage("series tail", 0.0, [&] {
+      tail_sum = add_series_tail(delta_radiance_, previous_delta_radiance_, tables_.multiple);
+      add_series_tail(delta_irradiance_, previous_delta_irradiance_, tables_.irradiance);
+    });
+  }
   tables_.scattering_orders = used;
   tables_.hash = lookup_table_hash(model_);
   if (report_) {
-    report_->set_order_sums(order_sums);
+    report_->set_order_sums(order_sums, tail_sum);
     report_->device = "CPU (" + std::to_string(core::resolve_thread_count(options_.threads)) + " threads)";
   }
   if (options_.progress) options_.progress({"done", 1.0});
@@ -604,12 +619,13 @@ LookupTables Precompute::run() {
 
 }  // namespace
 
-void PrecomputeReport::set_order_sums(const std::vector<double>& order_sums) {
+void PrecomputeReport::set_order_sums(const std::vector<double>& order_sums, double tail_sum) {
   orders_used = int(order_sums.size());
-  double total = 0.0;
+  double total = tail_sum;
   for (double v : order_sums) total += v;
   order_fraction.clear();
   for (double v : order_sums) order_fraction.push_back(total > 0.0 ? v / total : 0.0);
+  tail_fraction = total > 0.0 ? tail_sum / total : 0.0;
 }
 
 double PrecomputeReport::total_seconds() const {

@@ -17,13 +17,17 @@ struct PrecomputeProgress {
 };
 
 /// Scattering orders of the tables unless the user says otherwise (every
-/// command, the cluster config, the benchmarks). 8, not the 4 the paper and
-/// Bruneton use: once the view rays were integrated without their log-convex
-/// bias (issue 13, quadrature.h), 4 orders leave Earth's noon sky 4.8 % RMS from
-/// the path tracer and Mars' twilight 15.5 %; 8 orders give 2.2 % and 7.3 %,
-/// every reference case at least as close as the 4 orders of main at 556ff9d,
-/// for twice the cost of 4 (docs/lookup-tables.md, "Scattering orders").
-constexpr int kDefaultScatteringOrders = 8;
+/// command, the cluster config, the benchmarks), the orders after them added
+/// as their series tail (PrecomputeOptions::series_tail, series_tail.h). Once
+/// the view rays were integrated without their log-convex bias (issue 13,
+/// quadrature.h), 4 orders left Earth's noon sky 4.8 % RMS from the path
+/// tracer and Mars' twilight 15.5 %, and the default became 8 orders. With the
+/// tail, 6 orders are closer to the converged series than 8 without it in
+/// every statistic (paper sizes, every texel: Earth 0.08 % RMS against 0.20 %,
+/// Mars 0.56 % against 1.39 %; largest error 2.7 % and 5.9 % against 3.3 % and
+/// 15 %), for three quarters of the cost (docs/lookup-tables.md, "Closing the
+/// series").
+constexpr int kDefaultScatteringOrders = 6;
 
 struct PrecomputeOptions {
   TableSizes sizes{};
@@ -32,6 +36,10 @@ struct PrecomputeOptions {
   /// If > 0, stop early once an order adds less than this fraction of the total
   /// in-scattered radiance (summed over the table); max_orders still caps it.
   double tolerance = 0.0;
+  /// Close the series after the last order computed (at least the third) with
+  /// its geometric tail per texel and wavelength (series_tail.h), instead of
+  /// dropping the orders after it.
+  bool series_tail = true;
   unsigned threads = 0;  ///< CPU worker threads; 0 = hardware concurrency
 
   // Quadrature: the same on CPU and GPU.
@@ -98,10 +106,13 @@ struct PrecomputeReport {
   /// Fraction of the final total in-scattered radiance each order added
   /// (index 0 = single scattering).
   std::vector<double> order_fraction;
+  /// Fraction of the final total the series tail added (0 without one).
+  double tail_fraction = 0.0;
   std::string device;  ///< "CPU (2 threads)" or the GL renderer string
   double total_seconds() const;
-  /// Fills orders_used and order_fraction from Σ radiance of each order (index 0 = single).
-  void set_order_sums(const std::vector<double>& order_sums);
+  /// Fills orders_used, order_fraction and tail_fraction from Σ radiance of
+  /// each order (index 0 = single) and of the series tail.
+  void set_order_sums(const std::vector<double>& order_sums, double tail_sum = 0.0);
 };
 
 }  // namespace zenith::atmosphere::lut

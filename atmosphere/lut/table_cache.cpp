@@ -81,7 +81,7 @@ std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions&
   s << "cache v" << kCacheFormatVersion << " method " << kPrecomputeMethodRevision << '\n'
     << lookup_table_hash(model) << '\n'
     << o.sizes.describe() << '\n'
-    << "orders " << o.max_orders << " tolerance " << o.tolerance << '\n'
+    << "orders " << o.max_orders << " tolerance " << o.tolerance << (o.series_tail ? " series tail" : "") << '\n'
     << "samples " << o.transmittance_samples << ' ' << o.scattering_samples << ' ' << o.sphere_zenith_samples << '\n'
     << "coarse rays " << o.coarse_ray_stride << " from order " << o.coarse_ray_first_order << '\n'
     << "quadrature " << int(o.scattering_quadrature) << '\n'

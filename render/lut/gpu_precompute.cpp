@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <map>
 #include <optional>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "atmosphere/lut/series_tail.h"
 #include "atmosphere/lut/spherical_harmonics.h"
 #include "atmosphere/model_hash.h"
 #include "render/gl/buffer.h"
@@ -63,6 +65,8 @@ int to_int(std::size_t v) { return static_cast<int>(v); }
 struct GroupTables {
   Texture transmittance, irradiance, delta_irradiance;
   Texture single_rayleigh, single_mie, multiple, delta_radiance, density;
+  /// The deltas of the order before the last, for the series tail (only with it).
+  Texture previous_delta_irradiance, previous_delta_radiance;
 };
 
 class GpuPrecompute {
@@ -101,6 +105,9 @@ class GpuPrecompute {
   double compute_multiple_scattering(int sample_stride);
   /// Σ over texels and wavelengths: single scattering with phases, or the last order's radiance.
   double radiance_sum(bool single);
+  /// The series tail of every group's radiance (series_tail.comp) and
+  /// irradiance, and the readback of the final tables; returns Σ of the radiance's tail.
+  double add_series_tail();
   void read_back_multiple_orders();
 
   const AtmosphereModel& model_;
@@ -118,6 +125,9 @@ class GpuPrecompute {
   std::vector<GroupTables> groups_;
   std::map<std::string, ShaderProgram> programs_;
   double fraction_done_ = 0.0;
+  /// Σ over the table of each wavelength's radiance in the last radiance_sum,
+  /// and in the one before that of the last order (the series tail's caps).
+  std::vector<double> channel_sums_, previous_channel_sums_;
 };
 
 GpuPrecompute::GpuPrecompute(const AtmosphereModel& model, const PrecomputeOptions& options, PrecomputeReport* report,
@@ -162,7 +172,7 @@ void GpuPrecompute::prepare_model_data() {
   table_data_ = real_buffer(m.table_data, fp64_);
   const std::size_t real_size = fp64_ ? sizeof(double) : sizeof(float);
   texel_coordinates_ = gl::Buffer(texel_coordinate_count() * real_size);
-  row_sums_ = gl::Buffer(group_count() * sizes().scattering_r * sizes().scattering_mu * real_size);
+  row_sums_ = gl::Buffer(group_count() * sizes().scattering_r * sizes().scattering_mu * kLanes * real_size);
 }
 
 const ShaderProgram& GpuPrecompute::program(const std::string& file, std::vector<ShaderDefine> extra) {
@@ -349,6 +359,11 @@ void GpuPrecompute::compute_indirect_irradiance(int order) {
       t.irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
       t.delta_irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
     }
+    if (options_.series_tail) {  // keep the order before for the tail
+      std::swap(t.delta_irradiance, t.previous_delta_irradiance);
+      if (t.delta_irradiance.id() == 0)
+        t.delta_irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
+    }
     t.delta_irradiance.bind_image(kOutputImage, gl::ImageAccess::write_only);
     t.irradiance.bind_image(kSecondOutputImage, gl::ImageAccess::read_write);
     t.transmittance.bind(kTransmittanceUnit);
@@ -367,6 +382,10 @@ double GpuPrecompute::compute_multiple_scattering(int sample_stride) {
       t.multiple = new_scattering_texture();
       t.delta_radiance = new_scattering_texture();
     }
+    if (options_.series_tail) {  // keep the order before for the tail
+      std::swap(t.delta_radiance, t.previous_delta_radiance);
+      if (t.delta_radiance.id() == 0) t.delta_radiance = new_scattering_texture();
+    }
     t.delta_radiance.bind_image(kOutputImage, gl::ImageAccess::write_only);
     t.multiple.bind_image(kSecondOutputImage, gl::ImageAccess::read_write);
     t.transmittance.bind(kTransmittanceUnit);
@@ -377,6 +396,7 @@ double GpuPrecompute::compute_multiple_scattering(int sample_stride) {
     dispatch_scattering(p);
     barrier();  // before the next group's view transmittance overwrites this one's
   }
+  previous_channel_sums_ = std::move(channel_sums_);
   return radiance_sum(false);
 }
 
@@ -396,13 +416,55 @@ double GpuPrecompute::radiance_sum(bool single) {
     p.dispatch_covering(to_int(rows));
   }
   barrier();
-  double total = 0.0;
+  // row_sums[(group · rows + row) · 4 + lane]: wavelength group · 4 + lane.
+  std::vector<double> per_channel(n_, 0.0);
+  auto add = [&](std::size_t i, double v) {
+    const std::size_t channel = (i / (rows * kLanes)) * kLanes + i % kLanes;
+    if (channel < n_) per_channel[channel] += v;
+  };
   if (fp64_) {
-    for (double v : row_sums_.read<double>()) total += v;
+    const std::vector<double> sums = row_sums_.read<double>();
+    for (std::size_t i = 0; i < sums.size(); ++i) add(i, sums[i]);
   } else {
-    for (float v : row_sums_.read<float>()) total += static_cast<double>(v);
+    const std::vector<float> sums = row_sums_.read<float>();
+    for (std::size_t i = 0; i < sums.size(); ++i) add(i, static_cast<double>(sums[i]));
   }
+  channel_sums_ = per_channel;
+  double total = 0.0;
+  for (double v : per_channel) total += v;
   return total;
+}
+
+double GpuPrecompute::add_series_tail() {
+  // The radiance on the GPU, each wavelength's texel ratios capped from its
+  // sums over the table (radiance_sum of the last two orders).
+  const ShaderProgram& p = program("series_tail.comp");
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    GroupTables& t = groups_[g];
+    std::array<float, 4> cap{};
+    for (std::size_t k = 0; k < kLanes && g * kLanes + k < n_; ++k) {
+      const std::size_t c = g * kLanes + k;
+      cap[k] = static_cast<float>(atmosphere::lut::series_tail_ratio_cap(channel_sums_[c], previous_channel_sums_[c]));
+    }
+    t.delta_radiance.bind_image(kOutputImage, gl::ImageAccess::read_write);
+    t.multiple.bind_image(kSecondOutputImage, gl::ImageAccess::read_write);
+    t.previous_delta_radiance.bind(kDeltaRadianceUnit);
+    p.set_uniform("wavelength_group", to_int(g));
+    p.set_uniform("ratio_cap", cap);
+    dispatch_scattering(p);
+  }
+  barrier();
+  const double tail_sum = radiance_sum(false);  // the deltas now hold the tail
+  read_back_multiple_orders();
+  // The irradiance (64×16 texels) on the CPU, with the CPU precompute's code.
+  const TableSizes& s = sizes();
+  Table2D last(s.irradiance_mu_s, s.irradiance_r, n_), before(s.irradiance_mu_s, s.irradiance_r, n_);
+  for (std::size_t g = 0; g < group_count(); ++g) {
+    unpack(groups_[g].delta_irradiance, g, n_, last.data);
+    unpack(groups_[g].previous_delta_irradiance, g, n_, before.data);
+  }
+  atmosphere::lut::add_series_tail(last, before, tables_.irradiance);
+  return tail_sum;
 }
 
 void GpuPrecompute::read_back_multiple_orders() {
@@ -425,6 +487,9 @@ LookupTables GpuPrecompute::run() {
   std::vector<double> order_sums;
   order_sums.push_back(radiance_sum(true));
   int used = 1;
+  // The orders after the last one, as its geometric tail (series_tail.h): from
+  // the third order on, where the two last orders are both multiple scattering.
+  const auto tail_follows = [&](int last_order) { return options_.series_tail && last_order >= 3; };
   for (int order = 2; order <= orders; ++order) {
     const std::string prefix = "order " + std::to_string(order) + ": ";
     stage(prefix + "scattering density", share_multiple * 0.6, [&] { compute_scattering_density(order); });
@@ -436,15 +501,20 @@ LookupTables GpuPrecompute::run() {
       double total = 0.0;
       for (double v : order_sums) total += v;
       last = order == orders || (options_.tolerance > 0.0 && total > 0.0 && added < options_.tolerance * total);
-      if (last) read_back_multiple_orders();  // the tables are final: their readback is part of this stage
+      // The tables are final: their readback is part of this stage, or of the tail's.
+      if (last && !tail_follows(order)) read_back_multiple_orders();
     });
     used = order;
     if (last) break;
   }
+  double tail_sum = 0.0;
+  if (tail_follows(used)) {
+    stage("series tail", 0.0, [&] { tail_sum = add_series_tail(); });
+  }
   tables_.scattering_orders = used;
   tables_.hash = atmosphere::lookup_table_hash(model_);
   if (report_) {
-    report_->set_order_sums(order_sums);
+    report_->set_order_sums(order_sums, tail_sum);
     report_->device = context_.renderer();
   }
   if (options_.progress) options_.progress({"done", 1.0});

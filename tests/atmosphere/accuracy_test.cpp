@@ -67,8 +67,8 @@ struct Agreement {
 
 /// Relative error of the tables against the reference at every direction and
 /// wavelength, discounting the reference's own Monte Carlo noise (2σ).
-Agreement compare(const std::string& preset, const std::string& fixture_name) {
-  const SmallTables& t = SmallTables::get(preset);
+Agreement compare(const std::string& preset, const std::string& fixture_name, bool default_orders = false) {
+  const SmallTables& t = default_orders ? SmallTables::with_default_orders(preset) : SmallTables::get(preset);
   const Fixture f = read_fixture(fixture_name, t.model.wavelength_count());
   SkyGeometry g;
   g.altitude_m = f.altitude_m;
@@ -156,6 +156,36 @@ INSTANTIATE_TEST_SUITE_P(
                       AccuracyCase{"MarsLowSun", "mars", "mars_low_sun", 0.105, 0.30},
                       AccuracyCase{"MarsTwilight", "mars", "mars_twilight", 0.145, 0.38},
                       AccuracyCase{"MarsLimbFromOrbit", "mars", "mars_orbit_limb", 0.11, 0.25}),
+    [](const auto& test_info) { return std::string(test_info.param.name); });
+
+// The project's default orders and their series tail (series_tail.h) on the
+// same small tables, bounds about 1.3× the RMS / max measured when the tail
+// came (issue 13): Earth noon 0.052 / 0.094, low sun 0.039 / 0.092, twilight
+// 0.094 / 0.25, limb 0.280 / 0.66; Mars 0.015 / 0.031, 0.011 / 0.032,
+// twilight 0.024 / 0.087, limb 0.135 / 0.33 (4 orders without the tail,
+// above: Mars 4–8× farther, Earth's twilight and limb closer). Against the path tracer the tail
+// moves the tables toward the converged series, whose own excess at the limb
+// and in twilight (these tables' few r and μs texels there) the dropped orders
+// had partly hidden; paper-size tables: docs/lookup-tables.md, "Closing the series".
+class DefaultOrdersVsReference : public ::testing::TestWithParam<AccuracyCase> {};
+
+TEST_P(DefaultOrdersVsReference, WithinStatedBounds) {
+  const AccuracyCase& c = GetParam();
+  const Agreement a = compare(c.preset, c.fixture, true);
+  EXPECT_LT(a.rms_relative, c.max_rms);
+  EXPECT_LT(a.max_relative, c.max_max);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, DefaultOrdersVsReference,
+    ::testing::Values(AccuracyCase{"EarthNoon", "earth-advanced", "earth-advanced_noon", 0.068, 0.13},
+                      AccuracyCase{"EarthLowSun", "earth-advanced", "earth-advanced_low_sun", 0.052, 0.12},
+                      AccuracyCase{"EarthTwilight", "earth-advanced", "earth-advanced_twilight", 0.123, 0.33},
+                      AccuracyCase{"EarthLimbFromOrbit", "earth-advanced", "earth-advanced_orbit_limb", 0.37, 0.86},
+                      AccuracyCase{"MarsNoon", "mars", "mars_noon", 0.019, 0.04},
+                      AccuracyCase{"MarsLowSun", "mars", "mars_low_sun", 0.015, 0.042},
+                      AccuracyCase{"MarsTwilight", "mars", "mars_twilight", 0.032, 0.113},
+                      AccuracyCase{"MarsLimbFromOrbit", "mars", "mars_orbit_limb", 0.176, 0.44}),
     [](const auto& test_info) { return std::string(test_info.param.name); });
 
 TEST(Energy, ConservativeAtmosphereOverAWhiteGroundCreatesNoLight) {

@@ -22,31 +22,43 @@ struct SmallTables {
   LookupTables tables;
   std::unique_ptr<TableQueries> queries;
 
-  /// Options of the shared small tables: small sizes, 4 orders, coarse sphere integral.
+  /// Options of the shared small tables: small sizes, 4 orders and nothing
+  /// after them (no series tail: the bounds of the tests that use them were
+  /// measured so), coarse sphere integral.
   static PrecomputeOptions small_options() {
     PrecomputeOptions o;
     o.sizes = TableSizes::small();
     o.max_orders = 4;
+    o.series_tail = false;
     o.sphere_zenith_samples = 8;
+    return o;
+  }
+  /// The same sizes with the project's default orders and their series tail.
+  static PrecomputeOptions default_orders_options() {
+    PrecomputeOptions o = small_options();
+    o.max_orders = kDefaultScatteringOrders;
+    o.series_tail = true;
     return o;
   }
 
   /// The shared tables (from the build tree's cache when another test made them:
   /// `report` is then empty).
-  static const SmallTables& get(const std::string& preset) { return instance(preset, false); }
+  static const SmallTables& get(const std::string& preset) { return instance(preset, false, false); }
   /// The shared tables computed in this process, so `report` is filled.
-  static const SmallTables& computed(const std::string& preset) { return instance(preset, true); }
+  static const SmallTables& computed(const std::string& preset) { return instance(preset, true, false); }
+  /// Small tables with the default orders and the series tail (default_orders_options).
+  static const SmallTables& with_default_orders(const std::string& preset) { return instance(preset, false, true); }
 
  private:
-  static const SmallTables& instance(const std::string& preset, bool need_report) {
+  static const SmallTables& instance(const std::string& preset, bool need_report, bool default_orders) {
     static std::mutex mutex;
     static std::map<std::string, std::unique_ptr<SmallTables>> cache;
     std::lock_guard lock(mutex);
-    auto& slot = cache[preset];
+    auto& slot = cache[preset + (default_orders ? " default orders" : "")];
     if (!slot || (need_report && slot->report.stages.empty())) {
       slot = std::make_unique<SmallTables>();
       slot->model = load_preset(preset).model;
-      slot->options = small_options();
+      slot->options = default_orders ? default_orders_options() : small_options();
 #ifdef ZENITH_TEST_TABLE_CACHE
       const TableCache disk(ZENITH_TEST_TABLE_CACHE);
       std::optional<LookupTables> stored;

@@ -12,6 +12,7 @@
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/quadrature.h"
+#include "atmosphere/lut/series_tail.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/parameters.h"
@@ -180,6 +181,70 @@ TEST(LookupTables, ToleranceStopsEarlyAndReportsOrders) {
   EXPECT_GE(report.orders_used, 2);
   EXPECT_EQ(t.scattering_orders, report.orders_used);
   EXPECT_LT(report.order_fraction.back(), 0.05 / (1.0 - 0.05) + 1e-9);
+}
+
+// ---- The series tail (series_tail.h)
+
+TEST(SeriesTail, SumsAGeometricSeriesOfOrdersExactly) {
+  // Orders L_n = a·k^n per texel, k = 0.4 in channel 0 and 0.6 in channel 1,
+  // every texel with its own a: the tail is Σ_{n>N} a k^n = L_N k / (1 − k).
+  const int N = 5;
+  Table2D last(3, 2, 2), before(3, 2, 2), sum(3, 2, 2);
+  const double k[2] = {0.4, 0.6};
+  double expected_total = 0.0;
+  for (std::size_t t = 0; t < 6; ++t)
+    for (std::size_t c = 0; c < 2; ++c) {
+      const double a = 1.0 + double(t);
+      before.data[t * 2 + c] = float(a * std::pow(k[c], N - 1));
+      last.data[t * 2 + c] = float(a * std::pow(k[c], N));
+      sum.data[t * 2 + c] = 10.0f;
+      expected_total += a * std::pow(k[c], N + 1) / (1.0 - k[c]);
+    }
+  const double total = add_series_tail(last, before, sum);
+  EXPECT_NEAR(total, expected_total, 1e-6 * expected_total);
+  for (std::size_t t = 0; t < 6; ++t)
+    for (std::size_t c = 0; c < 2; ++c) {
+      const double tail = (1.0 + double(t)) * std::pow(k[c], N + 1) / (1.0 - k[c]);
+      EXPECT_NEAR(last.data[t * 2 + c], tail, 1e-6 * tail) << "the last order is replaced by the tail";
+      EXPECT_NEAR(sum.data[t * 2 + c], 10.0 + tail, 1e-6 * (10.0 + tail));
+    }
+}
+
+TEST(SeriesTail, CapsATexelsRatioAtItsTablesAndNeverAboveNineTenths) {
+  // Three texels at ratio 0.4 and one at 0.95 (a texel whose orders have not
+  // settled): the table's ratio is Σlast/Σbefore, the odd texel's capped at 1.25× it.
+  Table3D last(4, 1, 1, 1), before(4, 1, 1, 1), sum(4, 1, 1, 1);
+  for (std::size_t t = 0; t < 3; ++t) {
+    before.data[t] = 1.0f;
+    last.data[t] = 0.4f;
+  }
+  before.data[3] = 1.0f;
+  last.data[3] = 0.95f;
+  const double table_ratio = (3 * double(0.4f) + double(0.95f)) / 4.0;
+  const double cap = 1.25 * table_ratio;
+  ASSERT_LT(cap, 0.95);
+  add_series_tail(last, before, sum);
+  EXPECT_NEAR(sum.data[0], 0.4 * 0.4 / 0.6, 1e-6);
+  EXPECT_NEAR(sum.data[3], 0.95 * cap / (1.0 - cap), 1e-6);
+  EXPECT_DOUBLE_EQ(series_tail_ratio_cap(10.0, 1.0), kSeriesTailMaxRatio);
+  EXPECT_DOUBLE_EQ(series_tail_ratio_cap(0.5, 1.0), 0.625);
+  EXPECT_DOUBLE_EQ(series_tail_factor(0.9, 1.0, kSeriesTailMaxRatio), 9.0);  // at most 9× the last order
+}
+
+TEST(SeriesTail, NoTailWhereEitherOrderHasNoLight) {
+  EXPECT_EQ(series_tail_factor(0.0, 1.0, 0.9), 0.0);
+  EXPECT_EQ(series_tail_factor(1.0, 0.0, 0.9), 0.0);
+  EXPECT_EQ(series_tail_factor(-1e-9, 1.0, 0.9), 0.0);
+  EXPECT_EQ(series_tail_factor(std::nan(""), 1.0, 0.9), 0.0);
+  EXPECT_EQ(series_tail_ratio_cap(0.0, 1.0), 0.0);
+  EXPECT_EQ(series_tail_ratio_cap(1.0, 0.0), 0.0);
+  Table2D last(2, 1, 1), before(2, 1, 1), sum(2, 1, 1);
+  last.data = {0.0f, 0.5f};
+  before.data = {1.0f, 0.0f};
+  EXPECT_EQ(add_series_tail(last, before, sum), 0.0);
+  EXPECT_EQ(sum.data, (std::vector<float>{0.0f, 0.0f}));
+  Table2D wrong(3, 1, 1);
+  EXPECT_THROW(add_series_tail(last, before, wrong), std::invalid_argument);
 }
 
 TEST(RaySamples, CrowdTowardTheLowestPointAndEndAtTheRaysEnds) {
