@@ -75,6 +75,7 @@
 #include "atmosphere/lut/precompute_options.h"
 #include "atmosphere/lut/table_cache.h"
 #include "render/gl/egl_context.h"
+#include "render/gl/software_rasterizer.h"
 #include "render/lut/gpu_precompute.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
@@ -467,6 +468,8 @@ int run(int argc, char** argv) {
   const render::gl::HeadlessContext context(context_options);
   const std::string device = context.renderer();
   benchmark::AddCustomContext("gl_renderer", device);
+  if (context.is_software())  // gl/software_rasterizer.h
+    benchmark::AddCustomContext("llvmpipe_threads", render::gl::default_software_rasterizer_threads());
   benchmark::AddCustomContext("tables", fmt::format("{} sizes, {} orders", opt.tables, opt.orders));
 
   const scene::Scene scene = scene::load_scene(opt.scene);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "render/gl/debug_output.h"
+#include "render/gl/software_rasterizer.h"
 
 // EGL_EXT_device_query_name (newer than epoxy's registry copy).
 #ifndef EGL_RENDERER_EXT
@@ -284,6 +285,7 @@ std::optional<std::string> try_candidate(const Candidate& candidate, const Clien
 }  // namespace
 
 HeadlessContext::HeadlessContext(const ContextOptions& options) {
+  default_software_rasterizer_threads();  // before any display exists: Mesa reads it then
   if (options.gl_major < 3 || (options.gl_major == 3 && options.gl_minor < 2) || options.gl_minor < 0)
     throw std::invalid_argument(fmt::format("HeadlessContext: GL {}.{} requested: a core profile needs GL 3.2 or later",
                                             options.gl_major, options.gl_minor));

@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "render/gl/debug_output.h"
+#include "render/gl/software_rasterizer.h"
 
 namespace zenith::render::window {
 namespace {
@@ -64,6 +65,7 @@ class GlfwLibrary {
  public:
   GlfwLibrary() {
     glfwGetError(nullptr);  // drop any error left from an earlier, failed use
+    gl::default_software_rasterizer_threads();  // before GLFW opens the display: Mesa reads it then
     if (glfwInit() != GLFW_TRUE)
       throw std::runtime_error(
           fmt::format("no display: set DISPLAY or use the headless path (omit --window) (GLFW: {})", glfw_error()));
