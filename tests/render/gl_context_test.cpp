@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -19,6 +20,7 @@
 #include "render/gl/gl_error.h"
 #include "render/gl/gl_limits.h"
 #include "render/gl/shader_program.h"
+#include "render/gl/software_rasterizer.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
 #include "render/shader_source.h"
@@ -64,6 +66,26 @@ class GlTest : public ::testing::Test {
  protected:
   HeadlessContext context_;
 };
+
+TEST(SoftwareRasterizer, TwiceTheCpusUpToEightAndTheUsersChoiceKept) {
+  EXPECT_EQ(gl::software_rasterizer_threads_for(1), 2);
+  EXPECT_EQ(gl::software_rasterizer_threads_for(2), 4);
+  EXPECT_EQ(gl::software_rasterizer_threads_for(8), 16);
+  EXPECT_EQ(gl::software_rasterizer_threads_for(9), std::nullopt);  // Mesa's default on larger machines
+  EXPECT_EQ(gl::software_rasterizer_threads_for(0), std::nullopt);  // unknown CPU count
+  // Once a context exists, LP_NUM_THREADS is the user's or ours, and the answer says which.
+  const gl::HeadlessContext context;
+  const std::string setting = gl::default_software_rasterizer_threads();
+  const char* value = std::getenv("LP_NUM_THREADS");
+  if (const auto ours = gl::software_rasterizer_threads_for(std::thread::hardware_concurrency())) {
+    ASSERT_NE(value, nullptr);
+    EXPECT_TRUE(setting == std::string(value) + " (set by zenith)" || setting == std::string(value) + " (LP_NUM_THREADS)")
+        << setting;
+  } else if (value == nullptr) {
+    EXPECT_EQ(setting, "Mesa's default");
+  }
+  EXPECT_EQ(gl::default_software_rasterizer_threads(), setting) << "decided once per process";
+}
 
 TEST(HeadlessContext, CreatesAGl45CoreContextWithoutADisplay) {
   const auto start = std::chrono::steady_clock::now();
