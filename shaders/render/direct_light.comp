@@ -18,13 +18,14 @@
 //
 // Defines: SUN (1: the sun's disc can be in the tile), ONE_BODY (1: only the
 // body `one_body` can be in the tiles: no search over the bodies, its data
-// from uniforms), LIMB_DARKENING, ECLIPSES.
+// from uniforms), LIMB_DARKENING, ECLIPSES, TILES_PER_GROUP (tiles per work
+// group, one per z of the local size: frame.glsl's tile_pixel).
 #include "frame.glsl"
 #include "frame_rgb.glsl"
 #include "sun_disc.glsl"
 #include "surface_albedo.glsl"
 
-layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE, local_size_z = TILES_PER_GROUP) in;
 
 uniform mat3 rgb_from_albedo;  // M above, exposure included
 #if SUN

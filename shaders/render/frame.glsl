@@ -49,8 +49,13 @@ uniform int tile_offset;
 uniform int tile_count;
 
 /// This invocation's band pixel: false past the end of the list or the band.
+/// A pass may give each work group TILES_PER_GROUP tiles (default 1), one per
+/// z of its local size, the renderer dispatching that many fewer groups.
+#ifndef TILES_PER_GROUP
+#define TILES_PER_GROUP 1
+#endif
 bool tile_pixel(out ivec2 p) {
-  const uint tile_index = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+  const uint tile_index = (gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x) * TILES_PER_GROUP + gl_LocalInvocationID.z;
   p = ivec2(0);
   if (tile_index >= uint(tile_count)) return false;
   const uint tile = tiles[uint(tile_offset) + tile_index];
