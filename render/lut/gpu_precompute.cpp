@@ -103,7 +103,8 @@ class GpuPrecompute {
   void compute_scattering_density_direct(int order);
   void compute_indirect_irradiance(int order);
   double compute_multiple_scattering(int sample_stride);
-  /// Σ over texels and wavelengths: single scattering with phases, or the last order's radiance.
+  /// Σ over texels and wavelengths: single scattering with phases, or the last
+  /// order's radiance; each wavelength's Σ is left in channel_sums_.
   double radiance_sum(bool single);
   /// The series tail of every group's radiance (series_tail.comp) and
   /// irradiance, and the readback of the final tables; returns Σ of the radiance's tail.
