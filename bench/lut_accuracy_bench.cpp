@@ -211,6 +211,10 @@ lut::TableSizes sizes_by_name(const std::string& name) {
   if (name == "small") return lut::TableSizes::small();
   if (name == "medium") return lut::TableSizes{128, 32, 64, 16, 16, 64, 32, 8};
   if (name == "paper") return lut::TableSizes{};
+  // Paper sizes with twice the texels in one dimension of the scattering tables
+  // (which resolution Mars' twilight needs: docs/lookup-tables.md, "Closing the series").
+  if (name == "paper-mu-s-x2") return lut::TableSizes{256, 64, 64, 16, 32, 128, 64, 8};
+  if (name == "paper-nu-x2") return lut::TableSizes{256, 64, 64, 16, 32, 128, 32, 16};
   throw std::invalid_argument(fmt::format("no table sizes named '{}'", name));
 }
 
@@ -312,6 +316,8 @@ std::vector<Setting> settings_for(const Options& o) {
   add("paper", Variant{4}.without_tail(), true);
   add("paper", Variant{8}.without_tail(), true);
   add("paper", Variant{16}.without_tail(), true);  // the series summed to 16 orders: what the tail stands for
+  add("paper-mu-s-x2", {lut::kDefaultScatteringOrders}, true);
+  add("paper-nu-x2", {lut::kDefaultScatteringOrders}, true);
   add("paper", {lut::kDefaultScatteringOrders, false, 50, 16, false, 1}, true);  // every sample at every order
   add("paper", {4, false, 50, 8}, true);
   add("paper", {4, false, 50, 32}, true);
