@@ -69,6 +69,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "bench/tiny_cluster.h"
 #include "core/process.h"
 
@@ -114,45 +115,27 @@ struct Options {
   bool keep = false;
 };
 
-std::vector<std::string> split(const std::string& list) {
-  std::vector<std::string> out;
-  std::stringstream in(list);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
-std::vector<int> split_ints(const std::string& list) {
-  std::vector<int> out;
-  for (const std::string& s : split(list)) out.push_back(std::stoi(s));
-  return out;
-}
-
 Options parse_options(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
+  for (zenith::bench::CommandLine args(argc, argv); args.next();) {
+    const std::string& a = args.option();
     if (a == "--help" || a == "-h") {
       fmt::print("{}", kUsage);
       std::exit(0);
-    } else if (a == "--zenith") o.zenith = value();
-    else if (a == "--nodes") o.nodes = split_ints(value());
-    else if (a == "--frames") o.frames = std::stoi(value());
-    else if (a == "--size") o.size_px = std::stoi(value());
-    else if (a == "--frame-tables") o.frame_tables = value();
+    } else if (a == "--zenith") o.zenith = args.value();
+    else if (a == "--nodes") o.nodes = zenith::bench::split_int_list(args.value());
+    else if (a == "--frames") o.frames = std::stoi(args.value());
+    else if (a == "--size") o.size_px = std::stoi(args.value());
+    else if (a == "--frame-tables") o.frame_tables = args.value();
     else if (a == "--tables") {
-      o.tables = split(value());
+      o.tables = zenith::bench::split_list(args.value());
       if (o.tables == std::vector<std::string>{"none"}) o.tables.clear();
-    } else if (a == "--broadcast-nodes") o.broadcast_nodes = split_ints(value());
-    else if (a == "--orders") o.orders = std::stoi(value());
-    else if (a == "--cache") o.cache = fs::path(value());
-    else if (a == "--work") o.work = value();
-    else if (a == "--csv") o.csv = value();
-    else if (a == "--timeout-s") o.timeout_s = std::stoi(value());
+    } else if (a == "--broadcast-nodes") o.broadcast_nodes = zenith::bench::split_int_list(args.value());
+    else if (a == "--orders") o.orders = std::stoi(args.value());
+    else if (a == "--cache") o.cache = fs::path(args.value());
+    else if (a == "--work") o.work = args.value();
+    else if (a == "--csv") o.csv = args.value();
+    else if (a == "--timeout-s") o.timeout_s = std::stoi(args.value());
     else if (a == "--keep") o.keep = true;
     else throw std::invalid_argument("unknown option " + a);
   }

@@ -58,6 +58,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "bench/tiny_cluster.h"
 #include "core/process.h"
 
@@ -107,33 +108,29 @@ struct Options {
 
 Options parse_options(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
+  for (zenith::bench::CommandLine args(argc, argv); args.next();) {
+    const std::string& a = args.option();
     if (a == "--help" || a == "-h") {
       fmt::print("{}", kUsage);
       std::exit(0);
-    } else if (a == "--zenith") o.zenith = value();
-    else if (a == "--frames") o.frames = std::stoi(value());
-    else if (a == "--nodes") o.nodes = std::stoi(value());
-    else if (a == "--size") o.size_px = std::stoi(value());
-    else if (a == "--fps") o.fps = std::stod(value());
+    } else if (a == "--zenith") o.zenith = args.value();
+    else if (a == "--frames") o.frames = std::stoi(args.value());
+    else if (a == "--nodes") o.nodes = std::stoi(args.value());
+    else if (a == "--size") o.size_px = std::stoi(args.value());
+    else if (a == "--fps") o.fps = std::stod(args.value());
     else if (a == "--fault-interval-s") {
-      const std::string v = value();
+      const std::string v = args.value();
       const auto comma = v.find(',');
       if (comma == std::string::npos) throw std::invalid_argument("--fault-interval-s: expected MIN,MAX");
       o.fault_min_s = std::stod(v.substr(0, comma));
       o.fault_max_s = std::stod(v.substr(comma + 1));
-    } else if (a == "--long-stop-probability") o.long_stop_probability = std::stod(value());
-    else if (a == "--quiet-fraction") o.quiet_fraction = std::stod(value());
-    else if (a == "--max-rss-growth-mib") o.max_rss_growth_mib = std::stod(value());
-    else if (a == "--seed") o.seed = static_cast<unsigned>(std::stoul(value()));
-    else if (a == "--cache") o.cache = fs::path(value());
-    else if (a == "--work") o.work = value();
-    else if (a == "--timeout-s") o.timeout_s = std::stoi(value());
+    } else if (a == "--long-stop-probability") o.long_stop_probability = std::stod(args.value());
+    else if (a == "--quiet-fraction") o.quiet_fraction = std::stod(args.value());
+    else if (a == "--max-rss-growth-mib") o.max_rss_growth_mib = std::stod(args.value());
+    else if (a == "--seed") o.seed = static_cast<unsigned>(std::stoul(args.value()));
+    else if (a == "--cache") o.cache = fs::path(args.value());
+    else if (a == "--work") o.work = args.value();
+    else if (a == "--timeout-s") o.timeout_s = std::stoi(args.value());
     else if (a == "--keep") o.keep = true;
     else throw std::invalid_argument("unknown option " + a);
   }

@@ -29,11 +29,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "atmosphere/lut/parameterization.h"
+#include "bench/command_line.h"
 #include "atmosphere/lut/precompute_options.h"
 #include "render/gl/egl_context.h"
 #include "render/lut/gpu_precompute.h"
@@ -53,33 +53,20 @@ struct Options {
   fs::path out = fs::path(ZENITH_SOURCE_DIR) / "bench/results";
 };
 
-std::vector<std::string> split(const std::string& list) {
-  std::vector<std::string> out;
-  std::stringstream s(list);
-  for (std::string item; std::getline(s, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
+  for (zenith::bench::CommandLine args(argc, argv); args.next();) {
+    const std::string& a = args.option();
     if (a == "--presets") {
-      o.presets = split(value());
+      o.presets = zenith::bench::split_list(args.value());
     } else if (a == "--tables") {
-      o.tables = value();
+      o.tables = args.value();
     } else if (a == "--orders") {
-      o.orders.clear();
-      for (const std::string& n : split(value())) o.orders.push_back(std::stoi(n));
+      o.orders = zenith::bench::split_int_list(args.value());
     } else if (a == "--reference-orders") {
-      o.reference_orders = std::stoi(value());
+      o.reference_orders = std::stoi(args.value());
     } else if (a == "--out") {
-      o.out = value();
+      o.out = args.value();
     } else {
       throw std::invalid_argument("unknown argument " + a +
                                   " (--presets LIST --tables NAME --orders LIST --reference-orders N --out DIR)");
