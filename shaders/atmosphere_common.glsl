@@ -753,10 +753,11 @@ real4 transmittance(real r, real mu, real d, bool hits_ground) {
   const real4 p = transmittance_to_top(r_p, real(0));
   const real4 a = transmittance_to_top(r, -mu);
   const real4 b = transmittance_to_top(r_d, mu_d);
-  real4 result;
-  for (int c = 0; c < 4; ++c)
-    result[c] = a[c] > real(0) && b[c] > real(0) ? min(p[c] / a[c], real(1)) * min(p[c] / b[c], real(1)) : real(0);
-  return result;
+  // Per lane, 0 where a or b is not positive; selected on whole vectors (NVIDIA refuses a double
+  // vector written at a non-constant index, C9999 __setVectorIndex).
+  const bvec4 positive = bvec4(uvec4(greaterThan(a, real4(0))) & uvec4(greaterThan(b, real4(0))));
+  const real4 safe_a = mix(real4(1), a, positive), safe_b = mix(real4(1), b, positive);
+  return mix(real4(0), min(p / safe_a, real4(1)) * min(p / safe_b, real4(1)), positive);
 }
 
 /// TableQueries::transmittance_to_sun: zero when the planet blocks the sun's centre.

@@ -27,6 +27,9 @@ void main() {
   const int row = int(gl_GlobalInvocationID.x);
   if (row >= rows) return;
   const int z = row / SCATTERING_MU, y = row % SCATTERING_MU;
+  // The lanes beyond `lanes` hold no wavelength: they are left out by selection, a whole-vector
+  // operation (NVIDIA refuses a double vector written at a non-constant index, C9999).
+  const bvec4 used_lane = lessThan(ivec4(0, 1, 2, 3), ivec4(lanes));
   real4 sum = real4(0);
   for (int x = 0; x < SCATTERING_NU * SCATTERING_MU_S; ++x) {
     const ivec3 p = ivec3(x, y, z);
@@ -39,7 +42,7 @@ void main() {
 #else
     const real4 v = real4(texelFetch(delta_radiance_texture, p, 0));
 #endif
-    for (int k = 0; k < lanes; ++k) sum[k] += v[k];
+    sum += mix(real4(0), v, used_lane);
   }
   for (int k = 0; k < 4; ++k) row_sums[(wavelength_group * rows + row) * 4 + k] = sum[k];
 }

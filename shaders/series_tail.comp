@@ -17,11 +17,13 @@ layout(binding = SECOND_OUTPUT_IMAGE, rgba32f) uniform image3D sum_image;
 layout(binding = DELTA_RADIANCE_UNIT) uniform sampler3D order_before_texture;
 uniform vec4 ratio_cap;  // per wavelength of the group: series_tail_ratio_cap (< 1)
 
-/// series_tail_factor (series_tail.h).
-real series_tail_factor(real last, real before_last, real cap) {
-  if (!(last > real(0)) || !(before_last > real(0))) return real(0);
-  const real k = min(last / before_last, cap);
-  return k / (real(1) - k);
+/// series_tail_factor (series_tail.h), per lane: k/(1 − k) with k = min(last/before_last, cap),
+/// and 0 where either order is not positive (no light, or NaN). Written on whole vectors: NVIDIA
+/// refuses a double vector written at a non-constant index (C9999 __setVectorIndex).
+real4 series_tail_factor(real4 last, real4 before_last, real4 cap) {
+  const bvec4 lit = bvec4(uvec4(greaterThan(last, real4(0))) & uvec4(greaterThan(before_last, real4(0))));
+  const real4 k = min(last / mix(real4(1), before_last, lit), cap);
+  return mix(real4(0), k / (real4(1) - k), lit);
 }
 
 void main() {
@@ -29,8 +31,7 @@ void main() {
   if (p.x >= SCATTERING_NU * SCATTERING_MU_S || p.y >= SCATTERING_MU || p.z >= SCATTERING_R) return;
   const real4 last = real4(imageLoad(last_order_image, p));
   const real4 before = real4(texelFetch(order_before_texture, p, 0));
-  real4 tail;
-  for (int k = 0; k < 4; ++k) tail[k] = series_tail_factor(last[k], before[k], real(ratio_cap[k])) * last[k];
+  const real4 tail = series_tail_factor(last, before, real4(ratio_cap)) * last;
   // Rounded to float first, as the CPU does (series_tail.cpp), before the sum.
   const vec4 tail_f = vec4(tail);
   imageStore(sum_image, p, imageLoad(sum_image, p) + tail_f);
