@@ -266,6 +266,19 @@ struct Renderer::Impl {
     band_height = height;
   }
 
+  // render_to_texture(): the band copy, per target format (compiled on first
+  // use), and the band's black-tile flags (one uint per tile).
+  std::map<TextureFormat, ShaderProgram> band_to_texture;
+  gl::Buffer black_tiles;
+
+  const ShaderProgram& band_to_texture_program(TextureFormat format) {
+    auto it = band_to_texture.find(format);
+    if (it != band_to_texture.end()) return it->second;
+    const std::vector<gl::ShaderDefine> defines = {{"TARGET_FORMAT", gl::to_string(format)}};
+    return band_to_texture.emplace(format, ShaderProgram::load_compute("render/band_to_texture.comp", defines))
+        .first->second;
+  }
+
   void ensure_tiles_buffer(std::size_t count) {
     if (count <= tiles_capacity && tiles.id() != 0) return;
     tiles_capacity = std::max<std::size_t>(count, 1024);
@@ -468,6 +481,14 @@ struct Renderer::BandTiles {
 };
 
 void Renderer::render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink) {
+  std::vector<float> rows_rgb;
+  render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
+    read_back_band(frame, band, rows_rgb, timer);
+    timer.cpu("sink", [&] { sink(band.first_row, band.rows, rows_rgb); });
+  });
+}
+
+void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output) {
   const auto start = std::chrono::steady_clock::now();
   stats_ = FrameStats{};
   PassTimer timer(options_.time_passes);
@@ -481,7 +502,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   fill_sky_view_tables(frame, timer);
   prepare_programs(frame);
   set_direct_light_uniforms(frame);
-  render_bands(frame, sink, timer);
+  render_bands(frame, output, timer);
   stats_.pass_ms = timer.milliseconds();
   stats_.seconds = seconds_since(start);
 }
@@ -706,7 +727,7 @@ void Renderer::set_direct_light_uniforms(Frame& frame) {
                                                                        : frame.sun_radius + frame.sun_pixel_angle);
 }
 
-void Renderer::render_bands(Frame& frame, const RowSink& sink, PassTimer& timer) {
+void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& timer) {
   Impl& im = *impl_;
   const int width = frame.projection.width(), height = frame.projection.height();
   const std::size_t rows_fit = std::max<std::size_t>(1, options_.max_band_pixels / static_cast<std::size_t>(width));
@@ -715,7 +736,6 @@ void Renderer::render_bands(Frame& frame, const RowSink& sink, PassTimer& timer)
                                        rows_fit / kTileSize * kTileSize)));
   im.ensure_band_images(width, std::min(band_rows, (height + kTileSize - 1) / kTileSize * kTileSize));
   im.bodies.bind_storage(kBodies);
-  std::vector<float> rows_rgb;
 
   for (int first_row = 0; first_row < height; first_row += band_rows) {
     const int rows = std::min(band_rows, height - first_row);
@@ -730,9 +750,8 @@ void Renderer::render_bands(Frame& frame, const RowSink& sink, PassTimer& timer)
     draw_direct_tiles(frame, band, timer);
     draw_one_pass_tiles(frame, band, timer);
     draw_gbuffer_tiles(frame, band, timer);
-    read_back_band(frame, band, rows_rgb, timer);
+    output(frame, band, timer);
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, frame.scene.name));
-    timer.cpu("sink", [&] { sink(first_row, rows, rows_rgb); });
   }
 }
 
@@ -1038,6 +1057,47 @@ void Renderer::read_back_band(const Frame& frame, const BandTiles& band, std::ve
       });
     });
   });
+}
+
+// ---- the frame on the GPU (render_to_texture) ---------------------------------
+
+void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projection& projection, gl::Texture& target) {
+  if (target.id() == 0 || target.is_3d() ||
+      (target.format() != TextureFormat::rgba32f && target.format() != TextureFormat::rgba16f) ||
+      target.width() != projection.width() || target.height() != projection.height())
+    throw std::invalid_argument(fmt::format(
+        "Renderer::render_to_texture: the target is a {} {}x{} texture; it must be a 2D rgba32f or rgba16f texture "
+        "of the projection's size {}x{}",
+        target.id() == 0 ? "missing" : gl::to_string(target.format()), target.width(), target.height(),
+        projection.width(), projection.height()));
+  render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
+    copy_band_to_texture(frame, band, target, timer);
+  });
+  // Whoever reads the frame next (the display encoding, a blit, a readback) sees every band.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                  GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+}
+
+void Renderer::copy_band_to_texture(const Frame& frame, const BandTiles& band, gl::Texture& target, PassTimer& timer) {
+  Impl& im = *impl_;
+  // One flag per tile of the band, 1 where nothing was dispatched: those
+  // pixels of the output buffer hold whatever an earlier band left there.
+  const std::vector<std::uint32_t> black(band.black.begin(), band.black.end());
+  const std::size_t bytes = std::max<std::size_t>(black.size(), 1) * sizeof(std::uint32_t);
+  if (im.black_tiles.id() == 0 || im.black_tiles.size() < bytes) im.black_tiles = gl::Buffer(bytes);
+  im.black_tiles.upload(std::span<const std::uint32_t>(black));
+  const ShaderProgram& p = im.band_to_texture_program(target.format());
+  p.set_uniform("band_origin", frame.band_origin);
+  p.set_uniform("band_size", frame.band_size);
+  p.set_uniform("tile_columns", frame.cones->columns());
+  im.frame_rgb.bind_storage(kFrameRgb);
+  im.black_tiles.bind_storage(binding::kBlackTiles);
+  target.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the passes' stores to the output buffer
+  timer.gpu("copy to texture", [&] { p.dispatch(static_cast<unsigned>(frame.cones->columns()),
+                                                static_cast<unsigned>(band.tile_rows)); });
+  // The next band's passes write the output buffer this pass reads.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 }  // namespace zenith::render

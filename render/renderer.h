@@ -42,6 +42,9 @@
 namespace zenith::render {
 
 class PassTimer;  // render/frame/pass_timer.h
+namespace gl {
+class Texture;  // render/gl/texture.h
+}
 
 /// Whether an atmosphere whose shell holds the camera reads the in-scattering
 /// (and the ground's light) along view rays from a per-frame sky-view table
@@ -114,6 +117,18 @@ class Renderer {
   void render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink);
   /// The whole frame in memory: width · height · 3 floats.
   std::vector<float> render_image(const scene::Scene& scene, const warp::Projection& projection);
+  /// Renders as render() does but leaves the frame on the GPU: each band is
+  /// copied into `target` (shaders/render/band_to_texture.comp) instead of
+  /// being read back, black tiles as 0. `target`: a 2D texture of format
+  /// rgba32f or rgba16f and the projection's size; texel (x, y) is pixel (x, y)
+  /// with row 0 at the top (as render_image), rgb the linear sRGB radiance ×
+  /// exposure, alpha 1. A live frame goes on to the display encoding
+  /// (render/display/display_encoder.h) and a window; pixels leave the GPU only
+  /// where a file, thumbnail or test reads them. The image stores are made
+  /// visible to texture fetches and image loads (glMemoryBarrier) before it
+  /// returns. Throws std::invalid_argument for another format or size, and what
+  /// render() throws.
+  void render_to_texture(const scene::Scene& scene, const warp::Projection& projection, gl::Texture& target);
 
   const FrameStats& last_frame() const { return stats_; }
   const RenderOptions& options() const { return options_; }
@@ -145,8 +160,13 @@ class Renderer {
   void prepare_programs(Frame& frame);
   /// direct_light.comp's colour matrix and sun spectrum; where the sun can be drawn.
   void set_direct_light_uniforms(Frame& frame);
-  /// The frame band by band: each band's tiles drawn, read back and handed to `sink`.
-  void render_bands(Frame& frame, const RowSink& sink, PassTimer& timer);
+  /// What becomes of a band once its tiles are drawn: read back for a RowSink
+  /// (render()), or copied into a texture (render_to_texture()).
+  using BandOutput = std::function<void(const Frame& frame, const BandTiles& band, PassTimer& timer)>;
+  /// The steps of a frame, in the order below, each band handed to `output`.
+  void render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output);
+  /// The frame band by band: each band's tiles drawn, then handed to `output`.
+  void render_bands(Frame& frame, const BandOutput& output, PassTimer& timer);
 
   // The steps of one band, in this order.
 
@@ -166,6 +186,9 @@ class Renderer {
   void draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
   /// The band's rows as RGB floats from the output buffer (zeros for black tiles) into `rows_rgb`.
   void read_back_band(const Frame& frame, const BandTiles& band, std::vector<float>& rows_rgb, PassTimer& timer);
+  /// The band's pixels from the output buffer into rows first_row… of
+  /// `target` on the GPU (zeros for black tiles): render_to_texture()'s band output.
+  void copy_band_to_texture(const Frame& frame, const BandTiles& band, gl::Texture& target, PassTimer& timer);
 
   RenderOptions options_;
   TableSource table_source_;
