@@ -266,18 +266,27 @@ struct Renderer::Impl {
     band_height = height;
   }
 
-  // render_to_texture(): the band copy, per target format (compiled on first
-  // use), and the band's black-tile flags (one uint per tile).
-  std::map<TextureFormat, ShaderProgram> band_to_texture;
+  // render_to_texture(): the band copy (a fragment pass, compiled on first
+  // use), its framebuffer and empty vertex array, the band's black-tile flags
+  // (one uint per tile).
+  struct BandToTexture {
+    ShaderProgram program;
+    unsigned framebuffer = 0, vertex_array = 0;
+    BandToTexture() = default;
+    BandToTexture(const BandToTexture&) = delete;
+    BandToTexture& operator=(const BandToTexture&) = delete;
+    ~BandToTexture() {
+      if (framebuffer != 0) glDeleteFramebuffers(1, &framebuffer);
+      if (vertex_array != 0) glDeleteVertexArrays(1, &vertex_array);
+    }
+    void ensure() {
+      if (program.id() != 0) return;
+      program = ShaderProgram::load_graphics("render/present.vert", "render/band_to_texture.frag");
+      glCreateFramebuffers(1, &framebuffer);
+      glCreateVertexArrays(1, &vertex_array);
+    }
+  } band_to_texture;
   gl::Buffer black_tiles;
-
-  const ShaderProgram& band_to_texture_program(TextureFormat format) {
-    auto it = band_to_texture.find(format);
-    if (it != band_to_texture.end()) return it->second;
-    const std::vector<gl::ShaderDefine> defines = {{"TARGET_FORMAT", gl::to_string(format)}};
-    return band_to_texture.emplace(format, ShaderProgram::load_compute("render/band_to_texture.comp", defines))
-        .first->second;
-  }
 
   void ensure_tiles_buffer(std::size_t count) {
     if (count <= tiles_capacity && tiles.id() != 0) return;
@@ -1061,6 +1070,12 @@ void Renderer::read_back_band(const Frame& frame, const BandTiles& band, std::ve
 
 // ---- the frame on the GPU (render_to_texture) ---------------------------------
 
+void set_band_uniforms(const gl::ShaderProgram& program, const GpuBand& band) {
+  program.set_uniform("band_origin", std::array<int, 2>{0, band.first_row});
+  program.set_uniform("band_size", std::array<int, 2>{band.width, band.rows});
+  program.set_uniform("tile_columns", band.tile_columns);
+}
+
 void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projection& projection, gl::Texture& target) {
   if (target.id() == 0 || target.is_3d() ||
       (target.format() != TextureFormat::rgba32f && target.format() != TextureFormat::rgba16f) ||
@@ -1071,14 +1086,19 @@ void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projecti
         target.id() == 0 ? "missing" : gl::to_string(target.format()), target.width(), target.height(),
         projection.width(), projection.height()));
   render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
-    copy_band_to_texture(frame, band, target, timer);
+    copy_band_to_texture(bind_band_on_gpu(frame, band), target, timer);
   });
-  // Whoever reads the frame next (the display encoding, a blit, a readback) sees every band.
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                  GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
 }
 
-void Renderer::copy_band_to_texture(const Frame& frame, const BandTiles& band, gl::Texture& target, PassTimer& timer) {
+void Renderer::render_on_gpu(const scene::Scene& scene, const warp::Projection& projection, const GpuBandSink& sink) {
+  render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
+    const GpuBand gpu_band = bind_band_on_gpu(frame, band);
+    timer.gpu("band output", [&] { sink(gpu_band); });
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next band's passes write what the sink read
+  });
+}
+
+GpuBand Renderer::bind_band_on_gpu(const Frame& frame, const BandTiles& band) {
   Impl& im = *impl_;
   // One flag per tile of the band, 1 where nothing was dispatched: those
   // pixels of the output buffer hold whatever an earlier band left there.
@@ -1086,16 +1106,36 @@ void Renderer::copy_band_to_texture(const Frame& frame, const BandTiles& band, g
   const std::size_t bytes = std::max<std::size_t>(black.size(), 1) * sizeof(std::uint32_t);
   if (im.black_tiles.id() == 0 || im.black_tiles.size() < bytes) im.black_tiles = gl::Buffer(bytes);
   im.black_tiles.upload(std::span<const std::uint32_t>(black));
-  const ShaderProgram& p = im.band_to_texture_program(target.format());
-  p.set_uniform("band_origin", frame.band_origin);
-  p.set_uniform("band_size", frame.band_size);
-  p.set_uniform("tile_columns", frame.cones->columns());
   im.frame_rgb.bind_storage(kFrameRgb);
   im.black_tiles.bind_storage(binding::kBlackTiles);
-  target.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the passes' stores to the output buffer
-  timer.gpu("copy to texture", [&] { p.dispatch(static_cast<unsigned>(frame.cones->columns()),
-                                                static_cast<unsigned>(band.tile_rows)); });
+  return {band.first_row, band.rows, frame.band_size[0], frame.cones->columns()};
+}
+
+void Renderer::copy_band_to_texture(const GpuBand& band, gl::Texture& target, PassTimer& timer) {
+  Impl& im = *impl_;
+  Impl::BandToTexture& copy = im.band_to_texture;
+  copy.ensure();
+  const ShaderProgram& p = copy.program;
+  set_band_uniforms(p, band);
+  // The band's rows of the frame's texture as the viewport: row r of the band is texel row first_row + r.
+  glNamedFramebufferTexture(copy.framebuffer, GL_COLOR_ATTACHMENT0, target.id(), 0);
+  glNamedFramebufferDrawBuffer(copy.framebuffer, GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, copy.framebuffer);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glViewport(0, band.first_row, band.width, band.rows);
+  timer.gpu("copy to texture", [&] {
+    p.use();
+    glBindVertexArray(copy.vertex_array);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+  });
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glNamedFramebufferTexture(copy.framebuffer, GL_COLOR_ATTACHMENT0, 0, 0);
   // The next band's passes write the output buffer this pass reads.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

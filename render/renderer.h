@@ -43,7 +43,8 @@ namespace zenith::render {
 
 class PassTimer;  // render/frame/pass_timer.h
 namespace gl {
-class Texture;  // render/gl/texture.h
+class ShaderProgram;  // render/gl/shader_program.h
+class Texture;        // render/gl/texture.h
 }
 
 /// Whether an atmosphere whose shell holds the camera reads the in-scattering
@@ -80,6 +81,21 @@ using TableSource = std::function<atmosphere::lut::LookupTables(const atmosphere
 /// Receives finished rows, top first: `row_count` rows from `first_row`, linear
 /// sRGB radiance × exposure, 3 floats per pixel, x fastest.
 using RowSink = std::function<void(int first_row, int row_count, std::span<const float> rgb)>;
+
+/// A band of a frame kept on the GPU, as Renderer::render_on_gpu hands it to
+/// its sink: the band's pixels are in the output buffer bound at
+/// FRAME_RGB_BINDING (render/shader_bindings.h: one vec4 (rgb, 0) per pixel,
+/// rows of `width` pixels from row `first_row` of the frame), the band's
+/// black-tile flags at BLACK_TILES_BINDING (one uint per 16 × 16 tile, row by
+/// row, `tile_columns` a row; 1 where nothing was drawn: those pixels hold stale
+/// values and read as 0). shaders/render/band_output.glsl reads them.
+struct GpuBand {
+  int first_row = 0, rows = 0, width = 0, tile_columns = 0;
+};
+/// Called once per band while its buffers are bound: draws what it needs from them.
+using GpuBandSink = std::function<void(const GpuBand& band)>;
+/// band_output.glsl's uniforms of `band` (band_origin, band_size, tile_columns) on `program`.
+void set_band_uniforms(const gl::ShaderProgram& program, const GpuBand& band);
 
 /// What the last frame did, for logs, tests and benchmarks.
 struct FrameStats {
@@ -118,17 +134,20 @@ class Renderer {
   /// The whole frame in memory: width · height · 3 floats.
   std::vector<float> render_image(const scene::Scene& scene, const warp::Projection& projection);
   /// Renders as render() does but leaves the frame on the GPU: each band is
-  /// copied into `target` (shaders/render/band_to_texture.comp) instead of
-  /// being read back, black tiles as 0. `target`: a 2D texture of format
-  /// rgba32f or rgba16f and the projection's size; texel (x, y) is pixel (x, y)
-  /// with row 0 at the top (as render_image), rgb the linear sRGB radiance ×
-  /// exposure, alpha 1. A live frame goes on to the display encoding
+  /// drawn into `target` (a fragment pass, shaders/render/band_to_texture.frag)
+  /// instead of being read back, black tiles as 0. `target`: a 2D texture of
+  /// format rgba32f or rgba16f and the projection's size; texel (x, y) is pixel
+  /// (x, y) with row 0 at the top (as render_image), rgb the linear sRGB
+  /// radiance × exposure, alpha 1. A live frame goes on to the display encoding
   /// (render/display/display_encoder.h) and a window; pixels leave the GPU only
-  /// where a file, thumbnail or test reads them. The image stores are made
-  /// visible to texture fetches and image loads (glMemoryBarrier) before it
-  /// returns. Throws std::invalid_argument for another format or size, and what
-  /// render() throws.
+  /// where a file, thumbnail or test reads them. Leaves the default draw
+  /// framebuffer bound. Throws std::invalid_argument for another format or
+  /// size, and what render() throws.
   void render_to_texture(const scene::Scene& scene, const warp::Projection& projection, gl::Texture& target);
+  /// Renders as render() does and hands each band, still on the GPU, to
+  /// `sink` (GpuBand): a live frame that needs no radiance texture goes
+  /// straight to its display texture (DisplayEncoder::encode_band).
+  void render_on_gpu(const scene::Scene& scene, const warp::Projection& projection, const GpuBandSink& sink);
 
   const FrameStats& last_frame() const { return stats_; }
   const RenderOptions& options() const { return options_; }
@@ -186,9 +205,13 @@ class Renderer {
   void draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
   /// The band's rows as RGB floats from the output buffer (zeros for black tiles) into `rows_rgb`.
   void read_back_band(const Frame& frame, const BandTiles& band, std::vector<float>& rows_rgb, PassTimer& timer);
+  /// Binds the band's output buffer and its black-tile flags for a pass that
+  /// reads them (render_on_gpu()'s band output), after the passes' stores.
+  GpuBand bind_band_on_gpu(const Frame& frame, const BandTiles& band);
   /// The band's pixels from the output buffer into rows first_row… of
   /// `target` on the GPU (zeros for black tiles): render_to_texture()'s band output.
-  void copy_band_to_texture(const Frame& frame, const BandTiles& band, gl::Texture& target, PassTimer& timer);
+  /// A draw, not a dispatch: it leaves the default draw framebuffer bound.
+  void copy_band_to_texture(const GpuBand& band, gl::Texture& target, PassTimer& timer);
 
   RenderOptions options_;
   TableSource table_source_;

@@ -203,8 +203,16 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
     const std::size_t i = setup_.outputs[k];
     const warp::OutputConfig& o = setup_.viewports.outputs[i];
     OutputFrame& f = frames_[k];
-    renderer_->render_to_texture(scene, *o.projection, f.radiance);
-    if (windows_) encoder_.encode(f.radiance, f.stage, f.display);  // what the projector shows
+    const bool radiance_read = thumbnail_edge_px > 0 || setup_.options.write_frames;
+    if (radiance_read) {
+      renderer_->render_to_texture(scene, *o.projection, f.radiance);
+      if (windows_) encoder_.encode(f.radiance, f.stage, f.display);  // what the projector shows
+    } else if (windows_) {  // the steady live frame: band by band straight into what the projector shows
+      renderer_->render_on_gpu(scene, *o.projection,
+                               [&](const render::GpuBand& band) { encoder_.encode_band(band, f.stage, f.display); });
+    } else {
+      renderer_->render_to_texture(scene, *o.projection, f.radiance);  // headless, nothing asked: the frame stays here
+    }
     if (thumbnail_edge_px > 0)  // only for a frame the master asked thumbnails of
       thumbnails.push_back(make_thumbnail(state.frame, o.name, encoder_.thumbnail(f.radiance, f.stage, thumbnail_edge_px)));
     if (setup_.options.write_frames) {

@@ -15,13 +15,13 @@
 // (issue 28 reads it back asynchronously through pixel buffer objects).
 // Needs a current GL 4.5 context.
 #include <array>
-#include <map>
 #include <vector>
 
 #include "image/display_encoding.h"
 #include "image/tone_mapping.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/renderer.h"
 #include "warp/blending.h"
 
 namespace zenith::render::display {
@@ -68,6 +68,11 @@ class DisplayEncoder {
  public:
   /// Compiles nothing yet: each program on first use.
   DisplayEncoder() = default;
+  ~DisplayEncoder();
+  DisplayEncoder(DisplayEncoder&& other) noexcept;
+  DisplayEncoder& operator=(DisplayEncoder&& other) noexcept;
+  DisplayEncoder(const DisplayEncoder&) = delete;
+  DisplayEncoder& operator=(const DisplayEncoder&) = delete;
 
   /// `radiance` (a 2D texture, e.g. rgba32f from Renderer::render_to_texture)
   /// through `stage` into `display` (rgba8 or rgba16, the same size). Throws
@@ -75,6 +80,11 @@ class DisplayEncoder {
   /// out of range, a gamma outside [kMinDisplayGamma, kMaxDisplayGamma] or a
   /// blend mask of another size.
   void encode(const gl::Texture& radiance, const OutputStage& stage, gl::Texture& display);
+  /// The same for one band of a frame still in the renderer's output buffer
+  /// (a GpuBandSink of Renderer::render_on_gpu): draws the band's rows of
+  /// `display` (rgba8 or rgba16 of the frame's size). The steady live frame:
+  /// no radiance texture written or read. Equal to encode() of the same frame.
+  void encode_band(const GpuBand& band, const OutputStage& stage, gl::Texture& display);
   /// The thumbnail of what `display` would show: each pixel the mean of the
   /// display-linear values (clamped to [0, 1], NaN as 0) of the frame pixels it
   /// covers (cluster/node/thumbnail.h), reduced on the GPU; edge_px in
@@ -83,10 +93,17 @@ class DisplayEncoder {
   ThumbnailMeans thumbnail(const gl::Texture& radiance, const OutputStage& stage, int edge_px);
 
  private:
-  /// Sets display_transform.glsl's uniforms and binds the mask.
-  void set_stage(const gl::ShaderProgram& program, const gl::Texture& radiance, const OutputStage& stage) const;
+  /// Sets display_transform.glsl's uniforms and binds the mask (of `width` × `height`).
+  void set_stage(const gl::ShaderProgram& program, int width, int height, const OutputStage& stage) const;
+  /// Draws `program` over rows [first_row, first_row + rows) of `display`.
+  void draw_rows(const gl::ShaderProgram& program, gl::Texture& display, int first_row, int rows);
 
-  std::map<gl::TextureFormat, gl::ShaderProgram> encode_programs_;  // by target format
+  void release() noexcept;
+
+  gl::ShaderProgram encode_program_;  // present.vert + display_encode.frag
+  gl::ShaderProgram band_program_;    // the same, FROM_BAND 1
+  unsigned framebuffer_ = 0;          // the display texture as colour attachment
+  unsigned vertex_array_ = 0;         // empty: the triangle comes from gl_VertexID
   gl::ShaderProgram thumbnail_program_;
   gl::Texture thumbnail_target_;  // rgba32f, (re)allocated per thumbnail size
 };

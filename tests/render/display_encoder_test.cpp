@@ -53,6 +53,20 @@ warp::BlendMask test_mask() {
   return m;
 }
 
+/// α = 1 everywhere.
+warp::BlendMask ones() {
+  return {kWidth, kHeight, std::vector<float>(static_cast<std::size_t>(kWidth) * kHeight, 1.0f)};
+}
+
+/// A stage with the output stage on: `mask` (a texture of test_mask()) and black level β.
+OutputStage blended(const gl::Texture& mask, double black_level) {
+  OutputStage stage;
+  stage.blended = true;
+  stage.blend_mask = &mask;
+  stage.black_level = black_level;
+  return stage;
+}
+
 /// The CPU path's display-linear value of one channel.
 float cpu_display_linear(float x, const OutputStage& stage, float alpha, int channel) {
   float p = image::tone_map(x, stage.tone);
@@ -87,37 +101,31 @@ int worst_code_difference(const OutputStage& stage, gl::TextureFormat format, co
 }
 
 TEST(DisplayEncoder, EqualsTheCpuPathWithinOneCodeIn8And16Bits) {
-  const warp::BlendMask ones{kWidth, kHeight, std::vector<float>(static_cast<std::size_t>(kWidth) * kHeight, 1.0f)};
   const OutputStage plain;  // exponential, no output stage, sRGB
-  EXPECT_LE(worst_code_difference(plain, gl::TextureFormat::rgba8, ones), 1);
-  EXPECT_LE(worst_code_difference(plain, gl::TextureFormat::rgba16, ones), 1);
+  EXPECT_LE(worst_code_difference(plain, gl::TextureFormat::rgba8, ones()), 1);
+  EXPECT_LE(worst_code_difference(plain, gl::TextureFormat::rgba16, ones()), 1);
   OutputStage clamp;
   clamp.tone = image::ToneMapping::clamp;
-  EXPECT_LE(worst_code_difference(clamp, gl::TextureFormat::rgba8, ones), 1);
+  EXPECT_LE(worst_code_difference(clamp, gl::TextureFormat::rgba8, ones()), 1);
 }
 
 TEST(DisplayEncoder, AppliesTheBlendMaskAndBlackLevelAsTheCpuOutputStage) {
   context();
   const warp::BlendMask mask = test_mask();
   const gl::Texture mask_texture = blend_mask_texture(mask);
-  OutputStage stage;
-  stage.blended = true;
-  stage.blend_mask = &mask_texture;
-  stage.black_level = 0.05;
+  OutputStage stage = blended(mask_texture, 0.05);
   EXPECT_LE(worst_code_difference(stage, gl::TextureFormat::rgba8, mask), 1);
   EXPECT_LE(worst_code_difference(stage, gl::TextureFormat::rgba16, mask), 1);
   // A black level without a mask: α = 1.
-  const warp::BlendMask ones{kWidth, kHeight, std::vector<float>(static_cast<std::size_t>(kWidth) * kHeight, 1.0f)};
   stage.blend_mask = nullptr;
-  EXPECT_LE(worst_code_difference(stage, gl::TextureFormat::rgba8, ones), 1);
+  EXPECT_LE(worst_code_difference(stage, gl::TextureFormat::rgba8, ones()), 1);
 }
 
 TEST(DisplayEncoder, EncodesForAGammaDisplay) {
-  const warp::BlendMask ones{kWidth, kHeight, std::vector<float>(static_cast<std::size_t>(kWidth) * kHeight, 1.0f)};
   OutputStage stage;
   stage.encoding = {image::DisplayEncoding::Transfer::gamma, 2.4};
-  EXPECT_LE(worst_code_difference(stage, gl::TextureFormat::rgba8, ones), 1);
-  EXPECT_LE(worst_code_difference(stage, gl::TextureFormat::rgba16, ones), 1);
+  EXPECT_LE(worst_code_difference(stage, gl::TextureFormat::rgba8, ones()), 1);
+  EXPECT_LE(worst_code_difference(stage, gl::TextureFormat::rgba16, ones()), 1);
   // Not the sRGB curve: mid grey (0.2 linear) is code 124 in sRGB, 130 at gamma 2.4.
   EXPECT_EQ(image::display_code(0.2f, stage.encoding, 8), 130);
   EXPECT_EQ(image::display_code(0.2f, {}, 8), 124);
@@ -127,10 +135,7 @@ TEST(DisplayEncoder, FadesTowardAColourBeforeTheOutputStage) {
   context();
   const warp::BlendMask mask = test_mask();
   const gl::Texture mask_texture = blend_mask_texture(mask);
-  OutputStage stage;
-  stage.blended = true;
-  stage.blend_mask = &mask_texture;
-  stage.black_level = 0.02;
+  OutputStage stage = blended(mask_texture, 0.02);
   stage.fade = {0.5, {0.25, 0.0, 1.0}};
   EXPECT_LE(worst_code_difference(stage, gl::TextureFormat::rgba8, mask), 1);
   // Fully faded to black, every pixel shows the black level alone: β = 0.02 → sRGB code 39.
@@ -170,10 +175,7 @@ TEST(DisplayEncoder, ThumbnailsAreBoxMeansOfTheDisplayLinearValues) {
   context();
   const warp::BlendMask mask = test_mask();
   const gl::Texture mask_texture = blend_mask_texture(mask);
-  OutputStage stage;
-  stage.blended = true;
-  stage.blend_mask = &mask_texture;
-  stage.black_level = 0.1;
+  const OutputStage stage = blended(mask_texture, 0.1);
   const std::vector<float> input = test_radiance();
   const gl::Texture radiance = gl::Texture::create_2d(gl::TextureFormat::rgba32f, kWidth, kHeight, input);
   DisplayEncoder encoder;

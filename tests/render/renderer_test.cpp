@@ -29,6 +29,7 @@
 #include "atmosphere/reference/path_tracer.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/egl_context.h"
+#include "render/display/display_encoder.h"
 #include "render/gl/texture.h"
 #include "tests/render/render_test_support.h"
 #include "warp/fisheye_projection.h"
@@ -1069,6 +1070,33 @@ TEST(RendererTexture, EqualsTheReadBackFrameBandByBandBlackTilesIncluded) {
     for (std::size_t c = 0; c < 3; ++c)
       ASSERT_NEAR(h16[4 * i + c], image[3 * i + c], std::max(std::ldexp(std::abs(image[3 * i + c]), -10), std::ldexp(1.0f, -24)))
           << i;
+}
+
+TEST(RendererTexture, TheDisplayPassFromTheBandsEqualsItFromTheTexture) {
+  // A node's steady frame (render_on_gpu → DisplayEncoder::encode_band, no
+  // radiance texture) against the texture path (render_to_texture → encode):
+  // the same arithmetic on the same floats, so the same codes, band seams and
+  // black tiles included.
+  const scene::Scene s = planet_scene("earth-advanced", 2.0e6, 60.0, {0.3, 0.0, -1.0});
+  const warp::FisheyeProjection p(64, 64);
+  RenderOptions banded_options = direct_colour();
+  banded_options.max_band_pixels = 64 * 16;
+  TestRenderer r(banded_options);
+  display::DisplayEncoder encoder;
+  gl::Texture frame = gl::Texture::create_2d(gl::TextureFormat::rgba32f, 64, 64);
+  gl::Texture from_texture = gl::Texture::create_2d(gl::TextureFormat::rgba8, 64, 64);
+  gl::Texture from_bands = gl::Texture::create_2d(gl::TextureFormat::rgba8, 64, 64);
+  r.renderer.render_to_texture(s, p, frame);
+  encoder.encode(frame, {}, from_texture);
+  int bands = 0;
+  r.renderer.render_on_gpu(s, p, [&](const GpuBand& band) {
+    EXPECT_EQ(band.first_row, 16 * bands++);
+    encoder.encode_band(band, {}, from_bands);
+  });
+  EXPECT_EQ(bands, 4);
+  const std::vector<float> a = from_texture.read(), b = from_bands.read();
+  EXPECT_EQ(a, b);
+  EXPECT_GT(std::count(a.begin(), a.end(), 0.0f), 64 * 4) << "the view has black space";
 }
 
 TEST(RendererTexture, RefusesATargetOfAnotherSizeOrFormat) {
