@@ -146,7 +146,8 @@ constexpr const char* kUsage =
     "  --device       GL device: auto (default), software (llvmpipe), hardware\n"
     "  --viewport     also time every output of a viewport config (configs/viewports/), with all\n"
     "                 atmospheres: per-projector frame time and peak memory\n"
-    "  --viewport-csv its CSV (default bench/results/projector_frame_times.csv)\n";
+    "  --viewport-csv its CSV (default bench/results/projector_frame_times.csv)\n"
+    "render_bench --present ...: the live frame that stays on the GPU (render_bench --present --help)\n";
 
 std::pair<int, int> parse_size(const std::string& text) {
   // By hand: GCC 12 warns falsely inside <regex> under the sanitizer build (-Werror).

@@ -138,7 +138,6 @@ void RenderWorker::ensure_context() {
   for (const std::size_t i : setup_.outputs) {
     const warp::OutputConfig& o = setup_.viewports.outputs[i];
     OutputFrame f;
-    f.radiance = render::gl::Texture::create_2d(render::gl::TextureFormat::rgba32f, o.width_px, o.height_px);
     if (windows_) f.display = render::gl::Texture::create_2d(render::gl::TextureFormat::rgba8, o.width_px, o.height_px);
     f.stage.blended = has_output_stage(o);
     if (f.stage.blended) f.blend_mask = render::display::blend_mask_texture(warp::output_blend_mask(setup_.viewports, i));
@@ -204,6 +203,8 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
     const warp::OutputConfig& o = setup_.viewports.outputs[i];
     OutputFrame& f = frames_[k];
     const bool radiance_read = thumbnail_edge_px > 0 || setup_.options.write_frames;
+    if ((radiance_read || !windows_) && f.radiance.id() == 0)  // allocated on first use (an 8K master: 1 GiB)
+      f.radiance = render::gl::Texture::create_2d(render::gl::TextureFormat::rgba32f, o.width_px, o.height_px);
     if (radiance_read) {
       renderer_->render_to_texture(scene, *o.projection, f.radiance);
       if (windows_) encoder_.encode(f.radiance, f.stage, f.display);  // what the projector shows
@@ -278,8 +279,12 @@ void RenderWorker::prepare_tables(const Digest& hash, std::uint64_t session) {
   use_table_version(scene, known.body, hash);
   for (std::size_t k = 0; k < setup_.outputs.size(); ++k) {
     OutputFrame& f = frames_[k];
-    renderer_->render_to_texture(scene, *setup_.viewports.outputs[setup_.outputs[k]].projection, f.radiance);
-    if (!warmed_up_ && windows_) encoder_.encode(f.radiance, f.stage, f.display);  // the display pass's programs
+    const warp::Projection& projection = *setup_.viewports.outputs[setup_.outputs[k]].projection;
+    if (windows_)  // as a steady frame: the display pass's programs too
+      renderer_->render_on_gpu(scene, projection,
+                               [&](const render::GpuBand& band) { encoder_.encode_band(band, f.stage, f.display); });
+    else
+      renderer_->render_on_gpu(scene, projection, [](const render::GpuBand&) {});
     if (warmed_up_) break;
   }
   glFinish();
