@@ -29,6 +29,7 @@
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 #include "scene/albedo_map.h"
 #include "scene/sun_disc.h"
 
@@ -189,12 +190,12 @@ struct Renderer::Impl {
     FrameVariant no_eclipses = frame;  // the G-buffer pass shades nothing
     no_eclipses.eclipses = false;
     const std::vector<gl::ShaderDefine> gbuffer_defines = no_eclipses.defines();
-    p.gbuffer = ShaderProgram::load_compute("render/gbuffer.comp", gbuffer_defines);
-    p.resolve = ShaderProgram::load_compute("render/resolve.comp", resolve_defines);
-    p.direct_light_one = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false, true));
-    p.direct_light = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(false, false));
+    p.gbuffer = load_compute_program("render/gbuffer.comp", gbuffer_defines);
+    p.resolve = load_compute_program("render/resolve.comp", resolve_defines);
+    p.direct_light_one = load_compute_program("render/direct_light.comp", direct_defines(false, true));
+    p.direct_light = load_compute_program("render/direct_light.comp", direct_defines(false, false));
     if (sun_disc)
-      p.direct_light_sun = ShaderProgram::load_compute("render/direct_light.comp", direct_defines(true, false));
+      p.direct_light_sun = load_compute_program("render/direct_light.comp", direct_defines(true, false));
     return frame_passes.emplace(frame.key(), std::move(p)).first->second;
   }
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features

@@ -1,10 +1,11 @@
 #pragma once
 // The binding points (and a few sizes) that the C++ side and the GLSL shaders share: storage
 // buffers (layout(std430, binding = ...)), texture units (samplers) and image
-// units. This is the only place their numbers are written: ShaderProgram's
-// load_compute / load_graphics inject each one as `#define <NAME> <value>`
-// into every shader loaded from shaders/ (shader_interface_defines()), and the
-// shaders declare `layout(binding = <NAME>)`.
+// units. This is the only place their numbers are written: the program factory
+// (render/shader_programs.h) injects each one as `#define <NAME> <value>` into
+// every shader loaded from shaders/ (shader_interface_defines()), and the
+// shaders declare `layout(binding = <NAME>)`. The GL wrapper
+// (render/gl/shader_program.h) knows none of them.
 //
 // GL keeps storage bindings, texture units and image units apart; numbers need
 // only differ within one kind among the resources of one program (the

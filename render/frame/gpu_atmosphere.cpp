@@ -12,6 +12,7 @@
 #include "render/gl/gl_error.h"
 #include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 
 namespace zenith::render {
 namespace {
@@ -144,7 +145,7 @@ const gl::ShaderProgram& GpuAtmosphere::program(const std::string& key, const st
                                                std::vector<gl::ShaderDefine> defines) {
   auto it = programs_.find(key);
   if (it == programs_.end())
-    it = programs_.emplace(key, gl::ShaderProgram::load_compute(file, defines)).first;
+    it = programs_.emplace(key, load_compute_program(file, defines)).first;
   return it->second;
 }
 

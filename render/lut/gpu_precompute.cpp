@@ -24,6 +24,7 @@
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 
 namespace zenith::render {
 
@@ -184,7 +185,7 @@ const ShaderProgram& GpuPrecompute::program(const std::string& file, std::vector
   std::vector<ShaderDefine> defines = defines_;
   defines.insert(defines.end(), extra.begin(), extra.end());
   const auto start = std::chrono::steady_clock::now();
-  ShaderProgram p = ShaderProgram::load_compute(file, defines);
+  ShaderProgram p = load_compute_program(file, defines);
   spdlog::debug("GPU precompute: compiled {} in {:.3f} s", key, seconds_since(start));
   return programs_.emplace(key, std::move(p)).first->second;
 }

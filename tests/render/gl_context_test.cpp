@@ -23,6 +23,7 @@
 #include "render/gl/software_rasterizer.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 #include "render/shader_source.h"
 
 namespace zenith::render {
@@ -198,7 +199,7 @@ TEST(HeadlessContext, DebugContextRoutesMessages) {
 }
 
 TEST_F(GlTest, TestPatternComputeShaderMatchesCpp) {
-  const ShaderProgram program = ShaderProgram::load_compute("test_pattern.comp");
+  const ShaderProgram program = load_compute_program("test_pattern.comp");
   EXPECT_EQ(program.work_group_size(), (std::array<int, 3>{4, 4, 2}));
   const int w = 8, h = 4, d = 3;  // d = 3 is not a multiple of the work group's 2: out-of-range invocations return
   expect_floats_near(run_pattern(program, w, h, d), expected_pattern(w, h, d), 1e-6f);
@@ -206,10 +207,10 @@ TEST_F(GlTest, TestPatternComputeShaderMatchesCpp) {
 
 TEST_F(GlTest, DefineVariantsChangeTheOutput) {
   const std::vector<gl::ShaderDefine> no_index = {{"PATTERN_INDEX_TERM", "0"}, {"PATTERN_SCALE", "2.0"}};
-  const ShaderProgram variant = ShaderProgram::load_compute("test_pattern.comp", no_index);
+  const ShaderProgram variant = load_compute_program("test_pattern.comp", no_index);
   const std::vector<float> out = run_pattern(variant, 5, 3, 2);
   expect_floats_near(out, expected_pattern(5, 3, 2, 2.0f, false), 1e-6f);
-  const ShaderProgram plain = ShaderProgram::load_compute("test_pattern.comp");
+  const ShaderProgram plain = load_compute_program("test_pattern.comp");
   EXPECT_NE(out, run_pattern(plain, 5, 3, 2));
 }
 

@@ -43,6 +43,7 @@
 #include "render/gl/shader_program.h"
 #include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 #include "tests/render/render_test_support.h"
 
 namespace zenith::render {
@@ -128,7 +129,7 @@ class GpuParameterization {
     table_data_.bind_storage(binding::kTableData);
     texel_values_.bind_storage(binding::kTexelCoordinates);
     // As the precompute does before its scattering stages.
-    gl::ShaderProgram::load_compute("texel_coordinates.comp", m.defines)
+    load_compute_program("texel_coordinates.comp", m.defines)
         .dispatch_covering(static_cast<int>(m.texel_layout.count));
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     std::vector<gl::ShaderDefine> defines = m.defines;
@@ -136,7 +137,7 @@ class GpuParameterization {
                                    {"RESULTS_BINDING", std::to_string(kResultsBinding)},
                                    {"CASE_STRIDE", std::to_string(kCaseStride)},
                                    {"RESULT_STRIDE", std::to_string(kResultStride)}});
-    program_ = gl::ShaderProgram::load_compute("test_parameterization.comp", defines);
+    program_ = load_compute_program("test_parameterization.comp", defines);
   }
 
   /// The input as the shader holds it (rounded to float in fp32).
