@@ -20,6 +20,7 @@
 #include "core/parallel_for.h"
 #include "core/units.h"
 #include "atmosphere/model_hash.h"
+#include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/tile_culling.h"

@@ -20,15 +20,9 @@
 #include "render/gl/texture.h"
 #include "render/frame/sky_view_table.h"
 #include "render/frame/tile_culling.h"
+#include "render/render_options.h"
 
 namespace zenith::render {
-
-/// Which terms the atmosphere pass evaluates (each off drops code from the shader).
-struct AtmospherePassFeatures {
-  bool multiple_scattering = true;  ///< orders ≥ 2 (off: single scattering only)
-  bool eclipses = true;             ///< other bodies' shadows on the ground
-  bool fp64 = false;                ///< table mappings and interpolation in double (slower; see docs/rendering.md)
-};
 
 /// What a frame's passes are compiled for (render/renderer.cpp): the
 /// projection kind (shaders/projection.glsl's PROJECTION_KIND), whether other
