@@ -40,7 +40,8 @@
 
 namespace zenith::render {
 
-class PassTimer;  // render/frame/pass_timer.h
+class PassTimer;        // render/frame/pass_timer.h
+struct BandTiles;       // render/frame/tile_classification.h
 
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
 /// called only for table sets the renderer does not hold yet.
@@ -93,7 +94,6 @@ class Renderer {
  private:
   struct Impl;
   struct Frame;      ///< one frame in progress: constants, bodies, atmospheres, programs (renderer.cpp)
-  struct BandTiles;  ///< one band's tiles sorted by how they are drawn (renderer.cpp)
 
   // The steps of render(), in this order. Each issues its GL calls in the
   // order the one function did, so the images stay the same bit for bit.
@@ -124,9 +124,10 @@ class Renderer {
 
   /// Rays of a ray-table projection for this band (computed once, kept), uploaded and bound.
   void upload_ray_table(const Frame& frame, int first_row, int rows);
-  /// Which tiles of the band each pass draws (no GL): one-pass atmosphere
-  /// tiles by variant, G-buffer path tiles, direct tiles, black tiles.
-  BandTiles classify_band_tiles(Frame& frame, int first_row, int rows);
+  /// Which tiles of the band each pass draws (render/frame/tile_classification.h,
+  /// no GL): one-pass atmosphere tiles by variant, G-buffer path tiles, direct
+  /// tiles, black tiles; their counts added to the frame's statistics.
+  BandTiles classify_band_tiles(const Frame& frame, int first_row, int rows);
   /// The band's tile lists into the tiles buffer; binds it and the output buffer.
   void upload_tile_lists(const BandTiles& band);
   /// Tiles no atmosphere touches: bodies and the sun, one pass each, every wavelength.

@@ -137,10 +137,6 @@ void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t grou
   program.set_uniform("sky_view_theta_horizon", static_cast<float>(sky_view_->theta_horizon_rad()));
 }
 
-int GpuAtmosphere::TileVariant::key() const {
-  return (sky_view ? 1 : 0) | static_cast<int>(ground) << 1 | others << 3 | (sun ? 1 : 0) << 5;
-}
-
 const gl::ShaderProgram& GpuAtmosphere::program(const std::string& key, const std::string& file,
                                                std::vector<gl::ShaderDefine> defines) {
   auto it = programs_.find(key);

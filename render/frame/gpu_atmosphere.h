@@ -19,6 +19,7 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/frame/sky_view_table.h"
+#include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
 #include "render/render_options.h"
 
@@ -50,18 +51,8 @@ class GpuAtmosphere {
   std::size_t group_count() const { return groups_.size(); }
   double top_radius_m() const { return top_radius_m_; }
   double ground_radius_m() const { return ground_radius_m_; }
-  /// What the tiles of a one-pass list can hold: atmosphere_tile.comp is
-  /// compiled for each combination in use (its TILE_GROUND, TILE_OTHERS, SUN
-  /// and SKY_VIEW defines), since a CPU rasterizer runs every branch a program has.
-  struct TileVariant {
-    bool sky_view = false;                 ///< S from the sky-view table (camera inside the shell)
-    TileCover ground = TileCover::some;    ///< how the rays meet this planet's ground
-    int others = 2;                        ///< other bodies: 0 none, 1 all beyond the shell, 2 one may be inside it
-    bool sun = true;                       ///< the sun's disc can be in the tiles
-    int key() const;
-  };
   /// atmosphere_tile.comp for tiles only this shell touches, compiled for the
-  /// frame's variant and the tiles'.
+  /// frame's variant and the tiles' (render/frame/tile_classification.h).
   const gl::ShaderProgram& tile_program(const FrameVariant& frame, const TileVariant& variant);
   /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).
   const gl::ShaderProgram& gbuffer_path_program(const FrameVariant& frame);
