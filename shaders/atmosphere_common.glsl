@@ -19,17 +19,18 @@
 //
 // Defines set by the C++ side (all required):
 //   USE_FP64                               1: double, 0: float
-//   BOTTOM_RADIUS, TOP_RADIUS              metres (literals of type real)
+//   BOTTOM_RADIUS, TOP_RADIUS              metres (reals: see "Constants" below)
 //   TRANSMITTANCE_MU, TRANSMITTANCE_R, IRRADIANCE_MU_S, IRRADIANCE_R,
 //   SCATTERING_R, SCATTERING_MU, SCATTERING_MU_S, SCATTERING_NU   table sizes
 //   GEOMETRIC_BLEND_FULL_LOG_RATIO                                 float literal (lookup_tables.h)
 //   RAYLEIGH_PHASE                         0 classic, 1 Penndorf, 2 depolarized
-//   RAYLEIGH_DEPOLARIZATION                δ (literal; used by RAYLEIGH_PHASE 2)
+//   RAYLEIGH_DEPOLARIZATION                δ (a real; used by RAYLEIGH_PHASE 2)
 //   HAS_MIE                                0 drops every Mie term
 //   MIE_PHASE                              0 Henyey–Greenstein, 1 double HG, 2 Cornette–Shanks
 //   ABSORBER_COUNT                         0 drops the absorber loop
 //   AIR_MASS                               0 drops the air-mass stretch
 //   WAVELENGTH_FIELDS                      real4s per wavelength group in WavelengthData
+//   WAVELENGTH_DATA_SIZE                   real4s of WavelengthData (groups × fields)
 //   RAYLEIGH_PROFILE, MIE_PROFILE, AIR_MASS_PROFILE, ABSORBER_PROFILES
 //                                          offsets of profile descriptors in TableData
 //   AIR_MASS_GROUND_RADIUS, AIR_MASS_TABLE, AIR_MASS_TABLE_SIZE   the stretch table
@@ -37,12 +38,21 @@
 //   SCATTERING_SAMPLES, TRANSMITTANCE_SAMPLES (even)
 //   SPHERE_ZENITH_SAMPLES, SPHERE_RULE     Gauss–Legendre rule of the scattering density
 //   HEMISPHERE_ZENITH_SAMPLES, HEMISPHERE_RULE   and of the sky irradiance (nodes, weights in TableData)
-//   PI, INV_4PI, PENNDORF_A, PENNDORF_B, SERIES_LIMIT   literals of type real: core/units.h,
+//   PI, INV_4PI, PENNDORF_A, PENNDORF_B, SERIES_LIMIT   reals: core/units.h,
 //                                          atmosphere/phase_functions.h, atmosphere/lut/quadrature.h
+//   LN2_HI, LN2_LO, INV_LN2, TWO_OVER_PI, PIO2_1, PIO2_1T, SQRT_HALF, FP64_CONSTANT_VECTORS   (fp64)
 //   FIELD_*                                real4 fields of WavelengthData (shader_model.cpp)
 //   TEXEL_MU_S, TEXEL_SUN_THETA_MAX, TEXEL_MU_SKY, TEXEL_VALUE_COUNT   TexelCoordinates layout
 // and, for every shader loaded from shaders/, the binding points (*_BINDING,
 // *_UNIT, *_IMAGE) of render/shader_bindings.h.
+//
+// Constants: every real constant shared with the C++ code is written once, in
+// C++, and reaches the shaders through the shader model (shader_model.cpp): a
+// float literal in fp32; in fp64 the bits of the C++ double in the
+// Fp64Constants uniform block (atmosphere/maths.glsl), the define naming its
+// entry, so no driver's reading of double literals can change one.
+// The model's parameters reach every shader one way: the WavelengthData
+// uniform block (atmosphere/physics.glsl).
 
 // The code itself is in four files under shaders/atmosphere/, included here in
 // this order (each uses only what the ones before it define; docs/shaders.md):

@@ -1,7 +1,8 @@
 // The arithmetic under the atmosphere's shaders (included by
 // atmosphere_common.glsl, first): the precision (`real`, USE_FP64), double
-// exp/log/sin/cos/acos that GLSL lacks, PRECISE, the quadrature rules of
-// atmosphere/lut/quadrature.h and the vector helpers of vec3.h. No model data.
+// exp/log/sin/cos/acos that GLSL lacks and their constants (in double from the
+// C++ side), PRECISE, the quadrature rules of atmosphere/lut/quadrature.h and
+// the vector helpers of vec3.h. No model data.
 
 // ------------------------------------------------------------ precision
 
@@ -13,13 +14,17 @@
 
 // ---- double-precision elementary functions (GLSL has them for float only)
 
-const double LN2_HI = 6.93147180369123816490e-01LF;  // ln 2 split so that k·LN2_HI is exact (fdlibm)
-const double LN2_LO = 1.90821492927058770002e-10LF;
-const double INV_LN2 = 1.44269504088896338700e+00LF;
-const double TWO_OVER_PI = 6.36619772367581382433e-01LF;
-const double PIO2_1 = 1.57079632673412561417e+00LF;   // first 33 bits of π/2
-const double PIO2_1T = 6.07710050650619224932e-11LF;  // π/2 − PIO2_1
-const double SQRT_HALF = 7.07106781186547524401e-01LF;
+/// Every double constant of fp64 code that is not a small integer or a power of
+/// two — the splits of ln 2 and π/2 below (LN2_HI, LN2_LO, INV_LN2, TWO_OVER_PI,
+/// PIO2_1, PIO2_1T, SQRT_HALF: fdlibm's) and the model's (PI, INV_4PI, the
+/// radii, …) — arrives as the bits of a C++ double in this uniform block,
+/// named by the shader model's defines (LN2_HI → fp64_constants[0].x;
+/// render/lut/shader_model.cpp). None is a GLSL literal: NVIDIA's compiler
+/// (driver 580.159.04) gave fp64 shaders π, 0.7629, 0.932 and 1e-4 rounded to
+/// float (issue 26); a uniform reaches any driver exactly. The series'
+/// coefficients below are quotients of integers that float holds exactly up
+/// to 13! (and terms beyond r^13 are below 1e-17 of the sum).
+layout(std140, binding = FP64_CONSTANTS_BINDING) uniform Fp64Constants { dvec4 fp64_constants[FP64_CONSTANT_VECTORS]; };
 
 /// e^x: x = k ln2 + r with |r| ≤ ln2/2, Taylor series of e^r to r^13 (error < 5e-18), times 2^k.
 double exp_r(double x) {

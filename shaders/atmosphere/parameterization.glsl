@@ -6,8 +6,10 @@
 
 // ------------------------------------------------------------ geometry (parameterization.cpp)
 
-const real RB = BOTTOM_RADIUS;
-const real RT = TOP_RADIUS;
+// The shell's radii (the shader model's BOTTOM_RADIUS, TOP_RADIUS: float
+// literals in fp32, Fp64Constants entries in fp64, so names rather than constants).
+#define RB BOTTOM_RADIUS
+#define RT TOP_RADIUS
 
 real clamp_cosine(real mu) { return clamp(mu, real(-1), real(1)); }
 real safe_sqrt(real a) { return sqrt(max(a, real(0))); }

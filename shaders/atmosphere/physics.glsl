@@ -6,8 +6,15 @@
 // ------------------------------------------------------------ model data
 
 /// Per wavelength group g, WAVELENGTH_FIELDS real4s from g·WAVELENGTH_FIELDS
-/// (the FIELD_* indices, defined by the shader model), one lane per wavelength.
-layout(std430, binding = WAVELENGTH_DATA_BINDING) readonly buffer WavelengthData { real4 wavelength_data[]; };
+/// (the FIELD_* indices, defined by the shader model), one lane per wavelength:
+/// the model's parameters (scattering and extinction coefficients, the Mie
+/// phase's g1, g2 and α, the ground albedo, the absorbers). This block is the one
+/// way they reach a shader, the precompute's and the render passes' alike
+/// (render/lut/shader_model.h: ModelBuffers). A uniform block (std140, whose
+/// real4 array has the std430 stride, WAVELENGTH_DATA_SIZE = groups × fields):
+/// a CPU rasterizer reads it once per SIMD vector, where it would read a storage
+/// buffer lane by lane inside branches.
+layout(std140, binding = WAVELENGTH_DATA_BINDING) uniform WavelengthData { real4 wavelength_data[WAVELENGTH_DATA_SIZE]; };
 /// Profile descriptors (kind, scale height, first knot, knot count), spline
 /// knots (x[], y[], slope[]), the direction quadratures (nodes[], weights[]) and
 /// the air-mass table (cos zenith[], stretch[]).
@@ -117,18 +124,29 @@ real4 henyey_greenstein(real c, real4 g) {
   return (real(1) - g * g) / (denom * sqrt(denom)) * INV_4PI;
 }
 
-/// MiePhase: P_M(cos θ) for the 4 wavelengths of the group.
-real4 mie_phase(real c) {
-  const real4 g1 = wavelength_field(FIELD_MIE_G1);
+/// MiePhase (atmosphere/phase_functions.cpp): P_M(cos θ) for 4 wavelengths with
+/// their asymmetry parameters g1 and, for the double Henyey–Greenstein, the
+/// second lobe's g2 and the first lobe's weight α (the only function that reads
+/// them; MIE_PHASE picks the model):
+///   0 Henyey–Greenstein   P = HG(c, g1),  HG(c, g) = (1 − g²) / (1 + g² − 2 g c)^{3/2} / 4π
+///   1 double HG           P = α HG(c, g1) + (1 − α) HG(c, g2)
+///   2 Cornette–Shanks     P = 3 (1 − g1²)(1 + c²) / (2 (2 + g1²)(1 + g1² − 2 g1 c)^{3/2}) / 4π
+/// The precompute and the render passes call it through model_mie_phase.
+real4 mie_phase(real c, real4 g1, real4 g2, real4 alpha) {
 #if MIE_PHASE == 0
   return henyey_greenstein(c, g1);
 #elif MIE_PHASE == 1
-  const real4 alpha = wavelength_field(FIELD_MIE_ALPHA);
-  return alpha * henyey_greenstein(c, g1) + (real(1) - alpha) * henyey_greenstein(c, wavelength_field(FIELD_MIE_G2));
+  return alpha * henyey_greenstein(c, g1) + (real(1) - alpha) * henyey_greenstein(c, g2);
 #else
   const real4 denom = real(1) + g1 * g1 - real(2) * g1 * c;
   return real(3) * (real(1) - g1 * g1) * (real(1) + c * c) / (real(2) * (real(2) + g1 * g1) * denom * sqrt(denom)) *
          INV_4PI;
 #endif
+}
+
+/// The model's Mie phase for the wavelength group being computed: mie_phase
+/// with g1, g2 and α from WavelengthData.
+real4 model_mie_phase(real c) {
+  return mie_phase(c, wavelength_field(FIELD_MIE_G1), wavelength_field(FIELD_MIE_G2), wavelength_field(FIELD_MIE_ALPHA));
 }
 #endif

@@ -122,11 +122,9 @@ class GpuParameterization {
     atmosphere::lut::PrecomputeOptions options;
     options.sizes = sizes;
     const ShaderModel m = shader_model(model, options, fp64);
-    wavelength_data_ = real_buffer(m.wavelength_data, fp64);
-    table_data_ = real_buffer(m.table_data, fp64);
+    model_buffers_ = ModelBuffers(m);
     texel_values_ = gl::Buffer(m.texel_layout.count * real_size());
-    wavelength_data_.bind_storage(binding::kWavelengthData);
-    table_data_.bind_storage(binding::kTableData);
+    model_buffers_.bind();
     texel_values_.bind_storage(binding::kTexelCoordinates);
     // As the precompute does before its scattering stages.
     load_compute_program("texel_coordinates.comp", m.defines)
@@ -165,7 +163,8 @@ class GpuParameterization {
   std::size_t real_size() const { return fp64_ ? sizeof(double) : sizeof(float); }
   bool fp64_;
   TableSizes sizes_;
-  gl::Buffer wavelength_data_, table_data_, texel_values_;
+  ModelBuffers model_buffers_;
+  gl::Buffer texel_values_;
   gl::ShaderProgram program_;
 };
 
