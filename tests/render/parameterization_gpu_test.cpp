@@ -45,6 +45,7 @@
 #include "render/shader_bindings.h"
 #include "render/shader_programs.h"
 #include "tests/render/render_test_support.h"
+#include "tests/render/test_shaders.h"
 
 namespace zenith::render {
 namespace {
@@ -135,7 +136,7 @@ class GpuParameterization {
                                    {"RESULTS_BINDING", std::to_string(kResultsBinding)},
                                    {"CASE_STRIDE", std::to_string(kCaseStride)},
                                    {"RESULT_STRIDE", std::to_string(kResultStride)}});
-    program_ = load_compute_program("test_parameterization.comp", defines);
+    program_ = testing::load_test_compute_program("test_parameterization.comp", defines);
   }
 
   /// The input as the shader holds it (rounded to float in fp32).

@@ -33,8 +33,8 @@
 #include "render/gl/shader_program.h"
 #include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
-#include "render/shader_programs.h"
 #include "tests/render/render_test_support.h"
+#include "tests/render/test_shaders.h"
 
 namespace zenith::render {
 namespace {
@@ -61,7 +61,7 @@ TEST(ShaderInterface, BodyLayoutMatchesGpuBodyFieldByField) {
   bodies.bind_storage(binding::kBodies);
   const gl::Buffer fields(kBodies * 6 * 4 * sizeof(float));
   fields.bind_storage(kTestOutputBinding);
-  const gl::ShaderProgram program = load_compute_program(
+  const gl::ShaderProgram program = testing::load_test_compute_program(
       "test_body_layout.comp", std::vector<gl::ShaderDefine>{{"FIELDS_BINDING", std::to_string(kTestOutputBinding)}});
   ASSERT_TRUE(program.set_uniform("body_count", static_cast<int>(kBodies)));
   program.dispatch_covering(1);
@@ -108,7 +108,7 @@ void expect_shader_model_constants(const std::string& preset, bool fp64) {
   values.bind_storage(kTestOutputBinding);
   std::vector<gl::ShaderDefine> defines = m.defines;
   defines.push_back({"VALUES_BINDING", std::to_string(kTestOutputBinding)});
-  const gl::ShaderProgram program = load_compute_program("test_shader_model.comp", defines);
+  const gl::ShaderProgram program = testing::load_test_compute_program("test_shader_model.comp", defines);
   program.set_uniform("wavelength_group", 0);
   program.dispatch_covering(1);
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -172,7 +172,7 @@ TEST(ShaderInterface, TileWordsReachTheShadersAsTheCppPacksThem) {
   constexpr std::size_t kPixelsPerTile = std::size_t{kTileSize} * kTileSize;
   const gl::Buffer pixels(tiles.size() * kPixelsPerTile * 4 * sizeof(std::int32_t));
   pixels.bind_storage(kTestOutputBinding);
-  const gl::ShaderProgram program = load_compute_program(
+  const gl::ShaderProgram program = testing::load_test_compute_program(
       "test_tile_words.comp", std::vector<gl::ShaderDefine>{{"PIXELS_BINDING", std::to_string(kTestOutputBinding)}});
   ASSERT_TRUE(program.set_uniform("band_size", band_size));
   ASSERT_TRUE(program.set_uniform("tile_offset", 1));
