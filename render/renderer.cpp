@@ -7,9 +7,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
-#include <optional>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,15 +15,14 @@
 #include <glm/mat3x3.hpp>
 
 #include "core/parallel_for.h"
-#include "core/units.h"
 #include "atmosphere/model_hash.h"
-#include "render/frame/gpu_body.h"
 #include "render/frame/albedo_layers.h"
 #include "render/frame/frame_conditions.h"
 #include "render/frame/frame_constants.h"
 #include "render/frame/frame_programs.h"
 #include "render/frame/frame_state.h"
 #include "render/frame/gpu_atmosphere.h"
+#include "render/frame/gpu_body.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
@@ -34,11 +30,8 @@
 #include "render/gl/gl_error.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
-#include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
-#include "render/shader_programs.h"
 #include "scene/albedo_map.h"
-#include "scene/sun_disc.h"
 
 namespace zenith::render {
 namespace {
