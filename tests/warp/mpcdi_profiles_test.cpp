@@ -235,8 +235,27 @@ TEST(MpcdiProfiles, AFrameWithSwappedAndNegatedAxesLandsWhereTheStandardPutsIt) 
   const glm::dvec3 top = *up->ray(32.0, 0.0);
   EXPECT_LT(angle_between(top, {-std::sin(20.0 * kDeg), std::cos(20.0 * kDeg), 0.0}), 1e-12);
 
+  // The worked example of docs/warp-meshes.md: in that frame a frustum
+  // pitched −60° looks 30° above the horizon to the right, its top up and
+  // left: yaw 90°, pitch 30°, roll 0°. With yaw 20, pitch −15, roll 30 the
+  // composition is yaw 141.92374937322128°, pitch 65.18578309540773°, roll
+  // 84.58338724440884°, as a separate computation of W · B · Ry · Rx · Rz · C
+  // (a few lines of Python, plain lists) gives.
+  MpcdiRegion up_region;
+  up_region.coordinate_frame = MpcdiCoordinateFrame{frame.position, frame.yaw, frame.pitch, frame.roll, 0};
+  up_region.frustum = MpcdiFrustum{0.0, -60.0, 0.0, -30.0, 30.0, 20.0, -20.0, 0};
+  PlanarFrustum composed = mpcdi_planar_frustum(up_region);
+  EXPECT_NEAR(composed.yaw_deg, 90.0, 1e-12);
+  EXPECT_NEAR(composed.pitch_deg, 30.0, 1e-12);
+  EXPECT_NEAR(composed.roll_deg, 0.0, 1e-12);
+  up_region.frustum = MpcdiFrustum{20.0, -15.0, 30.0, -30.0, 30.0, 20.0, -20.0, 0};
+  composed = mpcdi_planar_frustum(up_region);
+  EXPECT_NEAR(composed.yaw_deg, 141.92374937322128, 1e-11);
+  EXPECT_NEAR(composed.pitch_deg, 65.18578309540773, 1e-11);
+  EXPECT_NEAR(composed.roll_deg, 84.58338724440884, 1e-11);
+
   // The frame's turn alone is a yaw of −90° for a frame looking left; the
-  // frustum's own yaw adds (the worked example of docs/warp-meshes.md).
+  // frustum's own yaw adds.
   Frame left;
   left.pitch = {0.0, 0.0, 1.0};
   left.yaw = {0.0, -1.0, 0.0};
@@ -244,7 +263,7 @@ TEST(MpcdiProfiles, AFrameWithSwappedAndNegatedAxesLandsWhereTheStandardPutsIt) 
   MpcdiRegion region;
   region.frustum = MpcdiFrustum{30.0, 10.0, 5.0, -30.0, 30.0, 20.0, -20.0, 0};
   region.coordinate_frame = MpcdiCoordinateFrame{left.position, left.yaw, left.pitch, left.roll, 0};
-  const PlanarFrustum composed = mpcdi_planar_frustum(region);
+  composed = mpcdi_planar_frustum(region);
   EXPECT_NEAR(composed.yaw_deg, -60.0, 1e-12);
   EXPECT_NEAR(composed.pitch_deg, 10.0, 1e-12);
   EXPECT_NEAR(composed.roll_deg, 5.0, 1e-12);
