@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
 #include <span>
 #include <stdexcept>
@@ -135,6 +136,18 @@ std::string_view trimmed(std::string_view text) {
   return text;
 }
 
+/// The finite number `text` holds (surrounding whitespace and a leading '+'
+/// allowed); nothing for anything else.
+std::optional<double> finite_number(std::string_view text) {
+  std::string_view digits = trimmed(text);
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
+    return std::nullopt;
+  return value;
+}
+
 /// The base name of a member path.
 std::string_view base_name(std::string_view member) {
   const std::size_t slash = member.find_last_of('/');
@@ -218,13 +231,9 @@ class MpcdiReader {
   }
 
   double parse_real(const XmlElement& element, std::string_view what, const std::string& text) const {
-    std::string_view digits = trimmed(text);
-    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
-      fail(element, "<" + element.name + "> " + std::string(what) + " = '" + text + "' is not a finite number");
-    return value;
+    const std::optional<double> value = finite_number(text);
+    if (!value) fail(element, "<" + element.name + "> " + std::string(what) + " = '" + text + "' is not a finite number");
+    return *value;
   }
   double real_attribute(const XmlElement& element, std::string_view name, double lo, double hi) const {
     const double value = parse_real(element, "attribute '" + std::string(name) + "'", required_attribute(element, name));
@@ -269,14 +278,11 @@ class MpcdiReader {
     const XmlElement* child = parent.child(name);
     if (!child)
       fail(parent, "region '" + region_id + "': <" + parent.name + "> has no <" + std::string(name) + ">");
-    std::string_view digits = trimmed(child->text);
-    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
+    const std::optional<double> value = finite_number(child->text);
+    if (!value)
       fail(*child, "region '" + region_id + "': <" + parent.name + "> <" + child->name + "> = '" + child->text +
                        "' is not a finite number");
-    return value;
+    return *value;
   }
 
   MpcdiRegion read_region(const XmlElement& element, MpcdiProfile profile) const {

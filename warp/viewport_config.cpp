@@ -250,7 +250,8 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
 
   // An MPCDI region of the 3d, sl and a3 profiles gives the rays itself; any
   // other output needs its projection (checked once the warp is read).
-  const bool mpcdi_warp = o.has("warp") && o.raw("warp").is_object() && o.raw("warp").value("format", "") == "mpcdi";
+  const bool mpcdi_warp = o.has("warp") && o.raw("warp").is_object() && o.raw("warp").contains("format") &&
+                          o.raw("warp").at("format") == "mpcdi";
   const bool has_spec = o.has("projection") || !mpcdi_warp;
   const json spec = has_spec ? o.raw("projection") : json();
   if (has_spec && !spec.is_object())

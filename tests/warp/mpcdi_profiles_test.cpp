@@ -418,6 +418,36 @@ TEST(MpcdiProfiles, A3dWarpOfASphereGivesTheRaysOfTheFisheyeItWasMadeFrom) {
   EXPECT_TRUE(region.geometry_warp->points_3d);
 }
 
+TEST(MpcdiProfiles, AnSlRegionsEyeAtItsProjectorGivesThePinholesRays) {
+  // An sl region's 3D warp of a sphere lit through its own frustum and frame;
+  // with the eye at the frame's position the warp's rays are the pinhole's.
+  constexpr int kW = 40, kH = 30;
+  const Frustum f{20.0, -15.0, 30.0, -25.0, 35.0, 15.0, -20.0};
+  Frame frame;
+  frame.position = {1.5, -2.0, 3.0};
+  frame.pitch = {0.0, 0.0, -1.0};
+  frame.yaw = {-1.0, 0.0, 0.0};
+  frame.roll = {0.0, 1.0, 0.0};
+  const auto point = [&](int i, int j, int c) {
+    const glm::dvec3 cam = standard_ray(f, frame, 0.5 * i, 0.5 * j, kW, kH);
+    return static_cast<float>(on_sphere(frame.position, {-cam.x, cam.y, -cam.z}, {0.0, 0.0, 0.0}, 10.0)[c]);
+  };
+  ScratchDir dir("mpcdi_sl_eye");
+  archive(dir, "pinhole.mpcdi", descriptor("sl", frustum_xml(f) + frame_xml(frame), "", kW, kH));
+  archive(dir, "screen.mpcdi",
+          descriptor("sl", frustum_xml(f) + frame_xml(frame),
+                     "<geometryWarpFile><path>s.pfm</path><geometricUnit>m</geometricUnit>"
+                     "<originOf3DData>centerOfMass</originOf3DData></geometryWarpFile>\n",
+                     kW, kH),
+          {{"s.pfm", make_pfm(2 * kW + 1, 2 * kH + 1, 3, point, true, true)}});
+  const auto pinhole = viewport(dir, mpcdi_warp("pinhole.mpcdi"), kW, kH).outputs[0].projection;
+  const auto screen =
+      viewport(dir, mpcdi_warp("screen.mpcdi", {{"eye", {1.5, -2.0, 3.0}}}), kW, kH).outputs[0].projection;
+  const double worst = max_ray_angle(*screen, *pinhole);
+  std::printf("  sl 3D warp seen from the projector vs its pinhole: max %.3g rad\n", worst);
+  EXPECT_LT(worst, 3e-7);  // binary32 points ~10 m away
+}
+
 // ---- refusals --------------------------------------------------------------------
 
 TEST(MpcdiProfiles, EveryRefusalNamesTheFileTheRegionAndTheElement) {
@@ -489,6 +519,9 @@ TEST(MpcdiProfiles, EveryRefusalNamesTheFileTheRegionAndTheElement) {
                       "/outputs/0/warp/eye", "applies to a region with a 3D geometry warp");
   expect_config_error([&] { viewport(dir, mpcdi_warp("floor.mpcdi", {{"eye", {0, "up", 0}}})); }, "t.json",
                       "/outputs/0/warp/eye", "must be [x, y, z], finite numbers");
+  // Only an MPCDI warp may go without a projection (a format of the wrong type included).
+  expect_config_error([&] { viewport(dir, json{{"warp", {{"file", "plain.mpcdi"}, {"format", 3}}}}); }, "t.json",
+                      "/outputs/0/projection", "missing required key");
   // A 2d region still needs the projection its warp addresses.
   Members two_d = testing::valid_2d_members();
   make_zip(dir, "2d.mpcdi", two_d);
