@@ -204,18 +204,24 @@ TEST(MpcdiProfiles, AFrustumRegionHasTheRaysOfTheSameFrustumAsAJsonPlanarOutput)
   EXPECT_NEAR(three_d.outputs[0].projection_spec["yaw_deg"].get<double>(), 326.7 - 360.0, 1e-12);
 }
 
-TEST(MpcdiProfiles, AFrameWithSwappedAndNegatedAxesLandsWhereTheStandardPutsIt) {
-  // The projector looks up (roll = the display's +Y), its right is the
-  // display's −Z (backward), its down −X (right, X being left), as exports of
-  // a Z-forward, Y-up display write a projector aimed at the zenith; turned
-  // in the frame by yaw 20, pitch −15, roll 30.
-  ScratchDir dir("mpcdi_frame");
-  const Frustum f{20.0, -15.0, 30.0, -25.0, 35.0, 15.0, -20.0};
+/// A projector aimed at the zenith, as exports of a Z-forward, Y-up display
+/// write it: it looks up (roll = the display's +Y), its right is the
+/// display's −Z (backward), its down −X (right, X being left); and a frustum
+/// turned in that frame by yaw 20, pitch −15, roll 30.
+Frame zenith_frame() {
   Frame frame;
   frame.position = {1.5, -2.0, 3.0};
   frame.pitch = {0.0, 0.0, -1.0};
   frame.yaw = {-1.0, 0.0, 0.0};
   frame.roll = {0.0, 1.0, 0.0};
+  return frame;
+}
+constexpr Frustum kZenithFrustum{20.0, -15.0, 30.0, -25.0, 35.0, 15.0, -20.0};
+
+TEST(MpcdiProfiles, AFrameWithSwappedAndNegatedAxesLandsWhereTheStandardPutsIt) {
+  ScratchDir dir("mpcdi_frame");
+  const Frustum f = kZenithFrustum;
+  const Frame frame = zenith_frame();
   archive(dir, "sl.mpcdi", descriptor("sl", frustum_xml(f) + frame_xml(frame), kAlphaBeta));
   const ViewportConfig config = viewport(dir, mpcdi_warp("sl.mpcdi"));
   const Projection& p = *config.outputs[0].projection;
@@ -422,12 +428,8 @@ TEST(MpcdiProfiles, AnSlRegionsEyeAtItsProjectorGivesThePinholesRays) {
   // An sl region's 3D warp of a sphere lit through its own frustum and frame;
   // with the eye at the frame's position the warp's rays are the pinhole's.
   constexpr int kW = 40, kH = 30;
-  const Frustum f{20.0, -15.0, 30.0, -25.0, 35.0, 15.0, -20.0};
-  Frame frame;
-  frame.position = {1.5, -2.0, 3.0};
-  frame.pitch = {0.0, 0.0, -1.0};
-  frame.yaw = {-1.0, 0.0, 0.0};
-  frame.roll = {0.0, 1.0, 0.0};
+  const Frustum f = kZenithFrustum;
+  const Frame frame = zenith_frame();
   const auto point = [&](int i, int j, int c) {
     const glm::dvec3 cam = standard_ray(f, frame, 0.5 * i, 0.5 * j, kW, kH);
     return static_cast<float>(on_sphere(frame.position, {-cam.x, cam.y, -cam.z}, {0.0, 0.0, 0.0}, 10.0)[c]);
