@@ -7,9 +7,9 @@
 #include <memory>
 #include <string>
 
-#include "apps/calibration_export.h"
+#include "warp/calibration_export.h"
 #include "apps/commands.h"
-#include "apps/output_rendering.h"
+#include "offline/output_rendering.h"
 
 namespace zenith::app {
 

@@ -23,7 +23,7 @@
 
 #include "apps/commands.h"
 #include "apps/cli_options.h"
-#include "apps/output_rendering.h"
+#include "offline/output_rendering.h"
 #include "core/progress_bar.h"
 #include "render/lut/table_provider.h"
 #include "render/gl/egl_context.h"

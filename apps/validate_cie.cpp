@@ -29,7 +29,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "apps/output_rendering.h"
+#include "offline/output_rendering.h"
 #include "render/lut/table_provider.h"
 #include "atmosphere/cie_sky.h"
 #include "atmosphere/constants.h"

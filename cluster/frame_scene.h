@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 #include "scene/scene.h"
 
 namespace zenith::cluster {

@@ -6,11 +6,13 @@
 #                parallel loops, SHA-256, units, timing, progress bars)
 #   image/       core                       EXR/PNG files, tone mapping, colour
 #   atmosphere/  core                       the physics; no GL
-#   warp/        core                       projections, warp meshes, blending; no GL
+#   warp/        core, image                projections, warp meshes, blending, calibration export; no GL
 #   scene/       core, image, atmosphere    scenes, albedo maps, the sun's disc, frame descriptions; no GL
 #   show/        core, image, atmosphere, scene   shows, playback clock, table plans; no GL, no protocol
 #   render/      core … scene (not show)    GL, tables on the GPU, the frame renderer
 #   cluster/     the above, show and render master, node, protocol
+#   stress/      core … render (not show)   `zenith validate stress`: CPU and GPU against the reference
+#   offline/     the above, show, cluster   offline rendering of shows (frames, manifest, outputs)
 #   apps/        all of the above           the `zenith` command
 #   (bench/ and tests/ may include anything)
 #
@@ -35,16 +37,18 @@ if(NOT SOURCE_DIR)
 endif()
 get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 
-set(modules core image atmosphere warp scene show render cluster apps)
+set(modules core image atmosphere warp scene show render cluster stress offline apps)
 set(allowed_core "")
 set(allowed_image core)
 set(allowed_atmosphere core)
-set(allowed_warp core)
+set(allowed_warp core image)
 set(allowed_scene core image atmosphere)
 set(allowed_show core image atmosphere scene)
 set(allowed_render core image atmosphere warp scene)
 set(allowed_cluster core image atmosphere warp scene show render)
-set(allowed_apps core image atmosphere warp scene show render cluster)
+set(allowed_stress core image atmosphere warp scene render)
+set(allowed_offline core image atmosphere warp scene show render cluster)
+set(allowed_apps core image atmosphere warp scene show render cluster stress offline)
 
 if(LINK_GRAPH)
   file(STRINGS "${LINK_GRAPH}" edges)

@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "cluster/cluster_config.h"
+#include "cluster/link/cluster_config.h"
 #include "cluster/master/node_session.h"
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 
 namespace zenith::cluster {
 

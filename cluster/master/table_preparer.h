@@ -20,7 +20,7 @@
 #include <thread>
 
 #include "atmosphere/parameters.h"
-#include "cluster/table_transfer.h"
+#include "cluster/protocol/table_transfer.h"
 #include "render/lut/table_provider.h"
 
 namespace zenith::cluster {

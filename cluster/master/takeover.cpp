@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "cluster/atmosphere_definition.h"
+#include "cluster/link/atmosphere_definition.h"
 #include "core/json_reader.h"
 
 namespace zenith::cluster {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cluster/master/table_versions.h"
-#include "cluster/standby/takeover_state.h"
+#include "cluster/link/takeover_state.h"
 #include "scene/scene.h"
 #include "show/playback_clock.h"
 

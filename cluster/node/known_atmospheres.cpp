@@ -5,8 +5,8 @@
 #include <fstream>
 
 #include "atmosphere/model_hash.h"
-#include "cluster/atmosphere_definition.h"
-#include "cluster/table_transfer.h"
+#include "cluster/link/atmosphere_definition.h"
+#include "cluster/protocol/table_transfer.h"
 #include "core/json_reader.h"
 
 namespace zenith::cluster {

@@ -10,7 +10,7 @@
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/frame_scene.h"
 #include "cluster/node/thumbnail.h"
-#include "cluster/state_digest.h"
+#include "cluster/protocol/state_digest.h"
 #include "core/json_reader.h"
 #include "core/timing.h"
 #include "image/tone_mapping.h"

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <string>
 
-#include "apps/offline_manifest.h"
-#include "apps/offline_render.h"
+#include "offline/offline_manifest.h"
+#include "offline/offline_render.h"
 
 namespace zenith::app::offline {
 namespace {

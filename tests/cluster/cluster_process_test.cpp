@@ -35,10 +35,10 @@
 #include <boost/beast/websocket.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cluster/frame_decoder.h"
-#include "cluster/handshake.h"
+#include "cluster/protocol/frame_decoder.h"
+#include "cluster/protocol/handshake.h"
 #include "cluster/master/osc_packet.h"
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 #include "core/process.h"
 #include "image/image_io.h"
 #include "test_support.h"

@@ -5,10 +5,10 @@
 
 #include <cmath>
 
-#include "apps/stress/random_atmosphere.h"
-#include "apps/stress/stress_geometry.h"
-#include "apps/stress/stress_sampler.h"
-#include "apps/stress/stress_statistics.h"
+#include "stress/random_atmosphere.h"
+#include "stress/stress_geometry.h"
+#include "stress/stress_sampler.h"
+#include "stress/stress_statistics.h"
 #include "atmosphere/lut/parameterization.h"
 #include "atmosphere/parameters.h"
 #include "atmosphere/reference/geometry.h"

@@ -20,7 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/calibration_export.h"
+#include "warp/calibration_export.h"
 #include "tests/warp/mpcdi_test_support.h"
 #include "warp/blend_map.h"
 #include "warp/blending.h"
