@@ -31,7 +31,7 @@
 #include "cluster/node/node.h"
 #include "cluster/standby/standby.h"
 #include "show/show.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "image/image_io.h"
 #include "image/image_writer.h"
 #include "warp/dome_tiles.h"
@@ -42,7 +42,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-using config::cat;
+using core::cat;
 
 /// --switch-atmosphere "FRAME:BODY:PRESET_OR_FILE"; throws std::invalid_argument naming the value.
 cluster::AtmosphereSwitch parse_atmosphere_switch(const std::string& text) {

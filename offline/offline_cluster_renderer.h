@@ -1,7 +1,7 @@
 #pragma once
 // The FrameRenderer of `zenith show render --cluster` (docs/shows.md,
 // "Offline rendering"): a master in this process, fed frame by frame
-// (cluster/frame_feed.h), and the configuration's local nodes as child
+// (cluster/master/frame_feed.h), and the configuration's local nodes as child
 // processes writing their outputs straight into the render folder
 // (`zenith node --layout offline`). Each frame returns once every node has
 // presented it and its files are in place, so the frame loop hashes finished

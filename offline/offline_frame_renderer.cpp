@@ -1,4 +1,4 @@
-// The single-process FrameRenderer (apps/offline_frame_renderer.h).
+// The single-process FrameRenderer (offline/offline_frame_renderer.h).
 #include "offline/offline_frame_renderer.h"
 
 #include <fmt/format.h>

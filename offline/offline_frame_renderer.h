@@ -1,7 +1,7 @@
 #pragma once
 // The single-process FrameRenderer of `zenith show render`: one headless GL
 // context and renderer in this process render every output of each frame
-// (apps/output_rendering.h: projection, warp, blend and black level).
+// (offline/output_rendering.h: projection, warp, blend and black level).
 #include <cstdint>
 #include <filesystem>
 #include <map>

@@ -1,4 +1,4 @@
-// The manifest of an offline render and the resume rule (apps/offline_manifest.h).
+// The manifest of an offline render and the resume rule (offline/offline_manifest.h).
 #include "offline/offline_manifest.h"
 
 #include <fmt/format.h>
@@ -11,12 +11,14 @@
 #include <system_error>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
+#include "core/files.h"
 #include "core/sha256.h"
 
 namespace zenith::app::offline {
 namespace {
 
-using config::cat;
+using core::cat;
 
 [[noreturn]] void fail(const std::string& source, const std::string& pointer, const std::string& message) {
   throw std::runtime_error(cat(source, ": ", pointer, ": ", message));
@@ -117,10 +119,7 @@ void write_manifest(const std::filesystem::path& path, const Manifest& manifest)
 }
 
 std::string file_sha256(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(cat(path.string(), ": cannot open"));
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw std::runtime_error(cat(path.string(), ": read error"));
+  const std::string bytes = core::file_bytes(path);
   return core::sha256_hex(bytes.data(), bytes.size());
 }
 

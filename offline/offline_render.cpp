@@ -1,4 +1,4 @@
-// The frame loop of offline rendering (apps/offline_render.h).
+// The frame loop of offline rendering (offline/offline_render.h).
 #include "offline/offline_render.h"
 
 #include <fmt/format.h>
@@ -12,7 +12,7 @@
 
 #include "offline/offline_manifest.h"
 #include "core/progress_bar.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/sha256.h"
 #include "image/contact_sheet.h"
 #include "core/timing.h"
@@ -20,7 +20,7 @@
 namespace zenith::app::offline {
 namespace {
 
-using config::cat;
+using core::cat;
 using Clock = std::chrono::steady_clock;
 
 using core::seconds_since;

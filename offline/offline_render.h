@@ -1,10 +1,10 @@
 #pragma once
 // Offline rendering of a show (docs/shows.md, "Offline rendering"): every
 // frame of a show at a fixed frame rate, whatever the wall time, into numbered
-// image files, resumable through the manifest (apps/offline_manifest.h).
+// image files, resumable through the manifest (offline/offline_manifest.h).
 //
 // The frame loop is independent of how a frame is rendered: `zenith show
-// render` hands it a LocalFrameRenderer (apps/offline_frame_renderer.h); a
+// render` hands it a LocalFrameRenderer (offline/offline_frame_renderer.h); a
 // cluster can hand it one that renders on its nodes. The loop owns the file
 // layout, the manifest, the progress bar, the summary and the contact sheet:
 //

@@ -1,4 +1,4 @@
-// Shared by `zenith render` and `zenith show render` (apps/output_rendering.h).
+// Shared by `zenith render` and `zenith show render` (offline/output_rendering.h).
 #include "offline/output_rendering.h"
 
 #include <fmt/format.h>

@@ -6,7 +6,7 @@
 #include <mutex>
 #include <vector>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/parallel_for.h"
 #include "atmosphere/reference/geometry.h"
 #include "core/units.h"
@@ -21,7 +21,7 @@ std::string describe(const std::string& label, const Configuration& c, double gr
   const double r = atmosphere::length(c.camera_m);
   const double sun_zenith_deg = std::acos(std::clamp(atmosphere::dot(c.camera_m, c.sun) / r, -1.0, 1.0)) * 180.0 /
                                 core::kPi;
-  return config::cat(label, " altitude ", r - ground_radius_m, " m, sun zenith ", sun_zenith_deg, " deg, eps ",
+  return core::cat(label, " altitude ", r - ground_radius_m, " m, sun zenith ", sun_zenith_deg, " deg, eps ",
                      epsilon_rad, " rad");
 }
 

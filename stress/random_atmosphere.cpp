@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "atmosphere/reference/random.h"
 
 namespace zenith::stress {
@@ -34,7 +35,7 @@ class Draw {
 json random_atmosphere_parameters(std::uint64_t seed, std::uint64_t index) {
   Draw d(seed, index);
   json j = {{"zenith_atmosphere", 1},
-            {"name", config::cat("random-", seed, "-", index)},
+            {"name", core::cat("random-", seed, "-", index)},
             {"mode", "standard"},
             {"wavelengths_nm", {680, 550, 440}},
             {"air_mass", "geometric"}};

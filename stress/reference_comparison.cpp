@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "atmosphere/constants.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/parallel_for.h"
 #include "atmosphere/reference/random.h"
 #include "atmosphere/reference/single_scattering.h"
@@ -137,7 +137,7 @@ void compare_with_reference(const atmosphere::AtmosphereModel& model, const atmo
     const Spectrum exact = ref.atmosphere_radiance + ref.ground_radiance;
     const double r = atmosphere::length(c.camera_m);
     outcomes[k].error = relative_error(tables.values().data(), exact.values().data(), q.channels(), o.floor_sr);
-    outcomes[k].where = config::cat(
+    outcomes[k].where = core::cat(
         label, " altitude ", r - g.bottom_radius_m, " m, view offset from horizon ",
         offset_from_horizon_rad(c.camera_m, c.view, g.bottom_radius_m), " rad, sun zenith ",
         std::acos(std::clamp(atmosphere::dot(c.camera_m, c.sun) / r, -1.0, 1.0)) * 180.0 / kPi, " deg, L1 ",

@@ -7,10 +7,11 @@
 
 #include "atmosphere/model_hash.h"
 #include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 bool fits_body(const atmosphere::LoadedAtmosphere& loaded, const scene::Body& body) {
   return std::abs(loaded.model.ground_radius_m - body.radius_m) <= 1.0;

@@ -7,12 +7,13 @@
 #include <sstream>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "warp/viewport_config.h"
 
 namespace zenith::cluster {
 namespace {
 
-using config::cat;
+using core::cat;
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -201,11 +202,7 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
 }
 
 ClusterConfig load_cluster_config(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path.string(), "", "cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_cluster_config(parse_json(text.str(), path.string()), path.string(), path.parent_path());
+  return parse_cluster_config(read_json_file(path), path.string(), path.parent_path());
 }
 
 }  // namespace zenith::cluster

@@ -6,36 +6,16 @@
 #include <boost/asio/connect.hpp>
 
 #include "cluster/protocol/heartbeat.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/timing.h"
 
 namespace zenith::cluster {
 
 namespace asio = boost::asio;
 using asio::ip::tcp;
-using config::cat;  // core/json_reader.h
+using core::cat;
 using core::ms_since;
 using std::chrono::milliseconds;
-
-namespace {
-
-}  // namespace
-
-MasterLink::Setup MasterLink::node_setup(const NodeOptions& options) {
-  Setup setup;
-  setup.cluster_name = options.config.name;
-  setup.peer_name = options.node_name;
-  setup.who = cat("node '", options.node_name, "'");
-  setup.masters = listed_masters(options.config, options.port);
-  setup.heartbeat_ms = options.config.heartbeat_ms;
-  setup.rules.connect_timeout_ms = options.connect_timeout_ms;
-  setup.rules.reconnect_ms = options.reconnect_ms.value_or(options.config.reconnect_ms);
-  setup.rules.attempt_timeout_ms = attempt_timeout_ms_for(setup.masters.size());
-  return setup;
-}
-
-MasterLink::MasterLink(asio::io_context& io, const NodeOptions& options, SharedSecret secret, Events events)
-    : MasterLink(io, node_setup(options), std::move(secret), std::move(events)) {}
 
 MasterLink::MasterLink(asio::io_context& io, Setup setup, SharedSecret secret, Events events)
     : io_(io),

@@ -8,8 +8,8 @@
 // (MasterLinkProtocol: the rules, without sockets). It hands the node every
 // message of the master after each Welcome, and tells it when the link ends
 // and with which exit code. What the messages mean for tables, frames and
-// files is the node's (cluster/node.cpp). A standby master follows its active
-// master through the same link, in the standby role (cluster/standby.h).
+// files is the node's (cluster/node/node.cpp). A standby master follows its
+// active master through the same link, in the standby role (cluster/standby/standby.h).
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -22,7 +22,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "cluster/link/connection.h"
-#include "cluster/node/node.h"
+#include "cluster/link/link_exit.h"
 #include "cluster/link/master_link_protocol.h"
 
 namespace zenith::cluster {
@@ -64,10 +64,6 @@ class MasterLink {
     std::uint32_t heartbeat_ms = 250;     ///< the configuration's, until the Welcome brings the master's
     ReconnectRules rules;
   };
-  /// A node's link: its configuration's masters (the port overridden), its timeouts.
-  static Setup node_setup(const NodeOptions& options);
-
-  MasterLink(boost::asio::io_context& io, const NodeOptions& options, SharedSecret secret, Events events);
   MasterLink(boost::asio::io_context& io, Setup setup, SharedSecret secret, Events events);
   MasterLink(const MasterLink&) = delete;
   MasterLink& operator=(const MasterLink&) = delete;

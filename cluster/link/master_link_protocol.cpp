@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "cluster/link/cluster_config.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
@@ -72,7 +72,7 @@ MasterLinkProtocol::Step MasterLinkProtocol::on_message(const Message& message) 
   }
   if (std::holds_alternative<Reject>(message)) return {Meaning::rejected, std::nullopt};
   if (std::holds_alternative<Goodbye>(message)) return {Meaning::goodbye, std::nullopt};
-  throw std::runtime_error(config::cat(to_string(message_type(message)), " from the master before Welcome"));
+  throw std::runtime_error(core::cat(to_string(message_type(message)), " from the master before Welcome"));
 }
 
 double MasterLinkProtocol::silence_limit_ms() const { return cluster::silence_limit_ms(heartbeat_ms_); }

@@ -6,7 +6,7 @@
 // reconnection rules — which listed master to try (the active master, then
 // the standby: docs/cluster.md, "Standby master"), when to try again after a
 // failed attempt or a lost connection, and when to give up. No sockets and no clock: MasterLink
-// (cluster/node/master_link.h) feeds it the messages and the clock readings
+// (cluster/link/master_link.h) feeds it the messages and the clock readings
 // and does what it answers.
 #include <chrono>
 #include <cstdint>

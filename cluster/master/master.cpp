@@ -22,7 +22,7 @@
 #include "render/lut/table_provider.h"
 #include "atmosphere/model_hash.h"
 #include "cluster/link/connection.h"
-#include "cluster/frame_scene.h"
+#include "scene/frame_scene.h"
 #include "cluster/protocol/heartbeat.h"
 #include "cluster/master/atmosphere_edits.h"
 #include "cluster/master/atmosphere_overrides.h"
@@ -60,7 +60,7 @@ using std::chrono::milliseconds;
 
 namespace {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 using core::ms_since;
 
@@ -317,7 +317,7 @@ struct Master::Impl {
     const FrameState& last = *t.last_frame;
     const Continuation c = continuation_of(
         t, show ? show->state_at(last.show_time_s, last.frame, render_flags)
-                : default_show_frame(scene, last.frame, options.sun_step_deg, tables.current(), render_flags),
+                : scene::default_show_frame(scene, last.frame, options.sun_step_deg, tables.current(), render_flags),
         fps);
     barrier.start_at(c.next_frame);
     exposure_override = c.exposure;
@@ -703,7 +703,7 @@ struct Master::Impl {
       } else {
         const std::uint64_t frame = barrier.frame();
         next = show ? show->state_at(clock->next_frame_time_s(), frame, render_flags)
-                    : default_show_frame(scene, frame, options.sun_step_deg, tables.current(), render_flags);
+                    : scene::default_show_frame(scene, frame, options.sun_step_deg, tables.current(), render_flags);
         if (!show) next.show_time_s = static_cast<double>(frame) / fps;  // the live session's clock
         if (exposure_override) next.exposure = *exposure_override;
         sun_override->apply(next);

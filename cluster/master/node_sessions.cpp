@@ -4,11 +4,11 @@
 
 #include <algorithm>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 NodeSession& NodeSessions::add(std::shared_ptr<Connection> connection, MasterHandshake handshake) {
   auto session = std::make_shared<NodeSession>();

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
@@ -61,7 +61,7 @@ TableSetFile TablePreparer::obtain_set(const Job& job, bool* from_cache, const C
   }
   render::ObtainedTables obtained = render::obtain_tables(job.model, request);
   if (obtained.cache_file.empty())
-    throw std::runtime_error(config::cat("the tables of '", job.body, "' could not be stored in the cache: nodes get "
+    throw std::runtime_error(core::cat("the tables of '", job.body, "' could not be stored in the cache: nodes get "
                                          "the cache file's bytes, so the master needs a writable table cache directory"));
   if (from_cache != nullptr) *from_cache = obtained.from_cache;
   return make_table_set_file(job.body, job.table_hash, obtained.cache_file);

@@ -5,11 +5,11 @@
 #include <stdexcept>
 
 #include "cluster/link/atmosphere_definition.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 namespace {
 

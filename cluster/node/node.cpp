@@ -1,4 +1,3 @@
-#include "core/json_reader.h"
 #include "cluster/node/node.h"
 
 #include <spdlog/spdlog.h>
@@ -13,12 +12,12 @@
 
 #include "render/lut/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
-#include "cluster/frame_scene.h"
 #include "cluster/protocol/heartbeat.h"
 #include "cluster/node/known_atmospheres.h"
 #include "cluster/link/master_link.h"
 #include "cluster/node/render_worker.h"
 #include "cluster/protocol/table_transfer.h"
+#include "core/strings.h"
 #include "scene/scene_loader.h"
 #include "warp/viewport_config.h"
 
@@ -29,7 +28,21 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
+
+/// A node's link: its configuration's masters (the port overridden), its timeouts.
+MasterLink::Setup link_setup(const NodeOptions& options) {
+  MasterLink::Setup setup;
+  setup.cluster_name = options.config.name;
+  setup.peer_name = options.node_name;
+  setup.who = cat("node '", options.node_name, "'");
+  setup.masters = listed_masters(options.config, options.port);
+  setup.heartbeat_ms = options.config.heartbeat_ms;
+  setup.rules.connect_timeout_ms = options.connect_timeout_ms;
+  setup.rules.reconnect_ms = options.reconnect_ms.value_or(options.config.reconnect_ms);
+  setup.rules.attempt_timeout_ms = attempt_timeout_ms_for(setup.masters.size());
+  return setup;
+}
 
 }  // namespace
 
@@ -65,7 +78,7 @@ struct Node::Impl {
 
   Impl(NodeOptions o, SharedSecret secret)
       : options(std::move(o)),
-        link(io, options, std::move(secret),
+        link(io, link_setup(options), std::move(secret),
              MasterLink::Events{[this](const Welcome&) { on_welcomed(); },
                                 [this](const std::string&) { on_lost(); },
                                 [this](const Message& m) { on_master_message(m); },

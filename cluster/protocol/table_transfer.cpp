@@ -6,13 +6,13 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/sha256.h"
 
 namespace zenith::cluster {
 namespace {
 
-using config::cat;
+using core::cat;
 
 }  // namespace
 

@@ -10,17 +10,17 @@
 #include <boost/asio/signal_set.hpp>
 
 #include "cluster/protocol/heartbeat.h"
-#include "cluster/node/node.h"
+#include "cluster/link/link_exit.h"
 #include "cluster/link/master_link.h"
 #include "cluster/standby/standby_follower.h"
 #include "cluster/standby/takeover_rule.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/timing.h"
 
 namespace zenith::cluster {
 
 namespace asio = boost::asio;
-using config::cat;  // core/json_reader.h
+using core::cat;
 using Clock = std::chrono::steady_clock;
 
 struct Standby::Impl {

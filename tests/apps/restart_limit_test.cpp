@@ -1,5 +1,5 @@
 // `zenith cluster --restart-nodes`: which deaths restart a node and how often
-// (apps/restart_limit.h; docs/cluster.md, "Join, rejoin and failures").
+// (cluster/launcher/restart_limit.h; docs/cluster.md, "Join, rejoin and failures").
 #include "cluster/launcher/restart_limit.h"
 
 #include <gtest/gtest.h>

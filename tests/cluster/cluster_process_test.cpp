@@ -44,6 +44,8 @@
 #include "test_support.h"
 #include "tests/cluster/http_client.h"
 #include "tests/cluster/webdriver.h"
+#include "core/files.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 namespace {
@@ -80,19 +82,8 @@ void kill_hard(const Child& c) {
   wait_exit(c, 5000ms);
 }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Occurrences of `needle` in `text`.
-std::size_t count_of(const std::string& text, const std::string& needle) {
-  std::size_t n = 0;
-  for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
-  return n;
-}
+using core::count_of;
+using core::read_text;
 
 /// "frame N state DIGEST tables BODY=HASH,..." lines of a node's presented.log.
 struct Presented {
@@ -1182,19 +1173,6 @@ TEST_F(ClusterProcess, ReconnectingNodeWithCachedTablesReceivesNoChunks) {
 
 // ---- hostile clients --------------------------------------------------------
 
-int connect_to(int port) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    close(fd);
-    return -1;
-  }
-  return fd;
-}
-
 void send_all(int fd, const std::vector<std::uint8_t>& bytes) {
   std::size_t sent = 0;
   while (sent < bytes.size()) {
@@ -1231,7 +1209,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
   ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= 2; }, 240s)) << logs();
 
   {  // garbage bytes
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     ASSERT_GE(fd, 0);
     const std::string junk = "GET / HTTP/1.1\r\nHost: zenith\r\n\r\n";
     send_all(fd, std::vector<std::uint8_t>(junk.begin(), junk.end()));
@@ -1239,7 +1217,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // an oversized length in an otherwise valid header
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     std::vector<std::uint8_t> frame = test::raw_frame(static_cast<std::uint16_t>(MessageType::hello), {});
     test::put_be32(frame, 8, 0x7FFFFFFF);
     test::fix_header_crc(frame);
@@ -1248,7 +1226,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // another protocol version
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     std::vector<std::uint8_t> frame = test::raw_frame(static_cast<std::uint16_t>(MessageType::heartbeat),
                                                       std::vector<std::uint8_t>(8, 0));
     test::put_be16(frame, 4, kProtocolVersion + 1);
@@ -1258,7 +1236,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // a message before the handshake
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     send_all(fd, encode(RenderDone{0, 1.0}));
     std::vector<Message> got;
     EXPECT_TRUE(read_until_closed(fd, 5s, &got));
@@ -1267,7 +1245,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // the wrong secret: Reject(authentication_failed), then closed
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     const std::string wrong = "not-the-cluster-secret-at-all";
     NodeHandshake hs(SharedSecret(std::vector<std::uint8_t>(wrong.begin(), wrong.end()), "test"), "test-dome", "b");
     send_all(fd, encode(hs.start()));
@@ -1293,7 +1271,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // a truncated frame, then the client goes away
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     std::vector<std::uint8_t> frame = encode(Hello{kProtocolVersion, "test-dome", "c", Nonce{}});
     frame.resize(frame.size() / 2);
     send_all(fd, frame);

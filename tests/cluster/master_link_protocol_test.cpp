@@ -1,5 +1,5 @@
 // The node's side of its link to the master without sockets
-// (cluster/node/master_link_protocol.h; docs/protocol.md, "Handshake";
+// (cluster/link/master_link_protocol.h; docs/protocol.md, "Handshake";
 // docs/cluster.md, "Join, rejoin and failures").
 #include "cluster/link/master_link_protocol.h"
 

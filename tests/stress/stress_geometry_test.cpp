@@ -1,4 +1,4 @@
-// apps/stress/: horizon directions placed exactly (checked with the reference
+// stress/: horizon directions placed exactly (checked with the reference
 // solver's cancellation-free ray geometry and the tables' ray_hits_ground),
 // region classification, error statistics, and the determinism of the sampler.
 #include <gtest/gtest.h>

@@ -1,21 +1,21 @@
-#include "cluster/frame_scene.h"
+#include "scene/frame_scene.h"
 
 #include <limits>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
-#include "show/show.h"
+#include "core/strings.h"
 #include "core/units.h"
 
-namespace zenith::cluster {
+namespace zenith::scene {
 namespace {
 
 /// The polar axis of the body nearest the camera, or world +z.
-glm::dvec3 sun_axis(const scene::Scene& scene) {
-  const scene::Body* nearest = nullptr;
+glm::dvec3 sun_axis(const Scene& scene) {
+  const Body* nearest = nullptr;
   double best = std::numeric_limits<double>::infinity();
-  for (const scene::Body& body : scene.bodies) {
+  for (const Body& body : scene.bodies) {
     const double altitude = glm::length(scene.camera.position_m - body.position_m) - body.radius_m;
     if (altitude < best) {
       best = altitude;
@@ -27,9 +27,9 @@ glm::dvec3 sun_axis(const scene::Scene& scene) {
 
 }  // namespace
 
-FrameState default_show_frame(const scene::Scene& scene, std::uint64_t frame, double sun_step_deg,
-                              const std::vector<AtmosphereTableRef>& atmospheres, std::uint32_t render_flags) {
-  FrameState s;
+FrameDescription default_show_frame(const Scene& scene, std::uint64_t frame, double sun_step_deg,
+                                    const std::vector<AtmosphereTableRef>& atmospheres, std::uint32_t render_flags) {
+  FrameDescription s;
   s.frame = frame;
   s.show_time_s = 0.0;
   s.camera_position_m = scene.camera.position_m;
@@ -47,12 +47,21 @@ FrameState default_show_frame(const scene::Scene& scene, std::uint64_t frame, do
   return s;
 }
 
-void apply_frame_state(const FrameState& state, scene::Scene& scene) {
-  // The per-frame parts are show::apply_state's without the atmospheres (those
-  // the node replaces by table version itself).
-  FrameState parts = state;
-  parts.atmospheres.clear();
-  show::apply_state(parts, {}, scene);
+void check_frame(const FrameDescription& frame, const Scene& scene) {
+  if (frame.sun_irradiance_W_m2_nm.size() != scene.wavelengths_nm.size())
+    throw std::invalid_argument(core::cat("apply_state: ", frame.sun_irradiance_W_m2_nm.size(),
+                                          " sun irradiance values for a scene of ", scene.wavelengths_nm.size(),
+                                          " wavelengths (do master and node read the same scene?)"));
 }
 
-}  // namespace zenith::cluster
+void apply_frame(const FrameDescription& frame, Scene& scene) {
+  check_frame(frame, scene);
+  scene.camera.position_m = frame.camera_position_m;
+  scene.camera.orientation = frame.camera_orientation;
+  scene.camera.exposure = frame.exposure;
+  scene.sun.direction = frame.sun_direction;
+  scene.sun.angular_radius_rad = frame.sun_angular_radius_rad;
+  scene.sun.irradiance_W_m2_nm = frame.sun_irradiance_W_m2_nm;
+}
+
+}  // namespace zenith::scene
