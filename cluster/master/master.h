@@ -13,9 +13,9 @@
 // prepares the scene's tables and then runs that loop. Table sets prepared
 // while frames go on — a show's later sets, a new version of an atmosphere
 // (AtmosphereSwitch) — are obtained in order on one worker thread
-// (master/table_preparer.h) and sent to every node as they are ready. A show
+// (table_preparer.h) and sent to every node as they are ready (table_schedule.h). A show
 // starts once the sets of its first frame are ready (live: once the rest are
-// predicted ready in time, master/show_start_rule.h); a frame whose set is not
+// predicted ready in time, show_start_rule.h); a frame whose set is not
 // yet held by every node waits for it. A switch takes effect at one frame on
 // all nodes once every ready node holds it (docs/cluster.md, "Table versions").
 #include <cstdint>
@@ -26,33 +26,13 @@
 #include <vector>
 
 #include "cluster/link/cluster_config.h"
-#include "cluster/master/frame_feed.h"
-#include "cluster/protocol/handshake.h"
 #include "cluster/link/takeover_state.h"
+#include "cluster/master/atmosphere_switch.h"
+#include "cluster/master/frame_feed.h"
+#include "cluster/master/operator_console_options.h"
+#include "cluster/protocol/handshake.h"
 
 namespace zenith::cluster {
-
-/// A change of one atmosphere's parameters during the show (docs/cluster.md,
-/// "Table versions"): from frame `frame` on, the master prepares the tables of
-/// `atmosphere` for body `body` in the background, ships them, and switches
-/// every node to them at one frame once all live nodes hold them.
-struct AtmosphereSwitch {
-  std::uint64_t frame = 0;  ///< start preparing when this frame starts
-  std::string body;         ///< a body of the scene that has an atmosphere
-  std::string atmosphere;   ///< a preset name or an atmosphere file (as `zenith render --atmosphere`)
-};
-
-/// The operator console (docs/operator.md): a web page and JSON API over HTTP,
-/// and OSC over UDP for show-control desks, both on the master's event loop.
-struct OperatorConsoleOptions {
-  std::optional<std::uint16_t> http_port;  ///< serve the console on this port (0: any free port, logged)
-  std::string http_host = "127.0.0.1";     ///< a numeric address; anything but loopback needs `token`
-  /// When set, every /api request must carry it ("Authorization: Bearer TOKEN").
-  std::optional<SharedSecret> token;
-  std::optional<std::uint16_t> osc_port;   ///< receive OSC on this UDP port (0: any free port, logged)
-  std::string osc_host = "127.0.0.1";      ///< a numeric address; anything but loopback needs `osc_allow`
-  std::vector<std::string> osc_allow;      ///< the only senders accepted (numeric addresses)
-};
 
 struct MasterOptions {
   ClusterConfig config;
@@ -97,7 +77,7 @@ struct MasterOptions {
   /// background after the first takes this much longer (plays a slow precompute).
   std::uint32_t debug_table_delay_ms = 0;
   /// A standby master taking over (docs/cluster.md, "Standby master"; set by
-  /// cluster/standby.h, not on the command line): with a last frame, the
+  /// cluster/standby/standby.h, not on the command line): with a last frame, the
   /// active master's table versions are used instead of prepared (a show's
   /// sets not received are prepared as at the start) and the show continues
   /// from the frame after the last one it sent, at the same show-time step,

@@ -1,8 +1,11 @@
 #include "cluster/master/table_preparer.h"
 
+#include <atomic>
 #include <chrono>
 #include <optional>
+#include <memory>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "core/strings.h"
@@ -110,6 +113,16 @@ void TablePreparer::run() {
     if (set) on_prepared_(std::move(*set), seconds, from_cache);
     else on_failed_(job.table_hash, error);
   }
+}
+
+TablePreparer::Obtain TablePreparer::obtain_with_delay(std::uint32_t delay_ms) {
+  return [delay_ms, jobs = std::make_shared<std::atomic<int>>(0)](const Job& job, bool* from_cache,
+                                                                  const Cancelled& cancelled) {
+    if (delay_ms > 0 && (*jobs)++ > 0)
+      for (std::uint32_t ms = 0; ms < delay_ms && !cancelled(); ms += 10)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return obtain_set(job, from_cache, cancelled);
+  };
 }
 
 }  // namespace zenith::cluster
