@@ -237,6 +237,12 @@ class ClusterProcess : public ::testing::Test {
     }
     return true;
   }
+  /// Every one of `texts` is in the master's log (each one missing fails, showing the log).
+  void expect_in_master_log(std::initializer_list<std::string> texts) const {
+    const std::string master_log = read_text(dir_ / "master.log");
+    for (const std::string& text : texts)
+      EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+  }
   std::string logs() const {
     std::string all;
     for (const char* n : {"master", "standby", "standby-2", "a", "b", "c", "cluster"})
@@ -1503,17 +1509,14 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
       while (v + 1 < versions.size() && versions[v + 1].from_frame <= p.frame) ++v;
       EXPECT_EQ(p.tables, "Earth=" + versions[v].hex) << node << " frame " << p.frame;
     }
-  const std::string master_log = read_text(dir_ / "master.log");
-  for (const std::string& text :
-       {"operator console at http://127.0.0.1:" + std::to_string(http) + "/",
-        std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 100 refused: set Earth: "
-                    "/aerosol/scattering/turbidity = 100: must be in [1, 64]"),
-        std::string("operator (osc 127.0.0.1): exposure 40.0 → exposure 40 from the next frame on"),
-        std::string("operator (osc 127.0.0.1): set Earth /aerosol/scattering/turbidity = 200.0 refused"),
-        std::string("OSC from 127.0.0.1: refused 4 bytes"),
-        std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 3 → 'Earth'"),
-        "takes effect at frame " + std::to_string(last_switch)})
-    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+  expect_in_master_log({"operator console at http://127.0.0.1:" + std::to_string(http) + "/",
+                        "operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 100 refused: set Earth: "
+                        "/aerosol/scattering/turbidity = 100: must be in [1, 64]",
+                        "operator (osc 127.0.0.1): exposure 40.0 → exposure 40 from the next frame on",
+                        "operator (osc 127.0.0.1): set Earth /aerosol/scattering/turbidity = 200.0 refused",
+                        "OSC from 127.0.0.1: refused 4 bytes",
+                        "operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 3 → 'Earth'",
+                        "takes effect at frame " + std::to_string(last_switch)});
 }
 
 TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
@@ -1610,11 +1613,9 @@ TEST_F(ClusterProcess, OperatorConsoleSetsTheSunOfTheDefaultShowOverHttpAndOscUn
   EXPECT_NE(picture(set_by_http), picture(0));
   EXPECT_NE(picture(set_by_osc), picture(set_by_http));
   EXPECT_EQ(picture(cleared), picture(0));
-  const std::string master_log = read_text(dir_ / "master.log");
-  for (const std::string text : {"operator (http 127.0.0.1): sun elevation -4.0° azimuth 250.0° → sun at elevation -4°, azimuth 250°",
-                                 "operator (osc 127.0.0.1): sun azimuth 200.0° → sun at elevation -4°, azimuth 200°",
-                                 "operator (osc 127.0.0.1): clear sun → the default show's sun from the next frame on"})
-    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+  expect_in_master_log({"operator (http 127.0.0.1): sun elevation -4.0° azimuth 250.0° → sun at elevation -4°, azimuth 250°",
+                        "operator (osc 127.0.0.1): sun azimuth 200.0° → sun at elevation -4°, azimuth 200°",
+                        "operator (osc 127.0.0.1): clear sun → the default show's sun from the next frame on"});
 }
 
 TEST_F(ClusterProcess, OperatorConsoleOverridesTheSunTrackOfAShowUntilCleared) {
@@ -1702,11 +1703,9 @@ TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsThe
     if (phases.empty() || phases.back() != phase) phases += phase;
   }
   EXPECT_EQ(phases, "sos");
-  const std::string master_log = read_text(dir_ / "master.log");
-  for (const std::string text : {"operator (http 127.0.0.1): set Earth /aerosol/scale_height_m = 1500 → 'Earth'",
-                                 "the show's track of 'Earth' moved on to version",
-                                 "operator (osc 127.0.0.1): clear atmosphere of Earth → 'Earth' follows the show's track again"})
-    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+  expect_in_master_log({"operator (http 127.0.0.1): set Earth /aerosol/scale_height_m = 1500 → 'Earth'",
+                        "the show's track of 'Earth' moved on to version",
+                        "operator (osc 127.0.0.1): clear atmosphere of Earth → 'Earth' follows the show's track again"});
 }
 
 TEST_F(ClusterProcess, OperatorConsoleShowsTheDomeFromTheNodesThumbnailsOnlyWhileThePreviewIsOn) {
