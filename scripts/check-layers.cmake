@@ -6,13 +6,23 @@
 #                parallel loops, SHA-256, units, timing, progress bars)
 #   image/       core                       EXR/PNG files, tone mapping, colour
 #   atmosphere/  core                       the physics; no GL
-#   warp/        core                       projections, warp meshes, blending; no GL
+#   warp/        core, image                projections, warp meshes, blending, calibration export; no GL
 #   scene/       core, image, atmosphere    scenes, albedo maps, the sun's disc, frame descriptions; no GL
 #   show/        core, image, atmosphere, scene   shows, playback clock, table plans; no GL, no protocol
 #   render/      core … scene (not show)    GL, tables on the GPU, the frame renderer
-#   cluster/     the above, show and render master, node, protocol
+#   cluster/     a module of modules, each folder one (no loops, no sideways steps):
+#     protocol/  core, scene                the wire protocol: messages, framing, handshake, table transfer
+#     link/      … warp, scene, protocol    configuration, a connection, a link to the master, takeover state
+#     master/    … show, render, link       the master: table schedule, barrier, operator desk
+#     node/      … render, link             a render node
+#     standby/   … master, link             the standby master
+#     launcher/  core, protocol, link       a local cluster's child processes
+#   stress/      core … render (not show)   `zenith validate stress`: CPU and GPU against the reference
+#   offline/     the above, show, cluster   offline rendering of shows (frames, manifest, outputs)
 #   apps/        all of the above           the `zenith` command
 #   (bench/ and tests/ may include anything)
+#
+# and inside render/, the GL wrapper render/gl/ includes only render/gl/.
 #
 # Reads every .h and .cpp under those directories, takes each
 # `#include "module/..."` and prints every include that points up or sideways,
@@ -35,16 +45,24 @@ if(NOT SOURCE_DIR)
 endif()
 get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 
-set(modules core image atmosphere warp scene show render cluster apps)
+set(cluster cluster/protocol cluster/link cluster/master cluster/node cluster/standby cluster/launcher)
+set(modules core image atmosphere warp scene show render ${cluster} stress offline apps)
 set(allowed_core "")
 set(allowed_image core)
 set(allowed_atmosphere core)
-set(allowed_warp core)
+set(allowed_warp core image)
 set(allowed_scene core image atmosphere)
 set(allowed_show core image atmosphere scene)
 set(allowed_render core image atmosphere warp scene)
-set(allowed_cluster core image atmosphere warp scene show render)
-set(allowed_apps core image atmosphere warp scene show render cluster)
+set(allowed_cluster/protocol core scene)
+set(allowed_cluster/link core image atmosphere warp scene cluster/protocol)
+set(allowed_cluster/master core image atmosphere warp scene show render cluster/protocol cluster/link)
+set(allowed_cluster/node core image atmosphere warp scene render cluster/protocol cluster/link)
+set(allowed_cluster/standby core image atmosphere warp scene show render cluster/protocol cluster/link cluster/master)
+set(allowed_cluster/launcher core cluster/protocol cluster/link)
+set(allowed_stress core image atmosphere warp scene render)
+set(allowed_offline core image atmosphere warp scene show render ${cluster})
+set(allowed_apps core image atmosphere warp scene show render ${cluster} stress offline)
 
 if(LINK_GRAPH)
   file(STRINGS "${LINK_GRAPH}" edges)
@@ -83,8 +101,11 @@ foreach(module IN LISTS modules)
     set(number 0)
     foreach(line IN LISTS lines)
       math(EXPR number "${number} + 1")
-      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]+\"([a-z_]+)/")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]+\"([a-z_]+)/(([a-z_]+)/)?")
         set(target "${CMAKE_MATCH_1}")
+        if(target STREQUAL "cluster" AND CMAKE_MATCH_3)  # a module of modules: cluster/master, …
+          set(target "cluster/${CMAKE_MATCH_3}")
+        endif()
         if(NOT target STREQUAL module AND target IN_LIST modules AND NOT target IN_LIST allowed_${module})
           file(RELATIVE_PATH relative "${SOURCE_DIR}" "${source}")
           string(REPLACE ";" ", " may "${allowed_${module}}")
@@ -93,6 +114,38 @@ foreach(module IN LISTS modules)
           endif()
           string(STRIP "${line}" include)
           message("${relative}:${number}: ${include}  (${module}/ may include ${may})")
+          math(EXPR violations "${violations} + 1")
+        endif()
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+
+# Folders inside a module that may include less of their module than the
+# module may: "folder:allowed prefix;…". The generic GL wrapper render/gl/
+# takes plain #defines and knows no engine constant (render/shader_bindings.h,
+# the frame's tiles), so it includes nothing of render/ outside render/gl/;
+# the engine's program factory is render/shader_programs.h (issue 27).
+set(folder_rules "render/gl:render/gl/")
+foreach(rule IN LISTS folder_rules)
+  string(REPLACE ":" ";" rule "${rule}")
+  list(GET rule 0 folder)
+  list(GET rule 1 allowed_prefix)
+  string(REGEX REPLACE "/.*" "" folder_module "${folder}")
+  file(GLOB_RECURSE sources "${SOURCE_DIR}/${folder}/*.h" "${SOURCE_DIR}/${folder}/*.cpp")
+  list(SORT sources)
+  foreach(source IN LISTS sources)
+    file(STRINGS "${source}" lines)
+    set(number 0)
+    foreach(line IN LISTS lines)
+      math(EXPR number "${number} + 1")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]+\"(${folder_module}/[^\"]*)\"")
+        set(included "${CMAKE_MATCH_1}")
+        string(FIND "${included}" "${allowed_prefix}" at)
+        if(NOT at EQUAL 0)
+          file(RELATIVE_PATH relative "${SOURCE_DIR}" "${source}")
+          string(STRIP "${line}" include)
+          message("${relative}:${number}: ${include}  (${folder}/ may include only ${allowed_prefix} of ${folder_module}/)")
           math(EXPR violations "${violations} + 1")
         endif()
       endif()

@@ -10,6 +10,7 @@
 
 #include "render/gl/gl_error.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 
 namespace zenith::render::display {
 namespace {
@@ -103,7 +104,7 @@ void DisplayEncoder::encode(const gl::Texture& radiance, const OutputStage& stag
         gl::to_string(display.format()), display.width(), display.height(), radiance.width(), radiance.height()));
   if (encode_program_.id() == 0) {
     const std::vector<gl::ShaderDefine> defines = {{"FROM_BAND", "0"}};
-    encode_program_ = gl::ShaderProgram::load_graphics("render/present.vert", "render/display_encode.frag", defines);
+    encode_program_ = load_graphics_program("render/present.vert", "render/display_encode.frag", defines);
   }
   const gl::ShaderProgram& p = encode_program_;
   set_stage(p, radiance.width(), radiance.height(), stage);
@@ -121,7 +122,7 @@ void DisplayEncoder::encode_band(const GpuBand& band, const OutputStage& stage, 
         gl::to_string(display.format()), display.width(), display.height(), band.first_row, band.rows, band.width));
   if (band_program_.id() == 0) {
     const std::vector<gl::ShaderDefine> defines = {{"FROM_BAND", "1"}};
-    band_program_ = gl::ShaderProgram::load_graphics("render/present.vert", "render/display_encode.frag", defines);
+    band_program_ = load_graphics_program("render/present.vert", "render/display_encode.frag", defines);
   }
   const gl::ShaderProgram& p = band_program_;
   set_stage(p, display.width(), display.height(), stage);
@@ -159,7 +160,7 @@ ThumbnailMeans DisplayEncoder::thumbnail(const gl::Texture& radiance, const Outp
     throw std::invalid_argument(fmt::format("thumbnail edge {} px: must be in [1, {}]", edge_px, kMaxThumbnailEdgePx));
   const auto [tw, th] = thumbnail_size(radiance.width(), radiance.height(), edge_px);
   if (thumbnail_program_.id() == 0)
-    thumbnail_program_ = gl::ShaderProgram::load_compute("render/display_thumbnail.comp");
+    thumbnail_program_ = load_compute_program("render/display_thumbnail.comp");
   if (thumbnail_target_.id() == 0 || thumbnail_target_.width() != tw || thumbnail_target_.height() != th)
     thumbnail_target_ = gl::Texture::create_2d(TextureFormat::rgba32f, tw, th);
   const gl::ShaderProgram& p = thumbnail_program_;
