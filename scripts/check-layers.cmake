@@ -7,8 +7,9 @@
 #   image/       core                       EXR/PNG files, tone mapping, colour
 #   atmosphere/  core                       the physics; no GL
 #   warp/        core                       projections, warp meshes, blending; no GL
-#   scene/       core, image, atmosphere    scenes, albedo maps, the sun's disc, frame descriptions; no GL
-#   show/        core, image, atmosphere, scene   shows, playback clock, table plans; no GL, no protocol
+#   astro/       core, atmosphere           star catalogue, ephemerides (ERFA), refraction, night-sky photometry; no GL
+#   scene/       core, image, atmosphere, astro   scenes, albedo maps, the sun's disc, frame descriptions; no GL
+#   show/        core, image, atmosphere, astro, scene   shows, playback clock, table plans; no GL, no protocol
 #   render/      core … scene (not show)    GL, tables on the GPU, the frame renderer
 #   cluster/     the above, show and render master, node, protocol
 #   apps/        all of the above           the `zenith` command
@@ -35,16 +36,17 @@ if(NOT SOURCE_DIR)
 endif()
 get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 
-set(modules core image atmosphere warp scene show render cluster apps)
+set(modules core image atmosphere warp astro scene show render cluster apps)
 set(allowed_core "")
 set(allowed_image core)
 set(allowed_atmosphere core)
 set(allowed_warp core)
-set(allowed_scene core image atmosphere)
-set(allowed_show core image atmosphere scene)
-set(allowed_render core image atmosphere warp scene)
-set(allowed_cluster core image atmosphere warp scene show render)
-set(allowed_apps core image atmosphere warp scene show render cluster)
+set(allowed_astro core atmosphere)
+set(allowed_scene core image atmosphere astro)
+set(allowed_show core image atmosphere astro scene)
+set(allowed_render core image atmosphere warp astro scene)
+set(allowed_cluster core image atmosphere warp astro scene show render)
+set(allowed_apps core image atmosphere warp astro scene show render cluster)
 
 if(LINK_GRAPH)
   file(STRINGS "${LINK_GRAPH}" edges)
