@@ -1,0 +1,38 @@
+#pragma once
+// The Earth's sky by date and place (docs/scenes.md, "Time and place"): a scene
+// that gives "time" and "site" has its sun placed by the ephemeris
+// (astro/sky_positions.h) in the local horizon of the camera, instead of a
+// hand-set "sky" direction; shows move that time at a rate (docs/shows.md,
+// "Time track"). No GL.
+#include <cstddef>
+
+#include <glm/vec3.hpp>
+
+#include "astro/civil_time.h"
+#include "astro/sky_positions.h"
+
+namespace zenith::scene {
+
+struct Scene;
+
+/// The scene's "time" and "site".
+struct SkyClock {
+  astro::UtcTime time;   ///< UTC
+  astro::Site site;      ///< on the body below
+  std::size_t body = 0;  ///< index of the body the site is on (the Earth: the camera's reference body)
+};
+
+/// Where the ephemeris puts the Sun at `time` for `clock`'s site.
+struct EphemerisSun {
+  glm::dvec3 direction{0, 0, 1};  ///< unit, world frame: the site's azimuth and geometric altitude in the camera's local horizon
+  double azimuth_deg = 0.0, altitude_deg = 0.0;  ///< geometric (no refraction: the tables' rays are straight)
+  double distance_au = 1.0;
+  double angular_radius_rad = 0.0;
+};
+
+/// The Sun at `time` seen from `clock`'s site, as a direction in the local
+/// horizon of a camera at `camera_position_m` above `scene`'s clock body.
+EphemerisSun ephemeris_sun(const Scene& scene, const SkyClock& clock, const astro::AstroTime& time,
+                           const glm::dvec3& camera_position_m);
+
+}  // namespace zenith::scene
