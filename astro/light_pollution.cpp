@@ -9,21 +9,12 @@
 #include "astro/star_photometry.h"
 #include "astro/v_band.h"
 #include "atmosphere/air_mass.h"
+#include "atmosphere/spectrum.h"
 #include "core/units.h"
 
 namespace zenith::astro {
 namespace {
 
-double interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
-  std::vector<std::size_t> order(x.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
-  if (at <= x[order.front()]) return y[order.front()];
-  for (std::size_t k = 1; k < order.size(); ++k)
-    if (at <= x[order[k]])
-      return y[order[k - 1]] + (y[order[k]] - y[order[k - 1]]) * (at - x[order[k - 1]]) / (x[order[k]] - x[order[k - 1]]);
-  return y[order.back()];
-}
 
 std::vector<double> scattering_depth(const atmosphere::AtmosphereModel& model) {
   const auto d = model.zenith_optical_depth();
@@ -34,11 +25,15 @@ std::vector<double> scattering_depth(const atmosphere::AtmosphereModel& model) {
 
 /// The glow's relative spectral shape: lamp blackbody × scattering depth relative to its value at 550 nm.
 struct GlowShape {
-  std::vector<double> wavelengths_nm, tau;
-  double temperature_K;
-  double operator()(double l) const {
-    return planck_W_m2_sr_nm(l, temperature_K) * interpolate(wavelengths_nm, tau, l) / interpolate(wavelengths_nm, tau, 550.0);
+  GlowShape(const std::vector<double>& wavelengths_nm, const std::vector<double>& tau, double temperature)
+      : temperature_K(temperature) {
+    std::vector<std::pair<double, double>> samples;
+    for (std::size_t i = 0; i < tau.size(); ++i) samples.emplace_back(wavelengths_nm[i], tau[i]);
+    depth = atmosphere::SpectralTable(std::move(samples));  // linear between samples, nearest outside
   }
+  atmosphere::SpectralTable depth;
+  double temperature_K;
+  double operator()(double l) const { return planck_W_m2_sr_nm(l, temperature_K) * depth(l) / depth(550.0); }
 };
 
 }  // namespace

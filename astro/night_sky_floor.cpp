@@ -27,24 +27,7 @@ double line_radiance_W_m2_sr(const AirglowLine& line) {
   return line.rayleighs * 1e10 / (4.0 * core::kPi) * h * c / (line.wavelength_nm * 1e-9);
 }
 
-double interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
-  std::vector<std::size_t> order(x.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
-  if (at <= x[order.front()]) return y[order.front()];
-  for (std::size_t k = 1; k < order.size(); ++k)
-    if (at <= x[order[k]])
-      return y[order[k - 1]] + (y[order[k]] - y[order[k - 1]]) * (at - x[order[k - 1]]) / (x[order[k]] - x[order[k - 1]]);
-  return y[order.back()];
-}
 
-/// ∫ S λ dλ of the V band (the band mean's denominator), by the same 1 nm sum.
-double v_band_norm() {
-  double den = 0.0;
-  for (double l = kVCentre_nm - 4.0 * kVFwhm_nm / 2.3548; l <= kVCentre_nm + 4.0 * kVFwhm_nm / 2.3548; l += 1.0)
-    den += v_response(l) * l;
-  return den;
-}
 
 }  // namespace
 
@@ -77,17 +60,16 @@ NightSkyFloor::NightSkyFloor(const atmosphere::AtmosphereModel& model, const Nig
   layer_ratio_ = model.ground_radius_m / (model.ground_radius_m + options.airglow_height_m);
   const auto tau = model.zenith_optical_depth().total;
   for (std::size_t i = 0; i < wavelengths_nm_.size(); ++i) zenith_transmittance_.push_back(std::exp(-tau[i]));
-  auto transmittance = [&](double l) { return interpolate(wavelengths_nm_, zenith_transmittance_, l); };
+  const atmosphere::SpectralTable transmittance = zenith_transmittance_table();
 
   // The observed zenith's V-band mean radiance, and each component's share of it.
   const double target = v_radiance_W_m2_sr_nm(options.zenith_v_mag_arcsec2);
   const double line_scale = target / v_radiance_W_m2_sr_nm(kReferenceZenith_mag);
   lines_scale_ = line_scale;
-  const double norm = v_band_norm();
   double lines_v = 0.0;
   for (const auto& line : kLines)
-    lines_v += line_scale * line_radiance_W_m2_sr(line) * transmittance(line.wavelength_nm) *
-               v_response(line.wavelength_nm) * line.wavelength_nm / norm;
+    lines_v += v_band_mean_of_line(line.wavelength_nm,
+                                   line_scale * line_radiance_W_m2_sr(line) * transmittance(line.wavelength_nm));
   outside_scale_ = kOutsideShareOfV * target /
                    v_band_mean([&](double l) { return atmosphere::solar_irradiance_W_m2_nm(l) * transmittance(l); });
   const double continuum_v = std::max(0.0, (1.0 - kOutsideShareOfV) * target - lines_v);
@@ -107,6 +89,12 @@ NightSkyFloor::NightSkyFloor(const atmosphere::AtmosphereModel& model, const Nig
     if (std::abs(wavelengths_nm_[nearest] - line.wavelength_nm) <= 0.5 * bin_width_nm_[nearest])
       airglow_zenith_[nearest] += line_scale * line_radiance_W_m2_sr(line) / bin_width_nm_[nearest];
   }
+}
+
+atmosphere::SpectralTable NightSkyFloor::zenith_transmittance_table() const {
+  std::vector<std::pair<double, double>> samples;
+  for (std::size_t i = 0; i < wavelengths_nm_.size(); ++i) samples.emplace_back(wavelengths_nm_[i], zenith_transmittance_[i]);
+  return atmosphere::SpectralTable(std::move(samples));
 }
 
 double NightSkyFloor::continuous_radiance(double wavelength_nm, bool airglow) const {
@@ -134,16 +122,16 @@ std::vector<double> NightSkyFloor::observed_radiance(double zenith_angle_rad, st
 
 double NightSkyFloor::zenith_v_mag_arcsec2() const {
   // The continuous spectrum (lines at their own wavelengths) through the zenith, as calibrated.
-  auto t = [&](double l) { return interpolate(wavelengths_nm_, zenith_transmittance_, l); };
+  const atmosphere::SpectralTable t = zenith_transmittance_table();
   const double v = v_band_mean([&](double l) { return (continuous_radiance(l, true) + continuous_radiance(l, false)) * t(l); });
-  const double norm = v_band_norm();
   double lines = 0.0;
-  for (const auto& line : kLines) lines += line_radiance_W_m2_sr(line) * t(line.wavelength_nm) * v_response(line.wavelength_nm) * line.wavelength_nm / norm;
+  for (const auto& line : kLines)
+    lines += v_band_mean_of_line(line.wavelength_nm, line_radiance_W_m2_sr(line) * t(line.wavelength_nm));
   return v_surface_brightness(v + lines * lines_scale_);
 }
 
 double NightSkyFloor::zenith_luminance_cd_m2() const {
-  auto t = [&](double l) { return interpolate(wavelengths_nm_, zenith_transmittance_, l); };
+  const atmosphere::SpectralTable t = zenith_transmittance_table();
   double y = luminance_cd_m2([&](double l) { return (continuous_radiance(l, true) + continuous_radiance(l, false)) * t(l); });
   for (const auto& line : kLines)
     y += 683.0 * atmosphere::photopic_efficiency(line.wavelength_nm) * lines_scale_ * line_radiance_W_m2_sr(line) *

@@ -63,6 +63,7 @@ class NightSkyFloor {
 
  private:
   double continuous_radiance(double wavelength_nm, bool airglow) const;  // top of atmosphere, at the zenith
+  atmosphere::SpectralTable zenith_transmittance_table() const;          // linear in wavelength
   std::vector<double> wavelengths_nm_, bin_width_nm_, zenith_transmittance_;
   std::vector<double> airglow_zenith_, outside_zenith_;  // per working wavelength, lines included in airglow
   double airglow_continuum_scale_ = 0.0, outside_scale_ = 0.0, lines_scale_ = 1.0;

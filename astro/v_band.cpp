@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "atmosphere/photometry.h"
+#include "atmosphere/spectrum.h"
 
 namespace zenith::astro {
 namespace {
@@ -15,18 +16,6 @@ constexpr double kSigma_nm = kVFwhm_nm / 2.3548200450309493;  // FWHM = 2√(2 l
 // The band integral runs over ±4σ (the Gaussian's tails beyond hold 6e-5) in 1 nm steps.
 constexpr double kHalfSpan_nm = 4.0 * kSigma_nm;
 
-double interpolate(std::span<const double> x, std::span<const double> y, double at) {
-  std::vector<std::size_t> order(x.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
-  if (at <= x[order.front()]) return y[order.front()];
-  if (at >= x[order.back()]) return y[order.back()];
-  for (std::size_t k = 1; k < order.size(); ++k) {
-    const double x0 = x[order[k - 1]], x1 = x[order[k]];
-    if (at <= x1) return y[order[k - 1]] + (y[order[k]] - y[order[k - 1]]) * (at - x0) / (x1 - x0);
-  }
-  return y[order.back()];
-}
 
 }  // namespace
 
@@ -45,9 +34,18 @@ double v_band_mean(const std::function<double(double)>& spectrum) {
   return num / den;
 }
 
+double v_band_mean_of_line(double wavelength_nm, double line) {
+  double den = 0.0;
+  for (double l = kVCentre_nm - kHalfSpan_nm; l <= kVCentre_nm + kHalfSpan_nm; l += 1.0) den += v_response(l) * l;
+  return line * v_response(wavelength_nm) * wavelength_nm / den;
+}
+
 double v_band_mean(std::span<const double> wavelengths_nm, std::span<const double> values) {
   if (wavelengths_nm.empty() || wavelengths_nm.size() != values.size()) return 0.0;
-  return v_band_mean([&](double l) { return interpolate(wavelengths_nm, values, l); });
+  std::vector<std::pair<double, double>> samples;
+  for (std::size_t i = 0; i < values.size(); ++i) samples.emplace_back(wavelengths_nm[i], values[i]);
+  const atmosphere::SpectralTable table(std::move(samples));  // linear between samples, nearest outside
+  return v_band_mean([&](double l) { return table(l); });
 }
 
 double v_magnitude(double e) {

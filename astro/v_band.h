@@ -32,6 +32,10 @@ double v_band_mean(const std::function<double(double)>& spectrum);
 /// The same for values at `wavelengths_nm` (ascending or not), linear between them.
 double v_band_mean(std::span<const double> wavelengths_nm, std::span<const double> values);
 
+/// The V-band mean of a spectral line (an emission line of integrated radiance
+/// or irradiance `line` at `wavelength_nm`, e.g. W m⁻² sr⁻¹): line · S λ / ∫ S λ dλ.
+double v_band_mean_of_line(double wavelength_nm, double line);
+
 /// V magnitude of a band-mean spectral irradiance [W m⁻² nm⁻¹] (≤ 0 gives +inf).
 double v_magnitude(double band_mean_irradiance_W_m2_nm);
 /// Band-mean spectral irradiance of a V magnitude.
