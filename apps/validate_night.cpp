@@ -26,6 +26,7 @@
 #include <functional>
 #include <vector>
 
+#include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "apps/output_rendering.h"
 #include "astro/night_sky_floor.h"
@@ -430,11 +431,8 @@ void register_validate_night(CLI::App& validate) {
       "night", "Positions, refraction, extinction, twilight brightness and star visibility against published figures");
   cmd->add_option("--preset", args->preset, "The Earth atmosphere for twilight and stars")->capture_default_str();
   cmd->add_option("--out", args->out_dir, "Output directory (CSV, gnuplot scripts, PNG)")->capture_default_str();
-  cmd->add_option("--tables", args->tables, "Table sizes: paper (default), small, large")
-      ->check(CLI::IsMember({"paper", "small", "large"}));
+  add_table_options(cmd, args->tables, args->orders, args->cache_dir);
   cmd->add_flag("--cpu", args->cpu, "Precompute on the CPU instead of the GPU (when not cached)");
-  cmd->add_option("--orders", args->orders, "Scattering orders n of the precompute")->check(CLI::Range(1, 50));
-  cmd->add_option("--cache", args->cache_dir, "Cache directory (default $XDG_CACHE_HOME/zenith)");
   cmd->add_flag("--no-cache", args->no_cache, "Neither read nor write the table cache");
   cmd->add_option("--threads", args->threads, "CPU threads (default: all)");
   cmd->add_flag("--no-plots", args->no_plots, "Write the data but no gnuplot scripts or PNG");

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "astro/range_check.h"
 #include "astro/star_photometry.h"
 #include "astro/v_band.h"
 #include "atmosphere/air_mass.h"
@@ -47,12 +48,8 @@ double bortle_zenith_v_mag_arcsec2(int bortle_class) {
 
 LightPollution::LightPollution(const atmosphere::AtmosphereModel& model, const LightPollutionOptions& options)
     : wavelengths_nm_(model.wavelengths_nm), scattering_depth_(scattering_depth(model)), zenith_mcd_m2_(options.zenith_mcd_m2) {
-  if (!(options.zenith_mcd_m2 >= 0.0 && options.zenith_mcd_m2 <= 1e5))
-    throw std::invalid_argument("light pollution zenith_mcd_m2 " + std::to_string(options.zenith_mcd_m2) +
-                                ": must be in [0, 100000] mcd/m^2");
-  if (!(options.colour_temperature_K >= 1500.0 && options.colour_temperature_K <= 10000.0))
-    throw std::invalid_argument("light pollution colour_temperature_K " + std::to_string(options.colour_temperature_K) +
-                                ": must be in [1500, 10000] K");
+  require_in_range("light pollution zenith_mcd_m2", options.zenith_mcd_m2, 0.0, 1e5, "mcd/m^2");
+  require_in_range("light pollution colour_temperature_K", options.colour_temperature_K, 1500.0, 10000.0, "K");
   const GlowShape shape{wavelengths_nm_, scattering_depth_, options.colour_temperature_K};
   const double scale = options.zenith_mcd_m2 * 1e-3 / luminance_cd_m2(shape);
   for (double l : wavelengths_nm_) zenith_radiance_.push_back(scale * shape(l));

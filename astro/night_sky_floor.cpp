@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "astro/range_check.h"
 #include "astro/v_band.h"
 #include "atmosphere/photometry.h"
 #include "core/units.h"
@@ -51,12 +52,8 @@ NightSkyFloor::NightSkyFloor(const atmosphere::AtmosphereModel& model, const Nig
     : wavelengths_nm_(model.wavelengths_nm),
       bin_width_nm_(wavelength_bin_widths_nm(model.wavelengths_nm)),
       ground_radius_m_(model.ground_radius_m) {
-  if (!(options.zenith_v_mag_arcsec2 >= 19.0 && options.zenith_v_mag_arcsec2 <= 23.0))
-    throw std::invalid_argument("night sky zenith brightness " + std::to_string(options.zenith_v_mag_arcsec2) +
-                                " mag/arcsec^2: must be in [19, 23]");
-  if (!(options.airglow_height_m >= 10000.0 && options.airglow_height_m <= 500000.0))
-    throw std::invalid_argument("airglow height " + std::to_string(options.airglow_height_m) +
-                                " m: must be in [10000, 500000]");
+  require_in_range("night sky zenith_v_mag_arcsec2", options.zenith_v_mag_arcsec2, 19.0, 23.0, "mag/arcsec^2");
+  require_in_range("night sky airglow_height_m", options.airglow_height_m, 1e4, 5e5, "m");
   layer_ratio_ = model.ground_radius_m / (model.ground_radius_m + options.airglow_height_m);
   const auto tau = model.zenith_optical_depth().total;
   for (std::size_t i = 0; i < wavelengths_nm_.size(); ++i) zenith_transmittance_.push_back(std::exp(-tau[i]));

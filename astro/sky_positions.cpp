@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "astro/range_check.h"
 #include "core/units.h"
 
 namespace zenith::astro {
@@ -43,17 +44,12 @@ void gcrs_vector_to_cirs(const double v[3], const eraASTROM& astrom, double* ri,
   eraC2s(c, ri, di);
 }
 
-void check_range(const char* field, double value, double lo, double hi, const char* unit) {
-  if (!(value >= lo && value <= hi))
-    throw std::invalid_argument(fmt::format("site {} = {}: must be in [{}, {}] {}", field, value, lo, hi, unit));
-}
-
 }  // namespace
 
 void check_site(const Site& site) {
-  check_range("latitude_deg", site.latitude_deg, -90.0, 90.0, "deg");
-  check_range("longitude_deg", site.longitude_deg, -180.0, 360.0, "deg");
-  check_range("altitude_m", site.altitude_m, -500.0, 10000.0, "m");
+  require_in_range("site latitude_deg", site.latitude_deg, -90.0, 90.0, "deg");
+  require_in_range("site longitude_deg", site.longitude_deg, -180.0, 360.0, "deg");
+  require_in_range("site altitude_m", site.altitude_m, -500.0, 10000.0, "m");
 }
 
 std::array<double, 3> Horizontal::east_north_up() const {

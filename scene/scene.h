@@ -86,6 +86,8 @@ struct Scene {
   /// The scene's "time" and "site" (the Earth only): then the sun above was
   /// placed by the ephemeris at that time (scene/sky_clock.h), and shows may move it.
   std::optional<SkyClock> sky_clock;
+  /// The scene's "night_sky" and "light_pollution", when either is given.
+  std::optional<NightSky> night_sky;
 
   /// The body named `name`, or null.
   const Body* find_body(const std::string& name) const;

@@ -642,11 +642,47 @@ std::optional<SkyClock> read_sky_clock(JsonReader& root, const std::vector<Body>
   return clock;
 }
 
+/// "night_sky": {"zenith_v_mag_arcsec2"} and "light_pollution": {"zenith_mcd_m2" | "bortle",
+/// "colour_temperature_K"} (docs/scenes.md, "Night sky"), seen through the atmosphere of
+/// the camera's body.
+std::optional<NightSky> read_night_sky(JsonReader& root, const std::vector<Body>& bodies,
+                                       const CameraPlacement& camera) {
+  if (!root.has("night_sky") && !root.has("light_pollution")) return std::nullopt;
+  NightSky night;
+  night.body = camera.reference_body;
+  const Body& body = bodies.at(night.body);
+  const char* key = root.has("night_sky") ? "night_sky" : "light_pollution";
+  if (!body.atmosphere)
+    root.fail(key, cat("is seen through the atmosphere of the camera's body, but \"", body.name, "\" has none"));
+  if (root.has("night_sky")) {
+    JsonReader n = open_object(root, "night_sky", {"zenith_v_mag_arcsec2"});
+    night.floor.zenith_v_mag_arcsec2 = n.number_or("zenith_v_mag_arcsec2", 22.0, 19.0, 23.0, "mag/arcsec^2");
+    n.finish();
+  }
+  if (root.has("light_pollution")) {
+    JsonReader l = open_object(root, "light_pollution", {"zenith_mcd_m2", "bortle", "colour_temperature_K"});
+    night.light_pollution.colour_temperature_K = l.number_or("colour_temperature_K", 3000.0, 1500.0, 10000.0, "K");
+    if (l.has("zenith_mcd_m2") == l.has("bortle"))
+      l.fail("", "give exactly one of \"zenith_mcd_m2\" (artificial zenith luminance) and \"bortle\" (class 1-9)");
+    if (l.has("zenith_mcd_m2")) {
+      night.light_pollution.zenith_mcd_m2 = l.number("zenith_mcd_m2", 0.0, 1e5, "mcd/m^2");
+    } else {
+      const auto& model = body.atmosphere->loaded.model;
+      const double natural = astro::NightSkyFloor(model, night.floor).zenith_luminance_cd_m2();
+      night.light_pollution.zenith_mcd_m2 = astro::bortle_artificial_mcd_m2(
+          l.integer("bortle", 1, 9), model, natural, night.light_pollution.colour_temperature_K);
+    }
+    l.finish();
+  }
+  return night;
+}
+
 }  // namespace
 
 Scene parse_scene(const json& j, const std::string& source, const fs::path& base_dir) {
   JsonReader root(j, source);
-  allow_keys(root, j, {"zenith_scene", "name", "description", "wavelengths_nm", "bodies", "sun", "camera", "time", "site"});
+  allow_keys(root, j, {"zenith_scene", "name", "description", "wavelengths_nm", "bodies", "sun", "camera", "time", "site",
+                       "night_sky", "light_pollution"});
   const json& version = root.raw("zenith_scene");
   if (!version.is_number_integer() || version.get<long long>() != kFormatVersion)
     root.fail("zenith_scene",
@@ -664,6 +700,7 @@ Scene parse_scene(const json& j, const std::string& source, const fs::path& base
   const CameraPlacement camera = read_camera(camera_reader, scene.bodies, ctx);
   scene.camera = camera.camera;
   scene.sky_clock = read_sky_clock(root, scene.bodies, camera);
+  scene.night_sky = read_night_sky(root, scene.bodies, camera);
   std::optional<EphemerisSun> ephemeris;
   if (scene.sky_clock)
     ephemeris = ephemeris_sun(scene, *scene.sky_clock, astro::AstroTime::from_utc(scene.sky_clock->time),

@@ -9,6 +9,8 @@
 #include <glm/vec3.hpp>
 
 #include "astro/civil_time.h"
+#include "astro/light_pollution.h"
+#include "astro/night_sky_floor.h"
 #include "astro/sky_positions.h"
 
 namespace zenith::scene {
@@ -20,6 +22,16 @@ struct SkyClock {
   astro::UtcTime time;   ///< UTC
   astro::Site site;      ///< on the body below
   std::size_t body = 0;  ///< index of the body the site is on (the Earth: the camera's reference body)
+};
+
+/// The night sky of the camera's body (docs/scenes.md, "Night sky"): the natural
+/// floor's zenith brightness and the artificial glow, resolved to physical units
+/// (a Bortle class becomes the zenith luminance it stands for over this
+/// atmosphere's natural floor).
+struct NightSky {
+  astro::NightSkyFloorOptions floor;              ///< "night_sky": {"zenith_v_mag_arcsec2"}
+  astro::LightPollutionOptions light_pollution;   ///< "light_pollution": zenith_mcd_m2 (0: none)
+  std::size_t body = 0;                           ///< the body whose atmosphere they are seen through
 };
 
 /// Where the ephemeris puts the Sun at `time` for `clock`'s site.

@@ -88,5 +88,34 @@ TEST(SkyClock, BadInputNamesTheKey) {
   EXPECT_NE(error_of(j).find("give exactly one of"), std::string::npos) << error_of(j);
 }
 
+TEST(NightSky, FloorAndLightPollutionInPhysicalUnits) {
+  json j = golden_scene();
+  j["night_sky"] = {{"zenith_v_mag_arcsec2", 21.8}};
+  j["light_pollution"] = {{"zenith_mcd_m2", 2.5}, {"colour_temperature_K", 4000}};
+  const Scene scene = parse(j);
+  ASSERT_TRUE(scene.night_sky);
+  EXPECT_DOUBLE_EQ(scene.night_sky->floor.zenith_v_mag_arcsec2, 21.8);
+  EXPECT_DOUBLE_EQ(scene.night_sky->light_pollution.zenith_mcd_m2, 2.5);
+  EXPECT_DOUBLE_EQ(scene.night_sky->light_pollution.colour_temperature_K, 4000.0);
+  // A Bortle class becomes mcd/m²: class 1 is the natural sky, class 5 (20.0 mag/arcsec²) ~1 mcd/m².
+  j.erase("night_sky");
+  j["light_pollution"] = {{"bortle", 1}};
+  EXPECT_LT(parse(j).night_sky->light_pollution.zenith_mcd_m2, 0.05);
+  j["light_pollution"] = {{"bortle", 5}};
+  const double b5 = parse(j).night_sky->light_pollution.zenith_mcd_m2;
+  EXPECT_GT(b5, 0.5);
+  EXPECT_LT(b5, 3.0);
+  // Errors name the key and the range.
+  j["light_pollution"] = {{"bortle", 10}};
+  EXPECT_NE(error_of(j).find("/light_pollution/bortle"), std::string::npos) << error_of(j);
+  j["light_pollution"] = {{"bortle", 3}, {"zenith_mcd_m2", 1.0}};
+  EXPECT_NE(error_of(j).find("give exactly one of"), std::string::npos) << error_of(j);
+  j["light_pollution"] = {{"zenith_mcd_m2", -1.0}};
+  EXPECT_NE(error_of(j).find("/light_pollution/zenith_mcd_m2 = -1"), std::string::npos) << error_of(j);
+  j.erase("light_pollution");
+  j["night_sky"] = {{"zenith_v_mag_arcsec2", 25}};
+  EXPECT_NE(error_of(j).find("/night_sky/zenith_v_mag_arcsec2 = 25"), std::string::npos) << error_of(j);
+}
+
 }  // namespace
 }  // namespace zenith::scene
