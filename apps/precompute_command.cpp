@@ -8,6 +8,7 @@
 #include "render/lut/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
+#include "atmosphere/named_inputs.h"
 
 namespace zenith::app {
 namespace {
@@ -21,7 +22,7 @@ struct PrecomputeArgs {
 };
 
 void run_precompute(const PrecomputeArgs& a) {
-  const auto loaded = render::load_atmosphere_argument(a.atmosphere);
+  const auto loaded = atmosphere::load_atmosphere_argument(a.atmosphere);
   render::TableRequest request = make_table_request(a.tables, a.orders, a.cpu, !a.no_cache, a.cache_dir);
   request.options.tolerance = a.tolerance;
   request.options.series_tail = !a.no_series_tail;

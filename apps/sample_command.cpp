@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "atmosphere/named_inputs.h"
 #include "apps/sampling.h"
 #include "render/lut/table_provider.h"
 #include "core/json_reader.h"
@@ -65,7 +66,7 @@ std::vector<ViewDirection> grid_directions(const std::string& grid) {
 }
 
 void run_sample(const SampleArgs& a) {
-  const auto loaded = render::load_atmosphere_argument(a.atmosphere);
+  const auto loaded = atmosphere::load_atmosphere_argument(a.atmosphere);
   SamplingRequest r;
   r.geometry.altitude_m = a.altitude_m;
   r.geometry.sun_zenith_deg = a.sun_zenith_deg;
@@ -77,7 +78,7 @@ void run_sample(const SampleArgs& a) {
   r.method = a.method == "reference" ? SamplingMethod::Reference : SamplingMethod::Tables;
   r.reference_samples = a.samples;
   r.threads = a.threads;
-  r.tables.options.sizes = render::table_sizes_by_name(a.tables);
+  r.tables.options.sizes = atmosphere::table_sizes_by_name(a.tables);
   r.tables.options.max_orders = a.orders;
   r.tables.options.threads = a.threads;
   r.tables.backend = a.cpu ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;

@@ -32,6 +32,7 @@
 #include "core/json_reader.h"
 #include "core/parallel_for.h"
 #include "atmosphere/model_hash.h"
+#include "atmosphere/named_inputs.h"
 #include "render/gl/egl_context.h"
 #include "core/timing.h"
 
@@ -119,7 +120,7 @@ void run_stress(const StressArgs& a) {
   }
 
   render::TableRequest request;
-  request.options.sizes = render::table_sizes_by_name(a.tables);
+  request.options.sizes = atmosphere::table_sizes_by_name(a.tables);
   request.backend = a.cpu_precompute ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
   if (!a.cache_dir.empty()) request.cache_directory = a.cache_dir;
   for (StressModel& m : models) m.tables = render::obtain_tables(m.loaded.model, request).tables;

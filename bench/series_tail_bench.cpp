@@ -35,6 +35,7 @@
 #include "atmosphere/lut/parameterization.h"
 #include "bench/command_line.h"
 #include "atmosphere/lut/precompute_options.h"
+#include "atmosphere/named_inputs.h"
 #include "render/gl/egl_context.h"
 #include "render/lut/gpu_precompute.h"
 #include "render/lut/table_provider.h"
@@ -144,10 +145,10 @@ int main(int argc, char** argv) try {
   zenith::render::gl::HeadlessContext context;
   std::vector<Row> rows;
   for (const std::string& preset : o.presets) {
-    const auto loaded = zenith::render::load_atmosphere_argument(preset);
+    const auto loaded = zenith::atmosphere::load_atmosphere_argument(preset);
     const AtmosphereModel& model = loaded.model;
     lut::PrecomputeOptions base;
-    base.sizes = zenith::render::table_sizes_by_name(o.tables);
+    base.sizes = zenith::atmosphere::table_sizes_by_name(o.tables);
     auto run = [&](int orders, bool tail, lut::PrecomputeReport& report) {
       lut::PrecomputeOptions options = base;
       options.max_orders = orders;

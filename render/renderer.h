@@ -34,41 +34,14 @@
 #include <vector>
 
 #include "atmosphere/lut/lookup_tables.h"
-#include "render/frame/gpu_atmosphere.h"
-#include "image/colour.h"
+#include "render/render_options.h"
 #include "scene/scene.h"
 #include "warp/projection.h"
 
 namespace zenith::render {
 
-class PassTimer;  // render/frame/pass_timer.h
-
-/// Whether an atmosphere whose shell holds the camera reads the in-scattering
-/// (and the ground's light) along view rays from a per-frame sky-view table
-/// (render/frame/sky_view_table.h, docs/rendering-performance.md) instead of the 4D tables.
-enum class SkyViewTableUse {
-  automatic,  ///< yes, in one-pass tiles of an atmosphere the camera is inside, where no other body inside the shell can be
-  off,        ///< never: the 4D tables for every pixel (the reference the table is tested against)
-};
-
-struct RenderOptions {
-  bool atmospheres = true;      ///< false: bodies lit by the sun only (the benchmarks' baseline)
-  bool sun_disc = true;         ///< draw the sun's disc
-  bool limb_darkening = true;   ///< darken the disc toward its limb (off: uniform disc)
-  AtmospherePassFeatures atmosphere;  ///< multiple scattering, eclipses, shader precision
-  image::ColourMapping colour = image::ColourMapping::automatic;
-  /// Pixels per band; the frame is split into bands of whole 16-pixel tile rows.
-  std::size_t max_band_pixels = std::size_t{4} << 20;
-  /// Tiles with no atmosphere or with one are drawn in one pass straight to
-  /// the output (direct_light.comp, atmosphere_tile.comp). false: every tile
-  /// goes through the G-buffer, atmosphere and resolve passes (the path the
-  /// one-pass tiles are tested against).
-  bool one_pass_tiles = true;
-  SkyViewTableUse sky_view_table = SkyViewTableUse::automatic;
-  /// Time every pass (GL_TIME_ELAPSED queries; CPU steps by the wall clock) into
-  /// FrameStats::pass_ms. Serialises the frame: for profiling, not for frame times.
-  bool time_passes = false;
-};
+class PassTimer;        // render/frame/pass_timer.h
+struct BandTiles;       // render/frame/tile_classification.h
 
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
 /// called only for table sets the renderer does not hold yet.
@@ -121,7 +94,6 @@ class Renderer {
  private:
   struct Impl;
   struct Frame;      ///< one frame in progress: constants, bodies, atmospheres, programs (renderer.cpp)
-  struct BandTiles;  ///< one band's tiles sorted by how they are drawn (renderer.cpp)
 
   // The steps of render(), in this order. Each issues its GL calls in the
   // order the one function did, so the images stay the same bit for bit.
@@ -152,9 +124,10 @@ class Renderer {
 
   /// Rays of a ray-table projection for this band (computed once, kept), uploaded and bound.
   void upload_ray_table(const Frame& frame, int first_row, int rows);
-  /// Which tiles of the band each pass draws (no GL): one-pass atmosphere
-  /// tiles by variant, G-buffer path tiles, direct tiles, black tiles.
-  BandTiles classify_band_tiles(Frame& frame, int first_row, int rows);
+  /// Which tiles of the band each pass draws (render/frame/tile_classification.h,
+  /// no GL): one-pass atmosphere tiles by variant, G-buffer path tiles, direct
+  /// tiles, black tiles; their counts added to the frame's statistics.
+  BandTiles classify_band_tiles(const Frame& frame, int first_row, int rows);
   /// The band's tile lists into the tiles buffer; binds it and the output buffer.
   void upload_tile_lists(const BandTiles& band);
   /// Tiles no atmosphere touches: bodies and the sun, one pass each, every wavelength.

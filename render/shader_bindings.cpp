@@ -16,6 +16,7 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
   };
   constexpr Point kPoints[] = {
       {"WAVELENGTH_DATA_BINDING", kWavelengthData},
+      {"FP64_CONSTANTS_BINDING", kFp64Constants},
       {"TABLE_DATA_BINDING", kTableData},
       {"TEXEL_COORDINATES_BINDING", kTexelCoordinates},
       {"ROW_SUMS_BINDING", kRowSums},

@@ -1,12 +1,13 @@
 #pragma once
 // The binding points (and a few sizes) that the C++ side and the GLSL shaders share: storage
-// buffers (layout(std430, binding = ...)), texture units (samplers) and image
-// units. This is the only place their numbers are written: ShaderProgram's
-// load_compute / load_graphics inject each one as `#define <NAME> <value>`
-// into every shader loaded from shaders/ (shader_interface_defines()), and the
-// shaders declare `layout(binding = <NAME>)`.
+// buffers (layout(std430, binding = ...)), uniform buffers (layout(std140, ...)),
+// texture units (samplers) and image units. This is the only place their numbers are written: the program factory
+// (render/shader_programs.h) injects each one as `#define <NAME> <value>` into
+// every shader loaded from shaders/ (shader_interface_defines()), and the
+// shaders declare `layout(binding = <NAME>)`. The GL wrapper
+// (render/gl/shader_program.h) knows none of them.
 //
-// GL keeps storage bindings, texture units and image units apart; numbers need
+// GL keeps storage bindings, uniform-buffer bindings, texture units and image units apart; numbers need
 // only differ within one kind among the resources of one program (the
 // precompute's harmonic buffers and the frame's FrameRgb share 6, for example,
 // and never meet in a program).
@@ -17,8 +18,7 @@
 namespace zenith::render::binding {
 
 // ---- storage buffers
-inline constexpr unsigned kWavelengthData = 0;        ///< WAVELENGTH_DATA_BINDING (atmosphere_common.glsl)
-inline constexpr unsigned kTableData = 1;             ///< TABLE_DATA_BINDING (atmosphere_common.glsl)
+inline constexpr unsigned kTableData = 1;             ///< TABLE_DATA_BINDING (atmosphere/physics.glsl)
 inline constexpr unsigned kTexelCoordinates = 2;      ///< TEXEL_COORDINATES_BINDING (atmosphere_common.glsl)
 inline constexpr unsigned kRowSums = 3;               ///< ROW_SUMS_BINDING (radiance_sum.comp)
 inline constexpr unsigned kBodies = 4;                ///< BODIES_BINDING (render/frame.glsl)
@@ -28,6 +28,10 @@ inline constexpr unsigned kAzimuthMoments = 6;        ///< AZIMUTH_MOMENTS_BINDI
 inline constexpr unsigned kHarmonicCoefficients = 7;  ///< HARMONIC_COEFFICIENTS_BINDING (harmonics.glsl)
 inline constexpr unsigned kViewTransmittance = 8;     ///< VIEW_TRANSMITTANCE_BINDING (view_ray.glsl)
 inline constexpr unsigned kViewRayCoordinates = 9;    ///< VIEW_RAY_COORDINATES_BINDING (view_ray.glsl)
+
+// ---- uniform buffers
+inline constexpr unsigned kWavelengthData = 0;  ///< WAVELENGTH_DATA_BINDING (atmosphere/physics.glsl): the model's parameters
+inline constexpr unsigned kFp64Constants = 1;   ///< FP64_CONSTANTS_BINDING (atmosphere/maths.glsl): fp64 shaders' constants
 
 // ---- texture units: the tables (precompute and render passes), then the frame's own
 inline constexpr unsigned kTransmittanceUnit = 0;     ///< TRANSMITTANCE_UNIT (atmosphere_common.glsl)

@@ -10,7 +10,7 @@
 
 namespace zenith::render {
 
-/// The embedded text of `name`, a path under shaders/ ("test_pattern.comp",
+/// The embedded text of `name`, a path under shaders/ ("render/gbuffer.comp",
 /// "atmosphere_common.glsl"), as written: includes not expanded. Throws
 /// std::out_of_range naming the shader when there is no such file.
 std::string_view shader_source(std::string_view name);

@@ -15,6 +15,8 @@
 #   apps/        all of the above           the `zenith` command
 #   (bench/ and tests/ may include anything)
 #
+# and inside render/, the GL wrapper render/gl/ includes only render/gl/.
+#
 # Reads every .h and .cpp under those directories, takes each
 # `#include "module/..."` and prints every include that points up or sideways,
 # as file:line, the include and what the file's module may include. Fails if
@@ -95,6 +97,38 @@ foreach(module IN LISTS modules)
           endif()
           string(STRIP "${line}" include)
           message("${relative}:${number}: ${include}  (${module}/ may include ${may})")
+          math(EXPR violations "${violations} + 1")
+        endif()
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+
+# Folders inside a module that may include less of their module than the
+# module may: "folder:allowed prefix;…". The generic GL wrapper render/gl/
+# takes plain #defines and knows no engine constant (render/shader_bindings.h,
+# the frame's tiles), so it includes nothing of render/ outside render/gl/;
+# the engine's program factory is render/shader_programs.h (issue 27).
+set(folder_rules "render/gl:render/gl/")
+foreach(rule IN LISTS folder_rules)
+  string(REPLACE ":" ";" rule "${rule}")
+  list(GET rule 0 folder)
+  list(GET rule 1 allowed_prefix)
+  string(REGEX REPLACE "/.*" "" folder_module "${folder}")
+  file(GLOB_RECURSE sources "${SOURCE_DIR}/${folder}/*.h" "${SOURCE_DIR}/${folder}/*.cpp")
+  list(SORT sources)
+  foreach(source IN LISTS sources)
+    file(STRINGS "${source}" lines)
+    set(number 0)
+    foreach(line IN LISTS lines)
+      math(EXPR number "${number} + 1")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]+\"(${folder_module}/[^\"]*)\"")
+        set(included "${CMAKE_MATCH_1}")
+        string(FIND "${included}" "${allowed_prefix}" at)
+        if(NOT at EQUAL 0)
+          file(RELATIVE_PATH relative "${SOURCE_DIR}" "${source}")
+          string(STRIP "${line}" include)
+          message("${relative}:${number}: ${include}  (${folder}/ may include only ${allowed_prefix} of ${folder_module}/)")
           math(EXPR violations "${violations} + 1")
         endif()
       endif()

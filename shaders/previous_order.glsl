@@ -24,7 +24,7 @@ real4 previous_order_radiance(ScatteringUV uv, real nu) {
 #if FIRST_ORDER
   real4 radiance = sample_scattering_table_geometric_mu_s(single_rayleigh_texture, uv) * rayleigh_phase(nu);
 #if HAS_MIE
-  radiance = radiance + sample_scattering_table_geometric_mu_s(single_mie_texture, uv) * mie_phase(nu);
+  radiance = radiance + sample_scattering_table_geometric_mu_s(single_mie_texture, uv) * model_mie_phase(nu);
 #endif
   return radiance;
 #else

@@ -37,7 +37,7 @@ void main() {
     const ScatteringCoordinates c = scattering_texel_coordinates(x, y, z, ANGLE_MAPPING_DISTANCE);
     real4 v = real4(texelFetch(single_rayleigh_texture, p, 0)) * rayleigh_phase(c.nu);
 #if HAS_MIE
-    v = v + real4(texelFetch(single_mie_texture, p, 0)) * mie_phase(c.nu);
+    v = v + real4(texelFetch(single_mie_texture, p, 0)) * model_mie_phase(c.nu);
 #endif
 #else
     const real4 v = real4(texelFetch(delta_radiance_texture, p, 0));

@@ -79,7 +79,7 @@ void main() {
       const real cos_scatter = clamp(dot3(view, omega), real(-1), real(1));
       real4 beta = rayleigh * rayleigh_phase(cos_scatter);
 #if HAS_MIE
-      beta = beta + mie_scattering * rho_m * mie_phase(cos_scatter);
+      beta = beta + mie_scattering * rho_m * model_mie_phase(cos_scatter);
 #endif
       j += incoming * beta * d_omega;
     }

@@ -12,6 +12,7 @@
 #include "render/gl/gl_error.h"
 #include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 
 namespace zenith::render {
 namespace {
@@ -75,26 +76,12 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
     for (const gl::Texture* x : {&t.transmittance, &t.irradiance, &t.single_rayleigh, &t.single_mie, &t.multiple})
       table_bytes_ += x->float_count() * sizeof(float);
   }
-  wavelength_data_ = real_buffer(shader.wavelength_data, features.fp64);
-  table_data_ = real_buffer(shader.table_data, features.fp64);
+  model_buffers_ = ModelBuffers(shader);
   // Of the texel-coordinate values the precompute derives, rendering reads one:
   // acos(μs_min) at TEXEL_SUN_THETA_MAX (ShaderModel::texel_layout).
   std::vector<double> texel_values(shader.texel_layout.count, 0.0);
   texel_values[shader.texel_layout.sun_theta_max] = std::acos(tables.geometry.min_sun_cosine());
   texel_coordinates_ = real_buffer(texel_values, features.fp64);
-  // The same values as uniforms for the render passes (atmosphere_segment.glsl).
-  sun_theta_max_ = static_cast<float>(texel_values[shader.texel_layout.sun_theta_max]);
-  auto lanes = [&](const atmosphere::Spectrum& values, std::size_t group) {
-    std::array<float, 4> out{0, 0, 0, 0};
-    for (std::size_t k = 0; k < kLanes && group * kLanes + k < values.size(); ++k)
-      out[k] = static_cast<float>(values[group * kLanes + k]);
-    return out;
-  };
-  for (std::size_t g = 0; g < groups_.size(); ++g) {
-    groups_[g].mie_g1 = lanes(model.mie_phase.g1, g);
-    groups_[g].mie_g2 = lanes(model.mie_phase.g2, g);
-    groups_[g].mie_alpha = lanes(model.mie_phase.alpha, g);
-  }
 
   std::vector<gl::ShaderDefine> defines = shader.defines;
   for (const gl::ShaderDefine& d : SkyViewTable::defines()) defines.push_back(d);
@@ -115,8 +102,7 @@ void GpuAtmosphere::bind_tables(std::size_t group) const {
   t.single_mie.bind(kSingleMieUnit);
   t.multiple.bind(kMultipleUnit);
   t.irradiance.bind(kIrradianceUnit);
-  wavelength_data_.bind_storage(kWavelengthData);
-  table_data_.bind_storage(kTableData);
+  model_buffers_.bind();
   texel_coordinates_.bind_storage(kTexelCoordinates);
 }
 
@@ -127,24 +113,15 @@ void GpuAtmosphere::bind(std::size_t group) const {
 
 void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t group) const {
   program.set_uniform("wavelength_group", static_cast<int>(group));
-  const GroupTextures& t = groups_.at(group);
-  program.set_uniform("mie_g1", t.mie_g1);
-  program.set_uniform("mie_g2", t.mie_g2);
-  program.set_uniform("mie_alpha", t.mie_alpha);
-  program.set_uniform("table_sun_theta_max", sun_theta_max_);
   program.set_uniform("sky_view_layer_base", static_cast<int>(group) * SkyViewTable::kLayersPerGroup);
   program.set_uniform("sky_view_theta_horizon", static_cast<float>(sky_view_->theta_horizon_rad()));
-}
-
-int GpuAtmosphere::TileVariant::key() const {
-  return (sky_view ? 1 : 0) | static_cast<int>(ground) << 1 | others << 3 | (sun ? 1 : 0) << 5;
 }
 
 const gl::ShaderProgram& GpuAtmosphere::program(const std::string& key, const std::string& file,
                                                std::vector<gl::ShaderDefine> defines) {
   auto it = programs_.find(key);
   if (it == programs_.end())
-    it = programs_.emplace(key, gl::ShaderProgram::load_compute(file, defines)).first;
+    it = programs_.emplace(key, load_compute_program(file, defines)).first;
   return it->second;
 }
 

@@ -18,17 +18,13 @@
 #include "render/gl/buffer.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/lut/shader_model.h"
 #include "render/frame/sky_view_table.h"
+#include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
+#include "render/render_options.h"
 
 namespace zenith::render {
-
-/// Which terms the atmosphere pass evaluates (each off drops code from the shader).
-struct AtmospherePassFeatures {
-  bool multiple_scattering = true;  ///< orders ≥ 2 (off: single scattering only)
-  bool eclipses = true;             ///< other bodies' shadows on the ground
-  bool fp64 = false;                ///< table mappings and interpolation in double (slower; see docs/rendering.md)
-};
 
 /// What a frame's passes are compiled for (render/renderer.cpp): the
 /// projection kind (shaders/projection.glsl's PROJECTION_KIND), whether other
@@ -56,29 +52,19 @@ class GpuAtmosphere {
   std::size_t group_count() const { return groups_.size(); }
   double top_radius_m() const { return top_radius_m_; }
   double ground_radius_m() const { return ground_radius_m_; }
-  /// What the tiles of a one-pass list can hold: atmosphere_tile.comp is
-  /// compiled for each combination in use (its TILE_GROUND, TILE_OTHERS, SUN
-  /// and SKY_VIEW defines), since a CPU rasterizer runs every branch a program has.
-  struct TileVariant {
-    bool sky_view = false;                 ///< S from the sky-view table (camera inside the shell)
-    TileCover ground = TileCover::some;    ///< how the rays meet this planet's ground
-    int others = 2;                        ///< other bodies: 0 none, 1 all beyond the shell, 2 one may be inside it
-    bool sun = true;                       ///< the sun's disc can be in the tiles
-    int key() const;
-  };
   /// atmosphere_tile.comp for tiles only this shell touches, compiled for the
-  /// frame's variant and the tiles'.
+  /// frame's variant and the tiles' (render/frame/tile_classification.h).
   const gl::ShaderProgram& tile_program(const FrameVariant& frame, const TileVariant& variant);
   /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).
   const gl::ShaderProgram& gbuffer_path_program(const FrameVariant& frame);
-  /// Sets `wavelength_group`, the Mie phase's parameters, the tables' acos(μs_min)
-  /// and the sky-view uniforms of one of these programs for group g.
+  /// Sets `wavelength_group` (the model's parameters of group g are read from
+  /// WavelengthData) and the sky-view uniforms of one of these programs.
   void set_group(const gl::ShaderProgram& program, std::size_t group) const;
   /// Bytes of GPU memory the tables take.
   std::size_t table_bytes() const { return table_bytes_; }
 
   /// Binds the tables of wavelength group g (texture units 0–4), the sky-view
-  /// table (unit 5) and the model's storage buffers (bindings 0–2).
+  /// table (unit 5), the model's buffers (ModelBuffers) and the texel coordinates.
   void bind(std::size_t group) const;
 
   /// Fills the sky-view table of every wavelength group for a camera inside
@@ -88,21 +74,20 @@ class GpuAtmosphere {
   void fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad);
 
  private:
-  /// Group g's tables (texture units 0–4) and the model's storage buffers (bindings 0–2).
+  /// Group g's tables (texture units 0–4), the model's buffers and the texel coordinates.
   void bind_tables(std::size_t group) const;
   struct GroupTextures {
     gl::Texture transmittance, irradiance, single_rayleigh, single_mie, multiple;
-    std::array<float, 4> mie_g1{}, mie_g2{}, mie_alpha{};  // the Mie phase's parameters per lane
   };
   std::string hash_;
   double top_radius_m_ = 0.0, ground_radius_m_ = 0.0;
   std::vector<GroupTextures> groups_;
-  gl::Buffer wavelength_data_, table_data_, texel_coordinates_;
+  ModelBuffers model_buffers_;    // the model's parameters and constants (render/lut/shader_model.h)
+  gl::Buffer texel_coordinates_;  // acos(μs_min) at TEXEL_SUN_THETA_MAX
   const gl::ShaderProgram& program(const std::string& key, const std::string& file,
                                    std::vector<gl::ShaderDefine> defines);
   std::vector<gl::ShaderDefine> defines_, tile_defines_;  // atmosphere_pass.comp's; atmosphere_tile.comp's
   bool eclipses_ = true;                                  // AtmospherePassFeatures::eclipses
-  float sun_theta_max_ = 0.0f;                            // acos(μs_min) of the tables' μs mapping
   std::map<std::string, gl::ShaderProgram> programs_;     // compiled on first use, by variant
   std::unique_ptr<SkyViewTable> sky_view_;
   std::size_t table_bytes_ = 0;

@@ -9,6 +9,7 @@
 
 #include "core/units.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 
 namespace zenith::render {
 
@@ -19,7 +20,7 @@ std::vector<gl::ShaderDefine> SkyViewTable::defines() {
 }
 
 SkyViewTable::SkyViewTable(std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups)
-    : fill_(gl::ShaderProgram::load_compute("render/sky_view.comp", atmosphere_defines)),
+    : fill_(load_compute_program("render/sky_view.comp", atmosphere_defines)),
       table_(gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
                                           static_cast<int>(std::max<std::size_t>(groups, 1)) * kLayersPerGroup)) {}
 

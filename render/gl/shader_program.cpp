@@ -11,8 +11,6 @@
 #include <utility>
 
 #include "render/gl/gl_error.h"
-#include "render/shader_bindings.h"
-#include "render/shader_source.h"
 
 namespace zenith::render::gl {
 
@@ -219,15 +217,6 @@ GLuint link(const std::string& name, std::span<const GLuint> shaders) {
   return program;
 }
 
-ShaderCode code_from(const ExpandedShader& e) { return ShaderCode{e.name, e.text, e.files}; }
-
-/// The binding points and constants shared with C++ (render/shader_bindings.h), then `defines`.
-std::vector<ShaderDefine> with_interface_defines(std::span<const ShaderDefine> defines) {
-  std::vector<ShaderDefine> all = shader_interface_defines();
-  all.insert(all.end(), defines.begin(), defines.end());
-  return all;
-}
-
 }  // namespace
 
 std::string insert_after_version(std::string_view name, std::string_view text, std::span<const std::string> lines) {
@@ -307,16 +296,6 @@ ShaderProgram ShaderProgram::graphics(const ShaderCode& vertex, const ShaderCode
   p.id_ = link(name, shaders);
   p.name_ = name;
   return p;
-}
-
-ShaderProgram ShaderProgram::load_compute(std::string_view name, std::span<const ShaderDefine> defines) {
-  return compute(code_from(load_shader(name)), with_interface_defines(defines));
-}
-
-ShaderProgram ShaderProgram::load_graphics(std::string_view vertex_name, std::string_view fragment_name,
-                                           std::span<const ShaderDefine> defines) {
-  return graphics(code_from(load_shader(vertex_name)), code_from(load_shader(fragment_name)),
-                  with_interface_defines(defines));
 }
 
 ShaderProgram::~ShaderProgram() { release(); }

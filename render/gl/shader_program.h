@@ -65,12 +65,6 @@ class ShaderProgram {
   static ShaderProgram compute(const ShaderCode& code, std::span<const ShaderDefine> defines = {});
   static ShaderProgram graphics(const ShaderCode& vertex, const ShaderCode& fragment,
                                 std::span<const ShaderDefine> defines = {});
-  /// From the embedded shaders/ files, includes expanded (render/shader_source.h),
-  /// with the shared binding points and constants (render/shader_bindings.h:
-  /// shader_interface_defines()) defined before `defines`.
-  static ShaderProgram load_compute(std::string_view name, std::span<const ShaderDefine> defines = {});
-  static ShaderProgram load_graphics(std::string_view vertex_name, std::string_view fragment_name,
-                                     std::span<const ShaderDefine> defines = {});
 
   ShaderProgram() = default;  ///< no program (id 0)
   ~ShaderProgram();

@@ -24,6 +24,7 @@
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 
 namespace zenith::render {
 
@@ -120,7 +121,8 @@ class GpuPrecompute {
   LookupTables tables_;
   std::vector<ShaderDefine> defines_;
   TexelCoordinateLayout texel_layout_;
-  gl::Buffer wavelength_data_, table_data_, texel_coordinates_, row_sums_;
+  ModelBuffers model_buffers_;  // WavelengthData, TableData, Fp64Constants (render/lut/shader_model.h)
+  gl::Buffer texel_coordinates_, row_sums_;
   gl::Buffer azimuth_moments_, harmonic_coefficients_;  // DensityMethod::Harmonics, one group at a time
   gl::Buffer view_transmittance_, view_ray_uv_;         // view_ray.glsl, one group at a time
   std::vector<GroupTables> groups_;
@@ -169,8 +171,7 @@ void GpuPrecompute::prepare_model_data() {
   ShaderModel m = shader_model(model_, options_, fp64_);
   defines_ = std::move(m.defines);
   texel_layout_ = m.texel_layout;
-  wavelength_data_ = real_buffer(m.wavelength_data, fp64_);
-  table_data_ = real_buffer(m.table_data, fp64_);
+  model_buffers_ = ModelBuffers(m);
   const std::size_t real_size = fp64_ ? sizeof(double) : sizeof(float);
   texel_coordinates_ = gl::Buffer(texel_coordinate_count() * real_size);
   row_sums_ = gl::Buffer(group_count() * sizes().scattering_r * sizes().scattering_mu * kLanes * real_size);
@@ -184,7 +185,7 @@ const ShaderProgram& GpuPrecompute::program(const std::string& file, std::vector
   std::vector<ShaderDefine> defines = defines_;
   defines.insert(defines.end(), extra.begin(), extra.end());
   const auto start = std::chrono::steady_clock::now();
-  ShaderProgram p = ShaderProgram::load_compute(file, defines);
+  ShaderProgram p = load_compute_program(file, defines);
   spdlog::debug("GPU precompute: compiled {} in {:.3f} s", key, seconds_since(start));
   return programs_.emplace(key, std::move(p)).first->second;
 }
@@ -479,8 +480,7 @@ LookupTables GpuPrecompute::run() {
   const int orders = options_.max_orders;
   // The same stages, shares and order accounting as cpu_precompute.cpp.
   const double share_multiple = orders > 1 ? 0.85 / (orders - 1) : 0.0;
-  wavelength_data_.bind_storage(kWavelengthData);
-  table_data_.bind_storage(kTableData);
+  model_buffers_.bind();
   texel_coordinates_.bind_storage(kTexelCoordinates);
   row_sums_.bind_storage(kRowSums);
   stage("transmittance", 0.05, [&] { compute_transmittance(); });

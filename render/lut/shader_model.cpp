@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <utility>
 #include <span>
+#include <stdexcept>
 
 #include "atmosphere/lut/gauss_legendre.h"
 #include "atmosphere/lut/lookup_tables.h"
@@ -12,6 +14,7 @@
 #include "atmosphere/lut/spherical_harmonics.h"
 #include "atmosphere/phase_functions.h"
 #include "core/units.h"
+#include "render/shader_bindings.h"
 
 namespace zenith::render {
 
@@ -38,6 +41,17 @@ enum WavelengthField : std::size_t {
   kAbsorbers,  // absorber k: kAbsorbers + k
 };
 
+/// The constants of the double elementary functions (atmosphere/maths.glsl:
+/// exp_r, log_r, sincos_r), fdlibm's: ln 2 split so that k·LN2_HI is exact
+/// (LN2_HI its first 32 bits, LN2_LO the rest), 1/ln 2, 2/π, π/2 split the same
+/// way (PIO2_1 its first 33 bits, PIO2_1T the rest), √½.
+constexpr std::pair<const char*, double> kFp64MathsConstants[] = {
+    {"LN2_HI", 6.93147180369123816490e-01},  {"LN2_LO", 1.90821492927058770002e-10},
+    {"INV_LN2", 1.44269504088896338700e+00}, {"TWO_OVER_PI", 6.36619772367581382433e-01},
+    {"PIO2_1", 1.57079632673412561417e+00},  {"PIO2_1T", 6.07710050650619224932e-11},
+    {"SQRT_HALF", 7.07106781186547524401e-01},
+};
+
 }  // namespace
 
 TexelCoordinateLayout texel_coordinate_layout(const TableSizes& sizes) {
@@ -59,6 +73,18 @@ gl::Buffer real_buffer(const std::vector<double>& values, bool fp64) {
   std::vector<float> f(values.size());
   std::transform(values.begin(), values.end(), f.begin(), [](double v) { return static_cast<float>(v); });
   return gl::Buffer::from(std::span<const float>(f));
+}
+
+ModelBuffers::ModelBuffers(const ShaderModel& model)
+    : wavelength_data(real_buffer(model.wavelength_data, model.fp64)),
+      table_data(real_buffer(model.table_data, model.fp64)) {
+  if (!model.fp64_constants.empty()) fp64_constants = gl::Buffer::from(std::span<const double>(model.fp64_constants));
+}
+
+void ModelBuffers::bind() const {
+  wavelength_data.bind_uniform(binding::kWavelengthData);
+  table_data.bind_storage(binding::kTableData);
+  if (fp64_constants.id() != 0) fp64_constants.bind_uniform(binding::kFp64Constants);
 }
 
 ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& options, bool fp64) {
@@ -152,6 +178,13 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
     table.insert(table.end(), model.air_mass.stretch_table().begin(), model.air_mass.stretch_table().end());
   }
 
+  // WavelengthData is a uniform block: GL guarantees 16 KiB of one (GL_MAX_UNIFORM_BLOCK_SIZE).
+  const std::size_t block_bytes = wavelength_data.size() * (fp64 ? sizeof(double) : sizeof(float));
+  if (block_bytes > kMaxWavelengthDataBytes)
+    throw std::invalid_argument(fmt::format(
+        "atmosphere '{}': {} wavelengths with {} absorbers need {} bytes of model parameters per shader, more than "
+        "the {} a GL uniform block is guaranteed to hold; use fewer wavelengths or absorbers",
+        model.name, n, absorbers, block_bytes, kMaxWavelengthDataBytes));
   out.wavelength_data = std::move(wavelength_data);
   out.table_data = std::move(table);
 
@@ -174,8 +207,23 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   const TableSizes& s = options.sizes;
   auto define = [&](const char* name, const auto& value) { out.defines.push_back({name, fmt::format("{}", value)}); };
   define("USE_FP64", fp64 ? 1 : 0);
-  define("BOTTOM_RADIUS", glsl_literal(model.ground_radius_m, fp64));
-  define("TOP_RADIUS", glsl_literal(model.top_radius_m, fp64));
+  out.fp64 = fp64;
+  // A real constant: a float literal in fp32; in fp64 the next entry of the
+  // Fp64Constants uniform block (atmosphere/maths.glsl), the define naming it,
+  // so the shader gets the C++ double's bits, never a literal a driver parses.
+  auto real_constant = [&](const char* name, double value) {
+    if (!fp64) {
+      out.defines.push_back({name, glsl_literal(value, false)});
+      return;
+    }
+    const std::size_t i = out.fp64_constants.size();
+    out.fp64_constants.push_back(value);
+    out.defines.push_back({name, fmt::format("fp64_constants[{}].{}", i / 4, "xyzw"[i % 4])});
+  };
+  if (fp64)
+    for (const auto& [name, value] : kFp64MathsConstants) real_constant(name, value);
+  real_constant("BOTTOM_RADIUS", model.ground_radius_m);
+  real_constant("TOP_RADIUS", model.top_radius_m);
   define("TRANSMITTANCE_MU", s.transmittance_mu);
   define("TRANSMITTANCE_R", s.transmittance_r);
   define("IRRADIANCE_MU_S", s.irradiance_mu_s);
@@ -184,14 +232,14 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("SCATTERING_MU", s.scattering_mu);
   define("SCATTERING_MU_S", s.scattering_mu_s);
   define("SCATTERING_NU", s.scattering_nu);
-  define("NU_SPREAD_MIN", glsl_literal(atmosphere::lut::kNuSpreadMin, fp64));
+  real_constant("NU_SPREAD_MIN", atmosphere::lut::kNuSpreadMin);
   define("GEOMETRIC_BLEND_FULL_LOG_RATIO", glsl_literal(double(atmosphere::lut::kGeometricBlendFullLogRatio), false));
   // Constants shared with the CPU code, from their C++ definitions.
-  define("PI", glsl_literal(core::kPi, fp64));
-  define("INV_4PI", glsl_literal(atmosphere::kInv4Pi, fp64));
-  define("PENNDORF_A", glsl_literal(atmosphere::kPenndorfA, fp64));
-  define("PENNDORF_B", glsl_literal(atmosphere::kPenndorfB, fp64));
-  define("SERIES_LIMIT", glsl_literal(atmosphere::lut::kLogLinearSeriesLimit, fp64));
+  real_constant("PI", core::kPi);
+  real_constant("INV_4PI", atmosphere::kInv4Pi);
+  real_constant("PENNDORF_A", atmosphere::kPenndorfA);
+  real_constant("PENNDORF_B", atmosphere::kPenndorfB);
+  real_constant("SERIES_LIMIT", atmosphere::lut::kLogLinearSeriesLimit);
   define("FIELD_RAYLEIGH_SCATTERING", std::size_t{kRayleighScattering});
   define("FIELD_MIE_SCATTERING", std::size_t{kMieScattering});
   define("FIELD_MIE_EXTINCTION", std::size_t{kMieExtinction});
@@ -206,17 +254,18 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("TEXEL_MU_SKY", out.texel_layout.mu_sky);
   define("TEXEL_VALUE_COUNT", out.texel_layout.count);
   define("RAYLEIGH_PHASE", rayleigh_phase());
-  define("RAYLEIGH_DEPOLARIZATION", glsl_literal(model.rayleigh_depolarization, fp64));
+  real_constant("RAYLEIGH_DEPOLARIZATION", model.rayleigh_depolarization);
   define("HAS_MIE", model.has_mie() ? 1 : 0);
   define("MIE_PHASE", mie_phase());
   define("ABSORBER_COUNT", absorbers);
   define("WAVELENGTH_FIELDS", fields);
+  define("WAVELENGTH_DATA_SIZE", out.group_count * fields);
   define("RAYLEIGH_PROFILE", 0);
   define("MIE_PROFILE", 4);
   define("AIR_MASS_PROFILE", 8);
   define("ABSORBER_PROFILES", 12);
   define("AIR_MASS", air_mass ? 1 : 0);
-  define("AIR_MASS_GROUND_RADIUS", glsl_literal(model.air_mass.ground_radius_m(), fp64));
+  real_constant("AIR_MASS_GROUND_RADIUS", model.air_mass.ground_radius_m());
   define("AIR_MASS_TABLE", air_mass_table);
   define("AIR_MASS_TABLE_SIZE", air_mass_size);
   define("QUADRATURE_LOG_LINEAR",
@@ -232,6 +281,10 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("HARMONIC_RULE", harmonic_rule);
   define("RAYLEIGH_MOMENTS", rayleigh_moments);
   define("MIE_MOMENTS", mie_moments);
+  if (fp64) {
+    define("FP64_CONSTANT_VECTORS", (out.fp64_constants.size() + 3) / 4);
+    out.fp64_constants.resize((out.fp64_constants.size() + 3) / 4 * 4, 0.0);  // whole dvec4s (std140)
+  }
   return out;
 }
 

@@ -2,8 +2,9 @@
 // What a shader that includes shaders/atmosphere_common.glsl needs to know about
 // an atmosphere model: the #defines that specialise it (radii, table sizes, phase
 // models, which terms exist) and the contents of its two model storage buffers
-// (per-wavelength-group coefficients at binding 0, profiles, quadrature rules and
-// the air-mass table at binding 1). Shared by the GPU precompute and the renderer.
+// (per-wavelength-group coefficients in the WavelengthData uniform block,
+// profiles, quadrature rules and the air-mass table in the TableData storage
+// buffer). Shared by the GPU precompute and the renderer.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@ namespace zenith::render {
 
 /// Wavelengths per group: one RGBA32F texel, one real4 in the shaders.
 inline constexpr std::size_t kWavelengthLanes = 4;
+/// The largest WavelengthData block shader_model makes (bytes): the uniform
+/// block size every GL 4.5 implementation supports (GL_MAX_UNIFORM_BLOCK_SIZE).
+inline constexpr std::size_t kMaxWavelengthDataBytes = 16384;
 
 /// Where the texel-coordinate values (TexelCoordinates, binding::kTexelCoordinates)
 /// lie, in reals: what texel_coordinates.comp writes and scattering_texel_coordinates
@@ -34,12 +38,35 @@ struct ShaderModel {
   /// Everything atmosphere_common.glsl needs defined: the model, the table sizes,
   /// and the constants it shares with the C++ code (π, 1/4π, Penndorf's
   /// coefficients, the log-linear series limit, the WavelengthData fields and the
-  /// TexelCoordinates layout), each from its C++ definition.
+  /// TexelCoordinates layout), each from its C++ definition (real constants:
+  /// float literals in fp32, names of fp64_constants entries in fp64).
   std::vector<gl::ShaderDefine> defines;
-  std::vector<double> wavelength_data;  ///< WavelengthData (binding 0): real4 fields per group
+  /// WavelengthData (a uniform block, binding::kWavelengthData): real4 fields per
+  /// group, the one way the model's parameters reach every shader.
+  std::vector<double> wavelength_data;
   std::vector<double> table_data;       ///< TableData (binding 1)
   std::size_t group_count = 0;          ///< ceil(wavelengths / 4)
   TexelCoordinateLayout texel_layout;
+  bool fp64 = false;                    ///< made for double shaders (USE_FP64)
+  /// fp64 only: every real constant of the double shaders (the elementary
+  /// functions' ln 2 and π/2 splits, π, 1/4π, Penndorf's coefficients, the
+  /// radii, …) as the C++ double, in the order the defines name them
+  /// (PI → fp64_constants[k / 4].xyzw[k % 4]): the Fp64Constants uniform block,
+  /// whole dvec4s. No double constant is a GLSL literal, which a driver may read
+  /// through float (NVIDIA 580.159.04, issue 26). fp32 shaders get float literals.
+  std::vector<double> fp64_constants;
+};
+
+/// A ShaderModel's values on the GPU, bound where its shaders read them:
+/// WavelengthData and Fp64Constants (uniform blocks) and TableData (a storage
+/// buffer). The precompute, the render passes and the tests all make and bind
+/// these, the one way a model's parameters reach a shader.
+struct ModelBuffers {
+  ModelBuffers() = default;
+  explicit ModelBuffers(const ShaderModel& model);
+  /// At binding::kWavelengthData, kFp64Constants (uniform buffers) and kTableData (storage).
+  void bind() const;
+  gl::Buffer wavelength_data, table_data, fp64_constants;  ///< fp64_constants: none (id 0) in fp32
 };
 
 /// The defines and buffer contents for `model` with the table sizes and

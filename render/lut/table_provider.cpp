@@ -15,22 +15,6 @@ namespace zenith::render {
 
 using namespace atmosphere::lut;
 
-atmosphere::LoadedAtmosphere load_atmosphere_argument(const std::string& value,
-                                                      const atmosphere::LoadOptions& options) {
-  std::error_code ec;
-  if (std::filesystem::is_regular_file(value, ec) || value.find('/') != std::string::npos ||
-      value.ends_with(".json"))
-    return atmosphere::load_atmosphere_file(value, options);
-  return atmosphere::load_preset(value, options);
-}
-
-TableSizes table_sizes_by_name(const std::string& name) {
-  if (name == "paper") return TableSizes{};
-  if (name == "small") return TableSizes::small();
-  if (name == "large") return TableSizes{512, 128, 128, 32, 64, 256, 64, 16};
-  throw std::invalid_argument("unknown table size set '" + name + "': use paper, small or large");
-}
-
 ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const TableRequest& request) {
   const TableCache cache(request.cache_directory.value_or(default_cache_directory()));
   ObtainedTables out;

@@ -10,6 +10,7 @@
 
 #include "render/gl/gl_error.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 
 namespace zenith::render::window {
 
@@ -28,7 +29,7 @@ Letterbox letterbox(int frame_width, int frame_height, int target_width, int tar
   return box;
 }
 
-FramePresenter::FramePresenter() : program_(gl::ShaderProgram::load_graphics("render/present.vert", "render/present.frag")) {
+FramePresenter::FramePresenter() : program_(load_graphics_program("render/present.vert", "render/present.frag")) {
   glCreateVertexArrays(1, &vertex_array_);
   gl::check_gl_error("FramePresenter: creating the vertex array");
 }

@@ -34,46 +34,6 @@ layout(binding = IRRADIANCE_UNIT) uniform sampler2D irradiance_texture;
 uniform int planet;              // index of the body this atmosphere surrounds (its data: the_body, frame.glsl)
 uniform float camera_top_power;  // |c|² − RT² [m²], in double on the CPU
 
-// The model's values that atmosphere_common.glsl reads from storage buffers
-// (wavelength_data, texel_values), as uniforms of the group: llvmpipe reads a
-// storage buffer lane by lane inside branches, a uniform once per SIMD vector.
-// USE_FP64 keeps the buffers (double values).
-uniform vec4 mie_g1, mie_g2, mie_alpha;  // the Mie phase's parameters (FIELD_MIE_G1, _G2, _ALPHA)
-uniform float table_sun_theta_max;      // acos(μs_min) (TEXEL_SUN_THETA_MAX)
-
-/// scattering_uvwz with acos(μs_min) from the uniform.
-ScatteringUV frame_scattering_uvwz(real r, real mu, real mu_s, real nu, bool hits_ground, int mapping) {
-#if USE_FP64
-  return scattering_uvwz(r, mu, mu_s, nu, hits_ground, mapping);
-#else
-  ScatteringUV uv;
-  uv.u_r = scattering_u_r(r);
-  uv.u_mu = scattering_u_mu(r, mu, hits_ground, mapping);
-  uv.u_mu_s = texture_coord_from_unit(unit_from_mu_s(mu_s, mapping, table_sun_theta_max), SCATTERING_MU_S);
-  uv.u_nu = scattering_u_nu(mu, mu_s, nu);
-  return uv;
-#endif
-}
-
-#if HAS_MIE
-/// mie_phase (atmosphere_common.glsl, the twin of atmosphere/phase_functions.cpp)
-/// with its parameters from the uniforms.
-real4 frame_mie_phase(real c) {
-#if USE_FP64
-  return mie_phase(c);
-#else
-#if MIE_PHASE == 0
-  return henyey_greenstein(c, mie_g1);
-#elif MIE_PHASE == 1
-  return mie_alpha * henyey_greenstein(c, mie_g1) + (1.0 - mie_alpha) * henyey_greenstein(c, mie_g2);
-#else
-  const vec4 denom = 1.0 + mie_g1 * mie_g1 - 2.0 * mie_g1 * c;
-  return 3.0 * (1.0 - mie_g1 * mie_g1) * (1.0 + c * c) / (2.0 * (2.0 + mie_g1 * mie_g1) * denom * sqrt(denom)) * INV_4PI;
-#endif
-#endif
-}
-#endif
-
 /// S split by smoothness in direction: S = smooth + mie · P_M(ν). The single
 /// Mie term without its phase, whose forward peak no coarse table could hold.
 struct Inscatter {
@@ -110,12 +70,12 @@ real4 sample_table_4d(sampler3D table, ScatteringUV uv) {
 }
 
 Inscatter inscatter(real r, real mu, real mu_s, real nu, bool hits_ground) {
-  const ScatteringUV single = frame_scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_DISTANCE);
+  const ScatteringUV single = scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_DISTANCE);
   Inscatter s;
   s.smooth_part = sample_table_4d(single_rayleigh_texture, single) * rayleigh_phase(nu);
 #if MULTIPLE_SCATTERING
   s.smooth_part +=
-      sample_table_4d(multiple_texture, frame_scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_BLENDED));
+      sample_table_4d(multiple_texture, scattering_uvwz(r, mu, mu_s, nu, hits_ground, ANGLE_MAPPING_BLENDED));
 #endif
 #if HAS_MIE
   s.mie = sample_table_4d(single_mie_texture, single);
@@ -129,7 +89,7 @@ Inscatter inscatter(real r, real mu, real mu_s, real nu, bool hits_ground) {
 real4 scattering(real r, real mu, real mu_s, real nu, bool hits_ground) {
   const Inscatter s = inscatter(r, mu, mu_s, nu, hits_ground);
 #if HAS_MIE
-  return s.smooth_part + s.mie * frame_mie_phase(nu);
+  return s.smooth_part + s.mie * model_mie_phase(nu);
 #else
   return s.smooth_part;
 #endif

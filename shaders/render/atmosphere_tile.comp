@@ -63,7 +63,7 @@ vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albed
   const float layer = float(sky_view_layer_base + (own_ground ? SKY_VIEW_GROUND : SKY_VIEW_SKY));
   vec4 S = texture(sky_view_table, vec3(uv, layer));
 #if HAS_MIE
-  S += texture(sky_view_table, vec3(uv, layer + 1.0)) * vec4(frame_mie_phase(real(dot(ray, sun_direction))));
+  S += texture(sky_view_table, vec3(uv, layer + 1.0)) * vec4(model_mie_phase(real(dot(ray, sun_direction))));
 #endif
   vec4 L = S * sun_irradiance;
 #if TILE_GROUND != 0

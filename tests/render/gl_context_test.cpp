@@ -24,6 +24,7 @@
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
 #include "render/shader_source.h"
+#include "tests/render/test_shaders.h"
 
 namespace zenith::render {
 namespace {
@@ -33,7 +34,7 @@ using gl::ShaderProgram;
 using gl::Texture;
 using gl::TextureFormat;
 
-/// The pattern of shaders/test_common.glsl, in C++.
+/// The pattern of tests/shaders/test_common.glsl, in C++.
 std::vector<float> expected_pattern(int w, int h, int d, float scale = 1.0f, bool index_term = true) {
   std::vector<float> out;
   for (int z = 0; z < d; ++z)
@@ -198,7 +199,7 @@ TEST(HeadlessContext, DebugContextRoutesMessages) {
 }
 
 TEST_F(GlTest, TestPatternComputeShaderMatchesCpp) {
-  const ShaderProgram program = ShaderProgram::load_compute("test_pattern.comp");
+  const ShaderProgram program = testing::load_test_compute_program("test_pattern.comp");
   EXPECT_EQ(program.work_group_size(), (std::array<int, 3>{4, 4, 2}));
   const int w = 8, h = 4, d = 3;  // d = 3 is not a multiple of the work group's 2: out-of-range invocations return
   expect_floats_near(run_pattern(program, w, h, d), expected_pattern(w, h, d), 1e-6f);
@@ -206,10 +207,10 @@ TEST_F(GlTest, TestPatternComputeShaderMatchesCpp) {
 
 TEST_F(GlTest, DefineVariantsChangeTheOutput) {
   const std::vector<gl::ShaderDefine> no_index = {{"PATTERN_INDEX_TERM", "0"}, {"PATTERN_SCALE", "2.0"}};
-  const ShaderProgram variant = ShaderProgram::load_compute("test_pattern.comp", no_index);
+  const ShaderProgram variant = testing::load_test_compute_program("test_pattern.comp", no_index);
   const std::vector<float> out = run_pattern(variant, 5, 3, 2);
   expect_floats_near(out, expected_pattern(5, 3, 2, 2.0f, false), 1e-6f);
-  const ShaderProgram plain = ShaderProgram::load_compute("test_pattern.comp");
+  const ShaderProgram plain = testing::load_test_compute_program("test_pattern.comp");
   EXPECT_NE(out, run_pattern(plain, 5, 3, 2));
 }
 
@@ -338,16 +339,21 @@ TEST_F(GlTest, StorageBufferThroughACompute) {
 // --- GL-free: embedded shaders, includes, define injection --------------------
 
 TEST(ShaderSource, EmbeddedShadersAreThere) {
-  EXPECT_NE(shader_source("test_pattern.comp").find("#include \"test_common.glsl\""), std::string_view::npos);
-  const auto names = shader_names();
+  EXPECT_NE(testing::test_shader_source("test_pattern.comp").find("#include \"test_common.glsl\""),
+            std::string_view::npos);
+  const auto names = testing::test_shader_names();
   EXPECT_NE(std::find(names.begin(), names.end(), "test_common.glsl"), names.end());
+  // The tests' programs are the test library's (tests/shaders/), not the production library's.
+  const auto production = shader_names();
+  EXPECT_NE(std::find(production.begin(), production.end(), "atmosphere_common.glsl"), production.end());
+  for (const std::string& name : production) EXPECT_FALSE(name.starts_with("test_")) << name;
   try {
     (void)shader_source("nope.comp");
     FAIL();
   } catch (const std::out_of_range& e) {
     EXPECT_NE(std::string(e.what()).find("nope.comp"), std::string::npos);
   }
-  const ExpandedShader e = load_shader("test_pattern.comp");
+  const ExpandedShader e = testing::load_test_shader("test_pattern.comp");
   EXPECT_EQ(e.files, (std::vector<std::string>{"test_pattern.comp", "test_common.glsl"}));
   EXPECT_NE(e.text.find("vec4 test_pattern("), std::string::npos);
   EXPECT_EQ(e.text.find("#include"), std::string::npos);

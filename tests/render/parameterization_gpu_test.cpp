@@ -43,7 +43,9 @@
 #include "render/gl/shader_program.h"
 #include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 #include "tests/render/render_test_support.h"
+#include "tests/render/test_shaders.h"
 
 namespace zenith::render {
 namespace {
@@ -121,14 +123,12 @@ class GpuParameterization {
     atmosphere::lut::PrecomputeOptions options;
     options.sizes = sizes;
     const ShaderModel m = shader_model(model, options, fp64);
-    wavelength_data_ = real_buffer(m.wavelength_data, fp64);
-    table_data_ = real_buffer(m.table_data, fp64);
+    model_buffers_ = ModelBuffers(m);
     texel_values_ = gl::Buffer(m.texel_layout.count * real_size());
-    wavelength_data_.bind_storage(binding::kWavelengthData);
-    table_data_.bind_storage(binding::kTableData);
+    model_buffers_.bind();
     texel_values_.bind_storage(binding::kTexelCoordinates);
     // As the precompute does before its scattering stages.
-    gl::ShaderProgram::load_compute("texel_coordinates.comp", m.defines)
+    load_compute_program("texel_coordinates.comp", m.defines)
         .dispatch_covering(static_cast<int>(m.texel_layout.count));
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     std::vector<gl::ShaderDefine> defines = m.defines;
@@ -136,7 +136,7 @@ class GpuParameterization {
                                    {"RESULTS_BINDING", std::to_string(kResultsBinding)},
                                    {"CASE_STRIDE", std::to_string(kCaseStride)},
                                    {"RESULT_STRIDE", std::to_string(kResultStride)}});
-    program_ = gl::ShaderProgram::load_compute("test_parameterization.comp", defines);
+    program_ = testing::load_test_compute_program("test_parameterization.comp", defines);
   }
 
   /// The input as the shader holds it (rounded to float in fp32).
@@ -164,7 +164,8 @@ class GpuParameterization {
   std::size_t real_size() const { return fp64_ ? sizeof(double) : sizeof(float); }
   bool fp64_;
   TableSizes sizes_;
-  gl::Buffer wavelength_data_, table_data_, texel_values_;
+  ModelBuffers model_buffers_;
+  gl::Buffer texel_values_;
   gl::ShaderProgram program_;
 };
 

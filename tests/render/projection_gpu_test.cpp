@@ -19,6 +19,7 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
+#include "tests/render/test_shaders.h"
 #include "warp/cube_face_projection.h"
 #include "warp/cylindrical_projection.h"
 #include "warp/equirectangular_projection.h"
@@ -68,7 +69,7 @@ class ProjectionGpu : public ::testing::Test {
 };
 
 TEST_F(ProjectionGpu, RaysMatchTheCpuProjections) {
-  const gl::ShaderProgram program = gl::ShaderProgram::load_compute("test_projection.comp");
+  const gl::ShaderProgram program = testing::load_test_compute_program("test_projection.comp");
   std::printf("renderer: %s\n", context_.renderer().c_str());
   auto planar = [](int w, int h, PlanarFrustum f) { return std::make_shared<PlanarProjection>(w, h, f); };
   auto fisheye = [](int w, int h, FisheyeParameters p) { return std::make_shared<FisheyeProjection>(w, h, p); };

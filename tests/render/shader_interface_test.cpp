@@ -6,7 +6,8 @@
 //    either side fails naming it, with both byte offsets;
 //  * the constants of the shader model as atmosphere_common.glsl sees them
 //    (PI, INV_4PI, PENNDORF_A/B, SERIES_LIMIT), exactly the C++ values (rounded
-//    to float in fp32);
+//    to float in fp32; in fp64 they come as doubles in the Fp64Constants
+//    uniform block, so equal on any driver);
 //  * the WavelengthData fields by name (FIELD_*): each the model's spectrum;
 //  * the tile words of the render passes' tile lists (render/frame/tile_culling.h's
 //    pack_tile): frame.glsl's tile_pixel() finds the pixels of the tile the C++
@@ -33,11 +34,12 @@
 #include "render/lut/shader_model.h"
 #include "render/shader_bindings.h"
 #include "tests/render/render_test_support.h"
+#include "tests/render/test_shaders.h"
 
 namespace zenith::render {
 namespace {
 
-constexpr unsigned kTestOutputBinding = 3;  ///< not one of atmosphere_common.glsl's (0–2)
+constexpr unsigned kTestOutputBinding = 3;  ///< not one of atmosphere_common.glsl's storage buffers (1, 2)
 
 /// A buffer of reals (double in fp64, float otherwise) read back as doubles.
 std::vector<double> read_reals(const gl::Buffer& buffer, bool fp64) {
@@ -59,7 +61,7 @@ TEST(ShaderInterface, BodyLayoutMatchesGpuBodyFieldByField) {
   bodies.bind_storage(binding::kBodies);
   const gl::Buffer fields(kBodies * 6 * 4 * sizeof(float));
   fields.bind_storage(kTestOutputBinding);
-  const gl::ShaderProgram program = gl::ShaderProgram::load_compute(
+  const gl::ShaderProgram program = testing::load_test_compute_program(
       "test_body_layout.comp", std::vector<gl::ShaderDefine>{{"FIELDS_BINDING", std::to_string(kTestOutputBinding)}});
   ASSERT_TRUE(program.set_uniform("body_count", static_cast<int>(kBodies)));
   program.dispatch_covering(1);
@@ -97,10 +99,8 @@ void expect_shader_model_constants(const std::string& preset, bool fp64) {
   atmosphere::lut::PrecomputeOptions options;
   options.sizes = atmosphere::lut::TableSizes::small();
   const ShaderModel m = shader_model(model, options, fp64);
-  const gl::Buffer wavelength_data = real_buffer(m.wavelength_data, fp64);
-  const gl::Buffer table_data = real_buffer(m.table_data, fp64);
-  wavelength_data.bind_storage(binding::kWavelengthData);
-  table_data.bind_storage(binding::kTableData);
+  const ModelBuffers buffers(m);
+  buffers.bind();
   const std::size_t real_size = fp64 ? sizeof(double) : sizeof(float);
   const gl::Buffer texel_values(m.texel_layout.count * real_size);
   texel_values.bind_storage(binding::kTexelCoordinates);
@@ -108,7 +108,7 @@ void expect_shader_model_constants(const std::string& preset, bool fp64) {
   values.bind_storage(kTestOutputBinding);
   std::vector<gl::ShaderDefine> defines = m.defines;
   defines.push_back({"VALUES_BINDING", std::to_string(kTestOutputBinding)});
-  const gl::ShaderProgram program = gl::ShaderProgram::load_compute("test_shader_model.comp", defines);
+  const gl::ShaderProgram program = testing::load_test_compute_program("test_shader_model.comp", defines);
   program.set_uniform("wavelength_group", 0);
   program.dispatch_covering(1);
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -172,7 +172,7 @@ TEST(ShaderInterface, TileWordsReachTheShadersAsTheCppPacksThem) {
   constexpr std::size_t kPixelsPerTile = std::size_t{kTileSize} * kTileSize;
   const gl::Buffer pixels(tiles.size() * kPixelsPerTile * 4 * sizeof(std::int32_t));
   pixels.bind_storage(kTestOutputBinding);
-  const gl::ShaderProgram program = gl::ShaderProgram::load_compute(
+  const gl::ShaderProgram program = testing::load_test_compute_program(
       "test_tile_words.comp", std::vector<gl::ShaderDefine>{{"PIXELS_BINDING", std::to_string(kTestOutputBinding)}});
   ASSERT_TRUE(program.set_uniform("band_size", band_size));
   ASSERT_TRUE(program.set_uniform("tile_offset", 1));

@@ -1,0 +1,42 @@
+#pragma once
+// What a frame's view can need, decided on the CPU before its passes are
+// chosen (render/renderer.cpp): whether eclipses can happen, whether every
+// albedo lookup is at the maps' full resolution, whether the sky-view table is
+// accurate enough for the camera. A CPU rasterizer runs all the code a program
+// has, so what a frame cannot need is compiled out (FrameVariant,
+// render/frame/gpu_atmosphere.h). No GL.
+#include "scene/scene.h"
+
+namespace zenith::render {
+
+/// Whether some body's shadow (its penumbra) can fall on another: then the
+/// passes are compiled with the eclipse code (frame.glsl's sun_visibility),
+/// which a CPU rasterizer would otherwise run for every lit pixel in vain. For
+/// an occluder of radius a at o and a receiver of radius b at c: the points
+/// that see part of the sun (angular radius α, direction s) behind the
+/// occluder lie within a + d tan α (·1.01, and a metre) of the shadow axis
+/// through o, at d = (o − p)·s > 0 in front of them; the receiver's nearest
+/// point is at least (its centre's distance from the axis) − b from it.
+bool eclipses_possible(const scene::Scene& scene);
+
+/// Whether every albedo lookup of the frame is at level 0 of the maps
+/// (surface_albedo.glsl: lod = max(0, log2(footprint / texel))): a pixel's
+/// footprint on a body is at most pixel angle × distance / 0.05 (the clamp of
+/// the incidence cosine), and nothing of a sphere seen from outside lies
+/// farther than its horizon, √(D² − R²). Then the passes sample level 0 with a
+/// constant level (ALBEDO_LOD0): the same texels, without the per-pixel mip
+/// selection a CPU rasterizer pays for.
+bool albedo_at_full_resolution(const scene::Scene& scene, double pixel_angle, int map_width);
+
+/// Where the sky-view table is as good as the 4D lookups per pixel, for a
+/// camera at radius r inside the shell [RB, RT] with the sun's cosine μs
+/// (measured with render_bench --sky-view-error on horizon views, 1280×720 with
+/// 10° and 79° fields, paper tables; docs/rendering-performance.md): low in the
+/// atmosphere (up to 2 % of its thickness: 2 km on Earth) always; up to 20 %
+/// while the sun is above the camera's horizon. Higher, and in twilight above
+/// the lowest layer, the light at the horizon changes within hundredths of a
+/// degree (the limb, the Earth's shadow) and 64 zenith texels a half would
+/// differ by up to 25 % there: the 4D lookups stay, as from space.
+bool sky_view_accurate(double r, double ground_radius, double top_radius, double mu_s);
+
+}  // namespace zenith::render

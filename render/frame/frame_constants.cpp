@@ -1,0 +1,72 @@
+#include "render/frame/frame_constants.h"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "core/units.h"
+#include "render/lut/shader_model.h"
+#include "scene/sun_disc.h"
+
+namespace zenith::render {
+
+FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Projection& projection,
+                                       image::ColourMapping colour, bool limb_darkening) {
+  FrameConstants f;
+  f.n = scene.wavelengths_nm.size();
+  f.groups = (f.n + kWavelengthLanes - 1) / kWavelengthLanes;
+  f.camera_to_world = glm::mat3_cast(glm::normalize(scene.camera.orientation));
+  f.world_to_camera = glm::transpose(f.camera_to_world);
+  f.sun = glm::normalize(scene.sun.direction);
+  f.sun_radius = scene.sun.angular_radius_rad;
+  // The worst-case footprint over the image bounds culling and decides
+  // ALBEDO_LOD0 (the shaders take each pixel's own footprint for the level of
+  // detail, frame.glsl); the sun is sized from the footprint where it lands (a
+  // warp mesh's worst case can be tens of times the local one: issue 14).
+  f.pixel_angle = projection.max_pixel_angle_rad();
+  f.sun_camera = f.world_to_camera * f.sun;
+  f.sun_pixel_angle = projection.pixel_angle_rad_at(f.sun_camera);
+
+  f.rgb_weights = image::spectral_to_rgb_weights(scene.wavelengths_nm, colour);
+  f.albedo_weights = image::rgb_to_spectral_weights(scene.wavelengths_nm, colour);
+  // A sun resolved by the pixels is drawn as its limb-darkened disc; one
+  // under 1.5 pixels in radius as a Gaussian of σ = 0.7 pixel carrying the
+  // same irradiance (exp(−θ²/2σ²) E / 2πσ²): a disc sampled at pixel centres
+  // would flicker and lose or gain light with its sub-pixel position.
+  f.sun_point_sigma = f.sun_radius < 1.5 * f.sun_pixel_angle ? 0.7 * f.sun_pixel_angle : 0.0;
+  f.sun_centre.resize(f.n);
+  f.limb_exponent.resize(f.n);
+  for (std::size_t i = 0; i < f.n; ++i) {
+    const double e = scene.sun.irradiance_W_m2_nm[i];
+    if (f.sun_point_sigma > 0.0)
+      f.sun_centre[i] = e / (2.0 * core::kPi * f.sun_point_sigma * f.sun_point_sigma);
+    else
+      f.sun_centre[i] = limb_darkening
+                            ? scene::disc_centre_radiance(e, f.sun_radius, scene.wavelengths_nm[i])
+                            : scene::uniform_disc_radiance(e, f.sun_radius);
+    f.limb_exponent[i] = scene::limb_darkening_exponent(scene.wavelengths_nm[i]);
+  }
+  return f;
+}
+
+std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, const scene::Scene& scene) {
+  const double exposure = scene.camera.exposure;
+  std::array<float, 9> rgb_from_albedo{};  // column-major: column = albedo channel
+  for (int out = 0; out < 3; ++out)
+    for (int in = 0; in < 3; ++in) {
+      double m = 0.0;
+      for (std::size_t i = 0; i < frame.n; ++i)
+        m += frame.rgb_weights[i][static_cast<std::size_t>(out)] * scene.sun.irradiance_W_m2_nm[i] *
+             frame.albedo_weights[i][static_cast<std::size_t>(in)];
+      rgb_from_albedo[static_cast<std::size_t>(in * 3 + out)] = static_cast<float>(exposure * m);
+    }
+  return rgb_from_albedo;
+}
+
+double sun_reach_rad(const FrameConstants& frame) {
+  return std::min(core::kPi / 2, frame.sun_point_sigma > 0.0 ? 6.0 * frame.sun_point_sigma
+                                                             : frame.sun_radius + frame.sun_pixel_angle);
+}
+
+}  // namespace zenith::render

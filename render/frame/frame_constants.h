@@ -1,0 +1,50 @@
+#pragma once
+// A frame's constants, in double on the CPU before anything reaches the GPU
+// (render/renderer.cpp): the camera and the sun in the world and the camera
+// frame, the pixels' footprints, the colour weights, the sun's centre radiance
+// and limb-darkening exponents per wavelength, and what direct_light.comp
+// gets from them. No GL.
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "image/colour.h"
+#include "scene/scene.h"
+#include "warp/projection.h"
+
+namespace zenith::render {
+
+struct FrameConstants {
+  std::size_t n = 0;       ///< wavelengths
+  std::size_t groups = 0;  ///< groups of 4 wavelengths (kWavelengthLanes)
+  glm::dmat3 camera_to_world{1.0}, world_to_camera{1.0};
+  glm::dvec3 sun{0.0}, sun_camera{0.0};  ///< unit direction to the sun: world, camera frame
+  double sun_radius = 0.0;               ///< the disc's angular radius [rad]
+  double pixel_angle = 0.0;              ///< the projection's largest pixel angle [rad]
+  double sun_pixel_angle = 0.0;          ///< the pixel angle where the sun lands [rad]
+  double sun_point_sigma = 0.0;          ///< > 0: the sun drawn as a Gaussian of this σ [rad]
+  std::vector<std::array<double, 3>> rgb_weights;     ///< spectral → RGB, per wavelength
+  std::vector<std::array<double, 3>> albedo_weights;  ///< the albedo's RGB → reflectance, per wavelength
+  std::vector<double> sun_centre;     ///< the disc's centre radiance (or the Gaussian's peak) per wavelength
+  std::vector<double> limb_exponent;  ///< μ^α limb darkening per wavelength
+};
+
+/// The constants of a frame of `scene` through `projection` with the colour
+/// mapping and the sun's limb darkening (RenderOptions::colour, limb_darkening).
+FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Projection& projection,
+                                       image::ColourMapping colour, bool limb_darkening);
+
+/// direct_light.comp's colour matrix, column-major (column = albedo channel):
+/// a body lit by the sun alone is rgb = (cos i V / π) M a with
+/// M = exposure Σ_λ w(λ) E(λ) f(λ)ᵀ (w: the spectral → RGB weights, f: the
+/// albedo's RGB → reflectance weights).
+std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, const scene::Scene& scene);
+
+/// Where the sun can be drawn: a cone of the disc's radius plus a pixel (or
+/// 6σ of the Gaussian), at most π/2.
+double sun_reach_rad(const FrameConstants& frame);
+
+}  // namespace zenith::render

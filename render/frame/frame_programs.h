@@ -1,0 +1,47 @@
+#pragma once
+// The programs of a frame's own passes, those that are no atmosphere's
+// (an atmosphere's are GpuAtmosphere's, render/frame/gpu_atmosphere.h):
+// the G-buffer (shaders/render/gbuffer.comp), the resolve (resolve.comp) and
+// the direct light of tiles no shell touches (direct_light.comp), each
+// compiled on first use for the frame's variant (FrameVariant: projection
+// kind, eclipses, albedo level) and kept.
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "render/frame/gpu_atmosphere.h"
+#include "render/gl/shader_program.h"
+
+namespace zenith::render {
+
+/// Tiles per work group of direct_light.comp (its local size is 16 × 16 × this,
+/// 1024 invocations, the most GL guarantees). Its pixels are cheap, so llvmpipe's
+/// cost per work group showed: the no-atmosphere ground view's frame took
+/// 7.4–7.6 ms instead of 7.5–8.0 ms with one tile per group (issue 13).
+inline constexpr std::size_t kDirectLightTilesPerGroup = 4;
+
+/// One variant's programs.
+struct FramePasses {
+  gl::ShaderProgram gbuffer, resolve;
+  // Tiles no atmosphere touches: bodies (one body: ONE_BODY = 1; several), and the sun's tiles (SUN = 1).
+  gl::ShaderProgram direct_light_one, direct_light, direct_light_sun;
+};
+
+class FramePrograms {
+ public:
+  /// RenderOptions::sun_disc (no sun program without it) and limb_darkening.
+  FramePrograms(bool sun_disc, bool limb_darkening);
+  /// SUN_DISC and LIMB_DARKENING, the sun's defines: of the resolve here and of
+  /// atmosphere_tile.comp (GpuAtmosphere), which draw the disc behind an atmosphere.
+  const std::vector<gl::ShaderDefine>& sun_defines() const { return sun_defines_; }
+  /// The programs of `frame`'s variant, compiled on first use. Needs a current GL context.
+  const FramePasses& passes_for(const FrameVariant& frame);
+
+ private:
+  std::map<std::string, FramePasses> passes_;  // by FrameVariant::key
+  std::vector<gl::ShaderDefine> sun_defines_;
+  bool sun_disc_ = true, limb_darkening_ = true;
+};
+
+}  // namespace zenith::render

@@ -1,0 +1,105 @@
+#include "render/frame/frame_state.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <utility>
+
+#include "render/lut/shader_model.h"
+
+namespace zenith::render {
+namespace {
+
+/// Work groups for `count` tiles: a 2D grid (x ≤ 65535), the shader folds it back.
+std::array<unsigned, 2> tile_groups(std::size_t count) {
+  const std::size_t x = std::min<std::size_t>(count, 65535);
+  return {static_cast<unsigned>(x), static_cast<unsigned>((count + x - 1) / x)};
+}
+
+}  // namespace
+
+std::array<float, 4> group_lanes(const std::vector<double>& values, std::size_t group) {
+  std::array<float, 4> out{0, 0, 0, 0};
+  for (std::size_t k = 0; k < kWavelengthLanes && group * kWavelengthLanes + k < values.size(); ++k)
+    out[k] = static_cast<float>(values[group * kWavelengthLanes + k]);
+  return out;
+}
+
+std::array<float, 4> group_lanes(const std::vector<std::array<double, 3>>& weights, std::size_t channel,
+                                 std::size_t group) {
+  std::array<float, 4> out{0, 0, 0, 0};
+  for (std::size_t k = 0; k < kWavelengthLanes && group * kWavelengthLanes + k < weights.size(); ++k)
+    out[k] = static_cast<float>(weights[group * kWavelengthLanes + k][channel]);
+  return out;
+}
+
+void FrameState::set_the_body(const gl::ShaderProgram& p, std::size_t b) const {
+  const GpuBody& g = bodies[b];
+  p.set_uniform("the_body.centre", g.centre);
+  p.set_uniform("the_body.shape", g.shape);
+  p.set_uniform("the_body.albedo_map", g.albedo_map);
+  p.set_uniform("the_body.world_to_body0", g.world_to_body[0]);
+  p.set_uniform("the_body.world_to_body1", g.world_to_body[1]);
+  p.set_uniform("the_body.world_to_body2", g.world_to_body[2]);
+}
+
+void FrameState::set_frame_uniforms(const gl::ShaderProgram& p) const {
+  p.set_uniform("body_count", static_cast<int>(scene.bodies.size()));
+  p.set_uniform("camera_to_world", camera_matrix);
+  p.set_uniform("sun_direction", std::array<float, 3>{static_cast<float>(sun.x), static_cast<float>(sun.y),
+                                                      static_cast<float>(sun.z)});
+  p.set_uniform("sun_angular_radius", static_cast<float>(sun_radius));
+  p.set_uniform("pixel_angle", static_cast<float>(pixel_angle));
+  p.set_uniform("projection_kind", static_cast<int>(gpu_projection.kind));
+  for (int k = 0; k < 4; ++k)
+    p.set_uniform(fmt::format("projection_params[{}]", k), gpu_projection.params[static_cast<std::size_t>(k)]);
+  p.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
+  p.set_uniform("sun_pixel_angle", static_cast<float>(sun_pixel_angle));
+  p.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
+  for (const auto& [name, k] : {std::pair{"world_ray_x", 0}, std::pair{"world_ray_y", 1}, std::pair{"world_ray_centre", 2}})
+    p.set_uniform(name, world_ray[static_cast<std::size_t>(k)]);
+}
+
+const gl::ShaderProgram& FrameState::prepare(const gl::ShaderProgram& p) {
+  if (frame_ready.insert(&p).second) {
+    set_frame_uniforms(p);
+    p.set_uniform("exposure", static_cast<float>(scene.camera.exposure));
+  }
+  if (band_ready.insert(&p).second) {
+    p.set_uniform("band_origin", band_origin);
+    p.set_uniform("band_size", band_size);
+    if (gpu_projection.kind == warp::ProjectionKind::ray_table) p.set_uniform("projection_table_origin", band_origin);
+  }
+  return p;
+}
+
+void FrameState::dispatch_tiles(const gl::ShaderProgram& p, TileList list, std::size_t tiles_per_group) {
+  prepare(p);
+  p.set_uniform("tile_offset", static_cast<int>(list.offset));
+  p.set_uniform("tile_count", static_cast<int>(list.count));
+  const auto grid = tile_groups((list.count + tiles_per_group - 1) / tiles_per_group);
+  p.dispatch(grid[0], grid[1]);
+}
+
+void FrameState::set_group_uniforms(const gl::ShaderProgram& p, std::size_t g) {
+  prepare(p);
+  p.set_uniform("first_group", g == 0 ? 1 : 0);
+  p.set_uniform("last_group", g + 1 == groups ? 1 : 0);
+  p.set_uniform("sun_irradiance", group_lanes(scene.sun.irradiance_W_m2_nm, g));
+  p.set_uniform("sun_centre_radiance", group_lanes(sun_centre, g));
+  p.set_uniform("limb_exponent", group_lanes(limb_exponent, g));
+  p.set_uniform("albedo_from_r", group_lanes(albedo_weights, 0, g));
+  p.set_uniform("albedo_from_g", group_lanes(albedo_weights, 1, g));
+  p.set_uniform("albedo_from_b", group_lanes(albedo_weights, 2, g));
+  p.set_uniform("rgb_from_lanes_r", group_lanes(rgb_weights, 0, g));
+  p.set_uniform("rgb_from_lanes_g", group_lanes(rgb_weights, 1, g));
+  p.set_uniform("rgb_from_lanes_b", group_lanes(rgb_weights, 2, g));
+}
+
+bool FrameState::touches_view(const AtmospherePass& pass) const {
+  return !cones->tiles_touching_sphere(pass.direction_camera, pass.distance_m, pass.top_radius_m, 0,
+                                       projection.height())
+              .empty();
+}
+
+}  // namespace zenith::render

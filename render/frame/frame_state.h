@@ -1,0 +1,91 @@
+#pragma once
+// One frame in progress in the renderer (render/renderer.cpp): its constants
+// in double on the CPU (render/frame/frame_constants.h), the projection's tile
+// cones, the bodies and atmosphere passes, the uniforms every pass shares,
+// the programs, and which programs have their frame and band uniforms set.
+#include <array>
+#include <cstddef>
+#include <set>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "render/frame/frame_constants.h"
+#include "render/frame/frame_programs.h"
+#include "render/frame/gpu_atmosphere.h"
+#include "render/frame/gpu_body.h"
+#include "render/frame/tile_classification.h"
+#include "render/frame/tile_culling.h"
+#include "render/gl/shader_program.h"
+#include "scene/scene.h"
+#include "warp/projection.h"
+
+namespace zenith::render {
+
+/// One atmosphere the frame draws: its body, where its shell is from the
+/// camera, its tables on the GPU.
+struct AtmospherePass {
+  int body = 0;
+  double distance_m = 0.0, top_radius_m = 0.0, power_m2 = 0.0;
+  glm::dvec3 direction_camera{0.0};
+  GpuAtmosphere* gpu = nullptr;
+  bool sky_view = false;  // the camera is inside: the sky-view variant where it can
+};
+
+/// One frame in progress: its constants in double on the CPU, the bodies and
+/// atmosphere passes, the uniforms every pass shares, the programs, and which
+/// programs have their frame and band uniforms set.
+struct FrameState : FrameConstants {
+  FrameState(const scene::Scene& s, const warp::Projection& p) : scene(s), projection(p) {}
+
+  const scene::Scene& scene;
+  const warp::Projection& projection;
+
+  // ---- the projection's tile cones (update_tile_cones)
+  const TileCones* cones = nullptr;
+  std::size_t tiles_total = 0;
+
+  // ---- bodies and atmospheres (prepare_bodies)
+  std::vector<GpuBody> bodies;
+  std::vector<AtmospherePass> passes;
+
+  // ---- uniforms shared by all passes and the programs (prepare_programs)
+  std::array<float, 9> camera_matrix{};
+  warp::GpuProjection gpu_projection;
+  std::array<std::array<float, 3>, 3> world_ray{};
+  FrameVariant variant;
+  const FramePasses* programs = nullptr;
+  double sun_reach = 0.0;  // where the sun can be drawn (set_direct_light_uniforms)
+
+  // Frame uniforms on first use in the frame, band uniforms on first use in the band.
+  std::set<const gl::ShaderProgram*> frame_ready, band_ready;
+  std::array<int, 2> band_origin{0, 0}, band_size{0, 0};
+
+  /// frame.glsl's the_body: body b's data as plain uniforms of a pass about it.
+  void set_the_body(const gl::ShaderProgram& p, std::size_t b) const;
+
+  /// The uniforms every pass of the frame shares: bodies, camera, sun, projection.
+  void set_frame_uniforms(const gl::ShaderProgram& p) const;
+
+  /// `p` with its frame uniforms (and exposure) set on its first use in the
+  /// frame and its band uniforms on its first use in the band.
+  const gl::ShaderProgram& prepare(const gl::ShaderProgram& p);
+
+  /// Dispatches `p` over the tiles of `list` (prepared first).
+  /// One work group per `tiles_per_group` tiles of `list` (the pass's TILES_PER_GROUP).
+  void dispatch_tiles(const gl::ShaderProgram& p, TileList list, std::size_t tiles_per_group = 1);
+
+  /// Per-group uniforms of the passes that turn a group's radiance into colour.
+  void set_group_uniforms(const gl::ShaderProgram& p, std::size_t g);
+
+  /// Whether an atmosphere's shell can touch any tile of the view.
+  bool touches_view(const AtmospherePass& pass) const;
+};
+
+/// Lanes 4g..4g+3 of per-wavelength values (missing lanes 0), for a uniform of group g.
+std::array<float, 4> group_lanes(const std::vector<double>& values, std::size_t group);
+/// Column `channel` of per-wavelength RGB weights, lanes of group g.
+std::array<float, 4> group_lanes(const std::vector<std::array<double, 3>>& weights, std::size_t channel,
+                                 std::size_t group);
+
+}  // namespace zenith::render

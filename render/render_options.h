@@ -1,0 +1,47 @@
+#pragma once
+// What a Renderer (render/renderer.h) is asked to draw and how: the options of
+// its constructor, and the atmosphere pass's features (which GpuAtmosphere,
+// render/frame/gpu_atmosphere.h, compiles its programs for). A plain header:
+// the commands, the cluster's nodes and the benchmarks fill these in without
+// seeing the renderer's GL side.
+#include <cstddef>
+
+#include "image/colour.h"
+
+namespace zenith::render {
+
+/// Which terms the atmosphere pass evaluates (each off drops code from the shader).
+struct AtmospherePassFeatures {
+  bool multiple_scattering = true;  ///< orders ≥ 2 (off: single scattering only)
+  bool eclipses = true;             ///< other bodies' shadows on the ground
+  bool fp64 = false;                ///< table mappings and interpolation in double (slower; see docs/rendering.md)
+};
+
+/// Whether an atmosphere whose shell holds the camera reads the in-scattering
+/// (and the ground's light) along view rays from a per-frame sky-view table
+/// (render/frame/sky_view_table.h, docs/rendering-performance.md) instead of the 4D tables.
+enum class SkyViewTableUse {
+  automatic,  ///< yes, in one-pass tiles of an atmosphere the camera is inside, where no other body inside the shell can be
+  off,        ///< never: the 4D tables for every pixel (the reference the table is tested against)
+};
+
+struct RenderOptions {
+  bool atmospheres = true;      ///< false: bodies lit by the sun only (the benchmarks' baseline)
+  bool sun_disc = true;         ///< draw the sun's disc
+  bool limb_darkening = true;   ///< darken the disc toward its limb (off: uniform disc)
+  AtmospherePassFeatures atmosphere;  ///< multiple scattering, eclipses, shader precision
+  image::ColourMapping colour = image::ColourMapping::automatic;
+  /// Pixels per band; the frame is split into bands of whole 16-pixel tile rows.
+  std::size_t max_band_pixels = std::size_t{4} << 20;
+  /// Tiles with no atmosphere or with one are drawn in one pass straight to
+  /// the output (direct_light.comp, atmosphere_tile.comp). false: every tile
+  /// goes through the G-buffer, atmosphere and resolve passes (the path the
+  /// one-pass tiles are tested against).
+  bool one_pass_tiles = true;
+  SkyViewTableUse sky_view_table = SkyViewTableUse::automatic;
+  /// Time every pass (GL_TIME_ELAPSED queries; CPU steps by the wall clock) into
+  /// FrameStats::pass_ms. Serialises the frame: for profiling, not for frame times.
+  bool time_passes = false;
+};
+
+}  // namespace zenith::render

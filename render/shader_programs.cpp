@@ -1,0 +1,35 @@
+#include "render/shader_programs.h"
+
+#include <vector>
+
+#include "render/shader_bindings.h"
+
+namespace zenith::render {
+namespace {
+
+gl::ShaderCode code_from(const ExpandedShader& e) { return gl::ShaderCode{e.name, e.text, e.files}; }
+
+/// The binding points and constants shared with C++ (render/shader_bindings.h), then `defines`.
+std::vector<gl::ShaderDefine> with_interface_defines(std::span<const gl::ShaderDefine> defines) {
+  std::vector<gl::ShaderDefine> all = shader_interface_defines();
+  all.insert(all.end(), defines.begin(), defines.end());
+  return all;
+}
+
+}  // namespace
+
+gl::ShaderProgram compute_program(const ExpandedShader& shader, std::span<const gl::ShaderDefine> defines) {
+  return gl::ShaderProgram::compute(code_from(shader), with_interface_defines(defines));
+}
+
+gl::ShaderProgram load_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines) {
+  return compute_program(load_shader(name), defines);
+}
+
+gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::string_view fragment_name,
+                                        std::span<const gl::ShaderDefine> defines) {
+  return gl::ShaderProgram::graphics(code_from(load_shader(vertex_name)), code_from(load_shader(fragment_name)),
+                                     with_interface_defines(defines));
+}
+
+}  // namespace zenith::render

@@ -1,0 +1,30 @@
+#pragma once
+// The engine's program factory: a shader from the embedded shaders/ files,
+// includes expanded (render/shader_source.h), compiled by the generic GL
+// wrapper (render/gl/shader_program.h) with the binding points and constants
+// the C++ side shares with every shader (render/shader_bindings.h:
+// shader_interface_defines()) defined before the caller's own defines.
+//
+// The wrapper itself knows no engine constant: it takes GLSL text and plain
+// #defines. Every program of the renderer, the GPU precompute and the window
+// path is made here; the tests' own shaders (tests/shaders/) come through the
+// overloads taking an ExpandedShader.
+#include <span>
+#include <string_view>
+
+#include "render/gl/shader_program.h"
+#include "render/shader_source.h"
+
+namespace zenith::render {
+
+/// A compute program from the embedded shader `name` ("render/gbuffer.comp").
+gl::ShaderProgram load_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines = {});
+/// A vertex + fragment program from two embedded shaders.
+gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::string_view fragment_name,
+                                        std::span<const gl::ShaderDefine> defines = {});
+/// A compute program from an already expanded shader (one resolved among
+/// other files than the embedded ones, e.g. the tests' shaders), with the same
+/// shared defines.
+gl::ShaderProgram compute_program(const ExpandedShader& shader, std::span<const gl::ShaderDefine> defines = {});
+
+}  // namespace zenith::render

@@ -1,0 +1,42 @@
+// Naming an atmosphere and a table size set (atmosphere/named_inputs.h), as the
+// commands' --atmosphere and --tables and the cluster config's "table_sizes" do.
+#include "atmosphere/named_inputs.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "core/json_reader.h"
+
+namespace zenith::atmosphere {
+namespace {
+
+TEST(NamedInputs, TableSizeSetsByName) {
+  EXPECT_EQ(table_sizes_by_name("paper"), lut::TableSizes{});
+  EXPECT_EQ(table_sizes_by_name("small"), lut::TableSizes::small());
+  const lut::TableSizes large = table_sizes_by_name("large");
+  EXPECT_EQ(large.describe(), "T512x128 E128x32 S64x256x64x16");
+  try {
+    (void)table_sizes_by_name("huge");
+    FAIL() << "an unknown name must throw";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("'huge'"), std::string::npos) << message;
+    EXPECT_NE(message.find("paper, small or large"), std::string::npos) << message;
+  }
+}
+
+TEST(NamedInputs, AnAtmosphereByPresetNameOrByFile) {
+  const LoadedAtmosphere preset = load_atmosphere_argument("mars");
+  const LoadedAtmosphere file = load_atmosphere_argument(std::string(ZENITH_SOURCE_DIR) + "/configs/atmospheres/mars.json");
+  EXPECT_EQ(preset.model.ground_radius_m, file.model.ground_radius_m);
+  EXPECT_EQ(preset.model.rayleigh_scattering_m1, file.model.rayleigh_scattering_m1);
+  EXPECT_NE(preset.model.ground_radius_m, load_atmosphere_argument("earth-standard").model.ground_radius_m);
+  // A value that looks like a file is read as one: no preset lookup for "mars.json".
+  EXPECT_THROW((void)load_atmosphere_argument("no-such-dir/mars.json"), ConfigError);
+  EXPECT_THROW((void)load_atmosphere_argument("no-such-preset"), ConfigError);
+}
+
+}  // namespace
+}  // namespace zenith::atmosphere
