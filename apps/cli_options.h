@@ -2,8 +2,9 @@
 // Command-line options shared by several commands: the images they write
 // (`zenith render`, `zenith show render`: EXR pixel type, PNG tone mapping,
 // spectral-to-RGB mapping; docs/colour.md), the lookup tables they use
-// (sizes, orders, cache, where missing ones are computed; docs/lookup-tables.md)
-// and the GL device they render on.
+// (sizes, orders, cache, where missing ones are computed; docs/lookup-tables.md),
+// the view without a viewport config and the GL device they render on.
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -18,6 +19,18 @@ inline void add_image_options(CLI::App* cmd, std::string& exr_type, std::string&
       ->check(CLI::IsMember({"exponential", "clamp"}));
   cmd->add_option("--colour", colour, "Spectral to RGB: auto, direct, cie1931")
       ->check(CLI::IsMember({"auto", "direct", "cie1931"}));
+}
+
+/// --projection planar|fisheye, --fov, --tilt and --size WIDTHxHEIGHT: a view
+/// without a viewport config; the help of --projection and --size says the
+/// command's defaults.
+inline void add_view_options(CLI::App* cmd, std::string& projection, const std::string& projection_help,
+                             std::optional<double>& fov_deg, std::optional<double>& tilt_deg, std::string& size,
+                             const std::string& size_help) {
+  cmd->add_option("--projection", projection, projection_help)->check(CLI::IsMember({"planar", "fisheye"}));
+  cmd->add_option("--fov", fov_deg, "Field of view [deg]: planar horizontal (default 60), fisheye (default 180)");
+  cmd->add_option("--tilt", tilt_deg, "Fisheye: axis tilted from the zenith toward forward [deg]");
+  cmd->add_option("--size", size, size_help);
 }
 
 /// --tables paper|small|large, --orders N, --cache DIR.

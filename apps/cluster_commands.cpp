@@ -19,19 +19,19 @@
 #include <thread>
 #include <vector>
 
-#include "apps/child_process.h"
+#include "cluster/launcher/child_process.h"
 #include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "apps/default_configs.h"
-#include "apps/restart_limit.h"
+#include "cluster/launcher/restart_limit.h"
 #include "atmosphere/lut/table_cache.h"
-#include "cluster/cluster_config.h"
-#include "cluster/handshake.h"
-#include "cluster/master.h"
-#include "cluster/node.h"
-#include "cluster/standby.h"
+#include "cluster/link/cluster_config.h"
+#include "cluster/protocol/handshake.h"
+#include "cluster/master/master.h"
+#include "cluster/node/node.h"
+#include "cluster/standby/standby.h"
 #include "show/show.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "image/image_io.h"
 #include "image/image_writer.h"
 #include "warp/dome_tiles.h"
@@ -42,7 +42,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-using config::cat;
+using core::cat;
 
 /// --switch-atmosphere "FRAME:BODY:PRESET_OR_FILE"; throws std::invalid_argument naming the value.
 cluster::AtmosphereSwitch parse_atmosphere_switch(const std::string& text) {

@@ -8,7 +8,7 @@
 #include <system_error>
 
 #include "core/embedded_file.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "atmosphere/lut/table_cache.h"
 #include "core/sha256.h"
 
@@ -20,7 +20,7 @@ std::span<const zenith::EmbeddedFile> embedded_files();  // generated (apps/CMak
 namespace {
 
 namespace fs = std::filesystem;
-using config::cat;
+using core::cat;
 
 /// Writes `contents` to `path` unless it holds them already (temporary file + rename).
 void write_if_different(const fs::path& path, std::string_view contents) {

@@ -1,15 +1,15 @@
 // `zenith export-calibration`: the warp, blend mask and black-level map of the
 // outputs of a viewport config, as files for projectors and media servers that
-// warp and blend themselves (PFM, MPCDI, 16-bit PNG; apps/calibration_export.h,
+// warp and blend themselves (PFM, MPCDI, 16-bit PNG; warp/calibration_export.h,
 // docs/warp-meshes.md "Exporting to warp engines and media servers").
 #include <fmt/format.h>
 
 #include <memory>
 #include <string>
 
-#include "apps/calibration_export.h"
+#include "warp/calibration_export.h"
 #include "apps/commands.h"
-#include "apps/output_rendering.h"
+#include "offline/output_rendering.h"
 
 namespace zenith::app {
 

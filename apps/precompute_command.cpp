@@ -4,7 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/commands.h"
-#include "apps/output_rendering.h"
+#include "offline/output_rendering.h"
 #include "render/lut/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"

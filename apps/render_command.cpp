@@ -23,7 +23,7 @@
 
 #include "apps/commands.h"
 #include "apps/cli_options.h"
-#include "apps/output_rendering.h"
+#include "offline/output_rendering.h"
 #include "core/progress_bar.h"
 #include "render/lut/table_provider.h"
 #include "render/gl/egl_context.h"
@@ -88,7 +88,7 @@ std::string substitute_name(std::string text, const std::string& name) {
 }
 
 /// Renders one frame into every file of `outputs` (render_to_files in
-/// apps/output_rendering.h) with a progress bar over the rows.
+/// offline/output_rendering.h) with a progress bar over the rows.
 void render_to_files(render::Renderer& renderer, const scene::Scene& scene, const warp::Projection& projection,
                      const std::vector<std::string>& outputs, const RenderArgs& a,
                      const image::ImageAttributes& attributes, const warp::BlendMask* blend, double black_level) {
@@ -407,11 +407,8 @@ void register_render_command(CLI::App& app) {
                   "Render output NAME of a viewport config (CONFIG.json#NAME: its projection, warp, size, blend and "
                   "black level), or every output (CONFIG.json, with --out DIR/ or --out out/{name}.exr); "
                   "docs/viewports.md");
-  cmd->add_option("--projection", a->projection, "planar or fisheye (default: fisheye, a dome master)")
-      ->check(CLI::IsMember({"planar", "fisheye"}));
-  cmd->add_option("--fov", a->fov_deg, "Field of view [deg]: planar horizontal (default 60), fisheye (default 180)");
-  cmd->add_option("--tilt", a->tilt_deg, "Fisheye: axis tilted from the zenith toward forward [deg]");
-  cmd->add_option("--size", a->size, "WIDTHxHEIGHT in pixels (default 1024x1024)");
+  add_view_options(cmd, a->projection, "planar or fisheye (default: fisheye, a dome master)", a->fov_deg, a->tilt_deg,
+                   a->size, "WIDTHxHEIGHT in pixels (default 1024x1024)");
   cmd->add_option("--out", a->outputs,
                   "Output FILE.exr and/or FILE.png (repeatable; with --window optional: the last frame shown)");
   add_image_options(cmd, a->exr_type, a->tone, a->colour);

@@ -16,16 +16,17 @@
 
 #include "apps/commands.h"
 #include "apps/cli_options.h"
-#include "apps/offline_cluster_renderer.h"
-#include "apps/offline_frame_renderer.h"
-#include "apps/offline_manifest.h"
-#include "apps/offline_render.h"
-#include "apps/output_rendering.h"
+#include "offline/offline_cluster_renderer.h"
+#include "offline/offline_frame_renderer.h"
+#include "offline/offline_manifest.h"
+#include "offline/offline_render.h"
+#include "offline/output_rendering.h"
 #include "render/lut/table_provider.h"
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "atmosphere/lut/table_cache.h"
-#include "cluster/cluster_config.h"
-#include "cluster/state_digest.h"
+#include "cluster/link/cluster_config.h"
+#include "cluster/protocol/state_digest.h"
 #include "render/render_flags.h"
 #include "show/show.h"
 #include "show/table_plan.h"
@@ -35,7 +36,7 @@
 namespace zenith::app {
 namespace {
 
-using config::cat;
+using core::cat;
 
 /// The options `show render` and `show plan` share.
 struct TableArgs {
@@ -300,11 +301,8 @@ void register_show_render(CLI::App& show_command) {
                   "Render on the nodes of this cluster config (all on this machine; its viewports, tables and format)");
   cmd->add_option("--viewport", a->viewport,
                   "Render output NAME of a viewport config (CONFIG.json#NAME), or every output (CONFIG.json)");
-  cmd->add_option("--projection", a->projection, "fisheye or planar (with --size), instead of --viewport")
-      ->check(CLI::IsMember({"planar", "fisheye"}));
-  cmd->add_option("--fov", a->fov_deg, "Field of view [deg]: planar horizontal (default 60), fisheye (default 180)");
-  cmd->add_option("--tilt", a->tilt_deg, "Fisheye: axis tilted from the zenith toward forward [deg]");
-  cmd->add_option("--size", a->size, "WIDTHxHEIGHT in pixels (with --projection)");
+  add_view_options(cmd, a->projection, "fisheye or planar (with --size), instead of --viewport", a->fov_deg,
+                   a->tilt_deg, a->size, "WIDTHxHEIGHT in pixels (with --projection)");
   cmd->add_option("--fps", a->fps, "Frame rate [Hz] in (0, 1000] (default: the show's)");
   cmd->add_option("--from", a->from, "First frame to render (default 0)");
   cmd->add_option("--to", a->to, "Last frame to render, inclusive (default: the show's last)");

@@ -29,11 +29,12 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "apps/output_rendering.h"
+#include "offline/output_rendering.h"
 #include "render/lut/table_provider.h"
 #include "atmosphere/cie_sky.h"
 #include "atmosphere/constants.h"
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/sky_sampling.h"
 #include "core/units.h"
@@ -42,7 +43,7 @@ namespace zenith::app {
 namespace {
 
 using atmosphere::CieSkyType;
-using config::cat;
+using core::cat;
 
 using core::kDeg;
 constexpr double kObserverAltitude_m = 1.5;  ///< a person standing on the ground

@@ -28,7 +28,6 @@
 
 #include "apps/cli_options.h"
 #include "apps/commands.h"
-#include "apps/output_rendering.h"
 #include "astro/night_sky_floor.h"
 #include "astro/refraction.h"
 #include "astro/sky_positions.h"
@@ -40,13 +39,15 @@
 #include "atmosphere/reference/optical_depth.h"
 #include "atmosphere/reference_data.h"
 #include "core/json_reader.h"
+#include "core/strings.h"
+#include "offline/output_rendering.h"
 #include "core/units.h"
 #include "render/lut/table_provider.h"
 
 namespace zenith::app {
 namespace {
 
-using config::cat;
+using core::cat;
 using atmosphere::Vec3;
 using core::kDeg;
 constexpr double kArcsec = kDeg / 3600.0;

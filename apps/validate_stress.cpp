@@ -5,7 +5,7 @@
 // scattering checked against the exact quadrature per region) and the GPU path
 // (rendered frames). Writes stress_regions.csv and stress_gpu.csv, prints a
 // table, and fails (exit 1) on any NaN, Inf, negative value or transmittance
-// above 1, or on a --bound exceeded. The logic lives in apps/stress/.
+// above 1, or on a --bound exceeded. The logic lives in stress/.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -23,13 +23,13 @@
 #include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "core/progress_bar.h"
-#include "apps/stress/cpu_stress.h"
-#include "apps/stress/gpu_stress.h"
-#include "apps/stress/random_atmosphere.h"
-#include "apps/stress/reference_comparison.h"
-#include "apps/stress/stress_report.h"
+#include "stress/cpu_stress.h"
+#include "stress/gpu_stress.h"
+#include "stress/random_atmosphere.h"
+#include "stress/reference_comparison.h"
+#include "stress/stress_report.h"
 #include "render/lut/table_provider.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/parallel_for.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/named_inputs.h"
@@ -63,7 +63,7 @@ using core::seconds_since;
 void write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream f(path);
   f << text;
-  if (!f) throw std::runtime_error(config::cat("cannot write ", path.string()));
+  if (!f) throw std::runtime_error(core::cat("cannot write ", path.string()));
 }
 
 /// The measured value a --bound names: "<region>.median|p95|max" (single-scattering
@@ -86,7 +86,7 @@ double bounded_value(const std::string& name, const stress::RegionTable& all,
       if (stat == "p95") return e.quantile(0.95);
       if (stat == "max") return e.max();
     }
-  throw std::invalid_argument(config::cat("--bound ", name, ": unknown name (use <region>.median|p95|max, horizon_jump, "
+  throw std::invalid_argument(core::cat("--bound ", name, ": unknown name (use <region>.median|p95|max, horizon_jump, "
                                           "gpu_row_jump, gpu_cpu_difference; regions: space, night, twilight, "
                                           "horizon, ground, sky)"));
 }
@@ -97,11 +97,11 @@ std::vector<std::string> check_bounds(const std::vector<std::string>& bounds, co
   std::vector<std::string> failed;
   for (const std::string& b : bounds) {
     const std::size_t eq = b.find('=');
-    if (eq == std::string::npos) throw std::invalid_argument(config::cat("--bound ", b, ": expected NAME=VALUE"));
+    if (eq == std::string::npos) throw std::invalid_argument(core::cat("--bound ", b, ": expected NAME=VALUE"));
     const std::string name = b.substr(0, eq);
     const double limit = std::stod(b.substr(eq + 1));
     const double value = bounded_value(name, all, frames);
-    if (!(value <= limit)) failed.push_back(config::cat(name, " = ", value, " exceeds its bound ", limit));
+    if (!(value <= limit)) failed.push_back(core::cat(name, " = ", value, " exceeds its bound ", limit));
   }
   return failed;
 }
@@ -191,7 +191,7 @@ void run_stress(const StressArgs& a) {
       options.colour = image::ColourMapping::direct;
       render::Renderer renderer(options, [&](const atmosphere::AtmosphereModel& model) {
         const auto it = by_hash.find(atmosphere::lookup_table_hash(model));
-        if (it == by_hash.end()) throw std::runtime_error(config::cat("no tables for ", model.name));
+        if (it == by_hash.end()) throw std::runtime_error(core::cat("no tables for ", model.name));
         return *it->second;
       });
       core::ProgressBar bar("stress (GPU)");
@@ -220,9 +220,9 @@ void run_stress(const StressArgs& a) {
   for (const auto& f : frames) gpu_bad += f.bad();
   const std::vector<std::string> failed = check_bounds(a.bounds, stress::all_models(results), frames);
   for (const std::string& f : failed) fmt::print("BOUND EXCEEDED: {}\n", f);
-  if (!failed.empty()) throw std::runtime_error(config::cat(failed.size(), " bound(s) exceeded: ", failed.front()));
+  if (!failed.empty()) throw std::runtime_error(core::cat(failed.size(), " bound(s) exceeded: ", failed.front()));
   if (t.health.bad() > 0 || gpu_bad > 0)
-    throw std::runtime_error(config::cat("numerical stability: ", t.health.bad(), " bad CPU values (NaN ", t.health.nan,
+    throw std::runtime_error(core::cat("numerical stability: ", t.health.bad(), " bad CPU values (NaN ", t.health.nan,
                                          ", Inf ", t.health.inf, ", negative ", t.health.negative,
                                          ", transmittance > 1 ", t.health.above_one, "), ", gpu_bad,
                                          " bad GPU pixel values"));

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "atmosphere/constants.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "atmosphere/reference_data.h"
 
 namespace zenith::atmosphere {
@@ -35,7 +35,7 @@ double parse_number(const std::string& cell, int line_no) {
     used = 0;
   }
   if (used == 0 || used != cell.size() || !std::isfinite(v))
-    throw std::invalid_argument(config::cat("CIE sky types, line ", line_no, ": '", cell, "' is not a number"));
+    throw std::invalid_argument(core::cat("CIE sky types, line ", line_no, ": '", cell, "' is not a number"));
   return v;
 }
 
@@ -55,16 +55,16 @@ std::vector<CieSkyType> parse_cie_sky_types(std::string_view csv_text) {
     if (!header_seen) {
       if (cells != expected)
         throw std::invalid_argument(
-            config::cat("CIE sky types, line ", line_no, ": expected the header 'type,a,b,c,d,e,description'"));
+            core::cat("CIE sky types, line ", line_no, ": expected the header 'type,a,b,c,d,e,description'"));
       header_seen = true;
       continue;
     }
     if (cells.size() < 6)
-      throw std::invalid_argument(config::cat("CIE sky types, line ", line_no, ": expected 7 columns"));
+      throw std::invalid_argument(core::cat("CIE sky types, line ", line_no, ": expected 7 columns"));
     CieSkyType t;
     const double number = parse_number(cells[0], line_no);
     if (number != std::floor(number) || number < 1.0 || number > 99.0)
-      throw std::invalid_argument(config::cat("CIE sky types, line ", line_no, ": bad type number '", cells[0], "'"));
+      throw std::invalid_argument(core::cat("CIE sky types, line ", line_no, ": bad type number '", cells[0], "'"));
     t.number = static_cast<int>(number);
     t.a = parse_number(cells[1], line_no);
     t.b = parse_number(cells[2], line_no);
@@ -86,7 +86,7 @@ std::vector<CieSkyType> cie_general_sky_types() {
 CieSkyType cie_general_sky_type(int number) {
   for (CieSkyType& t : cie_general_sky_types())
     if (t.number == number) return t;
-  throw std::out_of_range(config::cat("no CIE standard general sky type ", number, " (the standard defines 1..15)"));
+  throw std::out_of_range(core::cat("no CIE standard general sky type ", number, " (the standard defines 1..15)"));
 }
 
 // (V2) φ(Z) = 1 + a·exp(b / cos Z); at the horizon b / cos Z → −∞ (b < 0), so φ → 1.

@@ -546,11 +546,7 @@ LoadedAtmosphere resolve_atmosphere(const nlohmann::json& parameters, const std:
 }
 
 LoadedAtmosphere load_atmosphere_file(const std::string& path, const LoadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path, "", "cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return resolve_atmosphere(parse_json(text.str(), path), path, options);
+  return resolve_atmosphere(read_json_file(path), path, options);
 }
 
 std::vector<std::string> preset_names() {

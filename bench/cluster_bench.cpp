@@ -72,6 +72,7 @@
 #include "bench/command_line.h"
 #include "bench/tiny_cluster.h"
 #include "core/process.h"
+#include "core/files.h"
 
 namespace {
 
@@ -99,44 +100,33 @@ table broadcast time per size (docs/cluster-performance.md)
   --keep                   keep the run folders (logs, frames)
 )";
 
-struct Options {
-  fs::path zenith = ZENITH_BINARY;
+struct Options : zenith::bench::TinyRunOptions {
   std::vector<int> nodes = {1, 2, 4, 8};
   int frames = 300;
-  int size_px = 16;
   std::string frame_tables = "small";
   std::vector<std::string> tables = {"small", "paper", "large"};
   std::vector<int> broadcast_nodes = {1, 4};
   int orders = 1;
-  std::optional<fs::path> cache;
-  fs::path work = fs::temp_directory_path() / "zenith-cluster-bench";
   fs::path csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/cluster_bench.csv";
-  int timeout_s = 600;
-  bool keep = false;
 };
 
 Options parse_options(int argc, char** argv) {
   Options o;
+  o.zenith = ZENITH_BINARY;
+  o.work = fs::temp_directory_path() / "zenith-cluster-bench";
+  o.timeout_s = 600;
   for (zenith::bench::CommandLine args(argc, argv); args.next();) {
     const std::string& a = args.option();
-    if (a == "--help" || a == "-h") {
-      fmt::print("{}", kUsage);
-      std::exit(0);
-    } else if (a == "--zenith") o.zenith = args.value();
-    else if (a == "--nodes") o.nodes = zenith::bench::split_int_list(args.value());
+    if (o.read(args, kUsage)) continue;
+    if (a == "--nodes") o.nodes = zenith::bench::split_int_list(args.value());
     else if (a == "--frames") o.frames = std::stoi(args.value());
-    else if (a == "--size") o.size_px = std::stoi(args.value());
     else if (a == "--frame-tables") o.frame_tables = args.value();
     else if (a == "--tables") {
       o.tables = zenith::bench::split_list(args.value());
       if (o.tables == std::vector<std::string>{"none"}) o.tables.clear();
     } else if (a == "--broadcast-nodes") o.broadcast_nodes = zenith::bench::split_int_list(args.value());
     else if (a == "--orders") o.orders = std::stoi(args.value());
-    else if (a == "--cache") o.cache = fs::path(args.value());
-    else if (a == "--work") o.work = args.value();
     else if (a == "--csv") o.csv = args.value();
-    else if (a == "--timeout-s") o.timeout_s = std::stoi(args.value());
-    else if (a == "--keep") o.keep = true;
     else throw std::invalid_argument("unknown option " + a);
   }
   if (o.frames < 3) throw std::invalid_argument("--frames must be at least 3");
@@ -209,12 +199,7 @@ std::optional<double> number_after(const std::string& text, const std::string& k
   return std::strtod(text.c_str() + at + key.size(), nullptr);
 }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using zenith::core::read_text;
 
 // ---- one run --------------------------------------------------------------------
 

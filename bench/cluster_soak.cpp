@@ -61,6 +61,8 @@
 #include "bench/command_line.h"
 #include "bench/tiny_cluster.h"
 #include "core/process.h"
+#include "core/files.h"
+#include "core/strings.h"
 
 namespace {
 
@@ -89,34 +91,27 @@ stop/continue, garbage connections); frames per node, gaps, rejoins, memory (doc
   --keep                        keep the frames (the logs are always kept)
 )";
 
-struct Options {
-  fs::path zenith = ZENITH_BINARY;
+struct Options : zenith::bench::TinyRunOptions {
   int frames = 10000;
   int nodes = 3;
-  int size_px = 16;
   double fps = 100.0;
   double fault_min_s = 1.5, fault_max_s = 4.0;
   double long_stop_probability = 0.15;
   double quiet_fraction = 0.1;
   double max_rss_growth_mib = 32.0;
   unsigned seed = 17;
-  std::optional<fs::path> cache;
-  fs::path work = fs::temp_directory_path() / "zenith-cluster-soak";
-  int timeout_s = 3600;
-  bool keep = false;
 };
 
 Options parse_options(int argc, char** argv) {
   Options o;
+  o.zenith = ZENITH_BINARY;
+  o.work = fs::temp_directory_path() / "zenith-cluster-soak";
+  o.timeout_s = 3600;
   for (zenith::bench::CommandLine args(argc, argv); args.next();) {
     const std::string& a = args.option();
-    if (a == "--help" || a == "-h") {
-      fmt::print("{}", kUsage);
-      std::exit(0);
-    } else if (a == "--zenith") o.zenith = args.value();
-    else if (a == "--frames") o.frames = std::stoi(args.value());
+    if (o.read(args, kUsage)) continue;
+    if (a == "--frames") o.frames = std::stoi(args.value());
     else if (a == "--nodes") o.nodes = std::stoi(args.value());
-    else if (a == "--size") o.size_px = std::stoi(args.value());
     else if (a == "--fps") o.fps = std::stod(args.value());
     else if (a == "--fault-interval-s") {
       const std::string v = args.value();
@@ -128,10 +123,6 @@ Options parse_options(int argc, char** argv) {
     else if (a == "--quiet-fraction") o.quiet_fraction = std::stod(args.value());
     else if (a == "--max-rss-growth-mib") o.max_rss_growth_mib = std::stod(args.value());
     else if (a == "--seed") o.seed = static_cast<unsigned>(std::stoul(args.value()));
-    else if (a == "--cache") o.cache = fs::path(args.value());
-    else if (a == "--work") o.work = args.value();
-    else if (a == "--timeout-s") o.timeout_s = std::stoi(args.value());
-    else if (a == "--keep") o.keep = true;
     else throw std::invalid_argument("unknown option " + a);
   }
   if (o.frames < 10) throw std::invalid_argument("--frames must be at least 10");
@@ -148,18 +139,8 @@ Options parse_options(int argc, char** argv) {
 
 using zenith::bench::tiny_node_name;
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::size_t count_of(const std::string& text, const std::string& needle) {
-  std::size_t n = 0;
-  for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
-  return n;
-}
+using zenith::core::count_of;
+using zenith::core::read_text;
 
 /// VmRSS of `pid` in MiB; nullopt when it cannot be read (the process is gone).
 std::optional<double> rss_mib(pid_t pid) {
@@ -202,20 +183,6 @@ std::map<std::uint64_t, std::string> presented(const fs::path& log) {
 }
 
 // ---- garbage connections ------------------------------------------------------
-
-int connect_to(int port) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  if (fd < 0) return -1;
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    close(fd);
-    return -1;
-  }
-  return fd;
-}
 
 /// An open garbage connection, closed at `close_at`.
 struct Garbage {
@@ -353,7 +320,7 @@ int run(const Options& opt) {
           ++(long_stop ? long_stops : short_stops);
         }
       } else {
-        const int fd = connect_to(port);
+        const int fd = zenith::core::connect_loopback(port);
         if (fd >= 0) {
           ++garbage_count;
           const double kind = uniform(0.0, 3.0);

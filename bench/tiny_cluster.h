@@ -3,10 +3,44 @@
 // (bench/cluster_bench.cpp, bench/cluster_soak.cpp): N fisheye outputs of
 // PX×PX ("o0", "o1", …), node "n<i>" rendering output "o<i>", the
 // earth-sunset scene, all nodes on 127.0.0.1.
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 
+#include "bench/command_line.h"
+
 namespace zenith::bench {
+
+/// The options every run of a tiny cluster takes (cluster_bench, cluster_soak);
+/// each program's Options derive from it and set the defaults that differ.
+struct TinyRunOptions {
+  std::filesystem::path zenith;                ///< --zenith: the zenith binary
+  int size_px = 16;                            ///< --size PX: each output is PX×PX
+  std::optional<std::filesystem::path> cache;  ///< --cache DIR: the table cache
+  std::filesystem::path work;                  ///< --work DIR: the run folder
+  int timeout_s = 600;                         ///< --timeout-s S: give up after this long
+  bool keep = false;                           ///< --keep: keep the run folders
+
+  /// Reads the current option of `args` when it is one of the above; --help
+  /// (-h) prints `usage` and exits. True when the option was one of these.
+  bool read(CommandLine& args, const char* usage) {
+    const std::string& a = args.option();
+    if (a == "--help" || a == "-h") {
+      std::fputs(usage, stdout);
+      std::exit(0);
+    }
+    if (a == "--zenith") zenith = args.value();
+    else if (a == "--size") size_px = std::stoi(args.value());
+    else if (a == "--cache") cache = std::filesystem::path(args.value());
+    else if (a == "--work") work = args.value();
+    else if (a == "--timeout-s") timeout_s = std::stoi(args.value());
+    else if (a == "--keep") keep = true;
+    else return false;
+    return true;
+  }
+};
 
 struct TinyCluster {
   std::string name;                  ///< the cluster's name

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace zenith {
@@ -20,6 +21,14 @@ nlohmann::json parse_json(const std::string& text, const std::string& file) {
   } catch (const nlohmann::json::exception& e) {  // syntax errors and number overflow
     throw ConfigError(file, "", std::string("not valid JSON: ") + e.what());
   }
+}
+
+nlohmann::json read_json_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path.string(), "", "cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_json(text.str(), path.string());
 }
 
 JsonReader::JsonReader(const nlohmann::json& object, std::string file, std::string path)

@@ -8,15 +8,17 @@
 //   configs/atmospheres/mars.json: /aerosol/scale_height_m = -5: must be in [1, 1e+06] m
 // Unknown keys are errors too (a typo must not silently fall back to a default).
 #include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
-#include <sstream>
 #include <initializer_list>
 #include <vector>
+
+#include "core/strings.h"
 
 namespace zenith {
 
@@ -32,6 +34,10 @@ class ConfigError : public std::runtime_error {
 
 /// Parses `text` as JSON, turning syntax errors into a ConfigError with the byte offset.
 nlohmann::json parse_json(const std::string& text, const std::string& file);
+/// Reads and parses a JSON file (every config loader's first step): a
+/// ConfigError "<path>: (top level): cannot open file" when it cannot be
+/// opened, parse_json's for bad JSON.
+nlohmann::json read_json_file(const std::filesystem::path& path);
 
 /// Reads one JSON object; call finish() when done to reject keys nobody read.
 class JsonReader {
@@ -76,13 +82,8 @@ class JsonReader {
 /// Helpers the config loaders share (scenes, viewports, clusters).
 namespace config {
 
-/// Concatenation through a stream (GCC 12 warns falsely on chains of std::string +).
-template <typename... T>
-std::string cat(const T&... parts) {
-  std::ostringstream s;
-  (s << ... << parts);
-  return s.str();
-}
+/// core::cat (core/strings.h) under its old name, for code not yet moved to it.
+using core::cat;
 
 /// A JSON value for a message, shortened to 80 characters when long (an inline object).
 std::string brief(const nlohmann::json& value);

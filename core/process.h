@@ -1,7 +1,7 @@
 #pragma once
 // Child processes: start a program with its output in a log file, wait for it
 // with a deadline, find a free loopback port for it. Used by the local cluster
-// launcher (apps/child_process.h), the cluster benchmark and soak and the
+// launcher (cluster/launcher/child_process.h), the cluster benchmark and soak and the
 // multi-process tests.
 #include <sys/types.h>
 
@@ -30,6 +30,11 @@ std::optional<int> wait_for_exit(pid_t pid, std::chrono::milliseconds timeout);
 /// Whether a child server could listen on 127.0.0.1:`port` now (a bind with
 /// SO_REUSEADDR, as the cluster's master makes).
 bool loopback_port_free(int port);
+/// A TCP connection to 127.0.0.1:`port` (blocking): its file descriptor, or
+/// −1 when no socket can be made or nobody accepts. The caller closes it.
+/// For clients that play a peer byte by byte (the cluster's hostile-client
+/// tests, the soak's garbage connections).
+int connect_loopback(int port);
 /// For test and benchmark clusters that share the machine with other runs:
 /// the first port from `first` on, wrapping within [20000, 50000), that is
 /// free together with the `span` − 1 ports after it; `first` when none is.

@@ -3,7 +3,7 @@
 // exposure, the show time and which lookup-table version each atmosphere uses.
 // Shows evaluate into it (show/show.h), renderers apply it to their copy of the
 // scene, recordings store it (show/recording_json.h) and the cluster protocol
-// sends it as the FrameState message (cluster/messages.h), byte for byte as
+// sends it as the FrameState message (cluster/protocol/messages.h), byte for byte as
 // documented in docs/protocol.md. The static parts of a scene (bodies, albedo,
 // the atmospheres' parameters) are in scene::Scene.
 #include <cstddef>

@@ -14,6 +14,7 @@
 #include <glm/vector_relational.hpp>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/spectrum.h"
 #include "scene/albedo_map.h"
@@ -25,7 +26,7 @@ namespace zenith::scene {
 namespace {
 
 using config::brief;
-using config::cat;
+using core::cat;
 
 using glm::dvec3;
 using nlohmann::json;
@@ -744,11 +745,7 @@ Sun parse_sun(const json& sun, const Scene& scene, const CameraPlacement& camera
 }
 
 Scene load_scene(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path.string(), "", "cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_scene(parse_json(text.str(), path.string()), path.string(), path.parent_path());
+  return parse_scene(read_json_file(path), path.string(), path.parent_path());
 }
 
 }  // namespace zenith::scene

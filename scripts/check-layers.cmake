@@ -6,12 +6,20 @@
 #                parallel loops, SHA-256, units, timing, progress bars)
 #   image/       core                       EXR/PNG files, tone mapping, colour
 #   atmosphere/  core                       the physics; no GL
-#   warp/        core                       projections, warp meshes, blending; no GL
+#   warp/        core, image                projections, warp meshes, blending, calibration export; no GL
 #   astro/       core, atmosphere           star catalogue, ephemerides (ERFA), refraction, night-sky photometry; no GL
 #   scene/       core, image, atmosphere, astro   scenes, albedo maps, the sun's disc, frame descriptions; no GL
 #   show/        core, image, atmosphere, astro, scene   shows, playback clock, table plans; no GL, no protocol
 #   render/      core … scene (not show)    GL, tables on the GPU, the frame renderer
-#   cluster/     the above, show and render master, node, protocol
+#   cluster/     a module of modules, each folder one (no loops, no sideways steps):
+#     protocol/  core, scene                the wire protocol: messages, framing, handshake, table transfer
+#     link/      … warp, scene, protocol    configuration, a connection, a link to the master, takeover state
+#     master/    … show, render, link       the master: table schedule, barrier, operator desk
+#     node/      … render, link             a render node
+#     standby/   … master, link             the standby master
+#     launcher/  core, protocol, link       a local cluster's child processes
+#   stress/      core … render (not show)   `zenith validate stress`: CPU and GPU against the reference
+#   offline/     the above, show, cluster   offline rendering of shows (frames, manifest, outputs)
 #   apps/        all of the above           the `zenith` command
 #   (bench/ and tests/ may include anything)
 #
@@ -38,17 +46,25 @@ if(NOT SOURCE_DIR)
 endif()
 get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 
-set(modules core image atmosphere warp astro scene show render cluster apps)
+set(cluster cluster/protocol cluster/link cluster/master cluster/node cluster/standby cluster/launcher)
+set(modules core image atmosphere warp astro scene show render ${cluster} stress offline apps)
 set(allowed_core "")
 set(allowed_image core)
 set(allowed_atmosphere core)
-set(allowed_warp core)
+set(allowed_warp core image)
 set(allowed_astro core atmosphere)
 set(allowed_scene core image atmosphere astro)
 set(allowed_show core image atmosphere astro scene)
 set(allowed_render core image atmosphere warp astro scene)
-set(allowed_cluster core image atmosphere warp astro scene show render)
-set(allowed_apps core image atmosphere warp astro scene show render cluster)
+set(allowed_cluster/protocol core scene)
+set(allowed_cluster/link core image atmosphere warp astro scene cluster/protocol)
+set(allowed_cluster/master core image atmosphere warp astro scene show render cluster/protocol cluster/link)
+set(allowed_cluster/node core image atmosphere warp astro scene render cluster/protocol cluster/link)
+set(allowed_cluster/standby core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/master)
+set(allowed_cluster/launcher core cluster/protocol cluster/link)
+set(allowed_stress core image atmosphere warp astro scene render)
+set(allowed_offline core image atmosphere warp astro scene show render ${cluster})
+set(allowed_apps core image atmosphere warp astro scene show render ${cluster} stress offline)
 
 if(LINK_GRAPH)
   file(STRINGS "${LINK_GRAPH}" edges)
@@ -87,8 +103,11 @@ foreach(module IN LISTS modules)
     set(number 0)
     foreach(line IN LISTS lines)
       math(EXPR number "${number} + 1")
-      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]+\"([a-z_]+)/")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]+\"([a-z_]+)/(([a-z_]+)/)?")
         set(target "${CMAKE_MATCH_1}")
+        if(target STREQUAL "cluster" AND CMAKE_MATCH_3)  # a module of modules: cluster/master, …
+          set(target "cluster/${CMAKE_MATCH_3}")
+        endif()
         if(NOT target STREQUAL module AND target IN_LIST modules AND NOT target IN_LIST allowed_${module})
           file(RELATIVE_PATH relative "${SOURCE_DIR}" "${source}")
           string(REPLACE ";" ", " may "${allowed_${module}}")

@@ -9,12 +9,13 @@
 #include <vector>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "show/key_span.h"
 
 namespace zenith::show {
 namespace {
 
-using config::cat;
+using core::cat;
 
 /// An array index token of a JSON pointer: digits without a leading zero,
 /// below 2^31; "-" is `size` (one past the end).

@@ -5,13 +5,15 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string_view>
+#include <vector>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::show {
 namespace {
 
-using config::cat;
+using core::cat;
 
 constexpr double kMaxRate = PlaybackClock::kMaxRate;
 constexpr const char* kUsage =

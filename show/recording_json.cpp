@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/sha256.h"
 #include "scene/scene.h"
 #include "core/units.h"
@@ -14,7 +15,7 @@ namespace zenith::show {
 namespace {
 
 using config::brief;
-using config::cat;
+using core::cat;
 using scene::kMaxExposure;
 using nlohmann::json;
 

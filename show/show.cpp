@@ -5,13 +5,15 @@
 #include <stdexcept>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/sha256.h"
 #include "atmosphere/model_hash.h"
+#include "scene/frame_scene.h"
 #include "show/show_impl.h"
 
 namespace zenith::show {
 
-using config::cat;
+using core::cat;
 
 scene::TableHash table_hash_of(const atmosphere::LoadedAtmosphere& loaded) {
   return core::digest_from_hex(atmosphere::lookup_table_hash(loaded.model));
@@ -182,12 +184,10 @@ const AtmosphereVersion* Show::find_version(const scene::TableHash& table_hash) 
 
 void apply_state(const scene::FrameDescription& state, const std::map<scene::TableHash, AtmosphereVersion>& versions,
                  scene::Scene& scene) {
-  // The per-frame parts (the cluster node's apply_frame_state, cluster/frame_scene.h,
-  // is this without atmospheres), then each body's atmosphere version.
-  if (state.sun_irradiance_W_m2_nm.size() != scene.wavelengths_nm.size())
-    throw std::invalid_argument(cat("apply_state: ", state.sun_irradiance_W_m2_nm.size(),
-                                    " sun irradiance values for a scene of ", scene.wavelengths_nm.size(),
-                                    " wavelengths (do master and node read the same scene?)"));
+  // Everything checked first (nothing changes when something is wrong), then
+  // the per-frame parts (scene::apply_frame, as a cluster node applies them),
+  // then each body's atmosphere version.
+  scene::check_frame(state, scene);
   for (const scene::AtmosphereTableRef& ref : state.atmospheres) {
     const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(),
                                    [&](const scene::Body& b) { return b.name == ref.body_name; });
@@ -202,12 +202,7 @@ void apply_state(const scene::FrameDescription& state, const std::map<scene::Tab
       throw std::invalid_argument(cat("apply_state: table hash ", core::to_hex(ref.table_hash), " belongs to body \"",
                                       version->second.body, "\", not \"", ref.body_name, "\""));
   }
-  scene.camera.position_m = state.camera_position_m;
-  scene.camera.orientation = state.camera_orientation;
-  scene.camera.exposure = state.exposure;
-  scene.sun.direction = state.sun_direction;
-  scene.sun.angular_radius_rad = state.sun_angular_radius_rad;
-  scene.sun.irradiance_W_m2_nm = state.sun_irradiance_W_m2_nm;
+  scene::apply_frame(state, scene);
   for (const scene::AtmosphereTableRef& ref : state.atmospheres) {
     scene::Body& body = *std::find_if(scene.bodies.begin(), scene.bodies.end(),
                                       [&](const scene::Body& b) { return b.name == ref.body_name; });

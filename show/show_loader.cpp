@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/sha256.h"
 #include "scene/scene.h"
 #include "show/recording_json.h"
@@ -21,7 +22,7 @@ namespace zenith::show {
 namespace {
 
 using config::brief;
-using config::cat;
+using core::cat;
 using scene::kMaxExposure;
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -397,11 +398,7 @@ TimeTrack read_time_track(JsonReader& root, const scene::Scene& scene) {
 
 Show load_show(const fs::path& path) {
   const std::string file = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(file, "", "cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  const json j = parse_json(text.str(), file);
+  const json j = read_json_file(path);
   JsonReader root(j, file);
   allow(root, j,
         {"zenith_show", "name", "description", "scene", "cluster", "fps", "loop", "camera", "sun", "time", "exposure",

@@ -7,13 +7,14 @@
 #include <spdlog/spdlog.h>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/sha256.h"
 #include "show/recording_json.h"
 #include "show/show.h"
 
 namespace zenith::show {
 
-using config::cat;
+using core::cat;
 using nlohmann::json;
 namespace fs = std::filesystem;
 

@@ -5,12 +5,13 @@
 #include <sstream>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/sha256.h"
 
 namespace zenith::show {
 namespace {
 
-using config::cat;
+using core::cat;
 
 /// Float32 bytes of one table set: transmittance, irradiance and the three
 /// 4D scattering tables (single Rayleigh, single Mie, multiple), one channel

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "warp/blend_map.h"
-#include "warp/file_bytes.h"
+#include "core/files.h"
 #include "warp/warped_projection.h"
 
 namespace zenith::warp {
@@ -194,7 +194,7 @@ BlendMask compute_auto_blend(const ViewportConfig& config, std::size_t output_in
 }
 
 BlendMask load_blend_mask(const std::filesystem::path& path, double gamma, int width_px, int height_px) {
-  const BlendMap map = decode_png_map(read_file_bytes(path), path.string());
+  const BlendMap map = decode_png_map(core::file_bytes(path), path.string());
   if (map.width != width_px || map.height != height_px)
     throw std::runtime_error(cat(path.string(), ": blend mask is ", map.width, "x", map.height, " px, the output ",
                                  width_px, "x", height_px));

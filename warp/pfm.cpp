@@ -7,7 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "warp/file_bytes.h"
+#include "core/files.h"
 
 namespace zenith::warp {
 namespace {
@@ -126,7 +126,7 @@ PfmImage parse_pfm(std::string_view bytes, const std::string& name, PfmRowOrder 
 }
 
 PfmImage read_pfm(const std::filesystem::path& path, PfmRowOrder stored_rows) {
-  return parse_pfm(read_file_bytes(path), path.string(), stored_rows);
+  return parse_pfm(core::file_bytes(path), path.string(), stored_rows);
 }
 
 std::string encode_pfm(const PfmImage& image, PfmRowOrder stored_rows) {

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "warp/mpcdi.h"
 #include "warp/mpcdi_projection.h"
 #include "warp/projection_factory.h"
@@ -24,7 +25,7 @@ namespace zenith::warp {
 namespace {
 
 using config::brief;
-using config::cat;
+using core::cat;
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -389,11 +390,7 @@ ViewportConfig parse_viewport_config(const json& config, const std::string& sour
 }
 
 ViewportConfig load_viewport_config(const fs::path& path, const ViewportLoadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path.string(), "", "cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_viewport_config(parse_json(text.str(), path.string()), path.string(), path.parent_path(), options);
+  return parse_viewport_config(read_json_file(path), path.string(), path.parent_path(), options);
 }
 
 PlanarFrustum display_wall_frustum(const DisplayWall& wall, int column, int row) {

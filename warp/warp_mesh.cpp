@@ -10,7 +10,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "warp/file_bytes.h"
+#include "core/files.h"
 #include "warp/warp_map_checks.h"
 
 namespace zenith::warp {
@@ -339,7 +339,7 @@ BourkeFrame bourke_frame(MeshFit fit, double mesh_aspect, double output_aspect) 
 
 WarpMesh load_bourke_mesh(const std::filesystem::path& path, const BourkeMeshOptions& options) {
   const BourkeParser parser(path);
-  const std::string bytes = read_file_bytes(path);
+  const std::string bytes = core::file_bytes(path);
   const std::vector<TextLine> lines = split_lines(bytes);
 
   // Line 1: the mesh type.

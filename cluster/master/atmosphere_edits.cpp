@@ -5,12 +5,13 @@
 #include <utility>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "show/parameter_track.h"
 
 namespace zenith::cluster {
 
 using config::brief;
-using config::cat;
+using core::cat;
 
 AtmosphereEdits::AtmosphereEdits(scene::Scene scene) : scene_(std::move(scene)) {
   for (const scene::Body& body : scene_.bodies)

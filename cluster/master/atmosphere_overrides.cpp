@@ -3,12 +3,13 @@
 #include <algorithm>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "show/parameter_track.h"
 
 namespace zenith::cluster {
 
 using config::brief;
-using config::cat;
+using core::cat;
 
 nlohmann::json AtmosphereOverrides::apply(const std::string& body, nlohmann::json parameters) const {
   const auto it = changes_.find(body);

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cluster/master/operator_command.h"
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 
 namespace zenith::cluster {
 

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "warp/dome_tiles.h"
 
 namespace zenith::cluster {
 
-using config::cat;
+using core::cat;
 
 namespace {
 

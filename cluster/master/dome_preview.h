@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "cluster/cluster_config.h"
-#include "cluster/messages.h"
+#include "cluster/link/cluster_config.h"
+#include "cluster/protocol/messages.h"
 #include "warp/viewport_config.h"
 
 namespace zenith::cluster {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "cluster/cluster_config.h"
+#include "cluster/link/cluster_config.h"
 
 namespace zenith::cluster {
 

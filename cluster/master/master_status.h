@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cluster/cluster_config.h"
+#include "cluster/link/cluster_config.h"
 #include "cluster/master/atmosphere_edits.h"
 #include "cluster/master/atmosphere_overrides.h"
 #include "cluster/master/dome_preview.h"
@@ -21,7 +21,7 @@
 #include "cluster/master/node_statistics.h"
 #include "cluster/master/table_preparer.h"
 #include "cluster/master/table_versions.h"
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 #include "scene/local_horizon.h"
 #include "show/playback_clock.h"
 #include "show/show.h"

@@ -2,11 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 std::string NodeSession::who() const {
   if (role == PeerRole::standby) return cat("the standby (", connection->peer(), ")");

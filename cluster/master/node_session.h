@@ -9,8 +9,8 @@
 #include <set>
 #include <string>
 
-#include "cluster/connection.h"
-#include "cluster/handshake.h"
+#include "cluster/link/connection.h"
+#include "cluster/protocol/handshake.h"
 
 namespace zenith::cluster {
 

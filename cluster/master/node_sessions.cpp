@@ -4,11 +4,12 @@
 
 #include <algorithm>
 
-#include "core/json_reader.h"
+#include "cluster/protocol/heartbeat.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 NodeSession& NodeSessions::add(std::shared_ptr<Connection> connection, MasterHandshake handshake) {
   auto session = std::make_shared<NodeSession>();
@@ -103,6 +104,38 @@ void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, 
   } else {
     throw HandshakeError(RejectReason::protocol_error,
                          cat(to_string(message_type(message)), " before the handshake completed"));
+  }
+}
+
+void NodeSessions::check_heartbeats(const HeartbeatMonitor& monitor, std::chrono::steady_clock::time_point now) {
+  auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(heartbeat_at(now)));
+  for (const Id id : ids()) {
+    NodeSession* s = find(id);
+    if (s == nullptr || !s->connection->is_open()) continue;
+    switch (monitor.check(s->state == NodeSession::State::handshake, s->connected_at, s->connection->last_received(),
+                          now)) {
+      case HeartbeatMonitor::Verdict::awaiting_handshake: break;
+      case HeartbeatMonitor::Verdict::handshake_overdue:
+        spdlog::warn("master: closing {}: no handshake within {:.0f} ms", s->who(), monitor.handshake_limit_ms());
+        s->connection->close("handshake timeout");
+        break;
+      case HeartbeatMonitor::Verdict::silent:
+        spdlog::warn("master: closing {}: nothing received for {:.0f} ms", s->who(), monitor.silence_limit_ms());
+        s->connection->close("heartbeat timeout");
+        break;
+      case HeartbeatMonitor::Verdict::send_heartbeat: s->connection->send_encoded(encoded); break;
+    }
+  }
+}
+
+void NodeSessions::say_goodbye(const std::string& reason) {
+  // Closing may erase a session (its close handler): work on a copy.
+  std::vector<std::pair<std::shared_ptr<Connection>, bool>> connections;
+  for (const auto& [id, s] : sessions_) connections.emplace_back(s->connection, s->state == NodeSession::State::handshake);
+  for (auto& [connection, in_handshake] : connections) {
+    if (in_handshake) connection->send(Reject{RejectReason::shutting_down, "the master is stopping"});
+    else connection->send(Goodbye{reason});
+    connection->close_after_flush("master stopping");
   }
 }
 

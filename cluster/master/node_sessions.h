@@ -2,14 +2,17 @@
 // Every node connection of the master, by session id, and the handshake that
 // turns a new connection into an authenticated node (docs/protocol.md,
 // "Handshake"; docs/cluster.md, "Join, rejoin and failures").
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
-#include "cluster/cluster_config.h"
+#include "cluster/link/cluster_config.h"
+#include "cluster/master/heartbeat_monitor.h"
 #include "cluster/master/node_session.h"
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 
 namespace zenith::cluster {
 
@@ -38,6 +41,15 @@ class NodeSessions {
   /// sets (its inventory ended): each FrameState and Present (docs/cluster.md, "Standby master").
   void send_to_standbys(const std::shared_ptr<const std::vector<std::uint8_t>>& frame);
   bool empty() const { return sessions_.empty(); }
+
+  /// The heartbeat tick at `now` (HeartbeatMonitor's rule): a Heartbeat to every
+  /// open connection that is due one; a connection silent for too long, or
+  /// still in its handshake past the limit, closed with a log line naming it.
+  void check_heartbeats(const HeartbeatMonitor& monitor, std::chrono::steady_clock::time_point now);
+  /// The master is stopping: Goodbye{reason} to every node and standby (Reject
+  /// to a connection still in its handshake), each connection closed once
+  /// flushed. Their close handlers may remove sessions meanwhile.
+  void say_goodbye(const std::string& reason);
 
   /// Calls `f(NodeSession&)` for every session, in id order; `f` must not add or remove sessions.
   template <typename F>

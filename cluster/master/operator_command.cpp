@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 #include "scene/scene.h"
 #include "show/playback_clock.h"
 
@@ -11,7 +12,7 @@ namespace zenith::cluster {
 namespace {
 
 using config::brief;
-using config::cat;
+using core::cat;
 using nlohmann::json;
 namespace oc = operator_command;
 

@@ -15,6 +15,7 @@
 
 #include "core/embedded_file.h"
 #include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
@@ -28,7 +29,7 @@ namespace asio = boost::asio;
 namespace beast = boost::beast;
 namespace http = beast::http;
 using asio::ip::tcp;
-using config::cat;
+using core::cat;
 
 /// A request's headers may take this much; its body kMaxOperatorCommandBytes.
 constexpr std::uint32_t kMaxHeaderBytes = 8 * 1024;

@@ -27,7 +27,7 @@
 #include <boost/beast/http/string_body.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cluster/handshake.h"
+#include "cluster/protocol/handshake.h"
 #include "cluster/master/operator_command.h"
 #include "cluster/master/status_push.h"
 

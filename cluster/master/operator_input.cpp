@@ -10,13 +10,13 @@
 #include <boost/asio/read_until.hpp>
 #include <boost/asio/write.hpp>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
 namespace asio = boost::asio;
 using asio::ip::tcp;
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 /// One control-socket client: lines in, one reply line out per command.
 struct OperatorInput::ControlClient {

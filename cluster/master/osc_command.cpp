@@ -6,11 +6,12 @@
 #include <string_view>
 
 #include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 namespace {
 
-using config::cat;
+using core::cat;
 using nlohmann::json;
 
 constexpr std::string_view kPrefix = "/zenith/";

@@ -3,12 +3,12 @@
 #include <bit>
 #include <cstring>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 namespace {
 
-using config::cat;
+using core::cat;
 
 constexpr std::size_t kMaxAddressBytes = 256;
 constexpr std::size_t kMaxArguments = 32;

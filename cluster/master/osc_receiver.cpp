@@ -6,13 +6,13 @@
 #include <stdexcept>
 
 #include "cluster/master/osc_command.h"
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
 namespace asio = boost::asio;
 using asio::ip::udp;
-using config::cat;
+using core::cat;
 
 OscReceiver::OscReceiver(asio::io_context& io, Options options, CommandHandler on_command)
     : io_(io), options_(std::move(options)), on_command_(std::move(on_command)) {}

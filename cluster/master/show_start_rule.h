@@ -18,7 +18,7 @@
 #include <optional>
 #include <vector>
 
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 
 namespace zenith::cluster {
 

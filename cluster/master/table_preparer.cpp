@@ -1,11 +1,14 @@
 #include "cluster/master/table_preparer.h"
 
+#include <atomic>
 #include <chrono>
 #include <optional>
+#include <memory>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
@@ -61,7 +64,7 @@ TableSetFile TablePreparer::obtain_set(const Job& job, bool* from_cache, const C
   }
   render::ObtainedTables obtained = render::obtain_tables(job.model, request);
   if (obtained.cache_file.empty())
-    throw std::runtime_error(config::cat("the tables of '", job.body, "' could not be stored in the cache: nodes get "
+    throw std::runtime_error(core::cat("the tables of '", job.body, "' could not be stored in the cache: nodes get "
                                          "the cache file's bytes, so the master needs a writable table cache directory"));
   if (from_cache != nullptr) *from_cache = obtained.from_cache;
   return make_table_set_file(job.body, job.table_hash, obtained.cache_file);
@@ -110,6 +113,16 @@ void TablePreparer::run() {
     if (set) on_prepared_(std::move(*set), seconds, from_cache);
     else on_failed_(job.table_hash, error);
   }
+}
+
+TablePreparer::Obtain TablePreparer::obtain_with_delay(std::uint32_t delay_ms) {
+  return [delay_ms, jobs = std::make_shared<std::atomic<int>>(0)](const Job& job, bool* from_cache,
+                                                                  const Cancelled& cancelled) {
+    if (delay_ms > 0 && (*jobs)++ > 0)
+      for (std::uint32_t ms = 0; ms < delay_ms && !cancelled(); ms += 10)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return obtain_set(job, from_cache, cancelled);
+  };
 }
 
 }  // namespace zenith::cluster

@@ -20,7 +20,7 @@
 #include <thread>
 
 #include "atmosphere/parameters.h"
-#include "cluster/table_transfer.h"
+#include "cluster/protocol/table_transfer.h"
 #include "render/lut/table_provider.h"
 
 namespace zenith::cluster {
@@ -80,6 +80,10 @@ class TablePreparer {
   /// `cancelled` is polled at every progress report of a precompute. Throws
   /// std::runtime_error when the set cannot be stored in the cache.
   static TableSetFile obtain_set(const Job& job, bool* from_cache, const Cancelled& cancelled = {});
+  /// obtain_set, every set after the first taking `delay_ms` longer (the test
+  /// hook `--debug-table-delay-ms` plays a slow precompute; the wait ends when
+  /// cancelled). 0: obtain_set itself.
+  static Obtain obtain_with_delay(std::uint32_t delay_ms);
 
  private:
   void run();

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 #include "show/show.h"
-#include "cluster/table_transfer.h"
+#include "cluster/protocol/table_transfer.h"
 
 namespace zenith::cluster {
 

@@ -1,15 +1,17 @@
 #include "cluster/master/takeover.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "cluster/atmosphere_definition.h"
-#include "core/json_reader.h"
+#include "cluster/link/atmosphere_definition.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 namespace {
 
@@ -73,6 +75,21 @@ void adopt_takeover_tables(const TakeoverState& state, const scene::Scene& scene
                                    " of '", ref.body_name, "', which the standby did not receive"));
     tables.add_current(ref.body_name, ref.table_hash, ref.effective_from_frame);
   }
+}
+
+Continuation continue_show(const TakeoverState& t, const FrameState& expected, double fps) {
+  const Continuation c = continuation_of(t, expected, fps);
+  const FrameState& last = *t.last_frame;
+  for (const std::string& what : c.mismatches)
+    spdlog::warn("master: taking over: the {} of frame {} differs from this standby's show (are its scene, show "
+                 "and --sun-step-deg the active master's?): the picture jumps at the takeover",
+                 what, last.frame);
+  spdlog::info("master: taking over the show at frame {} (the active master's last was frame {}, show time {:.3f} s, "
+               "{}) with the {} table version{} it distributed",
+               c.next_frame, last.frame, last.show_time_s,
+               t.frame_in_flight() ? "in flight, not seen presented" : "presented", t.versions.size(),
+               t.versions.size() == 1 ? "" : "s");
+  return c;
 }
 
 }  // namespace zenith::cluster

@@ -3,14 +3,14 @@
 // the table versions it received join the master's table versions, and the
 // show continues from the frame after the last one the active master sent,
 // its show time going on at the same step. Pure functions: Master::Impl
-// (cluster/master.cpp) applies them to its barrier, clock and exposure.
+// (cluster/master/master.cpp) applies them to its barrier, clock and exposure.
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cluster/master/table_versions.h"
-#include "cluster/standby/takeover_state.h"
+#include "cluster/link/takeover_state.h"
 #include "scene/scene.h"
 #include "show/playback_clock.h"
 
@@ -41,6 +41,10 @@ Continuation continuation_of(const TakeoverState& state, const FrameState& expec
 /// Sets a show's playback clock so that its next frame is the one after the
 /// last frame's, at the continuation's rate (or paused).
 void continue_clock(const Continuation& continuation, show::PlaybackClock& clock);
+
+/// continuation_of, with the log lines of a takeover: each mismatch (the
+/// picture jumps), and the frame the show goes on at with how many versions.
+Continuation continue_show(const TakeoverState& state, const FrameState& expected, double fps);
 
 /// Adds every version of `state` to `tables` (its definition resolved at
 /// `scene`'s wavelengths and checked, its set kept for sending); with

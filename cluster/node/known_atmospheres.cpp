@@ -5,13 +5,14 @@
 #include <fstream>
 
 #include "atmosphere/model_hash.h"
-#include "cluster/atmosphere_definition.h"
-#include "cluster/table_transfer.h"
+#include "cluster/link/atmosphere_definition.h"
+#include "cluster/protocol/table_transfer.h"
 #include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 KnownAtmospheres::KnownAtmospheres(const scene::Scene& scene, std::filesystem::path cache_directory,
                                    std::string node_name)

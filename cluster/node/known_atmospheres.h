@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "atmosphere/parameters.h"
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 #include "scene/scene.h"
 
 namespace zenith::cluster {

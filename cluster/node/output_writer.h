@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "cluster/node.h"
+#include "cluster/node/node.h"
 #include "image/image_writer.h"
 #include "warp/viewport_config.h"
 

@@ -8,9 +8,9 @@
 #include <thread>
 
 #include "atmosphere/lut/table_cache.h"
-#include "cluster/frame_scene.h"
+#include "scene/frame_scene.h"
 #include "cluster/node/thumbnail.h"
-#include "cluster/state_digest.h"
+#include "cluster/protocol/state_digest.h"
 #include "core/json_reader.h"
 #include "core/timing.h"
 #include "image/tone_mapping.h"
@@ -174,7 +174,7 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
     std::this_thread::sleep_for(milliseconds(setup_.options.debug_render_delay_ms));  // test hook: a slow node
   const auto t0 = Clock::now();
   scene::Scene scene = setup_.base_scene;
-  apply_frame_state(state, scene);
+  scene::apply_frame(state, scene);
   std::string tables;
   for (const AtmosphereTableRef& ref : state.atmospheres) {
     use_table_version(scene, ref.body_name, ref.table_hash);

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "atmosphere/lut/precompute_options.h"
-#include "cluster/messages.h"
-#include "cluster/node.h"
+#include "cluster/protocol/messages.h"
+#include "cluster/node/node.h"
 #include "cluster/node/known_atmospheres.h"
 #include "cluster/node/output_writer.h"
 #include "render/gl/egl_context.h"

@@ -5,12 +5,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 #include "image/tone_mapping.h"
 
 namespace zenith::cluster {
 
-using config::cat;
+using core::cat;
 
 Thumbnail make_thumbnail(std::uint64_t frame, const std::string& output, std::span<const float> display_rgb,
                          int width_px, int height_px, int edge_px) {

@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 
 namespace zenith::cluster {
 

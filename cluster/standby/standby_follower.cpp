@@ -5,11 +5,11 @@
 #include <memory>
 #include <stdexcept>
 
-#include "core/json_reader.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
-using config::cat;  // core/json_reader.h
+using core::cat;
 
 void StandbyFollower::on_welcome() { receiver_ = TableReceiver{}; }
 

@@ -13,9 +13,9 @@
 #include <optional>
 #include <vector>
 
-#include "cluster/messages.h"
-#include "cluster/standby/takeover_state.h"
-#include "cluster/table_transfer.h"
+#include "cluster/protocol/messages.h"
+#include "cluster/link/takeover_state.h"
+#include "cluster/protocol/table_transfer.h"
 
 namespace zenith::cluster {
 

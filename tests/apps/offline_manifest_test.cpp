@@ -1,13 +1,13 @@
-// The offline render's manifest and resume rule (apps/offline_manifest.h) and
-// its file naming and settings keys (apps/offline_render.h).
+// The offline render's manifest and resume rule (offline/offline_manifest.h) and
+// its file naming and settings keys (offline/offline_render.h).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <fstream>
 #include <string>
 
-#include "apps/offline_manifest.h"
-#include "apps/offline_render.h"
+#include "offline/offline_manifest.h"
+#include "offline/offline_render.h"
 
 namespace zenith::app::offline {
 namespace {

@@ -1,6 +1,6 @@
 // `zenith cluster --restart-nodes`: which deaths restart a node and how often
-// (apps/restart_limit.h; docs/cluster.md, "Join, rejoin and failures").
-#include "apps/restart_limit.h"
+// (cluster/launcher/restart_limit.h; docs/cluster.md, "Join, rejoin and failures").
+#include "cluster/launcher/restart_limit.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "cluster/byte_io.h"
+#include "cluster/protocol/byte_io.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/json_reader.h"
-#include "cluster/cluster_config.h"
+#include "cluster/link/cluster_config.h"
 
 namespace zenith::cluster {
 namespace {

@@ -35,15 +35,17 @@
 #include <boost/beast/websocket.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cluster/frame_decoder.h"
-#include "cluster/handshake.h"
+#include "cluster/protocol/frame_decoder.h"
+#include "cluster/protocol/handshake.h"
 #include "cluster/master/osc_packet.h"
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 #include "core/process.h"
 #include "image/image_io.h"
 #include "test_support.h"
 #include "tests/cluster/http_client.h"
 #include "tests/cluster/webdriver.h"
+#include "core/files.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 namespace {
@@ -80,19 +82,8 @@ void kill_hard(const Child& c) {
   wait_exit(c, 5000ms);
 }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Occurrences of `needle` in `text`.
-std::size_t count_of(const std::string& text, const std::string& needle) {
-  std::size_t n = 0;
-  for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
-  return n;
-}
+using core::count_of;
+using core::read_text;
 
 /// "frame N state DIGEST tables BODY=HASH,..." lines of a node's presented.log.
 struct Presented {
@@ -245,6 +236,12 @@ class ClusterProcess : public ::testing::Test {
       if (p.empty() || p.back().frame < frame) return false;
     }
     return true;
+  }
+  /// Every one of `texts` is in the master's log (each one missing fails, showing the log).
+  void expect_in_master_log(std::initializer_list<std::string> texts) const {
+    const std::string master_log = read_text(dir_ / "master.log");
+    for (const std::string& text : texts)
+      EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
   }
   std::string logs() const {
     std::string all;
@@ -1182,19 +1179,6 @@ TEST_F(ClusterProcess, ReconnectingNodeWithCachedTablesReceivesNoChunks) {
 
 // ---- hostile clients --------------------------------------------------------
 
-int connect_to(int port) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    close(fd);
-    return -1;
-  }
-  return fd;
-}
-
 void send_all(int fd, const std::vector<std::uint8_t>& bytes) {
   std::size_t sent = 0;
   while (sent < bytes.size()) {
@@ -1231,7 +1215,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
   ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").size() >= 2; }, 240s)) << logs();
 
   {  // garbage bytes
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     ASSERT_GE(fd, 0);
     const std::string junk = "GET / HTTP/1.1\r\nHost: zenith\r\n\r\n";
     send_all(fd, std::vector<std::uint8_t>(junk.begin(), junk.end()));
@@ -1239,7 +1223,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // an oversized length in an otherwise valid header
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     std::vector<std::uint8_t> frame = test::raw_frame(static_cast<std::uint16_t>(MessageType::hello), {});
     test::put_be32(frame, 8, 0x7FFFFFFF);
     test::fix_header_crc(frame);
@@ -1248,7 +1232,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // another protocol version
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     std::vector<std::uint8_t> frame = test::raw_frame(static_cast<std::uint16_t>(MessageType::heartbeat),
                                                       std::vector<std::uint8_t>(8, 0));
     test::put_be16(frame, 4, kProtocolVersion + 1);
@@ -1258,7 +1242,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // a message before the handshake
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     send_all(fd, encode(RenderDone{0, 1.0}));
     std::vector<Message> got;
     EXPECT_TRUE(read_until_closed(fd, 5s, &got));
@@ -1267,7 +1251,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // the wrong secret: Reject(authentication_failed), then closed
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     const std::string wrong = "not-the-cluster-secret-at-all";
     NodeHandshake hs(SharedSecret(std::vector<std::uint8_t>(wrong.begin(), wrong.end()), "test"), "test-dome", "b");
     send_all(fd, encode(hs.start()));
@@ -1293,7 +1277,7 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
     close(fd);
   }
   {  // a truncated frame, then the client goes away
-    const int fd = connect_to(port_);
+    const int fd = zenith::core::connect_loopback(port_);
     std::vector<std::uint8_t> frame = encode(Hello{kProtocolVersion, "test-dome", "c", Nonce{}});
     frame.resize(frame.size() / 2);
     send_all(fd, frame);
@@ -1525,17 +1509,14 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
       while (v + 1 < versions.size() && versions[v + 1].from_frame <= p.frame) ++v;
       EXPECT_EQ(p.tables, "Earth=" + versions[v].hex) << node << " frame " << p.frame;
     }
-  const std::string master_log = read_text(dir_ / "master.log");
-  for (const std::string& text :
-       {"operator console at http://127.0.0.1:" + std::to_string(http) + "/",
-        std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 100 refused: set Earth: "
-                    "/aerosol/scattering/turbidity = 100: must be in [1, 64]"),
-        std::string("operator (osc 127.0.0.1): exposure 40.0 → exposure 40 from the next frame on"),
-        std::string("operator (osc 127.0.0.1): set Earth /aerosol/scattering/turbidity = 200.0 refused"),
-        std::string("OSC from 127.0.0.1: refused 4 bytes"),
-        std::string("operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 3 → 'Earth'"),
-        "takes effect at frame " + std::to_string(last_switch)})
-    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+  expect_in_master_log({"operator console at http://127.0.0.1:" + std::to_string(http) + "/",
+                        "operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 100 refused: set Earth: "
+                        "/aerosol/scattering/turbidity = 100: must be in [1, 64]",
+                        "operator (osc 127.0.0.1): exposure 40.0 → exposure 40 from the next frame on",
+                        "operator (osc 127.0.0.1): set Earth /aerosol/scattering/turbidity = 200.0 refused",
+                        "OSC from 127.0.0.1: refused 4 bytes",
+                        "operator (http 127.0.0.1): set Earth /aerosol/scattering/turbidity = 3 → 'Earth'",
+                        "takes effect at frame " + std::to_string(last_switch)});
 }
 
 TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
@@ -1632,11 +1613,9 @@ TEST_F(ClusterProcess, OperatorConsoleSetsTheSunOfTheDefaultShowOverHttpAndOscUn
   EXPECT_NE(picture(set_by_http), picture(0));
   EXPECT_NE(picture(set_by_osc), picture(set_by_http));
   EXPECT_EQ(picture(cleared), picture(0));
-  const std::string master_log = read_text(dir_ / "master.log");
-  for (const std::string text : {"operator (http 127.0.0.1): sun elevation -4.0° azimuth 250.0° → sun at elevation -4°, azimuth 250°",
-                                 "operator (osc 127.0.0.1): sun azimuth 200.0° → sun at elevation -4°, azimuth 200°",
-                                 "operator (osc 127.0.0.1): clear sun → the default show's sun from the next frame on"})
-    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+  expect_in_master_log({"operator (http 127.0.0.1): sun elevation -4.0° azimuth 250.0° → sun at elevation -4°, azimuth 250°",
+                        "operator (osc 127.0.0.1): sun azimuth 200.0° → sun at elevation -4°, azimuth 200°",
+                        "operator (osc 127.0.0.1): clear sun → the default show's sun from the next frame on"});
 }
 
 TEST_F(ClusterProcess, OperatorConsoleOverridesTheSunTrackOfAShowUntilCleared) {
@@ -1724,11 +1703,9 @@ TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsThe
     if (phases.empty() || phases.back() != phase) phases += phase;
   }
   EXPECT_EQ(phases, "sos");
-  const std::string master_log = read_text(dir_ / "master.log");
-  for (const std::string text : {"operator (http 127.0.0.1): set Earth /aerosol/scale_height_m = 1500 → 'Earth'",
-                                 "the show's track of 'Earth' moved on to version",
-                                 "operator (osc 127.0.0.1): clear atmosphere of Earth → 'Earth' follows the show's track again"})
-    EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+  expect_in_master_log({"operator (http 127.0.0.1): set Earth /aerosol/scale_height_m = 1500 → 'Earth'",
+                        "the show's track of 'Earth' moved on to version",
+                        "operator (osc 127.0.0.1): clear atmosphere of Earth → 'Earth' follows the show's track again"});
 }
 
 TEST_F(ClusterProcess, OperatorConsoleShowsTheDomeFromTheNodesThumbnailsOnlyWhileThePreviewIsOn) {

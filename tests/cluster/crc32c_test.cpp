@@ -1,4 +1,4 @@
-#include "cluster/crc32c.h"
+#include "cluster/protocol/crc32c.h"
 
 #include <gtest/gtest.h>
 

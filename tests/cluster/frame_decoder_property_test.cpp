@@ -11,8 +11,8 @@
 
 #include <random>
 
-#include "cluster/frame_decoder.h"
-#include "cluster/sample_messages.h"
+#include "cluster/protocol/frame_decoder.h"
+#include "cluster/protocol/sample_messages.h"
 #include "test_support.h"
 
 namespace zenith::cluster {

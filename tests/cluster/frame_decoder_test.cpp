@@ -1,9 +1,9 @@
-#include "cluster/frame_decoder.h"
+#include "cluster/protocol/frame_decoder.h"
 
 #include <gtest/gtest.h>
 
-#include "cluster/byte_io.h"
-#include "cluster/sample_messages.h"
+#include "cluster/protocol/byte_io.h"
+#include "cluster/protocol/sample_messages.h"
 #include "test_support.h"
 
 namespace zenith::cluster {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cluster/heartbeat.h"
+#include "cluster/protocol/heartbeat.h"
 
 namespace zenith::cluster {
 namespace {

@@ -1,7 +1,7 @@
 // The node's side of its link to the master without sockets
-// (cluster/node/master_link_protocol.h; docs/protocol.md, "Handshake";
+// (cluster/link/master_link_protocol.h; docs/protocol.md, "Handshake";
 // docs/cluster.md, "Join, rejoin and failures").
-#include "cluster/node/master_link_protocol.h"
+#include "cluster/link/master_link_protocol.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
-#include "cluster/messages.h"
+#include "cluster/protocol/messages.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "cluster/crc32c.h"
-#include "cluster/sample_messages.h"
+#include "cluster/protocol/crc32c.h"
+#include "cluster/protocol/sample_messages.h"
 #include "test_support.h"
 
 namespace zenith::cluster {

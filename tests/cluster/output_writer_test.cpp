@@ -1,6 +1,7 @@
 // A node's frame files without a renderer (cluster/node/output_writer.h):
 // partial files renamed on Present, presented.log, the two layouts.
 #include "cluster/node/output_writer.h"
+#include "core/files.h"
 
 #include <gtest/gtest.h>
 
@@ -27,12 +28,7 @@ warp::ViewportConfig two_outputs() {
   return viewports;
 }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using core::read_text;
 
 class OutputWriterTest : public ::testing::Test {
  protected:

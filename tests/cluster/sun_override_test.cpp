@@ -9,7 +9,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "cluster/frame_scene.h"
+#include "scene/frame_scene.h"
 #include "scene/scene_loader.h"
 
 namespace zenith::cluster {
@@ -24,7 +24,7 @@ scene::Scene earth_sunset() {
 TEST(SunOverrideTest, ReplacesTheSunDirectionInTheCamerasSkyUntilCleared) {
   const scene::Scene scene = earth_sunset();
   SunOverride sun(scene);
-  FrameState frame = default_show_frame(scene, 0, 0.0, {}, 0);
+  FrameState frame = scene::default_show_frame(scene, 0, 0.0, {}, 0);
   const FrameState show_frame = frame;
   sun.apply(frame);
   EXPECT_EQ(frame, show_frame) << "no override: the show's sun";
@@ -45,7 +45,7 @@ TEST(SunOverrideTest, ReplacesTheSunDirectionInTheCamerasSkyUntilCleared) {
   set = sun.set(oc::Sun{std::nullopt, -90.0}, &show_frame);
   EXPECT_EQ(set.elevation_deg, -6.0);
   EXPECT_EQ(set.azimuth_deg, 270.0);
-  FrameState next = default_show_frame(scene, 1, 0.5, {}, 0);  // a turning sun: replaced as well
+  FrameState next = scene::default_show_frame(scene, 1, 0.5, {}, 0);  // a turning sun: replaced as well
   sun.apply(next);
   EXPECT_NEAR(sun.angles_of(next).azimuth_deg, 270.0, 1e-9);
   EXPECT_NEAR(sun.angles_of(next).elevation_deg, -6.0, 1e-9);
@@ -64,7 +64,7 @@ TEST(SunOverrideTest, FollowsTheCamerasHorizonAsTheCameraMoves) {
   const scene::Scene scene = earth_sunset();
   SunOverride sun(scene);
   sun.set(oc::Sun{30.0, 180.0}, nullptr);
-  FrameState frame = default_show_frame(scene, 0, 0.0, {}, 0);
+  FrameState frame = scene::default_show_frame(scene, 0, 0.0, {}, 0);
   frame.camera_position_m = -frame.camera_position_m;  // the other side of the Earth
   sun.apply(frame);
   EXPECT_NEAR(sun.angles_of(frame).elevation_deg, 30.0, 1e-9);

@@ -7,8 +7,10 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <map>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace zenith::cluster {
@@ -55,15 +57,18 @@ struct Results {
 TEST(TablePreparer, PreparesInOrderOnItsOwnThreadAndReportsFailures) {
   Results results;
   std::atomic<std::thread::id> worker_id{};
+  std::map<std::uint8_t, double> seconds_of;  // the worker's; read once every callback came
+  const auto start = std::chrono::steady_clock::now();
   TablePreparer preparer(
       [&](TableSetFile set, double seconds, bool from_cache) {
-        EXPECT_GE(seconds, 0.0);
+        seconds_of[set.table_hash[0]] = seconds;
         EXPECT_EQ(from_cache, set.table_hash[0] == 2);
         results.on_prepared(set);
       },
       [&](const Digest& hash, std::exception_ptr error) { results.on_failed(hash, error); },
       [&](const TablePreparer::Job& j, bool* from_cache, const TablePreparer::Cancelled&) {
         worker_id = std::this_thread::get_id();
+        if (j.table_hash[0] == 4) std::this_thread::sleep_for(50ms);  // a set that takes a while
         if (j.table_hash[0] == 3) throw std::runtime_error("the tables of 'Mars' could not be stored in the cache");
         *from_cache = j.table_hash[0] == 2;
         TableSetFile set;
@@ -76,7 +81,11 @@ TEST(TablePreparer, PreparesInOrderOnItsOwnThreadAndReportsFailures) {
   preparer.enqueue(job(3, "Mars"));
   preparer.enqueue(job(4));
   ASSERT_TRUE(results.wait_for(4));
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(results.prepared, (std::vector<std::uint8_t>{1, 2, 4})) << "a failure does not stop the later jobs";
+  // Each set's time is its own job's: the 50 ms set took at least that, and none more than the whole run.
+  EXPECT_GE(seconds_of.at(4), 0.050);
+  for (const auto& [first, seconds] : seconds_of) EXPECT_LE(seconds, wall_s) << "set " << int(first);
   EXPECT_EQ(results.failed, (std::vector<std::uint8_t>{3}));
   ASSERT_EQ(results.errors.size(), 1u);
   EXPECT_NE(results.errors[0].find("'Mars'"), std::string::npos);

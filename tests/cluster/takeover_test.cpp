@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "atmosphere/model_hash.h"
-#include "cluster/frame_scene.h"
+#include "scene/frame_scene.h"
 #include "scene/scene_loader.h"
 #include "test_support.h"
 
@@ -100,7 +100,7 @@ TEST(Takeover, TheReceivedVersionsBecomeTheMastersWithTheLastFramesCurrentOnes) 
   EXPECT_THROW(adopt_takeover_tables(missing, scene, none, true), std::runtime_error);
 
   // The default show gives, for the same frame number, the state the active master sent.
-  const FrameState expected = default_show_frame(scene, 7, 0.1, tables.current(), 0);
+  const FrameState expected = scene::default_show_frame(scene, 7, 0.1, tables.current(), 0);
   FrameState last = expected;
   last.frame = 7;
   TakeoverState same = state;

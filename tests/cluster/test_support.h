@@ -4,8 +4,8 @@
 #include <span>
 #include <vector>
 
-#include "cluster/crc32c.h"
-#include "cluster/messages.h"
+#include "cluster/protocol/crc32c.h"
+#include "cluster/protocol/messages.h"
 
 namespace zenith::cluster::test {
 

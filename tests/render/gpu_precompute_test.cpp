@@ -161,12 +161,16 @@ void expect_same_tables(const std::string& name, const Result& cpu, const Result
     EXPECT_LE(a.max_absolute, absolute_bound) << name << ", " << t.table;
   }
 
-  // The report: the same stages in the same order, orders and their shares.
+  // The report: the same stages in the same order, orders and their shares;
+  // the stages are timed within the call, so together they took at most its wall time.
   ASSERT_EQ(gpu.report.stages.size(), cpu.report.stages.size());
+  double stage_seconds = 0.0;
   for (std::size_t i = 0; i < cpu.report.stages.size(); ++i) {
     EXPECT_EQ(gpu.report.stages[i].stage, cpu.report.stages[i].stage);
     EXPECT_GE(gpu.report.stages[i].seconds, 0.0);
+    stage_seconds += gpu.report.stages[i].seconds;
   }
+  EXPECT_LE(stage_seconds, gpu.seconds);
   EXPECT_EQ(gpu.report.orders_used, cpu.report.orders_used);
   ASSERT_EQ(gpu.report.order_fraction.size(), cpu.report.order_fraction.size());
   for (std::size_t i = 0; i < cpu.report.order_fraction.size(); ++i)

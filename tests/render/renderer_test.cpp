@@ -130,9 +130,24 @@ TEST(RendererPhysics, EarthNoonZenithIsBlue) {
   const scene::Scene s = planet_scene("earth-advanced", 2.0, 30.0, {0, 0, 1});  // looking at the zenith
   const warp::PlanarProjection p = warp::PlanarProjection::symmetric(32, 32, 40.0);
   const auto image = t.renderer.render_image(s, p);
+  // The zenith radiance of the CPU table queries (double), times the sun's
+  // irradiance and the exposure, within the GPU pass's bound
+  // (RendererAccuracy.SkyPixelsMatchTheCpuTableQueries); blue over green over red.
+  const glm::dvec3 d = ray_of(p, s, 16, 16);
+  const atmosphere::Spectrum radiance = SmallTables::get("earth-advanced")
+                                            .queries->sky_radiance({s.camera.position_m.x, s.camera.position_m.y,
+                                                                    s.camera.position_m.z},
+                                                                   {d.x, d.y, d.z},
+                                                                   {s.sun.direction.x, s.sun.direction.y,
+                                                                    s.sun.direction.z});
+  double expected[3];
+  for (int c = 0; c < 3; ++c) expected[c] = radiance[c] * s.sun.irradiance_W_m2_nm[c] * s.camera.exposure;
   const Rgb z = pixel(image, 32, 16, 16);
-  EXPECT_GT(z.b, z.g);
-  EXPECT_GT(z.g, z.r);
+  EXPECT_NEAR(z.r, expected[0], 5e-3 * expected[0]);
+  EXPECT_NEAR(z.g, expected[1], 5e-3 * expected[1]);
+  EXPECT_NEAR(z.b, expected[2], 5e-3 * expected[2]);
+  EXPECT_GT(expected[2], expected[1]);
+  EXPECT_GT(expected[1], expected[0]);
   expect_finite_non_negative(image, "noon zenith");
 }
 

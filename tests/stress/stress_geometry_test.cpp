@@ -1,14 +1,14 @@
-// apps/stress/: horizon directions placed exactly (checked with the reference
+// stress/: horizon directions placed exactly (checked with the reference
 // solver's cancellation-free ray geometry and the tables' ray_hits_ground),
 // region classification, error statistics, and the determinism of the sampler.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "apps/stress/random_atmosphere.h"
-#include "apps/stress/stress_geometry.h"
-#include "apps/stress/stress_sampler.h"
-#include "apps/stress/stress_statistics.h"
+#include "stress/random_atmosphere.h"
+#include "stress/stress_geometry.h"
+#include "stress/stress_sampler.h"
+#include "stress/stress_statistics.h"
 #include "atmosphere/lut/parameterization.h"
 #include "atmosphere/parameters.h"
 #include "atmosphere/reference/geometry.h"

@@ -21,11 +21,11 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "apps/calibration_export.h"
+#include "warp/calibration_export.h"
 #include "tests/warp/mpcdi_test_support.h"
 #include "warp/blend_map.h"
 #include "warp/blending.h"
-#include "warp/file_bytes.h"
+#include "core/files.h"
 #include "warp/mpcdi.h"
 #include "warp/pfm.h"
 #include "warp/viewport_config.h"
@@ -176,12 +176,12 @@ TEST_F(CalibrationExport, BlendMasksAndBlackLevelsRoundTripInBothEncodings) {
     const BlendMask display = load_blend_mask(out / (o.name + ".alpha-gamma2.2.png"), 2.2, o.width_px, o.height_px);
     EXPECT_LE(max_difference(display.alpha, alpha.alpha), kGammaStep);
 
-    const BlendMap beta = decode_png_map(read_file_bytes(out / (o.name + ".beta-linear.png")), "beta");
+    const BlendMap beta = decode_png_map(core::file_bytes(out / (o.name + ".beta-linear.png")), "beta");
     ASSERT_EQ(beta.width, o.width_px);
     ASSERT_EQ(beta.height, o.height_px);
     EXPECT_EQ(beta.bit_depth, 16);
     EXPECT_LE(max_difference(beta.values, black_level_map(o)), kLinearStep);
-    const BlendMap beta_display = decode_png_map(read_file_bytes(out / (o.name + ".beta-gamma2.2.png")), "beta");
+    const BlendMap beta_display = decode_png_map(core::file_bytes(out / (o.name + ".beta-gamma2.2.png")), "beta");
     std::vector<float> decoded;
     for (float v : beta_display.values) decoded.push_back(static_cast<float>(std::pow(double(v), 2.2)));
     EXPECT_LE(max_difference(decoded, black_level_map(o)), kGammaStep);
@@ -229,7 +229,7 @@ TEST_F(CalibrationExport, BlendMasksAndBlackLevelsRoundTripInBothEncodings) {
 TEST_F(CalibrationExport, TheSidecarDescribesEveryFileWithItsSizeAndEncoding) {
   const std::vector<app::ExportedFile> files = app::export_calibration(original, "sgct", out);
   EXPECT_EQ(files.size(), 6u + 3u);
-  const nlohmann::json sidecar = nlohmann::json::parse(read_file_bytes(out / "calibration.json"));
+  const nlohmann::json sidecar = nlohmann::json::parse(core::file_bytes(out / "calibration.json"));
   ASSERT_EQ(sidecar.at("outputs").size(), 1u);
   const nlohmann::json& output = sidecar["outputs"][0];
   EXPECT_EQ(output.at("name"), "sgct");
@@ -245,7 +245,7 @@ TEST_F(CalibrationExport, TheSidecarDescribesEveryFileWithItsSizeAndEncoding) {
       EXPECT_EQ(f.at("row_order"), "top_to_bottom");
       EXPECT_EQ(f.at("v_direction"), "down");
     } else if (f.at("kind") != "MPCDI") {
-      const BlendMap map = decode_png_map(read_file_bytes(out / name), name);
+      const BlendMap map = decode_png_map(core::file_bytes(out / name), name);
       EXPECT_EQ(f.at("size_px"), nlohmann::json({32, 20}));
       EXPECT_EQ(map.width, 32);
       EXPECT_EQ(map.bit_depth, 16);
@@ -255,7 +255,7 @@ TEST_F(CalibrationExport, TheSidecarDescribesEveryFileWithItsSizeAndEncoding) {
   EXPECT_EQ(listed, (std::set<std::string>{"sgct.warp.pfm", "sgct.alpha-linear.png", "sgct.alpha-gamma2.2.png",
                                            "sgct.beta-linear.png", "sgct.beta-gamma2.2.png", "sgct.mpcdi"}));
   // The exported viewport config states the PFM's conventions explicitly.
-  const nlohmann::json viewport = nlohmann::json::parse(read_file_bytes(out / "viewport-pfm.json"));
+  const nlohmann::json viewport = nlohmann::json::parse(core::file_bytes(out / "viewport-pfm.json"));
   const nlohmann::json& warp = viewport.at("outputs").at(0).at("warp");
   EXPECT_EQ(warp.at("row_order"), "top_to_bottom");
   EXPECT_EQ(warp.at("v_direction"), "down");

@@ -1,0 +1,188 @@
+#include "cluster/master/frame_loop.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include <boost/asio/post.hpp>
+
+#include "core/strings.h"
+#include "core/timing.h"
+#include "scene/frame_scene.h"
+
+namespace zenith::cluster {
+
+using core::cat;
+using core::ms_since;
+using std::chrono::milliseconds;
+
+FrameLoop::FrameLoop(boost::asio::io_context& io, Parts parts)
+    : p_(std::move(parts)), barrier_timer_(io), frame_timer_(io) {}
+
+void FrameLoop::retry_after(Clock::duration delay) {
+  frame_timer_.expires_after(delay);
+  frame_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) start_frame();
+  });
+}
+
+void FrameLoop::on_node_left(std::uint32_t session) {
+  if (p_.barrier.remove(session) && p_.barrier.complete()) complete_frame();
+}
+
+void FrameLoop::stop() {
+  barrier_timer_.cancel();
+  frame_timer_.cancel();
+}
+
+void FrameLoop::maybe_start() {
+  if (p_.progress.started || p_.progress.stopping) return;
+  if (!p_.tables.may_start() && !p_.options.takeover) return;
+  if (!waiting_since_) waiting_since_ = Clock::now();
+  const std::size_t ready = p_.sessions.ready_count();
+  const bool waited = ms_since(*waiting_since_) >= p_.options.wait_for_nodes_ms;
+  if (ready == p_.options.config.nodes.size() || (waited && ready > 0)) {
+    p_.progress.started = true;
+    show_started_ = Clock::now();
+    spdlog::info("master: starting the show with {} of {} node{}{}", ready, p_.options.config.nodes.size(),
+                 p_.options.config.nodes.size() == 1 ? "" : "s",
+                 p_.options.frames ? cat(", ", p_.options.frames, " frames") : std::string(", until stopped"));
+    start_frame();
+  } else if (waited && !waiting_logged_) {
+    waiting_logged_ = true;
+    spdlog::warn("master: no node is ready after {} ms; still waiting", p_.options.wait_for_nodes_ms);
+  }
+}
+
+/// The next frame of the feed, the show or the default show; false when there is none yet (or no more).
+bool FrameLoop::next_frame(FrameState& next) {
+  if (p_.options.feed) {
+    switch (p_.options.feed->pop(next)) {
+      case FrameFeed::Next::finished: p_.stop("every frame of the feed was presented"); return false;
+      case FrameFeed::Next::wait: retry_after(milliseconds(2)); return false;
+      case FrameFeed::Next::frame: return true;
+    }
+  }
+  const std::uint64_t frame = p_.barrier.frame();
+  next = p_.play.show ? p_.play.show->state_at(p_.play.clock->next_frame_time_s(), frame, p_.play.render_flags)
+              : scene::default_show_frame(p_.play.scene, frame, p_.options.sun_step_deg, p_.tables.tables().current(),
+                                          p_.play.render_flags);
+  if (!p_.play.show) next.show_time_s = static_cast<double>(frame) / p_.play.fps;  // the live session's clock
+  p_.desk.shape(next);
+  return true;
+}
+
+void FrameLoop::start_frame() {
+  if (p_.progress.stopping) return;
+  const std::vector<std::uint32_t> participants = p_.barrier.participants_among(p_.sessions.ready_ids());
+  if (participants.empty()) {
+    if (!waiting_logged_) spdlog::warn("master: no node is ready for frame {}; waiting", p_.barrier.frame());
+    waiting_logged_ = true;
+    return retry_after(milliseconds(20));
+  }
+  waiting_logged_ = false;
+  p_.tables.maybe_start_switch();
+  if (!held_frame_) {
+    FrameState next;
+    if (!next_frame(next)) return;
+    held_frame_ = std::move(next);
+    held_since_ = Clock::now();
+    held_logged_ = false;
+  }
+  if (!p_.tables.participants_hold(*held_frame_, participants, !held_logged_)) {
+    held_logged_ = true;
+    return retry_after(milliseconds(20));
+  }
+  if (held_logged_) {
+    spdlog::info("master: frame {} goes on after waiting {:.1f} s for its tables", held_frame_->frame,
+                 ms_since(held_since_) / 1000.0);
+    // Paced: the frames after the wait keep the frame rate instead of
+    // catching up on the time spent waiting.
+    show_started_ += Clock::now() - held_since_;
+  }
+  FrameState& state = p_.progress.in_flight;
+  state = std::move(*held_frame_);
+  held_frame_.reset();
+  if (p_.play.show && !p_.options.feed) p_.tables.apply_overrides(state);
+  const std::uint64_t frame = p_.options.feed ? state.frame : p_.barrier.frame();
+  auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(state));
+  if (p_.desk.wants_preview(frame)) {  // before the FrameState it names
+    auto request = std::make_shared<const std::vector<std::uint8_t>>(encode(PreviewRequest{frame, kMaxThumbnailEdgePx}));
+    for (const std::uint32_t id : participants) p_.sessions.find(id)->connection->send_encoded(request);
+  }
+  for (const std::uint32_t id : participants) p_.sessions.find(id)->connection->send_encoded(encoded);
+  p_.sessions.send_to_standbys(encoded);
+  p_.barrier.begin(frame, participants);
+  frame_started_ = Clock::now();
+  spdlog::debug("master: frame {} sent to {} node{}", frame, participants.size(), participants.size() == 1 ? "" : "s");
+  barrier_timer_.expires_after(milliseconds(p_.options.config.barrier_timeout_ms));
+  barrier_timer_.async_wait([this, frame](const boost::system::error_code& ec) {
+    if (!ec && p_.barrier.in_flight() && p_.barrier.frame() == frame) on_barrier_timeout();
+  });
+}
+
+void FrameLoop::on_render_done(const NodeSession& s, const RenderDone& done) {
+  switch (p_.barrier.on_render_done(s.id, done.frame)) {
+    case FrameBarrier::Report::counted:
+      p_.statistics.rendered(s.name, done.render_ms, p_.barrier.complete() && p_.barrier.participant_count() > 1);
+      if (p_.barrier.complete()) complete_frame();
+      return;
+    case FrameBarrier::Report::rejoins:
+      p_.statistics.rendered(s.name, done.render_ms, false);
+      p_.statistics.rejoined(s.name);
+      spdlog::info("master: node '{}' finished frame {} late; it rejoins the barrier at frame {}", s.name,
+                   done.frame, p_.barrier.next_boundary());
+      return;
+    case FrameBarrier::Report::ignored_lagging: return;
+    case FrameBarrier::Report::ignored:
+      spdlog::debug("master: ignoring RenderDone {} from node '{}' (frame {} in flight)", done.frame, s.name,
+                    p_.barrier.frame());
+      return;
+  }
+}
+
+void FrameLoop::on_barrier_timeout() {
+  for (const std::uint32_t id : p_.barrier.drop_unfinished())
+    if (const NodeSession* s = p_.sessions.find(id)) {
+      p_.statistics.dropped(s->name);
+      spdlog::warn("master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
+                   "barrier; the show goes on without it",
+                   s->name, p_.barrier.frame(), p_.options.config.barrier_timeout_ms);
+    }
+  complete_frame();
+}
+
+void FrameLoop::complete_frame() {
+  barrier_timer_.cancel();
+  const FrameBarrier::Release release = p_.barrier.release();
+  const std::uint64_t frame = release.frame;
+  auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(Present{frame}));
+  for (const std::uint32_t id : release.present_to)
+    if (NodeSession* s = p_.sessions.find(id)) s->connection->send_encoded(encoded);
+  p_.sessions.send_to_standbys(encoded);
+  spdlog::info("master: present frame {} on {} node{} ({:.1f} ms)", frame, release.present_to.size(),
+               release.present_to.size() == 1 ? "" : "s", ms_since(frame_started_));
+  if (p_.play.recorder) {
+    for (const AtmosphereTableRef& r : p_.progress.in_flight.atmospheres)
+      p_.play.recorder->add_version(p_.tables.tables().version(r.table_hash));
+    p_.play.recorder->record(p_.progress.in_flight);
+  }
+  if (p_.options.feed) p_.options.feed->presented(frame);
+  const std::uint64_t presented = ++p_.progress.presented;
+  if (p_.options.frames != 0 && presented >= p_.options.frames)
+    return p_.stop(cat("show finished after ", presented, " frames"));
+  if (p_.play.clock && p_.play.clock->finished() && !p_.options.feed)
+    return p_.stop(cat("show '", p_.play.show->name(), "' finished after ", presented, " frames"));
+  if (!p_.options.paced) {
+    boost::asio::post(frame_timer_.get_executor(), [this] { start_frame(); });
+    return;
+  }
+  // Pace: frame N starts no earlier than show start + N / rate.
+  const auto due = show_started_ + std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(static_cast<double>(presented) / p_.play.fps));
+  retry_after(std::max(due, Clock::now()) - Clock::now());
+}
+
+}  // namespace zenith::cluster

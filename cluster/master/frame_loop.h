@@ -1,0 +1,88 @@
+#pragma once
+// The master's frame loop (docs/cluster.md, "Frame barrier"; docs/shows.md,
+// "Playback"): frame 0 starts once the tables allow it and every configured
+// node is ready (or the wait for nodes is over); each frame is the feed's,
+// the show's or the default show's, shaped by the operator (OperatorDesk),
+// held until every participant holds its table sets (TableSchedule), then
+// sent; the RenderDone of every participant (or the barrier timeout, which
+// drops the late ones) releases Present; the next frame starts at the frame
+// rate (live) or at once (offline). The master stops after its frames, at the
+// end of a show or of a feed. On the master's io_context, its timers only.
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "cluster/master/frame_barrier.h"
+#include "cluster/master/master.h"
+#include "cluster/master/node_sessions.h"
+#include "cluster/master/node_statistics.h"
+#include "cluster/master/operator_desk.h"
+#include "cluster/master/playback.h"
+#include "cluster/master/table_schedule.h"
+#include "cluster/protocol/messages.h"
+
+namespace zenith::cluster {
+
+/// Invariants: at most one frame in flight (FrameBarrier); a frame is sent
+/// only to participants that hold every table set it uses; frames go out in
+/// order and no faster than the frame rate when paced.
+class FrameLoop {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// The master's parts the loop reads and drives (they outlive it).
+  struct Parts {
+    const MasterOptions& options;
+    Playback& play;
+    NodeSessions& sessions;
+    FrameBarrier& barrier;
+    TableSchedule& tables;
+    const OperatorDesk& desk;
+    NodeStatistics& statistics;
+    FrameProgress& progress;
+    std::function<void(const std::string& reason)> stop;  ///< the master stops (the show is over)
+  };
+
+  FrameLoop(boost::asio::io_context& io, Parts parts);
+
+  /// The wait for nodes counts from now (the tables of frame 0 are ready).
+  void start_waiting() { waiting_since_ = Clock::now(); }
+  /// Starts frame 0 when the tables allow it and every configured node is
+  /// ready, or the wait for nodes is over with at least one; logs once when
+  /// none is ready after the wait.
+  void maybe_start();
+  /// A node's RenderDone: counted in the barrier (Present when it was the
+  /// last), or the late node rejoins at the next boundary.
+  void on_render_done(const NodeSession& session, const RenderDone& done);
+  /// A node left: the frame in flight may be complete without it.
+  void on_node_left(std::uint32_t session);
+  /// No more frames: the timers are cancelled.
+  void stop();
+
+ private:
+  void start_frame();
+  bool next_frame(FrameState& next);
+  void on_barrier_timeout();
+  void complete_frame();
+  /// start_frame after `delay` unless the timer is cancelled (stop) or set again.
+  void retry_after(Clock::duration delay);
+
+  Parts p_;
+  boost::asio::steady_timer barrier_timer_, frame_timer_;
+  /// The next frame, evaluated but not yet sent: it uses a table set that is
+  /// still being prepared, or that a participant has not confirmed yet.
+  std::optional<FrameState> held_frame_;
+  Clock::time_point held_since_;
+  bool held_logged_ = false;
+  Clock::time_point frame_started_, show_started_;
+  /// Since when frame 0 could start as far as the tables go (the wait for nodes counts from here).
+  std::optional<Clock::time_point> waiting_since_;
+  bool waiting_logged_ = false;
+};
+
+}  // namespace zenith::cluster

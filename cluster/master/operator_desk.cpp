@@ -1,0 +1,204 @@
+#include "cluster/master/operator_desk.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "cluster/master/master_status.h"
+#include "core/strings.h"
+#include "image/png_encoder.h"
+#include "warp/viewport_config.h"
+
+namespace zenith::cluster {
+
+using core::cat;
+
+OperatorDesk::OperatorDesk(Master master, const scene::Scene& scene) : m_(std::move(master)), sun_(scene) {}
+
+// ---------------------------------------------------------------------------- commands
+
+std::string OperatorDesk::on_line(std::string line) {
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  if (line.empty()) return "";
+  if (line.front() == '{') {
+    try {
+      return run(parse_operator_command_text(line), "control");
+    } catch (const std::exception& e) {
+      spdlog::info("master: operator (control): command refused: {}", e.what());
+      return cat("error: ", e.what());
+    }
+  }
+  if (line == "quit" || line == "stop") {
+    m_.stop("stopped by the operator");
+    return "stopping";
+  }
+  if (!m_.clock) {
+    if (line == "status")
+      return cat("default show at frame ", m_.barrier.frame(), " (no show file: only status and quit)");
+    return "no show is playing: only 'status' and 'quit' are available";
+  }
+  try {
+    std::string reply = m_.clock->apply_command(line);
+    spdlog::info("master: operator: {} → {}", line, reply);
+    return reply;
+  } catch (const std::invalid_argument& e) {
+    return cat("error: ", e.what());
+  }
+}
+
+std::string OperatorDesk::run(const OperatorCommand& command, const std::string& source) {
+  namespace oc = operator_command;
+  try {
+    std::string reply;
+    if (std::holds_alternative<oc::Quit>(command)) {
+      m_.stop("stopped by the operator");
+      reply = "stopping";
+    } else if (const auto* exposure = std::get_if<oc::Exposure>(&command)) {
+      exposure_ = exposure->exposure;
+      reply = exposure->exposure ? cat("exposure ", *exposure->exposure, " from the next frame on")
+                                 : std::string("the show's own exposure from the next frame on");
+    } else if (const auto* set = std::get_if<oc::Set>(&command)) {
+      reply = m_.tables.set_atmosphere(*set);
+    } else if (const auto* sun = std::get_if<oc::Sun>(&command)) {
+      reply = apply_sun(*sun);
+    } else if (const auto* clear = std::get_if<oc::Clear>(&command)) {
+      reply = apply_clear(*clear);
+    } else if (const auto* on = std::get_if<oc::Preview>(&command)) {
+      reply = apply_preview(*on);
+    } else if (!m_.clock) {
+      if (!std::holds_alternative<oc::Status>(command))
+        throw std::invalid_argument(cat(describe(command), ": no show is playing (the default show has no clock: start "
+                                                           "the master with --show FILE for play, pause, seek, rate and loop)"));
+      reply = cat("default show at frame ", m_.barrier.frame());
+    } else {
+      if (const auto* seek = std::get_if<oc::Seek>(&command); seek && seek->seconds > m_.clock->duration_s())
+        throw std::invalid_argument(cat("command: /seconds = ", seek->seconds, ": must be in [0, ",
+                                        m_.clock->duration_s(), "] s (the show's duration)"));
+      reply = m_.clock->apply_command(describe(command));  // the clock's own words: "seek 12.5", "loop on"
+    }
+    spdlog::info("master: operator ({}): {} → {}", source, describe(command), reply);
+    return reply;
+  } catch (const std::exception& e) {
+    spdlog::info("master: operator ({}): {} refused: {}", source, describe(command), e.what());
+    throw;
+  }
+}
+
+/// An operator's `sun` (docs/operator.md, "Sun"): the show's sun replaced from the next frame on.
+std::string OperatorDesk::apply_sun(const operator_command::Sun& sun) {
+  if (m_.feed) throw std::invalid_argument(cat(describe(sun), ": the frames come from an offline render's feed"));
+  const scene::SkyAngles angles = sun_.set(sun, m_.progress.started ? &m_.progress.in_flight : nullptr);
+  return fmt::format("sun at elevation {}°, azimuth {}° from the next frame on, until cleared", angles.elevation_deg,
+                     angles.azimuth_deg);
+}
+
+/// An operator's `preview`: the nodes send thumbnails with their RenderDone
+/// (every preview_interval_frames() frames) while it is on, never while off.
+std::string OperatorDesk::apply_preview(const operator_command::Preview& on) {
+  if (!preview_)
+    throw std::invalid_argument("preview: the dome preview is served at /api/preview: start the master with --operator-port");
+  preview_on_ = on.on;
+  if (!on.on) {
+    preview_->clear();
+    return "dome preview off: the nodes send no thumbnails";
+  }
+  const std::uint64_t every = preview_interval_frames();
+  return cat("dome preview on: every node sends a thumbnail of each output every ",
+             every == 1 ? std::string("frame") : cat(every, " frames"), " (",
+             preview_->layout() == DomePreview::Layout::dome ? "placed in the dome master" : "in a grid", ", ",
+             preview_->width_px(), "x", preview_->height_px(), " px at /api/preview)");
+}
+
+/// An operator's `clear`: the show's (or scene's) own sun, exposure or atmosphere again.
+std::string OperatorDesk::apply_clear(const operator_command::Clear& clear) {
+  if (clear.what == operator_command::Clear::What::atmosphere) return m_.tables.clear_atmosphere(clear.body);
+  if (clear.what == operator_command::Clear::What::exposure) {
+    exposure_.reset();
+    return "the show's own exposure from the next frame on";
+  }
+  sun_.clear();
+  return m_.show ? "the show's sun track from the next frame on" : "the default show's sun from the next frame on";
+}
+
+// ---------------------------------------------------------------------------- the frames
+
+void OperatorDesk::shape(FrameState& next) const {
+  if (exposure_) next.exposure = *exposure_;
+  sun_.apply(next);
+}
+
+void OperatorDesk::add_thumbnail(const std::string& node, const Thumbnail& thumbnail) {
+  if (!preview_on_) return;  // sent before the preview was turned off
+  preview_->add(node, thumbnail);
+}
+
+std::uint64_t OperatorDesk::preview_interval_frames() const {
+  constexpr double kPreviewsPerSecond = 2.0;
+  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::lround(m_.fps / kPreviewsPerSecond)));
+}
+
+// ---------------------------------------------------------------------------- status
+
+nlohmann::json OperatorDesk::status() const {
+  const FrameProgress& p = m_.progress;
+  const TableSchedule& t = m_.tables;
+  return master_status(StatusSources{m_.config, m_.sessions, m_.barrier, t.tables(), m_.preparing(), m_.statistics,
+                                     t.edits(), m_.show, m_.clock, p.started, p.stopping,
+                                     p.started ? &p.in_flight : nullptr, p.presented, m_.fps, exposure_,
+                                     t.pending_change(), t.last_error(),
+                                     p.started ? std::optional(sun_.angles_of(p.in_flight)) : std::nullopt,
+                                     sun_.angles(), m_.show ? &t.overrides() : nullptr, t.show_versions(),
+                                     preview_ ? &*preview_ : nullptr, preview_on_});
+}
+
+std::optional<std::string> OperatorDesk::preview_png() const {
+  if (!preview_on_ || preview_->empty()) return std::nullopt;
+  const DomePreview::Picture picture = preview_->compose();
+  const std::vector<std::uint8_t> png = image::encode_png_rgb8(picture.width_px, picture.height_px, picture.rgb);
+  return std::string(png.begin(), png.end());
+}
+
+// ---------------------------------------------------------------------------- where commands come from
+
+void OperatorDesk::start_console(boost::asio::io_context& io, const OperatorConsoleOptions& console) {
+  const auto command = [this](const OperatorCommand& c, const std::string& source) { return run(c, source); };
+  if (console.http_port) {
+    preview_.emplace(m_.config, warp::load_viewport_config(m_.config.viewports));
+    http_.emplace(io, OperatorHttpServer::Options{console.http_host, *console.http_port, console.token},
+                  OperatorHttpServer::Handlers{[this] { return status(); }, command, [this] { return preview_png(); }});
+    http_->start();
+    spdlog::info("master: operator console at {} ({}; docs/operator.md)", http_->url(),
+                 console.token ? "operator token required" : "loopback only, no token");
+  }
+  if (console.osc_port) {
+    osc_.emplace(io, OscReceiver::Options{console.osc_host, *console.osc_port, console.osc_allow}, command);
+    osc_->start();
+    spdlog::info("master: OSC on udp {}:{} (/zenith/play, /zenith/pause, /zenith/seek, /zenith/rate, /zenith/exposure, "
+                 "/zenith/sun/elevation, /zenith/sun/azimuth, /zenith/atmosphere/BODY/PARAMETER; docs/operator.md)",
+                 console.osc_host, osc_->port());
+  }
+}
+
+void OperatorDesk::start_inputs(boost::asio::io_context& io, bool console, std::optional<std::uint16_t> control_port) {
+  input_.emplace(io, [this](std::string line) { return on_line(std::move(line)); });
+  if (console) {
+    input_->read_console();
+    spdlog::info("master: console commands: play, pause, toggle, seek SECONDS, rate FACTOR, loop on|off, status, quit");
+  }
+  if (control_port) {
+    input_->listen_for_control(*control_port);
+    spdlog::info("master: control socket on 127.0.0.1:{} (zenith show control --port {} COMMAND)", *control_port,
+                 *control_port);
+  }
+}
+
+void OperatorDesk::close() {
+  if (input_) input_->close();
+  if (http_) http_->close();
+  if (osc_) osc_->close();
+}
+
+}  // namespace zenith::cluster

@@ -1,0 +1,38 @@
+#include "cluster/master/playback.h"
+
+#include <spdlog/spdlog.h>
+
+#include <stdexcept>
+
+#include "core/strings.h"
+#include "render/render_flags.h"
+#include "scene/scene_loader.h"
+
+namespace zenith::cluster {
+
+using core::cat;
+
+void load_playback(const MasterOptions& options, Playback& p) {
+  p.render_flags = render::render_flags_of(render::RenderOptions{});
+  p.fps = options.config.frame_rate_hz;
+  if (!options.show) {
+    p.scene = scene::load_scene(options.config.scene);
+  } else {
+    if (!options.atmosphere_switches.empty())
+      throw std::invalid_argument(
+          "atmosphere switches cannot be combined with a show: use the show's atmosphere tracks");
+    p.show.emplace(show::load_show(*options.show));
+    p.scene = p.show->scene();
+    if (options.show_fps > 0.0) p.fps = options.show_fps;
+    else if (p.show->kind() == show::Show::Kind::recording) p.fps = p.show->frame_rate_hz();
+    p.clock.emplace(p.show->duration_s(), p.fps, options.loop.value_or(p.show->loop()));
+    spdlog::info("master: playing show '{}' ({:.1f} s at {} fps, {} frames{})", p.show->name(), p.show->duration_s(),
+                 p.fps, p.show->frame_count(p.fps), p.clock->looping() ? ", looping" : "");
+  }
+  if (options.record)
+    p.recorder = std::make_unique<show::ShowRecorder>(
+        *options.record, p.show ? p.show->scene_path() : options.config.scene,
+        p.show ? cat(p.show->name(), " (recorded)") : cat(options.config.name, " session"), p.fps);
+}
+
+}  // namespace zenith::cluster

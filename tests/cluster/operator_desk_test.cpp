@@ -1,0 +1,142 @@
+// The master's operator desk without sockets (cluster/master/operator_desk.h;
+// docs/shows.md, "Playback"; docs/operator.md): what each command does to the
+// next frame, the clock and the status, and what it refuses.
+#include "cluster/master/operator_desk.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "scene/frame_scene.h"
+#include "scene/scene_loader.h"
+
+namespace zenith::cluster {
+namespace {
+
+namespace oc = operator_command;
+
+const std::filesystem::path kSource = ZENITH_SOURCE_DIR;
+
+std::string refusal(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+class OperatorDeskTest : public ::testing::Test {
+ protected:
+  OperatorDeskTest() : scene_(scene::load_scene(kSource / "configs/scenes/earth-sunset.json")) {
+    TableSchedule::Actions actions;
+    actions.prepare = [](TablePreparer::Job) {};
+    actions.defer = [](std::function<void()>) {};
+    schedule_.emplace(TableSchedule::Options{}, scene_, nullptr, sessions_, barrier_, actions);
+    schedule_->prepare_initial([](const TablePreparer::Job& job) {
+      return make_table_set(job.body, job.table_hash, std::make_shared<const std::vector<std::uint8_t>>(100, 1));
+    });
+  }
+
+  /// The desk of the default show (`clock` nullptr) or of a show with `clock`.
+  OperatorDesk desk(show::PlaybackClock* clock = nullptr) {
+    return OperatorDesk(OperatorDesk::Master{config_, sessions_, barrier_, *schedule_, statistics_, progress_, nullptr,
+                                             clock, 30.0, false, [] { return std::nullopt; },
+                                             [this](const std::string& reason) { stopped_ = reason; }},
+                        scene_);
+  }
+
+  FrameState frame(std::uint64_t n) const { return scene::default_show_frame(scene_, n, 0.0, {}, 0); }
+
+  scene::Scene scene_;
+  ClusterConfig config_;
+  NodeSessions sessions_;
+  FrameBarrier barrier_;
+  NodeStatistics statistics_;
+  FrameProgress progress_;
+  std::optional<TableSchedule> schedule_;
+  std::string stopped_;
+};
+
+TEST_F(OperatorDeskTest, TheExposureReplacesTheShowsFromTheNextFrameUntilCleared) {
+  OperatorDesk d = desk();
+  EXPECT_EQ(d.run(oc::Exposure{2.5}, "control"), "exposure 2.5 from the next frame on");
+  FrameState next = frame(1);
+  ASSERT_EQ(next.exposure, 25.0) << "the scene's exposure";
+  d.shape(next);
+  EXPECT_EQ(next.exposure, 2.5);
+  EXPECT_EQ(d.status()["exposure_override"], 2.5);
+
+  EXPECT_EQ(d.run(oc::Clear{oc::Clear::What::exposure, ""}, "control"), "the show's own exposure from the next frame on");
+  FrameState after = frame(2);
+  d.shape(after);
+  EXPECT_EQ(after.exposure, 25.0);
+  EXPECT_TRUE(d.status()["exposure_override"].is_null());
+}
+
+TEST_F(OperatorDeskTest, TheSunIsSetInTheCamerasSkyAndAnAngleLeftOutKeepsItsValue) {
+  OperatorDesk d = desk();
+  EXPECT_EQ(d.run(oc::Sun{-6.0, std::nullopt}, "osc 10.0.0.5"),
+            "sun at elevation -6°, azimuth 272° from the next frame on, until cleared");
+  FrameState next = frame(1);
+  d.shape(next);
+  const SunOverride check(scene_);
+  EXPECT_NEAR(check.angles_of(next).elevation_deg, -6.0, 1e-9);
+  EXPECT_NEAR(check.angles_of(next).azimuth_deg, 272.0, 1e-9);
+  EXPECT_EQ(d.run(oc::Clear{oc::Clear::What::sun, ""}, "control"), "the default show's sun from the next frame on");
+  FrameState again = frame(1);
+  d.shape(again);
+  EXPECT_EQ(again, frame(1));
+}
+
+TEST_F(OperatorDeskTest, TheDefaultShowHasNoClock) {
+  OperatorDesk d = desk();
+  barrier_.start_at(7);
+  EXPECT_EQ(d.on_line("status \r"), "default show at frame 7 (no show file: only status and quit)");
+  EXPECT_EQ(d.on_line("pause"), "no show is playing: only 'status' and 'quit' are available");
+  EXPECT_EQ(d.run(oc::Status{}, "control"), "default show at frame 7");
+  EXPECT_EQ(refusal([&] { d.run(oc::Seek{2.0}, "control"); }),
+            "seek 2.0: no show is playing (the default show has no clock: start the master with --show FILE for "
+            "play, pause, seek, rate and loop)");
+  EXPECT_EQ(d.on_line(""), "");
+  EXPECT_TRUE(stopped_.empty());
+  EXPECT_EQ(d.on_line("quit"), "stopping");
+  EXPECT_EQ(stopped_, "stopped by the operator");
+}
+
+TEST_F(OperatorDeskTest, AShowsClockTakesPlaybackCommandsWithinItsDuration) {
+  show::PlaybackClock clock(10.0, 30.0, false);
+  OperatorDesk d = desk(&clock);
+  EXPECT_EQ(d.on_line("pause"), "paused at 0.000 s of 10.000 s, rate 1, loop off");
+  EXPECT_FALSE(clock.playing());
+  EXPECT_EQ(d.on_line("rate 99").rfind("error: \"rate 99\": rate 99 is outside [-16, 16]; ", 0), 0u);
+  EXPECT_EQ(refusal([&] { d.run(oc::Seek{12.0}, "http 127.0.0.1"); }),
+            "command: /seconds = 12: must be in [0, 10] s (the show's duration)");
+  d.run(oc::Seek{4.0}, "http 127.0.0.1");
+  EXPECT_DOUBLE_EQ(clock.time_s(), 4.0);
+  // A JSON line is a command as the HTTP console sends it; a bad one is refused with the reason.
+  d.on_line(R"({"command": "play"})");
+  EXPECT_TRUE(clock.playing());
+  EXPECT_EQ(d.on_line(R"({"command": "seek", "seconds": -1})").rfind("error: ", 0), 0u);
+  EXPECT_DOUBLE_EQ(clock.time_s(), 4.0) << "a refused command changes nothing";
+}
+
+TEST_F(OperatorDeskTest, ThePreviewNeedsTheHttpConsole) {
+  OperatorDesk d = desk();
+  EXPECT_EQ(refusal([&] { d.run(oc::Preview{true}, "control"); }),
+            "preview: the dome preview is served at /api/preview: start the master with --operator-port");
+  EXPECT_FALSE(d.wants_preview(0));
+  EXPECT_EQ(d.preview_interval_frames(), 15u) << "two thumbnails a second at 30 fps";
+}
+
+TEST_F(OperatorDeskTest, AnAtmosphereChangeGoesToTheTableSchedule) {
+  OperatorDesk d = desk();
+  EXPECT_EQ(refusal([&] {
+              d.run(oc::Set{"Earth", nlohmann::json::json_pointer("/aerosol/scattering/turbidity"), 100}, "control");
+            }),
+            "set Earth: /aerosol/scattering/turbidity = 100: must be in [1, 64]");
+  EXPECT_TRUE(d.status()["live_atmospheres"].get<bool>());
+}
+
+}  // namespace
+}  // namespace zenith::cluster
