@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "astro/light_pollution.h"
 #include "astro/moon_photometry.h"
@@ -59,11 +60,9 @@ TEST(MoonPhotometry, FullAndQuarterMoonAndTheDisc) {
   // The geometric albedo this implies: 0.12 (Allen's Astrophysical Quantities: 0.12).
   EXPECT_NEAR(lunar_geometric_albedo(550.0), 0.12, 0.01);
   EXPECT_GT(lunar_geometric_albedo(680.0), lunar_geometric_albedo(440.0));  // redder than the Sun
-  // Lommel–Seeliger's disc integral: its closed form against a quadrature of the disc.
-  for (double alpha_deg : {0.0, 30.0, 60.0, 90.0, 120.0, 150.0}) {
-    SCOPED_TRACE(alpha_deg);
-    const double a = alpha_deg * core::kDeg;
-    // Sum μ₀μ/(μ₀+μ) over the visible hemisphere (viewer along +z, sun at angle α in x–z).
+  // Sums f(μ₀, μ) over the disc seen along +z (a 400² grid of its projection, each cell's
+  // area 4/n² of the unit disc), the sun at phase angle α in the x–z plane.
+  auto over_disc = [](double alpha, const std::function<double(double, double)>& f) {
     const int n = 400;
     double sum = 0.0;
     for (int i = 0; i < n; ++i)
@@ -71,9 +70,16 @@ TEST(MoonPhotometry, FullAndQuarterMoonAndTheDisc) {
         const double x = -1.0 + (i + 0.5) * 2.0 / n, y = -1.0 + (j + 0.5) * 2.0 / n;
         if (x * x + y * y >= 1.0) continue;
         const double mu = std::sqrt(1.0 - x * x - y * y);
-        const double mu0 = x * std::sin(a) + mu * std::cos(a);
-        if (mu0 > 0.0) sum += mu0 * mu / (mu0 + mu) / mu * (4.0 / (n * n));  // dA/μ on the disc's projection → dA μ/μ
+        sum += f(x * std::sin(alpha) + mu * std::cos(alpha), mu) * (4.0 / (n * n));
       }
+    return sum;
+  };
+  // Lommel–Seeliger's disc integral: its closed form against a quadrature of μ₀/(μ₀+μ)
+  // (the projection's area element already carries the μ of dA·μ).
+  for (double alpha_deg : {0.0, 30.0, 60.0, 90.0, 120.0, 150.0}) {
+    SCOPED_TRACE(alpha_deg);
+    const double a = alpha_deg * core::kDeg;
+    const double sum = over_disc(a, [](double mu0, double mu) { return mu0 > 0.0 ? mu0 / (mu0 + mu) : 0.0; });
     EXPECT_NEAR(sum / (core::kPi / 2.0), lommel_seeliger_phase(a), 0.005);
   }
   // The disc's radiance, integrated over the disc, is the Moon's irradiance.
@@ -84,16 +90,9 @@ TEST(MoonPhotometry, FullAndQuarterMoonAndTheDisc) {
   const std::vector<double> wl = {550.0};
   const double e = moon_irradiance_W_m2_nm(moon, wl)[0];
   const double omega_per_unit_area = std::pow(kMoonRadius_km / moon.distance_km, 2.0);  // solid angle of the disc / π
-  const int n = 400;
-  double sum = 0.0;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double x = -1.0 + (i + 0.5) * 2.0 / n, y = -1.0 + (j + 0.5) * 2.0 / n;
-      if (x * x + y * y >= 1.0) continue;
-      const double mu = std::sqrt(1.0 - x * x - y * y);
-      const double mu0 = x * std::sin(moon.phase_angle_rad) + mu * std::cos(moon.phase_angle_rad);
-      sum += moon_disc_radiance(mu0, mu, moon.phase_angle_rad, 550.0) * omega_per_unit_area * (4.0 / (n * n));
-    }
+  const double sum = over_disc(moon.phase_angle_rad, [&](double mu0, double mu) {
+    return moon_disc_radiance(mu0, mu, moon.phase_angle_rad, 550.0) * omega_per_unit_area;
+  });
   EXPECT_NEAR(sum / e, 1.0, 0.01);
 }
 
