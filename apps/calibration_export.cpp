@@ -16,6 +16,8 @@
 #include "warp/export_warp_map.h"
 #include "warp/mpcdi_writer.h"
 #include "warp/pfm.h"
+#include "warp/planar_projection.h"
+#include "warp/warped_projection.h"
 
 namespace zenith::app {
 namespace {
@@ -62,11 +64,29 @@ json write_map_pair(const fs::path& dir, const std::string& stem, const std::str
   return entries;
 }
 
+/// The pinhole of an output the sl profile can describe: its projection when
+/// planar, or the planar base of its warp; std::invalid_argument naming the
+/// output otherwise.
+const warp::PlanarProjection& pinhole_of(const warp::OutputConfig& o) {
+  const warp::Projection* image = o.projection.get();
+  if (const auto* warped = dynamic_cast<const warp::WarpedProjection*>(image)) image = &warped->base();
+  const auto* planar = dynamic_cast<const warp::PlanarProjection*>(image);
+  if (planar == nullptr)
+    throw std::invalid_argument("output '" + o.name + "': the MPCDI sl profile describes a pinhole projector (a "
+                                "frustum), and the output's projection is " + image->describe() +
+                                ": export it with the 2d profile");
+  return *planar;
+}
+
 }  // namespace
 
 std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
-                                             const std::vector<std::size_t>& indices, const fs::path& dir) {
+                                             const std::vector<std::size_t>& indices, const fs::path& dir,
+                                             const CalibrationExportOptions& options) {
   for (const std::size_t i : indices) config.require_renderable(i);
+  const bool shader_lamps = options.mpcdi_profile == warp::MpcdiProfile::shader_lamps;
+  if (shader_lamps)
+    for (const std::size_t i : indices) pinhole_of(config.outputs.at(i));
   std::error_code error;
   fs::create_directories(dir, error);
   if (error || !fs::is_directory(dir))
@@ -125,20 +145,46 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
     region.alpha_member = alpha_file;
     region.alpha_gamma_embedded = 1.0;
     region.beta_member = beta_file;
+    std::vector<std::pair<std::string, fs::path>> members = {{alpha_file, dir / alpha_file}, {beta_file, dir / beta_file}};
+    // sl: the pinhole's frustum exactly; a warp becomes the lens distortion map.
+    const bool distortion = shader_lamps && o.warp.has_value();
+    if (shader_lamps) {
+      region.profile = warp::MpcdiProfile::shader_lamps;
+      region.frustum = pinhole_of(o).frustum();
+      if (!distortion) region.warp_member.clear();
+    }
+    if (!shader_lamps || distortion) members.insert(members.begin(), {warp_file, dir / warp_file});
     const std::string mpcdi_file = o.name + ".mpcdi";
-    warp::write_mpcdi_archive(
-        dir / mpcdi_file, warp::mpcdi_descriptor(region),
-        {{warp_file, dir / warp_file}, {alpha_file, dir / alpha_file}, {beta_file, dir / beta_file}});
-    written.push_back({dir / mpcdi_file, fmt::format("MPCDI 2d profile, region '{}' {} x {} px (the source): "
-                                                     "mpcdi.xml, {}, {} (gammaEmbedded 1), {}",
-                                                     o.name, region.width_px, region.height_px, warp_file, alpha_file,
-                                                     beta_file)});
-    files.push_back({{"file", mpcdi_file},
-                     {"kind", "MPCDI"},
-                     {"format", "ZIP: mpcdi.xml (profile 2d, version 2.0), geometry warp PFM (interpolation linear), "
-                                "alpha map and beta map (16-bit grey PNG, linear, gammaEmbedded 1)"},
-                     {"region", o.name},
-                     {"members", {"mpcdi.xml", warp_file, alpha_file, beta_file}}});
+    warp::write_mpcdi_archive(dir / mpcdi_file, warp::mpcdi_descriptor(region), members);
+    std::vector<std::string> member_names = {"mpcdi.xml"};
+    for (const auto& member : members) member_names.push_back(member.first);
+    if (shader_lamps) {
+      const warp::PlanarFrustum& f = region.frustum;
+      written.push_back({dir / mpcdi_file,
+                         fmt::format("MPCDI sl profile, region '{}' {} x {} px: mpcdi.xml (frustum left {} right {} "
+                                     "down {} up {} yaw {} pitch {} roll {} degrees, coordinate frame at the origin "
+                                     "with the display's axes), {}{} (gammaEmbedded 1), {}",
+                                     o.name, region.width_px, region.height_px, f.left_deg, f.right_deg, f.down_deg,
+                                     f.up_deg, f.yaw_deg, f.pitch_deg, f.roll_deg,
+                                     distortion ? warp_file + " (lens distortion map), " : std::string(), alpha_file,
+                                     beta_file)});
+    } else {
+      written.push_back({dir / mpcdi_file, fmt::format("MPCDI 2d profile, region '{}' {} x {} px (the source): "
+                                                       "mpcdi.xml, {}, {} (gammaEmbedded 1), {}",
+                                                       o.name, region.width_px, region.height_px, warp_file,
+                                                       alpha_file, beta_file)});
+    }
+    files.push_back(
+        {{"file", mpcdi_file},
+         {"kind", "MPCDI"},
+         {"format", shader_lamps ? "ZIP: mpcdi.xml (profile sl, version 2.0: the output's frustum and a coordinate "
+                                   "frame with the display's axes (X left, Y up, Z forward)), the warp as the lens "
+                                   "distortion map (2D PFM) where the output has one, alpha map and beta map (16-bit "
+                                   "grey PNG, linear, gammaEmbedded 1)"
+                                 : "ZIP: mpcdi.xml (profile 2d, version 2.0), geometry warp PFM (interpolation "
+                                   "linear), alpha map and beta map (16-bit grey PNG, linear, gammaEmbedded 1)"},
+         {"region", o.name},
+         {"members", member_names}});
 
     // The outputs of the exported viewport configs.
     const json source = {{"size_px", {warp_map.source_width_px, warp_map.source_height_px}}};
@@ -152,6 +198,10 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
                           {"v_direction", "down"},    {"values", "absolute"}, {"source", source}};
     mpcdi_output["warp"] = {{"file", mpcdi_file}, {"format", "mpcdi"}, {"region", o.name},
                             {"values", "absolute"}, {"source", source}};
+    if (shader_lamps) {  // the region gives the rays: its frustum and frame, its resolution the source
+      mpcdi_output.erase("projection");
+      mpcdi_output["warp"] = {{"file", mpcdi_file}, {"format", "mpcdi"}, {"region", o.name}};
+    }
     pfm_outputs.push_back(std::move(pfm_output));
     mpcdi_outputs.push_back(std::move(mpcdi_output));
     sidecar_outputs.push_back({{"name", o.name},
@@ -191,14 +241,14 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
 }
 
 std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config, const std::string& output_name,
-                                             const fs::path& dir) {
+                                             const fs::path& dir, const CalibrationExportOptions& options) {
   std::vector<std::size_t> indices;
   if (!output_name.empty()) {
     indices.push_back(config.index_of(output_name));
   } else {
     for (std::size_t i = 0; i < config.outputs.size(); ++i) indices.push_back(i);
   }
-  return export_calibration(config, indices, dir);
+  return export_calibration(config, indices, dir, options);
 }
 
 }  // namespace zenith::app

@@ -9,7 +9,10 @@
 //   NAME.alpha-gamma2.2.png  the same, display-encoded: α = (value / 65535)^2.2
 //   NAME.beta-linear.png     the black-level map β (what the output stage adds), linear
 //   NAME.beta-gamma2.2.png   the same, display-encoded
-//   NAME.mpcdi               MPCDI 2d archive: mpcdi.xml, the warp PFM, the linear alpha and beta maps
+//   NAME.mpcdi               MPCDI 2d archive: mpcdi.xml, the warp PFM, the linear alpha and beta maps;
+//                            or (CalibrationExportOptions::mpcdi_profile sl) an sl archive: the
+//                            output's frustum and a coordinate frame, its warp as the lens
+//                            distortion map (none without a warp), the alpha and beta maps
 //
 // and for the whole export:
 //
@@ -25,9 +28,19 @@
 #include <string>
 #include <vector>
 
+#include "warp/mpcdi.h"
 #include "warp/viewport_config.h"
 
 namespace zenith::app {
+
+/// Options of export_calibration().
+struct CalibrationExportOptions {
+  /// The profile of the MPCDI archives: media_2d (any output: the warp of its
+  /// source image) or shader_lamps (outputs whose projection is planar, with
+  /// or without a warp: a pinhole projector, the frustum and frame exactly,
+  /// the warp as the lens distortion map; warp/mpcdi_writer.h).
+  warp::MpcdiProfile mpcdi_profile = warp::MpcdiProfile::media_2d;
+};
 
 /// One file an export wrote.
 struct ExportedFile {
@@ -39,16 +52,20 @@ struct ExportedFile {
 /// parents when missing; existing files of the same names are replaced).
 /// Returns the files written, in order. Throws what require_renderable() throws
 /// for an output whose warp cannot be used, std::invalid_argument from
-/// warp::export_warp_map() (an output too large), and std::runtime_error naming
-/// the folder or file that cannot be created or written.
+/// warp::export_warp_map() (an output too large) and, for the sl profile,
+/// naming an output whose projection is not planar (before anything is
+/// written), and std::runtime_error naming the folder or file that cannot be
+/// created or written.
 std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
                                              const std::vector<std::size_t>& indices,
-                                             const std::filesystem::path& dir);
+                                             const std::filesystem::path& dir,
+                                             const CalibrationExportOptions& options = {});
 
 /// export_calibration() of the output named `output_name`, or of every output
 /// when it is empty. Throws std::invalid_argument naming the config file and
 /// listing its outputs for an unknown name.
 std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config, const std::string& output_name,
-                                             const std::filesystem::path& dir);
+                                             const std::filesystem::path& dir,
+                                             const CalibrationExportOptions& options = {});
 
 }  // namespace zenith::app

@@ -15,7 +15,7 @@ namespace zenith::app {
 
 void register_export_calibration_command(CLI::App& app) {
   struct Args {
-    std::string viewport, out;
+    std::string viewport, out, mpcdi_profile = "2d";
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -26,9 +26,17 @@ void register_export_calibration_command(CLI::App& app) {
                   "The viewport config, CONFIG.json#NAME for one output, CONFIG.json for all")
       ->required();
   cmd->add_option("--out", args->out, "The folder to write into (created when missing)")->required();
+  cmd->add_option("--mpcdi-profile", args->mpcdi_profile,
+                  "The MPCDI archives' profile: 2d (the warp of each output's source image) or sl (shader lamps: "
+                  "a planar output's frustum and coordinate frame, its warp as the lens distortion map)")
+      ->check(CLI::IsMember({"2d", "sl"}))
+      ->capture_default_str();
   cmd->callback([args] {
     const ViewportSelection selection = select_viewport_outputs(args->viewport);
-    const std::vector<ExportedFile> files = export_calibration(selection.config, selection.indices, args->out);
+    CalibrationExportOptions options;
+    if (args->mpcdi_profile == "sl") options.mpcdi_profile = warp::MpcdiProfile::shader_lamps;
+    const std::vector<ExportedFile> files =
+        export_calibration(selection.config, selection.indices, args->out, options);
     for (const ExportedFile& f : files) fmt::print("written {}: {}\n", f.path.string(), f.summary);
   });
 }

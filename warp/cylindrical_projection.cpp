@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "warp/orientation_angles.h"
 #include "warp/planar_projection.h"
 #include "core/units.h"
 
@@ -73,15 +74,18 @@ double cylindrical_max_pixel_angle_rad(double tan_down, double tan_up, double ra
 
 CylindricalProjection::CylindricalProjection(int width_px, int height_px, const CylindricalParameters& parameters)
     : ClosedFormProjection(width_px, height_px), parameters_(parameters) {
-  const CylindricalParameters& p = parameters;
+  const CylindricalParameters& p = parameters_;
   check_range("horizontal_fov_deg", p.horizontal_fov_deg, 0.0, true, 360.0, false);
   check_range("down_deg", p.down_deg, -kMaxEdgeDeg, true, kMaxEdgeDeg, true);
   check_range("up_deg", p.up_deg, -kMaxEdgeDeg, true, kMaxEdgeDeg, true);
   if (!(p.down_deg < p.up_deg))
     fail("down_deg = " + number(p.down_deg) + " must be less than up_deg = " + number(p.up_deg));
-  check_range("yaw_deg", p.yaw_deg, -180.0, false, 180.0, false);
-  check_range("pitch_deg", p.pitch_deg, -90.0, false, 90.0, false);
-  check_range("roll_deg", p.roll_deg, -180.0, false, 180.0, false);
+  // Yaw, pitch and roll in [−360, 360], kept normalized (as PlanarFrustum's).
+  const YawPitchRollDeg orientation =
+      checked_yaw_pitch_roll({p.yaw_deg, p.pitch_deg, p.roll_deg}, "CylindricalProjection");
+  parameters_.yaw_deg = orientation.yaw_deg;
+  parameters_.pitch_deg = orientation.pitch_deg;
+  parameters_.roll_deg = orientation.roll_deg;
 
   tan_down_ = std::tan(p.down_deg * kDeg);
   tan_up_ = std::tan(p.up_deg * kDeg);

@@ -34,9 +34,11 @@ struct CylindricalParameters {
   double horizontal_fov_deg = 360.0;  ///< the image's width as an angle about the axis, in (0, 360]
   double down_deg = -45.0;  ///< angle of the bottom edge (y = height) from the horizon, in (−89, 89), < up_deg
   double up_deg = 45.0;     ///< angle of the top edge (y = 0) from the horizon, in (−89, 89)
-  double yaw_deg = 0.0;     ///< in [−180, 180]; positive turns forward right (toward +x), as PlanarFrustum
-  double pitch_deg = 0.0;   ///< in [−90, 90]; positive tips forward up (toward +y), as PlanarFrustum
-  double roll_deg = 0.0;    ///< in [−180, 180]; positive banks right, as PlanarFrustum
+  // Yaw, pitch and roll: each read in [−360, 360] and kept normalized (yaw,
+  // roll in (−180, 180], pitch in [−90, 90]; warp/orientation_angles.h).
+  double yaw_deg = 0.0;     ///< positive turns forward right (toward +x), as PlanarFrustum
+  double pitch_deg = 0.0;   ///< positive tips forward up (toward +y), as PlanarFrustum
+  double roll_deg = 0.0;    ///< positive banks right, as PlanarFrustum
 };
 
 /// What gpu(), describe() and max_pixel_angle_rad() return, computed once when

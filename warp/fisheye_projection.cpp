@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/units.h"
+#include "warp/orientation_angles.h"
 
 namespace zenith::warp {
 namespace {
@@ -47,7 +48,17 @@ FisheyeProjection::FisheyeProjection(int width_px, int height_px, const FisheyeP
       centre_y_px_(parameters.centre_y_px.value_or(0.5 * height_px)),
       radius_px_(parameters.radius_px.value_or(0.5 * std::min(width_px, height_px))) {
   check_range("fov_deg", fov_deg_, 1.0, 360.0, "degrees");
-  check_range("tilt_deg", tilt_deg_, -90.0, 90.0, "degrees");
+  // A tilt in [−360, 360] ([0, 360) as tools write it) is the same tilt
+  // wrapped into (−180, 180]; the axis can turn from up to forward or
+  // backward, not past them.
+  check_range("tilt_deg", tilt_deg_, -kMaxOrientationDeg, kMaxOrientationDeg, "degrees");
+  if (const double wrapped = wrapped_deg(tilt_deg_); std::abs(wrapped) <= 90.0) {
+    tilt_deg_ = wrapped;
+  } else {
+    throw std::invalid_argument("FisheyeProjection: tilt_deg = " + number(tilt_deg_) +
+                                ": must be in [-90, 90] degrees (or the same tilt plus or minus 360: [270, 360], "
+                                "[-360, -270])");
+  }
   check_range("rotation_deg", rotation_deg_, -360.0, 360.0, "degrees");
   check_range("centre_x_px", centre_x_px_, -kMaxPositionPx, kMaxPositionPx, "px");
   check_range("centre_y_px", centre_y_px_, -kMaxPositionPx, kMaxPositionPx, "px");

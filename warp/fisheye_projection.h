@@ -46,7 +46,9 @@ namespace zenith::warp {
 /// The parameters of a FisheyeProjection.
 struct FisheyeParameters {
   double fov_deg = 180.0;  ///< full field of view across the image circle, in [1, 360] degrees
-  double tilt_deg = 0.0;   ///< axis turned from up (+y) toward forward (−z), in [−90, 90] degrees
+  /// Axis turned from up (+y) toward forward (−z), in [−90, 90] degrees; also
+  /// read as the same tilt ± 360° ([270, 360] for [−90, 0]) and kept wrapped.
+  double tilt_deg = 0.0;
   /// Centre of the image circle in continuous pixel coordinates, in [−1e6, 1e6] px;
   /// unset: the image centre (width / 2, height / 2).
   std::optional<double> centre_x_px = std::nullopt;

@@ -3,14 +3,20 @@
 #include <zip.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
+#include <span>
 #include <stdexcept>
+#include <utility>
+
+#include <glm/geometric.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -22,8 +28,12 @@ namespace {
 
 constexpr zip_uint64_t kMaxMemberBytes = zip_uint64_t{1} << 30;  // 1 GiB: far past any warp or blend file
 constexpr int kMaxResolutionPx = 65536;
-constexpr double kMaxOrientationDeg = 360.0;
+constexpr double kMaxEdgeDeg = 90.0;       // a frustum's edge angles, open: a plane cannot reach 90°
+constexpr double kFrameTolerance = 1e-3;   // a coordinate frame's axes: unit and orthogonal within this
 constexpr std::size_t kListedMembers = 12;  // members named in the "no mpcdi.xml" message
+// The values of <geometricUnit> and <originOf3DData> (VESA MPCDI v2.0 §3.5.2).
+constexpr std::array<std::string_view, 8> kGeometricUnits = {"mm", "cm", "dm", "m", "in", "ft", "yd", "unknown"};
+constexpr std::array<std::string_view, 4> kOrigins = {"centerOfMass", "idealEyePoint", "floorCenter", "unknown"};
 
 std::string number(double value) {
   char buffer[64];
@@ -126,6 +136,18 @@ std::string_view trimmed(std::string_view text) {
   return text;
 }
 
+/// The finite number `text` holds (surrounding whitespace and a leading '+'
+/// allowed); nothing for anything else.
+std::optional<double> finite_number(std::string_view text) {
+  std::string_view digits = trimmed(text);
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
+    return std::nullopt;
+  return value;
+}
+
 /// The base name of a member path.
 std::string_view base_name(std::string_view member) {
   const std::size_t slash = member.find_last_of('/');
@@ -209,13 +231,9 @@ class MpcdiReader {
   }
 
   double parse_real(const XmlElement& element, std::string_view what, const std::string& text) const {
-    std::string_view digits = trimmed(text);
-    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
-      fail(element, "<" + element.name + "> " + std::string(what) + " = '" + text + "' is not a finite number");
-    return value;
+    const std::optional<double> value = finite_number(text);
+    if (!value) fail(element, "<" + element.name + "> " + std::string(what) + " = '" + text + "' is not a finite number");
+    return *value;
   }
   double real_attribute(const XmlElement& element, std::string_view name, double lo, double hi) const {
     const double value = parse_real(element, "attribute '" + std::string(name) + "'", required_attribute(element, name));
@@ -245,18 +263,32 @@ class MpcdiReader {
 
   /// <yaw>, <pitch> or <roll> of a <frustum>: degrees in [−360, 360] (vendors
   /// write [0, 360) as often as (−180, 180]); normalized by the caller.
-  double orientation_angle(const XmlElement& frustum, std::string_view name) const {
-    const XmlElement& child = required_child(frustum, name);
-    const double value = parse_real(child, "value", child.text);
+  double orientation_angle(const XmlElement& frustum, std::string_view name, const std::string& region_id) const {
+    const double value = region_real(frustum, name, region_id);
     if (value < -kMaxOrientationDeg || value > kMaxOrientationDeg)
-      fail(child, "<frustum> <" + child.name + "> = " + number(value) + ": must be in [" + number(-kMaxOrientationDeg) +
-                      ", " + number(kMaxOrientationDeg) + "] degrees");
+      fail(*frustum.child(name), "region '" + region_id + "': <frustum> <" + frustum.child(name)->name + "> = " +
+                                     number(value) + ": must be in [" + number(-kMaxOrientationDeg) + ", " +
+                                     number(kMaxOrientationDeg) + "] degrees ([0, 360) and (-180, 180] both read)");
     return value;
+  }
+
+  /// The number in the child `name` of a region's <frustum> or
+  /// <coordinateFrame>; the errors name the region.
+  double region_real(const XmlElement& parent, std::string_view name, const std::string& region_id) const {
+    const XmlElement* child = parent.child(name);
+    if (!child)
+      fail(parent, "region '" + region_id + "': <" + parent.name + "> has no <" + std::string(name) + ">");
+    const std::optional<double> value = finite_number(child->text);
+    if (!value)
+      fail(*child, "region '" + region_id + "': <" + parent.name + "> <" + child->name + "> = '" + child->text +
+                       "' is not a finite number");
+    return *value;
   }
 
   MpcdiRegion read_region(const XmlElement& element, MpcdiProfile profile) const {
     MpcdiRegion region;
     region.id = required_attribute(element, "id");
+    region.line = element.line;
     region.x = real_attribute(element, "x", 0.0, 1.0);
     region.y = real_attribute(element, "y", 0.0, 1.0);
     region.xsize = real_attribute(element, "xsize", 0.0, 1.0);
@@ -268,22 +300,88 @@ class MpcdiReader {
                                            1, kMaxResolutionPx);
     region.y_resolution_px = integer_value(element, "attribute 'yResolution'", required_attribute(element, "yResolution"),
                                            1, kMaxResolutionPx);
+    const bool needs_frustum = profile == MpcdiProfile::simulation_3d || profile == MpcdiProfile::shader_lamps;
     if (const XmlElement* frustum = element.child("frustum")) {
-      MpcdiFrustum f;
-      const YawPitchRollDeg orientation = normalized_yaw_pitch_roll(
-          {orientation_angle(*frustum, "yaw"), orientation_angle(*frustum, "pitch"), orientation_angle(*frustum, "roll")});
-      f.yaw_deg = orientation.yaw_deg;
-      f.pitch_deg = orientation.pitch_deg;
-      f.roll_deg = orientation.roll_deg;
-      f.left_deg = child_real(*frustum, "leftAngle");
-      f.right_deg = child_real(*frustum, "rightAngle");
-      f.up_deg = child_real(*frustum, "upAngle");
-      f.down_deg = child_real(*frustum, "downAngle");
-      region.frustum = f;
-    } else if (profile == MpcdiProfile::simulation_3d) {
-      fail(element, "<region> '" + region.id + "' has no <frustum> (required by the 3d profile)");
+      region.frustum = read_frustum(*frustum, region.id);
+    } else if (needs_frustum) {
+      fail(element, "<region> '" + region.id + "' has no <frustum> (required by the " + to_string(profile) +
+                        " profile)");
+    }
+    // The 2d and a3 profiles have no coordinate frame (VESA MPCDI v2.0 §3.5.2):
+    // one there is skipped, as before this was read at all.
+    if (const XmlElement* frame = element.child("coordinateFrame"); frame && needs_frustum) {
+      region.coordinate_frame = read_coordinate_frame(*frame, region.id);
+    } else if (profile == MpcdiProfile::shader_lamps) {
+      fail(element, "<region> '" + region.id + "' has no <coordinateFrame> (required by the sl profile: the "
+                                               "projector's position and axes)");
     }
     return region;
+  }
+
+  /// <frustum>: yaw, pitch, roll in [−360, 360] (normalized), the edge angles
+  /// in (−90, 90) with left < right and down < up (VESA MPCDI v2.0 table 2-1).
+  MpcdiFrustum read_frustum(const XmlElement& frustum, const std::string& region_id) const {
+    MpcdiFrustum f;
+    f.line = frustum.line;
+    const YawPitchRollDeg orientation = normalized_yaw_pitch_roll(
+        {orientation_angle(frustum, "yaw", region_id), orientation_angle(frustum, "pitch", region_id),
+         orientation_angle(frustum, "roll", region_id)});
+    f.yaw_deg = orientation.yaw_deg;
+    f.pitch_deg = orientation.pitch_deg;
+    f.roll_deg = orientation.roll_deg;
+    const auto edge = [&](std::string_view name) {
+      const double value = region_real(frustum, name, region_id);
+      if (!(value > -kMaxEdgeDeg && value < kMaxEdgeDeg))
+        fail(*frustum.child(name), "region '" + region_id + "': <frustum> <" + frustum.child(name)->name +
+                                       "> = " + number(value) + ": must be in (-90, 90) degrees");
+      return value;
+    };
+    f.left_deg = edge("leftAngle");
+    f.right_deg = edge("rightAngle");
+    f.up_deg = edge("upAngle");
+    f.down_deg = edge("downAngle");
+    if (!(f.left_deg < f.right_deg))
+      fail(frustum, "region '" + region_id + "': <frustum> <leftAngle> = " + number(f.left_deg) +
+                        " must be less than <rightAngle> = " + number(f.right_deg));
+    if (!(f.down_deg < f.up_deg))
+      fail(frustum, "region '" + region_id + "': <frustum> <downAngle> = " + number(f.down_deg) +
+                        " must be less than <upAngle> = " + number(f.up_deg));
+    return f;
+  }
+
+  /// <coordinateFrame>: posx .. rollz, all twelve required; the yaw, pitch and
+  /// roll vectors orthonormal and right-handed (pitch × yaw = roll) within 1e-3
+  /// (VESA MPCDI v2.0 §2.2.2, "orthonormal unit vectors").
+  MpcdiCoordinateFrame read_coordinate_frame(const XmlElement& frame, const std::string& region_id) const {
+    MpcdiCoordinateFrame f;
+    f.line = frame.line;
+    const auto vector = [&](const char* stem) {
+      const std::string s = stem;
+      return glm::dvec3(region_real(frame, s + "x", region_id), region_real(frame, s + "y", region_id),
+                        region_real(frame, s + "z", region_id));
+    };
+    f.position = vector("pos");
+    f.yaw_axis = vector("yaw");
+    f.pitch_axis = vector("pitch");
+    f.roll_axis = vector("roll");
+    const auto text = [](const glm::dvec3& v) { return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")"; };
+    const std::string where = "region '" + region_id + "': <coordinateFrame> ";
+    for (const auto& [name, axis] : {std::pair{"yaw", f.yaw_axis}, {"pitch", f.pitch_axis}, {"roll", f.roll_axis}})
+      if (std::abs(glm::length(axis) - 1.0) > kFrameTolerance)
+        fail(frame, where + "<" + name + "x>..<" + name + "z> = " + text(axis) + " has length " +
+                        number(glm::length(axis)) + ": the yaw, pitch and roll vectors must be unit vectors (within " +
+                        number(kFrameTolerance) + ")");
+    const double yaw_pitch = glm::dot(f.yaw_axis, f.pitch_axis), pitch_roll = glm::dot(f.pitch_axis, f.roll_axis),
+                 roll_yaw = glm::dot(f.roll_axis, f.yaw_axis);
+    if (std::max({std::abs(yaw_pitch), std::abs(pitch_roll), std::abs(roll_yaw)}) > kFrameTolerance)
+      fail(frame, where + "the yaw " + text(f.yaw_axis) + ", pitch " + text(f.pitch_axis) + " and roll " +
+                      text(f.roll_axis) + " vectors are not orthogonal (dot products " + number(yaw_pitch) + ", " +
+                      number(pitch_roll) + ", " + number(roll_yaw) + ")");
+    if (glm::dot(glm::cross(f.pitch_axis, f.yaw_axis), f.roll_axis) < 0.0)
+      fail(frame, where + "the pitch " + text(f.pitch_axis) + ", yaw " + text(f.yaw_axis) + " and roll " +
+                      text(f.roll_axis) + " vectors form a left-handed frame (pitch x yaw = -roll); MPCDI's is "
+                      "right-handed: pitch to the right, yaw down, roll forward (VESA MPCDI v2.0 section 2.2)");
+    return f;
   }
 
   /// The archive member a <path> names, relative to mpcdi.xml's folder.
@@ -319,34 +417,95 @@ class MpcdiReader {
       const long long index = member_for(*warp, result.path, region.id, "geometry warp file");
       const std::string member_name = zip_.name() + ":" + zip_.names()[static_cast<std::size_t>(index)];
       result.interpolation = warp->child("interpolation") ? child_text(*warp, "interpolation") : "linear";
+      // VESA MPCDI v2.0 §2.7: linear, keystone, smooth (a curved scheme such
+      // as bicubic), unknown; "cubic" and "bicubic" as some writers put it.
       WarpInterpolation interpolation = WarpInterpolation::bilinear;
-      if (equals_ignoring_case(result.interpolation, "linear")) {
+      if (equals_ignoring_case(result.interpolation, "linear") || equals_ignoring_case(result.interpolation, "unknown")) {
         interpolation = WarpInterpolation::bilinear;
       } else if (equals_ignoring_case(result.interpolation, "cubic") ||
-                 equals_ignoring_case(result.interpolation, "bicubic")) {
+                 equals_ignoring_case(result.interpolation, "bicubic") ||
+                 equals_ignoring_case(result.interpolation, "smooth")) {
         interpolation = WarpInterpolation::catmull_rom;
       } else {
-        fail(*warp->child("interpolation"), "<interpolation> '" + result.interpolation +
-                                                "': must be linear or cubic");
+        fail(*warp->child("interpolation"), "region '" + region.id + "': <interpolation> '" + result.interpolation +
+                                                "': must be linear, cubic (smooth, bicubic) or unknown (read as linear)");
       }
-      const bool points_3d = profile == MpcdiProfile::advanced_3d || profile == MpcdiProfile::shader_lamps;
-      result.component_depth = points_3d ? 3 : 2;
+      result.mesh_interpolation = interpolation;
+      result.line = warp->line;
+      const bool profile_3d_points = profile == MpcdiProfile::advanced_3d || profile == MpcdiProfile::shader_lamps;
+      result.component_depth = profile_3d_points ? 3 : 2;
       if (warp->child("componentDepth"))
         result.component_depth = integer_value(required_child(*warp, "componentDepth"), "value",
                                                child_text(*warp, "componentDepth"), 2, 3);
+      if (warp->child("geometricUnit"))
+        result.geometric_unit = one_of(*warp->child("geometricUnit"), region.id, kGeometricUnits);
+      if (warp->child("originOf3DData"))
+        result.origin_of_3d_data = one_of(*warp->child("originOf3DData"), region.id, kOrigins);
+      // The 3d profile's warps are 2D, but media servers write 3D points there
+      // too; they say so with the 3D elements (VESA MPCDI v2.0 §3.5.2).
+      result.points_3d = profile_3d_points ||
+                         (profile == MpcdiProfile::simulation_3d &&
+                          (result.component_depth == 3 || warp->child("geometricUnit") || warp->child("originOf3DData")));
       result.map = parse_pfm(zip_.read(index), member_name, PfmRowOrder::top_to_bottom);
       if (result.map.channels != 3)
         fail(*warp, "region '" + region.id + "': geometry warp '" + result.path +
                         "' has 1 channel ('Pf'); MPCDI warps have 3 ('PF')");
-      if (!points_3d)
+      if (result.points_3d) {
+        check_point_map(*warp, region.id, result);
+      } else {
         region.warp_mesh = warp_mesh_from_pfm(result.map, member_name, interpolation,
                                               WarpMapConventions{options_.warp_values, WarpVDirection::down});
+      }
       region.geometry_warp = std::move(result);
+    }
+    // sl: the lens distortion LUT, a 2D warp of the pinhole's image (§2.6, §3.9).
+    const XmlElement* distortion = fileset.child("distortionMap");
+    if (distortion && profile == MpcdiProfile::shader_lamps && !names_no_file(*distortion, region.id)) {
+      MpcdiGeometryWarp result;
+      result.line = distortion->line;
+      result.path = child_text(*distortion, "path");
+      result.interpolation = "linear";
+      result.mesh_interpolation = WarpInterpolation::bilinear;
+      const long long index = member_for(*distortion, result.path, region.id, "distortion map");
+      const std::string member_name = zip_.name() + ":" + zip_.names()[static_cast<std::size_t>(index)];
+      result.map = parse_pfm(zip_.read(index), member_name, PfmRowOrder::top_to_bottom);
+      if (result.map.channels != 3)
+        fail(*distortion, "region '" + region.id + "': distortion map '" + result.path +
+                              "' has 1 channel ('Pf'); MPCDI distortion maps have 3 ('PF'), as 2D warps");
+      region.distortion_mesh = warp_mesh_from_pfm(result.map, member_name, WarpInterpolation::bilinear,
+                                                  WarpMapConventions{WarpValues::absolute, WarpVDirection::down});
+      region.distortion_map = std::move(result);
     }
     const XmlElement* alpha = fileset.child("alphaMap");
     if (alpha && !names_no_file(*alpha, region.id)) region.alpha_map = read_blend_map(*alpha, region.id, "alpha map", true);
     const XmlElement* beta = fileset.child("betaMap");
     if (beta && !names_no_file(*beta, region.id)) region.beta_map = read_blend_map(*beta, region.id, "beta map", false);
+  }
+
+  /// The element's text, one of `allowed` (ignoring case), as the list spells it.
+  std::string one_of(const XmlElement& element, const std::string& region_id,
+                     std::span<const std::string_view> allowed) const {
+    const std::string value(trimmed(element.text));
+    std::string list;
+    for (const std::string_view a : allowed) {
+      if (equals_ignoring_case(value, a)) return std::string(a);
+      list += (list.empty() ? "" : ", ") + std::string(a);
+    }
+    fail(element, "region '" + region_id + "': <" + element.name + "> '" + value + "': must be one of " + list);
+  }
+
+  /// A 3D point map: at least 2 × 2 samples (VESA MPCDI v2.0 §3.6) and one finite point.
+  void check_point_map(const XmlElement& warp, const std::string& region_id, const MpcdiGeometryWarp& result) const {
+    const PfmImage& map = result.map;
+    if (map.width < 2 || map.height < 2)
+      fail(warp, "region '" + region_id + "': 3D geometry warp '" + result.path + "' has " +
+                     std::to_string(map.width) + " x " + std::to_string(map.height) +
+                     " samples: at least 2 x 2 are needed");
+    for (int y = 0; y < map.height; ++y)
+      for (int x = 0; x < map.width; ++x)
+        if (std::isfinite(map.at(x, y, 0)) && std::isfinite(map.at(x, y, 1)) && std::isfinite(map.at(x, y, 2))) return;
+    fail(warp, "region '" + region_id + "': 3D geometry warp '" + result.path +
+                   "' has no valid point (every sample NaN)");
   }
 
   MpcdiBlendMap read_blend_map(const XmlElement& element, const std::string& region_id, const char* what,

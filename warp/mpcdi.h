@@ -9,32 +9,40 @@
 //       <buffer id=".." xResolution=".." yResolution="..">
 //         <region id=".." x=".." y=".." xsize=".." ysize=".." xResolution=".." yResolution="..">
 //           <frustum> yaw pitch roll leftAngle rightAngle upAngle downAngle (degrees) </frustum>
+//           <coordinateFrame> posx posy posz yawx yawy yawz pitchx pitchy pitchz rollx rolly rollz </coordinateFrame>
 //         </region> ...
 //       </buffer> ...
 //     </display>
 //     <files>
 //       <fileset region="..">
-//         <geometryWarpFile> path interpolation componentDepth ... </geometryWarpFile>
+//         <geometryWarpFile> path interpolation componentDepth geometricUnit originOf3DData </geometryWarpFile>
 //         <alphaMap> path componentDepth bitDepth gammaEmbedded </alphaMap>
 //         <betaMap> path componentDepth bitDepth </betaMap>
+//         <distortionMap> path </distortionMap>                          (sl)
 //       </fileset> ...
 //     </files>
 //   </MPCDI>
 //
 // Element and attribute names are matched ignoring case; unknown elements
-// (coordinateFrame, distortionMap, extensionSet, ...) are skipped.
+// (color, extensionSet, ...) are skipped, and so is a <coordinateFrame> of
+// the 2d and a3 profiles, which have none (VESA MPCDI v2.0 §3.5.2).
 //
 // Geometry warps are PFMs whose samples start top-left and span the region's
 // raster edge to edge, in either byte order, NaN = no data. For the 2d and 3d
 // profiles each sample holds (x, y) normalized in the region's image ((0, 0) its
 // top-left; for 3d the image rendered through the region's frustum), which is
-// what a WarpMesh holds: the region gets one. For a3 and sl the samples are 3D
-// points on the screen surface, which need the viewer's position to become
-// rays: the raw map is loaded, no WarpMesh is made.
+// what a WarpMesh holds: the region gets one. For a3 and sl (and a 3d warp
+// that says it holds 3D data: componentDepth 3, a geometricUnit or an
+// originOf3DData, as media servers write) the samples are 3D points on the
+// screen, which need the viewer's position to become rays: the map is kept,
+// and warp/mpcdi_projection.h makes the rays. An sl region's <distortionMap>
+// (the projector lens's 2D LUT, the format of a 2D warp) gets a WarpMesh.
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "warp/blend_map.h"
 #include "warp/pfm.h"
@@ -62,15 +70,35 @@ const char* to_string(MpcdiProfile profile);
 struct MpcdiFrustum {
   double yaw_deg = 0, pitch_deg = 0, roll_deg = 0;
   double left_deg = 0, right_deg = 0, up_deg = 0, down_deg = 0;
+  int line = 0;  ///< of <frustum> in the descriptor (messages)
 
   PlanarFrustum planar() const { return {left_deg, right_deg, down_deg, up_deg, yaw_deg, pitch_deg, roll_deg}; }
 };
 
+/// A region's <coordinateFrame> (VESA MPCDI v2.0 §2.2.2): the projector's
+/// position and the unit vectors of its pitch, yaw and roll axes (figure 2-2:
+/// pitch along the right wing, yaw down, roll forward; the axes positive
+/// angles turn about, right-handed), in the display's 3D frame. Read for the
+/// 3d and sl profiles; the axes are checked orthonormal and right-handed
+/// (pitch × yaw = roll) within 1e-3. docs/warp-meshes.md, "Frustum and frame".
+struct MpcdiCoordinateFrame {
+  glm::dvec3 position{0.0};
+  glm::dvec3 yaw_axis{0.0}, pitch_axis{0.0}, roll_axis{0.0};
+  int line = 0;  ///< of <coordinateFrame> in the descriptor (messages)
+};
+
 struct MpcdiGeometryWarp {
   std::string path;           ///< the member of the archive
-  std::string interpolation;  ///< as written ("linear"); "linear" → bilinear, "cubic" → Catmull–Rom
+  std::string interpolation;  ///< as written ("linear"); linear, unknown → bilinear; cubic, smooth → Catmull–Rom
+  WarpInterpolation mesh_interpolation = WarpInterpolation::bilinear;  ///< what `interpolation` asks for
   int component_depth = 2;    ///< 2 (x, y) or 3 (x, y, z)
   PfmImage map;               ///< row 0 at the top
+  /// The samples are 3D points of the screen (x, y, z) in the display's frame
+  /// (a3, sl; 3d when the file says so), not 2D positions.
+  bool points_3d = false;
+  std::string geometric_unit = "unknown";     ///< <geometricUnit>: mm, cm, dm, m, in, ft, yd or unknown
+  std::string origin_of_3d_data = "unknown";  ///< <originOf3DData>: centerOfMass, idealEyePoint, floorCenter or unknown
+  int line = 0;                               ///< of the element in the descriptor (messages)
 };
 
 /// An alpha (blend) or beta (black-level) map. Values are the stored ones
@@ -89,11 +117,17 @@ struct MpcdiBlendMap {
 
 struct MpcdiRegion {
   std::string id;
+  int line = 0;  ///< of <region> in the descriptor (messages)
   double x = 0, y = 0, xsize = 1, ysize = 1;  ///< the region in its buffer, normalized, (0, 0) top-left
   int x_resolution_px = 0, y_resolution_px = 0;
-  std::optional<MpcdiFrustum> frustum;  ///< required for the 3d profile
+  std::optional<MpcdiFrustum> frustum;  ///< required for the 3d and sl profiles
+  std::optional<MpcdiCoordinateFrame> coordinate_frame;  ///< required for sl, optional for 3d
   std::optional<MpcdiGeometryWarp> geometry_warp;
-  std::optional<WarpMesh> warp_mesh;    ///< from geometry_warp, profiles 2d and 3d only
+  std::optional<WarpMesh> warp_mesh;    ///< from a geometry_warp of 2D positions (profiles 2d and 3d)
+  /// sl: the lens distortion LUT (<distortionMap>), 2D positions in the image
+  /// of the region's pinhole (frustum), the format of a 2D warp; and its mesh.
+  std::optional<MpcdiGeometryWarp> distortion_map;
+  std::optional<WarpMesh> distortion_mesh;
   std::optional<MpcdiBlendMap> alpha_map, beta_map;
 };
 
@@ -104,7 +138,7 @@ struct MpcdiBuffer {
 };
 
 struct MpcdiFile {
-  std::string path;        ///< the archive
+  std::string path;        ///< the archive (as given)
   std::string descriptor;  ///< the member read as mpcdi.xml (also mpacs.xml, or the only .xml member)
   MpcdiProfile profile = MpcdiProfile::media_2d;
   std::string version;  ///< as written, "" when absent
@@ -131,8 +165,11 @@ struct MpcdiLoadOptions {
 /// "show.mpcdi:mpcdi.xml:7: <region> has no attribute 'xsize'", for: an archive
 /// that cannot be opened or is not a ZIP (one that starts like a ZIP: "may be
 /// truncated"); no descriptor (the message lists the archive's members); malformed XML;
-/// a frustum's yaw, pitch or roll outside [−360, 360]; a missing required attribute or
-/// element, or a value out of range; an unknown profile; a duplicate region id;
+/// a frustum's yaw, pitch or roll outside [−360, 360], an edge angle outside
+/// (−90, 90) or left ≥ right, down ≥ up; a coordinate frame whose axes are not
+/// orthonormal and right-handed; a missing required attribute or element
+/// (a frustum for 3d and sl, a coordinate frame for sl), or a value out of range;
+/// an unknown profile, geometricUnit or originOf3DData; a duplicate region id;
 /// a fileset naming an unknown region; a warp or blend file missing from the
 /// archive; a broken PFM (truncated, bad header) or PNG; and a NaN-only warp
 /// (std::invalid_argument from WarpMesh, message "<archive>:<member>: ... NaN-only mesh").

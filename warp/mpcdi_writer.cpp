@@ -53,43 +53,79 @@ std::string grey16_map_element(const std::string& element, const std::string& me
          element + ">\n";
 }
 
+/// sl: the region's <frustum> and <coordinateFrame> (the base axes: F = I).
+std::string pinhole_elements(const PlanarFrustum& f) {
+  std::ostringstream xml;
+  xml.precision(17);
+  xml << "        <frustum>\n"
+      << "          <yaw>" << f.yaw_deg << "</yaw>\n"
+      << "          <pitch>" << f.pitch_deg << "</pitch>\n"
+      << "          <roll>" << f.roll_deg << "</roll>\n"
+      << "          <rightAngle>" << f.right_deg << "</rightAngle>\n"
+      << "          <leftAngle>" << f.left_deg << "</leftAngle>\n"
+      << "          <upAngle>" << f.up_deg << "</upAngle>\n"
+      << "          <downAngle>" << f.down_deg << "</downAngle>\n"
+      << "        </frustum>\n"
+      << "        <!-- the display's frame: X left, Y up, Z forward; the projector's base axes: pitch (right), "
+         "yaw (down), roll (forward) -->\n"
+      << "        <coordinateFrame>\n"
+      << "          <posx>0</posx><posy>0</posy><posz>0</posz>\n"
+      << "          <yawx>0</yawx><yawy>-1</yawy><yawz>0</yawz>\n"
+      << "          <pitchx>-1</pitchx><pitchy>0</pitchy><pitchz>0</pitchz>\n"
+      << "          <rollx>0</rollx><rolly>0</rolly><rollz>1</rollz>\n"
+      << "        </coordinateFrame>\n";
+  return xml.str();
+}
+
 }  // namespace
 
 std::string mpcdi_descriptor(const MpcdiRegionExport& r) {
+  const bool sl = r.profile == MpcdiProfile::shader_lamps;
+  if (!sl && r.profile != MpcdiProfile::media_2d)
+    throw std::invalid_argument("MPCDI export: region '" + r.id + "': profile " + to_string(r.profile) +
+                                ": only 2d and sl are written");
   if (!plain_id(r.id))
     throw std::invalid_argument("MPCDI export: region id '" + r.id +
                                 "': must be letters, digits, '-', '_' or '.' (it is written into XML attributes)");
-  if (r.width_px < 1 || r.height_px < 1 || r.warp_columns < 1 || r.warp_rows < 1)
+  const bool warp = !sl || !r.warp_member.empty();
+  if (r.width_px < 1 || r.height_px < 1 || (warp && (r.warp_columns < 1 || r.warp_rows < 1)))
     throw std::invalid_argument("MPCDI export: region '" + r.id + "': resolution and warp size must be at least 1");
   for (const std::string* member : {&r.warp_member, &r.alpha_member, &r.beta_member})
-    if (!plain_member(*member))
+    if ((warp || member != &r.warp_member) && !plain_member(*member))
       throw std::invalid_argument("MPCDI export: region '" + r.id + "': member name '" + *member +
                                   "' is empty or holds XML markup characters");
   std::ostringstream xml;
   xml.precision(17);
   xml << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
       << "<!-- written by zenith (docs/warp-meshes.md, \"Exporting to warp engines and media servers\") -->\n"
-      << "<MPCDI profile=\"2d\" geometry=\"1\" color=\"1\" version=\"2.0\">\n"
+      << (sl ? std::string("<MPCDI profile=\"sl\" geometry=\"") + (warp ? "2" : "1") + "\" color=\"2\" version=\"2.0\">\n"
+             : std::string("<MPCDI profile=\"2d\" geometry=\"1\" color=\"1\" version=\"2.0\">\n"))
       << "  <display>\n"
       << "    <buffer id=\"" << r.id << "\" xResolution=\"" << r.width_px << "\" yResolution=\"" << r.height_px
       << "\">\n"
       << "      <region id=\"" << r.id << "\" x=\"0\" y=\"0\" xsize=\"1\" ysize=\"1\" xResolution=\"" << r.width_px
-      << "\" yResolution=\"" << r.height_px << "\"/>\n"
+      << "\" yResolution=\"" << r.height_px << (sl ? "\">\n" + pinhole_elements(r.frustum) + "      </region>\n" : "\"/>\n")
       << "    </buffer>\n"
       << "  </display>\n"
       << "  <files>\n"
-      << "    <fileset region=\"" << r.id << "\">\n"
-      << "      <geometryWarpFile>\n"
-      << "        <path>" << r.warp_member << "</path>\n"
-      << "        <interpolation>" << (r.interpolation == WarpInterpolation::bilinear ? "linear" : "cubic")
-      << "</interpolation>\n"
-      << "        <componentDepth>2</componentDepth>\n"
-      << "        <bitDepth>32</bitDepth>\n"
-      << "        <xSamples>" << r.warp_columns << "</xSamples>\n"
-      << "        <ySamples>" << r.warp_rows << "</ySamples>\n"
-      << "        <originOf2DData>topLeftCorner</originOf2DData>\n"
-      << "      </geometryWarpFile>\n"
-      << grey16_map_element("alphaMap", r.alpha_member, "        <gammaEmbedded>" +
+      << "    <fileset region=\"" << r.id << "\">\n";
+  if (sl && warp) {
+    xml << "      <distortionMap>\n"
+        << "        <path>" << r.warp_member << "</path>\n"
+        << "      </distortionMap>\n";
+  } else if (!sl) {
+    xml << "      <geometryWarpFile>\n"
+        << "        <path>" << r.warp_member << "</path>\n"
+        << "        <interpolation>" << (r.interpolation == WarpInterpolation::bilinear ? "linear" : "cubic")
+        << "</interpolation>\n"
+        << "        <componentDepth>2</componentDepth>\n"
+        << "        <bitDepth>32</bitDepth>\n"
+        << "        <xSamples>" << r.warp_columns << "</xSamples>\n"
+        << "        <ySamples>" << r.warp_rows << "</ySamples>\n"
+        << "        <originOf2DData>topLeftCorner</originOf2DData>\n"
+        << "      </geometryWarpFile>\n";
+  }
+  xml << grey16_map_element("alphaMap", r.alpha_member, "        <gammaEmbedded>" +
                                                              number(r.alpha_gamma_embedded) + "</gammaEmbedded>\n")
       << grey16_map_element("betaMap", r.beta_member, "")
       << "    </fileset>\n"

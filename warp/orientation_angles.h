@@ -10,8 +10,13 @@
 //     R_yaw(ψ) · R_pitch(θ) · R_roll(φ) = R_yaw(ψ + 180°) · R_pitch(±180° − θ) · R_roll(φ + 180°),
 // the identity of Tait–Bryan angles this order uses (warp/planar_projection.h:
 // R_yaw · R_pitch · R_roll).
+#include <string>
 
 namespace zenith::warp {
+
+/// Orientation angles are read in [−kMaxOrientationDeg, kMaxOrientationDeg]
+/// degrees: both [0, 360) and (−180, 180] conventions, and a turn either way.
+inline constexpr double kMaxOrientationDeg = 360.0;
 
 /// Angles in degrees, PlanarFrustum's conventions (yaw turns right, pitch up,
 /// roll banks right).
@@ -19,8 +24,17 @@ struct YawPitchRollDeg {
   double yaw_deg = 0.0, pitch_deg = 0.0, roll_deg = 0.0;
 };
 
+/// a + k · 360 in (−180, 180] (finite a; non-finite stays non-finite).
+double wrapped_deg(double a);
+
 /// The same rotation with yaw and roll in (−180, 180] and pitch in [−90, 90].
 /// Finite input expected (non-finite angles stay non-finite).
 YawPitchRollDeg normalized_yaw_pitch_roll(const YawPitchRollDeg& angles);
+
+/// normalized_yaw_pitch_roll() of angles given by a user: each must be finite
+/// and in [−360, 360], else std::invalid_argument
+/// "<owner>: yaw_deg = 400: must be in [-360, 360] degrees ([0, 360) and
+/// (-180, 180] both read)" naming the first offending angle.
+YawPitchRollDeg checked_yaw_pitch_roll(const YawPitchRollDeg& angles, const std::string& owner);
 
 }  // namespace zenith::warp

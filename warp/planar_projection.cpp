@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/units.h"
+#include "warp/orientation_angles.h"
 
 namespace zenith::warp {
 namespace {
@@ -101,9 +102,14 @@ PlanarProjection::PlanarProjection(int width_px, int height_px, const PlanarFrus
     fail("left_deg = " + number(frustum.left_deg) + " must be less than right_deg = " + number(frustum.right_deg));
   if (!(frustum.down_deg < frustum.up_deg))
     fail("down_deg = " + number(frustum.down_deg) + " must be less than up_deg = " + number(frustum.up_deg));
-  check_range("yaw_deg", frustum.yaw_deg, -180.0, 180.0, false);
-  check_range("pitch_deg", frustum.pitch_deg, -90.0, 90.0, false);
-  check_range("roll_deg", frustum.roll_deg, -180.0, 180.0, false);
+  // Yaw, pitch and roll in [−360, 360] ([0, 360) as calibration tools write
+  // them), kept as the same rotation with yaw and roll in (−180, 180] and pitch
+  // in [−90, 90] (warp/orientation_angles.h).
+  const YawPitchRollDeg orientation =
+      checked_yaw_pitch_roll({frustum.yaw_deg, frustum.pitch_deg, frustum.roll_deg}, "PlanarProjection");
+  frustum_.yaw_deg = orientation.yaw_deg;
+  frustum_.pitch_deg = orientation.pitch_deg;
+  frustum_.roll_deg = orientation.roll_deg;
 
   tan_left_ = std::tan(frustum.left_deg * kDeg);
   tan_right_ = std::tan(frustum.right_deg * kDeg);
@@ -114,14 +120,14 @@ PlanarProjection::PlanarProjection(int width_px, int height_px, const PlanarFrus
 
   // Yaw turns right: a right-handed turn by −ψ about +y. Pitch looks up: +θ about
   // +x. Roll banks right: a right-handed turn by +φ about the view direction −z.
-  const glm::dmat3 yaw = rotation_about({0.0, 1.0, 0.0}, -frustum.yaw_deg * kDeg);
-  const glm::dmat3 pitch = rotation_about({1.0, 0.0, 0.0}, frustum.pitch_deg * kDeg);
-  const glm::dmat3 roll = rotation_about({0.0, 0.0, -1.0}, frustum.roll_deg * kDeg);
+  const glm::dmat3 yaw = rotation_about({0.0, 1.0, 0.0}, -frustum_.yaw_deg * kDeg);
+  const glm::dmat3 pitch = rotation_about({1.0, 0.0, 0.0}, frustum_.pitch_deg * kDeg);
+  const glm::dmat3 roll = rotation_about({0.0, 0.0, -1.0}, frustum_.roll_deg * kDeg);
   rotation_ = yaw * pitch * roll;
 
   const TangentWindow window{tan_left_, tan_right_, tan_down_, tan_up_, tan_per_px_x_, tan_per_px_y_};
   set_closed_form(planar_gpu(rotation_, window, width_px, height_px),
-                  planar_description(frustum, width_px, height_px), planar_max_pixel_angle_rad(window));
+                  planar_description(frustum_, width_px, height_px), planar_max_pixel_angle_rad(window));
 }
 
 PlanarProjection PlanarProjection::symmetric(int width_px, int height_px, double horizontal_fov_deg) {

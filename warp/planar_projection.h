@@ -37,9 +37,12 @@ struct PlanarFrustum {
   double right_deg;        ///< angle of the image's right edge (x = width), in (−89, 89)
   double down_deg;         ///< angle of the image's bottom edge (y = height), in (−89, 89), < up_deg
   double up_deg;           ///< angle of the image's top edge (y = 0), in (−89, 89)
-  double yaw_deg = 0.0;    ///< in [−180, 180]; positive turns the axis right (toward +x)
-  double pitch_deg = 0.0;  ///< in [−90, 90]; positive turns the axis up (toward +y)
-  double roll_deg = 0.0;   ///< in [−180, 180]; positive banks right (the frustum's up tilts toward +x)
+  /// Yaw, pitch and roll: each read in [−360, 360] (tools write [0, 360) as
+  /// often as (−180, 180]); PlanarProjection keeps the same rotation with yaw
+  /// and roll in (−180, 180] and pitch in [−90, 90] (warp/orientation_angles.h).
+  double yaw_deg = 0.0;    ///< positive turns the axis right (toward +x)
+  double pitch_deg = 0.0;  ///< positive turns the axis up (toward +y)
+  double roll_deg = 0.0;   ///< positive banks right (the frustum's up tilts toward +x)
 };
 
 /// What gpu(), describe() and max_pixel_angle_rad() return, computed once when
@@ -62,8 +65,8 @@ struct PlanarFrustum {
 class PlanarProjection final : public ClosedFormProjection {
  public:
   /// Throws std::invalid_argument naming the parameter, its value and the allowed
-  /// range when a size or a frustum angle is out of range, or when
-  /// left_deg >= right_deg or down_deg >= up_deg.
+  /// range when a size or a frustum angle is out of range (yaw, pitch, roll
+  /// outside [−360, 360]), or when left_deg >= right_deg or down_deg >= up_deg.
   PlanarProjection(int width_px, int height_px, const PlanarFrustum& frustum);
 
   /// A symmetric frustum looking along −z with square pixels: the horizontal
@@ -73,6 +76,7 @@ class PlanarProjection final : public ClosedFormProjection {
   /// (each half-angle must be below the frustum's 89°).
   static PlanarProjection symmetric(int width_px, int height_px, double horizontal_fov_deg);
 
+  /// The frustum, yaw, pitch and roll normalized (the same rotation as given).
   const PlanarFrustum& frustum() const { return frustum_; }
   /// Frustum frame → camera frame (R_yaw · R_pitch · R_roll); column 2 is the
   /// frustum's +z, so the frustum's axis is −rotation()[2].

@@ -14,6 +14,7 @@
 
 #include "core/json_reader.h"
 #include "warp/mpcdi.h"
+#include "warp/mpcdi_projection.h"
 #include "warp/projection_factory.h"
 #include "warp/warp_mesh.h"
 #include "warp/warped_projection.h"
@@ -69,10 +70,14 @@ std::pair<int, int> read_size(JsonReader& r, const std::string& size_key = "size
 
 /// A warp's mesh and what its file says about the source image.
 struct LoadedWarp {
-  WarpMesh mesh;
+  std::optional<WarpMesh> mesh;  ///< set unless `projection` is
   /// MPCDI: the region's xResolution × yResolution, the size of the region's
   /// image the warp's (x, y) address; nothing for the other formats.
   std::optional<std::pair<int, int>> source_size_px;
+  /// MPCDI 3d, sl, a3: the output's whole projection, from the file (its
+  /// frustum and frame, or its 3D warp; warp/mpcdi_projection.h).
+  std::shared_ptr<const Projection> projection;
+  std::string profile;  ///< MPCDI: the file's profile (messages)
 };
 
 /// The mesh of a warp for an output of width × height px; resolves source.file
@@ -85,11 +90,11 @@ LoadedWarp load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir
       BourkeMeshOptions options;
       options.aspect = static_cast<double>(width_px) / height_px;  // square pixels
       options.fit = source.fit;
-      return {load_bourke_mesh(source.file, options), std::nullopt};
+      return {load_bourke_mesh(source.file, options), std::nullopt, nullptr, ""};
     }
     if (source.format == "pfm")
       return {load_pfm_warp_mesh(source.file, source.row_order, WarpInterpolation::catmull_rom, source.conventions),
-              std::nullopt};
+              std::nullopt, nullptr, ""};
     const MpcdiFile mpcdi = load_mpcdi(source.file, MpcdiLoadOptions{source.conventions.values});
     const MpcdiRegion* region = mpcdi.find_region(source.region);
     if (region == nullptr) {
@@ -99,10 +104,22 @@ LoadedWarp load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir
       w.fail("region", cat("= \"", source.region, "\": no such region in ", source.file.string(),
                            " (regions: ", ids.empty() ? "none" : ids, ")"));
     }
+    if (source.eye && !mpcdi_region_has_3d_warp(*region))
+      w.fail("eye", cat("applies to a region with a 3D geometry warp (screen points); region \"", source.region,
+                        "\" of ", source.file.string(), " (profile ", to_string(mpcdi.profile), ") has none"));
+    if (mpcdi_region_defines_rays(mpcdi)) {  // 3d, sl, a3: the frustum and frame, or the 3D warp
+      MpcdiViewOptions view;
+      view.eye = source.eye;
+      if (source.source_size_given) view.source_size_px = std::pair{source.source_width_px, source.source_height_px};
+      LoadedWarp loaded;
+      loaded.projection = mpcdi_region_projection(mpcdi, *region, width_px, height_px, view);
+      loaded.profile = to_string(mpcdi.profile);
+      return loaded;
+    }
     if (!region->warp_mesh)
       w.fail("region", cat("= \"", source.region, "\": the region has no 2D geometry warp (profile ",
                            to_string(mpcdi.profile), ")"));
-    return {*region->warp_mesh, std::pair{region->x_resolution_px, region->y_resolution_px}};
+    return {*region->warp_mesh, std::pair{region->x_resolution_px, region->y_resolution_px}, nullptr, "2d"};
   } catch (const ConfigError&) {
     throw;
   } catch (const std::exception& e) {  // the loaders' runtime_error / invalid_argument
@@ -138,13 +155,25 @@ std::pair<int, int> read_warp_source_size(JsonReader& w, const json& spec, int w
   return {static_cast<int>(source_width), height_px};
 }
 
+/// MPCDI "eye": [x, y, z], finite numbers: the origin of a 3D warp's rays in
+/// the display's frame and the warp's unit; nothing when absent.
+std::optional<glm::dvec3> read_eye(JsonReader& w) {
+  if (!w.has("eye")) return std::nullopt;
+  const json& v = w.raw("eye");
+  if (!v.is_array() || v.size() != 3 ||
+      !std::all_of(v.begin(), v.end(), [](const json& c) { return c.is_number() && std::isfinite(c.get<double>()); }))
+    w.fail("eye", cat("= ", brief(v), ": must be [x, y, z], finite numbers: the eye in the MPCDI file's 3D frame "
+                                      "and unit (docs/warp-meshes.md)"));
+  return glm::dvec3(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+}
+
 /// The "warp" object: {"file", "format", "region" (mpcdi), "values" (pfm,
 /// mpcdi), "row_order", "v_direction" (pfm), "fit" (bourke), "source"}: its keys and values;
 /// the file is looked for by load_warp(). The source's size defaults as
 /// read_warp_source_size() says.
 WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& base_dir, const json& spec,
                             int width_px, int height_px) {
-  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction", "fit", "source"});
+  allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction", "fit", "source", "eye"});
   WarpSource source;
   source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
   source.file = base_dir / w.string("file");  // checked, made absolute and read by load_warp()
@@ -154,8 +183,10 @@ WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& b
   if (source.format == "mpcdi") {
     source.region = w.string("region");
     if (source.region.empty()) w.fail("region", "= \"\": must name a region of the MPCDI file");
+    source.eye = read_eye(w);
   } else {
     only_for("region", "\"mpcdi\"");
+    only_for("eye", "\"mpcdi\"");
   }
   if (source.format == "bourke") only_for("values", "\"pfm\" and \"mpcdi\"");
   if (source.format != "bourke") only_for("fit", "\"bourke\"");
@@ -217,8 +248,14 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
                        " letters, digits, '-', '_' or '.' (it names the output's file)"));
   std::tie(out.width_px, out.height_px) = read_size(o);
 
-  const json& spec = o.raw("projection");
-  if (!spec.is_object()) o.fail("projection", cat("must be an object (docs/projections.md), got ", brief(spec)));
+  // An MPCDI region of the 3d, sl and a3 profiles gives the rays itself; any
+  // other output needs its projection (checked once the warp is read).
+  const bool mpcdi_warp = o.has("warp") && o.raw("warp").is_object() && o.raw("warp").contains("format") &&
+                          o.raw("warp").at("format") == "mpcdi";
+  const bool has_spec = o.has("projection") || !mpcdi_warp;
+  const json spec = has_spec ? o.raw("projection") : json();
+  if (has_spec && !spec.is_object())
+    o.fail("projection", cat("must be an object (docs/projections.md), got ", brief(spec)));
   out.projection_spec = spec;
 
   if (o.has("warp")) {
@@ -229,19 +266,39 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
     // The base projection renders the warp's source image, at the source's
     // size. Made here first so that a bad spec fails the load even where the
     // warp file is broken.
-    std::shared_ptr<const Projection> base = make_projection(spec, source.source_width_px, source.source_height_px,
-                                                             o.file(), o.key_path("projection"));
+    std::shared_ptr<const Projection> base =
+        has_spec ? make_projection(spec, source.source_width_px, source.source_height_px, o.file(),
+                                   o.key_path("projection"))
+                 : nullptr;
     try {
       LoadedWarp loaded = load_warp(w, source, base_dir, out.width_px, out.height_px);
-      // An MPCDI region's resolution is its image's size: the source, unless
-      // the config's "source" says otherwise.
-      if (loaded.source_size_px && !source.source_size_given &&
-          *loaded.source_size_px != std::pair{source.source_width_px, source.source_height_px}) {
-        std::tie(source.source_width_px, source.source_height_px) = *loaded.source_size_px;
-        base = make_projection(spec, source.source_width_px, source.source_height_px, o.file(),
-                               o.key_path("projection"));
+      if (loaded.projection) {  // an MPCDI region that defines its rays
+        if (has_spec)
+          o.fail("projection", cat("the MPCDI region \"", source.region, "\" (profile ", loaded.profile,
+                                   ") defines the output's rays (its frustum and frame, or its 3D warp): remove "
+                                   "\"projection\" (docs/warp-meshes.md)"));
+        out.projection = loaded.projection;
+        out.projection_spec = mpcdi_source_projection_spec(*loaded.projection);
+        // The image its warp addresses (the frustum's, a 3D warp's chart); the output's own without a warp.
+        const auto* warped = dynamic_cast<const WarpedProjection*>(loaded.projection.get());
+        source.source_width_px = warped ? warped->base().width() : out.width_px;
+        source.source_height_px = warped ? warped->base().height() : out.height_px;
+      } else {
+        if (!has_spec)
+          o.fail("projection", cat("missing: the MPCDI region \"", source.region, "\" (profile ", loaded.profile,
+                                   ") maps the output into a source image; give the projection that renders it "
+                                   "(docs/warp-meshes.md)"));
+        // An MPCDI region's resolution is its image's size: the source, unless
+        // the config's "source" says otherwise.
+        if (loaded.source_size_px && !source.source_size_given &&
+            *loaded.source_size_px != std::pair{source.source_width_px, source.source_height_px}) {
+          std::tie(source.source_width_px, source.source_height_px) = *loaded.source_size_px;
+          base = make_projection(spec, source.source_width_px, source.source_height_px, o.file(),
+                                 o.key_path("projection"));
+        }
+        out.projection =
+            std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(*loaded.mesh), base);
       }
-      out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(loaded.mesh), base);
     } catch (const ConfigError&) {
       if (!options.keep_broken_warps) throw;
       out.warp_error = std::current_exception();  // out.projection stays null

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
 #include "warp/pfm.h"
@@ -92,12 +93,20 @@ struct WarpSource {
   int source_width_px = 0, source_height_px = 0;
   /// Whether the config gave "source" (which then wins over the MPCDI region's resolution).
   bool source_size_given = false;
+  /// mpcdi: "eye", [x, y, z]: the origin of the rays of a region's 3D geometry
+  /// warp, in the file's 3D frame and unit; unset: the 3D data's origin where
+  /// the file says it is the ideal eye point (warp/mpcdi_projection.h).
+  std::optional<glm::dvec3> eye;
 };
 
 struct OutputConfig {
   std::string name;  ///< unique in its config; letters, digits, '-', '_', '.' (a file name)
   int width_px = 0, height_px = 0;
-  nlohmann::json projection_spec;  ///< the "projection" object as given
+  /// The "projection" object as given. For an MPCDI region of the 3d, sl or
+  /// a3 profile, which defines the rays itself (the config gives no
+  /// "projection"), the object of the projection its warp addresses
+  /// (mpcdi_source_projection_spec(): the frustum's planar, or a 3D warp's chart).
+  nlohmann::json projection_spec;
   /// The output's rays: make_projection(projection_spec, size) or, with a warp,
   /// a WarpedProjection of the output's size over make_projection(projection_spec,
   /// the warp's source size) (WarpSource::source_width_px: by default the

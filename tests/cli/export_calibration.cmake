@@ -43,6 +43,27 @@ foreach(kind pfm mpcdi)
   endif()
 endforeach()
 
+# The sl profile (issue 31): a planar output as a pinhole projector; the
+# exported config gives no projection and loads (exported again).
+execute_process(COMMAND ${ZENITH} export-calibration --viewport "${out}/show.json#flat" --out "${out}/sl"
+                        --mpcdi-profile sl
+                RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
+string(FIND "${stdout}" "written ${out}/sl/flat.mpcdi: MPCDI sl profile, region 'flat' 16 x 9 px: mpcdi.xml (frustum" pos)
+if(NOT rc EQUAL 0 OR pos EQUAL -1)
+  message(FATAL_ERROR "export-calibration --mpcdi-profile sl failed or did not print the sl archive (${rc}):\n${stdout}\n${err}")
+endif()
+file(READ "${out}/sl/viewport-mpcdi.json" sl_config)
+string(FIND "${sl_config}" "\"projection\"" pos)
+if(NOT pos EQUAL -1)
+  message(FATAL_ERROR "the sl viewport-mpcdi.json gives a projection (the region's frustum should):\n${sl_config}")
+endif()
+execute_process(COMMAND ${ZENITH} export-calibration --viewport "${out}/sl/viewport-mpcdi.json" --out "${out}/sl-again"
+                        --mpcdi-profile sl
+                RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+if(NOT rc EQUAL 0 OR NOT EXISTS "${out}/sl-again/flat.mpcdi")
+  message(FATAL_ERROR "the exported sl viewport-mpcdi.json does not load (${rc}): ${o}\n${e}")
+endif()
+
 function(expect_refused what reason)
   execute_process(COMMAND ${ZENITH} export-calibration ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
   string(FIND "${o}${e}" "${reason}" pos)
@@ -54,4 +75,8 @@ expect_refused("an unknown output" "${out}/show.json: no output named 'nope' (ou
                --viewport "${out}/show.json#nope" --out "${out}/nope")
 expect_refused("a folder under a file" "${out}/show.json/hw: cannot create the export folder"
                --viewport "${out}/show.json" --out "${out}/show.json/hw")
+expect_refused("a fisheye as sl" "output 'mirror': the MPCDI sl profile describes a pinhole projector"
+               --viewport "${out}/show.json#mirror" --out "${out}/sl-mirror" --mpcdi-profile sl)
+expect_refused("an unknown profile" "--mpcdi-profile"
+               --viewport "${out}/show.json#flat" --out "${out}/a3" --mpcdi-profile a3)
 file(REMOVE_RECURSE "${out}")

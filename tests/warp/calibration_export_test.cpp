@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "apps/calibration_export.h"
@@ -285,6 +286,64 @@ TEST_F(CalibrationExport, RefusesAnOutputWhoseWarpIsBrokenNamingTheField) {
                {"/outputs/3/warp/file", "sgct.pfm", "truncated"});
   // Another output still exports.
   EXPECT_EQ(app::export_calibration(broken, "mirror", out).size(), 9u);
+}
+
+// The sl profile (issue 31): planar outputs exported as pinhole projectors,
+// a frustum and a coordinate frame, and loaded back through the exported
+// viewport-mpcdi.json, which gives no projection: the region's rays.
+TEST(CalibrationExportShaderLamps, ExportThenLoadGivesTheSameRays) {
+  ScratchDir dir("calibration_export_sl");
+  dir.write("lens.pfm", testing::make_pfm(
+                            6, 5, 3,
+                            [](int x, int y, int c) {
+                              const float s = x / 5.0f, t = y / 4.0f;
+                              return c == 0 ? 0.04f + 0.9f * s + 0.03f * (t - 0.5f) * (t - 0.5f)
+                                   : c == 1 ? 0.05f + 0.88f * t + 0.02f * s : 0.0f;
+                            },
+                            true, true));
+  const ViewportConfig original = load_viewport_config(dir.write("sl.json", R"({"zenith_viewports": 1, "name": "sl",
+    "outputs": [
+    {"name": "wall", "size": [40, 30], "black_level": 0.02,
+     "projection": {"type": "planar", "left_deg": -35, "right_deg": 28, "down_deg": -18, "up_deg": 22,
+                    "yaw_deg": 326.7, "pitch_deg": 12.5, "roll_deg": 350}},
+    {"name": "zenith", "size": [32, 18], "projection": {"type": "planar", "fov_deg": 75, "yaw_deg": 30, "pitch_deg": 90}},
+    {"name": "lens", "size": [32, 20], "projection": {"type": "planar", "fov_deg": 70, "yaw_deg": -20},
+     "warp": {"file": "lens.pfm", "format": "pfm", "row_order": "top_to_bottom"}, "blend": "auto"}]})"));
+  const fs::path out = dir.path() / "export";
+  const std::vector<app::ExportedFile> files =
+      app::export_calibration(original, std::string(), out, {.mpcdi_profile = MpcdiProfile::shader_lamps});
+  EXPECT_EQ(files.size(), 3u * 6u + 3u);
+  const ViewportConfig reloaded = load_viewport_config(out / "viewport-mpcdi.json");
+  for (const OutputConfig& o : original.outputs) {
+    SCOPED_TRACE(o.name);
+    const OutputConfig& r = *reloaded.find(o.name);
+    EXPECT_TRUE(r.projection_spec.is_object());
+    double worst = 0.0;
+    for (int y = 0; y < o.height_px; ++y)
+      for (int x = 0; x < o.width_px; ++x) {
+        const auto a = o.projection->ray(x + 0.5, y + 0.5), b = r.projection->ray(x + 0.5, y + 0.5);
+        ASSERT_EQ(a.has_value(), b.has_value()) << x << ", " << y;
+        if (a) worst = std::max(worst, std::atan2(glm::length(glm::cross(*a, *b)), glm::dot(*a, *b)));
+      }
+    // The frustum and frame: exact up to the decomposition into angles; a
+    // warp (the lens distortion map) is binary32 (u, v), as in the 2d export.
+    std::printf("sl export %s: max %.3g rad between the rays\n", o.name.c_str(), worst);
+    EXPECT_LT(worst, o.warp ? 1e-6 : 1e-9);
+    EXPECT_EQ(r.black_level, o.black_level);
+
+    const MpcdiFile archive = load_mpcdi(out / (o.name + ".mpcdi"));
+    EXPECT_EQ(archive.profile, MpcdiProfile::shader_lamps);
+    const MpcdiRegion& region = *archive.find_region(o.name);
+    ASSERT_TRUE(region.frustum && region.coordinate_frame && region.alpha_map && region.beta_map);
+    EXPECT_EQ(region.distortion_mesh.has_value(), o.warp.has_value());
+    EXPECT_FALSE(region.geometry_warp);
+  }
+  // A projection that is no pinhole cannot be written as sl; nothing is written.
+  const ViewportConfig dome = load_viewport_config(dir.write("dome.json", R"({"zenith_viewports": 1, "name": "d",
+    "outputs": [{"name": "dome", "size": [16, 16], "projection": {"type": "fisheye", "fov_deg": 180}}]})"));
+  expect_error([&] { app::export_calibration(dome, "dome", dir.path() / "no", {.mpcdi_profile = MpcdiProfile::shader_lamps}); },
+               {"output 'dome': the MPCDI sl profile describes a pinhole projector", "fisheye 180°", "2d profile"});
+  EXPECT_FALSE(fs::exists(dir.path() / "no"));
 }
 
 }  // namespace

@@ -416,8 +416,8 @@ TEST(MoreProjections, InvalidParametersThrowNamingThem) {
   expect_invalid(cylinder(10, 10, {.down_deg = -89.0}), {"down_deg", "-89", "(-89, 89)"});
   expect_invalid(cylinder(10, 10, {.up_deg = nan}), {"up_deg", "nan"});
   expect_invalid(cylinder(10, 10, {.down_deg = 30.0, .up_deg = 30.0}), {"down_deg", "up_deg", "less"});
-  expect_invalid(cylinder(10, 10, {.yaw_deg = 190.0}), {"yaw_deg", "190", "[-180, 180]"});
-  expect_invalid(cylinder(10, 10, {.pitch_deg = -90.5}), {"pitch_deg", "[-90, 90]"});
+  expect_invalid(cylinder(10, 10, {.yaw_deg = 390.0}), {"yaw_deg", "390", "[-360, 360]"});
+  expect_invalid(cylinder(10, 10, {.pitch_deg = -360.5}), {"pitch_deg", "[-360, 360]"});
   expect_invalid(cylinder(10, 10, {.roll_deg = std::numeric_limits<double>::infinity()}), {"roll_deg", "inf"});
   EXPECT_NO_THROW(CylindricalProjection(1, 1, {.horizontal_fov_deg = 1e-6, .down_deg = -88.99, .up_deg = 88.99}));
 
@@ -520,6 +520,35 @@ TEST(ProjectionFactory, BuildsEveryType) {
   }
 }
 
+// Calibration tools write angles in [0, 360): every orientation angle of a
+// viewport's projection is read in [−360, 360] and gives the rotation of the
+// same angle in (−180, 180] (issue 31: yaw_deg 326.7 was refused).
+TEST(ProjectionFactory, OrientationAnglesIn0To360GiveTheSameRays) {
+  const auto rays_equal = [](const Projection& a, const Projection& b) {
+    for (double y = 0.5; y < a.height(); y += 7.0)
+      for (double x = 0.5; x < a.width(); x += 7.0) {
+        const auto ra = a.ray(x, y), rb = b.ray(x, y);
+        ASSERT_EQ(ra.has_value(), rb.has_value()) << x << ", " << y;
+        if (ra) {
+          EXPECT_LT(angle_between(*ra, *rb), 1e-12) << a.describe() << " vs " << b.describe();
+        }
+      }
+  };
+  const auto planar_wrapped = make(R"({"type": "planar", "fov_deg": 60, "yaw_deg": 326.7, "pitch_deg": 340,
+                                       "roll_deg": 270})");
+  const auto planar_signed = make(R"({"type": "planar", "fov_deg": 60, "yaw_deg": -33.3, "pitch_deg": -20,
+                                      "roll_deg": -90})");
+  rays_equal(*planar_wrapped, *planar_signed);
+  EXPECT_EQ(planar_wrapped->describe(), planar_signed->describe());  // kept normalized
+  // Over the top: pitch 120 = pitch 60 with yaw and roll turned half way round.
+  rays_equal(*make(R"({"type": "planar", "fov_deg": 60, "yaw_deg": 10, "pitch_deg": 120, "roll_deg": 0})"),
+             *make(R"({"type": "planar", "fov_deg": 60, "yaw_deg": -170, "pitch_deg": 60, "roll_deg": 180})"));
+  rays_equal(*make(R"({"type": "cylindrical", "horizontal_fov_deg": 120, "yaw_deg": 350, "roll_deg": 355})"),
+             *make(R"({"type": "cylindrical", "horizontal_fov_deg": 120, "yaw_deg": -10, "roll_deg": -5})"));
+  rays_equal(*make(R"({"type": "fisheye", "fov_deg": 200, "tilt_deg": 330, "rotation_deg": 270})", 64, 64),
+             *make(R"({"type": "fisheye", "fov_deg": 200, "tilt_deg": -30, "rotation_deg": -90})", 64, 64));
+}
+
 void expect_config_error(const std::string& text, const std::vector<std::string>& parts, int w = 64, int h = 48) {
   try {
     make(text, w, h);
@@ -545,8 +574,11 @@ TEST(ProjectionFactory, RejectsInvalidSpecsNamingSourcePointerValueAndRange) {
                       {"/projection/up_deg: missing required key"});
   expect_config_error(R"({"type": "planar", "fov_deg": 60, "left_deg": -30})", {"either fov_deg or"});
   expect_config_error(R"({"type": "planar"})", {"/viewports/0/projection: give either fov_deg"});
-  expect_config_error(R"({"type": "planar", "fov_deg": 60, "yaw_deg": 200})",
-                      {"/projection/yaw_deg = 200: must be in [-180, 180] degrees"});
+  expect_config_error(R"({"type": "fisheye", "tilt_deg": 120})",
+                      {"/projection/tilt_deg = 120: must be in [-90, 90] degrees (or the same tilt plus or minus 360"});
+  expect_config_error(R"({"type": "cylindrical", "roll_deg": -361})", {"/projection/roll_deg = -361", "[-360, 360]"});
+  expect_config_error(R"({"type": "planar", "fov_deg": 60, "yaw_deg": 400})",
+                      {"/projection/yaw_deg = 400: must be in [-360, 360] degrees ([0, 360) and (-180, 180] both read)"});
   expect_config_error(R"({"type": "fisheye", "fov": 180})",
                       {"/projection/fov: unknown key", "allowed for type \"fisheye\": type, fov_deg, tilt_deg"});
   expect_config_error(R"({"type": "fisheye", "tilt_deg": "up"})",

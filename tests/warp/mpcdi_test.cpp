@@ -100,7 +100,9 @@ TEST(Mpcdi, NamesAreCaseInsensitiveAndPathsRelativeToTheXml) {
           <YAW>10</YAW><Pitch>-5.5</Pitch><roll>1</roll>
           <LeftAngle>-30</LeftAngle><RIGHTANGLE>32</RIGHTANGLE><upangle>20</upangle><DownAngle>-18</DownAngle>
         </Frustum>
-        <coordinateFrame><posx>1</posx></coordinateFrame>
+        <coordinateFrame><posx>1</posx><posy>0</posy><posz>0</posz><yawx>0</yawx><yawy>-1</yawy><yawz>0</yawz>
+          <pitchx>-1</pitchx><pitchy>0</pitchy><pitchz>0</pitchz><rollx>0</rollx><rolly>0</rolly><rollz>1</rollz>
+        </coordinateFrame>
       </REGION>
     </Buffer>
   </DISPLAY>
@@ -187,7 +189,7 @@ TEST(Mpcdi, RejectsMissingAttributesAndBadValues) {
   expect_error([&] { load_mpcdi(with_xml("g.mpcdi", "profile=\"2d\"", "profile=\"3d\"")); },
                {"<region> 'left' has no <frustum> (required by the 3d profile)"});
   expect_error([&] { load_mpcdi(with_xml("h.mpcdi", "<interpolation>linear", "<interpolation>nearest")); },
-               {"<interpolation> 'nearest': must be linear or cubic"});
+               {"region 'left': <interpolation> 'nearest': must be linear, cubic (smooth, bicubic) or unknown"});
 }
 
 TEST(Mpcdi, RejectsBrokenAndNaNOnlyWarps) {

@@ -317,7 +317,7 @@ TEST(MpcdiVendor, FrustumAnglesBeyond360AreRefusedWithTheirLine) {
   const std::string xml = frustum_xml(400, 0, 0);
   expect_error([&] { load_mpcdi(make_zip(dir, "far.mpcdi", with_descriptor("mpcdi.xml", xml))); },
                {"far.mpcdi:mpcdi.xml:" + std::to_string(line_of(xml, "<yaw>400")) +
-                ": <frustum> <yaw> = 400: must be in [-360, 360] degrees"});
+                ": region 'left': <frustum> <yaw> = 400: must be in [-360, 360] degrees"});
   const std::string low = frustum_xml(0, 0, -361);
   expect_error([&] { load_mpcdi(make_zip(dir, "low.mpcdi", with_descriptor("mpcdi.xml", low))); },
                {"low.mpcdi:mpcdi.xml:", "<frustum> <roll> = -361: must be in [-360, 360] degrees"});

@@ -298,8 +298,8 @@ TEST(PlanarProjection, InvalidParametersThrowNamingThem) {
   expect_invalid(planar(10, 10, {-30, 30, -20, nan}), {"up_deg", "nan"});
   expect_invalid(planar(10, 10, {30, 10, -20, 20}), {"left_deg", "right_deg", "less"});
   expect_invalid(planar(10, 10, {-30, 30, 20, 20}), {"down_deg", "up_deg"});
-  expect_invalid(planar(10, 10, {-30, 30, -20, 20, 181.0}), {"yaw_deg", "181", "[-180, 180]"});
-  expect_invalid(planar(10, 10, {-30, 30, -20, 20, 0.0, -91.0}), {"pitch_deg", "-91", "[-90, 90]"});
+  expect_invalid(planar(10, 10, {-30, 30, -20, 20, 361.0}), {"yaw_deg", "361", "[-360, 360]"});
+  expect_invalid(planar(10, 10, {-30, 30, -20, 20, 0.0, -400.0}), {"pitch_deg", "-400", "[-360, 360]"});
   expect_invalid(planar(10, 10, {-30, 30, -20, 20, 0.0, 0.0, nan}), {"roll_deg"});
   expect_invalid([] { PlanarProjection::symmetric(10, 10, 0.0); }, {"horizontal_fov_deg", "0", "(0, 178)"});
   expect_invalid([] { PlanarProjection::symmetric(10, 10, 179.0); }, {"horizontal_fov_deg", "179"});
@@ -316,7 +316,9 @@ TEST(FisheyeProjection, InvalidParametersThrowNamingThem) {
   expect_invalid(fisheye(70000, 64, {}), {"width_px", "70000"});
   expect_invalid(fisheye(64, 64, {.fov_deg = 0.5}), {"fov_deg", "0.5", "[1, 360]", "degrees"});
   expect_invalid(fisheye(64, 64, {.fov_deg = 361.0}), {"fov_deg", "361"});
-  expect_invalid(fisheye(64, 64, {.tilt_deg = 91.0}), {"tilt_deg", "91", "[-90, 90]"});
+  expect_invalid(fisheye(64, 64, {.tilt_deg = 91.0}), {"tilt_deg", "91", "[-90, 90]", "[270, 360]"});
+  expect_invalid(fisheye(64, 64, {.tilt_deg = 269.0}), {"tilt_deg", "269", "[-90, 90]"});
+  expect_invalid(fisheye(64, 64, {.tilt_deg = 361.0}), {"tilt_deg", "361", "[-360, 360]"});
   expect_invalid(fisheye(64, 64, {.centre_x_px = inf}), {"centre_x_px", "inf", "px"});
   expect_invalid(fisheye(64, 64, {.centre_y_px = -2e6}), {"centre_y_px", "-2e+06"});
   expect_invalid(fisheye(64, 64, {.radius_px = 0.0}), {"radius_px", "0", "(0, 1e+06]", "px"});

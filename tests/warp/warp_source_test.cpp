@@ -545,16 +545,20 @@ TEST(WarpSource, AnMpcdiRegionsResolutionIsTheSourceUnlessTheConfigGivesOne) {
   });
   EXPECT_LT(c.compared, a.compared);
 
-  // A 3d region: the frustum image the region's warp addresses has the
-  // region's resolution too (its rays do not depend on it; its pixel size does).
+  // A 3d region: its frustum renders the image the region's warp addresses
+  // (the config gives no projection), at the region's resolution (its rays do
+  // not depend on it; its pixel size does).
   region_archive(dir, "show3d.mpcdi", "3d", 1280, 800);
   json k = json::parse(R"({"zenith_viewports": 1, "name": "show", "outputs": [
-    {"name": "r", "size": [80, 60],
-     "projection": {"type": "planar", "left_deg": -40, "right_deg": 40, "down_deg": -25, "up_deg": 25},
-     "warp": {"file": "show3d.mpcdi", "format": "mpcdi", "region": "r"}}]})");
-  const auto f = warped_output(parse_viewport_config(k, "show.json", dir.path()));
+    {"name": "r", "size": [80, 60], "warp": {"file": "show3d.mpcdi", "format": "mpcdi", "region": "r"}}]})");
+  const ViewportConfig frustum_config = parse_viewport_config(k, "show.json", dir.path());
+  const auto f = warped_output(frustum_config);
   EXPECT_EQ(f->base().width(), 1280);
   EXPECT_EQ(f->base().height(), 800);
+  EXPECT_EQ(frustum_config.outputs[0].warp->source_width_px, 1280);
+  EXPECT_EQ(frustum_config.outputs[0].projection_spec,
+            json::parse(R"({"type": "planar", "left_deg": -40, "right_deg": 40, "down_deg": -25, "up_deg": 25,
+                            "yaw_deg": 0, "pitch_deg": 0, "roll_deg": 0})"));
   const double t_lr = std::tan(40.0 * zenith::core::kDeg), t_ud = std::tan(25.0 * zenith::core::kDeg);
   compare_rays(*f, [&](double x, double y) -> std::optional<glm::dvec3> {
     const glm::dvec2 p = region_point(x, y, 80, 60);
