@@ -71,7 +71,7 @@ void FrameWriterPool::submit(Frame frame) {
 
 void FrameWriterPool::run_task(const Task& task, std::unique_lock<std::mutex>& lock) {
   Pending& p = pending_.at(task.sequence);  // std::map: stays valid while unlocked
-  const bool skip = p.failed || error_ != nullptr;
+  const bool skip = p.failed || task.sequence > first_failed_;  // a frame after a failed one is not kept
   const File& file = p.frame.files[task.file];
   std::string hash;
   std::exception_ptr failure;
@@ -88,7 +88,10 @@ void FrameWriterPool::run_task(const Task& task, std::unique_lock<std::mutex>& l
   }
   if (failure) {
     p.failed = true;
-    if (!error_) error_ = failure;
+    if (task.sequence < first_failed_) {  // the error of the earliest failing frame is the one reported
+      first_failed_ = task.sequence;
+      error_ = failure;
+    }
   }
   p.sha256[task.file] = std::move(hash);
   --p.files_left;
@@ -97,7 +100,8 @@ void FrameWriterPool::run_task(const Task& task, std::unique_lock<std::mutex>& l
 void FrameWriterPool::publish_ready() {
   while (!pending_.empty() && pending_.begin()->first == next_to_publish_ && pending_.begin()->second.files_left == 0) {
     Pending& p = pending_.begin()->second;
-    if (error_ == nullptr && !p.failed) {
+    const std::uint64_t sequence = pending_.begin()->first;
+    if (sequence < first_failed_) {  // every earlier frame is published: this one is kept
       try {
         for (const File& f : p.frame.files) {
           std::error_code ec;
@@ -110,10 +114,11 @@ void FrameWriterPool::publish_ready() {
         written_.push_back({p.frame.frame, std::move(p.sha256)});
       } catch (...) {
         p.failed = true;
+        first_failed_ = sequence;
         error_ = std::current_exception();
       }
     }
-    if (error_ != nullptr || p.failed)  // this frame or an earlier one failed: nothing of it stays
+    if (sequence >= first_failed_)  // this frame or an earlier one failed: nothing of it stays
       for (const File& f : p.frame.files) remove_quietly(staging_path(f.path));
     if (p.frame.released) p.frame.released();
     pending_.erase(pending_.begin());

@@ -91,7 +91,8 @@ class FrameWriterPool {
   std::deque<Task> tasks_;
   std::uint64_t next_sequence_ = 0, next_to_publish_ = 0;
   std::vector<WrittenFrame> written_;
-  std::exception_ptr error_;
+  std::exception_ptr error_;  ///< that of the earliest failing frame
+  std::uint64_t first_failed_ = UINT64_MAX;  ///< its sequence
   bool stopping_ = false;
   std::vector<std::thread> workers_;
 };
