@@ -44,6 +44,9 @@ void write_exr_from_rgba(const std::filesystem::path& path, int width, int heigh
 
 }  // namespace
 
+/// The memory the readback slots may take by default (--frames-in-flight sets their number instead).
+constexpr std::size_t kDefaultSlotBudgetBytes = std::size_t(8) << 30;
+
 bool is_software_renderer(const std::string& device) {
   for (const char* name : {"llvmpipe", "softpipe", "SwiftShader"})
     if (device.find(name) != std::string::npos) return true;
@@ -151,7 +154,12 @@ void LocalFrameRenderer::start_pipeline() {
   int threads = settings_.threads;
   if (threads < 0)
     threads = default_writer_threads(std::thread::hardware_concurrency(), is_software_renderer(device()));
-  const int in_flight = settings_.frames_in_flight > 0 ? settings_.frames_in_flight : threads + 2;
+  // By default a frame per writer, one on the GPU and one being handed over, within kDefaultSlotBudgetBytes.
+  int in_flight = settings_.frames_in_flight;
+  if (in_flight <= 0) {
+    const auto fit = static_cast<int>(std::min<std::size_t>(64, kDefaultSlotBudgetBytes / std::max<std::size_t>(1, slot_bytes_)));
+    in_flight = std::max(2, std::min(threads + 2, fit));
+  }
   slots_.resize(threads == 0 ? 1 : static_cast<std::size_t>(in_flight));
   slot_frames_.resize(slots_.size());
   if (threads > 0)

@@ -71,7 +71,8 @@ struct PipelineSettings {
   /// Encoding and writing threads: ≥ 1, 0 the simple path, −1 automatic
   /// (default_writer_threads of the GL device).
   int threads = -1;
-  /// Frames whose pixels may be held at once (readback slots), ≥ 1; 0: threads + 2.
+  /// Frames whose pixels may be held at once (readback slots), ≥ 1; 0: threads + 2, at most as many as fit
+  /// in 8 GiB (at least 2): 8192² 8-bit PNG 256 MiB a frame, 16-bit TIFF 512 MiB, EXR 1 GiB more.
   int frames_in_flight = 0;
   /// Called in frame order as each frame's files are in place (from a worker
   /// thread; keep it short): the video proxy. Needs a display format.
