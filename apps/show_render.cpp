@@ -347,10 +347,10 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
 void register_show_render(CLI::App& show_command) {
   auto a = std::make_shared<ShowRenderArgs>();
   CLI::App* cmd = show_command.add_subcommand(
-      "render", "Render every frame of a show at a fixed frame rate to numbered PNG/EXR files per output, resumable "
+      "render", "Render every frame of a show at a fixed frame rate to numbered PNG/TIFF/EXR files per output, resumable "
                 "(docs/shows.md, \"Offline rendering\")");
   cmd->add_option("--show", a->show, "Show file (configs/shows/)")->required();
-  cmd->add_option("--out", a->out, "Output folder: DIR/<output>/<output>.<frame:06d>.png|exr, DIR/manifest.json")
+  cmd->add_option("--out", a->out, "Output folder: DIR/<output>/<output>.<frame:06d>.png|tif|exr, DIR/manifest.json")
       ->required();
   cmd->add_option("--cluster", a->cluster,
                   "Render on the nodes of this cluster config (all on this machine; its viewports, tables and format)");

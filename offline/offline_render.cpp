@@ -47,7 +47,7 @@ void check_job(const RenderJob& job) {
     throw std::invalid_argument(fmt::format("--from {} --to {}: the show has frames 0 to {} at {} fps",
                                             job.first_frame, job.last_frame, count - 1, job.fps));
   if (job.outputs.empty()) throw std::invalid_argument("offline render: no outputs");
-  if (job.formats.empty()) throw std::invalid_argument("--format: give png, exr or png,exr");
+  if (job.formats.empty()) throw std::invalid_argument("--format: give a comma list of png, png16, tiff and exr");
   std::set<std::string> names;
   for (const OutputSpec& o : job.outputs)
     if (o.name.empty() || !names.insert(o.name).second)

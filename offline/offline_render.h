@@ -10,7 +10,7 @@
 //
 //   DIR/manifest.json
 //   DIR/contact-sheet.png                 (unless --contact-sheet none / another FILE)
-//   DIR/<output>/<output>.<frame:06d>.png|exr
+//   DIR/<output>/<output>.<frame:06d>.png|tif|exr   (RenderJob::naming: another pattern)
 #include <array>
 #include <cstdint>
 #include <filesystem>
