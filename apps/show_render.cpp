@@ -29,7 +29,7 @@
 #include "core/strings.h"
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/link/cluster_config.h"
-#include "cluster/protocol/state_digest.h"
+#include "scene/frame_digest.h"
 #include "render/render_flags.h"
 #include "show/show.h"
 #include "show/table_plan.h"
@@ -226,7 +226,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   job.first_frame = first;
   job.last_frame = last;
   job.render_flags = render::render_flags_of(render::RenderOptions{});
-  job.frame_digest = cluster::state_digest;
+  job.frame_digest = scene::frame_digest;
   job.outputs = outputs.specs;
   job.formats = formats;
   job.settings = cat("scene sha256 ", offline::file_sha256(show.scene_path()), "; tables ", table_args.tables,

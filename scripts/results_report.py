@@ -154,7 +154,7 @@ class Report:
 
     def gl_renderer(self):
         for name, column in (("render_frame_times.csv", "device"), ("lut_accuracy.csv", "device")):
-            for row in read_csv(os.path.join(self.data, name)) or []:
+            for row in self.csv(name) or []:
                 if row.get(column) and not row[column].startswith("CPU"):
                     return row[column]
         return "unknown"
@@ -164,6 +164,15 @@ class Report:
         cores = m.get("logical_cores")
         return (f"{m.get('cpu', 'unknown CPU')}, {cores} logical cores, GL: {self.gl}"
                 f"{'; quick run' if self.quick else ''}")
+
+    def csv(self, *path):
+        """The rows of a CSV file of the data folder (None when missing)."""
+        return read_csv(os.path.join(self.data, *path))
+
+    def measured(self, key, *path):
+        """A section's 'measured by' line (provenance), then the rows of its CSV file."""
+        self.provenance(key)
+        return self.csv(*path)
 
     def provenance(self, key):
         """The 'measured by' line of a section: command, duration, machine."""
@@ -224,8 +233,8 @@ class Report:
     def headline(self):
         self.add("## Headline figures", "")
         items = []
-        cie = read_csv(os.path.join(self.data, "cie", "cie_summary.csv"))
-        suns = [num(r["sun_zenith_deg"]) for r in read_csv(os.path.join(self.data, "cie", "cie_cases.csv")) or []]
+        cie = self.csv("cie", "cie_summary.csv")
+        suns = [num(r["sun_zenith_deg"]) for r in self.csv("cie", "cie_cases.csv") or []]
         span = f"sun zenith {g(min(suns))}–{g(max(suns))}°" if suns else "all sun positions"
         for r in cie or []:
             if r["variant"] == "as-is":
@@ -234,7 +243,7 @@ class Report:
                              f"{g(num(r['rms_type12']), 2)} (largest {g(num(r['max_abs_type12']), 2)}); "
                              f"30° or more from the sun RMS {g(num(r['rms_type12_far']), 2)} (largest "
                              f"{g(num(r['max_abs_type12_far']), 2)}); best-fitting CIE type {r['best_type']}.")
-        stress = read_csv(os.path.join(self.data, "stress", "stress_regions.csv"))
+        stress = self.csv("stress", "stress_regions.csv")
         for r in stress or []:
             if r["model"] == "all" and r["region"] == "all":
                 bad = sum(int(r[k]) for k in ("nan", "inf", "negative", "transmittance_above_1"))
@@ -243,7 +252,7 @@ class Report:
         pick = self.recommendation()
         if pick:
             items.append(pick)
-        render = read_csv(os.path.join(self.data, "render_frame_times.csv"))
+        render = self.csv("render_frame_times.csv")
         if render:
             parts = []
             for r in render:
@@ -255,7 +264,7 @@ class Report:
             text = "; ".join(f"{res.replace('x', '×')} {proj.split()[0]} {f1(v.get('3'))} ms with 3 atmospheres "
                              f"({f1(v.get('0'))} ms bodies only)" for (res, proj), v in by_res.items())
             items.append(f"Frame time (median): {text}.")
-        cluster = read_csv(os.path.join(self.data, "cluster_bench.csv"))
+        cluster = self.csv("cluster_bench.csv")
         if cluster:
             barrier = [r for r in cluster if r["part"] == "barrier"]
             if barrier:
@@ -266,7 +275,7 @@ class Report:
         self.add("", f"All on {self.machine_line()}.", "")
 
     def recommendation(self):
-        rows = read_csv(os.path.join(self.data, "lut_accuracy.csv"))
+        rows = self.csv("lut_accuracy.csv")
         if not rows:
             return None
         group = [r for r in rows if r["preset"] == "all"] or rows
@@ -296,9 +305,8 @@ class Report:
                  "paper's extensions switched back (classic Rayleigh phase instead of Penndorf's, geometric instead "
                  "of Pickering's air mass). Directions within 5° of the sun are left out. Method: "
                  "[validation.md](validation.md).", "")
-        self.provenance("cie")
-        summary = read_csv(os.path.join(self.data, "cie", "cie_summary.csv"))
-        cases = read_csv(os.path.join(self.data, "cie", "cie_cases.csv"))
+        summary = self.measured("cie", "cie", "cie_summary.csv")
+        cases = self.csv("cie", "cie_cases.csv")
         if not summary or not cases:
             self.add("*No CIE results (cie_summary.csv / cie_cases.csv missing).*", "")
             return
@@ -339,7 +347,7 @@ class Report:
             self.image(os.path.join("cie", stem + ".png"), stem + ".png", f"L/Lz, sun zenith {g(sun)} deg")
 
         self.add("### Lookup tables against the reference solver", "")
-        rows = read_csv(os.path.join(self.data, "lut_accuracy.csv"))
+        rows = self.csv("lut_accuracy.csv")
         if not rows:
             self.add("*lut_accuracy.csv missing.*", "")
             return
@@ -363,8 +371,7 @@ class Report:
                  "value and transmittance above 1, the largest relative jump across the horizon (±ε), and the "
                  "single-scattering error against the exact quadrature per region (relative, with a floor of "
                  "1e-6 sr⁻¹ per unit solar irradiance). Method: [validation.md](validation.md).", "")
-        self.provenance("stress")
-        regions = read_csv(os.path.join(self.data, "stress", "stress_regions.csv"))
+        regions = self.measured("stress", "stress", "stress_regions.csv")
         if not regions:
             self.add("*stress_regions.csv missing.*", "")
             return
@@ -382,7 +389,7 @@ class Report:
         self.add("**Per model, all regions:**", "")
         self.add(table(["model"] + cols[1:], [row(r, r["model"]) for r in regions
                                               if r["region"] == "all" and r["model"] != "all"]), "")
-        gpu = read_csv(os.path.join(self.data, "stress", "stress_gpu.csv"))
+        gpu = self.csv("stress", "stress_gpu.csv")
         if gpu:
             by_model = {}
             for r in gpu:
@@ -411,8 +418,7 @@ class Report:
                  "cost and a lower error. **Rule for the recommended default:** the cheapest setting (precompute "
                  "time) whose RMS error is within the tolerance of the best; it is always on the front. Code: "
                  "`bench/lut_accuracy_bench.cpp`.", "")
-        self.provenance("pareto")
-        rows = read_csv(os.path.join(self.data, "lut_accuracy.csv"))
+        rows = self.measured("pareto", "lut_accuracy.csv")
         if not rows:
             self.add("*lut_accuracy.csv missing.*", "")
             return
@@ -462,8 +468,7 @@ class Report:
                  "and square fisheye dome masters (180°); the columns keep the first N atmospheres, \"bodies only\" "
                  "draws no atmosphere. Wall time around `Renderer::render()`, readback included; the median of the "
                  "frames, the fastest in brackets. Method: [rendering-performance.md](rendering-performance.md).", "")
-        self.provenance("render")
-        render = read_csv(os.path.join(self.data, "render_frame_times.csv"))
+        render = self.measured("render", "render_frame_times.csv")
         if render:
             order, cells, maxatm = [], {}, 0
             for r in render:
@@ -482,7 +487,7 @@ class Report:
             self.image("render_frame_times.png", "render_frame_times.png", "Frame time against atmospheres")
         else:
             self.add("*render_frame_times.csv missing.*", "")
-        proj = read_csv(os.path.join(self.data, "projector_frame_times.csv"))
+        proj = self.csv("projector_frame_times.csv")
         if proj and "render" in self.steps and "viewport" in self.steps["render"]["command"]:
             self.add(f"**Per projector** of `{proj[0]['viewports']}` (all three atmospheres):", "")
             self.add(table(["output", "size", "median ms", "fastest ms", "peak memory MB"],
@@ -493,8 +498,7 @@ class Report:
         self.add("From the run-time-against-error measurement above (4 orders, log-linear, 50 ray samples, 16 sphere "
                  "nodes; GPU: a fresh headless EGL context per precompute, shader compilation included; CPU: every "
                  "core).", "")
-        self.provenance("pareto")
-        rows = read_csv(os.path.join(self.data, "lut_accuracy.csv"))
+        rows = self.measured("pareto", "lut_accuracy.csv")
         if rows:
             presets = [p for p in dict.fromkeys(r["preset"] for r in rows) if p != "all"]
             plain = [r for r in rows if r["orders"] == "4" and r["quadrature"] == "log-linear"
@@ -518,8 +522,7 @@ class Report:
                  "master's FrameState-out to last-RenderDone-in minus the slowest render. The nodes share the two "
                  "cores, so the period grows with N here; across machines the overhead is what a cluster adds. "
                  "Method: [cluster-performance.md](cluster-performance.md).", "")
-        self.provenance("cluster")
-        cluster = read_csv(os.path.join(self.data, "cluster_bench.csv"))
+        cluster = self.measured("cluster", "cluster_bench.csv")
         if cluster:
             self.add(table(["nodes", "frames", "fps", "period ms", "slowest render ms", "overhead ms",
                             "barrier ms", "in-barrier ms", "in-barrier p90 ms"],

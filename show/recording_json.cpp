@@ -16,7 +16,6 @@ namespace {
 
 using config::brief;
 using core::cat;
-using scene::kMaxExposure;
 using nlohmann::json;
 
 constexpr double kMaxShowTime_s = 1e9;
@@ -79,7 +78,7 @@ void check_recordable(const scene::FrameDescription& s) {
   if (!finite(s.camera_position_m)) throw std::invalid_argument("camera_position_m: must be finite");
   if (!(std::abs(glm::length(q) - 1.0) <= scene::kUnitTolerance))
     throw std::invalid_argument("camera_orientation: must be a unit quaternion");
-  if (!(s.exposure > 0.0 && s.exposure <= kMaxExposure))
+  if (!(s.exposure > 0.0 && s.exposure <= scene::kMaxExposure))
     throw std::invalid_argument(cat("exposure = ", s.exposure, ": must be in (0, 1e+06]"));
   if (!(finite(s.sun_direction) && std::abs(glm::length(s.sun_direction) - 1.0) <= scene::kUnitTolerance))
     throw std::invalid_argument("sun_direction: must be a unit vector");
@@ -111,7 +110,7 @@ scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& s
   if (!(std::abs(glm::length(s.camera_orientation) - 1.0) <= scene::kUnitTolerance))
     r.fail("camera_orientation", cat("= ", brief(r.raw("camera_orientation")), ": must be a unit quaternion (|q| - 1 within ",
                                      scene::kUnitTolerance, ")"));
-  s.exposure = r.number("exposure", 0.0, kMaxExposure);
+  s.exposure = r.number("exposure", 0.0, scene::kMaxExposure);
   if (!(s.exposure > 0.0)) r.fail("exposure", cat("= ", brief(r.raw("exposure")), ": must be in (0, 1e+06]"));
   const std::vector<double> d = numbers(r, "sun_direction", 3, "[x, y, z] (a unit vector)");
   s.sun_direction = {d[0], d[1], d[2]};

@@ -81,11 +81,7 @@ CylindricalProjection::CylindricalProjection(int width_px, int height_px, const 
   if (!(p.down_deg < p.up_deg))
     fail("down_deg = " + number(p.down_deg) + " must be less than up_deg = " + number(p.up_deg));
   // Yaw, pitch and roll in [−360, 360], kept normalized (as PlanarFrustum's).
-  const YawPitchRollDeg orientation =
-      checked_yaw_pitch_roll({p.yaw_deg, p.pitch_deg, p.roll_deg}, "CylindricalProjection");
-  parameters_.yaw_deg = orientation.yaw_deg;
-  parameters_.pitch_deg = orientation.pitch_deg;
-  parameters_.roll_deg = orientation.roll_deg;
+  check_and_normalize_orientation(parameters_, "CylindricalProjection");
 
   tan_down_ = std::tan(p.down_deg * kDeg);
   tan_up_ = std::tan(p.up_deg * kDeg);

@@ -37,4 +37,15 @@ YawPitchRollDeg normalized_yaw_pitch_roll(const YawPitchRollDeg& angles);
 /// (-180, 180] both read)" naming the first offending angle.
 YawPitchRollDeg checked_yaw_pitch_roll(const YawPitchRollDeg& angles, const std::string& owner);
 
+/// checked_yaw_pitch_roll() of the yaw_deg, pitch_deg and roll_deg members of
+/// a projection's parameters, written back normalized (PlanarFrustum,
+/// CylindricalParameters).
+template <class Parameters>
+void check_and_normalize_orientation(Parameters& parameters, const std::string& owner) {
+  const YawPitchRollDeg o = checked_yaw_pitch_roll({parameters.yaw_deg, parameters.pitch_deg, parameters.roll_deg}, owner);
+  parameters.yaw_deg = o.yaw_deg;
+  parameters.pitch_deg = o.pitch_deg;
+  parameters.roll_deg = o.roll_deg;
+}
+
 }  // namespace zenith::warp

@@ -105,11 +105,7 @@ PlanarProjection::PlanarProjection(int width_px, int height_px, const PlanarFrus
   // Yaw, pitch and roll in [−360, 360] ([0, 360) as calibration tools write
   // them), kept as the same rotation with yaw and roll in (−180, 180] and pitch
   // in [−90, 90] (warp/orientation_angles.h).
-  const YawPitchRollDeg orientation =
-      checked_yaw_pitch_roll({frustum.yaw_deg, frustum.pitch_deg, frustum.roll_deg}, "PlanarProjection");
-  frustum_.yaw_deg = orientation.yaw_deg;
-  frustum_.pitch_deg = orientation.pitch_deg;
-  frustum_.roll_deg = orientation.roll_deg;
+  check_and_normalize_orientation(frustum_, "PlanarProjection");
 
   tan_left_ = std::tan(frustum.left_deg * kDeg);
   tan_right_ = std::tan(frustum.right_deg * kDeg);

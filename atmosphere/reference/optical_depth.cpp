@@ -57,11 +57,7 @@ Spectrum optical_depth_along_ray(const AtmosphereModel& model, const Ray& ray, d
   const VectorIntegrand extinction = [&](double t, std::span<double> value) {
     medium.extinction_m1(ray.radius_at(t) - ground, value);
   };
-  QuadratureOptions q;
-  q.relative_tolerance = options.relative_tolerance;
-  q.absolute_tolerance = options.absolute_tolerance;
-  q.max_panels = options.max_panels;
-  const QuadratureResult integral = integrate_adaptive(extinction, breakpoints, n, q);
+  const QuadratureResult integral = integrate_adaptive(extinction, breakpoints, n, options);
   const double stretch = optical_depth_stretch(model, ray, a, b);
   for (std::size_t i = 0; i < n; ++i) tau[i] = stretch * integral.integral[i];
   return tau;

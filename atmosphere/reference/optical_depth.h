@@ -15,17 +15,16 @@
 #include <cstddef>
 
 #include "atmosphere/atmosphere_model.h"
+#include "atmosphere/reference/adaptive_quadrature.h"
 #include "atmosphere/reference/geometry.h"
 #include "atmosphere/vec3.h"
 
 namespace zenith::atmosphere::reference {
 
-struct OpticalDepthOptions {
-  /// Per wavelength, the quadrature stops when its error estimate is below
-  /// max(absolute_tolerance, relative_tolerance · τ).
-  double relative_tolerance = 1e-10;
-  double absolute_tolerance = 1e-13;
-  std::size_t max_panels = 2000;
+/// The quadrature's tolerances for optical depths: per wavelength, it stops
+/// when its error estimate is below max(absolute_tolerance, relative_tolerance · τ).
+struct OpticalDepthOptions : QuadratureOptions {
+  OpticalDepthOptions() : QuadratureOptions{.relative_tolerance = 1e-10, .absolute_tolerance = 1e-13, .max_panels = 2000} {}
 };
 
 /// The stretch s of the straight line carrying `ray`, evaluated with

@@ -64,11 +64,7 @@ SingleScatteringResult single_scattering_radiance(const AtmosphereModel& model, 
   for (double t : sphere_crossings_t_m(ray, quadrature_breakpoint_radii_m(model), 0.0, t_end)) breakpoints.push_back(t);
   std::sort(breakpoints.begin(), breakpoints.end());
 
-  QuadratureOptions q;
-  q.relative_tolerance = options.relative_tolerance;
-  q.absolute_tolerance = options.absolute_tolerance;
-  q.max_panels = options.max_panels;
-  const QuadratureResult integral = integrate_adaptive(integrand, breakpoints, n, q);
+  const QuadratureResult integral = integrate_adaptive(integrand, breakpoints, n, options);
   for (std::size_t i = 0; i < n; ++i) {
     result.atmosphere_radiance[i] = integral.integral[i];
     result.atmosphere_error[i] = integral.error_estimate[i];

@@ -29,12 +29,11 @@
 
 namespace zenith::atmosphere::reference {
 
-struct SingleScatteringOptions {
-  /// Tolerance of the outer (along-the-ray) quadrature, per wavelength:
-  /// error estimate ≤ max(absolute_tolerance, relative_tolerance · L1).
-  double relative_tolerance = 1e-7;
-  double absolute_tolerance = 1e-16;
-  std::size_t max_panels = 4000;
+/// The tolerances of the outer (along-the-ray) quadrature, per wavelength:
+/// error estimate ≤ max(absolute_tolerance, relative_tolerance · L1).
+struct SingleScatteringOptions : QuadratureOptions {
+  SingleScatteringOptions()
+      : QuadratureOptions{.relative_tolerance = 1e-7, .absolute_tolerance = 1e-16, .max_panels = 4000} {}
   /// Tolerances of the optical depths evaluated at every node.
   OpticalDepthOptions optical_depth;
 };

@@ -7,6 +7,7 @@
 
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
+#include "atmosphere/named_inputs.h"
 #include "cluster/master/takeover.h"
 #include "core/strings.h"
 #include "render/lut/table_provider.h"
@@ -33,7 +34,7 @@ render::TableRequest TableSchedule::request_for(const ClusterConfig& config,
                                                 const std::optional<std::filesystem::path>& cache_directory,
                                                 bool cpu_precompute) {
   render::TableRequest request;
-  request.options.sizes = render::table_sizes_by_name(config.table_sizes);
+  request.options.sizes = atmosphere::table_sizes_by_name(config.table_sizes);
   request.options.max_orders = config.table_orders;
   request.backend = cpu_precompute ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
   request.cache_directory = cache_directory;
@@ -69,7 +70,7 @@ std::pair<std::size_t, atmosphere::LoadedAtmosphere> TableSchedule::resolve_swit
   if (!index)
     throw std::invalid_argument(cat("atmosphere switch at frame ", sw.frame, ": the scene ", scene_.source,
                                     " has no body '", sw.body, "' with an atmosphere"));
-  atmosphere::LoadedAtmosphere loaded = render::load_atmosphere_argument(sw.atmosphere, {scene_.wavelengths_nm});
+  atmosphere::LoadedAtmosphere loaded = atmosphere::load_atmosphere_argument(sw.atmosphere, {scene_.wavelengths_nm});
   scene::Scene changed = scene_;
   for (scene::Body& body : changed.bodies)
     if (body.name == sw.body) body.atmosphere->loaded = loaded;

@@ -11,7 +11,7 @@
 #include "atmosphere/lut/table_cache.h"
 #include "scene/frame_scene.h"
 #include "cluster/node/thumbnail.h"
-#include "cluster/protocol/state_digest.h"
+#include "scene/frame_digest.h"
 #include "core/json_reader.h"
 #include "core/timing.h"
 #include "image/tone_mapping.h"
@@ -228,7 +228,7 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
   }
   // RenderDone means ready to present: the GPU has finished the frame.
   glFinish();
-  writer_.finish_frame({state.frame, state_digest(state), tables, state.show_time_s});
+  writer_.finish_frame({state.frame, scene::frame_digest(state), tables, state.show_time_s});
   const double render_ms = ms_since(t0);
   spdlog::debug("node '{}': frame {} rendered in {:.1f} ms", setup_.options.node_name, state.frame, render_ms);
   events_.rendered(state.frame, render_ms, session, std::move(thumbnails));

@@ -8,7 +8,6 @@
 
 #include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/precompute_options.h"
-#include "atmosphere/named_inputs.h"
 #include "atmosphere/parameters.h"
 
 namespace zenith::render {
@@ -31,11 +30,5 @@ struct ObtainedTables {
 };
 
 ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const TableRequest& request);
-
-// Naming an atmosphere or a set of table sizes (command lines, configs) is
-// atmosphere/named_inputs.h's. These two names stay here only until cluster/
-// calls them there (issue 27's cluster split); new code includes that header.
-using atmosphere::load_atmosphere_argument;
-using atmosphere::table_sizes_by_name;
 
 }  // namespace zenith::render

@@ -5,15 +5,14 @@
 #include <cmath>
 
 #include "atmosphere/constants.h"
+#include "tests/atmosphere/test_util.h"
 
 namespace zenith::atmosphere {
 namespace {
 
 TEST(Pickering, KnownValues) {
-  EXPECT_NEAR(pickering_air_mass(90.0), 1.0, 1e-6);
-  EXPECT_NEAR(pickering_air_mass(30.0), 1.9932, 5e-5);
-  EXPECT_NEAR(pickering_air_mass(10.0), 5.5807, 5e-5);
-  EXPECT_NEAR(pickering_air_mass(0.0), 38.749, 5e-4);
+  test::expect_published_values(pickering_air_mass,
+                                {{90.0, 1.0, 1e-6}, {30.0, 1.9932, 5e-5}, {10.0, 5.5807, 5e-5}, {0.0, 38.749, 5e-4}});
 }
 
 TEST(Pickering, MonotoneInAltitude) {

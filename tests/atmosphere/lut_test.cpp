@@ -167,13 +167,20 @@ TEST(LookupTables, EarthNoonSkyIsBlueAndOrdersShrink) {
     EXPECT_LT(f.report.order_fraction[i], f.report.order_fraction[i - 1]);
 }
 
+/// Precompute options with these table sizes, at most `max_orders` orders and
+/// `sphere_zenith_samples` sphere nodes, the rest default.
+PrecomputeOptions options_of(const TableSizes& sizes, int max_orders, int sphere_zenith_samples) {
+  PrecomputeOptions o;
+  o.sizes = sizes;
+  o.max_orders = max_orders;
+  o.sphere_zenith_samples = sphere_zenith_samples;
+  return o;
+}
+
 TEST(LookupTables, ToleranceStopsEarlyAndReportsOrders) {
   const AtmosphereModel m = load_preset("mars").model;
-  PrecomputeOptions o;
-  o.sizes = TableSizes{32, 8, 16, 4, 4, 16, 8, 4};
-  o.max_orders = 30;
+  PrecomputeOptions o = options_of(TableSizes{32, 8, 16, 4, 4, 16, 8, 4}, 30, 6);
   o.tolerance = 0.05;
-  o.sphere_zenith_samples = 6;
   o.scattering_samples = 16;
   PrecomputeReport report;
   const LookupTables t = precompute_tables_cpu(m, o, &report);
@@ -289,10 +296,7 @@ TEST(LookupTables, CoarseRaysOfTheHigherOrdersMoveTheTablesByLessThanHalfAPerCen
   // against the path tracer (2-4 % RMS, docs/lookup-tables.md). Measured 0.27 %;
   // 1.2 % when the limb rays (coarse_ray_stride_for) were read coarsely too.
   const AtmosphereModel m = load_preset("earth-advanced").model;
-  PrecomputeOptions o;
-  o.sizes = TableSizes{64, 16, 32, 8, 8, 32, 16, 4};
-  o.max_orders = 4;
-  o.sphere_zenith_samples = 8;
+  PrecomputeOptions o = options_of(TableSizes{64, 16, 32, 8, 8, 32, 16, 4}, 4, 8);
   o.coarse_ray_stride = 1;
   const LookupTables fine = precompute_tables_cpu(m, o);
   o.coarse_ray_stride = 2;

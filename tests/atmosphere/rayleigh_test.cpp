@@ -5,13 +5,13 @@
 #include <cmath>
 
 #include "atmosphere/constants.h"
+#include "tests/atmosphere/test_util.h"
 
 namespace zenith::atmosphere {
 namespace {
 
 TEST(Rayleigh, KingFactorKnownValues) {
-  EXPECT_NEAR(king_factor(0.0279), 1.04806, 5e-6);
-  EXPECT_NEAR(king_factor(0.09), 1.1676, 5e-5);
+  test::expect_published_values(king_factor, {{0.0279, 1.04806, 5e-6}, {0.09, 1.1676, 5e-5}});
   EXPECT_DOUBLE_EQ(king_factor(0.0), 1.0);
 }
 
@@ -19,10 +19,10 @@ TEST(Rayleigh, StandardAirIndexMatchesPenndorfTable) {
   // Penndorf (1957) standard air; Table 1 of the paper prints 1.00027598 and
   // 1.00027783 at 680 and 550 nm. Its 440 nm entry, 1.00028276, is the index at
   // 400 nm (a slip, docs/physics.md); at 440 nm it is 1.00028091.
-  EXPECT_NEAR(standard_air_refractive_index(680.0), 1.00027598, 5e-9);
-  EXPECT_NEAR(standard_air_refractive_index(550.0), 1.00027783, 5e-9);
-  EXPECT_NEAR(standard_air_refractive_index(440.0), 1.00028091, 5e-9);
-  EXPECT_NEAR(standard_air_refractive_index(400.0), 1.00028276, 5e-9);
+  test::expect_published_values(standard_air_refractive_index, {{680.0, 1.00027598, 5e-9},
+                                                                 {550.0, 1.00027783, 5e-9},
+                                                                 {440.0, 1.00028091, 5e-9},
+                                                                 {400.0, 1.00028276, 5e-9}});
 }
 
 TEST(Rayleigh, ScatteringCoefficientOfStandardAir) {

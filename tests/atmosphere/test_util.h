@@ -1,7 +1,11 @@
 #pragma once
-// Small numerical helpers shared by the atmosphere tests.
+// Small numerical helpers shared by the atmosphere tests: integration over the
+// sphere, tables of published values.
 #include <cmath>
 #include <functional>
+#include <initializer_list>
+
+#include <gtest/gtest.h>
 
 #include "atmosphere/constants.h"
 
@@ -18,6 +22,16 @@ inline double integrate_over_sphere(const std::function<double(double)>& phase, 
     for (int k = 0; k < 4; ++k) sum += w[k] * 0.5 * (b - a) * phase(0.5 * (a + b) + 0.5 * (b - a) * x[k]);
   }
   return 2.0 * kPi * sum;
+}
+
+/// A published value of a function of one variable: f(x) = expected within tolerance.
+struct PublishedValue {
+  double x, expected, tolerance;
+};
+
+/// Expects `f` to reproduce every one of `values` (a table of a paper or a standard).
+inline void expect_published_values(const std::function<double(double)>& f, std::initializer_list<PublishedValue> values) {
+  for (const PublishedValue& v : values) EXPECT_NEAR(f(v.x), v.expected, v.tolerance) << "at " << v.x;
 }
 
 }  // namespace zenith::atmosphere::test

@@ -29,3 +29,38 @@ function(expect_zenith_refuses needle)
     message(FATAL_ERROR "${ARGN}: expected a failure mentioning '${needle}', got (${rc}):\n${o}\n${e}")
   endif()
 endfunction()
+
+# Fails unless `text` contains `needle`; `what` names the text in the message
+# ("the summary", "the report").
+function(expect_mentions text needle what)
+  string(FIND "${text}" "${needle}" pos)
+  if(pos EQUAL -1)
+    message(FATAL_ERROR "${what} does not mention '${needle}':\n${text}")
+  endif()
+endfunction()
+
+# Fails unless every file named after `dir` and `writer` exists in `dir`;
+# `writer` names what should have written them.
+function(expect_files dir writer)
+  foreach(f IN LISTS ARGN)
+    if(NOT EXISTS "${dir}/${f}")
+      message(FATAL_ERROR "${writer} did not write ${f}")
+    endif()
+  endforeach()
+endfunction()
+
+# Where gnuplot is installed, fails unless every file named after `dir` is a
+# PNG in `dir` (by its 8-byte signature); without gnuplot the charts are not
+# drawn and nothing is checked.
+function(expect_gnuplot_pngs dir)
+  find_program(GNUPLOT gnuplot)
+  if(NOT GNUPLOT)
+    return()
+  endif()
+  foreach(png IN LISTS ARGN)
+    file(READ "${dir}/${png}" png_head LIMIT 8 HEX)
+    if(NOT png_head STREQUAL "89504e470d0a1a0a")
+      message(FATAL_ERROR "${png} is missing or not a PNG although gnuplot is installed")
+    endif()
+  endforeach()
+endfunction()

@@ -175,21 +175,11 @@ TEST(Exr, AMissingChannelIsNamed) {
   TempDir dir;
   const auto value = [](int, int x, int) { return float(x); };
   write_custom_exr(dir / "rb.exr", {"R", "B"}, Imf::FLOAT, 0, 0, 2, 2, value);
-  try {
-    read_image(dir / "rb.exr");
-    FAIL() << "no exception";
-  } catch (const std::runtime_error& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find((dir / "rb.exr").string()), std::string::npos) << m;
-    EXPECT_NE(m.find("channel G is missing"), std::string::npos) << m;
-  }
+  testing::expect_throw_with<std::runtime_error>([&] { (void)read_image(dir / "rb.exr"); },
+                                                 {(dir / "rb.exr").string(), "channel G is missing"});
   write_custom_exr(dir / "z.exr", {"Z", "A"}, Imf::FLOAT, 0, 0, 2, 2, value);
-  try {
-    read_image(dir / "z.exr");
-    FAIL() << "no exception";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("no R, G, B or Y channel (channels: A, Z)"), std::string::npos) << e.what();
-  }
+  testing::expect_throw_with<std::runtime_error>([&] { (void)read_image(dir / "z.exr"); },
+                                                 {"no R, G, B or Y channel (channels: A, Z)"});
 }
 
 TEST(Exr, ReadsTiledAndMultiPartFiles) {

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <stdexcept>
 #include <string>
@@ -52,6 +53,20 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+/// Runs `action` and expects it to throw an `Error` whose message contains
+/// every one of `parts` (another exception fails the test as it propagates).
+template <class Error>
+void expect_throw_with(const std::function<void()>& action, const std::vector<std::string>& parts) {
+  try {
+    action();
+    ADD_FAILURE() << "no exception; expected one mentioning '" << parts.front() << "'";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    for (const std::string& part : parts)
+      EXPECT_NE(message.find(part), std::string::npos) << "message: " << message << "\nmissing: " << part;
+  }
+}
+
 inline std::vector<unsigned char> read_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -73,6 +88,16 @@ struct RawPng {
   std::vector<png_color> palette;
   std::vector<std::vector<unsigned char>> rows;
 };
+
+/// An 8-bit, non-interlaced image of `channels` (1: grey, 3: RGB) that is black.
+inline RawPng black_raw_png(int width, int height, int channels) {
+  RawPng png;
+  png.width = width;
+  png.height = height;
+  png.colour_type = channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB;
+  png.rows.assign(static_cast<std::size_t>(height), std::vector<unsigned char>(static_cast<std::size_t>(width * channels), 0));
+  return png;
+}
 
 /// Writes `png` with libpng, no transforms. Returns false on a libpng error.
 inline bool write_raw_png(const std::filesystem::path& path, const RawPng& png) {

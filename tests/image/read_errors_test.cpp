@@ -132,12 +132,7 @@ TEST(ReadImage, CorruptedFilesDecodeOrThrowButNeverCrash) {
 TEST(ReadImage, ImagesLargerThanTheLimitAreRejectedBeforeDecoding) {
   TempDir dir;
   // A PNG header claiming 40000 × 2 px (the rows are never reached).
-  testing::RawPng raw;
-  raw.width = 40000;
-  raw.height = 2;
-  raw.colour_type = PNG_COLOR_TYPE_GRAY;
-  raw.rows.assign(2, std::vector<unsigned char>(40000, 0));
-  ASSERT_TRUE(testing::write_raw_png(dir / "wide.png", raw));
+  ASSERT_TRUE(testing::write_raw_png(dir / "wide.png", testing::black_raw_png(40000, 2, 1)));
   expect_read_error(dir / "wide.png", "larger than the 32768 px");
 }
 
@@ -177,12 +172,7 @@ TEST(ReadImage, SizeFieldsThatPointPastTheFileAreRejectedBeforeAllocating) {
   expect_read_error(dir / "text.png", "truncated");
 
   // PNG: a valid header claiming 30000 × 30000 px in a file of a few hundred bytes.
-  testing::RawPng raw;
-  raw.width = 3;
-  raw.height = 3;
-  raw.colour_type = PNG_COLOR_TYPE_RGB;
-  raw.rows.assign(3, std::vector<unsigned char>(9, 0));
-  ASSERT_TRUE(testing::write_raw_png(dir / "claim.png", raw));
+  ASSERT_TRUE(testing::write_raw_png(dir / "claim.png", testing::black_raw_png(3, 3, 3)));
   std::vector<unsigned char> claim = testing::read_bytes(dir / "claim.png");
   // IHDR data starts at byte 16: width, height (big endian); then fix the CRC.
   for (int i = 0; i < 2; ++i) {

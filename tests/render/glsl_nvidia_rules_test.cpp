@@ -60,6 +60,7 @@
 
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/parameters.h"
+#include "tests/render/tiny_precompute_options.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/shader_program.h"
 #include "render/lut/gpu_precompute.h"
@@ -214,16 +215,6 @@ struct DumpDirectory {
   }
 };
 
-PrecomputeOptions tiny_options() {
-  PrecomputeOptions o;
-  o.sizes = TableSizes{16, 8, 8, 4, 4, 16, 8, 4};
-  o.max_orders = 3;
-  o.sphere_zenith_samples = 4;
-  o.transmittance_samples = 100;
-  o.scattering_samples = 20;
-  return o;
-}
-
 void precompute_every_variant(const gl::HeadlessContext& context) {
   struct Variant {
     const char* preset;
@@ -265,7 +256,7 @@ void precompute_every_variant(const gl::HeadlessContext& context) {
     atmosphere::LoadOptions load;
     if (!v.wavelengths_nm.empty()) load.wavelengths_nm = v.wavelengths_nm;
     AtmosphereModel model = atmosphere::load_preset(v.preset, load).model;
-    PrecomputeOptions options = tiny_options();
+    PrecomputeOptions options = testing::tiny_precompute_options();
     v.edit(model, options);
     precompute_tables_gpu(model, options, nullptr, &context, v.precision);
   }
@@ -275,7 +266,7 @@ void precompute_every_variant(const gl::HeadlessContext& context) {
 /// atmospheres side by side, in a planar and a fisheye view under each set of
 /// options, and the other projection kinds once.
 void render_every_variant() {
-  const PrecomputeOptions tables = tiny_options();
+  const PrecomputeOptions tables = testing::tiny_precompute_options();
   const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(48, 32, 70.0);
   const warp::FisheyeProjection fisheye(48, 48);
   const warp::EquirectangularProjection equirectangular(48, 24);

@@ -37,16 +37,13 @@
 
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/parameters.h"
+#include "tests/render/tiny_precompute_options.h"
 
 namespace zenith::render {
 namespace {
 
 using atmosphere::AtmosphereModel;
-using atmosphere::lut::LookupTables;
-using atmosphere::lut::PrecomputeOptions;
-using atmosphere::lut::PrecomputeProgress;
-using atmosphere::lut::PrecomputeReport;
-using atmosphere::lut::TableSizes;
+using namespace atmosphere::lut;  // the tables, their sizes and the precompute's options and report
 
 constexpr double kSignificant = 1e-3;  ///< of the table's largest value: compared relatively above it
 constexpr double kRelativeBound = 1e-5;
@@ -136,17 +133,6 @@ PrecomputeOptions small_options() {
   return o;
 }
 
-/// Tiny tables (every code path, a fraction of a second on the CPU) for the variant tests.
-PrecomputeOptions tiny_options() {
-  PrecomputeOptions o;
-  o.sizes = TableSizes{16, 8, 8, 4, 4, 16, 8, 4};
-  o.max_orders = 3;
-  o.sphere_zenith_samples = 4;
-  o.transmittance_samples = 100;
-  o.scattering_samples = 20;
-  return o;
-}
-
 /// Compares every table, the table-set metadata and the report; prints the agreement.
 void expect_same_tables(const std::string& name, const Result& cpu, const Result& gpu, double relative_bound = kRelativeBound,
                         double absolute_bound = kAbsoluteBound) {
@@ -230,7 +216,7 @@ TEST(GpuPrecompute, SixtyFourWavelengths) {
   load.wavelengths_nm = wavelengths;
   const AtmosphereModel model = atmosphere::load_preset("mars", load).model;
   ASSERT_EQ(model.wavelength_count(), 64u);
-  const PrecomputeOptions options = tiny_options();
+  const PrecomputeOptions options = testing::tiny_precompute_options();
   expect_same_tables("mars, 64 wavelengths", run_cpu(model, options), run_gpu(model, options));
 }
 
@@ -279,7 +265,7 @@ TEST(GpuPrecompute, ShaderVariantsMatchCpu) {
   };
   for (const Variant& v : variants) {
     AtmosphereModel model = atmosphere::load_preset(v.preset).model;
-    PrecomputeOptions options = tiny_options();
+    PrecomputeOptions options = testing::tiny_precompute_options();
     v.edit(model, options);
     const Result cpu = run_cpu(model, options);
     expect_same_tables(v.name, cpu, run_gpu(model, options));
@@ -362,7 +348,7 @@ TEST(GpuPrecompute, BoundsHoldWithTheElementaryFunctionsOneUlpOff) {
 
 TEST(GpuPrecompute, Fp32FallbackAgreesLoosely) {
   const AtmosphereModel model = atmosphere::load_preset("earth-advanced").model;
-  const PrecomputeOptions options = tiny_options();
+  const PrecomputeOptions options = testing::tiny_precompute_options();
   expect_same_tables("earth-advanced, fp32 shaders", run_cpu(model, options),
                      run_gpu(model, options, GpuPrecision::fp32), kFp32RelativeBound, kFp32AbsoluteBound);
 }
@@ -370,7 +356,7 @@ TEST(GpuPrecompute, Fp32FallbackAgreesLoosely) {
 TEST(GpuPrecompute, UsesAGivenContextAndLeavesItCurrent) {
   const gl::HeadlessContext context;
   const AtmosphereModel model = atmosphere::load_preset("mars").model;
-  const PrecomputeOptions options = tiny_options();
+  const PrecomputeOptions options = testing::tiny_precompute_options();
   const Result gpu = run_gpu(model, options, GpuPrecision::automatic, &context);
   EXPECT_TRUE(context.is_current());
   EXPECT_EQ(gpu.report.device, context.renderer());
@@ -379,10 +365,10 @@ TEST(GpuPrecompute, UsesAGivenContextAndLeavesItCurrent) {
 
 TEST(GpuPrecompute, RejectsBadOptionsLikeTheCpu) {
   const AtmosphereModel model = atmosphere::load_preset("mars").model;
-  PrecomputeOptions options = tiny_options();
+  PrecomputeOptions options = testing::tiny_precompute_options();
   options.max_orders = 0;
   EXPECT_THROW(precompute_tables_gpu(model, options), std::invalid_argument);
-  options = tiny_options();
+  options = testing::tiny_precompute_options();
   options.sizes.scattering_mu = 9;  // odd
   EXPECT_THROW(precompute_tables_gpu(model, options), std::invalid_argument);
   EXPECT_STREQ(to_string(GpuPrecision::fp64), "fp64");

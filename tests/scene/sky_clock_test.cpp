@@ -8,6 +8,7 @@
 #include "core/units.h"
 #include "scene/local_horizon.h"
 #include "scene/scene_loader.h"
+#include "tests/scene/site_scene.h"
 
 namespace zenith::scene {
 namespace {
@@ -17,18 +18,9 @@ using nlohmann::json;
 /// NREL SPA's example (Reda & Andreas 2004): Golden, Colorado, 2003-10-17 19:30:30 UTC;
 /// the camera stands at the site itself.
 json golden_scene() {
-  return json::parse(R"({
-    "zenith_scene": 1,
-    "name": "golden",
-    "bodies": [{"name": "Earth", "atmosphere": "earth-standard", "albedo": 0.3}],
-    "time": "2003-10-17T19:30:30Z",
-    "site": {"latitude_deg": 39.742476, "longitude_deg": -105.1786, "altitude_m": 1830.14},
-    "sun": {},
-    "camera": {
-      "surface": {"body": "Earth", "latitude_deg": 39.742476, "longitude_deg": -105.1786, "altitude_m": 2},
-      "look": {"azimuth_deg": 180, "elevation_deg": 30}
-    }
-  })");
+  return testing::site_scene({.scene_name = "golden", .time = "2003-10-17T19:30:30Z", .latitude_deg = 39.742476,
+                              .longitude_deg = -105.1786, .altitude_m = 1830.14, .look_azimuth_deg = 180.0,
+                              .look_elevation_deg = 30.0});
 }
 
 Scene parse(const json& j) { return parse_scene(j, "sky-clock.json", ::testing::TempDir()); }

@@ -8,6 +8,7 @@
 #include "scene/local_horizon.h"
 #include "show/show.h"
 #include "tests/show/show_test_support.h"
+#include "tests/scene/site_scene.h"
 
 namespace zenith::show {
 namespace {
@@ -16,16 +17,11 @@ using nlohmann::json;
 
 /// A dusk scene at Greenwich on the winter solstice, 2026, the sun placed by the ephemeris.
 std::filesystem::path dusk_scene(const std::filesystem::path& dir) {
-  return test::write_file(dir / "dusk.json", R"({
-    "zenith_scene": 1,
-    "name": "dusk",
-    "bodies": [{"name": "Earth", "atmosphere": "earth-standard", "albedo": 0.3}],
-    "time": "2026-12-21T15:30:00Z",
-    "site": {"latitude_deg": 51.4769, "longitude_deg": -0.0005, "altitude_m": 46},
-    "sun": {},
-    "camera": {"surface": {"body": "Earth", "latitude_deg": 51.4769, "longitude_deg": -0.0005, "altitude_m": 2},
-               "look": {"azimuth_deg": 225, "elevation_deg": 5}}
-  })");
+  const nlohmann::json scene =
+      scene::testing::site_scene({.scene_name = "dusk", .time = "2026-12-21T15:30:00Z", .latitude_deg = 51.4769,
+                                  .longitude_deg = -0.0005, .altitude_m = 46.0, .look_azimuth_deg = 225.0,
+                                  .look_elevation_deg = 5.0});
+  return test::write_file(dir / "dusk.json", scene.dump());
 }
 
 Show load(const std::filesystem::path& dir, const json& show) {

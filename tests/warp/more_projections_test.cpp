@@ -37,14 +37,7 @@ namespace {
 using core::kDeg;
 using core::kPi;
 
-using testing::angle_between;
-using testing::emulate_glsl;
-using testing::expect_direction;
-using testing::expect_invalid;
-using testing::expect_pixel;
-using testing::max_neighbour_angle;
-using testing::Named;
-using testing::sample_positions;
+using namespace testing;  // the helpers of tests/warp/projection_test_support.h
 
 /// Uniform random unit vectors (fixed seed).
 std::vector<glm::dvec3> random_directions(int count, unsigned seed) {
@@ -436,16 +429,7 @@ TEST(MoreProjections, InvalidParametersThrowNamingThem) {
   expect_invalid([] { CubeFaceProjection(8, static_cast<CubeFace>(6)); }, {"face", "6", "+x, -x, +y, -y, +z, -z"});
 }
 
-TEST(MoreProjections, MaxPixelAngleBoundsNeighbouringRays) {
-  for (const Named& c : all_cases()) {
-    const double bound = c.projection->max_pixel_angle_rad();
-    const double measured = max_neighbour_angle(*c.projection);
-    EXPECT_LE(measured, bound * (1.0 + 1e-12)) << c.name;
-    EXPECT_GT(measured, 0.5 * bound) << c.name << ": the bound is loose";
-    std::printf("%-28s max neighbour angle %.6g rad, bound %.6g rad (ratio %.4f)\n", c.name.c_str(), measured, bound,
-                measured / bound);
-  }
-}
+TEST(MoreProjections, MaxPixelAngleBoundsNeighbouringRays) { expect_tight_pixel_angle_bounds(all_cases()); }
 
 TEST(MoreProjections, GpuLayoutReproducesTheRaysInFloat) {
   for (const Named& c : all_cases()) {

@@ -26,14 +26,7 @@ namespace {
 
 using core::kDeg;
 
-using testing::angle_between;
-using testing::emulate_glsl;
-using testing::expect_direction;
-using testing::expect_invalid;
-using testing::expect_pixel;
-using testing::max_neighbour_angle;
-using testing::Named;
-using testing::sample_positions;
+using namespace testing;  // the helpers of tests/warp/projection_test_support.h
 
 std::vector<Named> planar_cases() {
   return {
@@ -331,14 +324,7 @@ TEST(Projection, MaxPixelAngleBoundsNeighbouringRays) {
   std::vector<Named> all = planar_cases();
   for (Named& c : fisheye_cases())
     if (c.projection->width() * c.projection->height() < 200000) all.push_back(std::move(c));
-  for (const Named& c : all) {
-    const double bound = c.projection->max_pixel_angle_rad();
-    const double measured = max_neighbour_angle(*c.projection);
-    EXPECT_LE(measured, bound * (1.0 + 1e-12)) << c.name;
-    EXPECT_GT(measured, 0.5 * bound) << c.name << ": the bound is loose";
-    std::printf("%-30s max neighbour angle %.6g rad, bound %.6g rad (ratio %.4f)\n", c.name.c_str(), measured, bound,
-                measured / bound);
-  }
+  expect_tight_pixel_angle_bounds(all);
 }
 
 TEST(Projection, GpuLayoutReproducesTheRaysInFloat) {

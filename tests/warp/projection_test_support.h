@@ -1,12 +1,13 @@
 #pragma once
 // Helpers of the projection tests (projection_test.cpp, more_projections_test.cpp):
 // checks of rays and pixels, sample positions along an image's side, named test
-// cases, checks of parameter errors, the measured pixel angle, and
+// cases, checks of parameter errors, the measured pixel angle and its bound, and
 // shaders/projection.glsl transcribed to C++ float.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -90,6 +91,19 @@ inline double max_neighbour_angle(const Projection& p) {
       pair(i + 1.0, j, i, j + 1.0);
     }
   return worst;
+}
+
+/// Expects each case's max_pixel_angle_rad() to bound max_neighbour_angle()
+/// and to be tight (the measured angle above half of it); prints both.
+inline void expect_tight_pixel_angle_bounds(const std::vector<Named>& cases) {
+  for (const Named& c : cases) {
+    const double bound = c.projection->max_pixel_angle_rad();
+    const double measured = max_neighbour_angle(*c.projection);
+    EXPECT_LE(measured, bound * (1.0 + 1e-12)) << c.name;
+    EXPECT_GT(measured, 0.5 * bound) << c.name << ": the bound is loose";
+    std::printf("%-30s max neighbour angle %.6g rad, bound %.6g rad (ratio %.4f)\n", c.name.c_str(), measured, bound,
+                measured / bound);
+  }
 }
 
 /// shaders/projection.glsl, transcribed to C++ float: the same operations on the
