@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -20,6 +21,8 @@
 #include "offline/offline_frame_renderer.h"
 #include "offline/offline_manifest.h"
 #include "offline/offline_render.h"
+#include "offline/video_proxy.h"
+#include "image/display_image_writer.h"
 #include "offline/output_rendering.h"
 #include "render/lut/table_provider.h"
 #include "core/json_reader.h"
@@ -48,6 +51,9 @@ struct TableArgs {
 struct ShowRenderArgs {
   std::string show, out, viewport, projection, size, format = "png", contact_sheet, cluster;
   std::string tone = "exponential", exr_type = "half", colour = "auto", device = "auto";
+  std::string png_compression = "fast", tiff_compression = "deflate", frame_name = "{output}.%06d", video;
+  std::uint64_t start_number = 0;
+  std::optional<int> threads, frames_in_flight;
   std::optional<double> fps, fov_deg, tilt_deg;
   std::optional<std::uint64_t> from, to;
   TableArgs tables;
@@ -160,12 +166,29 @@ void check_arguments(const ShowRenderArgs& a, bool size_given) {
 
 void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given) {
   check_arguments(a, size_given);
+  const offline::FileNaming naming = offline::parse_file_naming(a.frame_name, a.start_number);
+  const int png_compression = image::parse_png_compression(a.png_compression);
+  const image::TiffCompression tiff_compression = image::parse_tiff_compression(a.tiff_compression);
+  if (a.threads && (*a.threads < 0 || *a.threads > 256))
+    throw std::invalid_argument(fmt::format("--threads {}: must be in [0, 256] (0: the simple path, no pipeline)",
+                                            *a.threads));
+  if (a.frames_in_flight && (*a.frames_in_flight < 1 || *a.frames_in_flight > 64))
+    throw std::invalid_argument(fmt::format("--frames-in-flight {}: must be in [1, 64]", *a.frames_in_flight));
+  if (!a.video.empty() && !offline::find_ffmpeg())
+    throw std::invalid_argument(fmt::format(
+        "--video {}: ffmpeg is not installed (no ffmpeg on PATH); install it (scripts/bootstrap installs the Debian "
+        "package ffmpeg) or drop --video",
+        a.video));
   std::optional<cluster::ClusterConfig> cluster_config;
   if (!a.cluster.empty()) {
     cluster_config = cluster::load_cluster_config(a.cluster);
     if (format_given && a.format != cluster_config->output_format)
       throw std::invalid_argument(fmt::format("--format {}: the nodes of {} write {} (its \"output\": \"format\")",
                                               a.format, a.cluster, cluster_config->output_format));
+    if (!(naming == offline::FileNaming{}) || !a.video.empty() || a.threads || a.frames_in_flight)
+      throw std::invalid_argument(
+          "--cluster: the nodes name and write their own files; --frame-name, --start-number, --video, --threads and "
+          "--frames-in-flight apply to a render in this process");
   }
   const std::vector<offline::ImageFormat> formats =
       offline::parse_formats(cluster_config ? cluster_config->output_format : a.format);
@@ -210,9 +233,13 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
                      " orders ", table_args.orders, "; colour ", image::to_string(colour));
   if (cluster_config)  // the nodes' own output stage (the defaults of `zenith node`)
     job.settings = cat(job.settings, "; cluster ", cluster_config->name, " nodes");
-  job.png_settings = cat("tone ", image::to_string(tone));
+  // The pipeline's PNGs carry the display pass's codes at the chosen compression (the bytes depend on it).
+  job.png_settings = cat("tone ", image::to_string(tone), "; display pass; zlib ", png_compression);
+  job.tiff_settings = cat("tone ", image::to_string(tone), "; display pass; ", image::to_string(tiff_compression));
+  if (cluster_config) job.png_settings = cat("tone ", image::to_string(tone));
   job.exr_settings = cat("pixels ", image::to_string(exr_type));
   job.out_dir = a.out;
+  job.naming = naming;
   job.tone = tone;
   if (a.contact_sheet != "none")
     job.contact_sheet = a.contact_sheet.empty() ? job.out_dir / "contact-sheet.png"
@@ -221,7 +248,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   nlohmann::json run_outputs = nlohmann::json::array();
   for (const offline::OutputSpec& o : job.outputs) {
     nlohmann::json keys = nlohmann::json::object();
-    for (const offline::ImageFormat f : formats) keys[offline::extension_of(f)] = offline::settings_key(job, o, f);
+    for (const offline::ImageFormat f : formats) keys[offline::name_of(f)] = offline::settings_key(job, o, f);
     run_outputs.push_back({{"name", o.name},
                            {"width_px", o.width_px},
                            {"height_px", o.height_px},
@@ -229,7 +256,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
                            {"settings_keys", std::move(keys)}});
   }
   nlohmann::json run_formats = nlohmann::json::array();
-  for (const offline::ImageFormat f : formats) run_formats.push_back(offline::extension_of(f));
+  for (const offline::ImageFormat f : formats) run_formats.push_back(offline::name_of(f));
   job.run = {{"show",
               {{"file", std::filesystem::absolute(show.source()).string()},
                {"name", show.name()},
@@ -243,7 +270,10 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
              {"formats", std::move(run_formats)},
              {"settings", job.settings},
              {"png_settings", job.png_settings},
-             {"exr_settings", job.exr_settings}};
+             {"tiff_settings", job.tiff_settings},
+             {"exr_settings", job.exr_settings},
+             {"frame_name", naming.pattern},
+             {"start_number", naming.start_number}};
 
   if (cluster_config) {
     offline::ClusterRenderSettings settings;
@@ -276,14 +306,39 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
 
   render::gl::ContextOptions context_options;
   context_options.prefer = render::gl::parse_device_preference(a.device);
-  offline::LocalFrameRenderer renderer(show, std::move(versions), std::move(outputs.local), OutputStage{tone, exr_type},
+  offline::PipelineSettings pipeline;
+  pipeline.formats = formats;
+  pipeline.tone = tone;
+  pipeline.exr_type = exr_type;
+  pipeline.png_compression = png_compression;
+  pipeline.tiff_compression = tiff_compression;
+  pipeline.threads = a.threads.value_or(-1);
+  pipeline.frames_in_flight = a.frames_in_flight.value_or(0);
+  std::optional<offline::VideoProxy> video;
+  if (!a.video.empty()) {
+    if (std::none_of(formats.begin(), formats.end(), offline::is_display_format))
+      throw std::invalid_argument(
+          fmt::format("--video {}: needs a display format among --format (png, png16 or tiff); exr is linear", a.video));
+    const offline::LocalOutput& first_output = outputs.local.front();
+    const bool eight = std::find(formats.begin(), formats.end(), offline::ImageFormat::png) != formats.end();
+    video.emplace(a.video, first_output.projection->width(), first_output.projection->height(), eight ? 8 : 16, fps);
+    pipeline.published = [&video](const offline::DisplayFrame& frame) { video->write(frame.rgba); };
+  }
+  offline::LocalFrameRenderer renderer(show, std::move(versions), std::move(outputs.local), std::move(pipeline),
                                        colour, request, context_options);
   job.before_rendering = [&](std::uint64_t frames, const std::set<scene::TableHash>& table_hashes) {
-    spdlog::info("rendering {} frame{} of '{}' at {} fps into {}/<output>/<output>.NNNNNN.{} on {}", frames,
-                 frames == 1 ? "" : "s", show.name(), fps, a.out, a.format, renderer.device());
+    spdlog::info("rendering {} frame{} of '{}' at {} fps into {}/<output>/{}.{} on {}", frames,
+                 frames == 1 ? "" : "s", show.name(), fps, a.out, naming.pattern, a.format, renderer.device());
+    if (video && frames != last - first + 1)
+      spdlog::warn("--video {}: covers the {} frames rendered by this run, not the {} already on disk", a.video,
+                   frames, last - first + 1 - frames);
     renderer.precompute_missing(plan, table_hashes);
   };
   const offline::RenderSummary summary = offline::run_render_job(job, renderer);
+  if (video) {
+    video->finish();
+    spdlog::info("--video {}: {} frames encoded by ffmpeg", a.video, video->frames());
+  }
   fmt::print("{}\n", offline::describe(summary));
 }
 
@@ -292,10 +347,10 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
 void register_show_render(CLI::App& show_command) {
   auto a = std::make_shared<ShowRenderArgs>();
   CLI::App* cmd = show_command.add_subcommand(
-      "render", "Render every frame of a show at a fixed frame rate to numbered PNG/EXR files per output, resumable "
+      "render", "Render every frame of a show at a fixed frame rate to numbered PNG/TIFF/EXR files per output, resumable "
                 "(docs/shows.md, \"Offline rendering\")");
   cmd->add_option("--show", a->show, "Show file (configs/shows/)")->required();
-  cmd->add_option("--out", a->out, "Output folder: DIR/<output>/<output>.<frame:06d>.png|exr, DIR/manifest.json")
+  cmd->add_option("--out", a->out, "Output folder: DIR/<output>/<output>.<frame:06d>.png|tif|exr, DIR/manifest.json")
       ->required();
   cmd->add_option("--cluster", a->cluster,
                   "Render on the nodes of this cluster config (all on this machine; its viewports, tables and format)");
@@ -306,7 +361,21 @@ void register_show_render(CLI::App& show_command) {
   cmd->add_option("--fps", a->fps, "Frame rate [Hz] in (0, 1000] (default: the show's)");
   cmd->add_option("--from", a->from, "First frame to render (default 0)");
   cmd->add_option("--to", a->to, "Last frame to render, inclusive (default: the show's last)");
-  cmd->add_option("--format", a->format, "png (default), exr or png,exr");
+  cmd->add_option("--format", a->format,
+                  "Comma list of png (8-bit, default), png16, tiff (16-bit) and exr (linear), e.g. png,exr");
+  cmd->add_option("--png-compression", a->png_compression,
+                   "fast (default: zlib 1, Sub filter), default (zlib 6, adaptive filters), best (9) or a level 0-9");
+  cmd->add_option("--tiff-compression", a->tiff_compression, "deflate (default), lzw or none");
+  cmd->add_option("--frame-name", a->frame_name,
+                  "File name pattern in each output's folder: one %d or %0Nd, optionally {output}; the extension "
+                  "is the format's (default {output}.%06d)");
+  cmd->add_option("--start-number", a->start_number, "The number of frame 0 in file names (default 0)");
+  cmd->add_option("--threads", a->threads,
+                  "Encoding and writing threads (default: the CPUs; 1 on a CPU rasterizer); 0: the simple path, "
+                  "one frame at a time");
+  cmd->add_option("--frames-in-flight", a->frames_in_flight,
+                  "Frames whose pixels may be held at once, in [1, 64] (default threads + 2): bounds the memory");
+  cmd->add_option("--video", a->video, "Also pipe the frames to ffmpeg for an H.264 review proxy FILE (.mp4)");
   cmd->add_option("--contact-sheet", a->contact_sheet,
                   "Contact sheet PNG of 24 evenly spaced frames (default DIR/contact-sheet.png; none: no sheet)");
   add_image_options(cmd, a->exr_type, a->tone, a->colour);

@@ -12,6 +12,7 @@
 // 16-bit greyscale maps (write_png_grey16: blend masks and black-level maps for
 // projectors, docs/warp-meshes.md) go through the same PngStream with a gAMA
 // chunk stating their encoding instead of the sRGB chunk.
+#include <bit>
 #include <cerrno>
 #include <cstdio>
 #include <cstdint>
@@ -20,6 +21,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "image/display_image_writer.h"
 #include "image/image_writer.h"
 #include "image/png_support.h"
 #include "image/srgb_quantizer.h"
@@ -73,8 +75,11 @@ class PngStream {
  public:
   /// `gamma`: 0 writes an sRGB chunk (perceptual intent); > 0 a gAMA chunk of
   /// 1 / gamma (stored values are linear values^(1 / gamma)).
+  /// `compression_level`: -1 leaves libpng's defaults (zlib level 6, adaptive
+  /// filters); 0–9 sets the zlib level, and levels 0–3 use the Sub filter alone
+  /// (one filter tried per row instead of five: the fast setting).
   PngStream(const std::filesystem::path& path, int width, int height, int bit_depth, int colour_type, double gamma,
-            const ImageAttributes& attributes)
+            const ImageAttributes& attributes, int compression_level = -1)
       : path_(path), partial_(detail::partial_path_for(path)) {
     for (const auto& [name, value] : attributes) {
       check_keyword(path_, name);
@@ -110,6 +115,10 @@ class PngStream {
       png_set_write_fn(png, file, write_to_file, flush_file);
       png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), bit_depth, colour_type, PNG_INTERLACE_NONE,
                    PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+      if (compression_level >= 0) {
+        png_set_compression_level(png, compression_level);
+        if (compression_level <= 3) png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+      }
       if (gamma > 0.0) png_set_gAMA(png, info, 1.0 / gamma);
       else png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
       if (text_count > 0) png_set_text(png, info, text_data, text_count);
@@ -130,6 +139,18 @@ class PngStream {
 
   const std::filesystem::path& path() const { return path_; }
   bool open() const { return !finished_ && !failed_; }
+
+  /// Rows given as RGBA (4 samples a pixel) whose alpha libpng drops, and
+  /// 16-bit samples in this machine's byte order (swapped to PNG's big endian
+  /// on little-endian machines): display textures as read back from the GPU.
+  void take_rgba_native_rows() {
+    png_structp png = png_;
+    const bool ok = detail::png_guarded(png, [=] {
+      png_set_filler(png, 0, PNG_FILLER_AFTER);
+      if constexpr (std::endian::native == std::endian::little) png_set_swap(png);
+    });
+    if (!ok) fail();
+  }
 
   /// One row of encoded bytes (16-bit samples big endian, as PNG stores them).
   void write_row(png_bytep row) {
@@ -239,6 +260,40 @@ void write_png_grey16(const std::filesystem::path& path, int width, int height, 
     stream.write_row(row.data());
   }
   stream.finish();
+}
+
+void write_png_display(const std::filesystem::path& path, int width, int height, int bits,
+                       std::span<const std::byte> rgba, int compression_level, const ImageAttributes& attributes) {
+  detail::check_dimensions(path, width, height, kMaxSide_px);
+  detail::check_unique_names(path, attributes);
+  if (bits != 8 && bits != 16)
+    throw std::invalid_argument(detail::prefix(path) + std::to_string(bits) + " bits a sample: must be 8 or 16");
+  if (compression_level < 0 || compression_level > 9)
+    throw std::invalid_argument(detail::prefix(path) + "PNG compression level " + std::to_string(compression_level) +
+                                ": must be in [0, 9]");
+  const std::size_t row_bytes = std::size_t(width) * 4 * std::size_t(bits / 8);
+  if (rgba.size() != row_bytes * std::size_t(height))
+    throw std::invalid_argument(detail::prefix(path) + std::to_string(rgba.size()) + " bytes for a " +
+                                std::to_string(width) + "x" + std::to_string(height) + " RGBA image of " +
+                                std::to_string(bits) + "-bit samples");
+  PngStream stream(path, width, height, bits, PNG_COLOR_TYPE_RGB, 0.0, attributes, compression_level);
+  stream.take_rgba_native_rows();
+  // libpng only reads the row (the filler and swap transforms work on a copy).
+  auto* data = reinterpret_cast<png_bytep>(const_cast<std::byte*>(rgba.data()));
+  for (int y = 0; y < height; ++y) stream.write_row(data + std::size_t(y) * row_bytes);
+  stream.finish();
+}
+
+}  // namespace zenith::image
+
+namespace zenith::image {
+
+int parse_png_compression(const std::string& text) {
+  if (text == "fast") return kFastPngCompression;
+  if (text == "default") return kDefaultPngCompression;
+  if (text == "best") return 9;
+  if (text.size() == 1 && text[0] >= '0' && text[0] <= '9') return text[0] - '0';
+  throw std::invalid_argument("--png-compression '" + text + "': must be fast, default, best or a level 0 to 9");
 }
 
 }  // namespace zenith::image

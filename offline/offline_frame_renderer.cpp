@@ -1,33 +1,101 @@
-// The single-process FrameRenderer (offline/offline_frame_renderer.h).
+// The single-process FrameRenderer and its pipeline (offline/offline_frame_renderer.h).
 #include "offline/offline_frame_renderer.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
+#include <thread>
 
+#include "image/image_writer.h"
 #include "render/render_flags.h"
 
 namespace zenith::app::offline {
+namespace {
+
+using render::gl::Texture;
+using render::gl::TextureFormat;
+
+bool has(const std::vector<ImageFormat>& formats, ImageFormat f) {
+  return std::find(formats.begin(), formats.end(), f) != formats.end();
+}
+
+/// Linear RGB EXR from the rgba32f radiance read back, with the output stage
+/// on the values as render_to_files applies it (v·α·(1 − β) + β).
+void write_exr_from_rgba(const std::filesystem::path& path, int width, int height, const float* rgba,
+                         image::ExrPixelType type, const LocalOutput& output, const image::ImageAttributes& attributes) {
+  constexpr int kChunkRows = 16;
+  const auto writer = image::open_exr_writer(path, width, height, type, attributes);
+  std::vector<float> rows;
+  for (int first = 0; first < height; first += kChunkRows) {
+    const int count = std::min(kChunkRows, height - first);
+    const std::size_t pixels = std::size_t(width) * std::size_t(count);
+    rows.resize(pixels * 3);
+    const float* in = rgba + std::size_t(first) * std::size_t(width) * 4;
+    for (std::size_t i = 0; i < pixels; ++i)
+      for (std::size_t c = 0; c < 3; ++c) rows[3 * i + c] = in[4 * i + c];
+    if (output.blend) warp::apply_blend(rows, first, count, *output.blend, output.black_level);
+    writer->write_rows(count, rows);
+  }
+  writer->finish();
+}
+
+}  // namespace
+
+/// The memory the readback slots may take by default (--frames-in-flight sets their number instead).
+constexpr std::size_t kDefaultSlotBudgetBytes = std::size_t(8) << 30;
+
+bool is_software_renderer(const std::string& device) {
+  for (const char* name : {"llvmpipe", "softpipe", "SwiftShader"})
+    if (device.find(name) != std::string::npos) return true;
+  return false;
+}
+
+int default_writer_threads(unsigned cpus, bool software_renderer) {
+  const int n = static_cast<int>(std::max(1u, cpus));
+  // llvmpipe runs at least a thread per CPU (render/gl/software_rasterizer.h) while a frame renders: it leaves none.
+  return software_renderer ? 1 : n;
+}
+
+std::span<const std::byte> LocalFrameRenderer::Slot::bytes() const {
+  return buffer ? buffer->bytes() : std::span<const std::byte>(memory);
+}
 
 LocalFrameRenderer::LocalFrameRenderer(const show::Show& show,
                                        std::map<scene::TableHash, show::AtmosphereVersion> versions,
-                                       std::vector<LocalOutput> outputs, const OutputStage& stage,
+                                       std::vector<LocalOutput> outputs, PipelineSettings settings,
                                        image::ColourMapping colour, render::TableRequest tables,
                                        const render::gl::ContextOptions& context)
     : show_(show),
       versions_(std::move(versions)),
       outputs_(std::move(outputs)),
-      stage_(stage),
+      settings_(std::move(settings)),
       colour_(colour),
       tables_(std::move(tables)),
-      context_(context) {}
+      context_(context) {
+  if (settings_.formats.empty()) throw std::invalid_argument("offline render: no formats");
+  if (settings_.threads < -1 || settings_.frames_in_flight < 0)
+    throw std::invalid_argument("offline render: threads must be ≥ 0 (or automatic), frames in flight ≥ 1");
+  const bool display = std::any_of(settings_.formats.begin(), settings_.formats.end(), is_display_format);
+  if (settings_.published && !display)
+    throw std::invalid_argument("--video needs a display format (png, png16 or tiff) among --format");
+}
 
 LocalFrameRenderer::~LocalFrameRenderer() {
-  context_.make_current();  // the renderer's GL objects belong to this context
+  pool_.reset();  // waits for the frames in flight: their files are written from the slots
+  context_.make_current();  // the GL objects belong to this context
+  fenced_.clear();
+  slots_.clear();
+  textures_.clear();
+  encoder_ = render::display::DisplayEncoder();
   renderer_.reset();
 }
+
+int LocalFrameRenderer::threads() const { return pool_ ? pool_->threads() : settings_.threads; }
+int LocalFrameRenderer::frames_in_flight() const { return static_cast<int>(slots_.size()); }
+std::size_t LocalFrameRenderer::slot_bytes() const { return slot_bytes_; }
 
 void LocalFrameRenderer::precompute_missing(const show::TablePlan& plan,
                                             const std::set<scene::TableHash>& table_hashes) {
@@ -63,25 +131,231 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
   return *renderer_;
 }
 
-void LocalFrameRenderer::render_frame(const scene::FrameDescription& state,
+void LocalFrameRenderer::start_pipeline() {
+  context_.make_current();
+  const std::vector<ImageFormat>& f = settings_.formats;
+  const bool want8 = has(f, ImageFormat::png), want16 = has(f, ImageFormat::png16) || has(f, ImageFormat::tiff),
+             want_radiance = has(f, ImageFormat::exr);
+  slot_bytes_ = 0;
+  for (const LocalOutput& out : outputs_) {
+    const int w = out.projection->width(), h = out.projection->height();
+    OutputTextures& t = textures_.emplace_back();
+    Region& r = regions_.emplace_back();
+    const auto place = [&](Texture& texture, TextureFormat format, std::size_t& offset) {
+      texture = Texture::create_2d(format, w, h);
+      offset = slot_bytes_;
+      slot_bytes_ += render::display::readback_bytes(texture);
+    };
+    if (want_radiance) place(t.radiance, TextureFormat::rgba32f, r.radiance);
+    if (want8) place(t.display8, TextureFormat::rgba8, r.display8);
+    if (want16) place(t.display16, TextureFormat::rgba16, r.display16);
+    if (out.blend) t.blend_mask = render::display::blend_mask_texture(*out.blend);
+  }
+  int threads = settings_.threads;
+  if (threads < 0)
+    threads = default_writer_threads(std::thread::hardware_concurrency(), is_software_renderer(device()));
+  // By default a frame per writer, one on the GPU and one being handed over, within kDefaultSlotBudgetBytes.
+  int in_flight = settings_.frames_in_flight;
+  if (in_flight <= 0) {
+    const auto fit = static_cast<int>(std::min<std::size_t>(64, kDefaultSlotBudgetBytes / std::max<std::size_t>(1, slot_bytes_)));
+    in_flight = std::max(2, std::min(threads + 2, fit));
+  }
+  slots_.resize(threads == 0 ? 1 : static_cast<std::size_t>(in_flight));
+  slot_frames_.resize(slots_.size());
+  if (threads > 0)
+    for (Slot& s : slots_) s.buffer = std::make_unique<render::display::ReadbackBuffer>(slot_bytes_);
+  pool_ = std::make_unique<FrameWriterPool>(threads);
+  spdlog::info("pipeline: {} writer thread{}, {} frame{} in flight of {:.1f} MiB each", threads,
+               threads == 1 ? "" : "s", slots_.size(), slots_.size() == 1 ? "" : "s",
+               static_cast<double>(slot_bytes_) / (1024.0 * 1024.0));
+}
+
+std::size_t LocalFrameRenderer::acquire_slot() {
+  const std::size_t index = next_slot_;
+  // A slot still waiting for its fence is handed over first (oldest first).
+  while (std::find(fenced_.begin(), fenced_.end(), index) != fenced_.end()) {
+    hand_off(fenced_.front());
+    fenced_.pop_front();
+  }
+  std::unique_lock lock(slot_mutex_);
+  slot_freed_.wait(lock, [&] { return !slots_[index].busy; });
+  slots_[index].busy = true;
+  next_slot_ = (next_slot_ + 1) % slots_.size();
+  return index;
+}
+
+void LocalFrameRenderer::render_outputs(const scene::Scene& scene, Slot& slot) {
+  render::Renderer& renderer = renderer_for(render_flags_);
+  for (std::size_t o = 0; o < outputs_.size(); ++o) {
+    const LocalOutput& out = outputs_[o];
+    OutputTextures& t = textures_[o];
+    const Region& r = regions_[o];
+    render::display::OutputStage stage;
+    stage.tone = settings_.tone;
+    stage.blended = out.blend.has_value();
+    stage.blend_mask = out.blend ? &t.blend_mask : nullptr;
+    stage.black_level = out.blend ? out.black_level : 0.0;
+    if (t.radiance.id() != 0) {  // EXR wanted: the radiance texture, then the display pass from it
+      renderer.render_to_texture(scene, *out.projection, t.radiance);
+      if (t.display8.id() != 0) encoder_.encode(t.radiance, stage, t.display8);
+      if (t.display16.id() != 0) encoder_.encode(t.radiance, stage, t.display16);
+    } else {  // display codes only: each band straight from the renderer's buffer
+      renderer.render_on_gpu(scene, *out.projection, [&](const render::GpuBand& band) {
+        if (t.display8.id() != 0) encoder_.encode_band(band, stage, t.display8);
+        if (t.display16.id() != 0) encoder_.encode_band(band, stage, t.display16);
+      });
+    }
+    const auto read = [&](const Texture& texture, std::size_t offset) {
+      if (texture.id() == 0) return;
+      if (slot.buffer) {
+        slot.buffer->queue_read(texture, offset);
+      } else {
+        std::vector<std::byte> pixels;
+        render::display::read_texture_now(texture, pixels);
+        std::memcpy(slot.memory.data() + offset, pixels.data(), pixels.size());
+      }
+    };
+    read(t.radiance, r.radiance);
+    read(t.display8, r.display8);
+    read(t.display16, r.display16);
+  }
+}
+
+FrameWriterPool::Frame LocalFrameRenderer::files_of(std::size_t index) {
+  const std::uint64_t frame = slot_frames_[index].frame;
+  const std::vector<std::vector<std::filesystem::path>>& files = slot_frames_[index].files;
+  FrameWriterPool::Frame job;
+  job.frame = frame;
+  for (std::size_t o = 0; o < outputs_.size(); ++o)
+    for (std::size_t k = 0; k < settings_.formats.size(); ++k) {
+      const ImageFormat format = settings_.formats[k];
+      job.files.push_back({files[o][k], [this, index, o, format](const std::filesystem::path& staging) {
+                             const LocalOutput& out = outputs_[o];
+                             const Region& r = regions_[o];
+                             const std::span<const std::byte> bytes = slots_[index].bytes();
+                             const int w = out.projection->width(), h = out.projection->height();
+                             const std::size_t pixels = std::size_t(w) * std::size_t(h);
+                             const image::ImageAttributes& attributes = slot_frames_[index].attributes[o];
+                             switch (format) {
+                               case ImageFormat::png:
+                                 image::write_png_display(staging, w, h, 8, bytes.subspan(r.display8, pixels * 4),
+                                                          settings_.png_compression, attributes);
+                                 break;
+                               case ImageFormat::png16:
+                                 image::write_png_display(staging, w, h, 16, bytes.subspan(r.display16, pixels * 8),
+                                                          settings_.png_compression, attributes);
+                                 break;
+                               case ImageFormat::tiff:
+                                 image::write_tiff16_display(
+                                     staging, w, h,
+                                     {reinterpret_cast<const std::uint16_t*>(bytes.data() + r.display16), pixels * 4},
+                                     settings_.tiff_compression, attributes);
+                                 break;
+                               case ImageFormat::exr:
+                                 write_exr_from_rgba(staging, w, h,
+                                                     reinterpret_cast<const float*>(bytes.data() + r.radiance),
+                                                     settings_.exr_type, out, attributes);
+                                 break;
+                             }
+                           }});
+    }
+  if (settings_.published)
+    job.published = [this, index, frame] {
+      const LocalOutput& out = outputs_[0];
+      const Region& r = regions_[0];
+      const bool eight = r.display8 != SIZE_MAX;
+      const int w = out.projection->width(), h = out.projection->height();
+      const std::size_t bytes = std::size_t(w) * std::size_t(h) * (eight ? 4 : 8);
+      settings_.published(
+          {frame, w, h, eight ? 8 : 16, slots_[index].bytes().subspan(eight ? r.display8 : r.display16, bytes)});
+    };
+  job.released = [this, index] {
+    std::lock_guard lock(slot_mutex_);
+    slots_[index].busy = false;
+    slot_freed_.notify_all();
+  };
+  return job;
+}
+
+void LocalFrameRenderer::hand_off(std::size_t index) {
+  Slot& slot = slots_[index];
+  if (slot.buffer) slot.buffer->wait();
+  pool_->submit(files_of(index));
+}
+
+void LocalFrameRenderer::submit_frame(const scene::FrameDescription& state,
                                       const std::vector<std::vector<std::filesystem::path>>& files) {
   if (files.size() != outputs_.size())
     throw std::invalid_argument(
         fmt::format("render_frame: files for {} outputs, the renderer has {}", files.size(), outputs_.size()));
+  for (const auto& output_files : files)
+    if (output_files.size() != settings_.formats.size())
+      throw std::invalid_argument(fmt::format("render_frame: {} files an output, the pipeline writes {} formats",
+                                              output_files.size(), settings_.formats.size()));
+  if (!pool_) start_pipeline();
+  for (const auto& output_files : files)
+    for (const std::filesystem::path& path : output_files)
+      if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
   scene::Scene scene = show_.scene();
   show::apply_state(state, versions_, scene);
-  render::Renderer& renderer = renderer_for(state.render_flags);
-  for (std::size_t o = 0; o < outputs_.size(); ++o) {
-    const LocalOutput& out = outputs_[o];
-    OutputStage stage = stage_;
-    stage.blend = out.blend ? &*out.blend : nullptr;
-    stage.black_level = out.black_level;
-    image::ImageAttributes attributes = image_attributes(scene, *out.projection);
-    attributes.insert(attributes.end(), out.attributes.begin(), out.attributes.end());
-    attributes.emplace_back("zenith:frame", fmt::format("{}", state.frame));
-    attributes.emplace_back("zenith:show_time_s", fmt::format("{}", state.show_time_s));
-    render_to_files(renderer, scene, *out.projection, files[o], stage, attributes);
+  renderer_for(state.render_flags);
+  const std::size_t index = acquire_slot();
+  Slot& slot = slots_[index];
+  try {
+    if (!slot.buffer) slot.memory.resize(slot_bytes_);
+    render_outputs(scene, slot);
+  } catch (...) {
+    std::lock_guard lock(slot_mutex_);
+    slot.busy = false;
+    throw;
   }
+  std::vector<image::ImageAttributes> attributes;
+  for (const LocalOutput& out : outputs_) {
+    image::ImageAttributes& a = attributes.emplace_back(image_attributes(scene, *out.projection));
+    a.insert(a.end(), out.attributes.begin(), out.attributes.end());
+    a.emplace_back("zenith:frame", fmt::format("{}", state.frame));
+    a.emplace_back("zenith:show_time_s", fmt::format("{}", state.show_time_s));
+  }
+  SlotFrame& sf = slot_frames_[index];
+  sf.frame = state.frame;
+  sf.files = files;
+  sf.attributes = std::move(attributes);
+  if (!slot.buffer) {  // the simple path: written before returning
+    hand_off(index);
+    return;
+  }
+  slot.buffer->fence();
+  fenced_.push_back(index);
+  // Keep the newest frame on the GPU; the older ones go to the writers as their fences signal.
+  while (fenced_.size() > 1) {
+    const std::size_t oldest = fenced_.front();
+    fenced_.pop_front();
+    hand_off(oldest);
+  }
+}
+
+std::vector<FinishedFrame> LocalFrameRenderer::take_finished() {
+  std::vector<FinishedFrame> result;
+  if (!pool_) return result;
+  for (WrittenFrame& w : pool_->take_written()) result.push_back({w.frame, std::move(w.file_sha256)});
+  return result;
+}
+
+void LocalFrameRenderer::finish_frames() {
+  if (!pool_) return;
+  context_.make_current();
+  while (!fenced_.empty()) {
+    const std::size_t oldest = fenced_.front();
+    fenced_.pop_front();
+    hand_off(oldest);
+  }
+  pool_->finish();
+}
+
+void LocalFrameRenderer::render_frame(const scene::FrameDescription& state,
+                                      const std::vector<std::vector<std::filesystem::path>>& files) {
+  submit_frame(state, files);
+  finish_frames();
 }
 
 }  // namespace zenith::app::offline

@@ -10,7 +10,7 @@
 //
 //   DIR/manifest.json
 //   DIR/contact-sheet.png                 (unless --contact-sheet none / another FILE)
-//   DIR/<output>/<output>.<frame:06d>.png|exr
+//   DIR/<output>/<output>.<frame:06d>.png|tif|exr   (RenderJob::naming: another pattern)
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -28,12 +28,34 @@
 
 namespace zenith::app::offline {
 
-enum class ImageFormat { png, exr };
-/// "png", "exr".
+/// The file formats of a render (docs/shows.md, "Output formats"): PNG of 8
+/// or 16 bits and 16-bit TIFF hold the display codes (tone mapped, output
+/// stage, sRGB encoded: the display pass's), EXR the linear radiance.
+enum class ImageFormat { png, png16, tiff, exr };
+/// The file extension: "png" (png and png16), "tif", "exr".
 const char* extension_of(ImageFormat format);
-/// "png", "exr", "png,exr" or "exr,png"; throws std::invalid_argument naming
-/// --format and the allowed values.
+/// The format's name on the command line: "png", "png16", "tiff", "exr".
+const char* name_of(ImageFormat format);
+/// Whether the format stores display codes (png, png16, tiff) rather than linear radiance.
+bool is_display_format(ImageFormat format);
+/// A comma list of png, png16, tiff and exr, each at most once ("png,exr");
+/// png and png16 not together (one extension). Throws std::invalid_argument
+/// naming --format and the allowed values.
 std::vector<ImageFormat> parse_formats(const std::string& text);
+
+/// How frame files are named inside their output's folder: a pattern with one
+/// printf-style frame number (`%d` or `%0Nd`, N in [1, 9]) and optionally
+/// `{output}`, the extension appended; the file of show frame i carries the
+/// number start_number + i.
+struct FileNaming {
+  std::string pattern = "{output}.%06d";
+  std::uint64_t start_number = 0;
+  bool operator==(const FileNaming&) const = default;
+};
+/// Checks --frame-name PATTERN (a trailing ".png", ".tif", ".tiff" or ".exr"
+/// is dropped: the format gives the extension); throws std::invalid_argument
+/// naming --frame-name and the rule.
+FileNaming parse_file_naming(const std::string& pattern, std::uint64_t start_number);
 
 /// An output of the render: one image per frame and format.
 struct OutputSpec {
@@ -49,8 +71,16 @@ struct OutputSpec {
 };
 
 /// "<output>/<output>.<frame:06d>.<ext>": a file's path relative to the render
-/// folder (six digits at least; more for frames ≥ 1 000 000).
-std::string frame_file_path(const std::string& output, std::uint64_t frame, ImageFormat format);
+/// folder (six digits at least; more for frames ≥ 1 000 000); with `naming`,
+/// "<output>/<pattern with the number>.<ext>".
+std::string frame_file_path(const std::string& output, std::uint64_t frame, ImageFormat format,
+                            const FileNaming& naming = {});
+
+/// A frame whose files are complete, with the SHA-256 (hex) of each, output-major.
+struct FinishedFrame {
+  std::uint64_t frame = 0;
+  std::vector<std::string> file_sha256;
+};
 
 /// Renders the state of one frame into files[o][f]: output o of the job, its
 /// format f, each published atomically (NAME.partial renamed to NAME).
@@ -59,6 +89,18 @@ class FrameRenderer {
   virtual ~FrameRenderer() = default;
   virtual void render_frame(const scene::FrameDescription& state,
                             const std::vector<std::vector<std::filesystem::path>>& files) = 0;
+  /// A pipelined renderer queues the frame and returns (its files appear
+  /// later, frames in order); this one renders it at once (render_frame) and
+  /// hashes its files.
+  virtual void submit_frame(const scene::FrameDescription& state,
+                            const std::vector<std::vector<std::filesystem::path>>& files);
+  /// The frames whose files are complete since the last call, in order.
+  virtual std::vector<FinishedFrame> take_finished();
+  /// Waits until every submitted frame is complete; throws the first error.
+  virtual void finish_frames() {}
+
+ private:
+  std::vector<FinishedFrame> finished_;  // submit_frame's
 };
 
 struct RenderJob {
@@ -71,8 +113,9 @@ struct RenderJob {
   /// What else shapes every file's bytes (scene file digest, table sizes,
   /// colour mapping, ...), and each format's own settings (tone mapping for
   /// PNG, pixel type for EXR): with OutputSpec::description, the settings key.
-  std::string settings, png_settings, exr_settings;
+  std::string settings, png_settings, exr_settings, tiff_settings;
   std::filesystem::path out_dir;
+  FileNaming naming;
   nlohmann::json run = nlohmann::json::object();  ///< stored as the manifest's "run"
   /// The contact sheet's path (nullopt: none), its number of frames and the
   /// tone mapping of EXR-only outputs in it.

@@ -178,16 +178,43 @@ TEST(OfflineLayout, FrameFilesAreNumberedPerOutput) {
   EXPECT_EQ(frame_file_path("dome", 12, ImageFormat::png), "dome/dome.000012.png");
   EXPECT_EQ(frame_file_path("p2", 0, ImageFormat::exr), "p2/p2.000000.exr");
   EXPECT_EQ(frame_file_path("dome", 1234567, ImageFormat::png), "dome/dome.1234567.png");
+  EXPECT_EQ(frame_file_path("dome", 7, ImageFormat::tiff), "dome/dome.000007.tif");
+  EXPECT_EQ(frame_file_path("dome", 7, ImageFormat::png16), "dome/dome.000007.png");
+}
+
+TEST(OfflineLayout, FrameNamePatternsNumberFromTheStartNumber) {
+  const FileNaming studio = parse_file_naming("show.%04d.png", 1);  // the extension is the format's
+  EXPECT_EQ(studio.pattern, "show.%04d");
+  EXPECT_EQ(frame_file_path("dome", 0, ImageFormat::png, studio), "dome/show.0001.png");
+  EXPECT_EQ(frame_file_path("dome", 41, ImageFormat::exr, studio), "dome/show.0042.exr");
+  EXPECT_EQ(frame_file_path("dome", 12345, ImageFormat::tiff, studio), "dome/show.12346.tif");  // wider than 4
+  const FileNaming plain = parse_file_naming("{output}_%d", 100);
+  EXPECT_EQ(frame_file_path("left", 5, ImageFormat::png, plain), "left/left_105.png");
+  EXPECT_EQ(parse_file_naming("{output}.%06d", 0), FileNaming{});
+  for (const char* bad : {"show.png", "show.%06d.%d", "a/b.%04d", "show.%5d", "show.%06x"}) {
+    try {
+      parse_file_naming(bad, 0);
+      FAIL() << bad << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("--frame-name '") + bad + "'"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(OfflineLayout, FormatsParseAndRefuseWithTheOption) {
   EXPECT_EQ(parse_formats("png,exr"), (std::vector<ImageFormat>{ImageFormat::png, ImageFormat::exr}));
   EXPECT_EQ(parse_formats("exr"), (std::vector<ImageFormat>{ImageFormat::exr}));
-  try {
-    parse_formats("tiff");
-    FAIL() << "tiff accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "--format 'tiff': must be png, exr or png,exr");
+  EXPECT_EQ(parse_formats("png16,tiff,exr"),
+            (std::vector<ImageFormat>{ImageFormat::png16, ImageFormat::tiff, ImageFormat::exr}));
+  for (const auto& [bad, why] : std::vector<std::pair<std::string, std::string>>{
+           {"gif", "'gif' is not a format"}, {"png,png", "png twice"}, {"png,png16", "png and png16"}, {"", "''"}}) {
+    try {
+      parse_formats(bad);
+      FAIL() << bad << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("--format '" + bad + "': "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
   }
 }
 

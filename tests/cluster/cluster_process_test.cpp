@@ -1137,7 +1137,9 @@ TEST_F(ClusterProcess, ShowRendersOfflineOnTheNodesResumesAndMatchesASingleProce
   EXPECT_NE(text.find("rendered 1, skipped 5 of 6 frames"), std::string::npos) << text;
   EXPECT_EQ(read_text(out / "bottom-left/bottom-left.000003.png"), before) << "re-rendered bit for bit";
 
-  // The quadrants of frame 5 (after the turbidity step) equal one process rendering the whole dome master.
+  // The quadrants of frame 5 (after the turbidity step) equal one process rendering the whole dome master,
+  // within one code: the single process encodes its PNGs on the GPU (the display pass of the offline
+  // pipeline, issue 28), the nodes on the CPU (render/display/display_encoder.h: ±1 code).
   const fs::path single = dir_ / "single";
   std::tie(status, text) = render(single, {"--projection", "fisheye", "--size", "128x128", "--tables", "small",
                                            "--orders", "4", "--from", "5", "--to", "5"},
@@ -1147,7 +1149,7 @@ TEST_F(ClusterProcess, ShowRendersOfflineOnTheNodesResumesAndMatchesASingleProce
   ASSERT_EQ(whole.width, 2 * kQuadrantPx);
   for (int q = 0; q < 4; ++q) {
     const image::LinearImage tile = image::read_image(out / outputs[q] / (std::string(outputs[q]) + ".000005.png"));
-    const int differing = values_differing_from_quadrant(tile, whole, q);
+    const int differing = values_beyond_a_code_from_quadrant(tile, whole, q);
     EXPECT_EQ(differing, 0) << outputs[q];
   }
 }
