@@ -76,10 +76,15 @@ void LocalFrameRenderer::render_frame(const scene::FrameDescription& state,
     OutputStage stage = stage_;
     stage.blend = out.blend ? &*out.blend : nullptr;
     stage.black_level = out.black_level;
+    stage.fade_level = state.fade.level;
+    stage.fade_colour = {state.fade.colour.x, state.fade.colour.y, state.fade.colour.z};
     image::ImageAttributes attributes = image_attributes(scene, *out.projection);
     attributes.insert(attributes.end(), out.attributes.begin(), out.attributes.end());
     attributes.emplace_back("zenith:frame", fmt::format("{}", state.frame));
     attributes.emplace_back("zenith:show_time_s", fmt::format("{}", state.show_time_s));
+    if (state.fade.level > 0.0)
+      attributes.emplace_back("zenith:fade", fmt::format("level {} colour {} {} {}", state.fade.level,
+                                                         state.fade.colour.x, state.fade.colour.y, state.fade.colour.z));
     render_to_files(renderer, scene, *out.projection, files[o], stage, attributes);
   }
 }
