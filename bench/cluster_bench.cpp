@@ -10,8 +10,8 @@
 // node starts with an empty cache of its own, so every run transfers them.
 //
 // Part 1, the barrier: for N in --nodes (1, 2, 4, 8) the show runs --frames
-// frames with frame_rate_hz = 1000 (pacing off: the master starts a frame as
-// soon as the last one is presented) and --frame-tables tables. Per frame:
+// frames unpaced (`zenith master --unpaced`: the master starts a frame as
+// soon as the last one is presented) with --frame-tables tables. Per frame:
 //
 //   period       the time between the master's "present frame K" log lines
 //                (spdlog stamps, 1 ms resolution; the mean over the frames is
@@ -36,6 +36,17 @@
 // … received" line: bytes on the wire, SHA-256 check, cache write) and the rest
 // (the node loads the tables and renders once before TableReady).
 //
+// Part 3, a paced dome (docs/cluster.md, "Pacing, swap groups and late
+// frames"): --pacing-nodes nodes (4) of one --pacing-size output each, paced
+// at --pacing-hz (60) for --pacing-frames frames, a live show (no frame
+// files), the nodes in windows with --pacing-windows (needs a display). From
+// the master's log: the frame time (FrameState out → Present out, its own
+// steady-clock figure) and the interval between Presents (log stamps, 1 ms)
+// as percentiles; the frames presented more than a period after they were due
+// (the master's "pacing at … Hz" line: each one a frame shown twice); with
+// windows, every node's late presents (missed vblanks). Written to
+// --pacing-csv, one row per run.
+//
 // Output: the tables on stdout and CSV (--csv), one row per run:
 //
 //   part, nodes, tables, table_bytes, frames, fps, period_ms, slowest_render_ms,
@@ -48,6 +59,8 @@
 //                 [--frame-tables small] [--tables small,paper,large]
 //                 [--broadcast-nodes 1,4] [--orders 1] [--cache DIR] [--work DIR]
 //                 [--csv FILE] [--timeout-s 600] [--keep]
+//                 [--pacing-nodes 4] [--pacing-hz 60] [--pacing-size 32] [--pacing-frames 600]
+//                 [--pacing-windows] [--pacing-csv FILE]
 #include <fmt/format.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -86,7 +99,7 @@ constexpr const char* kUsage = R"(cluster_bench: barrier overhead and frames per
 table broadcast time per size (docs/cluster-performance.md)
 
   --zenith PATH            the zenith binary (default: this build's)
-  --nodes LIST             node counts of the barrier runs (default 1,2,4,8)
+  --nodes LIST             node counts of the barrier runs (default 1,2,4,8; "none": skip)
   --frames N               frames per barrier run (default 300)
   --size PX                each output is PX×PX (default 16)
   --frame-tables SIZE      table sizes of the barrier runs (default small)
@@ -98,6 +111,12 @@ table broadcast time per size (docs/cluster-performance.md)
   --csv FILE               results (default bench/results/cluster_bench.csv)
   --timeout-s S            per run (default 600)
   --keep                   keep the run folders (logs, frames)
+  --pacing-nodes N         nodes of the paced dome (default 4; 0 skips it)
+  --pacing-hz R            its frame rate (default 60)
+  --pacing-size PX         each of its outputs is PX×PX (default 32)
+  --pacing-frames N        its frames (default 600)
+  --pacing-windows         its nodes present in windows (needs DISPLAY; late presents counted)
+  --pacing-csv FILE        its results (default bench/results/dome_pacing.csv)
 )";
 
 struct Options : zenith::bench::TinyRunOptions {
@@ -108,6 +127,12 @@ struct Options : zenith::bench::TinyRunOptions {
   std::vector<int> broadcast_nodes = {1, 4};
   int orders = 1;
   fs::path csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/cluster_bench.csv";
+  int pacing_nodes = 4;
+  double pacing_hz = 60.0;
+  int pacing_size = 32;
+  int pacing_frames = 600;
+  bool pacing_windows = false;
+  fs::path pacing_csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/dome_pacing.csv";
 };
 
 Options parse_options(int argc, char** argv) {
@@ -118,7 +143,10 @@ Options parse_options(int argc, char** argv) {
   for (zenith::bench::CommandLine args(argc, argv); args.next();) {
     const std::string& a = args.option();
     if (o.read(args, kUsage)) continue;
-    if (a == "--nodes") o.nodes = zenith::bench::split_int_list(args.value());
+    if (a == "--nodes") {
+      const std::string v = args.value();
+      o.nodes = v == "none" ? std::vector<int>{} : zenith::bench::split_int_list(v);
+    }
     else if (a == "--frames") o.frames = std::stoi(args.value());
     else if (a == "--frame-tables") o.frame_tables = args.value();
     else if (a == "--tables") {
@@ -127,6 +155,12 @@ Options parse_options(int argc, char** argv) {
     } else if (a == "--broadcast-nodes") o.broadcast_nodes = zenith::bench::split_int_list(args.value());
     else if (a == "--orders") o.orders = std::stoi(args.value());
     else if (a == "--csv") o.csv = args.value();
+    else if (a == "--pacing-nodes") o.pacing_nodes = std::stoi(args.value());
+    else if (a == "--pacing-hz") o.pacing_hz = std::stod(args.value());
+    else if (a == "--pacing-size") o.pacing_size = std::stoi(args.value());
+    else if (a == "--pacing-frames") o.pacing_frames = std::stoi(args.value());
+    else if (a == "--pacing-windows") o.pacing_windows = true;
+    else if (a == "--pacing-csv") o.pacing_csv = args.value();
     else throw std::invalid_argument("unknown option " + a);
   }
   if (o.frames < 3) throw std::invalid_argument("--frames must be at least 3");
@@ -207,6 +241,9 @@ struct RunSetup {
   int nodes = 1;
   int frames = 3;
   std::string tables = "small";
+  double paced_hz = 0.0;     ///< > 0: a paced live show at this rate (no frame files); 0: unpaced, frames written
+  int size_px = 0;           ///< 0: --size
+  bool windows = false;      ///< the nodes present in windows
 };
 
 /// What the logs of one run say.
@@ -220,30 +257,35 @@ using zenith::bench::tiny_node_name;
 
 /// Writes the configs, runs master + nodes to the end of the show, returns the logs.
 RunLogs run_cluster(const Options& opt, const RunSetup& setup, const fs::path& cache, int port) {
-  const fs::path dir = opt.work / fmt::format("{}-nodes{}-{}f", setup.tables, setup.nodes, setup.frames);
+  const fs::path dir = opt.work / fmt::format("{}-nodes{}-{}f{}", setup.tables, setup.nodes, setup.frames,
+                                              setup.paced_hz > 0 ? fmt::format("-{}hz", setup.paced_hz) : "");
+  const bool paced = setup.paced_hz > 0;
   fs::remove_all(dir);
   fs::create_directories(dir);
 
   // N tiny fisheye outputs, one per node.
   port = zenith::core::free_loopback_port(port);  // other runs share the machine
   const fs::path config = zenith::bench::write_tiny_cluster(
-      dir, {"bench", setup.nodes, opt.size_px, port,
-            R"({"heartbeat_ms": 250, "barrier_timeout_ms": 60000, "frame_rate_hz": 1000})", kSecretVar, setup.tables,
-            opt.orders});
+      dir, {"bench", setup.nodes, setup.size_px > 0 ? setup.size_px : opt.size_px, port,
+            fmt::format(R"({{"heartbeat_ms": 250, "barrier_timeout_ms": 60000, "frame_rate_hz": {}}})",
+                        paced ? setup.paced_hz : 240.0),
+            kSecretVar, setup.tables, opt.orders});
   std::vector<Child> children;
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::seconds(opt.timeout_s);
-  children.push_back(spawn(opt.zenith,
-                           {"--log-level", "debug", "master", "--cluster", config.string(), "--frames",
-                            std::to_string(setup.frames), "--cache", cache.string(), "--wait-for-nodes-ms",
-                            std::to_string(opt.timeout_s * 1000)},
-                           dir / "master.log"));
-  for (int i = 0; i < setup.nodes; ++i)
-    children.push_back(spawn(opt.zenith,
-                             {"--log-level", "debug", "node", "--cluster", config.string(), "--name", tiny_node_name(i),
-                              "--out", (dir / "out").string(), "--cache", (dir / "node-cache" / tiny_node_name(i)).string(),
-                              "--connect-timeout-ms", std::to_string(opt.timeout_s * 1000)},
-                             dir / (tiny_node_name(i) + ".log")));
+  std::vector<std::string> master_args = {"--log-level", "debug", "master", "--cluster", config.string(), "--frames",
+                                          std::to_string(setup.frames), "--cache", cache.string(),
+                                          "--wait-for-nodes-ms", std::to_string(opt.timeout_s * 1000)};
+  if (!paced) master_args.insert(master_args.begin() + 3, "--unpaced");
+  children.push_back(spawn(opt.zenith, master_args, dir / "master.log"));
+  for (int i = 0; i < setup.nodes; ++i) {
+    std::vector<std::string> args = {"--log-level", "debug", "node", "--cluster", config.string(), "--name",
+                                     tiny_node_name(i), "--cache", (dir / "node-cache" / tiny_node_name(i)).string(),
+                                     "--connect-timeout-ms", std::to_string(opt.timeout_s * 1000)};
+    if (!paced) args.insert(args.end(), {"--out", (dir / "out").string()});  // a live show writes no frames
+    if (setup.windows) args.push_back("--window");
+    children.push_back(spawn(opt.zenith, args, dir / (tiny_node_name(i) + ".log")));
+  }
 
   std::string failure;
   for (std::size_t i = 0; i < children.size(); ++i) {
@@ -359,6 +401,53 @@ BroadcastResult broadcast_figures(const RunSetup& setup, const RunLogs& logs) {
   return r;
 }
 
+struct PacingResult {
+  int nodes = 0, frames = 0, size_px = 0;
+  double hz = 0;
+  double frame_p50_ms = 0, frame_p90_ms = 0, frame_p99_ms = 0, frame_max_ms = 0;
+  double interval_p50_ms = 0, interval_p99_ms = 0, interval_max_ms = 0;
+  int late_frames = 0, slips = 0;
+  std::optional<int> late_presents;  ///< with windows: the nodes' missed vblanks, summed
+};
+
+PacingResult pacing_figures(const RunSetup& setup, int size_px, const RunLogs& logs) {
+  PacingResult r;
+  r.nodes = setup.nodes;
+  r.frames = setup.frames;
+  r.size_px = size_px;
+  r.hz = setup.paced_hz;
+  std::vector<double> frame_ms, interval_ms;
+  std::optional<double> previous;
+  bool pacing_line = false;
+  for (const LogLine& l : logs.master) {
+    if (l.text.rfind("master: present frame ", 0) == 0) {
+      frame_ms.push_back(number_after(l.text, " (").value_or(0.0));
+      if (previous) interval_ms.push_back(l.t_ms - *previous);
+      previous = l.t_ms;
+    } else if (l.text.rfind("master: pacing at ", 0) == 0) {
+      pacing_line = true;
+      r.late_frames = static_cast<int>(number_after(l.text, " frames presented, ").value_or(-1));
+      r.slips = static_cast<int>(number_after(l.text, " the schedule moved ").value_or(-1));
+    }
+  }
+  if (frame_ms.size() != static_cast<std::size_t>(setup.frames) || !pacing_line)
+    throw std::runtime_error(fmt::format("paced run: the master presented {} of {} frames{}", frame_ms.size(),
+                                         setup.frames, pacing_line ? "" : " and logged no pacing line"));
+  r.frame_p50_ms = quantile(frame_ms, 0.5);
+  r.frame_p90_ms = quantile(frame_ms, 0.9);
+  r.frame_p99_ms = quantile(frame_ms, 0.99);
+  r.frame_max_ms = quantile(frame_ms, 1.0);
+  r.interval_p50_ms = quantile(interval_ms, 0.5);
+  r.interval_p99_ms = quantile(interval_ms, 0.99);
+  r.interval_max_ms = quantile(interval_ms, 1.0);
+  if (setup.windows)
+    for (const auto& [name, lines] : logs.nodes)
+      for (const LogLine& l : lines)
+        if (const auto late = number_after(l.text, " frames in its windows, "))
+          r.late_presents = r.late_presents.value_or(0) + static_cast<int>(*late);
+  return r;
+}
+
 std::string cpu_name() {
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);)
@@ -391,7 +480,7 @@ int run(int argc, char** argv) {
   }
 
   std::vector<BarrierResult> barriers;
-  fmt::print("\nbarrier: {} frames, {} tables, frame_rate_hz 1000 (unpaced); frame 0 left out\n", opt.frames,
+  fmt::print("\nbarrier: {} frames, {} tables, unpaced; frame 0 left out\n", opt.frames,
              opt.frame_tables);
   fmt::print("{:>5} {:>8} {:>10} {:>12} {:>11} {:>10} {:>11} {:>9}\n", "nodes", "fps", "period ms", "slowest ms",
              "overhead", "barrier", "in-barrier", "p90");
@@ -418,6 +507,34 @@ int run(int argc, char** argv) {
                  r.broadcast_s, r.transfer_s, r.transfer_s > 0 ? mb * n / r.transfer_s : 0.0, r.warmup_ms_max);
       broadcasts.push_back(r);
     }
+
+  std::optional<PacingResult> pacing;
+  if (opt.pacing_nodes > 0) {
+    const RunSetup setup{opt.pacing_nodes, opt.pacing_frames, opt.frame_tables, opt.pacing_hz, opt.pacing_size,
+                         opt.pacing_windows};
+    fmt::print("\npaced dome: {} nodes of one {}x{} output each at {} Hz, {} frames, {} tables, a live show{}\n",
+               setup.nodes, opt.pacing_size, opt.pacing_size, opt.pacing_hz, setup.frames, opt.frame_tables,
+               setup.windows ? ", in windows" : " (headless)");
+    pacing = pacing_figures(setup, opt.pacing_size, run_cluster(opt, setup, cache, port++));
+    const PacingResult& r = *pacing;
+    fmt::print("frame time (FrameState -> Present) ms: p50 {:.2f}  p90 {:.2f}  p99 {:.2f}  max {:.2f}  (period {:.2f})\n",
+               r.frame_p50_ms, r.frame_p90_ms, r.frame_p99_ms, r.frame_max_ms, 1000.0 / r.hz);
+    fmt::print("interval between Presents ms: p50 {:.0f}  p99 {:.0f}  max {:.0f}  (1 ms log stamps)\n",
+               r.interval_p50_ms, r.interval_p99_ms, r.interval_max_ms);
+    fmt::print("late frames (presented more than a period after due): {} of {}; schedule moved {} times{}\n",
+               r.late_frames, r.frames, r.slips,
+               r.late_presents ? fmt::format("; late presents on the nodes (missed vblanks): {}", *r.late_presents)
+                               : std::string());
+    if (opt.pacing_csv.has_parent_path()) fs::create_directories(opt.pacing_csv.parent_path());
+    std::ofstream pcsv(opt.pacing_csv);
+    pcsv << "nodes,size_px,hz,frames,windows,frame_p50_ms,frame_p90_ms,frame_p99_ms,frame_max_ms,interval_p50_ms,"
+            "interval_p99_ms,interval_max_ms,late_frames,schedule_slips,late_presents\n";
+    pcsv << fmt::format("{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.0f},{:.0f},{:.0f},{},{},{}\n", r.nodes,
+                        r.size_px, r.hz, r.frames, setup.windows ? 1 : 0, r.frame_p50_ms, r.frame_p90_ms,
+                        r.frame_p99_ms, r.frame_max_ms, r.interval_p50_ms, r.interval_p99_ms, r.interval_max_ms,
+                        r.late_frames, r.slips, r.late_presents ? std::to_string(*r.late_presents) : std::string());
+    fmt::print("pacing csv: {}\n", opt.pacing_csv.string());
+  }
 
   if (opt.csv.has_parent_path()) fs::create_directories(opt.csv.parent_path());
   std::ofstream csv(opt.csv);

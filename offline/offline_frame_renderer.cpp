@@ -184,7 +184,7 @@ std::size_t LocalFrameRenderer::acquire_slot() {
   return index;
 }
 
-void LocalFrameRenderer::render_outputs(const scene::Scene& scene, Slot& slot) {
+void LocalFrameRenderer::render_outputs(const scene::Scene& scene, const scene::FadeState& fade, Slot& slot) {
   render::Renderer& renderer = renderer_for(render_flags_);
   for (std::size_t o = 0; o < outputs_.size(); ++o) {
     const LocalOutput& out = outputs_[o];
@@ -195,6 +195,7 @@ void LocalFrameRenderer::render_outputs(const scene::Scene& scene, Slot& slot) {
     stage.blended = out.blend.has_value();
     stage.blend_mask = out.blend ? &t.blend_mask : nullptr;
     stage.black_level = out.blend ? out.black_level : 0.0;
+    stage.fade = {fade.level, {fade.colour.x, fade.colour.y, fade.colour.z}};
     if (t.radiance.id() != 0) {  // EXR wanted: the radiance texture, then the display pass from it
       renderer.render_to_texture(scene, *out.projection, t.radiance);
       if (t.display8.id() != 0) encoder_.encode(t.radiance, stage, t.display8);
@@ -303,7 +304,7 @@ void LocalFrameRenderer::submit_frame(const scene::FrameDescription& state,
   Slot& slot = slots_[index];
   try {
     if (!slot.buffer) slot.memory.resize(slot_bytes_);
-    render_outputs(scene, slot);
+    render_outputs(scene, state.fade, slot);
   } catch (...) {
     std::lock_guard lock(slot_mutex_);
     slot.busy = false;
@@ -315,6 +316,9 @@ void LocalFrameRenderer::submit_frame(const scene::FrameDescription& state,
     a.insert(a.end(), out.attributes.begin(), out.attributes.end());
     a.emplace_back("zenith:frame", fmt::format("{}", state.frame));
     a.emplace_back("zenith:show_time_s", fmt::format("{}", state.show_time_s));
+    if (state.fade.level > 0.0)  // EXR keeps the radiance: the fade is named, applied to the display codes only
+      a.emplace_back("zenith:fade", fmt::format("level {} colour {} {} {}", state.fade.level, state.fade.colour.x,
+                                                state.fade.colour.y, state.fade.colour.z));
   }
   SlotFrame& sf = slot_frames_[index];
   sf.frame = state.frame;

@@ -135,7 +135,8 @@ class LocalFrameRenderer final : public FrameRenderer {
   void start_pipeline();                     // the first frame: threads, slots, regions
   std::size_t acquire_slot();                // waits until the next slot is free
   void hand_off(std::size_t slot);           // waits its fence, queues its files
-  void render_outputs(const scene::Scene& scene, Slot& slot);
+  /// Every output of one frame into its slot; `fade` on the display codes (EXR keeps the radiance).
+  void render_outputs(const scene::Scene& scene, const scene::FadeState& fade, Slot& slot);
   /// The pool's work for the frame in `slot` (slot_frames_): a task per file, the video, the slot's release.
   FrameWriterPool::Frame files_of(std::size_t slot);
 

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "atmosphere/named_inputs.h"
+#include "image/display_fade.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 
@@ -105,11 +106,12 @@ void render_to_files(render::Renderer& renderer, const scene::Scene& scene, cons
     bool png;
   };
   std::vector<Target> targets;
+  const bool faded = stage.fade_level > 0.0;
   for (const auto& path : files) {
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     const bool png = path.extension() != ".exr";
-    // With a blend the PNG rows arrive tone mapped: the writer only encodes sRGB.
-    const image::ToneMapping writer_tone = png && stage.blend != nullptr ? image::ToneMapping::clamp : stage.tone;
+    // With a blend or a fade the PNG rows arrive tone mapped: the writer only encodes sRGB.
+    const image::ToneMapping writer_tone = png && (stage.blend != nullptr || faded) ? image::ToneMapping::clamp : stage.tone;
     targets.push_back({png ? image::open_png_writer(path, width, height, writer_tone, attributes)
                            : image::open_exr_writer(path, width, height, stage.exr_type, attributes),
                        png});
@@ -117,14 +119,16 @@ void render_to_files(render::Renderer& renderer, const scene::Scene& scene, cons
   std::vector<float> rows;
   renderer.render(scene, projection, [&](int first_row, int row_count, std::span<const float> rgb) {
     for (auto& t : targets) {
-      if (stage.blend == nullptr) {
+      if (stage.blend == nullptr && !(faded && t.png)) {
         t.writer->write_rows(row_count, rgb);
         continue;
       }
       rows.assign(rgb.begin(), rgb.end());
-      if (t.png)
+      if (t.png) {
         for (float& v : rows) v = image::tone_map(v, stage.tone);
-      warp::apply_blend(rows, first_row, row_count, *stage.blend, stage.black_level);
+        image::apply_fade(rows, stage.fade_level, stage.fade_colour);
+      }
+      if (stage.blend != nullptr) warp::apply_blend(rows, first_row, row_count, *stage.blend, stage.black_level);
       t.writer->write_rows(row_count, rows);
     }
     if (progress) progress(first_row, row_count);

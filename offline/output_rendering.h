@@ -4,6 +4,7 @@
 // request of the --tables/--cache options, the image attributes, and the
 // rendering of one frame into files (streamed to EXR/PNG writers, with the
 // viewport output stage: blend mask and black level, docs/viewports.md).
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -63,6 +64,11 @@ struct OutputStage {
   image::ExrPixelType exr_type = image::ExrPixelType::half;
   const warp::BlendMask* blend = nullptr;  ///< viewport outputs: the output's mask
   double black_level = 0.0;                ///< with a blend: β
+  /// The frame's fade (docs/operator.md, "Fades"; image/display_fade.h): PNG
+  /// rows are faded after tone mapping, before the output stage, as on a
+  /// projector; EXR keeps the radiance and names the fade in zenith:fade.
+  double fade_level = 0.0;
+  std::array<double, 3> fade_colour{0, 0, 0};
 };
 
 /// Called after each band of rows reaches the writers.

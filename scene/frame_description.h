@@ -46,6 +46,17 @@ struct AtmosphereTableRef {
   bool operator==(const AtmosphereTableRef&) const = default;
 };
 
+/// A fade of every output toward a colour, as an operator runs a dome
+/// (docs/operator.md, "Fades"): level 0 shows the picture, 1 only the colour
+/// (black at level 1: a blackout). Display-linear: applied after tone mapping,
+/// before the blend mask and black level (render/display/display_encoder.h).
+struct FadeState {
+  double level = 0.0;        ///< in [0, 1]
+  glm::dvec3 colour{0.0};    ///< display-linear RGB, each in [0, 1]
+  bool operator==(const FadeState&) const = default;
+};
+inline constexpr double kMaxFadeLevel = 1.0;
+
 /// Everything that varies per frame. Vectors in the scene's world frame
 /// (scene/scene.h). Every double must be finite.
 struct FrameDescription {
@@ -59,6 +70,7 @@ struct FrameDescription {
   std::vector<double> sun_irradiance_W_m2_nm; ///< ≤ kMaxWavelengths values, each ≥ 0
   std::vector<AtmosphereTableRef> atmospheres;  ///< ≤ kMaxAtmospheres
   std::uint32_t render_flags = 0;             ///< RenderFlag bits
+  FadeState fade;                             ///< the operator's fade at this frame's present
   bool operator==(const FrameDescription&) const = default;
 };
 

@@ -47,6 +47,8 @@ std::string frame_digest(const FrameDescription& frame) {
     h.unsigned_be(a.effective_from_frame, 8);
   }
   h.unsigned_be(frame.render_flags, 4);
+  h.f64(frame.fade.level);
+  for (int i = 0; i < 3; ++i) h.f64(frame.fade.colour[i]);
   return h.hex16();
 }
 

@@ -17,13 +17,15 @@ namespace zenith::scene {
 ///   w x y z, exposure, sun_direction x y z, sun_angular_radius_rad (f64 each),
 ///   the irradiance count (u8) and its values (f64), the atmosphere count (u8)
 ///   and per atmosphere: body_name's byte count (u16) and UTF-8 bytes,
-///   table_hash (32 raw bytes), effective_from_frame (u64); render_flags (u32).
+///   table_hash (32 raw bytes), effective_from_frame (u64); render_flags (u32);
+///   the fade's level and colour r g b (f64 each, protocol 4).
 ///
 /// Integers are big-endian, doubles their IEEE-754 binary64 bit pattern
 /// big-endian (so −0 and +0 differ, as they would on the wire). This is the
-/// byte sequence of the FrameState payload (docs/protocol.md), so digests
-/// written before the digest moved here (presented.log, offline manifests)
-/// stay valid: tests/scene/frame_digest_test.cpp checks the equality. A frame
+/// byte sequence of the FrameState payload (docs/protocol.md):
+/// tests/scene/frame_digest_test.cpp checks the equality. A field added to the
+/// payload is added here too, so a resumed offline render made before it
+/// renders its frames again once (their digests differ). A frame
 /// within the wire's limits (scene/frame_description.h) is assumed; counts and
 /// lengths beyond them are hashed truncated to their width.
 std::string frame_digest(const FrameDescription& frame);

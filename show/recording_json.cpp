@@ -54,7 +54,7 @@ json frame_to_json(const scene::FrameDescription& s) {
                            {"table_hash", core::to_hex(ref.table_hash)},
                            {"effective_from_frame", ref.effective_from_frame}});
   const glm::dquat& q = s.camera_orientation;
-  return {{"frame", s.frame},
+  json frame = {{"frame", s.frame},
           {"show_time_s", s.show_time_s},
           {"camera_position_m", vec3_json(s.camera_position_m)},
           {"camera_orientation", json::array({q.w, q.x, q.y, q.z})},
@@ -64,6 +64,11 @@ json frame_to_json(const scene::FrameDescription& s) {
           {"sun_irradiance_W_m2_nm", s.sun_irradiance_W_m2_nm},
           {"atmospheres", atmospheres},
           {"render_flags", s.render_flags}};
+  // The operator's fade (docs/operator.md, "Fades"), only while it shows:
+  // frames of the picture alone read as before fades existed.
+  if (s.fade != scene::FadeState{})
+    frame["fade"] = {{"level", s.fade.level}, {"colour", vec3_json(s.fade.colour)}};
+  return frame;
 }
 
 json version_to_json(const AtmosphereVersion& version) {
@@ -90,6 +95,11 @@ void check_recordable(const scene::FrameDescription& s) {
     if (!(std::isfinite(e) && e >= 0.0)) throw std::invalid_argument("sun_irradiance_W_m2_nm: must be finite, >= 0");
   if (s.atmospheres.size() > scene::kMaxAtmospheres) throw std::invalid_argument("atmospheres: too many");
   if ((s.render_flags & ~scene::kKnownRenderFlags) != 0) throw std::invalid_argument("render_flags: unknown bits");
+  if (!(s.fade.level >= 0.0 && s.fade.level <= scene::kMaxFadeLevel))
+    throw std::invalid_argument(cat("fade level = ", s.fade.level, ": must be in [0, 1]"));
+  for (int i = 0; i < 3; ++i)
+    if (!(s.fade.colour[i] >= 0.0 && s.fade.colour[i] <= 1.0))
+      throw std::invalid_argument(cat("fade colour = ", s.fade.colour[i], ": each component must be in [0, 1]"));
 }
 
 scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& scene, const std::string& file,
@@ -98,7 +108,7 @@ scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& s
   config::reject_unknown_keys(r, frame,
                               {"frame", "show_time_s", "camera_position_m", "camera_orientation", "exposure",
                                "sun_direction", "sun_angular_radius_rad", "sun_irradiance_W_m2_nm", "atmospheres",
-                               "render_flags"},
+                               "render_flags", "fade"},
                               "docs/shows.md");
   scene::FrameDescription s;
   s.frame = unsigned_integer(r, "frame", std::uint64_t{1} << 53);
@@ -143,6 +153,17 @@ scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& s
     s.atmospheres.push_back(std::move(ref));
   }
   s.render_flags = static_cast<std::uint32_t>(unsigned_integer(r, "render_flags", scene::kKnownRenderFlags));
+  if (r.has("fade")) {
+    JsonReader f(r.raw("fade"), file, r.key_path("fade"));
+    config::reject_unknown_keys(f, r.raw("fade"), {"level", "colour"}, "docs/shows.md");
+    s.fade.level = f.number("level", 0.0, scene::kMaxFadeLevel);
+    const std::vector<double> c = numbers(f, "colour", 3, "[r, g, b], each in [0, 1]");
+    for (int i = 0; i < 3; ++i)
+      if (!(c[i] >= 0.0 && c[i] <= 1.0))
+        f.fail("colour", cat("= ", brief(f.raw("colour")), ": each component must be in [0, 1]"));
+    s.fade.colour = {c[0], c[1], c[2]};
+    f.finish();
+  }
   r.finish();
   return s;
 }

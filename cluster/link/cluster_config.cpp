@@ -47,7 +47,7 @@ JsonReader child(JsonReader& r, const std::string& key) {
 void read_timing(JsonReader& t, ClusterConfig& c) {
   c.heartbeat_ms = static_cast<std::uint32_t>(t.integer("heartbeat_ms", 10, 60000));
   c.barrier_timeout_ms = static_cast<std::uint32_t>(t.integer("barrier_timeout_ms", 10, 600000));
-  c.frame_rate_hz = t.number("frame_rate_hz", 0.01, 1000.0, "Hz");
+  c.frame_rate_hz = t.number("frame_rate_hz", kMinFrameRateHz, kMaxFrameRateHz, "Hz");
   c.reconnect_ms = static_cast<std::uint32_t>(
       std::lround(1000.0 * t.number_or("reconnect_s", kDefaultReconnectMs / 1000.0, 0.0, kMaxReconnectS, "s")));
   t.finish();
@@ -150,6 +150,7 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
     JsonReader s(sv, r.file(), r.key_path("secret"));
     read_secret(s, sv, base_dir, c);
   }
+  if (r.has("swap_group")) c.swap_group = static_cast<unsigned>(r.integer("swap_group", 0, kMaxSwapGroup));
   if (r.has("tables")) {
     JsonReader t = child(r, "tables");
     c.table_sizes = t.string_or("sizes", c.table_sizes, {"paper", "small", "large"});

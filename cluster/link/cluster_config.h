@@ -15,6 +15,7 @@
 //                "reconnect_s": 300},                       optional: a node's time to reconnect after a loss
 //     "secret": {"env": "ZENITH_CLUSTER_SECRET"},          or {"file": "secret.key"}; never the secret itself
 //     "tables": {"sizes": "paper", "orders": 6},           optional (default orders: kDefaultScatteringOrders)
+//     "swap_group": 1,                                     optional: GLX_NV_swap_group of the nodes' windows (0: none)
 //     "nodes": [{"name": "q1", "host": "127.0.0.1", "outputs": ["top-left"]}, ...],
 //     "output": {"directory": "out/cluster", "format": "png"}
 //   }
@@ -65,6 +66,12 @@ struct ClusterNodeConfig {
   std::vector<std::string> outputs;  ///< at least one; each output belongs to at most one node
 };
 
+/// The range of timing.frame_rate_hz: up to the fastest projectors (240 Hz).
+inline constexpr double kMinFrameRateHz = 0.01;
+inline constexpr double kMaxFrameRateHz = 240.0;
+/// The largest swap_group accepted (drivers offer a few; the driver's own limit is checked on the node).
+inline constexpr int kMaxSwapGroup = 64;
+
 struct ClusterConfig {
   std::string name;                  ///< the cluster's name (checked in the handshake)
   std::string source;                ///< the file it came from (messages)
@@ -77,7 +84,12 @@ struct ClusterConfig {
   std::filesystem::path viewports;   ///< resolved against the config's folder
   std::uint32_t heartbeat_ms = 250;         ///< each side sends a Heartbeat at least this often; 3× silent = gone
   std::uint32_t barrier_timeout_ms = 5000;  ///< a node not done with a frame within this is dropped from it
-  double frame_rate_hz = 30.0;              ///< the master starts frames no faster than this
+  /// The master starts frames no faster than this: the projectors' refresh
+  /// rate on a live dome (60, 120 Hz), [kMinFrameRateHz, kMaxFrameRateHz].
+  double frame_rate_hz = 30.0;
+  /// Every node's windows join this swap group (GLX_NV_swap_group, bound to
+  /// swap barrier 1: Quadro Sync); 0: none (render/window/swap_sync.h).
+  unsigned swap_group = 0;
   /// A node that lost its connection to the master tries to be welcomed again
   /// for this long, then exits (timing.reconnect_s, [0, 86400] s; 0: it exits at once).
   std::uint32_t reconnect_ms = kDefaultReconnectMs;

@@ -19,7 +19,7 @@ using core::ms_since;
 using std::chrono::milliseconds;
 
 FrameLoop::FrameLoop(boost::asio::io_context& io, Parts parts)
-    : p_(std::move(parts)), barrier_timer_(io), frame_timer_(io) {}
+    : p_(std::move(parts)), barrier_timer_(io), frame_timer_(io), pacer_(p_.play.fps) {}
 
 void FrameLoop::retry_after(Clock::duration delay) {
   frame_timer_.expires_after(delay);
@@ -35,6 +35,10 @@ void FrameLoop::on_node_left(std::uint32_t session) {
 void FrameLoop::stop() {
   barrier_timer_.cancel();
   frame_timer_.cancel();
+  if (p_.options.paced && p_.progress.presented > 0)
+    spdlog::info("master: pacing at {} Hz: {} frames presented, {} more than a period after they were due, the "
+                 "schedule moved {} time{}",
+                 p_.play.fps, p_.progress.presented, late_frames_, pacer_.slips(), pacer_.slips() == 1 ? "" : "s");
 }
 
 void FrameLoop::maybe_start() {
@@ -45,7 +49,7 @@ void FrameLoop::maybe_start() {
   const bool waited = ms_since(*waiting_since_) >= p_.options.wait_for_nodes_ms;
   if (ready == p_.options.config.nodes.size() || (waited && ready > 0)) {
     p_.progress.started = true;
-    show_started_ = Clock::now();
+    pacer_.start(Clock::now());
     spdlog::info("master: starting the show with {} of {} node{}{}", ready, p_.options.config.nodes.size(),
                  p_.options.config.nodes.size() == 1 ? "" : "s",
                  p_.options.frames ? cat(", ", p_.options.frames, " frames") : std::string(", until stopped"));
@@ -100,7 +104,7 @@ void FrameLoop::start_frame() {
                  ms_since(held_since_) / 1000.0);
     // Paced: the frames after the wait keep the frame rate instead of
     // catching up on the time spent waiting.
-    show_started_ += Clock::now() - held_since_;
+    pacer_.hold(Clock::now() - held_since_);
   }
   FrameState& state = p_.progress.in_flight;
   state = std::move(*held_frame_);
@@ -124,6 +128,7 @@ void FrameLoop::start_frame() {
 }
 
 void FrameLoop::on_render_done(const NodeSession& s, const RenderDone& done) {
+  note_presents(s, done);
   switch (p_.barrier.on_render_done(s.id, done.frame)) {
     case FrameBarrier::Report::counted:
       p_.statistics.rendered(s.name, done.render_ms, p_.barrier.complete() && p_.barrier.participant_count() > 1);
@@ -141,6 +146,21 @@ void FrameLoop::on_render_done(const NodeSession& s, const RenderDone& done) {
                     p_.barrier.frame());
       return;
   }
+}
+
+/// The node's late presents (a missed vblank), in the status and the log: a
+/// line at the first, then at most one a second per node with the total.
+void FrameLoop::note_presents(const NodeSession& s, const RenderDone& done) {
+  const std::uint64_t late = p_.statistics.presented(s.name, done.presents, done.late_presents, done.present_ms);
+  if (late == 0) return;
+  const auto now = Clock::now();
+  const auto logged = late_logged_.find(s.name);
+  if (logged != late_logged_.end() && now - logged->second < std::chrono::seconds(1)) return;
+  late_logged_[s.name] = now;
+  const NodeStatistics::Counts c = p_.statistics.of(s.name);
+  spdlog::warn("master: node '{}' presented late (a missed vblank): {} of its {} presents so far (last {:.1f} ms "
+               "from Present to swap)",
+               s.name, c.late_presents, c.presents, done.present_ms);
 }
 
 void FrameLoop::on_barrier_timeout() {
@@ -170,6 +190,10 @@ void FrameLoop::complete_frame() {
     p_.play.recorder->record(p_.progress.in_flight);
   }
   if (p_.options.feed) p_.options.feed->presented(frame);
+  if (p_.options.paced) {  // later than a period after it was due: the projectors showed the last frame twice
+    const Clock::duration after_due = Clock::now() - pacer_.due(p_.progress.presented);
+    if (after_due > pacer_.period()) ++late_frames_;
+  }
   const std::uint64_t presented = ++p_.progress.presented;
   if (p_.options.frames != 0 && presented >= p_.options.frames)
     return p_.stop(cat("show finished after ", presented, " frames"));
@@ -179,10 +203,17 @@ void FrameLoop::complete_frame() {
     boost::asio::post(frame_timer_.get_executor(), [this] { start_frame(); });
     return;
   }
-  // Pace: frame N starts no earlier than show start + N / rate.
-  const auto due = show_started_ + std::chrono::duration_cast<Clock::duration>(
-                                      std::chrono::duration<double>(static_cast<double>(presented) / p_.play.fps));
-  retry_after(std::max(due, Clock::now()) - Clock::now());
+  // Pace: frame N starts no earlier than show start + N / rate (frame_pacer.h).
+  const std::uint64_t slips = pacer_.slips();
+  const Clock::duration wait = pacer_.wait_before(presented, Clock::now());
+  const bool slipped = pacer_.slips() != slips;
+  if (slipped && (slips == 0 || presented >= last_slip_logged_ + static_cast<std::uint64_t>(p_.play.fps))) {
+    last_slip_logged_ = presented;  // the first slip, then at most one line a second
+    spdlog::info("master: frame {} is more than a period behind the {} Hz schedule (the slowest node, or the tables): "
+                 "the schedule moves on instead of bursting frames ({} time{} so far)",
+                 presented, p_.play.fps, pacer_.slips(), pacer_.slips() == 1 ? "" : "s");
+  }
+  retry_after(wait);
 }
 
 }  // namespace zenith::cluster

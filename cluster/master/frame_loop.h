@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -18,6 +19,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "cluster/master/frame_barrier.h"
+#include "cluster/master/frame_pacer.h"
 #include "cluster/master/master.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
@@ -69,6 +71,7 @@ class FrameLoop {
   bool next_frame(FrameState& next);
   void on_barrier_timeout();
   void complete_frame();
+  void note_presents(const NodeSession& session, const RenderDone& done);
   /// start_frame after `delay` unless the timer is cancelled (stop) or set again.
   void retry_after(Clock::duration delay);
 
@@ -79,7 +82,11 @@ class FrameLoop {
   std::optional<FrameState> held_frame_;
   Clock::time_point held_since_;
   bool held_logged_ = false;
-  Clock::time_point frame_started_, show_started_;
+  Clock::time_point frame_started_;
+  FramePacer pacer_;  ///< when each frame is due
+  std::uint64_t last_slip_logged_ = 0;
+  std::uint64_t late_frames_ = 0;  ///< presented more than a period after they were due (paced)
+  std::map<std::string, Clock::time_point> late_logged_;  ///< per node: the last log line of its late presents
   /// Since when frame 0 could start as far as the tables go (the wait for nodes counts from here).
   std::optional<Clock::time_point> waiting_since_;
   bool waiting_logged_ = false;

@@ -119,13 +119,15 @@ struct Master::Impl {
     const TakeoverState& t = *options.takeover;
     tables->adopt_takeover(t);
     const FrameState& last = *t.last_frame;
-    const Continuation c = continue_show(
-        t, show ? show->state_at(last.show_time_s, last.frame, play.render_flags)
-                : scene::default_show_frame(scene, last.frame, options.sun_step_deg, tables->tables().current(),
-                                            play.render_flags),
-        fps);
+    const FrameState expected =
+        show ? show->state_at(last.show_time_s, last.frame, play.render_flags)
+             : scene::default_show_frame(scene, last.frame, options.sun_step_deg, tables->tables().current(),
+                                         play.render_flags);
+    const Continuation c = continue_show(t, expected, fps);
     barrier.start_at(c.next_frame);
     desk->set_exposure(c.exposure);
+    // The operator's fade (or blackout) stays on the domes: the frame's own fade unless the show gave it.
+    if (last.fade != expected.fade) desk->hold_fade(last.fade, c.next_frame);
     if (clock) continue_clock(c, *clock);
   }
 
@@ -223,11 +225,22 @@ struct Master::Impl {
     });
   }
 
+  /// Each windowed node's late presents (a missed vblank), as of its last RenderDone.
+  void log_late_presents() const {
+    std::string line;
+    for (const ClusterNodeConfig& node : options.config.nodes) {
+      const NodeStatistics::Counts c = node_statistics.of(node.name);
+      if (c.presents > 0) line += cat(line.empty() ? "" : ", ", node.name, " ", c.late_presents, " of ", c.presents);
+    }
+    if (!line.empty()) spdlog::info("master: late presents per node (as of its last RenderDone): {}", line);
+  }
+
   void stop(const std::string& reason) {
     if (progress.stopping) return;
     progress.stopping = true;
     if (options.feed) options.feed->master_stopped();
     spdlog::info("master: stopping: {}", reason);
+    log_late_presents();
     preparer.stop();  // a precompute in progress ends at its next progress report
     if (tables) tables->stop();
     boost::system::error_code ec;

@@ -50,6 +50,9 @@ json node_status(const StatusSources& s, const ClusterNodeConfig& node) {
           {"drops", counts.drops},
           {"rejoins", counts.rejoins},
           {"joins", counts.joins},
+          {"presents", counts.presents},
+          {"late_presents", counts.late_presents},
+          {"last_present_ms", counts.last_present_ms ? json(*counts.last_present_ms) : json(nullptr)},
           {"tables_held", std::move(held)}};
 }
 

@@ -9,6 +9,24 @@ void NodeStatistics::rendered(const std::string& node, double render_ms, bool co
   if (completed_barrier) c.barrier_waits += 1;
 }
 
+std::uint64_t NodeStatistics::presented(const std::string& node, std::uint64_t presents, std::uint64_t late_presents,
+                                        double present_ms) {
+  PresentBase& b = present_bases_[node];
+  if (presents < b.reported_presents || late_presents < b.reported_late) {  // a new process: its counts start at 0
+    b.presents += b.reported_presents;
+    b.late += b.reported_late;
+    b.reported_presents = b.reported_late = 0;
+  }
+  const std::uint64_t new_late = late_presents - b.reported_late;
+  b.reported_presents = presents;
+  b.reported_late = late_presents;
+  Counts& c = counts_[node];
+  c.presents = b.presents + presents;
+  c.late_presents = b.late + late_presents;
+  if (presents > 0) c.last_present_ms = present_ms;
+  return new_late;
+}
+
 NodeStatistics::Counts NodeStatistics::of(const std::string& node) const {
   const auto it = counts_.find(node);
   return it == counts_.end() ? Counts{} : it->second;

@@ -21,6 +21,11 @@ class NodeStatistics {
     std::uint64_t drops = 0;               ///< frames it missed the barrier of (timeout)
     std::uint64_t rejoins = 0;             ///< late reports that brought it back
     std::uint64_t joins = 0;               ///< times it became ready (1 + rejoins after reconnecting)
+    // Its presents in windows (RenderDone's counts, render/window/present_clock.h),
+    // summed over the node's processes (a restarted node counts from 0 again).
+    std::uint64_t presents = 0;            ///< frames presented in windows (0: headless)
+    std::uint64_t late_presents = 0;       ///< of those, late: a missed vblank
+    std::optional<double> last_present_ms; ///< its latest present: Present's arrival to the completed swap
   };
 
   /// RenderDone for the frame in flight took `render_ms` on the node;
@@ -29,12 +34,22 @@ class NodeStatistics {
   void dropped(const std::string& node) { counts_[node].drops += 1; }
   void rejoined(const std::string& node) { counts_[node].rejoins += 1; }
   void joined(const std::string& node) { counts_[node].joins += 1; }
+  /// A RenderDone's present counts (the node process's totals so far);
+  /// returns how many late presents are new since the node's previous report.
+  std::uint64_t presented(const std::string& node, std::uint64_t presents, std::uint64_t late_presents,
+                          double present_ms);
 
   /// The counts of `node`; all zero for a node never seen.
   Counts of(const std::string& node) const;
 
  private:
+  /// The counts of a node's earlier processes, and its current process's last report.
+  struct PresentBase {
+    std::uint64_t presents = 0, late = 0;                 ///< summed over earlier processes
+    std::uint64_t reported_presents = 0, reported_late = 0;  ///< the current process's last report
+  };
   std::map<std::string, Counts> counts_;
+  std::map<std::string, PresentBase> present_bases_;
 };
 
 }  // namespace zenith::cluster

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cluster/master/fade_control.h"
 #include "core/json_reader.h"
 #include "core/strings.h"
 #include "scene/scene.h"
@@ -27,7 +28,8 @@ constexpr int kMaxDepth = 16;
 constexpr std::size_t kMaxBodyBytes = 64;
 
 const std::vector<std::string> kCommands = {"play", "pause", "toggle", "status", "quit", "seek",
-                                            "rate", "loop",  "exposure", "set",  "sun",  "clear", "preview"};
+                                            "rate", "loop",  "exposure", "set",  "sun",  "clear", "preview",
+                                            "fade", "blackout"};
 /// What `clear` ends.
 const std::vector<std::string> kClearable = {"sun", "exposure", "atmosphere"};
 /// The ranges of a sun given in the sky, as in scene files (docs/scenes.md).
@@ -120,6 +122,28 @@ oc::Set read_set(JsonReader& r) {
   return set;
 }
 
+/// `fade`: a level (default 1), a duration, maybe a colour.
+oc::Fade read_fade(JsonReader& r) {
+  oc::Fade fade;
+  fade.level = r.has("level") ? r.number("level", 0.0, scene::kMaxFadeLevel) : 1.0;
+  fade.seconds = r.number("seconds", 0.0, kMaxFadeSeconds, "s");
+  if (r.has("colour")) {
+    const json& c = r.raw("colour");
+    const auto bad = [&] {
+      r.fail("colour", cat("= ", brief(c), ": must be [r, g, b], each a number in [0, 1] (display-linear; [0, 0, 0] black)"));
+    };
+    if (!c.is_array() || c.size() != 3) bad();
+    std::array<double, 3> rgb{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!c[i].is_number()) bad();
+      rgb[i] = c[i].get<double>();
+      if (!(rgb[i] >= 0.0 && rgb[i] <= 1.0)) bad();
+    }
+    fade.colour = rgb;
+  }
+  return fade;
+}
+
 /// "1.5" for 1.5, as JSON writes numbers.
 std::string number_text(double x) { return json(x).dump(); }
 
@@ -145,6 +169,8 @@ OperatorCommand parse_operator_command(const json& request) {
   else if (name == "sun") command = read_sun(r);
   else if (name == "clear") command = read_clear(r);
   else if (name == "preview") command = oc::Preview{read_on_off(r, "preview")};
+  else if (name == "fade") command = read_fade(r);
+  else if (name == "blackout") command = oc::Blackout{r.has("blackout") ? read_on_off(r, "blackout") : true};
   else command = read_set(r);
   r.finish();
   return command;
@@ -181,7 +207,13 @@ json to_json(const OperatorCommand& command) {
           json j = {{"command", "clear"}, {"what", clear_target(c.what)}};
           if (c.what == oc::Clear::What::atmosphere) j["body"] = c.body;
           return j;
-        } else
+        } else if constexpr (std::is_same_v<T, oc::Fade>) {
+          json j = {{"command", "fade"}, {"level", c.level}, {"seconds", c.seconds}};
+          if (c.colour) j["colour"] = *c.colour;
+          return j;
+        } else if constexpr (std::is_same_v<T, oc::Blackout>)
+          return {{"command", "blackout"}, {"blackout", c.on}};
+        else
           return {{"command", "preview"}, {"preview", c.on}};
       },
       command);
@@ -211,6 +243,14 @@ std::string describe(const OperatorCommand& command) {
         } else if constexpr (std::is_same_v<T, oc::Clear>)
           return c.what == oc::Clear::What::atmosphere ? cat("clear atmosphere of ", c.body)
                                                        : cat("clear ", clear_target(c.what));
+        else if constexpr (std::is_same_v<T, oc::Fade>) {
+          std::string text = cat("fade to level ", number_text(c.level), " over ", number_text(c.seconds), " s");
+          if (c.colour)
+            text += cat(" toward [", number_text((*c.colour)[0]), ", ", number_text((*c.colour)[1]), ", ",
+                        number_text((*c.colour)[2]), "]");
+          return text;
+        } else if constexpr (std::is_same_v<T, oc::Blackout>)
+          return cat("blackout ", c.on ? "on" : "off");
         else
           return cat("preview ", c.on ? "on" : "off");
       },

@@ -20,7 +20,12 @@
 //   {"command": "clear", "what": "sun" | "exposure" | "atmosphere", "body": B}
 //       the operator's override ends: the show's (or scene's) own again; "body" with "atmosphere" only
 //   {"command": "preview", "preview": true|false}   also "on" / "off": the dome preview from node thumbnails
+//   {"command": "fade", "level": L, "seconds": S, "colour": [R, G, B]}
+//       every output toward colour (display-linear, each in [0, 1]; default: the colour it has, black at first)
+//       to level L in [0, 1] (default 1; 0: back to the picture) over S in [0, 3600] s (cluster/master/fade_control.h)
+//   {"command": "blackout", "blackout": true|false}  also "on" / "off"; default true: black (or the picture) at the next frame
 // Unknown keys are errors.
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -92,13 +97,25 @@ struct Preview {
   bool on = false;
   bool operator==(const Preview&) const = default;
 };
+/// Every output toward a colour (or back to the picture) over a time (docs/operator.md, "Fades").
+struct Fade {
+  double level = 1.0;                        ///< [0, 1]: 1 only the colour, 0 the picture
+  double seconds = 0.0;                      ///< [0, kMaxFadeSeconds]
+  std::optional<std::array<double, 3>> colour;  ///< display-linear RGB, each in [0, 1]; unset: keep the colour
+  bool operator==(const Fade&) const = default;
+};
+/// Black at the next frame on every node (on), or the picture again (off).
+struct Blackout {
+  bool on = true;
+  bool operator==(const Blackout&) const = default;
+};
 }  // namespace operator_command
 
 using OperatorCommand =
     std::variant<operator_command::Play, operator_command::Pause, operator_command::Toggle, operator_command::Status,
                  operator_command::Quit, operator_command::Seek, operator_command::Rate, operator_command::Loop,
                  operator_command::Exposure, operator_command::Set, operator_command::Sun, operator_command::Clear,
-                 operator_command::Preview>;
+                 operator_command::Preview, operator_command::Fade, operator_command::Blackout>;
 
 /// Reads one command object. Throws zenith::ConfigError (file "command", the
 /// key as a JSON pointer, the value and the allowed range) for anything else.

@@ -16,7 +16,8 @@ namespace zenith::cluster {
 
 using core::cat;
 
-OperatorDesk::OperatorDesk(Master master, const scene::Scene& scene) : m_(std::move(master)), sun_(scene) {}
+OperatorDesk::OperatorDesk(Master master, const scene::Scene& scene)
+    : m_(std::move(master)), sun_(scene), fade_(m_.fps) {}
 
 // ---------------------------------------------------------------------------- commands
 
@@ -68,6 +69,10 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
       reply = apply_clear(*clear);
     } else if (const auto* on = std::get_if<oc::Preview>(&command)) {
       reply = apply_preview(*on);
+    } else if (const auto* fade = std::get_if<oc::Fade>(&command)) {
+      reply = apply_fade(*fade);
+    } else if (const auto* blackout = std::get_if<oc::Blackout>(&command)) {
+      reply = apply_blackout(*blackout);
     } else if (!m_.clock) {
       if (!std::holds_alternative<oc::Status>(command))
         throw std::invalid_argument(cat(describe(command), ": no show is playing (the default show has no clock: start "
@@ -123,11 +128,47 @@ std::string OperatorDesk::apply_clear(const operator_command::Clear& clear) {
   return m_.show ? "the show's sun track from the next frame on" : "the default show's sun from the next frame on";
 }
 
+std::uint64_t OperatorDesk::next_frame() const {
+  return m_.progress.started ? m_.progress.in_flight.frame + 1 : m_.barrier.frame();
+}
+
+/// An operator's `fade` (docs/operator.md, "Fades"): from the next frame on, on every node.
+std::string OperatorDesk::apply_fade(const operator_command::Fade& fade) {
+  if (m_.feed) throw std::invalid_argument(cat(describe(fade), ": the frames come from an offline render's feed"));
+  const std::uint64_t frame = next_frame();
+  std::optional<glm::dvec3> colour;
+  if (fade.colour) colour = glm::dvec3((*fade.colour)[0], (*fade.colour)[1], (*fade.colour)[2]);
+  fade_.start(frame, fade.level, colour, fade.seconds);
+  const glm::dvec3& c = fade_.target_colour();
+  const std::string toward = fade.level == 0.0 ? std::string("the picture")
+                                               : fmt::format("level {} of [{}, {}, {}]", fade.level, c.x, c.y, c.z);
+  if (fade_.frames() == 0) return fmt::format("fade to {} at frame {}", toward, frame);
+  return fmt::format("fade to {} over {} frames ({} s at {} Hz), frames {} to {}", toward, fade_.frames(),
+                     fade.seconds, m_.fps, frame, frame + fade_.frames() - 1);
+}
+
+/// An operator's `blackout`: black (or the picture again) at the next frame on every node.
+std::string OperatorDesk::apply_blackout(const operator_command::Blackout& blackout) {
+  if (m_.feed) throw std::invalid_argument(cat(describe(blackout), ": the frames come from an offline render's feed"));
+  const std::uint64_t frame = next_frame();
+  if (blackout.on) {
+    fade_.start(frame, 1.0, glm::dvec3(0.0), 0.0);
+    return fmt::format("blackout from frame {} on every node", frame);
+  }
+  fade_.start(frame, 0.0, std::nullopt, 0.0);
+  return fmt::format("blackout off: the picture from frame {} on", frame);
+}
+
+void OperatorDesk::hold_fade(const scene::FadeState& fade, std::uint64_t first_frame) {
+  fade_.start(first_frame, fade.level, fade.colour, 0.0);
+}
+
 // ---------------------------------------------------------------------------- the frames
 
 void OperatorDesk::shape(FrameState& next) const {
   if (exposure_) next.exposure = *exposure_;
   sun_.apply(next);
+  fade_.apply(next.fade, next.frame);
 }
 
 void OperatorDesk::add_thumbnail(const std::string& node, const Thumbnail& thumbnail) {
@@ -145,13 +186,22 @@ std::uint64_t OperatorDesk::preview_interval_frames() const {
 nlohmann::json OperatorDesk::status() const {
   const FrameProgress& p = m_.progress;
   const TableSchedule& t = m_.tables;
-  return master_status(StatusSources{m_.config, m_.sessions, m_.barrier, t.tables(), m_.preparing(), m_.statistics,
+  nlohmann::json status = master_status(StatusSources{m_.config, m_.sessions, m_.barrier, t.tables(), m_.preparing(), m_.statistics,
                                      t.edits(), m_.show, m_.clock, p.started, p.stopping,
                                      p.started ? &p.in_flight : nullptr, p.presented, m_.fps, exposure_,
                                      t.pending_change(), t.last_error(),
                                      p.started ? std::optional(sun_.angles_of(p.in_flight)) : std::nullopt,
                                      sun_.angles(), m_.show ? &t.overrides() : nullptr, t.show_versions(),
                                      preview_ ? &*preview_ : nullptr, preview_on_});
+  // The latest frame's fade and the operator's (docs/operator.md, "Status").
+  const scene::FadeState shown = p.started ? p.in_flight.fade : scene::FadeState{};
+  const std::uint64_t frame = p.started ? p.in_flight.frame : 0;
+  status["fade"] = {{"level", shown.level},
+                    {"colour", {shown.colour.x, shown.colour.y, shown.colour.z}},
+                    {"operator", fade_.active(frame)},
+                    {"target_level", fade_.target_level()},
+                    {"frames_left", fade_.frames_left(frame)}};
+  return status;
 }
 
 std::optional<std::string> OperatorDesk::preview_png() const {
@@ -177,7 +227,8 @@ void OperatorDesk::start_console(boost::asio::io_context& io, const OperatorCons
     osc_.emplace(io, OscReceiver::Options{console.osc_host, *console.osc_port, console.osc_allow}, command);
     osc_->start();
     spdlog::info("master: OSC on udp {}:{} (/zenith/play, /zenith/pause, /zenith/seek, /zenith/rate, /zenith/exposure, "
-                 "/zenith/sun/elevation, /zenith/sun/azimuth, /zenith/atmosphere/BODY/PARAMETER; docs/operator.md)",
+                 "/zenith/sun/elevation, /zenith/sun/azimuth, /zenith/fade, /zenith/blackout, /zenith/atmosphere/BODY/PARAMETER; "
+                 "docs/operator.md)",
                  console.osc_host, osc_->port());
   }
 }

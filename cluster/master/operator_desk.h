@@ -20,6 +20,7 @@
 
 #include "cluster/link/cluster_config.h"
 #include "cluster/master/dome_preview.h"
+#include "cluster/master/fade_control.h"
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
@@ -84,6 +85,8 @@ class OperatorDesk {
   void shape(FrameState& next) const;
   /// A standby taking over keeps the active master's exposure override.
   void set_exposure(std::optional<double> exposure) { exposure_ = exposure; }
+  /// A standby taking over keeps the fade the nodes show (from the last FrameState it followed).
+  void hold_fade(const scene::FadeState& fade, std::uint64_t first_frame);
   /// Whether the frame `frame` asks the nodes for thumbnails (the preview is on, every interval_frames()).
   bool wants_preview(std::uint64_t frame) const { return preview_on_ && frame % preview_interval_frames() == 0; }
   /// A node's thumbnail for the dome preview; ignored while the preview is off.
@@ -111,10 +114,15 @@ class OperatorDesk {
   std::string apply_sun(const operator_command::Sun& sun);
   std::string apply_preview(const operator_command::Preview& on);
   std::string apply_clear(const operator_command::Clear& clear);
+  std::string apply_fade(const operator_command::Fade& fade);
+  std::string apply_blackout(const operator_command::Blackout& blackout);
+  /// The first frame a command changes: the next one to start.
+  std::uint64_t next_frame() const;
 
   Master m_;
   std::optional<double> exposure_;  ///< the operator's exposure, replacing the show's (or scene's)
   SunOverride sun_;                 ///< the operator's sun, replacing the show's until cleared
+  FadeControl fade_;                ///< the operator's fade and blackout, on every output
   /// The dome preview from the nodes' thumbnails (with the HTTP console); asked for only while on.
   std::optional<DomePreview> preview_;
   bool preview_on_ = false;

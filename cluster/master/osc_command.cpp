@@ -56,6 +56,30 @@ json value_of(const OscMessage& m) {
       m.arguments[0]);
 }
 
+/// Argument `i` as a number (int, float, double).
+json number_at(const OscMessage& m, std::size_t i, const char* what) {
+  return std::visit(
+      [&](const auto& v) -> json {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, std::int32_t> || std::is_same_v<T, std::int64_t> || std::is_same_v<T, double>)
+          return v;
+        else if constexpr (std::is_same_v<T, float>) return float_value(v);
+        else refuse(m, cat("argument ", i + 1, " (", what, ") must be a number, got ", describe(OscArgument(v))));
+      },
+      m.arguments[i]);
+}
+
+/// `/zenith/fade LEVEL SECONDS [R G B]`: to LEVEL (0 the picture, 1 the colour) over SECONDS, toward R G B.
+json fade_request(const OscMessage& m) {
+  const std::size_t n = m.arguments.size();
+  if (n != 2 && n != 5)
+    refuse(m, cat("takes LEVEL SECONDS or LEVEL SECONDS R G B (level 0 the picture, 1 only the colour; colour "
+                  "display-linear, each in [0, 1]), got ", n, " argument", n == 1 ? "" : "s"));
+  json request = {{"command", "fade"}, {"level", number_at(m, 0, "level")}, {"seconds", number_at(m, 1, "seconds")}};
+  if (n == 5) request["colour"] = {number_at(m, 2, "red"), number_at(m, 3, "green"), number_at(m, 4, "blue")};
+  return request;
+}
+
 }  // namespace
 
 OperatorCommand osc_command(const OscMessage& m) {
@@ -78,6 +102,12 @@ OperatorCommand osc_command(const OscMessage& m) {
     json on = value_of(m);
     if (on.is_number_integer()) on = on.get<std::int64_t>() != 0;
     request = {{"command", "preview"}, {"preview", on}};
+  } else if (name == "fade") {
+    request = fade_request(m);
+  } else if (name == "blackout") {  // no argument: on; 1 / 0, T / F, "on" / "off"
+    json on = m.arguments.empty() ? json(true) : value_of(m);
+    if (on.is_number_integer()) on = on.get<std::int64_t>() != 0;
+    request = {{"command", "blackout"}, {"blackout", on}};
   } else if (name == "sun/elevation") {
     request = {{"command", "sun"}, {"elevation_deg", value_of(m)}};
   } else if (name == "sun/azimuth") {
@@ -94,7 +124,7 @@ OperatorCommand osc_command(const OscMessage& m) {
     request = {{"command", "set"}, {"body", rest.substr(0, slash)}, {"pointer", rest.substr(slash)}, {"value", value_of(m)}};
   } else {
     refuse(m, "unknown address (known: /zenith/play, /zenith/pause, /zenith/toggle, /zenith/seek, /zenith/rate, "
-              "/zenith/exposure, /zenith/loop, /zenith/preview, /zenith/sun/elevation, /zenith/sun/azimuth, /zenith/clear/sun, "
+              "/zenith/exposure, /zenith/loop, /zenith/preview, /zenith/fade, /zenith/blackout, /zenith/sun/elevation, /zenith/sun/azimuth, /zenith/clear/sun, "
               "/zenith/clear/exposure, /zenith/clear/atmosphere/<body>, /zenith/atmosphere/<body>/<parameter>)");
   }
   return parse_operator_command(request);

@@ -203,12 +203,11 @@ struct Node::Impl {
 
   /// Render thread → networking thread: the frame's thumbnails (when the
   /// master asked for them), then its RenderDone.
-  void report_render_done(std::uint64_t frame, double render_ms, std::uint64_t of_session,
-                          std::vector<Thumbnail> thumbnails) {
-    asio::post(io, [this, frame, render_ms, of_session, thumbnails = std::move(thumbnails)]() mutable {
+  void report_render_done(const RenderDone& done, std::uint64_t of_session, std::vector<Thumbnail> thumbnails) {
+    asio::post(io, [this, done, of_session, thumbnails = std::move(thumbnails)]() mutable {
       if (!connected || of_session != session) return;
       for (Thumbnail& t : thumbnails) link.send(std::move(t));
-      link.send(RenderDone{frame, render_ms});
+      link.send(done);
     });
   }
   void report_failure(const std::string& what) {
@@ -232,9 +231,8 @@ struct Node::Impl {
     std::filesystem::create_directories(node_directory);
     worker.emplace(RenderWorker::Setup{options, base_scene, viewports, outputs, atmospheres, table_options, node_directory},
                    RenderWorker::Events{
-                       [this](std::uint64_t frame, double render_ms, std::uint64_t of_session,
-                              std::vector<Thumbnail> thumbnails) {
-                         report_render_done(frame, render_ms, of_session, std::move(thumbnails));
+                       [this](const RenderDone& done, std::uint64_t of_session, std::vector<Thumbnail> thumbnails) {
+                         report_render_done(done, of_session, std::move(thumbnails));
                        },
                        [this](const Digest& hash, std::uint64_t of_session) {
                          asio::post(io, [this, hash, of_session] { send_table_ready(hash, of_session); });

@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "image/display_fade.h"
 #include "image/tone_mapping.h"
 #include "warp/blending.h"
 
@@ -28,31 +29,37 @@ std::filesystem::path OutputWriter::frame_path(const warp::OutputConfig& o, std:
   return node_directory_ / o.name / fmt::format("frame-{:06d}.{}", frame, format_);
 }
 
-std::vector<float> OutputWriter::display_image(std::size_t viewport_index, std::vector<float> rgb) const {
+std::vector<float> OutputWriter::display_image(std::size_t viewport_index, std::vector<float> rgb,
+                                               const scene::FadeState& fade) const {
   const warp::OutputConfig& o = viewports_.outputs[viewport_index];
   for (float& v : rgb) v = image::tone_map(v, image::ToneMapping::exponential);
+  image::apply_fade(rgb, fade.level, {fade.colour.x, fade.colour.y, fade.colour.z});
   if (has_output_stage(o))
     warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports_, viewport_index), o.black_level);
   return rgb;
 }
 
 void OutputWriter::write(std::size_t viewport_index, std::uint64_t frame, std::vector<float> rgb,
-                         const image::ImageAttributes& attributes) {
+                         image::ImageAttributes attributes, const scene::FadeState& fade) {
   const warp::OutputConfig& o = viewports_.outputs[viewport_index];
   const std::filesystem::path final_path = frame_path(o, frame);
   std::filesystem::path partial = final_path;
   partial += ".partial";
   std::filesystem::create_directories(final_path.parent_path());
   const bool blended = has_output_stage(o);
+  const bool faded = fade.level > 0.0;
+  if (faded)
+    attributes.emplace_back("zenith:fade", fmt::format("level {} colour {} {} {}", fade.level, fade.colour.x,
+                                                       fade.colour.y, fade.colour.z));
   if (format_ == "exr") {
     if (blended)
       warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports_, viewport_index), o.black_level);
     image::write_exr(partial, o.width_px, o.height_px, rgb, image::ExrPixelType::half, attributes);
-  } else if (!blended) {
+  } else if (!blended && !faded) {
     image::write_png(partial, o.width_px, o.height_px, rgb, image::ToneMapping::exponential, attributes);
   } else {
     // As `zenith render --viewport`: tone map, then the output stage, then sRGB (docs/viewports.md).
-    image::write_png(partial, o.width_px, o.height_px, display_image(viewport_index, std::move(rgb)),
+    image::write_png(partial, o.width_px, o.height_px, display_image(viewport_index, std::move(rgb), fade),
                      image::ToneMapping::clamp, attributes);
   }
   partials_.emplace_back(partial, final_path);
@@ -68,7 +75,11 @@ bool OutputWriter::present(std::uint64_t frame) {
   rendered_.reset();
   std::ofstream log(node_directory_ / "presented.log", std::ios::app);
   log << "frame " << frame << " state " << rendered.state_digest << " tables " << rendered.tables << " show_time_s "
-      << fmt::format("{}", rendered.show_time_s) << "\n";
+      << fmt::format("{}", rendered.show_time_s);
+  if (rendered.fade.level > 0.0)
+    log << fmt::format(" fade {} {},{},{}", rendered.fade.level, rendered.fade.colour.x, rendered.fade.colour.y,
+                       rendered.fade.colour.z);
+  log << "\n";
   return true;
 }
 

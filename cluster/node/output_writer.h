@@ -14,6 +14,7 @@
 
 #include "cluster/node/node.h"
 #include "image/image_writer.h"
+#include "scene/frame_description.h"
 #include "warp/viewport_config.h"
 
 namespace zenith::cluster {
@@ -34,6 +35,7 @@ class OutputWriter {
     std::string state_digest;  ///< state_digest() of its FrameState
     std::string tables;        ///< "BODY=HASH16,...", "-" for none
     double show_time_s = 0.0;
+    scene::FadeState fade;     ///< logged as "fade LEVEL R,G,B" while not the picture alone
   };
 
   /// `node_directory` holds presented.log; frames go under it (per_node) or
@@ -44,12 +46,17 @@ class OutputWriter {
   /// Where output `o` of `frame` ends up once presented.
   std::filesystem::path frame_path(const warp::OutputConfig& o, std::uint64_t frame) const;
   /// What the projector of output `viewport_index` shows for radiance `rgb`:
-  /// tone mapped, then the output stage (blend, black level; docs/viewports.md).
-  std::vector<float> display_image(std::size_t viewport_index, std::vector<float> rgb) const;
+  /// tone mapped, faded (image/display_fade.h), then the output stage (blend,
+  /// black level; docs/viewports.md).
+  std::vector<float> display_image(std::size_t viewport_index, std::vector<float> rgb,
+                                   const scene::FadeState& fade = {}) const;
 
-  /// Writes output `viewport_index`'s radiance `rgb` of `frame` to its partial file.
+  /// Writes output `viewport_index`'s radiance `rgb` of `frame` to its partial
+  /// file. A PNG shows the frame's `fade` as the projector does; an EXR keeps
+  /// the radiance (scene-referred: a fade is a display operation) and names
+  /// the fade in its zenith:fade attribute.
   void write(std::size_t viewport_index, std::uint64_t frame, std::vector<float> rgb,
-             const image::ImageAttributes& attributes);
+             image::ImageAttributes attributes, const scene::FadeState& fade = {});
   /// Every output of the frame is written.
   void finish_frame(RenderedFrame rendered);
   /// Present `frame`: renames its partial files into place and appends its

@@ -103,6 +103,12 @@ void RenderWorker::run() {
 }
 
 void RenderWorker::release_gl() {
+  if (windows_) {
+    const render::window::PresentClock& c = windows_->clock();
+    spdlog::info("node '{}': presented {} frame{} in its windows, {} late (a missed vblank); Present to swap at most "
+                 "{:.1f} ms",
+                 setup_.options.node_name, c.presented(), c.presented() == 1 ? "" : "s", c.late(), c.worst_ms());
+  }
   if (windows_ || context_) make_current();
   renderer_.reset();
   frames_.clear();
@@ -130,6 +136,15 @@ void RenderWorker::ensure_context() {
     windows_.emplace(shown, cat("zenith node ", options.node_name));
     spdlog::info("node '{}': rendering on {} into {} window{}", options.node_name, windows_->primary().renderer(),
                  windows_->window_count(), windows_->window_count() == 1 ? "" : "s");
+    // Pacing (docs/cluster.md, "Pacing and swap groups"): a swap group where the driver has one.
+    if (options.config.swap_group > 0)
+      spdlog::info("node '{}': {}", options.node_name, windows_->join_swap_group(options.config.swap_group));
+    spdlog::info("node '{}': late presents counted from {}", options.node_name,
+                 windows_->counts_vblanks() ? "the display's vblank counter (GLX_OML_sync_control)"
+                 : windows_->clock().refresh_hz() > 0.0
+                     ? fmt::format("the wall clock against the {} Hz refresh (no GLX_OML_sync_control)",
+                                   windows_->clock().refresh_hz())
+                     : std::string("nothing: no vsync or no refresh rate known; none is counted late"));
   } else {
     context_.emplace();
     spdlog::info("node '{}': rendering on {}", options.node_name, context_->renderer());
@@ -202,6 +217,8 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
     const std::size_t i = setup_.outputs[k];
     const warp::OutputConfig& o = setup_.viewports.outputs[i];
     OutputFrame& f = frames_[k];
+    // The operator's fade, part of the frame's state: every node shows it at this frame.
+    f.stage.fade = {state.fade.level, {state.fade.colour.x, state.fade.colour.y, state.fade.colour.z}};
     const bool radiance_read = thumbnail_edge_px > 0 || setup_.options.write_frames;
     if ((radiance_read || !windows_) && f.radiance.id() == 0)  // allocated on first use (an 8K master: 1 GiB)
       f.radiance = render::gl::Texture::create_2d(render::gl::TextureFormat::rgba32f, o.width_px, o.height_px);
@@ -223,15 +240,21 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
           {"zenith:exposure", fmt::format("{}", scene.camera.exposure)},
           {"zenith:viewport", fmt::format("{}#{}", setup_.viewports.source, o.name)},
       };
-      writer_.write(i, state.frame, read_back_radiance(k), attributes);
+      writer_.write(i, state.frame, read_back_radiance(k), attributes, state.fade);
     }
   }
   // RenderDone means ready to present: the GPU has finished the frame.
   glFinish();
-  writer_.finish_frame({state.frame, scene::frame_digest(state), tables, state.show_time_s});
+  writer_.finish_frame({state.frame, scene::frame_digest(state), tables, state.show_time_s, state.fade});
   const double render_ms = ms_since(t0);
   spdlog::debug("node '{}': frame {} rendered in {:.1f} ms", setup_.options.node_name, state.frame, render_ms);
-  events_.rendered(state.frame, render_ms, session, std::move(thumbnails));
+  RenderDone done{state.frame, render_ms};
+  if (windows_) {  // how the presents so far went (render/window/present_clock.h)
+    done.presents = windows_->clock().presented();
+    done.late_presents = windows_->clock().late();
+    done.present_ms = windows_->clock().last_ms();
+  }
+  events_.rendered(done, session, std::move(thumbnails));
 }
 
 void RenderWorker::report_window_closed() {

@@ -43,9 +43,9 @@ class RenderWorker {
  public:
   /// The worker's answers, called on the render thread.
   struct Events {
-    /// RenderDone, after the frame's thumbnails when they were asked for (else none).
-    std::function<void(std::uint64_t frame, double render_ms, std::uint64_t session, std::vector<Thumbnail> thumbnails)>
-        rendered;
+    /// RenderDone (with the windows' present counts so far), after the frame's
+    /// thumbnails when they were asked for (else none).
+    std::function<void(const RenderDone& done, std::uint64_t session, std::vector<Thumbnail> thumbnails)> rendered;
     std::function<void(const Digest& table_hash, std::uint64_t session)> tables_ready;           ///< TableReady
     std::function<void(const std::string& what)> failed;
     std::function<void()> window_closed;  ///< the operator closed the node's window

@@ -21,7 +21,7 @@ constexpr std::size_t kWelcomeMax = 4 + kDigestBytes + 8 + 4 + 4;
 constexpr std::size_t kRejectMax = 2 + kStringMax(kMaxReasonBytes);
 constexpr std::size_t kAtmosphereRefMax = kStringMax(kMaxNameBytes) + kDigestBytes + 8;
 constexpr std::size_t kFrameStateMax = 8 + 8 + 3 * 8 + 4 * 8 + 8 + 3 * 8 + 8 + 1 + kMaxWavelengths * 8 + 1 +
-                                       kMaxAtmospheres * kAtmosphereRefMax + 4;
+                                       kMaxAtmospheres * kAtmosphereRefMax + 4 + 8 + 3 * 8;
 constexpr std::size_t kTableAnnounceMax = kDigestBytes + 8 + 4 + 4 + kDigestBytes;
 constexpr std::size_t kTableChunkMax = kDigestBytes + 4 + 4 + kMaxTableChunkBytes;
 constexpr std::size_t kGoodbyeMax = kStringMax(kMaxReasonBytes);
@@ -30,7 +30,7 @@ constexpr std::size_t kPreviewRequestMax = 8 + 2;
 constexpr std::size_t kThumbnailMax =
     8 + kStringMax(kMaxNameBytes) + 2 + 2 + 4 + std::size_t{kMaxThumbnailEdgePx} * kMaxThumbnailEdgePx * 3;
 static_assert(kThumbnailMax == 12370);
-static_assert(kFrameStateMax == 1478);
+static_assert(kFrameStateMax == 1510);
 static_assert(kTableChunkMax == 1048616);
 
 // ---- validation shared by the encoder (std::invalid_argument) and the decoder (ProtocolError) ----
@@ -77,9 +77,17 @@ void validate(const FrameState& m, const Check& check) {
                                                      " entries, at most " + std::to_string(kMaxAtmospheres));
   for (const auto& a : m.atmospheres) check(!a.body_name.empty(), "FrameState.atmospheres[].body_name: empty");
   check((m.render_flags & ~kKnownRenderFlags) == 0, "FrameState.render_flags: unknown bits set");
+  finite(m.fade.level, "fade_level");
+  for (int i = 0; i < 3; ++i) finite(m.fade.colour[i], "fade_colour");
+  check(m.fade.level >= 0.0 && m.fade.level <= 1.0, "FrameState.fade_level: must be in [0, 1]");
+  for (int i = 0; i < 3; ++i)
+    check(m.fade.colour[i] >= 0.0 && m.fade.colour[i] <= 1.0, "FrameState.fade_colour: each component must be in [0, 1]");
 }
 void validate(const RenderDone& m, const Check& check) {
   check(std::isfinite(m.render_ms) && m.render_ms >= 0.0, "RenderDone.render_ms: not finite or < 0");
+  check(m.late_presents <= m.presents, "RenderDone.late_presents: " + std::to_string(m.late_presents) +
+                                           ", more than presents = " + std::to_string(m.presents));
+  check(std::isfinite(m.present_ms) && m.present_ms >= 0.0, "RenderDone.present_ms: not finite or < 0");
 }
 void validate(const TableAnnounce& m, const Check& check) {
   check(m.total_bytes >= 1 && m.total_bytes <= kMaxTableTotalBytes,
@@ -163,10 +171,15 @@ void write(ByteWriter& w, const FrameState& m) {
     w.u64(a.effective_from_frame);
   }
   w.u32(m.render_flags);
+  w.f64(m.fade.level);
+  for (int i = 0; i < 3; ++i) w.f64(m.fade.colour[i]);
 }
 void write(ByteWriter& w, const RenderDone& m) {
   w.u64(m.frame);
   w.f64(m.render_ms);
+  w.u64(m.presents);
+  w.u64(m.late_presents);
+  w.f64(m.present_ms);
 }
 void write(ByteWriter& w, const Present& m) { w.u64(m.frame); }
 void write(ByteWriter& w, const PreviewRequest& m) {
@@ -258,6 +271,8 @@ FrameState read_frame_state(ByteReader& r) {
     m.atmospheres.push_back(std::move(a));
   }
   m.render_flags = r.u32("FrameState.render_flags");
+  m.fade.level = r.f64("FrameState.fade_level");
+  for (int i = 0; i < 3; ++i) m.fade.colour[i] = r.f64("FrameState.fade_colour");
   return m;
 }
 TableAnnounce read_table_announce(ByteReader& r) {
@@ -314,6 +329,9 @@ Message read(MessageType type, ByteReader& r) {
       RenderDone m;
       m.frame = r.u64("RenderDone.frame");
       m.render_ms = r.f64("RenderDone.render_ms");
+      m.presents = r.u64("RenderDone.presents");
+      m.late_presents = r.u64("RenderDone.late_presents");
+      m.present_ms = r.f64("RenderDone.present_ms");
       return m;
     }
     case MessageType::present: return Present{r.u64("Present.frame")};
@@ -409,7 +427,7 @@ std::optional<std::size_t> max_payload_bytes(std::uint16_t type_value) {
     case MessageType::welcome: return kWelcomeMax;
     case MessageType::reject: return kRejectMax;
     case MessageType::frame_state: return kFrameStateMax;
-    case MessageType::render_done: return 16;
+    case MessageType::render_done: return 40;
     case MessageType::present: return 8;
     case MessageType::preview_request: return kPreviewRequestMax;
     case MessageType::thumbnail: return kThumbnailMax;

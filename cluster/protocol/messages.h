@@ -33,7 +33,7 @@
 namespace zenith::cluster {
 
 /// Bumped on any change to the header or to any payload layout (docs/protocol.md, "Versioning").
-inline constexpr std::uint16_t kProtocolVersion = 3;
+inline constexpr std::uint16_t kProtocolVersion = 4;
 inline constexpr std::array<std::uint8_t, 4> kMagic = {'Z', 'N', 'T', 'H'};
 inline constexpr std::size_t kHeaderBytes = 20;
 
@@ -158,9 +158,14 @@ using AtmosphereTableRef = scene::AtmosphereTableRef;
 /// camera orientation w, x, y, z). Every f64 must be finite.
 using FrameState = scene::FrameDescription;
 
+/// A node's frame is ready to present; with it, how its presents went so far
+/// (render/window/present_clock.h): the console's late frames per node.
 struct RenderDone {
   std::uint64_t frame = 0;
   double render_ms = 0.0;  ///< finite, ≥ 0
+  std::uint64_t presents = 0;       ///< frames this node's process presented in windows so far (0 headless)
+  std::uint64_t late_presents = 0;  ///< of those, presented late (a missed vblank); ≤ presents
+  double present_ms = 0.0;          ///< its last present: Present's arrival to the completed swap (ms, ≥ 0; 0 headless)
   bool operator==(const RenderDone&) const = default;
 };
 struct Present {

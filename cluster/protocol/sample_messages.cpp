@@ -29,6 +29,7 @@ FrameState sample_frame_state(std::size_t wavelengths, std::size_t atmospheres, 
     f.atmospheres.push_back({name, pattern<32>(static_cast<std::uint8_t>(40 + i)), 100 + i});
   }
   f.render_flags = kRenderSunDisc | kRenderLimbDarkening | kRenderMultipleScattering;
+  f.fade = {0.375, glm::dvec3(1.0, 0.25, 0.0)};
   return f;
 }
 
@@ -42,7 +43,7 @@ std::vector<Message> sample_messages() {
   out.push_back(Welcome{3, pattern<32>(4), 1000, 250, 2000});
   out.push_back(Reject{RejectReason::authentication_failed, "wrong shared secret"});
   out.push_back(sample_frame_state(3, 2, 0));
-  out.push_back(RenderDone{123456789012ull, 8.25});
+  out.push_back(RenderDone{123456789012ull, 8.25, 5000, 3, 16.5});
   out.push_back(Present{123456789012ull});
   out.push_back(TableAnnounce{pattern<32>(5), 10000, 4096, 3, pattern<32>(6)});
   TableChunk chunk{pattern<32>(5), 2, {}};
@@ -78,7 +79,7 @@ std::vector<Message> max_size_messages() {
   f.frame = ~std::uint64_t{0};
   f.render_flags = kKnownRenderFlags;
   out.push_back(f);
-  out.push_back(RenderDone{~std::uint64_t{0}, 1e300});
+  out.push_back(RenderDone{~std::uint64_t{0}, 1e300, ~std::uint64_t{0}, ~std::uint64_t{0}, 1e300});
   out.push_back(Present{~std::uint64_t{0}});
   out.push_back(TableAnnounce{pattern<32>(15), kMaxTableTotalBytes, static_cast<std::uint32_t>(kMaxTableChunkBytes),
                               static_cast<std::uint32_t>(kMaxTableTotalBytes / kMaxTableChunkBytes), pattern<32>(16)});

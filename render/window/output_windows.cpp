@@ -10,6 +10,7 @@
 
 #include "render/gl/gl_error.h"
 #include "render/window/frame_presenter.h"
+#include "render/window/swap_sync.h"
 
 namespace zenith::render::window {
 namespace {
@@ -123,6 +124,16 @@ OutputWindows::OutputWindows(const std::vector<ShownOutput>& outputs, const std:
   // Late frames can only be told with vsync on (the first window's) and a known refresh rate.
   const bool first_vsync = !plans.front().config || plans.front().config->vsync;
   clock_ = PresentClock(first_vsync ? windows_.front().context.refresh_hz() : 0.0);
+  sync_control_ = first_vsync && swap_sync_support(windows_.front().context).sync_control;
+}
+
+std::string OutputWindows::join_swap_group(unsigned group) {
+  std::string line;
+  for (std::size_t i = 0; i < windows_.size(); ++i) {  // the barrier once: it binds the group, not a window
+    line = window::join_swap_group(windows_[i].context, group, i == 0);
+    if (!line.starts_with("joined")) break;
+  }
+  return line;
 }
 
 OutputWindows::~OutputWindows() {
@@ -180,6 +191,8 @@ void OutputWindows::draw(Window& w, std::span<const gl::Texture* const> displays
 void OutputWindows::present(std::span<const gl::Texture* const> displays, PresentClock::Clock::time_point asked) {
   // The textures were written in the first window's context: the other
   // contexts wait (on the GPU) for those commands before reading them.
+  const std::optional<std::int64_t> vblank_before =
+      sync_control_ ? vblank_count(windows_.front().context) : std::nullopt;
   GLsync written = nullptr;
   if (windows_.size() > 1) written = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   glFlush();
@@ -195,7 +208,11 @@ void OutputWindows::present(std::span<const gl::Texture* const> displays, Presen
   // With vsync the swap completes at the vertical blank: glFinish waits for it
   // (drivers queue the swap and return), so the clock sees when it showed.
   glFinish();
-  clock_.record(asked, PresentClock::Clock::now());
+  const PresentClock::Clock::time_point done = PresentClock::Clock::now();
+  std::optional<std::int64_t> vblanks;
+  if (vblank_before)
+    if (const std::optional<std::int64_t> after = vblank_count(windows_.front().context)) vblanks = *after - *vblank_before;
+  clock_.record(asked, done, vblanks);
   if (written != nullptr) glDeleteSync(written);
 }
 

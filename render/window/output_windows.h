@@ -78,6 +78,13 @@ class OutputWindows {
   FramebufferRect output_rect(std::size_t output) const;
   /// The presents so far and how many were late (the late-frame hook).
   const PresentClock& clock() const { return clock_; }
+  /// Joins every window to swap group `group` (≥ 1; GLX_NV_swap_group) and
+  /// binds it to swap barrier 1 (render/window/swap_sync.h). Returns the log
+  /// line saying what was done, or why not; never throws.
+  std::string join_swap_group(unsigned group);
+  /// Whether late presents are counted from the display's vblank counter
+  /// (GLX_OML_sync_control) rather than the wall clock.
+  bool counts_vblanks() const { return sync_control_; }
 
  private:
   struct Window {
@@ -98,6 +105,7 @@ class OutputWindows {
   std::vector<Placement> placements_;  ///< per output
   int combined_width_ = 0, combined_height_ = 0;  ///< the default window's picture
   PresentClock clock_;
+  bool sync_control_ = false;  ///< GLX_OML_sync_control on the first window's display
 };
 
 }  // namespace zenith::render::window

@@ -299,6 +299,11 @@ void WindowContext::wait_events(double timeout_s) {
   else glfwPollEvents();
 }
 
+GLFWwindow* WindowContext::glfw_window() const {
+  if (!state_) moved_from("glfw_window");
+  return state_->window;
+}
+
 void WindowContext::swap_buffers() {
   if (!state_) moved_from("swap_buffers");
   glfwSwapBuffers(state_->window);

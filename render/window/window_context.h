@@ -25,6 +25,8 @@
 
 #include "render/gl/egl_context.h"
 
+struct GLFWwindow;
+
 namespace zenith::render::window {
 
 /// Keyboard keys. The values are GLFW's key tokens (checked in
@@ -163,6 +165,8 @@ class WindowContext {
   void poll_events();
   /// Waits up to `timeout_s` seconds for an event, then processes what arrived.
   void wait_events(double timeout_s);
+  /// The GLFW window, for the platform's own calls (render/window/swap_sync.h).
+  GLFWwindow* glfw_window() const;
   /// Shows the back buffer (the frame drawn since the last swap).
   void swap_buffers();
 

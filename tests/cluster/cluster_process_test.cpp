@@ -1954,5 +1954,112 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserChangesTurbidityAndTheNewVersion
   EXPECT_EQ(seen, (std::vector<std::string>{"Earth=" + first_version, "Earth=" + second_version, "Earth=" + third_version}));
 }
 
+/// frame → "LEVEL R,G,B": the fade of each frame in a node's presented.log (frames of the picture alone are absent).
+std::map<std::uint64_t, std::string> fades(const fs::path& node_dir) {
+  std::map<std::uint64_t, std::string> out;
+  std::ifstream in(node_dir / "presented.log");
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::size_t at = line.find(" fade ");
+    std::istringstream fields(line);
+    std::string word;
+    std::uint64_t frame = 0;
+    if (at != std::string::npos && fields >> word >> frame) out[frame] = line.substr(at + 6);
+  }
+  return out;
+}
+
+/// The first number after `prefix` in `text` (the frame a reply or log line names); nullopt when absent.
+std::optional<std::uint64_t> number_after(const std::string& text, const std::string& prefix) {
+  const std::size_t at = text.find(prefix);
+  if (at == std::string::npos) return std::nullopt;
+  return std::stoull(text.substr(at + prefix.size()));
+}
+
+TEST_F(ClusterProcess, OperatorFadesEveryNodeAtOneFrameBlacksOutAtTheNextAndTheRecordingReplaysIt) {
+  const fs::path config = write_config(10);
+  const int http = port_ + 2, osc = port_ + 3;
+  const fs::path recording = dir_ / "recording.json";
+  // The sun stands still: every frame is the same picture, but for the fade.
+  const Child master = start_master(config, 0, 120000,
+                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
+                                     std::to_string(osc), "--record", recording.string()});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready") && all_nodes_past(1); }, 400s)) << logs();
+
+  // Out of range: refused with the range, nothing changes.
+  test::HttpReply r = console_command(http, R"({"command": "fade", "level": 1, "seconds": -2})");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_EQ(r.json()["error"], "command: /seconds = -2: must be in [0, 3600] s") << r.body;
+  // 1 s at 10 Hz: 10 frames toward orange, the midpoint (level ½) at its fifth.
+  r = console_command(http, R"({"command": "fade", "level": 1, "seconds": 1, "colour": [1, 0.5, 0]})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  const std::optional<std::uint64_t> start = number_after(r.json()["reply"].get<std::string>(), "), frames ");
+  ASSERT_TRUE(start) << r.body;
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(*start + 11); }, 120s)) << logs();
+  EXPECT_EQ(console_status(http)["fade"]["level"], 1.0) << console_status(http).dump();
+  // Blackout over OSC: black from the next frame on; then the picture again at once.
+  send_osc(osc, encode_osc_message({"/zenith/blackout", {}}));
+  ASSERT_TRUE(wait_until([&] { return read_text(dir_ / "master.log").find("blackout from frame") != std::string::npos; }, 60s))
+      << logs();
+  const std::optional<std::uint64_t> black = number_after(read_text(dir_ / "master.log"), "blackout from frame ");
+  ASSERT_TRUE(black);
+  ASSERT_TRUE(wait_until([&] { return all_nodes_past(*black + 1); }, 120s)) << logs();
+  r = console_command(http, R"({"command": "blackout", "blackout": "off"})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  const std::optional<std::uint64_t> picture = number_after(r.json()["reply"].get<std::string>(), "from frame ");
+  ASSERT_TRUE(picture) << r.body;
+  const auto live = quit_in_sync(http, master, *picture + 1);
+
+  // Every node presented the same fade at every frame (the state digests include it).
+  const auto faded = fades(dir_ / "out/a");
+  EXPECT_EQ(fades(dir_ / "out/b"), faded);
+  EXPECT_EQ(fades(dir_ / "out/c"), faded);
+  EXPECT_EQ(faded.count(*start - 1), 0u) << "no fade before the command";
+  EXPECT_EQ(faded.at(*start + 4), "0.5 1,0.5,0") << "the midpoint: u = 5/10, smoothstep ½";
+  EXPECT_EQ(faded.at(*start + 9), "1 1,0.5,0");
+  EXPECT_EQ(faded.at(*black - 1), "1 1,0.5,0");
+  EXPECT_EQ(faded.at(*black), "1 0,0,0");
+  EXPECT_EQ(faded.count(*picture), 0u);
+  // The pixels: the midpoint is ½ picture + ½ orange in display-linear values on every output
+  // (within one 8-bit code of the sRGB file), the blackout black, the picture afterwards frame 0's.
+  const auto file = [&](const std::string& node, const std::string& output, std::uint64_t frame) {
+    return dir_ / "out" / node / output / fmt::format("frame-{:06d}.png", frame);
+  };
+  const double orange[3] = {1.0, 0.5, 0.0};
+  for (const auto& [node, output] : std::vector<std::pair<std::string, std::string>>{
+           {"a", "top-left"}, {"a", "top-right"}, {"b", "bottom-left"}, {"c", "bottom-right"}}) {
+    const image::LinearImage sky = image::read_image(file(node, output, 0));
+    const image::LinearImage mid = image::read_image(file(node, output, *start + 4));
+    ASSERT_EQ(mid.rgb.size(), sky.rgb.size());
+    int off = 0;
+    for (std::size_t i = 0; i < sky.rgb.size(); ++i) {
+      const double expected = 0.5 * sky.rgb[i] + 0.5 * orange[i % 3];
+      const auto code = [](double v) { return std::lround(255.0 * image::srgb_encode(static_cast<float>(v))); };
+      if (std::abs(code(expected) - code(mid.rgb[i])) > 1) ++off;
+    }
+    EXPECT_EQ(off, 0) << node << " " << output;
+    const image::LinearImage out = image::read_image(file(node, output, *black));
+    EXPECT_EQ(*std::max_element(out.rgb.begin(), out.rgb.end()), 0.0f) << node << " " << output << ": blackout";
+    EXPECT_EQ(read_text(file(node, output, *picture)), read_text(file(node, output, 0))) << node << " " << output;
+  }
+
+  // The recording on fresh nodes: the same states frame by frame, the same files byte for byte.
+  fs::rename(dir_ / "out", dir_ / "out-live");
+  for (const char* n : {"master", "a", "b", "c"}) fs::rename(dir_ / (std::string(n) + ".log"), dir_ / (std::string(n) + "-live.log"));
+  children_.clear();
+  const Child replay = start_master(config, 0, 120000, {"--show", recording.string(), "--unpaced"});
+  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  ASSERT_EQ(wait_exit(replay, 400s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(replay);
+  const auto replayed = expect_in_sync(dir_ / "out", live.back().frame);
+  ASSERT_EQ(replayed.size(), live.size());
+  for (std::size_t i = 0; i < live.size(); ++i) EXPECT_EQ(replayed[i].digest, live[i].digest) << "frame " << i;
+  EXPECT_EQ(fades(dir_ / "out/b"), faded);
+  for (const std::uint64_t frame : {*start + 4, *black})
+    EXPECT_EQ(read_text(file("b", "bottom-left", frame)), read_text(dir_ / "out-live/b/bottom-left" / fmt::format("frame-{:06d}.png", frame)))
+        << "frame " << frame;
+}
+
 }  // namespace
 }  // namespace zenith::cluster

@@ -112,7 +112,9 @@ TEST(FrameDecoder, UnsupportedVersionInTheHeader) {
   put_be16(f, 4, 1);  // the first release: no AtmosphereDefinition
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 1");
   put_be16(f, 4, 2);  // no PreviewRequest and Thumbnail: a node of version 2 is refused, not half served
-  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 3");
+  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 4");
+  put_be16(f, 4, 3);  // FrameState without the fade, RenderDone without the present counts
+  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 3, this build speaks 4");
 }
 
 TEST(FrameDecoder, UnsupportedVersionInHello) {
@@ -192,9 +194,14 @@ TEST(FrameDecoder, MalformedPayloadCountAboveItsLimit) {
 
 TEST(FrameDecoder, MalformedPayloadOutOfRangeValue) {
   Bytes f = encode(FrameState{});
-  put_be32(f, f.size() - 4, 0x80000000u);  // unknown render flag
+  put_be32(f, f.size() - 36, 0x80000000u);  // unknown render flag (before the fade's 4 f64)
   fix_crc(f);
   expect_error(f, ProtocolErrorCode::malformed_payload, "FrameState.render_flags: unknown bits");
+
+  Bytes h = encode(FrameState{});
+  put_be32(h, h.size() - 32, 0x3FF80000u);  // fade level 1.5 (0x3FF8… as f64)
+  fix_crc(h);
+  expect_error(h, ProtocolErrorCode::malformed_payload, "FrameState.fade_level: must be in [0, 1]");
 
   Bytes g = encode(TableAnnounce{{}, 10000, 4096, 3, {}});
   put_be32(g, kHeaderBytes + 32 + 8 + 4, 4);  // chunk_count 4 ≠ ceil(10000 / 4096)

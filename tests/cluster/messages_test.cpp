@@ -26,17 +26,18 @@ FrameState known_frame_state() {
   f.sun_irradiance_W_m2_nm = {1.5};
   f.atmospheres.push_back({"Mars", Digest{}, 7});
   f.render_flags = kRenderSunDisc | kRenderEclipses;
+  f.fade = {0.5, glm::dvec3(0.0, 1.0, 0.0)};
   return f;
 }
 
 TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
   const Bytes frame = encode(known_frame_state());
-  const std::size_t payload_bytes = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1 + (2 + 4 + 32 + 8) + 4;
+  const std::size_t payload_bytes = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1 + (2 + 4 + 32 + 8) + 4 + 8 + 24;
   ASSERT_EQ(frame.size(), kHeaderBytes + payload_bytes);
   const Bytes payload(frame.begin() + kHeaderBytes, frame.end());
   const std::uint32_t crc = crc32c(payload);
   const Bytes expected_header = {'Z', 'N', 'T', 'H',  // magic
-                                 0x00, 0x03,          // version 3
+                                 0x00, 0x04,          // version 4
                                  0x00, 0x10,          // type 16 = FrameState
                                  0x00, 0x00, 0x00, static_cast<std::uint8_t>(payload_bytes),  // length
                                  // payload CRC-32C
@@ -56,8 +57,10 @@ TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
   // Orientation w = 1.0 comes first (offset 40), then x, y, z.
   EXPECT_EQ(payload[40], 0x3F);
   EXPECT_EQ(payload[41], 0xF0);
-  // The flags close the payload: sun disc | eclipses = 9.
-  EXPECT_EQ(Bytes(payload.end() - 4, payload.end()), (Bytes{0, 0, 0, 9}));
+  // Then the flags: sun disc | eclipses = 9; the fade closes the payload: level 0.5 (0x3FE0…), colour 0, 1, 0.
+  EXPECT_EQ(Bytes(payload.end() - 36, payload.end() - 32), (Bytes{0, 0, 0, 9}));
+  EXPECT_EQ(Bytes(payload.end() - 32, payload.end() - 24), (Bytes{0x3F, 0xE0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(Bytes(payload.end() - 16, payload.end() - 8), (Bytes{0x3F, 0xF0, 0, 0, 0, 0, 0, 0}));
   // Atmosphere entry: u16 length 4, "Mars".
   const std::size_t atmosphere_at = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1;
   EXPECT_EQ(Bytes(payload.begin() + atmosphere_at, payload.begin() + atmosphere_at + 6),
@@ -95,8 +98,8 @@ TEST(Messages, DocumentedMaximumPayloads) {
   EXPECT_EQ(max(MessageType::authenticate), 32u);
   EXPECT_EQ(max(MessageType::welcome), 52u);
   EXPECT_EQ(max(MessageType::reject), 1028u);
-  EXPECT_EQ(max(MessageType::frame_state), 1478u);
-  EXPECT_EQ(max(MessageType::render_done), 16u);
+  EXPECT_EQ(max(MessageType::frame_state), 1510u);
+  EXPECT_EQ(max(MessageType::render_done), 40u);
   EXPECT_EQ(max(MessageType::present), 8u);
   EXPECT_EQ(max(MessageType::table_announce), 80u);
   EXPECT_EQ(max(MessageType::table_chunk), 1048616u);
@@ -157,6 +160,14 @@ TEST(Messages, EncoderRefusesWhatTheDecoderWouldRefuse) {
   EXPECT_THROW(encode(TableChunk{{}, 0, {}}), std::invalid_argument);
   EXPECT_THROW(encode(TableChunk{{}, 0, std::vector<std::uint8_t>(kMaxTableChunkBytes + 1)}), std::invalid_argument);
   EXPECT_THROW(encode(RenderDone{1, -1.0}), std::invalid_argument);
+  EXPECT_THROW(encode(RenderDone{1, 1.0, 3, 4, 0.0}), std::invalid_argument);  // more late presents than presents
+  EXPECT_THROW(encode(RenderDone{1, 1.0, 3, 1, -2.0}), std::invalid_argument);
+  f = known_frame_state();
+  f.fade.level = 1.5;
+  EXPECT_THROW(encode(f), std::invalid_argument);
+  f = known_frame_state();
+  f.fade.colour.z = -0.1;
+  EXPECT_THROW(encode(f), std::invalid_argument);
 
   EXPECT_THROW(encode(AtmosphereDefinition{"Earth", {}, "[1, 2]"}), std::invalid_argument);  // not an object
   EXPECT_THROW(encode(AtmosphereDefinition{"", {}, "{}"}), std::invalid_argument);

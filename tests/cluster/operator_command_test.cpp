@@ -106,6 +106,30 @@ TEST(OperatorCommand, ErrorsNameTheKeyTheValueAndTheRange) {
   EXPECT_NE(error_of(deep).find("more than 16 levels deep"), std::string::npos);
 }
 
+TEST(OperatorCommand, ReadsFadesAndBlackouts) {
+  EXPECT_EQ(parse(R"({"command": "fade", "seconds": 3})"), OperatorCommand(oc::Fade{1.0, 3.0, std::nullopt}));
+  EXPECT_EQ(parse(R"({"command": "fade", "level": 0, "seconds": 0.5})"), OperatorCommand(oc::Fade{0.0, 0.5, std::nullopt}));
+  EXPECT_EQ(parse(R"({"command": "fade", "level": 0.5, "seconds": 2, "colour": [1, 0.5, 0]})"),
+            OperatorCommand(oc::Fade{0.5, 2.0, std::array<double, 3>{1.0, 0.5, 0.0}}));
+  EXPECT_EQ(describe(parse(R"({"command": "fade", "level": 1, "seconds": 2, "colour": [1, 0, 0]})")),
+            "fade to level 1.0 over 2.0 s toward [1.0, 0.0, 0.0]");
+  EXPECT_EQ(parse(R"({"command": "blackout"})"), OperatorCommand(oc::Blackout{true}));
+  EXPECT_EQ(parse(R"({"command": "blackout", "blackout": "off"})"), OperatorCommand(oc::Blackout{false}));
+  EXPECT_EQ(describe(parse(R"({"command": "blackout", "blackout": false})")), "blackout off");
+  // Ranges in the errors: duration ≥ 0 (at most an hour), level and colour components in [0, 1].
+  EXPECT_EQ(error_of(R"({"command": "fade", "seconds": -1})"), "command: /seconds = -1: must be in [0, 3600] s");
+  EXPECT_EQ(error_of(R"({"command": "fade", "level": 2, "seconds": 1})"), "command: /level = 2: must be in [0, 1]");
+  EXPECT_EQ(error_of(R"({"command": "fade", "level": 1})"), "command: /seconds: missing required key");
+  EXPECT_EQ(error_of(R"({"command": "fade", "seconds": 1, "colour": [1, 1.5, 0]})"),
+            "command: /colour = [1,1.5,0]: must be [r, g, b], each a number in [0, 1] (display-linear; [0, 0, 0] black)");
+  EXPECT_NE(error_of(R"({"command": "fade", "seconds": 1, "colour": "red"})").find("must be [r, g, b]"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"command": "fade", "seconds": 1, "color": [0, 0, 0]})").find("/color: unknown key"),
+            std::string::npos);
+  EXPECT_EQ(error_of(R"({"command": "blackout", "blackout": 2})"),
+            "command: /blackout = 2: must be true, false, \"on\" or \"off\"");
+}
+
 TEST(OperatorCommand, ToJsonIsTheInverseOfParsing) {
   for (const char* text : {R"({"command": "play"})", R"({"command": "seek", "seconds": 3})",
                            R"({"command": "rate", "rate": 0.5})", R"({"command": "loop", "loop": "on"})",
@@ -114,6 +138,8 @@ TEST(OperatorCommand, ToJsonIsTheInverseOfParsing) {
                            R"({"command": "clear", "what": "exposure"})",
                            R"({"command": "clear", "what": "atmosphere", "body": "Earth"})",
                            R"({"command": "preview", "preview": false})",
+                           R"({"command": "fade", "level": 0.25, "seconds": 1.5, "colour": [0, 0.5, 1]})",
+                           R"({"command": "fade", "seconds": 0})", R"({"command": "blackout", "blackout": "on"})",
                            R"({"command": "set", "body": "Mars", "pointer": "/planet/ground_albedo", "value": {"680": 0.3}})"}) {
     const OperatorCommand command = parse(text);
     EXPECT_EQ(parse_operator_command(to_json(command)), command) << text;

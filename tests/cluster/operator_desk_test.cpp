@@ -74,6 +74,31 @@ TEST_F(OperatorDeskTest, TheExposureReplacesTheShowsFromTheNextFrameUntilCleared
   EXPECT_TRUE(d.status()["exposure_override"].is_null());
 }
 
+TEST_F(OperatorDeskTest, AFadeStartsAtTheNextFrameAndABlackoutIsBlackThere) {
+  OperatorDesk d = desk();  // 30 Hz
+  progress_.started = true;
+  progress_.in_flight = frame(9);  // frame 9 is in flight: commands change frame 10 on
+  EXPECT_EQ(d.run(oc::Fade{1.0, 1.0, std::array<double, 3>{0.0, 0.0, 0.0}}, "http 127.0.0.1"),
+            "fade to level 1 of [0, 0, 0] over 30 frames (1 s at 30 Hz), frames 10 to 39");
+  const auto level_at = [&](std::uint64_t n) {
+    FrameState f = frame(n);
+    d.shape(f);
+    return f.fade.level;
+  };
+  EXPECT_EQ(level_at(9), 0.0);
+  EXPECT_DOUBLE_EQ(level_at(24), 0.5);  // u = 15/30
+  EXPECT_EQ(level_at(39), 1.0);
+  progress_.in_flight = frame(50);
+  EXPECT_EQ(d.status()["fade"]["operator"], true);
+  EXPECT_EQ(d.run(oc::Blackout{false}, "osc 127.0.0.1"), "blackout off: the picture from frame 51 on");
+  EXPECT_EQ(level_at(51), 0.0);
+  EXPECT_EQ(d.run(oc::Blackout{true}, "osc 127.0.0.1"), "blackout from frame 51 on every node");
+  FrameState black = frame(51);
+  d.shape(black);
+  EXPECT_EQ(black.fade, (scene::FadeState{1.0, glm::dvec3(0.0)}));
+  EXPECT_EQ(d.status()["fade"]["frames_left"], 0);
+}
+
 TEST_F(OperatorDeskTest, TheSunIsSetInTheCamerasSkyAndAnAngleLeftOutKeepsItsValue) {
   OperatorDesk d = desk();
   EXPECT_EQ(d.run(oc::Sun{-6.0, std::nullopt}, "osc 10.0.0.5"),

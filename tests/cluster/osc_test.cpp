@@ -149,6 +149,13 @@ TEST(OscCommand, AddressesBecomeTheApisCommandsWithItsRanges) {
   EXPECT_EQ(osc_command({"/zenith/clear/exposure", {}}), OperatorCommand(oc::Clear{oc::Clear::What::exposure, ""}));
   EXPECT_EQ(osc_command({"/zenith/clear/atmosphere/Earth", {1.0f}}),
             OperatorCommand(oc::Clear{oc::Clear::What::atmosphere, "Earth"}));
+  EXPECT_EQ(osc_command({"/zenith/fade", {1.0f, 3.0f}}), OperatorCommand(oc::Fade{1.0, 3.0, std::nullopt}));
+  EXPECT_EQ(osc_command({"/zenith/fade", {std::int32_t{0}, 0.5f}}), OperatorCommand(oc::Fade{0.0, 0.5, std::nullopt}));
+  EXPECT_EQ(osc_command({"/zenith/fade", {0.5f, 2.0f, 1.0f, 0.2f, 0.0f}}),
+            OperatorCommand(oc::Fade{0.5, 2.0, std::array<double, 3>{1.0, 0.2, 0.0}}));
+  EXPECT_EQ(osc_command({"/zenith/blackout", {}}), OperatorCommand(oc::Blackout{true}));
+  EXPECT_EQ(osc_command({"/zenith/blackout", {std::int32_t{0}}}), OperatorCommand(oc::Blackout{false}));
+  EXPECT_EQ(osc_command({"/zenith/blackout", {true}}), OperatorCommand(oc::Blackout{true}));
   const auto error_of = [](const OscMessage& m) {
     try {
       osc_command(m);
@@ -158,6 +165,12 @@ TEST(OscCommand, AddressesBecomeTheApisCommandsWithItsRanges) {
     return std::string();
   };
   EXPECT_EQ(error_of({"/zenith/rate", {20.0f}}), "command: /rate = 20.0: must be in [-16, 16]");
+  EXPECT_EQ(error_of({"/zenith/fade", {1.0f, -2.0f}}), "command: /seconds = -2.0: must be in [0, 3600] s");
+  EXPECT_NE(error_of({"/zenith/fade", {1.0f}}).find("OSC /zenith/fade: takes LEVEL SECONDS or LEVEL SECONDS R G B"),
+            std::string::npos);
+  EXPECT_NE(error_of({"/zenith/fade", {1.0f, 2.0f, 1.0f, 2.0f, 0.0f}}).find("each a number in [0, 1]"), std::string::npos);
+  EXPECT_NE(error_of({"/zenith/fade", {std::string("x"), 2.0f}}).find("argument 1 (level) must be a number"),
+            std::string::npos);
   EXPECT_EQ(error_of({"/zenith/seek", {}}), "OSC /zenith/seek: takes one argument, got 0");
   EXPECT_EQ(error_of({"/zenith/sun/elevation", {95.0f}}), "command: /elevation_deg = 95.0: must be in [-90, 90] deg");
   EXPECT_NE(error_of({"/zenith/quit", {}}).find("OSC /zenith/quit: unknown address"), std::string::npos);

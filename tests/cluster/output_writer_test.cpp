@@ -1,6 +1,8 @@
 // A node's frame files without a renderer (cluster/node/output_writer.h):
 // partial files renamed on Present, presented.log, the two layouts.
 #include "cluster/node/output_writer.h"
+
+#include "image/image_io.h"
 #include "core/files.h"
 
 #include <gtest/gtest.h>
@@ -58,7 +60,7 @@ TEST_F(OutputWriterTest, PresentRenamesThePartialFilesAndLogsTheFrame) {
   const fs::path left = writer.frame_path(viewports.outputs[0], 3);
   EXPECT_TRUE(fs::exists(fs::path(left.string() + ".partial")));
   EXPECT_FALSE(fs::exists(left));
-  writer.finish_frame({3, "abcd", "Earth=0123456789abcdef", 0.1});
+  writer.finish_frame({3, "abcd", "Earth=0123456789abcdef", 0.1, {}});
 
   EXPECT_FALSE(writer.present(2)) << "not the rendered frame";
   EXPECT_FALSE(fs::exists(left));
@@ -80,7 +82,7 @@ TEST_F(OutputWriterTest, AnUnfinishedFrameIsNotPresented) {
 TEST_F(OutputWriterTest, DiscardRemovesThePartialFiles) {
   OutputWriter writer(viewports, FrameFileLayout::per_node, root, root / "a", "png");
   writer.write(0, 1, grey, {});
-  writer.finish_frame({1, "d", "-", 0.0});
+  writer.finish_frame({1, "d", "-", 0.0, {}});
   writer.discard();
   EXPECT_FALSE(fs::exists(fs::path(writer.frame_path(viewports.outputs[0], 1).string() + ".partial")));
   EXPECT_FALSE(writer.present(1));
@@ -92,6 +94,22 @@ TEST_F(OutputWriterTest, TheDisplayImageIsToneMapped) {
   const std::vector<float> display = writer.display_image(0, grey);
   ASSERT_EQ(display.size(), grey.size());
   for (const float v : display) EXPECT_NEAR(v, 1.0 - std::exp(-0.5), 1e-6);  // no blend: the tone map only
+  // The frame's fade after the tone map: a quarter of the way to red.
+  const std::vector<float> faded = writer.display_image(0, grey, {0.25, glm::dvec3(1.0, 0.0, 0.0)});
+  const double t = 1.0 - std::exp(-0.5);
+  for (std::size_t i = 0; i < faded.size(); ++i)
+    EXPECT_NEAR(faded[i], 0.75 * t + (i % 3 == 0 ? 0.25 : 0.0), 1e-6) << i;
+}
+
+TEST_F(OutputWriterTest, TheLogNamesAFrameFade) {
+  OutputWriter writer(viewports, FrameFileLayout::per_node, root, root / "a", "png");
+  writer.write(0, 4, grey, {}, {1.0, glm::dvec3(0.0)});
+  writer.finish_frame({4, "ef", "-", 0.5, {1.0, glm::dvec3(0.0)}});
+  EXPECT_TRUE(writer.present(4));
+  EXPECT_EQ(read_text(root / "a" / "presented.log"), "frame 4 state ef tables - show_time_s 0.5 fade 1 0,0,0\n");
+  // A blackout is black in the file (tone map, then the fade).
+  const image::LinearImage black = image::read_image(writer.frame_path(viewports.outputs[0], 4));
+  for (const float v : black.rgb) EXPECT_EQ(v, 0.0f);
 }
 
 }  // namespace

@@ -36,12 +36,12 @@ FrameDescription full_frame() {
 // over the byte sequence documented in frame_digest.h):
 //   hashlib.sha256(struct.pack('>Q',0) + struct.pack('>d',0.0) + … ).hexdigest()[:16]
 TEST(FrameDigest, MatchesTheDocumentedOrderComputedIndependently) {
-  EXPECT_EQ(frame_digest(FrameDescription{}), "6ba63c889d7d40f2");
-  EXPECT_EQ(frame_digest(full_frame()), "f27386738ebb9740");
+  EXPECT_EQ(frame_digest(FrameDescription{}), "286e58f0c7d88ca1");
+  EXPECT_EQ(frame_digest(full_frame()), "9198c35beaca1a4c");
 }
 
-// Digests written before the digest moved to scene/ (presented.log, offline
-// manifests: the SHA-256 of the FrameState payload) stay valid for resuming.
+// The digest is the SHA-256 of the FrameState payload (protocol 4), as the
+// nodes' presented.log and the offline manifests have always named a frame.
 TEST(FrameDigest, EqualsTheDigestOfTheFrameStatePayload) {
   for (const FrameDescription& frame : {FrameDescription{}, full_frame()}) {
     const std::vector<std::uint8_t> payload = cluster::encode_payload(cluster::Message{frame});
@@ -83,6 +83,8 @@ TEST(FrameDigest, AnyFieldChangeChangesIt) {
       {"atmosphere count", [](FrameDescription& f) { f.atmospheres.push_back(f.atmospheres[0]); }},
       {"no atmospheres", [](FrameDescription& f) { f.atmospheres.clear(); }},
       {"render_flags", [](FrameDescription& f) { f.render_flags |= kRenderEclipses; }},
+      {"fade level", [](FrameDescription& f) { f.fade.level = 0.5; }},
+      {"fade colour", [](FrameDescription& f) { f.fade.colour.g = 0.25; }},
   };
   std::set<std::string> seen = {frame_digest(full_frame())};
   for (const auto& [field, change] : changes) {

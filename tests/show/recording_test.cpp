@@ -57,6 +57,8 @@ TEST(ShowRecorder, RecordedFramesReadBackExactly) {
       s.sun_angular_radius_rad = i == 5 ? std::numeric_limits<double>::denorm_min() : s.sun_angular_radius_rad;
       s.sun_irradiance_W_m2_nm[2] = i == 7 ? 1e-300 : (i == 8 ? -0.0 : s.sun_irradiance_W_m2_nm[2]);
       s.atmospheres[0].effective_from_frame = 1000 + i / 2;
+      // An operator's fade to a colour and back: recorded like any other state (none at the ends).
+      if (i >= 20 && i < 40) s.fade = {std::sin(3.14159 * (i - 20) / 20.0), glm::dvec3(1.0, 1.0 / 3.0, 0.0)};
       recorder.record(s);
       recorded.push_back(s);
     }
@@ -172,6 +174,15 @@ TEST(RecordingErrors, NotUnitQuaternion) {
 TEST(RecordingErrors, UnknownRenderFlags) {
   expect_error(spoiled_recording("rec_flags", [](json& j) { j["recording"]["frames"][0]["render_flags"] = 64; }),
                "/recording/frames/0/render_flags", "must be an integer in [0, 31]");
+}
+
+TEST(RecordingErrors, FadeOutOfRange) {
+  expect_error(spoiled_recording("rec_fade_level",
+                                 [](json& j) { j["recording"]["frames"][2]["fade"] = {{"level", 1.5}, {"colour", {0, 0, 0}}}; }),
+               "/recording/frames/2/fade/level", "must be in [0, 1]");
+  expect_error(spoiled_recording("rec_fade_colour",
+                                 [](json& j) { j["recording"]["frames"][2]["fade"] = {{"level", 1}, {"colour", {0, 2, 0}}}; }),
+               "/recording/frames/2/fade/colour", "each component must be in [0, 1]");
 }
 
 TEST(RecordingErrors, UnknownFrameKey) {

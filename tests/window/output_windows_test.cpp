@@ -301,5 +301,24 @@ TEST(PresentClock, CountsASwapLaterThanOneRefreshAsLate) {
   EXPECT_EQ(unknown.late(), 0u);
 }
 
+TEST(PresentClock, CountsFromTheVblankCounterWhereTheDisplayHasOne) {
+  using namespace std::chrono;
+  PresentClock clock(60.0);
+  const auto t0 = PresentClock::Clock::now();
+  // GLX_OML_sync_control: one vblank from the start of the present to the swap is on time,
+  // whatever the wall clock says (a scheduler hiccup after the swap); two or more missed one.
+  EXPECT_FALSE(clock.record(t0, t0 + milliseconds(30), std::int64_t{1}));
+  EXPECT_FALSE(clock.record(t0, t0 + milliseconds(2), std::int64_t{0}));
+  EXPECT_TRUE(clock.record(t0, t0 + milliseconds(18), std::int64_t{2}));
+  EXPECT_EQ(clock.presented(), 3u);
+  EXPECT_EQ(clock.late(), 1u);
+  EXPECT_NEAR(clock.last_ms(), 18.0, 1e-9);
+  EXPECT_NEAR(clock.worst_ms(), 30.0, 1e-9);
+  // Without a refresh rate the counter still decides.
+  PresentClock unknown(0.0);
+  EXPECT_TRUE(unknown.record(t0, t0 + milliseconds(40), std::int64_t{3}));
+  EXPECT_EQ(unknown.late(), 1u);
+}
+
 }  // namespace
 }  // namespace zenith::render::window

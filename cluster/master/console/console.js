@@ -147,11 +147,29 @@ function render(s) {
   if (!editing($('exposure')) && $('exposure').value === '' && exposure !== null) $('exposure').value = exposure;
 
   renderSun(s);
+  renderFade(s.fade);
   renderPreview(s.preview);
 
   $('no-live').hidden = s.live_atmospheres;
   for (const a of s.atmospheres) renderAtmosphere(a, s.live_atmospheres);
   renderNodes(s.nodes);
+}
+
+/// The fade of the latest frame, and where the operator's fade is going.
+function renderFade(f) {
+  if (!f) return;
+  $('fade-now').textContent = f.level === 0 ? 'the picture' : Math.round(f.level * 100) + ' %';
+  $('fade-state').textContent = f.frames_left > 0
+    ? '(to ' + Math.round(f.target_level * 100) + ' % in ' + f.frames_left + ' frames)'
+    : f.level === 1 && f.colour.every((c) => c === 0) ? '(black)' : '';
+}
+
+/// "#rrggbb" → [r, g, b] in [0, 1] (the colour picker's sRGB, sent as the
+/// display-linear values the fade uses).
+function fadeColour() {
+  const hex = $('fade-colour').value;
+  const srgb = [1, 3, 5].map((i) => parseInt(hex.substr(i, 2), 16) / 255);
+  return srgb.map((v) => (v <= 0.04045 ? v / 12.92 : Math.pow((v + 0.055) / 1.055, 2.4)));
 }
 
 /// The sun's angles now (the latest frame's) and whether they are the operator's.
@@ -389,7 +407,8 @@ function renderNodes(nodes) {
     const tr = document.createElement('tr');
     tr.dataset.node = n.name;
     const cells = [n.name, n.host, n.state, n.last_render_ms === null ? '–' : n.last_render_ms.toFixed(1) + ' ms',
-                   n.frames_rendered, n.barrier_waits, n.drops, n.rejoins, n.tables_held.join(', ')];
+                   n.frames_rendered, n.barrier_waits, n.drops, n.rejoins, n.presents, n.late_presents,
+                   n.tables_held.join(', ')];
     cells.forEach((c, i) => {
       const td = document.createElement('td');
       td.textContent = c;
@@ -418,6 +437,10 @@ function wire() {
     $('exposure').value = '';
     send({command: 'exposure', exposure: null});
   });
+  const fadeSeconds = () => Number($('fade-seconds').value) || 0;
+  $('fade-out').addEventListener('click', () => send({command: 'fade', level: 1, seconds: fadeSeconds(), colour: fadeColour()}));
+  $('fade-in').addEventListener('click', () => send({command: 'fade', level: 0, seconds: fadeSeconds()}));
+  $('blackout').addEventListener('click', () => send({command: 'blackout'}));
   wireSunAngle('sun-elevation-range', 'sun-elevation', 'elevation_deg');
   wireSunAngle('sun-azimuth-range', 'sun-azimuth', 'azimuth_deg');
   $('sun-reset').addEventListener('click', () => send({command: 'clear', what: 'sun'}));
