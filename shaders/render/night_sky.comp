@@ -1,0 +1,61 @@
+#version 450
+// The night sky's own light joins the band's output (render/frame/star_pass.h;
+// docs/night-sky.md, "Rendering the night sky"), after the atmosphere passes
+// and before the band leaves (a file's readback or the live display pass):
+//
+//   * the stars, from the star accumulator (star_splat.comp), in fixed point;
+//   * with NIGHT_FLOOR, the natural night sky (airglow with van Rhijn's
+//     brightening, zodiacal light, starlight) through the line of sight's
+//     transmittance, plus the artificial glow of light pollution: a table of
+//     linear sRGB × exposure against the view ray's cosine to the camera's up,
+//     computed on the CPU from astro/night_sky_floor.h and
+//     astro/light_pollution.h (render/frame/night_sky_table.h), on every ray
+//     that meets no body (the ground included).
+//
+// The tiles listed are the band's drawn tiles (add to what is there) or, with
+// `overwrite`, tiles no pass drew (whose output holds stale values: replaced).
+
+#include "frame.glsl"
+#include "frame_rgb.glsl"
+#include "star_accumulator.glsl"
+
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+
+uniform bool overwrite;
+uniform float star_unit;  // radiance × exposure per count of the accumulator (1 / star_fixed_point)
+
+#if NIGHT_FLOOR
+/// Entry j at t = j / (n − 1) of μ = μh + (1 − μh) t² (μ the ray's cosine to
+/// `night_up`, μh the ground's horizon): the sky's night light, rgb × exposure.
+layout(std430, binding = NIGHT_SKY_TABLE_BINDING) readonly buffer NightSkyTable { vec4 night_sky_table[]; };
+uniform int night_sky_entries;
+uniform vec3 night_up;
+uniform float night_horizon_mu;
+
+vec3 night_sky_light(vec3 ray) {
+  const float x = max(dot(ray, night_up) - night_horizon_mu, 0.0) / (1.0 - night_horizon_mu);
+  const float f = sqrt(x) * float(night_sky_entries - 1);
+  const int j = min(int(f), night_sky_entries - 2);
+  return mix(night_sky_table[j].rgb, night_sky_table[j + 1].rgb, f - float(j));
+}
+#endif
+
+void main() {
+  ivec2 p;
+  if (!tile_pixel(p)) return;
+  const uint i = frame_rgb_index(p);
+  const ivec3 counts = ivec3(star_accumulator[4u * i], star_accumulator[4u * i + 1u], star_accumulator[4u * i + 2u]);
+  vec3 add = vec3(counts) * star_unit;
+  if (any(notEqual(counts, ivec3(0)))) {
+    star_accumulator[4u * i] = 0;
+    star_accumulator[4u * i + 1u] = 0;
+    star_accumulator[4u * i + 2u] = 0;
+  }
+#if NIGHT_FLOOR
+  vec3 ray;
+  float distance_m;
+  if (pixel_ray(p, ray) && nearest_body(ray, distance_m) < 0) add += night_sky_light(ray);
+#endif
+  const vec3 before = overwrite ? vec3(0.0) : load_frame_rgb(p);
+  store_frame_rgb(p, clip_negative(before + add));
+}
