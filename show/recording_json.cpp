@@ -55,7 +55,7 @@ json frame_to_json(const scene::FrameDescription& s) {
                            {"table_hash", core::to_hex(ref.table_hash)},
                            {"effective_from_frame", ref.effective_from_frame}});
   const glm::dquat& q = s.camera_orientation;
-  return {{"frame", s.frame},
+  json out = {{"frame", s.frame},
           {"show_time_s", s.show_time_s},
           {"camera_position_m", vec3_json(s.camera_position_m)},
           {"camera_orientation", json::array({q.w, q.x, q.y, q.z})},
@@ -65,6 +65,11 @@ json frame_to_json(const scene::FrameDescription& s) {
           {"sun_irradiance_W_m2_nm", s.sun_irradiance_W_m2_nm},
           {"atmospheres", atmospheres},
           {"render_flags", s.render_flags}};
+  // The sky by date (the night sky's own struct): only frames of a scene with a sky clock.
+  if (s.sky.has_time)
+    out["sky"] = {{"utc_jd", json::array({s.sky.utc_jd1, s.sky.utc_jd2})},
+                  {"star_catalogue", core::to_hex(s.sky.star_catalogue)}};
+  return out;
 }
 
 json version_to_json(const AtmosphereVersion& version) {
@@ -99,7 +104,7 @@ scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& s
   config::reject_unknown_keys(r, frame,
                               {"frame", "show_time_s", "camera_position_m", "camera_orientation", "exposure",
                                "sun_direction", "sun_angular_radius_rad", "sun_irradiance_W_m2_nm", "atmospheres",
-                               "render_flags"},
+                               "render_flags", "sky"},
                               "docs/shows.md");
   scene::FrameDescription s;
   s.frame = unsigned_integer(r, "frame", std::uint64_t{1} << 53);
@@ -144,6 +149,22 @@ scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& s
     s.atmospheres.push_back(std::move(ref));
   }
   s.render_flags = static_cast<std::uint32_t>(unsigned_integer(r, "render_flags", scene::kKnownRenderFlags));
+  if (r.has("sky")) {
+    JsonReader k(r.raw("sky"), file, r.key_path("sky"));
+    config::reject_unknown_keys(k, r.raw("sky"), {"utc_jd", "star_catalogue"}, "docs/shows.md");
+    const std::vector<double> jd = numbers(k, "utc_jd", 2, "[day1, day2] (a two-part UTC Julian date)");
+    if (!(jd[0] + jd[1] >= 2436934.5 && jd[0] + jd[1] <= 2488069.5))
+      k.fail("utc_jd", cat("= ", brief(k.raw("utc_jd")), ": must be a date of 1960-2100 (Julian date 2436934.5-2488069.5)"));
+    s.sky.has_time = true;
+    s.sky.utc_jd1 = jd[0];
+    s.sky.utc_jd2 = jd[1];
+    try {
+      s.sky.star_catalogue = core::digest_from_hex(k.string("star_catalogue"));
+    } catch (const std::invalid_argument&) {
+      k.fail("star_catalogue", cat("= ", brief(k.raw("star_catalogue")), ": must be 64 hexadecimal digits"));
+    }
+    k.finish();
+  }
   r.finish();
   return s;
 }

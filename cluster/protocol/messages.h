@@ -33,7 +33,7 @@
 namespace zenith::cluster {
 
 /// Bumped on any change to the header or to any payload layout (docs/protocol.md, "Versioning").
-inline constexpr std::uint16_t kProtocolVersion = 3;
+inline constexpr std::uint16_t kProtocolVersion = 4;
 inline constexpr std::array<std::uint8_t, 4> kMagic = {'Z', 'N', 'T', 'H'};
 inline constexpr std::size_t kHeaderBytes = 20;
 

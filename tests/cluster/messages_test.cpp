@@ -31,12 +31,12 @@ FrameState known_frame_state() {
 
 TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
   const Bytes frame = encode(known_frame_state());
-  const std::size_t payload_bytes = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1 + (2 + 4 + 32 + 8) + 4;
+  const std::size_t payload_bytes = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1 + (2 + 4 + 32 + 8) + 4 + (1 + 8 + 8 + 32);
   ASSERT_EQ(frame.size(), kHeaderBytes + payload_bytes);
   const Bytes payload(frame.begin() + kHeaderBytes, frame.end());
   const std::uint32_t crc = crc32c(payload);
   const Bytes expected_header = {'Z', 'N', 'T', 'H',  // magic
-                                 0x00, 0x03,          // version 3
+                                 0x00, 0x04,          // version 4
                                  0x00, 0x10,          // type 16 = FrameState
                                  0x00, 0x00, 0x00, static_cast<std::uint8_t>(payload_bytes),  // length
                                  // payload CRC-32C
@@ -56,8 +56,9 @@ TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
   // Orientation w = 1.0 comes first (offset 40), then x, y, z.
   EXPECT_EQ(payload[40], 0x3F);
   EXPECT_EQ(payload[41], 0xF0);
-  // The flags close the payload: sun disc | eclipses = 9.
-  EXPECT_EQ(Bytes(payload.end() - 4, payload.end()), (Bytes{0, 0, 0, 9}));
+  // The render flags come before the sky fields (49 bytes, no time: all zero): sun disc | eclipses = 9.
+  EXPECT_EQ(Bytes(payload.end() - 53, payload.end() - 49), (Bytes{0, 0, 0, 9}));
+  EXPECT_EQ(Bytes(payload.end() - 49, payload.end()), Bytes(49, 0));
   // Atmosphere entry: u16 length 4, "Mars".
   const std::size_t atmosphere_at = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1;
   EXPECT_EQ(Bytes(payload.begin() + atmosphere_at, payload.begin() + atmosphere_at + 6),
@@ -95,7 +96,7 @@ TEST(Messages, DocumentedMaximumPayloads) {
   EXPECT_EQ(max(MessageType::authenticate), 32u);
   EXPECT_EQ(max(MessageType::welcome), 52u);
   EXPECT_EQ(max(MessageType::reject), 1028u);
-  EXPECT_EQ(max(MessageType::frame_state), 1478u);
+  EXPECT_EQ(max(MessageType::frame_state), 1527u);
   EXPECT_EQ(max(MessageType::render_done), 16u);
   EXPECT_EQ(max(MessageType::present), 8u);
   EXPECT_EQ(max(MessageType::table_announce), 80u);
