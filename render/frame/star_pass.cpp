@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "astro/civil_time.h"
+#include "astro/moon_photometry.h"
 #include "astro/star_catalogue.h"
 #include "render/shader_bindings.h"
 #include "render/shader_programs.h"
@@ -76,7 +77,7 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
   splats_.clear();
   floor_ = false;
   const scene::Scene& scene = frame.scene;
-  const bool want_stars = options_.stars && scene.sky_clock.has_value();
+  const bool want_stars = (options_.stars || options_.moon) && scene.sky_clock.has_value();
   const bool want_floor = options_.night_floor && (scene.night_sky.has_value() || scene.sky_clock.has_value());
   if (!want_stars && !want_floor) return;
   const std::size_t site_body = scene.night_sky ? scene.night_sky->body : scene.sky_clock->body;
@@ -115,45 +116,120 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
     });
   }
 
-  // ---- the stars.
-  if (want_stars && ensure_field(scene) && field_->size() > 0) {
-    double weight = 0.0;  // the largest Σ_λ max_c |w_c(λ)|: an RGB bound per unit of flat irradiance
-    for (const auto& w : frame.rgb_weights) weight += std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
-    const double bound = exposure * field_->brightest_irradiance() * weight / smallest_pixel_solid_angle_sr(frame.projection);
-    if (bound >= kInvisibleDisplayStep) {
-      timer.cpu("star placement", [&] {
-        const scene::SkyClock& clock = *scene.sky_clock;
-        const scene::LocalHorizon horizon = scene::local_horizon_at(scene.camera.position_m, scene.bodies.at(clock.body));
-        field_->directions_enu(astro::AstroTime::from_utc(clock.time), clock.site, directions_);
-        StarFrame f;
-        f.projection = &frame.projection;
-        f.camera_m = scene.camera.position_m;
-        f.world_to_camera = frame.world_to_camera;
-        f.east = horizon.east;
-        f.north = horizon.north;
-        f.up = horizon.up;
-        if (air && clock.body == site_body && planet.atmosphere) {
-          const double altitude_m = std::max(0.0, glm::length(scene.camera.position_m - planet.position_m) - planet.radius_m);
-          const std::string key = fmt::format("{} {:.0f}", air->transmittance->hash, altitude_m);
-          if (key != refraction_key_) {
-            refraction_ = std::make_unique<astro::Refraction>(
-                astro::Refraction::for_atmosphere(planet.atmosphere->loaded, 550.0, altitude_m));
-            refraction_key_ = key;
-          }
-          f.refraction = refraction_.get();
+  // ---- the stars and the Moon: the sky clock's frame.
+  moon_disc_ = false;
+  if (want_stars) {
+    const scene::SkyClock& clock = *scene.sky_clock;
+    const astro::AstroTime time = astro::AstroTime::from_utc(clock.time);
+    StarFrame f;
+    {
+      const scene::LocalHorizon horizon = scene::local_horizon_at(scene.camera.position_m, scene.bodies.at(clock.body));
+      f.projection = &frame.projection;
+      f.camera_m = scene.camera.position_m;
+      f.world_to_camera = frame.world_to_camera;
+      f.east = horizon.east;
+      f.north = horizon.north;
+      f.up = horizon.up;
+      if (air && clock.body == site_body && planet.atmosphere) {
+        const double altitude_m = std::max(0.0, glm::length(scene.camera.position_m - planet.position_m) - planet.radius_m);
+        const std::string key = fmt::format("{} {:.0f}", air->transmittance->hash, altitude_m);
+        if (key != refraction_key_) {
+          refraction_ = std::make_unique<astro::Refraction>(
+              astro::Refraction::for_atmosphere(planet.atmosphere->loaded, 550.0, altitude_m));
+          refraction_key_ = key;
         }
-        f.atmospheres = atmospheres;
-        for (const scene::Body& b : scene.bodies) f.occluders.emplace_back(b.position_m, b.radius_m);
-        f.rgb_weights = frame.rgb_weights;
-        f.exposure = exposure;
-        splats_ = star_splats(*field_, directions_, f);
-      });
-      stats_.catalogue_identity = field_->catalogue().identity_sha256;
+        f.refraction = refraction_.get();
+      }
+      f.atmospheres = atmospheres;
+      for (const scene::Body& b : scene.bodies) f.occluders.emplace_back(b.position_m, b.radius_m);
+      f.rgb_weights = frame.rgb_weights;
+      f.exposure = exposure;
     }
+    if (options_.stars && ensure_field(scene) && field_->size() > 0) {
+      double weight = 0.0;  // the largest Σ_λ max_c |w_c(λ)|: an RGB bound per unit of flat irradiance
+      for (const auto& w : frame.rgb_weights) weight += std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
+      const double bound =
+          exposure * field_->brightest_irradiance() * weight / smallest_pixel_solid_angle_sr(frame.projection);
+      if (bound >= kInvisibleDisplayStep) {
+        timer.cpu("star placement", [&] {
+          field_->directions_enu(time, clock.site, directions_);
+          splats_ = star_splats(*field_, directions_, f);
+        });
+        stats_.catalogue_identity = field_->catalogue().identity_sha256;
+      }
+    }
+    stats_.stars = splats_.size();
+    if (options_.moon) timer.cpu("moon", [&] { place_moon(frame, f, time); });
   }
-  stats_.stars = splats_.size();
   stats_.night_floor = floor_;
-  stats_.skipped = splats_.empty() && !floor_;
+  stats_.skipped = splats_.empty() && !floor_ && !moon_disc_;
+}
+
+void NightSkyPass::place_moon(const FrameState& frame, const StarFrame& sky, const astro::AstroTime& time) {
+  const scene::SkyClock& clock = *frame.scene.sky_clock;
+  const astro::MoonPlace moon = astro::SkyPositions(time, clock.site).moon();
+  const auto enu = moon.horizontal.east_north_up();
+  glm::dvec3 d = enu[0] * sky.east + enu[1] * sky.north + enu[2] * sky.up;
+  if (sky.refraction) {
+    const double apparent = sky.refraction->apparent_from_true_rad(moon.horizontal.altitude_rad);
+    const glm::dvec3 level = enu[0] * sky.east + enu[1] * sky.north;
+    if (glm::length(level) > 0.0) d = glm::normalize(level) * std::cos(apparent) + sky.up * std::sin(apparent);
+  }
+  d = glm::normalize(d);
+  for (const auto& [centre, radius] : sky.occluders) {  // the ground, another body
+    const glm::dvec3 p = sky.camera_m - centre;
+    const double b = glm::dot(p, d), c = glm::dot(p, p) - radius * radius;
+    if (c > 0.0 && b < 0.0 && b * b >= c) return;
+  }
+  const std::size_t n = frame.rgb_weights.size();
+  std::vector<double> transmittance(n, 1.0), one(n);
+  for (const StarAtmosphere& a : sky.atmospheres) {
+    star_transmittance(a, sky.camera_m, d, one.data());
+    for (std::size_t k = 0; k < n; ++k) transmittance[k] *= one[k];
+  }
+  const auto pixel = frame.projection.pixel(frame.world_to_camera * d);
+  if (!pixel) return;
+  const double omega = pixel_solid_angle_sr(frame.projection, pixel->x, pixel->y);
+  if (!(omega > 0.0)) return;
+  const double radius_px = moon.angular_radius_rad / std::sqrt(omega);
+  const double w = frame.projection.width(), h = frame.projection.height();
+  if (pixel->x < -radius_px - 2 || pixel->x > w + radius_px + 2 || pixel->y < -radius_px - 2 || pixel->y > h + radius_px + 2)
+    return;
+  const std::vector<double>& wavelengths = frame.scene.wavelengths_nm;
+  if (radius_px < 1.0) {
+    // Smaller than a pixel: a point source of the whole Moon's irradiance, as a star.
+    if (!(pixel->x >= 0.0 && pixel->x < w && pixel->y >= 0.0 && pixel->y < h)) return;
+    const std::vector<double> e = astro::moon_irradiance_W_m2_nm(moon, wavelengths);
+    StarSplat s;
+    s.x_px = static_cast<float>(pixel->x);
+    s.y_px = static_cast<float>(pixel->y);
+    for (std::size_t c = 0; c < 3; ++c) {
+      double v = 0.0;
+      for (std::size_t k = 0; k < n; ++k) v += frame.rgb_weights[k][c] * e[k] * transmittance[k];
+      s.rgb[c] = static_cast<float>(v * sky.exposure / omega);
+    }
+    splats_.insert(std::upper_bound(splats_.begin(), splats_.end(), s,
+                                    [](const StarSplat& a, const StarSplat& b) { return a.y_px < b.y_px; }),
+                   s);
+    stats_.moon = true;
+    return;
+  }
+  // A disc: L = 2 L_LS(1, 1) · μ0/(μ0 + μ) per point (the shape factor is grey).
+  moon_rgb_ = {0, 0, 0};
+  double largest = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double l = 2.0 * astro::moon_disc_radiance(1.0, 1.0, moon.phase_angle_rad, wavelengths[k], moon.sun_distance_au) *
+                     transmittance[k];
+    for (std::size_t c = 0; c < 3; ++c) moon_rgb_[c] += frame.rgb_weights[k][c] * l * sky.exposure;
+  }
+  for (double v : moon_rgb_) largest = std::max(largest, std::abs(v));
+  if (largest < kInvisibleDisplayStep) return;
+  moon_disc_ = true;
+  stats_.moon = true;
+  moon_direction_ = d;
+  moon_radius_rad_ = moon.angular_radius_rad;
+  moon_radius_px_ = radius_px;
+  moon_pixel_ = *pixel;
 }
 
 const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameState& frame, bool floor) {
@@ -176,7 +252,7 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
   const auto end = std::lower_bound(begin, splats_.end(), static_cast<float>(band.first_row + rows) + 1.0f,
                                     [](const StarSplat& s, float y) { return s.y_px < y; });
   const std::size_t count = static_cast<std::size_t>(end - begin);
-  if (count == 0 && !floor_) return;
+  if (count == 0 && !floor_ && !moon_disc_) return;
 
   // Tiles to resolve: the band's drawn tiles (the floor goes on every sky
   // pixel) or only those a star touches; black tiles a star touches are overwritten.
@@ -192,6 +268,15 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
         touched[static_cast<std::size_t>(by / kTileSize) * static_cast<std::size_t>(columns) +
                 static_cast<std::size_t>(x / kTileSize)] = 1;
       }
+  }
+  if (moon_disc_) {  // the disc's tiles, with two pixels for its edge
+    const double reach = moon_radius_px_ + 2.0;
+    for (int y = std::max(0, static_cast<int>(moon_pixel_.y - reach) - band.first_row);
+         y < std::min(rows, static_cast<int>(moon_pixel_.y + reach) + 1 - band.first_row); y += 1)
+      for (int x = std::max(0, static_cast<int>(moon_pixel_.x - reach));
+           x < std::min(width, static_cast<int>(moon_pixel_.x + reach) + 1); x += 1)
+        touched[static_cast<std::size_t>(y / kTileSize) * static_cast<std::size_t>(columns) +
+                static_cast<std::size_t>(x / kTileSize)] = 1;
   }
   std::vector<std::uint32_t> add_tiles, overwrite_tiles;
   for (std::size_t t = 0; t < band.tiles; ++t) {
@@ -241,6 +326,15 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
 
   const gl::ShaderProgram& p = frame.prepare(resolve_program(frame, floor_));
   p.set_uniform("star_unit", static_cast<float>(1.0 / fixed_point));
+  p.set_uniform("moon_disc", moon_disc_ ? 1 : 0);
+  if (moon_disc_) {
+    p.set_uniform("moon_direction", std::array<float, 3>{static_cast<float>(moon_direction_.x),
+                                                         static_cast<float>(moon_direction_.y),
+                                                         static_cast<float>(moon_direction_.z)});
+    p.set_uniform("moon_radius", static_cast<float>(moon_radius_rad_));
+    p.set_uniform("moon_rgb", std::array<float, 3>{static_cast<float>(moon_rgb_[0]), static_cast<float>(moon_rgb_[1]),
+                                                   static_cast<float>(moon_rgb_[2])});
+  }
   if (floor_) {
     const std::size_t bytes = floor_table_.size() * sizeof(floor_table_[0]);
     if (table_buffer_.id() == 0 || table_buffer_.size() < bytes) table_buffer_ = gl::Buffer(bytes);

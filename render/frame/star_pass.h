@@ -46,6 +46,7 @@ struct NightSkyStats {
   bool skipped = true;         ///< nothing drawn (no sky clock or night sky, or the test above)
   std::size_t stars = 0;       ///< stars placed in the image
   bool night_floor = false;    ///< the night floor was added
+  bool moon = false;           ///< the Moon was drawn (a disc, or a point below a pixel's size)
   std::string catalogue_identity;  ///< StarCatalogue::identity_sha256 of the stars drawn ("" none)
 };
 
@@ -77,6 +78,16 @@ class NightSkyPass {
   std::unique_ptr<StarField> field_;
   std::vector<glm::dvec3> directions_;
   std::vector<StarSplat> splats_;
+  // The Moon's disc (when larger than a pixel): direction, angular radius, and
+  // the linear sRGB × exposure of its full-phase radiance at normal incidence
+  // and emission (μ0 = μ = 1: 2 L_LS(1, 1)) through the line of sight.
+  bool moon_disc_ = false;
+  glm::dvec3 moon_direction_{0, 0, 1};
+  double moon_radius_rad_ = 0.0, moon_radius_px_ = 0.0;
+  glm::dvec2 moon_pixel_{0.0};
+  std::array<double, 3> moon_rgb_{};
+  /// The Moon at the frame's sky time: a disc, a star-like point, or nothing.
+  void place_moon(const FrameState& frame, const StarFrame& sky, const astro::AstroTime& time);
   // The night floor: its table and the frame's up and horizon.
   bool floor_ = false;
   std::vector<std::array<float, 4>> floor_table_;

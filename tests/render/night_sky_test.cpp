@@ -18,6 +18,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "../atmosphere/lut_fixture.h"
+#include "astro/moon_photometry.h"
 #include "astro/night_sky_floor.h"
 #include "astro/sky_positions.h"
 #include "astro/star_catalogue.h"
@@ -90,6 +91,7 @@ RenderOptions options(bool stars, bool floor) {
   o.night_sky.stars = stars;
   o.night_sky.night_floor = floor;
   o.night_sky.star_magnitude_limit = 1.5;
+  o.night_sky.moon = false;
   return o;
 }
 
@@ -268,11 +270,55 @@ TEST(NightSkyPass, AStarIsDimmedByTheTransmittanceAlongItsLineOfSightAndTheFloor
     EXPECT_NEAR(double(lit[centre + k]) - dark[centre + k], want[k] * exposure, 0.02 * want[k] * exposure) << "channel " << k;
 }
 
+TEST(NightSkyPass, TheMoonCarriesItsIrradianceAsADiscAndAsAPointBelowAPixel) {
+  // The full Moon of 2026-01-03, high in the south-east at Greenwich, no
+  // atmosphere: Σ L Ω over the disc = the Moon's irradiance (its Lommel–Seeliger
+  // disc integrates to it within 1 %, docs/night-sky.md; 2 % for the edge's
+  // antialiasing on a 17-pixel disc), and the same as a point on a 64² dome.
+  const astro::UtcTime time{2026, 1, 3, 23, 0, 0.0};
+  const astro::Site site{kLatitudeDeg, kLongitudeDeg, 46.0};
+  const astro::MoonPlace moon = astro::SkyPositions(astro::AstroTime::from_utc(time), site).moon();
+  ASSERT_GT(moon.horizontal.altitude_rad, 20 * kDeg);
+  const auto enu = moon.horizontal.east_north_up();
+  const glm::dvec3 at(enu[0], enu[1], enu[2]);
+  const auto e = astro::moon_irradiance_W_m2_nm(moon, std::vector<double>{680.0, 550.0, 440.0});
+  RenderOptions with = options(false, false), without = options(false, false);
+  with.night_sky.moon = true;
+  without.night_sky.moon = false;
+  TestRenderer moonlit(with), dark(without);
+  // The sun where the ephemeris puts it (the disc's phase comes from its direction).
+  const auto at_time = [&](scene::Scene sc) {
+    sc.sky_clock->time = time;
+    sc.sun.direction =
+        scene::ephemeris_sun(sc, *sc.sky_clock, astro::AstroTime::from_utc(time), sc.camera.position_m).direction;
+    return sc;
+  };
+  const scene::Scene narrow = at_time(greenwich("", at, 1.0));
+  const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(64, 64, 2.0);
+  const auto image = moonlit.renderer.render_image(narrow, planar);
+  EXPECT_TRUE(moonlit.renderer.last_frame().night_sky_drawn);
+  const auto disc = energy_near(image, dark.renderer.render_image(narrow, planar), planar, {32.0, 32.0}, 20.0);
+  const scene::Scene dome = at_time(greenwich("", {0, -1, 0}, 1.0));
+  const warp::FisheyeProjection fisheye(64, 64);
+  const scene::LocalHorizon h = scene::local_horizon_at(dome.camera.position_m, dome.bodies[0]);
+  const glm::dvec2 px = *fisheye.pixel(glm::conjugate(dome.camera.orientation) * (at.x * h.east + at.y * h.north + at.z * h.up));
+  const auto point = energy_near(moonlit.renderer.render_image(dome, fisheye), dark.renderer.render_image(dome, fisheye),
+                                 fisheye, px, 3.0);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_NEAR(disc[k], e[k], 0.02 * e[k]) << "disc, channel " << k;
+    EXPECT_NEAR(point[k], e[k], 0.01 * e[k]) << "point, channel " << k;
+  }
+  std::printf("the Moon's energy / irradiance: disc %.4f %.4f %.4f, point %.4f %.4f %.4f\n", disc[0] / e[0],
+              disc[1] / e[1], disc[2] / e[2], point[0] / e[0], point[1] / e[1], point[2] / e[2]);
+}
+
 TEST(NightSkyPass, SkippedByItsOwnTestWhenNoStarCouldShow) {
   REQUIRE_CATALOGUE();
   const astro::StarCatalogue c = bright_stars();
   const scene::Scene s = greenwich("", sirius_enu(c), 1.0);  // a daylight exposure
-  TestRenderer stars(options(true, true)), none(options(false, false));
+  RenderOptions o = options(true, true);
+  o.night_sky.moon = false;  // the Moon is seen by day: not part of this test
+  TestRenderer stars(o), none(options(false, false));
   const warp::FisheyeProjection dome(48, 48);
   const auto a = stars.renderer.render_image(s, dome);
   EXPECT_FALSE(stars.renderer.last_frame().night_sky_drawn);
