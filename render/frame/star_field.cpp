@@ -111,6 +111,29 @@ double pixel_solid_angle_sr(const warp::Projection& projection, double x_px, dou
   return glm::length(glm::cross(glm::normalize(*xb) - glm::normalize(*xa), glm::normalize(*yb) - glm::normalize(*ya)));
 }
 
+std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, double margin_rad) {
+  const double w = projection.width(), h = projection.height();
+  const auto centre = projection.ray(0.5 * w, 0.5 * h);
+  if (!centre) return {glm::dvec3(0, 0, -1), -1.0};
+  const glm::dvec3 axis = glm::normalize(*centre);
+  double widest = 0.0;
+  constexpr int kSteps = 64;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double t = static_cast<double>(i) / kSteps;
+    for (const glm::dvec2 p : {glm::dvec2(t * w, 0.0), glm::dvec2(t * w, h), glm::dvec2(0.0, t * h), glm::dvec2(w, t * h),
+                               glm::dvec2(t * w, 0.5 * h), glm::dvec2(0.5 * w, t * h)}) {
+      const auto r = projection.ray(p.x, p.y);
+      if (!r) {
+        widest = std::max(widest, 0.5 * 3.14159265358979323846);  // a fisheye's circle: at least its field
+        continue;
+      }
+      widest = std::max(widest, std::acos(std::clamp(glm::dot(glm::normalize(*r), axis), -1.0, 1.0)));
+    }
+  }
+  const double limit = widest + margin_rad;
+  return {axis, limit >= 3.14159265358979323846 ? -1.0 : std::cos(limit)};
+}
+
 std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm::dvec3>& directions_enu,
                                    const StarFrame& frame) {
   const warp::Projection& projection = *frame.projection;
@@ -124,7 +147,9 @@ std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm
     std::vector<double> transmittance(n), one(n);
     for (std::size_t i = chunk * kChunk; i < std::min(count, (chunk + 1) * kChunk); ++i) {
       const glm::dvec3& enu = directions_enu[i];
+      if (enu.z < frame.lowest_sin_altitude) continue;  // under the ground
       glm::dvec3 d = enu.x * frame.east + enu.y * frame.north + enu.z * frame.up;
+      if (glm::dot(d, frame.view_axis) < frame.view_cos_limit) continue;  // outside the view
       if (frame.refraction) {
         const double true_altitude = std::asin(std::clamp(enu.z, -1.0, 1.0));
         const double apparent = frame.refraction->apparent_from_true_rad(true_altitude);

@@ -115,7 +115,21 @@ struct StarFrame {
   std::vector<std::pair<glm::dvec3, double>> occluders;
   std::vector<std::array<double, 3>> rgb_weights;  ///< per wavelength
   double exposure = 1.0;
+  /// Cheap rejections before any per-star work (view_cone below): a star
+  /// whose geometric direction is further than this from `view_axis` (world,
+  /// unit) cannot land in the image; cos of that angle (−1: none).
+  glm::dvec3 view_axis{0, 0, -1};
+  double view_cos_limit = -1.0;
+  /// sin of the lowest true altitude that can still show (the ground's dip less
+  /// refraction's lift and a margin; −1: none): below it the ground hides the star.
+  double lowest_sin_altitude = -1.0;
 };
+
+/// The cone around the image's centre ray that holds every pixel's ray, widened
+/// by `margin_rad` (refraction's lift, the splat's footprint): axis (camera
+/// frame) and the cosine of its half-angle (−1 where it exceeds π). From the
+/// rays of 64 points along each edge of the image and through its centre lines.
+std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, double margin_rad);
 
 /// The transmittance along a ray from `camera_m` in unit direction `d` to
 /// infinity through `a` (1 where it misses the shell, 0 where it meets the

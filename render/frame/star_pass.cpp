@@ -13,6 +13,7 @@
 #include "astro/civil_time.h"
 #include "astro/moon_photometry.h"
 #include "astro/star_catalogue.h"
+#include "core/units.h"
 #include "render/shader_bindings.h"
 #include "render/shader_programs.h"
 #include "render/frame/night_sky_table.h"
@@ -144,6 +145,15 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
       for (const scene::Body& b : scene.bodies) f.occluders.emplace_back(b.position_m, b.radius_m);
       f.rgb_weights = frame.rgb_weights;
       f.exposure = exposure;
+      // Rejections before the per-star work: the view's cone widened by refraction's
+      // largest lift (under 1°) and a splat's reach (two pixels, at most 5°), and the ground.
+      const double margin = 1.0 * core::kDeg + std::min(2.0 * frame.projection.max_pixel_angle_rad(), 5.0 * core::kDeg);
+      const auto [axis, cos_limit] = view_cone(frame.projection, margin);
+      f.view_axis = glm::normalize(frame.camera_to_world * axis);
+      f.view_cos_limit = cos_limit;
+      const double r = glm::length(scene.camera.position_m - scene.bodies.at(clock.body).position_m);
+      const double dip = std::acos(std::min(1.0, scene.bodies.at(clock.body).radius_m / r));  // the horizon's depression
+      f.lowest_sin_altitude = std::sin(std::max(-0.5 * core::kPi, -dip - 2.0 * core::kDeg));
     }
     if (options_.stars && ensure_field(scene) && field_->size() > 0) {
       double weight = 0.0;  // the largest Σ_λ max_c |w_c(λ)|: an RGB bound per unit of flat irradiance
@@ -278,7 +288,7 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
         touched[static_cast<std::size_t>(y / kTileSize) * static_cast<std::size_t>(columns) +
                 static_cast<std::size_t>(x / kTileSize)] = 1;
   }
-  std::vector<std::uint32_t> add_tiles, overwrite_tiles;
+  std::vector<std::uint32_t> add_tiles, floor_tiles, overwrite_tiles;
   for (std::size_t t = 0; t < band.tiles; ++t) {
     const auto word = pack_tile(static_cast<std::uint32_t>(t % static_cast<std::size_t>(columns)),
                                 static_cast<std::uint32_t>(t / static_cast<std::size_t>(columns)));
@@ -287,12 +297,15 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
         overwrite_tiles.push_back(word);
         band.black[t] = 0;  // drawn now
       }
-    } else if (touched[t] || floor_) {
+    } else if (touched[t]) {
       add_tiles.push_back(word);
+    } else if (floor_) {
+      floor_tiles.push_back(word);  // no star: the accumulator is not read
     }
   }
   std::vector<std::uint32_t> lists = add_tiles;
   lists.insert(lists.end(), overwrite_tiles.begin(), overwrite_tiles.end());
+  lists.insert(lists.end(), floor_tiles.begin(), floor_tiles.end());
   if (lists.empty()) return;
 
   // Fixed point: no pixel can exceed the sum of the band's stars, which maps to 2^30 counts.
@@ -349,14 +362,15 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
   if (tiles_.id() == 0 || tiles_.size() < bytes) tiles_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
   tiles_.upload(std::span<const std::uint32_t>(lists));
   tiles_.bind_storage(binding::kTiles);
-  if (!add_tiles.empty()) {
-    p.set_uniform("overwrite", 0);
-    timer.gpu("night sky", [&] { frame.dispatch_tiles(p, TileList{0, add_tiles.size()}); });
-  }
-  if (!overwrite_tiles.empty()) {
-    p.set_uniform("overwrite", 1);
-    timer.gpu("night sky", [&] { frame.dispatch_tiles(p, TileList{add_tiles.size(), overwrite_tiles.size()}); });
-  }
+  const auto dispatch = [&](std::size_t offset, std::size_t tiles, bool overwrite, bool with_stars) {
+    if (tiles == 0) return;
+    p.set_uniform("overwrite", overwrite ? 1 : 0);
+    p.set_uniform("with_stars", with_stars ? 1 : 0);
+    timer.gpu("night sky", [&] { frame.dispatch_tiles(p, TileList{offset, tiles}); });
+  };
+  dispatch(0, add_tiles.size(), false, true);
+  dispatch(add_tiles.size(), overwrite_tiles.size(), true, true);
+  dispatch(add_tiles.size() + overwrite_tiles.size(), floor_tiles.size(), false, false);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

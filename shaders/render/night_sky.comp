@@ -22,11 +22,13 @@
 
 #include "frame.glsl"
 #include "frame_rgb.glsl"
+#define STAR_PIXELS
 #include "star_accumulator.glsl"
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
 uniform bool overwrite;
+uniform bool with_stars;  // the tiles hold stars: read (and clear) the accumulator
 uniform float star_unit;  // radiance × exposure per count of the accumulator (1 / star_fixed_point)
 
 uniform bool moon_disc;
@@ -72,12 +74,11 @@ void main() {
   ivec2 p;
   if (!tile_pixel(p)) return;
   const uint i = frame_rgb_index(p);
-  const ivec3 counts = ivec3(star_accumulator[4u * i], star_accumulator[4u * i + 1u], star_accumulator[4u * i + 2u]);
-  vec3 add = vec3(counts) * star_unit;
-  if (any(notEqual(counts, ivec3(0)))) {
-    star_accumulator[4u * i] = 0;
-    star_accumulator[4u * i + 1u] = 0;
-    star_accumulator[4u * i + 2u] = 0;
+  vec3 add = vec3(0.0);
+  if (with_stars) {
+    const ivec4 counts = star_pixels[i];
+    add = vec3(counts.rgb) * star_unit;
+    if (any(notEqual(counts.rgb, ivec3(0)))) star_pixels[i] = ivec4(0);
   }
   vec3 ray;
   float distance_m;
