@@ -112,7 +112,9 @@ TEST(FrameDecoder, UnsupportedVersionInTheHeader) {
   put_be16(f, 4, 1);  // the first release: no AtmosphereDefinition
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 1");
   put_be16(f, 4, 2);  // no PreviewRequest and Thumbnail: a node of version 2 is refused, not half served
-  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 3");
+  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 4");
+  put_be16(f, 4, 3);  // a FrameState without the sky's fields
+  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 3, this build speaks 4");
 }
 
 TEST(FrameDecoder, UnsupportedVersionInHello) {
@@ -192,9 +194,13 @@ TEST(FrameDecoder, MalformedPayloadCountAboveItsLimit) {
 
 TEST(FrameDecoder, MalformedPayloadOutOfRangeValue) {
   Bytes f = encode(FrameState{});
-  put_be32(f, f.size() - 4, 0x80000000u);  // unknown render flag
+  put_be32(f, f.size() - 4 - 49, 0x80000000u);  // unknown render flag (before the 49 bytes of the sky fields)
   fix_crc(f);
   expect_error(f, ProtocolErrorCode::malformed_payload, "FrameState.render_flags: unknown bits");
+  Bytes k = encode(FrameState{});
+  k[k.size() - 49] = 2;  // an unknown sky flag
+  fix_crc(k);
+  expect_error(k, ProtocolErrorCode::malformed_payload, "FrameState.sky.flags: unknown bits");
 
   Bytes g = encode(TableAnnounce{{}, 10000, 4096, 3, {}});
   put_be32(g, kHeaderBytes + 32 + 8 + 4, 4);  // chunk_count 4 ≠ ceil(10000 / 4096)
