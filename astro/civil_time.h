@@ -41,6 +41,8 @@ class AstroTime {
   /// From a Terrestrial Time Julian date (e.g. an almanac's "0h TD").
   static AstroTime from_tt(double tt_julian_date, double dut1_s = 0.0);
 
+  /// From UTC as a two-part quasi Julian date (what utc() returns).
+  static AstroTime from_utc_julian(JulianDate utc, double dut1_s = 0.0);
   /// This instant moved by `seconds` of UTC (a leap second inside the shift is
   /// not counted: UTC quasi-Julian-date arithmetic, as ERFA defines it).
   AstroTime plus_seconds(double seconds) const;
@@ -55,7 +57,6 @@ class AstroTime {
   UtcTime calendar_utc() const;
 
  private:
-  static AstroTime from_utc_julian(JulianDate utc, double dut1_s);
   JulianDate utc_, tt_, ut1_;
   double dut1_s_ = 0.0;
 };

@@ -77,6 +77,7 @@
 #include "atmosphere/lut/table_cache.h"
 #include "bench/bench_tables.h"
 #include "bench/present_bench.h"
+#include "bench/star_frames.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/software_rasterizer.h"
 #include "render/lut/gpu_precompute.h"
@@ -108,6 +109,8 @@ struct Options {
   std::filesystem::path csv = std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/render_frame_times.csv";
   std::filesystem::path scene = std::filesystem::path(ZENITH_SOURCE_DIR) / "configs/scenes/three-worlds.json";
   std::optional<std::filesystem::path> cache;
+  std::optional<double> stars;  // --stars LIMIT: the night sky's pass (bench/star_frames.h)
+  bench::StarTiming star_timing;
   /// Per-projector mode: render every output of this viewport config (its own
   /// projection, warp and size) and report each one's frame time and peak memory.
   std::optional<std::filesystem::path> viewport;
@@ -131,6 +134,11 @@ constexpr const char* kUsage =
     "  --rounds       run every case this many times, interleaved (default 3); the median and\n"
     "                 the fastest of all their frames are reported\n"
     "  --budget-s     stop a case's frames when the next would exceed this many seconds (default 120)\n"
+    "  --stars LIMIT  the night sky's pass instead: frames with and without the catalogue's stars to V LIMIT\n"
+    "                 (8.7: ~100 000) at night and in the scene's day (bench/star_frames.h); with\n"
+    "                 --stars-time ISO (UTC), --stars-exposure X, --stars-csv FILE\n"
+    "                 (default bench/results/star_frame_times.csv); the ground view:\n"
+    "                 --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79 --stars 8.7\n"
     "  --csv          output CSV (default bench/results/render_frame_times.csv in the source tree)\n"
     "  --no-chart     no gnuplot script and PNG next to the CSV\n"
     "  --chart-only   render nothing: redraw the chart of an existing --csv (same --quick/--sizes)\n"
@@ -204,6 +212,15 @@ Options parse_options(int argc, char** argv) {
       if (!(o.planar_fov_deg > 0.0 && o.planar_fov_deg < 180.0)) throw std::invalid_argument("--fov: must be in (0, 180)");
     }
     else if (a == "--cache") o.cache = value(i, a);
+    else if (a == "--stars") {
+      o.stars = std::stod(value(i, a));
+      if (!(*o.stars >= -2.0 && *o.stars <= 10.5)) throw std::invalid_argument("--stars: V limit must be in [-2, 10.5]");
+    } else if (a == "--stars-time") o.star_timing.time_utc = value(i, a);
+    else if (a == "--stars-exposure") {
+      o.star_timing.exposure = std::stod(value(i, a));
+      if (!(o.star_timing.exposure > 0.0 && o.star_timing.exposure <= 1e6))
+        throw std::invalid_argument("--stars-exposure: must be in (0, 1e6]");
+    } else if (a == "--stars-csv") o.star_timing.csv = value(i, a);
     else if (a == "--device") o.device = value(i, a);
     else if (a == "--viewport") o.viewport = value(i, a);
     else if (a == "--viewport-csv") o.viewport_csv = value(i, a);
@@ -498,6 +515,17 @@ int run(int argc, char** argv) {
   if (opt.gbuffer_path) {
     atm_options.one_pass_tiles = body_options.one_pass_tiles = false;
     atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
+  }
+  if (opt.stars) {
+    bench::StarTiming t = opt.star_timing;
+    t.magnitude_limit = *opt.stars;
+    t.rounds = opt.rounds;
+    t.iterations = opt.iterations;
+    t.sizes = opt.sizes;
+    t.fov_deg = opt.planar_fov_deg;
+    if (t.csv.empty()) t.csv = std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/star_frame_times.csv";
+    bench::time_stars(t, device, scene, tables);
+    return 0;
   }
   render::Renderer with_atmospheres_renderer(atm_options, tables), bodies_renderer(body_options, tables);
   const render::RowSink discard = [](int, int, std::span<const float>) {};

@@ -5,6 +5,7 @@
 // the commands, the cluster's nodes and the benchmarks fill these in without
 // seeing the renderer's GL side.
 #include <cstddef>
+#include <filesystem>
 
 #include "image/colour.h"
 
@@ -25,6 +26,20 @@ enum class SkyViewTableUse {
   off,        ///< never: the 4D tables for every pixel (the reference the table is tested against)
 };
 
+/// The night sky's light (render/frame/star_pass.h, docs/night-sky.md,
+/// "Rendering the night sky"), drawn for scenes with a "time" and "site" (the
+/// stars) or a "night_sky"/"light_pollution" (the floor and the glow).
+struct NightSkyRenderOptions {
+  bool stars = true;        ///< the catalogue's stars as point sources
+  bool night_floor = true;  ///< the natural night sky and light pollution
+  bool moon = true;         ///< the Moon's disc by its phase (Lommel–Seeliger), with the stars' sky clock
+  /// The catalogue (astro/star_catalogue.h): stellarium-data's directory and
+  /// the faintest V kept, [−2, 10.5]. Loaded once per renderer, on the first
+  /// frame that needs it; a missing catalogue logs a warning and draws no stars.
+  std::filesystem::path star_directory = "/usr/share/stellarium/stars/default";
+  double star_magnitude_limit = 7.0;
+};
+
 struct RenderOptions {
   bool atmospheres = true;      ///< false: bodies lit by the sun only (the benchmarks' baseline)
   bool sun_disc = true;         ///< draw the sun's disc
@@ -42,6 +57,7 @@ struct RenderOptions {
   /// Time every pass (GL_TIME_ELAPSED queries; CPU steps by the wall clock) into
   /// FrameStats::pass_ms. Serialises the frame: for profiling, not for frame times.
   bool time_passes = false;
+  NightSkyRenderOptions night_sky;
 };
 
 }  // namespace zenith::render

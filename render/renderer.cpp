@@ -24,6 +24,7 @@
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
 #include "render/frame/pass_timer.h"
+#include "render/frame/star_pass.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
@@ -63,8 +64,10 @@ std::array<float, 4> vec4_of(const glm::dvec3& v, double w) {
 }  // namespace
 
 struct Renderer::Impl {
-  explicit Impl(const RenderOptions& options) : frame_programs(options.sun_disc, options.limb_darkening) {}
+  explicit Impl(const RenderOptions& options)
+      : frame_programs(options.sun_disc, options.limb_darkening), night_sky(options.night_sky) {}
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
+  NightSkyPass night_sky;        // stars, the night floor, light pollution (render/frame/star_pass.h)
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   std::map<std::string, image::LinearImage> albedo_images;           // by albedo_key
   std::string albedo_array_key;
@@ -182,6 +185,11 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   fill_sky_view_tables(frame, timer);
   prepare_programs(frame);
   set_direct_light_uniforms(frame);
+  impl_->night_sky.prepare(frame, timer);
+  const NightSkyStats& night = impl_->night_sky.stats();
+  stats_.stars = night.stars;
+  stats_.night_sky_drawn = !night.skipped;
+  stats_.star_catalogue_identity = night.catalogue_identity;
   render_bands(frame, output, timer);
   stats_.pass_ms = timer.milliseconds();
   stats_.seconds = seconds_since(start);
@@ -381,11 +389,14 @@ void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& t
     frame.band_ready.clear();
 
     if (frame.gpu_projection.kind == warp::ProjectionKind::ray_table) upload_ray_table(frame, first_row, rows);
-    const BandTiles band = classify_band_tiles(frame, first_row, rows);
+    BandTiles band = classify_band_tiles(frame, first_row, rows);
     upload_tile_lists(band);
     draw_direct_tiles(frame, band, timer);
     draw_one_pass_tiles(frame, band, timer);
     draw_gbuffer_tiles(frame, band, timer);
+    // The stars and the night sky join the radiance before the band leaves
+    // (readback, texture copy or the live display pass): one tone mapping for all.
+    impl_->night_sky.draw_band(frame, band, timer);
     output(frame, band, timer);
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, frame.scene.name));
   }

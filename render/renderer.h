@@ -19,6 +19,9 @@
 //     per atmosphere front to back (atmosphere_pass.comp: running radiance and
 //     transmittance) and resolve.comp (airless surfaces, the sun's disc, colour);
 //
+// then the night sky's pass (render/frame/star_pass.h: the catalogue's stars as
+// point sources of flux, the night floor, light pollution) adds its light to
+// the band's radiance, skipped by its own test where nothing would show;
 // then the band is read back and its rows handed to the caller (EXR/PNG writers
 // stream them).
 //
@@ -88,6 +91,12 @@ struct FrameStats {
   std::size_t tiles_direct = 0;          ///< tiles drawn by direct_light.comp (a body or the sun, no atmosphere)
   std::size_t tiles_black = 0;           ///< tiles with nothing to draw: not dispatched
   double seconds = 0.0;                 ///< wall time of render(), readback included
+  /// The night sky's pass (render/frame/star_pass.h): stars placed in the
+  /// image, whether it ran (false: no sky clock or night sky, or its own test
+  /// found nothing visible), the catalogue's identity of the stars drawn.
+  std::size_t stars = 0;
+  bool night_sky_drawn = false;
+  std::string star_catalogue_identity;
   /// With RenderOptions::time_passes: milliseconds per pass or CPU step, summed over bands and groups.
   std::map<std::string, double> pass_ms;
 };

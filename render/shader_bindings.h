@@ -29,6 +29,9 @@ inline constexpr unsigned kHarmonicCoefficients = 7;  ///< HARMONIC_COEFFICIENTS
 inline constexpr unsigned kViewTransmittance = 8;     ///< VIEW_TRANSMITTANCE_BINDING (view_ray.glsl)
 inline constexpr unsigned kViewRayCoordinates = 9;    ///< VIEW_RAY_COORDINATES_BINDING (view_ray.glsl)
 inline constexpr unsigned kBlackTiles = 10;           ///< BLACK_TILES_BINDING (render/band_to_texture.comp)
+inline constexpr unsigned kStarSplats = 11;           ///< STAR_SPLATS_BINDING (render/star_splat.comp)
+inline constexpr unsigned kStarAccumulator = 12;      ///< STAR_ACCUMULATOR_BINDING (render/star_accumulator.glsl)
+inline constexpr unsigned kNightSkyTable = 13;        ///< NIGHT_SKY_TABLE_BINDING (render/night_sky.comp)
 
 // ---- uniform buffers
 inline constexpr unsigned kWavelengthData = 0;  ///< WAVELENGTH_DATA_BINDING (atmosphere/physics.glsl): the model's parameters

@@ -57,6 +57,20 @@ struct FadeState {
 };
 inline constexpr double kMaxFadeLevel = 1.0;
 
+/// The sky by date of a frame (issue 29; docs/protocol.md, "FrameState",
+/// the sky fields): the instant it shows, so that every node of a cluster
+/// places the same stars, Sun and Moon at the same frame, and the identity of
+/// the star catalogue they are drawn from (never its data: each node reads
+/// its own copy of stellarium-data and checks that it is the same).
+struct SkyFrame {
+  bool has_time = false;  ///< the scene has a sky clock ("time" and "site"); false: the fields below are 0
+  /// UTC as ERFA's two-part quasi Julian date (astro::AstroTime::utc()), when has_time.
+  double utc_jd1 = 0.0, utc_jd2 = 0.0;
+  /// astro::StarCatalogue::identity_sha256 as 32 raw bytes; all zero: not checked.
+  core::Sha256Digest star_catalogue{};
+  bool operator==(const SkyFrame&) const = default;
+};
+
 /// Everything that varies per frame. Vectors in the scene's world frame
 /// (scene/scene.h). Every double must be finite.
 struct FrameDescription {
@@ -71,6 +85,7 @@ struct FrameDescription {
   std::vector<AtmosphereTableRef> atmospheres;  ///< ≤ kMaxAtmospheres
   std::uint32_t render_flags = 0;             ///< RenderFlag bits
   FadeState fade;                             ///< the operator's fade at this frame's present
+  SkyFrame sky;                               ///< the sky's date and catalogue (its own struct: the night sky's fields)
   bool operator==(const FrameDescription&) const = default;
 };
 

@@ -49,6 +49,10 @@ std::string frame_digest(const FrameDescription& frame) {
   h.unsigned_be(frame.render_flags, 4);
   h.f64(frame.fade.level);
   for (int i = 0; i < 3; ++i) h.f64(frame.fade.colour[i]);
+  h.unsigned_be(frame.sky.has_time ? 1 : 0, 1);
+  h.f64(frame.sky.utc_jd1);
+  h.f64(frame.sky.utc_jd2);
+  h.raw(frame.sky.star_catalogue.data(), frame.sky.star_catalogue.size());
   return h.hex16();
 }
 

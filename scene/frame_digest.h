@@ -18,7 +18,8 @@ namespace zenith::scene {
 ///   the irradiance count (u8) and its values (f64), the atmosphere count (u8)
 ///   and per atmosphere: body_name's byte count (u16) and UTF-8 bytes,
 ///   table_hash (32 raw bytes), effective_from_frame (u64); render_flags (u32);
-///   the fade's level and colour r g b (f64 each, protocol 4).
+///   the fade's level and colour r g b (f64 each); the sky's flags (u8: bit 0
+///   has_time), utc_jd1, utc_jd2 (f64) and star_catalogue (32 raw bytes).
 ///
 /// Integers are big-endian, doubles their IEEE-754 binary64 bit pattern
 /// big-endian (so −0 and +0 differ, as they would on the wire). This is the

@@ -44,7 +44,17 @@ FrameDescription default_show_frame(const Scene& scene, std::uint64_t frame, dou
   s.sun_irradiance_W_m2_nm = scene.sun.irradiance_W_m2_nm;
   s.atmospheres = atmospheres;
   s.render_flags = render_flags;
+  if (scene.sky_clock) s.sky = sky_frame(astro::AstroTime::from_utc(scene.sky_clock->time));
   return s;
+}
+
+SkyFrame sky_frame(const astro::AstroTime& time, const core::Sha256Digest& star_catalogue) {
+  SkyFrame sky;
+  sky.has_time = true;
+  sky.utc_jd1 = time.utc().day1;
+  sky.utc_jd2 = time.utc().day2;
+  sky.star_catalogue = star_catalogue;
+  return sky;
 }
 
 void check_frame(const FrameDescription& frame, const Scene& scene) {
@@ -62,6 +72,10 @@ void apply_frame(const FrameDescription& frame, Scene& scene) {
   scene.sun.direction = frame.sun_direction;
   scene.sun.angular_radius_rad = frame.sun_angular_radius_rad;
   scene.sun.irradiance_W_m2_nm = frame.sun_irradiance_W_m2_nm;
+  // The sky clock's instant (the stars, the Moon): the scene's own time otherwise.
+  if (frame.sky.has_time && scene.sky_clock)
+    scene.sky_clock->time =
+        astro::AstroTime::from_utc_julian(astro::JulianDate{frame.sky.utc_jd1, frame.sky.utc_jd2}).calendar_utc();
 }
 
 }  // namespace zenith::scene

@@ -26,7 +26,12 @@ FrameDescription default_show_frame(const Scene& scene, std::uint64_t frame, dou
 /// read different scenes).
 void check_frame(const FrameDescription& frame, const Scene& scene);
 
-/// Copies the per-frame parts of `frame` (camera, exposure, sun) into `scene`;
+/// A frame's sky fields for the instant `time` (has_time set) and a star
+/// catalogue's identity (all zero: not checked).
+SkyFrame sky_frame(const astro::AstroTime& time, const core::Sha256Digest& star_catalogue = {});
+
+/// Copies the per-frame parts of `frame` (camera, exposure, sun, the sky
+/// clock's instant where both have one) into `scene`;
 /// the atmospheres stay (a node replaces them by table version itself, a show
 /// by its versions). Throws as check_frame, and then changes nothing.
 void apply_frame(const FrameDescription& frame, Scene& scene);

@@ -68,6 +68,10 @@ json frame_to_json(const scene::FrameDescription& s) {
   // frames of the picture alone read as before fades existed.
   if (s.fade != scene::FadeState{})
     frame["fade"] = {{"level", s.fade.level}, {"colour", vec3_json(s.fade.colour)}};
+  // The sky by date (the night sky's own struct): only frames of a scene with a sky clock.
+  if (s.sky.has_time)
+    frame["sky"] = {{"utc_jd", json::array({s.sky.utc_jd1, s.sky.utc_jd2})},
+                    {"star_catalogue", core::to_hex(s.sky.star_catalogue)}};
   return frame;
 }
 
@@ -108,7 +112,7 @@ scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& s
   config::reject_unknown_keys(r, frame,
                               {"frame", "show_time_s", "camera_position_m", "camera_orientation", "exposure",
                                "sun_direction", "sun_angular_radius_rad", "sun_irradiance_W_m2_nm", "atmospheres",
-                               "render_flags", "fade"},
+                               "render_flags", "fade", "sky"},
                               "docs/shows.md");
   scene::FrameDescription s;
   s.frame = unsigned_integer(r, "frame", std::uint64_t{1} << 53);
@@ -163,6 +167,22 @@ scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& s
         f.fail("colour", cat("= ", brief(f.raw("colour")), ": each component must be in [0, 1]"));
     s.fade.colour = {c[0], c[1], c[2]};
     f.finish();
+  }
+  if (r.has("sky")) {
+    JsonReader k(r.raw("sky"), file, r.key_path("sky"));
+    config::reject_unknown_keys(k, r.raw("sky"), {"utc_jd", "star_catalogue"}, "docs/shows.md");
+    const std::vector<double> jd = numbers(k, "utc_jd", 2, "[day1, day2] (a two-part UTC Julian date)");
+    if (!(jd[0] + jd[1] >= 2436934.5 && jd[0] + jd[1] <= 2488069.5))
+      k.fail("utc_jd", cat("= ", brief(k.raw("utc_jd")), ": must be a date of 1960-2100 (Julian date 2436934.5-2488069.5)"));
+    s.sky.has_time = true;
+    s.sky.utc_jd1 = jd[0];
+    s.sky.utc_jd2 = jd[1];
+    try {
+      s.sky.star_catalogue = core::digest_from_hex(k.string("star_catalogue"));
+    } catch (const std::invalid_argument&) {
+      k.fail("star_catalogue", cat("= ", brief(k.raw("star_catalogue")), ": must be 64 hexadecimal digits"));
+    }
+    k.finish();
   }
   r.finish();
   return s;

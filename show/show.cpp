@@ -79,6 +79,9 @@ scene::FrameDescription Show::Impl::keyframed_state(double t_s, std::uint64_t fr
     const scene::EphemerisSun e = scene::ephemeris_sun(scene, *scene.sky_clock, time->at(t_s), s.camera_position_m);
     s.sun_direction = e.direction;
     s.sun_angular_radius_rad = e.angular_radius_rad;
+    s.sky = scene::sky_frame(time->at(t_s), star_catalogue);
+  } else if (scene.sky_clock) {
+    s.sky = scene::sky_frame(astro::AstroTime::from_utc(scene.sky_clock->time), star_catalogue);
   }
   for (const scene::Body& body : scene.bodies) {
     if (!body.atmosphere) continue;

@@ -53,6 +53,10 @@ struct Show::Impl {
   std::optional<CameraTrack> camera;
   std::optional<SunTrack> sun;
   std::optional<TimeTrack> time;  ///< moves the scene's sky clock (then no sun track)
+  /// The star catalogue's identity every node must draw the sky from (frames'
+  /// sky.star_catalogue): stellarium-data at the renderer's default magnitude
+  /// limit, read when the scene has a sky clock; zeros where it is not installed (not checked).
+  scene::TableHash star_catalogue{};
   std::optional<MonotoneCubic> log_exposure;  ///< ln(exposure)
   std::vector<AtmosphereTracks> atmosphere_tracks;
   /// Body → the table hash of the scene's own atmosphere, for bodies without tracks.

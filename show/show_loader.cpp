@@ -7,10 +7,12 @@
 #include <sstream>
 
 #include <glm/geometric.hpp>
+#include <spdlog/spdlog.h>
 
 #include "core/json_reader.h"
 #include "core/strings.h"
 #include "core/sha256.h"
+#include "astro/star_catalogue.h"
 #include "scene/scene.h"
 #include "show/recording_json.h"
 #include "show/show.h"
@@ -457,6 +459,15 @@ Show load_show(const fs::path& path) {
   if (root.has("sun")) {
     show.sun = read_sun_track(root, show.scene, show.camera);
     last_key_times.push_back(show.sun->key_times_s().back());
+  }
+  if (show.scene.sky_clock) {
+    // The catalogue's identity, never its data, goes to the nodes (each reads its own copy).
+    try {
+      show.star_catalogue = core::digest_from_hex(astro::load_star_catalogue().identity_sha256);
+    } catch (const std::exception& e) {
+      spdlog::warn("show '{}': no star catalogue to name to the nodes ({}); they draw what they have", show.name,
+                   e.what());
+    }
   }
   if (root.has("time")) {
     show.time = read_time_track(root, show.scene);

@@ -243,6 +243,13 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
       writer_.write(i, state.frame, read_back_radiance(k), attributes, state.fade);
     }
   }
+  // The stars: every node draws them from the catalogue the master named (its
+  // identity, docs/protocol.md: FrameState's sky fields), or the quadrants differ.
+  const std::string& stars = renderer_->last_frame().star_catalogue_identity;
+  if (state.sky.star_catalogue != Digest{} && !stars.empty() && stars != to_hex(state.sky.star_catalogue))
+    throw std::runtime_error(cat("FrameState.sky.star_catalogue is ", to_hex(state.sky.star_catalogue).substr(0, 16),
+                                 "…, but this node's stars are ", stars.substr(0, 16),
+                                 "… (another stellarium-data or magnitude limit than the master's)"));
   // RenderDone means ready to present: the GPU has finished the frame.
   glFinish();
   writer_.finish_frame({state.frame, scene::frame_digest(state), tables, state.show_time_s, state.fade});

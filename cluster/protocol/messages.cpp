@@ -20,8 +20,10 @@ constexpr std::size_t kHelloMax = 2 + kStringMax(kMaxNameBytes) * 2 + kDigestByt
 constexpr std::size_t kWelcomeMax = 4 + kDigestBytes + 8 + 4 + 4;
 constexpr std::size_t kRejectMax = 2 + kStringMax(kMaxReasonBytes);
 constexpr std::size_t kAtmosphereRefMax = kStringMax(kMaxNameBytes) + kDigestBytes + 8;
+/// FrameState's sky fields (scene::SkyFrame): flags u8, UTC Julian date 2 × f64, catalogue identity.
+constexpr std::size_t kSkyFrameBytes = 1 + 8 + 8 + kDigestBytes;
 constexpr std::size_t kFrameStateMax = 8 + 8 + 3 * 8 + 4 * 8 + 8 + 3 * 8 + 8 + 1 + kMaxWavelengths * 8 + 1 +
-                                       kMaxAtmospheres * kAtmosphereRefMax + 4 + 8 + 3 * 8;
+                                       kMaxAtmospheres * kAtmosphereRefMax + 4 + 8 + 3 * 8 + kSkyFrameBytes;
 constexpr std::size_t kTableAnnounceMax = kDigestBytes + 8 + 4 + 4 + kDigestBytes;
 constexpr std::size_t kTableChunkMax = kDigestBytes + 4 + 4 + kMaxTableChunkBytes;
 constexpr std::size_t kGoodbyeMax = kStringMax(kMaxReasonBytes);
@@ -30,8 +32,12 @@ constexpr std::size_t kPreviewRequestMax = 8 + 2;
 constexpr std::size_t kThumbnailMax =
     8 + kStringMax(kMaxNameBytes) + 2 + 2 + 4 + std::size_t{kMaxThumbnailEdgePx} * kMaxThumbnailEdgePx * 3;
 static_assert(kThumbnailMax == 12370);
-static_assert(kFrameStateMax == 1510);
+static_assert(kFrameStateMax == 1559);
 static_assert(kTableChunkMax == 1048616);
+
+/// The sky's dates a FrameState may carry: UTC exists from 1960 (ERFA), the
+/// ephemerides are good to 2100.
+constexpr double kSkyFirstJulianDate = 2436934.5, kSkyLastJulianDate = 2488069.5;
 
 // ---- validation shared by the encoder (std::invalid_argument) and the decoder (ProtocolError) ----
 
@@ -82,6 +88,15 @@ void validate(const FrameState& m, const Check& check) {
   check(m.fade.level >= 0.0 && m.fade.level <= 1.0, "FrameState.fade_level: must be in [0, 1]");
   for (int i = 0; i < 3; ++i)
     check(m.fade.colour[i] >= 0.0 && m.fade.colour[i] <= 1.0, "FrameState.fade_colour: each component must be in [0, 1]");
+  finite(m.sky.utc_jd1, "sky.utc_jd1");
+  finite(m.sky.utc_jd2, "sky.utc_jd2");
+  if (m.sky.has_time) {
+    const double jd = m.sky.utc_jd1 + m.sky.utc_jd2;
+    check(jd >= kSkyFirstJulianDate && jd <= kSkyLastJulianDate,
+          "FrameState.sky.utc_jd: " + std::to_string(jd) + " outside [2436934.5, 2488069.5] (1960–2100)");
+  } else {
+    check(m.sky.utc_jd1 == 0.0 && m.sky.utc_jd2 == 0.0, "FrameState.sky.utc_jd: set without the has_time flag");
+  }
 }
 void validate(const RenderDone& m, const Check& check) {
   check(std::isfinite(m.render_ms) && m.render_ms >= 0.0, "RenderDone.render_ms: not finite or < 0");
@@ -173,6 +188,10 @@ void write(ByteWriter& w, const FrameState& m) {
   w.u32(m.render_flags);
   w.f64(m.fade.level);
   for (int i = 0; i < 3; ++i) w.f64(m.fade.colour[i]);
+  w.u8(m.sky.has_time ? 1 : 0);
+  w.f64(m.sky.utc_jd1);
+  w.f64(m.sky.utc_jd2);
+  w.bytes(m.sky.star_catalogue);
 }
 void write(ByteWriter& w, const RenderDone& m) {
   w.u64(m.frame);
@@ -273,6 +292,12 @@ FrameState read_frame_state(ByteReader& r) {
   m.render_flags = r.u32("FrameState.render_flags");
   m.fade.level = r.f64("FrameState.fade_level");
   for (int i = 0; i < 3; ++i) m.fade.colour[i] = r.f64("FrameState.fade_colour");
+  const std::uint8_t sky_flags = r.u8("FrameState.sky.flags");
+  if ((sky_flags & ~1u) != 0) ByteReader::fail("FrameState.sky.flags: unknown bits set");
+  m.sky.has_time = (sky_flags & 1u) != 0;
+  m.sky.utc_jd1 = r.f64("FrameState.sky.utc_jd1");
+  m.sky.utc_jd2 = r.f64("FrameState.sky.utc_jd2");
+  m.sky.star_catalogue = r.array<32>("FrameState.sky.star_catalogue");
   return m;
 }
 TableAnnounce read_table_announce(ByteReader& r) {

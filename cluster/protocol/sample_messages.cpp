@@ -78,6 +78,7 @@ std::vector<Message> max_size_messages() {
   FrameState f = sample_frame_state(kMaxWavelengths, kMaxAtmospheres, kMaxNameBytes);
   f.frame = ~std::uint64_t{0};
   f.render_flags = kKnownRenderFlags;
+  f.sky = {true, 2488069.0, 0.5, pattern<32>(19)};  // the largest sky: a date, a catalogue identity
   out.push_back(f);
   out.push_back(RenderDone{~std::uint64_t{0}, 1e300, ~std::uint64_t{0}, ~std::uint64_t{0}, 1e300});
   out.push_back(Present{~std::uint64_t{0}});

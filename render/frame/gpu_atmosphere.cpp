@@ -61,6 +61,11 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   if (std::abs(tables.geometry.bottom_radius_m - model.ground_radius_m) > 1e-6 ||
       std::abs(tables.geometry.top_radius_m - model.top_radius_m) > 1e-6)
     throw std::invalid_argument(fmt::format("atmosphere '{}': the tables were made for other radii", model.name));
+  cpu_transmittance_.geometry = tables.geometry;
+  cpu_transmittance_.sizes = tables.sizes;
+  cpu_transmittance_.channels = tables.channels;
+  cpu_transmittance_.transmittance = tables.transmittance;
+  cpu_transmittance_.hash = tables.hash;
 
   atmosphere::lut::PrecomputeOptions options;
   options.sizes = tables.sizes;

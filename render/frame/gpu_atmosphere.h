@@ -62,6 +62,11 @@ class GpuAtmosphere {
   void set_group(const gl::ShaderProgram& program, std::size_t group) const;
   /// Bytes of GPU memory the tables take.
   std::size_t table_bytes() const { return table_bytes_; }
+  /// The transmittance table on the CPU too (geometry, sizes, channels and
+  /// transmittance of the table set; the other tables empty): the stars'
+  /// extinction and the night sky's (render/frame/star_field.h) read it per
+  /// star, as the sky's passes read the same table on the GPU. A few hundred kB.
+  const atmosphere::lut::LookupTables& cpu_transmittance() const { return cpu_transmittance_; }
 
   /// Binds the tables of wavelength group g (texture units 0–4), the sky-view
   /// table (unit 5), the model's buffers (ModelBuffers) and the texel coordinates.
@@ -91,6 +96,7 @@ class GpuAtmosphere {
   std::map<std::string, gl::ShaderProgram> programs_;     // compiled on first use, by variant
   std::unique_ptr<SkyViewTable> sky_view_;
   std::size_t table_bytes_ = 0;
+  atmosphere::lut::LookupTables cpu_transmittance_;
 };
 
 }  // namespace zenith::render

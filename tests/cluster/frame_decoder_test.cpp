@@ -113,7 +113,7 @@ TEST(FrameDecoder, UnsupportedVersionInTheHeader) {
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 1");
   put_be16(f, 4, 2);  // no PreviewRequest and Thumbnail: a node of version 2 is refused, not half served
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 4");
-  put_be16(f, 4, 3);  // FrameState without the fade, RenderDone without the present counts
+  put_be16(f, 4, 3);  // FrameState without the fade and the sky's fields, RenderDone without the present counts
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 3, this build speaks 4");
 }
 
@@ -194,12 +194,16 @@ TEST(FrameDecoder, MalformedPayloadCountAboveItsLimit) {
 
 TEST(FrameDecoder, MalformedPayloadOutOfRangeValue) {
   Bytes f = encode(FrameState{});
-  put_be32(f, f.size() - 36, 0x80000000u);  // unknown render flag (before the fade's 4 f64)
+  put_be32(f, f.size() - 4 - 32 - 49, 0x80000000u);  // unknown render flag (before the fade's 4 f64 and the sky's 49 bytes)
   fix_crc(f);
   expect_error(f, ProtocolErrorCode::malformed_payload, "FrameState.render_flags: unknown bits");
+  Bytes k = encode(FrameState{});
+  k[k.size() - 49] = 2;  // an unknown sky flag
+  fix_crc(k);
+  expect_error(k, ProtocolErrorCode::malformed_payload, "FrameState.sky.flags: unknown bits");
 
   Bytes h = encode(FrameState{});
-  put_be32(h, h.size() - 32, 0x3FF80000u);  // fade level 1.5 (0x3FF8… as f64)
+  put_be32(h, h.size() - 49 - 32, 0x3FF80000u);  // fade level 1.5 (0x3FF8… as f64), before the sky fields
   fix_crc(h);
   expect_error(h, ProtocolErrorCode::malformed_payload, "FrameState.fade_level: must be in [0, 1]");
 

@@ -32,7 +32,8 @@ FrameState known_frame_state() {
 
 TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
   const Bytes frame = encode(known_frame_state());
-  const std::size_t payload_bytes = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1 + (2 + 4 + 32 + 8) + 4 + 8 + 24;
+  const std::size_t payload_bytes =
+      8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1 + (2 + 4 + 32 + 8) + 4 + 8 + 24 + (1 + 8 + 8 + 32);
   ASSERT_EQ(frame.size(), kHeaderBytes + payload_bytes);
   const Bytes payload(frame.begin() + kHeaderBytes, frame.end());
   const std::uint32_t crc = crc32c(payload);
@@ -57,10 +58,12 @@ TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
   // Orientation w = 1.0 comes first (offset 40), then x, y, z.
   EXPECT_EQ(payload[40], 0x3F);
   EXPECT_EQ(payload[41], 0xF0);
-  // Then the flags: sun disc | eclipses = 9; the fade closes the payload: level 0.5 (0x3FE0…), colour 0, 1, 0.
-  EXPECT_EQ(Bytes(payload.end() - 36, payload.end() - 32), (Bytes{0, 0, 0, 9}));
-  EXPECT_EQ(Bytes(payload.end() - 32, payload.end() - 24), (Bytes{0x3F, 0xE0, 0, 0, 0, 0, 0, 0}));
-  EXPECT_EQ(Bytes(payload.end() - 16, payload.end() - 8), (Bytes{0x3F, 0xF0, 0, 0, 0, 0, 0, 0}));
+  // Then the flags: sun disc | eclipses = 9; the fade: level 0.5 (0x3FE0…), colour 0, 1, 0; the sky
+  // fields close the payload (49 bytes, no time: all zero).
+  EXPECT_EQ(Bytes(payload.end() - 49 - 36, payload.end() - 49 - 32), (Bytes{0, 0, 0, 9}));
+  EXPECT_EQ(Bytes(payload.end() - 49 - 32, payload.end() - 49 - 24), (Bytes{0x3F, 0xE0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(Bytes(payload.end() - 49 - 16, payload.end() - 49 - 8), (Bytes{0x3F, 0xF0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(Bytes(payload.end() - 49, payload.end()), Bytes(49, 0));
   // Atmosphere entry: u16 length 4, "Mars".
   const std::size_t atmosphere_at = 8 + 8 + 24 + 32 + 8 + 24 + 8 + 1 + 8 + 1;
   EXPECT_EQ(Bytes(payload.begin() + atmosphere_at, payload.begin() + atmosphere_at + 6),
@@ -98,7 +101,7 @@ TEST(Messages, DocumentedMaximumPayloads) {
   EXPECT_EQ(max(MessageType::authenticate), 32u);
   EXPECT_EQ(max(MessageType::welcome), 52u);
   EXPECT_EQ(max(MessageType::reject), 1028u);
-  EXPECT_EQ(max(MessageType::frame_state), 1510u);
+  EXPECT_EQ(max(MessageType::frame_state), 1559u);
   EXPECT_EQ(max(MessageType::render_done), 40u);
   EXPECT_EQ(max(MessageType::present), 8u);
   EXPECT_EQ(max(MessageType::table_announce), 80u);

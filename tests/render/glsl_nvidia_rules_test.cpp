@@ -284,8 +284,10 @@ void render_every_variant() {
   for (std::size_t i = 0; i < options.size(); ++i) {
     Renderer renderer(options[i],
                       [&](const AtmosphereModel& model) { return atmosphere::lut::precompute_tables_cpu(model, tables); });
-    for (const char* name : {"earth-ground-view.json", "earth-moon.json", "three-worlds.json"}) {
-      const scene::Scene s = scene::load_scene(scenes / name);
+    // earth-dusk-greenwich at a night exposure: the night sky's pass (stars, floor).
+    for (const char* name : {"earth-ground-view.json", "earth-moon.json", "three-worlds.json", "earth-dusk-greenwich.json"}) {
+      scene::Scene s = scene::load_scene(scenes / name);
+      if (s.sky_clock) s.camera.exposure = scene::kMaxExposure;
       renderer.render_image(s, planar);
       renderer.render_image(s, fisheye);
       if (i == 0 && std::string_view(name) == "three-worlds.json")

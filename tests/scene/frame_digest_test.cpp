@@ -36,8 +36,8 @@ FrameDescription full_frame() {
 // over the byte sequence documented in frame_digest.h):
 //   hashlib.sha256(struct.pack('>Q',0) + struct.pack('>d',0.0) + … ).hexdigest()[:16]
 TEST(FrameDigest, MatchesTheDocumentedOrderComputedIndependently) {
-  EXPECT_EQ(frame_digest(FrameDescription{}), "286e58f0c7d88ca1");
-  EXPECT_EQ(frame_digest(full_frame()), "9198c35beaca1a4c");
+  EXPECT_EQ(frame_digest(FrameDescription{}), "a0c727735aa8c9fc");
+  EXPECT_EQ(frame_digest(full_frame()), "509a472f64b90b7b");
 }
 
 // The digest is the SHA-256 of the FrameState payload (protocol 4), as the
@@ -85,6 +85,8 @@ TEST(FrameDigest, AnyFieldChangeChangesIt) {
       {"render_flags", [](FrameDescription& f) { f.render_flags |= kRenderEclipses; }},
       {"fade level", [](FrameDescription& f) { f.fade.level = 0.5; }},
       {"fade colour", [](FrameDescription& f) { f.fade.colour.g = 0.25; }},
+      {"sky time", [](FrameDescription& f) { f.sky.has_time = true; f.sky.utc_jd1 = 2461000.5; }},
+      {"sky catalogue", [](FrameDescription& f) { f.sky.star_catalogue[0] = 1; }},
   };
   std::set<std::string> seen = {frame_digest(full_frame())};
   for (const auto& [field, change] : changes) {

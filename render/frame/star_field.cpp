@@ -1,0 +1,197 @@
+#include "render/frame/star_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "atmosphere/lut/parameterization.h"
+#include "astro/star_photometry.h"
+#include "core/parallel_for.h"
+
+namespace zenith::render {
+
+StarField::StarField(astro::StarCatalogue catalogue, const std::vector<double>& wavelengths_nm)
+    : catalogue_(std::move(catalogue)), wavelengths_nm_(wavelengths_nm) {
+  if (wavelengths_nm_.empty()) throw std::invalid_argument("StarField: no wavelengths");
+  const std::size_t n = wavelengths_nm_.size();
+  irradiance_.resize(catalogue_.stars.size() * n);
+  for (std::size_t i = 0; i < catalogue_.stars.size(); ++i) {
+    const astro::CatalogueStar& s = catalogue_.stars[i];
+    astro::star_irradiance_W_m2_nm(s.v_mag, s.b_minus_v, wavelengths_nm_, std::span<double>(&irradiance_[i * n], n));
+  }
+  if (!irradiance_.empty()) brightest_ = *std::max_element(irradiance_.begin(), irradiance_.end());
+}
+
+glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& axis, double angle_rad) {
+  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+  return v * c + glm::cross(axis, v) * s + axis * (glm::dot(axis, v) * (1.0 - c));
+}
+
+void StarField::directions_enu(const astro::AstroTime& time, const astro::Site& site, std::vector<glm::dvec3>& out) {
+  const double ut1_jd = time.ut1().value();
+  const bool same_site = have_epoch_ && site.latitude_deg == epoch_site_.latitude_deg &&
+                         site.longitude_deg == epoch_site_.longitude_deg && site.altitude_m == epoch_site_.altitude_m;
+  if (!same_site || std::abs(ut1_jd - epoch_ut1_jd_) * 86400.0 > kStarEpochSpan_s) {
+    const astro::SkyPositions sky(time, site);
+    std::vector<astro::Horizontal> places;
+    sky.stars(catalogue_.stars, places);
+    epoch_enu_.resize(places.size());
+    for (std::size_t i = 0; i < places.size(); ++i) {
+      const auto enu = places[i].east_north_up();
+      epoch_enu_[i] = {enu[0], enu[1], enu[2]};
+    }
+    epoch_ut1_jd_ = ut1_jd;
+    epoch_site_ = site;
+    have_epoch_ = true;
+  }
+  // The sky turns westward about the celestial pole, which stands at the
+  // site's latitude above the northern horizon (polar motion neglected, as
+  // SkyPositions does): a rotation by −ω Δt about (0, cos φ, sin φ).
+  const double phi = site.latitude_deg * 3.14159265358979323846 / 180.0;
+  const glm::dvec3 pole(0.0, std::cos(phi), std::sin(phi));
+  // Two-part difference: the day parts cancel in double without losing the seconds.
+  const double dt_s = ((time.ut1().day1 - epoch_ut1_jd_) + time.ut1().day2) * 86400.0;
+  const double angle = -kEarthRotationRate_rad_s * dt_s;
+  out.resize(epoch_enu_.size());
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (std::size_t i = 0; i < epoch_enu_.size(); ++i) {
+    const glm::dvec3& v = epoch_enu_[i];
+    out[i] = v * c + glm::cross(pole, v) * s + pole * (glm::dot(pole, v) * (1.0 - c));
+  }
+}
+
+namespace {
+
+/// Distance along unit d from p (relative to the sphere's centre) to where the
+/// ray enters a sphere of radius R, or a negative value where it misses it or
+/// starts inside.
+bool ray_meets_sphere(const glm::dvec3& p, const glm::dvec3& d, double radius_m) {
+  const double b = glm::dot(p, d);
+  const double c = glm::dot(p, p) - radius_m * radius_m;
+  if (c <= 0.0) return true;  // inside
+  if (b >= 0.0) return false;
+  return b * b - c >= 0.0;
+}
+
+}  // namespace
+
+void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, const glm::dvec3& d, double* out) {
+  const atmosphere::lut::LookupTables& t = *a.transmittance;
+  const std::size_t n = t.channels;
+  const glm::dvec3 p = camera_m - a.centre_m;
+  const double r = glm::length(p);
+  const double mu = glm::dot(p, d) / r;
+  const double b = r * mu;                                   // p·d
+  const double closest2 = std::max(0.0, r * r - b * b);      // squared distance of the line from the centre
+  std::fill(out, out + n, 1.0);
+  if (b < 0.0 && closest2 < a.ground_radius_m * a.ground_radius_m) {  // the ground hides it
+    std::fill(out, out + n, 0.0);
+    return;
+  }
+  double r_at = r, mu_at = mu;
+  if (r > a.top_radius_m) {
+    if (b >= 0.0 || closest2 >= a.top_radius_m * a.top_radius_m) return;  // misses the shell
+    // Where it enters the shell: the same line from there.
+    const double t_in = -b - std::sqrt(a.top_radius_m * a.top_radius_m - closest2);
+    r_at = a.top_radius_m;
+    mu_at = std::clamp((b + t_in) / a.top_radius_m, -1.0, 1.0);
+  }
+  const atmosphere::lut::TransmittanceUV uv =
+      atmosphere::lut::transmittance_uv(t.geometry, t.sizes, std::clamp(r_at, a.ground_radius_m, a.top_radius_m), mu_at);
+  t.transmittance.sample(uv.u_mu, uv.v_r, out);
+  for (std::size_t c = 0; c < n; ++c) out[c] = std::clamp(out[c], 0.0, 1.0);
+}
+
+double pixel_solid_angle_sr(const warp::Projection& projection, double x_px, double y_px) {
+  const auto xa = projection.ray(x_px - 0.5, y_px), xb = projection.ray(x_px + 0.5, y_px);
+  const auto ya = projection.ray(x_px, y_px - 0.5), yb = projection.ray(x_px, y_px + 0.5);
+  if (!xa || !xb || !ya || !yb) return 0.0;
+  return glm::length(glm::cross(glm::normalize(*xb) - glm::normalize(*xa), glm::normalize(*yb) - glm::normalize(*ya)));
+}
+
+std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, double margin_rad) {
+  const double w = projection.width(), h = projection.height();
+  const auto centre = projection.ray(0.5 * w, 0.5 * h);
+  if (!centre) return {glm::dvec3(0, 0, -1), -1.0};
+  const glm::dvec3 axis = glm::normalize(*centre);
+  double widest = 0.0;
+  constexpr int kSteps = 64;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double t = static_cast<double>(i) / kSteps;
+    for (const glm::dvec2 p : {glm::dvec2(t * w, 0.0), glm::dvec2(t * w, h), glm::dvec2(0.0, t * h), glm::dvec2(w, t * h),
+                               glm::dvec2(t * w, 0.5 * h), glm::dvec2(0.5 * w, t * h)}) {
+      const auto r = projection.ray(p.x, p.y);
+      if (!r) {
+        widest = std::max(widest, 0.5 * 3.14159265358979323846);  // a fisheye's circle: at least its field
+        continue;
+      }
+      widest = std::max(widest, std::acos(std::clamp(glm::dot(glm::normalize(*r), axis), -1.0, 1.0)));
+    }
+  }
+  const double limit = widest + margin_rad;
+  return {axis, limit >= 3.14159265358979323846 ? -1.0 : std::cos(limit)};
+}
+
+std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm::dvec3>& directions_enu,
+                                   const StarFrame& frame) {
+  const warp::Projection& projection = *frame.projection;
+  const std::size_t n = field.wavelengths_nm().size();
+  const double width = projection.width(), height = projection.height();
+  const std::size_t count = std::min(field.size(), directions_enu.size());
+  std::vector<StarSplat> placed(count);
+  std::vector<unsigned char> kept(count, 0);
+  constexpr std::size_t kChunk = 4096;
+  core::parallel_for((count + kChunk - 1) / kChunk, 0, [&](std::size_t chunk) {
+    std::vector<double> transmittance(n), one(n);
+    for (std::size_t i = chunk * kChunk; i < std::min(count, (chunk + 1) * kChunk); ++i) {
+      const glm::dvec3& enu = directions_enu[i];
+      if (enu.z < frame.lowest_sin_altitude) continue;  // under the ground
+      glm::dvec3 d = enu.x * frame.east + enu.y * frame.north + enu.z * frame.up;
+      if (glm::dot(d, frame.view_axis) < frame.view_cos_limit) continue;  // outside the view
+      if (frame.refraction) {
+        const double true_altitude = std::asin(std::clamp(enu.z, -1.0, 1.0));
+        const double apparent = frame.refraction->apparent_from_true_rad(true_altitude);
+        const glm::dvec3 level = enu.x * frame.east + enu.y * frame.north;
+        const double l = glm::length(level);
+        if (l > 0.0) d = level / l * std::cos(apparent) + frame.up * std::sin(apparent);
+      }
+      d = glm::normalize(d);
+      bool hidden = false;
+      for (const auto& [centre, radius] : frame.occluders)
+        if (ray_meets_sphere(frame.camera_m - centre, d, radius)) {
+          hidden = true;
+          break;
+        }
+      if (hidden) continue;
+      const auto pixel = projection.pixel(frame.world_to_camera * d);
+      if (!pixel || !(pixel->x >= 0.0 && pixel->x < width && pixel->y >= 0.0 && pixel->y < height)) continue;
+      std::fill(transmittance.begin(), transmittance.end(), 1.0);
+      for (const StarAtmosphere& a : frame.atmospheres) {
+        star_transmittance(a, frame.camera_m, d, one.data());
+        for (std::size_t k = 0; k < n; ++k) transmittance[k] *= one[k];
+      }
+      const double omega = pixel_solid_angle_sr(projection, pixel->x, pixel->y);
+      if (!(omega > 0.0)) continue;
+      std::array<double, 3> rgb{0, 0, 0};
+      for (std::size_t k = 0; k < n; ++k) {
+        const double e = field.irradiance(i, k) * transmittance[k];
+        for (int c = 0; c < 3; ++c) rgb[static_cast<std::size_t>(c)] += frame.rgb_weights[k][static_cast<std::size_t>(c)] * e;
+      }
+      if (rgb[0] == 0.0 && rgb[1] == 0.0 && rgb[2] == 0.0) continue;
+      StarSplat& s = placed[i];
+      s.x_px = static_cast<float>(pixel->x);
+      s.y_px = static_cast<float>(pixel->y);
+      for (std::size_t c = 0; c < 3; ++c) s.rgb[c] = static_cast<float>(rgb[c] * frame.exposure / omega);
+      kept[i] = 1;
+    }
+  });
+  std::vector<StarSplat> out;
+  for (std::size_t i = 0; i < count; ++i)
+    if (kept[i]) out.push_back(placed[i]);
+  std::stable_sort(out.begin(), out.end(), [](const StarSplat& a, const StarSplat& b) { return a.y_px < b.y_px; });
+  return out;
+}
+
+}  // namespace zenith::render

@@ -1,0 +1,148 @@
+#pragma once
+// Stars as light (issue 29 goal 3; docs/night-sky.md, "Rendering the night
+// sky"): the catalogue's stars placed in a frame, on the CPU in double, as
+// point sources of flux. No GL: render/frame/star_pass.h draws what this
+// computes.
+//
+// For each star, per frame:
+//   1. its direction: ERFA's geometric place at an epoch (astro/sky_positions.h,
+//      recomputed when the sky clock moves more than kStarEpochSpan_s from it)
+//      turned about the celestial pole by the Earth's rotation since then,
+//      ω = 2π · 1.00273781191135448 / 86400 s⁻¹ (the Earth rotation angle's
+//      rate, IAU 2000 B1.8); lifted by the model's own refraction
+//      (astro/refraction.h) where the camera stands in the site body's air;
+//   2. its flux above the atmosphere E(λ) [W m⁻² nm⁻¹] (astro/star_photometry.h:
+//      a blackbody of Ballesteros' temperature for B−V scaled to V);
+//   3. attenuated along its line of sight by every atmosphere it crosses, from
+//      each one's transmittance table T(r, μ) (the same table the sky is drawn
+//      with: Mars's dust dims stars as it dims the Sun), and hidden by every
+//      body it meets (the ground, a moon);
+//   4. where it lands: the projection's pixel() of its camera-frame direction
+//      (any projection: fisheye, planar, a warp mesh's ray table), and the
+//      solid angle Ω of a pixel there, |∂d/∂x × ∂d/∂y| from the projection's own
+//      rays half a pixel either side;
+//   5. its colour: rgb = exposure · Σ_λ w(λ) E(λ) T(λ) / Ω (w: the frame's
+//      spectral → linear sRGB weights): the radiance a pixel of solid angle Ω
+//      holding all the star's flux has. The pass spreads it bilinearly over the
+//      2 × 2 pixels around its position (weights summing to 1), so the image
+//      holds Σ L Ω = E: the same energy on a dome master, through a warp mesh
+//      and on a flat screen.
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "astro/civil_time.h"
+#include "astro/refraction.h"
+#include "astro/sky_positions.h"
+#include "astro/star_catalogue.h"
+#include "atmosphere/lut/lookup_tables.h"
+#include "scene/scene.h"
+#include "warp/projection.h"
+
+namespace zenith::render {
+
+/// How far the sky clock may move from the epoch of the stars' ERFA places
+/// before they are recomputed [s]: over 6 hours precession, nutation and
+/// aberration move a star by < 0.2″ about the rotation's pole.
+inline constexpr double kStarEpochSpan_s = 6.0 * 3600.0;
+/// The Earth rotation angle's rate [rad per UT1 second].
+inline constexpr double kEarthRotationRate_rad_s = 2.0 * 3.14159265358979323846 * 1.00273781191135448 / 86400.0;
+
+/// One star's light in a frame: its continuous image pixel (the projection's
+/// convention: pixel (i, j) covers [i, i+1) × [j, j+1)) and the linear sRGB
+/// radiance × exposure of a pixel holding all its flux.
+struct StarSplat {
+  float x_px = 0.0f, y_px = 0.0f;
+  std::array<float, 3> rgb{};
+};
+
+/// An atmosphere a star's light can cross: its planet and its transmittance table.
+struct StarAtmosphere {
+  glm::dvec3 centre_m{0.0};  ///< world frame
+  double ground_radius_m = 0.0, top_radius_m = 0.0;
+  const atmosphere::lut::LookupTables* transmittance = nullptr;  ///< geometry, sizes, channels, transmittance filled
+};
+
+/// The stars of a catalogue, their fluxes at a scene's wavelengths and their
+/// places at an epoch.
+class StarField {
+ public:
+  /// Throws std::invalid_argument for no wavelengths.
+  StarField(astro::StarCatalogue catalogue, const std::vector<double>& wavelengths_nm);
+
+  const astro::StarCatalogue& catalogue() const { return catalogue_; }
+  const std::vector<double>& wavelengths_nm() const { return wavelengths_nm_; }
+  std::size_t size() const { return catalogue_.stars.size(); }
+  /// Star i's irradiance above the atmosphere at wavelength k [W m⁻² nm⁻¹].
+  double irradiance(std::size_t i, std::size_t k) const { return irradiance_[i * wavelengths_nm_.size() + k]; }
+  /// The largest irradiance of any star at any wavelength.
+  double brightest_irradiance() const { return brightest_; }
+
+  /// Every star's geometric direction at `time` from `site` as (east, north,
+  /// up) unit vectors into `out`: ERFA at the epoch, turned by the Earth's
+  /// rotation since (recomputing the epoch when `time` is more than
+  /// kStarEpochSpan_s from it or the site changed).
+  void directions_enu(const astro::AstroTime& time, const astro::Site& site, std::vector<glm::dvec3>& out);
+
+ private:
+  astro::StarCatalogue catalogue_;
+  std::vector<double> wavelengths_nm_;
+  std::vector<double> irradiance_;  // n per star
+  double brightest_ = 0.0;
+  bool have_epoch_ = false;
+  double epoch_ut1_jd_ = 0.0;
+  astro::Site epoch_site_;
+  std::vector<glm::dvec3> epoch_enu_;
+};
+
+/// A unit vector `v` turned by `angle_rad` about unit `axis` (right-handed; Rodrigues).
+glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& axis, double angle_rad);
+
+/// What star_splats needs of a frame.
+struct StarFrame {
+  const warp::Projection* projection = nullptr;
+  glm::dvec3 camera_m{0.0};
+  glm::dmat3 world_to_camera{1.0};
+  /// The site's horizon at the camera (east, north, up in the world frame).
+  glm::dvec3 east{1, 0, 0}, north{0, 1, 0}, up{0, 0, 1};
+  const astro::Refraction* refraction = nullptr;  ///< null: straight lines
+  std::vector<StarAtmosphere> atmospheres;
+  /// Spheres that hide a star (every body of the scene): centre, radius.
+  std::vector<std::pair<glm::dvec3, double>> occluders;
+  std::vector<std::array<double, 3>> rgb_weights;  ///< per wavelength
+  double exposure = 1.0;
+  /// Cheap rejections before any per-star work (view_cone below): a star
+  /// whose geometric direction is further than this from `view_axis` (world,
+  /// unit) cannot land in the image; cos of that angle (−1: none).
+  glm::dvec3 view_axis{0, 0, -1};
+  double view_cos_limit = -1.0;
+  /// sin of the lowest true altitude that can still show (the ground's dip less
+  /// refraction's lift and a margin; −1: none): below it the ground hides the star.
+  double lowest_sin_altitude = -1.0;
+};
+
+/// The cone around the image's centre ray that holds every pixel's ray, widened
+/// by `margin_rad` (refraction's lift, the splat's footprint): axis (camera
+/// frame) and the cosine of its half-angle (−1 where it exceeds π). From the
+/// rays of 64 points along each edge of the image and through its centre lines.
+std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, double margin_rad);
+
+/// The transmittance along a ray from `camera_m` in unit direction `d` to
+/// infinity through `a` (1 where it misses the shell, 0 where it meets the
+/// ground) into `out` (channels values).
+void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, const glm::dvec3& d, double* out);
+
+/// Ω of the pixel at continuous image position (x, y) [sr], from the
+/// projection's rays half a pixel either side; 0 where a ray is missing.
+double pixel_solid_angle_sr(const warp::Projection& projection, double x_px, double y_px);
+
+/// The stars of `field` at `directions_enu` (StarField::directions_enu) that
+/// land in the image, unhidden and with light left, sorted by y_px.
+std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm::dvec3>& directions_enu,
+                                   const StarFrame& frame);
+
+}  // namespace zenith::render

@@ -1,0 +1,377 @@
+#include "render/frame/star_pass.h"
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+
+#include <glm/geometric.hpp>
+
+#include "astro/civil_time.h"
+#include "astro/moon_photometry.h"
+#include "astro/star_catalogue.h"
+#include "core/units.h"
+#include "render/shader_bindings.h"
+#include "render/shader_programs.h"
+#include "render/frame/night_sky_table.h"
+#include "scene/local_horizon.h"
+
+namespace zenith::render {
+namespace {
+
+/// The atmospheres a star's light can cross: those resident this frame.
+std::vector<StarAtmosphere> star_atmospheres(const FrameState& frame) {
+  std::vector<StarAtmosphere> out;
+  for (const AtmospherePass& pass : frame.passes) {
+    if (!pass.gpu) continue;
+    const scene::Body& body = frame.scene.bodies[static_cast<std::size_t>(pass.body)];
+    out.push_back({body.position_m, pass.gpu->ground_radius_m(), pass.gpu->top_radius_m(), &pass.gpu->cpu_transmittance()});
+  }
+  return out;
+}
+
+/// The smallest pixel solid angle over a 17 × 17 grid of the image [sr], a
+/// quarter of it as the margin for what the grid misses (the projections'
+/// solid angles vary smoothly: a fisheye's by (π/2)² from centre to rim).
+double smallest_pixel_solid_angle_sr(const warp::Projection& projection) {
+  double smallest = 0.0;
+  for (int j = 0; j <= 16; ++j)
+    for (int i = 0; i <= 16; ++i) {
+      const double omega = pixel_solid_angle_sr(projection, (projection.width() - 1) * i / 16.0 + 0.5,
+                                                (projection.height() - 1) * j / 16.0 + 0.5);
+      if (omega > 0.0 && (smallest == 0.0 || omega < smallest)) smallest = omega;
+    }
+  return 0.25 * smallest;
+}
+
+}  // namespace
+
+NightSkyPass::NightSkyPass(const NightSkyRenderOptions& options) : options_(options) {}
+NightSkyPass::~NightSkyPass() = default;
+
+std::string NightSkyPass::catalogue_identity() const { return field_ ? field_->catalogue().identity_sha256 : ""; }
+
+bool NightSkyPass::ensure_field(const scene::Scene& scene) {
+  if (field_ && field_->wavelengths_nm() == scene.wavelengths_nm) return true;
+  if (catalogue_failed_) return false;
+  try {
+    astro::StarCatalogueOptions o;
+    o.directory = options_.star_directory;
+    o.magnitude_limit = options_.star_magnitude_limit;
+    astro::StarCatalogue catalogue = field_ ? field_->catalogue() : astro::load_star_catalogue(o);
+    spdlog::info("night sky: {} stars to V {} from {} (identity {})", catalogue.stars.size(), catalogue.magnitude_limit,
+                 options_.star_directory.string(), catalogue.identity_sha256.substr(0, 16));
+    field_ = std::make_unique<StarField>(std::move(catalogue), scene.wavelengths_nm);
+    return true;
+  } catch (const std::exception& e) {
+    spdlog::warn("night sky: no stars drawn: {} (scripts/bootstrap installs stellarium-data)", e.what());
+    catalogue_failed_ = true;
+    return false;
+  }
+}
+
+void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
+  stats_ = NightSkyStats{};
+  splats_.clear();
+  floor_ = false;
+  const scene::Scene& scene = frame.scene;
+  const bool want_stars = (options_.stars || options_.moon) && scene.sky_clock.has_value();
+  const bool want_floor = options_.night_floor && (scene.night_sky.has_value() || scene.sky_clock.has_value());
+  if (!want_stars && !want_floor) return;
+  const std::size_t site_body = scene.night_sky ? scene.night_sky->body : scene.sky_clock->body;
+  const scene::Body& planet = scene.bodies.at(site_body);
+  const double exposure = scene.camera.exposure;
+  std::vector<StarAtmosphere> atmospheres = star_atmospheres(frame);
+  const StarAtmosphere* air = nullptr;  // the site body's atmosphere, when the camera is inside it
+  for (const StarAtmosphere& a : atmospheres)
+    if (a.centre_m == planet.position_m && glm::length(scene.camera.position_m - a.centre_m) <= a.top_radius_m) air = &a;
+
+  // ---- the night floor and the glow: a table of the frame's camera.
+  if (want_floor && air && planet.atmosphere) {
+    const astro::NightSkyFloorOptions floor_options = scene.night_sky ? scene.night_sky->floor : astro::NightSkyFloorOptions{};
+    const astro::LightPollutionOptions glow_options =
+        scene.night_sky ? scene.night_sky->light_pollution : astro::LightPollutionOptions{};
+    const std::string key = fmt::format("{} {} {} {} {}", air->transmittance->hash, floor_options.zenith_v_mag_arcsec2,
+                                        floor_options.airglow_height_m, glow_options.zenith_mcd_m2,
+                                        glow_options.colour_temperature_K);
+    if (key != floor_key_) {
+      const atmosphere::AtmosphereModel& model = planet.atmosphere->loaded.model;
+      night_floor_ = std::make_unique<astro::NightSkyFloor>(model, floor_options);
+      light_pollution_ = glow_options.zenith_mcd_m2 > 0.0 ? std::make_unique<astro::LightPollution>(model, glow_options)
+                                                          : nullptr;
+      floor_key_ = key;
+    }
+    timer.cpu("night sky table", [&] {
+      const NightSkyTable t = night_sky_table(*air, scene.camera.position_m, night_floor_.get(), light_pollution_.get(),
+                                              frame.rgb_weights, exposure);
+      // The test: does the brightest direction move a display value by half a code step?
+      if (t.max_component >= kInvisibleDisplayStep) {
+        floor_ = true;
+        floor_table_ = t.rgb;
+        floor_up_ = t.up;
+        floor_horizon_mu_ = t.horizon_mu;
+      }
+    });
+  }
+
+  // ---- the stars and the Moon: the sky clock's frame.
+  moon_disc_ = false;
+  if (want_stars) {
+    const scene::SkyClock& clock = *scene.sky_clock;
+    const astro::AstroTime time = astro::AstroTime::from_utc(clock.time);
+    StarFrame f;
+    {
+      const scene::LocalHorizon horizon = scene::local_horizon_at(scene.camera.position_m, scene.bodies.at(clock.body));
+      f.projection = &frame.projection;
+      f.camera_m = scene.camera.position_m;
+      f.world_to_camera = frame.world_to_camera;
+      f.east = horizon.east;
+      f.north = horizon.north;
+      f.up = horizon.up;
+      if (air && clock.body == site_body && planet.atmosphere) {
+        const double altitude_m = std::max(0.0, glm::length(scene.camera.position_m - planet.position_m) - planet.radius_m);
+        const std::string key = fmt::format("{} {:.0f}", air->transmittance->hash, altitude_m);
+        if (key != refraction_key_) {
+          refraction_ = std::make_unique<astro::Refraction>(
+              astro::Refraction::for_atmosphere(planet.atmosphere->loaded, 550.0, altitude_m));
+          refraction_key_ = key;
+        }
+        f.refraction = refraction_.get();
+      }
+      f.atmospheres = atmospheres;
+      for (const scene::Body& b : scene.bodies) f.occluders.emplace_back(b.position_m, b.radius_m);
+      f.rgb_weights = frame.rgb_weights;
+      f.exposure = exposure;
+      // Rejections before the per-star work: the view's cone widened by refraction's
+      // largest lift (under 1°) and a splat's reach (two pixels, at most 5°), and the ground.
+      const double margin = 1.0 * core::kDeg + std::min(2.0 * frame.projection.max_pixel_angle_rad(), 5.0 * core::kDeg);
+      const auto [axis, cos_limit] = view_cone(frame.projection, margin);
+      f.view_axis = glm::normalize(frame.camera_to_world * axis);
+      f.view_cos_limit = cos_limit;
+      const double r = glm::length(scene.camera.position_m - scene.bodies.at(clock.body).position_m);
+      const double dip = std::acos(std::min(1.0, scene.bodies.at(clock.body).radius_m / r));  // the horizon's depression
+      f.lowest_sin_altitude = std::sin(std::max(-0.5 * core::kPi, -dip - 2.0 * core::kDeg));
+    }
+    if (options_.stars && ensure_field(scene) && field_->size() > 0) {
+      double weight = 0.0;  // the largest Σ_λ max_c |w_c(λ)|: an RGB bound per unit of flat irradiance
+      for (const auto& w : frame.rgb_weights) weight += std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
+      const double bound =
+          exposure * field_->brightest_irradiance() * weight / smallest_pixel_solid_angle_sr(frame.projection);
+      if (bound >= kInvisibleDisplayStep) {
+        timer.cpu("star placement", [&] {
+          field_->directions_enu(time, clock.site, directions_);
+          splats_ = star_splats(*field_, directions_, f);
+        });
+        stats_.catalogue_identity = field_->catalogue().identity_sha256;
+      }
+    }
+    stats_.stars = splats_.size();
+    if (options_.moon) timer.cpu("moon", [&] { place_moon(frame, f, time); });
+  }
+  stats_.night_floor = floor_;
+  stats_.skipped = splats_.empty() && !floor_ && !moon_disc_;
+}
+
+void NightSkyPass::place_moon(const FrameState& frame, const StarFrame& sky, const astro::AstroTime& time) {
+  const scene::SkyClock& clock = *frame.scene.sky_clock;
+  const astro::MoonPlace moon = astro::SkyPositions(time, clock.site).moon();
+  const auto enu = moon.horizontal.east_north_up();
+  glm::dvec3 d = enu[0] * sky.east + enu[1] * sky.north + enu[2] * sky.up;
+  if (sky.refraction) {
+    const double apparent = sky.refraction->apparent_from_true_rad(moon.horizontal.altitude_rad);
+    const glm::dvec3 level = enu[0] * sky.east + enu[1] * sky.north;
+    if (glm::length(level) > 0.0) d = glm::normalize(level) * std::cos(apparent) + sky.up * std::sin(apparent);
+  }
+  d = glm::normalize(d);
+  for (const auto& [centre, radius] : sky.occluders) {  // the ground, another body
+    const glm::dvec3 p = sky.camera_m - centre;
+    const double b = glm::dot(p, d), c = glm::dot(p, p) - radius * radius;
+    if (c > 0.0 && b < 0.0 && b * b >= c) return;
+  }
+  const std::size_t n = frame.rgb_weights.size();
+  std::vector<double> transmittance(n, 1.0), one(n);
+  for (const StarAtmosphere& a : sky.atmospheres) {
+    star_transmittance(a, sky.camera_m, d, one.data());
+    for (std::size_t k = 0; k < n; ++k) transmittance[k] *= one[k];
+  }
+  const auto pixel = frame.projection.pixel(frame.world_to_camera * d);
+  if (!pixel) return;
+  const double omega = pixel_solid_angle_sr(frame.projection, pixel->x, pixel->y);
+  if (!(omega > 0.0)) return;
+  const double radius_px = moon.angular_radius_rad / std::sqrt(omega);
+  const double w = frame.projection.width(), h = frame.projection.height();
+  if (pixel->x < -radius_px - 2 || pixel->x > w + radius_px + 2 || pixel->y < -radius_px - 2 || pixel->y > h + radius_px + 2)
+    return;
+  const std::vector<double>& wavelengths = frame.scene.wavelengths_nm;
+  if (radius_px < 1.0) {
+    // Smaller than a pixel: a point source of the whole Moon's irradiance, as a star.
+    if (!(pixel->x >= 0.0 && pixel->x < w && pixel->y >= 0.0 && pixel->y < h)) return;
+    const std::vector<double> e = astro::moon_irradiance_W_m2_nm(moon, wavelengths);
+    StarSplat s;
+    s.x_px = static_cast<float>(pixel->x);
+    s.y_px = static_cast<float>(pixel->y);
+    for (std::size_t c = 0; c < 3; ++c) {
+      double v = 0.0;
+      for (std::size_t k = 0; k < n; ++k) v += frame.rgb_weights[k][c] * e[k] * transmittance[k];
+      s.rgb[c] = static_cast<float>(v * sky.exposure / omega);
+    }
+    splats_.insert(std::upper_bound(splats_.begin(), splats_.end(), s,
+                                    [](const StarSplat& a, const StarSplat& b) { return a.y_px < b.y_px; }),
+                   s);
+    stats_.moon = true;
+    return;
+  }
+  // A disc: L = 2 L_LS(1, 1) · μ0/(μ0 + μ) per point (the shape factor is grey).
+  moon_rgb_ = {0, 0, 0};
+  double largest = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double l = 2.0 * astro::moon_disc_radiance(1.0, 1.0, moon.phase_angle_rad, wavelengths[k], moon.sun_distance_au) *
+                     transmittance[k];
+    for (std::size_t c = 0; c < 3; ++c) moon_rgb_[c] += frame.rgb_weights[k][c] * l * sky.exposure;
+  }
+  for (double v : moon_rgb_) largest = std::max(largest, std::abs(v));
+  if (largest < kInvisibleDisplayStep) return;
+  moon_disc_ = true;
+  stats_.moon = true;
+  moon_direction_ = d;
+  moon_radius_rad_ = moon.angular_radius_rad;
+  moon_radius_px_ = radius_px;
+  moon_pixel_ = *pixel;
+}
+
+const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameState& frame, bool floor) {
+  const std::string key = fmt::format("{} {}", frame.variant.key(), floor);
+  auto it = resolve_.find(key);
+  if (it == resolve_.end()) {
+    std::vector<gl::ShaderDefine> defines = frame.variant.defines();
+    defines.push_back({"NIGHT_FLOOR", floor ? "1" : "0"});
+    it = resolve_.emplace(key, load_compute_program("render/night_sky.comp", defines)).first;
+  }
+  return it->second;
+}
+
+void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& timer) {
+  if (stats_.skipped) return;
+  const int width = frame.band_size[0], rows = band.rows, columns = frame.cones->columns();
+  // The band's stars: those whose 2 × 2 footprint reaches its rows (splats_ is sorted by y).
+  const auto begin = std::lower_bound(splats_.begin(), splats_.end(), static_cast<float>(band.first_row) - 1.0f,
+                                      [](const StarSplat& s, float y) { return s.y_px < y; });
+  const auto end = std::lower_bound(begin, splats_.end(), static_cast<float>(band.first_row + rows) + 1.0f,
+                                    [](const StarSplat& s, float y) { return s.y_px < y; });
+  const std::size_t count = static_cast<std::size_t>(end - begin);
+  if (count == 0 && !floor_ && !moon_disc_) return;
+
+  // Tiles to resolve: the band's drawn tiles (the floor goes on every sky
+  // pixel) or only those a star touches; black tiles a star touches are overwritten.
+  std::vector<std::uint8_t> touched(band.tiles, 0);
+  float largest = 0.0f;
+  for (auto s = begin; s != end; ++s) {
+    largest += std::max({std::abs(s->rgb[0]), std::abs(s->rgb[1]), std::abs(s->rgb[2])});
+    const int x0 = static_cast<int>(std::floor(s->x_px - 0.5f)), y0 = static_cast<int>(std::floor(s->y_px - 0.5f));
+    for (int y = y0; y <= y0 + 1; ++y)
+      for (int x = x0; x <= x0 + 1; ++x) {
+        const int by = y - band.first_row;
+        if (x < 0 || x >= width || by < 0 || by >= rows) continue;
+        touched[static_cast<std::size_t>(by / kTileSize) * static_cast<std::size_t>(columns) +
+                static_cast<std::size_t>(x / kTileSize)] = 1;
+      }
+  }
+  if (moon_disc_) {  // the disc's tiles, with two pixels for its edge
+    const double reach = moon_radius_px_ + 2.0;
+    for (int y = std::max(0, static_cast<int>(moon_pixel_.y - reach) - band.first_row);
+         y < std::min(rows, static_cast<int>(moon_pixel_.y + reach) + 1 - band.first_row); y += 1)
+      for (int x = std::max(0, static_cast<int>(moon_pixel_.x - reach));
+           x < std::min(width, static_cast<int>(moon_pixel_.x + reach) + 1); x += 1)
+        touched[static_cast<std::size_t>(y / kTileSize) * static_cast<std::size_t>(columns) +
+                static_cast<std::size_t>(x / kTileSize)] = 1;
+  }
+  std::vector<std::uint32_t> add_tiles, floor_tiles, overwrite_tiles;
+  for (std::size_t t = 0; t < band.tiles; ++t) {
+    const auto word = pack_tile(static_cast<std::uint32_t>(t % static_cast<std::size_t>(columns)),
+                                static_cast<std::uint32_t>(t / static_cast<std::size_t>(columns)));
+    if (band.black[t]) {
+      if (touched[t]) {
+        overwrite_tiles.push_back(word);
+        band.black[t] = 0;  // drawn now
+      }
+    } else if (touched[t]) {
+      add_tiles.push_back(word);
+    } else if (floor_) {
+      floor_tiles.push_back(word);  // no star: the accumulator is not read
+    }
+  }
+  std::vector<std::uint32_t> lists = add_tiles;
+  lists.insert(lists.end(), overwrite_tiles.begin(), overwrite_tiles.end());
+  lists.insert(lists.end(), floor_tiles.begin(), floor_tiles.end());
+  if (lists.empty()) return;
+
+  // Fixed point: no pixel can exceed the sum of the band's stars, which maps to 2^30 counts.
+  const double fixed_point = largest > 0.0f ? static_cast<double>(1 << 30) / largest : 1.0;
+  const std::size_t accumulator_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows) * 4 * sizeof(int);
+  if (accumulator_bytes > accumulator_bytes_) {
+    std::vector<int> zeros(accumulator_bytes / sizeof(int), 0);
+    accumulator_ = gl::Buffer::from(std::span<const int>(zeros));
+    accumulator_bytes_ = accumulator_bytes;
+  }
+  accumulator_.bind_storage(binding::kStarAccumulator);
+  if (count > 0) {
+    if (splat_.id() == 0) splat_ = load_compute_program("render/star_splat.comp");
+    std::vector<std::array<float, 4>> data;
+    data.reserve(2 * count);
+    for (auto s = begin; s != end; ++s) {
+      data.push_back({s->x_px, s->y_px, 0.0f, 0.0f});
+      data.push_back({s->rgb[0], s->rgb[1], s->rgb[2], 0.0f});
+    }
+    const std::size_t bytes = data.size() * sizeof(data[0]);
+    if (splats_buffer_.id() == 0 || splats_buffer_.size() < bytes) splats_buffer_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
+    splats_buffer_.upload(std::span<const std::array<float, 4>>(data));
+    splats_buffer_.bind_storage(binding::kStarSplats);
+    splat_.set_uniform("star_count", static_cast<int>(count));
+    splat_.set_uniform("band_origin", std::array<int, 2>{0, band.first_row});
+    splat_.set_uniform("band_size", std::array<int, 2>{width, rows});
+    splat_.set_uniform("star_fixed_point", static_cast<float>(fixed_point));
+    timer.gpu("stars", [&] { splat_.dispatch(static_cast<unsigned>((count + 63) / 64)); });
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+
+  const gl::ShaderProgram& p = frame.prepare(resolve_program(frame, floor_));
+  p.set_uniform("star_unit", static_cast<float>(1.0 / fixed_point));
+  p.set_uniform("moon_disc", moon_disc_ ? 1 : 0);
+  if (moon_disc_) {
+    p.set_uniform("moon_direction", std::array<float, 3>{static_cast<float>(moon_direction_.x),
+                                                         static_cast<float>(moon_direction_.y),
+                                                         static_cast<float>(moon_direction_.z)});
+    p.set_uniform("moon_radius", static_cast<float>(moon_radius_rad_));
+    p.set_uniform("moon_rgb", std::array<float, 3>{static_cast<float>(moon_rgb_[0]), static_cast<float>(moon_rgb_[1]),
+                                                   static_cast<float>(moon_rgb_[2])});
+  }
+  if (floor_) {
+    const std::size_t bytes = floor_table_.size() * sizeof(floor_table_[0]);
+    if (table_buffer_.id() == 0 || table_buffer_.size() < bytes) table_buffer_ = gl::Buffer(bytes);
+    table_buffer_.upload(std::span<const std::array<float, 4>>(floor_table_));
+    table_buffer_.bind_storage(binding::kNightSkyTable);
+    p.set_uniform("night_sky_entries", static_cast<int>(floor_table_.size()));
+    p.set_uniform("night_up", std::array<float, 3>{static_cast<float>(floor_up_.x), static_cast<float>(floor_up_.y),
+                                                   static_cast<float>(floor_up_.z)});
+    p.set_uniform("night_horizon_mu", static_cast<float>(floor_horizon_mu_));
+  }
+  const std::size_t bytes = lists.size() * sizeof(std::uint32_t);
+  if (tiles_.id() == 0 || tiles_.size() < bytes) tiles_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
+  tiles_.upload(std::span<const std::uint32_t>(lists));
+  tiles_.bind_storage(binding::kTiles);
+  const auto dispatch = [&](std::size_t offset, std::size_t tiles, bool overwrite, bool with_stars) {
+    if (tiles == 0) return;
+    p.set_uniform("overwrite", overwrite ? 1 : 0);
+    p.set_uniform("with_stars", with_stars ? 1 : 0);
+    timer.gpu("night sky", [&] { frame.dispatch_tiles(p, TileList{offset, tiles}); });
+  };
+  dispatch(0, add_tiles.size(), false, true);
+  dispatch(add_tiles.size(), overwrite_tiles.size(), true, true);
+  dispatch(add_tiles.size() + overwrite_tiles.size(), floor_tiles.size(), false, false);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+}  // namespace zenith::render

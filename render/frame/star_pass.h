@@ -1,0 +1,108 @@
+#pragma once
+// The night sky's pass (issue 29 goals 3–4; docs/night-sky.md, "Rendering the
+// night sky"): after a band's atmosphere passes and before the band leaves the
+// renderer (a file's readback, render_to_texture's copy, or the live display
+// pass of render_on_gpu), the stars and the night sky's own light are added
+// to the band's radiance, so they go through the same tone mapping and
+// display response as the sky and are seen where the sky lets them be.
+//
+// Per frame, on the CPU (render/frame/star_field.h): every star's pixel,
+// colour and extinction; the night floor's table (render/frame/night_sky_table.h).
+// Per band, on the GPU: star_splat.comp spreads the band's stars over 2 × 2
+// pixels into a fixed-point accumulator (integer atomics: the same sum in any
+// order), night_sky.comp adds the accumulator and the night floor to the band's
+// output.
+//
+// Skipped by its own test (prepare()): when the brightest star and the night
+// floor, at the frame's exposure on a black sky, would change no display
+// value by half a code step of 8-bit sRGB (1.5e-4 of linear), neither the CPU
+// placement nor a GPU pass runs: a daylight exposure costs nothing.
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "astro/light_pollution.h"
+#include "astro/night_sky_floor.h"
+#include "astro/refraction.h"
+#include "render/frame/frame_state.h"
+#include "render/frame/pass_timer.h"
+#include "render/frame/star_field.h"
+#include "render/frame/tile_classification.h"
+#include "render/gl/buffer.h"
+#include "render/gl/shader_program.h"
+#include "render/render_options.h"
+
+namespace zenith::render {
+
+/// Half an 8-bit sRGB code step at black as linear display value: 0.5 / 255 /
+/// 12.92 (the sRGB curve's slope there); the tone curve's slope at 0 is 1.
+inline constexpr double kInvisibleDisplayStep = 0.5 / 255.0 / 12.92;
+
+/// What the pass did in the last frame.
+struct NightSkyStats {
+  bool skipped = true;         ///< nothing drawn (no sky clock or night sky, or the test above)
+  std::size_t stars = 0;       ///< stars placed in the image
+  bool night_floor = false;    ///< the night floor was added
+  bool moon = false;           ///< the Moon was drawn (a disc, or a point below a pixel's size)
+  std::string catalogue_identity;  ///< StarCatalogue::identity_sha256 of the stars drawn ("" none)
+};
+
+class NightSkyPass {
+ public:
+  explicit NightSkyPass(const NightSkyRenderOptions& options);
+  ~NightSkyPass();
+  NightSkyPass(const NightSkyPass&) = delete;
+  NightSkyPass& operator=(const NightSkyPass&) = delete;
+
+  /// The frame's CPU work (after the atmospheres are resident): whether there
+  /// is anything to draw, the stars' splats, the night floor's table.
+  void prepare(const FrameState& frame, PassTimer& timer);
+  /// Adds the stars and the floor to the band's output (bound at
+  /// FRAME_RGB_BINDING); tiles nothing had drawn that now hold a star lose their
+  /// black flag. Rebinds TILES_BINDING to its own list.
+  void draw_band(FrameState& frame, BandTiles& band, PassTimer& timer);
+
+  const NightSkyStats& stats() const { return stats_; }
+  /// The loaded catalogue's identity ("" before the first frame with stars or without a catalogue).
+  std::string catalogue_identity() const;
+
+ private:
+  const gl::ShaderProgram& resolve_program(const FrameState& frame, bool floor);
+  bool ensure_field(const scene::Scene& scene);
+  NightSkyRenderOptions options_;
+  NightSkyStats stats_;
+  bool catalogue_failed_ = false;
+  std::unique_ptr<StarField> field_;
+  std::vector<glm::dvec3> directions_;
+  std::vector<StarSplat> splats_;
+  // The Moon's disc (when larger than a pixel): direction, angular radius, and
+  // the linear sRGB × exposure of its full-phase radiance at normal incidence
+  // and emission (μ0 = μ = 1: 2 L_LS(1, 1)) through the line of sight.
+  bool moon_disc_ = false;
+  glm::dvec3 moon_direction_{0, 0, 1};
+  double moon_radius_rad_ = 0.0, moon_radius_px_ = 0.0;
+  glm::dvec2 moon_pixel_{0.0};
+  std::array<double, 3> moon_rgb_{};
+  /// The Moon at the frame's sky time: a disc, a star-like point, or nothing.
+  void place_moon(const FrameState& frame, const StarFrame& sky, const astro::AstroTime& time);
+  // The night floor: its table and the frame's up and horizon.
+  bool floor_ = false;
+  std::vector<std::array<float, 4>> floor_table_;
+  glm::dvec3 floor_up_{0, 0, 1};
+  double floor_horizon_mu_ = 0.0;
+  // Cached per atmosphere and options.
+  std::string refraction_key_, floor_key_;
+  std::unique_ptr<astro::Refraction> refraction_;
+  std::unique_ptr<astro::NightSkyFloor> night_floor_;
+  std::unique_ptr<astro::LightPollution> light_pollution_;
+  // GL objects.
+  gl::ShaderProgram splat_;
+  std::map<std::string, gl::ShaderProgram> resolve_;
+  gl::Buffer splats_buffer_, accumulator_, tiles_, table_buffer_;
+  std::size_t accumulator_bytes_ = 0;
+};
+
+}  // namespace zenith::render

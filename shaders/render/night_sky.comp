@@ -1,0 +1,93 @@
+#version 450
+// The night sky's own light joins the band's output (render/frame/star_pass.h;
+// docs/night-sky.md, "Rendering the night sky"), after the atmosphere passes
+// and before the band leaves (a file's readback or the live display pass):
+//
+//   * the stars, from the star accumulator (star_splat.comp), in fixed point;
+//   * the Moon's disc where it is larger than a pixel (a smaller Moon is a
+//     point source among the stars): the Lommel–Seeliger law of
+//     astro/moon_photometry.h, L = L(1, 1) · 2μ0/(μ0 + μ), its phase from the
+//     sun's direction on each point of the sphere, its edge antialiased over
+//     the pixel's footprint;
+//   * with NIGHT_FLOOR, the natural night sky (airglow with van Rhijn's
+//     brightening, zodiacal light, starlight) through the line of sight's
+//     transmittance, plus the artificial glow of light pollution: a table of
+//     linear sRGB × exposure against the view ray's cosine to the camera's up,
+//     computed on the CPU from astro/night_sky_floor.h and
+//     astro/light_pollution.h (render/frame/night_sky_table.h), on every ray
+//     that meets no body (the ground included).
+//
+// The tiles listed are the band's drawn tiles (add to what is there) or, with
+// `overwrite`, tiles no pass drew (whose output holds stale values: replaced).
+
+#include "frame.glsl"
+#include "frame_rgb.glsl"
+#define STAR_PIXELS
+#include "star_accumulator.glsl"
+
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+
+uniform bool overwrite;
+uniform bool with_stars;  // the tiles hold stars: read (and clear) the accumulator
+uniform float star_unit;  // radiance × exposure per count of the accumulator (1 / star_fixed_point)
+
+uniform bool moon_disc;
+uniform vec3 moon_direction;  // world, unit: the disc's centre (refracted)
+uniform float moon_radius;    // angular radius [rad]
+uniform vec3 moon_rgb;        // 2 L_LS(1, 1) through the line of sight, linear sRGB × exposure
+
+/// The Moon's light along `ray`: on the sphere's point seen there (small
+/// angles: its offset from the centre in units of the radius is sin θ of that
+/// point from the sub-observer point), L ∝ μ0/(μ0 + μ), μ the cosine toward us,
+/// μ0 toward the sun (0 on the night side); × the pixel's coverage of the disc.
+vec3 moon_light(vec3 ray) {
+  const float d = angle_between(ray, moon_direction);
+  const float coverage = clamp((moon_radius - d) / max(pixel_footprint, 1e-7) + 0.5, 0.0, 1.0);
+  if (coverage <= 0.0) return vec3(0.0);
+  const vec3 offset = ray - moon_direction * dot(ray, moon_direction);
+  const float s = min(d / moon_radius, 0.999);
+  const vec3 across = length(offset) > 0.0 ? normalize(offset) : vec3(0.0);
+  const float mu = sqrt(1.0 - s * s);
+  const vec3 normal = -moon_direction * mu + across * s;
+  const float mu0 = dot(normal, sun_direction);
+  if (mu0 <= 0.0) return vec3(0.0);
+  return moon_rgb * (mu0 / (mu0 + mu)) * coverage;
+}
+
+#if NIGHT_FLOOR
+/// Entry j at t = j / (n − 1) of μ = μh + (1 − μh) t² (μ the ray's cosine to
+/// `night_up`, μh the ground's horizon): the sky's night light, rgb × exposure.
+layout(std430, binding = NIGHT_SKY_TABLE_BINDING) readonly buffer NightSkyTable { vec4 night_sky_table[]; };
+uniform int night_sky_entries;
+uniform vec3 night_up;
+uniform float night_horizon_mu;
+
+vec3 night_sky_light(vec3 ray) {
+  const float x = max(dot(ray, night_up) - night_horizon_mu, 0.0) / (1.0 - night_horizon_mu);
+  const float f = sqrt(x) * float(night_sky_entries - 1);
+  const int j = min(int(f), night_sky_entries - 2);
+  return mix(night_sky_table[j].rgb, night_sky_table[j + 1].rgb, f - float(j));
+}
+#endif
+
+void main() {
+  ivec2 p;
+  if (!tile_pixel(p)) return;
+  const uint i = frame_rgb_index(p);
+  vec3 add = vec3(0.0);
+  if (with_stars) {
+    const ivec4 counts = star_pixels[i];
+    add = vec3(counts.rgb) * star_unit;
+    if (any(notEqual(counts.rgb, ivec3(0)))) star_pixels[i] = ivec4(0);
+  }
+  vec3 ray;
+  float distance_m;
+  if (pixel_ray(p, ray) && nearest_body(ray, distance_m) < 0) {
+#if NIGHT_FLOOR
+    add += night_sky_light(ray);
+#endif
+    if (moon_disc) add += moon_light(ray);
+  }
+  const vec3 before = overwrite ? vec3(0.0) : load_frame_rgb(p);
+  store_frame_rgb(p, clip_negative(before + add));
+}
