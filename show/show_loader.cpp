@@ -366,7 +366,7 @@ void read_recording(JsonReader& root, Show::Impl& show) {
 
 }  // namespace
 
-Show load_show(const fs::path& path) {
+Show load_show(const fs::path& path, const ShowLimits& limits) {
   const std::string file = path.string();
   const json j = read_json_file(path);
   JsonReader root(j, file);
@@ -444,11 +444,28 @@ Show load_show(const fs::path& path) {
 
   // Resolve every parameter set the show uses at its own rate and at every key,
   // so that a set that does not resolve is reported now, not mid-show.
+  // Each new set is counted as it appears: the limit stops a tiny step after
+  // max_table_sets resolutions, not after thousands.
+  const auto check_sets = [&](const AtmosphereTracks& body, double t_s) {
+    if (show.versions.size() <= limits.max_table_sets) return;
+    throw ConfigError(file, cat("/atmospheres/", body.entry),
+                      cat("the tracks of \"", body.body, "\" step through more than ", limits.max_table_sets,
+                          " lookup-table sets (reached at t = ", t_s, " s); each is a precompute and about ",
+                          "a table set's memory on the master and every node: use a coarser \"step\" or fewer keys, "
+                          "or raise the limit (--max-table-sets)"));
+  };
   for (const AtmosphereTracks& body : show.atmosphere_tracks) {
     for (const ParameterTrack& track : body.tracks)
-      for (const ParameterKey& key : track.keys()) show.tracked_hash(body, key.t_s);
+      for (const ParameterKey& key : track.keys()) {
+        show.tracked_hash(body, key.t_s);
+        check_sets(body, key.t_s);
+      }
     const auto frames = static_cast<std::uint64_t>(std::floor(show.duration_s * show.frame_rate_hz + 1e-9)) + 1;
-    for (std::uint64_t i = 0; i < frames; ++i) show.tracked_hash(body, static_cast<double>(i) / show.frame_rate_hz);
+    for (std::uint64_t i = 0; i < frames; ++i) {
+      const double t_s = static_cast<double>(i) / show.frame_rate_hz;
+      show.tracked_hash(body, t_s);
+      check_sets(body, t_s);
+    }
   }
   return Show(std::move(impl));
 }
