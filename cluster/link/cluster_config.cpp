@@ -150,6 +150,12 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
     JsonReader s(sv, r.file(), r.key_path("secret"));
     read_secret(s, sv, base_dir, c);
   }
+  if (r.has("limits")) {
+    JsonReader l = child(r, "limits");
+    if (l.has("max_unauthenticated_connections"))
+      c.max_unauthenticated_connections = static_cast<std::uint32_t>(l.integer("max_unauthenticated_connections", 1, 4096));
+    l.finish();
+  }
   if (r.has("tables")) {
     JsonReader t = child(r, "tables");
     c.table_sizes = t.string_or("sizes", c.table_sizes, {"paper", "small", "large"});
