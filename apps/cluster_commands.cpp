@@ -132,13 +132,16 @@ struct PlaybackArgs {
 struct OperatorArgs {
   std::optional<int> http_port, osc_port;
   std::string http_host = "127.0.0.1", token_file, osc_host = "127.0.0.1";
-  std::vector<std::string> osc_allow;
+  std::vector<std::string> osc_allow, http_names;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--operator-port", http_port, "Serve the operator console (web page, JSON API) on this port (docs/operator.md)")
         ->check(CLI::Range(1, 65535));
     cmd.add_option("--operator-host", http_host,
                    "Address the console listens on (default 127.0.0.1; any other needs an operator token)");
+    cmd.add_option("--operator-name", http_names,
+                   "With an operator token: a host name the console is reached by (besides its IP addresses; "
+                   "repeatable; other Host names are refused)");
     cmd.add_option("--operator-token-file", token_file,
                    "File (mode 600) holding the operator token (default: the environment variable ZENITH_OPERATOR_TOKEN)");
     cmd.add_option("--osc-port", osc_port, "Receive OSC cues on this UDP port (docs/operator.md)")->check(CLI::Range(1, 65535));
@@ -150,6 +153,7 @@ struct OperatorArgs {
     if (http_port) console.http_port = static_cast<std::uint16_t>(*http_port);
     console.http_host = http_host;
     console.token = load_operator_token();
+    console.http_names = http_names;
     if (osc_port) console.osc_port = static_cast<std::uint16_t>(*osc_port);
     console.osc_host = osc_host;
     console.osc_allow = osc_allow;
@@ -174,6 +178,7 @@ struct OperatorArgs {
     std::vector<std::string> args;
     if (http_port) args.insert(args.end(), {"--operator-port", std::to_string(*http_port), "--operator-host", http_host});
     if (!token_file.empty()) args.insert(args.end(), {"--operator-token-file", token_file});
+    for (const std::string& n : http_names) args.insert(args.end(), {"--operator-name", n});
     if (osc_port) args.insert(args.end(), {"--osc-port", std::to_string(*osc_port), "--osc-host", osc_host});
     for (const std::string& a : osc_allow) args.insert(args.end(), {"--osc-allow", a});
     return args;
