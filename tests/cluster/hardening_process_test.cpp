@@ -211,5 +211,55 @@ TEST_F(HardeningProcess, UnauthenticatedPeersAreBoundedInMessageSizeAndNumber) {
   EXPECT_TRUE(wait_until([&] { return presented_count(dir_ / "out-b/b") > before + 10; }, 60s)) << logs();
 }
 
+// Issue 30, defect 3: kill -9 or SIGTERM of `zenith cluster` left the master
+// and every node running under PID 1, holding their ports.
+TEST_F(HardeningProcess, TheLaunchersChildrenDieWithItAndItsSignalsAreForwarded) {
+  const fs::path config = write_config();
+  const pid_t killed = start_launcher(config, "cluster-killed.log");
+  ASSERT_TRUE(wait_until([&] { return presented_count(dir_ / "out-launched/a") > 3; }, 180s)) << logs();
+  const std::vector<pid_t> children = launched_pids("cluster-killed.log");
+  ASSERT_EQ(children.size(), 3u) << logs();
+  ::kill(killed, SIGKILL);
+  EXPECT_TRUE(wait_until([&] { return std::all_of(children.begin(), children.end(), process_gone); }, 30s))
+      << "orphans left after kill -9 of the launcher\n" << logs();
+
+  const pid_t stopped = start_launcher(config, "cluster-stopped.log", "out-stopped");
+  ASSERT_TRUE(wait_until([&] { return presented_count(dir_ / "out-stopped/b") > 3; }, 180s)) << logs();
+  const std::vector<pid_t> second = launched_pids("cluster-stopped.log");
+  ::kill(stopped, SIGHUP);
+  const std::optional<int> status = core::wait_for_exit(stopped, 60s);
+  ASSERT_TRUE(status.has_value()) << logs();
+  EXPECT_NE(*status, 0) << "stopped by a signal is not a finished show";
+  EXPECT_NE(read_text(dir_ / "cluster-stopped.log").find("Hangup received: forwarding SIGTERM to the master"),
+            std::string::npos)
+      << logs();
+  EXPECT_TRUE(wait_until([&] { return std::all_of(second.begin(), second.end(), process_gone); }, 30s)) << logs();
+}
+
+// Issue 30, defect 3: a new master that could not bind let its nodes join the
+// master already on the port (812 replacements between the two sets).
+TEST_F(HardeningProcess, ALauncherWhoseMasterCannotBindStartsNoNode) {
+  const fs::path config = write_config();
+  const int taken = ::socket(AF_INET, SOCK_STREAM, 0);
+  const int yes = 1;  // as the master binds: an older connection's TIME_WAIT does not block it
+  ::setsockopt(taken, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port_));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(taken, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  ASSERT_EQ(::listen(taken, 16), 0);
+  const pid_t launcher = start_launcher(config, "cluster.log");
+  const std::optional<int> status = core::wait_for_exit(launcher, 120s);
+  ASSERT_TRUE(status.has_value()) << logs();
+  EXPECT_NE(*status, 0);
+  const std::string log = read_text(dir_ / "cluster.log");
+  EXPECT_NE(log.find("the master could not start"), std::string::npos) << log;
+  EXPECT_EQ(count_of(log, "node 'a' started"), 0u) << log;
+  ::fcntl(taken, F_SETFL, O_NONBLOCK);
+  EXPECT_LT(::accept(taken, nullptr, nullptr), 0) << "no node knocked on the other master's port";
+  ::close(taken);
+}
+
 }  // namespace
 }  // namespace zenith::cluster
