@@ -16,12 +16,14 @@ void register_render_command(CLI::App& app);
 void register_export_calibration_command(CLI::App& app);
 /// `zenith master`, `zenith node`, `zenith cluster` (apps/cluster_commands.cpp).
 void register_cluster_commands(CLI::App& app);
-/// `zenith validate cie|stress` (apps/validate_command.cpp).
+/// `zenith validate cie|stress|night` (apps/validate_command.cpp).
 void register_validate_command(CLI::App& app);
 /// `validate cie` under `validate` (apps/validate_cie.cpp).
 void register_validate_cie(CLI::App& validate);
 /// `validate stress` under `validate` (apps/validate_stress.cpp).
 void register_validate_stress(CLI::App& validate);
+/// `validate night` under `validate` (apps/validate_night.cpp).
+void register_validate_night(CLI::App& validate);
 /// `zenith show ...` (apps/show_command.cpp).
 void register_show_command(CLI::App& app);
 /// `show render` under `show` (apps/show_render.cpp).

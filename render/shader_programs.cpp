@@ -18,12 +18,14 @@ std::vector<gl::ShaderDefine> with_interface_defines(std::span<const gl::ShaderD
 
 }  // namespace
 
-gl::ShaderProgram compute_program(const ExpandedShader& shader, std::span<const gl::ShaderDefine> defines) {
-  return gl::ShaderProgram::compute(code_from(shader), with_interface_defines(defines));
+gl::ShaderProgram compute_program(const ExpandedShader& shader, std::span<const gl::ShaderDefine> defines,
+                                  gl::ProgramBinaryCache* binaries) {
+  return gl::ShaderProgram::compute(code_from(shader), with_interface_defines(defines), binaries);
 }
 
-gl::ShaderProgram load_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines) {
-  return compute_program(load_shader(name), defines);
+gl::ShaderProgram load_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines,
+                                       gl::ProgramBinaryCache* binaries) {
+  return compute_program(load_shader(name), defines, binaries);
 }
 
 gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::string_view fragment_name,

@@ -17,14 +17,18 @@
 
 namespace zenith::render {
 
-/// A compute program from the embedded shader `name` ("render/gbuffer.comp").
-gl::ShaderProgram load_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines = {});
+/// A compute program from the embedded shader `name` ("render/gbuffer.comp");
+/// with `binaries`, taken from (and stored into) that program-binary cache
+/// (render/gl/program_binary_cache.h).
+gl::ShaderProgram load_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines = {},
+                                       gl::ProgramBinaryCache* binaries = nullptr);
 /// A vertex + fragment program from two embedded shaders.
 gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::string_view fragment_name,
                                         std::span<const gl::ShaderDefine> defines = {});
 /// A compute program from an already expanded shader (one resolved among
 /// other files than the embedded ones, e.g. the tests' shaders), with the same
 /// shared defines.
-gl::ShaderProgram compute_program(const ExpandedShader& shader, std::span<const gl::ShaderDefine> defines = {});
+gl::ShaderProgram compute_program(const ExpandedShader& shader, std::span<const gl::ShaderDefine> defines = {},
+                                  gl::ProgramBinaryCache* binaries = nullptr);
 
 }  // namespace zenith::render

@@ -16,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "atmosphere/parameters.h"
+#include "scene/sky_clock.h"
 
 namespace zenith::scene {
 
@@ -82,6 +83,11 @@ struct Scene {
   std::vector<Body> bodies;
   Sun sun;
   Camera camera;
+  /// The scene's "time" and "site" (the Earth only): then the sun above was
+  /// placed by the ephemeris at that time (scene/sky_clock.h), and shows may move it.
+  std::optional<SkyClock> sky_clock;
+  /// The scene's "night_sky" and "light_pollution", when either is given.
+  std::optional<NightSky> night_sky;
 
   /// The body named `name`, or null.
   const Body* find_body(const std::string& name) const;

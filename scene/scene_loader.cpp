@@ -55,6 +55,8 @@ constexpr Range kLatitude{-90.0, 90.0, "deg"};
 constexpr Range kLongitude{-360.0, 360.0, "deg"};
 constexpr Range kAzimuth{-360.0, 360.0, "deg"};
 constexpr Range kElevation{-90.0, 90.0, "deg"};
+constexpr Range kSiteLongitude{-180.0, 360.0, "deg"};
+constexpr Range kSiteAltitude{-500.0, 10000.0, "m"};
 constexpr Range kRoll{-360.0, 360.0, "deg"};
 constexpr Range kRotation{-360.0, 360.0, "deg"};
 constexpr Range kAltitude{0.1, 40.0 * kAstronomicalUnit_m, "m"};
@@ -557,13 +559,24 @@ JsonReader open_unchecked(JsonReader& parent, const std::string& key) {
 }
 
 /// Reads a sun object (its keys already checked by allow_sun_keys); "sky" is in
-/// the local horizon of `camera`.
-Sun read_sun(JsonReader& r, const std::vector<Body>& bodies, const CameraPlacement& placement, const Context& ctx) {
+/// the local horizon of `camera`. With `ephemeris` (the scene's "time" and
+/// "site") the direction and distance are the ephemeris', and none may be given.
+Sun read_sun(JsonReader& r, const std::vector<Body>& bodies, const CameraPlacement& placement, const Context& ctx,
+             const std::optional<EphemerisSun>& ephemeris = std::nullopt) {
   const Camera& camera = placement.camera;
   const LocalHorizon horizon = local_horizon_at(camera.position_m, bodies.at(placement.reference_body));
   Sun sun;
   double distance_au = 1.0;
-  switch (exactly_one(r, {"direction", "position_m", "sky"})) {
+  if (ephemeris) {
+    for (const char* key : {"direction", "position_m", "sky", "distance_au"})
+      if (r.has(key))
+        r.fail(key, "is not used: the scene's \"time\" and \"site\" place the sun (remove them to set it by hand)");
+  }
+  switch (ephemeris ? 3 : exactly_one(r, {"direction", "position_m", "sky"})) {
+    case 3:
+      sun.direction = ephemeris->direction;
+      distance_au = ephemeris->distance_au;
+      break;
     case 0:
       sun.direction = direction(r, "direction");
       distance_au = number_or(r, "distance_au", 1.0, kSunDistance);
@@ -601,11 +614,76 @@ Sun read_sun(JsonReader& r, const std::vector<Body>& bodies, const CameraPlaceme
   return sun;
 }
 
+/// "time" and "site" (docs/scenes.md, "Time and place"): both or neither, for a
+/// camera on or above the Earth.
+std::optional<SkyClock> read_sky_clock(JsonReader& root, const std::vector<Body>& bodies,
+                                       const CameraPlacement& camera) {
+  if (!root.has("time") && !root.has("site")) return std::nullopt;
+  if (!root.has("site")) root.fail("site", "missing: \"time\" needs a \"site\" {latitude_deg, longitude_deg, altitude_m}");
+  if (!root.has("time")) root.fail("time", "missing: \"site\" needs a \"time\" (ISO 8601 UTC, e.g. \"2026-12-21T16:30:00Z\")");
+  SkyClock clock;
+  clock.body = camera.reference_body;
+  std::string body = bodies.at(clock.body).name;
+  std::transform(body.begin(), body.end(), body.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (body != "earth")
+    root.fail("site", cat("places the sun by the Earth's ephemeris, but the camera's body is \"",
+                          bodies.at(clock.body).name, "\": give the sun by \"sky\" for other planets"));
+  const std::string text = root.string("time");
+  try {
+    clock.time = astro::parse_utc_time(text);
+    (void)astro::AstroTime::from_utc(clock.time);  // a calendar date ERFA accepts
+  } catch (const std::invalid_argument& e) {
+    root.fail("time", e.what());
+  }
+  JsonReader site = open_object(root, "site", {"latitude_deg", "longitude_deg", "altitude_m"});
+  clock.site.latitude_deg = number(site, "latitude_deg", kLatitude);
+  clock.site.longitude_deg = number(site, "longitude_deg", kSiteLongitude);
+  clock.site.altitude_m = number_or(site, "altitude_m", 0.0, kSiteAltitude);
+  site.finish();
+  return clock;
+}
+
+/// "night_sky": {"zenith_v_mag_arcsec2"} and "light_pollution": {"zenith_mcd_m2" | "bortle",
+/// "colour_temperature_K"} (docs/scenes.md, "Night sky"), seen through the atmosphere of
+/// the camera's body.
+std::optional<NightSky> read_night_sky(JsonReader& root, const std::vector<Body>& bodies,
+                                       const CameraPlacement& camera) {
+  if (!root.has("night_sky") && !root.has("light_pollution")) return std::nullopt;
+  NightSky night;
+  night.body = camera.reference_body;
+  const Body& body = bodies.at(night.body);
+  const char* key = root.has("night_sky") ? "night_sky" : "light_pollution";
+  if (!body.atmosphere)
+    root.fail(key, cat("is seen through the atmosphere of the camera's body, but \"", body.name, "\" has none"));
+  if (root.has("night_sky")) {
+    JsonReader n = open_object(root, "night_sky", {"zenith_v_mag_arcsec2"});
+    night.floor.zenith_v_mag_arcsec2 = n.number_or("zenith_v_mag_arcsec2", 22.0, 19.0, 23.0, "mag/arcsec^2");
+    n.finish();
+  }
+  if (root.has("light_pollution")) {
+    JsonReader l = open_object(root, "light_pollution", {"zenith_mcd_m2", "bortle", "colour_temperature_K"});
+    night.light_pollution.colour_temperature_K = l.number_or("colour_temperature_K", 3000.0, 1500.0, 10000.0, "K");
+    if (l.has("zenith_mcd_m2") == l.has("bortle"))
+      l.fail("", "give exactly one of \"zenith_mcd_m2\" (artificial zenith luminance) and \"bortle\" (class 1-9)");
+    if (l.has("zenith_mcd_m2")) {
+      night.light_pollution.zenith_mcd_m2 = l.number("zenith_mcd_m2", 0.0, 1e5, "mcd/m^2");
+    } else {
+      const auto& model = body.atmosphere->loaded.model;
+      const double natural = astro::NightSkyFloor(model, night.floor).zenith_luminance_cd_m2();
+      night.light_pollution.zenith_mcd_m2 = astro::bortle_artificial_mcd_m2(
+          l.integer("bortle", 1, 9), model, natural, night.light_pollution.colour_temperature_K);
+    }
+    l.finish();
+  }
+  return night;
+}
+
 }  // namespace
 
 Scene parse_scene(const json& j, const std::string& source, const fs::path& base_dir) {
   JsonReader root(j, source);
-  allow_keys(root, j, {"zenith_scene", "name", "description", "wavelengths_nm", "bodies", "sun", "camera"});
+  allow_keys(root, j, {"zenith_scene", "name", "description", "wavelengths_nm", "bodies", "sun", "camera", "time", "site",
+                       "night_sky", "light_pollution"});
   const json& version = root.raw("zenith_scene");
   if (!version.is_number_integer() || version.get<long long>() != kFormatVersion)
     root.fail("zenith_scene",
@@ -622,9 +700,15 @@ Scene parse_scene(const json& j, const std::string& source, const fs::path& base
   allow_camera_keys(camera_reader, root.raw("camera"));
   const CameraPlacement camera = read_camera(camera_reader, scene.bodies, ctx);
   scene.camera = camera.camera;
+  scene.sky_clock = read_sky_clock(root, scene.bodies, camera);
+  scene.night_sky = read_night_sky(root, scene.bodies, camera);
+  std::optional<EphemerisSun> ephemeris;
+  if (scene.sky_clock)
+    ephemeris = ephemeris_sun(scene, *scene.sky_clock, astro::AstroTime::from_utc(scene.sky_clock->time),
+                              camera.camera.position_m);
   JsonReader sun_reader = open_unchecked(root, "sun");
   allow_sun_keys(sun_reader, root.raw("sun"));
-  scene.sun = read_sun(sun_reader, scene.bodies, camera, ctx);
+  scene.sun = read_sun(sun_reader, scene.bodies, camera, ctx, ephemeris);
   root.finish();
   try {
     check_scene(scene);  // the invariants, once more, on the resolved values

@@ -7,8 +7,9 @@
 #   image/       core                       EXR/PNG files, tone mapping, colour
 #   atmosphere/  core                       the physics; no GL
 #   warp/        core, image                projections, warp meshes, blending, calibration export; no GL
-#   scene/       core, image, atmosphere    scenes, albedo maps, the sun's disc, frame descriptions; no GL
-#   show/        core, image, atmosphere, scene   shows, playback clock, table plans; no GL, no protocol
+#   astro/       core, atmosphere           star catalogue, ephemerides (ERFA), refraction, night-sky photometry; no GL
+#   scene/       core, image, atmosphere, astro   scenes, albedo maps, the sun's disc, frame descriptions; no GL
+#   show/        core, image, atmosphere, astro, scene   shows, playback clock, table plans; no GL, no protocol
 #   render/      core … scene (not show)    GL, tables on the GPU, the frame renderer
 #   cluster/     a module of modules, each folder one (no loops, no sideways steps):
 #     protocol/  core, scene                the wire protocol: messages, framing, handshake, table transfer
@@ -46,23 +47,24 @@ endif()
 get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 
 set(cluster cluster/protocol cluster/link cluster/master cluster/node cluster/standby cluster/launcher)
-set(modules core image atmosphere warp scene show render ${cluster} stress offline apps)
+set(modules core image atmosphere warp astro scene show render ${cluster} stress offline apps)
 set(allowed_core "")
 set(allowed_image core)
 set(allowed_atmosphere core)
 set(allowed_warp core image)
-set(allowed_scene core image atmosphere)
-set(allowed_show core image atmosphere scene)
-set(allowed_render core image atmosphere warp scene)
+set(allowed_astro core atmosphere)
+set(allowed_scene core image atmosphere astro)
+set(allowed_show core image atmosphere astro scene)
+set(allowed_render core image atmosphere warp astro scene)
 set(allowed_cluster/protocol core scene)
-set(allowed_cluster/link core image atmosphere warp scene cluster/protocol)
-set(allowed_cluster/master core image atmosphere warp scene show render cluster/protocol cluster/link)
-set(allowed_cluster/node core image atmosphere warp scene render cluster/protocol cluster/link)
-set(allowed_cluster/standby core image atmosphere warp scene show render cluster/protocol cluster/link cluster/master)
+set(allowed_cluster/link core image atmosphere warp astro scene cluster/protocol)
+set(allowed_cluster/master core image atmosphere warp astro scene show render cluster/protocol cluster/link)
+set(allowed_cluster/node core image atmosphere warp astro scene render cluster/protocol cluster/link)
+set(allowed_cluster/standby core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/master)
 set(allowed_cluster/launcher core cluster/protocol cluster/link)
-set(allowed_stress core image atmosphere warp scene render)
-set(allowed_offline core image atmosphere warp scene show render ${cluster})
-set(allowed_apps core image atmosphere warp scene show render ${cluster} stress offline)
+set(allowed_stress core image atmosphere warp astro scene render)
+set(allowed_offline core image atmosphere warp astro scene show render ${cluster})
+set(allowed_apps core image atmosphere warp astro scene show render ${cluster} stress offline)
 
 if(LINK_GRAPH)
   file(STRINGS "${LINK_GRAPH}" edges)

@@ -73,6 +73,13 @@ scene::FrameDescription Show::Impl::keyframed_state(double t_s, std::uint64_t fr
   s.sun_direction = sun_now.direction;
   s.sun_angular_radius_rad = sun_now.angular_radius_rad;
   s.sun_irradiance_W_m2_nm = sun_now.irradiance_W_m2_nm;
+  if (time) {
+    // The sky clock moved: the ephemeris' sun in the camera's horizon at t (the
+    // irradiance is the scene's: the Earth–Sun distance changes by 1e-5 in a night).
+    const scene::EphemerisSun e = scene::ephemeris_sun(scene, *scene.sky_clock, time->at(t_s), s.camera_position_m);
+    s.sun_direction = e.direction;
+    s.sun_angular_radius_rad = e.angular_radius_rad;
+  }
   for (const scene::Body& body : scene.bodies) {
     if (!body.atmosphere) continue;
     scene::AtmosphereTableRef ref;
@@ -130,6 +137,13 @@ double Show::frame_time_s(std::uint64_t index, double fps) const {
   }
   if (!(std::isfinite(fps) && fps > 0.0)) throw std::invalid_argument(cat("Show::frame_time_s: fps = ", fps, " must be > 0"));
   return static_cast<double>(index) / fps;
+}
+
+std::optional<astro::AstroTime> Show::sky_time_at(double show_time_s) const {
+  if (!impl_->scene.sky_clock || std::isnan(show_time_s)) return std::nullopt;
+  const double t = std::clamp(show_time_s, 0.0, impl_->duration_s);
+  if (impl_->time) return impl_->time->at(t);
+  return astro::AstroTime::from_utc(impl_->scene.sky_clock->time);
 }
 
 scene::FrameDescription Show::state_at(double show_time_s, std::uint64_t frame, std::uint32_t render_flags) const {

@@ -23,6 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "astro/civil_time.h"
 #include "scene/frame_description.h"
 #include "scene/scene.h"
 
@@ -76,6 +77,11 @@ class Show {
   /// (keyframed), index / frame_rate_hz() (recordings: their own timeline,
   /// whatever show time each recorded state carries).
   double frame_time_s(std::uint64_t index, double fps) const;
+
+  /// The sky's UTC at show time t (clamped as state_at) when the scene gives
+  /// "time" and "site": the scene's time, moved by the show's time track. The
+  /// render passes of stars and the Moon place them by it (astro/sky_positions.h).
+  std::optional<astro::AstroTime> sky_time_at(double show_time_s) const;
 
   /// The state at show time t (clamped to [0, duration_s()]) as frame `frame`.
   /// Keyframed: the tracks interpolated at t, with `render_flags` and each

@@ -19,6 +19,15 @@
 
 namespace zenith::show {
 
+/// The show's "time" (docs/shows.md, "Time track"): the sky's UTC at show time t
+/// is start + time_rate · t (the scene's "time" by default).
+struct TimeTrack {
+  astro::AstroTime start;
+  double time_rate = 1.0;  ///< sky seconds per show second
+  double end_s = 0.0;      ///< show time it runs to (counts toward the show's duration)
+  astro::AstroTime at(double t_s) const { return start.plus_seconds(time_rate * t_s); }
+};
+
 /// The parameter tracks of one body's atmosphere.
 struct AtmosphereTracks {
   std::string body;
@@ -43,6 +52,7 @@ struct Show::Impl {
   // Keyframed shows: absent tracks leave the scene's value.
   std::optional<CameraTrack> camera;
   std::optional<SunTrack> sun;
+  std::optional<TimeTrack> time;  ///< moves the scene's sky clock (then no sun track)
   std::optional<MonotoneCubic> log_exposure;  ///< ln(exposure)
   std::vector<AtmosphereTracks> atmosphere_tracks;
   /// Body → the table hash of the scene's own atmosphere, for bodies without tracks.

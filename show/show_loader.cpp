@@ -364,6 +364,36 @@ void read_recording(JsonReader& root, Show::Impl& show) {
   r.finish();
 }
 
+/// "time": {"start": ISO UTC (default: the scene's "time"), "time_rate": sky seconds per
+/// show second, "end_s": the show time it runs to} (docs/shows.md, "Time track").
+TimeTrack read_time_track(JsonReader& root, const scene::Scene& scene) {
+  if (!scene.sky_clock)
+    root.fail("time", "moves the scene's sky clock, but the scene gives no \"time\" and \"site\" (docs/scenes.md)");
+  if (root.has("sun")) root.fail("time", "and a \"sun\" track both move the sun: give one");
+  const json& v = root.raw("time");
+  if (!v.is_object()) root.fail("time", cat("must be an object {\"start\", \"time_rate\", \"end_s\"}, got ", brief(v)));
+  JsonReader r(v, root.file(), root.key_path("time"));
+  allow(r, v, {"start", "time_rate", "end_s"});
+  TimeTrack track;
+  astro::UtcTime start = scene.sky_clock->time;
+  if (r.has("start")) {
+    try {
+      start = astro::parse_utc_time(r.string("start"));
+    } catch (const std::invalid_argument& e) {
+      r.fail("start", e.what());
+    }
+  }
+  try {
+    track.start = astro::AstroTime::from_utc(start);
+  } catch (const std::invalid_argument& e) {
+    r.fail("start", e.what());
+  }
+  track.time_rate = r.number_or("time_rate", 1.0, -86400.0, 86400.0, "sky s per show s");
+  track.end_s = r.number_or("end_s", 0.0, 0.0, 86400.0, "s");
+  r.finish();
+  return track;
+}
+
 }  // namespace
 
 Show load_show(const fs::path& path, const ShowLimits& limits) {
@@ -371,7 +401,7 @@ Show load_show(const fs::path& path, const ShowLimits& limits) {
   const json j = read_json_file(path);
   JsonReader root(j, file);
   allow(root, j,
-        {"zenith_show", "name", "description", "scene", "cluster", "fps", "loop", "camera", "sun", "exposure",
+        {"zenith_show", "name", "description", "scene", "cluster", "fps", "loop", "camera", "sun", "time", "exposure",
          "atmospheres", "recording"});
   const json& version = root.raw("zenith_show");
   if (!version.is_number_integer() || version.get<long long>() != kShowFormatVersion)
@@ -404,7 +434,7 @@ Show load_show(const fs::path& path, const ShowLimits& limits) {
 
   if (root.has("recording")) {
     show.kind = Show::Kind::recording;
-    for (const char* key : {"fps", "camera", "sun", "exposure", "atmospheres"})
+    for (const char* key : {"fps", "camera", "sun", "time", "exposure", "atmospheres"})
       if (root.has(key))
         root.fail(key, "is not used in a recording (its frames hold every state; its rate is /recording/fps)");
     read_recording(root, show);
@@ -427,6 +457,10 @@ Show load_show(const fs::path& path, const ShowLimits& limits) {
   if (root.has("sun")) {
     show.sun = read_sun_track(root, show.scene, show.camera);
     last_key_times.push_back(show.sun->key_times_s().back());
+  }
+  if (root.has("time")) {
+    show.time = read_time_track(root, show.scene);
+    last_key_times.push_back(show.time->end_s);
   }
   if (root.has("exposure")) {
     show.log_exposure = read_exposure_track(root);

@@ -14,13 +14,25 @@ namespace {
 
 /// r from ρ, the inverse of horizon_distance: exactly rb at ρ = 0 (what a
 /// correctly rounded sqrt gives; the shaders spell it out for GPUs whose fp64
-/// sqrt is not correctly rounded, atmosphere_common.glsl).
+/// sqrt is not correctly rounded, atmosphere_common.glsl), and at most rt: at
+/// ρ = H a sqrt 1 ulp high gave r = rt + 1 ulp, so d_min = rt − r < 0 and the
+/// μ = 1 ray of the top row came out μ ≈ 0 (transmittance_r_mu, mu_sky_from_unit).
 double radius_from_horizon_distance(const ShellGeometry& g, double rho) {
-  return rho == 0.0 ? g.bottom_radius_m : std::sqrt(rho * rho + g.bottom_radius_m * g.bottom_radius_m);
+  if (rho == 0.0) return g.bottom_radius_m;
+  return std::min(std::sqrt(rho * rho + g.bottom_radius_m * g.bottom_radius_m), g.top_radius_m);
 }
 
 double clamp_cosine(double mu) { return std::clamp(mu, -1.0, 1.0); }
 double safe_sqrt(double a) { return std::sqrt(std::max(a, 0.0)); }
+
+/// a² − b² as (a − b)(a + b). Near the ground r² − rb² cancels: 1 m above
+/// Mars' ground it is 6 ulp of r² in float (r² − rb² = 6.8e6 m², one ulp of
+/// r² = 1.05e6 m²), and a discriminant r²μ² − r² + rb² that should be 0 at
+/// the horizon comes out anywhere in ±1e6 m², i.e. ±1000 m of distance to the
+/// ground out of 2600 m (u_μ off by 0.2 in the fp32 shaders). r − rb is exact
+/// (Sterbenz: r within a factor 2 of rb), so the product keeps the precision
+/// of its factors: ±1 m² there, ±1 m of distance. The shaders compute the same.
+double difference_of_squares(double a, double b) { return (a - b) * (a + b); }
 }  // namespace
 
 void TableSizes::check() const {
@@ -52,11 +64,11 @@ std::string TableSizes::describe() const {
 TableSizes TableSizes::small() { return TableSizes{64, 16, 32, 8, 8, 32, 32, 8}; }
 
 double ShellGeometry::horizon_distance_at_top_m() const {
-  return safe_sqrt(top_radius_m * top_radius_m - bottom_radius_m * bottom_radius_m);
+  return safe_sqrt(difference_of_squares(top_radius_m, bottom_radius_m));
 }
 
 double ShellGeometry::horizon_distance_m(double r_m) const {
-  return safe_sqrt(r_m * r_m - bottom_radius_m * bottom_radius_m);
+  return safe_sqrt(difference_of_squares(r_m, bottom_radius_m));
 }
 
 double ShellGeometry::min_sun_cosine() const {
@@ -81,18 +93,21 @@ double ShellGeometry::min_sun_cosine() const {
 }
 
 double ShellGeometry::distance_to_top_m(double r_m, double mu) const {
-  // Solve |x + d v| = rt: d = −rμ + √(r²(μ² − 1) + rt²).
-  const double disc = r_m * r_m * (mu * mu - 1.0) + top_radius_m * top_radius_m;
-  return std::max(0.0, -r_m * mu + safe_sqrt(disc));
+  // Solve |x + d v| = rt: d = −rμ + √(r²μ² − (r² − rt²)).
+  const double r_mu = r_m * mu;
+  const double disc = r_mu * r_mu - difference_of_squares(r_m, top_radius_m);
+  return std::max(0.0, -r_mu + safe_sqrt(disc));
 }
 
 double ShellGeometry::distance_to_bottom_m(double r_m, double mu) const {
-  const double disc = r_m * r_m * (mu * mu - 1.0) + bottom_radius_m * bottom_radius_m;
-  return std::max(0.0, -r_m * mu - safe_sqrt(disc));
+  const double r_mu = r_m * mu;
+  const double disc = r_mu * r_mu - difference_of_squares(r_m, bottom_radius_m);
+  return std::max(0.0, -r_mu - safe_sqrt(disc));
 }
 
 bool ShellGeometry::ray_hits_ground(double r_m, double mu) const {
-  return mu < 0.0 && r_m * r_m * (mu * mu - 1.0) + bottom_radius_m * bottom_radius_m >= 0.0;
+  const double r_mu = r_m * mu;
+  return mu < 0.0 && r_mu * r_mu - difference_of_squares(r_m, bottom_radius_m) >= 0.0;
 }
 
 double ShellGeometry::distance_to_nearest_boundary_m(double r_m, double mu, bool hits_ground) const {
@@ -209,8 +224,8 @@ double scattering_nu_from_unit(double mu, double mu_s, double x) {
 /// μ ↔ [0, 1] for rays that do not hit the ground (see AngleMapping).
 double unit_from_mu_sky(const ShellGeometry& g, double r_m, double mu, AngleMapping mapping) {
   const double H = g.horizon_distance_at_top_m(), rho = g.horizon_distance_m(r_m);
-  const double disc = r_m * r_m * (mu * mu - 1.0) + g.bottom_radius_m * g.bottom_radius_m;
-  const double d = -r_m * mu + safe_sqrt(disc + H * H);
+  const double r_mu = r_m * mu;
+  const double d = -r_mu + safe_sqrt(r_mu * r_mu - difference_of_squares(r_m, g.top_radius_m));
   const double d_min = g.top_radius_m - r_m, d_max = rho + H;
   const double distance = d_max == d_min ? 0.0 : std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0);
   if (mapping == AngleMapping::Distance) return distance;
@@ -242,7 +257,7 @@ ScatteringUVWZ scattering_uvwz(const ShellGeometry& g, const TableSizes& s, doub
   const double u_r = texture_coord_from_unit(std::clamp(rho / H, 0.0, 1.0), s.scattering_r);
 
   const double r_mu = r_m * mu;
-  const double disc = r_mu * r_mu - r_m * r_m + g.bottom_radius_m * g.bottom_radius_m;
+  const double disc = r_mu * r_mu - difference_of_squares(r_m, g.bottom_radius_m);
   const std::size_t half = s.scattering_mu / 2;
   double u_mu;
   if (ray_hits_ground) {

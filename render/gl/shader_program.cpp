@@ -11,6 +11,8 @@
 #include <utility>
 
 #include "render/gl/gl_error.h"
+#include "render/gl/program_binary_cache.h"
+#include "render/gl/shader_hooks.h"
 
 namespace zenith::render::gl {
 
@@ -174,8 +176,9 @@ std::string program_log(GLuint program) {
 
 /// Compiles one stage; throws with the annotated log on failure.
 GLuint compile(ShaderStage stage, const ShaderCode& code, std::span<const ShaderDefine> defines) {
-  const std::string text = inject_defines(code.name, code.text, defines);
+  const std::string text = with_test_hooks(code.name, inject_defines(code.name, code.text, defines));
   const std::vector<std::string> files = code.files.empty() ? std::vector<std::string>{code.name} : code.files;
+  dump_shader_source(code.name, stage, text, files);
   const GLuint shader = glCreateShader(stage_enum(stage));
   if (shader == 0) {
     check_gl_error(fmt::format("shader '{}': glCreateShader", code.name));
@@ -190,16 +193,18 @@ GLuint compile(ShaderStage stage, const ShaderCode& code, std::span<const Shader
   const std::string log = shader_log(shader);
   if (ok != GL_TRUE) {
     glDeleteShader(shader);
-    throw std::runtime_error(fmt::format("shader '{}' ({}) failed to compile:\n{}", code.name, to_string(stage),
-                                         annotate_log(log, text, files)));
+    throw ShaderBuildError(code.name, fmt::format("shader '{}' ({}) failed to compile:\n{}", code.name,
+                                                  to_string(stage), annotate_log(log, text, files)));
   }
   if (!trim(log).empty()) spdlog::debug("shader '{}' ({}) compiled with messages:\n{}", code.name, to_string(stage), log);
   return shader;
 }
 
 /// Links the compiled stages (deleting them); throws with the log on failure.
-GLuint link(const std::string& name, std::span<const GLuint> shaders) {
+/// `retrievable`: for glGetProgramBinary (ProgramBinaryCache::store).
+GLuint link(const std::string& name, std::span<const GLuint> shaders, bool retrievable = false) {
   const GLuint program = glCreateProgram();
+  if (retrievable) glProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
   for (GLuint s : shaders) glAttachShader(program, s);
   glLinkProgram(program);
   for (GLuint s : shaders) {
@@ -211,7 +216,7 @@ GLuint link(const std::string& name, std::span<const GLuint> shaders) {
   const std::string log = program_log(program);
   if (ok != GL_TRUE) {
     glDeleteProgram(program);
-    throw std::runtime_error(fmt::format("shader program '{}' failed to link:\n{}", name, trim(log)));
+    throw ShaderBuildError(name, fmt::format("shader program '{}' failed to link:\n{}", name, trim(log)));
   }
   if (!trim(log).empty()) spdlog::debug("shader program '{}' linked with messages:\n{}", name, log);
   return program;
@@ -257,11 +262,12 @@ std::string inject_defines(std::string_view name, std::string_view text, std::sp
 
 bool is_nvidia_unroll_failure(std::string_view message) { return message.find("C5025") != std::string_view::npos; }
 
-ShaderProgram ShaderProgram::compute(const ShaderCode& code, std::span<const ShaderDefine> defines) {
-  ShaderProgram p;
+namespace {
+
+GLuint build_compute(const ShaderCode& code, std::span<const ShaderDefine> defines, bool retrievable) {
   try {
     const GLuint shader = compile(ShaderStage::compute, code, defines);
-    p.id_ = link(code.name, std::span<const GLuint>(&shader, 1));
+    return link(code.name, std::span<const GLuint>(&shader, 1), retrievable);
   } catch (const std::runtime_error& e) {
     if (!is_nvidia_unroll_failure(e.what())) throw;
     // NVIDIA's compiler could not unroll a loop (kNvidiaLoopUnrollOff): the same
@@ -272,7 +278,24 @@ ShaderProgram ShaderProgram::compute(const ShaderCode& code, std::span<const Sha
     const std::string pragma[] = {std::string(kNvidiaLoopUnrollOff)};
     const ShaderCode rolled{code.name, insert_after_version(code.name, code.text, pragma), code.files};
     const GLuint shader = compile(ShaderStage::compute, rolled, defines);
-    p.id_ = link(code.name, std::span<const GLuint>(&shader, 1));
+    return link(code.name, std::span<const GLuint>(&shader, 1), retrievable);
+  }
+}
+
+}  // namespace
+
+ShaderProgram ShaderProgram::compute(const ShaderCode& code, std::span<const ShaderDefine> defines,
+                                     ProgramBinaryCache* binaries) {
+  ShaderProgram p;
+  std::string key;  // of the binary cache; empty without one
+  if (binaries != nullptr && binaries->enabled()) {
+    const std::string text[] = {with_test_hooks(code.name, inject_defines(code.name, code.text, defines))};
+    key = binaries->key(text);
+    p.id_ = binaries->load(key);
+  }
+  if (p.id_ == 0) {
+    p.id_ = build_compute(code, defines, !key.empty());
+    if (!key.empty()) binaries->store(key, p.id_);
   }
   p.name_ = code.name;
   p.compute_ = true;

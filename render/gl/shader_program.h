@@ -5,11 +5,15 @@
 // Needs a current GL 4.5 context.
 #include <array>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace zenith::render::gl {
+
+class ProgramBinaryCache;
 
 enum class ShaderStage { vertex, fragment, compute };
 const char* to_string(ShaderStage stage);
@@ -41,6 +45,21 @@ std::string inject_defines(std::string_view name, std::string_view text, std::sp
 /// the shader when there is no #version line.
 std::string insert_after_version(std::string_view name, std::string_view text, std::span<const std::string> lines);
 
+/// A shader stage that did not compile or a program that did not link: what
+/// ShaderProgram throws then (the message as documented at ShaderProgram::compute).
+/// `program()` names the shader ("harmonic_density.comp") or the pair
+/// ("render/present.vert + render/present.frag"), so that a caller can fall back
+/// and say which one a driver refused.
+class ShaderBuildError : public std::runtime_error {
+ public:
+  ShaderBuildError(std::string program, const std::string& message)
+      : std::runtime_error(message), program_(std::move(program)) {}
+  const std::string& program() const { return program_; }
+
+ private:
+  std::string program_;
+};
+
 /// NVIDIA's pragma that turns its GLSL compiler's loop unrolling off. Driver
 /// 580.159.04 (an H200, 2026-11-26) fails to link some programs whose loops
 /// it unrolls — harmonic_density.comp with 64 wavelengths or the fp32 model,
@@ -55,14 +74,18 @@ bool is_nvidia_unroll_failure(std::string_view message);
 
 class ShaderProgram {
  public:
-  /// Compiles and links. On a compile or link failure throws std::runtime_error:
+  /// Compiles and links. On a compile or link failure throws ShaderBuildError:
   ///   shader 'broken.comp' (compute) failed to compile:
   ///   0:7(12): error: syntax error, unexpected ...
   ///       broken.comp:7 | float x = ;
   /// i.e. the shader name, the driver's info log and, under each message that
   /// names a line, that line of the source (source-string numbers resolved
   /// through ShaderCode::files).
-  static ShaderProgram compute(const ShaderCode& code, std::span<const ShaderDefine> defines = {});
+  /// With `binaries`, a compute program is taken from that cache when it holds
+  /// one for this driver and text, and stored there after it links
+  /// (render/gl/program_binary_cache.h).
+  static ShaderProgram compute(const ShaderCode& code, std::span<const ShaderDefine> defines = {},
+                               ProgramBinaryCache* binaries = nullptr);
   static ShaderProgram graphics(const ShaderCode& vertex, const ShaderCode& fragment,
                                 std::span<const ShaderDefine> defines = {});
 

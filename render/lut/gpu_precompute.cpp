@@ -20,6 +20,7 @@
 #include "render/gl/buffer.h"
 #include "render/gl/gl_error.h"
 #include "render/gl/gl_limits.h"
+#include "render/gl/program_binary_cache.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
@@ -73,7 +74,7 @@ struct GroupTables {
 class GpuPrecompute {
  public:
   GpuPrecompute(const AtmosphereModel& model, const PrecomputeOptions& options, PrecomputeReport* report,
-                const gl::HeadlessContext& context, bool fp64);
+                const gl::HeadlessContext& context, bool fp64, gl::ProgramBinaryCache* binaries);
   LookupTables run();
 
  private:
@@ -127,6 +128,7 @@ class GpuPrecompute {
   gl::Buffer view_transmittance_, view_ray_uv_;         // view_ray.glsl, one group at a time
   std::vector<GroupTables> groups_;
   std::map<std::string, ShaderProgram> programs_;
+  gl::ProgramBinaryCache* binaries_;  ///< null: every program compiled
   double fraction_done_ = 0.0;
   /// Σ over the table of each wavelength's radiance in the last radiance_sum,
   /// and in the one before that of the last order (the series tail's caps).
@@ -134,14 +136,15 @@ class GpuPrecompute {
 };
 
 GpuPrecompute::GpuPrecompute(const AtmosphereModel& model, const PrecomputeOptions& options, PrecomputeReport* report,
-                             const gl::HeadlessContext& context, bool fp64)
+                             const gl::HeadlessContext& context, bool fp64, gl::ProgramBinaryCache* binaries)
     : model_(model),
       options_(options),
       report_(report),
       context_(context),
       fp64_(fp64),
       n_(model.wavelength_count()),
-      tables_(LookupTables::allocate({model.ground_radius_m, model.top_radius_m}, options.sizes, n_)) {
+      tables_(LookupTables::allocate({model.ground_radius_m, model.top_radius_m}, options.sizes, n_)),
+      binaries_(binaries) {
   if (n_ > atmosphere::lut::kMaxChannels) throw std::invalid_argument("too many wavelengths for the lookup tables");
   if (n_ == 0) throw std::invalid_argument("the atmosphere has no wavelengths");
   atmosphere::lut::check_precompute_options(options);
@@ -185,7 +188,7 @@ const ShaderProgram& GpuPrecompute::program(const std::string& file, std::vector
   std::vector<ShaderDefine> defines = defines_;
   defines.insert(defines.end(), extra.begin(), extra.end());
   const auto start = std::chrono::steady_clock::now();
-  ShaderProgram p = load_compute_program(file, defines);
+  ShaderProgram p = load_compute_program(file, defines, binaries_);
   spdlog::debug("GPU precompute: compiled {} in {:.3f} s", key, seconds_since(start));
   return programs_.emplace(key, std::move(p)).first->second;
 }
@@ -526,7 +529,7 @@ LookupTables GpuPrecompute::run() {
 
 LookupTables precompute_tables_gpu(const AtmosphereModel& model, const PrecomputeOptions& options,
                                    PrecomputeReport* report, const gl::HeadlessContext* context,
-                                   GpuPrecision precision) {
+                                   GpuPrecision precision, const std::optional<std::filesystem::path>& program_cache) {
   options.sizes.check();
   std::optional<gl::HeadlessContext> own;
   if (context == nullptr) {
@@ -539,7 +542,14 @@ LookupTables precompute_tables_gpu(const AtmosphereModel& model, const Precomput
                     (precision == GpuPrecision::automatic && context->gl_major() >= 4);
   spdlog::debug("GPU precompute on '{}' in {}", context->renderer(), fp64 ? "fp64" : "fp32");
   gl::check_gl_error("GPU precompute: an earlier GL call left an error");
-  LookupTables tables = GpuPrecompute(model, options, report, *context, fp64).run();
+  std::optional<gl::ProgramBinaryCache> binaries;
+  if (program_cache) binaries.emplace(*program_cache);
+  const auto start = std::chrono::steady_clock::now();
+  LookupTables tables = GpuPrecompute(model, options, report, *context, fp64, binaries ? &*binaries : nullptr).run();
+  if (binaries)
+    spdlog::debug("GPU precompute: {} programs from the binary cache in {}, {} compiled and stored, {} refused ({:.2f} s)",
+                  binaries->statistics().loaded, binaries->directory().string(), binaries->statistics().stored,
+                  binaries->statistics().refused, seconds_since(start));
   return tables;
 }
 

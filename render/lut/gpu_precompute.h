@@ -15,6 +15,9 @@
 // wavelengths uses ceil(N/4) textures per table (N ≤ 64). Shaders are compiled
 // per model with #defines that drop what the model does not have (no Mie, no
 // absorbers, no air-mass stretch), and per precision.
+#include <filesystem>
+#include <optional>
+
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/precompute_options.h"
@@ -32,13 +35,17 @@ enum class GpuPrecision {
 const char* to_string(GpuPrecision precision);
 
 /// Computes the tables on the GPU. Uses `context` (made current on this thread if
-/// it is not) or, when null, creates a HeadlessContext for the call. Throws
-/// std::invalid_argument for bad options (as the CPU path), std::runtime_error when
-/// no GL context can be created, a table exceeds the GL limits, or a shader fails.
+/// it is not) or, when null, creates a HeadlessContext for the call. With
+/// `program_cache`, the linked programs are kept there between runs
+/// (render/gl/program_binary_cache.h; zenith uses <table cache>/programs).
+/// Throws std::invalid_argument for bad options (as the CPU path),
+/// std::runtime_error when no GL context can be created or a table exceeds the
+/// GL limits, gl::ShaderBuildError when the driver refuses a program.
 atmosphere::lut::LookupTables precompute_tables_gpu(const atmosphere::AtmosphereModel& model,
                                                     const atmosphere::lut::PrecomputeOptions& options,
                                                     atmosphere::lut::PrecomputeReport* report = nullptr,
                                                     const gl::HeadlessContext* context = nullptr,
-                                                    GpuPrecision precision = GpuPrecision::automatic);
+                                                    GpuPrecision precision = GpuPrecision::automatic,
+                                                    const std::optional<std::filesystem::path>& program_cache = {});
 
 }  // namespace zenith::render

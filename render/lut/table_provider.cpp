@@ -9,6 +9,7 @@
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/lut/table_cache.h"
 #include "render/gl/egl_context.h"
+#include "render/gl/shader_program.h"
 #include "render/lut/gpu_precompute.h"
 
 namespace zenith::render {
@@ -49,12 +50,32 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
       if (caller) caller(p);  // the caller's own callback (the master's cancellation) still runs
     };
   }
+  bool gpu_done = false;
   if (context) {
     spdlog::debug("precomputing on {} ({})", context->renderer(), context->source());
-    out.tables = render::precompute_tables_gpu(model, options, &out.report, &*context);
-  } else {
-    out.tables = precompute_tables_cpu(model, options, &out.report);
+    try {
+      // The linked programs beside the tables: a warm run skips compiling them.
+      std::optional<std::filesystem::path> programs;
+      if (request.use_cache) programs = cache.directory() / "programs";
+      out.tables =
+          render::precompute_tables_gpu(model, options, &out.report, &*context, GpuPrecision::automatic, programs);
+      gpu_done = true;
+    } catch (const gl::ShaderBuildError& e) {
+      // A driver that refuses one of the precompute's programs must not stop a
+      // show: the CPU computes the same tables (slower). One warning, naming the
+      // program and the driver, with the driver's first message.
+      const std::string what = e.what();
+      std::string first = what.substr(what.find('\n') == std::string::npos ? 0 : what.find('\n') + 1);
+      first = first.substr(0, first.find('\n'));
+      if (bar) bar->finish();
+      spdlog::warn("GPU precompute: shader program '{}' does not build on this driver (GL_VENDOR '{}', GL_RENDERER "
+                   "'{}', GL_VERSION '{}'): {}; precomputing on the CPU instead",
+                   e.program(), context->vendor(), context->renderer(), context->version(), first);
+      out.report = {};
+      if (bar) bar.emplace("precompute (CPU)");
+    }
   }
+  if (!gpu_done) out.tables = precompute_tables_cpu(model, options, &out.report);
   if (bar) bar->finish();
   if (request.use_cache) {
     try {

@@ -13,22 +13,29 @@
 
 real clamp_cosine(real mu) { return clamp(mu, real(-1), real(1)); }
 real safe_sqrt(real a) { return sqrt(max(a, real(0))); }
+/// a² − b² as (a − b)(a + b): r − RB is exact near the ground, where r² − RB²
+/// cancels (difference_of_squares, parameterization.cpp: in float, 1 m above
+/// Mars' ground, r² − RB² is 6 ulp of r² and u_μ at the horizon was off by 0.2).
+real difference_of_squares(real a, real b) {
+  PRECISE real d = (a - b) * (a + b);
+  return d;
+}
 
 real horizon_distance_at_top() {
-  PRECISE real h = safe_sqrt(RT * RT - RB * RB);
+  PRECISE real h = safe_sqrt(difference_of_squares(RT, RB));
   return h;
 }
 real horizon_distance(real r) {
-  PRECISE real rho = safe_sqrt(r * r - RB * RB);
+  PRECISE real rho = safe_sqrt(difference_of_squares(r, RB));
   return rho;
 }
 /// r from ρ, the inverse of horizon_distance (radius_from_horizon_distance):
-/// exactly RB at ρ = 0. A correctly rounded sqrt gives that by itself;
-/// NVIDIA's fp64 sqrt (driver 580.159.04) is 1 ulp off there, which made
+/// exactly RB at ρ = 0, at most RT. A correctly rounded sqrt gives the first by
+/// itself; NVIDIA's fp64 sqrt (driver 580.159.04) is 1 ulp off there, which made
 /// r − RB = 9e-10 m at the ground layer and its ground-hitting texels μ ≈ 0
-/// instead of −1.
+/// instead of −1; at ρ = H, 1 ulp above RT makes d_min < 0 and μ = 1 come out ≈ 0.
 real radius_from_horizon_distance(real rho) {
-  PRECISE real r = rho == real(0) ? RB : sqrt(rho * rho + RB * RB);
+  PRECISE real r = rho == real(0) ? RB : min(sqrt(rho * rho + RB * RB), RT);
   return r;
 }
 /// μs_min = cos(90° + 3α) = −sin 3α, α = acos(rb/rt), −1 when 3α ≥ 90°: below
@@ -42,19 +49,22 @@ real min_sun_cosine() {
 }
 
 real distance_to_top(real r, real mu) {
-  PRECISE real disc = r * r * (mu * mu - real(1)) + RT * RT;
-  PRECISE real d = max(real(0), -r * mu + safe_sqrt(disc));
+  PRECISE real r_mu = r * mu;
+  PRECISE real disc = r_mu * r_mu - difference_of_squares(r, RT);
+  PRECISE real d = max(real(0), -r_mu + safe_sqrt(disc));
   return d;
 }
 
 real distance_to_bottom(real r, real mu) {
-  PRECISE real disc = r * r * (mu * mu - real(1)) + RB * RB;
-  PRECISE real d = max(real(0), -r * mu - safe_sqrt(disc));
+  PRECISE real r_mu = r * mu;
+  PRECISE real disc = r_mu * r_mu - difference_of_squares(r, RB);
+  PRECISE real d = max(real(0), -r_mu - safe_sqrt(disc));
   return d;
 }
 
 bool ray_hits_ground(real r, real mu) {
-  PRECISE real disc = r * r * (mu * mu - real(1)) + RB * RB;
+  PRECISE real r_mu = r * mu;
+  PRECISE real disc = r_mu * r_mu - difference_of_squares(r, RB);
   return mu < real(0) && disc >= real(0);
 }
 
@@ -178,8 +188,8 @@ real scattering_nu_from_unit(real mu, real mu_s, real x) {
 /// μ ↔ [0, 1] for rays that do not hit the ground (unit_from_mu_sky).
 real unit_from_mu_sky(real r, real mu, int mapping) {
   PRECISE real H = horizon_distance_at_top(), rho = horizon_distance(r);
-  PRECISE real disc = r * r * (mu * mu - real(1)) + RB * RB;
-  PRECISE real d = -r * mu + safe_sqrt(disc + H * H);
+  PRECISE real r_mu = r * mu;
+  PRECISE real d = -r_mu + safe_sqrt(r_mu * r_mu - difference_of_squares(r, RT));
   PRECISE real d_min = RT - r, d_max = rho + H;
   PRECISE real distance = d_max == d_min ? real(0) : clamp((d - d_min) / (d_max - d_min), real(0), real(1));
   if (mapping == ANGLE_MAPPING_DISTANCE) return distance;
@@ -245,7 +255,7 @@ real scattering_u_mu(real r, real mu, bool hits_ground, int mapping) {
     // Distance to the ground, between r − rb (straight down) and ρ (tangent).
     PRECISE real rho = horizon_distance(r);
     PRECISE real r_mu = r * mu;
-    PRECISE real disc = r_mu * r_mu - r * r + RB * RB;
+    PRECISE real disc = r_mu * r_mu - difference_of_squares(r, RB);
     PRECISE real d = -r_mu - safe_sqrt(disc);
     PRECISE real d_min = r - RB, d_max = rho;
     PRECISE real x = d_max == d_min ? real(0) : clamp((d - d_min) / (d_max - d_min), real(0), real(1));

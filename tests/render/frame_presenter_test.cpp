@@ -1,6 +1,7 @@
 // The window path's presentation (render/window/frame_presenter.h) drawn into
 // a framebuffer object on the headless EGL context and read back: the bytes
-// must be the PNG writer's (image::display_byte) within 1, the right way up,
+// must be the PNG writer's (image::display_byte) within 1 (the GL conversion to
+// 8 bits may pick either nearest byte: expect_presented), the right way up,
 // letterboxed with black bars. WindowContext itself needs a display: its tests
 // run where DISPLAY is set (ctest runs them under xvfb-run) and skip otherwise.
 #include "render/window/frame_presenter.h"
@@ -10,6 +11,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <optional>
@@ -119,8 +121,17 @@ void expect_presented(const std::vector<std::uint8_t>& bytes, int target_width, 
       EXPECT_EQ(p[3], 255) << "alpha at (" << x << ", " << y << ")";
     }
   EXPECT_EQ(mismatches, 0);
-  // Off by one only where float rounding lands on the other side of a half.
-  EXPECT_LE(off_by_one, target_width * target_height * 3 / 20);
+  // Within 1, and no bound on how many: GL 4.5 (section 2.3.5.2, conversion to
+  // normalized fixed point) lets convert_float_uint return either of the two
+  // integers nearest to c·255 ("rounding to nearest is preferred"), and the
+  // shader's float exp and pow are a few ulp from the CPU's double ones, so any
+  // byte may land on either side of a half. NVIDIA (580.159.04) gave 16 and 24
+  // bytes off by one of the 192 of FollowsTheFrameSize's 8×8 target, where each
+  // frame pixel of a 2×2 or 3×3 frame covers 7 to 16 target pixels; llvmpipe
+  // (round to nearest) a few. Logged, not asserted.
+  if (off_by_one > 0)
+    std::printf("  %d of %d bytes off by one (allowed: either nearest byte)\n", off_by_one,
+                target_width * target_height * 3);
 }
 
 TEST(Letterbox, KeepsTheAspectRatioCentred) {

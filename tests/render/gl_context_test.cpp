@@ -9,20 +9,25 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
+#include <unistd.h>
+
 #include "render/gl/buffer.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/gl_error.h"
 #include "render/gl/gl_limits.h"
+#include "render/gl/program_binary_cache.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/software_rasterizer.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 #include "render/shader_source.h"
 #include "tests/render/test_shaders.h"
 
@@ -212,6 +217,50 @@ TEST_F(GlTest, DefineVariantsChangeTheOutput) {
   expect_floats_near(out, expected_pattern(5, 3, 2, 2.0f, false), 1e-6f);
   const ShaderProgram plain = testing::load_test_compute_program("test_pattern.comp");
   EXPECT_NE(out, run_pattern(plain, 5, 3, 2));
+}
+
+/// render/gl/program_binary_cache.h: a program stored after it links comes back
+/// from the file in a later cache (a later run), computes the same, and a file
+/// the driver refuses is removed and the program compiled again.
+TEST_F(GlTest, ProgramBinaryCacheGivesBackTheSameProgramAndRecompilesARefusedOne) {
+  std::string name = "zenith-program-binaries-";
+  name += std::to_string(::getpid());
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
+  std::filesystem::remove_all(dir);
+  const std::vector<float> expected = expected_pattern(5, 3, 2);
+  {
+    gl::ProgramBinaryCache cache(dir);
+    if (!cache.enabled()) GTEST_SKIP() << "this driver offers no program binary format";
+    const ShaderProgram p = render::compute_program(testing::load_test_shader("test_pattern.comp"), {}, &cache);
+    expect_floats_near(run_pattern(p, 5, 3, 2), expected, 1e-6f);
+    EXPECT_EQ(cache.statistics().stored, 1);
+    EXPECT_EQ(cache.statistics().loaded, 0);
+    // Another variant is another program, under another key.
+    const std::vector<gl::ShaderDefine> scaled = {{"PATTERN_SCALE", "2.0"}};
+    render::compute_program(testing::load_test_shader("test_pattern.comp"), scaled, &cache);
+    EXPECT_EQ(cache.statistics().stored, 2);
+  }
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files.push_back(e.path());
+  ASSERT_EQ(files.size(), 2u);
+  {
+    gl::ProgramBinaryCache cache(dir);  // a later run
+    const ShaderProgram p = render::compute_program(testing::load_test_shader("test_pattern.comp"), {}, &cache);
+    EXPECT_EQ(cache.statistics().loaded, 1);
+    EXPECT_EQ(cache.statistics().stored, 0);
+    EXPECT_EQ(p.work_group_size(), (std::array<int, 3>{4, 4, 2}));
+    expect_floats_near(run_pattern(p, 5, 3, 2), expected, 1e-6f);
+  }
+  for (const auto& f : files) std::filesystem::resize_file(f, 20);  // as a driver update would leave them: unusable
+  {
+    gl::ProgramBinaryCache cache(dir);
+    const ShaderProgram p = render::compute_program(testing::load_test_shader("test_pattern.comp"), {}, &cache);
+    EXPECT_EQ(cache.statistics().loaded, 0);
+    EXPECT_EQ(cache.statistics().refused, 1);
+    EXPECT_EQ(cache.statistics().stored, 1);  // compiled and stored anew
+    expect_floats_near(run_pattern(p, 5, 3, 2), expected, 1e-6f);
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST_F(GlTest, SyntaxErrorThrowsWithShaderNameAndLine) {

@@ -1,0 +1,76 @@
+#include "astro/geodesic_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace zenith::astro {
+namespace {
+
+Vec3d add(const Vec3d& a, const Vec3d& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3d cross(const Vec3d& a, const Vec3d& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec3d normalize(const Vec3d& v) {
+  const double n = std::sqrt(dot(v, v));
+  return {v[0] / n, v[1] / n, v[2] / n};
+}
+
+// The icosahedron of StelGeodesicGrid: corners (±a, ±b, 0), (0, ±a, ±b),
+// (±b, 0, ±a) with b = 1/√(1 + G²), a = bG, G the golden ratio, and its 20
+// faces in the catalogue's zone order (counter-clockwise seen from outside).
+struct Icosahedron {
+  std::array<Vec3d, 12> corner;
+  static constexpr int face[20][3] = {{1, 0, 10}, {0, 1, 9},  {0, 9, 6},  {9, 8, 6},   {0, 7, 10},
+                                      {6, 7, 0},  {7, 6, 3},  {6, 8, 3},  {11, 10, 7}, {7, 3, 11},
+                                      {3, 2, 11}, {2, 3, 8},  {10, 11, 4}, {2, 4, 11}, {5, 4, 2},
+                                      {2, 8, 5},  {4, 1, 10}, {4, 5, 1},  {5, 9, 1},   {8, 9, 5}};
+  Icosahedron() {
+    const double g = 0.5 * (1.0 + std::sqrt(5.0));
+    const double b = 1.0 / std::sqrt(1.0 + g * g), a = b * g;
+    corner = {Vec3d{a, -b, 0}, {a, b, 0},  {-a, b, 0},  {-a, -b, 0}, {0, a, -b}, {0, a, b},
+              {0, -a, b},      {0, -a, -b}, {-b, 0, a}, {b, 0, a},   {b, 0, -a}, {-b, 0, -a}};
+  }
+};
+
+void subdivide(int level, int target, const Vec3d& c0, const Vec3d& c1, const Vec3d& c2, ZoneGrid& grid) {
+  if (level == target) {
+    CatalogueZone z;
+    z.centre = normalize(add(add(c0, c1), c2));
+    z.axis0 = normalize(cross(Vec3d{0, 0, 1}, z.centre));
+    z.axis1 = cross(z.centre, z.axis0);
+    for (const Vec3d* c : {&c0, &c1, &c2}) {
+      const Vec3d d = sub(*c, z.centre);
+      const double mu0 = dot(d, z.axis0), mu1 = dot(d, z.axis1);
+      const double f = 1.0 / std::sqrt(1.0 - mu0 * mu0 - mu1 * mu1);
+      grid.gnomonic_extent = std::max({grid.gnomonic_extent, std::abs(mu0) * f, std::abs(mu1) * f});
+    }
+    grid.zones.push_back(z);
+    return;
+  }
+  const Vec3d e0 = normalize(add(c1, c2)), e1 = normalize(add(c2, c0)), e2 = normalize(add(c0, c1));
+  subdivide(level + 1, target, c0, e2, e1, grid);
+  subdivide(level + 1, target, e2, c1, e0, grid);
+  subdivide(level + 1, target, e1, e0, c2, grid);
+  subdivide(level + 1, target, e0, e1, e2, grid);
+}
+
+}  // namespace
+
+std::size_t catalogue_zone_count(int level) { return std::size_t(20) << (2 * level); }
+
+ZoneGrid catalogue_zones(int level) {
+  if (level < 0 || level > 7)
+    throw std::invalid_argument("catalogue zone level " + std::to_string(level) + ": must be in [0, 7]");
+  static const Icosahedron ico;
+  ZoneGrid grid;
+  grid.zones.reserve(catalogue_zone_count(level));
+  // Depth-first in child order gives zone k of level L at index k (k = 4·parent + child).
+  for (const auto& f : Icosahedron::face) subdivide(0, level, ico.corner[f[0]], ico.corner[f[1]], ico.corner[f[2]], grid);
+  return grid;
+}
+
+}  // namespace zenith::astro
