@@ -28,7 +28,8 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 constexpr double kMaxKeyTime_s = 86400.0;  // a day
-constexpr std::size_t kMaxKeys = 100000;
+/// Keys of a track, whatever the limits say (ShowLimits::max_keys_per_track is checked first).
+constexpr std::size_t kMaxKeys = ShowLimits::kMaxKeysPerTrackCeiling;
 constexpr double kMaxFps = 240.0;
 constexpr double kDefaultFps = 30.0;
 constexpr double kMaxRecordingFps = 1000.0;
@@ -46,6 +47,30 @@ bool boolean_or(JsonReader& r, const std::string& key, bool fallback) {
   const json& v = r.raw(key);
   if (!v.is_boolean()) r.fail(key, cat("= ", brief(v), ": must be true or false"));
   return v.get<bool>();
+}
+
+/// Every track's key count against `max_keys`, before a key is read: a show
+/// of 10^7 keys once took 3.5 GB before the key limit could refuse it.
+void check_key_counts(const json& show, const std::string& file, std::size_t max_keys) {
+  const auto check = [&](const json& keys, const std::string& pointer) {
+    if (keys.is_array() && keys.size() > max_keys)
+      throw ConfigError(file, pointer,
+                        cat("= an array of ", keys.size(), " keys: a track holds at most ", max_keys,
+                            " (--max-keys; docs/shows.md, \"Limits\")"));
+  };
+  if (!show.is_object()) return;
+  for (const char* track : {"camera", "sun", "exposure"})
+    if (show.contains(track)) check(show[track], cat("/", track));
+  const auto atmospheres = show.find("atmospheres");
+  if (atmospheres == show.end() || !atmospheres->is_array()) return;
+  for (std::size_t i = 0; i < atmospheres->size(); ++i) {
+    const json& body = (*atmospheres)[i];
+    const auto tracks = body.is_object() ? body.find("tracks") : body.end();
+    if (!body.is_object() || tracks == body.end() || !tracks->is_array()) continue;
+    for (std::size_t k = 0; k < tracks->size(); ++k)
+      if ((*tracks)[k].is_object() && (*tracks)[k].contains("keys"))
+        check((*tracks)[k]["keys"], cat("/atmospheres/", i, "/tracks/", k, "/keys"));
+  }
 }
 
 /// A track: a non-empty array of key objects.
@@ -407,6 +432,7 @@ Show load_show(const fs::path& path, const ShowLimits& limits) {
   if (!version.is_number_integer() || version.get<long long>() != kShowFormatVersion)
     root.fail("zenith_show", cat("= ", brief(version), ": unsupported show format version; this build reads version ",
                                  kShowFormatVersion));
+  check_key_counts(j, file, std::min(limits.max_keys_per_track, kMaxKeys));
 
   auto impl = std::make_unique<Show::Impl>();
   Show::Impl& show = *impl;

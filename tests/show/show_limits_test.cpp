@@ -88,6 +88,30 @@ TEST_F(ShowLimitsTest, ATrackThatStepsThroughTooManyTableSetsStopsAtTheLimit) {
   EXPECT_EQ(coarse.frame_count(30.0), 1801u);
 }
 
+// A show of 10^7 keys once took 3.5 GB before the key limit refused it: the
+// keys are counted before any is read, against a configurable bound.
+TEST_F(ShowLimitsTest, ATrackWithMoreKeysThanTheLimitIsRefusedBeforeItsKeysAreRead) {
+  const auto show_with_keys = [&](std::size_t count) {
+    const fs::path path = dir_ / "many-keys.json";
+    std::ofstream out(path);
+    out << R"({"zenith_show": 1, "name": "many", "scene": ")" << (kSource / "configs/scenes/earth-sunset.json").string()
+        << R"(", "exposure": [)";
+    for (std::size_t i = 0; i < count; ++i) out << (i ? "," : "") << R"({"t_s": )" << i << R"(, "exposure": 1})";
+    out << "]}";
+    return path;
+  };
+  EXPECT_EQ(ShowLimits{}.max_keys_per_track, 100000u) << "docs/shows.md, \"Limits\"";
+  ShowLimits five;
+  five.max_keys_per_track = 5;
+  const std::string error = error_of(show_with_keys(6), five);
+  EXPECT_NE(error.find("/exposure = an array of 6 keys: a track holds at most 5 (--max-keys"), std::string::npos)
+      << error;
+  EXPECT_EQ(error_of(show_with_keys(5), five), "");
+  ShowLimits beyond;
+  beyond.max_keys_per_track = 10 * ShowLimits::kMaxKeysPerTrackCeiling;  // the ceiling still holds
+  EXPECT_EQ(error_of(show_with_keys(6), beyond), "");
+}
+
 TEST_F(ShowLimitsTest, ThePlanWarnsWhenItsSetsExceedTheBudget) {
   TablePlan plan;
   plan.sets.resize(3);
