@@ -6,8 +6,11 @@
 // Pure logic: the caller passes the clock and writes the line.
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace zenith::core {
 
@@ -32,6 +35,30 @@ class LogLimiter {
   std::optional<Clock::time_point> last_logged_;
   std::uint64_t suppressed_ = 0;
   std::uint64_t total_ = 0;
+};
+
+/// One LogLimiter per kind of event, so that a flood of one kind (bad magic
+/// bytes) never hides the first line of another (an oversized header, a
+/// wrong secret). The kind is the caller's (a reason without its numbers:
+/// kind_of()); past kMaxKinds distinct kinds the rest share one limiter, so
+/// the map stays small whatever the peers send.
+class LogLimiters {
+ public:
+  static constexpr std::size_t kMaxKinds = 32;
+  explicit LogLimiters(std::chrono::milliseconds window = std::chrono::milliseconds(1000)) : window_(window), others_(window) {}
+  /// LogLimiter::admit for the limiter of `kind`.
+  std::optional<std::string> admit(std::string_view kind, LogLimiter::Clock::time_point now);
+
+  /// The kind of a reason text for admit(): its first two ':'-separated
+  /// fields without digits ("protocol error: oversized: frame header payload
+  /// length: 1048616 bytes…" → "protocol error: oversized"; "end of stream
+  /// inside a frame (10 bytes…)" → "end of stream inside a frame ( bytes…)").
+  static std::string kind_of(std::string_view reason);
+
+ private:
+  std::chrono::milliseconds window_;
+  std::map<std::string, LogLimiter, std::less<>> kinds_;
+  LogLimiter others_;
 };
 
 }  // namespace zenith::core

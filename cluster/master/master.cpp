@@ -54,7 +54,7 @@ struct Master::Impl {
   asio::steady_timer heartbeat_timer{io};
   NodeSessions sessions;  ///< every node connection, from accept to close
   NodeListener listener;  ///< accepts connections as sessions in their handshake
-  core::LogLimiter anonymous_closes;  ///< log lines of connections closed before their Hello
+  core::LogLimiters anonymous_closes;  ///< log lines of connections closed before their Hello, per kind of reason
   FrameBarrier barrier;   ///< the frame in flight (or the next one), its participants, lagging nodes
   HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
   NodeStatistics node_statistics;  ///< per node name, for the console's status
@@ -138,12 +138,13 @@ struct Master::Impl {
     if (found == nullptr) return;
     const NodeSession& s = *found;
     const bool bad_peer = reason.starts_with("protocol error") || reason.find("truncated") != std::string::npos;
-    if (s.state == NodeSession::State::ready || !s.name.empty())
+    if (s.state != NodeSession::State::handshake)  // authenticated: every loss is news
       spdlog::log(progress.stopping ? spdlog::level::info : spdlog::level::warn, "master: {} disconnected: {}", s.who(),
                   reason);
-    else if (const std::optional<std::string> more = anonymous_closes.admit(core::LogLimiter::Clock::now()))
+    else if (const std::optional<std::string> more = anonymous_closes.admit(core::LogLimiters::kind_of(reason),
+                                                                            core::LogLimiter::Clock::now()))
       spdlog::log(bad_peer ? spdlog::level::warn : spdlog::level::info, "master: {} closed: {}{}", s.who(), reason,
-                  *more);  // before any Hello: a flood of them is one line a second
+                  *more);  // not authenticated: a flood of them is a line a second per kind of reason
     // Release the session after the connection's handlers have returned.
     asio::post(io, [keep = sessions.take(id)] {});
     loop->on_node_left(id);

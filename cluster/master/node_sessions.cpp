@@ -82,7 +82,9 @@ void NodeSessions::send_to_standbys(const std::shared_ptr<const std::vector<std:
 }
 
 void NodeSessions::refuse(NodeSession& session, RejectReason reason, const std::string& text) {
-  if (const std::optional<std::string> more = refusals_.admit(core::LogLimiter::Clock::now()))
+  // Per reason: a flood of wrong secrets does not hide the first duplicate name.
+  if (const std::optional<std::string> more = refusals_.admit(std::to_string(static_cast<int>(reason)),
+                                                                      core::LogLimiter::Clock::now()))
     spdlog::warn("master: refused {}: {}{}", session.who(), core::escaped(text, 1024), *more);
   session.refuse(reason, text, false);
 }

@@ -88,7 +88,7 @@ class NodeSessions {
 
  private:
   std::map<Id, std::shared_ptr<NodeSession>> sessions_;
-  core::LogLimiter refusals_;
+  core::LogLimiters refusals_;
   Id next_id_ = 1;
 };
 

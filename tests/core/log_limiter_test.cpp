@@ -31,5 +31,29 @@ TEST(LogLimiter, OneLineAWindowAndTheNextSaysHowManyWereHeldBack) {
   EXPECT_EQ(limiter.admit(t0 + 10s), std::optional<std::string>("")) << "a quiet window: nothing to add";
 }
 
+// A flood of one kind (bad magic bytes) once hid the first line of another
+// (an oversized header) that came within the same second.
+TEST(LogLimiters, EachKindHasItsOwnWindowAndTheKindsAreBounded) {
+  LogLimiters limiters(1000ms);
+  const LogLimiter::Clock::time_point t0{};
+  const std::string magic = LogLimiters::kind_of("protocol error: bad_magic: frame header magic: 0x0781ee11");
+  const std::string oversized =
+      LogLimiters::kind_of("protocol error: oversized: frame header payload length: 1048616 bytes of a TableChunk");
+  EXPECT_EQ(magic, "protocol error: bad_magic");
+  EXPECT_EQ(oversized, "protocol error: oversized");
+  EXPECT_EQ(LogLimiters::kind_of("end of stream inside a frame (10 bytes of a truncated frame)"),
+            LogLimiters::kind_of("end of stream inside a frame (7 bytes of a truncated frame)"))
+      << "the numbers do not make a new kind";
+  EXPECT_TRUE(limiters.admit(magic, t0).has_value());
+  for (int i = 1; i < 100; ++i) EXPECT_FALSE(limiters.admit(magic, t0 + std::chrono::milliseconds(i)).has_value());
+  EXPECT_EQ(limiters.admit(oversized, t0 + 200ms), std::optional<std::string>("")) << "another kind: its first line";
+  EXPECT_EQ(limiters.admit(magic, t0 + 1100ms), std::optional<std::string>(" (and 99 more in the last 1.1 s)"));
+  // Kinds past the bound share one limiter: a peer cannot grow the map.
+  int logged = 0;
+  for (std::size_t k = 0; k < 10 * LogLimiters::kMaxKinds; ++k)
+    logged += limiters.admit("kind " + std::string(k + 1, 'x'), t0 + 2000ms).has_value() ? 1 : 0;
+  EXPECT_EQ(logged, static_cast<int>(LogLimiters::kMaxKinds) - 2 + 1) << "30 new kinds, then one line for all the rest";
+}
+
 }  // namespace
 }  // namespace zenith::core
