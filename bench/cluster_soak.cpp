@@ -207,14 +207,7 @@ struct Garbage {
 
 // ---- orphans ------------------------------------------------------------------
 
-/// Whether `pid` is gone or a zombie (reparented, not reaped yet).
-bool process_gone(pid_t pid) {
-  std::ifstream stat(fmt::format("/proc/{}/stat", pid));
-  std::string text;
-  if (!std::getline(stat, text)) return true;
-  const std::size_t close = text.rfind(')');
-  return close != std::string::npos && close + 2 < text.size() && text[close + 2] == 'Z';
-}
+using zenith::core::process_gone;
 
 /// Starts `zenith cluster` on `config` (its master on `port`), waits until its
 /// first node presented a frame, kills it with kill -9 and waits up to 30 s
@@ -257,6 +250,10 @@ struct Node {
   pid_t pid = -1;
   int restarts = 0;
   std::optional<Clock::time_point> stopped_until;
+  /// A killed node's new process, until it presents a frame: when it was
+  /// started and the last frame its predecessor presented.
+  std::optional<Clock::time_point> restarted_at;
+  std::optional<std::uint64_t> last_before_restart;
   std::optional<double> rss_start;  ///< when the show started (its first process)
   std::optional<double> rss_end;    ///< the last sample of its current process
 };
@@ -313,6 +310,12 @@ int run(const Options& opt) {
   std::optional<double> master_rss_start, master_rss_end;
   std::optional<int> master_status;
   int kills = 0, short_stops = 0, long_stops = 0, garbage_count = 0;
+  // How long a killed node takes to present again (a new process: start,
+  // tables from its cache, the warm-up render): at first the time the nodes
+  // took to start the show, then the longest rejoin seen. A kill is made only
+  // when that much is left before the quiet part (on a loaded machine the
+  // warm-up alone takes seconds, and a node not back by the end fails the run).
+  double rejoin_s = 2.0;
   std::vector<Garbage> garbage;
   const std::uint64_t quiet_from = static_cast<std::uint64_t>(opt.frames * (1.0 - opt.quiet_fraction));
   auto next_fault = Clock::now();
@@ -332,6 +335,7 @@ int run(const Options& opt) {
     if (!show_started && std::all_of(nodes.begin(), nodes.end(),
                                      [&](const Node& n) { return last_presented(presented_log(n)).has_value(); })) {
       show_started = true;
+      rejoin_s = std::max(rejoin_s, std::chrono::duration<double>(now - started).count());
       master_rss_start = rss_mib(master);
       for (Node& n : nodes) n.rss_start = rss_mib(n.pid);
       next_fault = now + std::chrono::milliseconds(static_cast<int>(1000 * uniform(opt.fault_min_s, opt.fault_max_s)));
@@ -358,27 +362,37 @@ int run(const Options& opt) {
         if (*s == 128 + SIGKILL) {
           n.pid = zenith::core::spawn_process(opt.zenith, n.args, n.log, zenith::core::LogMode::append);
           ++n.restarts;
+          n.restarted_at = now;
+          n.last_before_restart = last_presented(presented_log(n));
         } else {
           failure = fmt::format("node '{}' exited with status {} during the show (see {})", n.name, *s, n.log.string());
         }
       }
     if (!failure.empty()) break;
+    for (Node& n : nodes)  // a restarted node is back once it presents a frame
+      if (n.restarted_at && last_presented(presented_log(n)) > n.last_before_restart) {
+        rejoin_s = std::max(rejoin_s, std::chrono::duration<double>(now - *n.restarted_at).count());
+        n.restarted_at.reset();
+      }
     attacks.poll();
     if (show_started && frame && *frame < quiet_from && now >= next_fault) {
       next_fault = now + std::chrono::milliseconds(static_cast<int>(1000 * uniform(opt.fault_min_s, opt.fault_max_s)));
+      // A fault must be over (the node back) before the quiet part, at the nominal frame rate.
+      const auto fits = [&](double seconds) {
+        return static_cast<double>(*frame) + (seconds + 2.0) * opt.fps <= static_cast<double>(quiet_from);
+      };
+      // An attack's answers come within seconds (a stray node starts, connects and is refused).
       if (opt.attacks && uniform(0.0, 1.0) < 0.5) {
-        if (!first_attack_frame) first_attack_frame = *frame;
-        attacks.launch(rng);
+        if (fits(3.0)) {
+          if (!first_attack_frame) first_attack_frame = *frame;
+          attacks.launch(rng);
+        }
         continue;
       }
       const double pick = uniform(0.0, 3.0);
       const std::size_t victim = static_cast<std::size_t>(uniform(0.0, static_cast<double>(opt.nodes) - 1e-9));
       Node& n = nodes[victim];
-      // A fault must be over (the node back) before the quiet part, at the nominal frame rate.
-      const auto fits = [&](double seconds) {
-        return static_cast<double>(*frame) + (seconds + 2.0) * opt.fps <= static_cast<double>(quiet_from);
-      };
-      if (pick < 1.0 && victim != 0 && !n.stopped_until && fits(0.0)) {
+      if (pick < 1.0 && victim != 0 && !n.stopped_until && !n.restarted_at && fits(rejoin_s)) {
         kill(n.pid, SIGKILL);  // restarted above, at the next poll
         ++kills;
       } else if (pick < 2.0 && !n.stopped_until && !(opt.attacks && victim == 0)) {

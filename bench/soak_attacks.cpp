@@ -30,33 +30,13 @@ void send_all(int fd, const std::string& bytes) {
   }
 }
 
-/// What the peer sends until it closes or `timeout` passes; `closed` says which.
-std::string read_until_closed(int fd, std::chrono::milliseconds timeout, bool& closed) {
-  std::string text;
-  closed = false;
-  const auto deadline = SoakAttacks::Clock::now() + timeout;
-  for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - SoakAttacks::Clock::now()).count();
-    if (left <= 0) return text;
-    pollfd p{fd, POLLIN, 0};
-    if (::poll(&p, 1, static_cast<int>(left)) <= 0) return text;
-    char buffer[4096];
-    const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
-    if (n <= 0) {
-      closed = true;
-      return text;
-    }
-    text.append(buffer, static_cast<std::size_t>(n));
-  }
-}
-
 /// The status code of one HTTP request sent whole on a fresh connection (0: none within 5 s).
 int http_status(int port, const std::string& request) {
   const int fd = core::connect_loopback(port);
   if (fd < 0) return 0;
   send_all(fd, request);
   bool closed = false;
-  const std::string reply = read_until_closed(fd, 5000ms, closed);
+  const std::string reply = core::read_until_closed(fd, 5000ms, closed);
   ::close(fd);
   return reply.starts_with("HTTP/1.1 ") && reply.size() >= 12 ? std::stoi(reply.substr(9, 3)) : 0;
 }
@@ -125,7 +105,7 @@ void SoakAttacks::control(std::mt19937& rng) {
   else
     send_all(fd, std::string(256 * 1024, 'x'));
   bool closed = false;
-  read_until_closed(fd, 5000ms, closed);
+  core::read_until_closed(fd, 5000ms, closed);
   ::close(fd);
   if (closed) ++passed_["control"];
   else failures_.push_back("control: the control socket kept a web page's request or a 256 KiB line open");

@@ -40,38 +40,18 @@ const fs::path kSource = ZENITH_SOURCE_DIR;
 const fs::path kBinary = ZENITH_BINARY;
 const fs::path kWork = CLUSTER_TEST_WORK_DIR;
 
-bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
-  const auto deadline = Clock::now() + timeout;
-  while (Clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(50ms);
-  }
-  return done();
-}
+using core::wait_until;
 
-/// Whether `pid` is gone or a zombie (a child of PID 1 that nothing reaped yet).
-bool process_gone(pid_t pid) {
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string text;
-  if (!std::getline(stat, text)) return true;
-  const std::size_t close = text.rfind(')');
-  return close != std::string::npos && close + 2 < text.size() && text[close + 2] == 'Z';
-}
+using core::process_gone;
 
 /// Frames in a node's presented.log.
 std::size_t presented_count(const fs::path& node_dir) { return count_of(read_text(node_dir / "presented.log"), "frame "); }
 
 /// Whether the peer closed `fd` (read returns 0 or an error) within `timeout`.
 bool closed_by_peer(int fd, std::chrono::milliseconds timeout) {
-  const auto deadline = Clock::now() + timeout;
-  for (;;) {
-    pollfd p{fd, POLLIN, 0};
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-    if (::poll(&p, 1, static_cast<int>(std::max<long long>(left, 0))) <= 0) return false;
-    char buffer[4096];
-    const ssize_t n = ::recv(fd, buffer, sizeof buffer, MSG_DONTWAIT);
-    if (n <= 0) return true;  // Reject bytes first, then the end
-  }
+  bool closed = false;
+  core::read_until_closed(fd, timeout, closed);  // Reject bytes first, then the end
+  return closed;
 }
 
 class HardeningProcess : public ::testing::Test {

@@ -61,21 +61,7 @@ class OperatorInputTest : public ::testing::Test {
     io_.run_for(d);
   }
   /// What the client has received so far; `closed` says whether the master closed it.
-  static std::string received(int fd, bool& closed) {
-    std::string text;
-    closed = false;
-    for (;;) {
-      pollfd p{fd, POLLIN, 0};
-      if (::poll(&p, 1, 0) <= 0) return text;
-      char buffer[4096];
-      const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
-      if (n <= 0) {
-        closed = true;
-        return text;
-      }
-      text.append(buffer, static_cast<std::size_t>(n));
-    }
-  }
+  static std::string received(int fd, bool& closed) { return core::read_until_closed(fd, 0ms, closed); }
   bool closed_by_master(int fd) {
     bool closed = false;
     received(fd, closed);
