@@ -232,7 +232,7 @@ int run_master(const MasterArgs& a) {
 // zenith node
 
 struct NodeArgs {
-  std::string cluster, name, out, cache_dir, scene, layout = "per-node";
+  std::string cluster, name, out, record_frames, cache_dir, scene, layout = "per-node";
   std::optional<int> port;
   std::uint32_t connect_timeout_ms = 15000;
   std::optional<double> reconnect_s;
@@ -246,7 +246,11 @@ int run_node(const NodeArgs& a) {
   cluster::NodeOptions options;
   options.config = cluster::load_cluster_config(cluster_path(a.cluster));
   options.node_name = a.name;
-  options.output_directory = a.out.empty() ? options.config.output_directory : fs::path(a.out);
+  // A live node writes frames only when asked (--out, --record-frames); an offline render always does.
+  options.output_directory = !a.record_frames.empty() ? fs::path(a.record_frames)
+                             : a.out.empty()          ? options.config.output_directory
+                                                      : fs::path(a.out);
+  options.write_frames = !a.out.empty() || !a.record_frames.empty() || a.layout == "offline";
   options.cache_directory = a.cache_dir.empty() ? default_node_cache(options.config, a.name) : fs::path(a.cache_dir);
   if (a.port) options.port = static_cast<std::uint16_t>(*a.port);
   options.connect_timeout_ms = a.connect_timeout_ms;
@@ -265,7 +269,7 @@ int run_node(const NodeArgs& a) {
 // zenith cluster
 
 struct ClusterArgs {
-  std::string cluster, out, cache_dir;
+  std::string cluster, out, record_frames, cache_dir;
   PlaybackArgs playback;
   OperatorArgs operator_console;
   std::optional<std::uint64_t> frames;  ///< default 10 without a show, the whole show with one
@@ -359,7 +363,10 @@ void run_cluster(const ClusterArgs& a) {
     show_frames = loaded.frame_count(fps);
   }
   const std::uint64_t frames = a.frames.value_or(show_scene ? 0 : 10);
-  const fs::path out = a.out.empty() ? config.output_directory : fs::path(a.out);
+  const fs::path out = !a.record_frames.empty() ? fs::path(a.record_frames)
+                       : a.out.empty()          ? config.output_directory
+                                                : fs::path(a.out);
+  const bool frame_files = !a.out.empty() || !a.record_frames.empty();  // a live show writes none unless asked
   ensure_local_secret(config);
   mark_children_as_launched();  // they get SIGTERM if this process dies, kill -9 included
   ForwardedSignals signals;     // SIGINT, SIGTERM, SIGHUP: logged and forwarded to the master
@@ -430,8 +437,8 @@ void run_cluster(const ClusterArgs& a) {
       continue;
     }
     // The master may precompute tables for minutes before its Welcome (paper sizes on a CPU GL): wait for it.
-    std::vector<std::string> args = {"--log-level", level, "node", "--name", node.name, "--out", out.string(),
-                                     "--connect-timeout-ms", "900000"};
+    std::vector<std::string> args = {"--log-level", level, "node", "--name", node.name, "--connect-timeout-ms", "900000"};
+    if (frame_files) args.insert(args.end(), {"--out", out.string()});
     args.insert(args.end(), common.begin(), common.end());
     if (show_scene) args.insert(args.end(), {"--scene", show_scene->string()});
     if (a.windows) args.push_back("--window");
@@ -537,7 +544,7 @@ void run_cluster(const ClusterArgs& a) {
   spdlog::info("cluster: master and {} node{} stopped{}", nodes.size(), nodes.size() == 1 ? "" : "s",
                failed_nodes ? fmt::format(" ({} with an error)", failed_nodes) : std::string());
   const std::uint64_t last_frame = frames > 0 ? frames : show_frames;
-  if (config.output_format == "png" && last_frame > 0) {
+  if (frame_files && config.output_format == "png" && last_frame > 0) {
     const std::uint64_t frame = a.stitch_frame.value_or(last_frame - 1);
     stitch_dome(config, out, frame, out / "stitched" / fmt::format("frame-{:06d}.png", frame));
   }
@@ -584,7 +591,12 @@ void register_cluster_commands(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("node", "Run one render node of a cluster (docs/cluster.md)");
     cmd->add_option("--cluster", a->cluster, "Cluster config JSON (configs/clusters/)")->required();
     cmd->add_option("--name", a->name, "This node's name in the config")->required();
-    cmd->add_option("--out", a->out, "Frames go to OUT/<node>/<output>/ (default: the config's output directory)");
+    cmd->add_option("--out", a->out,
+                    "Write every presented frame to OUT/<node>/<output>/ (default: no frame files; presented.log goes "
+                    "to the config's output directory)");
+    cmd->add_option("--record-frames", a->record_frames,
+                    "Write every presented frame to DIR/<node>/<output>/ (as --out; one file per presented frame)")
+        ->excludes("--out");
     cmd->add_option("--cache", a->cache_dir, "This node's table cache (default $XDG_CACHE_HOME/zenith/cluster-nodes/<cluster>/<node>)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms, "Keep trying to reach the master this long (default 15000)");
@@ -599,7 +611,9 @@ void register_cluster_commands(CLI::App& app) {
         ->check(CLI::IsMember({"per-node", "offline"}));
     cmd->add_option("--atmosphere", a->atmosphere_files,
                     "An atmosphere file the master may switch to (besides the scene's and the presets; repeatable)");
-    cmd->add_flag("--window", a->window, "Also show each presented frame in a window (needs a display)");
+    cmd->add_flag("--window", a->window,
+                  "Show each presented frame on this machine's displays: each output in the window its viewport "
+                  "config gives it, the others side by side in one window (needs a display; docs/window.md)");
     cmd->add_option("--debug-render-delay-ms", a->debug_render_delay_ms,
                     "Test hook: sleep this long before rendering each frame (plays a slow node)");
     cmd->callback([a] {
@@ -616,12 +630,17 @@ void register_cluster_commands(CLI::App& app) {
     a->operator_console.add_to(*cmd);
     cmd->add_option("--frames", a->frames, "Frames to present (default 10; with --show, the whole show)")
         ->check(CLI::Range(1, 100000000));
-    cmd->add_option("--out", a->out, "Output folder (default: the config's)");
+    cmd->add_option("--out", a->out,
+                    "Write every presented frame under OUT/<node>/ and stitch the last (default: no frame files)");
+    cmd->add_option("--record-frames", a->record_frames, "The same as --out DIR: record every presented frame")
+        ->excludes("--out");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
     cmd->add_option("--cache", a->cache_dir, "Master table cache; nodes use CACHE/nodes/<node>");
     cmd->add_option("--sun-step-deg", a->sun_step_deg, "The sun turns this much per frame (default 0.1)")
         ->check(CLI::Range(-10.0, 10.0));
-    cmd->add_flag("--windows", a->windows, "Each local node also shows its frames in a window (needs a display)");
+    cmd->add_flag("--windows", a->windows,
+                  "Each local node shows its frames on the displays, in the windows its outputs' config gives "
+                  "(needs a display; docs/window.md)");
     cmd->add_option("--stitch-frame", a->stitch_frame, "Frame to stitch into OUT/stitched/ (default: the last)");
     cmd->add_option("--switch-atmosphere", a->switches,
                     "FRAME:BODY:PRESET_OR_FILE: switch that atmosphere mid-show (passed to the master; repeatable)");

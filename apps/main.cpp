@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   zenith::app::register_render_command(app);
   zenith::app::register_export_calibration_command(app);
   zenith::app::register_cluster_commands(app);
+  zenith::app::register_displays_command(app);
   zenith::app::register_validate_command(app);
   zenith::app::register_show_command(app);
 

@@ -45,6 +45,7 @@
 //                [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--gbuffer-path] [--cache DIR]
 //                [--device auto|software|hardware]
 //                [--benchmark_filter=REGEX] ...
+//   render_bench --present ...   the live frame that stays on the GPU (bench/present_bench.h)
 //
 // The ground view of docs/rendering-performance.md (issue 13):
 //   render_bench --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79
@@ -74,6 +75,8 @@
 
 #include "atmosphere/lut/precompute_options.h"
 #include "atmosphere/lut/table_cache.h"
+#include "bench/bench_tables.h"
+#include "bench/present_bench.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/software_rasterizer.h"
 #include "render/lut/gpu_precompute.h"
@@ -143,7 +146,8 @@ constexpr const char* kUsage =
     "  --device       GL device: auto (default), software (llvmpipe), hardware\n"
     "  --viewport     also time every output of a viewport config (configs/viewports/), with all\n"
     "                 atmospheres: per-projector frame time and peak memory\n"
-    "  --viewport-csv its CSV (default bench/results/projector_frame_times.csv)\n";
+    "  --viewport-csv its CSV (default bench/results/projector_frame_times.csv)\n"
+    "render_bench --present ...: the live frame that stays on the GPU (render_bench --present --help)\n";
 
 std::pair<int, int> parse_size(const std::string& text) {
   // By hand: GCC 12 warns falsely inside <regex> under the sanitizer build (-Werror).
@@ -485,37 +489,8 @@ int run(int argc, char** argv) {
   table_options.sizes = opt.tables == "small" ? atmosphere::lut::TableSizes::small() : atmosphere::lut::TableSizes{};
   table_options.max_orders = opt.orders;
   const atmosphere::lut::TableCache cache(opt.cache.value_or(atmosphere::lut::default_cache_directory()));
-  auto tables = [&](const atmosphere::AtmosphereModel& model) {
-    std::string problem;
-    if (auto cached = cache.load(model, table_options, &problem)) {
-      fmt::print("tables of '{}' loaded from {}\n", model.name, cache.directory().string());
-      return std::move(*cached);
-    }
-    if (!problem.empty()) fmt::print("ignoring cached tables of '{}': {}\n", model.name, problem);
-    fmt::print("precomputing the tables of '{}' ({} sizes, {} orders); stored in {}\n", model.name, opt.tables,
-               opt.orders, cache.directory().string());
-    atmosphere::lut::PrecomputeOptions o = table_options;
-    std::string stage;
-    const auto start = Clock::now();
-    o.progress = [&](const atmosphere::lut::PrecomputeProgress& p) {
-      if (p.stage == stage) return;
-      stage = p.stage;
-      fmt::print(stderr, "  {:6.1f} s  {:3.0f}%  {}\n", std::chrono::duration<double>(Clock::now() - start).count(),
-                 100.0 * p.fraction, p.stage);
-    };
-    atmosphere::lut::LookupTables t;
-    {
-      const render::gl::HeadlessContext precompute_context(context_options);
-      t = render::precompute_tables_gpu(model, o, nullptr, &precompute_context);
-    }
-    context.make_current();
-    try {
-      cache.store(model, table_options, t);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "could not write the table cache: {}\n", e.what());
-    }
-    return t;
-  };
+  const render::TableSource tables = bench::cached_or_precomputed_tables(cache, table_options, opt.tables, context_options,
+                                                                       [&] { context.make_current(); });
 
   render::RenderOptions atm_options, body_options;
   body_options.atmospheres = false;
@@ -645,6 +620,15 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--present") {  // the live frame (bench/present_bench.h): its own options
+      try {
+        return zenith::bench::run_present(argc, argv);
+      } catch (const std::exception& e) {
+        fmt::print(stderr, "render_bench --present: {}\n(render_bench --present --help lists the options)\n", e.what());
+        return 2;
+      }
+    }
   for (int i = 1; i < argc; ++i)
     if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
       fmt::print("{}\nGoogle Benchmark's flags:\n", kUsage);

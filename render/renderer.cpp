@@ -31,6 +31,7 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
+#include "render/shader_programs.h"
 #include "scene/albedo_map.h"
 
 namespace zenith::render {
@@ -108,6 +109,28 @@ struct Renderer::Impl {
     band_height = height;
   }
 
+  // render_to_texture(): the band copy (a fragment pass, compiled on first
+  // use), its framebuffer and empty vertex array, the band's black-tile flags
+  // (one uint per tile).
+  struct BandToTexture {
+    ShaderProgram program;
+    unsigned framebuffer = 0, vertex_array = 0;
+    BandToTexture() = default;
+    BandToTexture(const BandToTexture&) = delete;
+    BandToTexture& operator=(const BandToTexture&) = delete;
+    ~BandToTexture() {
+      if (framebuffer != 0) glDeleteFramebuffers(1, &framebuffer);
+      if (vertex_array != 0) glDeleteVertexArrays(1, &vertex_array);
+    }
+    void ensure() {
+      if (program.id() != 0) return;
+      program = load_graphics_program("render/present.vert", "render/band_to_texture.frag");
+      glCreateFramebuffers(1, &framebuffer);
+      glCreateVertexArrays(1, &vertex_array);
+    }
+  } band_to_texture;
+  gl::Buffer black_tiles;
+
   void ensure_tiles_buffer(std::size_t count) {
     if (count <= tiles_capacity && tiles.id() != 0) return;
     tiles_capacity = std::max<std::size_t>(count, 1024);
@@ -138,6 +161,14 @@ struct Renderer::Frame : FrameState {
 };
 
 void Renderer::render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink) {
+  std::vector<float> rows_rgb;
+  render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
+    read_back_band(frame, band, rows_rgb, timer);
+    timer.cpu("sink", [&] { sink(band.first_row, band.rows, rows_rgb); });
+  });
+}
+
+void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output) {
   const auto start = std::chrono::steady_clock::now();
   stats_ = FrameStats{};
   PassTimer timer(options_.time_passes);
@@ -151,7 +182,7 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   fill_sky_view_tables(frame, timer);
   prepare_programs(frame);
   set_direct_light_uniforms(frame);
-  render_bands(frame, sink, timer);
+  render_bands(frame, output, timer);
   stats_.pass_ms = timer.milliseconds();
   stats_.seconds = seconds_since(start);
 }
@@ -332,7 +363,7 @@ void Renderer::set_direct_light_uniforms(Frame& frame) {
   frame.sun_reach = sun_reach_rad(frame);
 }
 
-void Renderer::render_bands(Frame& frame, const RowSink& sink, PassTimer& timer) {
+void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& timer) {
   Impl& im = *impl_;
   const int width = frame.projection.width(), height = frame.projection.height();
   const std::size_t rows_fit = std::max<std::size_t>(1, options_.max_band_pixels / static_cast<std::size_t>(width));
@@ -341,7 +372,6 @@ void Renderer::render_bands(Frame& frame, const RowSink& sink, PassTimer& timer)
                                        rows_fit / kTileSize * kTileSize)));
   im.ensure_band_images(width, std::min(band_rows, (height + kTileSize - 1) / kTileSize * kTileSize));
   im.bodies.bind_storage(kBodies);
-  std::vector<float> rows_rgb;
 
   for (int first_row = 0; first_row < height; first_row += band_rows) {
     const int rows = std::min(band_rows, height - first_row);
@@ -356,9 +386,8 @@ void Renderer::render_bands(Frame& frame, const RowSink& sink, PassTimer& timer)
     draw_direct_tiles(frame, band, timer);
     draw_one_pass_tiles(frame, band, timer);
     draw_gbuffer_tiles(frame, band, timer);
-    read_back_band(frame, band, rows_rgb, timer);
+    output(frame, band, timer);
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, frame.scene.name));
-    timer.cpu("sink", [&] { sink(first_row, rows, rows_rgb); });
   }
 }
 
@@ -544,6 +573,78 @@ void Renderer::read_back_band(const Frame& frame, const BandTiles& band, std::ve
       });
     });
   });
+}
+
+// ---- the frame on the GPU (render_to_texture) ---------------------------------
+
+void set_band_uniforms(const gl::ShaderProgram& program, const GpuBand& band) {
+  program.set_uniform("band_origin", std::array<int, 2>{0, band.first_row});
+  program.set_uniform("band_size", std::array<int, 2>{band.width, band.rows});
+  program.set_uniform("tile_columns", band.tile_columns);
+}
+
+void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projection& projection, gl::Texture& target) {
+  if (target.id() == 0 || target.is_3d() ||
+      (target.format() != TextureFormat::rgba32f && target.format() != TextureFormat::rgba16f) ||
+      target.width() != projection.width() || target.height() != projection.height())
+    throw std::invalid_argument(fmt::format(
+        "Renderer::render_to_texture: the target is a {} {}x{} texture; it must be a 2D rgba32f or rgba16f texture "
+        "of the projection's size {}x{}",
+        target.id() == 0 ? "missing" : gl::to_string(target.format()), target.width(), target.height(),
+        projection.width(), projection.height()));
+  render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
+    copy_band_to_texture(bind_band_on_gpu(frame, band), target, timer);
+  });
+}
+
+void Renderer::render_on_gpu(const scene::Scene& scene, const warp::Projection& projection, const GpuBandSink& sink) {
+  render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
+    const GpuBand gpu_band = bind_band_on_gpu(frame, band);
+    timer.gpu("band output", [&] { sink(gpu_band); });
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next band's passes write what the sink read
+  });
+}
+
+GpuBand Renderer::bind_band_on_gpu(const Frame& frame, const BandTiles& band) {
+  Impl& im = *impl_;
+  // One flag per tile of the band, 1 where nothing was dispatched: those
+  // pixels of the output buffer hold whatever an earlier band left there.
+  const std::vector<std::uint32_t> black(band.black.begin(), band.black.end());
+  const std::size_t bytes = std::max<std::size_t>(black.size(), 1) * sizeof(std::uint32_t);
+  if (im.black_tiles.id() == 0 || im.black_tiles.size() < bytes) im.black_tiles = gl::Buffer(bytes);
+  im.black_tiles.upload(std::span<const std::uint32_t>(black));
+  im.frame_rgb.bind_storage(kFrameRgb);
+  im.black_tiles.bind_storage(binding::kBlackTiles);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the passes' stores to the output buffer
+  return {band.first_row, band.rows, frame.band_size[0], frame.cones->columns()};
+}
+
+void Renderer::copy_band_to_texture(const GpuBand& band, gl::Texture& target, PassTimer& timer) {
+  Impl& im = *impl_;
+  Impl::BandToTexture& copy = im.band_to_texture;
+  copy.ensure();
+  const ShaderProgram& p = copy.program;
+  set_band_uniforms(p, band);
+  // The band's rows of the frame's texture as the viewport: row r of the band is texel row first_row + r.
+  glNamedFramebufferTexture(copy.framebuffer, GL_COLOR_ATTACHMENT0, target.id(), 0);
+  glNamedFramebufferDrawBuffer(copy.framebuffer, GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, copy.framebuffer);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glViewport(0, band.first_row, band.width, band.rows);
+  timer.gpu("copy to texture", [&] {
+    p.use();
+    glBindVertexArray(copy.vertex_array);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+  });
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glNamedFramebufferTexture(copy.framebuffer, GL_COLOR_ATTACHMENT0, 0, 0);
+  // The next band's passes write the output buffer this pass reads.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 }  // namespace zenith::render

@@ -42,6 +42,10 @@ namespace zenith::render {
 
 class PassTimer;        // render/frame/pass_timer.h
 struct BandTiles;       // render/frame/tile_classification.h
+namespace gl {
+class ShaderProgram;  // render/gl/shader_program.h
+class Texture;        // render/gl/texture.h
+}
 
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
 /// called only for table sets the renderer does not hold yet.
@@ -50,6 +54,21 @@ using TableSource = std::function<atmosphere::lut::LookupTables(const atmosphere
 /// Receives finished rows, top first: `row_count` rows from `first_row`, linear
 /// sRGB radiance × exposure, 3 floats per pixel, x fastest.
 using RowSink = std::function<void(int first_row, int row_count, std::span<const float> rgb)>;
+
+/// A band of a frame kept on the GPU, as Renderer::render_on_gpu hands it to
+/// its sink: the band's pixels are in the output buffer bound at
+/// FRAME_RGB_BINDING (render/shader_bindings.h: one vec4 (rgb, 0) per pixel,
+/// rows of `width` pixels from row `first_row` of the frame), the band's
+/// black-tile flags at BLACK_TILES_BINDING (one uint per 16 × 16 tile, row by
+/// row, `tile_columns` a row; 1 where nothing was drawn: those pixels hold stale
+/// values and read as 0). shaders/render/band_output.glsl reads them.
+struct GpuBand {
+  int first_row = 0, rows = 0, width = 0, tile_columns = 0;
+};
+/// Called once per band while its buffers are bound: draws what it needs from them.
+using GpuBandSink = std::function<void(const GpuBand& band)>;
+/// band_output.glsl's uniforms of `band` (band_origin, band_size, tile_columns) on `program`.
+void set_band_uniforms(const gl::ShaderProgram& program, const GpuBand& band);
 
 /// What the last frame did, for logs, tests and benchmarks.
 struct FrameStats {
@@ -87,6 +106,21 @@ class Renderer {
   void render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink);
   /// The whole frame in memory: width · height · 3 floats.
   std::vector<float> render_image(const scene::Scene& scene, const warp::Projection& projection);
+  /// Renders as render() does but leaves the frame on the GPU: each band is
+  /// drawn into `target` (a fragment pass, shaders/render/band_to_texture.frag)
+  /// instead of being read back, black tiles as 0. `target`: a 2D texture of
+  /// format rgba32f or rgba16f and the projection's size; texel (x, y) is pixel
+  /// (x, y) with row 0 at the top (as render_image), rgb the linear sRGB
+  /// radiance × exposure, alpha 1. A live frame goes on to the display encoding
+  /// (render/display/display_encoder.h) and a window; pixels leave the GPU only
+  /// where a file, thumbnail or test reads them. Leaves the default draw
+  /// framebuffer bound. Throws std::invalid_argument for another format or
+  /// size, and what render() throws.
+  void render_to_texture(const scene::Scene& scene, const warp::Projection& projection, gl::Texture& target);
+  /// Renders as render() does and hands each band, still on the GPU, to
+  /// `sink` (GpuBand): a live frame that needs no radiance texture goes
+  /// straight to its display texture (DisplayEncoder::encode_band).
+  void render_on_gpu(const scene::Scene& scene, const warp::Projection& projection, const GpuBandSink& sink);
 
   const FrameStats& last_frame() const { return stats_; }
   const RenderOptions& options() const { return options_; }
@@ -117,8 +151,13 @@ class Renderer {
   void prepare_programs(Frame& frame);
   /// direct_light.comp's colour matrix and sun spectrum; where the sun can be drawn.
   void set_direct_light_uniforms(Frame& frame);
-  /// The frame band by band: each band's tiles drawn, read back and handed to `sink`.
-  void render_bands(Frame& frame, const RowSink& sink, PassTimer& timer);
+  /// What becomes of a band once its tiles are drawn: read back for a RowSink
+  /// (render()), or copied into a texture (render_to_texture()).
+  using BandOutput = std::function<void(const Frame& frame, const BandTiles& band, PassTimer& timer)>;
+  /// The steps of a frame, in the order below, each band handed to `output`.
+  void render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output);
+  /// The frame band by band: each band's tiles drawn, then handed to `output`.
+  void render_bands(Frame& frame, const BandOutput& output, PassTimer& timer);
 
   // The steps of one band, in this order.
 
@@ -139,6 +178,13 @@ class Renderer {
   void draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
   /// The band's rows as RGB floats from the output buffer (zeros for black tiles) into `rows_rgb`.
   void read_back_band(const Frame& frame, const BandTiles& band, std::vector<float>& rows_rgb, PassTimer& timer);
+  /// Binds the band's output buffer and its black-tile flags for a pass that
+  /// reads them (render_on_gpu()'s band output), after the passes' stores.
+  GpuBand bind_band_on_gpu(const Frame& frame, const BandTiles& band);
+  /// The band's pixels from the output buffer into rows first_row… of
+  /// `target` on the GPU (zeros for black tiles): render_to_texture()'s band output.
+  /// A draw, not a dispatch: it leaves the default draw framebuffer bound.
+  void copy_band_to_texture(const GpuBand& band, gl::Texture& target, PassTimer& timer);
 
   RenderOptions options_;
   TableSource table_source_;

@@ -28,6 +28,7 @@ inline constexpr unsigned kAzimuthMoments = 6;        ///< AZIMUTH_MOMENTS_BINDI
 inline constexpr unsigned kHarmonicCoefficients = 7;  ///< HARMONIC_COEFFICIENTS_BINDING (harmonics.glsl)
 inline constexpr unsigned kViewTransmittance = 8;     ///< VIEW_TRANSMITTANCE_BINDING (view_ray.glsl)
 inline constexpr unsigned kViewRayCoordinates = 9;    ///< VIEW_RAY_COORDINATES_BINDING (view_ray.glsl)
+inline constexpr unsigned kBlackTiles = 10;           ///< BLACK_TILES_BINDING (render/band_to_texture.comp)
 
 // ---- uniform buffers
 inline constexpr unsigned kWavelengthData = 0;  ///< WAVELENGTH_DATA_BINDING (atmosphere/physics.glsl): the model's parameters
@@ -46,6 +47,8 @@ inline constexpr unsigned kSkyViewUnit = 5;           ///< SKY_VIEW_UNIT (render
 inline constexpr unsigned kRayTableUnit = 7;          ///< RAY_TABLE_UNIT (projection.glsl)
 inline constexpr unsigned kAlbedoMapsUnit = 8;        ///< ALBEDO_MAPS_UNIT (render/surface_albedo.glsl)
 inline constexpr unsigned kPresentFrameUnit = 0;      ///< PRESENT_FRAME_UNIT (render/present.frag)
+inline constexpr unsigned kDisplayRadianceUnit = 0;   ///< DISPLAY_RADIANCE_UNIT (render/display_*.comp)
+inline constexpr unsigned kBlendMaskUnit = 1;         ///< BLEND_MASK_UNIT (render/display_transform.glsl)
 
 // ---- image units: what a compute pass writes (the precompute's tables, the sky-view table)
 inline constexpr unsigned kOutputImage = 0;        ///< OUTPUT_IMAGE

@@ -311,6 +311,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
 
   out.blend = read_blend(o, base_dir);
   out.black_level = o.number_or("black_level", 0.0, 0.0, kMaxBlackLevel, "(fraction of full white)");
+  if (o.has("window")) out.window = read_output_window(o, "window", out.name);
   return out;
 }
 
@@ -380,7 +381,7 @@ ViewportConfig parse_viewport_config(const json& config, const std::string& sour
     const json& ov = outputs[i];
     if (!ov.is_object()) throw ConfigError(source, pointer, cat("must be an object, got ", brief(ov)));
     JsonReader o(ov, source, pointer);
-    allow_keys(o, ov, {"name", "size", "projection", "warp", "blend", "black_level"});
+    allow_keys(o, ov, {"name", "size", "projection", "warp", "blend", "black_level", "window"});
     OutputConfig out = read_output(o, base_dir, options);
     if (!names.insert(out.name).second)
       o.fail("name", cat("= \"", out.name, "\": duplicate output name (names must be unique)"));

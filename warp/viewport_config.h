@@ -31,6 +31,7 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "warp/output_window.h"
 #include "warp/pfm.h"
 #include "warp/planar_projection.h"
 #include "warp/projection.h"
@@ -117,6 +118,9 @@ struct OutputConfig {
   /// β: the projector's black level as a fraction of its full white, in
   /// [0, 0.5]; the output stage writes P·α·(1 − β) + β (docs/viewports.md).
   double black_level = 0.0;
+  /// Where a render node shows the output ("window": warp/output_window.h);
+  /// unset: in the node's default window, beside its other such outputs.
+  std::optional<OutputWindow> window;
   /// Only with ViewportLoadOptions::keep_broken_warps: why the warp cannot be
   /// used (the ConfigError a strict load throws, e.g. ".../warp/file: cannot
   /// use the warp: p2.pfm: PFM: truncated ..."); projection is then null.

@@ -53,9 +53,17 @@ struct NodeOptions {
   /// `zenith cluster --show` passes it to master and nodes alike).
   std::optional<std::filesystem::path> scene;
   FrameFileLayout layout = FrameFileLayout::per_node;
-  /// Show each presented frame in a window (GLFW; needs a display) besides
-  /// writing the files: the node's outputs side by side, as a projector shows
-  /// them (tone mapped, blended). Closing the window leaves the cluster.
+  /// Write the frame files (and thumbnails' sources stay on the GPU either
+  /// way). A live show writes none unless asked (`zenith node --out DIR` or
+  /// `--record-frames DIR`); an offline render (layout offline) always does.
+  /// presented.log is written either way.
+  bool write_frames = true;
+  /// Show each presented frame on the node's displays (GLFW; needs a
+  /// display): every output in the window its viewport config gives it
+  /// ("window": warp/output_window.h), the others side by side in one
+  /// decorated window, as a projector shows them (tone mapped, blended,
+  /// encoded: render/display/display_encoder.h). Closing a window or Escape
+  /// leaves the cluster.
   bool window = false;
   /// Test hook (`--debug-render-delay-ms`): sleep this long before each frame,
   /// to play a slow node. 0 in production.

@@ -9,11 +9,9 @@
 
 namespace zenith::cluster {
 
-namespace {
-
-bool is_blended(const warp::OutputConfig& o) { return o.blend.mode != warp::BlendMode::none || o.black_level != 0.0; }
-
-}  // namespace
+bool has_output_stage(const warp::OutputConfig& o) {
+  return o.blend.mode != warp::BlendMode::none || o.black_level != 0.0;
+}
 
 OutputWriter::OutputWriter(const warp::ViewportConfig& viewports, FrameFileLayout layout,
                            std::filesystem::path output_directory, std::filesystem::path node_directory,
@@ -33,7 +31,7 @@ std::filesystem::path OutputWriter::frame_path(const warp::OutputConfig& o, std:
 std::vector<float> OutputWriter::display_image(std::size_t viewport_index, std::vector<float> rgb) const {
   const warp::OutputConfig& o = viewports_.outputs[viewport_index];
   for (float& v : rgb) v = image::tone_map(v, image::ToneMapping::exponential);
-  if (is_blended(o))
+  if (has_output_stage(o))
     warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports_, viewport_index), o.black_level);
   return rgb;
 }
@@ -45,7 +43,7 @@ void OutputWriter::write(std::size_t viewport_index, std::uint64_t frame, std::v
   std::filesystem::path partial = final_path;
   partial += ".partial";
   std::filesystem::create_directories(final_path.parent_path());
-  const bool blended = is_blended(o);
+  const bool blended = has_output_stage(o);
   if (format_ == "exr") {
     if (blended)
       warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports_, viewport_index), o.black_level);

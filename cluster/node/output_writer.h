@@ -18,6 +18,10 @@
 
 namespace zenith::cluster {
 
+/// Whether output `o` has an output stage (a blend or a black level:
+/// warp/blending.h) between tone mapping and the display encoding.
+bool has_output_stage(const warp::OutputConfig& o);
+
 /// Owns the partial files of at most one rendered frame. Used on the render
 /// thread only. Invariant: the partial files on disk are those of the frame
 /// recorded by finish_frame() (or of one being written); present() renames

@@ -1,5 +1,6 @@
 #include "cluster/node/render_worker.h"
 
+#include <epoxy/gl.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -27,8 +28,7 @@ RenderWorker::RenderWorker(Setup setup, Events events)
     : setup_(std::move(setup)),
       events_(std::move(events)),
       writer_(setup_.viewports, setup_.options.layout, setup_.options.output_directory, setup_.node_directory,
-              setup_.options.config.output_format),
-      rendered_display_(setup_.outputs.size()) {}
+              setup_.options.config.output_format) {}
 
 // ---- the queue --------------------------------------------------------------
 
@@ -46,7 +46,9 @@ void RenderWorker::prepare(const Digest& hash, std::uint64_t session) {
 void RenderWorker::render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px) {
   push(Job{Job::Kind::render, state, state.frame, {}, session, thumbnail_edge_px});
 }
-void RenderWorker::present(std::uint64_t frame) { push(Job{Job::Kind::present, {}, frame, {}, 0}); }
+void RenderWorker::present(std::uint64_t frame) {
+  push(Job{Job::Kind::present, {}, frame, {}, 0, 0, Clock::now()});
+}
 void RenderWorker::stop() { push(Job{Job::Kind::stop, {}, 0, {}, 0}); }
 
 void RenderWorker::abandon_frames() {
@@ -61,15 +63,11 @@ void RenderWorker::abandon_frames() {
 RenderWorker::Job RenderWorker::next_job() {
   for (;;) {
     std::unique_lock lock(mutex_);
-    if (window_) {  // keep the window responsive between frames
+    if (windows_) {  // keep the windows responsive between frames
       while (!wake_.wait_for(lock, milliseconds(30), [this] { return !jobs_.empty(); })) {
         lock.unlock();
-        window_->poll_events();
-        if (window_->take_redraw_request() && presenter_->frame_width() > 0) {
-          const render::window::FramebufferSize size = window_->framebuffer_size();
-          presenter_->draw(image::ToneMapping::clamp, {0, size.width, size.height});
-          window_->swap_buffers();
-        }
+        if (windows_->poll_close_request()) report_window_closed();
+        windows_->redraw_if_asked(display_textures());
         lock.lock();
       }
     } else {
@@ -93,7 +91,7 @@ void RenderWorker::run() {
       switch (job.kind) {
         case Job::Kind::prepare: prepare_tables(job.table_hash, job.session); break;
         case Job::Kind::render: render_frame(job.state, job.session, job.thumbnail_edge_px); break;
-        case Job::Kind::present: present_frame(job.frame); break;
+        case Job::Kind::present: present_frame(job.frame, job.queued); break;
         case Job::Kind::discard: writer_.discard(); break;
         case Job::Kind::stop: writer_.discard(); return;
       }
@@ -105,40 +103,55 @@ void RenderWorker::run() {
 }
 
 void RenderWorker::release_gl() {
+  if (windows_ || context_) make_current();
   renderer_.reset();
+  frames_.clear();
+  encoder_ = render::display::DisplayEncoder();
+  windows_.reset();
   context_.reset();
 }
 
 // ---- GL and the renderer ----------------------------------------------------
 
 void RenderWorker::make_current() const {
-  if (window_) window_->make_current();
+  if (windows_) windows_->primary().make_current();
   else context_->make_current();
+}
+
+void RenderWorker::ensure_context() {
+  if (windows_ || context_) return;
+  const NodeOptions& options = setup_.options;
+  if (options.window) {
+    std::vector<render::window::ShownOutput> shown;
+    for (const std::size_t i : setup_.outputs) {
+      const warp::OutputConfig& o = setup_.viewports.outputs[i];
+      shown.push_back({o.name, o.width_px, o.height_px, o.window});
+    }
+    windows_.emplace(shown, cat("zenith node ", options.node_name));
+    spdlog::info("node '{}': rendering on {} into {} window{}", options.node_name, windows_->primary().renderer(),
+                 windows_->window_count(), windows_->window_count() == 1 ? "" : "s");
+  } else {
+    context_.emplace();
+    spdlog::info("node '{}': rendering on {}", options.node_name, context_->renderer());
+  }
+  // Per output: the frame's texture, the display pass's settings and, with windows, its display texture.
+  for (const std::size_t i : setup_.outputs) {
+    const warp::OutputConfig& o = setup_.viewports.outputs[i];
+    OutputFrame f;
+    if (windows_) f.display = render::gl::Texture::create_2d(render::gl::TextureFormat::rgba8, o.width_px, o.height_px);
+    f.stage.blended = has_output_stage(o);
+    if (f.stage.blended) f.blend_mask = render::display::blend_mask_texture(warp::output_blend_mask(setup_.viewports, i));
+    f.stage.black_level = o.black_level;
+    if (o.window && o.window->gamma > 0.0) f.stage.encoding = {image::DisplayEncoding::Transfer::gamma, o.window->gamma};
+    frames_.push_back(std::move(f));
+  }
+  for (OutputFrame& f : frames_)
+    if (f.blend_mask.id() != 0) f.stage.blend_mask = &f.blend_mask;  // after the moves: addresses are final
 }
 
 void RenderWorker::ensure_renderer(std::uint32_t flags) {
   const NodeOptions& options = setup_.options;
-  if (options.window && !window_) {
-    render::window::WindowOptions w;
-    w.title = cat("zenith node ", options.node_name);
-    w.width = 0;
-    w.height = 0;
-    for (const std::size_t i : setup_.outputs) {
-      w.width += setup_.viewports.outputs[i].width_px;
-      w.height = std::max(w.height, setup_.viewports.outputs[i].height_px);
-    }
-    // Fit a 1280 × 1024 screen area at first; the window can be resized (or made full screen).
-    const double shrink = std::min(1.0, std::min(1280.0 / w.width, 1024.0 / w.height));
-    w.width = std::max(1, static_cast<int>(w.width * shrink));
-    w.height = std::max(1, static_cast<int>(w.height * shrink));
-    w.swap_interval = 0;  // the cluster's barrier paces the frames
-    window_.emplace(w);
-    presenter_.emplace();
-    spdlog::info("node '{}': rendering on {} into a window", options.node_name, window_->renderer());
-  } else if (!options.window && !context_) {
-    context_.emplace();
-    spdlog::info("node '{}': rendering on {}", options.node_name, context_->renderer());
-  }
+  ensure_context();
   if (renderer_ && flags == renderer_flags_) return;
   renderer_.reset();
   renderer_flags_ = flags;
@@ -183,35 +196,76 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
   if (tables.empty()) tables = "-";
   ensure_renderer(state.render_flags);
   std::vector<Thumbnail> thumbnails;
+  // The frame stays on the GPU: rendered into each output's texture, encoded
+  // for its display there; only files and thumbnails read pixels back.
   for (std::size_t k = 0; k < setup_.outputs.size(); ++k) {
     const std::size_t i = setup_.outputs[k];
     const warp::OutputConfig& o = setup_.viewports.outputs[i];
-    std::vector<float> rgb = renderer_->render_image(scene, *o.projection);
-    const image::ImageAttributes attributes = {
-        {"zenith:scene", scene.name},
-        {"zenith:projection", o.projection->describe()},
-        {"zenith:exposure", fmt::format("{}", scene.camera.exposure)},
-        {"zenith:viewport", fmt::format("{}#{}", setup_.viewports.source, o.name)},
-    };
-    if (window_) rendered_display_[k] = writer_.display_image(i, rgb);  // what the projector shows
+    OutputFrame& f = frames_[k];
+    const bool radiance_read = thumbnail_edge_px > 0 || setup_.options.write_frames;
+    if ((radiance_read || !windows_) && f.radiance.id() == 0)  // allocated on first use (an 8K master: 1 GiB)
+      f.radiance = render::gl::Texture::create_2d(render::gl::TextureFormat::rgba32f, o.width_px, o.height_px);
+    if (radiance_read) {
+      renderer_->render_to_texture(scene, *o.projection, f.radiance);
+      if (windows_) encoder_.encode(f.radiance, f.stage, f.display);  // what the projector shows
+    } else if (windows_) {  // the steady live frame: band by band straight into what the projector shows
+      renderer_->render_on_gpu(scene, *o.projection,
+                               [&](const render::GpuBand& band) { encoder_.encode_band(band, f.stage, f.display); });
+    } else {
+      renderer_->render_to_texture(scene, *o.projection, f.radiance);  // headless, nothing asked: the frame stays here
+    }
     if (thumbnail_edge_px > 0)  // only for a frame the master asked thumbnails of
-      thumbnails.push_back(make_thumbnail(state.frame, o.name, window_ ? rendered_display_[k] : writer_.display_image(i, rgb),
-                                          o.width_px, o.height_px, thumbnail_edge_px));
-    writer_.write(i, state.frame, std::move(rgb), attributes);
+      thumbnails.push_back(make_thumbnail(state.frame, o.name, encoder_.thumbnail(f.radiance, f.stage, thumbnail_edge_px)));
+    if (setup_.options.write_frames) {
+      const image::ImageAttributes attributes = {
+          {"zenith:scene", scene.name},
+          {"zenith:projection", o.projection->describe()},
+          {"zenith:exposure", fmt::format("{}", scene.camera.exposure)},
+          {"zenith:viewport", fmt::format("{}#{}", setup_.viewports.source, o.name)},
+      };
+      writer_.write(i, state.frame, read_back_radiance(k), attributes);
+    }
   }
+  // RenderDone means ready to present: the GPU has finished the frame.
+  glFinish();
   writer_.finish_frame({state.frame, state_digest(state), tables, state.show_time_s});
   const double render_ms = ms_since(t0);
   spdlog::debug("node '{}': frame {} rendered in {:.1f} ms", setup_.options.node_name, state.frame, render_ms);
   events_.rendered(state.frame, render_ms, session, std::move(thumbnails));
 }
 
-void RenderWorker::present_frame(std::uint64_t frame) {
+void RenderWorker::report_window_closed() {
+  if (close_reported_) return;  // the node is leaving already
+  close_reported_ = true;
+  spdlog::info("node '{}': window closed: leaving the cluster", setup_.options.node_name);
+  events_.window_closed();
+}
+
+std::vector<float> RenderWorker::read_back_radiance(std::size_t k) const {
+  const std::vector<float> rgba = frames_[k].radiance.read();
+  std::vector<float> rgb(rgba.size() / 4 * 3);
+  for (std::size_t p = 0; p < rgba.size() / 4; ++p)
+    for (std::size_t c = 0; c < 3; ++c) rgb[3 * p + c] = rgba[4 * p + c];
+  return rgb;
+}
+
+std::vector<const render::gl::Texture*> RenderWorker::display_textures() const {
+  std::vector<const render::gl::Texture*> displays;
+  for (const OutputFrame& f : frames_) displays.push_back(&f.display);
+  return displays;
+}
+
+void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked) {
+  // Swap first (the projectors), then the files and the log.
+  if (windows_) {
+    windows_->present(display_textures(), asked);
+    if (windows_->poll_close_request()) report_window_closed();
+  }
   if (!writer_.present(frame)) {
     spdlog::warn("node '{}': Present {} for a frame this node has not rendered; ignored", setup_.options.node_name,
                  frame);
     return;
   }
-  if (window_) show_in_window();
   spdlog::debug("node '{}': presented frame {}", setup_.options.node_name, frame);
 }
 
@@ -223,41 +277,21 @@ void RenderWorker::prepare_tables(const Digest& hash, std::uint64_t session) {
   scene::Scene scene = setup_.base_scene;
   const KnownAtmospheres::Entry& known = setup_.atmospheres.find(hash);
   use_table_version(scene, known.body, hash);
-  for (const std::size_t i : setup_.outputs) {
-    renderer_->render_image(scene, *setup_.viewports.outputs[i].projection);
+  for (std::size_t k = 0; k < setup_.outputs.size(); ++k) {
+    OutputFrame& f = frames_[k];
+    const warp::Projection& projection = *setup_.viewports.outputs[setup_.outputs[k]].projection;
+    if (windows_)  // as a steady frame: the display pass's programs too
+      renderer_->render_on_gpu(scene, projection,
+                               [&](const render::GpuBand& band) { encoder_.encode_band(band, f.stage, f.display); });
+    else
+      renderer_->render_on_gpu(scene, projection, [](const render::GpuBand&) {});
     if (warmed_up_) break;
   }
+  glFinish();
   warmed_up_ = true;
   spdlog::info("node '{}': tables of '{}' version {} loaded and rendered once ({:.0f} ms)", setup_.options.node_name,
                known.body, short_hex(hash), ms_since(t0));
   events_.tables_ready(hash, session);
-}
-
-void RenderWorker::show_in_window() {
-  int width = 0, height = 0;
-  for (const std::size_t i : setup_.outputs) {
-    width += setup_.viewports.outputs[i].width_px;
-    height = std::max(height, setup_.viewports.outputs[i].height_px);
-  }
-  std::vector<float> picture(static_cast<std::size_t>(width) * height * 3, 0.0f);
-  int x0 = 0;
-  for (std::size_t k = 0; k < setup_.outputs.size(); ++k) {
-    const warp::OutputConfig& o = setup_.viewports.outputs[setup_.outputs[k]];
-    const std::vector<float>& display = rendered_display_[k];
-    for (int y = 0; y < o.height_px && !display.empty(); ++y)
-      std::copy_n(display.begin() + static_cast<std::ptrdiff_t>(y) * o.width_px * 3, o.width_px * 3,
-                  picture.begin() + (static_cast<std::ptrdiff_t>(y) * width + x0) * 3);
-    x0 += o.width_px;
-  }
-  window_->make_current();
-  const render::window::FramebufferSize size = window_->framebuffer_size();
-  presenter_->present(picture, width, height, image::ToneMapping::clamp, {0, size.width, size.height});
-  window_->swap_buffers();
-  window_->poll_events();
-  if (window_->should_close()) {
-    spdlog::info("node '{}': window closed: leaving the cluster", setup_.options.node_name);
-    events_.window_closed();
-  }
 }
 
 }  // namespace zenith::cluster

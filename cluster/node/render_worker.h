@@ -5,6 +5,7 @@
 // FrameState, present a frame, stop — through a queue; it answers through the
 // Events callbacks, called on the render thread (the node posts them onto its
 // io_context).
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -20,10 +21,11 @@
 #include "cluster/node/node.h"
 #include "cluster/node/known_atmospheres.h"
 #include "cluster/node/output_writer.h"
+#include "render/display/display_encoder.h"
 #include "render/gl/egl_context.h"
+#include "render/gl/texture.h"
 #include "render/renderer.h"
-#include "render/window/frame_presenter.h"
-#include "render/window/window_context.h"
+#include "render/window/output_windows.h"
 #include "scene/scene.h"
 #include "warp/viewport_config.h"
 
@@ -93,19 +95,36 @@ class RenderWorker {
     Digest table_hash{};      ///< prepare
     std::uint64_t session = 0;  ///< render, prepare: passed back with the answer
     int thumbnail_edge_px = 0;  ///< render: > 0 for thumbnails of the frame
+    std::chrono::steady_clock::time_point queued{};  ///< present: when the Present arrived (the late-frame clock)
   };
   void push(Job job);
   Job next_job();
 
   void make_current() const;
+  /// The GL context (the windows' or a headless one) and, per output, its textures and display pass.
+  void ensure_context();
   void ensure_renderer(std::uint32_t flags);
   /// The scene with body `body`'s atmosphere replaced by table version `hash`.
   void use_table_version(scene::Scene& scene, const std::string& body, const Digest& hash) const;
   void render_frame(const FrameState& state, std::uint64_t session, int thumbnail_edge_px);
-  void present_frame(std::uint64_t frame);
+  void present_frame(std::uint64_t frame, std::chrono::steady_clock::time_point asked);
   void prepare_tables(const Digest& hash, std::uint64_t session);
-  /// Shows the presented frame in the window: the node's outputs side by side.
-  void show_in_window();
+  /// Output k's radiance read back as RGB rows for its file (width · height · 3 floats).
+  std::vector<float> read_back_radiance(std::size_t k) const;
+  /// Events::window_closed, once.
+  void report_window_closed();
+  /// The display textures the windows draw, per output.
+  std::vector<const render::gl::Texture*> display_textures() const;
+
+  /// One output of this node on the GPU: the rendered frame
+  /// (Renderer::render_to_texture) and, with windows, what its projector is
+  /// sent (the display pass).
+  struct OutputFrame {
+    render::gl::Texture radiance;    ///< rgba32f, linear radiance × exposure (allocated on first use)
+    render::gl::Texture display;     ///< rgba8, encoded for the display (windows only)
+    render::gl::Texture blend_mask;  ///< r32f α where the output blends
+    render::display::OutputStage stage;
+  };
 
   Setup setup_;
   Events events_;
@@ -116,14 +135,15 @@ class RenderWorker {
   std::deque<Job> jobs_;
 
   std::optional<render::gl::HeadlessContext> context_;
-  /// With a window: the GL context is the window's, and each presented frame
-  /// is shown in it (the node's outputs side by side, as written to the files).
-  std::optional<render::window::WindowContext> window_;
-  std::optional<render::window::FramePresenter> presenter_;
-  std::vector<std::vector<float>> rendered_display_;  ///< per output: display-linear values of the rendered frame
+  /// With windows: the GL context is the first window's, and each presented
+  /// frame's display textures are drawn in them (render/window/output_windows.h).
+  std::optional<render::window::OutputWindows> windows_;
+  std::vector<OutputFrame> frames_;  ///< per output of this node
+  render::display::DisplayEncoder encoder_;
   std::unique_ptr<render::Renderer> renderer_;
   std::uint32_t renderer_flags_ = 0;
   bool warmed_up_ = false;
+  bool close_reported_ = false;
 };
 
 }  // namespace zenith::cluster

@@ -21,9 +21,8 @@ Thumbnail make_thumbnail(std::uint64_t frame, const std::string& output, std::sp
   if (display_rgb.size() != w * h * 3)
     throw std::invalid_argument(cat("thumbnail of '", output, "': ", display_rgb.size(), " values for ", width_px, "x",
                                     height_px, " RGB pixels"));
-  const double scale = std::min(1.0, static_cast<double>(edge_px) / static_cast<double>(std::max(w, h)));
-  const std::size_t tw = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(static_cast<double>(w) * scale)));
-  const std::size_t th = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(static_cast<double>(h) * scale)));
+  const auto [thumbnail_width, thumbnail_height] = render::display::thumbnail_size(width_px, height_px, edge_px);
+  const auto tw = static_cast<std::size_t>(thumbnail_width), th = static_cast<std::size_t>(thumbnail_height);
   Thumbnail t;
   t.frame = frame;
   t.output = output;
@@ -51,6 +50,23 @@ Thumbnail make_thumbnail(std::uint64_t frame, const std::string& output, std::sp
         t.rgb[(y * tw + x) * 3 + c] = image::display_byte(static_cast<float>(sum[c] / count), image::ToneMapping::clamp);
     }
   }
+  return t;
+}
+
+Thumbnail make_thumbnail(std::uint64_t frame, const std::string& output, const render::display::ThumbnailMeans& means) {
+  static_assert(render::display::kMaxThumbnailEdgePx == kMaxThumbnailEdgePx);
+  if (means.width_px < 1 || means.height_px < 1 || means.width_px > kMaxThumbnailEdgePx ||
+      means.height_px > kMaxThumbnailEdgePx ||
+      means.rgb.size() != static_cast<std::size_t>(means.width_px) * static_cast<std::size_t>(means.height_px) * 3)
+    throw std::invalid_argument(cat("thumbnail of '", output, "': ", means.width_px, "x", means.height_px, " pixels, ",
+                                    means.rgb.size(), " values (sizes in [1, ", kMaxThumbnailEdgePx, "], 3 values a pixel)"));
+  Thumbnail t;
+  t.frame = frame;
+  t.output = output;
+  t.width_px = static_cast<std::uint16_t>(means.width_px);
+  t.height_px = static_cast<std::uint16_t>(means.height_px);
+  t.rgb.resize(means.rgb.size());
+  for (std::size_t i = 0; i < means.rgb.size(); ++i) t.rgb[i] = image::display_byte(means.rgb[i], image::ToneMapping::clamp);
   return t;
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cluster/protocol/messages.h"
+#include "render/display/display_encoder.h"
 
 namespace zenith::cluster {
 
@@ -21,5 +22,8 @@ namespace zenith::cluster {
 /// [1, kMaxThumbnailEdgePx] or a value count other than width · height · 3.
 Thumbnail make_thumbnail(std::uint64_t frame, const std::string& output, std::span<const float> display_rgb,
                          int width_px, int height_px, int edge_px);
+/// The thumbnail of box means the GPU reduced (render::display::DisplayEncoder::thumbnail):
+/// each mean sRGB encoded and rounded, as above.
+Thumbnail make_thumbnail(std::uint64_t frame, const std::string& output, const render::display::ThumbnailMeans& means);
 
 }  // namespace zenith::cluster

@@ -19,6 +19,8 @@ GLenum internal_format(TextureFormat f) {
     case TextureFormat::rg32f: return GL_RG32F;
     case TextureFormat::rgba32f: return GL_RGBA32F;
     case TextureFormat::rgba16f: return GL_RGBA16F;
+    case TextureFormat::rgba8: return GL_RGBA8;
+    case TextureFormat::rgba16: return GL_RGBA16;
   }
   return GL_RGBA32F;
 }
@@ -28,7 +30,9 @@ GLenum pixel_format(TextureFormat f) {
     case TextureFormat::r32f: return GL_RED;
     case TextureFormat::rg32f: return GL_RG;
     case TextureFormat::rgba32f:
-    case TextureFormat::rgba16f: return GL_RGBA;
+    case TextureFormat::rgba16f:
+    case TextureFormat::rgba8:
+    case TextureFormat::rgba16: return GL_RGBA;
   }
   return GL_RGBA;
 }
@@ -70,7 +74,9 @@ int channel_count(TextureFormat format) {
     case TextureFormat::r32f: return 1;
     case TextureFormat::rg32f: return 2;
     case TextureFormat::rgba32f:
-    case TextureFormat::rgba16f: return 4;
+    case TextureFormat::rgba16f:
+    case TextureFormat::rgba8:
+    case TextureFormat::rgba16: return 4;
   }
   return 4;
 }
@@ -81,6 +87,8 @@ const char* to_string(TextureFormat format) {
     case TextureFormat::rg32f: return "rg32f";
     case TextureFormat::rgba32f: return "rgba32f";
     case TextureFormat::rgba16f: return "rgba16f";
+    case TextureFormat::rgba8: return "rgba8";
+    case TextureFormat::rgba16: return "rgba16";
   }
   return "?";
 }

@@ -7,10 +7,13 @@
 
 namespace zenith::render::gl {
 
-enum class TextureFormat { r32f, rg32f, rgba32f, rgba16f };
+/// The *32f/*16f formats are float; rgba8 and rgba16 are unsigned normalized
+/// (display values in [0, 1] as 8- or 16-bit integers: what a display shows and
+/// a PNG stores). Every format is read and written as floats here.
+enum class TextureFormat { r32f, rg32f, rgba32f, rgba16f, rgba8, rgba16 };
 /// 1, 2 or 4.
 int channel_count(TextureFormat format);
-/// "r32f", "rg32f", "rgba32f" (the GLSL image format qualifier).
+/// "r32f", "rg32f", "rgba32f", "rgba16f", "rgba8", "rgba16" (the GLSL image format qualifier).
 const char* to_string(TextureFormat format);
 
 /// How a compute shader accesses a texture bound as an image.

@@ -19,6 +19,7 @@
 
 #include "render/gl/debug_output.h"
 #include "render/gl/software_rasterizer.h"
+#include "render/window/glfw_library.h"
 
 namespace zenith::render::window {
 namespace {
@@ -51,43 +52,6 @@ static_assert(static_cast<int>(Key::home) == GLFW_KEY_HOME);
 static_assert(static_cast<int>(Key::end) == GLFW_KEY_END);
 static_assert(static_cast<int>(Key::f1) == GLFW_KEY_F1);
 static_assert(static_cast<int>(Key::f12) == GLFW_KEY_F12);
-
-/// GLFW's description of the most recent error (clearing it), or a placeholder.
-std::string glfw_error() {
-  const char* description = nullptr;
-  const int code = glfwGetError(&description);
-  if (code == GLFW_NO_ERROR) return "no error reported by GLFW";
-  return fmt::format("{} (0x{:05X})", description != nullptr ? description : "no description", code);
-}
-
-/// The initialised GLFW library; glfwTerminate when the last holder lets go.
-class GlfwLibrary {
- public:
-  GlfwLibrary() {
-    glfwGetError(nullptr);  // drop any error left from an earlier, failed use
-    gl::default_software_rasterizer_threads();  // before GLFW opens the display: Mesa reads it then
-    if (glfwInit() != GLFW_TRUE)
-      throw std::runtime_error(
-          fmt::format("no display: set DISPLAY or use the headless path (omit --window) (GLFW: {})", glfw_error()));
-  }
-  ~GlfwLibrary() { glfwTerminate(); }
-  GlfwLibrary(const GlfwLibrary&) = delete;
-  GlfwLibrary& operator=(const GlfwLibrary&) = delete;
-};
-
-/// The shared handle to GLFW: a live one if any WindowContext holds it, else a
-/// freshly initialised one. The weak reference mirrors GLFW's own process-wide
-/// initialisation (see window_context.h); GLFW is main-thread only, the mutex
-/// merely keeps the reference itself consistent.
-std::shared_ptr<GlfwLibrary> acquire_glfw() {
-  static std::mutex mutex;
-  static std::weak_ptr<GlfwLibrary> live;
-  const std::lock_guard lock(mutex);
-  if (std::shared_ptr<GlfwLibrary> library = live.lock()) return library;
-  auto library = std::make_shared<GlfwLibrary>();
-  live = library;
-  return library;
-}
 
 std::string gl_string(GLenum name) {
   const auto* s = reinterpret_cast<const char*>(glGetString(name));
@@ -126,6 +90,7 @@ KeyAction key_action(int action) {
 struct WindowContext::State {
   std::shared_ptr<GlfwLibrary> library;  // declared first: released after the window
   GLFWwindow* window = nullptr;
+  GLFWmonitor* monitor = nullptr;  // fullscreen on this one
   std::string renderer, vendor, version, glsl_version;
   int gl_major = 0, gl_minor = 0;
   bool debug = false, software = false;
@@ -157,7 +122,8 @@ struct WindowContext::State {
   static void on_framebuffer_size(GLFWwindow* w, int, int) { of(w).redraw = true; }
 };
 
-WindowContext::WindowContext(const WindowOptions& window, const gl::ContextOptions& context) {
+WindowContext::WindowContext(const WindowOptions& window, const gl::ContextOptions& context,
+                             const WindowContext* share) {
   if (context.gl_major < 3 || (context.gl_major == 3 && context.gl_minor < 2) || context.gl_minor < 0)
     throw std::invalid_argument(fmt::format("WindowContext: GL {}.{} requested: a core profile needs GL 3.2 or later",
                                             context.gl_major, context.gl_minor));
@@ -176,7 +142,9 @@ WindowContext::WindowContext(const WindowOptions& window, const gl::ContextOptio
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, context.debug ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_RESIZABLE, window.resizable ? GLFW_TRUE : GLFW_FALSE);
-  glfwWindowHint(GLFW_VISIBLE, window.visible ? GLFW_TRUE : GLFW_FALSE);
+  // A window to be placed is shown once it is where it belongs.
+  glfwWindowHint(GLFW_VISIBLE, window.visible && !window.position ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_DECORATED, window.decorated && !window.fullscreen ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_DOUBLEBUFFER, GLFW_TRUE);
   glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE);
   glfwWindowHint(GLFW_RED_BITS, 8);
@@ -189,7 +157,25 @@ WindowContext::WindowContext(const WindowOptions& window, const gl::ContextOptio
   // glfwCreateWindow makes the new context current for a moment (to read its
   // attributes): no EGL context may be current then.
   release_current_egl_context();
-  state->window = glfwCreateWindow(window.width, window.height, window.title.c_str(), nullptr, nullptr);
+  GLFWmonitor* monitor = nullptr;
+  int width = window.width, height = window.height;
+  if (window.fullscreen) {
+    int count = 0;
+    GLFWmonitor** monitors = glfwGetMonitors(&count);
+    if (window.monitor < 0 || window.monitor >= count)
+      throw std::invalid_argument(fmt::format("WindowContext: fullscreen on monitor {}: the window system has {} monitor{}",
+                                              window.monitor, count, count == 1 ? "" : "s"));
+    monitor = monitors[window.monitor];
+    // The monitor's current mode: no mode switch (a projector keeps its timing).
+    if (const GLFWvidmode* mode = glfwGetVideoMode(monitor)) {
+      width = mode->width;
+      height = mode->height;
+      glfwWindowHint(GLFW_REFRESH_RATE, mode->refreshRate);
+    }
+    glfwWindowHint(GLFW_AUTO_ICONIFY, GLFW_FALSE);  // stays up when another window takes the focus
+  }
+  GLFWwindow* shared = share != nullptr && share->state_ ? share->state_->window : nullptr;
+  state->window = glfwCreateWindow(width, height, window.title.c_str(), monitor, shared);
   if (state->window == nullptr)
     throw std::runtime_error(fmt::format("WindowContext: no {}x{} window with a GL {}.{} core context{}: {}",
                                          window.width, window.height, context.gl_major, context.gl_minor,
@@ -198,6 +184,13 @@ WindowContext::WindowContext(const WindowOptions& window, const gl::ContextOptio
   glfwSetKeyCallback(state->window, &State::on_key);
   glfwSetWindowRefreshCallback(state->window, &State::on_refresh);
   glfwSetFramebufferSizeCallback(state->window, &State::on_framebuffer_size);
+
+  if (!window.fullscreen && window.position) {
+    glfwSetWindowPos(state->window, (*window.position)[0], (*window.position)[1]);
+    if (window.visible) glfwShowWindow(state->window);
+  }
+  if (window.hide_cursor) glfwSetInputMode(state->window, GLFW_CURSOR, GLFW_CURSOR_HIDDEN);
+  state->monitor = monitor;
 
   glfwMakeContextCurrent(state->window);
   glfwSwapInterval(window.swap_interval);
@@ -275,6 +268,13 @@ FramebufferSize WindowContext::framebuffer_size() const {
   FramebufferSize size;
   glfwGetFramebufferSize(state_->window, &size.width, &size.height);
   return size;
+}
+
+int WindowContext::refresh_hz() const {
+  if (!state_) moved_from("refresh_hz");
+  GLFWmonitor* monitor = state_->monitor != nullptr ? state_->monitor : glfwGetPrimaryMonitor();
+  const GLFWvidmode* mode = monitor != nullptr ? glfwGetVideoMode(monitor) : nullptr;
+  return mode != nullptr ? mode->refreshRate : 0;
 }
 
 bool WindowContext::should_close() const { return !state_ || glfwWindowShouldClose(state_->window) == GLFW_TRUE; }

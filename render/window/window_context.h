@@ -17,7 +17,9 @@
 // state here: callbacks reach their window's state through
 // glfwSetWindowUserPointer, and errors are read with glfwGetError (no global
 // error callback is installed).
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,6 +79,18 @@ struct WindowOptions {
   /// Frames between buffer swaps (1: synchronised to the display's refresh,
   /// 0: as fast as possible). Window systems without vsync (Xvfb) ignore it.
   int swap_interval = 1;
+  /// Fullscreen on monitor `monitor` (an index of list_monitors(),
+  /// render/window/monitors.h) at its current video mode; width and height are
+  /// then ignored.
+  bool fullscreen = false;
+  int monitor = 0;
+  /// Title bar and borders (windowed only).
+  bool decorated = true;
+  /// Top-left corner of the window's client area in screen coordinates
+  /// (windowed only); unset: where the window system puts it.
+  std::optional<std::array<int, 2>> position;
+  /// Hide the cursor over the window (a projector's picture).
+  bool hide_cursor = false;
 };
 
 /// The framebuffer's size in pixels (may differ from the window's size in
@@ -98,7 +112,11 @@ class WindowContext {
   /// path (omit --window)" (with GLFW's reason) when no window system can be
   /// reached, and std::runtime_error naming GLFW's reason when the window or a
   /// GL context of the requested version cannot be created.
-  explicit WindowContext(const WindowOptions& window = {}, const gl::ContextOptions& context = {});
+  /// With `share`, the new context shares that window's GL objects (textures,
+  /// buffers, programs, sync objects; not framebuffers and vertex arrays):
+  /// several windows of one node draw the textures one renderer made.
+  explicit WindowContext(const WindowOptions& window = {}, const gl::ContextOptions& context = {},
+                         const WindowContext* share = nullptr);
   ~WindowContext();
   WindowContext(WindowContext&& other) noexcept;
   WindowContext& operator=(WindowContext&& other) noexcept;
@@ -132,6 +150,9 @@ class WindowContext {
   bool is_software() const;
 
   FramebufferSize framebuffer_size() const;
+  /// The refresh rate of the monitor the window is fullscreen on, else of the
+  /// primary monitor; 0 where the window system does not say.
+  int refresh_hz() const;
   /// True once the user asked to close the window (its close button, or
   /// request_close()).
   bool should_close() const;

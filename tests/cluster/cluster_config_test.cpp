@@ -10,6 +10,7 @@
 
 #include "core/json_reader.h"
 #include "cluster/link/cluster_config.h"
+#include "warp/viewport_config.h"
 
 namespace zenith::cluster {
 namespace {
@@ -146,6 +147,37 @@ TEST(ClusterConfig, UnknownKeysAndInlineSecretsAreRefused) {
   j = valid();
   j["output"] = {{"format", "jpg"}};
   EXPECT_NE(error_of(j).find("/output/format"), std::string::npos) << error_of(j);
+}
+
+TEST(ClusterConfig, TheSixProjectorDomeOnThreePcsLoadsWithAWindowPerProjector) {
+  // The worked example of docs/cluster.md, "Setting up a node".
+  const ClusterConfig c = load_cluster_config(kSource / "configs/clusters/dome-6-projectors-3-pcs.json");
+  const warp::ViewportConfig v = warp::load_viewport_config(c.viewports);
+  ASSERT_EQ(c.nodes.size(), 3u);
+  ASSERT_EQ(v.outputs.size(), 6u);
+  std::size_t outputs = 0;
+  for (const auto& node : c.nodes) {
+    EXPECT_EQ(node.outputs.size(), 2u) << node.name;
+    for (const std::string& name : node.outputs) {
+      const warp::OutputConfig* o = v.find(name);
+      ASSERT_NE(o, nullptr) << name;
+      ASSERT_TRUE(o->window.has_value()) << name;
+      EXPECT_TRUE(o->window->fullscreen) << name;
+      ++outputs;
+    }
+  }
+  EXPECT_EQ(outputs, 6u);
+  // render-1: two connectors by name; render-2: one Mosaic window, each output in its half.
+  EXPECT_EQ(v.find("p1")->window->monitor_name, "DP-0");
+  EXPECT_EQ(v.find("p2")->window->monitor_name, "DP-2");
+  const warp::OutputWindow& p3 = *v.find("p3")->window;
+  const warp::OutputWindow& p4 = *v.find("p4")->window;
+  EXPECT_EQ(p3.name, "mosaic");
+  EXPECT_EQ(p4.name, "mosaic");
+  EXPECT_EQ(p3.rect, (std::array<int, 4>{0, 0, 1920, 1200}));
+  EXPECT_EQ(p4.rect, (std::array<int, 4>{1920, 0, 1920, 1200}));
+  EXPECT_EQ(v.find("p6-zenith")->window->gamma, 2.4);
+  EXPECT_EQ(c.frame_rate_hz, 60.0);
 }
 
 }  // namespace

@@ -29,6 +29,8 @@
 #include "atmosphere/reference/path_tracer.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/egl_context.h"
+#include "render/display/display_encoder.h"
+#include "render/gl/texture.h"
 #include "tests/render/render_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
@@ -1060,6 +1062,83 @@ TEST(RendererSkyView, NotUsedFromSpace) {
   ASSERT_EQ(t.renderer.last_frame().atmospheres.size(), 1u);
   EXPECT_GT(t.renderer.last_frame().atmospheres[0].tiles, 0u);
   EXPECT_EQ(t.renderer.last_frame().atmospheres[0].sky_view_tiles, 0u);
+}
+
+// ---------------------------------------------------------------- the frame on the GPU
+
+TEST(RendererTexture, EqualsTheReadBackFrameBandByBandBlackTilesIncluded) {
+  // A view from orbit: the planet, its limb and black space (tiles nothing is
+  // dispatched for), in 4 bands. The texture holds the frame render_image
+  // reads back, bit for bit in rgba32f (the copy is exact), and in rgba16f
+  // within one unit in the last place of a half float (10 stored bits: 2^-10
+  // relative; GL lets the conversion truncate, and llvmpipe does; 2^-24
+  // absolute among the subnormals below 2^-14).
+  const double h = 2.0e6;
+  const scene::Scene s = planet_scene("earth-advanced", h, 60.0, {0.3, 0.0, -1.0});
+  const warp::FisheyeProjection p(64, 64);
+  RenderOptions banded_options = direct_colour();
+  banded_options.max_band_pixels = 64 * 16;
+  TestRenderer r(banded_options);
+  const std::vector<float> image = r.renderer.render_image(s, p);
+  ASSERT_EQ(r.renderer.last_frame().bands, 4);
+  ASSERT_GT(r.renderer.last_frame().tiles_black, 0u);
+
+  gl::Texture frame = gl::Texture::create_2d(gl::TextureFormat::rgba32f, 64, 64);
+  frame.upload(std::vector<float>(64 * 64 * 4, 123.0f));  // what a black tile must not keep
+  r.renderer.render_to_texture(s, p, frame);
+  EXPECT_EQ(r.renderer.last_frame().bands, 4);
+  const std::vector<float> rgba = frame.read();
+  std::size_t different = 0;
+  for (std::size_t i = 0; i < 64 * 64; ++i) {
+    for (std::size_t c = 0; c < 3; ++c) different += rgba[4 * i + c] != image[3 * i + c];
+    different += rgba[4 * i + 3] != 1.0f;
+  }
+  EXPECT_EQ(different, 0u);
+
+  gl::Texture half = gl::Texture::create_2d(gl::TextureFormat::rgba16f, 64, 64);
+  r.renderer.render_to_texture(s, p, half);
+  const std::vector<float> h16 = half.read();
+  for (std::size_t i = 0; i < 64 * 64; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      ASSERT_NEAR(h16[4 * i + c], image[3 * i + c], std::max(std::ldexp(std::abs(image[3 * i + c]), -10), std::ldexp(1.0f, -24)))
+          << i;
+}
+
+TEST(RendererTexture, TheDisplayPassFromTheBandsEqualsItFromTheTexture) {
+  // A node's steady frame (render_on_gpu → DisplayEncoder::encode_band, no
+  // radiance texture) against the texture path (render_to_texture → encode):
+  // the same arithmetic on the same floats, so the same codes, band seams and
+  // black tiles included.
+  const scene::Scene s = planet_scene("earth-advanced", 2.0e6, 60.0, {0.3, 0.0, -1.0});
+  const warp::FisheyeProjection p(64, 64);
+  RenderOptions banded_options = direct_colour();
+  banded_options.max_band_pixels = 64 * 16;
+  TestRenderer r(banded_options);
+  display::DisplayEncoder encoder;
+  gl::Texture frame = gl::Texture::create_2d(gl::TextureFormat::rgba32f, 64, 64);
+  gl::Texture from_texture = gl::Texture::create_2d(gl::TextureFormat::rgba8, 64, 64);
+  gl::Texture from_bands = gl::Texture::create_2d(gl::TextureFormat::rgba8, 64, 64);
+  r.renderer.render_to_texture(s, p, frame);
+  encoder.encode(frame, {}, from_texture);
+  int bands = 0;
+  r.renderer.render_on_gpu(s, p, [&](const GpuBand& band) {
+    EXPECT_EQ(band.first_row, 16 * bands++);
+    encoder.encode_band(band, {}, from_bands);
+  });
+  EXPECT_EQ(bands, 4);
+  const std::vector<float> a = from_texture.read(), b = from_bands.read();
+  EXPECT_EQ(a, b);
+  EXPECT_GT(std::count(a.begin(), a.end(), 0.0f), 64 * 4) << "the view has black space";
+}
+
+TEST(RendererTexture, RefusesATargetOfAnotherSizeOrFormat) {
+  const scene::Scene s = planet_scene("earth-advanced", 2.0, 60.0, {0.0, 0.0, 1.0});
+  const warp::FisheyeProjection p(32, 32);
+  TestRenderer r;
+  gl::Texture wrong_size = gl::Texture::create_2d(gl::TextureFormat::rgba32f, 32, 16);
+  EXPECT_THROW(r.renderer.render_to_texture(s, p, wrong_size), std::invalid_argument);
+  gl::Texture bytes = gl::Texture::create_2d(gl::TextureFormat::rgba8, 32, 32);
+  EXPECT_THROW(r.renderer.render_to_texture(s, p, bytes), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,0 +1,180 @@
+#include "render/display/display_encoder.h"
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "render/gl/gl_error.h"
+#include "render/shader_bindings.h"
+#include "render/shader_programs.h"
+
+namespace zenith::render::display {
+namespace {
+
+using gl::TextureFormat;
+
+void check_stage(const OutputStage& stage, int width, int height) {
+  if (!(stage.fade.level >= 0.0 && stage.fade.level <= 1.0))
+    throw std::invalid_argument(fmt::format("display pass: fade level {} must be in [0, 1]", stage.fade.level));
+  for (const double c : stage.fade.colour)
+    if (!(c >= 0.0 && c <= 1.0))
+      throw std::invalid_argument(fmt::format("display pass: fade colour component {} must be in [0, 1]", c));
+  if (!(stage.black_level >= 0.0 && stage.black_level <= 0.5))
+    throw std::invalid_argument(fmt::format("display pass: black level {} must be in [0, 0.5]", stage.black_level));
+  if (stage.encoding.transfer == image::DisplayEncoding::Transfer::gamma &&
+      !(stage.encoding.gamma >= image::kMinDisplayGamma && stage.encoding.gamma <= image::kMaxDisplayGamma))
+    throw std::invalid_argument(fmt::format("display pass: gamma {} must be in [{}, {}]", stage.encoding.gamma,
+                                            image::kMinDisplayGamma, image::kMaxDisplayGamma));
+  if (stage.blend_mask != nullptr && (stage.blend_mask->format() != TextureFormat::r32f ||
+                                      stage.blend_mask->width() != width || stage.blend_mask->height() != height))
+    throw std::invalid_argument(fmt::format("display pass: the blend mask is a {} {}x{} texture, the frame {}x{}",
+                                            gl::to_string(stage.blend_mask->format()), stage.blend_mask->width(),
+                                            stage.blend_mask->height(), width, height));
+}
+
+}  // namespace
+
+gl::Texture blend_mask_texture(const warp::BlendMask& mask) {
+  return gl::Texture::create_2d(TextureFormat::r32f, mask.width, mask.height, mask.alpha);
+}
+
+std::array<int, 2> thumbnail_size(int width_px, int height_px, int edge_px) {
+  if (width_px < 1 || height_px < 1 || edge_px < 1)
+    throw std::invalid_argument(
+        fmt::format("thumbnail of a {}x{} frame, edge {} px: sizes must be ≥ 1", width_px, height_px, edge_px));
+  const double scale = std::min(1.0, static_cast<double>(edge_px) / std::max(width_px, height_px));
+  return {std::max(1, static_cast<int>(std::lround(width_px * scale))),
+          std::max(1, static_cast<int>(std::lround(height_px * scale)))};
+}
+
+void DisplayEncoder::set_stage(const gl::ShaderProgram& p, int width, int height, const OutputStage& stage) const {
+  check_stage(stage, width, height);
+  p.set_uniform("tone_mapping", stage.tone == image::ToneMapping::clamp ? 1 : 0);
+  p.set_uniform("output_stage", stage.blended ? 1 : 0);
+  p.set_uniform("has_blend_mask", stage.blended && stage.blend_mask != nullptr ? 1 : 0);
+  p.set_uniform("black_level", static_cast<float>(stage.black_level));
+  p.set_uniform("fade_level", static_cast<float>(stage.fade.level));
+  p.set_uniform("fade_colour", std::array<float, 3>{static_cast<float>(stage.fade.colour[0]),
+                                                    static_cast<float>(stage.fade.colour[1]),
+                                                    static_cast<float>(stage.fade.colour[2])});
+  const bool gamma = stage.encoding.transfer == image::DisplayEncoding::Transfer::gamma;
+  p.set_uniform("transfer", gamma ? 1 : 0);
+  p.set_uniform("inverse_gamma", static_cast<float>(gamma ? 1.0 / stage.encoding.gamma : 1.0));
+  if (stage.blended && stage.blend_mask != nullptr) stage.blend_mask->bind(binding::kBlendMaskUnit);
+}
+
+DisplayEncoder::~DisplayEncoder() { release(); }
+
+DisplayEncoder::DisplayEncoder(DisplayEncoder&& other) noexcept
+    : encode_program_(std::move(other.encode_program_)),
+      band_program_(std::move(other.band_program_)),
+      framebuffer_(std::exchange(other.framebuffer_, 0u)),
+      vertex_array_(std::exchange(other.vertex_array_, 0u)),
+      thumbnail_program_(std::move(other.thumbnail_program_)),
+      thumbnail_target_(std::move(other.thumbnail_target_)) {}
+
+DisplayEncoder& DisplayEncoder::operator=(DisplayEncoder&& other) noexcept {
+  if (this != &other) {
+    release();
+    encode_program_ = std::move(other.encode_program_);
+    band_program_ = std::move(other.band_program_);
+    framebuffer_ = std::exchange(other.framebuffer_, 0u);
+    vertex_array_ = std::exchange(other.vertex_array_, 0u);
+    thumbnail_program_ = std::move(other.thumbnail_program_);
+    thumbnail_target_ = std::move(other.thumbnail_target_);
+  }
+  return *this;
+}
+
+void DisplayEncoder::release() noexcept {
+  if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
+  if (vertex_array_ != 0) glDeleteVertexArrays(1, &vertex_array_);
+  framebuffer_ = vertex_array_ = 0;
+}
+
+void DisplayEncoder::encode(const gl::Texture& radiance, const OutputStage& stage, gl::Texture& display) {
+  if ((display.format() != TextureFormat::rgba8 && display.format() != TextureFormat::rgba16) || display.is_3d() ||
+      display.width() != radiance.width() || display.height() != radiance.height())
+    throw std::invalid_argument(fmt::format(
+        "display pass: the target is a {} {}x{} texture; it must be rgba8 or rgba16 of the frame's size {}x{}",
+        gl::to_string(display.format()), display.width(), display.height(), radiance.width(), radiance.height()));
+  if (encode_program_.id() == 0) {
+    const std::vector<gl::ShaderDefine> defines = {{"FROM_BAND", "0"}};
+    encode_program_ = load_graphics_program("render/present.vert", "render/display_encode.frag", defines);
+  }
+  const gl::ShaderProgram& p = encode_program_;
+  set_stage(p, radiance.width(), radiance.height(), stage);
+  radiance.bind(binding::kDisplayRadianceUnit);
+  draw_rows(p, display, 0, display.height());
+}
+
+void DisplayEncoder::encode_band(const GpuBand& band, const OutputStage& stage, gl::Texture& display) {
+  if ((display.format() != TextureFormat::rgba8 && display.format() != TextureFormat::rgba16) || display.is_3d() ||
+      display.width() != band.width || band.first_row < 0 || band.rows < 1 ||
+      band.first_row + band.rows > display.height())
+    throw std::invalid_argument(fmt::format(
+        "display pass: the target is a {} {}x{} texture; rows {}+{} of a {}-pixel-wide band do not fit it (rgba8 or "
+        "rgba16 of the frame's size)",
+        gl::to_string(display.format()), display.width(), display.height(), band.first_row, band.rows, band.width));
+  if (band_program_.id() == 0) {
+    const std::vector<gl::ShaderDefine> defines = {{"FROM_BAND", "1"}};
+    band_program_ = load_graphics_program("render/present.vert", "render/display_encode.frag", defines);
+  }
+  const gl::ShaderProgram& p = band_program_;
+  set_stage(p, display.width(), display.height(), stage);
+  set_band_uniforms(p, band);
+  draw_rows(p, display, band.first_row, band.rows);
+}
+
+void DisplayEncoder::draw_rows(const gl::ShaderProgram& p, gl::Texture& display, int first_row, int rows) {
+  if (framebuffer_ == 0) {
+    glCreateFramebuffers(1, &framebuffer_);
+    glCreateVertexArrays(1, &vertex_array_);
+  }
+  p.set_uniform("code_max", display.format() == TextureFormat::rgba8 ? 255.0f : 65535.0f);
+  // The display texture as the framebuffer: fragment (x, y) writes texel (x, y).
+  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, display.id(), 0);
+  glNamedFramebufferDrawBuffer(framebuffer_, GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glViewport(0, first_row, display.width(), rows);
+  p.use();
+  glBindVertexArray(vertex_array_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, 0, 0);  // keeps no texture alive
+  gl::check_gl_error("display pass");
+}
+
+ThumbnailMeans DisplayEncoder::thumbnail(const gl::Texture& radiance, const OutputStage& stage, int edge_px) {
+  if (edge_px < 1 || edge_px > kMaxThumbnailEdgePx)
+    throw std::invalid_argument(fmt::format("thumbnail edge {} px: must be in [1, {}]", edge_px, kMaxThumbnailEdgePx));
+  const auto [tw, th] = thumbnail_size(radiance.width(), radiance.height(), edge_px);
+  if (thumbnail_program_.id() == 0)
+    thumbnail_program_ = load_compute_program("render/display_thumbnail.comp");
+  if (thumbnail_target_.id() == 0 || thumbnail_target_.width() != tw || thumbnail_target_.height() != th)
+    thumbnail_target_ = gl::Texture::create_2d(TextureFormat::rgba32f, tw, th);
+  const gl::ShaderProgram& p = thumbnail_program_;
+  set_stage(p, radiance.width(), radiance.height(), stage);
+  radiance.bind(binding::kDisplayRadianceUnit);
+  p.set_uniform("frame_size", std::array<int, 2>{radiance.width(), radiance.height()});
+  p.set_uniform("thumbnail_size", std::array<int, 2>{tw, th});
+  thumbnail_target_.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
+  p.dispatch_covering(tw, th);
+  const std::vector<float> rgba = thumbnail_target_.read();  // barrier included; tw · th ≤ 64² pixels
+  ThumbnailMeans t{tw, th, std::vector<float>(static_cast<std::size_t>(tw) * th * 3)};
+  for (std::size_t i = 0; i < static_cast<std::size_t>(tw) * th; ++i)
+    for (std::size_t c = 0; c < 3; ++c) t.rgb[3 * i + c] = rgba[4 * i + c];
+  return t;
+}
+
+}  // namespace zenith::render::display

@@ -1,0 +1,111 @@
+#pragma once
+// The display pass of a live frame, on the GPU: from a rendered frame's
+// exposed radiance (Renderer::render_to_texture) to what its projector is sent,
+// in a texture a window draws (render/window/output_windows.h) — tone mapping,
+// a fade, the output stage (blend mask α, black level β) and the display
+// encoding, shaders/render/display_transform.glsl has the equations. The CPU
+// path computes the same (image::tone_map, warp::apply_blend,
+// image::display_encode); the GPU's codes equal it within ±1 (8 and 16 bit:
+// the float arithmetic before the rounding is good to a few ulp, so only a
+// value within that of a rounding boundary can land on the neighbouring code).
+//
+// Pixels leave the GPU only where they leave the machine: a thumbnail is
+// reduced on the GPU (at most kMaxThumbnailEdgePx a side) before its few
+// values are read back; a file or a test reads the display texture itself
+// (issue 28 reads it back asynchronously through pixel buffer objects).
+// Needs a current GL 4.5 context.
+#include <array>
+#include <vector>
+
+#include "image/display_encoding.h"
+#include "image/tone_mapping.h"
+#include "render/gl/shader_program.h"
+#include "render/gl/texture.h"
+#include "render/renderer.h"
+#include "warp/blending.h"
+
+namespace zenith::render::display {
+
+/// A fade of the picture toward a colour: level 0 shows the picture, 1 only
+/// the colour (black: a fade to black; with level 1, a blackout). Applied to
+/// display-linear values before the output stage, so the projectors' blend and
+/// black level stay as calibrated.
+struct Fade {
+  double level = 0.0;                     ///< in [0, 1]
+  std::array<double, 3> colour{0, 0, 0};  ///< display-linear RGB, each in [0, 1]
+};
+
+/// What one output's display pass does. The blend mask is a texture of the
+/// frame's size (blend_mask_texture()), kept by the caller for as long as the
+/// output exists.
+struct OutputStage {
+  image::ToneMapping tone = image::ToneMapping::exponential;
+  /// Whether the output stage applies (warp/blending.h: P·α·(1 − β) + β). Off,
+  /// α and β are not used (an output with neither a blend nor a black level).
+  bool blended = false;
+  const gl::Texture* blend_mask = nullptr;  ///< r32f α, row 0 at the top; nullptr: α = 1
+  double black_level = 0.0;                 ///< β in [0, 0.5]
+  image::DisplayEncoding encoding;
+  Fade fade;
+};
+
+/// The r32f texture of a blend mask (row 0 at the top), for OutputStage::blend_mask.
+gl::Texture blend_mask_texture(const warp::BlendMask& mask);
+
+/// A thumbnail's size for a frame of width × height and a longer side of at
+/// most edge_px: the longer side min(edge_px, its length), the other keeping the
+/// aspect ratio (rounded, at least 1). Throws std::invalid_argument for sizes below 1.
+std::array<int, 2> thumbnail_size(int width_px, int height_px, int edge_px);
+inline constexpr int kMaxThumbnailEdgePx = 64;
+
+/// A thumbnail of display-linear means, read back from the GPU.
+struct ThumbnailMeans {
+  int width_px = 0, height_px = 0;
+  std::vector<float> rgb;  ///< width · height · 3, each in [0, 1], row 0 at the top
+};
+
+class DisplayEncoder {
+ public:
+  /// Compiles nothing yet: each program on first use.
+  DisplayEncoder() = default;
+  ~DisplayEncoder();
+  DisplayEncoder(DisplayEncoder&& other) noexcept;
+  DisplayEncoder& operator=(DisplayEncoder&& other) noexcept;
+  DisplayEncoder(const DisplayEncoder&) = delete;
+  DisplayEncoder& operator=(const DisplayEncoder&) = delete;
+
+  /// `radiance` (a 2D texture, e.g. rgba32f from Renderer::render_to_texture)
+  /// through `stage` into `display` (rgba8 or rgba16, the same size). Throws
+  /// std::invalid_argument for other formats or sizes, a fade or black level
+  /// out of range, a gamma outside [kMinDisplayGamma, kMaxDisplayGamma] or a
+  /// blend mask of another size.
+  void encode(const gl::Texture& radiance, const OutputStage& stage, gl::Texture& display);
+  /// The same for one band of a frame still in the renderer's output buffer
+  /// (a GpuBandSink of Renderer::render_on_gpu): draws the band's rows of
+  /// `display` (rgba8 or rgba16 of the frame's size). The steady live frame:
+  /// no radiance texture written or read. Equal to encode() of the same frame.
+  void encode_band(const GpuBand& band, const OutputStage& stage, gl::Texture& display);
+  /// The thumbnail of what `display` would show: each pixel the mean of the
+  /// display-linear values (clamped to [0, 1], NaN as 0) of the frame pixels it
+  /// covers (cluster/node/thumbnail.h), reduced on the GPU; edge_px in
+  /// [1, kMaxThumbnailEdgePx]. The encoding is not applied (the caller encodes
+  /// for its viewer). Reads back thumbnail_size() pixels only.
+  ThumbnailMeans thumbnail(const gl::Texture& radiance, const OutputStage& stage, int edge_px);
+
+ private:
+  /// Sets display_transform.glsl's uniforms and binds the mask (of `width` × `height`).
+  void set_stage(const gl::ShaderProgram& program, int width, int height, const OutputStage& stage) const;
+  /// Draws `program` over rows [first_row, first_row + rows) of `display`.
+  void draw_rows(const gl::ShaderProgram& program, gl::Texture& display, int first_row, int rows);
+
+  void release() noexcept;
+
+  gl::ShaderProgram encode_program_;  // present.vert + display_encode.frag
+  gl::ShaderProgram band_program_;    // the same, FROM_BAND 1
+  unsigned framebuffer_ = 0;          // the display texture as colour attachment
+  unsigned vertex_array_ = 0;         // empty: the triangle comes from gl_VertexID
+  gl::ShaderProgram thumbnail_program_;
+  gl::Texture thumbnail_target_;  // rgba32f, (re)allocated per thumbnail size
+};
+
+}  // namespace zenith::render::display
