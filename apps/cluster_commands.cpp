@@ -23,6 +23,7 @@
 #include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "apps/default_configs.h"
+#include "cluster/launcher/launcher_signals.h"
 #include "cluster/launcher/restart_limit.h"
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/link/cluster_config.h"
@@ -132,13 +133,16 @@ struct PlaybackArgs {
 struct OperatorArgs {
   std::optional<int> http_port, osc_port;
   std::string http_host = "127.0.0.1", token_file, osc_host = "127.0.0.1";
-  std::vector<std::string> osc_allow;
+  std::vector<std::string> osc_allow, http_names;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--operator-port", http_port, "Serve the operator console (web page, JSON API) on this port (docs/operator.md)")
         ->check(CLI::Range(1, 65535));
     cmd.add_option("--operator-host", http_host,
                    "Address the console listens on (default 127.0.0.1; any other needs an operator token)");
+    cmd.add_option("--operator-name", http_names,
+                   "With an operator token: a host name the console is reached by (besides its IP addresses; "
+                   "repeatable; other Host names are refused)");
     cmd.add_option("--operator-token-file", token_file,
                    "File (mode 600) holding the operator token (default: the environment variable ZENITH_OPERATOR_TOKEN)");
     cmd.add_option("--osc-port", osc_port, "Receive OSC cues on this UDP port (docs/operator.md)")->check(CLI::Range(1, 65535));
@@ -150,6 +154,7 @@ struct OperatorArgs {
     if (http_port) console.http_port = static_cast<std::uint16_t>(*http_port);
     console.http_host = http_host;
     console.token = load_operator_token();
+    console.http_names = http_names;
     if (osc_port) console.osc_port = static_cast<std::uint16_t>(*osc_port);
     console.osc_host = osc_host;
     console.osc_allow = osc_allow;
@@ -174,6 +179,7 @@ struct OperatorArgs {
     std::vector<std::string> args;
     if (http_port) args.insert(args.end(), {"--operator-port", std::to_string(*http_port), "--operator-host", http_host});
     if (!token_file.empty()) args.insert(args.end(), {"--operator-token-file", token_file});
+    for (const std::string& n : http_names) args.insert(args.end(), {"--operator-name", n});
     if (osc_port) args.insert(args.end(), {"--osc-port", std::to_string(*osc_port), "--osc-host", osc_host});
     for (const std::string& a : osc_allow) args.insert(args.end(), {"--osc-allow", a});
     return args;
@@ -193,11 +199,14 @@ struct MasterArgs {
   bool standby = false;               ///< run the config's standby master instead
   std::vector<std::string> switches;  ///< --switch-atmosphere FRAME:BODY:PRESET_OR_FILE
   std::uint32_t debug_table_delay_ms = 0;
+  std::optional<int> ready_fd;  ///< set by `zenith cluster`: written once the master listens
 };
 
 /// Runs the master, or with --standby the standby master; returns the exit code.
 int run_master(const MasterArgs& a) {
+  die_with_launcher();
   cluster::MasterOptions options;
+  if (a.ready_fd) options.on_listening = [fd = *a.ready_fd] { signal_ready(fd); };
   a.playback.apply(options);
   a.operator_console.apply(options);
   options.config = cluster::load_cluster_config(cluster_path(a.cluster));
@@ -233,6 +242,7 @@ struct NodeArgs {
 };
 
 int run_node(const NodeArgs& a) {
+  die_with_launcher();
   cluster::NodeOptions options;
   options.config = cluster::load_cluster_config(cluster_path(a.cluster));
   options.node_name = a.name;
@@ -358,6 +368,8 @@ void run_cluster(const ClusterArgs& a) {
                                                 : fs::path(a.out);
   const bool frame_files = !a.out.empty() || !a.record_frames.empty();  // a live show writes none unless asked
   ensure_local_secret(config);
+  mark_children_as_launched();  // they get SIGTERM if this process dies, kill -9 included
+  ForwardedSignals signals;     // SIGINT, SIGTERM, SIGHUP: logged and forwarded to the master
   const std::string level = log_level_argument();
   std::vector<std::string> common = {"--cluster", config_path};
   if (a.port) common.insert(common.end(), {"--port", std::to_string(*a.port)});
@@ -372,8 +384,33 @@ void run_cluster(const ClusterArgs& a) {
   if (!a.cache_dir.empty()) master_args.insert(master_args.end(), {"--cache", a.cache_dir});
   // Nodes need no atmosphere files: the master sends each version's parameters (AtmosphereDefinition).
   for (const std::string& text : a.switches) master_args.insert(master_args.end(), {"--switch-atmosphere", text});
-  pid_t master = spawn_self(master_args);
+  // The master says through a pipe when it listens: only then are the nodes
+  // started, so if it cannot bind (another cluster's master holds the port)
+  // none of them joins that other master.
+  ReadyPipe ready;
+  std::vector<std::string> with_ready = master_args;
+  with_ready.insert(std::find(with_ready.begin(), with_ready.end(), "master") + 1,
+                    {"--ready-fd", std::to_string(ready.write_end())});
+  pid_t master = spawn_self(with_ready);
+  ready.close_write_end();
   spdlog::info("cluster: master started (pid {})", master);
+  int stop_signal = 0;
+  std::optional<int> early_exit;
+  if (!ready.wait([&] {
+        stop_signal = signals.take();
+        early_exit = wait_for(master, std::chrono::milliseconds(0));
+        return stop_signal != 0 || early_exit.has_value();
+      })) {
+    if (stop_signal != 0 && !early_exit) {
+      spdlog::warn("cluster: {} received before the master listened: stopping it (SIGTERM)", ::strsignal(stop_signal));
+      ::kill(master, SIGTERM);
+    }
+    const int status = early_exit ? *early_exit : stop_child(master, "the master", std::chrono::milliseconds(5000));
+    throw std::runtime_error(stop_signal != 0 ? fmt::format("stopped by {}", ::strsignal(stop_signal))
+                                              : fmt::format("the master could not start ({}; see its log lines above): "
+                                                            "no node was started",
+                                                            describe_exit(status)));
+  }
   // The standby master, when the config has one on this machine: the master's
   // arguments but the recording (one file, the active master's).
   std::optional<LocalNode> standby;
@@ -417,12 +454,20 @@ void run_cluster(const ClusterArgs& a) {
 
   // Wait for the master; if every local node ends first (they could not join), stop it.
   int status = -1;
+  std::optional<Clock::time_point> nodes_ended_at;
   for (;;) {
+    if (const int signal = signals.take(); signal != 0) {
+      spdlog::warn("cluster: {} received: forwarding SIGTERM to the master{} (its Goodbye stops the nodes)",
+                   ::strsignal(signal), standby && !standby->status ? " and the standby" : "");
+      stop_signal = signal;
+      ::kill(master, SIGTERM);
+      if (standby && !standby->status) ::kill(standby->pid, SIGTERM);
+    }
     if (auto s = wait_for(master, std::chrono::milliseconds(200))) {
       // Killed (a crash, kill -9): the standby takes over and is the master
       // now. A master that exits with an error status reported it (a bad
       // option, a port in use): the cluster ends as without a standby.
-      if (*s > 128 && standby && !standby->status) {
+      if (*s > 128 && standby && !standby->status && stop_signal == 0) {
         spdlog::warn("cluster: the master died ({}): the standby master (pid {}) takes over", describe_exit(*s),
                      standby->pid);
         master = standby->pid;
@@ -464,6 +509,12 @@ void run_cluster(const ClusterArgs& a) {
       n.status = ended;
     }
     if (!nodes.empty() && std::all_of(nodes.begin(), nodes.end(), [](const LocalNode& n) { return n.status.has_value(); })) {
+      // Nodes that exited 0 said goodbye to the master's Goodbye: its own exit follows within moments.
+      if (!nodes_ended_at) nodes_ended_at = Clock::now();
+      const bool clean = std::all_of(nodes.begin(), nodes.end(), [](const LocalNode& n) { return *n.status == 0; });
+      if (after_nodes_ended(clean, std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - *nodes_ended_at)) ==
+          NodesEndedVerdict::wait_for_master)
+        continue;
       spdlog::error("cluster: every local node has exited; stopping the master");
       ::kill(master, SIGTERM);
       stop_child(master, "the master", std::chrono::milliseconds(5000));
@@ -488,6 +539,7 @@ void run_cluster(const ClusterArgs& a) {
       ++failed_nodes;
     }
   }
+  if (stop_signal != 0) throw std::runtime_error(fmt::format("stopped by {} (master {})", ::strsignal(stop_signal), describe_exit(status)));
   if (status != 0) throw std::runtime_error(fmt::format("the master exited with status {}", status));
   spdlog::info("cluster: master and {} node{} stopped{}", nodes.size(), nodes.size() == 1 ? "" : "s",
                failed_nodes ? fmt::format(" ({} with an error)", failed_nodes) : std::string());
@@ -523,6 +575,9 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--debug-table-delay-ms", a->debug_table_delay_ms,
                     "Test hook: every table set prepared in the background after the first takes this much longer "
                     "(plays a slow precompute)");
+    cmd->add_option("--ready-fd", a->ready_fd,
+                    "Set by zenith cluster: a pipe written to once the master listens on its port")
+        ->group("");
     cmd->add_flag("--standby", a->standby,
                   "Run the config's standby master: follow the master, take over on the standby's address when it "
                   "is gone (give it the master's options; docs/cluster.md, \"Standby master\")");

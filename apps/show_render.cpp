@@ -57,6 +57,27 @@ struct ShowRenderArgs {
   std::optional<double> fps, fov_deg, tilt_deg;
   std::optional<std::uint64_t> from, to;
   TableArgs tables;
+  std::size_t max_keys = show::ShowLimits::kDefaultMaxKeysPerTrack;
+  std::size_t max_table_sets = show::ShowLimits::kDefaultMaxTableSets;
+  double table_budget_gib = show::kDefaultTableBudgetGiB;
+
+  /// --max-keys, --max-table-sets and --table-budget-gib (docs/shows.md, "Limits").
+  void add_limits(CLI::App* cmd) {
+    cmd->add_option("--max-keys", max_keys, "Refuse a show with more keys in one track (default 100000)")
+        ->check(CLI::Range(std::size_t{1}, show::ShowLimits::kMaxKeysPerTrackCeiling));
+    cmd->add_option("--max-table-sets", max_table_sets,
+                    "Refuse a show whose atmosphere tracks step through more lookup-table sets (default 256)")
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--table-budget-gib", table_budget_gib,
+                    "Warn before precomputing when the show's table sets together exceed this (default 4 GiB)")
+        ->check(CLI::Range(0.001, 1e6));
+  }
+  show::ShowLimits limits() const {
+    show::ShowLimits l;
+    l.max_keys_per_track = max_keys;
+    l.max_table_sets = max_table_sets;
+    return l;
+  }
 };
 
 render::TableRequest table_request(const TableArgs& t) {
@@ -197,7 +218,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   const image::ColourMapping colour = image::parse_colour_mapping(a.colour);
   Outputs outputs = cluster_config ? cluster_outputs(*cluster_config) : outputs_of(a);
 
-  const show::Show show = show::load_show(a.show);
+  const show::Show show = show::load_show(a.show, a.limits());
   const double fps = frame_rate(show, a.fps);
   const std::uint64_t frame_count = show.frame_count(fps);
   if (frame_count == 0) throw std::invalid_argument(fmt::format("{}: the show has no frames", a.show));
@@ -214,6 +235,8 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   }
   const render::TableRequest request = table_request(table_args);
   const show::TablePlan plan = plan_for(show, fps, request);
+  if (const std::string warning = show::budget_warning(plan, a.table_budget_gib); !warning.empty())
+    fmt::print(stderr, "{}", warning);
   fmt::print("{}", show::describe(plan));
   std::fflush(stdout);
 
@@ -382,6 +405,7 @@ void register_show_render(CLI::App& show_command) {
   add_table_options(cmd, a->tables.tables, a->tables.orders, a->tables.cache_dir);
   add_cpu_precompute_flag(cmd, a->tables.cpu_precompute);
   add_gl_device_option(cmd, a->device);
+  a->add_limits(cmd);
   cmd->callback([a, cmd] { run_show_render(*a, cmd->count("--size") > 0, cmd->count("--format") > 0); });
 }
 
@@ -392,10 +416,13 @@ void register_show_plan(CLI::App& show_command) {
   cmd->add_option("--show", a->show, "Show file (configs/shows/)")->required();
   cmd->add_option("--fps", a->fps, "Frame rate [Hz] in (0, 1000] (default: the show's)");
   add_table_options(cmd, a->tables.tables, a->tables.orders, a->tables.cache_dir);
+  a->add_limits(cmd);
   cmd->callback([a] {
-    const show::Show loaded = show::load_show(a->show);
+    const show::Show loaded = show::load_show(a->show, a->limits());
     const double fps = frame_rate(loaded, a->fps);
-    fmt::print("{}", show::describe(plan_for(loaded, fps, table_request(a->tables))));
+    const show::TablePlan plan = plan_for(loaded, fps, table_request(a->tables));
+    fmt::print(stderr, "{}", show::budget_warning(plan, a->table_budget_gib));
+    fmt::print("{}", show::describe(plan));
   });
 }
 

@@ -28,14 +28,25 @@
 // (VmRSS) of the master and of every node when the show started and at its
 // end (a restarted node's end figure is its last process's).
 //
+// With --attacks the master also serves the operator console, the control
+// socket and OSC, and half the turns are an attack instead of a fault
+// (bench/soak_attacks.h: DNS rebinding, slowloris, a web page's request on the
+// control socket, stray nodes with a taken name, pre-authentication floods,
+// OSC floods with bad bytes), each checked for its answer; the first node is
+// then never stopped either, and must present every frame from the first
+// attack on. At the end `zenith cluster` is started on the same config and
+// killed with kill -9: no process of its may outlive it.
+//
 // Exit status 0 when the master and every node ended with status 0, every
 // node presented the last frame, no frame's state differs between nodes, and
 // the RSS growth of the master and of the never-killed node is at most
-// --max-rss-growth-mib; 1 otherwise; 2 for bad options.
+// --max-rss-growth-mib (with --attacks also: every attack answered as it
+// should, no gap in the first node's frames after the first attack, no
+// orphan); 1 otherwise; 2 for bad options.
 //
 //   cluster_soak [--zenith PATH] [--frames 10000] [--nodes 3] [--size 16] [--fps 100]
 //                [--fault-interval-s 1.5,4] [--long-stop-probability 0.15] [--quiet-fraction 0.1]
-//                [--max-rss-growth-mib 32] [--seed 17] [--cache DIR] [--work DIR] [--timeout-s 3600] [--keep]
+//                [--max-rss-growth-mib 32] [--seed 17] [--attacks] [--cache DIR] [--work DIR] [--timeout-s 3600] [--keep]
 #include <arpa/inet.h>
 #include <fmt/format.h>
 #include <netinet/in.h>
@@ -59,6 +70,7 @@
 #include <vector>
 
 #include "bench/command_line.h"
+#include "bench/soak_attacks.h"
 #include "bench/tiny_cluster.h"
 #include "core/process.h"
 #include "core/files.h"
@@ -85,6 +97,7 @@ stop/continue, garbage connections); frames per node, gaps, rejoins, memory (doc
   --quiet-fraction F            no faults in this last part of the show (default 0.1)
   --max-rss-growth-mib M        allowed RSS growth of the master and the never-killed node (default 32)
   --seed N                      the faults' random seed (default 17)
+  --attacks                     half the turns are attacks on the console, control socket, OSC and cluster port
   --cache DIR                   the master's table cache (default WORK/table-cache)
   --work DIR                    run folder, logs (default $TMPDIR/zenith-cluster-soak)
   --timeout-s S                 give up after this long (default 3600)
@@ -100,6 +113,7 @@ struct Options : zenith::bench::TinyRunOptions {
   double quiet_fraction = 0.1;
   double max_rss_growth_mib = 32.0;
   unsigned seed = 17;
+  bool attacks = false;
 };
 
 Options parse_options(int argc, char** argv) {
@@ -123,6 +137,7 @@ Options parse_options(int argc, char** argv) {
     else if (a == "--quiet-fraction") o.quiet_fraction = std::stod(args.value());
     else if (a == "--max-rss-growth-mib") o.max_rss_growth_mib = std::stod(args.value());
     else if (a == "--seed") o.seed = static_cast<unsigned>(std::stoul(args.value()));
+    else if (a == "--attacks") o.attacks = true;
     else throw std::invalid_argument("unknown option " + a);
   }
   if (o.frames < 10) throw std::invalid_argument("--frames must be at least 10");
@@ -190,6 +205,42 @@ struct Garbage {
   Clock::time_point close_at;
 };
 
+// ---- orphans ------------------------------------------------------------------
+
+using zenith::core::process_gone;
+
+/// Starts `zenith cluster` on `config` (its master on `port`), waits until its
+/// first node presented a frame, kills it with kill -9 and waits up to 30 s
+/// for every child it logged to end; "" when none is left, else which are.
+std::string launcher_orphans(const Options& opt, const fs::path& config, const fs::path& cache, const fs::path& dir,
+                             int port) {
+  const fs::path log = dir / "launcher.log";
+  const pid_t launcher = zenith::core::spawn_process(
+      opt.zenith, {"cluster", "--cluster", config.string(), "--port", std::to_string(port), "--frames", "100000", "--out",
+                   (dir / "launcher-out").string(), "--cache", cache.string()},
+      log, zenith::core::LogMode::truncate);
+  const auto deadline = Clock::now() + 180s;
+  while (Clock::now() < deadline && !last_presented(dir / "launcher-out" / tiny_node_name(0) / "presented.log"))
+    std::this_thread::sleep_for(100ms);
+  kill(launcher, SIGKILL);
+  zenith::core::wait_for_exit(launcher, 5000ms);
+  std::vector<pid_t> children;
+  const std::string text = read_text(log);
+  for (std::size_t at = text.find("started (pid "); at != std::string::npos; at = text.find("started (pid ", at + 1))
+    children.push_back(static_cast<pid_t>(std::stol(text.substr(at + 13))));
+  if (children.empty()) return "the launcher logged no child (see " + log.string() + ")";
+  const auto gone_by = Clock::now() + 30s;
+  while (Clock::now() < gone_by && !std::all_of(children.begin(), children.end(), process_gone))
+    std::this_thread::sleep_for(100ms);
+  std::string left;
+  for (const pid_t pid : children)
+    if (!process_gone(pid)) {
+      left += fmt::format("{}pid {}", left.empty() ? "" : ", ", pid);
+      kill(pid, SIGKILL);
+    }
+  return left.empty() ? std::string() : fmt::format("orphans after kill -9 of the launcher: {}", left);
+}
+
 // ---- the soak -----------------------------------------------------------------
 
 struct Node {
@@ -199,6 +250,10 @@ struct Node {
   pid_t pid = -1;
   int restarts = 0;
   std::optional<Clock::time_point> stopped_until;
+  /// A killed node's new process, until it presents a frame: when it was
+  /// started and the last frame its predecessor presented.
+  std::optional<Clock::time_point> restarted_at;
+  std::optional<std::uint64_t> last_before_restart;
   std::optional<double> rss_start;  ///< when the show started (its first process)
   std::optional<double> rss_end;    ///< the last sample of its current process
 };
@@ -209,7 +264,9 @@ int run(const Options& opt) {
   fs::create_directories(dir);
   const fs::path cache = opt.cache.value_or(opt.work.parent_path() / "zenith-cluster-soak-cache");
   setenv(kSecretVar, "cluster-soak-secret-0123456789abcdef", 1);
-  const int port = zenith::core::free_loopback_port(static_cast<int>(20000 + (getpid() * 17) % 29000));
+  // The cluster port, then (with --attacks) the console, the control socket, OSC and a launcher's port.
+  const int port = zenith::core::free_loopback_port(static_cast<int>(20000 + (getpid() * 17) % 29000), 5);
+  const zenith::bench::AttackPorts ports{port, port + 1, port + 2, port + 3};
   std::mt19937 rng(opt.seed);
   const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
 
@@ -221,11 +278,16 @@ int run(const Options& opt) {
   const auto started = Clock::now();
   const auto deadline = started + std::chrono::seconds(opt.timeout_s);
 
-  const pid_t master = zenith::core::spawn_process(
-      opt.zenith,
-      {"master", "--cluster", config.string(), "--frames", std::to_string(opt.frames), "--cache", cache.string(),
-       "--wait-for-nodes-ms", "300000"},
-      dir / "master.log", zenith::core::LogMode::truncate);
+  std::vector<std::string> master_args = {"master", "--cluster", config.string(), "--frames", std::to_string(opt.frames),
+                                          "--cache", cache.string(), "--wait-for-nodes-ms", "300000"};
+  if (opt.attacks)
+    master_args.insert(master_args.end(), {"--operator-port", std::to_string(ports.console), "--control-port",
+                                           std::to_string(ports.control), "--osc-port", std::to_string(ports.osc)});
+  const pid_t master = zenith::core::spawn_process(opt.zenith, master_args, dir / "master.log",
+                                                   zenith::core::LogMode::truncate);
+  zenith::bench::SoakAttacks attacks(opt.zenith, {"node", "--cluster", config.string(), "--connect-timeout-ms", "60000"},
+                                     dir, ports);
+  std::optional<std::uint64_t> first_attack_frame;
   std::vector<Node> nodes;
   for (int i = 0; i < opt.nodes; ++i) {
     Node n;
@@ -248,6 +310,12 @@ int run(const Options& opt) {
   std::optional<double> master_rss_start, master_rss_end;
   std::optional<int> master_status;
   int kills = 0, short_stops = 0, long_stops = 0, garbage_count = 0;
+  // How long a killed node takes to present again (a new process: start,
+  // tables from its cache, the warm-up render): at first the time the nodes
+  // took to start the show, then the longest rejoin seen. A kill is made only
+  // when that much is left before the quiet part (on a loaded machine the
+  // warm-up alone takes seconds, and a node not back by the end fails the run).
+  double rejoin_s = 2.0;
   std::vector<Garbage> garbage;
   const std::uint64_t quiet_from = static_cast<std::uint64_t>(opt.frames * (1.0 - opt.quiet_fraction));
   auto next_fault = Clock::now();
@@ -267,6 +335,7 @@ int run(const Options& opt) {
     if (!show_started && std::all_of(nodes.begin(), nodes.end(),
                                      [&](const Node& n) { return last_presented(presented_log(n)).has_value(); })) {
       show_started = true;
+      rejoin_s = std::max(rejoin_s, std::chrono::duration<double>(now - started).count());
       master_rss_start = rss_mib(master);
       for (Node& n : nodes) n.rss_start = rss_mib(n.pid);
       next_fault = now + std::chrono::milliseconds(static_cast<int>(1000 * uniform(opt.fault_min_s, opt.fault_max_s)));
@@ -293,24 +362,40 @@ int run(const Options& opt) {
         if (*s == 128 + SIGKILL) {
           n.pid = zenith::core::spawn_process(opt.zenith, n.args, n.log, zenith::core::LogMode::append);
           ++n.restarts;
+          n.restarted_at = now;
+          n.last_before_restart = last_presented(presented_log(n));
         } else {
           failure = fmt::format("node '{}' exited with status {} during the show (see {})", n.name, *s, n.log.string());
         }
       }
     if (!failure.empty()) break;
+    for (Node& n : nodes)  // a restarted node is back once it presents a frame
+      if (n.restarted_at && last_presented(presented_log(n)) > n.last_before_restart) {
+        rejoin_s = std::max(rejoin_s, std::chrono::duration<double>(now - *n.restarted_at).count());
+        n.restarted_at.reset();
+      }
+    attacks.poll();
     if (show_started && frame && *frame < quiet_from && now >= next_fault) {
       next_fault = now + std::chrono::milliseconds(static_cast<int>(1000 * uniform(opt.fault_min_s, opt.fault_max_s)));
-      const double pick = uniform(0.0, 3.0);
-      const std::size_t victim = static_cast<std::size_t>(uniform(0.0, static_cast<double>(opt.nodes) - 1e-9));
-      Node& n = nodes[victim];
       // A fault must be over (the node back) before the quiet part, at the nominal frame rate.
       const auto fits = [&](double seconds) {
         return static_cast<double>(*frame) + (seconds + 2.0) * opt.fps <= static_cast<double>(quiet_from);
       };
-      if (pick < 1.0 && victim != 0 && !n.stopped_until && fits(0.0)) {
+      // An attack's answers come within seconds (a stray node starts, connects and is refused).
+      if (opt.attacks && uniform(0.0, 1.0) < 0.5) {
+        if (fits(3.0)) {
+          if (!first_attack_frame) first_attack_frame = *frame;
+          attacks.launch(rng);
+        }
+        continue;
+      }
+      const double pick = uniform(0.0, 3.0);
+      const std::size_t victim = static_cast<std::size_t>(uniform(0.0, static_cast<double>(opt.nodes) - 1e-9));
+      Node& n = nodes[victim];
+      if (pick < 1.0 && victim != 0 && !n.stopped_until && !n.restarted_at && fits(rejoin_s)) {
         kill(n.pid, SIGKILL);  // restarted above, at the next poll
         ++kills;
-      } else if (pick < 2.0 && !n.stopped_until) {
+      } else if (pick < 2.0 && !n.stopped_until && !(opt.attacks && victim == 0)) {
         bool long_stop = uniform(0.0, 1.0) < opt.long_stop_probability;
         if (long_stop && !fits(13.0)) long_stop = false;
         const double seconds = long_stop ? uniform(10.5, 13.0) : uniform(0.3, 3.0);
@@ -348,6 +433,7 @@ int run(const Options& opt) {
   for (const Garbage& g : garbage) close(g.fd);
   for (Node& n : nodes)
     if (n.stopped_until) kill(n.pid, SIGCONT);
+  attacks.finish();
   const double run_s = std::chrono::duration<double>(Clock::now() - started).count();
   if (!master_status) {
     kill(master, SIGKILL);
@@ -417,6 +503,30 @@ int run(const Options& opt) {
   if (failure.empty() && (!master_rss_start || !nodes[0].rss_start)) failure = "the show never started";
   if (failure.empty() && master_growth > opt.max_rss_growth_mib) failure = "the master's memory grew past the bound";
   if (failure.empty() && node_growth > opt.max_rss_growth_mib) failure = "the node's memory grew past the bound";
+  if (opt.attacks) {
+    fmt::print("\nattacks ({} in all, from frame {}):\n", attacks.launched(),
+               first_attack_frame ? std::to_string(*first_attack_frame) : std::string("-"));
+    for (const std::string& line : attacks.report()) fmt::print("  {}\n", line);
+    for (const std::string& f : attacks.failures()) {
+      fmt::print("  FAILED: {}\n", f);
+      if (failure.empty()) failure = f;
+    }
+    // Node 0 is never stopped or killed with --attacks: no attack may cost it a frame.
+    std::uint64_t gaps = 0;
+    if (first_attack_frame)
+      for (std::uint64_t f = *first_attack_frame; f < static_cast<std::uint64_t>(opt.frames); ++f)
+        gaps += logs[0].count(f) ? 0 : 1;
+    fmt::print("node {} frames missing from frame {} (the first attack) to the last: {}\n", nodes[0].name,
+               first_attack_frame.value_or(0), gaps);
+    if (gaps && failure.empty()) failure = fmt::format("node {} missed {} frames during the attacks", nodes[0].name, gaps);
+    const std::string master_log = read_text(dir / "master.log");
+    fmt::print("master log: {} lines, {:.1f} KiB; forged lines: {}\n", count_of(master_log, "\n"),
+               static_cast<double>(master_log.size()) / 1024.0, count_of(master_log, "\nmaster: quit"));
+    if (count_of(master_log, "\nmaster: quit") && failure.empty()) failure = "an OSC address forged a log line";
+    const std::string orphans = launcher_orphans(opt, config, cache, dir, port + 4);
+    fmt::print("launcher killed with kill -9: {}\n", orphans.empty() ? "no orphan" : orphans);
+    if (!orphans.empty() && failure.empty()) failure = orphans;
+  }
   if (!opt.keep)  // the frames: tens of thousands of tiny files; presented.log stays
     for (const Node& n : nodes)
       if (fs::is_directory(dir / "out" / n.name))

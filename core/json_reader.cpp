@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/files.h"
+
 namespace zenith {
 
 ConfigError::ConfigError(const std::string& file, const std::string& key, const std::string& message)
@@ -24,6 +26,7 @@ nlohmann::json parse_json(const std::string& text, const std::string& file) {
 }
 
 nlohmann::json read_json_file(const std::filesystem::path& path) {
+  if (const std::string why = core::unreadable_reason(path); !why.empty()) throw ConfigError(path.string(), "", why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path.string(), "", "cannot open file");
   std::stringstream text;

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,11 @@ pid_t spawn_process(const std::filesystem::path& program, const std::vector<std:
 /// `pid` is no child of this process, nullopt when it is still running.
 std::optional<int> wait_for_exit(pid_t pid, std::chrono::milliseconds timeout);
 
+/// Whether `pid` has ended: no such process, or a zombie (a process of
+/// another parent, or reparented to PID 1, that nothing reaped yet). For
+/// checks that a launcher's children did not outlive it.
+bool process_gone(pid_t pid);
+
 /// Whether a child server could listen on 127.0.0.1:`port` now (a bind with
 /// SO_REUSEADDR, as the cluster's master makes).
 bool loopback_port_free(int port);
@@ -35,6 +41,15 @@ bool loopback_port_free(int port);
 /// For clients that play a peer byte by byte (the cluster's hostile-client
 /// tests, the soak's garbage connections).
 int connect_loopback(int port);
+/// What the peer of `fd` sends until it closes the connection or `timeout`
+/// passes (0: only what is already there); `closed` says whether it closed
+/// (read returned 0 or an error). For the hostile-client tests and the soak's
+/// attacks, which check that the master hangs up on them.
+std::string read_until_closed(int fd, std::chrono::milliseconds timeout, bool& closed);
+/// Polls `done` every 50 ms until it is true (true) or `timeout` passes
+/// (false; `done` is asked once more at the deadline): for tests and
+/// benchmarks that wait on a child process's files and logs.
+bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout);
 /// For test and benchmark clusters that share the machine with other runs:
 /// the first port from `first` on, wrapping within [20000, 50000), that is
 /// free together with the `span` − 1 ports after it; `first` when none is.

@@ -24,4 +24,14 @@ inline std::size_t count_of(std::string_view text, std::string_view needle) {
   return n;
 }
 
+/// `text` safe to write into a log line: printable ASCII and printable UTF-8
+/// characters ("°", "é") as they are, a backslash doubled, every other byte
+/// as \xNN — control characters (a newline, escape codes, C1 controls),
+/// bytes that are not well-formed UTF-8, and the characters that move or hide
+/// text (line separators, bidirectional overrides, zero-width ones); longer
+/// than `max_bytes`, cut there with "…(N bytes)". Every string a peer sends
+/// (an OSC address, a Host header, a node name) goes through it before it is
+/// logged, so no peer can forge or colour a log line.
+std::string escaped(std::string_view text, std::size_t max_bytes = 200);
+
 }  // namespace zenith::core

@@ -64,7 +64,15 @@ void write_to_file(png_structp png, png_bytep data, std::size_t length) {
   }
 }
 
-void flush_file(png_structp png) { std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png))); }
+/// png_flush_ptr: a failed flush (a full disk shows here, not in fwrite) is a
+/// libpng error naming errno.
+void flush_file(png_structp png) {
+  if (std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png))) != 0) {
+    char message[160];
+    std::snprintf(message, sizeof message, "write error: %s", std::strerror(errno));
+    png_error(png, message);
+  }
+}
 
 /// One PNG file being written: the libpng state, the .partial file and its
 /// publication. The header (size, bit depth, colour type, the colour chunk and
@@ -163,12 +171,18 @@ class PngStream {
     png_infop info = info_;
     if (!detail::png_guarded(png, [=] { png_write_end(png, info); })) fail();
     png_destroy_write_struct(&png_, &info_);
-    const bool write_error = std::ferror(file_) != 0;
+    // Buffered bytes reach the disk at the flush or the close: a full disk
+    // (ENOSPC) or a file-size limit shows there, and the message says which.
+    errno = 0;
+    const bool write_error = std::ferror(file_) != 0 || std::fflush(file_) != 0;
+    const int write_errno = errno;
     const bool close_error = std::fclose(file_) != 0;
+    const int cause = write_errno != 0 ? write_errno : errno;
     file_ = nullptr;
     if (write_error || close_error) {
       failed_ = true;
-      throw std::runtime_error(detail::prefix(path_) + "error writing " + partial_.string());
+      throw std::runtime_error(detail::prefix(path_) + "error writing " + partial_.string() + ": " +
+                               (cause != 0 ? std::strerror(cause) : "unknown cause"));
     }
     detail::publish(partial_, path_);
     finished_ = true;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cluster/launcher/child_process.h"
+#include "cluster/launcher/launcher_signals.h"
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/protocol/handshake.h"
 #include "cluster/master/master.h"
@@ -43,6 +44,7 @@ ClusterFrameRenderer::ClusterFrameRenderer(ClusterRenderSettings settings)
     }
   });
 
+  mark_children_as_launched();  // the nodes die with this process (kill -9 included): no orphan holds a name
   for (const cluster::ClusterNodeConfig& node : config_.nodes) {
     if (!is_local_host(node.host)) {
       stop();

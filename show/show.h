@@ -107,10 +107,29 @@ class Show {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Bounds on what a show file may ask for, checked while it loads
+/// (docs/shows.md, "Limits"): its text (core/files.h, kMaxInputFileBytes),
+/// its keys per track (100 000 by default), and the lookup-table sets its atmosphere
+/// tracks step through — each is resolved now and precomputed later, so a
+/// tiny step once meant thousands of sets (6 199 at a turbidity step of
+/// 0.01: 14 GB of tables) before anything was said.
+struct ShowLimits {
+  static constexpr std::size_t kDefaultMaxTableSets = 256;
+  static constexpr std::size_t kDefaultMaxKeysPerTrack = 100000;
+  /// The most keys a --max-keys may allow: a million keys of a parameter
+  /// track are ~30 MB of text, within the file limit, ~0.3 GB parsed.
+  static constexpr std::size_t kMaxKeysPerTrackCeiling = 1000000;
+  /// Distinct table sets the show's frames use, the scene's own included.
+  std::size_t max_table_sets = kDefaultMaxTableSets;
+  /// Keys of any one track (camera, sun, exposure, an atmosphere parameter),
+  /// counted before any key is read.
+  std::size_t max_keys_per_track = kDefaultMaxKeysPerTrack;
+};
+
 /// Reads and checks a show file and the scene it names. Throws
 /// zenith::ConfigError naming the file, the JSON pointer of the offending key
 /// and the allowed range or reason.
-Show load_show(const std::filesystem::path& path);
+Show load_show(const std::filesystem::path& path, const ShowLimits& limits = {});
 
 /// `scene` with the per-frame parts of `state` applied (camera, exposure, sun)
 /// and each body's atmosphere replaced by the version `versions` holds for the

@@ -30,7 +30,8 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 constexpr double kMaxKeyTime_s = 86400.0;  // a day
-constexpr std::size_t kMaxKeys = 100000;
+/// Keys of a track, whatever the limits say (ShowLimits::max_keys_per_track is checked first).
+constexpr std::size_t kMaxKeys = ShowLimits::kMaxKeysPerTrackCeiling;
 constexpr double kMaxFps = 240.0;
 constexpr double kDefaultFps = 30.0;
 constexpr double kMaxRecordingFps = 1000.0;
@@ -48,6 +49,30 @@ bool boolean_or(JsonReader& r, const std::string& key, bool fallback) {
   const json& v = r.raw(key);
   if (!v.is_boolean()) r.fail(key, cat("= ", brief(v), ": must be true or false"));
   return v.get<bool>();
+}
+
+/// Every track's key count against `max_keys`, before a key is read: a show
+/// of 10^7 keys once took 3.5 GB before the key limit could refuse it.
+void check_key_counts(const json& show, const std::string& file, std::size_t max_keys) {
+  const auto check = [&](const json& keys, const std::string& pointer) {
+    if (keys.is_array() && keys.size() > max_keys)
+      throw ConfigError(file, pointer,
+                        cat("= an array of ", keys.size(), " keys: a track holds at most ", max_keys,
+                            " (--max-keys; docs/shows.md, \"Limits\")"));
+  };
+  if (!show.is_object()) return;
+  for (const char* track : {"camera", "sun", "exposure"})
+    if (show.contains(track)) check(show[track], cat("/", track));
+  const auto atmospheres = show.find("atmospheres");
+  if (atmospheres == show.end() || !atmospheres->is_array()) return;
+  for (std::size_t i = 0; i < atmospheres->size(); ++i) {
+    const json& body = (*atmospheres)[i];
+    const auto tracks = body.is_object() ? body.find("tracks") : body.end();
+    if (!body.is_object() || tracks == body.end() || !tracks->is_array()) continue;
+    for (std::size_t k = 0; k < tracks->size(); ++k)
+      if ((*tracks)[k].is_object() && (*tracks)[k].contains("keys"))
+        check((*tracks)[k]["keys"], cat("/atmospheres/", i, "/tracks/", k, "/keys"));
+  }
 }
 
 /// A track: a non-empty array of key objects.
@@ -398,7 +423,7 @@ TimeTrack read_time_track(JsonReader& root, const scene::Scene& scene) {
 
 }  // namespace
 
-Show load_show(const fs::path& path) {
+Show load_show(const fs::path& path, const ShowLimits& limits) {
   const std::string file = path.string();
   const json j = read_json_file(path);
   JsonReader root(j, file);
@@ -409,6 +434,7 @@ Show load_show(const fs::path& path) {
   if (!version.is_number_integer() || version.get<long long>() != kShowFormatVersion)
     root.fail("zenith_show", cat("= ", brief(version), ": unsupported show format version; this build reads version ",
                                  kShowFormatVersion));
+  check_key_counts(j, file, std::min(limits.max_keys_per_track, kMaxKeys));
 
   auto impl = std::make_unique<Show::Impl>();
   Show::Impl& show = *impl;
@@ -489,11 +515,28 @@ Show load_show(const fs::path& path) {
 
   // Resolve every parameter set the show uses at its own rate and at every key,
   // so that a set that does not resolve is reported now, not mid-show.
+  // Each new set is counted as it appears: the limit stops a tiny step after
+  // max_table_sets resolutions, not after thousands.
+  const auto check_sets = [&](const AtmosphereTracks& body, double t_s) {
+    if (show.versions.size() <= limits.max_table_sets) return;
+    throw ConfigError(file, cat("/atmospheres/", body.entry),
+                      cat("the tracks of \"", body.body, "\" step through more than ", limits.max_table_sets,
+                          " lookup-table sets (reached at t = ", t_s, " s); each is a precompute and about ",
+                          "a table set's memory on the master and every node: use a coarser \"step\" or fewer keys, "
+                          "or raise the limit (--max-table-sets)"));
+  };
   for (const AtmosphereTracks& body : show.atmosphere_tracks) {
     for (const ParameterTrack& track : body.tracks)
-      for (const ParameterKey& key : track.keys()) show.tracked_hash(body, key.t_s);
+      for (const ParameterKey& key : track.keys()) {
+        show.tracked_hash(body, key.t_s);
+        check_sets(body, key.t_s);
+      }
     const auto frames = static_cast<std::uint64_t>(std::floor(show.duration_s * show.frame_rate_hz + 1e-9)) + 1;
-    for (std::uint64_t i = 0; i < frames; ++i) show.tracked_hash(body, static_cast<double>(i) / show.frame_rate_hz);
+    for (std::uint64_t i = 0; i < frames; ++i) {
+      const double t_s = static_cast<double>(i) / show.frame_rate_hz;
+      show.tracked_hash(body, t_s);
+      check_sets(body, t_s);
+    }
   }
   return Show(std::move(impl));
 }

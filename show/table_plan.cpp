@@ -82,6 +82,18 @@ TablePlan plan_tables(const Show& show, double fps, const atmosphere::lut::Preco
   return plan;
 }
 
+std::string budget_warning(const TablePlan& plan, double budget_gib) {
+  const double gib = static_cast<double>(plan.total_bytes()) / (1024.0 * 1024.0 * 1024.0);
+  if (gib <= budget_gib) return {};
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "warning: the show's %zu lookup-table sets take %.1f GiB, above the budget of %.1f GiB "
+                "(--table-budget-gib): the master holds each while it serves it and every node caches it; "
+                "a coarser atmosphere track step needs fewer\n",
+                plan.sets.size(), gib, budget_gib);
+  return text;
+}
+
 std::string describe(const TablePlan& plan, double seconds_per_set) {
   std::ostringstream out;
   char line[64];

@@ -32,6 +32,14 @@ struct TablePlan {
 TablePlan plan_tables(const Show& show, double fps, const atmosphere::lut::PrecomputeOptions& options,
                       const atmosphere::lut::TableCache& cache);
 
+/// What the sets may take before `show plan` or `show render` warns: their
+/// total size (each is held whole by the master and every node cache), 4 GiB
+/// unless --table-budget-gib says otherwise.
+inline constexpr double kDefaultTableBudgetGiB = 4.0;
+/// "warning: …" when the plan's sets together exceed `budget_gib`, naming
+/// their count and size; "" otherwise. Said before anything is precomputed.
+std::string budget_warning(const TablePlan& plan, double budget_gib);
+
 /// A human-readable report: one line per set (body, first parameter values
 /// that differ from the scene's, first frame, frames, cached or to compute,
 /// MiB), then the totals and, when `seconds_per_set` > 0, the estimated

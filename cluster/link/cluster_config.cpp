@@ -151,6 +151,12 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
     read_secret(s, sv, base_dir, c);
   }
   if (r.has("swap_group")) c.swap_group = static_cast<unsigned>(r.integer("swap_group", 0, kMaxSwapGroup));
+  if (r.has("limits")) {
+    JsonReader l = child(r, "limits");
+    if (l.has("max_unauthenticated_connections"))
+      c.max_unauthenticated_connections = static_cast<std::uint32_t>(l.integer("max_unauthenticated_connections", 1, 4096));
+    l.finish();
+  }
   if (r.has("tables")) {
     JsonReader t = child(r, "tables");
     c.table_sizes = t.string_or("sizes", c.table_sizes, {"paper", "small", "large"});

@@ -41,6 +41,8 @@ inline constexpr int kClusterConfigVersion = 1;
 /// master restarted from its table cache is back in seconds, a rebooted
 /// machine in a minute or two).
 inline constexpr std::uint32_t kDefaultReconnectMs = 300000;
+/// limits.max_unauthenticated_connections when the configuration does not say.
+inline constexpr std::uint32_t kDefaultMaxUnauthenticatedConnections = 16;
 /// The largest timing.reconnect_s (and `zenith node --reconnect-s`): a day.
 inline constexpr double kMaxReconnectS = 86400.0;
 
@@ -97,6 +99,10 @@ struct ClusterConfig {
   /// the environment variable `secret_env`.
   std::optional<std::filesystem::path> secret_file;
   std::string secret_env = "ZENITH_CLUSTER_SECRET";
+  /// At most this many connections to the master that have not completed
+  /// the handshake (limits.max_unauthenticated_connections, [1, 4096]): a new
+  /// one beyond closes the oldest (docs/cluster.md, "Threat model").
+  std::uint32_t max_unauthenticated_connections = kDefaultMaxUnauthenticatedConnections;
   std::string table_sizes = "paper";  ///< "paper", "small", "large" (render/lut/table_provider.h)
   int table_orders = atmosphere::lut::kDefaultScatteringOrders;  ///< scattering orders of the tables, [1, 50]
   std::vector<ClusterNodeConfig> nodes;

@@ -57,6 +57,16 @@ void Connection::read_more() {
   });
 }
 
+void Connection::limit_payload(std::uint32_t max_bytes, std::string why) {
+  decoder_.limit_payload(max_bytes, std::move(why));
+  std::vector<std::uint8_t>(kLimitedReadBytes).swap(read_buffer_);
+}
+
+void Connection::lift_payload_limit() {
+  decoder_.lift_payload_limit();
+  if (read_buffer_.size() < kReadChunkBytes) read_buffer_.resize(kReadChunkBytes);
+}
+
 void Connection::send(const Message& message) {
   send_encoded(std::make_shared<const std::vector<std::uint8_t>>(encode(message)));
 }

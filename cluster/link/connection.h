@@ -61,6 +61,14 @@ class Connection : public std::enable_shared_from_this<Connection> {
   void set_peer(std::string peer) { peer_ = std::move(peer); }
   /// When bytes last arrived from the peer (for liveness).
   std::chrono::steady_clock::time_point last_received() const { return last_received_; }
+  /// Until lift_payload_limit(): every payload at most `max_bytes` (a larger
+  /// header closes the connection as **oversized**, naming `why`), and the
+  /// socket read in pieces of kLimitedReadBytes — what a peer that has not
+  /// authenticated may make this side hold (docs/cluster.md, "Threat model").
+  void limit_payload(std::uint32_t max_bytes, std::string why);
+  void lift_payload_limit();
+  /// Bytes asked of the socket per read while the payload is limited.
+  static constexpr std::size_t kLimitedReadBytes = 2048;
   /// Bytes queued but not yet written.
   std::size_t queued_bytes() const { return queued_bytes_; }
 

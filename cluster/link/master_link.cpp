@@ -215,17 +215,18 @@ void MasterLink::on_message(Message&& message) {
       case Meaning::rejected: {
         const Reject& r = std::get<Reject>(message);
         spdlog::error("{}: the master at {} refused the connection ({}): {}", setup_.who, master_address(),
-                      static_cast<int>(r.reason), r.text);
+                      static_cast<int>(r.reason), core::escaped(r.text, kMaxReasonBytes));
         end("rejected", kNodeExitRefused);
         break;
       }
       case Meaning::goodbye: {
         const Goodbye& g = std::get<Goodbye>(message);
         if (welcomed) {
-          spdlog::info("{}: the master said goodbye: {}", setup_.who, g.reason);
+          spdlog::info("{}: the master said goodbye: {}", setup_.who, core::escaped(g.reason, kMaxReasonBytes));
           end("goodbye", kNodeExitDone);
         } else {
-          spdlog::error("{}: the master said goodbye during the handshake: {}", setup_.who, g.reason);
+          spdlog::error("{}: the master said goodbye during the handshake: {}", setup_.who,
+                        core::escaped(g.reason, kMaxReasonBytes));
           end("goodbye", kNodeExitRefused);
         }
         break;

@@ -45,7 +45,7 @@ std::optional<milliseconds> MasterLinkProtocol::attempt_limit() const {
 }
 
 Hello MasterLinkProtocol::start() {
-  handshake_.emplace(secret_, cluster_name_, node_name_, role_);
+  handshake_.emplace(secret_, cluster_name_, node_name_, role_, instance_id_);
   welcomed_ = false;
   return handshake_->start();
 }

@@ -167,6 +167,9 @@ class MasterLinkProtocol {
   std::size_t masters_;
   PeerRole role_;
   std::optional<NodeHandshake> handshake_;
+  /// This process's Hello.instance_id, the same on every connection: a
+  /// rejoin after a drop replaces the old connection at the master.
+  std::uint64_t instance_id_ = random_instance_id();
   bool welcomed_ = false;
   bool ever_welcomed_ = false;
   bool reconnecting_ = false;

@@ -30,6 +30,14 @@ std::size_t AtmosphereEdits::index_of(const std::string& body) const {
 
 AtmosphereEdits::Edit AtmosphereEdits::resolve(const operator_command::Set& set, const nlohmann::json& parameters) const {
   index_of(set.body);  // an unknown body first, before the pointer
+  // The tables are resolved at the scene's wavelengths, which override the
+  // parameters' own: a change there would be ignored (and "banana" once
+  // answered ok), so it is refused.
+  if (!set.pointer.empty() && set.pointer.to_string().starts_with("/wavelengths_nm") &&
+      (set.pointer.to_string().size() == 15 || set.pointer.to_string()[15] == '/'))
+    throw std::invalid_argument(cat("set ", set.body, ": ", set.pointer.to_string(), " = ", brief(set.value),
+                                    ": the wavelengths are the scene's (", scene_.source,
+                                    "), not a live parameter: every table and node uses them"));
   nlohmann::json changed = parameters;
   try {
     show::write_parameter(changed, set.pointer, set.value);

@@ -17,7 +17,7 @@ double ms_between(HeartbeatMonitor::Clock::time_point from, HeartbeatMonitor::Cl
 HeartbeatMonitor::HeartbeatMonitor(std::uint32_t heartbeat_interval_ms)
     : interval_ms_(heartbeat_interval_ms),
       silence_limit_ms_(cluster::silence_limit_ms(heartbeat_interval_ms)),
-      handshake_limit_ms_(std::max(5000.0, silence_limit_ms_)) {}
+      handshake_limit_ms_(std::max(5000.0, 3.0 * heartbeat_interval_ms)) {}
 
 HeartbeatMonitor::Verdict HeartbeatMonitor::check(bool in_handshake, Clock::time_point connected_at,
                                                   Clock::time_point last_received, Clock::time_point now) const {

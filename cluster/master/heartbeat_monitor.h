@@ -30,7 +30,8 @@ class HeartbeatMonitor {
   std::uint32_t interval_ms() const { return interval_ms_; }
   /// Silence after which an authenticated node counts as gone: max(3 heartbeats, 10 s).
   double silence_limit_ms() const { return silence_limit_ms_; }
-  /// Time a connection gets to complete the handshake: max(5 s, silence_limit_ms()).
+  /// Time a connection gets to complete the handshake: max(5 s, 3 heartbeats)
+  /// (docs/protocol.md; a peer that has not proved the secret holds a slot no longer).
   double handshake_limit_ms() const { return handshake_limit_ms_; }
 
   /// The verdict for a connection made at `connected_at` that last received

@@ -16,6 +16,7 @@
 #include "cluster/master/frame_loop.h"
 #include "cluster/master/heartbeat_monitor.h"
 #include "cluster/master/node_listener.h"
+#include "core/log_limiter.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
 #include "cluster/master/operator_desk.h"
@@ -53,6 +54,7 @@ struct Master::Impl {
   asio::steady_timer heartbeat_timer{io};
   NodeSessions sessions;  ///< every node connection, from accept to close
   NodeListener listener;  ///< accepts connections as sessions in their handshake
+  core::LogLimiters anonymous_closes;  ///< log lines of connections closed before their Hello, per kind of reason
   FrameBarrier barrier;   ///< the frame in flight (or the next one), its participants, lagging nodes
   HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
   NodeStatistics node_statistics;  ///< per node name, for the console's status
@@ -138,11 +140,13 @@ struct Master::Impl {
     if (found == nullptr) return;
     const NodeSession& s = *found;
     const bool bad_peer = reason.starts_with("protocol error") || reason.find("truncated") != std::string::npos;
-    if (s.state == NodeSession::State::ready || !s.name.empty())
+    if (s.state != NodeSession::State::handshake)  // authenticated: every loss is news
       spdlog::log(progress.stopping ? spdlog::level::info : spdlog::level::warn, "master: {} disconnected: {}", s.who(),
                   reason);
-    else
-      spdlog::log(bad_peer ? spdlog::level::warn : spdlog::level::info, "master: {} closed: {}", s.who(), reason);
+    else if (const std::optional<std::string> more = anonymous_closes.admit(core::LogLimiters::kind_of(reason),
+                                                                            core::LogLimiter::Clock::now()))
+      spdlog::log(bad_peer ? spdlog::level::warn : spdlog::level::info, "master: {} closed: {}{}", s.who(), reason,
+                  *more);  // not authenticated: a flood of them is a line a second per kind of reason
     // Release the session after the connection's handlers have returned.
     asio::post(io, [keep = sessions.take(id)] {});
     loop->on_node_left(id);
@@ -158,7 +162,7 @@ struct Master::Impl {
       else
         on_running_message(*s, message);
     } catch (const HandshakeError& e) {
-      s->refuse(e.reason(), e.what());
+      sessions.refuse(*s, e.reason(), e.what());
     }
   }
 
@@ -187,8 +191,8 @@ struct Master::Impl {
     }
     if (const auto* goodbye = std::get_if<Goodbye>(&message)) {
       spdlog::info("master: {} said goodbye: {}", standby ? std::string("the standby") : cat("node '", s.name, "'"),
-                   goodbye->reason);
-      s.connection->close(cat("Goodbye: ", goodbye->reason));
+                   core::escaped(goodbye->reason));
+      s.connection->close(cat("Goodbye: ", core::escaped(goodbye->reason)));
     } else if (std::holds_alternative<Heartbeat>(message)) {
     } else if (standby) {
       s.close_for_protocol_violation(cat(to_string(message_type(message)), " is not sent by a standby master"));
@@ -259,7 +263,9 @@ struct Master::Impl {
     // are served once the tables are ready.
     const std::uint16_t port = options.port.value_or(options.config.master_port);
     listener.listen(options.config.master_host, port);
+    listener.limit_unauthenticated(options.config.max_unauthenticated_connections);
     desk->start_console(io, options.operator_console);
+    if (options.on_listening) options.on_listening();  // `zenith cluster` starts its nodes now
     tables->check_switches();  // fail before any precompute
     if (options.takeover && options.takeover->last_frame) adopt_takeover();
     else tables->prepare_initial([](const TablePreparer::Job& job) { return TablePreparer::obtain_set(job, nullptr); });

@@ -19,6 +19,7 @@
 // yet held by every node waits for it. A switch takes effect at one frame on
 // all nodes once every ready node holds it (docs/cluster.md, "Table versions").
 #include <cstdint>
+#include <functional>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -44,6 +45,10 @@ struct MasterOptions {
   /// Frames start when every configured node is ready, or after this long with
   /// the nodes that are (at least one).
   std::uint32_t wait_for_nodes_ms = 30000;
+  /// Called once the cluster port (and the console's) are bound, before the
+  /// tables are prepared: `zenith cluster` starts its nodes only then
+  /// (cluster/launcher/launcher_signals.h).
+  std::function<void()> on_listening;
   /// Parameter changes made during the default show (from the command line).
   std::vector<AtmosphereSwitch> atmosphere_switches;
 

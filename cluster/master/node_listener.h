@@ -11,7 +11,9 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 
+#include "cluster/master/accept_retry.h"
 #include "cluster/master/node_sessions.h"
+#include "core/log_limiter.h"
 #include "cluster/protocol/handshake.h"
 #include "cluster/protocol/messages.h"
 
@@ -30,6 +32,9 @@ class NodeListener {
   /// Binds host:port (address reuse on) and listens. Throws
   /// std::runtime_error "master: cannot listen on HOST:PORT: REASON".
   void listen(const std::string& host, std::uint16_t port);
+  /// At most `max_connections` connections in the handshake at once (the
+  /// oldest is closed for a new one); default kDefaultMaxUnauthenticatedConnections.
+  void limit_unauthenticated(std::uint32_t max_connections);
   /// Accepts connections until close().
   void start();
   void close();
@@ -39,6 +44,9 @@ class NodeListener {
   void on_accept(boost::asio::ip::tcp::socket socket);
 
   boost::asio::ip::tcp::acceptor acceptor_;
+  AcceptRetry accept_retry_;
+  core::LogLimiter refusals_;
+  std::uint32_t max_unauthenticated_ = kDefaultMaxUnauthenticatedConnections;
   NodeSessions& sessions_;
   SharedSecret secret_;
   std::string cluster_name_;

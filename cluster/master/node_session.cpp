@@ -10,11 +10,13 @@ using core::cat;
 
 std::string NodeSession::who() const {
   if (role == PeerRole::standby) return cat("the standby (", connection->peer(), ")");
-  return name.empty() ? cat("connection from ", connection->peer()) : cat("node '", name, "' (", connection->peer(), ")");
+  // The name comes from the peer's Hello: escaped, so it cannot forge a log line.
+  return name.empty() ? cat("connection from ", connection->peer())
+                      : cat("node '", core::escaped(name, 64), "' (", connection->peer(), ")");
 }
 
-void NodeSession::refuse(RejectReason reason, const std::string& text) {
-  spdlog::warn("master: refused {}: {}", who(), text);
+void NodeSession::refuse(RejectReason reason, const std::string& text, bool log) {
+  if (log) spdlog::warn("master: refused {}: {}", who(), core::escaped(text, 1024));
   connection->send(Reject{reason, text.substr(0, kMaxReasonBytes)});
   connection->close_after_flush(cat("refused: ", text));
 }

@@ -28,6 +28,7 @@ struct NodeSession {
   std::optional<MasterHandshake> handshake;
   State state = State::handshake;
   std::string name;  ///< from Hello (empty before)
+  std::uint64_t instance_id = 0;  ///< from Hello: the peer process (docs/protocol.md, "Hello")
   /// From Hello: a render node, or a standby master (docs/cluster.md, "Standby
   /// master"), which is sent every table set and frame but never becomes ready.
   PeerRole role = PeerRole::node;
@@ -42,8 +43,9 @@ struct NodeSession {
 
   /// "node 'a' (127.0.0.1:5000)", "the standby (127.0.0.1:5000)", or "connection from 127.0.0.1:5000" before Hello: for logs.
   std::string who() const;
-  /// Refuses the handshake: Reject with `reason` and `text`, then close (log line).
-  void refuse(RejectReason reason, const std::string& text);
+  /// Refuses the handshake: Reject with `reason` and `text`, then close
+  /// (log line, unless `log` is false: NodeSessions::refuse rate-limits them).
+  void refuse(RejectReason reason, const std::string& text, bool log = true);
   /// Closes for a message a node must not send: Goodbye naming it, then close (log line).
   void close_for_protocol_violation(const std::string& what);
 };

@@ -3,6 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 #include "cluster/protocol/heartbeat.h"
 #include "core/strings.h"
@@ -10,6 +12,19 @@
 namespace zenith::cluster {
 
 using core::cat;
+
+namespace {
+
+/// "1a2b3c4d5e6f7a8b": an instance id for messages.
+std::string instance_text(std::uint64_t id) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(id));
+  return text;
+}
+
+}  // namespace
+
+double duplicate_alive_ms(std::uint32_t heartbeat_ms) { return std::max(2000.0, 2.0 * heartbeat_ms); }
 
 NodeSession& NodeSessions::add(std::shared_ptr<Connection> connection, MasterHandshake handshake) {
   auto session = std::make_shared<NodeSession>();
@@ -40,6 +55,13 @@ std::vector<NodeSessions::Id> NodeSessions::ids() const {
   return ids;
 }
 
+std::vector<NodeSessions::Id> NodeSessions::handshake_ids() const {
+  std::vector<Id> waiting;
+  for (const auto& [id, session] : sessions_)
+    if (session->state == NodeSession::State::handshake && session->connection->is_open()) waiting.push_back(id);
+  return waiting;
+}
+
 std::vector<NodeSessions::Id> NodeSessions::ready_ids() const {
   std::vector<Id> ready;
   for (const auto& [id, session] : sessions_)
@@ -59,11 +81,20 @@ void NodeSessions::send_to_standbys(const std::shared_ptr<const std::vector<std:
       session->connection->send_encoded(frame);
 }
 
+void NodeSessions::refuse(NodeSession& session, RejectReason reason, const std::string& text) {
+  // Per reason: a flood of wrong secrets does not hide the first duplicate name.
+  if (const std::optional<std::string> more = refusals_.admit(std::to_string(static_cast<int>(reason)),
+                                                                      core::LogLimiter::Clock::now()))
+    spdlog::warn("master: refused {}: {}{}", session.who(), core::escaped(text, 1024), *more);
+  session.refuse(reason, text, false);
+}
+
 void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, const ClusterConfig& config,
-                                        std::uint64_t current_frame) {
+                                        std::uint64_t current_frame, std::chrono::steady_clock::time_point now) {
   if (const auto* hello = std::get_if<Hello>(&message)) {
     s.name = hello->node_name;
     s.role = hello->role;
+    s.instance_id = hello->instance_id;
     const Challenge challenge = s.handshake->on_hello(*hello);  // wrong cluster / version
     if (hello->role == PeerRole::standby) {
       if (!config.standby)
@@ -81,17 +112,33 @@ void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, 
     s.connection->send(challenge);
   } else if (const auto* auth = std::get_if<Authenticate>(&message)) {
     s.handshake->on_authenticate(*auth);  // wrong secret → HandshakeError
-    // A node that reconnects replaces its old connection (it proved the secret).
+    // A node that reconnects (the same process: its instance id) replaces its
+    // old connection; another process with a name already connected is
+    // refused while that connection is alive — two nodes never fight over a
+    // name — and replaces one that fell silent (a machine that died).
     for (auto& [other_id, other] : sessions_) {
-      if (other_id != s.id && other->name == s.name && other->state != NodeSession::State::handshake) {
-        spdlog::warn("master: {} '{}' reconnected from {}: closing its old connection", to_string(s.role), s.name,
-                     s.connection->peer());
-        other->connection->close("replaced by a new connection of the same node");
-        break;
-      }
+      if (other_id == s.id || other->name != s.name || other->state == NodeSession::State::handshake ||
+          !other->connection->is_open())
+        continue;
+      const double silent_ms =
+          std::chrono::duration<double, std::milli>(now - other->connection->last_received()).count();
+      if (other->instance_id != s.instance_id && silent_ms < duplicate_alive_ms(config.heartbeat_ms))
+        throw HandshakeError(
+            RejectReason::duplicate_node,
+            cat(to_string(s.role), " '", s.name, "' is already connected from ", other->connection->peer(),
+                " (another process: instance ", instance_text(other->instance_id), ", this one ",
+                instance_text(s.instance_id), "): refused; stop the other process, or give this one another name"));
+      spdlog::warn("master: {} '{}' reconnected from {}: closing its old connection{}", to_string(s.role),
+                   core::escaped(s.name, 64), s.connection->peer(),
+                   other->instance_id == s.instance_id
+                       ? std::string()
+                       : cat(" (another process, but the old connection was silent for ", std::lround(silent_ms), " ms)"));
+      other->connection->close("replaced by a new connection of the same node");
+      break;
     }
     s.connection->send(s.handshake->welcome(s.id, current_frame, config.heartbeat_ms, config.barrier_timeout_ms));
     s.state = NodeSession::State::tables;
+    s.connection->lift_payload_limit();  // it proved the secret: table sets and thumbnails may follow
     if (s.role == PeerRole::standby)
       spdlog::info("master: the standby master '{}' authenticated from {} (id {}): it follows every table version "
                    "and frame",
@@ -100,7 +147,7 @@ void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, 
       spdlog::info("master: node '{}' authenticated from {} (id {}); waiting for its table inventory", s.name,
                    s.connection->peer(), s.id);
   } else if (std::holds_alternative<Goodbye>(message)) {
-    s.connection->close(cat("Goodbye during the handshake: ", std::get<Goodbye>(message).reason));
+    s.connection->close(cat("Goodbye during the handshake: ", core::escaped(std::get<Goodbye>(message).reason)));
   } else {
     throw HandshakeError(RejectReason::protocol_error,
                          cat(to_string(message_type(message)), " before the handshake completed"));

@@ -13,8 +13,14 @@
 #include "cluster/master/heartbeat_monitor.h"
 #include "cluster/master/node_session.h"
 #include "cluster/protocol/messages.h"
+#include "core/log_limiter.h"
 
 namespace zenith::cluster {
+
+/// How recently a connection must have received bytes for a second process
+/// presenting its name to be refused rather than replace it: two heartbeats,
+/// at least 2 s (a live node sends one every heartbeat).
+double duplicate_alive_ms(std::uint32_t heartbeat_ms);
 
 /// Owns the sessions; ids count up from 1 and are never reused. Used on the
 /// master's networking thread only. Invariant: at most one authenticated
@@ -34,6 +40,8 @@ class NodeSessions {
 
   /// Every session's id, in order: a snapshot to iterate while handlers may close sessions.
   std::vector<Id> ids() const;
+  /// The sessions still in the handshake whose connection is open, oldest first.
+  std::vector<Id> handshake_ids() const;
   /// The ready sessions whose connection is open, in id order.
   std::vector<Id> ready_ids() const;
   std::size_t ready_count() const;
@@ -61,17 +69,26 @@ class NodeSessions {
     for (const auto& [id, session] : sessions_) f(static_cast<const NodeSession&>(*session));
   }
 
+  /// Refuses `session`'s handshake (NodeSession::refuse) with its log line
+  /// escaped and rate-limited: a flood of stray peers costs a line a second,
+  /// with the count of those held back.
+  void refuse(NodeSession& session, RejectReason reason, const std::string& text);
+
   /// One handshake message from `session` (state `handshake`): Hello →
   /// Challenge (a node must be in `config`; a standby must be the config's
   /// standby, by standby_name()), Authenticate → Welcome (at
   /// `current_frame`) and state `tables`, closing an older connection of the
-  /// same node; Goodbye closes. Throws HandshakeError for a wrong cluster,
-  /// version, secret or node, or any other message.
+  /// same process (Hello.instance_id), or of another process silent for
+  /// duplicate_alive_ms() at `now`; Goodbye closes. Throws HandshakeError for
+  /// a wrong cluster, version, secret or node, a name another live process
+  /// holds (duplicate_node), or any other message.
   void on_handshake_message(NodeSession& session, const Message& message, const ClusterConfig& config,
-                            std::uint64_t current_frame);
+                            std::uint64_t current_frame,
+                            std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now());
 
  private:
   std::map<Id, std::shared_ptr<NodeSession>> sessions_;
+  core::LogLimiters refusals_;
   Id next_id_ = 1;
 };
 

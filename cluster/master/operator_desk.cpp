@@ -84,10 +84,10 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
                                         m_.clock->duration_s(), "] s (the show's duration)"));
       reply = m_.clock->apply_command(describe(command));  // the clock's own words: "seek 12.5", "loop on"
     }
-    spdlog::info("master: operator ({}): {} → {}", source, describe(command), reply);
+    spdlog::info("master: operator ({}): {} → {}", source, core::escaped(describe(command)), core::escaped(reply));
     return reply;
   } catch (const std::exception& e) {
-    spdlog::info("master: operator ({}): {} refused: {}", source, describe(command), e.what());
+    spdlog::info("master: operator ({}): {} refused: {}", source, core::escaped(describe(command)), core::escaped(e.what()));
     throw;
   }
 }
@@ -217,7 +217,7 @@ void OperatorDesk::start_console(boost::asio::io_context& io, const OperatorCons
   const auto command = [this](const OperatorCommand& c, const std::string& source) { return run(c, source); };
   if (console.http_port) {
     preview_.emplace(m_.config, warp::load_viewport_config(m_.config.viewports));
-    http_.emplace(io, OperatorHttpServer::Options{console.http_host, *console.http_port, console.token},
+    http_.emplace(io, OperatorHttpServer::Options{console.http_host, *console.http_port, console.token, console.http_names},
                   OperatorHttpServer::Handlers{[this] { return status(); }, command, [this] { return preview_png(); }});
     http_->start();
     spdlog::info("master: operator console at {} ({}; docs/operator.md)", http_->url(),

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <span>
 #include <string_view>
@@ -33,8 +34,9 @@ using core::cat;
 
 /// A request's headers may take this much; its body kMaxOperatorCommandBytes.
 constexpr std::uint32_t kMaxHeaderBytes = 8 * 1024;
-/// A connection that sends no complete request for this long is closed.
-constexpr std::chrono::seconds kRequestTimeout{30};
+/// A connection that sends no complete request (headers and body) for this
+/// long is closed: a browser sends one at once, a slow client holds no slot.
+constexpr std::chrono::seconds kRequestTimeout{5};
 
 /// The files of the page (cluster/master/console/), by URL path.
 struct PageFile {
@@ -82,18 +84,51 @@ OperatorHttpServer::Response error_response(const OperatorHttpServer::Request& r
 /// A Beast string as a standard one.
 std::string_view view(beast::string_view text) { return {text.data(), text.size()}; }
 
-/// The host name of a Host header ("127.0.0.1:8080" → "127.0.0.1", "[::1]:80" → "[::1]").
-std::string_view host_name(std::string_view host) {
+/// A Host header split into its name and port ("127.0.0.1:8080" → "127.0.0.1",
+/// 8080; "[::1]:80" → "[::1]", 80; no port: 80, as browsers send it); nullopt
+/// when the port is not a number in [1, 65535].
+struct HostHeader {
+  std::string_view name;
+  std::uint32_t port = 80;
+};
+std::optional<HostHeader> parse_host(std::string_view host) {
+  HostHeader h;
+  std::string_view rest;
   if (host.starts_with("[")) {
     const std::size_t end = host.find(']');
-    return end == std::string_view::npos ? host : host.substr(0, end + 1);
+    if (end == std::string_view::npos) return std::nullopt;
+    h.name = host.substr(0, end + 1);
+    rest = host.substr(end + 1);
+  } else {
+    const std::size_t colon = host.find(':');
+    h.name = host.substr(0, colon);
+    rest = colon == std::string_view::npos ? std::string_view() : host.substr(colon);
   }
-  return host.substr(0, host.find(':'));
+  if (rest.empty()) return h;
+  if (rest.size() < 2 || rest.size() > 6 || rest[0] != ':') return std::nullopt;
+  std::uint32_t port = 0;
+  for (const char c : rest.substr(1)) {
+    if (c < '0' || c > '9') return std::nullopt;
+    port = port * 10 + static_cast<std::uint32_t>(c - '0');
+  }
+  if (port == 0 || port > 65535) return std::nullopt;
+  h.port = port;
+  return h;
 }
 
-/// Whether a Host name names this machine's loopback interface.
-bool is_loopback_name(std::string_view name) {
-  return name == "localhost" || name == "[::1]" || name.starts_with("127.");
+/// The loopback literals a browser on this machine sends: nothing a DNS
+/// answer can rebind ("127.evil.example" is a DNS name, not 127.x).
+bool is_loopback_literal(std::string_view name) { return name == "localhost" || name == "127.0.0.1" || name == "[::1]"; }
+
+/// Whether a Host name is a numeric IP address (v4, or v6 in brackets): the
+/// origin of a page reached by address is that address, so no DNS answer can
+/// make it another site's.
+bool is_ip_literal(std::string_view name) {
+  if (name.starts_with("[") && name.ends_with("]")) name = name.substr(1, name.size() - 2);
+  else if (name.find(':') != std::string_view::npos) return false;
+  boost::system::error_code ec;
+  asio::ip::make_address(std::string(name), ec);
+  return !ec;
 }
 
 /// The bearer token of an Authorization header, or "".
@@ -150,12 +185,12 @@ struct OperatorHttpServer::Session : std::enable_shared_from_this<OperatorHttpSe
     const Request& request = parser->get();
     bool authenticated = false;
     std::optional<Response> refused = server.refuse_push(request, authenticated);
-    if (!refused && !server.push_.has_room())
+    if (!refused && !server.push_.has_room(authenticated))
       refused = error_response(request, http::status::service_unavailable,
                                cat("the console pushes its status to at most ", StatusPush::kMaxConnections,
                                    " connections at once; poll /api/status"));
     if (refused) {
-      spdlog::info("master: operator console: refused the status push to {}: {}", peer, refused->body());
+      spdlog::info("master: operator console: refused the status push to {}: {}", peer, core::escaped(refused->body()));
       respond_and_close(std::move(*refused));
       return;
     }
@@ -203,7 +238,8 @@ OperatorHttpServer::OperatorHttpServer(asio::io_context& io, Options options, Ha
     : io_(io),
       options_(std::move(options)),
       handlers_(std::move(handlers)),
-      push_(io, [this] { return handlers_.status ? handlers_.status() : nlohmann::json::object(); }, options_.token) {}
+      push_(io, [this] { return handlers_.status ? handlers_.status() : nlohmann::json::object(); }, options_.token),
+      accept_retry_(io, "operator console") {}
 
 void OperatorHttpServer::start() {
   boost::system::error_code ec;
@@ -239,28 +275,55 @@ void OperatorHttpServer::accept() {
   acceptor_->async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
     if (closed_) return;
     if (ec) {
-      spdlog::warn("master: operator console: accept failed: {}", ec.message());
-    } else {
-      sessions_.remove_if([](const std::weak_ptr<Session>& s) { return s.expired(); });
+      accept_retry_.failed(ec, [this] { accept(); });  // EMFILE: back off, then accept again
+      return;
+    }
+    {
+      accept_retry_.succeeded();
       boost::system::error_code peer_ec;
       const tcp::endpoint remote = socket.remote_endpoint(peer_ec);
       const std::string peer = peer_ec ? std::string("unknown peer") : remote.address().to_string();
-      if (sessions_.size() >= kMaxConnections) {
-        spdlog::warn("master: operator console: refusing a connection from {}: {} connections are open already", peer,
-                     kMaxConnections);
-        socket.close(peer_ec);
-      } else {
+      if (make_room_for(peer)) {
         auto session = std::make_shared<Session>(std::move(socket), *this, peer);
         sessions_.push_back(session);
         session->read();
+      } else {
+        if (const std::optional<std::string> more = refusals_.admit(core::LogLimiter::Clock::now()))
+          spdlog::warn("master: operator console: refusing a connection from {}: {} connections are answering "
+                       "requests already{}", peer, kMaxConnections, *more);
+        socket.close(peer_ec);
       }
     }
     accept();
   });
 }
 
+bool OperatorHttpServer::make_room_for(const std::string& peer) {
+  sessions_.remove_if([](const std::weak_ptr<Session>& s) { return s.expired(); });
+  std::size_t from_peer = 0;
+  for (const std::weak_ptr<Session>& weak : sessions_)
+    if (const auto s = weak.lock(); s && s->peer == peer) ++from_peer;
+  // The oldest connection waiting for a request (of this address when it is
+  // the one at its limit) makes room: a client that connects and sends
+  // nothing, or half a request, holds its slot only until someone needs it.
+  const bool per_address = from_peer >= kMaxConnectionsPerAddress;
+  if (!per_address && sessions_.size() < kMaxConnections) return true;
+  for (const std::weak_ptr<Session>& weak : sessions_) {
+    const auto s = weak.lock();
+    if (!s || s->responding || (per_address && s->peer != peer)) continue;
+    if (const std::optional<std::string> more = refusals_.admit(core::LogLimiter::Clock::now()))
+      spdlog::info("master: operator console: closing an idle connection from {} for a new one from {} ({} at most, "
+                   "{} from one address){}", s->peer, peer, kMaxConnections, kMaxConnectionsPerAddress, *more);
+    s->close();
+    sessions_.remove_if([&](const std::weak_ptr<Session>& w) { return w.lock() == s; });
+    return true;
+  }
+  return false;
+}
+
 void OperatorHttpServer::close() {
   closed_ = true;
+  accept_retry_.cancel();
   boost::system::error_code ec;
   if (acceptor_) acceptor_->close(ec);
   for (const std::weak_ptr<Session>& weak : sessions_)
@@ -289,16 +352,33 @@ std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse_push(cons
   return std::nullopt;
 }
 
+bool OperatorHttpServer::host_allowed(std::string_view host) const {
+  const std::optional<HostHeader> h = parse_host(host);
+  if (!h) return false;
+  const std::uint32_t listening = port_ != 0 ? port_ : options_.port;
+  if (h->port != listening) return false;
+  if (is_loopback_literal(h->name)) return true;
+  if (!options_.token) return false;
+  if (is_ip_literal(h->name)) return true;
+  return std::find(options_.names.begin(), options_.names.end(), h->name) != options_.names.end();
+}
+
 std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse_foreign(const Request& request) const {
   const std::string_view host = view(request[http::field::host]);
-  if (!options_.token && !is_loopback_name(host_name(host)))
-    return error_response(request, http::status::forbidden,
-                          cat("Host \"", host, "\" is not a loopback name: this console serves only 127.0.0.1, localhost "
-                                               "and [::1] without an operator token"));
+  const std::uint32_t listening = port_ != 0 ? port_ : options_.port;
+  if (!host_allowed(host))
+    return error_response(
+        request, http::status::forbidden,
+        options_.token
+            ? cat("Host \"", core::escaped(host), "\" is not this console: it serves 127.0.0.1, localhost, [::1], its IP "
+                  "addresses and the names given with --operator-name, on port ", listening)
+            : cat("Host \"", core::escaped(host), "\" is not this console: without an operator token it serves only "
+                  "127.0.0.1:", listening, ", localhost:", listening, " and [::1]:", listening, " (no DNS names)"));
   const std::string_view origin = view(request[http::field::origin]);
   if (!origin.empty() && origin != cat("http://", host))
     return error_response(request, http::status::forbidden,
-                          cat("Origin \"", origin, "\" is not this console (http://", host, "): cross-site requests are refused"));
+                          cat("Origin \"", core::escaped(origin), "\" is not this console (http://", host,
+                              "): cross-site requests are refused"));
   return std::nullopt;
 }
 
@@ -314,8 +394,8 @@ std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse_without_t
 
 OperatorHttpServer::Response OperatorHttpServer::respond(const Request& request, const std::string& peer) const {
   if (std::optional<Response> refused = refuse(request)) {
-    spdlog::info("master: operator console: refused {} {} from {}: {}", view(request.method_string()),
-                 view(request.target()), peer, refused->body());
+    spdlog::info("master: operator console: refused {} {} from {}: {}", core::escaped(view(request.method_string())),
+                 core::escaped(view(request.target())), peer, core::escaped(refused->body()));
     return *refused;
   }
   const std::string_view target = view(request.target());

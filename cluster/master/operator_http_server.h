@@ -10,8 +10,9 @@
 // Security: it listens on the loopback interface unless told otherwise; on
 // any other interface it needs an operator token, which every /api request
 // must then carry as "Authorization: Bearer TOKEN" (the page asks for it).
-// On loopback without a token it accepts only Host names of the loopback
-// (no DNS rebinding), and in every case commands only with Content-Type
+// Without a token it accepts only the Host literals 127.0.0.1, localhost and
+// [::1] with its own port (no DNS rebinding: a DNS name never passes), with
+// one IP literals and the names configured too, and in every case commands only with Content-Type
 // application/json and an Origin, when a browser sends one, of the console
 // itself (no cross-site requests).
 #include <cstdint>
@@ -20,6 +21,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -29,7 +32,9 @@
 
 #include "cluster/protocol/handshake.h"
 #include "cluster/master/operator_command.h"
+#include "cluster/master/accept_retry.h"
 #include "cluster/master/status_push.h"
+#include "core/log_limiter.h"
 
 namespace zenith::cluster {
 
@@ -44,6 +49,9 @@ class OperatorHttpServer {
     std::string host = "127.0.0.1";  ///< address to listen on; anything but a loopback address needs `token`
     std::uint16_t port = 0;          ///< 0: any free port (see port())
     std::optional<SharedSecret> token;  ///< when set, every /api request must carry it
+    /// With a token, the host names (besides the loopback and IP literals) the
+    /// console may be reached by (`--operator-name`): no other Host is served.
+    std::vector<std::string> names;
   };
   struct Handlers {
     /// The master's status (GET /api/status).
@@ -56,8 +64,11 @@ class OperatorHttpServer {
     std::function<std::optional<std::string>()> preview;
   };
 
-  /// The most connections served at once; more are closed at once.
+  /// The most connections at once, and from one address; a new one closes
+  /// the oldest that waits for a request (header timeout 5 s), so a client
+  /// that opens connections and sends nothing cannot lock anyone out.
   static constexpr std::size_t kMaxConnections = 32;
+  static constexpr std::size_t kMaxConnectionsPerAddress = 8;
 
   OperatorHttpServer(boost::asio::io_context& io, Options options, Handlers handlers);
   OperatorHttpServer(const OperatorHttpServer&) = delete;
@@ -84,8 +95,14 @@ class OperatorHttpServer {
  private:
   struct Session;
   void accept();
+  /// Whether a connection from `peer` may be served: closes the oldest idle
+  /// one when the limits are reached; false when none is idle.
+  bool make_room_for(const std::string& peer);
   /// Why the request may not be served (the response to send), or nullopt.
   std::optional<Response> refuse(const Request& request) const;
+  /// The Host rule: a loopback literal (127.0.0.1, localhost, [::1]) with the
+  /// listening port; with a token also an IP literal or a configured name.
+  bool host_allowed(std::string_view host) const;
   /// The Host and Origin rules (every request, WebSockets too).
   std::optional<Response> refuse_foreign(const Request& request) const;
   /// The token rule: the 401 for a missing or wrong "Authorization: Bearer", or nullopt.
@@ -99,6 +116,8 @@ class OperatorHttpServer {
   std::optional<boost::asio::ip::tcp::acceptor> acceptor_;
   std::list<std::weak_ptr<Session>> sessions_;
   StatusPush push_;
+  AcceptRetry accept_retry_;
+  core::LogLimiter refusals_;
   bool closed_ = false;
 };
 

@@ -58,15 +58,19 @@ std::size_t OscReceiver::handle(std::span<const std::uint8_t> datagram, const as
   const std::string from = sender.to_string();
   const bool allowed = allowed_.empty() ? sender.is_loopback()
                                         : std::find(allowed_.begin(), allowed_.end(), sender) != allowed_.end();
+  const auto now = core::LogLimiter::Clock::now();
   if (!allowed) {
-    spdlog::warn("master: OSC: ignoring {} bytes from {}: not an allowed sender (--osc-allow)", datagram.size(), from);
+    if (const std::optional<std::string> more = strangers_.admit(now))
+      spdlog::warn("master: OSC: ignoring {} bytes from {}: not an allowed sender (--osc-allow){}", datagram.size(),
+                   from, *more);
     return 0;
   }
   std::vector<OscMessage> messages;
   try {
     messages = decode_osc_packet(datagram);
   } catch (const OscError& e) {
-    spdlog::warn("master: OSC from {}: refused {} bytes: {}", from, datagram.size(), e.what());
+    if (const std::optional<std::string> more = malformed_.admit(now))
+      spdlog::warn("master: OSC from {}: refused {} bytes: {}{}", from, datagram.size(), core::escaped(e.what()), *more);
     return 0;
   }
   std::size_t applied = 0;
@@ -77,7 +81,9 @@ std::size_t OscReceiver::handle(std::span<const std::uint8_t> datagram, const as
     try {
       command = osc_command(m);
     } catch (const std::exception& e) {
-      spdlog::warn("master: operator (osc {}): {}{} refused: {}", from, m.address, arguments, e.what());
+      if (const std::optional<std::string> more = unknown_.admit(now))
+        spdlog::warn("master: operator (osc {}): {}{} refused: {}{}", from, core::escaped(m.address),
+                     core::escaped(arguments), core::escaped(e.what()), *more);
       continue;
     }
     try {

@@ -23,6 +23,7 @@
 
 #include "cluster/master/operator_command.h"
 #include "cluster/master/osc_packet.h"
+#include "core/log_limiter.h"
 
 namespace zenith::cluster {
 
@@ -66,6 +67,9 @@ class OscReceiver {
   boost::asio::ip::udp::endpoint sender_;
   std::vector<std::uint8_t> buffer_ = std::vector<std::uint8_t>(kMaxOscPacketBytes + 1);
   bool closed_ = false;
+  /// Refusals logged at most once a second each, with the count held back
+  /// (a flood of bad packets is a line a second, not a line a packet).
+  core::LogLimiter strangers_, malformed_, unknown_;
 };
 
 }  // namespace zenith::cluster

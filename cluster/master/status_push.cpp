@@ -4,6 +4,8 @@
 
 #include <openssl/crypto.h>
 
+#include <vector>
+
 #include <boost/beast/core/buffers_to_string.hpp>
 #include <boost/beast/core/flat_buffer.hpp>
 #include <boost/beast/websocket/stream.hpp>
@@ -64,6 +66,12 @@ struct StatusPush::Connection : std::enable_shared_from_this<StatusPush::Connect
           self->close(websocket::close_code::policy_error, "the operator token is needed");
           return;
         }
+        if (self->owner.authenticated_count() >= kMaxConnections) {
+          spdlog::info("master: operator console: closing the status push to {}: {} connections are pushed to already",
+                       self->peer, kMaxConnections);
+          self->close(websocket::close_code::try_again_later, "too many status connections: poll /api/status");
+          return;
+        }
         self->authenticated = true;
         self->send(self->owner.status_text());
       }
@@ -95,10 +103,18 @@ struct StatusPush::Connection : std::enable_shared_from_this<StatusPush::Connect
     });
   }
 
+  /// Closes now: a connection still in its handshake, or one pushed out for a newer one.
+  void abort() {
+    closing = true;
+    open = false;
+    beast::get_lowest_layer(ws).close();
+  }
+
   /// Closes with a close frame (at most kHandshakeTimeout for the peer's answer).
   void close(websocket::close_code code, const char* reason) {
     if (!open) return;
     open = false;
+    closing = true;
     ws.async_close(websocket::close_reason(code, reason), [self = shared_from_this()](beast::error_code) {});
   }
 
@@ -107,6 +123,7 @@ struct StatusPush::Connection : std::enable_shared_from_this<StatusPush::Connect
   std::string peer;
   bool authenticated = false;
   bool open = false;     ///< handshake done and not closed
+  bool closing = false;  ///< closed or closing: counts for no limit
   bool writing = false;  ///< a message is being written
   std::optional<std::string> queued;
   std::string out;
@@ -117,9 +134,26 @@ struct StatusPush::Connection : std::enable_shared_from_this<StatusPush::Connect
 StatusPush::StatusPush(asio::io_context& io, std::function<nlohmann::json()> status, std::optional<SharedSecret> token)
     : io_(io), status_(std::move(status)), token_(std::move(token)), timer_(io) {}
 
-bool StatusPush::has_room() {
+std::size_t StatusPush::authenticated_count() const {
+  std::size_t n = 0;
+  for (const std::weak_ptr<Connection>& weak : connections_)
+    if (const auto c = weak.lock(); c && c->authenticated && !c->closing) ++n;
+  return n;
+}
+
+bool StatusPush::has_room(bool authenticated) {
   connections_.remove_if([](const std::weak_ptr<Connection>& c) { return c.expired(); });
-  return !closed_ && connections_.size() < kMaxConnections;
+  if (closed_) return false;
+  if (authenticated || !token_) return authenticated_count() < kMaxConnections;
+  std::vector<std::shared_ptr<Connection>> waiting;
+  for (const std::weak_ptr<Connection>& weak : connections_)
+    if (const auto c = weak.lock(); c && !c->authenticated && !c->closing) waiting.push_back(c);
+  if (waiting.size() >= kMaxWaitingForToken) {  // the oldest waiting makes room
+    spdlog::info("master: operator console: closing the status push to {}: no operator token yet, and a newer "
+                 "connection waits for one ({} at most)", waiting.front()->peer, kMaxWaitingForToken);
+    waiting.front()->abort();
+  }
+  return true;
 }
 
 void StatusPush::accept(beast::tcp_stream stream, const Request& request, bool authenticated, std::string peer) {
@@ -136,7 +170,7 @@ void StatusPush::close() {
   for (const std::weak_ptr<Connection>& weak : connections_)
     if (const auto c = weak.lock()) {
       if (c->open) c->close(websocket::close_code::going_away, "the master is stopping");
-      else beast::get_lowest_layer(c->ws).close();  // still in its handshake
+      else c->abort();  // still in its handshake
     }
   connections_.clear();
 }

@@ -43,8 +43,12 @@ class StatusPush {
   static constexpr std::chrono::milliseconds kPushInterval{100};
   /// How long a connection may take to send the token.
   static constexpr std::chrono::seconds kTokenWait{10};
-  /// The most WebSocket connections at once; more are refused (HTTP 503).
+  /// The most authenticated WebSocket connections at once; more are refused (HTTP 503).
   static constexpr std::size_t kMaxConnections = 16;
+  /// The most connections waiting for their token (with a token only); a new
+  /// one closes the oldest, so connections without the token never take the
+  /// slots of the operator's pages.
+  static constexpr std::size_t kMaxWaitingForToken = 4;
   /// The largest message a client may send (the token message).
   static constexpr std::size_t kMaxClientMessageBytes = 4096;
 
@@ -53,8 +57,10 @@ class StatusPush {
   StatusPush(const StatusPush&) = delete;
   StatusPush& operator=(const StatusPush&) = delete;
 
-  /// Whether another connection may be accepted.
-  bool has_room();
+  /// Whether another connection may be accepted: an authenticated one while
+  /// fewer than kMaxConnections are; one waiting for its token always (the
+  /// oldest waiting is closed past kMaxWaitingForToken).
+  bool has_room(bool authenticated);
   /// Completes the WebSocket handshake of `request` (an upgrade to
   /// /api/events the HTTP server checked) on `stream`; `authenticated`: no
   /// token is needed, or the request carried it.
@@ -72,6 +78,8 @@ class StatusPush {
   /// Compares the status with the last pushed and sends it when it changed;
   /// closes connections that did not send the token in time.
   void tick();
+  /// Authenticated connections that are open (or opening).
+  std::size_t authenticated_count() const;
   /// The status now, as the text a message carries.
   std::string status_text() const;
 

@@ -4,10 +4,22 @@
 #include <sstream>
 
 #include "cluster/protocol/crc32c.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 
+using core::cat;
+
 std::size_t FrameDecoder::max_buffered_bytes() { return kHeaderBytes + largest_max_payload_bytes(); }
+
+std::uint32_t max_handshake_payload_bytes() {
+  std::size_t most = 0;
+  for (const MessageType t : {MessageType::hello, MessageType::authenticate, MessageType::goodbye})
+    most = std::max(most, *max_payload_bytes(static_cast<std::uint16_t>(t)));
+  return static_cast<std::uint32_t>(most);
+}
+
+void FrameDecoder::limit_payload(std::uint32_t max_bytes, std::string why) { limit_ = Limit{max_bytes, std::move(why)}; }
 
 void FrameDecoder::feed(std::span<const std::uint8_t> bytes) {
   while (!bytes.empty() && !error_) {
@@ -18,6 +30,11 @@ void FrameDecoder::feed(std::span<const std::uint8_t> bytes) {
         bytes = bytes.subspan(take);
         if (frame_.size() < kHeaderBytes) return;
         header_ = parse_header(std::span<const std::uint8_t, kHeaderBytes>(frame_.data(), kHeaderBytes));
+        if (limit_ && header_->payload_bytes > limit_->max_bytes)
+          throw ProtocolError(ProtocolErrorCode::oversized,
+                              cat("frame header payload length: ", header_->payload_bytes, " bytes of a ",
+                                  to_string(header_->type), " exceeds the ", limit_->max_bytes, "-byte limit ",
+                                  limit_->why));
         // The length is within the type's limit: reserving it is bounded.
         frame_.reserve(kHeaderBytes + header_->payload_bytes);
       }

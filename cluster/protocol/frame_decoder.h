@@ -23,6 +23,7 @@
 #include <deque>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "cluster/protocol/messages.h"
@@ -49,6 +50,16 @@ class FrameDecoder {
   /// True once a ProtocolError occurred.
   bool poisoned() const { return error_.has_value(); }
 
+  /// A limit on every payload from now on, below the types' own maxima:
+  /// `max_bytes`, named `why` in the error ("before the handshake"); a
+  /// header above it is **oversized** before any payload is buffered. The
+  /// master sets kMaxHandshakePayloadBytes on a connection until the peer
+  /// proved the secret, so an unauthenticated peer never makes it hold more
+  /// than a handshake message (docs/protocol.md, "Framing").
+  void limit_payload(std::uint32_t max_bytes, std::string why);
+  /// Lifts the limit: each type's maximum again.
+  void lift_payload_limit() { limit_.reset(); }
+
  private:
   void complete_frame();
 
@@ -56,6 +67,15 @@ class FrameDecoder {
   std::optional<FrameHeader> header_;   ///< set once the current header validated
   std::deque<Message> ready_;
   std::optional<ProtocolError> error_;
+  struct Limit {
+    std::uint32_t max_bytes;
+    std::string why;
+  };
+  std::optional<Limit> limit_;
 };
+
+/// The largest payload a peer may send before the handshake completes: the
+/// largest of Hello, Authenticate and Goodbye (Goodbye's 1026 bytes).
+std::uint32_t max_handshake_payload_bytes();
 
 }  // namespace zenith::cluster

@@ -142,14 +142,28 @@ Digest master_mac(const SharedSecret& secret, std::string_view cluster_name, std
 
 // ---- node ------------------------------------------------------------------------
 
-NodeHandshake::NodeHandshake(SharedSecret secret, std::string cluster_name, std::string node_name, PeerRole role)
-    : secret_(std::move(secret)), cluster_name_(std::move(cluster_name)), node_name_(std::move(node_name)), role_(role) {}
+NodeHandshake::NodeHandshake(SharedSecret secret, std::string cluster_name, std::string node_name, PeerRole role,
+                             std::uint64_t instance_id)
+    : secret_(std::move(secret)),
+      cluster_name_(std::move(cluster_name)),
+      node_name_(std::move(node_name)),
+      role_(role),
+      instance_id_(instance_id != 0 ? instance_id : random_instance_id()) {}
+
+std::uint64_t random_instance_id() {
+  for (;;) {
+    const Nonce bytes = random_nonce();
+    std::uint64_t id = 0;
+    for (int i = 0; i < 8; ++i) id = (id << 8) | bytes[static_cast<std::size_t>(i)];
+    if (id != 0) return id;
+  }
+}
 
 Hello NodeHandshake::start() {
   if (state_ != State::initial) throw std::logic_error("NodeHandshake::start called twice");
   node_nonce_ = random_nonce();
   state_ = State::hello_sent;
-  return Hello{kProtocolVersion, cluster_name_, node_name_, node_nonce_, role_};
+  return Hello{kProtocolVersion, cluster_name_, node_name_, node_nonce_, role_, instance_id_};
 }
 
 Authenticate NodeHandshake::on_challenge(const Challenge& challenge) {
@@ -190,6 +204,7 @@ Challenge MasterHandshake::on_hello(const Hello& hello) {
                                                           "', this is '" + cluster_name_ + "'");
   node_name_ = hello.node_name;
   role_ = hello.role;
+  instance_id_ = hello.instance_id;
   node_nonce_ = hello.node_nonce;
   master_nonce_ = random_nonce();
   state_ = State::challenge_sent;

@@ -104,7 +104,9 @@ class HandshakeError : public std::runtime_error {
 /// master. Not thread-safe; one per connection.
 class NodeHandshake {
  public:
-  NodeHandshake(SharedSecret secret, std::string cluster_name, std::string node_name, PeerRole role = PeerRole::node);
+  /// `instance_id`: this process's (Hello.instance_id; random_instance_id() once per process).
+  NodeHandshake(SharedSecret secret, std::string cluster_name, std::string node_name, PeerRole role = PeerRole::node,
+                std::uint64_t instance_id = 0);
   Hello start();
   Authenticate on_challenge(const Challenge& challenge);
   /// Throws HandshakeError(authentication_failed) when the master's MAC is
@@ -117,9 +119,13 @@ class NodeHandshake {
   SharedSecret secret_;
   std::string cluster_name_, node_name_;
   PeerRole role_;
+  std::uint64_t instance_id_;
   Nonce node_nonce_{}, master_nonce_{};
   State state_ = State::initial;
 };
+
+/// A fresh random Hello.instance_id (RAND_bytes), never 0.
+std::uint64_t random_instance_id();
 
 /// The master's side for one connection: on Hello → Challenge; on
 /// Authenticate → verify; then welcome() builds the Welcome carrying the
@@ -139,12 +145,15 @@ class MasterHandshake {
   const std::string& node_name() const { return node_name_; }
   /// The peer's role from its Hello (node before).
   PeerRole role() const { return role_; }
+  /// The peer process's instance id from its Hello (0 before).
+  std::uint64_t instance_id() const { return instance_id_; }
 
  private:
   enum class State { initial, challenge_sent, done };
   SharedSecret secret_;
   std::string cluster_name_, node_name_;
   PeerRole role_ = PeerRole::node;
+  std::uint64_t instance_id_ = 0;
   Nonce node_nonce_{}, master_nonce_{};
   State state_ = State::initial;
 };

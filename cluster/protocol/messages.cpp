@@ -16,7 +16,7 @@ namespace {
 constexpr std::size_t kStringMax(std::size_t max_bytes) { return 2 + max_bytes; }
 constexpr std::size_t kDigestBytes = 32;
 
-constexpr std::size_t kHelloMax = 2 + kStringMax(kMaxNameBytes) * 2 + kDigestBytes + 1;
+constexpr std::size_t kHelloMax = 2 + kStringMax(kMaxNameBytes) * 2 + kDigestBytes + 1 + 8;
 constexpr std::size_t kWelcomeMax = 4 + kDigestBytes + 8 + 4 + 4;
 constexpr std::size_t kRejectMax = 2 + kStringMax(kMaxReasonBytes);
 constexpr std::size_t kAtmosphereRefMax = kStringMax(kMaxNameBytes) + kDigestBytes + 8;
@@ -152,6 +152,7 @@ void write(ByteWriter& w, const Hello& m) {
   w.string(m.node_name, kMaxNameBytes, "Hello.node_name");
   w.bytes(m.node_nonce);
   w.u8(static_cast<std::uint8_t>(m.role));
+  w.u64(m.instance_id);
 }
 void write(ByteWriter& w, const Challenge& m) { w.bytes(m.master_nonce); }
 void write(ByteWriter& w, const Authenticate& m) { w.bytes(m.node_mac); }
@@ -248,6 +249,7 @@ Hello read_hello(ByteReader& r) {
   m.node_name = r.string(kMaxNameBytes, "Hello.node_name");
   m.node_nonce = r.array<32>("Hello.node_nonce");
   m.role = static_cast<PeerRole>(r.u8("Hello.role"));
+  m.instance_id = r.u64("Hello.instance_id");
   return m;
 }
 Welcome read_welcome(ByteReader& r) {

@@ -100,6 +100,11 @@ struct Hello {
   std::string node_name;     ///< 1..kMaxNameBytes UTF-8 bytes; unique in the cluster (a standby: standby_name())
   Nonce node_nonce{};        ///< fresh random bytes
   PeerRole role = PeerRole::node;  ///< 0 node, 1 standby; other values are malformed
+  /// Random per process, the same on every connection the process makes: the
+  /// master tells a node that rejoins after a drop (the same id: it replaces
+  /// its old connection) from another process using a name already connected
+  /// (another id: refused with duplicate_node). Version 4.
+  std::uint64_t instance_id = 0;
   bool operator==(const Hello&) const = default;
 };
 struct Challenge {

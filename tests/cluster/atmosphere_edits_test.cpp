@@ -72,6 +72,17 @@ TEST_F(AtmosphereEditsTest, BadValuesGetTheLoadersMessageNamingThePointerAndTheR
       << error_of(set("Earth", "/planet/radius_m", 6400000));
 }
 
+// Issue 30, defect 6: the scene's wavelengths override the parameters' own,
+// so `set /wavelengths_nm/0 "banana"` was ignored and answered ok.
+TEST_F(AtmosphereEditsTest, TheWavelengthsAreTheScenesAndCannotBeSet) {
+  EXPECT_NE(error_of(set("Earth", "/wavelengths_nm/0", "banana")).find("set Earth: /wavelengths_nm/0 = \"banana\": the wavelengths are the scene's"),
+            std::string::npos)
+      << error_of(set("Earth", "/wavelengths_nm/0", "banana"));
+  EXPECT_NE(error_of(set("Earth", "/wavelengths_nm", json::array({440, 550}))).find("not a live parameter"),
+            std::string::npos);
+  EXPECT_NE(error_of(set("Earth", "/wavelengths_nm", nullptr)).find("not a live parameter"), std::string::npos);
+}
+
 TEST_F(AtmosphereEditsTest, ALaterEditOfTheSameBodyReplacesTheWaitingOneAndKeepsItsPlace) {
   EXPECT_FALSE(edits_.take_next());
   AtmosphereEdits::Edit first = edits_.resolve(set("Earth", "/aerosol/scattering/turbidity", 3.0), earth_parameters());

@@ -96,6 +96,18 @@ TEST(ClusterConfig, ReconnectTimeIsOptionalInSecondsAndChecked) {
   EXPECT_NE(error_of(j).find("/timing/reconnect_s"), std::string::npos) << error_of(j);
 }
 
+TEST(ClusterConfig, TheCapOfUnauthenticatedConnectionsIsOptionalAndChecked) {
+  EXPECT_EQ(parse(valid()).max_unauthenticated_connections, 16u) << "docs/cluster.md, \"Threat model\"";
+  nlohmann::json j = valid();
+  j["limits"]["max_unauthenticated_connections"] = 4;
+  EXPECT_EQ(parse(j).max_unauthenticated_connections, 4u);
+  j["limits"]["max_unauthenticated_connections"] = 0;
+  EXPECT_NE(error_of(j).find("/limits/max_unauthenticated_connections = 0: must be in [1, 4096]"), std::string::npos)
+      << error_of(j);
+  j["limits"] = {{"max_connections", 3}};
+  EXPECT_NE(error_of(j).find("/limits/max_connections"), std::string::npos) << error_of(j);
+}
+
 TEST(ClusterConfig, StandbyIsOptionalAndChecked) {
   EXPECT_FALSE(parse(valid()).standby.has_value()) << "no standby unless configured";
   auto j = valid();

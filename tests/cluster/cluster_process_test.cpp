@@ -110,14 +110,7 @@ std::vector<Presented> presented(const fs::path& node_dir) {
   return out;
 }
 
-bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
-  const auto deadline = Clock::now() + timeout;
-  while (Clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(50ms);
-  }
-  return done();
-}
+using core::wait_until;
 
 std::vector<Presented> expect_in_sync(const fs::path& out, std::uint64_t last);
 

@@ -113,7 +113,7 @@ TEST(FrameDecoder, UnsupportedVersionInTheHeader) {
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 1");
   put_be16(f, 4, 2);  // no PreviewRequest and Thumbnail: a node of version 2 is refused, not half served
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 4");
-  put_be16(f, 4, 3);  // FrameState without the fade and the sky's fields, RenderDone without the present counts
+  put_be16(f, 4, 3);  // no Hello.instance_id, FrameState without the fade and the sky, RenderDone without present counts
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 3, this build speaks 4");
 }
 
@@ -149,6 +149,35 @@ TEST(FrameDecoder, OversizedLengthIsRejectedFromTheHeaderAloneWithoutBufferingTh
   EXPECT_EQ(decoder.buffered_bytes(), 0u);
 }
 
+// Issue 30, defect 5: the master accepted 1 MiB TableChunk headers before
+// the handshake (300 such peers: 22 -> 349 MB). Until the peer proved the
+// secret its payloads are at most a handshake message's, checked at the header.
+TEST(FrameDecoder, APayloadLimitBeforeTheHandshakeRefusesAChunkHeaderAndIsLiftedAfter) {
+  EXPECT_EQ(max_handshake_payload_bytes(), 1026u) << "Goodbye's maximum, the largest of Hello, Authenticate, Goodbye";
+  const Bytes chunk = encode(TableChunk{{}, 0, Bytes(4096, 7)});
+  FrameDecoder limited;
+  limited.limit_payload(max_handshake_payload_bytes(), "before the handshake");
+  const Bytes hello = encode(Hello{kProtocolVersion, "dome", "n1", {}, PeerRole::node, 42});
+  limited.feed(hello);
+  EXPECT_TRUE(limited.next().has_value()) << "a Hello passes";
+  limited.feed(std::span<const std::uint8_t>(chunk).first(kHeaderBytes));
+  try {
+    limited.next();
+    FAIL() << "no error";
+  } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.code(), ProtocolErrorCode::oversized);
+    EXPECT_NE(std::string(e.what()).find("4136 bytes of a TableChunk exceeds the 1026-byte limit before the handshake"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(limited.buffered_bytes(), 0u) << "nothing of the payload is held";
+  FrameDecoder lifted;
+  lifted.limit_payload(max_handshake_payload_bytes(), "before the handshake");
+  lifted.lift_payload_limit();  // the peer authenticated: each type's own maximum again
+  lifted.feed(chunk);
+  EXPECT_TRUE(lifted.next().has_value());
+}
+
 TEST(FrameDecoder, PerTypeLimitAppliesNotJustTheGlobalOne) {
   Bytes f = raw_frame(static_cast<std::uint16_t>(MessageType::heartbeat), Bytes(9, 0));
   expect_error(f, ProtocolErrorCode::oversized, "exceeds the 8-byte limit of Heartbeat");
@@ -174,7 +203,7 @@ TEST(FrameDecoder, HeaderCrcMismatch) {
 TEST(FrameDecoder, MalformedPayloadTruncatedField) {
   // Hello whose payload stops inside the nonce (length field and CRC consistent).
   Bytes f = encode(Hello{kProtocolVersion, "dome", "n1", {}});
-  f.resize(f.size() - 5);
+  f.resize(f.size() - 8 - 1 - 5);  // the instance id, the role and 5 bytes of the nonce
   put_be32(f, 8, static_cast<std::uint32_t>(f.size() - kHeaderBytes));
   fix_crc(f);
   expect_error(f, ProtocolErrorCode::malformed_payload, "Hello.node_nonce: truncated");

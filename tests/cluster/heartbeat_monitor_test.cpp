@@ -14,11 +14,11 @@ using std::chrono::milliseconds;
 
 const HeartbeatMonitor::Clock::time_point t0 = HeartbeatMonitor::Clock::now();
 
-TEST(HeartbeatMonitor, LimitsAreThreeHeartbeatsButAtLeastTenSeconds) {
+TEST(HeartbeatMonitor, LimitsAreThreeHeartbeatsButAtLeastTenSecondsAndFiveForTheHandshake) {
   const HeartbeatMonitor fast(250);
   EXPECT_EQ(fast.interval_ms(), 250u);
   EXPECT_DOUBLE_EQ(fast.silence_limit_ms(), 10000.0);
-  EXPECT_DOUBLE_EQ(fast.handshake_limit_ms(), 10000.0);
+  EXPECT_DOUBLE_EQ(fast.handshake_limit_ms(), 5000.0) << "docs/protocol.md: max(5 s, 3 heartbeats)";
   const HeartbeatMonitor slow(5000);
   EXPECT_DOUBLE_EQ(slow.silence_limit_ms(), 15000.0);
   EXPECT_DOUBLE_EQ(slow.handshake_limit_ms(), 15000.0);
@@ -35,8 +35,8 @@ TEST(HeartbeatMonitor, AnAuthenticatedNodeGetsHeartbeatsUntilItFallsSilent) {
 
 TEST(HeartbeatMonitor, AConnectionInTheHandshakeGetsNoHeartbeatAndItsOwnLimit) {
   const HeartbeatMonitor monitor(250);
-  EXPECT_EQ(monitor.check(true, t0, t0, t0 + milliseconds(9000)), Verdict::awaiting_handshake);
-  EXPECT_EQ(monitor.check(true, t0, t0 + milliseconds(9000), t0 + milliseconds(10001)), Verdict::handshake_overdue)
+  EXPECT_EQ(monitor.check(true, t0, t0, t0 + milliseconds(5000)), Verdict::awaiting_handshake);
+  EXPECT_EQ(monitor.check(true, t0, t0 + milliseconds(4000), t0 + milliseconds(5001)), Verdict::handshake_overdue)
       << "bytes received do not extend the handshake's time";
 }
 

@@ -96,7 +96,7 @@ TEST(Messages, MaximumSizeMessagesRoundTripAndReachTheirDocumentedLimitExactly) 
 
 TEST(Messages, DocumentedMaximumPayloads) {
   const auto max = [](MessageType t) { return *max_payload_bytes(static_cast<std::uint16_t>(t)); };
-  EXPECT_EQ(max(MessageType::hello), 167u);
+  EXPECT_EQ(max(MessageType::hello), 175u);
   EXPECT_EQ(max(MessageType::challenge), 32u);
   EXPECT_EQ(max(MessageType::authenticate), 32u);
   EXPECT_EQ(max(MessageType::welcome), 52u);
@@ -117,13 +117,14 @@ TEST(Messages, DocumentedMaximumPayloads) {
   EXPECT_FALSE(max_payload_bytes(0xFFFF).has_value());
 }
 
-TEST(Messages, HelloCarriesTheRoleAsItsLastByte) {
-  Hello hello{kProtocolVersion, "dome", "standby@h:1", {}, PeerRole::standby};
+TEST(Messages, HelloEndsWithTheRoleThenTheInstanceId) {
+  Hello hello{kProtocolVersion, "dome", "standby@h:1", {}, PeerRole::standby, 0x0102030405060708u};
   Bytes payload = encode_payload(hello);
-  EXPECT_EQ(payload.back(), 1);
+  EXPECT_EQ(Bytes(payload.end() - 9, payload.end()), (Bytes{1, 1, 2, 3, 4, 5, 6, 7, 8}))
+      << "the role, then the instance id big-endian (version 4)";
   EXPECT_EQ(decode_payload(static_cast<std::uint16_t>(MessageType::hello), payload), Message{hello});
-  EXPECT_EQ(encode_payload(Hello{kProtocolVersion, "dome", "a", {}}).back(), 0) << "a node by default";
-  payload.back() = 2;
+  EXPECT_EQ(*(encode_payload(Hello{kProtocolVersion, "dome", "a", {}}).end() - 9), 0) << "a node by default";
+  *(payload.end() - 9) = 2;
   try {
     decode_payload(static_cast<std::uint16_t>(MessageType::hello), payload);
     FAIL() << "role 2 must be refused";

@@ -17,8 +17,8 @@ using Response = OperatorHttpServer::Response;
 
 class OperatorHttpServerTest : public ::testing::Test {
  protected:
-  OperatorHttpServer make(std::optional<SharedSecret> token = std::nullopt) {
-    return OperatorHttpServer(io_, {"127.0.0.1", 0, std::move(token)},
+  OperatorHttpServer make(std::optional<SharedSecret> token = std::nullopt, std::vector<std::string> names = {}) {
+    return OperatorHttpServer(io_, {"127.0.0.1", 8080, std::move(token), std::move(names)},
                               {[] { return nlohmann::json{{"state", "playing"}}; },
                                [this](const OperatorCommand& c, const std::string& peer) {
                                  commands_.push_back(describe(c) + " from " + peer);
@@ -118,7 +118,7 @@ TEST_F(OperatorHttpServerTest, RefusesCrossSiteAndRebindingRequests) {
 }
 
 TEST_F(OperatorHttpServerTest, WithATokenEveryApiRequestMustCarryIt) {
-  const OperatorHttpServer server = make(SharedSecret(std::vector<std::uint8_t>(20, 'k'), "test"));
+  const OperatorHttpServer server = make(SharedSecret(std::vector<std::uint8_t>(20, 'k'), "test"), {"dome-master.local"});
   const std::string token(20, 'k');
   // The page holds no secret: served without the token.
   EXPECT_EQ(server.respond(request(http::verb::get, "/"), "x").result(), http::status::ok);
@@ -132,22 +132,66 @@ TEST_F(OperatorHttpServerTest, WithATokenEveryApiRequestMustCarryIt) {
   EXPECT_TRUE(commands_.empty());
   Request right = request(http::verb::post, "/api/command", R"({"command": "quit"})");
   right.set(http::field::authorization, "Bearer " + token);
-  right.set(http::field::host, "dome-master.local:8080");  // any Host with a token
+  right.set(http::field::host, "dome-master.local:8080");  // a configured name (--operator-name) with a token
   EXPECT_EQ(server.respond(right, "x").result(), http::status::ok);
   EXPECT_EQ(commands_, std::vector<std::string>{"quit from http x"});
 }
 
+// Issue 30, defect 1: "127.evil.example" resolved to 127.0.0.1 by its owner's
+// DNS once passed as loopback, with a matching Origin: a page there had the
+// console. Only the loopback literals with the console's own port pass now.
+TEST_F(OperatorHttpServerTest, RefusesDnsRebindingToLoopbackLookAlikesAndOtherPorts) {
+  const OperatorHttpServer server = make();
+  const auto status_with_host = [&](const std::string& host, bool command = false) {
+    Request r = command ? request(http::verb::post, "/api/command", R"({"command": "exposure", "exposure": 77})")
+                        : request(http::verb::get, "/api/status");
+    r.set(http::field::host, host);
+    r.set(http::field::origin, "http://" + host);
+    return server.respond(r, "127.0.0.1").result();
+  };
+  EXPECT_EQ(status_with_host("127.evil.example:8080", true), http::status::forbidden);
+  EXPECT_EQ(status_with_host("127.0.0.1.evil.example:8080"), http::status::forbidden);
+  EXPECT_EQ(status_with_host("127.0.0.2:8080"), http::status::forbidden) << "exactly the literals";
+  EXPECT_EQ(status_with_host("127.0.0.1:9999"), http::status::forbidden) << "another port: another service's page";
+  EXPECT_EQ(status_with_host("127.0.0.1"), http::status::forbidden) << "no port is port 80";
+  EXPECT_EQ(status_with_host("127.0.0.1:8080x"), http::status::forbidden);
+  EXPECT_EQ(status_with_host("localhost:08080"), http::status::ok) << "the same port, written with a zero";
+  EXPECT_EQ(status_with_host("[::1]:8080"), http::status::ok);
+  EXPECT_EQ(status_with_host("127.0.0.1:8080", true), http::status::ok);
+  EXPECT_EQ(commands_, std::vector<std::string>{"exposure 77.0 from http 127.0.0.1"});
+  // A refusal quotes the Host escaped: no forged log lines.
+  Request forged = request(http::verb::get, "/api/status");
+  forged.set(http::field::host, "x\x1b[31m");
+  EXPECT_NE(server.respond(forged, "x").body().find("x\\\\x1b[31m"), std::string::npos)
+      << server.respond(forged, "x").body();
+
+  // With a token: the literals, IP addresses (no DNS answer can rebind them) and the configured names.
+  const OperatorHttpServer tokened = make(SharedSecret(std::vector<std::uint8_t>(20, 'k'), "test"), {"dome.local"});
+  const auto with_token = [&](const std::string& host) {
+    Request r = request(http::verb::get, "/api/status");
+    r.set(http::field::host, host);
+    r.set(http::field::authorization, "Bearer " + std::string(20, 'k'));
+    return tokened.respond(r, "x").result();
+  };
+  EXPECT_EQ(with_token("10.0.0.5:8080"), http::status::ok);
+  EXPECT_EQ(with_token("[fe80::1]:8080"), http::status::ok);
+  EXPECT_EQ(with_token("dome.local:8080"), http::status::ok);
+  EXPECT_EQ(with_token("127.evil.example:8080"), http::status::forbidden);
+  EXPECT_EQ(with_token("dome.local.evil.example:8080"), http::status::forbidden);
+  EXPECT_EQ(with_token("dome.local:8081"), http::status::forbidden);
+}
+
 TEST_F(OperatorHttpServerTest, RefusesToListenBeyondLoopbackWithoutAToken) {
-  OperatorHttpServer server(io_, {"0.0.0.0", 0, std::nullopt}, {});
+  OperatorHttpServer server(io_, {"0.0.0.0", 0, std::nullopt, {}}, {});
   try {
     server.start();
     FAIL() << "started without a token";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("needs an operator token"), std::string::npos) << e.what();
   }
-  OperatorHttpServer named(io_, {"localhost", 0, std::nullopt}, {});
+  OperatorHttpServer named(io_, {"localhost", 0, std::nullopt, {}}, {});
   EXPECT_THROW(named.start(), std::runtime_error);  // numeric addresses only
-  OperatorHttpServer loopback(io_, {"127.0.0.1", 0, std::nullopt}, {});
+  OperatorHttpServer loopback(io_, {"127.0.0.1", 0, std::nullopt, {}}, {});
   loopback.start();
   EXPECT_GT(loopback.port(), 0);
   EXPECT_EQ(loopback.url(), "http://127.0.0.1:" + std::to_string(loopback.port()) + "/");

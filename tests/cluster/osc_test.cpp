@@ -12,6 +12,8 @@
 #include "cluster/master/osc_command.h"
 #include "cluster/master/osc_packet.h"
 #include "cluster/master/osc_receiver.h"
+#include "core/strings.h"
+#include "tests/cluster/captured_log.h"
 #include "core/json_reader.h"
 
 namespace zenith::cluster {
@@ -209,6 +211,36 @@ TEST(OscReceiverTest, AppliesMessagesFromAllowedSendersOnly) {
   EXPECT_EQ(allowing.handle(encode_osc_message({"/zenith/play", {}}), desk), 1u);
   EXPECT_EQ(allowing.handle(encode_osc_message({"/zenith/play", {}}), localhost), 0u) << "only the named senders";
   allowing.close();
+}
+
+// Issue 30, defect 6: an address with a newline or escape codes was written
+// raw into the log (forged log lines), and a flood logged a line per packet.
+TEST(OscReceiverTest, LogsPeerBytesEscapedAndAFloodOfRefusalsOnceASecondWithItsCount) {
+  boost::asio::io_context io;
+  std::size_t commands = 0;
+  OscReceiver receiver(io, {"127.0.0.1", 0, {}}, [&](const OperatorCommand&, const std::string&) {
+    ++commands;
+    return std::string("ok");
+  });
+  const auto localhost = boost::asio::ip::make_address("127.0.0.1");
+  std::string text;
+  {
+    tests::CapturedLog log;
+    EXPECT_EQ(receiver.handle(encode_osc_message({"/zenith/x\nmaster: quit \x1b[2J", {}}), localhost), 0u);
+    text = log.text();
+  }
+  EXPECT_EQ(core::count_of(text, "\n"), 1u) << "one line, no forged second one:\n" << text;
+  EXPECT_NE(text.find("/zenith/x\\x0amaster: quit \\x1b[2J"), std::string::npos) << text;
+  {
+    tests::CapturedLog log;
+    for (int i = 0; i < 5000; ++i) receiver.handle(bytes("garbage!"), localhost);
+    for (int i = 0; i < 5000; ++i) receiver.handle(encode_osc_message({"/zenith/nothing", {}}), localhost);
+    text = log.text();
+  }
+  const std::size_t lines = core::count_of(text, "\n");
+  EXPECT_GE(lines, 1u) << "the unknown address's first is logged (a bad packet was, just before)";
+  EXPECT_LE(lines, 6u) << "10 000 refused packets within a few seconds: a line a second per kind\n" << text;
+  EXPECT_EQ(commands, 0u);
 }
 
 }  // namespace

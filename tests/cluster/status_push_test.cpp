@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <sys/socket.h>
 #include <sys/time.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -21,6 +22,7 @@
 #include <boost/beast/websocket.hpp>
 
 #include "cluster/master/operator_http_server.h"
+#include "core/process.h"
 
 namespace zenith::cluster {
 namespace {
@@ -35,7 +37,7 @@ using nlohmann::json;
 class StatusPushTest : public ::testing::Test {
  protected:
   void start(std::optional<SharedSecret> token = std::nullopt) {
-    server_.emplace(io_, OperatorHttpServer::Options{"127.0.0.1", 0, std::move(token)},
+    server_.emplace(io_, OperatorHttpServer::Options{"127.0.0.1", 0, std::move(token), {}},
                     OperatorHttpServer::Handlers{[this] { return json{{"n", counter_.load()}}; },
                                                  [](const OperatorCommand&, const std::string&) { return std::string(); },
                                                  {}});
@@ -102,7 +104,7 @@ TEST_F(StatusPushTest, RefusesOtherOriginsAndHostsLikeTheApi) {
   EXPECT_THROW(connect({}, "attacker.example:80"), beast::system_error);
   // Without the upgrade: a plain GET is told what /api/events is.
   OperatorHttpServer::Request get{beast::http::verb::get, "/api/events", 11};
-  get.set(beast::http::field::host, "127.0.0.1:1");
+  get.set(beast::http::field::host, "127.0.0.1:" + std::to_string(server_->port()));
   EXPECT_EQ(server_->respond(get, "x").result(), beast::http::status::upgrade_required);
 }
 
@@ -127,6 +129,56 @@ TEST_F(StatusPushTest, WithATokenNothingIsSentBeforeTheToken) {
   wrong->read(buffer, ec);
   EXPECT_EQ(ec, websocket::error::closed);
   EXPECT_EQ(wrong->reason().code, websocket::close_code::policy_error);
+}
+
+// Issue 30, defect 4: 16 WebSockets without the token once held every push
+// slot, so the operator's page fell back to polling. Connections waiting for
+// the token have slots of their own now, the oldest closed for a new one.
+TEST_F(StatusPushTest, ConnectionsWithoutTheTokenNeverTakeTheOperatorsSlots) {
+  const std::string token(20, 'k');
+  start(SharedSecret(std::vector<std::uint8_t>(token.begin(), token.end()), "test"));
+  std::vector<std::unique_ptr<websocket::stream<tcp::socket>>> strangers;
+  for (std::size_t i = 0; i < StatusPush::kMaxConnections + 4; ++i) strangers.push_back(connect());
+  auto operator_page = connect({{beast::http::field::authorization, "Bearer " + token}});
+  EXPECT_EQ(next(*operator_page), (json{{"n", 0}}));
+  // A page that sends the token as its first message gets in too.
+  auto browser = connect();
+  browser->write(asio::buffer(json{{"token", token}}.dump()));
+  EXPECT_EQ(next(*browser), (json{{"n", 0}}));
+  // The oldest strangers were closed to make room: only kMaxWaitingForToken wait.
+  beast::flat_buffer buffer;
+  beast::error_code ec;
+  strangers.front()->read(buffer, ec);
+  EXPECT_TRUE(ec) << "the oldest connection without a token was closed";
+}
+
+// Issue 30, defect 4: 32 half-sent requests once filled every connection for
+// 30 s. A new connection now closes the oldest one waiting for its request.
+TEST_F(StatusPushTest, HalfSentRequestsNeverLockTheOperatorOutOfTheConsole) {
+  start();
+  const std::string host = "127.0.0.1:" + std::to_string(server_->port());
+  std::vector<int> held;
+  for (std::size_t i = 0; i < OperatorHttpServer::kMaxConnections + 8; ++i) {
+    const int fd = core::connect_loopback(server_->port());
+    ASSERT_GE(fd, 0);
+    const std::string half = "GET /api/status HTTP/1.1\r\nHost: " + host + "\r\nX-Slow: ";
+    ASSERT_EQ(::send(fd, half.data(), half.size(), MSG_NOSIGNAL), static_cast<ssize_t>(half.size()));
+    held.push_back(fd);
+  }
+  const auto started = std::chrono::steady_clock::now();
+  const int fd = core::connect_loopback(server_->port());
+  ASSERT_GE(fd, 0);
+  const timeval timeout{5, 0};
+  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  const std::string whole = "GET /api/status HTTP/1.1\r\nHost: " + host + "\r\nConnection: close\r\n\r\n";
+  ASSERT_EQ(::send(fd, whole.data(), whole.size(), MSG_NOSIGNAL), static_cast<ssize_t>(whole.size()));
+  std::string reply;
+  char buffer[4096];
+  for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;) reply.append(buffer, static_cast<std::size_t>(n));
+  EXPECT_TRUE(reply.starts_with("HTTP/1.1 200 OK")) << reply;
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(4)) << "answered, not timed out";
+  ::close(fd);
+  for (const int h : held) ::close(h);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 // Streaming writers: chunked rows, atomic publication, misuse and bad pixels.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <csignal>
 
 #include <cmath>
 #include <functional>
@@ -179,6 +182,41 @@ TEST(ImageWriter, AnUnwritableDirectoryIsARuntimeErrorNamingTheFile) {
     SCOPED_TRACE(f.name);
     testing::expect_throw_with<std::runtime_error>([&] { f.open(path, 4, 4); }, {path.string()});
   }
+}
+
+// Issue 30: a full disk during a live show stopped the nodes with
+// "error writing ….png.partial.partial" and no cause. A file-size limit
+// (RLIMIT_FSIZE, SIGXFSZ ignored: writes fail with EFBIG) plays the full disk
+// for this process alone; the message names the file and the cause.
+TEST(ImageWriter, AWriteThatFailsMidwayNamesTheFileAndTheCause) {
+  TempDir dir;
+  const auto path = dir / "frame.png";
+  std::vector<float> noise(std::size_t(256) * 256 * 3);
+  std::uint32_t state = 12345;
+  for (float& v : noise) v = static_cast<float>((state = state * 1664525u + 1013904223u) >> 8) / 16777216.0f;
+  write_png(path, 256, 256, noise, ToneMapping::clamp);
+  const auto full_bytes = std::filesystem::file_size(path);
+  std::filesystem::remove(path);
+  rlimit previous{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &previous), 0);
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit small = previous;
+  // One byte short: the last bytes sit in the stream's buffer until the file
+  // is closed, where the failure once lost its cause.
+  small.rlim_cur = full_bytes - 1;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  std::string error;
+  try {
+    write_png(path, 256, 256, noise, ToneMapping::clamp);
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  ::setrlimit(RLIMIT_FSIZE, &previous);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(error.find(path.string()), 0u) << error;
+  EXPECT_NE(error.find("File too large"), std::string::npos) << "the cause, as strerror(EFBIG) says it: " << error;
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_FALSE(std::filesystem::exists(dir / "frame.png.partial")) << "nothing half-written is left";
 }
 
 }  // namespace
