@@ -999,14 +999,16 @@ TEST_F(ClusterProcess, ShowPlaysInSyncAndItsRecordingPlaysBackIdentically) {
 
 TEST_F(ClusterProcess, ShowStartsBeforeItsLaterTablesAreReadyAndTheirFrameWaitsForThem) {
   // The sunset fixture's second table set (turbidity 3) is first used part of
-  // the way through its 6 frames. It takes 4 s more to prepare here
+  // the way through its 6 frames. It takes 12 s more to prepare here
   // (--debug-table-delay-ms): the frames before are presented meanwhile, the
   // first frame that uses it waits for it, and every node still presents
-  // every frame with one state.
+  // every frame with one state. The delay runs from the end of the first set,
+  // while the nodes still warm up (4–5 s on 2 quiet cores, 7–12 s under
+  // load: 4 s was not enough), so it must outlast their warm-up.
   const fs::path config = write_config(10);
   const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
   const Child master = start_master(config, 0, 120000,
-                                    {"--show", show.string(), "--fps", "2", "--unpaced", "--debug-table-delay-ms", "4000"});
+                                    {"--show", show.string(), "--fps", "2", "--unpaced", "--debug-table-delay-ms", "12000"});
   for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
   ASSERT_EQ(wait_exit(master, 400s), std::optional<int>(0)) << logs();
   expect_nodes_exit_cleanly(master);
