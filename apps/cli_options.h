@@ -14,7 +14,8 @@
 namespace zenith::app {
 
 inline void add_image_options(CLI::App* cmd, std::string& exr_type, std::string& tone, std::string& colour) {
-  cmd->add_option("--exr-type", exr_type, "EXR pixels: half (default) or float")->check(CLI::IsMember({"half", "float"}));
+  cmd->add_option("--exr-type", exr_type, "EXR pixels: half (default) or float")
+      ->check(CLI::IsMember({"half", "float"}));
   cmd->add_option("--tone", tone, "PNG tone mapping: exponential (paper, default) or clamp")
       ->check(CLI::IsMember({"exponential", "clamp"}));
   cmd->add_option("--colour", colour, "Spectral to RGB: auto, direct, cie1931")

@@ -10,8 +10,8 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -19,22 +19,22 @@
 #include <thread>
 #include <vector>
 
-#include "cluster/launcher/child_process.h"
 #include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "apps/default_configs.h"
+#include "atmosphere/lut/table_cache.h"
+#include "cluster/launcher/child_process.h"
 #include "cluster/launcher/launcher_signals.h"
 #include "cluster/launcher/restart_limit.h"
-#include "atmosphere/lut/table_cache.h"
 #include "cluster/link/cluster_config.h"
-#include "cluster/protocol/handshake.h"
 #include "cluster/master/master.h"
 #include "cluster/node/node.h"
+#include "cluster/protocol/handshake.h"
 #include "cluster/standby/standby.h"
-#include "show/show.h"
 #include "core/strings.h"
 #include "image/image_io.h"
 #include "image/image_writer.h"
+#include "show/show.h"
 #include "warp/dome_tiles.h"
 #include "warp/viewport_config.h"
 
@@ -92,11 +92,13 @@ struct PlaybackArgs {
   void add_to(CLI::App& cmd) {
     cmd.add_option("--show", show, "Play this show file (configs/shows/; docs/shows.md) instead of the default show");
     cmd.add_option("--record", record, "Record every presented frame state into this show file (a recording)");
-    cmd.add_option("--fps", fps, "Frames per second of show time (default: the cluster's frame rate; a recording's own)")
+    cmd.add_option("--fps", fps,
+                   "Frames per second of show time (default: the cluster's frame rate; a recording's own)")
         ->check(CLI::Range(0.001, 1000.0));
     cmd.add_flag("--loop", loop, "Loop the show");
     cmd.add_flag("--no-loop", no_loop, "Play the show once even if it says loop");
-    cmd.add_flag("--console", console, "Read playback commands from standard input (play, pause, seek S, rate R, loop on|off, quit)");
+    cmd.add_flag("--console", console,
+                 "Read playback commands from standard input (play, pause, seek S, rate R, loop on|off, quit)");
     cmd.add_option("--control-port", control_port, "Playback commands on a control socket at 127.0.0.1:PORT")
         ->check(CLI::Range(1, 65535));
     cmd.add_flag("--unpaced", unpaced, "Start each frame as soon as the last is presented (offline rendering)");
@@ -136,17 +138,21 @@ struct OperatorArgs {
   std::vector<std::string> osc_allow, http_names;
 
   void add_to(CLI::App& cmd) {
-    cmd.add_option("--operator-port", http_port, "Serve the operator console (web page, JSON API) on this port (docs/operator.md)")
+    cmd.add_option("--operator-port", http_port,
+                   "Serve the operator console (web page, JSON API) on this port (docs/operator.md)")
         ->check(CLI::Range(1, 65535));
     cmd.add_option("--operator-host", http_host,
                    "Address the console listens on (default 127.0.0.1; any other needs an operator token)");
     cmd.add_option("--operator-name", http_names,
                    "With an operator token: a host name the console is reached by (besides its IP addresses; "
                    "repeatable; other Host names are refused)");
-    cmd.add_option("--operator-token-file", token_file,
-                   "File (mode 600) holding the operator token (default: the environment variable ZENITH_OPERATOR_TOKEN)");
-    cmd.add_option("--osc-port", osc_port, "Receive OSC cues on this UDP port (docs/operator.md)")->check(CLI::Range(1, 65535));
-    cmd.add_option("--osc-host", osc_host, "Address OSC is received on (default 127.0.0.1; any other needs --osc-allow)");
+    cmd.add_option(
+        "--operator-token-file", token_file,
+        "File (mode 600) holding the operator token (default: the environment variable ZENITH_OPERATOR_TOKEN)");
+    cmd.add_option("--osc-port", osc_port, "Receive OSC cues on this UDP port (docs/operator.md)")
+        ->check(CLI::Range(1, 65535));
+    cmd.add_option("--osc-host", osc_host,
+                   "Address OSC is received on (default 127.0.0.1; any other needs --osc-allow)");
     cmd.add_option("--osc-allow", osc_allow, "Accept OSC only from this sender address (repeatable)");
   }
   void apply(cluster::MasterOptions& options) const {
@@ -170,14 +176,15 @@ struct OperatorArgs {
           throw std::runtime_error("must be printable ASCII without spaces (it travels in an HTTP header)");
       return token;
     } catch (const std::exception& e) {
-      throw std::runtime_error(cat("operator token (", token_file.empty() ? std::string(kOperatorTokenVariable) : token_file,
-                                   "): ", e.what()));
+      throw std::runtime_error(cat(
+          "operator token (", token_file.empty() ? std::string(kOperatorTokenVariable) : token_file, "): ", e.what()));
     }
   }
   /// The same options as command-line arguments for a child master.
   std::vector<std::string> arguments() const {
     std::vector<std::string> args;
-    if (http_port) args.insert(args.end(), {"--operator-port", std::to_string(*http_port), "--operator-host", http_host});
+    if (http_port)
+      args.insert(args.end(), {"--operator-port", std::to_string(*http_port), "--operator-host", http_host});
     if (!token_file.empty()) args.insert(args.end(), {"--operator-token-file", token_file});
     for (const std::string& n : http_names) args.insert(args.end(), {"--operator-name", n});
     if (osc_port) args.insert(args.end(), {"--osc-port", std::to_string(*osc_port), "--osc-host", osc_host});
@@ -302,7 +309,8 @@ struct LocalNode {
 /// Stitches frame `frame` of fisheye outputs that share one image circle (a dome
 /// master cut into tiles) into one image; false (with a log line) when the
 /// outputs are not such tiles or a file is missing.
-bool stitch_dome(const cluster::ClusterConfig& config, const fs::path& out, std::uint64_t frame, const fs::path& target) {
+bool stitch_dome(const cluster::ClusterConfig& config, const fs::path& out, std::uint64_t frame,
+                 const fs::path& target) {
   const warp::ViewportConfig viewports = warp::load_viewport_config(config.viewports);
   struct Tile {
     const warp::OutputConfig* output;
@@ -358,8 +366,9 @@ void run_cluster(const ClusterArgs& a) {
   if (!a.playback.show.empty()) {
     const show::Show loaded = show::load_show(a.playback.show);  // errors before any child starts
     show_scene = loaded.scene_path();
-    const double fps = a.playback.fps > 0.0 ? a.playback.fps
-                       : loaded.kind() == show::Show::Kind::recording ? loaded.frame_rate_hz() : config.frame_rate_hz;
+    const double fps = a.playback.fps > 0.0                           ? a.playback.fps
+                       : loaded.kind() == show::Show::Kind::recording ? loaded.frame_rate_hz()
+                                                                      : config.frame_rate_hz;
     show_frames = loaded.frame_count(fps);
   }
   const std::uint64_t frames = a.frames.value_or(show_scene ? 0 : 10);
@@ -374,8 +383,13 @@ void run_cluster(const ClusterArgs& a) {
   std::vector<std::string> common = {"--cluster", config_path};
   if (a.port) common.insert(common.end(), {"--port", std::to_string(*a.port)});
 
-  std::vector<std::string> master_args = {"--log-level", level, "master", "--frames", std::to_string(frames),
-                                          "--sun-step-deg", fmt::format("{}", a.sun_step_deg)};
+  std::vector<std::string> master_args = {"--log-level",
+                                          level,
+                                          "master",
+                                          "--frames",
+                                          std::to_string(frames),
+                                          "--sun-step-deg",
+                                          fmt::format("{}", a.sun_step_deg)};
   master_args.insert(master_args.end(), common.begin(), common.end());
   const std::vector<std::string> playback = a.playback.arguments();
   master_args.insert(master_args.end(), playback.begin(), playback.end());
@@ -420,8 +434,9 @@ void run_cluster(const ClusterArgs& a) {
     if (record != args.end()) args.erase(record, record + 2);
     args.insert(std::find(args.begin(), args.end(), "master") + 1, "--standby");
     const pid_t pid = spawn_self(args);
-    standby = LocalNode{"standby", std::move(args), pid, std::nullopt,
-                        RestartLimit(a.max_restarts, std::chrono::milliseconds(std::llround(a.restart_window_s * 1000.0)))};
+    standby =
+        LocalNode{"standby", std::move(args), pid, std::nullopt,
+                  RestartLimit(a.max_restarts, std::chrono::milliseconds(std::llround(a.restart_window_s * 1000.0)))};
     spdlog::info("cluster: standby master started (pid {}; it takes over on {} if the master dies)", pid,
                  config.standby->text());
   } else if (config.standby) {
@@ -437,15 +452,18 @@ void run_cluster(const ClusterArgs& a) {
       continue;
     }
     // The master may precompute tables for minutes before its Welcome (paper sizes on a CPU GL): wait for it.
-    std::vector<std::string> args = {"--log-level", level, "node", "--name", node.name, "--connect-timeout-ms", "900000"};
+    std::vector<std::string> args = {"--log-level",          level,   "node", "--name", node.name,
+                                     "--connect-timeout-ms", "900000"};
     if (frame_files) args.insert(args.end(), {"--out", out.string()});
     args.insert(args.end(), common.begin(), common.end());
     if (show_scene) args.insert(args.end(), {"--scene", show_scene->string()});
     if (a.windows) args.push_back("--window");
-    if (!a.cache_dir.empty()) args.insert(args.end(), {"--cache", (fs::path(a.cache_dir) / "nodes" / node.name).string()});
+    if (!a.cache_dir.empty())
+      args.insert(args.end(), {"--cache", (fs::path(a.cache_dir) / "nodes" / node.name).string()});
     const pid_t pid = spawn_self(args);
-    nodes.push_back(LocalNode{node.name, std::move(args), pid, std::nullopt,
-                              RestartLimit(a.max_restarts, std::chrono::milliseconds(std::llround(a.restart_window_s * 1000.0)))});
+    nodes.push_back(
+        LocalNode{node.name, std::move(args), pid, std::nullopt,
+                  RestartLimit(a.max_restarts, std::chrono::milliseconds(std::llround(a.restart_window_s * 1000.0)))});
     spdlog::info("cluster: node '{}' started (pid {})", node.name, pid);
   }
   if (a.restart_nodes)
@@ -501,19 +519,21 @@ void run_cluster(const ClusterArgs& a) {
                        n.limit.max_restarts(), a.restart_window_s);
           continue;
         }
-        spdlog::error("cluster: node '{}' died ({}) after {} restarts within {} s: giving up on it, it stays down "
-                      "(--max-restarts {}, --restart-window-s {})",
-                      n.name, describe_exit(*ended), n.limit.max_restarts(), a.restart_window_s, a.max_restarts,
-                      a.restart_window_s);
+        spdlog::error(
+            "cluster: node '{}' died ({}) after {} restarts within {} s: giving up on it, it stays down "
+            "(--max-restarts {}, --restart-window-s {})",
+            n.name, describe_exit(*ended), n.limit.max_restarts(), a.restart_window_s, a.max_restarts,
+            a.restart_window_s);
       }
       n.status = ended;
     }
-    if (!nodes.empty() && std::all_of(nodes.begin(), nodes.end(), [](const LocalNode& n) { return n.status.has_value(); })) {
+    if (!nodes.empty() &&
+        std::all_of(nodes.begin(), nodes.end(), [](const LocalNode& n) { return n.status.has_value(); })) {
       // Nodes that exited 0 said goodbye to the master's Goodbye: its own exit follows within moments.
       if (!nodes_ended_at) nodes_ended_at = Clock::now();
       const bool clean = std::all_of(nodes.begin(), nodes.end(), [](const LocalNode& n) { return *n.status == 0; });
-      if (after_nodes_ended(clean, std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - *nodes_ended_at)) ==
-          NodesEndedVerdict::wait_for_master)
+      if (after_nodes_ended(clean, std::chrono::duration_cast<std::chrono::milliseconds>(
+                                       Clock::now() - *nodes_ended_at)) == NodesEndedVerdict::wait_for_master)
         continue;
       spdlog::error("cluster: every local node has exited; stopping the master");
       ::kill(master, SIGTERM);
@@ -539,7 +559,8 @@ void run_cluster(const ClusterArgs& a) {
       ++failed_nodes;
     }
   }
-  if (stop_signal != 0) throw std::runtime_error(fmt::format("stopped by {} (master {})", ::strsignal(stop_signal), describe_exit(status)));
+  if (stop_signal != 0)
+    throw std::runtime_error(fmt::format("stopped by {} (master {})", ::strsignal(stop_signal), describe_exit(status)));
   if (status != 0) throw std::runtime_error(fmt::format("the master exited with status {}", status));
   spdlog::info("cluster: master and {} node{} stopped{}", nodes.size(), nodes.size() == 1 ? "" : "s",
                failed_nodes ? fmt::format(" ({} with an error)", failed_nodes) : std::string());
@@ -548,7 +569,8 @@ void run_cluster(const ClusterArgs& a) {
     const std::uint64_t frame = a.stitch_frame.value_or(last_frame - 1);
     stitch_dome(config, out, frame, out / "stitched" / fmt::format("frame-{:06d}.png", frame));
   }
-  if (failed_nodes) throw std::runtime_error(fmt::format("{} node{} failed", failed_nodes, failed_nodes == 1 ? "" : "s"));
+  if (failed_nodes)
+    throw std::runtime_error(fmt::format("{} node{} failed", failed_nodes, failed_nodes == 1 ? "" : "s"));
 }
 
 }  // namespace
@@ -556,7 +578,8 @@ void run_cluster(const ClusterArgs& a) {
 void register_cluster_commands(CLI::App& app) {
   {
     auto a = std::make_shared<MasterArgs>();
-    CLI::App* cmd = app.add_subcommand("master", "Run the master of a cluster: tables, frame barrier (docs/cluster.md)");
+    CLI::App* cmd =
+        app.add_subcommand("master", "Run the master of a cluster: tables, frame barrier (docs/cluster.md)");
     cmd->add_option("--cluster", a->cluster, "Cluster config JSON (configs/clusters/)")->required();
     a->playback.add_to(*cmd);
     a->operator_console.add_to(*cmd);
@@ -597,9 +620,11 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--record-frames", a->record_frames,
                     "Write every presented frame to DIR/<node>/<output>/ (as --out; one file per presented frame)")
         ->excludes("--out");
-    cmd->add_option("--cache", a->cache_dir, "This node's table cache (default $XDG_CACHE_HOME/zenith/cluster-nodes/<cluster>/<node>)");
+    cmd->add_option("--cache", a->cache_dir,
+                    "This node's table cache (default $XDG_CACHE_HOME/zenith/cluster-nodes/<cluster>/<node>)");
     cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
-    cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms, "Keep trying to reach the master this long (default 15000)");
+    cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms,
+                    "Keep trying to reach the master this long (default 15000)");
     cmd->add_option("--reconnect-s", a->reconnect_s,
                     "After losing the master, keep the last frame and try to rejoin this long before exiting with "
                     "status 3 (default: the config's timing.reconnect_s, 300; 0: exit at once)")
@@ -624,8 +649,10 @@ void register_cluster_commands(CLI::App& app) {
   {
     auto a = std::make_shared<ClusterArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "cluster", "Run a local cluster: the master and every node of this machine as child processes (docs/cluster.md)");
-    cmd->add_option("--cluster", a->cluster, fmt::format("Cluster config JSON (default configs/{}, built in)", kDefaultClusterName));
+        "cluster",
+        "Run a local cluster: the master and every node of this machine as child processes (docs/cluster.md)");
+    cmd->add_option("--cluster", a->cluster,
+                    fmt::format("Cluster config JSON (default configs/{}, built in)", kDefaultClusterName));
     a->playback.add_to(*cmd);
     a->operator_console.add_to(*cmd);
     cmd->add_option("--frames", a->frames, "Frames to present (default 10; with --show, the whole show)")
@@ -646,10 +673,12 @@ void register_cluster_commands(CLI::App& app) {
                     "FRAME:BODY:PRESET_OR_FILE: switch that atmosphere mid-show (passed to the master; repeatable)");
     cmd->add_flag("--restart-nodes", a->restart_nodes,
                   "Restart a local node that dies (non-zero exit or a signal); it rejoins with its cached tables");
-    cmd->add_option("--max-restarts", a->max_restarts,
-                    "With --restart-nodes: a node that died this often within --restart-window-s stays down (default 5)")
+    cmd->add_option(
+           "--max-restarts", a->max_restarts,
+           "With --restart-nodes: a node that died this often within --restart-window-s stays down (default 5)")
         ->check(CLI::Range(1, 1000));
-    cmd->add_option("--restart-window-s", a->restart_window_s, "With --restart-nodes: the window of --max-restarts (default 60)")
+    cmd->add_option("--restart-window-s", a->restart_window_s,
+                    "With --restart-nodes: the window of --max-restarts (default 60)")
         ->check(CLI::Range(1.0, 86400.0));
     cmd->callback([a] { run_cluster(*a); });
   }

@@ -7,10 +7,10 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "core/embedded_file.h"
-#include "core/strings.h"
 #include "atmosphere/lut/table_cache.h"
+#include "core/embedded_file.h"
 #include "core/sha256.h"
+#include "core/strings.h"
 
 namespace zenith::app {
 namespace embedded_configs {
@@ -54,7 +54,8 @@ fs::path default_config(const std::string& name) {
   const auto files = embedded_configs::embedded_files();
   std::string all;
   for (const EmbeddedFile& f : files) all += cat(f.name, '\n', f.contents, '\n');
-  if (!core::find_embedded(files, name)) throw std::runtime_error(cat("no configuration ", local.string(), " here and none named ", name, " built in"));
+  if (!core::find_embedded(files, name))
+    throw std::runtime_error(cat("no configuration ", local.string(), " here and none named ", name, " built in"));
   const fs::path folder = atmosphere::lut::default_cache_directory() / "embedded-configs" /
                           core::sha256_hex(all.data(), all.size()).substr(0, 16);
   for (const EmbeddedFile& f : files) write_if_different(folder / f.name, f.contents);

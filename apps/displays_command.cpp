@@ -9,7 +9,8 @@ namespace zenith::app {
 
 void register_displays_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
-      "displays", "List the monitors (name, index, size, position, refresh) an output's \"window\" can name (docs/window.md)");
+      "displays",
+      "List the monitors (name, index, size, position, refresh) an output's \"window\" can name (docs/window.md)");
   cmd->callback([] {
     const std::vector<render::window::MonitorInfo> monitors = render::window::list_monitors();
     fmt::print("{} monitor{} (index: name size at (x, y) on the desktop):\n{}", monitors.size(),

@@ -7,9 +7,9 @@
 #include <memory>
 #include <string>
 
-#include "warp/calibration_export.h"
 #include "apps/commands.h"
 #include "offline/output_rendering.h"
+#include "warp/calibration_export.h"
 
 namespace zenith::app {
 
@@ -35,8 +35,7 @@ void register_export_calibration_command(CLI::App& app) {
     const ViewportSelection selection = select_viewport_outputs(args->viewport);
     CalibrationExportOptions options;
     if (args->mpcdi_profile == "sl") options.mpcdi_profile = warp::MpcdiProfile::shader_lamps;
-    const std::vector<ExportedFile> files =
-        export_calibration(selection.config, selection.indices, args->out, options);
+    const std::vector<ExportedFile> files = export_calibration(selection.config, selection.indices, args->out, options);
     for (const ExportedFile& f : files) fmt::print("written {}: {}\n", f.path.string(), f.summary);
   });
 }

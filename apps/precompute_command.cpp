@@ -4,11 +4,11 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/commands.h"
-#include "offline/output_rendering.h"
-#include "render/lut/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/named_inputs.h"
+#include "offline/output_rendering.h"
+#include "render/lut/table_provider.h"
 
 namespace zenith::app {
 namespace {
@@ -43,7 +43,8 @@ void run_precompute(const PrecomputeArgs& a) {
     for (std::size_t i = 0; i < t.report.order_fraction.size(); ++i)
       fractions += fmt::format("{}{}: {:.4f}", i ? ", " : "", i + 1, t.report.order_fraction[i]);
     if (t.report.tail_fraction > 0.0)
-      fractions += fmt::format(", orders {}–∞ as the series tail: {:.4f}", t.report.orders_used + 1, t.report.tail_fraction);
+      fractions +=
+          fmt::format(", orders {}–∞ as the series tail: {:.4f}", t.report.orders_used + 1, t.report.tail_fraction);
     fmt::print("orders used     {} (share of in-scattered radiance per order: {})\n", t.report.orders_used, fractions);
     if (!t.cache_file.empty()) fmt::print("cached in       {}\n", t.cache_file.string());
   }
@@ -71,7 +72,7 @@ void register_precompute_command(CLI::App& app) {
                   ->check(CLI::Range(1e-9, 1.0));
   orders->excludes(tol);
   cmd->add_flag("--no-series-tail", args->no_series_tail,
-               "Drop the orders after the last one instead of adding their geometric tail");
+                "Drop the orders after the last one instead of adding their geometric tail");
   cmd->add_option("--tables", args->tables, "Table sizes: paper (default), small, large")
       ->check(CLI::IsMember({"paper", "small", "large"}));
   cmd->add_option("--cache", args->cache_dir, "Cache directory (default $XDG_CACHE_HOME/zenith)");

@@ -21,20 +21,20 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "apps/commands.h"
 #include "apps/cli_options.h"
-#include "offline/output_rendering.h"
+#include "apps/commands.h"
 #include "core/progress_bar.h"
-#include "render/lut/table_provider.h"
-#include "render/gl/egl_context.h"
+#include "core/units.h"
 #include "image/image_writer.h"
+#include "offline/output_rendering.h"
+#include "render/gl/egl_context.h"
+#include "render/lut/table_provider.h"
 #include "render/renderer.h"
-#include "scene/scene_loader.h"
 #include "render/window/frame_presenter.h"
 #include "render/window/window_context.h"
+#include "scene/scene_loader.h"
 #include "warp/blending.h"
 #include "warp/viewport_config.h"
-#include "core/units.h"
 
 namespace zenith::app {
 namespace {
@@ -100,10 +100,10 @@ void render_to_files(render::Renderer& renderer, const scene::Scene& scene, cons
   const int height = projection.height();
   core::ProgressBar bar("render");
   app::render_to_files(renderer, scene, projection, std::vector<std::filesystem::path>(outputs.begin(), outputs.end()),
-                  stage, attributes, [&](int first_row, int row_count) {
-                    bar.update(fmt::format("rows {}–{}", first_row, first_row + row_count - 1),
-                               static_cast<double>(first_row + row_count) / height);
-                  });
+                       stage, attributes, [&](int first_row, int row_count) {
+                         bar.update(fmt::format("rows {}–{}", first_row, first_row + row_count - 1),
+                                    static_cast<double>(first_row + row_count) / height);
+                       });
   bar.finish();
   log_frame_stats(renderer.last_frame());
   for (const auto& out : outputs) fmt::print("written {}\n", out);
@@ -113,10 +113,10 @@ void render_to_files(render::Renderer& renderer, const scene::Scene& scene, cons
 // The window's view controls: how keys move the camera and the sun.
 
 constexpr double kTurnStepRad = 2.0 * core::kPi / 180.0;  ///< arrows, ',' and '.'
-constexpr double kFastTurnFactor = 5.0;                          ///< with Shift
-constexpr double kMoveFraction = 0.1;                            ///< PageUp/PageDown: of the altitude
-constexpr double kMinAltitudeM = 1.0;                            ///< the camera stays this high above every body
-constexpr double kExposureStep = 1.25;                           ///< '[' and ']'
+constexpr double kFastTurnFactor = 5.0;                   ///< with Shift
+constexpr double kMoveFraction = 0.1;                     ///< PageUp/PageDown: of the altitude
+constexpr double kMinAltitudeM = 1.0;                     ///< the camera stays this high above every body
+constexpr double kExposureStep = 1.25;                    ///< '[' and ']'
 
 /// The body whose surface is nearest to `point` (scene::nearest_body), or null in an empty scene.
 const scene::Body* nearest_body(const scene::Scene& scene, const glm::dvec3& point) {
@@ -206,8 +206,8 @@ KeyEffect apply_key(const render::window::KeyEvent& e, scene::Scene& scene) {
     case Key::page_down: move_camera(scene, -kMoveFraction); return KeyEffect::scene_changed;
     case Key::left_bracket:
     case Key::right_bracket: {
-      const double e_new = e.key == Key::left_bracket ? scene.camera.exposure / kExposureStep
-                                                      : scene.camera.exposure * kExposureStep;
+      const double e_new =
+          e.key == Key::left_bracket ? scene.camera.exposure / kExposureStep : scene.camera.exposure * kExposureStep;
       scene.camera.exposure = std::clamp(e_new, 1e-9, 1e6);
       spdlog::info("exposure {:.4g}", scene.camera.exposure);
       return KeyEffect::scene_changed;
@@ -277,13 +277,17 @@ void run_window(const RenderArgs& a, scene::Scene scene, const warp::Projection&
       ++presented;
       if (a.frames && presented >= *a.frames) break;
     }
-    if (a.frames && fb.width > 0 && fb.height > 0) window.poll_events();
-    else window.wait_events(0.5);
+    if (a.frames && fb.width > 0 && fb.height > 0)
+      window.poll_events();
+    else
+      window.wait_events(0.5);
     for (const render::window::KeyEvent& e : window.take_key_events()) {
       if (e.action == render::window::KeyAction::release) continue;
       switch (apply_key(e, scene)) {
         case KeyEffect::scene_changed: stale = true; break;
-        case KeyEffect::screenshot: screenshot_pending = screenshot_pending || e.action == render::window::KeyAction::press; break;
+        case KeyEffect::screenshot:
+          screenshot_pending = screenshot_pending || e.action == render::window::KeyAction::press;
+          break;
         case KeyEffect::quit: window.request_close(); break;
         case KeyEffect::none: break;
       }
@@ -297,8 +301,10 @@ void run_window(const RenderArgs& a, scene::Scene scene, const warp::Projection&
   for (const auto& out : a.outputs) {
     const std::filesystem::path path(out);
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    if (path.extension() == ".exr") image::write_exr(path, width, height, frame, exr_type, attributes);
-    else image::write_png(path, width, height, frame, tone, attributes);
+    if (path.extension() == ".exr")
+      image::write_exr(path, width, height, frame, exr_type, attributes);
+    else
+      image::write_png(path, width, height, frame, tone, attributes);
     fmt::print("written {}\n", out);
   }
 }
@@ -335,7 +341,8 @@ void run_viewport_render(const RenderArgs& a, const scene::Scene& scene) {
     const std::string pattern = !out.empty() && out.back() == '/' ? out + "x.png" : out;
     const auto ext = std::filesystem::path(pattern).extension().string();
     if (ext != ".exr" && ext != ".png")
-      throw std::invalid_argument(fmt::format("--out '{}': the file name must end in .exr or .png (or the folder in /)", out));
+      throw std::invalid_argument(
+          fmt::format("--out '{}': the file name must end in .exr or .png (or the folder in /)", out));
   }
 
   render::gl::ContextOptions context_options;
@@ -423,7 +430,8 @@ void register_render_command(CLI::App& app) {
   cmd->add_flag("--no-eclipses", a->no_eclipses, "Ignore shadows of bodies on other bodies");
   cmd->add_flag("--bodies-only", a->bodies_only, "No atmospheres: bodies lit by the sun only");
   cmd->add_flag("--fp64", a->fp64, "Atmosphere pass in double precision");
-  cmd->add_flag("--window", a->window, "Show the frame in a window and explore the scene with the keys (docs/window.md)");
+  cmd->add_flag("--window", a->window,
+                "Show the frame in a window and explore the scene with the keys (docs/window.md)");
   cmd->add_option("--frames", a->frames, "--window: close after N presented frames (tests, scripts)")
       ->check(CLI::Range(1, 100000000));
   cmd->callback([a, cmd] {

@@ -9,17 +9,17 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "atmosphere/named_inputs.h"
 #include "apps/sampling.h"
-#include "render/lut/table_provider.h"
+#include "atmosphere/named_inputs.h"
 #include "core/json_reader.h"
+#include "render/lut/table_provider.h"
 
 namespace zenith::app {
 namespace {
 
 struct SampleArgs {
   std::string atmosphere, directions_file, grid, method = "lut", out = "-", tables = "paper", quantity = "radiance",
-              cache_dir;
+                                                 cache_dir;
   double altitude_m = 0.0, sun_zenith_deg = 30.0, sun_azimuth_deg = 0.0, sun_radius_deg = 0.2666;
   std::uint64_t seed = 1;
   std::size_t samples = 4096;
@@ -60,8 +60,7 @@ std::vector<ViewDirection> grid_directions(const std::string& grid) {
     throw std::invalid_argument("--grid must be ZxA (zenith steps x azimuth steps), e.g. 19x8");
   std::vector<ViewDirection> dirs;
   for (unsigned a = 0; a < na; ++a)
-    for (unsigned z = 0; z < nz; ++z)
-      dirs.push_back({nz == 1 ? 0.0 : 90.0 * z / (nz - 1), 360.0 * a / na});
+    for (unsigned z = 0; z < nz; ++z) dirs.push_back({nz == 1 ? 0.0 : 90.0 * z / (nz - 1), 360.0 * a / na});
   return dirs;
 }
 
@@ -85,9 +84,12 @@ void run_sample(const SampleArgs& a) {
   if (!a.cache_dir.empty()) r.tables.cache_directory = a.cache_dir;
 
   std::string csv;
-  if (a.quantity == "radiance") csv = sample_radiance_csv(loaded.model, r);
-  else if (a.quantity == "transmittance") csv = sample_transmittance_csv(loaded.model, r);
-  else csv = sample_irradiance_csv(loaded.model, r);
+  if (a.quantity == "radiance")
+    csv = sample_radiance_csv(loaded.model, r);
+  else if (a.quantity == "transmittance")
+    csv = sample_transmittance_csv(loaded.model, r);
+  else
+    csv = sample_irradiance_csv(loaded.model, r);
   if (a.out == "-") {
     fmt::print("{}", csv);
   } else {

@@ -2,11 +2,11 @@
 
 #include <sstream>
 
-#include "core/progress_bar.h"
 #include "atmosphere/constants.h"
 #include "atmosphere/reference/geometry.h"
 #include "atmosphere/reference/optical_depth.h"
 #include "atmosphere/reference/path_tracer.h"
+#include "core/progress_bar.h"
 
 namespace zenith::app {
 namespace {
@@ -77,8 +77,9 @@ std::string sample_transmittance_csv(const AtmosphereModel& model, const Samplin
                                      observer + view_vector(d) * interval.end_t_m);
       }
     }
-    csv << d.zenith_deg << ',' << d.azimuth_deg << ',' << (interval.intersects ? interval.end_t_m - interval.begin_t_m : 0.0)
-        << ',' << (interval.ends_on_ground ? 1 : 0);
+    csv << d.zenith_deg << ',' << d.azimuth_deg << ','
+        << (interval.intersects ? interval.end_t_m - interval.begin_t_m : 0.0) << ','
+        << (interval.ends_on_ground ? 1 : 0);
     for (double v : t) csv << ',' << v;
     csv << '\n';
   }

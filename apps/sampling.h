@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "render/lut/table_provider.h"
 #include "atmosphere/sky_sampling.h"
+#include "render/lut/table_provider.h"
 
 namespace zenith::app {
 

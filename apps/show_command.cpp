@@ -4,7 +4,9 @@
 namespace zenith::app {
 
 void register_show_command(CLI::App& app) {
-  CLI::App* show = app.add_subcommand("show", "Shows: render offline, plan tables, control playback (docs/shows.md; play one with `zenith cluster --show`)");
+  CLI::App* show = app.add_subcommand(
+      "show",
+      "Shows: render offline, plan tables, control playback (docs/shows.md; play one with `zenith cluster --show`)");
   show->require_subcommand(1);
   register_show_render(*show);
   register_show_plan(*show);

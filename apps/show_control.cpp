@@ -61,7 +61,8 @@ std::string send_command(const ControlArgs& a) {
     });
   });
   io.run_for(std::chrono::milliseconds(a.timeout_ms));
-  if (!io.stopped()) throw std::runtime_error(fmt::format("no reply from 127.0.0.1:{} within {} ms", a.port, a.timeout_ms));
+  if (!io.stopped())
+    throw std::runtime_error(fmt::format("no reply from 127.0.0.1:{} within {} ms", a.port, a.timeout_ms));
   if (!error.empty()) throw std::runtime_error(error);
   std::istream in(&reply);
   std::string answer;
@@ -74,9 +75,11 @@ std::string send_command(const ControlArgs& a) {
 void register_show_control(CLI::App& show) {
   auto a = std::make_shared<ControlArgs>();
   CLI::App* cmd = show.add_subcommand(
-      "control", "Send a playback command to a running master (play, pause, toggle, seek S, rate R, loop on|off, status, quit)");
+      "control",
+      "Send a playback command to a running master (play, pause, toggle, seek S, rate R, loop on|off, status, quit)");
   cmd->add_option("--port", a->port, "The master's --control-port")->required()->check(CLI::Range(1, 65535));
-  cmd->add_option("--timeout-ms", a->timeout_ms, "Give up after this long (default 5000)")->check(CLI::Range(1, 600000));
+  cmd->add_option("--timeout-ms", a->timeout_ms, "Give up after this long (default 5000)")
+      ->check(CLI::Range(1, 600000));
   cmd->add_option("command", a->words, "The command and its argument, e.g. seek 12.5")->required();
   cmd->callback([a] {
     const std::string answer = send_command(*a);

@@ -15,25 +15,25 @@
 #include <string>
 #include <vector>
 
-#include "apps/commands.h"
 #include "apps/cli_options.h"
+#include "apps/commands.h"
+#include "atmosphere/lut/table_cache.h"
+#include "cluster/link/cluster_config.h"
+#include "core/json_reader.h"
+#include "core/strings.h"
+#include "image/colour.h"
+#include "image/display_image_writer.h"
 #include "offline/offline_cluster_renderer.h"
 #include "offline/offline_frame_renderer.h"
 #include "offline/offline_manifest.h"
 #include "offline/offline_render.h"
-#include "offline/video_proxy.h"
-#include "image/display_image_writer.h"
 #include "offline/output_rendering.h"
+#include "offline/video_proxy.h"
 #include "render/lut/table_provider.h"
-#include "core/json_reader.h"
-#include "core/strings.h"
-#include "atmosphere/lut/table_cache.h"
-#include "cluster/link/cluster_config.h"
-#include "scene/frame_digest.h"
 #include "render/render_flags.h"
+#include "scene/frame_digest.h"
 #include "show/show.h"
 #include "show/table_plan.h"
-#include "image/colour.h"
 #include "warp/dome_tiles.h"
 
 namespace zenith::app {
@@ -125,11 +125,11 @@ Outputs cluster_outputs(const cluster::ClusterConfig& config) {
     for (const std::string& name : node.outputs) {
       const warp::OutputConfig& o = viewports.outputs[viewports.index_of(name)];
       configs.push_back(&o);
-      result.specs.push_back({o.name, o.width_px, o.height_px,
-                              cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #", o.name,
-                                  "; blend ", warp::to_string(o.blend.mode), "; black level ", o.black_level,
-                                  "; node ", node.name),
-                              std::nullopt});
+      result.specs.push_back(
+          {o.name, o.width_px, o.height_px,
+           cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #", o.name, "; blend ",
+               warp::to_string(o.blend.mode), "; black level ", o.black_level, "; node ", node.name),
+           std::nullopt});
     }
   set_dome_mosaic(result.specs, configs);
   return result;
@@ -147,9 +147,8 @@ Outputs outputs_of(const ShowRenderArgs& a) {
       const warp::OutputConfig& o = selection.config.outputs[i];
       configs.push_back(&o);
       result.specs.push_back({o.name, o.width_px, o.height_px,
-                              cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #",
-                                  o.name, "; blend ", warp::to_string(o.blend.mode), "; black level ",
-                                  o.black_level),
+                              cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #", o.name,
+                                  "; blend ", warp::to_string(o.blend.mode), "; black level ", o.black_level),
                               std::nullopt});
       result.local.push_back({o.projection, warp::output_blend_mask(selection.config, i), o.black_level,
                               viewport_attributes(file_name, o)});
@@ -158,7 +157,8 @@ Outputs outputs_of(const ShowRenderArgs& a) {
     return result;
   }
   const auto [width, height] = parse_size(a.size);
-  std::shared_ptr<const warp::Projection> projection = make_projection(a.projection, a.fov_deg, a.tilt_deg, width, height);
+  std::shared_ptr<const warp::Projection> projection =
+      make_projection(a.projection, a.fov_deg, a.tilt_deg, width, height);
   result.specs.push_back({a.projection, width, height, projection->describe(), std::nullopt});
   result.local.push_back({std::move(projection), std::nullopt, 0.0, {}});
   return result;
@@ -191,8 +191,8 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   const int png_compression = image::parse_png_compression(a.png_compression);
   const image::TiffCompression tiff_compression = image::parse_tiff_compression(a.tiff_compression);
   if (a.threads && (*a.threads < 0 || *a.threads > 256))
-    throw std::invalid_argument(fmt::format("--threads {}: must be in [0, 256] (0: the simple path, no pipeline)",
-                                            *a.threads));
+    throw std::invalid_argument(
+        fmt::format("--threads {}: must be in [0, 256] (0: the simple path, no pipeline)", *a.threads));
   if (a.frames_in_flight && (*a.frames_in_flight < 1 || *a.frames_in_flight > 64))
     throw std::invalid_argument(fmt::format("--frames-in-flight {}: must be in [1, 64]", *a.frames_in_flight));
   if (!a.video.empty() && !offline::find_ffmpeg())
@@ -224,9 +224,10 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   if (frame_count == 0) throw std::invalid_argument(fmt::format("{}: the show has no frames", a.show));
   const std::uint64_t first = a.from.value_or(0), last = a.to.value_or(frame_count - 1);
   if (first >= frame_count || last >= frame_count || first > last)
-    throw std::invalid_argument(fmt::format("--from {} --to {}: must satisfy 0 ≤ from ≤ to ≤ {} (the show's last "
-                                            "frame at {} fps)",
-                                            first, last, frame_count - 1, fps));
+    throw std::invalid_argument(
+        fmt::format("--from {} --to {}: must satisfy 0 ≤ from ≤ to ≤ {} (the show's last "
+                    "frame at {} fps)",
+                    first, last, frame_count - 1, fps));
 
   TableArgs table_args = a.tables;
   if (cluster_config) {  // the nodes render with the cluster's tables
@@ -265,8 +266,8 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   job.naming = naming;
   job.tone = tone;
   if (a.contact_sheet != "none")
-    job.contact_sheet = a.contact_sheet.empty() ? job.out_dir / "contact-sheet.png"
-                                                : std::filesystem::path(a.contact_sheet);
+    job.contact_sheet =
+        a.contact_sheet.empty() ? job.out_dir / "contact-sheet.png" : std::filesystem::path(a.contact_sheet);
 
   nlohmann::json run_outputs = nlohmann::json::array();
   for (const offline::OutputSpec& o : job.outputs) {
@@ -340,21 +341,21 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   std::optional<offline::VideoProxy> video;
   if (!a.video.empty()) {
     if (std::none_of(formats.begin(), formats.end(), offline::is_display_format))
-      throw std::invalid_argument(
-          fmt::format("--video {}: needs a display format among --format (png, png16 or tiff); exr is linear", a.video));
+      throw std::invalid_argument(fmt::format(
+          "--video {}: needs a display format among --format (png, png16 or tiff); exr is linear", a.video));
     const offline::LocalOutput& first_output = outputs.local.front();
     const bool eight = std::find(formats.begin(), formats.end(), offline::ImageFormat::png) != formats.end();
     video.emplace(a.video, first_output.projection->width(), first_output.projection->height(), eight ? 8 : 16, fps);
     pipeline.published = [&video](const offline::DisplayFrame& frame) { video->write(frame.rgba); };
   }
-  offline::LocalFrameRenderer renderer(show, std::move(versions), std::move(outputs.local), std::move(pipeline),
-                                       colour, request, context_options);
+  offline::LocalFrameRenderer renderer(show, std::move(versions), std::move(outputs.local), std::move(pipeline), colour,
+                                       request, context_options);
   job.before_rendering = [&](std::uint64_t frames, const std::set<scene::TableHash>& table_hashes) {
-    spdlog::info("rendering {} frame{} of '{}' at {} fps into {}/<output>/{}.{} on {}", frames,
-                 frames == 1 ? "" : "s", show.name(), fps, a.out, naming.pattern, a.format, renderer.device());
+    spdlog::info("rendering {} frame{} of '{}' at {} fps into {}/<output>/{}.{} on {}", frames, frames == 1 ? "" : "s",
+                 show.name(), fps, a.out, naming.pattern, a.format, renderer.device());
     if (video && frames != last - first + 1)
-      spdlog::warn("--video {}: covers the {} frames rendered by this run, not the {} already on disk", a.video,
-                   frames, last - first + 1 - frames);
+      spdlog::warn("--video {}: covers the {} frames rendered by this run, not the {} already on disk", a.video, frames,
+                   last - first + 1 - frames);
     renderer.precompute_missing(plan, table_hashes);
   };
   const offline::RenderSummary summary = offline::run_render_job(job, renderer);
@@ -370,8 +371,9 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
 void register_show_render(CLI::App& show_command) {
   auto a = std::make_shared<ShowRenderArgs>();
   CLI::App* cmd = show_command.add_subcommand(
-      "render", "Render every frame of a show at a fixed frame rate to numbered PNG/TIFF/EXR files per output, resumable "
-                "(docs/shows.md, \"Offline rendering\")");
+      "render",
+      "Render every frame of a show at a fixed frame rate to numbered PNG/TIFF/EXR files per output, resumable "
+      "(docs/shows.md, \"Offline rendering\")");
   cmd->add_option("--show", a->show, "Show file (configs/shows/)")->required();
   cmd->add_option("--out", a->out, "Output folder: DIR/<output>/<output>.<frame:06d>.png|tif|exr, DIR/manifest.json")
       ->required();
@@ -387,7 +389,7 @@ void register_show_render(CLI::App& show_command) {
   cmd->add_option("--format", a->format,
                   "Comma list of png (8-bit, default), png16, tiff (16-bit) and exr (linear), e.g. png,exr");
   cmd->add_option("--png-compression", a->png_compression,
-                   "fast (default: zlib 1, Sub filter), default (zlib 6, adaptive filters), best (9) or a level 0-9");
+                  "fast (default: zlib 1, Sub filter), default (zlib 6, adaptive filters), best (9) or a level 0-9");
   cmd->add_option("--tiff-compression", a->tiff_compression, "deflate (default), lzw or none");
   cmd->add_option("--frame-name", a->frame_name,
                   "File name pattern in each output's folder: one %d or %0Nd, optionally {output}; the extension "

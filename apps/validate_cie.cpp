@@ -29,15 +29,15 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "offline/output_rendering.h"
-#include "render/lut/table_provider.h"
 #include "atmosphere/cie_sky.h"
 #include "atmosphere/constants.h"
-#include "core/json_reader.h"
-#include "core/strings.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/sky_sampling.h"
+#include "core/json_reader.h"
+#include "core/strings.h"
 #include "core/units.h"
+#include "offline/output_rendering.h"
+#include "render/lut/table_provider.h"
 
 namespace zenith::app {
 namespace {
@@ -128,9 +128,9 @@ std::vector<double> view_zeniths_deg(double step_deg) {
 /// One sample of the comparison.
 struct Point {
   double view_zenith_deg, azimuth_deg, sun_distance_deg;
-  double ours;                  ///< our L/L_z
-  std::vector<double> cie;      ///< L/L_z of each CIE type (index = type number − 1)
-  bool excluded;                ///< within the sun exclusion radius
+  double ours;              ///< our L/L_z
+  std::vector<double> cie;  ///< L/L_z of each CIE type (index = type number − 1)
+  bool excluded;            ///< within the sun exclusion radius
 };
 
 /// All points of one variant at one sun zenith (every azimuth).
@@ -229,14 +229,18 @@ VariantResult evaluate_variant(const Variant& v, const ValidateCieArgs& a, const
     const std::vector<atmosphere::RadianceSample> samples = atmosphere::sample_radiance(queries, geometry, directions);
     const double zenith_luminance = luminance(samples.front().radiance);
     if (!(zenith_luminance > 0.0))
-      throw std::runtime_error(cat(v.label_full(), ": zenith luminance is ", zenith_luminance, " at sun zenith ",
-                                   sun_zenith, " deg"));
+      throw std::runtime_error(
+          cat(v.label_full(), ": zenith luminance is ", zenith_luminance, " at sun zenith ", sun_zenith, " deg"));
     SunCase c{sun_zenith, {}};
     for (std::size_t i = 1; i < samples.size(); ++i) {
       const auto& d = samples[i].direction;
       const double z = d.zenith_deg * kDeg, az = d.azimuth_deg * kDeg, zs = sun_zenith * kDeg;
-      Point p{d.zenith_deg, d.azimuth_deg, atmosphere::cie_sun_distance_rad(z, az, zs) / kDeg,
-              luminance(samples[i].radiance) / zenith_luminance, {}, false};
+      Point p{d.zenith_deg,
+              d.azimuth_deg,
+              atmosphere::cie_sun_distance_rad(z, az, zs) / kDeg,
+              luminance(samples[i].radiance) / zenith_luminance,
+              {},
+              false};
       p.excluded = p.sun_distance_deg < a.exclude_sun_deg - 1e-6;
       for (const CieSkyType& type : types) p.cie.push_back(atmosphere::cie_relative_luminance(type, z, az, zs));
       c.points.push_back(std::move(p));
@@ -248,9 +252,7 @@ VariantResult evaluate_variant(const Variant& v, const ValidateCieArgs& a, const
 
 // ---------------------------------------------------------------- output
 
-std::string number_text(double v) {
-  return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string("NaN");
-}
+std::string number_text(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string("NaN"); }
 
 void write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path);
@@ -260,8 +262,9 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
 
 /// Every sample: both curves and which points the statistics skip.
 std::string samples_csv(const std::vector<VariantResult>& results, std::size_t t12) {
-  std::string s = "preset,variant,sun_zenith_deg,azimuth_from_sun_deg,view_zenith_deg,sun_distance_deg,"
-                  "L_rel_ours,L_rel_cie12,excluded\n";
+  std::string s =
+      "preset,variant,sun_zenith_deg,azimuth_from_sun_deg,view_zenith_deg,sun_distance_deg,"
+      "L_rel_ours,L_rel_cie12,excluded\n";
   for (const VariantResult& r : results)
     for (const SunCase& c : r.cases)
       for (const Point& p : c.points)
@@ -274,8 +277,9 @@ std::string samples_csv(const std::vector<VariantResult>& results, std::size_t t
 /// One row per case (preset, variant, sun zenith, azimuth).
 std::string cases_csv(const std::vector<VariantResult>& results, const std::vector<CieSkyType>& types,
                       std::size_t t12) {
-  std::string s = "preset,variant,sun_zenith_deg,azimuth_from_sun_deg,points,rms_type12,max_abs_type12,"
-                  "max_at_view_zenith_deg,rms_rel_type12,rms_type12_far,max_abs_type12_far,best_type,best_type_rms\n";
+  std::string s =
+      "preset,variant,sun_zenith_deg,azimuth_from_sun_deg,points,rms_type12,max_abs_type12,"
+      "max_at_view_zenith_deg,rms_rel_type12,rms_type12_far,max_abs_type12_far,best_type,best_type_rms\n";
   for (const VariantResult& r : results)
     for (const SunCase& c : r.cases)
       for (double az : kAzimuthsFromSun_deg) {
@@ -294,8 +298,9 @@ std::string cases_csv(const std::vector<VariantResult>& results, const std::vect
 /// One row per preset and variant, all cases together.
 std::string summary_csv(const std::vector<VariantResult>& results, const std::vector<CieSkyType>& types,
                         std::size_t t12) {
-  std::string s = "preset,variant,points,rms_type12,max_abs_type12,max_at_sun_zenith_deg,max_at_azimuth_deg,"
-                  "max_at_view_zenith_deg,rms_rel_type12,rms_type12_far,max_abs_type12_far,best_type,best_type_rms\n";
+  std::string s =
+      "preset,variant,points,rms_type12,max_abs_type12,max_at_sun_zenith_deg,max_at_azimuth_deg,"
+      "max_at_view_zenith_deg,rms_rel_type12,rms_type12_far,max_abs_type12_far,best_type,best_type_rms\n";
   const auto all = [](const SunCase&, const Point&) { return true; };
   for (const VariantResult& r : results) {
     const ErrorStats e = stats_for(r.cases, t12, all), far = stats_for(r.cases, t12, far_from_sun(all));
@@ -309,9 +314,10 @@ std::string summary_csv(const std::vector<VariantResult>& results, const std::ve
 
 /// Table on stdout: a row per (preset, variant, sun zenith), RMS per azimuth.
 void print_table(const std::vector<VariantResult>& results, const std::vector<CieSkyType>& types, std::size_t t12) {
-  fmt::print("\nL/Lz against CIE type 12: RMS of the difference per azimuth from the sun, over all azimuths, its max, "
-             "the RMS {:.0f} deg or more from the sun (far30), and the best-fitting CIE type with its RMS\n",
-             kFarFromSun_deg);
+  fmt::print(
+      "\nL/Lz against CIE type 12: RMS of the difference per azimuth from the sun, over all azimuths, its max, "
+      "the RMS {:.0f} deg or more from the sun (far30), and the best-fitting CIE type with its RMS\n",
+      kFarFromSun_deg);
   std::string head = fmt::format("{:<16} {:<19} {:>5}", "preset", "variant", "sun");
   for (double az : kAzimuthsFromSun_deg) head += fmt::format(" {:>7}", fmt::format("az{:.0f}", az));
   head += fmt::format(" {:>7} {:>7} {:>7}  {:>4} {:>7}", "all", "max", "far30", "best", "rms");
@@ -337,9 +343,10 @@ void print_table(const std::vector<VariantResult>& results, const std::vector<Ci
 void print_summary(const std::vector<VariantResult>& results, const std::vector<CieSkyType>& types, std::size_t t12,
                    const ValidateCieArgs& a) {
   const auto all = [](const SunCase&, const Point&) { return true; };
-  fmt::print("\nSummary: all sun zenith angles and azimuths, view zenith 0-{:.0f} deg every {} deg, "
-             "directions within {} deg of the sun left out\n",
-             kMaxViewZenith_deg, a.zenith_step_deg, a.exclude_sun_deg);
+  fmt::print(
+      "\nSummary: all sun zenith angles and azimuths, view zenith 0-{:.0f} deg every {} deg, "
+      "directions within {} deg of the sun left out\n",
+      kMaxViewZenith_deg, a.zenith_step_deg, a.exclude_sun_deg);
   fmt::print("{:<16} {:<19} {:>6} {:>9} {:>9} {:>20} {:>8} {:>10} {:>10}  {}\n", "preset", "variant", "points",
              "rms(12)", "max(12)", "max at sun,az,view", "rel.rms", "rms far30", "max far30", "best type (rms)");
   for (const VariantResult& r : results) {
@@ -355,12 +362,13 @@ void print_summary(const std::vector<VariantResult>& results, const std::vector<
   for (const VariantResult& r : results) {
     if (r.variant.key != "as-is") continue;
     const ErrorStats e = stats_for(r.cases, t12, all), far = stats_for(r.cases, t12, far_from_sun(all));
-    fmt::print("CIE type 12{}, {} as is, {} tables: RMS |dL/Lz| = {:.4f}, max = {:.3f} "
-               "(sun zenith {:.0f}, azimuth {:.0f}, view zenith {:.1f} deg), relative RMS {:.1f}%; "
-               "{:.0f} deg or more from the sun: RMS {:.4f}, max {:.4f}\n",
-               r.variant.preset == "earth-advanced" ? " (the paper's Figure 10 case)" : "", r.variant.preset, a.tables,
-               e.rms(), e.max_abs, e.max_at_sun_zenith_deg, e.max_at_azimuth_deg,
-               e.max_at_zenith_deg, 100.0 * e.rms_relative(), kFarFromSun_deg, far.rms(), far.max_abs);
+    fmt::print(
+        "CIE type 12{}, {} as is, {} tables: RMS |dL/Lz| = {:.4f}, max = {:.3f} "
+        "(sun zenith {:.0f}, azimuth {:.0f}, view zenith {:.1f} deg), relative RMS {:.1f}%; "
+        "{:.0f} deg or more from the sun: RMS {:.4f}, max {:.4f}\n",
+        r.variant.preset == "earth-advanced" ? " (the paper's Figure 10 case)" : "", r.variant.preset, a.tables,
+        e.rms(), e.max_abs, e.max_at_sun_zenith_deg, e.max_at_azimuth_deg, e.max_at_zenith_deg,
+        100.0 * e.rms_relative(), kFarFromSun_deg, far.rms(), far.max_abs);
   }
 }
 
@@ -402,7 +410,8 @@ std::string curves_data(const std::vector<VariantResult>& results, std::size_t t
 
 /// Line colour per preset, dash type per variant.
 std::string line_style(const VariantResult& r, const std::vector<std::string>& presets) {
-  static constexpr std::array<const char*, 6> kColours{"#1a9850", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#a6761d"};
+  static constexpr std::array<const char*, 6> kColours{"#1a9850", "#d95f02", "#7570b3",
+                                                       "#e7298a", "#66a61e", "#a6761d"};
   const auto it = std::find(presets.begin(), presets.end(), r.variant.preset);
   const std::size_t colour = std::size_t(it - presets.begin()) % kColours.size();
   const int dash = r.variant.key == "as-is" ? 1 : r.variant.key == "classic-rayleigh" ? 2 : 3;
@@ -412,9 +421,9 @@ std::string line_style(const VariantResult& r, const std::vector<std::string>& p
 /// Writes the gnuplot script for one sun zenith and runs gnuplot when present.
 /// Returns the PNG path when one was made.
 std::optional<std::filesystem::path> write_plot(const std::filesystem::path& dir, const std::string& stem,
-                                                 double sun_zenith_deg, const std::vector<VariantResult>& results,
-                                                 const std::vector<std::string>& presets, const std::string& tables,
-                                                 double exclude_sun_deg) {
+                                                double sun_zenith_deg, const std::vector<VariantResult>& results,
+                                                const std::vector<std::string>& presets, const std::string& tables,
+                                                double exclude_sun_deg) {
   const std::filesystem::path data = dir / (stem + ".dat"), gp = dir / (stem + ".gp"), png = dir / (stem + ".png");
   std::ofstream s(gp);
   // Paths relative to the script's directory, so the script can be rerun there.
@@ -425,8 +434,8 @@ std::optional<std::filesystem::path> write_plot(const std::filesystem::path& dir
     << "set datafile separator ','\nset datafile missing 'NaN'\nset grid\nset key top left font ',8'\n"
     << "set xrange [-90:90]\nset xtics 15\n"
     << "set multiplot layout 1,3 title \"L/Lz seen from 1.5 m above the ground, sun zenith " << sun_zenith_deg
-    << " deg: CIE type 12 (blue) and zenith presets (" << tables << " tables; directions within "
-    << exclude_sun_deg << " deg of the sun left out)\" noenhanced\n";
+    << " deg: CIE type 12 (blue) and zenith presets (" << tables << " tables; directions within " << exclude_sun_deg
+    << " deg of the sun left out)\" noenhanced\n";
   const std::array<const char*, 3> titles{"solar meridian: view zenith [deg] (- away from the sun, + toward it)",
                                           "plane 45/225 deg from the sun: view zenith [deg] (- 135 deg side)",
                                           "plane 90/270 deg from the sun: view zenith [deg]"};
@@ -485,8 +494,7 @@ void run_validate_cie(const ValidateCieArgs& args) {
     const std::string stem = fmt::format("cie_sun_zenith_{:02.0f}", a.sun_zeniths_deg[s]);
     write_file(dir / (stem + ".dat"), curves_data(results, t12, s, zeniths));
     if (a.no_plots) continue;
-    if (auto png = write_plot(dir, stem, a.sun_zeniths_deg[s], results, a.presets, a.tables,
-                                 a.exclude_sun_deg))
+    if (auto png = write_plot(dir, stem, a.sun_zeniths_deg[s], results, a.presets, a.tables, a.exclude_sun_deg))
       pngs.push_back(png->string());
   }
 
@@ -513,12 +521,12 @@ void register_validate_cie(CLI::App& validate) {
   cmd->add_option("--preset", args->presets,
                   "Preset name or atmosphere JSON file (repeatable; default earth-advanced and earth-standard)")
       ->delimiter(',');
-  cmd->add_option("--sun-zenith", args->sun_zeniths_deg, "Sun zenith angles [deg], comma-separated (default "
-                                                         "20,30,45,60,70,80)")
+  cmd->add_option("--sun-zenith", args->sun_zeniths_deg,
+                  "Sun zenith angles [deg], comma-separated (default "
+                  "20,30,45,60,70,80)")
       ->delimiter(',')
       ->check(CLI::Range(0.0, 89.0));
-  cmd->add_option("--out", args->out_dir, "Output directory (CSV, gnuplot scripts, PNG)")
-      ->capture_default_str();
+  cmd->add_option("--out", args->out_dir, "Output directory (CSV, gnuplot scripts, PNG)")->capture_default_str();
   cmd->add_flag("--csv", args->csv_stdout, "Print the per-case table as CSV on stdout instead of the text summary");
   cmd->add_option("--tables", args->tables, "Table sizes: paper (default), small, large")
       ->check(CLI::IsMember({"paper", "small", "large"}));
@@ -533,8 +541,7 @@ void register_validate_cie(CLI::App& validate) {
   cmd->add_option("--zenith-step", args->zenith_step_deg, "Step of the view zenith angle [deg]")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 45.0));
-  cmd->add_option("--exclude-sun-deg", args->exclude_sun_deg,
-                  "Leave out directions closer than this to the sun [deg]")
+  cmd->add_option("--exclude-sun-deg", args->exclude_sun_deg, "Leave out directions closer than this to the sun [deg]")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 30.0));
   cmd->callback([args] { run_validate_cie(*args); });

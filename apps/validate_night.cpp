@@ -40,15 +40,15 @@
 #include "atmosphere/reference_data.h"
 #include "core/json_reader.h"
 #include "core/strings.h"
-#include "offline/output_rendering.h"
 #include "core/units.h"
+#include "offline/output_rendering.h"
 #include "render/lut/table_provider.h"
 
 namespace zenith::app {
 namespace {
 
-using core::cat;
 using atmosphere::Vec3;
+using core::cat;
 using core::kDeg;
 constexpr double kArcsec = kDeg / 3600.0;
 constexpr double kObserverAltitude_m = 1.5;
@@ -97,7 +97,8 @@ double wrap(double a) { return std::remainder(a, 2.0 * core::kPi); }
 void check_positions(Report& r) {
   const char* s = "1. Positions (geometric, before refraction) [arcsec]";
   {
-    // NREL SPA (Reda & Andreas 2004, §A.5): zenith 50.11162° refracted by its eq. 42 (820 mbar, 11 °C), azimuth 194.34024°.
+    // NREL SPA (Reda & Andreas 2004, §A.5): zenith 50.11162° refracted by its eq. 42 (820 mbar, 11 °C), azimuth
+    // 194.34024°.
     const astro::SunPlace sun =
         astro::SkyPositions(astro::AstroTime::from_utc(astro::parse_utc_time("2003-10-17T19:30:30Z")),
                             astro::Site{39.742476, -105.1786, 1830.14})
@@ -156,7 +157,8 @@ std::vector<RefractionRow> check_refraction(Report& r, const atmosphere::LoadedA
   const char* s = "2. Refraction at apparent altitude h (Bennett 1982, Saemundsson 1986; 1010 hPa, 10 C) [arcmin]";
   const astro::Refraction model = astro::Refraction::for_atmosphere(earth);
   const astro::Refraction us1976(earth.model.ground_radius_m, earth.model.top_radius_m,
-                                 atmosphere::us_standard_1976_profile("air", nullptr), astro::ground_refractivity(earth));
+                                 atmosphere::us_standard_1976_profile("air", nullptr),
+                                 astro::ground_refractivity(earth));
   const double conditions = (1013.25 / 1010.0) * (283.15 / 288.15);  // the model's standard air vs the formulas'
   std::vector<RefractionRow> rows;
   for (double h = 0.0; h <= 90.0; h += h < 10.0 ? 0.5 : 5.0) {
@@ -195,8 +197,8 @@ void check_extinction(Report& r, const std::string& preset) {
   const atmosphere::LoadedAtmosphere loaded = atmosphere::load_preset(preset);
   const std::size_t i = nearest_index(loaded.model.wavelengths_nm, 550.0);
   const double k = 2.5 * std::log10(std::exp(1.0)) * loaded.model.zenith_optical_depth().total[i];
-  r.add({s, fmt::format("{}: k(550 nm) at sea level", preset),
-         "clear sky ~0.2 mag/air mass; sea-level sites 0.15-0.3", k, 0.20, 0.1, "mag"});
+  r.add({s, fmt::format("{}: k(550 nm) at sea level", preset), "clear sky ~0.2 mag/air mass; sea-level sites 0.15-0.3",
+         k, 0.20, 0.1, "mag"});
   // The model's own optical depth along the line of sight (the reference solver's quadrature,
   // with the air-mass stretch), from 1.5 m above the ground: the molecules' part follows
   // Pickering's air mass, which the stretch is built on (docs/physics.md); the aerosols'
@@ -267,7 +269,8 @@ std::vector<TwilightRow> check_twilight(Report& r, const SkyModel& sky) {
   std::vector<TwilightRow> rows;
   for (double d = 0.0; d <= 18.0 + 1e-9; d += 0.5) {
     const double v = sky.v_mag_arcsec2(Vec3{0.0, 0.0, 1.0}, sun_at_elevation(-d));
-    rows.push_back({d, v, astro::naked_eye_limiting_magnitude(v), d >= 5.0 && d <= 15.0 ? patat_v_mag_arcsec2(90.0 + d) : NAN,
+    rows.push_back({d, v, astro::naked_eye_limiting_magnitude(v),
+                    d >= 5.0 && d <= 15.0 ? patat_v_mag_arcsec2(90.0 + d) : NAN,
                     sky.v_mag_arcsec2(Vec3{0.0, 0.0, 1.0}, sun_at_elevation(-d), kParanalAltitude_m)});
   }
   for (const TwilightRow& row : rows)
@@ -295,8 +298,8 @@ void check_visibility(Report& r, const SkyModel& sky, const atmosphere::LoadedAt
          astro::naked_eye_limiting_magnitude(sky.floor.zenith_v_mag_arcsec2()), 6.5, 0.2, "mag"});
   for (const TwilightRow& row : twilight)
     if (row.depression_deg == 18.0)
-      r.add({s, "limiting magnitude at the zenith, sun -18 deg (model)", "Schaefer 1990 at 22.0",
-             row.limiting_mag, astro::naked_eye_limiting_magnitude(22.0), 0.2, "mag"});
+      r.add({s, "limiting magnitude at the zenith, sun -18 deg (model)", "Schaefer 1990 at 22.0", row.limiting_mag,
+             astro::naked_eye_limiting_magnitude(22.0), 0.2, "mag"});
 
   astro::StarCatalogue catalogue;
   try {
@@ -333,8 +336,8 @@ void check_visibility(Report& r, const SkyModel& sky, const atmosphere::LoadedAt
     fmt::print("  stars seen at sun {:>4.0f} deg ({} UTC, Greenwich): {}\n", -depression,
                astro::format_utc_time(t.calendar_utc()).substr(11, 8), seen);
   }
-  r.add({s, "stars seen over the whole sky, sun -18 deg (dark site)", "~2500 at once (half of ~5000-9000, less extinction)",
-         double(counts[2]), 2500.0, 1200.0, "stars"});
+  r.add({s, "stars seen over the whole sky, sun -18 deg (dark site)",
+         "~2500 at once (half of ~5000-9000, less extinction)", double(counts[2]), 2500.0, 1200.0, "stars"});
 }
 
 // ---- output
@@ -357,8 +360,9 @@ void write_plots(const std::filesystem::path& dir, const std::vector<TwilightRow
       csv << r.altitude_deg << ',' << r.model_arcmin << ',' << r.us1976_arcmin << ',' << r.bennett_arcmin << ','
           << r.saemundsson_arcmin << '\n';
   }
-  const std::string head = "set terminal pngcairo size 900,600 font ',10'\nset datafile separator ','\n"
-                           "set datafile missing 'nan'\nset grid\nset key noenhanced\n";
+  const std::string head =
+      "set terminal pngcairo size 900,600 font ',10'\nset datafile separator ','\n"
+      "set datafile missing 'nan'\nset grid\nset key noenhanced\n";
   std::ofstream gp(dir / "night.gp");
   gp << "# zenith validate night (docs/night-sky.md); rerun: cd " << dir.string() << " && gnuplot night.gp\n"
      << "cd '" << std::filesystem::absolute(dir).string() << "'\n"
@@ -366,7 +370,8 @@ void write_plots(const std::filesystem::path& dir, const std::vector<TwilightRow
      << "set title 'Zenith V sky brightness against sun depression (" << preset << ", " << tables
      << " tables, sea level)' noenhanced\n"
      << "set xlabel 'sun depression [deg]'\nset ylabel 'V [mag/arcsec^2] (fainter up)'\n"
-     << "plot 'night_twilight.csv' skip 1 using 1:2 with lines lw 2 title 'ours at sea level (tables + night floor)', \\\n"
+     << "plot 'night_twilight.csv' skip 1 using 1:2 with lines lw 2 title 'ours at sea level (tables + night floor)', "
+        "\\\n"
      << "     '' skip 1 using 1:6 with lines lw 2 title 'ours at 2635 m', \\\n"
      << "     '' skip 1 using 1:4 with linespoints lw 2 title 'Patat et al. 2006 (Paranal, 2635 m)'\n"
      << "set output 'night_limiting_magnitude.png'\nset yrange [*:*] noreverse\n"
@@ -415,9 +420,10 @@ void run_validate_night(const ValidateNightArgs& a) {
   fmt::print("\nZenith V brightness and limiting magnitude through twilight ({}, {} tables):\n", a.preset, a.tables);
   for (const TwilightRow& row : twilight)
     if (std::fmod(row.depression_deg, 3.0) == 0.0)
-      fmt::print("  sun {:>5.1f} deg: {:6.2f} mag/arcsec^2 at sea level, limiting magnitude {:4.1f}; {:6.2f} at 2635 m{}\n",
-                 -row.depression_deg, row.zenith_v, row.limiting_mag, row.zenith_v_paranal,
-                 std::isnan(row.patat) ? std::string() : fmt::format(" (Patat 2006: {:.2f})", row.patat));
+      fmt::print(
+          "  sun {:>5.1f} deg: {:6.2f} mag/arcsec^2 at sea level, limiting magnitude {:4.1f}; {:6.2f} at 2635 m{}\n",
+          -row.depression_deg, row.zenith_v, row.limiting_mag, row.zenith_v_paranal,
+          std::isnan(row.patat) ? std::string() : fmt::format(" (Patat 2006: {:.2f})", row.patat));
   if (!a.no_plots) write_plots(dir, twilight, refraction_rows, a.preset, a.tables);
   fmt::print("\n{} checks, {} outside their tolerance\n", report.size(), report.failures());
   if (report.failures() > 0)

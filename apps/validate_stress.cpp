@@ -22,19 +22,19 @@
 
 #include "apps/cli_options.h"
 #include "apps/commands.h"
+#include "atmosphere/model_hash.h"
+#include "atmosphere/named_inputs.h"
+#include "core/parallel_for.h"
 #include "core/progress_bar.h"
+#include "core/strings.h"
+#include "core/timing.h"
+#include "render/gl/egl_context.h"
+#include "render/lut/table_provider.h"
 #include "stress/cpu_stress.h"
 #include "stress/gpu_stress.h"
 #include "stress/random_atmosphere.h"
 #include "stress/reference_comparison.h"
 #include "stress/stress_report.h"
-#include "render/lut/table_provider.h"
-#include "core/strings.h"
-#include "core/parallel_for.h"
-#include "atmosphere/model_hash.h"
-#include "atmosphere/named_inputs.h"
-#include "render/gl/egl_context.h"
-#include "core/timing.h"
 
 namespace zenith::app {
 namespace {
@@ -86,9 +86,10 @@ double bounded_value(const std::string& name, const stress::RegionTable& all,
       if (stat == "p95") return e.quantile(0.95);
       if (stat == "max") return e.max();
     }
-  throw std::invalid_argument(core::cat("--bound ", name, ": unknown name (use <region>.median|p95|max, horizon_jump, "
-                                          "gpu_row_jump, gpu_cpu_difference; regions: space, night, twilight, "
-                                          "horizon, ground, sky)"));
+  throw std::invalid_argument(core::cat("--bound ", name,
+                                        ": unknown name (use <region>.median|p95|max, horizon_jump, "
+                                        "gpu_row_jump, gpu_cpu_difference; regions: space, night, twilight, "
+                                        "horizon, ground, sky)"));
 }
 
 /// Messages for every --bound exceeded (empty: all held).
@@ -142,7 +143,8 @@ void run_stress(const StressArgs& a) {
       o.floor_sr = a.floor_sr;
       o.threads = a.threads;
       o.progress = [&](std::size_t done) {
-        bar.update(models[k].label, double(finished + std::min(done, per_model)) / double(std::max<std::size_t>(total, 1)));
+        bar.update(models[k].label,
+                   double(finished + std::min(done, per_model)) / double(std::max<std::size_t>(total, 1)));
       };
       const auto t0 = std::chrono::steady_clock::now();
       stress::CpuStressResult r = stress::run_cpu_stress(q, models[k].label, o);
@@ -223,9 +225,8 @@ void run_stress(const StressArgs& a) {
   if (!failed.empty()) throw std::runtime_error(core::cat(failed.size(), " bound(s) exceeded: ", failed.front()));
   if (t.health.bad() > 0 || gpu_bad > 0)
     throw std::runtime_error(core::cat("numerical stability: ", t.health.bad(), " bad CPU values (NaN ", t.health.nan,
-                                         ", Inf ", t.health.inf, ", negative ", t.health.negative,
-                                         ", transmittance > 1 ", t.health.above_one, "), ", gpu_bad,
-                                         " bad GPU pixel values"));
+                                       ", Inf ", t.health.inf, ", negative ", t.health.negative, ", transmittance > 1 ",
+                                       t.health.above_one, "), ", gpu_bad, " bad GPU pixel values"));
 }
 
 }  // namespace

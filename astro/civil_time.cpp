@@ -19,14 +19,16 @@ namespace {
 int digits(const std::string& text, std::size_t& at, int count) {
   int value = 0;
   for (int i = 0; i < count; ++i, ++at) {
-    if (at >= text.size() || text[at] < '0' || text[at] > '9') bad(text, "a digit expected at character " + std::to_string(at + 1));
+    if (at >= text.size() || text[at] < '0' || text[at] > '9')
+      bad(text, "a digit expected at character " + std::to_string(at + 1));
     value = value * 10 + (text[at] - '0');
   }
   return value;
 }
 
 void expect(const std::string& text, std::size_t& at, char c) {
-  if (at >= text.size() || text[at] != c) bad(text, std::string("'") + c + "' expected at character " + std::to_string(at + 1));
+  if (at >= text.size() || text[at] != c)
+    bad(text, std::string("'") + c + "' expected at character " + std::to_string(at + 1));
   ++at;
 }
 
@@ -53,12 +55,14 @@ UtcTime parse_utc_time(const std::string& text) {
       ++at;
       double scale = 0.1;
       if (at >= text.size() || text[at] < '0' || text[at] > '9') bad(text, "digits expected after the decimal point");
-      for (; at < text.size() && text[at] >= '0' && text[at] <= '9'; ++at, scale *= 0.1) t.second += (text[at] - '0') * scale;
+      for (; at < text.size() && text[at] >= '0' && text[at] <= '9'; ++at, scale *= 0.1)
+        t.second += (text[at] - '0') * scale;
     }
   }
   const std::string zone = text.substr(at);
   if (zone != "Z" && zone != "+00:00" && zone != "+0000")
-    bad(text, zone.empty() ? "no time zone: end with 'Z' (UTC)" : "time zone '" + zone + "': only UTC ('Z') is accepted");
+    bad(text,
+        zone.empty() ? "no time zone: end with 'Z' (UTC)" : "time zone '" + zone + "': only UTC ('Z') is accepted");
   if (t.month < 1 || t.month > 12) bad(text, "month must be in [1, 12]");
   if (t.day < 1 || t.day > 31) bad(text, "day must be in [1, 31]");
   if (t.hour > 23) bad(text, "hour must be in [0, 23]");
@@ -73,23 +77,30 @@ std::string format_utc_time(const UtcTime& t) {
 
 AstroTime AstroTime::from_utc(const UtcTime& utc, double dut1_s) {
   JulianDate jd;
-  const int status = eraDtf2d("UTC", utc.year, utc.month, utc.day, utc.hour, utc.minute, utc.second, &jd.day1, &jd.day2);
+  const int status =
+      eraDtf2d("UTC", utc.year, utc.month, utc.day, utc.hour, utc.minute, utc.second, &jd.day1, &jd.day2);
   if (status < 0) {
-    const char* why = status == -1 ? "year before -4799" : status == -2 ? "bad month" : status == -3 ? "bad day of the month"
-                      : status == -4 ? "bad hour" : status == -5 ? "bad minute" : "bad second (a leap second where there is none)";
+    const char* why = status == -1   ? "year before -4799"
+                      : status == -2 ? "bad month"
+                      : status == -3 ? "bad day of the month"
+                      : status == -4 ? "bad hour"
+                      : status == -5 ? "bad minute"
+                                     : "bad second (a leap second where there is none)";
     throw std::invalid_argument("time " + format_utc_time(utc) + ": " + why);
   }
   return from_utc_julian(jd, dut1_s);
 }
 
 AstroTime AstroTime::from_utc_julian(JulianDate utc, double dut1_s) {
-  if (!(std::abs(dut1_s) <= 0.9)) throw std::invalid_argument("dut1_s " + std::to_string(dut1_s) + ": must be in [-0.9, 0.9] s");
+  if (!(std::abs(dut1_s) <= 0.9))
+    throw std::invalid_argument("dut1_s " + std::to_string(dut1_s) + ": must be in [-0.9, 0.9] s");
   AstroTime t;
   t.utc_ = utc;
   t.dut1_s_ = dut1_s;
   JulianDate tai;
   if (eraUtctai(utc.day1, utc.day2, &tai.day1, &tai.day2) < 0)
-    throw std::invalid_argument(fmt::format("Julian date {:.6f} UTC: ERFA cannot convert it to TAI (UTC starts in 1960)", utc.value()));
+    throw std::invalid_argument(
+        fmt::format("Julian date {:.6f} UTC: ERFA cannot convert it to TAI (UTC starts in 1960)", utc.value()));
   eraTaitt(tai.day1, tai.day2, &t.tt_.day1, &t.tt_.day2);
   if (eraUtcut1(utc.day1, utc.day2, dut1_s, &t.ut1_.day1, &t.ut1_.day2) < 0)
     throw std::invalid_argument(fmt::format("Julian date {:.6f} UTC: ERFA cannot convert it to UT1", utc.value()));
@@ -110,9 +121,7 @@ AstroTime AstroTime::plus_seconds(double seconds) const {
   return from_utc_julian(moved, dut1_s_);
 }
 
-double AstroTime::julian_years_since_j2000() const {
-  return ((tt_.day1 - ERFA_DJ00) + tt_.day2) / ERFA_DJY;
-}
+double AstroTime::julian_years_since_j2000() const { return ((tt_.day1 - ERFA_DJ00) + tt_.day2) / ERFA_DJY; }
 
 UtcTime AstroTime::calendar_utc() const {
   int y = 0, m = 0, d = 0, hmsf[4] = {0, 0, 0, 0};

@@ -24,14 +24,14 @@ Vec3d normalize(const Vec3d& v) {
 // faces in the catalogue's zone order (counter-clockwise seen from outside).
 struct Icosahedron {
   std::array<Vec3d, 12> corner;
-  static constexpr int face[20][3] = {{1, 0, 10}, {0, 1, 9},  {0, 9, 6},  {9, 8, 6},   {0, 7, 10},
-                                      {6, 7, 0},  {7, 6, 3},  {6, 8, 3},  {11, 10, 7}, {7, 3, 11},
-                                      {3, 2, 11}, {2, 3, 8},  {10, 11, 4}, {2, 4, 11}, {5, 4, 2},
-                                      {2, 8, 5},  {4, 1, 10}, {4, 5, 1},  {5, 9, 1},   {8, 9, 5}};
+  static constexpr int face[20][3] = {{1, 0, 10}, {0, 1, 9},  {0, 9, 6},   {9, 8, 6},   {0, 7, 10},
+                                      {6, 7, 0},  {7, 6, 3},  {6, 8, 3},   {11, 10, 7}, {7, 3, 11},
+                                      {3, 2, 11}, {2, 3, 8},  {10, 11, 4}, {2, 4, 11},  {5, 4, 2},
+                                      {2, 8, 5},  {4, 1, 10}, {4, 5, 1},   {5, 9, 1},   {8, 9, 5}};
   Icosahedron() {
     const double g = 0.5 * (1.0 + std::sqrt(5.0));
     const double b = 1.0 / std::sqrt(1.0 + g * g), a = b * g;
-    corner = {Vec3d{a, -b, 0}, {a, b, 0},  {-a, b, 0},  {-a, -b, 0}, {0, a, -b}, {0, a, b},
+    corner = {Vec3d{a, -b, 0}, {a, b, 0},   {-a, b, 0}, {-a, -b, 0}, {0, a, -b}, {0, a, b},
               {0, -a, b},      {0, -a, -b}, {-b, 0, a}, {b, 0, a},   {b, 0, -a}, {-b, 0, -a}};
   }
 };
@@ -69,7 +69,8 @@ ZoneGrid catalogue_zones(int level) {
   ZoneGrid grid;
   grid.zones.reserve(catalogue_zone_count(level));
   // Depth-first in child order gives zone k of level L at index k (k = 4·parent + child).
-  for (const auto& f : Icosahedron::face) subdivide(0, level, ico.corner[f[0]], ico.corner[f[1]], ico.corner[f[2]], grid);
+  for (const auto& f : Icosahedron::face)
+    subdivide(0, level, ico.corner[f[0]], ico.corner[f[1]], ico.corner[f[2]], grid);
   return grid;
 }
 

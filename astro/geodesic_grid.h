@@ -31,8 +31,8 @@ struct CatalogueZone {
 };
 
 struct ZoneGrid {
-  std::vector<CatalogueZone> zones;   ///< 20 · 4^level, in the files' order
-  double gnomonic_extent = 0.0;       ///< the largest |gnomonic coordinate| of a zone corner (before ÷ MaxPosVal)
+  std::vector<CatalogueZone> zones;  ///< 20 · 4^level, in the files' order
+  double gnomonic_extent = 0.0;      ///< the largest |gnomonic coordinate| of a zone corner (before ÷ MaxPosVal)
 };
 
 /// The zones of `level` (0…7; the files use 0–3 up to magnitude 10.5).

@@ -16,7 +16,6 @@
 namespace zenith::astro {
 namespace {
 
-
 std::vector<double> scattering_depth(const atmosphere::AtmosphereModel& model) {
   const auto d = model.zenith_optical_depth();
   std::vector<double> tau(model.wavelength_count());
@@ -47,7 +46,9 @@ double bortle_zenith_v_mag_arcsec2(int bortle_class) {
 }
 
 LightPollution::LightPollution(const atmosphere::AtmosphereModel& model, const LightPollutionOptions& options)
-    : wavelengths_nm_(model.wavelengths_nm), scattering_depth_(scattering_depth(model)), zenith_mcd_m2_(options.zenith_mcd_m2) {
+    : wavelengths_nm_(model.wavelengths_nm),
+      scattering_depth_(scattering_depth(model)),
+      zenith_mcd_m2_(options.zenith_mcd_m2) {
   require_in_range("light pollution zenith_mcd_m2", options.zenith_mcd_m2, 0.0, 1e5, "mcd/m^2");
   require_in_range("light pollution colour_temperature_K", options.colour_temperature_K, 1500.0, 10000.0, "K");
   const GlowShape shape{wavelengths_nm_, scattering_depth_, options.colour_temperature_K};

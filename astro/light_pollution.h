@@ -31,8 +31,8 @@
 namespace zenith::astro {
 
 struct LightPollutionOptions {
-  double zenith_mcd_m2 = 0.0;           ///< artificial zenith luminance, [0, 1e5] mcd m⁻² (0: none)
-  double colour_temperature_K = 3000.0; ///< lamps' correlated colour temperature, [1500, 10000] K
+  double zenith_mcd_m2 = 0.0;            ///< artificial zenith luminance, [0, 1e5] mcd m⁻² (0: none)
+  double colour_temperature_K = 3000.0;  ///< lamps' correlated colour temperature, [1500, 10000] K
 };
 
 /// Total zenith V surface brightness of a Bortle class 1–9 (above). Throws

@@ -28,8 +28,6 @@ double line_radiance_W_m2_sr(const AirglowLine& line) {
   return line.rayleighs * 1e10 / (4.0 * core::kPi) * h * c / (line.wavelength_nm * 1e-9);
 }
 
-
-
 }  // namespace
 
 std::vector<double> wavelength_bin_widths_nm(std::span<const double> wavelengths_nm) {
@@ -37,7 +35,8 @@ std::vector<double> wavelength_bin_widths_nm(std::span<const double> wavelengths
   std::vector<double> widths(wavelengths_nm.size(), 100.0);
   std::vector<std::size_t> order(wavelengths_nm.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return wavelengths_nm[a] < wavelengths_nm[b]; });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return wavelengths_nm[a] < wavelengths_nm[b]; });
   const std::size_t n = order.size();
   for (std::size_t k = 0; n > 1 && k < n; ++k) {
     const double x = wavelengths_nm[order[k]];
@@ -90,7 +89,8 @@ NightSkyFloor::NightSkyFloor(const atmosphere::AtmosphereModel& model, const Nig
 
 atmosphere::SpectralTable NightSkyFloor::zenith_transmittance_table() const {
   std::vector<std::pair<double, double>> samples;
-  for (std::size_t i = 0; i < wavelengths_nm_.size(); ++i) samples.emplace_back(wavelengths_nm_[i], zenith_transmittance_[i]);
+  for (std::size_t i = 0; i < wavelengths_nm_.size(); ++i)
+    samples.emplace_back(wavelengths_nm_[i], zenith_transmittance_[i]);
   return atmosphere::SpectralTable(std::move(samples));
 }
 
@@ -111,7 +111,8 @@ std::vector<double> NightSkyFloor::top_of_atmosphere_radiance(double zenith_angl
   return out;
 }
 
-std::vector<double> NightSkyFloor::observed_radiance(double zenith_angle_rad, std::span<const double> transmittance) const {
+std::vector<double> NightSkyFloor::observed_radiance(double zenith_angle_rad,
+                                                     std::span<const double> transmittance) const {
   auto out = top_of_atmosphere_radiance(zenith_angle_rad);
   for (std::size_t i = 0; i < out.size() && i < transmittance.size(); ++i) out[i] *= transmittance[i];
   return out;
@@ -120,7 +121,8 @@ std::vector<double> NightSkyFloor::observed_radiance(double zenith_angle_rad, st
 double NightSkyFloor::zenith_v_mag_arcsec2() const {
   // The continuous spectrum (lines at their own wavelengths) through the zenith, as calibrated.
   const atmosphere::SpectralTable t = zenith_transmittance_table();
-  const double v = v_band_mean([&](double l) { return (continuous_radiance(l, true) + continuous_radiance(l, false)) * t(l); });
+  const double v =
+      v_band_mean([&](double l) { return (continuous_radiance(l, true) + continuous_radiance(l, false)) * t(l); });
   double lines = 0.0;
   for (const auto& line : kLines)
     lines += v_band_mean_of_line(line.wavelength_nm, line_radiance_W_m2_sr(line) * t(line.wavelength_nm));
@@ -129,7 +131,8 @@ double NightSkyFloor::zenith_v_mag_arcsec2() const {
 
 double NightSkyFloor::zenith_luminance_cd_m2() const {
   const atmosphere::SpectralTable t = zenith_transmittance_table();
-  double y = luminance_cd_m2([&](double l) { return (continuous_radiance(l, true) + continuous_radiance(l, false)) * t(l); });
+  double y =
+      luminance_cd_m2([&](double l) { return (continuous_radiance(l, true) + continuous_radiance(l, false)) * t(l); });
   for (const auto& line : kLines)
     y += 683.0 * atmosphere::photopic_efficiency(line.wavelength_nm) * lines_scale_ * line_radiance_W_m2_sr(line) *
          t(line.wavelength_nm);

@@ -20,8 +20,8 @@ constexpr double kAirDepolarization = 0.0279;  // paper Table 1, as earth-advanc
 struct GasOptics {
   double refractivity_per_molecule_m3 = 0.0;  ///< P = (n_ref² − 1) / N_ref [m³]
   double depolarization = kAirDepolarization;
-  bool at_ground_density = false;  ///< the index was given at the gas's own ground density
-  double ground_refractivity = 0.0; ///< then its n − 1
+  bool at_ground_density = false;    ///< the index was given at the gas's own ground density
+  double ground_refractivity = 0.0;  ///< then its n − 1
 };
 
 GasOptics gas_optics(const atmosphere::LoadedAtmosphere& loaded, double wavelength_nm) {
@@ -49,7 +49,8 @@ GasOptics gas_optics(const atmosphere::LoadedAtmosphere& loaded, double waveleng
     n = index.get<double>();
   } else {
     std::vector<std::pair<double, double>> samples;
-    for (auto it = index.begin(); it != index.end(); ++it) samples.emplace_back(std::stod(it.key()), it.value().get<double>());
+    for (auto it = index.begin(); it != index.end(); ++it)
+      samples.emplace_back(std::stod(it.key()), it.value().get<double>());
     n = atmosphere::SpectralTable(samples)(wavelength_nm);
   }
   // The density the index was measured at, when given: K = (n − 1)/N_ref.
@@ -80,7 +81,8 @@ double ground_number_density_m3(const atmosphere::LoadedAtmosphere& loaded) {
     throw std::invalid_argument(loaded.model.name + ": no Rayleigh scattering to derive the air's density from");
   const std::size_t i = nearest_to_550(m.wavelengths_nm);
   const double beta = m.rayleigh_scattering_m1[i];
-  if (!(beta > 0.0)) throw std::invalid_argument(m.name + ": Rayleigh scattering is zero: no refraction can be derived");
+  if (!(beta > 0.0))
+    throw std::invalid_argument(m.name + ": Rayleigh scattering is zero: no refraction can be derived");
   const double lambda_m = m.wavelengths_nm[i] * 1e-9;
   const GasOptics g = gas_optics(loaded, m.wavelengths_nm[i]);
   const double f = atmosphere::king_factor(g.depolarization);
@@ -151,8 +153,8 @@ double Refraction::integral_rad(double apparent_altitude_rad) const {
     const double r = r0 + u * u;
     const double n = 1.0 + refractivity_at(r);
     const double step = std::max(1.0, 1e-3 * u * u);  // central difference of n
-    const double dn_dr = (refractivity_at(r + step) - refractivity_at(std::max(r0, r - step))) /
-                         (r + step - std::max(r0, r - step));
+    const double dn_dr =
+        (refractivity_at(r + step) - refractivity_at(std::max(r0, r - step))) / (r + step - std::max(r0, r - step));
     const double nr = n * r;
     const double root = std::sqrt(std::max(nr * nr - c * c, 1e-300));
     sum += (-dn_dr / n) * (c / root) * 2.0 * u;

@@ -64,7 +64,8 @@ SkyPositions::SkyPositions(const AstroTime& time, const Site& site) : time_(time
   const int status = eraApco13(utc.day1, utc.day2, time.dut1_s(), site.longitude_deg * core::kDeg,
                                site.latitude_deg * core::kDeg, site.altitude_m, 0.0, 0.0,
                                /*phpa: no refraction*/ 0.0, 0.0, 0.0, 0.55, &state->site, &state->eo_site);
-  if (status < 0) throw std::invalid_argument(fmt::format("time {}: ERFA refuses the date", format_utc_time(time.calendar_utc())));
+  if (status < 0)
+    throw std::invalid_argument(fmt::format("time {}: ERFA refuses the date", format_utc_time(time.calendar_utc())));
   const JulianDate& tt = time.tt();  // TDB − TT < 2 ms: TT serves as TDB
   eraApci13(tt.day1, tt.day2, &state->geocentre, &state->eo_geocentre);
   double pvh[2][3], pvb[2][3], moon[2][3];

@@ -59,11 +59,11 @@ struct SunPlace {
 
 struct MoonPlace {
   Horizontal horizontal;
-  double distance_km = 0.0;          ///< observer–Moon centre
-  double angular_radius_rad = 0.0;   ///< asin(R_moon / distance), R_moon = 1737.4 km
-  double phase_angle_rad = 0.0;      ///< Sun–Moon–observer angle: 0 full, π new
-  double illuminated_fraction = 0.0; ///< (1 + cos phase angle) / 2
-  double sun_distance_au = 1.0;      ///< Moon–Sun
+  double distance_km = 0.0;           ///< observer–Moon centre
+  double angular_radius_rad = 0.0;    ///< asin(R_moon / distance), R_moon = 1737.4 km
+  double phase_angle_rad = 0.0;       ///< Sun–Moon–observer angle: 0 full, π new
+  double illuminated_fraction = 0.0;  ///< (1 + cos phase angle) / 2
+  double sun_distance_au = 1.0;       ///< Moon–Sun
 };
 
 class SkyPositions {

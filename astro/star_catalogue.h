@@ -44,15 +44,15 @@ inline const std::filesystem::path kStellariumStarDirectory = "/usr/share/stella
 
 /// One star (or one component of a double star: Hipparcos lists some components separately).
 struct CatalogueStar {
-  std::uint32_t hip = 0;            ///< Hipparcos number, 0 for Tycho-only stars
-  std::uint8_t component = 0;       ///< component id of a multiple star (0: none)
-  double ra_rad = 0.0;              ///< ICRS right ascension at J2000.0, [0, 2π)
-  double dec_rad = 0.0;             ///< ICRS declination at J2000.0
-  double pm_ra_cosdec_mas_yr = 0.0; ///< proper motion μα* = μα cos δ [mas/yr]
-  double pm_dec_mas_yr = 0.0;       ///< μδ [mas/yr]
-  double parallax_mas = 0.0;        ///< 0 where the file has none (Star2 records)
-  double v_mag = 0.0;               ///< Johnson V (quantized: 0.05 mag steps below mag 9)
-  double b_minus_v = 0.0;           ///< Johnson B−V (quantized: 0.0315 mag steps)
+  std::uint32_t hip = 0;             ///< Hipparcos number, 0 for Tycho-only stars
+  std::uint8_t component = 0;        ///< component id of a multiple star (0: none)
+  double ra_rad = 0.0;               ///< ICRS right ascension at J2000.0, [0, 2π)
+  double dec_rad = 0.0;              ///< ICRS declination at J2000.0
+  double pm_ra_cosdec_mas_yr = 0.0;  ///< proper motion μα* = μα cos δ [mas/yr]
+  double pm_dec_mas_yr = 0.0;        ///< μδ [mas/yr]
+  double parallax_mas = 0.0;         ///< 0 where the file has none (Star2 records)
+  double v_mag = 0.0;                ///< Johnson V (quantized: 0.05 mag steps below mag 9)
+  double b_minus_v = 0.0;            ///< Johnson B−V (quantized: 0.0315 mag steps)
 };
 
 struct StarCatalogueOptions {
@@ -69,7 +69,8 @@ struct StarCatalogue {
   std::vector<CatalogueStar> stars;          ///< sorted by V, brightest first
   std::vector<std::filesystem::path> files;  ///< the files read, in order (hip_pm.dat last)
   double magnitude_limit = 0.0;
-  std::string identity_sha256;  ///< SHA-256 over (each file's name and SHA-256, the limit as text): what a cluster sends
+  std::string
+      identity_sha256;  ///< SHA-256 over (each file's name and SHA-256, the limit as text): what a cluster sends
 };
 
 /// One file's header.

@@ -16,7 +16,6 @@ constexpr double kSigma_nm = kVFwhm_nm / 2.3548200450309493;  // FWHM = 2√(2 l
 // The band integral runs over ±4σ (the Gaussian's tails beyond hold 6e-5) in 1 nm steps.
 constexpr double kHalfSpan_nm = 4.0 * kSigma_nm;
 
-
 }  // namespace
 
 double v_response(double wavelength_nm) {

@@ -62,16 +62,16 @@ class AirMassStretch {
   double ground_radius_m() const { return ground_radius_m_; }
   const DensityProfile& molecular_profile() const { return molecular_profile_; }
   const std::vector<double>& cos_zenith_table() const { return cos_zenith_; }  ///< abscissae μ_i = t_i², t uniform
-  const std::vector<double>& stretch_table() const { return stretch_; }       ///< s at each abscissa
+  const std::vector<double>& stretch_table() const { return stretch_; }        ///< s at each abscissa
 
  private:
   /// Linear interpolation of a per-abscissa table at cos(zenith) at the ground.
   double interpolate(const std::vector<double>& values, double cos_zenith) const;
   double ground_radius_m_ = 0.0;
   DensityProfile molecular_profile_;
-  std::vector<double> cos_zenith_;     // table abscissae in [0, 1]
-  std::vector<double> stretch_;        // s at each abscissa
-  std::vector<double> geometric_;      // X_geometric at each abscissa
+  std::vector<double> cos_zenith_;  // table abscissae in [0, 1]
+  std::vector<double> stretch_;     // s at each abscissa
+  std::vector<double> geometric_;   // X_geometric at each abscissa
 };
 
 }  // namespace zenith::atmosphere

@@ -76,7 +76,8 @@ void AtmosphereModel::check() const {
   for (double w : wavelengths_nm)
     if (!(w >= 200.0 && w <= 2500.0)) fail("wavelength outside [200, 2500] nm");
   if (!(ground_radius_m > 0.0) || !std::isfinite(ground_radius_m)) fail("ground radius must be > 0");
-  if (!(top_radius_m > ground_radius_m) || !std::isfinite(top_radius_m)) fail("atmosphere top must be above the ground");
+  if (!(top_radius_m > ground_radius_m) || !std::isfinite(top_radius_m))
+    fail("atmosphere top must be above the ground");
   auto check_spectrum = [&](const Spectrum& s, const std::string& what, double hi) {
     if (s.size() != n) fail(what + " has " + std::to_string(s.size()) + " values, expected " + std::to_string(n));
     for (double v : s)

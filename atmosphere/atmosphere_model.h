@@ -46,11 +46,11 @@ struct Absorber {
 };
 
 struct AtmosphereModel {
-  std::string name;                     ///< for messages only; not part of the identity
-  std::vector<double> wavelengths_nm;   ///< the working wavelengths
+  std::string name;                    ///< for messages only; not part of the identity
+  std::vector<double> wavelengths_nm;  ///< the working wavelengths
   double ground_radius_m = 0.0;
   double top_radius_m = 0.0;
-  Spectrum ground_albedo;               ///< Lambertian reflectance of the ground, [0, 1]
+  Spectrum ground_albedo;  ///< Lambertian reflectance of the ground, [0, 1]
 
   // Molecules (Rayleigh–Cabannes scattering).
   Spectrum rayleigh_scattering_m1;

@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "atmosphere/constants.h"
-#include "core/strings.h"
 #include "atmosphere/reference_data.h"
+#include "core/strings.h"
 
 namespace zenith::atmosphere {
 namespace {

@@ -70,14 +70,15 @@ double MonotoneCubicSpline::integral_from_start(double x) const {
     // Partial segment: integrate the Hermite basis from 0 to t.
     const double t = (x - x_[i]) / h;
     const double t2 = t * t, t3 = t2 * t, t4 = t3 * t;
-    const double H00 = t4 / 2 - t3 + t, H10 = t4 / 4 - 2 * t3 / 3 + t2 / 2, H01 = -t4 / 2 + t3,
-                 H11 = t4 / 4 - t3 / 3;
+    const double H00 = t4 / 2 - t3 + t, H10 = t4 / 4 - 2 * t3 / 3 + t2 / 2, H01 = -t4 / 2 + t3, H11 = t4 / 4 - t3 / 3;
     return sum + h * (H00 * y_[i] + H10 * h * d_[i] + H01 * y_[i + 1] + H11 * h * d_[i + 1]);
   }
   return sum + (x - x_.back()) * y_.back();
 }
 
-double MonotoneCubicSpline::integral(double a, double b) const { return integral_from_start(b) - integral_from_start(a); }
+double MonotoneCubicSpline::integral(double a, double b) const {
+  return integral_from_start(b) - integral_from_start(a);
+}
 
 DensityProfile DensityProfile::exponential(double scale_height_m) {
   if (!(scale_height_m > 0.0)) throw std::invalid_argument("DensityProfile: scale height must be > 0");

@@ -36,8 +36,7 @@ std::complex<double> ada_kernel(std::complex<double> w) {
 
 }  // namespace
 
-double anomalous_diffraction_extinction_efficiency(double wavelength_nm, std::complex<double> index,
-                                                   double radius_m) {
+double anomalous_diffraction_extinction_efficiency(double wavelength_nm, std::complex<double> index, double radius_m) {
   const double lambda_m = wavelength_nm * 1e-9;
   const double m_minus_1 = index.real() - 1.0;
   const double rho = 4.0 * kPi * radius_m * m_minus_1 / lambda_m;
@@ -52,8 +51,8 @@ double anomalous_diffraction_absorption_efficiency(double wavelength_nm, double 
   return 1.0 + e / y + (e - 1.0) / (2.0 * y * y);
 }
 
-double mie_extinction_anomalous_diffraction(double wavelength_nm, std::complex<double> index,
-                                            double mean_radius_m, double number_density_m3) {
+double mie_extinction_anomalous_diffraction(double wavelength_nm, std::complex<double> index, double mean_radius_m,
+                                            double number_density_m3) {
   return kPi * mean_radius_m * mean_radius_m *
          anomalous_diffraction_extinction_efficiency(wavelength_nm, index, mean_radius_m) * number_density_m3;
 }

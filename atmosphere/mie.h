@@ -22,8 +22,7 @@ double mie_scattering_from_turbidity(double wavelength_nm, double turbidity, dou
 /// Evaluated as Q = 4 Re K(w), K(w) = ½ + e^{−w}/w + (e^{−w} − 1)/w², w = ρ(tanβ + i),
 /// which is algebraically identical and, through its power series for small |w|,
 /// free of the catastrophic cancellation eq. (19) suffers as ρ → 0 (Q ~ ρ²/2).
-double anomalous_diffraction_extinction_efficiency(double wavelength_nm, std::complex<double> index,
-                                                   double radius_m);
+double anomalous_diffraction_extinction_efficiency(double wavelength_nm, std::complex<double> index, double radius_m);
 
 /// Absorption efficiency of the same sphere in the anomalous-diffraction
 /// approximation (van de Hulst 1981, §11.22):
@@ -35,7 +34,7 @@ double anomalous_diffraction_absorption_efficiency(double wavelength_nm, double 
 /// Mean-radius Mie extinction coefficient at the reference altitude, paper eq. (20):
 ///   β_M^ext(λ) = π r̄² Q̄(λ, ρ(r̄)) N_r̄   [m^-1].
 /// (Eq. (18) prints the height term with H_R; the aerosol profile uses H_M, as in eq. (20).)
-double mie_extinction_anomalous_diffraction(double wavelength_nm, std::complex<double> index,
-                                            double mean_radius_m, double number_density_m3);
+double mie_extinction_anomalous_diffraction(double wavelength_nm, std::complex<double> index, double mean_radius_m,
+                                            double number_density_m3);
 
 }  // namespace zenith::atmosphere

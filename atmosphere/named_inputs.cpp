@@ -8,8 +8,7 @@ namespace zenith::atmosphere {
 
 LoadedAtmosphere load_atmosphere_argument(const std::string& value, const LoadOptions& options) {
   std::error_code ec;
-  if (std::filesystem::is_regular_file(value, ec) || value.find('/') != std::string::npos ||
-      value.ends_with(".json"))
+  if (std::filesystem::is_regular_file(value, ec) || value.find('/') != std::string::npos || value.ends_with(".json"))
     return load_atmosphere_file(value, options);
   return load_preset(value, options);
 }

@@ -8,10 +8,10 @@
 
 #include "atmosphere/air_mass.h"
 #include "atmosphere/constants.h"
-#include "core/json_reader.h"
 #include "atmosphere/mie.h"
 #include "atmosphere/rayleigh.h"
 #include "atmosphere/reference_data.h"
+#include "core/json_reader.h"
 
 namespace zenith::atmosphere {
 namespace {
@@ -123,7 +123,8 @@ std::vector<double> read_wavelengths(JsonReader& r, const std::optional<std::vec
   std::vector<double> wl;
   for (const auto& x : v) {
     if (!x.is_number() || !(x.get<double>() >= kWavelength.lo && x.get<double>() <= kWavelength.hi))
-      r.fail("wavelengths_nm", "value " + x.dump() + " " + JsonReader::range_text(kWavelength.lo, kWavelength.hi, "nm"));
+      r.fail("wavelengths_nm",
+             "value " + x.dump() + " " + JsonReader::range_text(kWavelength.lo, kWavelength.hi, "nm"));
     if (std::find(wl.begin(), wl.end(), x.get<double>()) != wl.end())
       r.fail("wavelengths_nm", "wavelength " + x.dump() + " listed twice");
     wl.push_back(x.get<double>());
@@ -153,8 +154,7 @@ Planet read_planet(JsonReader& root, const Context& ctx) {
         << p.radius_m + kAtmosphereHeight.hi << "] m (radius_m + [1 m, 10000 km])";
       r.fail("top_radius_m", s.str());
     }
-    if (p.top_radius_m - p.radius_m > kAtmosphereHeight.hi)
-      r.fail("top_radius_m", "atmosphere thicker than 10000 km");
+    if (p.top_radius_m - p.radius_m > kAtmosphereHeight.hi) r.fail("top_radius_m", "atmosphere thicker than 10000 km");
   }
   p.albedo = spectral(r, "ground_albedo", kAlbedo, ctx);
   if (r.has("surface_gravity_m_s2")) p.gravity_m_s2 = number(r, "surface_gravity_m_s2", kGravity);
@@ -172,8 +172,7 @@ RayleighPhaseModel read_rayleigh_phase(JsonReader& r) {
 MiePhase read_mie_phase(JsonReader& parent, const Context& ctx) {
   JsonReader r = parent.object("phase");
   MiePhase phase;
-  const std::string model =
-      r.string("model", {"henyey_greenstein", "double_henyey_greenstein", "cornette_shanks"});
+  const std::string model = r.string("model", {"henyey_greenstein", "double_henyey_greenstein", "cornette_shanks"});
   const std::size_t n = ctx.wavelengths_nm.size();
   if (model == "double_henyey_greenstein") {
     phase.model = MiePhase::Model::DoubleHenyeyGreenstein;
@@ -308,18 +307,21 @@ Gas resolve_gas(JsonReader& root, AtmosphereModel& m, const Planet& planet, cons
   // Number density N: given, or p/(k_B T), or N_A ρ/M.
   const int ways = int(r.has("number_density_m3")) + int(r.has("pressure_Pa")) + int(r.has("mass_density_kg_m3"));
   if (ways != 1)
-    r.fail("", "give exactly one of \"number_density_m3\", \"pressure_Pa\" (with temperature_K) or "
-               "\"mass_density_kg_m3\" (with molar_mass_kg_mol)");
+    r.fail("",
+           "give exactly one of \"number_density_m3\", \"pressure_Pa\" (with temperature_K) or "
+           "\"mass_density_kg_m3\" (with molar_mass_kg_mol)");
   if (r.has("number_density_m3")) {
     gas.number_density_m3 = number(r, "number_density_m3", kNumberDensity);
   } else if (r.has("pressure_Pa")) {
     const double p = number(r, "pressure_Pa", kPressure);
-    if (std::isnan(temperature)) r.fail("temperature_K", "missing required key (needed with pressure_Pa: N = p/(k_B T))");
+    if (std::isnan(temperature))
+      r.fail("temperature_K", "missing required key (needed with pressure_Pa: N = p/(k_B T))");
     gas.number_density_m3 = number_density_from_pressure(p, temperature);
     note << "N = p/(k_B T) = " << gas.number_density_m3 << " m^-3; ";
   } else {
     const double rho = number(r, "mass_density_kg_m3", kMassDensity);
-    if (std::isnan(molar_mass)) r.fail("molar_mass_kg_mol", "missing required key (needed with mass_density_kg_m3: N = N_A rho/M)");
+    if (std::isnan(molar_mass))
+      r.fail("molar_mass_kg_mol", "missing required key (needed with mass_density_kg_m3: N = N_A rho/M)");
     gas.number_density_m3 = number_density_from_mass_density(rho, molar_mass);
     note << "N = N_A rho/M = " << gas.number_density_m3 << " m^-3; ";
   }
@@ -366,8 +368,8 @@ Gas resolve_gas(JsonReader& root, AtmosphereModel& m, const Planet& planet, cons
   // Rayleigh scattering, eq. (11), with (n − 1) scaled to the gas density.
   m.rayleigh_scattering_m1 = Spectrum(n);
   for (std::size_t i = 0; i < n; ++i)
-    m.rayleigh_scattering_m1[i] = rayleigh_scattering_coefficient_scaled(
-        ctx.wavelengths_nm[i], index[i], index_density, gas.number_density_m3, depolarization);
+    m.rayleigh_scattering_m1[i] = rayleigh_scattering_coefficient_scaled(ctx.wavelengths_nm[i], index[i], index_density,
+                                                                         gas.number_density_m3, depolarization);
   note << "f(delta) = " << king_factor(depolarization);
   for (std::size_t i = 0; i < n; ++i)
     if (!(m.rayleigh_scattering_m1[i] <= kCoefficient.hi)) {
@@ -393,8 +395,8 @@ Gas resolve_gas(JsonReader& root, AtmosphereModel& m, const Planet& planet, cons
       for (std::size_t i = 0; i < n; ++i) {
         // Real part of the index at the gas's own density ((n − 1) ∝ N).
         const double n_gas = 1.0 + (index[i] - 1.0) * gas.number_density_m3 / index_density;
-        abs.absorption_m1[i] = small_particle_absorption_coefficient(ctx.wavelengths_nm[i], {n_gas, k[i]}, radius,
-                                                                     gas.number_density_m3);
+        abs.absorption_m1[i] =
+            small_particle_absorption_coefficient(ctx.wavelengths_nm[i], {n_gas, k[i]}, radius, gas.number_density_m3);
       }
     }
     a->finish();
@@ -452,8 +454,8 @@ void resolve_oxygen(JsonReader& root, AtmosphereModel& m, const Gas& gas, const 
   const double fraction = number(*r, "volume_fraction", kFraction);
   // Eq. (14) with the sign of the exponent corrected (density falls with height):
   //   ρ_O2(h) = O2% · N0 · exp(−h/H_O2);  eq. (13): β = σ_O2 ρ_O2.
-  a.profile = r->has("scale_height_m") ? DensityProfile::exponential(number(*r, "scale_height_m", kScaleHeight))
-                                       : gas.profile;
+  a.profile =
+      r->has("scale_height_m") ? DensityProfile::exponential(number(*r, "scale_height_m", kScaleHeight)) : gas.profile;
   a.absorption_m1 = sigma * (fraction * gas.number_density_m3);
   r->finish();
   m.absorbers.push_back(std::move(a));

@@ -30,10 +30,10 @@ struct LoadOptions {
 
 struct LoadedAtmosphere {
   AtmosphereModel model;
-  std::string mode;                    ///< "standard" or "advanced"
-  nlohmann::json parameters;           ///< the parameters as given (for reports and shows)
-  std::vector<std::string> warnings;   ///< e.g. a spectral table extrapolated beyond its samples
-  std::vector<std::string> derivation; ///< human-readable notes on derived quantities (advanced mode)
+  std::string mode;                     ///< "standard" or "advanced"
+  nlohmann::json parameters;            ///< the parameters as given (for reports and shows)
+  std::vector<std::string> warnings;    ///< e.g. a spectral table extrapolated beyond its samples
+  std::vector<std::string> derivation;  ///< human-readable notes on derived quantities (advanced mode)
 };
 
 /// Resolves a parameter set. `source` names it in error messages (a file path

@@ -14,8 +14,7 @@ double rayleigh_phase_penndorf(double cos_theta) {
 
 double rayleigh_phase_depolarized(double cos_theta, double depolarization) {
   const double gamma = depolarization / (2.0 - depolarization);
-  return 3.0 / (4.0 * (1.0 + 2.0 * gamma)) * ((1.0 + 3.0 * gamma) + (1.0 - gamma) * cos_theta * cos_theta) *
-         kInv4Pi;
+  return 3.0 / (4.0 * (1.0 + 2.0 * gamma)) * ((1.0 + 3.0 * gamma) + (1.0 - gamma) * cos_theta * cos_theta) * kInv4Pi;
 }
 
 double henyey_greenstein(double cos_theta, double g) {

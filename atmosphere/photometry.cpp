@@ -50,7 +50,8 @@ std::vector<double> luminance_weights(std::span<const double> wavelengths_nm) {
   for (std::size_t k = 0; k < n; ++k) {
     double width = 100.0;
     if (n > 1) {
-      const double lo = k > 0 ? wavelengths_nm[order[k - 1]] : 2 * wavelengths_nm[order[k]] - wavelengths_nm[order[k + 1]];
+      const double lo =
+          k > 0 ? wavelengths_nm[order[k - 1]] : 2 * wavelengths_nm[order[k]] - wavelengths_nm[order[k + 1]];
       const double hi =
           k + 1 < n ? wavelengths_nm[order[k + 1]] : 2 * wavelengths_nm[order[k]] - wavelengths_nm[order[k - 1]];
       width = 0.5 * (hi - lo);

@@ -79,7 +79,8 @@ DensityProfile us_standard_1976_profile(const std::string& species, double* peak
 double ozone_cross_section_m2(double wavelength_nm, double temperature_K, bool* covered) {
   static const Csv csv = parse_csv(embedded_file("data/ozone_cross_sections_spectral.csv"));
   static const auto tables = [] {
-    const std::size_t l = csv.column("lambda_nm"), c233 = csv.column("sigma_233K_m2"), c293 = csv.column("sigma_293K_m2");
+    const std::size_t l = csv.column("lambda_nm"), c233 = csv.column("sigma_233K_m2"),
+                      c293 = csv.column("sigma_293K_m2");
     std::vector<std::pair<double, double>> a, b;
     for (const auto& row : csv.rows) {
       a.emplace_back(row[l], row[c233]);

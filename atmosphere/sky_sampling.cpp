@@ -12,13 +12,9 @@ namespace {
 using core::kDeg;
 }
 
-Vec3 SkyGeometry::sun_direction() const {
-  return direction_from_angles(sun_zenith_deg * kDeg, sun_azimuth_deg * kDeg);
-}
+Vec3 SkyGeometry::sun_direction() const { return direction_from_angles(sun_zenith_deg * kDeg, sun_azimuth_deg * kDeg); }
 
-Vec3 view_vector(const ViewDirection& d) {
-  return direction_from_angles(d.zenith_deg * kDeg, d.azimuth_deg * kDeg);
-}
+Vec3 view_vector(const ViewDirection& d) { return direction_from_angles(d.zenith_deg * kDeg, d.azimuth_deg * kDeg); }
 
 std::vector<RadianceSample> sample_radiance(const lut::TableQueries& tables, const SkyGeometry& geometry,
                                             const std::vector<ViewDirection>& directions) {

@@ -20,16 +20,13 @@ bool Spectrum::all_zero() const {
   return std::all_of(values_.begin(), values_.end(), [](double v) { return v == 0.0; });
 }
 
-double Spectrum::max() const {
-  return values_.empty() ? 0.0 : *std::max_element(values_.begin(), values_.end());
-}
+double Spectrum::max() const { return values_.empty() ? 0.0 : *std::max_element(values_.begin(), values_.end()); }
 
 SpectralTable::SpectralTable(std::vector<std::pair<double, double>> samples) : samples_(std::move(samples)) {
   if (samples_.empty()) throw std::invalid_argument("SpectralTable: no samples");
   std::sort(samples_.begin(), samples_.end());
   for (std::size_t i = 1; i < samples_.size(); ++i)
-    if (samples_[i].first == samples_[i - 1].first)
-      throw std::invalid_argument("SpectralTable: duplicate wavelength");
+    if (samples_[i].first == samples_[i - 1].first) throw std::invalid_argument("SpectralTable: duplicate wavelength");
 }
 
 SpectralTable SpectralTable::constant(double value) { return SpectralTable({{550.0, value}}); }

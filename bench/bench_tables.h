@@ -26,40 +26,40 @@ inline render::TableSource cached_or_precomputed_tables(const atmosphere::lut::T
                                                         const std::string& label, render::gl::ContextOptions context,
                                                         std::function<void()> make_current,
                                                         std::function<void()> release_current = {}) {
-  return [&cache, table_options, label, context, make_current,
-          release_current](const atmosphere::AtmosphereModel& model) {
-    std::string problem;
-    if (auto cached = cache.load(model, table_options, &problem)) {
-      fmt::print("tables of '{}' loaded from {}\n", model.name, cache.directory().string());
-      return std::move(*cached);
-    }
-    if (!problem.empty()) fmt::print("ignoring cached tables of '{}': {}\n", model.name, problem);
-    fmt::print("precomputing the tables of '{}' ({} sizes, {} orders); stored in {}\n", model.name, label,
-               table_options.max_orders, cache.directory().string());
-    atmosphere::lut::PrecomputeOptions o = table_options;
-    std::string stage;
-    const auto start = std::chrono::steady_clock::now();
-    o.progress = [&](const atmosphere::lut::PrecomputeProgress& p) {
-      if (p.stage == stage) return;
-      stage = p.stage;
-      fmt::print(stderr, "  {:6.1f} s  {:3.0f}%  {}\n",
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 100.0 * p.fraction,
-                 p.stage);
-    };
-    atmosphere::lut::LookupTables t;
-    if (release_current) release_current();
-    {
-      const render::gl::HeadlessContext precompute_context(context);
-      t = render::precompute_tables_gpu(model, o, nullptr, &precompute_context);
-    }
-    make_current();
-    try {
-      cache.store(model, table_options, t);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "could not write the table cache: {}\n", e.what());
-    }
-    return t;
-  };
+  return
+      [&cache, table_options, label, context, make_current, release_current](const atmosphere::AtmosphereModel& model) {
+        std::string problem;
+        if (auto cached = cache.load(model, table_options, &problem)) {
+          fmt::print("tables of '{}' loaded from {}\n", model.name, cache.directory().string());
+          return std::move(*cached);
+        }
+        if (!problem.empty()) fmt::print("ignoring cached tables of '{}': {}\n", model.name, problem);
+        fmt::print("precomputing the tables of '{}' ({} sizes, {} orders); stored in {}\n", model.name, label,
+                   table_options.max_orders, cache.directory().string());
+        atmosphere::lut::PrecomputeOptions o = table_options;
+        std::string stage;
+        const auto start = std::chrono::steady_clock::now();
+        o.progress = [&](const atmosphere::lut::PrecomputeProgress& p) {
+          if (p.stage == stage) return;
+          stage = p.stage;
+          fmt::print(stderr, "  {:6.1f} s  {:3.0f}%  {}\n",
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                     100.0 * p.fraction, p.stage);
+        };
+        atmosphere::lut::LookupTables t;
+        if (release_current) release_current();
+        {
+          const render::gl::HeadlessContext precompute_context(context);
+          t = render::precompute_tables_gpu(model, o, nullptr, &precompute_context);
+        }
+        make_current();
+        try {
+          cache.store(model, table_options, t);
+        } catch (const std::exception& e) {
+          fmt::print(stderr, "could not write the table cache: {}\n", e.what());
+        }
+        return t;
+      };
 }
 
 }  // namespace zenith::bench

@@ -84,8 +84,8 @@
 
 #include "bench/command_line.h"
 #include "bench/tiny_cluster.h"
-#include "core/process.h"
 #include "core/files.h"
+#include "core/process.h"
 
 namespace {
 
@@ -146,22 +146,33 @@ Options parse_options(int argc, char** argv) {
     if (a == "--nodes") {
       const std::string v = args.value();
       o.nodes = v == "none" ? std::vector<int>{} : zenith::bench::split_int_list(v);
-    }
-    else if (a == "--frames") o.frames = std::stoi(args.value());
-    else if (a == "--frame-tables") o.frame_tables = args.value();
+    } else if (a == "--frames")
+      o.frames = std::stoi(args.value());
+    else if (a == "--frame-tables")
+      o.frame_tables = args.value();
     else if (a == "--tables") {
       o.tables = zenith::bench::split_list(args.value());
       if (o.tables == std::vector<std::string>{"none"}) o.tables.clear();
-    } else if (a == "--broadcast-nodes") o.broadcast_nodes = zenith::bench::split_int_list(args.value());
-    else if (a == "--orders") o.orders = std::stoi(args.value());
-    else if (a == "--csv") o.csv = args.value();
-    else if (a == "--pacing-nodes") o.pacing_nodes = std::stoi(args.value());
-    else if (a == "--pacing-hz") o.pacing_hz = std::stod(args.value());
-    else if (a == "--pacing-size") o.pacing_size = std::stoi(args.value());
-    else if (a == "--pacing-frames") o.pacing_frames = std::stoi(args.value());
-    else if (a == "--pacing-windows") o.pacing_windows = true;
-    else if (a == "--pacing-csv") o.pacing_csv = args.value();
-    else throw std::invalid_argument("unknown option " + a);
+    } else if (a == "--broadcast-nodes")
+      o.broadcast_nodes = zenith::bench::split_int_list(args.value());
+    else if (a == "--orders")
+      o.orders = std::stoi(args.value());
+    else if (a == "--csv")
+      o.csv = args.value();
+    else if (a == "--pacing-nodes")
+      o.pacing_nodes = std::stoi(args.value());
+    else if (a == "--pacing-hz")
+      o.pacing_hz = std::stod(args.value());
+    else if (a == "--pacing-size")
+      o.pacing_size = std::stoi(args.value());
+    else if (a == "--pacing-frames")
+      o.pacing_frames = std::stoi(args.value());
+    else if (a == "--pacing-windows")
+      o.pacing_windows = true;
+    else if (a == "--pacing-csv")
+      o.pacing_csv = args.value();
+    else
+      throw std::invalid_argument("unknown option " + a);
   }
   if (o.frames < 3) throw std::invalid_argument("--frames must be at least 3");
   if (o.size_px < 1) throw std::invalid_argument("--size must be positive");
@@ -241,9 +252,9 @@ struct RunSetup {
   int nodes = 1;
   int frames = 3;
   std::string tables = "small";
-  double paced_hz = 0.0;     ///< > 0: a paced live show at this rate (no frame files); 0: unpaced, frames written
-  int size_px = 0;           ///< 0: --size
-  bool windows = false;      ///< the nodes present in windows
+  double paced_hz = 0.0;  ///< > 0: a paced live show at this rate (no frame files); 0: unpaced, frames written
+  int size_px = 0;        ///< 0: --size
+  bool windows = false;   ///< the nodes present in windows
 };
 
 /// What the logs of one run say.
@@ -273,15 +284,31 @@ RunLogs run_cluster(const Options& opt, const RunSetup& setup, const fs::path& c
   std::vector<Child> children;
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::seconds(opt.timeout_s);
-  std::vector<std::string> master_args = {"--log-level", "debug", "master", "--cluster", config.string(), "--frames",
-                                          std::to_string(setup.frames), "--cache", cache.string(),
-                                          "--wait-for-nodes-ms", std::to_string(opt.timeout_s * 1000)};
+  std::vector<std::string> master_args = {"--log-level",
+                                          "debug",
+                                          "master",
+                                          "--cluster",
+                                          config.string(),
+                                          "--frames",
+                                          std::to_string(setup.frames),
+                                          "--cache",
+                                          cache.string(),
+                                          "--wait-for-nodes-ms",
+                                          std::to_string(opt.timeout_s * 1000)};
   if (!paced) master_args.insert(master_args.begin() + 3, "--unpaced");
   children.push_back(spawn(opt.zenith, master_args, dir / "master.log"));
   for (int i = 0; i < setup.nodes; ++i) {
-    std::vector<std::string> args = {"--log-level", "debug", "node", "--cluster", config.string(), "--name",
-                                     tiny_node_name(i), "--cache", (dir / "node-cache" / tiny_node_name(i)).string(),
-                                     "--connect-timeout-ms", std::to_string(opt.timeout_s * 1000)};
+    std::vector<std::string> args = {"--log-level",
+                                     "debug",
+                                     "node",
+                                     "--cluster",
+                                     config.string(),
+                                     "--name",
+                                     tiny_node_name(i),
+                                     "--cache",
+                                     (dir / "node-cache" / tiny_node_name(i)).string(),
+                                     "--connect-timeout-ms",
+                                     std::to_string(opt.timeout_s * 1000)};
     if (!paced) args.insert(args.end(), {"--out", (dir / "out").string()});  // a live show writes no frames
     if (setup.windows) args.push_back("--window");
     children.push_back(spawn(opt.zenith, args, dir / (tiny_node_name(i) + ".log")));
@@ -290,14 +317,16 @@ RunLogs run_cluster(const Options& opt, const RunSetup& setup, const fs::path& c
   std::string failure;
   for (std::size_t i = 0; i < children.size(); ++i) {
     const auto status = wait_exit(children[i], deadline);
-    if (!status) failure += fmt::format(" {} did not finish within {} s;", children[i].log.stem().string(), opt.timeout_s);
-    else if (*status != 0) failure += fmt::format(" {} exited with {};", children[i].log.stem().string(), *status);
+    if (!status)
+      failure += fmt::format(" {} did not finish within {} s;", children[i].log.stem().string(), opt.timeout_s);
+    else if (*status != 0)
+      failure += fmt::format(" {} exited with {};", children[i].log.stem().string(), *status);
   }
   for (const Child& c : children)
     if (kill(c.pid, 0) == 0) kill_hard(c);
   if (!failure.empty())
-    throw std::runtime_error(fmt::format("run {}:{}\n---- master.log\n{}", dir.string(), failure,
-                                         read_text(dir / "master.log")));
+    throw std::runtime_error(
+        fmt::format("run {}:{}\n---- master.log\n{}", dir.string(), failure, read_text(dir / "master.log")));
 
   RunLogs logs;
   logs.run_s = std::chrono::duration<double>(Clock::now() - start).count();
@@ -342,8 +371,8 @@ BarrierResult barrier_figures(const RunSetup& setup, const RunLogs& logs) {
       s = std::max(s, *number_after(l.text, " rendered in "));
     }
   if (presented_at.size() != static_cast<std::size_t>(setup.frames))
-    throw std::runtime_error(fmt::format("{} nodes: the master presented {} of {} frames", setup.nodes,
-                                         presented_at.size(), setup.frames));
+    throw std::runtime_error(
+        fmt::format("{} nodes: the master presented {} of {} frames", setup.nodes, presented_at.size(), setup.frames));
   // Frame 0 is left out: the first frame after the warm-up pays first-use costs.
   std::vector<double> slow, barr, in_barrier;
   for (const auto& [frame, b] : barrier) {
@@ -395,7 +424,8 @@ BroadcastResult broadcast_figures(const RunSetup& setup, const RunLogs& logs) {
         r.warmup_ms_max = std::max(r.warmup_ms_max, *w);
     }
   if (!first_announce || !last_ready || !last_received)
-    throw std::runtime_error(fmt::format("{} tables, {} nodes: the logs lack the table lines", setup.tables, setup.nodes));
+    throw std::runtime_error(
+        fmt::format("{} tables, {} nodes: the logs lack the table lines", setup.tables, setup.nodes));
   r.broadcast_s = (*last_ready - *first_announce) / 1000.0;
   r.transfer_s = (*last_received - *first_announce) / 1000.0;
   return r;
@@ -480,8 +510,7 @@ int run(int argc, char** argv) {
   }
 
   std::vector<BarrierResult> barriers;
-  fmt::print("\nbarrier: {} frames, {} tables, unpaced; frame 0 left out\n", opt.frames,
-             opt.frame_tables);
+  fmt::print("\nbarrier: {} frames, {} tables, unpaced; frame 0 left out\n", opt.frames, opt.frame_tables);
   fmt::print("{:>5} {:>8} {:>10} {:>12} {:>11} {:>10} {:>11} {:>9}\n", "nodes", "fps", "period ms", "slowest ms",
              "overhead", "barrier", "in-barrier", "p90");
   for (int n : opt.nodes) {
@@ -495,8 +524,8 @@ int run(int argc, char** argv) {
   std::vector<BroadcastResult> broadcasts;
   if (!opt.tables.empty()) {
     fmt::print("\ntable broadcast: first TableAnnounce -> last TableReady\n");
-    fmt::print("{:>7} {:>5} {:>10} {:>12} {:>11} {:>10} {:>11}\n", "tables", "nodes", "MB", "broadcast s",
-               "transfer s", "MB/s", "warmup ms");
+    fmt::print("{:>7} {:>5} {:>10} {:>12} {:>11} {:>10} {:>11}\n", "tables", "nodes", "MB", "broadcast s", "transfer s",
+               "MB/s", "warmup ms");
   }
   for (const std::string& t : opt.tables)
     for (int n : opt.broadcast_nodes) {
@@ -510,15 +539,16 @@ int run(int argc, char** argv) {
 
   std::optional<PacingResult> pacing;
   if (opt.pacing_nodes > 0) {
-    const RunSetup setup{opt.pacing_nodes, opt.pacing_frames, opt.frame_tables, opt.pacing_hz, opt.pacing_size,
-                         opt.pacing_windows};
+    const RunSetup setup{opt.pacing_nodes, opt.pacing_frames, opt.frame_tables,
+                         opt.pacing_hz,    opt.pacing_size,   opt.pacing_windows};
     fmt::print("\npaced dome: {} nodes of one {}x{} output each at {} Hz, {} frames, {} tables, a live show{}\n",
                setup.nodes, opt.pacing_size, opt.pacing_size, opt.pacing_hz, setup.frames, opt.frame_tables,
                setup.windows ? ", in windows" : " (headless)");
     pacing = pacing_figures(setup, opt.pacing_size, run_cluster(opt, setup, cache, port++));
     const PacingResult& r = *pacing;
-    fmt::print("frame time (FrameState -> Present) ms: p50 {:.2f}  p90 {:.2f}  p99 {:.2f}  max {:.2f}  (period {:.2f})\n",
-               r.frame_p50_ms, r.frame_p90_ms, r.frame_p99_ms, r.frame_max_ms, 1000.0 / r.hz);
+    fmt::print(
+        "frame time (FrameState -> Present) ms: p50 {:.2f}  p90 {:.2f}  p99 {:.2f}  max {:.2f}  (period {:.2f})\n",
+        r.frame_p50_ms, r.frame_p90_ms, r.frame_p99_ms, r.frame_max_ms, 1000.0 / r.hz);
     fmt::print("interval between Presents ms: p50 {:.0f}  p99 {:.0f}  max {:.0f}  (1 ms log stamps)\n",
                r.interval_p50_ms, r.interval_p99_ms, r.interval_max_ms);
     fmt::print("late frames (presented more than a period after due): {} of {}; schedule moved {} times{}\n",

@@ -46,7 +46,8 @@
 //
 //   cluster_soak [--zenith PATH] [--frames 10000] [--nodes 3] [--size 16] [--fps 100]
 //                [--fault-interval-s 1.5,4] [--long-stop-probability 0.15] [--quiet-fraction 0.1]
-//                [--max-rss-growth-mib 32] [--seed 17] [--attacks] [--cache DIR] [--work DIR] [--timeout-s 3600] [--keep]
+//                [--max-rss-growth-mib 32] [--seed 17] [--attacks] [--cache DIR] [--work DIR] [--timeout-s 3600]
+//                [--keep]
 #include <arpa/inet.h>
 #include <fmt/format.h>
 #include <netinet/in.h>
@@ -72,8 +73,8 @@
 #include "bench/command_line.h"
 #include "bench/soak_attacks.h"
 #include "bench/tiny_cluster.h"
-#include "core/process.h"
 #include "core/files.h"
+#include "core/process.h"
 #include "core/strings.h"
 
 namespace {
@@ -124,21 +125,30 @@ Options parse_options(int argc, char** argv) {
   for (zenith::bench::CommandLine args(argc, argv); args.next();) {
     const std::string& a = args.option();
     if (o.read(args, kUsage)) continue;
-    if (a == "--frames") o.frames = std::stoi(args.value());
-    else if (a == "--nodes") o.nodes = std::stoi(args.value());
-    else if (a == "--fps") o.fps = std::stod(args.value());
+    if (a == "--frames")
+      o.frames = std::stoi(args.value());
+    else if (a == "--nodes")
+      o.nodes = std::stoi(args.value());
+    else if (a == "--fps")
+      o.fps = std::stod(args.value());
     else if (a == "--fault-interval-s") {
       const std::string v = args.value();
       const auto comma = v.find(',');
       if (comma == std::string::npos) throw std::invalid_argument("--fault-interval-s: expected MIN,MAX");
       o.fault_min_s = std::stod(v.substr(0, comma));
       o.fault_max_s = std::stod(v.substr(comma + 1));
-    } else if (a == "--long-stop-probability") o.long_stop_probability = std::stod(args.value());
-    else if (a == "--quiet-fraction") o.quiet_fraction = std::stod(args.value());
-    else if (a == "--max-rss-growth-mib") o.max_rss_growth_mib = std::stod(args.value());
-    else if (a == "--seed") o.seed = static_cast<unsigned>(std::stoul(args.value()));
-    else if (a == "--attacks") o.attacks = true;
-    else throw std::invalid_argument("unknown option " + a);
+    } else if (a == "--long-stop-probability")
+      o.long_stop_probability = std::stod(args.value());
+    else if (a == "--quiet-fraction")
+      o.quiet_fraction = std::stod(args.value());
+    else if (a == "--max-rss-growth-mib")
+      o.max_rss_growth_mib = std::stod(args.value());
+    else if (a == "--seed")
+      o.seed = static_cast<unsigned>(std::stoul(args.value()));
+    else if (a == "--attacks")
+      o.attacks = true;
+    else
+      throw std::invalid_argument("unknown option " + a);
   }
   if (o.frames < 10) throw std::invalid_argument("--frames must be at least 10");
   if (o.nodes < 2 || o.nodes > 16) throw std::invalid_argument("--nodes must be in [2, 16]");
@@ -148,7 +158,8 @@ Options parse_options(int argc, char** argv) {
     throw std::invalid_argument("--fault-interval-s: need 0 < MIN <= MAX");
   if (!(o.long_stop_probability >= 0.0 && o.long_stop_probability <= 1.0))
     throw std::invalid_argument("--long-stop-probability must be in [0, 1]");
-  if (!(o.quiet_fraction >= 0.0 && o.quiet_fraction < 1.0)) throw std::invalid_argument("--quiet-fraction must be in [0, 1)");
+  if (!(o.quiet_fraction >= 0.0 && o.quiet_fraction < 1.0))
+    throw std::invalid_argument("--quiet-fraction must be in [0, 1)");
   return o;
 }
 
@@ -215,10 +226,11 @@ using zenith::core::process_gone;
 std::string launcher_orphans(const Options& opt, const fs::path& config, const fs::path& cache, const fs::path& dir,
                              int port) {
   const fs::path log = dir / "launcher.log";
-  const pid_t launcher = zenith::core::spawn_process(
-      opt.zenith, {"cluster", "--cluster", config.string(), "--port", std::to_string(port), "--frames", "100000", "--out",
-                   (dir / "launcher-out").string(), "--cache", cache.string()},
-      log, zenith::core::LogMode::truncate);
+  const pid_t launcher =
+      zenith::core::spawn_process(opt.zenith,
+                                  {"cluster", "--cluster", config.string(), "--port", std::to_string(port), "--frames",
+                                   "100000", "--out", (dir / "launcher-out").string(), "--cache", cache.string()},
+                                  log, zenith::core::LogMode::truncate);
   const auto deadline = Clock::now() + 180s;
   while (Clock::now() < deadline && !last_presented(dir / "launcher-out" / tiny_node_name(0) / "presented.log"))
     std::this_thread::sleep_for(100ms);
@@ -271,29 +283,40 @@ int run(const Options& opt) {
   const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
 
   const fs::path config = zenith::bench::write_tiny_cluster(
-      dir, {"soak", opt.nodes, opt.size_px, port,
-            fmt::format(R"({{"heartbeat_ms": 200, "barrier_timeout_ms": 2000, "frame_rate_hz": {}, "reconnect_s": 60}})",
-                        opt.fps),
-            kSecretVar, "small", 1});
+      dir,
+      {"soak", opt.nodes, opt.size_px, port,
+       fmt::format(R"({{"heartbeat_ms": 200, "barrier_timeout_ms": 2000, "frame_rate_hz": {}, "reconnect_s": 60}})",
+                   opt.fps),
+       kSecretVar, "small", 1});
   const auto started = Clock::now();
   const auto deadline = started + std::chrono::seconds(opt.timeout_s);
 
-  std::vector<std::string> master_args = {"master", "--cluster", config.string(), "--frames", std::to_string(opt.frames),
-                                          "--cache", cache.string(), "--wait-for-nodes-ms", "300000"};
+  std::vector<std::string> master_args = {
+      "master",  "--cluster",    config.string(),       "--frames", std::to_string(opt.frames),
+      "--cache", cache.string(), "--wait-for-nodes-ms", "300000"};
   if (opt.attacks)
     master_args.insert(master_args.end(), {"--operator-port", std::to_string(ports.console), "--control-port",
                                            std::to_string(ports.control), "--osc-port", std::to_string(ports.osc)});
-  const pid_t master = zenith::core::spawn_process(opt.zenith, master_args, dir / "master.log",
-                                                   zenith::core::LogMode::truncate);
-  zenith::bench::SoakAttacks attacks(opt.zenith, {"node", "--cluster", config.string(), "--connect-timeout-ms", "60000"},
-                                     dir, ports);
+  const pid_t master =
+      zenith::core::spawn_process(opt.zenith, master_args, dir / "master.log", zenith::core::LogMode::truncate);
+  zenith::bench::SoakAttacks attacks(
+      opt.zenith, {"node", "--cluster", config.string(), "--connect-timeout-ms", "60000"}, dir, ports);
   std::optional<std::uint64_t> first_attack_frame;
   std::vector<Node> nodes;
   for (int i = 0; i < opt.nodes; ++i) {
     Node n;
     n.name = tiny_node_name(i);
-    n.args = {"node", "--cluster", config.string(), "--name", n.name, "--out", (dir / "out").string(),
-              "--cache", (dir / "node-cache" / n.name).string(), "--connect-timeout-ms", "300000"};
+    n.args = {"node",
+              "--cluster",
+              config.string(),
+              "--name",
+              n.name,
+              "--out",
+              (dir / "out").string(),
+              "--cache",
+              (dir / "node-cache" / n.name).string(),
+              "--connect-timeout-ms",
+              "300000"};
     n.log = dir / (n.name + ".log");
     n.pid = zenith::core::spawn_process(opt.zenith, n.args, n.log, zenith::core::LogMode::truncate);
     nodes.push_back(std::move(n));
@@ -425,8 +448,8 @@ int run(const Options& opt) {
     if (now - last_report > 10s) {
       last_report = now;
       fmt::print("soak: frame {} of {}, {:.0f} s; faults so far: {} kills, {} short stops, {} long stops, {} garbage\n",
-                 frame.value_or(0), opt.frames, std::chrono::duration<double>(now - started).count(), kills, short_stops,
-                 long_stops, garbage_count);
+                 frame.value_or(0), opt.frames, std::chrono::duration<double>(now - started).count(), kills,
+                 short_stops, long_stops, garbage_count);
       std::fflush(stdout);
     }
   }
@@ -456,9 +479,10 @@ int run(const Options& opt) {
   // ---- the report ----
   fmt::print("\nsoak: {} frames at {} fps on {} nodes ({}x{} px each), seed {}, {:.0f} s\n", opt.frames, opt.fps,
              opt.nodes, opt.size_px, opt.size_px, opt.seed, run_s);
-  fmt::print("faults: {} kill -9 (and restart), {} short stops (0.3-3 s), {} long stops (10.5-13 s), {} garbage "
-             "connections\n\n",
-             kills, short_stops, long_stops, garbage_count);
+  fmt::print(
+      "faults: {} kill -9 (and restart), {} short stops (0.3-3 s), {} long stops (10.5-13 s), {} garbage "
+      "connections\n\n",
+      kills, short_stops, long_stops, garbage_count);
   fmt::print("{:<6} {:>10} {:>14} {:>10} {:>11} {:>9} {:>11} {:>11} {:>7}\n", "node", "presented", "missed frames",
              "gap runs", "reconnects", "restarts", "RSS start", "RSS end", "exit");
   std::vector<std::map<std::uint64_t, std::string>> logs;
@@ -478,7 +502,9 @@ int run(const Options& opt) {
       }
     }
     const std::size_t reconnects = count_of(read_text(n.log), "welcomed again by the master");
-    const auto mib = [](const std::optional<double>& v) { return v ? fmt::format("{:.1f} MiB", *v) : std::string("-"); };
+    const auto mib = [](const std::optional<double>& v) {
+      return v ? fmt::format("{:.1f} MiB", *v) : std::string("-");
+    };
     fmt::print("{:<6} {:>10} {:>14} {:>10} {:>11} {:>9} {:>11} {:>11} {:>7}\n", n.name, p.size(), missed, runs,
                reconnects, n.restarts, mib(n.rss_start), mib(n.rss_end), node_status[i]);
     if ((p.empty() || p.rbegin()->first + 1 != static_cast<std::uint64_t>(opt.frames)) && failure.empty())
@@ -497,9 +523,9 @@ int run(const Options& opt) {
   const double node_growth = growth(nodes[0].rss_start, nodes[0].rss_end);
   fmt::print("master RSS: {:.1f} MiB at the start, {:.1f} MiB at the end ({:+.1f} MiB; bound {:.0f} MiB)\n",
              master_rss_start.value_or(0), master_rss_end.value_or(0), master_growth, opt.max_rss_growth_mib);
-  fmt::print("node {} (never killed) RSS: {:.1f} MiB at the start, {:.1f} MiB at the end ({:+.1f} MiB; bound {:.0f} MiB)\n",
-             nodes[0].name, nodes[0].rss_start.value_or(0), nodes[0].rss_end.value_or(0), node_growth,
-             opt.max_rss_growth_mib);
+  fmt::print(
+      "node {} (never killed) RSS: {:.1f} MiB at the start, {:.1f} MiB at the end ({:+.1f} MiB; bound {:.0f} MiB)\n",
+      nodes[0].name, nodes[0].rss_start.value_or(0), nodes[0].rss_end.value_or(0), node_growth, opt.max_rss_growth_mib);
   if (failure.empty() && (!master_rss_start || !nodes[0].rss_start)) failure = "the show never started";
   if (failure.empty() && master_growth > opt.max_rss_growth_mib) failure = "the master's memory grew past the bound";
   if (failure.empty() && node_growth > opt.max_rss_growth_mib) failure = "the node's memory grew past the bound";
@@ -518,7 +544,8 @@ int run(const Options& opt) {
         gaps += logs[0].count(f) ? 0 : 1;
     fmt::print("node {} frames missing from frame {} (the first attack) to the last: {}\n", nodes[0].name,
                first_attack_frame.value_or(0), gaps);
-    if (gaps && failure.empty()) failure = fmt::format("node {} missed {} frames during the attacks", nodes[0].name, gaps);
+    if (gaps && failure.empty())
+      failure = fmt::format("node {} missed {} frames during the attacks", nodes[0].name, gaps);
     const std::string master_log = read_text(dir / "master.log");
     fmt::print("master log: {} lines, {:.1f} KiB; forged lines: {}\n", count_of(master_log, "\n"),
                static_cast<double>(master_log.size()) / 1024.0, count_of(master_log, "\nmaster: quit"));

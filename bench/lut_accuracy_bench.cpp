@@ -115,14 +115,22 @@ Options parse_options(int argc, char** argv) {
   };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--quick") o.quick = true;
-    else if (a == "--smoke") o.smoke = true;
-    else if (a == "--no-gpu") o.gpu = false;
-    else if (a == "--no-frames") o.frames = false;
-    else if (a == "--no-chart") o.chart = false;
-    else if (a == "--list") o.list = true;
-    else if (a == "--out") o.out = value(i, a);
-    else if (a == "--only") o.only = value(i, a);
+    if (a == "--quick")
+      o.quick = true;
+    else if (a == "--smoke")
+      o.smoke = true;
+    else if (a == "--no-gpu")
+      o.gpu = false;
+    else if (a == "--no-frames")
+      o.frames = false;
+    else if (a == "--no-chart")
+      o.chart = false;
+    else if (a == "--list")
+      o.list = true;
+    else if (a == "--out")
+      o.out = value(i, a);
+    else if (a == "--only")
+      o.only = value(i, a);
     else if (a == "--presets") {
       o.presets.clear();
       std::stringstream list(value(i, a));
@@ -131,7 +139,8 @@ Options parse_options(int argc, char** argv) {
       if (o.presets.empty()) throw std::invalid_argument("--presets: give at least one");
     } else if (a == "--frame-size") {
       o.frame_size_px = std::stoi(value(i, a));
-      if (o.frame_size_px < 16 || o.frame_size_px > 8192) throw std::invalid_argument("--frame-size: must be in [16, 8192]");
+      if (o.frame_size_px < 16 || o.frame_size_px > 8192)
+        throw std::invalid_argument("--frame-size: must be in [16, 8192]");
     } else if (a == "--frames") {
       o.frame_count = std::stoi(value(i, a));
       if (o.frame_count < 1 || o.frame_count > 1000) throw std::invalid_argument("--frames: must be in [1, 1000]");
@@ -144,7 +153,8 @@ Options parse_options(int argc, char** argv) {
     } else if (a == "--help" || a == "-h") {
       fmt::print("{}", kUsage);
       std::exit(0);
-    } else throw std::invalid_argument(fmt::format("unknown option '{}'", a));
+    } else
+      throw std::invalid_argument(fmt::format("unknown option '{}'", a));
     if (a != "--out") o.command = fmt::format("{} {}", o.command, a);
     if (a == "--presets" || a == "--frame-size" || a == "--frames" || a == "--tolerance" || a == "--max-rms")
       o.command = fmt::format("{} {}", o.command, argv[i]);
@@ -169,13 +179,17 @@ struct Case {
 Case read_case(const std::string& preset, const std::string& name, std::size_t channels) {
   const fs::path file = fs::path(ZENITH_SOURCE_DIR) / "tests/data" / fmt::format("reference_{}_{}.csv", preset, name);
   std::ifstream in(file);
-  if (!in) throw std::runtime_error(fmt::format("missing reference fixture {} (scripts/make-reference-fixtures)", file.string()));
+  if (!in)
+    throw std::runtime_error(
+        fmt::format("missing reference fixture {} (scripts/make-reference-fixtures)", file.string()));
   Case c{preset, name, {}, {}, {}, {}};
   std::string line;
-  std::getline(in, line);  // "# scripts/make-reference-fixtures: zenith sample ... --altitude-m A --sun-zenith-deg Z ..."
+  std::getline(in,
+               line);  // "# scripts/make-reference-fixtures: zenith sample ... --altitude-m A --sun-zenith-deg Z ..."
   auto arg = [&](const std::string& flag) {
     const std::size_t at = line.find(fmt::format("{} ", flag));
-    if (at == std::string::npos) throw std::runtime_error(fmt::format("{}: no {} in its first line", file.string(), flag));
+    if (at == std::string::npos)
+      throw std::runtime_error(fmt::format("{}: no {} in its first line", file.string(), flag));
     return std::stod(line.substr(at + flag.size() + 1));
   };
   c.geometry.altitude_m = arg("--altitude-m");
@@ -253,8 +267,8 @@ Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
   s.options.sphere_zenith_samples = v.sphere;
   s.options.coarse_ray_stride = v.coarse_stride;
   s.options.series_tail = v.series_tail;
-  s.options.density_method =
-      v.direct_density ? lut::PrecomputeOptions::DensityMethod::Direct : lut::PrecomputeOptions::DensityMethod::Harmonics;
+  s.options.density_method = v.direct_density ? lut::PrecomputeOptions::DensityMethod::Direct
+                                              : lut::PrecomputeOptions::DensityMethod::Harmonics;
   s.label = fmt::format("{} {} order{}", sizes, v.orders, v.orders == 1 ? "" : "s");
   if (v.trapezoid) s.label = fmt::format("{} trapezoid", s.label);
   if (v.ray_samples != 50) s.label = fmt::format("{} {} ray samples", s.label, v.ray_samples);
@@ -349,10 +363,10 @@ struct Row {
   double precompute_s = NAN, frame_ms = NAN, frame_ms_min = NAN;
   double rms = NAN, max = NAN, table_mb = 0.0;
   std::vector<std::pair<double, double>> case_rms_max;  ///< per case of kCases
-  double sum_squares = 0.0;  ///< of the relative errors, for pooling
-  std::size_t values = 0;    ///< compared
-  std::size_t nonfinite = 0;  ///< NaN/Inf radiances from the tables + pixels of the frame
-  std::size_t frame_index = SIZE_MAX;  ///< in the atmosphere's LutFrameTimer
+  double sum_squares = 0.0;                             ///< of the relative errors, for pooling
+  std::size_t values = 0;                               ///< compared
+  std::size_t nonfinite = 0;                            ///< NaN/Inf radiances from the tables + pixels of the frame
+  std::size_t frame_index = SIZE_MAX;                   ///< in the atmosphere's LutFrameTimer
   bool front_precompute = false, front_frame = false, recommended = false;
 };
 
@@ -416,14 +430,15 @@ int run(const Options& opt) {
   for (const std::string& preset : opt.presets) {
     const AtmosphereModel model = load_preset(preset).model;
     std::vector<Case> cases;
-    for (const char* name : kCases)
-      cases.push_back(read_case(preset, name, model.wavelength_count()));
+    for (const char* name : kCases) cases.push_back(read_case(preset, name, model.wavelength_count()));
     std::optional<zenith::bench::LutFrameTimer> timer;
     if (frames) {
       timer.emplace(frame_scene_for(preset), opt.frame_size_px);
       if (lookup_table_hash(timer->model()) != lookup_table_hash(model))
-        throw std::runtime_error(fmt::format("the frame-time scene's atmosphere is not the preset '{}' as loaded here "
-                                             "(other wavelengths?)", preset));
+        throw std::runtime_error(
+            fmt::format("the frame-time scene's atmosphere is not the preset '{}' as loaded here "
+                        "(other wavelengths?)",
+                        preset));
     }
     for (std::size_t si = 0; si < settings.size(); ++si) {
       const Setting& s = settings[si];
@@ -443,7 +458,8 @@ int run(const Options& opt) {
         continue;
       }
       row.precompute_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      row.device = report.device.empty() ? (s.gpu ? gl_renderer : fmt::format("CPU ({} threads)", threads)) : report.device;
+      row.device =
+          report.device.empty() ? (s.gpu ? gl_renderer : fmt::format("CPU ({} threads)", threads)) : report.device;
 
       double worst = 0.0;
       {
@@ -473,8 +489,10 @@ int run(const Options& opt) {
       }
       row.rms = row.values > 0 ? std::sqrt(row.sum_squares / double(row.values)) : NAN;
       row.max = worst;
-      row.table_mb = 4.0 * double(tables.transmittance.data.size() + tables.irradiance.data.size() +
-                                  3 * tables.multiple.data.size()) / 1e6;  // as float32, 3 scattering tables
+      row.table_mb =
+          4.0 *
+          double(tables.transmittance.data.size() + tables.irradiance.data.size() + 3 * tables.multiple.data.size()) /
+          1e6;      // as float32, 3 scattering tables
       if (timer) {  // its untimed frame now, the timed ones below with the other settings'
         context->make_current();
         std::size_t nonfinite_pixels = 0;
@@ -483,7 +501,8 @@ int run(const Options& opt) {
       }
       std::string per_case;
       for (std::size_t ci = 0; ci < row.case_rms_max.size(); ++ci)
-        per_case += fmt::format("  {} {:.4f}/{:.3f}", kCases[ci], row.case_rms_max[ci].first, row.case_rms_max[ci].second);
+        per_case +=
+            fmt::format("  {} {:.4f}/{:.3f}", kCases[ci], row.case_rms_max[ci].first, row.case_rms_max[ci].second);
       fmt::print("{:<36} {:<15} precompute {:8.2f} s   RMS {:.4f}   max {:.4f}{}   (RMS/max:{})\n", s.label, preset,
                  row.precompute_s, row.rms, row.max,
                  row.nonfinite ? fmt::format("  {} NON-FINITE", row.nonfinite) : std::string(), per_case);
@@ -501,8 +520,8 @@ int run(const Options& opt) {
     }
   }
 
-  fmt::print("\n{:<36} {:<15} {:>12} {:>10} {:>10} {:>10} {:>9}\n", "setting", "atmosphere", "precompute s",
-             "frame ms", "RMS err", "max err", "tables MB");
+  fmt::print("\n{:<36} {:<15} {:>12} {:>10} {:>10} {:>10} {:>9}\n", "setting", "atmosphere", "precompute s", "frame ms",
+             "RMS err", "max err", "tables MB");
   for (const Row& r : rows)
     fmt::print("{:<36} {:<15} {:>12.2f} {:>10.1f} {:>10.4f} {:>10.4f} {:>9.1f}\n", settings[r.setting].label, r.preset,
                r.precompute_s, r.frame_ms, r.rms, r.max, r.table_mb);
@@ -554,7 +573,7 @@ int run(const Options& opt) {
           << number(r.frame_ms_min, "{:.3f}") << ',' << (s.gpu ? "GPU" : "CPU") << ',' << csv_field(r.device) << ','
           << s.sizes_name << ',' << csv_field(s.options.sizes.describe()) << ',' << s.options.max_orders << ','
           << (s.options.scattering_quadrature == lut::PrecomputeOptions::Quadrature::LogLinear ? "log-linear"
-                                                                                                : "trapezoid")
+                                                                                               : "trapezoid")
           << ',' << s.options.scattering_samples << ',' << s.options.sphere_zenith_samples << ',' << r.nonfinite << ','
           << int(r.front_precompute) << ',' << int(r.front_frame) << ',' << int(r.recommended) << ','
           << int(s.project_default) << ',' << (frames ? opt.frame_size_px : 0) << ',' << opt.tolerance << ','
@@ -596,10 +615,10 @@ int run(const Options& opt) {
                best, describe(pick));
   if (project)
     fmt::print("project default (paper sizes, {} orders, log-linear, 50 ray samples, sphere 16, GPU): {}{}\n",
-               lut::kDefaultScatteringOrders,
-               describe(project), pick == project ? " (the same)" : "");
+               lut::kDefaultScatteringOrders, describe(project), pick == project ? " (the same)" : "");
   else
-    fmt::print("project default (paper sizes, {} orders, GPU): not measured in this run\n", lut::kDefaultScatteringOrders);
+    fmt::print("project default (paper sizes, {} orders, GPU): not measured in this run\n",
+               lut::kDefaultScatteringOrders);
 
   if (opt.chart) {
     const std::string machine = fmt::format("GL: {}; CPU: {} threads", gl_renderer, threads);
@@ -608,7 +627,8 @@ int run(const Options& opt) {
     for (std::size_t i = 0; i < all.size(); ++i) {
       const Row* r = all[i];
       by_precompute.push_back({{r->precompute_s, r->rms}, settings[r->setting].label, r->front_precompute});
-      if (settings[r->setting].gpu) by_frame.push_back({{r->frame_ms, r->rms}, settings[r->setting].label, r->front_frame});
+      if (settings[r->setting].gpu)
+        by_frame.push_back({{r->frame_ms, r->rms}, settings[r->setting].label, r->front_frame});
       if (r->recommended) pick_index = i;
     }
     std::string presets = opt.presets.front();

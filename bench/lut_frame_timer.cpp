@@ -25,7 +25,8 @@ struct LutFrameTimer::Entry {
 LutFrameTimer::LutFrameTimer(const std::filesystem::path& scene_file, int size_px)
     : scene_(scene::load_scene(scene_file)),
       size_px_(size_px),
-      projection_(std::make_unique<warp::FisheyeProjection>(size_px, size_px)) {  // 180°, the axis along the camera's up
+      projection_(
+          std::make_unique<warp::FisheyeProjection>(size_px, size_px)) {  // 180°, the axis along the camera's up
   const auto with_atmosphere = std::count_if(scene_.bodies.begin(), scene_.bodies.end(),
                                              [](const scene::Body& b) { return b.atmosphere.has_value(); });
   if (with_atmosphere != 1)
@@ -47,11 +48,12 @@ std::size_t LutFrameTimer::add(atmosphere::lut::LookupTables tables, std::size_t
   e->tables = std::move(tables);
   const Entry* entry = e.get();
   const std::string hash = atmosphere::lookup_table_hash(model());
-  e->renderer = std::make_unique<render::Renderer>(render::RenderOptions{}, [entry, hash](const atmosphere::AtmosphereModel& m) {
-    if (atmosphere::lookup_table_hash(m) != hash)
-      throw std::invalid_argument(fmt::format("LutFrameTimer: tables requested for another model ('{}')", m.name));
-    return entry->tables;
-  });
+  e->renderer =
+      std::make_unique<render::Renderer>(render::RenderOptions{}, [entry, hash](const atmosphere::AtmosphereModel& m) {
+        if (atmosphere::lookup_table_hash(m) != hash)
+          throw std::invalid_argument(fmt::format("LutFrameTimer: tables requested for another model ('{}')", m.name));
+        return entry->tables;
+      });
   for (float v : e->renderer->render_image(scene_, *projection_))
     if (!std::isfinite(v)) ++e->nonfinite;
   if (nonfinite_values) *nonfinite_values = e->nonfinite;

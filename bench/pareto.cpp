@@ -38,8 +38,8 @@ std::string gp_string(const std::string& s) {
 /// (gnuplot's own would label one tic or none).
 std::string log_tics(double lo, double hi) {
   const bool dense = hi < 10.0 * lo;
-  const std::vector<double> mantissas = dense ? std::vector<double>{1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 7, 8, 9}
-                                              : std::vector<double>{1, 1.5, 2, 3, 5, 7};
+  const std::vector<double> mantissas =
+      dense ? std::vector<double>{1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 7, 8, 9} : std::vector<double>{1, 1.5, 2, 3, 5, 7};
   std::string tics;
   for (int decade = -6; decade <= 6; ++decade)
     for (double m : mantissas)
@@ -88,8 +88,10 @@ bool write_pareto_chart(const std::filesystem::path& png, const std::vector<Char
   std::vector<const ChartPoint*> front;
   for (const ChartPoint& p : points)
     if (p.front && usable(p.value)) front.push_back(&p);
-  std::sort(front.begin(), front.end(), [](const ChartPoint* a, const ChartPoint* b) { return a->value.cost < b->value.cost; });
-  for (const ChartPoint* p : front) s << fmt::format("{:.6g} {:.6g} {}\n", p->value.cost, p->value.error, quoted(p->label));
+  std::sort(front.begin(), front.end(),
+            [](const ChartPoint* a, const ChartPoint* b) { return a->value.cost < b->value.cost; });
+  for (const ChartPoint* p : front)
+    s << fmt::format("{:.6g} {:.6g} {}\n", p->value.cost, p->value.error, quoted(p->label));
   s << "EOD\n";
   const bool pick = recommended && *recommended < points.size() && usable(points[*recommended].value);
   if (pick) {

@@ -67,7 +67,8 @@ Options parse(int argc, char** argv) {
   for (CommandLine args(argc, argv); args.next();) {
     const std::string& a = args.option();
     if (a == "--present") continue;
-    if (a == "--scene") o.scene = args.value();
+    if (a == "--scene")
+      o.scene = args.value();
     else if (a == "--size") {
       const std::string v = args.value();
       const auto x = v.find_first_of("xX");
@@ -91,15 +92,21 @@ Options parse(int argc, char** argv) {
     } else if (a == "--orders") {
       o.orders = std::stoi(args.value());
       if (o.orders < 1 || o.orders > 50) throw std::invalid_argument("--orders: must be in [1, 50]");
-    } else if (a == "--cache") o.cache = args.value();
-    else if (a == "--csv") o.csv = args.value();
-    else if (a == "--headless") o.headless = true;
-    else if (a == "--no-before") o.before = false;
-    else if (a == "--split") o.split = true;
+    } else if (a == "--cache")
+      o.cache = args.value();
+    else if (a == "--csv")
+      o.csv = args.value();
+    else if (a == "--headless")
+      o.headless = true;
+    else if (a == "--no-before")
+      o.before = false;
+    else if (a == "--split")
+      o.split = true;
     else if (a == "--help" || a == "-h") {
       fmt::print("{}", kUsage);
       std::exit(0);
-    } else throw std::invalid_argument("unknown option '" + a + "'");
+    } else
+      throw std::invalid_argument("unknown option '" + a + "'");
   }
   return o;
 }
@@ -138,8 +145,10 @@ int run_present(int argc, char** argv) {
     headless.emplace();
   }
   auto make_current = [&] {
-    if (windows) windows->primary().make_current();
-    else headless->make_current();
+    if (windows)
+      windows->primary().make_current();
+    else
+      headless->make_current();
   };
   const std::string device = windows ? windows->primary().renderer() : headless->renderer();
   const std::string target = windows ? "window" : "headless";
@@ -163,14 +172,15 @@ int run_present(int argc, char** argv) {
     p.fov_deg = 180.0;
     projection = std::make_unique<warp::FisheyeProjection>(opt.width, opt.height, p);
   } else {
-    projection = std::make_unique<warp::PlanarProjection>(
-        warp::PlanarProjection::symmetric(opt.width, opt.height, opt.fov_deg));
+    projection =
+        std::make_unique<warp::PlanarProjection>(warp::PlanarProjection::symmetric(opt.width, opt.height, opt.fov_deg));
   }
   fmt::print("render_bench --present: scene '{}', {}x{} {}, on {} ({})\n", scene.name, opt.width, opt.height,
              projection->describe(), device, target);
 
   make_current();
-  render::gl::Texture radiance = render::gl::Texture::create_2d(render::gl::TextureFormat::rgba32f, opt.width, opt.height);
+  render::gl::Texture radiance =
+      render::gl::Texture::create_2d(render::gl::TextureFormat::rgba32f, opt.width, opt.height);
   render::gl::Texture display = render::gl::Texture::create_2d(render::gl::TextureFormat::rgba8, opt.width, opt.height);
   render::display::DisplayEncoder encoder;
   std::optional<render::window::FramePresenter> presenter;
@@ -182,7 +192,9 @@ int run_present(int argc, char** argv) {
   // The live frame: nothing leaves the GPU.
   auto live_frame = [&](render::Renderer& renderer, Times& t) {
     const auto start = Clock::now();
-    auto since = [](Clock::time_point from) { return std::chrono::duration<double, std::milli>(Clock::now() - from).count(); };
+    auto since = [](Clock::time_point from) {
+      return std::chrono::duration<double, std::milli>(Clock::now() - from).count();
+    };
     glBeginQuery(GL_TIME_ELAPSED, query);
     // The node's steady frame: each band straight into the display texture
     // (render_on_gpu + encode_band); with --split the texture path instead, to
@@ -266,8 +278,7 @@ int run_present(int argc, char** argv) {
   std::ofstream csv(opt.csv);
   if (!csv) throw std::runtime_error("cannot write " + opt.csv.string());
   csv << "device,size,atmospheres,path,target,wall_ms,wall_ms_min,gpu_ms,frames\n";
-  fmt::print("\n{:<12} {:<7} {:>12} {:>12} {:>12}  {}\n", "atmosphere", "path", "wall ms", "min ms", "GL ms",
-             "frames");
+  fmt::print("\n{:<12} {:<7} {:>12} {:>12} {:>12}  {}\n", "atmosphere", "path", "wall ms", "min ms", "GL ms", "frames");
   std::map<std::string, double> live_ms;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const Times& t = times[c];
@@ -281,7 +292,8 @@ int run_present(int argc, char** argv) {
     if (!t.render_ms.empty())
       fmt::print("{:<12} split: render to texture {:.2f} ms, display pass {:.2f} ms, window {:.2f} ms (medians)\n", "",
                  median(t.render_ms), median(t.display_ms), median(t.window_ms));
-    if (cases[c].live) live_ms[cases[c].atmospheres] = wall;
+    if (cases[c].live)
+      live_ms[cases[c].atmospheres] = wall;
     else if (live_ms.count(cases[c].atmospheres) != 0)
       fmt::print("{:<12} before / live: {:.2f}x\n", "", wall / live_ms[cases[c].atmospheres]);
   }

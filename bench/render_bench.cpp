@@ -179,9 +179,12 @@ Options parse_options(int argc, char** argv) {
   };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--quick") o.quick = true;
-    else if (a == "--no-chart") o.chart = false;
-    else if (a == "--chart-only") o.chart_only = true;
+    if (a == "--quick")
+      o.quick = true;
+    else if (a == "--no-chart")
+      o.chart = false;
+    else if (a == "--chart-only")
+      o.chart_only = true;
     else if (a == "--tables") {
       o.tables = value(i, a);
       if (o.tables != "paper" && o.tables != "small")
@@ -202,32 +205,45 @@ Options parse_options(int argc, char** argv) {
       std::stringstream list(value(i, a));
       for (std::string item; std::getline(list, item, ',');) o.sizes.push_back(parse_size(item));
       if (o.sizes.empty()) throw std::invalid_argument("--sizes: give at least one WIDTHxHEIGHT");
-    } else if (a == "--csv") o.csv = value(i, a);
-    else if (a == "--scene") o.scene = value(i, a);
-    else if (a == "--time-passes") o.time_passes = true;
-    else if (a == "--sky-view-error") o.sky_view_error = true;
-    else if (a == "--gbuffer-path") o.gbuffer_path = true;
+    } else if (a == "--csv")
+      o.csv = value(i, a);
+    else if (a == "--scene")
+      o.scene = value(i, a);
+    else if (a == "--time-passes")
+      o.time_passes = true;
+    else if (a == "--sky-view-error")
+      o.sky_view_error = true;
+    else if (a == "--gbuffer-path")
+      o.gbuffer_path = true;
     else if (a == "--fov") {
       o.planar_fov_deg = std::stod(value(i, a));
-      if (!(o.planar_fov_deg > 0.0 && o.planar_fov_deg < 180.0)) throw std::invalid_argument("--fov: must be in (0, 180)");
-    }
-    else if (a == "--cache") o.cache = value(i, a);
+      if (!(o.planar_fov_deg > 0.0 && o.planar_fov_deg < 180.0))
+        throw std::invalid_argument("--fov: must be in (0, 180)");
+    } else if (a == "--cache")
+      o.cache = value(i, a);
     else if (a == "--stars") {
       o.stars = std::stod(value(i, a));
-      if (!(*o.stars >= -2.0 && *o.stars <= 10.5)) throw std::invalid_argument("--stars: V limit must be in [-2, 10.5]");
-    } else if (a == "--stars-time") o.star_timing.time_utc = value(i, a);
+      if (!(*o.stars >= -2.0 && *o.stars <= 10.5))
+        throw std::invalid_argument("--stars: V limit must be in [-2, 10.5]");
+    } else if (a == "--stars-time")
+      o.star_timing.time_utc = value(i, a);
     else if (a == "--stars-exposure") {
       o.star_timing.exposure = std::stod(value(i, a));
       if (!(o.star_timing.exposure > 0.0 && o.star_timing.exposure <= 1e6))
         throw std::invalid_argument("--stars-exposure: must be in (0, 1e6]");
-    } else if (a == "--stars-csv") o.star_timing.csv = value(i, a);
-    else if (a == "--device") o.device = value(i, a);
-    else if (a == "--viewport") o.viewport = value(i, a);
-    else if (a == "--viewport-csv") o.viewport_csv = value(i, a);
+    } else if (a == "--stars-csv")
+      o.star_timing.csv = value(i, a);
+    else if (a == "--device")
+      o.device = value(i, a);
+    else if (a == "--viewport")
+      o.viewport = value(i, a);
+    else if (a == "--viewport-csv")
+      o.viewport_csv = value(i, a);
     else if (a == "--help" || a == "-h") {
       fmt::print("{}", kUsage);
       std::exit(0);
-    } else throw std::invalid_argument("unknown option '" + a + "'");
+    } else
+      throw std::invalid_argument("unknown option '" + a + "'");
   }
   return o;
 }
@@ -270,7 +286,7 @@ std::vector<Resolution> resolutions(const Options& o) {
 /// The measured figures of one case (a CSV row).
 struct Result {
   Resolution resolution;
-  int atmospheres = 0;  // 0: bodies only
+  int atmospheres = 0;       // 0: bodies only
   double frame_s = 0.0;      // median
   double frame_min_s = 0.0;  // fastest frame: the least disturbed by other processes
   int frames = 0;
@@ -339,11 +355,11 @@ void write_csv(const std::filesystem::path& path, const std::string& device, con
          "frame_ms_min,peak_memory_mb,cpu_ms\n";
   for (const Result& r : results) {
     const double pixels = double(r.resolution.width) * double(r.resolution.height);
-    csv << csv_field(device) << ',' << r.resolution.label() << ',' << r.resolution.projection() << ','
-        << r.atmospheres << ',' << fmt::format("{:.3f}", r.frame_s * 1e3) << ','
-        << fmt::format("{:.3f}", pixels / r.frame_s / 1e6) << ',' << r.tiles_covered << ',' << r.tiles_total << ','
-        << r.frames << ',' << fmt::format("{:.3f}", r.frame_min_s * 1e3) << ','
-        << fmt::format("{:.0f}", r.peak_memory_mb) << ',' << fmt::format("{:.3f}", r.cpu_s * 1e3) << '\n';
+    csv << csv_field(device) << ',' << r.resolution.label() << ',' << r.resolution.projection() << ',' << r.atmospheres
+        << ',' << fmt::format("{:.3f}", r.frame_s * 1e3) << ',' << fmt::format("{:.3f}", pixels / r.frame_s / 1e6)
+        << ',' << r.tiles_covered << ',' << r.tiles_total << ',' << r.frames << ','
+        << fmt::format("{:.3f}", r.frame_min_s * 1e3) << ',' << fmt::format("{:.0f}", r.peak_memory_mb) << ','
+        << fmt::format("{:.3f}", r.cpu_s * 1e3) << '\n';
   }
   if (!csv.flush()) throw std::runtime_error("cannot write " + path.string());
 }
@@ -363,9 +379,9 @@ void write_chart(const std::filesystem::path& csv, const std::vector<Resolution>
   // Solid: the median frame; dashed: the fastest one.
   for (std::size_t i = 0; i < res.size(); ++i) {
     const std::string select = fmt::format("'{}' using (strcol(2) eq '{}' ? $4 : 1/0):", csv.string(), res[i].label());
-    s << (i ? ", \\\n     " : "") << select << "5 with linespoints pt 7 lc " << i + 1 << " title '"
-      << res[i].label() << ' ' << res[i].projection() << "', \\\n     " << select << "10 with linespoints dt 2 pt 6 lc "
-      << i + 1 << " notitle";
+    s << (i ? ", \\\n     " : "") << select << "5 with linespoints pt 7 lc " << i + 1 << " title '" << res[i].label()
+      << ' ' << res[i].projection() << "', \\\n     " << select << "10 with linespoints dt 2 pt 6 lc " << i + 1
+      << " notitle";
   }
   s << '\n';
   s.close();
@@ -395,11 +411,11 @@ void print_table(const std::vector<Resolution>& res, int max_atmospheres, const 
       auto it = std::find_if(results.begin(), results.end(), [&](const Result& x) {
         return x.atmospheres == n && x.resolution.width == r.width && x.resolution.height == r.height;
       });
-      line += it == results.end()
-                  ? fmt::format("{:>14}", "-")
-                  : fmt::format("{:>14.1f}", (figure == Figure::median    ? it->frame_s
-                                              : figure == Figure::fastest ? it->frame_min_s
-                                                                          : it->cpu_s) * 1e3);
+      line += it == results.end() ? fmt::format("{:>14}", "-")
+                                  : fmt::format("{:>14.1f}", (figure == Figure::median    ? it->frame_s
+                                                              : figure == Figure::fastest ? it->frame_min_s
+                                                                                          : it->cpu_s) *
+                                                                 1e3);
     }
     fmt::print("{}\n", line);
   }
@@ -431,8 +447,8 @@ void time_projectors(const Options& opt, const std::string& device, const scene:
     fmt::print("{:<10} {:>11} {:>10.1f} {:>10.1f} {:>9.0f}  {}\n", out.name, size, med * 1e3, fastest * 1e3, peak,
                out.projection->describe());
     csv << csv_field(device) << ',' << csv_field(config.name) << ',' << csv_field(out.name) << ',' << size << ','
-        << csv_field(out.projection->describe()) << ',' << fmt::format("{:.3f},{:.3f},{:.0f}", med * 1e3, fastest * 1e3, peak)
-        << ',' << times.size() << '\n';
+        << csv_field(out.projection->describe()) << ','
+        << fmt::format("{:.3f},{:.3f},{:.0f}", med * 1e3, fastest * 1e3, peak) << ',' << times.size() << '\n';
   }
   fmt::print("csv: {}\n", opt.viewport_csv.string());
 }
@@ -453,7 +469,8 @@ void print_sky_view_error(const std::vector<Resolution>& res, const scene::Scene
              scene.name);
   for (const Resolution& r : res) {
     const auto projection = r.make();
-    const std::vector<float> a = with_table.render_image(scene, *projection), b = direct.render_image(scene, *projection);
+    const std::vector<float> a = with_table.render_image(scene, *projection),
+                             b = direct.render_image(scene, *projection);
     std::size_t table_tiles = 0;
     for (const auto& at : with_table.last_frame().atmospheres) table_tiles += at.sky_view_tiles;
     const float brightest = *std::max_element(b.begin(), b.end());
@@ -466,8 +483,9 @@ void print_sky_view_error(const std::vector<Resolution>& res, const scene::Scene
     }
     std::sort(e.begin(), e.end());
     fmt::print("  {:<24} {} sky-view tiles; relative difference RMS {:.5f}, 99th percentile {:.5f}, max {:.4f}\n",
-               r.label() + " " + r.projection(), table_tiles, std::sqrt(sum / double(std::max<std::size_t>(e.size(), 1))),
-               e.empty() ? 0.0 : e[e.size() * 99 / 100], e.empty() ? 0.0 : e.back());
+               r.label() + " " + r.projection(), table_tiles,
+               std::sqrt(sum / double(std::max<std::size_t>(e.size(), 1))), e.empty() ? 0.0 : e[e.size() * 99 / 100],
+               e.empty() ? 0.0 : e.back());
   }
 }
 
@@ -506,8 +524,8 @@ int run(int argc, char** argv) {
   table_options.sizes = opt.tables == "small" ? atmosphere::lut::TableSizes::small() : atmosphere::lut::TableSizes{};
   table_options.max_orders = opt.orders;
   const atmosphere::lut::TableCache cache(opt.cache.value_or(atmosphere::lut::default_cache_directory()));
-  const render::TableSource tables = bench::cached_or_precomputed_tables(cache, table_options, opt.tables, context_options,
-                                                                       [&] { context.make_current(); });
+  const render::TableSource tables = bench::cached_or_precomputed_tables(
+      cache, table_options, opt.tables, context_options, [&] { context.make_current(); });
 
   render::RenderOptions atm_options, body_options;
   body_options.atmospheres = false;
@@ -601,10 +619,11 @@ int run(int argc, char** argv) {
           if (opt.time_passes) {
             std::string split;
             for (const auto& [pass, ms] : stats.pass_ms) split += fmt::format("  {} {:.1f}", pass, ms);
-            fmt::print("{}: last frame {:.1f} ms; per pass [ms]:{}; tiles: {} one atmosphere, {} G-buffer path, "
-                       "{} direct light, {} black\n",
-                       name, stats.seconds * 1e3, split, stats.tiles_one_atmosphere, stats.tiles_gbuffer,
-                       stats.tiles_direct, stats.tiles_black);
+            fmt::print(
+                "{}: last frame {:.1f} ms; per pass [ms]:{}; tiles: {} one atmosphere, {} G-buffer path, "
+                "{} direct light, {} black\n",
+                name, stats.seconds * 1e3, split, stats.tiles_one_atmosphere, stats.tiles_gbuffer, stats.tiles_direct,
+                stats.tiles_black);
           }
           Gathered& g = gathered[{ri, n}];
           g.peak_memory_mb = std::max(g.peak_memory_mb, peak_memory_mb());
@@ -621,9 +640,14 @@ int run(int argc, char** argv) {
   std::vector<Result> results;
   for (const auto& [key, g] : gathered) {
     const Resolution& r = res[key.first];
-    Result out{r, key.second, median(g.times), *std::min_element(g.times.begin(), g.times.end()),
-               static_cast<int>(g.times.size()), 0,
-               static_cast<std::size_t>((r.width + kTile - 1) / kTile) * static_cast<std::size_t>((r.height + kTile - 1) / kTile)};
+    Result out{r,
+               key.second,
+               median(g.times),
+               *std::min_element(g.times.begin(), g.times.end()),
+               static_cast<int>(g.times.size()),
+               0,
+               static_cast<std::size_t>((r.width + kTile - 1) / kTile) *
+                   static_cast<std::size_t>((r.height + kTile - 1) / kTile)};
     for (const auto& a : g.stats.atmospheres) out.tiles_covered += a.tiles;
     out.peak_memory_mb = g.peak_memory_mb;
     out.cpu_s = median(g.cpu_times);

@@ -33,9 +33,9 @@
 #include <vector>
 
 #include "atmosphere/lut/parameterization.h"
-#include "bench/command_line.h"
 #include "atmosphere/lut/precompute_options.h"
 #include "atmosphere/named_inputs.h"
+#include "bench/command_line.h"
 #include "render/gl/egl_context.h"
 #include "render/lut/gpu_precompute.h"
 #include "render/lut/table_provider.h"
@@ -116,7 +116,8 @@ std::vector<double> total_radiance(const AtmosphereModel& model, const lut::Look
 /// per texel) where the reference exceeds 1e-6 of its channel's largest value.
 ErrorStats compare(const std::vector<double>& values, const std::vector<double>& reference, std::size_t channels) {
   std::vector<double> largest(channels, 0.0);
-  for (std::size_t i = 0; i < reference.size(); ++i) largest[i % channels] = std::max(largest[i % channels], reference[i]);
+  for (std::size_t i = 0; i < reference.size(); ++i)
+    largest[i % channels] = std::max(largest[i % channels], reference[i]);
   std::vector<double> errors;
   errors.reserve(reference.size());
   for (std::size_t i = 0; i < reference.size(); ++i) {
@@ -175,8 +176,8 @@ int main(int argc, char** argv) try {
 
   fmt::print("Tables {} against {} orders, relative error of the in-scattered radiance (every texel and wavelength)\n",
              o.tables, o.reference_orders);
-  fmt::print("{:<16} {:>6} {:>5} {:>9} {:>10} {:>10} {:>10} {:>12} {:>12} {:>9}\n", "preset", "orders", "tail", "seconds",
-             "rad RMS", "rad p99", "rad max", "irrad RMS", "irrad max", "tail %");
+  fmt::print("{:<16} {:>6} {:>5} {:>9} {:>10} {:>10} {:>10} {:>12} {:>12} {:>9}\n", "preset", "orders", "tail",
+             "seconds", "rad RMS", "rad p99", "rad max", "irrad RMS", "irrad max", "tail %");
   fs::create_directories(o.out);
   std::ofstream csv(o.out / "series_tail.csv");
   csv << "preset,tables,orders,series_tail,precompute_s,radiance_rms,radiance_p99,radiance_max,irradiance_rms,"

@@ -60,12 +60,18 @@ std::string SoakAttacks::launch(std::mt19937& rng) {
   const std::string name = kNames[std::uniform_int_distribution<int>(0, 5)(rng)];
   ++launched_;
   ++counts_[name];
-  if (name == "rebinding") rebinding();
-  else if (name == "slowloris") slowloris(rng);
-  else if (name == "control") control(rng);
-  else if (name == "stray") stray();
-  else if (name == "preauth") preauth(rng);
-  else osc(rng);
+  if (name == "rebinding")
+    rebinding();
+  else if (name == "slowloris")
+    slowloris(rng);
+  else if (name == "control")
+    control(rng);
+  else if (name == "stray")
+    stray();
+  else if (name == "preauth")
+    preauth(rng);
+  else
+    osc(rng);
   return name;
 }
 
@@ -76,8 +82,10 @@ void SoakAttacks::rebinding() {
       ports_.console, fmt::format("POST /api/command HTTP/1.1\r\nHost: {}\r\nOrigin: http://{}\r\nContent-Type: "
                                   "application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{}",
                                   host, host, body.size(), body));
-  if (status == 403) ++passed_["rebinding"];
-  else failures_.push_back(fmt::format("rebinding: HTTP {} for Host {} (403 expected)", status, host));
+  if (status == 403)
+    ++passed_["rebinding"];
+  else
+    failures_.push_back(fmt::format("rebinding: HTTP {} for Host {} (403 expected)", status, host));
 }
 
 void SoakAttacks::slowloris(std::mt19937& rng) {
@@ -89,9 +97,12 @@ void SoakAttacks::slowloris(std::mt19937& rng) {
     hold(fd, until);
   }
   const int status = http_status(
-      ports_.console, fmt::format("GET /api/status HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nConnection: close\r\n\r\n", ports_.console));
-  if (status == 200) ++passed_["slowloris"];
-  else failures_.push_back(fmt::format("slowloris: the operator's request got HTTP {} (200 expected)", status));
+      ports_.console,
+      fmt::format("GET /api/status HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nConnection: close\r\n\r\n", ports_.console));
+  if (status == 200)
+    ++passed_["slowloris"];
+  else
+    failures_.push_back(fmt::format("slowloris: the operator's request got HTTP {} (200 expected)", status));
 }
 
 void SoakAttacks::control(std::mt19937& rng) {
@@ -107,8 +118,10 @@ void SoakAttacks::control(std::mt19937& rng) {
   bool closed = false;
   core::read_until_closed(fd, 5000ms, closed);
   ::close(fd);
-  if (closed) ++passed_["control"];
-  else failures_.push_back("control: the control socket kept a web page's request or a 256 KiB line open");
+  if (closed)
+    ++passed_["control"];
+  else
+    failures_.push_back("control: the control socket kept a web page's request or a 256 KiB line open");
 }
 
 void SoakAttacks::stray() {
@@ -168,8 +181,10 @@ void SoakAttacks::poll() {
   std::erase_if(strays_, [&](pid_t pid) {
     const std::optional<int> s = core::wait_for_exit(pid, 0ms);
     if (!s) return false;
-    if (*s == 2) ++passed_["stray"];
-    else failures_.push_back(fmt::format("stray: a second 'n0' ended with status {} (2: refused, expected)", *s));
+    if (*s == 2)
+      ++passed_["stray"];
+    else
+      failures_.push_back(fmt::format("stray: a second 'n0' ended with status {} (2: refused, expected)", *s));
     return true;
   });
 }

@@ -115,13 +115,15 @@ void time_stars(const StarTiming& t, const std::string& device, const scene::Sce
       const double ma = median(a.ms), mb = median(b.ms);
       const double overhead = 100.0 * (mb - ma) / ma;
       const std::string label = day ? "day (scene's sun and exposure)" : "night";
-      fmt::print("  {}x{} planar {:g}°, {}: {} stars drawn; {:.1f} ms without stars, {:.1f} ms with: {:+.1f} %"
-                 " (placement {:.1f} ms CPU, splat {:.2f} ms, night sky {:.2f} ms GPU; {} frames each)\n",
-                 w, h, t.fov_deg, label, b.stats.stars, ma, mb, overhead, part("star placement"), part("stars"),
-                 part("night sky"), a.ms.size());
+      fmt::print(
+          "  {}x{} planar {:g}°, {}: {} stars drawn; {:.1f} ms without stars, {:.1f} ms with: {:+.1f} %"
+          " (placement {:.1f} ms CPU, splat {:.2f} ms, night sky {:.2f} ms GPU; {} frames each)\n",
+          w, h, t.fov_deg, label, b.stats.stars, ma, mb, overhead, part("star placement"), part("stars"),
+          part("night sky"), a.ms.size());
       csv << '"' << device << "\"," << w << 'x' << h << ",planar " << t.fov_deg << "deg," << (day ? "day" : "night")
-          << ',' << b.stats.stars << ',' << fmt::format("{:.3f},{:.3f},{:.2f},{:.3f},{:.3f},{:.3f}", ma, mb, overhead,
-                                                         part("star placement"), part("stars"), part("night sky"))
+          << ',' << b.stats.stars << ','
+          << fmt::format("{:.3f},{:.3f},{:.2f},{:.3f},{:.3f},{:.3f}", ma, mb, overhead, part("star placement"),
+                         part("stars"), part("night sky"))
           << ',' << a.ms.size() << '\n';
     }
   }

@@ -15,9 +15,10 @@ std::filesystem::path write_tiny_cluster(const std::filesystem::path& dir, const
     v << fmt::format(R"({{"zenith_viewports": 1, "name": "{}", "outputs": [)", t.name);
     const int half = t.size_px / 2;
     for (int i = 0; i < t.nodes; ++i)
-      v << (i ? "," : "") << fmt::format(R"({{"name": "o{}", "size": [{}, {}], "projection": {{"type": "fisheye", )"
-                                         R"("fov_deg": 180, "centre_x_px": {}, "centre_y_px": {}, "radius_px": {}}}}})",
-                                         i, t.size_px, t.size_px, half, half, std::max(half, 1));
+      v << (i ? "," : "")
+        << fmt::format(R"({{"name": "o{}", "size": [{}, {}], "projection": {{"type": "fisheye", )"
+                       R"("fov_deg": 180, "centre_x_px": {}, "centre_y_px": {}, "radius_px": {}}}}})",
+                       i, t.size_px, t.size_px, half, half, std::max(half, 1));
     v << "]}\n";
   }
   const std::filesystem::path config = dir / "cluster.json";
@@ -30,8 +31,10 @@ std::filesystem::path write_tiny_cluster(const std::filesystem::path& dir, const
     << fmt::format(R"( "secret": {{"env": "{}"}}, "tables": {{"sizes": "{}", "orders": {}}}, "nodes": [)", t.secret_env,
                    t.tables, t.orders);
   for (int i = 0; i < t.nodes; ++i)
-    c << (i ? "," : "") << fmt::format(R"({{"name": "{}", "host": "127.0.0.1", "outputs": ["o{}"]}})", tiny_node_name(i), i);
-  c << R"(], "output": {"directory": "out", "format": "png"}})" << "\n";
+    c << (i ? "," : "")
+      << fmt::format(R"({{"name": "{}", "host": "127.0.0.1", "outputs": ["o{}"]}})", tiny_node_name(i), i);
+  c << R"(], "output": {"directory": "out", "format": "png"}})"
+    << "\n";
   return config;
 }
 

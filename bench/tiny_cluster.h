@@ -31,26 +31,33 @@ struct TinyRunOptions {
       std::fputs(usage, stdout);
       std::exit(0);
     }
-    if (a == "--zenith") zenith = args.value();
-    else if (a == "--size") size_px = std::stoi(args.value());
-    else if (a == "--cache") cache = std::filesystem::path(args.value());
-    else if (a == "--work") work = args.value();
-    else if (a == "--timeout-s") timeout_s = std::stoi(args.value());
-    else if (a == "--keep") keep = true;
-    else return false;
+    if (a == "--zenith")
+      zenith = args.value();
+    else if (a == "--size")
+      size_px = std::stoi(args.value());
+    else if (a == "--cache")
+      cache = std::filesystem::path(args.value());
+    else if (a == "--work")
+      work = args.value();
+    else if (a == "--timeout-s")
+      timeout_s = std::stoi(args.value());
+    else if (a == "--keep")
+      keep = true;
+    else
+      return false;
     return true;
   }
 };
 
 struct TinyCluster {
-  std::string name;                  ///< the cluster's name
+  std::string name;  ///< the cluster's name
   int nodes = 1;
   int size_px = 16;
-  int port = 0;                      ///< the master's, on 127.0.0.1
-  std::string timing_json;           ///< the "timing" object, e.g. {"heartbeat_ms": 250, …}
-  std::string secret_env;            ///< the variable holding the shared secret
-  std::string tables = "small";      ///< table sizes
-  int orders = 1;                    ///< scattering orders
+  int port = 0;                  ///< the master's, on 127.0.0.1
+  std::string timing_json;       ///< the "timing" object, e.g. {"heartbeat_ms": 250, …}
+  std::string secret_env;        ///< the variable holding the shared secret
+  std::string tables = "small";  ///< table sizes
+  int orders = 1;                ///< scattering orders
 };
 
 /// "n<i>": the name of node i.

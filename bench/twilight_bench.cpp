@@ -24,8 +24,8 @@
 
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -74,15 +74,24 @@ int main(int argc, char** argv) try {
   std::filesystem::path out = std::filesystem::path(ZENITH_SOURCE_DIR) / "bench" / "results";
   for (bench::CommandLine args(argc, argv); args.next();) {
     const std::string& a = args.option();
-    if (a == "--preset") preset = args.value();
-    else if (a == "--sizes") size_names = bench::split_list(args.value());
-    else if (a == "--step-deg") step_deg = std::stod(args.value());
-    else if (a == "--reference-deg") reference_deg = bench::split_list(args.value());
-    else if (a == "--samples") samples = std::stoul(args.value());
-    else if (a == "--threads") threads = unsigned(std::stoul(args.value()));
-    else if (a == "--out") out = args.value();
-    else if (a == "--no-chart") chart = false;
-    else throw std::invalid_argument("unknown option " + a);
+    if (a == "--preset")
+      preset = args.value();
+    else if (a == "--sizes")
+      size_names = bench::split_list(args.value());
+    else if (a == "--step-deg")
+      step_deg = std::stod(args.value());
+    else if (a == "--reference-deg")
+      reference_deg = bench::split_list(args.value());
+    else if (a == "--samples")
+      samples = std::stoul(args.value());
+    else if (a == "--threads")
+      threads = unsigned(std::stoul(args.value()));
+    else if (a == "--out")
+      out = args.value();
+    else if (a == "--no-chart")
+      chart = false;
+    else
+      throw std::invalid_argument("unknown option " + a);
   }
   if (!(step_deg > 0.0 && step_deg <= 3.0)) throw std::invalid_argument("--step-deg: must be in (0, 3]");
   std::filesystem::create_directories(out);
@@ -104,7 +113,8 @@ int main(int argc, char** argv) try {
     const std::clock_t cpu_start = std::clock();
     const lut::LookupTables tables = lut::precompute_tables_cpu(model, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double cpu_seconds = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;  // all threads: a loaded machine's honest cost
+    const double cpu_seconds =
+        double(std::clock() - cpu_start) / CLOCKS_PER_SEC;  // all threads: a loaded machine's honest cost
     const lut::TableQueries queries(model, tables);
     std::vector<Spectrum>& radiance = by_size[name];
     for (double h : elevations) radiance.push_back(queries.sky_radiance(camera, zenith, sun_direction(h)));
@@ -118,10 +128,11 @@ int main(int argc, char** argv) try {
       }
     for (std::size_t k = 1; k < radiance.size(); ++k)
       for (std::size_t c = 0; c < channels; ++c) monotonic = monotonic && radiance[k][c] < radiance[k - 1][c];
-    fmt::print("{} ({}): CPU precompute {:.1f} s wall, {:.1f} s CPU, {:.1f} MiB; zenith radiance falls {} from 0° to "
-               "−18°; max |Δ² ln L| over {}° steps {:.4f} (at {:.2f}°)\n",
-               name, options.sizes.describe(), seconds, cpu_seconds, double(table_bytes(tables)) / 1048576.0,
-               monotonic ? "monotonically" : "NOT monotonically", step_deg, worst_second_difference, worst_at);
+    fmt::print(
+        "{} ({}): CPU precompute {:.1f} s wall, {:.1f} s CPU, {:.1f} MiB; zenith radiance falls {} from 0° to "
+        "−18°; max |Δ² ln L| over {}° steps {:.4f} (at {:.2f}°)\n",
+        name, options.sizes.describe(), seconds, cpu_seconds, double(table_bytes(tables)) / 1048576.0,
+        monotonic ? "monotonically" : "NOT monotonically", step_deg, worst_second_difference, worst_at);
     std::fflush(stdout);  // progress through a pipe: each size's line as it is measured
   }
 
@@ -149,8 +160,8 @@ int main(int argc, char** argv) try {
     options.samples_per_wavelength = samples;
     options.thread_count = threads;
     const auto start = std::chrono::steady_clock::now();
-    const auto estimate = reference::path_traced_radiance(model, camera, zenith,
-                                                          reference::SunDisc{sun_direction(h), 4.65e-3}, options);
+    const auto estimate =
+        reference::path_traced_radiance(model, camera, zenith, reference::SunDisc{sun_direction(h), 4.65e-3}, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (std::size_t c = 0; c < channels; ++c) {
       std::string line = fmt::format("sun {:6.1f}°  {:.0f} nm  reference {:.4e} ± {:.1f} %", h, model.wavelengths_nm[c],

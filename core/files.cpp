@@ -19,7 +19,8 @@ std::string unreadable_reason(const std::filesystem::path& path, std::uintmax_t 
   switch (status.type()) {
     case fs::file_type::regular: break;
     case fs::file_type::directory: return "is a directory";
-    case fs::file_type::fifo: return "is a FIFO (named pipe), not a regular file: refused (reading it could wait forever)";
+    case fs::file_type::fifo:
+      return "is a FIFO (named pipe), not a regular file: refused (reading it could wait forever)";
     case fs::file_type::character: return "is a character device, not a regular file: refused";
     case fs::file_type::block: return "is a block device, not a regular file: refused";
     case fs::file_type::socket: return "is a socket, not a regular file: refused";

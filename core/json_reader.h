@@ -10,12 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
-#include <initializer_list>
 #include <vector>
 
 #include "core/strings.h"

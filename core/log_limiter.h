@@ -45,7 +45,8 @@ class LogLimiter {
 class LogLimiters {
  public:
   static constexpr std::size_t kMaxKinds = 32;
-  explicit LogLimiters(std::chrono::milliseconds window = std::chrono::milliseconds(1000)) : window_(window), others_(window) {}
+  explicit LogLimiters(std::chrono::milliseconds window = std::chrono::milliseconds(1000))
+      : window_(window), others_(window) {}
   /// LogLimiter::admit for the limiter of `kind`.
   std::optional<std::string> admit(std::string_view kind, LogLimiter::Clock::time_point now);
 

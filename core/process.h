@@ -21,8 +21,7 @@ enum class LogMode { truncate, append };
 /// the child's pid; throws std::runtime_error naming the program and the
 /// reason when it cannot be started.
 pid_t spawn_process(const std::filesystem::path& program, const std::vector<std::string>& args,
-                    const std::optional<std::filesystem::path>& log = std::nullopt,
-                    LogMode mode = LogMode::truncate);
+                    const std::optional<std::filesystem::path>& log = std::nullopt, LogMode mode = LogMode::truncate);
 
 /// waitpid with a deadline: the exit status (128 + signal when killed), −1 when
 /// `pid` is no child of this process, nullopt when it is still running.

@@ -2,10 +2,10 @@
 // A terminal progress bar on stderr for long operations (precompute, offline
 // renders). On a terminal it redraws one line; otherwise (CI logs, pipes) it
 // prints a line whenever the stage changes.
+#include <unistd.h>
 #include <chrono>
 #include <cstdio>
 #include <string>
-#include <unistd.h>
 
 #include <fmt/format.h>
 

@@ -21,7 +21,8 @@ Sha256Stream::Sha256Stream() : context_(std::make_unique<Context>()) {
 Sha256Stream::~Sha256Stream() { EVP_MD_CTX_free(context_->md); }
 
 void Sha256Stream::update(const void* data, std::size_t bytes) {
-  if (EVP_DigestUpdate(context_->md, data, bytes) != 1) throw std::runtime_error("SHA-256 failed (OpenSSL EVP_DigestUpdate)");
+  if (EVP_DigestUpdate(context_->md, data, bytes) != 1)
+    throw std::runtime_error("SHA-256 failed (OpenSSL EVP_DigestUpdate)");
 }
 
 Sha256Digest Sha256Stream::digest() {

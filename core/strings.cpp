@@ -20,10 +20,14 @@ Decoded decode_utf8(std::string_view text, std::size_t i) {
   const unsigned char lead = byte(i);
   std::size_t length = 0;
   std::uint32_t cp = 0;
-  if (lead >= 0xc2 && lead <= 0xdf) length = 2, cp = lead & 0x1fu;
-  else if (lead >= 0xe0 && lead <= 0xef) length = 3, cp = lead & 0x0fu;
-  else if (lead >= 0xf0 && lead <= 0xf4) length = 4, cp = lead & 0x07u;
-  else return {};
+  if (lead >= 0xc2 && lead <= 0xdf)
+    length = 2, cp = lead & 0x1fu;
+  else if (lead >= 0xe0 && lead <= 0xef)
+    length = 3, cp = lead & 0x0fu;
+  else if (lead >= 0xf0 && lead <= 0xf4)
+    length = 4, cp = lead & 0x07u;
+  else
+    return {};
   if (i + length > text.size()) return {};
   for (std::size_t k = 1; k < length; ++k) {
     if ((byte(i + k) & 0xc0) != 0x80) return {};

@@ -66,9 +66,10 @@ double lobe(double wavelength_nm, double mu_nm, double sigma_below_nm, double si
 /// (λ in nm). The paper reports it within the variability of the measured data;
 /// ∫x̄, ∫ȳ, ∫z̄ come out 106.8, 106.9, 106.9 against the tables' 106.9 each.
 Vec3 cie1931_xyz_bar(double nm) {
-  return {1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7) - 0.065 * lobe(nm, 501.1, 20.4, 26.2),
-          0.821 * lobe(nm, 568.8, 46.9, 40.5) + 0.286 * lobe(nm, 530.9, 16.3, 31.1),
-          1.217 * lobe(nm, 437.0, 11.8, 36.0) + 0.681 * lobe(nm, 459.0, 26.0, 13.8)};
+  return {
+      1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7) - 0.065 * lobe(nm, 501.1, 20.4, 26.2),
+      0.821 * lobe(nm, 568.8, 46.9, 40.5) + 0.286 * lobe(nm, 530.9, 16.3, 31.1),
+      1.217 * lobe(nm, 437.0, 11.8, 36.0) + 0.681 * lobe(nm, 459.0, 26.0, 13.8)};
 }
 
 /// Linear sRGB → XYZ from the primaries and white of IEC 61966-2-1 (ITU-R BT.709
@@ -107,7 +108,8 @@ std::vector<double> bin_widths_nm(std::span<const double> wavelengths_nm) {
   const std::size_t n = wavelengths_nm.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return wavelengths_nm[a] < wavelengths_nm[b]; });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return wavelengths_nm[a] < wavelengths_nm[b]; });
   std::vector<double> widths(n, 100.0);
   if (n < 2) return widths;
   for (std::size_t k = 0; k < n; ++k) {
@@ -159,9 +161,10 @@ void check_wavelengths(std::span<const double> wavelengths_nm) {
 ColourMapping resolve(std::span<const double> wavelengths_nm, ColourMapping mapping) {
   const bool direct_ok = direct_applies(wavelengths_nm);
   if (mapping == ColourMapping::direct && !direct_ok)
-    throw std::invalid_argument("direct colour mapping needs exactly 3 wavelengths, one in each band R [600, 750] nm, "
-                                "G [500, 600) nm, B [380, 500) nm; got " +
-                                describe(wavelengths_nm));
+    throw std::invalid_argument(
+        "direct colour mapping needs exactly 3 wavelengths, one in each band R [600, 750] nm, "
+        "G [500, 600) nm, B [380, 500) nm; got " +
+        describe(wavelengths_nm));
   if (mapping == ColourMapping::automatic) return direct_ok ? ColourMapping::direct : ColourMapping::cie1931;
   return mapping;
 }

@@ -10,7 +10,8 @@
 namespace zenith::image {
 
 enum class ColourMapping {
-  automatic,  ///< direct when there are exactly 3 wavelengths, one in each of the R, G, B bands below; cie1931 otherwise
+  automatic,  ///< direct when there are exactly 3 wavelengths, one in each of the R, G, B bands below; cie1931
+              ///< otherwise
   direct,     ///< the paper's: the 3 wavelengths (sorted, longest first) are R, G, B as they are; needs exactly 3
   cie1931,    ///< Σ radiance · CIE 1931 2° colour matching functions · bin width → XYZ → Bradford adaptation
               ///< from the equal-energy white (the spectrally flat sun of per-unit-irradiance radiance) to

@@ -176,8 +176,8 @@ std::pair<int, int> write_contact_sheet(const std::filesystem::path& sheet_path,
 }
 
 std::pair<int, int> write_mosaic_contact_sheet(const std::filesystem::path& sheet_path,
-                                               const std::vector<std::vector<MosaicTile>>& frames,
-                                               ToneMapping exr_tone, const ContactSheetOptions& options) {
+                                               const std::vector<std::vector<MosaicTile>>& frames, ToneMapping exr_tone,
+                                               const ContactSheetOptions& options) {
   check_options(options);
   std::vector<std::vector<LinearImage>> thumbnails;
   for (const auto& tiles : frames) {
@@ -195,9 +195,9 @@ std::pair<int, int> write_mosaic_contact_sheet(const std::filesystem::path& shee
     for (std::size_t t = 0; t < tiles.size(); ++t) {
       const LinearImage& image = images[t];
       for (int y = 0; y < image.height; ++y)
-        std::copy_n(image.rgb.begin() + static_cast<std::ptrdiff_t>(y) * image.width * 3, image.width * 3,
-                    picture.rgb.begin() +
-                        (static_cast<std::ptrdiff_t>(tiles[t].y_px + y) * picture.width + tiles[t].x_px) * 3);
+        std::copy_n(
+            image.rgb.begin() + static_cast<std::ptrdiff_t>(y) * image.width * 3, image.width * 3,
+            picture.rgb.begin() + (static_cast<std::ptrdiff_t>(tiles[t].y_px + y) * picture.width + tiles[t].x_px) * 3);
     }
     thumbnails.push_back(
         {downscale_box(picture, thumbnail_width(picture, options.cell_height_px), options.cell_height_px)});

@@ -61,8 +61,8 @@ struct MosaicTile {
 /// As write_contact_sheet, each cell being one picture put together from its
 /// tiles (pixels no tile covers are black; a later tile overwrites an earlier).
 std::pair<int, int> write_mosaic_contact_sheet(const std::filesystem::path& sheet_path,
-                                               const std::vector<std::vector<MosaicTile>>& frames,
-                                               ToneMapping exr_tone, const ContactSheetOptions& options = {});
+                                               const std::vector<std::vector<MosaicTile>>& frames, ToneMapping exr_tone,
+                                               const ContactSheetOptions& options = {});
 
 /// Up to `count` distinct frame numbers evenly spaced over [first, last],
 /// both ends included when count ≥ 2, ascending; all of them when the range

@@ -12,8 +12,7 @@ void apply_fade(std::span<float> rgb, double level, const std::array<double, 3>&
   for (const double c : colour)
     if (!(c >= 0.0 && c <= 1.0))
       throw std::invalid_argument(fmt::format("fade: colour component {} must be in [0, 1]", c));
-  if (rgb.size() % 3 != 0)
-    throw std::invalid_argument(fmt::format("fade: {} values are not RGB triples", rgb.size()));
+  if (rgb.size() % 3 != 0) throw std::invalid_argument(fmt::format("fade: {} values are not RGB triples", rgb.size()));
   if (level == 0.0) return;
   const float f = static_cast<float>(level), keep = static_cast<float>(1.0 - level);
   const std::array<float, 3> c = {static_cast<float>(colour[0]) * f, static_cast<float>(colour[1]) * f,

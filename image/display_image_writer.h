@@ -47,8 +47,7 @@ TiffCompression parse_tiff_compression(const std::string& text);
 /// alpha ignored, rows top first. The attributes go into the ImageDescription
 /// tag as "name=value" lines; Software is "zenith". The samples are the
 /// display codes (sRGB encoded), as the PNGs'.
-void write_tiff16_display(const std::filesystem::path& path, int width, int height,
-                          std::span<const std::uint16_t> rgba, TiffCompression compression,
-                          const ImageAttributes& attributes = {});
+void write_tiff16_display(const std::filesystem::path& path, int width, int height, std::span<const std::uint16_t> rgba,
+                          TiffCompression compression, const ImageAttributes& attributes = {});
 
 }  // namespace zenith::image

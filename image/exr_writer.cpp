@@ -11,6 +11,7 @@
 // kChunkRows = 16 rows (one ZIP block) through a staging buffer of
 // width · 16 · 3 values, so the writer holds O(width) memory however many rows a
 // call passes; OpenEXR itself buffers one block.
+#include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -18,7 +19,6 @@
 #include <ImfStandardAttributes.h>
 #include <ImfStdIO.h>
 #include <ImfStringAttribute.h>
-#include <Imath/half.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -33,9 +33,9 @@
 namespace zenith::image {
 namespace {
 
-constexpr int kChunkRows = 16;             ///< rows per hand-over to OpenEXR (= one ZIP block)
-constexpr long long kMaxSide_px = 32768;   ///< as read_image accepts
-constexpr float kHalfMax = 65504.0f;       ///< largest finite half; larger magnitudes are clamped to it
+constexpr int kChunkRows = 16;               ///< rows per hand-over to OpenEXR (= one ZIP block)
+constexpr long long kMaxSide_px = 32768;     ///< as read_image accepts
+constexpr float kHalfMax = 65504.0f;         ///< largest finite half; larger magnitudes are clamped to it
 constexpr std::size_t kMaxNameLength = 255;  ///< OpenEXR's attribute-name limit (long names)
 
 const char* channel_name(int c) { return c == 0 ? "R" : c == 1 ? "G" : "B"; }
@@ -93,8 +93,8 @@ class ExrWriter final : public ImageWriter {
     for (std::size_t k = 0; k < rgb.size(); ++k)
       if (!std::isfinite(rgb[k])) {
         const std::size_t x = (k % row_values) / 3, y = std::size_t(rows_written_) + k / row_values;
-        throw std::runtime_error(detail::prefix(path_) + "pixel (x " + std::to_string(x) + ", y " +
-                                 std::to_string(y) + ") channel " + channel_name(int(k % 3)) + " is " +
+        throw std::runtime_error(detail::prefix(path_) + "pixel (x " + std::to_string(x) + ", y " + std::to_string(y) +
+                                 ") channel " + channel_name(int(k % 3)) + " is " +
                                  (std::isnan(rgb[k]) ? "NaN" : "infinite") + "; EXR frames must be finite");
       }
     try {
@@ -143,14 +143,13 @@ class ExrWriter final : public ImageWriter {
       std::copy(rgb.begin(), rgb.end(), float_rows_.begin());
     }
     const std::size_t value_size = half ? sizeof(Imath::half) : sizeof(float);
-    const char* base = half ? reinterpret_cast<const char*>(half_rows_.data())
-                            : reinterpret_cast<const char*>(float_rows_.data());
+    const char* base =
+        half ? reinterpret_cast<const char*>(half_rows_.data()) : reinterpret_cast<const char*>(float_rows_.data());
     Imf::FrameBuffer frame;
     for (int c = 0; c < 3; ++c)
-      frame.insert(channel_name(c),
-                   Imf::Slice::Make(half ? Imf::HALF : Imf::FLOAT, base + std::size_t(c) * value_size,
-                                    Imath::V2i(0, rows_written_), width(), rows, 3 * value_size,
-                                    3 * value_size * std::size_t(width())));
+      frame.insert(channel_name(c), Imf::Slice::Make(half ? Imf::HALF : Imf::FLOAT, base + std::size_t(c) * value_size,
+                                                     Imath::V2i(0, rows_written_), width(), rows, 3 * value_size,
+                                                     3 * value_size * std::size_t(width())));
     file_->setFrameBuffer(frame);
     file_->writePixels(rows);
     rows_written_ += rows;

@@ -38,7 +38,7 @@ namespace {
 
 constexpr long long kMaxSide_px = 32768;
 constexpr png_alloc_size_t kMaxChunkBytes = 16u << 20;  ///< largest ancillary PNG chunk read
-constexpr double kMaxDeflateRatio = 1100.0;            ///< above deflate's ~1032:1 limit
+constexpr double kMaxDeflateRatio = 1100.0;             ///< above deflate's ~1032:1 limit
 
 /// An error this reader diagnosed itself; its message already names the file.
 struct ReadError : std::runtime_error {
@@ -53,8 +53,8 @@ void check_size(const std::filesystem::path& path, long long width, long long he
   if (width < 1 || height < 1)
     throw error(path, "empty image (" + std::to_string(width) + "x" + std::to_string(height) + " px)");
   if (width > kMaxSide_px || height > kMaxSide_px)
-    throw error(path, "image of " + std::to_string(width) + "x" + std::to_string(height) +
-                          " px is larger than the " + std::to_string(kMaxSide_px) + " px per side this reader accepts");
+    throw error(path, "image of " + std::to_string(width) + "x" + std::to_string(height) + " px is larger than the " +
+                          std::to_string(kMaxSide_px) + " px per side this reader accepts");
 }
 
 struct FileCloser {
@@ -227,12 +227,30 @@ int exr_lines_per_chunk(int compression) {
 /// The value size of OpenEXR's fixed-size attribute types (ImfStandardAttributes.h,
 /// ImfTypedAttribute.h); 0 for variable-size or unknown types.
 int exr_fixed_attribute_size(const std::string& type) {
-  static constexpr std::pair<std::string_view, int> kSizes[] = {
-      {"box2i", 16},  {"box2f", 16},      {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
-      {"double", 8},  {"envmap", 1},      {"float", 4},           {"int", 4},         {"keycode", 28},
-      {"lineOrder", 1}, {"m33f", 36},     {"m33d", 72},           {"m44f", 64},       {"m44d", 128},
-      {"rational", 8}, {"tiledesc", 9},   {"timecode", 8},        {"v2i", 8},         {"v2f", 8},
-      {"v2d", 16},    {"v3i", 12},        {"v3f", 12},            {"v3d", 24}};
+  static constexpr std::pair<std::string_view, int> kSizes[] = {{"box2i", 16},
+                                                                {"box2f", 16},
+                                                                {"chromaticities", 32},
+                                                                {"compression", 1},
+                                                                {"deepImageState", 1},
+                                                                {"double", 8},
+                                                                {"envmap", 1},
+                                                                {"float", 4},
+                                                                {"int", 4},
+                                                                {"keycode", 28},
+                                                                {"lineOrder", 1},
+                                                                {"m33f", 36},
+                                                                {"m33d", 72},
+                                                                {"m44f", 64},
+                                                                {"m44d", 128},
+                                                                {"rational", 8},
+                                                                {"tiledesc", 9},
+                                                                {"timecode", 8},
+                                                                {"v2i", 8},
+                                                                {"v2f", 8},
+                                                                {"v2d", 16},
+                                                                {"v3i", 12},
+                                                                {"v3f", 12},
+                                                                {"v3d", 24}};
   for (const auto& [name, size] : kSizes)
     if (type == name) return size;
   return 0;
@@ -337,7 +355,8 @@ void check_exr_structure(const std::filesystem::path& path, std::FILE* file) {
 
 std::string channel_names(const Imf::ChannelList& channels) {
   std::string names;
-  for (auto it = channels.begin(); it != channels.end(); ++it) names += (names.empty() ? "" : ", ") + std::string(it.name());
+  for (auto it = channels.begin(); it != channels.end(); ++it)
+    names += (names.empty() ? "" : ", ") + std::string(it.name());
   return names.empty() ? "none" : names;
 }
 
@@ -362,8 +381,8 @@ LinearImage read_exr(const std::filesystem::path& path) {
       if (!name) continue;
       const Imf::Channel* channel = channels.findChannel(name);
       if (!channel)
-        throw error(path, std::string("OpenEXR: channel ") + name + " is missing (channels: " +
-                              channel_names(channels) + ")");
+        throw error(
+            path, std::string("OpenEXR: channel ") + name + " is missing (channels: " + channel_names(channels) + ")");
       if (channel->xSampling != 1 || channel->ySampling != 1)
         throw error(path, std::string("OpenEXR: channel ") + name + " is subsampled, which is not supported");
     }
@@ -376,7 +395,8 @@ LinearImage read_exr(const std::filesystem::path& path) {
     const std::size_t x_stride = 3 * sizeof(float), y_stride = x_stride * std::size_t(width);
     for (int c = 0; c < 3; ++c)
       if (wanted[std::size_t(c)])
-        frame.insert(wanted[std::size_t(c)], Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, window, x_stride, y_stride));
+        frame.insert(wanted[std::size_t(c)],
+                     Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, window, x_stride, y_stride));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
   } catch (const ReadError&) {
@@ -396,7 +416,8 @@ LinearImage read_image(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path, ec)) throw error(path, "is a directory, not an image file");
   File file(std::fopen(path.c_str(), "rb"));
   if (!file)
-    throw error(path, errno == ENOENT ? std::string("no such file") : std::string("cannot open: ") + std::strerror(errno));
+    throw error(path,
+                errno == ENOENT ? std::string("no such file") : std::string("cannot open: ") + std::strerror(errno));
   std::array<unsigned char, 8> magic{};
   const std::size_t got = std::fread(magic.data(), 1, magic.size(), file.get());
   if (got == 0) throw error(path, "empty file, not an image");

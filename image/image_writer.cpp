@@ -21,15 +21,15 @@ ExrPixelType parse_exr_pixel_type(const std::string& text) {
   throw std::invalid_argument("unknown EXR pixel type '" + text + "': must be one of half, float");
 }
 
-void write_exr(const std::filesystem::path& path, int width, int height, std::span<const float> rgb,
-               ExrPixelType type, const ImageAttributes& attributes) {
+void write_exr(const std::filesystem::path& path, int width, int height, std::span<const float> rgb, ExrPixelType type,
+               const ImageAttributes& attributes) {
   const std::unique_ptr<ImageWriter> writer = open_exr_writer(path, width, height, type, attributes);
   writer->write_rows(height, rgb);
   writer->finish();
 }
 
-void write_png(const std::filesystem::path& path, int width, int height, std::span<const float> rgb,
-               ToneMapping tone, const ImageAttributes& attributes) {
+void write_png(const std::filesystem::path& path, int width, int height, std::span<const float> rgb, ToneMapping tone,
+               const ImageAttributes& attributes) {
   const std::unique_ptr<ImageWriter> writer = open_png_writer(path, width, height, tone, attributes);
   writer->write_rows(height, rgb);
   writer->finish();

@@ -57,14 +57,14 @@ std::unique_ptr<ImageWriter> open_exr_writer(const std::filesystem::path& path, 
 /// transfer function, with ordered dithering off (deterministic bytes): the byte is
 /// display_byte(value, tone). Attributes become tEXt chunks (iTXt for non-ASCII
 /// values); names must be PNG keywords (1–79 printable ASCII, std::invalid_argument otherwise).
-std::unique_ptr<ImageWriter> open_png_writer(const std::filesystem::path& path, int width, int height,
-                                             ToneMapping tone, const ImageAttributes& attributes = {});
+std::unique_ptr<ImageWriter> open_png_writer(const std::filesystem::path& path, int width, int height, ToneMapping tone,
+                                             const ImageAttributes& attributes = {});
 
 /// Convenience: a whole image at once (rgb = width · height · 3 floats).
-void write_exr(const std::filesystem::path& path, int width, int height, std::span<const float> rgb,
-               ExrPixelType type, const ImageAttributes& attributes = {});
-void write_png(const std::filesystem::path& path, int width, int height, std::span<const float> rgb,
-               ToneMapping tone, const ImageAttributes& attributes = {});
+void write_exr(const std::filesystem::path& path, int width, int height, std::span<const float> rgb, ExrPixelType type,
+               const ImageAttributes& attributes = {});
+void write_png(const std::filesystem::path& path, int width, int height, std::span<const float> rgb, ToneMapping tone,
+               const ImageAttributes& attributes = {});
 
 /// A 16-bit greyscale PNG of samples already encoded (width · height values,
 /// row 0 at the top, x fastest), e.g. a projector's blend mask or black-level

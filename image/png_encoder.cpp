@@ -46,7 +46,8 @@ std::vector<std::uint8_t> encode_png_rgb8(int width, int height, std::span<const
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(png, info);
-    for (int y = 0; y < height; ++y) png_write_row(png, const_cast<png_bytep>(pixels + static_cast<std::size_t>(y) * row_bytes));
+    for (int y = 0; y < height; ++y)
+      png_write_row(png, const_cast<png_bytep>(pixels + static_cast<std::size_t>(y) * row_bytes));
     png_write_end(png, info);
   });
   png_destroy_write_struct(&png, &info);

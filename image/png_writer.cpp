@@ -14,11 +14,11 @@
 // chunk stating their encoding instead of the sRGB chunk.
 #include <bit>
 #include <cerrno>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
-#include <string>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "image/display_image_writer.h"
@@ -30,7 +30,7 @@
 namespace zenith::image {
 namespace {
 
-constexpr long long kMaxSide_px = 32768;  ///< as read_image accepts
+constexpr long long kMaxSide_px = 32768;       ///< as read_image accepts
 constexpr std::size_t kMaxKeywordLength = 79;  ///< PNG specification, 11.3.4.2
 
 /// A PNG text keyword: 1–79 printable ASCII characters (the specification allows
@@ -127,8 +127,10 @@ class PngStream {
         png_set_compression_level(png, compression_level);
         if (compression_level <= 3) png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
       }
-      if (gamma > 0.0) png_set_gAMA(png, info, 1.0 / gamma);
-      else png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+      if (gamma > 0.0)
+        png_set_gAMA(png, info, 1.0 / gamma);
+      else
+        png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
       if (text_count > 0) png_set_text(png, info, text_data, text_count);
       png_write_info(png, info);
     });
@@ -247,8 +249,8 @@ class PngWriter final : public ImageWriter {
 
 }  // namespace
 
-std::unique_ptr<ImageWriter> open_png_writer(const std::filesystem::path& path, int width, int height,
-                                             ToneMapping tone, const ImageAttributes& attributes) {
+std::unique_ptr<ImageWriter> open_png_writer(const std::filesystem::path& path, int width, int height, ToneMapping tone,
+                                             const ImageAttributes& attributes) {
   detail::check_dimensions(path, width, height, kMaxSide_px);
   detail::check_unique_names(path, attributes);
   return std::make_unique<PngWriter>(path, width, height, tone, attributes);

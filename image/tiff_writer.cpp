@@ -58,9 +58,8 @@ TiffCompression parse_tiff_compression(const std::string& text) {
   throw std::invalid_argument("--tiff-compression '" + text + "': must be none, deflate or lzw");
 }
 
-void write_tiff16_display(const std::filesystem::path& path, int width, int height,
-                          std::span<const std::uint16_t> rgba, TiffCompression compression,
-                          const ImageAttributes& attributes) {
+void write_tiff16_display(const std::filesystem::path& path, int width, int height, std::span<const std::uint16_t> rgba,
+                          TiffCompression compression, const ImageAttributes& attributes) {
   detail::check_dimensions(path, width, height, kMaxSide_px);
   detail::check_unique_names(path, attributes);
   const std::size_t w = std::size_t(width);
@@ -82,8 +81,7 @@ void write_tiff16_display(const std::filesystem::path& path, int width, int heig
     const int error = errno;
     TIFFClose(tiff);
     detail::discard(partial);
-    throw std::runtime_error(detail::prefix(path) + what + ": " +
-                             (error != 0 ? std::strerror(error) : errors.message));
+    throw std::runtime_error(detail::prefix(path) + what + ": " + (error != 0 ? std::strerror(error) : errors.message));
   };
   const std::string description = description_of(attributes);
   TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, std::uint32_t(width));

@@ -52,8 +52,7 @@ void check_complete(const std::filesystem::path& path, int height, int rows_writ
 void publish(const std::filesystem::path& partial, const std::filesystem::path& path) {
   std::error_code ec;
   std::filesystem::rename(partial, path, ec);  // rename(2): atomic replacement within a file system
-  if (ec)
-    throw std::runtime_error(prefix(path) + "cannot rename " + partial.string() + " into place: " + ec.message());
+  if (ec) throw std::runtime_error(prefix(path) + "cannot rename " + partial.string() + " into place: " + ec.message());
 }
 
 void discard(const std::filesystem::path& partial) noexcept {

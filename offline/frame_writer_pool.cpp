@@ -2,8 +2,8 @@
 #include "offline/frame_writer_pool.h"
 
 #include <stdexcept>
-#include <utility>
 #include <system_error>
+#include <utility>
 
 #include "offline/offline_manifest.h"
 
@@ -70,7 +70,7 @@ void FrameWriterPool::submit(Frame frame) {
 }
 
 void FrameWriterPool::run_task(const Task& task, std::unique_lock<std::mutex>& lock) {
-  Pending& p = pending_.at(task.sequence);  // std::map: stays valid while unlocked
+  Pending& p = pending_.at(task.sequence);                      // std::map: stays valid while unlocked
   const bool skip = p.failed || task.sequence > first_failed_;  // a frame after a failed one is not kept
   const File& file = p.frame.files[task.file];
   std::string hash;

@@ -45,7 +45,8 @@ class FrameWriterPool {
   struct Frame {
     std::uint64_t frame = 0;
     std::vector<File> files;
-    /// Runs once its files are in place, in frame order, before the next frame's (under the pool's lock: keep it short).
+    /// Runs once its files are in place, in frame order, before the next frame's (under the pool's lock: keep it
+    /// short).
     std::function<void()> published;
     /// Runs once the frame is done with, published or discarded (e.g. frees the memory its files were written from).
     std::function<void()> released;
@@ -91,7 +92,7 @@ class FrameWriterPool {
   std::deque<Task> tasks_;
   std::uint64_t next_sequence_ = 0, next_to_publish_ = 0;
   std::vector<WrittenFrame> written_;
-  std::exception_ptr error_;  ///< that of the earliest failing frame
+  std::exception_ptr error_;                 ///< that of the earliest failing frame
   std::uint64_t first_failed_ = UINT64_MAX;  ///< its sequence
   bool stopping_ = false;
   std::vector<std::thread> workers_;

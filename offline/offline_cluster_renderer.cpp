@@ -6,11 +6,11 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "atmosphere/lut/table_cache.h"
 #include "cluster/launcher/child_process.h"
 #include "cluster/launcher/launcher_signals.h"
-#include "atmosphere/lut/table_cache.h"
-#include "cluster/protocol/handshake.h"
 #include "cluster/master/master.h"
+#include "cluster/protocol/handshake.h"
 #include "show/show.h"
 
 namespace zenith::app::offline {
@@ -53,10 +53,21 @@ ClusterFrameRenderer::ClusterFrameRenderer(ClusterRenderSettings settings)
           "machine",
           settings_.cluster_file.string(), node.name, node.host));
     }
-    std::vector<std::string> args = {"--log-level", log_level_argument(), "node", "--cluster",
-                                     settings_.cluster_file.string(), "--name", node.name, "--out",
-                                     settings_.out_dir.string(), "--layout", "offline", "--scene",
-                                     show.scene_path().string(), "--connect-timeout-ms", "900000"};
+    std::vector<std::string> args = {"--log-level",
+                                     log_level_argument(),
+                                     "node",
+                                     "--cluster",
+                                     settings_.cluster_file.string(),
+                                     "--name",
+                                     node.name,
+                                     "--out",
+                                     settings_.out_dir.string(),
+                                     "--layout",
+                                     "offline",
+                                     "--scene",
+                                     show.scene_path().string(),
+                                     "--connect-timeout-ms",
+                                     "900000"};
     if (settings_.cache_directory)
       args.insert(args.end(), {"--cache", (*settings_.cache_directory / "nodes" / node.name).string()});
     nodes_.emplace_back(spawn_self(args), node.name);
@@ -89,25 +100,28 @@ void ClusterFrameRenderer::render_frame(const scene::FrameDescription& state,
     presented = feed_->wait_presented(state.frame, 500ms);
     for (const auto& [pid, name] : nodes_)
       if (const std::optional<int> status = wait_for(pid, 0ms))
-        throw std::runtime_error(fmt::format("node '{}' exited with status {} before frame {} was presented (see "
-                                             "its log lines above)",
-                                             name, *status, state.frame));
+        throw std::runtime_error(
+            fmt::format("node '{}' exited with status {} before frame {} was presented (see "
+                        "its log lines above)",
+                        name, *status, state.frame));
   }
   if (!presented)
-    throw std::runtime_error(feed_->stopped() ? fmt::format("the cluster stopped before presenting frame {} (see the "
-                                                            "master's and nodes' log lines above)",
-                                                            state.frame)
-                                              : fmt::format("frame {} was not presented within {} s", state.frame,
-                                                            std::chrono::duration_cast<std::chrono::seconds>(limit).count()));
+    throw std::runtime_error(feed_->stopped()
+                                 ? fmt::format("the cluster stopped before presenting frame {} (see the "
+                                               "master's and nodes' log lines above)",
+                                               state.frame)
+                                 : fmt::format("frame {} was not presented within {} s", state.frame,
+                                               std::chrono::duration_cast<std::chrono::seconds>(limit).count()));
   // Presented: each node renames its files on the Present it received; wait until they are all there.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(config_.barrier_timeout_ms);
   for (const auto& per_output : files)
     for (const fs::path& file : per_output)
       while (!fs::exists(file)) {
         if (std::chrono::steady_clock::now() > deadline)
-          throw std::runtime_error(fmt::format("frame {}: {} did not appear after the present (did its node miss "
-                                               "the barrier?)",
-                                               state.frame, file.string()));
+          throw std::runtime_error(
+              fmt::format("frame {}: {} did not appear after the present (did its node miss "
+                          "the barrier?)",
+                          state.frame, file.string()));
         std::this_thread::sleep_for(2ms);
       }
 }

@@ -15,9 +15,9 @@
 #include <thread>
 #include <vector>
 
-#include "offline/offline_render.h"
 #include "cluster/link/cluster_config.h"
 #include "cluster/master/frame_feed.h"
+#include "offline/offline_render.h"
 
 namespace zenith::app::offline {
 
@@ -25,7 +25,7 @@ struct ClusterRenderSettings {
   std::filesystem::path cluster_file;  ///< the configuration (its nodes on this machine are started)
   std::filesystem::path show_file;     ///< the show (the master prepares its table sets; nodes render its scene)
   double fps = 30.0;
-  std::filesystem::path out_dir;       ///< the render folder
+  std::filesystem::path out_dir;                         ///< the render folder
   std::optional<std::filesystem::path> cache_directory;  ///< master's table cache; nodes use CACHE/nodes/<node>
   bool cpu_precompute = false;
 };

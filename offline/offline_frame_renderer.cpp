@@ -25,7 +25,8 @@ bool has(const std::vector<ImageFormat>& formats, ImageFormat f) {
 /// Linear RGB EXR from the rgba32f radiance read back, with the output stage
 /// on the values as render_to_files applies it (v·α·(1 − β) + β).
 void write_exr_from_rgba(const std::filesystem::path& path, int width, int height, const float* rgba,
-                         image::ExrPixelType type, const LocalOutput& output, const image::ImageAttributes& attributes) {
+                         image::ExrPixelType type, const LocalOutput& output,
+                         const image::ImageAttributes& attributes) {
   constexpr int kChunkRows = 16;
   const auto writer = image::open_exr_writer(path, width, height, type, attributes);
   std::vector<float> rows;
@@ -84,7 +85,7 @@ LocalFrameRenderer::LocalFrameRenderer(const show::Show& show,
 }
 
 LocalFrameRenderer::~LocalFrameRenderer() {
-  pool_.reset();  // waits for the frames in flight: their files are written from the slots
+  pool_.reset();            // waits for the frames in flight: their files are written from the slots
   context_.make_current();  // the GL objects belong to this context
   fenced_.clear();
   slots_.clear();
@@ -99,14 +100,16 @@ std::size_t LocalFrameRenderer::slot_bytes() const { return slot_bytes_; }
 
 void LocalFrameRenderer::precompute_missing(const show::TablePlan& plan,
                                             const std::set<scene::TableHash>& table_hashes) {
-  auto needed = [&](const show::TablePlanEntry& e) { return !e.cached && table_hashes.count(e.version.table_hash) > 0; };
+  auto needed = [&](const show::TablePlanEntry& e) {
+    return !e.cached && table_hashes.count(e.version.table_hash) > 0;
+  };
   const auto missing = std::count_if(plan.sets.begin(), plan.sets.end(), needed);
   std::ptrdiff_t done = 0;
   for (const show::TablePlanEntry& entry : plan.sets) {
     if (!needed(entry)) continue;
     ++done;
-    spdlog::info("table set {}/{} (body '{}', first used by frame {}): precomputing", done, missing,
-                 entry.version.body, entry.first_frame);
+    spdlog::info("table set {}/{} (body '{}', first used by frame {}): precomputing", done, missing, entry.version.body,
+                 entry.first_frame);
     const render::ObtainedTables t = render::obtain_tables(entry.version.loaded.model, tables_);
     spdlog::info("table set {}/{}: {} in {:.1f} s", done, missing,
                  t.from_cache ? "found in the cache" : "precomputed and cached", t.report.total_seconds());
@@ -157,7 +160,8 @@ void LocalFrameRenderer::start_pipeline() {
   // By default a frame per writer, one on the GPU and one being handed over, within kDefaultSlotBudgetBytes.
   int in_flight = settings_.frames_in_flight;
   if (in_flight <= 0) {
-    const auto fit = static_cast<int>(std::min<std::size_t>(64, kDefaultSlotBudgetBytes / std::max<std::size_t>(1, slot_bytes_)));
+    const auto fit =
+        static_cast<int>(std::min<std::size_t>(64, kDefaultSlotBudgetBytes / std::max<std::size_t>(1, slot_bytes_)));
     in_flight = std::max(2, std::min(threads + 2, fit));
   }
   slots_.resize(threads == 0 ? 1 : static_cast<std::size_t>(in_flight));
@@ -230,35 +234,34 @@ FrameWriterPool::Frame LocalFrameRenderer::files_of(std::size_t index) {
   for (std::size_t o = 0; o < outputs_.size(); ++o)
     for (std::size_t k = 0; k < settings_.formats.size(); ++k) {
       const ImageFormat format = settings_.formats[k];
-      job.files.push_back({files[o][k], [this, index, o, format](const std::filesystem::path& staging) {
-                             const LocalOutput& out = outputs_[o];
-                             const Region& r = regions_[o];
-                             const std::span<const std::byte> bytes = slots_[index].bytes();
-                             const int w = out.projection->width(), h = out.projection->height();
-                             const std::size_t pixels = std::size_t(w) * std::size_t(h);
-                             const image::ImageAttributes& attributes = slot_frames_[index].attributes[o];
-                             switch (format) {
-                               case ImageFormat::png:
-                                 image::write_png_display(staging, w, h, 8, bytes.subspan(r.display8, pixels * 4),
-                                                          settings_.png_compression, attributes);
-                                 break;
-                               case ImageFormat::png16:
-                                 image::write_png_display(staging, w, h, 16, bytes.subspan(r.display16, pixels * 8),
-                                                          settings_.png_compression, attributes);
-                                 break;
-                               case ImageFormat::tiff:
-                                 image::write_tiff16_display(
-                                     staging, w, h,
-                                     {reinterpret_cast<const std::uint16_t*>(bytes.data() + r.display16), pixels * 4},
-                                     settings_.tiff_compression, attributes);
-                                 break;
-                               case ImageFormat::exr:
-                                 write_exr_from_rgba(staging, w, h,
-                                                     reinterpret_cast<const float*>(bytes.data() + r.radiance),
-                                                     settings_.exr_type, out, attributes);
-                                 break;
-                             }
-                           }});
+      job.files.push_back(
+          {files[o][k], [this, index, o, format](const std::filesystem::path& staging) {
+             const LocalOutput& out = outputs_[o];
+             const Region& r = regions_[o];
+             const std::span<const std::byte> bytes = slots_[index].bytes();
+             const int w = out.projection->width(), h = out.projection->height();
+             const std::size_t pixels = std::size_t(w) * std::size_t(h);
+             const image::ImageAttributes& attributes = slot_frames_[index].attributes[o];
+             switch (format) {
+               case ImageFormat::png:
+                 image::write_png_display(staging, w, h, 8, bytes.subspan(r.display8, pixels * 4),
+                                          settings_.png_compression, attributes);
+                 break;
+               case ImageFormat::png16:
+                 image::write_png_display(staging, w, h, 16, bytes.subspan(r.display16, pixels * 8),
+                                          settings_.png_compression, attributes);
+                 break;
+               case ImageFormat::tiff:
+                 image::write_tiff16_display(
+                     staging, w, h, {reinterpret_cast<const std::uint16_t*>(bytes.data() + r.display16), pixels * 4},
+                     settings_.tiff_compression, attributes);
+                 break;
+               case ImageFormat::exr:
+                 write_exr_from_rgba(staging, w, h, reinterpret_cast<const float*>(bytes.data() + r.radiance),
+                                     settings_.exr_type, out, attributes);
+                 break;
+             }
+           }});
     }
   if (settings_.published)
     job.published = [this, index, frame] {

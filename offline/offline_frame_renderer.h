@@ -49,9 +49,9 @@ namespace zenith::app::offline {
 /// An output as this process renders it.
 struct LocalOutput {
   std::shared_ptr<const warp::Projection> projection;
-  std::optional<warp::BlendMask> blend;   ///< viewport outputs
-  double black_level = 0.0;               ///< with a blend
-  image::ImageAttributes attributes;      ///< besides the scene's (e.g. zenith:viewport, zenith:blend)
+  std::optional<warp::BlendMask> blend;  ///< viewport outputs
+  double black_level = 0.0;              ///< with a blend
+  image::ImageAttributes attributes;     ///< besides the scene's (e.g. zenith:viewport, zenith:blend)
 };
 
 /// A frame's display codes as published (the first output's), for a video proxy.
@@ -132,9 +132,9 @@ class LocalFrameRenderer final : public FrameRenderer {
   };
 
   render::Renderer& renderer_for(std::uint32_t render_flags);
-  void start_pipeline();                     // the first frame: threads, slots, regions
-  std::size_t acquire_slot();                // waits until the next slot is free
-  void hand_off(std::size_t slot);           // waits its fence, queues its files
+  void start_pipeline();            // the first frame: threads, slots, regions
+  std::size_t acquire_slot();       // waits until the next slot is free
+  void hand_off(std::size_t slot);  // waits its fence, queues its files
   /// Every output of one frame into its slot; `fade` on the display codes (EXR keeps the radiance).
   void render_outputs(const scene::Scene& scene, const scene::FadeState& fade, Slot& slot);
   /// The pool's work for the frame in `slot` (slot_frames_): a task per file, the video, the slot's release.

@@ -10,10 +10,10 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "core/json_reader.h"
-#include "core/strings.h"
 #include "core/files.h"
+#include "core/json_reader.h"
 #include "core/sha256.h"
+#include "core/strings.h"
 
 namespace zenith::app::offline {
 namespace {
@@ -141,7 +141,8 @@ FrameCheck check_frame(const Manifest& manifest, std::uint64_t frame, const std:
   }
   for (const ExpectedFile& e : expected) {
     const auto& files = it->second.files;
-    const auto entry = std::find_if(files.begin(), files.end(), [&](const ManifestFile& f) { return f.path == e.path; });
+    const auto entry =
+        std::find_if(files.begin(), files.end(), [&](const ManifestFile& f) { return f.path == e.path; });
     if (entry == files.end()) {
       check.reason = cat(e.path, ": not in the manifest");
       return check;

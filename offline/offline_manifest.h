@@ -76,7 +76,7 @@ struct ExpectedFile {
 /// The skip decision for one frame.
 struct FrameCheck {
   bool skip = false;
-  std::string reason;               ///< why it is rendered ("not in the manifest", "dome/dome.000003.png: changed on disk", ...)
+  std::string reason;  ///< why it is rendered ("not in the manifest", "dome/dome.000003.png: changed on disk", ...)
   std::vector<ManifestFile> files;  ///< skip: the verified entries, in the order of `expected`
 };
 

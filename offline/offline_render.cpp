@@ -13,12 +13,12 @@
 #include <stdexcept>
 #include <utility>
 
-#include "offline/offline_manifest.h"
 #include "core/progress_bar.h"
-#include "core/strings.h"
 #include "core/sha256.h"
-#include "image/contact_sheet.h"
+#include "core/strings.h"
 #include "core/timing.h"
+#include "image/contact_sheet.h"
+#include "offline/offline_manifest.h"
 
 namespace zenith::app::offline {
 namespace {
@@ -44,8 +44,8 @@ void check_job(const RenderJob& job) {
     throw std::invalid_argument(fmt::format("--fps {}: must be in (0, 1000] frames per second", job.fps));
   const std::uint64_t count = job.show->frame_count(job.fps);
   if (job.first_frame > job.last_frame || job.last_frame >= count)
-    throw std::invalid_argument(fmt::format("--from {} --to {}: the show has frames 0 to {} at {} fps",
-                                            job.first_frame, job.last_frame, count - 1, job.fps));
+    throw std::invalid_argument(fmt::format("--from {} --to {}: the show has frames 0 to {} at {} fps", job.first_frame,
+                                            job.last_frame, count - 1, job.fps));
   if (job.outputs.empty()) throw std::invalid_argument("offline render: no outputs");
   if (job.formats.empty()) throw std::invalid_argument("--format: give a comma list of png, png16, tiff and exr");
   std::set<std::string> names;
@@ -101,7 +101,8 @@ std::filesystem::path write_sheet(const RenderJob& job, ImageFormat format) {
   for (const std::uint64_t frame :
        image::evenly_spaced_frames(job.first_frame, job.last_frame, job.contact_sheet_frames)) {
     std::vector<std::filesystem::path>& cell = cells.emplace_back();
-    for (const OutputSpec& o : job.outputs) cell.push_back(job.out_dir / frame_file_path(o.name, frame, format, job.naming));
+    for (const OutputSpec& o : job.outputs)
+      cell.push_back(job.out_dir / frame_file_path(o.name, frame, format, job.naming));
   }
   // Thumbnails 135 px high (a 24-frame sheet of square domes: about 1100 px
   // wide), no taller than the shortest output: thumbnails are never enlarged.
@@ -148,11 +149,16 @@ std::vector<ImageFormat> parse_formats(const std::string& text) {
     const std::size_t comma = text.find(',', start);
     const std::string name = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     ImageFormat f;
-    if (name == "png") f = ImageFormat::png;
-    else if (name == "png16") f = ImageFormat::png16;
-    else if (name == "tiff" || name == "tif") f = ImageFormat::tiff;
-    else if (name == "exr") f = ImageFormat::exr;
-    else throw refuse(fmt::format("'{}' is not a format", name));
+    if (name == "png")
+      f = ImageFormat::png;
+    else if (name == "png16")
+      f = ImageFormat::png16;
+    else if (name == "tiff" || name == "tif")
+      f = ImageFormat::tiff;
+    else if (name == "exr")
+      f = ImageFormat::exr;
+    else
+      throw refuse(fmt::format("'{}' is not a format", name));
     if (std::find(formats.begin(), formats.end(), f) != formats.end()) throw refuse(fmt::format("{} twice", name));
     formats.push_back(f);
     if (comma == std::string::npos) break;
@@ -230,12 +236,11 @@ std::string frame_file_path(const std::string& output, std::uint64_t frame, Imag
 }
 
 std::string settings_key(const RenderJob& job, const OutputSpec& output, ImageFormat format) {
-  const std::string text =
-      cat(job.settings, "\noutput ", output.name, " ", output.width_px, "x", output.height_px, " ",
-          output.description, "\nformat ", name_of(format), " ",
-          format == ImageFormat::exr ? job.exr_settings
-          : format == ImageFormat::tiff ? job.tiff_settings
-                                        : job.png_settings);
+  const std::string text = cat(job.settings, "\noutput ", output.name, " ", output.width_px, "x", output.height_px, " ",
+                               output.description, "\nformat ", name_of(format), " ",
+                               format == ImageFormat::exr    ? job.exr_settings
+                               : format == ImageFormat::tiff ? job.tiff_settings
+                                                             : job.png_settings);
   return core::sha256_hex(text.data(), text.size()).substr(0, 16);
 }
 
@@ -280,8 +285,7 @@ RenderSummary run_render_job(const RenderJob& job, FrameRenderer& renderer) {
       const scene::FrameDescription state =
           job.show->state_at(job.show->frame_time_s(frame, job.fps), frame, job.render_flags);
       const FrameFiles files = files_of(job, keys, frame);
-      const FrameCheck check =
-          check_frame(manifest, frame, job.frame_digest(state), files.expected, job.out_dir);
+      const FrameCheck check = check_frame(manifest, frame, job.frame_digest(state), files.expected, job.out_dir);
       if (check.skip) {
         ++summary.skipped;
         manifest.frames[frame].files = check.files;  // only what this run would write
@@ -322,21 +326,20 @@ RenderSummary run_render_job(const RenderJob& job, FrameRenderer& renderer) {
         entry.state_digest = it->second.first;
         entry.files.clear();
         for (std::size_t k = 0; k < f.file_sha256.size(); ++k)
-          entry.files.push_back({it->second.second.expected[k].path, it->second.second.expected[k].settings_key,
-                                 f.file_sha256[k]});
+          entry.files.push_back(
+              {it->second.second.expected[k].path, it->second.second.expected[k].settings_key, f.file_sha256[k]});
         in_flight.erase(it);
         ++summary.rendered;
         // The first frame also loads tables, albedo and shaders: the rate is
         // that of the frames after it, once there are some.
         const double elapsed = seconds_since(render_start);
         if (finished == 0) first_frame_s = elapsed;
-        const double per_frame =
-            finished == 0 ? elapsed : (elapsed - first_frame_s) / static_cast<double>(finished);
+        const double per_frame = finished == 0 ? elapsed : (elapsed - first_frame_s) / static_cast<double>(finished);
         ++finished;
-        bar.update(fmt::format("frame {} ({}/{}), {:.2f} frames/s, ETA {}", f.frame, finished, pending.size(),
-                               1.0 / per_frame,
-                               format_duration(per_frame * static_cast<double>(pending.size() - finished))),
-                   static_cast<double>(finished) / static_cast<double>(pending.size()));
+        bar.update(
+            fmt::format("frame {} ({}/{}), {:.2f} frames/s, ETA {}", f.frame, finished, pending.size(), 1.0 / per_frame,
+                        format_duration(per_frame * static_cast<double>(pending.size() - finished))),
+            static_cast<double>(finished) / static_cast<double>(pending.size()));
       }
       if (seconds_since(last_write) >= job.manifest_interval_s) {
         write_manifest(manifest_path, manifest);
@@ -388,11 +391,10 @@ RenderSummary run_render_job(const RenderJob& job, FrameRenderer& renderer) {
 }
 
 std::string describe(const RenderSummary& s) {
-  std::string text = fmt::format("rendered {}, skipped {} of {} frames in {:.1f} s", s.rendered, s.skipped, s.frames,
-                                 s.total_s);
+  std::string text =
+      fmt::format("rendered {}, skipped {} of {} frames in {:.1f} s", s.rendered, s.skipped, s.frames, s.total_s);
   if (s.rendered > 0)
-    text += fmt::format(" ({:.3f} s per rendered frame, {:.2f} frames/s)",
-                        s.render_s / static_cast<double>(s.rendered),
+    text += fmt::format(" ({:.3f} s per rendered frame, {:.2f} frames/s)", s.render_s / static_cast<double>(s.rendered),
                         static_cast<double>(s.rendered) / std::max(s.render_s, 1e-9));
   return text;
 }

@@ -22,9 +22,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "image/tone_mapping.h"
 #include "scene/frame_description.h"
 #include "show/show.h"
-#include "image/tone_mapping.h"
 
 namespace zenith::app::offline {
 
@@ -126,8 +126,7 @@ struct RenderJob {
   /// Called once the frames to render are known, before the first renders,
   /// with their number and the table sets (hashes) their states use; not
   /// called when there are none. E.g. to precompute those tables ahead.
-  std::function<void(std::uint64_t frames_to_render, const std::set<scene::TableHash>& table_hashes)>
-      before_rendering;
+  std::function<void(std::uint64_t frames_to_render, const std::set<scene::TableHash>& table_hashes)> before_rendering;
   /// The fingerprint of a frame's description that the manifest stores and a
   /// resume compares (required). `zenith show render` passes
   /// cluster::state_digest, the one the cluster nodes write to presented.log.

@@ -41,7 +41,8 @@ std::unique_ptr<warp::Projection> make_projection(const std::string& kind, std::
   if (kind == "planar") {
     const double fov = fov_deg.value_or(60.0);
     if (!(fov > 0.0 && fov < 179.0))
-      throw std::invalid_argument(fmt::format("--fov {}: a planar projection's horizontal field of view must be in (0, 179) degrees", fov));
+      throw std::invalid_argument(
+          fmt::format("--fov {}: a planar projection's horizontal field of view must be in (0, 179) degrees", fov));
     if (tilt_deg) throw std::invalid_argument("--tilt applies to the fisheye projection only");
     return std::make_unique<warp::PlanarProjection>(warp::PlanarProjection::symmetric(width, height, fov));
   }
@@ -69,7 +70,7 @@ ViewportSelection select_viewport_outputs(const std::string& spec) {
 }
 
 render::TableRequest make_table_request(const std::string& table_sizes, int orders, bool cpu_precompute, bool use_cache,
-                                const std::string& cache_dir) {
+                                        const std::string& cache_dir) {
   render::TableRequest request;
   request.options.sizes = atmosphere::table_sizes_by_name(table_sizes);
   request.options.max_orders = orders;
@@ -111,7 +112,8 @@ void render_to_files(render::Renderer& renderer, const scene::Scene& scene, cons
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     const bool png = path.extension() != ".exr";
     // With a blend or a fade the PNG rows arrive tone mapped: the writer only encodes sRGB.
-    const image::ToneMapping writer_tone = png && (stage.blend != nullptr || faded) ? image::ToneMapping::clamp : stage.tone;
+    const image::ToneMapping writer_tone =
+        png && (stage.blend != nullptr || faded) ? image::ToneMapping::clamp : stage.tone;
     targets.push_back({png ? image::open_png_writer(path, width, height, writer_tone, attributes)
                            : image::open_exr_writer(path, width, height, stage.exr_type, attributes),
                        png});

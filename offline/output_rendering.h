@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
-#include "render/lut/table_provider.h"
 #include "image/image_writer.h"
+#include "render/lut/table_provider.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "warp/blending.h"
@@ -51,7 +51,7 @@ ViewportSelection select_viewport_outputs(const std::string& spec);
 /// The render::TableRequest of --tables NAME, --orders N, --cpu-precompute, --no-cache
 /// and --cache DIR ("" for the default cache directory).
 render::TableRequest make_table_request(const std::string& table_sizes, int orders, bool cpu_precompute, bool use_cache,
-                                const std::string& cache_dir);
+                                        const std::string& cache_dir);
 
 /// zenith:scene, zenith:projection, zenith:exposure and zenith:units.
 image::ImageAttributes image_attributes(const scene::Scene& scene, const warp::Projection& projection);

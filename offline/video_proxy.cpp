@@ -44,25 +44,52 @@ VideoProxy::VideoProxy(const std::filesystem::path& path, int width, int height,
   frame_bytes_ = std::size_t(width) * std::size_t(height) * 4 * std::size_t(bits / 8);
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
   const std::vector<std::string> args = {
-      ffmpeg->string(), "-nostdin", "-hide_banner", "-loglevel", "warning", "-y", "-f", "rawvideo", "-pix_fmt",
-      bits == 8 ? "rgba" : "rgba64le", "-video_size", fmt::format("{}x{}", width, height), "-framerate",
-      fmt::format("{}", fps), "-i", "pipe:0", "-vf",
+      ffmpeg->string(),
+      "-nostdin",
+      "-hide_banner",
+      "-loglevel",
+      "warning",
+      "-y",
+      "-f",
+      "rawvideo",
+      "-pix_fmt",
+      bits == 8 ? "rgba" : "rgba64le",
+      "-video_size",
+      fmt::format("{}x{}", width, height),
+      "-framerate",
+      fmt::format("{}", fps),
+      "-i",
+      "pipe:0",
+      "-vf",
       fmt::format("scale=w='min({0},iw)':h='min({0},ih)':force_original_aspect_ratio=decrease:force_divisible_by=2",
                   kMaxProxyEdgePx),
-      "-c:v", "libx264", "-preset", "veryfast", "-crf", "18", "-pix_fmt", "yuv420p", "-color_primaries", "bt709",
-      "-color_trc", "iec61966-2-1", "-colorspace", "bt709", path.string()};
+      "-c:v",
+      "libx264",
+      "-preset",
+      "veryfast",
+      "-crf",
+      "18",
+      "-pix_fmt",
+      "yuv420p",
+      "-color_primaries",
+      "bt709",
+      "-color_trc",
+      "iec61966-2-1",
+      "-colorspace",
+      "bt709",
+      path.string()};
   // A socket rather than a pipe: a write to an ffmpeg that stopped fails with
   // EPIPE (MSG_NOSIGNAL) instead of killing this process with SIGPIPE.
   int sockets[2];
   if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sockets) != 0)
-    throw std::runtime_error(fmt::format("--video {}: cannot make a socket for ffmpeg: {}", path.string(),
-                                         std::strerror(errno)));
+    throw std::runtime_error(
+        fmt::format("--video {}: cannot make a socket for ffmpeg: {}", path.string(), std::strerror(errno)));
   const int log = ::open(log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (log < 0) {
     ::close(sockets[0]);
     ::close(sockets[1]);
-    throw std::runtime_error(fmt::format("--video {}: cannot create {}: {}", path.string(), log_.string(),
-                                         std::strerror(errno)));
+    throw std::runtime_error(
+        fmt::format("--video {}: cannot create {}: {}", path.string(), log_.string(), std::strerror(errno)));
   }
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -80,8 +107,8 @@ VideoProxy::VideoProxy(const std::filesystem::path& path, int width, int height,
   ::close(log);
   if (pid_ < 0) {
     ::close(sockets[0]);
-    throw std::runtime_error(fmt::format("--video {}: cannot start ffmpeg: {}", path.string(),
-                                         std::strerror(fork_errno)));
+    throw std::runtime_error(
+        fmt::format("--video {}: cannot start ffmpeg: {}", path.string(), std::strerror(fork_errno)));
   }
   socket_ = sockets[0];
 }
@@ -132,9 +159,8 @@ void VideoProxy::finish() {
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
       throw std::runtime_error(failure("ffmpeg could not be started"));
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-      throw std::runtime_error(failure(fmt::format("ffmpeg failed (status {})", WIFEXITED(status)
-                                                                                    ? WEXITSTATUS(status)
-                                                                                    : 128 + WTERMSIG(status))));
+      throw std::runtime_error(failure(
+          fmt::format("ffmpeg failed (status {})", WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status))));
   }
 }
 

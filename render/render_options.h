@@ -22,7 +22,8 @@ struct AtmospherePassFeatures {
 /// (and the ground's light) along view rays from a per-frame sky-view table
 /// (render/frame/sky_view_table.h, docs/rendering-performance.md) instead of the 4D tables.
 enum class SkyViewTableUse {
-  automatic,  ///< yes, in one-pass tiles of an atmosphere the camera is inside, where no other body inside the shell can be
+  automatic,  ///< yes, in one-pass tiles of an atmosphere the camera is inside, where no other body inside the shell
+              ///< can be
   off,        ///< never: the 4D tables for every pixel (the reference the table is tested against)
 };
 
@@ -41,9 +42,9 @@ struct NightSkyRenderOptions {
 };
 
 struct RenderOptions {
-  bool atmospheres = true;      ///< false: bodies lit by the sun only (the benchmarks' baseline)
-  bool sun_disc = true;         ///< draw the sun's disc
-  bool limb_darkening = true;   ///< darken the disc toward its limb (off: uniform disc)
+  bool atmospheres = true;            ///< false: bodies lit by the sun only (the benchmarks' baseline)
+  bool sun_disc = true;               ///< draw the sun's disc
+  bool limb_darkening = true;         ///< darken the disc toward its limb (off: uniform disc)
   AtmospherePassFeatures atmosphere;  ///< multiple scattering, eclipses, shader precision
   image::ColourMapping colour = image::ColourMapping::automatic;
   /// Pixels per band; the frame is split into bands of whole 16-pixel tile rows.

@@ -14,8 +14,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
-#include "core/parallel_for.h"
 #include "atmosphere/model_hash.h"
+#include "core/parallel_for.h"
 #include "render/frame/albedo_layers.h"
 #include "render/frame/frame_conditions.h"
 #include "render/frame/frame_constants.h"
@@ -69,7 +69,7 @@ struct Renderer::Impl {
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/frame/star_pass.h)
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
-  std::map<std::string, image::LinearImage> albedo_images;           // by albedo_key
+  std::map<std::string, image::LinearImage> albedo_images;            // by albedo_key
   std::string albedo_array_key;
   Texture albedo_array;  // one layer per body, all at the largest map's size
 
@@ -208,7 +208,8 @@ void Renderer::check_scene(const scene::Scene& scene) const {
 
 Renderer::Frame Renderer::frame_constants(const scene::Scene& scene, const warp::Projection& projection) const {
   Frame f(scene, projection);
-  static_cast<FrameConstants&>(f) = compute_frame_constants(scene, projection, options_.colour, options_.limb_darkening);
+  static_cast<FrameConstants&>(f) =
+      compute_frame_constants(scene, projection, options_.colour, options_.limb_darkening);
   return f;
 }
 
@@ -248,7 +249,8 @@ void Renderer::prepare_bodies(Frame& frame) {
     g.centre = vec4_of(dir, D);
     g.shape = {static_cast<float>(R), static_cast<float>((D - R) * (D + R)), -1.0f, static_cast<float>(b)};
     for (int row = 0; row < 3; ++row)
-      g.world_to_body[row] = vec4_of(glm::dvec3(world_to_body[0][row], world_to_body[1][row], world_to_body[2][row]), 0.0);
+      g.world_to_body[row] =
+          vec4_of(glm::dvec3(world_to_body[0][row], world_to_body[1][row], world_to_body[2][row]), 0.0);
 
     const std::string key = albedo_key(body.albedo);
     if (!im.albedo_images.contains(key)) im.albedo_images.emplace(key, scene::load_albedo_map(body.albedo));
@@ -257,9 +259,10 @@ void Renderer::prepare_bodies(Frame& frame) {
     if (!body.atmosphere || !options_.atmospheres) continue;
     const atmosphere::AtmosphereModel& model = body.atmosphere->loaded.model;
     if (model.wavelengths_nm != scene.wavelengths_nm)
-      throw std::invalid_argument(fmt::format("scene '{}': the atmosphere of '{}' is resolved at other wavelengths "
-                                              "than the scene's",
-                                              scene.name, body.name));
+      throw std::invalid_argument(
+          fmt::format("scene '{}': the atmosphere of '{}' is resolved at other wavelengths "
+                      "than the scene's",
+                      scene.name, body.name));
     AtmospherePass pass;
     pass.body = static_cast<int>(b);
     pass.distance_m = D;
@@ -290,20 +293,23 @@ void Renderer::make_tables_resident(Frame& frame) {
   const scene::Scene& scene = frame.scene;
   for (AtmospherePass& pass : frame.passes) {
     if (!frame.touches_view(pass)) continue;  // an atmosphere outside the view costs nothing
-    const atmosphere::AtmosphereModel& model = scene.bodies[static_cast<std::size_t>(pass.body)].atmosphere->loaded.model;
-    const std::string key = fmt::format("{} mult={} ecl={} fp64={}", atmosphere::lookup_table_hash(model),
-                                        options_.atmosphere.multiple_scattering, options_.atmosphere.eclipses,
-                                        options_.atmosphere.fp64);
+    const atmosphere::AtmosphereModel& model =
+        scene.bodies[static_cast<std::size_t>(pass.body)].atmosphere->loaded.model;
+    const std::string key =
+        fmt::format("{} mult={} ecl={} fp64={}", atmosphere::lookup_table_hash(model),
+                    options_.atmosphere.multiple_scattering, options_.atmosphere.eclipses, options_.atmosphere.fp64);
     auto it = im.atmospheres.find(key);
     if (it == im.atmospheres.end()) {
       ++stats_.table_sets_requested;
       const atmosphere::lut::LookupTables tables = table_source_(model);
-      it = im.atmospheres.emplace(key, std::make_unique<GpuAtmosphere>(model, tables, options_.atmosphere,
-                                                                        im.frame_programs.sun_defines()))
+      it = im.atmospheres
+               .emplace(key, std::make_unique<GpuAtmosphere>(model, tables, options_.atmosphere,
+                                                             im.frame_programs.sun_defines()))
                .first;
       ++stats_.table_sets_uploaded;
       spdlog::debug("renderer: atmosphere of '{}' resident ({:.1f} MB of tables)",
-                    scene.bodies[static_cast<std::size_t>(pass.body)].name, static_cast<double>(it->second->table_bytes()) / 1e6);
+                    scene.bodies[static_cast<std::size_t>(pass.body)].name,
+                    static_cast<double>(it->second->table_bytes()) / 1e6);
     }
     pass.gpu = it->second.get();
   }
@@ -361,11 +367,12 @@ void Renderer::set_direct_light_uniforms(Frame& frame) {
     p.set_uniform("wavelength_count", static_cast<int>(std::min<std::size_t>(frame.n, kMaxSpectrumUniforms)));
     for (std::size_t i = 0; i < frame.n && i < static_cast<std::size_t>(kMaxSpectrumUniforms); ++i) {
       const double c = exposure * frame.sun_centre[i];
-      p.set_uniform(fmt::format("sun_spectrum[{}]", i),
-                    std::array<float, 4>{static_cast<float>(frame.rgb_weights[i][0] * c),
-                                         static_cast<float>(frame.rgb_weights[i][1] * c),
-                                         static_cast<float>(frame.rgb_weights[i][2] * c),
-                                         static_cast<float>(frame.sun_point_sigma > 0.0 ? 0.0 : frame.limb_exponent[i])});
+      p.set_uniform(
+          fmt::format("sun_spectrum[{}]", i),
+          std::array<float, 4>{static_cast<float>(frame.rgb_weights[i][0] * c),
+                               static_cast<float>(frame.rgb_weights[i][1] * c),
+                               static_cast<float>(frame.rgb_weights[i][2] * c),
+                               static_cast<float>(frame.sun_point_sigma > 0.0 ? 0.0 : frame.limb_exponent[i])});
     }
   }
   frame.sun_reach = sun_reach_rad(frame);

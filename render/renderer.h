@@ -43,12 +43,12 @@
 
 namespace zenith::render {
 
-class PassTimer;        // render/frame/pass_timer.h
-struct BandTiles;       // render/frame/tile_classification.h
+class PassTimer;   // render/frame/pass_timer.h
+struct BandTiles;  // render/frame/tile_classification.h
 namespace gl {
 class ShaderProgram;  // render/gl/shader_program.h
 class Texture;        // render/gl/texture.h
-}
+}  // namespace gl
 
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
 /// called only for table sets the renderer does not hold yet.
@@ -90,7 +90,7 @@ struct FrameStats {
   std::size_t tiles_one_atmosphere = 0;  ///< tiles one shell touches, drawn by atmosphere_tile.comp
   std::size_t tiles_direct = 0;          ///< tiles drawn by direct_light.comp (a body or the sun, no atmosphere)
   std::size_t tiles_black = 0;           ///< tiles with nothing to draw: not dispatched
-  double seconds = 0.0;                 ///< wall time of render(), readback included
+  double seconds = 0.0;                  ///< wall time of render(), readback included
   /// The night sky's pass (render/frame/star_pass.h): stars placed in the
   /// image, whether it ran (false: no sky clock or night sky, or its own test
   /// found nothing visible), the catalogue's identity of the stars drawn.
@@ -136,7 +136,7 @@ class Renderer {
 
  private:
   struct Impl;
-  struct Frame;      ///< one frame in progress: constants, bodies, atmospheres, programs (renderer.cpp)
+  struct Frame;  ///< one frame in progress: constants, bodies, atmospheres, programs (renderer.cpp)
 
   // The steps of render(), in this order. Each issues its GL calls in the
   // order the one function did, so the images stay the same bit for bit.

@@ -34,24 +34,26 @@ inline constexpr unsigned kStarAccumulator = 12;      ///< STAR_ACCUMULATOR_BIND
 inline constexpr unsigned kNightSkyTable = 13;        ///< NIGHT_SKY_TABLE_BINDING (render/night_sky.comp)
 
 // ---- uniform buffers
-inline constexpr unsigned kWavelengthData = 0;  ///< WAVELENGTH_DATA_BINDING (atmosphere/physics.glsl): the model's parameters
-inline constexpr unsigned kFp64Constants = 1;   ///< FP64_CONSTANTS_BINDING (atmosphere/maths.glsl): fp64 shaders' constants
+inline constexpr unsigned kWavelengthData =
+    0;  ///< WAVELENGTH_DATA_BINDING (atmosphere/physics.glsl): the model's parameters
+inline constexpr unsigned kFp64Constants =
+    1;  ///< FP64_CONSTANTS_BINDING (atmosphere/maths.glsl): fp64 shaders' constants
 
 // ---- texture units: the tables (precompute and render passes), then the frame's own
-inline constexpr unsigned kTransmittanceUnit = 0;     ///< TRANSMITTANCE_UNIT (atmosphere_common.glsl)
-inline constexpr unsigned kSingleRayleighUnit = 1;    ///< SINGLE_RAYLEIGH_UNIT
-inline constexpr unsigned kSingleMieUnit = 2;         ///< SINGLE_MIE_UNIT
-inline constexpr unsigned kDeltaRadianceUnit = 3;     ///< DELTA_RADIANCE_UNIT (precompute, previous_order.glsl)
-inline constexpr unsigned kMultipleUnit = 3;          ///< MULTIPLE_UNIT (render/atmosphere_segment.glsl)
-inline constexpr unsigned kDeltaIrradianceUnit = 4;   ///< DELTA_IRRADIANCE_UNIT (precompute)
-inline constexpr unsigned kIrradianceUnit = 4;        ///< IRRADIANCE_UNIT (render/atmosphere_segment.glsl)
-inline constexpr unsigned kDensityUnit = 5;           ///< DENSITY_UNIT (multiple_scattering.comp)
-inline constexpr unsigned kSkyViewUnit = 5;           ///< SKY_VIEW_UNIT (render/atmosphere_tile.comp)
-inline constexpr unsigned kRayTableUnit = 7;          ///< RAY_TABLE_UNIT (projection.glsl)
-inline constexpr unsigned kAlbedoMapsUnit = 8;        ///< ALBEDO_MAPS_UNIT (render/surface_albedo.glsl)
-inline constexpr unsigned kPresentFrameUnit = 0;      ///< PRESENT_FRAME_UNIT (render/present.frag)
-inline constexpr unsigned kDisplayRadianceUnit = 0;   ///< DISPLAY_RADIANCE_UNIT (render/display_*.comp)
-inline constexpr unsigned kBlendMaskUnit = 1;         ///< BLEND_MASK_UNIT (render/display_transform.glsl)
+inline constexpr unsigned kTransmittanceUnit = 0;    ///< TRANSMITTANCE_UNIT (atmosphere_common.glsl)
+inline constexpr unsigned kSingleRayleighUnit = 1;   ///< SINGLE_RAYLEIGH_UNIT
+inline constexpr unsigned kSingleMieUnit = 2;        ///< SINGLE_MIE_UNIT
+inline constexpr unsigned kDeltaRadianceUnit = 3;    ///< DELTA_RADIANCE_UNIT (precompute, previous_order.glsl)
+inline constexpr unsigned kMultipleUnit = 3;         ///< MULTIPLE_UNIT (render/atmosphere_segment.glsl)
+inline constexpr unsigned kDeltaIrradianceUnit = 4;  ///< DELTA_IRRADIANCE_UNIT (precompute)
+inline constexpr unsigned kIrradianceUnit = 4;       ///< IRRADIANCE_UNIT (render/atmosphere_segment.glsl)
+inline constexpr unsigned kDensityUnit = 5;          ///< DENSITY_UNIT (multiple_scattering.comp)
+inline constexpr unsigned kSkyViewUnit = 5;          ///< SKY_VIEW_UNIT (render/atmosphere_tile.comp)
+inline constexpr unsigned kRayTableUnit = 7;         ///< RAY_TABLE_UNIT (projection.glsl)
+inline constexpr unsigned kAlbedoMapsUnit = 8;       ///< ALBEDO_MAPS_UNIT (render/surface_albedo.glsl)
+inline constexpr unsigned kPresentFrameUnit = 0;     ///< PRESENT_FRAME_UNIT (render/present.frag)
+inline constexpr unsigned kDisplayRadianceUnit = 0;  ///< DISPLAY_RADIANCE_UNIT (render/display_*.comp)
+inline constexpr unsigned kBlendMaskUnit = 1;        ///< BLEND_MASK_UNIT (render/display_transform.glsl)
 
 // ---- image units: what a compute pass writes (the precompute's tables, the sky-view table)
 inline constexpr unsigned kOutputImage = 0;        ///< OUTPUT_IMAGE

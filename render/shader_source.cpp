@@ -59,8 +59,10 @@ std::string normalize(std::string_view path) {
     const std::size_t slash = path.find('/');
     const std::string_view part = path.substr(0, slash);
     if (part == "..") {
-      if (!parts.empty() && parts.back() != "..") parts.pop_back();
-      else parts.push_back(part);
+      if (!parts.empty() && parts.back() != "..")
+        parts.pop_back();
+      else
+        parts.push_back(part);
     } else if (!part.empty() && part != ".") {
       parts.push_back(part);
     }
@@ -133,7 +135,8 @@ struct Expander {
   }
 
   static std::string include_target(std::string_view argument, const std::string& file, int line_number) {
-    const std::size_t close = argument.size() >= 2 && argument.front() == '"' ? argument.find('"', 1) : std::string_view::npos;
+    const std::size_t close =
+        argument.size() >= 2 && argument.front() == '"' ? argument.find('"', 1) : std::string_view::npos;
     if (close == std::string_view::npos || close == 1)
       throw std::runtime_error(
           fmt::format("{}:{}: malformed #include {}: expected #include \"file.glsl\"", file, line_number, argument));
@@ -154,9 +157,8 @@ ExpandedShader expand_includes(std::string_view name, std::string_view source, c
 }
 
 ExpandedShader load_shader(std::string_view name) {
-  return expand_includes(name, shader_source(name), [](std::string_view file) {
-    return core::find_embedded(embedded::embedded_files(), file);
-  });
+  return expand_includes(name, shader_source(name),
+                         [](std::string_view file) { return core::find_embedded(embedded::embedded_files(), file); });
 }
 
 }  // namespace zenith::render

@@ -15,9 +15,9 @@
 namespace zenith::scene {
 namespace {
 
-using glm::dvec3;
 using core::kDeg;
 using core::kPi;
+using glm::dvec3;
 
 // ------------------------------------------------------------------ hashing
 
@@ -262,7 +262,9 @@ class MoonGenerator final : public Generator {
 class MarsGenerator final : public Generator {
  public:
   explicit MarsGenerator(std::uint32_t seed)
-      : dark_(field_seed(seed, 21)), bright_(field_seed(seed, 22)), detail_(field_seed(seed, 23)),
+      : dark_(field_seed(seed, 21)),
+        bright_(field_seed(seed, 22)),
+        detail_(field_seed(seed, 23)),
         caps_(field_seed(seed, 24)) {
     dark_level_ = sphere_quantile([this](const dvec3& p) { return dark_field(p); }, 0.75);
     bright_level_ = sphere_quantile([this](const dvec3& p) { return bright_field(p); }, 0.85);
@@ -322,8 +324,7 @@ float clamp01(double x) { return float(std::clamp(x, 0.0, 1.0)); }
 
 std::vector<std::string> albedo_generators() { return {"earth", "moon", "mars", "checker"}; }
 
-image::LinearImage generate_albedo_map(const std::string& generator, std::uint32_t seed, int width_px,
-                                       int height_px) {
+image::LinearImage generate_albedo_map(const std::string& generator, std::uint32_t seed, int width_px, int height_px) {
   const std::unique_ptr<Generator> g = make_generator(generator, seed);
   if (width_px < 2 || width_px > 16384 || height_px < 2 || height_px > 8192) {
     std::ostringstream s;

@@ -41,8 +41,7 @@ std::vector<std::string> albedo_generators();
 /// A map from a generator, deterministic for a seed. Throws std::invalid_argument
 /// for an unknown generator (listing the generators) or a size outside
 /// width [2, 16384], height [2, 8192].
-image::LinearImage generate_albedo_map(const std::string& generator, std::uint32_t seed, int width_px,
-                                       int height_px);
+image::LinearImage generate_albedo_map(const std::string& generator, std::uint32_t seed, int width_px, int height_px);
 
 /// The map of a body: a 1×1 image of the colour (Kind::constant), the image file
 /// read by image::read_image (Kind::image; throws its std::runtime_error), or a

@@ -40,9 +40,9 @@ inline constexpr std::uint32_t kKnownRenderFlags = (1u << 5) - 1;
 
 /// Which lookup-table set an atmosphere uses, from which frame on.
 struct AtmosphereTableRef {
-  std::string body_name;                  ///< the scene's body (1..64 UTF-8 bytes on the wire)
-  TableHash table_hash{};                 ///< atmosphere::lookup_table_hash as 32 raw bytes
-  std::uint64_t effective_from_frame = 0; ///< renderers switch tables at this frame (all at once)
+  std::string body_name;                   ///< the scene's body (1..64 UTF-8 bytes on the wire)
+  TableHash table_hash{};                  ///< atmosphere::lookup_table_hash as 32 raw bytes
+  std::uint64_t effective_from_frame = 0;  ///< renderers switch tables at this frame (all at once)
   bool operator==(const AtmosphereTableRef&) const = default;
 };
 
@@ -51,8 +51,8 @@ struct AtmosphereTableRef {
 /// (black at level 1: a blackout). Display-linear: applied after tone mapping,
 /// before the blend mask and black level (render/display/display_encoder.h).
 struct FadeState {
-  double level = 0.0;        ///< in [0, 1]
-  glm::dvec3 colour{0.0};    ///< display-linear RGB, each in [0, 1]
+  double level = 0.0;      ///< in [0, 1]
+  glm::dvec3 colour{0.0};  ///< display-linear RGB, each in [0, 1]
   bool operator==(const FadeState&) const = default;
 };
 inline constexpr double kMaxFadeLevel = 1.0;
@@ -77,15 +77,15 @@ struct FrameDescription {
   std::uint64_t frame = 0;
   double show_time_s = 0.0;
   glm::dvec3 camera_position_m{0.0};
-  glm::dquat camera_orientation{1, 0, 0, 0};  ///< camera → world, unit
-  double exposure = 10.0;                     ///< radiance multiplier before tone mapping, > 0
-  glm::dvec3 sun_direction{0, 0, 1};          ///< unit, toward the sun
-  double sun_angular_radius_rad = 0.0;        ///< ≥ 0
-  std::vector<double> sun_irradiance_W_m2_nm; ///< ≤ kMaxWavelengths values, each ≥ 0
+  glm::dquat camera_orientation{1, 0, 0, 0};    ///< camera → world, unit
+  double exposure = 10.0;                       ///< radiance multiplier before tone mapping, > 0
+  glm::dvec3 sun_direction{0, 0, 1};            ///< unit, toward the sun
+  double sun_angular_radius_rad = 0.0;          ///< ≥ 0
+  std::vector<double> sun_irradiance_W_m2_nm;   ///< ≤ kMaxWavelengths values, each ≥ 0
   std::vector<AtmosphereTableRef> atmospheres;  ///< ≤ kMaxAtmospheres
-  std::uint32_t render_flags = 0;             ///< RenderFlag bits
-  FadeState fade;                             ///< the operator's fade at this frame's present
-  SkyFrame sky;                               ///< the sky's date and catalogue (its own struct: the night sky's fields)
+  std::uint32_t render_flags = 0;               ///< RenderFlag bits
+  FadeState fade;                               ///< the operator's fade at this frame's present
+  SkyFrame sky;  ///< the sky's date and catalogue (its own struct: the night sky's fields)
   bool operator==(const FrameDescription&) const = default;
 };
 

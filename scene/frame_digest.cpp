@@ -15,7 +15,8 @@ class FieldHasher {
   /// The low `bytes` bytes of `v`, most significant first.
   void unsigned_be(std::uint64_t v, int bytes) {
     std::array<std::uint8_t, 8> be{};
-    for (int i = 0; i < bytes; ++i) be[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(v >> (8 * (bytes - 1 - i)));
+    for (int i = 0; i < bytes; ++i)
+      be[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(v >> (8 * (bytes - 1 - i)));
     stream_.update(be.data(), static_cast<std::size_t>(bytes));
   }
   void f64(double v) { unsigned_be(std::bit_cast<std::uint64_t>(v), 8); }
@@ -32,8 +33,9 @@ std::string frame_digest(const FrameDescription& frame) {
   const glm::dvec3& c = frame.camera_position_m;
   const glm::dquat& q = frame.camera_orientation;
   const glm::dvec3& sun = frame.sun_direction;
-  const double reals[] = {frame.show_time_s, c.x, c.y, c.z, q.w, q.x, q.y, q.z, frame.exposure,
-                          sun.x, sun.y, sun.z, frame.sun_angular_radius_rad};
+  const double reals[] = {
+      frame.show_time_s,           c.x, c.y, c.z, q.w, q.x, q.y, q.z, frame.exposure, sun.x, sun.y, sun.z,
+      frame.sun_angular_radius_rad};
   FieldHasher h;
   h.unsigned_be(frame.frame, 8);
   for (const double v : reals) h.f64(v);

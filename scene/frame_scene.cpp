@@ -38,8 +38,9 @@ FrameDescription default_show_frame(const Scene& scene, std::uint64_t frame, dou
   // Negative: westward, as the day advances on a prograde-rotating body.
   const double angle_rad = -static_cast<double>(frame) * sun_step_deg * core::kPi / 180.0;
   // Frame 0 (and every frame of a still sun) is the scene exactly as configured.
-  s.sun_direction = frame == 0 || sun_step_deg == 0.0 ? scene.sun.direction
-                               : glm::normalize(glm::angleAxis(angle_rad, sun_axis(scene)) * scene.sun.direction);
+  s.sun_direction = frame == 0 || sun_step_deg == 0.0
+                        ? scene.sun.direction
+                        : glm::normalize(glm::angleAxis(angle_rad, sun_axis(scene)) * scene.sun.direction);
   s.sun_angular_radius_rad = scene.sun.angular_radius_rad;
   s.sun_irradiance_W_m2_nm = scene.sun.irradiance_W_m2_nm;
   s.atmospheres = atmospheres;

@@ -59,8 +59,8 @@ void check_scene(const Scene& scene) {
       ++with_atmosphere;
       const auto& m = b.atmosphere->loaded.model;
       if (std::abs(m.ground_radius_m - b.radius_m) > 1.0)
-        fail(s << "body \"" << b.name << "\": radius " << b.radius_m << " m differs from its atmosphere's ground radius "
-               << m.ground_radius_m << " m by more than 1 m");
+        fail(s << "body \"" << b.name << "\": radius " << b.radius_m
+               << " m differs from its atmosphere's ground radius " << m.ground_radius_m << " m by more than 1 m");
       if (m.wavelengths_nm != scene.wavelengths_nm)
         fail(s << "body \"" << b.name << "\": its atmosphere is resolved at other wavelengths than the scene's");
     }
@@ -91,8 +91,7 @@ void check_scene(const Scene& scene) {
     fail(s << "exposure " << camera.exposure << " must be in (0, 1e6]");
   for (const Body& b : scene.bodies) {
     // Allow for rounding of positions far from the origin (1 ulp at 40 AU is ~1 mm).
-    const double slack_m =
-        1e-6 + 1e-15 * (glm::length(camera.position_m) + glm::length(b.position_m) + b.radius_m);
+    const double slack_m = 1e-6 + 1e-15 * (glm::length(camera.position_m) + glm::length(b.position_m) + b.radius_m);
     if (glm::length(camera.position_m - b.position_m) - b.radius_m < kMinCameraClearance_m - slack_m)
       fail(s << "the camera is less than " << kMinCameraClearance_m << " m above (or inside) body \"" << b.name
              << "\"");

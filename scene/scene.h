@@ -28,9 +28,9 @@ struct AlbedoSource {
   Kind kind = Kind::constant;
   glm::dvec3 colour_linear_rgb{0.3, 0.3, 0.3};  ///< Kind::constant
   std::filesystem::path image_path;             ///< Kind::image: absolute, equirectangular (PNG = sRGB, EXR = linear)
-  std::string procedural;                       ///< Kind::procedural: a generator of albedo_map.h ("earth", "moon", "mars", "checker")
-  std::uint32_t seed = 1;                       ///< Kind::procedural
-  int width_px = 1024, height_px = 512;         ///< Kind::procedural: size of the generated map
+  std::string procedural;  ///< Kind::procedural: a generator of albedo_map.h ("earth", "moon", "mars", "checker")
+  std::uint32_t seed = 1;  ///< Kind::procedural
+  int width_px = 1024, height_px = 512;  ///< Kind::procedural: size of the generated map
 };
 
 /// An atmosphere around a body, with the parameter set it was resolved from.
@@ -45,7 +45,7 @@ struct BodyAtmosphere {
 struct Body {
   std::string name;
   double radius_m = 0.0;
-  glm::dvec3 position_m{0.0};       ///< world frame
+  glm::dvec3 position_m{0.0};          ///< world frame
   glm::dquat orientation{1, 0, 0, 0};  ///< body frame → world frame (unit)
   AlbedoSource albedo;
   std::optional<BodyAtmosphere> atmosphere;  ///< its ground radius equals radius_m
@@ -78,8 +78,9 @@ inline constexpr std::size_t kMaxBodies = 64;
 
 struct Scene {
   std::string name;
-  std::filesystem::path source;        ///< the file it was read from (empty when built in code)
-  std::vector<double> wavelengths_nm;  ///< working wavelengths of every atmosphere and of the output (default 680, 550, 440)
+  std::filesystem::path source;  ///< the file it was read from (empty when built in code)
+  std::vector<double>
+      wavelengths_nm;  ///< working wavelengths of every atmosphere and of the output (default 680, 550, 440)
   std::vector<Body> bodies;
   Sun sun;
   Camera camera;

@@ -13,14 +13,14 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vector_relational.hpp>
 
-#include "core/json_reader.h"
-#include "core/strings.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/spectrum.h"
+#include "core/json_reader.h"
+#include "core/strings.h"
+#include "core/units.h"
 #include "scene/albedo_map.h"
 #include "scene/local_horizon.h"
 #include "scene/sun_disc.h"
-#include "core/units.h"
 
 namespace zenith::scene {
 namespace {
@@ -178,14 +178,15 @@ std::vector<double> read_wavelengths(JsonReader& root) {
   if (!root.has("wavelengths_nm")) return atmosphere::kDefaultWavelengths_nm;
   const json& v = root.raw("wavelengths_nm");
   if (!v.is_array() || v.empty() || v.size() > std::size_t(kMaxWavelengths))
-    root.fail("wavelengths_nm", cat("= ", brief(v), ": must be an array of 1 to ", kMaxWavelengths,
-                                    " wavelengths in [", kWavelength.lo, ", ", kWavelength.hi, "] nm"));
+    root.fail("wavelengths_nm", cat("= ", brief(v), ": must be an array of 1 to ", kMaxWavelengths, " wavelengths in [",
+                                    kWavelength.lo, ", ", kWavelength.hi, "] nm"));
   std::vector<double> wl;
   for (std::size_t i = 0; i < v.size(); ++i) {
     const json& x = v[i];
     const std::string key = cat("wavelengths_nm/", i);
     if (!x.is_number() || !(x.get<double>() >= kWavelength.lo && x.get<double>() <= kWavelength.hi))
-      root.fail(key, cat("= ", brief(x), ": ", JsonReader::range_text(kWavelength.lo, kWavelength.hi, kWavelength.unit)));
+      root.fail(key,
+                cat("= ", brief(x), ": ", JsonReader::range_text(kWavelength.lo, kWavelength.hi, kWavelength.unit)));
     wl.push_back(x.get<double>());
   }
   // Strictly monotonic, either way (the default 680, 550, 440 decreases): a
@@ -326,7 +327,9 @@ glm::dquat read_orientation(JsonReader& body) {
     const dvec3 x = glm::normalize(meridian - glm::dot(meridian, z) * z);
     q = rotation_from_axes(x, glm::cross(z, x), z);
   } else {
-    r.fail("", "give {\"axis\": [x, y, z], \"angle_deg\": a} or {\"north_pole\": [x, y, z], \"prime_meridian\": [x, y, z]}");
+    r.fail(
+        "",
+        "give {\"axis\": [x, y, z], \"angle_deg\": a} or {\"north_pole\": [x, y, z], \"prime_meridian\": [x, y, z]}");
   }
   r.finish();
   return q;
@@ -383,10 +386,10 @@ std::vector<Body> read_bodies(JsonReader& root, const Context& ctx) {
       const double distance = glm::length(bodies[i].position_m - bodies[j].position_m);
       const double sum = bodies[i].radius_m + bodies[j].radius_m;
       if (distance <= sum)
-        throw ConfigError(ctx.file, cat("/bodies/", i),
-                          cat("body \"", bodies[i].name, "\" intersects body \"", bodies[j].name, "\" (/bodies/", j,
-                              "): their centres are ", distance, " m apart, not more than the sum of their radii ",
-                              sum, " m"));
+        throw ConfigError(
+            ctx.file, cat("/bodies/", i),
+            cat("body \"", bodies[i].name, "\" intersects body \"", bodies[j].name, "\" (/bodies/", j,
+                "): their centres are ", distance, " m apart, not more than the sum of their radii ", sum, " m"));
     }
   return bodies;
 }
@@ -429,7 +432,8 @@ CameraPlacement read_camera(JsonReader& r, const std::vector<Body>& bodies, cons
     const double lon = number(s, "longitude_deg", kLongitude) * kDeg;
     const double altitude = number(s, "altitude_m", kAltitude);
     // p = c + q · (R + h) (cos φ cos λ, cos φ sin λ, sin φ)
-    cam.position_m = b.position_m + b.orientation * direction_from_latitude_longitude(lat, lon) * (b.radius_m + altitude);
+    cam.position_m =
+        b.position_m + b.orientation * direction_from_latitude_longitude(lat, lon) * (b.radius_m + altitude);
     out.surface = CameraPlacement::Surface{lat, lon, altitude};
     s.finish();
   }
@@ -437,20 +441,21 @@ CameraPlacement read_camera(JsonReader& r, const std::vector<Body>& bodies, cons
     const double altitude = glm::length(cam.position_m - bodies[i].position_m) - bodies[i].radius_m;
     if (i == reference && position_key == "surface") continue;  // altitude_m is range-checked
     if (altitude < kMinCameraClearance_m)
-      throw ConfigError(ctx.file, r.key_path(position_key),
-                        cat("the camera is ",
-                            altitude < 0.0 ? cat("inside body \"", bodies[i].name, "\" (/bodies/", i, "), ", -altitude,
-                                                 " m below its surface")
-                                           : cat("only ", altitude, " m above body \"", bodies[i].name, "\" (/bodies/",
-                                                 i, ")"),
-                            "; it must be at least ", kMinCameraClearance_m, " m above every body's surface"));
+      throw ConfigError(
+          ctx.file, r.key_path(position_key),
+          cat("the camera is ",
+              altitude < 0.0
+                  ? cat("inside body \"", bodies[i].name, "\" (/bodies/", i, "), ", -altitude, " m below its surface")
+                  : cat("only ", altitude, " m above body \"", bodies[i].name, "\" (/bodies/", i, ")"),
+              "; it must be at least ", kMinCameraClearance_m, " m above every body's surface"));
   }
   out.reference_body = reference;
   const LocalHorizon h = local_horizon_at(cam.position_m, bodies[reference]);
 
   // Orientation.
   if (exactly_one(r, {"look_at", "look", "forward"}) == 1) {
-    if (r.has("up")) r.fail("up", "is not used with \"look\" (its up is the zenith tilted by the elevation; use roll_deg)");
+    if (r.has("up"))
+      r.fail("up", "is not used with \"look\" (its up is the zenith tilted by the elevation; use roll_deg)");
     JsonReader l = open_object(r, "look", {"azimuth_deg", "elevation_deg", "roll_deg"});
     const double azimuth = number(l, "azimuth_deg", kAzimuth) * kDeg;
     const double elevation = number(l, "elevation_deg", kElevation) * kDeg;
@@ -588,9 +593,9 @@ Sun read_sun(JsonReader& r, const std::vector<Body>& bodies, const CameraPlaceme
       const dvec3 d = position(r, "position_m") - camera.position_m;
       distance_au = glm::length(d) / kAstronomicalUnit_m;
       if (!(distance_au >= kSunDistance.lo && distance_au <= kSunDistance.hi))
-        r.fail("position_m", cat("= ", brief(r.raw("position_m")), ": is ", distance_au,
-                                 " AU from the camera; the sun's distance ",
-                                 JsonReader::range_text(kSunDistance.lo, kSunDistance.hi, kSunDistance.unit)));
+        r.fail("position_m",
+               cat("= ", brief(r.raw("position_m")), ": is ", distance_au, " AU from the camera; the sun's distance ",
+                   JsonReader::range_text(kSunDistance.lo, kSunDistance.hi, kSunDistance.unit)));
       sun.direction = glm::normalize(d);
       break;
     }
@@ -604,10 +609,9 @@ Sun read_sun(JsonReader& r, const std::vector<Body>& bodies, const CameraPlaceme
     }
   }
   // Angular diameter: given, or the Sun's at this distance, 2 asin(R_sun / d).
-  const double diameter_deg =
-      r.has("angular_diameter_deg")
-          ? positive(r, "angular_diameter_deg", kMaxSunAngularDiameter_deg, "deg")
-          : 2.0 * std::asin(kSolarRadius_m / (distance_au * kAstronomicalUnit_m)) / kDeg;
+  const double diameter_deg = r.has("angular_diameter_deg")
+                                  ? positive(r, "angular_diameter_deg", kMaxSunAngularDiameter_deg, "deg")
+                                  : 2.0 * std::asin(kSolarRadius_m / (distance_au * kAstronomicalUnit_m)) / kDeg;
   sun.angular_radius_rad = 0.5 * diameter_deg * kDeg;
   sun.irradiance_W_m2_nm = read_irradiance(r, distance_au, ctx);
   r.finish();
@@ -619,8 +623,10 @@ Sun read_sun(JsonReader& r, const std::vector<Body>& bodies, const CameraPlaceme
 std::optional<SkyClock> read_sky_clock(JsonReader& root, const std::vector<Body>& bodies,
                                        const CameraPlacement& camera) {
   if (!root.has("time") && !root.has("site")) return std::nullopt;
-  if (!root.has("site")) root.fail("site", "missing: \"time\" needs a \"site\" {latitude_deg, longitude_deg, altitude_m}");
-  if (!root.has("time")) root.fail("time", "missing: \"site\" needs a \"time\" (ISO 8601 UTC, e.g. \"2026-12-21T16:30:00Z\")");
+  if (!root.has("site"))
+    root.fail("site", "missing: \"time\" needs a \"site\" {latitude_deg, longitude_deg, altitude_m}");
+  if (!root.has("time"))
+    root.fail("time", "missing: \"site\" needs a \"time\" (ISO 8601 UTC, e.g. \"2026-12-21T16:30:00Z\")");
   SkyClock clock;
   clock.body = camera.reference_body;
   std::string body = bodies.at(clock.body).name;
@@ -670,8 +676,8 @@ std::optional<NightSky> read_night_sky(JsonReader& root, const std::vector<Body>
     } else {
       const auto& model = body.atmosphere->loaded.model;
       const double natural = astro::NightSkyFloor(model, night.floor).zenith_luminance_cd_m2();
-      night.light_pollution.zenith_mcd_m2 = astro::bortle_artificial_mcd_m2(
-          l.integer("bortle", 1, 9), model, natural, night.light_pollution.colour_temperature_K);
+      night.light_pollution.zenith_mcd_m2 = astro::bortle_artificial_mcd_m2(l.integer("bortle", 1, 9), model, natural,
+                                                                            night.light_pollution.colour_temperature_K);
     }
     l.finish();
   }
@@ -682,12 +688,13 @@ std::optional<NightSky> read_night_sky(JsonReader& root, const std::vector<Body>
 
 Scene parse_scene(const json& j, const std::string& source, const fs::path& base_dir) {
   JsonReader root(j, source);
-  allow_keys(root, j, {"zenith_scene", "name", "description", "wavelengths_nm", "bodies", "sun", "camera", "time", "site",
-                       "night_sky", "light_pollution"});
+  allow_keys(root, j,
+             {"zenith_scene", "name", "description", "wavelengths_nm", "bodies", "sun", "camera", "time", "site",
+              "night_sky", "light_pollution"});
   const json& version = root.raw("zenith_scene");
   if (!version.is_number_integer() || version.get<long long>() != kFormatVersion)
-    root.fail("zenith_scene",
-              cat("= ", brief(version), ": unsupported scene format version; this build reads version ", kFormatVersion));
+    root.fail("zenith_scene", cat("= ", brief(version), ": unsupported scene format version; this build reads version ",
+                                  kFormatVersion));
   Scene scene;
   scene.source = source;
   scene.name = root.string("name");
@@ -744,8 +751,6 @@ Sun parse_sun(const json& sun, const Scene& scene, const CameraPlacement& camera
   return read_sun(r, scene.bodies, camera, ctx);
 }
 
-Scene load_scene(const fs::path& path) {
-  return parse_scene(read_json_file(path), path.string(), path.parent_path());
-}
+Scene load_scene(const fs::path& path) { return parse_scene(read_json_file(path), path.string(), path.parent_path()); }
 
 }  // namespace zenith::scene

@@ -29,14 +29,15 @@ struct SkyClock {
 /// (a Bortle class becomes the zenith luminance it stands for over this
 /// atmosphere's natural floor).
 struct NightSky {
-  astro::NightSkyFloorOptions floor;              ///< "night_sky": {"zenith_v_mag_arcsec2"}
-  astro::LightPollutionOptions light_pollution;   ///< "light_pollution": zenith_mcd_m2 (0: none)
-  std::size_t body = 0;                           ///< the body whose atmosphere they are seen through
+  astro::NightSkyFloorOptions floor;             ///< "night_sky": {"zenith_v_mag_arcsec2"}
+  astro::LightPollutionOptions light_pollution;  ///< "light_pollution": zenith_mcd_m2 (0: none)
+  std::size_t body = 0;                          ///< the body whose atmosphere they are seen through
 };
 
 /// Where the ephemeris puts the Sun at `time` for `clock`'s site.
 struct EphemerisSun {
-  glm::dvec3 direction{0, 0, 1};  ///< unit, world frame: the site's azimuth and geometric altitude in the camera's local horizon
+  glm::dvec3 direction{
+      0, 0, 1};  ///< unit, world frame: the site's azimuth and geometric altitude in the camera's local horizon
   double azimuth_deg = 0.0, altitude_deg = 0.0;  ///< geometric (no refraction: the tables' rays are straight)
   double distance_au = 1.0;
   double angular_radius_rad = 0.0;

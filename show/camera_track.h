@@ -26,11 +26,11 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "scene/scene.h"
+#include "scene/scene_loader.h"
 #include "show/catmull_rom.h"
 #include "show/monotone_cubic.h"
 #include "show/squad.h"
-#include "scene/scene.h"
-#include "scene/scene_loader.h"
 
 namespace zenith::show {
 
@@ -65,7 +65,7 @@ class CameraTrack {
   double body_radius_m_ = 0.0;
   /// World positions, or (surface paths) body-frame unit directions.
   CentripetalCatmullRom path_;
-  MonotoneCubic knot_at_time_;  ///< show time → the spline's knot
+  MonotoneCubic knot_at_time_;                 ///< show time → the spline's knot
   std::optional<MonotoneCubic> log_altitude_;  ///< surface paths: ln(altitude / 1 m)
   SquadCurve orientation_;
 };

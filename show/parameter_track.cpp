@@ -34,7 +34,8 @@ void write_parameter(nlohmann::json& parameters, const nlohmann::json::json_poin
   const std::string where = pointer.to_string();
   if (pointer.empty()) throw std::invalid_argument("the pointer \"\" names the whole parameter set, not one parameter");
   std::vector<std::string> tokens;
-  for (nlohmann::json::json_pointer p = pointer; !p.empty(); p = p.parent_pointer()) tokens.insert(tokens.begin(), p.back());
+  for (nlohmann::json::json_pointer p = pointer; !p.empty(); p = p.parent_pointer())
+    tokens.insert(tokens.begin(), p.back());
   nlohmann::json* node = &parameters;
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     const std::string& token = tokens[i];
@@ -59,19 +60,21 @@ void write_parameter(nlohmann::json& parameters, const nlohmann::json::json_poin
       const std::size_t index = array_index(token, node->size(), where);
       if (last) {
         if (index < node->size()) {
-          if (value.is_null()) node->erase(index);
-          else (*node)[index] = std::move(value);
+          if (value.is_null())
+            node->erase(index);
+          else
+            (*node)[index] = std::move(value);
         } else if (index == node->size() && !value.is_null()) {
           node->push_back(std::move(value));
         } else if (!value.is_null()) {
-          throw std::invalid_argument(cat(where, ": index ", token, " is past the end of an array of ", node->size(),
-                                          " elements"));
+          throw std::invalid_argument(
+              cat(where, ": index ", token, " is past the end of an array of ", node->size(), " elements"));
         }
         return;
       }
       if (index >= node->size())
-        throw std::invalid_argument(cat(where, ": index ", token, " is past the end of an array of ", node->size(),
-                                        " elements"));
+        throw std::invalid_argument(
+            cat(where, ": index ", token, " is past the end of an array of ", node->size(), " elements"));
       node = &(*node)[index];
     } else {
       throw std::invalid_argument(cat(where, ": \"", token, "\" cannot be looked up in a ", node->type_name(),
@@ -106,8 +109,10 @@ ParameterTrack::ParameterTrack(nlohmann::json::json_pointer pointer, std::option
     times.push_back(key.t_s);
     if (step_) values.push_back(key.value.get<double>());
   }
-  if (step_) curve_.emplace(times, values);
-  else (void)MonotoneCubic(times, std::vector<double>(times.size(), 0.0));  // checks the times
+  if (step_)
+    curve_.emplace(times, values);
+  else
+    (void)MonotoneCubic(times, std::vector<double>(times.size(), 0.0));  // checks the times
 }
 
 double ParameterTrack::raw_value(double t_s) const {

@@ -46,10 +46,12 @@ double parse_number(std::string_view line, std::string_view text) {
 
 }  // namespace
 
-PlaybackClock::PlaybackClock(double duration_s, double fps, bool loop) : duration_s_(duration_s), fps_(fps), loop_(loop) {
+PlaybackClock::PlaybackClock(double duration_s, double fps, bool loop)
+    : duration_s_(duration_s), fps_(fps), loop_(loop) {
   if (!(std::isfinite(duration_s) && duration_s >= 0.0))
     throw std::invalid_argument(cat("PlaybackClock: duration ", duration_s, " s must be finite and >= 0"));
-  if (!(fps > 0.0 && fps <= 1000.0)) throw std::invalid_argument(cat("PlaybackClock: fps ", fps, " must be in (0, 1000]"));
+  if (!(fps > 0.0 && fps <= 1000.0))
+    throw std::invalid_argument(cat("PlaybackClock: fps ", fps, " must be in (0, 1000]"));
 }
 
 double PlaybackClock::next_frame_time_s() {
@@ -58,8 +60,10 @@ double PlaybackClock::next_frame_time_s() {
   const double end = rate_ > 0.0 ? duration_s_ : 0.0;
   if (t == end) {
     // This frame is the last of a pass: start over, or stay and report it.
-    if (loop_) time_s_ = rate_ > 0.0 ? 0.0 : duration_s_;
-    else finished_ = true;
+    if (loop_)
+      time_s_ = rate_ > 0.0 ? 0.0 : duration_s_;
+    else
+      finished_ = true;
     return t;
   }
   // Advance; the end itself is always shown (never stepped over).
@@ -105,8 +109,10 @@ bool PlaybackClock::finished() const { return finished_; }
 std::string PlaybackClock::status() const {
   char text[160];
   std::snprintf(text, sizeof text, "%s at %.3f s of %.3f s, rate %g, loop %s",
-                finished_ ? "finished" : playing_ ? "playing" : "paused", time_s_, duration_s_, rate_,
-                loop_ ? "on" : "off");
+                finished_  ? "finished"
+                : playing_ ? "playing"
+                           : "paused",
+                time_s_, duration_s_, rate_, loop_ ? "on" : "off");
   return text;
 }
 
@@ -126,8 +132,10 @@ std::string PlaybackClock::apply_command(std::string_view line) {
     pause();
   } else if (command == "toggle") {
     expect(0);
-    if (playing_ && !finished_) pause();
-    else play();
+    if (playing_ && !finished_)
+      pause();
+    else
+      play();
   } else if (command == "seek") {
     expect(1);
     seek(parse_number(line, w[1]));
@@ -138,9 +146,12 @@ std::string PlaybackClock::apply_command(std::string_view line) {
     set_rate(rate);
   } else if (command == "loop") {
     expect(1);
-    if (w[1] == "on") set_loop(true);
-    else if (w[1] == "off") set_loop(false);
-    else usage(line, "loop takes \"on\" or \"off\"");
+    if (w[1] == "on")
+      set_loop(true);
+    else if (w[1] == "off")
+      set_loop(false);
+    else
+      usage(line, "loop takes \"on\" or \"off\"");
   } else if (command == "status") {
     expect(0);
   } else {

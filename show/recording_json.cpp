@@ -6,10 +6,10 @@
 #include <glm/geometric.hpp>
 
 #include "core/json_reader.h"
-#include "core/strings.h"
 #include "core/sha256.h"
-#include "scene/scene.h"
+#include "core/strings.h"
 #include "core/units.h"
+#include "scene/scene.h"
 
 namespace zenith::show {
 namespace {
@@ -55,19 +55,18 @@ json frame_to_json(const scene::FrameDescription& s) {
                            {"effective_from_frame", ref.effective_from_frame}});
   const glm::dquat& q = s.camera_orientation;
   json frame = {{"frame", s.frame},
-          {"show_time_s", s.show_time_s},
-          {"camera_position_m", vec3_json(s.camera_position_m)},
-          {"camera_orientation", json::array({q.w, q.x, q.y, q.z})},
-          {"exposure", s.exposure},
-          {"sun_direction", vec3_json(s.sun_direction)},
-          {"sun_angular_radius_rad", s.sun_angular_radius_rad},
-          {"sun_irradiance_W_m2_nm", s.sun_irradiance_W_m2_nm},
-          {"atmospheres", atmospheres},
-          {"render_flags", s.render_flags}};
+                {"show_time_s", s.show_time_s},
+                {"camera_position_m", vec3_json(s.camera_position_m)},
+                {"camera_orientation", json::array({q.w, q.x, q.y, q.z})},
+                {"exposure", s.exposure},
+                {"sun_direction", vec3_json(s.sun_direction)},
+                {"sun_angular_radius_rad", s.sun_angular_radius_rad},
+                {"sun_irradiance_W_m2_nm", s.sun_irradiance_W_m2_nm},
+                {"atmospheres", atmospheres},
+                {"render_flags", s.render_flags}};
   // The operator's fade (docs/operator.md, "Fades"), only while it shows:
   // frames of the picture alone read as before fades existed.
-  if (s.fade != scene::FadeState{})
-    frame["fade"] = {{"level", s.fade.level}, {"colour", vec3_json(s.fade.colour)}};
+  if (s.fade != scene::FadeState{}) frame["fade"] = {{"level", s.fade.level}, {"colour", vec3_json(s.fade.colour)}};
   // The sky by date (the night sky's own struct): only frames of a scene with a sky clock.
   if (s.sky.has_time)
     frame["sky"] = {{"utc_jd", json::array({s.sky.utc_jd1, s.sky.utc_jd2})},
@@ -107,13 +106,13 @@ void check_recordable(const scene::FrameDescription& s) {
 }
 
 scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& scene, const std::string& file,
-                                    const std::string& pointer) {
+                                        const std::string& pointer) {
   JsonReader r(frame, file, pointer);
-  config::reject_unknown_keys(r, frame,
-                              {"frame", "show_time_s", "camera_position_m", "camera_orientation", "exposure",
-                               "sun_direction", "sun_angular_radius_rad", "sun_irradiance_W_m2_nm", "atmospheres",
-                               "render_flags", "fade", "sky"},
-                              "docs/shows.md");
+  config::reject_unknown_keys(
+      r, frame,
+      {"frame", "show_time_s", "camera_position_m", "camera_orientation", "exposure", "sun_direction",
+       "sun_angular_radius_rad", "sun_irradiance_W_m2_nm", "atmospheres", "render_flags", "fade", "sky"},
+      "docs/shows.md");
   scene::FrameDescription s;
   s.frame = unsigned_integer(r, "frame", std::uint64_t{1} << 53);
   s.show_time_s = r.number("show_time_s", 0.0, kMaxShowTime_s, "s");
@@ -122,8 +121,8 @@ scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& s
   const std::vector<double> q = numbers(r, "camera_orientation", 4, "[w, x, y, z] (a unit quaternion)");
   s.camera_orientation = glm::dquat(q[0], q[1], q[2], q[3]);
   if (!(std::abs(glm::length(s.camera_orientation) - 1.0) <= scene::kUnitTolerance))
-    r.fail("camera_orientation", cat("= ", brief(r.raw("camera_orientation")), ": must be a unit quaternion (|q| - 1 within ",
-                                     scene::kUnitTolerance, ")"));
+    r.fail("camera_orientation", cat("= ", brief(r.raw("camera_orientation")),
+                                     ": must be a unit quaternion (|q| - 1 within ", scene::kUnitTolerance, ")"));
   s.exposure = r.number("exposure", 0.0, scene::kMaxExposure);
   if (!(s.exposure > 0.0)) r.fail("exposure", cat("= ", brief(r.raw("exposure")), ": must be in (0, 1e+06]"));
   const std::vector<double> d = numbers(r, "sun_direction", 3, "[x, y, z] (a unit vector)");
@@ -173,7 +172,8 @@ scene::FrameDescription frame_from_json(const json& frame, const scene::Scene& s
     config::reject_unknown_keys(k, r.raw("sky"), {"utc_jd", "star_catalogue"}, "docs/shows.md");
     const std::vector<double> jd = numbers(k, "utc_jd", 2, "[day1, day2] (a two-part UTC Julian date)");
     if (!(jd[0] + jd[1] >= 2436934.5 && jd[0] + jd[1] <= 2488069.5))
-      k.fail("utc_jd", cat("= ", brief(k.raw("utc_jd")), ": must be a date of 1960-2100 (Julian date 2436934.5-2488069.5)"));
+      k.fail("utc_jd",
+             cat("= ", brief(k.raw("utc_jd")), ": must be a date of 1960-2100 (Julian date 2436934.5-2488069.5)"));
     s.sky.has_time = true;
     s.sky.utc_jd1 = jd[0];
     s.sky.utc_jd2 = jd[1];

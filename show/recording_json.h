@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/frame_description.h"
-#include "show/show.h"
 #include "scene/scene.h"
+#include "show/show.h"
 
 namespace zenith::show {
 
@@ -18,7 +18,7 @@ nlohmann::json frame_to_json(const scene::FrameDescription& state);
 /// Reads and checks one recorded frame at `pointer` of `file` against `scene`
 /// (wavelength count, bodies with an atmosphere). Throws ConfigError.
 scene::FrameDescription frame_from_json(const nlohmann::json& frame, const scene::Scene& scene, const std::string& file,
-                                    const std::string& pointer);
+                                        const std::string& pointer);
 
 nlohmann::json version_to_json(const AtmosphereVersion& version);
 

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/json_reader.h"
-#include "core/strings.h"
-#include "core/sha256.h"
 #include "atmosphere/model_hash.h"
+#include "core/json_reader.h"
+#include "core/sha256.h"
+#include "core/strings.h"
 #include "scene/frame_scene.h"
 #include "show/show_impl.h"
 
@@ -128,7 +128,8 @@ double Show::frame_rate_hz() const { return impl_->frame_rate_hz; }
 
 std::uint64_t Show::frame_count(double fps) const {
   if (impl_->kind == Kind::recording) return impl_->frames.size();
-  if (!(std::isfinite(fps) && fps > 0.0)) throw std::invalid_argument(cat("Show::frame_count: fps = ", fps, " must be > 0"));
+  if (!(std::isfinite(fps) && fps > 0.0))
+    throw std::invalid_argument(cat("Show::frame_count: fps = ", fps, " must be > 0"));
   return static_cast<std::uint64_t>(std::floor(impl_->duration_s * fps + 1e-9)) + 1;
 }
 
@@ -138,7 +139,8 @@ double Show::frame_time_s(std::uint64_t index, double fps) const {
       throw std::out_of_range(cat("Show::frame_time_s: frame ", index, " of a recording of ", impl_->frames.size()));
     return static_cast<double>(index) / impl_->frame_rate_hz;
   }
-  if (!(std::isfinite(fps) && fps > 0.0)) throw std::invalid_argument(cat("Show::frame_time_s: fps = ", fps, " must be > 0"));
+  if (!(std::isfinite(fps) && fps > 0.0))
+    throw std::invalid_argument(cat("Show::frame_time_s: fps = ", fps, " must be > 0"));
   return static_cast<double>(index) / fps;
 }
 

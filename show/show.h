@@ -39,7 +39,7 @@ inline constexpr int kShowFormatVersion = 1;
 struct AtmosphereVersion {
   std::string body;
   nlohmann::json parameters;
-  scene::TableHash table_hash{};  ///< atmosphere::lookup_table_hash of the resolved model, raw bytes
+  scene::TableHash table_hash{};        ///< atmosphere::lookup_table_hash of the resolved model, raw bytes
   atmosphere::LoadedAtmosphere loaded;  ///< the resolved atmosphere
 };
 

@@ -31,8 +31,8 @@ struct TimeTrack {
 /// The parameter tracks of one body's atmosphere.
 struct AtmosphereTracks {
   std::string body;
-  std::size_t entry = 0;     ///< index in the show file's "atmospheres" (for messages)
-  nlohmann::json base;       ///< the scene's parameters for this body
+  std::size_t entry = 0;  ///< index in the show file's "atmospheres" (for messages)
+  nlohmann::json base;    ///< the scene's parameters for this body
   std::vector<ParameterTrack> tracks;
 
   /// The body's parameters at t: `base` with every track applied.

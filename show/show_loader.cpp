@@ -6,27 +6,27 @@
 #include <set>
 #include <sstream>
 
-#include <glm/geometric.hpp>
 #include <spdlog/spdlog.h>
+#include <glm/geometric.hpp>
 
-#include "core/json_reader.h"
-#include "core/strings.h"
-#include "core/sha256.h"
 #include "astro/star_catalogue.h"
+#include "core/json_reader.h"
+#include "core/sha256.h"
+#include "core/strings.h"
+#include "core/units.h"
 #include "scene/scene.h"
+#include "scene/scene_loader.h"
 #include "show/recording_json.h"
 #include "show/show.h"
 #include "show/show_impl.h"
-#include "scene/scene_loader.h"
-#include "core/units.h"
 
 namespace zenith::show {
 namespace {
 
 using config::brief;
 using core::cat;
-using scene::kMaxExposure;
 using nlohmann::json;
+using scene::kMaxExposure;
 namespace fs = std::filesystem;
 
 constexpr double kMaxKeyTime_s = 86400.0;  // a day
@@ -89,8 +89,8 @@ const json& track_array(JsonReader& r, const std::string& key, const char* form)
 double key_time(JsonReader& key, double previous_s) {
   const double t = key.number("t_s", 0.0, kMaxKeyTime_s, "s");
   if (!(t > previous_s))
-    key.fail("t_s", cat("= ", brief(key.raw("t_s")), ": keys must be strictly increasing in t_s (the previous key is at ",
-                        previous_s, " s)"));
+    key.fail("t_s", cat("= ", brief(key.raw("t_s")),
+                        ": keys must be strictly increasing in t_s (the previous key is at ", previous_s, " s)"));
   return t;
 }
 
@@ -161,8 +161,10 @@ CameraTrack read_camera_track(JsonReader& root, const scene::Scene& scene) {
                                            scene::direction_from_latitude_longitude(b.latitude_rad, b.longitude_rad));
     if (angle > kMaxSurfaceKeyAngle_deg * kDeg)
       throw ConfigError(root.file(), cat("/camera/", i, "/surface"),
-                        cat("is ", angle / kDeg, " deg around the body from the previous key; consecutive surface keys "
-                            "must be at most ", kMaxSurfaceKeyAngle_deg, " deg apart (add keys in between)"));
+                        cat("is ", angle / kDeg,
+                            " deg around the body from the previous key; consecutive surface keys "
+                            "must be at most ",
+                            kMaxSurfaceKeyAngle_deg, " deg apart (add keys in between)"));
   }
   CameraTrack track(out, scene.bodies);
   check_clearance(track, scene, root.file());
@@ -177,8 +179,9 @@ scene::CameraPlacement camera_at(const std::optional<CameraTrack>& camera, const
     placement.camera.position_m = camera->position_m(t_s);
     placement.camera.orientation = camera->orientation(t_s);
   }
-  placement.reference_body = camera && camera->surface_body() ? *camera->surface_body()
-                                                               : scene::nearest_body(scene.bodies, placement.camera.position_m);
+  placement.reference_body = camera && camera->surface_body()
+                                 ? *camera->surface_body()
+                                 : scene::nearest_body(scene.bodies, placement.camera.position_m);
   return placement;
 }
 
@@ -196,8 +199,10 @@ SunTrack read_sun_track(JsonReader& root, const scene::Scene& scene, const std::
           const double angle = angle_between_rad(earlier.back().sun.direction, k.sun.direction);
           if (angle >= kMaxSunKeyAngle_deg * kDeg)
             throw ConfigError(root.file(), pointer,
-                              cat("the sun is ", angle / kDeg, " deg from the previous key's; consecutive sun keys "
-                                  "must be less than ", kMaxSunKeyAngle_deg, " deg apart (add keys in between)"));
+                              cat("the sun is ", angle / kDeg,
+                                  " deg from the previous key's; consecutive sun keys "
+                                  "must be less than ",
+                                  kMaxSunKeyAngle_deg, " deg apart (add keys in between)"));
         }
         return k;
       }));
@@ -227,7 +232,8 @@ bool overlaps(const json::json_pointer& a, const json::json_pointer& b) {
 }
 
 ParameterTrack read_parameter_track(const json& track, const std::string& pointer, const std::string& file,
-                                    const json& base, const std::string& body, const std::vector<ParameterTrack>& earlier) {
+                                    const json& base, const std::string& body,
+                                    const std::vector<ParameterTrack>& earlier) {
   JsonReader r(track, file, pointer);
   allow(r, track, {"parameter", "step", "keys"});
   const std::string text = r.string("parameter");
@@ -236,8 +242,9 @@ ParameterTrack read_parameter_track(const json& track, const std::string& pointe
     if (!text.starts_with("/")) throw std::invalid_argument("must start with /");
     parameter = json::json_pointer(text);
   } catch (const std::exception&) {
-    r.fail("parameter", cat("= \"", text, "\": must be a JSON pointer into the atmosphere's parameters, such as "
-                                          "\"/aerosol/scattering/turbidity\""));
+    r.fail("parameter", cat("= \"", text,
+                            "\": must be a JSON pointer into the atmosphere's parameters, such as "
+                            "\"/aerosol/scattering/turbidity\""));
   }
   if (!base.contains(parameter)) {
     std::string top;
@@ -259,7 +266,8 @@ ParameterTrack read_parameter_track(const json& track, const std::string& pointe
       r.fail("step", cat("= ", brief(s), ": must be a number > 0 (the values are rounded to multiples of it)"));
     step = s.get<double>();
   } else if (r.has("step")) {
-    r.fail("step", "applies to numeric tracks only (this track's values are not numbers: they are held from key to key)");
+    r.fail("step",
+           "applies to numeric tracks only (this track's values are not numbers: they are held from key to key)");
   }
   std::vector<ParameterKey> out;
   double previous = -1.0;
@@ -270,9 +278,10 @@ ParameterTrack read_parameter_track(const json& track, const std::string& pointe
     k.t_s = previous = key_time(key, previous);
     k.value = key.raw("value");
     if (k.value.is_number() != numeric)
-      key.fail("value", cat("= ", brief(k.value), numeric ? ": must be a number, as key 0's value is (a numeric track)"
-                                                          : ": must not be a number, as key 0's value is not (a held "
-                                                            "track; give numbers in a track with a step)"));
+      key.fail("value", cat("= ", brief(k.value),
+                            numeric ? ": must be a number, as key 0's value is (a numeric track)"
+                                    : ": must not be a number, as key 0's value is not (a held "
+                                      "track; give numbers in a track with a step)"));
     if (numeric && !(std::abs(k.value.get<double>() / *step) < 9e15))
       key.fail("value", cat("= ", brief(k.value), ": is too large for the step ", *step));
     key.finish();
@@ -299,8 +308,9 @@ std::vector<AtmosphereTracks> read_atmosphere_tracks(JsonReader& root, const sce
     if (std::find(with_atmosphere.begin(), with_atmosphere.end(), body.body) == with_atmosphere.end()) {
       std::string names;
       for (const std::string& n : with_atmosphere) names += cat(names.empty() ? "" : ", ", '"', n, '"');
-      r.fail("body", cat("= \"", body.body, "\": the scene has no body of that name with an atmosphere (those with one: ",
-                         names.empty() ? std::string("none") : names, ")"));
+      r.fail("body",
+             cat("= \"", body.body, "\": the scene has no body of that name with an atmosphere (those with one: ",
+                 names.empty() ? std::string("none") : names, ")"));
     }
     for (const AtmosphereTracks& other : out)
       if (other.body == body.body)
@@ -346,10 +356,12 @@ void read_recording(JsonReader& root, Show::Impl& show) {
       v.fail("table_hash", cat("= ", brief(v.raw("table_hash")), ": must be 64 hexadecimal digits"));
     }
     version.parameters = v.raw("parameters");
-    if (!version.parameters.is_object()) v.fail("parameters", cat("must be an object, got ", brief(version.parameters)));
+    if (!version.parameters.is_object())
+      v.fail("parameters", cat("must be an object, got ", brief(version.parameters)));
     try {
-      version.loaded = atmosphere::resolve_atmosphere(version.parameters, cat(root.file(), "#", v.key_path("parameters")),
-                                                      atmosphere::LoadOptions{show.scene.wavelengths_nm});
+      version.loaded =
+          atmosphere::resolve_atmosphere(version.parameters, cat(root.file(), "#", v.key_path("parameters")),
+                                         atmosphere::LoadOptions{show.scene.wavelengths_nm});
     } catch (const ConfigError& e) {
       v.fail("parameters", cat("do not resolve: ", e.what()));
     }
@@ -369,7 +381,8 @@ void read_recording(JsonReader& root, Show::Impl& show) {
     r.fail("frames", cat("= ", brief(frames), ": must be a non-empty array of frame states"));
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const std::string pointer = r.key_path(cat("frames/", i));
-    if (!frames[i].is_object()) throw ConfigError(root.file(), pointer, cat("must be an object, got ", brief(frames[i])));
+    if (!frames[i].is_object())
+      throw ConfigError(root.file(), pointer, cat("must be an object, got ", brief(frames[i])));
     scene::FrameDescription frame = frame_from_json(frames[i], show.scene, root.file(), pointer);
     for (std::size_t a = 0; a < frame.atmospheres.size(); ++a) {
       const auto version = show.versions.find(frame.atmospheres[a].table_hash);
@@ -377,11 +390,13 @@ void read_recording(JsonReader& root, Show::Impl& show) {
       const bool listed = std::find(show.recorded_versions.begin(), show.recorded_versions.end(),
                                     frame.atmospheres[a].table_hash) != show.recorded_versions.end();
       if (!listed)
-        throw ConfigError(root.file(), key, cat("= \"", core::to_hex(frame.atmospheres[a].table_hash),
-                                                "\": not among the recording's /recording/versions"));
+        throw ConfigError(root.file(), key,
+                          cat("= \"", core::to_hex(frame.atmospheres[a].table_hash),
+                              "\": not among the recording's /recording/versions"));
       if (version->second.body != frame.atmospheres[a].body_name)
-        throw ConfigError(root.file(), key, cat("is the version of body \"", version->second.body, "\", not of \"",
-                                                frame.atmospheres[a].body_name, "\""));
+        throw ConfigError(root.file(), key,
+                          cat("is the version of body \"", version->second.body, "\", not of \"",
+                              frame.atmospheres[a].body_name, "\""));
     }
     show.frames.push_back(std::move(frame));
   }

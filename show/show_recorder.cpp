@@ -7,8 +7,8 @@
 #include <spdlog/spdlog.h>
 
 #include "core/json_reader.h"
-#include "core/strings.h"
 #include "core/sha256.h"
+#include "core/strings.h"
 #include "show/recording_json.h"
 #include "show/show.h"
 
@@ -71,20 +71,20 @@ void ShowRecorder::record(const scene::FrameDescription& state) {
   }
   for (const scene::AtmosphereTableRef& ref : state.atmospheres)
     if (!impl_->versions.contains(ref.table_hash))
-      throw std::invalid_argument(cat("ShowRecorder: frame ", state.frame, " uses table ",
-                                      core::to_hex(ref.table_hash), " of body \"", ref.body_name,
-                                      "\", which was not added (add_version)"));
+      throw std::invalid_argument(cat("ShowRecorder: frame ", state.frame, " uses table ", core::to_hex(ref.table_hash),
+                                      " of body \"", ref.body_name, "\", which was not added (add_version)"));
   impl_->frames.push_back(state);
 }
 
 std::size_t ShowRecorder::frames() const { return impl_->frames.size(); }
 
 fs::path ShowRecorder::finish() {
-  if (impl_->frames.empty()) throw std::runtime_error(cat("show recording ", impl_->path.string(), ": no frames recorded"));
+  if (impl_->frames.empty())
+    throw std::runtime_error(cat("show recording ", impl_->path.string(), ": no frames recorded"));
   json header = {{"zenith_show", kShowFormatVersion},
                  {"name", impl_->name},
-                 {"description", cat("Recorded live session: ", impl_->frames.size(), " frames at ",
-                                     impl_->frame_rate_hz, " Hz.")},
+                 {"description",
+                  cat("Recorded live session: ", impl_->frames.size(), " frames at ", impl_->frame_rate_hz, " Hz.")},
                  {"scene", impl_->scene_text},
                  {"loop", false}};
   json versions = json::array();
@@ -94,8 +94,8 @@ fs::path ShowRecorder::finish() {
   std::string text = header.dump(2);
   text.pop_back();  // the closing brace; the recording follows
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  text += cat(",\n  \"recording\": {\n    \"fps\": ", json(impl_->frame_rate_hz).dump(), ",\n    \"versions\": ",
-              versions.dump(), ",\n    \"frames\": [\n");
+  text += cat(",\n  \"recording\": {\n    \"fps\": ", json(impl_->frame_rate_hz).dump(),
+              ",\n    \"versions\": ", versions.dump(), ",\n    \"frames\": [\n");
   for (std::size_t i = 0; i < impl_->frames.size(); ++i)
     text += cat("      ", frame_to_json(impl_->frames[i]).dump(), i + 1 < impl_->frames.size() ? ",\n" : "\n");
   text += "    ]\n  }\n}\n";
@@ -111,8 +111,9 @@ fs::path ShowRecorder::finish() {
   }
   std::error_code ec;
   fs::rename(partial, impl_->path, ec);
-  if (ec) throw std::runtime_error(cat("show recording: cannot rename ", partial.string(), " to ", impl_->path.string(),
-                                       ": ", ec.message()));
+  if (ec)
+    throw std::runtime_error(
+        cat("show recording: cannot rename ", partial.string(), " to ", impl_->path.string(), ": ", ec.message()));
   impl_->finished = true;
   return impl_->path;
 }

@@ -66,9 +66,9 @@ scene::Sun SunTrack::at(double t_s) const {
     // slerp(a, b, f) = [sin((1 − f) θ) a + sin(f θ) b] / sin θ, θ the arc.
     const glm::dvec3& a = directions_[i];
     const glm::dvec3& b = directions_[i + 1];
-    sun.direction = arc > 1e-12 ? glm::normalize((std::sin((1.0 - along) * arc) * a + std::sin(along * arc) * b) /
-                                                 std::sin(arc))
-                                : a;
+    sun.direction =
+        arc > 1e-12 ? glm::normalize((std::sin((1.0 - along) * arc) * a + std::sin(along * arc) * b) / std::sin(arc))
+                    : a;
   }
   sun.angular_radius_rad = angular_radius_rad_(t_s);
   for (const MonotoneCubic& irradiance : irradiance_W_m2_nm_) sun.irradiance_W_m2_nm.push_back(irradiance(t_s));

@@ -13,8 +13,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "show/monotone_cubic.h"
 #include "scene/scene.h"
+#include "show/monotone_cubic.h"
 
 namespace zenith::show {
 

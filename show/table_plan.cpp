@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "core/json_reader.h"
-#include "core/strings.h"
 #include "core/sha256.h"
+#include "core/strings.h"
 
 namespace zenith::show {
 namespace {
@@ -18,7 +18,8 @@ using core::cat;
 /// per wavelength each (atmosphere/lut/lookup_tables.h).
 std::uint64_t table_set_bytes(const atmosphere::lut::TableSizes& s, std::size_t channels) {
   const std::uint64_t texels = std::uint64_t{s.transmittance_mu} * s.transmittance_r +
-                               std::uint64_t{s.irradiance_mu_s} * s.irradiance_r + 3 * std::uint64_t{s.scattering_texels()};
+                               std::uint64_t{s.irradiance_mu_s} * s.irradiance_r +
+                               3 * std::uint64_t{s.scattering_texels()};
   return texels * channels * sizeof(float);
 }
 
@@ -28,8 +29,10 @@ void differences(const nlohmann::json& a, const nlohmann::json& b, const std::st
   if (a.is_object() && b.is_object()) {
     for (const auto& [key, value] : a.items()) {
       const std::string child = cat(pointer, "/", key);
-      if (!b.contains(key)) out.push_back(cat(child, " = ", value.dump()));
-      else differences(value, b.at(key), child, out);
+      if (!b.contains(key))
+        out.push_back(cat(child, " = ", value.dump()));
+      else
+        differences(value, b.at(key), child, out);
     }
     for (const auto& [key, value] : b.items())
       if (!a.contains(key)) out.push_back(cat(pointer, "/", key, " removed"));

@@ -6,9 +6,9 @@
 #include <mutex>
 #include <vector>
 
-#include "core/strings.h"
-#include "core/parallel_for.h"
 #include "atmosphere/reference/geometry.h"
+#include "core/parallel_for.h"
+#include "core/strings.h"
 #include "core/units.h"
 
 namespace zenith::stress {
@@ -19,10 +19,10 @@ constexpr std::size_t kChunk = 2048;  ///< configurations per work item
 
 std::string describe(const std::string& label, const Configuration& c, double ground_radius_m, double epsilon_rad) {
   const double r = atmosphere::length(c.camera_m);
-  const double sun_zenith_deg = std::acos(std::clamp(atmosphere::dot(c.camera_m, c.sun) / r, -1.0, 1.0)) * 180.0 /
-                                core::kPi;
+  const double sun_zenith_deg =
+      std::acos(std::clamp(atmosphere::dot(c.camera_m, c.sun) / r, -1.0, 1.0)) * 180.0 / core::kPi;
   return core::cat(label, " altitude ", r - ground_radius_m, " m, sun zenith ", sun_zenith_deg, " deg, eps ",
-                     epsilon_rad, " rad");
+                   epsilon_rad, " rad");
 }
 
 }  // namespace

@@ -24,9 +24,9 @@
 #include <functional>
 #include <string>
 
+#include "atmosphere/lut/lookup_tables.h"
 #include "stress/stress_sampler.h"
 #include "stress/stress_statistics.h"
-#include "atmosphere/lut/lookup_tables.h"
 
 namespace zenith::stress {
 
@@ -34,9 +34,9 @@ struct CpuStressOptions {
   std::size_t random_samples = 0;  ///< after the sweep
   bool sweep = true;               ///< run StressSampler::sweep() first
   std::uint64_t seed = 1;
-  std::uint64_t stream = 0;        ///< distinguishes the models of one run
-  double floor_sr = 1e-6;          ///< absolute floor of relative differences [sr^-1 per unit solar irradiance]
-  unsigned threads = 0;            ///< 0: all cores
+  std::uint64_t stream = 0;  ///< distinguishes the models of one run
+  double floor_sr = 1e-6;    ///< absolute floor of relative differences [sr^-1 per unit solar irradiance]
+  unsigned threads = 0;      ///< 0: all cores
   /// Called with the number of configurations done so far (from worker threads, serialized).
   std::function<void(std::size_t done)> progress;
 };

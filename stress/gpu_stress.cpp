@@ -8,11 +8,11 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "stress/stress_geometry.h"
 #include "atmosphere/photometry.h"
+#include "core/units.h"
+#include "stress/stress_geometry.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
-#include "core/units.h"
 
 namespace zenith::stress {
 namespace {
@@ -34,8 +34,7 @@ glm::dquat look_rotation(const glm::dvec3& forward, const glm::dvec3& up) {
 
 std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std::string& label,
                                            const atmosphere::LoadedAtmosphere& atmosphere,
-                                           const atmosphere::lut::TableQueries& queries,
-                                           const GpuStressOptions& o) {
+                                           const atmosphere::lut::TableQueries& queries, const GpuStressOptions& o) {
   const atmosphere::AtmosphereModel& m = atmosphere.model;
   const double R = m.ground_radius_m, H = m.atmosphere_height_m();
   scene::Scene s;
@@ -52,7 +51,7 @@ std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std
   s.camera.exposure = 1.0;
 
   const Vec3 up{0.0, 0.0, 1.0};
-  const Vec3 east = tangent_at_azimuth(up, 0.0);         // the sun's azimuth
+  const Vec3 east = tangent_at_azimuth(up, 0.0);               // the sun's azimuth
   const Vec3 north = tangent_at_azimuth(up, 0.5 * core::kPi);  // the view's azimuth
   std::vector<GpuFrameResult> results;
   for (double altitude : {1.0, 0.5 * H, H + 1e6, kMaxCameraDistance_m - R}) {
@@ -76,8 +75,7 @@ std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std
           const Vec3 forward = horizon_direction(camera, north, R, 0.0);
           const Vec3 frame_up = atmosphere::normalize(atmosphere::cross(atmosphere::cross(forward, up), forward));
           s.camera.orientation = look_rotation(to_glm(forward), to_glm(frame_up));
-          const double half_deg =
-              outside ? std::max(0.25 * planet_angular_radius, 2e-7) / kDeg : 0.5;
+          const double half_deg = outside ? std::max(0.25 * planet_angular_radius, 2e-7) / kDeg : 0.5;
           const double half_width_deg = half_deg / 16.0;
           projection = std::make_unique<warp::PlanarProjection>(
               4, o.size_px, warp::PlanarFrustum{-half_width_deg, half_width_deg, -half_deg, half_deg});
@@ -98,16 +96,20 @@ std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std
         f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         for (float v : image) {
           ++f.values;
-          if (std::isnan(v)) ++f.nan;
-          else if (std::isinf(v)) ++f.inf;
-          else if (v < 0.0f) ++f.negative;
+          if (std::isnan(v))
+            ++f.nan;
+          else if (std::isinf(v))
+            ++f.inf;
+          else if (v < 0.0f)
+            ++f.negative;
         }
         const int w = projection->width(), h = projection->height();
         auto value = [&](int x, int y, std::size_t c) {
           return double(image[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * 3 + c]);
         };
         // Direct colour mapping: channel c is the radiance at wavelength c (longest first, as the model's).
-        const double floor = o.floor_sr * *std::min_element(s.sun.irradiance_W_m2_nm.begin(), s.sun.irradiance_W_m2_nm.end());
+        const double floor =
+            o.floor_sr * *std::min_element(s.sun.irradiance_W_m2_nm.begin(), s.sun.irradiance_W_m2_nm.end());
         if (horizon && !outside) {  // from space the frame's top is black space: a step of 1 by construction
           for (int y = 1; y < h; ++y)
             for (std::size_t c = 0; c < 3; ++c) {

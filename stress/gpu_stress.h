@@ -31,10 +31,10 @@ struct GpuFrameResult {
   std::string model, view;
   double altitude_m = 0.0, sun_zenith_deg = 0.0;
   std::size_t values = 0, nan = 0, inf = 0, negative = 0;
-  double max_row_jump = 0.0;  ///< horizon view: largest step between consecutive rows (relative)
-  int max_row_jump_row = -1;  ///< the lower row of that step
+  double max_row_jump = 0.0;        ///< horizon view: largest step between consecutive rows (relative)
+  int max_row_jump_row = -1;        ///< the lower row of that step
   double max_cpu_difference = 0.0;  ///< largest relative difference to the CPU query (sky pixels)
-  std::size_t compared = 0;          ///< pixels compared with the CPU
+  std::size_t compared = 0;         ///< pixels compared with the CPU
   double seconds = 0.0;
   std::size_t bad() const { return nan + inf + negative; }
 };

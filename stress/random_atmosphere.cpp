@@ -3,9 +3,9 @@
 #include <cmath>
 #include <string>
 
+#include "atmosphere/reference/random.h"
 #include "core/json_reader.h"
 #include "core/strings.h"
-#include "atmosphere/reference/random.h"
 
 namespace zenith::stress {
 namespace {
@@ -65,9 +65,10 @@ json random_atmosphere_parameters(std::uint64_t seed, std::uint64_t index) {
     j["mie"] = mie;
   }
   if (d.chance(0.3))
-    j["absorbers"] = json::array({{{"name", "random absorber"},
-                                   {"absorption_m1", d.spectral(1e-9, 1e-3, true)},
-                                   {"profile", {{"type", "exponential"}, {"scale_height_m", d.log_uniform(1.0, 1e6)}}}}});
+    j["absorbers"] =
+        json::array({{{"name", "random absorber"},
+                      {"absorption_m1", d.spectral(1e-9, 1e-3, true)},
+                      {"profile", {{"type", "exponential"}, {"scale_height_m", d.log_uniform(1.0, 1e6)}}}}});
   return j;
 }
 

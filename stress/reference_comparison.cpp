@@ -8,18 +8,18 @@
 #include <vector>
 
 #include "atmosphere/constants.h"
-#include "core/strings.h"
-#include "core/parallel_for.h"
 #include "atmosphere/reference/random.h"
 #include "atmosphere/reference/single_scattering.h"
+#include "core/parallel_for.h"
+#include "core/strings.h"
 #include "core/units.h"
 
 namespace zenith::stress {
 namespace {
 
 using atmosphere::Spectrum;
-using atmosphere::reference::Pcg32;
 using atmosphere::lut::kMaxChannels;
+using atmosphere::reference::Pcg32;
 using core::kPi;
 
 double log_uniform(Pcg32& rng, double lo, double hi) {
@@ -86,7 +86,9 @@ Configuration configuration_in_region(Region region, double R, double R_top, std
   double sun_zenith = 0.0;
   switch (region) {
     case Region::night: sun_zenith = kTwilightEndZenith_rad + rng.uniform() * (kPi - kTwilightEndZenith_rad); break;
-    case Region::twilight: sun_zenith = 0.5 * kPi + 1e-9 + rng.uniform() * (kTwilightEndZenith_rad - 0.5 * kPi - 2e-9); break;
+    case Region::twilight:
+      sun_zenith = 0.5 * kPi + 1e-9 + rng.uniform() * (kTwilightEndZenith_rad - 0.5 * kPi - 2e-9);
+      break;
     case Region::space: sun_zenith = std::acos(1.0 - 2.0 * rng.uniform()); break;
     default: sun_zenith = std::acos(std::max(1e-9, rng.uniform())); break;  // cos uniform in (0, 1]
   }
@@ -137,12 +139,12 @@ void compare_with_reference(const atmosphere::AtmosphereModel& model, const atmo
     const Spectrum exact = ref.atmosphere_radiance + ref.ground_radiance;
     const double r = atmosphere::length(c.camera_m);
     outcomes[k].error = relative_error(tables.values().data(), exact.values().data(), q.channels(), o.floor_sr);
-    outcomes[k].where = core::cat(
-        label, " altitude ", r - g.bottom_radius_m, " m, view offset from horizon ",
-        offset_from_horizon_rad(c.camera_m, c.view, g.bottom_radius_m), " rad, sun zenith ",
-        std::acos(std::clamp(atmosphere::dot(c.camera_m, c.sun) / r, -1.0, 1.0)) * 180.0 / kPi, " deg, L1 ",
-        exact[exact.size() / 2], " (tables ", tables[tables.size() / 2], ") sr^-1 at ",
-        model.wavelengths_nm[exact.size() / 2], " nm");
+    outcomes[k].where =
+        core::cat(label, " altitude ", r - g.bottom_radius_m, " m, view offset from horizon ",
+                  offset_from_horizon_rad(c.camera_m, c.view, g.bottom_radius_m), " rad, sun zenith ",
+                  std::acos(std::clamp(atmosphere::dot(c.camera_m, c.sun) / r, -1.0, 1.0)) * 180.0 / kPi, " deg, L1 ",
+                  exact[exact.size() / 2], " (tables ", tables[tables.size() / 2], ") sr^-1 at ",
+                  model.wavelengths_nm[exact.size() / 2], " nm");
     if (o.progress) {
       std::lock_guard lock(progress_mutex);
       o.progress(++done, total);

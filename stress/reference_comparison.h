@@ -31,10 +31,10 @@
 #include <functional>
 #include <string>
 
-#include "stress/stress_geometry.h"
-#include "stress/stress_statistics.h"
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
+#include "stress/stress_geometry.h"
+#include "stress/stress_statistics.h"
 
 namespace zenith::stress {
 

@@ -55,9 +55,9 @@ std::string gpu_csv(const std::vector<GpuFrameResult>& frames) {
   csv << "model,view,altitude_m,sun_zenith_deg,values,nan,inf,negative,max_row_jump,max_row_jump_row,"
          "cpu_compared,max_cpu_difference,seconds\n";
   for (const GpuFrameResult& f : frames)
-    csv << f.model << ',' << f.view << ',' << f.altitude_m << ',' << f.sun_zenith_deg << ',' << f.values << ','
-        << f.nan << ',' << f.inf << ',' << f.negative << ',' << f.max_row_jump << ',' << f.max_row_jump_row << ','
-        << f.compared << ',' << f.max_cpu_difference << ',' << f.seconds << '\n';
+    csv << f.model << ',' << f.view << ',' << f.altitude_m << ',' << f.sun_zenith_deg << ',' << f.values << ',' << f.nan
+        << ',' << f.inf << ',' << f.negative << ',' << f.max_row_jump << ',' << f.max_row_jump_row << ',' << f.compared
+        << ',' << f.max_cpu_difference << ',' << f.seconds << '\n';
   return csv.str();
 }
 
@@ -98,12 +98,14 @@ std::string summary_table(const std::vector<ModelResult>& models, const std::vec
     }
     out += fmt::format("GPU path: {} frames, {} values, NaN {}, Inf {}, negative {} ({:.1f} s)\n", frames.size(),
                        values, nan, inf, negative, seconds);
-    out += fmt::format("  largest row step in a horizon frame: {:.3g} ({} view, {}, altitude {:.4g} m, sun {} deg, row {})\n",
-                       worst_jump->max_row_jump, worst_jump->view, worst_jump->model, worst_jump->altitude_m,
-                       worst_jump->sun_zenith_deg, worst_jump->max_row_jump_row);
-    out += fmt::format("  largest GPU vs CPU difference (sky pixels): {:.3g} ({} view, {}, altitude {:.4g} m, sun {} deg)\n",
-                       worst_cpu->max_cpu_difference, worst_cpu->view, worst_cpu->model, worst_cpu->altitude_m,
-                       worst_cpu->sun_zenith_deg);
+    out += fmt::format(
+        "  largest row step in a horizon frame: {:.3g} ({} view, {}, altitude {:.4g} m, sun {} deg, row {})\n",
+        worst_jump->max_row_jump, worst_jump->view, worst_jump->model, worst_jump->altitude_m,
+        worst_jump->sun_zenith_deg, worst_jump->max_row_jump_row);
+    out += fmt::format(
+        "  largest GPU vs CPU difference (sky pixels): {:.3g} ({} view, {}, altitude {:.4g} m, sun {} deg)\n",
+        worst_cpu->max_cpu_difference, worst_cpu->view, worst_cpu->model, worst_cpu->altitude_m,
+        worst_cpu->sun_zenith_deg);
   }
   return out;
 }

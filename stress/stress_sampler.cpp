@@ -36,8 +36,8 @@ StressSampler::StressSampler(double ground_radius_m, double top_radius_m, std::u
 
 std::vector<StressSample> StressSampler::sweep() const {
   const double R = ground_radius_m_, H = top_radius_m_ - ground_radius_m_;
-  const double altitudes_m[] = {1.0, 10.0, std::min(1e3, 0.5 * H), H - 1.0, H, H + 1.0, H + 1e6, 1e9,
-                                kMaxCameraDistance_m - R};
+  const double altitudes_m[] = {1.0,     10.0, std::min(1e3, 0.5 * H),  H - 1.0, H, H + 1.0,
+                                H + 1e6, 1e9,  kMaxCameraDistance_m - R};
   const double offsets_rad[] = {0.0, 1e-6, -1e-6, 1e-3, -1e-3, 0.1, -0.1};
   const double sun_zeniths_deg[] = {0.0, 45.0, 89.0, 90.0, 91.0, 96.0, 102.0, 108.0, 120.0, 180.0};
   const double sun_azimuths_deg[] = {0.0, 90.0, 180.0};

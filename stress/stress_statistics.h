@@ -15,11 +15,11 @@ namespace zenith::stress {
 
 /// Counts of checked values and of the bad ones among them.
 struct ValueHealth {
-  std::size_t values = 0;    ///< values checked (one per wavelength per query)
+  std::size_t values = 0;  ///< values checked (one per wavelength per query)
   std::size_t nan = 0;
   std::size_t inf = 0;
-  std::size_t negative = 0;  ///< finite and < 0
-  std::size_t above_one = 0; ///< transmittances > 1 + 1e-12 (counted only where checked as transmittance)
+  std::size_t negative = 0;   ///< finite and < 0
+  std::size_t above_one = 0;  ///< transmittances > 1 + 1e-12 (counted only where checked as transmittance)
 
   /// Checks one value; `transmittance`: it must also be at most 1.
   void check(double value, bool transmittance = false);
@@ -67,10 +67,10 @@ struct LargestValue {
 
 /// What one region collected on the CPU path.
 struct RegionStatistics {
-  std::size_t samples = 0;       ///< configurations
-  ValueHealth health;            ///< every query of those configurations
-  LargestValue horizon_jump;     ///< relative jump |L(+ε) − L(−ε)| / max(L(+ε), L(−ε), floor)
-  ErrorDistribution reference;   ///< single scattering: tables vs exact quadrature
+  std::size_t samples = 0;      ///< configurations
+  ValueHealth health;           ///< every query of those configurations
+  LargestValue horizon_jump;    ///< relative jump |L(+ε) − L(−ε)| / max(L(+ε), L(−ε), floor)
+  ErrorDistribution reference;  ///< single scattering: tables vs exact quadrature
 
   void merge(const RegionStatistics& other);
 };

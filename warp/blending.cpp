@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "warp/blend_map.h"
 #include "core/files.h"
+#include "warp/blend_map.h"
 #include "warp/warped_projection.h"
 
 namespace zenith::warp {
@@ -36,9 +36,7 @@ void distance_transform_1d(const std::vector<double>& f, std::vector<double>& d,
   v[0] = 0;
   z[0] = -std::numeric_limits<double>::infinity();
   z[1] = std::numeric_limits<double>::infinity();
-  auto intersection = [&](int q, int p) {
-    return ((f[q] + double(q) * q) - (f[p] + double(p) * p)) / (2.0 * (q - p));
-  };
+  auto intersection = [&](int q, int p) { return ((f[q] + double(q) * q) - (f[p] + double(p) * p)) / (2.0 * (q - p)); };
   for (int q = 1; q < n; ++q) {
     double s = intersection(q, v[k]);
     while (s <= z[k]) {  // z[0] = −∞ stops this at k = 0
@@ -130,7 +128,8 @@ double AutoBlend::border_distance_px(std::size_t output, double x_px, double y_p
   if (o.ray_border_px.empty()) return rect;
   // Bilinear between pixel centres, clamped at the image's edge.
   const double fx = std::clamp(x_px - 0.5, 0.0, double(w - 1)), fy = std::clamp(y_px - 0.5, 0.0, double(h - 1));
-  const int x0 = std::min(static_cast<int>(fx), std::max(w - 2, 0)), y0 = std::min(static_cast<int>(fy), std::max(h - 2, 0));
+  const int x0 = std::min(static_cast<int>(fx), std::max(w - 2, 0)),
+            y0 = std::min(static_cast<int>(fy), std::max(h - 2, 0));
   const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
   const double tx = fx - x0, ty = fy - y0;
   auto at = [&](int x, int y) { return double(o.ray_border_px[static_cast<std::size_t>(y) * w + x]); };
@@ -158,7 +157,8 @@ double AutoBlend::raw_weight(std::size_t output, const glm::dvec3& direction) co
 
 double AutoBlend::weights(const glm::dvec3& direction, std::span<double> weights) const {
   if (weights.size() != outputs_.size())
-    throw std::invalid_argument(cat("AutoBlend::weights: ", weights.size(), " values for ", outputs_.size(), " outputs"));
+    throw std::invalid_argument(
+        cat("AutoBlend::weights: ", weights.size(), " values for ", outputs_.size(), " outputs"));
   double sum = 0.0;
   for (std::size_t j = 0; j < outputs_.size(); ++j) {
     weights[j] = raw_weight(j, direction);
@@ -212,7 +212,8 @@ BlendMask output_blend_mask(const ViewportConfig& config, std::size_t output_ind
   BlendMask mask;
   switch (oc.blend.mode) {
     case BlendMode::none:
-      mask = {oc.width_px, oc.height_px, std::vector<float>(static_cast<std::size_t>(oc.width_px) * oc.height_px, 1.0f)};
+      mask = {oc.width_px, oc.height_px,
+              std::vector<float>(static_cast<std::size_t>(oc.width_px) * oc.height_px, 1.0f)};
       break;
     case BlendMode::automatic: mask = compute_auto_blend(config, output_index); break;
     case BlendMode::file: mask = load_blend_mask(oc.blend.file, oc.blend.gamma, oc.width_px, oc.height_px); break;

@@ -51,8 +51,8 @@ json write_map_pair(const fs::path& dir, const std::string& stem, const std::str
     const std::string decode = linear ? "value = stored / 65535" : "value = (stored / 65535)^2.2";
     image::write_png_grey16(dir / file, width, height, warp::encode_map_16(values, gamma), gamma,
                             {{"zenith:map", kind}, {"zenith:encoding", encoding + ": " + decode}});
-    written.push_back({dir / file, fmt::format("{}, 16-bit grey PNG {} x {} px, {} ({})", kind, width, height,
-                                               encoding, decode)});
+    written.push_back(
+        {dir / file, fmt::format("{}, 16-bit grey PNG {} x {} px, {} ({})", kind, width, height, encoding, decode)});
     entries.push_back({{"file", file},
                        {"kind", kind},
                        {"format", "PNG, 16-bit greyscale"},
@@ -72,9 +72,10 @@ const warp::PlanarProjection& pinhole_of(const warp::OutputConfig& o) {
   if (const auto* warped = dynamic_cast<const warp::WarpedProjection*>(image)) image = &warped->base();
   const auto* planar = dynamic_cast<const warp::PlanarProjection*>(image);
   if (planar == nullptr)
-    throw std::invalid_argument("output '" + o.name + "': the MPCDI sl profile describes a pinhole projector (a "
-                                "frustum), and the output's projection is " + image->describe() +
-                                ": export it with the 2d profile");
+    throw std::invalid_argument("output '" + o.name +
+                                "': the MPCDI sl profile describes a pinhole projector (a "
+                                "frustum), and the output's projection is " +
+                                image->describe() + ": export it with the 2d profile");
   return *planar;
 }
 
@@ -104,17 +105,18 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
     const warp::ExportedWarpMap warp_map = warp::export_warp_map(o);
     const std::string warp_file = o.name + ".warp.pfm";
     write_file(dir / warp_file, warp::encode_pfm(warp_map.map, kWarpRowOrder));
-    written.push_back({dir / warp_file,
-                       fmt::format("warp, PFM {} x {} nodes (u, v, 0) at every pixel centre and corner, rows top "
-                                   "first, absolute, v down, NaN = no data; source {} x {} px",
-                                   warp_map.map.width, warp_map.map.height, warp_map.source_width_px,
-                                   warp_map.source_height_px)});
+    written.push_back(
+        {dir / warp_file,
+         fmt::format("warp, PFM {} x {} nodes (u, v, 0) at every pixel centre and corner, rows top "
+                     "first, absolute, v down, NaN = no data; source {} x {} px",
+                     warp_map.map.width, warp_map.map.height, warp_map.source_width_px, warp_map.source_height_px)});
     files.push_back({{"file", warp_file},
                      {"kind", "warp"},
                      {"format", "PFM, 3 channels (u, v, 0), binary32 little endian"},
                      {"size_px", {warp_map.map.width, warp_map.map.height}},
-                     {"nodes", "node (i, j) at the output's pixel position (i / 2, j / 2), row 0 at the top: the "
-                               "odd nodes are the pixel centres, the even ones the pixel corners"},
+                     {"nodes",
+                      "node (i, j) at the output's pixel position (i / 2, j / 2), row 0 at the top: the "
+                      "odd nodes are the pixel centres, the even ones the pixel corners"},
                      {"row_order", "top_to_bottom"},
                      {"v_direction", "down"},
                      {"values", "absolute"},
@@ -126,8 +128,8 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
     const warp::BlendMask mask = warp::output_blend_mask(config, index);
     for (json& entry : write_map_pair(dir, o.name + ".alpha", "blend mask", width, height, mask.alpha, written))
       files.push_back(std::move(entry));
-    for (json& entry : write_map_pair(dir, o.name + ".beta", "black-level map", width, height,
-                                      warp::black_level_map(o), written))
+    for (json& entry :
+         write_map_pair(dir, o.name + ".beta", "black-level map", width, height, warp::black_level_map(o), written))
       files.push_back(std::move(entry));
 
     // The MPCDI archive of the same files (the linear maps).
@@ -145,7 +147,8 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
     region.alpha_member = alpha_file;
     region.alpha_gamma_embedded = 1.0;
     region.beta_member = beta_file;
-    std::vector<std::pair<std::string, fs::path>> members = {{alpha_file, dir / alpha_file}, {beta_file, dir / beta_file}};
+    std::vector<std::pair<std::string, fs::path>> members = {{alpha_file, dir / alpha_file},
+                                                             {beta_file, dir / beta_file}};
     // sl: the pinhole's frustum exactly; a warp becomes the lens distortion map.
     const bool distortion = shader_lamps && o.warp.has_value();
     if (shader_lamps) {
@@ -160,19 +163,19 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
     for (const auto& member : members) member_names.push_back(member.first);
     if (shader_lamps) {
       const warp::PlanarFrustum& f = region.frustum;
-      written.push_back({dir / mpcdi_file,
-                         fmt::format("MPCDI sl profile, region '{}' {} x {} px: mpcdi.xml (frustum left {} right {} "
-                                     "down {} up {} yaw {} pitch {} roll {} degrees, coordinate frame at the origin "
-                                     "with the display's axes), {}{} (gammaEmbedded 1), {}",
-                                     o.name, region.width_px, region.height_px, f.left_deg, f.right_deg, f.down_deg,
-                                     f.up_deg, f.yaw_deg, f.pitch_deg, f.roll_deg,
-                                     distortion ? warp_file + " (lens distortion map), " : std::string(), alpha_file,
-                                     beta_file)});
+      written.push_back(
+          {dir / mpcdi_file,
+           fmt::format("MPCDI sl profile, region '{}' {} x {} px: mpcdi.xml (frustum left {} right {} "
+                       "down {} up {} yaw {} pitch {} roll {} degrees, coordinate frame at the origin "
+                       "with the display's axes), {}{} (gammaEmbedded 1), {}",
+                       o.name, region.width_px, region.height_px, f.left_deg, f.right_deg, f.down_deg, f.up_deg,
+                       f.yaw_deg, f.pitch_deg, f.roll_deg,
+                       distortion ? warp_file + " (lens distortion map), " : std::string(), alpha_file, beta_file)});
     } else {
-      written.push_back({dir / mpcdi_file, fmt::format("MPCDI 2d profile, region '{}' {} x {} px (the source): "
-                                                       "mpcdi.xml, {}, {} (gammaEmbedded 1), {}",
-                                                       o.name, region.width_px, region.height_px, warp_file,
-                                                       alpha_file, beta_file)});
+      written.push_back(
+          {dir / mpcdi_file, fmt::format("MPCDI 2d profile, region '{}' {} x {} px (the source): "
+                                         "mpcdi.xml, {}, {} (gammaEmbedded 1), {}",
+                                         o.name, region.width_px, region.height_px, warp_file, alpha_file, beta_file)});
     }
     files.push_back(
         {{"file", mpcdi_file},
@@ -194,10 +197,10 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
                        {"blend", {{"file", alpha_file}, {"gamma", 1.0}}},
                        {"black_level", o.black_level}};
     json pfm_output = base, mpcdi_output = base;
-    pfm_output["warp"] = {{"file", warp_file},        {"format", "pfm"},      {"row_order", "top_to_bottom"},
-                          {"v_direction", "down"},    {"values", "absolute"}, {"source", source}};
-    mpcdi_output["warp"] = {{"file", mpcdi_file}, {"format", "mpcdi"}, {"region", o.name},
-                            {"values", "absolute"}, {"source", source}};
+    pfm_output["warp"] = {{"file", warp_file},     {"format", "pfm"},      {"row_order", "top_to_bottom"},
+                          {"v_direction", "down"}, {"values", "absolute"}, {"source", source}};
+    mpcdi_output["warp"] = {
+        {"file", mpcdi_file}, {"format", "mpcdi"}, {"region", o.name}, {"values", "absolute"}, {"source", source}};
     if (shader_lamps) {  // the region gives the rays: its frustum and frame, its resolution the source
       mpcdi_output.erase("projection");
       mpcdi_output["warp"] = {{"file", mpcdi_file}, {"format", "mpcdi"}, {"region", o.name}};
@@ -226,15 +229,15 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
   written.push_back(
       {dir / "viewport-mpcdi.json", "viewport config of the exported outputs, warps read from the MPCDI archives"});
 
-  const json sidecar = {
-      {"zenith_calibration_export", 1},
-      {"viewport", config.source},
-      {"name", config.name},
-      {"output_stage", "P' = P * alpha * (1 - beta) + beta, P display-linear (a fraction of full white), then the "
-                       "display encoding (docs/viewports.md)"},
-      {"viewport_configs", {{"pfm", "viewport-pfm.json"}, {"mpcdi", "viewport-mpcdi.json"}}},
-      {"docs", "docs/warp-meshes.md, \"Exporting to warp engines and media servers\""},
-      {"outputs", std::move(sidecar_outputs)}};
+  const json sidecar = {{"zenith_calibration_export", 1},
+                        {"viewport", config.source},
+                        {"name", config.name},
+                        {"output_stage",
+                         "P' = P * alpha * (1 - beta) + beta, P display-linear (a fraction of full white), then the "
+                         "display encoding (docs/viewports.md)"},
+                        {"viewport_configs", {{"pfm", "viewport-pfm.json"}, {"mpcdi", "viewport-mpcdi.json"}}},
+                        {"docs", "docs/warp-meshes.md, \"Exporting to warp engines and media servers\""},
+                        {"outputs", std::move(sidecar_outputs)}};
   write_file(dir / "calibration.json", sidecar.dump(2) + "\n");
   written.push_back({dir / "calibration.json", "sidecar: every file, its size, encoding and conventions"});
   return written;

@@ -57,8 +57,7 @@ struct ExportedFile {
 /// written), and std::runtime_error naming the folder or file that cannot be
 /// created or written.
 std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
-                                             const std::vector<std::size_t>& indices,
-                                             const std::filesystem::path& dir,
+                                             const std::vector<std::size_t>& indices, const std::filesystem::path& dir,
                                              const CalibrationExportOptions& options = {});
 
 /// export_calibration() of the output named `output_name`, or of every output

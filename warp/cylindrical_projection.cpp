@@ -9,9 +9,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/units.h"
 #include "warp/orientation_angles.h"
 #include "warp/planar_projection.h"
-#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -52,8 +52,8 @@ GpuProjection cylindrical_gpu(const glm::dmat3& rotation, double tan_down, doubl
 /// CylindricalProjection's describe().
 std::string cylindrical_description(const CylindricalParameters& p, int width_px, int height_px) {
   std::ostringstream out;  // 6 significant digits: "73.7398°"
-  out << "cylindrical " << p.horizontal_fov_deg << "°×" << p.up_deg - p.down_deg << "° (down " << p.down_deg
-      << "° up " << p.up_deg << "°) " << width_px << "×" << height_px;
+  out << "cylindrical " << p.horizontal_fov_deg << "°×" << p.up_deg - p.down_deg << "° (down " << p.down_deg << "° up "
+      << p.up_deg << "°) " << width_px << "×" << height_px;
   if (p.yaw_deg != 0.0 || p.pitch_deg != 0.0 || p.roll_deg != 0.0)
     out << ", yaw " << p.yaw_deg << "° pitch " << p.pitch_deg << "° roll " << p.roll_deg << "°";
   return out.str();
@@ -92,7 +92,8 @@ CylindricalProjection::CylindricalProjection(int width_px, int height_px, const 
   half_turn_px_ = 0.5 * width_px * (360.0 / p.horizontal_fov_deg);
   // The same frame as a PlanarFrustum with these yaw, pitch and roll (the edge
   // angles do not enter the rotation).
-  rotation_ = PlanarProjection(1, 1, PlanarFrustum{-1.0, 1.0, -1.0, 1.0, p.yaw_deg, p.pitch_deg, p.roll_deg}).rotation();
+  rotation_ =
+      PlanarProjection(1, 1, PlanarFrustum{-1.0, 1.0, -1.0, 1.0, p.yaw_deg, p.pitch_deg, p.roll_deg}).rotation();
 
   set_closed_form(
       cylindrical_gpu(rotation_, tan_down_, tan_up_, rad_per_px_, tan_per_px_y_, half_turn_px_, width_px, height_px),

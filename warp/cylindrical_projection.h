@@ -36,9 +36,9 @@ struct CylindricalParameters {
   double up_deg = 45.0;     ///< angle of the top edge (y = 0) from the horizon, in (−89, 89)
   // Yaw, pitch and roll: each read in [−360, 360] and kept normalized (yaw,
   // roll in (−180, 180], pitch in [−90, 90]; warp/orientation_angles.h).
-  double yaw_deg = 0.0;     ///< positive turns forward right (toward +x), as PlanarFrustum
-  double pitch_deg = 0.0;   ///< positive tips forward up (toward +y), as PlanarFrustum
-  double roll_deg = 0.0;    ///< positive banks right, as PlanarFrustum
+  double yaw_deg = 0.0;    ///< positive turns forward right (toward +x), as PlanarFrustum
+  double pitch_deg = 0.0;  ///< positive tips forward up (toward +y), as PlanarFrustum
+  double roll_deg = 0.0;   ///< positive banks right, as PlanarFrustum
 };
 
 /// What gpu(), describe() and max_pixel_angle_rad() return, computed once when
@@ -80,9 +80,9 @@ class CylindricalProjection final : public ClosedFormProjection {
  private:
   CylindricalParameters parameters_;
   double tan_down_, tan_up_;
-  double rad_per_px_;      // k_φ > 0
-  double tan_per_px_y_;    // k_v < 0
-  double half_turn_px_;    // π / k_φ, as width / 2 · 360° / fov: the largest |x − width / 2| with a ray
+  double rad_per_px_;    // k_φ > 0
+  double tan_per_px_y_;  // k_v < 0
+  double half_turn_px_;  // π / k_φ, as width / 2 · 360° / fov: the largest |x − width / 2| with a ray
   glm::dmat3 rotation_;
 };
 

@@ -12,8 +12,8 @@ std::optional<std::vector<std::array<int, 2>>> dome_tile_origins(const std::vect
   std::vector<const FisheyeProjection*> fisheyes;
   for (const OutputConfig* o : outputs) {
     const auto* f = dynamic_cast<const FisheyeProjection*>(o->projection.get());
-    if (f == nullptr || f->radius_px() != dynamic_cast<const FisheyeProjection*>(outputs.front()->projection.get())
-                                              ->radius_px())
+    if (f == nullptr ||
+        f->radius_px() != dynamic_cast<const FisheyeProjection*>(outputs.front()->projection.get())->radius_px())
       return std::nullopt;
     fisheyes.push_back(f);
   }

@@ -14,8 +14,8 @@
 namespace zenith::warp {
 namespace {
 
-using core::kPi;
 using core::kDeg;
+using core::kPi;
 
 /// The shortest text that reads back as `value` ("-180", "89.5").
 std::string number(double value) {
@@ -63,8 +63,8 @@ EquirectangularProjection::EquirectangularProjection(int width_px, int height_px
   check_range("longitude_min_deg", p.longitude_min_deg, -360.0, 360.0);
   check_range("longitude_max_deg", p.longitude_max_deg, -360.0, 360.0);
   if (!(p.longitude_min_deg < p.longitude_max_deg))
-    fail("longitude_min_deg = " + number(p.longitude_min_deg) + " must be less than longitude_max_deg = " +
-         number(p.longitude_max_deg));
+    fail("longitude_min_deg = " + number(p.longitude_min_deg) +
+         " must be less than longitude_max_deg = " + number(p.longitude_max_deg));
   if (!(p.longitude_max_deg - p.longitude_min_deg <= 360.0))
     fail("longitude_max_deg − longitude_min_deg = " + number(p.longitude_max_deg - p.longitude_min_deg) +
          ": must be in (0, 360] degrees (longitude_min_deg = " + number(p.longitude_min_deg) +
@@ -72,8 +72,8 @@ EquirectangularProjection::EquirectangularProjection(int width_px, int height_px
   check_range("latitude_min_deg", p.latitude_min_deg, -90.0, 90.0);
   check_range("latitude_max_deg", p.latitude_max_deg, -90.0, 90.0);
   if (!(p.latitude_min_deg < p.latitude_max_deg))
-    fail("latitude_min_deg = " + number(p.latitude_min_deg) + " must be less than latitude_max_deg = " +
-         number(p.latitude_max_deg));
+    fail("latitude_min_deg = " + number(p.latitude_min_deg) +
+         " must be less than latitude_max_deg = " + number(p.latitude_max_deg));
 
   const double longitude_range_deg = p.longitude_max_deg - p.longitude_min_deg;
   centre_longitude_rad_ = 0.5 * (p.longitude_min_deg + p.longitude_max_deg) * kDeg;
@@ -84,12 +84,12 @@ EquirectangularProjection::EquirectangularProjection(int width_px, int height_px
 
   GpuProjection gpu;
   gpu.kind = ProjectionKind::equirectangular;
-  gpu.params = {std::array<float, 4>{static_cast<float>(0.5 * width_px), static_cast<float>(rad_per_px_x_),
-                                     static_cast<float>(0.5 * height_px), static_cast<float>(rad_per_px_y_)},
-                std::array<float, 4>{static_cast<float>(centre_longitude_rad_),
-                                     static_cast<float>(centre_latitude_rad_), static_cast<float>(half_turn_px_),
-                                     static_cast<float>(0.5 * kPi)},
-                std::array<float, 4>{}, std::array<float, 4>{}};
+  gpu.params = {
+      std::array<float, 4>{static_cast<float>(0.5 * width_px), static_cast<float>(rad_per_px_x_),
+                           static_cast<float>(0.5 * height_px), static_cast<float>(rad_per_px_y_)},
+      std::array<float, 4>{static_cast<float>(centre_longitude_rad_), static_cast<float>(centre_latitude_rad_),
+                           static_cast<float>(half_turn_px_), static_cast<float>(0.5 * kPi)},
+      std::array<float, 4>{}, std::array<float, 4>{}};
   set_closed_form(gpu, equirectangular_description(p, width_px, height_px),
                   equirectangular_max_pixel_angle_rad(p, rad_per_px_x_, rad_per_px_y_));
 }

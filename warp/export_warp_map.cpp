@@ -16,9 +16,10 @@ ExportedWarpMap export_warp_map(const OutputConfig& output) {
   const int width = output.width_px, height = output.height_px;
   if (width > kMaxExportedWarpSidePx || height > kMaxExportedWarpSidePx)
     throw std::invalid_argument("output '" + output.name + "': " + std::to_string(width) + "x" +
-                                std::to_string(height) + " px: the exported warp map has 2 · side + 1 nodes per "
-                                "side, so each side must be at most " + std::to_string(kMaxExportedWarpSidePx) +
-                                " px");
+                                std::to_string(height) +
+                                " px: the exported warp map has 2 · side + 1 nodes per "
+                                "side, so each side must be at most " +
+                                std::to_string(kMaxExportedWarpSidePx) + " px");
   const auto* warped = dynamic_cast<const WarpedProjection*>(output.projection.get());
 
   ExportedWarpMap out;

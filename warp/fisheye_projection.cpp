@@ -114,8 +114,8 @@ std::optional<glm::dvec3> FisheyeProjection::ray(double x_px, double y_px) const
   const double theta = r * rad_per_px_;
   // sin θ / r → rad_per_px at the centre, where the azimuth is undefined.
   const double sin_theta_over_r = r > 0.0 ? std::sin(theta) / r : rad_per_px_;
-  const glm::dvec3 d = (dx * sin_theta_over_r) * frame_[0] + (dy * sin_theta_over_r) * frame_[1] +
-                       std::cos(theta) * frame_[2];
+  const glm::dvec3 d =
+      (dx * sin_theta_over_r) * frame_[0] + (dy * sin_theta_over_r) * frame_[1] + std::cos(theta) * frame_[2];
   return glm::normalize(d);  // unit already up to rounding
 }
 

@@ -28,8 +28,8 @@ namespace {
 
 constexpr zip_uint64_t kMaxMemberBytes = zip_uint64_t{1} << 30;  // 1 GiB: far past any warp or blend file
 constexpr int kMaxResolutionPx = 65536;
-constexpr double kMaxEdgeDeg = 90.0;       // a frustum's edge angles, open: a plane cannot reach 90°
-constexpr double kFrameTolerance = 1e-3;   // a coordinate frame's axes: unit and orthogonal within this
+constexpr double kMaxEdgeDeg = 90.0;        // a frustum's edge angles, open: a plane cannot reach 90°
+constexpr double kFrameTolerance = 1e-3;    // a coordinate frame's axes: unit and orthogonal within this
 constexpr std::size_t kListedMembers = 12;  // members named in the "no mpcdi.xml" message
 // The values of <geometricUnit> and <originOf3DData> (VESA MPCDI v2.0 §3.5.2).
 constexpr std::array<std::string_view, 8> kGeometricUnits = {"mm", "cm", "dm", "m", "in", "ft", "yd", "unknown"};
@@ -67,8 +67,10 @@ class ZipArchive {
       zip_error_fini(&error);
       std::string hint;
       if ((code == ZIP_ER_NOZIP || code == ZIP_ER_INCONS) && starts_like_a_zip(path))
-        hint = ": it starts like one, so it may be truncated (the directory at the end of a ZIP is missing or "
-               "damaged; " + std::to_string(file_size_or_zero(path)) + " bytes; copy or download it again)";
+        hint =
+            ": it starts like one, so it may be truncated (the directory at the end of a ZIP is missing or "
+            "damaged; " +
+            std::to_string(file_size_or_zero(path)) + " bytes; copy or download it again)";
       throw std::runtime_error(name_ + ": cannot open as a ZIP archive (" + reason + ")" + hint);
     }
     const zip_int64_t count = zip_get_num_entries(archive_, 0);
@@ -103,8 +105,8 @@ class ZipArchive {
       throw std::runtime_error(name_ + ":" + member + ": cannot read (" + zip_strerror(archive_) + ")");
     if (stat.size > kMaxMemberBytes)
       throw std::runtime_error(name_ + ":" + member + ": " + std::to_string(stat.size) + " bytes: too large");
-    std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> file(zip_fopen_index(archive_, static_cast<zip_uint64_t>(index), 0),
-                                                         zip_fclose);
+    std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> file(
+        zip_fopen_index(archive_, static_cast<zip_uint64_t>(index), 0), zip_fclose);
     if (!file) throw std::runtime_error(name_ + ":" + member + ": cannot read (" + zip_strerror(archive_) + ")");
     std::string bytes(stat.size, '\0');
     zip_uint64_t done = 0;
@@ -232,11 +234,13 @@ class MpcdiReader {
 
   double parse_real(const XmlElement& element, std::string_view what, const std::string& text) const {
     const std::optional<double> value = finite_number(text);
-    if (!value) fail(element, "<" + element.name + "> " + std::string(what) + " = '" + text + "' is not a finite number");
+    if (!value)
+      fail(element, "<" + element.name + "> " + std::string(what) + " = '" + text + "' is not a finite number");
     return *value;
   }
   double real_attribute(const XmlElement& element, std::string_view name, double lo, double hi) const {
-    const double value = parse_real(element, "attribute '" + std::string(name) + "'", required_attribute(element, name));
+    const double value =
+        parse_real(element, "attribute '" + std::string(name) + "'", required_attribute(element, name));
     if (value < lo || value > hi)
       fail(element, "<" + element.name + "> attribute '" + std::string(name) + "' = " + number(value) +
                         ": must be in [" + number(lo) + ", " + number(hi) + "]");
@@ -266,8 +270,8 @@ class MpcdiReader {
   double orientation_angle(const XmlElement& frustum, std::string_view name, const std::string& region_id) const {
     const double value = region_real(frustum, name, region_id);
     if (value < -kMaxOrientationDeg || value > kMaxOrientationDeg)
-      fail(*frustum.child(name), "region '" + region_id + "': <frustum> <" + frustum.child(name)->name + "> = " +
-                                     number(value) + ": must be in [" + number(-kMaxOrientationDeg) + ", " +
+      fail(*frustum.child(name), "region '" + region_id + "': <frustum> <" + frustum.child(name)->name +
+                                     "> = " + number(value) + ": must be in [" + number(-kMaxOrientationDeg) + ", " +
                                      number(kMaxOrientationDeg) + "] degrees ([0, 360) and (-180, 180] both read)");
     return value;
   }
@@ -276,8 +280,7 @@ class MpcdiReader {
   /// <coordinateFrame>; the errors name the region.
   double region_real(const XmlElement& parent, std::string_view name, const std::string& region_id) const {
     const XmlElement* child = parent.child(name);
-    if (!child)
-      fail(parent, "region '" + region_id + "': <" + parent.name + "> has no <" + std::string(name) + ">");
+    if (!child) fail(parent, "region '" + region_id + "': <" + parent.name + "> has no <" + std::string(name) + ">");
     const std::optional<double> value = finite_number(child->text);
     if (!value)
       fail(*child, "region '" + region_id + "': <" + parent.name + "> <" + child->name + "> = '" + child->text +
@@ -296,24 +299,25 @@ class MpcdiReader {
     if (region.xsize <= 0.0 || region.ysize <= 0.0)
       fail(element, "<region> '" + region.id + "' has an empty size (xsize " + number(region.xsize) + ", ysize " +
                         number(region.ysize) + ")");
-    region.x_resolution_px = integer_value(element, "attribute 'xResolution'", required_attribute(element, "xResolution"),
-                                           1, kMaxResolutionPx);
-    region.y_resolution_px = integer_value(element, "attribute 'yResolution'", required_attribute(element, "yResolution"),
-                                           1, kMaxResolutionPx);
+    region.x_resolution_px = integer_value(element, "attribute 'xResolution'",
+                                           required_attribute(element, "xResolution"), 1, kMaxResolutionPx);
+    region.y_resolution_px = integer_value(element, "attribute 'yResolution'",
+                                           required_attribute(element, "yResolution"), 1, kMaxResolutionPx);
     const bool needs_frustum = profile == MpcdiProfile::simulation_3d || profile == MpcdiProfile::shader_lamps;
     if (const XmlElement* frustum = element.child("frustum")) {
       region.frustum = read_frustum(*frustum, region.id);
     } else if (needs_frustum) {
-      fail(element, "<region> '" + region.id + "' has no <frustum> (required by the " + to_string(profile) +
-                        " profile)");
+      fail(element,
+           "<region> '" + region.id + "' has no <frustum> (required by the " + to_string(profile) + " profile)");
     }
     // The 2d and a3 profiles have no coordinate frame (VESA MPCDI v2.0 §3.5.2):
     // one there is skipped, as before this was read at all.
     if (const XmlElement* frame = element.child("coordinateFrame"); frame && needs_frustum) {
       region.coordinate_frame = read_coordinate_frame(*frame, region.id);
     } else if (profile == MpcdiProfile::shader_lamps) {
-      fail(element, "<region> '" + region.id + "' has no <coordinateFrame> (required by the sl profile: the "
-                                               "projector's position and axes)");
+      fail(element, "<region> '" + region.id +
+                        "' has no <coordinateFrame> (required by the sl profile: the "
+                        "projector's position and axes)");
     }
     return region;
   }
@@ -323,9 +327,9 @@ class MpcdiReader {
   MpcdiFrustum read_frustum(const XmlElement& frustum, const std::string& region_id) const {
     MpcdiFrustum f;
     f.line = frustum.line;
-    const YawPitchRollDeg orientation = normalized_yaw_pitch_roll(
-        {orientation_angle(frustum, "yaw", region_id), orientation_angle(frustum, "pitch", region_id),
-         orientation_angle(frustum, "roll", region_id)});
+    const YawPitchRollDeg orientation = normalized_yaw_pitch_roll({orientation_angle(frustum, "yaw", region_id),
+                                                                   orientation_angle(frustum, "pitch", region_id),
+                                                                   orientation_angle(frustum, "roll", region_id)});
     f.yaw_deg = orientation.yaw_deg;
     f.pitch_deg = orientation.pitch_deg;
     f.roll_deg = orientation.roll_deg;
@@ -364,7 +368,9 @@ class MpcdiReader {
     f.yaw_axis = vector("yaw");
     f.pitch_axis = vector("pitch");
     f.roll_axis = vector("roll");
-    const auto text = [](const glm::dvec3& v) { return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")"; };
+    const auto text = [](const glm::dvec3& v) {
+      return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")";
+    };
     const std::string where = "region '" + region_id + "': <coordinateFrame> ";
     for (const auto& [name, axis] : {std::pair{"yaw", f.yaw_axis}, {"pitch", f.pitch_axis}, {"roll", f.roll_axis}})
       if (std::abs(glm::length(axis) - 1.0) > kFrameTolerance)
@@ -379,7 +385,8 @@ class MpcdiReader {
                       number(pitch_roll) + ", " + number(roll_yaw) + ")");
     if (glm::dot(glm::cross(f.pitch_axis, f.yaw_axis), f.roll_axis) < 0.0)
       fail(frame, where + "the pitch " + text(f.pitch_axis) + ", yaw " + text(f.yaw_axis) + " and roll " +
-                      text(f.roll_axis) + " vectors form a left-handed frame (pitch x yaw = -roll); MPCDI's is "
+                      text(f.roll_axis) +
+                      " vectors form a left-handed frame (pitch x yaw = -roll); MPCDI's is "
                       "right-handed: pitch to the right, yaw down, roll forward (VESA MPCDI v2.0 section 2.2)");
     return f;
   }
@@ -392,8 +399,7 @@ class MpcdiReader {
     while (member.rfind("./", 0) == 0) member.erase(0, 2);
     long long index = zip_.find(folder_ + member);
     if (index < 0 && !folder_.empty()) index = zip_.find(member);
-    if (index < 0)
-      fail(element, "region '" + region_id + "': " + what + " '" + path + "' is not in the archive");
+    if (index < 0) fail(element, "region '" + region_id + "': " + what + " '" + path + "' is not in the archive");
     return index;
   }
 
@@ -404,8 +410,8 @@ class MpcdiReader {
     const XmlElement* path = element.child("path");
     const bool empty_element = element.children.empty() && trimmed(element.text).empty();
     if (!empty_element && !(path && trimmed(path->text).empty())) return false;
-    spdlog::warn("{}:{}: region '{}': <{}> names no file ({}): ignored", source_, element.line, region_id,
-                 element.name, empty_element ? "an empty element" : "an empty <path>");
+    spdlog::warn("{}:{}: region '{}': <{}> names no file ({}): ignored", source_, element.line, region_id, element.name,
+                 empty_element ? "an empty element" : "an empty <path>");
     return true;
   }
 
@@ -420,32 +426,35 @@ class MpcdiReader {
       // VESA MPCDI v2.0 §2.7: linear, keystone, smooth (a curved scheme such
       // as bicubic), unknown; "cubic" and "bicubic" as some writers put it.
       WarpInterpolation interpolation = WarpInterpolation::bilinear;
-      if (equals_ignoring_case(result.interpolation, "linear") || equals_ignoring_case(result.interpolation, "unknown")) {
+      if (equals_ignoring_case(result.interpolation, "linear") ||
+          equals_ignoring_case(result.interpolation, "unknown")) {
         interpolation = WarpInterpolation::bilinear;
       } else if (equals_ignoring_case(result.interpolation, "cubic") ||
                  equals_ignoring_case(result.interpolation, "bicubic") ||
                  equals_ignoring_case(result.interpolation, "smooth")) {
         interpolation = WarpInterpolation::catmull_rom;
       } else {
-        fail(*warp->child("interpolation"), "region '" + region.id + "': <interpolation> '" + result.interpolation +
-                                                "': must be linear, cubic (smooth, bicubic) or unknown (read as linear)");
+        fail(*warp->child("interpolation"),
+             "region '" + region.id + "': <interpolation> '" + result.interpolation +
+                 "': must be linear, cubic (smooth, bicubic) or unknown (read as linear)");
       }
       result.mesh_interpolation = interpolation;
       result.line = warp->line;
       const bool profile_3d_points = profile == MpcdiProfile::advanced_3d || profile == MpcdiProfile::shader_lamps;
       result.component_depth = profile_3d_points ? 3 : 2;
       if (warp->child("componentDepth"))
-        result.component_depth = integer_value(required_child(*warp, "componentDepth"), "value",
-                                               child_text(*warp, "componentDepth"), 2, 3);
+        result.component_depth =
+            integer_value(required_child(*warp, "componentDepth"), "value", child_text(*warp, "componentDepth"), 2, 3);
       if (warp->child("geometricUnit"))
         result.geometric_unit = one_of(*warp->child("geometricUnit"), region.id, kGeometricUnits);
       if (warp->child("originOf3DData"))
         result.origin_of_3d_data = one_of(*warp->child("originOf3DData"), region.id, kOrigins);
       // The 3d profile's warps are 2D, but media servers write 3D points there
       // too; they say so with the 3D elements (VESA MPCDI v2.0 §3.5.2).
-      result.points_3d = profile_3d_points ||
-                         (profile == MpcdiProfile::simulation_3d &&
-                          (result.component_depth == 3 || warp->child("geometricUnit") || warp->child("originOf3DData")));
+      result.points_3d =
+          profile_3d_points ||
+          (profile == MpcdiProfile::simulation_3d &&
+           (result.component_depth == 3 || warp->child("geometricUnit") || warp->child("originOf3DData")));
       result.map = parse_pfm(zip_.read(index), member_name, PfmRowOrder::top_to_bottom);
       if (result.map.channels != 3)
         fail(*warp, "region '" + region.id + "': geometry warp '" + result.path +
@@ -477,7 +486,8 @@ class MpcdiReader {
       region.distortion_map = std::move(result);
     }
     const XmlElement* alpha = fileset.child("alphaMap");
-    if (alpha && !names_no_file(*alpha, region.id)) region.alpha_map = read_blend_map(*alpha, region.id, "alpha map", true);
+    if (alpha && !names_no_file(*alpha, region.id))
+      region.alpha_map = read_blend_map(*alpha, region.id, "alpha map", true);
     const XmlElement* beta = fileset.child("betaMap");
     if (beta && !names_no_file(*beta, region.id)) region.beta_map = read_blend_map(*beta, region.id, "beta map", false);
   }
@@ -498,14 +508,13 @@ class MpcdiReader {
   void check_point_map(const XmlElement& warp, const std::string& region_id, const MpcdiGeometryWarp& result) const {
     const PfmImage& map = result.map;
     if (map.width < 2 || map.height < 2)
-      fail(warp, "region '" + region_id + "': 3D geometry warp '" + result.path + "' has " +
-                     std::to_string(map.width) + " x " + std::to_string(map.height) +
-                     " samples: at least 2 x 2 are needed");
+      fail(warp, "region '" + region_id + "': 3D geometry warp '" + result.path + "' has " + std::to_string(map.width) +
+                     " x " + std::to_string(map.height) + " samples: at least 2 x 2 are needed");
     for (int y = 0; y < map.height; ++y)
       for (int x = 0; x < map.width; ++x)
         if (std::isfinite(map.at(x, y, 0)) && std::isfinite(map.at(x, y, 1)) && std::isfinite(map.at(x, y, 2))) return;
-    fail(warp, "region '" + region_id + "': 3D geometry warp '" + result.path +
-                   "' has no valid point (every sample NaN)");
+    fail(warp,
+         "region '" + region_id + "': 3D geometry warp '" + result.path + "' has no valid point (every sample NaN)");
   }
 
   MpcdiBlendMap read_blend_map(const XmlElement& element, const std::string& region_id, const char* what,
@@ -517,11 +526,12 @@ class MpcdiReader {
       map.component_depth = integer_value(required_child(element, "componentDepth"), "value",
                                           child_text(element, "componentDepth"), 1, 3);
       if (map.component_depth == 2)
-        fail(*element.child("componentDepth"), std::string("region '") + region_id + "': " + what +
-                                                   " componentDepth 2: must be 1 or 3");
+        fail(*element.child("componentDepth"),
+             std::string("region '") + region_id + "': " + what + " componentDepth 2: must be 1 or 3");
     }
     if (element.child("bitDepth")) {
-      map.bit_depth = integer_value(required_child(element, "bitDepth"), "value", child_text(element, "bitDepth"), 8, 16);
+      map.bit_depth =
+          integer_value(required_child(element, "bitDepth"), "value", child_text(element, "bitDepth"), 8, 16);
       if (map.bit_depth != 8 && map.bit_depth != 16)
         fail(*element.child("bitDepth"), std::string("region '") + region_id + "': " + what + " bitDepth " +
                                              std::to_string(map.bit_depth) + ": must be 8 or 16");
@@ -529,9 +539,8 @@ class MpcdiReader {
     if (has_gamma && element.child("gammaEmbedded")) {
       map.gamma_embedded = child_real(element, "gammaEmbedded");
       if (!(map.gamma_embedded > 0.0 && map.gamma_embedded <= 10.0))
-        fail(*element.child("gammaEmbedded"), std::string("region '") + region_id + "': " + what +
-                                                  " gammaEmbedded " + number(map.gamma_embedded) +
-                                                  ": must be in (0, 10]");
+        fail(*element.child("gammaEmbedded"), std::string("region '") + region_id + "': " + what + " gammaEmbedded " +
+                                                  number(map.gamma_embedded) + ": must be in (0, 10]");
     }
     map.image = decode_png_map(zip_.read(index), zip_.name() + ":" + zip_.names()[static_cast<std::size_t>(index)]);
     return map;
@@ -586,11 +595,11 @@ std::string descriptor_member(const ZipArchive& zip) {
         xml.push_back(name);
     }
     if (xml.size() != 1)
-      throw std::runtime_error(
-          zip.name() + ": no mpcdi.xml in the archive; its " + std::to_string(zip.names().size()) + " members: " +
-          listed(zip.names()) +
-          (xml.empty() ? std::string(" (no .xml member to read instead)")
-                       : " (" + std::to_string(xml.size()) + " .xml members: cannot tell which one is the descriptor)"));
+      throw std::runtime_error(zip.name() + ": no mpcdi.xml in the archive; its " + std::to_string(zip.names().size()) +
+                               " members: " + listed(zip.names()) +
+                               (xml.empty() ? std::string(" (no .xml member to read instead)")
+                                            : " (" + std::to_string(xml.size()) +
+                                                  " .xml members: cannot tell which one is the descriptor)"));
     member = xml.front();
   }
   spdlog::info("{}: no mpcdi.xml; reading '{}' as the MPCDI descriptor", zip.name(), member);

@@ -91,8 +91,8 @@ struct MpcdiGeometryWarp {
   std::string path;           ///< the member of the archive
   std::string interpolation;  ///< as written ("linear"); linear, unknown → bilinear; cubic, smooth → Catmull–Rom
   WarpInterpolation mesh_interpolation = WarpInterpolation::bilinear;  ///< what `interpolation` asks for
-  int component_depth = 2;    ///< 2 (x, y) or 3 (x, y, z)
-  PfmImage map;               ///< row 0 at the top
+  int component_depth = 2;                                             ///< 2 (x, y) or 3 (x, y, z)
+  PfmImage map;                                                        ///< row 0 at the top
   /// The samples are 3D points of the screen (x, y, z) in the display's frame
   /// (a3, sl; 3d when the file says so), not 2D positions.
   bool points_3d = false;
@@ -117,13 +117,13 @@ struct MpcdiBlendMap {
 
 struct MpcdiRegion {
   std::string id;
-  int line = 0;  ///< of <region> in the descriptor (messages)
+  int line = 0;                               ///< of <region> in the descriptor (messages)
   double x = 0, y = 0, xsize = 1, ysize = 1;  ///< the region in its buffer, normalized, (0, 0) top-left
   int x_resolution_px = 0, y_resolution_px = 0;
-  std::optional<MpcdiFrustum> frustum;  ///< required for the 3d and sl profiles
+  std::optional<MpcdiFrustum> frustum;                   ///< required for the 3d and sl profiles
   std::optional<MpcdiCoordinateFrame> coordinate_frame;  ///< required for sl, optional for 3d
   std::optional<MpcdiGeometryWarp> geometry_warp;
-  std::optional<WarpMesh> warp_mesh;    ///< from a geometry_warp of 2D positions (profiles 2d and 3d)
+  std::optional<WarpMesh> warp_mesh;  ///< from a geometry_warp of 2D positions (profiles 2d and 3d)
   /// sl: the lens distortion LUT (<distortionMap>), 2D positions in the image
   /// of the region's pinhole (frustum), the format of a 2D warp; and its mesh.
   std::optional<MpcdiGeometryWarp> distortion_map;

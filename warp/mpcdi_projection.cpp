@@ -57,13 +57,13 @@ glm::dvec3 warp_eye(const MpcdiFile& file, const MpcdiRegion& region, const Mpcd
   throw std::runtime_error(where(file, region, warp.line) + "<geometryWarpFile> '" + warp.path +
                            "' holds 3D points of the screen with <originOf3DData> " + warp.origin_of_3d_data +
                            ", not idealEyePoint: give the eye, the origin of the rays, in the viewport's \"warp\": "
-                           "{\"eye\": [x, y, z]} (the display's frame, in " + warp.geometric_unit +
-                           "; docs/warp-meshes.md)");
+                           "{\"eye\": [x, y, z]} (the display's frame, in " +
+                           warp.geometric_unit + "; docs/warp-meshes.md)");
 }
 
 /// A 3D geometry warp as a WarpedProjection over a 360° fisheye chart.
-std::shared_ptr<const Projection> point_warp_projection(const MpcdiFile& file, const MpcdiRegion& region,
-                                                        int width_px, int height_px, const MpcdiViewOptions& options) {
+std::shared_ptr<const Projection> point_warp_projection(const MpcdiFile& file, const MpcdiRegion& region, int width_px,
+                                                        int height_px, const MpcdiViewOptions& options) {
   const MpcdiGeometryWarp& warp = *region.geometry_warp;
   const glm::dvec3 eye = warp_eye(file, region, warp, options);
   const PfmImage& map = warp.map;
@@ -80,8 +80,7 @@ std::shared_ptr<const Projection> point_warp_projection(const MpcdiFile& file, c
       any = true;
     }
   const std::string element = "<geometryWarpFile> '" + warp.path + "': ";
-  if (!any)
-    throw std::runtime_error(where(file, region, warp.line) + element + "no sample lies away from the eye");
+  if (!any) throw std::runtime_error(where(file, region, warp.line) + element + "no sample lies away from the eye");
 
   // The chart's axis: the candidate whose opposite lies farthest from every ray.
   double best_tilt = 0.0, best_clearance = -1.0;
@@ -145,8 +144,8 @@ PlanarFrustum mpcdi_planar_frustum(const MpcdiRegion& region) {
   const MpcdiFrustum& f = region.frustum.value();
   PlanarFrustum planar = f.planar();
   if (!region.coordinate_frame) return planar;  // F = I
-  const glm::dmat3 own = PlanarProjection(1, 1, PlanarFrustum{-1.0, 1.0, -1.0, 1.0, f.yaw_deg, f.pitch_deg, f.roll_deg})
-                             .rotation();
+  const glm::dmat3 own =
+      PlanarProjection(1, 1, PlanarFrustum{-1.0, 1.0, -1.0, 1.0, f.yaw_deg, f.pitch_deg, f.roll_deg}).rotation();
   const YawPitchRollDeg total = yaw_pitch_roll_of(mpcdi_frame_rotation(*region.coordinate_frame) * own);
   planar.yaw_deg = total.yaw_deg;
   planar.pitch_deg = total.pitch_deg;
@@ -162,7 +161,9 @@ std::shared_ptr<const Projection> mpcdi_region_projection(const MpcdiFile& file,
     throw std::runtime_error(where(file, region, region.line) + "profile " + to_string(file.profile) +
                              ": the region has no 3D geometry warp (<geometryWarpFile> of screen points) and no "
                              "<frustum>: nothing gives its rays");
-  const WarpMesh* mesh = region.warp_mesh ? &*region.warp_mesh : region.distortion_mesh ? &*region.distortion_mesh : nullptr;
+  const WarpMesh* mesh = region.warp_mesh         ? &*region.warp_mesh
+                         : region.distortion_mesh ? &*region.distortion_mesh
+                                                  : nullptr;
   try {
     const PlanarFrustum frustum = mpcdi_planar_frustum(region);
     if (!mesh) return std::make_shared<PlanarProjection>(width_px, height_px, frustum);
@@ -180,9 +181,8 @@ nlohmann::json mpcdi_source_projection_spec(const Projection& projection) {
   if (const auto* warped = dynamic_cast<const WarpedProjection*>(image)) image = &warped->base();
   if (const auto* planar = dynamic_cast<const PlanarProjection*>(image)) {
     const PlanarFrustum& f = planar->frustum();
-    return {{"type", "planar"},         {"left_deg", f.left_deg},   {"right_deg", f.right_deg},
-            {"down_deg", f.down_deg},   {"up_deg", f.up_deg},       {"yaw_deg", f.yaw_deg},
-            {"pitch_deg", f.pitch_deg}, {"roll_deg", f.roll_deg}};
+    return {{"type", "planar"},   {"left_deg", f.left_deg}, {"right_deg", f.right_deg}, {"down_deg", f.down_deg},
+            {"up_deg", f.up_deg}, {"yaw_deg", f.yaw_deg},   {"pitch_deg", f.pitch_deg}, {"roll_deg", f.roll_deg}};
   }
   if (const auto* fisheye = dynamic_cast<const FisheyeProjection*>(image))
     return {{"type", "fisheye"}, {"fov_deg", fisheye->fov_deg()}, {"tilt_deg", fisheye->tilt_deg()}};

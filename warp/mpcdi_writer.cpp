@@ -98,14 +98,15 @@ std::string mpcdi_descriptor(const MpcdiRegionExport& r) {
   xml.precision(17);
   xml << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
       << "<!-- written by zenith (docs/warp-meshes.md, \"Exporting to warp engines and media servers\") -->\n"
-      << (sl ? std::string("<MPCDI profile=\"sl\" geometry=\"") + (warp ? "2" : "1") + "\" color=\"2\" version=\"2.0\">\n"
+      << (sl ? std::string("<MPCDI profile=\"sl\" geometry=\"") + (warp ? "2" : "1") +
+                   "\" color=\"2\" version=\"2.0\">\n"
              : std::string("<MPCDI profile=\"2d\" geometry=\"1\" color=\"1\" version=\"2.0\">\n"))
       << "  <display>\n"
       << "    <buffer id=\"" << r.id << "\" xResolution=\"" << r.width_px << "\" yResolution=\"" << r.height_px
       << "\">\n"
       << "      <region id=\"" << r.id << "\" x=\"0\" y=\"0\" xsize=\"1\" ysize=\"1\" xResolution=\"" << r.width_px
-      << "\" yResolution=\"" << r.height_px << (sl ? "\">\n" + pinhole_elements(r.frustum) + "      </region>\n" : "\"/>\n")
-      << "    </buffer>\n"
+      << "\" yResolution=\"" << r.height_px
+      << (sl ? "\">\n" + pinhole_elements(r.frustum) + "      </region>\n" : "\"/>\n") << "    </buffer>\n"
       << "  </display>\n"
       << "  <files>\n"
       << "    <fileset region=\"" << r.id << "\">\n";
@@ -125,10 +126,9 @@ std::string mpcdi_descriptor(const MpcdiRegionExport& r) {
         << "        <originOf2DData>topLeftCorner</originOf2DData>\n"
         << "      </geometryWarpFile>\n";
   }
-  xml << grey16_map_element("alphaMap", r.alpha_member, "        <gammaEmbedded>" +
-                                                             number(r.alpha_gamma_embedded) + "</gammaEmbedded>\n")
-      << grey16_map_element("betaMap", r.beta_member, "")
-      << "    </fileset>\n"
+  xml << grey16_map_element("alphaMap", r.alpha_member,
+                            "        <gammaEmbedded>" + number(r.alpha_gamma_embedded) + "</gammaEmbedded>\n")
+      << grey16_map_element("betaMap", r.beta_member, "") << "    </fileset>\n"
       << "  </files>\n"
       << "</MPCDI>\n";
   return xml.str();
@@ -151,14 +151,13 @@ void write_mpcdi_archive(const std::filesystem::path& path, const std::string& d
     // Deflate at its fastest level: a 1920 x 1200 output's warp is 110 MB of
     // floats, which the default level takes several times longer to pack.
     if (zip_set_file_compression(archive.get(), static_cast<zip_uint64_t>(index), ZIP_CM_DEFLATE, 1) != 0)
-      throw std::runtime_error(name + ": cannot set the compression of " + what + " (" +
-                               zip_strerror(archive.get()) + ")");
+      throw std::runtime_error(name + ": cannot set the compression of " + what + " (" + zip_strerror(archive.get()) +
+                               ")");
   };
   // The descriptor's bytes must outlive zip_close: libzip reads sources then.
   add("mpcdi.xml", zip_source_buffer(archive.get(), descriptor.data(), descriptor.size(), 0), "mpcdi.xml");
   for (const auto& [member, file] : members)
-    add(member, zip_source_file(archive.get(), file.c_str(), 0, 0),
-        "member '" + member + "' from " + file.string());
+    add(member, zip_source_file(archive.get(), file.c_str(), 0, 0), "member '" + member + "' from " + file.string());
   if (zip_close(archive.get()) != 0)
     throw std::runtime_error(name + ": cannot write the MPCDI archive (" + zip_strerror(archive.get()) + ")");
   archive.release();  // zip_close freed it

@@ -55,16 +55,16 @@ namespace zenith::warp {
 
 /// The one region of an exported 2d-profile archive and the members holding its maps.
 struct MpcdiRegionExport {
-  std::string id;                  ///< the buffer's and the region's id: letters, digits, '-', '_', '.'
+  std::string id;  ///< the buffer's and the region's id: letters, digits, '-', '_', '.'
   /// The region's resolution: the size of the region's image, the source the
   /// warp's (x, y) address (zenith reads it back as the warp's source size).
   int width_px = 0, height_px = 0;
-  std::string warp_member;          ///< the geometry warp PFM (3 channels, top row first)
+  std::string warp_member;  ///< the geometry warp PFM (3 channels, top row first)
   int warp_columns = 0, warp_rows = 0;
   WarpInterpolation interpolation = WarpInterpolation::bilinear;  ///< "linear" or "cubic"
-  std::string alpha_member;          ///< 16-bit grey PNG
+  std::string alpha_member;                                       ///< 16-bit grey PNG
   double alpha_gamma_embedded = 1.0;  ///< the alpha map's blend weight in linear light is value^gamma
-  std::string beta_member;           ///< 16-bit grey PNG
+  std::string beta_member;            ///< 16-bit grey PNG
   /// media_2d (the default) or shader_lamps: a pinhole projector, `frustum`
   /// in the base coordinate frame; the warp member, when not empty, is its
   /// lens <distortionMap> (a 2D warp of the frustum's image).

@@ -42,7 +42,8 @@ YawPitchRollDeg checked_yaw_pitch_roll(const YawPitchRollDeg& angles, const std:
 /// CylindricalParameters).
 template <class Parameters>
 void check_and_normalize_orientation(Parameters& parameters, const std::string& owner) {
-  const YawPitchRollDeg o = checked_yaw_pitch_roll({parameters.yaw_deg, parameters.pitch_deg, parameters.roll_deg}, owner);
+  const YawPitchRollDeg o =
+      checked_yaw_pitch_roll({parameters.yaw_deg, parameters.pitch_deg, parameters.roll_deg}, owner);
   parameters.yaw_deg = o.yaw_deg;
   parameters.pitch_deg = o.pitch_deg;
   parameters.roll_deg = o.roll_deg;

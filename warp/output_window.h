@@ -40,14 +40,14 @@ namespace zenith::warp {
 inline constexpr int kMaxScreenCoordinate = 65536;
 
 struct OutputWindow {
-  std::string name;                    ///< the window's name; outputs with equal names share it
+  std::string name;  ///< the window's name; outputs with equal names share it
   std::optional<std::string> monitor_name;
-  std::optional<int> monitor_index;    ///< at most one of monitor_name, monitor_index
+  std::optional<int> monitor_index;  ///< at most one of monitor_name, monitor_index
   bool fullscreen = false;
   std::optional<std::array<int, 2>> position;  ///< top-left corner, screen coordinates
   std::optional<std::array<int, 2>> size;      ///< screen coordinates (not with fullscreen)
   bool decorated = true;
-  std::optional<std::array<int, 4>> rect;      ///< x, y, width, height in the window, pixels, top-left origin
+  std::optional<std::array<int, 4>> rect;  ///< x, y, width, height in the window, pixels, top-left origin
   bool vsync = true;
   /// The display's transfer function: 0 for sRGB, else the exponent γ of V = L^(1/γ).
   double gamma = 0.0;

@@ -133,9 +133,8 @@ std::string encode_pfm(const PfmImage& image, PfmRowOrder stored_rows) {
   if (image.channels != 1 && image.channels != 3)
     throw std::invalid_argument("encode_pfm: " + std::to_string(image.channels) + " channels: must be 1 or 3");
   if (image.width < 1 || image.width > kMaxPfmSizePx || image.height < 1 || image.height > kMaxPfmSizePx)
-    throw std::invalid_argument("encode_pfm: size " + std::to_string(image.width) + "x" +
-                                std::to_string(image.height) + ": each side must be in [1, " +
-                                std::to_string(kMaxPfmSizePx) + "]");
+    throw std::invalid_argument("encode_pfm: size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                ": each side must be in [1, " + std::to_string(kMaxPfmSizePx) + "]");
   const std::size_t row_values = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels);
   const std::size_t count = row_values * static_cast<std::size_t>(image.height);
   if (image.samples.size() != count)

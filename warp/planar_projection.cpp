@@ -17,7 +17,7 @@ namespace {
 
 using core::kDeg;
 using core::kRadToDeg;
-constexpr double kMaxEdgeDeg = 89.0;      // |edge angle| < 89°: tan stays below 57.3
+constexpr double kMaxEdgeDeg = 89.0;  // |edge angle| < 89°: tan stays below 57.3
 constexpr double kMaxSymmetricFovDeg = 2.0 * kMaxEdgeDeg;
 
 /// The shortest text that reads back as `value` ("-30", "89.0000001").
@@ -122,8 +122,8 @@ PlanarProjection::PlanarProjection(int width_px, int height_px, const PlanarFrus
   rotation_ = yaw * pitch * roll;
 
   const TangentWindow window{tan_left_, tan_right_, tan_down_, tan_up_, tan_per_px_x_, tan_per_px_y_};
-  set_closed_form(planar_gpu(rotation_, window, width_px, height_px),
-                  planar_description(frustum_, width_px, height_px), planar_max_pixel_angle_rad(window));
+  set_closed_form(planar_gpu(rotation_, window, width_px, height_px), planar_description(frustum_, width_px, height_px),
+                  planar_max_pixel_angle_rad(window));
 }
 
 PlanarProjection PlanarProjection::symmetric(int width_px, int height_px, double horizontal_fov_deg) {

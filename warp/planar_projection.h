@@ -33,10 +33,10 @@ namespace zenith::warp {
 /// frustum is {-30, 30, -20, 20}); a frustum entirely to the right of its axis
 /// has 0 < left < right.
 struct PlanarFrustum {
-  double left_deg;         ///< angle of the image's left edge (x = 0), in (−89, 89), < right_deg
-  double right_deg;        ///< angle of the image's right edge (x = width), in (−89, 89)
-  double down_deg;         ///< angle of the image's bottom edge (y = height), in (−89, 89), < up_deg
-  double up_deg;           ///< angle of the image's top edge (y = 0), in (−89, 89)
+  double left_deg;   ///< angle of the image's left edge (x = 0), in (−89, 89), < right_deg
+  double right_deg;  ///< angle of the image's right edge (x = width), in (−89, 89)
+  double down_deg;   ///< angle of the image's bottom edge (y = height), in (−89, 89), < up_deg
+  double up_deg;     ///< angle of the image's top edge (y = 0), in (−89, 89)
   /// Yaw, pitch and roll: each read in [−360, 360] (tools write [0, 360) as
   /// often as (−180, 180]); PlanarProjection keeps the same rotation with yaw
   /// and roll in (−180, 180] and pitch in [−90, 90] (warp/orientation_angles.h).

@@ -104,16 +104,15 @@ std::unique_ptr<Projection> make_planar(JsonReader& r, const json& spec, int wid
   const double roll = number_or(r, "roll_deg", 0.0, "degrees");
   if (!edges) {
     const double fov = required_number(r, "fov_deg", "degrees");
-    return build(
-        r, spec,
-        [&] {
-          PlanarFrustum f = PlanarProjection::symmetric(width_px, height_px, fov).frustum();
-          f.yaw_deg = yaw;
-          f.pitch_deg = pitch;
-          f.roll_deg = roll;
-          return std::make_unique<PlanarProjection>(width_px, height_px, f);
-        },
-        {{"horizontal_fov_deg", "fov_deg"}});
+    return build(r, spec,
+                 [&] {
+                   PlanarFrustum f = PlanarProjection::symmetric(width_px, height_px, fov).frustum();
+                   f.yaw_deg = yaw;
+                   f.pitch_deg = pitch;
+                   f.roll_deg = roll;
+                   return std::make_unique<PlanarProjection>(width_px, height_px, f);
+                 },
+                 {{"horizontal_fov_deg", "fov_deg"}});
   }
   PlanarFrustum f{};
   f.left_deg = required_number(r, "left_deg", "degrees");
@@ -176,11 +175,16 @@ std::unique_ptr<Projection> make_projection(const nlohmann::json& spec, int widt
   const std::string type = r.string("type", {"planar", "fisheye", "cylindrical", "equirectangular", "cube"});
   allow_keys(r, spec, type);
   std::unique_ptr<Projection> projection;
-  if (type == "planar") projection = make_planar(r, spec, width_px, height_px);
-  else if (type == "fisheye") projection = make_fisheye(r, spec, width_px, height_px);
-  else if (type == "cylindrical") projection = make_cylindrical(r, spec, width_px, height_px);
-  else if (type == "equirectangular") projection = make_equirectangular(r, spec, width_px, height_px);
-  else projection = make_cube(r, spec, width_px, height_px);
+  if (type == "planar")
+    projection = make_planar(r, spec, width_px, height_px);
+  else if (type == "fisheye")
+    projection = make_fisheye(r, spec, width_px, height_px);
+  else if (type == "cylindrical")
+    projection = make_cylindrical(r, spec, width_px, height_px);
+  else if (type == "equirectangular")
+    projection = make_equirectangular(r, spec, width_px, height_px);
+  else
+    projection = make_cube(r, spec, width_px, height_px);
   r.finish();  // every allowed key was read above; kept as the safety net
   return projection;
 }

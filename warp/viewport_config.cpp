@@ -14,12 +14,12 @@
 
 #include "core/json_reader.h"
 #include "core/strings.h"
+#include "core/units.h"
 #include "warp/mpcdi.h"
 #include "warp/mpcdi_projection.h"
 #include "warp/projection_factory.h"
 #include "warp/warp_mesh.h"
 #include "warp/warped_projection.h"
-#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -55,8 +55,7 @@ bool valid_name(const std::string& name) {
 /// `key` ("size", "size_px"): [width, height], integers in [1, 16384].
 std::pair<int, int> read_size(JsonReader& r, const std::string& size_key = "size") {
   const json& v = r.raw(size_key);
-  if (!v.is_array() || v.size() != 2)
-    r.fail(size_key, cat("= ", brief(v), ": must be [width, height] in pixels"));
+  if (!v.is_array() || v.size() != 2) r.fail(size_key, cat("= ", brief(v), ": must be [width, height] in pixels"));
   int side[2] = {0, 0};
   for (std::size_t k = 0; k < 2; ++k) {
     const json& s = v[k];
@@ -140,8 +139,9 @@ std::pair<int, int> read_warp_source_size(JsonReader& w, const json& spec, int w
   }
   const json& v = w.raw("source");
   if (!v.is_object())
-    w.fail("source", cat("= ", brief(v), ": must be an object, {\"size_px\": [width, height]} or {\"aspect\": "
-                                          "width / height} (docs/warp-meshes.md)"));
+    w.fail("source", cat("= ", brief(v),
+                         ": must be an object, {\"size_px\": [width, height]} or {\"aspect\": "
+                         "width / height} (docs/warp-meshes.md)"));
   JsonReader s(v, w.file(), w.key_path("source"));
   allow_keys(s, v, {"size_px", "aspect"});
   if (s.has("size_px") && s.has("aspect"))
@@ -163,8 +163,9 @@ std::optional<glm::dvec3> read_eye(JsonReader& w) {
   const json& v = w.raw("eye");
   if (!v.is_array() || v.size() != 3 ||
       !std::all_of(v.begin(), v.end(), [](const json& c) { return c.is_number() && std::isfinite(c.get<double>()); }))
-    w.fail("eye", cat("= ", brief(v), ": must be [x, y, z], finite numbers: the eye in the MPCDI file's 3D frame "
-                                      "and unit (docs/warp-meshes.md)"));
+    w.fail("eye", cat("= ", brief(v),
+                      ": must be [x, y, z], finite numbers: the eye in the MPCDI file's 3D frame "
+                      "and unit (docs/warp-meshes.md)"));
   return glm::dvec3(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
 }
 
@@ -172,8 +173,8 @@ std::optional<glm::dvec3> read_eye(JsonReader& w) {
 /// mpcdi), "row_order", "v_direction" (pfm), "fit" (bourke), "source"}: its keys and values;
 /// the file is looked for by load_warp(). The source's size defaults as
 /// read_warp_source_size() says.
-WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& base_dir, const json& spec,
-                            int width_px, int height_px) {
+WarpSource read_warp_source(JsonReader& w, const json& object, const fs::path& base_dir, const json& spec, int width_px,
+                            int height_px) {
   allow_keys(w, object, {"file", "format", "region", "values", "row_order", "v_direction", "fit", "source", "eye"});
   WarpSource source;
   source.format = w.string("format", {"bourke", "pfm", "mpcdi"});
@@ -220,8 +221,9 @@ BlendSource read_blend(JsonReader& o, const fs::path& base_dir) {
     return blend;
   }
   if (!v.is_object())
-    o.fail("blend", cat("= ", brief(v), ": must be \"none\", \"auto\" or an object ({\"type\": \"auto\", ...} or "
-                                        "{\"file\": ..., \"gamma\": ...})"));
+    o.fail("blend", cat("= ", brief(v),
+                        ": must be \"none\", \"auto\" or an object ({\"type\": \"auto\", ...} or "
+                        "{\"file\": ..., \"gamma\": ...})"));
   JsonReader b(v, o.file(), o.key_path("blend"));
   const std::string type = b.string_or("type", b.has("file") ? "file" : "auto", {"none", "auto", "file"});
   if (type == "none") {
@@ -229,9 +231,8 @@ BlendSource read_blend(JsonReader& o, const fs::path& base_dir) {
   } else if (type == "auto") {
     allow_keys(b, v, {"type", "width_fraction"});
     blend.mode = BlendMode::automatic;
-    blend.width_fraction =
-        b.number_or("width_fraction", blend.width_fraction, kMinBlendWidthFraction, kMaxBlendWidthFraction,
-                    "of the smaller side");
+    blend.width_fraction = b.number_or("width_fraction", blend.width_fraction, kMinBlendWidthFraction,
+                                       kMaxBlendWidthFraction, "of the smaller side");
   } else {
     allow_keys(b, v, {"type", "file", "gamma"});
     blend.mode = BlendMode::file;
@@ -268,9 +269,9 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
     // size. Made here first so that a bad spec fails the load even where the
     // warp file is broken.
     std::shared_ptr<const Projection> base =
-        has_spec ? make_projection(spec, source.source_width_px, source.source_height_px, o.file(),
-                                   o.key_path("projection"))
-                 : nullptr;
+        has_spec
+            ? make_projection(spec, source.source_width_px, source.source_height_px, o.file(), o.key_path("projection"))
+            : nullptr;
     try {
       LoadedWarp loaded = load_warp(w, source, base_dir, out.width_px, out.height_px);
       if (loaded.projection) {  // an MPCDI region that defines its rays
@@ -297,8 +298,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
           base = make_projection(spec, source.source_width_px, source.source_height_px, o.file(),
                                  o.key_path("projection"));
         }
-        out.projection =
-            std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(*loaded.mesh), base);
+        out.projection = std::make_shared<WarpedProjection>(out.width_px, out.height_px, std::move(*loaded.mesh), base);
       }
     } catch (const ConfigError&) {
       if (!options.keep_broken_warps) throw;
@@ -396,14 +396,14 @@ ViewportConfig load_viewport_config(const fs::path& path, const ViewportLoadOpti
 
 PlanarFrustum display_wall_frustum(const DisplayWall& wall, int column, int row) {
   if (wall.columns < 1 || wall.columns > 64 || wall.rows < 1 || wall.rows > 64)
-    throw std::invalid_argument(cat("display wall: columns and rows must be in [1, 64], got ", wall.columns, " x ",
-                                    wall.rows));
+    throw std::invalid_argument(
+        cat("display wall: columns and rows must be in [1, 64], got ", wall.columns, " x ", wall.rows));
   if (column < 0 || column >= wall.columns || row < 0 || row >= wall.rows)
-    throw std::invalid_argument(cat("display wall: screen (", column, ", ", row, ") outside ", wall.columns, " x ",
-                                    wall.rows));
-  if (!(wall.screen_width_mm > 0.0 && wall.screen_height_mm > 0.0 && wall.bezel_mm >= 0.0 &&
-        wall.distance_mm > 0.0 && std::isfinite(wall.screen_width_mm) && std::isfinite(wall.screen_height_mm) &&
-        std::isfinite(wall.bezel_mm) && std::isfinite(wall.distance_mm)))
+    throw std::invalid_argument(
+        cat("display wall: screen (", column, ", ", row, ") outside ", wall.columns, " x ", wall.rows));
+  if (!(wall.screen_width_mm > 0.0 && wall.screen_height_mm > 0.0 && wall.bezel_mm >= 0.0 && wall.distance_mm > 0.0 &&
+        std::isfinite(wall.screen_width_mm) && std::isfinite(wall.screen_height_mm) && std::isfinite(wall.bezel_mm) &&
+        std::isfinite(wall.distance_mm)))
     throw std::invalid_argument("display wall: screen sizes and distance must be finite and > 0, the bezel >= 0");
   const double gap_mm = 2.0 * wall.bezel_mm;
   const double total_w = wall.columns * wall.screen_width_mm + (wall.columns - 1) * gap_mm;

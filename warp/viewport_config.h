@@ -11,7 +11,8 @@
 //       {"name": "p1", "size": [1920, 1200],
 //        "projection": {"type": "planar", "left_deg": -45, ...},          make_projection() spec
 //        "warp": {"file": "p1.data", "format": "bourke",                  optional; bourke "fit", pfm and
-//                 "source": {"size_px": [1080, 1080]}},                   mpcdi "values", pfm "row_order", "v_direction"
+//                 "source": {"size_px": [1080, 1080]}},                   mpcdi "values", pfm "row_order",
+//                 "v_direction"
 //        "blend": "auto",                                                 "none" | "auto" | object
 //        "black_level": 0.02}                                             β in [0, 0.5]
 //     ]
@@ -175,11 +176,11 @@ ViewportConfig load_viewport_config(const std::filesystem::path& path, const Vie
 /// A flat wall of identical screens seen from a point on the normal through the
 /// wall's centre. Lengths in millimetres.
 struct DisplayWall {
-  int columns = 3, rows = 2;       ///< each in [1, 64]
-  double screen_width_mm = 0.0;    ///< the active (lit) area of one screen, > 0
-  double screen_height_mm = 0.0;   ///< > 0
-  double bezel_mm = 0.0;           ///< the frame on each side of a screen, ≥ 0: adjacent pictures are 2 · bezel_mm apart
-  double distance_mm = 0.0;        ///< from the eye to the wall, > 0
+  int columns = 3, rows = 2;      ///< each in [1, 64]
+  double screen_width_mm = 0.0;   ///< the active (lit) area of one screen, > 0
+  double screen_height_mm = 0.0;  ///< > 0
+  double bezel_mm = 0.0;     ///< the frame on each side of a screen, ≥ 0: adjacent pictures are 2 · bezel_mm apart
+  double distance_mm = 0.0;  ///< from the eye to the wall, > 0
 };
 
 /// The asymmetric frustum of the screen in `column` (0 = left) and `row`

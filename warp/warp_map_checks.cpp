@@ -39,25 +39,29 @@ std::vector<std::string> warp_map_warnings(const PfmImage& map, const WarpMapCon
   const bool absolute = conventions.values == WarpValues::absolute;
   if (u.spread() <= kCollapsedSpread && v.spread() <= kCollapsedSpread) {
     std::string hint = "the map shows one source pixel everywhere";
-    if (absolute && stored_u.largest_magnitude() <= kCollapsedSpread && stored_v.largest_magnitude() <= kCollapsedSpread)
+    if (absolute && stored_u.largest_magnitude() <= kCollapsedSpread &&
+        stored_v.largest_magnitude() <= kCollapsedSpread)
       hint = "all zeros: an Evans & Sutherland offset map meaning \"no distortion\"? Set \"values\": \"offsets\"";
-    warnings.push_back(fmt::format("{}: every valid sample ({}) maps to one point (u, v) = ({:g}, {:g}) of the "
-                                   "source image: {}",
-                                   source, valid, u.lo, v.lo, hint));
+    warnings.push_back(
+        fmt::format("{}: every valid sample ({}) maps to one point (u, v) = ({:g}, {:g}) of the "
+                    "source image: {}",
+                    source, valid, u.lo, v.lo, hint));
     return warnings;
   }
   if (absolute && stored_u.largest_magnitude() <= kOffsetLikeMaxValue &&
       stored_v.largest_magnitude() <= kOffsetLikeMaxValue)
-    warnings.push_back(fmt::format("{}: the values look like offsets from the regular grid, not absolute "
-                                   "positions (u in [{:g}, {:g}], v in [{:g}, {:g}], all within ±{:g}): set "
-                                   "\"values\": \"offsets\" if the map comes from an Evans & Sutherland export",
-                                   source, stored_u.lo, stored_u.hi, stored_v.lo, stored_v.hi, kOffsetLikeMaxValue));
+    warnings.push_back(
+        fmt::format("{}: the values look like offsets from the regular grid, not absolute "
+                    "positions (u in [{:g}, {:g}], v in [{:g}, {:g}], all within ±{:g}): set "
+                    "\"values\": \"offsets\" if the map comes from an Evans & Sutherland export",
+                    source, stored_u.lo, stored_u.hi, stored_v.lo, stored_v.hi, kOffsetLikeMaxValue));
   if (2 * outside > valid)
-    warnings.push_back(fmt::format("{}: {} of {} valid samples ({:.0f} %) map outside the source image (u in "
-                                   "[{:g}, {:g}], v in [{:g}, {:g}], expected [0, 1]; read as {} values, v {}): "
-                                   "check \"values\", \"v_direction\" and \"row_order\" (docs/warp-meshes.md)",
-                                   source, outside, valid, 100.0 * static_cast<double>(outside) / static_cast<double>(valid), u.lo, u.hi,
-                                   v.lo, v.hi, to_string(conventions.values), to_string(conventions.v_direction)));
+    warnings.push_back(
+        fmt::format("{}: {} of {} valid samples ({:.0f} %) map outside the source image (u in "
+                    "[{:g}, {:g}], v in [{:g}, {:g}], expected [0, 1]; read as {} values, v {}): "
+                    "check \"values\", \"v_direction\" and \"row_order\" (docs/warp-meshes.md)",
+                    source, outside, valid, 100.0 * static_cast<double>(outside) / static_cast<double>(valid), u.lo,
+                    u.hi, v.lo, v.hi, to_string(conventions.values), to_string(conventions.v_direction)));
   return warnings;
 }
 

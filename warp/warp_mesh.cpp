@@ -254,13 +254,13 @@ WarpMesh::WarpMesh(int columns, int rows, std::vector<WarpNode> nodes, std::stri
          std::to_string(nodes_.size()) + " nodes");
   if (!(std::isfinite(extent_.s_min) && std::isfinite(extent_.s_max) && std::isfinite(extent_.t_min) &&
         std::isfinite(extent_.t_max) && extent_.s_min < extent_.s_max && extent_.t_min < extent_.t_max))
-    fail("warp mesh extent [" + number(extent_.s_min) + ", " + number(extent_.s_max) + "] x [" +
-         number(extent_.t_min) + ", " + number(extent_.t_max) + "] is empty or not finite");
+    fail("warp mesh extent [" + number(extent_.s_min) + ", " + number(extent_.s_max) + "] x [" + number(extent_.t_min) +
+         ", " + number(extent_.t_max) + "] is empty or not finite");
   for (const WarpNode& node : nodes_) {
     if (!node.valid) continue;
     if (!std::isfinite(node.u) || !std::isfinite(node.v) || !(node.intensity >= 0.0 && node.intensity <= 1.0))
-      fail("warp mesh node (u " + number(node.u) + ", v " + number(node.v) + ", intensity " +
-           number(node.intensity) + ") must be finite with intensity in [0, 1]");
+      fail("warp mesh node (u " + number(node.u) + ", v " + number(node.v) + ", intensity " + number(node.intensity) +
+           ") must be finite with intensity in [0, 1]");
     ++valid_count_;
   }
   if (valid_count_ == 0) fail("the warp mesh has no valid node (NaN-only mesh)");
@@ -304,10 +304,9 @@ std::optional<WarpMesh::Sample> WarpMesh::sample(double s, double t) const {
     }
   }
   const double w00 = (1 - a) * (1 - b), w10 = a * (1 - b), w01 = (1 - a) * b, w11 = a * b;
-  return Sample{w00 * n00.u + w10 * n10.u + w01 * n01.u + w11 * n11.u,
-                w00 * n00.v + w10 * n10.v + w01 * n01.v + w11 * n11.v,
-                std::clamp(w00 * n00.intensity + w10 * n10.intensity + w01 * n01.intensity + w11 * n11.intensity,
-                           0.0, 1.0)};
+  return Sample{
+      w00 * n00.u + w10 * n10.u + w01 * n01.u + w11 * n11.u, w00 * n00.v + w10 * n10.v + w01 * n01.v + w11 * n11.v,
+      std::clamp(w00 * n00.intensity + w10 * n10.intensity + w01 * n01.intensity + w11 * n11.intensity, 0.0, 1.0)};
 }
 
 // ---- Loaders ------------------------------------------------------------------------
@@ -346,8 +345,7 @@ WarpMesh load_bourke_mesh(const std::filesystem::path& path, const BourkeMeshOpt
   if (lines.empty()) parser.fail("truncated: empty file (expected the mesh type on line 1)");
   {
     const auto fields = fields_of(lines[0].text);
-    if (fields.size() != 1)
-      parser.fail(1, "expected 1 field (mesh type), found " + std::to_string(fields.size()));
+    if (fields.size() != 1) parser.fail(1, "expected 1 field (mesh type), found " + std::to_string(fields.size()));
     const long long type = parser.integer_field(1, "mesh type", fields[0]);
     if (type == 1) parser.fail(1, "mesh type 1 (polar) is not supported, only 2 (rectangular)");
     if (type != 2) parser.fail(1, "mesh type " + std::to_string(type) + ": must be 2 (rectangular)");
@@ -355,8 +353,7 @@ WarpMesh load_bourke_mesh(const std::filesystem::path& path, const BourkeMeshOpt
   // Line 2: nx ny.
   if (lines.size() < 2) parser.fail("truncated: expected 'nx ny' on line 2");
   const auto size_fields = fields_of(lines[1].text);
-  if (size_fields.size() != 2)
-    parser.fail(2, "expected 2 fields (nx ny), found " + std::to_string(size_fields.size()));
+  if (size_fields.size() != 2) parser.fail(2, "expected 2 fields (nx ny), found " + std::to_string(size_fields.size()));
   const long long nx_ll = parser.integer_field(2, "nx", size_fields[0]);
   const long long ny_ll = parser.integer_field(2, "ny", size_fields[1]);
   if (nx_ll < kMinNodes || nx_ll > kMaxNodesPerSide)
@@ -381,14 +378,13 @@ WarpMesh load_bourke_mesh(const std::filesystem::path& path, const BourkeMeshOpt
       parser.fail(line.number, "more than nx x ny = " + std::to_string(nx) + " x " + std::to_string(ny) + " = " +
                                    std::to_string(expected) + " nodes (wrong counts on line 2?)");
     if (fields.size() != 5)
-      parser.fail(line.number,
-                  "expected 5 fields (x y u v intensity), found " + std::to_string(fields.size()));
+      parser.fail(line.number, "expected 5 fields (x y u v intensity), found " + std::to_string(fields.size()));
     double value[5];
     for (int f = 0; f < 5; ++f) value[f] = parser.real_field(line.number, kFieldNames[f], fields[f]);
     for (int f = 0; f < 2; ++f)
       if (!std::isfinite(value[f]))
-        parser.fail(line.number, std::string("field '") + kFieldNames[f] + "' = '" + shown(fields[f]) +
-                                     "' must be finite");
+        parser.fail(line.number,
+                    std::string("field '") + kFieldNames[f] + "' = '" + shown(fields[f]) + "' must be finite");
     const int column = static_cast<int>(count % nx);
     const int row_from_bottom = static_cast<int>(count / nx);
     BourkeNode& node = nodes[static_cast<std::size_t>(ny - 1 - row_from_bottom) * nx + column];
@@ -407,8 +403,9 @@ WarpMesh load_bourke_mesh(const std::filesystem::path& path, const BourkeMeshOpt
                 std::to_string(last_line) + ")");
 
   if (std::none_of(nodes.begin(), nodes.end(), [](const BourkeNode& node) { return node.data.valid; }))
-    parser.fail("the warp mesh has no used node (NaN-only mesh): every node has u or v outside [0, 1], a "
-                "negative intensity or a non-finite field");
+    parser.fail(
+        "the warp mesh has no used node (NaN-only mesh): every node has u or v outside [0, 1], a "
+        "negative intensity or a non-finite field");
 
   // Projector coordinates → (s, t), through the fit's frame.
   double mesh_aspect = 0.0;
@@ -464,8 +461,8 @@ WarpMesh warp_mesh_from_pfm(const PfmImage& map, const std::string& source, Warp
   return mesh;
 }
 
-WarpMesh load_pfm_warp_mesh(const std::filesystem::path& path, PfmRowOrder stored_rows,
-                            WarpInterpolation interpolation, const WarpMapConventions& conventions) {
+WarpMesh load_pfm_warp_mesh(const std::filesystem::path& path, PfmRowOrder stored_rows, WarpInterpolation interpolation,
+                            const WarpMapConventions& conventions) {
   return warp_mesh_from_pfm(read_pfm(path, stored_rows), path.string(), interpolation, conventions);
 }
 

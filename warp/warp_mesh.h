@@ -151,10 +151,10 @@ struct BourkeMeshOptions {
 ///   then nx · ny lines "x y u v intensity", rows from the bottom, left to right in a row
 ///
 /// x, y: the node's position in the projector's image, x ∈ [−aspect, aspect] to
-/// the right, y ∈ [−1, 1] up (shown through options.fit's frame, BourkeFrame); u, v: its texture coordinate in the source image,
-/// [0, 1], v up; intensity in [0, 1] (values a little above 1 are clamped). A node
-/// with u or v outside [0, 1], a negative intensity or a non-finite u, v or
-/// intensity is unused. Blank lines and CR LF line ends are accepted.
+/// the right, y ∈ [−1, 1] up (shown through options.fit's frame, BourkeFrame); u, v: its texture coordinate in the
+/// source image, [0, 1], v up; intensity in [0, 1] (values a little above 1 are clamped). A node with u or v outside
+/// [0, 1], a negative intensity or a non-finite u, v or intensity is unused. Blank lines and CR LF line ends are
+/// accepted.
 ///
 /// The warp may sit in the (u, v) (x, y a regular grid: used as it is) or in the
 /// (x, y) positions (then resampled onto a regular grid by inverting the

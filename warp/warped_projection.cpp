@@ -10,8 +10,8 @@
 namespace zenith::warp {
 namespace {
 
-constexpr int kCoarseSide = 64;         // the inverse starts from at most 64 × 64 nodes
-constexpr int kStarts = 4;              // ... the nearest four of them
+constexpr int kCoarseSide = 64;  // the inverse starts from at most 64 × 64 nodes
+constexpr int kStarts = 4;       // ... the nearest four of them
 constexpr int kNewtonIterations = 50;
 constexpr double kConvergedBasePx = 1e-7;
 constexpr double kBulgeMargin = 1.25;
@@ -198,11 +198,13 @@ double WarpedProjection::bound_within(double x0_px, double y0_px, double x1_px, 
   // ending on a node does not reach the next cell), then the nodes of their
   // 4 × 4 stencils.
   const auto first_cell = [](double f, int cells) { return std::clamp(static_cast<int>(std::floor(f)), 0, cells - 1); };
-  const auto last_cell = [](double f, int cells) { return std::clamp(static_cast<int>(std::ceil(f)) - 1, 0, cells - 1); };
+  const auto last_cell = [](double f, int cells) {
+    return std::clamp(static_cast<int>(std::ceil(f)) - 1, 0, cells - 1);
+  };
   const int c0 = first_cell(f_x0, columns - 1), c1 = std::max(c0, last_cell(f_x1, columns - 1));
   const int r0 = first_cell(f_y0, rows - 1), r1 = std::max(r0, last_cell(f_y1, rows - 1));
-  return pixel_angle_bound(stretch_between_nodes(std::max(0, c0 - 1), std::min(columns - 1, c1 + 2), std::max(0, r0 - 1),
-                                                 std::min(rows - 1, r1 + 2)));
+  return pixel_angle_bound(stretch_between_nodes(std::max(0, c0 - 1), std::min(columns - 1, c1 + 2),
+                                                 std::max(0, r0 - 1), std::min(rows - 1, r1 + 2)));
 }
 
 std::optional<double> WarpedProjection::local_stretch(double x_px, double y_px) const {
@@ -223,7 +225,8 @@ std::optional<double> WarpedProjection::local_stretch(double x_px, double y_px) 
   // S = ‖J‖²_F and D = det J.
   const double frobenius2 = glm::dot(*jx, *jx) + glm::dot(*jy, *jy);
   const double det = jx->x * jy->y - jx->y * jy->x;
-  const double sigma = std::sqrt(0.5 * (frobenius2 + std::sqrt(std::max(0.0, frobenius2 * frobenius2 - 4.0 * det * det))));
+  const double sigma =
+      std::sqrt(0.5 * (frobenius2 + std::sqrt(std::max(0.0, frobenius2 * frobenius2 - 4.0 * det * det))));
   if (!std::isfinite(sigma)) return std::nullopt;
   return sigma;
 }

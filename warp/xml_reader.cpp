@@ -226,8 +226,8 @@ class Parser {
         skip_space();
         expect('>', "an end tag");
         if (!equals_ignoring_case(closing, result.name))
-          fail_at(close_line, "</" + closing + "> closes <" + result.name + "> opened at line " +
-                                  std::to_string(result.line));
+          fail_at(close_line,
+                  "</" + closing + "> closes <" + result.name + "> opened at line " + std::to_string(result.line));
         return result;
       }
       if (starts_with("<!--")) {

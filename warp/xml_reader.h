@@ -24,9 +24,9 @@ bool equals_ignoring_case(std::string_view a, std::string_view b);
 
 struct XmlElement {
   std::string name;
-  int line = 0;  ///< line of the start tag's '<', 1-based
+  int line = 0;                                                 ///< line of the start tag's '<', 1-based
   std::vector<std::pair<std::string, std::string>> attributes;  ///< in document order, values decoded
-  std::string text;                ///< the character data directly inside, concatenated, decoded
+  std::string text;  ///< the character data directly inside, concatenated, decoded
   std::vector<XmlElement> children;
 
   /// Whether the element's name is `element_name` (ignoring case).

@@ -8,11 +8,11 @@
 
 #include "atmosphere/constants.h"
 #include "atmosphere/lut/gauss_legendre.h"
-#include "core/parallel_for.h"
 #include "atmosphere/lut/quadrature.h"
 #include "atmosphere/lut/series_tail.h"
 #include "atmosphere/lut/spherical_harmonics.h"
 #include "atmosphere/model_hash.h"
+#include "core/parallel_for.h"
 
 namespace zenith::atmosphere::lut {
 namespace {
@@ -209,9 +209,9 @@ void Precompute::compute_single_scattering() {
   core::parallel_for(s.scattering_r * height, options_.threads, [&](std::size_t row) {
     const std::size_t z = row / height, y = row % height;
     Channels t_sun{}, rayleigh{}, mie{}, prev_r{}, prev_m{};
-    const ViewRaySamples ray =
-        view_ray_samples(model_, geometry(), n_, scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Distance),
-                         samples, options_.scattering_quadrature);
+    const ViewRaySamples ray = view_ray_samples(
+        model_, geometry(), n_, scattering_texel_coordinates(geometry(), s, 0, y, z, AngleMapping::Distance), samples,
+        options_.scattering_quadrature);
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Distance);
       std::fill(rayleigh.begin(), rayleigh.end(), 0.0);
@@ -261,7 +261,8 @@ void Precompute::previous_order_radiance(int order, double r, double mu, double 
   }
   // Orders ≥ 2: the delta table of the last order, read like the final table.
   sample_scattering_table(delta_radiance_, sizes(),
-                          scattering_uvwz(geometry(), sizes(), r, mu, mu_s, nu, hits_ground, AngleMapping::Blended), out);
+                          scattering_uvwz(geometry(), sizes(), r, mu, mu_s, nu, hits_ground, AngleMapping::Blended),
+                          out);
 }
 
 void Precompute::compute_scattering_density(int order, Table3D& density) {
@@ -439,8 +440,8 @@ void Precompute::compute_scattering_density_direct(int order, Table3D& density) 
           const double phi = (ip + 0.5) * d_phi;
           const Vec3 omega{sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
           const double d_omega = rule.weights[std::size_t(it)] * d_phi;
-          incoming_radiance(order, c.r_m, cos_theta, c.mu_s, omega, sun, hits_ground, ground_distance,
-                            ground_t.data(), incoming.data());
+          incoming_radiance(order, c.r_m, cos_theta, c.mu_s, omega, sun, hits_ground, ground_distance, ground_t.data(),
+                            incoming.data());
           const double cos_scatter = std::clamp(dot(view, omega), -1.0, 1.0);
           const double phase_r = model_.rayleigh_phase_function(cos_scatter);
           for (std::size_t ch = 0; ch < n_; ++ch) {
@@ -520,8 +521,8 @@ double Precompute::compute_multiple_scattering(const Table3D& density, int sampl
       ray_r_m[i] = std::clamp(std::sqrt(t * t + 2.0 * ray.r_m * ray.mu * t + ray.r_m * ray.r_m),
                               geometry().bottom_radius_m, geometry().top_radius_m);
       ray_mu[i] = std::clamp((ray.r_m * ray.mu + t) / ray_r_m[i], -1.0, 1.0);
-      ray_uv[i] =
-          scattering_uvwz(geometry(), s, ray_r_m[i], ray_mu[i], ray.mu_s, ray.nu, ray.ray_hits_ground, AngleMapping::Blended);
+      ray_uv[i] = scattering_uvwz(geometry(), s, ray_r_m[i], ray_mu[i], ray.mu_s, ray.nu, ray.ray_hits_ground,
+                                  AngleMapping::Blended);
     }
     for (std::size_t x = 0; x < width; ++x) {
       const ScatteringCoordinates c = scattering_texel_coordinates(geometry(), s, x, y, z, AngleMapping::Blended);
@@ -591,7 +592,8 @@ LookupTables Precompute::run() {
     stage(prefix + "scattering density", share_multiple * 0.6, [&] { compute_scattering_density(order, density); });
     stage(prefix + "sky irradiance", share_multiple * 0.1, [&] { compute_indirect_irradiance(order); });
     double added = 0.0;
-    stage(prefix + "multiple scattering", share_multiple * 0.3, [&] { added = compute_multiple_scattering(density, options_.ray_sample_stride(order)); });
+    stage(prefix + "multiple scattering", share_multiple * 0.3,
+          [&] { added = compute_multiple_scattering(density, options_.ray_sample_stride(order)); });
     order_sums.push_back(added);
     used = order;
     double total = 0.0;

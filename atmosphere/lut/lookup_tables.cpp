@@ -39,8 +39,8 @@ void TableQueries::transmittance(double r_m, double mu, double d_m, bool hits_gr
   //  * a segment through its lowest point p (radius r·√(1−μ²), horizontal there):
   //    T = [T_top(p, 0)/T_top(x, −μ)] · [T_top(p, 0)/T_top(y, μ_y)].
   const ShellGeometry& g = tables_.geometry;
-  const double r_d = std::clamp(std::sqrt(d_m * d_m + 2.0 * r_m * mu * d_m + r_m * r_m), g.bottom_radius_m,
-                                g.top_radius_m);
+  const double r_d =
+      std::clamp(std::sqrt(d_m * d_m + 2.0 * r_m * mu * d_m + r_m * r_m), g.bottom_radius_m, g.top_radius_m);
   const double mu_d = std::clamp((r_m * mu + d_m) / r_d, -1.0, 1.0);
   std::array<double, kMaxChannels> a{}, b{}, p{};
   if (mu >= 0.0 && !hits_ground) {
@@ -126,10 +126,10 @@ void TableQueries::scattering_terms(double r_m, double mu, double mu_s, double n
   sample_scattering_table_geometric_mu_s(tables_.single_rayleigh, tables_.sizes, single, rayleigh);
   sample_scattering_table_geometric_mu_s(tables_.single_mie, tables_.sizes, single, mie);
   if (multiple)
-    sample_scattering_table_geometric_mu_s(tables_.multiple, tables_.sizes,
-                            scattering_uvwz(tables_.geometry, tables_.sizes, r_m, mu, mu_s, nu, hits_ground,
-                                            AngleMapping::Blended),
-                            multiple);
+    sample_scattering_table_geometric_mu_s(
+        tables_.multiple, tables_.sizes,
+        scattering_uvwz(tables_.geometry, tables_.sizes, r_m, mu, mu_s, nu, hits_ground, AngleMapping::Blended),
+        multiple);
 }
 
 void TableQueries::scattering(double r_m, double mu, double mu_s, double nu, bool hits_ground, double* out) const {

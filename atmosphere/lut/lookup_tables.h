@@ -89,8 +89,8 @@ class TableQueries {
   void scattering(double r_m, double mu, double mu_s, double nu, bool hits_ground, double* out) const;
   /// The three terms separately (no phase applied to the single terms);
   /// `multiple` may be null when only the single terms are needed.
-  void scattering_terms(double r_m, double mu, double mu_s, double nu, bool hits_ground, double* rayleigh,
-                        double* mie, double* multiple) const;
+  void scattering_terms(double r_m, double mu, double mu_s, double nu, bool hits_ground, double* rayleigh, double* mie,
+                        double* multiple) const;
 
   /// Sky radiance seen from `camera_m` (planet-centred) along unit `view`, sun
   /// along unit `sun`: in-scattering along the ray plus, where it hits the

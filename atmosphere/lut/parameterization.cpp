@@ -127,8 +127,7 @@ TransmittanceUV transmittance_uv(const ShellGeometry& g, const TableSizes& s, do
           texture_coord_from_unit(std::clamp(rho / H, 0.0, 1.0), s.transmittance_r)};
 }
 
-void transmittance_r_mu(const ShellGeometry& g, const TableSizes& s, double u_mu, double v_r, double* r_m,
-                        double* mu) {
+void transmittance_r_mu(const ShellGeometry& g, const TableSizes& s, double u_mu, double v_r, double* r_m, double* mu) {
   const double H = g.horizon_distance_at_top_m();
   const double rho = H * unit_from_texture_coord(v_r, s.transmittance_r);
   const double r = radius_from_horizon_distance(g, rho);

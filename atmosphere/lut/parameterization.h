@@ -35,9 +35,9 @@ struct ShellGeometry {
   double bottom_radius_m;
   double top_radius_m;
 
-  double horizon_distance_at_top_m() const;       ///< H = √(rt² − rb²)
-  double horizon_distance_m(double r_m) const;    ///< ρ = √(r² − rb²)
-  double min_sun_cosine() const;                  ///< μs_min = −sin 3α, α = acos(rb/rt) (≥ −1)
+  double horizon_distance_at_top_m() const;     ///< H = √(rt² − rb²)
+  double horizon_distance_m(double r_m) const;  ///< ρ = √(r² − rb²)
+  double min_sun_cosine() const;                ///< μs_min = −sin 3α, α = acos(rb/rt) (≥ −1)
   double distance_to_top_m(double r_m, double mu) const;
   double distance_to_bottom_m(double r_m, double mu) const;
   bool ray_hits_ground(double r_m, double mu) const;
@@ -50,13 +50,16 @@ double texture_coord_from_unit(double x, std::size_t n);
 double unit_from_texture_coord(double u, std::size_t n);
 
 // ---- transmittance T(r, μ) to the top, rays that do not hit the ground
-struct TransmittanceUV { double u_mu, v_r; };
+struct TransmittanceUV {
+  double u_mu, v_r;
+};
 TransmittanceUV transmittance_uv(const ShellGeometry& g, const TableSizes& s, double r_m, double mu);
-void transmittance_r_mu(const ShellGeometry& g, const TableSizes& s, double u_mu, double v_r, double* r_m,
-                        double* mu);
+void transmittance_r_mu(const ShellGeometry& g, const TableSizes& s, double u_mu, double v_r, double* r_m, double* mu);
 
 // ---- irradiance E(r, μs)
-struct IrradianceUV { double u_mu_s, v_r; };
+struct IrradianceUV {
+  double u_mu_s, v_r;
+};
 IrradianceUV irradiance_uv(const ShellGeometry& g, const TableSizes& s, double r_m, double mu_s);
 void irradiance_r_mu_s(const ShellGeometry& g, const TableSizes& s, double u_mu_s, double v_r, double* r_m,
                        double* mu_s);

@@ -12,8 +12,8 @@
 namespace zenith::atmosphere::lut {
 
 struct PrecomputeProgress {
-  std::string stage;   ///< "transmittance", "single scattering", "order 2: density", ...
-  double fraction;     ///< of the whole precompute, [0, 1]
+  std::string stage;  ///< "transmittance", "single scattering", "order 2: density", ...
+  double fraction;    ///< of the whole precompute, [0, 1]
 };
 
 /// Scattering orders of the tables unless the user says otherwise (every
@@ -43,8 +43,8 @@ struct PrecomputeOptions {
   unsigned threads = 0;  ///< CPU worker threads; 0 = hardware concurrency
 
   // Quadrature: the same on CPU and GPU.
-  int transmittance_samples = 500;   ///< Simpson intervals along each transmittance ray (rounded up to even)
-  int scattering_samples = 50;       ///< samples along each single/multiple scattering ray
+  int transmittance_samples = 500;  ///< Simpson intervals along each transmittance ray (rounded up to even)
+  int scattering_samples = 50;      ///< samples along each single/multiple scattering ray
   /// From order `coarse_ray_first_order` on, the multiple-scattering rays read
   /// every `coarse_ray_stride`-th of their scattering_samples samples (and the
   /// last). The higher orders are smooth along a ray and small (order 3 is 7 % of

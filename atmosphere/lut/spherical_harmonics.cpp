@@ -22,8 +22,8 @@ void normalized_legendre(int degree, double x, double* out) {
     for (int l = m + 2; l <= degree; ++l) {
       const double ll = l, mm = m;
       const double a = std::sqrt((4.0 * ll * ll - 1.0) / ((ll - mm) * (ll + mm)));
-      const double b = std::sqrt((2.0 * ll + 1.0) * (ll + mm - 1.0) * (ll - mm - 1.0) /
-                                 ((ll - mm) * (ll + mm) * (2.0 * ll - 3.0)));
+      const double b =
+          std::sqrt((2.0 * ll + 1.0) * (ll + mm - 1.0) * (ll - mm - 1.0) / ((ll - mm) * (ll + mm) * (2.0 * ll - 3.0)));
       column[l - m] = a * x * column[l - m - 1] - b * column[l - m - 2];
     }
   }

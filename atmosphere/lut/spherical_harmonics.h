@@ -70,9 +70,9 @@ std::vector<double> phase_legendre_moments(const std::function<double(double)>& 
 /// reflecting ground below); a rule across the jump converges only as 1/n,
 /// one per side as fast as the radiance is smooth. Ground nodes come first.
 struct HorizonSplitRule {
-  std::vector<double> mu;       ///< nodes, ascending within each part
-  std::vector<double> weight;   ///< Σ = 2
-  int ground_nodes = 0;         ///< mu[0 .. ground_nodes) hit the ground
+  std::vector<double> mu;      ///< nodes, ascending within each part
+  std::vector<double> weight;  ///< Σ = 2
+  int ground_nodes = 0;        ///< mu[0 .. ground_nodes) hit the ground
 
   HorizonSplitRule(double bottom_radius_m, double r_m, int nodes_per_part);
 };

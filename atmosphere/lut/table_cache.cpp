@@ -13,12 +13,12 @@
 #include <ImfPartType.h>
 #include <ImfStringAttribute.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "atmosphere/model_hash.h"
 
@@ -33,10 +33,13 @@ struct PartView {
 };
 
 std::vector<PartView> parts_of(LookupTables& t) {
-  auto v3 = [](const char* name, Table3D& x) { return PartView{name, x.width, x.height * x.depth, x.channels, x.data.data()}; };
-  return {PartView{"transmittance", t.transmittance.width, t.transmittance.height, t.channels, t.transmittance.data.data()},
-          PartView{"irradiance", t.irradiance.width, t.irradiance.height, t.channels, t.irradiance.data.data()},
-          v3("single_rayleigh", t.single_rayleigh), v3("single_mie", t.single_mie), v3("multiple", t.multiple)};
+  auto v3 = [](const char* name, Table3D& x) {
+    return PartView{name, x.width, x.height * x.depth, x.channels, x.data.data()};
+  };
+  return {
+      PartView{"transmittance", t.transmittance.width, t.transmittance.height, t.channels, t.transmittance.data.data()},
+      PartView{"irradiance", t.irradiance.width, t.irradiance.height, t.channels, t.irradiance.data.data()},
+      v3("single_rayleigh", t.single_rayleigh), v3("single_mie", t.single_mie), v3("multiple", t.multiple)};
 }
 
 std::string channel_name(std::size_t c) {
@@ -93,7 +96,8 @@ std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions&
 
 void write_tables_exr(const std::filesystem::path& path, const AtmosphereModel& model, const std::string& key,
                       const LookupTables& tables_in) {
-  LookupTables& tables = const_cast<LookupTables&>(tables_in);  // Imf slices take non-const pointers; nothing is written.
+  LookupTables& tables =
+      const_cast<LookupTables&>(tables_in);  // Imf slices take non-const pointers; nothing is written.
   std::vector<PartView> parts = parts_of(tables);
   std::vector<Imf::Header> headers;
   std::ostringstream wavelengths;
@@ -119,7 +123,8 @@ void write_tables_exr(const std::filesystem::path& path, const AtmosphereModel& 
     h.insert("zenith.orders", Imf::IntAttribute(tables.scattering_orders));
     h.insert("zenith.wavelengths_nm", Imf::StringAttribute(wavelengths.str()));
     h.insert("zenith.parameters", Imf::StringAttribute(canonical_description(model)));
-    h.insert("zenith.checksum", Imf::StringAttribute(core::sha256_hex(p.data, p.width * p.height * p.channels * sizeof(float))));
+    h.insert("zenith.checksum",
+             Imf::StringAttribute(core::sha256_hex(p.data, p.width * p.height * p.channels * sizeof(float))));
     headers.push_back(h);
   }
   Imf::MultiPartOutputFile file(path.c_str(), headers.data(), int(headers.size()));
@@ -140,7 +145,8 @@ LookupTables read_tables_exr(const std::filesystem::path& path, const Atmosphere
     Imf::MultiPartInputFile file(path.c_str());
     if (file.parts() != 5) throw std::runtime_error("expected 5 parts, found " + std::to_string(file.parts()));
     const Imf::Header& first = file.header(0);
-    if (int_attribute(first, "zenith.format") != kCacheFormatVersion) throw std::runtime_error("format version differs");
+    if (int_attribute(first, "zenith.format") != kCacheFormatVersion)
+      throw std::runtime_error("format version differs");
     if (string_attribute(first, "zenith.key") != key) throw std::runtime_error("table-set key differs");
     if (string_attribute(first, "zenith.parameters") != canonical_description(model))
       throw std::runtime_error("parameters differ");

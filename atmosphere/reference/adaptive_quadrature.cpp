@@ -11,14 +11,14 @@ namespace {
 
 // 15-point Kronrod abscissae on [−1, 1] (non-negative half, descending) and weights;
 // the odd-indexed abscissae 1, 3, 5 and the centre are the 7-point Gauss nodes.
-constexpr double kKronrodNodes[8] = {
-    0.991455371120812639206854697526329, 0.949107912342758524526189684047851, 0.864864423359769072789712788640926,
-    0.741531185599394439863864773280788, 0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
-    0.207784955007898467600689403773245, 0.000000000000000000000000000000000};
-constexpr double kKronrodWeights[8] = {
-    0.022935322010529224963732008058970, 0.063092092629978553290700663189204, 0.104790010322250183839876322541518,
-    0.140653259715525918745189590510238, 0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
-    0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
+constexpr double kKronrodNodes[8] = {0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
+                                     0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
+                                     0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
+                                     0.207784955007898467600689403773245, 0.000000000000000000000000000000000};
+constexpr double kKronrodWeights[8] = {0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
+                                       0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
+                                       0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+                                       0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
 // Gauss weights for the nodes kKronrodNodes[1], [3], [5] and the centre [7].
 constexpr double kGaussWeights[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
                                      0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
@@ -68,7 +68,8 @@ QuadratureResult integrate_adaptive(const VectorIntegrand& f, std::span<const do
                                     std::size_t components, const QuadratureOptions& options) {
   if (breakpoints.size() < 2) throw std::invalid_argument("integrate_adaptive: need at least two breakpoints");
   for (std::size_t k = 1; k < breakpoints.size(); ++k)
-    if (!(breakpoints[k] >= breakpoints[k - 1])) throw std::invalid_argument("integrate_adaptive: breakpoints must not decrease");
+    if (!(breakpoints[k] >= breakpoints[k - 1]))
+      throw std::invalid_argument("integrate_adaptive: breakpoints must not decrease");
   const std::size_t n = components;
   QuadratureResult result;
   result.integral.assign(n, 0.0);

@@ -40,7 +40,7 @@ struct TrackingMedium {
 struct FreeFlight {
   enum class Event { Scattering, Ground, Escape };
   Event event = Event::Escape;
-  double t_m = 0.0;  ///< where the collision or the ground hit is (unused for Escape)
+  double t_m = 0.0;                ///< where the collision or the ground hit is (unused for Escape)
   LocalCoefficients coefficients;  ///< at a Scattering collision: the medium there (unstretched)
 };
 

@@ -24,7 +24,8 @@ namespace zenith::atmosphere::reference {
 /// The quadrature's tolerances for optical depths: per wavelength, it stops
 /// when its error estimate is below max(absolute_tolerance, relative_tolerance · τ).
 struct OpticalDepthOptions : QuadratureOptions {
-  OpticalDepthOptions() : QuadratureOptions{.relative_tolerance = 1e-10, .absolute_tolerance = 1e-13, .max_panels = 2000} {}
+  OpticalDepthOptions()
+      : QuadratureOptions{.relative_tolerance = 1e-10, .absolute_tolerance = 1e-13, .max_panels = 2000} {}
 };
 
 /// The stretch s of the straight line carrying `ray`, evaluated with

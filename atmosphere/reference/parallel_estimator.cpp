@@ -88,8 +88,7 @@ SampleMoments run_parallel_estimator(const ParallelEstimatorSettings& s, const S
         total.merge(chunk_moments[(w * chunks_per_wavelength + k) * s.components + c]);
       const std::size_t index = c * s.wavelength_count + w;
       result.mean[index] = total.mean;
-      result.standard_error[index] =
-          total.count > 1.0 ? std::sqrt(total.m2 / (total.count - 1.0) / total.count) : 0.0;
+      result.standard_error[index] = total.count > 1.0 ? std::sqrt(total.m2 / (total.count - 1.0) / total.count) : 0.0;
     }
   return result;
 }

@@ -95,7 +95,8 @@ double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng,
       const Vec3 normal = normalize(vertex);
       vertex = ground_radius * normal;
       const double albedo = model.ground_albedo[i];
-      if (counted && albedo > 0.0) radiance += weight * albedo / kPi * direct_irradiance(vertex, normal, i, rng, violations);
+      if (counted && albedo > 0.0)
+        radiance += weight * albedo / kPi * direct_irradiance(vertex, normal, i, rng, violations);
       if (last) break;
       weight *= albedo;  // cosine-weighted sampling: (a/π) cos θ / (cos θ/π) = a
       if (!(weight > 0.0)) break;

@@ -16,10 +16,10 @@ namespace zenith::atmosphere::reference {
 
 /// Which scattering orders a path counts, and when Russian roulette starts.
 struct PathSettings {
-  int min_scattering_order = 1;           ///< ≥ 1
-  int max_scattering_order = 1000;        ///< ≥ min_scattering_order
-  int russian_roulette_start_order = 4;   ///< ≥ 1
-  std::size_t majorant_shell_count = 128; ///< sub-shells of the delta-tracking majorant
+  int min_scattering_order = 1;            ///< ≥ 1
+  int max_scattering_order = 1000;         ///< ≥ min_scattering_order
+  int russian_roulette_start_order = 4;    ///< ≥ 1
+  std::size_t majorant_shell_count = 128;  ///< sub-shells of the delta-tracking majorant
 };
 
 /// Read-only after construction; share one between threads. Keeps a reference

@@ -16,7 +16,8 @@ namespace zenith::atmosphere::reference {
 namespace {
 
 PathSettings path_settings(const PathTracerOptions& o) {
-  if (o.samples_per_wavelength == 0) throw std::invalid_argument("PathTracerOptions: samples_per_wavelength must be > 0");
+  if (o.samples_per_wavelength == 0)
+    throw std::invalid_argument("PathTracerOptions: samples_per_wavelength must be > 0");
   PathSettings s;
   s.min_scattering_order = o.min_scattering_order;
   s.max_scattering_order = o.max_scattering_order;
@@ -38,9 +39,8 @@ ParallelEstimatorSettings estimator_settings(const AtmosphereModel& model, const
 
 }  // namespace
 
-RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& observer_m,
-                                      const Vec3& view_direction, const SunDisc& sun,
-                                      const PathTracerOptions& options) {
+RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& observer_m, const Vec3& view_direction,
+                                      const SunDisc& sun, const PathTracerOptions& options) {
   const PathSettings settings = path_settings(options);
   const std::size_t n = model.wavelength_count();
   if (length(observer_m) < model.ground_radius_m * (1.0 - 1e-12))
@@ -58,8 +58,7 @@ RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& 
   const PathIntegrator integrator(model, sun, settings);
   std::atomic<std::size_t> violations{0};
   const SampleMoments moments = run_parallel_estimator(
-      estimator_settings(model, options, 1),
-      [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> values) {
+      estimator_settings(model, options, 1), [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> values) {
         std::size_t local_violations = 0;
         values[0] = integrator.radiance(first_ray, i, rng, local_violations);
         if (local_violations != 0) violations += local_violations;
@@ -72,8 +71,8 @@ RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& 
   return estimate;
 }
 
-GroundIrradianceEstimate ground_irradiance(const AtmosphereModel& model, const Vec3& ground_point_m,
-                                           const SunDisc& sun, const PathTracerOptions& options) {
+GroundIrradianceEstimate ground_irradiance(const AtmosphereModel& model, const Vec3& ground_point_m, const SunDisc& sun,
+                                           const PathTracerOptions& options) {
   const PathSettings settings = path_settings(options);
   const std::size_t n = model.wavelength_count();
   if (!(length(ground_point_m) > 0.0)) throw std::invalid_argument("ground_irradiance: point at the planet's centre");

@@ -77,27 +77,26 @@ namespace zenith::atmosphere::reference {
 struct PathTracerOptions {
   std::size_t samples_per_wavelength = 4096;  ///< paths per wavelength
   std::uint64_t seed = 1;
-  unsigned thread_count = 0;                  ///< 0: std::thread::hardware_concurrency()
-  int min_scattering_order = 1;               ///< ≥ 1
-  int max_scattering_order = 1000;            ///< ≥ min_scattering_order
-  int russian_roulette_start_order = 4;       ///< first order after which roulette may end a path
-  std::size_t majorant_shell_count = 128;     ///< sub-shells of the delta-tracking majorant
+  unsigned thread_count = 0;               ///< 0: std::thread::hardware_concurrency()
+  int min_scattering_order = 1;            ///< ≥ 1
+  int max_scattering_order = 1000;         ///< ≥ min_scattering_order
+  int russian_roulette_start_order = 4;    ///< first order after which roulette may end a path
+  std::size_t majorant_shell_count = 128;  ///< sub-shells of the delta-tracking majorant
 };
 
 struct RadianceEstimate {
-  Spectrum mean;                       ///< sky radiance [sr^-1 per unit solar irradiance]
-  Spectrum standard_error;             ///< standard error of the mean, per wavelength
-  std::size_t samples = 0;             ///< paths per wavelength
-  std::size_t majorant_violations = 0; ///< tentative collisions where β_ext > majorant (0 = unbiased)
+  Spectrum mean;                        ///< sky radiance [sr^-1 per unit solar irradiance]
+  Spectrum standard_error;              ///< standard error of the mean, per wavelength
+  std::size_t samples = 0;              ///< paths per wavelength
+  std::size_t majorant_violations = 0;  ///< tentative collisions where β_ext > majorant (0 = unbiased)
 };
 
 /// Sky radiance seen from `observer_m` (planet-centred [m], at or above the
 /// ground; anywhere outside the atmosphere, e.g. 40 AU away, starts the path
 /// where the view ray enters it) along `view_direction` (need not be unit). A
 /// view ray that misses the atmosphere gives 0 with zero error.
-RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& observer_m,
-                                      const Vec3& view_direction, const SunDisc& sun,
-                                      const PathTracerOptions& options = {});
+RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& observer_m, const Vec3& view_direction,
+                                      const SunDisc& sun, const PathTracerOptions& options = {});
 
 /// Irradiance on a horizontal ground element [per unit solar irradiance]:
 ///   E_direct  = ∫_disc L_sun T(g, ω) max(0, n·ω) dω   (attenuated sun disc),
@@ -115,7 +114,7 @@ struct GroundIrradianceEstimate {
 };
 
 /// `ground_point_m` is projected radially onto the ground sphere.
-GroundIrradianceEstimate ground_irradiance(const AtmosphereModel& model, const Vec3& ground_point_m,
-                                           const SunDisc& sun, const PathTracerOptions& options = {});
+GroundIrradianceEstimate ground_irradiance(const AtmosphereModel& model, const Vec3& ground_point_m, const SunDisc& sun,
+                                           const PathTracerOptions& options = {});
 
 }  // namespace zenith::atmosphere::reference

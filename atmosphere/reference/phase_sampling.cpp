@@ -52,7 +52,8 @@ PhaseSample sample_scattering_cosine(const AtmosphereMedium& medium, const Local
   const double scattering = c.scattering_m1();
   const bool rayleigh = u_component * scattering < c.rayleigh_scattering_m1;
   PhaseSample sample;
-  sample.cos_scattering = rayleigh ? sample_rayleigh_classic_cosine(u_cos) : sample_mie_proposal_cosine(mie, i, u_lobe, u_cos);
+  sample.cos_scattering =
+      rayleigh ? sample_rayleigh_classic_cosine(u_cos) : sample_mie_proposal_cosine(mie, i, u_lobe, u_cos);
   double proposal = c.rayleigh_scattering_m1 * rayleigh_phase_classic(sample.cos_scattering);
   if (c.mie_scattering_m1 > 0.0) proposal += c.mie_scattering_m1 * mie_proposal_pdf(mie, i, sample.cos_scattering);
   proposal /= scattering;

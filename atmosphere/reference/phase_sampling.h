@@ -45,7 +45,7 @@ struct PhaseSample {
 /// then ν from that constituent's proposal (u_lobe, u_cos). The pdf of ν is the
 /// one-sample mixture q = (β_R q_R + β_M q_M)/β_scat, and E_q[weight · f(ν)] = ∫_{4π} P f dω
 /// for any f. Requires β_scat > 0.
-PhaseSample sample_scattering_cosine(const AtmosphereMedium& medium, const LocalCoefficients& c,
-                                     std::size_t wavelength, double u_component, double u_lobe, double u_cos);
+PhaseSample sample_scattering_cosine(const AtmosphereMedium& medium, const LocalCoefficients& c, std::size_t wavelength,
+                                     double u_component, double u_lobe, double u_cos);
 
 }  // namespace zenith::atmosphere::reference

@@ -24,8 +24,7 @@ SingleScatteringResult single_scattering_radiance(const AtmosphereModel& model, 
   result.ground_radiance = Spectrum(n);
 
   const Ray observer_ray(observer_m, view_direction);
-  const AtmosphereInterval interval =
-      atmosphere_interval(observer_ray, model.ground_radius_m, model.top_radius_m);
+  const AtmosphereInterval interval = atmosphere_interval(observer_ray, model.ground_radius_m, model.top_radius_m);
   if (!interval.intersects) {
     result.converged = true;
     return result;

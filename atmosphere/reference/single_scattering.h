@@ -39,12 +39,12 @@ struct SingleScatteringOptions : QuadratureOptions {
 };
 
 struct SingleScatteringResult {
-  Spectrum atmosphere_radiance;   ///< L1 [sr^-1 per unit solar irradiance]
-  Spectrum atmosphere_error;      ///< the quadrature's error estimate of L1 [sr^-1]
-  Spectrum ground_radiance;       ///< L_ground; zero unless ray_hits_ground [sr^-1]
+  Spectrum atmosphere_radiance;  ///< L1 [sr^-1 per unit solar irradiance]
+  Spectrum atmosphere_error;     ///< the quadrature's error estimate of L1 [sr^-1]
+  Spectrum ground_radiance;      ///< L_ground; zero unless ray_hits_ground [sr^-1]
   bool ray_hits_ground = false;
-  bool converged = false;         ///< the quadrature met its tolerance
-  std::size_t evaluations = 0;    ///< integrand evaluations of the outer quadrature
+  bool converged = false;       ///< the quadrature met its tolerance
+  std::size_t evaluations = 0;  ///< integrand evaluations of the outer quadrature
 };
 
 /// L1 and L_ground for an observer at `observer_m` (planet-centred, at or above

@@ -14,7 +14,7 @@
 namespace zenith::atmosphere::reference {
 
 struct SunDisc {
-  Vec3 direction{0.0, 0.0, 1.0};       ///< unit vector from the planet toward the disc's centre
+  Vec3 direction{0.0, 0.0, 1.0};        ///< unit vector from the planet toward the disc's centre
   double angular_radius_rad = 4.65e-3;  ///< half the apparent diameter (Earth: 4.65e-3); 0 = point sun
 };
 

@@ -42,7 +42,7 @@ class ForwardedSignals {
   int take();
 
  private:
-  struct sigaction previous_[3] {};
+  struct sigaction previous_[3]{};
 };
 
 /// The pipe through which a child master says it listens (`--ready-fd`).

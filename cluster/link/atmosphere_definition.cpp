@@ -20,8 +20,8 @@ bool fits_body(const atmosphere::LoadedAtmosphere& loaded, const scene::Body& bo
 atmosphere::LoadedAtmosphere resolve_definition(const AtmosphereDefinition& d, const scene::Scene& scene) {
   const scene::Body* body = scene.find_body(d.body_name);
   if (body == nullptr || !body->atmosphere)
-    throw std::runtime_error(cat("AtmosphereDefinition for body '", d.body_name, "', which has no atmosphere in ",
-                                 scene.source.string()));
+    throw std::runtime_error(
+        cat("AtmosphereDefinition for body '", d.body_name, "', which has no atmosphere in ", scene.source.string()));
   nlohmann::json parameters;
   try {
     parameters = nlohmann::json::parse(d.parameters_json);

@@ -32,8 +32,7 @@ bool valid_name(const std::string& name) {
 std::string checked_name(JsonReader& r, const std::string& key, const char* what) {
   const std::string name = r.string(key);
   if (!valid_name(name))
-    r.fail(key, cat("= \"", name, "\": ", what, " must be 1 to ", kMaxNameLength,
-                    " letters, digits, '-', '_' or '.'"));
+    r.fail(key, cat("= \"", name, "\": ", what, " must be 1 to ", kMaxNameLength, " letters, digits, '-', '_' or '.'"));
   return name;
 }
 
@@ -55,19 +54,22 @@ void read_timing(JsonReader& t, ClusterConfig& c) {
 
 void read_secret(JsonReader& s, const json& v, const fs::path& base_dir, ClusterConfig& c) {
   if (s.has("file") == s.has("env") || v.size() != 1)
-    s.fail("", "give exactly one of \"file\" (a file holding the secret, mode 600) or \"env\" (the name of an "
-               "environment variable holding it); never the secret itself");
+    s.fail("",
+           "give exactly one of \"file\" (a file holding the secret, mode 600) or \"env\" (the name of an "
+           "environment variable holding it); never the secret itself");
   if (s.has("file")) {
     c.secret_file = s.existing_file("file", base_dir);
   } else {
     c.secret_env = s.string("env");
     const bool ok = !c.secret_env.empty() && c.secret_env.size() <= 128 &&
-                    std::all_of(c.secret_env.begin(), c.secret_env.end(), [](char ch) {
-                      return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') ||
-                             ch == '_';
-                    }) &&
+                    std::all_of(c.secret_env.begin(), c.secret_env.end(),
+                                [](char ch) {
+                                  return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') ||
+                                         (ch >= '0' && ch <= '9') || ch == '_';
+                                }) &&
                     !(c.secret_env[0] >= '0' && c.secret_env[0] <= '9');
-    if (!ok) s.fail("env", cat("= \"", c.secret_env, "\": must be an environment variable name ([A-Za-z_][A-Za-z0-9_]*)"));
+    if (!ok)
+      s.fail("env", cat("= \"", c.secret_env, "\": must be an environment variable name ([A-Za-z_][A-Za-z0-9_]*)"));
   }
   s.finish();
 }
@@ -87,7 +89,8 @@ ClusterNodeConfig read_node(JsonReader& n) {
   ClusterNodeConfig node;
   node.name = checked_name(n, "name", "a node name");
   node.host = n.string("host");
-  if (node.host.empty() || node.host.size() > 253) n.fail("host", cat("= \"", node.host, "\": must be a host name or address"));
+  if (node.host.empty() || node.host.size() > 253)
+    n.fail("host", cat("= \"", node.host, "\": must be a host name or address"));
   const json& outs = n.raw("outputs");
   if (!outs.is_array() || outs.empty())
     n.fail("outputs", cat("= ", outs.dump(), ": must be a non-empty array of output names of the viewport config"));
@@ -154,7 +157,8 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
   if (r.has("limits")) {
     JsonReader l = child(r, "limits");
     if (l.has("max_unauthenticated_connections"))
-      c.max_unauthenticated_connections = static_cast<std::uint32_t>(l.integer("max_unauthenticated_connections", 1, 4096));
+      c.max_unauthenticated_connections =
+          static_cast<std::uint32_t>(l.integer("max_unauthenticated_connections", 1, 4096));
     l.finish();
   }
   if (r.has("tables")) {
@@ -173,7 +177,8 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
     c.nodes.push_back(read_node(n));
     for (std::size_t k = 0; k < i; ++k)
       if (c.nodes[k].name == c.nodes[i].name)
-        r.fail(cat("nodes/", i, "/name"), cat("= \"", c.nodes[i].name, "\": duplicate node name (also /nodes/", k, ")"));
+        r.fail(cat("nodes/", i, "/name"),
+               cat("= \"", c.nodes[i].name, "\": duplicate node name (also /nodes/", k, ")"));
   }
 
   if (r.has("output")) {
@@ -198,8 +203,9 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
       if (viewports.find(output) == nullptr) {
         std::string names;
         for (const auto& o : viewports.outputs) names += cat(names.empty() ? "" : ", ", o.name);
-        throw ConfigError(source, key, cat("= \"", output, "\": no such output in ", c.viewports.string(),
-                                           " (outputs: ", names, ")"));
+        throw ConfigError(
+            source, key,
+            cat("= \"", output, "\": no such output in ", c.viewports.string(), " (outputs: ", names, ")"));
       }
       if (const auto [it, inserted] = owner.emplace(output, c.nodes[i].name); !inserted)
         throw ConfigError(source, key, cat("= \"", output, "\": already rendered by node \"", it->second, "\""));

@@ -8,10 +8,10 @@
 //     "zenith_cluster": 1,
 //     "name": "local-dome",
 //     "master": {"host": "127.0.0.1", "port": 47100},
-//     "standby": {"host": "127.0.0.1", "port": 47101},      optional: a standby master (docs/cluster.md, "Standby master")
-//     "scene": "../scenes/earth-sunset.json",              relative to this file
-//     "viewports": "../viewports/dome-quadrants.json",     relative to this file
-//     "timing": {"heartbeat_ms": 250, "barrier_timeout_ms": 5000, "frame_rate_hz": 10,
+//     "standby": {"host": "127.0.0.1", "port": 47101},      optional: a standby master (docs/cluster.md, "Standby
+//     master") "scene": "../scenes/earth-sunset.json",              relative to this file "viewports":
+//     "../viewports/dome-quadrants.json",     relative to this file "timing": {"heartbeat_ms": 250,
+//     "barrier_timeout_ms": 5000, "frame_rate_hz": 10,
 //                "reconnect_s": 300},                       optional: a node's time to reconnect after a loss
 //     "secret": {"env": "ZENITH_CLUSTER_SECRET"},          or {"file": "secret.key"}; never the secret itself
 //     "tables": {"sizes": "paper", "orders": 6},           optional (default orders: kDefaultScatteringOrders)
@@ -75,15 +75,15 @@ inline constexpr double kMaxFrameRateHz = 240.0;
 inline constexpr int kMaxSwapGroup = 64;
 
 struct ClusterConfig {
-  std::string name;                  ///< the cluster's name (checked in the handshake)
-  std::string source;                ///< the file it came from (messages)
-  std::string master_host;           ///< where nodes connect (the master listens on it)
-  std::uint16_t master_port = 0;     ///< TCP port, in [1, 65535]
+  std::string name;               ///< the cluster's name (checked in the handshake)
+  std::string source;             ///< the file it came from (messages)
+  std::string master_host;        ///< where nodes connect (the master listens on it)
+  std::uint16_t master_port = 0;  ///< TCP port, in [1, 65535]
   /// The standby master ("standby"): it follows the active master and takes
   /// over when that one is gone; nodes try the active master, then it.
   std::optional<MasterAddress> standby;
-  std::filesystem::path scene;       ///< resolved against the config's folder
-  std::filesystem::path viewports;   ///< resolved against the config's folder
+  std::filesystem::path scene;              ///< resolved against the config's folder
+  std::filesystem::path viewports;          ///< resolved against the config's folder
   std::uint32_t heartbeat_ms = 250;         ///< each side sends a Heartbeat at least this often; 3× silent = gone
   std::uint32_t barrier_timeout_ms = 5000;  ///< a node not done with a frame within this is dropped from it
   /// The master starts frames no faster than this: the projectors' refresh

@@ -37,7 +37,8 @@ void Connection::read_more() {
     if (ec) {
       std::string reason = ec == asio::error::eof ? std::string("end of stream") : "read error: " + ec.message();
       if (self->decoder_.buffered_bytes() > 0)
-        reason += " inside a frame (" + std::to_string(self->decoder_.buffered_bytes()) + " bytes of a truncated frame)";
+        reason +=
+            " inside a frame (" + std::to_string(self->decoder_.buffered_bytes()) + " bytes of a truncated frame)";
       self->finish(reason);
       return;
     }
@@ -86,17 +87,16 @@ void Connection::write_next() {
   }
   writing_ = true;
   auto self = shared_from_this();
-  asio::async_write(socket_, asio::buffer(*queue_.front()),
-                    [self](const boost::system::error_code& ec, std::size_t) {
-                      if (self->finished_) return;
-                      self->queued_bytes_ -= self->queue_.front()->size();
-                      self->queue_.pop_front();
-                      if (ec) {
-                        self->finish(self->closing_ ? self->closing_reason_ : "write error: " + ec.message());
-                        return;
-                      }
-                      self->write_next();
-                    });
+  asio::async_write(socket_, asio::buffer(*queue_.front()), [self](const boost::system::error_code& ec, std::size_t) {
+    if (self->finished_) return;
+    self->queued_bytes_ -= self->queue_.front()->size();
+    self->queue_.pop_front();
+    if (ec) {
+      self->finish(self->closing_ ? self->closing_reason_ : "write error: " + ec.message());
+      return;
+    }
+    self->write_next();
+  });
 }
 
 void Connection::close_after_flush(const std::string& reason, std::chrono::milliseconds grace) {

@@ -50,8 +50,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
   /// Sends what is queued, then shuts the connection down; `reason` goes to
   /// the close handler. Reading stops at once (nothing more is handled).
   /// Gives up and closes after `grace` if the peer does not take the bytes.
-  void close_after_flush(const std::string& reason,
-                         std::chrono::milliseconds grace = std::chrono::milliseconds(2000));
+  void close_after_flush(const std::string& reason, std::chrono::milliseconds grace = std::chrono::milliseconds(2000));
   /// Closes now, dropping unsent frames.
   void close(const std::string& reason);
 

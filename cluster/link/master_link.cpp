@@ -84,8 +84,8 @@ void MasterLink::on_connected(tcp::socket socket) {
       });
   connection_->send(protocol_.start());
   if (protocol_.reconnecting())
-    spdlog::info("{}: connected to the master at {} again after {:.1f} s; authenticating", setup_.who,
-                 master_address(), ms_since(lost_at_) / 1000.0);
+    spdlog::info("{}: connected to the master at {} again after {:.1f} s; authenticating", setup_.who, master_address(),
+                 ms_since(lost_at_) / 1000.0);
   else
     spdlog::info("{}: connected to the master at {}", setup_.who, master_address());
   heartbeat_tick(generation);
@@ -113,27 +113,29 @@ void MasterLink::connection_failed(const std::string& reason) {
   if (was_welcomed) {
     lost_at_ = now;
     if (retry.give_up) {  // reconnect time 0
-      spdlog::error("{}: lost the connection to the master at {} ({}); reconnecting is off "
-                    "(reconnect time 0): the master is gone; exiting",
-                    setup_.who, address, reason);
+      spdlog::error(
+          "{}: lost the connection to the master at {} ({}); reconnecting is off "
+          "(reconnect time 0): the master is gone; exiting",
+          setup_.who, address, reason);
       events_.ended(kNodeExitMasterLost);
       return;
     }
     if (setup_.role == PeerRole::node)
-      spdlog::warn("{}: lost the connection to the master at {} ({}): keeping the last frame, reconnecting for "
-                   "up to {:.0f} s{}",
-                   setup_.who, address, reason, protocol_.rules().reconnect_ms / 1000.0,
-                   setup_.masters.size() > 1 ? cat(" (the listed masters in order: ", listed(), ")") : std::string());
+      spdlog::warn(
+          "{}: lost the connection to the master at {} ({}): keeping the last frame, reconnecting for "
+          "up to {:.0f} s{}",
+          setup_.who, address, reason, protocol_.rules().reconnect_ms / 1000.0,
+          setup_.masters.size() > 1 ? cat(" (the listed masters in order: ", listed(), ")") : std::string());
     else
       spdlog::warn("{}: lost the connection to the active master at {} ({})", setup_.who, address, reason);
     events_.lost(reason);
     if (stopping_) return;  // the node stopped on the news
   } else if (retry.give_up) {
     if (protocol_.reconnecting())
-      spdlog::error("{}: could not reconnect to the master at {} within {:.0f} s ({} attempts; last: {}): "
-                    "the master is gone; exiting",
-                    setup_.who, listed(), protocol_.rules().reconnect_ms / 1000.0, protocol_.failed_attempts() + 1,
-                    reason);
+      spdlog::error(
+          "{}: could not reconnect to the master at {} within {:.0f} s ({} attempts; last: {}): "
+          "the master is gone; exiting",
+          setup_.who, listed(), protocol_.rules().reconnect_ms / 1000.0, protocol_.failed_attempts() + 1, reason);
     else
       spdlog::error("{}: cannot reach the master at {} within {} ms ({}): exiting", setup_.who, listed(),
                     protocol_.rules().connect_timeout_ms, reason);
@@ -190,16 +192,15 @@ void MasterLink::on_message(Message&& message) {
     const bool rejoining = protocol_.reconnecting();
     MasterLinkProtocol::Step step = protocol_.on_message(message);
     switch (step.meaning) {
-      case Meaning::reply:
-        connection_->send(*step.reply);
-        break;
+      case Meaning::reply: connection_->send(*step.reply); break;
       case Meaning::welcomed: {
         const Welcome& w = std::get<Welcome>(message);
         if (rejoining)
-          spdlog::info("{}: welcomed again by the master at {} as id {} at frame {} {:.1f} s after the loss "
-                       "(rejoin {}): it rejoins at a frame boundary",
-                       setup_.who, master_address(), w.node_id, w.current_frame, ms_since(lost_at_) / 1000.0,
-                       protocol_.rejoins());
+          spdlog::info(
+              "{}: welcomed again by the master at {} as id {} at frame {} {:.1f} s after the loss "
+              "(rejoin {}): it rejoins at a frame boundary",
+              setup_.who, master_address(), w.node_id, w.current_frame, ms_since(lost_at_) / 1000.0,
+              protocol_.rejoins());
         else
           spdlog::info("{}: welcomed by the master at {} as id {} at frame {} (heartbeat {} ms, barrier timeout {} ms)",
                        setup_.who, master_address(), w.node_id, w.current_frame, w.heartbeat_interval_ms,
@@ -207,11 +208,8 @@ void MasterLink::on_message(Message&& message) {
         events_.welcomed(w);
         break;
       }
-      case Meaning::work:
-        events_.message(message);
-        break;
-      case Meaning::heartbeat:
-        break;
+      case Meaning::work: events_.message(message); break;
+      case Meaning::heartbeat: break;
       case Meaning::rejected: {
         const Reject& r = std::get<Reject>(message);
         spdlog::error("{}: the master at {} refused the connection ({}): {}", setup_.who, master_address(),
@@ -255,11 +253,8 @@ void MasterLink::heartbeat_tick(std::uint64_t generation) {
       else
         connection_failed("no Welcome in time");
       return;
-    case MasterLinkProtocol::Tick::send_heartbeat:
-      connection_->send(heartbeat_at(now));
-      break;
-    case MasterLinkProtocol::Tick::wait:
-      break;
+    case MasterLinkProtocol::Tick::send_heartbeat: connection_->send(heartbeat_at(now)); break;
+    case MasterLinkProtocol::Tick::wait: break;
   }
   heartbeat_timer_.expires_after(milliseconds(protocol_.heartbeat_ms()));
   heartbeat_timer_.async_wait([this, generation](const boost::system::error_code& ec) {

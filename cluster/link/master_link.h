@@ -2,14 +2,12 @@
 // A render node's link to its master, on the node's networking thread
 // (docs/cluster.md, "Architecture"; "Join, rejoin and failures"): resolves
 // the address of a listed master (the active master, then the standby) and
-// connects, retrying with backoff up to the connect timeout; runs the handshake and the heartbeats; when a welcomed connection
-// is lost (closed, or the master silent), tells the node and reconnects —
-// a full handshake again — until the reconnect time runs out
-// (MasterLinkProtocol: the rules, without sockets). It hands the node every
-// message of the master after each Welcome, and tells it when the link ends
-// and with which exit code. What the messages mean for tables, frames and
-// files is the node's (cluster/node/node.cpp). A standby master follows its
-// active master through the same link, in the standby role (cluster/standby/standby.h).
+// connects, retrying with backoff up to the connect timeout; runs the handshake and the heartbeats; when a welcomed
+// connection is lost (closed, or the master silent), tells the node and reconnects — a full handshake again — until the
+// reconnect time runs out (MasterLinkProtocol: the rules, without sockets). It hands the node every message of the
+// master after each Welcome, and tells it when the link ends and with which exit code. What the messages mean for
+// tables, frames and files is the node's (cluster/node/node.cpp). A standby master follows its active master through
+// the same link, in the standby role (cluster/standby/standby.h).
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -57,11 +55,11 @@ class MasterLink {
   /// Who connects to which masters, and how.
   struct Setup {
     std::string cluster_name;
-    std::string peer_name;                ///< the name in the Hello
+    std::string peer_name;  ///< the name in the Hello
     PeerRole role = PeerRole::node;
-    std::string who;                      ///< "node 'a'", "standby": the start of every log line
-    std::vector<MasterAddress> masters;   ///< tried in order (listed_masters())
-    std::uint32_t heartbeat_ms = 250;     ///< the configuration's, until the Welcome brings the master's
+    std::string who;                     ///< "node 'a'", "standby": the start of every log line
+    std::vector<MasterAddress> masters;  ///< tried in order (listed_masters())
+    std::uint32_t heartbeat_ms = 250;    ///< the configuration's, until the Welcome brings the master's
     ReconnectRules rules;
   };
   MasterLink(boost::asio::io_context& io, Setup setup, SharedSecret secret, Events events);

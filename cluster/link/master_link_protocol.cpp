@@ -103,7 +103,8 @@ MasterLinkProtocol::Retry MasterLinkProtocol::connection_failed(Clock::time_poin
   master_index_ = 0;
   ++failed_rounds_;
   const double nominal = static_cast<double>(backoff(rules_, failed_rounds_).count());
-  const auto wait = milliseconds(static_cast<std::int64_t>(nominal * jitter_factor(rules_, node_name_, failed_rounds_)));
+  const auto wait =
+      milliseconds(static_cast<std::int64_t>(nominal * jitter_factor(rules_, node_name_, failed_rounds_)));
   const auto left = std::chrono::duration_cast<milliseconds>(deadline_ - now);
   // The last attempt is made at the deadline, not after it.
   return {false, std::min(wait, left)};
@@ -125,7 +126,7 @@ double MasterLinkProtocol::jitter_factor(const ReconnectRules& rules, const std:
   };
   for (const char c : node_name) mix(static_cast<std::uint8_t>(c));
   for (int i = 0; i < 4; ++i) mix(static_cast<std::uint8_t>(failed >> (8 * i)));
-  h ^= h >> 33;  // spread the low bits
+  h ^= h >> 33;                                                         // spread the low bits
   const double unit = static_cast<double>(h % 1000001ull) / 1000000.0;  // [0, 1]
   return 1.0 - rules.jitter + 2.0 * rules.jitter * unit;
 }

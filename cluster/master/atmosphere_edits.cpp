@@ -23,12 +23,13 @@ std::size_t AtmosphereEdits::index_of(const std::string& body) const {
   if (it != bodies_.end()) return static_cast<std::size_t>(it - bodies_.begin());
   std::string list;
   for (const std::string& b : bodies_) list += cat(list.empty() ? "" : ", ", "'", b, "'");
-  throw std::invalid_argument(cat("command: /body = ", brief(nlohmann::json(body)), ": the scene ", scene_.source,
-                                  " has no body of that name with an atmosphere (bodies with one: ",
-                                  list.empty() ? "none" : list, ")"));
+  throw std::invalid_argument(
+      cat("command: /body = ", brief(nlohmann::json(body)), ": the scene ", scene_.source,
+          " has no body of that name with an atmosphere (bodies with one: ", list.empty() ? "none" : list, ")"));
 }
 
-AtmosphereEdits::Edit AtmosphereEdits::resolve(const operator_command::Set& set, const nlohmann::json& parameters) const {
+AtmosphereEdits::Edit AtmosphereEdits::resolve(const operator_command::Set& set,
+                                               const nlohmann::json& parameters) const {
   index_of(set.body);  // an unknown body first, before the pointer
   // The tables are resolved at the scene's wavelengths, which override the
   // parameters' own: a change there would be ignored (and "banana" once
@@ -63,7 +64,8 @@ AtmosphereEdits::Edit AtmosphereEdits::resolve_parameters(const std::string& bod
   try {
     scene::check_scene(with_edit);
   } catch (const std::exception& e) {
-    throw std::invalid_argument(cat("set ", body, ": ", change, ": the atmosphere no longer fits its body: ", e.what()));
+    throw std::invalid_argument(
+        cat("set ", body, ": ", change, ": the atmosphere no longer fits its body: ", e.what()));
   }
   edit.change = change;
   return edit;

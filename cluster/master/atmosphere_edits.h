@@ -30,7 +30,8 @@ class AtmosphereEdits {
  public:
   /// One body's new atmosphere, checked and resolved.
   struct Edit {
-    std::size_t index = 0;  ///< the body's place among the scene's atmospheres (scene order, as TableVersions::current())
+    std::size_t index =
+        0;  ///< the body's place among the scene's atmospheres (scene order, as TableVersions::current())
     std::string body;
     atmosphere::LoadedAtmosphere loaded;  ///< at the scene's wavelengths; `parameters` is the whole new set
     std::string change;                   ///< "/aerosol/scattering/turbidity = 3" (several joined by ", ")

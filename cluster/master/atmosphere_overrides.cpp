@@ -20,9 +20,12 @@ nlohmann::json AtmosphereOverrides::apply(const std::string& body, nlohmann::jso
 
 void AtmosphereOverrides::add(const operator_command::Set& set) {
   std::vector<Change>& changes = changes_[set.body];
-  const auto same = std::find_if(changes.begin(), changes.end(), [&](const Change& c) { return c.pointer == set.pointer; });
-  if (same != changes.end()) same->value = set.value;
-  else changes.push_back({set.pointer, set.value});
+  const auto same =
+      std::find_if(changes.begin(), changes.end(), [&](const Change& c) { return c.pointer == set.pointer; });
+  if (same != changes.end())
+    same->value = set.value;
+  else
+    changes.push_back({set.pointer, set.value});
 }
 
 std::string AtmosphereOverrides::describe(const std::string& body) const {
@@ -30,7 +33,8 @@ std::string AtmosphereOverrides::describe(const std::string& body) const {
   if (it == changes_.end()) return "";
   std::string text;
   for (const Change& c : it->second)
-    text += cat(text.empty() ? "" : ", ", c.pointer.to_string(), " = ", c.value.is_null() ? std::string("removed") : brief(c.value));
+    text += cat(text.empty() ? "" : ", ", c.pointer.to_string(), " = ",
+                c.value.is_null() ? std::string("removed") : brief(c.value));
   return text;
 }
 

@@ -47,8 +47,9 @@ DomePreview::DomePreview(const ClusterConfig& config, const warp::ViewportConfig
     height_px_ = std::max(1, scaled(height));
     for (std::size_t i = 0; i < outputs.size(); ++i) {
       const int x = (*origins)[i][0], y = (*origins)[i][1];
-      slots_[outputs[i]->name] = Slot{nodes[i], scaled(x), scaled(y), std::max(scaled(x) + 1, scaled(x + outputs[i]->width_px)),
-                                      std::max(scaled(y) + 1, scaled(y + outputs[i]->height_px))};
+      slots_[outputs[i]->name] =
+          Slot{nodes[i], scaled(x), scaled(y), std::max(scaled(x) + 1, scaled(x + outputs[i]->width_px)),
+               std::max(scaled(y) + 1, scaled(y + outputs[i]->height_px))};
     }
     return;
   }
@@ -61,15 +62,16 @@ DomePreview::DomePreview(const ClusterConfig& config, const warp::ViewportConfig
   height_px_ = rows * cell + (rows - 1) * kGridGapPx;
   for (int i = 0; i < count; ++i) {
     const int x = (i % columns) * (cell + kGridGapPx), y = (i / columns) * (cell + kGridGapPx);
-    slots_[outputs[static_cast<std::size_t>(i)]->name] = Slot{nodes[static_cast<std::size_t>(i)], x, y, x + cell, y + cell};
+    slots_[outputs[static_cast<std::size_t>(i)]->name] =
+        Slot{nodes[static_cast<std::size_t>(i)], x, y, x + cell, y + cell};
   }
 }
 
 void DomePreview::add(const std::string& node, Thumbnail thumbnail) {
   const auto slot = slots_.find(thumbnail.output);
   if (slot == slots_.end() || slot->second.node != node)
-    throw std::invalid_argument(cat("a thumbnail of output '", thumbnail.output, "', which is not one of node '", node,
-                                    "''s outputs"));
+    throw std::invalid_argument(
+        cat("a thumbnail of output '", thumbnail.output, "', which is not one of node '", node, "''s outputs"));
   if (thumbnail.width_px < 1 || thumbnail.width_px > kMaxThumbnailEdgePx || thumbnail.height_px < 1 ||
       thumbnail.height_px > kMaxThumbnailEdgePx ||
       thumbnail.rgb.size() != static_cast<std::size_t>(thumbnail.width_px) * thumbnail.height_px * 3)

@@ -63,7 +63,7 @@ class DomePreview {
   };
   Layout layout_ = Layout::grid;
   int width_px_ = 0, height_px_ = 0;
-  std::map<std::string, Slot> slots_;  ///< by output name
+  std::map<std::string, Slot> slots_;            ///< by output name
   std::map<std::string, Thumbnail> thumbnails_;  ///< by output name
 };
 

@@ -36,9 +36,10 @@ void FrameLoop::stop() {
   barrier_timer_.cancel();
   frame_timer_.cancel();
   if (p_.options.paced && p_.progress.presented > 0)
-    spdlog::info("master: pacing at {} Hz: {} frames presented, {} more than a period after they were due, the "
-                 "schedule moved {} time{}",
-                 p_.play.fps, p_.progress.presented, late_frames_, pacer_.slips(), pacer_.slips() == 1 ? "" : "s");
+    spdlog::info(
+        "master: pacing at {} Hz: {} frames presented, {} more than a period after they were due, the "
+        "schedule moved {} time{}",
+        p_.play.fps, p_.progress.presented, late_frames_, pacer_.slips(), pacer_.slips() == 1 ? "" : "s");
 }
 
 void FrameLoop::maybe_start() {
@@ -71,8 +72,8 @@ bool FrameLoop::next_frame(FrameState& next) {
   }
   const std::uint64_t frame = p_.barrier.frame();
   next = p_.play.show ? p_.play.show->state_at(p_.play.clock->next_frame_time_s(), frame, p_.play.render_flags)
-              : scene::default_show_frame(p_.play.scene, frame, p_.options.sun_step_deg, p_.tables.tables().current(),
-                                          p_.play.render_flags);
+                      : scene::default_show_frame(p_.play.scene, frame, p_.options.sun_step_deg,
+                                                  p_.tables.tables().current(), p_.play.render_flags);
   if (!p_.play.show) next.show_time_s = static_cast<double>(frame) / p_.play.fps;  // the live session's clock
   p_.desk.shape(next);
   return true;
@@ -113,7 +114,8 @@ void FrameLoop::start_frame() {
   const std::uint64_t frame = p_.options.feed ? state.frame : p_.barrier.frame();
   auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(state));
   if (p_.desk.wants_preview(frame)) {  // before the FrameState it names
-    auto request = std::make_shared<const std::vector<std::uint8_t>>(encode(PreviewRequest{frame, kMaxThumbnailEdgePx}));
+    auto request =
+        std::make_shared<const std::vector<std::uint8_t>>(encode(PreviewRequest{frame, kMaxThumbnailEdgePx}));
     for (const std::uint32_t id : participants) p_.sessions.find(id)->connection->send_encoded(request);
   }
   for (const std::uint32_t id : participants) p_.sessions.find(id)->connection->send_encoded(encoded);
@@ -137,8 +139,8 @@ void FrameLoop::on_render_done(const NodeSession& s, const RenderDone& done) {
     case FrameBarrier::Report::rejoins:
       p_.statistics.rendered(s.name, done.render_ms, false);
       p_.statistics.rejoined(s.name);
-      spdlog::info("master: node '{}' finished frame {} late; it rejoins the barrier at frame {}", s.name,
-                   done.frame, p_.barrier.next_boundary());
+      spdlog::info("master: node '{}' finished frame {} late; it rejoins the barrier at frame {}", s.name, done.frame,
+                   p_.barrier.next_boundary());
       return;
     case FrameBarrier::Report::ignored_lagging: return;
     case FrameBarrier::Report::ignored:
@@ -158,18 +160,20 @@ void FrameLoop::note_presents(const NodeSession& s, const RenderDone& done) {
   if (logged != late_logged_.end() && now - logged->second < std::chrono::seconds(1)) return;
   late_logged_[s.name] = now;
   const NodeStatistics::Counts c = p_.statistics.of(s.name);
-  spdlog::warn("master: node '{}' presented late (a missed vblank): {} of its {} presents so far (last {:.1f} ms "
-               "from Present to swap)",
-               s.name, c.late_presents, c.presents, done.present_ms);
+  spdlog::warn(
+      "master: node '{}' presented late (a missed vblank): {} of its {} presents so far (last {:.1f} ms "
+      "from Present to swap)",
+      s.name, c.late_presents, c.presents, done.present_ms);
 }
 
 void FrameLoop::on_barrier_timeout() {
   for (const std::uint32_t id : p_.barrier.drop_unfinished())
     if (const NodeSession* s = p_.sessions.find(id)) {
       p_.statistics.dropped(s->name);
-      spdlog::warn("master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
-                   "barrier; the show goes on without it",
-                   s->name, p_.barrier.frame(), p_.options.config.barrier_timeout_ms);
+      spdlog::warn(
+          "master: node '{}' missed the barrier of frame {} (no RenderDone within {} ms): dropped from the "
+          "barrier; the show goes on without it",
+          s->name, p_.barrier.frame(), p_.options.config.barrier_timeout_ms);
     }
   complete_frame();
 }
@@ -209,9 +213,10 @@ void FrameLoop::complete_frame() {
   const bool slipped = pacer_.slips() != slips;
   if (slipped && (slips == 0 || presented >= last_slip_logged_ + static_cast<std::uint64_t>(p_.play.fps))) {
     last_slip_logged_ = presented;  // the first slip, then at most one line a second
-    spdlog::info("master: frame {} is more than a period behind the {} Hz schedule (the slowest node, or the tables): "
-                 "the schedule moves on instead of bursting frames ({} time{} so far)",
-                 presented, p_.play.fps, pacer_.slips(), pacer_.slips() == 1 ? "" : "s");
+    spdlog::info(
+        "master: frame {} is more than a period behind the {} Hz schedule (the slowest node, or the tables): "
+        "the schedule moves on instead of bursting frames ({} time{} so far)",
+        presented, p_.play.fps, pacer_.slips(), pacer_.slips() == 1 ? "" : "s");
   }
   retry_after(wait);
 }

@@ -85,7 +85,7 @@ class FrameLoop {
   Clock::time_point frame_started_;
   FramePacer pacer_;  ///< when each frame is due
   std::uint64_t last_slip_logged_ = 0;
-  std::uint64_t late_frames_ = 0;  ///< presented more than a period after they were due (paced)
+  std::uint64_t late_frames_ = 0;                         ///< presented more than a period after they were due (paced)
   std::map<std::string, Clock::time_point> late_logged_;  ///< per node: the last log line of its late presents
   /// Since when frame 0 could start as far as the tables go (the wait for nodes counts from here).
   std::optional<Clock::time_point> waiting_since_;

@@ -24,7 +24,8 @@ void FramePacer::start(Clock::time_point t0) { t0_ = t0; }
 FramePacer::Clock::time_point FramePacer::due(std::uint64_t n) const {
   // n / rate in double, not n · period: the period rounded to the clock's tick
   // would drift by up to a tick per frame.
-  return t0_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(static_cast<double>(n) / rate_hz_));
+  return t0_ +
+         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(static_cast<double>(n) / rate_hz_));
 }
 
 FramePacer::Clock::duration FramePacer::wait_before(std::uint64_t n, Clock::time_point now) {

@@ -22,7 +22,8 @@ HeartbeatMonitor::HeartbeatMonitor(std::uint32_t heartbeat_interval_ms)
 HeartbeatMonitor::Verdict HeartbeatMonitor::check(bool in_handshake, Clock::time_point connected_at,
                                                   Clock::time_point last_received, Clock::time_point now) const {
   if (in_handshake)
-    return ms_between(connected_at, now) > handshake_limit_ms_ ? Verdict::handshake_overdue : Verdict::awaiting_handshake;
+    return ms_between(connected_at, now) > handshake_limit_ms_ ? Verdict::handshake_overdue
+                                                               : Verdict::awaiting_handshake;
   if (ms_between(last_received, now) > silence_limit_ms_) return Verdict::silent;
   return Verdict::send_heartbeat;
 }

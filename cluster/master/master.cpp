@@ -16,7 +16,6 @@
 #include "cluster/master/frame_loop.h"
 #include "cluster/master/heartbeat_monitor.h"
 #include "cluster/master/node_listener.h"
-#include "core/log_limiter.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
 #include "cluster/master/operator_desk.h"
@@ -24,6 +23,7 @@
 #include "cluster/master/table_preparer.h"
 #include "cluster/master/table_schedule.h"
 #include "cluster/master/takeover.h"
+#include "core/log_limiter.h"
 #include "core/strings.h"
 #include "core/timing.h"
 #include "scene/frame_scene.h"
@@ -32,8 +32,8 @@ namespace zenith::cluster {
 
 namespace asio = boost::asio;
 using Clock = std::chrono::steady_clock;
-using std::chrono::milliseconds;
 using core::cat;
+using std::chrono::milliseconds;
 
 /// The wiring: the parts (table_schedule.h, operator_desk.h, frame_loop.h,
 /// node_listener.h), the message dispatch, heartbeats, signals and stopping.
@@ -52,13 +52,13 @@ struct Master::Impl {
   /// it: SIGINT then cancels their precompute); before, SIGINT/SIGTERM end the process at once.
   std::optional<asio::signal_set> signals;
   asio::steady_timer heartbeat_timer{io};
-  NodeSessions sessions;  ///< every node connection, from accept to close
-  NodeListener listener;  ///< accepts connections as sessions in their handshake
+  NodeSessions sessions;               ///< every node connection, from accept to close
+  NodeListener listener;               ///< accepts connections as sessions in their handshake
   core::LogLimiters anonymous_closes;  ///< log lines of connections closed before their Hello, per kind of reason
-  FrameBarrier barrier;   ///< the frame in flight (or the next one), its participants, lagging nodes
+  FrameBarrier barrier;                ///< the frame in flight (or the next one), its participants, lagging nodes
   HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
-  NodeStatistics node_statistics;  ///< per node name, for the console's status
-  FrameProgress progress;          ///< frame 0 started, stopping, frames presented, the frame in flight
+  NodeStatistics node_statistics;                            ///< per node name, for the console's status
+  FrameProgress progress;  ///< frame 0 started, stopping, frames presented, the frame in flight
   // Made once the show is loaded (make_parts):
   std::optional<TableSchedule> tables;  ///< which set each node gets and when, every version
   std::optional<OperatorDesk> desk;     ///< the operator's commands and overrides, the status
@@ -66,22 +66,22 @@ struct Master::Impl {
 
   /// Obtains table sets on its own thread, in order; results come back to the
   /// networking thread. Last member: stopped and joined before the rest goes.
-  TablePreparer preparer{
-      [this](TableSetFile set, double seconds, bool from_cache) {
-        asio::post(io, [this, set = std::move(set), seconds, from_cache]() mutable {
-          tables->on_set_prepared(std::move(set), seconds, from_cache);
-        });
-      },
-      [this](const Digest& hash, std::exception_ptr error) {
-        asio::post(io, [this, hash, error] { tables->on_set_failed(hash, error); });
-      },
-      TablePreparer::obtain_with_delay(options.debug_table_delay_ms)};
+  TablePreparer preparer{[this](TableSetFile set, double seconds, bool from_cache) {
+                           asio::post(io, [this, set = std::move(set), seconds, from_cache]() mutable {
+                             tables->on_set_prepared(std::move(set), seconds, from_cache);
+                           });
+                         },
+                         [this](const Digest& hash, std::exception_ptr error) {
+                           asio::post(io, [this, hash, error] { tables->on_set_failed(hash, error); });
+                         },
+                         TablePreparer::obtain_with_delay(options.debug_table_delay_ms)};
 
   Impl(MasterOptions o, SharedSecret secret)
       : options(std::move(o)),
-        listener(io, sessions, std::move(secret), options.config.name,
-                 [this](std::uint32_t id, Message&& m) { on_message(id, std::move(m)); },
-                 [this](std::uint32_t id, const std::string& reason) { on_closed(id, reason); }) {}
+        listener(
+            io, sessions, std::move(secret), options.config.name,
+            [this](std::uint32_t id, Message&& m) { on_message(id, std::move(m)); },
+            [this](std::uint32_t id, const std::string& reason) { on_closed(id, reason); }) {}
   ~Impl() { preparer.stop(); }
 
   // ---- the parts ----------------------------------------------------------------
@@ -101,8 +101,8 @@ struct Master::Impl {
     };
     tables.emplace(TableSchedule::Options{TableSchedule::request_for(options.config, options.cache_directory,
                                                                      options.cpu_precompute),
-                                          options.config.barrier_timeout_ms,
-                                          options.atmosphere_switches, fps, options.paced, !(show && options.feed)},
+                                          options.config.barrier_timeout_ms, options.atmosphere_switches, fps,
+                                          options.paced, !(show && options.feed)},
                    scene, show ? &*show : nullptr, sessions, barrier, std::move(actions));
     desk.emplace(OperatorDesk::Master{options.config, sessions, barrier, *tables, node_statistics, progress,
                                       show ? &*show : nullptr, clock ? &*clock : nullptr, fps, options.feed != nullptr,
@@ -121,10 +121,9 @@ struct Master::Impl {
     const TakeoverState& t = *options.takeover;
     tables->adopt_takeover(t);
     const FrameState& last = *t.last_frame;
-    const FrameState expected =
-        show ? show->state_at(last.show_time_s, last.frame, play.render_flags)
-             : scene::default_show_frame(scene, last.frame, options.sun_step_deg, tables->tables().current(),
-                                         play.render_flags);
+    const FrameState expected = show ? show->state_at(last.show_time_s, last.frame, play.render_flags)
+                                     : scene::default_show_frame(scene, last.frame, options.sun_step_deg,
+                                                                 tables->tables().current(), play.render_flags);
     const Continuation c = continue_show(t, expected, fps);
     barrier.start_at(c.next_frame);
     desk->set_exposure(c.exposure);
@@ -143,8 +142,8 @@ struct Master::Impl {
     if (s.state != NodeSession::State::handshake)  // authenticated: every loss is news
       spdlog::log(progress.stopping ? spdlog::level::info : spdlog::level::warn, "master: {} disconnected: {}", s.who(),
                   reason);
-    else if (const std::optional<std::string> more = anonymous_closes.admit(core::LogLimiters::kind_of(reason),
-                                                                            core::LogLimiter::Clock::now()))
+    else if (const std::optional<std::string> more =
+                 anonymous_closes.admit(core::LogLimiters::kind_of(reason), core::LogLimiter::Clock::now()))
       spdlog::log(bad_peer ? spdlog::level::warn : spdlog::level::info, "master: {} closed: {}{}", s.who(), reason,
                   *more);  // not authenticated: a flood of them is a line a second per kind of reason
     // Release the session after the connection's handlers have returned.
@@ -266,14 +265,18 @@ struct Master::Impl {
     listener.limit_unauthenticated(options.config.max_unauthenticated_connections);
     desk->start_console(io, options.operator_console);
     if (options.on_listening) options.on_listening();  // `zenith cluster` starts its nodes now
-    tables->check_switches();  // fail before any precompute
-    if (options.takeover && options.takeover->last_frame) adopt_takeover();
-    else tables->prepare_initial([](const TablePreparer::Job& job) { return TablePreparer::obtain_set(job, nullptr); });
-    spdlog::info("master: cluster '{}' listening on {}:{} for {} node{} (heartbeat {} ms, barrier timeout {} ms, {} Hz)",
-                 options.config.name, options.config.master_host, port, options.config.nodes.size(),
-                 options.config.nodes.size() == 1 ? "" : "s", options.config.heartbeat_ms,
-                 options.config.barrier_timeout_ms, fps);
-    if (!tables->prepares_show_sets()) loop->start_waiting();  // a show: once its first sets are ready (maybe_start_show)
+    tables->check_switches();                          // fail before any precompute
+    if (options.takeover && options.takeover->last_frame)
+      adopt_takeover();
+    else
+      tables->prepare_initial([](const TablePreparer::Job& job) { return TablePreparer::obtain_set(job, nullptr); });
+    spdlog::info(
+        "master: cluster '{}' listening on {}:{} for {} node{} (heartbeat {} ms, barrier timeout {} ms, {} Hz)",
+        options.config.name, options.config.master_host, port, options.config.nodes.size(),
+        options.config.nodes.size() == 1 ? "" : "s", options.config.heartbeat_ms, options.config.barrier_timeout_ms,
+        fps);
+    if (!tables->prepares_show_sets())
+      loop->start_waiting();  // a show: once its first sets are ready (maybe_start_show)
     listener.start();
     signals.emplace(io, SIGINT, SIGTERM);
     signals->async_wait([this](const boost::system::error_code& e, int signal) {
@@ -285,8 +288,8 @@ struct Master::Impl {
     preparer.stop();
     if (preparation_error) std::rethrow_exception(preparation_error);
     if (play.recorder)
-      spdlog::info("master: {} frame{} recorded in {}", play.recorder->frames(), play.recorder->frames() == 1 ? "" : "s",
-                   play.recorder->finish().string());
+      spdlog::info("master: {} frame{} recorded in {}", play.recorder->frames(),
+                   play.recorder->frames() == 1 ? "" : "s", play.recorder->finish().string());
     spdlog::info("master: done, {} frame{} presented", progress.presented, progress.presented == 1 ? "" : "s");
     return 0;
   }

@@ -19,8 +19,8 @@
 // yet held by every node waits for it. A switch takes effect at one frame on
 // all nodes once every ready node holds it (docs/cluster.md, "Table versions").
 #include <cstdint>
-#include <functional>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -37,11 +37,11 @@ namespace zenith::cluster {
 
 struct MasterOptions {
   ClusterConfig config;
-  std::uint64_t frames = 0;          ///< frames to present, then say Goodbye and return; 0: run until stopped
-  double sun_step_deg = 0.1;         ///< the default show: sun turned this much per frame
-  std::optional<std::uint16_t> port; ///< overrides config.master.port
+  std::uint64_t frames = 0;           ///< frames to present, then say Goodbye and return; 0: run until stopped
+  double sun_step_deg = 0.1;          ///< the default show: sun turned this much per frame
+  std::optional<std::uint16_t> port;  ///< overrides config.master.port
   std::optional<std::filesystem::path> cache_directory;  ///< table cache (default: the user's)
-  bool cpu_precompute = false;       ///< precompute missing tables on the CPU
+  bool cpu_precompute = false;                           ///< precompute missing tables on the CPU
   /// Frames start when every configured node is ready, or after this long with
   /// the nodes that are (at least one).
   std::uint32_t wait_for_nodes_ms = 30000;

@@ -142,9 +142,8 @@ json master_status(const StatusSources& s) {
   json nodes = json::array();
   for (const ClusterNodeConfig& node : s.config.nodes) nodes.push_back(node_status(s, node));
   // Every atmosphere of the latest frame (a show's tracks change them); before frame 0, the current versions.
-  const std::vector<AtmosphereTableRef>& refs = s.last_frame != nullptr && s.show != nullptr
-                                                    ? s.last_frame->atmospheres
-                                                    : s.tables.current();
+  const std::vector<AtmosphereTableRef>& refs =
+      s.last_frame != nullptr && s.show != nullptr ? s.last_frame->atmospheres : s.tables.current();
   json atmospheres = json::array();
   for (std::size_t i = 0; i < refs.size(); ++i) atmospheres.push_back(atmosphere_status(s, i, refs[i]));
   return {{"state", playback_state(s)},

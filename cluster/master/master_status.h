@@ -37,22 +37,22 @@ struct StatusSources {
   const TableVersions& tables;
   std::optional<TablePreparer::Progress> preparing;  ///< the preparer's running job
   const NodeStatistics& statistics;
-  const AtmosphereEdits* edits = nullptr;            ///< the operator's waiting changes; nullptr with a show
-  const show::Show* show = nullptr;                  ///< nullptr: the default show
-  const show::PlaybackClock* clock = nullptr;        ///< a show's clock
-  bool started = false;                              ///< frame 0 has started
+  const AtmosphereEdits* edits = nullptr;      ///< the operator's waiting changes; nullptr with a show
+  const show::Show* show = nullptr;            ///< nullptr: the default show
+  const show::PlaybackClock* clock = nullptr;  ///< a show's clock
+  bool started = false;                        ///< frame 0 has started
   bool stopping = false;
-  const FrameState* last_frame = nullptr;            ///< the latest frame started; nullptr before frame 0
+  const FrameState* last_frame = nullptr;  ///< the latest frame started; nullptr before frame 0
   std::uint64_t frames_presented = 0;
   double frame_rate_hz = 30.0;
   std::optional<double> exposure_override;
-  std::string pending_change;  ///< what the pending version changes
-  std::string last_error;      ///< the latest table version that could not be prepared, and why
+  std::string pending_change;                    ///< what the pending version changes
+  std::string last_error;                        ///< the latest table version that could not be prepared, and why
   std::optional<scene::SkyAngles> sun;           ///< the latest frame's sun in its camera's sky; nullopt before frame 0
   std::optional<scene::SkyAngles> sun_override;  ///< the operator's sun, nullopt: the show's
-  const AtmosphereOverrides* overrides = nullptr;   ///< a show's: the operator's changes of its atmospheres
-  std::vector<AtmosphereTableRef> show_versions;    ///< a show's own versions of the latest frame
-  const DomePreview* preview = nullptr;             ///< the dome preview; nullptr without the HTTP console
+  const AtmosphereOverrides* overrides = nullptr;  ///< a show's: the operator's changes of its atmospheres
+  std::vector<AtmosphereTableRef> show_versions;   ///< a show's own versions of the latest frame
+  const DomePreview* preview = nullptr;            ///< the dome preview; nullptr without the HTTP console
   bool preview_on = false;
 };
 

@@ -70,9 +70,10 @@ void NodeListener::on_accept(tcp::socket socket) {
   if (waiting.size() >= max_unauthenticated_) {
     NodeSession* oldest = sessions_.find(waiting.front());
     if (const std::optional<std::string> more = refusals_.admit(core::LogLimiter::Clock::now()))
-      spdlog::warn("master: closing {}: still unauthenticated, and a new connection came from {} ({} unauthenticated "
-                   "connections at most: limits.max_unauthenticated_connections){}",
-                   oldest->who(), peer, max_unauthenticated_, *more);
+      spdlog::warn(
+          "master: closing {}: still unauthenticated, and a new connection came from {} ({} unauthenticated "
+          "connections at most: limits.max_unauthenticated_connections){}",
+          oldest->who(), peer, max_unauthenticated_, *more);
     oldest->connection->close("too many unauthenticated connections");
   }
   auto connection = std::make_shared<Connection>(std::move(socket), peer);

@@ -13,9 +13,9 @@
 
 #include "cluster/master/accept_retry.h"
 #include "cluster/master/node_sessions.h"
-#include "core/log_limiter.h"
 #include "cluster/protocol/handshake.h"
 #include "cluster/protocol/messages.h"
+#include "core/log_limiter.h"
 
 namespace zenith::cluster {
 

@@ -27,7 +27,7 @@ struct NodeSession {
   std::shared_ptr<Connection> connection;
   std::optional<MasterHandshake> handshake;
   State state = State::handshake;
-  std::string name;  ///< from Hello (empty before)
+  std::string name;               ///< from Hello (empty before)
   std::uint64_t instance_id = 0;  ///< from Hello: the peer process (docs/protocol.md, "Hello")
   /// From Hello: a render node, or a standby master (docs/cluster.md, "Standby
   /// master"), which is sent every table set and frame but never becomes ready.
@@ -41,7 +41,8 @@ struct NodeSession {
   std::uint64_t chunks_sent = 0;
   std::chrono::steady_clock::time_point connected_at = std::chrono::steady_clock::now();
 
-  /// "node 'a' (127.0.0.1:5000)", "the standby (127.0.0.1:5000)", or "connection from 127.0.0.1:5000" before Hello: for logs.
+  /// "node 'a' (127.0.0.1:5000)", "the standby (127.0.0.1:5000)", or "connection from 127.0.0.1:5000" before Hello: for
+  /// logs.
   std::string who() const;
   /// Refuses the handshake: Reject with `reason` and `text`, then close
   /// (log line, unless `log` is false: NodeSessions::refuse rate-limits them).

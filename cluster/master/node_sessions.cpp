@@ -70,9 +70,8 @@ std::vector<NodeSessions::Id> NodeSessions::ready_ids() const {
 }
 
 std::size_t NodeSessions::ready_count() const {
-  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [](const auto& p) {
-    return p.second->state == NodeSession::State::ready;
-  }));
+  return static_cast<std::size_t>(std::count_if(
+      sessions_.begin(), sessions_.end(), [](const auto& p) { return p.second->state == NodeSession::State::ready; }));
 }
 
 void NodeSessions::send_to_standbys(const std::shared_ptr<const std::vector<std::uint8_t>>& frame) {
@@ -83,8 +82,8 @@ void NodeSessions::send_to_standbys(const std::shared_ptr<const std::vector<std:
 
 void NodeSessions::refuse(NodeSession& session, RejectReason reason, const std::string& text) {
   // Per reason: a flood of wrong secrets does not hide the first duplicate name.
-  if (const std::optional<std::string> more = refusals_.admit(std::to_string(static_cast<int>(reason)),
-                                                                      core::LogLimiter::Clock::now()))
+  if (const std::optional<std::string> more =
+          refusals_.admit(std::to_string(static_cast<int>(reason)), core::LogLimiter::Clock::now()))
     spdlog::warn("master: refused {}: {}{}", session.who(), core::escaped(text, 1024), *more);
   session.refuse(reason, text, false);
 }
@@ -101,10 +100,10 @@ void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, 
         throw HandshakeError(RejectReason::wrong_role, cat("standby '", hello->node_name, "': the cluster config ",
                                                            config.source, " has no standby"));
       if (hello->node_name != standby_name(*config.standby))
-        throw HandshakeError(RejectReason::wrong_role,
-                             cat("standby '", hello->node_name, "' is not this cluster's standby ('",
-                                 standby_name(*config.standby), "' in ", config.source,
-                                 "): do the master and the standby read the same cluster config?"));
+        throw HandshakeError(
+            RejectReason::wrong_role,
+            cat("standby '", hello->node_name, "' is not this cluster's standby ('", standby_name(*config.standby),
+                "' in ", config.source, "): do the master and the standby read the same cluster config?"));
     } else if (config.find_node(hello->node_name) == nullptr) {
       throw HandshakeError(RejectReason::unspecified,
                            cat("node '", hello->node_name, "' is not in the cluster config ", config.source));
@@ -128,11 +127,12 @@ void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, 
             cat(to_string(s.role), " '", s.name, "' is already connected from ", other->connection->peer(),
                 " (another process: instance ", instance_text(other->instance_id), ", this one ",
                 instance_text(s.instance_id), "): refused; stop the other process, or give this one another name"));
-      spdlog::warn("master: {} '{}' reconnected from {}: closing its old connection{}", to_string(s.role),
-                   core::escaped(s.name, 64), s.connection->peer(),
-                   other->instance_id == s.instance_id
-                       ? std::string()
-                       : cat(" (another process, but the old connection was silent for ", std::lround(silent_ms), " ms)"));
+      spdlog::warn(
+          "master: {} '{}' reconnected from {}: closing its old connection{}", to_string(s.role),
+          core::escaped(s.name, 64), s.connection->peer(),
+          other->instance_id == s.instance_id
+              ? std::string()
+              : cat(" (another process, but the old connection was silent for ", std::lround(silent_ms), " ms)"));
       other->connection->close("replaced by a new connection of the same node");
       break;
     }
@@ -140,9 +140,10 @@ void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, 
     s.state = NodeSession::State::tables;
     s.connection->lift_payload_limit();  // it proved the secret: table sets and thumbnails may follow
     if (s.role == PeerRole::standby)
-      spdlog::info("master: the standby master '{}' authenticated from {} (id {}): it follows every table version "
-                   "and frame",
-                   s.name, s.connection->peer(), s.id);
+      spdlog::info(
+          "master: the standby master '{}' authenticated from {} (id {}): it follows every table version "
+          "and frame",
+          s.name, s.connection->peer(), s.id);
     else
       spdlog::info("master: node '{}' authenticated from {} (id {}); waiting for its table inventory", s.name,
                    s.connection->peer(), s.id);
@@ -178,10 +179,13 @@ void NodeSessions::check_heartbeats(const HeartbeatMonitor& monitor, std::chrono
 void NodeSessions::say_goodbye(const std::string& reason) {
   // Closing may erase a session (its close handler): work on a copy.
   std::vector<std::pair<std::shared_ptr<Connection>, bool>> connections;
-  for (const auto& [id, s] : sessions_) connections.emplace_back(s->connection, s->state == NodeSession::State::handshake);
+  for (const auto& [id, s] : sessions_)
+    connections.emplace_back(s->connection, s->state == NodeSession::State::handshake);
   for (auto& [connection, in_handshake] : connections) {
-    if (in_handshake) connection->send(Reject{RejectReason::shutting_down, "the master is stopping"});
-    else connection->send(Goodbye{reason});
+    if (in_handshake)
+      connection->send(Reject{RejectReason::shutting_down, "the master is stopping"});
+    else
+      connection->send(Goodbye{reason});
     connection->close_after_flush("master stopping");
   }
 }

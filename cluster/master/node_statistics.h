@@ -23,9 +23,9 @@ class NodeStatistics {
     std::uint64_t joins = 0;               ///< times it became ready (1 + rejoins after reconnecting)
     // Its presents in windows (RenderDone's counts, render/window/present_clock.h),
     // summed over the node's processes (a restarted node counts from 0 again).
-    std::uint64_t presents = 0;            ///< frames presented in windows (0: headless)
-    std::uint64_t late_presents = 0;       ///< of those, late: a missed vblank
-    std::optional<double> last_present_ms; ///< its latest present: Present's arrival to the completed swap
+    std::uint64_t presents = 0;             ///< frames presented in windows (0: headless)
+    std::uint64_t late_presents = 0;        ///< of those, late: a missed vblank
+    std::optional<double> last_present_ms;  ///< its latest present: Present's arrival to the completed swap
   };
 
   /// RenderDone for the frame in flight took `render_ms` on the node;
@@ -45,7 +45,7 @@ class NodeStatistics {
  private:
   /// The counts of a node's earlier processes, and its current process's last report.
   struct PresentBase {
-    std::uint64_t presents = 0, late = 0;                 ///< summed over earlier processes
+    std::uint64_t presents = 0, late = 0;                    ///< summed over earlier processes
     std::uint64_t reported_presents = 0, reported_late = 0;  ///< the current process's last report
   };
   std::map<std::string, Counts> counts_;

@@ -27,9 +27,9 @@ constexpr int kMaxDepth = 16;
 /// Body names: 1..64 bytes, as on the wire (AtmosphereTableRef).
 constexpr std::size_t kMaxBodyBytes = 64;
 
-const std::vector<std::string> kCommands = {"play", "pause", "toggle", "status", "quit", "seek",
-                                            "rate", "loop",  "exposure", "set",  "sun",  "clear", "preview",
-                                            "fade", "blackout"};
+const std::vector<std::string> kCommands = {"play", "pause", "toggle",  "status",   "quit",
+                                            "seek", "rate",  "loop",    "exposure", "set",
+                                            "sun",  "clear", "preview", "fade",     "blackout"};
 /// What `clear` ends.
 const std::vector<std::string> kClearable = {"sun", "exposure", "atmosphere"};
 /// The ranges of a sun given in the sky, as in scene files (docs/scenes.md).
@@ -91,8 +91,9 @@ oc::Sun read_sun(JsonReader& r) {
   if (r.has("elevation_deg")) sun.elevation_deg = r.number("elevation_deg", -kMaxElevationDeg, kMaxElevationDeg, "deg");
   if (r.has("azimuth_deg")) sun.azimuth_deg = r.number("azimuth_deg", -kMaxAzimuthDeg, kMaxAzimuthDeg, "deg");
   if (!sun.elevation_deg && !sun.azimuth_deg)
-    r.fail("elevation_deg", "missing required key (a sun command gives \"elevation_deg\" in [-90, 90], \"azimuth_deg\" in "
-                            "[-360, 360], or both; the sun's own again: {\"command\": \"clear\", \"what\": \"sun\"})");
+    r.fail("elevation_deg",
+           "missing required key (a sun command gives \"elevation_deg\" in [-90, 90], \"azimuth_deg\" in "
+           "[-360, 360], or both; the sun's own again: {\"command\": \"clear\", \"what\": \"sun\"})");
   return sun;
 }
 
@@ -100,7 +101,9 @@ oc::Sun read_sun(JsonReader& r) {
 oc::Clear read_clear(JsonReader& r) {
   oc::Clear clear;
   const std::string what = r.string("what", kClearable);
-  clear.what = what == "sun" ? oc::Clear::What::sun : what == "exposure" ? oc::Clear::What::exposure : oc::Clear::What::atmosphere;
+  clear.what = what == "sun"        ? oc::Clear::What::sun
+               : what == "exposure" ? oc::Clear::What::exposure
+                                    : oc::Clear::What::atmosphere;
   if (clear.what == oc::Clear::What::atmosphere) clear.body = read_body(r);
   return clear;
 }
@@ -113,8 +116,9 @@ oc::Set read_set(JsonReader& r) {
   try {
     set.pointer = json::json_pointer(text);
   } catch (const json::exception&) {
-    r.fail("pointer", cat("= ", brief(json(text)), ": must be a JSON pointer into the atmosphere's parameters, such as "
-                                                   "\"/aerosol/scattering/turbidity\" (docs/atmosphere-config.md)"));
+    r.fail("pointer", cat("= ", brief(json(text)),
+                          ": must be a JSON pointer into the atmosphere's parameters, such as "
+                          "\"/aerosol/scattering/turbidity\" (docs/atmosphere-config.md)"));
   }
   if (set.pointer.empty())
     r.fail("pointer", "= \"\": must name one parameter, such as \"/aerosol/scattering/turbidity\", not the whole set");
@@ -130,7 +134,8 @@ oc::Fade read_fade(JsonReader& r) {
   if (r.has("colour")) {
     const json& c = r.raw("colour");
     const auto bad = [&] {
-      r.fail("colour", cat("= ", brief(c), ": must be [r, g, b], each a number in [0, 1] (display-linear; [0, 0, 0] black)"));
+      r.fail("colour",
+             cat("= ", brief(c), ": must be [r, g, b], each a number in [0, 1] (display-linear; [0, 0, 0] black)"));
     };
     if (!c.is_array() || c.size() != 3) bad();
     std::array<double, 3> rgb{};
@@ -157,28 +162,44 @@ OperatorCommand parse_operator_command(const json& request) {
   JsonReader r(request, kSource);
   const std::string name = r.string("command", kCommands);
   OperatorCommand command;
-  if (name == "play") command = oc::Play{};
-  else if (name == "pause") command = oc::Pause{};
-  else if (name == "toggle") command = oc::Toggle{};
-  else if (name == "status") command = oc::Status{};
-  else if (name == "quit") command = oc::Quit{};
-  else if (name == "seek") command = oc::Seek{r.number("seconds", 0.0, kMaxSeekSeconds, "s")};
-  else if (name == "rate") command = oc::Rate{r.number("rate", -show::PlaybackClock::kMaxRate, show::PlaybackClock::kMaxRate)};
-  else if (name == "loop") command = oc::Loop{read_on_off(r, "loop")};
-  else if (name == "exposure") command = oc::Exposure{read_exposure(r)};
-  else if (name == "sun") command = read_sun(r);
-  else if (name == "clear") command = read_clear(r);
-  else if (name == "preview") command = oc::Preview{read_on_off(r, "preview")};
-  else if (name == "fade") command = read_fade(r);
-  else if (name == "blackout") command = oc::Blackout{r.has("blackout") ? read_on_off(r, "blackout") : true};
-  else command = read_set(r);
+  if (name == "play")
+    command = oc::Play{};
+  else if (name == "pause")
+    command = oc::Pause{};
+  else if (name == "toggle")
+    command = oc::Toggle{};
+  else if (name == "status")
+    command = oc::Status{};
+  else if (name == "quit")
+    command = oc::Quit{};
+  else if (name == "seek")
+    command = oc::Seek{r.number("seconds", 0.0, kMaxSeekSeconds, "s")};
+  else if (name == "rate")
+    command = oc::Rate{r.number("rate", -show::PlaybackClock::kMaxRate, show::PlaybackClock::kMaxRate)};
+  else if (name == "loop")
+    command = oc::Loop{read_on_off(r, "loop")};
+  else if (name == "exposure")
+    command = oc::Exposure{read_exposure(r)};
+  else if (name == "sun")
+    command = read_sun(r);
+  else if (name == "clear")
+    command = read_clear(r);
+  else if (name == "preview")
+    command = oc::Preview{read_on_off(r, "preview")};
+  else if (name == "fade")
+    command = read_fade(r);
+  else if (name == "blackout")
+    command = oc::Blackout{r.has("blackout") ? read_on_off(r, "blackout") : true};
+  else
+    command = read_set(r);
   r.finish();
   return command;
 }
 
 OperatorCommand parse_operator_command_text(std::string_view text) {
   if (text.size() > kMaxOperatorCommandBytes)
-    throw ConfigError(kSource, "", cat("is ", text.size(), " bytes long: at most ", kMaxOperatorCommandBytes, " are read"));
+    throw ConfigError(kSource, "",
+                      cat("is ", text.size(), " bytes long: at most ", kMaxOperatorCommandBytes, " are read"));
   return parse_operator_command(parse_json(std::string(text), kSource));
 }
 
@@ -186,14 +207,22 @@ json to_json(const OperatorCommand& command) {
   return std::visit(
       [](const auto& c) -> json {
         using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, oc::Play>) return {{"command", "play"}};
-        else if constexpr (std::is_same_v<T, oc::Pause>) return {{"command", "pause"}};
-        else if constexpr (std::is_same_v<T, oc::Toggle>) return {{"command", "toggle"}};
-        else if constexpr (std::is_same_v<T, oc::Status>) return {{"command", "status"}};
-        else if constexpr (std::is_same_v<T, oc::Quit>) return {{"command", "quit"}};
-        else if constexpr (std::is_same_v<T, oc::Seek>) return {{"command", "seek"}, {"seconds", c.seconds}};
-        else if constexpr (std::is_same_v<T, oc::Rate>) return {{"command", "rate"}, {"rate", c.rate}};
-        else if constexpr (std::is_same_v<T, oc::Loop>) return {{"command", "loop"}, {"loop", c.on}};
+        if constexpr (std::is_same_v<T, oc::Play>)
+          return {{"command", "play"}};
+        else if constexpr (std::is_same_v<T, oc::Pause>)
+          return {{"command", "pause"}};
+        else if constexpr (std::is_same_v<T, oc::Toggle>)
+          return {{"command", "toggle"}};
+        else if constexpr (std::is_same_v<T, oc::Status>)
+          return {{"command", "status"}};
+        else if constexpr (std::is_same_v<T, oc::Quit>)
+          return {{"command", "quit"}};
+        else if constexpr (std::is_same_v<T, oc::Seek>)
+          return {{"command", "seek"}, {"seconds", c.seconds}};
+        else if constexpr (std::is_same_v<T, oc::Rate>)
+          return {{"command", "rate"}, {"rate", c.rate}};
+        else if constexpr (std::is_same_v<T, oc::Loop>)
+          return {{"command", "loop"}, {"loop", c.on}};
         else if constexpr (std::is_same_v<T, oc::Exposure>)
           return {{"command", "exposure"}, {"exposure", c.exposure ? json(*c.exposure) : json(nullptr)}};
         else if constexpr (std::is_same_v<T, oc::Set>)
@@ -223,14 +252,22 @@ std::string describe(const OperatorCommand& command) {
   return std::visit(
       [](const auto& c) -> std::string {
         using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, oc::Play>) return "play";
-        else if constexpr (std::is_same_v<T, oc::Pause>) return "pause";
-        else if constexpr (std::is_same_v<T, oc::Toggle>) return "toggle";
-        else if constexpr (std::is_same_v<T, oc::Status>) return "status";
-        else if constexpr (std::is_same_v<T, oc::Quit>) return "quit";
-        else if constexpr (std::is_same_v<T, oc::Seek>) return cat("seek ", number_text(c.seconds));
-        else if constexpr (std::is_same_v<T, oc::Rate>) return cat("rate ", number_text(c.rate));
-        else if constexpr (std::is_same_v<T, oc::Loop>) return cat("loop ", c.on ? "on" : "off");
+        if constexpr (std::is_same_v<T, oc::Play>)
+          return "play";
+        else if constexpr (std::is_same_v<T, oc::Pause>)
+          return "pause";
+        else if constexpr (std::is_same_v<T, oc::Toggle>)
+          return "toggle";
+        else if constexpr (std::is_same_v<T, oc::Status>)
+          return "status";
+        else if constexpr (std::is_same_v<T, oc::Quit>)
+          return "quit";
+        else if constexpr (std::is_same_v<T, oc::Seek>)
+          return cat("seek ", number_text(c.seconds));
+        else if constexpr (std::is_same_v<T, oc::Rate>)
+          return cat("rate ", number_text(c.rate));
+        else if constexpr (std::is_same_v<T, oc::Loop>)
+          return cat("loop ", c.on ? "on" : "off");
         else if constexpr (std::is_same_v<T, oc::Exposure>)
           return c.exposure ? cat("exposure ", number_text(*c.exposure)) : std::string("exposure of the show");
         else if constexpr (std::is_same_v<T, oc::Set>)

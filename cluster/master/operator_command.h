@@ -23,7 +23,8 @@
 //   {"command": "fade", "level": L, "seconds": S, "colour": [R, G, B]}
 //       every output toward colour (display-linear, each in [0, 1]; default: the colour it has, black at first)
 //       to level L in [0, 1] (default 1; 0: back to the picture) over S in [0, 3600] s (cluster/master/fade_control.h)
-//   {"command": "blackout", "blackout": true|false}  also "on" / "off"; default true: black (or the picture) at the next frame
+//   {"command": "blackout", "blackout": true|false}  also "on" / "off"; default true: black (or the picture) at the
+//   next frame
 // Unknown keys are errors.
 #include <array>
 #include <cstddef>
@@ -73,9 +74,9 @@ struct Exposure {
   bool operator==(const Exposure&) const = default;
 };
 struct Set {
-  std::string body;                        ///< a body of the scene, 1..64 bytes
-  nlohmann::json::json_pointer pointer;    ///< into the body's atmosphere parameters, not the root
-  nlohmann::json value;                    ///< null removes the key
+  std::string body;                      ///< a body of the scene, 1..64 bytes
+  nlohmann::json::json_pointer pointer;  ///< into the body's atmosphere parameters, not the root
+  nlohmann::json value;                  ///< null removes the key
   bool operator==(const Set&) const = default;
 };
 /// The sun in the camera's local horizon (docs/scenes.md, "Frames and
@@ -99,8 +100,8 @@ struct Preview {
 };
 /// Every output toward a colour (or back to the picture) over a time (docs/operator.md, "Fades").
 struct Fade {
-  double level = 1.0;                        ///< [0, 1]: 1 only the colour, 0 the picture
-  double seconds = 0.0;                      ///< [0, kMaxFadeSeconds]
+  double level = 1.0;                           ///< [0, 1]: 1 only the colour, 0 the picture
+  double seconds = 0.0;                         ///< [0, kMaxFadeSeconds]
   std::optional<std::array<double, 3>> colour;  ///< display-linear RGB, each in [0, 1]; unset: keep the colour
   bool operator==(const Fade&) const = default;
 };

@@ -18,9 +18,9 @@ struct OperatorConsoleOptions {
   std::optional<SharedSecret> token;
   /// With a token: host names (besides IP addresses and the loopback) the console may be reached by.
   std::vector<std::string> http_names;
-  std::optional<std::uint16_t> osc_port;   ///< receive OSC on this UDP port (0: any free port, logged)
-  std::string osc_host = "127.0.0.1";      ///< a numeric address; anything but loopback needs `osc_allow`
-  std::vector<std::string> osc_allow;      ///< the only senders accepted (numeric addresses)
+  std::optional<std::uint16_t> osc_port;  ///< receive OSC on this UDP port (0: any free port, logged)
+  std::string osc_host = "127.0.0.1";     ///< a numeric address; anything but loopback needs `osc_allow`
+  std::vector<std::string> osc_allow;     ///< the only senders accepted (numeric addresses)
 };
 
 }  // namespace zenith::cluster

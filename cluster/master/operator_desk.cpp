@@ -75,8 +75,9 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
       reply = apply_blackout(*blackout);
     } else if (!m_.clock) {
       if (!std::holds_alternative<oc::Status>(command))
-        throw std::invalid_argument(cat(describe(command), ": no show is playing (the default show has no clock: start "
-                                                           "the master with --show FILE for play, pause, seek, rate and loop)"));
+        throw std::invalid_argument(cat(describe(command),
+                                        ": no show is playing (the default show has no clock: start "
+                                        "the master with --show FILE for play, pause, seek, rate and loop)"));
       reply = cat("default show at frame ", m_.barrier.frame());
     } else {
       if (const auto* seek = std::get_if<oc::Seek>(&command); seek && seek->seconds > m_.clock->duration_s())
@@ -87,7 +88,8 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
     spdlog::info("master: operator ({}): {} → {}", source, core::escaped(describe(command)), core::escaped(reply));
     return reply;
   } catch (const std::exception& e) {
-    spdlog::info("master: operator ({}): {} refused: {}", source, core::escaped(describe(command)), core::escaped(e.what()));
+    spdlog::info("master: operator ({}): {} refused: {}", source, core::escaped(describe(command)),
+                 core::escaped(e.what()));
     throw;
   }
 }
@@ -104,7 +106,8 @@ std::string OperatorDesk::apply_sun(const operator_command::Sun& sun) {
 /// (every preview_interval_frames() frames) while it is on, never while off.
 std::string OperatorDesk::apply_preview(const operator_command::Preview& on) {
   if (!preview_)
-    throw std::invalid_argument("preview: the dome preview is served at /api/preview: start the master with --operator-port");
+    throw std::invalid_argument(
+        "preview: the dome preview is served at /api/preview: start the master with --operator-port");
   preview_on_ = on.on;
   if (!on.on) {
     preview_->clear();
@@ -143,8 +146,8 @@ std::string OperatorDesk::apply_fade(const operator_command::Fade& fade) {
   const std::string toward = fade.level == 0.0 ? std::string("the picture")
                                                : fmt::format("level {} of [{}, {}, {}]", fade.level, c.x, c.y, c.z);
   if (fade_.frames() == 0) return fmt::format("fade to {} at frame {}", toward, frame);
-  return fmt::format("fade to {} over {} frames ({} s at {} Hz), frames {} to {}", toward, fade_.frames(),
-                     fade.seconds, m_.fps, frame, frame + fade_.frames() - 1);
+  return fmt::format("fade to {} over {} frames ({} s at {} Hz), frames {} to {}", toward, fade_.frames(), fade.seconds,
+                     m_.fps, frame, frame + fade_.frames() - 1);
 }
 
 /// An operator's `blackout`: black (or the picture again) at the next frame on every node.
@@ -186,13 +189,19 @@ std::uint64_t OperatorDesk::preview_interval_frames() const {
 nlohmann::json OperatorDesk::status() const {
   const FrameProgress& p = m_.progress;
   const TableSchedule& t = m_.tables;
-  nlohmann::json status = master_status(StatusSources{m_.config, m_.sessions, m_.barrier, t.tables(), m_.preparing(), m_.statistics,
-                                     t.edits(), m_.show, m_.clock, p.started, p.stopping,
-                                     p.started ? &p.in_flight : nullptr, p.presented, m_.fps, exposure_,
-                                     t.pending_change(), t.last_error(),
-                                     p.started ? std::optional(sun_.angles_of(p.in_flight)) : std::nullopt,
-                                     sun_.angles(), m_.show ? &t.overrides() : nullptr, t.show_versions(),
-                                     preview_ ? &*preview_ : nullptr, preview_on_});
+  nlohmann::json status = master_status(
+      StatusSources{m_.config,         m_.sessions,
+                    m_.barrier,        t.tables(),
+                    m_.preparing(),    m_.statistics,
+                    t.edits(),         m_.show,
+                    m_.clock,          p.started,
+                    p.stopping,        p.started ? &p.in_flight : nullptr,
+                    p.presented,       m_.fps,
+                    exposure_,         t.pending_change(),
+                    t.last_error(),    p.started ? std::optional(sun_.angles_of(p.in_flight)) : std::nullopt,
+                    sun_.angles(),     m_.show ? &t.overrides() : nullptr,
+                    t.show_versions(), preview_ ? &*preview_ : nullptr,
+                    preview_on_});
   // The latest frame's fade and the operator's (docs/operator.md, "Status").
   const scene::FadeState shown = p.started ? p.in_flight.fade : scene::FadeState{};
   const std::uint64_t frame = p.started ? p.in_flight.frame : 0;
@@ -217,7 +226,8 @@ void OperatorDesk::start_console(boost::asio::io_context& io, const OperatorCons
   const auto command = [this](const OperatorCommand& c, const std::string& source) { return run(c, source); };
   if (console.http_port) {
     preview_.emplace(m_.config, warp::load_viewport_config(m_.config.viewports));
-    http_.emplace(io, OperatorHttpServer::Options{console.http_host, *console.http_port, console.token, console.http_names},
+    http_.emplace(io,
+                  OperatorHttpServer::Options{console.http_host, *console.http_port, console.token, console.http_names},
                   OperatorHttpServer::Handlers{[this] { return status(); }, command, [this] { return preview_png(); }});
     http_->start();
     spdlog::info("master: operator console at {} ({}; docs/operator.md)", http_->url(),
@@ -226,10 +236,12 @@ void OperatorDesk::start_console(boost::asio::io_context& io, const OperatorCons
   if (console.osc_port) {
     osc_.emplace(io, OscReceiver::Options{console.osc_host, *console.osc_port, console.osc_allow}, command);
     osc_->start();
-    spdlog::info("master: OSC on udp {}:{} (/zenith/play, /zenith/pause, /zenith/seek, /zenith/rate, /zenith/exposure, "
-                 "/zenith/sun/elevation, /zenith/sun/azimuth, /zenith/fade, /zenith/blackout, /zenith/atmosphere/BODY/PARAMETER; "
-                 "docs/operator.md)",
-                 console.osc_host, osc_->port());
+    spdlog::info(
+        "master: OSC on udp {}:{} (/zenith/play, /zenith/pause, /zenith/seek, /zenith/rate, /zenith/exposure, "
+        "/zenith/sun/elevation, /zenith/sun/azimuth, /zenith/fade, /zenith/blackout, "
+        "/zenith/atmosphere/BODY/PARAMETER; "
+        "docs/operator.md)",
+        console.osc_host, osc_->port());
   }
 }
 

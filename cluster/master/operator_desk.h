@@ -41,7 +41,7 @@ namespace zenith::cluster {
 
 /// How far the frames are: written by the master's frame loop, read by the desk.
 struct FrameProgress {
-  bool started = false;         ///< frame 0 has started
+  bool started = false;  ///< frame 0 has started
   bool stopping = false;
   std::uint64_t presented = 0;  ///< frames presented so far
   FrameState in_flight;         ///< the latest frame started (meaningful once started)
@@ -59,10 +59,10 @@ class OperatorDesk {
     TableSchedule& tables;
     const NodeStatistics& statistics;
     const FrameProgress& progress;
-    const show::Show* show = nullptr;       ///< nullptr: the default show
-    show::PlaybackClock* clock = nullptr;   ///< a show's clock (nullptr with the default show)
+    const show::Show* show = nullptr;      ///< nullptr: the default show
+    show::PlaybackClock* clock = nullptr;  ///< a show's clock (nullptr with the default show)
     double fps = 30.0;
-    bool feed = false;                      ///< the frames come from an offline render's feed
+    bool feed = false;  ///< the frames come from an offline render's feed
     std::function<std::optional<TablePreparer::Progress>()> preparing;  ///< the preparer's running job
     std::function<void(const std::string& reason)> stop;
   };

@@ -72,7 +72,8 @@ OperatorHttpServer::Response make_response(const OperatorHttpServer::Request& re
 /// A JSON response (invalid UTF-8, which cannot occur in our replies, would be replaced).
 OperatorHttpServer::Response json_response(const OperatorHttpServer::Request& request, http::status status,
                                            const nlohmann::json& body) {
-  return make_response(request, status, "application/json", body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+  return make_response(request, status, "application/json",
+                       body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }
 
 /// {"ok": false, "error": message} with `status`.
@@ -118,14 +119,18 @@ std::optional<HostHeader> parse_host(std::string_view host) {
 
 /// The loopback literals a browser on this machine sends: nothing a DNS
 /// answer can rebind ("127.evil.example" is a DNS name, not 127.x).
-bool is_loopback_literal(std::string_view name) { return name == "localhost" || name == "127.0.0.1" || name == "[::1]"; }
+bool is_loopback_literal(std::string_view name) {
+  return name == "localhost" || name == "127.0.0.1" || name == "[::1]";
+}
 
 /// Whether a Host name is a numeric IP address (v4, or v6 in brackets): the
 /// origin of a page reached by address is that address, so no DNS answer can
 /// make it another site's.
 bool is_ip_literal(std::string_view name) {
-  if (name.starts_with("[") && name.ends_with("]")) name = name.substr(1, name.size() - 2);
-  else if (name.find(':') != std::string_view::npos) return false;
+  if (name.starts_with("[") && name.ends_with("]"))
+    name = name.substr(1, name.size() - 2);
+  else if (name.find(':') != std::string_view::npos)
+    return false;
   boost::system::error_code ec;
   asio::ip::make_address(std::string(name), ec);
   return !ec;
@@ -151,9 +156,8 @@ struct OperatorHttpServer::Session : std::enable_shared_from_this<OperatorHttpSe
     parser->header_limit(kMaxHeaderBytes);
     parser->body_limit(kMaxOperatorCommandBytes);
     stream.expires_after(kRequestTimeout);
-    http::async_read(stream, buffer, *parser, [self = shared_from_this()](beast::error_code ec, std::size_t) {
-      self->on_read(ec);
-    });
+    http::async_read(stream, buffer, *parser,
+                     [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
   }
 
   /// A request arrived (or the read failed): answer it, or close.
@@ -238,7 +242,8 @@ OperatorHttpServer::OperatorHttpServer(asio::io_context& io, Options options, Ha
     : io_(io),
       options_(std::move(options)),
       handlers_(std::move(handlers)),
-      push_(io, [this] { return handlers_.status ? handlers_.status() : nlohmann::json::object(); }, options_.token),
+      push_(
+          io, [this] { return handlers_.status ? handlers_.status() : nlohmann::json::object(); }, options_.token),
       accept_retry_(io, "operator console") {}
 
 void OperatorHttpServer::start() {
@@ -249,18 +254,19 @@ void OperatorHttpServer::start() {
                                  ": not a numeric IP address (such as 127.0.0.1, 0.0.0.0 or 192.168.1.10)"));
   loopback_ = address.is_loopback();
   if (!loopback_ && !options_.token)
-    throw std::runtime_error(cat("operator console: listening on ", options_.host,
-                                 " (not a loopback address) needs an operator token: put one (16 or more characters) in "
-                                 "a file readable only by you and pass --operator-token-file FILE, or set "
-                                 "ZENITH_OPERATOR_TOKEN (docs/operator.md, \"Security\")"));
+    throw std::runtime_error(
+        cat("operator console: listening on ", options_.host,
+            " (not a loopback address) needs an operator token: put one (16 or more characters) in "
+            "a file readable only by you and pass --operator-token-file FILE, or set "
+            "ZENITH_OPERATOR_TOKEN (docs/operator.md, \"Security\")"));
   const tcp::endpoint endpoint(address, options_.port);
   acceptor_.emplace(io_);
   acceptor_->open(endpoint.protocol());
   acceptor_->set_option(tcp::acceptor::reuse_address(true));
   acceptor_->bind(endpoint, ec);
   if (ec)
-    throw std::runtime_error(cat("operator console: cannot listen on ", options_.host, ":", options_.port, ": ",
-                                 ec.message()));
+    throw std::runtime_error(
+        cat("operator console: cannot listen on ", options_.host, ":", options_.port, ": ", ec.message()));
   acceptor_->listen();
   port_ = acceptor_->local_endpoint().port();
   accept();
@@ -289,8 +295,10 @@ void OperatorHttpServer::accept() {
         session->read();
       } else {
         if (const std::optional<std::string> more = refusals_.admit(core::LogLimiter::Clock::now()))
-          spdlog::warn("master: operator console: refusing a connection from {}: {} connections are answering "
-                       "requests already{}", peer, kMaxConnections, *more);
+          spdlog::warn(
+              "master: operator console: refusing a connection from {}: {} connections are answering "
+              "requests already{}",
+              peer, kMaxConnections, *more);
         socket.close(peer_ec);
       }
     }
@@ -312,8 +320,10 @@ bool OperatorHttpServer::make_room_for(const std::string& peer) {
     const auto s = weak.lock();
     if (!s || s->responding || (per_address && s->peer != peer)) continue;
     if (const std::optional<std::string> more = refusals_.admit(core::LogLimiter::Clock::now()))
-      spdlog::info("master: operator console: closing an idle connection from {} for a new one from {} ({} at most, "
-                   "{} from one address){}", s->peer, peer, kMaxConnections, kMaxConnectionsPerAddress, *more);
+      spdlog::info(
+          "master: operator console: closing an idle connection from {} for a new one from {} ({} at most, "
+          "{} from one address){}",
+          s->peer, peer, kMaxConnections, kMaxConnectionsPerAddress, *more);
     s->close();
     sessions_.remove_if([&](const std::weak_ptr<Session>& w) { return w.lock() == s; });
     return true;
@@ -367,13 +377,16 @@ std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse_foreign(c
   const std::string_view host = view(request[http::field::host]);
   const std::uint32_t listening = port_ != 0 ? port_ : options_.port;
   if (!host_allowed(host))
-    return error_response(
-        request, http::status::forbidden,
-        options_.token
-            ? cat("Host \"", core::escaped(host), "\" is not this console: it serves 127.0.0.1, localhost, [::1], its IP "
-                  "addresses and the names given with --operator-name, on port ", listening)
-            : cat("Host \"", core::escaped(host), "\" is not this console: without an operator token it serves only "
-                  "127.0.0.1:", listening, ", localhost:", listening, " and [::1]:", listening, " (no DNS names)"));
+    return error_response(request, http::status::forbidden,
+                          options_.token
+                              ? cat("Host \"", core::escaped(host),
+                                    "\" is not this console: it serves 127.0.0.1, localhost, [::1], its IP "
+                                    "addresses and the names given with --operator-name, on port ",
+                                    listening)
+                              : cat("Host \"", core::escaped(host),
+                                    "\" is not this console: without an operator token it serves only "
+                                    "127.0.0.1:",
+                                    listening, ", localhost:", listening, " and [::1]:", listening, " (no DNS names)"));
   const std::string_view origin = view(request[http::field::origin]);
   if (!origin.empty() && origin != cat("http://", host))
     return error_response(request, http::status::forbidden,
@@ -385,9 +398,9 @@ std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse_foreign(c
 std::optional<OperatorHttpServer::Response> OperatorHttpServer::refuse_without_token(const Request& request) const {
   const std::string_view given = bearer(view(request[http::field::authorization]));
   if (push_.token_matches(given)) return std::nullopt;
-  Response r = error_response(request, http::status::unauthorized,
-                              given.empty() ? "this console needs the operator token (Authorization: Bearer TOKEN)"
-                                            : "wrong operator token");
+  Response r = error_response(
+      request, http::status::unauthorized,
+      given.empty() ? "this console needs the operator token (Authorization: Bearer TOKEN)" : "wrong operator token");
   r.set(http::field::www_authenticate, "Bearer realm=\"zenith operator console\"");
   return r;
 }
@@ -432,9 +445,10 @@ OperatorHttpServer::Response OperatorHttpServer::respond(const Request& request,
     if (!get) return not_allowed("GET");
     std::optional<std::string> png = handlers_.preview ? handlers_.preview() : std::nullopt;
     if (!png)
-      return error_response(request, http::status::not_found,
-                            "no dome preview: it is off (turn it on with {\"command\": \"preview\", \"preview\": true}) "
-                            "or no node has sent a thumbnail yet");
+      return error_response(
+          request, http::status::not_found,
+          "no dome preview: it is off (turn it on with {\"command\": \"preview\", \"preview\": true}) "
+          "or no node has sent a thumbnail yet");
     return make_response(request, http::status::ok, "image/png", std::move(*png));
   }
   for (const PageFile& file : kPageFiles) {
@@ -447,8 +461,10 @@ OperatorHttpServer::Response OperatorHttpServer::respond(const Request& request,
     r.set("X-Frame-Options", "DENY");
     return r;
   }
-  return error_response(request, http::status::not_found,
-                        cat(path, ": not found (the console is at /, its API at /api/status, /api/command, /api/preview and /api/events)"));
+  return error_response(
+      request, http::status::not_found,
+      cat(path,
+          ": not found (the console is at /, its API at /api/status, /api/command, /api/preview and /api/events)"));
 }
 
 }  // namespace zenith::cluster

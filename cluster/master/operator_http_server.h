@@ -30,10 +30,10 @@
 #include <boost/beast/http/string_body.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cluster/protocol/handshake.h"
-#include "cluster/master/operator_command.h"
 #include "cluster/master/accept_retry.h"
+#include "cluster/master/operator_command.h"
 #include "cluster/master/status_push.h"
+#include "cluster/protocol/handshake.h"
 #include "core/log_limiter.h"
 
 namespace zenith::cluster {
@@ -46,8 +46,8 @@ class OperatorHttpServer {
   using Response = boost::beast::http::response<boost::beast::http::string_body>;
 
   struct Options {
-    std::string host = "127.0.0.1";  ///< address to listen on; anything but a loopback address needs `token`
-    std::uint16_t port = 0;          ///< 0: any free port (see port())
+    std::string host = "127.0.0.1";     ///< address to listen on; anything but a loopback address needs `token`
+    std::uint16_t port = 0;             ///< 0: any free port (see port())
     std::optional<SharedSecret> token;  ///< when set, every /api request must carry it
     /// With a token, the host names (besides the loopback and IP literals) the
     /// console may be reached by (`--operator-name`): no other Host is served.

@@ -43,7 +43,8 @@ bool OperatorInput::looks_like_http(std::string_view line) {
   // METHOD SP TARGET SP HTTP/x.y: a method is a token of capitals (RFC 9110); no command is written so.
   const std::size_t space = line.find(' ');
   if (space == 0 || space == std::string_view::npos) return false;
-  if (!std::all_of(line.begin(), line.begin() + static_cast<std::ptrdiff_t>(space), [](char c) { return c >= 'A' && c <= 'Z'; }))
+  if (!std::all_of(line.begin(), line.begin() + static_cast<std::ptrdiff_t>(space),
+                   [](char c) { return c >= 'A' && c <= 'Z'; }))
     return false;
   return line.find(" HTTP/") != std::string_view::npos;
 }
@@ -72,7 +73,8 @@ void OperatorInput::listen_for_control(std::uint16_t port) {
   control_acceptor_->set_option(tcp::acceptor::reuse_address(true));
   boost::system::error_code ec;
   control_acceptor_->bind(endpoint, ec);
-  if (ec) throw std::runtime_error(cat("master: cannot open the control socket on 127.0.0.1:", port, ": ", ec.message()));
+  if (ec)
+    throw std::runtime_error(cat("master: cannot open the control socket on 127.0.0.1:", port, ": ", ec.message()));
   control_acceptor_->listen();
   control_port_ = control_acceptor_->local_endpoint().port();
   accept_control();

@@ -41,11 +41,13 @@ json value_of(const OscMessage& m) {
   return std::visit(
       [&](const auto& v) -> json {
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, std::monostate>) return nullptr;
-        else if constexpr (std::is_same_v<T, std::int32_t> || std::is_same_v<T, std::int64_t> || std::is_same_v<T, bool> ||
-                           std::is_same_v<T, double>)
+        if constexpr (std::is_same_v<T, std::monostate>)
+          return nullptr;
+        else if constexpr (std::is_same_v<T, std::int32_t> || std::is_same_v<T, std::int64_t> ||
+                           std::is_same_v<T, bool> || std::is_same_v<T, double>)
           return v;
-        else if constexpr (std::is_same_v<T, float>) return float_value(v);
+        else if constexpr (std::is_same_v<T, float>)
+          return float_value(v);
         else if constexpr (std::is_same_v<T, std::string>) {
           if (!printable(v)) refuse(m, "a string argument must be printable ASCII");
           return v;
@@ -63,8 +65,10 @@ json number_at(const OscMessage& m, std::size_t i, const char* what) {
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_same_v<T, std::int32_t> || std::is_same_v<T, std::int64_t> || std::is_same_v<T, double>)
           return v;
-        else if constexpr (std::is_same_v<T, float>) return float_value(v);
-        else refuse(m, cat("argument ", i + 1, " (", what, ") must be a number, got ", describe(OscArgument(v))));
+        else if constexpr (std::is_same_v<T, float>)
+          return float_value(v);
+        else
+          refuse(m, cat("argument ", i + 1, " (", what, ") must be a number, got ", describe(OscArgument(v))));
       },
       m.arguments[i]);
 }
@@ -74,7 +78,8 @@ json fade_request(const OscMessage& m) {
   const std::size_t n = m.arguments.size();
   if (n != 2 && n != 5)
     refuse(m, cat("takes LEVEL SECONDS or LEVEL SECONDS R G B (level 0 the picture, 1 only the colour; colour "
-                  "display-linear, each in [0, 1]), got ", n, " argument", n == 1 ? "" : "s"));
+                  "display-linear, each in [0, 1]), got ",
+                  n, " argument", n == 1 ? "" : "s"));
   json request = {{"command", "fade"}, {"level", number_at(m, 0, "level")}, {"seconds", number_at(m, 1, "seconds")}};
   if (n == 5) request["colour"] = {number_at(m, 2, "red"), number_at(m, 3, "green"), number_at(m, 4, "blue")};
   return request;
@@ -120,12 +125,17 @@ OperatorCommand osc_command(const OscMessage& m) {
     const std::string rest = m.address.substr(kAtmosphere.size());  // "<body>/<pointer>"
     const std::size_t slash = rest.find('/');
     if (slash == std::string::npos || slash == 0 || slash + 1 == rest.size())
-      refuse(m, "expected /zenith/atmosphere/<body>/<parameter>, such as /zenith/atmosphere/Earth/aerosol/scattering/turbidity");
-    request = {{"command", "set"}, {"body", rest.substr(0, slash)}, {"pointer", rest.substr(slash)}, {"value", value_of(m)}};
+      refuse(m,
+             "expected /zenith/atmosphere/<body>/<parameter>, such as "
+             "/zenith/atmosphere/Earth/aerosol/scattering/turbidity");
+    request = {
+        {"command", "set"}, {"body", rest.substr(0, slash)}, {"pointer", rest.substr(slash)}, {"value", value_of(m)}};
   } else {
-    refuse(m, "unknown address (known: /zenith/play, /zenith/pause, /zenith/toggle, /zenith/seek, /zenith/rate, "
-              "/zenith/exposure, /zenith/loop, /zenith/preview, /zenith/fade, /zenith/blackout, /zenith/sun/elevation, /zenith/sun/azimuth, /zenith/clear/sun, "
-              "/zenith/clear/exposure, /zenith/clear/atmosphere/<body>, /zenith/atmosphere/<body>/<parameter>)");
+    refuse(m,
+           "unknown address (known: /zenith/play, /zenith/pause, /zenith/toggle, /zenith/seek, /zenith/rate, "
+           "/zenith/exposure, /zenith/loop, /zenith/preview, /zenith/fade, /zenith/blackout, /zenith/sun/elevation, "
+           "/zenith/sun/azimuth, /zenith/clear/sun, "
+           "/zenith/clear/exposure, /zenith/clear/atmosphere/<body>, /zenith/atmosphere/<body>/<parameter>)");
   }
   return parse_operator_command(request);
 }

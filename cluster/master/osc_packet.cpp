@@ -93,8 +93,9 @@ OscMessage decode_message(Reader& r) {
   OscMessage message;
   message.address = r.string(kMaxAddressBytes);
   if (!valid_address(message.address))
-    r.fail(cat("address \"", message.address, "\": must start with '/' and hold printable ASCII without spaces or "
-                                              "pattern characters (# * , ? [ ] { })"));
+    r.fail(cat("address \"", message.address,
+               "\": must start with '/' and hold printable ASCII without spaces or "
+               "pattern characters (# * , ? [ ] { })"));
   if (r.done()) return message;  // no type tag string: no arguments (OSC 1.0 tolerates old senders)
   const std::string tags = r.string(kMaxArguments + 1);
   if (tags.empty() || tags[0] != ',') r.fail(cat("type tags \"", tags, "\": must start with ','"));
@@ -179,13 +180,20 @@ std::vector<std::uint8_t> encode_osc_message(const OscMessage& message) {
     std::visit(
         [&](const auto& v) {
           using T = std::decay_t<decltype(v)>;
-          if constexpr (std::is_same_v<T, std::monostate>) tags += 'N';
-          else if constexpr (std::is_same_v<T, std::int32_t>) tags += 'i', put_u32(data, static_cast<std::uint32_t>(v));
-          else if constexpr (std::is_same_v<T, std::int64_t>) tags += 'h', put_u64(data, static_cast<std::uint64_t>(v));
-          else if constexpr (std::is_same_v<T, float>) tags += 'f', put_u32(data, std::bit_cast<std::uint32_t>(v));
-          else if constexpr (std::is_same_v<T, double>) tags += 'd', put_u64(data, std::bit_cast<std::uint64_t>(v));
-          else if constexpr (std::is_same_v<T, bool>) tags += v ? 'T' : 'F';
-          else if constexpr (std::is_same_v<T, std::string>) tags += 's', put_string(data, v);
+          if constexpr (std::is_same_v<T, std::monostate>)
+            tags += 'N';
+          else if constexpr (std::is_same_v<T, std::int32_t>)
+            tags += 'i', put_u32(data, static_cast<std::uint32_t>(v));
+          else if constexpr (std::is_same_v<T, std::int64_t>)
+            tags += 'h', put_u64(data, static_cast<std::uint64_t>(v));
+          else if constexpr (std::is_same_v<T, float>)
+            tags += 'f', put_u32(data, std::bit_cast<std::uint32_t>(v));
+          else if constexpr (std::is_same_v<T, double>)
+            tags += 'd', put_u64(data, std::bit_cast<std::uint64_t>(v));
+          else if constexpr (std::is_same_v<T, bool>)
+            tags += v ? 'T' : 'F';
+          else if constexpr (std::is_same_v<T, std::string>)
+            tags += 's', put_string(data, v);
           else if constexpr (std::is_same_v<T, OscBlob>) {
             tags += 'b';
             put_u32(data, static_cast<std::uint32_t>(v.bytes.size()));
@@ -193,8 +201,10 @@ std::vector<std::uint8_t> encode_osc_message(const OscMessage& message) {
             while (data.size() % 4 != 0) data.push_back(0);
           } else {
             tags += v.tag;
-            if (v.tag == 't') put_u64(data, v.value);
-            else put_u32(data, static_cast<std::uint32_t>(v.value));
+            if (v.tag == 't')
+              put_u64(data, v.value);
+            else
+              put_u32(data, static_cast<std::uint32_t>(v.value));
           }
         },
         a);
@@ -218,12 +228,18 @@ std::string describe(const OscArgument& argument) {
   return std::visit(
       [](const auto& v) -> std::string {
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, std::monostate>) return "nil";
-        else if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
-        else if constexpr (std::is_same_v<T, std::string>) return cat("\"", v.size() > 64 ? v.substr(0, 61) + "..." : v, "\"");
-        else if constexpr (std::is_same_v<T, OscBlob>) return cat("blob of ", v.bytes.size(), " bytes");
-        else if constexpr (std::is_same_v<T, OscWord>) return cat("'", v.tag, "' ", v.value);
-        else return cat(+v);
+        if constexpr (std::is_same_v<T, std::monostate>)
+          return "nil";
+        else if constexpr (std::is_same_v<T, bool>)
+          return v ? "true" : "false";
+        else if constexpr (std::is_same_v<T, std::string>)
+          return cat("\"", v.size() > 64 ? v.substr(0, 61) + "..." : v, "\"");
+        else if constexpr (std::is_same_v<T, OscBlob>)
+          return cat("blob of ", v.bytes.size(), " bytes");
+        else if constexpr (std::is_same_v<T, OscWord>)
+          return cat("'", v.tag, "' ", v.value);
+        else
+          return cat(+v);
       },
       argument);
 }

@@ -38,11 +38,12 @@ struct OscBlob {
   bool operator==(const OscBlob&) const = default;
 };
 struct OscWord {
-  char tag = 0;            ///< 't', 'c', 'r' or 'm'
+  char tag = 0;  ///< 't', 'c', 'r' or 'm'
   std::uint64_t value = 0;
   bool operator==(const OscWord&) const = default;
 };
-using OscArgument = std::variant<std::monostate, std::int32_t, std::int64_t, float, double, bool, std::string, OscBlob, OscWord>;
+using OscArgument =
+    std::variant<std::monostate, std::int32_t, std::int64_t, float, double, bool, std::string, OscBlob, OscWord>;
 
 struct OscMessage {
   std::string address;  ///< starts with '/', printable ASCII without spaces

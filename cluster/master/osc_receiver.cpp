@@ -28,13 +28,16 @@ void OscReceiver::start() {
     allowed_.push_back(a);
   }
   if (!loopback_ && allowed_.empty())
-    throw std::runtime_error(cat("OSC: listening on ", options_.host, " (not a loopback address) needs the desks' "
-                                 "addresses: --osc-allow ADDRESS for each (OSC has no authentication; docs/operator.md)"));
+    throw std::runtime_error(
+        cat("OSC: listening on ", options_.host,
+            " (not a loopback address) needs the desks' "
+            "addresses: --osc-allow ADDRESS for each (OSC has no authentication; docs/operator.md)"));
   const udp::endpoint endpoint(address, options_.port);
   socket_.emplace(io_);
   socket_->open(endpoint.protocol());
   socket_->bind(endpoint, ec);
-  if (ec) throw std::runtime_error(cat("OSC: cannot listen on UDP ", options_.host, ":", options_.port, ": ", ec.message()));
+  if (ec)
+    throw std::runtime_error(cat("OSC: cannot listen on UDP ", options_.host, ":", options_.port, ": ", ec.message()));
   port_ = socket_->local_endpoint().port();
   receive();
 }
@@ -46,18 +49,21 @@ void OscReceiver::close() {
 }
 
 void OscReceiver::receive() {
-  socket_->async_receive_from(asio::buffer(buffer_), sender_, [this](const boost::system::error_code& ec, std::size_t n) {
-    if (closed_) return;
-    if (!ec) handle(std::span<const std::uint8_t>(buffer_).first(n), sender_.address());
-    else if (ec != asio::error::message_size) spdlog::warn("master: OSC: receive failed: {}", ec.message());
-    receive();
-  });
+  socket_->async_receive_from(asio::buffer(buffer_), sender_,
+                              [this](const boost::system::error_code& ec, std::size_t n) {
+                                if (closed_) return;
+                                if (!ec)
+                                  handle(std::span<const std::uint8_t>(buffer_).first(n), sender_.address());
+                                else if (ec != asio::error::message_size)
+                                  spdlog::warn("master: OSC: receive failed: {}", ec.message());
+                                receive();
+                              });
 }
 
 std::size_t OscReceiver::handle(std::span<const std::uint8_t> datagram, const asio::ip::address& sender) {
   const std::string from = sender.to_string();
-  const bool allowed = allowed_.empty() ? sender.is_loopback()
-                                        : std::find(allowed_.begin(), allowed_.end(), sender) != allowed_.end();
+  const bool allowed =
+      allowed_.empty() ? sender.is_loopback() : std::find(allowed_.begin(), allowed_.end(), sender) != allowed_.end();
   const auto now = core::LogLimiter::Clock::now();
   if (!allowed) {
     if (const std::optional<std::string> more = strangers_.admit(now))
@@ -70,7 +76,8 @@ std::size_t OscReceiver::handle(std::span<const std::uint8_t> datagram, const as
     messages = decode_osc_packet(datagram);
   } catch (const OscError& e) {
     if (const std::optional<std::string> more = malformed_.admit(now))
-      spdlog::warn("master: OSC from {}: refused {} bytes: {}{}", from, datagram.size(), core::escaped(e.what()), *more);
+      spdlog::warn("master: OSC from {}: refused {} bytes: {}{}", from, datagram.size(), core::escaped(e.what()),
+                   *more);
     return 0;
   }
   std::size_t applied = 0;

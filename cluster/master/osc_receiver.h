@@ -31,8 +31,8 @@ namespace zenith::cluster {
 class OscReceiver {
  public:
   struct Options {
-    std::string host = "127.0.0.1";          ///< address to listen on
-    std::uint16_t port = 0;                  ///< 0: any free port (see port())
+    std::string host = "127.0.0.1";            ///< address to listen on
+    std::uint16_t port = 0;                    ///< 0: any free port (see port())
     std::vector<std::string> allowed_senders;  ///< numeric IPs; required when `host` is not a loopback address
   };
   /// Applies a command from `source` ("osc 10.0.0.5") and returns the reply;

@@ -23,8 +23,10 @@ void load_playback(const MasterOptions& options, Playback& p) {
           "atmosphere switches cannot be combined with a show: use the show's atmosphere tracks");
     p.show.emplace(show::load_show(*options.show));
     p.scene = p.show->scene();
-    if (options.show_fps > 0.0) p.fps = options.show_fps;
-    else if (p.show->kind() == show::Show::Kind::recording) p.fps = p.show->frame_rate_hz();
+    if (options.show_fps > 0.0)
+      p.fps = options.show_fps;
+    else if (p.show->kind() == show::Show::Kind::recording)
+      p.fps = p.show->frame_rate_hz();
     p.clock.emplace(p.show->duration_s(), p.fps, options.loop.value_or(p.show->loop()));
     spdlog::info("master: playing show '{}' ({:.1f} s at {} fps, {} frames{})", p.show->name(), p.show->duration_s(),
                  p.fps, p.show->frame_count(p.fps), p.clock->looping() ? ", looping" : "");

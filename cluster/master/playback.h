@@ -14,11 +14,11 @@
 namespace zenith::cluster {
 
 struct Playback {
-  scene::Scene scene;                      ///< the show's scene, or the configuration's
-  std::optional<show::Show> show;          ///< nullopt: the default show
-  std::optional<show::PlaybackClock> clock;  ///< a show's
-  double fps = 30.0;                       ///< frames per second of show time (and of pacing)
-  std::uint32_t render_flags = 0;          ///< every frame's (render::RenderOptions' defaults)
+  scene::Scene scene;                            ///< the show's scene, or the configuration's
+  std::optional<show::Show> show;                ///< nullopt: the default show
+  std::optional<show::PlaybackClock> clock;      ///< a show's
+  double fps = 30.0;                             ///< frames per second of show time (and of pacing)
+  std::uint32_t render_flags = 0;                ///< every frame's (render::RenderOptions' defaults)
   std::unique_ptr<show::ShowRecorder> recorder;  ///< with MasterOptions::record
 };
 

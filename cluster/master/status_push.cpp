@@ -149,8 +149,10 @@ bool StatusPush::has_room(bool authenticated) {
   for (const std::weak_ptr<Connection>& weak : connections_)
     if (const auto c = weak.lock(); c && !c->authenticated && !c->closing) waiting.push_back(c);
   if (waiting.size() >= kMaxWaitingForToken) {  // the oldest waiting makes room
-    spdlog::info("master: operator console: closing the status push to {}: no operator token yet, and a newer "
-                 "connection waits for one ({} at most)", waiting.front()->peer, kMaxWaitingForToken);
+    spdlog::info(
+        "master: operator console: closing the status push to {}: no operator token yet, and a newer "
+        "connection waits for one ({} at most)",
+        waiting.front()->peer, kMaxWaitingForToken);
     waiting.front()->abort();
   }
   return true;
@@ -169,8 +171,10 @@ void StatusPush::close() {
   timer_.cancel();
   for (const std::weak_ptr<Connection>& weak : connections_)
     if (const auto c = weak.lock()) {
-      if (c->open) c->close(websocket::close_code::going_away, "the master is stopping");
-      else c->abort();  // still in its handshake
+      if (c->open)
+        c->close(websocket::close_code::going_away, "the master is stopping");
+      else
+        c->abort();  // still in its handshake
     }
   connections_.clear();
 }

@@ -22,7 +22,7 @@ scene::SkyAngles SunOverride::angles_of(const FrameState& state) const {
 }
 
 scene::SkyAngles SunOverride::set(const operator_command::Sun& sun, const FrameState* latest) {
-  scene::SkyAngles now = angles_ ? *angles_
+  scene::SkyAngles now = angles_             ? *angles_
                          : latest != nullptr ? angles_of(*latest)
                                              : horizon_at(scene_camera_m_).angles_of(scene_sun_direction_);
   if (sun.elevation_deg) now.elevation_deg = *sun.elevation_deg;
@@ -36,8 +36,9 @@ scene::SkyAngles SunOverride::set(const operator_command::Sun& sun, const FrameS
 
 void SunOverride::apply(FrameState& state) const {
   if (!angles_) return;
-  state.sun_direction = glm::normalize(
-      horizon_at(state.camera_position_m).direction(angles_->azimuth_deg * core::kDeg, angles_->elevation_deg * core::kDeg));
+  state.sun_direction =
+      glm::normalize(horizon_at(state.camera_position_m)
+                         .direction(angles_->azimuth_deg * core::kDeg, angles_->elevation_deg * core::kDeg));
 }
 
 }  // namespace zenith::cluster

@@ -2,8 +2,8 @@
 
 #include <atomic>
 #include <chrono>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -57,15 +57,17 @@ void TablePreparer::stop() {
 TableSetFile TablePreparer::obtain_set(const Job& job, bool* from_cache, const Cancelled& cancelled) {
   render::TableRequest request = job.request;
   if (cancelled) {
-    request.options.progress = [cancelled, caller = request.options.progress](const atmosphere::lut::PrecomputeProgress& p) {
+    request.options.progress = [cancelled,
+                                caller = request.options.progress](const atmosphere::lut::PrecomputeProgress& p) {
       if (caller) caller(p);
       if (cancelled()) throw PreparationCancelled();
     };
   }
   render::ObtainedTables obtained = render::obtain_tables(job.model, request);
   if (obtained.cache_file.empty())
-    throw std::runtime_error(core::cat("the tables of '", job.body, "' could not be stored in the cache: nodes get "
-                                         "the cache file's bytes, so the master needs a writable table cache directory"));
+    throw std::runtime_error(core::cat("the tables of '", job.body,
+                                       "' could not be stored in the cache: nodes get "
+                                       "the cache file's bytes, so the master needs a writable table cache directory"));
   if (from_cache != nullptr) *from_cache = obtained.from_cache;
   return make_table_set_file(job.body, job.table_hash, obtained.cache_file);
 }
@@ -85,16 +87,17 @@ void TablePreparer::run() {
       jobs_.pop_front();
       running_ = Progress{job.table_hash, "starting", 0.0};
     }
-    job.request.options.progress = [this, caller = job.request.options.progress](const atmosphere::lut::PrecomputeProgress& p) {
-      {
-        std::lock_guard lock(mutex_);
-        if (running_) {
-          running_->stage = p.stage;
-          running_->fraction = p.fraction;
-        }
-      }
-      if (caller) caller(p);
-    };
+    job.request.options.progress =
+        [this, caller = job.request.options.progress](const atmosphere::lut::PrecomputeProgress& p) {
+          {
+            std::lock_guard lock(mutex_);
+            if (running_) {
+              running_->stage = p.stage;
+              running_->fraction = p.fraction;
+            }
+          }
+          if (caller) caller(p);
+        };
     const auto started = std::chrono::steady_clock::now();
     bool from_cache = false;
     std::optional<TableSetFile> set;
@@ -110,8 +113,10 @@ void TablePreparer::run() {
       running_.reset();  // done: the callback only reports it
       if (stopping_) return;
     }
-    if (set) on_prepared_(std::move(*set), seconds, from_cache);
-    else on_failed_(job.table_hash, error);
+    if (set)
+      on_prepared_(std::move(*set), seconds, from_cache);
+    else
+      on_failed_(job.table_hash, error);
   }
 }
 

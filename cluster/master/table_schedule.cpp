@@ -17,8 +17,8 @@ namespace zenith::cluster {
 
 using core::cat;
 
-TableSchedule::TableSchedule(Options options, const scene::Scene& scene, const show::Show* show,
-                             NodeSessions& sessions, const FrameBarrier& barrier, Actions actions)
+TableSchedule::TableSchedule(Options options, const scene::Scene& scene, const show::Show* show, NodeSessions& sessions,
+                             const FrameBarrier& barrier, Actions actions)
     : options_(std::move(options)),
       scene_(scene),
       show_(show),
@@ -109,9 +109,8 @@ void TableSchedule::prepare_show_sets() {
   const show::TablePlan plan = show::plan_tables(
       *show_, options_.fps, request.options,
       atmosphere::lut::TableCache(request.cache_directory.value_or(atmosphere::lut::default_cache_directory())));
-  spdlog::info("master: show '{}' at {} fps needs {} table set{} ({} to precompute):\n{}", show_->name(),
-               options_.fps, plan.sets.size(), plan.sets.size() == 1 ? "" : "s", plan.missing(),
-               show::describe(plan));
+  spdlog::info("master: show '{}' at {} fps needs {} table set{} ({} to precompute):\n{}", show_->name(), options_.fps,
+               plan.sets.size(), plan.sets.size() == 1 ? "" : "s", plan.missing(), show::describe(plan));
   std::vector<Digest> show_sets;
   std::vector<ShowStartRule::Set> schedule;
   for (const show::TablePlanEntry& entry : plan.sets) {
@@ -146,8 +145,8 @@ void TableSchedule::on_set_prepared(TableSetFile set, double seconds, bool from_
   }
   const Digest hash = set.table_hash;
   const auto& sets = show_start_->sets();
-  const auto index = std::find_if(sets.begin(), sets.end(), [&](const auto& e) { return e.table_hash == hash; }) -
-                     sets.begin() + 1;
+  const auto index =
+      std::find_if(sets.begin(), sets.end(), [&](const auto& e) { return e.table_hash == hash; }) - sets.begin() + 1;
   show_start_->prepared(hash, seconds, from_cache);
   tables_.add_set(std::move(set));
   const TableSetFile& prepared = tables_.set(hash);
@@ -159,8 +158,8 @@ void TableSchedule::on_set_prepared(TableSetFile set, double seconds, bool from_
     ++receivers;
   });
   spdlog::info("master: table set {} of {} ('{}', version {}) ready ({:.1f} s, {}); sent to {} node{}", index,
-               sets.size(), prepared.body_name, short_hex(hash), seconds,
-               from_cache ? "from the cache" : "precomputed", receivers, receivers == 1 ? "" : "s");
+               sets.size(), prepared.body_name, short_hex(hash), seconds, from_cache ? "from the cache" : "precomputed",
+               receivers, receivers == 1 ? "" : "s");
   // An operator's version that is one of the show's own was waiting for it.
   if (tables_.pending() && tables_.pending()->hash == hash && !tables_.pending()->distributed)
     on_version_prepared(std::nullopt);
@@ -169,9 +168,10 @@ void TableSchedule::on_set_prepared(TableSetFile set, double seconds, bool from_
   if (!actions_.started() && !show_start_->may_start() &&
       std::none_of(sets.begin(), sets.end(), [](const auto& e) { return e.first_frame == 0 && !e.prepared; })) {
     const std::optional<double> remaining = show_start_->predicted_remaining_s();
-    spdlog::info("master: live show: frame 0 waits until the remaining table sets are predicted ready before they "
-                 "are needed ({}), so that playback does not stall",
-                 remaining ? fmt::format("about {:.0f} s of preparation left", *remaining) : "no estimate yet");
+    spdlog::info(
+        "master: live show: frame 0 waits until the remaining table sets are predicted ready before they "
+        "are needed ({}), so that playback does not stall",
+        remaining ? fmt::format("about {:.0f} s of preparation left", *remaining) : "no estimate yet");
   }
 }
 
@@ -257,9 +257,10 @@ void TableSchedule::check_confirmations() {
   std::vector<std::uint32_t> late;
   sessions_.for_each([&](const NodeSession& s) {
     if (s.state == NodeSession::State::ready && !s.tables_ready.count(hash)) {
-      spdlog::warn("master: node '{}' did not confirm table version {} within {:.0f} ms: disconnecting it so the "
-                   "switch can take effect (it rejoins with the new version when it reconnects)",
-                   s.name, short_hex(hash), limit_ms);
+      spdlog::warn(
+          "master: node '{}' did not confirm table version {} within {:.0f} ms: disconnecting it so the "
+          "switch can take effect (it rejoins with the new version when it reconnects)",
+          s.name, short_hex(hash), limit_ms);
       late.push_back(s.id);
     }
   });
@@ -312,9 +313,10 @@ void TableSchedule::apply_overrides(FrameState& state) {
                    body, short_hex(ref.table_hash));
       edits_->enqueue(std::move(edit));
     } catch (const std::exception& e) {
-      spdlog::warn("master: the show's track of '{}' moved on to version {}, but the operator's changes do not fit "
-                   "it ({}); '{}' keeps the operator's version until cleared",
-                   body, short_hex(ref.table_hash), e.what(), body);
+      spdlog::warn(
+          "master: the show's track of '{}' moved on to version {}, but the operator's changes do not fit "
+          "it ({}); '{}' keeps the operator's version until cleared",
+          body, short_hex(ref.table_hash), e.what(), body);
     }
   }
   state.atmospheres = tables_.with_overrides(std::move(state.atmospheres));
@@ -347,9 +349,10 @@ void TableSchedule::begin_version(std::size_t index, atmosphere::LoadedAtmospher
   tables_.add_version(body, loaded, hash);
   tables_.begin_pending(index, hash);
   pending_change_ = what;
-  spdlog::info("master: {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
-               "version {}",
-               why, short_hex(hash), body, what, short_hex(effective_version(index)));
+  spdlog::info(
+      "master: {}: preparing table version {} of '{}' ({}) in the background; the show goes on with "
+      "version {}",
+      why, short_hex(hash), body, what, short_hex(effective_version(index)));
   if (tables_.has_set(hash)) {  // an earlier version again: already encoded
     actions_.defer([this] { on_version_prepared(std::nullopt); });
     return;
@@ -423,9 +426,10 @@ bool TableSchedule::participants_hold(const FrameState& state, const std::vector
       if (s == nullptr || s->tables_ready.count(ref.table_hash)) continue;
       missing.push_back(s->name);
       if (sent != show_set_sent_at_.end() && ms_since(sent->second) > limit_ms) {
-        spdlog::warn("master: node '{}' did not confirm table set {} within {:.0f} ms: disconnecting it so that "
-                     "frame {} can go on (it rejoins with the set when it reconnects)",
-                     s->name, short_hex(ref.table_hash), limit_ms, state.frame);
+        spdlog::warn(
+            "master: node '{}' did not confirm table set {} within {:.0f} ms: disconnecting it so that "
+            "frame {} can go on (it rejoins with the set when it reconnects)",
+            s->name, short_hex(ref.table_hash), limit_ms, state.frame);
         late.push_back(id);
       }
     }
@@ -451,7 +455,7 @@ std::string TableSchedule::set_atmosphere(const operator_command::Set& set) {
   const AtmosphereEdits::Edit* waiting = edits_->waiting(set.body);
   // The parameters the change is made to: in a show its own version's with the operator's changes so far.
   const nlohmann::json base =
-      show_ ? overrides_.apply(set.body, tables_.version(show_version_of(index).table_hash).parameters)
+      show_     ? overrides_.apply(set.body, tables_.version(show_version_of(index).table_hash).parameters)
       : waiting ? waiting->loaded.parameters
                 : tables_.version(latest).parameters;
   AtmosphereEdits::Edit edit = edits_->resolve(set, base);

@@ -83,8 +83,8 @@ class TableSchedule {
   };
 
   struct Options {
-    render::TableRequest request;           ///< precompute options, backend and cache of every set
-    std::uint32_t barrier_timeout_ms = 0;   ///< a confirmation is late after max(60 s, this)
+    render::TableRequest request;            ///< precompute options, backend and cache of every set
+    std::uint32_t barrier_timeout_ms = 0;    ///< a confirmation is late after max(60 s, this)
     std::vector<AtmosphereSwitch> switches;  ///< the default show's switches, any order
     double fps = 30.0;                       ///< a show's frames per second (its table plan)
     bool paced = true;                       ///< live (ShowStartRule)

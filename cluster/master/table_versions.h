@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "cluster/protocol/messages.h"
-#include "show/show.h"
 #include "cluster/protocol/table_transfer.h"
+#include "show/show.h"
 
 namespace zenith::cluster {
 
@@ -39,7 +39,7 @@ class TableVersions {
   struct Pending {
     std::size_t ref_index = 0;  ///< into current()
     Digest hash{};
-    bool distributed = false;   ///< prepared and sent to the nodes
+    bool distributed = false;  ///< prepared and sent to the nodes
     Clock::time_point distributed_at{};
   };
 

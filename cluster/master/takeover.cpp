@@ -35,12 +35,15 @@ Continuation continuation_of(const TakeoverState& state, const FrameState& expec
     // Rates are typed values (1, 2, 0.5, -1): the step's rounding error is not one.
     double rate = *state.show_time_step_s * fps;
     if (const double typed = std::round(rate * 1e6) / 1e6; std::abs(rate - typed) < 1e-9) rate = typed;
-    if (*state.show_time_step_s == 0.0) c.paused = true;
-    else if (std::abs(rate) <= show::PlaybackClock::kMaxRate) c.rate = rate;
+    if (*state.show_time_step_s == 0.0)
+      c.paused = true;
+    else if (std::abs(rate) <= show::PlaybackClock::kMaxRate)
+      c.rate = rate;
   }
   if (last.exposure != expected.exposure) c.exposure = last.exposure;
   const double tolerance = 1e-9;
-  if (!close(last.camera_position_m, expected.camera_position_m, 1e-6 * std::max(1.0, glm::length(last.camera_position_m))))
+  if (!close(last.camera_position_m, expected.camera_position_m,
+             1e-6 * std::max(1.0, glm::length(last.camera_position_m))))
     c.mismatches.push_back("camera position");
   if (!close(glm::dvec4(last.camera_orientation.w, last.camera_orientation.x, last.camera_orientation.y,
                         last.camera_orientation.z),
@@ -57,8 +60,10 @@ Continuation continuation_of(const TakeoverState& state, const FrameState& expec
 
 void continue_clock(const Continuation& c, show::PlaybackClock& clock) {
   clock.seek(c.last_show_time_s);
-  if (c.paused) clock.pause();
-  else clock.set_rate(c.rate);
+  if (c.paused)
+    clock.pause();
+  else
+    clock.set_rate(c.rate);
   (void)clock.next_frame_time_s();  // the last frame's time: the next one is a step on
 }
 
@@ -81,14 +86,15 @@ Continuation continue_show(const TakeoverState& t, const FrameState& expected, d
   const Continuation c = continuation_of(t, expected, fps);
   const FrameState& last = *t.last_frame;
   for (const std::string& what : c.mismatches)
-    spdlog::warn("master: taking over: the {} of frame {} differs from this standby's show (are its scene, show "
-                 "and --sun-step-deg the active master's?): the picture jumps at the takeover",
-                 what, last.frame);
-  spdlog::info("master: taking over the show at frame {} (the active master's last was frame {}, show time {:.3f} s, "
-               "{}) with the {} table version{} it distributed",
-               c.next_frame, last.frame, last.show_time_s,
-               t.frame_in_flight() ? "in flight, not seen presented" : "presented", t.versions.size(),
-               t.versions.size() == 1 ? "" : "s");
+    spdlog::warn(
+        "master: taking over: the {} of frame {} differs from this standby's show (are its scene, show "
+        "and --sun-step-deg the active master's?): the picture jumps at the takeover",
+        what, last.frame);
+  spdlog::info(
+      "master: taking over the show at frame {} (the active master's last was frame {}, show time {:.3f} s, "
+      "{}) with the {} table version{} it distributed",
+      c.next_frame, last.frame, last.show_time_s, t.frame_in_flight() ? "in flight, not seen presented" : "presented",
+      t.versions.size(), t.versions.size() == 1 ? "" : "s");
   return c;
 }
 

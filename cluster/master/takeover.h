@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "cluster/master/table_versions.h"
 #include "cluster/link/takeover_state.h"
+#include "cluster/master/table_versions.h"
 #include "scene/scene.h"
 #include "show/playback_clock.h"
 
@@ -18,13 +18,13 @@ namespace zenith::cluster {
 
 /// How the show goes on after a takeover.
 struct Continuation {
-  std::uint64_t next_frame = 0;    ///< the frame after the last one the active master sent
-  double last_show_time_s = 0.0;   ///< the show time of that last frame
+  std::uint64_t next_frame = 0;   ///< the frame after the last one the active master sent
+  double last_show_time_s = 0.0;  ///< the show time of that last frame
   /// Show seconds per second of playback, from the last step (step × fps): 1
   /// when fewer than two consecutive frames were seen, or the step is no
   /// playback rate (a seek, a loop's wrap: beyond ±16).
   double rate = 1.0;
-  bool paused = false;             ///< the last two frames had the same show time
+  bool paused = false;  ///< the last two frames had the same show time
   /// The operator's exposure of the last frame, when it differs from what the show gives.
   std::optional<double> exposure;
   /// What of the last frame this master would not have sent the same way

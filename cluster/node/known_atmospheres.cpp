@@ -50,7 +50,8 @@ void KnownAtmospheres::define(const AtmosphereDefinition& d, bool keep) {
     std::lock_guard lock(mutex_);
     added = entries_.emplace(hash, Entry{d.body_name, std::move(loaded)}).second;
   }
-  if (added) spdlog::debug("node '{}': atmosphere version {} of '{}' defined", node_name_, short_hex(hash), d.body_name);
+  if (added)
+    spdlog::debug("node '{}': atmosphere version {} of '{}' defined", node_name_, short_hex(hash), d.body_name);
   if (keep && added) {
     std::filesystem::create_directories(definitions_directory());
     const std::string text =

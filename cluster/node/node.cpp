@@ -10,15 +10,15 @@
 #include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
 
-#include "render/lut/table_provider.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/named_inputs.h"
-#include "cluster/protocol/heartbeat.h"
-#include "cluster/node/known_atmospheres.h"
 #include "cluster/link/master_link.h"
+#include "cluster/node/known_atmospheres.h"
 #include "cluster/node/render_worker.h"
+#include "cluster/protocol/heartbeat.h"
 #include "cluster/protocol/table_transfer.h"
 #include "core/strings.h"
+#include "render/lut/table_provider.h"
 #include "scene/scene_loader.h"
 #include "warp/viewport_config.h"
 
@@ -62,9 +62,9 @@ struct Node::Impl {
   asio::signal_set signals{io, SIGINT, SIGTERM};
   /// The connection to the master: connect, handshake, heartbeats, Goodbye.
   MasterLink link;
-  TableReceiver receiver;         ///< transfers of this connection (a new one starts them afresh)
-  std::set<Digest> inventory;     ///< sets found valid in the cache at the last Welcome (declared to the master)
-  std::set<Digest> held_tables;   ///< sets this node holds (cached or received) and may render with
+  TableReceiver receiver;        ///< transfers of this connection (a new one starts them afresh)
+  std::set<Digest> inventory;    ///< sets found valid in the cache at the last Welcome (declared to the master)
+  std::set<Digest> held_tables;  ///< sets this node holds (cached or received) and may render with
   /// Counts Welcomes: the render thread's answers carry the session of their
   /// job, and only those of the current connection go to the master.
   std::uint64_t session = 0;
@@ -80,8 +80,7 @@ struct Node::Impl {
   Impl(NodeOptions o, SharedSecret secret)
       : options(std::move(o)),
         link(io, link_setup(options), std::move(secret),
-             MasterLink::Events{[this](const Welcome&) { on_welcomed(); },
-                                [this](const std::string&) { on_lost(); },
+             MasterLink::Events{[this](const Welcome&) { on_welcomed(); }, [this](const std::string&) { on_lost(); },
                                 [this](const Message& m) { on_master_message(m); },
                                 [this](int code) { finish(code); }}) {}
 
@@ -117,8 +116,9 @@ struct Node::Impl {
     if (const auto* fs = std::get_if<FrameState>(&message)) {
       for (const AtmosphereTableRef& ref : fs->atmospheres)
         if (!held_tables.count(ref.table_hash) || ref.effective_from_frame > fs->frame)
-          throw std::runtime_error(cat("FrameState ", fs->frame, " uses table set ", to_hex(ref.table_hash).substr(0, 12),
-                                       "… (effective from frame ", ref.effective_from_frame, ") for '", ref.body_name,
+          throw std::runtime_error(cat("FrameState ", fs->frame, " uses table set ",
+                                       to_hex(ref.table_hash).substr(0, 12), "… (effective from frame ",
+                                       ref.effective_from_frame, ") for '", ref.body_name,
                                        "', which this node does not hold or may not use yet"));
       const bool thumbnails = preview_request && preview_request->frame == fs->frame;
       worker->render(*fs, session, thumbnails ? preview_request->edge_px : 0);
@@ -129,9 +129,10 @@ struct Node::Impl {
       worker->present(p->frame);
     } else if (const auto* a = std::get_if<TableAnnounce>(&message)) {
       if (!atmospheres.knows(a->table_hash))
-        throw std::runtime_error(cat("TableAnnounce of table set ", to_hex(a->table_hash).substr(0, 12),
-                                     "…, which no atmosphere this node knows uses (the scene's, the presets, the atmosphere "
-                                     "files it was given: do master and node read the same scene and files?)"));
+        throw std::runtime_error(
+            cat("TableAnnounce of table set ", to_hex(a->table_hash).substr(0, 12),
+                "…, which no atmosphere this node knows uses (the scene's, the presets, the atmosphere "
+                "files it was given: do master and node read the same scene and files?)"));
       if (inventory.count(a->table_hash)) {
         // Declared in the inventory: the master sends no chunks; use the cached copy.
         held_tables.insert(a->table_hash);
@@ -225,26 +226,27 @@ struct Node::Impl {
     table_options.max_orders = options.config.table_orders;
     atmospheres.add_scene_and_candidates(options.atmosphere_files);
     atmospheres.load_kept_definitions();
-    node_directory = options.layout == FrameFileLayout::offline
-                         ? options.output_directory / "nodes" / options.node_name
-                         : options.output_directory / options.node_name;
+    node_directory = options.layout == FrameFileLayout::offline ? options.output_directory / "nodes" / options.node_name
+                                                                : options.output_directory / options.node_name;
     std::filesystem::create_directories(node_directory);
-    worker.emplace(RenderWorker::Setup{options, base_scene, viewports, outputs, atmospheres, table_options, node_directory},
-                   RenderWorker::Events{
-                       [this](const RenderDone& done, std::uint64_t of_session, std::vector<Thumbnail> thumbnails) {
-                         report_render_done(done, of_session, std::move(thumbnails));
-                       },
-                       [this](const Digest& hash, std::uint64_t of_session) {
-                         asio::post(io, [this, hash, of_session] { send_table_ready(hash, of_session); });
-                       },
-                       [this](const std::string& what) { report_failure(what); },
-                       [this] {
-                         asio::post(io, [this] { say_goodbye_and_finish("the node's window was closed", kNodeExitDone); });
-                       }});
+    worker.emplace(
+        RenderWorker::Setup{options, base_scene, viewports, outputs, atmospheres, table_options, node_directory},
+        RenderWorker::Events{
+            [this](const RenderDone& done, std::uint64_t of_session, std::vector<Thumbnail> thumbnails) {
+              report_render_done(done, of_session, std::move(thumbnails));
+            },
+            [this](const Digest& hash, std::uint64_t of_session) {
+              asio::post(io, [this, hash, of_session] { send_table_ready(hash, of_session); });
+            },
+            [this](const std::string& what) { report_failure(what); },
+            [this] {
+              asio::post(io, [this] { say_goodbye_and_finish("the node's window was closed", kNodeExitDone); });
+            }});
 
     signals.async_wait([this](const boost::system::error_code& ec, int signal) {
       if (ec || finished) return;
-      spdlog::info("node '{}': {} received: leaving the cluster", options.node_name, signal == SIGINT ? "SIGINT" : "SIGTERM");
+      spdlog::info("node '{}': {} received: leaving the cluster", options.node_name,
+                   signal == SIGINT ? "SIGINT" : "SIGTERM");
       say_goodbye_and_finish("node stopped by a signal", kNodeExitDone);
     });
     link.start();

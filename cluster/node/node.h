@@ -5,7 +5,8 @@
 // Present renames the frame's files into place:
 //
 //   <out>/<node>/<output>/frame-000042.png     (written as ….png.partial, renamed on Present)
-//   <out>/<node>/presented.log                 one line per presented frame: "frame N state DIGEST tables B=H,... show_time_s T"
+//   <out>/<node>/presented.log                 one line per presented frame: "frame N state DIGEST tables B=H,...
+//   show_time_s T"
 //
 // When the connection to the master is lost without a Goodbye, the node keeps
 // its last presented frame and reconnects (MasterLink), then rejoins at a
@@ -37,11 +38,11 @@ enum class FrameFileLayout {
 
 struct NodeOptions {
   ClusterConfig config;
-  std::string node_name;                       ///< one of config.nodes
-  std::filesystem::path output_directory;      ///< frames go to <this>/<node>/<output>/
-  std::filesystem::path cache_directory;       ///< the node's own table cache
-  std::optional<std::uint16_t> port;           ///< overrides config.master.port
-  std::uint32_t connect_timeout_ms = 15000;    ///< keep trying to reach the master this long
+  std::string node_name;                     ///< one of config.nodes
+  std::filesystem::path output_directory;    ///< frames go to <this>/<node>/<output>/
+  std::filesystem::path cache_directory;     ///< the node's own table cache
+  std::optional<std::uint16_t> port;         ///< overrides config.master.port
+  std::uint32_t connect_timeout_ms = 15000;  ///< keep trying to reach the master this long
   /// After losing a welcomed connection, keep trying to be welcomed again
   /// this long (`--reconnect-s`); unset: the configuration's timing.reconnect_s.
   std::optional<std::uint32_t> reconnect_ms;

@@ -35,7 +35,7 @@ class OutputWriter {
     std::string state_digest;  ///< state_digest() of its FrameState
     std::string tables;        ///< "BODY=HASH16,...", "-" for none
     double show_time_s = 0.0;
-    scene::FadeState fade;     ///< logged as "fade LEVEL R,G,B" while not the picture alone
+    scene::FadeState fade;  ///< logged as "fade LEVEL R,G,B" while not the picture alone
   };
 
   /// `node_directory` holds presented.log; frames go under it (per_node) or
@@ -55,8 +55,8 @@ class OutputWriter {
   /// file. A PNG shows the frame's `fade` as the projector does; an EXR keeps
   /// the radiance (scene-referred: a fade is a display operation) and names
   /// the fade in its zenith:fade attribute.
-  void write(std::size_t viewport_index, std::uint64_t frame, std::vector<float> rgb,
-             image::ImageAttributes attributes, const scene::FadeState& fade = {});
+  void write(std::size_t viewport_index, std::uint64_t frame, std::vector<float> rgb, image::ImageAttributes attributes,
+             const scene::FadeState& fade = {});
   /// Every output of the frame is written.
   void finish_frame(RenderedFrame rendered);
   /// Present `frame`: renames its partial files into place and appends its

@@ -9,13 +9,13 @@
 #include <thread>
 
 #include "atmosphere/lut/table_cache.h"
-#include "scene/frame_scene.h"
 #include "cluster/node/thumbnail.h"
-#include "scene/frame_digest.h"
 #include "core/json_reader.h"
 #include "core/timing.h"
 #include "image/tone_mapping.h"
 #include "render/render_flags.h"
+#include "scene/frame_digest.h"
+#include "scene/frame_scene.h"
 
 namespace zenith::cluster {
 
@@ -46,9 +46,7 @@ void RenderWorker::prepare(const Digest& hash, std::uint64_t session) {
 void RenderWorker::render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px) {
   push(Job{Job::Kind::render, state, state.frame, {}, session, thumbnail_edge_px});
 }
-void RenderWorker::present(std::uint64_t frame) {
-  push(Job{Job::Kind::present, {}, frame, {}, 0, 0, Clock::now()});
-}
+void RenderWorker::present(std::uint64_t frame) { push(Job{Job::Kind::present, {}, frame, {}, 0, 0, Clock::now()}); }
 void RenderWorker::stop() { push(Job{Job::Kind::stop, {}, 0, {}, 0}); }
 
 void RenderWorker::abandon_frames() {
@@ -105,9 +103,10 @@ void RenderWorker::run() {
 void RenderWorker::release_gl() {
   if (windows_) {
     const render::window::PresentClock& c = windows_->clock();
-    spdlog::info("node '{}': presented {} frame{} in its windows, {} late (a missed vblank); Present to swap at most "
-                 "{:.1f} ms",
-                 setup_.options.node_name, c.presented(), c.presented() == 1 ? "" : "s", c.late(), c.worst_ms());
+    spdlog::info(
+        "node '{}': presented {} frame{} in its windows, {} late (a missed vblank); Present to swap at most "
+        "{:.1f} ms",
+        setup_.options.node_name, c.presented(), c.presented() == 1 ? "" : "s", c.late(), c.worst_ms());
   }
   if (windows_ || context_) make_current();
   renderer_.reset();
@@ -120,8 +119,10 @@ void RenderWorker::release_gl() {
 // ---- GL and the renderer ----------------------------------------------------
 
 void RenderWorker::make_current() const {
-  if (windows_) windows_->primary().make_current();
-  else context_->make_current();
+  if (windows_)
+    windows_->primary().make_current();
+  else
+    context_->make_current();
 }
 
 void RenderWorker::ensure_context() {
@@ -155,9 +156,11 @@ void RenderWorker::ensure_context() {
     OutputFrame f;
     if (windows_) f.display = render::gl::Texture::create_2d(render::gl::TextureFormat::rgba8, o.width_px, o.height_px);
     f.stage.blended = has_output_stage(o);
-    if (f.stage.blended) f.blend_mask = render::display::blend_mask_texture(warp::output_blend_mask(setup_.viewports, i));
+    if (f.stage.blended)
+      f.blend_mask = render::display::blend_mask_texture(warp::output_blend_mask(setup_.viewports, i));
     f.stage.black_level = o.black_level;
-    if (o.window && o.window->gamma > 0.0) f.stage.encoding = {image::DisplayEncoding::Transfer::gamma, o.window->gamma};
+    if (o.window && o.window->gamma > 0.0)
+      f.stage.encoding = {image::DisplayEncoding::Transfer::gamma, o.window->gamma};
     frames_.push_back(std::move(f));
   }
   for (OutputFrame& f : frames_)
@@ -190,8 +193,8 @@ void RenderWorker::use_table_version(scene::Scene& scene, const std::string& bod
       b.atmosphere->loaded = known.loaded;
       return;
     }
-  throw std::runtime_error(cat("FrameState names body '", body, "', which has no atmosphere in ",
-                               setup_.base_scene.source));
+  throw std::runtime_error(
+      cat("FrameState names body '", body, "', which has no atmosphere in ", setup_.base_scene.source));
 }
 
 // ---- jobs -------------------------------------------------------------------
@@ -232,7 +235,8 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
       renderer_->render_to_texture(scene, *o.projection, f.radiance);  // headless, nothing asked: the frame stays here
     }
     if (thumbnail_edge_px > 0)  // only for a frame the master asked thumbnails of
-      thumbnails.push_back(make_thumbnail(state.frame, o.name, encoder_.thumbnail(f.radiance, f.stage, thumbnail_edge_px)));
+      thumbnails.push_back(
+          make_thumbnail(state.frame, o.name, encoder_.thumbnail(f.radiance, f.stage, thumbnail_edge_px)));
     if (setup_.options.write_frames) {
       const image::ImageAttributes attributes = {
           {"zenith:scene", scene.name},

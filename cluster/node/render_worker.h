@@ -17,10 +17,10 @@
 #include <vector>
 
 #include "atmosphere/lut/precompute_options.h"
-#include "cluster/protocol/messages.h"
-#include "cluster/node/node.h"
 #include "cluster/node/known_atmospheres.h"
+#include "cluster/node/node.h"
 #include "cluster/node/output_writer.h"
+#include "cluster/protocol/messages.h"
 #include "render/display/display_encoder.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/texture.h"
@@ -46,7 +46,7 @@ class RenderWorker {
     /// RenderDone (with the windows' present counts so far), after the frame's
     /// thumbnails when they were asked for (else none).
     std::function<void(const RenderDone& done, std::uint64_t session, std::vector<Thumbnail> thumbnails)> rendered;
-    std::function<void(const Digest& table_hash, std::uint64_t session)> tables_ready;           ///< TableReady
+    std::function<void(const Digest& table_hash, std::uint64_t session)> tables_ready;  ///< TableReady
     std::function<void(const std::string& what)> failed;
     std::function<void()> window_closed;  ///< the operator closed the node's window
   };
@@ -90,11 +90,11 @@ class RenderWorker {
  private:
   struct Job {
     enum class Kind { prepare, render, present, discard, stop } kind = Kind::stop;
-    FrameState state;         ///< render
-    std::uint64_t frame = 0;  ///< render, present
-    Digest table_hash{};      ///< prepare
-    std::uint64_t session = 0;  ///< render, prepare: passed back with the answer
-    int thumbnail_edge_px = 0;  ///< render: > 0 for thumbnails of the frame
+    FrameState state;                                ///< render
+    std::uint64_t frame = 0;                         ///< render, present
+    Digest table_hash{};                             ///< prepare
+    std::uint64_t session = 0;                       ///< render, prepare: passed back with the answer
+    int thumbnail_edge_px = 0;                       ///< render: > 0 for thumbnails of the frame
     std::chrono::steady_clock::time_point queued{};  ///< present: when the Present arrived (the late-frame clock)
   };
   void push(Job job);

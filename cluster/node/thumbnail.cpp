@@ -15,8 +15,8 @@ using core::cat;
 Thumbnail make_thumbnail(std::uint64_t frame, const std::string& output, std::span<const float> display_rgb,
                          int width_px, int height_px, int edge_px) {
   if (width_px < 1 || height_px < 1 || edge_px < 1 || edge_px > kMaxThumbnailEdgePx)
-    throw std::invalid_argument(cat("thumbnail of '", output, "': ", width_px, "x", height_px, " pixels, edge ", edge_px,
-                                    " px (sizes at least 1, edge in [1, ", kMaxThumbnailEdgePx, "])"));
+    throw std::invalid_argument(cat("thumbnail of '", output, "': ", width_px, "x", height_px, " pixels, edge ",
+                                    edge_px, " px (sizes at least 1, edge in [1, ", kMaxThumbnailEdgePx, "])"));
   const std::size_t w = static_cast<std::size_t>(width_px), h = static_cast<std::size_t>(height_px);
   if (display_rgb.size() != w * h * 3)
     throw std::invalid_argument(cat("thumbnail of '", output, "': ", display_rgb.size(), " values for ", width_px, "x",
@@ -47,7 +47,8 @@ Thumbnail make_thumbnail(std::uint64_t frame, const std::string& output, std::sp
           }
       const double count = static_cast<double>((y1 - y0) * (x1 - x0));
       for (std::size_t c = 0; c < 3; ++c)
-        t.rgb[(y * tw + x) * 3 + c] = image::display_byte(static_cast<float>(sum[c] / count), image::ToneMapping::clamp);
+        t.rgb[(y * tw + x) * 3 + c] =
+            image::display_byte(static_cast<float>(sum[c] / count), image::ToneMapping::clamp);
     }
   }
   return t;
@@ -59,14 +60,16 @@ Thumbnail make_thumbnail(std::uint64_t frame, const std::string& output, const r
       means.height_px > kMaxThumbnailEdgePx ||
       means.rgb.size() != static_cast<std::size_t>(means.width_px) * static_cast<std::size_t>(means.height_px) * 3)
     throw std::invalid_argument(cat("thumbnail of '", output, "': ", means.width_px, "x", means.height_px, " pixels, ",
-                                    means.rgb.size(), " values (sizes in [1, ", kMaxThumbnailEdgePx, "], 3 values a pixel)"));
+                                    means.rgb.size(), " values (sizes in [1, ", kMaxThumbnailEdgePx,
+                                    "], 3 values a pixel)"));
   Thumbnail t;
   t.frame = frame;
   t.output = output;
   t.width_px = static_cast<std::uint16_t>(means.width_px);
   t.height_px = static_cast<std::uint16_t>(means.height_px);
   t.rgb.resize(means.rgb.size());
-  for (std::size_t i = 0; i < means.rgb.size(); ++i) t.rgb[i] = image::display_byte(means.rgb[i], image::ToneMapping::clamp);
+  for (std::size_t i = 0; i < means.rgb.size(); ++i)
+    t.rgb[i] = image::display_byte(means.rgb[i], image::ToneMapping::clamp);
   return t;
 }
 

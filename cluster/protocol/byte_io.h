@@ -141,8 +141,8 @@ class ByteReader {
   /// Throws ProtocolError(trailing_bytes) unless every byte was read.
   void expect_end(const char* what) const {
     if (remaining() != 0)
-      throw ProtocolError(ProtocolErrorCode::trailing_bytes,
-                          std::string(what) + ": " + std::to_string(remaining()) + " trailing byte(s) after the last field");
+      throw ProtocolError(ProtocolErrorCode::trailing_bytes, std::string(what) + ": " + std::to_string(remaining()) +
+                                                                 " trailing byte(s) after the last field");
   }
   /// Throws ProtocolError(malformed_payload) with `detail`.
   [[noreturn]] static void fail(const std::string& detail) {

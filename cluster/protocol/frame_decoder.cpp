@@ -19,7 +19,9 @@ std::uint32_t max_handshake_payload_bytes() {
   return static_cast<std::uint32_t>(most);
 }
 
-void FrameDecoder::limit_payload(std::uint32_t max_bytes, std::string why) { limit_ = Limit{max_bytes, std::move(why)}; }
+void FrameDecoder::limit_payload(std::uint32_t max_bytes, std::string why) {
+  limit_ = Limit{max_bytes, std::move(why)};
+}
 
 void FrameDecoder::feed(std::span<const std::uint8_t> bytes) {
   while (!bytes.empty() && !error_) {
@@ -31,10 +33,10 @@ void FrameDecoder::feed(std::span<const std::uint8_t> bytes) {
         if (frame_.size() < kHeaderBytes) return;
         header_ = parse_header(std::span<const std::uint8_t, kHeaderBytes>(frame_.data(), kHeaderBytes));
         if (limit_ && header_->payload_bytes > limit_->max_bytes)
-          throw ProtocolError(ProtocolErrorCode::oversized,
-                              cat("frame header payload length: ", header_->payload_bytes, " bytes of a ",
-                                  to_string(header_->type), " exceeds the ", limit_->max_bytes, "-byte limit ",
-                                  limit_->why));
+          throw ProtocolError(
+              ProtocolErrorCode::oversized,
+              cat("frame header payload length: ", header_->payload_bytes, " bytes of a ", to_string(header_->type),
+                  " exceeds the ", limit_->max_bytes, "-byte limit ", limit_->why));
         // The length is within the type's limit: reserving it is bounded.
         frame_.reserve(kHeaderBytes + header_->payload_bytes);
       }

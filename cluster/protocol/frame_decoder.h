@@ -63,8 +63,8 @@ class FrameDecoder {
  private:
   void complete_frame();
 
-  std::vector<std::uint8_t> frame_;     ///< header + payload bytes of the current frame
-  std::optional<FrameHeader> header_;   ///< set once the current header validated
+  std::vector<std::uint8_t> frame_;    ///< header + payload bytes of the current frame
+  std::optional<FrameHeader> header_;  ///< set once the current header validated
   std::deque<Message> ready_;
   std::optional<ProtocolError> error_;
   struct Limit {

@@ -71,8 +71,8 @@ SharedSecret load_shared_secret(const std::optional<std::filesystem::path>& file
                                " lets group or others access it; run chmod 600 " + name);
     }
     if (static_cast<std::uintmax_t>(st.st_size) > kMaxSecretBytes + 2)
-      throw std::runtime_error("shared secret file " + name + ": " + std::to_string(st.st_size) +
-                               " bytes, at most " + std::to_string(kMaxSecretBytes) + " allowed");
+      throw std::runtime_error("shared secret file " + name + ": " + std::to_string(st.st_size) + " bytes, at most " +
+                               std::to_string(kMaxSecretBytes) + " allowed");
     std::ifstream in(*file, std::ios::binary);
     if (!in) throw std::runtime_error("shared secret file " + name + ": cannot open for reading");
     std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -87,7 +87,8 @@ SharedSecret load_shared_secret(const std::optional<std::filesystem::path>& file
     throw std::runtime_error(std::string("no shared secret: environment variable ") + env_var +
                              " is not set and no secret file was given");
   std::vector<std::uint8_t> bytes(value, value + std::strlen(value));
-  if (bytes.empty()) throw std::runtime_error(std::string("shared secret: environment variable ") + env_var + " is empty");
+  if (bytes.empty())
+    throw std::runtime_error(std::string("shared secret: environment variable ") + env_var + " is empty");
   strip_one_newline(bytes);
   if (bytes.size() < kMinSecretBytes)
     throw std::runtime_error(std::string("shared secret: environment variable ") + env_var + " holds " +
@@ -179,9 +180,9 @@ void NodeHandshake::on_welcome(const Welcome& welcome) {
     throw HandshakeError(RejectReason::protocol_error, "handshake: unexpected Welcome from the master");
   const Digest expected = master_mac(secret_, cluster_name_, node_name_, node_nonce_, master_nonce_, role_);
   if (!digests_equal(expected, welcome.master_mac))
-    throw HandshakeError(RejectReason::authentication_failed,
-                         "handshake: the master's MAC is wrong (it does not hold the shared secret from " +
-                             secret_.source() + ")");
+    throw HandshakeError(
+        RejectReason::authentication_failed,
+        "handshake: the master's MAC is wrong (it does not hold the shared secret from " + secret_.source() + ")");
   state_ = State::done;
 }
 
@@ -193,11 +194,10 @@ MasterHandshake::MasterHandshake(SharedSecret secret, std::string cluster_name)
 Challenge MasterHandshake::on_hello(const Hello& hello) {
   if (state_ != State::initial) throw HandshakeError(RejectReason::protocol_error, "handshake: second Hello");
   if (hello.protocol_version != kProtocolVersion)
-    throw HandshakeError(RejectReason::unsupported_version,
-                         std::string("handshake: ") + to_string(hello.role) + " '" + hello.node_name +
-                             "' speaks protocol version " +
-                             std::to_string(hello.protocol_version) + ", this master " +
-                             std::to_string(kProtocolVersion));
+    throw HandshakeError(RejectReason::unsupported_version, std::string("handshake: ") + to_string(hello.role) + " '" +
+                                                                hello.node_name + "' speaks protocol version " +
+                                                                std::to_string(hello.protocol_version) +
+                                                                ", this master " + std::to_string(kProtocolVersion));
   if (hello.cluster_name != cluster_name_)
     throw HandshakeError(RejectReason::wrong_cluster, std::string("handshake: ") + to_string(hello.role) + " '" +
                                                           hello.node_name + "' wants cluster '" + hello.cluster_name +
@@ -225,8 +225,8 @@ void MasterHandshake::on_authenticate(const Authenticate& authenticate) {
 Welcome MasterHandshake::welcome(std::uint32_t node_id, std::uint64_t current_frame,
                                  std::uint32_t heartbeat_interval_ms, std::uint32_t barrier_timeout_ms) const {
   if (state_ != State::done) throw std::logic_error("MasterHandshake::welcome before the node authenticated");
-  return Welcome{node_id, master_mac(secret_, cluster_name_, node_name_, node_nonce_, master_nonce_, role_), current_frame,
-                 heartbeat_interval_ms, barrier_timeout_ms};
+  return Welcome{node_id, master_mac(secret_, cluster_name_, node_name_, node_nonce_, master_nonce_, role_),
+                 current_frame, heartbeat_interval_ms, barrier_timeout_ms};
 }
 
 }  // namespace zenith::cluster

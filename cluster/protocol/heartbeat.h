@@ -11,8 +11,8 @@ namespace zenith::cluster {
 
 /// A Heartbeat stamped with `now` in nanoseconds of the steady clock.
 inline Heartbeat heartbeat_at(std::chrono::steady_clock::time_point now) {
-  return Heartbeat{static_cast<std::uint64_t>(
-      std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count())};
+  return Heartbeat{
+      static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count())};
 }
 
 }  // namespace zenith::cluster

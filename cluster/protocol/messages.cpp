@@ -75,8 +75,8 @@ void validate(const FrameState& m, const Check& check) {
   check(is_unit(glm::length(m.sun_direction)), "FrameState.sun_direction: not a unit vector");
   check(m.sun_angular_radius_rad >= 0.0, "FrameState.sun_angular_radius_rad: must be >= 0");
   check(m.sun_irradiance_W_m2_nm.size() <= kMaxWavelengths,
-        "FrameState.sun_irradiance_W_m2_nm: " + std::to_string(m.sun_irradiance_W_m2_nm.size()) +
-            " values, at most " + std::to_string(kMaxWavelengths));
+        "FrameState.sun_irradiance_W_m2_nm: " + std::to_string(m.sun_irradiance_W_m2_nm.size()) + " values, at most " +
+            std::to_string(kMaxWavelengths));
   for (double e : m.sun_irradiance_W_m2_nm)
     check(std::isfinite(e) && e >= 0.0, "FrameState.sun_irradiance_W_m2_nm: value not finite or < 0");
   check(m.atmospheres.size() <= kMaxAtmospheres, "FrameState.atmospheres: " + std::to_string(m.atmospheres.size()) +
@@ -87,7 +87,8 @@ void validate(const FrameState& m, const Check& check) {
   for (int i = 0; i < 3; ++i) finite(m.fade.colour[i], "fade_colour");
   check(m.fade.level >= 0.0 && m.fade.level <= 1.0, "FrameState.fade_level: must be in [0, 1]");
   for (int i = 0; i < 3; ++i)
-    check(m.fade.colour[i] >= 0.0 && m.fade.colour[i] <= 1.0, "FrameState.fade_colour: each component must be in [0, 1]");
+    check(m.fade.colour[i] >= 0.0 && m.fade.colour[i] <= 1.0,
+          "FrameState.fade_colour: each component must be in [0, 1]");
   finite(m.sky.utc_jd1, "sky.utc_jd1");
   finite(m.sky.utc_jd2, "sky.utc_jd2");
   if (m.sky.has_time) {
@@ -129,8 +130,9 @@ void validate(const AtmosphereDefinition& m, const Check& check) {
         "AtmosphereDefinition.parameters_json: not a JSON object ({...})");
 }
 void validate(const PreviewRequest& m, const Check& check) {
-  check(m.edge_px >= 1 && m.edge_px <= kMaxThumbnailEdgePx,
-        "PreviewRequest.edge_px: " + std::to_string(m.edge_px) + " outside [1, " + std::to_string(kMaxThumbnailEdgePx) + "]");
+  check(m.edge_px >= 1 && m.edge_px <= kMaxThumbnailEdgePx, "PreviewRequest.edge_px: " + std::to_string(m.edge_px) +
+                                                                " outside [1, " + std::to_string(kMaxThumbnailEdgePx) +
+                                                                "]");
 }
 void validate(const Thumbnail& m, const Check& check) {
   check(!m.output.empty(), "Thumbnail.output: empty");
@@ -138,8 +140,8 @@ void validate(const Thumbnail& m, const Check& check) {
         "Thumbnail size: " + std::to_string(m.width_px) + "x" + std::to_string(m.height_px) + ", each side in [1, " +
             std::to_string(kMaxThumbnailEdgePx) + "]");
   const std::size_t expected = std::size_t{m.width_px} * m.height_px * 3;
-  check(m.rgb.size() == expected, "Thumbnail.rgb: " + std::to_string(m.rgb.size()) + " bytes, expected width · height · 3 = " +
-                                      std::to_string(expected));
+  check(m.rgb.size() == expected, "Thumbnail.rgb: " + std::to_string(m.rgb.size()) +
+                                      " bytes, expected width · height · 3 = " + std::to_string(expected));
 }
 template <class T>
 void validate(const T&, const Check&) {}
@@ -278,7 +280,8 @@ FrameState read_frame_state(ByteReader& r) {
     ByteReader::fail("FrameState.sun_irradiance_W_m2_nm count: " + std::to_string(wavelengths) + ", at most " +
                      std::to_string(kMaxWavelengths));
   m.sun_irradiance_W_m2_nm.reserve(wavelengths);
-  for (std::size_t i = 0; i < wavelengths; ++i) m.sun_irradiance_W_m2_nm.push_back(r.f64("FrameState.sun_irradiance_W_m2_nm"));
+  for (std::size_t i = 0; i < wavelengths; ++i)
+    m.sun_irradiance_W_m2_nm.push_back(r.f64("FrameState.sun_irradiance_W_m2_nm"));
   const std::size_t atmospheres = r.u8("FrameState.atmospheres count");
   if (atmospheres > kMaxAtmospheres)
     ByteReader::fail("FrameState.atmospheres count: " + std::to_string(atmospheres) + ", at most " +
@@ -387,21 +390,36 @@ Message read(MessageType type, ByteReader& r) {
 
 template <class T>
 constexpr MessageType type_of() {
-  if constexpr (std::is_same_v<T, Hello>) return MessageType::hello;
-  else if constexpr (std::is_same_v<T, Challenge>) return MessageType::challenge;
-  else if constexpr (std::is_same_v<T, Authenticate>) return MessageType::authenticate;
-  else if constexpr (std::is_same_v<T, Welcome>) return MessageType::welcome;
-  else if constexpr (std::is_same_v<T, Reject>) return MessageType::reject;
-  else if constexpr (std::is_same_v<T, FrameState>) return MessageType::frame_state;
-  else if constexpr (std::is_same_v<T, RenderDone>) return MessageType::render_done;
-  else if constexpr (std::is_same_v<T, Present>) return MessageType::present;
-  else if constexpr (std::is_same_v<T, TableAnnounce>) return MessageType::table_announce;
-  else if constexpr (std::is_same_v<T, TableChunk>) return MessageType::table_chunk;
-  else if constexpr (std::is_same_v<T, TableReady>) return MessageType::table_ready;
-  else if constexpr (std::is_same_v<T, Heartbeat>) return MessageType::heartbeat;
-  else if constexpr (std::is_same_v<T, AtmosphereDefinition>) return MessageType::atmosphere_definition;
-  else if constexpr (std::is_same_v<T, PreviewRequest>) return MessageType::preview_request;
-  else if constexpr (std::is_same_v<T, Thumbnail>) return MessageType::thumbnail;
+  if constexpr (std::is_same_v<T, Hello>)
+    return MessageType::hello;
+  else if constexpr (std::is_same_v<T, Challenge>)
+    return MessageType::challenge;
+  else if constexpr (std::is_same_v<T, Authenticate>)
+    return MessageType::authenticate;
+  else if constexpr (std::is_same_v<T, Welcome>)
+    return MessageType::welcome;
+  else if constexpr (std::is_same_v<T, Reject>)
+    return MessageType::reject;
+  else if constexpr (std::is_same_v<T, FrameState>)
+    return MessageType::frame_state;
+  else if constexpr (std::is_same_v<T, RenderDone>)
+    return MessageType::render_done;
+  else if constexpr (std::is_same_v<T, Present>)
+    return MessageType::present;
+  else if constexpr (std::is_same_v<T, TableAnnounce>)
+    return MessageType::table_announce;
+  else if constexpr (std::is_same_v<T, TableChunk>)
+    return MessageType::table_chunk;
+  else if constexpr (std::is_same_v<T, TableReady>)
+    return MessageType::table_ready;
+  else if constexpr (std::is_same_v<T, Heartbeat>)
+    return MessageType::heartbeat;
+  else if constexpr (std::is_same_v<T, AtmosphereDefinition>)
+    return MessageType::atmosphere_definition;
+  else if constexpr (std::is_same_v<T, PreviewRequest>)
+    return MessageType::preview_request;
+  else if constexpr (std::is_same_v<T, Thumbnail>)
+    return MessageType::thumbnail;
   else {
     static_assert(std::is_same_v<T, Goodbye>);
     return MessageType::goodbye;
@@ -509,7 +527,8 @@ std::vector<std::uint8_t> encode(const Message& message) {
 
 Message decode_payload(std::uint16_t type_value, std::span<const std::uint8_t> payload) {
   if (!max_payload_bytes(type_value))
-    throw ProtocolError(ProtocolErrorCode::unknown_type, "message type " + std::to_string(type_value) + " is not defined");
+    throw ProtocolError(ProtocolErrorCode::unknown_type,
+                        "message type " + std::to_string(type_value) + " is not defined");
   const auto type = static_cast<MessageType>(type_value);
   ByteReader r(payload);
   Message m = read(type, r);
@@ -535,9 +554,9 @@ FrameHeader parse_header(std::span<const std::uint8_t, kHeaderBytes> h) {
   };
   const std::uint16_t version = be16(4);
   if (version != kProtocolVersion)
-    throw ProtocolError(ProtocolErrorCode::unsupported_version, "frame header version: " + std::to_string(version) +
-                                                                    ", this build speaks " +
-                                                                    std::to_string(kProtocolVersion));
+    throw ProtocolError(
+        ProtocolErrorCode::unsupported_version,
+        "frame header version: " + std::to_string(version) + ", this build speaks " + std::to_string(kProtocolVersion));
   const std::uint32_t header_crc = crc32c(h.first<16>());
   if (header_crc != be32(16)) {
     char detail[96];
@@ -548,18 +567,17 @@ FrameHeader parse_header(std::span<const std::uint8_t, kHeaderBytes> h) {
   const std::uint16_t type_value = be16(6);
   const auto max = max_payload_bytes(type_value);
   if (!max)
-    throw ProtocolError(ProtocolErrorCode::unknown_type,
-                        "frame header type: " + std::to_string(type_value) + " is not a message type of version " +
-                            std::to_string(kProtocolVersion));
+    throw ProtocolError(ProtocolErrorCode::unknown_type, "frame header type: " + std::to_string(type_value) +
+                                                             " is not a message type of version " +
+                                                             std::to_string(kProtocolVersion));
   FrameHeader header;
   header.type = static_cast<MessageType>(type_value);
   header.payload_bytes = be32(8);
   header.payload_crc32c = be32(12);
   if (header.payload_bytes > *max)
-    throw ProtocolError(ProtocolErrorCode::oversized, "frame header payload length: " +
-                                                          std::to_string(header.payload_bytes) + " bytes exceeds the " +
-                                                          std::to_string(*max) + "-byte limit of " +
-                                                          to_string(header.type));
+    throw ProtocolError(ProtocolErrorCode::oversized,
+                        "frame header payload length: " + std::to_string(header.payload_bytes) + " bytes exceeds the " +
+                            std::to_string(*max) + "-byte limit of " + to_string(header.type));
   return header;
 }
 

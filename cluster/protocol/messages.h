@@ -38,19 +38,19 @@ inline constexpr std::array<std::uint8_t, 4> kMagic = {'Z', 'N', 'T', 'H'};
 inline constexpr std::size_t kHeaderBytes = 20;
 
 // Field limits.
-inline constexpr std::size_t kMaxNameBytes = 64;          ///< cluster, node and body names (UTF-8 bytes)
-inline constexpr std::size_t kMaxReasonBytes = 1024;      ///< Reject / Goodbye text (UTF-8 bytes)
-using scene::kMaxWavelengths;                             ///< FrameState sun irradiance samples
-using scene::kMaxAtmospheres;                             ///< FrameState atmosphere table references
-inline constexpr std::size_t kMaxTableChunkBytes = std::size_t{1} << 20;        ///< 1 MiB per TableChunk
-inline constexpr std::uint64_t kMaxTableTotalBytes = std::uint64_t{1} << 31;    ///< 2 GiB per table set
-inline constexpr std::size_t kMaxDefinitionBytes = std::size_t{256} << 10;     ///< 256 KiB of atmosphere JSON
+inline constexpr std::size_t kMaxNameBytes = 64;      ///< cluster, node and body names (UTF-8 bytes)
+inline constexpr std::size_t kMaxReasonBytes = 1024;  ///< Reject / Goodbye text (UTF-8 bytes)
+using scene::kMaxAtmospheres;                         ///< FrameState atmosphere table references
+using scene::kMaxWavelengths;                         ///< FrameState sun irradiance samples
+inline constexpr std::size_t kMaxTableChunkBytes = std::size_t{1} << 20;      ///< 1 MiB per TableChunk
+inline constexpr std::uint64_t kMaxTableTotalBytes = std::uint64_t{1} << 31;  ///< 2 GiB per table set
+inline constexpr std::size_t kMaxDefinitionBytes = std::size_t{256} << 10;    ///< 256 KiB of atmosphere JSON
 inline constexpr std::uint16_t kMaxThumbnailEdgePx = 64;  ///< a Thumbnail's width and height, at most
 /// Tolerance on |q| − 1 and |sun direction| − 1 accepted from the wire.
 using scene::kUnitTolerance;
 
-using Digest = core::Sha256Digest;            ///< SHA-256 / HMAC-SHA256 output
-using Nonce = std::array<std::uint8_t, 32>;   ///< handshake nonce (RAND_bytes)
+using Digest = core::Sha256Digest;           ///< SHA-256 / HMAC-SHA256 output
+using Nonce = std::array<std::uint8_t, 32>;  ///< handshake nonce (RAND_bytes)
 
 /// 64 lowercase hex digits (core/sha256.h).
 using core::to_hex;
@@ -61,22 +61,22 @@ using core::digest_from_hex;
 
 /// Wire values of the message types. Values are never reused.
 enum class MessageType : std::uint16_t {
-  hello = 1,           ///< node → master
-  challenge = 2,       ///< master → node
-  authenticate = 3,    ///< node → master
-  welcome = 4,         ///< master → node
-  reject = 5,          ///< master → node, then close
-  frame_state = 16,    ///< master → node, once per frame
-  render_done = 17,    ///< node → master
-  present = 18,        ///< master → node: every node is done, swap now
-  preview_request = 19,  ///< master → node, before a FrameState: send thumbnails of that frame
-  thumbnail = 20,        ///< node → master, before the RenderDone of a frame the master asked thumbnails of
-  table_announce = 32, ///< master → node
-  table_chunk = 33,    ///< master → node
-  table_ready = 34,    ///< node → master
+  hello = 1,                   ///< node → master
+  challenge = 2,               ///< master → node
+  authenticate = 3,            ///< node → master
+  welcome = 4,                 ///< master → node
+  reject = 5,                  ///< master → node, then close
+  frame_state = 16,            ///< master → node, once per frame
+  render_done = 17,            ///< node → master
+  present = 18,                ///< master → node: every node is done, swap now
+  preview_request = 19,        ///< master → node, before a FrameState: send thumbnails of that frame
+  thumbnail = 20,              ///< node → master, before the RenderDone of a frame the master asked thumbnails of
+  table_announce = 32,         ///< master → node
+  table_chunk = 33,            ///< master → node
+  table_ready = 34,            ///< node → master
   atmosphere_definition = 35,  ///< master → node, before the TableAnnounce of a set
-  heartbeat = 48,      ///< both ways
-  goodbye = 49,        ///< both ways, then close
+  heartbeat = 48,              ///< both ways
+  goodbye = 49,                ///< both ways, then close
 };
 /// "Hello", "FrameState", ...; "unknown" for values outside the enum.
 const char* to_string(MessageType type);
@@ -96,9 +96,9 @@ const char* to_string(PeerRole role);
 /// Opens a connection. The node proves the shared secret in Authenticate.
 struct Hello {
   std::uint16_t protocol_version = kProtocolVersion;  ///< must equal the header's (and kProtocolVersion)
-  std::string cluster_name;  ///< 1..kMaxNameBytes UTF-8 bytes; must match the master's
-  std::string node_name;     ///< 1..kMaxNameBytes UTF-8 bytes; unique in the cluster (a standby: standby_name())
-  Nonce node_nonce{};        ///< fresh random bytes
+  std::string cluster_name;                           ///< 1..kMaxNameBytes UTF-8 bytes; must match the master's
+  std::string node_name;           ///< 1..kMaxNameBytes UTF-8 bytes; unique in the cluster (a standby: standby_name())
+  Nonce node_nonce{};              ///< fresh random bytes
   PeerRole role = PeerRole::node;  ///< 0 node, 1 standby; other values are malformed
   /// Random per process, the same on every connection the process makes: the
   /// master tells a node that rejoins after a drop (the same id: it replaces
@@ -117,11 +117,11 @@ struct Authenticate {
 };
 /// The master accepts the node and proves the secret in turn (mutual authentication).
 struct Welcome {
-  std::uint32_t node_id = 0;               ///< assigned by the master for this connection
-  Digest master_mac{};                     ///< handshake.h: master_mac()
-  std::uint64_t current_frame = 0;         ///< the frame the master is at
-  std::uint32_t heartbeat_interval_ms = 0; ///< each side sends a Heartbeat at least this often
-  std::uint32_t barrier_timeout_ms = 0;    ///< a node not done within this is dropped from the frame
+  std::uint32_t node_id = 0;                ///< assigned by the master for this connection
+  Digest master_mac{};                      ///< handshake.h: master_mac()
+  std::uint64_t current_frame = 0;          ///< the frame the master is at
+  std::uint32_t heartbeat_interval_ms = 0;  ///< each side sends a Heartbeat at least this often
+  std::uint32_t barrier_timeout_ms = 0;     ///< a node not done within this is dropped from the frame
   bool operator==(const Welcome&) const = default;
 };
 /// Reason codes of Reject. Unknown values are kept as they are (a newer peer
@@ -146,13 +146,13 @@ struct Reject {
 
 /// Bits of FrameState::render_flags (scene/frame_description.h). Bits
 /// outside kKnownRenderFlags must be 0.
-using scene::RenderFlag;
-using scene::kRenderSunDisc;
+using scene::kKnownRenderFlags;
+using scene::kRenderBodies;
+using scene::kRenderEclipses;
 using scene::kRenderLimbDarkening;
 using scene::kRenderMultipleScattering;
-using scene::kRenderEclipses;
-using scene::kRenderBodies;
-using scene::kKnownRenderFlags;
+using scene::kRenderSunDisc;
+using scene::RenderFlag;
 
 /// Which lookup-table set an atmosphere uses, from which frame on. body_name:
 /// 1..kMaxNameBytes UTF-8 bytes.
@@ -167,10 +167,10 @@ using FrameState = scene::FrameDescription;
 /// (render/window/present_clock.h): the console's late frames per node.
 struct RenderDone {
   std::uint64_t frame = 0;
-  double render_ms = 0.0;  ///< finite, ≥ 0
+  double render_ms = 0.0;           ///< finite, ≥ 0
   std::uint64_t presents = 0;       ///< frames this node's process presented in windows so far (0 headless)
   std::uint64_t late_presents = 0;  ///< of those, presented late (a missed vblank); ≤ presents
-  double present_ms = 0.0;          ///< its last present: Present's arrival to the completed swap (ms, ≥ 0; 0 headless)
+  double present_ms = 0.0;  ///< its last present: Present's arrival to the completed swap (ms, ≥ 0; 0 headless)
   bool operator==(const RenderDone&) const = default;
 };
 struct Present {
@@ -192,9 +192,9 @@ struct PreviewRequest {
 /// 8-bit sRGB, rows top to bottom, RGB interleaved.
 struct Thumbnail {
   std::uint64_t frame = 0;
-  std::string output;        ///< 1..kMaxNameBytes UTF-8 bytes: the output's name in the viewport config
-  std::uint16_t width_px = 0;   ///< 1..kMaxThumbnailEdgePx
-  std::uint16_t height_px = 0;  ///< 1..kMaxThumbnailEdgePx
+  std::string output;             ///< 1..kMaxNameBytes UTF-8 bytes: the output's name in the viewport config
+  std::uint16_t width_px = 0;     ///< 1..kMaxThumbnailEdgePx
+  std::uint16_t height_px = 0;    ///< 1..kMaxThumbnailEdgePx
   std::vector<std::uint8_t> rgb;  ///< width_px · height_px · 3 bytes
   bool operator==(const Thumbnail&) const = default;
 };
@@ -203,17 +203,17 @@ struct Thumbnail {
 
 /// A table set (the cache file of atmosphere/lut/table_cache.h) is about to be sent.
 struct TableAnnounce {
-  Digest table_hash{};         ///< identity of the set (lookup_table_hash)
+  Digest table_hash{};            ///< identity of the set (lookup_table_hash)
   std::uint64_t total_bytes = 0;  ///< 1..kMaxTableTotalBytes
   std::uint32_t chunk_bytes = 0;  ///< 1..kMaxTableChunkBytes; every chunk but the last has this size
   std::uint32_t chunk_count = 0;  ///< = ceil(total_bytes / chunk_bytes)
-  Digest content_sha256{};     ///< SHA-256 of the whole content; the node verifies it before TableReady
+  Digest content_sha256{};        ///< SHA-256 of the whole content; the node verifies it before TableReady
   bool operator==(const TableAnnounce&) const = default;
 };
 struct TableChunk {
   Digest table_hash{};
-  std::uint32_t index = 0;           ///< 0..chunk_count−1
-  std::vector<std::uint8_t> bytes;   ///< 1..kMaxTableChunkBytes
+  std::uint32_t index = 0;          ///< 0..chunk_count−1
+  std::vector<std::uint8_t> bytes;  ///< 1..kMaxTableChunkBytes
   bool operator==(const TableChunk&) const = default;
 };
 /// Node → master: the set arrived, its SHA-256 matched and it is cached.
@@ -246,9 +246,9 @@ struct Goodbye {
   bool operator==(const Goodbye&) const = default;
 };
 
-using Message = std::variant<Hello, Challenge, Authenticate, Welcome, Reject, FrameState, RenderDone, Present,
-                             TableAnnounce, TableChunk, TableReady, Heartbeat, Goodbye, AtmosphereDefinition,
-                             PreviewRequest, Thumbnail>;
+using Message =
+    std::variant<Hello, Challenge, Authenticate, Welcome, Reject, FrameState, RenderDone, Present, TableAnnounce,
+                 TableChunk, TableReady, Heartbeat, Goodbye, AtmosphereDefinition, PreviewRequest, Thumbnail>;
 
 MessageType message_type(const Message& message);
 

@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/strings.h"
 #include "core/sha256.h"
+#include "core/strings.h"
 
 namespace zenith::cluster {
 namespace {
@@ -23,7 +23,8 @@ TableSetFile make_table_set(const std::string& body_name, const Digest& table_ha
   if (!bytes || bytes->empty() || bytes->size() > kMaxTableTotalBytes)
     throw std::runtime_error(cat("table set ", short_hex(table_hash), ": ", bytes ? bytes->size() : 0,
                                  " bytes: a table set must hold 1 to ", kMaxTableTotalBytes, " bytes"));
-  if (chunk_bytes == 0 || chunk_bytes > kMaxTableChunkBytes) throw std::invalid_argument("table chunk size out of range");
+  if (chunk_bytes == 0 || chunk_bytes > kMaxTableChunkBytes)
+    throw std::invalid_argument("table chunk size out of range");
   TableSetFile set;
   set.body_name = body_name;
   set.table_hash = table_hash;
@@ -82,7 +83,8 @@ std::optional<std::vector<std::uint8_t>> TableReceiver::on_chunk(const TableChun
   const std::size_t begin = std::size_t{chunk.index} * a.chunk_bytes;
   const std::size_t expected = std::min<std::size_t>(a.chunk_bytes, a.total_bytes - begin);
   if (chunk.bytes.size() != expected)
-    throw std::runtime_error(cat("TableChunk ", chunk.index, " holds ", chunk.bytes.size(), " bytes, expected ", expected));
+    throw std::runtime_error(
+        cat("TableChunk ", chunk.index, " holds ", chunk.bytes.size(), " bytes, expected ", expected));
   if (p.received[chunk.index]) throw std::runtime_error(cat("TableChunk ", chunk.index, " received twice"));
   std::copy(chunk.bytes.begin(), chunk.bytes.end(), p.bytes.begin() + static_cast<std::ptrdiff_t>(begin));
   p.received[chunk.index] = true;

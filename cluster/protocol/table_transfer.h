@@ -25,7 +25,7 @@ Digest sha256(std::span<const std::uint8_t> bytes);
 /// One atmosphere's table set as the master holds it.
 struct TableSetFile {
   std::string body_name;
-  Digest table_hash{};  ///< atmosphere::lookup_table_hash as raw bytes
+  Digest table_hash{};                                     ///< atmosphere::lookup_table_hash as raw bytes
   std::shared_ptr<const std::vector<std::uint8_t>> bytes;  ///< the cache file's content
   Digest content_sha256{};
   /// TableAnnounce then every TableChunk, encoded once and shared by every connection.

@@ -9,9 +9,9 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
 
-#include "cluster/protocol/heartbeat.h"
 #include "cluster/link/link_exit.h"
 #include "cluster/link/master_link.h"
+#include "cluster/protocol/heartbeat.h"
 #include "cluster/standby/standby_follower.h"
 #include "cluster/standby/takeover_rule.h"
 #include "core/strings.h"
@@ -69,9 +69,10 @@ struct Standby::Impl {
   void on_welcomed() {
     follower.on_welcome();
     if (rule.welcomed())
-      spdlog::warn("standby: the active master at {} welcomed it again {:.1f} s after the loss: it is alive (the loss "
-                   "was this standby's own); following again",
-                   link->master_address(), core::ms_since(lost_at) / 1000.0);
+      spdlog::warn(
+          "standby: the active master at {} welcomed it again {:.1f} s after the loss: it is alive (the loss "
+          "was this standby's own); following again",
+          link->master_address(), core::ms_since(lost_at) / 1000.0);
     else
       spdlog::info("standby: following the active master at {}; taking over at {} when it is gone",
                    link->master_address(), config().standby->text());
@@ -140,12 +141,12 @@ struct Standby::Impl {
                                     [this](const std::string&) {
                                       lost_at = Clock::now();
                                       rule.lost();
-                                      spdlog::info("standby: checking whether the active master is gone (one more "
-                                                   "attempt, at most {:.1f} s)",
-                                                   options.check_attempt_ms / 1000.0);
+                                      spdlog::info(
+                                          "standby: checking whether the active master is gone (one more "
+                                          "attempt, at most {:.1f} s)",
+                                          options.check_attempt_ms / 1000.0);
                                     },
-                                    [this](const Message& m) { on_message(m); },
-                                    [this](int code) { finish(code); },
+                                    [this](const Message& m) { on_message(m); }, [this](int code) { finish(code); },
                                     [this](const std::string& reason) { on_attempt_failed(reason); }});
     signals.async_wait([this](const boost::system::error_code& ec, int signal) {
       if (ec || finished) return;

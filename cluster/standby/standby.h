@@ -14,8 +14,8 @@
 #include <cstdint>
 #include <memory>
 
-#include "cluster/protocol/handshake.h"
 #include "cluster/master/master.h"
+#include "cluster/protocol/handshake.h"
 
 namespace zenith::cluster {
 

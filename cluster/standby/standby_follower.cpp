@@ -18,8 +18,9 @@ void StandbyFollower::on_message(const Message& message) {
     definitions_[d->table_hash] = *d;
   } else if (const auto* a = std::get_if<TableAnnounce>(&message)) {
     if (!definitions_.count(a->table_hash))
-      throw std::runtime_error(cat("TableAnnounce of table set ", short_hex(a->table_hash),
-                                   " without its AtmosphereDefinition: a standby cannot serve a set it cannot describe"));
+      throw std::runtime_error(
+          cat("TableAnnounce of table set ", short_hex(a->table_hash),
+              " without its AtmosphereDefinition: a standby cannot serve a set it cannot describe"));
     receiver_.on_announce(*a);
   } else if (const auto* c = std::get_if<TableChunk>(&message)) {
     std::optional<std::vector<std::uint8_t>> bytes = receiver_.on_chunk(*c);  // verified once complete
@@ -30,8 +31,10 @@ void StandbyFollower::on_message(const Message& message) {
                                    std::make_shared<const std::vector<std::uint8_t>>(std::move(*bytes)))};
     const auto held = std::find_if(versions_.begin(), versions_.end(),
                                    [&](const auto& v) { return v.definition.table_hash == c->table_hash; });
-    if (held != versions_.end()) *held = std::move(version);  // sent again after a new Welcome
-    else versions_.push_back(std::move(version));
+    if (held != versions_.end())
+      *held = std::move(version);  // sent again after a new Welcome
+    else
+      versions_.push_back(std::move(version));
   } else if (const auto* f = std::get_if<FrameState>(&message)) {
     std::optional<double> step_s;
     if (last_ && f->frame == last_->frame + 1) step_s = f->show_time_s - last_->show_time_s;

@@ -13,8 +13,8 @@
 #include <optional>
 #include <vector>
 
-#include "cluster/protocol/messages.h"
 #include "cluster/link/takeover_state.h"
+#include "cluster/protocol/messages.h"
 #include "cluster/protocol/table_transfer.h"
 
 namespace zenith::cluster {

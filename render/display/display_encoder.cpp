@@ -58,9 +58,9 @@ void DisplayEncoder::set_stage(const gl::ShaderProgram& p, int width, int height
   p.set_uniform("has_blend_mask", stage.blended && stage.blend_mask != nullptr ? 1 : 0);
   p.set_uniform("black_level", static_cast<float>(stage.black_level));
   p.set_uniform("fade_level", static_cast<float>(stage.fade.level));
-  p.set_uniform("fade_colour", std::array<float, 3>{static_cast<float>(stage.fade.colour[0]),
-                                                    static_cast<float>(stage.fade.colour[1]),
-                                                    static_cast<float>(stage.fade.colour[2])});
+  p.set_uniform("fade_colour",
+                std::array<float, 3>{static_cast<float>(stage.fade.colour[0]), static_cast<float>(stage.fade.colour[1]),
+                                     static_cast<float>(stage.fade.colour[2])});
   const bool gamma = stage.encoding.transfer == image::DisplayEncoding::Transfer::gamma;
   p.set_uniform("transfer", gamma ? 1 : 0);
   p.set_uniform("inverse_gamma", static_cast<float>(gamma ? 1.0 / stage.encoding.gamma : 1.0));
@@ -159,8 +159,7 @@ ThumbnailMeans DisplayEncoder::thumbnail(const gl::Texture& radiance, const Outp
   if (edge_px < 1 || edge_px > kMaxThumbnailEdgePx)
     throw std::invalid_argument(fmt::format("thumbnail edge {} px: must be in [1, {}]", edge_px, kMaxThumbnailEdgePx));
   const auto [tw, th] = thumbnail_size(radiance.width(), radiance.height(), edge_px);
-  if (thumbnail_program_.id() == 0)
-    thumbnail_program_ = load_compute_program("render/display_thumbnail.comp");
+  if (thumbnail_program_.id() == 0) thumbnail_program_ = load_compute_program("render/display_thumbnail.comp");
   if (thumbnail_target_.id() == 0 || thumbnail_target_.width() != tw || thumbnail_target_.height() != th)
     thumbnail_target_ = gl::Texture::create_2d(TextureFormat::rgba32f, tw, th);
   const gl::ShaderProgram& p = thumbnail_program_;

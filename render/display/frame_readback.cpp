@@ -53,8 +53,8 @@ ReadbackBuffer::ReadbackBuffer(std::size_t bytes) : bytes_(bytes) {
   if (mapped_ == nullptr) {
     const GLenum error = glGetError();
     glDeleteBuffers(1, &buffer_);
-    throw std::runtime_error(fmt::format("readback: cannot map a pixel buffer of {} MiB (GL error 0x{:x})",
-                                         bytes >> 20, error));
+    throw std::runtime_error(
+        fmt::format("readback: cannot map a pixel buffer of {} MiB (GL error 0x{:x})", bytes >> 20, error));
   }
 }
 
@@ -70,8 +70,8 @@ void ReadbackBuffer::queue_read(const gl::Texture& texture, std::size_t offset) 
   const auto [format, type] = pack_format(texture);
   const std::size_t bytes = readback_bytes(texture);
   if (offset > bytes_ || bytes > bytes_ - offset)
-    throw std::invalid_argument(fmt::format("readback: {} bytes at offset {} do not fit a buffer of {}", bytes, offset,
-                                            bytes_));
+    throw std::invalid_argument(
+        fmt::format("readback: {} bytes at offset {} do not fit a buffer of {}", bytes, offset, bytes_));
   // Image stores of compute passes must land before the copy reads the texture.
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer_);

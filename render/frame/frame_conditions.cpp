@@ -17,7 +17,7 @@ bool eclipses_possible(const scene::Scene& scene) {
       if (&occluder == &receiver) continue;
       const glm::dvec3 oc = occluder.position_m - receiver.position_m;
       const double d = glm::dot(oc, s) + receiver.radius_m;  // largest d over the receiver
-      if (d <= 0.0) continue;  // the occluder is behind the receiver, away from the sun
+      if (d <= 0.0) continue;                                // the occluder is behind the receiver, away from the sun
       const double off_axis = glm::length(oc - glm::dot(oc, s) * s) - receiver.radius_m;
       if (off_axis < 1.01 * (occluder.radius_m + d * tan_alpha) + 1.0) return true;
     }

@@ -42,9 +42,8 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Pr
     if (f.sun_point_sigma > 0.0)
       f.sun_centre[i] = e / (2.0 * core::kPi * f.sun_point_sigma * f.sun_point_sigma);
     else
-      f.sun_centre[i] = limb_darkening
-                            ? scene::disc_centre_radiance(e, f.sun_radius, scene.wavelengths_nm[i])
-                            : scene::uniform_disc_radiance(e, f.sun_radius);
+      f.sun_centre[i] = limb_darkening ? scene::disc_centre_radiance(e, f.sun_radius, scene.wavelengths_nm[i])
+                                       : scene::uniform_disc_radiance(e, f.sun_radius);
     f.limb_exponent[i] = scene::limb_darkening_exponent(scene.wavelengths_nm[i]);
   }
   return f;
@@ -65,8 +64,8 @@ std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, con
 }
 
 double sun_reach_rad(const FrameConstants& frame) {
-  return std::min(core::kPi / 2, frame.sun_point_sigma > 0.0 ? 6.0 * frame.sun_point_sigma
-                                                             : frame.sun_radius + frame.sun_pixel_angle);
+  return std::min(core::kPi / 2,
+                  frame.sun_point_sigma > 0.0 ? 6.0 * frame.sun_point_sigma : frame.sun_radius + frame.sun_pixel_angle);
 }
 
 }  // namespace zenith::render

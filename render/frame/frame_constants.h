@@ -21,11 +21,11 @@ struct FrameConstants {
   std::size_t n = 0;       ///< wavelengths
   std::size_t groups = 0;  ///< groups of 4 wavelengths (kWavelengthLanes)
   glm::dmat3 camera_to_world{1.0}, world_to_camera{1.0};
-  glm::dvec3 sun{0.0}, sun_camera{0.0};  ///< unit direction to the sun: world, camera frame
-  double sun_radius = 0.0;               ///< the disc's angular radius [rad]
-  double pixel_angle = 0.0;              ///< the projection's largest pixel angle [rad]
-  double sun_pixel_angle = 0.0;          ///< the pixel angle where the sun lands [rad]
-  double sun_point_sigma = 0.0;          ///< > 0: the sun drawn as a Gaussian of this σ [rad]
+  glm::dvec3 sun{0.0}, sun_camera{0.0};               ///< unit direction to the sun: world, camera frame
+  double sun_radius = 0.0;                            ///< the disc's angular radius [rad]
+  double pixel_angle = 0.0;                           ///< the projection's largest pixel angle [rad]
+  double sun_pixel_angle = 0.0;                       ///< the pixel angle where the sun lands [rad]
+  double sun_point_sigma = 0.0;                       ///< > 0: the sun drawn as a Gaussian of this σ [rad]
   std::vector<std::array<double, 3>> rgb_weights;     ///< spectral → RGB, per wavelength
   std::vector<std::array<double, 3>> albedo_weights;  ///< the albedo's RGB → reflectance, per wavelength
   std::vector<double> sun_centre;     ///< the disc's centre radiance (or the Gaussian's peak) per wavelength

@@ -46,8 +46,8 @@ void FrameState::set_the_body(const gl::ShaderProgram& p, std::size_t b) const {
 void FrameState::set_frame_uniforms(const gl::ShaderProgram& p) const {
   p.set_uniform("body_count", static_cast<int>(scene.bodies.size()));
   p.set_uniform("camera_to_world", camera_matrix);
-  p.set_uniform("sun_direction", std::array<float, 3>{static_cast<float>(sun.x), static_cast<float>(sun.y),
-                                                      static_cast<float>(sun.z)});
+  p.set_uniform("sun_direction",
+                std::array<float, 3>{static_cast<float>(sun.x), static_cast<float>(sun.y), static_cast<float>(sun.z)});
   p.set_uniform("sun_angular_radius", static_cast<float>(sun_radius));
   p.set_uniform("pixel_angle", static_cast<float>(pixel_angle));
   p.set_uniform("projection_kind", static_cast<int>(gpu_projection.kind));
@@ -56,7 +56,8 @@ void FrameState::set_frame_uniforms(const gl::ShaderProgram& p) const {
   p.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
   p.set_uniform("sun_pixel_angle", static_cast<float>(sun_pixel_angle));
   p.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
-  for (const auto& [name, k] : {std::pair{"world_ray_x", 0}, std::pair{"world_ray_y", 1}, std::pair{"world_ray_centre", 2}})
+  for (const auto& [name, k] :
+       {std::pair{"world_ray_x", 0}, std::pair{"world_ray_y", 1}, std::pair{"world_ray_centre", 2}})
     p.set_uniform(name, world_ray[static_cast<std::size_t>(k)]);
 }
 
@@ -97,8 +98,8 @@ void FrameState::set_group_uniforms(const gl::ShaderProgram& p, std::size_t g) {
 }
 
 bool FrameState::touches_view(const AtmospherePass& pass) const {
-  return !cones->tiles_touching_sphere(pass.direction_camera, pass.distance_m, pass.top_radius_m, 0,
-                                       projection.height())
+  return !cones
+              ->tiles_touching_sphere(pass.direction_camera, pass.distance_m, pass.top_radius_m, 0, projection.height())
               .empty();
 }
 

@@ -50,11 +50,8 @@ gl::Texture texture_3d(const Table3D& t, std::size_t group) {
 }  // namespace
 
 GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
-                             const AtmospherePassFeatures& features,
-                             std::span<const gl::ShaderDefine> frame_defines)
-    : hash_(tables.hash),
-      top_radius_m_(model.top_radius_m),
-      ground_radius_m_(model.ground_radius_m) {
+                             const AtmospherePassFeatures& features, std::span<const gl::ShaderDefine> frame_defines)
+    : hash_(tables.hash), top_radius_m_(model.top_radius_m), ground_radius_m_(model.ground_radius_m) {
   if (tables.channels != model.wavelength_count())
     throw std::invalid_argument(fmt::format("atmosphere '{}': tables have {} channels, the model {} wavelengths",
                                             model.name, tables.channels, model.wavelength_count()));
@@ -123,10 +120,9 @@ void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t grou
 }
 
 const gl::ShaderProgram& GpuAtmosphere::program(const std::string& key, const std::string& file,
-                                               std::vector<gl::ShaderDefine> defines) {
+                                                std::vector<gl::ShaderDefine> defines) {
   auto it = programs_.find(key);
-  if (it == programs_.end())
-    it = programs_.emplace(key, load_compute_program(file, defines)).first;
+  if (it == programs_.end()) it = programs_.emplace(key, load_compute_program(file, defines)).first;
   return it->second;
 }
 

@@ -15,13 +15,13 @@
 
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
+#include "render/frame/sky_view_table.h"
+#include "render/frame/tile_classification.h"
+#include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
-#include "render/frame/sky_view_table.h"
-#include "render/frame/tile_classification.h"
-#include "render/frame/tile_culling.h"
 #include "render/render_options.h"
 
 namespace zenith::render {

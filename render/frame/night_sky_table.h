@@ -21,8 +21,8 @@
 namespace zenith::render {
 
 struct NightSkyTable {
-  glm::dvec3 up{0, 0, 1};  ///< world frame, from the planet's centre through the camera
-  double horizon_mu = 0.0; ///< μh = −√(1 − (R/r)²)
+  glm::dvec3 up{0, 0, 1};                 ///< world frame, from the planet's centre through the camera
+  double horizon_mu = 0.0;                ///< μh = −√(1 − (R/r)²)
   std::vector<std::array<float, 4>> rgb;  ///< (r, g, b, 0) × exposure per entry
   double max_component = 0.0;             ///< the largest |r|, |g|, |b| of the table
 };

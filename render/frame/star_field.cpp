@@ -6,8 +6,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "atmosphere/lut/parameterization.h"
 #include "astro/star_photometry.h"
+#include "atmosphere/lut/parameterization.h"
 #include "core/parallel_for.h"
 
 namespace zenith::render {
@@ -83,8 +83,8 @@ void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, con
   const glm::dvec3 p = camera_m - a.centre_m;
   const double r = glm::length(p);
   const double mu = glm::dot(p, d) / r;
-  const double b = r * mu;                                   // p·d
-  const double closest2 = std::max(0.0, r * r - b * b);      // squared distance of the line from the centre
+  const double b = r * mu;                               // p·d
+  const double closest2 = std::max(0.0, r * r - b * b);  // squared distance of the line from the centre
   std::fill(out, out + n, 1.0);
   if (b < 0.0 && closest2 < a.ground_radius_m * a.ground_radius_m) {  // the ground hides it
     std::fill(out, out + n, 0.0);
@@ -98,8 +98,8 @@ void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, con
     r_at = a.top_radius_m;
     mu_at = std::clamp((b + t_in) / a.top_radius_m, -1.0, 1.0);
   }
-  const atmosphere::lut::TransmittanceUV uv =
-      atmosphere::lut::transmittance_uv(t.geometry, t.sizes, std::clamp(r_at, a.ground_radius_m, a.top_radius_m), mu_at);
+  const atmosphere::lut::TransmittanceUV uv = atmosphere::lut::transmittance_uv(
+      t.geometry, t.sizes, std::clamp(r_at, a.ground_radius_m, a.top_radius_m), mu_at);
   t.transmittance.sample(uv.u_mu, uv.v_r, out);
   for (std::size_t c = 0; c < n; ++c) out[c] = std::clamp(out[c], 0.0, 1.0);
 }
@@ -120,8 +120,8 @@ std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, doub
   constexpr int kSteps = 64;
   for (int i = 0; i <= kSteps; ++i) {
     const double t = static_cast<double>(i) / kSteps;
-    for (const glm::dvec2 p : {glm::dvec2(t * w, 0.0), glm::dvec2(t * w, h), glm::dvec2(0.0, t * h), glm::dvec2(w, t * h),
-                               glm::dvec2(t * w, 0.5 * h), glm::dvec2(0.5 * w, t * h)}) {
+    for (const glm::dvec2 p : {glm::dvec2(t * w, 0.0), glm::dvec2(t * w, h), glm::dvec2(0.0, t * h),
+                               glm::dvec2(w, t * h), glm::dvec2(t * w, 0.5 * h), glm::dvec2(0.5 * w, t * h)}) {
       const auto r = projection.ray(p.x, p.y);
       if (!r) {
         widest = std::max(widest, 0.5 * 3.14159265358979323846);  // a fisheye's circle: at least its field
@@ -177,7 +177,8 @@ std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm
       std::array<double, 3> rgb{0, 0, 0};
       for (std::size_t k = 0; k < n; ++k) {
         const double e = field.irradiance(i, k) * transmittance[k];
-        for (int c = 0; c < 3; ++c) rgb[static_cast<std::size_t>(c)] += frame.rgb_weights[k][static_cast<std::size_t>(c)] * e;
+        for (int c = 0; c < 3; ++c)
+          rgb[static_cast<std::size_t>(c)] += frame.rgb_weights[k][static_cast<std::size_t>(c)] * e;
       }
       if (rgb[0] == 0.0 && rgb[1] == 0.0 && rgb[2] == 0.0) continue;
       StarSplat& s = placed[i];

@@ -14,9 +14,9 @@
 #include "astro/moon_photometry.h"
 #include "astro/star_catalogue.h"
 #include "core/units.h"
+#include "render/frame/night_sky_table.h"
 #include "render/shader_bindings.h"
 #include "render/shader_programs.h"
-#include "render/frame/night_sky_table.h"
 #include "scene/local_horizon.h"
 
 namespace zenith::render {
@@ -28,7 +28,8 @@ std::vector<StarAtmosphere> star_atmospheres(const FrameState& frame) {
   for (const AtmospherePass& pass : frame.passes) {
     if (!pass.gpu) continue;
     const scene::Body& body = frame.scene.bodies[static_cast<std::size_t>(pass.body)];
-    out.push_back({body.position_m, pass.gpu->ground_radius_m(), pass.gpu->top_radius_m(), &pass.gpu->cpu_transmittance()});
+    out.push_back(
+        {body.position_m, pass.gpu->ground_radius_m(), pass.gpu->top_radius_m(), &pass.gpu->cpu_transmittance()});
   }
   return out;
 }
@@ -87,21 +88,23 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
   std::vector<StarAtmosphere> atmospheres = star_atmospheres(frame);
   const StarAtmosphere* air = nullptr;  // the site body's atmosphere, when the camera is inside it
   for (const StarAtmosphere& a : atmospheres)
-    if (a.centre_m == planet.position_m && glm::length(scene.camera.position_m - a.centre_m) <= a.top_radius_m) air = &a;
+    if (a.centre_m == planet.position_m && glm::length(scene.camera.position_m - a.centre_m) <= a.top_radius_m)
+      air = &a;
 
   // ---- the night floor and the glow: a table of the frame's camera.
   if (want_floor && air && planet.atmosphere) {
-    const astro::NightSkyFloorOptions floor_options = scene.night_sky ? scene.night_sky->floor : astro::NightSkyFloorOptions{};
+    const astro::NightSkyFloorOptions floor_options =
+        scene.night_sky ? scene.night_sky->floor : astro::NightSkyFloorOptions{};
     const astro::LightPollutionOptions glow_options =
         scene.night_sky ? scene.night_sky->light_pollution : astro::LightPollutionOptions{};
-    const std::string key = fmt::format("{} {} {} {} {}", air->transmittance->hash, floor_options.zenith_v_mag_arcsec2,
-                                        floor_options.airglow_height_m, glow_options.zenith_mcd_m2,
-                                        glow_options.colour_temperature_K);
+    const std::string key =
+        fmt::format("{} {} {} {} {}", air->transmittance->hash, floor_options.zenith_v_mag_arcsec2,
+                    floor_options.airglow_height_m, glow_options.zenith_mcd_m2, glow_options.colour_temperature_K);
     if (key != floor_key_) {
       const atmosphere::AtmosphereModel& model = planet.atmosphere->loaded.model;
       night_floor_ = std::make_unique<astro::NightSkyFloor>(model, floor_options);
-      light_pollution_ = glow_options.zenith_mcd_m2 > 0.0 ? std::make_unique<astro::LightPollution>(model, glow_options)
-                                                          : nullptr;
+      light_pollution_ =
+          glow_options.zenith_mcd_m2 > 0.0 ? std::make_unique<astro::LightPollution>(model, glow_options) : nullptr;
       floor_key_ = key;
     }
     timer.cpu("night sky table", [&] {
@@ -132,7 +135,8 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
       f.north = horizon.north;
       f.up = horizon.up;
       if (air && clock.body == site_body && planet.atmosphere) {
-        const double altitude_m = std::max(0.0, glm::length(scene.camera.position_m - planet.position_m) - planet.radius_m);
+        const double altitude_m =
+            std::max(0.0, glm::length(scene.camera.position_m - planet.position_m) - planet.radius_m);
         const std::string key = fmt::format("{} {:.0f}", air->transmittance->hash, altitude_m);
         if (key != refraction_key_) {
           refraction_ = std::make_unique<astro::Refraction>(
@@ -152,7 +156,8 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
       f.view_axis = glm::normalize(frame.camera_to_world * axis);
       f.view_cos_limit = cos_limit;
       const double r = glm::length(scene.camera.position_m - scene.bodies.at(clock.body).position_m);
-      const double dip = std::acos(std::min(1.0, scene.bodies.at(clock.body).radius_m / r));  // the horizon's depression
+      const double dip =
+          std::acos(std::min(1.0, scene.bodies.at(clock.body).radius_m / r));  // the horizon's depression
       f.lowest_sin_altitude = std::sin(std::max(-0.5 * core::kPi, -dip - 2.0 * core::kDeg));
     }
     if (options_.stars && ensure_field(scene) && field_->size() > 0) {
@@ -203,7 +208,8 @@ void NightSkyPass::place_moon(const FrameState& frame, const StarFrame& sky, con
   if (!(omega > 0.0)) return;
   const double radius_px = moon.angular_radius_rad / std::sqrt(omega);
   const double w = frame.projection.width(), h = frame.projection.height();
-  if (pixel->x < -radius_px - 2 || pixel->x > w + radius_px + 2 || pixel->y < -radius_px - 2 || pixel->y > h + radius_px + 2)
+  if (pixel->x < -radius_px - 2 || pixel->x > w + radius_px + 2 || pixel->y < -radius_px - 2 ||
+      pixel->y > h + radius_px + 2)
     return;
   const std::vector<double>& wavelengths = frame.scene.wavelengths_nm;
   if (radius_px < 1.0) {
@@ -228,7 +234,8 @@ void NightSkyPass::place_moon(const FrameState& frame, const StarFrame& sky, con
   moon_rgb_ = {0, 0, 0};
   double largest = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
-    const double l = 2.0 * astro::moon_disc_radiance(1.0, 1.0, moon.phase_angle_rad, wavelengths[k], moon.sun_distance_au) *
+    const double l = 2.0 *
+                     astro::moon_disc_radiance(1.0, 1.0, moon.phase_angle_rad, wavelengths[k], moon.sun_distance_au) *
                      transmittance[k];
     for (std::size_t c = 0; c < 3; ++c) moon_rgb_[c] += frame.rgb_weights[k][c] * l * sky.exposure;
   }
@@ -310,7 +317,8 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
 
   // Fixed point: no pixel can exceed the sum of the band's stars, which maps to 2^30 counts.
   const double fixed_point = largest > 0.0f ? static_cast<double>(1 << 30) / largest : 1.0;
-  const std::size_t accumulator_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows) * 4 * sizeof(int);
+  const std::size_t accumulator_bytes =
+      static_cast<std::size_t>(width) * static_cast<std::size_t>(rows) * 4 * sizeof(int);
   if (accumulator_bytes > accumulator_bytes_) {
     std::vector<int> zeros(accumulator_bytes / sizeof(int), 0);
     accumulator_ = gl::Buffer::from(std::span<const int>(zeros));
@@ -326,7 +334,8 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
       data.push_back({s->rgb[0], s->rgb[1], s->rgb[2], 0.0f});
     }
     const std::size_t bytes = data.size() * sizeof(data[0]);
-    if (splats_buffer_.id() == 0 || splats_buffer_.size() < bytes) splats_buffer_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
+    if (splats_buffer_.id() == 0 || splats_buffer_.size() < bytes)
+      splats_buffer_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
     splats_buffer_.upload(std::span<const std::array<float, 4>>(data));
     splats_buffer_.bind_storage(binding::kStarSplats);
     splat_.set_uniform("star_count", static_cast<int>(count));
@@ -341,9 +350,9 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
   p.set_uniform("star_unit", static_cast<float>(1.0 / fixed_point));
   p.set_uniform("moon_disc", moon_disc_ ? 1 : 0);
   if (moon_disc_) {
-    p.set_uniform("moon_direction", std::array<float, 3>{static_cast<float>(moon_direction_.x),
-                                                         static_cast<float>(moon_direction_.y),
-                                                         static_cast<float>(moon_direction_.z)});
+    p.set_uniform("moon_direction",
+                  std::array<float, 3>{static_cast<float>(moon_direction_.x), static_cast<float>(moon_direction_.y),
+                                       static_cast<float>(moon_direction_.z)});
     p.set_uniform("moon_radius", static_cast<float>(moon_radius_rad_));
     p.set_uniform("moon_rgb", std::array<float, 3>{static_cast<float>(moon_rgb_[0]), static_cast<float>(moon_rgb_[1]),
                                                    static_cast<float>(moon_rgb_[2])});

@@ -43,10 +43,10 @@ inline constexpr double kInvisibleDisplayStep = 0.5 / 255.0 / 12.92;
 
 /// What the pass did in the last frame.
 struct NightSkyStats {
-  bool skipped = true;         ///< nothing drawn (no sky clock or night sky, or the test above)
-  std::size_t stars = 0;       ///< stars placed in the image
-  bool night_floor = false;    ///< the night floor was added
-  bool moon = false;           ///< the Moon was drawn (a disc, or a point below a pixel's size)
+  bool skipped = true;             ///< nothing drawn (no sky clock or night sky, or the test above)
+  std::size_t stars = 0;           ///< stars placed in the image
+  bool night_floor = false;        ///< the night floor was added
+  bool moon = false;               ///< the Moon was drawn (a disc, or a point below a pixel's size)
   std::string catalogue_identity;  ///< StarCatalogue::identity_sha256 of the stars drawn ("" none)
 };
 

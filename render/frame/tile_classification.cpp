@@ -78,9 +78,8 @@ BandTiles classify_band_tiles(const TileScene& frame, int first_row, int rows) {
     if (lists.shell_tiles.empty()) continue;
     const scene::Body& planet = scene.bodies[static_cast<std::size_t>(pass.body)];
     const glm::dvec3 to_planet = planet.position_m - scene.camera.position_m;
-    const std::vector<TileCover> ground =
-        cones.sphere_cover(frame.world_to_camera * glm::normalize(to_planet), glm::length(to_planet), planet.radius_m,
-                           first_row, rows);
+    const std::vector<TileCover> ground = cones.sphere_cover(frame.world_to_camera * glm::normalize(to_planet),
+                                                             glm::length(to_planet), planet.radius_m, first_row, rows);
     // Other bodies: 1 where one beyond the shell can be, 2 where one inside it can be.
     std::vector<std::uint8_t> others(band_tiles, 0);
     const std::vector<std::size_t> inside = bodies_inside_shell(scene, pass);

@@ -64,7 +64,7 @@ struct TileScene {
   glm::dvec3 sun_camera{0.0, 0.0, 1.0};  ///< the sun's direction, camera frame
   double sun_reach_rad = 0.0;            ///< the cone around it in which the sun is drawn
   bool sun_disc = true;                  ///< RenderOptions::sun_disc
-  bool one_pass_tiles = true;            ///< RenderOptions::one_pass_tiles (false: every shell tile to the G-buffer path)
+  bool one_pass_tiles = true;  ///< RenderOptions::one_pass_tiles (false: every shell tile to the G-buffer path)
   std::vector<ShellInView> shells;
 };
 
@@ -91,9 +91,7 @@ struct BandTiles {
   TileList body_tiles, sun_tiles;  // tiles with several bodies; tiles with the sun only
   /// Tiles drawn by direct_light.comp, and tiles with nothing to draw.
   std::size_t direct_tiles() const { return one_body_count + body_tiles.count + sun_tiles.count; }
-  std::size_t black_tiles() const {
-    return tiles - (gbuffer_tiles.count + one_pass_atmosphere_tiles + direct_tiles());
-  }
+  std::size_t black_tiles() const { return tiles - (gbuffer_tiles.count + one_pass_atmosphere_tiles + direct_tiles()); }
 };
 
 /// The band of `rows` rows from `first_row` (a multiple of kTileSize) sorted

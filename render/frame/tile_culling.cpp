@@ -61,8 +61,8 @@ std::vector<std::uint32_t> TileCones::tiles_touching_sphere(const glm::dvec3& ce
   return out;
 }
 
-std::vector<TileCover> TileCones::sphere_cover(const glm::dvec3& centre_direction, double distance_m,
-                                              double radius_m, int first_row, int row_count) const {
+std::vector<TileCover> TileCones::sphere_cover(const glm::dvec3& centre_direction, double distance_m, double radius_m,
+                                               int first_row, int row_count) const {
   const int tile_row_begin = first_row / kTileSize;
   const int tile_row_end = std::min(rows_, (first_row + row_count + kTileSize - 1) / kTileSize);
   std::vector<TileCover> out(static_cast<std::size_t>(std::max(0, tile_row_end - tile_row_begin)) * columns_,

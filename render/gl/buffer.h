@@ -16,10 +16,8 @@ class Buffer {
   /// A buffer holding a copy of `data` (non-empty).
   explicit Buffer(std::span<const std::byte> data);
   template <class T>
-    requires std::is_trivially_copyable_v<T>
-  static Buffer from(std::span<const T> data) {
-    return Buffer(std::as_bytes(data));
-  }
+  requires std::is_trivially_copyable_v<T>
+  static Buffer from(std::span<const T> data) { return Buffer(std::as_bytes(data)); }
   /// `size_bytes` > 0 bytes, zero-filled, that the CPU can map for reading (read_mapped).
   static Buffer mappable(std::size_t size_bytes);
 
@@ -32,10 +30,8 @@ class Buffer {
   /// Writes `data` at `offset_bytes`; throws std::out_of_range past the end.
   void upload(std::span<const std::byte> data, std::size_t offset_bytes = 0);
   template <class T>
-    requires std::is_trivially_copyable_v<T>
-  void upload(std::span<const T> data, std::size_t offset_bytes = 0) {
-    upload(std::as_bytes(data), offset_bytes);
-  }
+  requires std::is_trivially_copyable_v<T>
+  void upload(std::span<const T> data, std::size_t offset_bytes = 0) { upload(std::as_bytes(data), offset_bytes); }
 
   /// `size_bytes` bytes from `offset_bytes`. Issues
   /// glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first, so shader stores of
@@ -43,8 +39,8 @@ class Buffer {
   std::vector<std::byte> read_bytes(std::size_t offset_bytes, std::size_t size_bytes) const;
   /// The whole buffer as elements of T (trailing bytes that fill no whole T are not read).
   template <class T>
-    requires std::is_trivially_copyable_v<T>
-  std::vector<T> read() const {
+  requires std::is_trivially_copyable_v<T> std::vector<T> read()
+  const {
     std::vector<T> out(size_ / sizeof(T));
     read_into(std::as_writable_bytes(std::span<T>(out)));
     return out;

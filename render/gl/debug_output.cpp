@@ -44,7 +44,8 @@ spdlog::level::level_enum level_of(GLenum severity) {
 
 void GLAPIENTRY on_debug_message(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
                                  const GLchar* message, const void* /*user*/) {
-  std::string_view text = length >= 0 ? std::string_view(message, static_cast<std::size_t>(length)) : std::string_view(message);
+  std::string_view text =
+      length >= 0 ? std::string_view(message, static_cast<std::size_t>(length)) : std::string_view(message);
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
   spdlog::log(level_of(severity), "GL {} [{} #{}]: {}", type_name(type), source_name(source), id, text);
 }
@@ -53,8 +54,10 @@ void GLAPIENTRY on_debug_message(GLenum source, GLenum type, GLuint id, GLenum s
 
 void enable_debug_output(bool synchronous) {
   glEnable(GL_DEBUG_OUTPUT);
-  if (synchronous) glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-  else glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+  if (synchronous)
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+  else
+    glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
   glDebugMessageCallback(on_debug_message, nullptr);
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
 }

@@ -37,7 +37,8 @@ DevicePreference parse_device_preference(std::string_view text) {
   if (text == "auto") return DevicePreference::automatic;
   if (text == "software") return DevicePreference::software;
   if (text == "hardware") return DevicePreference::hardware;
-  throw std::invalid_argument(fmt::format("unknown GL device preference '{}': expected auto, software or hardware", text));
+  throw std::invalid_argument(
+      fmt::format("unknown GL device preference '{}': expected auto, software or hardware", text));
 }
 
 namespace {
@@ -97,7 +98,7 @@ enum class DeviceKind { nvidia, other_gpu, software, unknown };
 
 /// One way to obtain an EGLDisplay.
 struct Candidate {
-  std::string source;  // for messages and HeadlessContext::source()
+  std::string source;    // for messages and HeadlessContext::source()
   EGLenum platform = 0;  // 0: eglGetDisplay(EGL_DEFAULT_DISPLAY)
   void* native = nullptr;
   DeviceKind kind = DeviceKind::unknown;
@@ -164,8 +165,8 @@ std::vector<Candidate> device_candidates(DevicePreference prefer, std::vector<st
     } else if (!file.empty() || has_extension(ext, "EGL_EXT_device_drm_render_node")) {
       c.kind = DeviceKind::other_gpu;
     }
-    c.source = fmt::format("EGL device {} of {} ({}{}{})", i, devices.size(), vendor.empty() ? "unknown vendor" : vendor,
-                           file.empty() ? "" : ", ", file);
+    c.source = fmt::format("EGL device {} of {} ({}{}{})", i, devices.size(),
+                           vendor.empty() ? "unknown vendor" : vendor, file.empty() ? "" : ", ", file);
     if ((prefer == DevicePreference::software && c.kind != DeviceKind::software) ||
         (prefer == DevicePreference::hardware && c.kind == DeviceKind::software)) {
       failures.push_back(fmt::format("{}: skipped, prefer={}", c.source, to_string(prefer)));
@@ -182,7 +183,8 @@ std::vector<Candidate> device_candidates(DevicePreference prefer, std::vector<st
     }
     return 4;
   };
-  std::stable_sort(out.begin(), out.end(), [&](const Candidate& a, const Candidate& b) { return rank(a.kind) < rank(b.kind); });
+  std::stable_sort(out.begin(), out.end(),
+                   [&](const Candidate& a, const Candidate& b) { return rank(a.kind) < rank(b.kind); });
   return out;
 }
 
@@ -243,27 +245,32 @@ std::optional<std::string> try_candidate(const Candidate& candidate, const Clien
     return fmt::format("EGL {}.{} without EGL_KHR_create_context cannot create a GL {}.{} core context", major, minor,
                        options.gl_major, options.gl_minor);
   const bool surfaceless = has_extension(ext, "EGL_KHR_surfaceless_context");
-  const bool no_config = has_extension(ext, "EGL_KHR_no_config_context") || has_extension(ext, "EGL_MESA_configless_context");
+  const bool no_config =
+      has_extension(ext, "EGL_KHR_no_config_context") || has_extension(ext, "EGL_MESA_configless_context");
 
   // Rendering goes to framebuffer objects: the config needs GL, and a pbuffer
   // only where the context cannot be surfaceless.
-  const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, surfaceless ? 0 : EGL_PBUFFER_BIT,
-                                   EGL_NONE};
+  const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
+                                   surfaceless ? 0 : EGL_PBUFFER_BIT, EGL_NONE};
   EGLConfig config = nullptr;
   EGLint configs = 0;
-  if (eglChooseConfig(a.display, config_attribs, &config, 1, &configs) != EGL_TRUE) return egl_failure("eglChooseConfig");
+  if (eglChooseConfig(a.display, config_attribs, &config, 1, &configs) != EGL_TRUE)
+    return egl_failure("eglChooseConfig");
   if (configs == 0) {
     if (!(surfaceless && no_config))
-      return std::string("eglChooseConfig: no config with EGL_OPENGL_BIT") + (surfaceless ? "" : " and EGL_PBUFFER_BIT");
+      return std::string("eglChooseConfig: no config with EGL_OPENGL_BIT") +
+             (surfaceless ? "" : " and EGL_PBUFFER_BIT");
     config = EGL_NO_CONFIG_KHR;
   }
 
-  std::vector<EGLint> context_attribs = {EGL_CONTEXT_MAJOR_VERSION_KHR, options.gl_major, EGL_CONTEXT_MINOR_VERSION_KHR,
-                                         options.gl_minor, EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR,
-                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR};
+  std::vector<EGLint> context_attribs = {EGL_CONTEXT_MAJOR_VERSION_KHR,       options.gl_major,
+                                         EGL_CONTEXT_MINOR_VERSION_KHR,       options.gl_minor,
+                                         EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR};
   if (options.debug) {
-    if (egl15) context_attribs.insert(context_attribs.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
-    else context_attribs.insert(context_attribs.end(), {EGL_CONTEXT_FLAGS_KHR, EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR});
+    if (egl15)
+      context_attribs.insert(context_attribs.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
+    else
+      context_attribs.insert(context_attribs.end(), {EGL_CONTEXT_FLAGS_KHR, EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR});
   }
   context_attribs.push_back(EGL_NONE);
   a.context = eglCreateContext(a.display, config, EGL_NO_CONTEXT, context_attribs.data());
@@ -293,11 +300,15 @@ HeadlessContext::HeadlessContext(const ContextOptions& options) {
   std::vector<std::string> failures;
   std::vector<Candidate> candidates;
   const ClientEgl client = query_client();
-  if (client.platform_device && client.device_enumeration) candidates = device_candidates(options.prefer, failures);
-  else failures.push_back("EGL_EXT_platform_device: not offered by the EGL client library");
-  if (client.surfaceless) candidates.push_back({"EGL_MESA_platform_surfaceless", EGL_PLATFORM_SURFACELESS_MESA,
-                                                nullptr, DeviceKind::unknown});
-  else failures.push_back("EGL_MESA_platform_surfaceless: not offered by the EGL client library");
+  if (client.platform_device && client.device_enumeration)
+    candidates = device_candidates(options.prefer, failures);
+  else
+    failures.push_back("EGL_EXT_platform_device: not offered by the EGL client library");
+  if (client.surfaceless)
+    candidates.push_back(
+        {"EGL_MESA_platform_surfaceless", EGL_PLATFORM_SURFACELESS_MESA, nullptr, DeviceKind::unknown});
+  else
+    failures.push_back("EGL_MESA_platform_surfaceless: not offered by the EGL client library");
   candidates.push_back({"default display", 0, nullptr, DeviceKind::unknown});
 
   for (const Candidate& candidate : candidates) {
@@ -351,8 +362,9 @@ HeadlessContext::HeadlessContext(const ContextOptions& options) {
     return;
   }
 
-  std::string message = fmt::format("HeadlessContext: no EGL display gave a GL {}.{} core context (prefer={}):",
-                                    options.gl_major, options.gl_minor, to_string(options.prefer));
+  std::string message =
+      fmt::format("HeadlessContext: no EGL display gave a GL {}.{} core context (prefer={}):", options.gl_major,
+                  options.gl_minor, to_string(options.prefer));
   for (const std::string& f : failures) message += "\n  " + f;
   throw std::runtime_error(message);
 }
@@ -386,8 +398,8 @@ HeadlessContext& HeadlessContext::operator=(HeadlessContext&& other) noexcept {
 void HeadlessContext::make_current() const {
   if (context_ == nullptr) throw std::logic_error("HeadlessContext::make_current on a moved-from context");
   if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) throw std::runtime_error(egl_failure("eglBindAPI(EGL_OPENGL_API)"));
-  if (eglMakeCurrent(display_, surface_ != nullptr ? surface_ : EGL_NO_SURFACE, surface_ != nullptr ? surface_ : EGL_NO_SURFACE,
-                     context_) != EGL_TRUE)
+  if (eglMakeCurrent(display_, surface_ != nullptr ? surface_ : EGL_NO_SURFACE,
+                     surface_ != nullptr ? surface_ : EGL_NO_SURFACE, context_) != EGL_TRUE)
     throw std::runtime_error("HeadlessContext: " + egl_failure("eglMakeCurrent"));
 }
 

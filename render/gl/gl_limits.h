@@ -11,12 +11,12 @@ struct GlLimits {
   int max_3d_texture_size = 0;  ///< GL_MAX_3D_TEXTURE_SIZE (each 3D dimension)
   int max_texture_image_units = 0;
   int max_image_units = 0;
-  int max_compute_work_group_invocations = 0;              ///< local_size_x·y·z at most
-  std::array<int, 3> max_compute_work_group_size = {};     ///< per axis
-  std::array<int, 3> max_compute_work_group_count = {};    ///< per axis, per dispatch
-  int max_compute_shared_memory_size = 0;                  ///< bytes
-  std::int64_t max_shader_storage_block_size = 0;          ///< bytes
-  int max_uniform_block_size = 0;                          ///< bytes
+  int max_compute_work_group_invocations = 0;            ///< local_size_x·y·z at most
+  std::array<int, 3> max_compute_work_group_size = {};   ///< per axis
+  std::array<int, 3> max_compute_work_group_count = {};  ///< per axis, per dispatch
+  int max_compute_shared_memory_size = 0;                ///< bytes
+  std::int64_t max_shader_storage_block_size = 0;        ///< bytes
+  int max_uniform_block_size = 0;                        ///< bytes
 };
 
 /// Queries the current context.

@@ -4,12 +4,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <unistd.h>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <system_error>
-#include <unistd.h>
 #include <vector>
 
 #include "core/sha256.h"
@@ -97,7 +97,8 @@ void ProgramBinaryCache::store(const std::string& key, unsigned program) {
     std::filesystem::rename(temporary, path);
     ++statistics_.stored;
   } catch (const std::exception& e) {
-    if (!warned_) spdlog::warn("program binary cache in {}: {}; programs are compiled each run", directory_.string(), e.what());
+    if (!warned_)
+      spdlog::warn("program binary cache in {}: {}; programs are compiled each run", directory_.string(), e.what());
     warned_ = true;
   }
 }

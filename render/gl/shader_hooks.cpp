@@ -67,8 +67,7 @@ void dump_shader_source(std::string_view name, ShaderStage stage, std::string_vi
     const std::filesystem::path folder(dir);
     std::filesystem::create_directories(folder);
     const std::string hash = core::sha256_hex(text.data(), text.size()).substr(0, 16);
-    const std::filesystem::path path =
-        folder / fmt::format("{}.{}.{}", flat_name(name), hash, stage_extension(stage));
+    const std::filesystem::path path = folder / fmt::format("{}.{}.{}", flat_name(name), hash, stage_extension(stage));
     if (std::filesystem::exists(path)) return;
     {
       std::ofstream names(path.string() + ".files", std::ios::binary);

@@ -140,7 +140,8 @@ std::string annotate_log(std::string_view log, std::string_view compiled, const 
   }
   if (files.size() > 1) {
     out += "source strings:";
-    for (std::size_t k = 0; k < files.size(); ++k) out += fmt::format(" {} = {}{}", k, files[k], k + 1 < files.size() ? "," : "");
+    for (std::size_t k = 0; k < files.size(); ++k)
+      out += fmt::format(" {} = {}{}", k, files[k], k + 1 < files.size() ? "," : "");
     out += '\n';
   }
   while (!out.empty() && out.back() == '\n') out.pop_back();
@@ -196,7 +197,8 @@ GLuint compile(ShaderStage stage, const ShaderCode& code, std::span<const Shader
     throw ShaderBuildError(code.name, fmt::format("shader '{}' ({}) failed to compile:\n{}", code.name,
                                                   to_string(stage), annotate_log(log, text, files)));
   }
-  if (!trim(log).empty()) spdlog::debug("shader '{}' ({}) compiled with messages:\n{}", code.name, to_string(stage), log);
+  if (!trim(log).empty())
+    spdlog::debug("shader '{}' ({}) compiled with messages:\n{}", code.name, to_string(stage), log);
   return shader;
 }
 
@@ -272,9 +274,10 @@ GLuint build_compute(const ShaderCode& code, std::span<const ShaderDefine> defin
     if (!is_nvidia_unroll_failure(e.what())) throw;
     // NVIDIA's compiler could not unroll a loop (kNvidiaLoopUnrollOff): the same
     // program again with its loop unrolling off, at every line number unchanged.
-    spdlog::info("shader program '{}': NVIDIA's GLSL compiler failed on an unrolled loop (C5025); compiling it "
-                 "again with loop unrolling off",
-                 code.name);
+    spdlog::info(
+        "shader program '{}': NVIDIA's GLSL compiler failed on an unrolled loop (C5025); compiling it "
+        "again with loop unrolling off",
+        code.name);
     const std::string pragma[] = {std::string(kNvidiaLoopUnrollOff)};
     const ShaderCode rolled{code.name, insert_after_version(code.name, code.text, pragma), code.files};
     const GLuint shader = compile(ShaderStage::compute, rolled, defines);
@@ -415,7 +418,8 @@ void ShaderProgram::dispatch(unsigned groups_x, unsigned groups_y, unsigned grou
 
 void ShaderProgram::dispatch_covering(int width, int height, int depth) const {
   if (width < 1 || height < 1 || depth < 1)
-    throw std::invalid_argument(fmt::format("shader program '{}': dispatch over {}x{}x{}", name_, width, height, depth));
+    throw std::invalid_argument(
+        fmt::format("shader program '{}': dispatch over {}x{}x{}", name_, width, height, depth));
   const std::array<int, 3> local = work_group_size();
   auto groups = [](int n, int size) { return static_cast<unsigned>((n + size - 1) / size); };
   dispatch(groups(width, local[0]), groups(height, local[1]), groups(depth, local[2]));

@@ -101,8 +101,10 @@ Texture::Texture(TextureFormat format, int width, int height, int depth, int lev
                                             three_d ? fmt::format("x{}", depth) : std::string()));
   check_gl_error("Texture: an earlier GL call left an error");
   glCreateTextures(array ? GL_TEXTURE_2D_ARRAY : three_d ? GL_TEXTURE_3D : GL_TEXTURE_2D, 1, &id_);
-  if (three_d) glTextureStorage3D(id_, levels, internal_format(format), width, height, depth);
-  else glTextureStorage2D(id_, levels, internal_format(format), width, height);
+  if (three_d)
+    glTextureStorage3D(id_, levels, internal_format(format), width, height, depth);
+  else
+    glTextureStorage2D(id_, levels, internal_format(format), width, height);
   glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
   glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -194,8 +196,8 @@ std::size_t Texture::texel_count() const {
 void Texture::upload(std::span<const float> data) {
   if (id_ == 0) throw std::logic_error("Texture::upload on an empty texture");
   if (data.size() != float_count())
-    throw std::invalid_argument(fmt::format("Texture::upload: {} floats given, a {} {}x{}x{} texture holds {}", data.size(),
-                                            to_string(format_), width_, height_, depth(), float_count()));
+    throw std::invalid_argument(fmt::format("Texture::upload: {} floats given, a {} {}x{}x{} texture holds {}",
+                                            data.size(), to_string(format_), width_, height_, depth(), float_count()));
   unbind_pixel_buffer(GL_PIXEL_UNPACK_BUFFER);
   if (is_3d())
     glTextureSubImage3D(id_, 0, 0, 0, 0, width_, height_, depth_, pixel_format(format_), GL_FLOAT, data.data());
@@ -211,7 +213,8 @@ std::vector<float> Texture::read() const {
     throw std::length_error("Texture::read: more than 2 GiB in one texture");
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
   unbind_pixel_buffer(GL_PIXEL_PACK_BUFFER);
-  glGetTextureImage(id_, 0, pixel_format(format_), GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
+  glGetTextureImage(id_, 0, pixel_format(format_), GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)),
+                    out.data());
   check_gl_error("Texture::read");
   return out;
 }

@@ -158,8 +158,8 @@ void GpuPrecompute::check_limits() const {
   const TableSizes& s = sizes();
   auto check = [](std::size_t v, int limit, const char* what) {
     if (v > static_cast<std::size_t>(limit))
-      throw std::runtime_error(fmt::format("GPU precompute: {} = {} exceeds this GL implementation's limit {}", what, v,
-                                           limit));
+      throw std::runtime_error(
+          fmt::format("GPU precompute: {} = {} exceeds this GL implementation's limit {}", what, v, limit));
   };
   check(s.transmittance_mu, limits.max_texture_size, "transmittance_mu");
   check(s.transmittance_r, limits.max_texture_size, "transmittance_r");
@@ -222,9 +222,9 @@ void GpuPrecompute::compute_view_transmittance(std::size_t group, bool distance_
     view_transmittance_ = gl::Buffer(samples * real4_size);
     view_ray_uv_ = gl::Buffer(samples * real4_size / 2);
   }
-  const ShaderProgram& p = program(
-      "view_transmittance.comp",
-      {{"VIEW_MAPPING", distance_mapping ? "ANGLE_MAPPING_DISTANCE" : "ANGLE_MAPPING_BLENDED"}});
+  const ShaderProgram& p =
+      program("view_transmittance.comp",
+              {{"VIEW_MAPPING", distance_mapping ? "ANGLE_MAPPING_DISTANCE" : "ANGLE_MAPPING_BLENDED"}});
   view_transmittance_.bind_storage(kViewTransmittance);
   view_ray_uv_.bind_storage(kViewRayCoordinates);
   p.set_uniform("wavelength_group", to_int(group));
@@ -362,12 +362,14 @@ void GpuPrecompute::compute_indirect_irradiance(int order) {
     GroupTables& t = groups_[g];
     if (t.irradiance.id() == 0) {
       t.irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
-      t.delta_irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
+      t.delta_irradiance =
+          Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
     }
     if (options_.series_tail) {  // keep the order before for the tail
       std::swap(t.delta_irradiance, t.previous_delta_irradiance);
       if (t.delta_irradiance.id() == 0)
-        t.delta_irradiance = Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
+        t.delta_irradiance =
+            Texture::create_2d(TextureFormat::rgba32f, to_int(s.irradiance_mu_s), to_int(s.irradiance_r));
     }
     t.delta_irradiance.bind_image(kOutputImage, gl::ImageAccess::write_only);
     t.irradiance.bind_image(kSecondOutputImage, gl::ImageAccess::read_write);
@@ -528,8 +530,8 @@ LookupTables GpuPrecompute::run() {
 }  // namespace
 
 LookupTables precompute_tables_gpu(const AtmosphereModel& model, const PrecomputeOptions& options,
-                                   PrecomputeReport* report, const gl::HeadlessContext* context,
-                                   GpuPrecision precision, const std::optional<std::filesystem::path>& program_cache) {
+                                   PrecomputeReport* report, const gl::HeadlessContext* context, GpuPrecision precision,
+                                   const std::optional<std::filesystem::path>& program_cache) {
   options.sizes.check();
   std::optional<gl::HeadlessContext> own;
   if (context == nullptr) {
@@ -538,8 +540,8 @@ LookupTables precompute_tables_gpu(const AtmosphereModel& model, const Precomput
   } else if (!context->is_current()) {
     context->make_current();
   }
-  const bool fp64 = precision == GpuPrecision::fp64 ||
-                    (precision == GpuPrecision::automatic && context->gl_major() >= 4);
+  const bool fp64 =
+      precision == GpuPrecision::fp64 || (precision == GpuPrecision::automatic && context->gl_major() >= 4);
   spdlog::debug("GPU precompute on '{}' in {}", context->renderer(), fp64 ? "fp64" : "fp32");
   gl::check_gl_error("GPU precompute: an earlier GL call left an error");
   std::optional<gl::ProgramBinaryCache> binaries;
@@ -547,9 +549,10 @@ LookupTables precompute_tables_gpu(const AtmosphereModel& model, const Precomput
   const auto start = std::chrono::steady_clock::now();
   LookupTables tables = GpuPrecompute(model, options, report, *context, fp64, binaries ? &*binaries : nullptr).run();
   if (binaries)
-    spdlog::debug("GPU precompute: {} programs from the binary cache in {}, {} compiled and stored, {} refused ({:.2f} s)",
-                  binaries->statistics().loaded, binaries->directory().string(), binaries->statistics().stored,
-                  binaries->statistics().refused, seconds_since(start));
+    spdlog::debug(
+        "GPU precompute: {} programs from the binary cache in {}, {} compiled and stored, {} refused ({:.2f} s)",
+        binaries->statistics().loaded, binaries->directory().string(), binaries->statistics().stored,
+        binaries->statistics().refused, seconds_since(start));
   return tables;
 }
 

@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <utility>
 #include <span>
 #include <stdexcept>
+#include <utility>
 
 #include "atmosphere/lut/gauss_legendre.h"
 #include "atmosphere/lut/lookup_tables.h"
@@ -46,9 +46,9 @@ enum WavelengthField : std::size_t {
 /// (LN2_HI its first 32 bits, LN2_LO the rest), 1/ln 2, 2/π, π/2 split the same
 /// way (PIO2_1 its first 33 bits, PIO2_1T the rest), √½.
 constexpr std::pair<const char*, double> kFp64MathsConstants[] = {
-    {"LN2_HI", 6.93147180369123816490e-01},  {"LN2_LO", 1.90821492927058770002e-10},
-    {"INV_LN2", 1.44269504088896338700e+00}, {"TWO_OVER_PI", 6.36619772367581382433e-01},
-    {"PIO2_1", 1.57079632673412561417e+00},  {"PIO2_1T", 6.07710050650619224932e-11},
+    {"LN2_HI", 6.93147180369123816490e-01},    {"LN2_LO", 1.90821492927058770002e-10},
+    {"INV_LN2", 1.44269504088896338700e+00},   {"TWO_OVER_PI", 6.36619772367581382433e-01},
+    {"PIO2_1", 1.57079632673412561417e+00},    {"PIO2_1T", 6.07710050650619224932e-11},
     {"SQRT_HALF", 7.07106781186547524401e-01},
 };
 
@@ -157,16 +157,15 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
     table.insert(table.end(), rule.weight.begin(), rule.weight.end());
   }
   const std::size_t rayleigh_moments = table.size();
-  const std::vector<double> rayleigh =
-      atmosphere::lut::phase_legendre_moments([&](double x) { return model.rayleigh_phase_function(x); },
-                                              harmonic_degree);
+  const std::vector<double> rayleigh = atmosphere::lut::phase_legendre_moments(
+      [&](double x) { return model.rayleigh_phase_function(x); }, harmonic_degree);
   table.insert(table.end(), rayleigh.begin(), rayleigh.end());
   const std::size_t mie_moments = table.size();
   table.resize(table.size() + out.group_count * kLanes * static_cast<std::size_t>(harmonic_degree + 1), 0.0);
   if (model.has_mie())
     for (std::size_t i = 0; i < n; ++i) {
-      const std::vector<double> mie = atmosphere::lut::phase_legendre_moments(
-          [&](double x) { return model.mie_phase(i, x); }, harmonic_degree);
+      const std::vector<double> mie =
+          atmosphere::lut::phase_legendre_moments([&](double x) { return model.mie_phase(i, x); }, harmonic_degree);
       std::copy(mie.begin(), mie.end(), table.begin() + static_cast<std::ptrdiff_t>(mie_moments + i * mie.size()));
     }
 
@@ -268,8 +267,7 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   real_constant("AIR_MASS_GROUND_RADIUS", model.air_mass.ground_radius_m());
   define("AIR_MASS_TABLE", air_mass_table);
   define("AIR_MASS_TABLE_SIZE", air_mass_size);
-  define("QUADRATURE_LOG_LINEAR",
-         options.scattering_quadrature == PrecomputeOptions::Quadrature::LogLinear ? 1 : 0);
+  define("QUADRATURE_LOG_LINEAR", options.scattering_quadrature == PrecomputeOptions::Quadrature::LogLinear ? 1 : 0);
   define("SCATTERING_SAMPLES", options.scattering_samples);
   define("OPTICAL_DEPTH_SUBSTEPS", atmosphere::lut::kOpticalDepthSubsteps);
   define("TRANSMITTANCE_SAMPLES", options.transmittance_samples + options.transmittance_samples % 2);

@@ -44,10 +44,10 @@ struct ShaderModel {
   /// WavelengthData (a uniform block, binding::kWavelengthData): real4 fields per
   /// group, the one way the model's parameters reach every shader.
   std::vector<double> wavelength_data;
-  std::vector<double> table_data;       ///< TableData (binding 1)
-  std::size_t group_count = 0;          ///< ceil(wavelengths / 4)
+  std::vector<double> table_data;  ///< TableData (binding 1)
+  std::size_t group_count = 0;     ///< ceil(wavelengths / 4)
   TexelCoordinateLayout texel_layout;
-  bool fp64 = false;                    ///< made for double shaders (USE_FP64)
+  bool fp64 = false;  ///< made for double shaders (USE_FP64)
   /// fp64 only: every real constant of the double shaders (the elementary
   /// functions' ln 2 and π/2 splits, π, 1/4π, Penndorf's coefficients, the
   /// radii, …) as the C++ double, in the order the defines name them

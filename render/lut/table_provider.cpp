@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <optional>
 
-#include "core/progress_bar.h"
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/lut/table_cache.h"
+#include "core/progress_bar.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/shader_program.h"
 #include "render/lut/gpu_precompute.h"
@@ -68,9 +68,10 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
       std::string first = what.substr(what.find('\n') == std::string::npos ? 0 : what.find('\n') + 1);
       first = first.substr(0, first.find('\n'));
       if (bar) bar->finish();
-      spdlog::warn("GPU precompute: shader program '{}' does not build on this driver (GL_VENDOR '{}', GL_RENDERER "
-                   "'{}', GL_VERSION '{}'): {}; precomputing on the CPU instead",
-                   e.program(), context->vendor(), context->renderer(), context->version(), first);
+      spdlog::warn(
+          "GPU precompute: shader program '{}' does not build on this driver (GL_VENDOR '{}', GL_RENDERER "
+          "'{}', GL_VERSION '{}'): {}; precomputing on the CPU instead",
+          e.program(), context->vendor(), context->renderer(), context->version(), first);
       out.report = {};
       if (bar) bar.emplace("precompute (CPU)");
     }

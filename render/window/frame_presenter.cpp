@@ -16,11 +16,11 @@ namespace zenith::render::window {
 
 Letterbox letterbox(int frame_width, int frame_height, int target_width, int target_height) {
   if (frame_width < 1 || frame_height < 1 || target_width < 1 || target_height < 1)
-    throw std::invalid_argument(fmt::format("letterbox: frame {}x{} into target {}x{}: sizes must be ≥ 1",
-                                            frame_width, frame_height, target_width, target_height));
+    throw std::invalid_argument(fmt::format("letterbox: frame {}x{} into target {}x{}: sizes must be ≥ 1", frame_width,
+                                            frame_height, target_width, target_height));
   // Scale by the tighter of the two ratios; the other axis gets bars.
-  const double scale = std::min(static_cast<double>(target_width) / frame_width,
-                                static_cast<double>(target_height) / frame_height);
+  const double scale =
+      std::min(static_cast<double>(target_width) / frame_width, static_cast<double>(target_height) / frame_height);
   Letterbox box;
   box.width = std::clamp(static_cast<int>(std::lround(frame_width * scale)), 1, target_width);
   box.height = std::clamp(static_cast<int>(std::lround(frame_height * scale)), 1, target_height);

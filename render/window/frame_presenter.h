@@ -8,9 +8,9 @@
 // (render/window/window_context.h) or a headless one drawing into an FBO.
 #include <span>
 
+#include "image/tone_mapping.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
-#include "image/tone_mapping.h"
 
 namespace zenith::render::window {
 
@@ -51,8 +51,7 @@ class FramePresenter {
   /// std::logic_error before any upload.
   void draw(image::ToneMapping tone, const PresentTarget& target) const;
   /// upload() then draw().
-  void present(std::span<const float> rgb, int width, int height, image::ToneMapping tone,
-               const PresentTarget& target);
+  void present(std::span<const float> rgb, int width, int height, image::ToneMapping tone, const PresentTarget& target);
 
   /// Size of the last uploaded frame (0 × 0 before the first).
   int frame_width() const { return texture_.width(); }

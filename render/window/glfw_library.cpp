@@ -19,7 +19,7 @@ std::string glfw_error() {
 }
 
 GlfwLibrary::GlfwLibrary() {
-  glfwGetError(nullptr);  // drop any error left from an earlier, failed use
+  glfwGetError(nullptr);                      // drop any error left from an earlier, failed use
   gl::default_software_rasterizer_threads();  // before GLFW opens the display: Mesa reads it then
   if (glfwInit() != GLFW_TRUE)
     throw std::runtime_error(

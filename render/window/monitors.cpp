@@ -54,8 +54,8 @@ const MonitorInfo* find_monitor(const std::vector<MonitorInfo>& monitors, const 
     if (window.fullscreen && !monitors.empty()) return &monitors.front();  // fullscreen on the primary monitor
     return nullptr;
   }
-  throw std::invalid_argument(fmt::format("{}: window '{}' asks for {}, which does not exist; the monitors are:\n{}", what,
-                                          window.name, window.describe_monitor(), describe_monitors(monitors)));
+  throw std::invalid_argument(fmt::format("{}: window '{}' asks for {}, which does not exist; the monitors are:\n{}",
+                                          what, window.name, window.describe_monitor(), describe_monitors(monitors)));
 }
 
 }  // namespace zenith::render::window

@@ -10,11 +10,11 @@
 namespace zenith::render::window {
 
 struct MonitorInfo {
-  int index = 0;            ///< GLFW's order; 0 is the primary monitor
-  std::string name;         ///< the connector or the name the system gives ("DP-1", "HDMI-0", "screen")
-  int x = 0, y = 0;         ///< the monitor's origin on the virtual desktop, screen coordinates
-  int width = 0, height = 0;  ///< its current video mode, pixels
-  int refresh_hz = 0;       ///< its current refresh rate (0 where the system does not say)
+  int index = 0;                    ///< GLFW's order; 0 is the primary monitor
+  std::string name;                 ///< the connector or the name the system gives ("DP-1", "HDMI-0", "screen")
+  int x = 0, y = 0;                 ///< the monitor's origin on the virtual desktop, screen coordinates
+  int width = 0, height = 0;        ///< its current video mode, pixels
+  int refresh_hz = 0;               ///< its current refresh rate (0 where the system does not say)
   int width_mm = 0, height_mm = 0;  ///< physical size where known (0 otherwise)
 };
 

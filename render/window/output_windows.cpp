@@ -211,7 +211,8 @@ void OutputWindows::present(std::span<const gl::Texture* const> displays, Presen
   const PresentClock::Clock::time_point done = PresentClock::Clock::now();
   std::optional<std::int64_t> vblanks;
   if (vblank_before)
-    if (const std::optional<std::int64_t> after = vblank_count(windows_.front().context)) vblanks = *after - *vblank_before;
+    if (const std::optional<std::int64_t> after = vblank_count(windows_.front().context))
+      vblanks = *after - *vblank_before;
   clock_.record(asked, done, vblanks);
   if (written != nullptr) glDeleteSync(written);
 }

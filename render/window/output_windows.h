@@ -102,7 +102,7 @@ class OutputWindows {
   void draw(Window& w, std::span<const gl::Texture* const> displays);
 
   std::vector<Window> windows_;
-  std::vector<Placement> placements_;  ///< per output
+  std::vector<Placement> placements_;             ///< per output
   int combined_width_ = 0, combined_height_ = 0;  ///< the default window's picture
   PresentClock clock_;
   bool sync_control_ = false;  ///< GLX_OML_sync_control on the first window's display

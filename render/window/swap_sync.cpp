@@ -56,9 +56,10 @@ std::string join_swap_group(const WindowContext& window, unsigned group, bool bi
   const SwapSyncSupport s = swap_sync_support(window);
   if (!s.glx) return fmt::format("swap group {} not joined: the window is not a GLX window", group);
   if (!s.swap_group)
-    return fmt::format("swap group {} not joined: {} offers no GLX_NV_swap_group; the network barrier and vsync "
-                       "keep the projectors together (within a refresh)",
-                       group, window.renderer());
+    return fmt::format(
+        "swap group {} not joined: {} offers no GLX_NV_swap_group; the network barrier and vsync "
+        "keep the projectors together (within a refresh)",
+        group, window.renderer());
   if (group > s.max_groups)
     return fmt::format("swap group {} not joined: the driver has {} swap group{}", group, s.max_groups,
                        s.max_groups == 1 ? "" : "s");
@@ -67,15 +68,17 @@ std::string join_swap_group(const WindowContext& window, unsigned group, bool bi
     return fmt::format("swap group {} not joined: glXJoinSwapGroupNV failed", group);
   if (!bind_barrier) return fmt::format("joined swap group {}", group);
   if (s.max_barriers == 0)
-    return fmt::format("joined swap group {}; no swap barrier (no Quadro Sync board): nodes swap within a refresh of "
-                       "each other through the network barrier",
-                       group);
+    return fmt::format(
+        "joined swap group {}; no swap barrier (no Quadro Sync board): nodes swap within a refresh of "
+        "each other through the network barrier",
+        group);
   if (!glXBindSwapBarrierNV(n->display, group, 1))
-    return fmt::format("joined swap group {}; binding it to swap barrier 1 failed (is Frame Lock on in nvidia-settings?)",
-                       group);
-  return fmt::format("joined swap group {} and bound it to swap barrier 1 (Quadro Sync: every node swaps on the same "
-                     "vblank)",
-                     group);
+    return fmt::format(
+        "joined swap group {}; binding it to swap barrier 1 failed (is Frame Lock on in nvidia-settings?)", group);
+  return fmt::format(
+      "joined swap group {} and bound it to swap barrier 1 (Quadro Sync: every node swaps on the same "
+      "vblank)",
+      group);
 }
 
 std::optional<std::int64_t> vblank_count(const WindowContext& window) {

@@ -25,10 +25,10 @@ class WindowContext;
 
 /// What swap_sync_support() found on a window's display.
 struct SwapSyncSupport {
-  bool glx = false;             ///< the window is a GLX (X11) window
-  bool swap_group = false;      ///< GLX_NV_swap_group
+  bool glx = false;                           ///< the window is a GLX (X11) window
+  bool swap_group = false;                    ///< GLX_NV_swap_group
   unsigned max_groups = 0, max_barriers = 0;  ///< glXQueryMaxSwapGroupsNV
-  bool sync_control = false;    ///< GLX_OML_sync_control
+  bool sync_control = false;                  ///< GLX_OML_sync_control
 };
 SwapSyncSupport swap_sync_support(const WindowContext& window);
 

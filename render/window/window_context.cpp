@@ -163,8 +163,9 @@ WindowContext::WindowContext(const WindowOptions& window, const gl::ContextOptio
     int count = 0;
     GLFWmonitor** monitors = glfwGetMonitors(&count);
     if (window.monitor < 0 || window.monitor >= count)
-      throw std::invalid_argument(fmt::format("WindowContext: fullscreen on monitor {}: the window system has {} monitor{}",
-                                              window.monitor, count, count == 1 ? "" : "s"));
+      throw std::invalid_argument(
+          fmt::format("WindowContext: fullscreen on monitor {}: the window system has {} monitor{}", window.monitor,
+                      count, count == 1 ? "" : "s"));
     monitor = monitors[window.monitor];
     // The monitor's current mode: no mode switch (a projector keeps its timing).
     if (const GLFWvidmode* mode = glfwGetVideoMode(monitor)) {
@@ -295,8 +296,10 @@ void WindowContext::poll_events() {
 
 void WindowContext::wait_events(double timeout_s) {
   if (!state_) moved_from("wait_events");
-  if (timeout_s > 0.0) glfwWaitEventsTimeout(timeout_s);
-  else glfwPollEvents();
+  if (timeout_s > 0.0)
+    glfwWaitEventsTimeout(timeout_s);
+  else
+    glfwPollEvents();
 }
 
 GLFWwindow* WindowContext::glfw_window() const {

@@ -35,9 +35,9 @@ namespace zenith::render::window {
 enum class Key : int {
   unknown = -1,
   space = 32,
-  comma = 44,  ///< ,
-  minus = 45,  ///< -
-  period = 46, ///< .
+  comma = 44,   ///< ,
+  minus = 45,   ///< -
+  period = 46,  ///< .
   digit_0 = 48,
   digit_9 = 57,
   equal = 61,  ///< =

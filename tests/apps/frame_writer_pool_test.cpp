@@ -6,8 +6,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <future>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -49,9 +49,7 @@ std::string name_of(std::uint64_t f, std::size_t k) {
   return s.str();
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
+void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 /// Frame `f` with two files, their text "frame f file k"; `before` runs in the writing thread first.
 FrameWriterPool::Frame frame_of(const fs::path& dir, std::uint64_t f, std::function<void(std::size_t)> before,
@@ -75,7 +73,12 @@ TEST_F(WriterPoolTest, FramesArePublishedInOrderWhateverTheWorkersOrder) {
   {
     FrameWriterPool pool(3);
     // Frame 0's first file waits until frames 1 and 2 are written: they must not appear before it.
-    FrameWriterPool::Frame first = frame_of(dir_, 0, [gate](std::size_t k) { if (k == 0) gate.wait(); }, released);
+    FrameWriterPool::Frame first = frame_of(
+        dir_, 0,
+        [gate](std::size_t k) {
+          if (k == 0) gate.wait();
+        },
+        released);
     first.published = [&] { published.push_back(0); };
     pool.submit(std::move(first));
     for (std::uint64_t f = 1; f < 3; ++f) {

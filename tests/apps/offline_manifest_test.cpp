@@ -96,7 +96,10 @@ TEST(OfflineManifest, MalformedManifestsNameTheKey) {
             std::string::npos);
   const nlohmann::json bad_sha = {
       {"zenith_offline_render", 1},
-      {"frames", {{{"frame", 4}, {"state_digest", kDigest}, {"files", {{{"path", "a/a.000004.png"}, {"settings_key", kPngKey}, {"sha256", "xyz"}}}}}}}};
+      {"frames",
+       {{{"frame", 4},
+         {"state_digest", kDigest},
+         {"files", {{{"path", "a/a.000004.png"}, {"settings_key", kPngKey}, {"sha256", "xyz"}}}}}}}};
   EXPECT_NE(message_of(bad_sha).find("/frames/0/files/0/sha256: expected 64 lowercase hex digits"), std::string::npos);
   const nlohmann::json twice = {{"zenith_offline_render", 1},
                                 {"frames",

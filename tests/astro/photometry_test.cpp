@@ -27,7 +27,8 @@ TEST(VBand, TheSunsMagnitudeFromTheKuruczSpectrum) {
   // 22 mag/arcsec² is 1.7e-4 cd/m² for a sky of solar colour (the conversion
   // 10.8e4 · 10^(−0.4 μ) cd/m² of Garstang 1986 and the SQM literature gives 1.71e-4).
   const double radiance = v_radiance_W_m2_sr_nm(22.0);
-  const double luminance = luminance_cd_m2([&](double l) { return radiance * atmosphere::solar_irradiance_W_m2_nm(l) / sun; });
+  const double luminance =
+      luminance_cd_m2([&](double l) { return radiance * atmosphere::solar_irradiance_W_m2_nm(l) / sun; });
   EXPECT_NEAR(luminance / 1.71e-4, 1.0, 0.1);
 }
 

@@ -29,8 +29,8 @@ TEST(Refraction, GroundDensityFromTheModelsOwnRayleighCoefficient) {
   const auto mars = atmosphere::load_preset("mars");
   EXPECT_NEAR(ground_number_density_m3(mars) / (636.0 / (atmosphere::kBoltzmann_J_per_K * 210.0)), 1.0, 1e-9);
   // CO2's refractivity 4.5019e-4 at 2.6868e25 m⁻³ (paper Table 1), scaled to Mars' density.
-  EXPECT_NEAR(ground_refractivity(mars, 550.0), 4.5019e-4 * 636.0 / (atmosphere::kBoltzmann_J_per_K * 210.0) / 2.6868e25,
-              3e-9);
+  EXPECT_NEAR(ground_refractivity(mars, 550.0),
+              4.5019e-4 * 636.0 / (atmosphere::kBoltzmann_J_per_K * 210.0) / 2.6868e25, 3e-9);
 }
 
 TEST(Refraction, EarthAgainstBennettAndSaemundsson) {
@@ -102,7 +102,8 @@ TEST(Refraction, BadInputIsRefused) {
   EXPECT_THROW(Refraction(6.371e6, 6.471e6, profile, -1e-4), std::invalid_argument);
   EXPECT_THROW(Refraction(6.371e6, 6.471e6, profile, 2.9e-4, 200000.0), std::invalid_argument);
   // A gas dense enough to trap horizontal rays (ducting).
-  EXPECT_THROW(Refraction(6.371e6, 6.471e6, atmosphere::DensityProfile::exponential(100.0), 0.05), std::invalid_argument);
+  EXPECT_THROW(Refraction(6.371e6, 6.471e6, atmosphere::DensityProfile::exponential(100.0), 0.05),
+               std::invalid_argument);
 }
 
 }  // namespace

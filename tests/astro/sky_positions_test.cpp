@@ -24,7 +24,9 @@ constexpr double kArcsec = core::kDeg / 3600.0;
 constexpr double kArcmin = core::kDeg / 60.0;
 
 double hms(double h, double m, double s) { return (h + m / 60.0 + s / 3600.0) * 15.0 * core::kDeg; }
-double dms(double d, double m, double s) { return (d < 0 ? -1.0 : 1.0) * (std::abs(d) + m / 60.0 + s / 3600.0) * core::kDeg; }
+double dms(double d, double m, double s) {
+  return (d < 0 ? -1.0 : 1.0) * (std::abs(d) + m / 60.0 + s / 3600.0) * core::kDeg;
+}
 double wrap_pi(double a) { return std::remainder(a, 2.0 * core::kPi); }
 
 TEST(Time, ParsesIso8601UtcAndRejectsTheRest) {
@@ -36,8 +38,8 @@ TEST(Time, ParsesIso8601UtcAndRejectsTheRest) {
   EXPECT_EQ(t.minute, 30);
   EXPECT_DOUBLE_EQ(t.second, 5.25);
   EXPECT_EQ(parse_utc_time("2026-12-21 16:30+00:00").minute, 30);
-  for (const char* bad : {"2026-12-21T16:30:00", "2026-13-01T00:00:00Z", "2026-12-21T16:30:00+01:00",
-                          "2026-12-21", "26-12-21T16:30:00Z", "2026-12-21T24:00:00Z", "2026-12-21T16:30:61Z"})
+  for (const char* bad : {"2026-12-21T16:30:00", "2026-13-01T00:00:00Z", "2026-12-21T16:30:00+01:00", "2026-12-21",
+                          "26-12-21T16:30:00Z", "2026-12-21T24:00:00Z", "2026-12-21T16:30:61Z"})
     EXPECT_THROW(parse_utc_time(bad), std::invalid_argument) << bad;
   try {
     parse_utc_time("2026-12-21T16:30:00+01:00");
@@ -67,9 +69,11 @@ TEST(SkyPositions, SunAgainstTheNrelSpaExample) {
   const AstroTime time = AstroTime::from_utc(parse_utc_time("2003-10-17T19:30:30Z"));
   const SkyPositions sky(time, Site{39.742476, -105.1786, 1830.14});
   const SunPlace sun = sky.sun();
-  // Undo the report's refraction (its eq. 42, Sæmundsson's form scaled to 820 mbar, 11 °C) to get its geometric elevation.
+  // Undo the report's refraction (its eq. 42, Sæmundsson's form scaled to 820 mbar, 11 °C) to get its geometric
+  // elevation.
   auto spa_refraction_deg = [](double e0) {
-    return (820.0 / 1010.0) * (283.0 / (273.0 + 11.0)) * 1.02 / (60.0 * std::tan((e0 + 10.3 / (e0 + 5.11)) * core::kDeg));
+    return (820.0 / 1010.0) * (283.0 / (273.0 + 11.0)) * 1.02 /
+           (60.0 * std::tan((e0 + 10.3 / (e0 + 5.11)) * core::kDeg));
   };
   double e0 = 90.0 - 50.11162;
   for (int k = 0; k < 20; ++k) e0 = 90.0 - 50.11162 - spa_refraction_deg(e0);

@@ -4,8 +4,8 @@
 // and small generated files for the format's edge cases.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -22,9 +22,9 @@ constexpr double kArcsec = core::kPi / 180.0 / 3600.0;
 
 bool catalogue_installed() { return std::filesystem::exists(kStellariumStarDirectory / "stars_0_0v0_8.cat"); }
 
-#define SKIP_WITHOUT_CATALOGUE()                                                                              \
-  if (!catalogue_installed())                                                                                 \
-  GTEST_SKIP() << "stellarium-data is not installed (" << kStellariumStarDirectory.string()                   \
+#define SKIP_WITHOUT_CATALOGUE()                                                            \
+  if (!catalogue_installed())                                                               \
+  GTEST_SKIP() << "stellarium-data is not installed (" << kStellariumStarDirectory.string() \
                << "): run scripts/bootstrap as root"
 
 double separation_rad(double ra1, double dec1, double ra2, double dec2) {
@@ -34,7 +34,9 @@ double separation_rad(double ra1, double dec1, double ra2, double dec2) {
 }
 
 double hms(double h, double m, double s) { return (h + m / 60.0 + s / 3600.0) * 15.0 * core::kDeg; }
-double dms(double d, double m, double s) { return (d < 0 || std::signbit(d) ? -1.0 : 1.0) * (std::abs(d) + m / 60.0 + s / 3600.0) * core::kDeg; }
+double dms(double d, double m, double s) {
+  return (d < 0 || std::signbit(d) ? -1.0 : 1.0) * (std::abs(d) + m / 60.0 + s / 3600.0) * core::kDeg;
+}
 
 struct Published {
   std::uint32_t hip;
@@ -44,13 +46,13 @@ struct Published {
 // Hipparcos (van Leeuwen 2007) ICRS places at epoch J2000.0 and proper motions; V and B−V of ESA 1997.
 const Published kBrightStars[] = {
     {32349, hms(6, 45, 8.91728), dms(-16, 42, 58.0171), -546.01, -1223.07, -1.46, 0.009},  // Sirius
-    {91262, hms(18, 36, 56.33635), dms(38, 47, 1.2802), 200.94, 286.23, 0.03, -0.001},    // Vega
+    {91262, hms(18, 36, 56.33635), dms(38, 47, 1.2802), 200.94, 286.23, 0.03, -0.001},     // Vega
     // Arcturus: Hipparcos solved it as a pair (A and a "B" 3.3 mag fainter, since shown not to exist);
     // the file keeps that solution's split of light and colour, so only its place is compared.
     {69673, hms(14, 15, 39.67207), dms(19, 10, 56.6730), -1093.39, -2000.06, NAN, NAN},
     {97649, hms(19, 50, 46.99855), dms(8, 52, 5.9563), 536.23, 385.29, 0.76, 0.221},  // Altair
-    {27989, hms(5, 55, 10.30536), dms(7, 24, 25.4304), 27.54, 11.30, 0.45, 1.500},       // Betelgeuse
-    {11767, hms(2, 31, 49.09456), dms(89, 15, 50.7923), 44.48, -11.85, 1.97, 0.636},     // Polaris
+    {27989, hms(5, 55, 10.30536), dms(7, 24, 25.4304), 27.54, 11.30, 0.45, 1.500},    // Betelgeuse
+    {11767, hms(2, 31, 49.09456), dms(89, 15, 50.7923), 44.48, -11.85, 1.97, 0.636},  // Polaris
 };
 
 TEST(StarCatalogue, BrightStarsMatchHipparcos) {
@@ -60,7 +62,10 @@ TEST(StarCatalogue, BrightStarsMatchHipparcos) {
     SCOPED_TRACE(p.hip);
     const CatalogueStar* found = nullptr;
     for (const auto& s : catalogue.stars)
-      if (s.hip == p.hip && s.component <= 1) { found = &s; break; }  // component 1: the primary of a pair
+      if (s.hip == p.hip && s.component <= 1) {
+        found = &s;
+        break;
+      }  // component 1: the primary of a pair
     ASSERT_NE(found, nullptr);
     EXPECT_LT(separation_rad(found->ra_rad, found->dec_rad, p.ra_rad, p.dec_rad) / kArcsec, 0.5);
     EXPECT_NEAR(found->pm_ra_cosdec_mas_yr, p.pm_ra_cosdec, 3.0);
@@ -162,7 +167,8 @@ struct Writer {
   }
   std::filesystem::path save(const std::string& name) const {
     const auto path = std::filesystem::temp_directory_path() / ("zenith_astro_" + name);
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     return path;
   }
 };
@@ -171,9 +177,9 @@ TEST(StarCatalogueFile, ZoneCentreAxesMagnitudeAndColour) {
   Writer w;
   w.header(0, 0, -2000, 12800, 256);
   for (int z = 0; z < 20; ++z) w.u32(z == 7 ? 3 : 0);
-  w.star1(42, 0, 0, 0, 16, 10, 0, 0, 1234);                // at the zone's centre: V = −2 + 10·0.05 = −1.5
+  w.star1(42, 0, 0, 0, 16, 10, 0, 0, 1234);                   // at the zone's centre: V = −2 + 10·0.05 = −1.5
   w.star1(43, 2, 1000000000, -500000000, 127, 255, 0, 0, 0);  // off centre; B−V 3.5, V = 10.75 (beyond a 7 limit)
-  w.star1(0, 0, -2000000000, 0, 0, 160, 10000, 0, 0);     // V = 6.0; 1 ″/yr along axis 0
+  w.star1(0, 0, -2000000000, 0, 0, 160, 10000, 0, 0);         // V = 6.0; 1 ″/yr along axis 0
   const auto path = w.save("edge.cat");
   const auto stars = read_catalogue_file(path, 7.0);
   ASSERT_EQ(stars.size(), 2u);

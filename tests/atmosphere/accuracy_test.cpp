@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <iostream>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <utility>
 
@@ -129,7 +129,7 @@ Agreement compare(const std::string& preset, const std::string& fixture_name, bo
 // 0.111 / 0.29, limb 0.083 / 0.19. Paper-size tables with 8 orders: 0.002 to
 // 0.03 (docs/lookup-tables.md, "ν slices in azimuth").
 struct AccuracyCase {
-  const char* name;     ///< test name
+  const char* name;  ///< test name
   const char* preset;
   const char* fixture;  ///< tests/data/reference_<fixture>.csv
   double max_rms, max_max;
@@ -176,7 +176,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(AccuracyCase{"EarthNoon", "earth-advanced", "earth-advanced_noon", 0.068, 0.13, true},
                       AccuracyCase{"EarthLowSun", "earth-advanced", "earth-advanced_low_sun", 0.052, 0.12, true},
                       AccuracyCase{"EarthTwilight", "earth-advanced", "earth-advanced_twilight", 0.123, 0.33, true},
-                      AccuracyCase{"EarthLimbFromOrbit", "earth-advanced", "earth-advanced_orbit_limb", 0.37, 0.86, true},
+                      AccuracyCase{"EarthLimbFromOrbit", "earth-advanced", "earth-advanced_orbit_limb", 0.37, 0.86,
+                                   true},
                       AccuracyCase{"MarsNoon", "mars", "mars_noon", 0.019, 0.04, true},
                       AccuracyCase{"MarsLowSun", "mars", "mars_low_sun", 0.015, 0.042, true},
                       AccuracyCase{"MarsTwilight", "mars", "mars_twilight", 0.032, 0.113, true},
@@ -230,8 +231,10 @@ TEST(HorizonContinuity, NoArtifactAtTheHorizonForAnyPreset) {
         std::vector<Spectrum> values;
         const double step = 0.05;
         for (int k = 40; k >= 1; --k)  // from 2° above the horizon to 0.05° above it
-          values.push_back(t.queries->sky_radiance(observer, direction_from_angles((horizon_deg - k * step) * kPi / 180.0, kPi / 2), sun));
-        values.push_back(t.queries->sky_radiance(observer, direction_from_angles((horizon_deg - 1e-6 * 180.0 / kPi) * kPi / 180.0, kPi / 2), sun));
+          values.push_back(t.queries->sky_radiance(
+              observer, direction_from_angles((horizon_deg - k * step) * kPi / 180.0, kPi / 2), sun));
+        values.push_back(t.queries->sky_radiance(
+            observer, direction_from_angles((horizon_deg - 1e-6 * 180.0 / kPi) * kPi / 180.0, kPi / 2), sun));
         for (std::size_t c = 0; c < t.model.wavelength_count(); ++c) {
           double max_step = 0.0;
           for (std::size_t k = 1; k + 3 < values.size(); ++k)
@@ -247,7 +250,6 @@ TEST(HorizonContinuity, NoArtifactAtTheHorizonForAnyPreset) {
     }
   }
 }
-
 
 // ---- night side: the sun-angle range of the scattering tables (parameterization.h, μs_min)
 
@@ -294,7 +296,8 @@ void expect_dark(const std::string& preset, const std::string& what, const Vec3&
       std::cout << preset << " " << what << ": single scattering tables " << q.single[c] << ", exact " << e
                 << ", all orders (tables) " << q.all[c] << " sr^-1 at " << t.model.wavelengths_nm[c] << " nm\n";
     EXPECT_LT(e, 1e-6) << preset << " " << what << ": the geometry should be dark";
-    EXPECT_LT(std::abs(q.single[c] - e), single_bound_sr) << preset << " " << what << " at " << t.model.wavelengths_nm[c];
+    EXPECT_LT(std::abs(q.single[c] - e), single_bound_sr)
+        << preset << " " << what << " at " << t.model.wavelengths_nm[c];
     EXPECT_LT(q.all[c], all_bound_sr) << preset << " " << what << " at " << t.model.wavelengths_nm[c];
   }
 }

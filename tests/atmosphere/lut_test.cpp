@@ -1,12 +1,12 @@
 // Lookup tables: parameterization, CPU precompute, queries and the cache.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <unistd.h>
 
 #include "atmosphere/constants.h"
 #include "atmosphere/lut/cpu_precompute.h"
@@ -49,16 +49,16 @@ TEST(Parameterization, ScatteringTexelCentresMapBackToThemselves) {
     for (std::size_t y = 0; y < s.scattering_mu; ++y)
       for (std::size_t x = 0; x < s.scattering_mu_s; ++x) {  // ν index 0 (ν clamped, so skip ν)
         for (AngleMapping mapping : {AngleMapping::Distance, AngleMapping::Blended}) {
-        const ScatteringCoordinates c = scattering_texel_coordinates(g, s, x, y, z, mapping);
-        const ScatteringUVWZ uv = scattering_uvwz(g, s, c.r_m, c.mu, c.mu_s, c.nu, c.ray_hits_ground, mapping);
-        EXPECT_NEAR(uv.u_r, (z + 0.5) / s.scattering_r, 1e-9);
-        // At the ground (z = 0) every downward ray has length 0: that half is degenerate.
-        if (z > 0 || !c.ray_hits_ground) {
-          // (1e-6: the tangent ray, y = 0, is ill-conditioned: d depends on √disc with disc → 0.)
-          EXPECT_NEAR(uv.u_mu, (y + 0.5) / s.scattering_mu, 1e-6) << z << " " << y;
-        }
-        EXPECT_NEAR(uv.u_mu_s, (x + 0.5) / s.scattering_mu_s, 1e-9);
-        EXPECT_EQ(c.ray_hits_ground, y < s.scattering_mu / 2);
+          const ScatteringCoordinates c = scattering_texel_coordinates(g, s, x, y, z, mapping);
+          const ScatteringUVWZ uv = scattering_uvwz(g, s, c.r_m, c.mu, c.mu_s, c.nu, c.ray_hits_ground, mapping);
+          EXPECT_NEAR(uv.u_r, (z + 0.5) / s.scattering_r, 1e-9);
+          // At the ground (z = 0) every downward ray has length 0: that half is degenerate.
+          if (z > 0 || !c.ray_hits_ground) {
+            // (1e-6: the tangent ray, y = 0, is ill-conditioned: d depends on √disc with disc → 0.)
+            EXPECT_NEAR(uv.u_mu, (y + 0.5) / s.scattering_mu, 1e-6) << z << " " << y;
+          }
+          EXPECT_NEAR(uv.u_mu_s, (x + 0.5) / s.scattering_mu_s, 1e-9);
+          EXPECT_EQ(c.ray_hits_ground, y < s.scattering_mu / 2);
         }
       }
 }
@@ -69,9 +69,9 @@ TEST(Parameterization, SunAngleRangeDerivesFromTheRadii) {
     const char* preset;
     double min_sun_cosine, min_sun_zenith_deg;
   };
-  for (const Expected& e : {Expected{"earth-standard", -0.5039, 120.26}, Expected{"earth-advanced", -0.5039, 120.26},
-                            Expected{"mars", -0.6593, 131.25}, Expected{"halcyon", -0.3773, 112.16},
-                            Expected{"titan", -1.0, 180.0}}) {
+  for (const Expected& e :
+       {Expected{"earth-standard", -0.5039, 120.26}, Expected{"earth-advanced", -0.5039, 120.26},
+        Expected{"mars", -0.6593, 131.25}, Expected{"halcyon", -0.3773, 112.16}, Expected{"titan", -1.0, 180.0}}) {
     const AtmosphereModel m = load_preset(e.preset).model;
     const ShellGeometry g{m.ground_radius_m, m.top_radius_m};
     const double alpha = std::acos(m.ground_radius_m / m.top_radius_m);

@@ -27,8 +27,9 @@ TEST(Mie, TurbidityScatteringClosedForm) {
   EXPECT_NEAR(expected, 1.0641e-4, 0.0001e-4);
   EXPECT_EQ(mie_scattering_from_turbidity(550.0, 1.0, 4.0, 0.0092), 0.0);  // T = 1: no aerosol
   // ν = 3 gives a λ^-1 law.
-  EXPECT_NEAR(mie_scattering_from_turbidity(400.0, 3.0, 3.0, 0.01) / mie_scattering_from_turbidity(800.0, 3.0, 3.0, 0.01),
-              2.0, 1e-12);
+  EXPECT_NEAR(
+      mie_scattering_from_turbidity(400.0, 3.0, 3.0, 0.01) / mie_scattering_from_turbidity(800.0, 3.0, 3.0, 0.01), 2.0,
+      1e-12);
 }
 
 TEST(Mie, AnomalousDiffractionMatchesPrintedFormula) {

@@ -29,7 +29,8 @@ TEST(NamedInputs, TableSizeSetsByName) {
 
 TEST(NamedInputs, AnAtmosphereByPresetNameOrByFile) {
   const LoadedAtmosphere preset = load_atmosphere_argument("mars");
-  const LoadedAtmosphere file = load_atmosphere_argument(std::string(ZENITH_SOURCE_DIR) + "/configs/atmospheres/mars.json");
+  const LoadedAtmosphere file =
+      load_atmosphere_argument(std::string(ZENITH_SOURCE_DIR) + "/configs/atmospheres/mars.json");
   EXPECT_EQ(preset.model.ground_radius_m, file.model.ground_radius_m);
   EXPECT_EQ(preset.model.rayleigh_scattering_m1, file.model.rayleigh_scattering_m1);
   EXPECT_NE(preset.model.ground_radius_m, load_atmosphere_argument("earth-standard").model.ground_radius_m);

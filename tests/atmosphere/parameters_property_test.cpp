@@ -5,9 +5,9 @@
 #include <cmath>
 #include <random>
 
-#include "core/json_reader.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/parameters.h"
+#include "core/json_reader.h"
 
 namespace zenith::atmosphere {
 namespace {
@@ -51,24 +51,30 @@ json random_advanced(Random& r) {
             {"air_mass", "geometric"}};
   if (r.integer(0, 1)) {
     const double k = r.log_uniform(1e-6, 1.0);
-    j["aerosol"] = {
-        {"scale_height_m", r.log_uniform(100.0, 1e5)},
-        {"scattering", {{"turbidity", r.uniform(1.0, 10.0)}, {"junge_exponent", r.uniform(2.0, 6.0)}, {"K", r.log_uniform(1e-8, 1e-5)}}},
-        {"extinction",
-         {{"anomalous_diffraction",
-           {{"mean_radius_m", r.log_uniform(1e-7, 1e-5)},
-            {"refractive_index_real", r.uniform(1.2, 2.0)},
-            {"refractive_index_imag", k},
-            {"number_density_m3", r.log_uniform(1e7, 1e10)}}}}},
-        {"phase",
-         {{"model", "double_henyey_greenstein"},
-          {"g1", r.spectral(0.0, 0.95)},
-          {"g2", r.spectral(-0.95, 0.0)},
-          {"alpha", r.spectral(0.0, 1.0)}}}};
+    j["aerosol"] = {{"scale_height_m", r.log_uniform(100.0, 1e5)},
+                    {"scattering",
+                     {{"turbidity", r.uniform(1.0, 10.0)},
+                      {"junge_exponent", r.uniform(2.0, 6.0)},
+                      {"K", r.log_uniform(1e-8, 1e-5)}}},
+                    {"extinction",
+                     {{"anomalous_diffraction",
+                       {{"mean_radius_m", r.log_uniform(1e-7, 1e-5)},
+                        {"refractive_index_real", r.uniform(1.2, 2.0)},
+                        {"refractive_index_imag", k},
+                        {"number_density_m3", r.log_uniform(1e7, 1e10)}}}}},
+                    {"phase",
+                     {{"model", "double_henyey_greenstein"},
+                      {"g1", r.spectral(0.0, 0.95)},
+                      {"g2", r.spectral(-0.95, 0.0)},
+                      {"alpha", r.spectral(0.0, 1.0)}}}};
   }
-  if (r.integer(0, 1)) j["ozone"] = {{"profile", "us_standard_1976"}, {"cross_sections", "bogumil2003"},
-                                     {"temperature_K", r.uniform(233.0, 293.0)}, {"column_DU", r.uniform(0.0, 600.0)}};
-  if (r.integer(0, 1)) j["oxygen"] = {{"cross_section_m2", r.spectral(0.0, 1e-27)}, {"volume_fraction", r.uniform(0.0, 1.0)}};
+  if (r.integer(0, 1))
+    j["ozone"] = {{"profile", "us_standard_1976"},
+                  {"cross_sections", "bogumil2003"},
+                  {"temperature_K", r.uniform(233.0, 293.0)},
+                  {"column_DU", r.uniform(0.0, 600.0)}};
+  if (r.integer(0, 1))
+    j["oxygen"] = {{"cross_section_m2", r.spectral(0.0, 1e-27)}, {"volume_fraction", r.uniform(0.0, 1.0)}};
   return j;
 }
 

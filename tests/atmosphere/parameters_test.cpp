@@ -4,9 +4,9 @@
 
 #include <fstream>
 
-#include "core/json_reader.h"
 #include "atmosphere/mie.h"
 #include "atmosphere/model_hash.h"
+#include "core/json_reader.h"
 
 namespace zenith::atmosphere {
 namespace {
@@ -27,7 +27,8 @@ TEST(Presets, AllLoadAndAreConsistent) {
 
 TEST(Presets, PresetFilesOnDiskMatchTheEmbeddedOnes) {
   for (const auto& name : preset_names()) {
-    const auto from_file = load_atmosphere_file(std::string(ZENITH_SOURCE_DIR) + "/configs/atmospheres/" + name + ".json");
+    const auto from_file =
+        load_atmosphere_file(std::string(ZENITH_SOURCE_DIR) + "/configs/atmospheres/" + name + ".json");
     EXPECT_EQ(lookup_table_hash(from_file.model), lookup_table_hash(load_preset(name).model)) << name;
   }
 }
@@ -70,7 +71,8 @@ TEST(Parameters, WavelengthOverrideResamplesEverything) {
   o.wavelengths_nm = std::vector<double>{400, 450, 500, 550, 600, 650, 700};
   const LoadedAtmosphere a = load_preset("earth-advanced", o);
   EXPECT_EQ(a.model.wavelength_count(), 7u);
-  for (std::size_t i = 1; i < 7; ++i) EXPECT_LT(a.model.rayleigh_scattering_m1[i], a.model.rayleigh_scattering_m1[i - 1]);
+  for (std::size_t i = 1; i < 7; ++i)
+    EXPECT_LT(a.model.rayleigh_scattering_m1[i], a.model.rayleigh_scattering_m1[i - 1]);
   // K is given at 440..680 nm only: 400 and 700 nm use the nearest sample, with a warning.
   EXPECT_FALSE(a.warnings.empty());
   EXPECT_NO_THROW(a.model.check());
@@ -107,7 +109,8 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, MalformedAtmosphere,
     ::testing::Values(
         BadCase{"unknown key", R"({"gass": 1})", "/gass", "unknown key"},
-        BadCase{"unknown nested key", R"({"aerosol": {"scale_hieght_m": 1}})", "/aerosol/scale_hieght_m", "unknown key"},
+        BadCase{"unknown nested key", R"({"aerosol": {"scale_hieght_m": 1}})", "/aerosol/scale_hieght_m",
+                "unknown key"},
         BadCase{"missing key", R"({"gas": {"depolarization": null}})", "/gas/depolarization", "missing"},
         BadCase{"missing planet", R"({"planet": null})", "/planet", "missing"},
         BadCase{"negative scale height", R"({"aerosol": {"scale_height_m": -5}})", "/aerosol/scale_height_m",
@@ -149,7 +152,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "/gas/temperature_K", "missing"}),
     [](const auto& test_info) {
       std::string n = test_info.param.what;
-      for (char& ch : n) if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      for (char& ch : n)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return n;
     });
 

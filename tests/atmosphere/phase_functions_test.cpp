@@ -41,12 +41,15 @@ TEST(PhaseFunctions, HenyeyGreensteinIsNormalizedWithMeanCosineG) {
 TEST(PhaseFunctions, DoubleHenyeyGreensteinIsNormalized) {
   // The printed eq. (16) uses (1 + g1²) in both numerators and would integrate to
   // (1+g1²)/(1−g1²) weighted terms; the corrected form integrates to one.
-  struct Case { double g1, g2, alpha; };
+  struct Case {
+    double g1, g2, alpha;
+  };
   for (Case c : {Case{0.85, 0.0, 1.0}, Case{0.72, -0.3, 0.93}, Case{0.03, 0.094, 0.743}, Case{0.4, 0.89, 0.04}}) {
     EXPECT_NEAR(integrate_over_sphere([&](double mu) { return double_henyey_greenstein(mu, c.g1, c.g2, c.alpha); }),
                 1.0, 1e-9);
-    EXPECT_NEAR(integrate_over_sphere([&](double mu) { return mu * double_henyey_greenstein(mu, c.g1, c.g2, c.alpha); }),
-                c.alpha * c.g1 + (1.0 - c.alpha) * c.g2, 1e-9);
+    EXPECT_NEAR(
+        integrate_over_sphere([&](double mu) { return mu * double_henyey_greenstein(mu, c.g1, c.g2, c.alpha); }),
+        c.alpha * c.g1 + (1.0 - c.alpha) * c.g2, 1e-9);
   }
   // α = 1 is a single HG lobe; the second lobe must not depend on g1.
   EXPECT_DOUBLE_EQ(double_henyey_greenstein(0.2, 0.6, -0.4, 1.0), henyey_greenstein(0.2, 0.6));

@@ -19,10 +19,9 @@ TEST(Rayleigh, StandardAirIndexMatchesPenndorfTable) {
   // Penndorf (1957) standard air; Table 1 of the paper prints 1.00027598 and
   // 1.00027783 at 680 and 550 nm. Its 440 nm entry, 1.00028276, is the index at
   // 400 nm (a slip, docs/physics.md); at 440 nm it is 1.00028091.
-  test::expect_published_values(standard_air_refractive_index, {{680.0, 1.00027598, 5e-9},
-                                                                 {550.0, 1.00027783, 5e-9},
-                                                                 {440.0, 1.00028091, 5e-9},
-                                                                 {400.0, 1.00028276, 5e-9}});
+  test::expect_published_values(
+      standard_air_refractive_index,
+      {{680.0, 1.00027598, 5e-9}, {550.0, 1.00027783, 5e-9}, {440.0, 1.00028091, 5e-9}, {400.0, 1.00028276, 5e-9}});
 }
 
 TEST(Rayleigh, ScatteringCoefficientOfStandardAir) {
@@ -32,9 +31,10 @@ TEST(Rayleigh, ScatteringCoefficientOfStandardAir) {
   EXPECT_NEAR(rayleigh_scattering_coefficient(550.0, 1.00027783, N, delta), 11.483e-6, 0.005e-6);
   EXPECT_NEAR(rayleigh_scattering_coefficient(440.0, 1.00028091, N, delta), 28.66e-6, 0.01e-6);
   for (double wl : {680.0, 550.0, 440.0})
-    EXPECT_NEAR(rayleigh_scattering_coefficient(wl, standard_air_refractive_index(wl), N, delta),
-                rayleigh_scattering_coefficient(wl, std::round(standard_air_refractive_index(wl) * 1e8) / 1e8, N, delta),
-                0.001e-6);
+    EXPECT_NEAR(
+        rayleigh_scattering_coefficient(wl, standard_air_refractive_index(wl), N, delta),
+        rayleigh_scattering_coefficient(wl, std::round(standard_air_refractive_index(wl) * 1e8) / 1e8, N, delta),
+        0.001e-6);
 }
 
 TEST(Rayleigh, ScatteringFollowsInverseFourthPowerAtFixedIndex) {

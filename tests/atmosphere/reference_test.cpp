@@ -66,8 +66,8 @@ TEST(ReferenceQuadrature, GaussKronrodIsExactForPolynomialsAndG7UpToDegree13) {
     QuadratureOptions loose;
     loose.relative_tolerance = 1.0;  // one panel, no bisection
     const std::vector<double> ends = {0.0, 1.0};
-    const QuadratureResult r = integrate_adaptive(
-        [k](double x, std::span<double> v) { v[0] = std::pow(x, k); }, ends, 1, loose);
+    const QuadratureResult r =
+        integrate_adaptive([k](double x, std::span<double> v) { v[0] = std::pow(x, k); }, ends, 1, loose);
     EXPECT_EQ(r.evaluations, 15u);
     EXPECT_NEAR(r.integral[0], 1.0 / (k + 1), 1e-15) << "degree " << k;
     if (k <= 13) {
@@ -107,8 +107,8 @@ TEST(ReferenceGeometry, RadiusCosineFormsAgreeWithTheRay) {
       ASSERT_TRUE(interval.intersects);
       EXPECT_EQ(interval.begin_t_m, 0.0);
       EXPECT_EQ(interval.ends_on_ground, ray_hits_ground(r, mu, R)) << altitude << " " << mu;
-      const double expected = interval.ends_on_ground ? distance_to_ground_m(r, mu, R)
-                                                      : distance_to_top_of_atmosphere_m(r, mu, top);
+      const double expected =
+          interval.ends_on_ground ? distance_to_ground_m(r, mu, R) : distance_to_top_of_atmosphere_m(r, mu, top);
       EXPECT_NEAR(interval.end_t_m, expected, 1e-9 * expected + 1e-9) << altitude << " " << mu;
     }
   }
@@ -211,8 +211,8 @@ TEST(ReferenceMedium, EqualsTheModelsExtinction) {
       EXPECT_DOUBLE_EQ(medium.extinction_m1(h, i), expected[i]) << h;
       EXPECT_DOUBLE_EQ(local[i].extinction_m1, expected[i]) << h;
       EXPECT_DOUBLE_EQ(medium.coefficients(h, i).extinction_m1, expected[i]) << h;
-      EXPECT_DOUBLE_EQ(local[i].scattering_m1(), m.rayleigh_scattering_m1[i] * m.rayleigh_density(h) +
-                                                     m.mie_scattering_m1[i] * m.mie_density(h));
+      EXPECT_DOUBLE_EQ(local[i].scattering_m1(),
+                       m.rayleigh_scattering_m1[i] * m.rayleigh_density(h) + m.mie_scattering_m1[i] * m.mie_density(h));
     }
   }
 }
@@ -340,7 +340,8 @@ TEST(ReferenceSampling, PhaseSamplersInvertTheirCumulativeDistributions) {
   }
   const AtmosphereModel mars = preset("mars");  // double Henyey–Greenstein
   for (std::size_t i = 0; i < mars.wavelength_count(); ++i)
-    EXPECT_NEAR(test::integrate_over_sphere([&](double c) { return mie_proposal_pdf(mars.mie_phase, i, c); }), 1.0, 1e-9);
+    EXPECT_NEAR(test::integrate_over_sphere([&](double c) { return mie_proposal_pdf(mars.mie_phase, i, c); }), 1.0,
+                1e-9);
 }
 
 TEST(ReferenceSampling, ScatteringWeightsReproduceThePhaseFunctionsAngularMoments) {
@@ -371,8 +372,7 @@ TEST(ReferenceSampling, ScatteringWeightsReproduceThePhaseFunctionsAngularMoment
       }
       for (int f = 0; f < 4; ++f) {
         const double mean = sum[f] / n, error = std::sqrt((sum_sq[f] / n - mean * mean) / (n - 1));
-        const double exact =
-            test::integrate_over_sphere([&](double nu) { return phase(nu) * moments[f](nu); }, 20000);
+        const double exact = test::integrate_over_sphere([&](double nu) { return phase(nu) * moments[f](nu); }, 20000);
         EXPECT_NEAR(mean, exact, 4.0 * error + 1e-12) << m.name << " " << m.wavelengths_nm[i] << " moment " << f;
         EXPECT_LT(error, 0.005);  // |f| ≤ 1 and ∫P ≈ 1: absolute precision
       }
@@ -561,7 +561,8 @@ TEST(ReferencePathTracer, DistantObserverMatchesAnObserverAboveTheAtmosphere) {
   const SunDisc sun{normalize(Vec3{1.0, 0.3, 0.2})};
   const Vec3 far_observer = 40.0 * kAstronomicalUnit_m * normalize(Vec3{0.6, -0.8, 0.1});
   const Vec3 view = normalize(Vec3{m.ground_radius_m, 0.0, 0.0} - far_observer);
-  const Vec3 near_observer = Ray(far_observer, view).point_at(Ray(far_observer, view).perigee_t_m() - m.top_radius_m - 1e3);
+  const Vec3 near_observer =
+      Ray(far_observer, view).point_at(Ray(far_observer, view).perigee_t_m() - m.top_radius_m - 1e3);
   const RadianceEstimate far = path_traced_radiance(m, far_observer, view, sun, options(4000));
   const RadianceEstimate near = path_traced_radiance(m, near_observer, view, sun, options(4000));
   for (std::size_t i = 0; i < m.wavelength_count(); ++i) {
@@ -576,7 +577,8 @@ TEST(ReferencePathTracer, ScatteringOrdersAddUpMonotonicallyAndConverge) {
   const Vec3 view = direction_from_angles(degrees(75.0), 2.0);
   std::vector<Spectrum> partial;  // L(order ≤ k), same sample streams, so sample-wise increasing
   const std::vector<int> orders = {1, 2, 3, 4, 8, 1000};
-  for (int k : orders) partial.push_back(path_traced_radiance(m, above_ground(m, 1.0), view, sun, options(6000, k)).mean);
+  for (int k : orders)
+    partial.push_back(path_traced_radiance(m, above_ground(m, 1.0), view, sun, options(6000, k)).mean);
   for (std::size_t i = 0; i < m.wavelength_count(); ++i) {
     for (std::size_t k = 1; k < orders.size(); ++k) EXPECT_LE(partial[k - 1][i], partial[k][i] * (1.0 + 1e-12));
     const double second = partial[1][i] - partial[0][i], third = partial[2][i] - partial[1][i],
@@ -626,22 +628,24 @@ TEST(ReferencePathTracer, EnergyIsConservedWithoutAbsorption) {
   s.seed = 5;
   s.thread_count = 2;
   std::atomic<std::size_t> violations{0};
-  const SampleMoments scattered = run_parallel_estimator(s, [&](std::size_t i, std::size_t, Pcg32& rng,
-                                                                std::span<double> value) {
-    // Uniform point on the top sphere (normal n), cosine-weighted outgoing direction ω;
-    // the radiance leaving along ω is what an observer there sees looking along −ω.
-    const double z = 2.0 * rng.uniform() - 1.0, phi = 2.0 * kPi * rng.uniform();
-    const double rho = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const Vec3 normal{rho * std::cos(phi), rho * std::sin(phi), z};
-    const double u1 = rng.uniform(), u2 = rng.uniform();
-    const double radius = std::sqrt(u1), azimuth = 2.0 * kPi * u2;
-    const Vec3 t1 = normalize(std::abs(normal.x) < 0.9 ? cross(normal, {1.0, 0.0, 0.0}) : cross(normal, {0.0, 1.0, 0.0}));
-    const Vec3 t2 = cross(normal, t1);
-    const Vec3 out = radius * std::cos(azimuth) * t1 + radius * std::sin(azimuth) * t2 + std::sqrt(1.0 - u1) * normal;
-    std::size_t local = 0;
-    value[0] = 4.0 * kPi * integrator.radiance(Ray(top * normal, -out), i, rng, local);  // P_out / (π R_top²)
-    if (local) violations += local;
-  });
+  const SampleMoments scattered =
+      run_parallel_estimator(s, [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> value) {
+        // Uniform point on the top sphere (normal n), cosine-weighted outgoing direction ω;
+        // the radiance leaving along ω is what an observer there sees looking along −ω.
+        const double z = 2.0 * rng.uniform() - 1.0, phi = 2.0 * kPi * rng.uniform();
+        const double rho = std::sqrt(std::max(0.0, 1.0 - z * z));
+        const Vec3 normal{rho * std::cos(phi), rho * std::sin(phi), z};
+        const double u1 = rng.uniform(), u2 = rng.uniform();
+        const double radius = std::sqrt(u1), azimuth = 2.0 * kPi * u2;
+        const Vec3 t1 =
+            normalize(std::abs(normal.x) < 0.9 ? cross(normal, {1.0, 0.0, 0.0}) : cross(normal, {0.0, 1.0, 0.0}));
+        const Vec3 t2 = cross(normal, t1);
+        const Vec3 out =
+            radius * std::cos(azimuth) * t1 + radius * std::sin(azimuth) * t2 + std::sqrt(1.0 - u1) * normal;
+        std::size_t local = 0;
+        value[0] = 4.0 * kPi * integrator.radiance(Ray(top * normal, -out), i, rng, local);  // P_out / (π R_top²)
+        if (local) violations += local;
+      });
   EXPECT_EQ(violations.load(), 0u);
 
   // Unscattered fraction: (1/π R_top²) ∫ 2π b T(b) db, T along the full chord at impact parameter b.
@@ -655,9 +659,8 @@ TEST(ReferencePathTracer, EnergyIsConservedWithoutAbsorption) {
       breakpoints, 1, QuadratureOptions{1e-8, 0.0, 400});
   const double total = scattered.mean[0] + direct.integral[0];
   EXPECT_GT(scattered.mean[0], 0.3);  // a good part is scattered (the ground alone returns ≈ half)
-  EXPECT_NEAR(total, 1.0, 3.0 * scattered.standard_error[0]) << "scattered " << scattered.mean[0] << " ± "
-                                                              << scattered.standard_error[0] << ", direct "
-                                                              << direct.integral[0];
+  EXPECT_NEAR(total, 1.0, 3.0 * scattered.standard_error[0])
+      << "scattered " << scattered.mean[0] << " ± " << scattered.standard_error[0] << ", direct " << direct.integral[0];
   EXPECT_LT(scattered.standard_error[0], 0.006);
 }
 

@@ -13,9 +13,9 @@
 
 #include "atmosphere/constants.h"
 #include "atmosphere/lut/cpu_precompute.h"
-#include "atmosphere/parameters.h"
 #include "atmosphere/lut/gauss_legendre.h"
 #include "atmosphere/lut/spherical_harmonics.h"
+#include "atmosphere/parameters.h"
 #include "atmosphere/phase_functions.h"
 
 namespace zenith::atmosphere::lut {

@@ -30,7 +30,8 @@ struct PublishedValue {
 };
 
 /// Expects `f` to reproduce every one of `values` (a table of a paper or a standard).
-inline void expect_published_values(const std::function<double(double)>& f, std::initializer_list<PublishedValue> values) {
+inline void expect_published_values(const std::function<double(double)>& f,
+                                    std::initializer_list<PublishedValue> values) {
   for (const PublishedValue& v : values) EXPECT_NEAR(f(v.x), v.expected, v.tolerance) << "at " << v.x;
 }
 

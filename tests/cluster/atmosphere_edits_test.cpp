@@ -44,7 +44,8 @@ class AtmosphereEditsTest : public ::testing::Test {
 
 TEST_F(AtmosphereEditsTest, AChangeIsResolvedAtTheScenesWavelengthsAndMakesANewTableVersion) {
   ASSERT_EQ(edits_.bodies(), std::vector<std::string>{"Earth"});
-  const AtmosphereEdits::Edit edit = edits_.resolve(set("Earth", "/aerosol/scattering/turbidity", 3.0), earth_parameters());
+  const AtmosphereEdits::Edit edit =
+      edits_.resolve(set("Earth", "/aerosol/scattering/turbidity", 3.0), earth_parameters());
   EXPECT_EQ(edit.index, 0u);
   EXPECT_EQ(edit.body, "Earth");
   EXPECT_EQ(edit.change, "/aerosol/scattering/turbidity = 3.0");
@@ -63,8 +64,10 @@ TEST_F(AtmosphereEditsTest, BadValuesGetTheLoadersMessageNamingThePointerAndTheR
             "set Earth: /aerosol/scattering/turbidity = 100: must be in [1, 64]");
   EXPECT_NE(error_of(set("Earth", "/aerosol/scattering/turbidty", 3)).find("/aerosol/scattering/turbidty: unknown key"),
             std::string::npos);
-  EXPECT_NE(error_of(set("Earth", "/air_mass", "flat")).find("/air_mass = \"flat\": must be one of"), std::string::npos);
-  EXPECT_NE(error_of(set("Mars", "/air_mass", "geometric")).find("no body of that name with an atmosphere (bodies with one: 'Earth')"),
+  EXPECT_NE(error_of(set("Earth", "/air_mass", "flat")).find("/air_mass = \"flat\": must be one of"),
+            std::string::npos);
+  EXPECT_NE(error_of(set("Mars", "/air_mass", "geometric"))
+                .find("no body of that name with an atmosphere (bodies with one: 'Earth')"),
             std::string::npos);
   EXPECT_NE(error_of(set("Earth", "/name/x", 1)).find("command: /pointer: /name/x"), std::string::npos);
   // Valid for the loader, but no longer Earth's radius.
@@ -75,7 +78,8 @@ TEST_F(AtmosphereEditsTest, BadValuesGetTheLoadersMessageNamingThePointerAndTheR
 // Issue 30, defect 6: the scene's wavelengths override the parameters' own,
 // so `set /wavelengths_nm/0 "banana"` was ignored and answered ok.
 TEST_F(AtmosphereEditsTest, TheWavelengthsAreTheScenesAndCannotBeSet) {
-  EXPECT_NE(error_of(set("Earth", "/wavelengths_nm/0", "banana")).find("set Earth: /wavelengths_nm/0 = \"banana\": the wavelengths are the scene's"),
+  EXPECT_NE(error_of(set("Earth", "/wavelengths_nm/0", "banana"))
+                .find("set Earth: /wavelengths_nm/0 = \"banana\": the wavelengths are the scene's"),
             std::string::npos)
       << error_of(set("Earth", "/wavelengths_nm/0", "banana"));
   EXPECT_NE(error_of(set("Earth", "/wavelengths_nm", json::array({440, 550}))).find("not a live parameter"),
@@ -143,8 +147,23 @@ TEST_F(AtmosphereEditsTest, MutatedSetsResolveOrFailCleanly) {
   std::vector<std::string> paths;
   pointers(earth_parameters(), "", paths);
   paths.insert(paths.end(), {"/aerosol/nope", "/-", "/planet/-", "/sources/-", "/sources/99", "/gas/phase/x"});
-  const std::vector<json> values = {nullptr, true, 0, -1, 1, 2.5, 64, 1e300, -1e300, "", "penndorf", "pickering",
-                                    json::array(), json::object(), json{1, 2}, json{{"680", 0.3}}, 1e-300};
+  const std::vector<json> values = {nullptr,
+                                    true,
+                                    0,
+                                    -1,
+                                    1,
+                                    2.5,
+                                    64,
+                                    1e300,
+                                    -1e300,
+                                    "",
+                                    "penndorf",
+                                    "pickering",
+                                    json::array(),
+                                    json::object(),
+                                    json{1, 2},
+                                    json{{"680", 0.3}},
+                                    1e-300};
   std::mt19937_64 rng(7);
   std::size_t accepted = 0;
   for (int i = 0; i < 3000; ++i) {

@@ -20,7 +20,8 @@ operator_command::Set set(const std::string& body, const std::string& pointer, j
 
 TEST(AtmosphereOverrides, ChangesApplyOnTopOfAnyShowVersionUntilCleared) {
   AtmosphereOverrides overrides;
-  const json show_a = {{"aerosol", {{"scattering", {{"turbidity", 2.0}}}, {"scale_height_m", 1200}}}, {"ozone", {{"x", 1}}}};
+  const json show_a = {{"aerosol", {{"scattering", {{"turbidity", 2.0}}}, {"scale_height_m", 1200}}},
+                       {"ozone", {{"x", 1}}}};
   json show_b = show_a;
   show_b["aerosol"]["scale_height_m"] = 900;  // the show's track moved on
   EXPECT_FALSE(overrides.active("Earth"));

@@ -20,9 +20,9 @@ TEST(ByteIo, WritesBigEndianRegardlessOfTheHost) {
   w.i64(-2);
   w.f64(1.0);
   w.f64(-0.0);
-  const Bytes expected = {0xAB, 0x12, 0x34, 0x89, 0xAB, 0xCD, 0xEF, 1,    2,    3,    4,    5,    6,    7,    8,
-                          0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFE, 0x3F, 0xF0, 0,    0,    0,    0,    0,
-                          0,    0x80, 0,    0,    0,    0,    0,    0,    0};
+  const Bytes expected = {0xAB, 0x12, 0x34, 0x89, 0xAB, 0xCD, 0xEF, 1,    2,    3,    4,    5,    6,
+                          7,    8,    0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFE, 0x3F, 0xF0, 0,
+                          0,    0,    0,    0,    0,    0x80, 0,    0,    0,    0,    0,    0,    0};
   EXPECT_EQ(out, expected);
 }
 
@@ -93,10 +93,10 @@ TEST(ByteIo, Utf8Validation) {
   EXPECT_TRUE(is_valid_utf8("\xE2\x82\xAC \xF0\x9F\x8C\x8D"));  // € 🌍
   EXPECT_FALSE(is_valid_utf8(std::string_view("a\0b", 3)));
   EXPECT_FALSE(is_valid_utf8("\x80"));
-  EXPECT_FALSE(is_valid_utf8("\xC3"));               // truncated
-  EXPECT_FALSE(is_valid_utf8("\xE0\x80\x80"));       // overlong
-  EXPECT_FALSE(is_valid_utf8("\xED\xA0\x80"));       // surrogate
-  EXPECT_FALSE(is_valid_utf8("\xF4\x90\x80\x80"));   // above U+10FFFF
+  EXPECT_FALSE(is_valid_utf8("\xC3"));              // truncated
+  EXPECT_FALSE(is_valid_utf8("\xE0\x80\x80"));      // overlong
+  EXPECT_FALSE(is_valid_utf8("\xED\xA0\x80"));      // surrogate
+  EXPECT_FALSE(is_valid_utf8("\xF4\x90\x80\x80"));  // above U+10FFFF
   EXPECT_FALSE(is_valid_utf8("\xFF"));
 }
 

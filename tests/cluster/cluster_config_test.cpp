@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/json_reader.h"
 #include "cluster/link/cluster_config.h"
+#include "core/json_reader.h"
 #include "warp/viewport_config.h"
 
 namespace zenith::cluster {
@@ -122,8 +122,9 @@ TEST(ClusterConfig, StandbyIsOptionalAndChecked) {
   EXPECT_NE(error_of(j).find("t.json: /standby/host = \"\": must be a host name or address"), std::string::npos)
       << error_of(j);
   j["standby"] = {{"host", "127.0.0.1"}, {"port", 47000}};
-  EXPECT_NE(error_of(j).find("t.json: /standby/port = 47000: the standby must listen on another address than the master"),
-            std::string::npos)
+  EXPECT_NE(
+      error_of(j).find("t.json: /standby/port = 47000: the standby must listen on another address than the master"),
+      std::string::npos)
       << error_of(j);
   j["standby"] = {{"host", "127.0.0.1"}, {"port", 47001}, {"weight", 2}};
   EXPECT_NE(error_of(j).find("/standby/weight"), std::string::npos) << error_of(j);

@@ -35,18 +35,18 @@
 #include <boost/beast/websocket.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cluster/master/osc_packet.h"
 #include "cluster/protocol/frame_decoder.h"
 #include "cluster/protocol/handshake.h"
-#include "cluster/master/osc_packet.h"
 #include "cluster/protocol/messages.h"
+#include "core/files.h"
 #include "core/process.h"
+#include "core/strings.h"
 #include "image/image_io.h"
 #include "image/tone_mapping.h"
 #include "test_support.h"
 #include "tests/cluster/http_client.h"
 #include "tests/cluster/webdriver.h"
-#include "core/files.h"
-#include "core/strings.h"
 
 namespace zenith::cluster {
 namespace {
@@ -137,8 +137,8 @@ class ClusterProcess : public ::testing::Test {
   }
 
   /// The cluster config: 3 nodes, small tables; `standby_port` > 0 adds a standby master on 127.0.0.1 there.
-  fs::path write_config(int frame_rate_hz, int barrier_timeout_ms = 20000, int heartbeat_ms = 200,
-                        int standby_port = 0, const std::string& file = "cluster.json") {
+  fs::path write_config(int frame_rate_hz, int barrier_timeout_ms = 20000, int heartbeat_ms = 200, int standby_port = 0,
+                        const std::string& file = "cluster.json") {
     std::ofstream v(dir_ / "quadrants.json");
     v << R"({"zenith_viewports": 1, "name": "q", "outputs": [)";
     const char* names[4] = {"top-left", "top-right", "bottom-left", "bottom-right"};
@@ -154,10 +154,13 @@ class ClusterProcess : public ::testing::Test {
     c << R"({"zenith_cluster": 1, "name": "test-dome", "master": {"host": "127.0.0.1", "port": )" << port_ << R"(},)"
       << (standby_port > 0 ? R"("standby": {"host": "127.0.0.1", "port": )" + std::to_string(standby_port) + "}," : "")
       << R"(
-      "scene": ")" << (kSource / "configs/scenes/earth-sunset.json").string() << R"(", "viewports": "quadrants.json",
-      "timing": {"heartbeat_ms": )" << heartbeat_ms << R"(, "barrier_timeout_ms": )" << barrier_timeout_ms
-      << R"(, "frame_rate_hz": )" << frame_rate_hz << R"(},
-      "secret": {"env": ")" << kSecretVar << R"("}, "tables": {"sizes": "small", "orders": 4},
+      "scene": ")"
+      << (kSource / "configs/scenes/earth-sunset.json").string() << R"(", "viewports": "quadrants.json",
+      "timing": {"heartbeat_ms": )"
+      << heartbeat_ms << R"(, "barrier_timeout_ms": )" << barrier_timeout_ms << R"(, "frame_rate_hz": )"
+      << frame_rate_hz << R"(},
+      "secret": {"env": ")"
+      << kSecretVar << R"("}, "tables": {"sizes": "small", "orders": 4},
       "nodes": [{"name": "a", "host": "127.0.0.1", "outputs": ["top-left", "top-right"]},
                 {"name": "b", "host": "127.0.0.1", "outputs": ["bottom-left"]},
                 {"name": "c", "host": "127.0.0.1", "outputs": ["bottom-right"]}],
@@ -168,8 +171,15 @@ class ClusterProcess : public ::testing::Test {
 
   Child start_master(const fs::path& config, std::uint64_t frames, int wait_for_nodes_ms = 120000,
                      const std::vector<std::string>& extra = {}) {
-    std::vector<std::string> args = {"master", "--cluster", config.string(), "--frames", std::to_string(frames),
-                                     "--cache", cache_.string(), "--wait-for-nodes-ms", std::to_string(wait_for_nodes_ms)};
+    std::vector<std::string> args = {"master",
+                                     "--cluster",
+                                     config.string(),
+                                     "--frames",
+                                     std::to_string(frames),
+                                     "--cache",
+                                     cache_.string(),
+                                     "--wait-for-nodes-ms",
+                                     std::to_string(wait_for_nodes_ms)};
     args.insert(args.end(), extra.begin(), extra.end());
     children_.push_back(spawn(args, dir_ / "master.log"));
     return children_.back();
@@ -182,9 +192,17 @@ class ClusterProcess : public ::testing::Test {
     return children_.back();
   }
   Child start_node(const fs::path& config, const std::string& name, const std::vector<std::string>& extra = {}) {
-    std::vector<std::string> args = {"node", "--cluster", config.string(), "--name", name, "--out",
-                                     (dir_ / "out").string(), "--cache", (dir_ / "node-cache" / name).string(),
-                                     "--connect-timeout-ms", "300000"};
+    std::vector<std::string> args = {"node",
+                                     "--cluster",
+                                     config.string(),
+                                     "--name",
+                                     name,
+                                     "--out",
+                                     (dir_ / "out").string(),
+                                     "--cache",
+                                     (dir_ / "node-cache" / name).string(),
+                                     "--connect-timeout-ms",
+                                     "300000"};
     args.insert(args.end(), extra.begin(), extra.end());
     children_.push_back(spawn(args, dir_ / (name + ".log")));
     return children_.back();
@@ -193,8 +211,13 @@ class ClusterProcess : public ::testing::Test {
   /// live at 2 fps, looping, with the operator console on `http` (and OSC on `osc`), and the three
   /// nodes rendering its scene.
   Child start_sunset_show(const fs::path& config, int http, std::optional<int> osc = std::nullopt) {
-    std::vector<std::string> args = {"--show", (kSource / "tests/data/shows/offline-sunset.json").string(), "--fps", "2",
-                                      "--loop", "--operator-port", std::to_string(http)};
+    std::vector<std::string> args = {"--show",
+                                     (kSource / "tests/data/shows/offline-sunset.json").string(),
+                                     "--fps",
+                                     "2",
+                                     "--loop",
+                                     "--operator-port",
+                                     std::to_string(http)};
     if (osc) args.insert(args.end(), {"--osc-port", std::to_string(*osc)});
     const Child master = start_master(config, 0, 120000, args);
     for (const char* n : {"a", "b", "c"})
@@ -204,12 +227,16 @@ class ClusterProcess : public ::testing::Test {
   /// Waits until node c presented a frame after `after_frame` (when given), quits the master
   /// through the operator console on `http`, and expects master and nodes to exit with status 0
   /// and every node to have presented the same frames in sync; node a's presented frames.
-  std::vector<Presented> quit_in_sync(int http, const Child& master, std::optional<std::uint64_t> after_frame = std::nullopt) {
+  std::vector<Presented> quit_in_sync(int http, const Child& master,
+                                      std::optional<std::uint64_t> after_frame = std::nullopt) {
     if (after_frame) {
-      EXPECT_TRUE(wait_until([&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > *after_frame; },
-                             120s)) << logs();
+      EXPECT_TRUE(wait_until(
+          [&] { return !presented(dir_ / "out/c").empty() && presented(dir_ / "out/c").back().frame > *after_frame; },
+          120s))
+          << logs();
     }
-    const test::HttpReply quit = test::http_request(http, boost::beast::http::verb::post, "/api/command", R"({"command": "quit"})");
+    const test::HttpReply quit =
+        test::http_request(http, boost::beast::http::verb::post, "/api/command", R"({"command": "quit"})");
     EXPECT_EQ(quit.status, 200) << quit.body;
     EXPECT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
     expect_nodes_exit_cleanly(master);
@@ -235,7 +262,8 @@ class ClusterProcess : public ::testing::Test {
   void expect_in_master_log(std::initializer_list<std::string> texts) const {
     const std::string master_log = read_text(dir_ / "master.log");
     for (const std::string& text : texts)
-      EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n" << master_log;
+      EXPECT_NE(master_log.find(text), std::string::npos) << "'" << text << "' not in the master's log:\n"
+                                                          << master_log;
   }
   std::string logs() const {
     std::string all;
@@ -277,7 +305,8 @@ int values_beyond_a_code_from_quadrant(const image::LinearImage& tile, const ima
 }
 
 /// Frames 0..n-1 in order, each once.
-void expect_contiguous(const std::vector<Presented>& p, std::uint64_t first, std::uint64_t last, const std::string& who) {
+void expect_contiguous(const std::vector<Presented>& p, std::uint64_t first, std::uint64_t last,
+                       const std::string& who) {
   ASSERT_EQ(p.size(), last - first + 1) << who;
   for (std::size_t i = 0; i < p.size(); ++i) EXPECT_EQ(p[i].frame, first + i) << who << " line " << i;
 }
@@ -315,10 +344,10 @@ TEST_F(ClusterProcess, ThreeNodesPresentEveryFrameAndStitchToASingleRender) {
 
   // The quadrants of frame 0 equal a single-process render of the whole dome master, bit for bit.
   const fs::path single = dir_ / "single.png";
-  const Child render = spawn({"render", "--scene", (kSource / "configs/scenes/earth-sunset.json").string(),
-                              "--projection", "fisheye", "--size", "128x128", "--tables", "small", "--orders", "4",
-                              "--cache", cache_.string(), "--out", single.string()},
-                             dir_ / "render.log");
+  const Child render = spawn(
+      {"render", "--scene", (kSource / "configs/scenes/earth-sunset.json").string(), "--projection", "fisheye",
+       "--size", "128x128", "--tables", "small", "--orders", "4", "--cache", cache_.string(), "--out", single.string()},
+      dir_ / "render.log");
   children_.push_back(render);
   ASSERT_EQ(wait_exit(render, 200s), std::optional<int>(0)) << read_text(dir_ / "render.log");
   const image::LinearImage whole = image::read_image(single);
@@ -386,8 +415,8 @@ TEST_F(ClusterProcess, NodesExitWithAClearMessageWhenTheMasterStaysGonePastTheRe
   const Child master = start_master(config, 0, 1000);
   const Child a = start_node(config, "a", {"--reconnect-s", "3"});
   const Child b = start_node(config, "b", {"--reconnect-s", "3"});
-  ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/b").size() >= 2 && presented(dir_ / "out/a").size() >= 2; },
-                         240s))
+  ASSERT_TRUE(
+      wait_until([&] { return presented(dir_ / "out/b").size() >= 2 && presented(dir_ / "out/a").size() >= 2; }, 240s))
       << logs();
   kill(master.pid, SIGKILL);
   const auto killed = Clock::now();
@@ -426,9 +455,12 @@ TEST_F(ClusterProcess, StalledNodeReconnectsAndRejoinsWhileTheOthersSkipNoFrame)
   ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/b").size() >= 3; }, 240s)) << logs();
   ASSERT_EQ(kill(b.pid, SIGSTOP), 0);
   const std::uint64_t last_before = presented(dir_ / "out/b").back().frame;
-  ASSERT_TRUE(wait_until([&] { return read_text(dir_ / "master.log").find("node 'b'") != std::string::npos &&
-                                      count_of(read_text(dir_ / "master.log"), "disconnected") >= 1; },
-                         60s))
+  ASSERT_TRUE(wait_until(
+      [&] {
+        return read_text(dir_ / "master.log").find("node 'b'") != std::string::npos &&
+               count_of(read_text(dir_ / "master.log"), "disconnected") >= 1;
+      },
+      60s))
       << logs();
   ASSERT_EQ(kill(b.pid, SIGCONT), 0);
   const auto resumed = Clock::now();
@@ -465,10 +497,13 @@ TEST_F(ClusterProcess, MasterRestartedOnTheSamePortGetsItsNodesBackWithTheirCach
   const fs::path config = write_config(10, 20000, 200);
   const Child master = start_master(config, 0);
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
-  ASSERT_TRUE(wait_until([&] {
-    return presented(dir_ / "out/a").size() >= 2 && presented(dir_ / "out/b").size() >= 2 &&
-           presented(dir_ / "out/c").size() >= 2;
-  }, 240s)) << logs();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        return presented(dir_ / "out/a").size() >= 2 && presented(dir_ / "out/b").size() >= 2 &&
+               presented(dir_ / "out/c").size() >= 2;
+      },
+      240s))
+      << logs();
   kill(master.pid, SIGKILL);
   ASSERT_EQ(wait_exit(master, 5s), std::optional<int>(128 + SIGKILL));
   std::this_thread::sleep_for(2s);  // the nodes knock on a closed port meanwhile
@@ -477,10 +512,13 @@ TEST_F(ClusterProcess, MasterRestartedOnTheSamePortGetsItsNodesBackWithTheirCach
   fs::rename(dir_ / "master.log", dir_ / "master-1.log");
   const auto restarted = Clock::now();
   const Child again = start_master(config, 0);
-  ASSERT_TRUE(wait_until([&] {
-    return presented(dir_ / "out/a").size() > before[0] && presented(dir_ / "out/b").size() > before[1] &&
-           presented(dir_ / "out/c").size() > before[2];
-  }, 120s)) << logs();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        return presented(dir_ / "out/a").size() > before[0] && presented(dir_ / "out/b").size() > before[1] &&
+               presented(dir_ / "out/c").size() > before[2];
+      },
+      120s))
+      << logs();
   std::printf("[ measured ] every node presented again %.2f s after the master restarted\n",
               std::chrono::duration<double>(Clock::now() - restarted).count());
   kill(again.pid, SIGTERM);
@@ -562,20 +600,26 @@ TEST_F(ClusterProcess, StandbyTakesOverWhenTheMasterIsKilledAndEveryNodePresents
     return presented(dir_ / "out/a").size() >= n && presented(dir_ / "out/b").size() >= n &&
            presented(dir_ / "out/c").size() >= n;
   };
-  ASSERT_TRUE(wait_until([&] {
-    return all_presented(15) && read_text(dir_ / "cluster.log").find("standby: the show runs") != std::string::npos;
-  }, 300s)) << logs();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        return all_presented(15) && read_text(dir_ / "cluster.log").find("standby: the show runs") != std::string::npos;
+      },
+      300s))
+      << logs();
   const pid_t master = launcher_master_pid(read_text(dir_ / "cluster.log"));
   ASSERT_GT(master, 0) << logs();
   ASSERT_EQ(kill(master, SIGKILL), 0);
   const auto killed = Clock::now();
   std::uint64_t at_kill[3];
   for (int i = 0; i < 3; ++i) at_kill[i] = presented(dir_ / "out" / std::string(1, "abc"[i])).back().frame;
-  ASSERT_TRUE(wait_until([&] {
-    for (int i = 0; i < 3; ++i)
-      if (presented(dir_ / "out" / std::string(1, "abc"[i])).back().frame <= at_kill[i] + 1) return false;
-    return true;
-  }, 60s)) << logs();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        for (int i = 0; i < 3; ++i)
+          if (presented(dir_ / "out" / std::string(1, "abc"[i])).back().frame <= at_kill[i] + 1) return false;
+        return true;
+      },
+      60s))
+      << logs();
   const double takeover_s = std::chrono::duration<double>(Clock::now() - killed).count();
   ASSERT_EQ(wait_exit(cluster, 300s), std::optional<int>(0)) << logs();
 
@@ -585,9 +629,10 @@ TEST_F(ClusterProcess, StandbyTakesOverWhenTheMasterIsKilledAndEveryNodePresents
   const auto lost_c = expect_show_goes_on(c, 99, 10.0, 1, "c");
   expect_same_states(a, b, "b");
   expect_same_states(a, c, "c");
-  std::printf("[ measured ] every node presented again %.2f s after kill -9 of the master (frames lost: a %zu, b %zu, "
-              "c %zu; none repeated)\n",
-              takeover_s, lost_a.size(), lost_b.size(), lost_c.size());
+  std::printf(
+      "[ measured ] every node presented again %.2f s after kill -9 of the master (frames lost: a %zu, b %zu, "
+      "c %zu; none repeated)\n",
+      takeover_s, lost_a.size(), lost_b.size(), lost_c.size());
   EXPECT_LT(takeover_s, 15.0);
 
   const std::string log = read_text(dir_ / "cluster.log");
@@ -617,22 +662,28 @@ TEST_F(ClusterProcess, StandbyKilledAndRestartedFollowsAgainWhileTheShowGoesOnTh
   const Child master = start_master(config, 0);
   Child standby = start_standby(config, 0);
   for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--debug-render-delay-ms", "250"});
-  ASSERT_TRUE(wait_until([&] {
-    return presented(dir_ / "out/c").size() >= 5 &&
-           read_text(dir_ / "standby.log").find("standby: the show runs") != std::string::npos;
-  }, 300s)) << logs();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        return presented(dir_ / "out/c").size() >= 5 &&
+               read_text(dir_ / "standby.log").find("standby: the show runs") != std::string::npos;
+      },
+      300s))
+      << logs();
   kill(standby.pid, SIGKILL);
   ASSERT_EQ(wait_exit(standby, 5s), std::optional<int>(128 + SIGKILL));
   const std::uint64_t standby_killed_at = presented(dir_ / "out/a").back().frame;
-  ASSERT_TRUE(wait_until([&] { return read_text(dir_ / "master.log").find("the standby (") != std::string::npos &&
-                                      read_text(dir_ / "master.log").find("disconnected") != std::string::npos; },
-                         30s))
+  ASSERT_TRUE(wait_until(
+      [&] {
+        return read_text(dir_ / "master.log").find("the standby (") != std::string::npos &&
+               read_text(dir_ / "master.log").find("disconnected") != std::string::npos;
+      },
+      30s))
       << logs();
   ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").back().frame >= standby_killed_at + 10; }, 60s))
       << logs();
   standby = start_standby(config, 0, "standby-2.log");
-  ASSERT_TRUE(wait_until([&] { return read_text(dir_ / "standby-2.log").find("standby: the show runs") != std::string::npos; },
-                         60s))
+  ASSERT_TRUE(wait_until(
+      [&] { return read_text(dir_ / "standby-2.log").find("standby: the show runs") != std::string::npos; }, 60s))
       << logs();
   const std::uint64_t restarted_at = presented(dir_ / "out/a").back().frame;
   ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/a").back().frame >= restarted_at + 5; }, 60s)) << logs();
@@ -661,13 +712,14 @@ TEST_F(ClusterProcess, StandbyKilledAndRestartedFollowsAgainWhileTheShowGoesOnTh
                 lost.empty() ? "none" : fmt::format("{}", fmt::join(lost, ", ")).c_str());
   }
   const std::string master_log = read_text(dir_ / "master.log");
-  EXPECT_EQ(count_of(master_log, "the standby master 'standby@127.0.0.1:" + std::to_string(standby_port_) +
-                                     "' authenticated"),
+  EXPECT_EQ(count_of(master_log,
+                     "the standby master 'standby@127.0.0.1:" + std::to_string(standby_port_) + "' authenticated"),
             2u)
       << master_log;
   const std::string second = read_text(dir_ / "standby-2.log");
   EXPECT_NE(second.find("master: taking over the show at frame"), std::string::npos) << second;
-  EXPECT_EQ(read_text(dir_ / "standby.log").find("master: taking over"), std::string::npos) << "the killed one never did";
+  EXPECT_EQ(read_text(dir_ / "standby.log").find("master: taking over"), std::string::npos)
+      << "the killed one never did";
 }
 
 TEST_F(ClusterProcess, StandbyTakesOverFromAStoppedMasterAfterTheSilenceLimit) {
@@ -681,9 +733,12 @@ TEST_F(ClusterProcess, StandbyTakesOverFromAStoppedMasterAfterTheSilenceLimit) {
   const Child master = start_master(config, 0);
   const Child standby = start_standby(config, 0);
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
-  ASSERT_TRUE(wait_until([&] {
-    return all_nodes_past(5) && read_text(dir_ / "standby.log").find("standby: the show runs") != std::string::npos;
-  }, 300s)) << logs();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        return all_nodes_past(5) && read_text(dir_ / "standby.log").find("standby: the show runs") != std::string::npos;
+      },
+      300s))
+      << logs();
   ASSERT_EQ(kill(master.pid, SIGSTOP), 0);
   const auto stopped = Clock::now();
   const std::uint64_t stopped_at = presented(dir_ / "out/a").back().frame;
@@ -704,9 +759,10 @@ TEST_F(ClusterProcess, StandbyTakesOverFromAStoppedMasterAfterTheSilenceLimit) {
     expect_show_goes_on(p, p.back().frame, 10.0, 1, n);
     expect_same_states(a, p, n);
   }
-  std::printf("[ measured ] every node presented again %.1f s after SIGSTOP of the master (silence limit 10 s, "
-              "attempt limits 2 s (standby) and 3 s (nodes))\n",
-              takeover_s);
+  std::printf(
+      "[ measured ] every node presented again %.1f s after SIGSTOP of the master (silence limit 10 s, "
+      "attempt limits 2 s (standby) and 3 s (nodes))\n",
+      takeover_s);
   EXPECT_GT(takeover_s, 10.0) << "not before the silence limit";
   EXPECT_LT(takeover_s, 30.0);
   const std::string log = read_text(dir_ / "standby.log");
@@ -723,12 +779,13 @@ TEST_F(ClusterProcess, StandbyTakingOverAShowContinuesItsShowTime) {
   const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
   const std::vector<std::string> playback = {"--show", show.string(), "--fps", "5", "--loop"};
   const Child master = start_master(config, 0, 120000, playback);
-  std::vector<std::string> standby_args = {"master", "--standby", "--cluster", config.string(), "--cache",
-                                           (dir_ / "standby-cache").string()};
+  std::vector<std::string> standby_args = {"master",        "--standby", "--cluster",
+                                           config.string(), "--cache",   (dir_ / "standby-cache").string()};
   standby_args.insert(standby_args.end(), playback.begin(), playback.end());
   children_.push_back(spawn(standby_args, dir_ / "standby.log"));
   const Child standby = children_.back();
-  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  for (const char* n : {"a", "b", "c"})
+    start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
   ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/c").size() >= 17; }, 300s)) << logs();
   kill(master.pid, SIGKILL);
   ASSERT_EQ(wait_exit(master, 5s), std::optional<int>(128 + SIGKILL));
@@ -763,8 +820,9 @@ TEST_F(ClusterProcess, StandbyWithTheWrongSecretOrAnotherStandbyAddressIsRefused
   setenv(kSecretVar, "cluster-test-secret-0123456789", 1);
   EXPECT_EQ(wait_exit(wrong_secret, 200s), std::optional<int>(2)) << logs();
   const std::string standby_log = read_text(dir_ / "standby.log");
-  EXPECT_NE(standby_log.find("standby: the master at 127.0.0.1:" + std::to_string(port_) + " refused the connection (3)"),
-            std::string::npos)
+  EXPECT_NE(
+      standby_log.find("standby: the master at 127.0.0.1:" + std::to_string(port_) + " refused the connection (3)"),
+      std::string::npos)
       << standby_log;
   EXPECT_NE(standby_log.find("failed authentication (wrong shared secret)"), std::string::npos) << standby_log;
   EXPECT_EQ(standby_log.find("master: taking over"), std::string::npos) << standby_log;
@@ -794,7 +852,8 @@ TEST_F(ClusterProcess, StandbyWithTheWrongSecretOrAnotherStandbyAddressIsRefused
 std::vector<pid_t> launcher_pids(const std::string& log, const std::string& name) {
   std::vector<pid_t> pids;
   const std::string started = "cluster: node '" + name + "' started (pid ";
-  if (const auto at = log.find(started); at != std::string::npos) pids.push_back(std::stoi(log.substr(at + started.size())));
+  if (const auto at = log.find(started); at != std::string::npos)
+    pids.push_back(std::stoi(log.substr(at + started.size())));
   const std::string restarted = "cluster: node '" + name + "' died (";
   for (auto at = log.find(restarted); at != std::string::npos; at = log.find(restarted, at + 1)) {
     const auto pid_at = log.find("restarted it (pid ", at);
@@ -835,22 +894,22 @@ TEST_F(ClusterProcess, LauncherRestartsAKilledNodeWhichRejoins) {
 
 TEST_F(ClusterProcess, LauncherStopsRestartingACrashLoopAtTheLimit) {
   const fs::path config = write_config(10, 5000, 200);
-  const Child cluster = spawn({"cluster", "--cluster", config.string(), "--frames", "120", "--out",
-                               (dir_ / "out").string(), "--cache", cache_.string(), "--restart-nodes",
-                               "--max-restarts", "2", "--restart-window-s", "60"},
-                              dir_ / "cluster.log");
+  const Child cluster =
+      spawn({"cluster", "--cluster", config.string(), "--frames", "120", "--out", (dir_ / "out").string(), "--cache",
+             cache_.string(), "--restart-nodes", "--max-restarts", "2", "--restart-window-s", "60"},
+            dir_ / "cluster.log");
   children_.push_back(cluster);
   ASSERT_TRUE(wait_until([&] { return presented(dir_ / "out/b").size() >= 1; }, 240s)) << logs();
   // b dies three times in a row, as fast as it is restarted: the third death is one too many.
   for (std::size_t death = 1; death <= 3; ++death) {
     std::vector<pid_t> pids;
-    ASSERT_TRUE(wait_until([&] { return (pids = launcher_pids(read_text(dir_ / "cluster.log"), "b")).size() == death; },
-                           30s))
+    ASSERT_TRUE(
+        wait_until([&] { return (pids = launcher_pids(read_text(dir_ / "cluster.log"), "b")).size() == death; }, 30s))
         << logs();
     ASSERT_EQ(kill(pids.back(), SIGKILL), 0);
   }
-  ASSERT_TRUE(wait_until([&] { return read_text(dir_ / "cluster.log").find("giving up on it") != std::string::npos; },
-                         30s))
+  ASSERT_TRUE(
+      wait_until([&] { return read_text(dir_ / "cluster.log").find("giving up on it") != std::string::npos; }, 30s))
       << logs();
   // The show goes on with a and c; the launcher reports the failed node at the end.
   EXPECT_EQ(wait_exit(cluster, 400s), std::optional<int>(1)) << logs();
@@ -869,9 +928,10 @@ TEST_F(ClusterProcess, LauncherStopsRestartingACrashLoopAtTheLimit) {
 void expect_frame_equals_single_render(const fs::path& dir, const fs::path& cache, const fs::path& scene,
                                        std::uint64_t frame, std::vector<Child>& children) {
   const fs::path single = dir / "single.png";
-  const Child render = spawn({"render", "--scene", scene.string(), "--projection", "fisheye", "--size", "128x128",
-                              "--tables", "small", "--orders", "4", "--cache", cache.string(), "--out", single.string()},
-                             dir / "render.log");
+  const Child render =
+      spawn({"render", "--scene", scene.string(), "--projection", "fisheye", "--size", "128x128", "--tables", "small",
+             "--orders", "4", "--cache", cache.string(), "--out", single.string()},
+            dir / "render.log");
   children.push_back(render);
   ASSERT_EQ(wait_exit(render, 200s), std::optional<int>(0)) << read_text(dir / "render.log");
   const image::LinearImage whole = image::read_image(single);
@@ -890,15 +950,15 @@ void expect_frame_equals_single_render(const fs::path& dir, const fs::path& cach
 TEST_F(ClusterProcess, AtmosphereSwitchTakesEffectAtTheSameFrameOnEveryNode) {
   const fs::path config = write_config(10);
   // Earth goes from earth-advanced (the scene's) to earth-standard: asked for at frame 3, prepared in the background.
-  const Child master = start_master(config, 0, 120000,
-                                    {"--sun-step-deg", "0", "--switch-atmosphere", "3:Earth:earth-standard"});
+  const Child master =
+      start_master(config, 0, 120000, {"--sun-step-deg", "0", "--switch-atmosphere", "3:Earth:earth-standard"});
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
   const auto switched_frames = [&](const char* node) {
     const auto p = presented(dir_ / "out" / node);
     return std::count_if(p.begin(), p.end(), [&](const Presented& x) { return x.tables != p.front().tables; });
   };
-  ASSERT_TRUE(wait_until([&] { return switched_frames("a") >= 3 && switched_frames("b") >= 3 && switched_frames("c") >= 3; },
-                         400s))
+  ASSERT_TRUE(wait_until(
+      [&] { return switched_frames("a") >= 3 && switched_frames("b") >= 3 && switched_frames("c") >= 3; }, 400s))
       << logs();
   kill(master.pid, SIGTERM);
   ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
@@ -961,8 +1021,8 @@ TEST_F(ClusterProcess, ShowPlaysInSyncAndItsRecordingPlaysBackIdentically) {
   const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
   const fs::path scene = kSource / "configs/scenes/earth-sunset.json";
   const fs::path recording = dir_ / "recording.json";
-  const Child master = start_master(config, 0, 120000,
-                                    {"--show", show.string(), "--fps", "2", "--unpaced", "--record", recording.string()});
+  const Child master = start_master(
+      config, 0, 120000, {"--show", show.string(), "--fps", "2", "--unpaced", "--record", recording.string()});
   for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", scene.string()});
   ASSERT_EQ(wait_exit(master, 400s), std::optional<int>(0)) << logs();
   expect_nodes_exit_cleanly(master);
@@ -977,7 +1037,8 @@ TEST_F(ClusterProcess, ShowPlaysInSyncAndItsRecordingPlaysBackIdentically) {
 
   // Play the recording on fresh nodes (new output folder): the same states, frame by frame.
   fs::rename(dir_ / "out", dir_ / "out-live");
-  for (const char* n : {"master", "a", "b", "c"}) fs::rename(dir_ / (std::string(n) + ".log"), dir_ / (std::string(n) + "-live.log"));
+  for (const char* n : {"master", "a", "b", "c"})
+    fs::rename(dir_ / (std::string(n) + ".log"), dir_ / (std::string(n) + "-live.log"));
   children_.clear();
   const Child replay = start_master(config, 0, 120000, {"--show", recording.string(), "--unpaced"});
   for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", scene.string()});
@@ -1007,9 +1068,10 @@ TEST_F(ClusterProcess, ShowStartsBeforeItsLaterTablesAreReadyAndTheirFrameWaitsF
   // load: 4 s was not enough), so it must outlast their warm-up.
   const fs::path config = write_config(10);
   const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
-  const Child master = start_master(config, 0, 120000,
-                                    {"--show", show.string(), "--fps", "2", "--unpaced", "--debug-table-delay-ms", "12000"});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  const Child master = start_master(
+      config, 0, 120000, {"--show", show.string(), "--fps", "2", "--unpaced", "--debug-table-delay-ms", "12000"});
+  for (const char* n : {"a", "b", "c"})
+    start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
   ASSERT_EQ(wait_exit(master, 400s), std::optional<int>(0)) << logs();
   expect_nodes_exit_cleanly(master);
   const auto played = expect_in_sync(dir_ / "out", 5);
@@ -1038,10 +1100,11 @@ TEST_F(ClusterProcess, OperatorPausesSeeksAndQuitsThroughTheControlSocket) {
   const fs::path config = write_config(5);
   const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
   const int control_port = port_ + 1;
-  const Child master = start_master(config, 0, 120000,
-                                    {"--show", show.string(), "--fps", "2", "--loop", "--control-port",
-                                     std::to_string(control_port)});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  const Child master =
+      start_master(config, 0, 120000,
+                   {"--show", show.string(), "--fps", "2", "--loop", "--control-port", std::to_string(control_port)});
+  for (const char* n : {"a", "b", "c"})
+    start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
   const auto control = [&](const std::string& command) {
     const fs::path log = dir_ / "control.log";
     fs::remove(log);
@@ -1097,8 +1160,8 @@ TEST_F(ClusterProcess, ShowRendersOfflineOnTheNodesResumesAndMatchesASingleProce
   const fs::path config = write_config(10);
   const fs::path show = kSource / "tests/data/shows/offline-sunset.json";
   const auto render = [&](const fs::path& out, const std::vector<std::string>& where, const std::string& log) {
-    std::vector<std::string> args = {"show", "render", "--show", show.string(), "--out", out.string(), "--cache",
-                                     cache_.string()};
+    std::vector<std::string> args = {"show",  "render",     "--show",  show.string(),
+                                     "--out", out.string(), "--cache", cache_.string()};
     args.insert(args.end(), where.begin(), where.end());
     const Child c = spawn(args, dir_ / log);
     children_.push_back(c);
@@ -1136,8 +1199,9 @@ TEST_F(ClusterProcess, ShowRendersOfflineOnTheNodesResumesAndMatchesASingleProce
   // within one code: the single process encodes its PNGs on the GPU (the display pass of the offline
   // pipeline, issue 28), the nodes on the CPU (render/display/display_encoder.h: ±1 code).
   const fs::path single = dir_ / "single";
-  std::tie(status, text) = render(single, {"--projection", "fisheye", "--size", "128x128", "--tables", "small",
-                                           "--orders", "4", "--from", "5", "--to", "5"},
+  std::tie(status, text) = render(single,
+                                  {"--projection", "fisheye", "--size", "128x128", "--tables", "small", "--orders", "4",
+                                   "--from", "5", "--to", "5"},
                                   "render-single.log");
   ASSERT_EQ(status, std::optional<int>(0)) << text;
   const image::LinearImage whole = image::read_image(single / "fisheye/fisheye.000005.png");
@@ -1246,8 +1310,8 @@ TEST_F(ClusterProcess, HostileClientsAreClosedAndTheMasterKeepsServing) {
   }
   {  // another protocol version
     const int fd = zenith::core::connect_loopback(port_);
-    std::vector<std::uint8_t> frame = test::raw_frame(static_cast<std::uint16_t>(MessageType::heartbeat),
-                                                      std::vector<std::uint8_t>(8, 0));
+    std::vector<std::uint8_t> frame =
+        test::raw_frame(static_cast<std::uint16_t>(MessageType::heartbeat), std::vector<std::uint8_t>(8, 0));
     test::put_be16(frame, 4, kProtocolVersion + 1);
     test::fix_header_crc(frame);
     send_all(fd, frame);
@@ -1382,7 +1446,8 @@ test::HttpReply console_command(int port, const std::string& command) {
 void send_osc(int port, const std::vector<std::uint8_t>& packet) {
   boost::asio::io_context io;
   boost::asio::ip::udp::socket socket(io, boost::asio::ip::udp::v4());
-  socket.send_to(boost::asio::buffer(packet), {boost::asio::ip::make_address("127.0.0.1"), static_cast<std::uint16_t>(port)});
+  socket.send_to(boost::asio::buffer(packet),
+                 {boost::asio::ip::make_address("127.0.0.1"), static_cast<std::uint16_t>(port)});
 }
 
 /// Paused: frames go on while the show time holds (expected). The held show
@@ -1430,7 +1495,8 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
   EXPECT_NE(page.body.find("operator console"), std::string::npos);
 
   // Refused, each with its reason; nothing applied.
-  test::HttpReply r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 100})");
+  test::HttpReply r = console_command(
+      http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 100})");
   EXPECT_EQ(r.status, 400);
   EXPECT_EQ(r.json()["error"], "set Earth: /aerosol/scattering/turbidity = 100: must be in [1, 64]") << r.body;
   r = console_command(http, R"({"command": "pause"})");
@@ -1467,7 +1533,8 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
     if (switched) versions.push_back({atmosphere()["version"], atmosphere()["effective_from_frame"]});
     return switched;
   };
-  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 3})");
+  r = console_command(http,
+                      R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 3})");
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_NE(r.json()["reply"].get<std::string>().find("table version"), std::string::npos) << r.body;
   ASSERT_TRUE(next_version()) << logs();
@@ -1481,7 +1548,8 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
   }
   // The next version takes 3 s more to prepare (--debug-table-delay-ms): its progress shows, and a
   // change made meanwhile waits for it, then becomes the version after it.
-  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 2.5})");
+  r = console_command(
+      http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 2.5})");
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_TRUE(wait_until(
       [&] {
@@ -1492,7 +1560,8 @@ TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameA
       10s))
       << now.dump();
   EXPECT_EQ(atmosphere()["pending"]["change"], "/aerosol/scattering/turbidity = 2.5") << now.dump();
-  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": 1500})");
+  r = console_command(http,
+                      R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": 1500})");
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_NE(r.body.find("waits for the version before it"), std::string::npos) << r.body;
   EXPECT_EQ(console_status(http)["atmospheres"][0]["waiting"], "/aerosol/scale_height_m = 1500");
@@ -1551,7 +1620,8 @@ TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
   r = console_command(http, R"({"command": "seek", "seconds": 99})");
   EXPECT_EQ(r.status, 400);
   EXPECT_EQ(r.json()["error"], "command: /seconds = 99: must be in [0, 2.5] s (the show's duration)") << r.body;
-  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 100})");
+  r = console_command(
+      http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scattering/turbidity", "value": 100})");
   EXPECT_EQ(r.status, 400);
   EXPECT_EQ(r.json()["error"], "set Earth: /aerosol/scattering/turbidity = 100: must be in [1, 64]") << r.body;
   r = console_command(http, R"({"command": "seek", "seconds": 0.5})");
@@ -1561,10 +1631,13 @@ TEST_F(ClusterProcess, OperatorConsolePausesSeeksAndPlaysAShowOverHttpAndOsc) {
   // OSC: rate and play.
   send_osc(osc, encode_osc_message({"/zenith/rate", {std::int32_t{2}}}));
   send_osc(osc, encode_osc_message({"/zenith/play", {1.0f}}));
-  EXPECT_TRUE(wait_until([&] {
-    const nlohmann::json now = console_status(http);
-    return now["state"] == "playing" && now["show"]["rate"] == 2.0 && now["show_time_s"] != 0.5;
-  }, 60s)) << logs();
+  EXPECT_TRUE(wait_until(
+      [&] {
+        const nlohmann::json now = console_status(http);
+        return now["state"] == "playing" && now["show"]["rate"] == 2.0 && now["show_time_s"] != 0.5;
+      },
+      60s))
+      << logs();
 
   quit_in_sync(http, master);
   const std::string master_log = read_text(dir_ / "master.log");
@@ -1587,11 +1660,12 @@ bool sun_is(int port, double elevation_deg, double azimuth_deg) {
 TEST_F(ClusterProcess, OperatorConsoleSetsTheSunOfTheDefaultShowOverHttpAndOscUntilCleared) {
   const fs::path config = write_config(10);
   const int http = port_ + 2, osc = port_ + 3;
-  const Child master = start_master(config, 0, 120000,
-                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
-                                     std::to_string(osc)});
+  const Child master =
+      start_master(config, 0, 120000,
+                   {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port", std::to_string(osc)});
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
-  ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready") && status_sun(console_status(http)); }, 400s))
+  ASSERT_TRUE(
+      wait_until([&] { return all_nodes(console_status(http), "ready") && status_sun(console_status(http)); }, 400s))
       << logs();
   // The scene's sun: 1° above the horizon at azimuth 272°.
   EXPECT_TRUE(sun_is(http, 1.0, 272.0)) << console_status(http).dump();
@@ -1626,9 +1700,10 @@ TEST_F(ClusterProcess, OperatorConsoleSetsTheSunOfTheDefaultShowOverHttpAndOscUn
   EXPECT_NE(picture(set_by_http), picture(0));
   EXPECT_NE(picture(set_by_osc), picture(set_by_http));
   EXPECT_EQ(picture(cleared), picture(0));
-  expect_in_master_log({"operator (http 127.0.0.1): sun elevation -4.0° azimuth 250.0° → sun at elevation -4°, azimuth 250°",
-                        "operator (osc 127.0.0.1): sun azimuth 200.0° → sun at elevation -4°, azimuth 200°",
-                        "operator (osc 127.0.0.1): clear sun → the default show's sun from the next frame on"});
+  expect_in_master_log(
+      {"operator (http 127.0.0.1): sun elevation -4.0° azimuth 250.0° → sun at elevation -4°, azimuth 250°",
+       "operator (osc 127.0.0.1): sun azimuth 200.0° → sun at elevation -4°, azimuth 200°",
+       "operator (osc 127.0.0.1): clear sun → the default show's sun from the next frame on"});
 }
 
 TEST_F(ClusterProcess, OperatorConsoleOverridesTheSunTrackOfAShowUntilCleared) {
@@ -1655,10 +1730,13 @@ TEST_F(ClusterProcess, OperatorConsoleOverridesTheSunTrackOfAShowUntilCleared) {
   const test::HttpReply r = console_command(http, R"({"command": "clear", "what": "sun"})");
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_EQ(r.json()["reply"], "the show's sun track from the next frame on");
-  ASSERT_TRUE(wait_until([&] {
-    const auto sun = status_sun(console_status(http));
-    return sun && sun->first <= 4.0 + 1e-9 && console_status(http)["sun_override"].is_null();
-  }, 60s)) << console_status(http).dump();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const auto sun = status_sun(console_status(http));
+        return sun && sun->first <= 4.0 + 1e-9 && console_status(http)["sun_override"].is_null();
+      },
+      60s))
+      << console_status(http).dump();
 
   quit_in_sync(http, master);
 }
@@ -1676,20 +1754,26 @@ TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsThe
   for (const Presented& p : presented(dir_ / "out/a")) show_versions.insert(p.tables.substr(6));  // "Earth=…"
   ASSERT_EQ(show_versions.size(), 2u);
 
-  test::HttpReply r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": 1500})");
+  test::HttpReply r = console_command(
+      http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": 1500})");
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_NE(r.body.find("it replaces the show's track of the body until cleared"), std::string::npos) << r.body;
   nlohmann::json now;
   const auto earth = [&] { return now["atmospheres"][0]; };
-  const auto in_show = [&](const nlohmann::json& version) { return show_versions.count(version.get<std::string>()) > 0; };
+  const auto in_show = [&](const nlohmann::json& version) {
+    return show_versions.count(version.get<std::string>()) > 0;
+  };
   // The operator's version of the show's version of the moment, then the one of the other.
   std::set<std::string> operator_versions;
-  ASSERT_TRUE(wait_until([&] {
-    now = console_status(http);
-    if (!now.contains("atmospheres") || in_show(earth()["version"])) return false;
-    operator_versions.insert(earth()["version"].get<std::string>());
-    return operator_versions.size() == 2;
-  }, 400s)) << logs();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        now = console_status(http);
+        if (!now.contains("atmospheres") || in_show(earth()["version"])) return false;
+        operator_versions.insert(earth()["version"].get<std::string>());
+        return operator_versions.size() == 2;
+      },
+      400s))
+      << logs();
   EXPECT_EQ(earth()["operator_changes"], "/aerosol/scale_height_m = 1500");
   EXPECT_EQ(earth()["parameters"]["aerosol"]["scale_height_m"], 1500);
   EXPECT_TRUE(in_show(earth()["show_version"])) << now.dump();
@@ -1698,13 +1782,17 @@ TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsThe
     EXPECT_NE(std::find(held.begin(), held.end(), earth()["version"]), held.end()) << node;
   }
   // Refused: out of range; over OSC, the show's own again.
-  r = console_command(http, R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": -5})");
+  r = console_command(http,
+                      R"({"command": "set", "body": "Earth", "pointer": "/aerosol/scale_height_m", "value": -5})");
   EXPECT_EQ(r.status, 400) << r.body;
   send_osc(osc, encode_osc_message({"/zenith/clear/atmosphere/Earth", {}}));
-  ASSERT_TRUE(wait_until([&] {
-    now = console_status(http);
-    return now.contains("atmospheres") && in_show(earth()["version"]) && earth()["operator_changes"].is_null();
-  }, 60s)) << now.dump();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        now = console_status(http);
+        return now.contains("atmospheres") && in_show(earth()["version"]) && earth()["operator_changes"].is_null();
+      },
+      60s))
+      << now.dump();
   EXPECT_EQ(earth()["version"], earth()["show_version"]);
   const std::uint64_t cleared = now["frame"];
   // On every node, the same tables at every frame: the show's, then one block of the operator's
@@ -1712,21 +1800,24 @@ TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsThe
   const auto played = quit_in_sync(http, master, cleared + 3);
   std::string phases;
   for (const Presented& p : played) {
-    const char phase = show_versions.count(p.tables.substr(6)) ? 's' : operator_versions.count(p.tables.substr(6)) ? 'o' : '?';
+    const char phase = show_versions.count(p.tables.substr(6))       ? 's'
+                       : operator_versions.count(p.tables.substr(6)) ? 'o'
+                                                                     : '?';
     if (phases.empty() || phases.back() != phase) phases += phase;
   }
   EXPECT_EQ(phases, "sos");
-  expect_in_master_log({"operator (http 127.0.0.1): set Earth /aerosol/scale_height_m = 1500 → 'Earth'",
-                        "the show's track of 'Earth' moved on to version",
-                        "operator (osc 127.0.0.1): clear atmosphere of Earth → 'Earth' follows the show's track again"});
+  expect_in_master_log(
+      {"operator (http 127.0.0.1): set Earth /aerosol/scale_height_m = 1500 → 'Earth'",
+       "the show's track of 'Earth' moved on to version",
+       "operator (osc 127.0.0.1): clear atmosphere of Earth → 'Earth' follows the show's track again"});
 }
 
 TEST_F(ClusterProcess, OperatorConsoleShowsTheDomeFromTheNodesThumbnailsOnlyWhileThePreviewIsOn) {
   const fs::path config = write_config(10);
   const int http = port_ + 2, osc = port_ + 3;
-  const Child master = start_master(config, 0, 120000,
-                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
-                                     std::to_string(osc)});
+  const Child master =
+      start_master(config, 0, 120000,
+                   {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port", std::to_string(osc)});
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
   ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 3; }, 400s)) << logs();
   // Off by default: no thumbnails, no preview.
@@ -1746,11 +1837,14 @@ TEST_F(ClusterProcess, OperatorConsoleShowsTheDomeFromTheNodesThumbnailsOnlyWhil
             "128x128 px at /api/preview)");
   // Every node's tiles arrive (the oldest tile is of a frame after the preview went on).
   const std::uint64_t on_at = console_status(http)["frame"];
-  ASSERT_TRUE(wait_until([&] {
-    preview = console_status(http)["preview"];
-    return preview["tiles"] == 4 && preview["oldest_frame"].get<std::uint64_t>() > on_at &&
-           preview["frame"] == preview["oldest_frame"];
-  }, 60s)) << preview.dump();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        preview = console_status(http)["preview"];
+        return preview["tiles"] == 4 && preview["oldest_frame"].get<std::uint64_t>() > on_at &&
+               preview["frame"] == preview["oldest_frame"];
+      },
+      60s))
+      << preview.dump();
   const test::HttpReply png = test::http_request(http, boost::beast::http::verb::get, "/api/preview");
   ASSERT_EQ(png.status, 200);
   const fs::path preview_file = dir_ / "preview.png";
@@ -1782,14 +1876,16 @@ TEST_F(ClusterProcess, OperatorConsoleShowsTheDomeFromTheNodesThumbnailsOnlyWhil
   quit_in_sync(http, master);
   const std::string master_log = read_text(dir_ / "master.log");
   EXPECT_EQ(master_log.find("protocol"), std::string::npos) << master_log;
-  EXPECT_NE(master_log.find("operator (osc 127.0.0.1): preview off → dome preview off"), std::string::npos) << master_log;
+  EXPECT_NE(master_log.find("operator (osc 127.0.0.1): preview off → dome preview off"), std::string::npos)
+      << master_log;
 }
 
 TEST_F(ClusterProcess, OperatorConsolePushesTheStatusOverAWebSocketUntilTheMasterStops) {
   namespace websocket = boost::beast::websocket;
   const fs::path config = write_config(10);
   const int http = port_ + 2;
-  const Child master = start_master(config, 0, 120000, {"--sun-step-deg", "0", "--operator-port", std::to_string(http)});
+  const Child master =
+      start_master(config, 0, 120000, {"--sun-step-deg", "0", "--operator-port", std::to_string(http)});
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
   ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 2; }, 400s)) << logs();
 
@@ -1866,9 +1962,11 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) 
   browser.script("pushSocket.close(); return true;");
   ASSERT_TRUE(wait_in_page(browser, "document.getElementById('transport').textContent === 'polling'", 10s));
   const std::string frame_in_page = browser.script("return document.getElementById('frame').textContent;");
-  EXPECT_TRUE(wait_in_page(browser, "document.getElementById('frame').textContent !== '" + frame_in_page +
-                                        "' && document.getElementById('transport').textContent === 'polling'",
-                           4s)) << "polled while the push is away";
+  EXPECT_TRUE(wait_in_page(browser,
+                           "document.getElementById('frame').textContent !== '" + frame_in_page +
+                               "' && document.getElementById('transport').textContent === 'polling'",
+                           4s))
+      << "polled while the push is away";
   EXPECT_TRUE(wait_in_page(browser, "document.getElementById('transport').textContent === 'push'", 30s));
   EXPECT_TRUE(wait_in_page(browser, "document.querySelectorAll('#nodes tbody tr').length === 3", 30s));
   browser.click(browser.element("#pause"));
@@ -1876,13 +1974,15 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) 
   // Frames go on; the show time stops, in the API and on the page.
   const std::optional<double> held = held_show_time(http);
   ASSERT_TRUE(held) << logs();
-  EXPECT_TRUE(wait_in_page(browser, "document.getElementById('show-time').textContent === '" + fmt::format("{:.3f}", *held) + " s'", 10s));
+  EXPECT_TRUE(wait_in_page(
+      browser, "document.getElementById('show-time').textContent === '" + fmt::format("{:.3f}", *held) + " s'", 10s));
   // The sun: an elevation typed into its box replaces the track's (WebDriver keys: \ue009 Control
   // held until \ue000, \ue004 Tab), the button gives the track back.
   const std::string elevation = browser.element("#sun-elevation");
   browser.click(elevation);
   browser.type(elevation, "\ue009a\ue00020\ue004");
-  ASSERT_TRUE(wait_in_page(browser, "document.getElementById('sun-source').textContent === '(operator)'", 30s)) << logs();
+  ASSERT_TRUE(wait_in_page(browser, "document.getElementById('sun-source').textContent === '(operator)'", 30s))
+      << logs();
   EXPECT_TRUE(wait_until([&] { return sun_is(http, 20.0, 272.0); }, 30s)) << console_status(http).dump();
   EXPECT_TRUE(wait_in_page(browser, "document.getElementById('sun-elevation-now').textContent === '20.00'", 30s));
   browser.screenshot(dir_ / "operator-console-show.png");
@@ -1899,15 +1999,17 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserChangesTurbidityAndTheNewVersion
   if (!test::browser_available()) GTEST_SKIP() << "chromium and chromium-driver are not installed (scripts/bootstrap)";
   const fs::path config = write_config(10);
   const int http = port_ + 2;
-  const Child master = start_master(config, 0, 120000,
-                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--debug-table-delay-ms", "4000"});
+  const Child master =
+      start_master(config, 0, 120000,
+                   {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--debug-table-delay-ms", "4000"});
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
   ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready"); }, 400s)) << logs();
   const std::string first_version = console_status(http)["atmospheres"][0]["version"];
 
   test::WebDriver browser(port_ + 4, port_ + 5, dir_ / "chromedriver.log");
   browser.open("http://127.0.0.1:" + std::to_string(http) + "/");
-  const std::string version_in_page = "document.querySelector('.atmosphere[data-body=\"Earth\"] .row[data-version]').dataset.version";
+  const std::string version_in_page =
+      "document.querySelector('.atmosphere[data-body=\"Earth\"] .row[data-version]').dataset.version";
   ASSERT_TRUE(wait_in_page(browser, version_in_page + " === '" + first_version + "'", 60s));
   // The dome preview: on from the page, then the nodes' thumbnails in it (four 64² tiles: 128²).
   browser.click(browser.element("#preview-on"));
@@ -1946,7 +2048,8 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserChangesTurbidityAndTheNewVersion
   std::vector<std::string> seen;
   for (const Presented& p : presented(dir_ / "out/a"))
     if (seen.empty() || seen.back() != p.tables) seen.push_back(p.tables);
-  EXPECT_EQ(seen, (std::vector<std::string>{"Earth=" + first_version, "Earth=" + second_version, "Earth=" + third_version}));
+  EXPECT_EQ(seen,
+            (std::vector<std::string>{"Earth=" + first_version, "Earth=" + second_version, "Earth=" + third_version}));
 }
 
 /// frame → "LEVEL R,G,B": the fade of each frame in a node's presented.log (frames of the picture alone are absent).
@@ -1980,7 +2083,8 @@ TEST_F(ClusterProcess, OperatorFadesEveryNodeAtOneFrameBlacksOutAtTheNextAndTheR
                                     {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
                                      std::to_string(osc), "--record", recording.string()});
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
-  ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready") && all_nodes_past(1); }, 400s)) << logs();
+  ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready") && all_nodes_past(1); }, 400s))
+      << logs();
 
   // Out of range: refused with the range, nothing changes.
   test::HttpReply r = console_command(http, R"({"command": "fade", "level": 1, "seconds": -2})");
@@ -1995,7 +2099,8 @@ TEST_F(ClusterProcess, OperatorFadesEveryNodeAtOneFrameBlacksOutAtTheNextAndTheR
   EXPECT_EQ(console_status(http)["fade"]["level"], 1.0) << console_status(http).dump();
   // Blackout over OSC: black from the next frame on; then the picture again at once.
   send_osc(osc, encode_osc_message({"/zenith/blackout", {}}));
-  ASSERT_TRUE(wait_until([&] { return read_text(dir_ / "master.log").find("blackout from frame") != std::string::npos; }, 60s))
+  ASSERT_TRUE(
+      wait_until([&] { return read_text(dir_ / "master.log").find("blackout from frame") != std::string::npos; }, 60s))
       << logs();
   const std::optional<std::uint64_t> black = number_after(read_text(dir_ / "master.log"), "blackout from frame ");
   ASSERT_TRUE(black);
@@ -2041,7 +2146,8 @@ TEST_F(ClusterProcess, OperatorFadesEveryNodeAtOneFrameBlacksOutAtTheNextAndTheR
 
   // The recording on fresh nodes: the same states frame by frame, the same files byte for byte.
   fs::rename(dir_ / "out", dir_ / "out-live");
-  for (const char* n : {"master", "a", "b", "c"}) fs::rename(dir_ / (std::string(n) + ".log"), dir_ / (std::string(n) + "-live.log"));
+  for (const char* n : {"master", "a", "b", "c"})
+    fs::rename(dir_ / (std::string(n) + ".log"), dir_ / (std::string(n) + "-live.log"));
   children_.clear();
   const Child replay = start_master(config, 0, 120000, {"--show", recording.string(), "--unpaced"});
   for (const char* n : {"a", "b", "c"}) start_node(config, n);
@@ -2052,7 +2158,8 @@ TEST_F(ClusterProcess, OperatorFadesEveryNodeAtOneFrameBlacksOutAtTheNextAndTheR
   for (std::size_t i = 0; i < live.size(); ++i) EXPECT_EQ(replayed[i].digest, live[i].digest) << "frame " << i;
   EXPECT_EQ(fades(dir_ / "out/b"), faded);
   for (const std::uint64_t frame : {*start + 4, *black})
-    EXPECT_EQ(read_text(file("b", "bottom-left", frame)), read_text(dir_ / "out-live/b/bottom-left" / fmt::format("frame-{:06d}.png", frame)))
+    EXPECT_EQ(read_text(file("b", "bottom-left", frame)),
+              read_text(dir_ / "out-live/b/bottom-left" / fmt::format("frame-{:06d}.png", frame)))
         << "frame " << frame;
 }
 

@@ -33,7 +33,7 @@ TEST(Thumbnail, IsTheBoxFilteredOutputInSrgbAtMostEdgePixelsOnItsLongerSide) {
   EXPECT_EQ(half.rgb[0], image::display_byte(0.25f, image::ToneMapping::clamp));
   EXPECT_EQ(half.rgb[3], 255);
   rgb[3 * 3] = std::numeric_limits<float>::quiet_NaN();  // counts as 0
-  rgb[7 * 3] = 7.0f;                                      // clamped to 1
+  rgb[7 * 3] = 7.0f;                                     // clamped to 1
   const Thumbnail odd = make_thumbnail(7, "left", rgb, 4, 2, 2);
   EXPECT_EQ(odd.rgb[3], image::display_byte(0.75f, image::ToneMapping::clamp));
   EXPECT_EQ(odd.rgb[4], 255);
@@ -67,7 +67,10 @@ warp::ViewportConfig quadrants() {
     outputs.push_back({{"name", names[i]},
                        {"size", {128, 128}},
                        {"projection",
-                        {{"type", "fisheye"}, {"fov_deg", 180}, {"radius_px", 128}, {"centre_x_px", i % 2 == 0 ? 128 : 0},
+                        {{"type", "fisheye"},
+                         {"fov_deg", 180},
+                         {"radius_px", 128},
+                         {"centre_x_px", i % 2 == 0 ? 128 : 0},
                          {"centre_y_px", i < 2 ? 128 : 0}}}});
   return warp::parse_viewport_config({{"zenith_viewports", 1}, {"name", "q"}, {"outputs", outputs}}, "q.json", ".");
 }

@@ -82,9 +82,12 @@ TEST(FrameDecoderProperty, TwoHundredThousandMutationsNeverCrashNorOverBufferAnd
         }
         case 5: {  // length-field overwrite of the first frame: small, boundary or huge
           if (input.size() < kHeaderBytes) break;
-          const std::uint32_t choices[] = {0u, 1u, static_cast<std::uint32_t>(rng() % 2048),
+          const std::uint32_t choices[] = {0u,
+                                           1u,
+                                           static_cast<std::uint32_t>(rng() % 2048),
                                            static_cast<std::uint32_t>(*max_payload_bytes(33)),
-                                           static_cast<std::uint32_t>(*max_payload_bytes(33) + 1), 0xFFFFFFFFu,
+                                           static_cast<std::uint32_t>(*max_payload_bytes(33) + 1),
+                                           0xFFFFFFFFu,
                                            static_cast<std::uint32_t>(rng())};
           test::put_be32(input, 8, choices[below(7)]);
           break;

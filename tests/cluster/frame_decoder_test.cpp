@@ -113,7 +113,8 @@ TEST(FrameDecoder, UnsupportedVersionInTheHeader) {
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 1");
   put_be16(f, 4, 2);  // no PreviewRequest and Thumbnail: a node of version 2 is refused, not half served
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 4");
-  put_be16(f, 4, 3);  // no Hello.instance_id, FrameState without the fade and the sky, RenderDone without present counts
+  put_be16(f, 4,
+           3);  // no Hello.instance_id, FrameState without the fade and the sky, RenderDone without present counts
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 3, this build speaks 4");
 }
 
@@ -223,7 +224,8 @@ TEST(FrameDecoder, MalformedPayloadCountAboveItsLimit) {
 
 TEST(FrameDecoder, MalformedPayloadOutOfRangeValue) {
   Bytes f = encode(FrameState{});
-  put_be32(f, f.size() - 4 - 32 - 49, 0x80000000u);  // unknown render flag (before the fade's 4 f64 and the sky's 49 bytes)
+  put_be32(f, f.size() - 4 - 32 - 49,
+           0x80000000u);  // unknown render flag (before the fade's 4 f64 and the sky's 49 bytes)
   fix_crc(f);
   expect_error(f, ProtocolErrorCode::malformed_payload, "FrameState.render_flags: unknown bits");
   Bytes k = encode(FrameState{});

@@ -187,8 +187,7 @@ TEST(Handshake, ConstantTimeComparison) {
 class SecretFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("zenith-secret-test-" + std::to_string(std::random_device{}()));
+    dir_ = std::filesystem::temp_directory_path() / ("zenith-secret-test-" + std::to_string(std::random_device{}()));
     std::filesystem::create_directories(dir_);
     ::unsetenv(kVar);
   }

@@ -4,8 +4,8 @@
 // time and asserts counts, not timings: the machine may be loaded.
 #include <arpa/inet.h>
 #include <fcntl.h>
-#include <netinet/in.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/socket.h>
@@ -45,7 +45,9 @@ using core::wait_until;
 using core::process_gone;
 
 /// Frames in a node's presented.log.
-std::size_t presented_count(const fs::path& node_dir) { return count_of(read_text(node_dir / "presented.log"), "frame "); }
+std::size_t presented_count(const fs::path& node_dir) {
+  return count_of(read_text(node_dir / "presented.log"), "frame ");
+}
 
 /// Whether the peer closed `fd` (read returns 0 or an error) within `timeout`.
 bool closed_by_peer(int fd, std::chrono::milliseconds timeout) {
@@ -62,7 +64,8 @@ class HardeningProcess : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     cache_ = kWork / "table-cache";  // shared with cluster.ClusterProcess.* (the same small tables)
-    port_ = core::free_loopback_port(static_cast<int>(21000 + (getpid() * 13 + std::hash<std::string>{}(info->name())) % 28000));
+    port_ = core::free_loopback_port(
+        static_cast<int>(21000 + (getpid() * 13 + std::hash<std::string>{}(info->name())) % 28000));
     setenv("ZENITH_CLUSTER_HARDENING_SECRET", "hardening-test-secret-0123456789", 1);
   }
   void TearDown() override {
@@ -76,12 +79,13 @@ class HardeningProcess : public ::testing::Test {
     std::ofstream(dir_ / "views.json") << R"({"zenith_viewports": 1, "name": "v", "outputs": [
       {"name": "left", "size": [32, 32], "projection": {"type": "fisheye", "fov_deg": 180}},
       {"name": "right", "size": [32, 32], "projection": {"type": "fisheye", "fov_deg": 180}}]})";
-    std::ofstream(dir_ / "cluster.json") << R"({"zenith_cluster": 1, "name": "hardening", "master": {"host": "127.0.0.1", "port": )"
-                                         << port_ << R"(}, "scene": ")" << (kSource / "configs/scenes/earth-sunset.json").string()
-                                         << R"(", "viewports": "views.json",
+    std::ofstream(dir_ / "cluster.json")
+        << R"({"zenith_cluster": 1, "name": "hardening", "master": {"host": "127.0.0.1", "port": )" << port_
+        << R"(}, "scene": ")" << (kSource / "configs/scenes/earth-sunset.json").string()
+        << R"(", "viewports": "views.json",
       "timing": {"heartbeat_ms": 200, "barrier_timeout_ms": 20000, "frame_rate_hz": 10},
       "secret": {"env": "ZENITH_CLUSTER_HARDENING_SECRET"}, "tables": {"sizes": "small", "orders": 4}, )"
-                                         << limits << R"(
+        << limits << R"(
       "nodes": [{"name": "a", "host": "127.0.0.1", "outputs": ["left"]}, {"name": "b", "host": "127.0.0.1", "outputs": ["right"]}],
       "output": {"directory": "out", "format": "png"}})";
     return dir_ / "cluster.json";
@@ -96,8 +100,8 @@ class HardeningProcess : public ::testing::Test {
                  "master.log");
   }
   pid_t start_node(const fs::path& config, const std::string& name, const std::string& as) {
-    return spawn({"node", "--cluster", config.string(), "--name", name, "--out", (dir_ / ("out-" + as)).string(), "--cache",
-                  (dir_ / "node-cache" / as).string(), "--connect-timeout-ms", "300000"},
+    return spawn({"node", "--cluster", config.string(), "--name", name, "--out", (dir_ / ("out-" + as)).string(),
+                  "--cache", (dir_ / "node-cache" / as).string(), "--connect-timeout-ms", "300000"},
                  as + ".log");
   }
   /// Master and nodes a and b, every node past `frames` presented frames.
@@ -114,7 +118,8 @@ class HardeningProcess : public ::testing::Test {
   std::string logs() const {
     std::string all;
     for (const auto& entry : fs::directory_iterator(dir_))
-      if (entry.path().extension() == ".log") all += "---- " + entry.path().filename().string() + "\n" + read_text(entry.path());
+      if (entry.path().extension() == ".log")
+        all += "---- " + entry.path().filename().string() + "\n" + read_text(entry.path());
     return all;
   }
   /// The pids `zenith cluster` logged for its children ("master started (pid N)", "node 'a' started (pid N)").
@@ -146,7 +151,8 @@ TEST_F(HardeningProcess, AStrayNodeWithATakenNameIsRefusedOnBothSidesAndTheShowG
   const std::size_t before = presented_count(dir_ / "out-a/a");
   const pid_t stray = start_node(config, "a", "stray");
   EXPECT_EQ(core::wait_for_exit(stray, 120s), std::optional<int>(2)) << "refused: status 2, never retried\n" << logs();
-  EXPECT_NE(read_text(dir_ / "stray.log").find("node 'a' is already connected from 127.0.0.1:"), std::string::npos) << logs();
+  EXPECT_NE(read_text(dir_ / "stray.log").find("node 'a' is already connected from 127.0.0.1:"), std::string::npos)
+      << logs();
   const std::string master_log = read_text(dir_ / "master.log");
   EXPECT_NE(master_log.find("refused node 'a'"), std::string::npos) << master_log;
   EXPECT_NE(master_log.find("(another process: instance "), std::string::npos) << master_log;
@@ -201,7 +207,8 @@ TEST_F(HardeningProcess, TheLaunchersChildrenDieWithItAndItsSignalsAreForwarded)
   ASSERT_EQ(children.size(), 3u) << logs();
   ::kill(killed, SIGKILL);
   EXPECT_TRUE(wait_until([&] { return std::all_of(children.begin(), children.end(), process_gone); }, 30s))
-      << "orphans left after kill -9 of the launcher\n" << logs();
+      << "orphans left after kill -9 of the launcher\n"
+      << logs();
 
   const pid_t stopped = start_launcher(config, "cluster-stopped.log", "out-stopped");
   ASSERT_TRUE(wait_until([&] { return presented_count(dir_ / "out-stopped/b") > 3; }, 180s)) << logs();

@@ -37,9 +37,9 @@ TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
   ASSERT_EQ(frame.size(), kHeaderBytes + payload_bytes);
   const Bytes payload(frame.begin() + kHeaderBytes, frame.end());
   const std::uint32_t crc = crc32c(payload);
-  const Bytes expected_header = {'Z', 'N', 'T', 'H',  // magic
-                                 0x00, 0x04,          // version 4
-                                 0x00, 0x10,          // type 16 = FrameState
+  const Bytes expected_header = {'Z', 'N', 'T', 'H',                                          // magic
+                                 0x00, 0x04,                                                  // version 4
+                                 0x00, 0x10,                                                  // type 16 = FrameState
                                  0x00, 0x00, 0x00, static_cast<std::uint8_t>(payload_bytes),  // length
                                  // payload CRC-32C
                                  static_cast<std::uint8_t>(crc >> 24), static_cast<std::uint8_t>(crc >> 16),
@@ -52,8 +52,8 @@ TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
             (Bytes{static_cast<std::uint8_t>(header_crc >> 24), static_cast<std::uint8_t>(header_crc >> 16),
                    static_cast<std::uint8_t>(header_crc >> 8), static_cast<std::uint8_t>(header_crc)}));
   // The payload starts with the frame number, then show_time_s = 1.0 (0x3FF0…), position x = 2.0 (0x4000…).
-  const Bytes expected_start = {1, 2, 3, 4, 5, 6, 7, 8, 0x3F, 0xF0, 0, 0, 0, 0, 0, 0, 0x40, 0, 0, 0, 0, 0, 0, 0,
-                                0xC0, 0, 0, 0, 0, 0, 0, 0};
+  const Bytes expected_start = {1,    2, 3, 4, 5, 6, 7, 8, 0x3F, 0xF0, 0, 0, 0, 0, 0, 0,
+                                0x40, 0, 0, 0, 0, 0, 0, 0, 0xC0, 0,    0, 0, 0, 0, 0, 0};
   EXPECT_EQ(Bytes(payload.begin(), payload.begin() + 32), expected_start);
   // Orientation w = 1.0 comes first (offset 40), then x, y, z.
   EXPECT_EQ(payload[40], 0x3F);
@@ -218,7 +218,8 @@ TEST(Messages, AtmosphereDefinitionLayout) {
   // A length beyond the limit is refused before the text is read.
   Bytes oversized = payload;
   oversized[36] = 0x00, oversized[37] = 0x04, oversized[38] = 0x00, oversized[39] = 0x01;  // 262145 bytes
-  EXPECT_THROW(decode_payload(static_cast<std::uint16_t>(MessageType::atmosphere_definition), oversized), ProtocolError);
+  EXPECT_THROW(decode_payload(static_cast<std::uint16_t>(MessageType::atmosphere_definition), oversized),
+               ProtocolError);
 }
 
 TEST(Messages, DigestHex) {

@@ -54,11 +54,13 @@ TEST(OperatorCommand, ReadsEveryCommand) {
   EXPECT_EQ(parse(R"({"command": "sun", "azimuth_deg": -90})"), OperatorCommand(oc::Sun{std::nullopt, -90.0}));
   EXPECT_EQ(describe(parse(R"({"command": "sun", "elevation_deg": 12.5})")), "sun elevation 12.5°");
   EXPECT_EQ(parse(R"({"command": "clear", "what": "sun"})"), OperatorCommand(oc::Clear{oc::Clear::What::sun, ""}));
-  EXPECT_EQ(parse(R"({"command": "clear", "what": "exposure"})"), OperatorCommand(oc::Clear{oc::Clear::What::exposure, ""}));
+  EXPECT_EQ(parse(R"({"command": "clear", "what": "exposure"})"),
+            OperatorCommand(oc::Clear{oc::Clear::What::exposure, ""}));
   EXPECT_EQ(describe(parse(R"({"command": "clear", "what": "sun"})")), "clear sun");
   EXPECT_EQ(parse(R"({"command": "clear", "what": "atmosphere", "body": "Earth"})"),
             OperatorCommand(oc::Clear{oc::Clear::What::atmosphere, "Earth"}));
-  EXPECT_EQ(describe(parse(R"({"command": "clear", "what": "atmosphere", "body": "Earth"})")), "clear atmosphere of Earth");
+  EXPECT_EQ(describe(parse(R"({"command": "clear", "what": "atmosphere", "body": "Earth"})")),
+            "clear atmosphere of Earth");
   EXPECT_EQ(parse(R"({"command": "preview", "preview": true})"), OperatorCommand(oc::Preview{true}));
   EXPECT_EQ(parse(R"({"command": "preview", "preview": "off"})"), OperatorCommand(oc::Preview{false}));
   EXPECT_EQ(describe(parse(R"({"command": "preview", "preview": "on"})")), "preview on");
@@ -84,15 +86,20 @@ TEST(OperatorCommand, ErrorsNameTheKeyTheValueAndTheRange) {
             std::string::npos);
   EXPECT_NE(error_of(R"({"command": "set", "body": "Earth", "pointer": "", "value": 1})").find("not the whole set"),
             std::string::npos);
-  EXPECT_EQ(error_of(R"({"command": "set", "body": "Earth", "pointer": "/a"})"), "command: /value: missing required key");
+  EXPECT_EQ(error_of(R"({"command": "set", "body": "Earth", "pointer": "/a"})"),
+            "command: /value: missing required key");
   EXPECT_NE(error_of(R"({"command": "set", "body": "", "pointer": "/a", "value": 1})").find("must name a body"),
             std::string::npos);
-  EXPECT_EQ(error_of(R"({"command": "sun", "elevation_deg": 91})"), "command: /elevation_deg = 91: must be in [-90, 90] deg");
-  EXPECT_EQ(error_of(R"({"command": "sun", "azimuth_deg": 400})"), "command: /azimuth_deg = 400: must be in [-360, 360] deg");
-  EXPECT_NE(error_of(R"({"command": "sun"})").find("command: /elevation_deg: missing required key (a sun command gives"),
-            std::string::npos);
-  EXPECT_NE(error_of(R"({"command": "clear", "what": "moon"})").find("command: /what = \"moon\": must be one of \"sun\""),
-            std::string::npos);
+  EXPECT_EQ(error_of(R"({"command": "sun", "elevation_deg": 91})"),
+            "command: /elevation_deg = 91: must be in [-90, 90] deg");
+  EXPECT_EQ(error_of(R"({"command": "sun", "azimuth_deg": 400})"),
+            "command: /azimuth_deg = 400: must be in [-360, 360] deg");
+  EXPECT_NE(
+      error_of(R"({"command": "sun"})").find("command: /elevation_deg: missing required key (a sun command gives"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(R"({"command": "clear", "what": "moon"})").find("command: /what = \"moon\": must be one of \"sun\""),
+      std::string::npos);
   EXPECT_EQ(error_of(R"({"command": "clear", "what": "atmosphere"})"), "command: /body: missing required key");
   EXPECT_EQ(error_of(R"({"command": "preview", "preview": 1})"),
             "command: /preview = 1: must be true, false, \"on\" or \"off\"");
@@ -108,7 +115,8 @@ TEST(OperatorCommand, ErrorsNameTheKeyTheValueAndTheRange) {
 
 TEST(OperatorCommand, ReadsFadesAndBlackouts) {
   EXPECT_EQ(parse(R"({"command": "fade", "seconds": 3})"), OperatorCommand(oc::Fade{1.0, 3.0, std::nullopt}));
-  EXPECT_EQ(parse(R"({"command": "fade", "level": 0, "seconds": 0.5})"), OperatorCommand(oc::Fade{0.0, 0.5, std::nullopt}));
+  EXPECT_EQ(parse(R"({"command": "fade", "level": 0, "seconds": 0.5})"),
+            OperatorCommand(oc::Fade{0.0, 0.5, std::nullopt}));
   EXPECT_EQ(parse(R"({"command": "fade", "level": 0.5, "seconds": 2, "colour": [1, 0.5, 0]})"),
             OperatorCommand(oc::Fade{0.5, 2.0, std::array<double, 3>{1.0, 0.5, 0.0}}));
   EXPECT_EQ(describe(parse(R"({"command": "fade", "level": 1, "seconds": 2, "colour": [1, 0, 0]})")),
@@ -120,8 +128,9 @@ TEST(OperatorCommand, ReadsFadesAndBlackouts) {
   EXPECT_EQ(error_of(R"({"command": "fade", "seconds": -1})"), "command: /seconds = -1: must be in [0, 3600] s");
   EXPECT_EQ(error_of(R"({"command": "fade", "level": 2, "seconds": 1})"), "command: /level = 2: must be in [0, 1]");
   EXPECT_EQ(error_of(R"({"command": "fade", "level": 1})"), "command: /seconds: missing required key");
-  EXPECT_EQ(error_of(R"({"command": "fade", "seconds": 1, "colour": [1, 1.5, 0]})"),
-            "command: /colour = [1,1.5,0]: must be [r, g, b], each a number in [0, 1] (display-linear; [0, 0, 0] black)");
+  EXPECT_EQ(
+      error_of(R"({"command": "fade", "seconds": 1, "colour": [1, 1.5, 0]})"),
+      "command: /colour = [1,1.5,0]: must be [r, g, b], each a number in [0, 1] (display-linear; [0, 0, 0] black)");
   EXPECT_NE(error_of(R"({"command": "fade", "seconds": 1, "colour": "red"})").find("must be [r, g, b]"),
             std::string::npos);
   EXPECT_NE(error_of(R"({"command": "fade", "seconds": 1, "color": [0, 0, 0]})").find("/color: unknown key"),
@@ -131,16 +140,15 @@ TEST(OperatorCommand, ReadsFadesAndBlackouts) {
 }
 
 TEST(OperatorCommand, ToJsonIsTheInverseOfParsing) {
-  for (const char* text : {R"({"command": "play"})", R"({"command": "seek", "seconds": 3})",
-                           R"({"command": "rate", "rate": 0.5})", R"({"command": "loop", "loop": "on"})",
-                           R"({"command": "exposure", "exposure": null})", R"({"command": "exposure", "exposure": 1e6})",
-                           R"({"command": "sun", "elevation_deg": 5})", R"({"command": "sun", "elevation_deg": -5, "azimuth_deg": 90})",
-                           R"({"command": "clear", "what": "exposure"})",
-                           R"({"command": "clear", "what": "atmosphere", "body": "Earth"})",
-                           R"({"command": "preview", "preview": false})",
-                           R"({"command": "fade", "level": 0.25, "seconds": 1.5, "colour": [0, 0.5, 1]})",
-                           R"({"command": "fade", "seconds": 0})", R"({"command": "blackout", "blackout": "on"})",
-                           R"({"command": "set", "body": "Mars", "pointer": "/planet/ground_albedo", "value": {"680": 0.3}})"}) {
+  for (const char* text :
+       {R"({"command": "play"})", R"({"command": "seek", "seconds": 3})", R"({"command": "rate", "rate": 0.5})",
+        R"({"command": "loop", "loop": "on"})", R"({"command": "exposure", "exposure": null})",
+        R"({"command": "exposure", "exposure": 1e6})", R"({"command": "sun", "elevation_deg": 5})",
+        R"({"command": "sun", "elevation_deg": -5, "azimuth_deg": 90})", R"({"command": "clear", "what": "exposure"})",
+        R"({"command": "clear", "what": "atmosphere", "body": "Earth"})", R"({"command": "preview", "preview": false})",
+        R"({"command": "fade", "level": 0.25, "seconds": 1.5, "colour": [0, 0.5, 1]})",
+        R"({"command": "fade", "seconds": 0})", R"({"command": "blackout", "blackout": "on"})",
+        R"({"command": "set", "body": "Mars", "pointer": "/planet/ground_albedo", "value": {"680": 0.3}})"}) {
     const OperatorCommand command = parse(text);
     EXPECT_EQ(parse_operator_command(to_json(command)), command) << text;
   }
@@ -167,11 +175,49 @@ const std::vector<std::string> kSeeds = {
 };
 
 /// Pieces a mutation inserts: JSON punctuation, keys, values at and beyond the ranges' edges.
-const std::vector<std::string> kPieces = {
-    "{",  "}",  "[",    "]",     ",",       ":",        "\"",       "\\",         "null",       "true",  "false",
-    "-",  "0",  "1e999", "-1e-999", "16.0000001", "1e6", "1e309", "NaN", "\"command\"", "\"seconds\"", "\"rate\"",
-    "\"value\"", "\"pointer\"", "\"/\"", "\"~\"", "\"/~2\"", "\"\\u0000\"", "\"\\ud800\"", "\xff", "\xc3\x28",
-    "18446744073709551616", "-9223372036854775809", "[[[[[[[[[[[[[[[[[[", "\"set\"", "\"loop\"", "\"on\"", "\"elevation_deg\"", "\"azimuth_deg\"", "90.0000001", "-360", "\"what\"", "\"sun\""};
+const std::vector<std::string> kPieces = {"{",
+                                          "}",
+                                          "[",
+                                          "]",
+                                          ",",
+                                          ":",
+                                          "\"",
+                                          "\\",
+                                          "null",
+                                          "true",
+                                          "false",
+                                          "-",
+                                          "0",
+                                          "1e999",
+                                          "-1e-999",
+                                          "16.0000001",
+                                          "1e6",
+                                          "1e309",
+                                          "NaN",
+                                          "\"command\"",
+                                          "\"seconds\"",
+                                          "\"rate\"",
+                                          "\"value\"",
+                                          "\"pointer\"",
+                                          "\"/\"",
+                                          "\"~\"",
+                                          "\"/~2\"",
+                                          "\"\\u0000\"",
+                                          "\"\\ud800\"",
+                                          "\xff",
+                                          "\xc3\x28",
+                                          "18446744073709551616",
+                                          "-9223372036854775809",
+                                          "[[[[[[[[[[[[[[[[[[",
+                                          "\"set\"",
+                                          "\"loop\"",
+                                          "\"on\"",
+                                          "\"elevation_deg\"",
+                                          "\"azimuth_deg\"",
+                                          "90.0000001",
+                                          "-360",
+                                          "\"what\"",
+                                          "\"sun\""};
 
 std::string mutate(std::string text, std::mt19937_64& rng) {
   const auto below = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
@@ -188,7 +234,7 @@ std::string mutate(std::string text, std::mt19937_64& rng) {
       case 2: text.insert(at, kPieces[below(kPieces.size())]); break;
       case 3: text.insert(at, 1, static_cast<char>(below(256))); break;
       case 4: text = text.substr(0, at); break;  // truncate
-      case 5: {  // replace a number or string by a piece
+      case 5: {                                  // replace a number or string by a piece
         const std::size_t colon = text.find(':', at);
         if (colon != std::string::npos) {
           const std::size_t end = text.find_first_of(",}", colon);

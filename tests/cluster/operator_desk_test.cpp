@@ -67,7 +67,8 @@ TEST_F(OperatorDeskTest, TheExposureReplacesTheShowsFromTheNextFrameUntilCleared
   EXPECT_EQ(next.exposure, 2.5);
   EXPECT_EQ(d.status()["exposure_override"], 2.5);
 
-  EXPECT_EQ(d.run(oc::Clear{oc::Clear::What::exposure, ""}, "control"), "the show's own exposure from the next frame on");
+  EXPECT_EQ(d.run(oc::Clear{oc::Clear::What::exposure, ""}, "control"),
+            "the show's own exposure from the next frame on");
   FrameState after = frame(2);
   d.shape(after);
   EXPECT_EQ(after.exposure, 25.0);

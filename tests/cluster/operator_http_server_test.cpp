@@ -19,7 +19,9 @@ class OperatorHttpServerTest : public ::testing::Test {
  protected:
   OperatorHttpServer make(std::optional<SharedSecret> token = std::nullopt, std::vector<std::string> names = {}) {
     return OperatorHttpServer(io_, {"127.0.0.1", 8080, std::move(token), std::move(names)},
-                              {[] { return nlohmann::json{{"state", "playing"}}; },
+                              {[] {
+                                 return nlohmann::json{{"state", "playing"}};
+                               },
                                [this](const OperatorCommand& c, const std::string& peer) {
                                  commands_.push_back(describe(c) + " from " + peer);
                                  if (std::holds_alternative<operator_command::Pause>(c))
@@ -75,20 +77,23 @@ TEST_F(OperatorHttpServerTest, ServesTheDomePreviewAsPngWhileThereIsOne) {
   EXPECT_EQ(on[http::field::content_type], "image/png");
   EXPECT_EQ(on[http::field::cache_control], "no-store");
   EXPECT_EQ(on.body(), "\x89PNG-bytes");
-  EXPECT_EQ(server.respond(request(http::verb::post, "/api/preview", "{}"), "x").result(), http::status::method_not_allowed);
+  EXPECT_EQ(server.respond(request(http::verb::post, "/api/preview", "{}"), "x").result(),
+            http::status::method_not_allowed);
   // The page shows it from a blob: URL (fetched with the token), which its policy allows.
-  EXPECT_NE(std::string(server.respond(request(http::verb::get, "/"), "x")["Content-Security-Policy"]).find("img-src 'self' data: blob:"),
+  EXPECT_NE(std::string(server.respond(request(http::verb::get, "/"), "x")["Content-Security-Policy"])
+                .find("img-src 'self' data: blob:"),
             std::string::npos);
 }
 
 TEST_F(OperatorHttpServerTest, CommandsAreAnsweredWithTheReplyOrA400NamingTheError) {
   const OperatorHttpServer server = make();
-  const Response ok = server.respond(request(http::verb::post, "/api/command", R"({"command": "seek", "seconds": 2})"),
-                                     "127.0.0.1");
+  const Response ok =
+      server.respond(request(http::verb::post, "/api/command", R"({"command": "seek", "seconds": 2})"), "127.0.0.1");
   EXPECT_EQ(ok.result(), http::status::ok);
   EXPECT_EQ(body_of(ok), (nlohmann::json{{"ok", true}, {"reply", "done"}}));
   EXPECT_EQ(commands_, std::vector<std::string>{"seek 2.0 from http 127.0.0.1"});
-  const Response bad = server.respond(request(http::verb::post, "/api/command", R"({"command": "rate", "rate": 99})"), "x");
+  const Response bad =
+      server.respond(request(http::verb::post, "/api/command", R"({"command": "rate", "rate": 99})"), "x");
   EXPECT_EQ(bad.result(), http::status::bad_request);
   EXPECT_EQ(body_of(bad)["error"], "command: /rate = 99: must be in [-16, 16]");
   const Response refused = server.respond(request(http::verb::post, "/api/command", R"({"command": "pause"})"), "x");
@@ -100,8 +105,9 @@ TEST_F(OperatorHttpServerTest, CommandsAreAnsweredWithTheReplyOrA400NamingTheErr
 TEST_F(OperatorHttpServerTest, RefusesCrossSiteAndRebindingRequests) {
   const OperatorHttpServer server = make();
   // A page elsewhere can send text/plain without asking the browser first: refused.
-  EXPECT_EQ(server.respond(request(http::verb::post, "/api/command", R"({"command": "quit"})", "text/plain"), "x").result(),
-            http::status::unsupported_media_type);
+  EXPECT_EQ(
+      server.respond(request(http::verb::post, "/api/command", R"({"command": "quit"})", "text/plain"), "x").result(),
+      http::status::unsupported_media_type);
   Request foreign = request(http::verb::post, "/api/command", R"({"command": "quit"})");
   foreign.set(http::field::origin, "http://evil.example");
   EXPECT_EQ(server.respond(foreign, "x").result(), http::status::forbidden);
@@ -118,7 +124,8 @@ TEST_F(OperatorHttpServerTest, RefusesCrossSiteAndRebindingRequests) {
 }
 
 TEST_F(OperatorHttpServerTest, WithATokenEveryApiRequestMustCarryIt) {
-  const OperatorHttpServer server = make(SharedSecret(std::vector<std::uint8_t>(20, 'k'), "test"), {"dome-master.local"});
+  const OperatorHttpServer server =
+      make(SharedSecret(std::vector<std::uint8_t>(20, 'k'), "test"), {"dome-master.local"});
   const std::string token(20, 'k');
   // The page holds no secret: served without the token.
   EXPECT_EQ(server.respond(request(http::verb::get, "/"), "x").result(), http::status::ok);

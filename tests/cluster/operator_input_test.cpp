@@ -35,10 +35,13 @@ class OperatorInputTest : public ::testing::Test {
       input_->close();
       run_for(50ms);  // its cancelled handlers run before it goes
     }
-    input_.emplace(io_, [this](std::string line) {
-      lines_.push_back(line);
-      return "ok " + line;
-    }, idle);
+    input_.emplace(
+        io_,
+        [this](std::string line) {
+          lines_.push_back(line);
+          return "ok " + line;
+        },
+        idle);
     input_->listen_for_control(0);
   }
   /// A new client (closed by TearDown).

@@ -12,9 +12,9 @@
 #include "cluster/master/osc_command.h"
 #include "cluster/master/osc_packet.h"
 #include "cluster/master/osc_receiver.h"
+#include "core/json_reader.h"
 #include "core/strings.h"
 #include "tests/cluster/captured_log.h"
-#include "core/json_reader.h"
 
 namespace zenith::cluster {
 namespace {
@@ -63,7 +63,8 @@ TEST(OscPacket, ErrorsNameTheByteOffset) {
   EXPECT_EQ(error_of(bytes("/zen")), "OSC packet, byte 0: a string without its terminating NUL");
   EXPECT_EQ(error_of(bytes(std::string_view("/a\0\0,f\0\0\0\0", 10))),
             "OSC packet, byte 0: an element of 10 bytes: OSC sizes are multiples of 4");
-  EXPECT_EQ(error_of(bytes(std::string_view("/a\0\0,f\0\0", 8))), "OSC packet, byte 8: 4 bytes needed, the packet ends");
+  EXPECT_EQ(error_of(bytes(std::string_view("/a\0\0,f\0\0", 8))),
+            "OSC packet, byte 8: 4 bytes needed, the packet ends");
   EXPECT_EQ(error_of(bytes(std::string_view("/a\0\0,[\0\0", 8))),
             "OSC packet, byte 8: type tag '[' is not supported (i f s S b h d t T F N I c r m are)");
   EXPECT_EQ(error_of(bytes(std::string_view("/a b\0\0\0\0", 8))).find("address \"/a b\""), 20u);
@@ -80,7 +81,8 @@ TEST(OscPacketProperty, TwoHundredThousandMutationsNeverCrashAndFailOnlyWithOscE
   const std::vector<Bytes> seeds = {
       encode_osc_message({"/zenith/seek", {12.5f}}),
       encode_osc_message({"/zenith/atmosphere/Earth/aerosol/scattering/turbidity", {3.0f}}),
-      encode_osc_message({"/zenith/x", {std::int32_t{1}, std::int64_t{2}, 3.0, std::string("s"), OscBlob{{9, 9}}, true}}),
+      encode_osc_message(
+          {"/zenith/x", {std::int32_t{1}, std::int64_t{2}, 3.0, std::string("s"), OscBlob{{9, 9}}, true}}),
       encode_osc_bundle({encode_osc_message({"/zenith/pause", {}}), encode_osc_message({"/zenith/rate", {2.0f}})}),
   };
   std::size_t decoded = 0, refused = 0;
@@ -95,7 +97,9 @@ TEST(OscPacketProperty, TwoHundredThousandMutationsNeverCrashAndFailOnlyWithOscE
         case 1:
           if (!p.empty()) p.erase(p.begin() + static_cast<std::ptrdiff_t>(below(p.size())));
           break;
-        case 2: p.insert(p.begin() + static_cast<std::ptrdiff_t>(below(p.size() + 1)), static_cast<std::uint8_t>(below(256))); break;
+        case 2:
+          p.insert(p.begin() + static_cast<std::ptrdiff_t>(below(p.size() + 1)), static_cast<std::uint8_t>(below(256)));
+          break;
         case 3: p.resize(below(p.size() + 1)); break;
         case 4:  // a size or length field set to something large
           if (p.size() >= 4) {
@@ -170,7 +174,8 @@ TEST(OscCommand, AddressesBecomeTheApisCommandsWithItsRanges) {
   EXPECT_EQ(error_of({"/zenith/fade", {1.0f, -2.0f}}), "command: /seconds = -2.0: must be in [0, 3600] s");
   EXPECT_NE(error_of({"/zenith/fade", {1.0f}}).find("OSC /zenith/fade: takes LEVEL SECONDS or LEVEL SECONDS R G B"),
             std::string::npos);
-  EXPECT_NE(error_of({"/zenith/fade", {1.0f, 2.0f, 1.0f, 2.0f, 0.0f}}).find("each a number in [0, 1]"), std::string::npos);
+  EXPECT_NE(error_of({"/zenith/fade", {1.0f, 2.0f, 1.0f, 2.0f, 0.0f}}).find("each a number in [0, 1]"),
+            std::string::npos);
   EXPECT_NE(error_of({"/zenith/fade", {std::string("x"), 2.0f}}).find("argument 1 (level) must be a number"),
             std::string::npos);
   EXPECT_EQ(error_of({"/zenith/seek", {}}), "OSC /zenith/seek: takes one argument, got 0");
@@ -195,9 +200,11 @@ TEST(OscReceiverTest, AppliesMessagesFromAllowedSendersOnly) {
   const auto localhost = boost::asio::ip::make_address("127.0.0.1");
   const auto desk = boost::asio::ip::make_address("10.0.0.5");
   OscReceiver loopback(io, {"127.0.0.1", 0, {}}, handler);
-  const Bytes bundle = encode_osc_bundle({encode_osc_message({"/zenith/rate", {2.0f}}), encode_osc_message({"/zenith/pause", {}}),
-                                          encode_osc_message({"/zenith/nothing", {}}), encode_osc_message({"/zenith/play", {}})});
-  EXPECT_EQ(loopback.handle(bundle, localhost), 2u) << "rate and play applied, pause refused, the unknown address refused";
+  const Bytes bundle =
+      encode_osc_bundle({encode_osc_message({"/zenith/rate", {2.0f}}), encode_osc_message({"/zenith/pause", {}}),
+                         encode_osc_message({"/zenith/nothing", {}}), encode_osc_message({"/zenith/play", {}})});
+  EXPECT_EQ(loopback.handle(bundle, localhost), 2u)
+      << "rate and play applied, pause refused, the unknown address refused";
   EXPECT_EQ(applied, (std::vector<std::string>{"rate 2.0 from osc 127.0.0.1", "play from osc 127.0.0.1"}));
   EXPECT_EQ(loopback.handle(bundle, desk), 0u) << "without --osc-allow only the loopback is heard";
   EXPECT_EQ(loopback.handle(bytes("garbage!"), localhost), 0u);

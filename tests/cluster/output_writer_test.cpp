@@ -2,8 +2,8 @@
 // partial files renamed on Present, presented.log, the two layouts.
 #include "cluster/node/output_writer.h"
 
-#include "image/image_io.h"
 #include "core/files.h"
+#include "image/image_io.h"
 
 #include <gtest/gtest.h>
 
@@ -35,8 +35,9 @@ using core::read_text;
 class OutputWriterTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    root = fs::temp_directory_path() / ("zenith-output-writer-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    root = fs::temp_directory_path() /
+           ("zenith-output-writer-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(root);
   }
   void TearDown() override { fs::remove_all(root); }
@@ -68,7 +69,8 @@ TEST_F(OutputWriterTest, PresentRenamesThePartialFilesAndLogsTheFrame) {
   EXPECT_TRUE(fs::exists(left));
   EXPECT_TRUE(fs::exists(writer.frame_path(viewports.outputs[1], 3)));
   EXPECT_FALSE(fs::exists(fs::path(left.string() + ".partial")));
-  EXPECT_EQ(read_text(root / "a" / "presented.log"), "frame 3 state abcd tables Earth=0123456789abcdef show_time_s 0.1\n");
+  EXPECT_EQ(read_text(root / "a" / "presented.log"),
+            "frame 3 state abcd tables Earth=0123456789abcdef show_time_s 0.1\n");
   EXPECT_FALSE(writer.present(3)) << "presented once";
 }
 
@@ -97,8 +99,7 @@ TEST_F(OutputWriterTest, TheDisplayImageIsToneMapped) {
   // The frame's fade after the tone map: a quarter of the way to red.
   const std::vector<float> faded = writer.display_image(0, grey, {0.25, glm::dvec3(1.0, 0.0, 0.0)});
   const double t = 1.0 - std::exp(-0.5);
-  for (std::size_t i = 0; i < faded.size(); ++i)
-    EXPECT_NEAR(faded[i], 0.75 * t + (i % 3 == 0 ? 0.25 : 0.0), 1e-6) << i;
+  for (std::size_t i = 0; i < faded.size(); ++i) EXPECT_NEAR(faded[i], 0.75 * t + (i % 3 == 0 ? 0.25 : 0.0), 1e-6) << i;
 }
 
 TEST_F(OutputWriterTest, TheLogNamesAFrameFade) {

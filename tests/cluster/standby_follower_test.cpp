@@ -68,9 +68,9 @@ TEST(StandbyFollower, KeepsEverySetWithItsDefinitionReadyToSend) {
 TEST(StandbyFollower, RefusesASetWithoutDefinitionACorruptSetAndMessagesNotMeantForIt) {
   StandbyFollower follower;
   const TableSetFile set = set_of(3, 100);
-  const auto announce = std::get<TableAnnounce>(decode_payload(
-      static_cast<std::uint16_t>(MessageType::table_announce),
-      std::span<const std::uint8_t>(*set.frames[0]).subspan(kHeaderBytes)));
+  const auto announce =
+      std::get<TableAnnounce>(decode_payload(static_cast<std::uint16_t>(MessageType::table_announce),
+                                             std::span<const std::uint8_t>(*set.frames[0]).subspan(kHeaderBytes)));
   EXPECT_THROW(follower.on_message(announce), std::runtime_error) << "a set it could not describe to nodes";
 
   follower.on_message(definition_of(3));
@@ -127,7 +127,8 @@ TEST(StandbyFollower, CannotContinueAFrameWhoseTablesItDoesNotHold) {
   send_set(follower, 1, 50);
   follower.on_message(frame(5, 0.5, 9));
   ASSERT_TRUE(follower.takeover_problem().has_value());
-  EXPECT_NE(follower.takeover_problem()->find("frame 5 uses table set"), std::string::npos) << *follower.takeover_problem();
+  EXPECT_NE(follower.takeover_problem()->find("frame 5 uses table set"), std::string::npos)
+      << *follower.takeover_problem();
   EXPECT_THROW((void)follower.takeover_state(), std::logic_error);
 }
 

@@ -37,10 +37,13 @@ using nlohmann::json;
 class StatusPushTest : public ::testing::Test {
  protected:
   void start(std::optional<SharedSecret> token = std::nullopt) {
-    server_.emplace(io_, OperatorHttpServer::Options{"127.0.0.1", 0, std::move(token), {}},
-                    OperatorHttpServer::Handlers{[this] { return json{{"n", counter_.load()}}; },
-                                                 [](const OperatorCommand&, const std::string&) { return std::string(); },
-                                                 {}});
+    server_.emplace(
+        io_, OperatorHttpServer::Options{"127.0.0.1", 0, std::move(token), {}},
+        OperatorHttpServer::Handlers{[this] {
+                                       return json{{"n", counter_.load()}};
+                                     },
+                                     [](const OperatorCommand&, const std::string&) { return std::string(); },
+                                     {}});
     server_->start();
     thread_ = std::thread([this] { io_.run(); });
   }
@@ -51,8 +54,8 @@ class StatusPushTest : public ::testing::Test {
   }
 
   /// A client WebSocket to /api/events (reads time out after 5 s), with `headers` on its upgrade request.
-  std::unique_ptr<websocket::stream<tcp::socket>> connect(const std::vector<std::pair<beast::http::field, std::string>>& headers = {},
-                                                          const std::string& host = "") {
+  std::unique_ptr<websocket::stream<tcp::socket>> connect(
+      const std::vector<std::pair<beast::http::field, std::string>>& headers = {}, const std::string& host = "") {
     tcp::socket socket(client_io_);
     socket.connect({asio::ip::make_address("127.0.0.1"), server_->port()});
     const timeval timeout{5, 0};

@@ -59,7 +59,8 @@ class TableScheduleTest : public ::testing::Test {
 
   /// A node past its handshake with an empty inventory (cache): it is sent every set it needs.
   NodeSession& join(const std::string& name) {
-    NodeSession& s = sessions_.add(nullptr, MasterHandshake(SharedSecret(std::vector<std::uint8_t>(32, 1), "test"), "c"));
+    NodeSession& s =
+        sessions_.add(nullptr, MasterHandshake(SharedSecret(std::vector<std::uint8_t>(32, 1), "test"), "c"));
     s.name = name;
     s.state = NodeSession::State::tables;
     schedule_->finish_inventory(s);
@@ -231,9 +232,9 @@ TEST_F(TableScheduleTest, ClearingGivesTheScenesOwnAtmosphereBackAsANewVersion) 
   prepare_next();
   schedule_->on_table_ready(a, schedule_->tables().pending()->hash);
   ASSERT_FALSE(schedule_->tables().pending());
-  EXPECT_EQ(schedule_->clear_atmosphere("Earth"),
-            "'Earth': the scene's own atmosphere, table version " + short_hex(scene_version()) +
-                "; every node switches to it at one frame once all hold it");
+  EXPECT_EQ(schedule_->clear_atmosphere("Earth"), "'Earth': the scene's own atmosphere, table version " +
+                                                      short_hex(scene_version()) +
+                                                      "; every node switches to it at one frame once all hold it");
   // The scene's set is held already: no precompute, it goes out on the next turn of the loop.
   EXPECT_TRUE(jobs_.empty());
   ASSERT_EQ(deferred_.size(), 1u);

@@ -78,9 +78,9 @@ TEST(Takeover, TheReceivedVersionsBecomeTheMastersWithTheLastFramesCurrentOnes) 
   const Digest hash = digest_from_hex(atmosphere::lookup_table_hash(earth.model));
   TakeoverState state = state_at(7, 0.7, 0.1);
   state.last_frame->atmospheres.push_back({scene.bodies[0].name, hash, 3});
-  state.versions.push_back({AtmosphereDefinition{scene.bodies[0].name, hash, earth.parameters.dump()},
-                            make_table_set(scene.bodies[0].name, hash,
-                                           std::make_shared<const std::vector<std::uint8_t>>(100, 7))});
+  state.versions.push_back(
+      {AtmosphereDefinition{scene.bodies[0].name, hash, earth.parameters.dump()},
+       make_table_set(scene.bodies[0].name, hash, std::make_shared<const std::vector<std::uint8_t>>(100, 7))});
   TableVersions tables;
   adopt_takeover_tables(state, scene, tables, true);
   ASSERT_EQ(tables.current().size(), 1u);

@@ -33,12 +33,18 @@ inline std::vector<std::uint8_t> decode_base64(const std::string& text) {
   int count = 0;
   for (const char c : text) {
     int v;
-    if (c >= 'A' && c <= 'Z') v = c - 'A';
-    else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
-    else if (c >= '0' && c <= '9') v = c - '0' + 52;
-    else if (c == '+') v = 62;
-    else if (c == '/') v = 63;
-    else break;
+    if (c >= 'A' && c <= 'Z')
+      v = c - 'A';
+    else if (c >= 'a' && c <= 'z')
+      v = c - 'a' + 26;
+    else if (c >= '0' && c <= '9')
+      v = c - '0' + 52;
+    else if (c == '+')
+      v = 62;
+    else if (c == '/')
+      v = 63;
+    else
+      break;
     bits = bits << 6 | static_cast<std::uint32_t>(v);
     count += 6;
     if (count >= 8) {
@@ -69,9 +75,9 @@ class WebDriver {
            {{"browserName", "chrome"},
             {"goog:chromeOptions",
              {{"binary", kChromium.string()},
-              {"args", {"--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                        "--window-size=1280,1500",
-                        "--remote-debugging-port=" + std::to_string(browser_port)}}}}}}}}};
+              {"args",
+               {"--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1280,1500",
+                "--remote-debugging-port=" + std::to_string(browser_port)}}}}}}}}};
     session_ = call(boost::beast::http::verb::post, "/session", capabilities)["sessionId"];
   }
   ~WebDriver() {
@@ -99,12 +105,15 @@ class WebDriver {
   }
   /// Runs `script` in the page; its return value.
   nlohmann::json script(const std::string& script) {
-    return call(boost::beast::http::verb::post, path("/execute/sync"), {{"script", script}, {"args", nlohmann::json::array()}});
+    return call(boost::beast::http::verb::post, path("/execute/sync"),
+                {{"script", script}, {"args", nlohmann::json::array()}});
   }
   /// Saves a PNG of the window.
   void screenshot(const std::filesystem::path& file) {
-    const std::vector<std::uint8_t> png = decode_base64(call(boost::beast::http::verb::get, path("/screenshot"), nullptr));
-    std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+    const std::vector<std::uint8_t> png =
+        decode_base64(call(boost::beast::http::verb::get, path("/screenshot"), nullptr));
+    std::ofstream(file, std::ios::binary)
+        .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   }
 
  private:
@@ -113,7 +122,8 @@ class WebDriver {
     const HttpReply r = http_request(port_, verb, target, body.is_null() ? "" : body.dump(), "application/json", 120);
     const nlohmann::json answer = r.json();
     if (r.status != 200 || !answer.is_object() || !answer.contains("value"))
-      throw std::runtime_error("WebDriver " + target + ": HTTP " + std::to_string(r.status) + ": " + r.body.substr(0, 2000));
+      throw std::runtime_error("WebDriver " + target + ": HTTP " + std::to_string(r.status) + ": " +
+                               r.body.substr(0, 2000));
     return answer["value"];
   }
 

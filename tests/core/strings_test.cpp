@@ -18,8 +18,14 @@ TEST(Escaped, PrintableAsciiPassesControlBytesBecomeHexAndABackslashIsDoubled) {
   EXPECT_EQ(escaped("\x7f"), "\\x7f");
   EXPECT_EQ(escaped("sun at 250\xc2\xb0, caf\xc3\xa9"), "sun at 250\xc2\xb0, caf\xc3\xa9") << "printable UTF-8 as is";
   EXPECT_EQ(escaped("\xc2\x85"), "\\xc2\\x85") << "a C1 control (NEL: a newline on some terminals)";
-  EXPECT_EQ(escaped("a\xe2\x80\xa8" "b"), "a\\xe2\\x80\\xa8b") << "U+2028, the line separator";
-  EXPECT_EQ(escaped("\xe2\x80\xae" "evil"), "\\xe2\\x80\\xaeevil") << "U+202E reverses the text after it";
+  EXPECT_EQ(escaped("a\xe2\x80\xa8"
+                    "b"),
+            "a\\xe2\\x80\\xa8b")
+      << "U+2028, the line separator";
+  EXPECT_EQ(escaped("\xe2\x80\xae"
+                    "evil"),
+            "\\xe2\\x80\\xaeevil")
+      << "U+202E reverses the text after it";
   EXPECT_EQ(escaped("\xc3"), "\\xc3") << "a truncated sequence";
   EXPECT_EQ(escaped("\xc0\xaf"), "\\xc0\\xaf") << "an overlong '/'";
   EXPECT_EQ(escaped("\xed\xa0\x80"), "\\xed\\xa0\\x80") << "a surrogate";

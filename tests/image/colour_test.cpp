@@ -42,15 +42,19 @@ TEST(Colour, DirectWeightsForThePapersWavelengthsAreTheIdentity) {
   expect_unit_rows(spectral_to_rgb_weights(paper, ColourMapping::automatic), {0, 1, 2});
   // Any order: each wavelength selects its own band.
   expect_unit_rows(spectral_to_rgb_weights(std::vector<double>{440.0, 550.0, 680.0}, ColourMapping::direct), {2, 1, 0});
-  expect_unit_rows(spectral_to_rgb_weights(std::vector<double>{550.0, 680.0, 440.0}, ColourMapping::automatic), {1, 0, 2});
+  expect_unit_rows(spectral_to_rgb_weights(std::vector<double>{550.0, 680.0, 440.0}, ColourMapping::automatic),
+                   {1, 0, 2});
   // Band edges: B [380, 500), G [500, 600), R [600, 750].
   expect_unit_rows(spectral_to_rgb_weights(std::vector<double>{600.0, 500.0, 380.0}, ColourMapping::direct), {0, 1, 2});
   expect_unit_rows(spectral_to_rgb_weights(std::vector<double>{750.0, 599.9, 499.9}, ColourMapping::direct), {0, 1, 2});
 }
 
 TEST(Colour, DirectRejectsWavelengthsThatDoNotFitItsBands) {
-  const std::vector<std::vector<double>> bad{
-      {450.0, 460.0, 700.0}, {680.0, 550.0}, {680.0, 550.0, 440.0, 500.0}, {800.0, 550.0, 440.0}, {680.0, 550.0, 370.0}};
+  const std::vector<std::vector<double>> bad{{450.0, 460.0, 700.0},
+                                             {680.0, 550.0},
+                                             {680.0, 550.0, 440.0, 500.0},
+                                             {800.0, 550.0, 440.0},
+                                             {680.0, 550.0, 370.0}};
   for (const auto& w : bad) {
     try {
       spectral_to_rgb_weights(w, ColourMapping::direct);
@@ -65,7 +69,8 @@ TEST(Colour, DirectRejectsWavelengthsThatDoNotFitItsBands) {
 
 TEST(Colour, AutomaticFallsBackToCie1931) {
   const std::vector<double> five{450.0, 500.0, 550.0, 600.0, 650.0};
-  EXPECT_EQ(spectral_to_rgb_weights(five, ColourMapping::automatic), spectral_to_rgb_weights(five, ColourMapping::cie1931));
+  EXPECT_EQ(spectral_to_rgb_weights(five, ColourMapping::automatic),
+            spectral_to_rgb_weights(five, ColourMapping::cie1931));
   const std::vector<double> two_blue{440.0, 460.0, 680.0};
   EXPECT_EQ(spectral_to_rgb_weights(two_blue, ColourMapping::automatic),
             spectral_to_rgb_weights(two_blue, ColourMapping::cie1931));
@@ -152,7 +157,8 @@ TEST(Colour, WhiteReflectanceIsOneAtEveryWavelength) {
 TEST(Colour, ReflectanceIsPiecewiseLinearThroughBlueGreenRed) {
   const std::vector<double> w{400.0, 450.0, 500.0, 550.0, 600.0, 625.0, 650.0, 700.0};
   const Weights r = rgb_to_spectral_weights(w, ColourMapping::cie1931);
-  const Weights expected{{0, 0, 1}, {0, 0, 1}, {0, 0.5, 0.5}, {0, 1, 0}, {0.5, 0.5, 0}, {0.75, 0.25, 0}, {1, 0, 0}, {1, 0, 0}};
+  const Weights expected{{0, 0, 1},     {0, 0, 1},       {0, 0.5, 0.5}, {0, 1, 0},
+                         {0.5, 0.5, 0}, {0.75, 0.25, 0}, {1, 0, 0},     {1, 0, 0}};
   for (std::size_t i = 0; i < w.size(); ++i)
     for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(r[i][c], expected[i][c]) << w[i] << " nm channel " << c;
   // Direct: each wavelength takes its band's channel, and direct round-trips an albedo colour.

@@ -49,7 +49,8 @@ TEST(DownscaleBox, FractionalFactorWeighsPartlyCoveredPixels) {
 }
 
 TEST(DownscaleBox, KeepsTheMeanOfTheImage) {
-  const LinearImage image = make_image(37, 23, [](int x, int y) { return std::sin(0.3f * float(x)) + 0.1f * float(y); });
+  const LinearImage image =
+      make_image(37, 23, [](int x, int y) { return std::sin(0.3f * float(x)) + 0.1f * float(y); });
   const LinearImage small = downscale_box(image, 5, 4);
   double big_sum = 0.0, small_sum = 0.0;
   for (std::size_t i = 0; i < image.rgb.size(); i += 3) big_sum += image.rgb[i];
@@ -81,11 +82,11 @@ TEST(ContactSheet, PlacesFramesInAGridWithTheirOutputsSideBySide) {
   EXPECT_FLOAT_EQ(red(sheet, 0, 0), 0.25f);  // the gap
   EXPECT_FLOAT_EQ(red(sheet, 1, 1), 0.1f);   // frame 0, output 0
   EXPECT_FLOAT_EQ(red(sheet, 8, 8), 0.1f);
-  EXPECT_FLOAT_EQ(red(sheet, 9, 1), 0.25f);   // between the outputs
-  EXPECT_FLOAT_EQ(red(sheet, 10, 1), 0.9f);   // frame 0, output 1
-  EXPECT_FLOAT_EQ(red(sheet, 27, 1), 0.2f);   // frame 1 starts at 1 + 25 + 1
-  EXPECT_FLOAT_EQ(red(sheet, 1, 10), 0.3f);   // frame 2: second row, at 1 + 9
-  EXPECT_FLOAT_EQ(red(sheet, 1, 19), 0.5f);   // frame 4: third row
+  EXPECT_FLOAT_EQ(red(sheet, 9, 1), 0.25f);    // between the outputs
+  EXPECT_FLOAT_EQ(red(sheet, 10, 1), 0.9f);    // frame 0, output 1
+  EXPECT_FLOAT_EQ(red(sheet, 27, 1), 0.2f);    // frame 1 starts at 1 + 25 + 1
+  EXPECT_FLOAT_EQ(red(sheet, 1, 10), 0.3f);    // frame 2: second row, at 1 + 9
+  EXPECT_FLOAT_EQ(red(sheet, 1, 19), 0.5f);    // frame 4: third row
   EXPECT_FLOAT_EQ(red(sheet, 27, 19), 0.25f);  // no frame 5: background
 }
 

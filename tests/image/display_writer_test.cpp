@@ -28,7 +28,8 @@ std::vector<T> random_rgba(int w, int h, unsigned seed) {
   // A smooth ramp in the lower half, as skies are (the filters then matter).
   for (int y = h / 2; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) v[(std::size_t(y) * w + x) * 4 + c] = T((x * 3 + y + c) % (int(std::numeric_limits<T>::max()) + 1));
+      for (int c = 0; c < 3; ++c)
+        v[(std::size_t(y) * w + x) * 4 + c] = T((x * 3 + y + c) % (int(std::numeric_limits<T>::max()) + 1));
   return v;
 }
 
@@ -155,7 +156,8 @@ TEST(DisplayWriter, AFullDiskIsAnErrorNamingTheFileAndLeavesNothing) {
     }
     EXPECT_FALSE(std::filesystem::exists(path));
   };
-  expect_full(dir.path() / "frame.png", [&] { write_png_display(dir.path() / "frame.png", w, h, 8, bytes_of(codes8), 0); });
+  expect_full(dir.path() / "frame.png",
+              [&] { write_png_display(dir.path() / "frame.png", w, h, 8, bytes_of(codes8), 0); });
   expect_full(dir.path() / "frame.tif",
               [&] { write_tiff16_display(dir.path() / "frame.tif", w, h, codes16, TiffCompression::none); });
 }

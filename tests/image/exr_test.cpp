@@ -6,13 +6,13 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfMultiPartOutputFile.h>
+#include <ImfOutputFile.h>
 #include <ImfOutputPart.h>
 #include <ImfPartType.h>
 #include <ImfRgbaFile.h>
-#include <ImfTiledRgbaFile.h>
-#include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
+#include <ImfTiledRgbaFile.h>
 
 #include <Imath/half.h>
 #include <cmath>
@@ -60,8 +60,8 @@ TEST(Exr, HalfRoundTripIsWithinHalfPrecision) {
   TempDir dir;
   const int w = 41, h = 19;
   std::vector<float> rgb = random_values(w, h, 2, -27, 16);  // the whole half range, subnormals included
-  rgb[0] = 1e6f;      // beyond the half range: clamped to 65504
-  rgb[1] = -70000.0f;  // and on the other side
+  rgb[0] = 1e6f;                                             // beyond the half range: clamped to 65504
+  rgb[1] = -70000.0f;                                        // and on the other side
   write_exr(dir / "h.exr", w, h, rgb, ExrPixelType::half);
   const LinearImage image = read_image(dir / "h.exr");
   ASSERT_EQ(image.rgb.size(), rgb.size());
@@ -78,9 +78,8 @@ TEST(Exr, HalfRoundTripIsWithinHalfPrecision) {
 
 TEST(Exr, AttributesAndLayoutReadBack) {
   TempDir dir;
-  const ImageAttributes attributes{{"zenith:scene", "earth-moon"},
-                                   {"zenith:units", "W m^-2 sr^-1 nm^-1 × exposure"},
-                                   {"zenith:empty", ""}};
+  const ImageAttributes attributes{
+      {"zenith:scene", "earth-moon"}, {"zenith:units", "W m^-2 sr^-1 nm^-1 × exposure"}, {"zenith:empty", ""}};
   write_exr(dir / "a.exr", 4, 3, testing::test_pattern(4, 3), ExrPixelType::half, attributes);
   Imf::InputFile file((dir / "a.exr").c_str());
   const Imf::Header& header = file.header();
@@ -121,7 +120,8 @@ TEST(Exr, PixelTypeNamesRoundTrip) {
 template <class Value>
 void write_custom_exr(const std::filesystem::path& path, const std::vector<std::string>& channels, Imf::PixelType type,
                       int x0, int y0, int w, int h, Value value) {
-  Imf::Header header(Imath::Box2i({x0, y0}, {x0 + w + 3, y0 + h + 3}), Imath::Box2i({x0, y0}, {x0 + w - 1, y0 + h - 1}));
+  Imf::Header header(Imath::Box2i({x0, y0}, {x0 + w + 3, y0 + h + 3}),
+                     Imath::Box2i({x0, y0}, {x0 + w - 1, y0 + h - 1}));
   for (const auto& c : channels) header.channels().insert(c, Imf::Channel(type));
   std::vector<std::vector<float>> f(channels.size(), std::vector<float>(std::size_t(w) * h));
   std::vector<std::vector<unsigned>> u(channels.size(), std::vector<unsigned>(std::size_t(w) * h));

@@ -95,7 +95,8 @@ inline RawPng black_raw_png(int width, int height, int channels) {
   png.width = width;
   png.height = height;
   png.colour_type = channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB;
-  png.rows.assign(static_cast<std::size_t>(height), std::vector<unsigned char>(static_cast<std::size_t>(width * channels), 0));
+  png.rows.assign(static_cast<std::size_t>(height),
+                  std::vector<unsigned char>(static_cast<std::size_t>(width * channels), 0));
   return png;
 }
 
@@ -166,7 +167,9 @@ inline WrittenPng read_written_png(const std::filesystem::path& path) {
       png_read_end(p, info);
       png_textp text = nullptr;
       const int n = png_get_text(p, info, &text, nullptr);
-      for (int i = 0; i < n; ++i) out.text.emplace_back(text[i].key, std::string(text[i].text, text[i].text_length ? text[i].text_length : text[i].itxt_length));
+      for (int i = 0; i < n; ++i)
+        out.text.emplace_back(
+            text[i].key, std::string(text[i].text, text[i].text_length ? text[i].text_length : text[i].itxt_length));
       ok = true;
     }
   }

@@ -28,12 +28,12 @@ TEST(PngEncoder, ReadsBackAsThePixelsItWasMadeOf) {
   EXPECT_EQ(png[2], 'N');
   EXPECT_EQ(png[3], 'G');
   const auto path = dir / "memory.png";
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   const LinearImage back = read_image(path);
   ASSERT_EQ(back.width, w);
   ASSERT_EQ(back.height, h);
-  for (std::size_t i = 0; i < rgb.size(); ++i)
-    EXPECT_EQ(display_byte(back.rgb[i], ToneMapping::clamp), rgb[i]) << i;
+  for (std::size_t i = 0; i < rgb.size(); ++i) EXPECT_EQ(display_byte(back.rgb[i], ToneMapping::clamp), rgb[i]) << i;
 }
 
 TEST(PngEncoder, RefusesWrongSizes) {

@@ -45,7 +45,8 @@ TEST(Png, BytesAreTheToneMappedSrgbFormula) {
     ASSERT_EQ(png.width, w);
     ASSERT_EQ(png.height, h);
     EXPECT_TRUE(png.has_srgb_chunk);
-    for (std::size_t k = 0; k < rgb.size(); ++k) ASSERT_EQ(png.bytes[k], display_byte(rgb[k], tone)) << k << " " << rgb[k];
+    for (std::size_t k = 0; k < rgb.size(); ++k)
+      ASSERT_EQ(png.bytes[k], display_byte(rgb[k], tone)) << k << " " << rgb[k];
   }
 }
 
@@ -86,8 +87,8 @@ TEST(Png, AttributesBecomeTextChunks) {
 TEST(Png, KeywordsThatPngCannotStoreAreRejected) {
   TempDir dir;
   const std::vector<float> rgb = testing::test_pattern(2, 2);
-  for (const std::string& key : {std::string(""), std::string(" lead"), std::string("two  spaces"), std::string(80, 'k'),
-                                 std::string("caf\xc3\xa9")}) {
+  for (const std::string& key : {std::string(""), std::string(" lead"), std::string("two  spaces"),
+                                 std::string(80, 'k'), std::string("caf\xc3\xa9")}) {
     EXPECT_THROW(write_png(dir / "k.png", 2, 2, rgb, ToneMapping::clamp, {{key, "v"}}), std::invalid_argument) << key;
   }
   EXPECT_THROW(write_png(dir / "k.png", 2, 2, rgb, ToneMapping::clamp, {{"nul", std::string("a\0b", 3)}}),
@@ -102,7 +103,8 @@ unsigned code(int x, int y, int c, int depth) { return unsigned(x * 7 + y * 13 +
 std::vector<unsigned char> pack_row(const std::vector<unsigned>& samples, int depth) {
   std::vector<unsigned char> row;
   if (depth == 16) {
-    for (unsigned s : samples) row.push_back(static_cast<unsigned char>(s >> 8)), row.push_back(static_cast<unsigned char>(s & 255));
+    for (unsigned s : samples)
+      row.push_back(static_cast<unsigned char>(s >> 8)), row.push_back(static_cast<unsigned char>(s & 255));
     return row;
   }
   row.assign((samples.size() * depth + 7) / 8, 0);
@@ -128,13 +130,14 @@ struct Layout {
 TEST(Png, ReadsEveryLayoutAndDecodesSrgbExactly) {
   TempDir dir;
   const int w = 13, h = 9;
-  const std::vector<Layout> layouts{
-      {PNG_COLOR_TYPE_GRAY, 1, false},       {PNG_COLOR_TYPE_GRAY, 2, false},      {PNG_COLOR_TYPE_GRAY, 4, false},
-      {PNG_COLOR_TYPE_GRAY, 8, false},       {PNG_COLOR_TYPE_GRAY, 16, false},     {PNG_COLOR_TYPE_GRAY_ALPHA, 8, false},
-      {PNG_COLOR_TYPE_GRAY_ALPHA, 16, false}, {PNG_COLOR_TYPE_RGB, 8, false},      {PNG_COLOR_TYPE_RGB, 16, false},
-      {PNG_COLOR_TYPE_RGB_ALPHA, 8, false},  {PNG_COLOR_TYPE_RGB_ALPHA, 16, false}, {PNG_COLOR_TYPE_PALETTE, 4, false},
-      {PNG_COLOR_TYPE_PALETTE, 8, false},    {PNG_COLOR_TYPE_RGB, 8, true},       {PNG_COLOR_TYPE_GRAY, 16, true},
-      {PNG_COLOR_TYPE_PALETTE, 2, true}};
+  const std::vector<Layout> layouts{{PNG_COLOR_TYPE_GRAY, 1, false},        {PNG_COLOR_TYPE_GRAY, 2, false},
+                                    {PNG_COLOR_TYPE_GRAY, 4, false},        {PNG_COLOR_TYPE_GRAY, 8, false},
+                                    {PNG_COLOR_TYPE_GRAY, 16, false},       {PNG_COLOR_TYPE_GRAY_ALPHA, 8, false},
+                                    {PNG_COLOR_TYPE_GRAY_ALPHA, 16, false}, {PNG_COLOR_TYPE_RGB, 8, false},
+                                    {PNG_COLOR_TYPE_RGB, 16, false},        {PNG_COLOR_TYPE_RGB_ALPHA, 8, false},
+                                    {PNG_COLOR_TYPE_RGB_ALPHA, 16, false},  {PNG_COLOR_TYPE_PALETTE, 4, false},
+                                    {PNG_COLOR_TYPE_PALETTE, 8, false},     {PNG_COLOR_TYPE_RGB, 8, true},
+                                    {PNG_COLOR_TYPE_GRAY, 16, true},        {PNG_COLOR_TYPE_PALETTE, 2, true}};
   for (const Layout& layout : layouts) {
     SCOPED_TRACE("colour type " + std::to_string(layout.colour_type) + ", " + std::to_string(layout.depth) + " bit" +
                  (layout.interlaced ? ", interlaced" : ""));
@@ -147,7 +150,8 @@ TEST(Png, ReadsEveryLayoutAndDecodesSrgbExactly) {
     const bool palette = layout.colour_type == PNG_COLOR_TYPE_PALETTE;
     if (palette)
       for (int i = 0; i < (1 << layout.depth); ++i)
-        raw.palette.push_back({static_cast<png_byte>(i * 17), static_cast<png_byte>(255 - i * 9), static_cast<png_byte>(i * 5 + 3)});
+        raw.palette.push_back(
+            {static_cast<png_byte>(i * 17), static_cast<png_byte>(255 - i * 9), static_cast<png_byte>(i * 5 + 3)});
     const int channels = channels_of(layout.colour_type);
     for (int y = 0; y < h; ++y) {
       std::vector<unsigned> samples;

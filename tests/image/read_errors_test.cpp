@@ -67,7 +67,8 @@ TEST(ReadImage, FilesThatAreNotImagesAreNamedByTheirMagicBytes) {
 TEST(ReadImage, RandomBytesAfterAValidMagicAreRejected) {
   TempDir dir;
   std::mt19937 rng(12);
-  const std::vector<std::vector<unsigned char>> magics{{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'}, {0x76, 0x2f, 0x31, 0x01}};
+  const std::vector<std::vector<unsigned char>> magics{{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'},
+                                                       {0x76, 0x2f, 0x31, 0x01}};
   for (const auto& magic : magics)
     for (int i = 0; i < 50; ++i) {
       std::vector<unsigned char> bytes = magic;
@@ -110,7 +111,8 @@ TEST(ReadImage, CorruptedFilesDecodeOrThrowButNeverCrash) {
   TempDir dir;
   std::mt19937 rng(13);
   int rejected = 0, total = 0;
-  for (const auto& original : {valid_png(dir), valid_exr(dir, ExrPixelType::half), valid_exr(dir, ExrPixelType::float32)}) {
+  for (const auto& original :
+       {valid_png(dir), valid_exr(dir, ExrPixelType::half), valid_exr(dir, ExrPixelType::float32)}) {
     for (int i = 0; i < 200; ++i) {
       std::vector<unsigned char> bytes = original;
       const int flips = 1 + int(rng() % 4);

@@ -57,7 +57,7 @@ TEST(ToneMapping, NamesRoundTripAndUnknownNamesAreListed) {
 
 TEST(Srgb, EncodeMatchesIec61966Values) {
   EXPECT_NEAR(srgb_encode(0.0031308f), 0.0404482f, 2e-6f);  // the knee: 12.92 · 0.0031308 = 0.0404499
-  EXPECT_NEAR(srgb_encode(0.5f), 0.735357f, 1e-6f);        // 1.055 · 0.5^(1/2.4) − 0.055
+  EXPECT_NEAR(srgb_encode(0.5f), 0.735357f, 1e-6f);         // 1.055 · 0.5^(1/2.4) − 0.055
   EXPECT_NEAR(srgb_encode(0.18f), 0.461356f, 1e-6f);
   EXPECT_FLOAT_EQ(srgb_encode(0.001f), 0.01292f);  // linear segment
   EXPECT_EQ(srgb_encode(0.0f), 0.0f);
@@ -131,7 +131,8 @@ TEST(SrgbQuantizer, EqualsTheFormulaForEveryFloatNearEachStep) {
 TEST(SrgbQuantizer, EqualsTheFormulaAcrossTheRangeAndAtSpecialValues) {
   const SrgbQuantizer q;
   const std::uint32_t one = std::bit_cast<std::uint32_t>(1.0f);
-  for (std::uint32_t b = 0; b <= one; b += 4099) ASSERT_EQ(q(std::bit_cast<float>(b)), formula(std::bit_cast<float>(b)));
+  for (std::uint32_t b = 0; b <= one; b += 4099)
+    ASSERT_EQ(q(std::bit_cast<float>(b)), formula(std::bit_cast<float>(b)));
   for (float t : {0.0f, -0.0f, -1.0f, 1e-45f, 1.0f, 1.5f, kInf, -kInf}) EXPECT_EQ(q(t), formula(t)) << t;
   EXPECT_EQ(q(kNaN), 0);
 }

@@ -23,9 +23,14 @@ struct Format {
 };
 
 std::vector<Format> formats() {
-  return {{"exr-half", [](const auto& p, int w, int h) { return open_exr_writer(p, w, h, ExrPixelType::half, {{"k", "v"}}); }},
+  return {{"exr-half",
+           [](const auto& p, int w, int h) {
+             return open_exr_writer(p, w, h, ExrPixelType::half, {{"k", "v"}});
+           }},
           {"exr-float", [](const auto& p, int w, int h) { return open_exr_writer(p, w, h, ExrPixelType::float32); }},
-          {"png", [](const auto& p, int w, int h) { return open_png_writer(p, w, h, ToneMapping::exponential, {{"k", "v"}}); }}};
+          {"png", [](const auto& p, int w, int h) {
+             return open_png_writer(p, w, h, ToneMapping::exponential, {{"k", "v"}});
+           }}};
 }
 
 std::span<const float> rows(const std::vector<float>& rgb, int width, int first, int count) {
@@ -55,9 +60,8 @@ TEST(ImageWriter, RowsInChunksGiveTheSameBytesAsOneWrite) {
     one->finish();
     const std::vector<unsigned char> reference = testing::read_bytes(dir / "one");
     ASSERT_GT(reference.size(), 100u);
-    for (const std::vector<int>& chunks :
-         {std::vector<int>(h, 1), std::vector<int>{7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 6}, std::vector<int>{16, 0, 16, 51},
-          std::vector<int>{33, 1, 2, 40, 7}}) {
+    for (const std::vector<int>& chunks : {std::vector<int>(h, 1), std::vector<int>{7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 6},
+                                           std::vector<int>{16, 0, 16, 51}, std::vector<int>{33, 1, 2, 40, 7}}) {
       auto writer = f.open(dir / "chunked", w, h);
       int y = 0;
       for (int n : chunks) {
@@ -164,8 +168,9 @@ TEST(ImageWriter, ExrRejectsNaNAndInfinityNamingThePixel) {
       rgb[(std::size_t(5) * w + 3) * 3 + 1] = bad;  // pixel (3, 5), G
       auto writer = open_exr_writer(dir / "nan.exr", w, h, type);
       writer->write_rows(4, rows(rgb, w, 0, 4));
-      testing::expect_throw_with<std::runtime_error>([&] { writer->write_rows(5, rows(rgb, w, 4, 5)); },
-                                                     {"nan.exr", "pixel (x 3, y 5) channel G", std::isnan(bad) ? "NaN" : "infinite"});
+      testing::expect_throw_with<std::runtime_error>(
+          [&] { writer->write_rows(5, rows(rgb, w, 4, 5)); },
+          {"nan.exr", "pixel (x 3, y 5) channel G", std::isnan(bad) ? "NaN" : "infinite"});
       // Nothing of the rejected rows was written: the writer goes on with fixed values.
       rgb[(std::size_t(5) * w + 3) * 3 + 1] = 0.5f;
       writer->write_rows(5, rows(rgb, w, 4, 5));

@@ -25,13 +25,13 @@
 #include "../atmosphere/lut_fixture.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/photometry.h"
+#include "core/units.h"
 #include "render/gl/egl_context.h"
-#include "tests/render/render_test_support.h"
 #include "render/renderer.h"
+#include "tests/render/render_test_support.h"
 #include "warp/blending.h"
 #include "warp/fisheye_projection.h"
 #include "warp/viewport_config.h"
-#include "core/units.h"
 
 namespace zenith::render {
 namespace {
@@ -55,7 +55,8 @@ scene::Scene dome_scene() {
   planet.albedo.colour_linear_rgb = {0.1, 0.1, 0.1};
   planet.atmosphere = scene::BodyAtmosphere{"preset:earth-advanced", atmosphere::load_preset("earth-advanced")};
   s.bodies.push_back(planet);
-  s.sun.direction = {std::sin(60.0 * kDeg) * std::cos(0.7), std::sin(60.0 * kDeg) * std::sin(0.7), std::cos(60.0 * kDeg)};
+  s.sun.direction = {std::sin(60.0 * kDeg) * std::cos(0.7), std::sin(60.0 * kDeg) * std::sin(0.7),
+                     std::cos(60.0 * kDeg)};
   s.sun.angular_radius_rad = 4.65e-3;
   for (double w : s.wavelengths_nm) s.sun.irradiance_W_m2_nm.push_back(atmosphere::solar_irradiance_W_m2_nm(w));
   s.camera.position_m = {0.0, 0.0, t.model.ground_radius_m + 2.0};
@@ -85,7 +86,8 @@ glm::dvec3 sample(const std::vector<float>& rgb, int width, int height, double x
     const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
     return glm::dvec3(rgb[i], rgb[i + 1], rgb[i + 2]);
   };
-  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) + ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+         ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
 }
 
 TEST(BlendReconstruction, SixBlendedProjectorsReproduceTheDomeMaster) {
@@ -141,9 +143,10 @@ TEST(BlendReconstruction, SixBlendedProjectorsReproduceTheDomeMaster) {
   mean /= static_cast<double>(errors_all.size());
   const double median = percentile(errors_all, 0.5), p99 = percentile(errors_all, 0.99);
   const double max_high = percentile(errors_high, 1.0), max_all = percentile(errors_all, 1.0);
-  std::printf("[reconstruction] %zu dome pixels: relative RGB error mean %.4f, median %.4f, 99th percentile %.4f, "
-              "max %.4f; above 5° elevation (%zu pixels) max %.4f\n",
-              errors_all.size(), mean, median, p99, max_all, errors_high.size(), max_high);
+  std::printf(
+      "[reconstruction] %zu dome pixels: relative RGB error mean %.4f, median %.4f, 99th percentile %.4f, "
+      "max %.4f; above 5° elevation (%zu pixels) max %.4f\n",
+      errors_all.size(), mean, median, p99, max_all, errors_high.size(), max_high);
   // Measured (llvmpipe, small tables): mean 0.0015, median 0.0003, 99th
   // percentile 0.020, max 0.090 (the dome pixels straddling the horizon, where
   // sky meets ground within a pixel), max 0.026 above 5° elevation. At 64 × 40

@@ -49,7 +49,8 @@ std::vector<float> test_radiance() {
 warp::BlendMask test_mask() {
   warp::BlendMask m{kWidth, kHeight, std::vector<float>(static_cast<std::size_t>(kWidth) * kHeight)};
   for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) m.alpha[static_cast<std::size_t>(y) * kWidth + x] = x == 0 ? 0.0f : x / float(kWidth - 1);
+    for (int x = 0; x < kWidth; ++x)
+      m.alpha[static_cast<std::size_t>(y) * kWidth + x] = x == 0 ? 0.0f : x / float(kWidth - 1);
   return m;
 }
 
@@ -71,7 +72,8 @@ OutputStage blended(const gl::Texture& mask, double black_level) {
 float cpu_display_linear(float x, const OutputStage& stage, float alpha, int channel) {
   float p = image::tone_map(x, stage.tone);
   if (stage.fade.level > 0.0)
-    p = static_cast<float>(p * (1.0 - stage.fade.level) + stage.fade.colour[static_cast<std::size_t>(channel)] * stage.fade.level);
+    p = static_cast<float>(p * (1.0 - stage.fade.level) +
+                           stage.fade.colour[static_cast<std::size_t>(channel)] * stage.fade.level);
   if (stage.blended) p = static_cast<float>(warp::blend_display_value(p, alpha, stage.black_level));
   return p;
 }
@@ -146,8 +148,7 @@ TEST(DisplayEncoder, FadesTowardAColourBeforeTheOutputStage) {
   encoder.encode(radiance, stage, display);
   const std::vector<float> out = display.read();
   ASSERT_EQ(image::display_code(0.02f, {}, 8), 39);
-  for (std::size_t i = 0; i < out.size(); ++i)
-    ASSERT_EQ(std::lround(out[i] * 255.0), i % 4 == 3 ? 255 : 39) << i;
+  for (std::size_t i = 0; i < out.size(); ++i) ASSERT_EQ(std::lround(out[i] * 255.0), i % 4 == 3 ? 255 : 39) << i;
 }
 
 TEST(DisplayEncoder, RefusesBadTargetsAndValues) {

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "render/gl/egl_context.h"
 #include "image/tone_mapping.h"
+#include "render/gl/egl_context.h"
 #include "render/window/window_context.h"
 
 namespace zenith::render::window {
@@ -188,7 +188,7 @@ TEST(FramePresenter, LetterboxesWithBlackBarsTheRightWayUp) {
     EXPECT_EQ(bytes[(0 * 16 + 3) * 4], 0);
   }
   {
-    Rgba8Target tall(8, 12);  // 2× scale, bars of 4 rows above and below
+    Rgba8Target tall(8, 12);                                   // 2× scale, bars of 4 rows above and below
     presenter.draw(image::ToneMapping::clamp, tall.target());  // the uploaded frame, drawn again
     expect_presented(tall.read(), 8, 12, rgb, width, height, letterbox(width, height, 8, 12),
                      image::ToneMapping::clamp);

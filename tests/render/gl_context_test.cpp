@@ -7,8 +7,8 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -65,7 +65,8 @@ std::vector<float> run_pattern(const ShaderProgram& program, int w, int h, int d
 void expect_floats_near(const std::vector<float>& actual, const std::vector<float>& expected, float tolerance) {
   ASSERT_EQ(actual.size(), expected.size());
   for (std::size_t i = 0; i < actual.size(); ++i)
-    ASSERT_NEAR(actual[i], expected[i], tolerance) << "float " << i << " (texel " << i / 4 << ", channel " << i % 4 << ")";
+    ASSERT_NEAR(actual[i], expected[i], tolerance)
+        << "float " << i << " (texel " << i / 4 << ", channel " << i % 4 << ")";
 }
 
 class GlTest : public ::testing::Test {
@@ -85,7 +86,8 @@ TEST(SoftwareRasterizer, TwiceTheCpusUpToEightAndTheUsersChoiceKept) {
   const char* value = std::getenv("LP_NUM_THREADS");
   if (const auto ours = gl::software_rasterizer_threads_for(std::thread::hardware_concurrency())) {
     ASSERT_NE(value, nullptr);
-    EXPECT_TRUE(setting == std::string(value) + " (set by zenith)" || setting == std::string(value) + " (LP_NUM_THREADS)")
+    EXPECT_TRUE(setting == std::string(value) + " (set by zenith)" ||
+                setting == std::string(value) + " (LP_NUM_THREADS)")
         << setting;
   } else if (value == nullptr) {
     EXPECT_EQ(setting, "Mesa's default");
@@ -115,16 +117,16 @@ TEST(HeadlessContext, CreatesAGl45CoreContextWithoutADisplay) {
   EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
 
   const gl::GlLimits limits = gl::query_gl_limits();
-  EXPECT_GE(limits.max_3d_texture_size, 2048);  // the GL 4.5 minimum
+  EXPECT_GE(limits.max_3d_texture_size, 2048);                 // the GL 4.5 minimum
   EXPECT_GE(limits.max_compute_work_group_invocations, 1024);  // the GL 4.3+ minimum
   gl::check_gl_error("query_gl_limits");
 
-  std::printf("renderer: %s\nvendor: %s\nversion: %s\nGLSL: %s\nsource: %s\nEGL: %s %s\nsoftware: %s, surfaceless: %s\n"
-              "context creation: %.1f ms\n%s",
-              context.renderer().c_str(), context.vendor().c_str(), context.version().c_str(),
-              context.glsl_version().c_str(), context.source().c_str(), context.egl_vendor().c_str(),
-              context.egl_version().c_str(), context.is_software() ? "yes" : "no",
-              context.surfaceless() ? "yes" : "no", ms, gl::to_string(limits).c_str());
+  std::printf(
+      "renderer: %s\nvendor: %s\nversion: %s\nGLSL: %s\nsource: %s\nEGL: %s %s\nsoftware: %s, surfaceless: %s\n"
+      "context creation: %.1f ms\n%s",
+      context.renderer().c_str(), context.vendor().c_str(), context.version().c_str(), context.glsl_version().c_str(),
+      context.source().c_str(), context.egl_vendor().c_str(), context.egl_version().c_str(),
+      context.is_software() ? "yes" : "no", context.surfaceless() ? "yes" : "no", ms, gl::to_string(limits).c_str());
   RecordProperty("renderer", context.renderer());
   RecordProperty("context_creation_ms", std::to_string(ms));
 }
@@ -306,7 +308,8 @@ TEST_F(GlTest, NvidiasLoopUnrollPragmaKeepsLineNumbersAndIsIgnoredElsewhere) {
     EXPECT_NE(std::string(e.what()).find("rolled_test.comp:4 | float x = 1.0 +;"), std::string::npos) << e.what();
   }
   const gl::ShaderCode fine{"unrolled_off.comp",
-                            gl::insert_after_version("unrolled_off.comp", "#version 450 core\nlayout(local_size_x = 1) in;\n"
+                            gl::insert_after_version("unrolled_off.comp",
+                                                     "#version 450 core\nlayout(local_size_x = 1) in;\n"
                                                      "layout(std430, binding = 0) buffer B { float v[]; };\n"
                                                      "void main() { for (int i = 0; i < 8; ++i) v[i] = float(i); }\n",
                                                      pragma),
@@ -418,7 +421,8 @@ TEST(ShaderSource, IncludesExpandOnceWithLineDirectives) {
     auto it = files.find(n);
     return it == files.end() ? std::nullopt : std::optional<std::string_view>(it->second);
   };
-  const ExpandedShader e = expand_includes("main.comp", "#version 450\n#include \"a/b.glsl\"\n  #  include \"d.glsl\"\nM\n", resolve);
+  const ExpandedShader e =
+      expand_includes("main.comp", "#version 450\n#include \"a/b.glsl\"\n  #  include \"d.glsl\"\nM\n", resolve);
   EXPECT_EQ(e.text,
             "#version 450\n"
             "#line 1 1\n"

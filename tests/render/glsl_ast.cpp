@@ -121,10 +121,12 @@ void check_lvalue(const AstNode& target, std::vector<Finding>& out) {
   while (!n->children.empty()) {
     const std::string_view h = n->head();
     if (h == "indirect index" && is_double_vector(n->children[0].type())) {
-      out.push_back({n->source, n->line,
+      out.push_back({n->source,
+                     n->line,
                      fmt::format("{} ({}) written at a non-constant index", n->children[0].head(),
                                  n->children[0].type().substr(n->children[0].type().find_first_not_of(' '))),
-                     {}, {}});
+                     {},
+                     {}});
     }
     if (h != "indirect index" && h != "direct index" && h != "vector swizzle" && !starts_with(h, "direct index for"))
       break;
@@ -184,7 +186,8 @@ class UnrolledLoopWalk {
     frames_.emplace_back();
     frames_.back().function = std::string(definition.head().substr(definition.head().find(':') + 2));
     frames_.back().function.erase(frames_.back().function.find('('));
-    for (std::size_t i = 0; i < params.size() && i < arguments.size(); ++i) frames_.back().values[params[i].first] = arguments[i];
+    for (std::size_t i = 0; i < params.size() && i < arguments.size(); ++i)
+      frames_.back().values[params[i].first] = arguments[i];
     for (const AstNode& c : definition.children)
       if (c.head() != "Function Parameters:") walk(c);
     frames_.pop_back();
@@ -197,7 +200,8 @@ class UnrolledLoopWalk {
   }
   void collect_taint(const AstNode& n, Taint& t) const {
     if (const std::string_view s = symbol(n); !s.empty()) {
-      if (auto it = frames_.back().values.find(s); it != frames_.back().values.end()) t.insert(it->second.begin(), it->second.end());
+      if (auto it = frames_.back().values.find(s); it != frames_.back().values.end())
+        t.insert(it->second.begin(), it->second.end());
       return;
     }
     for (const AstNode& c : n.children) collect_taint(c, t);
@@ -227,11 +231,12 @@ class UnrolledLoopWalk {
     }
     if (counter.empty()) return {};
     const std::string_view s = step->head();
-    const bool unit_step = (s == "Pre-Increment" || s == "Post-Increment" || s == "Pre-Decrement" || s == "Post-Decrement") &&
-                           !step->children.empty() && symbol(step->children[0]) == counter;
-    const bool constant_step = (s == "add second child into first child" || s == "subtract second child into first child") &&
-                               step->children.size() == 2 && symbol(step->children[0]) == counter &&
-                               step->children[1].head() == "Constant:";
+    const bool unit_step =
+        (s == "Pre-Increment" || s == "Post-Increment" || s == "Pre-Decrement" || s == "Post-Decrement") &&
+        !step->children.empty() && symbol(step->children[0]) == counter;
+    const bool constant_step =
+        (s == "add second child into first child" || s == "subtract second child into first child") &&
+        step->children.size() == 2 && symbol(step->children[0]) == counter && step->children[1].head() == "Constant:";
     return unit_step || constant_step ? counter : std::string{};
   }
 

@@ -60,7 +60,6 @@
 
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/parameters.h"
-#include "tests/render/tiny_precompute_options.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/shader_program.h"
 #include "render/lut/gpu_precompute.h"
@@ -68,6 +67,7 @@
 #include "render/shader_programs.h"
 #include "scene/scene_loader.h"
 #include "tests/render/glsl_ast.h"
+#include "tests/render/tiny_precompute_options.h"
 #include "warp/cube_face_projection.h"
 #include "warp/cylindrical_projection.h"
 #include "warp/equirectangular_projection.h"
@@ -99,7 +99,8 @@ std::string quoted(const fs::path& p) { return fmt::format("'{}'", p.string()); 
 /// The tree glslangValidator prints for `shader` (its stage from the extension).
 AstNode syntax_tree(const fs::path& shader) {
   const auto [listing, status] = run(fmt::format("{} -i {}", ZENITH_GLSLANG_VALIDATOR, quoted(shader)));
-  if (status != 0) throw std::runtime_error(fmt::format("glslangValidator failed on {}:\n{}", shader.string(), listing));
+  if (status != 0)
+    throw std::runtime_error(fmt::format("glslangValidator failed on {}:\n{}", shader.string(), listing));
   return parse_glslang_ast(listing);
 }
 
@@ -122,9 +123,10 @@ std::vector<int> lines_of(const std::vector<Finding>& findings) {
 
 bool have_validator() { return std::string(ZENITH_GLSLANG_VALIDATOR).size() > 0; }
 
-#define REQUIRE_VALIDATOR()                                                                             \
-  if (!have_validator()) GTEST_FAIL() << "glslangValidator not found when configuring (scripts/bootstrap " \
-                                         "installs glslang-tools)"
+#define REQUIRE_VALIDATOR()                                                         \
+  if (!have_validator())                                                            \
+  GTEST_FAIL() << "glslangValidator not found when configuring (scripts/bootstrap " \
+                  "installs glslang-tools)"
 
 // ------------------------------------------------------------ the rules on shaders written for them
 
@@ -158,7 +160,8 @@ void main() {
   const std::vector<Finding> found = double_vector_index_writes(syntax_tree_of("rule1.comp", shader));
   for (const Finding& f : found) std::printf("  %d:%d %s\n", f.source, f.line, f.what.c_str());
   // Lines 5 (x[k] +=, inout x), 9, 10, 11, 13 (out argument), 14 (modf's out), 16, 17;
-  // not 12 (a whole vector to inout), 18 (constant index), 19, 20 (swizzle of a whole element), 22 (float), 23 (a read).
+  // not 12 (a whole vector to inout), 18 (constant index), 19, 20 (swizzle of a whole element), 22 (float), 23 (a
+  // read).
   EXPECT_EQ(lines_of(found), (std::vector<int>{5, 9, 10, 11, 13, 14, 16, 17}));
 }
 
@@ -234,18 +237,24 @@ void precompute_every_variant(const gl::HeadlessContext& context) {
       {"halcyon", GpuPrecision::fp32, {}, none},
       {"earth-standard", GpuPrecision::fp64, {}, none},
       {"earth-advanced", GpuPrecision::fp64, {440, 500, 550, 600, 680}, none},
-      {"earth-advanced", GpuPrecision::fp64, {},
+      {"earth-advanced",
+       GpuPrecision::fp64,
+       {},
        [](AtmosphereModel& m, PrecomputeOptions& o) {
          m.rayleigh_phase = atmosphere::RayleighPhaseModel::Classic;
          m.air_mass = atmosphere::AirMassStretch();
          o.scattering_quadrature = PrecomputeOptions::Quadrature::Trapezoid;
        }},
-      {"earth-advanced", GpuPrecision::fp64, {},
+      {"earth-advanced",
+       GpuPrecision::fp64,
+       {},
        [](AtmosphereModel& m, PrecomputeOptions&) {
          m.rayleigh_phase = atmosphere::RayleighPhaseModel::Depolarized;
          for (std::size_t i = 0; i < m.wavelength_count(); ++i) m.mie_scattering_m1[i] = m.mie_extinction_m1[i] = 0.0;
        }},
-      {"earth-advanced", GpuPrecision::fp64, {},
+      {"earth-advanced",
+       GpuPrecision::fp64,
+       {},
        [](AtmosphereModel&, PrecomputeOptions& o) {
          o.density_method = PrecomputeOptions::DensityMethod::Direct;
          o.series_tail = false;
@@ -282,16 +291,19 @@ void render_every_variant() {
   options[2].limb_darkening = false;
   const fs::path scenes = fs::path(ZENITH_SOURCE_DIR) / "configs/scenes";
   for (std::size_t i = 0; i < options.size(); ++i) {
-    Renderer renderer(options[i],
-                      [&](const AtmosphereModel& model) { return atmosphere::lut::precompute_tables_cpu(model, tables); });
+    Renderer renderer(options[i], [&](const AtmosphereModel& model) {
+      return atmosphere::lut::precompute_tables_cpu(model, tables);
+    });
     // earth-dusk-greenwich at a night exposure: the night sky's pass (stars, floor).
-    for (const char* name : {"earth-ground-view.json", "earth-moon.json", "three-worlds.json", "earth-dusk-greenwich.json"}) {
+    for (const char* name :
+         {"earth-ground-view.json", "earth-moon.json", "three-worlds.json", "earth-dusk-greenwich.json"}) {
       scene::Scene s = scene::load_scene(scenes / name);
       if (s.sky_clock) s.camera.exposure = scene::kMaxExposure;
       renderer.render_image(s, planar);
       renderer.render_image(s, fisheye);
       if (i == 0 && std::string_view(name) == "three-worlds.json")
-        for (const warp::Projection* p : std::initializer_list<const warp::Projection*>{&equirectangular, &cylindrical, &cube_face})
+        for (const warp::Projection* p :
+             std::initializer_list<const warp::Projection*>{&equirectangular, &cylindrical, &cube_face})
           renderer.render_image(s, *p);
     }
   }
@@ -372,8 +384,7 @@ TEST(GlslNvidiaRules, EveryProgramOfThePrecomputeAndTheRendererPassesOnNvidiasRu
       rule1.push_back(fmt::format("{}: {} ({})", where(shader, f), f.what, shader.filename().string()));
     const std::string program = program_name(shader);
     for (const Finding& f : nested_unrolled_buffer_indices(tree)) {
-      const std::string site =
-          fmt::format("{}{}: {}", f.function == "main" ? program + " " : "", f.function, f.buffer);
+      const std::string site = fmt::format("{}{}: {}", f.function == "main" ? program + " " : "", f.function, f.buffer);
       if (kKnownNestedBufferIndices.contains(site))
         rule2_known[site].insert(program);
       else

@@ -53,9 +53,9 @@ constexpr double kFp32AbsoluteBound = 1e-4;
 
 /// Difference of a GPU table from the CPU one.
 struct Agreement {
-  double max_relative = 0.0;  ///< over |cpu| > kSignificant · max
-  double max_absolute = 0.0;  ///< |gpu − cpu| / max over the others
-  std::size_t worst = 0;      ///< index of the largest relative difference
+  double max_relative = 0.0;       ///< over |cpu| > kSignificant · max
+  double max_absolute = 0.0;       ///< |gpu − cpu| / max over the others
+  std::size_t worst = 0;           ///< index of the largest relative difference
   std::size_t worst_absolute = 0;  ///< index of the largest absolute one
   double table_max = 0.0;
   bool identical = true;
@@ -118,7 +118,7 @@ Result run_cpu(const AtmosphereModel& model, const PrecomputeOptions& options) {
 }
 
 Result run_gpu(const AtmosphereModel& model, const PrecomputeOptions& options,
-            GpuPrecision precision = GpuPrecision::automatic, const gl::HeadlessContext* context = nullptr) {
+               GpuPrecision precision = GpuPrecision::automatic, const gl::HeadlessContext* context = nullptr) {
   return timed_run(options, [&](const PrecomputeOptions& o, PrecomputeReport* r) {
     return precompute_tables_gpu(model, o, r, context, precision);
   });
@@ -134,8 +134,8 @@ PrecomputeOptions small_options() {
 }
 
 /// Compares every table, the table-set metadata and the report; prints the agreement.
-void expect_same_tables(const std::string& name, const Result& cpu, const Result& gpu, double relative_bound = kRelativeBound,
-                        double absolute_bound = kAbsoluteBound) {
+void expect_same_tables(const std::string& name, const Result& cpu, const Result& gpu,
+                        double relative_bound = kRelativeBound, double absolute_bound = kAbsoluteBound) {
   const LookupTables &c = cpu.tables, &g = gpu.tables;
   EXPECT_EQ(g.channels, c.channels);
   EXPECT_EQ(g.sizes, c.sizes);
@@ -223,7 +223,8 @@ TEST(GpuPrecompute, SixtyFourWavelengths) {
 /// A model without aerosols: the Mie terms are compiled out of the shaders.
 TEST(GpuPrecompute, NoMieVariantMatchesCpu) {
   AtmosphereModel model = atmosphere::load_preset("earth-advanced").model;
-  for (std::size_t i = 0; i < model.wavelength_count(); ++i) model.mie_scattering_m1[i] = model.mie_extinction_m1[i] = 0.0;
+  for (std::size_t i = 0; i < model.wavelength_count(); ++i)
+    model.mie_scattering_m1[i] = model.mie_extinction_m1[i] = 0.0;
   ASSERT_FALSE(model.has_mie());
   const PrecomputeOptions options = small_options();
   const Result cpu = run_cpu(model, options);
@@ -311,9 +312,10 @@ TEST(GpuPrecompute, TheSeriesTailBringsFiveOrdersCloserToTheConvergedSeriesThanE
   o.series_tail = true;
   const Result tail = run_gpu(model, o);
   const double five_and_tail = rms_relative(tail.tables.multiple.data, converged.multiple.data);
-  std::printf("multiple scattering against 20 orders, RMS: 5 orders %.4f, 8 orders %.4f, 5 orders and the tail %.4f "
-              "(the tail %.2f %% of the radiance)\n",
-              five, eight, five_and_tail, 100.0 * tail.report.tail_fraction);
+  std::printf(
+      "multiple scattering against 20 orders, RMS: 5 orders %.4f, 8 orders %.4f, 5 orders and the tail %.4f "
+      "(the tail %.2f %% of the radiance)\n",
+      five, eight, five_and_tail, 100.0 * tail.report.tail_fraction);
   EXPECT_LT(five_and_tail, eight);
   EXPECT_LT(five_and_tail, 0.15 * five);
   // Orders 6–∞ of Earth's radiance: about 1 % (orders 6, 7, 8 without the tail: 0.46, 0.19, 0.08 %).

@@ -43,9 +43,9 @@ using core::kDeg;
 using testing::context;
 using testing::look_rotation;
 
-#define REQUIRE_CATALOGUE()                                                                                     \
-  if (!std::filesystem::exists(astro::kStellariumStarDirectory / "stars_0_0v0_8.cat"))                          \
-  GTEST_SKIP() << "stellarium-data is not installed (" << astro::kStellariumStarDirectory.string()             \
+#define REQUIRE_CATALOGUE()                                                                        \
+  if (!std::filesystem::exists(astro::kStellariumStarDirectory / "stars_0_0v0_8.cat"))             \
+  GTEST_SKIP() << "stellarium-data is not installed (" << astro::kStellariumStarDirectory.string() \
                << "): scripts/bootstrap installs it"
 
 constexpr double kLatitudeDeg = 51.4769, kLongitudeDeg = -0.0005;
@@ -124,8 +124,10 @@ std::array<double, 3> energy_near(const std::vector<float>& image, const std::ve
       if (glm::length(glm::dvec2(x + 0.5, y + 0.5) - centre) > radius_px) continue;
       const auto a = p.ray(x, y), b = p.ray(x + 1, y), c = p.ray(x, y + 1), d = p.ray(x + 1, y + 1);
       if (!a || !b || !c || !d) continue;
-      const glm::dvec3 na = glm::normalize(*a), nb = glm::normalize(*b), nc = glm::normalize(*c), nd = glm::normalize(*d);
-      const double omega = 0.5 * (glm::length(glm::cross(nb - na, nc - na)) + glm::length(glm::cross(nb - nd, nc - nd)));
+      const glm::dvec3 na = glm::normalize(*a), nb = glm::normalize(*b), nc = glm::normalize(*c),
+                       nd = glm::normalize(*d);
+      const double omega =
+          0.5 * (glm::length(glm::cross(nb - na, nc - na)) + glm::length(glm::cross(nb - nd, nc - nd)));
       for (int k = 0; k < 3; ++k) {
         const std::size_t i = (static_cast<std::size_t>(y) * p.width() + x) * 3 + k;
         sum[k] += (double(image[i]) - background[i]) * omega;
@@ -211,9 +213,10 @@ TEST(NightSkyPass, AStarHasTheSameEnergyOnADomeMasterAFlatScreenAndThroughAWarpM
   std::vector<warp::WarpNode> nodes;
   for (int j = 0; j < 9; ++j)
     for (int i = 0; i < 9; ++i)
-      nodes.push_back({(at_dome.x + 0.6 * (48.0 * i / 8 - 24)) / 64, (at_dome.y + 0.6 * (48.0 * j / 8 - 24)) / 64, 1.0, true});
-  const warp::WarpedProjection projector(48, 48, warp::WarpMesh(9, 9, std::move(nodes), "around Sirius",
-                                                                warp::WarpInterpolation::catmull_rom), dome);
+      nodes.push_back(
+          {(at_dome.x + 0.6 * (48.0 * i / 8 - 24)) / 64, (at_dome.y + 0.6 * (48.0 * j / 8 - 24)) / 64, 1.0, true});
+  const warp::WarpedProjection projector(
+      48, 48, warp::WarpMesh(9, 9, std::move(nodes), "around Sirius", warp::WarpInterpolation::catmull_rom), dome);
   for (const warp::Projection* p : std::initializer_list<const warp::Projection*>{dome.get(), &flat, &projector}) {
     const scene::Scene& s = p == &flat ? flat_scene : dome_scene;
     const auto image = stars.renderer.render_image(s, *p);
@@ -264,10 +267,12 @@ TEST(NightSkyPass, AStarIsDimmedByTheTransmittanceAlongItsLineOfSightAndTheFloor
   const auto dark = none.renderer.render_image(up, *dome);
   q.transmittance_to_top(glm::length(up.camera.position_m), 1.0, transmittance.data());
   const astro::NightSkyFloor floor(t.model);
-  const std::vector<double> want = floor.observed_radiance(0.0, std::vector<double>(transmittance.begin(), transmittance.begin() + 3));
+  const std::vector<double> want =
+      floor.observed_radiance(0.0, std::vector<double>(transmittance.begin(), transmittance.begin() + 3));
   const std::size_t centre = (32u * 64u + 32u) * 3u;
   for (std::size_t k = 0; k < 3; ++k)
-    EXPECT_NEAR(double(lit[centre + k]) - dark[centre + k], want[k] * exposure, 0.02 * want[k] * exposure) << "channel " << k;
+    EXPECT_NEAR(double(lit[centre + k]) - dark[centre + k], want[k] * exposure, 0.02 * want[k] * exposure)
+        << "channel " << k;
 }
 
 TEST(NightSkyPass, TheMoonCarriesItsIrradianceAsADiscAndAsAPointBelowAPixel) {
@@ -301,9 +306,10 @@ TEST(NightSkyPass, TheMoonCarriesItsIrradianceAsADiscAndAsAPointBelowAPixel) {
   const scene::Scene dome = at_time(greenwich("", {0, -1, 0}, 1.0));
   const warp::FisheyeProjection fisheye(64, 64);
   const scene::LocalHorizon h = scene::local_horizon_at(dome.camera.position_m, dome.bodies[0]);
-  const glm::dvec2 px = *fisheye.pixel(glm::conjugate(dome.camera.orientation) * (at.x * h.east + at.y * h.north + at.z * h.up));
-  const auto point = energy_near(moonlit.renderer.render_image(dome, fisheye), dark.renderer.render_image(dome, fisheye),
-                                 fisheye, px, 3.0);
+  const glm::dvec2 px =
+      *fisheye.pixel(glm::conjugate(dome.camera.orientation) * (at.x * h.east + at.y * h.north + at.z * h.up));
+  const auto point = energy_near(moonlit.renderer.render_image(dome, fisheye),
+                                 dark.renderer.render_image(dome, fisheye), fisheye, px, 3.0);
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_NEAR(disc[k], e[k], 0.02 * e[k]) << "disc, channel " << k;
     EXPECT_NEAR(point[k], e[k], 0.01 * e[k]) << "point, channel " << k;

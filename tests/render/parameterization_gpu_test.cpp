@@ -2,16 +2,14 @@
 // one it mirrors (atmosphere/lut/parameterization.h), on the GPU, where the
 // mappings are least forgiving: μ at the horizon and 1e-6 either side of it
 // (μ_h = −√(1 − (rb/r)²)) at the ground, 1 m and 10 m above it (there also
-// 20 rays within 0.2 % of μ_h), mid-shell, 1 m below the top and at the top; μs at μs_min (ShellGeometry::min_sun_cosine), 1e-6
-// above it, below it (clamped), at the horizon and the zenith; ν at both ends
-// of the range that μ and μs allow and between (u_ν = φ/π, the azimuth between
-// view and sun); view and sun at the zenith (μ = ±1, μs = 1, where every ν is
-// u_ν = 0); both angle mappings; scattering_u_mu for rays that hit the ground
-// and rays that do not, both at the horizon itself. Then the inverse texel
-// functions: transmittance_r_mu, irradiance_r_mu_s at the C++ coordinates, and
-// scattering_texel_coordinates (μs and sky μ found by bisection in
-// texel_coordinates.comp, ν from scattering_nu_from_unit) for every texel of
-// the lowest and highest r layers. Earth and Mars presets, TableSizes::small().
+// 20 rays within 0.2 % of μ_h), mid-shell, 1 m below the top and at the top; μs at μs_min
+// (ShellGeometry::min_sun_cosine), 1e-6 above it, below it (clamped), at the horizon and the zenith; ν at both ends of
+// the range that μ and μs allow and between (u_ν = φ/π, the azimuth between view and sun); view and sun at the zenith
+// (μ = ±1, μs = 1, where every ν is u_ν = 0); both angle mappings; scattering_u_mu for rays that hit the ground and
+// rays that do not, both at the horizon itself. Then the inverse texel functions: transmittance_r_mu, irradiance_r_mu_s
+// at the C++ coordinates, and scattering_texel_coordinates (μs and sky μ found by bisection in texel_coordinates.comp,
+// ν from scattering_nu_from_unit) for every texel of the lowest and highest r layers. Earth and Mars presets,
+// TableSizes::small().
 //
 // Tolerances (|GPU − C++| ≤ tolerance · max(1, |C++|): absolute for the unit
 // coordinates, relative for r in metres):
@@ -75,7 +73,7 @@ constexpr double kFp32Tolerance = 1e-2;
 constexpr double kFp32TopTolerance = 5e-2;
 /// fp32: within this of the horizon, ray_hits_ground may go either way (r²(μ² − 1) + rb² cancels).
 constexpr double kFp32HorizonBand = 1e-5;
-constexpr int kRayHitsGround = 17;  ///< its index in kQuantities
+constexpr int kRayHitsGround = 17;      ///< its index in kQuantities
 constexpr int kUvwzUNu = 8, kUNu = 15;  ///< the u_ν quantities' indices in kQuantities
 constexpr int kTransmittanceMu = 3;     ///< transmittance_r_mu's μ in kQuantities
 
@@ -102,18 +100,18 @@ constexpr int kCaseStride = 11, kResultStride = 19;
 
 /// The quantities of one mode-0 result, in the shader's order.
 constexpr const char* kQuantities[kResultStride] = {
-    "transmittance_uv u_mu", "transmittance_uv v_r", "transmittance_r_mu r", "transmittance_r_mu mu",
-    "irradiance_uv u_mu_s",  "irradiance_uv v_r",    "irradiance_r_mu_s r",  "irradiance_r_mu_s mu_s",
-    "scattering_uvwz u_nu",  "scattering_uvwz u_mu_s", "scattering_uvwz u_mu", "scattering_uvwz u_r",
-    "scattering_u_r",        "scattering_u_mu",      "scattering_u_mu_s",    "scattering_u_nu",
-    "scattering_nu_from_unit", "ray_hits_ground",    "min_sun_cosine"};
+    "transmittance_uv u_mu",   "transmittance_uv v_r",   "transmittance_r_mu r", "transmittance_r_mu mu",
+    "irradiance_uv u_mu_s",    "irradiance_uv v_r",      "irradiance_r_mu_s r",  "irradiance_r_mu_s mu_s",
+    "scattering_uvwz u_nu",    "scattering_uvwz u_mu_s", "scattering_uvwz u_mu", "scattering_uvwz u_r",
+    "scattering_u_r",          "scattering_u_mu",        "scattering_u_mu_s",    "scattering_u_nu",
+    "scattering_nu_from_unit", "ray_hits_ground",        "min_sun_cosine"};
 constexpr const char* kTexelQuantities[5] = {"texel r", "texel mu", "texel mu_s", "texel nu", "texel hits_ground"};
 
 struct Case {
   double r, mu, mu_s, nu;
   bool hits_ground;
   AngleMapping mapping;
-  double x_nu;  ///< the input of scattering_nu_from_unit
+  double x_nu;        ///< the input of scattering_nu_from_unit
   double horizon_mu;  ///< μ_h at r
 };
 
@@ -171,8 +169,7 @@ class GpuParameterization {
     model_buffers_.bind();
     texel_values_.bind_storage(binding::kTexelCoordinates);
     // As the precompute does before its scattering stages.
-    load_compute_program("texel_coordinates.comp", m.defines)
-        .dispatch_covering(static_cast<int>(m.texel_layout.count));
+    load_compute_program("texel_coordinates.comp", m.defines).dispatch_covering(static_cast<int>(m.texel_layout.count));
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     std::vector<gl::ShaderDefine> defines = m.defines;
     defines.insert(defines.end(), {{"CASES_BINDING", std::to_string(kCasesBinding)},
@@ -214,9 +211,9 @@ class GpuParameterization {
 
 std::string describe(const Case& c) {
   char text[256];
-  std::snprintf(text, sizeof text, "r=%.17g mu=%.17g mu_s=%.17g nu=%.17g hits_ground=%d mapping=%s x_nu=%g", c.r,
-                c.mu, c.mu_s, c.nu, c.hits_ground ? 1 : 0,
-                c.mapping == AngleMapping::Distance ? "distance" : "blended", c.x_nu);
+  std::snprintf(text, sizeof text, "r=%.17g mu=%.17g mu_s=%.17g nu=%.17g hits_ground=%d mapping=%s x_nu=%g", c.r, c.mu,
+                c.mu_s, c.nu, c.hits_ground ? 1 : 0, c.mapping == AngleMapping::Distance ? "distance" : "blended",
+                c.x_nu);
   return text;
 }
 
@@ -281,8 +278,7 @@ void compare_parameterization(const std::string& preset, bool fp64, double toler
       double bound = tolerance;
       if (q == kTransmittanceMu)
         bound = fp64 ? tolerance + transmittance_mu_bound(g, cases[i].r, cases[i].mu) : kFp32TopTolerance;
-      EXPECT_LE(difference, bound) << kQuantities[q] << ": GPU " << v << ", C++ " << c << " at "
-                                   << describe(cases[i]);
+      EXPECT_LE(difference, bound) << kQuantities[q] << ": GPU " << v << ", C++ " << c << " at " << describe(cases[i]);
     }
 
   // Mode 1: scattering_texel_coordinates of every texel of the lowest and highest r layers.
@@ -328,7 +324,9 @@ TEST(ParameterizationGpu, MatchesCppAtTheEdgesForMarsInFp64) { compare_parameter
 TEST(ParameterizationGpu, MatchesCppAtTheEdgesForEarthInFp32) {
   compare_parameterization("earth-advanced", false, kFp32Tolerance);
 }
-TEST(ParameterizationGpu, MatchesCppAtTheEdgesForMarsInFp32) { compare_parameterization("mars", false, kFp32Tolerance); }
+TEST(ParameterizationGpu, MatchesCppAtTheEdgesForMarsInFp32) {
+  compare_parameterization("mars", false, kFp32Tolerance);
+}
 
 // NVIDIA's rounding on llvmpipe: sqrt, exp_r and log_r of double 1 ulp away from
 // zero (ULP_PERTURBATION, atmosphere_common.glsl), as NVIDIA's fp64 sqrt (driver

@@ -1,8 +1,7 @@
 // shaders/projection.glsl against the CPU projections of warp/ (planar,
-// fisheye, cylindrical, equirectangular, cube face): the ray of every pixel centre, computed in float on the GPU (Mesa llvmpipe without one) from
-// GpuProjection's 16 floats, equals the CPU's double ray within 2e-6 rad; a
-// fisheye's pixels without a ray agree except within 1e-4 px of the circle.
-// Built as warp_gpu_tests (tests/warp/CMakeLists.txt).
+// fisheye, cylindrical, equirectangular, cube face): the ray of every pixel centre, computed in float on the GPU (Mesa
+// llvmpipe without one) from GpuProjection's 16 floats, equals the CPU's double ray within 2e-6 rad; a fisheye's pixels
+// without a ray agree except within 1e-4 px of the circle. Built as warp_gpu_tests (tests/warp/CMakeLists.txt).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -73,7 +72,9 @@ TEST_F(ProjectionGpu, RaysMatchTheCpuProjections) {
   std::printf("renderer: %s\n", context_.renderer().c_str());
   auto planar = [](int w, int h, PlanarFrustum f) { return std::make_shared<PlanarProjection>(w, h, f); };
   auto fisheye = [](int w, int h, FisheyeParameters p) { return std::make_shared<FisheyeProjection>(w, h, p); };
-  auto cylinder = [](int w, int h, CylindricalParameters p) { return std::make_shared<CylindricalProjection>(w, h, p); };
+  auto cylinder = [](int w, int h, CylindricalParameters p) {
+    return std::make_shared<CylindricalProjection>(w, h, p);
+  };
   auto equirect = [](int w, int h, EquirectangularParameters p) {
     return std::make_shared<EquirectangularProjection>(w, h, p);
   };
@@ -88,14 +89,22 @@ TEST_F(ProjectionGpu, RaysMatchTheCpuProjections) {
       {"fisheye 210° tilted 30° 65×65", fisheye(65, 65, {.fov_deg = 210.0, .tilt_deg = 30.0, .rotation_deg = 20.0})},
       {"fisheye 360° 64×48", fisheye(64, 48, {.fov_deg = 360.0})},
       {"fisheye 360° 65×65", fisheye(65, 65, {.fov_deg = 360.0, .tilt_deg = -60.0})},
-      {"fisheye cropped 64×48",
-       fisheye(64, 48, {.fov_deg = 200.0, .tilt_deg = 15.0, .centre_x_px = 30.0, .centre_y_px = 40.0, .radius_px = 37.5,
-                        .rotation_deg = -45.0})},
+      {"fisheye cropped 64×48", fisheye(64, 48,
+                                        {.fov_deg = 200.0,
+                                         .tilt_deg = 15.0,
+                                         .centre_x_px = 30.0,
+                                         .centre_y_px = 40.0,
+                                         .radius_px = 37.5,
+                                         .rotation_deg = -45.0})},
       {"cylindrical 360° 128×32", cylinder(128, 32, {})},
       {"cylindrical 360° asymmetric 101×37", cylinder(101, 37, {.down_deg = -20.0, .up_deg = 88.0})},
-      {"cylindrical 200° turned 96×40",
-       cylinder(96, 40, {.horizontal_fov_deg = 200.0, .down_deg = -30.0, .up_deg = 40.0, .yaw_deg = 35.0,
-                         .pitch_deg = -20.0, .roll_deg = 15.0})},
+      {"cylindrical 200° turned 96×40", cylinder(96, 40,
+                                                 {.horizontal_fov_deg = 200.0,
+                                                  .down_deg = -30.0,
+                                                  .up_deg = 40.0,
+                                                  .yaw_deg = 35.0,
+                                                  .pitch_deg = -20.0,
+                                                  .roll_deg = 15.0})},
       {"equirectangular 360×180 128×64", equirect(128, 64, {})},
       {"equirectangular 360×180 101×37", equirect(101, 37, {})},
       {"equirectangular over the seam 96×40", equirect(96, 40, {120.0, 240.0, -10.0, 60.0})},
@@ -124,7 +133,8 @@ TEST_F(ProjectionGpu, RaysMatchTheCpuProjections) {
           ASSERT_TRUE(circle) << c.name << ": pixel " << i << ", " << j << " has no ray on one side";
           EXPECT_LT(std::abs(std::hypot(x - circle->centre_x_px(), y - circle->centre_y_px()) - circle->radius_px()),
                     kRimSlackPx)
-              << c.name << ": pixel " << i << ", " << j << (gpu_valid ? " has a ray on the GPU only" : " has a ray on the CPU only");
+              << c.name << ": pixel " << i << ", " << j
+              << (gpu_valid ? " has a ray on the GPU only" : " has a ray on the CPU only");
           continue;
         }
         if (!cpu) {

@@ -27,15 +27,15 @@
 #include "atmosphere/model_hash.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/reference/path_tracer.h"
+#include "core/units.h"
+#include "render/display/display_encoder.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/egl_context.h"
-#include "render/display/display_encoder.h"
 #include "render/gl/texture.h"
 #include "tests/render/render_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/warped_projection.h"
-#include "core/units.h"
 
 namespace zenith::render {
 namespace {
@@ -110,7 +110,8 @@ std::pair<int, int> pixel_of(const warp::Projection& p, const scene::Scene& s, c
   const glm::dvec3 cam = glm::conjugate(s.camera.orientation) * d;
   const auto xy = p.pixel(cam);
   EXPECT_TRUE(xy.has_value());
-  return {std::clamp(static_cast<int>(xy->x), 0, p.width() - 1), std::clamp(static_cast<int>(xy->y), 0, p.height() - 1)};
+  return {std::clamp(static_cast<int>(xy->x), 0, p.width() - 1),
+          std::clamp(static_cast<int>(xy->y), 0, p.height() - 1)};
 }
 
 /// The world ray through the centre of pixel (x, y).
@@ -136,12 +137,10 @@ TEST(RendererPhysics, EarthNoonZenithIsBlue) {
   // irradiance and the exposure, within the GPU pass's bound
   // (RendererAccuracy.SkyPixelsMatchTheCpuTableQueries); blue over green over red.
   const glm::dvec3 d = ray_of(p, s, 16, 16);
-  const atmosphere::Spectrum radiance = SmallTables::get("earth-advanced")
-                                            .queries->sky_radiance({s.camera.position_m.x, s.camera.position_m.y,
-                                                                    s.camera.position_m.z},
-                                                                   {d.x, d.y, d.z},
-                                                                   {s.sun.direction.x, s.sun.direction.y,
-                                                                    s.sun.direction.z});
+  const atmosphere::Spectrum radiance =
+      SmallTables::get("earth-advanced")
+          .queries->sky_radiance({s.camera.position_m.x, s.camera.position_m.y, s.camera.position_m.z}, {d.x, d.y, d.z},
+                                 {s.sun.direction.x, s.sun.direction.y, s.sun.direction.z});
   double expected[3];
   for (int c = 0; c < 3; ++c) expected[c] = radiance[c] * s.sun.irradiance_W_m2_nm[c] * s.camera.exposure;
   const Rgb z = pixel(image, 32, 16, 16);
@@ -282,9 +281,9 @@ TEST(RendererAccuracy, SkyPixelsMatchTheCpuTableQueries) {
       if (!ray_cam) continue;
       const glm::dvec3 d = s.camera.orientation * *ray_cam;
       if (d.z < std::cos(85.0 * kDeg)) continue;  // sky above 5°: away from the horizon's steep gradient
-      const atmosphere::Spectrum expected = tables.queries->sky_radiance(
-          {s.camera.position_m.x, s.camera.position_m.y, s.camera.position_m.z}, {d.x, d.y, d.z},
-          {s.sun.direction.x, s.sun.direction.y, s.sun.direction.z});
+      const atmosphere::Spectrum expected =
+          tables.queries->sky_radiance({s.camera.position_m.x, s.camera.position_m.y, s.camera.position_m.z},
+                                       {d.x, d.y, d.z}, {s.sun.direction.x, s.sun.direction.y, s.sun.direction.z});
       const Rgb got = pixel(image, 48, x, y);
       const double values[3] = {got.r, got.g, got.b};
       for (int c = 0; c < 3; ++c) {
@@ -415,16 +414,16 @@ TEST(RendererComposition, AtmospheresCompositeFrontToBack) {
       const double entry = -b - std::sqrt(RT * RT - impact2);
       const glm::dvec3 x0 = c + d * entry;
       const double mu0 = glm::dot(x0, d) / RT;
-      const atmosphere::Spectrum S =
-          earth.queries->sky_radiance({c.x, c.y, c.z}, {d.x, d.y, d.z},
-                                      {with.sun.direction.x, with.sun.direction.y, with.sun.direction.z});
+      const atmosphere::Spectrum S = earth.queries->sky_radiance(
+          {c.x, c.y, c.z}, {d.x, d.y, d.z}, {with.sun.direction.x, with.sun.direction.y, with.sun.direction.z});
       double T[atmosphere::lut::kMaxChannels];
       earth.queries->transmittance_to_top(RT, mu0, T);
       const Rgb got = pixel(image, 96, x, y), behind = pixel(bare, 96, x, y);
       const double g[3] = {got.r, got.g, got.b}, l[3] = {behind.r, behind.g, behind.b};
       for (int k = 0; k < 3; ++k) {
         const double expected = S[k] * with.sun.irradiance_W_m2_nm[k] * with.camera.exposure + T[k] * l[k];
-        EXPECT_NEAR(g[k], expected, kCompositionBound * expected + 1e-6) << "pixel " << x << "," << y << " channel " << k;
+        EXPECT_NEAR(g[k], expected, kCompositionBound * expected + 1e-6)
+            << "pixel " << x << "," << y << " channel " << k;
         worst = std::max(worst, std::abs(g[k] - expected) / expected);
       }
       ++checked;
@@ -503,7 +502,7 @@ TEST(RendererStability, NoJumpAtTheHorizon) {
   expect_finite_non_negative(image, "horizon");
   const double R = SmallTables::get("earth-advanced").model.ground_radius_m;
   const double dip = std::acos(R / (R + 2.0));  // of the geometric horizon seen from 2 m
-  std::vector<double> change;  // log ratio of each sky row to the row above
+  std::vector<double> change;                   // log ratio of each sky row to the row above
   int edge = -1;
   for (int y = 1; y < 96 && edge < 0; ++y) {
     const glm::dvec3 d = ray_of(p, s, 2, y);
@@ -605,7 +604,7 @@ SunEnergy sun_energy(const std::vector<float>& with, const std::vector<float>& w
       const double solid_angle = glm::length(glm::cross(*b - *a, *c - *a));
       const glm::dvec3 world = s.camera.orientation * *centre;
       auto& sum = std::acos(std::clamp(glm::dot(world, glm::normalize(s.sun.direction)), -1.0, 1.0)) < cone_rad ? e.near
-                                                                                                               : e.far;
+                                                                                                                : e.far;
       for (int k = 0; k < 3; ++k) {
         const std::size_t i = (static_cast<std::size_t>(y) * p.width() + x) * 3 + k;
         sum[k] += (double(with[i]) - without[i]) * solid_angle;
@@ -674,7 +673,8 @@ TEST(RendererWarp, TheAlbedoKeepsItsDetailThroughAMeshWithParkedNodes) {
   std::vector<warp::WarpNode> nodes;
   for (int j = 0; j < 17; ++j)
     for (int i = 0; i < 17; ++i)
-      nodes.push_back(i == 16 && j == 0 ? warp::WarpNode{0.0, 0.0, 0.02, true} : warp::WarpNode{i / 16.0, j / 16.0, 1.0, true});
+      nodes.push_back(i == 16 && j == 0 ? warp::WarpNode{0.0, 0.0, 0.02, true}
+                                        : warp::WarpNode{i / 16.0, j / 16.0, 1.0, true});
   const warp::WarpedProjection projector(
       64, 64, warp::WarpMesh(17, 17, std::move(nodes), "parked", warp::WarpInterpolation::catmull_rom), dome);
   ASSERT_GT(projector.max_pixel_angle_rad(), 15.0 * dome->max_pixel_angle_rad());
@@ -909,7 +909,8 @@ TEST(RendererFramePaths, OnePassTilesMatchTheGbufferPath) {
   const auto [mx, my] = pixel_of(p, s, glm::normalize(lit.position_m - s.camera.position_m));
   double moon_light = 0.0;
   for (int y = std::max(my - 8, 0); y < std::min(my + 9, p.height()); ++y)
-    for (int x = std::max(mx - 8, 0); x < std::min(mx + 9, p.width()); ++x) moon_light = std::max(moon_light, pixel(a, 160, x, y).g);
+    for (int x = std::max(mx - 8, 0); x < std::min(mx + 9, p.width()); ++x)
+      moon_light = std::max(moon_light, pixel(a, 160, x, y).g);
   EXPECT_GT(moon_light, 0.0);
 }
 
@@ -991,7 +992,8 @@ TEST(RendererSkyView, DifferenceFromTheDirectPathIsFarBelowTheTablesOwnError) {
   double table_sum = 0.0, table_worst = 0.0, sky_view_worst = 0.0, noise = 0.0;
   int n = 0;
   // Sky pixels: near the horizon, toward the sun, across and away from it, high up.
-  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{80, 28}, {80, 10}, {100, 25}, {20, 20}, {140, 5}, {60, 30}}) {
+  for (const auto& [x, y] :
+       std::vector<std::pair<int, int>>{{80, 28}, {80, 10}, {100, 25}, {20, 20}, {140, 5}, {60, 30}}) {
     const glm::dvec3 d = ray_of(p, s, x, y);
     ASSERT_GT(d.z, 0.0) << "pixel (" << x << ", " << y << ") is not sky";
     const auto ref = atmosphere::reference::path_traced_radiance(
@@ -1010,9 +1012,10 @@ TEST(RendererSkyView, DifferenceFromTheDirectPathIsFarBelowTheTablesOwnError) {
     }
   }
   const double table_rms = std::sqrt(table_sum / n);
-  std::printf("ground view, sky pixels: tables (direct path) vs reference path tracer RMS %.4f, max %.4f (noise <= %.4f); "
-              "sky-view table vs direct path at the same pixels max %.5f; whole image RMS %.5f, max %.4f\n",
-              table_rms, table_worst, noise, sky_view_worst, image.rms, image.max);
+  std::printf(
+      "ground view, sky pixels: tables (direct path) vs reference path tracer RMS %.4f, max %.4f (noise <= %.4f); "
+      "sky-view table vs direct path at the same pixels max %.5f; whole image RMS %.5f, max %.4f\n",
+      table_rms, table_worst, noise, sky_view_worst, image.rms, image.max);
   EXPECT_LT(sky_view_worst, 0.25 * table_rms);
   EXPECT_LT(image.rms, 0.1 * table_rms);
   EXPECT_LT(image.max, table_worst);
@@ -1100,7 +1103,8 @@ TEST(RendererTexture, EqualsTheReadBackFrameBandByBandBlackTilesIncluded) {
   const std::vector<float> h16 = half.read();
   for (std::size_t i = 0; i < 64 * 64; ++i)
     for (std::size_t c = 0; c < 3; ++c)
-      ASSERT_NEAR(h16[4 * i + c], image[3 * i + c], std::max(std::ldexp(std::abs(image[3 * i + c]), -10), std::ldexp(1.0f, -24)))
+      ASSERT_NEAR(h16[4 * i + c], image[3 * i + c],
+                  std::max(std::ldexp(std::abs(image[3 * i + c]), -10), std::ldexp(1.0f, -24)))
           << i;
 }
 

@@ -158,7 +158,8 @@ TEST(ShaderInterface, TileWordsReachTheShadersAsTheCppPacksThem) {
     std::uint32_t column, band_row;
   };
   // Inside the band, straddling its corner, and at both ends of the column's and the row's bits.
-  const std::vector<Tile> tiles = {{0, 0}, {3, 2}, {4, 3}, {kTileColumnMask, 1}, {1, 0xfffe}, {kTileColumnMask, 0xffff}};
+  const std::vector<Tile> tiles = {
+      {0, 0}, {3, 2}, {4, 3}, {kTileColumnMask, 1}, {1, 0xfffe}, {kTileColumnMask, 0xffff}};
   const std::array<int, 2> band_size = {4 * kTileSize + 5, 3 * kTileSize + 7};
   // Word 0 is not the pass's: tile_offset skips it.
   std::vector<std::uint32_t> words = {pack_tile(9, 9)};
@@ -187,11 +188,13 @@ TEST(ShaderInterface, TileWordsReachTheShadersAsTheCppPacksThem) {
     for (std::size_t i = 0; i < kPixelsPerTile; ++i) {
       const std::int32_t* p = &out[(t * kPixelsPerTile + i) * 4];
       const auto x = static_cast<std::int64_t>(tiles[t].column) * kTileSize + static_cast<std::int64_t>(i % kTileSize);
-      const auto y = static_cast<std::int64_t>(tiles[t].band_row) * kTileSize + static_cast<std::int64_t>(i / kTileSize);
+      const auto y =
+          static_cast<std::int64_t>(tiles[t].band_row) * kTileSize + static_cast<std::int64_t>(i / kTileSize);
       ASSERT_EQ(p[0], x) << "tile " << tiles[t].column << ", " << tiles[t].band_row << ", invocation " << i;
       ASSERT_EQ(p[1], y) << "tile " << tiles[t].column << ", " << tiles[t].band_row << ", invocation " << i;
       const bool in_band = x < band_size[0] && y < band_size[1];
-      ASSERT_EQ(p[2], in_band ? 1 : 0) << "tile " << tiles[t].column << ", " << tiles[t].band_row << ", invocation " << i;
+      ASSERT_EQ(p[2], in_band ? 1 : 0) << "tile " << tiles[t].column << ", " << tiles[t].band_row << ", invocation "
+                                       << i;
       inside += in_band;
     }
   EXPECT_EQ(inside, 2 * kPixelsPerTile + 5u * 7u) << "tiles (0, 0) and (3, 2) whole, 5 × 7 pixels of (4, 3)";

@@ -113,8 +113,8 @@ TEST(TileClassification, OneShellIsDrawnInOnePassAndAMoonOutsideItDirectly) {
     const std::vector<std::uint32_t> m = v.touching(1, 1.7e6);
     return std::set<std::uint32_t>(m.begin(), m.end());
   }();
-  const std::uint32_t centre = pack_tile(static_cast<std::uint32_t>(v.cones.columns() / 2),
-                                         static_cast<std::uint32_t>(v.cones.rows() / 2));
+  const std::uint32_t centre =
+      pack_tile(static_cast<std::uint32_t>(v.cones.columns() / 2), static_cast<std::uint32_t>(v.cones.rows() / 2));
   bool centre_seen = false;
   for (const auto& [variant, list] : band.lists[0].one_pass)
     for (std::uint32_t t : words(band, list)) {

@@ -19,7 +19,9 @@ Pixel at(const image::LinearImage& img, int x, int y) {
   const float* p = &img.rgb[(std::size_t(y) * img.width + x) * 3];
   return {p[0], p[1], p[2]};
 }
-double latitude_of_row(const image::LinearImage& img, int y) { return (90.0 - (y + 0.5) * 180.0 / img.height) * kPi / 180; }
+double latitude_of_row(const image::LinearImage& img, int y) {
+  return (90.0 - (y + 0.5) * 180.0 / img.height) * kPi / 180;
+}
 
 /// Mean |difference| between two columns, and between neighbouring columns inside the map.
 double column_difference(const image::LinearImage& img, int a, int b) {
@@ -169,13 +171,13 @@ TEST(MarsMap, RustWithDarkRegionsAndCaps) {
   EXPECT_NEAR(b / total, 0.08, 0.03);
   EXPECT_GT(dark / total, 0.1);
   EXPECT_LT(dark / total, 0.45);
-  EXPECT_GT(at(img, 0, 0).g, 0.5);                // north cap
-  EXPECT_GT(at(img, 0, img.height - 1).g, 0.5);   // south cap
+  EXPECT_GT(at(img, 0, 0).g, 0.5);               // north cap
+  EXPECT_GT(at(img, 0, img.height - 1).g, 0.5);  // south cap
 }
 
 TEST(CheckerMap, ThirtyDegreeCells) {
   const auto img = generate_albedo_map("checker", 0, 360, 180);  // 1 px per degree
-  EXPECT_FLOAT_EQ(at(img, 0, 0).g, 0.8f);      // lon −180..−150, lat 90..60
+  EXPECT_FLOAT_EQ(at(img, 0, 0).g, 0.8f);                        // lon −180..−150, lat 90..60
   EXPECT_FLOAT_EQ(at(img, 29, 29).g, 0.8f);
   EXPECT_FLOAT_EQ(at(img, 30, 0).g, 0.2f);     // next cell east
   EXPECT_FLOAT_EQ(at(img, 0, 30).g, 0.2f);     // next cell south

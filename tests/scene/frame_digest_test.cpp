@@ -76,7 +76,8 @@ TEST(FrameDigest, AnyFieldChangeChangesIt) {
       {"sun_angular_radius_rad", [](FrameDescription& f) { f.sun_angular_radius_rad = 0.0; }},
       {"sun_irradiance value", [](FrameDescription& f) { f.sun_irradiance_W_m2_nm[1] = 1.76; }},
       {"sun_irradiance count", [](FrameDescription& f) { f.sun_irradiance_W_m2_nm.push_back(0.0); }},
-      {"sun_irradiance order", [](FrameDescription& f) { std::swap(f.sun_irradiance_W_m2_nm[0], f.sun_irradiance_W_m2_nm[1]); }},
+      {"sun_irradiance order",
+       [](FrameDescription& f) { std::swap(f.sun_irradiance_W_m2_nm[0], f.sun_irradiance_W_m2_nm[1]); }},
       {"atmosphere body_name", [](FrameDescription& f) { f.atmospheres[0].body_name = "Mars"; }},
       {"atmosphere table_hash", [](FrameDescription& f) { f.atmospheres[0].table_hash[31] ^= 1; }},
       {"atmosphere effective_from_frame", [](FrameDescription& f) { f.atmospheres[0].effective_from_frame = 4; }},
@@ -85,7 +86,11 @@ TEST(FrameDigest, AnyFieldChangeChangesIt) {
       {"render_flags", [](FrameDescription& f) { f.render_flags |= kRenderEclipses; }},
       {"fade level", [](FrameDescription& f) { f.fade.level = 0.5; }},
       {"fade colour", [](FrameDescription& f) { f.fade.colour.g = 0.25; }},
-      {"sky time", [](FrameDescription& f) { f.sky.has_time = true; f.sky.utc_jd1 = 2461000.5; }},
+      {"sky time",
+       [](FrameDescription& f) {
+         f.sky.has_time = true;
+         f.sky.utc_jd1 = 2461000.5;
+       }},
       {"sky catalogue", [](FrameDescription& f) { f.sky.star_catalogue[0] = 1; }},
   };
   std::set<std::string> seen = {frame_digest(full_frame())};

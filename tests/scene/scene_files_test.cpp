@@ -8,9 +8,9 @@
 #include <glm/geometric.hpp>
 
 #include "atmosphere/photometry.h"
+#include "core/units.h"
 #include "scene/scene_loader.h"
 #include "scene/sun_disc.h"
-#include "core/units.h"
 
 namespace zenith::scene {
 namespace {

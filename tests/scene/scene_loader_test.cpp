@@ -10,10 +10,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/json_reader.h"
 #include "atmosphere/photometry.h"
-#include "scene/sun_disc.h"
+#include "core/json_reader.h"
 #include "core/units.h"
+#include "scene/sun_disc.h"
 
 namespace zenith::scene {
 namespace {
@@ -108,11 +108,12 @@ TEST(SceneLoader, CameraOnTheSurfaceIsAtRadiusPlusAltitudeAtItsLatitudeAndLongit
   struct Case {
     double lat, lon, alt;
   };
-  for (const Case c : {Case{45, 10, 2}, Case{-33.9, 151.2, 0.5}, Case{0, -180, 4e5}, Case{89.9, 45, 1e7},
-                       Case{-90, 0, 100}}) {
+  for (const Case c :
+       {Case{45, 10, 2}, Case{-33.9, 151.2, 0.5}, Case{0, -180, 4e5}, Case{89.9, 45, 1e7}, Case{-90, 0, 100}}) {
     json j = base_scene();
     j["bodies"][0]["position_m"] = {1e3, -2e3, 3e3};
-    j["camera"]["surface"] = {{"body", "Earth"}, {"latitude_deg", c.lat}, {"longitude_deg", c.lon}, {"altitude_m", c.alt}};
+    j["camera"]["surface"] = {
+        {"body", "Earth"}, {"latitude_deg", c.lat}, {"longitude_deg", c.lon}, {"altitude_m", c.alt}};
     j["camera"].erase("look");
     j["camera"]["forward"] = {0.3, 0.2, -0.1};
     const Scene s = parse(j);
@@ -127,7 +128,7 @@ TEST(SceneLoader, CameraOnTheSurfaceIsAtRadiusPlusAltitudeAtItsLatitudeAndLongit
     const Scene turned = parse(j);
     const double lambda2 = (c.lon + 30.0) * kDeg;
     const dvec3 expected2 = dvec3(1e3, -2e3, 3e3) + r * dvec3(std::cos(phi) * std::cos(lambda2),
-                                                             std::cos(phi) * std::sin(lambda2), std::sin(phi));
+                                                              std::cos(phi) * std::sin(lambda2), std::sin(phi));
     EXPECT_NEAR(glm::length(turned.camera.position_m - expected2), 0.0, 1e-6 * r) << c.lat << " " << c.lon;
   }
 }
@@ -196,8 +197,8 @@ TEST(SceneLoader, LookAzimuthElevationGiveTheForwardAndALevelHorizon) {
       EXPECT_NEAR(m.elevation_deg, el, 1e-9);
       EXPECT_NEAR(std::remainder(m.azimuth_deg - az, 360.0), 0.0, 1e-7);
       const dvec3 zenith = glm::normalize(c.position_m - s.bodies[0].position_m);
-      EXPECT_NEAR(glm::dot(right_of(c), zenith), 0.0, 1e-12);                     // level horizon
-      EXPECT_NEAR(glm::dot(up_of(c), zenith), std::cos(el * kDeg), 1e-12);        // zenith tilted by el
+      EXPECT_NEAR(glm::dot(right_of(c), zenith), 0.0, 1e-12);                                   // level horizon
+      EXPECT_NEAR(glm::dot(up_of(c), zenith), std::cos(el * kDeg), 1e-12);                      // zenith tilted by el
       EXPECT_NEAR(glm::length(glm::cross(right_of(c), up_of(c)) + forward_of(c)), 0.0, 1e-12);  // right-handed
     }
 }
@@ -286,7 +287,8 @@ TEST(SceneLoader, AtmosphereFormsAndFiles) {
   write_file(dir / "my-mars.json", parameters.dump(2));
 
   json j = base_scene();
-  j["bodies"][0] = {{"name", "Mars"}, {"atmosphere", {{"file", "my-mars.json"}}}, {"albedo", {{"image", "maps/ground.png"}}}};
+  j["bodies"][0] = {
+      {"name", "Mars"}, {"atmosphere", {{"file", "my-mars.json"}}}, {"albedo", {{"image", "maps/ground.png"}}}};
   j["bodies"][1]["atmosphere"] = {{"parameters", parameters}};
   j["bodies"][1].erase("radius_m");
   j["camera"]["surface"]["body"] = "Mars";
@@ -373,7 +375,8 @@ TEST_P(MalformedScene, IsRejectedNamingTheFileAndTheKey) {
 json nine_planets_with_atmospheres() {
   json bodies = json::array();
   for (int i = 0; i < 9; ++i)
-    bodies.push_back({{"name", std::string(1, char('A' + i))}, {"atmosphere", "mars"}, {"position_m", {1e8 * i, 0, 0}}});
+    bodies.push_back(
+        {{"name", std::string(1, char('A' + i))}, {"atmosphere", "mars"}, {"position_m", {1e8 * i, 0, 0}}});
   return bodies;
 }
 

@@ -20,16 +20,21 @@ struct Site {
 /// above the ground at the site, looking along the site's azimuth and elevation.
 inline nlohmann::json site_scene(const Site& site) {
   using nlohmann::json;
-  return {{"zenith_scene", 1},
-          {"name", site.scene_name},
-          {"bodies", json::array({{{"name", "Earth"}, {"atmosphere", "earth-standard"}, {"albedo", 0.3}}})},
-          {"time", site.time},
-          {"site", {{"latitude_deg", site.latitude_deg}, {"longitude_deg", site.longitude_deg}, {"altitude_m", site.altitude_m}}},
-          {"sun", json::object()},
-          {"camera",
-           {{"surface", {{"body", "Earth"}, {"latitude_deg", site.latitude_deg}, {"longitude_deg", site.longitude_deg},
-                         {"altitude_m", 2}}},
-            {"look", {{"azimuth_deg", site.look_azimuth_deg}, {"elevation_deg", site.look_elevation_deg}}}}}};
+  return {
+      {"zenith_scene", 1},
+      {"name", site.scene_name},
+      {"bodies", json::array({{{"name", "Earth"}, {"atmosphere", "earth-standard"}, {"albedo", 0.3}}})},
+      {"time", site.time},
+      {"site",
+       {{"latitude_deg", site.latitude_deg}, {"longitude_deg", site.longitude_deg}, {"altitude_m", site.altitude_m}}},
+      {"sun", json::object()},
+      {"camera",
+       {{"surface",
+         {{"body", "Earth"},
+          {"latitude_deg", site.latitude_deg},
+          {"longitude_deg", site.longitude_deg},
+          {"altitude_m", 2}}},
+        {"look", {{"azimuth_deg", site.look_azimuth_deg}, {"elevation_deg", site.look_elevation_deg}}}}}};
 }
 
 }  // namespace zenith::scene::testing

@@ -18,8 +18,12 @@ using nlohmann::json;
 /// NREL SPA's example (Reda & Andreas 2004): Golden, Colorado, 2003-10-17 19:30:30 UTC;
 /// the camera stands at the site itself.
 json golden_scene() {
-  return testing::site_scene({.scene_name = "golden", .time = "2003-10-17T19:30:30Z", .latitude_deg = 39.742476,
-                              .longitude_deg = -105.1786, .altitude_m = 1830.14, .look_azimuth_deg = 180.0,
+  return testing::site_scene({.scene_name = "golden",
+                              .time = "2003-10-17T19:30:30Z",
+                              .latitude_deg = 39.742476,
+                              .longitude_deg = -105.1786,
+                              .altitude_m = 1830.14,
+                              .look_azimuth_deg = 180.0,
                               .look_elevation_deg = 30.0});
 }
 

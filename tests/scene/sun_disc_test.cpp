@@ -101,9 +101,9 @@ TEST(SunDisc, MuMatchesTheGeometryOfASphere) {
     const double theta = f * radius;
     // Ray from the origin along (sin θ, 0, cos θ); sphere centre at (0, 0, D).
     const double dx = std::sin(theta), dz = std::cos(theta);
-    const double b = dz * D;                      // projection of the centre on the ray
+    const double b = dz * D;  // projection of the centre on the ray
     const double c = D * D - R * R;
-    const double t = b - std::sqrt(b * b - c);    // first hit
+    const double t = b - std::sqrt(b * b - c);  // first hit
     const double nx = t * dx / R, nz = (t * dz - D) / R;
     const double mu = -(nx * dx + nz * dz);
     EXPECT_NEAR(disc_mu(theta, radius), mu, 1e-9) << f;

@@ -3,16 +3,16 @@
 #include <cmath>
 #include <numbers>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
+#include "core/units.h"
 #include "show/catmull_rom.h"
 #include "show/key_span.h"
 #include "show/monotone_cubic.h"
 #include "show/parameter_track.h"
 #include "show/squad.h"
 #include "show/sun_track.h"
-#include "core/units.h"
 
 namespace zenith::show {
 namespace {
@@ -149,8 +149,8 @@ TEST(CatmullRom, SingleKeyAndRepeatedKeysAreConstant) {
 glm::dquat axis_angle(double angle_rad, glm::dvec3 axis) { return glm::angleAxis(angle_rad, glm::normalize(axis)); }
 
 TEST(Squad, HitsKeysAndStaysUnit) {
-  const std::vector<glm::dquat> keys{axis_angle(0.0, {0, 0, 1}), axis_angle(0.7, {0, 0, 1}),
-                                     axis_angle(1.2, {1, 1, 0}), axis_angle(2.5, {0, 1, 0.2})};
+  const std::vector<glm::dquat> keys{axis_angle(0.0, {0, 0, 1}), axis_angle(0.7, {0, 0, 1}), axis_angle(1.2, {1, 1, 0}),
+                                     axis_angle(2.5, {0, 1, 0.2})};
   const SquadCurve curve(keys);
   for (std::size_t s = 0; s < 3; ++s) {
     EXPECT_EQ(curve.at(s, 0.0), curve.keys()[s]);
@@ -215,10 +215,10 @@ TEST(ParameterTrack, NumericValuesAreQuantizedMonotoneCubics) {
   const ParameterTrack track(nlohmann::json::json_pointer("/aerosol/scattering/turbidity"), 0.5,
                              {{0.0, 3.0}, {10.0, 2.0}});
   EXPECT_EQ(track.value_at(0.0), 3.0);
-  EXPECT_EQ(track.value_at(2.4), 3.0);   // raw 2.76 → 3.0
-  EXPECT_EQ(track.value_at(2.6), 2.5);   // raw 2.74 → 2.5
-  EXPECT_EQ(track.value_at(7.4), 2.5);   // raw 2.26 → 2.5
-  EXPECT_EQ(track.value_at(7.6), 2.0);   // raw 2.24 → 2.0
+  EXPECT_EQ(track.value_at(2.4), 3.0);  // raw 2.76 → 3.0
+  EXPECT_EQ(track.value_at(2.6), 2.5);  // raw 2.74 → 2.5
+  EXPECT_EQ(track.value_at(7.4), 2.5);  // raw 2.26 → 2.5
+  EXPECT_EQ(track.value_at(7.6), 2.0);  // raw 2.24 → 2.0
   EXPECT_EQ(track.value_at(99.0), 2.0);
   nlohmann::json parameters = {{"aerosol", {{"scattering", {{"turbidity", 9.0}, {"K", 1}}}}}};
   track.apply(parameters, 5.0);
@@ -278,7 +278,8 @@ scene::Sun sun_towards(double azimuth_rad, double radius_rad, double irradiance)
 }
 
 TEST(SunTrack, FollowsTheGreatCircleMonotonically) {
-  const SunTrack track({{0.0, sun_towards(0.0, 0.004, 1.0)}, {10.0, sun_towards(0.5, 0.004, 1.0)},
+  const SunTrack track({{0.0, sun_towards(0.0, 0.004, 1.0)},
+                        {10.0, sun_towards(0.5, 0.004, 1.0)},
                         {20.0, sun_towards(1.5, 0.006, 0.5)}});
   EXPECT_EQ(track.at(0.0).direction, glm::dvec3(1, 0, 0));
   EXPECT_EQ(track.at(10.0).direction, sun_towards(0.5, 0, 0).direction);

@@ -19,9 +19,17 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 
 TEST(JsonDoubles, RoundTripBitForBit) {
   // nlohmann::json prints the shortest text that reads back as the same double.
-  const double awkward[] = {0.1, 1.0 / 3.0, 1e-300, std::numeric_limits<double>::denorm_min(),
-                            std::numeric_limits<double>::min() / 3.0, -0.0, 6371000.000000001,
-                            std::numeric_limits<double>::max(), 2.0 / 3.0 * 1e22, -123456.789e-200, 0.30000000000000004};
+  const double awkward[] = {0.1,
+                            1.0 / 3.0,
+                            1e-300,
+                            std::numeric_limits<double>::denorm_min(),
+                            std::numeric_limits<double>::min() / 3.0,
+                            -0.0,
+                            6371000.000000001,
+                            std::numeric_limits<double>::max(),
+                            2.0 / 3.0 * 1e22,
+                            -123456.789e-200,
+                            0.30000000000000004};
   for (double x : awkward) {
     const double back = json::parse(json(x).dump()).get<double>();
     EXPECT_TRUE(same_bits(x, back)) << json(x).dump();
@@ -35,9 +43,10 @@ Show live_show(const std::filesystem::path& dir) {
   json show = test::minimal_show("earth-sunset");
   show["atmospheres"] = json::array(
       {{{"body", "Earth"},
-        {"tracks", json::array({{{"parameter", "/aerosol/scattering/turbidity"},
-                                 {"step", 0.5},
-                                 {"keys", json::array({{{"t_s", 0}, {"value", 3.0}}, {{"t_s", 2}, {"value", 2.0}}})}}})}}});
+        {"tracks",
+         json::array({{{"parameter", "/aerosol/scattering/turbidity"},
+                       {"step", 0.5},
+                       {"keys", json::array({{{"t_s", 0}, {"value", 3.0}}, {{"t_s", 2}, {"value", 2.0}}})}}})}}});
   return load_show(test::write_file(dir / "live.json", show.dump()));
 }
 
@@ -84,7 +93,8 @@ TEST(ShowRecorder, RecordedFramesReadBackExactly) {
   EXPECT_EQ(early.atmospheres[0].effective_from_frame, 3u);
   EXPECT_EQ(early.camera_position_m, recorded[10].camera_position_m);
   EXPECT_EQ(replay.atmosphere_versions(0.0).size(), 3u);
-  for (const AtmosphereVersion& v : live.atmosphere_versions(30.0)) ASSERT_NE(replay.find_version(v.table_hash), nullptr);
+  for (const AtmosphereVersion& v : live.atmosphere_versions(30.0))
+    ASSERT_NE(replay.find_version(v.table_hash), nullptr);
 }
 
 TEST(ShowRecorder, RefusesUnknownVersionsAndInvalidStates) {
@@ -129,16 +139,17 @@ void expect_error(const std::filesystem::path& path, const std::string& key, con
 }
 
 TEST(RecordingErrors, HashMismatch) {
-  expect_error(spoiled_recording("rec_hash", [](json& j) {
-                 j["recording"]["versions"][0]["parameters"]["aerosol"]["scattering"]["turbidity"] = 5.0;
-               }),
-               "/recording/versions/0/table_hash", "does not match the parameters");
+  expect_error(
+      spoiled_recording(
+          "rec_hash",
+          [](json& j) { j["recording"]["versions"][0]["parameters"]["aerosol"]["scattering"]["turbidity"] = 5.0; }),
+      "/recording/versions/0/table_hash", "does not match the parameters");
 }
 
 TEST(RecordingErrors, UnlistedHash) {
-  expect_error(spoiled_recording("rec_unlisted", [](json& j) {
-                 j["recording"]["frames"][2]["atmospheres"][0]["table_hash"] = std::string(64, 'a');
-               }),
+  expect_error(spoiled_recording(
+                   "rec_unlisted",
+                   [](json& j) { j["recording"]["frames"][2]["atmospheres"][0]["table_hash"] = std::string(64, 'a'); }),
                "/recording/frames/2/atmospheres/0/table_hash", "not among the recording's /recording/versions");
 }
 
@@ -161,13 +172,17 @@ TEST(Recording, ShowTimesThatPauseOrJumpBackPlayFrameByFrame) {
 
 TEST(RecordingErrors, WrongIrradianceCount) {
   expect_error(spoiled_recording("rec_irradiance",
-                                 [](json& j) { j["recording"]["frames"][1]["sun_irradiance_W_m2_nm"] = {1.0, 2.0}; }),
+                                 [](json& j) {
+                                   j["recording"]["frames"][1]["sun_irradiance_W_m2_nm"] = {1.0, 2.0};
+                                 }),
                "/recording/frames/1/sun_irradiance_W_m2_nm", "one per scene wavelength");
 }
 
 TEST(RecordingErrors, NotUnitQuaternion) {
   expect_error(spoiled_recording("rec_quat",
-                                 [](json& j) { j["recording"]["frames"][0]["camera_orientation"] = {1.0, 0.1, 0, 0}; }),
+                                 [](json& j) {
+                                   j["recording"]["frames"][0]["camera_orientation"] = {1.0, 0.1, 0, 0};
+                                 }),
                "/recording/frames/0/camera_orientation", "unit quaternion");
 }
 
@@ -178,10 +193,14 @@ TEST(RecordingErrors, UnknownRenderFlags) {
 
 TEST(RecordingErrors, FadeOutOfRange) {
   expect_error(spoiled_recording("rec_fade_level",
-                                 [](json& j) { j["recording"]["frames"][2]["fade"] = {{"level", 1.5}, {"colour", {0, 0, 0}}}; }),
+                                 [](json& j) {
+                                   j["recording"]["frames"][2]["fade"] = {{"level", 1.5}, {"colour", {0, 0, 0}}};
+                                 }),
                "/recording/frames/2/fade/level", "must be in [0, 1]");
   expect_error(spoiled_recording("rec_fade_colour",
-                                 [](json& j) { j["recording"]["frames"][2]["fade"] = {{"level", 1}, {"colour", {0, 2, 0}}}; }),
+                                 [](json& j) {
+                                   j["recording"]["frames"][2]["fade"] = {{"level", 1}, {"colour", {0, 2, 0}}};
+                                 }),
                "/recording/frames/2/fade/colour", "each component must be in [0, 1]");
 }
 

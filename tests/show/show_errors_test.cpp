@@ -15,19 +15,22 @@ using nlohmann::json;
 json valid_show() {
   json show = test::minimal_show("earth-sunset");
   show["fps"] = 24;
-  show["camera"] = json::array(
-      {{{"t_s", 0}, {"surface", {{"body", "Earth"}, {"latitude_deg", 45}, {"longitude_deg", 5}, {"altitude_m", 2}}},
-        {"look", {{"azimuth_deg", 270}, {"elevation_deg", 5}}}},
-       {{"t_s", 10}, {"surface", {{"body", "Earth"}, {"latitude_deg", 45}, {"longitude_deg", 5}, {"altitude_m", 50}}},
-        {"look", {{"azimuth_deg", 260}, {"elevation_deg", 8}}}}});
+  show["camera"] =
+      json::array({{{"t_s", 0},
+                    {"surface", {{"body", "Earth"}, {"latitude_deg", 45}, {"longitude_deg", 5}, {"altitude_m", 2}}},
+                    {"look", {{"azimuth_deg", 270}, {"elevation_deg", 5}}}},
+                   {{"t_s", 10},
+                    {"surface", {{"body", "Earth"}, {"latitude_deg", 45}, {"longitude_deg", 5}, {"altitude_m", 50}}},
+                    {"look", {{"azimuth_deg", 260}, {"elevation_deg", 8}}}}});
   show["sun"] = json::array({{{"t_s", 0}, {"sky", {{"elevation_deg", 4}, {"azimuth_deg", 272}}}},
                              {{"t_s", 10}, {"sky", {{"elevation_deg", 0}, {"azimuth_deg", 274}}}}});
   show["exposure"] = json::array({{{"t_s", 0}, {"exposure", 20}}, {{"t_s", 10}, {"exposure", 30}}});
   show["atmospheres"] = json::array(
       {{{"body", "Earth"},
-        {"tracks", json::array({{{"parameter", "/aerosol/scattering/turbidity"},
-                                 {"step", 0.5},
-                                 {"keys", json::array({{{"t_s", 0}, {"value", 2.0}}, {{"t_s", 10}, {"value", 3.0}}})}}})}}});
+        {"tracks",
+         json::array({{{"parameter", "/aerosol/scattering/turbidity"},
+                       {"step", 0.5},
+                       {"keys", json::array({{{"t_s", 0}, {"value", 2.0}}, {{"t_s", 10}, {"value", 3.0}}})}}})}}});
   return show;
 }
 
@@ -61,10 +64,13 @@ const Case kCases[] = {
      "must be one of \"Earth\""},
     {"camera_unknown_key", [](json& j) { j["camera"][0]["fov"] = 90; }, "/camera/0/fov", "unknown key"},
     {"camera_exposure", [](json& j) { j["camera"][0]["exposure"] = 3; }, "/camera/0/exposure", "its own track"},
-    {"camera_two_positions", [](json& j) { j["camera"][0]["position_m"] = {7e6, 0, 0}; }, "/camera/0",
-     "give exactly one of \"position_m\", \"surface\""},
-    {"camera_altitude_range", [](json& j) { j["camera"][1]["surface"]["altitude_m"] = 0; }, "/camera/1/surface/altitude_m",
-     "must be in [0.1"},
+    {"camera_two_positions",
+     [](json& j) {
+       j["camera"][0]["position_m"] = {7e6, 0, 0};
+     },
+     "/camera/0", "give exactly one of \"position_m\", \"surface\""},
+    {"camera_altitude_range", [](json& j) { j["camera"][1]["surface"]["altitude_m"] = 0; },
+     "/camera/1/surface/altitude_m", "must be in [0.1"},
     {"camera_surface_keys_too_far",
      [](json& j) {
        j["camera"][1]["surface"]["latitude_deg"] = -45;
@@ -73,47 +79,68 @@ const Case kCases[] = {
      "/camera/1/surface", "at most 120 deg apart"},
     {"sun_elevation_range", [](json& j) { j["sun"][1]["sky"]["elevation_deg"] = 95; }, "/sun/1/sky/elevation_deg",
      "must be in [-90, 90] deg"},
-    {"sun_antipodal", [](json& j) {
+    {"sun_antipodal",
+     [](json& j) {
        j["sun"] = json::array({{{"t_s", 0}, {"direction", {1, 0, 0}}}, {{"t_s", 5}, {"direction", {-1, 0, 0}}}});
-     }, "/sun/1", "less than 179 deg apart"},
-    {"sun_zero_direction", [](json& j) { j["sun"][0] = {{"t_s", 0}, {"direction", {0, 0, 0}}}; }, "/sun/0/direction",
-     "must be a non-zero vector"},
+     },
+     "/sun/1", "less than 179 deg apart"},
+    {"sun_zero_direction",
+     [](json& j) {
+       j["sun"][0] = {{"t_s", 0}, {"direction", {0, 0, 0}}};
+     },
+     "/sun/0/direction", "must be a non-zero vector"},
     {"exposure_zero", [](json& j) { j["exposure"][0]["exposure"] = 0; }, "/exposure/0/exposure", "(0, 1e+06]"},
     {"exposure_unknown_key", [](json& j) { j["exposure"][0]["value"] = 3; }, "/exposure/0/value", "unknown key"},
     {"atmosphere_unknown_body", [](json& j) { j["atmospheres"][0]["body"] = "Mars"; }, "/atmospheres/0/body",
      "no body of that name with an atmosphere (those with one: \"Earth\")"},
     {"atmosphere_body_twice", [](json& j) { j["atmospheres"][1] = j["atmospheres"][0]; }, "/atmospheres/1/body",
      "already has tracks at /atmospheres/0"},
-    {"parameter_missing_in_atmosphere", [](json& j) { j["atmospheres"][0]["tracks"][0]["parameter"] = "/aerosol/turbidty"; },
+    {"parameter_missing_in_atmosphere",
+     [](json& j) { j["atmospheres"][0]["tracks"][0]["parameter"] = "/aerosol/turbidty"; },
      "/atmospheres/0/tracks/0/parameter", "not present in the parameters of the atmosphere of \"Earth\""},
     {"parameter_not_pointer", [](json& j) { j["atmospheres"][0]["tracks"][0]["parameter"] = "aerosol.turbidity"; },
      "/atmospheres/0/tracks/0/parameter", "must be a JSON pointer"},
-    {"parameters_overlap", [](json& j) {
-       j["atmospheres"][0]["tracks"][1] = {{"parameter", "/aerosol"}, {"keys", json::array({{{"t_s", 0}, {"value", nullptr}}})}};
-     }, "/atmospheres/0/tracks/1/parameter", "overlaps the parameter of track 0"},
+    {"parameters_overlap",
+     [](json& j) {
+       j["atmospheres"][0]["tracks"][1] = {{"parameter", "/aerosol"},
+                                           {"keys", json::array({{{"t_s", 0}, {"value", nullptr}}})}};
+     },
+     "/atmospheres/0/tracks/1/parameter", "overlaps the parameter of track 0"},
     {"step_zero", [](json& j) { j["atmospheres"][0]["tracks"][0]["step"] = 0; }, "/atmospheres/0/tracks/0/step",
      "must be a number > 0"},
     {"step_negative", [](json& j) { j["atmospheres"][0]["tracks"][0]["step"] = -0.5; }, "/atmospheres/0/tracks/0/step",
      "must be a number > 0"},
     {"step_missing", [](json& j) { j["atmospheres"][0]["tracks"][0].erase("step"); }, "/atmospheres/0/tracks/0/step",
      "missing required key"},
-    {"step_on_held_track", [](json& j) {
-       j["atmospheres"][0]["tracks"][0] = {{"parameter", "/ozone"}, {"step", 1},
-                                           {"keys", json::array({{{"t_s", 0}, {"value", nullptr}}})}};
-     }, "/atmospheres/0/tracks/0/step", "applies to numeric tracks only"},
+    {"step_on_held_track",
+     [](json& j) {
+       j["atmospheres"][0]["tracks"][0] = {
+           {"parameter", "/ozone"}, {"step", 1}, {"keys", json::array({{{"t_s", 0}, {"value", nullptr}}})}};
+     },
+     "/atmospheres/0/tracks/0/step", "applies to numeric tracks only"},
     {"mixed_value_kinds", [](json& j) { j["atmospheres"][0]["tracks"][0]["keys"][1]["value"] = "3"; },
      "/atmospheres/0/tracks/0/keys/1/value", "must be a number"},
     {"value_missing", [](json& j) { j["atmospheres"][0]["tracks"][0]["keys"][1].erase("value"); },
      "/atmospheres/0/tracks/0/keys/1/value", "missing required key"},
     {"value_out_of_range", [](json& j) { j["atmospheres"][0]["tracks"][0]["keys"][1]["value"] = 100.0; },
      "/atmospheres/0", "does not resolve"},
-    {"removing_required_key", [](json& j) {
-       j["atmospheres"][0]["tracks"][0] = {{"parameter", "/gas"}, {"keys", json::array({{{"t_s", 0}, {"value", json::object()}}, {{"t_s", 5}, {"value", nullptr}}})}};
-     }, "/atmospheres/0", "at show time 0 s"},
-    {"recording_with_tracks", [](json& j) {
+    {"removing_required_key",
+     [](json& j) {
+       j["atmospheres"][0]["tracks"][0] = {
+           {"parameter", "/gas"},
+           {"keys", json::array({{{"t_s", 0}, {"value", json::object()}}, {{"t_s", 5}, {"value", nullptr}}})}};
+     },
+     "/atmospheres/0", "at show time 0 s"},
+    {"recording_with_tracks",
+     [](json& j) {
        j["recording"] = {{"fps", 30}, {"versions", json::array()}, {"frames", json::array()}};
-     }, "/fps", "is not used in a recording"},
-    {"not_an_object", [](json& j) { j = json::array({1, 2}); }, "", "must be a JSON object"},
+     },
+     "/fps", "is not used in a recording"},
+    {"not_an_object",
+     [](json& j) {
+       j = json::array({1, 2});
+     },
+     "", "must be a JSON object"},
 };
 
 TEST(ShowErrors, TheValidShowLoads) {
@@ -141,7 +168,9 @@ TEST_P(MalformedShow, NamesFileKeyAndReason) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, MalformedShow, ::testing::ValuesIn(kCases),
-                         [](const ::testing::TestParamInfo<Case>& case_info) { return std::string(case_info.param.name); });
+                         [](const ::testing::TestParamInfo<Case>& case_info) {
+                           return std::string(case_info.param.name);
+                         });
 
 TEST(ShowErrors, InvalidJsonNamesTheFile) {
   // JSON has no NaN: such a file fails as JSON, naming the file and the offset.

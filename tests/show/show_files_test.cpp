@@ -3,8 +3,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "show/show.h"
 

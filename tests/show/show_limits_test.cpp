@@ -35,8 +35,8 @@ class ShowLimitsTest : public ::testing::Test {
     const fs::path path = dir_ / "tiny-step.json";
     std::ofstream(path) << R"({"zenith_show": 1, "name": "tiny-step", "scene": ")"
                         << (kSource / "configs/scenes/earth-sunset.json").string() << R"(", "fps": 30,
-      "atmospheres": [{"body": "Earth", "tracks": [{"parameter": "/aerosol/scattering/turbidity", "step": )" << step
-                        << R"(, "keys": [{"t_s": 0, "value": 5}, {"t_s": 60, "value": 60}]}]}]})";
+      "atmospheres": [{"body": "Earth", "tracks": [{"parameter": "/aerosol/scattering/turbidity", "step": )"
+                        << step << R"(, "keys": [{"t_s": 0, "value": 5}, {"t_s": 60, "value": 60}]}]}]})";
     return path;
   }
   static std::string error_of(const fs::path& path, const ShowLimits& limits = {}) {

@@ -2,16 +2,16 @@
 #include <cmath>
 #include <thread>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "atmosphere/model_hash.h"
 #include "core/sha256.h"
+#include "core/units.h"
+#include "scene/scene_loader.h"
 #include "show/show.h"
 #include "show/table_plan.h"
-#include "scene/scene_loader.h"
 #include "show_test_support.h"
-#include "core/units.h"
 
 namespace zenith::show {
 namespace {
@@ -58,19 +58,23 @@ TEST(ShowLoader, WithoutTracksEveryFrameIsTheScene) {
 }
 
 TEST(ShowLoader, FrameCountsAndTimes) {
-  const Show show = load("frames", minimal_show("earth-sunset", {{"exposure", json::array({{{"t_s", 0}, {"exposure", 10}},
-                                                                                           {{"t_s", 2.5}, {"exposure", 20}}})}}));
+  const Show show = load(
+      "frames",
+      minimal_show("earth-sunset",
+                   {{"exposure", json::array({{{"t_s", 0}, {"exposure", 10}}, {{"t_s", 2.5}, {"exposure", 20}}})}}));
   EXPECT_EQ(show.duration_s(), 2.5);
   EXPECT_EQ(show.frame_count(30.0), 76u);  // floor(75 + 1e-9) + 1
   EXPECT_EQ(show.frame_count(4.0), 11u);
-  EXPECT_EQ(show.frame_count(3.0), 8u);    // 7.5 → 7, + 1
+  EXPECT_EQ(show.frame_count(3.0), 8u);  // 7.5 → 7, + 1
   EXPECT_EQ(show.frame_time_s(75, 30.0), 2.5);
   EXPECT_THROW(show.frame_count(0.0), std::invalid_argument);
 }
 
 TEST(ShowLoader, ExposureIsMonotoneInLogExposure) {
-  const Show show = load("exposure", minimal_show("earth-sunset", {{"exposure", json::array({{{"t_s", 0}, {"exposure", 40}},
-                                                                                             {{"t_s", 10}, {"exposure", 4}}})}}));
+  const Show show =
+      load("exposure",
+           minimal_show("earth-sunset",
+                        {{"exposure", json::array({{{"t_s", 0}, {"exposure", 40}}, {{"t_s", 10}, {"exposure", 4}}})}}));
   EXPECT_EQ(show.state_at(0.0, 0, 0).exposure, 40.0);
   EXPECT_NEAR(show.state_at(5.0, 0, 0).exposure, std::sqrt(160.0), 1e-12);  // geometric mean halfway
   EXPECT_EQ(show.state_at(10.0, 0, 0).exposure, 4.0);
@@ -78,7 +82,8 @@ TEST(ShowLoader, ExposureIsMonotoneInLogExposure) {
 }
 
 TEST(ShowLoader, DescentFrom400kmTo2mStaysAboveGroundAndIsSmooth) {
-  const json keys = json::array({surface_key(0, 10, 20, 400000), surface_key(30, 12, 24, 5000), surface_key(60, 12.5, 25, 2)});
+  const json keys =
+      json::array({surface_key(0, 10, 20, 400000), surface_key(30, 12, 24, 5000), surface_key(60, 12.5, 25, 2)});
   const Show show = load("descent", minimal_show("earth-ground-noon", {{"camera", keys}}));
   double previous_altitude = 1e300, previous_speed = -1.0;
   glm::dvec3 previous = show.state_at(0.0, 0, 0).camera_position_m;
@@ -101,7 +106,8 @@ TEST(ShowLoader, DescentFrom400kmTo2mStaysAboveGroundAndIsSmooth) {
 }
 
 TEST(ShowLoader, CameraKeysAreHitExactlyAtTheirTimes) {
-  const json keys = json::array({surface_key(0, 0, 0, 400000), surface_key(20, 0, 3, 400000), surface_key(40, 1, 6, 400000)});
+  const json keys =
+      json::array({surface_key(0, 0, 0, 400000), surface_key(20, 0, 3, 400000), surface_key(40, 1, 6, 400000)});
   const Show show = load("camera_keys", minimal_show("earth-orbit-limb", {{"camera", keys}}));
   for (std::size_t i = 0; i < keys.size(); ++i) {
     json object = keys[i];
@@ -112,7 +118,8 @@ TEST(ShowLoader, CameraKeysAreHitExactlyAtTheirTimes) {
     EXPECT_NEAR(std::abs(glm::dot(s.camera_orientation, key.camera.orientation)), 1.0, 1e-15) << i;
   }
   // An orbital pass at constant altitude stays at that altitude between keys.
-  for (int i = 0; i <= 400; ++i) EXPECT_NEAR(altitude_m(show, show.state_at(i * 0.1, 0, 0).camera_position_m), 400000.0, 1e-6);
+  for (int i = 0; i <= 400; ++i)
+    EXPECT_NEAR(altitude_m(show, show.state_at(i * 0.1, 0, 0).camera_position_m), 400000.0, 1e-6);
 }
 
 TEST(ShowLoader, FreeCameraPathMustClearTheGround) {
@@ -142,12 +149,14 @@ TEST(ShowLoader, SunKeysInTheSkyFollowTheGreatCircle) {
 }
 
 json turbidity_show(double step) {
-  return minimal_show("earth-sunset",
-                      {{"atmospheres", json::array({{{"body", "Earth"},
-                                                     {"tracks", json::array({{{"parameter", "/aerosol/scattering/turbidity"},
-                                                                              {"step", step},
-                                                                              {"keys", json::array({{{"t_s", 0}, {"value", 3.0}},
-                                                                                                    {{"t_s", 10}, {"value", 2.0}}})}}})}}})}});
+  return minimal_show(
+      "earth-sunset",
+      {{"atmospheres",
+        json::array({{{"body", "Earth"},
+                      {"tracks", json::array({{{"parameter", "/aerosol/scattering/turbidity"},
+                                               {"step", step},
+                                               {"keys", json::array({{{"t_s", 0}, {"value", 3.0}},
+                                                                     {{"t_s", 10}, {"value", 2.0}}})}}})}}})}});
 }
 
 TEST(ShowLoader, AtmosphereHashChangesExactlyWhenTheQuantizedValueDoes) {
@@ -195,10 +204,17 @@ TEST(ShowLoader, StateAtIsSafeFromSeveralThreads) {
 
 TEST(ShowLoader, HeldTrackRemovesOzone) {
   const json show_json = minimal_show(
-      "earth-sunset", {{"atmospheres", json::array({{{"body", "Earth"},
-                                                     {"tracks", json::array({{{"parameter", "/ozone"},
-                                                                              {"keys", json::array({{{"t_s", 0}, {"value", nullptr}},
-                                                                                                    {{"t_s", 4}, {"value", json::object({{"profile", "us_standard_1976"}, {"cross_sections", "bogumil2003"}, {"temperature_K", 233}})}}})}}})}}})}});
+      "earth-sunset",
+      {{"atmospheres",
+        json::array(
+            {{{"body", "Earth"},
+              {"tracks",
+               json::array({{{"parameter", "/ozone"},
+                             {"keys", json::array({{{"t_s", 0}, {"value", nullptr}},
+                                                   {{"t_s", 4},
+                                                    {"value", json::object({{"profile", "us_standard_1976"},
+                                                                            {"cross_sections", "bogumil2003"},
+                                                                            {"temperature_K", 233}})}}})}}})}}})}});
   const Show show = load("ozone", show_json);
   const AtmosphereVersion* without = show.find_version(show.state_at(1.0, 0, 0).atmospheres[0].table_hash);
   const AtmosphereVersion* with = show.find_version(show.state_at(4.0, 0, 0).atmospheres[0].table_hash);
@@ -250,8 +266,8 @@ TEST(TablePlan, CountsFramesPerSetAndChecksTheCache) {
   EXPECT_EQ(plan.sets[2].first_frame, 76u);
   EXPECT_EQ(plan.sets[2].frames, 25u);
   const atmosphere::lut::TableSizes& s = options.sizes;
-  const std::uint64_t texels = s.transmittance_mu * s.transmittance_r + s.irradiance_mu_s * s.irradiance_r +
-                               3 * s.scattering_texels();
+  const std::uint64_t texels =
+      s.transmittance_mu * s.transmittance_r + s.irradiance_mu_s * s.irradiance_r + 3 * s.scattering_texels();
   EXPECT_EQ(plan.sets[0].bytes, texels * 3 * 4);
   EXPECT_EQ(plan.total_bytes(), 3 * texels * 3 * 4);
   EXPECT_EQ(plan.missing(), 3u);

@@ -7,8 +7,8 @@
 #include "core/units.h"
 #include "scene/local_horizon.h"
 #include "show/show.h"
-#include "tests/show/show_test_support.h"
 #include "tests/scene/site_scene.h"
+#include "tests/show/show_test_support.h"
 
 namespace zenith::show {
 namespace {
@@ -17,10 +17,13 @@ using nlohmann::json;
 
 /// A dusk scene at Greenwich on the winter solstice, 2026, the sun placed by the ephemeris.
 std::filesystem::path dusk_scene(const std::filesystem::path& dir) {
-  const nlohmann::json scene =
-      scene::testing::site_scene({.scene_name = "dusk", .time = "2026-12-21T15:30:00Z", .latitude_deg = 51.4769,
-                                  .longitude_deg = -0.0005, .altitude_m = 46.0, .look_azimuth_deg = 225.0,
-                                  .look_elevation_deg = 5.0});
+  const nlohmann::json scene = scene::testing::site_scene({.scene_name = "dusk",
+                                                           .time = "2026-12-21T15:30:00Z",
+                                                           .latitude_deg = 51.4769,
+                                                           .longitude_deg = -0.0005,
+                                                           .altitude_m = 46.0,
+                                                           .look_azimuth_deg = 225.0,
+                                                           .look_elevation_deg = 5.0});
   return test::write_file(dir / "dusk.json", scene.dump());
 }
 
@@ -30,7 +33,9 @@ Show load(const std::filesystem::path& dir, const json& show) {
 
 TEST(TimeTrack, AnEveningInAMinute) {
   const auto dir = test::temp_folder("time-track");
-  json show = {{"zenith_show", 1}, {"name", "evening"}, {"scene", dusk_scene(dir).string()},
+  json show = {{"zenith_show", 1},
+               {"name", "evening"},
+               {"scene", dusk_scene(dir).string()},
                {"time", {{"time_rate", 120.0}, {"end_s", 60.0}}}};
   const Show s = load(dir, show);
   EXPECT_DOUBLE_EQ(s.duration_s(), 60.0);
@@ -80,7 +85,9 @@ TEST(TimeTrack, ErrorsNameTheKey) {
   show["time"] = {{"time_rate", 60}};
   show["sun"] = json::array({{{"t_s", 0}, {"sky", {{"elevation_deg", 5}, {"azimuth_deg", 200}}}}});
   EXPECT_NE(message(show).find("both move the sun"), std::string::npos) << message(show);
-  const json no_clock = {{"zenith_show", 1}, {"name", "x"}, {"scene", test::scene_file("earth-sunset").string()},
+  const json no_clock = {{"zenith_show", 1},
+                         {"name", "x"},
+                         {"scene", test::scene_file("earth-sunset").string()},
                          {"time", {{"time_rate", 60}}}};
   EXPECT_NE(message(no_clock).find("gives no \"time\" and \"site\""), std::string::npos) << message(no_clock);
 }

@@ -5,14 +5,14 @@
 
 #include <cmath>
 
-#include "stress/random_atmosphere.h"
-#include "stress/stress_geometry.h"
-#include "stress/stress_sampler.h"
-#include "stress/stress_statistics.h"
 #include "atmosphere/lut/parameterization.h"
 #include "atmosphere/parameters.h"
 #include "atmosphere/reference/geometry.h"
 #include "core/units.h"
+#include "stress/random_atmosphere.h"
+#include "stress/stress_geometry.h"
+#include "stress/stress_sampler.h"
+#include "stress/stress_statistics.h"
 
 namespace zenith::stress {
 namespace {
@@ -33,7 +33,8 @@ TEST(StressGeometry, HorizonDirectionsAreOnTheRightSideFrom1mTo40au) {
       const atmosphere::reference::Ray above(camera, horizon_direction(camera, tangent, kR, eps));
       const atmosphere::reference::Ray below(camera, horizon_direction(camera, tangent, kR, -eps));
       // Exactly on the right side: the reference geometry (perigee form) misses / hits the ground.
-      EXPECT_FALSE(atmosphere::reference::atmosphere_interval(above, kR, kTop).ends_on_ground) << altitude << " " << eps;
+      EXPECT_FALSE(atmosphere::reference::atmosphere_interval(above, kR, kTop).ends_on_ground)
+          << altitude << " " << eps;
       EXPECT_TRUE(atmosphere::reference::atmosphere_interval(below, kR, kTop).ends_on_ground) << altitude << " " << eps;
       // Exactly p = r sin(β ± ε) = R cos ε ± r cos β sin ε (1 m up, ε = 1e-6: p − R = ±3.6 mm).
       for (double e : {eps, -eps}) {

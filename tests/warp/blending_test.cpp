@@ -14,9 +14,9 @@
 #include <numbers>
 #include <vector>
 
+#include "core/units.h"
 #include "warp/fisheye_projection.h"
 #include "warp_file_test_support.h"
-#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -117,9 +117,10 @@ TEST(Blending, SixProjectorMasksSumToOneWhereProjectorsOverlap) {
     }
   EXPECT_LE(worst_overlap, 0.005);
   EXPECT_LE(worst_single, 0.005);
-  std::printf("[dome-6 masks 960x600, %.2f s] %d overlapped directions (0.5° grid): max |Σα − 1| = %.2e; "
-              "single cover: %.2e\n",
-              seconds, overlapped, worst_overlap, worst_single);
+  std::printf(
+      "[dome-6 masks 960x600, %.2f s] %d overlapped directions (0.5° grid): max |Σα − 1| = %.2e; "
+      "single cover: %.2e\n",
+      seconds, overlapped, worst_overlap, worst_single);
 }
 
 TEST(Blending, MasksAreSmooth) {

@@ -103,9 +103,16 @@ TEST_F(BrokenOutput, MissingFilesAndUnknownRegionsAreKeptToo) {
                {"pair.json: /outputs/1/warp/region", "\"middle\": no such region", "(regions: \"left\", \"right\")"});
   EXPECT_NO_THROW(c.require_renderable(0));
   // Mistakes in the config's own keys still fail the whole load.
-  expect_error([&] { tolerant(two_outputs(json{{"file", "bad.pfm"}, {"format", "pfm"}, {"values", "relative"}})); },
-               {"pair.json: /outputs/1/warp/values", "\"absolute\", \"offsets\""});
-  expect_error([&] { tolerant(two_outputs(json{{"file", 7}, {"format", "pfm"}})); }, {"pair.json: /outputs/1/warp/file"});
+  expect_error(
+      [&] {
+        tolerant(two_outputs(json{{"file", "bad.pfm"}, {"format", "pfm"}, {"values", "relative"}}));
+      },
+      {"pair.json: /outputs/1/warp/values", "\"absolute\", \"offsets\""});
+  expect_error(
+      [&] {
+        tolerant(two_outputs(json{{"file", 7}, {"format", "pfm"}}));
+      },
+      {"pair.json: /outputs/1/warp/file"});
 }
 
 TEST_F(BrokenOutput, AnAutomaticBlendPartnerOfABrokenOutputSaysWhy) {
@@ -117,8 +124,8 @@ TEST_F(BrokenOutput, AnAutomaticBlendPartnerOfABrokenOutputSaysWhy) {
   expect_error([&] { output_blend_mask(c, 0); }, {"output 'good' blends automatically with output 'bad'"});
   expect_error([&] { const AutoBlend blend(c); }, {"pair.json: /outputs/1/warp/file", "truncated"});
   // Without a blend between them, the good one is independent again.
-  EXPECT_NO_THROW(tolerant(two_outputs(json{{"file", "bad.pfm"}, {"format", "pfm"}}, "auto", "none"))
-                      .require_renderable(0));
+  EXPECT_NO_THROW(
+      tolerant(two_outputs(json{{"file", "bad.pfm"}, {"format", "pfm"}}, "auto", "none")).require_renderable(0));
 }
 
 }  // namespace

@@ -21,11 +21,11 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "warp/calibration_export.h"
+#include "core/files.h"
 #include "tests/warp/mpcdi_test_support.h"
 #include "warp/blend_map.h"
 #include "warp/blending.h"
-#include "core/files.h"
+#include "warp/calibration_export.h"
 #include "warp/mpcdi.h"
 #include "warp/pfm.h"
 #include "warp/viewport_config.h"
@@ -151,8 +151,8 @@ TEST_F(CalibrationExport, ReloadedPfmAndMpcdiGiveEveryPixelTheSameRay) {
       EXPECT_EQ(c.mismatched, 0);
       EXPECT_GT(c.with_ray, 0);
       EXPECT_LE(c.max_difference, 1e-6);
-      std::printf("%s %s: %d pixels with a ray, %d without, max |difference| %.3g\n", kind, o.name.c_str(),
-                  c.with_ray, c.without_ray, c.max_difference);
+      std::printf("%s %s: %d pixels with a ray, %d without, max |difference| %.3g\n", kind, o.name.c_str(), c.with_ray,
+                  c.without_ray, c.max_difference);
       total_with += c.with_ray;
       total_without += c.without_ray;
       EXPECT_EQ(r->black_level, o.black_level);
@@ -199,10 +199,11 @@ TEST_F(CalibrationExport, BlendMasksAndBlackLevelsRoundTripInBothEncodings) {
     const nlohmann::json alone = {
         {"zenith_viewports", 1},
         {"name", "alone"},
-        {"outputs", nlohmann::json::array({{{"name", o.name},
-                                             {"size", {o.width_px, o.height_px}},
-                                             {"projection", o.projection_spec},
-                                             {"warp", {{"file", o.name + ".mpcdi"}, {"format", "mpcdi"}, {"region", o.name}}}}})}};
+        {"outputs",
+         nlohmann::json::array({{{"name", o.name},
+                                 {"size", {o.width_px, o.height_px}},
+                                 {"projection", o.projection_spec},
+                                 {"warp", {{"file", o.name + ".mpcdi"}, {"format", "mpcdi"}, {"region", o.name}}}}})}};
     const ViewportConfig read_alone = parse_viewport_config(alone, "alone.json", out);
     const RayComparison rays_alone = compare_rays(read_alone.outputs[0], o);
     EXPECT_EQ(rays_alone.mismatched, 0) << o.name;
@@ -297,8 +298,9 @@ TEST(CalibrationExportShaderLamps, ExportThenLoadGivesTheSameRays) {
                             6, 5, 3,
                             [](int x, int y, int c) {
                               const float s = x / 5.0f, t = y / 4.0f;
-                              return c == 0 ? 0.04f + 0.9f * s + 0.03f * (t - 0.5f) * (t - 0.5f)
-                                   : c == 1 ? 0.05f + 0.88f * t + 0.02f * s : 0.0f;
+                              return c == 0   ? 0.04f + 0.9f * s + 0.03f * (t - 0.5f) * (t - 0.5f)
+                                     : c == 1 ? 0.05f + 0.88f * t + 0.02f * s
+                                              : 0.0f;
                             },
                             true, true));
   const ViewportConfig original = load_viewport_config(dir.write("sl.json", R"({"zenith_viewports": 1, "name": "sl",
@@ -341,8 +343,9 @@ TEST(CalibrationExportShaderLamps, ExportThenLoadGivesTheSameRays) {
   // A projection that is no pinhole cannot be written as sl; nothing is written.
   const ViewportConfig dome = load_viewport_config(dir.write("dome.json", R"({"zenith_viewports": 1, "name": "d",
     "outputs": [{"name": "dome", "size": [16, 16], "projection": {"type": "fisheye", "fov_deg": 180}}]})"));
-  expect_error([&] { app::export_calibration(dome, "dome", dir.path() / "no", {.mpcdi_profile = MpcdiProfile::shader_lamps}); },
-               {"output 'dome': the MPCDI sl profile describes a pinhole projector", "fisheye 180°", "2d profile"});
+  expect_error(
+      [&] { app::export_calibration(dome, "dome", dir.path() / "no", {.mpcdi_profile = MpcdiProfile::shader_lamps}); },
+      {"output 'dome': the MPCDI sl profile describes a pinhole projector", "fisheye 180°", "2d profile"});
   EXPECT_FALSE(fs::exists(dir.path() / "no"));
 }
 

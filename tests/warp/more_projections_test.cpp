@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/json_reader.h"
+#include "core/units.h"
 #include "tests/warp/projection_test_support.h"
 #include "warp/cube_face_projection.h"
 #include "warp/cylindrical_projection.h"
@@ -29,7 +30,6 @@
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/projection_factory.h"
-#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -59,11 +59,15 @@ std::vector<Named> cylindrical_cases() {
       {"180° wall 320×90", make(320, 90, {.horizontal_fov_deg = 180.0, .down_deg = -15.0, .up_deg = 25.0})},
       {"120° above the horizon", make(200, 50, {.horizontal_fov_deg = 120.0, .down_deg = 10.0, .up_deg = 80.0})},
       {"270° turned", make(300, 80,
-                           {.horizontal_fov_deg = 270.0, .down_deg = -30.0, .up_deg = 40.0, .yaw_deg = 35.0,
-                            .pitch_deg = -20.0, .roll_deg = 15.0})},
+                           {.horizontal_fov_deg = 270.0,
+                            .down_deg = -30.0,
+                            .up_deg = 40.0,
+                            .yaw_deg = 35.0,
+                            .pitch_deg = -20.0,
+                            .roll_deg = 15.0})},
       {"10° sliver, near 89°", make(40, 300, {.horizontal_fov_deg = 10.0, .down_deg = -88.9, .up_deg = 88.9})},
-      {"360° straight up", make(128, 64, {.down_deg = -60.0, .up_deg = 60.0, .yaw_deg = 180.0, .pitch_deg = 90.0,
-                                          .roll_deg = -180.0})},
+      {"360° straight up",
+       make(128, 64, {.down_deg = -60.0, .up_deg = 60.0, .yaw_deg = 180.0, .pitch_deg = 90.0, .roll_deg = -180.0})},
   };
 }
 
@@ -101,7 +105,8 @@ std::vector<Named> all_cases() {
 
 /// Whether x = 0 and x = width are one column of rays (a 360° cylinder or range).
 bool wraps(const Projection& p) {
-  if (const auto* c = dynamic_cast<const CylindricalProjection*>(&p)) return c->parameters().horizontal_fov_deg == 360.0;
+  if (const auto* c = dynamic_cast<const CylindricalProjection*>(&p))
+    return c->parameters().horizontal_fov_deg == 360.0;
   if (const auto* e = dynamic_cast<const EquirectangularProjection*>(&p))
     return e->parameters().longitude_max_deg - e->parameters().longitude_min_deg == 360.0;
   return false;
@@ -197,8 +202,12 @@ TEST(CylindricalProjection, CentreLooksForwardAndEdgesLieAtTheFieldOfView) {
 }
 
 TEST(CylindricalProjection, YawPitchRollFollowPlanarFrustum) {
-  const CylindricalParameters turned{.horizontal_fov_deg = 90.0, .down_deg = -20.0, .up_deg = 20.0, .yaw_deg = 50.0,
-                                     .pitch_deg = -25.0, .roll_deg = 33.0};
+  const CylindricalParameters turned{.horizontal_fov_deg = 90.0,
+                                     .down_deg = -20.0,
+                                     .up_deg = 20.0,
+                                     .yaw_deg = 50.0,
+                                     .pitch_deg = -25.0,
+                                     .roll_deg = 33.0};
   const CylindricalProjection c(60, 40, turned);
   const PlanarProjection p(60, 40, PlanarFrustum{-45.0, 45.0, -20.0, 20.0, 50.0, -25.0, 33.0});
   // The centre ray and the centre column (a vertical line: the same in both) agree.
@@ -207,7 +216,8 @@ TEST(CylindricalProjection, YawPitchRollFollowPlanarFrustum) {
     ASSERT_TRUE(a && b);
     EXPECT_LT(angle_between(*a, *b), 1e-12) << y;
   }
-  expect_direction(CylindricalProjection(60, 40, {.yaw_deg = 90.0}).ray(30.0, 20.0), {1.0, 0.0, 0.0}, "yaw 90 looks right");
+  expect_direction(CylindricalProjection(60, 40, {.yaw_deg = 90.0}).ray(30.0, 20.0), {1.0, 0.0, 0.0},
+                   "yaw 90 looks right");
   expect_direction(CylindricalProjection(60, 40, {.pitch_deg = 90.0}).ray(30.0, 20.0), {0.0, 1.0, 0.0},
                    "pitch 90 looks up");
   EXPECT_EQ(c.describe(), "cylindrical 90°×40° (down -20° up 20°) 60×40, yaw 50° pitch -25° roll 33°");
@@ -221,7 +231,7 @@ TEST(CylindricalProjection, The360SeamHasNeighbouringRaysOnBothSides) {
     const auto left = c.ray(0.5, y), right = c.ray(255.5, y);
     ASSERT_TRUE(left && right);
     const double across = angle_between(*left, *right);
-    EXPECT_LE(across, bound) << y;                                          // within one pixel angle
+    EXPECT_LE(across, bound) << y;                                                       // within one pixel angle
     EXPECT_NEAR(across, angle_between(*c.ray(100.5, y), *c.ray(101.5, y)), 1e-12) << y;  // as any neighbours
     EXPECT_GT(left->z, 0.0) << "both sides look backward";
     EXPECT_LT(left->x, 0.0) << "the left edge turns left of backward";
@@ -255,8 +265,9 @@ TEST(EquirectangularProjection, DefaultOrientation) {
   expect_direction(e.ray(128.0, 0.0), {0.0, 1.0, 0.0}, "top row = up");
   expect_direction(e.ray(17.0, 0.0), {0.0, 1.0, 0.0}, "every top position = up");
   expect_direction(e.ray(128.0, 128.0), {0.0, -1.0, 0.0}, "bottom row = down");
-  expect_direction(e.ray(160.0, 32.0), {std::sin(45.0 * kDeg) * std::cos(45.0 * kDeg), std::sin(45.0 * kDeg),
-                                        -std::cos(45.0 * kDeg) * std::cos(45.0 * kDeg)},
+  expect_direction(e.ray(160.0, 32.0),
+                   {std::sin(45.0 * kDeg) * std::cos(45.0 * kDeg), std::sin(45.0 * kDeg),
+                    -std::cos(45.0 * kDeg) * std::cos(45.0 * kDeg)},
                    "longitude 45, latitude 45");
   expect_pixel(e.pixel({0.0, 0.0, -1.0}), 128.0, 64.0, "forward");
   expect_pixel(e.pixel({1.0, 0.0, 0.0}), 192.0, 64.0, "right");
@@ -362,7 +373,8 @@ TEST(CubeFaceProjection, MatchesOpenGlCubeMapSelection) {
   }
   // Face centres are the axes; the corners and edge midpoints of +x and +z.
   const glm::dvec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  for (int f = 0; f < 6; ++f) expect_direction(faces[f].ray(32.0, 32.0), axes[f], std::string(cube_face_name(faces[f].face())));
+  for (int f = 0; f < 6; ++f)
+    expect_direction(faces[f].ray(32.0, 32.0), axes[f], std::string(cube_face_name(faces[f].face())));
   expect_direction(faces[0].ray(0.0, 0.0), {1.0, 1.0, 1.0}, "+x top-left");
   expect_direction(faces[0].ray(64.0, 32.0), {1.0, 0.0, -1.0}, "+x right edge borders -z");
   expect_direction(faces[4].ray(64.0, 32.0), {1.0, 0.0, 1.0}, "+z right edge borders +x (mirror image of a camera)");
@@ -435,9 +447,10 @@ TEST(MoreProjections, GpuLayoutReproducesTheRaysInFloat) {
   for (const Named& c : all_cases()) {
     const Projection& p = *c.projection;
     const GpuProjection g = p.gpu();
-    const ProjectionKind expected = dynamic_cast<const CylindricalProjection*>(&p)       ? ProjectionKind::cylindrical
-                                    : dynamic_cast<const EquirectangularProjection*>(&p) ? ProjectionKind::equirectangular
-                                                                                         : ProjectionKind::cube_face;
+    const ProjectionKind expected = dynamic_cast<const CylindricalProjection*>(&p) ? ProjectionKind::cylindrical
+                                    : dynamic_cast<const EquirectangularProjection*>(&p)
+                                        ? ProjectionKind::equirectangular
+                                        : ProjectionKind::cube_face;
     EXPECT_EQ(g.kind, expected) << c.name;
     double worst = 0.0;
     for (int j = 0; j < p.height(); ++j)
@@ -467,18 +480,24 @@ TEST(ProjectionFactory, BuildsEveryType) {
   EXPECT_EQ(make(R"({"type": "fisheye", "fov_deg": 210, "tilt_deg": 30, "rotation_deg": 90, "centre_x_px": 30,
                     "centre_y_px": 20, "radius_px": 40})")
                 ->describe(),
-            FisheyeProjection(64, 48, {.fov_deg = 210.0, .tilt_deg = 30.0, .centre_x_px = 30.0, .centre_y_px = 20.0,
-                                       .radius_px = 40.0, .rotation_deg = 90.0})
+            FisheyeProjection(64, 48,
+                              {.fov_deg = 210.0,
+                               .tilt_deg = 30.0,
+                               .centre_x_px = 30.0,
+                               .centre_y_px = 20.0,
+                               .radius_px = 40.0,
+                               .rotation_deg = 90.0})
                 .describe());
   EXPECT_EQ(make(R"({"type": "fisheye"})")->describe(), "fisheye 180° 64×48");
   EXPECT_EQ(make(R"({"type": "planar", "fov_deg": 60})")->describe(),
             PlanarProjection::symmetric(64, 48, 60.0).describe());
   EXPECT_EQ(make(R"({"type": "planar", "fov_deg": 60, "yaw_deg": 90})")->gpu().params,
-            PlanarProjection(64, 48, [] {
-              PlanarFrustum f = PlanarProjection::symmetric(64, 48, 60.0).frustum();
-              f.yaw_deg = 90.0;
-              return f;
-            }())
+            PlanarProjection(64, 48,
+                             [] {
+                               PlanarFrustum f = PlanarProjection::symmetric(64, 48, 60.0).frustum();
+                               f.yaw_deg = 90.0;
+                               return f;
+                             }())
                 .gpu()
                 .params);
   EXPECT_EQ(make(R"({"type": "planar", "left_deg": -40, "right_deg": 40, "down_deg": -25, "up_deg": 25,
@@ -561,13 +580,15 @@ TEST(ProjectionFactory, RejectsInvalidSpecsNamingSourcePointerValueAndRange) {
   expect_config_error(R"({"type": "fisheye", "tilt_deg": 120})",
                       {"/projection/tilt_deg = 120: must be in [-90, 90] degrees (or the same tilt plus or minus 360"});
   expect_config_error(R"({"type": "cylindrical", "roll_deg": -361})", {"/projection/roll_deg = -361", "[-360, 360]"});
-  expect_config_error(R"({"type": "planar", "fov_deg": 60, "yaw_deg": 400})",
-                      {"/projection/yaw_deg = 400: must be in [-360, 360] degrees ([0, 360) and (-180, 180] both read)"});
+  expect_config_error(
+      R"({"type": "planar", "fov_deg": 60, "yaw_deg": 400})",
+      {"/projection/yaw_deg = 400: must be in [-360, 360] degrees ([0, 360) and (-180, 180] both read)"});
   expect_config_error(R"({"type": "fisheye", "fov": 180})",
                       {"/projection/fov: unknown key", "allowed for type \"fisheye\": type, fov_deg, tilt_deg"});
   expect_config_error(R"({"type": "fisheye", "tilt_deg": "up"})",
                       {"/projection/tilt_deg = \"up\": must be a number (degrees)"});
-  expect_config_error(R"({"type": "fisheye", "radius_px": 0})", {"/projection/radius_px = 0: must be in (0, 1e+06] px"});
+  expect_config_error(R"({"type": "fisheye", "radius_px": 0})",
+                      {"/projection/radius_px = 0: must be in (0, 1e+06] px"});
   expect_config_error(R"({"type": "cylindrical", "horizontal_fov_deg": 361})",
                       {"/projection/horizontal_fov_deg = 361: must be in (0, 360] degrees"});
   expect_config_error(R"({"type": "cylindrical", "down_deg": 10, "up_deg": -10})",
@@ -577,7 +598,8 @@ TEST(ProjectionFactory, RejectsInvalidSpecsNamingSourcePointerValueAndRange) {
   expect_config_error(R"({"type": "equirectangular", "longitude_min_deg": -200, "longitude_max_deg": 200})",
                       {"longitude_max_deg − longitude_min_deg = 400: must be in (0, 360] degrees"});
   expect_config_error(R"({"type": "cube", "face": "x"})",
-                      {"/projection/face = \"x\": must be one of \"+x\", \"-x\", \"+y\", \"-y\", \"+z\", \"-z\""}, 32, 32);
+                      {"/projection/face = \"x\": must be one of \"+x\", \"-x\", \"+y\", \"-y\", \"+z\", \"-z\""}, 32,
+                      32);
   expect_config_error(R"({"type": "cube", "face": "+x"})", {"/viewports/0/projection: a cube face is square", "64×48"});
   expect_config_error(R"({"type": "cube"})", {"/projection/face: missing required key"}, 32, 32);
   expect_config_error(R"({"type": "mercator"})",

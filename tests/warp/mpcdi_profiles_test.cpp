@@ -148,15 +148,9 @@ double max_ray_angle(const Projection& a, const Projection& b) {
 
 // Right-handed turns about the axes of the viewer frame S (X right, Y down,
 // Z forward), glm's column-major constructor (columns listed).
-glm::dmat3 rot_x(double a) {
-  return glm::dmat3(1, 0, 0, 0, std::cos(a), std::sin(a), 0, -std::sin(a), std::cos(a));
-}
-glm::dmat3 rot_y(double a) {
-  return glm::dmat3(std::cos(a), 0, -std::sin(a), 0, 1, 0, std::sin(a), 0, std::cos(a));
-}
-glm::dmat3 rot_z(double a) {
-  return glm::dmat3(std::cos(a), std::sin(a), 0, -std::sin(a), std::cos(a), 0, 0, 0, 1);
-}
+glm::dmat3 rot_x(double a) { return glm::dmat3(1, 0, 0, 0, std::cos(a), std::sin(a), 0, -std::sin(a), std::cos(a)); }
+glm::dmat3 rot_y(double a) { return glm::dmat3(std::cos(a), 0, -std::sin(a), 0, 1, 0, std::sin(a), 0, std::cos(a)); }
+glm::dmat3 rot_z(double a) { return glm::dmat3(std::cos(a), std::sin(a), 0, -std::sin(a), std::cos(a), 0, 0, 0, 1); }
 
 /// VESA MPCDI v2.0 §2.2: the ray of pixel position (x, y) of a w × h image of
 /// frustum `f` held in frame `frame`, in zenith's camera frame: the tangents in
@@ -180,8 +174,14 @@ TEST(MpcdiProfiles, AFrustumRegionHasTheRaysOfTheSameFrustumAsAJsonPlanarOutput)
   archive(dir, "3d.mpcdi", descriptor("3d", frustum_xml(f), kAlphaBeta));
   archive(dir, "sl.mpcdi", descriptor("sl", frustum_xml(f) + frame_xml(Frame{}), kAlphaBeta));
   const json planar = {{"projection",
-                        {{"type", "planar"}, {"left_deg", f.left}, {"right_deg", f.right}, {"down_deg", f.down},
-                         {"up_deg", f.up}, {"yaw_deg", f.yaw}, {"pitch_deg", f.pitch}, {"roll_deg", f.roll}}}};
+                        {{"type", "planar"},
+                         {"left_deg", f.left},
+                         {"right_deg", f.right},
+                         {"down_deg", f.down},
+                         {"up_deg", f.up},
+                         {"yaw_deg", f.yaw},
+                         {"pitch_deg", f.pitch},
+                         {"roll_deg", f.roll}}}};
   const ViewportConfig json_planar = viewport(dir, planar);
   const ViewportConfig three_d = viewport(dir, mpcdi_warp("3d.mpcdi"));
   const ViewportConfig shader_lamp = viewport(dir, mpcdi_warp("sl.mpcdi"));
@@ -228,7 +228,8 @@ TEST(MpcdiProfiles, AFrameWithSwappedAndNegatedAxesLandsWhereTheStandardPutsIt) 
   double worst = 0.0;
   for (int y = 0; y < 48; ++y)
     for (int x = 0; x < 64; ++x)
-      worst = std::max(worst, angle_between(*p.ray(x + 0.5, y + 0.5), standard_ray(f, frame, x + 0.5, y + 0.5, 64, 48)));
+      worst =
+          std::max(worst, angle_between(*p.ray(x + 0.5, y + 0.5), standard_ray(f, frame, x + 0.5, y + 0.5, 64, 48)));
   std::printf("  swapped and negated frame: max %.3g rad from the standard's rotations\n", worst);
   EXPECT_LT(worst, 1e-12);
 
@@ -283,7 +284,8 @@ TEST(MpcdiProfiles, YawPitchRollOfARotationInvertsPlanarFrustum) {
         const YawPitchRollDeg back = yaw_pitch_roll_of(r);
         const glm::dmat3 again =
             PlanarProjection(1, 1, PlanarFrustum{-1, 1, -1, 1, back.yaw_deg, back.pitch_deg, back.roll_deg}).rotation();
-        for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(again[c] - r[c]), 1e-13) << yaw << " " << pitch << " " << roll;
+        for (int c = 0; c < 3; ++c)
+          EXPECT_LT(glm::length(again[c] - r[c]), 1e-13) << yaw << " " << pitch << " " << roll;
         if (std::abs(pitch) < 89.0) {
           EXPECT_NEAR(back.pitch_deg, pitch, 1e-11);
           EXPECT_NEAR(std::remainder(back.yaw_deg - yaw, 360.0), 0.0, 1e-11);
@@ -298,8 +300,9 @@ TEST(MpcdiProfiles, A2dWarpOfA3dRegionAndAnSlDistortionMapWarpTheFrustumsImage) 
   ScratchDir dir("mpcdi_frustum_warp");
   const Frustum f{10.0, -5.0, 2.0, -40.0, 40.0, 25.0, -25.0};
   const auto warp = [](int x, int y, int c) {
-    return c == 0 ? 0.05f + 0.22f * static_cast<float>(x) + 0.01f * static_cast<float>(y)
-                  : c == 1 ? 0.1f + 0.27f * static_cast<float>(y) - 0.02f * static_cast<float>(x) : 0.0f;
+    return c == 0   ? 0.05f + 0.22f * static_cast<float>(x) + 0.01f * static_cast<float>(y)
+           : c == 1 ? 0.1f + 0.27f * static_cast<float>(y) - 0.02f * static_cast<float>(x)
+                    : 0.0f;
   };
   const std::string pfm = make_pfm(5, 4, 3, warp, true, true);
   archive(dir, "3d.mpcdi",
@@ -310,19 +313,26 @@ TEST(MpcdiProfiles, A2dWarpOfA3dRegionAndAnSlDistortionMapWarpTheFrustumsImage) 
                      320, 200),
           {{"w.pfm", pfm}});
   dir.write("w.pfm", pfm);
-  const json plain = {{"projection",
-                       {{"type", "planar"}, {"left_deg", f.left}, {"right_deg", f.right}, {"down_deg", f.down},
-                        {"up_deg", f.up}, {"yaw_deg", f.yaw}, {"pitch_deg", f.pitch}, {"roll_deg", f.roll}}},
-                      {"warp",
-                       {{"file", "w.pfm"}, {"format", "pfm"}, {"row_order", "top_to_bottom"},
-                        {"source", {{"size_px", {320, 200}}}}}}};
+  const json plain = {
+      {"projection",
+       {{"type", "planar"},
+        {"left_deg", f.left},
+        {"right_deg", f.right},
+        {"down_deg", f.down},
+        {"up_deg", f.up},
+        {"yaw_deg", f.yaw},
+        {"pitch_deg", f.pitch},
+        {"roll_deg", f.roll}}},
+      {"warp",
+       {{"file", "w.pfm"}, {"format", "pfm"}, {"row_order", "top_to_bottom"}, {"source", {{"size_px", {320, 200}}}}}}};
   ViewportConfig reference = viewport(dir, plain, 40, 30);
   const auto* ref = dynamic_cast<const WarpedProjection*>(reference.outputs[0].projection.get());
   ASSERT_NE(ref, nullptr);
   // The plain PFM is read with Catmull–Rom; MPCDI's default is linear: compare at the nodes' cells' bilinear.
-  WarpedProjection bilinear_ref(40, 30, WarpMesh(ref->mesh().columns(), ref->mesh().rows(), ref->mesh().nodes(), "ref",
-                                                 WarpInterpolation::bilinear),
-                                std::make_shared<PlanarProjection>(320, 200, planar_of(f)));
+  WarpedProjection bilinear_ref(
+      40, 30,
+      WarpMesh(ref->mesh().columns(), ref->mesh().rows(), ref->mesh().nodes(), "ref", WarpInterpolation::bilinear),
+      std::make_shared<PlanarProjection>(320, 200, planar_of(f)));
   for (const char* file : {"3d.mpcdi", "sl.mpcdi"}) {
     const ViewportConfig c = viewport(dir, mpcdi_warp(file), 40, 30);
     const auto* w = dynamic_cast<const WarpedProjection*>(c.outputs[0].projection.get());
@@ -361,23 +371,26 @@ TEST(MpcdiProfiles, A3dWarpOfASphereGivesTheRaysOfTheFisheyeItWasMadeFrom) {
   const auto xml = [](const std::string& profile, const std::string& origin, const std::string& region) {
     return descriptor(profile, region,
                       "<geometryWarpFile><path>dome.pfm</path><interpolation>linear</interpolation>"
-                      "<geometricUnit>m</geometricUnit><originOf3DData>" + origin +
-                          "</originOf3DData></geometryWarpFile>\n" + kAlphaBeta,
+                      "<geometricUnit>m</geometricUnit><originOf3DData>" +
+                          origin + "</originOf3DData></geometryWarpFile>\n" + kAlphaBeta,
                       kW, kH);
   };
   ScratchDir dir("mpcdi_sphere");
   // a3: the data's origin is the floor's centre; the config gives the eye.
   archive(dir, "a3.mpcdi", xml("a3", "floorCenter", ""),
-          {{"dome.pfm", make_pfm(2 * kW + 1, 2 * kH + 1, 3, [&](int i, int j, int c) { return sample(glm::dvec3(0.0), i, j, c); },
-                                 true, true)}});
+          {{"dome.pfm", make_pfm(
+                            2 * kW + 1, 2 * kH + 1, 3,
+                            [&](int i, int j, int c) { return sample(glm::dvec3(0.0), i, j, c); }, true, true)}});
   // a3 again with the eye as the origin (no "eye" needed), and sl (the 3D
   // warp, not the projector's frustum, gives the audience's rays).
-  const Members at_eye = {{"dome.pfm", make_pfm(2 * kW + 1, 2 * kH + 1, 3,
-                                                [&](int i, int j, int c) { return sample(eye, i, j, c); }, true, true)}};
+  const Members at_eye = {{"dome.pfm", make_pfm(
+                                           2 * kW + 1, 2 * kH + 1, 3,
+                                           [&](int i, int j, int c) { return sample(eye, i, j, c); }, true, true)}};
   archive(dir, "a3-eye.mpcdi", xml("a3", "idealEyePoint", ""), at_eye);
   archive(dir, "sl.mpcdi", xml("sl", "centerOfMass", frustum_xml(Frustum{}) + frame_xml(Frame{})),
-          {{"dome.pfm", make_pfm(2 * kW + 1, 2 * kH + 1, 3, [&](int i, int j, int c) { return sample(glm::dvec3(0.0), i, j, c); },
-                                 true, true)}});
+          {{"dome.pfm", make_pfm(
+                            2 * kW + 1, 2 * kH + 1, 3,
+                            [&](int i, int j, int c) { return sample(glm::dvec3(0.0), i, j, c); }, true, true)}});
   const json eye_json = {eye.x, eye.y, eye.z};
   const std::vector<std::pair<std::string, ViewportConfig>> configs = {
       {"a3, eye given", viewport(dir, mpcdi_warp("a3.mpcdi", {{"eye", eye_json}}), kW, kH)},
@@ -407,8 +420,8 @@ TEST(MpcdiProfiles, A3dWarpOfASphereGivesTheRaysOfTheFisheyeItWasMadeFrom) {
           ++rim;
         }
       }
-    std::printf("  %-18s %d pixel centres, max %.3g rad from the fisheye; %d at the rim without a ray\n",
-                what.c_str(), compared, worst, rim);
+    std::printf("  %-18s %d pixel centres, max %.3g rad from the fisheye; %d at the rim without a ray\n", what.c_str(),
+                compared, worst, rim);
     EXPECT_GT(compared, kW * kH / 2);
     EXPECT_LT(worst, 3e-7) << what;
   }
@@ -482,12 +495,16 @@ TEST(MpcdiProfiles, EveryRefusalNamesTheFileTheRegionAndTheElement) {
                {"g.mpcdi:mpcdi.xml:6:", "region 'p1': <frustum> <leftAngle> = 30 must be less than <rightAngle> = 10"});
   expect_error(load("h.mpcdi", descriptor("3d", frustum_xml(Frustum{0, 0, 0, -30, 30, 95, -20}), "")),
                {"h.mpcdi:mpcdi.xml:6:", "region 'p1': <frustum> <upAngle> = 95: must be in (-90, 90) degrees"});
-  expect_error(load("i.mpcdi", descriptor("a3", "", "<geometryWarpFile><path>s.pfm</path><geometricUnit>furlong"
-                                                    "</geometricUnit></geometryWarpFile>\n"),
-                    {{"s.pfm", make_pfm(2, 2, 3, [](int, int, int) { return 1.0f; }, true, true)}}),
+  expect_error(load("i.mpcdi",
+                    descriptor("a3", "",
+                               "<geometryWarpFile><path>s.pfm</path><geometricUnit>furlong"
+                               "</geometricUnit></geometryWarpFile>\n"),
+                    {{"s.pfm", make_pfm(
+                                   2, 2, 3, [](int, int, int) { return 1.0f; }, true, true)}}),
                {"i.mpcdi:mpcdi.xml:", "region 'p1': <geometricUnit> 'furlong': must be one of mm, cm, dm, m, in, ft"});
   expect_error(load("j.mpcdi", descriptor("a3", "", "<geometryWarpFile><path>s.pfm</path></geometryWarpFile>\n"),
-                    {{"s.pfm", make_pfm(3, 2, 3, [](int, int, int) { return std::nanf(""); }, true, true)}}),
+                    {{"s.pfm", make_pfm(
+                                   3, 2, 3, [](int, int, int) { return std::nanf(""); }, true, true)}}),
                {"j.mpcdi:mpcdi.xml:", "region 'p1': 3D geometry warp 's.pfm' has no valid point"});
   expect_error(load("k.mpcdi", descriptor("sl", frustum_xml(f) + frame_xml(Frame{}),
                                           "<distortionMap><path>lens.pfm</path></distortionMap>\n")),
@@ -496,12 +513,14 @@ TEST(MpcdiProfiles, EveryRefusalNamesTheFileTheRegionAndTheElement) {
                {"l.mpcdi:mpcdi.xml:", "region 'p1': <frustum> <yaw> = 400: must be in [-360, 360] degrees"});
 
   // Through a viewport config: the pointer, then the file, region and element.
-  const Members points = {{"s.pfm", make_pfm(3, 2, 3, [](int x, int y, int c) {
-                             return c == 2 ? 5.0f : static_cast<float>(x + y) - 1.0f;
-                           }, true, true)}};
+  const Members points = {
+      {"s.pfm",
+       make_pfm(
+           3, 2, 3, [](int x, int y, int c) { return c == 2 ? 5.0f : static_cast<float>(x + y) - 1.0f; }, true, true)}};
   archive(dir, "floor.mpcdi",
-          descriptor("a3", "", "<geometryWarpFile><path>s.pfm</path><originOf3DData>floorCenter</originOf3DData>"
-                               "</geometryWarpFile>\n"),
+          descriptor("a3", "",
+                     "<geometryWarpFile><path>s.pfm</path><originOf3DData>floorCenter</originOf3DData>"
+                     "</geometryWarpFile>\n"),
           points);
   expect_config_error([&] { viewport(dir, mpcdi_warp("floor.mpcdi")); }, "t.json", "/outputs/0/warp/file",
                       "floor.mpcdi:mpcdi.xml:12: region 'p1': <geometryWarpFile> 's.pfm' holds 3D points of the screen "
@@ -517,13 +536,22 @@ TEST(MpcdiProfiles, EveryRefusalNamesTheFileTheRegionAndTheElement) {
   with_projection["projection"] = {{"type", "planar"}, {"fov_deg", 60}};
   expect_config_error([&] { viewport(dir, with_projection); }, "t.json", "/outputs/0/projection",
                       "the MPCDI region \"p1\" (profile 3d) defines the output's rays");
-  expect_config_error([&] { viewport(dir, mpcdi_warp("plain.mpcdi", {{"eye", {0, 0, 0}}})); }, "t.json",
-                      "/outputs/0/warp/eye", "applies to a region with a 3D geometry warp");
-  expect_config_error([&] { viewport(dir, mpcdi_warp("floor.mpcdi", {{"eye", {0, "up", 0}}})); }, "t.json",
-                      "/outputs/0/warp/eye", "must be [x, y, z], finite numbers");
+  expect_config_error(
+      [&] {
+        viewport(dir, mpcdi_warp("plain.mpcdi", {{"eye", {0, 0, 0}}}));
+      },
+      "t.json", "/outputs/0/warp/eye", "applies to a region with a 3D geometry warp");
+  expect_config_error(
+      [&] {
+        viewport(dir, mpcdi_warp("floor.mpcdi", {{"eye", {0, "up", 0}}}));
+      },
+      "t.json", "/outputs/0/warp/eye", "must be [x, y, z], finite numbers");
   // Only an MPCDI warp may go without a projection (a format of the wrong type included).
-  expect_config_error([&] { viewport(dir, json{{"warp", {{"file", "plain.mpcdi"}, {"format", 3}}}}); }, "t.json",
-                      "/outputs/0/projection", "missing required key");
+  expect_config_error(
+      [&] {
+        viewport(dir, json{{"warp", {{"file", "plain.mpcdi"}, {"format", 3}}}});
+      },
+      "t.json", "/outputs/0/projection", "missing required key");
   // A 2d region still needs the projection its warp addresses.
   Members two_d = testing::valid_2d_members();
   make_zip(dir, "2d.mpcdi", two_d);

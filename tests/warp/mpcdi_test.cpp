@@ -147,8 +147,9 @@ TEST(Mpcdi, RejectsAMissingWarpFile) {
   ScratchDir dir("mpcdi_nowarp");
   Members members = valid_2d_members();
   members.erase(members.begin() + 2);  // right_warp.pfm
-  expect_error([&] { load_mpcdi(make_zip(dir, "nowarp.mpcdi", members)); },
-               {"nowarp.mpcdi:mpcdi.xml:34:", "region 'right': geometry warp file 'right_warp.pfm' is not in the archive"});
+  expect_error(
+      [&] { load_mpcdi(make_zip(dir, "nowarp.mpcdi", members)); },
+      {"nowarp.mpcdi:mpcdi.xml:34:", "region 'right': geometry warp file 'right_warp.pfm' is not in the archive"});
   members = valid_2d_members();
   members.erase(members.begin() + 3);  // left_alpha.png
   expect_error([&] { load_mpcdi(make_zip(dir, "noalpha.mpcdi", members)); },
@@ -174,9 +175,12 @@ TEST(Mpcdi, RejectsMissingAttributesAndBadValues) {
     members[0].second = xml;
     return make_zip(dir, name, members);
   };
-  expect_error([&] { load_mpcdi(with_xml("a.mpcdi", " xsize=\"0.5\" ysize=\"1\" xResolution=\"4\" yResolution=\"3\"/>",
-                                         " ysize=\"1\" xResolution=\"4\" yResolution=\"3\"/>")); },
-               {"a.mpcdi:mpcdi.xml:6: <region> has no attribute 'xsize'"});
+  expect_error(
+      [&] {
+        load_mpcdi(with_xml("a.mpcdi", " xsize=\"0.5\" ysize=\"1\" xResolution=\"4\" yResolution=\"3\"/>",
+                            " ysize=\"1\" xResolution=\"4\" yResolution=\"3\"/>"));
+      },
+      {"a.mpcdi:mpcdi.xml:6: <region> has no attribute 'xsize'"});
   expect_error([&] { load_mpcdi(with_xml("b.mpcdi", "profile=\"2d\"", "profile=\"4d\"")); },
                {"b.mpcdi:mpcdi.xml:3:", "'profile' = '4d': must be one of 2d, 3d, a3, sl"});
   expect_error([&] { load_mpcdi(with_xml("c.mpcdi", "profile=\"2d\" ", "")); }, {"<MPCDI> has no attribute 'profile'"});
@@ -205,7 +209,8 @@ TEST(Mpcdi, RejectsBrokenAndNaNOnlyWarps) {
   members[1].second = "P7\n4 3\n-1\n";
   expect_error([&] { load_mpcdi(make_zip(dir, "magic.mpcdi", members)); },
                {"magic.mpcdi:left_warp.pfm: PFM: bad header"});
-  members[1].second = make_pfm(4, 3, 3, [](int, int, int) { return std::numeric_limits<float>::quiet_NaN(); }, true, true);
+  members[1].second = make_pfm(
+      4, 3, 3, [](int, int, int) { return std::numeric_limits<float>::quiet_NaN(); }, true, true);
   expect_error([&] { load_mpcdi(make_zip(dir, "nan.mpcdi", members)); }, {"nan.mpcdi:left_warp.pfm", "NaN-only mesh"});
   members = valid_2d_members();
   members[3].second = "not a png";

@@ -13,13 +13,13 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/units.h"
 #include "tests/warp/mpcdi_test_support.h"
 #include "tests/warp/warp_file_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/mpcdi.h"
 #include "warp/planar_projection.h"
 #include "warp/viewport_config.h"
-#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -81,11 +81,17 @@ TEST(MpcdiVendor, ReadsMpacsXmlAndASingleOtherXmlMember) {
 
 TEST(MpcdiVendor, NoDescriptorNamesTheMembers) {
   ScratchDir dir("mpcdi_members");
-  expect_error([&] { load_mpcdi(make_zip(dir, "none.mpcdi", {{"readme.txt", "x"}, {"warps/left.pfm", "PF\n"}})); },
-               {"none.mpcdi: no mpcdi.xml in the archive; its 2 members: 'readme.txt', 'warps/left.pfm' "
-                "(no .xml member to read instead)"});
-  expect_error([&] { load_mpcdi(make_zip(dir, "two.mpcdi", {{"a.xml", kXml2d}, {"b.xml", kXml2d}})); },
-               {"two.mpcdi: no mpcdi.xml", "'a.xml', 'b.xml'", "2 .xml members: cannot tell which one is the descriptor"});
+  expect_error(
+      [&] {
+        load_mpcdi(make_zip(dir, "none.mpcdi", {{"readme.txt", "x"}, {"warps/left.pfm", "PF\n"}}));
+      },
+      {"none.mpcdi: no mpcdi.xml in the archive; its 2 members: 'readme.txt', 'warps/left.pfm' "
+       "(no .xml member to read instead)"});
+  expect_error(
+      [&] {
+        load_mpcdi(make_zip(dir, "two.mpcdi", {{"a.xml", kXml2d}, {"b.xml", kXml2d}}));
+      },
+      {"two.mpcdi: no mpcdi.xml", "'a.xml', 'b.xml'", "2 .xml members: cannot tell which one is the descriptor"});
   Members many;
   for (int k = 0; k < 20; ++k) many.push_back({"file" + std::to_string(k) + ".pfm", "PF\n"});
   expect_error([&] { load_mpcdi(make_zip(dir, "many.mpcdi", many)); },
@@ -99,9 +105,8 @@ TEST(MpcdiVendor, ATruncatedArchiveSaysItMayBeTruncated) {
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_GT(bytes.size(), 200u);
   const auto cut = dir.write("cut.mpcdi", bytes.substr(0, bytes.size() / 2));
-  expect_error([&] { load_mpcdi(cut); },
-               {"cut.mpcdi: cannot open as a ZIP archive", "may be truncated",
-                std::to_string(bytes.size() / 2) + " bytes"});
+  expect_error([&] { load_mpcdi(cut); }, {"cut.mpcdi: cannot open as a ZIP archive", "may be truncated",
+                                          std::to_string(bytes.size() / 2) + " bytes"});
   // The end record cut off, only a few bytes short.
   const auto short_end = dir.write("end.mpcdi", bytes.substr(0, bytes.size() - 10));
   expect_error([&] { load_mpcdi(short_end); }, {"end.mpcdi: cannot open as a ZIP archive", "may be truncated"});
@@ -118,13 +123,13 @@ TEST(MpcdiVendor, ATruncatedArchiveSaysItMayBeTruncated) {
 // ---- empty elements ------------------------------------------------------------
 
 TEST(MpcdiVendor, EmptyElementsAreIgnoredWithAWarning) {
-  const std::string alpha_block = std::string(kXml2d).substr(
-      std::string(kXml2d).find("<alphaMap>"),
-      std::string(kXml2d).find("</alphaMap>") + 11 - std::string(kXml2d).find("<alphaMap>"));
+  const std::string alpha_block =
+      std::string(kXml2d).substr(std::string(kXml2d).find("<alphaMap>"),
+                                 std::string(kXml2d).find("</alphaMap>") + 11 - std::string(kXml2d).find("<alphaMap>"));
   std::string xml = xml_with(alpha_block, "<alphaMap />");
   xml = xml_with("<path>left_beta.png</path>", "<path> </path>", xml);
-  xml = xml_with("<geometryWarpFile><path>right_warp.pfm</path></geometryWarpFile>", "<geometryWarpFile></geometryWarpFile>",
-                 xml);
+  xml = xml_with("<geometryWarpFile><path>right_warp.pfm</path></geometryWarpFile>",
+                 "<geometryWarpFile></geometryWarpFile>", xml);
   ScratchDir dir("mpcdi_empty");
   LogCapture log;
   const MpcdiFile file = load_mpcdi(make_zip(dir, "empty.mpcdi", with_descriptor("mpcdi.xml", xml)));
@@ -145,9 +150,9 @@ TEST(MpcdiVendor, EmptyElementsAreIgnoredWithAWarning) {
 
   // An element with content but no <path> is still an error, with its line.
   const std::string no_path = xml_with(alpha_block, "<alphaMap>\n<bitDepth>8</bitDepth></alphaMap>");
-  expect_error([&] { load_mpcdi(make_zip(dir, "nopath.mpcdi", with_descriptor("mpcdi.xml", no_path))); },
-               {"nopath.mpcdi:mpcdi.xml:" + std::to_string(line_of(no_path, "<alphaMap>")) +
-                ": <alphaMap> has no <path>"});
+  expect_error(
+      [&] { load_mpcdi(make_zip(dir, "nopath.mpcdi", with_descriptor("mpcdi.xml", no_path))); },
+      {"nopath.mpcdi:mpcdi.xml:" + std::to_string(line_of(no_path, "<alphaMap>")) + ": <alphaMap> has no <path>"});
 }
 
 // ---- E&S offset warps --------------------------------------------------------------
@@ -165,7 +170,8 @@ Members offset_show(bool offsets) {
   std::string xml = xml_with("xResolution=\"4\" yResolution=\"3\"/>", "xResolution=\"5\" yResolution=\"4\"/>");
   Members members = with_descriptor("mpcdi.xml", xml);
   members[1].second = make_pfm(5, 4, 3, value, true, true);
-  members[2].second = make_pfm(5, 4, 3, [](int, int, int) { return 0.0f; }, true, true);  // right: all zeros
+  members[2].second = make_pfm(
+      5, 4, 3, [](int, int, int) { return 0.0f; }, true, true);  // right: all zeros
   return members;
 }
 
@@ -224,12 +230,14 @@ TEST(MpcdiVendor, ViewportValuesOffsetsGivesTheAbsoluteTwinsRays) {
       ++compared;
     }
   EXPECT_GT(compared, 300);
-  expect_error([&] {
-    json j = json::parse(R"({"zenith_viewports": 1, "name": "t", "outputs": [
+  expect_error(
+      [&] {
+        json j = json::parse(R"({"zenith_viewports": 1, "name": "t", "outputs": [
       {"name": "left", "size": [80, 60], "projection": {"type": "fisheye"},
        "warp": {"file": "es.mpcdi", "format": "mpcdi", "region": "left", "v_direction": "up"}}]})");
-    parse_viewport_config(j, "v.json", dir.path());
-  }, {"v.json: /outputs/0/warp/v_direction", "applies to \"format\": \"pfm\" only (format is \"mpcdi\")"});
+        parse_viewport_config(j, "v.json", dir.path());
+      },
+      {"v.json: /outputs/0/warp/v_direction", "applies to \"format\": \"pfm\" only (format is \"mpcdi\")"});
 }
 
 // ---- frustum angles ----------------------------------------------------------------
@@ -252,7 +260,8 @@ std::string frustum_xml(double yaw, double pitch, double roll) {
 MpcdiFrustum load_frustum(const ScratchDir& dir, double yaw, double pitch, double roll) {
   std::ostringstream name;
   name << "f_" << yaw << "_" << pitch << "_" << roll << ".mpcdi";
-  const MpcdiFile file = load_mpcdi(make_zip(dir, name.str(), with_descriptor("mpcdi.xml", frustum_xml(yaw, pitch, roll))));
+  const MpcdiFile file =
+      load_mpcdi(make_zip(dir, name.str(), with_descriptor("mpcdi.xml", frustum_xml(yaw, pitch, roll))));
   return *file.find_region("left")->frustum;
 }
 
@@ -290,8 +299,8 @@ TEST(MpcdiVendor, FrustumAnglesIn0To360AreNormalized) {
   struct Case {
     double yaw, pitch, roll;
   };
-  for (const Case c : {Case{350, 340, 270}, Case{30, 120, 0}, Case{200, 250, 10}, Case{359.5, 180, 90},
-                       Case{0, 90, 0}, Case{-300, -100, -200}}) {
+  for (const Case c : {Case{350, 340, 270}, Case{30, 120, 0}, Case{200, 250, 10}, Case{359.5, 180, 90}, Case{0, 90, 0},
+                       Case{-300, -100, -200}}) {
     SCOPED_TRACE(::testing::PrintToString(std::vector<double>{c.yaw, c.pitch, c.roll}));
     const MpcdiFrustum f = load_frustum(dir, c.yaw, c.pitch, c.roll);
     EXPECT_GT(f.yaw_deg, -180.0);

@@ -58,8 +58,11 @@ TEST(OutputWindow, APlacedUndecoratedWindowAndASharedOne) {
   EXPECT_FALSE(placed.decorated);
   EXPECT_FALSE(placed.vsync);
   EXPECT_FALSE(placed.fullscreen);
-  const OutputWindow shared = *with_window({{"name", "mosaic"}, {"monitor", 0}, {"fullscreen", true},
-                                            {"rect", {1920, 0, 1920, 1200}}, {"encoding", {{"gamma", 2.4}}}})
+  const OutputWindow shared = *with_window({{"name", "mosaic"},
+                                            {"monitor", 0},
+                                            {"fullscreen", true},
+                                            {"rect", {1920, 0, 1920, 1200}},
+                                            {"encoding", {{"gamma", 2.4}}}})
                                    .outputs[0]
                                    .window;
   EXPECT_EQ(shared.name, "mosaic");
@@ -72,12 +75,21 @@ TEST(OutputWindow, RefusesWhatCannotBeShown) {
   expect_error([] { with_window({{"monitor", -1}}); }, {"/outputs/0/window/monitor", "monitor's name", "[0, 63]"});
   expect_error([] { with_window({{"monitor", ""}}); }, {"/outputs/0/window/monitor", "zenith displays"});
   expect_error([] { with_window({{"fullscreen", "yes"}}); }, {"/outputs/0/window/fullscreen", "true or false"});
-  expect_error([] { with_window({{"fullscreen", true}, {"size", {800, 600}}}); },
-               {"/outputs/0/window/size", "not allowed with \"fullscreen\": true"});
-  expect_error([] { with_window({{"fullscreen", true}, {"position", {0, 0}}}); },
-               {"/outputs/0/window/position", "not allowed with \"fullscreen\": true"});
-  expect_error([] { with_window({{"fullscreen", true}, {"decorated", true}}); },
-               {"/outputs/0/window/decorated", "no decoration"});
+  expect_error(
+      [] {
+        with_window({{"fullscreen", true}, {"size", {800, 600}}});
+      },
+      {"/outputs/0/window/size", "not allowed with \"fullscreen\": true"});
+  expect_error(
+      [] {
+        with_window({{"fullscreen", true}, {"position", {0, 0}}});
+      },
+      {"/outputs/0/window/position", "not allowed with \"fullscreen\": true"});
+  expect_error(
+      [] {
+        with_window({{"fullscreen", true}, {"decorated", true}});
+      },
+      {"/outputs/0/window/decorated", "no decoration"});
   expect_error([] { with_window({{"size", {0, 600}}}); }, {"/outputs/0/window/size", "[1, 65536]"});
   expect_error([] { with_window({{"position", {1, 2, 3}}}); }, {"/outputs/0/window/position", "[x, y]"});
   expect_error([] { with_window({{"rect", {0, 0, 0, 10}}}); }, {"/outputs/0/window/rect", "≥ 1"});

@@ -16,10 +16,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/units.h"
 #include "tests/warp/projection_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
-#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -37,7 +37,8 @@ std::vector<Named> planar_cases() {
       {"off-axis, all to one side",
        std::make_shared<PlanarProjection>(300, 200, PlanarFrustum{10.0, 40.0, 5.0, 30.0, -100.0, 60.0, -170.0})},
       {"nearly 180° wide", std::make_shared<PlanarProjection>(1920, 1080, PlanarFrustum{-88.5, 88.5, -80.0, 85.0})},
-      {"straight up", std::make_shared<PlanarProjection>(33, 17, PlanarFrustum{-40.0, 35.0, -25.0, 30.0, 180.0, 90.0, -180.0})},
+      {"straight up",
+       std::make_shared<PlanarProjection>(33, 17, PlanarFrustum{-40.0, 35.0, -25.0, 30.0, 180.0, 90.0, -180.0})},
   };
 }
 
@@ -50,10 +51,13 @@ std::vector<Named> fisheye_cases() {
       {"180° tilted 30° 100×80", make(100, 80, {.tilt_deg = 30.0})},
       {"220° tilted -45° rotated 70°", make(90, 90, {.fov_deg = 220.0, .tilt_deg = -45.0, .rotation_deg = 70.0})},
       {"forward-looking 150°", make(64, 48, {.fov_deg = 150.0, .tilt_deg = 90.0})},
-      {"off-centre, cropped 1920×1080",
-       make(1920, 1080,
-            {.fov_deg = 200.0, .tilt_deg = 20.0, .centre_x_px = 960.0, .centre_y_px = 1000.0, .radius_px = 1100.0,
-             .rotation_deg = 15.0})},
+      {"off-centre, cropped 1920×1080", make(1920, 1080,
+                                             {.fov_deg = 200.0,
+                                              .tilt_deg = 20.0,
+                                              .centre_x_px = 960.0,
+                                              .centre_y_px = 1000.0,
+                                              .radius_px = 1100.0,
+                                              .rotation_deg = 15.0})},
       {"8K dome master 180°", make(8192, 8192, {})},
       {"small circle, 1° fov", make(50, 40, {.fov_deg = 1.0, .centre_x_px = 20.0, .radius_px = 10.0})},
   };
@@ -148,7 +152,8 @@ TEST(PlanarProjection, SymmetricCentreLooksForwardAndCornersMatchTheFrustum) {
     EXPECT_NEAR(d->y / -d->z, std::tan(c.vertical_deg * kDeg), 1e-13) << c.x << ", " << c.y;
   }
   // The axis (tangent 0, 0) lies at the pixel where u and v vanish.
-  expect_pixel(a.pixel({0.0, 0.0, -1.0}), 97.0 * std::tan(20.0 * kDeg) / (std::tan(45.0 * kDeg) + std::tan(20.0 * kDeg)),
+  expect_pixel(a.pixel({0.0, 0.0, -1.0}),
+               97.0 * std::tan(20.0 * kDeg) / (std::tan(45.0 * kDeg) + std::tan(20.0 * kDeg)),
                41.0 * std::tan(30.0 * kDeg) / (std::tan(30.0 * kDeg) + std::tan(10.0 * kDeg)), "axis");
 }
 
@@ -161,7 +166,8 @@ TEST(PlanarProjection, YawTurnsRightPitchLooksUpRollBanksRight) {
     f.roll_deg = roll;
     return PlanarProjection(40, 40, f);
   };
-  expect_direction(with(30.0, 0.0, 0.0).ray(20.0, 20.0), {std::sin(30.0 * kDeg), 0.0, -std::cos(30.0 * kDeg)}, "yaw 30");
+  expect_direction(with(30.0, 0.0, 0.0).ray(20.0, 20.0), {std::sin(30.0 * kDeg), 0.0, -std::cos(30.0 * kDeg)},
+                   "yaw 30");
   expect_direction(with(0.0, 20.0, 0.0).ray(20.0, 20.0), {0.0, std::sin(20.0 * kDeg), -std::cos(20.0 * kDeg)},
                    "pitch 20");
   expect_direction(with(90.0, 0.0, 0.0).ray(20.0, 20.0), {1.0, 0.0, 0.0}, "yaw 90 looks right");

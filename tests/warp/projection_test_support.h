@@ -47,8 +47,8 @@ inline void expect_pixel(const std::optional<glm::dvec2>& actual, double x, doub
 /// grid plus points within a hair of both edges and of the centre.
 inline std::vector<double> sample_positions(int size) {
   const double n = size;
-  std::vector<double> out = {0.0, 1e-9, 1e-6, 1e-3, 0.5, n / 2 - 1e-7, n / 2, n / 2 + 1e-7, n - 0.5, n - 1e-3, n - 1e-6,
-                             n};
+  std::vector<double> out = {0.0,   1e-9,         1e-6,    1e-3,     0.5,      n / 2 - 1e-7,
+                             n / 2, n / 2 + 1e-7, n - 0.5, n - 1e-3, n - 1e-6, n};
   for (int i = 0; i <= 40; ++i) out.push_back(n * i / 40.0);
   return out;
 }
@@ -112,9 +112,7 @@ inline void expect_tight_pixel_angle_bounds(const std::vector<Named>& cases) {
 inline std::optional<glm::vec3> emulate_glsl(const GpuProjection& g, glm::vec2 pixel) {
   auto xyz = [&](int i) { return glm::vec3(g.params[i][0], g.params[i][1], g.params[i][2]); };
   switch (g.kind) {
-    case ProjectionKind::ray_table:
-      ADD_FAILURE() << "ray tables have no closed form to emulate";
-      return std::nullopt;
+    case ProjectionKind::ray_table: ADD_FAILURE() << "ray tables have no closed form to emulate"; return std::nullopt;
     case ProjectionKind::planar:
     case ProjectionKind::cube_face:
       return glm::normalize((pixel.x - g.params[0][3]) * xyz(0) + (pixel.y - g.params[1][3]) * xyz(1) + xyz(2));

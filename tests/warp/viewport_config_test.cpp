@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "core/json_reader.h"
+#include "core/units.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/warped_projection.h"
 #include "warp_file_test_support.h"
-#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -124,7 +124,8 @@ TEST(ViewportConfig, DisplayWallHelperChecksItsInput) {
   DisplayWall wall{3, 2, 1000.0, 500.0, 5.0, 2000.0};
   const PlanarFrustum mid = display_wall_frustum(wall, 1, 0);
   EXPECT_NEAR(mid.left_deg, -mid.right_deg, 1e-12);
-  EXPECT_NEAR(std::tan(mid.down_deg * zenith::core::kPi / 180.0) * 2000.0, 5.0, 1e-9);  // the bottom edge 5 mm above centre
+  EXPECT_NEAR(std::tan(mid.down_deg * zenith::core::kPi / 180.0) * 2000.0, 5.0,
+              1e-9);  // the bottom edge 5 mm above centre
   expect_error([&] { (void)display_wall_frustum(wall, 3, 0); }, {"outside 3 x 2"});
   wall.distance_mm = 0.0;
   expect_error([&] { (void)display_wall_frustum(wall, 0, 0); }, {"distance"});
@@ -160,9 +161,10 @@ TEST(ViewportConfig, DefaultsAndBlendForms) {
 TEST(ViewportConfig, WarpFileWrapsTheProjection) {
   ScratchDir dir("viewport_warp");
   // A 3 × 3 PFM warp map: identity (u, v) = (s, t) at the nodes.
-  const auto pfm = testing::make_pfm(3, 3, 3, [](int x, int y, int c) {
-    return c == 0 ? 0.5f * x : c == 1 ? 0.5f * y : 0.0f;
-  }, true, false);
+  const auto pfm = testing::make_pfm(
+      3, 3, 3, [](int x, int y, int c) { return c == 0   ? 0.5f * x
+                                                : c == 1 ? 0.5f * y
+                                                         : 0.0f; }, true, false);
   dir.write("warp.pfm", pfm);
   json j = minimal();
   j["outputs"][0]["warp"] = json::parse(R"({"file": "warp.pfm", "format": "pfm"})");
@@ -202,12 +204,19 @@ TEST(ViewportConfig, MalformedConfigsAreRejectedWithFilePointerAndReason) {
        "unknown key"},
       {"missing size", [](json& j) { j["outputs"][0].erase("size"); }, "/outputs/0/size", "missing required key"},
       {"size not a pair", [](json& j) { j["outputs"][0]["size"] = {64}; }, "/outputs/0/size", "[width, height]"},
-      {"size out of range", [](json& j) { j["outputs"][0]["size"] = {64, 0}; }, "/outputs/0/size/1",
-       "= 0: must be in [1, 16384] px"},
-      {"size not integer", [](json& j) { j["outputs"][0]["size"] = {64.5, 40}; }, "/outputs/0/size/0", "integer"},
+      {"size out of range",
+       [](json& j) {
+         j["outputs"][0]["size"] = {64, 0};
+       },
+       "/outputs/0/size/1", "= 0: must be in [1, 16384] px"},
+      {"size not integer",
+       [](json& j) {
+         j["outputs"][0]["size"] = {64.5, 40};
+       },
+       "/outputs/0/size/0", "integer"},
       {"bad name", [](json& j) { j["outputs"][0]["name"] = "a/b"; }, "/outputs/0/name", "letters, digits"},
-      {"duplicate name",
-       [](json& j) { j["outputs"].push_back(j["outputs"][0]); }, "/outputs/1/name", "duplicate output name"},
+      {"duplicate name", [](json& j) { j["outputs"].push_back(j["outputs"][0]); }, "/outputs/1/name",
+       "duplicate output name"},
       {"projection out of range", [](json& j) { j["outputs"][0]["projection"]["fov_deg"] = 200; },
        "/outputs/0/projection/fov_deg", "200"},
       {"projection missing", [](json& j) { j["outputs"][0].erase("projection"); }, "/outputs/0/projection",
@@ -221,8 +230,7 @@ TEST(ViewportConfig, MalformedConfigsAreRejectedWithFilePointerAndReason) {
       {"blend width out of range",
        [](json& j) { j["outputs"][0]["blend"] = json::parse(R"({"type": "auto", "width_fraction": 0.9})"); },
        "/outputs/0/blend/width_fraction", "must be in [0.001, 0.5]"},
-      {"blend file missing",
-       [](json& j) { j["outputs"][0]["blend"] = json::parse(R"({"file": "nowhere.png"})"); },
+      {"blend file missing", [](json& j) { j["outputs"][0]["blend"] = json::parse(R"({"file": "nowhere.png"})"); },
        "/outputs/0/blend/file", "no such file"},
       {"blend gamma out of range",
        [](json& j) { j["outputs"][0]["blend"] = json::parse(R"({"file": "x.png", "gamma": 0})"); },

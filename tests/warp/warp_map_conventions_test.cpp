@@ -42,9 +42,12 @@ double true_v(int x, int y) { return node_t(y) + offset_v(x, y); }
 
 /// zenith's convention: absolute, v down; classic row order (bottom row stored first).
 std::string absolute_pfm() {
-  return make_pfm(kColumns, kRows, 3, [](int x, int y, int c) {
-    return static_cast<float>(c == 0 ? true_u(x, y) : c == 1 ? true_v(x, y) : 0.0);
-  }, true, false);
+  return make_pfm(
+      kColumns, kRows, 3,
+      [](int x, int y, int c) {
+        return static_cast<float>(c == 0 ? true_u(x, y) : c == 1 ? true_v(x, y) : 0.0);
+      },
+      true, false);
 }
 
 void expect_same_nodes(const WarpMesh& a, const WarpMesh& b, double tolerance) {
@@ -100,9 +103,13 @@ TEST(WarpMapConventions, OffsetMapGivesTheRaysOfItsAbsoluteTwin) {
   ScratchDir dir("conv_offsets");
   LogCapture log;
   const WarpMesh absolute = load_pfm_warp_mesh(dir.write("absolute.pfm", absolute_pfm()));
-  const auto offsets_file = dir.write("offsets.pfm", make_pfm(kColumns, kRows, 3, [](int x, int y, int c) {
-    return static_cast<float>(c == 0 ? offset_u(x, y) : c == 1 ? offset_v(x, y) : 0.0);
-  }, true, false));
+  const auto offsets_file =
+      dir.write("offsets.pfm", make_pfm(
+                                   kColumns, kRows, 3,
+                                   [](int x, int y, int c) {
+                                     return static_cast<float>(c == 0 ? offset_u(x, y) : c == 1 ? offset_v(x, y) : 0.0);
+                                   },
+                                   true, false));
   const WarpMesh offsets = load_pfm_warp_mesh(offsets_file, PfmRowOrder::bottom_to_top, WarpInterpolation::catmull_rom,
                                               {WarpValues::offsets, WarpVDirection::down});
   expect_same_nodes(absolute, offsets, 1e-6);
@@ -120,7 +127,8 @@ TEST(WarpMapConventions, OffsetMapGivesTheRaysOfItsAbsoluteTwin) {
 TEST(WarpMapConventions, AllZeroOffsetsAreTheIdentity) {
   ScratchDir dir("conv_zeros");
   LogCapture log;
-  const auto zeros = dir.write("zeros.pfm", make_pfm(5, 4, 3, [](int, int, int) { return 0.0f; }, true, true));
+  const auto zeros = dir.write("zeros.pfm", make_pfm(
+                                                5, 4, 3, [](int, int, int) { return 0.0f; }, true, true));
   const WarpMesh identity = load_pfm_warp_mesh(zeros, PfmRowOrder::top_to_bottom, WarpInterpolation::bilinear,
                                                {WarpValues::offsets, WarpVDirection::down});
   for (const double s : {0.0, 0.13, 0.5, 0.77, 1.0})
@@ -154,9 +162,13 @@ TEST(WarpMapConventions, SgctTopFirstVUpMatchesOnceConfiguredAndMirrorsWithTheDe
   LogCapture log;
   const WarpMesh reference = load_pfm_warp_mesh(dir.write("absolute.pfm", absolute_pfm()));
   // SGCT / E&S surface: the first stored row is the top, v counts up from the bottom.
-  const auto sgct = dir.write("sgct.pfm", make_pfm(kColumns, kRows, 3, [](int x, int y, int c) {
-    return static_cast<float>(c == 0 ? true_u(x, y) : c == 1 ? 1.0 - true_v(x, y) : 0.0);
-  }, true, true));
+  const auto sgct =
+      dir.write("sgct.pfm", make_pfm(
+                                kColumns, kRows, 3,
+                                [](int x, int y, int c) {
+                                  return static_cast<float>(c == 0 ? true_u(x, y) : c == 1 ? 1.0 - true_v(x, y) : 0.0);
+                                },
+                                true, true));
   const WarpMesh configured = load_pfm_warp_mesh(sgct, PfmRowOrder::top_to_bottom, WarpInterpolation::catmull_rom,
                                                  {WarpValues::absolute, WarpVDirection::up});
   expect_same_nodes(reference, configured, 1e-6);
@@ -185,9 +197,13 @@ TEST(WarpMapConventions, SgctTopFirstVUpMatchesOnceConfiguredAndMirrorsWithTheDe
 
   // An identity map written v up and read v down shows the source upside down:
   // the ray of (x, y) is the fisheye's at (x, height − y).
-  const auto identity_up = dir.write("identity_up.pfm", make_pfm(3, 3, 3, [](int x, int y, int c) {
-    return static_cast<float>(c == 0 ? 0.5 * x : c == 1 ? 1.0 - 0.5 * y : 0.0);
-  }, true, true));
+  const auto identity_up =
+      dir.write("identity_up.pfm", make_pfm(
+                                       3, 3, 3,
+                                       [](int x, int y, int c) {
+                                         return static_cast<float>(c == 0 ? 0.5 * x : c == 1 ? 1.0 - 0.5 * y : 0.0);
+                                       },
+                                       true, true));
   auto fisheye = std::make_shared<FisheyeProjection>(100, 100);
   const WarpedProjection upside_down(
       100, 100, load_pfm_warp_mesh(identity_up, PfmRowOrder::top_to_bottom, WarpInterpolation::bilinear), fisheye);
@@ -206,9 +222,13 @@ TEST(WarpMapConventions, WarnsWhenMostSamplesMapOutsideTheSource) {
   ScratchDir dir("conv_outside");
   LogCapture log;
   // An absolute identity map read as offsets: u = 2s, v = 2t, outside for 3/4 of the nodes.
-  const auto identity = dir.write("identity.pfm", make_pfm(5, 5, 3, [](int x, int y, int c) {
-    return static_cast<float>(c == 0 ? 0.25 * x : c == 1 ? 0.25 * y : 0.0);
-  }, true, false));
+  const auto identity =
+      dir.write("identity.pfm", make_pfm(
+                                    5, 5, 3,
+                                    [](int x, int y, int c) {
+                                      return static_cast<float>(c == 0 ? 0.25 * x : c == 1 ? 0.25 * y : 0.0);
+                                    },
+                                    true, false));
   load_pfm_warp_mesh(identity, PfmRowOrder::bottom_to_top, WarpInterpolation::catmull_rom,
                      {WarpValues::offsets, WarpVDirection::down});
   log.expect_warning({"identity.pfm", "16 of 25 valid samples (64 %) map outside the source image", "u in [0, 2]",
@@ -235,19 +255,25 @@ json pfm_output(const json& warp) {
 TEST(WarpMapConventions, ViewportKeysSelectTheConventions) {
   ScratchDir dir("conv_viewport");
   dir.write("absolute.pfm", absolute_pfm());
-  dir.write("sgct.pfm", make_pfm(kColumns, kRows, 3, [](int x, int y, int c) {
-    return static_cast<float>(c == 0 ? true_u(x, y) : c == 1 ? 1.0 - true_v(x, y) : 0.0);
-  }, true, true));
-  dir.write("es.pfm", make_pfm(kColumns, kRows, 3, [](int x, int y, int c) {
-    return static_cast<float>(c == 0 ? offset_u(x, y) : c == 1 ? offset_v(x, y) : 0.0);
-  }, true, false));
+  dir.write("sgct.pfm", make_pfm(
+                            kColumns, kRows, 3,
+                            [](int x, int y, int c) {
+                              return static_cast<float>(c == 0 ? true_u(x, y) : c == 1 ? 1.0 - true_v(x, y) : 0.0);
+                            },
+                            true, true));
+  dir.write("es.pfm", make_pfm(
+                          kColumns, kRows, 3,
+                          [](int x, int y, int c) {
+                            return static_cast<float>(c == 0 ? offset_u(x, y) : c == 1 ? offset_v(x, y) : 0.0);
+                          },
+                          true, false));
   const auto parse = [&](const json& warp) { return parse_viewport_config(pfm_output(warp), "v.json", dir.path()); };
   const ViewportConfig plain = parse(json{{"file", "absolute.pfm"}, {"format", "pfm"}});
   EXPECT_EQ(plain.outputs[0].warp->row_order, PfmRowOrder::bottom_to_top);
   EXPECT_EQ(plain.outputs[0].warp->conventions.values, WarpValues::absolute);
   EXPECT_EQ(plain.outputs[0].warp->conventions.v_direction, WarpVDirection::down);
-  const ViewportConfig sgct = parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"row_order", "top_to_bottom"},
-                                         {"v_direction", "up"}});
+  const ViewportConfig sgct =
+      parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"row_order", "top_to_bottom"}, {"v_direction", "up"}});
   EXPECT_EQ(sgct.outputs[0].warp->row_order, PfmRowOrder::top_to_bottom);
   EXPECT_EQ(sgct.outputs[0].warp->conventions.v_direction, WarpVDirection::up);
   const ViewportConfig es = parse(json{{"file", "es.pfm"}, {"format", "pfm"}, {"values", "offsets"}});
@@ -263,17 +289,32 @@ TEST(WarpMapConventions, ViewportKeysSelectTheConventions) {
     EXPECT_LT(worst, 1e-6);
   }
 
-  expect_error([&] { parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"row_order", "top_first"}}); },
-               {"v.json: /outputs/0/warp/row_order", "top_first", "\"bottom_to_top\", \"top_to_bottom\""});
-  expect_error([&] { parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"v_direction", "upward"}}); },
-               {"v.json: /outputs/0/warp/v_direction", "\"down\", \"up\""});
-  expect_error([&] { parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"values", "relative"}}); },
-               {"v.json: /outputs/0/warp/values", "\"absolute\", \"offsets\""});
+  expect_error(
+      [&] {
+        parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"row_order", "top_first"}});
+      },
+      {"v.json: /outputs/0/warp/row_order", "top_first", "\"bottom_to_top\", \"top_to_bottom\""});
+  expect_error(
+      [&] {
+        parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"v_direction", "upward"}});
+      },
+      {"v.json: /outputs/0/warp/v_direction", "\"down\", \"up\""});
+  expect_error(
+      [&] {
+        parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"values", "relative"}});
+      },
+      {"v.json: /outputs/0/warp/values", "\"absolute\", \"offsets\""});
   dir.write("m.data", "2\n2 2\n-1 -1 0 1 1\n1 -1 1 1 1\n-1 1 0 0 1\n1 1 1 0 1\n");
-  expect_error([&] { parse(json{{"file", "m.data"}, {"format", "bourke"}, {"values", "offsets"}}); },
-               {"v.json: /outputs/0/warp/values", "applies to \"format\": \"pfm\" and \"mpcdi\" only"});
-  expect_error([&] { parse(json{{"file", "m.data"}, {"format", "bourke"}, {"v_direction", "up"}}); },
-               {"v.json: /outputs/0/warp/v_direction", "applies to \"format\": \"pfm\" only (format is \"bourke\")"});
+  expect_error(
+      [&] {
+        parse(json{{"file", "m.data"}, {"format", "bourke"}, {"values", "offsets"}});
+      },
+      {"v.json: /outputs/0/warp/values", "applies to \"format\": \"pfm\" and \"mpcdi\" only"});
+  expect_error(
+      [&] {
+        parse(json{{"file", "m.data"}, {"format", "bourke"}, {"v_direction", "up"}});
+      },
+      {"v.json: /outputs/0/warp/v_direction", "applies to \"format\": \"pfm\" only (format is \"bourke\")"});
 }
 
 }  // namespace

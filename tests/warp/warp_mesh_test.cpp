@@ -7,13 +7,13 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
-#include <limits>
-#include <memory>
-#include <sstream>
 
 #include <glm/geometric.hpp>
 
@@ -118,7 +118,9 @@ WarpMesh mesh_of(int columns, int rows, const std::function<WarpNode(double s, d
 }
 
 TEST(WarpMesh, BilinearIsTheBilinearInterpolantOfTheCellsCorners) {
-  const auto f = [](double s, double t) { return WarpNode{std::sin(3 * s) + t, std::cos(2 * t) * s, 0.5 + 0.4 * s * t, true}; };
+  const auto f = [](double s, double t) {
+    return WarpNode{std::sin(3 * s) + t, std::cos(2 * t) * s, 0.5 + 0.4 * s * t, true};
+  };
   const WarpMesh mesh = mesh_of(5, 4, f, WarpInterpolation::bilinear);
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 4; ++i)
@@ -141,7 +143,9 @@ TEST(WarpMesh, BilinearIsTheBilinearInterpolantOfTheCellsCorners) {
 
 TEST(WarpMesh, CatmullRomPassesThroughNodesAndReproducesQuadratics) {
   // Interior cells reproduce a quadratic exactly; linear maps everywhere.
-  const auto quadratic = [](double s, double t) { return WarpNode{s * s + 0.5 * t, 0.3 * s + t * t - s * t, 1.0, true}; };
+  const auto quadratic = [](double s, double t) {
+    return WarpNode{s * s + 0.5 * t, 0.3 * s + t * t - s * t, 1.0, true};
+  };
   const WarpMesh mesh = mesh_of(9, 7, quadratic, WarpInterpolation::catmull_rom);
   for (double s = 1.0 / 8; s <= 7.0 / 8 + 1e-12; s += 0.0371)
     for (double t = 1.0 / 6; t <= 5.0 / 6 + 1e-12; t += 0.0413) {
@@ -191,7 +195,7 @@ TEST(WarpMesh, InvalidCornersLeaveTheirCellsWithoutData) {
   };
   const WarpMesh mesh = mesh_of(5, 5, f, WarpInterpolation::catmull_rom);
   EXPECT_EQ(mesh.valid_node_count(), 24);
-  EXPECT_FALSE(mesh.sample(0.4, 0.4));   // the four cells around the hole
+  EXPECT_FALSE(mesh.sample(0.4, 0.4));  // the four cells around the hole
   EXPECT_FALSE(mesh.sample(0.6, 0.55));
   EXPECT_FALSE(mesh.sample(0.5, 0.5));
   const auto near = mesh.sample(0.2, 0.6);  // a neighbouring cell: bilinear fallback, still exact for linear data
@@ -207,8 +211,11 @@ TEST(WarpMesh, RejectsMeshesWithoutAValidNodeAndBadShapes) {
   expect_error([] { WarpMesh(2, 2, std::vector<WarpNode>(4), "empty.pfm"); }, {"empty.pfm", "NaN-only mesh"});
   expect_error([] { WarpMesh(1, 2, std::vector<WarpNode>(2, WarpNode{0, 0, 1, true}), "thin"); }, {"[2, 16384]"});
   expect_error([] { WarpMesh(2, 2, std::vector<WarpNode>(3, WarpNode{0, 0, 1, true}), "few"); }, {"given 3 nodes"});
-  expect_error([] { WarpMesh(2, 2, std::vector<WarpNode>(4, WarpNode{0, 0, 1.5, true}), "bright"); },
-               {"intensity in [0, 1]"});
+  expect_error(
+      [] {
+        WarpMesh(2, 2, std::vector<WarpNode>(4, WarpNode{0, 0, 1.5, true}), "bright");
+      },
+      {"intensity in [0, 1]"});
 }
 
 // ---- PFM warp maps ---------------------------------------------------------------
@@ -237,7 +244,8 @@ TEST(PfmWarpMesh, NodesSpanTheImageEdgeToEdgeAndNaNHasNoData) {
 
 TEST(PfmWarpMesh, RejectsNaNOnlyAndOneChannelMaps) {
   ScratchDir dir("pfm_nan");
-  const auto nan_file = dir.write("nan.pfm", make_pfm(3, 3, 3, [](int, int, int) { return kNaN; }, true, false));
+  const auto nan_file = dir.write("nan.pfm", make_pfm(
+                                                 3, 3, 3, [](int, int, int) { return kNaN; }, true, false));
   expect_error([&] { load_pfm_warp_mesh(nan_file); }, {"nan.pfm", "NaN-only mesh"});
   const auto grey = dir.write("grey.pfm", make_pfm(3, 3, 1, ramp, true, false));
   expect_error([&] { load_pfm_warp_mesh(grey); }, {"grey.pfm", "needs 3 channels"});
@@ -272,9 +280,8 @@ std::string identity_node(double x, double y, double aspect) {
 
 TEST(BourkeMesh, IdentityMeshWarpsAFisheyeIntoItself) {
   ScratchDir dir("bourke");
-  const auto file = dir.write("identity.data", bourke_text(17, 17, 1.0, [](double x, double y, int, int) {
-                                return identity_node(x, y, 1.0);
-                              }));
+  const auto file = dir.write(
+      "identity.data", bourke_text(17, 17, 1.0, [](double x, double y, int, int) { return identity_node(x, y, 1.0); }));
   const WarpMesh mesh = load_bourke_mesh(file);
   EXPECT_EQ(mesh.columns(), 17);
   EXPECT_EQ(mesh.valid_node_count(), 17 * 17);
@@ -307,9 +314,10 @@ TEST(BourkeMesh, WideProjectorAndFlippedV) {
   // aspect 16:9; v runs up in the file: the top row of the projector (y = +1) shows v = 1, i.e. the source's top.
   const double aspect = 16.0 / 9.0;
   ScratchDir dir("bourke_wide");
-  const auto file = dir.write("wide.data", bourke_text(5, 4, aspect, [&](double x, double y, int, int) {
-                                return identity_node(x, y, aspect);
-                              }, "\r\n"));
+  const auto file =
+      dir.write("wide.data",
+                bourke_text(
+                    5, 4, aspect, [&](double x, double y, int, int) { return identity_node(x, y, aspect); }, "\r\n"));
   const WarpMesh mesh = load_bourke_mesh(file);
   const auto top_left = mesh.sample(0.0, 0.0);
   ASSERT_TRUE(top_left);
@@ -389,16 +397,20 @@ TEST(BourkeMesh, RejectsBadHeaders) {
   expect_error([&] { load_bourke_mesh(dir.write("p.data", "1\n2 2\n")); }, {"p.data:1:", "polar", "not supported"});
   expect_error([&] { load_bourke_mesh(dir.write("w.data", "two\n2 2\n")); },
                {"w.data:1: field 'mesh type' = 'two' is not an integer"});
-  expect_error([&] { load_bourke_mesh(dir.write("c.data", "2\n10\n")); }, {"c.data:2: expected 2 fields (nx ny), found 1"});
-  expect_error([&] { load_bourke_mesh(dir.write("n.data", "2\n10 x\n")); }, {"n.data:2: field 'ny' = 'x' is not an integer"});
-  expect_error([&] { load_bourke_mesh(dir.write("s.data", "2\n1 5\n")); }, {"s.data:2: field 'nx' = 1: must be in [2, 16384]"});
+  expect_error([&] { load_bourke_mesh(dir.write("c.data", "2\n10\n")); },
+               {"c.data:2: expected 2 fields (nx ny), found 1"});
+  expect_error([&] { load_bourke_mesh(dir.write("n.data", "2\n10 x\n")); },
+               {"n.data:2: field 'ny' = 'x' is not an integer"});
+  expect_error([&] { load_bourke_mesh(dir.write("s.data", "2\n1 5\n")); },
+               {"s.data:2: field 'nx' = 1: must be in [2, 16384]"});
   expect_error([&] { load_bourke_mesh(dir.write("e.data", "")); }, {"e.data: truncated"});
   expect_error([&] { load_bourke_mesh(dir.path() / "missing.data"); }, {"missing.data: cannot open"});
 }
 
 TEST(BourkeMesh, RejectsWrongCountsAndTruncation) {
   ScratchDir dir("bourke_counts");
-  const std::string full = bourke_text(3, 3, 1.0, [](double x, double y, int, int) { return identity_node(x, y, 1.0); });
+  const std::string full =
+      bourke_text(3, 3, 1.0, [](double x, double y, int, int) { return identity_node(x, y, 1.0); });
   // One node too many: line 12 (2 header lines + 9 nodes + 1).
   expect_error([&] { load_bourke_mesh(dir.write("many.data", full + "0 0 0.5 0.5 1\n")); },
                {"many.data:12: more than nx x ny = 3 x 3 = 9 nodes"});
@@ -429,9 +441,8 @@ TEST(BourkeMesh, RejectsBadFieldsWithLineAndFieldName) {
 
 TEST(BourkeMesh, RejectsAMeshWithoutUsedNodes) {
   ScratchDir dir("bourke_unused_all");
-  const auto file = dir.write("none.data", bourke_text(3, 3, 1.0, [](double, double, int, int) {
-                                return std::string("0.5 0.5 -1");
-                              }));
+  const auto file = dir.write(
+      "none.data", bourke_text(3, 3, 1.0, [](double, double, int, int) { return std::string("0.5 0.5 -1"); }));
   expect_error([&] { load_bourke_mesh(file); }, {"none.data", "NaN-only mesh"});
 }
 
@@ -440,7 +451,9 @@ TEST(BourkeMesh, RejectsAMeshWithoutUsedNodes) {
 TEST(WarpedProjection, RaysFollowTheInterpolatedSourcePoints) {
   // A bilinear mesh over a planar base: between nodes the source point is the
   // bilinear interpolant, and the ray is the base's ray there.
-  const auto f = [](double s, double t) { return WarpNode{0.1 + 0.8 * s + 0.05 * t * t, 0.2 + 0.6 * t + 0.1 * s * s, 1.0, true}; };
+  const auto f = [](double s, double t) {
+    return WarpNode{0.1 + 0.8 * s + 0.05 * t * t, 0.2 + 0.6 * t + 0.1 * s * s, 1.0, true};
+  };
   const WarpMesh mesh = mesh_of(3, 3, f, WarpInterpolation::bilinear);
   auto base = std::make_shared<PlanarProjection>(PlanarProjection::symmetric(800, 600, 90.0));
   const WarpedProjection warped(400, 300, mesh, base);
@@ -471,8 +484,12 @@ TEST(WarpedProjection, RaysFollowTheInterpolatedSourcePoints) {
 }
 
 TEST(WarpedProjection, IsTabulatedOnTheGpuAndNeedsABase) {
-  const WarpMesh mesh = mesh_of(2, 2, [](double s, double t) { return WarpNode{s, t, 1.0, true}; },
-                                WarpInterpolation::bilinear);
+  const WarpMesh mesh = mesh_of(
+      2, 2,
+      [](double s, double t) {
+        return WarpNode{s, t, 1.0, true};
+      },
+      WarpInterpolation::bilinear);
   const WarpedProjection warped(64, 64, mesh, std::make_shared<FisheyeProjection>(64, 64));
   EXPECT_EQ(warped.gpu().kind, ProjectionKind::ray_table);
   expect_error([&] { WarpedProjection(64, 64, mesh, nullptr); }, {"base projection is null"});
@@ -484,7 +501,8 @@ TEST(WarpedProjection, IsTabulatedOnTheGpuAndNeedsABase) {
 /// A mesh whose source pixel is affine in the projector pixel: source px =
 /// c + J (x − w/2, y − h/2) for a w × h projector over a base of size (wb, hb),
 /// so σ_max(J) is the closed-form local stretch everywhere.
-WarpMesh affine_mesh(int w, int h, int wb, int hb, const std::array<double, 4>& jacobian, WarpInterpolation interpolation,
+WarpMesh affine_mesh(int w, int h, int wb, int hb, const std::array<double, 4>& jacobian,
+                     WarpInterpolation interpolation,
                      const std::function<std::optional<WarpNode>(int i, int j)>& override_node = {}) {
   const int n = 9;
   std::vector<WarpNode> nodes;
@@ -523,7 +541,8 @@ TEST(WarpedProjectionFootprint, IsTheBaseFootprintTimesTheLocalStretch) {
     const WarpedProjection warped(200, 160, affine_mesh(200, 160, 400, 400, jacobian, WarpInterpolation::bilinear),
                                   fisheye);
     const double expected = base * largest_singular_value(jacobian);
-    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{100, 80}, {37.5, 20.5}, {180.2, 150.9}, {5, 155}}) {
+    for (const auto& [x, y] :
+         std::vector<std::pair<double, double>>{{100, 80}, {37.5, 20.5}, {180.2, 150.9}, {5, 155}}) {
       const auto ray = warped.ray(x, y);
       ASSERT_TRUE(ray) << name;
       EXPECT_NEAR(warped.pixel_angle_rad_at(*ray), expected, 1e-7 * expected) << name << " at " << x << ", " << y;
@@ -539,14 +558,13 @@ TEST(WarpedProjectionFootprint, ParkedNodesDoNotInflateIt) {
   const double base = fisheye->max_pixel_angle_rad();
   const std::array<double, 4> jacobian{0.8, 0.0, 0.0, 0.8};
   for (const WarpInterpolation interpolation : {WarpInterpolation::bilinear, WarpInterpolation::catmull_rom}) {
-    const WarpedProjection warped(
-        200, 200,
-        affine_mesh(200, 200, 400, 400, jacobian, interpolation,
-                    [](int i, int j) -> std::optional<WarpNode> {
-                      if ((i == 0 || i == 8) && j == 0) return WarpNode{0.0, 0.0, 0.02, true};
-                      return std::nullopt;
-                    }),
-        fisheye);
+    const WarpedProjection warped(200, 200,
+                                  affine_mesh(200, 200, 400, 400, jacobian, interpolation,
+                                              [](int i, int j) -> std::optional<WarpNode> {
+                                                if ((i == 0 || i == 8) && j == 0) return WarpNode{0.0, 0.0, 0.02, true};
+                                                return std::nullopt;
+                                              }),
+                                  fisheye);
     // The node next to a parked one is 184 base px from (0, 0), 25 projector px away: k = 7.4.
     EXPECT_GT(warped.max_pixel_angle_rad(), 8.0 * base * 0.8) << "the bound keeps the worst case, for culling";
     // Directions in the middle of the image, and one the projector never shows
@@ -613,7 +631,8 @@ TEST(WarpedProjectionCulling, ARectanglesBoundComesFromTheNodesThatReachIt) {
                 if (x + dx >= x1 || y + dy < y0 || y + dy >= y1) continue;
                 const auto q = w->ray(x + dx + 0.5, y + dy + 0.5);
                 if (!q) continue;
-                ASSERT_LE(std::acos(std::min(1.0, glm::dot(*r, *q))), bound) << x << ", " << y << " +" << dx << "," << dy;
+                ASSERT_LE(std::acos(std::min(1.0, glm::dot(*r, *q))), bound)
+                    << x << ", " << y << " +" << dx << "," << dy;
               }
             }
         }
@@ -626,7 +645,8 @@ TEST(WarpedProjectionCulling, ARectanglesBoundComesFromTheNodesThatReachIt) {
     // output): over s ∈ [−0.5, 1.5] the parked node's cells end at the image's
     // left edge, so no pixel shows them and even the worst case leaves them out.
     const WarpMesh::Extent wide{-0.5, 1.5, 0.0, 1.0};
-    const WarpedProjection wide_clean(200, 200, WarpMesh(9, 9, clean.mesh().nodes(), "wide", interpolation, wide), fisheye);
+    const WarpedProjection wide_clean(200, 200, WarpMesh(9, 9, clean.mesh().nodes(), "wide", interpolation, wide),
+                                      fisheye);
     const WarpedProjection wide_parked(200, 200, WarpMesh(9, 9, parked.mesh().nodes(), "wide", interpolation, wide),
                                        fisheye);
     EXPECT_EQ(wide_parked.max_pixel_angle_rad(), wide_clean.max_pixel_angle_rad());

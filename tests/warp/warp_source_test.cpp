@@ -19,11 +19,11 @@
 #include <glm/vec3.hpp>
 
 #include "core/json_reader.h"
+#include "core/units.h"
+#include "tests/warp/mpcdi_test_support.h"
 #include "warp/viewport_config.h"
 #include "warp/warped_projection.h"
-#include "tests/warp/mpcdi_test_support.h"
 #include "warp_file_test_support.h"
-#include "core/units.h"
 
 namespace zenith::warp {
 namespace {
@@ -96,11 +96,13 @@ struct Frame {
 /// rim → −z, right → +x).
 std::optional<glm::dvec3> expected_ray(const std::vector<Node>& nodes, double px, double py, double side,
                                        const Frame& frame = {}) {
-  const double x = frame.half_x * (2.0 * px / frame.width_px - 1.0), y = frame.half_y * (1.0 - 2.0 * py / frame.height_px);
+  const double x = frame.half_x * (2.0 * px / frame.width_px - 1.0),
+               y = frame.half_y * (1.0 - 2.0 * py / frame.height_px);
   const double a_m = frame.mesh_aspect;
   if (std::abs(x) > a_m || std::abs(y) > 1.0) return std::nullopt;
   const double fi = (x + a_m) / (2.0 * a_m) * (kNx - 1), fj = (y + 1.0) / 2.0 * (kNy - 1);
-  const int i = std::min(static_cast<int>(std::floor(fi)), kNx - 2), j = std::min(static_cast<int>(std::floor(fj)), kNy - 2);
+  const int i = std::min(static_cast<int>(std::floor(fi)), kNx - 2),
+            j = std::min(static_cast<int>(std::floor(fj)), kNy - 2);
   const double a = fi - i, b = fj - j;
   const Node& n00 = nodes[static_cast<std::size_t>(j * kNx + i)];
   const Node& n10 = nodes[static_cast<std::size_t>(j * kNx + i + 1)];
@@ -178,7 +180,8 @@ Agreement compare_rays(const Projection& warped,
 }
 /// compare_rays() with the Bourke sampler of `nodes` seen through `frame`.
 Agreement compare_with_sampler(const WarpedProjection& warped, const std::vector<Node>& nodes, const Frame& frame) {
-  return compare_rays(warped, [&](double x, double y) { return expected_ray(nodes, x, y, warped.base().height(), frame); });
+  return compare_rays(warped,
+                      [&](double x, double y) { return expected_ray(nodes, x, y, warped.base().height(), frame); });
 }
 
 TEST(WarpSource, FisheyeSourceIsSquareByDefaultAndMatchesTheIndependentSampler) {
@@ -281,7 +284,8 @@ TEST(WarpSource, BadSourcesAreRefusedNamingTheKeyAndRange) {
       {json{{"aspect", 0}}, "/outputs/0/warp/source/aspect", "= 0: must be in [0.1, 10] (width / height)"},
       {json{{"aspect", 11}}, "/outputs/0/warp/source/aspect", "must be in [0.1, 10]"},
       {json{{"aspect", "16:9"}}, "/outputs/0/warp/source/aspect", "must be a number"},
-      {json{{"aspect", 1}, {"size_px", {90, 90}}}, "/outputs/0/warp/source/aspect", "either size_px or aspect, not both"},
+      {json{{"aspect", 1}, {"size_px", {90, 90}}}, "/outputs/0/warp/source/aspect",
+       "either size_px or aspect, not both"},
       {json{{"width", 90}}, "/outputs/0/warp/source/width", "unknown key"},
       {json::object(), "/outputs/0/warp/source", "give size_px ([width, height] px) or aspect"},
       {json(1080), "/outputs/0/warp/source", "must be an object"},
@@ -297,7 +301,6 @@ TEST(WarpSource, BadSourcesAreRefusedNamingTheKeyAndRange) {
   testing::expect_error([&] { setup.parse(tall); },
                         {"mirror.json: /outputs/0/warp/source/aspect", "18000 px wide", "more than 16384"});
 }
-
 
 // ---- "fit": a mesh made for another aspect ratio ---------------------------------
 
@@ -420,16 +423,19 @@ TEST(WarpFit, ANarrowerMeshGetsBarsAtTheSidesByDefaultAndIsCroppedTopAndBottomBy
 
 TEST(WarpFit, ABadFitIsRefusedNamingTheKeyAndTheValues) {
   const MirrorSetup setup;
-  testing::expect_config_error([&] { setup.parse(setup.config_at(160, 90, "squeeze")); }, "mirror.json",
-                               "/outputs/0/warp/fit",
-                               "= \"squeeze\": must be one of \"height\", \"width\", \"crop\", \"letterbox\", \"stretch\"");
+  testing::expect_config_error(
+      [&] { setup.parse(setup.config_at(160, 90, "squeeze")); }, "mirror.json", "/outputs/0/warp/fit",
+      "= \"squeeze\": must be one of \"height\", \"width\", \"crop\", \"letterbox\", \"stretch\"");
   json number = setup.config();
   number["outputs"][0]["warp"]["fit"] = 1;
   testing::expect_config_error([&] { setup.parse(number); }, "mirror.json", "/outputs/0/warp/fit", "must be a string");
   // A PFM or MPCDI map spans its output edge to edge by definition.
-  setup.dir.write("map.pfm", testing::make_pfm(2, 2, 3, [](int x, int y, int c) {
-    return c == 0 ? static_cast<float>(x) : c == 1 ? static_cast<float>(y) : 0.0f;
-  }, true, false));
+  setup.dir.write("map.pfm", testing::make_pfm(
+                                 2, 2, 3,
+                                 [](int x, int y, int c) {
+                                   return c == 0 ? static_cast<float>(x) : c == 1 ? static_cast<float>(y) : 0.0f;
+                                 },
+                                 true, false));
   json pfm = setup.config_at(160, 90, "crop");
   pfm["outputs"][0]["warp"]["file"] = "map.pfm";
   pfm["outputs"][0]["warp"]["format"] = "pfm";
@@ -463,22 +469,27 @@ TEST(WarpFit, FramesOfEachFit) {
 /// ±25°): region "r" of x_res × y_res px spanning its buffer, its 5 × 4
 /// geometry warp (linear) (x, y) = (0.05 + 0.9 s, 0.1 + 0.8 t), s, t ∈ [0, 1]
 /// across the projector.
-void region_archive(const ScratchDir& dir, const std::string& name, const std::string& profile, int x_res,
-                    int y_res) {
+void region_archive(const ScratchDir& dir, const std::string& name, const std::string& profile, int x_res, int y_res) {
   const std::string resolution =
       "xResolution=\"" + std::to_string(x_res) + "\" yResolution=\"" + std::to_string(y_res) + "\"";
   const std::string frustum = profile == "3d" ? "<frustum><yaw>0</yaw><pitch>0</pitch><roll>0</roll>"
                                                 "<leftAngle>-40</leftAngle><rightAngle>40</rightAngle>"
                                                 "<upAngle>25</upAngle><downAngle>-25</downAngle></frustum>"
                                               : "";
-  const std::string xml = "<?xml version=\"1.0\"?>\n<MPCDI profile=\"" + profile + "\" geometry=\"1\" version=\"2.0\">\n"
-                          "<display><buffer id=\"b\" " + resolution + ">\n"
-                          "<region id=\"r\" x=\"0\" y=\"0\" xsize=\"1\" ysize=\"1\" " + resolution + ">" + frustum +
+  const std::string xml = "<?xml version=\"1.0\"?>\n<MPCDI profile=\"" + profile +
+                          "\" geometry=\"1\" version=\"2.0\">\n"
+                          "<display><buffer id=\"b\" " +
+                          resolution +
+                          ">\n"
+                          "<region id=\"r\" x=\"0\" y=\"0\" xsize=\"1\" ysize=\"1\" " +
+                          resolution + ">" + frustum +
                           "</region>\n</buffer></display>\n"
                           "<files><fileset region=\"r\"><geometryWarpFile><path>r.pfm</path>"
                           "<interpolation>linear</interpolation></geometryWarpFile></fileset></files>\n</MPCDI>\n";
   const auto warp = [](int x, int y, int c) {
-    return c == 0 ? 0.05f + 0.9f * static_cast<float>(x) / 4.0f : c == 1 ? 0.1f + 0.8f * static_cast<float>(y) / 3.0f : 0.0f;
+    return c == 0   ? 0.05f + 0.9f * static_cast<float>(x) / 4.0f
+           : c == 1 ? 0.1f + 0.8f * static_cast<float>(y) / 3.0f
+                    : 0.0f;
   };
   testing::make_zip(dir, name, {{"mpcdi.xml", xml}, {"r.pfm", testing::make_pfm(5, 4, 3, warp, true, true)}});
 }

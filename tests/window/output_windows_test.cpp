@@ -105,14 +105,16 @@ std::vector<std::uint8_t> file_path_bytes(Renderer& renderer, const scene::Scene
 }
 
 /// The largest difference per channel between a screen rectangle (top-left x0, y0) and an image.
-int worst_difference(const Screen& screen, int x0, int y0, const std::vector<std::uint8_t>& image, int width, int height) {
+int worst_difference(const Screen& screen, int x0, int y0, const std::vector<std::uint8_t>& image, int width,
+                     int height) {
   int worst = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const std::array<int, 3> s = screen.at(x0 + x, y0 + y);
       for (int c = 0; c < 3; ++c)
-        worst = std::max(worst, std::abs(s[static_cast<std::size_t>(c)] -
-                                         image[(static_cast<std::size_t>(y) * width + x) * 3 + static_cast<std::size_t>(c)]));
+        worst = std::max(worst,
+                         std::abs(s[static_cast<std::size_t>(c)] -
+                                  image[(static_cast<std::size_t>(y) * width + x) * 3 + static_cast<std::size_t>(c)]));
     }
   return worst;
 }
@@ -171,7 +173,8 @@ void expect_screen_shows_the_file_frames(const std::vector<ShownOutput>& shown,
     screen = capture_screen();
     bool all = true;
     for (std::size_t k = 0; k < shown.size(); ++k) {
-      worst[k] = worst_difference(screen, corners[k][0], corners[k][1], expected[k], shown[k].width_px, shown[k].height_px);
+      worst[k] =
+          worst_difference(screen, corners[k][0], corners[k][1], expected[k], shown[k].width_px, shown[k].height_px);
       all = all && worst[k] <= 1;
     }
     if (all) break;

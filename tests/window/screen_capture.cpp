@@ -39,7 +39,8 @@ Screen capture_screen() {
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
       const unsigned long p = XGetPixel(image, x, y);
-      std::uint8_t* out = &s.rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(x)) * 3];
+      std::uint8_t* out =
+          &s.rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(x)) * 3];
       out[0] = channel(p, image->red_mask);
       out[1] = channel(p, image->green_mask);
       out[2] = channel(p, image->blue_mask);

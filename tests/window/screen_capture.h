@@ -12,7 +12,8 @@ struct Screen {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgb;  ///< 3 bytes a pixel, row 0 at the top
   std::array<int, 3> at(int x, int y) const {
-    const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
+    const std::size_t i =
+        (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
     return {rgb[i], rgb[i + 1], rgb[i + 2]};
   }
 };

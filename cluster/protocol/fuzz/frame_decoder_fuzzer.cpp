@@ -39,7 +39,8 @@ void repair_crcs(std::vector<std::uint8_t>& bytes) {
         std::size_t{h[8]} << 24 | std::size_t{h[9]} << 16 | std::size_t{h[10]} << 8 | std::size_t{h[11]};
     if (length > bytes.size() - at - kHeaderBytes) return;
     const std::uint32_t crc = crc32c(std::span<const std::uint8_t>(bytes.data() + at + kHeaderBytes, length));
-    for (int i = 0; i < 4; ++i) bytes[at + 12 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(crc >> (24 - 8 * i));
+    for (int i = 0; i < 4; ++i)
+      bytes[at + 12 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(crc >> (24 - 8 * i));
     const std::uint32_t header_crc = crc32c(std::span<const std::uint8_t>(bytes.data() + at, 16));
     for (int i = 0; i < 4; ++i)
       bytes[at + 16 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(header_crc >> (24 - 8 * i));
