@@ -573,6 +573,25 @@ void run_cluster(const ClusterArgs& a) {
     throw std::runtime_error(fmt::format("{} node{} failed", failed_nodes, failed_nodes == 1 ? "" : "s"));
 }
 
+// Options the master, a node and a local cluster share.
+
+/// --port: the config's master port overridden (1..65535).
+void add_master_port_option(CLI::App* cmd, std::optional<int>& port) {
+  cmd->add_option("--port", port, "Override the config's master port")->check(CLI::Range(1, 65535));
+}
+
+/// --cluster FILE, required: the master's and a node's cluster config.
+void add_required_cluster_option(CLI::App* cmd, std::string& cluster) {
+  cmd->add_option("--cluster", cluster, "Cluster config JSON (configs/clusters/)")->required();
+}
+
+/// --out DIR and --record-frames DIR (one of them at most): where presented frames are written.
+void add_frame_output_options(CLI::App* cmd, std::string& out, std::string& record_frames, const std::string& out_help,
+                              const std::string& record_help) {
+  cmd->add_option("--out", out, out_help);
+  cmd->add_option("--record-frames", record_frames, record_help)->excludes("--out");
+}
+
 }  // namespace
 
 void register_cluster_commands(CLI::App& app) {
@@ -580,12 +599,12 @@ void register_cluster_commands(CLI::App& app) {
     auto a = std::make_shared<MasterArgs>();
     CLI::App* cmd =
         app.add_subcommand("master", "Run the master of a cluster: tables, frame barrier (docs/cluster.md)");
-    cmd->add_option("--cluster", a->cluster, "Cluster config JSON (configs/clusters/)")->required();
+    add_required_cluster_option(cmd, a->cluster);
     a->playback.add_to(*cmd);
     a->operator_console.add_to(*cmd);
     cmd->add_option("--frames", a->frames,
                     "Present this many frames, then stop the nodes (default 0: until SIGTERM, or the end of a show)");
-    cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
+    add_master_port_option(cmd, a->port);
     cmd->add_option("--cache", a->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
     add_cpu_precompute_flag(cmd, a->cpu_precompute);
     cmd->add_option("--sun-step-deg", a->sun_step_deg, "Default show: the sun turns this much per frame (default 0.1)")
@@ -612,17 +631,16 @@ void register_cluster_commands(CLI::App& app) {
   {
     auto a = std::make_shared<NodeArgs>();
     CLI::App* cmd = app.add_subcommand("node", "Run one render node of a cluster (docs/cluster.md)");
-    cmd->add_option("--cluster", a->cluster, "Cluster config JSON (configs/clusters/)")->required();
+    add_required_cluster_option(cmd, a->cluster);
     cmd->add_option("--name", a->name, "This node's name in the config")->required();
-    cmd->add_option("--out", a->out,
-                    "Write every presented frame to OUT/<node>/<output>/ (default: no frame files; presented.log goes "
-                    "to the config's output directory)");
-    cmd->add_option("--record-frames", a->record_frames,
-                    "Write every presented frame to DIR/<node>/<output>/ (as --out; one file per presented frame)")
-        ->excludes("--out");
+    add_frame_output_options(
+        cmd, a->out, a->record_frames,
+        "Write every presented frame to OUT/<node>/<output>/ (default: no frame files; presented.log goes to the "
+        "config's output directory)",
+        "Write every presented frame to DIR/<node>/<output>/ (as --out; one file per presented frame)");
     cmd->add_option("--cache", a->cache_dir,
                     "This node's table cache (default $XDG_CACHE_HOME/zenith/cluster-nodes/<cluster>/<node>)");
-    cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
+    add_master_port_option(cmd, a->port);
     cmd->add_option("--connect-timeout-ms", a->connect_timeout_ms,
                     "Keep trying to reach the master this long (default 15000)");
     cmd->add_option("--reconnect-s", a->reconnect_s,
@@ -657,11 +675,11 @@ void register_cluster_commands(CLI::App& app) {
     a->operator_console.add_to(*cmd);
     cmd->add_option("--frames", a->frames, "Frames to present (default 10; with --show, the whole show)")
         ->check(CLI::Range(1, 100000000));
-    cmd->add_option("--out", a->out,
-                    "Write every presented frame under OUT/<node>/ and stitch the last (default: no frame files)");
-    cmd->add_option("--record-frames", a->record_frames, "The same as --out DIR: record every presented frame")
-        ->excludes("--out");
-    cmd->add_option("--port", a->port, "Override the config's master port")->check(CLI::Range(1, 65535));
+    add_frame_output_options(
+        cmd, a->out, a->record_frames,
+        "Write every presented frame under OUT/<node>/ and stitch the last (default: no frame files)",
+        "The same as --out DIR: record every presented frame");
+    add_master_port_option(cmd, a->port);
     cmd->add_option("--cache", a->cache_dir, "Master table cache; nodes use CACHE/nodes/<node>");
     cmd->add_option("--sun-step-deg", a->sun_step_deg, "The sun turns this much per frame (default 0.1)")
         ->check(CLI::Range(-10.0, 10.0));

@@ -1,6 +1,8 @@
 #pragma once
 // The benchmarks' own small command lines (`--option value`, comma lists),
 // read the same way by each: cluster_bench, cluster_soak, series_tail_bench.
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -34,6 +36,17 @@ class CommandLine {
   int i_ = 0;
   std::string option_;
 };
+
+/// The last branch of an option chain: for --help or -h prints `usage` and
+/// exits with status 0; any other `option` throws std::invalid_argument
+/// "unknown option '<option>'".
+[[noreturn]] inline void help_or_unknown_option(const std::string& option, const char* usage) {
+  if (option == "--help" || option == "-h") {
+    std::fputs(usage, stdout);
+    std::exit(0);
+  }
+  throw std::invalid_argument("unknown option '" + option + "'");
+}
 
 /// "a,b,,c" → {"a", "b", "c"}.
 inline std::vector<std::string> split_list(const std::string& list) {

@@ -67,6 +67,7 @@
 #include "atmosphere/model_hash.h"
 #include "atmosphere/parameters.h"
 #include "atmosphere/sky_sampling.h"
+#include "bench/command_line.h"
 #include "bench/lut_frame_timer.h"
 #include "bench/pareto.h"
 #include "render/gl/egl_context.h"
@@ -150,11 +151,8 @@ Options parse_options(int argc, char** argv) {
     } else if (a == "--max-rms") {
       o.max_rms = std::stod(value(i, a));
       if (!(*o.max_rms > 0.0)) throw std::invalid_argument("--max-rms: must be > 0");
-    } else if (a == "--help" || a == "-h") {
-      fmt::print("{}", kUsage);
-      std::exit(0);
     } else
-      throw std::invalid_argument(fmt::format("unknown option '{}'", a));
+      zenith::bench::help_or_unknown_option(a, kUsage);
     if (a != "--out") o.command = fmt::format("{} {}", o.command, a);
     if (a == "--presets" || a == "--frame-size" || a == "--frames" || a == "--tolerance" || a == "--max-rms")
       o.command = fmt::format("{} {}", o.command, argv[i]);

@@ -102,11 +102,8 @@ Options parse(int argc, char** argv) {
       o.before = false;
     else if (a == "--split")
       o.split = true;
-    else if (a == "--help" || a == "-h") {
-      fmt::print("{}", kUsage);
-      std::exit(0);
-    } else
-      throw std::invalid_argument("unknown option '" + a + "'");
+    else
+      help_or_unknown_option(a, kUsage);
   }
   return o;
 }

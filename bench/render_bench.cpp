@@ -76,6 +76,7 @@
 #include "atmosphere/lut/precompute_options.h"
 #include "atmosphere/lut/table_cache.h"
 #include "bench/bench_tables.h"
+#include "bench/command_line.h"
 #include "bench/present_bench.h"
 #include "bench/star_frames.h"
 #include "render/gl/egl_context.h"
@@ -239,11 +240,8 @@ Options parse_options(int argc, char** argv) {
       o.viewport = value(i, a);
     else if (a == "--viewport-csv")
       o.viewport_csv = value(i, a);
-    else if (a == "--help" || a == "-h") {
-      fmt::print("{}", kUsage);
-      std::exit(0);
-    } else
-      throw std::invalid_argument("unknown option '" + a + "'");
+    else
+      bench::help_or_unknown_option(a, kUsage);
   }
   return o;
 }

@@ -16,7 +16,8 @@
 
 #include "atmosphere/model_hash.h"
 #include "core/parallel_for.h"
-#include "render/frame/albedo_layers.h"
+#include "render/frame/albedo_array.h"
+#include "render/frame/band_to_texture.h"
 #include "render/frame/frame_conditions.h"
 #include "render/frame/frame_constants.h"
 #include "render/frame/frame_programs.h"
@@ -32,7 +33,6 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
-#include "render/shader_programs.h"
 #include "scene/albedo_map.h"
 
 namespace zenith::render {
@@ -69,24 +69,7 @@ struct Renderer::Impl {
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/frame/star_pass.h)
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
-  std::map<std::string, image::LinearImage> albedo_images;            // by albedo_key
-  std::string albedo_array_key;
-  Texture albedo_array;  // one layer per body, all at the largest map's size
-
-  /// The bodies' maps as the layers of one array texture (rebuilt when the list
-  /// changes; render/frame/albedo_layers.h).
-  void ensure_albedo_array(const std::vector<std::string>& keys) {
-    std::string joined;
-    for (const std::string& k : keys) joined += k + '\n';
-    if (joined == albedo_array_key && albedo_array.id() != 0) return;
-    std::vector<const image::LinearImage*> maps;
-    for (const std::string& k : keys) maps.push_back(&albedo_images.at(k));
-    const AlbedoLayers layers = resample_albedo_layers(maps);
-    albedo_array = Texture::create_2d_array_mipmapped(TextureFormat::rgba16f, layers.width, layers.height,
-                                                      static_cast<int>(layers.layers), layers.rgba);
-    albedo_array.set_repeat_s(true);
-    albedo_array_key = joined;
-  }
+  AlbedoArray albedo;  // the bodies' maps, one layer per body (render/frame/albedo_array.h)
   std::string projection_key;
   std::unique_ptr<TileCones> cones;
   gl::Buffer bodies;
@@ -112,26 +95,9 @@ struct Renderer::Impl {
     band_height = height;
   }
 
-  // render_to_texture(): the band copy (a fragment pass, compiled on first
-  // use), its framebuffer and empty vertex array, the band's black-tile flags
-  // (one uint per tile).
-  struct BandToTexture {
-    ShaderProgram program;
-    unsigned framebuffer = 0, vertex_array = 0;
-    BandToTexture() = default;
-    BandToTexture(const BandToTexture&) = delete;
-    BandToTexture& operator=(const BandToTexture&) = delete;
-    ~BandToTexture() {
-      if (framebuffer != 0) glDeleteFramebuffers(1, &framebuffer);
-      if (vertex_array != 0) glDeleteVertexArrays(1, &vertex_array);
-    }
-    void ensure() {
-      if (program.id() != 0) return;
-      program = load_graphics_program("render/present.vert", "render/band_to_texture.frag");
-      glCreateFramebuffers(1, &framebuffer);
-      glCreateVertexArrays(1, &vertex_array);
-    }
-  } band_to_texture;
+  // render_to_texture()'s band copy (render/frame/band_to_texture.h); the
+  // band's black-tile flags (one uint per tile).
+  BandToTexture band_to_texture;
   gl::Buffer black_tiles;
 
   void ensure_tiles_buffer(std::size_t count) {
@@ -252,9 +218,7 @@ void Renderer::prepare_bodies(Frame& frame) {
       g.world_to_body[row] =
           vec4_of(glm::dvec3(world_to_body[0][row], world_to_body[1][row], world_to_body[2][row]), 0.0);
 
-    const std::string key = albedo_key(body.albedo);
-    if (!im.albedo_images.contains(key)) im.albedo_images.emplace(key, scene::load_albedo_map(body.albedo));
-    albedo_layers.push_back(key);
+    albedo_layers.push_back(im.albedo.load(body.albedo));
 
     if (!body.atmosphere || !options_.atmospheres) continue;
     const atmosphere::AtmosphereModel& model = body.atmosphere->loaded.model;
@@ -282,9 +246,9 @@ void Renderer::prepare_bodies(Frame& frame) {
     s.tiles_total = frame.tiles_total;
     stats_.atmospheres.push_back(s);
   }
-  im.ensure_albedo_array(albedo_layers);
-  for (GpuBody& g : bodies) g.albedo_map = {static_cast<float>(im.albedo_array.width()), 0, 0, 0};
-  im.albedo_array.bind(kAlbedoMapUnit);
+  im.albedo.ensure(albedo_layers);
+  for (GpuBody& g : bodies) g.albedo_map = {static_cast<float>(im.albedo.texture().width()), 0, 0, 0};
+  im.albedo.texture().bind(kAlbedoMapUnit);
   im.bodies = gl::Buffer::from(std::span<const GpuBody>(bodies.empty() ? std::vector<GpuBody>(1) : bodies));
 }
 
@@ -348,7 +312,7 @@ void Renderer::prepare_programs(Frame& frame) {
   // when another body can cast a shadow (a CPU rasterizer runs all of it).
   frame.variant.projection_kind = static_cast<int>(frame.gpu_projection.kind);
   frame.variant.eclipses = options_.atmosphere.eclipses && eclipses_possible(frame.scene);
-  frame.variant.albedo_lod0 = albedo_at_full_resolution(frame.scene, frame.pixel_angle, im.albedo_array.width());
+  frame.variant.albedo_lod0 = albedo_at_full_resolution(frame.scene, frame.pixel_angle, im.albedo.texture().width());
   frame.programs = &im.frame_programs.passes_for(frame.variant);
 }
 
@@ -595,12 +559,6 @@ void Renderer::read_back_band(const Frame& frame, const BandTiles& band, std::ve
 
 // ---- the frame on the GPU (render_to_texture) ---------------------------------
 
-void set_band_uniforms(const gl::ShaderProgram& program, const GpuBand& band) {
-  program.set_uniform("band_origin", std::array<int, 2>{0, band.first_row});
-  program.set_uniform("band_size", std::array<int, 2>{band.width, band.rows});
-  program.set_uniform("tile_columns", band.tile_columns);
-}
-
 void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projection& projection, gl::Texture& target) {
   if (target.id() == 0 || target.is_3d() ||
       (target.format() != TextureFormat::rgba32f && target.format() != TextureFormat::rgba16f) ||
@@ -611,7 +569,7 @@ void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projecti
         target.id() == 0 ? "missing" : gl::to_string(target.format()), target.width(), target.height(),
         projection.width(), projection.height()));
   render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
-    copy_band_to_texture(bind_band_on_gpu(frame, band), target, timer);
+    impl_->band_to_texture.copy(bind_band_on_gpu(frame, band), target, timer);
   });
 }
 
@@ -635,34 +593,6 @@ GpuBand Renderer::bind_band_on_gpu(const Frame& frame, const BandTiles& band) {
   im.black_tiles.bind_storage(binding::kBlackTiles);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the passes' stores to the output buffer
   return {band.first_row, band.rows, frame.band_size[0], frame.cones->columns()};
-}
-
-void Renderer::copy_band_to_texture(const GpuBand& band, gl::Texture& target, PassTimer& timer) {
-  Impl& im = *impl_;
-  Impl::BandToTexture& copy = im.band_to_texture;
-  copy.ensure();
-  const ShaderProgram& p = copy.program;
-  set_band_uniforms(p, band);
-  // The band's rows of the frame's texture as the viewport: row r of the band is texel row first_row + r.
-  glNamedFramebufferTexture(copy.framebuffer, GL_COLOR_ATTACHMENT0, target.id(), 0);
-  glNamedFramebufferDrawBuffer(copy.framebuffer, GL_COLOR_ATTACHMENT0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, copy.framebuffer);
-  glDisable(GL_FRAMEBUFFER_SRGB);
-  glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glViewport(0, band.first_row, band.width, band.rows);
-  timer.gpu("copy to texture", [&] {
-    p.use();
-    glBindVertexArray(copy.vertex_array);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-  });
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  glNamedFramebufferTexture(copy.framebuffer, GL_COLOR_ATTACHMENT0, 0, 0);
-  // The next band's passes write the output buffer this pass reads.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 }  // namespace zenith::render

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "atmosphere/lut/lookup_tables.h"
+#include "render/frame/gpu_band.h"
 #include "render/render_options.h"
 #include "scene/scene.h"
 #include "warp/projection.h"
@@ -46,8 +47,7 @@ namespace zenith::render {
 class PassTimer;   // render/frame/pass_timer.h
 struct BandTiles;  // render/frame/tile_classification.h
 namespace gl {
-class ShaderProgram;  // render/gl/shader_program.h
-class Texture;        // render/gl/texture.h
+class Texture;  // render/gl/texture.h
 }  // namespace gl
 
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
@@ -58,20 +58,8 @@ using TableSource = std::function<atmosphere::lut::LookupTables(const atmosphere
 /// sRGB radiance × exposure, 3 floats per pixel, x fastest.
 using RowSink = std::function<void(int first_row, int row_count, std::span<const float> rgb)>;
 
-/// A band of a frame kept on the GPU, as Renderer::render_on_gpu hands it to
-/// its sink: the band's pixels are in the output buffer bound at
-/// FRAME_RGB_BINDING (render/shader_bindings.h: one vec4 (rgb, 0) per pixel,
-/// rows of `width` pixels from row `first_row` of the frame), the band's
-/// black-tile flags at BLACK_TILES_BINDING (one uint per 16 × 16 tile, row by
-/// row, `tile_columns` a row; 1 where nothing was drawn: those pixels hold stale
-/// values and read as 0). shaders/render/band_output.glsl reads them.
-struct GpuBand {
-  int first_row = 0, rows = 0, width = 0, tile_columns = 0;
-};
-/// Called once per band while its buffers are bound: draws what it needs from them.
+/// Called once per band (render/frame/gpu_band.h) while its buffers are bound: draws what it needs from them.
 using GpuBandSink = std::function<void(const GpuBand& band)>;
-/// band_output.glsl's uniforms of `band` (band_origin, band_size, tile_columns) on `program`.
-void set_band_uniforms(const gl::ShaderProgram& program, const GpuBand& band);
 
 /// What the last frame did, for logs, tests and benchmarks.
 struct FrameStats {
@@ -190,10 +178,6 @@ class Renderer {
   /// Binds the band's output buffer and its black-tile flags for a pass that
   /// reads them (render_on_gpu()'s band output), after the passes' stores.
   GpuBand bind_band_on_gpu(const Frame& frame, const BandTiles& band);
-  /// The band's pixels from the output buffer into rows first_row… of
-  /// `target` on the GPU (zeros for black tiles): render_to_texture()'s band output.
-  /// A draw, not a dispatch: it leaves the default draw framebuffer bound.
-  void copy_band_to_texture(const GpuBand& band, gl::Texture& target, PassTimer& timer);
 
   RenderOptions options_;
   TableSource table_source_;

@@ -12,6 +12,7 @@
 
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/named_inputs.h"
+#include "cluster/link/link_exit.h"
 #include "cluster/link/master_link.h"
 #include "cluster/node/known_atmospheres.h"
 #include "cluster/node/render_worker.h"
@@ -71,8 +72,7 @@ struct Node::Impl {
   bool connected = false;  ///< welcomed, and the connection not lost since
   /// The master's latest PreviewRequest: thumbnails of that frame go with its RenderDone.
   std::optional<PreviewRequest> preview_request;
-  int exit_code = kNodeExitDone;
-  bool finished = false;
+  LinkEnd end;  // the exit code, decided by the first finish()
 
   // ---- the render thread: GL, the renderer, the frame files ----
   std::optional<RenderWorker> worker;  ///< set up in run(), before the threads start
@@ -193,11 +193,7 @@ struct Node::Impl {
   /// Ends the node with `code` (first call wins): stops timers, lets queued
   /// frames flush, tells the render thread to stop after its queued jobs.
   void finish(int code) {
-    if (finished) return;
-    finished = true;
-    exit_code = code;
-    boost::system::error_code ec;
-    signals.cancel(ec);
+    if (!end.finish(code, signals)) return;
     link.stop();
     worker->stop();
   }
@@ -244,7 +240,7 @@ struct Node::Impl {
             }});
 
     signals.async_wait([this](const boost::system::error_code& ec, int signal) {
-      if (ec || finished) return;
+      if (ec || end.finished) return;
       spdlog::info("node '{}': {} received: leaving the cluster", options.node_name,
                    signal == SIGINT ? "SIGINT" : "SIGTERM");
       say_goodbye_and_finish("node stopped by a signal", kNodeExitDone);
@@ -255,18 +251,18 @@ struct Node::Impl {
         io.run();
       } catch (const std::exception& e) {
         spdlog::error("node '{}': networking failed: {}", options.node_name, e.what());
-        exit_code = kNodeExitFailed;
+        end.exit_code = kNodeExitFailed;
         worker->stop();
       }
     });
     worker->run();
     // The network thread ends once the connection flushed and closed.
     asio::post(io, [this] {
-      if (!finished) finish(exit_code);
+      if (!end.finished) finish(end.exit_code);
     });
     network.join();
     worker->release_gl();
-    return exit_code;
+    return end.exit_code;
   }
 };
 

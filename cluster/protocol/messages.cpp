@@ -1,6 +1,7 @@
 #include "cluster/protocol/messages.h"
 
 #include <cmath>
+#include <concepts>
 #include <cstdio>
 #include <stdexcept>
 #include <type_traits>
@@ -146,7 +147,81 @@ void validate(const Thumbnail& m, const Check& check) {
 template <class T>
 void validate(const T&, const Check&) {}
 
+// ---- fixed layouts: one list of fields for the writer and the reader ----------
+//
+// A message whose fields are all integers, doubles and digests lists them once,
+// in wire order, with their names for errors; a field's C++ type is its wire
+// type (byte_io.h: big-endian integers, IEEE doubles, a digest's 32 bytes).
+
+struct FieldWriter {
+  ByteWriter& w;
+  void operator()(const std::uint16_t& v, const char*) { w.u16(v); }
+  void operator()(const std::uint32_t& v, const char*) { w.u32(v); }
+  void operator()(const std::uint64_t& v, const char*) { w.u64(v); }
+  void operator()(const double& v, const char*) { w.f64(v); }
+  void operator()(const Digest& v, const char*) { w.bytes(v); }
+};
+struct FieldReader {
+  ByteReader& r;
+  void operator()(std::uint16_t& v, const char* field) { v = r.u16(field); }
+  void operator()(std::uint32_t& v, const char* field) { v = r.u32(field); }
+  void operator()(std::uint64_t& v, const char* field) { v = r.u64(field); }
+  void operator()(double& v, const char* field) { v = r.f64(field); }
+  void operator()(Digest& v, const char* field) { v = r.array<32>(field); }
+};
+
+/// `M` is the message `T`, const or not (a layout serves the writer and the reader).
+template <class M, class T>
+concept MessageOf = std::same_as<std::remove_const_t<M>, T>;
+
+template <class Io, MessageOf<Welcome> M>
+void layout(Io&& io, M& m) {
+  io(m.node_id, "Welcome.node_id");
+  io(m.master_mac, "Welcome.master_mac");
+  io(m.current_frame, "Welcome.current_frame");
+  io(m.heartbeat_interval_ms, "Welcome.heartbeat_interval_ms");
+  io(m.barrier_timeout_ms, "Welcome.barrier_timeout_ms");
+}
+template <class Io, MessageOf<RenderDone> M>
+void layout(Io&& io, M& m) {
+  io(m.frame, "RenderDone.frame");
+  io(m.render_ms, "RenderDone.render_ms");
+  io(m.presents, "RenderDone.presents");
+  io(m.late_presents, "RenderDone.late_presents");
+  io(m.present_ms, "RenderDone.present_ms");
+}
+template <class Io, MessageOf<PreviewRequest> M>
+void layout(Io&& io, M& m) {
+  io(m.frame, "PreviewRequest.frame");
+  io(m.edge_px, "PreviewRequest.edge_px");
+}
+template <class Io, MessageOf<TableAnnounce> M>
+void layout(Io&& io, M& m) {
+  io(m.table_hash, "TableAnnounce.table_hash");
+  io(m.total_bytes, "TableAnnounce.total_bytes");
+  io(m.chunk_bytes, "TableAnnounce.chunk_bytes");
+  io(m.chunk_count, "TableAnnounce.chunk_count");
+  io(m.content_sha256, "TableAnnounce.content_sha256");
+}
+
+template <class M>
+concept HasLayout = requires(ByteWriter& w, const M& m) {
+  layout(FieldWriter{w}, m);
+};
+
+template <HasLayout M>
+M read_fields(ByteReader& r) {
+  M m;
+  layout(FieldReader{r}, m);
+  return m;
+}
+
 // ---- writers -------------------------------------------------------------------
+
+template <HasLayout M>
+void write(ByteWriter& w, const M& m) {
+  layout(FieldWriter{w}, m);
+}
 
 void write(ByteWriter& w, const Hello& m) {
   w.u16(m.protocol_version);
@@ -158,13 +233,6 @@ void write(ByteWriter& w, const Hello& m) {
 }
 void write(ByteWriter& w, const Challenge& m) { w.bytes(m.master_nonce); }
 void write(ByteWriter& w, const Authenticate& m) { w.bytes(m.node_mac); }
-void write(ByteWriter& w, const Welcome& m) {
-  w.u32(m.node_id);
-  w.bytes(m.master_mac);
-  w.u64(m.current_frame);
-  w.u32(m.heartbeat_interval_ms);
-  w.u32(m.barrier_timeout_ms);
-}
 void write(ByteWriter& w, const Reject& m) {
   w.u16(static_cast<std::uint16_t>(m.reason));
   w.string(m.text, kMaxReasonBytes, "Reject.text");
@@ -196,18 +264,7 @@ void write(ByteWriter& w, const FrameState& m) {
   w.f64(m.sky.utc_jd2);
   w.bytes(m.sky.star_catalogue);
 }
-void write(ByteWriter& w, const RenderDone& m) {
-  w.u64(m.frame);
-  w.f64(m.render_ms);
-  w.u64(m.presents);
-  w.u64(m.late_presents);
-  w.f64(m.present_ms);
-}
 void write(ByteWriter& w, const Present& m) { w.u64(m.frame); }
-void write(ByteWriter& w, const PreviewRequest& m) {
-  w.u64(m.frame);
-  w.u16(m.edge_px);
-}
 void write(ByteWriter& w, const Thumbnail& m) {
   w.u64(m.frame);
   w.string(m.output, kMaxNameBytes, "Thumbnail.output");
@@ -215,13 +272,6 @@ void write(ByteWriter& w, const Thumbnail& m) {
   w.u16(m.height_px);
   w.u32(static_cast<std::uint32_t>(m.rgb.size()));
   w.bytes(m.rgb);
-}
-void write(ByteWriter& w, const TableAnnounce& m) {
-  w.bytes(m.table_hash);
-  w.u64(m.total_bytes);
-  w.u32(m.chunk_bytes);
-  w.u32(m.chunk_count);
-  w.bytes(m.content_sha256);
 }
 void write(ByteWriter& w, const TableChunk& m) {
   w.bytes(m.table_hash);
@@ -252,15 +302,6 @@ Hello read_hello(ByteReader& r) {
   m.node_nonce = r.array<32>("Hello.node_nonce");
   m.role = static_cast<PeerRole>(r.u8("Hello.role"));
   m.instance_id = r.u64("Hello.instance_id");
-  return m;
-}
-Welcome read_welcome(ByteReader& r) {
-  Welcome m;
-  m.node_id = r.u32("Welcome.node_id");
-  m.master_mac = r.array<32>("Welcome.master_mac");
-  m.current_frame = r.u64("Welcome.current_frame");
-  m.heartbeat_interval_ms = r.u32("Welcome.heartbeat_interval_ms");
-  m.barrier_timeout_ms = r.u32("Welcome.barrier_timeout_ms");
   return m;
 }
 FrameState read_frame_state(ByteReader& r) {
@@ -305,15 +346,6 @@ FrameState read_frame_state(ByteReader& r) {
   m.sky.star_catalogue = r.array<32>("FrameState.sky.star_catalogue");
   return m;
 }
-TableAnnounce read_table_announce(ByteReader& r) {
-  TableAnnounce m;
-  m.table_hash = r.array<32>("TableAnnounce.table_hash");
-  m.total_bytes = r.u64("TableAnnounce.total_bytes");
-  m.chunk_bytes = r.u32("TableAnnounce.chunk_bytes");
-  m.chunk_count = r.u32("TableAnnounce.chunk_count");
-  m.content_sha256 = r.array<32>("TableAnnounce.content_sha256");
-  return m;
-}
 TableChunk read_table_chunk(ByteReader& r) {
   TableChunk m;
   m.table_hash = r.array<32>("TableChunk.table_hash");
@@ -347,7 +379,7 @@ Message read(MessageType type, ByteReader& r) {
     case MessageType::hello: return read_hello(r);
     case MessageType::challenge: return Challenge{r.array<32>("Challenge.master_nonce")};
     case MessageType::authenticate: return Authenticate{r.array<32>("Authenticate.node_mac")};
-    case MessageType::welcome: return read_welcome(r);
+    case MessageType::welcome: return read_fields<Welcome>(r);
     case MessageType::reject: {
       Reject m;
       m.reason = static_cast<RejectReason>(r.u16("Reject.reason"));
@@ -355,24 +387,11 @@ Message read(MessageType type, ByteReader& r) {
       return m;
     }
     case MessageType::frame_state: return read_frame_state(r);
-    case MessageType::render_done: {
-      RenderDone m;
-      m.frame = r.u64("RenderDone.frame");
-      m.render_ms = r.f64("RenderDone.render_ms");
-      m.presents = r.u64("RenderDone.presents");
-      m.late_presents = r.u64("RenderDone.late_presents");
-      m.present_ms = r.f64("RenderDone.present_ms");
-      return m;
-    }
+    case MessageType::render_done: return read_fields<RenderDone>(r);
     case MessageType::present: return Present{r.u64("Present.frame")};
-    case MessageType::preview_request: {
-      PreviewRequest m;
-      m.frame = r.u64("PreviewRequest.frame");
-      m.edge_px = r.u16("PreviewRequest.edge_px");
-      return m;
-    }
+    case MessageType::preview_request: return read_fields<PreviewRequest>(r);
     case MessageType::thumbnail: return read_thumbnail(r);
-    case MessageType::table_announce: return read_table_announce(r);
+    case MessageType::table_announce: return read_fields<TableAnnounce>(r);
     case MessageType::table_chunk: return read_table_chunk(r);
     case MessageType::table_ready: return TableReady{r.array<32>("TableReady.table_hash")};
     case MessageType::atmosphere_definition: {

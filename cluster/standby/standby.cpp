@@ -31,8 +31,7 @@ struct Standby::Impl {
   StandbyFollower follower;  ///< every table version and the last frames of the active master
   TakeoverRule rule;         ///< following, checking after a loss, taking over
   std::optional<MasterLink> link;
-  int exit_code = kNodeExitDone;
-  bool finished = false;
+  LinkEnd end;  // the exit code, decided by the first finish()
   Clock::time_point lost_at;
 
   Impl(StandbyOptions o, SharedSecret s) : options(std::move(o)), secret(std::move(s)) {}
@@ -58,11 +57,7 @@ struct Standby::Impl {
 
   /// Ends following with `code` (first call wins): the signal wait and the link stop, io.run() returns.
   void finish(int code) {
-    if (finished) return;
-    finished = true;
-    exit_code = code;
-    boost::system::error_code ec;
-    signals.cancel(ec);
+    if (!end.finish(code, signals)) return;
     link->stop();
   }
 
@@ -149,7 +144,7 @@ struct Standby::Impl {
                                     [this](const Message& m) { on_message(m); }, [this](int code) { finish(code); },
                                     [this](const std::string& reason) { on_attempt_failed(reason); }});
     signals.async_wait([this](const boost::system::error_code& ec, int signal) {
-      if (ec || finished) return;
+      if (ec || end.finished) return;
       spdlog::info("standby: {} received: leaving", signal == SIGINT ? "SIGINT" : "SIGTERM");
       link->say_goodbye("standby stopped by a signal");
       finish(kNodeExitDone);
@@ -158,7 +153,7 @@ struct Standby::Impl {
                  config().name, link->master_address(), config().standby->text());
     link->start();
     io.run();
-    if (rule.phase() != TakeoverRule::Phase::taking_over) return exit_code;
+    if (rule.phase() != TakeoverRule::Phase::taking_over) return end.exit_code;
     link.reset();
     return take_over();
   }

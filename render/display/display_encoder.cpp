@@ -67,35 +67,6 @@ void DisplayEncoder::set_stage(const gl::ShaderProgram& p, int width, int height
   if (stage.blended && stage.blend_mask != nullptr) stage.blend_mask->bind(binding::kBlendMaskUnit);
 }
 
-DisplayEncoder::~DisplayEncoder() { release(); }
-
-DisplayEncoder::DisplayEncoder(DisplayEncoder&& other) noexcept
-    : encode_program_(std::move(other.encode_program_)),
-      band_program_(std::move(other.band_program_)),
-      framebuffer_(std::exchange(other.framebuffer_, 0u)),
-      vertex_array_(std::exchange(other.vertex_array_, 0u)),
-      thumbnail_program_(std::move(other.thumbnail_program_)),
-      thumbnail_target_(std::move(other.thumbnail_target_)) {}
-
-DisplayEncoder& DisplayEncoder::operator=(DisplayEncoder&& other) noexcept {
-  if (this != &other) {
-    release();
-    encode_program_ = std::move(other.encode_program_);
-    band_program_ = std::move(other.band_program_);
-    framebuffer_ = std::exchange(other.framebuffer_, 0u);
-    vertex_array_ = std::exchange(other.vertex_array_, 0u);
-    thumbnail_program_ = std::move(other.thumbnail_program_);
-    thumbnail_target_ = std::move(other.thumbnail_target_);
-  }
-  return *this;
-}
-
-void DisplayEncoder::release() noexcept {
-  if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
-  if (vertex_array_ != 0) glDeleteVertexArrays(1, &vertex_array_);
-  framebuffer_ = vertex_array_ = 0;
-}
-
 void DisplayEncoder::encode(const gl::Texture& radiance, const OutputStage& stage, gl::Texture& display) {
   if ((display.format() != TextureFormat::rgba8 && display.format() != TextureFormat::rgba16) || display.is_3d() ||
       display.width() != radiance.width() || display.height() != radiance.height())
@@ -131,27 +102,10 @@ void DisplayEncoder::encode_band(const GpuBand& band, const OutputStage& stage, 
 }
 
 void DisplayEncoder::draw_rows(const gl::ShaderProgram& p, gl::Texture& display, int first_row, int rows) {
-  if (framebuffer_ == 0) {
-    glCreateFramebuffers(1, &framebuffer_);
-    glCreateVertexArrays(1, &vertex_array_);
-  }
   p.set_uniform("code_max", display.format() == TextureFormat::rgba8 ? 255.0f : 65535.0f);
-  // The display texture as the framebuffer: fragment (x, y) writes texel (x, y).
-  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, display.id(), 0);
-  glNamedFramebufferDrawBuffer(framebuffer_, GL_COLOR_ATTACHMENT0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
-  glDisable(GL_FRAMEBUFFER_SRGB);
-  glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glViewport(0, first_row, display.width(), rows);
-  p.use();
-  glBindVertexArray(vertex_array_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, 0, 0);  // keeps no texture alive
+  rows_.bind(display, first_row, rows);
+  rows_.draw(p);
+  rows_.unbind();
   gl::check_gl_error("display pass");
 }
 

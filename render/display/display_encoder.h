@@ -21,6 +21,7 @@
 #include "image/tone_mapping.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/gl/texture_rows_draw.h"
 #include "render/renderer.h"
 #include "warp/blending.h"
 
@@ -68,11 +69,6 @@ class DisplayEncoder {
  public:
   /// Compiles nothing yet: each program on first use.
   DisplayEncoder() = default;
-  ~DisplayEncoder();
-  DisplayEncoder(DisplayEncoder&& other) noexcept;
-  DisplayEncoder& operator=(DisplayEncoder&& other) noexcept;
-  DisplayEncoder(const DisplayEncoder&) = delete;
-  DisplayEncoder& operator=(const DisplayEncoder&) = delete;
 
   /// `radiance` (a 2D texture, e.g. rgba32f from Renderer::render_to_texture)
   /// through `stage` into `display` (rgba8 or rgba16, the same size). Throws
@@ -98,12 +94,9 @@ class DisplayEncoder {
   /// Draws `program` over rows [first_row, first_row + rows) of `display`.
   void draw_rows(const gl::ShaderProgram& program, gl::Texture& display, int first_row, int rows);
 
-  void release() noexcept;
-
   gl::ShaderProgram encode_program_;  // present.vert + display_encode.frag
   gl::ShaderProgram band_program_;    // the same, FROM_BAND 1
-  unsigned framebuffer_ = 0;          // the display texture as colour attachment
-  unsigned vertex_array_ = 0;         // empty: the triangle comes from gl_VertexID
+  gl::TextureRowsDraw rows_;          // the display texture's rows as the framebuffer
   gl::ShaderProgram thumbnail_program_;
   gl::Texture thumbnail_target_;  // rgba32f, (re)allocated per thumbnail size
 };

@@ -207,6 +207,16 @@ class ClusterProcess : public ::testing::Test {
     children_.push_back(spawn(args, dir_ / (name + ".log")));
     return children_.back();
   }
+  /// The master with the sun standing still and the operator console on `http` (OSC on `osc`),
+  /// `extra` arguments after those, and the three nodes.
+  Child start_operated_cluster(const fs::path& config, int http, int osc, const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args = {"--sun-step-deg",     "0",          "--operator-port",
+                                     std::to_string(http), "--osc-port", std::to_string(osc)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Child master = start_master(config, 0, 120000, args);
+    for (const char* n : {"a", "b", "c"}) start_node(config, n);
+    return master;
+  }
   /// The sunset fixture (tests/data/shows/offline-sunset.json: 2.5 s, two table versions) played
   /// live at 2 fps, looping, with the operator console on `http` (and OSC on `osc`), and the three
   /// nodes rendering its scene.
@@ -1474,10 +1484,7 @@ bool all_nodes(const nlohmann::json& status, const std::string& state) {
 TEST_F(ClusterProcess, OperatorConsoleSwitchesAnAtmosphereOnEveryNodeAtOneFrameAndRefusesBadCommands) {
   const fs::path config = write_config(10);
   const int http = port_ + 2, osc = port_ + 3;
-  const Child master = start_master(config, 0, 120000,
-                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
-                                     std::to_string(osc), "--debug-table-delay-ms", "3000"});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  const Child master = start_operated_cluster(config, http, osc, {"--debug-table-delay-ms", "3000"});
   ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready"); }, 400s)) << logs();
   const nlohmann::json first = console_status(http);
   EXPECT_EQ(first["state"], "playing");
@@ -1660,10 +1667,7 @@ bool sun_is(int port, double elevation_deg, double azimuth_deg) {
 TEST_F(ClusterProcess, OperatorConsoleSetsTheSunOfTheDefaultShowOverHttpAndOscUntilCleared) {
   const fs::path config = write_config(10);
   const int http = port_ + 2, osc = port_ + 3;
-  const Child master =
-      start_master(config, 0, 120000,
-                   {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port", std::to_string(osc)});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  const Child master = start_operated_cluster(config, http, osc);
   ASSERT_TRUE(
       wait_until([&] { return all_nodes(console_status(http), "ready") && status_sun(console_status(http)); }, 400s))
       << logs();
@@ -1815,10 +1819,7 @@ TEST_F(ClusterProcess, OperatorConsoleSetsAnAtmosphereDuringAShowWhichFollowsThe
 TEST_F(ClusterProcess, OperatorConsoleShowsTheDomeFromTheNodesThumbnailsOnlyWhileThePreviewIsOn) {
   const fs::path config = write_config(10);
   const int http = port_ + 2, osc = port_ + 3;
-  const Child master =
-      start_master(config, 0, 120000,
-                   {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port", std::to_string(osc)});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  const Child master = start_operated_cluster(config, http, osc);
   ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 3; }, 400s)) << logs();
   // Off by default: no thumbnails, no preview.
   nlohmann::json preview = console_status(http)["preview"];
@@ -2079,10 +2080,7 @@ TEST_F(ClusterProcess, OperatorFadesEveryNodeAtOneFrameBlacksOutAtTheNextAndTheR
   const int http = port_ + 2, osc = port_ + 3;
   const fs::path recording = dir_ / "recording.json";
   // The sun stands still: every frame is the same picture, but for the fade.
-  const Child master = start_master(config, 0, 120000,
-                                    {"--sun-step-deg", "0", "--operator-port", std::to_string(http), "--osc-port",
-                                     std::to_string(osc), "--record", recording.string()});
-  for (const char* n : {"a", "b", "c"}) start_node(config, n);
+  const Child master = start_operated_cluster(config, http, osc, {"--record", recording.string()});
   ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready") && all_nodes_past(1); }, 400s))
       << logs();
 

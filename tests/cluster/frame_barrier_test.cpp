@@ -20,6 +20,17 @@ FrameBarrier three_nodes_at(std::uint64_t frame) {
   return barrier;
 }
 
+/// Frame 0 on nodes 1, 2 and 3 released without node 2's report (the barrier
+/// timed out): node 2 lags.
+FrameBarrier node_2_dropped_from_frame_0() {
+  FrameBarrier barrier = three_nodes_at(0);
+  barrier.on_render_done(1, 0);
+  barrier.on_render_done(3, 0);
+  barrier.drop_unfinished();
+  barrier.release();
+  return barrier;
+}
+
 TEST(FrameBarrier, StartsAtFrameZeroWithNothingInFlight) {
   const FrameBarrier barrier;
   EXPECT_EQ(barrier.frame(), 0u);
@@ -145,11 +156,7 @@ TEST(FrameBarrier, TimeoutWithNoReportPresentsToNobody) {
 }
 
 TEST(FrameBarrier, ALaggingNodeIsLeftOutOfLaterFrames) {
-  FrameBarrier barrier = three_nodes_at(0);
-  barrier.on_render_done(1, 0);
-  barrier.on_render_done(3, 0);
-  barrier.drop_unfinished();
-  barrier.release();
+  FrameBarrier barrier = node_2_dropped_from_frame_0();
   const Ids participants = barrier.participants_among({1, 2, 3});
   EXPECT_EQ(participants, (Ids{1, 3}));
   barrier.begin(barrier.frame(), participants);
@@ -160,11 +167,7 @@ TEST(FrameBarrier, ALaggingNodeIsLeftOutOfLaterFrames) {
 }
 
 TEST(FrameBarrier, ALateReportDuringALaterFrameRejoinsAtTheNextBoundary) {
-  FrameBarrier barrier = three_nodes_at(0);
-  barrier.on_render_done(1, 0);
-  barrier.on_render_done(3, 0);
-  barrier.drop_unfinished();
-  barrier.release();
+  FrameBarrier barrier = node_2_dropped_from_frame_0();
   barrier.begin(barrier.frame(), barrier.participants_among({1, 2, 3}));  // frame 1 on 1 and 3
 
   EXPECT_EQ(barrier.on_render_done(2, 0), Report::rejoins);  // frame 0, late

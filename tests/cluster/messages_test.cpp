@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "cluster/protocol/crc32c.h"
 #include "cluster/protocol/sample_messages.h"
@@ -95,23 +96,37 @@ TEST(Messages, MaximumSizeMessagesRoundTripAndReachTheirDocumentedLimitExactly) 
 }
 
 TEST(Messages, DocumentedMaximumPayloads) {
-  const auto max = [](MessageType t) { return *max_payload_bytes(static_cast<std::uint16_t>(t)); };
-  EXPECT_EQ(max(MessageType::hello), 175u);
-  EXPECT_EQ(max(MessageType::challenge), 32u);
-  EXPECT_EQ(max(MessageType::authenticate), 32u);
-  EXPECT_EQ(max(MessageType::welcome), 52u);
-  EXPECT_EQ(max(MessageType::reject), 1028u);
-  EXPECT_EQ(max(MessageType::frame_state), 1559u);
-  EXPECT_EQ(max(MessageType::render_done), 40u);
-  EXPECT_EQ(max(MessageType::present), 8u);
-  EXPECT_EQ(max(MessageType::table_announce), 80u);
-  EXPECT_EQ(max(MessageType::table_chunk), 1048616u);
-  EXPECT_EQ(max(MessageType::table_ready), 32u);
-  EXPECT_EQ(max(MessageType::heartbeat), 8u);
-  EXPECT_EQ(max(MessageType::goodbye), 1026u);
-  EXPECT_EQ(max(MessageType::atmosphere_definition), 66u + 32u + 4u + 262144u);
-  EXPECT_EQ(max(MessageType::preview_request), 10u);
-  EXPECT_EQ(max(MessageType::thumbnail), 8u + 66u + 2u + 2u + 4u + 64u * 64u * 3u);
+  // Each payload at its limits, field by field (messages.cpp): an integer's
+  // bytes, a string's 2-byte length and kMaxNameBytes (64) or kMaxReasonBytes
+  // (1024), a digest's 32 bytes.
+  const std::pair<MessageType, std::size_t> expected[] = {
+      // version, cluster name, node name, nonce, role, instance id
+      {MessageType::hello, 2u + 66u + 66u + 32u + 1u + 8u},
+      {MessageType::challenge, 32u},     // nonce
+      {MessageType::authenticate, 32u},  // MAC
+      // node id, MAC, current frame, heartbeat interval, barrier timeout
+      {MessageType::welcome, 4u + 32u + 8u + 4u + 4u},
+      {MessageType::reject, 2u + 1026u},  // reason, text
+      // frame, show time, camera position and orientation, exposure, sun direction and radius; 64 irradiance
+      // samples; 8 atmospheres (body name, table hash, from frame); flags; fade level and colour; sky clock
+      // (has time, two-part Julian date, catalogue digest)
+      {MessageType::frame_state, 8u + 8u + 3u * 8u + 4u * 8u + 8u + 3u * 8u + 8u + (1u + 64u * 8u) +
+                                     (1u + 8u * (66u + 32u + 8u)) + 4u + 8u + 3u * 8u + 1u + 2u * 8u + 32u},
+      {MessageType::render_done, 5u * 8u},  // frame, render ms, presents, late presents, present ms
+      {MessageType::present, 8u},           // frame
+      // hash, total bytes, chunk bytes, chunk count, content digest
+      {MessageType::table_announce, 32u + 8u + 4u + 4u + 32u},
+      {MessageType::table_chunk, 32u + 4u + 4u + (1u << 20)},  // hash, index, length, 1 MiB
+      {MessageType::table_ready, 32u},                         // hash
+      {MessageType::heartbeat, 8u},                            // frame
+      {MessageType::goodbye, 1026u},                           // text
+      // body name, table hash, length, 256 KiB of JSON
+      {MessageType::atmosphere_definition, 66u + 32u + 4u + 262144u},
+      {MessageType::preview_request, 8u + 2u},  // frame, edge
+      // frame, output name, width, height, length, 64 × 64 RGB bytes
+      {MessageType::thumbnail, 8u + 66u + 2u + 2u + 4u + 64u * 64u * 3u}};
+  for (const auto& [type, bytes] : expected)
+    EXPECT_EQ(max_payload_bytes(static_cast<std::uint16_t>(type)), bytes) << to_string(type);
   EXPECT_FALSE(max_payload_bytes(0).has_value());
   EXPECT_FALSE(max_payload_bytes(6).has_value());
   EXPECT_FALSE(max_payload_bytes(0xFFFF).has_value());

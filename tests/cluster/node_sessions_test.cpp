@@ -58,6 +58,12 @@ class NodeSessionsTest : public ::testing::Test {
     sessions_.on_handshake_message(*peer.session, peer.handshake.on_challenge(std::get<Challenge>(challenge)), config_,
                                    7, now);
   }
+  /// A node process `instance_id` connected and authenticated at `now`.
+  Peer joined(std::uint64_t instance_id, Clock::time_point now) {
+    Peer peer = connect(instance_id);
+    authenticate(peer, now);
+    return peer;
+  }
   /// The next message the master sent on `socket` (its writes run on io_).
   Message next_message(tcp::socket& socket) {
     FrameDecoder decoder;
@@ -85,8 +91,7 @@ class NodeSessionsTest : public ::testing::Test {
 
 TEST_F(NodeSessionsTest, ASecondProcessWithAConnectedNameIsRefusedAndTheHolderKeepsIt) {
   const Clock::time_point now = Clock::now();
-  Peer holder = connect(0x1111);
-  authenticate(holder, now);
+  Peer holder = joined(0x1111, now);
   ASSERT_EQ(holder.session->state, NodeSession::State::tables);
 
   Peer stray = connect(0x2222);
@@ -105,11 +110,9 @@ TEST_F(NodeSessionsTest, ASecondProcessWithAConnectedNameIsRefusedAndTheHolderKe
 
 TEST_F(NodeSessionsTest, TheSameProcessRejoiningAfterADropReplacesItsOldConnection) {
   const Clock::time_point now = Clock::now();
-  Peer first = connect(0x1111);
-  authenticate(first, now);
+  Peer first = joined(0x1111, now);
   // Its connection dropped on the node's side; the master has not noticed yet.
-  Peer again = connect(0x1111);
-  authenticate(again, now + 100ms);
+  Peer again = joined(0x1111, now + 100ms);
   EXPECT_EQ(again.session->state, NodeSession::State::tables);
   EXPECT_FALSE(first.session->connection->is_open()) << "the old connection is closed for the new one";
 }
@@ -118,11 +121,9 @@ TEST_F(NodeSessionsTest, AnotherProcessReplacesAHolderSilentPastTheLimit) {
   EXPECT_DOUBLE_EQ(duplicate_alive_ms(200), 2000.0) << "two heartbeats, at least 2 s";
   EXPECT_DOUBLE_EQ(duplicate_alive_ms(5000), 10000.0);
   const Clock::time_point now = Clock::now();
-  Peer dead = connect(0x1111);
-  authenticate(dead, now);
+  Peer dead = joined(0x1111, now);
   // Its machine died without closing the socket: nothing received for longer than 2 s.
-  Peer successor = connect(0x3333);
-  authenticate(successor, now + 2500ms);
+  Peer successor = joined(0x3333, now + 2500ms);
   EXPECT_EQ(successor.session->state, NodeSession::State::tables);
   EXPECT_FALSE(dead.session->connection->is_open());
 }

@@ -45,21 +45,10 @@ using testing::look_rotation;
 /// Earth (advanced preset), the camera 2 m above the north pole with its +y
 /// (the dome's zenith) along the local vertical, the sun 60° from the zenith.
 scene::Scene dome_scene() {
-  const SmallTables& t = SmallTables::get("earth-advanced");
-  scene::Scene s;
-  s.name = "blend reconstruction";
-  s.wavelengths_nm = t.model.wavelengths_nm;
-  scene::Body planet;
-  planet.name = "earth";
-  planet.radius_m = t.model.ground_radius_m;
-  planet.albedo.colour_linear_rgb = {0.1, 0.1, 0.1};
-  planet.atmosphere = scene::BodyAtmosphere{"preset:earth-advanced", atmosphere::load_preset("earth-advanced")};
-  s.bodies.push_back(planet);
+  scene::Scene s = testing::one_planet_scene("blend reconstruction", "earth", "earth-advanced", "earth-advanced");
   s.sun.direction = {std::sin(60.0 * kDeg) * std::cos(0.7), std::sin(60.0 * kDeg) * std::sin(0.7),
                      std::cos(60.0 * kDeg)};
-  s.sun.angular_radius_rad = 4.65e-3;
-  for (double w : s.wavelengths_nm) s.sun.irradiance_W_m2_nm.push_back(atmosphere::solar_irradiance_W_m2_nm(w));
-  s.camera.position_m = {0.0, 0.0, t.model.ground_radius_m + 2.0};
+  s.camera.position_m = {0.0, 0.0, s.bodies[0].radius_m + 2.0};
   s.camera.orientation = look_rotation({1, 0, 0}, {0, 0, 1});
   s.camera.exposure = 10.0;
   return s;

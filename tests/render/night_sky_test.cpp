@@ -40,8 +40,6 @@ namespace {
 
 using atmosphere::lut::SmallTables;
 using core::kDeg;
-using testing::context;
-using testing::look_rotation;
 
 #define REQUIRE_CATALOGUE()                                                                        \
   if (!std::filesystem::exists(astro::kStellariumStarDirectory / "stars_0_0v0_8.cat"))             \
@@ -61,25 +59,14 @@ astro::StarCatalogue bright_stars() {
 /// clock at Greenwich on kTime, the camera 2 m up looking along `look` (a
 /// direction in the site's east-north-up frame), the sun below the ground.
 scene::Scene greenwich(const std::string& preset, const glm::dvec3& look_enu, double exposure) {
-  const SmallTables& t = SmallTables::get("earth-advanced");
-  scene::Scene s;
-  s.name = "night sky test";
-  s.wavelengths_nm = t.model.wavelengths_nm;
-  scene::Body earth;
-  earth.name = "Earth";
-  earth.radius_m = t.model.ground_radius_m;
-  earth.albedo.colour_linear_rgb = {0.1, 0.1, 0.1};
-  if (!preset.empty()) earth.atmosphere = scene::BodyAtmosphere{"preset:" + preset, atmosphere::load_preset(preset)};
-  s.bodies.push_back(earth);
-  s.camera.position_m =
-      scene::direction_from_latitude_longitude(kLatitudeDeg * kDeg, kLongitudeDeg * kDeg) * (earth.radius_m + 2.0);
+  scene::Scene s = testing::one_planet_scene("night sky test", "Earth", "earth-advanced", preset);
+  s.camera.position_m = scene::direction_from_latitude_longitude(kLatitudeDeg * kDeg, kLongitudeDeg * kDeg) *
+                        (s.bodies[0].radius_m + 2.0);
   const scene::LocalHorizon h = scene::local_horizon_at(s.camera.position_m, s.bodies[0]);
   const glm::dvec3 forward = glm::normalize(look_enu.x * h.east + look_enu.y * h.north + look_enu.z * h.up);
-  s.camera.orientation = look_rotation(forward, std::abs(look_enu.z) > 0.99 ? h.north : h.up);
+  s.camera.orientation = testing::look_rotation(forward, std::abs(look_enu.z) > 0.99 ? h.north : h.up);
   s.camera.exposure = exposure;
   s.sun.direction = -h.up;  // midnight
-  s.sun.angular_radius_rad = 4.65e-3;
-  for (double w : s.wavelengths_nm) s.sun.irradiance_W_m2_nm.push_back(atmosphere::solar_irradiance_W_m2_nm(w));
   s.sky_clock = scene::SkyClock{kTime, astro::Site{kLatitudeDeg, kLongitudeDeg, 46.0}, 0};
   return s;
 }
@@ -98,7 +85,7 @@ RenderOptions options(bool stars, bool floor) {
 struct TestRenderer {
   Renderer renderer;
   explicit TestRenderer(const RenderOptions& o)
-      : renderer((context(), o), [](const atmosphere::AtmosphereModel& model) {
+      : renderer((testing::context(), o), [](const atmosphere::AtmosphereModel& model) {
           for (const char* preset : {"earth-advanced", "mars"}) {
             const SmallTables& t = SmallTables::get(preset);
             if (atmosphere::lookup_table_hash(t.model) == atmosphere::lookup_table_hash(model)) return t.tables;

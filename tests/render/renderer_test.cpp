@@ -56,20 +56,9 @@ glm::dvec3 sky_direction(double zenith_deg, double azimuth_deg) {
 /// angle and azimuth 0.
 scene::Scene planet_scene(const std::string& preset, double altitude_m, double sun_zenith_deg,
                           const glm::dvec3& forward, double exposure = 10.0) {
-  const SmallTables& t = SmallTables::get(preset);
-  scene::Scene s;
-  s.name = preset + " test";
-  s.wavelengths_nm = t.model.wavelengths_nm;
-  scene::Body planet;
-  planet.name = "planet";
-  planet.radius_m = t.model.ground_radius_m;
-  planet.albedo.colour_linear_rgb = {0.1, 0.1, 0.1};
-  planet.atmosphere = scene::BodyAtmosphere{"preset:" + preset, atmosphere::load_preset(preset)};
-  s.bodies.push_back(planet);
+  scene::Scene s = testing::one_planet_scene(preset + " test", "planet", preset, preset);
   s.sun.direction = sky_direction(sun_zenith_deg, 0.0);
-  s.sun.angular_radius_rad = 4.65e-3;
-  for (double w : s.wavelengths_nm) s.sun.irradiance_W_m2_nm.push_back(atmosphere::solar_irradiance_W_m2_nm(w));
-  s.camera.position_m = {0.0, 0.0, t.model.ground_radius_m + altitude_m};
+  s.camera.position_m = {0.0, 0.0, s.bodies[0].radius_m + altitude_m};
   const glm::dvec3 up = std::abs(forward.z) > 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 0, 1);
   s.camera.orientation = look_rotation(forward, up);
   s.camera.exposure = exposure;

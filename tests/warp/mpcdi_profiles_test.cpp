@@ -61,6 +61,12 @@ struct Frustum {
 
 PlanarFrustum planar_of(const Frustum& f) { return {f.left, f.right, f.down, f.up, f.yaw, f.pitch, f.roll}; }
 
+/// The same frustum as a viewport config's "projection" object (a planar output).
+json planar_projection(const Frustum& f) {
+  return {{"type", "planar"}, {"left_deg", f.left}, {"right_deg", f.right}, {"down_deg", f.down},
+          {"up_deg", f.up},   {"yaw_deg", f.yaw},   {"pitch_deg", f.pitch}, {"roll_deg", f.roll}};
+}
+
 std::string frustum_xml(const Frustum& f) {
   return "<frustum><yaw>" + num(f.yaw) + "</yaw><pitch>" + num(f.pitch) + "</pitch><roll>" + num(f.roll) +
          "</roll><rightAngle>" + num(f.right) + "</rightAngle><leftAngle>" + num(f.left) + "</leftAngle><upAngle>" +
@@ -173,15 +179,7 @@ TEST(MpcdiProfiles, AFrustumRegionHasTheRaysOfTheSameFrustumAsAJsonPlanarOutput)
   const Frustum f{326.7, 12.5, 350.0, -35.0, 28.0, 22.0, -18.0};
   archive(dir, "3d.mpcdi", descriptor("3d", frustum_xml(f), kAlphaBeta));
   archive(dir, "sl.mpcdi", descriptor("sl", frustum_xml(f) + frame_xml(Frame{}), kAlphaBeta));
-  const json planar = {{"projection",
-                        {{"type", "planar"},
-                         {"left_deg", f.left},
-                         {"right_deg", f.right},
-                         {"down_deg", f.down},
-                         {"up_deg", f.up},
-                         {"yaw_deg", f.yaw},
-                         {"pitch_deg", f.pitch},
-                         {"roll_deg", f.roll}}}};
+  const json planar = {{"projection", planar_projection(f)}};
   const ViewportConfig json_planar = viewport(dir, planar);
   const ViewportConfig three_d = viewport(dir, mpcdi_warp("3d.mpcdi"));
   const ViewportConfig shader_lamp = viewport(dir, mpcdi_warp("sl.mpcdi"));
@@ -314,15 +312,7 @@ TEST(MpcdiProfiles, A2dWarpOfA3dRegionAndAnSlDistortionMapWarpTheFrustumsImage) 
           {{"w.pfm", pfm}});
   dir.write("w.pfm", pfm);
   const json plain = {
-      {"projection",
-       {{"type", "planar"},
-        {"left_deg", f.left},
-        {"right_deg", f.right},
-        {"down_deg", f.down},
-        {"up_deg", f.up},
-        {"yaw_deg", f.yaw},
-        {"pitch_deg", f.pitch},
-        {"roll_deg", f.roll}}},
+      {"projection", planar_projection(f)},
       {"warp",
        {{"file", "w.pfm"}, {"format", "pfm"}, {"row_order", "top_to_bottom"}, {"source", {{"size_px", {320, 200}}}}}}};
   ViewportConfig reference = viewport(dir, plain, 40, 30);

@@ -268,6 +268,10 @@ TEST(WarpMapConventions, ViewportKeysSelectTheConventions) {
                           },
                           true, false));
   const auto parse = [&](const json& warp) { return parse_viewport_config(pfm_output(warp), "v.json", dir.path()); };
+  // A warp the config refuses: the error names each of `parts`.
+  const auto expect_warp_error = [&](const json& warp, const std::vector<std::string>& parts) {
+    expect_error([&] { parse(warp); }, parts);
+  };
   const ViewportConfig plain = parse(json{{"file", "absolute.pfm"}, {"format", "pfm"}});
   EXPECT_EQ(plain.outputs[0].warp->row_order, PfmRowOrder::bottom_to_top);
   EXPECT_EQ(plain.outputs[0].warp->conventions.values, WarpValues::absolute);
@@ -289,31 +293,17 @@ TEST(WarpMapConventions, ViewportKeysSelectTheConventions) {
     EXPECT_LT(worst, 1e-6);
   }
 
-  expect_error(
-      [&] {
-        parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"row_order", "top_first"}});
-      },
-      {"v.json: /outputs/0/warp/row_order", "top_first", "\"bottom_to_top\", \"top_to_bottom\""});
-  expect_error(
-      [&] {
-        parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"v_direction", "upward"}});
-      },
-      {"v.json: /outputs/0/warp/v_direction", "\"down\", \"up\""});
-  expect_error(
-      [&] {
-        parse(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"values", "relative"}});
-      },
-      {"v.json: /outputs/0/warp/values", "\"absolute\", \"offsets\""});
+  expect_warp_error(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"row_order", "top_first"}},
+                    {"v.json: /outputs/0/warp/row_order", "top_first", "\"bottom_to_top\", \"top_to_bottom\""});
+  expect_warp_error(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"v_direction", "upward"}},
+                    {"v.json: /outputs/0/warp/v_direction", "\"down\", \"up\""});
+  expect_warp_error(json{{"file", "sgct.pfm"}, {"format", "pfm"}, {"values", "relative"}},
+                    {"v.json: /outputs/0/warp/values", "\"absolute\", \"offsets\""});
   dir.write("m.data", "2\n2 2\n-1 -1 0 1 1\n1 -1 1 1 1\n-1 1 0 0 1\n1 1 1 0 1\n");
-  expect_error(
-      [&] {
-        parse(json{{"file", "m.data"}, {"format", "bourke"}, {"values", "offsets"}});
-      },
-      {"v.json: /outputs/0/warp/values", "applies to \"format\": \"pfm\" and \"mpcdi\" only"});
-  expect_error(
-      [&] {
-        parse(json{{"file", "m.data"}, {"format", "bourke"}, {"v_direction", "up"}});
-      },
+  expect_warp_error(json{{"file", "m.data"}, {"format", "bourke"}, {"values", "offsets"}},
+                    {"v.json: /outputs/0/warp/values", "applies to \"format\": \"pfm\" and \"mpcdi\" only"});
+  expect_warp_error(
+      json{{"file", "m.data"}, {"format", "bourke"}, {"v_direction", "up"}},
       {"v.json: /outputs/0/warp/v_direction", "applies to \"format\": \"pfm\" only (format is \"bourke\")"});
 }
 

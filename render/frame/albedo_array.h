@@ -1,0 +1,34 @@
+#pragma once
+// The bodies' albedo maps on the GPU: each source's map loaded once and kept
+// (by albedo_key), and the frame's maps as the layers of one array texture
+// (render/frame/albedo_layers.h: body b's map is layer b), rebuilt only when
+// the frame's list of maps changes. The render passes read it as albedo_maps
+// (shaders/render/surface_albedo.glsl).
+#include <map>
+#include <string>
+#include <vector>
+
+#include "image/image_io.h"
+#include "render/gl/texture.h"
+#include "scene/albedo_map.h"
+
+namespace zenith::render {
+
+class AlbedoArray {
+ public:
+  /// Loads `source`'s map unless it is held already (scene::load_albedo_map,
+  /// which throws for a missing or unreadable image); returns its key.
+  std::string load(const scene::AlbedoSource& source);
+  /// The array of the maps of `keys` (each loaded before), layer b the map of
+  /// keys[b]; x repeats (longitude). Kept while the list stays the same.
+  void ensure(const std::vector<std::string>& keys);
+  /// The array texture (empty before the first ensure()).
+  const gl::Texture& texture() const { return array_; }
+
+ private:
+  std::map<std::string, image::LinearImage> images_;  // by albedo_key
+  std::string keys_;                                  // the array's keys, one a line
+  gl::Texture array_;                                 // one layer per body, all at the largest map's size
+};
+
+}  // namespace zenith::render
