@@ -18,6 +18,8 @@
 #include "atmosphere/lut/table_cache.h"
 #include "bench/bench_tables.h"
 #include "bench/command_line.h"
+#include "bench/moving_camera.h"
+#include "bench/process_cpu.h"
 #include "image/image_writer.h"
 #include "image/tone_mapping.h"
 #include "render/display/display_encoder.h"
@@ -39,7 +41,7 @@ namespace fs = std::filesystem;
 constexpr const char* kUsage =
     "render_bench --present [--scene FILE] [--size WxH] [--fov DEG] [--frames N] [--rounds R]\n"
     "                       [--tables paper|small] [--orders N] [--cache DIR] [--csv FILE] [--headless] [--no-before]\n"
-    "                       [--split]\n"
+    "                       [--split] [--moving]\n"
     "  the live frame (render to a texture, display pass, window; no readback) against the path before it\n"
     "  (readback, CPU tone mapping, a PNG file, upload, draw), interleaved; bench/present_bench.h has the details.\n"
     "  --size      WIDTHxHEIGHT (default 1280x720; square: a 180 deg fisheye dome master, else planar)\n"
@@ -48,7 +50,9 @@ constexpr const char* kUsage =
     "  --headless  no window even with DISPLAY set: the frame stops at the display texture\n"
     "  --no-before only the live frame\n"
     "  --split     time the live frame's steps apart (render to a texture, display pass, window; glFinish\n"
-    "              between) instead of the node's fused frame (each band straight into the display texture)\n";
+    "              between) instead of the node's fused frame (each band straight into the display texture)\n"
+    "  --moving    the camera turns by 1 µrad every frame (bench/moving_camera.h): no frame reuses the tile\n"
+    "              classification of the one before, as in a show whose camera moves\n";
 
 struct Options {
   fs::path scene = fs::path(ZENITH_SOURCE_DIR) / "configs/scenes/earth-ground-view.json";
@@ -59,7 +63,7 @@ struct Options {
   int orders = atmosphere::lut::kDefaultScatteringOrders;
   std::optional<fs::path> cache;
   fs::path csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/present_frame_times.csv";
-  bool headless = false, before = true, split = false;
+  bool headless = false, before = true, split = false, moving = false;
 };
 
 Options parse(int argc, char** argv) {
@@ -102,6 +106,8 @@ Options parse(int argc, char** argv) {
       o.before = false;
     else if (a == "--split")
       o.split = true;
+    else if (a == "--moving")
+      o.moving = true;
     else
       help_or_unknown_option(a, kUsage);
   }
@@ -117,6 +123,7 @@ double median(std::vector<double> v) {
 /// One case's frames.
 struct Times {
   std::vector<double> wall_ms, gpu_ms;
+  std::vector<double> cpu_ms;  ///< CPU time of the process per frame (every thread: a driver's, llvmpipe's too)
   std::vector<double> render_ms, display_ms, window_ms;  ///< live frames: the wall time of each step (glFinish between)
 };
 
@@ -150,7 +157,9 @@ int run_present(int argc, char** argv) {
   const std::string device = windows ? windows->primary().renderer() : headless->renderer();
   const std::string target = windows ? "window" : "headless";
 
-  const scene::Scene scene = scene::load_scene(opt.scene);
+  const scene::Scene still = scene::load_scene(opt.scene);
+  scene::Scene scene = still;  // with --moving, turned a little every frame
+  int frame_number = 0;
   atmosphere::lut::PrecomputeOptions table_options;
   table_options.sizes = opt.tables == "small" ? atmosphere::lut::TableSizes::small() : atmosphere::lut::TableSizes{};
   table_options.max_orders = opt.orders;
@@ -188,6 +197,8 @@ int run_present(int argc, char** argv) {
 
   // The live frame: nothing leaves the GPU.
   auto live_frame = [&](render::Renderer& renderer, Times& t) {
+    if (opt.moving) turn_camera(scene, still.camera.orientation, ++frame_number);
+    const double cpu_start = process_cpu_s();
     const auto start = Clock::now();
     auto since = [](Clock::time_point from) {
       return std::chrono::duration<double, std::milli>(Clock::now() - from).count();
@@ -216,6 +227,7 @@ int run_present(int argc, char** argv) {
     glEndQuery(GL_TIME_ELAPSED);
     glFinish();
     t.wall_ms.push_back(since(start));
+    t.cpu_ms.push_back((process_cpu_s() - cpu_start) * 1e3);
     if (opt.split) {
       t.render_ms.push_back(std::chrono::duration<double, std::milli>(rendered - start).count());
       t.display_ms.push_back(std::chrono::duration<double, std::milli>(encoded - rendered).count());
@@ -228,6 +240,8 @@ int run_present(int argc, char** argv) {
   // The node's --window path before: readback, CPU display values, a PNG per
   // frame, the picture uploaded and drawn (cluster/node/render_worker.cpp at f28d6b6).
   auto before_frame = [&](render::Renderer& renderer, Times& t) {
+    if (opt.moving) turn_camera(scene, still.camera.orientation, ++frame_number);
+    const double cpu_start = process_cpu_s();
     const auto start = Clock::now();
     std::vector<float> rgb = renderer.render_image(scene, *projection);
     std::vector<float> shown = rgb;  // OutputWriter::display_image
@@ -245,6 +259,7 @@ int run_present(int argc, char** argv) {
     }
     glFinish();
     t.wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    t.cpu_ms.push_back((process_cpu_s() - cpu_start) * 1e3);
   };
 
   struct Case {
@@ -274,18 +289,20 @@ int run_present(int argc, char** argv) {
   if (opt.csv.has_parent_path()) fs::create_directories(opt.csv.parent_path());
   std::ofstream csv(opt.csv);
   if (!csv) throw std::runtime_error("cannot write " + opt.csv.string());
-  csv << "device,size,atmospheres,path,target,wall_ms,wall_ms_min,gpu_ms,frames\n";
-  fmt::print("\n{:<12} {:<7} {:>12} {:>12} {:>12}  {}\n", "atmosphere", "path", "wall ms", "min ms", "GL ms", "frames");
+  csv << "device,size,atmospheres,path,target,wall_ms,wall_ms_min,gpu_ms,frames,cpu_ms\n";
+  fmt::print("\n{:<12} {:<7} {:>12} {:>12} {:>12} {:>12}  {}\n", "atmosphere", "path", "wall ms", "min ms", "GL ms",
+             "CPU ms", "frames");
   std::map<std::string, double> live_ms;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const Times& t = times[c];
     const double wall = median(t.wall_ms), fastest = *std::min_element(t.wall_ms.begin(), t.wall_ms.end());
     const std::string gpu = t.gpu_ms.empty() ? std::string() : fmt::format("{:.3f}", median(t.gpu_ms));
-    fmt::print("{:<12} {:<7} {:>12.2f} {:>12.2f} {:>12}  {}\n", cases[c].atmospheres, cases[c].path, wall, fastest,
-               gpu.empty() ? "-" : gpu, t.wall_ms.size());
+    const double cpu = median(t.cpu_ms);
+    fmt::print("{:<12} {:<7} {:>12.2f} {:>12.2f} {:>12} {:>12.2f}  {}\n", cases[c].atmospheres, cases[c].path, wall,
+               fastest, gpu.empty() ? "-" : gpu, cpu, t.wall_ms.size());
     csv << '"' << device << "\"," << opt.width << 'x' << opt.height << ',' << cases[c].atmospheres << ','
         << cases[c].path << ',' << target << ',' << fmt::format("{:.3f},{:.3f},", wall, fastest) << gpu << ','
-        << t.wall_ms.size() << '\n';
+        << t.wall_ms.size() << ',' << fmt::format("{:.3f}", cpu) << '\n';
     if (!t.render_ms.empty())
       fmt::print("{:<12} split: render to texture {:.2f} ms, display pass {:.2f} ms, window {:.2f} ms (medians)\n", "",
                  median(t.render_ms), median(t.display_ms), median(t.window_ms));

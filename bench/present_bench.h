@@ -17,16 +17,21 @@
 //
 //   render_bench --present [--scene FILE] [--size WxH] [--fov DEG] [--frames N] [--rounds R]
 //                [--tables paper|small] [--orders N] [--cache DIR] [--csv FILE] [--headless] [--no-before] [--split]
+//                [--moving]
 //
 // --split times the steps apart instead (Renderer::render_to_texture, then
-// DisplayEncoder::encode, then the window; glFinish between).
+// DisplayEncoder::encode, then the window; glFinish between). --moving turns
+// the camera by 1 µrad every frame (bench/moving_camera.h), so that no frame
+// reuses the tile classification of a still scene (render/frame/frame_tiles.h).
 //
 // With DISPLAY set (a desktop, or xvfb-run) the frame goes to a window of the
 // frame's size; --headless (or no DISPLAY) renders on a headless EGL context
 // and stops at the display texture. CSV (default
 // bench/results/present_frame_times.csv), one row per case:
 //   device, size, atmospheres, path (live | before), target (window | headless),
-//   wall_ms (median), wall_ms_min, gpu_ms (median GL time; live only), frames
+//   wall_ms (median), wall_ms_min, gpu_ms (median GL time; live only), frames,
+//   cpu_ms (median CPU time of the process per frame, every thread: the driver's and
+//   llvmpipe's too; a GPU-bound frame on a GPU costs little of it)
 namespace zenith::bench {
 
 /// Runs the benchmark; argv holds "--present" somewhere (ignored). Returns the exit status.

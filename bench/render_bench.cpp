@@ -42,7 +42,8 @@
 //
 //   render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]
 //                [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]
-//                [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--gbuffer-path] [--cache DIR]
+//                [--scene FILE] [--fov DEG] [--time-passes] [--moving] [--sky-view-error] [--gbuffer-path]
+//                [--cache DIR]
 //                [--device auto|software|hardware]
 //                [--benchmark_filter=REGEX] ...
 //   render_bench --present ...   the live frame that stays on the GPU (bench/present_bench.h)
@@ -71,13 +72,13 @@
 #include <tuple>
 #include <vector>
 
-#include <sys/resource.h>
-
 #include "atmosphere/lut/precompute_options.h"
 #include "atmosphere/lut/table_cache.h"
 #include "bench/bench_tables.h"
 #include "bench/command_line.h"
+#include "bench/moving_camera.h"
 #include "bench/present_bench.h"
+#include "bench/process_cpu.h"
 #include "bench/star_frames.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/software_rasterizer.h"
@@ -100,7 +101,7 @@ constexpr int kTile = 16;                 // render::kTileSize: tiles of the atm
 // ---- command line
 
 struct Options {
-  bool quick = false, chart = true, chart_only = false, time_passes = false, sky_view_error = false;
+  bool quick = false, chart = true, chart_only = false, time_passes = false, sky_view_error = false, moving = false;
   bool gbuffer_path = false;
   double planar_fov_deg = kPlanarFovDeg;
   std::string tables = "paper", device = "auto";
@@ -122,7 +123,7 @@ struct Options {
 constexpr const char* kUsage =
     "usage: render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]\n"
     "                    [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]\n"
-    "                    [--scene FILE] [--fov DEG] [--time-passes] [--sky-view-error] [--gbuffer-path]\n"
+    "                    [--scene FILE] [--fov DEG] [--time-passes] [--moving] [--sky-view-error] [--gbuffer-path]\n"
     "                    [--cache DIR]\n"
     "                    [--device auto|software|hardware]\n"
     "                    [Google Benchmark flags, e.g. --benchmark_filter=planar]\n"
@@ -147,6 +148,8 @@ constexpr const char* kUsage =
     "  --fov          horizontal field of the planar views in degrees (default 90); the ground view:\n"
     "                 --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79\n"
     "  --time-passes  time every pass of each case's last frame (glFinish-bracketed) and print the split\n"
+    "  --moving       the camera turns by 1 µrad every frame (bench/moving_camera.h): no frame reuses the\n"
+    "                 tile classification of the one before, as in a show whose camera moves\n"
     "  --sky-view-error  also render each size with all atmospheres without the sky-view table (4D\n"
     "                 lookups per pixel) and print the relative difference of the two images\n"
     "  --gbuffer-path every tile through the G-buffer, atmosphere and resolve passes, 4D lookups per\n"
@@ -212,6 +215,8 @@ Options parse_options(int argc, char** argv) {
       o.scene = value(i, a);
     else if (a == "--time-passes")
       o.time_passes = true;
+    else if (a == "--moving")
+      o.moving = true;
     else if (a == "--sky-view-error")
       o.sky_view_error = true;
     else if (a == "--gbuffer-path")
@@ -292,16 +297,6 @@ struct Result {
   double peak_memory_mb = 0.0;  // largest over the case's rounds (process peak during its frames)
   double cpu_s = 0.0;           // median CPU time of the process per frame (all threads: llvmpipe's too)
 };
-
-/// CPU time of the whole process so far (user + system, every thread) [s]:
-/// on a machine shared with other work, a frame's CPU time moves less than its
-/// wall time (llvmpipe runs the shaders on the process's own threads).
-double process_cpu_s() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6;
-}
 
 /// Resets the process's peak resident set size (Linux: /proc/self/clear_refs "5").
 void reset_peak_memory() {
@@ -575,7 +570,7 @@ int run(int argc, char** argv) {
         auto* b = benchmark::RegisterBenchmark(name.c_str(), [&, ri, n, name](benchmark::State& state) {
           render::Renderer& renderer = n == 0 ? bodies_renderer : with_atmospheres_renderer;
           const warp::Projection& projection = *projections[ri];
-          const scene::Scene& s = variants[static_cast<std::size_t>(n)];
+          scene::Scene s = variants[static_cast<std::size_t>(n)];
           if (warmed.insert({&renderer, &projection, n}).second) {
             // One untimed frame of the case: tile cones of the new projection, albedo
             // maps, and the shader variants its tiles need (compiled on first use).
@@ -588,11 +583,12 @@ int run(int argc, char** argv) {
             double spent = 0.0;
             for (int attempt = 0; static_cast<int>(times.size()) < opt.iterations && attempt < opt.iterations + 3;
                  ++attempt) {
+              if (opt.moving) bench::turn_camera(s, variants[static_cast<std::size_t>(n)].camera.orientation, attempt);
               const auto start = Clock::now();
-              const double cpu_start = process_cpu_s();
+              const double cpu_start = bench::process_cpu_s();
               renderer.render(s, projection, discard);
               const double t = std::chrono::duration<double>(Clock::now() - start).count();
-              const double cpu = process_cpu_s() - cpu_start;
+              const double cpu = bench::process_cpu_s() - cpu_start;
               if (renderer.last_frame().table_sets_requested > 0) continue;  // fetched tables: not a steady frame
               times.push_back(t);
               cpu_times.push_back(cpu);

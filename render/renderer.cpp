@@ -22,6 +22,7 @@
 #include "render/frame/frame_constants.h"
 #include "render/frame/frame_programs.h"
 #include "render/frame/frame_state.h"
+#include "render/frame/frame_tiles.h"
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
 #include "render/frame/pass_timer.h"
@@ -72,6 +73,7 @@ struct Renderer::Impl {
   AlbedoArray albedo;  // the bodies' maps, one layer per body (render/frame/albedo_array.h)
   std::string projection_key;
   std::unique_ptr<TileCones> cones;
+  FrameTiles frame_tiles;  // every band's tiles, kept while the scene holds still
   gl::Buffer bodies;
   gl::Buffer tiles;
   // Ray tables of projections without a GPU form, per band (keyed with the projection).
@@ -83,6 +85,9 @@ struct Renderer::Impl {
   int band_width = 0, band_height = 0;
   Texture gbuffer_hit, gbuffer_albedo, radiance_sum, transmittance;
   gl::Buffer frame_rgb;
+  // render()'s rows of a band as RGB floats, kept from frame to frame: a new
+  // 50 MB vector per frame (a 3840-pixel band) costs its page faults every frame.
+  std::vector<float> rows_rgb;
 
   void ensure_band_images(int width, int height) {
     if (width == band_width && height == band_height) return;
@@ -130,7 +135,7 @@ struct Renderer::Frame : FrameState {
 };
 
 void Renderer::render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink) {
-  std::vector<float> rows_rgb;
+  std::vector<float>& rows_rgb = impl_->rows_rgb;
   render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
     read_back_band(frame, band, rows_rgb, timer);
     timer.cpu("sink", [&] { sink(band.first_row, band.rows, rows_rgb); });
@@ -192,6 +197,7 @@ void Renderer::update_tile_cones(Frame& frame) {
     im.cones = std::make_unique<TileCones>(projection);
     im.projection_key = key.str();
     im.ray_tables.clear();
+    im.frame_tiles.forget();
   }
   frame.cones = im.cones.get();
   frame.tiles_total = static_cast<std::size_t>(frame.cones->columns()) * frame.cones->rows();
@@ -351,6 +357,11 @@ void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& t
                                        rows_fit / kTileSize * kTileSize)));
   im.ensure_band_images(width, std::min(band_rows, (height + kTileSize - 1) / kTileSize * kTileSize));
   im.bodies.bind_storage(kBodies);
+  const std::vector<BandTiles>* classified = nullptr;
+  timer.cpu("tile classification",
+            [&] { classified = &im.frame_tiles.classify(tile_scene(frame), height, band_rows); });
+  const std::vector<BandTiles>& bands = *classified;
+  stats_.tiles_reused = im.frame_tiles.reused();
 
   for (int first_row = 0; first_row < height; first_row += band_rows) {
     const int rows = std::min(band_rows, height - first_row);
@@ -360,7 +371,10 @@ void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& t
     frame.band_ready.clear();
 
     if (frame.gpu_projection.kind == warp::ProjectionKind::ray_table) upload_ray_table(frame, first_row, rows);
-    BandTiles band = classify_band_tiles(frame, first_row, rows);
+    // A copy: the night sky's pass clears the black flags of tiles it lights,
+    // and the kept bands must stay as classified.
+    BandTiles band = bands[static_cast<std::size_t>(first_row / band_rows)];
+    add_tile_stats(band);
     upload_tile_lists(band);
     draw_direct_tiles(frame, band, timer);
     draw_one_pass_tiles(frame, band, timer);
@@ -401,7 +415,7 @@ void Renderer::upload_ray_table(const Frame& frame, int first_row, int rows) {
   im.ray_table.bind(kRayTableUnit);
 }
 
-BandTiles Renderer::classify_band_tiles(const Frame& frame, int first_row, int rows) {
+TileScene Renderer::tile_scene(const Frame& frame) const {
   TileScene tiles;
   tiles.scene = &frame.scene;
   tiles.cones = frame.cones;
@@ -413,8 +427,11 @@ BandTiles Renderer::classify_band_tiles(const Frame& frame, int first_row, int r
   for (const AtmospherePass& pass : frame.passes)
     tiles.shells.push_back(
         {pass.body, pass.direction_camera, pass.distance_m, pass.top_radius_m, pass.gpu != nullptr, pass.sky_view});
-  BandTiles band = render::classify_band_tiles(tiles, first_row, rows);
-  for (std::size_t a = 0; a < frame.passes.size(); ++a) {
+  return tiles;
+}
+
+void Renderer::add_tile_stats(const BandTiles& band) {
+  for (std::size_t a = 0; a < band.lists.size(); ++a) {
     FrameStats::Atmosphere& st = stats_.atmospheres[a];
     st.sky_view_tiles += band.lists[a].sky_view_tiles;
     st.tiles += band.lists[a].tiles;
@@ -424,7 +441,6 @@ BandTiles Renderer::classify_band_tiles(const Frame& frame, int first_row, int r
   stats_.tiles_one_atmosphere += band.one_pass_atmosphere_tiles;
   stats_.tiles_direct += band.direct_tiles();
   stats_.tiles_black += band.black_tiles();
-  return band;
 }
 
 void Renderer::upload_tile_lists(const BandTiles& band) {

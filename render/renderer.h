@@ -46,6 +46,7 @@ namespace zenith::render {
 
 class PassTimer;   // render/frame/pass_timer.h
 struct BandTiles;  // render/frame/tile_classification.h
+struct TileScene;  // render/frame/tile_classification.h
 namespace gl {
 class Texture;  // render/gl/texture.h
 }  // namespace gl
@@ -78,7 +79,10 @@ struct FrameStats {
   std::size_t tiles_one_atmosphere = 0;  ///< tiles one shell touches, drawn by atmosphere_tile.comp
   std::size_t tiles_direct = 0;          ///< tiles drawn by direct_light.comp (a body or the sun, no atmosphere)
   std::size_t tiles_black = 0;           ///< tiles with nothing to draw: not dispatched
-  double seconds = 0.0;                  ///< wall time of render(), readback included
+  /// The tiles were the frame before's (nothing they depend on moved:
+  /// render/frame/frame_tiles.h); the counts above are the same.
+  bool tiles_reused = false;
+  double seconds = 0.0;  ///< wall time of render(), readback included
   /// The night sky's pass (render/frame/star_pass.h): stars placed in the
   /// image, whether it ran (false: no sky clock or night sky, or its own test
   /// found nothing visible), the catalogue's identity of the stars drawn.
@@ -160,10 +164,13 @@ class Renderer {
 
   /// Rays of a ray-table projection for this band (computed once, kept), uploaded and bound.
   void upload_ray_table(const Frame& frame, int first_row, int rows);
-  /// Which tiles of the band each pass draws (render/frame/tile_classification.h,
-  /// no GL): one-pass atmosphere tiles by variant, G-buffer path tiles, direct
-  /// tiles, black tiles; their counts added to the frame's statistics.
-  BandTiles classify_band_tiles(const Frame& frame, int first_row, int rows);
+  /// What the tiles of the frame can hold, for the classification of its bands
+  /// (render/frame/frame_tiles.h: every band at once, before the first is
+  /// drawn, or the last frame's bands where nothing moved).
+  TileScene tile_scene(const Frame& frame) const;
+  /// A band's tile counts (one-pass atmosphere tiles by variant, G-buffer path
+  /// tiles, direct tiles, black tiles) added to the frame's statistics.
+  void add_tile_stats(const BandTiles& band);
   /// The band's tile lists into the tiles buffer; binds it and the output buffer.
   void upload_tile_lists(const BandTiles& band);
   /// Tiles no atmosphere touches: bodies and the sun, one pass each, every wavelength.

@@ -1,8 +1,8 @@
 #include "render/frame/tile_classification.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <map>
 
 #include <glm/geometric.hpp>
 
@@ -45,7 +45,10 @@ BandTiles classify_band_tiles(const TileScene& frame, int first_row, int rows) {
   // others, which go through the G-buffer path.
   struct ShellTiles {
     std::vector<std::uint32_t> shell_tiles, gbuffer_tiles;
-    std::map<int, std::pair<TileVariant, std::vector<std::uint32_t>>> one_pass;
+    // Indexed by TileVariant::key() (under kVariantKeys): a table, not a map, since
+    // every tile of the shell is filed here (262 144 on an 8192² dome master).
+    std::array<std::vector<std::uint32_t>, kVariantKeys> one_pass;
+    std::array<TileVariant, kVariantKeys> variants;
   };
   std::vector<ShellTiles> shell_lists(passes.size());
   std::vector<std::uint8_t>& shells = band.shells;
@@ -99,9 +102,9 @@ BandTiles classify_band_tiles(const TileScene& frame, int first_row, int rows) {
       v.ground = ground[i];
       v.others = others[i];
       v.sun = (use[i] & kSun) != 0;
-      auto& list = lists.one_pass[v.key()];
-      list.first = v;
-      list.second.push_back(t);
+      const int key = v.key();
+      lists.variants[static_cast<std::size_t>(key)] = v;
+      lists.one_pass[static_cast<std::size_t>(key)].push_back(t);
     }
     mark(lists.gbuffer_tiles, kGbuffer);
   }
@@ -119,10 +122,13 @@ BandTiles classify_band_tiles(const TileScene& frame, int first_row, int rows) {
   for (std::size_t a = 0; a < passes.size(); ++a) {
     const ShellTiles& pass = shell_lists[a];
     BandTiles::ShellLists& st = band.lists[a];
-    for (const auto& [key, list] : pass.one_pass) {
-      st.one_pass.emplace_back(list.first, append(list.second));
-      band.one_pass_atmosphere_tiles += list.second.size();
-      if (list.first.sky_view) st.sky_view_tiles += list.second.size();
+    for (std::size_t key = 0; key < kVariantKeys; ++key) {
+      const std::vector<std::uint32_t>& list = pass.one_pass[key];
+      if (list.empty()) continue;
+      const TileVariant& v = pass.variants[key];
+      st.one_pass.emplace_back(v, append(list));
+      band.one_pass_atmosphere_tiles += list.size();
+      if (v.sky_view) st.sky_view_tiles += list.size();
     }
     st.gbuffer = append(pass.gbuffer_tiles);
     st.tiles = pass.shell_tiles.size();

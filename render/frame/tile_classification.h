@@ -41,8 +41,10 @@ struct TileVariant {
   TileCover ground = TileCover::some;  ///< how the rays meet this planet's ground
   int others = 2;                      ///< other bodies: 0 none, 1 all beyond the shell, 2 one may be inside it
   bool sun = true;                     ///< the sun's disc can be in the tiles
+  /// sky_view | ground << 1 | others << 3 | sun << 5: under kVariantKeys.
   int key() const;
 };
+inline constexpr std::size_t kVariantKeys = 64;
 
 /// An atmosphere's shell as the frame sees it, in the order its passes run
 /// (front to back).

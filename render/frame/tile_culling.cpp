@@ -46,6 +46,51 @@ TileCones::TileCones(const warp::Projection& projection)
       cone.half_angle_rad = static_cast<float>(length > 1e-9 ? half_angle + margin : 4.0);
       cone.has_rays = true;
     }
+  // Blocks of kTileBlock² tiles: the axis is the mean of the tiles' axes, the
+  // half-angle the farthest tile cone's edge from it (triangle inequality), padded.
+  block_columns_ = (columns_ + kTileBlock - 1) / kTileBlock;
+  block_rows_ = (rows_ + kTileBlock - 1) / kTileBlock;
+  blocks_.assign(static_cast<std::size_t>(block_columns_) * static_cast<std::size_t>(block_rows_), BlockCone{});
+  for (int by = 0; by < block_rows_; ++by)
+    for (int bx = 0; bx < block_columns_; ++bx) {
+      const int tx0 = bx * kTileBlock, tx1 = std::min(columns_, tx0 + kTileBlock);
+      const int ty0 = by * kTileBlock, ty1 = std::min(rows_, ty0 + kTileBlock);
+      BlockCone& block = blocks_[static_cast<std::size_t>(by) * block_columns_ + bx];
+      glm::dvec3 sum(0.0);
+      for (int ty = ty0; ty < ty1; ++ty)
+        for (int tx = tx0; tx < tx1; ++tx)
+          if (cone(tx, ty).has_rays) {
+            sum += glm::dvec3(cone(tx, ty).axis);
+            block.has_rays = true;
+          }
+      if (!block.has_rays) continue;
+      const double length = glm::length(sum);
+      if (!(length > 1e-9)) {  // tiles all round the sphere of directions: tested one by one
+        block.half_angle_rad = 10.0;
+        continue;
+      }
+      block.axis = sum / length;
+      double half_angle = 0.0;
+      for (int ty = ty0; ty < ty1; ++ty)
+        for (int tx = tx0; tx < tx1; ++tx) {
+          const TileCone& c = cone(tx, ty);
+          if (c.has_rays)
+            half_angle = std::max(half_angle, angle_between_units(block.axis, glm::dvec3(c.axis)) +
+                                                  static_cast<double>(c.half_angle_rad));
+        }
+      block.half_angle_rad = half_angle + kBlockMarginRad;
+    }
+}
+
+double angle_between_units(const glm::dvec3& a, const glm::dvec3& b) {
+  return 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(a - b)));
+}
+
+TileCover TileCones::cover_of(const TileCone& cone, const glm::dvec3& c, double angular_radius_rad) {
+  const double angle = angle_between_units(glm::dvec3(cone.axis), c);
+  // 1e-4 rad covers the float axis stored in the cone.
+  if (angle > cone.half_angle_rad + angular_radius_rad + 1e-4) return TileCover::none;
+  return angle + cone.half_angle_rad + 1e-4 <= angular_radius_rad ? TileCover::all : TileCover::some;
 }
 
 std::vector<std::uint32_t> TileCones::tiles_touching_sphere(const glm::dvec3& centre_direction, double distance_m,
@@ -70,19 +115,27 @@ std::vector<TileCover> TileCones::sphere_cover(const glm::dvec3& centre_directio
   const bool inside = distance_m <= radius_m;
   const double angular_radius = inside ? 4.0 : std::asin(radius_m / distance_m);
   const glm::dvec3 c = glm::normalize(centre_direction);
-  for (int ty = tile_row_begin; ty < tile_row_end; ++ty)
-    for (int tx = 0; tx < columns_; ++tx) {
-      const TileCone& cone = this->cone(tx, ty);
-      if (!cone.has_rays) continue;
-      TileCover& cover = out[static_cast<std::size_t>(ty - tile_row_begin) * columns_ + tx];
-      if (inside) {
-        cover = TileCover::all;
-        continue;
+  for (int by = tile_row_begin / kTileBlock; by * kTileBlock < tile_row_end; ++by)
+    for (int bx = 0; bx < block_columns_; ++bx) {
+      const BlockCone& block = blocks_[static_cast<std::size_t>(by) * block_columns_ + bx];
+      if (!block.has_rays) continue;
+      // The block's verdict where its cone decides it (every tile's would be
+      // the same, kBlockMarginRad covering the rounding), else tile by tile.
+      bool decided = inside;
+      if (!inside) {
+        const double angle = angle_between_units(block.axis, c);
+        if (angle > block.half_angle_rad + angular_radius + 1e-4) continue;
+        decided = angle + block.half_angle_rad + 1e-4 <= angular_radius;
       }
-      const double angle = 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(glm::dvec3(cone.axis) - c)));
-      // 1e-4 rad covers the float axis stored in the cone.
-      if (angle > cone.half_angle_rad + angular_radius + 1e-4) continue;
-      cover = angle + cone.half_angle_rad + 1e-4 <= angular_radius ? TileCover::all : TileCover::some;
+      const int ty0 = std::max(tile_row_begin, by * kTileBlock), ty1 = std::min(tile_row_end, (by + 1) * kTileBlock);
+      const int tx0 = bx * kTileBlock, tx1 = std::min(columns_, tx0 + kTileBlock);
+      for (int ty = ty0; ty < ty1; ++ty)
+        for (int tx = tx0; tx < tx1; ++tx) {
+          const TileCone& cone = this->cone(tx, ty);
+          if (!cone.has_rays) continue;
+          out[static_cast<std::size_t>(ty - tile_row_begin) * columns_ + tx] =
+              decided ? TileCover::all : cover_of(cone, c, angular_radius);
+        }
     }
   return out;
 }

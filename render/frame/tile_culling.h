@@ -12,6 +12,17 @@
 //   angle(axis, ĉ) ≤ half_angle + asin(R / D),
 // and always when the camera is inside it (D ≤ R). Tiles whose border has no
 // ray at all (outside a fisheye's circle) hold no pixel with a ray: never listed.
+//
+// The tests run per frame for every sphere and band, on the frame's critical
+// path (262 144 tiles on an 8192² dome master). So that they cost the sphere's
+// outline rather than the image, the tiles are grouped in blocks of
+// kTileBlock × kTileBlock whose cone holds every tile's cone (triangle
+// inequality: angle(block axis, tile axis) + tile half-angle ≤ block
+// half-angle, padded by kBlockMarginRad for the rounding of those angles). A
+// block whose cone misses the sphere holds no touching tile; one whose cone
+// lies within the sphere's disc holds only `all` tiles; only the blocks the
+// limb crosses are tested tile by tile, with the same arithmetic as a lone
+// tile, so the result is the tile-by-tile one exactly.
 #include <cstdint>
 #include <vector>
 
@@ -22,6 +33,10 @@
 namespace zenith::render {
 
 inline constexpr int kTileSize = 16;  ///< pixels; the local size of the render passes
+inline constexpr int kTileBlock = 8;  ///< tiles per side of a block of the culling hierarchy
+/// Rounding allowance of a block's cone [rad]: the computed angles (2 asin(|a − b| / 2)
+/// of unit vectors in double) err by under 3e-8 rad even next to antipodes.
+inline constexpr double kBlockMarginRad = 1e-6;
 
 /// A tile of a band's tile list as one 32-bit word (the render passes' Tiles
 /// buffer, shaders/render/frame.glsl's tile_pixel()): its column in the low
@@ -50,6 +65,10 @@ struct TileCone {
   bool has_rays = false;
 };
 
+/// The angle between two unit vectors [rad], 2 asin(|a − b| / 2): accurate at
+/// small angles, where the tests of culling are decided.
+double angle_between_units(const glm::dvec3& a, const glm::dvec3& b);
+
 class TileCones {
  public:
   /// Computes every tile's cone (O(pixels on tile borders) projection calls).
@@ -71,8 +90,19 @@ class TileCones {
                                       int first_row, int row_count) const;
 
  private:
+  /// A block's cone (camera frame), holding the cones of its tiles with rays.
+  struct BlockCone {
+    glm::dvec3 axis{0.0, 0.0, -1.0};
+    double half_angle_rad = 0.0;
+    bool has_rays = false;
+  };
+  /// How one tile's rays meet a sphere of `angular_radius_rad` in direction `c`.
+  static TileCover cover_of(const TileCone& cone, const glm::dvec3& c, double angular_radius_rad);
+
   int columns_ = 0, rows_ = 0;
   std::vector<TileCone> cones_;
+  int block_columns_ = 0, block_rows_ = 0;
+  std::vector<BlockCone> blocks_;
 };
 
 }  // namespace zenith::render

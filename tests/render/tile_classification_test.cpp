@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -17,7 +18,9 @@
 #include "core/units.h"
 #include "render/frame/albedo_layers.h"
 #include "render/frame/frame_conditions.h"
+#include "render/frame/frame_tiles.h"
 #include "render/frame/tile_culling.h"
+#include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 
 namespace zenith::render {
@@ -229,6 +232,113 @@ TEST(TileClassification, BandsSplitTheFrameTileRowByTileRow) {
   EXPECT_EQ(one_pass, whole.one_pass_atmosphere_tiles);
   EXPECT_EQ(direct, whole.direct_tiles());
   EXPECT_EQ(black, whole.black_tiles());
+}
+
+TEST(FrameTiles, ClassifiesEveryBandAsAloneAndKeepsThemWhileNothingMoves) {
+  View v;
+  v.scene.bodies = {body("planet", {0, 0, -3e7}, kGround), body("moon", {1.2e7, 0, -3e7}, 1.7e6)};
+  v.add_shell(0);
+  v.tiles.sun_camera = glm::normalize(glm::dvec3(0.4, 0.25, -1.0));     // in view, off the shell: sun tiles
+  const int height = v.projection.height(), band_rows = 5 * kTileSize;  // 192 rows: 80, 80, 32
+  FrameTiles frame;
+  const std::vector<BandTiles> bands = frame.classify(v.tiles, height, band_rows);
+  EXPECT_FALSE(frame.reused());
+  ASSERT_EQ(bands.size(), 3u);
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    const int first = static_cast<int>(b) * band_rows;
+    const BandTiles alone = classify_band_tiles(v.tiles, first, std::min(band_rows, height - first));
+    EXPECT_EQ(bands[b].first_row, first);
+    EXPECT_EQ(bands[b].all_tiles, alone.all_tiles) << "band " << b;
+    EXPECT_EQ(bands[b].black, alone.black) << "band " << b;
+    EXPECT_EQ(bands[b].sun_tiles.count, alone.sun_tiles.count) << "band " << b;
+  }
+  // The same inputs: the same bands, not classified again.
+  EXPECT_EQ(&frame.classify(v.tiles, height, band_rows), &frame.classify(v.tiles, height, band_rows));
+  EXPECT_TRUE(frame.reused());
+  // Anything the tiles depend on moves: classified again.
+  const std::size_t sun_tiles = bands[1].sun_tiles.count + bands[0].sun_tiles.count + bands[2].sun_tiles.count;
+  v.tiles.sun_camera = glm::normalize(glm::dvec3(-0.4, 0.25, -1.0));
+  const std::vector<BandTiles>& moved = frame.classify(v.tiles, height, band_rows);
+  EXPECT_FALSE(frame.reused());
+  EXPECT_GT(sun_tiles, 0u);
+  EXPECT_NE(moved[0].all_tiles, bands[0].all_tiles);
+  v.scene.bodies[1].position_m.x += 1.0;  // a metre
+  frame.classify(v.tiles, height, band_rows);
+  EXPECT_FALSE(frame.reused());
+  frame.classify(v.tiles, height, 6 * kTileSize);  // another band layout
+  EXPECT_FALSE(frame.reused());
+  frame.forget();  // new tile cones
+  frame.classify(v.tiles, height, 6 * kTileSize);
+  EXPECT_FALSE(frame.reused());
+}
+
+/// sphere_cover tile by tile, as it was before the blocks: the reference the
+/// block hierarchy must reproduce exactly.
+std::vector<TileCover> cover_tile_by_tile(const TileCones& cones, const glm::dvec3& direction, double distance_m,
+                                          double radius_m, int first_tile_row, int tile_rows) {
+  std::vector<TileCover> out(static_cast<std::size_t>(tile_rows) * cones.columns(), TileCover::none);
+  const bool inside = distance_m <= radius_m;
+  const double angular_radius = inside ? 4.0 : std::asin(radius_m / distance_m);
+  const glm::dvec3 c = glm::normalize(direction);
+  for (int ty = first_tile_row; ty < first_tile_row + tile_rows; ++ty)
+    for (int tx = 0; tx < cones.columns(); ++tx) {
+      const TileCone& cone = cones.cone(tx, ty);
+      if (!cone.has_rays) continue;
+      TileCover& cover = out[static_cast<std::size_t>(ty - first_tile_row) * cones.columns() + tx];
+      if (inside) {
+        cover = TileCover::all;
+        continue;
+      }
+      const double angle = angle_between_units(glm::dvec3(cone.axis), c);
+      if (angle > cone.half_angle_rad + angular_radius + 1e-4) continue;
+      cover = angle + cone.half_angle_rad + 1e-4 <= angular_radius ? TileCover::all : TileCover::some;
+    }
+  return out;
+}
+
+TEST(TileCulling, BlocksOfTilesGiveExactlyTheTileByTileCover) {
+  // Planar views, a 180° dome master and a 360° fisheye (whose rim tiles see
+  // everything), spheres from a pixel to most of the sky, near the limb of
+  // blocks and tiles, in whole frames and in bands that cut blocks.
+  const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(1000, 600, 79.0);
+  warp::FisheyeParameters dome;
+  const warp::FisheyeProjection fisheye(704, 704, dome);
+  warp::FisheyeParameters all_round;
+  all_round.fov_deg = 360.0;
+  const warp::FisheyeProjection fisheye_360(400, 400, all_round);
+  std::mt19937 random(26);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), log_size(-4.0, 0.0);
+  std::size_t spheres = 0, all = 0, some = 0;
+  for (const warp::Projection* projection :
+       std::initializer_list<const warp::Projection*>{&planar, &fisheye, &fisheye_360}) {
+    const TileCones cones(*projection);
+    for (int n = 0; n < 300; ++n) {
+      glm::dvec3 direction(unit(random), unit(random), unit(random) - 0.8);  // mostly in front
+      if (glm::length(direction) < 1e-3) continue;
+      direction = glm::normalize(direction);
+      const double distance_m = 1e7;
+      // Angular radii from 1e-4 rad to a hemisphere; one sphere in 20 holds the camera.
+      const double radius_m = n % 20 == 0 ? 2e7 : distance_m * std::pow(10.0, log_size(random));
+      const int first_tile_row = n % 3 == 0 ? 0 : static_cast<int>(random() % static_cast<unsigned>(cones.rows()));
+      const int tile_rows = n % 3 == 0 ? cones.rows() : 1 + static_cast<int>(random() % 11u);
+      const int rows_px = std::min(tile_rows * kTileSize, projection->height() - first_tile_row * kTileSize);
+      const std::vector<TileCover> blocks =
+          cones.sphere_cover(direction, distance_m, radius_m, first_tile_row * kTileSize, rows_px);
+      const int band_tile_rows = (rows_px + kTileSize - 1) / kTileSize;
+      const std::vector<TileCover> tiles =
+          cover_tile_by_tile(cones, direction, distance_m, radius_m, first_tile_row, band_tile_rows);
+      ASSERT_EQ(blocks.size(), tiles.size());
+      for (std::size_t i = 0; i < tiles.size(); ++i) {
+        ASSERT_EQ(blocks[i], tiles[i]) << projection->describe() << ", sphere " << n << ", tile " << i;
+        all += tiles[i] == TileCover::all;
+        some += tiles[i] == TileCover::some;
+      }
+      ++spheres;
+    }
+  }
+  EXPECT_GT(spheres, 800u);
+  EXPECT_GT(all, 10000u) << "blocks inside the disc decided whole";
+  EXPECT_GT(some, 1000u) << "limbs decided tile by tile";
 }
 
 TEST(FrameConditions, TheSkyViewTableServesLowCamerasAndDaylightUpToAFifthOfTheShell) {
