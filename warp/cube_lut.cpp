@@ -4,10 +4,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+
+#include "warp/xml_reader.h"
 
 namespace zenith::warp {
 namespace {
@@ -32,14 +33,7 @@ std::vector<std::string_view> words(std::string_view line) {
 }
 
 /// A finite number that is the whole of `word` (a leading '+' allowed).
-std::optional<double> finite(std::string_view word) {
-  if (!word.empty() && word.front() == '+') word.remove_prefix(1);
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (word.empty() || error != std::errc() || end != word.data() + word.size() || !std::isfinite(value))
-    return std::nullopt;
-  return value;
-}
+std::optional<double> finite(std::string_view word) { return finite_number(word); }
 
 class CubeParser {
  public:

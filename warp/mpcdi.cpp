@@ -132,26 +132,6 @@ class ZipArchive {
   std::vector<std::string> names_;
 };
 
-/// `text` without leading and trailing whitespace.
-std::string_view trimmed(std::string_view text) {
-  const auto space = [](unsigned char c) { return std::isspace(c) != 0; };
-  while (!text.empty() && space(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
-  while (!text.empty() && space(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
-  return text;
-}
-
-/// The finite number `text` holds (surrounding whitespace and a leading '+'
-/// allowed); nothing for anything else.
-std::optional<double> finite_number(std::string_view text) {
-  std::string_view digits = trimmed(text);
-  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
-    return std::nullopt;
-  return value;
-}
-
 /// The base name of a member path.
 std::string_view base_name(std::string_view member) {
   const std::size_t slash = member.find_last_of('/');

@@ -3,8 +3,6 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <charconv>
-#include <cmath>
 #include <stdexcept>
 
 namespace zenith::warp {
@@ -19,15 +17,9 @@ class ColourReader {
   }
 
   double number(const XmlElement& element, const std::string& what, std::string_view text) const {
-    std::string_view t = text;
-    while (!t.empty() && std::isspace(static_cast<unsigned char>(t.front()))) t.remove_prefix(1);
-    while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.remove_suffix(1);
-    if (!t.empty() && t.front() == '+') t.remove_prefix(1);
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), value);
-    if (t.empty() || error != std::errc() || end != t.data() + t.size() || !std::isfinite(value))
-      fail(element.line, fmt::format("{} = '{}' is not a finite number", what, std::string(text)));
-    return value;
+    const std::optional<double> value = finite_number(text);
+    if (!value) fail(element.line, fmt::format("{} = '{}' is not a finite number", what, std::string(text)));
+    return *value;
   }
 
   /// The type attribute, one of `allowed` (ignoring case), as the list spells it.
