@@ -91,8 +91,10 @@ std::string substitute_name(std::string text, const std::string& name) {
 /// offline/output_rendering.h) with a progress bar over the rows.
 void render_to_files(render::Renderer& renderer, const scene::Scene& scene, const warp::Projection& projection,
                      const std::vector<std::string>& outputs, const RenderArgs& a,
-                     const image::ImageAttributes& attributes, const warp::BlendMask* blend, double black_level) {
+                     const image::ImageAttributes& attributes, const warp::BlendMask* blend, double black_level,
+                     const warp::MpcdiColourProfile* colour = nullptr) {
   OutputStage stage;
+  stage.colour = colour;
   stage.tone = image::parse_tone_mapping(a.tone);
   stage.exr_type = image::parse_exr_pixel_type(a.exr_type);
   stage.blend = blend;
@@ -361,7 +363,7 @@ void run_viewport_render(const RenderArgs& a, const scene::Scene& scene) {
     const warp::BlendMask mask = warp::output_blend_mask(config, i);
     image::ImageAttributes attributes = image_attributes(scene, *o.projection);
     for (auto& attribute : viewport_attributes(selection.file, o)) attributes.push_back(std::move(attribute));
-    render_to_files(renderer, scene, *o.projection, files_of(o), a, attributes, &mask, o.black_level);
+    render_to_files(renderer, scene, *o.projection, files_of(o), a, attributes, &mask, o.black_level, o.colour.get());
   }
 }
 

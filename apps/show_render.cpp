@@ -151,7 +151,7 @@ Outputs outputs_of(const ShowRenderArgs& a) {
                                   "; blend ", warp::to_string(o.blend.mode), "; black level ", o.black_level),
                               std::nullopt});
       result.local.push_back({o.projection, warp::output_blend_mask(selection.config, i), o.black_level,
-                              viewport_attributes(file_name, o)});
+                              viewport_attributes(file_name, o), o.colour});
     }
     set_dome_mosaic(result.specs, configs);
     return result;
@@ -160,7 +160,7 @@ Outputs outputs_of(const ShowRenderArgs& a) {
   std::shared_ptr<const warp::Projection> projection =
       make_projection(a.projection, a.fov_deg, a.tilt_deg, width, height);
   result.specs.push_back({a.projection, width, height, projection->describe(), std::nullopt});
-  result.local.push_back({std::move(projection), std::nullopt, 0.0, {}});
+  result.local.push_back({std::move(projection), std::nullopt, 0.0, {}, nullptr});
   return result;
 }
 

@@ -153,6 +153,7 @@ void LocalFrameRenderer::start_pipeline() {
     if (want8) place(t.display8, TextureFormat::rgba8, r.display8);
     if (want16) place(t.display16, TextureFormat::rgba16, r.display16);
     if (out.blend) t.blend_mask = render::display::blend_mask_texture(*out.blend);
+    if (out.colour) t.colour = render::display::ColourProfileTextures(*out.colour);
   }
   int threads = settings_.threads;
   if (threads < 0)
@@ -200,6 +201,7 @@ void LocalFrameRenderer::render_outputs(const scene::Scene& scene, const scene::
     stage.blend_mask = out.blend ? &t.blend_mask : nullptr;
     stage.black_level = out.blend ? out.black_level : 0.0;
     stage.fade = {fade.level, {fade.colour.x, fade.colour.y, fade.colour.z}};
+    stage.colour = t.colour.empty() ? nullptr : &t.colour;
     if (t.radiance.id() != 0) {  // EXR wanted: the radiance texture, then the display pass from it
       renderer.render_to_texture(scene, *out.projection, t.radiance);
       if (t.display8.id() != 0) encoder_.encode(t.radiance, stage, t.display8);

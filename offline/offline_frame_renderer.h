@@ -52,6 +52,9 @@ struct LocalOutput {
   std::optional<warp::BlendMask> blend;  ///< viewport outputs
   double black_level = 0.0;              ///< with a blend
   image::ImageAttributes attributes;     ///< besides the scene's (e.g. zenith:viewport, zenith:blend)
+  /// An MPCDI region's colour profile (warp/colour_profile.h): the display
+  /// codes go through it; null: none. EXR keeps the radiance.
+  std::shared_ptr<const warp::MpcdiColourProfile> colour;
 };
 
 /// A frame's display codes as published (the first output's), for a video proxy.
@@ -129,6 +132,7 @@ class LocalFrameRenderer final : public FrameRenderer {
   /// An output's textures on the GPU.
   struct OutputTextures {
     render::gl::Texture radiance, display8, display16, blend_mask;
+    render::display::ColourProfileTextures colour;  ///< the output's LUTs, uploaded once
   };
 
   render::Renderer& renderer_for(std::uint32_t render_flags);

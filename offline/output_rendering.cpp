@@ -9,6 +9,8 @@
 
 #include "atmosphere/named_inputs.h"
 #include "image/display_fade.h"
+#include "image/tone_mapping.h"
+#include "render/display/colour_signal.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 
@@ -95,6 +97,9 @@ image::ImageAttributes viewport_attributes(const std::string& file, const warp::
   attributes.emplace_back("zenith:blend", fmt::format("{}; black level {}; output stage P*alpha*(1-beta)+beta "
                                                       "(docs/viewports.md)",
                                                       warp::to_string(o.blend.mode), o.black_level));
+  if (o.colour)
+    attributes.emplace_back("zenith:colour", fmt::format("MPCDI region \"{}\": {} (docs/warp-meshes.md)",
+                                                         o.warp ? o.warp->region : "", warp::describe(*o.colour)));
   return attributes;
 }
 
@@ -111,9 +116,9 @@ void render_to_files(render::Renderer& renderer, const scene::Scene& scene, cons
   for (const auto& path : files) {
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     const bool png = path.extension() != ".exr";
-    // With a blend or a fade the PNG rows arrive tone mapped: the writer only encodes sRGB.
+    // With a blend, a fade or a colour profile the PNG rows arrive tone mapped: the writer only encodes sRGB.
     const image::ToneMapping writer_tone =
-        png && (stage.blend != nullptr || faded) ? image::ToneMapping::clamp : stage.tone;
+        png && (stage.blend != nullptr || faded || stage.colour != nullptr) ? image::ToneMapping::clamp : stage.tone;
     targets.push_back({png ? image::open_png_writer(path, width, height, writer_tone, attributes)
                            : image::open_exr_writer(path, width, height, stage.exr_type, attributes),
                        png});
@@ -121,6 +126,16 @@ void render_to_files(render::Renderer& renderer, const scene::Scene& scene, cons
   std::vector<float> rows;
   renderer.render(scene, projection, [&](int first_row, int row_count, std::span<const float> rgb) {
     for (auto& t : targets) {
+      if (t.png && stage.colour != nullptr) {
+        rows.assign(rgb.begin(), rgb.end());
+        for (float& v : rows) v = image::tone_map(v, stage.tone);
+        image::apply_fade(rows, stage.fade_level, stage.fade_colour);
+        render::display::apply_colour_profile(rows, first_row, row_count, width, *stage.colour, stage.blend,
+                                              stage.black_level);
+        render::display::to_srgb_code_centres(rows);  // the writer encodes sRGB: it stores V's codes
+        t.writer->write_rows(row_count, rows);
+        continue;
+      }
       if (stage.blend == nullptr && !(faded && t.png)) {
         t.writer->write_rows(row_count, rgb);
         continue;

@@ -19,6 +19,7 @@
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "warp/blending.h"
+#include "warp/colour_profile.h"
 #include "warp/projection.h"
 #include "warp/viewport_config.h"
 
@@ -69,6 +70,9 @@ struct OutputStage {
   /// projector; EXR keeps the radiance and names the fade in zenith:fade.
   double fade_level = 0.0;
   std::array<double, 3> fade_colour{0, 0, 0};
+  /// An MPCDI region's colour profile: PNG codes are its processPixel of the
+  /// sRGB signal with α and β (render/display/colour_signal.h); nullptr: none. EXR keeps the radiance.
+  const warp::MpcdiColourProfile* colour = nullptr;
 };
 
 /// Called after each band of rows reaches the writers.
@@ -79,7 +83,8 @@ using RowProgress = std::function<void(int first_row, int row_count)>;
 /// `stage.blend` mask, each output's rows go through the output stage first
 /// (docs/viewports.md): PNG: L = tone(v), L' = L·α·(1 − β) + β, then sRGB
 /// (the writer is opened with the clamp operator, the identity on [0, 1]);
-/// EXR: v' = v·α·(1 − β) + β, linear, 1.0 = full white.
+/// EXR: v' = v·α·(1 − β) + β, linear, 1.0 = full white. With `stage.colour`
+/// the PNG's codes are render::display::apply_colour_profile's (docs/warp-meshes.md, "Colour profile").
 void render_to_files(render::Renderer& renderer, const scene::Scene& scene, const warp::Projection& projection,
                      const std::vector<std::filesystem::path>& files, const OutputStage& stage,
                      const image::ImageAttributes& attributes, const RowProgress& progress = {});

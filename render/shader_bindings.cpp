@@ -45,6 +45,11 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
       {"PRESENT_FRAME_UNIT", kPresentFrameUnit},
       {"DISPLAY_RADIANCE_UNIT", kDisplayRadianceUnit},
       {"BLEND_MASK_UNIT", kBlendMaskUnit},
+      {"DECODE_LUT_UNIT", kDecodeLutUnit},
+      {"CORRECT_LUT_1D_UNIT", kCorrectLut1dUnit},
+      {"CORRECT_LUT_3D_UNIT", kCorrectLut3dUnit},
+      {"ENCODE_LUT_1D_UNIT", kEncodeLut1dUnit},
+      {"ENCODE_LUT_3D_UNIT", kEncodeLut3dUnit},
       {"OUTPUT_IMAGE", kOutputImage},
       {"SECOND_OUTPUT_IMAGE", kSecondOutputImage},
       {"GBUFFER_HIT_IMAGE", kGbufferHitImage},
@@ -58,6 +63,7 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
   defines.push_back({"TILE_ROW_SHIFT", fmt::format("{}u", kTileRowShift)});
   defines.push_back({"TILE_COLUMN_MASK", fmt::format("{:#x}u", kTileColumnMask)});
   defines.push_back({"SUN_SPECTRUM_SIZE", fmt::format("{}", kSunSpectrumSize)});
+  defines.push_back({"LUT_1D_ROW_TEXELS", fmt::format("{}", kLut1dRowTexels)});
   struct Kind {
     const char* name;
     warp::ProjectionKind kind;

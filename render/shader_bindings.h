@@ -54,6 +54,12 @@ inline constexpr unsigned kAlbedoMapsUnit = 8;       ///< ALBEDO_MAPS_UNIT (rend
 inline constexpr unsigned kPresentFrameUnit = 0;     ///< PRESENT_FRAME_UNIT (render/present.frag)
 inline constexpr unsigned kDisplayRadianceUnit = 0;  ///< DISPLAY_RADIANCE_UNIT (render/display_*.comp)
 inline constexpr unsigned kBlendMaskUnit = 1;        ///< BLEND_MASK_UNIT (render/display_transform.glsl)
+// The MPCDI colour profile's LUTs (render/display/colour_profile_textures.h, display_transform.glsl).
+inline constexpr unsigned kDecodeLutUnit = 2;     ///< DECODE_LUT_UNIT: 1D
+inline constexpr unsigned kCorrectLut1dUnit = 3;  ///< CORRECT_LUT_1D_UNIT
+inline constexpr unsigned kCorrectLut3dUnit = 4;  ///< CORRECT_LUT_3D_UNIT
+inline constexpr unsigned kEncodeLut1dUnit = 5;   ///< ENCODE_LUT_1D_UNIT
+inline constexpr unsigned kEncodeLut3dUnit = 6;   ///< ENCODE_LUT_3D_UNIT
 
 // ---- image units: what a compute pass writes (the precompute's tables, the sky-view table)
 inline constexpr unsigned kOutputImage = 0;        ///< OUTPUT_IMAGE
@@ -67,6 +73,10 @@ inline constexpr unsigned kTransmittanceProductImage = 3;  ///< TRANSMITTANCE_PR
 }  // namespace zenith::render::binding
 
 namespace zenith::render {
+
+/// Texels a row of a colour 1D LUT's texture (LUT_1D_ROW_TEXELS,
+/// render/display/colour_profile_textures.h, display_transform.glsl).
+inline constexpr int kLut1dRowTexels = 1024;
 
 /// Entries of direct_light.comp's sun_spectrum[] uniform array (SUN_SPECTRUM_SIZE):
 /// a scene's wavelengths at most.

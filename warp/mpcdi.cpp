@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -20,6 +21,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "warp/mpcdi_colour.h"
 #include "warp/orientation_angles.h"
 #include "warp/xml_reader.h"
 
@@ -130,26 +132,6 @@ class ZipArchive {
   std::vector<std::string> names_;
 };
 
-/// `text` without leading and trailing whitespace.
-std::string_view trimmed(std::string_view text) {
-  const auto space = [](unsigned char c) { return std::isspace(c) != 0; };
-  while (!text.empty() && space(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
-  while (!text.empty() && space(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
-  return text;
-}
-
-/// The finite number `text` holds (surrounding whitespace and a leading '+'
-/// allowed); nothing for anything else.
-std::optional<double> finite_number(std::string_view text) {
-  std::string_view digits = trimmed(text);
-  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
-    return std::nullopt;
-  return value;
-}
-
 /// The base name of a member path.
 std::string_view base_name(std::string_view member) {
   const std::size_t slash = member.find_last_of('/');
@@ -184,6 +166,9 @@ class MpcdiReader {
       fail(root, "<MPCDI> attribute 'profile' = '" + profile + "': must be one of 2d, 3d, a3, sl");
     }
     if (const std::string* version = root.attribute("version")) file.version = *version;
+    // color="1".."5" (table 3-3): the stages' types it allows; absent (v1 files, some writers): not checked.
+    if (const std::string* level = root.attribute("color"))
+      file.colour_level = integer_value(root, "attribute 'color' (the colour level, table 3-3)", *level, 1, 5);
 
     const XmlElement& display = required_child(root, "display");
     std::set<std::string> region_ids;
@@ -202,6 +187,7 @@ class MpcdiReader {
     }
     if (file.buffers.empty()) fail(display, "<display> has no <buffer>");
 
+    std::map<std::string, MpcdiColourLuts> colour_luts;  // by region id
     if (const XmlElement* files = root.child("files")) {
       for (const XmlElement* fileset : files->children_named("fileset")) {
         const std::string& id = required_attribute(*fileset, "region");
@@ -211,8 +197,21 @@ class MpcdiReader {
             if (candidate.id == id) region = &candidate;
         if (!region) fail(*fileset, "<fileset> names region '" + id + "', which <display> does not define");
         read_fileset(*fileset, *region, file.profile);
+        read_colour_luts(*fileset, region->id, colour_luts[region->id]);
       }
     }
+    // The colour profile: <color> with the fileset's LUTs; without <color>, the identity.
+    for (MpcdiBuffer& buffer : file.buffers)
+      for (MpcdiRegion& region : buffer.regions) {
+        MpcdiColourLuts& luts = colour_luts[region.id];
+        if (region.colour) {
+          attach_mpcdi_colour_luts(*region.colour, std::move(luts), file.colour_level, source_, region.id);
+        } else if (luts.decode || luts.correct || luts.encode) {
+          spdlog::warn(
+              "{}:{}: region '{}' has colour LUTs in its <fileset> but no <color> element to use them: ignored",
+              source_, region.line, region.id);
+        }
+      }
     return file;
   }
 
@@ -319,7 +318,35 @@ class MpcdiReader {
                         "' has no <coordinateFrame> (required by the sl profile: the "
                         "projector's position and axes)");
     }
+    if (const XmlElement* color = element.child("color")) region.colour = read_mpcdi_colour(*color, source_, region.id);
     return region;
+  }
+
+  /// The fileset's <decodeLUT>, <correctLUT> and <encodeLUT>: .cube files
+  /// (§3.8) with an <interpolation> hint (linear, smooth or unknown; every LUT
+  /// is interpolated linearly, 1D, or trilinearly, 3D: §3.8 leaves the hint optional).
+  void read_colour_luts(const XmlElement& fileset, const std::string& region_id, MpcdiColourLuts& luts) const {
+    const auto read = [&](const char* name, std::optional<MpcdiColourLut>& out) {
+      const XmlElement* element = fileset.child(name);
+      if (!element || names_no_file(*element, region_id)) return;
+      MpcdiColourLut lut;
+      lut.line = element->line;
+      lut.path = child_text(*element, "path");
+      if (const XmlElement* interpolation = element->child("interpolation")) {
+        const std::string hint(trimmed(interpolation->text));
+        if (!equals_ignoring_case(hint, "linear") && !equals_ignoring_case(hint, "smooth") &&
+            !equals_ignoring_case(hint, "unknown"))
+          fail(*interpolation,
+               "region '" + region_id + "': <" + element->name + "> <interpolation> '" + hint +
+                   "': must be linear, smooth or unknown (keystone is meaningless for colour, §2.5.1.2)");
+      }
+      const long long index = member_for(*element, lut.path, region_id, name);
+      lut.lut = parse_cube_lut(zip_.read(index), zip_.name() + ":" + zip_.names()[static_cast<std::size_t>(index)]);
+      out = std::move(lut);
+    };
+    read("decodeLUT", luts.decode);
+    read("correctLUT", luts.correct);
+    read("encodeLUT", luts.encode);
   }
 
   /// <frustum>: yaw, pitch, roll in [−360, 360] (normalized), the edge angles

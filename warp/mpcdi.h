@@ -10,6 +10,8 @@
 //         <region id=".." x=".." y=".." xsize=".." ysize=".." xResolution=".." yResolution="..">
 //           <frustum> yaw pitch roll leftAngle rightAngle upAngle downAngle (degrees) </frustum>
 //           <coordinateFrame> posx posy posz yawx yawy yawz pitchx pitchy pitchz rollx rolly rollz </coordinateFrame>
+//           <color> <decode type gamma/> <correct type> <primaries>..</primaries> </correct> <encode type gamma/>
+//           </color>
 //         </region> ...
 //       </buffer> ...
 //     </display>
@@ -19,12 +21,13 @@
 //         <alphaMap> path componentDepth bitDepth gammaEmbedded </alphaMap>
 //         <betaMap> path componentDepth bitDepth </betaMap>
 //         <distortionMap> path </distortionMap>                          (sl)
+//         <decodeLUT>, <correctLUT>, <encodeLUT> path interpolation     (.cube, §3.8)
 //       </fileset> ...
 //     </files>
 //   </MPCDI>
 //
 // Element and attribute names are matched ignoring case; unknown elements
-// (color, extensionSet, ...) are skipped, and so is a <coordinateFrame> of
+// (extensionSet, ...) are skipped, and so is a <coordinateFrame> of
 // the 2d and a3 profiles, which have none (VESA MPCDI v2.0 §3.5.2).
 //
 // Geometry warps are PFMs whose samples start top-left and span the region's
@@ -37,6 +40,10 @@
 // screen, which need the viewer's position to become rays: the map is kept,
 // and warp/mpcdi_projection.h makes the rays. An sl region's <distortionMap>
 // (the projector lens's 2D LUT, the format of a 2D warp) gets a WarpMesh.
+//
+// A region's <color> and its fileset's .cube LUTs are its colour profile
+// (warp/colour_profile.h, read by warp/mpcdi_colour.h), for every profile; a
+// region without <color> has none: the identity, zenith's own output stage.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -45,6 +52,7 @@
 #include <glm/vec3.hpp>
 
 #include "warp/blend_map.h"
+#include "warp/colour_profile.h"
 #include "warp/pfm.h"
 #include "warp/planar_projection.h"
 #include "warp/warp_map_conventions.h"
@@ -129,6 +137,9 @@ struct MpcdiRegion {
   std::optional<MpcdiGeometryWarp> distortion_map;
   std::optional<WarpMesh> distortion_mesh;
   std::optional<MpcdiBlendMap> alpha_map, beta_map;
+  /// <color> with its LUTs (VESA MPCDI v2.0 §2.5); nothing when the region has
+  /// no <color>: the output stage is zenith's own (docs/warp-meshes.md, "Colour profile").
+  std::optional<MpcdiColourProfile> colour;
 };
 
 struct MpcdiBuffer {
@@ -141,7 +152,8 @@ struct MpcdiFile {
   std::string path;        ///< the archive (as given)
   std::string descriptor;  ///< the member read as mpcdi.xml (also mpacs.xml, or the only .xml member)
   MpcdiProfile profile = MpcdiProfile::media_2d;
-  std::string version;  ///< as written, "" when absent
+  std::string version;   ///< as written, "" when absent
+  int colour_level = 0;  ///< <MPCDI color=".."> in [1, 5] (table 3-3); 0 when absent (then not checked)
   std::vector<MpcdiBuffer> buffers;
 
   /// The region with that id (ids are unique across buffers); nullptr when none.
@@ -171,7 +183,8 @@ struct MpcdiLoadOptions {
 /// (a frustum for 3d and sl, a coordinate frame for sl), or a value out of range;
 /// an unknown profile, geometricUnit or originOf3DData; a duplicate region id;
 /// a fileset naming an unknown region; a warp or blend file missing from the
-/// archive; a broken PFM (truncated, bad header) or PNG; and a NaN-only warp
+/// archive; a broken PFM (truncated, bad header) or PNG; a <color> or .cube LUT
+/// that warp/mpcdi_colour.h and warp/cube_lut.h refuse; and a NaN-only warp
 /// (std::invalid_argument from WarpMesh, message "<archive>:<member>: ... NaN-only mesh").
 MpcdiFile load_mpcdi(const std::filesystem::path& path, const MpcdiLoadOptions& options = {});
 

@@ -77,6 +77,14 @@ std::string pinhole_elements(const PlanarFrustum& f) {
   return xml.str();
 }
 
+/// The region's <color> (VESA MPCDI v2.0 §3.5.2: "there shall be a color tag
+/// for every region tag"): decode and encode a gamma, no correction; colour level 1 and 2.
+std::string colour_element(double gamma) {
+  return "        <color>\n          <decode type=\"gamma\" gamma=\"" + number(gamma) +
+         "\"/>\n          <correct type=\"none\"/>\n          <encode type=\"gamma\" gamma=\"" + number(gamma) +
+         "\"/>\n        </color>\n";
+}
+
 }  // namespace
 
 std::string mpcdi_descriptor(const MpcdiRegionExport& r) {
@@ -88,6 +96,9 @@ std::string mpcdi_descriptor(const MpcdiRegionExport& r) {
     throw std::invalid_argument("MPCDI export: region id '" + r.id +
                                 "': must be letters, digits, '-', '_' or '.' (it is written into XML attributes)");
   const bool warp = !sl || !r.warp_member.empty();
+  if (!(r.colour_gamma >= kMinColourGamma && r.colour_gamma <= kMaxColourGamma))
+    throw std::invalid_argument("MPCDI export: region '" + r.id + "': colour gamma " + number(r.colour_gamma) +
+                                " must be in [" + number(kMinColourGamma) + ", " + number(kMaxColourGamma) + "]");
   if (r.width_px < 1 || r.height_px < 1 || (warp && (r.warp_columns < 1 || r.warp_rows < 1)))
     throw std::invalid_argument("MPCDI export: region '" + r.id + "': resolution and warp size must be at least 1");
   for (const std::string* member : {&r.warp_member, &r.alpha_member, &r.beta_member})
@@ -105,8 +116,9 @@ std::string mpcdi_descriptor(const MpcdiRegionExport& r) {
       << "    <buffer id=\"" << r.id << "\" xResolution=\"" << r.width_px << "\" yResolution=\"" << r.height_px
       << "\">\n"
       << "      <region id=\"" << r.id << "\" x=\"0\" y=\"0\" xsize=\"1\" ysize=\"1\" xResolution=\"" << r.width_px
-      << "\" yResolution=\"" << r.height_px
-      << (sl ? "\">\n" + pinhole_elements(r.frustum) + "      </region>\n" : "\"/>\n") << "    </buffer>\n"
+      << "\" yResolution=\"" << r.height_px << "\">\n"
+      << (sl ? pinhole_elements(r.frustum) : std::string()) << colour_element(r.colour_gamma) << "      </region>\n"
+      << "    </buffer>\n"
       << "  </display>\n"
       << "  <files>\n"
       << "    <fileset region=\"" << r.id << "\">\n";

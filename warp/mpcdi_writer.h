@@ -9,7 +9,9 @@
 //   <MPCDI profile="2d" geometry="1" color="1" version="2.0">
 //     <display>
 //       <buffer id="ID" xResolution="W" yResolution="H">
-//         <region id="ID" x="0" y="0" xsize="1" ysize="1" xResolution="W" yResolution="H"/>
+//         <region id="ID" x="0" y="0" xsize="1" ysize="1" xResolution="W" yResolution="H">
+//           <color> decode gamma 2.2, correct none, encode gamma 2.2 </color>     (colour_gamma)
+//         </region>
 //       </buffer>
 //     </display>
 //     <files>
@@ -71,6 +73,11 @@ struct MpcdiRegionExport {
   MpcdiProfile profile = MpcdiProfile::media_2d;
   /// sl: the frustum, in zenith's camera frame (PlanarProjection::frustum()).
   PlanarFrustum frustum{-1.0, 1.0, -1.0, 1.0};
+  /// The region's <color>: decode and encode this gamma, correct none. 2.2:
+  /// the signal zenith renders is sRGB, which a media player decodes as about
+  /// 2.2, and §2.5.1.3 asks for the decode's gamma where the display's own
+  /// response is not characterized. In [kMinColourGamma, kMaxColourGamma].
+  double colour_gamma = 2.2;
 };
 
 /// The mpcdi.xml text describing `region` (the layouts above). Throws

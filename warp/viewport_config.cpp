@@ -78,6 +78,8 @@ struct LoadedWarp {
   /// frustum and frame, or its 3D warp; warp/mpcdi_projection.h).
   std::shared_ptr<const Projection> projection;
   std::string profile;  ///< MPCDI: the file's profile (messages)
+  /// MPCDI: the region's colour profile (<color>); null without one.
+  std::shared_ptr<const MpcdiColourProfile> colour;
 };
 
 /// The mesh of a warp for an output of width × height px; resolves source.file
@@ -90,11 +92,11 @@ LoadedWarp load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir
       BourkeMeshOptions options;
       options.aspect = static_cast<double>(width_px) / height_px;  // square pixels
       options.fit = source.fit;
-      return {load_bourke_mesh(source.file, options), std::nullopt, nullptr, ""};
+      return {load_bourke_mesh(source.file, options), std::nullopt, nullptr, "", nullptr};
     }
     if (source.format == "pfm")
       return {load_pfm_warp_mesh(source.file, source.row_order, WarpInterpolation::catmull_rom, source.conventions),
-              std::nullopt, nullptr, ""};
+              std::nullopt, nullptr, "", nullptr};
     const MpcdiFile mpcdi = load_mpcdi(source.file, MpcdiLoadOptions{source.conventions.values});
     const MpcdiRegion* region = mpcdi.find_region(source.region);
     if (region == nullptr) {
@@ -107,6 +109,8 @@ LoadedWarp load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir
     if (source.eye && !mpcdi_region_has_3d_warp(*region))
       w.fail("eye", cat("applies to a region with a 3D geometry warp (screen points); region \"", source.region,
                         "\" of ", source.file.string(), " (profile ", to_string(mpcdi.profile), ") has none"));
+    std::shared_ptr<const MpcdiColourProfile> colour;
+    if (region->colour) colour = std::make_shared<const MpcdiColourProfile>(*region->colour);
     if (mpcdi_region_defines_rays(mpcdi)) {  // 3d, sl, a3: the frustum and frame, or the 3D warp
       MpcdiViewOptions view;
       view.eye = source.eye;
@@ -114,12 +118,14 @@ LoadedWarp load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir
       LoadedWarp loaded;
       loaded.projection = mpcdi_region_projection(mpcdi, *region, width_px, height_px, view);
       loaded.profile = to_string(mpcdi.profile);
+      loaded.colour = std::move(colour);
       return loaded;
     }
     if (!region->warp_mesh)
       w.fail("region", cat("= \"", source.region, "\": the region has no 2D geometry warp (profile ",
                            to_string(mpcdi.profile), ")"));
-    return {*region->warp_mesh, std::pair{region->x_resolution_px, region->y_resolution_px}, nullptr, "2d"};
+    return {*region->warp_mesh, std::pair{region->x_resolution_px, region->y_resolution_px}, nullptr, "2d",
+            std::move(colour)};
   } catch (const ConfigError&) {
     throw;
   } catch (const std::exception& e) {  // the loaders' runtime_error / invalid_argument
@@ -274,6 +280,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
             : nullptr;
     try {
       LoadedWarp loaded = load_warp(w, source, base_dir, out.width_px, out.height_px);
+      out.colour = loaded.colour;
       if (loaded.projection) {  // an MPCDI region that defines its rays
         if (has_spec)
           o.fail("projection", cat("the MPCDI region \"", source.region, "\" (profile ", loaded.profile,
@@ -312,6 +319,12 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
   out.blend = read_blend(o, base_dir);
   out.black_level = o.number_or("black_level", 0.0, 0.0, kMaxBlackLevel, "(fraction of full white)");
   if (o.has("window")) out.window = read_output_window(o, "window", out.name);
+  // The region's <encode> is the projector's response (VESA MPCDI v2.0
+  // §2.5.1.3): a window encoding would describe it a second time.
+  if (out.colour && out.window && out.window->gamma > 0.0)
+    o.fail("window", cat("\"encoding\": {\"gamma\": ", out.window->gamma, "} with the MPCDI region \"",
+                         out.warp->region, "\", whose <color> encodes for the projector (", describe(*out.colour),
+                         "): remove the window's \"encoding\" (docs/warp-meshes.md, \"Colour profile\")"));
   return out;
 }
 

@@ -32,6 +32,7 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "warp/colour_profile.h"
 #include "warp/output_window.h"
 #include "warp/pfm.h"
 #include "warp/planar_projection.h"
@@ -119,6 +120,11 @@ struct OutputConfig {
   /// β: the projector's black level as a fraction of its full white, in
   /// [0, 0.5]; the output stage writes P·α·(1 − β) + β (docs/viewports.md).
   double black_level = 0.0;
+  /// The MPCDI region's colour profile (its <color>: decode, correct, encode;
+  /// warp/colour_profile.h), null for any other output and a region without
+  /// one. The output stage then runs processPixel on zenith's signal, with
+  /// `blend` as α and `black_level` as β (docs/warp-meshes.md, "Colour profile").
+  std::shared_ptr<const MpcdiColourProfile> colour;
   /// Where a render node shows the output ("window": warp/output_window.h);
   /// unset: in the node's default window, beside its other such outputs.
   std::optional<OutputWindow> window;

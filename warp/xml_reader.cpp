@@ -1,6 +1,8 @@
 #include "warp/xml_reader.h"
 
+#include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 
@@ -290,6 +292,23 @@ std::vector<const XmlElement*> XmlElement::children_named(std::string_view eleme
 
 XmlElement parse_xml(std::string_view document, const std::string& source) {
   return Parser(document, source).document();
+}
+
+std::string_view trimmed(std::string_view text) {
+  const auto space = [](unsigned char c) { return std::isspace(c) != 0; };
+  while (!text.empty() && space(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && space(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  return text;
+}
+
+std::optional<double> finite_number(std::string_view text) {
+  std::string_view digits = trimmed(text);
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
+    return std::nullopt;
+  return value;
 }
 
 }  // namespace zenith::warp

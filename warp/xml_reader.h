@@ -12,6 +12,7 @@
 // Names are kept as written; lookups (XmlElement::child, attribute, is) compare
 // them ASCII case-insensitively, as MPCDI requires. Namespaces are not
 // interpreted (a prefix is part of the name).
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -21,6 +22,12 @@ namespace zenith::warp {
 
 /// ASCII case-insensitive equality.
 bool equals_ignoring_case(std::string_view a, std::string_view b);
+/// `text` without leading and trailing whitespace.
+std::string_view trimmed(std::string_view text);
+/// The finite number `text` holds (surrounding whitespace and a leading '+'
+/// allowed; std::from_chars's format otherwise); nothing for anything else.
+/// The numbers of MPCDI descriptors and of the files they name (.cube LUTs).
+std::optional<double> finite_number(std::string_view text);
 
 struct XmlElement {
   std::string name;

@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <optional>
 
 #include "image/display_fade.h"
 #include "image/tone_mapping.h"
+#include "render/display/colour_signal.h"
 #include "warp/blending.h"
 
 namespace zenith::cluster {
@@ -55,6 +57,16 @@ void OutputWriter::write(std::size_t viewport_index, std::uint64_t frame, std::v
     if (blended)
       warp::apply_blend(rgb, 0, o.height_px, warp::output_blend_mask(viewports_, viewport_index), o.black_level);
     image::write_exr(partial, o.width_px, o.height_px, rgb, image::ExrPixelType::half, attributes);
+  } else if (o.colour) {
+    // The region's colour profile (docs/warp-meshes.md, "Colour profile"), as the display pass applies it.
+    for (float& v : rgb) v = image::tone_map(v, image::ToneMapping::exponential);
+    image::apply_fade(rgb, fade.level, {fade.colour.x, fade.colour.y, fade.colour.z});
+    const std::optional<warp::BlendMask> mask =
+        blended ? std::optional(warp::output_blend_mask(viewports_, viewport_index)) : std::nullopt;
+    render::display::apply_colour_profile(rgb, 0, o.height_px, o.width_px, *o.colour, mask ? &*mask : nullptr,
+                                          blended ? o.black_level : 0.0);
+    render::display::to_srgb_code_centres(rgb);  // the PNG writer encodes sRGB: it stores V's codes
+    image::write_png(partial, o.width_px, o.height_px, rgb, image::ToneMapping::clamp, attributes);
   } else if (!blended && !faded) {
     image::write_png(partial, o.width_px, o.height_px, rgb, image::ToneMapping::exponential, attributes);
   } else {

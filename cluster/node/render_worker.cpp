@@ -161,10 +161,13 @@ void RenderWorker::ensure_context() {
     f.stage.black_level = o.black_level;
     if (o.window && o.window->gamma > 0.0)
       f.stage.encoding = {image::DisplayEncoding::Transfer::gamma, o.window->gamma};
+    if (o.colour) f.colour = render::display::ColourProfileTextures(*o.colour);
     frames_.push_back(std::move(f));
   }
-  for (OutputFrame& f : frames_)
-    if (f.blend_mask.id() != 0) f.stage.blend_mask = &f.blend_mask;  // after the moves: addresses are final
+  for (OutputFrame& f : frames_) {  // after the moves: addresses are final
+    if (f.blend_mask.id() != 0) f.stage.blend_mask = &f.blend_mask;
+    if (!f.colour.empty()) f.stage.colour = &f.colour;
+  }
 }
 
 void RenderWorker::ensure_renderer(std::uint32_t flags) {

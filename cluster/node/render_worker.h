@@ -120,9 +120,10 @@ class RenderWorker {
   /// (Renderer::render_to_texture) and, with windows, what its projector is
   /// sent (the display pass).
   struct OutputFrame {
-    render::gl::Texture radiance;    ///< rgba32f, linear radiance × exposure (allocated on first use)
-    render::gl::Texture display;     ///< rgba8, encoded for the display (windows only)
-    render::gl::Texture blend_mask;  ///< r32f α where the output blends
+    render::gl::Texture radiance;                   ///< rgba32f, linear radiance × exposure (allocated on first use)
+    render::gl::Texture display;                    ///< rgba8, encoded for the display (windows only)
+    render::gl::Texture blend_mask;                 ///< r32f α where the output blends
+    render::display::ColourProfileTextures colour;  ///< an MPCDI region's colour profile, uploaded once
     render::display::OutputStage stage;
   };
 

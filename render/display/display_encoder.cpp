@@ -65,6 +65,10 @@ void DisplayEncoder::set_stage(const gl::ShaderProgram& p, int width, int height
   p.set_uniform("transfer", gamma ? 1 : 0);
   p.set_uniform("inverse_gamma", static_cast<float>(gamma ? 1.0 / stage.encoding.gamma : 1.0));
   if (stage.blended && stage.blend_mask != nullptr) stage.blend_mask->bind(binding::kBlendMaskUnit);
+  if (stage.colour != nullptr && !stage.colour->empty())
+    stage.colour->bind(p);
+  else
+    p.set_uniform("colour_profile", 0);
 }
 
 void DisplayEncoder::encode(const gl::Texture& radiance, const OutputStage& stage, gl::Texture& display) {

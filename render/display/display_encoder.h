@@ -5,9 +5,11 @@
 // a fade, the output stage (blend mask α, black level β) and the display
 // encoding, shaders/render/display_transform.glsl has the equations. The CPU
 // path computes the same (image::tone_map, warp::apply_blend,
-// image::display_encode); the GPU's codes equal it within ±1 (8 and 16 bit:
+// image::display_encode; with an MPCDI colour profile, MpcdiColourProfile::process
+// of the encoded signal); the GPU's codes equal it within ±1 (8 and 16 bit:
 // the float arithmetic before the rounding is good to a few ulp, so only a
-// value within that of a rounding boundary can land on the neighbouring code).
+// value within that of a rounding boundary can land on the neighbouring code;
+// a 3D LUT's hardware trilinear weights add the bound of colour_profile_textures.h).
 //
 // Pixels leave the GPU only where they leave the machine: a thumbnail is
 // reduced on the GPU (at most kMaxThumbnailEdgePx a side) before its few
@@ -19,6 +21,7 @@
 
 #include "image/display_encoding.h"
 #include "image/tone_mapping.h"
+#include "render/display/colour_profile_textures.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/gl/texture_rows_draw.h"
@@ -48,6 +51,12 @@ struct OutputStage {
   double black_level = 0.0;                 ///< β in [0, 0.5]
   image::DisplayEncoding encoding;
   Fade fade;
+  /// An MPCDI region's colour profile, its LUTs uploaded once for the output
+  /// (kept by the caller while the output exists); nullptr or empty: none.
+  /// With one, the output stage runs inside the profile's processPixel on
+  /// E(P), the signal `encoding` gives without α and β
+  /// (display_transform.glsl; docs/warp-meshes.md, "Colour profile").
+  const ColourProfileTextures* colour = nullptr;
 };
 
 /// The r32f texture of a blend mask (row 0 at the top), for OutputStage::blend_mask.

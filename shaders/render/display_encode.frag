@@ -3,7 +3,8 @@
 // frame's exposed radiance (Renderer::render_to_texture) → tone mapping, fade,
 // blend mask and black level, display encoding (display_transform.glsl) →
 // an RGBA8 or RGBA16 texture that a window draws, or that is read back for a
-// file. Drawn as one triangle over a framebuffer holding the display texture
+// file; with an MPCDI colour profile, its decode, correct and encode around
+// the output stage. Drawn as one triangle over a framebuffer holding the display texture
 // (present.vert): fragment (x, y) is texel (x, y) of the frame, row 0 at the
 // top as rendered. A fragment pass rather than a compute pass: a CPU
 // rasterizer (llvmpipe) shades fragments in 4 × 4 stamps on every core and
@@ -32,10 +33,9 @@ layout(location = 0) out vec4 display;
 void main() {
   const ivec2 p = ivec2(gl_FragCoord.xy);
 #if FROM_BAND
-  const vec3 v = display_linear(p, band_rgb(p));
+  const vec3 e = display_signal(p, band_rgb(p));
 #else
-  const vec3 v = display_linear(p, texelFetch(radiance, p, 0).rgb);
+  const vec3 e = display_signal(p, texelFetch(radiance, p, 0).rgb);
 #endif
-  const vec3 e = vec3(display_encode(v.r), display_encode(v.g), display_encode(v.b));
   display = vec4(floor(e * code_max + 0.5) / code_max, 1.0);
 }

@@ -348,6 +348,14 @@ TEST(GlslNvidiaRules, EveryProgramOfThePrecomputeAndTheRendererPassesOnNvidiasRu
     precompute_every_variant(context);
     render_every_variant();
     const gl::ShaderProgram present = load_graphics_program("render/present.vert", "render/present.frag");
+    // The display pass (render/display/display_encoder.h: the output stage and
+    // an MPCDI colour profile's LUTs), from a texture and from a band, and its thumbnail.
+    for (const char* band : {"0", "1"}) {
+      const std::vector<gl::ShaderDefine> defines = {{"FROM_BAND", band}};
+      const gl::ShaderProgram display =
+          load_graphics_program("render/present.vert", "render/display_encode.frag", defines);
+    }
+    const gl::ShaderProgram thumbnail = load_compute_program("render/display_thumbnail.comp");
   }
   std::size_t programs = 0;
   std::vector<std::string> rule1, rule2_new;

@@ -191,6 +191,9 @@ TEST_F(CalibrationExport, BlendMasksAndBlackLevelsRoundTripInBothEncodings) {
     const MpcdiRegion* region = mpcdi.find_region(o.name);
     ASSERT_NE(region, nullptr);
     ASSERT_TRUE(region->alpha_map && region->beta_map && region->warp_mesh);
+    // Every region has a <color> (VESA MPCDI v2.0 §3.5.2): decode and encode gamma 2.2.
+    ASSERT_TRUE(region->colour);
+    EXPECT_EQ(describe(*region->colour), "decode gamma 2.2, correct none, encode gamma 2.2");
     // The region's resolution is the warp's source, the size a reader takes.
     ASSERT_TRUE(o.warp || o.name == "left" || o.name == "right");
     EXPECT_EQ(region->x_resolution_px, o.warp ? o.warp->source_width_px : o.width_px);
@@ -205,6 +208,8 @@ TEST_F(CalibrationExport, BlendMasksAndBlackLevelsRoundTripInBothEncodings) {
                                  {"projection", o.projection_spec},
                                  {"warp", {{"file", o.name + ".mpcdi"}, {"format", "mpcdi"}, {"region", o.name}}}}})}};
     const ViewportConfig read_alone = parse_viewport_config(alone, "alone.json", out);
+    ASSERT_TRUE(read_alone.outputs[0].colour);  // export → load: the output carries the region's profile
+    EXPECT_EQ(read_alone.outputs[0].colour->encode.gamma, 2.2);
     const RayComparison rays_alone = compare_rays(read_alone.outputs[0], o);
     EXPECT_EQ(rays_alone.mismatched, 0) << o.name;
     EXPECT_LT(rays_alone.max_difference, 1e-6) << o.name;
@@ -339,6 +344,9 @@ TEST(CalibrationExportShaderLamps, ExportThenLoadGivesTheSameRays) {
     ASSERT_TRUE(region.frustum && region.coordinate_frame && region.alpha_map && region.beta_map);
     EXPECT_EQ(region.distortion_mesh.has_value(), o.warp.has_value());
     EXPECT_FALSE(region.geometry_warp);
+    ASSERT_TRUE(region.colour);
+    EXPECT_EQ(describe(*region.colour), "decode gamma 2.2, correct none, encode gamma 2.2");
+    EXPECT_TRUE(r.colour);
   }
   // A projection that is no pinhole cannot be written as sl; nothing is written.
   const ViewportConfig dome = load_viewport_config(dir.write("dome.json", R"({"zenith_viewports": 1, "name": "d",
