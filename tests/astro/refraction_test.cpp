@@ -72,6 +72,13 @@ TEST(Refraction, EarthAgainstBennettAndSaemundsson) {
     EXPECT_NEAR(model.apparent_from_true_rad(true_alt), h * core::kDeg, 0.01 * kArcmin) << h;
   }
   EXPECT_NEAR(model.integral_rad(0.5 * core::kPi), 0.0, 1e-9);
+  // The solver inverts the table itself to rounding, near the horizon too
+  // (where R, linear in √h between table points, is steepest).
+  for (double h : {0.0, 1e-9, 1e-6, 1e-4, 0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 45.0, 89.9}) {
+    const double apparent = h * core::kDeg;
+    const double true_alt = apparent - model.at_apparent_rad(apparent);
+    EXPECT_NEAR(model.apparent_from_true_rad(true_alt), apparent, 1e-14) << h;
+  }
   // Below the apparent horizon the lift stays R(0): continuous, never NaN.
   EXPECT_NEAR(model.apparent_from_true_rad(-2.0 * core::kDeg), -2.0 * core::kDeg + model.at_apparent_rad(0.0), 1e-12);
 }
