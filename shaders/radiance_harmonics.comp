@@ -12,7 +12,9 @@ layout(local_size_x = 64) in;
 #include "previous_order.glsl"
 #include "harmonics.glsl"
 
-layout(binding = DELTA_IRRADIANCE_UNIT) uniform sampler2D delta_irradiance_texture;  // orders n ≥ 3
+#if !FIRST_ORDER
+layout(binding = DELTA_IRRADIANCE_UNIT) uniform sampler2D delta_irradiance_texture;
+#endif
 
 void main() {
   const int invocation = int(gl_GlobalInvocationID.x);
@@ -52,13 +54,12 @@ void main() {
       const real3 ground_normal =
           normalize3(real3(omega.x * ground_distance, omega.y * ground_distance, c.r + omega.z * ground_distance));
       const real mu_s_ground = clamp(dot3(ground_normal, sun), real(-1), real(1));
-      real4 ground_e;
-      if (first_order != 0) {
-        ground_e = transmittance_to_sun(RB, mu_s_ground) * max(mu_s_ground, real(0));
-      } else {
-        const real2 e_uv = irradiance_uv(RB, mu_s_ground);
-        ground_e = sample_table_2d(delta_irradiance_texture, IRRADIANCE_MU_S, IRRADIANCE_R, e_uv.x, e_uv.y);
-      }
+#if FIRST_ORDER
+      const real4 ground_e = transmittance_to_sun(RB, mu_s_ground) * max(mu_s_ground, real(0));
+#else
+      const real2 e_uv = irradiance_uv(RB, mu_s_ground);
+      const real4 ground_e = sample_table_2d(delta_irradiance_texture, IRRADIANCE_MU_S, IRRADIANCE_R, e_uv.x, e_uv.y);
+#endif
       incoming += ground_t * albedo / PI * ground_e;
     }
     // cos(mφ) by Chebyshev's recurrence; × 2: the mirrored azimuth 2π − φ.

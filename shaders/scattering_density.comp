@@ -2,7 +2,7 @@
 // Scattering density J_n(r, μ, μs, ν) = ∫_4π [β_R ρ_R P_R + β_M ρ_M P_M] L_{n−1} dω
 // for one group of 4 wavelengths, where L_{n−1} includes, in directions that hit
 // the ground, the ground's reflection of the irradiance of order n−2 (the direct
-// sun for n = 2, first_order) (cpu_precompute.cpp, compute_scattering_density).
+// sun for n = 2, FIRST_ORDER) (cpu_precompute.cpp, compute_scattering_density).
 // SPHERE_ZENITH_SAMPLES Gauss–Legendre nodes in cos θ, twice as many azimuths.
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -10,7 +10,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "previous_order.glsl"
 
 layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image3D density_image;
-layout(binding = DELTA_IRRADIANCE_UNIT) uniform sampler2D delta_irradiance_texture;  // orders n ≥ 3
+#if !FIRST_ORDER
+layout(binding = DELTA_IRRADIANCE_UNIT) uniform sampler2D delta_irradiance_texture;
+#endif
 
 void main() {
   const ivec3 p = ivec3(gl_GlobalInvocationID.xy, z_offset + int(gl_GlobalInvocationID.z));
@@ -66,13 +68,12 @@ void main() {
         const real3 ground_normal =
             normalize3(real3(omega.x * ground_distance, omega.y * ground_distance, c.r + omega.z * ground_distance));
         const real mu_s_ground = clamp(dot3(ground_normal, sun), real(-1), real(1));
-        real4 ground_e;
-        if (first_order != 0) {
-          ground_e = transmittance_to_sun(RB, mu_s_ground) * max(mu_s_ground, real(0));
-        } else {
-          const real2 e_uv = irradiance_uv(RB, mu_s_ground);
-          ground_e = sample_table_2d(delta_irradiance_texture, IRRADIANCE_MU_S, IRRADIANCE_R, e_uv.x, e_uv.y);
-        }
+#if FIRST_ORDER
+        const real4 ground_e = transmittance_to_sun(RB, mu_s_ground) * max(mu_s_ground, real(0));
+#else
+        const real2 uv = irradiance_uv(RB, mu_s_ground);
+        const real4 ground_e = sample_table_2d(delta_irradiance_texture, IRRADIANCE_MU_S, IRRADIANCE_R, uv.x, uv.y);
+#endif
         incoming += ground_t * albedo / PI * ground_e;
       }
       const real cos_scatter = clamp(dot3(view, omega), real(-1), real(1));

@@ -3,20 +3,18 @@
 // (view_ray.glsl) for one group of 4 wavelengths; T by accumulating the optical
 // depth along the ray, OPTICAL_DEPTH_SUBSTEPS log-linear steps per interval
 // (cpu_precompute.cpp: view_ray_samples, the same operations in the same order).
-// view_mapping: the μ mapping of the stage that reads the samples (ANGLE_MAPPING_DISTANCE
-// for single scattering, ANGLE_MAPPING_BLENDED for the orders ≥ 2); a uniform, one program for both.
+// VIEW_MAPPING: the μ mapping of the stage that reads the samples
+// (ANGLE_MAPPING_DISTANCE for single scattering, ANGLE_MAPPING_BLENDED for the orders ≥ 2).
 layout(local_size_x = 64) in;
 
 #include "atmosphere_common.glsl"
 #include "view_ray.glsl"
 
-uniform int view_mapping;
-
 void main() {
   const int ray = int(gl_GlobalInvocationID.x);
   if (ray >= SCATTERING_R * SCATTERING_MU) return;
   const int z = ray / SCATTERING_MU, y = ray % SCATTERING_MU;
-  const ScatteringCoordinates c = scattering_texel_coordinates(0, y, z, view_mapping);
+  const ScatteringCoordinates c = scattering_texel_coordinates(0, y, z, VIEW_MAPPING);
   const real d = distance_to_nearest_boundary(c.r, c.mu, c.hits_ground);
   const real lowest = lowest_point_distance(c.r, c.mu, d, c.hits_ground);
   const real stretch = air_mass_stretch(c.r, c.mu);
@@ -40,6 +38,6 @@ void main() {
     PRECISE real mu_t = clamp((c.r * c.mu + t) / r_t, real(-1), real(1));
     const int sample_index = view_ray_sample_index(z, y, i);
     view_transmittance[sample_index] = exp_r4(-stretch * optical_depth);
-    view_ray_uv[sample_index] = real2(scattering_u_r(r_t), scattering_u_mu(r_t, mu_t, c.hits_ground, view_mapping));
+    view_ray_uv[sample_index] = real2(scattering_u_r(r_t), scattering_u_mu(r_t, mu_t, c.hits_ground, VIEW_MAPPING));
   }
 }

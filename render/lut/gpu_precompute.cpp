@@ -64,10 +64,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 int to_int(std::size_t v) { return static_cast<int>(v); }
 
-/// The values of ANGLE_MAPPING_DISTANCE and ANGLE_MAPPING_BLENDED
-/// (shaders/atmosphere/parameterization.glsl), for view_transmittance.comp's view_mapping.
-constexpr int kAngleMappingDistance = 0, kAngleMappingBlended = 1;
-
 /// One group of 4 wavelengths' tables on the GPU (RGBA32F, created when first needed).
 struct GroupTables {
   Texture transmittance, irradiance, delta_irradiance;
@@ -203,24 +199,31 @@ std::vector<std::pair<std::string, std::vector<ShaderDefine>>> GpuPrecompute::ne
     out.emplace_back(std::move(file), std::move(extra));
   };
   const int orders = options_.max_orders;
+  // The switches between orders are #defines, not uniforms: a uniform in a
+  // branch costs llvmpipe a new variant at each of its values, in every run
+  // (docs/gpu-precompute.md, "Parallel compilation").
+  auto first_order = [&](const std::string& file) {
+    need(file, {{"FIRST_ORDER", "1"}});
+    if (orders > 2) need(file, {{"FIRST_ORDER", "0"}});
+  };
   // In the order run() uses them, so that the first ones are ready first.
-  // The switches between orders (first_order, single_scattering,
-  // view_mapping) are uniforms: one program each for every order.
   need("transmittance.comp");
   need("texel_coordinates.comp");
-  need("view_transmittance.comp");
+  need("view_transmittance.comp", {{"VIEW_MAPPING", "ANGLE_MAPPING_DISTANCE"}});
   need("single_scattering.comp");
-  need("radiance_sum.comp");
+  need("radiance_sum.comp", {{"SINGLE", "1"}});
   if (orders < 2) return out;
   if (options_.density_method == PrecomputeOptions::DensityMethod::Harmonics) {
-    need("radiance_harmonics.comp");
+    first_order("radiance_harmonics.comp");
     need("harmonic_projection.comp");
     need("harmonic_density.comp");
   } else {
-    need("scattering_density.comp");
+    first_order("scattering_density.comp");
   }
-  need("indirect_irradiance.comp");
+  first_order("indirect_irradiance.comp");
+  need("view_transmittance.comp", {{"VIEW_MAPPING", "ANGLE_MAPPING_BLENDED"}});
   need("multiple_scattering.comp");
+  need("radiance_sum.comp", {{"SINGLE", "0"}});
   // The tail follows from the third order on (run(): tail_follows); a
   // tolerance may stop before it, and then its build is abandoned.
   if (options_.series_tail && orders >= 3) need("series_tail.comp");
@@ -280,8 +283,9 @@ void GpuPrecompute::compute_view_transmittance(std::size_t group, bool distance_
     view_transmittance_ = gl::Buffer(samples * real4_size);
     view_ray_uv_ = gl::Buffer(samples * real4_size / 2);
   }
-  const ShaderProgram& p = program("view_transmittance.comp");
-  p.set_uniform("view_mapping", distance_mapping ? kAngleMappingDistance : kAngleMappingBlended);
+  const ShaderProgram& p =
+      program("view_transmittance.comp",
+              {{"VIEW_MAPPING", distance_mapping ? "ANGLE_MAPPING_DISTANCE" : "ANGLE_MAPPING_BLENDED"}});
   view_transmittance_.bind_storage(kViewTransmittance);
   view_ray_uv_.bind_storage(kViewRayCoordinates);
   p.set_uniform("wavelength_group", to_int(group));
@@ -375,8 +379,7 @@ void GpuPrecompute::compute_scattering_density_harmonics(int order) {
   }
   azimuth_moments_.bind_storage(kAzimuthMoments);
   harmonic_coefficients_.bind_storage(kHarmonicCoefficients);
-  const ShaderProgram& radiance = program("radiance_harmonics.comp");
-  radiance.set_uniform("first_order", order == 2 ? 1 : 0);
+  const ShaderProgram& radiance = program("radiance_harmonics.comp", {{"FIRST_ORDER", order == 2 ? "1" : "0"}});
   const ShaderProgram& projection = program("harmonic_projection.comp");
   const ShaderProgram& density = program("harmonic_density.comp");
   for (std::size_t g = 0; g < group_count(); ++g) {
@@ -399,8 +402,7 @@ void GpuPrecompute::compute_scattering_density_harmonics(int order) {
 }
 
 void GpuPrecompute::compute_scattering_density_direct(int order) {
-  const ShaderProgram& p = program("scattering_density.comp");
-  p.set_uniform("first_order", order == 2 ? 1 : 0);
+  const ShaderProgram& p = program("scattering_density.comp", {{"FIRST_ORDER", order == 2 ? "1" : "0"}});
   for (std::size_t g = 0; g < group_count(); ++g) {
     GroupTables& t = groups_[g];
     if (t.density.id() == 0) t.density = new_scattering_texture();
@@ -416,8 +418,7 @@ void GpuPrecompute::compute_scattering_density_direct(int order) {
 
 void GpuPrecompute::compute_indirect_irradiance(int order) {
   const TableSizes& s = sizes();
-  const ShaderProgram& p = program("indirect_irradiance.comp");
-  p.set_uniform("first_order", order == 2 ? 1 : 0);
+  const ShaderProgram& p = program("indirect_irradiance.comp", {{"FIRST_ORDER", order == 2 ? "1" : "0"}});
   for (std::size_t g = 0; g < group_count(); ++g) {
     GroupTables& t = groups_[g];
     if (t.irradiance.id() == 0) {
@@ -468,8 +469,7 @@ double GpuPrecompute::compute_multiple_scattering(int sample_stride) {
 }
 
 double GpuPrecompute::radiance_sum(bool single) {
-  const ShaderProgram& p = program("radiance_sum.comp");
-  p.set_uniform("single_scattering", single ? 1 : 0);
+  const ShaderProgram& p = program("radiance_sum.comp", {{"SINGLE", single ? "1" : "0"}});
   const std::size_t rows = sizes().scattering_r * sizes().scattering_mu;
   for (std::size_t g = 0; g < group_count(); ++g) {
     GroupTables& t = groups_[g];
