@@ -649,7 +649,27 @@ std::optional<SkyClock> read_sky_clock(JsonReader& root, const std::vector<Body>
   return clock;
 }
 
-/// "night_sky": {"zenith_v_mag_arcsec2"} and "light_pollution": {"zenith_mcd_m2" | "bortle",
+/// "scintillation": true (the defaults of astro::ScintillationOptions), false
+/// (steady stars) or {"c_y", "pupil_mm", "integration_s", "turbulence_height_m"}.
+std::optional<astro::ScintillationOptions> read_scintillation(JsonReader& night) {
+  const json& v = night.raw("scintillation");
+  if (v.is_boolean())
+    return v.get<bool>() ? std::optional<astro::ScintillationOptions>(astro::ScintillationOptions{}) : std::nullopt;
+  if (!v.is_object())
+    night.fail("scintillation", cat("must be true, false or an object {\"c_y\", \"pupil_mm\", \"integration_s\", "
+                                    "\"turbulence_height_m\"}, got ",
+                                    brief(v)));
+  JsonReader s = open_object(night, "scintillation", {"c_y", "pupil_mm", "integration_s", "turbulence_height_m"});
+  astro::ScintillationOptions o;
+  o.c_y = s.number_or("c_y", o.c_y, 0.0, 5.0);
+  o.pupil_mm = s.number_or("pupil_mm", o.pupil_mm, 1.0, 1000.0, "mm");
+  o.integration_s = s.number_or("integration_s", o.integration_s, 0.001, 10.0, "s");
+  o.turbulence_height_m = s.number_or("turbulence_height_m", o.turbulence_height_m, 100.0, 30000.0, "m");
+  s.finish();
+  return o;
+}
+
+/// "night_sky": {"zenith_v_mag_arcsec2", "scintillation"} and "light_pollution": {"zenith_mcd_m2" | "bortle",
 /// "colour_temperature_K"} (docs/scenes.md, "Night sky"), seen through the atmosphere of
 /// the camera's body.
 std::optional<NightSky> read_night_sky(JsonReader& root, const std::vector<Body>& bodies,
@@ -662,8 +682,9 @@ std::optional<NightSky> read_night_sky(JsonReader& root, const std::vector<Body>
   if (!body.atmosphere)
     root.fail(key, cat("is seen through the atmosphere of the camera's body, but \"", body.name, "\" has none"));
   if (root.has("night_sky")) {
-    JsonReader n = open_object(root, "night_sky", {"zenith_v_mag_arcsec2"});
+    JsonReader n = open_object(root, "night_sky", {"zenith_v_mag_arcsec2", "scintillation"});
     night.floor.zenith_v_mag_arcsec2 = n.number_or("zenith_v_mag_arcsec2", 22.0, 19.0, 23.0, "mag/arcsec^2");
+    if (n.has("scintillation")) night.scintillation = read_scintillation(n);
     n.finish();
   }
   if (root.has("light_pollution")) {

@@ -5,12 +5,14 @@
 // hand-set "sky" direction; shows move that time at a rate (docs/shows.md,
 // "Time track"). No GL.
 #include <cstddef>
+#include <optional>
 
 #include <glm/vec3.hpp>
 
 #include "astro/civil_time.h"
 #include "astro/light_pollution.h"
 #include "astro/night_sky_floor.h"
+#include "astro/scintillation.h"
 #include "astro/sky_positions.h"
 
 namespace zenith::scene {
@@ -31,7 +33,10 @@ struct SkyClock {
 struct NightSky {
   astro::NightSkyFloorOptions floor;             ///< "night_sky": {"zenith_v_mag_arcsec2"}
   astro::LightPollutionOptions light_pollution;  ///< "light_pollution": zenith_mcd_m2 (0: none)
-  std::size_t body = 0;                          ///< the body whose atmosphere they are seen through
+  /// "night_sky": {"scintillation": true | {c_y, pupil_mm, integration_s, turbulence_height_m}}:
+  /// the stars twinkle (astro/scintillation.h); absent: steady stars.
+  std::optional<astro::ScintillationOptions> scintillation;
+  std::size_t body = 0;  ///< the body whose atmosphere they are seen through
 };
 
 /// Where the ephemeris puts the Sun at `time` for `clock`'s site.

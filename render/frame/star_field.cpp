@@ -6,7 +6,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "astro/scintillation.h"
 #include "astro/star_photometry.h"
+#include "atmosphere/air_mass.h"
 #include "atmosphere/lut/parameterization.h"
 #include "core/parallel_for.h"
 
@@ -181,6 +183,16 @@ std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm
           rgb[static_cast<std::size_t>(c)] += frame.rgb_weights[k][static_cast<std::size_t>(c)] * e;
       }
       if (rgb[0] == 0.0 && rgb[1] == 0.0 && rgb[2] == 0.0) continue;
+      if (frame.scintillation) {  // the star's intensity over this integration interval
+        const double altitude_deg =
+            std::asin(std::clamp(glm::dot(d, frame.up), 0.0, 1.0)) * (180.0 / 3.14159265358979323846);
+        const double variance =
+            astro::scintillation_variance(*frame.scintillation, atmosphere::pickering_air_mass(altitude_deg),
+                                          frame.observer_altitude_m, frame.ground_refractivity);
+        const double factor =
+            astro::scintillation_factor(variance, astro::scintillation_normal(i, frame.scintillation_interval));
+        for (double& c : rgb) c *= factor;
+      }
       StarSplat& s = placed[i];
       s.x_px = static_cast<float>(pixel->x);
       s.y_px = static_cast<float>(pixel->y);

@@ -29,6 +29,7 @@
 //      and on a flat screen.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@
 
 #include "astro/civil_time.h"
 #include "astro/refraction.h"
+#include "astro/scintillation.h"
 #include "astro/sky_positions.h"
 #include "astro/star_catalogue.h"
 #include "atmosphere/lut/lookup_tables.h"
@@ -123,6 +125,13 @@ struct StarFrame {
   /// sin of the lowest true altitude that can still show (the ground's dip less
   /// refraction's lift and a margin; −1: none): below it the ground hides the star.
   double lowest_sin_altitude = -1.0;
+  /// Twinkling (astro/scintillation.h; null: steady stars): the options, the
+  /// integration interval the frame's sky time falls in (one draw per star and
+  /// interval), the observer's altitude and the air's ground refractivity n₀ − 1.
+  const astro::ScintillationOptions* scintillation = nullptr;
+  std::int64_t scintillation_interval = 0;
+  double observer_altitude_m = 0.0;
+  double ground_refractivity = 0.0;
 };
 
 /// The cone around the image's centre ray that holds every pixel's ray, widened

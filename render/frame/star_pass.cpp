@@ -144,6 +144,15 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
           refraction_key_ = key;
         }
         f.refraction = refraction_.get();
+        if (scene.night_sky && scene.night_sky->scintillation && scene.night_sky->body == clock.body) {
+          // One draw per star and integration interval of the sky's clock (seconds from J2000 UTC).
+          const astro::ScintillationOptions& twinkle = *scene.night_sky->scintillation;
+          const double seconds = ((time.utc().day1 - 2451545.0) + time.utc().day2) * 86400.0;
+          f.scintillation = &twinkle;
+          f.scintillation_interval = static_cast<std::int64_t>(std::floor(seconds / twinkle.integration_s));
+          f.observer_altitude_m = altitude_m;
+          f.ground_refractivity = refraction_->ground_refractivity();
+        }
       }
       f.atmospheres = atmospheres;
       for (const scene::Body& b : scene.bodies) f.occluders.emplace_back(b.position_m, b.radius_m);
@@ -163,8 +172,11 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
     if (options_.stars && ensure_field(scene) && field_->size() > 0) {
       double weight = 0.0;  // the largest Σ_λ max_c |w_c(λ)|: an RGB bound per unit of flat irradiance
       for (const auto& w : frame.rgb_weights) weight += std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
-      const double bound =
-          exposure * field_->brightest_irradiance() * weight / smallest_pixel_solid_angle_sr(frame.projection);
+      // Twinkling can brighten a star by at most the largest log-normal factor (variance ≤ 1).
+      const double twinkle =
+          f.scintillation ? astro::scintillation_factor(1.0, astro::kLargestScintillationNormal) : 1.0;
+      const double bound = exposure * field_->brightest_irradiance() * weight * twinkle /
+                           smallest_pixel_solid_angle_sr(frame.projection);
       if (bound >= kInvisibleDisplayStep) {
         timer.cpu("star placement", [&] {
           field_->directions_enu(time, clock.site, directions_);

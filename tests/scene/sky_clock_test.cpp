@@ -113,5 +113,33 @@ TEST(NightSky, FloorAndLightPollutionInPhysicalUnits) {
   EXPECT_NE(error_of(j).find("/night_sky/zenith_v_mag_arcsec2 = 25"), std::string::npos) << error_of(j);
 }
 
+TEST(NightSky, ScintillationIsOffUnlessAskedAndItsParametersAreChecked) {
+  json j = golden_scene();
+  j["night_sky"] = {{"zenith_v_mag_arcsec2", 21.8}};
+  EXPECT_FALSE(parse(j).night_sky->scintillation);
+  j["night_sky"]["scintillation"] = false;
+  EXPECT_FALSE(parse(j).night_sky->scintillation);
+  j["night_sky"]["scintillation"] = true;  // the defaults: Osborn et al.'s median C_Y, a dark-adapted eye
+  const auto defaults = parse(j).night_sky->scintillation;
+  ASSERT_TRUE(defaults);
+  EXPECT_DOUBLE_EQ(defaults->c_y, 1.5);
+  EXPECT_DOUBLE_EQ(defaults->pupil_mm, 7.0);
+  EXPECT_DOUBLE_EQ(defaults->integration_s, 0.1);
+  j["night_sky"]["scintillation"] = {{"c_y", 1.2}, {"integration_s", 0.05}};
+  const auto given = parse(j).night_sky->scintillation;
+  ASSERT_TRUE(given);
+  EXPECT_DOUBLE_EQ(given->c_y, 1.2);
+  EXPECT_DOUBLE_EQ(given->integration_s, 0.05);
+  EXPECT_DOUBLE_EQ(given->turbulence_height_m, 10000.0);
+  // Errors name the key and the range.
+  j["night_sky"]["scintillation"] = {{"c_y", 9}};
+  EXPECT_NE(error_of(j).find("/night_sky/scintillation/c_y = 9"), std::string::npos) << error_of(j);
+  j["night_sky"]["scintillation"] = {{"seeing", 1}};
+  EXPECT_NE(error_of(j).find("seeing"), std::string::npos) << error_of(j);
+  j["night_sky"]["scintillation"] = "yes";
+  EXPECT_NE(error_of(j).find("/night_sky/scintillation"), std::string::npos) << error_of(j);
+  EXPECT_NE(error_of(j).find("must be true, false or an object"), std::string::npos) << error_of(j);
+}
+
 }  // namespace
 }  // namespace zenith::scene
