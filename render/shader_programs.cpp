@@ -23,15 +23,25 @@ gl::ShaderProgram compute_program(const ExpandedShader& shader, std::span<const 
   return gl::ShaderProgram::compute(code_from(shader), with_interface_defines(defines), binaries);
 }
 
+gl::ShaderBuild start_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines,
+                                      gl::ProgramBinaryCache* binaries) {
+  return gl::ShaderBuild::compute(code_from(load_shader(name)), with_interface_defines(defines), binaries);
+}
+
 gl::ShaderProgram load_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines,
                                        gl::ProgramBinaryCache* binaries) {
-  return compute_program(load_shader(name), defines, binaries);
+  return start_compute_program(name, defines, binaries).finish();
+}
+
+gl::ShaderBuild start_graphics_program(std::string_view vertex_name, std::string_view fragment_name,
+                                       std::span<const gl::ShaderDefine> defines) {
+  return gl::ShaderBuild::graphics(code_from(load_shader(vertex_name)), code_from(load_shader(fragment_name)),
+                                   with_interface_defines(defines));
 }
 
 gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::string_view fragment_name,
                                         std::span<const gl::ShaderDefine> defines) {
-  return gl::ShaderProgram::graphics(code_from(load_shader(vertex_name)), code_from(load_shader(fragment_name)),
-                                     with_interface_defines(defines));
+  return start_graphics_program(vertex_name, fragment_name, defines).finish();
 }
 
 }  // namespace zenith::render

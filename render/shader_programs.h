@@ -12,6 +12,7 @@
 #include <span>
 #include <string_view>
 
+#include "render/gl/shader_build.h"
 #include "render/gl/shader_program.h"
 #include "render/shader_source.h"
 
@@ -22,9 +23,16 @@ namespace zenith::render {
 /// (render/gl/program_binary_cache.h).
 gl::ShaderProgram load_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines = {},
                                        gl::ProgramBinaryCache* binaries = nullptr);
+/// load_compute_program's build, started and not finished
+/// (render/gl/shader_build.h: finish() where the program is first used).
+gl::ShaderBuild start_compute_program(std::string_view name, std::span<const gl::ShaderDefine> defines = {},
+                                      gl::ProgramBinaryCache* binaries = nullptr);
 /// A vertex + fragment program from two embedded shaders.
 gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::string_view fragment_name,
                                         std::span<const gl::ShaderDefine> defines = {});
+/// load_graphics_program's build, started and not finished.
+gl::ShaderBuild start_graphics_program(std::string_view vertex_name, std::string_view fragment_name,
+                                       std::span<const gl::ShaderDefine> defines = {});
 /// A compute program from an already expanded shader (one resolved among
 /// other files than the embedded ones, e.g. the tests' shaders), with the same
 /// shared defines.

@@ -25,15 +25,23 @@ const FramePasses& FramePrograms::passes_for(const FrameVariant& frame) {
     d.insert(d.end(), frame_defines.begin(), frame_defines.end());
     return d;
   };
-  FramePasses p;
   FrameVariant no_eclipses = frame;  // the G-buffer pass shades nothing
   no_eclipses.eclipses = false;
   const std::vector<gl::ShaderDefine> gbuffer_defines = no_eclipses.defines();
-  p.gbuffer = load_compute_program("render/gbuffer.comp", gbuffer_defines);
-  p.resolve = load_compute_program("render/resolve.comp", resolve_defines);
-  p.direct_light_one = load_compute_program("render/direct_light.comp", direct_defines(false, true));
-  p.direct_light = load_compute_program("render/direct_light.comp", direct_defines(false, false));
-  if (sun_disc_) p.direct_light_sun = load_compute_program("render/direct_light.comp", direct_defines(true, false));
+  // All five started before any is finished: a driver with parallel shader
+  // compile (NVIDIA) builds them on its threads at once (render/gl/shader_build.h).
+  gl::ShaderBuild gbuffer = start_compute_program("render/gbuffer.comp", gbuffer_defines);
+  gl::ShaderBuild resolve = start_compute_program("render/resolve.comp", resolve_defines);
+  gl::ShaderBuild direct_one = start_compute_program("render/direct_light.comp", direct_defines(false, true));
+  gl::ShaderBuild direct = start_compute_program("render/direct_light.comp", direct_defines(false, false));
+  gl::ShaderBuild direct_sun;
+  if (sun_disc_) direct_sun = start_compute_program("render/direct_light.comp", direct_defines(true, false));
+  FramePasses p;
+  p.gbuffer = gbuffer.finish();
+  p.resolve = resolve.finish();
+  p.direct_light_one = direct_one.finish();
+  p.direct_light = direct.finish();
+  if (sun_disc_) p.direct_light_sun = direct_sun.finish();
   return passes_.emplace(frame.key(), std::move(p)).first->second;
 }
 

@@ -2,9 +2,9 @@
 // The programs of a frame's own passes, those that are no atmosphere's
 // (an atmosphere's are GpuAtmosphere's, render/frame/gpu_atmosphere.h):
 // the G-buffer (shaders/render/gbuffer.comp), the resolve (resolve.comp) and
-// the direct light of tiles no shell touches (direct_light.comp), each
-// compiled on first use for the frame's variant (FrameVariant: projection
-// kind, eclipses, albedo level) and kept.
+// the direct light of tiles no shell touches (direct_light.comp), built on
+// first use for the frame's variant (FrameVariant: projection kind, eclipses,
+// albedo level), the five together, and kept.
 #include <cstddef>
 #include <map>
 #include <string>

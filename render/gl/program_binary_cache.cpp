@@ -42,6 +42,11 @@ std::string ProgramBinaryCache::key(std::span<const std::string> stage_texts) co
 }
 
 unsigned ProgramBinaryCache::load(const std::string& key) {
+  const unsigned program = start_load(key);
+  return program != 0 && finish_load(key, program) ? program : 0;
+}
+
+unsigned ProgramBinaryCache::start_load(const std::string& key) {
   if (!enabled()) return 0;
   const std::filesystem::path path = directory_ / (key + ".bin");
   std::ifstream in(path, std::ios::binary);
@@ -49,27 +54,37 @@ unsigned ProgramBinaryCache::load(const std::string& key) {
   const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::uint32_t format = 0;
   const std::size_t header = sizeof kMagic + sizeof format;
-  GLuint program = 0;
-  if (bytes.size() > header && std::memcmp(bytes.data(), kMagic, sizeof kMagic) == 0) {
-    std::memcpy(&format, bytes.data() + sizeof kMagic, sizeof format);
-    program = glCreateProgram();
-    glProgramBinary(program, format, bytes.data() + header, static_cast<GLsizei>(bytes.size() - header));
-    GLint ok = GL_FALSE;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (ok == GL_TRUE) {
-      ++statistics_.loaded;
-      return program;
-    }
+  if (bytes.size() <= header || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
+    refuse(key, 0);  // not ours, or truncated
+    return 0;
   }
-  // Not ours, truncated, or refused by this driver: compile instead, and store anew.
+  std::memcpy(&format, bytes.data() + sizeof kMagic, sizeof format);
+  const GLuint program = glCreateProgram();
+  glProgramBinary(program, format, bytes.data() + header, static_cast<GLsizei>(bytes.size() - header));
+  return program;
+}
+
+bool ProgramBinaryCache::finish_load(const std::string& key, unsigned program) {
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok == GL_TRUE) {
+    ++statistics_.loaded;
+    return true;
+  }
+  refuse(key, program);
+  return false;
+}
+
+void ProgramBinaryCache::refuse(const std::string& key, unsigned program) {
+  // Refused by this driver: compiled instead, and stored anew.
   while (glGetError() != GL_NO_ERROR) {
   }
   if (program != 0) glDeleteProgram(program);
   ++statistics_.refused;
+  const std::filesystem::path path = directory_ / (key + ".bin");
   std::error_code ec;
   std::filesystem::remove(path, ec);
   spdlog::debug("program binary cache: {} refused; compiling", path.string());
-  return 0;
 }
 
 void ProgramBinaryCache::store(const std::string& key, unsigned program) {

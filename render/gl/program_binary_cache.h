@@ -37,7 +37,15 @@ class ProgramBinaryCache {
   std::string key(std::span<const std::string> stage_texts) const;
   /// A linked program from the binary stored under `key`, or 0 when there is
   /// none, it cannot be read or the driver refuses it (then the file is removed).
+  /// start_load and finish_load at once.
   unsigned load(const std::string& key);
+  /// The binary stored under `key` given to glProgramBinary, without asking
+  /// whether the driver took it (a driver may load it on its compiler
+  /// threads, GL_KHR_parallel_shader_compile); 0 when there is no usable file.
+  unsigned start_load(const std::string& key);
+  /// Whether the driver took the binary of `program` (from start_load(key)):
+  /// false when it refused it; then the program is deleted and the file removed.
+  bool finish_load(const std::string& key, unsigned program);
   /// Stores the binary of the linked `program` under `key`. A failure (a full
   /// disk, a read-only folder) is logged once and otherwise ignored.
   void store(const std::string& key, unsigned program);
@@ -50,6 +58,9 @@ class ProgramBinaryCache {
   const Statistics& statistics() const { return statistics_; }
 
  private:
+  /// A refused binary: `program` (0: none) deleted, the file removed, counted.
+  void refuse(const std::string& key, unsigned program);
+
   std::filesystem::path directory_;
   std::string driver_;
   int formats_ = 0;

@@ -55,6 +55,10 @@ std::string with_test_hooks(std::string_view name, std::string text) {
   }
   if (const char* target = std::getenv("ZENITH_FAIL_SHADER"); target != nullptr && name == target)
     lines.push_back(fmt::format("#error {} made to fail by ZENITH_FAIL_SHADER", name));
+  if (const char* target = std::getenv("ZENITH_FAIL_SHADER_C5025");
+      target != nullptr && name == target && text.find(kNvidiaLoopUnrollOff) == std::string::npos)
+    lines.push_back(
+        fmt::format("#error C5025: {} made to fail as NVIDIA's loop unrolling does by ZENITH_FAIL_SHADER_C5025", name));
   if (lines.empty()) return text;
   return insert_after_version(name, text, lines);
 }

@@ -1,7 +1,7 @@
 #pragma once
-// Two environment hooks on every shader stage that ShaderProgram compiles, for
+// Environment hooks on every shader stage that ShaderProgram compiles, for
 // checks, tests and driver bug reports (docs/gpu-precompute.md, "What NVIDIA's
-// compiler refuses"). Neither is set in normal use; both cost one getenv per stage.
+// compiler refuses"). None is set in normal use; each costs one getenv per stage.
 //
 //   ZENITH_SHADER_DUMP_DIR=DIR  writes each stage's final text, exactly as given to
 //       glShaderSource (includes expanded, #defines injected), to
@@ -17,6 +17,10 @@
 //       ("transmittance.comp", "render/present.frag") fails to compile: an #error
 //       line after its #version line. Tests use it to exercise what happens when a
 //       driver refuses a program (the precompute's fallback to the CPU).
+//   ZENITH_FAIL_SHADER_C5025=NAME  the stage of the shader named NAME fails to
+//       compile with a message naming NVIDIA's C5025, unless its text carries
+//       kNvidiaLoopUnrollOff: what NVIDIA's compiler does to a loop it cannot
+//       unroll, so that the retry (ShaderBuild::finish) runs on any driver.
 #include <string>
 #include <string_view>
 #include <vector>

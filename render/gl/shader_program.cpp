@@ -5,14 +5,11 @@
 #include <spdlog/spdlog.h>
 
 #include <cctype>
-#include <map>
-#include <optional>
 #include <stdexcept>
 #include <utility>
 
-#include "render/gl/gl_error.h"
-#include "render/gl/program_binary_cache.h"
-#include "render/gl/shader_hooks.h"
+#include "render/gl/glsl_text.h"
+#include "render/gl/shader_build.h"
 
 namespace zenith::render::gl {
 
@@ -27,201 +24,13 @@ const char* to_string(ShaderStage stage) {
 
 namespace {
 
-std::vector<std::string_view> split_lines(std::string_view text) {
-  std::vector<std::string_view> lines;
-  while (!text.empty()) {
-    const std::size_t newline = text.find('\n');
-    lines.push_back(text.substr(0, newline));
-    if (newline == std::string_view::npos) break;
-    text.remove_prefix(newline + 1);
-  }
-  return lines;
-}
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
-
-/// The words of a preprocessor directive line ("#line 3 1" → {"line", "3", "1"}), or empty.
-std::vector<std::string_view> directive_words(std::string_view line) {
-  line = trim(line);
-  std::vector<std::string_view> words;
-  if (line.empty() || line.front() != '#') return words;
-  line.remove_prefix(1);
-  while (true) {
-    line = trim(line);
-    if (line.empty()) break;
-    std::size_t end = 0;
-    while (end < line.size() && !std::isspace(static_cast<unsigned char>(line[end]))) ++end;
-    words.push_back(line.substr(0, end));
-    line.remove_prefix(end);
-  }
-  return words;
-}
-
-std::optional<int> parse_int(std::string_view s) {
-  if (s.empty() || s.size() > 9) return std::nullopt;
-  int v = 0;
-  for (char c : s) {
-    if (c < '0' || c > '9') return std::nullopt;
-    v = v * 10 + (c - '0');
-  }
-  return v;
-}
+using glsl_text::directive_words;
 
 bool is_identifier(std::string_view s) {
   if (s.empty() || std::isdigit(static_cast<unsigned char>(s.front()))) return false;
   for (char c : s)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
   return true;
-}
-
-/// (source-string number, line) → that line's text, following the #line
-/// directives of the compiled text.
-std::map<std::pair<int, int>, std::string_view> line_map(std::string_view text) {
-  std::map<std::pair<int, int>, std::string_view> map;
-  int string = 0, line = 1;
-  for (std::string_view l : split_lines(text)) {
-    const std::vector<std::string_view> words = directive_words(l);
-    if (words.size() >= 2 && words[0] == "line") {
-      if (auto n = parse_int(words[1])) {
-        line = *n;
-        if (words.size() >= 3)
-          if (auto s = parse_int(words[2])) string = *s;
-        continue;
-      }
-    }
-    map.insert_or_assign({string, line}, l);  // later (original) lines win over injected ones
-    ++line;
-  }
-  return map;
-}
-
-/// The (source string, line) a compiler message names: "0:7(12): ..." (Mesa),
-/// "0(7) : ..." (NVIDIA), "ERROR: 0:7: ..." (others).
-std::optional<std::pair<int, int>> message_location(std::string_view message) {
-  for (std::string_view prefix : {"ERROR: ", "WARNING: "})
-    if (message.substr(0, prefix.size()) == prefix) message.remove_prefix(prefix.size());
-  std::size_t i = 0;
-  auto digits = [&]() -> std::optional<int> {
-    const std::size_t start = i;
-    while (i < message.size() && std::isdigit(static_cast<unsigned char>(message[i]))) ++i;
-    return parse_int(message.substr(start, i - start));
-  };
-  const auto string = digits();
-  if (!string || i >= message.size()) return std::nullopt;
-  const char separator = message[i++];
-  if (separator != ':' && separator != '(') return std::nullopt;
-  const auto line = digits();
-  if (!line || i >= message.size()) return std::nullopt;
-  if (separator == '(' && message[i] != ')') return std::nullopt;
-  if (separator == ':' && message[i] != '(' && message[i] != ':') return std::nullopt;
-  return std::pair{*string, *line};
-}
-
-/// The info log with the offending source line under each message that names one.
-std::string annotate_log(std::string_view log, std::string_view compiled, const std::vector<std::string>& files) {
-  const auto map = line_map(compiled);
-  std::string out;
-  for (std::string_view message : split_lines(log)) {
-    while (!message.empty() && message.back() == '\r') message.remove_suffix(1);
-    if (trim(message).empty()) continue;
-    out += fmt::format("{}\n", message);
-    if (auto where = message_location(message)) {
-      const auto [string, line] = *where;
-      const std::string file = string >= 0 && static_cast<std::size_t>(string) < files.size()
-                                   ? files[static_cast<std::size_t>(string)]
-                                   : fmt::format("source {}", string);
-      if (auto it = map.find({string, line}); it != map.end())
-        out += fmt::format("    {}:{} | {}\n", file, line, trim(it->second));
-    }
-  }
-  if (files.size() > 1) {
-    out += "source strings:";
-    for (std::size_t k = 0; k < files.size(); ++k)
-      out += fmt::format(" {} = {}{}", k, files[k], k + 1 < files.size() ? "," : "");
-    out += '\n';
-  }
-  while (!out.empty() && out.back() == '\n') out.pop_back();
-  return out;
-}
-
-GLenum stage_enum(ShaderStage stage) {
-  switch (stage) {
-    case ShaderStage::vertex: return GL_VERTEX_SHADER;
-    case ShaderStage::fragment: return GL_FRAGMENT_SHADER;
-    case ShaderStage::compute: return GL_COMPUTE_SHADER;
-  }
-  return GL_COMPUTE_SHADER;
-}
-
-std::string shader_log(GLuint shader) {
-  GLint length = 0;
-  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-  std::string log(static_cast<std::size_t>(std::max(length, 0)), '\0');
-  if (length > 0) glGetShaderInfoLog(shader, length, nullptr, log.data());
-  while (!log.empty() && log.back() == '\0') log.pop_back();
-  return log;
-}
-
-std::string program_log(GLuint program) {
-  GLint length = 0;
-  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-  std::string log(static_cast<std::size_t>(std::max(length, 0)), '\0');
-  if (length > 0) glGetProgramInfoLog(program, length, nullptr, log.data());
-  while (!log.empty() && log.back() == '\0') log.pop_back();
-  return log;
-}
-
-/// Compiles one stage; throws with the annotated log on failure.
-GLuint compile(ShaderStage stage, const ShaderCode& code, std::span<const ShaderDefine> defines) {
-  const std::string text = with_test_hooks(code.name, inject_defines(code.name, code.text, defines));
-  const std::vector<std::string> files = code.files.empty() ? std::vector<std::string>{code.name} : code.files;
-  dump_shader_source(code.name, stage, text, files);
-  const GLuint shader = glCreateShader(stage_enum(stage));
-  if (shader == 0) {
-    check_gl_error(fmt::format("shader '{}': glCreateShader", code.name));
-    throw std::runtime_error(fmt::format("shader '{}': glCreateShader returned 0", code.name));
-  }
-  const GLchar* source = text.c_str();
-  const GLint length = static_cast<GLint>(text.size());
-  glShaderSource(shader, 1, &source, &length);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  const std::string log = shader_log(shader);
-  if (ok != GL_TRUE) {
-    glDeleteShader(shader);
-    throw ShaderBuildError(code.name, fmt::format("shader '{}' ({}) failed to compile:\n{}", code.name,
-                                                  to_string(stage), annotate_log(log, text, files)));
-  }
-  if (!trim(log).empty())
-    spdlog::debug("shader '{}' ({}) compiled with messages:\n{}", code.name, to_string(stage), log);
-  return shader;
-}
-
-/// Links the compiled stages (deleting them); throws with the log on failure.
-/// `retrievable`: for glGetProgramBinary (ProgramBinaryCache::store).
-GLuint link(const std::string& name, std::span<const GLuint> shaders, bool retrievable = false) {
-  const GLuint program = glCreateProgram();
-  if (retrievable) glProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
-  for (GLuint s : shaders) glAttachShader(program, s);
-  glLinkProgram(program);
-  for (GLuint s : shaders) {
-    glDetachShader(program, s);
-    glDeleteShader(s);
-  }
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  const std::string log = program_log(program);
-  if (ok != GL_TRUE) {
-    glDeleteProgram(program);
-    throw ShaderBuildError(name, fmt::format("shader program '{}' failed to link:\n{}", name, trim(log)));
-  }
-  if (!trim(log).empty()) spdlog::debug("shader program '{}' linked with messages:\n{}", name, log);
-  return program;
 }
 
 }  // namespace
@@ -264,64 +73,19 @@ std::string inject_defines(std::string_view name, std::string_view text, std::sp
 
 bool is_nvidia_unroll_failure(std::string_view message) { return message.find("C5025") != std::string_view::npos; }
 
-namespace {
-
-GLuint build_compute(const ShaderCode& code, std::span<const ShaderDefine> defines, bool retrievable) {
-  try {
-    const GLuint shader = compile(ShaderStage::compute, code, defines);
-    return link(code.name, std::span<const GLuint>(&shader, 1), retrievable);
-  } catch (const std::runtime_error& e) {
-    if (!is_nvidia_unroll_failure(e.what())) throw;
-    // NVIDIA's compiler could not unroll a loop (kNvidiaLoopUnrollOff): the same
-    // program again with its loop unrolling off, at every line number unchanged.
-    spdlog::info(
-        "shader program '{}': NVIDIA's GLSL compiler failed on an unrolled loop (C5025); compiling it "
-        "again with loop unrolling off",
-        code.name);
-    const std::string pragma[] = {std::string(kNvidiaLoopUnrollOff)};
-    const ShaderCode rolled{code.name, insert_after_version(code.name, code.text, pragma), code.files};
-    const GLuint shader = compile(ShaderStage::compute, rolled, defines);
-    return link(code.name, std::span<const GLuint>(&shader, 1), retrievable);
-  }
-}
-
-}  // namespace
-
 ShaderProgram ShaderProgram::compute(const ShaderCode& code, std::span<const ShaderDefine> defines,
                                      ProgramBinaryCache* binaries) {
-  ShaderProgram p;
-  std::string key;  // of the binary cache; empty without one
-  if (binaries != nullptr && binaries->enabled()) {
-    const std::string text[] = {with_test_hooks(code.name, inject_defines(code.name, code.text, defines))};
-    key = binaries->key(text);
-    p.id_ = binaries->load(key);
-  }
-  if (p.id_ == 0) {
-    p.id_ = build_compute(code, defines, !key.empty());
-    if (!key.empty()) binaries->store(key, p.id_);
-  }
-  p.name_ = code.name;
-  p.compute_ = true;
-  glGetProgramiv(p.id_, GL_COMPUTE_WORK_GROUP_SIZE, p.local_size_.data());
-  return p;
+  return ShaderBuild::compute(code, defines, binaries).finish();
 }
 
 ShaderProgram ShaderProgram::graphics(const ShaderCode& vertex, const ShaderCode& fragment,
                                       std::span<const ShaderDefine> defines) {
-  const std::string name = vertex.name + " + " + fragment.name;
-  const GLuint vs = compile(ShaderStage::vertex, vertex, defines);
-  GLuint fs = 0;
-  try {
-    fs = compile(ShaderStage::fragment, fragment, defines);
-  } catch (...) {
-    glDeleteShader(vs);
-    throw;
-  }
-  const GLuint shaders[] = {vs, fs};
-  ShaderProgram p;
-  p.id_ = link(name, shaders);
-  p.name_ = name;
-  return p;
+  return ShaderBuild::graphics(vertex, fragment, defines).finish();
+}
+
+ShaderProgram::ShaderProgram(unsigned id, std::string name, bool compute)
+    : id_(id), name_(std::move(name)), compute_(compute) {
+  if (compute_) glGetProgramiv(id_, GL_COMPUTE_WORK_GROUP_SIZE, local_size_.data());
 }
 
 ShaderProgram::~ShaderProgram() { release(); }

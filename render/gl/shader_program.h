@@ -14,6 +14,7 @@
 namespace zenith::render::gl {
 
 class ProgramBinaryCache;
+class ShaderBuild;
 
 enum class ShaderStage { vertex, fragment, compute };
 const char* to_string(ShaderStage stage);
@@ -84,6 +85,8 @@ class ShaderProgram {
   /// With `binaries`, a compute program is taken from that cache when it holds
   /// one for this driver and text, and stored there after it links
   /// (render/gl/program_binary_cache.h).
+  /// Both are ShaderBuild's start and finish at once (render/gl/shader_build.h):
+  /// a caller that builds several programs can start them all first.
   static ShaderProgram compute(const ShaderCode& code, std::span<const ShaderDefine> defines = {},
                                ProgramBinaryCache* binaries = nullptr);
   static ShaderProgram graphics(const ShaderCode& vertex, const ShaderCode& fragment,
@@ -127,6 +130,9 @@ class ShaderProgram {
   void dispatch_covering(int width, int height = 1, int depth = 1) const;
 
  private:
+  friend class ShaderBuild;
+  /// Takes `id`, a linked program (for a compute program, reads its work group size).
+  ShaderProgram(unsigned id, std::string name, bool compute);
   void release() noexcept;
 
   unsigned id_ = 0;

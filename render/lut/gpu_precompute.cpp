@@ -21,6 +21,7 @@
 #include "render/gl/gl_error.h"
 #include "render/gl/gl_limits.h"
 #include "render/gl/program_binary_cache.h"
+#include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
@@ -74,8 +75,10 @@ struct GroupTables {
 class GpuPrecompute {
  public:
   GpuPrecompute(const AtmosphereModel& model, const PrecomputeOptions& options, PrecomputeReport* report,
-                const gl::HeadlessContext& context, bool fp64, gl::ProgramBinaryCache* binaries);
+                const gl::HeadlessContext& context, bool fp64, gl::ProgramBinaryCache* binaries,
+                gl::CompileMode compile);
   LookupTables run();
+  const gl::ProgramBuilds& builds() const { return builds_; }
 
  private:
   const TableSizes& sizes() const { return options_.sizes; }
@@ -84,7 +87,15 @@ class GpuPrecompute {
   std::size_t texel_coordinate_count() const { return texel_layout_.count; }
   void prepare_model_data();
   void check_limits() const;
-  const ShaderProgram& program(const std::string& file, std::vector<ShaderDefine> extra = {});
+  /// Every program that run() will use, with the extra defines of its
+  /// variant: their builds start together at the beginning (ProgramBuilds).
+  std::vector<std::pair<std::string, std::vector<ShaderDefine>>> needed_programs() const;
+  void start_programs();
+  static std::string program_key(const std::string& file, const std::vector<ShaderDefine>& extra);
+  gl::ProgramBuilds::Starter program_starter(const std::string& file, const std::vector<ShaderDefine>& extra) const;
+  /// The program of `file` with `extra` defines: its build (started by
+  /// start_programs, or now) finished where first used.
+  const ShaderProgram& program(const std::string& file, const std::vector<ShaderDefine>& extra = {});
   void stage(const std::string& name, double fraction, auto&& body);
   void dispatch_scattering(const ShaderProgram& p) const;
   /// T(x, y_i) and (u_r, u_μ) at the samples of every view ray of the scattering
@@ -127,8 +138,8 @@ class GpuPrecompute {
   gl::Buffer azimuth_moments_, harmonic_coefficients_;  // DensityMethod::Harmonics, one group at a time
   gl::Buffer view_transmittance_, view_ray_uv_;         // view_ray.glsl, one group at a time
   std::vector<GroupTables> groups_;
-  std::map<std::string, ShaderProgram> programs_;
   gl::ProgramBinaryCache* binaries_;  ///< null: every program compiled
+  gl::ProgramBuilds builds_;
   double fraction_done_ = 0.0;
   /// Σ over the table of each wavelength's radiance in the last radiance_sum,
   /// and in the one before that of the last order (the series tail's caps).
@@ -136,7 +147,8 @@ class GpuPrecompute {
 };
 
 GpuPrecompute::GpuPrecompute(const AtmosphereModel& model, const PrecomputeOptions& options, PrecomputeReport* report,
-                             const gl::HeadlessContext& context, bool fp64, gl::ProgramBinaryCache* binaries)
+                             const gl::HeadlessContext& context, bool fp64, gl::ProgramBinaryCache* binaries,
+                             gl::CompileMode compile)
     : model_(model),
       options_(options),
       report_(report),
@@ -144,7 +156,8 @@ GpuPrecompute::GpuPrecompute(const AtmosphereModel& model, const PrecomputeOptio
       fp64_(fp64),
       n_(model.wavelength_count()),
       tables_(LookupTables::allocate({model.ground_radius_m, model.top_radius_m}, options.sizes, n_)),
-      binaries_(binaries) {
+      binaries_(binaries),
+      builds_(compile) {
   if (n_ > atmosphere::lut::kMaxChannels) throw std::invalid_argument("too many wavelengths for the lookup tables");
   if (n_ == 0) throw std::invalid_argument("the atmosphere has no wavelengths");
   atmosphere::lut::check_precompute_options(options);
@@ -180,17 +193,65 @@ void GpuPrecompute::prepare_model_data() {
   row_sums_ = gl::Buffer(group_count() * sizes().scattering_r * sizes().scattering_mu * kLanes * real_size);
 }
 
-const ShaderProgram& GpuPrecompute::program(const std::string& file, std::vector<ShaderDefine> extra) {
+std::vector<std::pair<std::string, std::vector<ShaderDefine>>> GpuPrecompute::needed_programs() const {
+  std::vector<std::pair<std::string, std::vector<ShaderDefine>>> out;
+  auto need = [&](std::string file, std::vector<ShaderDefine> extra = {}) {
+    out.emplace_back(std::move(file), std::move(extra));
+  };
+  const int orders = options_.max_orders;
+  // The switches between orders are #defines, not uniforms: a uniform in a
+  // branch costs llvmpipe a new variant at each of its values, in every run
+  // (docs/gpu-precompute.md, "Parallel compilation").
+  auto first_order = [&](const std::string& file) {
+    need(file, {{"FIRST_ORDER", "1"}});
+    if (orders > 2) need(file, {{"FIRST_ORDER", "0"}});
+  };
+  // In the order run() uses them, so that the first ones are ready first.
+  need("transmittance.comp");
+  need("texel_coordinates.comp");
+  need("view_transmittance.comp", {{"VIEW_MAPPING", "ANGLE_MAPPING_DISTANCE"}});
+  need("single_scattering.comp");
+  need("radiance_sum.comp", {{"SINGLE", "1"}});
+  if (orders < 2) return out;
+  if (options_.density_method == PrecomputeOptions::DensityMethod::Harmonics) {
+    first_order("radiance_harmonics.comp");
+    need("harmonic_projection.comp");
+    need("harmonic_density.comp");
+  } else {
+    first_order("scattering_density.comp");
+  }
+  first_order("indirect_irradiance.comp");
+  need("view_transmittance.comp", {{"VIEW_MAPPING", "ANGLE_MAPPING_BLENDED"}});
+  need("multiple_scattering.comp");
+  need("radiance_sum.comp", {{"SINGLE", "0"}});
+  // The tail follows from the third order on (run(): tail_follows); a
+  // tolerance may stop before it, and then its build is abandoned.
+  if (options_.series_tail && orders >= 3) need("series_tail.comp");
+  return out;
+}
+
+void GpuPrecompute::start_programs() {
+  for (const auto& [file, extra] : needed_programs())
+    builds_.start(program_key(file, extra), program_starter(file, extra));
+}
+
+std::string GpuPrecompute::program_key(const std::string& file, const std::vector<ShaderDefine>& extra) {
   std::string key = file;
   for (const ShaderDefine& d : extra) key += fmt::format(" {}={}", d.name, d.value);
-  auto it = programs_.find(key);
-  if (it != programs_.end()) return it->second;
+  return key;
+}
+
+gl::ProgramBuilds::Starter GpuPrecompute::program_starter(const std::string& file,
+                                                          const std::vector<ShaderDefine>& extra) const {
   std::vector<ShaderDefine> defines = defines_;
   defines.insert(defines.end(), extra.begin(), extra.end());
-  const auto start = std::chrono::steady_clock::now();
-  ShaderProgram p = load_compute_program(file, defines, binaries_);
-  spdlog::debug("GPU precompute: compiled {} in {:.3f} s", key, seconds_since(start));
-  return programs_.emplace(key, std::move(p)).first->second;
+  return [file, defines = std::move(defines), binaries = binaries_] {
+    return start_compute_program(file, defines, binaries);
+  };
+}
+
+const ShaderProgram& GpuPrecompute::program(const std::string& file, const std::vector<ShaderDefine>& extra) {
+  return builds_.get(program_key(file, extra), program_starter(file, extra));
 }
 
 void GpuPrecompute::stage(const std::string& name, double fraction, auto&& body) {
@@ -485,6 +546,7 @@ LookupTables GpuPrecompute::run() {
   const int orders = options_.max_orders;
   // The same stages, shares and order accounting as cpu_precompute.cpp.
   const double share_multiple = orders > 1 ? 0.85 / (orders - 1) : 0.0;
+  start_programs();
   model_buffers_.bind();
   texel_coordinates_.bind_storage(kTexelCoordinates);
   row_sums_.bind_storage(kRowSums);
@@ -531,7 +593,7 @@ LookupTables GpuPrecompute::run() {
 
 LookupTables precompute_tables_gpu(const AtmosphereModel& model, const PrecomputeOptions& options,
                                    PrecomputeReport* report, const gl::HeadlessContext* context, GpuPrecision precision,
-                                   const std::optional<std::filesystem::path>& program_cache) {
+                                   const std::optional<std::filesystem::path>& program_cache, gl::CompileMode compile) {
   options.sizes.check();
   std::optional<gl::HeadlessContext> own;
   if (context == nullptr) {
@@ -547,7 +609,9 @@ LookupTables precompute_tables_gpu(const AtmosphereModel& model, const Precomput
   std::optional<gl::ProgramBinaryCache> binaries;
   if (program_cache) binaries.emplace(*program_cache);
   const auto start = std::chrono::steady_clock::now();
-  LookupTables tables = GpuPrecompute(model, options, report, *context, fp64, binaries ? &*binaries : nullptr).run();
+  GpuPrecompute precompute(model, options, report, *context, fp64, binaries ? &*binaries : nullptr, compile);
+  LookupTables tables = precompute.run();
+  spdlog::debug("GPU precompute: {}", precompute.builds().summary());
   if (binaries)
     spdlog::debug(
         "GPU precompute: {} programs from the binary cache in {}, {} compiled and stored, {} refused ({:.2f} s)",

@@ -22,6 +22,7 @@
 #include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/precompute_options.h"
 #include "render/gl/egl_context.h"
+#include "render/gl/shader_build.h"
 
 namespace zenith::render {
 
@@ -38,6 +39,10 @@ const char* to_string(GpuPrecision precision);
 /// it is not) or, when null, creates a HeadlessContext for the call. With
 /// `program_cache`, the linked programs are kept there between runs
 /// (render/gl/program_binary_cache.h; zenith uses <table cache>/programs).
+/// The programs' builds all start at the beginning, each finished where first
+/// used, so that a driver with parallel shader compile builds them at once;
+/// CompileMode::serial builds each where first used, one at a time
+/// (render/gl/program_builds.h; `zenith precompute --serial-compile`).
 /// Throws std::invalid_argument for bad options (as the CPU path),
 /// std::runtime_error when no GL context can be created or a table exceeds the
 /// GL limits, gl::ShaderBuildError when the driver refuses a program.
@@ -46,6 +51,7 @@ atmosphere::lut::LookupTables precompute_tables_gpu(const atmosphere::Atmosphere
                                                     atmosphere::lut::PrecomputeReport* report = nullptr,
                                                     const gl::HeadlessContext* context = nullptr,
                                                     GpuPrecision precision = GpuPrecision::automatic,
-                                                    const std::optional<std::filesystem::path>& program_cache = {});
+                                                    const std::optional<std::filesystem::path>& program_cache = {},
+                                                    gl::CompileMode compile = gl::CompileMode::parallel);
 
 }  // namespace zenith::render

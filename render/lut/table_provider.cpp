@@ -57,8 +57,8 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
       // The linked programs beside the tables: a warm run skips compiling them.
       std::optional<std::filesystem::path> programs;
       if (request.use_cache) programs = cache.directory() / "programs";
-      out.tables =
-          render::precompute_tables_gpu(model, options, &out.report, &*context, GpuPrecision::automatic, programs);
+      out.tables = render::precompute_tables_gpu(model, options, &out.report, &*context, GpuPrecision::automatic,
+                                                 programs, request.compile);
       gpu_done = true;
     } catch (const gl::ShaderBuildError& e) {
       // A driver that refuses one of the precompute's programs must not stop a

@@ -9,6 +9,7 @@
 #include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/precompute_options.h"
 #include "atmosphere/parameters.h"
+#include "render/gl/shader_build.h"
 
 namespace zenith::render {
 
@@ -20,6 +21,8 @@ struct TableRequest {
   std::optional<std::filesystem::path> cache_directory;  ///< default: default_cache_directory()
   bool use_cache = true;
   bool show_progress = true;
+  /// The GPU precompute's programs: all started at once (parallel), or one at a time.
+  gl::CompileMode compile = gl::CompileMode::parallel;
 };
 
 struct ObtainedTables {

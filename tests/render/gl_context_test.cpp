@@ -23,6 +23,8 @@
 #include "render/gl/gl_error.h"
 #include "render/gl/gl_limits.h"
 #include "render/gl/program_binary_cache.h"
+#include "render/gl/program_builds.h"
+#include "render/gl/shader_build.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/software_rasterizer.h"
 #include "render/gl/texture.h"
@@ -333,6 +335,154 @@ TEST_F(GlTest, ErrorInAnIncludedFileNamesThatFileAndLine) {
     EXPECT_NE(what.find("lib/common.glsl:3 | float g() { return undefined_name; }"), std::string::npos) << what;
     EXPECT_NE(what.find("1 = lib/common.glsl"), std::string::npos) << what;
   }
+}
+
+/// The shared binding points (render/shader_bindings.h), then `extra`: what
+/// render::compute_program defines before a shader's own.
+std::vector<gl::ShaderDefine> interface_and(std::vector<gl::ShaderDefine> extra = {}) {
+  std::vector<gl::ShaderDefine> all = shader_interface_defines();
+  all.insert(all.end(), extra.begin(), extra.end());
+  return all;
+}
+
+/// render/gl/shader_build.h: builds started together (on the driver's
+/// threads where it has GL_KHR_parallel_shader_compile), finished later, in
+/// any order; each is the program ShaderProgram::compute makes.
+TEST_F(GlTest, ShaderBuildsStartedTogetherFinishInAnyOrder) {
+  const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
+  const gl::ShaderCode code{pattern.name, pattern.text, pattern.files};
+  const std::vector<gl::ShaderDefine> scaled = {{"PATTERN_SCALE", "2.0"}, {"PATTERN_INDEX_TERM", "0"}};
+  gl::ShaderBuild plain = gl::ShaderBuild::compute(code, interface_and());
+  gl::ShaderBuild variant = gl::ShaderBuild::compute(code, interface_and(scaled));
+  EXPECT_TRUE(plain.started());
+  EXPECT_EQ(plain.name(), "test_pattern.comp");
+  // Polled as a renderer would between frames: a build completes on its own.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!variant.ready() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_TRUE(variant.ready());
+  const ShaderProgram second = variant.finish();  // the later one first
+  const ShaderProgram first = plain.finish();
+  EXPECT_FALSE(plain.started());
+  EXPECT_THROW(plain.finish(), std::logic_error);  // once only
+  EXPECT_EQ(first.work_group_size(), (std::array<int, 3>{4, 4, 2}));
+  expect_floats_near(run_pattern(first, 5, 3, 2), expected_pattern(5, 3, 2), 1e-6f);
+  expect_floats_near(run_pattern(second, 5, 3, 2), expected_pattern(5, 3, 2, 2.0f, false), 1e-6f);
+  // A build never finished is abandoned without a trace (its GL objects deleted).
+  { const gl::ShaderBuild abandoned = gl::ShaderBuild::compute(code, interface_and()); }
+  gl::check_gl_error("after an abandoned build");
+}
+
+TEST_F(GlTest, AStartedBuildReportsItsCompileErrorAtFinishWithFileAndLine) {
+  const std::map<std::string, std::string, std::less<>> files = {
+      {"main.comp", "#version 450 core\nlayout(local_size_x = 1) in;\n#include \"lib/common.glsl\"\nvoid main() {}\n"},
+      {"lib/common.glsl", "// common\nfloat f() { return 1.0; }\nfloat g() { return undefined_name; }\n"}};
+  const ExpandedShader e = expand_includes("main.comp", files.at("main.comp"), [&](std::string_view n) {
+    auto it = files.find(n);
+    return it == files.end() ? std::nullopt : std::optional<std::string_view>(it->second);
+  });
+  const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
+  gl::ShaderBuild broken = gl::ShaderBuild::compute(gl::ShaderCode{e.name, e.text, e.files});  // does not throw
+  gl::ShaderBuild fine =
+      gl::ShaderBuild::compute(gl::ShaderCode{pattern.name, pattern.text, pattern.files}, interface_and());
+  try {
+    broken.finish();
+    FAIL() << "compiled";
+  } catch (const gl::ShaderBuildError& ex) {
+    const std::string what = ex.what();
+    EXPECT_EQ(ex.program(), "main.comp");
+    EXPECT_NE(what.find("shader 'main.comp' (compute) failed to compile"), std::string::npos) << what;
+    EXPECT_NE(what.find("lib/common.glsl:3 | float g() { return undefined_name; }"), std::string::npos) << what;
+  }
+  // The other build, started beside the failing one, is unharmed.
+  expect_floats_near(run_pattern(fine.finish(), 5, 3, 2), expected_pattern(5, 3, 2), 1e-6f);
+
+  // A graphics pair: the failing stage's own name and line.
+  const gl::ShaderCode vertex{"v.vert", "#version 450 core\nvoid main() { gl_Position = vec4(0); }\n", {}};
+  const gl::ShaderCode fragment{"f.frag", "#version 450 core\nout vec4 c;\nvoid main() {\n  c = vec3(1);\n}\n", {}};
+  gl::ShaderBuild pair = gl::ShaderBuild::graphics(vertex, fragment);
+  try {
+    pair.finish();
+    FAIL() << "linked";
+  } catch (const gl::ShaderBuildError& ex) {
+    EXPECT_EQ(ex.program(), "v.vert + f.frag");
+    EXPECT_NE(std::string(ex.what()).find("f.frag:4 | c = vec3(1);"), std::string::npos) << ex.what();
+  }
+}
+
+/// Sets an environment variable for one scope.
+class ScopedEnvironment {
+ public:
+  ScopedEnvironment(const char* name, const char* value) : name_(name) { setenv(name, value, 1); }
+  ~ScopedEnvironment() { unsetenv(name_); }
+  ScopedEnvironment(const ScopedEnvironment&) = delete;
+  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+ private:
+  const char* name_;
+};
+
+/// NVIDIA's C5025 (a loop its compiler unrolled and could not index) is built
+/// again with loop unrolling off (gl::kNvidiaLoopUnrollOff), from a started
+/// build as from ShaderProgram::compute. ZENITH_FAIL_SHADER_C5025 makes any
+/// driver fail that way while the pragma is absent (render/gl/shader_hooks.h).
+TEST_F(GlTest, TheC5025RetryBuildsAStartedProgramWithLoopUnrollingOff) {
+  const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
+  const gl::ShaderCode code{pattern.name, pattern.text, pattern.files};
+  const ScopedEnvironment fail("ZENITH_FAIL_SHADER_C5025", "test_pattern.comp");
+  gl::ShaderBuild build = gl::ShaderBuild::compute(code, interface_and());
+  gl::ShaderBuild other = gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", "2.0"}}));
+  const ShaderProgram retried = build.finish();
+  expect_floats_near(run_pattern(retried, 5, 3, 2), expected_pattern(5, 3, 2), 1e-6f);
+  expect_floats_near(run_pattern(other.finish(), 5, 3, 2), expected_pattern(5, 3, 2, 2.0f), 1e-6f);
+  // The hook fails the first try for real: a graphics pair, which has no retry, shows its message.
+  const ScopedEnvironment fail_vertex("ZENITH_FAIL_SHADER_C5025", "v.vert");
+  const gl::ShaderCode vertex{"v.vert", "#version 450 core\nvoid main() { gl_Position = vec4(0); }\n", {}};
+  const gl::ShaderCode fragment{"f.frag", "#version 450 core\nout vec4 c;\nvoid main() { c = vec4(1); }\n", {}};
+  try {
+    gl::ShaderBuild::graphics(vertex, fragment).finish();
+    FAIL() << "linked";
+  } catch (const gl::ShaderBuildError& ex) {
+    EXPECT_TRUE(gl::is_nvidia_unroll_failure(ex.what())) << ex.what();
+  }
+}
+
+/// render/gl/program_builds.h: programs by key, started ahead (parallel) or
+/// built where first asked for (serial); a failure is thrown where the program
+/// is asked for and not kept.
+TEST_F(GlTest, ProgramBuildsStartAheadOrOneAtATimeAndCountWhatTheyCost) {
+  const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
+  const gl::ShaderCode code{pattern.name, pattern.text, pattern.files};
+  auto starter = [&](std::string scale) {
+    return [&code, scale] { return gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", scale}})); };
+  };
+  const gl::ShaderCode broken{
+      "broken_test.comp", "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {\n  x;\n}\n", {}};
+  const auto broken_starter = [&] { return gl::ShaderBuild::compute(broken); };
+  for (const gl::CompileMode mode : {gl::CompileMode::parallel, gl::CompileMode::serial}) {
+    SCOPED_TRACE(gl::to_string(mode));
+    gl::ProgramBuilds builds(mode);
+    builds.start("one", starter("1.0"));
+    builds.start("two", starter("2.0"));
+    builds.start("three", starter("3.0"));
+    builds.start("broken", broken_starter);
+    builds.start("one", starter("9.0"));  // already started: the first one stays
+    const ShaderProgram& two = builds.get("two", starter("2.0"));
+    EXPECT_EQ(&builds.get("two", starter("2.0")), &two) << "built once";
+    expect_floats_near(run_pattern(two, 4, 2, 2), expected_pattern(4, 2, 2, 2.0f), 1e-6f);
+    expect_floats_near(run_pattern(builds.get("one", starter("1.0")), 4, 2, 2), expected_pattern(4, 2, 2), 1e-6f);
+    EXPECT_THROW(builds.get("broken", broken_starter), gl::ShaderBuildError);
+    EXPECT_THROW(builds.get("broken", broken_starter), gl::ShaderBuildError) << "not kept: built again";
+    expect_floats_near(run_pattern(builds.get("four", starter("4.0")), 4, 2, 2), expected_pattern(4, 2, 2, 4.0f),
+                       1e-6f);
+    const gl::ProgramBuilds::Statistics& s = builds.statistics();
+    EXPECT_EQ(s.built, 3);  // one, two, four; three abandoned, broken failed
+    EXPECT_EQ(s.most_in_flight, mode == gl::CompileMode::parallel ? 4 : 1);
+    EXPECT_GT(s.start_s, 0.0);
+    EXPECT_GT(s.seconds(), s.wait_s);
+    EXPECT_NE(builds.summary().find("3 programs, "), std::string::npos) << builds.summary();
+  }
+  gl::check_gl_error("after the builds");
 }
 
 TEST_F(GlTest, TextureRoundTrips) {

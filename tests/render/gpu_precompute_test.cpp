@@ -365,6 +365,37 @@ TEST(GpuPrecompute, UsesAGivenContextAndLeavesItCurrent) {
   expect_same_tables("mars, given context", run_cpu(model, options), gpu);
 }
 
+/// The programs' builds started all at once (the default, on the driver's
+/// compiler threads where it has them) or one at a time where first used
+/// (gl::CompileMode::serial) are the same programs from the same texts: the
+/// tables agree bit for bit, whatever the driver's arithmetic. With the
+/// series tail (its program started ahead too) and with a tolerance that stops
+/// before the last order (the builds started for orders never reached are abandoned).
+TEST(GpuPrecompute, SerialAndParallelCompileGiveTheSameTablesBitForBit) {
+  const AtmosphereModel model = atmosphere::load_preset("earth-advanced").model;
+  PrecomputeOptions options = testing::tiny_precompute_options();
+  options.max_orders = 4;
+  for (const double tolerance : {0.0, 0.5}) {
+    options.tolerance = tolerance;
+    PrecomputeReport serial_report, parallel_report;
+    const LookupTables serial = precompute_tables_gpu(model, options, &serial_report, nullptr, GpuPrecision::automatic,
+                                                      {}, gl::CompileMode::serial);
+    const LookupTables parallel = precompute_tables_gpu(model, options, &parallel_report, nullptr,
+                                                        GpuPrecision::automatic, {}, gl::CompileMode::parallel);
+    SCOPED_TRACE(tolerance);
+    EXPECT_EQ(parallel.scattering_orders, serial.scattering_orders);
+    if (tolerance > 0.0) {
+      EXPECT_LT(serial.scattering_orders, options.max_orders);
+    }
+    EXPECT_EQ(parallel.transmittance.data, serial.transmittance.data);
+    EXPECT_EQ(parallel.irradiance.data, serial.irradiance.data);
+    EXPECT_EQ(parallel.single_rayleigh.data, serial.single_rayleigh.data);
+    EXPECT_EQ(parallel.single_mie.data, serial.single_mie.data);
+    EXPECT_EQ(parallel.multiple.data, serial.multiple.data);
+    EXPECT_EQ(parallel_report.order_fraction, serial_report.order_fraction);
+  }
+}
+
 TEST(GpuPrecompute, RejectsBadOptionsLikeTheCpu) {
   const AtmosphereModel model = atmosphere::load_preset("mars").model;
   PrecomputeOptions options = testing::tiny_precompute_options();

@@ -1,0 +1,88 @@
+#include "render/gl/program_builds.h"
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+
+namespace zenith::render::gl {
+
+namespace {
+
+double seconds_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+}  // namespace
+
+const char* to_string(CompileMode mode) {
+  switch (mode) {
+    case CompileMode::parallel: return "parallel";
+    case CompileMode::serial: return "serial";
+  }
+  return "?";
+}
+
+ProgramBuilds::ProgramBuilds(CompileMode mode) : mode_(mode), driver_threads_(has_parallel_shader_compile()) {
+  if (!driver_threads_) return;
+  glGetIntegerv(GL_MAX_SHADER_COMPILER_THREADS_KHR, &previous_threads_);
+  set_shader_compiler_threads(mode == CompileMode::parallel ? kAllCompilerThreads : 0u);
+}
+
+ProgramBuilds::~ProgramBuilds() {
+  pending_.clear();  // builds never asked for: abandoned
+  if (driver_threads_) set_shader_compiler_threads(static_cast<unsigned>(previous_threads_));
+}
+
+ShaderBuild ProgramBuilds::timed_start(const Starter& starter) {
+  const auto now = std::chrono::steady_clock::now();
+  ShaderBuild build = starter();
+  statistics_.start_s += seconds_between(now, std::chrono::steady_clock::now());
+  return build;
+}
+
+void ProgramBuilds::start(const std::string& key, const Starter& starter) {
+  if (mode_ == CompileMode::serial || programs_.contains(key) || pending_.contains(key)) return;
+  pending_.emplace(key, timed_start(starter));
+  statistics_.most_in_flight = std::max(statistics_.most_in_flight, static_cast<int>(pending_.size()));
+}
+
+const ShaderProgram& ProgramBuilds::get(const std::string& key, const Starter& starter) {
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+  ShaderBuild build;
+  const bool ahead = pending_.contains(key);
+  if (auto it = pending_.find(key); it != pending_.end()) {
+    build = std::move(it->second);
+    pending_.erase(it);
+  } else {
+    build = timed_start(starter);
+    statistics_.most_in_flight = std::max(statistics_.most_in_flight, static_cast<int>(pending_.size()) + 1);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  ShaderProgram program = build.finish();
+  const auto end = std::chrono::steady_clock::now();
+  statistics_.wait_s += seconds_between(start, end);
+  spdlog::debug("program {}: {} {:.3f} s", key, ahead ? "started ahead, waited" : "built in",
+                seconds_between(start, end));
+  ++statistics_.built;
+  return programs_.emplace(key, std::move(program)).first->second;
+}
+
+std::string ProgramBuilds::summary() const {
+  const Statistics& s = statistics_;
+  std::string how;
+  if (mode_ == CompileMode::serial)
+    how = driver_threads_ ? "one at a time (serial; the driver's compiler threads off)" : "one at a time (serial)";
+  else if (driver_threads_)
+    how =
+        fmt::format("at most {} at once on the driver's compiler threads (parallel shader compile)", s.most_in_flight);
+  else
+    how = fmt::format("{} started at once, compiled one at a time (the driver has no parallel shader compile)",
+                      s.most_in_flight);
+  return fmt::format("{} programs, {:.3f} s building them ({:.3f} s starting, {:.3f} s waiting), {}", s.built,
+                     s.seconds(), s.start_s, s.wait_s, how);
+}
+
+}  // namespace zenith::render::gl

@@ -1,0 +1,67 @@
+#pragma once
+// A set of programs by key, each built once: started ahead where the caller
+// knows it will need them (all at the beginning of a precompute), finished
+// where first used (render/gl/shader_build.h). With the driver's parallel
+// compile (GL_KHR_parallel_shader_compile) the started builds run on its
+// threads at once; in `serial` mode, or without the extension, one at a time.
+//
+// It counts what the builds cost the calling thread, for the debug log: how
+// many programs, the time in the start calls (handing the texts to the driver;
+// a driver without parallel compile compiles there) and in finish() (waiting
+// for the driver's threads, checking, storing binaries), and how many builds
+// were in flight at once. (llvmpipe generates a program's machine code at its
+// first dispatch, which neither counts.)
+#include <functional>
+#include <map>
+#include <string>
+
+#include "render/gl/shader_build.h"
+#include "render/gl/shader_program.h"
+
+namespace zenith::render::gl {
+
+class ProgramBuilds {
+ public:
+  using Starter = std::function<ShaderBuild()>;
+
+  /// Sets the current context's compiler threads (kAllCompilerThreads in
+  /// parallel mode, 0 in serial mode) where the driver has the extension;
+  /// the destructor puts back what they were.
+  explicit ProgramBuilds(CompileMode mode);
+  ~ProgramBuilds();
+  ProgramBuilds(const ProgramBuilds&) = delete;
+  ProgramBuilds& operator=(const ProgramBuilds&) = delete;
+
+  CompileMode mode() const { return mode_; }
+  /// Starts building `key`'s program with `starter` unless it is already
+  /// started or built; in serial mode does nothing (get builds it).
+  void start(const std::string& key, const Starter& starter);
+  /// `key`'s program: its started build finished now, or built now (started
+  /// with `starter` and finished). Throws what ShaderBuild::finish throws; a
+  /// program that failed is not kept, so asking again builds it again.
+  const ShaderProgram& get(const std::string& key, const Starter& starter);
+
+  struct Statistics {
+    int built = 0;           ///< programs finished
+    int most_in_flight = 0;  ///< builds started and not yet finished, at most
+    double start_s = 0.0;    ///< in the start calls (giving the texts to the driver)
+    double wait_s = 0.0;     ///< in finish(): waiting for the driver, checking, storing binaries
+    double seconds() const { return start_s + wait_s; }
+  };
+  const Statistics& statistics() const { return statistics_; }
+  /// "11 programs, 2.310 s building them (0.120 s starting, 2.190 s waiting),
+  /// at most 11 at once on the driver's compiler threads (parallel shader compile)".
+  std::string summary() const;
+
+ private:
+  ShaderBuild timed_start(const Starter& starter);
+
+  CompileMode mode_;
+  bool driver_threads_ = false;  ///< the driver has the extension
+  int previous_threads_ = 0;
+  std::map<std::string, ShaderBuild, std::less<>> pending_;
+  std::map<std::string, ShaderProgram, std::less<>> programs_;
+  Statistics statistics_;
+};
+
+}  // namespace zenith::render::gl
