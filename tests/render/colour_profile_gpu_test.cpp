@@ -47,16 +47,7 @@ using Profile = warp::MpcdiColourProfile;
 constexpr int kWidth = 64, kHeight = 48;
 
 /// Exposed radiance from 1e-4 to 40 along the frame, the channels offset.
-std::vector<float> test_radiance() {
-  std::vector<float> rgba(static_cast<std::size_t>(kWidth) * kHeight * 4, 1.0f);
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) {
-      const std::size_t i = (static_cast<std::size_t>(y) * kWidth + x) * 4;
-      const double t = (y * kWidth + x) / double(kWidth * kHeight - 1);
-      for (int c = 0; c < 3; ++c) rgba[i + c] = static_cast<float>(1e-4 * std::pow(4e5, std::fmod(t + 0.31 * c, 1.0)));
-    }
-  return rgba;
-}
+std::vector<float> test_radiance() { return testing::geometric_radiance(kWidth, kHeight, 1e-4, 4e5); }
 
 warp::BlendMask test_mask() {
   warp::BlendMask m{kWidth, kHeight, std::vector<float>(static_cast<std::size_t>(kWidth) * kHeight)};

@@ -29,13 +29,7 @@ constexpr int kWidth = 64, kHeight = 48;
 /// Exposed radiance covering the range: x grows geometrically along each row
 /// (1e-6 … 40), the channels offset, with a few special values.
 std::vector<float> test_radiance() {
-  std::vector<float> rgba(static_cast<std::size_t>(kWidth) * kHeight * 4, 1.0f);
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) {
-      const std::size_t i = (static_cast<std::size_t>(y) * kWidth + x) * 4;
-      const double t = (y * kWidth + x) / double(kWidth * kHeight - 1);
-      for (int c = 0; c < 3; ++c) rgba[i + c] = static_cast<float>(1e-6 * std::pow(4e7, std::fmod(t + 0.31 * c, 1.0)));
-    }
+  std::vector<float> rgba = testing::geometric_radiance(kWidth, kHeight, 1e-6, 4e7);
   rgba[0] = 0.0f;
   rgba[1] = -0.5f;
   rgba[2] = std::numeric_limits<float>::quiet_NaN();

@@ -2,7 +2,10 @@
 // Helpers of the renderer tests (renderer_test.cpp, blend_reconstruction_test.cpp,
 // night_sky_test.cpp): the headless GL context they render on, a camera
 // orientation from a view direction, and the one-planet scene they start from.
+#include <cmath>
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -15,6 +18,21 @@
 #include "scene/scene.h"
 
 namespace zenith::render::testing {
+
+/// An RGBA frame of exposed radiance for the output-stage tests: along the
+/// frame (row after row) each channel grows geometrically from `lowest` by a
+/// factor `span`, the channels offset by 0.31 of the range; alpha 1.
+inline std::vector<float> geometric_radiance(int width, int height, double lowest, double span) {
+  std::vector<float> rgba(static_cast<std::size_t>(width) * height * 4, 1.0f);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 4;
+      const double t = (y * width + x) / double(width * height - 1);
+      for (int c = 0; c < 3; ++c)
+        rgba[i + c] = static_cast<float>(lowest * std::pow(span, std::fmod(t + 0.31 * c, 1.0)));
+    }
+  return rgba;
+}
 
 /// The headless EGL context of the test program (created on first use), made current.
 inline gl::HeadlessContext& context() {
