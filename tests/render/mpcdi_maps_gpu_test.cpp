@@ -26,6 +26,7 @@
 #include "render/display/colour_profile_textures.h"
 #include "render/display/colour_signal.h"
 #include "render/display/display_encoder.h"
+#include "tests/render/display_test_support.h"
 #include "tests/render/render_test_support.h"
 #include "tests/warp/mpcdi_test_support.h"
 #include "warp/blending.h"
@@ -52,12 +53,8 @@ std::vector<float> test_radiance() { return testing::geometric_radiance(kWidth, 
 
 /// The archive's output: "blend": {"type": "mpcdi"}.
 warp::ViewportConfig maps_config(const warp::testing::ScratchDir& dir) {
-  std::vector<std::uint16_t> alpha;
-  for (int j = 0; j < kAlphaHeight; ++j)
-    for (int i = 0; i < kAlphaWidth; ++i) alpha.push_back(alpha_stored(i, j));
-  std::vector<unsigned char> beta;
-  for (int j = 0; j < kBetaHeight; ++j)
-    for (int i = 0; i < kBetaWidth; ++i) beta.push_back(beta_stored(i, j));
+  const std::vector<std::uint16_t> alpha = warp::testing::map_samples(kAlphaWidth, kAlphaHeight, alpha_stored);
+  const std::vector<unsigned char> beta = warp::testing::map_samples(kBetaWidth, kBetaHeight, beta_stored);
   warp::testing::make_zip(dir, "maps.mpcdi",
                           {{"mpcdi.xml", warp::testing::descriptor_with_maps(
                                              {{"p", kWidth, kHeight,
@@ -78,17 +75,7 @@ warp::ViewportConfig maps_config(const warp::testing::ScratchDir& dir) {
 
 /// The GPU's codes of the test frame through `stage`.
 std::vector<int> gpu_codes(const OutputStage& stage, gl::TextureFormat format) {
-  context();
-  const gl::Texture radiance = gl::Texture::create_2d(gl::TextureFormat::rgba32f, kWidth, kHeight, test_radiance());
-  gl::Texture display = gl::Texture::create_2d(format, kWidth, kHeight);
-  DisplayEncoder encoder;
-  encoder.encode(radiance, stage, display);
-  const std::vector<float> out = display.read();  // a test reads back; a live frame does not
-  const double top = format == gl::TextureFormat::rgba8 ? 255.0 : 65535.0;
-  std::vector<int> codes;
-  for (std::size_t i = 0; i < out.size(); ++i)
-    if (i % 4 != 3) codes.push_back(static_cast<int>(std::lround(out[i] * top)));
-  return codes;
+  return testing::display_codes(test_radiance(), kWidth, kHeight, stage, format);
 }
 
 /// The tone mapped test frame, display-linear RGB.
@@ -107,12 +94,7 @@ std::vector<int> to_codes(const std::vector<double>& values, int bits) {
   return codes;
 }
 
-int worst(const std::vector<int>& a, const std::vector<int>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  int w = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) w = std::max(w, std::abs(a[i] - b[i]));
-  return w;
-}
+int worst(const std::vector<int>& a, const std::vector<int>& b) { return testing::worst_code_difference(a, b); }
 
 TEST(MpcdiMapsGpu, AlphaAndBetaMapsGiveTheSameCodesOnTheGpuTheCpuAndByHand) {
   context();

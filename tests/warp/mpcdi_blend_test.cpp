@@ -61,12 +61,8 @@ std::string ramp_descriptor(const std::string& alpha_element, const std::string&
 }
 
 testing::Members ramp_members() {
-  std::vector<std::uint16_t> alpha;
-  for (int j = 0; j < kAlphaHeight; ++j)
-    for (int i = 0; i < kAlphaWidth; ++i) alpha.push_back(alpha_stored(i, j));
-  std::vector<unsigned char> beta;
-  for (int j = 0; j < kBetaHeight; ++j)
-    for (int i = 0; i < kBetaWidth; ++i) beta.push_back(beta_stored(i, j));
+  const std::vector<std::uint16_t> alpha = testing::map_samples(kAlphaWidth, kAlphaHeight, alpha_stored);
+  const std::vector<unsigned char> beta = testing::map_samples(kBetaWidth, kBetaHeight, beta_stored);
   return {{"mpcdi.xml", ramp_descriptor(map_element("alphaMap", "a.png", 1, 16, kGammaEmbedded),
                                         map_element("betaMap", "b.png", 1, 8))},
           {"p.pfm", identity_warp()},

@@ -117,6 +117,15 @@ inline std::string identity_warp() {
                                                          : 0.0f; }, true, true);
 }
 
+/// The stored samples of a w × h map, row 0 at the top: value(i, j) each.
+template <typename Sample>
+std::vector<Sample> map_samples(int w, int h, Sample (*value)(int, int)) {
+  std::vector<Sample> samples;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) samples.push_back(value(i, j));
+  return samples;
+}
+
 /// An <alphaMap> (with gammaEmbedded when `gamma` > 0) or <betaMap> element.
 inline std::string map_element(const std::string& tag, const std::string& path, int component_depth, int bit_depth,
                                double gamma = 0.0) {
