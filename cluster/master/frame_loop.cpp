@@ -179,6 +179,11 @@ void FrameLoop::on_barrier_timeout() {
 
 void FrameLoop::complete_frame() {
   barrier_timer_.cancel();
+  // Stopping (the operator quit, a signal): the frames released before are
+  // presented by every node — their Presents went out before the Goodbye —
+  // and the frame in flight is not released, neither presented nor recorded,
+  // so that the recording holds exactly the frames the nodes showed.
+  if (p_.progress.stopping) return;
   const FrameBarrier::Release release = p_.barrier.release();
   const std::uint64_t frame = release.frame;
   auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(Present{frame}));
