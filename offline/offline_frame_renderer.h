@@ -18,7 +18,7 @@
 // most it may. threads = 0 is the simple path: read back at once, encode and
 // write on this thread, one frame at a time; it writes the same bytes.
 //
-// The start (docs/offline-rendering.md, "Where the start goes") is logged at
+// The start (docs/shows.md, "Where the start goes") is logged at
 // info level once the first frame is on its way: the GL context, tables
 // precomputed, tables loaded and uploaded (the first frame's sets read from
 // the cache on threads of their own, together), programs built (all of a
