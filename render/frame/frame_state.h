@@ -14,6 +14,7 @@
 #include "render/frame/frame_programs.h"
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
+#include "render/frame/sun_refraction.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/shader_program.h"
@@ -56,6 +57,7 @@ struct FrameState : FrameConstants {
   FrameVariant variant;
   const FramePasses* programs = nullptr;
   double sun_reach = 0.0;  // where the sun can be drawn (prepare_programs)
+  SunDiscLift sun_lift;    // the disc's refraction (refract_sun)
 
   // ---- every band's tiles (classify_bands): bands of band_rows rows
   int band_rows = 0;
