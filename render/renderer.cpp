@@ -88,6 +88,8 @@ struct Renderer::Impl {
   std::size_t tiles_capacity = 0;
   // Band images, (re)allocated when the band size changes; the output is a
   // buffer of one vec4 per pixel, mapped and packed into the rows (frame_rgb.glsl).
+  // The G-buffer path's four images only once a band has tiles where shells
+  // overlap: 224 MiB of GPU memory for an 8192-pixel band of 512 rows.
   int band_width = 0, band_height = 0;
   Texture gbuffer_hit, gbuffer_albedo, radiance_sum, transmittance;
   gl::Buffer frame_rgb;
@@ -97,13 +99,17 @@ struct Renderer::Impl {
 
   void ensure_band_images(int width, int height) {
     if (width == band_width && height == band_height) return;
-    gbuffer_hit = Texture::create_2d(TextureFormat::rgba32f, width, height);
-    gbuffer_albedo = Texture::create_2d(TextureFormat::rgba16f, width, height);
-    radiance_sum = Texture::create_2d(TextureFormat::rgba32f, width, height);
-    transmittance = Texture::create_2d(TextureFormat::rgba32f, width, height);
+    for (Texture* t : {&gbuffer_hit, &gbuffer_albedo, &radiance_sum, &transmittance}) *t = Texture();
     frame_rgb = gl::Buffer::mappable(static_cast<std::size_t>(width) * height * 4 * sizeof(float));
     band_width = width;
     band_height = height;
+  }
+  void ensure_gbuffer_images() {
+    if (gbuffer_hit.id() != 0) return;
+    gbuffer_hit = Texture::create_2d(TextureFormat::rgba32f, band_width, band_height);
+    gbuffer_albedo = Texture::create_2d(TextureFormat::rgba16f, band_width, band_height);
+    radiance_sum = Texture::create_2d(TextureFormat::rgba32f, band_width, band_height);
+    transmittance = Texture::create_2d(TextureFormat::rgba32f, band_width, band_height);
   }
 
   // render_to_texture()'s band copy (render/frame/band_to_texture.h); the
@@ -547,6 +553,7 @@ void Renderer::draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer
   Impl& im = *impl_;
   const FramePasses& fp = *frame.programs;
   const scene::Scene& scene = frame.scene;
+  im.ensure_gbuffer_images();
   im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::write_only);
   im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::write_only);
   im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::write_only);
