@@ -54,6 +54,7 @@ struct ShowRenderArgs {
   std::string png_compression = "fast", tiff_compression = "deflate", frame_name = "{output}.%06d", video;
   std::uint64_t start_number = 0;
   std::optional<int> threads, frames_in_flight;
+  bool serial_compile = false;
   std::optional<double> fps, fov_deg, tilt_deg;
   std::optional<std::uint64_t> from, to;
   TableArgs tables;
@@ -205,10 +206,10 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
     if (format_given && a.format != cluster_config->output_format)
       throw std::invalid_argument(fmt::format("--format {}: the nodes of {} write {} (its \"output\": \"format\")",
                                               a.format, a.cluster, cluster_config->output_format));
-    if (!(naming == offline::FileNaming{}) || !a.video.empty() || a.threads || a.frames_in_flight)
+    if (!(naming == offline::FileNaming{}) || !a.video.empty() || a.threads || a.frames_in_flight || a.serial_compile)
       throw std::invalid_argument(
-          "--cluster: the nodes name and write their own files; --frame-name, --start-number, --video, --threads and "
-          "--frames-in-flight apply to a render in this process");
+          "--cluster: the nodes name and write their own files; --frame-name, --start-number, --video, --threads, "
+          "--frames-in-flight and --serial-compile apply to a render in this process");
   }
   const std::vector<offline::ImageFormat> formats =
       offline::parse_formats(cluster_config ? cluster_config->output_format : a.format);
@@ -233,7 +234,8 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
     table_args.tables = cluster_config->table_sizes;
     table_args.orders = cluster_config->table_orders;
   }
-  const render::TableRequest request = table_request(table_args);
+  render::TableRequest request = table_request(table_args);
+  if (a.serial_compile) request.compile = render::gl::CompileMode::serial;
   const show::TablePlan plan = plan_for(show, fps, request);
   if (const std::string warning = show::budget_warning(plan, a.table_budget_gib); !warning.empty())
     fmt::print(stderr, "{}", warning);
@@ -337,6 +339,7 @@ void run_show_render(const ShowRenderArgs& a, bool size_given, bool format_given
   pipeline.tiff_compression = tiff_compression;
   pipeline.threads = a.threads.value_or(-1);
   pipeline.frames_in_flight = a.frames_in_flight.value_or(0);
+  pipeline.serial_compile = a.serial_compile;
   std::optional<offline::VideoProxy> video;
   if (!a.video.empty()) {
     if (std::none_of(formats.begin(), formats.end(), offline::is_display_format))
@@ -399,6 +402,10 @@ void register_show_render(CLI::App& show_command) {
                   "one frame at a time");
   cmd->add_option("--frames-in-flight", a->frames_in_flight,
                   "Frames whose pixels may be held at once, in [1, 64] (default threads + 2): bounds the memory");
+  cmd->add_flag("--serial-compile", a->serial_compile,
+                "Build the renderer's and the precompute's programs one at a time where first used, instead of "
+                "starting each frame's together on the driver's compiler threads (to compare; the start-up line "
+                "says what they took)");
   cmd->add_option("--video", a->video, "Also pipe the frames to ffmpeg for an H.264 review proxy FILE (.mp4)");
   cmd->add_option("--contact-sheet", a->contact_sheet,
                   "Contact sheet PNG of 24 evenly spaced frames (default DIR/contact-sheet.png; none: no sheet)");

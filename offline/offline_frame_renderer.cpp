@@ -9,14 +9,20 @@
 #include <stdexcept>
 #include <thread>
 
+#include "atmosphere/model_hash.h"
+#include "core/timing.h"
 #include "image/image_writer.h"
 #include "render/render_flags.h"
 
 namespace zenith::app::offline {
 namespace {
 
+using core::seconds_since;
 using render::gl::Texture;
 using render::gl::TextureFormat;
+
+/// Table sets read from the cache ahead of the first frame, at most (each a thread and its tables in memory).
+constexpr std::size_t kMaxTableSetsAhead = 8;
 
 bool has(const std::vector<ImageFormat>& formats, ImageFormat f) {
   return std::find(formats.begin(), formats.end(), f) != formats.end();
@@ -60,6 +66,18 @@ int default_writer_threads(unsigned cpus, bool software_renderer) {
   return software_renderer ? 1 : n;
 }
 
+std::string describe(const StartupTimes& t) {
+  const double other =
+      t.total_s - t.context_s - t.precompute_s - t.tables_s - t.programs_s - t.buffers_s - t.first_frame_s;
+  return fmt::format(
+      "start-up {:.2f} s to the first frame: GL context {:.2f} s, tables precomputed {:.2f} s, tables loaded and "
+      "uploaded {:.2f} s ({} set{}), programs {:.2f} s ({} built), buffers {:.2f} s ({:.1f} MiB), the first frame's "
+      "rendering {:.2f} s, the rest {:.2f} s (the show's checks, the manifest)",
+      t.total_s, t.context_s, t.precompute_s, t.tables_s, t.table_sets, t.table_sets == 1 ? "" : "s", t.programs_s,
+      t.programs, t.buffers_s, static_cast<double>(t.buffer_bytes) / (1024.0 * 1024.0), t.first_frame_s,
+      std::max(0.0, other));
+}
+
 std::span<const std::byte> LocalFrameRenderer::Slot::bytes() const {
   return buffer ? buffer->bytes() : std::span<const std::byte>(memory);
 }
@@ -82,10 +100,12 @@ LocalFrameRenderer::LocalFrameRenderer(const show::Show& show,
   const bool display = std::any_of(settings_.formats.begin(), settings_.formats.end(), is_display_format);
   if (settings_.published && !display)
     throw std::invalid_argument("--video needs a display format (png, png16 or tiff) among --format");
+  startup_.context_s = seconds_since(created_);
 }
 
 LocalFrameRenderer::~LocalFrameRenderer() {
   pool_.reset();            // waits for the frames in flight: their files are written from the slots
+  loading_.clear();         // waits for table sets still loading (an error before the first frame)
   context_.make_current();  // the GL objects belong to this context
   fenced_.clear();
   slots_.clear();
@@ -96,10 +116,15 @@ LocalFrameRenderer::~LocalFrameRenderer() {
 
 int LocalFrameRenderer::threads() const { return pool_ ? pool_->threads() : settings_.threads; }
 int LocalFrameRenderer::frames_in_flight() const { return static_cast<int>(slots_.size()); }
+int LocalFrameRenderer::allocated_slots() const {
+  return static_cast<int>(
+      std::count_if(slots_.begin(), slots_.end(), [](const Slot& s) { return s.buffer != nullptr; }));
+}
 std::size_t LocalFrameRenderer::slot_bytes() const { return slot_bytes_; }
 
 void LocalFrameRenderer::precompute_missing(const show::TablePlan& plan,
                                             const std::set<scene::TableHash>& table_hashes) {
+  const auto start = std::chrono::steady_clock::now();
   auto needed = [&](const show::TablePlanEntry& e) {
     return !e.cached && table_hashes.count(e.version.table_hash) > 0;
   };
@@ -115,6 +140,33 @@ void LocalFrameRenderer::precompute_missing(const show::TablePlan& plan,
                  t.from_cache ? "found in the cache" : "precomputed and cached", t.report.total_seconds());
   }
   context_.make_current();  // the GPU precompute may have used a context of its own
+  startup_.precompute_s += seconds_since(start);
+  // The sets first used earliest (the first frame's: three for a show of three
+  // worlds) read from the cache at once, each on its own thread, while this
+  // thread goes on to the first frame; the renderer takes them from loading_.
+  std::uint64_t earliest = UINT64_MAX;
+  for (const show::TablePlanEntry& e : plan.sets)
+    if (table_hashes.count(e.version.table_hash) > 0) earliest = std::min(earliest, e.first_frame);
+  for (const show::TablePlanEntry& e : plan.sets) {
+    if (e.first_frame != earliest || table_hashes.count(e.version.table_hash) == 0) continue;
+    if (loading_.size() >= kMaxTableSetsAhead) break;
+    const std::string key = atmosphere::lookup_table_hash(e.version.loaded.model);
+    if (loading_.contains(key)) continue;
+    loading_.emplace(key, std::async(std::launch::async, [model = e.version.loaded.model, request = tables_] {
+                       return render::obtain_tables(model, request);
+                     }));
+  }
+}
+
+atmosphere::lut::LookupTables LocalFrameRenderer::tables_for(const atmosphere::AtmosphereModel& model) {
+  if (auto it = loading_.find(atmosphere::lookup_table_hash(model)); it != loading_.end()) {
+    std::future<render::ObtainedTables> loading = std::move(it->second);
+    loading_.erase(it);
+    return loading.get().tables;
+  }
+  render::ObtainedTables t = render::obtain_tables(model, tables_);
+  context_.make_current();  // a precompute may have used a context of its own
+  return std::move(t.tables);
 }
 
 render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
@@ -124,11 +176,9 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
     renderer_.reset();
     render::RenderOptions options = render::render_options_of(render_flags);
     options.colour = colour_;
-    renderer_ = std::make_unique<render::Renderer>(options, [this](const atmosphere::AtmosphereModel& model) {
-      render::ObtainedTables t = render::obtain_tables(model, tables_);
-      context_.make_current();
-      return std::move(t.tables);
-    });
+    options.serial_compile = settings_.serial_compile;
+    renderer_ = std::make_unique<render::Renderer>(
+        options, [this](const atmosphere::AtmosphereModel& model) { return tables_for(model); });
     render_flags_ = render_flags;
   }
   return *renderer_;
@@ -165,32 +215,68 @@ void LocalFrameRenderer::start_pipeline() {
         static_cast<int>(std::min<std::size_t>(64, kDefaultSlotBudgetBytes / std::max<std::size_t>(1, slot_bytes_)));
     in_flight = std::max(2, std::min(threads + 2, fit));
   }
+  // The slots' buffers are allocated as frames need them (acquire_slot).
   slots_.resize(threads == 0 ? 1 : static_cast<std::size_t>(in_flight));
   slot_frames_.resize(slots_.size());
-  if (threads > 0)
-    for (Slot& s : slots_) s.buffer = std::make_unique<render::display::ReadbackBuffer>(slot_bytes_);
   pool_ = std::make_unique<FrameWriterPool>(threads);
-  spdlog::info("pipeline: {} writer thread{}, {} frame{} in flight of {:.1f} MiB each", threads,
-               threads == 1 ? "" : "s", slots_.size(), slots_.size() == 1 ? "" : "s",
+  for (const OutputTextures& t : textures_)
+    for (const Texture* x : {&t.radiance, &t.display8, &t.display16})
+      if (x->id() != 0) startup_.buffer_bytes += render::display::readback_bytes(*x);
+  spdlog::info("pipeline: {} writer thread{}, at most {} frame{} in flight of {:.1f} MiB each (allocated as needed)",
+               threads, threads == 1 ? "" : "s", slots_.size(), slots_.size() == 1 ? "" : "s",
                static_cast<double>(slot_bytes_) / (1024.0 * 1024.0));
 }
 
 std::size_t LocalFrameRenderer::acquire_slot() {
-  const std::size_t index = next_slot_;
-  // A slot still waiting for its fence is handed over first (oldest first).
-  while (std::find(fenced_.begin(), fenced_.end(), index) != fenced_.end()) {
+  const bool pipelined = pool_->threads() > 0;
+  for (;;) {
+    std::optional<std::size_t> unallocated;
+    {
+      std::unique_lock lock(slot_mutex_);
+      // A free slot that holds its buffer already; else one whose buffer is not allocated yet.
+      for (std::size_t i = 0; i < slots_.size(); ++i) {
+        if (slots_[i].busy) continue;
+        if (!pipelined || slots_[i].buffer) {
+          slots_[i].busy = true;
+          return i;
+        }
+        if (!unallocated) unallocated = i;
+      }
+      if (unallocated) {
+        slots_[*unallocated].busy = true;
+      } else if (fenced_.empty()) {  // every slot is with the writers: wait for one
+        slot_freed_.wait(
+            lock, [&] { return std::any_of(slots_.begin(), slots_.end(), [](const Slot& s) { return !s.busy; }); });
+        continue;
+      }
+    }
+    if (unallocated) {
+      const auto start = std::chrono::steady_clock::now();
+      slots_[*unallocated].buffer = std::make_unique<render::display::ReadbackBuffer>(slot_bytes_);
+      if (!started_) {
+        startup_.buffers_s += seconds_since(start);
+        startup_.buffer_bytes += slot_bytes_;
+      }
+      spdlog::debug("pipeline: readback slot {} allocated ({} of at most {})", *unallocated, allocated_slots(),
+                    slots_.size());
+      return *unallocated;
+    }
+    // The newest frame still waits for its fence: hand it over (its slot frees once written).
     hand_off(fenced_.front());
     fenced_.pop_front();
   }
-  std::unique_lock lock(slot_mutex_);
-  slot_freed_.wait(lock, [&] { return !slots_[index].busy; });
-  slots_[index].busy = true;
-  next_slot_ = (next_slot_ + 1) % slots_.size();
-  return index;
 }
 
 void LocalFrameRenderer::render_outputs(const scene::Scene& scene, const scene::FadeState& fade, Slot& slot) {
   render::Renderer& renderer = renderer_for(render_flags_);
+  const auto note_startup = [&] {  // the first frame's share of tables and programs
+    if (started_) return;
+    const render::FrameStats& f = renderer.last_frame();
+    startup_.tables_s += f.tables_s;
+    startup_.table_sets += f.table_sets_uploaded;
+    startup_.programs_s += f.programs_s;
+    startup_.programs += f.programs_built;
+  };
   for (std::size_t o = 0; o < outputs_.size(); ++o) {
     const LocalOutput& out = outputs_[o];
     OutputTextures& t = textures_[o];
@@ -204,6 +290,7 @@ void LocalFrameRenderer::render_outputs(const scene::Scene& scene, const scene::
     stage.colour = t.colour.empty() ? nullptr : &t.colour;
     if (t.radiance.id() != 0) {  // EXR wanted: the radiance texture, then the display pass from it
       renderer.render_to_texture(scene, *out.projection, t.radiance);
+      note_startup();
       if (t.display8.id() != 0) encoder_.encode(t.radiance, stage, t.display8);
       if (t.display16.id() != 0) encoder_.encode(t.radiance, stage, t.display16);
     } else {  // display codes only: each band straight from the renderer's buffer
@@ -211,6 +298,7 @@ void LocalFrameRenderer::render_outputs(const scene::Scene& scene, const scene::
         if (t.display8.id() != 0) encoder_.encode_band(band, stage, t.display8);
         if (t.display16.id() != 0) encoder_.encode_band(band, stage, t.display16);
       });
+      note_startup();
     }
     const auto read = [&](const Texture& texture, std::size_t offset) {
       if (texture.id() == 0) return;
@@ -298,7 +386,11 @@ void LocalFrameRenderer::submit_frame(const scene::FrameDescription& state,
     if (output_files.size() != settings_.formats.size())
       throw std::invalid_argument(fmt::format("render_frame: {} files an output, the pipeline writes {} formats",
                                               output_files.size(), settings_.formats.size()));
-  if (!pool_) start_pipeline();
+  const auto submit_start = std::chrono::steady_clock::now();
+  if (!pool_) {
+    start_pipeline();
+    startup_.buffers_s += seconds_since(submit_start);
+  }
   for (const auto& output_files : files)
     for (const std::filesystem::path& path : output_files)
       if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
@@ -329,6 +421,7 @@ void LocalFrameRenderer::submit_frame(const scene::FrameDescription& state,
   sf.frame = state.frame;
   sf.files = files;
   sf.attributes = std::move(attributes);
+  if (!started_) log_startup(seconds_since(submit_start));
   if (!slot.buffer) {  // the simple path: written before returning
     hand_off(index);
     return;
@@ -341,6 +434,14 @@ void LocalFrameRenderer::submit_frame(const scene::FrameDescription& state,
     fenced_.pop_front();
     hand_off(oldest);
   }
+}
+
+void LocalFrameRenderer::log_startup(double submit_s) {
+  started_ = true;
+  startup_.first_frame_s = std::max(0.0, submit_s - startup_.tables_s - startup_.programs_s - startup_.buffers_s);
+  startup_.total_s = seconds_since(created_);
+  spdlog::info("{}", describe(startup_));
+  if (renderer_) spdlog::info("renderer's programs: {}", renderer_->program_builds_summary());
 }
 
 std::vector<FinishedFrame> LocalFrameRenderer::take_finished() {
@@ -359,6 +460,8 @@ void LocalFrameRenderer::finish_frames() {
     hand_off(oldest);
   }
   pool_->finish();
+  spdlog::info("pipeline: {} of at most {} readback slots allocated ({:.1f} MiB)", allocated_slots(), slots_.size(),
+               static_cast<double>(allocated_slots() * slot_bytes_) / (1024.0 * 1024.0));
 }
 
 void LocalFrameRenderer::render_frame(const scene::FrameDescription& state,

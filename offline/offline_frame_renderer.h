@@ -10,17 +10,28 @@
 //   workers     encode and write frame N's files (PNG, TIFF, EXR), hash them
 //   in order    rename them into place, feed the video proxy, report the frame
 //
-// Frames in flight hold one readback slot each (frames_in_flight slots, the
-// bytes of every file's pixels: e.g. 256 MiB for an 8192² 8-bit frame), so the
-// memory stays bounded whatever the length of the show. threads = 0 is the
-// simple path: read back at once, encode and write on this thread, one frame
-// at a time; it writes the same bytes.
+// Frames in flight hold one readback slot each (at most frames_in_flight
+// slots, the bytes of every file's pixels: e.g. 256 MiB for an 8192² 8-bit
+// frame), so the memory stays bounded whatever the length of the show. A
+// slot's buffer is allocated when a frame first needs it and no allocated
+// slot is free: the pipeline holds as many as its writers keep busy, not the
+// most it may. threads = 0 is the simple path: read back at once, encode and
+// write on this thread, one frame at a time; it writes the same bytes.
+//
+// The start (docs/shows.md, "Where the start goes") is logged at
+// info level once the first frame is on its way: the GL context, tables
+// precomputed, tables loaded and uploaded (the first frame's sets read from
+// the cache on threads of their own, together), programs built (all of a
+// frame's started together: render/gl/program_builds.h), buffers, the first
+// frame's own rendering.
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -80,7 +91,27 @@ struct PipelineSettings {
   /// Called in frame order as each frame's files are in place (from a worker
   /// thread; keep it short): the video proxy. Needs a display format.
   std::function<void(const DisplayFrame&)> published;
+  /// The renderer's programs one at a time, each where first used
+  /// (RenderOptions::serial_compile; `--serial-compile`), to compare.
+  bool serial_compile = false;
 };
+
+/// Where the start of a render went, up to the first frame on its way to the
+/// writers (seconds of this process's GL thread).
+struct StartupTimes {
+  double context_s = 0.0;     ///< the GL context
+  double precompute_s = 0.0;  ///< table sets not in the cache, precomputed and stored
+  double tables_s = 0.0;      ///< the first frame's table sets: waiting for their loads, uploading
+  int table_sets = 0;
+  double programs_s = 0.0;  ///< building the first frame's programs (waiting for the driver included)
+  int programs = 0;
+  double buffers_s = 0.0;  ///< output textures, writer threads, the first readback slot
+  std::size_t buffer_bytes = 0;
+  double first_frame_s = 0.0;  ///< the first frame's submit, less its tables, programs and buffers
+  double total_s = 0.0;        ///< from the renderer's construction to the first frame submitted
+};
+/// "start-up 5.31 s: GL context 0.04 s, tables precomputed 0.00 s, tables loaded 1.80 s (3 sets), …".
+std::string describe(const StartupTimes& t);
 
 /// Whether a GL renderer string names a CPU rasterizer (llvmpipe, softpipe, SwiftShader).
 bool is_software_renderer(const std::string& device);
@@ -103,11 +134,16 @@ class LocalFrameRenderer final : public FrameRenderer {
   int threads() const;
   int frames_in_flight() const;
   /// Bytes one readback slot holds (every output's pixels of one frame): the
-  /// pipeline holds frames_in_flight() of them.
+  /// pipeline holds at most frames_in_flight() of them, allocated_slots() so far.
   std::size_t slot_bytes() const;
+  int allocated_slots() const;
+  /// Where the start went (filled by the first frame).
+  const StartupTimes& startup() const { return startup_; }
   /// Obtains every set of `plan` among `table_hashes` that is not cached yet
-  /// (precomputed and stored in the cache), with a line per set; the renderer
-  /// then loads each from the cache when a frame first needs it.
+  /// (precomputed and stored in the cache), with a line per set, then starts
+  /// loading the sets first used earliest (the first frame's) from the cache,
+  /// each on a thread of its own; the renderer takes those when the first
+  /// frame needs them and loads any other when a frame first needs it.
   void precompute_missing(const show::TablePlan& plan, const std::set<scene::TableHash>& table_hashes);
 
   /// submit_frame and finish_frames: the frame's files are complete on return.
@@ -136,14 +172,18 @@ class LocalFrameRenderer final : public FrameRenderer {
   };
 
   render::Renderer& renderer_for(std::uint32_t render_flags);
-  void start_pipeline();            // the first frame: threads, slots, regions
-  std::size_t acquire_slot();       // waits until the next slot is free
+  /// The renderer's TableSource: a set loading ahead (precompute_missing), else obtained now.
+  atmosphere::lut::LookupTables tables_for(const atmosphere::AtmosphereModel& model);
+  void start_pipeline();       // the first frame: threads, slots, regions
+  std::size_t acquire_slot();  // a free slot (allocated when none allocated is free); waits for one
+  void log_startup(double submit_s);
   void hand_off(std::size_t slot);  // waits its fence, queues its files
   /// Every output of one frame into its slot; `fade` on the display codes (EXR keeps the radiance).
   void render_outputs(const scene::Scene& scene, const scene::FadeState& fade, Slot& slot);
   /// The pool's work for the frame in `slot` (slot_frames_): a task per file, the video, the slot's release.
   FrameWriterPool::Frame files_of(std::size_t slot);
 
+  const std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
   const show::Show& show_;
   std::map<scene::TableHash, show::AtmosphereVersion> versions_;
   std::vector<LocalOutput> outputs_;
@@ -157,12 +197,15 @@ class LocalFrameRenderer final : public FrameRenderer {
   std::vector<OutputTextures> textures_;
   std::vector<Region> regions_;
   std::size_t slot_bytes_ = 0;
+  /// Table sets being read from the cache ahead of the first frame, by atmosphere::lookup_table_hash.
+  std::map<std::string, std::future<render::ObtainedTables>> loading_;
+  StartupTimes startup_;
+  bool started_ = false;  ///< the first frame was submitted
 
   std::mutex slot_mutex_;
   std::condition_variable slot_freed_;
   std::vector<Slot> slots_;
   std::deque<std::size_t> fenced_;  ///< slots rendered and fenced, not yet handed to the pool
-  std::size_t next_slot_ = 0;
   /// The files of each slot's frame, by slot (the state the pool's tasks read).
   struct SlotFrame {
     std::uint64_t frame = 0;

@@ -58,6 +58,12 @@ struct RenderOptions {
   /// Time every pass (GL_TIME_ELAPSED queries; CPU steps by the wall clock) into
   /// FrameStats::pass_ms. Serialises the frame: for profiling, not for frame times.
   bool time_passes = false;
+  /// Build the frame's programs one at a time, each where first used, the
+  /// driver's compiler threads off (render/gl/program_builds.h); false: all
+  /// of a frame's started together, on the driver's threads where it has
+  /// them (GL_KHR_parallel_shader_compile). To compare, as `zenith precompute
+  /// --serial-compile` does for the precompute.
+  bool serial_compile = false;
   NightSkyRenderOptions night_sky;
 };
 

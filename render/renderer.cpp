@@ -32,6 +32,7 @@
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
 #include "render/gl/gl_error.h"
+#include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
@@ -68,6 +69,9 @@ std::array<float, 4> vec4_of(const glm::dvec3& v, double w) {
 struct Renderer::Impl {
   explicit Impl(const RenderOptions& options)
       : frame_programs(options.sun_disc, options.limb_darkening), night_sky(options.night_sky) {}
+  // Every program of the renderer, by text (created by the first frame, with a
+  // current context): a frame starts all it needs before finishing any.
+  std::unique_ptr<gl::ProgramBuilds> builds;
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/frame/star_pass.h)
   SunRefraction sun_refraction;  // the drawn disc's lift (render/frame/sun_refraction.h)
@@ -84,6 +88,8 @@ struct Renderer::Impl {
   std::size_t tiles_capacity = 0;
   // Band images, (re)allocated when the band size changes; the output is a
   // buffer of one vec4 per pixel, mapped and packed into the rows (frame_rgb.glsl).
+  // The G-buffer path's four images only once a band has tiles where shells
+  // overlap: 224 MiB of GPU memory for an 8192-pixel band of 512 rows.
   int band_width = 0, band_height = 0;
   Texture gbuffer_hit, gbuffer_albedo, radiance_sum, transmittance;
   gl::Buffer frame_rgb;
@@ -93,13 +99,17 @@ struct Renderer::Impl {
 
   void ensure_band_images(int width, int height) {
     if (width == band_width && height == band_height) return;
-    gbuffer_hit = Texture::create_2d(TextureFormat::rgba32f, width, height);
-    gbuffer_albedo = Texture::create_2d(TextureFormat::rgba16f, width, height);
-    radiance_sum = Texture::create_2d(TextureFormat::rgba32f, width, height);
-    transmittance = Texture::create_2d(TextureFormat::rgba32f, width, height);
+    for (Texture* t : {&gbuffer_hit, &gbuffer_albedo, &radiance_sum, &transmittance}) *t = Texture();
     frame_rgb = gl::Buffer::mappable(static_cast<std::size_t>(width) * height * 4 * sizeof(float));
     band_width = width;
     band_height = height;
+  }
+  void ensure_gbuffer_images() {
+    if (gbuffer_hit.id() != 0) return;
+    gbuffer_hit = Texture::create_2d(TextureFormat::rgba32f, band_width, band_height);
+    gbuffer_albedo = Texture::create_2d(TextureFormat::rgba16f, band_width, band_height);
+    radiance_sum = Texture::create_2d(TextureFormat::rgba32f, band_width, band_height);
+    transmittance = Texture::create_2d(TextureFormat::rgba32f, band_width, band_height);
   }
 
   // render_to_texture()'s band copy (render/frame/band_to_texture.h); the
@@ -121,6 +131,8 @@ Renderer::Renderer(const RenderOptions& options, TableSource tables)
 }
 
 Renderer::~Renderer() = default;
+
+std::string Renderer::program_builds_summary() const { return impl_->builds ? impl_->builds->summary() : ""; }
 
 std::vector<float> Renderer::render_image(const scene::Scene& scene, const warp::Projection& projection) {
   std::vector<float> image(static_cast<std::size_t>(projection.width()) * projection.height() * 3);
@@ -151,13 +163,22 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   gl::check_gl_error("Renderer::render: an earlier GL call left an error");
 
   check_scene(scene);
+  Impl& im = *impl_;
+  if (!im.builds)
+    im.builds = std::make_unique<gl::ProgramBuilds>(options_.serial_compile ? gl::CompileMode::serial
+                                                                            : gl::CompileMode::parallel);
+  const gl::ProgramBuilds::Statistics builds_before = im.builds->statistics();
   Frame frame = frame_constants(scene, projection);
   if (options_.sun_disc) frame.sun_lift = impl_->sun_refraction.lift(scene, sun_reach_rad(frame));
   update_tile_cones(frame);
   prepare_bodies(frame);
   make_tables_resident(frame);
-  fill_sky_view_tables(frame, timer);
+  choose_sky_view(frame);
   prepare_programs(frame);
+  classify_bands(frame, timer);
+  start_programs(frame);
+  fill_sky_view_tables(frame, timer);
+  frame.programs = &im.frame_programs.passes_for(*im.builds, frame.variant);
   set_direct_light_uniforms(frame);
   impl_->night_sky.prepare(frame, timer);
   const NightSkyStats& night = impl_->night_sky.stats();
@@ -165,6 +186,9 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   stats_.night_sky_drawn = !night.skipped;
   stats_.star_catalogue_identity = night.catalogue_identity;
   render_bands(frame, output, timer);
+  const gl::ProgramBuilds::Statistics& builds_after = im.builds->statistics();
+  stats_.programs_built = builds_after.built - builds_before.built;
+  stats_.programs_s = builds_after.seconds() - builds_before.seconds();
   stats_.pass_ms = timer.milliseconds();
   stats_.seconds = seconds_since(start);
 }
@@ -273,13 +297,15 @@ void Renderer::make_tables_resident(Frame& frame) {
                     options_.atmosphere.multiple_scattering, options_.atmosphere.eclipses, options_.atmosphere.fp64);
     auto it = im.atmospheres.find(key);
     if (it == im.atmospheres.end()) {
+      const auto start = std::chrono::steady_clock::now();
       ++stats_.table_sets_requested;
       const atmosphere::lut::LookupTables tables = table_source_(model);
       it = im.atmospheres
                .emplace(key, std::make_unique<GpuAtmosphere>(model, tables, options_.atmosphere,
-                                                             im.frame_programs.sun_defines()))
+                                                             im.frame_programs.sun_defines(), *im.builds))
                .first;
       ++stats_.table_sets_uploaded;
+      stats_.tables_s += seconds_since(start);
       spdlog::debug("renderer: atmosphere of '{}' resident ({:.1f} MB of tables)",
                     scene.bodies[static_cast<std::size_t>(pass.body)].name,
                     static_cast<double>(it->second->table_bytes()) / 1e6);
@@ -288,21 +314,40 @@ void Renderer::make_tables_resident(Frame& frame) {
   }
 }
 
-void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
+void Renderer::choose_sky_view(Frame& frame) const {
   const scene::Scene& scene = frame.scene;
-  std::vector<const GpuAtmosphere*> sky_view_filled;
+  std::vector<const GpuAtmosphere*> chosen;  // a table set's table is filled once
   for (AtmospherePass& pass : frame.passes) {
     if (!pass.gpu || options_.sky_view_table == SkyViewTableUse::off || pass.power_m2 > 0.0) continue;
-    if (std::find(sky_view_filled.begin(), sky_view_filled.end(), pass.gpu) != sky_view_filled.end()) continue;
+    if (std::find(chosen.begin(), chosen.end(), pass.gpu) != chosen.end()) continue;
     const scene::Body& planet = scene.bodies[static_cast<std::size_t>(pass.body)];
     const glm::dvec3 up = glm::normalize(scene.camera.position_m - planet.position_m);
-    if (!sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(), pass.top_radius_m, glm::dot(up, frame.sun)))
-      continue;
-    timer.gpu("sky-view table",
-              [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius); });
-    pass.sky_view = true;
-    sky_view_filled.push_back(pass.gpu);
+    pass.sky_view =
+        sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(), pass.top_radius_m, glm::dot(up, frame.sun));
+    if (pass.sky_view) chosen.push_back(pass.gpu);
   }
+}
+
+void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
+  for (const AtmospherePass& pass : frame.passes) {
+    if (!pass.sky_view) continue;
+    const scene::Body& planet = frame.scene.bodies[static_cast<std::size_t>(pass.body)];
+    const double sun_cosine = glm::dot(glm::normalize(frame.scene.camera.position_m - planet.position_m), frame.sun);
+    timer.gpu("sky-view table", [&] { pass.gpu->fill_sky_view(pass.distance_m, sun_cosine, frame.sun_radius); });
+  }
+}
+
+void Renderer::start_programs(const Frame& frame) {
+  Impl& im = *impl_;
+  im.frame_programs.start(*im.builds, frame.variant);
+  for (const AtmospherePass& pass : frame.passes)
+    if (pass.sky_view) pass.gpu->start_sky_view_program();
+  for (const BandTiles& band : *frame.bands)
+    for (std::size_t a = 0; a < band.lists.size(); ++a) {
+      const GpuAtmosphere* gpu = frame.passes[a].gpu;
+      if (band.lists[a].gbuffer.count > 0) gpu->start_gbuffer_path_program(frame.variant);
+      for (const auto& [variant, list] : band.lists[a].one_pass) gpu->start_tile_program(frame.variant, variant);
+    }
 }
 
 void Renderer::prepare_programs(Frame& frame) {
@@ -322,7 +367,7 @@ void Renderer::prepare_programs(Frame& frame) {
   frame.variant.projection_kind = static_cast<int>(frame.gpu_projection.kind);
   frame.variant.eclipses = options_.atmosphere.eclipses && eclipses_possible(frame.scene);
   frame.variant.albedo_lod0 = albedo_at_full_resolution(frame.scene, frame.pixel_angle, im.albedo.texture().width());
-  frame.programs = &im.frame_programs.passes_for(frame.variant);
+  frame.sun_reach = sun_reach_rad(frame);
 }
 
 void Renderer::set_direct_light_uniforms(Frame& frame) {
@@ -332,10 +377,10 @@ void Renderer::set_direct_light_uniforms(Frame& frame) {
   const FramePasses& fp = *frame.programs;
   const double exposure = scene.camera.exposure;
   const std::array<float, 9> rgb_from_albedo = direct_light_colour_matrix(frame, scene);
-  frame.prepare(fp.direct_light).set_uniform("rgb_from_albedo", rgb_from_albedo);
-  frame.prepare(fp.direct_light_one).set_uniform("rgb_from_albedo", rgb_from_albedo);
-  if (fp.direct_light_sun.id() != 0) {
-    const ShaderProgram& p = frame.prepare(fp.direct_light_sun);
+  frame.prepare(*fp.direct_light).set_uniform("rgb_from_albedo", rgb_from_albedo);
+  frame.prepare(*fp.direct_light_one).set_uniform("rgb_from_albedo", rgb_from_albedo);
+  if (fp.direct_light_sun) {
+    const ShaderProgram& p = frame.prepare(*fp.direct_light_sun);
     p.set_uniform("rgb_from_albedo", rgb_from_albedo);
     p.set_uniform("wavelength_count", static_cast<int>(std::min<std::size_t>(frame.n, kMaxSpectrumUniforms)));
     for (std::size_t i = 0; i < frame.n && i < static_cast<std::size_t>(kMaxSpectrumUniforms); ++i) {
@@ -348,23 +393,26 @@ void Renderer::set_direct_light_uniforms(Frame& frame) {
                                static_cast<float>(frame.sun_point_sigma > 0.0 ? 0.0 : frame.limb_exponent[i])});
     }
   }
-  frame.sun_reach = sun_reach_rad(frame);
+}
+
+void Renderer::classify_bands(Frame& frame, PassTimer& timer) {
+  Impl& im = *impl_;
+  const int width = frame.projection.width(), height = frame.projection.height();
+  const std::size_t rows_fit = std::max<std::size_t>(1, options_.max_band_pixels / static_cast<std::size_t>(width));
+  frame.band_rows = static_cast<int>(std::max<std::size_t>(
+      kTileSize, std::min<std::size_t>(static_cast<std::size_t>(height + kTileSize - 1) / kTileSize * kTileSize,
+                                       rows_fit / kTileSize * kTileSize)));
+  timer.cpu("tile classification",
+            [&] { frame.bands = &im.frame_tiles.classify(tile_scene(frame), height, frame.band_rows); });
+  stats_.tiles_reused = im.frame_tiles.reused();
 }
 
 void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& timer) {
   Impl& im = *impl_;
-  const int width = frame.projection.width(), height = frame.projection.height();
-  const std::size_t rows_fit = std::max<std::size_t>(1, options_.max_band_pixels / static_cast<std::size_t>(width));
-  const int band_rows = static_cast<int>(std::max<std::size_t>(
-      kTileSize, std::min<std::size_t>(static_cast<std::size_t>(height + kTileSize - 1) / kTileSize * kTileSize,
-                                       rows_fit / kTileSize * kTileSize)));
+  const int width = frame.projection.width(), height = frame.projection.height(), band_rows = frame.band_rows;
   im.ensure_band_images(width, std::min(band_rows, (height + kTileSize - 1) / kTileSize * kTileSize));
   im.bodies.bind_storage(kBodies);
-  const std::vector<BandTiles>* classified = nullptr;
-  timer.cpu("tile classification",
-            [&] { classified = &im.frame_tiles.classify(tile_scene(frame), height, band_rows); });
-  const std::vector<BandTiles>& bands = *classified;
-  stats_.tiles_reused = im.frame_tiles.reused();
+  const std::vector<BandTiles>& bands = *frame.bands;
 
   for (int first_row = 0; first_row < height; first_row += band_rows) {
     const int rows = std::min(band_rows, height - first_row);
@@ -458,16 +506,16 @@ void Renderer::upload_tile_lists(const BandTiles& band) {
 void Renderer::draw_direct_tiles(Frame& frame, const BandTiles& band, PassTimer& timer) {
   const FramePasses& fp = *frame.programs;
   for (const auto& [b, list] : band.one_body_tiles) {
-    frame.set_the_body(frame.prepare(fp.direct_light_one), b);
-    fp.direct_light_one.set_uniform("one_body", static_cast<int>(b));
-    timer.gpu("direct light", [&] { frame.dispatch_tiles(fp.direct_light_one, list, kDirectLightTilesPerGroup); });
+    frame.set_the_body(frame.prepare(*fp.direct_light_one), b);
+    fp.direct_light_one->set_uniform("one_body", static_cast<int>(b));
+    timer.gpu("direct light", [&] { frame.dispatch_tiles(*fp.direct_light_one, list, kDirectLightTilesPerGroup); });
   }
   if (band.body_tiles.count > 0)
     timer.gpu("direct light",
-              [&] { frame.dispatch_tiles(fp.direct_light, band.body_tiles, kDirectLightTilesPerGroup); });
+              [&] { frame.dispatch_tiles(*fp.direct_light, band.body_tiles, kDirectLightTilesPerGroup); });
   if (band.sun_tiles.count > 0)
     timer.gpu("direct light, sun",
-              [&] { frame.dispatch_tiles(fp.direct_light_sun, band.sun_tiles, kDirectLightTilesPerGroup); });
+              [&] { frame.dispatch_tiles(*fp.direct_light_sun, band.sun_tiles, kDirectLightTilesPerGroup); });
 }
 
 void Renderer::draw_one_pass_tiles(Frame& frame, const BandTiles& band, PassTimer& timer) {
@@ -505,11 +553,12 @@ void Renderer::draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer
   Impl& im = *impl_;
   const FramePasses& fp = *frame.programs;
   const scene::Scene& scene = frame.scene;
+  im.ensure_gbuffer_images();
   im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::write_only);
   im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::write_only);
   im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::write_only);
   im.transmittance.bind_image(kTransmittance, gl::ImageAccess::write_only);
-  timer.gpu("g-buffer", [&] { frame.dispatch_tiles(fp.gbuffer, band.gbuffer_tiles); });
+  timer.gpu("g-buffer", [&] { frame.dispatch_tiles(*fp.gbuffer, band.gbuffer_tiles); });
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
   for (std::size_t g = 0; g < frame.groups; ++g) {
@@ -537,8 +586,8 @@ void Renderer::draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer
                 [&] { frame.dispatch_tiles(p, band.lists[a].gbuffer); });
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    frame.set_group_uniforms(fp.resolve, g);
-    timer.gpu("resolve", [&] { frame.dispatch_tiles(fp.resolve, band.gbuffer_tiles); });
+    frame.set_group_uniforms(*fp.resolve, g);
+    timer.gpu("resolve", [&] { frame.dispatch_tiles(*fp.resolve, band.gbuffer_tiles); });
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   }
 }

@@ -83,6 +83,11 @@ struct FrameStats {
   /// render/frame/frame_tiles.h); the counts above are the same.
   bool tiles_reused = false;
   double seconds = 0.0;  ///< wall time of render(), readback included
+  /// Of `seconds`: obtaining and uploading table sets (the TableSource's
+  /// calls and the upload: the first frame with a set), and building programs
+  /// (the first frame of a variant), with how many were built.
+  double tables_s = 0.0, programs_s = 0.0;
+  int programs_built = 0;
   /// The night sky's pass (render/frame/star_pass.h): stars placed in the
   /// image, whether it ran (false: no sky clock or night sky, or its own test
   /// found nothing visible), the catalogue's identity of the stars drawn.
@@ -124,6 +129,10 @@ class Renderer {
   void render_on_gpu(const scene::Scene& scene, const warp::Projection& projection, const GpuBandSink& sink);
 
   const FrameStats& last_frame() const { return stats_; }
+  /// What building the renderer's programs took so far and how they were
+  /// built (gl::ProgramBuilds::summary: "14 programs, 2.310 s building them
+  /// (…), at most 14 at once on the driver's compiler threads …"); empty before the first frame.
+  std::string program_builds_summary() const;
   const RenderOptions& options() const { return options_; }
 
  private:
@@ -146,10 +155,21 @@ class Renderer {
   void prepare_bodies(Frame& frame);
   /// The tables of every atmosphere the view touches, uploaded when not resident.
   void make_tables_resident(Frame& frame);
-  /// The sky-view table of each atmosphere whose shell holds the camera (once per table set).
-  void fill_sky_view_tables(Frame& frame, PassTimer& timer);
-  /// The uniforms every pass shares and the frame's programs (compiled on first use).
+  /// Which atmospheres read a sky-view table: those whose shell holds the
+  /// camera where the table is accurate (one table per table set).
+  void choose_sky_view(Frame& frame) const;
+  /// The uniforms every pass shares, the frame's program variant and where the sun can be drawn.
   void prepare_programs(Frame& frame);
+  /// Every band's tiles (render/frame/frame_tiles.h), before any is drawn.
+  void classify_bands(Frame& frame, PassTimer& timer);
+  /// Starts building every program the frame's bands use that is not built
+  /// yet (the frame's passes, the sky-view fills, each atmosphere's tile
+  /// variants and G-buffer path), all before any is finished: a driver with
+  /// parallel shader compile builds them at once (render/gl/program_builds.h;
+  /// RenderOptions::serial_compile: one at a time, where first used).
+  void start_programs(const Frame& frame);
+  /// The sky-view table of each atmosphere choose_sky_view chose.
+  void fill_sky_view_tables(Frame& frame, PassTimer& timer);
   /// direct_light.comp's colour matrix and sun spectrum; where the sun can be drawn.
   void set_direct_light_uniforms(Frame& frame);
   /// What becomes of a band once its tiles are drawn: read back for a RowSink

@@ -1,5 +1,6 @@
 #include "render/shader_programs.h"
 
+#include <string>
 #include <vector>
 
 #include "render/shader_bindings.h"
@@ -14,6 +15,13 @@ std::vector<gl::ShaderDefine> with_interface_defines(std::span<const gl::ShaderD
   std::vector<gl::ShaderDefine> all = shader_interface_defines();
   all.insert(all.end(), defines.begin(), defines.end());
   return all;
+}
+
+/// The program's key in a ProgramBuilds: "render/gbuffer.comp PROJECTION_KIND=2 ECLIPSES=0 …".
+std::string program_key(std::string_view name, std::span<const gl::ShaderDefine> defines) {
+  std::string key(name);
+  for (const gl::ShaderDefine& d : defines) key += " " + d.name + "=" + d.value;
+  return key;
 }
 
 }  // namespace
@@ -42,6 +50,15 @@ gl::ShaderBuild start_graphics_program(std::string_view vertex_name, std::string
 gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::string_view fragment_name,
                                         std::span<const gl::ShaderDefine> defines) {
   return start_graphics_program(vertex_name, fragment_name, defines).finish();
+}
+
+void start_built_program(gl::ProgramBuilds& builds, std::string_view name, std::span<const gl::ShaderDefine> defines) {
+  builds.start(program_key(name, defines), [&] { return start_compute_program(name, defines); });
+}
+
+const gl::ShaderProgram& built_program(gl::ProgramBuilds& builds, std::string_view name,
+                                       std::span<const gl::ShaderDefine> defines) {
+  return builds.get(program_key(name, defines), [&] { return start_compute_program(name, defines); });
 }
 
 }  // namespace zenith::render

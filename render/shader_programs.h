@@ -12,6 +12,7 @@
 #include <span>
 #include <string_view>
 
+#include "render/gl/program_builds.h"
 #include "render/gl/shader_build.h"
 #include "render/gl/shader_program.h"
 #include "render/shader_source.h"
@@ -32,6 +33,16 @@ gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::strin
                                         std::span<const gl::ShaderDefine> defines = {});
 /// load_graphics_program's build, started and not finished.
 gl::ShaderBuild start_graphics_program(std::string_view vertex_name, std::string_view fragment_name,
+                                       std::span<const gl::ShaderDefine> defines = {});
+/// A compute program of `builds` (render/gl/program_builds.h), keyed by its
+/// text: the embedded shader's name and every define, so that equal texts
+/// are built once whoever asks. start_built_program starts it (the driver
+/// compiles it on its threads while the caller starts others);
+/// built_program finishes it, or builds it now. Throws what
+/// ShaderBuild::finish throws.
+void start_built_program(gl::ProgramBuilds& builds, std::string_view name,
+                         std::span<const gl::ShaderDefine> defines = {});
+const gl::ShaderProgram& built_program(gl::ProgramBuilds& builds, std::string_view name,
                                        std::span<const gl::ShaderDefine> defines = {});
 /// A compute program from an already expanded shader (one resolved among
 /// other files than the embedded ones, e.g. the tests' shaders), with the same

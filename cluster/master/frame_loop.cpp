@@ -37,8 +37,8 @@ void FrameLoop::stop() {
   frame_timer_.cancel();
   if (p_.options.paced && p_.progress.presented > 0)
     spdlog::info(
-        "master: pacing at {} Hz: {} frames presented, {} more than a period after they were due, the "
-        "schedule moved {} time{}",
+        "master: pacing at {} Hz: {} frames presented, {} more than a period after they were due (the warm-up "
+        "frame 0 not counted), the schedule moved {} time{}",
         p_.play.fps, p_.progress.presented, late_frames_, pacer_.slips(), pacer_.slips() == 1 ? "" : "s");
 }
 
@@ -50,7 +50,6 @@ void FrameLoop::maybe_start() {
   const bool waited = ms_since(*waiting_since_) >= p_.options.wait_for_nodes_ms;
   if (ready == p_.options.config.nodes.size() || (waited && ready > 0)) {
     p_.progress.started = true;
-    pacer_.start(Clock::now());
     spdlog::info("master: starting the show with {} of {} node{}{}", ready, p_.options.config.nodes.size(),
                  p_.options.config.nodes.size() == 1 ? "" : "s",
                  p_.options.frames ? cat(", ", p_.options.frames, " frames") : std::string(", until stopped"));
@@ -180,6 +179,11 @@ void FrameLoop::on_barrier_timeout() {
 
 void FrameLoop::complete_frame() {
   barrier_timer_.cancel();
+  // Stopping (the operator quit, a signal): the frames released before are
+  // presented by every node — their Presents went out before the Goodbye —
+  // and the frame in flight is not released, neither presented nor recorded,
+  // so that the recording holds exactly the frames the nodes showed.
+  if (p_.progress.stopping) return;
   const FrameBarrier::Release release = p_.barrier.release();
   const std::uint64_t frame = release.frame;
   auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(Present{frame}));
@@ -194,9 +198,14 @@ void FrameLoop::complete_frame() {
     p_.play.recorder->record(p_.progress.in_flight);
   }
   if (p_.options.feed) p_.options.feed->presented(frame);
-  if (p_.options.paced) {  // later than a period after it was due: the projectors showed the last frame twice
-    const Clock::duration after_due = Clock::now() - pacer_.due(p_.progress.presented);
-    if (after_due > pacer_.period()) ++late_frames_;
+  if (p_.options.paced && p_.progress.presented == 0) {
+    // Frame 0 warmed the nodes up (its programs, buffers, uploads and first
+    // swap, however long they took): the schedule starts at its Present.
+    pacer_.start(Clock::now());
+    spdlog::info("master: warm-up frame {} presented after {:.1f} ms; the {} Hz schedule starts now", frame,
+                 ms_since(frame_started_), p_.play.fps);
+  } else if (p_.options.paced && pacer_.late(p_.progress.presented, Clock::now())) {
+    ++late_frames_;  // later than a period after it was due: the projectors showed the last frame twice
   }
   const std::uint64_t presented = ++p_.progress.presented;
   if (p_.options.frames != 0 && presented >= p_.options.frames)

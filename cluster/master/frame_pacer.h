@@ -12,6 +12,13 @@
 // catch up (a burst would show several frames in a few vblanks, which looks
 // worse on a dome than one held frame). Each such slip is counted. Time is
 // passed in, so the rule is tested without sockets (tests/cluster/frame_pacer_test.cpp).
+//
+// Frame 0 is the warm-up frame: the nodes build their programs for the
+// show's first state, allocate their buffers, upload the tables and swap
+// their windows for the first time while rendering it, which can take many
+// periods. The master starts the schedule (start()) at frame 0's Present, so
+// frame 1 is due one period after it; frame 0 is never late, and the late
+// count starts at frame 1, the first paced frame (cluster/master/frame_loop.cpp).
 #include <chrono>
 #include <cstdint>
 
@@ -24,7 +31,7 @@ class FramePacer {
   /// `rate_hz` > 0 (the config's frame_rate_hz).
   explicit FramePacer(double rate_hz);
 
-  /// Frame 0 starts at `t0`.
+  /// Frame 0 is due (the warm-up frame was presented) at `t0`: frame n ≥ 1 at t0 + n / rate.
   void start(Clock::time_point t0);
   /// The show waited `waited` (for a table set): the later frames keep the
   /// rate from the end of the wait instead of catching up on it.
@@ -35,6 +42,10 @@ class FramePacer {
   /// More than one period late, the schedule moves so that frame `n` is due
   /// now (counted in slips()).
   Clock::duration wait_before(std::uint64_t n, Clock::time_point now);
+
+  /// Whether frame `n`, presented at `presented`, was late: more than one
+  /// period after it was due. Never frame 0, the warm-up frame.
+  bool late(std::uint64_t n, Clock::time_point presented) const { return n > 0 && presented - due(n) > period_; }
 
   double rate_hz() const { return rate_hz_; }
   Clock::duration period() const { return period_; }

@@ -265,7 +265,7 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
   RenderDone done{state.frame, render_ms};
   if (windows_) {  // how the presents so far went (render/window/present_clock.h)
     done.presents = windows_->clock().presented();
-    done.late_presents = windows_->clock().late();
+    done.late_presents = windows_->clock().late() - warm_up_late_;
     done.present_ms = windows_->clock().last_ms();
   }
   events_.rendered(done, session, std::move(thumbnails));
@@ -296,6 +296,9 @@ void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked) {
   // Swap first (the projectors), then the files and the log.
   if (windows_) {
     windows_->present(display_textures(), asked);
+    // The windows' first swap is part of the warm-up (the driver's buffers, the
+    // compositor): a late first present is not counted (frame_pacer.h).
+    if (windows_->clock().presented() == 1) warm_up_late_ = windows_->clock().late();
     if (windows_->poll_close_request()) report_window_closed();
   }
   if (!writer_.present(frame)) {

@@ -144,6 +144,7 @@ class RenderWorker {
   std::unique_ptr<render::Renderer> renderer_;
   std::uint32_t renderer_flags_ = 0;
   bool warmed_up_ = false;
+  std::uint64_t warm_up_late_ = 0;  ///< whether the windows' first present was late (not reported)
   bool close_reported_ = false;
 };
 

@@ -11,9 +11,7 @@ FramePrograms::FramePrograms(bool sun_disc, bool limb_darkening)
       sun_disc_(sun_disc),
       limb_darkening_(limb_darkening) {}
 
-const FramePasses& FramePrograms::passes_for(const FrameVariant& frame) {
-  auto it = passes_.find(frame.key());
-  if (it != passes_.end()) return it->second;
+std::vector<FramePrograms::Source> FramePrograms::sources(const FrameVariant& frame) const {
   const std::vector<gl::ShaderDefine> frame_defines = frame.defines();
   std::vector<gl::ShaderDefine> resolve_defines = sun_defines_;
   resolve_defines.insert(resolve_defines.end(), frame_defines.begin(), frame_defines.end());
@@ -27,22 +25,33 @@ const FramePasses& FramePrograms::passes_for(const FrameVariant& frame) {
   };
   FrameVariant no_eclipses = frame;  // the G-buffer pass shades nothing
   no_eclipses.eclipses = false;
-  const std::vector<gl::ShaderDefine> gbuffer_defines = no_eclipses.defines();
-  // All five started before any is finished: a driver with parallel shader
-  // compile (NVIDIA) builds them on its threads at once (render/gl/shader_build.h).
-  gl::ShaderBuild gbuffer = start_compute_program("render/gbuffer.comp", gbuffer_defines);
-  gl::ShaderBuild resolve = start_compute_program("render/resolve.comp", resolve_defines);
-  gl::ShaderBuild direct_one = start_compute_program("render/direct_light.comp", direct_defines(false, true));
-  gl::ShaderBuild direct = start_compute_program("render/direct_light.comp", direct_defines(false, false));
-  gl::ShaderBuild direct_sun;
-  if (sun_disc_) direct_sun = start_compute_program("render/direct_light.comp", direct_defines(true, false));
+  std::vector<Source> s = {{"render/gbuffer.comp", no_eclipses.defines()},
+                           {"render/resolve.comp", resolve_defines},
+                           {"render/direct_light.comp", direct_defines(false, true)},
+                           {"render/direct_light.comp", direct_defines(false, false)}};
+  if (sun_disc_) s.push_back({"render/direct_light.comp", direct_defines(true, false)});
+  return s;
+}
+
+void FramePrograms::start(gl::ProgramBuilds& builds, const FrameVariant& frame) const {
+  if (passes_.contains(frame.key())) return;
+  for (const Source& s : sources(frame)) start_built_program(builds, s.file, s.defines);
+}
+
+const FramePasses& FramePrograms::passes_for(gl::ProgramBuilds& builds, const FrameVariant& frame) {
+  auto it = passes_.find(frame.key());
+  if (it != passes_.end()) return it->second;
+  // Started together (start()): a driver with parallel shader compile
+  // (NVIDIA) builds them on its threads at once (render/gl/shader_build.h).
+  start(builds, frame);
+  const std::vector<Source> s = sources(frame);
   FramePasses p;
-  p.gbuffer = gbuffer.finish();
-  p.resolve = resolve.finish();
-  p.direct_light_one = direct_one.finish();
-  p.direct_light = direct.finish();
-  if (sun_disc_) p.direct_light_sun = direct_sun.finish();
-  return passes_.emplace(frame.key(), std::move(p)).first->second;
+  p.gbuffer = &built_program(builds, s[0].file, s[0].defines);
+  p.resolve = &built_program(builds, s[1].file, s[1].defines);
+  p.direct_light_one = &built_program(builds, s[2].file, s[2].defines);
+  p.direct_light = &built_program(builds, s[3].file, s[3].defines);
+  if (sun_disc_) p.direct_light_sun = &built_program(builds, s[4].file, s[4].defines);
+  return passes_.emplace(frame.key(), p).first->second;
 }
 
 }  // namespace zenith::render

@@ -2,15 +2,18 @@
 // The programs of a frame's own passes, those that are no atmosphere's
 // (an atmosphere's are GpuAtmosphere's, render/frame/gpu_atmosphere.h):
 // the G-buffer (shaders/render/gbuffer.comp), the resolve (resolve.comp) and
-// the direct light of tiles no shell touches (direct_light.comp), built on
-// first use for the frame's variant (FrameVariant: projection kind, eclipses,
-// albedo level), the five together, and kept.
+// the direct light of tiles no shell touches (direct_light.comp), for the
+// frame's variant (FrameVariant: projection kind, eclipses, albedo level).
+// They live in the renderer's ProgramBuilds (render/gl/program_builds.h):
+// start() hands the five to the driver with the frame's other programs,
+// passes_for() finishes them where the frame first uses them.
 #include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "render/frame/gpu_atmosphere.h"
+#include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 
 namespace zenith::render {
@@ -21,11 +24,12 @@ namespace zenith::render {
 /// 7.4–7.6 ms instead of 7.5–8.0 ms with one tile per group (issue 13).
 inline constexpr std::size_t kDirectLightTilesPerGroup = 4;
 
-/// One variant's programs.
+/// One variant's programs (owned by the ProgramBuilds they came from).
 struct FramePasses {
-  gl::ShaderProgram gbuffer, resolve;
-  // Tiles no atmosphere touches: bodies (one body: ONE_BODY = 1; several), and the sun's tiles (SUN = 1).
-  gl::ShaderProgram direct_light_one, direct_light, direct_light_sun;
+  const gl::ShaderProgram *gbuffer = nullptr, *resolve = nullptr;
+  // Tiles no atmosphere touches: bodies (one body: ONE_BODY = 1; several), and
+  // the sun's tiles (SUN = 1; null without RenderOptions::sun_disc).
+  const gl::ShaderProgram *direct_light_one = nullptr, *direct_light = nullptr, *direct_light_sun = nullptr;
 };
 
 class FramePrograms {
@@ -35,10 +39,19 @@ class FramePrograms {
   /// SUN_DISC and LIMB_DARKENING, the sun's defines: of the resolve here and of
   /// atmosphere_tile.comp (GpuAtmosphere), which draw the disc behind an atmosphere.
   const std::vector<gl::ShaderDefine>& sun_defines() const { return sun_defines_; }
-  /// The programs of `frame`'s variant, compiled on first use. Needs a current GL context.
-  const FramePasses& passes_for(const FrameVariant& frame);
+  /// Starts building the programs of `frame`'s variant that are not built yet.
+  void start(gl::ProgramBuilds& builds, const FrameVariant& frame) const;
+  /// The programs of `frame`'s variant, finished (or built) now where not yet. Needs a current GL context.
+  const FramePasses& passes_for(gl::ProgramBuilds& builds, const FrameVariant& frame);
 
  private:
+  struct Source {
+    const char* file;
+    std::vector<gl::ShaderDefine> defines;
+  };
+  /// gbuffer, resolve, direct light of one body, of several, of the sun (without the sun's disc: four).
+  std::vector<Source> sources(const FrameVariant& frame) const;
+
   std::map<std::string, FramePasses> passes_;  // by FrameVariant::key
   std::vector<gl::ShaderDefine> sun_defines_;
   bool sun_disc_ = true, limb_darkening_ = true;

@@ -56,8 +56,12 @@ struct FrameState : FrameConstants {
   std::array<std::array<float, 3>, 3> world_ray{};
   FrameVariant variant;
   const FramePasses* programs = nullptr;
-  double sun_reach = 0.0;  // where the sun can be drawn (set_direct_light_uniforms)
+  double sun_reach = 0.0;  // where the sun can be drawn (prepare_programs)
   SunDiscLift sun_lift;    // the disc's refraction (refract_sun)
+
+  // ---- every band's tiles (classify_bands): bands of band_rows rows
+  int band_rows = 0;
+  const std::vector<BandTiles>* bands = nullptr;
 
   // Frame uniforms on first use in the frame, band uniforms on first use in the band.
   std::set<const gl::ShaderProgram*> frame_ready, band_ready;

@@ -50,8 +50,9 @@ gl::Texture texture_3d(const Table3D& t, std::size_t group) {
 }  // namespace
 
 GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
-                             const AtmospherePassFeatures& features, std::span<const gl::ShaderDefine> frame_defines)
-    : hash_(tables.hash), top_radius_m_(model.top_radius_m), ground_radius_m_(model.ground_radius_m) {
+                             const AtmospherePassFeatures& features, std::span<const gl::ShaderDefine> frame_defines,
+                             gl::ProgramBuilds& builds)
+    : hash_(tables.hash), top_radius_m_(model.top_radius_m), ground_radius_m_(model.ground_radius_m), builds_(&builds) {
   if (tables.channels != model.wavelength_count())
     throw std::invalid_argument(fmt::format("atmosphere '{}': tables have {} channels, the model {} wavelengths",
                                             model.name, tables.channels, model.wavelength_count()));
@@ -91,7 +92,7 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   eclipses_ = features.eclipses;
   defines_ = defines;
   defines.push_back({"ECLIPSES", "0"});  // the fill shades no surface
-  sky_view_ = std::make_unique<SkyViewTable>(defines, groups_.size());
+  sky_view_ = std::make_unique<SkyViewTable>(builds, defines, groups_.size());
   tile_defines_ = defines_;
   tile_defines_.insert(tile_defines_.end(), frame_defines.begin(), frame_defines.end());
   gl::check_gl_error(fmt::format("uploading the tables of atmosphere '{}'", model.name));
@@ -119,13 +120,6 @@ void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t grou
   program.set_uniform("sky_view_theta_horizon", static_cast<float>(sky_view_->theta_horizon_rad()));
 }
 
-const gl::ShaderProgram& GpuAtmosphere::program(const std::string& key, const std::string& file,
-                                                std::vector<gl::ShaderDefine> defines) {
-  auto it = programs_.find(key);
-  if (it == programs_.end()) it = programs_.emplace(key, load_compute_program(file, defines)).first;
-  return it->second;
-}
-
 std::vector<gl::ShaderDefine> FrameVariant::defines() const {
   return {{"PROJECTION_KIND", std::to_string(projection_kind)},
           {"ECLIPSES", eclipses ? "1" : "0"},
@@ -134,15 +128,15 @@ std::vector<gl::ShaderDefine> FrameVariant::defines() const {
 
 std::string FrameVariant::key() const { return fmt::format("{} {:d} {:d}", projection_kind, eclipses, albedo_lod0); }
 
-const gl::ShaderProgram& GpuAtmosphere::gbuffer_path_program(const FrameVariant& frame) {
+std::vector<gl::ShaderDefine> GpuAtmosphere::gbuffer_path_defines(const FrameVariant& frame) const {
   FrameVariant f = frame;
   f.eclipses = frame.eclipses && eclipses_;
   std::vector<gl::ShaderDefine> defines = defines_;
   for (const gl::ShaderDefine& d : f.defines()) defines.push_back(d);
-  return program("pass " + f.key(), "render/atmosphere_pass.comp", std::move(defines));
+  return defines;
 }
 
-const gl::ShaderProgram& GpuAtmosphere::tile_program(const FrameVariant& frame, const TileVariant& v) {
+std::vector<gl::ShaderDefine> GpuAtmosphere::tile_defines(const FrameVariant& frame, const TileVariant& v) const {
   FrameVariant f = frame;
   f.eclipses = frame.eclipses && eclipses_;
   std::vector<gl::ShaderDefine> defines = tile_defines_;
@@ -151,7 +145,23 @@ const gl::ShaderProgram& GpuAtmosphere::tile_program(const FrameVariant& frame, 
                                  {"TILE_GROUND", std::to_string(static_cast<int>(v.ground))},
                                  {"TILE_OTHERS", std::to_string(v.others)},
                                  {"SUN", v.sun ? "1" : "0"}});
-  return program(fmt::format("tile {} {}", f.key(), v.key()), "render/atmosphere_tile.comp", std::move(defines));
+  return defines;
+}
+
+const gl::ShaderProgram& GpuAtmosphere::gbuffer_path_program(const FrameVariant& frame) {
+  return built_program(*builds_, "render/atmosphere_pass.comp", gbuffer_path_defines(frame));
+}
+
+const gl::ShaderProgram& GpuAtmosphere::tile_program(const FrameVariant& frame, const TileVariant& v) {
+  return built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v));
+}
+
+void GpuAtmosphere::start_gbuffer_path_program(const FrameVariant& frame) const {
+  start_built_program(*builds_, "render/atmosphere_pass.comp", gbuffer_path_defines(frame));
+}
+
+void GpuAtmosphere::start_tile_program(const FrameVariant& frame, const TileVariant& v) const {
+  start_built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v));
 }
 
 void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad) {

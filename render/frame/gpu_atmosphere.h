@@ -19,6 +19,7 @@
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
+#include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/lut/shader_model.h"
@@ -42,11 +43,14 @@ struct FrameVariant {
 
 class GpuAtmosphere {
  public:
-  /// Uploads `tables` (made for `model`) and compiles the passes; `frame_defines`
-  /// are the renderer's defines of the sun's disc (SUN_DISC, LIMB_DARKENING) for
-  /// the one-pass tiles, which draw it behind the atmosphere. Needs a current GL context.
+  /// Uploads `tables` (made for `model`); `frame_defines` are the renderer's
+  /// defines of the sun's disc (SUN_DISC, LIMB_DARKENING) for the one-pass
+  /// tiles, which draw it behind the atmosphere. Its programs are `builds`'s
+  /// (the renderer's, which outlives this), built per variant when first
+  /// started or used. Needs a current GL context.
   GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
-                const AtmospherePassFeatures& features, std::span<const gl::ShaderDefine> frame_defines);
+                const AtmospherePassFeatures& features, std::span<const gl::ShaderDefine> frame_defines,
+                gl::ProgramBuilds& builds);
 
   const std::string& hash() const { return hash_; }
   std::size_t group_count() const { return groups_.size(); }
@@ -57,6 +61,11 @@ class GpuAtmosphere {
   const gl::ShaderProgram& tile_program(const FrameVariant& frame, const TileVariant& variant);
   /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).
   const gl::ShaderProgram& gbuffer_path_program(const FrameVariant& frame);
+  /// Start building those programs (and the sky-view table's fill) with the
+  /// frame's others, to be finished where first used.
+  void start_tile_program(const FrameVariant& frame, const TileVariant& variant) const;
+  void start_gbuffer_path_program(const FrameVariant& frame) const;
+  void start_sky_view_program() const { sky_view_->start_program(); }
   /// Sets `wavelength_group` (the model's parameters of group g are read from
   /// WavelengthData) and the sky-view uniforms of one of these programs.
   void set_group(const gl::ShaderProgram& program, std::size_t group) const;
@@ -89,11 +98,12 @@ class GpuAtmosphere {
   std::vector<GroupTextures> groups_;
   ModelBuffers model_buffers_;    // the model's parameters and constants (render/lut/shader_model.h)
   gl::Buffer texel_coordinates_;  // acos(μs_min) at TEXEL_SUN_THETA_MAX
-  const gl::ShaderProgram& program(const std::string& key, const std::string& file,
-                                   std::vector<gl::ShaderDefine> defines);
+  /// The defines of atmosphere_tile.comp for a variant, of atmosphere_pass.comp for a frame.
+  std::vector<gl::ShaderDefine> tile_defines(const FrameVariant& frame, const TileVariant& variant) const;
+  std::vector<gl::ShaderDefine> gbuffer_path_defines(const FrameVariant& frame) const;
   std::vector<gl::ShaderDefine> defines_, tile_defines_;  // atmosphere_pass.comp's; atmosphere_tile.comp's
   bool eclipses_ = true;                                  // AtmospherePassFeatures::eclipses
-  std::map<std::string, gl::ShaderProgram> programs_;     // compiled on first use, by variant
+  gl::ProgramBuilds* builds_;                             // the programs, by text
   std::unique_ptr<SkyViewTable> sky_view_;
   std::size_t table_bytes_ = 0;
   atmosphere::lut::LookupTables cpu_transmittance_;

@@ -19,26 +19,36 @@ std::vector<gl::ShaderDefine> SkyViewTable::defines() {
           {"SKY_VIEW_LAYERS", std::to_string(kLayersPerGroup)}};
 }
 
-SkyViewTable::SkyViewTable(std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups)
-    : fill_(load_compute_program("render/sky_view.comp", atmosphere_defines)),
+SkyViewTable::SkyViewTable(gl::ProgramBuilds& builds, std::span<const gl::ShaderDefine> atmosphere_defines,
+                           std::size_t groups)
+    : builds_(&builds),
+      defines_(atmosphere_defines.begin(), atmosphere_defines.end()),
       table_(gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
                                           static_cast<int>(std::max<std::size_t>(groups, 1)) * kLayersPerGroup)) {}
+
+void SkyViewTable::start_program() const { start_built_program(*builds_, "render/sky_view.comp", defines_); }
+
+const gl::ShaderProgram& SkyViewTable::fill_program() const {
+  return built_program(*builds_, "render/sky_view.comp", defines_);
+}
 
 void SkyViewTable::set_camera(double camera_radius_m, double ground_radius_m, double sun_cosine,
                               double sun_angular_radius_rad) {
   const double r = std::max(camera_radius_m, ground_radius_m);
   theta_horizon_rad_ = core::kPi - std::asin(std::min(ground_radius_m / r, 1.0));
-  fill_.set_uniform("camera_r", static_cast<float>(r));
-  fill_.set_uniform("camera_ground_power", static_cast<float>((r - ground_radius_m) * (r + ground_radius_m)));
-  fill_.set_uniform("camera_mu_s", static_cast<float>(std::clamp(sun_cosine, -1.0, 1.0)));
-  fill_.set_uniform("theta_horizon", static_cast<float>(theta_horizon_rad_));
-  fill_.set_uniform("sun_angular_radius", static_cast<float>(sun_angular_radius_rad));
+  const gl::ShaderProgram& fill = fill_program();
+  fill.set_uniform("camera_r", static_cast<float>(r));
+  fill.set_uniform("camera_ground_power", static_cast<float>((r - ground_radius_m) * (r + ground_radius_m)));
+  fill.set_uniform("camera_mu_s", static_cast<float>(std::clamp(sun_cosine, -1.0, 1.0)));
+  fill.set_uniform("theta_horizon", static_cast<float>(theta_horizon_rad_));
+  fill.set_uniform("sun_angular_radius", static_cast<float>(sun_angular_radius_rad));
 }
 
 void SkyViewTable::fill_group(std::size_t group) const {
-  fill_.set_uniform("layer_base", static_cast<int>(group) * kLayersPerGroup);
+  const gl::ShaderProgram& fill = fill_program();
+  fill.set_uniform("layer_base", static_cast<int>(group) * kLayersPerGroup);
   table_.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
-  fill_.dispatch_covering(kAzimuthTexels, kZenithTexels);
+  fill.dispatch_covering(kAzimuthTexels, kZenithTexels);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 
@@ -33,13 +34,17 @@ class SkyViewTable {
   /// constants above, for the shaders that include render/sky_view_mapping.glsl.
   static std::vector<gl::ShaderDefine> defines();
 
-  /// Compiles the fill shader with the atmosphere's defines and allocates the
-  /// table for `groups` wavelength groups. Needs a current GL context.
-  SkyViewTable(std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups);
+  /// Allocates the table for `groups` wavelength groups; its fill shader,
+  /// with the atmosphere's defines, is one of `builds` (which outlives this),
+  /// built when first started or used. Needs a current GL context.
+  SkyViewTable(gl::ProgramBuilds& builds, std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups);
 
-  /// The fill program: its tables (texture units 0–4), storage buffers and
-  /// `wavelength_group` are bound by the caller for each group (GpuAtmosphere::fill_sky_view).
-  const gl::ShaderProgram& fill_program() const { return fill_; }
+  /// Starts building the fill program (with the frame's other programs).
+  void start_program() const;
+  /// The fill program (finished or built now): its tables (texture units
+  /// 0–4), storage buffers and `wavelength_group` are bound by the caller for
+  /// each group (GpuAtmosphere::fill_sky_view).
+  const gl::ShaderProgram& fill_program() const;
 
   /// Sets the camera's radius [m] (in [RB, RT)), its ground radius, the sun's
   /// cosine at the camera and the sun's angular radius (the fading of the direct
@@ -54,7 +59,8 @@ class SkyViewTable {
   void bind(unsigned unit) const { table_.bind(unit); }
 
  private:
-  gl::ShaderProgram fill_;
+  gl::ProgramBuilds* builds_;
+  std::vector<gl::ShaderDefine> defines_;  // the fill program's
   gl::Texture table_;
   double theta_horizon_rad_ = 0.0;
 };

@@ -70,6 +70,22 @@ string(FIND "${last_stdout}" "2 lookup-table sets for 6 frames at 2 fps" pos)
 if(pos EQUAL -1)
   message(FATAL_ERROR "show render did not print the table plan first:\n${last_stdout}")
 endif()
+# The start-up breakdown, at info level, once the first frame is on its way (its one table set).
+string(REGEX MATCH "start-up [0-9.]+ s to the first frame: GL context [0-9.]+ s, tables precomputed [0-9.]+ s, tables loaded and uploaded [0-9.]+ s \\(1 set\\), programs [0-9.]+ s \\([1-9][0-9]* built\\)" startup "${last_stdout}${last_stderr}")
+if(NOT startup)
+  message(FATAL_ERROR "show render did not log where its start went:\n${last_stdout}\n${last_stderr}")
+endif()
+# The renderer's programs built one at a time (--serial-compile) give the same
+# bytes; a one-frame render allocates one readback slot of the five it may hold.
+render_show("rendered 1, skipped 0 of 1 frames" ${dome} --format png,exr --to 0 --serial-compile --threads 3
+            --frames-in-flight 5 --out "${root}/serial")
+expect_identical("${root}/a" "${root}/serial" fisheye 0 0)
+foreach(line "one at a time (serial" "pipeline: 1 of at most 5 readback slots allocated")
+  string(FIND "${last_stdout}${last_stderr}" "${line}" pos)
+  if(pos EQUAL -1)
+    message(FATAL_ERROR "show render --serial-compile --frames-in-flight 5: no '${line}' in:\n${last_stdout}\n${last_stderr}")
+  endif()
+endforeach()
 # (b through the simple path, one frame at a time on one thread: the same bytes as a's pipeline)
 render_show("rendered 6, skipped 0 of 6 frames" ${dome} --format png,exr --threads 0 --out "${root}/b")
 expect_identical("${root}/a" "${root}/b" fisheye 0 5)

@@ -27,6 +27,26 @@ TEST(FramePacer, FramesAreDueAtTheRateWithoutDrift) {
   }
 }
 
+/// The warm-up frame (frame 0: the nodes' programs, buffers, uploads and
+/// first swap) may take many periods: it is never late, it moves nothing,
+/// and the schedule starts at its Present (the master calls start() then).
+TEST(FramePacer, TheWarmUpFrameIsNeverLateAndTheScheduleStartsAtItsPresent) {
+  FramePacer pacer(60.0);
+  const double period_ms = 1000.0 / 60.0;
+  const Clock::time_point sent = Clock::now();
+  const Clock::time_point presented = sent + milliseconds(850);  // 51 periods of warm-up
+  EXPECT_FALSE(pacer.late(0, presented));
+  pacer.start(presented);
+  // Frame 1 a whole period after the warm-up frame's Present, not at once, and no slip.
+  EXPECT_NEAR(ms(pacer.wait_before(1, presented)), period_ms, 1e-6);
+  EXPECT_EQ(pacer.slips(), 0u);
+  // The first paced frame is late only more than a period after it was due.
+  EXPECT_FALSE(pacer.late(1, pacer.due(1) + microseconds(16600)));
+  EXPECT_TRUE(pacer.late(1, pacer.due(1) + microseconds(16700)));
+  EXPECT_FALSE(pacer.late(2, pacer.due(2)));
+  EXPECT_NEAR(ms(pacer.due(2) - presented), 2.0 * period_ms, 1e-6);
+}
+
 TEST(FramePacer, WaitsUntilAFrameIsDueAndNeverBeforeIt) {
   FramePacer pacer(60.0);
   const Clock::time_point t0 = Clock::now();

@@ -786,6 +786,35 @@ TEST(RendererSkipping, UnchangedTablesAreNotRequestedAgain) {
   EXPECT_EQ(t.renderer.last_frame().table_sets_requested, 0);
 }
 
+/// A frame builds its programs (all started before any is finished) and
+/// uploads its tables once; the next frame of the same variants builds and
+/// uploads nothing; building them one at a time (RenderOptions::serial_compile)
+/// builds the same programs and renders the same image bit for bit.
+TEST(RendererPrograms, BuiltOnceByTheFirstFrameTogetherOrOneAtATimeAlike) {
+  RenderOptions serial_options = direct_colour();
+  serial_options.serial_compile = true;
+  TestRenderer together, serial(serial_options);
+  const scene::Scene s = planet_scene("earth-advanced", 2.0, 80.0, {1, 0, 0.2});  // the sky and the ground
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(48, 32, 100.0);
+  const std::vector<float> image = together.renderer.render_image(s, p);
+  const FrameStats first = together.renderer.last_frame();
+  EXPECT_GE(first.programs_built, 6) << "gbuffer, resolve, three direct-light passes and a tile variant at least";
+  EXPECT_GT(first.programs_s, 0.0);
+  EXPECT_EQ(first.table_sets_uploaded, 1);
+  EXPECT_GT(first.tables_s, 0.0);
+  EXPECT_LE(first.tables_s + first.programs_s, first.seconds);
+  EXPECT_NE(together.renderer.program_builds_summary().find("programs"), std::string::npos);
+
+  EXPECT_EQ(together.renderer.render_image(s, p), image);
+  EXPECT_EQ(together.renderer.last_frame().programs_built, 0);
+  EXPECT_EQ(together.renderer.last_frame().programs_s, 0.0);
+  EXPECT_EQ(together.renderer.last_frame().tables_s, 0.0);
+
+  EXPECT_EQ(serial.renderer.render_image(s, p), image);
+  EXPECT_EQ(serial.renderer.last_frame().programs_built, first.programs_built);
+  EXPECT_NE(serial.renderer.program_builds_summary().find("one at a time"), std::string::npos);
+}
+
 TEST(RendererSkipping, AnAtmosphereOutsideTheViewCostsNothing) {
   TestRenderer t;
   // 1000 km above the pole, looking straight up: the planet is behind the camera.
