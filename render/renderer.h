@@ -18,6 +18,8 @@
 //     pass (gbuffer.comp: nearest sphere, albedo → G-buffer), per group one pass
 //     per atmosphere front to back (atmosphere_pass.comp: running radiance and
 //     transmittance) and resolve.comp (airless surfaces, the sun's disc, colour);
+//   - where the Moon could light the sky visibly (render/frame/moon_light.h),
+//     the atmosphere tiles again with the Moon as the light, added;
 //
 // then the night sky's pass (render/frame/star_pass.h: the catalogue's stars as
 // point sources of flux, the night floor, light pollution) adds its light to
@@ -89,6 +91,12 @@ struct FrameStats {
   std::size_t stars = 0;
   bool night_sky_drawn = false;
   std::string star_catalogue_identity;
+  /// The Moon lit the atmospheres (render/frame/moon_light.h): false where its
+  /// own test found nothing it could show (daylight, the Moon far below the horizon).
+  bool moonlight = false;
+  /// The test's bound: the largest linear display value the Moon's light could
+  /// add through one atmosphere (the largest over them; 0 without a Moon).
+  double moonlight_bound = 0.0;
   /// With RenderOptions::time_passes: milliseconds per pass or CPU step, summed over bands and groups.
   std::map<std::string, double> pass_ms;
 };
@@ -146,7 +154,11 @@ class Renderer {
   void prepare_bodies(Frame& frame);
   /// The tables of every atmosphere the view touches, uploaded when not resident.
   void make_tables_resident(Frame& frame);
-  /// The sky-view table of each atmosphere whose shell holds the camera (once per table set).
+  /// The Moon as a second light (render/frame/moon_light.h): its direction and
+  /// irradiance, and whether its passes run (their own test).
+  void light_by_the_moon(Frame& frame, PassTimer& timer);
+  /// The sky-view table of each atmosphere whose shell holds the camera (once
+  /// per table set), the sun's and, when the Moon lights the frame, the Moon's.
   void fill_sky_view_tables(Frame& frame, PassTimer& timer);
   /// The uniforms every pass shares and the frame's programs (compiled on first use).
   void prepare_programs(Frame& frame);
@@ -180,6 +192,9 @@ class Renderer {
   /// Tiles where shells overlap: the G-buffer, then per wavelength group the
   /// atmospheres front to back and the resolve.
   void draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
+  /// The atmosphere tiles again (one pass and G-buffer path) lit by the Moon,
+  /// added to the band's output; the sun's disc is not drawn.
+  void draw_moonlight(Frame& frame, const BandTiles& band, PassTimer& timer);
   /// The band's rows as RGB floats from the output buffer (zeros for black tiles) into `rows_rgb`.
   void read_back_band(const Frame& frame, const BandTiles& band, std::vector<float>& rows_rgb, PassTimer& timer);
   /// Binds the band's output buffer and its black-tile flags for a pass that

@@ -21,8 +21,10 @@ std::vector<gl::ShaderDefine> SkyViewTable::defines() {
 
 SkyViewTable::SkyViewTable(std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups)
     : fill_(load_compute_program("render/sky_view.comp", atmosphere_defines)),
-      table_(gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
-                                          static_cast<int>(std::max<std::size_t>(groups, 1)) * kLayersPerGroup)) {}
+      groups_(std::max<std::size_t>(groups, 1)) {
+  tables_[0] = gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
+                                            static_cast<int>(groups_) * kLayersPerGroup);
+}
 
 void SkyViewTable::set_camera(double camera_radius_m, double ground_radius_m, double sun_cosine,
                               double sun_angular_radius_rad) {
@@ -35,9 +37,13 @@ void SkyViewTable::set_camera(double camera_radius_m, double ground_radius_m, do
   fill_.set_uniform("sun_angular_radius", static_cast<float>(sun_angular_radius_rad));
 }
 
-void SkyViewTable::fill_group(std::size_t group) const {
+void SkyViewTable::fill_group(std::size_t group, std::size_t light) {
+  gl::Texture& table = tables_.at(light);
+  if (table.id() == 0)
+    table = gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
+                                         static_cast<int>(groups_) * kLayersPerGroup);
   fill_.set_uniform("layer_base", static_cast<int>(group) * kLayersPerGroup);
-  table_.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
+  table.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
   fill_.dispatch_covering(kAzimuthTexels, kZenithTexels);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
