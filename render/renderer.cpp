@@ -28,6 +28,7 @@
 #include "render/frame/moon_light.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/star_pass.h"
+#include "render/frame/sun_refraction.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
@@ -71,6 +72,7 @@ struct Renderer::Impl {
       : frame_programs(options.sun_disc, options.limb_darkening), night_sky(options.night_sky) {}
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/frame/star_pass.h)
+  SunRefraction sun_refraction;  // the drawn disc's lift (render/frame/sun_refraction.h)
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   AlbedoArray albedo;  // the bodies' maps, one layer per body (render/frame/albedo_array.h)
   std::string projection_key;
@@ -152,6 +154,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
 
   check_scene(scene);
   Frame frame = frame_constants(scene, projection);
+  if (options_.sun_disc) frame.sun_lift = impl_->sun_refraction.lift(scene, sun_reach_rad(frame));
   update_tile_cones(frame);
   prepare_bodies(frame);
   make_tables_resident(frame);
@@ -446,7 +449,8 @@ TileScene Renderer::tile_scene(const Frame& frame) const {
   tiles.scene = &frame.scene;
   tiles.cones = frame.cones;
   tiles.world_to_camera = frame.world_to_camera;
-  tiles.sun_camera = frame.sun_camera;
+  // The disc is drawn where it is seen: lifted by the air (sun_refraction.h).
+  tiles.sun_camera = frame.sun_lift.active ? frame.world_to_camera * frame.sun_lift.apparent_sun : frame.sun_camera;
   tiles.sun_reach_rad = frame.sun_reach;
   tiles.sun_disc = options_.sun_disc;
   tiles.one_pass_tiles = options_.one_pass_tiles;

@@ -56,6 +56,16 @@ void FrameState::set_frame_uniforms(const gl::ShaderProgram& p) const {
   p.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
   p.set_uniform("sun_pixel_angle", static_cast<float>(sun_pixel_angle));
   p.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
+  p.set_uniform("sun_lift_count", sun_lift.active ? kSunLiftSamples : 0);
+  if (sun_lift.active) {
+    const glm::dvec3& up = sun_lift.up;
+    p.set_uniform("sun_lift_up",
+                  std::array<float, 3>{static_cast<float>(up.x), static_cast<float>(up.y), static_cast<float>(up.z)});
+    p.set_uniform("sun_lift_first", static_cast<float>(sun_lift.first_altitude_rad));
+    p.set_uniform("sun_lift_step", static_cast<float>(sun_lift.step_rad));
+    for (int i = 0; i < kSunLiftSamples; ++i)
+      p.set_uniform(fmt::format("sun_lift_rad[{}]", i), sun_lift.lift_rad[static_cast<std::size_t>(i)]);
+  }
   for (const auto& [name, k] :
        {std::pair{"world_ray_x", 0}, std::pair{"world_ray_y", 1}, std::pair{"world_ray_centre", 2}})
     p.set_uniform(name, world_ray[static_cast<std::size_t>(k)]);

@@ -14,6 +14,7 @@
 #include "render/frame/frame_programs.h"
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
+#include "render/frame/sun_refraction.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/shader_program.h"
@@ -68,6 +69,7 @@ struct FrameState : FrameConstants {
   FrameVariant variant;
   const FramePasses* programs = nullptr;
   double sun_reach = 0.0;  // where the sun can be drawn (set_direct_light_uniforms)
+  SunDiscLift sun_lift;    // the disc's refraction (refract_sun)
 
   // ---- the Moon's light (render/frame/moon_light.h): drawn for the passes
   // marked moonlit, when `moonlit` (any is)

@@ -106,6 +106,15 @@ void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, con
   for (std::size_t c = 0; c < n; ++c) out[c] = std::clamp(out[c], 0.0, 1.0);
 }
 
+glm::dvec2 on_splat_grid(const glm::dvec2& pixel) {
+  return {std::round(pixel.x * kSplatGridPerPixel) / kSplatGridPerPixel,
+          std::round(pixel.y * kSplatGridPerPixel) / kSplatGridPerPixel};
+}
+
+bool splat_touches_image(const glm::dvec2& pixel, double width, double height) {
+  return pixel.x >= -0.5 && pixel.x < width + 0.5 && pixel.y >= -0.5 && pixel.y < height + 0.5;
+}
+
 double pixel_solid_angle_sr(const warp::Projection& projection, double x_px, double y_px) {
   const auto xa = projection.ray(x_px - 0.5, y_px), xb = projection.ray(x_px + 0.5, y_px);
   const auto ya = projection.ray(x_px, y_px - 0.5), yb = projection.ray(x_px, y_px + 0.5);
@@ -167,14 +176,16 @@ std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm
           break;
         }
       if (hidden) continue;
-      const auto pixel = projection.pixel(frame.world_to_camera * d);
-      if (!pixel || !(pixel->x >= 0.0 && pixel->x < width && pixel->y >= 0.0 && pixel->y < height)) continue;
+      const auto exact = projection.pixel(frame.world_to_camera * d);
+      if (!exact) continue;
+      const glm::dvec2 pixel = on_splat_grid(*exact);
+      if (!splat_touches_image(pixel, width, height)) continue;
       std::fill(transmittance.begin(), transmittance.end(), 1.0);
       for (const StarAtmosphere& a : frame.atmospheres) {
         star_transmittance(a, frame.camera_m, d, one.data());
         for (std::size_t k = 0; k < n; ++k) transmittance[k] *= one[k];
       }
-      const double omega = pixel_solid_angle_sr(projection, pixel->x, pixel->y);
+      const double omega = pixel_solid_angle_sr(projection, pixel.x, pixel.y);
       if (!(omega > 0.0)) continue;
       std::array<double, 3> rgb{0, 0, 0};
       for (std::size_t k = 0; k < n; ++k) {
@@ -194,8 +205,8 @@ std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm
         for (double& c : rgb) c *= factor;
       }
       StarSplat& s = placed[i];
-      s.x_px = static_cast<float>(pixel->x);
-      s.y_px = static_cast<float>(pixel->y);
+      s.x_px = static_cast<float>(pixel.x);
+      s.y_px = static_cast<float>(pixel.y);
       for (std::size_t c = 0; c < 3; ++c) s.rgb[c] = static_cast<float>(rgb[c] * frame.exposure / omega);
       kept[i] = 1;
     }

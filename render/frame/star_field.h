@@ -34,6 +34,7 @@
 #include <vector>
 
 #include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "astro/civil_time.h"
@@ -61,6 +62,22 @@ struct StarSplat {
   float x_px = 0.0f, y_px = 0.0f;
   std::array<float, 3> rgb{};
 };
+
+/// A splat's position is put on a grid of 1/256 pixel (at most 1/512 pixel
+/// off: invisible, and the bilinear weights still sum to 1). Two outputs that
+/// share pixel positions up to a whole-pixel shift — a dome master and its
+/// quadrants, tiles of one projection — then compute the same weights bit for
+/// bit (a float keeps a multiple of 1/256 exactly up to 65 536 pixels), where
+/// the positions straight from each projection differ in their last float bits
+/// and can move a pixel's code by one where the outputs meet.
+inline constexpr double kSplatGridPerPixel = 256.0;
+glm::dvec2 on_splat_grid(const glm::dvec2& pixel);
+
+/// Whether a splat at `pixel` (centres at i + 0.5) lands on any pixel of a
+/// `width` × `height` image: its 2 × 2 footprint reaches the image's edge
+/// pixels from half a pixel outside, so a star just beyond an output's edge
+/// still lights the edge's pixels, as it does in a larger output holding both.
+bool splat_touches_image(const glm::dvec2& pixel, double width, double height);
 
 /// An atmosphere a star's light can cross: its planet and its transmittance table.
 struct StarAtmosphere {

@@ -226,15 +226,18 @@ void NightSkyPass::place_moon(const FrameState& frame, const StarFrame& sky, con
   const std::vector<double>& wavelengths = frame.scene.wavelengths_nm;
   if (radius_px < 1.0) {
     // Smaller than a pixel: a point source of the whole Moon's irradiance, as a star.
-    if (!(pixel->x >= 0.0 && pixel->x < w && pixel->y >= 0.0 && pixel->y < h)) return;
+    const glm::dvec2 at = on_splat_grid(*pixel);  // as the stars (star_field.h)
+    if (!splat_touches_image(at, w, h)) return;
+    const double omega_at = pixel_solid_angle_sr(frame.projection, at.x, at.y);
+    if (!(omega_at > 0.0)) return;
     const std::vector<double> e = astro::moon_irradiance_W_m2_nm(moon, wavelengths);
     StarSplat s;
-    s.x_px = static_cast<float>(pixel->x);
-    s.y_px = static_cast<float>(pixel->y);
+    s.x_px = static_cast<float>(at.x);
+    s.y_px = static_cast<float>(at.y);
     for (std::size_t c = 0; c < 3; ++c) {
       double v = 0.0;
       for (std::size_t k = 0; k < n; ++k) v += frame.rgb_weights[k][c] * e[k] * transmittance[k];
-      s.rgb[c] = static_cast<float>(v * sky.exposure / omega);
+      s.rgb[c] = static_cast<float>(v * sky.exposure / omega_at);
     }
     splats_.insert(std::upper_bound(splats_.begin(), splats_.end(), s,
                                     [](const StarSplat& a, const StarSplat& b) { return a.y_px < b.y_px; }),

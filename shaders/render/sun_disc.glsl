@@ -5,6 +5,10 @@
 // small-angle form). A sun under 1.5 pixels in radius is a Gaussian splat of
 // σ = sun_point_sigma instead (its pixel-sampled sum keeps the irradiance to
 // 1e-3; a disc would alias): weight exp(−θ²/2σ²), μ = 1 (no limb).
+// Refraction (render/frame/sun_refraction.h): a ray arriving at apparent
+// altitude h came from true altitude h − R(h); the ray is turned down by R(h)
+// in its vertical plane before it is compared with the geometric disc, which
+// lifts the disc and flattens it as the eye sees a low sun.
 // Include after frame.glsl.
 
 uniform float sun_draw_radius;  // the disc's radius [rad]
@@ -15,13 +19,37 @@ uniform float sun_point_sigma;  // > 0: the sun is smaller than the pixels; draw
 // warp mesh can be tens of degrees (issue 14).
 uniform float sun_pixel_angle;
 
+// R(h) over the apparent altitudes the disc can cover; sun_lift_count 0: no refraction.
+const int kSunLiftSamples = 32;  // render/frame/sun_refraction.h kSunLiftSamples
+uniform int sun_lift_count;
+uniform vec3 sun_lift_up;        // the camera's vertical, world
+uniform float sun_lift_first;    // apparent altitude of sun_lift_rad[0] [rad]
+uniform float sun_lift_step;     // between entries [rad]
+uniform float sun_lift_rad[kSunLiftSamples];
+
+/// The direction `ray` came from before the air bent it: turned toward the
+/// ground by R at its apparent altitude, ray cos R − n sin R with n the unit
+/// vector along the ray's vertical plane toward the zenith (the rotation form
+/// keeps the angle to the sun exact near the zenith, where asin is not).
+vec3 unrefracted(vec3 ray) {
+  if (sun_lift_count < 2) return ray;
+  const float s = clamp(dot(ray, sun_lift_up), -1.0, 1.0);
+  const float x = clamp((asin(s) - sun_lift_first) / sun_lift_step, 0.0, float(sun_lift_count - 1));
+  const int i = min(int(x), sun_lift_count - 2);
+  const float R = mix(sun_lift_rad[i], sun_lift_rad[i + 1], x - float(i));
+  const vec3 toward_zenith = sun_lift_up - s * ray;
+  const float l = length(toward_zenith);
+  if (l < 1e-6) return ray;
+  return ray * cos(R) - toward_zenith * (sin(R) / l);
+}
+
 struct SunSample {
   float weight;  // coverage of the pixel by the disc, or the Gaussian's value; 0: no sun
   float mu;      // cosine at the sun's surface (limb darkening); 1 for the Gaussian
 };
 
 SunSample sun_sample(vec3 ray) {
-  const float theta = angle_between(ray, sun_direction);
+  const float theta = angle_between(unrefracted(ray), sun_direction);
   if (sun_point_sigma > 0.0) {
     const float x = theta / sun_point_sigma;
     return SunSample(x < 6.0 ? exp(-0.5 * x * x) : 0.0, 1.0);

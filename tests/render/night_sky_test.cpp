@@ -200,6 +200,51 @@ TEST(NightSkyPass, AStarHasTheSameEnergyOnADomeMasterAFlatScreenAndThroughAWarpM
   }
 }
 
+TEST(NightSkyPass, TheQuadrantsOfADomeMasterCarryItsStarsWithoutASeam) {
+  // No atmosphere, no floor: the image is the stars alone. A cluster's nodes
+  // render a dome master's quadrants (configs/viewports/dome-quadrants.json);
+  // where they meet, a star within half a pixel beyond a quadrant's edge must
+  // still light the edge's pixels (star_field.h, splat_touches_image), and
+  // every pixel must carry what it carries in the whole dome master — up to
+  // the accumulator's fixed point: star_pass.cpp maps the sum over a band's
+  // stars of their largest channel to 2^30 counts, and a band of a quadrant
+  // holds other stars than the whole image's band, so each star's share is
+  // rounded (half a count) on another step: at most one step of the whole
+  // image per star in the pixel. Σ over the pixels of all channels bounds that
+  // sum (the splat weights sum to 1; no star here straddles the dome's rim).
+  REQUIRE_CATALOGUE();
+  RenderOptions o = options(true, false);
+  o.night_sky.star_magnitude_limit = 4.5;  // ~900 stars, ~450 up: dozens within a pixel of the seams
+  TestRenderer t(o);
+  const scene::Scene s = greenwich("", {0, -1, 0}, 1e9);
+  const int n = 64, half = n / 2;
+  const std::vector<float> whole = t.renderer.render_image(s, warp::FisheyeProjection(n, n));
+  std::size_t lit_at_seams = 0;
+  double total = 0.0;  // Σ over the image of every channel ≥ Σ over the stars of their largest channel
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const float* v = &whole[(static_cast<std::size_t>(y) * n + x) * 3];
+      total += double(v[0]) + v[1] + v[2];
+      lit_at_seams += v[1] > 0.0f && (x == half - 1 || x == half || y == half - 1 || y == half);
+    }
+  ASSERT_GT(lit_at_seams, 8u) << "stars light the pixels along the seams";
+  const double step = total / double(1 << 30), bound = 4.0 * step;  // up to 4 stars share a pixel here
+  for (int q = 0; q < 4; ++q) {
+    const int x0 = (q % 2) * half, y0 = (q / 2) * half;
+    warp::FisheyeParameters f;
+    f.centre_x_px = 0.5 * n - x0;
+    f.centre_y_px = 0.5 * n - y0;
+    f.radius_px = 0.5 * n;
+    const std::vector<float> quadrant = t.renderer.render_image(s, warp::FisheyeProjection(half, half, f));
+    double worst = 0.0;
+    for (int y = 0; y < half; ++y)
+      for (int x = 0; x < half * 3; ++x)
+        worst = std::max(worst, std::abs(double(quadrant[static_cast<std::size_t>(y) * half * 3 + x]) -
+                                         whole[static_cast<std::size_t>(y0 + y) * n * 3 + x0 * 3 + x]));
+    EXPECT_LE(worst, bound) << "quadrant " << q << " (the fixed point's step " << step << ")";
+  }
+}
+
 TEST(NightSkyPass, AStarIsDimmedByTheTransmittanceAlongItsLineOfSightAndTheFloorLightsTheZenith) {
   REQUIRE_CATALOGUE();
   const astro::StarCatalogue c = bright_stars();
