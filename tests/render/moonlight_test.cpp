@@ -154,6 +154,27 @@ TEST(Moonlight, TheBoundHoldsEveryPixel) {
   std::printf("largest moonlit value %.3g, bound %.3g\n", largest, lit.renderer.last_frame().moonlight_bound);
 }
 
+TEST(Moonlight, EveryBandAndEveryOutputDecidesAlike) {
+  // A node renders its slice as bands of its own projection: the moonlit frame
+  // in four bands equals it in one, and the test's outcome and bound are the
+  // same through a dome master and a planar view of the same camera (they
+  // depend on the camera, the exposure and the tables, not the projection), so
+  // every node of a cluster lights the same atmospheres the same way.
+  const astro::MoonPlace moon = moon_at(kFullMoon);
+  const scene::Scene s = testing::greenwich("earth-advanced", toward_moon_azimuth(moon), 1e6, kFullMoon);
+  RenderOptions banded = options(true);
+  banded.max_band_pixels = 64 * 16;
+  TestRenderer whole(options(true)), bands(banded);
+  const warp::PlanarProjection view = warp::PlanarProjection::symmetric(64, 64, 90.0);
+  EXPECT_EQ(whole.renderer.render_image(s, view), bands.renderer.render_image(s, view));
+  EXPECT_EQ(bands.renderer.last_frame().bands, 4);
+  const FrameStats planar = whole.renderer.last_frame();
+  whole.renderer.render_image(s, warp::FisheyeProjection(32, 32));
+  EXPECT_TRUE(planar.moonlight);
+  EXPECT_EQ(whole.renderer.last_frame().moonlight, planar.moonlight);
+  EXPECT_EQ(whole.renderer.last_frame().moonlight_bound, planar.moonlight_bound);
+}
+
 TEST(Moonlight, ZenithUnderAFullMoonAgainstKrisciunasSchaefer1991) {
   // The full Moon of kFullMoon at Greenwich; the zenith's moonlit V surface
   // brightness from the tables (the renderer's numbers: its zenith pixel
