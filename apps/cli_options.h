@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "atmosphere/lut/precompute_options.h"
+#include "atmosphere/named_inputs.h"
 
 namespace zenith::app {
 
@@ -34,10 +35,10 @@ inline void add_view_options(CLI::App* cmd, std::string& projection, const std::
   cmd->add_option("--size", size, size_help);
 }
 
-/// --tables paper|small|large, --orders N, --cache DIR.
+/// --tables paper|twilight|small|large, --orders N, --cache DIR.
 inline void add_table_options(CLI::App* cmd, std::string& tables, int& orders, std::string& cache_dir) {
-  cmd->add_option("--tables", tables, "Table sizes: paper (default), small, large")
-      ->check(CLI::IsMember({"paper", "small", "large"}));
+  cmd->add_option("--tables", tables, "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
+      ->check(CLI::IsMember(atmosphere::table_size_names()));
   const std::string orders_help =
       "Scattering orders of the tables (default " + std::to_string(atmosphere::lut::kDefaultScatteringOrders) + ")";
   cmd->add_option("--orders", orders, orders_help)->check(CLI::Range(1, 50));

@@ -125,11 +125,10 @@ Outputs cluster_outputs(const cluster::ClusterConfig& config) {
     for (const std::string& name : node.outputs) {
       const warp::OutputConfig& o = viewports.outputs[viewports.index_of(name)];
       configs.push_back(&o);
-      result.specs.push_back(
-          {o.name, o.width_px, o.height_px,
-           cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #", o.name, "; blend ",
-               warp::to_string(o.blend.mode), "; black level ", o.black_level, "; node ", node.name),
-           std::nullopt});
+      result.specs.push_back({o.name, o.width_px, o.height_px,
+                              cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #", o.name,
+                                  "; blend ", warp::describe_blend(o), "; node ", node.name),
+                              std::nullopt});
     }
   set_dome_mosaic(result.specs, configs);
   return result;
@@ -148,7 +147,7 @@ Outputs outputs_of(const ShowRenderArgs& a) {
       configs.push_back(&o);
       result.specs.push_back({o.name, o.width_px, o.height_px,
                               cat(o.projection->describe(), "; viewport ", file_name, " sha256 ", digest, " #", o.name,
-                                  "; blend ", warp::to_string(o.blend.mode), "; black level ", o.black_level),
+                                  "; blend ", warp::describe_blend(o)),
                               std::nullopt});
       result.local.push_back({o.projection, warp::output_blend_mask(selection.config, i), o.black_level,
                               viewport_attributes(file_name, o), o.colour});

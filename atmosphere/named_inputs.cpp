@@ -16,8 +16,18 @@ LoadedAtmosphere load_atmosphere_argument(const std::string& value, const LoadOp
 lut::TableSizes table_sizes_by_name(const std::string& name) {
   if (name == "paper") return lut::TableSizes{};
   if (name == "small") return lut::TableSizes::small();
+  if (name == "twilight") {
+    lut::TableSizes s;
+    s.scattering_mu_s *= 2;
+    return s;
+  }
   if (name == "large") return lut::TableSizes{512, 128, 128, 32, 64, 256, 64, 16};
-  throw std::invalid_argument("unknown table size set '" + name + "': use paper, small or large");
+  throw std::invalid_argument("unknown table size set '" + name + "': use paper, twilight, small or large");
+}
+
+const std::vector<std::string>& table_size_names() {
+  static const std::vector<std::string> names = {"paper", "twilight", "small", "large"};
+  return names;
 }
 
 }  // namespace zenith::atmosphere

@@ -94,9 +94,8 @@ image::ImageAttributes image_attributes(const scene::Scene& scene, const warp::P
 image::ImageAttributes viewport_attributes(const std::string& file, const warp::OutputConfig& o) {
   image::ImageAttributes attributes;
   attributes.emplace_back("zenith:viewport", fmt::format("{}#{}", file, o.name));
-  attributes.emplace_back("zenith:blend", fmt::format("{}; black level {}; output stage P*alpha*(1-beta)+beta "
-                                                      "(docs/viewports.md)",
-                                                      warp::to_string(o.blend.mode), o.black_level));
+  attributes.emplace_back("zenith:blend", fmt::format("{}; output stage P*alpha*(1-beta)+beta (docs/viewports.md)",
+                                                      warp::describe_blend(o)));
   if (o.colour)
     attributes.emplace_back("zenith:colour", fmt::format("MPCDI region \"{}\": {} (docs/warp-meshes.md)",
                                                          o.warp ? o.warp->region : "", warp::describe(*o.colour)));

@@ -8,6 +8,7 @@
 
 #include "core/files.h"
 #include "warp/blend_map.h"
+#include "warp/mpcdi_blend.h"
 #include "warp/warped_projection.h"
 
 namespace zenith::warp {
@@ -217,6 +218,12 @@ BlendMask output_blend_mask(const ViewportConfig& config, std::size_t output_ind
       break;
     case BlendMode::automatic: mask = compute_auto_blend(config, output_index); break;
     case BlendMode::file: mask = load_blend_mask(oc.blend.file, oc.blend.gamma, oc.width_px, oc.height_px); break;
+    case BlendMode::mpcdi:
+      if (!oc.blend.alpha_map)
+        throw std::invalid_argument(cat(config.source, ": output '", oc.name, "': blend \"mpcdi\" without a map"));
+      mask = {oc.width_px, oc.height_px, sample_mpcdi_blend_map(*oc.blend.alpha_map, oc.width_px, oc.height_px)};
+      if (oc.blend.beta_map) mask.beta = sample_mpcdi_blend_map(*oc.blend.beta_map, oc.width_px, oc.height_px);
+      break;
   }
   if (const auto* warped = dynamic_cast<const WarpedProjection*>(oc.projection.get())) {
     for (int y = 0; y < oc.height_px; ++y)
@@ -227,7 +234,8 @@ BlendMask output_blend_mask(const ViewportConfig& config, std::size_t output_ind
   return mask;
 }
 
-std::vector<float> black_level_map(const OutputConfig& output) {
+std::vector<float> black_level_map(const OutputConfig& output, const BlendMask& mask) {
+  if (!mask.beta.empty()) return mask.beta;
   return std::vector<float>(static_cast<std::size_t>(output.width_px) * static_cast<std::size_t>(output.height_px),
                             static_cast<float>(output.black_level));
 }
@@ -237,10 +245,10 @@ void apply_blend(std::span<float> rgb, int first_row, int row_count, const Blend
       rgb.size() != static_cast<std::size_t>(row_count) * mask.width * 3)
     throw std::invalid_argument(cat("apply_blend: rows ", first_row, "+", row_count, " (", rgb.size(),
                                     " floats) do not fit a ", mask.width, "x", mask.height, " mask"));
-  const double beta = black_level;
   for (int r = 0; r < row_count; ++r)
     for (int x = 0; x < mask.width; ++x) {
       const double alpha = mask.at(x, first_row + r);
+      const double beta = mask.black_level_at(x, first_row + r, black_level);
       float* p = &rgb[(static_cast<std::size_t>(r) * mask.width + x) * 3];
       for (int c = 0; c < 3; ++c) p[c] = static_cast<float>(blend_display_value(p[c], alpha, beta));
     }

@@ -13,9 +13,12 @@
 //        w_i(d) = f_i(d) / Σ_j f_j(d)
 //    over the outputs with automatic blending, so the weights of every
 //    direction that some output covers sum to 1 exactly.
-//  * Output stage (MPCDI's alpha and beta maps, scalar β): with P the
-//    display-linear value (a fraction of the projector's full white, after
-//    tone mapping) P' = P · α · (1 − β) + β, then the display encoding (sRGB).
+//  * Output stage (VESA MPCDI v2.0 §2.4): with P the display-linear value (a
+//    fraction of the projector's full white, after tone mapping)
+//    P' = P · α · (1 − β) + β, then the display encoding (sRGB). α per pixel
+//    from the blend (none, auto, a mask file, an MPCDI region's alpha map);
+//    β the output's black_level, or per pixel an MPCDI region's beta map
+//    (blend "mpcdi", warp/mpcdi_blend.h).
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -26,16 +29,26 @@
 
 namespace zenith::warp {
 
-/// A per-pixel weight α in linear light, row 0 at the top, x fastest.
+/// A per-pixel weight α in linear light, row 0 at the top, x fastest; and
+/// where the output has a black-level map (an MPCDI region's beta map), β per
+/// pixel the same way.
 struct BlendMask {
   int width = 0, height = 0;
   std::vector<float> alpha;
+  /// β per pixel (width · height values) or empty: β is then the output's one
+  /// number (OutputConfig::black_level), which the functions taking a mask
+  /// receive beside it.
+  std::vector<float> beta{};
 
   float at(int x, int y) const { return alpha[static_cast<std::size_t>(y) * width + x]; }
+  /// β at a pixel: the map's, or `black_level` without one.
+  double black_level_at(int x, int y, double black_level) const {
+    return beta.empty() ? black_level : beta[static_cast<std::size_t>(y) * width + x];
+  }
 };
 
 /// The automatic blend of a viewport config: the coverage of every output
-/// whose blend is BlendMode::automatic (outputs with "none" or "file" take no
+/// whose blend is BlendMode::automatic (outputs with "none", "file" or "mpcdi" take no
 /// part: their light is not shared), with what the weights need precomputed
 /// (for outputs with pixels without a ray, e.g. a fisheye's corners or the
 /// unmapped parts of a warp mesh, the distance of every pixel to the nearest
@@ -85,7 +98,9 @@ BlendMask compute_auto_blend(const ViewportConfig& config, std::size_t output_in
 
 /// The mask an output's blend source gives, times the warp mesh's intensity
 /// where the output has a warp (WarpedProjection::intensity at pixel centres):
-/// none → 1, automatic → compute_auto_blend, file → load_blend_mask. Throws
+/// none → 1, automatic → compute_auto_blend, file → load_blend_mask, mpcdi →
+/// the region's alpha map and, where it has one, its beta map as `beta`
+/// (sample_mpcdi_blend_map: bilinear at the pixel centres, linear light). Throws
 /// what ViewportConfig::require_renderable() throws for an output whose warp,
 /// or whose automatic blend partner's warp, is broken.
 BlendMask output_blend_mask(const ViewportConfig& config, std::size_t output_index);
@@ -97,11 +112,11 @@ BlendMask load_blend_mask(const std::filesystem::path& path, double gamma, int w
 
 /// The black-level map of an output, one value per pixel (row 0 at the top, x
 /// fastest): what the output stage adds to a pixel whatever the picture,
-/// P' − P·α·(1 − β) = β. The model takes β as one number per output
-/// (OutputConfig::black_level), added to every pixel, covered or not, so the
-/// map is β everywhere; it is what a projector applying MPCDI's beta map must
-/// add to show what `zenith render --viewport` writes.
-std::vector<float> black_level_map(const OutputConfig& output);
+/// P' − P·α·(1 − β) = β. `mask` is the output's (output_blend_mask()): its β
+/// map where it has one (an MPCDI region's beta map), else the output's
+/// black_level at every pixel, covered or not. It is what a projector applying
+/// MPCDI's beta map must add to show what `zenith render --viewport` writes.
+std::vector<float> black_level_map(const OutputConfig& output, const BlendMask& mask);
 
 /// The output stage of one display-linear value P (a fraction of full white):
 /// P · α · (1 − β) + β.
@@ -111,7 +126,8 @@ inline double blend_display_value(double p, double alpha, double black_level) {
 
 /// blend_display_value() on `row_count` rows of display-linear RGB (3 floats a
 /// pixel, x fastest, mask.width pixels a row) starting at row `first_row` of
-/// the mask. Throws std::invalid_argument when the rows do not fit the mask.
+/// the mask; β the mask's black_level_at(x, y, black_level). Throws
+/// std::invalid_argument when the rows do not fit the mask.
 void apply_blend(std::span<float> rgb, int first_row, int row_count, const BlendMask& mask, double black_level);
 
 }  // namespace zenith::warp

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <fstream>
 #include <stdexcept>
@@ -126,11 +127,16 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
 
     // The blend mask (times the warp's intensity) and the black-level map.
     const warp::BlendMask mask = warp::output_blend_mask(config, index);
+    const std::vector<float> beta = warp::black_level_map(o, mask);
     for (json& entry : write_map_pair(dir, o.name + ".alpha", "blend mask", width, height, mask.alpha, written))
       files.push_back(std::move(entry));
-    for (json& entry :
-         write_map_pair(dir, o.name + ".beta", "black-level map", width, height, warp::black_level_map(o), written))
+    for (json& entry : write_map_pair(dir, o.name + ".beta", "black-level map", width, height, beta, written))
       files.push_back(std::move(entry));
+    // β as one number (a viewport config's black_level) where it is one; an
+    // output whose β is a map (an MPCDI region's beta map) keeps it only in
+    // the maps and the archive, which viewport-mpcdi.json reads.
+    const bool beta_uniform = std::all_of(beta.begin(), beta.end(), [&](float b) { return b == beta.front(); });
+    const double black_level = mask.beta.empty() ? o.black_level : static_cast<double>(beta.front());
 
     // The MPCDI archive of the same files (the linear maps).
     const std::string alpha_file = o.name + ".alpha-linear.png", beta_file = o.name + ".beta-linear.png";
@@ -191,12 +197,12 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
 
     // The outputs of the exported viewport configs.
     const json source = {{"size_px", {warp_map.source_width_px, warp_map.source_height_px}}};
-    const json base = {{"name", o.name},
-                       {"size", {width, height}},
-                       {"projection", o.projection_spec},
-                       {"blend", {{"file", alpha_file}, {"gamma", 1.0}}},
-                       {"black_level", o.black_level}};
+    const json base = {{"name", o.name}, {"size", {width, height}}, {"projection", o.projection_spec}};
     json pfm_output = base, mpcdi_output = base;
+    pfm_output["blend"] = {{"file", alpha_file}, {"gamma", 1.0}};
+    if (beta_uniform) pfm_output["black_level"] = black_level;
+    // The archive's own alpha and beta maps: α, and β per pixel.
+    mpcdi_output["blend"] = {{"type", "mpcdi"}};
     pfm_output["warp"] = {{"file", warp_file},     {"format", "pfm"},      {"row_order", "top_to_bottom"},
                           {"v_direction", "down"}, {"values", "absolute"}, {"source", source}};
     mpcdi_output["warp"] = {
@@ -211,7 +217,7 @@ std::vector<ExportedFile> export_calibration(const warp::ViewportConfig& config,
                                {"size_px", {width, height}},
                                {"projection", o.projection_spec},
                                {"blend", warp::to_string(o.blend.mode)},
-                               {"black_level", o.black_level},
+                               {"black_level", beta_uniform ? json(black_level) : json("per pixel: the beta maps")},
                                {"files", std::move(files)}});
   }
 

@@ -16,13 +16,19 @@
 //
 // and for the whole export:
 //
-//   viewport-pfm.json        a viewport config of the exported outputs reading the PFM warps
-//   viewport-mpcdi.json      the same reading the MPCDI archives
+//   viewport-pfm.json        a viewport config of the exported outputs reading the PFM warps,
+//                            the linear alpha map as the blend file and β as black_level
+//                            (where β is one number; an output whose β is a map, from an
+//                            MPCDI region's beta map, has it only in the maps and the archive)
+//   viewport-mpcdi.json      the same reading the MPCDI archives, with "blend": {"type": "mpcdi"}:
+//                            the archive's alpha map as α, its beta map as β per pixel
 //   calibration.json         the sidecar: every file, its size, encoding and conventions
 //
 // Loading either viewport config gives every output pixel the ray it had
-// (within 1e-6) and the same blend mask (within the 16-bit quantization) and
-// black level. docs/warp-meshes.md, "Exporting to warp engines and media servers".
+// (within 1e-6) and the same blend mask and black level (within the 16-bit
+// quantization, half a step 7.6e-6; viewport-pfm.json's black_level exactly),
+// so the same displayed frame within ±1 code in 8 bits. docs/warp-meshes.md,
+// "Exporting to warp engines and media servers".
 #include <cstddef>
 #include <filesystem>
 #include <string>

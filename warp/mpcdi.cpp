@@ -21,6 +21,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "core/strings.h"
 #include "warp/mpcdi_colour.h"
 #include "warp/orientation_angles.h"
 #include "warp/xml_reader.h"
@@ -570,6 +571,22 @@ class MpcdiReader {
                                                   number(map.gamma_embedded) + ": must be in (0, 10]");
     }
     map.image = decode_png_map(zip_.read(index), zip_.name() + ":" + zip_.names()[static_cast<std::size_t>(index)]);
+    map.line = element.line;
+    // VESA MPCDI v2.0 §3.7: "Blend maps must be a minimum of 2x2 pixels"; the
+    // declared depths describe the PNG (§3.6.1, table of <alphaMap> and <betaMap>).
+    const std::string named = std::string("region '") + region_id + "': " + what + " '" + map.path + "'";
+    if (map.image.width < 2 || map.image.height < 2)
+      fail(element, core::cat(named, " is ", map.image.width, "x", map.image.height,
+                              " px: MPCDI blend maps must be at least 2x2 px (VESA MPCDI v2.0 §3.7)"));
+    if (!element.child("componentDepth")) map.component_depth = map.image.channels;
+    if (!element.child("bitDepth")) map.bit_depth = map.image.bit_depth;
+    if (map.component_depth != map.image.channels)
+      fail(*element.child("componentDepth"),
+           core::cat(named, " declares componentDepth ", map.component_depth, ", and its PNG has ", map.image.channels,
+                     map.image.channels == 1 ? " channel (grey)" : " channels (RGB)"));
+    if (map.bit_depth != map.image.bit_depth)
+      fail(*element.child("bitDepth"), core::cat(named, " declares bitDepth ", map.bit_depth, ", and its PNG has ",
+                                                 map.image.bit_depth, " bits a channel"));
     return map;
   }
 

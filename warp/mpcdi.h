@@ -111,13 +111,16 @@ struct MpcdiGeometryWarp {
 
 /// An alpha (blend) or beta (black-level) map. Values are the stored ones
 /// (BlendMap: integer / (2^bits − 1)); an alpha map's blend weight in linear
-/// light is value^gamma_embedded.
+/// light is value^gamma_embedded. The loader checks what VESA MPCDI v2.0 §3.7
+/// and §3.6.1 constrain: at least 2 × 2 px, and a declared componentDepth and
+/// bitDepth that the PNG has. warp/mpcdi_blend.h maps it onto an output's pixels.
 struct MpcdiBlendMap {
   std::string path;             ///< the member of the archive
-  int component_depth = 1;      ///< as declared (1 or 3); the image's own channel count is image.channels
-  int bit_depth = 8;            ///< as declared (8 or 16)
+  int component_depth = 1;      ///< as declared (1 or 3; the image's channel count when absent)
+  int bit_depth = 8;            ///< as declared (8 or 16; the image's when absent)
   double gamma_embedded = 1.0;  ///< alpha maps: <gammaEmbedded>, 1 when absent; beta maps: 1
   BlendMap image;
+  int line = 0;  ///< of <alphaMap> or <betaMap> in the descriptor (messages)
 
   /// value^gamma_embedded of channel c (channel 0 for a 1-channel image).
   double linear(int x, int y, int c = 0) const;
@@ -183,7 +186,9 @@ struct MpcdiLoadOptions {
 /// (a frustum for 3d and sl, a coordinate frame for sl), or a value out of range;
 /// an unknown profile, geometricUnit or originOf3DData; a duplicate region id;
 /// a fileset naming an unknown region; a warp or blend file missing from the
-/// archive; a broken PFM (truncated, bad header) or PNG; a <color> or .cube LUT
+/// archive; a broken PFM (truncated, bad header) or PNG; an alpha or beta map
+/// smaller than 2 × 2 px or whose PNG has another channel count or bit depth
+/// than its componentDepth or bitDepth declare; a <color> or .cube LUT
 /// that warp/mpcdi_colour.h and warp/cube_lut.h refuse; and a NaN-only warp
 /// (std::invalid_argument from WarpMesh, message "<archive>:<member>: ... NaN-only mesh").
 MpcdiFile load_mpcdi(const std::filesystem::path& path, const MpcdiLoadOptions& options = {});

@@ -16,6 +16,7 @@
 #include "core/strings.h"
 #include "core/units.h"
 #include "warp/mpcdi.h"
+#include "warp/mpcdi_blend.h"
 #include "warp/mpcdi_projection.h"
 #include "warp/projection_factory.h"
 #include "warp/warp_mesh.h"
@@ -68,6 +69,12 @@ std::pair<int, int> read_size(JsonReader& r, const std::string& size_key = "size
   return {side[0], side[1]};
 }
 
+/// An MPCDI region's alpha and beta maps, for a "blend" of type "mpcdi".
+struct RegionMaps {
+  std::shared_ptr<const MpcdiBlendMap> alpha, beta;  ///< null where the region has none
+  std::string source;                                ///< "<archive>:<descriptor>" (messages)
+};
+
 /// A warp's mesh and what its file says about the source image.
 struct LoadedWarp {
   std::optional<WarpMesh> mesh;  ///< set unless `projection` is
@@ -80,6 +87,7 @@ struct LoadedWarp {
   std::string profile;  ///< MPCDI: the file's profile (messages)
   /// MPCDI: the region's colour profile (<color>); null without one.
   std::shared_ptr<const MpcdiColourProfile> colour;
+  RegionMaps maps{};  ///< MPCDI: the region's alpha and beta maps
 };
 
 /// The mesh of a warp for an output of width × height px; resolves source.file
@@ -111,6 +119,10 @@ LoadedWarp load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir
                         "\" of ", source.file.string(), " (profile ", to_string(mpcdi.profile), ") has none"));
     std::shared_ptr<const MpcdiColourProfile> colour;
     if (region->colour) colour = std::make_shared<const MpcdiColourProfile>(*region->colour);
+    RegionMaps maps;
+    if (region->alpha_map) maps.alpha = std::make_shared<const MpcdiBlendMap>(*region->alpha_map);
+    if (region->beta_map) maps.beta = std::make_shared<const MpcdiBlendMap>(*region->beta_map);
+    maps.source = cat(mpcdi.path, ":", mpcdi.descriptor);
     if (mpcdi_region_defines_rays(mpcdi)) {  // 3d, sl, a3: the frustum and frame, or the 3D warp
       MpcdiViewOptions view;
       view.eye = source.eye;
@@ -119,13 +131,18 @@ LoadedWarp load_warp(JsonReader& w, WarpSource& source, const fs::path& base_dir
       loaded.projection = mpcdi_region_projection(mpcdi, *region, width_px, height_px, view);
       loaded.profile = to_string(mpcdi.profile);
       loaded.colour = std::move(colour);
+      loaded.maps = std::move(maps);
       return loaded;
     }
     if (!region->warp_mesh)
       w.fail("region", cat("= \"", source.region, "\": the region has no 2D geometry warp (profile ",
                            to_string(mpcdi.profile), ")"));
-    return {*region->warp_mesh, std::pair{region->x_resolution_px, region->y_resolution_px}, nullptr, "2d",
-            std::move(colour)};
+    return {*region->warp_mesh,
+            std::pair{region->x_resolution_px, region->y_resolution_px},
+            nullptr,
+            "2d",
+            std::move(colour),
+            std::move(maps)};
   } catch (const ConfigError&) {
     throw;
   } catch (const std::exception& e) {  // the loaders' runtime_error / invalid_argument
@@ -222,18 +239,21 @@ BlendSource read_blend(JsonReader& o, const fs::path& base_dir) {
   if (!o.has("blend")) return blend;
   const json& v = o.raw("blend");
   if (v.is_string()) {
-    const std::string mode = o.string("blend", {"none", "auto"});
-    blend.mode = mode == "auto" ? BlendMode::automatic : BlendMode::none;
+    const std::string mode = o.string("blend", {"none", "auto", "mpcdi"});
+    blend.mode = mode == "auto" ? BlendMode::automatic : mode == "mpcdi" ? BlendMode::mpcdi : BlendMode::none;
     return blend;
   }
   if (!v.is_object())
     o.fail("blend", cat("= ", brief(v),
-                        ": must be \"none\", \"auto\" or an object ({\"type\": \"auto\", ...} or "
-                        "{\"file\": ..., \"gamma\": ...})"));
+                        ": must be \"none\", \"auto\", \"mpcdi\" or an object ({\"type\": \"auto\", ...}, "
+                        "{\"file\": ..., \"gamma\": ...} or {\"type\": \"mpcdi\"})"));
   JsonReader b(v, o.file(), o.key_path("blend"));
-  const std::string type = b.string_or("type", b.has("file") ? "file" : "auto", {"none", "auto", "file"});
+  const std::string type = b.string_or("type", b.has("file") ? "file" : "auto", {"none", "auto", "file", "mpcdi"});
   if (type == "none") {
     allow_keys(b, v, {"type"});
+  } else if (type == "mpcdi") {
+    allow_keys(b, v, {"type"});
+    blend.mode = BlendMode::mpcdi;  // the maps: use_region_maps()
   } else if (type == "auto") {
     allow_keys(b, v, {"type", "width_fraction"});
     blend.mode = BlendMode::automatic;
@@ -246,6 +266,42 @@ BlendSource read_blend(JsonReader& o, const fs::path& base_dir) {
     blend.gamma = b.number_or("gamma", blend.gamma, kMinMaskGamma, kMaxMaskGamma);
   }
   return blend;
+}
+
+/// Blend "mpcdi" (given, or by default where the output's MPCDI region has an
+/// alpha map): the region's maps into out.blend, checked. A ConfigError at
+/// /outputs/<i>/blend for an output without an MPCDI warp, a region without an
+/// alpha map or with a map zenith cannot apply (check_grey_blend_map), and at
+/// .../black_level for a black_level given beside a beta map (β is the map's).
+void use_region_maps(JsonReader& o, OutputConfig& out, const RegionMaps& maps) {
+  const bool given = o.has("blend");
+  if (!given && maps.alpha) out.blend.mode = BlendMode::mpcdi;
+  if (out.blend.mode != BlendMode::mpcdi) return;
+  const std::string value = given ? cat("= ", brief(o.raw("blend")), ": ") : std::string();
+  if (!out.warp || out.warp->format != "mpcdi")
+    o.fail("blend", cat(value, "output '", out.name,
+                        "' has no MPCDI warp: blend \"mpcdi\" applies the alpha and beta maps of the MPCDI region its "
+                        "\"warp\" names (docs/warp-meshes.md, \"Alpha and beta maps\")"));
+  if (out.warp_error) return;  // the warp's own error stands for the output
+  if (!maps.alpha)
+    o.fail("blend", cat(value, "output '", out.name, "': region \"", out.warp->region, "\" of ", maps.source,
+                        " has no alpha map (<alphaMap> in its <fileset>): choose \"none\", \"auto\" or a mask "
+                        "file"));
+  try {
+    check_grey_blend_map(*maps.alpha, maps.source, out.warp->region, "alpha map");
+    if (maps.beta) check_grey_blend_map(*maps.beta, maps.source, out.warp->region, "beta map");
+  } catch (const std::runtime_error& e) {
+    o.fail("blend", cat(value, "output '", out.name, "': ", e.what()));
+  }
+  if (maps.beta && o.has("black_level"))
+    o.fail("black_level",
+           cat("= ", brief(o.raw("black_level")), ": output '", out.name, "': region \"", out.warp->region, "\" of ",
+               maps.source, " has a beta map, which gives β per pixel with blend \"mpcdi\"",
+               given ? "" : " (the default for a region with an alpha map)",
+               ": remove black_level, or give another \"blend\" to use black_level and not the "
+               "region's maps (docs/warp-meshes.md, \"Alpha and beta maps\")"));
+  out.blend.alpha_map = maps.alpha;
+  out.blend.beta_map = maps.beta;
 }
 
 OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const ViewportLoadOptions& options) {
@@ -266,6 +322,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
     o.fail("projection", cat("must be an object (docs/projections.md), got ", brief(spec)));
   out.projection_spec = spec;
 
+  RegionMaps maps;  // an MPCDI region's alpha and beta maps
   if (o.has("warp")) {
     const json& wv = o.raw("warp");
     if (!wv.is_object()) o.fail("warp", cat("must be an object {\"file\", \"format\", \"region\"}, got ", brief(wv)));
@@ -281,6 +338,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
     try {
       LoadedWarp loaded = load_warp(w, source, base_dir, out.width_px, out.height_px);
       out.colour = loaded.colour;
+      maps = loaded.maps;
       if (loaded.projection) {  // an MPCDI region that defines its rays
         if (has_spec)
           o.fail("projection", cat("the MPCDI region \"", source.region, "\" (profile ", loaded.profile,
@@ -318,6 +376,7 @@ OutputConfig read_output(JsonReader& o, const fs::path& base_dir, const Viewport
 
   out.blend = read_blend(o, base_dir);
   out.black_level = o.number_or("black_level", 0.0, 0.0, kMaxBlackLevel, "(fraction of full white)");
+  use_region_maps(o, out, maps);
   if (o.has("window")) out.window = read_output_window(o, "window", out.name);
   // The region's <encode> is the projector's response (VESA MPCDI v2.0
   // §2.5.1.3): a window encoding would describe it a second time.
@@ -335,8 +394,23 @@ const char* to_string(BlendMode mode) {
     case BlendMode::none: return "none";
     case BlendMode::automatic: return "auto";
     case BlendMode::file: return "file";
+    case BlendMode::mpcdi: return "mpcdi";
   }
   return "?";
+}
+
+std::string describe_blend(const OutputConfig& output) {
+  const BlendSource& b = output.blend;
+  std::string text = to_string(b.mode);
+  if (b.mode == BlendMode::mpcdi && b.alpha_map) {
+    text += cat(" (region \"", output.warp ? output.warp->region : std::string(), "\": alpha map ",
+                b.alpha_map->image.width, "x", b.alpha_map->image.height, " px, gammaEmbedded ",
+                b.alpha_map->gamma_embedded);
+    if (b.beta_map) text += cat("; beta map ", b.beta_map->image.width, "x", b.beta_map->image.height, " px");
+    text += ")";
+  }
+  if (b.mode == BlendMode::mpcdi && b.beta_map) return text + "; black level: the beta map";
+  return cat(text, "; black level ", output.black_level);
 }
 
 const OutputConfig* ViewportConfig::find(const std::string& output_name) const {

@@ -13,7 +13,7 @@
 //        "warp": {"file": "p1.data", "format": "bourke",                  optional; bourke "fit", pfm and
 //                 "source": {"size_px": [1080, 1080]}},                   mpcdi "values", pfm "row_order",
 //                 "v_direction"
-//        "blend": "auto",                                                 "none" | "auto" | object
+//        "blend": "auto",                                                 "none" | "auto" | "mpcdi" | object
 //        "black_level": 0.02}                                             β in [0, 0.5]
 //     ]
 //   }
@@ -42,6 +42,8 @@
 
 namespace zenith::warp {
 
+struct MpcdiBlendMap;  // warp/mpcdi.h
+
 /// The schema version this reader understands ("zenith_viewports": 1).
 inline constexpr int kViewportConfigVersion = 1;
 
@@ -49,8 +51,9 @@ enum class BlendMode {
   none,       ///< α = 1 everywhere (a dome master, non-overlapping screens)
   automatic,  ///< α from the overlap of the outputs' coverage (warp/blending.h)
   file,       ///< α read from a PNG mask
+  mpcdi,      ///< α (and β) from the MPCDI region's alpha (and beta) map (warp/mpcdi_blend.h)
 };
-/// "none", "auto", "file".
+/// "none", "auto", "file", "mpcdi".
 const char* to_string(BlendMode mode);
 
 /// Where an output's blend mask α comes from. α is a weight in linear light.
@@ -66,6 +69,10 @@ struct BlendSource {
   /// file: α = stored^gamma, stored = integer / (2^bits − 1) (MPCDI's
   /// gammaEmbedded); in [0.1, 10], 1 (linear) unless given.
   double gamma = 1.0;
+  /// mpcdi: the alpha map of the output's MPCDI region (α), and its beta map
+  /// (β per pixel) or null (β is then OutputConfig::black_level). Null only
+  /// where the warp could not be loaded (OutputConfig::warp_error).
+  std::shared_ptr<const MpcdiBlendMap> alpha_map, beta_map;
 };
 
 /// The warp file of an output, as configured (the mesh is already built into
@@ -116,14 +123,19 @@ struct OutputConfig {
   /// MPCDI region's resolution, square for a fisheye, the output's size otherwise).
   std::shared_ptr<const Projection> projection;
   std::optional<WarpSource> warp;
+  /// "blend": as given; absent, "mpcdi" for an output whose MPCDI region has
+  /// an alpha map (the file's calibration), "none" otherwise.
   BlendSource blend;
   /// β: the projector's black level as a fraction of its full white, in
   /// [0, 0.5]; the output stage writes P·α·(1 − β) + β (docs/viewports.md).
+  /// With blend "mpcdi" and a region's beta map, β is the map's per pixel
+  /// (BlendSource::beta_map; the config may then not give black_level) and this is 0.
   double black_level = 0.0;
   /// The MPCDI region's colour profile (its <color>: decode, correct, encode;
   /// warp/colour_profile.h), null for any other output and a region without
   /// one. The output stage then runs processPixel on zenith's signal, with
-  /// `blend` as α and `black_level` as β (docs/warp-meshes.md, "Colour profile").
+  /// `blend`'s α and β (the region's maps with blend "mpcdi") or `black_level`
+  /// as β (docs/warp-meshes.md, "Colour profile").
   std::shared_ptr<const MpcdiColourProfile> colour;
   /// Where a render node shows the output ("window": warp/output_window.h);
   /// unset: in the node's default window, beside its other such outputs.
@@ -151,6 +163,11 @@ struct ViewportConfig {
   /// a renderable output (always, for a config loaded strictly).
   void require_renderable(std::size_t index) const;
 };
+
+/// An output's blend and black level for logs and image attributes: "auto;
+/// black level 0.02", or with an MPCDI region's maps "mpcdi (region "left":
+/// alpha map 4x3 px, gammaEmbedded 2.2; beta map 4x3 px); black level: the beta map".
+std::string describe_blend(const OutputConfig& output);
 
 /// Options of parse_viewport_config() and load_viewport_config().
 struct ViewportLoadOptions {

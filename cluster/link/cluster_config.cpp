@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "atmosphere/named_inputs.h"
 #include "core/json_reader.h"
 #include "core/strings.h"
 #include "warp/viewport_config.h"
@@ -163,7 +164,7 @@ ClusterConfig parse_cluster_config(const json& config, const std::string& source
   }
   if (r.has("tables")) {
     JsonReader t = child(r, "tables");
-    c.table_sizes = t.string_or("sizes", c.table_sizes, {"paper", "small", "large"});
+    c.table_sizes = t.string_or("sizes", c.table_sizes, atmosphere::table_size_names());
     if (t.has("orders")) c.table_orders = t.integer("orders", 1, 50);
     t.finish();
   }

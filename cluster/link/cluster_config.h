@@ -103,7 +103,7 @@ struct ClusterConfig {
   /// the handshake (limits.max_unauthenticated_connections, [1, 4096]): a new
   /// one beyond closes the oldest (docs/cluster.md, "Threat model").
   std::uint32_t max_unauthenticated_connections = kDefaultMaxUnauthenticatedConnections;
-  std::string table_sizes = "paper";  ///< "paper", "small", "large" (render/lut/table_provider.h)
+  std::string table_sizes = "paper";  ///< atmosphere::table_size_names(): paper, twilight, small, large
   int table_orders = atmosphere::lut::kDefaultScatteringOrders;  ///< scattering orders of the tables, [1, 50]
   std::vector<ClusterNodeConfig> nodes;
   std::filesystem::path output_directory = "out/cluster";  ///< relative: to the working directory

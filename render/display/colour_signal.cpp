@@ -27,10 +27,11 @@ void apply_colour_profile(std::span<float> rgb, int first_row, int row_count, in
     const int x = static_cast<int>(i % static_cast<std::size_t>(width_px));
     const int y = first_row + static_cast<int>(i / static_cast<std::size_t>(width_px));
     const double alpha = blend != nullptr ? blend->at(x, y) : 1.0;
+    const double beta = blend != nullptr ? blend->black_level_at(x, y, black_level) : black_level;
     float* p = rgb.data() + 3 * i;
     const std::array<double, 3> v = colour.process(
         {image::display_encode(p[0], srgb), image::display_encode(p[1], srgb), image::display_encode(p[2], srgb)},
-        alpha, black_level);
+        alpha, beta);
     for (std::size_t c = 0; c < 3; ++c) p[c] = static_cast<float>(v[c]);
   }
 }

@@ -14,7 +14,8 @@ namespace zenith::render::display {
 /// display_signal): `rgb` holds `row_count` rows of display-linear P (tone
 /// mapped and faded, no α or β) from row `first_row` of a `width_px`-wide
 /// frame; each value becomes V = colour.process(E(P), α, β) with E the sRGB
-/// encoding, α the mask's (1 when null) and β `black_level`, V in [0, 1] (the
+/// encoding, α the mask's (1 when null) and β the mask's black_level_at
+/// (its β map, else `black_level`), V in [0, 1] (the
 /// display code divided by its maximum).
 void apply_colour_profile(std::span<float> rgb, int first_row, int row_count, int width_px,
                           const warp::MpcdiColourProfile& colour, const warp::BlendMask* blend, double black_level);

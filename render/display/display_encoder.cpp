@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "render/gl/gl_error.h"
 #include "render/shader_bindings.h"
@@ -29,17 +30,26 @@ void check_stage(const OutputStage& stage, int width, int height) {
       !(stage.encoding.gamma >= image::kMinDisplayGamma && stage.encoding.gamma <= image::kMaxDisplayGamma))
     throw std::invalid_argument(fmt::format("display pass: gamma {} must be in [{}, {}]", stage.encoding.gamma,
                                             image::kMinDisplayGamma, image::kMaxDisplayGamma));
-  if (stage.blend_mask != nullptr && (stage.blend_mask->format() != TextureFormat::r32f ||
-                                      stage.blend_mask->width() != width || stage.blend_mask->height() != height))
-    throw std::invalid_argument(fmt::format("display pass: the blend mask is a {} {}x{} texture, the frame {}x{}",
-                                            gl::to_string(stage.blend_mask->format()), stage.blend_mask->width(),
-                                            stage.blend_mask->height(), width, height));
+  if (stage.blend_mask != nullptr &&
+      ((stage.blend_mask->format() != TextureFormat::r32f && stage.blend_mask->format() != TextureFormat::rg32f) ||
+       stage.blend_mask->is_3d() || stage.blend_mask->width() != width || stage.blend_mask->height() != height))
+    throw std::invalid_argument(
+        fmt::format("display pass: the blend mask is a {} {}x{} texture; it must be r32f or rg32f of the frame's size "
+                    "{}x{}",
+                    gl::to_string(stage.blend_mask->format()), stage.blend_mask->width(), stage.blend_mask->height(),
+                    width, height));
 }
 
 }  // namespace
 
 gl::Texture blend_mask_texture(const warp::BlendMask& mask) {
-  return gl::Texture::create_2d(TextureFormat::r32f, mask.width, mask.height, mask.alpha);
+  if (mask.beta.empty()) return gl::Texture::create_2d(TextureFormat::r32f, mask.width, mask.height, mask.alpha);
+  std::vector<float> alpha_beta(2 * mask.alpha.size());
+  for (std::size_t i = 0; i < mask.alpha.size(); ++i) {
+    alpha_beta[2 * i] = mask.alpha[i];
+    alpha_beta[2 * i + 1] = mask.beta.at(i);
+  }
+  return gl::Texture::create_2d(TextureFormat::rg32f, mask.width, mask.height, alpha_beta);
 }
 
 std::array<int, 2> thumbnail_size(int width_px, int height_px, int edge_px) {
@@ -55,7 +65,9 @@ void DisplayEncoder::set_stage(const gl::ShaderProgram& p, int width, int height
   check_stage(stage, width, height);
   p.set_uniform("tone_mapping", stage.tone == image::ToneMapping::clamp ? 1 : 0);
   p.set_uniform("output_stage", stage.blended ? 1 : 0);
-  p.set_uniform("has_blend_mask", stage.blended && stage.blend_mask != nullptr ? 1 : 0);
+  const bool mask = stage.blended && stage.blend_mask != nullptr;
+  p.set_uniform("has_blend_mask", mask ? 1 : 0);
+  p.set_uniform("has_black_level_map", mask && stage.blend_mask->format() == TextureFormat::rg32f ? 1 : 0);
   p.set_uniform("black_level", static_cast<float>(stage.black_level));
   p.set_uniform("fade_level", static_cast<float>(stage.fade.level));
   p.set_uniform("fade_colour",

@@ -2,7 +2,8 @@
 // The display pass of a live frame, on the GPU: from a rendered frame's
 // exposed radiance (Renderer::render_to_texture) to what its projector is sent,
 // in a texture a window draws (render/window/output_windows.h) — tone mapping,
-// a fade, the output stage (blend mask α, black level β) and the display
+// a fade, the output stage (blend mask α, black level β: a number or, from an
+// MPCDI region's beta map, a value per pixel) and the display
 // encoding, shaders/render/display_transform.glsl has the equations. The CPU
 // path computes the same (image::tone_map, warp::apply_blend,
 // image::display_encode; with an MPCDI colour profile, MpcdiColourProfile::process
@@ -41,14 +42,15 @@ struct Fade {
 
 /// What one output's display pass does. The blend mask is a texture of the
 /// frame's size (blend_mask_texture()), kept by the caller for as long as the
-/// output exists.
+/// output exists: r32f α, or rg32f (α, β) where the output's β is a map (an
+/// MPCDI region's beta map), which then replaces `black_level`.
 struct OutputStage {
   image::ToneMapping tone = image::ToneMapping::exponential;
   /// Whether the output stage applies (warp/blending.h: P·α·(1 − β) + β). Off,
   /// α and β are not used (an output with neither a blend nor a black level).
   bool blended = false;
-  const gl::Texture* blend_mask = nullptr;  ///< r32f α, row 0 at the top; nullptr: α = 1
-  double black_level = 0.0;                 ///< β in [0, 0.5]
+  const gl::Texture* blend_mask = nullptr;  ///< r32f α or rg32f (α, β), row 0 at the top; nullptr: α = 1
+  double black_level = 0.0;                 ///< β in [0, 0.5] (unused with an rg32f mask: its β)
   image::DisplayEncoding encoding;
   Fade fade;
   /// An MPCDI region's colour profile, its LUTs uploaded once for the output
@@ -59,7 +61,9 @@ struct OutputStage {
   const ColourProfileTextures* colour = nullptr;
 };
 
-/// The r32f texture of a blend mask (row 0 at the top), for OutputStage::blend_mask.
+/// The texture of a blend mask (row 0 at the top), for OutputStage::blend_mask:
+/// r32f α, or rg32f (α, β) for a mask with a β map (BlendMask::beta). Made
+/// once per output; a live frame reads it on the GPU, nothing comes back.
 gl::Texture blend_mask_texture(const warp::BlendMask& mask);
 
 /// A thumbnail's size for a frame of width × height and a longer side of at

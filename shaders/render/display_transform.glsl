@@ -7,7 +7,9 @@
 //                                   in [0, 1]; 0: none), before the output stage so
 //                                   that a fade blends across overlaps like the picture
 //   P' = P · α · (1 − β) + β        the output stage: blend mask α, black level β
-//                                   (warp/blending.h; only where the output has one)
+//                                   (warp/blending.h; only where the output has one;
+//                                   β per pixel from the mask's second channel where
+//                                   the output has a black-level map, an MPCDI beta map)
 //   V  = E(P')                      the display encoding: sRGB or P'^(1/γ)
 //                                   (image/display_encoding.h)
 //
@@ -31,9 +33,11 @@ uniform int tone_mapping;
 uniform bool output_stage;
 /// Whether blend_mask holds α (else α = 1).
 uniform bool has_blend_mask;
-/// α per pixel of the frame, row 0 at the top (as the frame).
+/// Whether blend_mask's second channel holds β (an rg32f mask; else β = black_level).
+uniform bool has_black_level_map;
+/// α (r) and, with has_black_level_map, β (g) per pixel of the frame, row 0 at the top (as the frame).
 layout(binding = BLEND_MASK_UNIT) uniform sampler2D blend_mask;
-uniform float black_level;  // β in [0, 0.5]
+uniform float black_level;  // β in [0, 0.5] without a black-level map
 uniform float fade_level;   // f in [0, 1]
 uniform vec3 fade_colour;   // display-linear RGB in [0, 1]
 // image::DisplayEncoding: 0 sRGB, 1 gamma (V = L^inverse_gamma).
@@ -77,13 +81,19 @@ vec3 content_linear(vec3 x) {
 
 /// α of pixel p: the blend mask's, 1 without one or without the output stage.
 float stage_alpha(ivec2 p) { return output_stage && has_blend_mask ? texelFetch(blend_mask, p, 0).r : 1.0; }
-/// β: the black level, 0 without the output stage.
-float stage_black_level() { return output_stage ? black_level : 0.0; }
+/// β of pixel p: the black-level map's, else the black level; 0 without the output stage.
+float stage_black_level(ivec2 p) {
+  if (!output_stage) return 0.0;
+  return has_blend_mask && has_black_level_map ? texelFetch(blend_mask, p, 0).g : black_level;
+}
 
 /// P' of pixel p (frame coordinates, row 0 at the top) for exposed radiance x.
 vec3 display_linear(ivec2 p, vec3 x) {
   vec3 v = content_linear(x);
-  if (output_stage) v = v * (stage_alpha(p) * (1.0 - black_level)) + black_level;
+  if (output_stage) {
+    const float beta = stage_black_level(p);
+    v = v * (stage_alpha(p) * (1.0 - beta)) + beta;
+  }
   return v;
 }
 
@@ -151,5 +161,5 @@ vec3 display_signal(ivec2 p, vec3 x) {
   }
   const vec3 v = content_linear(x);
   const vec3 s = vec3(display_encode(v.r), display_encode(v.g), display_encode(v.b));
-  return mpcdi_process(s, stage_alpha(p), stage_black_level());
+  return mpcdi_process(s, stage_alpha(p), stage_black_level(p));
 }

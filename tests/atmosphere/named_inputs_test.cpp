@@ -17,13 +17,16 @@ TEST(NamedInputs, TableSizeSetsByName) {
   EXPECT_EQ(table_sizes_by_name("small"), lut::TableSizes::small());
   const lut::TableSizes large = table_sizes_by_name("large");
   EXPECT_EQ(large.describe(), "T512x128 E128x32 S64x256x64x16");
+  // The paper's sizes with 64 μs texels: the twilight bench's "paper-mu-s-x2".
+  EXPECT_EQ(table_sizes_by_name("twilight").describe(), "T256x64 E64x16 S32x128x64x8");
+  for (const std::string& name : table_size_names()) EXPECT_NO_THROW((void)table_sizes_by_name(name)) << name;
   try {
     (void)table_sizes_by_name("huge");
     FAIL() << "an unknown name must throw";
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("'huge'"), std::string::npos) << message;
-    EXPECT_NE(message.find("paper, small or large"), std::string::npos) << message;
+    EXPECT_NE(message.find("paper, twilight, small or large"), std::string::npos) << message;
   }
 }
 

@@ -30,6 +30,7 @@
 #include "render/display/colour_profile_textures.h"
 #include "render/display/colour_signal.h"
 #include "render/display/display_encoder.h"
+#include "tests/render/display_test_support.h"
 #include "tests/render/render_test_support.h"
 #include "tests/warp/mpcdi_test_support.h"
 #include "warp/blending.h"
@@ -81,19 +82,9 @@ Rgb times_matrix(const Rgb& v) {
   return out;
 }
 
-/// The GPU's codes of the test frame through `stage` (its colour set by the caller).
+/// The GPU's codes of the test frame through `stage`.
 std::vector<int> gpu_codes(const OutputStage& stage, gl::TextureFormat format) {
-  context();
-  const gl::Texture radiance = gl::Texture::create_2d(gl::TextureFormat::rgba32f, kWidth, kHeight, test_radiance());
-  gl::Texture display = gl::Texture::create_2d(format, kWidth, kHeight);
-  DisplayEncoder encoder;
-  encoder.encode(radiance, stage, display);
-  const std::vector<float> out = display.read();
-  const double top = format == gl::TextureFormat::rgba8 ? 255.0 : 65535.0;
-  std::vector<int> codes;
-  for (std::size_t i = 0; i < out.size(); ++i)
-    if (i % 4 != 3) codes.push_back(static_cast<int>(std::lround(out[i] * top)));
-  return codes;
+  return testing::display_codes(test_radiance(), kWidth, kHeight, stage, format);
 }
 
 /// The CPU path's codes: tone mapping, then apply_colour_profile with the mask and β.
@@ -109,12 +100,7 @@ std::vector<int> cpu_codes(const Profile& profile, const warp::BlendMask* mask, 
   return codes;
 }
 
-int worst(const std::vector<int>& a, const std::vector<int>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  int w = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) w = std::max(w, std::abs(a[i] - b[i]));
-  return w;
-}
+int worst(const std::vector<int>& a, const std::vector<int>& b) { return testing::worst_code_difference(a, b); }
 
 /// The worst code difference GPU − CPU for `profile` with the test mask and β = 0.05.
 int worst_difference(const Profile& profile, gl::TextureFormat format) {

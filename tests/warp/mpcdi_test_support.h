@@ -3,7 +3,10 @@
 // hand-written two-region 2d show most tests start from.
 #include <zip.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,6 +82,73 @@ inline Members valid_2d_members() {
           {"right_warp.pfm", make_pfm(4, 3, 3, warp_value, false, true)},  // big endian
           {"left_alpha.png", make_grey_png(4, 3, kAlpha)},
           {"left_beta.png", make_grey_png(4, 3, std::vector<unsigned char>(12, 7))}};
+}
+
+/// A region of a 2d archive for the blend-map tests: its id, resolution and
+/// the elements of its fileset besides the geometry warp (<alphaMap>, <betaMap>).
+struct MapsRegion {
+  std::string id;
+  int width_px = 0, height_px = 0;
+  std::string maps;
+};
+
+/// The descriptor of a 2d archive of one buffer holding `regions`, each with
+/// the identity geometry warp "<id>.pfm" (identity_warp()).
+inline std::string descriptor_with_maps(const std::vector<MapsRegion>& regions) {
+  std::string xml =
+      "<?xml version=\"1.0\"?>\n<MPCDI profile=\"2d\" geometry=\"1\" color=\"2\" version=\"2.0\">\n<display>\n"
+      "<buffer id=\"b\">\n";
+  for (const MapsRegion& r : regions)
+    xml += "<region id=\"" + r.id + "\" x=\"0\" y=\"0\" xsize=\"1\" ysize=\"1\" xResolution=\"" +
+           std::to_string(r.width_px) + "\" yResolution=\"" + std::to_string(r.height_px) + "\"/>\n";
+  xml += "</buffer>\n</display>\n<files>\n";
+  for (const MapsRegion& r : regions)
+    xml += "<fileset region=\"" + r.id + "\">\n<geometryWarpFile><path>" + r.id +
+           ".pfm</path><interpolation>linear</interpolation></geometryWarpFile>\n" + r.maps + "</fileset>\n";
+  return xml + "</files>\n</MPCDI>\n";
+}
+
+/// A geometry warp of 2 × 2 samples at the region's corners mapping each
+/// point to itself: the output shows its projection's image unchanged.
+inline std::string identity_warp() {
+  return make_pfm(
+      2, 2, 3, [](int x, int y, int c) { return c == 0   ? float(x)
+                                                : c == 1 ? float(y)
+                                                         : 0.0f; }, true, true);
+}
+
+/// The stored samples of a w × h map, row 0 at the top: value(i, j) each.
+template <typename Sample>
+std::vector<Sample> map_samples(int w, int h, Sample (*value)(int, int)) {
+  std::vector<Sample> samples;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) samples.push_back(value(i, j));
+  return samples;
+}
+
+/// An <alphaMap> (with gammaEmbedded when `gamma` > 0) or <betaMap> element.
+inline std::string map_element(const std::string& tag, const std::string& path, int component_depth, int bit_depth,
+                               double gamma = 0.0) {
+  return "<" + tag + "><path>" + path + "</path><componentDepth>" + std::to_string(component_depth) +
+         "</componentDepth><bitDepth>" + std::to_string(bit_depth) + "</bitDepth>" +
+         (gamma > 0.0 ? "<gammaEmbedded>" + std::to_string(gamma) + "</gammaEmbedded>" : std::string()) + "</" + tag +
+         ">\n";
+}
+
+/// A w × h map's value at the centre of pixel (x, y) of a width_px × height_px
+/// output, worked out as a sum of tent weights over every sample: sample (i, j)
+/// sits at its texel centre, the pixel reads the map at ((x + ½) / width_px ·
+/// w − ½, (y + ½) / height_px · h − ½), clamped to the samples (OpenGL's clamp
+/// to edge). The tests' own form of warp/mpcdi_blend.h's bilinear lookup.
+inline double tent_sum(const std::function<double(int, int)>& sample, int w, int h, int width_px, int height_px, int x,
+                       int y) {
+  const double s = std::clamp((x + 0.5) / width_px * w - 0.5, 0.0, w - 1.0);
+  const double t = std::clamp((y + 0.5) / height_px * h - 0.5, 0.0, h - 1.0);
+  double sum = 0.0;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      sum += std::max(0.0, 1.0 - std::abs(s - i)) * std::max(0.0, 1.0 - std::abs(t - j)) * sample(i, j);
+  return sum;
 }
 
 }  // namespace zenith::warp::testing

@@ -154,4 +154,19 @@ std::string make_grey_png(int width, int height, const std::vector<Sample>& grey
   return bytes;
 }
 
+/// An 8-bit RGB PNG: width · height · 3 samples, row 0 at the top.
+inline std::string make_rgb_png(int width, int height, const std::vector<unsigned char>& rgb) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(width);
+  image.height = static_cast<png_uint_32>(height);
+  image.format = PNG_FORMAT_RGB;
+  png_alloc_size_t size = 0;
+  EXPECT_TRUE(png_image_write_to_memory(&image, nullptr, &size, 0, rgb.data(), 0, nullptr));
+  std::string bytes(size, '\0');
+  EXPECT_TRUE(png_image_write_to_memory(&image, bytes.data(), &size, 0, rgb.data(), 0, nullptr));
+  bytes.resize(size);
+  return bytes;
+}
+
 }  // namespace zenith::warp::testing
