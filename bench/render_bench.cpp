@@ -112,6 +112,8 @@ struct Options {
   std::filesystem::path scene = std::filesystem::path(ZENITH_SOURCE_DIR) / "configs/scenes/three-worlds.json";
   std::optional<std::filesystem::path> cache;
   std::optional<double> stars;  // --stars LIMIT: the night sky's pass (bench/star_frames.h)
+  bool moonlight = false;       // --moonlight: the Moon's light of the atmosphere passes (the same)
+  bool star_time_given = false;
   bench::StarTiming star_timing;
   /// Per-projector mode: render every output of this viewport config (its own
   /// projection, warp and size) and report each one's frame time and peak memory.
@@ -141,6 +143,9 @@ constexpr const char* kUsage =
     "                 --stars-time ISO (UTC), --stars-exposure X, --stars-csv FILE\n"
     "                 (default bench/results/star_frame_times.csv); the ground view:\n"
     "                 --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79 --stars 8.7\n"
+    "  --moonlight    the Moon's light of the atmosphere passes instead: frames with and without it at a full\n"
+    "                 Moon (--stars-time, default 2026-01-03T20:00:00Z) and by day, --stars-exposure, --stars-csv\n"
+    "                 (default bench/results/moonlight_frame_times.csv)\n"
     "  --csv          output CSV (default bench/results/render_frame_times.csv in the source tree)\n"
     "  --no-chart     no gnuplot script and PNG next to the CSV\n"
     "  --chart-only   render nothing: redraw the chart of an existing --csv (same --quick/--sizes)\n"
@@ -227,13 +232,16 @@ Options parse_options(int argc, char** argv) {
         throw std::invalid_argument("--fov: must be in (0, 180)");
     } else if (a == "--cache")
       o.cache = value(i, a);
+    else if (a == "--moonlight")
+      o.moonlight = true;
     else if (a == "--stars") {
       o.stars = std::stod(value(i, a));
       if (!(*o.stars >= -2.0 && *o.stars <= 10.5))
         throw std::invalid_argument("--stars: V limit must be in [-2, 10.5]");
-    } else if (a == "--stars-time")
+    } else if (a == "--stars-time") {
       o.star_timing.time_utc = value(i, a);
-    else if (a == "--stars-exposure") {
+      o.star_time_given = true;
+    } else if (a == "--stars-exposure") {
       o.star_timing.exposure = std::stod(value(i, a));
       if (!(o.star_timing.exposure > 0.0 && o.star_timing.exposure <= 1e6))
         throw std::invalid_argument("--stars-exposure: must be in (0, 1e6]");
@@ -527,14 +535,18 @@ int run(int argc, char** argv) {
     atm_options.one_pass_tiles = body_options.one_pass_tiles = false;
     atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
   }
-  if (opt.stars) {
+  if (opt.stars || opt.moonlight) {
     bench::StarTiming t = opt.star_timing;
-    t.magnitude_limit = *opt.stars;
+    t.moonlight = opt.moonlight;
+    if (opt.stars) t.magnitude_limit = *opt.stars;
+    if (t.moonlight && !opt.star_time_given) t.time_utc = "2026-01-03T20:00:00Z";
     t.rounds = opt.rounds;
     t.iterations = opt.iterations;
     t.sizes = opt.sizes;
     t.fov_deg = opt.planar_fov_deg;
-    if (t.csv.empty()) t.csv = std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/star_frame_times.csv";
+    if (t.csv.empty())
+      t.csv = std::filesystem::path(ZENITH_SOURCE_DIR) /
+              (t.moonlight ? "bench/results/moonlight_frame_times.csv" : "bench/results/star_frame_times.csv");
     bench::time_stars(t, device, scene, tables);
     return 0;
   }

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "astro/civil_time.h"
+#include "astro/sky_positions.h"
 #include "core/units.h"
 #include "scene/sky_clock.h"
 #include "warp/planar_projection.h"
@@ -80,22 +81,45 @@ void time_stars(const StarTiming& t, const std::string& device, const scene::Sce
   render::RenderOptions with, without;
   with.night_sky.star_magnitude_limit = t.magnitude_limit;
   without.night_sky.stars = false;
+  if (t.moonlight) {  // what differs is the Moon's light; no stars in either
+    with.night_sky.stars = false;
+    without.night_sky.moonlight = false;
+  }
+  const char* feature = t.moonlight ? "moonlight" : "stars";
   render::RenderOptions timed = with;
   timed.time_passes = true;
   render::Renderer stars(with, tables), no_stars(without, tables), passes(timed, tables);
   const scene::Scene night = at_night(scene, t);
-  fmt::print("render_bench --stars: scene '{}' at {} (site {:.4f}°, {:.4f}°), exposure {:g}, stars to V {}\n",
-             scene.name, t.time_utc, night.sky_clock->site.latitude_deg, night.sky_clock->site.longitude_deg,
-             t.exposure, t.magnitude_limit);
+  // The moonlight's day: the sky clock at a daylight hour with the Moon up, the scene's own exposure.
+  StarTiming day_timing = t;
+  day_timing.time_utc = t.day_time_utc;
+  day_timing.exposure = scene.camera.exposure;
+  const scene::Scene moon_day = at_night(scene, day_timing);
+  if (t.moonlight)
+    for (const scene::Scene* s : {&night, &moon_day}) {
+      const astro::SkyPositions sky(astro::AstroTime::from_utc(s->sky_clock->time), s->sky_clock->site);
+      fmt::print("  {}: the Moon {:.1f}° up ({:.0f} % lit), the Sun {:.1f}°, exposure {:g}\n",
+                 astro::format_utc_time(s->sky_clock->time), sky.moon().horizontal.altitude_rad / core::kDeg,
+                 100.0 * sky.moon().illuminated_fraction, sky.sun().horizontal.altitude_rad / core::kDeg,
+                 s->camera.exposure);
+    }
+  fmt::print("render_bench --{}: scene '{}' at {} (site {:.4f}°, {:.4f}°), exposure {:g}{}\n", feature, scene.name,
+             t.time_utc, night.sky_clock->site.latitude_deg, night.sky_clock->site.longitude_deg, t.exposure,
+             t.moonlight ? "" : fmt::format(", stars to V {}", t.magnitude_limit));
   std::vector<std::pair<int, int>> sizes = t.sizes.empty() ? std::vector<std::pair<int, int>>{{1280, 720}} : t.sizes;
   std::ofstream csv(t.csv);
   if (!csv) throw std::runtime_error("cannot write " + t.csv.string());
-  csv << "device,resolution,projection,case,stars_drawn,frame_ms_without_stars,frame_ms_with_stars,overhead_percent,"
-         "star_placement_ms,star_splat_ms,night_sky_ms,frames\n";
+  if (t.moonlight)
+    csv << "device,resolution,projection,case,moonlight_drawn,moonlight_bound,frame_ms_without_moonlight,"
+           "frame_ms_with_moonlight,overhead_percent,moonlight_passes_ms,moonlight_sky_view_ms,atmosphere_passes_ms,"
+           "frames\n";
+  else
+    csv << "device,resolution,projection,case,stars_drawn,frame_ms_without_stars,frame_ms_with_stars,overhead_percent,"
+           "star_placement_ms,star_splat_ms,night_sky_ms,frames\n";
   for (const auto& [w, h] : sizes) {
     const warp::PlanarProjection projection = warp::PlanarProjection::symmetric(w, h, t.fov_deg);
     for (const bool day : {false, true}) {
-      const scene::Scene& s = day ? scene : night;
+      const scene::Scene& s = day ? (t.moonlight ? moon_day : scene) : night;
       Case a, b;
       frame(stars, s, projection, b);  // untimed: the catalogue, shader variants
       frame(no_stars, s, projection, a);
@@ -115,6 +139,27 @@ void time_stars(const StarTiming& t, const std::string& device, const scene::Sce
       const double ma = median(a.ms), mb = median(b.ms);
       const double overhead = 100.0 * (mb - ma) / ma;
       const std::string label = day ? "day (scene's sun and exposure)" : "night";
+      if (t.moonlight) {
+        // The GPU time of the Moon's passes and of the sun's atmosphere passes, summed over their names.
+        double moon_ms = 0.0, sun_ms = 0.0;
+        for (const auto& [name, v] : ms)
+          if (name.starts_with("moonlight: "))
+            moon_ms += v;
+          else if (name.starts_with("atmosphere "))
+            sun_ms += v;
+        fmt::print(
+            "  {}x{} planar {:g}°, {}: moonlight {} (bound {:.3g}); {:.1f} ms without, {:.1f} ms with: {:+.1f} %"
+            " (its passes {:.1f} ms, its sky-view table {:.2f} ms, the sun's atmosphere passes {:.1f} ms GPU; {} "
+            "frames each)\n",
+            w, h, t.fov_deg, label, b.stats.moonlight ? "drawn" : "skipped", b.stats.moonlight_bound, ma, mb, overhead,
+            moon_ms, part("sky-view table, moonlight"), sun_ms, a.ms.size());
+        csv << '"' << device << "\"," << w << 'x' << h << ",planar " << t.fov_deg << "deg," << (day ? "day" : "night")
+            << ',' << b.stats.moonlight << ',' << b.stats.moonlight_bound << ','
+            << fmt::format("{:.3f},{:.3f},{:.2f},{:.3f},{:.3f},{:.3f}", ma, mb, overhead, moon_ms,
+                           part("sky-view table, moonlight"), sun_ms)
+            << ',' << a.ms.size() << '\n';
+        continue;
+      }
       fmt::print(
           "  {}x{} planar {:g}°, {}: {} stars drawn; {:.1f} ms without stars, {:.1f} ms with: {:+.1f} %"
           " (placement {:.1f} ms CPU, splat {:.2f} ms, night sky {:.2f} ms GPU; {} frames each)\n",

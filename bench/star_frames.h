@@ -9,6 +9,14 @@
 // at its own daylight sun and exposure, where the pass's test skips it. Prints
 // the figures and writes them to --stars-csv (default
 // bench/results/star_frame_times.csv).
+//
+// render_bench --moonlight: the same for the Moon's light of the atmosphere
+// passes (render/frame/moon_light.h): frames with the moonlight and without
+// (no stars, the night floor and the Moon's disc in both) at a full Moon
+// (--stars-time, default for it 2026-01-03T20:00:00Z: the full Moon some 20°
+// up in the east of the ground view's site), then by day with the Moon up
+// (StarTiming::day_time_utc, the scene's exposure), where its test skips it;
+// CSV default bench/results/moonlight_frame_times.csv.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -20,8 +28,12 @@
 namespace zenith::bench {
 
 struct StarTiming {
+  bool moonlight = false;  ///< time the moonlight passes instead of the stars
   double magnitude_limit = 8.7;
   std::string time_utc = "2026-12-21T22:00:00Z";
+  /// --moonlight's day: the sky clock at a daylight hour with the Moon up (near first quarter, some 25° up in the
+  /// south-east of the ground view's site, the sun some 15° up), at the scene's own exposure.
+  std::string day_time_utc = "2026-01-26T14:00:00Z";
   double exposure = 3e5;
   int rounds = 3, iterations = 3;
   std::vector<std::pair<int, int>> sizes;  // planar views at fov_deg

@@ -34,6 +34,9 @@ struct NightSkyRenderOptions {
   bool stars = true;        ///< the catalogue's stars as point sources
   bool night_floor = true;  ///< the natural night sky and light pollution
   bool moon = true;         ///< the Moon's disc by its phase (Lommel–Seeliger), with the stars' sky clock
+  /// The Moon lights the atmospheres (render/frame/moon_light.h): the sky and the
+  /// ground by moonlight, from the same tables, where its own test finds it visible.
+  bool moonlight = true;
   /// The catalogue (astro/star_catalogue.h): stellarium-data's directory and
   /// the faintest V kept, [−2, 10.5]. Loaded once per renderer, on the first
   /// frame that needs it; a missing catalogue logs a warning and draws no stars.

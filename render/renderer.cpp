@@ -25,6 +25,7 @@
 #include "render/frame/frame_tiles.h"
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
+#include "render/frame/moon_light.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/star_pass.h"
 #include "render/frame/sun_refraction.h"
@@ -55,6 +56,7 @@ using binding::kBodies, binding::kTiles, binding::kFrameRgb;
 constexpr unsigned kGbufferHit = binding::kGbufferHitImage, kGbufferAlbedo = binding::kGbufferAlbedoImage,
                    kRadianceSum = binding::kRadianceSumImage, kTransmittance = binding::kTransmittanceProductImage;
 constexpr int kMaxSpectrumUniforms = kSunSpectrumSize;  // direct_light.comp's sun_spectrum[]
+constexpr std::size_t kMoonSkyView = 1;                 // the Moon's sky-view table (SkyViewTable::kLights)
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -173,6 +175,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   update_tile_cones(frame);
   prepare_bodies(frame);
   make_tables_resident(frame);
+  light_by_the_moon(frame, timer);
   choose_sky_view(frame);
   prepare_programs(frame);
   classify_bands(frame, timer);
@@ -185,6 +188,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   stats_.stars = night.stars;
   stats_.night_sky_drawn = !night.skipped;
   stats_.star_catalogue_identity = night.catalogue_identity;
+  stats_.moonlight = frame.moonlit;
   render_bands(frame, output, timer);
   const gl::ProgramBuilds::Statistics& builds_after = im.builds->statistics();
   stats_.programs_built = builds_after.built - builds_before.built;
@@ -324,7 +328,12 @@ void Renderer::choose_sky_view(Frame& frame) const {
     const glm::dvec3 up = glm::normalize(scene.camera.position_m - planet.position_m);
     pass.sky_view =
         sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(), pass.top_radius_m, glm::dot(up, frame.sun));
-    if (pass.sky_view) chosen.push_back(pass.gpu);
+    if (!pass.sky_view) continue;
+    // The Moon's own table where it is as accurate for the Moon's cosine; else
+    // its passes read the 4D tables in the sky-view tiles.
+    pass.moon_sky_view = pass.moonlit && sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(),
+                                                           pass.top_radius_m, glm::dot(up, frame.moon.direction));
+    chosen.push_back(pass.gpu);
   }
 }
 
@@ -332,8 +341,14 @@ void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
   for (const AtmospherePass& pass : frame.passes) {
     if (!pass.sky_view) continue;
     const scene::Body& planet = frame.scene.bodies[static_cast<std::size_t>(pass.body)];
-    const double sun_cosine = glm::dot(glm::normalize(frame.scene.camera.position_m - planet.position_m), frame.sun);
-    timer.gpu("sky-view table", [&] { pass.gpu->fill_sky_view(pass.distance_m, sun_cosine, frame.sun_radius); });
+    const glm::dvec3 up = glm::normalize(frame.scene.camera.position_m - planet.position_m);
+    timer.gpu("sky-view table",
+              [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius); });
+    if (pass.moon_sky_view)
+      timer.gpu("sky-view table, moonlight", [&] {
+        pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.moon.direction), frame.moon.angular_radius_rad,
+                                kMoonSkyView);
+      });
   }
 }
 
@@ -348,6 +363,18 @@ void Renderer::start_programs(const Frame& frame) {
       if (band.lists[a].gbuffer.count > 0) gpu->start_gbuffer_path_program(frame.variant);
       for (const auto& [variant, list] : band.lists[a].one_pass) gpu->start_tile_program(frame.variant, variant);
     }
+}
+
+void Renderer::light_by_the_moon(Frame& frame, PassTimer& timer) {
+  if (!options_.night_sky.moonlight) return;
+  MoonLight moon;
+  timer.cpu("moonlight test", [&] { moon = moon_light(frame); });
+  for (std::size_t a = 0; a < frame.passes.size(); ++a) {
+    frame.passes[a].moonlit = moon.lit[a];
+    stats_.moonlight_bound = std::max(stats_.moonlight_bound, moon.bounds[a]);
+  }
+  frame.moonlit = moon.any();
+  frame.moon = std::move(moon.light);
 }
 
 void Renderer::prepare_programs(Frame& frame) {
@@ -430,6 +457,7 @@ void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& t
     draw_direct_tiles(frame, band, timer);
     draw_one_pass_tiles(frame, band, timer);
     draw_gbuffer_tiles(frame, band, timer);
+    if (frame.moonlit) draw_moonlight(frame, band, timer);
     // The stars and the night sky join the radiance before the band leaves
     // (readback, texture copy or the live display pass): one tone mapping for all.
     impl_->night_sky.draw_band(frame, band, timer);
@@ -524,19 +552,26 @@ void Renderer::draw_one_pass_tiles(Frame& frame, const BandTiles& band, PassTime
   for (std::size_t g = 0; g < frame.groups; ++g) {
     for (std::size_t a = 0; a < frame.passes.size(); ++a) {
       const AtmospherePass& pass = frame.passes[a];
-      if (band.lists[a].one_pass.empty()) continue;
-      pass.gpu->bind(g);
+      const bool moon = frame.light != nullptr;
+      if (band.lists[a].one_pass.empty() || (moon && !pass.moonlit)) continue;
+      // The Moon's passes: its own sky-view table where it has one, and no sun disc.
+      pass.gpu->bind(g, moon && pass.moon_sky_view ? kMoonSkyView : 0);
       im.bodies.bind_storage(kBodies);
       im.tiles.bind_storage(kTiles);
-      for (const auto& [variant, list] : band.lists[a].one_pass) {
+      for (const auto& [tile_variant, list] : band.lists[a].one_pass) {
+        TileVariant variant = tile_variant;
+        if (moon) {
+          variant.sun = false;
+          variant.sky_view = variant.sky_view && pass.moon_sky_view;
+        }
         const ShaderProgram& p = pass.gpu->tile_program(frame.variant, variant);
         frame.set_group_uniforms(p, g);
         pass.gpu->set_group(p, g);
         frame.set_the_body(p, static_cast<std::size_t>(pass.body));
         p.set_uniform("planet", pass.body);
         p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
-        timer.gpu(fmt::format("atmosphere {}, one pass, {}, {}{}{}", stats_.atmospheres[a].body,
-                              variant.sky_view ? "sky view" : "4D tables",
+        timer.gpu(fmt::format("{}atmosphere {}, one pass, {}, {}{}{}", moon ? "moonlight: " : "",
+                              stats_.atmospheres[a].body, variant.sky_view ? "sky view" : "4D tables",
                               variant.ground == TileCover::none  ? "sky"
                               : variant.ground == TileCover::all ? "ground"
                                                                  : "horizon",
@@ -552,7 +587,6 @@ void Renderer::draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer
   if (band.gbuffer_tiles.count == 0) return;
   Impl& im = *impl_;
   const FramePasses& fp = *frame.programs;
-  const scene::Scene& scene = frame.scene;
   im.ensure_gbuffer_images();
   im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::write_only);
   im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::write_only);
@@ -568,7 +602,7 @@ void Renderer::draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer
     im.transmittance.bind_image(kTransmittance, gl::ImageAccess::read_write);
     for (std::size_t a = 0; a < frame.passes.size(); ++a) {
       const AtmospherePass& pass = frame.passes[a];
-      if (band.lists[a].gbuffer.count == 0) continue;
+      if (band.lists[a].gbuffer.count == 0 || (frame.light && !pass.moonlit)) continue;
       const ShaderProgram& p = pass.gpu->gbuffer_path_program(frame.variant);
       pass.gpu->bind(g);
       im.bodies.bind_storage(kBodies);
@@ -578,18 +612,30 @@ void Renderer::draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer
       frame.set_the_body(p, static_cast<std::size_t>(pass.body));
       p.set_uniform("planet", pass.body);
       p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
-      p.set_uniform("sun_irradiance", group_lanes(scene.sun.irradiance_W_m2_nm, g));
+      frame.set_light_uniforms(p, g);
       p.set_uniform("albedo_from_r", group_lanes(frame.albedo_weights, 0, g));
       p.set_uniform("albedo_from_g", group_lanes(frame.albedo_weights, 1, g));
       p.set_uniform("albedo_from_b", group_lanes(frame.albedo_weights, 2, g));
-      timer.gpu(fmt::format("atmosphere {}, g-buffer path", stats_.atmospheres[a].body),
-                [&] { frame.dispatch_tiles(p, band.lists[a].gbuffer); });
+      timer.gpu(
+          fmt::format("{}atmosphere {}, g-buffer path", frame.light ? "moonlight: " : "", stats_.atmospheres[a].body),
+          [&] { frame.dispatch_tiles(p, band.lists[a].gbuffer); });
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     frame.set_group_uniforms(*fp.resolve, g);
     timer.gpu("resolve", [&] { frame.dispatch_tiles(*fp.resolve, band.gbuffer_tiles); });
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   }
+}
+
+void Renderer::draw_moonlight(Frame& frame, const BandTiles& band, PassTimer& timer) {
+  // The same passes over the band's atmosphere tiles, lit by the Moon and
+  // added to the output the sun's passes wrote (render/frame/moon_light.h).
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  frame.light = &frame.moon;
+  draw_one_pass_tiles(frame, band, timer);
+  if (band.one_pass_atmosphere_tiles > 0) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  draw_gbuffer_tiles(frame, band, timer);
+  frame.light = nullptr;
 }
 
 void Renderer::read_back_band(const Frame& frame, const BandTiles& band, std::vector<float>& rows_rgb,

@@ -18,6 +18,8 @@
 //     pass (gbuffer.comp: nearest sphere, albedo → G-buffer), per group one pass
 //     per atmosphere front to back (atmosphere_pass.comp: running radiance and
 //     transmittance) and resolve.comp (airless surfaces, the sun's disc, colour);
+//   - where the Moon could light the sky visibly (render/frame/moon_light.h),
+//     the atmosphere tiles again with the Moon as the light, added;
 //
 // then the night sky's pass (render/frame/star_pass.h: the catalogue's stars as
 // point sources of flux, the night floor, light pollution) adds its light to
@@ -94,6 +96,12 @@ struct FrameStats {
   std::size_t stars = 0;
   bool night_sky_drawn = false;
   std::string star_catalogue_identity;
+  /// The Moon lit the atmospheres (render/frame/moon_light.h): false where its
+  /// own test found nothing it could show (daylight, the Moon far below the horizon).
+  bool moonlight = false;
+  /// The test's bound: the largest linear display value the Moon's light could
+  /// add through one atmosphere (the largest over them; 0 without a Moon).
+  double moonlight_bound = 0.0;
   /// With RenderOptions::time_passes: milliseconds per pass or CPU step, summed over bands and groups.
   std::map<std::string, double> pass_ms;
 };
@@ -155,8 +163,12 @@ class Renderer {
   void prepare_bodies(Frame& frame);
   /// The tables of every atmosphere the view touches, uploaded when not resident.
   void make_tables_resident(Frame& frame);
+  /// The Moon as a second light (render/frame/moon_light.h): its direction and
+  /// irradiance, and whether its passes run (their own test).
+  void light_by_the_moon(Frame& frame, PassTimer& timer);
   /// Which atmospheres read a sky-view table: those whose shell holds the
-  /// camera where the table is accurate (one table per table set).
+  /// camera where the table is accurate (one table per table set); the Moon's
+  /// own table too where it lights the pass and is as accurate for its cosine.
   void choose_sky_view(Frame& frame) const;
   /// The uniforms every pass shares, the frame's program variant and where the sun can be drawn.
   void prepare_programs(Frame& frame);
@@ -168,7 +180,7 @@ class Renderer {
   /// parallel shader compile builds them at once (render/gl/program_builds.h;
   /// RenderOptions::serial_compile: one at a time, where first used).
   void start_programs(const Frame& frame);
-  /// The sky-view table of each atmosphere choose_sky_view chose.
+  /// The sky-view table of each atmosphere choose_sky_view chose (the sun's; the Moon's where chosen).
   void fill_sky_view_tables(Frame& frame, PassTimer& timer);
   /// direct_light.comp's colour matrix and sun spectrum; where the sun can be drawn.
   void set_direct_light_uniforms(Frame& frame);
@@ -200,6 +212,9 @@ class Renderer {
   /// Tiles where shells overlap: the G-buffer, then per wavelength group the
   /// atmospheres front to back and the resolve.
   void draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
+  /// The atmosphere tiles again (one pass and G-buffer path) lit by the Moon,
+  /// added to the band's output; the sun's disc is not drawn.
+  void draw_moonlight(Frame& frame, const BandTiles& band, PassTimer& timer);
   /// The band's rows as RGB floats from the output buffer (zeros for black tiles) into `rows_rgb`.
   void read_back_band(const Frame& frame, const BandTiles& band, std::vector<float>& rows_rgb, PassTimer& timer);
   /// Binds the band's output buffer and its black-tile flags for a pass that

@@ -94,10 +94,9 @@ void FrameState::dispatch_tiles(const gl::ShaderProgram& p, TileList list, std::
 
 void FrameState::set_group_uniforms(const gl::ShaderProgram& p, std::size_t g) {
   prepare(p);
-  p.set_uniform("first_group", g == 0 ? 1 : 0);
+  p.set_uniform("first_group", g == 0 && !light ? 1 : 0);  // a second light adds to the sun's
   p.set_uniform("last_group", g + 1 == groups ? 1 : 0);
-  p.set_uniform("sun_irradiance", group_lanes(scene.sun.irradiance_W_m2_nm, g));
-  p.set_uniform("sun_centre_radiance", group_lanes(sun_centre, g));
+  set_light_uniforms(p, g);
   p.set_uniform("limb_exponent", group_lanes(limb_exponent, g));
   p.set_uniform("albedo_from_r", group_lanes(albedo_weights, 0, g));
   p.set_uniform("albedo_from_g", group_lanes(albedo_weights, 1, g));
@@ -105,6 +104,15 @@ void FrameState::set_group_uniforms(const gl::ShaderProgram& p, std::size_t g) {
   p.set_uniform("rgb_from_lanes_r", group_lanes(rgb_weights, 0, g));
   p.set_uniform("rgb_from_lanes_g", group_lanes(rgb_weights, 1, g));
   p.set_uniform("rgb_from_lanes_b", group_lanes(rgb_weights, 2, g));
+}
+
+void FrameState::set_light_uniforms(const gl::ShaderProgram& p, std::size_t g) const {
+  const glm::dvec3 d = light ? light->direction : sun;
+  p.set_uniform("sun_direction",
+                std::array<float, 3>{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)});
+  p.set_uniform("sun_angular_radius", static_cast<float>(light ? light->angular_radius_rad : sun_radius));
+  p.set_uniform("sun_irradiance", group_lanes(light ? light->irradiance_W_m2_nm : scene.sun.irradiance_W_m2_nm, g));
+  p.set_uniform("sun_centre_radiance", light ? std::array<float, 4>{0, 0, 0, 0} : group_lanes(sun_centre, g));
 }
 
 bool FrameState::touches_view(const AtmospherePass& pass) const {

@@ -30,7 +30,19 @@ struct AtmospherePass {
   double distance_m = 0.0, top_radius_m = 0.0, power_m2 = 0.0;
   glm::dvec3 direction_camera{0.0};
   GpuAtmosphere* gpu = nullptr;
-  bool sky_view = false;  // the camera is inside: the sky-view variant where it can
+  bool sky_view = false;       // the camera is inside: the sky-view variant where it can
+  bool moonlit = false;        // the Moon lights it this frame (render/frame/moon_light.h)
+  bool moon_sky_view = false;  // and the Moon's sky-view table is filled too
+};
+
+/// A light of the atmosphere passes other than the scene's sun: the Moon
+/// (render/frame/moon_light.h). The tables are per unit irradiance of their
+/// source, so a second source is the same passes with its direction and
+/// irradiance, added to what the sun's passes drew.
+struct FrameLight {
+  glm::dvec3 direction{0.0, 0.0, 1.0};     ///< unit, world frame (geometric: the tables' rays are straight)
+  double angular_radius_rad = 0.0;         ///< its disc: the fading at the horizon, the eclipses
+  std::vector<double> irradiance_W_m2_nm;  ///< at the top of the atmosphere, per wavelength
 };
 
 /// One frame in progress: its constants in double on the CPU, the bodies and
@@ -63,6 +75,14 @@ struct FrameState : FrameConstants {
   int band_rows = 0;
   const std::vector<BandTiles>* bands = nullptr;
 
+  // ---- the Moon's light (render/frame/moon_light.h): drawn for the passes
+  // marked moonlit, when `moonlit` (any is)
+  bool moonlit = false;
+  FrameLight moon;
+  /// The light the atmosphere passes are drawn with now: null the sun (they
+  /// start the band's output), else a light whose passes add to it and draw no sun disc.
+  const FrameLight* light = nullptr;
+
   // Frame uniforms on first use in the frame, band uniforms on first use in the band.
   std::set<const gl::ShaderProgram*> frame_ready, band_ready;
   std::array<int, 2> band_origin{0, 0}, band_size{0, 0};
@@ -81,8 +101,13 @@ struct FrameState : FrameConstants {
   /// One work group per `tiles_per_group` tiles of `list` (the pass's TILES_PER_GROUP).
   void dispatch_tiles(const gl::ShaderProgram& p, TileList list, std::size_t tiles_per_group = 1);
 
-  /// Per-group uniforms of the passes that turn a group's radiance into colour.
+  /// Per-group uniforms of the passes that turn a group's radiance into colour,
+  /// and the current light's (set_light_uniforms).
   void set_group_uniforms(const gl::ShaderProgram& p, std::size_t g);
+  /// The current light's direction, angular radius and irradiance for group g
+  /// (sun_direction, sun_angular_radius, sun_irradiance; sun_centre_radiance 0
+  /// for a light other than the sun, whose disc is not drawn by these passes).
+  void set_light_uniforms(const gl::ShaderProgram& p, std::size_t g) const;
 
   /// Whether an atmosphere's shell can touch any tile of the view.
   bool touches_view(const AtmospherePass& pass) const;

@@ -64,6 +64,7 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   cpu_transmittance_.channels = tables.channels;
   cpu_transmittance_.transmittance = tables.transmittance;
   cpu_transmittance_.hash = tables.hash;
+  radiance_bound_ = SkyRadianceBound(model, tables);
 
   atmosphere::lut::PrecomputeOptions options;
   options.sizes = tables.sizes;
@@ -109,9 +110,9 @@ void GpuAtmosphere::bind_tables(std::size_t group) const {
   texel_coordinates_.bind_storage(kTexelCoordinates);
 }
 
-void GpuAtmosphere::bind(std::size_t group) const {
+void GpuAtmosphere::bind(std::size_t group, std::size_t light) const {
   bind_tables(group);
-  sky_view_->bind(kSkyViewUnit);
+  sky_view_->bind(kSkyViewUnit, light);
 }
 
 void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t group) const {
@@ -164,13 +165,14 @@ void GpuAtmosphere::start_tile_program(const FrameVariant& frame, const TileVari
   start_built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v));
 }
 
-void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad) {
+void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad,
+                                  std::size_t light) {
   sky_view_->set_camera(camera_radius_m, ground_radius_m_, sun_cosine, sun_angular_radius_rad);
   const gl::ShaderProgram& fill = sky_view_->fill_program();
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     bind_tables(g);
     set_group(fill, g);
-    sky_view_->fill_group(g);
+    sky_view_->fill_group(g, light);
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
+#include "render/frame/sky_radiance_bound.h"
 #include "render/frame/sky_view_table.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
@@ -78,14 +79,20 @@ class GpuAtmosphere {
   const atmosphere::lut::LookupTables& cpu_transmittance() const { return cpu_transmittance_; }
 
   /// Binds the tables of wavelength group g (texture units 0–4), the sky-view
-  /// table (unit 5), the model's buffers (ModelBuffers) and the texel coordinates.
-  void bind(std::size_t group) const;
+  /// table of light `light` (unit 5; 0 the sun, 1 the Moon), the model's
+  /// buffers (ModelBuffers) and the texel coordinates.
+  void bind(std::size_t group, std::size_t light = 0) const;
 
-  /// Fills the sky-view table of every wavelength group for a camera inside
-  /// the shell at `camera_radius_m` from the centre, the sun's cosine there
-  /// `sun_cosine` and its angular radius (render/frame/sky_view_table.h).
-  /// Leaves image unit 0 and texture units 0–4 bound to its own images and tables.
-  void fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad);
+  /// Fills the sky-view table of light `light` (0 the sun, 1 the Moon) for
+  /// every wavelength group, for a camera inside the shell at
+  /// `camera_radius_m` from the centre, the light's cosine there `sun_cosine`
+  /// and its angular radius (render/frame/sky_view_table.h). Leaves image
+  /// unit 0 and texture units 0–4 bound to its own images and tables.
+  void fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad, std::size_t light = 0);
+
+  /// The most these tables can give per unit irradiance of a source
+  /// (render/frame/sky_radiance_bound.h): the moonlight passes' test.
+  const SkyRadianceBound& radiance_bound() const { return radiance_bound_; }
 
  private:
   /// Group g's tables (texture units 0–4), the model's buffers and the texel coordinates.
@@ -107,6 +114,7 @@ class GpuAtmosphere {
   std::unique_ptr<SkyViewTable> sky_view_;
   std::size_t table_bytes_ = 0;
   atmosphere::lut::LookupTables cpu_transmittance_;
+  SkyRadianceBound radiance_bound_;
 };
 
 }  // namespace zenith::render

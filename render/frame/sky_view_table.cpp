@@ -23,8 +23,10 @@ SkyViewTable::SkyViewTable(gl::ProgramBuilds& builds, std::span<const gl::Shader
                            std::size_t groups)
     : builds_(&builds),
       defines_(atmosphere_defines.begin(), atmosphere_defines.end()),
-      table_(gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
-                                          static_cast<int>(std::max<std::size_t>(groups, 1)) * kLayersPerGroup)) {}
+      groups_(std::max<std::size_t>(groups, 1)) {
+  tables_[0] = gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
+                                            static_cast<int>(groups_) * kLayersPerGroup);
+}
 
 void SkyViewTable::start_program() const { start_built_program(*builds_, "render/sky_view.comp", defines_); }
 
@@ -44,10 +46,14 @@ void SkyViewTable::set_camera(double camera_radius_m, double ground_radius_m, do
   fill.set_uniform("sun_angular_radius", static_cast<float>(sun_angular_radius_rad));
 }
 
-void SkyViewTable::fill_group(std::size_t group) const {
+void SkyViewTable::fill_group(std::size_t group, std::size_t light) {
+  gl::Texture& table = tables_.at(light);
+  if (table.id() == 0)
+    table = gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
+                                         static_cast<int>(groups_) * kLayersPerGroup);
   const gl::ShaderProgram& fill = fill_program();
   fill.set_uniform("layer_base", static_cast<int>(group) * kLayersPerGroup);
-  table_.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
+  table.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
   fill.dispatch_covering(kAzimuthTexels, kZenithTexels);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }

@@ -14,6 +14,7 @@
 // group, 2·128·64 = 16 384 directions filled per group and frame. Its error
 // against the per-pixel 4D lookups is measured in tests/render/renderer_test.cpp
 // (RendererSkyView) and docs/rendering-performance.md.
+#include <array>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -29,6 +30,9 @@ class SkyViewTable {
   static constexpr int kAzimuthTexels = 128;  ///< SKY_VIEW_AZIMUTH_TEXELS
   static constexpr int kZenithTexels = 64;    ///< SKY_VIEW_ZENITH_TEXELS, per half
   static constexpr int kLayersPerGroup = 6;   ///< SKY_VIEW_LAYERS
+  /// Tables per atmosphere: one per light of the passes (0 the sun, 1 the
+  /// Moon: render/frame/moon_light.h); the Moon's is allocated on its first fill.
+  static constexpr std::size_t kLights = 2;
 
   /// SKY_VIEW_AZIMUTH_TEXELS, SKY_VIEW_ZENITH_TEXELS and SKY_VIEW_LAYERS from the
   /// constants above, for the shaders that include render/sky_view_mapping.glsl.
@@ -50,18 +54,19 @@ class SkyViewTable {
   /// cosine at the camera and the sun's angular radius (the fading of the direct
   /// sun at the horizon) for the following fill_group calls.
   void set_camera(double camera_radius_m, double ground_radius_m, double sun_cosine, double sun_angular_radius_rad);
-  /// Fills the layers of wavelength group g (its tables must be bound).
-  void fill_group(std::size_t group) const;
+  /// Fills the layers of wavelength group g of light `light`'s table (the group's tables must be bound).
+  void fill_group(std::size_t group, std::size_t light = 0);
 
   /// Zenith angle of the geometric horizon at the camera, π − asin(RB / r) [rad].
   double theta_horizon_rad() const { return theta_horizon_rad_; }
-  /// Binds the table for sampling (sampler2DArray) on texture unit `unit`.
-  void bind(unsigned unit) const { table_.bind(unit); }
+  /// Binds light `light`'s table for sampling (sampler2DArray) on texture unit `unit`.
+  void bind(unsigned unit, std::size_t light = 0) const { tables_.at(light).bind(unit); }
 
  private:
   gl::ProgramBuilds* builds_;
   std::vector<gl::ShaderDefine> defines_;  // the fill program's
-  gl::Texture table_;
+  std::size_t groups_ = 1;
+  std::array<gl::Texture, kLights> tables_;
   double theta_horizon_rad_ = 0.0;
 };
 

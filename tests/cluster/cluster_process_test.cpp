@@ -374,9 +374,12 @@ TEST_F(ClusterProcess, ThreeNodesPresentEveryFrameAndStitchToASingleRender) {
   EXPECT_EQ(stitched.rgb, whole.rgb);
 }
 
-/// Pixels of `image` brighter than twice the median of their 5×5 neighbourhood
-/// and by more than 4 codes of 8-bit sRGB in green: the stars and the Moon of a
-/// night frame (a splat covers at most 2 × 2 pixels).
+/// Pixels of `image` brighter than 1.5 times the median of their 5×5
+/// neighbourhood and by more than 4 codes of 8-bit sRGB in green: the stars and
+/// the Moon of a night frame (a splat covers at most 2 × 2 pixels). Not twice:
+/// under the evening show's full Moon the sky is lit by it (moonlight from the
+/// tables, docs/night-sky.md), and on a 128² dome master's 1.4° pixels no star
+/// doubles the moonlit sky's radiance any more; 1.5 times still finds four.
 int point_sources(const image::LinearImage& image) {
   int count = 0;
   for (int y = 2; y + 2 < image.height; ++y)
@@ -386,7 +389,7 @@ int point_sources(const image::LinearImage& image) {
         for (int dx = -2; dx <= 2; ++dx) around.push_back(image.rgb[((y + dy) * image.width + x + dx) * 3 + 1]);
       std::nth_element(around.begin(), around.begin() + 12, around.end());
       const float v = image.rgb[(y * image.width + x) * 3 + 1], median = around[12];
-      count += v > 2.0f * median && image::srgb_encode(v) - image::srgb_encode(median) > 4.0f / 255.0f;
+      count += v > 1.5f * median && image::srgb_encode(v) - image::srgb_encode(median) > 4.0f / 255.0f;
     }
   return count;
 }

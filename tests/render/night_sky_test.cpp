@@ -30,6 +30,7 @@
 #include "render/gl/texture.h"
 #include "render/renderer.h"
 #include "scene/local_horizon.h"
+#include "tests/render/greenwich_night.h"
 #include "tests/render/render_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
@@ -46,7 +47,7 @@ using core::kDeg;
   GTEST_SKIP() << "stellarium-data is not installed (" << astro::kStellariumStarDirectory.string() \
                << "): scripts/bootstrap installs it"
 
-constexpr double kLatitudeDeg = 51.4769, kLongitudeDeg = -0.0005;
+constexpr double kLatitudeDeg = testing::kGreenwichLatitudeDeg, kLongitudeDeg = testing::kGreenwichLongitudeDeg;
 const astro::UtcTime kTime{2026, 1, 15, 23, 0, 0.0};  // Sirius due south, 20° up at Greenwich
 
 astro::StarCatalogue bright_stars() {
@@ -55,20 +56,9 @@ astro::StarCatalogue bright_stars() {
   return astro::load_star_catalogue(o);
 }
 
-/// The Earth at the origin (with the preset's atmosphere, or none), the sky
-/// clock at Greenwich on kTime, the camera 2 m up looking along `look` (a
-/// direction in the site's east-north-up frame), the sun below the ground.
+/// The Earth at the origin, the sky clock at Greenwich on kTime (testing::greenwich).
 scene::Scene greenwich(const std::string& preset, const glm::dvec3& look_enu, double exposure) {
-  scene::Scene s = testing::one_planet_scene("night sky test", "Earth", "earth-advanced", preset);
-  s.camera.position_m = scene::direction_from_latitude_longitude(kLatitudeDeg * kDeg, kLongitudeDeg * kDeg) *
-                        (s.bodies[0].radius_m + 2.0);
-  const scene::LocalHorizon h = scene::local_horizon_at(s.camera.position_m, s.bodies[0]);
-  const glm::dvec3 forward = glm::normalize(look_enu.x * h.east + look_enu.y * h.north + look_enu.z * h.up);
-  s.camera.orientation = testing::look_rotation(forward, std::abs(look_enu.z) > 0.99 ? h.north : h.up);
-  s.camera.exposure = exposure;
-  s.sun.direction = -h.up;  // midnight
-  s.sky_clock = scene::SkyClock{kTime, astro::Site{kLatitudeDeg, kLongitudeDeg, 46.0}, 0};
-  return s;
+  return testing::greenwich(preset, look_enu, exposure, kTime);
 }
 
 RenderOptions options(bool stars, bool floor) {
@@ -82,17 +72,7 @@ RenderOptions options(bool stars, bool floor) {
   return o;
 }
 
-struct TestRenderer {
-  Renderer renderer;
-  explicit TestRenderer(const RenderOptions& o)
-      : renderer((testing::context(), o), [](const atmosphere::AtmosphereModel& model) {
-          for (const char* preset : {"earth-advanced", "mars"}) {
-            const SmallTables& t = SmallTables::get(preset);
-            if (atmosphere::lookup_table_hash(t.model) == atmosphere::lookup_table_hash(model)) return t.tables;
-          }
-          throw std::runtime_error("no test tables for " + model.name);
-        }) {}
-};
+using testing::TestRenderer;
 
 /// Sirius (the catalogue's brightest) in the site's east-north-up frame at kTime, geometric.
 glm::dvec3 sirius_enu(const astro::StarCatalogue& c) {
