@@ -124,7 +124,8 @@ void register_sample_command(CLI::App& app) {
   cmd->add_option("--samples", args->samples, "Monte Carlo paths per direction for --method reference")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
   cmd->add_option("--orders", args->orders, "Scattering orders of the tables")->check(CLI::Range(1, 50));
-  cmd->add_option("--tables", args->tables, "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
+  cmd->add_option("--tables", args->tables,
+                  "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
       ->check(CLI::IsMember(atmosphere::table_size_names()));
   cmd->add_flag("--cpu", args->cpu, "Precompute tables on the CPU");
   cmd->add_option("--cache", args->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");

@@ -238,7 +238,8 @@ void register_validate_stress(CLI::App& validate) {
   cmd->add_option("--samples", args->samples, "CPU configurations in all (split over the models), after the sweep")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 36));
   cmd->add_option("--seed", args->seed, "Random seed (samples and random parameter sets)");
-  cmd->add_option("--tables", args->tables, "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
+  cmd->add_option("--tables", args->tables,
+                  "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
       ->check(CLI::IsMember(atmosphere::table_size_names()));
   cmd->add_option("--presets", args->presets, "Presets to stress (default: all)")->delimiter(',');
   cmd->add_option("--random-models", args->random_models, "Random parameter sets besides the presets")
