@@ -70,13 +70,13 @@ std::array<float, 4> vec4_of(const glm::dvec3& v, double w) {
 
 struct Renderer::Impl {
   explicit Impl(const RenderOptions& options)
-      : frame_programs(options.sun_disc, options.limb_darkening), night_sky(options.night_sky) {}
+      : frame_programs(options.sun_disc, options.limb_darkening), night_sky(options.night_sky, refractions) {}
   // Every program of the renderer, by text (created by the first frame, with a
   // current context): a frame starts all it needs before finishing any.
   std::unique_ptr<gl::ProgramBuilds> builds;
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
+  RefractionCache refractions;   // the air's refraction at the camera: stars, the Moon, the Sun's disc
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/frame/star_pass.h)
-  SunRefraction sun_refraction;  // the drawn disc's lift (render/frame/sun_refraction.h)
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   AlbedoArray albedo;  // the bodies' maps, one layer per body (render/frame/albedo_array.h)
   std::string projection_key;
@@ -171,7 +171,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
                                                                             : gl::CompileMode::parallel);
   const gl::ProgramBuilds::Statistics builds_before = im.builds->statistics();
   Frame frame = frame_constants(scene, projection);
-  if (options_.sun_disc) frame.sun_lift = impl_->sun_refraction.lift(scene, sun_reach_rad(frame));
+  if (options_.sun_disc) frame.sun_lift = sun_disc_lift(scene, sun_reach_rad(frame), impl_->refractions);
   update_tile_cones(frame);
   prepare_bodies(frame);
   make_tables_resident(frame);

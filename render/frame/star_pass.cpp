@@ -50,7 +50,8 @@ double smallest_pixel_solid_angle_sr(const warp::Projection& projection) {
 
 }  // namespace
 
-NightSkyPass::NightSkyPass(const NightSkyRenderOptions& options) : options_(options) {}
+NightSkyPass::NightSkyPass(const NightSkyRenderOptions& options, RefractionCache& refractions)
+    : options_(options), refractions_(refractions) {}
 NightSkyPass::~NightSkyPass() = default;
 
 std::string NightSkyPass::catalogue_identity() const { return field_ ? field_->catalogue().identity_sha256 : ""; }
@@ -137,21 +138,15 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
       if (air && clock.body == site_body && planet.atmosphere) {
         const double altitude_m =
             std::max(0.0, glm::length(scene.camera.position_m - planet.position_m) - planet.radius_m);
-        const std::string key = fmt::format("{} {:.0f}", air->transmittance->hash, altitude_m);
-        if (key != refraction_key_) {
-          refraction_ = std::make_unique<astro::Refraction>(
-              astro::Refraction::for_atmosphere(planet.atmosphere->loaded, 550.0, altitude_m));
-          refraction_key_ = key;
-        }
-        f.refraction = refraction_.get();
-        if (scene.night_sky && scene.night_sky->scintillation && scene.night_sky->body == clock.body) {
+        f.refraction = refractions_.get(*planet.atmosphere, altitude_m);
+        if (f.refraction && scene.night_sky && scene.night_sky->scintillation && scene.night_sky->body == clock.body) {
           // One draw per star and integration interval of the sky's clock (seconds from J2000 UTC).
           const astro::ScintillationOptions& twinkle = *scene.night_sky->scintillation;
           const double seconds = ((time.utc().day1 - 2451545.0) + time.utc().day2) * 86400.0;
           f.scintillation = &twinkle;
           f.scintillation_interval = static_cast<std::int64_t>(std::floor(seconds / twinkle.integration_s));
           f.observer_altitude_m = altitude_m;
-          f.ground_refractivity = refraction_->ground_refractivity();
+          f.ground_refractivity = f.refraction->ground_refractivity();
         }
       }
       f.atmospheres = atmospheres;

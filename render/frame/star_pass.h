@@ -29,6 +29,7 @@
 #include "astro/refraction.h"
 #include "render/frame/frame_state.h"
 #include "render/frame/pass_timer.h"
+#include "render/frame/refraction_cache.h"
 #include "render/frame/star_field.h"
 #include "render/frame/tile_classification.h"
 #include "render/gl/buffer.h"
@@ -52,7 +53,8 @@ struct NightSkyStats {
 
 class NightSkyPass {
  public:
-  explicit NightSkyPass(const NightSkyRenderOptions& options);
+  /// `refractions` (shared with the Sun's disc) outlives the pass.
+  NightSkyPass(const NightSkyRenderOptions& options, RefractionCache& refractions);
   ~NightSkyPass();
   NightSkyPass(const NightSkyPass&) = delete;
   NightSkyPass& operator=(const NightSkyPass&) = delete;
@@ -94,8 +96,8 @@ class NightSkyPass {
   glm::dvec3 floor_up_{0, 0, 1};
   double floor_horizon_mu_ = 0.0;
   // Cached per atmosphere and options.
-  std::string refraction_key_, floor_key_;
-  std::unique_ptr<astro::Refraction> refraction_;
+  RefractionCache& refractions_;
+  std::string floor_key_;
   std::unique_ptr<astro::NightSkyFloor> night_floor_;
   std::unique_ptr<astro::LightPollution> light_pollution_;
   // GL objects.

@@ -1,10 +1,7 @@
 #include "render/frame/sun_refraction.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
-#include <functional>
 
 #include <glm/geometric.hpp>
 
@@ -24,35 +21,23 @@ glm::dvec3 at_altitude(const glm::dvec3& d, const glm::dvec3& up, double altitud
 
 }  // namespace
 
-SunDiscLift SunRefraction::lift(const scene::Scene& scene, double reach_rad) {
+SunDiscLift sun_disc_lift(const scene::Scene& scene, double reach_rad, RefractionCache& refractions) {
   SunDiscLift out;
   const scene::Body* air = nullptr;
   for (const scene::Body& b : scene.bodies)
     if (b.atmosphere && glm::length(scene.camera.position_m - b.position_m) < b.atmosphere->loaded.model.top_radius_m)
       air = &b;
   if (!air) return out;
-
-  const atmosphere::LoadedAtmosphere& loaded = air->atmosphere->loaded;
   const glm::dvec3 from_centre = scene.camera.position_m - air->position_m;
-  const double altitude_m = std::max(0.0, glm::length(from_centre) - loaded.model.ground_radius_m);
-  const std::string key = fmt::format("{} {} {:.0f}", air->atmosphere->source,
-                                      std::hash<std::string>{}(loaded.parameters.dump()), altitude_m / 10.0);
-  if (key != key_) {
-    refraction_.reset();
-    key_ = key;
-    const double refractivity = astro::ground_refractivity(loaded);
-    if (refractivity > 0.0)
-      refraction_ = std::make_unique<astro::Refraction>(loaded.model.ground_radius_m, loaded.model.top_radius_m,
-                                                        loaded.model.rayleigh_density, refractivity,
-                                                        std::round(altitude_m / 10.0) * 10.0);
-  }
-  if (!refraction_) return out;
+  const astro::Refraction* refraction =
+      refractions.get(*air->atmosphere, glm::length(from_centre) - air->atmosphere->loaded.model.ground_radius_m);
+  if (!refraction) return out;
 
   out.active = true;
   out.up = glm::normalize(from_centre);
   const glm::dvec3 sun = glm::normalize(scene.sun.direction);
   const double true_altitude = std::asin(std::clamp(glm::dot(sun, out.up), -1.0, 1.0));
-  const double apparent = refraction_->apparent_from_true_rad(true_altitude);
+  const double apparent = refraction->apparent_from_true_rad(true_altitude);
   out.apparent_sun = glm::normalize(at_altitude(sun, out.up, apparent));
   // The disc's points appear within its reach of the apparent centre (R falls
   // with altitude: the lift only brings the limbs closer), one entry's margin.
@@ -61,7 +46,7 @@ SunDiscLift SunRefraction::lift(const scene::Scene& scene, double reach_rad) {
   out.first_altitude_rad = apparent - half;
   for (int i = 0; i < kSunLiftSamples; ++i)
     out.lift_rad[static_cast<std::size_t>(i)] =
-        static_cast<float>(refraction_->at_apparent_rad(out.first_altitude_rad + i * out.step_rad));
+        static_cast<float>(refraction->at_apparent_rad(out.first_altitude_rad + i * out.step_rad));
   return out;
 }
 

@@ -25,12 +25,10 @@
 // stars), and the longer air path of the bent ray (the disc is dimmed by the
 // apparent ray's transmittance).
 #include <array>
-#include <memory>
-#include <string>
 
 #include <glm/vec3.hpp>
 
-#include "astro/refraction.h"
+#include "render/frame/refraction_cache.h"
 #include "scene/scene.h"
 
 namespace zenith::render {
@@ -48,19 +46,10 @@ struct SunDiscLift {
   std::array<float, kSunLiftSamples> lift_rad{};  ///< R at those apparent altitudes
 };
 
-/// The refraction of the air the camera is in, kept from frame to frame while
-/// the atmosphere and the camera's altitude (to 10 m, which moves R at the
-/// horizon by under 0.05″) stay the same.
-class SunRefraction {
- public:
-  /// The lift for a frame of `scene` whose sun is drawn within `reach_rad` of
-  /// its centre (render/frame/frame_constants.h sun_reach_rad). Inactive when
-  /// the camera is in no atmosphere, or its air does not refract.
-  SunDiscLift lift(const scene::Scene& scene, double reach_rad);
-
- private:
-  std::string key_;
-  std::unique_ptr<astro::Refraction> refraction_;
-};
+/// The lift for a frame of `scene` whose sun is drawn within `reach_rad` of
+/// its centre (render/frame/frame_constants.h sun_reach_rad), from the air's
+/// refraction kept in `refractions` (shared with the star pass). Inactive when
+/// the camera is in no atmosphere, or its air does not refract.
+SunDiscLift sun_disc_lift(const scene::Scene& scene, double reach_rad, RefractionCache& refractions);
 
 }  // namespace zenith::render
