@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "astro/sky_positions.h"
+#include "bench/star_frames.h"
 #include "core/units.h"
 #include "render/frame/star_pass.h"
 #include "scene/frame_scene.h"
@@ -19,12 +20,6 @@ namespace zenith::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 struct Row {
   double fixed_exposure = 0.0;  // 0: the show's own exposure track
@@ -132,7 +127,7 @@ void sweep_star_twilight(const StarTwilight& w, const std::string& device, const
   std::ofstream timing(times);
   if (!timing) throw std::runtime_error("cannot write " + times.string());
   timing << "device,dome_px,show_time_s,sun_altitude_deg,exposure,frame_ms_skipped,frame_ms_forced,saved_ms,"
-            "saved_percent,stars_forced,frames\n";
+            "saved_percent,stars_forced,star_test_ms,frames\n";
   if (saved.empty()) {
     fmt::print("no frame where the sky test skips what the black-sky test ran\ncsv: {}\n", csv.string());
     return;
@@ -152,6 +147,15 @@ void sweep_star_twilight(const StarTwilight& w, const std::string& device, const
       always.render(s, dome, discard);
       ran.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
     }
+  // The test's own CPU time, from a frame with the passes timed (after one untimed).
+  render::RenderOptions timed_options = tested;
+  timed_options.time_passes = true;
+  render::Renderer timed(timed_options, tables);
+  timed.render(s, dome, discard);
+  timed.render(s, dome, discard);
+  const auto& ms = timed.last_frame().pass_ms;
+  const double test_ms = ms.contains("star test") ? ms.at("star test") : 0.0;
+  fmt::print("the test itself: {:.2f} ms CPU\n", test_ms);
   const double a = median(skipped), b = median(ran);
   fmt::print(
       "at t {:.1f} s (sun {:.2f}°, exposure {:.4g}): {:.1f} ms with the sky test (skipped), {:.1f} ms with "
@@ -159,8 +163,9 @@ void sweep_star_twilight(const StarTwilight& w, const std::string& device, const
       at.t_s, at.sun_altitude_deg, at.exposure, a, b, always.last_frame().stars, b - a, 100.0 * (b - a) / b,
       skipped.size());
   timing << '"' << device << "\"," << w.dome_px << ','
-         << fmt::format("{:.2f},{:.3f},{:.6g},{:.3f},{:.3f},{:.3f},{:.2f},{},{}", at.t_s, at.sun_altitude_deg,
-                        at.exposure, a, b, b - a, 100.0 * (b - a) / b, always.last_frame().stars, skipped.size())
+         << fmt::format("{:.2f},{:.3f},{:.6g},{:.3f},{:.3f},{:.3f},{:.2f},{},{:.3f},{}", at.t_s, at.sun_altitude_deg,
+                        at.exposure, a, b, b - a, 100.0 * (b - a) / b, always.last_frame().stars, test_ms,
+                        skipped.size())
          << '\n';
   fmt::print("csv: {}, {}\n", csv.string(), times.string());
 }

@@ -13,12 +13,16 @@
 // y ≥ n_μ/2: the ground half is a separate layer no sky read weighs), or the
 // sky-view table's sky half, whose texels are those same reads at the camera.
 // Every read interpolates with weights in [0, 1] — bilinear in (μ, r), linear
-// in ν, in μs geometric a^(1−t) b^t or linear, both ≥ min(a, b) — so
-//   S ≥ min R · min_ν P_R + min M · min_ν P_M + min multiple
-// over the texels the reads can weigh: the two radius rows around the camera's,
-// the two μs columns around its μs (per mapping: single scattering's and
-// multiple's), every μ of the sky half and every ν slice. Bodies in front of
-// the sky, the Moon's light, the night floor and other atmospheres only add.
+// in ν, in μs geometric a^(1−t) b^t, linear or in between (all ≥ the
+// geometric one, which grows with a and b) — and every pixel's read has the
+// same r and μs, so the same row weights (1 − t_r, t_r) and μs weight t_s:
+//   column c:  A_c ≥ (1 − t_r) m(r₀, c) + t_r m(r₁, c),  m the least texel
+//              over every μ of the sky half and every ν slice;
+//   S ≥ A_c₀^(1−t_s) A_c₁^t_s for R, M and multiple (each with its own μs
+//       mapping), R and M times their smallest phases.
+// A table's texel below 0 (the multiple table's tail of orders) makes that
+// term's bound the smaller of its columns. Bodies in front of the sky, the
+// Moon's light, the night floor and other atmospheres only add.
 #include <cstddef>
 #include <vector>
 
