@@ -45,7 +45,7 @@ struct NightSkyRenderOptions {
   /// The Moon's albedo map (render/frame/moon_albedo_map.h): stellarium-data's
   /// equirectangular texture, loaded once per renderer with the first disc; a
   /// missing or unreadable file logs one warning and draws a uniform albedo.
-  std::filesystem::path moon_albedo_map = "/usr/share/stellarium/textures/moon.png";
+  std::filesystem::path moon_albedo_map = "/usr/share/stellarium/textures/moon.png";  // astro::kStellariumMoonMap
 };
 
 struct RenderOptions {

@@ -4,13 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
-#include "core/sha256.h"
 #include "core/units.h"
 #include "image/image_io.h"
 #include "image/tone_mapping.h"
@@ -32,12 +29,6 @@ double bilinear(const std::vector<float>& t, int w, int h, double longitude_rad,
   const int y0 = static_cast<int>(fy), y1 = std::min(y0 + 1, h - 1);
   const auto at = [&](int i, int j) { return double(t[static_cast<std::size_t>(j) * w + i]); };
   return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x1, y0)) + ay * ((1 - ax) * at(x0, y1) + ax * at(x1, y1));
-}
-
-std::string file_sha256(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return core::sha256_hex(bytes.data(), bytes.size());
 }
 
 }  // namespace
@@ -85,7 +76,7 @@ MoonAlbedoMap MoonAlbedoMap::load(const std::filesystem::path& path) {
   for (float& t : m.texels_) t *= scale;
   for (float& t : m.coarse_) t *= scale;
   m.largest_ = *std::max_element(m.texels_.begin(), m.texels_.end());
-  m.identity_sha256_ = file_sha256(path);
+  m.identity_sha256_ = astro::moon_map_identity(path);
   return m;
 }
 

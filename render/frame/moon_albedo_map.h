@@ -38,10 +38,11 @@
 
 #include <glm/vec3.hpp>
 
+#include "astro/sky_data_identity.h"
+
 namespace zenith::render {
 
-/// stellarium-data's Moon texture (scripts/bootstrap installs it).
-inline const std::filesystem::path kStellariumMoonMap = "/usr/share/stellarium/textures/moon.png";
+using astro::kStellariumMoonMap;
 
 /// The Moon's body-fixed axes (astro::MoonAxes) in the world frame: x toward
 /// selenographic (0°, 0°), y toward (90° E, 0°), z toward the north pole.
@@ -63,7 +64,8 @@ class MoonAlbedoMap {
   bool is_uniform() const { return identity_sha256_.empty(); }
   /// The largest texel (a bound on the disc's brightness relative to its mean).
   double largest() const { return largest_; }
-  /// SHA-256 of the file's bytes ("" for the uniform map): what a cluster compares.
+  /// SHA-256 of the file's bytes ("" for the uniform map: astro::moon_map_identity),
+  /// joined with the catalogue's in what a cluster compares (astro/sky_data_identity.h).
   const std::string& identity_sha256() const { return identity_sha256_; }
   /// Bilinear relative albedo at a selenographic point, from a copy box-filtered
   /// to 1.4° texels (what the disc's mean needs; the GPU samples the full map).

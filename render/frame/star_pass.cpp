@@ -201,6 +201,7 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
           splats_ = star_splats(*field_, directions_, f);
         });
         stats_.catalogue_identity = field_->catalogue().identity_sha256;
+        stats_.moon_map_identity = moon_map().identity_sha256();  // the sky data a cluster compares
       }
     }
     stats_.stars = splats_.size();

@@ -51,8 +51,10 @@ struct NightSkyStats {
   bool night_floor = false;        ///< the night floor was added
   bool moon = false;               ///< the Moon was drawn (a disc, or a point below a pixel's size)
   std::string catalogue_identity;  ///< StarCatalogue::identity_sha256 of the stars drawn ("" none)
-  std::string moon_map_identity;   ///< MoonAlbedoMap::identity_sha256 of the Moon's disc drawn ("" none or uniform)
-  double moon_mean_albedo = 1.0;   ///< the map's photometric mean over the lit disc (moon_disc_mean_albedo)
+  /// MoonAlbedoMap::identity_sha256 of the map loaded, given with the stars or the Moon's
+  /// disc ("" neither drawn, or the uniform albedo of a missing map)
+  std::string moon_map_identity;
+  double moon_mean_albedo = 1.0;  ///< the map's photometric mean over the lit disc (moon_disc_mean_albedo)
 };
 
 class NightSkyPass {
