@@ -66,7 +66,8 @@ MoonWorldAxes moon_world_axes(const astro::MoonAxes& axes, const astro::SkyPosit
     for (glm::dvec3* v : {&out[0], &out[2]})
       *v = *v * c + glm::cross(axis, *v) * s + axis * glm::dot(axis, *v) * (1.0 - c);
   }
-  out[2] = glm::normalize(out[2] - out[0] * glm::dot(out[0], out[2]));  // orthonormal to float precision
+  // Each axis came through ERFA alone: re-orthogonalized.
+  out[2] = glm::normalize(out[2] - out[0] * glm::dot(out[0], out[2]));
   out[1] = glm::cross(out[2], out[0]);
   return out;
 }
