@@ -80,6 +80,7 @@
 #include "bench/present_bench.h"
 #include "bench/process_cpu.h"
 #include "bench/star_frames.h"
+#include "bench/star_twilight.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/software_rasterizer.h"
 #include "render/lut/gpu_precompute.h"
@@ -115,6 +116,7 @@ struct Options {
   bool moonlight = false;       // --moonlight: the Moon's light of the atmosphere passes (the same)
   bool star_time_given = false;
   bench::StarTiming star_timing;
+  bench::StarTwilight star_twilight;  // --stars-show SHOW: the test through a show's twilight (bench/star_twilight.h)
   /// Per-projector mode: render every output of this viewport config (its own
   /// projection, warp and size) and report each one's frame time and peak memory.
   std::optional<std::filesystem::path> viewport;
@@ -143,6 +145,10 @@ constexpr const char* kUsage =
     "                 --stars-time ISO (UTC), --stars-exposure X, --stars-csv FILE\n"
     "                 (default bench/results/star_frame_times.csv); the ground view:\n"
     "                 --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79 --stars 8.7\n"
+    "  --stars-show SHOW  with --stars: where the pass's test lets the stars run through the show's\n"
+    "                 twilight and what skipping them saves (bench/star_twilight.h), on a fisheye dome\n"
+    "                 master of --stars-dome N pixels (default 1024), every --stars-step S show seconds\n"
+    "                 (default 2); --stars-csv (default bench/results/star_twilight_skip.csv)\n"
     "  --moonlight    the Moon's light of the atmosphere passes instead: frames with and without it at a full\n"
     "                 Moon (--stars-time, default 2026-01-03T20:00:00Z) and by day, --stars-exposure, --stars-csv\n"
     "                 (default bench/results/moonlight_frame_times.csv)\n"
@@ -247,7 +253,16 @@ Options parse_options(int argc, char** argv) {
         throw std::invalid_argument("--stars-exposure: must be in (0, 1e6]");
     } else if (a == "--stars-csv")
       o.star_timing.csv = value(i, a);
-    else if (a == "--device")
+    else if (a == "--stars-show")
+      o.star_twilight.show = value(i, a);
+    else if (a == "--stars-dome") {
+      o.star_twilight.dome_px = std::stoi(value(i, a));
+      if (!(o.star_twilight.dome_px >= 16 && o.star_twilight.dome_px <= 8192))
+        throw std::invalid_argument("--stars-dome: must be in [16, 8192]");
+    } else if (a == "--stars-step") {
+      o.star_twilight.step_s = std::stod(value(i, a));
+      if (!(o.star_twilight.step_s > 0.0)) throw std::invalid_argument("--stars-step: must be > 0");
+    } else if (a == "--device")
       o.device = value(i, a);
     else if (a == "--viewport")
       o.viewport = value(i, a);
@@ -534,6 +549,17 @@ int run(int argc, char** argv) {
   if (opt.gbuffer_path) {
     atm_options.one_pass_tiles = body_options.one_pass_tiles = false;
     atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
+  }
+  if (opt.stars && !opt.star_twilight.show.empty()) {
+    bench::StarTwilight w = opt.star_twilight;
+    w.magnitude_limit = *opt.stars;
+    w.rounds = opt.rounds;
+    w.iterations = opt.iterations;
+    w.csv = opt.star_timing.csv.empty()
+                ? std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/star_twilight_skip.csv"
+                : opt.star_timing.csv;
+    bench::sweep_star_twilight(w, device, tables);
+    return 0;
   }
   if (opt.stars || opt.moonlight) {
     bench::StarTiming t = opt.star_timing;

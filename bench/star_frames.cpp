@@ -17,15 +17,16 @@
 #include "warp/planar_projection.h"
 
 namespace zenith::bench {
-namespace {
-
-using Clock = std::chrono::steady_clock;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
 
 /// The body the camera stands nearest to (the site's body).
 std::size_t nearest_body(const scene::Scene& s) {

@@ -41,6 +41,9 @@ struct StarTiming {
   std::filesystem::path csv;
 };
 
+/// The median of `values` (the mean of the middle two for an even count; needs one).
+double median(std::vector<double> values);
+
 /// Runs the cases above and writes the CSV; `device` names the GL renderer.
 void time_stars(const StarTiming& timing, const std::string& device, const scene::Scene& scene,
                 const render::TableSource& tables);

@@ -1,5 +1,6 @@
 #include "image/tone_mapping.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -57,6 +58,32 @@ float srgb_decode(float encoded) {
 std::uint8_t display_byte(float x, ToneMapping tone) {
   const float encoded = srgb_encode(tone_map(x, tone));  // in [0, 1]
   return static_cast<std::uint8_t>(std::lround(255.0f * encoded));
+}
+
+double tone_map_slope(double x, ToneMapping tone) {
+  const double at = std::max(x, 0.0);
+  switch (tone) {
+    case ToneMapping::exponential: return std::exp(-at);
+    case ToneMapping::clamp: return at < 1.0 ? 1.0 : 0.0;
+  }
+  return 1.0;
+}
+
+double srgb_encode_slope(double linear) {
+  const double l = std::max(linear, 0.0);
+  if (l >= 1.0) return 0.0;
+  if (l <= 0.0031308) return 12.92;
+  return 1.055 / 2.4 * std::pow(l, 1.0 / 2.4 - 1.0);
+}
+
+double display_code_slope_bound(double x) {
+  const double at = std::max(x, 0.0);
+  double slope = 0.0;
+  for (ToneMapping tone : {ToneMapping::exponential, ToneMapping::clamp}) {
+    const double t = tone == ToneMapping::exponential ? -std::expm1(-at) : std::min(at, 1.0);
+    slope = std::max(slope, srgb_encode_slope(t) * tone_map_slope(at, tone));
+  }
+  return 255.0 * slope;
 }
 
 }  // namespace zenith::image

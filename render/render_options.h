@@ -37,6 +37,9 @@ struct NightSkyRenderOptions {
   /// The Moon lights the atmospheres (render/frame/moon_light.h): the sky and the
   /// ground by moonlight, from the same tables, where its own test finds it visible.
   bool moonlight = true;
+  /// Skip the stars when the frame's sky hides them all (render/frame/star_visibility.h);
+  /// false: place and draw them whenever they are on (the frame the test is checked against).
+  bool skip_hidden_stars = true;
   /// The catalogue (astro/star_catalogue.h): stellarium-data's directory and
   /// the faintest V kept, [−2, 10.5]. Loaded once per renderer, on the first
   /// frame that needs it; a missing catalogue logs a warning and draws no stars.

@@ -188,6 +188,10 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   stats_.stars = night.stars;
   stats_.night_sky_drawn = !night.skipped;
   stats_.star_catalogue_identity = night.catalogue_identity;
+  stats_.star_sky_floor = *std::max_element(night.star_test.sky_floor.begin(), night.star_test.sky_floor.end());
+  stats_.star_sky_peak = *std::max_element(night.star_test.sky_peak.begin(), night.star_test.sky_peak.end());
+  stats_.stars_could_show = night.star_test.could_show;
+  stats_.star_black_sky_peak = night.star_test.black_sky_peak;
   stats_.moon_map_identity = night.moon_map_identity;
   stats_.moon_mean_albedo = night.moon_mean_albedo;
   stats_.moonlight = frame.moonlit;

@@ -96,6 +96,14 @@ struct FrameStats {
   std::size_t stars = 0;
   bool night_sky_drawn = false;
   std::string star_catalogue_identity;
+  /// The stars' own test (render/frame/star_visibility.h), per linear sRGB
+  /// channel × exposure, largest channel: the least the sky behind any star
+  /// can be, the most the stars can add to a pixel of sky; whether they could
+  /// show (false: skipped, no star placed). Zeros and true where it did not run.
+  double star_sky_floor = 0.0, star_sky_peak = 0.0;
+  /// The test it replaced (StarVisibility::black_sky_peak; 0 where it did not run).
+  double star_black_sky_peak = 0.0;
+  bool stars_could_show = true;
   /// The Moon's disc (render/frame/moon_albedo_map.h): the identity of its
   /// albedo map, given with the stars or the disc ("" neither, or the uniform
   /// albedo of a missing map: astro/sky_data_identity.h joins it with the

@@ -16,6 +16,7 @@
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
 #include "render/frame/sky_radiance_bound.h"
+#include "render/frame/sky_radiance_floor.h"
 #include "render/frame/sky_view_table.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
@@ -93,6 +94,9 @@ class GpuAtmosphere {
   /// The most these tables can give per unit irradiance of a source
   /// (render/frame/sky_radiance_bound.h): the moonlight passes' test.
   const SkyRadianceBound& radiance_bound() const { return radiance_bound_; }
+  /// The least these tables give on a ray to space from a camera inside, per
+  /// unit irradiance of the sun (render/frame/sky_radiance_floor.h): the star pass's test.
+  const SkyRadianceFloor& radiance_floor() const { return radiance_floor_; }
 
  private:
   /// Group g's tables (texture units 0–4), the model's buffers and the texel coordinates.
@@ -115,6 +119,7 @@ class GpuAtmosphere {
   std::size_t table_bytes_ = 0;
   atmosphere::lut::LookupTables cpu_transmittance_;
   SkyRadianceBound radiance_bound_;
+  SkyRadianceFloor radiance_floor_;
 };
 
 }  // namespace zenith::render

@@ -24,6 +24,57 @@ StarField::StarField(astro::StarCatalogue catalogue, const std::vector<double>& 
     astro::star_irradiance_W_m2_nm(s.v_mag, s.b_minus_v, wavelengths_nm_, std::span<double>(&irradiance_[i * n], n));
   }
   if (!irradiance_.empty()) brightest_ = *std::max_element(irradiance_.begin(), irradiance_.end());
+  constexpr double kMasToRad = 3.14159265358979323846 / (180.0 * 3600.0 * 1000.0);
+  for (const astro::CatalogueStar& s : catalogue_.stars)
+    largest_proper_motion_rad_yr_ =
+        std::max(largest_proper_motion_rad_yr_, std::hypot(s.pm_ra_cosdec_mas_yr, s.pm_dec_mas_yr) * kMasToRad);
+}
+
+double StarField::largest_scintillation_normal(std::int64_t interval) {
+  if (have_normal_ && normal_interval_ == interval) return largest_normal_;
+  double largest = -astro::kLargestScintillationNormal;
+  for (std::size_t i = 0; i < catalogue_.stars.size(); ++i)
+    largest = std::max(largest, astro::scintillation_normal(i, interval));
+  have_normal_ = true;
+  normal_interval_ = interval;
+  largest_normal_ = largest;
+  return largest;
+}
+
+const std::vector<double>& StarField::brightest_cluster_irradiance(double radius_rad, double years_from_j2000) {
+  const double widened = radius_rad + 2.0 * largest_proper_motion_rad_yr_ * std::abs(years_from_j2000);
+  // The cache's key: the radius rounded up to a step of 2^(1/4).
+  const int step = static_cast<int>(std::ceil(4.0 * std::log2(std::max(widened, 1e-9))));
+  const auto cached = clusters_.find(step);
+  if (cached != clusters_.end()) return cached->second;
+  const double radius = std::min(std::exp2(step / 4.0), 3.14159265358979323846);
+  const double side = 2.0 * 2.0 * std::sin(0.5 * radius);  // twice the chord
+  const std::size_t n = wavelengths_nm_.size();
+  // Per cube of the unit sphere's grid, the sum of its stars' irradiances per wavelength.
+  std::map<std::array<std::int64_t, 3>, std::vector<double>> cubes;
+  for (std::size_t i = 0; i < catalogue_.stars.size(); ++i) {
+    const astro::CatalogueStar& s = catalogue_.stars[i];
+    const glm::dvec3 d(std::cos(s.dec_rad) * std::cos(s.ra_rad), std::cos(s.dec_rad) * std::sin(s.ra_rad),
+                       std::sin(s.dec_rad));
+    std::vector<double>& sum =
+        cubes[{static_cast<std::int64_t>(std::floor(d.x / side)), static_cast<std::int64_t>(std::floor(d.y / side)),
+               static_cast<std::int64_t>(std::floor(d.z / side))}];
+    sum.resize(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) sum[k] += irradiance(i, k);
+  }
+  std::vector<double> brightest(n, 0.0), sum(n);
+  for (const auto& [key, unused] : cubes) {
+    std::fill(sum.begin(), sum.end(), 0.0);
+    for (std::int64_t dz = -1; dz <= 1; ++dz)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+          const auto it = cubes.find({key[0] + dx, key[1] + dy, key[2] + dz});
+          if (it != cubes.end())
+            for (std::size_t k = 0; k < n; ++k) sum[k] += it->second[k];
+        }
+    for (std::size_t k = 0; k < n; ++k) brightest[k] = std::max(brightest[k], sum[k]);
+  }
+  return clusters_[step] = brightest;
 }
 
 glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& axis, double angle_rad) {

@@ -30,6 +30,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,21 @@ class StarField {
   double irradiance(std::size_t i, std::size_t k) const { return irradiance_[i * wavelengths_nm_.size() + k]; }
   /// The largest irradiance of any star at any wavelength.
   double brightest_irradiance() const { return brightest_; }
+  /// The most light one pixel can gather from several stars, per wavelength:
+  /// the largest sum, over the stars within `radius_rad` of any point of the
+  /// sky, of their irradiance at that wavelength [W m⁻² nm⁻¹], with the stars
+  /// at their J2000 places and the radius widened by twice the largest proper
+  /// motion over `years_from_j2000` (precession, nutation, aberration and the
+  /// sky's turning move neighbours alike). ≥ each wavelength's brightest star.
+  /// From a grid of cubes of side twice the widened chord: every star within
+  /// that chord of a star lies in the 27 cubes around its cube. Cached per
+  /// radius step of 2^(1/4).
+  const std::vector<double>& brightest_cluster_irradiance(double radius_rad, double years_from_j2000);
+  /// The largest standard normal astro::scintillation_normal draws for any
+  /// star of the catalogue (by its index, as star_splats does) in integration
+  /// interval `interval`: the brightest twinkle of that interval is
+  /// scintillation_factor(σ², this). Cached for the last interval.
+  double largest_scintillation_normal(std::int64_t interval);
 
   /// Every star's geometric direction at `time` from `site` as (east, north,
   /// up) unit vectors into `out`: ERFA at the epoch, turned by the Earth's
@@ -112,6 +128,11 @@ class StarField {
   std::vector<double> wavelengths_nm_;
   std::vector<double> irradiance_;  // n per star
   double brightest_ = 0.0;
+  double largest_proper_motion_rad_yr_ = 0.0;
+  std::map<int, std::vector<double>> clusters_;  // brightest_cluster_irradiance by radius step
+  bool have_normal_ = false;
+  std::int64_t normal_interval_ = 0;
+  double largest_normal_ = 0.0;
   bool have_epoch_ = false;
   double epoch_ut1_jd_ = 0.0;
   astro::Site epoch_site_;

@@ -16,6 +16,7 @@
 #include "astro/star_catalogue.h"
 #include "core/units.h"
 #include "render/frame/night_sky_table.h"
+#include "render/frame/star_visibility.h"
 #include "render/shader_bindings.h"
 #include "render/shader_programs.h"
 #include "scene/local_horizon.h"
@@ -33,20 +34,6 @@ std::vector<StarAtmosphere> star_atmospheres(const FrameState& frame) {
         {body.position_m, pass.gpu->ground_radius_m(), pass.gpu->top_radius_m(), &pass.gpu->cpu_transmittance()});
   }
   return out;
-}
-
-/// The smallest pixel solid angle over a 17 × 17 grid of the image [sr], a
-/// quarter of it as the margin for what the grid misses (the projections'
-/// solid angles vary smoothly: a fisheye's by (π/2)² from centre to rim).
-double smallest_pixel_solid_angle_sr(const warp::Projection& projection) {
-  double smallest = 0.0;
-  for (int j = 0; j <= 16; ++j)
-    for (int i = 0; i <= 16; ++i) {
-      const double omega = pixel_solid_angle_sr(projection, (projection.width() - 1) * i / 16.0 + 0.5,
-                                                (projection.height() - 1) * j / 16.0 + 0.5);
-      if (omega > 0.0 && (smallest == 0.0 || omega < smallest)) smallest = omega;
-    }
-  return 0.25 * smallest;
 }
 
 /// The Moon's body axes in the world: from GCRS to the site's (east, north, up),
@@ -189,14 +176,9 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
       f.lowest_sin_altitude = std::sin(std::max(-0.5 * core::kPi, -dip - 2.0 * core::kDeg));
     }
     if (options_.stars && ensure_field(scene) && field_->size() > 0) {
-      double weight = 0.0;  // the largest Σ_λ max_c |w_c(λ)|: an RGB bound per unit of flat irradiance
-      for (const auto& w : frame.rgb_weights) weight += std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
-      // Twinkling can brighten a star by at most the largest log-normal factor (variance ≤ 1).
-      const double twinkle =
-          f.scintillation ? astro::scintillation_factor(1.0, astro::kLargestScintillationNormal) : 1.0;
-      const double bound = exposure * field_->brightest_irradiance() * weight * twinkle /
-                           smallest_pixel_solid_angle_sr(frame.projection);
-      if (bound >= kInvisibleDisplayStep) {
+      const double years = ((time.utc().day1 - 2451545.0) + time.utc().day2) / 365.25;
+      timer.cpu("star test", [&] { stats_.star_test = star_visibility(frame, *field_, f, years); });
+      if (stats_.star_test.could_show || !options_.skip_hidden_stars) {
         timer.cpu("star placement", [&] {
           field_->directions_enu(time, clock.site, directions_);
           splats_ = star_splats(*field_, directions_, f);
@@ -335,9 +317,7 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
   // Tiles to resolve: the band's drawn tiles (the floor goes on every sky
   // pixel) or only those a star touches; black tiles a star touches are overwritten.
   std::vector<std::uint8_t> touched(band.tiles, 0);
-  float largest = 0.0f;
   for (auto s = begin; s != end; ++s) {
-    largest += std::max({std::abs(s->rgb[0]), std::abs(s->rgb[1]), std::abs(s->rgb[2])});
     const int x0 = static_cast<int>(std::floor(s->x_px - 0.5f)), y0 = static_cast<int>(std::floor(s->y_px - 0.5f));
     for (int y = y0; y <= y0 + 1; ++y)
       for (int x = x0; x <= x0 + 1; ++x) {
@@ -376,13 +356,13 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
   lists.insert(lists.end(), floor_tiles.begin(), floor_tiles.end());
   if (lists.empty()) return;
 
-  // Fixed point: no pixel can exceed the sum of the band's stars, which maps to 2^30 counts.
-  const double fixed_point = largest > 0.0f ? static_cast<double>(1 << 30) / largest : 1.0;
-  const std::size_t accumulator_bytes =
-      static_cast<std::size_t>(width) * static_cast<std::size_t>(rows) * 4 * sizeof(int);
+  // The accumulator: a 64-bit fixed-point value per pixel and channel of a
+  // constant step (star_accumulator.glsl), the same on every node and band.
+  const std::size_t accumulator_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows) *
+                                        kStarAccumulatorUintsPerPixel * sizeof(std::uint32_t);
   if (accumulator_bytes > accumulator_bytes_) {
-    std::vector<int> zeros(accumulator_bytes / sizeof(int), 0);
-    accumulator_ = gl::Buffer::from(std::span<const int>(zeros));
+    std::vector<std::uint32_t> zeros(accumulator_bytes / sizeof(std::uint32_t), 0);
+    accumulator_ = gl::Buffer::from(std::span<const std::uint32_t>(zeros));
     accumulator_bytes_ = accumulator_bytes;
   }
   accumulator_.bind_storage(binding::kStarAccumulator);
@@ -402,13 +382,11 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
     splat_.set_uniform("star_count", static_cast<int>(count));
     splat_.set_uniform("band_origin", std::array<int, 2>{0, band.first_row});
     splat_.set_uniform("band_size", std::array<int, 2>{width, rows});
-    splat_.set_uniform("star_fixed_point", static_cast<float>(fixed_point));
     timer.gpu("stars", [&] { splat_.dispatch(static_cast<unsigned>((count + 63) / 64)); });
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
 
   const gl::ShaderProgram& p = frame.prepare(resolve_program(frame, floor_));
-  p.set_uniform("star_unit", static_cast<float>(1.0 / fixed_point));
   p.set_uniform("moon_disc", moon_disc_ ? 1 : 0);
   if (moon_disc_) {
     p.set_uniform("moon_direction",

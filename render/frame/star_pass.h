@@ -9,14 +9,18 @@
 // Per frame, on the CPU (render/frame/star_field.h): every star's pixel,
 // colour and extinction; the night floor's table (render/frame/night_sky_table.h).
 // Per band, on the GPU: star_splat.comp spreads the band's stars over 2 × 2
-// pixels into a fixed-point accumulator (integer atomics: the same sum in any
-// order), night_sky.comp adds the accumulator and the night floor to the band's
-// output.
+// pixels into a 64-bit fixed-point accumulator of a constant step (integer
+// atomics with an explicit carry: the same sum in any order, the same counts
+// for a star on every node; shaders/render/star_accumulator.glsl),
+// night_sky.comp adds the accumulator and the night floor to the band's output.
 //
-// Skipped by its own test (prepare()): when the brightest star and the night
-// floor, at the frame's exposure on a black sky, would change no display
-// value by half a code step of 8-bit sRGB (1.5e-4 of linear), neither the CPU
-// placement nor a GPU pass runs: a daylight exposure costs nothing.
+// Skipped by its own tests (prepare()): the stars when the brightest pixel
+// they can make, against the least the sky behind them can be (from the
+// tables: render/frame/star_visibility.h), would change no display value by
+// half a code step of 8-bit sRGB; the night floor when its brightest direction
+// would not on a black sky (1.5e-4 of linear). Then neither the CPU placement
+// nor a GPU pass runs: a daylight exposure, and a twilight sky bright enough to
+// hide every star, cost nothing.
 #include <cstddef>
 #include <map>
 #include <memory>
@@ -32,6 +36,7 @@
 #include "render/frame/pass_timer.h"
 #include "render/frame/refraction_cache.h"
 #include "render/frame/star_field.h"
+#include "render/frame/star_visibility.h"
 #include "render/frame/tile_classification.h"
 #include "render/gl/buffer.h"
 #include "render/gl/shader_program.h"
@@ -44,6 +49,15 @@ namespace zenith::render {
 /// 12.92 (the sRGB curve's slope there); the tone curve's slope at 0 is 1.
 inline constexpr double kInvisibleDisplayStep = 0.5 / 255.0 / 12.92;
 
+/// The star accumulator (shaders/render/star_accumulator.glsl, which defines
+/// the same numbers): counts per unit of exposed radiance (2²⁸, a constant of
+/// the renderer: every node and band quantizes a star alike), the largest
+/// exposed radiance a star adds to a pixel (the largest half float) and the
+/// uints a pixel takes (r, g, b as low and high words, two padding).
+inline constexpr double kStarCountsPerUnit = 268435456.0;
+inline constexpr double kStarRadianceLimit = 65504.0;
+inline constexpr std::size_t kStarAccumulatorUintsPerPixel = 8;
+
 /// What the pass did in the last frame.
 struct NightSkyStats {
   bool skipped = true;             ///< nothing drawn (no sky clock or night sky, or the test above)
@@ -51,6 +65,7 @@ struct NightSkyStats {
   bool night_floor = false;        ///< the night floor was added
   bool moon = false;               ///< the Moon was drawn (a disc, or a point below a pixel's size)
   std::string catalogue_identity;  ///< StarCatalogue::identity_sha256 of the stars drawn ("" none)
+  StarVisibility star_test;        ///< the stars' test (could_show true where it did not run)
   /// MoonAlbedoMap::identity_sha256 of the map loaded, given with the stars or the Moon's
   /// disc ("" neither drawn, or the uniform albedo of a missing map)
   std::string moon_map_identity;

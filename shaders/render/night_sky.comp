@@ -3,7 +3,8 @@
 // docs/night-sky.md, "Rendering the night sky"), after the atmosphere passes
 // and before the band leaves (a file's readback or the live display pass):
 //
-//   * the stars, from the star accumulator (star_splat.comp), in fixed point;
+//   * the stars, from the star accumulator (star_splat.comp), in 64-bit fixed
+//     point of a constant step (star_accumulator.glsl);
 //   * the Moon's disc where it is larger than a pixel (a smaller Moon is a
 //     point source among the stars): the Lommel–Seeliger law of
 //     astro/moon_photometry.h, L = L(1, 1) · 2μ0/(μ0 + μ), its phase from the
@@ -30,7 +31,6 @@ layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
 uniform bool overwrite;
 uniform bool with_stars;  // the tiles hold stars: read (and clear) the accumulator
-uniform float star_unit;  // radiance × exposure per count of the accumulator (1 / star_fixed_point)
 
 uniform bool moon_disc;
 uniform vec3 moon_direction;  // world, unit: the disc's centre (refracted)
@@ -91,9 +91,19 @@ void main() {
   const uint i = frame_rgb_index(p);
   vec3 add = vec3(0.0);
   if (with_stars) {
-    const ivec4 counts = star_pixels[i];
-    add = vec3(counts.rgb) * star_unit;
-    if (any(notEqual(counts.rgb, ivec3(0)))) star_pixels[i] = ivec4(0);
+    const uvec4 rg = star_pixels[2u * i], b = star_pixels[2u * i + 1u];
+    if (any(notEqual(rg, uvec4(0u))) || any(notEqual(b.xy, uvec2(0u)))) {
+      // Only pixels that show the sky carry starlight: not a fisheye's corners
+      // beyond its circle, a warp's pixels beyond its mesh, nor a pixel whose ray
+      // ends on the ground or another body next to a star at its limb (the
+      // pass's test, render/frame/star_visibility.h, bounds the stars against the sky).
+      vec3 seen;
+      float seen_m;
+      if (pixel_ray(p, seen) && nearest_body(seen, seen_m) < 0)
+        add = vec3(star_value(rg.x, rg.y), star_value(rg.z, rg.w), star_value(b.x, b.y));
+      star_pixels[2u * i] = uvec4(0u);
+      star_pixels[2u * i + 1u] = uvec4(0u);
+    }
   }
   vec3 ray;
   float distance_m;

@@ -5,8 +5,8 @@
 // its radiance bilinearly over the 2 × 2 pixels around its position (weights
 // summing to 1; pixel centres at i + 0.5), so a star moving across pixels
 // keeps its energy and does not flicker. The weights go to the band's star
-// accumulator (star_accumulator.glsl) in fixed point; night_sky.comp adds them
-// to the band's output.
+// accumulator (star_accumulator.glsl) in fixed point of a constant step, the
+// same on every node; night_sky.comp adds them to the band's output.
 
 layout(local_size_x = 64) in;
 
@@ -18,16 +18,14 @@ layout(std430, binding = STAR_SPLATS_BINDING) readonly buffer StarSplats { vec4 
 uniform int star_count;
 uniform ivec2 band_origin;
 uniform ivec2 band_size;
-uniform float star_fixed_point;  // counts per unit of radiance × exposure
 
 void add_to_pixel(ivec2 image_pixel, vec3 rgb) {
   const ivec2 p = image_pixel - band_origin;
   if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, band_size))) return;
-  const uint i = 4u * (uint(p.y) * uint(band_size.x) + uint(p.x));
-  const ivec3 counts = ivec3(round(rgb * star_fixed_point));
-  if (counts.r != 0) atomicAdd(star_accumulator[i], counts.r);
-  if (counts.g != 0) atomicAdd(star_accumulator[i + 1u], counts.g);
-  if (counts.b != 0) atomicAdd(star_accumulator[i + 2u], counts.b);
+  const uint i = STAR_UINTS_PER_PIXEL * (uint(p.y) * uint(band_size.x) + uint(p.x));
+  add_star_counts(i, rgb.r);
+  add_star_counts(i + 2u, rgb.g);
+  add_star_counts(i + 4u, rgb.b);
 }
 
 void main() {

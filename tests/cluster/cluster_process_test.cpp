@@ -398,13 +398,14 @@ int point_sources(const image::LinearImage& image) {
 // dusk at the Hayden Planetarium, the stars coming out, the full Moon rising)
 // rendered on the cluster's three nodes shows at each frame the same stars in
 // every quadrant, which stitch into the single-process dome master: no seam
-// between quadrants, no node a frame behind. Not bit for bit, as the sunset's
-// quadrants are: at an exposure of 10⁵ a few values of the dark sky sit within
-// float rounding of a code boundary (the quadrants' rays come from other
-// projection parameters), and the star accumulator's fixed point depends on
-// a band's stars (night_sky_test.cpp, TheQuadrantsOfADomeMaster…) — so no
-// value more than one code away and at most 0.2 % one code away. Two frames
-// 58 s into the show (sun 17° down, exposure 1.8e5), 128² dome master, small tables.
+// between quadrants, no node a frame behind. The stars' sums are the same bit
+// for bit (a constant step of the star accumulator; night_sky_test.cpp,
+// TheQuadrantsOfADomeMaster… checks it on the stars alone), but the sky under
+// them is not: the quadrants' rays come from other projection parameters,
+// last float bits apart, and at an exposure of 10⁵ a few values of the dark
+// sky sit within that rounding of a code boundary — so no value more than one
+// code away and at most 0.2 % one code away. Two frames 58 s into the show
+// (sun 17° down, exposure 1.8e5), 128² dome master, small tables.
 TEST_F(ClusterProcess, TheEveningShowShowsTheSameStarsOnEveryNodeWithoutASeam) {
   if (!fs::exists("/usr/share/stellarium/stars/default/stars_0_0v0_8.cat"))
     GTEST_SKIP() << "stellarium-data is not installed: scripts/bootstrap installs it";

@@ -1,6 +1,7 @@
 // Tone mapping operators, the sRGB transfer function and the 8-bit quantizer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -107,6 +108,47 @@ TEST(DisplayByte, IsTheRoundedEncodedToneMappedValue) {
     // Away from the rounding ties the float pipeline agrees with double arithmetic.
     if (std::fabs(255.0 * e - std::floor(255.0 * e) - 0.5) > 1e-3) {
       ASSERT_EQ(display_byte(x, ToneMapping::exponential), int(std::lround(255.0 * e))) << x;
+    }
+  }
+}
+
+TEST(DisplaySlope, IsTheDerivativeOfTheChainAndBoundsEveryChangeAboveIt) {
+  // The closed forms: 255 · 12.92 at black for either operator; on the power
+  // branch 255 · (1.055/2.4) T^(1/2.4 − 1) e^(−x) (exponential) against the
+  // same at T = x (clamp, the larger below 1); 0 beyond white for clamp.
+  EXPECT_DOUBLE_EQ(display_code_slope_bound(0.0), 255.0 * 12.92);
+  EXPECT_DOUBLE_EQ(srgb_encode_slope(0.0031308), 12.92);
+  EXPECT_NEAR(srgb_encode_slope(0.0031309), 12.703, 1e-3);
+  EXPECT_DOUBLE_EQ(tone_map_slope(2.0, ToneMapping::exponential), std::exp(-2.0));
+  EXPECT_DOUBLE_EQ(tone_map_slope(2.0, ToneMapping::clamp), 0.0);
+  EXPECT_NEAR(display_code_slope_bound(0.5), 255.0 * 1.055 / 2.4 * std::pow(0.5, 1.0 / 2.4 - 1.0), 1e-9);
+  EXPECT_NEAR(display_code_slope_bound(2.0),
+              255.0 * 1.055 / 2.4 * std::pow(1.0 - std::exp(-2.0), 1.0 / 2.4 - 1.0) * std::exp(-2.0), 1e-9);
+  // The bound: from any background x' ≥ x, a change by Δ moves the code value
+  // 255 · E(T(·)) by at most slope(x) · Δ (concavity), for both operators, and
+  // a central difference at x approaches the slope of the steeper operator.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> log_x(-7.0, 1.5), log_d(-9.0, -1.0), above(0.0, 3.0);
+  for (int i = 0; i < 20000; ++i) {
+    const double x = std::pow(10.0, log_x(rng)), delta = std::pow(10.0, log_d(rng)), at = x * (1.0 + above(rng));
+    const double bound = display_code_slope_bound(x) * delta;
+    for (ToneMapping tone : {ToneMapping::exponential, ToneMapping::clamp}) {
+      const double t0 = tone == ToneMapping::exponential ? -std::expm1(-at) : std::min(at, 1.0);
+      const double t1 = tone == ToneMapping::exponential ? -std::expm1(-(at + delta)) : std::min(at + delta, 1.0);
+      const auto encode = [](double t) {
+        return t >= 1.0 ? 1.0 : t <= 0.0031308 ? 12.92 * t : 1.055 * std::pow(t, 1.0 / 2.4) - 0.055;
+      };
+      ASSERT_LE(255.0 * (encode(t1) - encode(t0)), bound * (1.0 + 1e-9) + 1e-12) << x << " " << at << " " << delta;
+    }
+  }
+  for (double x : {1e-4, 0.01, 0.2, 1.5}) {
+    const double h = 1e-7 * x, up = x + h, down = x - h;
+    const auto code = [](double v) {
+      const double t = std::min(v, 1.0);  // clamp: the steeper below 1
+      return 255.0 * (t <= 0.0031308 ? 12.92 * t : 1.055 * std::pow(t, 1.0 / 2.4) - 0.055);
+    };
+    if (x < 1.0) {
+      EXPECT_NEAR((code(up) - code(down)) / (2 * h), display_code_slope_bound(x), 1e-4 * x + 1e-3) << x;
     }
   }
 }

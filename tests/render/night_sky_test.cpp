@@ -27,7 +27,10 @@
 #include "atmosphere/model_hash.h"
 #include "atmosphere/photometry.h"
 #include "core/units.h"
+#include "image/colour.h"
+#include "image/tone_mapping.h"
 #include "render/frame/moon_albedo_map.h"
+#include "render/frame/sky_radiance_floor.h"
 #include "render/frame/star_field.h"
 #include "render/gl/texture.h"
 #include "render/renderer.h"
@@ -207,13 +210,12 @@ TEST(NightSkyPass, TheQuadrantsOfADomeMasterCarryItsStarsWithoutASeam) {
   // render a dome master's quadrants (configs/viewports/dome-quadrants.json);
   // where they meet, a star within half a pixel beyond a quadrant's edge must
   // still light the edge's pixels (star_field.h, splat_touches_image), and
-  // every pixel must carry what it carries in the whole dome master — up to
-  // the accumulator's fixed point: star_pass.cpp maps the sum over a band's
-  // stars of their largest channel to 2^30 counts, and a band of a quadrant
-  // holds other stars than the whole image's band, so each star's share is
-  // rounded (half a count) on another step: at most one step of the whole
-  // image per star in the pixel. Σ over the pixels of all channels bounds that
-  // sum (the splat weights sum to 1; no star here straddles the dome's rim).
+  // every pixel must carry what it carries in the whole dome master, bit for
+  // bit: the splat positions sit on the same 1/256-pixel grid, and the star
+  // accumulator's step is a constant (star_accumulator.glsl), so a star adds
+  // the same counts in a quadrant's band as in the whole image's, whatever
+  // other stars each band holds (the step once followed a band's stars: up to
+  // one count of the whole image per star in a pixel apart).
   REQUIRE_CATALOGUE();
   RenderOptions o = options(true, false);
   o.night_sky.star_magnitude_limit = 4.5;  // ~900 stars, ~450 up: dozens within a pixel of the seams
@@ -222,15 +224,12 @@ TEST(NightSkyPass, TheQuadrantsOfADomeMasterCarryItsStarsWithoutASeam) {
   const int n = 64, half = n / 2;
   const std::vector<float> whole = t.renderer.render_image(s, warp::FisheyeProjection(n, n));
   std::size_t lit_at_seams = 0;
-  double total = 0.0;  // Σ over the image of every channel ≥ Σ over the stars of their largest channel
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
       const float* v = &whole[(static_cast<std::size_t>(y) * n + x) * 3];
-      total += double(v[0]) + v[1] + v[2];
       lit_at_seams += v[1] > 0.0f && (x == half - 1 || x == half || y == half - 1 || y == half);
     }
   ASSERT_GT(lit_at_seams, 8u) << "stars light the pixels along the seams";
-  const double step = total / double(1 << 30), bound = 4.0 * step;  // up to 4 stars share a pixel here
   for (int q = 0; q < 4; ++q) {
     const int x0 = (q % 2) * half, y0 = (q / 2) * half;
     warp::FisheyeParameters f;
@@ -238,12 +237,17 @@ TEST(NightSkyPass, TheQuadrantsOfADomeMasterCarryItsStarsWithoutASeam) {
     f.centre_y_px = 0.5 * n - y0;
     f.radius_px = 0.5 * n;
     const std::vector<float> quadrant = t.renderer.render_image(s, warp::FisheyeProjection(half, half, f));
+    std::size_t differing = 0;
     double worst = 0.0;
     for (int y = 0; y < half; ++y)
-      for (int x = 0; x < half * 3; ++x)
-        worst = std::max(worst, std::abs(double(quadrant[static_cast<std::size_t>(y) * half * 3 + x]) -
-                                         whole[static_cast<std::size_t>(y0 + y) * n * 3 + x0 * 3 + x]));
-    EXPECT_LE(worst, bound) << "quadrant " << q << " (the fixed point's step " << step << ")";
+      for (int x = 0; x < half * 3; ++x) {
+        const float a = quadrant[static_cast<std::size_t>(y) * half * 3 + x],
+                    b = whole[static_cast<std::size_t>(y0 + y) * n * 3 + x0 * 3 + x];
+        differing += a != b;
+        worst = std::max(worst, std::abs(double(a) - b));
+      }
+    EXPECT_EQ(differing, 0u) << "quadrant " << q << ": values not bit for bit the whole image's (largest "
+                             << "difference " << worst << ")";
   }
 }
 
@@ -499,6 +503,95 @@ TEST(NightSkyPass, SkippedByItsOwnTestWhenNoStarCouldShow) {
   EXPECT_FALSE(stars.renderer.last_frame().night_sky_drawn);
   EXPECT_EQ(stars.renderer.last_frame().stars, 0u);
   EXPECT_EQ(a, none.renderer.render_image(s, dome));
+}
+
+/// The site's sky with the sun `depression_deg` below the horizon in the south (geometric).
+scene::Scene at_twilight(double depression_deg, double exposure) {
+  scene::Scene s = greenwich("earth-advanced", {0, 0, 1}, exposure);  // the dome's centre at the zenith
+  const scene::LocalHorizon h = scene::local_horizon_at(s.camera.position_m, s.bodies[0]);
+  s.sun.direction = glm::normalize(-std::cos(depression_deg * kDeg) * h.north - std::sin(depression_deg * kDeg) * h.up);
+  return s;
+}
+
+TEST(NightSkyPass, TheSkyIsNoDarkerThanItsFloorFromTheTables) {
+  // The star test's B (render/frame/sky_radiance_floor.h): every pixel of sky
+  // the passes draw (direct colour: channel k = exposure · L(λ_k)) is at least
+  // exposure · E_sun · S_min, from the sun at the horizon to deep twilight,
+  // through the 4D tables and through the sky-view table; and the floor is
+  // not empty (within a factor 5 of the darkest pixel).
+  const SmallTables& t = SmallTables::get("earth-advanced");
+  const SkyRadianceFloor floor(t.model, t.tables, true);
+  RenderOptions o = options(false, false);
+  o.night_sky.moonlight = false;
+  const warp::FisheyeProjection dome(48, 48);
+  for (const SkyViewTableUse use : {SkyViewTableUse::automatic, SkyViewTableUse::off}) {
+    o.sky_view_table = use;
+    TestRenderer r(o);
+    for (double depression : {0.0, 3.0, 6.0, 10.0, 14.0}) {
+      const scene::Scene s = at_twilight(depression, 1.0);
+      const auto image = r.renderer.render_image(s, dome);
+      const glm::dvec3 up = glm::normalize(s.camera.position_m);
+      const std::vector<double> k =
+          floor.radiance_per_irradiance(glm::dot(up, s.sun.direction), glm::length(s.camera.position_m));
+      std::array<double, 3> darkest{1e300, 1e300, 1e300};
+      for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 48; ++x) {
+          const auto ray = dome.ray(x + 0.5, y + 0.5);
+          if (!ray || glm::dot(s.camera.orientation * glm::normalize(*ray), up) <= 0.0) continue;  // the sky only
+          for (std::size_t c = 0; c < 3; ++c)
+            darkest[c] = std::min(darkest[c], double(image[(static_cast<std::size_t>(y) * 48 + x) * 3 + c]));
+        }
+      const auto weights = image::spectral_to_rgb_weights(s.wavelengths_nm, image::ColourMapping::direct);
+      for (std::size_t c = 0; c < 3; ++c) {
+        double b = 0.0;
+        for (std::size_t i = 0; i < weights.size(); ++i) b += weights[i][c] * s.sun.irradiance_W_m2_nm[i] * k[i];
+        EXPECT_GT(b, 0.0);
+        EXPECT_LE(b, darkest[c]) << "sun " << depression << "° down, channel " << c;
+        EXPECT_GT(b, darkest[c] / 5.0) << "sun " << depression << "° down, channel " << c;
+        if (use == SkyViewTableUse::off && c == 1)
+          std::printf("sun %4.1f° down: the darkest sky %.3g, its floor %.3g (%.2f of it)\n", depression, darkest[c], b,
+                      b / darkest[c]);
+      }
+    }
+  }
+}
+
+TEST(NightSkyPass, WhereTheSkyHidesEveryStarItsTestSkipsThemAndTheFrameIsTheSameToTheCode) {
+  // The stars' test against the sky (render/frame/star_visibility.h): at
+  // twilight exposures under a sky bright enough to hide every star the test
+  // skips them; the frame with the stars forced on is the same in every 8-bit
+  // code, for both tone operators. Under the night sky the test lets them run.
+  REQUIRE_CATALOGUE();
+  RenderOptions o = options(true, true);
+  o.night_sky.moonlight = false;
+  RenderOptions forced = o;
+  forced.night_sky.skip_hidden_stars = false;
+  TestRenderer tested(o), always(forced);
+  const warp::FisheyeProjection dome(48, 48);
+  int skipped = 0;
+  for (double depression : {0.0, 4.0, 8.0})
+    for (double exposure : {30.0, 300.0, 3000.0, 30000.0}) {
+      const scene::Scene s = at_twilight(depression, exposure);
+      const auto a = tested.renderer.render_image(s, dome);
+      const FrameStats stats = tested.renderer.last_frame();
+      std::printf("sun %.0f° down, exposure %g: sky floor %.3g, stars' peak %.3g: %s\n", depression, exposure,
+                  stats.star_sky_floor, stats.star_sky_peak, stats.stars_could_show ? "runs" : "skipped");
+      if (stats.stars_could_show) continue;
+      ++skipped;
+      EXPECT_EQ(stats.stars, 0u);
+      const auto b = always.renderer.render_image(s, dome);
+      ASSERT_GT(always.renderer.last_frame().stars, 0u) << "the forced frame holds stars";
+      std::size_t differing = 0;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        for (image::ToneMapping tone : {image::ToneMapping::exponential, image::ToneMapping::clamp})
+          differing += image::display_byte(a[i], tone) != image::display_byte(b[i], tone);
+      EXPECT_EQ(differing, 0u) << "sun " << depression << "° down, exposure " << exposure;
+    }
+  EXPECT_GE(skipped, 4) << "the sky hides the stars in several of these frames";
+  // Night, the sun 30° down: the stars show and the test says so.
+  tested.renderer.render_image(at_twilight(30.0, 1e6), dome);
+  EXPECT_TRUE(tested.renderer.last_frame().stars_could_show);
+  EXPECT_GT(tested.renderer.last_frame().stars, 0u);
 }
 
 TEST(NightSkyPass, TheGpuPathCarriesTheStarsAsTheReadBackFrameDoes) {

@@ -1,0 +1,33 @@
+#pragma once
+// render_bench --stars LIMIT --stars-show SHOW (issue 29 goal 8): where the
+// star pass's test (render/frame/star_visibility.h) lets the stars run
+// through a show's twilight, and what skipping them saves. The show's frames
+// every --stars-step seconds of show time on a fisheye dome master of
+// --stars-dome pixels: the sun's altitude, the exposure, the test this one
+// replaced (the brightest star on a black sky) and the test against the sky,
+// with its figures, for the show's own exposure track and for each of its
+// exposures held through the twilight; then, at the last frame where the old
+// test ran and the new one skips, frames with the test and with the stars
+// forced on (what the old test did there), interleaved, medians. Prints the figures
+// and writes the sweep to --stars-csv (default
+// bench/results/star_twilight_skip.csv) and the timing beside it (…_times.csv).
+#include <filesystem>
+#include <string>
+
+#include "render/renderer.h"
+
+namespace zenith::bench {
+
+struct StarTwilight {
+  std::filesystem::path show;
+  double magnitude_limit = 8.7;
+  int dome_px = 1024;
+  double step_s = 2.0;
+  int rounds = 3, iterations = 3;
+  std::filesystem::path csv;
+};
+
+/// Runs the sweep and the timing above; `device` names the GL renderer.
+void sweep_star_twilight(const StarTwilight& sweep, const std::string& device, const render::TableSource& tables);
+
+}  // namespace zenith::bench
