@@ -186,9 +186,9 @@ class LitAirPath {
   }
 
   /// A direction ω at `vertex` (path direction `d` arriving there) from the
-  /// lit-air proposal q = f_lobe q_lobe + (1 − f_lobe) q_scatter (the ground:
-  /// cos θ/π instead of q_scatter); `factor` receives f_λ(ω)/q(ω), f_λ the
-  /// mixture phase P_λ(ω·d) (the ground: a_λ/π n·ω).
+  /// lit-air proposal q = f_lobe q_lobe + f_sun HG_g(ω·s) + (1 − f_lobe − f_sun) q_scatter
+  /// (the ground: cos θ/π instead of q_scatter); `factor` receives f_λ(ω)/q(ω),
+  /// f_λ the mixture phase P_λ(ω·d) (the ground: a_λ/π n·ω).
   Vec3 sample_direction(const Vec3& vertex, const Vec3& d, bool ground, const std::vector<LocalCoefficients>& local,
                         Pcg32& rng, std::vector<double>& factor) const {
     const TwilightLobe lobe(options_, model_.ground_radius_m, vertex, sun_);
