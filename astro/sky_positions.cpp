@@ -169,4 +169,21 @@ double SkyPositions::moon_geocentric_phase_angle_rad() const {
   return eraSepp(to_sun, to_earth);
 }
 
+SkyPositions::MoonVectors SkyPositions::moon_vectors(bool geocentric) const {
+  const State& s = *state_;
+  MoonVectors v;
+  for (int k = 0; k < 3; ++k) {
+    const double observer_geo = geocentric ? 0.0 : s.site.eb[k] - s.earth_bary_au[k];
+    v.moon_from_observer_au[k] = s.moon_geo_au[k] - observer_geo;
+    v.sun_from_moon_au[k] = s.sun_bary_au[k] - (s.earth_bary_au[k] + s.moon_geo_au[k]);
+  }
+  return v;
+}
+
+std::array<double, 3> SkyPositions::gcrs_direction_enu(const std::array<double, 3>& v) const {
+  double ri = 0.0, di = 0.0;
+  gcrs_vector_to_cirs(v.data(), state_->site, &ri, &di);
+  return observed(ri, di, state_->site).east_north_up();
+}
+
 }  // namespace zenith::astro

@@ -91,6 +91,18 @@ class SkyPositions {
   /// differs by up to the Moon's parallax, ~1°).
   double moon_geocentric_phase_angle_rad() const;
 
+  /// The vectors behind moon(), on GCRS axes [au]: observer → Moon and Moon →
+  /// Sun; `geocentric`: from the Earth's centre instead of the site
+  /// (astro/moon_orientation.h orients the Moon with them).
+  struct MoonVectors {
+    std::array<double, 3> moon_from_observer_au{}, sun_from_moon_au{};
+  };
+  MoonVectors moon_vectors(bool geocentric = false) const;
+  /// A direction given on GCRS axes (a body's axis, not a place) as a unit
+  /// vector of the site's (east, north, up): the Earth's orientation only, as
+  /// moon() turns the Moon's vector.
+  std::array<double, 3> gcrs_direction_enu(const std::array<double, 3>& v) const;
+
  private:
   AstroTime time_;
   Site site_;

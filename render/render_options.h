@@ -42,6 +42,10 @@ struct NightSkyRenderOptions {
   /// frame that needs it; a missing catalogue logs a warning and draws no stars.
   std::filesystem::path star_directory = "/usr/share/stellarium/stars/default";
   double star_magnitude_limit = 7.0;
+  /// The Moon's albedo map (render/frame/moon_albedo_map.h): stellarium-data's
+  /// equirectangular texture, loaded once per renderer with the first disc; a
+  /// missing or unreadable file logs one warning and draws a uniform albedo.
+  std::filesystem::path moon_albedo_map = "/usr/share/stellarium/textures/moon.png";  // astro::kStellariumMoonMap
 };
 
 struct RenderOptions {

@@ -188,6 +188,8 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   stats_.stars = night.stars;
   stats_.night_sky_drawn = !night.skipped;
   stats_.star_catalogue_identity = night.catalogue_identity;
+  stats_.moon_map_identity = night.moon_map_identity;
+  stats_.moon_mean_albedo = night.moon_mean_albedo;
   stats_.moonlight = frame.moonlit;
   render_bands(frame, output, timer);
   const gl::ProgramBuilds::Statistics& builds_after = im.builds->statistics();

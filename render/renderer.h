@@ -96,6 +96,13 @@ struct FrameStats {
   std::size_t stars = 0;
   bool night_sky_drawn = false;
   std::string star_catalogue_identity;
+  /// The Moon's disc (render/frame/moon_albedo_map.h): the identity of its
+  /// albedo map, given with the stars or the disc ("" neither, or the uniform
+  /// albedo of a missing map: astro/sky_data_identity.h joins it with the
+  /// catalogue's), and the map's photometric mean over the lit disc the
+  /// disc's radiance was divided by (1 without a disc).
+  std::string moon_map_identity;
+  double moon_mean_albedo = 1.0;
   /// The Moon lit the atmospheres (render/frame/moon_light.h): false where its
   /// own test found nothing it could show (daylight, the Moon far below the horizon).
   bool moonlight = false;

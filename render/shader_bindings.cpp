@@ -42,6 +42,7 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
       {"SKY_VIEW_UNIT", kSkyViewUnit},
       {"RAY_TABLE_UNIT", kRayTableUnit},
       {"ALBEDO_MAPS_UNIT", kAlbedoMapsUnit},
+      {"MOON_ALBEDO_UNIT", kMoonAlbedoUnit},
       {"PRESENT_FRAME_UNIT", kPresentFrameUnit},
       {"DISPLAY_RADIANCE_UNIT", kDisplayRadianceUnit},
       {"BLEND_MASK_UNIT", kBlendMaskUnit},

@@ -51,6 +51,7 @@ inline constexpr unsigned kDensityUnit = 5;          ///< DENSITY_UNIT (multiple
 inline constexpr unsigned kSkyViewUnit = 5;          ///< SKY_VIEW_UNIT (render/atmosphere_tile.comp)
 inline constexpr unsigned kRayTableUnit = 7;         ///< RAY_TABLE_UNIT (projection.glsl)
 inline constexpr unsigned kAlbedoMapsUnit = 8;       ///< ALBEDO_MAPS_UNIT (render/surface_albedo.glsl)
+inline constexpr unsigned kMoonAlbedoUnit = 9;       ///< MOON_ALBEDO_UNIT (render/night_sky.comp: the Moon's face)
 inline constexpr unsigned kPresentFrameUnit = 0;     ///< PRESENT_FRAME_UNIT (render/present.frag)
 inline constexpr unsigned kDisplayRadianceUnit = 0;  ///< DISPLAY_RADIANCE_UNIT (render/display_*.comp)
 inline constexpr unsigned kBlendMaskUnit = 1;        ///< BLEND_MASK_UNIT (render/display_transform.glsl)

@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 #include <glm/geometric.hpp>
 
+#include "astro/sky_data_identity.h"
 #include "astro/star_catalogue.h"
 #include "core/json_reader.h"
 #include "core/sha256.h"
@@ -502,9 +503,11 @@ Show load_show(const fs::path& path, const ShowLimits& limits) {
     last_key_times.push_back(show.sun->key_times_s().back());
   }
   if (show.scene.sky_clock) {
-    // The catalogue's identity, never its data, goes to the nodes (each reads its own copy).
+    // The catalogue's and the Moon's map's identity, never their data, go to the
+    // nodes (each reads its own copy: astro/sky_data_identity.h).
     try {
-      show.star_catalogue = core::digest_from_hex(astro::load_star_catalogue().identity_sha256);
+      show.star_catalogue = core::digest_from_hex(astro::sky_data_identity(
+          astro::load_star_catalogue().identity_sha256, astro::moon_map_identity(astro::kStellariumMoonMap)));
     } catch (const std::exception& e) {
       spdlog::warn("show '{}': no star catalogue to name to the nodes ({}); they draw what they have", show.name,
                    e.what());

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <thread>
 
+#include "astro/sky_data_identity.h"
 #include "atmosphere/lut/table_cache.h"
 #include "cluster/node/thumbnail.h"
 #include "core/json_reader.h"
@@ -250,12 +251,16 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
       writer_.write(i, state.frame, read_back_radiance(k), attributes, state.fade);
     }
   }
-  // The stars: every node draws them from the catalogue the master named (its
-  // identity, docs/protocol.md: FrameState's sky fields), or the quadrants differ.
-  const std::string& stars = renderer_->last_frame().star_catalogue_identity;
+  // The stars and the Moon's face: every node draws them from the data the
+  // master named (their identity, docs/protocol.md: FrameState's sky fields;
+  // astro/sky_data_identity.h), or the quadrants differ.
+  const render::FrameStats& drawn = renderer_->last_frame();
+  const std::string stars = drawn.star_catalogue_identity.empty()
+                                ? ""
+                                : astro::sky_data_identity(drawn.star_catalogue_identity, drawn.moon_map_identity);
   if (state.sky.star_catalogue != Digest{} && !stars.empty() && stars != to_hex(state.sky.star_catalogue))
     throw std::runtime_error(cat("FrameState.sky.star_catalogue is ", to_hex(state.sky.star_catalogue).substr(0, 16),
-                                 "…, but this node's stars are ", stars.substr(0, 16),
+                                 "…, but this node's stars and Moon map are ", stars.substr(0, 16),
                                  "… (another stellarium-data or magnitude limit than the master's)"));
   // RenderDone means ready to present: the GPU has finished the frame.
   glFinish();

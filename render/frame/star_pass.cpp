@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "astro/civil_time.h"
+#include "astro/moon_orientation.h"
 #include "astro/moon_photometry.h"
 #include "astro/star_catalogue.h"
 #include "core/units.h"
@@ -46,6 +47,29 @@ double smallest_pixel_solid_angle_sr(const warp::Projection& projection) {
       if (omega > 0.0 && (smallest == 0.0 || omega < smallest)) smallest = omega;
     }
   return 0.25 * smallest;
+}
+
+/// The Moon's body axes in the world: from GCRS to the site's (east, north, up),
+/// then turned with the disc by refraction's lift (`geometric` → `apparent`).
+MoonWorldAxes moon_world_axes(const astro::MoonAxes& axes, const astro::SkyPositions& positions, const StarFrame& sky,
+                              const glm::dvec3& geometric, const glm::dvec3& apparent) {
+  const auto world = [&](const std::array<double, 3>& v) {
+    const auto e = positions.gcrs_direction_enu(v);
+    return glm::normalize(e[0] * sky.east + e[1] * sky.north + e[2] * sky.up);
+  };
+  MoonWorldAxes out{world(axes.x), glm::dvec3(0.0), world(axes.z)};
+  // Rodrigues' rotation about geometric × apparent by the angle between them.
+  const glm::dvec3 k = glm::cross(geometric, apparent);
+  const double s = glm::length(k), c = glm::dot(geometric, apparent);
+  if (s > 0.0) {
+    const glm::dvec3 axis = k / s;
+    for (glm::dvec3* v : {&out[0], &out[2]})
+      *v = *v * c + glm::cross(axis, *v) * s + axis * glm::dot(axis, *v) * (1.0 - c);
+  }
+  // Each axis came through ERFA alone: re-orthogonalized.
+  out[2] = glm::normalize(out[2] - out[0] * glm::dot(out[0], out[2]));
+  out[1] = glm::cross(out[2], out[0]);
+  return out;
 }
 
 }  // namespace
@@ -178,6 +202,7 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
           splats_ = star_splats(*field_, directions_, f);
         });
         stats_.catalogue_identity = field_->catalogue().identity_sha256;
+        stats_.moon_map_identity = moon_map().identity_sha256();  // the sky data a cluster compares
       }
     }
     stats_.stars = splats_.size();
@@ -189,9 +214,11 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
 
 void NightSkyPass::place_moon(const FrameState& frame, const StarFrame& sky, const astro::AstroTime& time) {
   const scene::SkyClock& clock = *frame.scene.sky_clock;
-  const astro::MoonPlace moon = astro::SkyPositions(time, clock.site).moon();
+  const astro::SkyPositions positions(time, clock.site);
+  const astro::MoonPlace moon = positions.moon();
   const auto enu = moon.horizontal.east_north_up();
   glm::dvec3 d = enu[0] * sky.east + enu[1] * sky.north + enu[2] * sky.up;
+  const glm::dvec3 geometric = glm::normalize(d);
   if (sky.refraction) {
     const double apparent = sky.refraction->apparent_from_true_rad(moon.horizontal.altitude_rad);
     const glm::dvec3 level = enu[0] * sky.east + enu[1] * sky.north;
@@ -249,14 +276,38 @@ void NightSkyPass::place_moon(const FrameState& frame, const StarFrame& sky, con
                      transmittance[k];
     for (std::size_t c = 0; c < 3; ++c) moon_rgb_[c] += frame.rgb_weights[k][c] * l * sky.exposure;
   }
-  for (double v : moon_rgb_) largest = std::max(largest, std::abs(v));
+  // The face: the map's albedo relative to its photometric mean over the lit
+  // disc, so the disc keeps the Moon's irradiance (moon_albedo_map.h).
+  const MoonAlbedoMap& map = moon_map();
+  moon_axes_ = moon_world_axes(astro::moon_orientation(positions).axes, positions, sky, geometric, d);
+  const double mean = moon_disc_mean_albedo(map, moon_axes_, d, frame.sun);
+  for (double& v : moon_rgb_) v /= mean;
+  // A pixel spans 1/radius_px of the Moon's radius at the centre; a texel 2π/width.
+  moon_map_lod_ = std::max(0.0, std::log2(map.width() / (2.0 * core::kPi * radius_px)));
+  for (double v : moon_rgb_) largest = std::max(largest, std::abs(v) * map.largest());
   if (largest < kInvisibleDisplayStep) return;
+  stats_.moon_map_identity = map.identity_sha256();
+  stats_.moon_mean_albedo = mean;
   moon_disc_ = true;
   stats_.moon = true;
   moon_direction_ = d;
   moon_radius_rad_ = moon.angular_radius_rad;
   moon_radius_px_ = radius_px;
   moon_pixel_ = *pixel;
+}
+
+const MoonAlbedoMap& NightSkyPass::moon_map() {
+  if (moon_map_) return *moon_map_;
+  try {
+    moon_map_ = std::make_unique<MoonAlbedoMap>(MoonAlbedoMap::load(options_.moon_albedo_map));
+    spdlog::info("night sky: the Moon's albedo map {} ({} × {}, identity {})", options_.moon_albedo_map.string(),
+                 moon_map_->width(), moon_map_->height(), moon_map_->identity_sha256().substr(0, 16));
+  } catch (const std::exception& e) {
+    spdlog::warn("night sky: the Moon's disc has a uniform albedo: {} (scripts/bootstrap installs stellarium-data)",
+                 e.what());
+    moon_map_ = std::make_unique<MoonAlbedoMap>(MoonAlbedoMap::uniform());
+  }
+  return *moon_map_;
 }
 
 const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameState& frame, bool floor) {
@@ -366,6 +417,23 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
     p.set_uniform("moon_radius", static_cast<float>(moon_radius_rad_));
     p.set_uniform("moon_rgb", std::array<float, 3>{static_cast<float>(moon_rgb_[0]), static_cast<float>(moon_rgb_[1]),
                                                    static_cast<float>(moon_rgb_[2])});
+    const bool mapped = !moon_map().is_uniform();
+    p.set_uniform("moon_mapped", mapped ? 1 : 0);
+    if (mapped) {
+      if (moon_texture_.id() == 0) {  // once per renderer
+        moon_texture_ = gl::Texture::create_2d_mipmapped(gl::TextureFormat::r32f, moon_map().width(),
+                                                         moon_map().height(), moon_map().texels());
+        moon_texture_.set_repeat_s(true);
+      }
+      moon_texture_.bind(binding::kMoonAlbedoUnit);
+      const auto vec = [](const glm::dvec3& v) {
+        return std::array<float, 3>{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+      };
+      p.set_uniform("moon_axis_x", vec(moon_axes_[0]));
+      p.set_uniform("moon_axis_y", vec(moon_axes_[1]));
+      p.set_uniform("moon_axis_z", vec(moon_axes_[2]));
+      p.set_uniform("moon_map_lod", static_cast<float>(moon_map_lod_));
+    }
   }
   if (floor_) {
     const std::size_t bytes = floor_table_.size() * sizeof(floor_table_[0]);

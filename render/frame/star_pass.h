@@ -28,12 +28,14 @@
 #include "astro/night_sky_floor.h"
 #include "astro/refraction.h"
 #include "render/frame/frame_state.h"
+#include "render/frame/moon_albedo_map.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/refraction_cache.h"
 #include "render/frame/star_field.h"
 #include "render/frame/tile_classification.h"
 #include "render/gl/buffer.h"
 #include "render/gl/shader_program.h"
+#include "render/gl/texture.h"
 #include "render/render_options.h"
 
 namespace zenith::render {
@@ -49,6 +51,10 @@ struct NightSkyStats {
   bool night_floor = false;        ///< the night floor was added
   bool moon = false;               ///< the Moon was drawn (a disc, or a point below a pixel's size)
   std::string catalogue_identity;  ///< StarCatalogue::identity_sha256 of the stars drawn ("" none)
+  /// MoonAlbedoMap::identity_sha256 of the map loaded, given with the stars or the Moon's
+  /// disc ("" neither drawn, or the uniform albedo of a missing map)
+  std::string moon_map_identity;
+  double moon_mean_albedo = 1.0;  ///< the map's photometric mean over the lit disc (moon_disc_mean_albedo)
 };
 
 class NightSkyPass {
@@ -90,6 +96,14 @@ class NightSkyPass {
   std::array<double, 3> moon_rgb_{};
   /// The Moon at the frame's sky time: a disc, a star-like point, or nothing.
   void place_moon(const FrameState& frame, const StarFrame& sky, const astro::AstroTime& time);
+  // The Moon's face (render/frame/moon_albedo_map.h): the map (loaded with the
+  // first disc, the uniform one when missing), its texture (uploaded once), the
+  // disc's body axes in the world and the texture's level.
+  std::unique_ptr<MoonAlbedoMap> moon_map_;
+  gl::Texture moon_texture_;
+  MoonWorldAxes moon_axes_{};
+  double moon_map_lod_ = 0.0;
+  const MoonAlbedoMap& moon_map();
   // The night floor: its table and the frame's up and horizon.
   bool floor_ = false;
   std::vector<std::array<float, 4>> floor_table_;

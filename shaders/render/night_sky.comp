@@ -8,7 +8,8 @@
 //     point source among the stars): the Lommel–Seeliger law of
 //     astro/moon_photometry.h, L = L(1, 1) · 2μ0/(μ0 + μ), its phase from the
 //     sun's direction on each point of the sphere, its edge antialiased over
-//     the pixel's footprint;
+//     the pixel's footprint; with moon_mapped, each point's albedo from the
+//     Moon's map (render/frame/moon_albedo_map.h) at its selenographic place;
 //   * with NIGHT_FLOOR, the natural night sky (airglow with van Rhijn's
 //     brightening, zodiacal light, starlight) through the line of sight's
 //     transmittance, plus the artificial glow of light pollution: a table of
@@ -35,6 +36,12 @@ uniform bool moon_disc;
 uniform vec3 moon_direction;  // world, unit: the disc's centre (refracted)
 uniform float moon_radius;    // angular radius [rad]
 uniform vec3 moon_rgb;        // 2 L_LS(1, 1) through the line of sight, linear sRGB × exposure
+// The Moon's face: relative albedo (mean 1 over the lit disc seen: moon_rgb is
+// divided by it) at each point's selenographic longitude and latitude.
+uniform bool moon_mapped;
+uniform vec3 moon_axis_x, moon_axis_y, moon_axis_z;  // world: toward (0°, 0°), (90° E, 0°), the north pole
+uniform float moon_map_lod;  // log2(a pixel's arc on the Moon / a texel's) at the disc's centre, ≥ 0
+layout(binding = MOON_ALBEDO_UNIT) uniform sampler2D moon_albedo;  // x: longitude −180°…180°, y: latitude 90°…−90°
 
 /// The Moon's light along `ray`: on the sphere's point seen there (small
 /// angles: its offset from the centre in units of the radius is sin θ of that
@@ -51,7 +58,15 @@ vec3 moon_light(vec3 ray) {
   const vec3 normal = -moon_direction * mu + across * s;
   const float mu0 = dot(normal, sun_direction);
   if (mu0 <= 0.0) return vec3(0.0);
-  return moon_rgb * (mu0 / (mu0 + mu)) * coverage;
+  float albedo = 1.0;
+  if (moon_mapped) {
+    // The point's selenographic place; a pixel covers 1/μ more arc across the
+    // limb than along it: the level of their geometric mean.
+    const vec3 body = vec3(dot(normal, moon_axis_x), dot(normal, moon_axis_y), dot(normal, moon_axis_z));
+    const vec2 uv = vec2(atan(body.y, body.x) / (2.0 * PI_F) + 0.5, 0.5 - asin(clamp(body.z, -1.0, 1.0)) / PI_F);
+    albedo = textureLod(moon_albedo, uv, moon_map_lod - 0.5 * log2(max(mu, 1e-3))).r;
+  }
+  return moon_rgb * (albedo * mu0 / (mu0 + mu)) * coverage;
 }
 
 #if NIGHT_FLOOR

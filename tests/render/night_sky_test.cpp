@@ -18,6 +18,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "../atmosphere/lut_fixture.h"
+#include "astro/moon_orientation.h"
 #include "astro/moon_photometry.h"
 #include "astro/night_sky_floor.h"
 #include "astro/sky_positions.h"
@@ -26,6 +27,7 @@
 #include "atmosphere/model_hash.h"
 #include "atmosphere/photometry.h"
 #include "core/units.h"
+#include "render/frame/moon_albedo_map.h"
 #include "render/frame/star_field.h"
 #include "render/gl/texture.h"
 #include "render/renderer.h"
@@ -328,6 +330,161 @@ TEST(NightSkyPass, TheMoonCarriesItsIrradianceAsADiscAndAsAPointBelowAPixel) {
   }
   std::printf("the Moon's energy / irradiance: disc %.4f %.4f %.4f, point %.4f %.4f %.4f\n", disc[0] / e[0],
               disc[1] / e[1], disc[2] / e[2], point[0] / e[0], point[1] / e[1], point[2] / e[2]);
+}
+
+/// The full Moon of 2026-01-03 23:00 UTC at Greenwich (the test above's).
+const astro::UtcTime kFullMoon{2026, 1, 3, 23, 0, 0.0};
+
+/// Where a selenographic point of the Moon at kFullMoon lies in the world (the
+/// camera → point direction of scene `s`, no refraction), by the orientation
+/// of astro/moon_orientation.h, and the Moon's centre.
+struct MoonGeometry {
+  glm::dvec3 centre;  ///< world, unit
+  glm::dvec3 point;   ///< world, unit
+  glm::dvec3 normal;  ///< world: the surface's normal there
+  double mu;          ///< the point's cosine toward the observer
+};
+MoonGeometry moon_point(const scene::Scene& s, double latitude_deg, double longitude_deg) {
+  const astro::SkyPositions sky(astro::AstroTime::from_utc(kFullMoon), astro::Site{kLatitudeDeg, kLongitudeDeg, 46.0});
+  const astro::MoonPlace moon = sky.moon();
+  const astro::MoonAxes axes = astro::moon_orientation(sky).axes;
+  const scene::LocalHorizon h = scene::local_horizon_at(s.camera.position_m, s.bodies[0]);
+  const auto world = [&](const std::array<double, 3>& e) { return e[0] * h.east + e[1] * h.north + e[2] * h.up; };
+  const glm::dvec3 centre = glm::normalize(world(moon.horizontal.east_north_up()));
+  const glm::dvec3 x = world(sky.gcrs_direction_enu(axes.x)), z = world(sky.gcrs_direction_enu(axes.z));
+  const glm::dvec3 y = glm::cross(z, x);
+  const double phi = latitude_deg * kDeg, lambda = longitude_deg * kDeg;
+  const glm::dvec3 n = std::cos(phi) * (std::cos(lambda) * x + std::sin(lambda) * y) + std::sin(phi) * z;
+  return {centre, glm::normalize(centre * moon.distance_km + n * astro::kMoonRadius_km), n, -glm::dot(n, centre)};
+}
+
+/// The mean of channel 1 (550 nm) over the 3 × 3 pixels around `px`.
+double around(const std::vector<float>& image, int width, glm::dvec2 px) {
+  double sum = 0.0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      sum += image[(static_cast<std::size_t>(std::floor(px.y) + dy) * width + std::floor(px.x) + dx) * 3 + 1];
+  return sum / 9.0;
+}
+
+TEST(NightSkyPass, TheMoonsFaceShowsMareCrisiumInTheSkysWestAndTychoInTheSouth) {
+  // A 128² view 1.2° wide on the full Moon of 2026-01-03 (a disc 58 px across),
+  // no atmosphere. Mare Crisium (17° N, 59° E) is dark against the highlands
+  // south-east of it (30° S, 65° E: a point of the same μ, near Petavius), at
+  // the pixels the orientation predicts; on the sky it lies west of the disc's
+  // centre (selenographic east faces the sky's west: the IAU convention), Tycho
+  // (43° S, 11° W) south of it. Without the map the same two points are equal.
+  if (!std::filesystem::exists(kStellariumMoonMap)) GTEST_SKIP() << "stellarium-data is not installed";
+  RenderOptions with = options(false, false), without = options(false, false), uniform = options(false, false);
+  with.night_sky.moon = true;
+  uniform.night_sky.moon = true;
+  uniform.night_sky.moon_albedo_map = "/nonexistent/moon.png";
+  TestRenderer mapped(with), dark(without), plain(uniform);
+  const glm::dvec3 look = moon_point(greenwich("", {0, -1, 0}, 1.0), 0.0, 0.0).centre;
+  const scene::Scene probe = greenwich("", {0, -1, 0}, 1.0);
+  const scene::LocalHorizon h0 = scene::local_horizon_at(probe.camera.position_m, probe.bodies[0]);
+  scene::Scene s = testing::greenwich("", {glm::dot(look, h0.east), glm::dot(look, h0.north), glm::dot(look, h0.up)},
+                                      1.0, kFullMoon);
+  s.sun.direction =
+      scene::ephemeris_sun(s, *s.sky_clock, astro::AstroTime::from_utc(kFullMoon), s.camera.position_m).direction;
+  const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(128, 128, 1.2);
+  const auto image = mapped.renderer.render_image(s, planar);
+  const std::string identity = mapped.renderer.last_frame().moon_map_identity;
+  const double mean = mapped.renderer.last_frame().moon_mean_albedo;
+  const auto flat = plain.renderer.render_image(s, planar);
+  EXPECT_EQ(plain.renderer.last_frame().moon_map_identity, "");
+  const auto black = dark.renderer.render_image(s, planar);
+  EXPECT_EQ(identity.size(), 64u);
+  const auto pixel = [&](const MoonGeometry& g) {
+    return *planar.pixel(glm::conjugate(s.camera.orientation) * g.point);
+  };
+  const MoonGeometry crisium = moon_point(s, 17.0, 59.0), highland = moon_point(s, -30.0, 65.0),
+                     tycho = moon_point(s, -43.3, -11.2);
+  ASSERT_GT(crisium.mu, 0.3);
+  ASSERT_GT(highland.mu, 0.3);
+  const glm::dvec2 at_crisium = pixel(crisium), at_highland = pixel(highland);
+  const double c = around(image, 128, at_crisium) - around(black, 128, at_crisium),
+               b = around(image, 128, at_highland) - around(black, 128, at_highland);
+  const double c_flat = around(flat, 128, at_crisium), b_flat = around(flat, 128, at_highland);
+  // The map's own contrast between the two places (its 1.4° copy).
+  const MoonAlbedoMap map = MoonAlbedoMap::load(kStellariumMoonMap);
+  const double map_ratio = map.coarse_at(59.0 * kDeg, 17.0 * kDeg) / map.coarse_at(65.0 * kDeg, -30.0 * kDeg);
+  std::printf(
+      "Crisium at (%.1f, %.1f) px, highland at (%.1f, %.1f) px: rendered %.3g / %.3g = %.3f (map %.3f), "
+      "uniform albedo %.3f; the map's mean over the lit disc %.4f\n",
+      at_crisium.x, at_crisium.y, at_highland.x, at_highland.y, c, b, c / b, map_ratio, c_flat / b_flat, mean);
+  // Without the map the two places differ by Lommel–Seeliger's μ0/(μ0 + μ) alone
+  // (the phase angle is 7°: the limb's points differ by 10 %), evaluated at
+  // the predicted places: 2 % for the 3 × 3 pixels' spread of μ0 and μ.
+  const auto lommel_seeliger = [&](const MoonGeometry& g) {
+    const double mu0 = glm::dot(g.normal, s.sun.direction);
+    return mu0 / (mu0 + g.mu);
+  };
+  EXPECT_NEAR(c_flat / b_flat, lommel_seeliger(crisium) / lommel_seeliger(highland), 0.02);
+  // With it, the mare is dark, as dark as the map makes it: the GPU reads the
+  // map's level of the pixel's footprint (2.5 texel levels, ~3° texels, across
+  // the limb's foreshortening) where the CPU's copy has 1.4° texels, so the
+  // 18°-wide mare's bright rim comes in: within 30 %.
+  EXPECT_NEAR(map_ratio, 0.47, 0.05);  // the maria reflect about half the highlands' light
+  EXPECT_LT(c / b, 0.6);
+  EXPECT_NEAR(c / b, map_ratio * (c_flat / b_flat), 0.3 * map_ratio);
+  EXPECT_NEAR(mean, 1.0, 0.05);  // normalized on the near side: the lit disc's mean is near 1
+  // On the sky: east = the direction of increasing right ascension (pole × line of sight).
+  const glm::dvec3 pole = std::cos(kLatitudeDeg * kDeg) * h0.north + std::sin(kLatitudeDeg * kDeg) * h0.up;
+  const glm::dvec3 east = glm::normalize(glm::cross(pole, crisium.centre)), north = glm::cross(crisium.centre, east);
+  EXPECT_LT(glm::dot(crisium.point - crisium.centre, east), -0.5 * std::sin(59 * kDeg) * 0.9 * 2.5e-3)
+      << "Mare Crisium lies toward the sky's west";
+  EXPECT_LT(glm::dot(tycho.point - tycho.centre, north), -0.5 * 2.5e-3 * std::sin(43.3 * kDeg))
+      << "Tycho lies toward the sky's south";
+}
+
+TEST(NightSkyPass, AMissingMoonMapDrawsAUniformDiscWithTheSameEnergy) {
+  // The first test's disc with no map file: the uniform albedo (one warning),
+  // the same energy within its 2 %.
+  const astro::Site site{kLatitudeDeg, kLongitudeDeg, 46.0};
+  const astro::MoonPlace moon = astro::SkyPositions(astro::AstroTime::from_utc(kFullMoon), site).moon();
+  const auto enu = moon.horizontal.east_north_up();
+  const auto e = astro::moon_irradiance_W_m2_nm(moon, std::vector<double>{680.0, 550.0, 440.0});
+  RenderOptions with = options(false, false), without = options(false, false);
+  with.night_sky.moon = true;
+  with.night_sky.moon_albedo_map = "/nonexistent/moon.png";
+  TestRenderer moonlit(with), dark(without);
+  scene::Scene s = greenwich("", {enu[0], enu[1], enu[2]}, 1.0);
+  s.sky_clock->time = kFullMoon;
+  s.sun.direction =
+      scene::ephemeris_sun(s, *s.sky_clock, astro::AstroTime::from_utc(kFullMoon), s.camera.position_m).direction;
+  const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(64, 64, 2.0);
+  const auto image = moonlit.renderer.render_image(s, planar);
+  EXPECT_TRUE(moonlit.renderer.last_frame().night_sky_drawn);
+  EXPECT_EQ(moonlit.renderer.last_frame().moon_map_identity, "");
+  EXPECT_EQ(moonlit.renderer.last_frame().moon_mean_albedo, 1.0);
+  const auto disc = energy_near(image, dark.renderer.render_image(s, planar), planar, {32.0, 32.0}, 20.0);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(disc[k], e[k], 0.02 * e[k]) << "channel " << k;
+}
+
+TEST(MoonAlbedoMap, StellariumsMapIsRelativeToItsNearSideMeanAndNamesItsFile) {
+  if (!std::filesystem::exists(kStellariumMoonMap)) GTEST_SKIP() << "stellarium-data is not installed";
+  const MoonAlbedoMap map = MoonAlbedoMap::load(kStellariumMoonMap);
+  EXPECT_EQ(map.width(), 1024);
+  EXPECT_EQ(map.height(), 512);
+  EXPECT_FALSE(map.is_uniform());
+  // The full Moon without libration, seen along the prime meridian: mean 1.
+  MoonWorldAxes axes{glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)};
+  // (The observer looks along −x at the near side, the Sun behind them.)
+  EXPECT_NEAR(moon_disc_mean_albedo(map, axes, {-1, 0, 0}, {1, 0, 0}), 1.0, 0.01);
+  // The far side (no maria but the South Pole–Aitken basin) is brighter than the near side's mean.
+  const double far = moon_disc_mean_albedo(map, axes, {1, 0, 0}, {-1, 0, 0});
+  std::printf("the map's mean over the far side / the near side's: %.3f; its largest texel %.2f\n", far, map.largest());
+  EXPECT_NEAR(far, 1.36, 0.05);
+  // The Sun at 90° from the line of sight (a quarter Moon): half the disc lit, a mean near 1, not 1 by default.
+  EXPECT_NE(moon_disc_mean_albedo(map, axes, {-1, 0, 0}, {0, 1, 0}), 1.0);
+  EXPECT_GT(map.largest(), 1.5);
+  try {
+    (void)MoonAlbedoMap::load("/nonexistent/moon.png");
+    ADD_FAILURE() << "a missing map loaded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/moon.png"), std::string::npos) << e.what();
+  }
 }
 
 TEST(NightSkyPass, SkippedByItsOwnTestWhenNoStarCouldShow) {
