@@ -1,40 +1,55 @@
-// Zenith radiance through twilight, sun 0° to −18°, from the CPU tables at two
-// table sizes against the reference path tracer (issue 29, goal 6).
+// Zenith radiance through twilight, sun 0° to −18°, from the CPU tables at
+// named table sizes against the reference (issue 29, goal 6).
 //
-//   twilight_bench [--preset NAME] [--sizes paper,paper-mu-s-x2] [--step-deg 0.25]
-//                  [--reference-deg 0,-3,-6,-9,-12,-15,-18] [--samples N] [--threads N]
+//   twilight_bench [--preset NAME] [--sizes paper,twilight] [--step-deg 0.25]
+//                  [--reference-deg 0,-3,-6,-9,-12,-15,-18] [--reference lit-air|path-tracer]
+//                  [--samples N[,N...]] [--batches N] [--threads N] [--cache DIR | --no-cache]
+//                  [--orders N] [--no-series-tail]
 //                  [--out DIR] [--no-chart]
 //
-// For each table size: the CPU precompute's time and the tables' memory, then
-// the zenith radiance L(h) seen from 1 m above the ground for sun elevations h
-// from 0° down to −18° in --step-deg steps. Smoothness: the largest second
-// difference of ln L between neighbouring steps (a step in the tables, where
-// an order fades or a texel column ends, shows as a spike of |Δ² ln L|; a
-// smooth exponential fall gives ~0), and whether L falls monotonically.
-// Against the path tracer (--samples paths per wavelength at each of
-// --reference-deg): the relative error of each size, with the path tracer's
-// standard error. The reference is noisy in deep twilight (the zenith ray is
-// in the planet's shadow below −10°, so all its light is multiple scattering
-// from far-off sunlit air): the standard error column says how far to trust it.
+// For each table size (docs/lookup-tables.md, "Named sizes"): the tables from
+// the cache (--cache DIR, default the table cache of every zenith command;
+// precomputed on the CPU and stored there when absent, with the precompute's
+// time; --orders and --no-series-tail change the precompute's orders from the
+// defaults), their memory, then the zenith radiance L(h) seen from 1 m above the
+// ground for sun elevations h from 0° down to −18° in --step-deg steps.
+// Smoothness: the largest second difference of ln L between neighbouring steps
+// (a step in the tables, where an order fades or a texel column ends, shows as
+// a spike of |Δ² ln L|; a smooth exponential fall gives ~0), and whether L
+// falls monotonically.
+// Against the reference at each of --reference-deg: the relative error of each
+// size, with the reference's standard error and z = error / standard error.
+// The reference is the lit-air estimator (atmosphere/reference/lit_air_estimator.h,
+// --samples paths, each estimating every wavelength, one count or one per
+// elevation; order 1 by quadrature),
+// which reaches the deep twilight, or the path tracer (--samples paths per
+// wavelength), which finds the zenith below −10° only a handful of times.
 //
-// Output: DIR/twilight_zenith.csv (every step), DIR/twilight_reference.csv,
-// DIR/twilight_zenith.png (gnuplot; with --no-chart only the data).
+// Output (DIR = --out, default bench/results; files of presets other than
+// earth-advanced carry the preset's name): DIR/twilight_zenith.csv (every
+// step), DIR/twilight_reference.csv, DIR/twilight_zenith.png (gnuplot; with
+// --no-chart only the data).
 #include <fmt/format.h>
 #include <fmt/os.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/lut/lookup_tables.h"
+#include "atmosphere/lut/table_cache.h"
+#include "atmosphere/named_inputs.h"
 #include "atmosphere/parameters.h"
+#include "atmosphere/reference/lit_air_estimator.h"
 #include "atmosphere/reference/path_tracer.h"
 #include "bench/command_line.h"
 #include "core/units.h"
@@ -43,13 +58,6 @@ namespace {
 
 using namespace zenith;
 using namespace zenith::atmosphere;
-
-lut::TableSizes sizes_by_name(const std::string& name) {
-  if (name == "paper") return lut::TableSizes{};
-  if (name == "paper-mu-s-x2") return lut::TableSizes{256, 64, 64, 16, 32, 128, 64, 8};
-  if (name == "small") return lut::TableSizes::small();
-  throw std::invalid_argument("--sizes: unknown size '" + name + "' (paper, paper-mu-s-x2, small)");
-}
 
 std::size_t table_bytes(const lut::LookupTables& t) {
   return sizeof(float) * (t.transmittance.data.size() + t.irradiance.data.size() + t.single_rayleigh.data.size() +
@@ -61,16 +69,87 @@ Vec3 sun_direction(double elevation_deg) {
   return Vec3{std::cos(e), 0.0, std::sin(e)};
 }
 
+/// The tables of one named size: from the cache when it has them, else
+/// precomputed on the CPU (and stored there), with the precompute's cost printed.
+lut::LookupTables tables_for(const AtmosphereModel& model, const std::string& name, lut::PrecomputeOptions options,
+                             const std::optional<std::filesystem::path>& cache_directory) {
+  options.sizes = table_sizes_by_name(name);
+  std::optional<lut::TableCache> cache;
+  if (cache_directory) {
+    cache.emplace(*cache_directory);
+    std::string problem;
+    if (auto cached = cache->load(model, options, &problem)) {
+      fmt::print("{} ({}): tables from {}, {:.1f} MiB\n", name, options.sizes.describe(), cache->directory().string(),
+                 double(table_bytes(*cached)) / 1048576.0);
+      return std::move(*cached);
+    }
+    if (!problem.empty()) fmt::print("ignoring the cached {} tables: {}\n", name, problem);
+  }
+  fmt::print("{} ({}): precomputing on the CPU ...\n", name, options.sizes.describe());
+  std::fflush(stdout);
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  lut::LookupTables tables = lut::precompute_tables_cpu(model, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double cpu_seconds = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;  // all threads
+  fmt::print("{}: CPU precompute {:.1f} s wall, {:.1f} s CPU, {:.1f} MiB\n", name, seconds, cpu_seconds,
+             double(table_bytes(tables)) / 1048576.0);
+  if (cache) fmt::print("  stored in {}\n", cache->store(model, options, tables).string());
+  return tables;
+}
+
+struct Reference {
+  Spectrum mean, standard_error, order_one;
+};
+
+/// The zenith reference at one sun elevation, with progress on stderr.
+Reference reference_at(const AtmosphereModel& model, const Vec3& camera, double elevation_deg, const std::string& kind,
+                       std::size_t samples, std::size_t batches, unsigned threads) {
+  const Vec3 zenith{0.0, 0.0, 1.0};
+  const reference::SunDisc sun{sun_direction(elevation_deg), 4.65e-3};
+  const auto start = std::chrono::steady_clock::now();
+  Reference r;
+  if (kind == "path-tracer") {
+    reference::PathTracerOptions options;
+    options.samples_per_wavelength = samples;
+    options.thread_count = threads;
+    const auto estimate = reference::path_traced_radiance(model, camera, zenith, sun, options);
+    r = {estimate.mean, estimate.standard_error, Spectrum(model.wavelength_count())};
+  } else {
+    reference::LitAirOptions options;
+    options.samples = samples;
+    options.batches = batches;
+    options.thread_count = threads;
+    options.progress = [&](std::size_t done, std::size_t total) {
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      fmt::print(stderr, "\r  sun {:.1f}°: {} / {} paths, {:.0f} s", elevation_deg, done, total, seconds);
+      std::fflush(stderr);
+    };
+    const auto estimate = reference::lit_air_radiance(model, camera, zenith, sun, options);
+    fmt::print(stderr, "\n");
+    fmt::print("  {:.2f} lit-air quadratures per path\n",
+               double(estimate.single_scattering_quadratures) / double(samples));
+    r = {estimate.mean, estimate.standard_error, estimate.order_one};
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print("  ({}: {} paths{}, {:.0f} s)\n", kind, samples, kind == "path-tracer" ? " per wavelength" : "", seconds);
+  return r;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
   std::string preset = "earth-advanced";
-  std::vector<std::string> size_names = {"paper", "paper-mu-s-x2"};
+  std::vector<std::string> size_names = {"paper", "twilight"};
   double step_deg = 0.25;
   std::vector<std::string> reference_deg = {"0", "-3", "-6", "-9", "-12", "-15", "-18"};
-  std::size_t samples = 100000;
+  std::string reference_kind = "lit-air";
+  std::vector<std::string> samples_text = {"20000"};  // one count, or one per --reference-deg
+  std::size_t batches = 20;
   unsigned threads = 0;
+  lut::PrecomputeOptions precompute;  // the defaults but for the sizes, unless --orders / --no-series-tail
   bool chart = true;
+  std::optional<std::filesystem::path> cache_directory = lut::default_cache_directory();
   std::filesystem::path out = std::filesystem::path(ZENITH_SOURCE_DIR) / "bench" / "results";
   for (bench::CommandLine args(argc, argv); args.next();) {
     const std::string& a = args.option();
@@ -82,10 +161,22 @@ int main(int argc, char** argv) try {
       step_deg = std::stod(args.value());
     else if (a == "--reference-deg")
       reference_deg = bench::split_list(args.value());
+    else if (a == "--reference")
+      reference_kind = args.value();
     else if (a == "--samples")
-      samples = std::stoul(args.value());
+      samples_text = bench::split_list(args.value());
+    else if (a == "--batches")
+      batches = std::stoul(args.value());
     else if (a == "--threads")
       threads = unsigned(std::stoul(args.value()));
+    else if (a == "--orders")
+      precompute.max_orders = std::stoi(args.value());
+    else if (a == "--no-series-tail")
+      precompute.series_tail = false;
+    else if (a == "--cache")
+      cache_directory = std::filesystem::path(args.value());
+    else if (a == "--no-cache")
+      cache_directory.reset();
     else if (a == "--out")
       out = args.value();
     else if (a == "--no-chart")
@@ -94,7 +185,23 @@ int main(int argc, char** argv) try {
       throw std::invalid_argument("unknown option " + a);
   }
   if (!(step_deg > 0.0 && step_deg <= 3.0)) throw std::invalid_argument("--step-deg: must be in (0, 3]");
+  if (reference_kind != "lit-air" && reference_kind != "path-tracer")
+    throw std::invalid_argument("--reference: '" + reference_kind + "' is not lit-air or path-tracer");
+  std::vector<std::size_t> samples;
+  for (const std::string& text : samples_text) samples.push_back(std::stoul(text));
+  if (samples.size() == 1) samples.assign(reference_deg.size(), samples.front());
+  if (samples.size() != reference_deg.size())
+    throw std::invalid_argument("--samples: give one count or one per --reference-deg");
+  for (std::size_t count : samples) {
+    if (count == 0) throw std::invalid_argument("--samples: must be > 0");
+    if (reference_kind == "lit-air" && (batches == 0 || count % batches != 0))
+      throw std::invalid_argument("--batches: must be > 0 and divide every --samples count");
+  }
+  precompute.threads = threads;
   std::filesystem::create_directories(out);
+  const std::string suffix = preset == "earth-advanced" ? "" : "_" + preset;
+  const auto zenith_csv = out / ("twilight_zenith" + suffix + ".csv");
+  const auto reference_csv = out / ("twilight_reference" + suffix + ".csv");
 
   const AtmosphereModel model = load_preset(preset).model;
   const std::size_t channels = model.wavelength_count();
@@ -106,15 +213,7 @@ int main(int argc, char** argv) try {
   // zenith radiance per size, per elevation, per wavelength
   std::map<std::string, std::vector<Spectrum>> by_size;
   for (const std::string& name : size_names) {
-    lut::PrecomputeOptions options;
-    options.sizes = sizes_by_name(name);
-    options.threads = threads;
-    const auto start = std::chrono::steady_clock::now();
-    const std::clock_t cpu_start = std::clock();
-    const lut::LookupTables tables = lut::precompute_tables_cpu(model, options);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double cpu_seconds =
-        double(std::clock() - cpu_start) / CLOCKS_PER_SEC;  // all threads: a loaded machine's honest cost
+    const lut::LookupTables tables = tables_for(model, name, precompute, cache_directory);
     const lut::TableQueries queries(model, tables);
     std::vector<Spectrum>& radiance = by_size[name];
     for (double h : elevations) radiance.push_back(queries.sky_radiance(camera, zenith, sun_direction(h)));
@@ -128,16 +227,13 @@ int main(int argc, char** argv) try {
       }
     for (std::size_t k = 1; k < radiance.size(); ++k)
       for (std::size_t c = 0; c < channels; ++c) monotonic = monotonic && radiance[k][c] < radiance[k - 1][c];
-    fmt::print(
-        "{} ({}): CPU precompute {:.1f} s wall, {:.1f} s CPU, {:.1f} MiB; zenith radiance falls {} from 0° to "
-        "−18°; max |Δ² ln L| over {}° steps {:.4f} (at {:.2f}°)\n",
-        name, options.sizes.describe(), seconds, cpu_seconds, double(table_bytes(tables)) / 1048576.0,
-        monotonic ? "monotonically" : "NOT monotonically", step_deg, worst_second_difference, worst_at);
+    fmt::print("{}: zenith radiance falls {} from 0° to −18°; max |Δ² ln L| over {}° steps {:.4f} (at {:.2f}°)\n", name,
+               monotonic ? "monotonically" : "NOT monotonically", step_deg, worst_second_difference, worst_at);
     std::fflush(stdout);  // progress through a pipe: each size's line as it is measured
   }
 
   {
-    std::ofstream csv(out / "twilight_zenith.csv");
+    std::ofstream csv(zenith_csv);
     csv << "sun_elevation_deg";
     for (const std::string& name : size_names)
       for (std::size_t c = 0; c < channels; ++c) csv << ',' << name << '_' << model.wavelengths_nm[c] << "nm";
@@ -150,44 +246,44 @@ int main(int argc, char** argv) try {
     }
   }
 
-  std::ofstream ref_csv(out / "twilight_reference.csv");
-  ref_csv << "sun_elevation_deg,wavelength_nm,reference,standard_error";
+  std::ofstream ref_csv(reference_csv);
+  ref_csv << "# build/bench/twilight_bench";  // the command first (gnuplot skips it; fixtures keep it)
+  for (int a = 1; a < argc; ++a) ref_csv << ' ' << argv[a];
+  ref_csv << '\n';
+  ref_csv << "sun_elevation_deg,wavelength_nm,reference,standard_error,order_one";
   for (const std::string& name : size_names) ref_csv << ',' << name << ',' << name << "_relative_error";
   ref_csv << '\n';
-  for (const std::string& text : reference_deg) {
-    const double h = std::stod(text);
-    reference::PathTracerOptions options;
-    options.samples_per_wavelength = samples;
-    options.thread_count = threads;
-    const auto start = std::chrono::steady_clock::now();
-    const auto estimate =
-        reference::path_traced_radiance(model, camera, zenith, reference::SunDisc{sun_direction(h), 4.65e-3}, options);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (std::size_t e = 0; e < reference_deg.size(); ++e) {
+    const double h = std::stod(reference_deg[e]);
+    const Reference r = reference_at(model, camera, h, reference_kind, samples[e], batches, threads);
     for (std::size_t c = 0; c < channels; ++c) {
-      std::string line = fmt::format("sun {:6.1f}°  {:.0f} nm  reference {:.4e} ± {:.1f} %", h, model.wavelengths_nm[c],
-                                     estimate.mean[c], 100.0 * estimate.standard_error[c] / estimate.mean[c]);
-      ref_csv << h << ',' << model.wavelengths_nm[c] << ',' << estimate.mean[c] << ',' << estimate.standard_error[c];
+      const double relative_se = r.standard_error[c] / r.mean[c];
+      std::string line =
+          fmt::format("sun {:6.1f}°  {:.0f} nm  reference {:.4e} ± {:.2f} % (order 1 {:.1f} %)", h,
+                      model.wavelengths_nm[c], r.mean[c], 100.0 * relative_se, 100.0 * r.order_one[c] / r.mean[c]);
+      ref_csv << h << ',' << model.wavelengths_nm[c] << ',' << fmt::format("{:.6e}", r.mean[c]) << ','
+              << fmt::format("{:.6e}", r.standard_error[c]) << ',' << fmt::format("{:.6e}", r.order_one[c]);
       for (const std::string& name : size_names) {
         // the table value at the nearest step of the sweep
         std::size_t k = std::size_t(std::lround(-h / step_deg));
         k = std::min(k, elevations.size() - 1);
         const double value = by_size[name][k][c];
-        const double error = value / estimate.mean[c] - 1.0;
-        line += fmt::format("  {} {:+.2f} %", name, 100.0 * error);
-        ref_csv << ',' << value << ',' << error;
+        const double error = value / r.mean[c] - 1.0;
+        line += fmt::format("  {} {:+.2f} % (z {:+.1f})", name, 100.0 * error, error / relative_se);
+        ref_csv << ',' << fmt::format("{:.6e}", value) << ',' << fmt::format("{:.5f}", error);
       }
       ref_csv << '\n';
       fmt::print("{}\n", line);
     }
-    fmt::print("  ({} paths per wavelength, {:.0f} s)\n", samples, seconds);
     std::fflush(stdout);
   }
   ref_csv.close();
 
   if (chart) {
-    const auto script = out / "twilight_zenith.gp";
+    const auto script = out / ("twilight_zenith" + suffix + ".gp");
     std::ofstream gp(script);
-    gp << "set terminal pngcairo size 900,600\nset output '" << (out / "twilight_zenith.png").string() << "'\n"
+    gp << "set terminal pngcairo size 900,600\nset output '" << (out / ("twilight_zenith" + suffix + ".png")).string()
+       << "'\n"
        << "set datafile separator ','\nset logscale y\nset key top right\nset grid\n"
        << "set xlabel 'sun elevation [deg]'\nset ylabel 'zenith radiance [sr^-1 per unit solar irradiance]'\n"
        << "set title 'Zenith radiance through twilight (" << preset << ", 550 nm)'\nplot ";
@@ -195,10 +291,10 @@ int main(int argc, char** argv) try {
     for (std::size_t c = 0; c < channels; ++c)
       if (std::abs(model.wavelengths_nm[c] - 550.0) < std::abs(model.wavelengths_nm[c550] - 550.0)) c550 = c;
     for (std::size_t s = 0; s < size_names.size(); ++s)
-      gp << "'" << (out / "twilight_zenith.csv").string() << "' using 1:" << 2 + s * channels + c550
-         << " with lines title '" << size_names[s] << "', ";
-    gp << "'" << (out / "twilight_reference.csv").string() << "' using ($2==" << model.wavelengths_nm[c550]
-       << "?$1:1/0):3:4 with yerrorbars title 'path tracer'\n";
+      gp << "'" << zenith_csv.string() << "' using 1:" << 2 + s * channels + c550 << " with lines title '"
+         << size_names[s] << "', ";
+    gp << "'" << reference_csv.string() << "' using ($2==" << model.wavelengths_nm[c550]
+       << "?$1:1/0):3:4 with yerrorbars title 'reference (" << reference_kind << ")'\n";
     gp.close();
     if (std::system(("gnuplot " + script.string() + " 2>/dev/null").c_str()) != 0)
       fmt::print("gnuplot failed: the data is in {}\n", out.string());

@@ -54,11 +54,17 @@ PhaseSample sample_scattering_cosine(const AtmosphereMedium& medium, const Local
   PhaseSample sample;
   sample.cos_scattering =
       rayleigh ? sample_rayleigh_classic_cosine(u_cos) : sample_mie_proposal_cosine(mie, i, u_lobe, u_cos);
-  double proposal = c.rayleigh_scattering_m1 * rayleigh_phase_classic(sample.cos_scattering);
-  if (c.mie_scattering_m1 > 0.0) proposal += c.mie_scattering_m1 * mie_proposal_pdf(mie, i, sample.cos_scattering);
-  proposal /= scattering;
-  sample.weight = medium.mixture_phase(c, i, sample.cos_scattering) / proposal;
+  sample.weight =
+      medium.mixture_phase(c, i, sample.cos_scattering) / scattering_proposal_pdf(medium, c, i, sample.cos_scattering);
   return sample;
+}
+
+double scattering_proposal_pdf(const AtmosphereMedium& medium, const LocalCoefficients& c, std::size_t i,
+                               double cos_scattering) {
+  double proposal = c.rayleigh_scattering_m1 * rayleigh_phase_classic(cos_scattering);
+  if (c.mie_scattering_m1 > 0.0)
+    proposal += c.mie_scattering_m1 * mie_proposal_pdf(medium.model().mie_phase, i, cos_scattering);
+  return proposal / c.scattering_m1();
 }
 
 }  // namespace zenith::atmosphere::reference

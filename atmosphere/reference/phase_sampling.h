@@ -48,4 +48,10 @@ struct PhaseSample {
 PhaseSample sample_scattering_cosine(const AtmosphereMedium& medium, const LocalCoefficients& c, std::size_t wavelength,
                                      double u_component, double u_lobe, double u_cos);
 
+/// The pdf [sr^-1] of sample_scattering_cosine's ν at a point with coefficients `c`:
+///   q(ν) = (β_R q_R(ν) + β_M q_M(ν)) / β_scat,  q_R the classic Rayleigh phase 3(1 + ν²)/(16π),
+/// q_M the aerosol proposal (mie_proposal_pdf). Requires β_scat > 0.
+double scattering_proposal_pdf(const AtmosphereMedium& medium, const LocalCoefficients& c, std::size_t wavelength,
+                               double cos_scattering);
+
 }  // namespace zenith::atmosphere::reference
