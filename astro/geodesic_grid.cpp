@@ -10,14 +10,6 @@ namespace {
 
 Vec3d add(const Vec3d& a, const Vec3d& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3d normalize(const Vec3d& v) {
-  const double n = std::sqrt(dot(v, v));
-  return {v[0] / n, v[1] / n, v[2] / n};
-}
 
 // The icosahedron of StelGeodesicGrid: corners (±a, ±b, 0), (0, ±a, ±b),
 // (±b, 0, ±a) with b = 1/√(1 + G²), a = bG, G the golden ratio, and its 20
@@ -39,8 +31,8 @@ struct Icosahedron {
 void subdivide(int level, int target, const Vec3d& c0, const Vec3d& c1, const Vec3d& c2, ZoneGrid& grid) {
   if (level == target) {
     CatalogueZone z;
-    z.centre = normalize(add(add(c0, c1), c2));
-    z.axis0 = normalize(cross(Vec3d{0, 0, 1}, z.centre));
+    z.centre = normalized(add(add(c0, c1), c2));
+    z.axis0 = normalized(cross(Vec3d{0, 0, 1}, z.centre));
     z.axis1 = cross(z.centre, z.axis0);
     for (const Vec3d* c : {&c0, &c1, &c2}) {
       const Vec3d d = sub(*c, z.centre);
@@ -51,7 +43,7 @@ void subdivide(int level, int target, const Vec3d& c0, const Vec3d& c1, const Ve
     grid.zones.push_back(z);
     return;
   }
-  const Vec3d e0 = normalize(add(c1, c2)), e1 = normalize(add(c2, c0)), e2 = normalize(add(c0, c1));
+  const Vec3d e0 = normalized(add(c1, c2)), e1 = normalized(add(c2, c0)), e2 = normalized(add(c0, c1));
   subdivide(level + 1, target, c0, e2, e1, grid);
   subdivide(level + 1, target, e2, c1, e0, grid);
   subdivide(level + 1, target, e1, e0, c2, grid);

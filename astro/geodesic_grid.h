@@ -21,9 +21,9 @@
 #include <cstddef>
 #include <vector>
 
-namespace zenith::astro {
+#include "astro/vec3d.h"
 
-using Vec3d = std::array<double, 3>;
+namespace zenith::astro {
 
 /// One zone's tangent-plane frame (unit vectors, J2000 equatorial).
 struct CatalogueZone {

@@ -5,24 +5,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "astro/vec3d.h"
 #include "core/units.h"
 
 namespace zenith::astro {
 namespace {
 
-using Vec = std::array<double, 3>;
-
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec normalized(const Vec& v) {
-  const double n = std::sqrt(dot(v, v));
-  return {v[0] / n, v[1] / n, v[2] / n};
-}
 /// r^T v: a vector of the rotated frame back on GCRS axes.
-Vec transposed_times(const double r[3][3], const Vec& v) {
-  Vec out{};
+Vec3d transposed_times(const double r[3][3], const Vec3d& v) {
+  Vec3d out{};
   for (int i = 0; i < 3; ++i) out[i] = r[0][i] * v[0] + r[1][i] * v[1] + r[2][i] * v[2];
   return out;
 }
@@ -37,12 +28,12 @@ MoonAxes moon_axes_gcrs(const JulianDate& tt) {
   // On the mean ecliptic and equinox of date: e1 toward longitude Ω (the lunar
   // equator's descending node), z the pole at longitude Ω + 90°, latitude 90° − I,
   // e2 = z × e1 90° ahead along the lunar equator (the direction of rotation).
-  const Vec e1{std::cos(node), std::sin(node), 0.0};
-  const Vec z{-std::sin(i) * std::sin(node), std::sin(i) * std::cos(node), std::cos(i)};
-  const Vec e2 = cross(z, e1);
+  const Vec3d e1{std::cos(node), std::sin(node), 0.0};
+  const Vec3d z{-std::sin(i) * std::sin(node), std::sin(i) * std::cos(node), std::cos(i)};
+  const Vec3d e2 = cross(z, e1);
   // The prime meridian faces the mean Earth: −(cos F e1 + sin F e2).
-  const Vec x{-(std::cos(f) * e1[0] + std::sin(f) * e2[0]), -(std::cos(f) * e1[1] + std::sin(f) * e2[1]),
-              -(std::cos(f) * e1[2] + std::sin(f) * e2[2])};
+  const Vec3d x{-(std::cos(f) * e1[0] + std::sin(f) * e2[0]), -(std::cos(f) * e1[1] + std::sin(f) * e2[1]),
+                -(std::cos(f) * e1[2] + std::sin(f) * e2[2])};
   double rm[3][3];
   eraEcm06(tt.day1, tt.day2, rm);  // GCRS (ICRS axes) → mean ecliptic of date
   MoonAxes axes;
@@ -53,7 +44,7 @@ MoonAxes moon_axes_gcrs(const JulianDate& tt) {
 }
 
 Selenographic selenographic(const MoonAxes& axes, const std::array<double, 3>& v) {
-  const Vec u = normalized(v);
+  const Vec3d u = normalized(v);
   return {std::atan2(dot(u, axes.y), dot(u, axes.x)), std::asin(std::clamp(dot(u, axes.z), -1.0, 1.0))};
 }
 
@@ -62,16 +53,16 @@ MoonOrientation moon_orientation(const SkyPositions& sky, bool geocentric) {
   const SkyPositions::MoonVectors v = sky.moon_vectors(geocentric);
   MoonOrientation o;
   o.axes = moon_axes_gcrs(tt);
-  const Vec& u = v.moon_from_observer_au;
+  const Vec3d& u = v.moon_from_observer_au;
   o.observer = selenographic(o.axes, {-u[0], -u[1], -u[2]});
   o.sun = selenographic(o.axes, v.sun_from_moon_au);
   // P: the axis on the observer's sky, against the true pole of date (the CIP).
   double npb[3][3];
   eraPnm06a(tt.day1, tt.day2, npb);
-  const Vec pole{npb[2][0], npb[2][1], npb[2][2]};
-  const Vec los = normalized(u);
-  const Vec east = normalized(cross(pole, los));
-  const Vec north = cross(los, east);
+  const Vec3d pole{npb[2][0], npb[2][1], npb[2][2]};
+  const Vec3d los = normalized(u);
+  const Vec3d east = normalized(cross(pole, los));
+  const Vec3d north = cross(los, east);
   o.axis_position_angle_rad = eraAnp(std::atan2(dot(o.axes.z, east), dot(o.axes.z, north)));
   return o;
 }

@@ -45,8 +45,6 @@ std::int64_t bits(const unsigned char* p, int first, int count, bool is_signed) 
   return std::int64_t(v);
 }
 
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
 /// Position and proper motion from the tangent-plane integers of a zone.
 /// q(t) = c + a0 (X0 + D0 t) + a1 (X1 + D1 t) is the (unnormalized) direction
 /// t years after J2000; its unit vector p and the rate dp/dt = (dq − p (p·dq)) / |q|
