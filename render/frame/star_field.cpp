@@ -50,44 +50,58 @@ const std::vector<double>& StarField::neighbourhood_irradiance(double radius_rad
   if (cached != neighbourhoods_.end()) return cached->second;
   const double radius = std::min(std::exp2(step / 4.0), 0.5 * 3.14159265358979323846);
   // Candidates from a grid of cubes of side the chord of 2 · radius (every
-  // star within it lies in the 27 cubes around a star's cube), then the chord itself.
+  // star within it lies in the 27 cubes around a star's cube), then the chord
+  // itself. One pass fills the tables of every first star of
+  // kNeighbourhoodFirsts (or of `first` alone): a pair's light goes to its
+  // bucket between two of them, and each table is the sum of the buckets from its own.
+  std::vector<std::size_t> firsts(kNeighbourhoodFirsts.begin(), kNeighbourhoodFirsts.end());
+  if (std::find(firsts.begin(), firsts.end(), first) == firsts.end()) firsts = {first};
+  const std::size_t buckets = firsts.size();
   const double reach = 2.0 * std::sin(radius);
   const std::size_t n = wavelengths_nm_.size();
   const std::size_t count = catalogue_.stars.size();
   std::vector<glm::dvec3> d(count);
+  std::vector<std::size_t> bucket(count, buckets);  // buckets: before the first table's first star
   for (std::size_t i = 0; i < count; ++i) {
     const astro::CatalogueStar& s = catalogue_.stars[i];
     d[i] = {std::cos(s.dec_rad) * std::cos(s.ra_rad), std::cos(s.dec_rad) * std::sin(s.ra_rad), std::sin(s.dec_rad)};
+    for (std::size_t b = buckets; b-- > 0;)
+      if (i >= firsts[b]) {
+        bucket[i] = b;
+        break;
+      }
   }
-  const auto cube_of = [&](const glm::dvec3& v) {
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(v.x / reach)),
-                                       static_cast<std::int64_t>(std::floor(v.y / reach)),
-                                       static_cast<std::int64_t>(std::floor(v.z / reach))};
-  };
-  std::map<std::array<std::int64_t, 3>, std::vector<std::size_t>> cubes, summed;  // every star; those from `first`
-  for (std::size_t i = 0; i < count; ++i) {
-    cubes[cube_of(d[i])].push_back(i);
-    if (i >= first) summed[cube_of(d[i])].push_back(i);
-  }
-  std::vector<double> sums(count * n, 0.0);
+  std::map<std::array<std::int64_t, 3>, std::vector<std::size_t>> cubes;
+  for (std::size_t i = 0; i < count; ++i)
+    cubes[{static_cast<std::int64_t>(std::floor(d[i].x / reach)), static_cast<std::int64_t>(std::floor(d[i].y / reach)),
+           static_cast<std::int64_t>(std::floor(d[i].z / reach))}]
+        .push_back(i);
+  std::vector<const std::pair<const std::array<std::int64_t, 3>, std::vector<std::size_t>>*> list;
+  for (const auto& entry : cubes) list.push_back(&entry);
+  std::vector<std::vector<double>> tables(buckets, std::vector<double>(count * n, 0.0));
   const double reach2 = reach * reach;
-  std::vector<std::size_t> near;
-  for (const auto& [centre, members] : cubes) {
-    near.clear();  // the 27 cubes' stars from `first`, once per cube
+  core::parallel_for(list.size(), 0, [&](std::size_t c) {
+    const auto& [centre, members] = *list[c];
+    std::vector<std::size_t> near;  // the 27 cubes' stars
     for (std::int64_t dz = -1; dz <= 1; ++dz)
       for (std::int64_t dy = -1; dy <= 1; ++dy)
         for (std::int64_t dx = -1; dx <= 1; ++dx) {
-          const auto it = summed.find({centre[0] + dx, centre[1] + dy, centre[2] + dz});
-          if (it != summed.end()) near.insert(near.end(), it->second.begin(), it->second.end());
+          const auto it = cubes.find({centre[0] + dx, centre[1] + dy, centre[2] + dz});
+          if (it != cubes.end()) near.insert(near.end(), it->second.begin(), it->second.end());
         }
-    for (std::size_t i : members)
+    for (std::size_t i : members) {  // each star's rows are its own: no two workers write one
       for (std::size_t j : near) {
+        if (bucket[j] == buckets) continue;
         const glm::dvec3 e = d[i] - d[j];
         if (glm::dot(e, e) > reach2) continue;
-        for (std::size_t k = 0; k < n; ++k) sums[i * n + k] += irradiance(j, k);
+        for (std::size_t k = 0; k < n; ++k) tables[bucket[j]][i * n + k] += irradiance(j, k);
       }
-  }
-  return neighbourhoods_[{step, first}] = std::move(sums);
+      for (std::size_t b = buckets - 1; b-- > 0;)
+        for (std::size_t k = 0; k < n; ++k) tables[b][i * n + k] += tables[b + 1][i * n + k];
+    }
+  });
+  for (std::size_t b = 0; b < buckets; ++b) neighbourhoods_[{step, firsts[b]}] = std::move(tables[b]);
+  return neighbourhoods_.at({step, first});
 }
 
 const std::vector<double>& StarField::brightest_cluster_irradiance(double radius_rad, double years_from_j2000,

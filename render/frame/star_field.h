@@ -81,6 +81,12 @@ glm::dvec2 on_splat_grid(const glm::dvec2& pixel);
 /// still lights the edge's pixels, as it does in a larger output holding both.
 bool splat_touches_image(const glm::dvec2& pixel, double width, double height);
 
+/// The first stars of the faint rests whose neighbourhoods
+/// (StarField::neighbourhood_irradiance) are filled together: the whole
+/// catalogue and the rests after the brightest 16, 64, …, 4096 (the star
+/// test's ladder, render/frame/star_visibility.h).
+inline constexpr std::array<std::size_t, 6> kNeighbourhoodFirsts = {0, 16, 64, 256, 1024, 4096};
+
 /// An atmosphere a star's light can cross: its planet and its transmittance table.
 struct StarAtmosphere {
   glm::dvec3 centre_m{0.0};  ///< world frame
@@ -118,7 +124,9 @@ class StarField {
   /// Per star i (every one), the sum of the irradiances of the stars from
   /// index `first` on within twice the widened radius of it, per wavelength,
   /// at [i · wavelengths + k]: a pixel gathering star i gathers no more of
-  /// them (brightest_cluster_irradiance is the largest over i ≥ `first`). Cached as it.
+  /// them (brightest_cluster_irradiance is the largest over i ≥ `first`).
+  /// Cached per radius step and `first`; for a `first` of kNeighbourhoodFirsts
+  /// all of those are filled in one pass (on the worker threads).
   const std::vector<double>& neighbourhood_irradiance(double radius_rad, double years_from_j2000,
                                                       std::size_t first = 0);
   /// The largest standard normal astro::scintillation_normal draws for any

@@ -117,8 +117,8 @@ namespace zenith::render {
 /// tone curve and encoding: a smaller change of a display value is invisible.
 inline constexpr double kInvisibleCodeChange = 0.495;
 /// The second stage's ladder of the brightest stars tested one by one: 16,
-/// 64, 256, 1024, 4096; past that the pass runs.
-inline constexpr std::size_t kFirstStarsTested = 16, kMostStarsTested = 4096;
+/// 64, 256, 1024, 4096 (kNeighbourhoodFirsts after the whole catalogue); past that the pass runs.
+inline constexpr std::size_t kFirstStarsTested = kNeighbourhoodFirsts[1], kMostStarsTested = kNeighbourhoodFirsts[5];
 
 /// Whether adding at most |delta| of exposed linear radiance to a display
 /// channel whose background is at least `background` changes its 8-bit sRGB
