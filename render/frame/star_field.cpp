@@ -41,11 +41,14 @@ double StarField::largest_scintillation_normal(std::int64_t interval) {
   return largest;
 }
 
+int StarField::radius_step(double radius_rad, double years_from_j2000) const {
+  const double widened = radius_rad + 2.0 * largest_proper_motion_rad_yr_ * std::abs(years_from_j2000);
+  return static_cast<int>(std::ceil(4.0 * std::log2(std::max(widened, 1e-9))));
+}
+
 const std::vector<double>& StarField::neighbourhood_irradiance(double radius_rad, double years_from_j2000,
                                                                std::size_t first) {
-  const double widened = radius_rad + 2.0 * largest_proper_motion_rad_yr_ * std::abs(years_from_j2000);
-  // The cache's key: the radius rounded up to a step of 2^(1/4), and the first star.
-  const int step = static_cast<int>(std::ceil(4.0 * std::log2(std::max(widened, 1e-9))));
+  const int step = radius_step(radius_rad, years_from_j2000);
   const auto cached = neighbourhoods_.find({step, first});
   if (cached != neighbourhoods_.end()) return cached->second;
   const double radius = std::min(std::exp2(step / 4.0), 0.5 * 3.14159265358979323846);
@@ -106,8 +109,7 @@ const std::vector<double>& StarField::neighbourhood_irradiance(double radius_rad
 
 const std::vector<double>& StarField::brightest_cluster_irradiance(double radius_rad, double years_from_j2000,
                                                                    std::size_t first) {
-  const double widened = radius_rad + 2.0 * largest_proper_motion_rad_yr_ * std::abs(years_from_j2000);
-  const int step = static_cast<int>(std::ceil(4.0 * std::log2(std::max(widened, 1e-9))));
+  const int step = radius_step(radius_rad, years_from_j2000);
   const auto cached = clusters_.find({step, first});
   if (cached != clusters_.end()) return cached->second;
   const std::vector<double>& sums = neighbourhood_irradiance(radius_rad, years_from_j2000, first);

@@ -149,6 +149,9 @@ class StarField {
   std::vector<double> irradiance_;  // n per star
   double brightest_ = 0.0;
   double largest_proper_motion_rad_yr_ = 0.0;
+  /// The caches' key: the radius widened by twice the largest proper motion
+  /// over the years, rounded up to a step of 2^(1/4) (as log2 × 4).
+  int radius_step(double radius_rad, double years_from_j2000) const;
   // By radius step and first star: the largest sums, the sums per star.
   std::map<std::pair<int, std::size_t>, std::vector<double>> clusters_, neighbourhoods_;
   bool have_normal_ = false;

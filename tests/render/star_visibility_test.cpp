@@ -70,6 +70,16 @@ scene::Scene greenwich_sky(const glm::dvec3& look_enu, double exposure, double e
   return s;
 }
 
+/// Sirius (the catalogue's brightest) in the site's east-north-up frame at kTime, geometric.
+glm::dvec3 sirius_enu() {
+  const astro::SkyPositions sky(astro::AstroTime::from_utc(kTime),
+                                astro::Site{testing::kGreenwichLatitudeDeg, testing::kGreenwichLongitudeDeg, 46.0});
+  astro::StarCatalogueOptions bright;
+  bright.magnitude_limit = 1.5;
+  const auto e = sky.star(astro::load_star_catalogue(bright).stars.front()).east_north_up();
+  return {e[0], e[1], e[2]};
+}
+
 /// The continuous 8-bit code value of exposed radiance x: 255 E(T(x)).
 double code_value(float x, image::ToneMapping tone) {
   return 255.0 * static_cast<double>(image::srgb_encode(image::tone_map(x, tone)));
@@ -212,17 +222,12 @@ TEST(StarVisibility, WhereItSkipsTheFrameWithTheStarsForcedOnIsTheSameToTheCode)
   // A dome master (zenith up) and a 10° planar view of Sirius, day and twilight.
   const warp::FisheyeProjection dome(48, 48);
   const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(64, 48, 10.0);
-  const astro::SkyPositions sky(astro::AstroTime::from_utc(kTime),
-                                astro::Site{testing::kGreenwichLatitudeDeg, testing::kGreenwichLongitudeDeg, 46.0});
-  astro::StarCatalogueOptions bright;
-  bright.magnitude_limit = 1.5;
-  const auto sirius = sky.star(astro::load_star_catalogue(bright).stars.front()).east_north_up();
+  const glm::dvec3 sirius = sirius_enu();
   for (double elevation : {30.0, 0.0, -3.0, -6.0, -9.0})
     for (double exposure : {30.0, 300.0, 3000.0, 3e4, 3e5}) {
       const std::string at = "sun " + std::to_string(elevation) + "°, exposure " + std::to_string(exposure);
       second += check_skip(tested, forced, greenwich_sky({0, 0, 1}, exposure, elevation, 0.0), dome, "dome, " + at);
-      second += check_skip(tested, forced, greenwich_sky({sirius[0], sirius[1], sirius[2]}, exposure, elevation, 0.0),
-                           planar, "planar, " + at);
+      second += check_skip(tested, forced, greenwich_sky(sirius, exposure, elevation, 0.0), planar, "planar, " + at);
     }
   // The evening show's first frames, with its own exposure track, on a dome master.
   const show::Show show =
@@ -247,14 +252,10 @@ TEST(StarVisibility, ABrightStarOnADarkSkyThatMovesACodeIsNeverSkipped) {
   always.night_sky.skip_hidden_stars = false;
   TestRenderer tested(o), forced(always);
   const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(32, 32, 4.0);
-  const astro::SkyPositions sky(astro::AstroTime::from_utc(kTime),
-                                astro::Site{testing::kGreenwichLatitudeDeg, testing::kGreenwichLongitudeDeg, 46.0});
-  astro::StarCatalogueOptions bright;
-  bright.magnitude_limit = 1.5;
-  const auto sirius = sky.star(astro::load_star_catalogue(bright).stars.front()).east_north_up();
+  const glm::dvec3 sirius = sirius_enu();
   double first_visible = 0.0, first_run = 0.0;
   for (double exposure = 0.1; exposure < 2e6; exposure *= std::sqrt(std::sqrt(10.0))) {
-    const scene::Scene s = greenwich_sky({sirius[0], sirius[1], sirius[2]}, exposure, -9.0, 0.0);
+    const scene::Scene s = greenwich_sky(sirius, exposure, -9.0, 0.0);
     const auto a = tested.renderer.render_image(s, planar);
     const bool runs = tested.renderer.last_frame().stars_could_show;
     const auto b = forced.renderer.render_image(s, planar);
