@@ -29,6 +29,7 @@
 #include "scene/frame_scene.h"
 #include "scene/local_horizon.h"
 #include "show/show.h"
+#include "tests/render/code_difference.h"
 #include "tests/render/greenwich_night.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
@@ -78,32 +79,6 @@ glm::dvec3 sirius_enu() {
   bright.magnitude_limit = 1.5;
   const auto e = sky.star(astro::load_star_catalogue(bright).stars.front()).east_north_up();
   return {e[0], e[1], e[2]};
-}
-
-/// The continuous 8-bit code value of exposed radiance x: 255 E(T(x)).
-double code_value(float x, image::ToneMapping tone) {
-  return 255.0 * static_cast<double>(image::srgb_encode(image::tone_map(x, tone)));
-}
-
-/// How far the frame with the stars forced on is from the tested one: the
-/// largest change of a continuous code value and the count of 8-bit codes that
-/// differ, over both tone operators.
-struct Difference {
-  double largest_code_change = 0.0;
-  std::size_t codes_differing = 0;
-  int largest_byte_change = 0;
-};
-Difference difference(const std::vector<float>& a, const std::vector<float>& b) {
-  Difference d;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (image::ToneMapping tone : {image::ToneMapping::exponential, image::ToneMapping::clamp}) {
-      d.largest_code_change =
-          std::max(d.largest_code_change, std::abs(code_value(a[i], tone) - code_value(b[i], tone)));
-      const int step = std::abs(int(image::display_byte(a[i], tone)) - int(image::display_byte(b[i], tone)));
-      d.codes_differing += step != 0;
-      d.largest_byte_change = std::max(d.largest_byte_change, step);
-    }
-  return d;
 }
 
 TEST(StarVisibility, TheSkyBehindAStarIsNoDarkerThanItsOwnBound) {
@@ -201,7 +176,7 @@ int check_skip(TestRenderer& tested, TestRenderer& forced, const scene::Scene& s
   if (forced.renderer.last_frame().stars == 0) return 0;  // nothing to compare with
   // Every value within half a code: each 8-bit code the same, or one step
   // away where the sky sits within that change of a rounding boundary.
-  const Difference d = difference(a, b);
+  const testing::CodeDifference d = testing::code_difference(a, b);
   EXPECT_LT(d.largest_code_change, kInvisibleCodeChange) << what;
   EXPECT_LE(d.largest_byte_change, 1) << what;
   EXPECT_LE(d.codes_differing, a.size() / 100) << what;
@@ -266,14 +241,14 @@ TEST(StarVisibility, ABrightStarOnADarkSkyThatMovesACodeIsNeverSkipped) {
       TestRenderer r(without);
       return r.renderer.render_image(s, planar);
     }();
-    const double moved = difference(b, none).largest_code_change;
+    const double moved = testing::code_difference(b, none).largest_code_change;
     if (moved >= 0.5) {
       EXPECT_TRUE(runs) << "exposure " << exposure << ": the star moves " << moved << " code";
     }
     if (moved >= 0.5 && first_visible == 0.0) first_visible = exposure;
     if (runs && first_run == 0.0) first_run = exposure;
     if (!runs) {
-      EXPECT_LT(difference(a, b).largest_code_change, kInvisibleCodeChange);
+      EXPECT_LT(testing::code_difference(a, b).largest_code_change, kInvisibleCodeChange);
     }
   }
   ASSERT_GT(first_visible, 0.0) << "the star shows at some exposure";
