@@ -24,9 +24,9 @@ using Clock = std::chrono::steady_clock;
 struct Row {
   double fixed_exposure = 0.0;  // 0: the show's own exposure track
   double t_s = 0.0, sun_altitude_deg = 0.0, exposure = 0.0;
-  bool black_sky = false, sky = false;
-  double floor = 0.0, peak = 0.0, black_peak = 0.0;
-  std::size_t stars = 0;
+  bool black_sky = false, global = false, sky = false;  // each test: the stars run
+  double floor = 0.0, peak = 0.0, black_peak = 0.0, code_change = 0.0;
+  std::size_t stars = 0, tested = 0;
 };
 
 /// The show's exposures: its exposure track's values at every whole second, distinct.
@@ -78,28 +78,32 @@ void sweep_star_twilight(const StarTwilight& w, const std::string& device, const
       r.black_peak = f.star_black_sky_peak;
       r.black_sky = f.star_black_sky_peak >= render::kInvisibleDisplayStep;
       r.sky = f.stars_could_show;
+      r.global = f.stars_could_show || f.stars_tested > 0;  // the second stage runs where the first could not skip
+      r.tested = f.stars_tested;
+      r.code_change = f.star_code_change;
       r.floor = f.star_sky_floor;
       r.peak = f.star_sky_peak;
       r.stars = f.stars;
       fmt::print(
-          "  t {:4.1f} s: sun {:6.2f}°, exposure {:9.4g}: black-sky test {}, sky test {} (floor {:.3g}, peak "
-          "{:.3g}; {} stars placed)\n",
-          t, r.sun_altitude_deg, r.exposure, r.black_sky ? "runs " : "skips", r.sky ? "runs " : "skips", r.floor,
-          r.peak, r.stars);
+          "  t {:4.1f} s: sun {:6.2f}°, exposure {:9.4g}: black-sky test {}, global sky test {}, star by star {} "
+          "(floor {:.3g}, peak {:.3g}; {} tested one by one, ≤ {:.3g} code; {} stars placed)\n",
+          t, r.sun_altitude_deg, r.exposure, r.black_sky ? "runs " : "skips", r.global ? "runs " : "skips",
+          r.sky ? "runs " : "skips", r.floor, r.peak, r.tested, r.code_change, r.stars);
       rows.push_back(r);
     }
   }
   std::filesystem::path csv = w.csv;
   std::ofstream out(csv);
   if (!out) throw std::runtime_error("cannot write " + csv.string());
-  out << "device,dome_px,exposure_held,show_time_s,sun_altitude_deg,exposure,black_sky_test_runs,sky_test_runs,"
-         "sky_floor,star_peak,black_sky_peak,stars_placed\n";
+  out << "device,dome_px,exposure_held,show_time_s,sun_altitude_deg,exposure,black_sky_test_runs,"
+         "global_test_runs,star_by_star_runs,sky_floor,star_peak,black_sky_peak,stars_tested,code_change,"
+         "stars_placed\n";
   for (const Row& r : rows)
     out << '"' << device << "\"," << w.dome_px << ','
-        << fmt::format("{},{:.2f},{:.3f},{:.6g},{},{},{:.6g},{:.6g},{:.6g},{}",
+        << fmt::format("{},{:.2f},{:.3f},{:.6g},{},{},{},{:.6g},{:.6g},{:.6g},{},{:.4g},{}",
                        r.fixed_exposure > 0.0 ? fmt::format("{:g}", r.fixed_exposure) : "show", r.t_s,
-                       r.sun_altitude_deg, r.exposure, int(r.black_sky), int(r.sky), r.floor, r.peak, r.black_peak,
-                       r.stars)
+                       r.sun_altitude_deg, r.exposure, int(r.black_sky), int(r.global), int(r.sky), r.floor, r.peak,
+                       r.black_peak, r.tested, r.code_change, r.stars)
         << '\n';
   // Per exposure: from which frame on the stars run in every later frame
   // (the tables' floor steps between μs columns, so a test may skip a frame
@@ -113,15 +117,21 @@ void sweep_star_twilight(const StarTwilight& w, const std::string& device, const
                                  start->exposure)
                    : std::string("never");
     };
-    fmt::print("{}: the stars run from the black-sky test's {} on, from the sky test's {} on\n",
-               fixed > 0.0 ? fmt::format("exposure {:g}", fixed) : std::string("the show's exposures"),
-               from(&Row::black_sky), from(&Row::sky));
+    fmt::print(
+        "{}: the stars run from the black-sky test's {} on, the global sky test's {} on, the star-by-star test's {} "
+        "on\n",
+        fixed > 0.0 ? fmt::format("exposure {:g}", fixed) : std::string("the show's exposures"), from(&Row::black_sky),
+        from(&Row::global), from(&Row::sky));
   }
 
-  // The saving: at the last frame the old test ran and the new one skips.
+  // The saving: at the last frame the global test ran and the star-by-star
+  // one skips (else the black-sky test and the sky's).
   std::vector<const Row*> saved;
   for (const Row& r : rows)
-    if (r.black_sky && !r.sky) saved.push_back(&r);
+    if (r.global && !r.sky) saved.push_back(&r);
+  if (saved.empty())
+    for (const Row& r : rows)
+      if (r.black_sky && !r.sky) saved.push_back(&r);
   std::filesystem::path times = csv;
   times.replace_filename(csv.stem().string() + "_times.csv");
   std::ofstream timing(times);

@@ -4,11 +4,13 @@
 // through a show's twilight, and what skipping them saves. The show's frames
 // every --stars-step seconds of show time on a fisheye dome master of
 // --stars-dome pixels: the sun's altitude, the exposure, the test this one
-// replaced (the brightest star on a black sky) and the test against the sky,
-// with its figures, for the show's own exposure track and for each of its
-// exposures held through the twilight; then, at the last frame where the old
-// test ran and the new one skips, frames with the test and with the stars
-// forced on (what the old test did there), interleaved, medians. Prints the figures
+// replaced (the brightest star on a black sky), the test's first stage (the
+// global bound against the sky) and both stages (star by star), with their
+// figures, for the show's own exposure track and for each of its exposures
+// held through the twilight; then, at the last frame where the first stage
+// ran and the second skips (else where the black-sky test ran and the sky's
+// skips), frames with the test and with the stars forced on, interleaved,
+// medians, and the test's own CPU time there. Prints the figures
 // and writes the sweep to --stars-csv (default
 // bench/results/star_twilight_skip.csv) and the timing beside it (…_times.csv).
 #include <filesystem>

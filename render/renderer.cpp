@@ -192,6 +192,8 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   stats_.star_sky_peak = *std::max_element(night.star_test.sky_peak.begin(), night.star_test.sky_peak.end());
   stats_.stars_could_show = night.star_test.could_show;
   stats_.star_black_sky_peak = night.star_test.black_sky_peak;
+  stats_.stars_tested = night.star_test.stars_tested;
+  stats_.star_code_change = night.star_test.code_change;
   stats_.moon_map_identity = night.moon_map_identity;
   stats_.moon_mean_albedo = night.moon_mean_albedo;
   stats_.moonlight = frame.moonlit;

@@ -104,6 +104,11 @@ struct FrameStats {
   /// The test it replaced (StarVisibility::black_sky_peak; 0 where it did not run).
   double star_black_sky_peak = 0.0;
   bool stars_could_show = true;
+  /// The test's second stage (StarVisibility): the brightest stars it tested
+  /// one by one (0: the first stage decided), and the largest change of a code
+  /// value the deciding stage allowed [codes; < 0.495: skipped].
+  std::size_t stars_tested = 0;
+  double star_code_change = 0.0;
   /// The Moon's disc (render/frame/moon_albedo_map.h): the identity of its
   /// albedo map, given with the stars or the disc ("" neither, or the uniform
   /// albedo of a missing map: astro/sky_data_identity.h joins it with the

@@ -56,6 +56,31 @@ double least_product(double lowest, double p_min, double p_max) {
   return lowest >= 0.0 ? lowest * p_min : lowest * p_max;
 }
 
+/// The sky half (y ≥ height / 2) of a table, row after row.
+void copy_sky_half(const atmosphere::lut::Table3D& t, std::vector<float>& out) {
+  const std::size_t half = t.height / 2, row = t.width * t.channels;
+  out.resize(t.depth * (t.height - half) * row);
+  for (std::size_t z = 0; z < t.depth; ++z)
+    for (std::size_t y = half; y < t.height; ++y)
+      std::copy_n(t.texel(0, y, z), row, &out[(z * (t.height - half) + (y - half)) * row]);
+}
+
+/// The Mie phase's grid of cosines (as the floor's minima above).
+constexpr std::size_t kMieGrid = 4096;
+
+/// The least of a + b ν² over ν in `nu` (the Rayleigh phase models' shape):
+/// at the cosine nearest 0 or the farthest, whichever is smaller.
+double least_quadratic(double a, double b, Interval nu) {
+  const double nearest = nu.lo <= 0.0 && nu.hi >= 0.0 ? 0.0 : std::min(std::abs(nu.lo), std::abs(nu.hi));
+  const double farthest = std::max(std::abs(nu.lo), std::abs(nu.hi));
+  return std::min(a + b * nearest * nearest, a + b * farthest * farthest);
+}
+double largest_quadratic(double a, double b, Interval nu) {
+  const double nearest = nu.lo <= 0.0 && nu.hi >= 0.0 ? 0.0 : std::min(std::abs(nu.lo), std::abs(nu.hi));
+  const double farthest = std::max(std::abs(nu.lo), std::abs(nu.hi));
+  return std::max(a + b * nearest * nearest, a + b * farthest * farthest);
+}
+
 }  // namespace
 
 SkyRadianceFloor::SkyRadianceFloor(const atmosphere::AtmosphereModel& model,
@@ -89,6 +114,19 @@ SkyRadianceFloor::SkyRadianceFloor(const atmosphere::AtmosphereModel& model,
     sky_half_minima(tables.multiple, n, multiple_);
   else
     multiple_.assign(rayleigh_.size(), 0.0);
+
+  // The sky half as it is, for the frame's slices; the phases.
+  copy_sky_half(tables.single_rayleigh, sky_rayleigh_);
+  if (model.has_mie()) copy_sky_half(tables.single_mie, sky_mie_);
+  if (multiple_scattering) copy_sky_half(tables.multiple, sky_multiple_);
+  rayleigh_at_0_ = model.rayleigh_phase_function(0.0);
+  rayleigh_at_1_ = model.rayleigh_phase_function(1.0);
+  if (model.has_mie()) {
+    mie_phase_grid_.resize((kMieGrid + 1) * channels_);
+    for (std::size_t k = 0; k <= kMieGrid; ++k)
+      for (std::size_t i = 0; i < channels_; ++i)
+        mie_phase_grid_[k * channels_ + i] = model.mie_phase(i, -1.0 + 2.0 * static_cast<double>(k) / kMieGrid);
+  }
 }
 
 std::vector<double> SkyRadianceFloor::radiance_per_irradiance(double mu_s, double radius_m) const {
@@ -119,6 +157,119 @@ std::vector<double> SkyRadianceFloor::radiance_per_irradiance(double mu_s, doubl
     out[i] = std::max(0.0, kFloatMargin * (rayleigh + mie + scattered));
   }
   return out;
+}
+
+SkyFloorSlice SkyRadianceFloor::slice(double mu_s, double radius_m) const {
+  SkyFloorSlice out;
+  if (channels_ == 0) return out;
+  out.floor_ = this;
+  out.channels_ = channels_;
+  out.half_ = sizes_.scattering_mu / 2;
+  out.nu_ = sizes_.scattering_nu;
+  out.mu_s_ = std::clamp(mu_s, -1.0, 1.0);
+  out.radius_m_ = std::clamp(radius_m, geometry_.bottom_radius_m, geometry_.top_radius_m);
+  const std::size_t n = sizes_.scattering_mu_s, width = sizes_.scattering_width(), half = out.half_;
+  const Between rows = texels_read(atmosphere::lut::scattering_uvwz(geometry_, sizes_, out.radius_m_, 1.0, out.mu_s_,
+                                                                    out.mu_s_, false, AngleMapping::Distance)
+                                       .u_r,
+                                   sizes_.scattering_r);
+  // The row weight the texture unit applies: within 1/256 of the exact one.
+  const double tr_lo = std::max(0.0, rows.t - 1.0 / 256.0), tr_hi = std::min(1.0, rows.t + 1.0 / 256.0);
+  const auto fill = [&](const std::vector<float>& sky, AngleMapping mapping, SkyFloorSlice::Term& term) {
+    if (sky.empty()) return false;
+    const Between columns = texels_read(atmosphere::lut::scattering_u_mu_s(geometry_, sizes_, out.mu_s_, mapping), n);
+    term.a = columns.lo;
+    term.b = columns.hi;
+    // The shader's blend weight, from float coordinates: within 1e-3 of this one.
+    term.t_lo = std::max(0.0, columns.t - 1e-3);
+    term.t_hi = std::min(1.0, columns.t + 1e-3);
+    for (auto [column, values] : {std::pair{term.a, &term.column_a}, std::pair{term.b, &term.column_b}}) {
+      values->resize(out.nu_ * half * channels_);
+      for (std::size_t k = 0; k < out.nu_; ++k)
+        for (std::size_t y = 0; y < half; ++y)
+          for (std::size_t i = 0; i < channels_; ++i) {
+            const std::size_t x = k * n + column;
+            const double v0 = sky[((rows.lo * half + y) * width + x) * channels_ + i];
+            const double v1 = sky[((rows.hi * half + y) * width + x) * channels_ + i];
+            (*values)[(k * half + y) * channels_ + i] =
+                std::min((1.0 - tr_lo) * v0 + tr_lo * v1, (1.0 - tr_hi) * v0 + tr_hi * v1);
+          }
+    }
+    return true;
+  };
+  fill(sky_rayleigh_, AngleMapping::Distance, out.rayleigh_);
+  out.mie_on_ = fill(sky_mie_, AngleMapping::Distance, out.mie_);
+  out.multiple_on_ = fill(sky_multiple_, AngleMapping::Blended, out.multiple_);
+  return out;
+}
+
+double SkyFloorSlice::least(const Term& term, std::size_t y0, std::size_t y1, std::size_t k0, std::size_t k1,
+                            std::size_t i) const {
+  double a = std::numeric_limits<double>::infinity(), b = a;
+  for (std::size_t k = k0; k <= k1; ++k)
+    for (std::size_t y = y0; y <= y1; ++y) {
+      a = std::min(a, term.column_a[(k * half_ + y) * channels_ + i]);
+      b = std::min(b, term.column_b[(k * half_ + y) * channels_ + i]);
+    }
+  // The geometric blend of positive a, b is monotonic in t: its least is at an end.
+  return std::min(least_blend(a, b, term.t_lo), least_blend(a, b, term.t_hi));
+}
+
+void SkyFloorSlice::texel_ranges(Interval mu, Interval phi_rad, bool blended, std::size_t& y0, std::size_t& y1,
+                                 std::size_t& k0, std::size_t& k1) const {
+  const SkyRadianceFloor& f = *floor_;
+  const AngleMapping mapping = blended ? AngleMapping::Blended : AngleMapping::Distance;
+  const double n_mu = static_cast<double>(f.sizes_.scattering_mu);
+  // u_μ of the sky half falls as μ rises; the read weighs the texels either
+  // side of u n − 0.5, here widened by 1e-3 of a texel for the GPU's float coordinates.
+  const auto y_of = [&](double m) {
+    return atmosphere::lut::scattering_uvwz(f.geometry_, f.sizes_, radius_m_, std::clamp(m, -1.0, 1.0), mu_s_, 0.0,
+                                            false, mapping)
+                   .u_mu *
+               n_mu -
+           0.5;
+  };
+  const double ya = y_of(mu.lo), yb = y_of(mu.hi);
+  const double top = n_mu - 1.0, bottom = static_cast<double>(half_);
+  y0 = static_cast<std::size_t>(std::clamp(std::floor(std::min(ya, yb) - 1e-3), bottom, top)) - half_;
+  y1 = static_cast<std::size_t>(std::clamp(std::ceil(std::max(ya, yb) + 1e-3), bottom, top)) - half_;
+  // u_ν = φ/π over nu_ − 1 slice spacings; acos in float near φ = 0 or π is
+  // off by up to ~1e-3 rad: 1e-2 of a slice.
+  const double slices = static_cast<double>(nu_ - 1);
+  const double pi = 3.14159265358979323846;
+  k0 = static_cast<std::size_t>(std::clamp(std::floor(phi_rad.lo / pi * slices - 1e-2), 0.0, slices));
+  k1 = static_cast<std::size_t>(std::clamp(std::ceil(phi_rad.hi / pi * slices + 1e-2), 0.0, slices));
+}
+
+void SkyFloorSlice::radiance_per_irradiance(Interval mu, Interval phi_rad, Interval nu_rayleigh, Interval nu_mie,
+                                            double* out) const {
+  std::fill(out, out + channels_, 0.0);
+  if (!floor_) return;
+  const SkyRadianceFloor& f = *floor_;
+  std::size_t y0, y1, k0, k1, yb0, yb1, kb0, kb1;
+  texel_ranges(mu, phi_rad, false, y0, y1, k0, k1);
+  texel_ranges(mu, phi_rad, true, yb0, yb1, kb0, kb1);
+  const double a = f.rayleigh_at_0_, b = f.rayleigh_at_1_ - f.rayleigh_at_0_;
+  const double p_r_lo = std::max(0.0, least_quadratic(a, b, nu_rayleigh)),
+               p_r_hi = largest_quadratic(a, b, nu_rayleigh);
+  // The Mie phase's grid points bracketing ν (one minimum: between grid points
+  // it stays within 1 % of the bracketing points' least).
+  const auto grid = [](double nu) { return (std::clamp(nu, -1.0, 1.0) + 1.0) * 0.5 * static_cast<double>(kMieGrid); };
+  const std::size_t g0 = static_cast<std::size_t>(std::floor(grid(nu_mie.lo)));
+  const std::size_t g1 = std::min(kMieGrid, static_cast<std::size_t>(std::ceil(grid(nu_mie.hi))));
+  for (std::size_t i = 0; i < channels_; ++i) {
+    double sum = least_product(least(rayleigh_, y0, y1, k0, k1, i), p_r_lo, p_r_hi);
+    if (mie_on_) {
+      double p_lo = std::numeric_limits<double>::infinity(), p_hi = 0.0;
+      for (std::size_t g = g0; g <= g1; ++g) {
+        p_lo = std::min(p_lo, f.mie_phase_grid_[g * channels_ + i]);
+        p_hi = std::max(p_hi, f.mie_phase_grid_[g * channels_ + i]);
+      }
+      sum += least_product(least(mie_, y0, y1, k0, k1, i), 0.99 * std::max(p_lo, 0.0), 1.01 * p_hi);
+    }
+    if (multiple_on_) sum += least(multiple_, yb0, yb1, kb0, kb1, i);
+    out[i] = std::max(0.0, kFloatMargin * sum);
+  }
 }
 
 }  // namespace zenith::render

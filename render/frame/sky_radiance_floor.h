@@ -23,6 +23,7 @@
 // A table's texel below 0 (the multiple table's tail of orders) makes that
 // term's bound the smaller of its columns. Bodies in front of the sky, the
 // Moon's light, the night floor and other atmospheres only add.
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -30,6 +31,54 @@
 #include "atmosphere/lut/lookup_tables.h"
 
 namespace zenith::render {
+
+/// A closed interval [lo, hi].
+struct Interval {
+  double lo = 0.0, hi = 0.0;
+};
+
+class SkyRadianceFloor;
+
+/// The frame's part of the tables for bounds over parts of the sky
+/// (SkyRadianceFloor::slice): every read of a frame from a camera inside the
+/// shell has the camera's radius r and the sun's cosine μs there, so the same
+/// two radius rows with the same weights and the same two μs columns with the
+/// same blend; only μ and ν vary. Per table, per μs column, ν slice, sky-half
+/// μ texel and wavelength: the least its two rows give for any row weight the
+/// texture unit can use (t_r ± 1/256: the 8 bits of sub-texel weight of
+/// NVIDIA's filtering). A read at (μ, φ) weighs the μ texels and ν slices
+/// around it with weights in [0, 1] summing to 1, so it is at least their
+/// least; the μs blend of two columns at least a and b is at least the
+/// geometric a^(1−t) b^t (least_blend), t within 1e-3 of the frame's.
+class SkyFloorSlice {
+ public:
+  SkyFloorSlice() = default;
+  /// Per wavelength [sr⁻¹] into `out` (channels values): a lower bound of S per
+  /// unit sun irradiance of every sky-half read whose view cosine μ lies in
+  /// `mu` and whose azimuth from the sun's vertical φ (scattering_u_nu: u_ν =
+  /// φ/π) lies in `phi_rad` ⊂ [0, π], Rayleigh's phase applied at a ν in
+  /// `nu_rayleigh` and Mie's at a ν in `nu_mie`. Zeros for an empty slice.
+  void radiance_per_irradiance(Interval mu, Interval phi_rad, Interval nu_rayleigh, Interval nu_mie, double* out) const;
+  std::size_t channels() const { return channels_; }
+
+ private:
+  friend class SkyRadianceFloor;
+  struct Term {
+    std::size_t a = 0, b = 0;                // μs columns
+    double t_lo = 0.0, t_hi = 0.0;           // the blend's weight of b, widened
+    std::vector<double> column_a, column_b;  // [(k * half + y) * channels + i]
+  };
+  /// The least over μ texels [y0, y1] (of the sky half) and ν slices [k0, k1], blended in μs.
+  double least(const Term& term, std::size_t y0, std::size_t y1, std::size_t k0, std::size_t k1, std::size_t i) const;
+  /// The sky-half μ texel range and ν slice range a read in (mu, phi) weighs, per μ mapping.
+  void texel_ranges(Interval mu, Interval phi_rad, bool blended, std::size_t& y0, std::size_t& y1, std::size_t& k0,
+                    std::size_t& k1) const;
+  const SkyRadianceFloor* floor_ = nullptr;
+  double radius_m_ = 0.0, mu_s_ = 0.0;  // clamped to the tables' ranges
+  std::size_t channels_ = 0, half_ = 0, nu_ = 0;
+  Term rayleigh_, mie_, multiple_;
+  bool multiple_on_ = false, mie_on_ = false;
+};
 
 class SkyRadianceFloor {
  public:
@@ -47,7 +96,13 @@ class SkyRadianceFloor {
   /// empty floor (default-constructed).
   std::vector<double> radiance_per_irradiance(double mu_s, double radius_m) const;
 
+  /// The frame's slice of the tables' sky half for a camera at `radius_m`
+  /// with the sun's cosine `mu_s` there: bounds over parts of the sky
+  /// (SkyFloorSlice). Empty for an empty floor.
+  SkyFloorSlice slice(double mu_s, double radius_m) const;
+
  private:
+  friend class SkyFloorSlice;
   atmosphere::lut::ShellGeometry geometry_{};
   atmosphere::lut::TableSizes sizes_{};
   std::size_t channels_ = 0;
@@ -55,6 +110,15 @@ class SkyRadianceFloor {
   // channels + i]: the smallest sky-half texel of single Rayleigh times the
   // smallest P_R, of single Mie times the smallest P_M, of multiple scattering.
   std::vector<double> rayleigh_, mie_, multiple_;
+  // The sky half of the three tables as the passes read them (per radius row
+  // z, sky-half μ texel y, packed x = ν slice · μs columns + μs column and
+  // wavelength, at [((z * half + y) * width + x) * channels + i]; 18 MiB for
+  // the paper's sizes): the frame's slices. The multiple table's is empty
+  // where the passes do not read it, the Mie table's without Mie.
+  std::vector<float> sky_rayleigh_, sky_mie_, sky_multiple_;
+  // The phases: Rayleigh's A + B ν² (P(0), P(1)); Mie's on a grid of 4097 cosines per wavelength.
+  double rayleigh_at_0_ = 0.0, rayleigh_at_1_ = 0.0;
+  std::vector<double> mie_phase_grid_;  // [k * channels + i]
 };
 
 }  // namespace zenith::render

@@ -41,40 +41,82 @@ double StarField::largest_scintillation_normal(std::int64_t interval) {
   return largest;
 }
 
-const std::vector<double>& StarField::brightest_cluster_irradiance(double radius_rad, double years_from_j2000) {
+int StarField::radius_step(double radius_rad, double years_from_j2000) const {
   const double widened = radius_rad + 2.0 * largest_proper_motion_rad_yr_ * std::abs(years_from_j2000);
-  // The cache's key: the radius rounded up to a step of 2^(1/4).
-  const int step = static_cast<int>(std::ceil(4.0 * std::log2(std::max(widened, 1e-9))));
-  const auto cached = clusters_.find(step);
-  if (cached != clusters_.end()) return cached->second;
-  const double radius = std::min(std::exp2(step / 4.0), 3.14159265358979323846);
-  const double side = 2.0 * 2.0 * std::sin(0.5 * radius);  // twice the chord
+  return static_cast<int>(std::ceil(4.0 * std::log2(std::max(widened, 1e-9))));
+}
+
+const std::vector<double>& StarField::neighbourhood_irradiance(double radius_rad, double years_from_j2000,
+                                                               std::size_t first) {
+  const int step = radius_step(radius_rad, years_from_j2000);
+  const auto cached = neighbourhoods_.find({step, first});
+  if (cached != neighbourhoods_.end()) return cached->second;
+  const double radius = std::min(std::exp2(step / 4.0), 0.5 * 3.14159265358979323846);
+  // Candidates from a grid of cubes of side the chord of 2 · radius (every
+  // star within it lies in the 27 cubes around a star's cube), then the chord
+  // itself. One pass fills the tables of every first star of
+  // kNeighbourhoodFirsts (or of `first` alone): a pair's light goes to its
+  // bucket between two of them, and each table is the sum of the buckets from its own.
+  std::vector<std::size_t> firsts(kNeighbourhoodFirsts.begin(), kNeighbourhoodFirsts.end());
+  if (std::find(firsts.begin(), firsts.end(), first) == firsts.end()) firsts = {first};
+  const std::size_t buckets = firsts.size();
+  const double reach = 2.0 * std::sin(radius);
   const std::size_t n = wavelengths_nm_.size();
-  // Per cube of the unit sphere's grid, the sum of its stars' irradiances per wavelength.
-  std::map<std::array<std::int64_t, 3>, std::vector<double>> cubes;
-  for (std::size_t i = 0; i < catalogue_.stars.size(); ++i) {
+  const std::size_t count = catalogue_.stars.size();
+  std::vector<glm::dvec3> d(count);
+  std::vector<std::size_t> bucket(count, buckets);  // buckets: before the first table's first star
+  for (std::size_t i = 0; i < count; ++i) {
     const astro::CatalogueStar& s = catalogue_.stars[i];
-    const glm::dvec3 d(std::cos(s.dec_rad) * std::cos(s.ra_rad), std::cos(s.dec_rad) * std::sin(s.ra_rad),
-                       std::sin(s.dec_rad));
-    std::vector<double>& sum =
-        cubes[{static_cast<std::int64_t>(std::floor(d.x / side)), static_cast<std::int64_t>(std::floor(d.y / side)),
-               static_cast<std::int64_t>(std::floor(d.z / side))}];
-    sum.resize(n, 0.0);
-    for (std::size_t k = 0; k < n; ++k) sum[k] += irradiance(i, k);
+    d[i] = {std::cos(s.dec_rad) * std::cos(s.ra_rad), std::cos(s.dec_rad) * std::sin(s.ra_rad), std::sin(s.dec_rad)};
+    for (std::size_t b = buckets; b-- > 0;)
+      if (i >= firsts[b]) {
+        bucket[i] = b;
+        break;
+      }
   }
-  std::vector<double> brightest(n, 0.0), sum(n);
-  for (const auto& [key, unused] : cubes) {
-    std::fill(sum.begin(), sum.end(), 0.0);
+  std::map<std::array<std::int64_t, 3>, std::vector<std::size_t>> cubes;
+  for (std::size_t i = 0; i < count; ++i)
+    cubes[{static_cast<std::int64_t>(std::floor(d[i].x / reach)), static_cast<std::int64_t>(std::floor(d[i].y / reach)),
+           static_cast<std::int64_t>(std::floor(d[i].z / reach))}]
+        .push_back(i);
+  std::vector<const std::pair<const std::array<std::int64_t, 3>, std::vector<std::size_t>>*> list;
+  for (const auto& entry : cubes) list.push_back(&entry);
+  std::vector<std::vector<double>> tables(buckets, std::vector<double>(count * n, 0.0));
+  const double reach2 = reach * reach;
+  core::parallel_for(list.size(), 0, [&](std::size_t c) {
+    const auto& [centre, members] = *list[c];
+    std::vector<std::size_t> near;  // the 27 cubes' stars
     for (std::int64_t dz = -1; dz <= 1; ++dz)
       for (std::int64_t dy = -1; dy <= 1; ++dy)
         for (std::int64_t dx = -1; dx <= 1; ++dx) {
-          const auto it = cubes.find({key[0] + dx, key[1] + dy, key[2] + dz});
-          if (it != cubes.end())
-            for (std::size_t k = 0; k < n; ++k) sum[k] += it->second[k];
+          const auto it = cubes.find({centre[0] + dx, centre[1] + dy, centre[2] + dz});
+          if (it != cubes.end()) near.insert(near.end(), it->second.begin(), it->second.end());
         }
-    for (std::size_t k = 0; k < n; ++k) brightest[k] = std::max(brightest[k], sum[k]);
-  }
-  return clusters_[step] = brightest;
+    for (std::size_t i : members) {  // each star's rows are its own: no two workers write one
+      for (std::size_t j : near) {
+        if (bucket[j] == buckets) continue;
+        const glm::dvec3 e = d[i] - d[j];
+        if (glm::dot(e, e) > reach2) continue;
+        for (std::size_t k = 0; k < n; ++k) tables[bucket[j]][i * n + k] += irradiance(j, k);
+      }
+      for (std::size_t b = buckets - 1; b-- > 0;)
+        for (std::size_t k = 0; k < n; ++k) tables[b][i * n + k] += tables[b + 1][i * n + k];
+    }
+  });
+  for (std::size_t b = 0; b < buckets; ++b) neighbourhoods_[{step, firsts[b]}] = std::move(tables[b]);
+  return neighbourhoods_.at({step, first});
+}
+
+const std::vector<double>& StarField::brightest_cluster_irradiance(double radius_rad, double years_from_j2000,
+                                                                   std::size_t first) {
+  const int step = radius_step(radius_rad, years_from_j2000);
+  const auto cached = clusters_.find({step, first});
+  if (cached != clusters_.end()) return cached->second;
+  const std::vector<double>& sums = neighbourhood_irradiance(radius_rad, years_from_j2000, first);
+  const std::size_t n = wavelengths_nm_.size();
+  std::vector<double> brightest(n, 0.0);
+  for (std::size_t i = first * n; i < sums.size(); ++i) brightest[i % n] = std::max(brightest[i % n], sums[i]);
+  return clusters_[{step, first}] = brightest;
 }
 
 glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& axis, double angle_rad) {
@@ -82,7 +124,8 @@ glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& axis, double angl
   return v * c + glm::cross(axis, v) * s + axis * (glm::dot(axis, v) * (1.0 - c));
 }
 
-void StarField::directions_enu(const astro::AstroTime& time, const astro::Site& site, std::vector<glm::dvec3>& out) {
+void StarField::directions_enu(const astro::AstroTime& time, const astro::Site& site, std::vector<glm::dvec3>& out,
+                               std::size_t count) {
   const double ut1_jd = time.ut1().value();
   const bool same_site = have_epoch_ && site.latitude_deg == epoch_site_.latitude_deg &&
                          site.longitude_deg == epoch_site_.longitude_deg && site.altitude_m == epoch_site_.altitude_m;
@@ -107,9 +150,9 @@ void StarField::directions_enu(const astro::AstroTime& time, const astro::Site& 
   // Two-part difference: the day parts cancel in double without losing the seconds.
   const double dt_s = ((time.ut1().day1 - epoch_ut1_jd_) + time.ut1().day2) * 86400.0;
   const double angle = -kEarthRotationRate_rad_s * dt_s;
-  out.resize(epoch_enu_.size());
+  out.resize(std::min(count, epoch_enu_.size()));
   const double c = std::cos(angle), s = std::sin(angle);
-  for (std::size_t i = 0; i < epoch_enu_.size(); ++i) {
+  for (std::size_t i = 0; i < out.size(); ++i) {
     const glm::dvec3& v = epoch_enu_[i];
     out[i] = v * c + glm::cross(pole, v) * s + pole * (glm::dot(pole, v) * (1.0 - c));
   }
@@ -196,11 +239,62 @@ std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, doub
   return {axis, limit >= 3.14159265358979323846 ? -1.0 : std::cos(limit)};
 }
 
-std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm::dvec3>& directions_enu,
-                                   const StarFrame& frame) {
+std::optional<PlacedStar> place_star(const StarField& field, std::size_t i, const glm::dvec3& enu,
+                                     const StarFrame& frame, std::vector<double>& transmittance,
+                                     std::vector<double>& one) {
   const warp::Projection& projection = *frame.projection;
   const std::size_t n = field.wavelengths_nm().size();
-  const double width = projection.width(), height = projection.height();
+  if (enu.z < frame.lowest_sin_altitude) return std::nullopt;  // under the ground
+  glm::dvec3 d = enu.x * frame.east + enu.y * frame.north + enu.z * frame.up;
+  if (glm::dot(d, frame.view_axis) < frame.view_cos_limit) return std::nullopt;  // outside the view
+  if (frame.refraction) {
+    const double true_altitude = std::asin(std::clamp(enu.z, -1.0, 1.0));
+    const double apparent = frame.refraction->apparent_from_true_rad(true_altitude);
+    const glm::dvec3 level = enu.x * frame.east + enu.y * frame.north;
+    const double l = glm::length(level);
+    if (l > 0.0) d = level / l * std::cos(apparent) + frame.up * std::sin(apparent);
+  }
+  d = glm::normalize(d);
+  for (const auto& [centre, radius] : frame.occluders)
+    if (ray_meets_sphere(frame.camera_m - centre, d, radius)) return std::nullopt;
+  const auto exact = projection.pixel(frame.world_to_camera * d);
+  if (!exact) return std::nullopt;
+  PlacedStar s;
+  s.pixel = on_splat_grid(*exact);
+  s.direction = d;
+  if (!splat_touches_image(s.pixel, projection.width(), projection.height())) return std::nullopt;
+  transmittance.assign(n, 1.0);
+  one.resize(n);
+  for (const StarAtmosphere& a : frame.atmospheres) {
+    star_transmittance(a, frame.camera_m, d, one.data());
+    for (std::size_t k = 0; k < n; ++k) transmittance[k] *= one[k];
+  }
+  s.omega_sr = pixel_solid_angle_sr(projection, s.pixel.x, s.pixel.y);
+  if (!(s.omega_sr > 0.0)) return std::nullopt;
+  std::array<double, 3> rgb{0, 0, 0};
+  for (std::size_t k = 0; k < n; ++k) {
+    const double e = field.irradiance(i, k) * transmittance[k];
+    for (int c = 0; c < 3; ++c)
+      rgb[static_cast<std::size_t>(c)] += frame.rgb_weights[k][static_cast<std::size_t>(c)] * e;
+  }
+  if (rgb[0] == 0.0 && rgb[1] == 0.0 && rgb[2] == 0.0) return std::nullopt;
+  if (frame.scintillation) {  // the star's intensity over this integration interval
+    const double altitude_deg =
+        std::asin(std::clamp(glm::dot(d, frame.up), 0.0, 1.0)) * (180.0 / 3.14159265358979323846);
+    const double variance =
+        astro::scintillation_variance(*frame.scintillation, atmosphere::pickering_air_mass(altitude_deg),
+                                      frame.observer_altitude_m, frame.ground_refractivity);
+    const double factor =
+        astro::scintillation_factor(variance, astro::scintillation_normal(i, frame.scintillation_interval));
+    for (double& c : rgb) c *= factor;
+  }
+  for (std::size_t c = 0; c < 3; ++c) s.rgb[c] = rgb[c] * frame.exposure / s.omega_sr;
+  return s;
+}
+
+std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm::dvec3>& directions_enu,
+                                   const StarFrame& frame) {
+  const std::size_t n = field.wavelengths_nm().size();
   const std::size_t count = std::min(field.size(), directions_enu.size());
   std::vector<StarSplat> placed(count);
   std::vector<unsigned char> kept(count, 0);
@@ -208,57 +302,12 @@ std::vector<StarSplat> star_splats(const StarField& field, const std::vector<glm
   core::parallel_for((count + kChunk - 1) / kChunk, 0, [&](std::size_t chunk) {
     std::vector<double> transmittance(n), one(n);
     for (std::size_t i = chunk * kChunk; i < std::min(count, (chunk + 1) * kChunk); ++i) {
-      const glm::dvec3& enu = directions_enu[i];
-      if (enu.z < frame.lowest_sin_altitude) continue;  // under the ground
-      glm::dvec3 d = enu.x * frame.east + enu.y * frame.north + enu.z * frame.up;
-      if (glm::dot(d, frame.view_axis) < frame.view_cos_limit) continue;  // outside the view
-      if (frame.refraction) {
-        const double true_altitude = std::asin(std::clamp(enu.z, -1.0, 1.0));
-        const double apparent = frame.refraction->apparent_from_true_rad(true_altitude);
-        const glm::dvec3 level = enu.x * frame.east + enu.y * frame.north;
-        const double l = glm::length(level);
-        if (l > 0.0) d = level / l * std::cos(apparent) + frame.up * std::sin(apparent);
-      }
-      d = glm::normalize(d);
-      bool hidden = false;
-      for (const auto& [centre, radius] : frame.occluders)
-        if (ray_meets_sphere(frame.camera_m - centre, d, radius)) {
-          hidden = true;
-          break;
-        }
-      if (hidden) continue;
-      const auto exact = projection.pixel(frame.world_to_camera * d);
-      if (!exact) continue;
-      const glm::dvec2 pixel = on_splat_grid(*exact);
-      if (!splat_touches_image(pixel, width, height)) continue;
-      std::fill(transmittance.begin(), transmittance.end(), 1.0);
-      for (const StarAtmosphere& a : frame.atmospheres) {
-        star_transmittance(a, frame.camera_m, d, one.data());
-        for (std::size_t k = 0; k < n; ++k) transmittance[k] *= one[k];
-      }
-      const double omega = pixel_solid_angle_sr(projection, pixel.x, pixel.y);
-      if (!(omega > 0.0)) continue;
-      std::array<double, 3> rgb{0, 0, 0};
-      for (std::size_t k = 0; k < n; ++k) {
-        const double e = field.irradiance(i, k) * transmittance[k];
-        for (int c = 0; c < 3; ++c)
-          rgb[static_cast<std::size_t>(c)] += frame.rgb_weights[k][static_cast<std::size_t>(c)] * e;
-      }
-      if (rgb[0] == 0.0 && rgb[1] == 0.0 && rgb[2] == 0.0) continue;
-      if (frame.scintillation) {  // the star's intensity over this integration interval
-        const double altitude_deg =
-            std::asin(std::clamp(glm::dot(d, frame.up), 0.0, 1.0)) * (180.0 / 3.14159265358979323846);
-        const double variance =
-            astro::scintillation_variance(*frame.scintillation, atmosphere::pickering_air_mass(altitude_deg),
-                                          frame.observer_altitude_m, frame.ground_refractivity);
-        const double factor =
-            astro::scintillation_factor(variance, astro::scintillation_normal(i, frame.scintillation_interval));
-        for (double& c : rgb) c *= factor;
-      }
+      const std::optional<PlacedStar> p = place_star(field, i, directions_enu[i], frame, transmittance, one);
+      if (!p) continue;
       StarSplat& s = placed[i];
-      s.x_px = static_cast<float>(pixel.x);
-      s.y_px = static_cast<float>(pixel.y);
-      for (std::size_t c = 0; c < 3; ++c) s.rgb[c] = static_cast<float>(rgb[c] * frame.exposure / omega);
+      s.x_px = static_cast<float>(p->pixel.x);
+      s.y_px = static_cast<float>(p->pixel.y);
+      for (std::size_t c = 0; c < 3; ++c) s.rgb[c] = static_cast<float>(p->rgb[c]);
       kept[i] = 1;
     }
   });

@@ -31,6 +31,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,12 @@ glm::dvec2 on_splat_grid(const glm::dvec2& pixel);
 /// still lights the edge's pixels, as it does in a larger output holding both.
 bool splat_touches_image(const glm::dvec2& pixel, double width, double height);
 
+/// The first stars of the faint rests whose neighbourhoods
+/// (StarField::neighbourhood_irradiance) are filled together: the whole
+/// catalogue and the rests after the brightest 16, 64, …, 4096 (the star
+/// test's ladder, render/frame/star_visibility.h).
+inline constexpr std::array<std::size_t, 6> kNeighbourhoodFirsts = {0, 16, 64, 256, 1024, 4096};
+
 /// An atmosphere a star's light can cross: its planet and its transmittance table.
 struct StarAtmosphere {
   glm::dvec3 centre_m{0.0};  ///< world frame
@@ -107,10 +114,21 @@ class StarField {
   /// at their J2000 places and the radius widened by twice the largest proper
   /// motion over `years_from_j2000` (precession, nutation, aberration and the
   /// sky's turning move neighbours alike). ≥ each wavelength's brightest star.
-  /// From a grid of cubes of side twice the widened chord: every star within
-  /// that chord of a star lies in the 27 cubes around its cube. Cached per
-  /// radius step of 2^(1/4).
-  const std::vector<double>& brightest_cluster_irradiance(double radius_rad, double years_from_j2000);
+  /// The stars within the radius of one point lie within twice it of each
+  /// other: the largest sum over the stars within twice the radius of a star
+  /// (candidates from a grid of cubes of that chord). Only the
+  /// stars from index `first` on (the catalogue is sorted brightest first: the
+  /// faint rest after the first `first`). Cached per radius step of 2^(1/4) and `first`.
+  const std::vector<double>& brightest_cluster_irradiance(double radius_rad, double years_from_j2000,
+                                                          std::size_t first = 0);
+  /// Per star i (every one), the sum of the irradiances of the stars from
+  /// index `first` on within twice the widened radius of it, per wavelength,
+  /// at [i · wavelengths + k]: a pixel gathering star i gathers no more of
+  /// them (brightest_cluster_irradiance is the largest over i ≥ `first`).
+  /// Cached per radius step and `first`; for a `first` of kNeighbourhoodFirsts
+  /// all of those are filled in one pass (on the worker threads).
+  const std::vector<double>& neighbourhood_irradiance(double radius_rad, double years_from_j2000,
+                                                      std::size_t first = 0);
   /// The largest standard normal astro::scintillation_normal draws for any
   /// star of the catalogue (by its index, as star_splats does) in integration
   /// interval `interval`: the brightest twinkle of that interval is
@@ -120,8 +138,10 @@ class StarField {
   /// Every star's geometric direction at `time` from `site` as (east, north,
   /// up) unit vectors into `out`: ERFA at the epoch, turned by the Earth's
   /// rotation since (recomputing the epoch when `time` is more than
-  /// kStarEpochSpan_s from it or the site changed).
-  void directions_enu(const astro::AstroTime& time, const astro::Site& site, std::vector<glm::dvec3>& out);
+  /// kStarEpochSpan_s from it or the site changed). Only the first `count`
+  /// stars are turned (the brightest: the star test's second stage).
+  void directions_enu(const astro::AstroTime& time, const astro::Site& site, std::vector<glm::dvec3>& out,
+                      std::size_t count = static_cast<std::size_t>(-1));
 
  private:
   astro::StarCatalogue catalogue_;
@@ -129,7 +149,11 @@ class StarField {
   std::vector<double> irradiance_;  // n per star
   double brightest_ = 0.0;
   double largest_proper_motion_rad_yr_ = 0.0;
-  std::map<int, std::vector<double>> clusters_;  // brightest_cluster_irradiance by radius step
+  /// The caches' key: the radius widened by twice the largest proper motion
+  /// over the years, rounded up to a step of 2^(1/4) (as log2 × 4).
+  int radius_step(double radius_rad, double years_from_j2000) const;
+  // By radius step and first star: the largest sums, the sums per star.
+  std::map<std::pair<int, std::size_t>, std::vector<double>> clusters_, neighbourhoods_;
   bool have_normal_ = false;
   std::int64_t normal_interval_ = 0;
   double largest_normal_ = 0.0;
@@ -186,6 +210,24 @@ void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, con
 /// Ω of the pixel at continuous image position (x, y) [sr], from the
 /// projection's rays half a pixel either side; 0 where a ray is missing.
 double pixel_solid_angle_sr(const warp::Projection& projection, double x_px, double y_px);
+
+/// One star in a frame, in double (steps 1–5 above, with its twinkle): its
+/// pixel on the splat grid, its apparent direction (world, unit), the solid
+/// angle of a pixel there and rgb = exposure · Σ_λ w(λ) E(λ) T(λ) f / Ω.
+struct PlacedStar {
+  glm::dvec2 pixel{0.0};
+  glm::dvec3 direction{0.0, 0.0, 1.0};
+  double omega_sr = 0.0;
+  std::array<double, 3> rgb{};
+};
+
+/// Star `index` of `field` at `enu` (its geometric direction) in `frame`, as
+/// star_splats places it; nullopt where it is drawn nowhere (under the ground,
+/// outside the view, hidden by a body, off the image, no light left).
+/// `scratch`: two buffers of the field's wavelength count.
+std::optional<PlacedStar> place_star(const StarField& field, std::size_t index, const glm::dvec3& enu,
+                                     const StarFrame& frame, std::vector<double>& scratch_a,
+                                     std::vector<double>& scratch_b);
 
 /// The stars of `field` at `directions_enu` (StarField::directions_enu) that
 /// land in the image, unhidden and with light left, sorted by y_px.

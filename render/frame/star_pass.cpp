@@ -176,8 +176,7 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
       f.lowest_sin_altitude = std::sin(std::max(-0.5 * core::kPi, -dip - 2.0 * core::kDeg));
     }
     if (options_.stars && ensure_field(scene) && field_->size() > 0) {
-      const double years = ((time.utc().day1 - 2451545.0) + time.utc().day2) / 365.25;
-      timer.cpu("star test", [&] { stats_.star_test = star_visibility(frame, *field_, f, years); });
+      timer.cpu("star test", [&] { stats_.star_test = star_visibility(frame, *field_, f, time, clock.site); });
       if (stats_.star_test.could_show || !options_.skip_hidden_stars) {
         timer.cpu("star placement", [&] {
           field_->directions_enu(time, clock.site, directions_);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -24,7 +25,149 @@ const AtmospherePass* sky_at_camera(const FrameState& frame, std::size_t site) {
   return nullptr;
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
+/// The angle between unit vectors, well conditioned at small angles.
+double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
+  return 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(a - b)));
+}
+
+/// The most a channel's code value can move for a change |delta_c| on a
+/// background ≥ background_c, over the channels [codes]: D'(y) |Δ| at the
+/// lowest value y it passes through (invisible_change).
+double largest_code_change(const std::array<double, 3>& background, const std::array<double, 3>& delta,
+                           bool may_subtract) {
+  double worst = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const double d = std::abs(delta[c]);
+    const double lowest = may_subtract ? std::max(background[c] - d, 0.0) : std::max(background[c], 0.0);
+    worst = std::max(worst, image::display_code_slope_bound(lowest) * d);
+  }
+  return worst;
+}
+
 }  // namespace
+
+std::optional<double> splat_footprint_radius(const warp::Projection& projection, const glm::dmat3& camera_to_world,
+                                             const glm::dvec2& pixel, const glm::dvec3& direction) {
+  double largest = 0.0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      const auto ray = projection.ray(pixel.x + dx, pixel.y + dy);
+      if (!ray) return std::nullopt;
+      largest = std::max(largest, angle_between(glm::normalize(camera_to_world * *ray), direction));
+    }
+  return 1.05 * largest + 1e-6;
+}
+
+namespace {
+
+/// The range of ν = cos θ cos θs + sin θ sin θs cos φ over θ ∈ theta, φ ∈ phi
+/// (⊂ [0, π]): for a fixed θ monotonic in cos φ; for a fixed φ R cos(θ − θ*),
+/// whose least over an interval is at an end and whose largest is R where θ*
+/// lies within it.
+Interval nu_over(Interval theta, Interval phi, double sun_theta) {
+  const double cs = std::cos(sun_theta), ss = std::sin(sun_theta);
+  const auto nu = [&](double t, double p) { return std::cos(t) * cs + std::sin(t) * ss * std::cos(p); };
+  Interval out{2.0, -2.0};
+  for (double t : {theta.lo, theta.hi})
+    for (double p : {phi.lo, phi.hi}) {
+      out.lo = std::min(out.lo, nu(t, p));
+      out.hi = std::max(out.hi, nu(t, p));
+    }
+  const double b = ss * std::cos(phi.lo);  // the largest cos φ
+  const double peak = std::atan2(b, cs);
+  if (peak >= theta.lo && peak <= theta.hi) out.hi = std::max(out.hi, std::hypot(cs, b));
+  return {std::max(-1.0, out.lo - 1e-6), std::min(1.0, out.hi + 1e-6)};
+}
+
+}  // namespace
+
+StarSkyFloor::StarSkyFloor(const SkyRadianceFloor& floor, const glm::dvec3& camera_m, const glm::dvec3& planet_centre_m,
+                           double ground_radius_m, const glm::dvec3& sun, bool sky_view,
+                           const std::vector<std::array<double, 3>>& rgb_weights,
+                           const std::vector<double>& sun_irradiance, double exposure,
+                           std::vector<std::pair<glm::dvec3, double>> bodies, std::array<double, 3> whole_sky)
+    : camera_m_(camera_m),
+      up_(glm::normalize(camera_m - planet_centre_m)),
+      sun_(sun),
+      sky_view_(sky_view),
+      weights_(rgb_weights),
+      sun_irradiance_(sun_irradiance),
+      exposure_(exposure),
+      bodies_(std::move(bodies)),
+      whole_sky_(whole_sky) {
+  radius_m_ = std::max(glm::length(camera_m - planet_centre_m), ground_radius_m);
+  const double ratio = std::min(1.0, ground_radius_m / radius_m_);
+  mu_horizon_ = -std::sqrt(std::max(0.0, 1.0 - ratio * ratio));
+  theta_horizon_ = kPi - std::asin(ratio);  // SkyViewTable::theta_horizon_rad
+  sun_theta_ = std::acos(std::clamp(glm::dot(up_, sun_), -1.0, 1.0));
+  slice_ = floor.slice(glm::dot(up_, sun_), radius_m_);
+}
+
+bool StarSkyFloor::kept(const glm::dvec3& d, double radius_rad) const {
+  if (angle_between(d, sun_) < radius_rad + 5.0 * core::kDeg) return true;
+  const double lowest_elevation = 0.5 * kPi - std::acos(std::clamp(glm::dot(d, up_), -1.0, 1.0)) - radius_rad;
+  if (lowest_elevation < std::asin(mu_horizon_) + 1.0 * core::kDeg) return true;
+  for (const auto& [centre, radius] : bodies_) {
+    const glm::dvec3 v = centre - camera_m_;
+    const double distance = glm::length(v);
+    if (distance <= radius) return true;
+    if (angle_between(d, v / distance) < std::asin(radius / distance) + radius_rad + 0.5 * core::kDeg) return true;
+  }
+  return false;
+}
+
+std::array<double, 3> StarSkyFloor::at(const glm::dvec3& d, double radius_rad) const {
+  if (kept(d, radius_rad)) return whole_sky_;
+  const double theta = std::acos(std::clamp(glm::dot(d, up_), -1.0, 1.0));
+  const Interval thetas{std::max(0.0, theta - radius_rad), std::min(theta_horizon_, theta + radius_rad)};
+  // The azimuth from the sun's vertical: all of it near the zenith (there the
+  // GPU's φ from ν and μ is ill-conditioned) or with the sun overhead.
+  Interval phi{0.0, kPi};
+  const glm::dvec3 dh = d - glm::dot(d, up_) * up_, sh = sun_ - glm::dot(sun_, up_) * up_;
+  if (thetas.lo > 2.0 * core::kDeg && glm::length(sh) > 1e-3) {
+    const double centre = std::acos(std::clamp(glm::dot(dh, sh) / (glm::length(dh) * glm::length(sh)), -1.0, 1.0));
+    const double half = std::asin(std::min(1.0, std::sin(radius_rad) / std::sin(theta))) + 1e-4;
+    phi = {std::max(0.0, centre - half), std::min(kPi, centre + half)};
+  }
+  const double gamma = angle_between(d, sun_);
+  const Interval nu{std::cos(std::min(kPi, gamma + radius_rad)), std::cos(std::max(0.0, gamma - radius_rad))};
+  const std::size_t n = slice_.channels();
+  std::vector<double> s(n), v(n);
+  slice_.radiance_per_irradiance({std::cos(thetas.hi), std::cos(thetas.lo)}, phi, nu, nu, s.data());
+  if (sky_view_) {
+    // The sky-view table's texels the cap's pixels interpolate
+    // (sky_view_mapping.glsl): x_θ = 1 − √(1 − θ/θh) over 63 spacings, x_φ =
+    // sin(φ/2) over 127; each texel a 4D read at its own (θ, φ); A = R P_R(ν
+    // of the texel) + multiple, M at the pixel's own Mie phase.
+    constexpr double kZenith = 63.0, kAzimuth = 127.0;
+    const auto x_theta = [&](double t) { return 1.0 - std::sqrt(std::max(0.0, 1.0 - t / theta_horizon_)); };
+    const double j0 = std::clamp(std::floor(x_theta(thetas.lo) * kZenith - 1e-3), 0.0, kZenith);
+    const double j1 = std::clamp(std::ceil(x_theta(thetas.hi) * kZenith + 1e-3), 0.0, kZenith);
+    const double i0 = std::clamp(std::floor(std::sin(0.5 * phi.lo) * kAzimuth - 1e-3), 0.0, kAzimuth);
+    const double i1 = std::clamp(std::ceil(std::sin(0.5 * phi.hi) * kAzimuth + 1e-3), 0.0, kAzimuth);
+    const auto texel_theta = [&](double j) {
+      return theta_horizon_ * (1.0 - (1.0 - j / kZenith) * (1.0 - j / kZenith));
+    };
+    const auto texel_phi = [&](double i) {
+      return std::acos(std::clamp(1.0 - 2.0 * (i / kAzimuth) * (i / kAzimuth), -1.0, 1.0));
+    };
+    const Interval texel_thetas{texel_theta(j0), texel_theta(j1)}, texel_phis{texel_phi(i0), texel_phi(i1)};
+    slice_.radiance_per_irradiance({std::cos(texel_thetas.hi), std::cos(texel_thetas.lo)}, texel_phis,
+                                   nu_over(texel_thetas, texel_phis, sun_theta_), nu, v.data());
+    for (std::size_t i = 0; i < n; ++i) s[i] = std::min(s[i], v[i]);
+  }
+  std::array<double, 3> out = whole_sky_;
+  for (std::size_t c = 0; c < 3; ++c) {
+    double b = 0.0;
+    for (std::size_t i = 0; i < n && i < weights_.size() && i < sun_irradiance_.size(); ++i)
+      b += exposure_ * weights_[i][c] * sun_irradiance_[i] * s[i];
+    out[c] = std::max(out[c], b);
+  }
+  return out;
+}
 
 bool invisible_change(double background, double delta, bool may_subtract) {
   const double d = std::abs(delta);
@@ -44,8 +187,9 @@ double smallest_pixel_solid_angle_sr(const warp::Projection& projection) {
 }
 
 StarVisibility star_visibility(const FrameState& frame, StarField& field, const StarFrame& sky,
-                               double years_from_j2000) {
+                               const astro::AstroTime& time, const astro::Site& clock_site, bool star_by_star) {
   StarVisibility out;
+  const double years_from_j2000 = ((time.utc().day1 - 2451545.0) + time.utc().day2) / 365.25;
   const scene::Scene& scene = frame.scene;
   const std::size_t n = sky.rgb_weights.size();
   const std::size_t site = scene.sky_clock ? scene.sky_clock->body : 0;
@@ -59,8 +203,8 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
   // the sky near the horizon (at most a fifth on Earth) and by 1′ for the
   // aberration's difference across it.
   const double reach = 2.0 * frame.projection.max_pixel_angle_rad();
-  const std::vector<double>& gathered =
-      field.brightest_cluster_irradiance(1.5 * reach + core::kDeg / 60.0, years_from_j2000);
+  const double cluster_radius = 1.5 * reach + core::kDeg / 60.0;
+  const std::vector<double>& gathered = field.brightest_cluster_irradiance(cluster_radius, years_from_j2000);
   const double omega = smallest_pixel_solid_angle_sr(frame.projection);
   if (!(omega > 0.0)) return out;  // no pixel to bound: the pass runs
 
@@ -73,11 +217,14 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
   const StarAtmosphere* air = nullptr;
   for (const StarAtmosphere& a : sky.atmospheres)
     if (a.centre_m == planet.position_m && r <= a.top_radius_m) air = &a;
-  std::vector<double> kept(std::max<std::size_t>(n, 8), 1.0), t(kept.size(), 1.0);
-  if (air) star_transmittance(*air, sky.camera_m, up, kept.data());
-  if (sky.scintillation) {
-    const double g = field.largest_scintillation_normal(sky.scintillation_interval);
+  // Per degree k of apparent elevation, by_degree[k]: T(e_k+1) times the
+  // twinkle factor at e_k; K is their largest.
+  const std::size_t lanes = std::max<std::size_t>(n, 8);
+  std::vector<double> by_degree(90 * lanes, 1.0), kept(lanes, 0.0);
+  {
+    const double g = sky.scintillation ? field.largest_scintillation_normal(sky.scintillation_interval) : 0.0;
     const auto factor = [&](double elevation_deg) {
+      if (!sky.scintillation) return 1.0;
       const double variance =
           astro::scintillation_variance(*sky.scintillation, atmosphere::pickering_air_mass(elevation_deg),
                                         sky.observer_altitude_m, sky.ground_refractivity);
@@ -86,12 +233,13 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
     glm::dvec3 level = glm::cross(up, glm::dvec3(1, 0, 0));
     if (glm::length(level) < 0.1) level = glm::cross(up, glm::dvec3(0, 1, 0));
     level = glm::normalize(level);
-    std::fill(kept.begin(), kept.end(), 0.0);
     for (int e = 0; e < 90; ++e) {
+      double* t = &by_degree[static_cast<std::size_t>(e) * lanes];
       const double above = (e + 1) * core::kDeg;
-      if (air) star_transmittance(*air, sky.camera_m, std::cos(above) * level + std::sin(above) * up, t.data());
+      if (air) star_transmittance(*air, sky.camera_m, std::cos(above) * level + std::sin(above) * up, t);
       const double f = factor(e);
-      for (std::size_t i = 0; i < kept.size(); ++i) kept[i] = std::max(kept[i], t[i] * f);
+      for (std::size_t i = 0; i < lanes; ++i) kept[i] = std::max(kept[i], t[i] * f);
+      for (std::size_t i = 0; i < lanes; ++i) t[i] *= f;
     }
   }
 
@@ -118,6 +266,186 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
   out.could_show = false;
   for (std::size_t c = 0; c < 3; ++c)
     out.could_show = out.could_show || !invisible_change(out.sky_floor[c], out.sky_peak[c], !weights_non_negative);
+  const bool may_subtract = !weights_non_negative;
+  out.code_change = largest_code_change(out.sky_floor, out.sky_peak, may_subtract);
+  if (!out.could_show || !star_by_star) return out;
+
+  // ---- The second stage: the brightest m stars one by one, the rest together.
+  // The rest: per star j after the m-th that can be drawn (above the ground,
+  // within the view's cone), the stars after the m-th within twice the
+  // cluster's radius of it (StarField::neighbourhood_irradiance: a pixel that
+  // gathers j gathers no more of them) through the most a line of sight
+  // within that reach (and refraction's lift, < 1°) of j's elevation keeps.
+  std::vector<glm::dvec3> enu;
+  field.directions_enu(time, clock_site, enu);
+  const double reach_deg = 2.0 * cluster_radius / core::kDeg + 1.0;
+  const int window = static_cast<int>(std::ceil(reach_deg)) + 1;
+  std::vector<double> near_kept(90 * lanes, 0.0);  // per degree, the largest of by_degree within the window
+  for (int k = 0; k < 90; ++k)
+    for (int e = std::max(0, k - window); e <= std::min(89, k + window); ++e)
+      for (std::size_t i = 0; i < lanes; ++i)
+        near_kept[static_cast<std::size_t>(k) * lanes + i] = std::max(
+            near_kept[static_cast<std::size_t>(k) * lanes + i], by_degree[static_cast<std::size_t>(e) * lanes + i]);
+  // The stars that can be drawn (above the ground, within the view's cone) and their elevation's degree.
+  std::vector<std::pair<std::size_t, int>> drawable;
+  for (std::size_t j = 0; j < enu.size(); ++j) {
+    const glm::dvec3& v = enu[j];
+    if (v.z < sky.lowest_sin_altitude) continue;
+    if (glm::dot(v.x * sky.east + v.y * sky.north + v.z * sky.up, sky.view_axis) < sky.view_cos_limit) continue;
+    drawable.emplace_back(
+        j, std::clamp(static_cast<int>(std::floor(std::asin(std::clamp(v.z, -1.0, 1.0)) / core::kDeg)), 0, 89));
+  }
+  // Per drawable star j after the m-th: its neighbourhood's most on one pixel (per channel).
+  const auto rest_each = [&](std::size_t m, auto&& visit) {
+    const std::vector<double>& near = field.neighbourhood_irradiance(cluster_radius, years_from_j2000, m);
+    const auto first = std::lower_bound(drawable.begin(), drawable.end(), std::pair<std::size_t, int>{m, -1});
+    for (auto it = first; it != drawable.end(); ++it) {
+      const std::size_t j = it->first;
+      const double* k = &near_kept[static_cast<std::size_t>(it->second) * lanes];
+      const double* e = &near[j * n];
+      std::array<double, 3> f{};
+      for (std::size_t c = 0; c < 3; ++c) {
+        for (std::size_t i = 0; i < n; ++i) f[c] += std::abs(sky.rgb_weights[i][c]) * e[i] * k[i];
+        f[c] *= scale;
+      }
+      visit(j, f);
+    }
+  };
+  const auto rest_of = [&](std::size_t m) {
+    std::array<double, 3> rest{};
+    rest_each(m, [&](std::size_t, const std::array<double, 3>& f) {
+      for (std::size_t c = 0; c < 3; ++c) rest[c] = std::max(rest[c], f[c]);
+    });
+    return rest;
+  };
+  std::optional<StarSkyFloor> behind;  // the sky behind one star (the second stage's B_s)
+  if (pass) {
+    std::vector<std::pair<glm::dvec3, double>> bodies;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+      if (b != site) bodies.emplace_back(scene.bodies[b].position_m, scene.bodies[b].radius_m);
+    behind.emplace(pass->gpu->radiance_floor(), sky.camera_m, planet.position_m, pass->gpu->ground_radius_m(),
+                   frame.sun, pass->sky_view, sky.rgb_weights, scene.sun.irradiance_W_m2_nm, sky.exposure,
+                   std::move(bodies), out.sky_floor);
+  }
+  std::size_t m = 0;
+  std::array<double, 3> rest{};
+  double rest_change = 0.0;  // the most the rest alone can move a code
+  for (std::size_t trial = kFirstStarsTested;; trial *= 4) {
+    m = std::min(trial, field.size());
+    rest = rest_of(m);
+    rest_change = largest_code_change(out.sky_floor, rest, may_subtract);
+    if (rest_change <= 0.25 * kInvisibleCodeChange) break;
+    if (m < std::min(field.size(), kMostStarsTested)) continue;
+    if (rest_change < kInvisibleCodeChange) break;  // the bright stars get what the rest leaves
+    // Pixels only the rest touches, against the sky behind each star of the
+    // rest whose neighbourhood could show on the darkest sky: its pixels lie
+    // within `reach` of its apparent direction, which refraction lifts by
+    // under 1° from its geometric one, which lies in a cube of side h of the
+    // (east, north, up) grid: within δ = √3 h / 2 of the cube's centre c, so
+    // within asin(δ / (1 − δ)) of c's direction. The sky over that cap, once per cube.
+    constexpr double kCube = 0.06;
+    const double delta = 0.5 * std::sqrt(3.0) * kCube;
+    const double cap = std::asin(delta / (1.0 - delta)) + 1.0 * core::kDeg + reach;
+    // Per cube, the sky's floor over its cap (or, with colour weights that
+    // may subtract, the darkest sky's); per channel the code's slope there.
+    std::unordered_map<std::int64_t, std::pair<std::array<double, 3>, std::array<double, 3>>> cells;
+    const auto slopes = [](const std::array<double, 3>& background) {
+      return std::array<double, 3>{image::display_code_slope_bound(background[0]),
+                                   image::display_code_slope_bound(background[1]),
+                                   image::display_code_slope_bound(background[2])};
+    };
+    const auto change_at = [&](const std::array<double, 3>& slope, const std::array<double, 3>& background,
+                               const std::array<double, 3>& f) {
+      if (may_subtract) return largest_code_change(background, f, true);
+      return std::max({slope[0] * f[0], slope[1] * f[1], slope[2] * f[2]});
+    };
+    const std::array<double, 3> darkest = slopes(out.sky_floor);
+    double worst = 0.0;
+    rest_each(m, [&](std::size_t j, const std::array<double, 3>& f) {
+      double c = change_at(darkest, out.sky_floor, f);
+      if (c >= kInvisibleCodeChange && behind) {
+        const glm::dvec3& v = enu[j];
+        const std::int64_t x = static_cast<std::int64_t>(std::floor(v.x / kCube)),
+                           y = static_cast<std::int64_t>(std::floor(v.y / kCube)),
+                           z = static_cast<std::int64_t>(std::floor(v.z / kCube));
+        const std::int64_t key = ((x + 64) * 128 + (y + 64)) * 128 + (z + 64);
+        auto it = cells.find(key);
+        if (it == cells.end()) {
+          const glm::dvec3 centre =
+              (glm::dvec3(static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)) + 0.5) * kCube;
+          const glm::dvec3 d = glm::normalize(centre.x * sky.east + centre.y * sky.north + centre.z * sky.up);
+          const std::array<double, 3> floor = behind->at(d, cap);
+          it = cells.emplace(key, std::pair{floor, slopes(floor)}).first;
+        }
+        c = change_at(it->second.second, it->second.first, f);
+      }
+      worst = std::max(worst, c);
+    });
+    rest_change = worst;
+    if (worst < kInvisibleCodeChange) break;
+    out.stars_tested = m;  // too many stars could matter: the pass runs
+    out.code_change = worst;
+    return out;
+  }
+  out.stars_tested = m;
+  // A bright star's splat shares its pixels with the rest's stars within
+  // twice the cluster's radius of it: their sum through the line of sight near
+  // its elevation.
+  struct Bright {
+    PlacedStar star;
+    std::array<double, 3> rest{};
+  };
+  std::vector<Bright> placed;
+  std::vector<double> scratch_a(n), scratch_b(n);
+  const std::vector<double>& near = field.neighbourhood_irradiance(cluster_radius, years_from_j2000, m);
+  for (std::size_t i = 0; i < m && i < enu.size(); ++i)
+    if (auto p = place_star(field, i, enu[i], sky, scratch_a, scratch_b)) {
+      Bright b{*p, {}};
+      const int degree =
+          std::clamp(static_cast<int>(std::floor(std::asin(std::clamp(enu[i].z, -1.0, 1.0)) / core::kDeg)), 0, 89);
+      for (std::size_t c = 0; c < 3; ++c)
+        for (std::size_t k = 0; k < n; ++k)
+          b.rest[c] += scale * std::abs(sky.rgb_weights[k][c]) * near[i * n + k] *
+                       near_kept[static_cast<std::size_t>(degree) * lanes + k];
+      placed.push_back(b);
+    }
+  out.stars_placed = placed.size();
+
+  // Neighbours whose splats can share a pixel: within 2 pixels in x and y, in cells of 2 pixels.
+  const auto cell = [](double x, double y) {
+    return (static_cast<std::int64_t>(std::floor(0.5 * x)) << 32) ^
+           static_cast<std::int64_t>(static_cast<std::uint32_t>(static_cast<std::int32_t>(std::floor(0.5 * y))));
+  };
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
+  for (std::size_t s = 0; s < placed.size(); ++s)
+    cells[cell(placed[s].star.pixel.x, placed[s].star.pixel.y)].push_back(s);
+  double largest = rest_change;
+  for (const Bright& b : placed) {
+    const PlacedStar& s = b.star;
+    std::array<double, 3> delta{};
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const auto it = cells.find(cell(s.pixel.x + 2.0 * dx, s.pixel.y + 2.0 * dy));
+        if (it == cells.end()) continue;
+        for (std::size_t o : it->second)
+          if (std::abs(placed[o].star.pixel.x - s.pixel.x) <= 2.0 &&
+              std::abs(placed[o].star.pixel.y - s.pixel.y) <= 2.0)
+            for (std::size_t c = 0; c < 3; ++c) delta[c] += std::abs(placed[o].star.rgb[c]);
+      }
+    for (std::size_t c = 0; c < 3; ++c) delta[c] = delta[c] * (1.0 + 1e-3) + b.rest[c];
+    double change = largest_code_change(out.sky_floor, delta, may_subtract);
+    if (change >= kInvisibleCodeChange && behind) {  // against the sky behind this star
+      const auto rho = splat_footprint_radius(frame.projection, frame.camera_to_world, s.pixel, s.direction);
+      if (rho) change = largest_code_change(behind->at(s.direction, *rho), delta, may_subtract);
+    }
+    largest = std::max(largest, change);
+    if (change >= kInvisibleCodeChange) {
+      out.code_change = change;
+      return out;  // this star could show: the pass runs
+    }
+  }
+  out.could_show = false;
+  out.code_change = largest;
   return out;
 }
 

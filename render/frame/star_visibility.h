@@ -43,9 +43,72 @@
 // finer output — so nodes of different pixel sizes may decide differently,
 // each conservatively for its own pixels: a node that skips would have changed
 // none of its code values by half a code, so no seam can come of it.
+//
+// That first stage is cheap and global, and loose where the sky is not much
+// brighter than the brightest stars (the evening show keeps its sky at about
+// a quarter of full display, where Sirius moves ~0.1 code and the global
+// bound allows ~2: the rim's Ω_min against the star's own pixel ×3, the
+// brightest twinkle ×1.5, the blue end of the spectrum for every channel,
+// the darkest sky anywhere against the sky behind the star ×1.1–3). Where it
+// cannot rule the stars out, the second stage decides star by star for the
+// brightest m of the catalogue (sorted brightest first; m the least of 16,
+// 64, …, 4096 whose rest passes below with a quarter of the budget, else
+// 4096 if it passes at all), with each one's own figures. Ê and K are
+// refined first: a pixel gathers the stars within ρ_c (the first stage's
+// cluster radius) of its centre, which lie within 2ρ_c of each other, so of
+// any set of stars a pixel gathers, each one's neighbourhood N_i(λ) — the
+// irradiance of the stars after the m-th within 2ρ_c of star i
+// (StarField::neighbourhood_irradiance, on the catalogue's places, cached) —
+// holds all of the rest among them; K_e(λ) is the largest T · f over the
+// degrees of apparent elevation within 2ρ_c + 1° (refraction's lift) of
+// elevation e: the rest's stars near i are seen through no more air than that.
+//
+//   the rest, on pixels no bright star touches: for every star j after the
+//     m-th that can be drawn (above the ground, in the view's cone),
+//       F_j,c = exposure · Σ_λ |w_c(λ)| N_j(λ) K_e(j)(λ) / Ω_min,
+//     against B, or where that is not enough against the sky over the cap
+//     around j's cube of the (east, north, up) grid (side 0.06: within
+//     asin(δ/(1 − δ)), δ = √3 · 0.06 / 2, of the cube's centre, + 1° for the
+//     lift, + 2 pixel angles for the splat): its pixels lie in that cap;
+//   a bright star s: placed as star_splats places it (place_star: its own
+//     refracted direction, its own transmittance T_s(λ), its own colour
+//     weights, its own twinkle draw f_s, the solid angle Ω_s of a pixel at its
+//     position in this node's projection), rgb_s = exposure · Σ_λ w_c E_s T_s
+//     f_s / Ω_s, which its splat spreads with weights ≤ 1 over the 2 × 2
+//     pixels around it. A pixel it touches gathers every bright star within 2
+//     pixels of it in x and in y (their splats share pixels) and the rest's
+//     stars within 2ρ_c of it:
+//       Δ_s,c = (Σ_{s' within 2 px} |rgb_s',c|) (1 + 1e-3) + F_s,c
+//     (1e-3: the splat's float and the accumulator's 2⁻²⁸ step; F_s,c as
+//     F_j,c with s's neighbourhood of the rest);
+//   the sky behind it (StarSkyFloor): every pixel it touches has its centre
+//     within 1 pixel of the star's position in x and y, so its ray lies within
+//     ρ of the star's direction (splat_footprint_radius); the sky those pixels
+//     read is bounded from the same tables the frame reads over that cap only
+//     (SkyFloorSlice: the camera's rows and the sun's μs columns, the μ texels
+//     and ν slices a read in the cap weighs, the phases over the cap's ν; with
+//     the sky-view table, over the texels of that table the cap's pixels
+//     interpolate, each a read of the 4D tables at its own direction; the
+//     lesser of both where the frame may read either). Near the sun (5° plus
+//     ρ), within 1° of the horizon and within 0.5° of another body's limb the
+//     star is kept on B, the floor of the whole sky (not bounded there: the
+//     disc, the ground's edge and the limb are where passes meet).
+// A star is invisible when D'(max(B, B_s)) Δ_s < kInvisibleCodeChange in
+// every channel; the stars are skipped when every bright star and every
+// drawable star of the rest is. Every pixel a star touches is then covered:
+// by a bright star's test where one touches it, by the rest's where none
+// does. As the first stage, Ω_s and the pixel offsets are the node's own, so
+// nodes decide each for its own pixels. It costs a turn of every star's
+// place, a pass over the drawable ones per rung of the ladder, the sky over
+// a few hundred cubes and the placing of the m brightest (render_bench
+// --stars-show: docs/night-sky.md, "Where it skips, measured").
 #include <array>
+#include <optional>
 
+#include "astro/civil_time.h"
+#include "astro/sky_positions.h"
 #include "render/frame/frame_state.h"
+#include "render/frame/sky_radiance_floor.h"
 #include "render/frame/star_field.h"
 
 namespace zenith::render {
@@ -53,6 +116,9 @@ namespace zenith::render {
 /// Half an 8-bit code value, less 1 % for the float rounding of the GPU's
 /// tone curve and encoding: a smaller change of a display value is invisible.
 inline constexpr double kInvisibleCodeChange = 0.495;
+/// The second stage's ladder of the brightest stars tested one by one: 16,
+/// 64, 256, 1024, 4096 (kNeighbourhoodFirsts after the whole catalogue); past that the pass runs.
+inline constexpr std::size_t kFirstStarsTested = kNeighbourhoodFirsts[1], kMostStarsTested = kNeighbourhoodFirsts[5];
 
 /// Whether adding at most |delta| of exposed linear radiance to a display
 /// channel whose background is at least `background` changes its 8-bit sRGB
@@ -62,11 +128,62 @@ inline constexpr double kInvisibleCodeChange = 0.495;
 /// colour weights) max(background − |delta|, 0).
 bool invisible_change(double background, double delta, bool may_subtract);
 
+/// The sky behind one star: the second stage's B_s (above), per linear sRGB
+/// channel × exposure. Built per frame for the camera in the site body's air.
+class StarSkyFloor {
+ public:
+  /// `floor` of the site body's tables; the camera and the planet's centre
+  /// (world), its ground radius; the sun (world, unit); whether the sky-view
+  /// table may be read (AtmospherePass::sky_view: then the least of both
+  /// ways); the colour weights (≥ 0), the sun's irradiance and the exposure;
+  /// the other bodies (centre, radius) whose limbs keep a star; `whole_sky`
+  /// the first stage's B, the least of every sky pixel.
+  StarSkyFloor(const SkyRadianceFloor& floor, const glm::dvec3& camera_m, const glm::dvec3& planet_centre_m,
+               double ground_radius_m, const glm::dvec3& sun, bool sky_view,
+               const std::vector<std::array<double, 3>>& rgb_weights, const std::vector<double>& sun_irradiance,
+               double exposure, std::vector<std::pair<glm::dvec3, double>> bodies, std::array<double, 3> whole_sky);
+
+  /// At least the sky on every pixel of sky whose ray lies within `radius_rad`
+  /// of unit `direction` (world): max(B_s, B), or B where the star is kept.
+  std::array<double, 3> at(const glm::dvec3& direction, double radius_rad) const;
+  /// Whether a cap there is kept on B (near the sun, the horizon, a limb).
+  bool kept(const glm::dvec3& direction, double radius_rad) const;
+
+ private:
+  SkyFloorSlice slice_;
+  glm::dvec3 camera_m_, up_, sun_;
+  double radius_m_, mu_horizon_, theta_horizon_, sun_theta_;
+  bool sky_view_;
+  std::vector<std::array<double, 3>> weights_;
+  std::vector<double> sun_irradiance_;
+  double exposure_;
+  std::vector<std::pair<glm::dvec3, double>> bodies_;
+  std::array<double, 3> whole_sky_;
+};
+
+/// ρ of a star's splat at `pixel` (on the splat grid), its direction
+/// `direction` (world, unit): every pixel the splat touches has its centre
+/// within one pixel of it in x and y; the largest angle from `direction` to
+/// the rays of that square's corners and edge midpoints (`camera_to_world`
+/// turns the projection's rays), × 1.05 for the projection's curvature across
+/// two pixels, + 1e-6 rad. Nullopt where one of those rays is missing (a
+/// fisheye's rim): the star is then tested on the darkest sky.
+std::optional<double> splat_footprint_radius(const warp::Projection& projection, const glm::dmat3& camera_to_world,
+                                             const glm::dvec2& pixel, const glm::dvec3& direction);
+
 /// The test's figures for one frame (per linear sRGB channel, × exposure).
 struct StarVisibility {
   std::array<double, 3> sky_floor{};  ///< B: the least the sky behind any star is (0: no bound)
-  std::array<double, 3> sky_peak{};   ///< the most the stars add to a pixel of sky
+  std::array<double, 3> sky_peak{};   ///< the most the stars add to a pixel of sky (first stage)
   bool could_show = true;             ///< a change of half a code is possible somewhere
+  /// The second stage (0 where the first decided): how many of the brightest
+  /// stars it tested one by one, how many of them landed in the image.
+  std::size_t stars_tested = 0, stars_placed = 0;
+  /// The largest change of a code value the deciding stage allows [codes]:
+  /// D'(B) · peak (first stage) or the largest star's D'(B_s) Δ_s (second; where
+  /// it stopped at a star that could show, that star's). Below
+  /// kInvisibleCodeChange: skipped.
+  double code_change = 0.0;
   /// The test this one replaced, for comparison (render_bench --stars-show):
   /// the brightest star alone through no air on a black sky, exposure ·
   /// E_max · Σ_λ max_c |w_c(λ)| · twinkle / Ω_min, drawn where ≥ kInvisibleDisplayStep.
@@ -74,10 +191,11 @@ struct StarVisibility {
 };
 
 /// The test for `field`'s stars in `frame` with the sky of `sky` (star_splats'
-/// frame: its atmospheres, exposure, colour weights, twinkling),
-/// `years_from_j2000` the sky time's distance from J2000 (proper motion).
+/// frame: its atmospheres, exposure, colour weights, twinkling) at the sky
+/// clock's `time` and `site` (the brightest stars' places; proper motion).
+/// `star_by_star` false: the first stage alone.
 StarVisibility star_visibility(const FrameState& frame, StarField& field, const StarFrame& sky,
-                               double years_from_j2000);
+                               const astro::AstroTime& time, const astro::Site& site, bool star_by_star = true);
 
 /// The smallest pixel solid angle over a 33 × 33 grid of the image [sr], half
 /// of it as the margin for what the grid misses (the projections' solid
