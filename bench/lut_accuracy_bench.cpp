@@ -25,7 +25,7 @@
 // is on the front when no other has both a lower cost and a lower RMS error.
 // The recommended default is the cheapest setting (precompute time) whose RMS
 // error is within --tolerance (1.2) × the best; it is compared with the
-// project's default (paper sizes, 4 orders, log-linear, 50 ray samples, 16
+// project's default (paper sizes, 6 orders with the series tail, log-linear, 50 ray samples, 24
 // sphere nodes, GPU: apps/table_provider.cpp, atmosphere/lut/precompute_options.h).
 //
 // Output in --out (default bench/results/ of the source tree):

@@ -1,29 +1,45 @@
-// Zenith radiance through twilight, sun 0° to −18°, from the CPU tables at
-// named table sizes against the reference (issue 29, goal 6).
+// Zenith radiance through twilight, sun 0° to −18°, from the tables at named
+// table sizes against the reference (issue 29, goal 6).
 //
-//   twilight_bench [--preset NAME] [--sizes paper,twilight] [--step-deg 0.25]
+//   twilight_bench [--preset NAME] [--sizes SPEC[,SPEC...]] [--gpu] [--step-deg 0.25]
 //                  [--reference-deg 0,-3,-6,-9,-12,-15,-18] [--reference lit-air|path-tracer]
+//                  [--reference-csv FILE]
 //                  [--samples N[,N...]] [--batches N] [--threads N] [--cache DIR | --no-cache]
 //                  [--orders N] [--no-series-tail]
 //                  [--out DIR] [--no-chart]
 //
-// For each table size (docs/lookup-tables.md, "Named sizes"): the tables from
-// the cache (--cache DIR, default the table cache of every zenith command;
-// precomputed on the CPU and stored there when absent, with the precompute's
-// time; --orders and --no-series-tail change the precompute's orders from the
-// defaults), their memory, then the zenith radiance L(h) seen from 1 m above the
-// ground for sun elevations h from 0° down to −18° in --step-deg steps.
+// Table sets (--sizes, default paper,twilight): each SPEC is a named size
+// (docs/lookup-tables.md, "Named sizes") optionally followed by overrides,
+// NAME[:KEY=VALUE...], for experiments, e.g. paper:mu_s=64:samples=100:
+//   scattering sizes     r, mu, mu_s, nu;  transmittance t_mu, t_r;  irradiance e_mu_s, e_r
+//   precompute options   samples (scattering_samples), sphere (sphere_zenith_samples),
+//                        degree (harmonic_degree), t_samples (transmittance_samples),
+//                        stride (coarse_ray_stride), orders (max_orders)
+// (atmosphere/lut/precompute_options.h). The spec names the set in the output.
+// Each set comes from the cache (--cache DIR, default the table cache of every
+// zenith command; the cache key holds the sizes and every option above, so no
+// experiment reads another's tables), else it is precomputed (on the CPU, or
+// with --gpu by the GL precompute on a headless context of its own: Mesa
+// llvmpipe here, seconds instead of tens of minutes; the same tables) and
+// stored there, with the precompute's time. --orders and --no-series-tail
+// change every set's orders from the defaults.
+// Then the zenith radiance L(h) seen from 1 m above the ground for sun
+// elevations h from 0° down to −18° in --step-deg steps.
 // Smoothness: the largest second difference of ln L between neighbouring steps
 // (a step in the tables, where an order fades or a texel column ends, shows as
 // a spike of |Δ² ln L|; a smooth exponential fall gives ~0), and whether L
 // falls monotonically.
 // Against the reference at each of --reference-deg: the relative error of each
-// size, with the reference's standard error and z = error / standard error.
+// set, with the reference's standard error and z = error / standard error.
 // The reference is the lit-air estimator (atmosphere/reference/lit_air_estimator.h,
 // --samples paths, each estimating every wavelength, one count or one per
 // elevation; order 1 by quadrature),
 // which reaches the deep twilight, or the path tracer (--samples paths per
 // wavelength), which finds the zenith below −10° only a handful of times.
+// --reference-csv FILE reuses the reference values, standard errors and order-1
+// parts of an earlier run's twilight_reference.csv (bench/results/ holds one:
+// its −12° alone cost 531 s) instead of computing them; every --reference-deg
+// and wavelength must be in it.
 //
 // Output (DIR = --out, default bench/results; files of presets other than
 // earth-advanced carry the preset's name): DIR/twilight_zenith.csv (every
@@ -32,6 +48,7 @@
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -41,6 +58,8 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -53,6 +72,8 @@
 #include "atmosphere/reference/path_tracer.h"
 #include "bench/command_line.h"
 #include "core/units.h"
+#include "render/gl/egl_context.h"
+#include "render/lut/gpu_precompute.h"
 
 namespace {
 
@@ -69,31 +90,67 @@ Vec3 sun_direction(double elevation_deg) {
   return Vec3{std::cos(e), 0.0, std::sin(e)};
 }
 
-/// The tables of one named size: from the cache when it has them, else
-/// precomputed on the CPU (and stored there), with the precompute's cost printed.
-lut::LookupTables tables_for(const AtmosphereModel& model, const std::string& name, lut::PrecomputeOptions options,
-                             const std::optional<std::filesystem::path>& cache_directory) {
-  options.sizes = table_sizes_by_name(name);
+/// A table set of --sizes: "NAME[:KEY=VALUE...]" (the header comment lists the
+/// keys) applied to the named sizes and to `base` options.
+lut::PrecomputeOptions options_for_spec(const std::string& spec, lut::PrecomputeOptions base) {
+  std::stringstream in(spec);
+  std::string name;
+  std::getline(in, name, ':');
+  base.sizes = table_sizes_by_name(name);
+  for (std::string item; std::getline(in, item, ':');) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("--sizes " + spec + ": '" + item + "' is not KEY=VALUE");
+    const std::string key = item.substr(0, eq);
+    const std::size_t value = std::stoul(item.substr(eq + 1));
+    const std::map<std::string, std::size_t*> sizes = {
+        {"r", &base.sizes.scattering_r},         {"mu", &base.sizes.scattering_mu},
+        {"mu_s", &base.sizes.scattering_mu_s},   {"nu", &base.sizes.scattering_nu},
+        {"t_mu", &base.sizes.transmittance_mu},  {"t_r", &base.sizes.transmittance_r},
+        {"e_mu_s", &base.sizes.irradiance_mu_s}, {"e_r", &base.sizes.irradiance_r}};
+    const std::map<std::string, int*> options = {
+        {"samples", &base.scattering_samples}, {"sphere", &base.sphere_zenith_samples},
+        {"degree", &base.harmonic_degree},     {"t_samples", &base.transmittance_samples},
+        {"stride", &base.coarse_ray_stride},   {"orders", &base.max_orders}};
+    if (auto s = sizes.find(key); s != sizes.end())
+      *s->second = value;
+    else if (auto o = options.find(key); o != options.end())
+      *o->second = int(value);
+    else
+      throw std::invalid_argument("--sizes " + spec + ": unknown key '" + key + "'");
+  }
+  base.sizes.check();
+  lut::check_precompute_options(base);
+  return base;
+}
+
+/// The tables of one set of --sizes: from the cache when it has them, else
+/// precomputed (CPU, or GL with `gpu`) and stored there, with the precompute's
+/// cost printed.
+lut::LookupTables tables_for(const AtmosphereModel& model, const std::string& spec, lut::PrecomputeOptions options,
+                             bool gpu, const std::optional<std::filesystem::path>& cache_directory) {
+  options = options_for_spec(spec, options);
   std::optional<lut::TableCache> cache;
   if (cache_directory) {
     cache.emplace(*cache_directory);
     std::string problem;
     if (auto cached = cache->load(model, options, &problem)) {
-      fmt::print("{} ({}): tables from {}, {:.1f} MiB\n", name, options.sizes.describe(), cache->directory().string(),
+      fmt::print("{} ({}): tables from {}, {:.1f} MiB\n", spec, options.sizes.describe(), cache->directory().string(),
                  double(table_bytes(*cached)) / 1048576.0);
       return std::move(*cached);
     }
-    if (!problem.empty()) fmt::print("ignoring the cached {} tables: {}\n", name, problem);
+    if (!problem.empty()) fmt::print("ignoring the cached {} tables: {}\n", spec, problem);
   }
-  fmt::print("{} ({}): precomputing on the CPU ...\n", name, options.sizes.describe());
+  fmt::print("{} ({}): precomputing on the {} ...\n", spec, options.sizes.describe(), gpu ? "GPU (GL)" : "CPU");
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
-  lut::LookupTables tables = lut::precompute_tables_cpu(model, options);
+  lut::PrecomputeReport report;
+  lut::LookupTables tables = gpu ? render::precompute_tables_gpu(model, options, &report)
+                                 : lut::precompute_tables_cpu(model, options, &report);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double cpu_seconds = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;  // all threads
-  fmt::print("{}: CPU precompute {:.1f} s wall, {:.1f} s CPU, {:.1f} MiB\n", name, seconds, cpu_seconds,
-             double(table_bytes(tables)) / 1048576.0);
+  fmt::print("{}: precompute on {} {:.1f} s wall, {:.1f} s CPU, {:.1f} MiB\n", spec, report.device, seconds,
+             cpu_seconds, double(table_bytes(tables)) / 1048576.0);
   if (cache) fmt::print("  stored in {}\n", cache->store(model, options, tables).string());
   return tables;
 }
@@ -136,6 +193,34 @@ Reference reference_at(const AtmosphereModel& model, const Vec3& camera, double 
   return r;
 }
 
+/// The references of an earlier run's twilight_reference.csv by (elevation,
+/// wavelength): its reference, standard_error and order_one columns.
+std::map<std::pair<long, long>, std::array<double, 3>> read_reference_csv(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("--reference-csv: cannot read " + path.string());
+  std::map<std::pair<long, long>, std::array<double, 3>> out;
+  bool header = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      if (line.rfind("sun_elevation_deg,wavelength_nm,reference,standard_error,order_one", 0) != 0)
+        throw std::runtime_error("--reference-csv " + path.string() + ": not a twilight_reference.csv (header)");
+      header = true;
+      continue;
+    }
+    std::stringstream fields(line);
+    std::array<double, 5> v{};
+    std::string field;
+    for (double& x : v) {
+      if (!std::getline(fields, field, ','))
+        throw std::runtime_error("--reference-csv " + path.string() + ": short row");
+      x = std::stod(field);
+    }
+    out[{std::lround(v[0] * 1000.0), std::lround(v[1] * 1000.0)}] = {v[2], v[3], v[4]};
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -148,7 +233,8 @@ int main(int argc, char** argv) try {
   std::size_t batches = 20;
   unsigned threads = 0;
   lut::PrecomputeOptions precompute;  // the defaults but for the sizes, unless --orders / --no-series-tail
-  bool chart = true;
+  bool chart = true, gpu = false;
+  std::optional<std::filesystem::path> reference_file;
   std::optional<std::filesystem::path> cache_directory = lut::default_cache_directory();
   std::filesystem::path out = std::filesystem::path(ZENITH_SOURCE_DIR) / "bench" / "results";
   for (bench::CommandLine args(argc, argv); args.next();) {
@@ -163,6 +249,10 @@ int main(int argc, char** argv) try {
       reference_deg = bench::split_list(args.value());
     else if (a == "--reference")
       reference_kind = args.value();
+    else if (a == "--reference-csv")
+      reference_file = std::filesystem::path(args.value());
+    else if (a == "--gpu")
+      gpu = true;
     else if (a == "--samples")
       samples_text = bench::split_list(args.value());
     else if (a == "--batches")
@@ -213,7 +303,7 @@ int main(int argc, char** argv) try {
   // zenith radiance per size, per elevation, per wavelength
   std::map<std::string, std::vector<Spectrum>> by_size;
   for (const std::string& name : size_names) {
-    const lut::LookupTables tables = tables_for(model, name, precompute, cache_directory);
+    const lut::LookupTables tables = tables_for(model, name, precompute, gpu, cache_directory);
     const lut::TableQueries queries(model, tables);
     std::vector<Spectrum>& radiance = by_size[name];
     for (double h : elevations) radiance.push_back(queries.sky_radiance(camera, zenith, sun_direction(h)));
@@ -246,16 +336,42 @@ int main(int argc, char** argv) try {
     }
   }
 
+  // Read before the output (which may be the same file) is opened.
+  std::map<std::pair<long, long>, std::array<double, 3>> stored_references;
+  std::string stored_command;
+  if (reference_file) {
+    stored_references = read_reference_csv(*reference_file);
+    std::ifstream in(*reference_file);
+    std::getline(in, stored_command);
+    if (stored_command.rfind("# ", 0) != 0) stored_command.clear();
+  }
   std::ofstream ref_csv(reference_csv);
   ref_csv << "# build/bench/twilight_bench";  // the command first (gnuplot skips it; fixtures keep it)
   for (int a = 1; a < argc; ++a) ref_csv << ' ' << argv[a];
   ref_csv << '\n';
+  if (reference_file)  // where the reference values come from, and the command that computed them
+    ref_csv << "# reference from " << reference_file->filename().string() << ": " << stored_command.substr(2) << '\n';
   ref_csv << "sun_elevation_deg,wavelength_nm,reference,standard_error,order_one";
   for (const std::string& name : size_names) ref_csv << ',' << name << ',' << name << "_relative_error";
   ref_csv << '\n';
   for (std::size_t e = 0; e < reference_deg.size(); ++e) {
     const double h = std::stod(reference_deg[e]);
-    const Reference r = reference_at(model, camera, h, reference_kind, samples[e], batches, threads);
+    Reference r;
+    if (reference_file) {
+      r = {Spectrum(channels), Spectrum(channels), Spectrum(channels)};
+      for (std::size_t c = 0; c < channels; ++c) {
+        const auto found =
+            stored_references.find({std::lround(h * 1000.0), std::lround(model.wavelengths_nm[c] * 1000.0)});
+        if (found == stored_references.end())
+          throw std::runtime_error(fmt::format("--reference-csv {}: no reference at sun {}° and {} nm",
+                                               reference_file->string(), h, model.wavelengths_nm[c]));
+        r.mean[c] = found->second[0];
+        r.standard_error[c] = found->second[1];
+        r.order_one[c] = found->second[2];
+      }
+    } else {
+      r = reference_at(model, camera, h, reference_kind, samples[e], batches, threads);
+    }
     for (std::size_t c = 0; c < channels; ++c) {
       const double relative_se = r.standard_error[c] / r.mean[c];
       std::string line =

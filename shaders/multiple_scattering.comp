@@ -2,7 +2,8 @@
 // Radiance of order n, L_n(r, μ, μs, ν) = ∫₀^d T(x, y) J_n(y) dy along the ray with
 // the rule of single scattering (T(x, y) from the view ray's samples, view_ray.glsl;
 // from coarse_ray_first_order on every sample_stride-th of them and the last,
-// next_ray_sample), for one group of 4 wavelengths; written as the delta of this
+// next_ray_sample), J read geometrically in μs as on the CPU (the deep twilight's
+// e-fold fall per degree), for one group of 4 wavelengths; written as the delta of this
 // order and added to the multiple-scattering table
 // (cpu_precompute.cpp, compute_multiple_scattering).
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -40,7 +41,7 @@ void main() {
     uv.u_mu = view_ray_uv[sample_index].y;
     uv.u_mu_s = texture_coord_from_unit(unit_from_mu_s(mu_s_t, ANGLE_MAPPING_BLENDED, theta_max), SCATTERING_MU_S);
     uv.u_nu = scattering_u_nu(mu_t, mu_s_t, c.nu);
-    const real4 j = sample_scattering_table(density_texture, uv);
+    const real4 j = sample_scattering_table_geometric_mu_s(density_texture, uv);
     const real4 f = view_transmittance[sample_index] * j;
     if (i > 0) sum += integrate_interval(prev, f, dx);
     prev = f;

@@ -3,7 +3,8 @@
 // Needs atmosphere_common.glsl.
 //   FIRST_ORDER 1 (n = 2): the single-scattering tables with their phase functions,
 //                          read geometrically in μs like every read of a final table;
-//   FIRST_ORDER 0 (n ≥ 3): the multiple-scattering table of the last order.
+//   FIRST_ORDER 0 (n ≥ 3): the multiple-scattering table of the last order, also
+//                          geometric in μs.
 // Each is read with its own angle mapping, PREVIOUS_ORDER_MAPPING. The caller
 // computes the texture coordinates (scattering_u_r, scattering_u_mu,
 // scattering_u_mu_s, scattering_u_nu with PREVIOUS_ORDER_MAPPING), each in the loop
@@ -28,6 +29,6 @@ real4 previous_order_radiance(ScatteringUV uv, real nu) {
 #endif
   return radiance;
 #else
-  return sample_scattering_table(delta_radiance_texture, uv);
+  return sample_scattering_table_geometric_mu_s(delta_radiance_texture, uv);
 #endif
 }

@@ -259,10 +259,11 @@ void Precompute::previous_order_radiance(int order, double r, double mu, double 
     for (std::size_t c = 0; c < n_; ++c) out[c] = rayleigh[c] * phase_r + mie[c] * model_.mie_phase(c, nu);
     return;
   }
-  // Orders ≥ 2: the delta table of the last order, read like the final table.
-  sample_scattering_table(delta_radiance_, sizes(),
-                          scattering_uvwz(geometry(), sizes(), r, mu, mu_s, nu, hits_ground, AngleMapping::Blended),
-                          out);
+  // Orders ≥ 2: the delta table of the last order, read like the final table
+  // (geometric in μs: lookup_tables.h).
+  sample_scattering_table_geometric_mu_s(
+      delta_radiance_, sizes(),
+      scattering_uvwz(geometry(), sizes(), r, mu, mu_s, nu, hits_ground, AngleMapping::Blended), out);
 }
 
 void Precompute::compute_scattering_density(int order, Table3D& density) {
@@ -499,7 +500,10 @@ void Precompute::compute_indirect_irradiance(int order) {
 double Precompute::compute_multiple_scattering(const Table3D& density, int sample_stride) {
   // L_n(x, v) = ∫₀^d T(x, y) J_n(y, v) dy along the ray (same rule as single
   // scattering, the row's samples and T(x, y) from view_ray_samples; every
-  // sample_stride-th of them and the last, next_ray_sample).
+  // sample_stride-th of them and the last, next_ray_sample). J is read
+  // geometrically in μs (sample_scattering_table_geometric_mu_s): through the
+  // deep twilight it falls about e-fold per degree of the sun's depression, 3–4°
+  // per μs texel there, and a linear read overshoots (issue 29, goal 6).
   const TableSizes& s = sizes();
   const int samples = options_.scattering_samples;
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;
@@ -536,7 +540,7 @@ double Precompute::compute_multiple_scattering(const Table3D& density, int sampl
         ScatteringUVWZ uv = ray_uv[i];
         uv.u_mu_s = scattering_u_mu_s(geometry(), s, mu_s_t, AngleMapping::Blended);
         uv.u_nu = scattering_u_nu(ray_mu[i], mu_s_t, c.nu);  // ν is constant along the ray, the azimuth is not
-        sample_scattering_table(density, s, uv, j.data());
+        sample_scattering_table_geometric_mu_s(density, s, uv, j.data());
         const double* t_view_i = view.transmittance.data() + static_cast<std::size_t>(i) * n_;
         for (std::size_t ch = 0; ch < n_; ++ch) {
           const double f = t_view_i[ch] * j[ch];

@@ -115,6 +115,10 @@ void sample_scattering_table_geometric_mu_s(const Table3D& table, const TableSiz
   column_b.u_mu_s = (i0 + 1.5) / n;
   std::array<double, kMaxChannels> a{}, b{};
   sample_scattering_table(table, s, column_a, a.data());
+  if (t == 0.0) {  // on a column's centre (the precompute's sphere integrals): the blend is a
+    for (std::size_t c = 0; c < table.channels; ++c) out[c] = a[c];
+    return;
+  }
   sample_scattering_table(table, s, column_b, b.data());
   for (std::size_t c = 0; c < table.channels; ++c) out[c] = geometric_blend(a[c], b[c], t);
 }

@@ -52,9 +52,13 @@ void sample_scattering_table(const Table3D& table, const TableSizes& sizes, cons
 /// texels the Earth twilight sky came out 10–90 % too bright (RMS 0.30 against
 /// the path tracer), geometric blending gives RMS 0.07, better than linear
 /// interpolation in a table with twice the μs texels (0.09). Elsewhere the two
-/// agree to second order. The precompute's delta tables (orders ≥ 2) are read
-/// linearly; reading them geometrically too measured slightly worse (0.10)
-/// (docs/lookup-tables.md, "Interpolation in μs").
+/// agree to second order. The precompute reads its own tables the same way: the
+/// scattering density along each ray and the last order's radiance (issue 29,
+/// goal 6: read linearly, J's e-fold fall per degree of depression across
+/// 3–4° texels made the deep twilight 2–3× too bright at −18°; an earlier
+/// test at sun −4° on small tables had measured these reads slightly worse,
+/// 0.10 against 0.07) (docs/lookup-tables.md, "Interpolation in μs"). On a
+/// column's centre (t = 0) only that column is read.
 /// Blend of neighbouring μs texels a, b at t ∈ [0, 1]: a^(1−t)·b^t while
 /// |ln(b/a)| ≤ kGeometricBlendFullLogRatio, fading to the linear (1−t)·a + t·b
 /// over the next unit of |ln(b/a)|, linear where either is zero. Through

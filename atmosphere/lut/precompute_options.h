@@ -84,7 +84,13 @@ struct PrecomputeOptions {
   /// there), 4× as many azimuths over the circle (cos(mφ) resolved without
   /// aliasing up to the degree). Direct: this many over [−1, 1], 2× as many
   /// azimuths. The sky-irradiance hemisphere uses half as many nodes.
-  int sphere_zenith_samples = 16;
+  /// 24, not 16: in the deep twilight the light of the higher orders comes from a
+  /// band a few degrees wide just above the horizon toward the sun (the sunlit air
+  /// beyond the terminator), which 16 nodes undersample: Earth's zenith at sun
+  /// −12° came out 4 % dark in the red, at −18° 12 % (`twilight` sizes); 24, 32
+  /// and 48 nodes agree within 0.6 % (docs/night-sky.md, "Twilight in the tables").
+  /// By day, at low sun and from orbit the tables do not move measurably.
+  int sphere_zenith_samples = 24;
   /// The degree DensityMethod::Harmonics uses: harmonic_degree, capped by the rule.
   int harmonic_degree_used() const { return std::min(harmonic_degree, 2 * sphere_zenith_samples - 1); }
 

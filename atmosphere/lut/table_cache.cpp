@@ -76,8 +76,10 @@ std::filesystem::path default_cache_directory() {
 /// geometrically in μs (sample_scattering_table_geometric_mu_s); 4: view-ray
 /// samples crowded toward the ray's lowest point, T accumulated along the ray
 /// (quadrature.h, view_ray_samples); 5: ν slices uniform in the azimuth
-/// between view and sun at each μ, μs (scattering_u_nu).
-constexpr int kPrecomputeMethodRevision = 5;
+/// between view and sun at each μ, μs (scattering_u_nu); 6: the scattering
+/// density along the rays and the last order's radiance read geometrically in
+/// μs (sample_scattering_table_geometric_mu_s; issue 29, goal 6).
+constexpr int kPrecomputeMethodRevision = 6;
 
 std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions& o) {
   std::ostringstream s;

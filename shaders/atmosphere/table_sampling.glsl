@@ -103,7 +103,9 @@ real4 sample_scattering_table_geometric_mu_s(sampler3D table, ScatteringUV uv) {
   ScatteringUV column_a = uv, column_b = uv;
   column_a.u_mu_s = c.u_a;
   column_b.u_mu_s = c.u_b;
-  return geometric_blend(sample_scattering_table(table, column_a), sample_scattering_table(table, column_b), c.t);
+  const real4 a = sample_scattering_table(table, column_a);
+  if (c.t == real(0)) return a;  // on a column's centre (the precompute's sphere integrals): the blend is a
+  return geometric_blend(a, sample_scattering_table(table, column_b), c.t);
 }
 
 // ------------------------------------------------------------ transmittance queries (lookup_tables.cpp)

@@ -128,6 +128,12 @@ Agreement compare(const std::string& preset, const std::string& fixture_name, bo
 // texels wide in these tables); Mars 0.057 / 0.14, 0.080 / 0.23, twilight
 // 0.111 / 0.29, limb 0.083 / 0.19. Paper-size tables with 8 orders: 0.002 to
 // 0.03 (docs/lookup-tables.md, "ν slices in azimuth").
+// Re-measured when the precompute came to read the scattering density along the
+// rays and the last order's radiance geometrically in μs, with 24 sphere nodes
+// (issue 29, goal 6): with 4 orders and no tail the twilight cases are darker,
+// Earth 0.057 / 0.213 (was 0.050 / 0.14), Mars 0.145 / 0.344 (was 0.111 / 0.29):
+// 4 orders are too few for twilight and the linear reads' overshoot had hidden
+// part of it; the default orders below gain 4× and 3×; the rest within 0.003.
 struct AccuracyCase {
   const char* name;  ///< test name
   const char* preset;
@@ -153,11 +159,11 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, AccuracyVsReference,
     ::testing::Values(AccuracyCase{"EarthNoon", "earth-advanced", "earth-advanced_noon", 0.061, 0.18},
                       AccuracyCase{"EarthLowSun", "earth-advanced", "earth-advanced_low_sun", 0.050, 0.21},
-                      AccuracyCase{"EarthTwilight", "earth-advanced", "earth-advanced_twilight", 0.066, 0.19},
+                      AccuracyCase{"EarthTwilight", "earth-advanced", "earth-advanced_twilight", 0.074, 0.28},
                       AccuracyCase{"EarthLimbFromOrbit", "earth-advanced", "earth-advanced_orbit_limb", 0.33, 0.75},
                       AccuracyCase{"MarsNoon", "mars", "mars_noon", 0.075, 0.19},
                       AccuracyCase{"MarsLowSun", "mars", "mars_low_sun", 0.105, 0.30},
-                      AccuracyCase{"MarsTwilight", "mars", "mars_twilight", 0.145, 0.38},
+                      AccuracyCase{"MarsTwilight", "mars", "mars_twilight", 0.19, 0.45},
                       AccuracyCase{"MarsLimbFromOrbit", "mars", "mars_orbit_limb", 0.11, 0.25}),
     [](const auto& test_info) { return std::string(test_info.param.name); });
 
@@ -170,17 +176,20 @@ INSTANTIATE_TEST_SUITE_P(
 // path tracer the tail moves the tables toward the converged series, whose own
 // excess at the limb and in twilight (these tables' few r and μs texels there)
 // the dropped orders had partly hidden; paper-size tables:
-// docs/lookup-tables.md, "Closing the series".
+// docs/lookup-tables.md, "Closing the series". With the geometric μs reads of the
+// precompute and 24 sphere nodes (issue 29, goal 6) the twilight cases went to
+// Earth 0.021 / 0.073 (was 0.094 / 0.25), Mars 0.0084 / 0.027 (was 0.024 /
+// 0.087), the rest within 0.001: bounds 1.3× those.
 INSTANTIATE_TEST_SUITE_P(
     DefaultOrders, AccuracyVsReference,
     ::testing::Values(AccuracyCase{"EarthNoon", "earth-advanced", "earth-advanced_noon", 0.068, 0.13, true},
                       AccuracyCase{"EarthLowSun", "earth-advanced", "earth-advanced_low_sun", 0.052, 0.12, true},
-                      AccuracyCase{"EarthTwilight", "earth-advanced", "earth-advanced_twilight", 0.123, 0.33, true},
+                      AccuracyCase{"EarthTwilight", "earth-advanced", "earth-advanced_twilight", 0.028, 0.096, true},
                       AccuracyCase{"EarthLimbFromOrbit", "earth-advanced", "earth-advanced_orbit_limb", 0.37, 0.86,
                                    true},
                       AccuracyCase{"MarsNoon", "mars", "mars_noon", 0.019, 0.04, true},
                       AccuracyCase{"MarsLowSun", "mars", "mars_low_sun", 0.015, 0.042, true},
-                      AccuracyCase{"MarsTwilight", "mars", "mars_twilight", 0.032, 0.113, true},
+                      AccuracyCase{"MarsTwilight", "mars", "mars_twilight", 0.011, 0.036, true},
                       AccuracyCase{"MarsLimbFromOrbit", "mars", "mars_orbit_limb", 0.176, 0.44, true}),
     [](const auto& test_info) { return std::string(test_info.param.name); });
 
