@@ -37,9 +37,10 @@
 // which reaches the deep twilight, or the path tracer (--samples paths per
 // wavelength), which finds the zenith below −10° only a handful of times.
 // --reference-csv FILE reuses the reference values, standard errors and order-1
-// parts of an earlier run's twilight_reference.csv (bench/results/ holds one:
-// its −12° alone cost 531 s) instead of computing them; every --reference-deg
-// and wavelength must be in it.
+// parts of an earlier run's twilight_reference.csv instead of computing them
+// (bench/results/twilight_reference_lit_air.csv holds each elevation's sharpest
+// reference so far, its first line the commands that made them: about half an
+// hour of runs); every --reference-deg and wavelength must be in it.
 //
 // Output (DIR = --out, default bench/results; files of presets other than
 // earth-advanced carry the preset's name): DIR/twilight_zenith.csv (every
