@@ -1,0 +1,41 @@
+#pragma once
+// render_bench --stars LIMIT --stars-show SHOW --stars-placement (issue 29
+// goal 8): what placing the stars costs the frame's thread, and where it goes.
+//
+// 1. The renderer through the show's own exposure track every --stars-step
+//    show seconds on a fisheye dome master of --stars-dome pixels, each frame
+//    drawn twice and the second timed (PassTimer's CPU parts): the star test
+//    (render/frame/star_visibility.h, both stages) and the star placement
+//    (the catalogue's turn and star_splats), with the stars placed and tested.
+// 2. At the show's last frame (night), star_splats alone on the CPU, outside
+//    the renderer, on the catalogue's stars at that instant: the whole
+//    placement on the worker threads, then place_star's steps
+//    (render/frame/star_field.h) one after the other over every star on one
+//    thread — the turn, the rejections, refraction, the occluders, the
+//    projection, the transmittance, the pixel's solid angle, the colour and the
+//    twinkle — each over the stars that reach it, medians of --rounds ×
+//    --iterations; then the transmittance, the solid angle, the twinkle and the
+//    whole placement again with the exact reads (star_transmittance, the rays,
+//    the formula) in place of the frame's tables.
+// Prints both and writes the parts to --stars-csv (default
+// bench/results/star_placement.csv) and the frames beside it (…_frames.csv).
+#include <filesystem>
+#include <string>
+
+#include "render/renderer.h"
+
+namespace zenith::bench {
+
+struct StarPlacement {
+  std::filesystem::path show;
+  double magnitude_limit = 8.7;
+  int dome_px = 1024;
+  double step_s = 4.0;
+  int rounds = 3, iterations = 3;
+  std::filesystem::path csv;
+};
+
+/// Runs both and writes the CSVs; `device` names the GL renderer.
+void time_star_placement(const StarPlacement& bench, const std::string& device, const render::TableSource& tables);
+
+}  // namespace zenith::bench
