@@ -560,11 +560,8 @@ int run(int argc, char** argv) {
   if (opt.star_placement) {
     if (!opt.stars || opt.star_twilight.show.empty())
       throw std::invalid_argument("--stars-placement needs --stars LIMIT and --stars-show SHOW");
-    bench::StarPlacement p;
-    p.show = opt.star_twilight.show;
+    bench::StarTwilight p = opt.star_twilight;
     p.magnitude_limit = *opt.stars;
-    p.dome_px = opt.star_twilight.dome_px;
-    p.step_s = opt.star_twilight.step_s;
     p.rounds = opt.rounds;
     p.iterations = opt.iterations;
     p.csv = opt.star_timing.csv.empty() ? std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/star_placement.csv"

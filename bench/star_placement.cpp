@@ -37,7 +37,7 @@ struct Part {
 
 }  // namespace
 
-void time_star_placement(const StarPlacement& b, const std::string& device, const render::TableSource& tables) {
+void time_star_placement(const StarTwilight& b, const std::string& device, const render::TableSource& tables) {
   const show::Show show = show::load_show(b.show);
   const auto scene_at = [&](double t) {
     scene::Scene s = show.scene();

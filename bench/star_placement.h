@@ -19,23 +19,16 @@
 //    the formula) in place of the frame's tables.
 // Prints both and writes the parts to --stars-csv (default
 // bench/results/star_placement.csv) and the frames beside it (…_frames.csv).
-#include <filesystem>
 #include <string>
 
+#include "bench/star_twilight.h"
 #include "render/renderer.h"
 
 namespace zenith::bench {
 
-struct StarPlacement {
-  std::filesystem::path show;
-  double magnitude_limit = 8.7;
-  int dome_px = 1024;
-  double step_s = 4.0;
-  int rounds = 3, iterations = 3;
-  std::filesystem::path csv;
-};
-
-/// Runs both and writes the CSVs; `device` names the GL renderer.
-void time_star_placement(const StarPlacement& bench, const std::string& device, const render::TableSource& tables);
+/// Runs both and writes the CSVs (the options as --stars-show's: the show,
+/// the magnitude limit, the dome's pixels, the step, rounds, iterations, the
+/// CSV); `device` names the GL renderer.
+void time_star_placement(const StarTwilight& bench, const std::string& device, const render::TableSource& tables);
 
 }  // namespace zenith::bench
