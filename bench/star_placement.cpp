@@ -95,7 +95,7 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
       atmospheres.push_back({body.position_m, model.ground_radius_m, model.top_radius_m, &luts.back()});
     }
   render::RefractionCache refractions;
-  const render::StarFrame frame =
+  render::StarFrame frame =
       render::star_frame(s, dome, constants.camera_to_world, atmospheres, constants.rgb_weights, refractions);
   astro::StarCatalogueOptions catalogue_options;
   catalogue_options.directory = options.night_sky.star_directory;
@@ -110,11 +110,12 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
   const std::size_t n = field.wavelengths_nm().size();
 
   std::vector<Part> parts;
-  for (const char* name : {"turn (directions_enu)", "rejections (ground, view cone)", "refraction", "occluders",
-                           "projection (pixel, splat grid)", "transmittance", "pixel solid angle", "colour weights",
-                           "twinkle", "place_star, one thread", "star_splats, worker threads",
-                           "transmittance, star_transmittance", "pixel solid angle, rays", "twinkle, formula",
-                           "place_star, one thread, exact reads", "star_splats, worker threads, exact reads"})
+  for (const char* name :
+       {"deviates of the interval (star test)", "turn (directions_enu)", "rejections (ground, view cone)", "refraction",
+        "occluders", "projection (pixel, splat grid)", "transmittance", "pixel solid angle", "colour weights",
+        "twinkle", "place_star, one thread", "star_splats, worker threads", "transmittance, star_transmittance",
+        "pixel solid angle, rays", "twinkle, formula", "place_star, one thread, exact reads",
+        "star_splats, worker threads, exact reads"})
     parts.push_back(Part{name, 0, {}});
   std::size_t placed = 0;
   for (int round = 0; round < b.rounds * b.iterations; ++round) {
@@ -125,6 +126,13 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
       parts[p].ms.push_back(ms_since(t0));
       parts[p++].stars = count;
     };
+    // The star test draws every star's deviate once per interval (the show's frames at 120× each a new one).
+    if (frame.scintillation) field.largest_scintillation_normal(frame.scintillation_interval + round + 1);
+    timed(field.size(), [&] {
+      if (frame.scintillation) field.largest_scintillation_normal(frame.scintillation_interval);
+    });
+    frame.scintillation_normals =
+        frame.scintillation ? field.scintillation_normals(frame.scintillation_interval) : nullptr;
     timed(field.size(), [&] { field.directions_enu(time, site, enu); });
     std::vector<std::size_t> kept;
     timed(enu.size(), [&] {
@@ -182,6 +190,7 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
     exact.transmittances.clear();
     exact.solid_angle.reset();
     exact.twinkle_sigma.reset();
+    exact.scintillation_normals = nullptr;
     timed(landed.size(), [&] {
       for (std::size_t i : landed)
         render::star_line_of_sight_transmittance(d[i], exact, &transmittance[i * n], scratch.data());
@@ -208,7 +217,7 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
   for (std::size_t p = 0; p < parts.size(); ++p) {
     const Part& part = parts[p];
     const double ms = median(part.ms);
-    if (p < 9) steps += ms;
+    if (p >= 1 && p < 10) steps += ms;
     fmt::print("  {:32s} {:7d} stars {:8.2f} ms {:8.1f} ns/star\n", part.name, part.stars, ms,
                part.stars ? 1e6 * ms / static_cast<double>(part.stars) : 0.0);
     csv << '"' << device << "\"," << b.dome_px << ',' << field.size() << ',' << placed << ",\"" << part.name << "\","

@@ -11,7 +11,9 @@
 //    the renderer, on the catalogue's stars at that instant: the whole
 //    placement on the worker threads, then place_star's steps
 //    (render/frame/star_field.h) one after the other over every star on one
-//    thread — the turn, the rejections, refraction, the occluders, the
+//    thread — the star test's deviates of the twinkle's interval for every star
+//    (StarField::largest_scintillation_normal, on the worker threads; the
+//    placement reads them), the turn, the rejections, refraction, the occluders, the
 //    projection, the transmittance, the pixel's solid angle, the colour and the
 //    twinkle — each over the stars that reach it, medians of --rounds ×
 //    --iterations; then the transmittance, the solid angle, the twinkle and the

@@ -34,13 +34,25 @@ StarField::StarField(astro::StarCatalogue catalogue, const std::vector<double>& 
 
 double StarField::largest_scintillation_normal(std::int64_t interval) {
   if (have_normal_ && normal_interval_ == interval) return largest_normal_;
+  // Every star's deviate for the interval, on the worker threads (each a fixed
+  // function of its index): kept for the pass's twinkle (scintillation_normals).
+  const std::size_t count = catalogue_.stars.size();
+  normals_.resize(count);
+  constexpr std::size_t kChunk = 8192;
+  core::parallel_for((count + kChunk - 1) / kChunk, 0, [&](std::size_t chunk) {
+    for (std::size_t i = chunk * kChunk; i < std::min(count, (chunk + 1) * kChunk); ++i)
+      normals_[i] = astro::scintillation_normal(i, interval);
+  });
   double largest = -astro::kLargestScintillationNormal;
-  for (std::size_t i = 0; i < catalogue_.stars.size(); ++i)
-    largest = std::max(largest, astro::scintillation_normal(i, interval));
+  for (double g : normals_) largest = std::max(largest, g);
   have_normal_ = true;
   normal_interval_ = interval;
   largest_normal_ = largest;
   return largest;
+}
+
+const std::vector<double>* StarField::scintillation_normals(std::int64_t interval) const {
+  return have_normal_ && normal_interval_ == interval ? &normals_ : nullptr;
 }
 
 int StarField::radius_step(double radius_rad, double years_from_j2000) const {
@@ -467,7 +479,8 @@ double TwinkleSigmaTable::bound_at(double mu) const {
 
 double star_twinkle(std::size_t i, const glm::dvec3& d, const StarFrame& frame) {
   if (!frame.scintillation) return 1.0;
-  const double g = astro::scintillation_normal(i, frame.scintillation_interval);
+  const double g = frame.scintillation_normals ? (*frame.scintillation_normals)[i]
+                                               : astro::scintillation_normal(i, frame.scintillation_interval);
   const double mu = glm::dot(d, frame.up);
   return astro::scintillation_factor_of_log_sigma(
       frame.twinkle_sigma ? (*frame.twinkle_sigma)(mu) : twinkle_log_sigma(frame.scintillation_per_cubed_air_mass, mu),

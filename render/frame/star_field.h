@@ -134,6 +134,9 @@ class StarField {
   /// interval `interval`: the brightest twinkle of that interval is
   /// scintillation_factor(σ², this). Cached for the last interval.
   double largest_scintillation_normal(std::int64_t interval);
+  /// Every star's astro::scintillation_normal for `interval` (by index), where
+  /// largest_scintillation_normal computed them for it last; else null.
+  const std::vector<double>* scintillation_normals(std::int64_t interval) const;
 
   /// Every star's geometric direction at `time` from `site` as (east, north,
   /// up) unit vectors into `out`: ERFA at the epoch, turned by the Earth's
@@ -157,6 +160,7 @@ class StarField {
   bool have_normal_ = false;
   std::int64_t normal_interval_ = 0;
   double largest_normal_ = 0.0;
+  std::vector<double> normals_;
   bool have_epoch_ = false;
   double epoch_ut1_jd_ = 0.0;
   astro::Site epoch_site_;
@@ -293,6 +297,9 @@ struct StarFrame {
   /// astro::scintillation_variance_per_cubed_air_mass of the above: the frame's
   /// part of every star's variance (set_twinkling keeps it with them).
   double scintillation_per_cubed_air_mass = 0.0;
+  /// Every star's deviate for scintillation_interval, by index
+  /// (StarField::scintillation_normals: the star test's; null: drawn per star).
+  const std::vector<double>* scintillation_normals = nullptr;
   /// s of the twinkle by the table (set_twinkling fills it; empty: the formula).
   std::optional<TwinkleSigmaTable> twinkle_sigma;
   /// Per atmosphere, its CameraTransmittance from camera_m (star_frame sets

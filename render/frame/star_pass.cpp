@@ -185,13 +185,15 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
   if (want_stars) {
     const scene::SkyClock& clock = *scene.sky_clock;
     const astro::AstroTime time = astro::AstroTime::from_utc(clock.time);
-    const StarFrame f =
+    StarFrame f =
         star_frame(scene, frame.projection, frame.camera_to_world, atmospheres, frame.rgb_weights, refractions_);
     if (options_.stars && ensure_field(scene) && field_->size() > 0) {
       timer.cpu("star test", [&] { stats_.star_test = star_visibility(frame, *field_, f, time, clock.site); });
       if (stats_.star_test.could_show || !options_.skip_hidden_stars) {
         timer.cpu("star placement", [&] {
           field_->directions_enu(time, clock.site, directions_);
+          // The star test's deviates for the interval, where it drew them.
+          if (f.scintillation) f.scintillation_normals = field_->scintillation_normals(f.scintillation_interval);
           splats_ = star_splats(*field_, directions_, f);
         });
         stats_.catalogue_identity = field_->catalogue().identity_sha256;
