@@ -130,6 +130,11 @@ Refraction::Refraction(double ground_radius_m, double top_radius_m, const atmosp
     const double t = double(i) / double(kTableSize - 1);
     table_rad_[i] = integral_rad(0.5 * core::kPi * t * t);
   }
+  node_h_minus_r_.resize(kTableSize);
+  for (std::size_t i = 0; i < kTableSize; ++i) {
+    const double t = double(i) / double(kTableSize - 1);
+    node_h_minus_r_[i] = 0.5 * core::kPi * t * t - table_rad_[i];
+  }
 }
 
 Refraction Refraction::for_atmosphere(const atmosphere::LoadedAtmosphere& loaded, double wavelength_nm,
@@ -174,33 +179,35 @@ double Refraction::at_apparent_rad(double apparent_altitude_rad) const {
 double Refraction::apparent_from_true_rad(double true_altitude_rad) const {
   if (true_altitude_rad <= -table_rad_[0]) return true_altitude_rad + table_rad_[0];
   // f(h) = h − R(h) − h_true is increasing, negative at max(0, h_true) and
-  // positive at h_true + R(0): its root by regula falsi with the Illinois
-  // modification, kept inside the bracket. R is piecewise linear in √h, so the
-  // steps converge superlinearly: 5–10 evaluations instead of bisection's 60
-  // (the star pass solves this for every star in view, every frame).
-  double lo = std::max(0.0, true_altitude_rad), hi = std::min(0.5 * core::kPi, true_altitude_rad + table_rad_[0]);
+  // positive at h_true + R(0). R is linear in t = √(h / (π/2)) between the
+  // table's nodes t_i = i/M (M = kTableSize − 1, at_apparent_rad), so on the
+  // segment [t_i, t_i+1] with t = (i + s)/M, h = k (i + s)², k = π/(2M²):
+  //   f = k s² + (2 k i − ΔR) s + (g_i − h_true),  ΔR = R_i+1 − R_i ≤ 0,
+  // g_i = k i² − R_i the node's h − R. Its root in s ∈ [0, 1] is closed form,
+  // s = 2 (h_true − g_i) / (b + √(b² + 4 k (h_true − g_i))), b = 2 k i − ΔR > 0
+  // (no cancellation), on the segment whose g_i ≤ h_true < g_i+1 (binary
+  // search: g grows with i). The star pass solves this for every star in view,
+  // every frame: one search and one square root where the regula falsi this
+  // replaced took 5–10 table reads (docs/night-sky.md, "Cost").
+  // Where f(lo) ≥ 0 or f(hi) ≤ 0 (no refraction there, or h_true above the
+  // last node's h − R) the segment's root clamps to lo or hi, the bracket's ends.
+  const double lo = std::max(0.0, true_altitude_rad), hi = std::min(0.5 * core::kPi, true_altitude_rad + table_rad_[0]);
   if (lo >= hi) return true_altitude_rad;
-  const auto f = [&](double h) { return h - at_apparent_rad(h) - true_altitude_rad; };
-  double f_lo = f(lo), f_hi = f(hi);
-  if (f_lo >= 0.0) return lo;
-  if (f_hi <= 0.0) return hi;
-  int last_side = 0;
-  for (int k = 0; k < 100 && hi - lo > 4.0 * std::numeric_limits<double>::epsilon() * hi; ++k) {
-    double h = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-    if (!(h > lo && h < hi)) h = 0.5 * (lo + hi);
-    const double f_h = f(h);
-    if (f_h == 0.0) return h;
-    if (f_h < 0.0) {
-      lo = h, f_lo = f_h;
-      if (last_side < 0) f_hi *= 0.5;  // the same end moved twice: halve the other's weight
-      last_side = -1;
-    } else {
-      hi = h, f_hi = f_h;
-      if (last_side > 0) f_lo *= 0.5;
-      last_side = 1;
-    }
-  }
-  return 0.5 * (lo + hi);
+  // The root's t lies between those of lo and hi (h ≥ h_true, R ≤ R(0)): search there.
+  const double m = double(kTableSize - 1);
+  const auto node = [&](double h) { return static_cast<std::ptrdiff_t>(std::sqrt(h / (0.5 * core::kPi)) * m); };
+  const auto begin = node_h_minus_r_.begin();
+  const auto first = std::upper_bound(begin + std::clamp<std::ptrdiff_t>(node(lo) - 1, 0, kTableSize - 1),
+                                      begin + std::min<std::ptrdiff_t>(node(hi) + 2, kTableSize), true_altitude_rad);
+  const std::size_t i =
+      std::min<std::size_t>(static_cast<std::size_t>(std::max<std::ptrdiff_t>(first - begin - 1, 0)), kTableSize - 2);
+  const double k = 0.5 * core::kPi / (double(kTableSize - 1) * double(kTableSize - 1));
+  const double above = true_altitude_rad - node_h_minus_r_[i];  // ≥ 0
+  const double delta_r = table_rad_[i + 1] - table_rad_[i];
+  const double b = 2.0 * k * double(i) - delta_r;
+  const double s = std::clamp(2.0 * above / (b + std::sqrt(b * b + 4.0 * k * above)), 0.0, 1.0);
+  // h = h_true + R(h): the small R added to the exact h_true keeps h's digits.
+  return std::clamp(true_altitude_rad + table_rad_[i] + delta_r * s, lo, hi);
 }
 
 double bennett_refraction_deg(double h) {

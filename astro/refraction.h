@@ -58,14 +58,16 @@ class Refraction {
   /// R [rad] at apparent altitude h from the table (h < 0 is taken as 0).
   double at_apparent_rad(double apparent_altitude_rad) const;
   /// Apparent altitude of an object at true (geometric) altitude h: h + R, solved
-  /// on the table; below −R(0) (under the apparent horizon) h + R(0).
+  /// on the table (the root of h' − at_apparent_rad(h') = h, in closed form on
+  /// its segment); below −R(0) (under the apparent horizon) h + R(0).
   double apparent_from_true_rad(double true_altitude_rad) const;
 
  private:
   double refractivity_at(double r_m) const;
   double ground_radius_m_, top_radius_m_, observer_radius_m_, refractivity_;
   atmosphere::DensityProfile density_;
-  std::vector<double> table_rad_;  // R at apparent altitude (π/2)·t², t = i/(n − 1)
+  std::vector<double> table_rad_;       // R at apparent altitude (π/2)·t², t = i/(n − 1)
+  std::vector<double> node_h_minus_r_;  // h − R at those nodes (increasing): apparent_from_true_rad's segments
 };
 
 /// Bennett (1982, J. Navigation 35, 255): R = cot(h + 7.31/(h + 4.4)) arcmin, h

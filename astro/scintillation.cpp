@@ -23,15 +23,24 @@ double unit_interval(std::uint64_t h) { return (double(h >> 11) + 1.0) * 0x1.0p-
 
 }  // namespace
 
-double scintillation_variance(const ScintillationOptions& o, double air_mass, double observer_altitude_m,
-                              double ground_refractivity, double wavelength_nm) {
-  if (!(air_mass >= 1.0)) throw std::invalid_argument("scintillation: air mass " + std::to_string(air_mass) + " < 1");
+double scintillation_variance_per_cubed_air_mass(const ScintillationOptions& o, double observer_altitude_m,
+                                                 double ground_refractivity, double wavelength_nm) {
   const double fresnel_m = std::sqrt(wavelength_nm * 1e-9 * o.turbulence_height_m);
   const double aperture_m = std::max(o.pupil_mm * 1e-3, fresnel_m);
   const double medium = ground_refractivity / kEarthGroundRefractivity550;
-  const double variance = 1e-5 * o.c_y * o.c_y * std::pow(aperture_m, -4.0 / 3.0) / o.integration_s * air_mass *
-                          air_mass * air_mass * std::exp(-2.0 * observer_altitude_m / kScaleHeight_m) * medium * medium;
-  return std::clamp(variance, 0.0, 1.0);
+  return 1e-5 * o.c_y * o.c_y * std::pow(aperture_m, -4.0 / 3.0) / o.integration_s *
+         std::exp(-2.0 * observer_altitude_m / kScaleHeight_m) * medium * medium;
+}
+
+double scintillation_variance_at(double per_cubed_air_mass, double air_mass) {
+  return std::clamp(per_cubed_air_mass * (air_mass * air_mass * air_mass), 0.0, 1.0);
+}
+
+double scintillation_variance(const ScintillationOptions& o, double air_mass, double observer_altitude_m,
+                              double ground_refractivity, double wavelength_nm) {
+  if (!(air_mass >= 1.0)) throw std::invalid_argument("scintillation: air mass " + std::to_string(air_mass) + " < 1");
+  return scintillation_variance_at(
+      scintillation_variance_per_cubed_air_mass(o, observer_altitude_m, ground_refractivity, wavelength_nm), air_mass);
 }
 
 double scintillation_normal(std::uint64_t star, std::int64_t interval) {
@@ -41,9 +50,12 @@ double scintillation_normal(std::uint64_t star, std::int64_t interval) {
   return std::sqrt(-2.0 * std::log(unit_interval(h1))) * std::cos(2.0 * 3.14159265358979323846 * unit_interval(h2));
 }
 
+double scintillation_log_sigma(double variance) { return std::sqrt(std::log1p(std::max(0.0, variance))); }
+
+double scintillation_factor_of_log_sigma(double s, double g) { return std::exp(s * g - 0.5 * s * s); }
+
 double scintillation_factor(double variance, double g) {
-  const double s2 = std::log1p(std::max(0.0, variance));
-  return std::exp(std::sqrt(s2) * g - 0.5 * s2);
+  return scintillation_factor_of_log_sigma(scintillation_log_sigma(variance), g);
 }
 
 }  // namespace zenith::astro

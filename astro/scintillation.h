@@ -43,6 +43,13 @@ inline constexpr double kEarthGroundRefractivity550 = 2.7784e-4;
 /// (n₀ − 1; Earth's scales by 1), at `wavelength_nm`. In [0, 1].
 double scintillation_variance(const ScintillationOptions& options, double air_mass, double observer_altitude_m,
                               double ground_refractivity, double wavelength_nm = 550.0);
+/// Everything of σ_I² but the air mass, before the cap: σ_I² = min(1, this · X³)
+/// (scintillation_variance computes it so). The same for every star of a frame:
+/// the star pass takes it once per frame and X³ per star.
+double scintillation_variance_per_cubed_air_mass(const ScintillationOptions& options, double observer_altitude_m,
+                                                 double ground_refractivity, double wavelength_nm = 550.0);
+/// min(1, `per_cubed_air_mass` · X³) for Pickering air mass X ≥ 1.
+double scintillation_variance_at(double per_cubed_air_mass, double air_mass);
 
 /// The largest |g| scintillation_normal can return: √(−2 ln 2⁻⁵³) (its uniforms have 53 bits).
 inline constexpr double kLargestScintillationNormal = 8.572;
@@ -54,5 +61,9 @@ double scintillation_normal(std::uint64_t star, std::int64_t interval);
 /// The log-normal intensity factor with mean 1 and variance `variance` for
 /// the standard normal `g`: exp(s g − s²/2), s² = ln(1 + variance).
 double scintillation_factor(double variance, double g);
+/// s = √ln(1 + variance): the standard deviation of ln f.
+double scintillation_log_sigma(double variance);
+/// exp(s g − s²/2): scintillation_factor from s.
+double scintillation_factor_of_log_sigma(double s, double g);
 
 }  // namespace zenith::astro

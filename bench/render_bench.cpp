@@ -80,6 +80,7 @@
 #include "bench/present_bench.h"
 #include "bench/process_cpu.h"
 #include "bench/star_frames.h"
+#include "bench/star_placement.h"
 #include "bench/star_twilight.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/software_rasterizer.h"
@@ -116,6 +117,7 @@ struct Options {
   bool moonlight = false;       // --moonlight: the Moon's light of the atmosphere passes (the same)
   bool star_time_given = false;
   bench::StarTiming star_timing;
+  bool star_placement = false;        // --stars-placement: with --stars-show, the placement's parts
   bench::StarTwilight star_twilight;  // --stars-show SHOW: the test through a show's twilight (bench/star_twilight.h)
   /// Per-projector mode: render every output of this viewport config (its own
   /// projection, warp and size) and report each one's frame time and peak memory.
@@ -149,6 +151,9 @@ constexpr const char* kUsage =
     "                 twilight and what skipping them saves (bench/star_twilight.h), on a fisheye dome\n"
     "                 master of --stars-dome N pixels (default 1024), every --stars-step S show seconds\n"
     "                 (default 2); --stars-csv (default bench/results/star_twilight_skip.csv)\n"
+    "  --stars-placement  with --stars-show: the star test's and the placement's CPU time through the show\n"
+    "                 and the placement's parts at its last frame (bench/star_placement.h), every\n"
+    "                 --stars-step S show seconds; --stars-csv (default bench/results/star_placement.csv)\n"
     "  --moonlight    the Moon's light of the atmosphere passes instead: frames with and without it at a full\n"
     "                 Moon (--stars-time, default 2026-01-03T20:00:00Z) and by day, --stars-exposure, --stars-csv\n"
     "                 (default bench/results/moonlight_frame_times.csv)\n"
@@ -255,6 +260,8 @@ Options parse_options(int argc, char** argv) {
       o.star_timing.csv = value(i, a);
     else if (a == "--stars-show")
       o.star_twilight.show = value(i, a);
+    else if (a == "--stars-placement")
+      o.star_placement = true;
     else if (a == "--stars-dome") {
       o.star_twilight.dome_px = std::stoi(value(i, a));
       if (!(o.star_twilight.dome_px >= 16 && o.star_twilight.dome_px <= 8192))
@@ -549,6 +556,18 @@ int run(int argc, char** argv) {
   if (opt.gbuffer_path) {
     atm_options.one_pass_tiles = body_options.one_pass_tiles = false;
     atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
+  }
+  if (opt.star_placement) {
+    if (!opt.stars || opt.star_twilight.show.empty())
+      throw std::invalid_argument("--stars-placement needs --stars LIMIT and --stars-show SHOW");
+    bench::StarTwilight p = opt.star_twilight;
+    p.magnitude_limit = *opt.stars;
+    p.rounds = opt.rounds;
+    p.iterations = opt.iterations;
+    p.csv = opt.star_timing.csv.empty() ? std::filesystem::path(ZENITH_SOURCE_DIR) / "bench/results/star_placement.csv"
+                                        : opt.star_timing.csv;
+    bench::time_star_placement(p, device, tables);
+    return 0;
   }
   if (opt.stars && !opt.star_twilight.show.empty()) {
     bench::StarTwilight w = opt.star_twilight;

@@ -11,6 +11,8 @@
 #include "atmosphere/air_mass.h"
 #include "atmosphere/lut/parameterization.h"
 #include "core/parallel_for.h"
+#include "warp/fisheye_projection.h"
+#include "warp/planar_projection.h"
 
 namespace zenith::render {
 
@@ -32,13 +34,25 @@ StarField::StarField(astro::StarCatalogue catalogue, const std::vector<double>& 
 
 double StarField::largest_scintillation_normal(std::int64_t interval) {
   if (have_normal_ && normal_interval_ == interval) return largest_normal_;
+  // Every star's deviate for the interval, on the worker threads (each a fixed
+  // function of its index): kept for the pass's twinkle (scintillation_normals).
+  const std::size_t count = catalogue_.stars.size();
+  normals_.resize(count);
+  constexpr std::size_t kChunk = 8192;
+  core::parallel_for((count + kChunk - 1) / kChunk, 0, [&](std::size_t chunk) {
+    for (std::size_t i = chunk * kChunk; i < std::min(count, (chunk + 1) * kChunk); ++i)
+      normals_[i] = astro::scintillation_normal(i, interval);
+  });
   double largest = -astro::kLargestScintillationNormal;
-  for (std::size_t i = 0; i < catalogue_.stars.size(); ++i)
-    largest = std::max(largest, astro::scintillation_normal(i, interval));
+  for (double g : normals_) largest = std::max(largest, g);
   have_normal_ = true;
   normal_interval_ = interval;
   largest_normal_ = largest;
   return largest;
+}
+
+const std::vector<double>* StarField::scintillation_normals(std::int64_t interval) const {
+  return have_normal_ && normal_interval_ == interval ? &normals_ : nullptr;
 }
 
 int StarField::radius_step(double radius_rad, double years_from_j2000) const {
@@ -171,6 +185,13 @@ bool ray_meets_sphere(const glm::dvec3& p, const glm::dvec3& d, double radius_m)
   return b * b - c >= 0.0;
 }
 
+/// The twinkle's s = √ln(1 + σ_I²) at μ = sin e (TwinkleSigmaTable's formula).
+double twinkle_log_sigma(double per_cubed_air_mass, double mu) {
+  const double elevation_deg = std::asin(std::clamp(mu, 0.0, 1.0)) * (180.0 / 3.14159265358979323846);
+  return astro::scintillation_log_sigma(
+      astro::scintillation_variance_at(per_cubed_air_mass, atmosphere::pickering_air_mass(elevation_deg)));
+}
+
 }  // namespace
 
 void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, const glm::dvec3& d, double* out) {
@@ -200,6 +221,62 @@ void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, con
   for (std::size_t c = 0; c < n; ++c) out[c] = std::clamp(out[c], 0.0, 1.0);
 }
 
+CameraTransmittance::CameraTransmittance(const StarAtmosphere& a, const glm::dvec3& camera_m)
+    : geometry_(a.transmittance->geometry),
+      p_(camera_m - a.centre_m),
+      ground_(a.ground_radius_m),
+      top_(a.top_radius_m),
+      r_(glm::length(camera_m - a.centre_m)) {
+  const atmosphere::lut::LookupTables& t = *a.transmittance;
+  const atmosphere::lut::ShellGeometry& g = geometry_;
+  // The radius every ray is read at (star_transmittance), its row weight and the ends of its u_μ.
+  r_at_ = r_ > a.top_radius_m ? a.top_radius_m : std::clamp(r_, a.ground_radius_m, a.top_radius_m);
+  const atmosphere::lut::TransmittanceUV uv = atmosphere::lut::transmittance_uv(g, t.sizes, r_at_, 1.0);
+  d_min_ = g.top_radius_m - r_at_;
+  d_max_ = g.horizon_distance_m(r_at_) + g.horizon_distance_at_top_m();
+  width_ = t.transmittance.width;
+  channels_ = t.channels;
+  // GL_LINEAR with GL_CLAMP_TO_EDGE across the rows (atmosphere/lut/table.h).
+  const double y = uv.v_r * double(t.transmittance.height) - 0.5, fy = std::floor(y);
+  const auto last = static_cast<std::ptrdiff_t>(t.transmittance.height) - 1;
+  const auto y0 = static_cast<std::size_t>(std::clamp(static_cast<std::ptrdiff_t>(fy), std::ptrdiff_t{0}, last));
+  const auto y1 = static_cast<std::size_t>(std::clamp(static_cast<std::ptrdiff_t>(fy) + 1, std::ptrdiff_t{0}, last));
+  const double wy = y - fy;
+  row_.resize(width_ * channels_);
+  for (std::size_t x = 0; x < width_; ++x)
+    for (std::size_t c = 0; c < channels_; ++c)
+      row_[x * channels_ + c] =
+          (1.0 - wy) * double(t.transmittance.texel(x, y0)[c]) + wy * double(t.transmittance.texel(x, y1)[c]);
+}
+
+void CameraTransmittance::operator()(const glm::dvec3& d, double* out) const {
+  const double mu = glm::dot(p_, d) / r_;
+  const double b = r_ * mu;                                // p·d
+  const double closest2 = std::max(0.0, r_ * r_ - b * b);  // squared distance of the line from the centre
+  std::fill(out, out + channels_, 1.0);
+  if (b < 0.0 && closest2 < ground_ * ground_) {  // the ground hides it
+    std::fill(out, out + channels_, 0.0);
+    return;
+  }
+  double mu_at = mu;
+  if (r_ > top_) {
+    if (b >= 0.0 || closest2 >= top_ * top_) return;  // misses the shell
+    const double t_in = -b - std::sqrt(top_ * top_ - closest2);
+    mu_at = std::clamp((b + t_in) / top_, -1.0, 1.0);
+  }
+  const double to_top = geometry_.distance_to_top_m(r_at_, mu_at);
+  const double x_mu = d_max_ > d_min_ ? (to_top - d_min_) / (d_max_ - d_min_) : 0.0;
+  const double u = atmosphere::lut::texture_coord_from_unit(std::clamp(x_mu, 0.0, 1.0), width_);
+  const double x = u * double(width_) - 0.5, fx = std::floor(x), wx = x - fx;
+  const auto last = static_cast<std::ptrdiff_t>(width_) - 1;
+  const double* t0 =
+      &row_[static_cast<std::size_t>(std::clamp(static_cast<std::ptrdiff_t>(fx), std::ptrdiff_t{0}, last)) * channels_];
+  const double* t1 =
+      &row_[static_cast<std::size_t>(std::clamp(static_cast<std::ptrdiff_t>(fx) + 1, std::ptrdiff_t{0}, last)) *
+            channels_];
+  for (std::size_t c = 0; c < channels_; ++c) out[c] = std::clamp((1.0 - wx) * t0[c] + wx * t1[c], 0.0, 1.0);
+}
+
 glm::dvec2 on_splat_grid(const glm::dvec2& pixel) {
   return {std::round(pixel.x * kSplatGridPerPixel) / kSplatGridPerPixel,
           std::round(pixel.y * kSplatGridPerPixel) / kSplatGridPerPixel};
@@ -214,6 +291,48 @@ double pixel_solid_angle_sr(const warp::Projection& projection, double x_px, dou
   const auto ya = projection.ray(x_px, y_px - 0.5), yb = projection.ray(x_px, y_px + 0.5);
   if (!xa || !xb || !ya || !yb) return 0.0;
   return glm::length(glm::cross(glm::normalize(*xb) - glm::normalize(*xa), glm::normalize(*yb) - glm::normalize(*ya)));
+}
+
+PixelSolidAngle::PixelSolidAngle(const warp::Projection& projection) : projection_(&projection) {
+  constexpr double kPi = 3.14159265358979323846;
+  if (const auto* fisheye = dynamic_cast<const warp::FisheyeProjection*>(&projection)) {
+    kind_ = Kind::fisheye;
+    cx_ = fisheye->centre_x_px();
+    cy_ = fisheye->centre_y_px();
+    rim_px_ = fisheye->radius_px();
+    a_ = 0.5 * fisheye->fov_deg() * kPi / 180.0 / rim_px_;
+    theta_limit_ = 150.0 * kPi / 180.0;
+    bound_ = a_ * a_ / 6.0;
+  } else if (const auto* planar = dynamic_cast<const warp::PlanarProjection*>(&projection)) {
+    kind_ = Kind::planar;
+    const warp::PlanarFrustum& f = planar->frustum();
+    const auto tan_deg = [&](double deg) { return std::tan(deg * kPi / 180.0); };
+    u0_ = tan_deg(f.left_deg);
+    v0_ = tan_deg(f.up_deg);
+    tx_ = (tan_deg(f.right_deg) - u0_) / projection.width();
+    ty_ = (tan_deg(f.down_deg) - v0_) / projection.height();
+    bound_ = 0.25 * std::max(tx_ * tx_, ty_ * ty_) * (1.0 + 1e-3) + 1e-12;  // attained at the axis: with rounding
+  }
+}
+
+double PixelSolidAngle::operator()(double x_px, double y_px) const {
+  switch (kind_) {
+    case Kind::fisheye: {
+      const double dx = x_px - cx_, dy = cy_ - y_px;
+      // The rays' four points lie within this of the centre: at the rim, the rays decide.
+      if (!(std::hypot(std::abs(dx) + 0.5, std::abs(dy) + 0.5) < rim_px_ - 1.0)) break;
+      const double theta = a_ * std::hypot(dx, dy);
+      if (theta > theta_limit_) break;
+      return theta > 1e-4 ? a_ * a_ * std::sin(theta) / theta : a_ * a_ * (1.0 - theta * theta / 6.0);
+    }
+    case Kind::planar: {
+      const double u = u0_ + x_px * tx_, v = v0_ + y_px * ty_;
+      const double q = 1.0 + u * u + v * v;
+      return std::abs(tx_ * ty_) / (q * std::sqrt(q));
+    }
+    case Kind::rays: break;
+  }
+  return pixel_solid_angle_sr(*projection_, x_px, y_px);
 }
 
 std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, double margin_rad) {
@@ -239,56 +358,157 @@ std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, doub
   return {axis, limit >= 3.14159265358979323846 ? -1.0 : std::cos(limit)};
 }
 
+bool star_rejected(const glm::dvec3& enu, const StarFrame& frame) {
+  if (enu.z < frame.lowest_sin_altitude) return true;  // under the ground
+  const glm::dvec3 d = enu.x * frame.east + enu.y * frame.north + enu.z * frame.up;
+  return glm::dot(d, frame.view_axis) < frame.view_cos_limit;  // outside the view
+}
+
+glm::dvec3 star_apparent_direction(const glm::dvec3& enu, const StarFrame& frame) {
+  const glm::dvec3 level = enu.x * frame.east + enu.y * frame.north;
+  if (frame.refraction) {
+    // Lifted by R in its vertical: sin(h + R) = z cos R + l sin R, cos(h + R)
+    // = l cos R − z sin R with z = sin h and l = cos h the level part's length.
+    const double z = std::clamp(enu.z, -1.0, 1.0);
+    const double h = std::asin(z);
+    const double lift = frame.refraction->apparent_from_true_rad(h) - h;
+    const double l = glm::length(level);
+    if (l > 0.0) {
+      const double c = std::cos(lift), s = std::sin(lift);
+      return glm::normalize(level / l * (l * c - z * s) + frame.up * (z * c + l * s));
+    }
+  }
+  return glm::normalize(level + enu.z * frame.up);
+}
+
+bool star_hidden(const glm::dvec3& d, const StarFrame& frame) {
+  for (const auto& [centre, radius] : frame.occluders)
+    if (ray_meets_sphere(frame.camera_m - centre, d, radius)) return true;
+  return false;
+}
+
+std::optional<glm::dvec2> star_pixel(const glm::dvec3& d, const StarFrame& frame) {
+  const warp::Projection& projection = *frame.projection;
+  const auto exact = projection.pixel(frame.world_to_camera * d);
+  if (!exact) return std::nullopt;
+  const glm::dvec2 pixel = on_splat_grid(*exact);
+  if (!splat_touches_image(pixel, projection.width(), projection.height())) return std::nullopt;
+  return pixel;
+}
+
+void star_line_of_sight_transmittance(const glm::dvec3& d, const StarFrame& frame, double* out, double* scratch) {
+  const std::size_t n = frame.rgb_weights.size();
+  std::fill(out, out + n, 1.0);
+  for (std::size_t j = 0; j < frame.atmospheres.size(); ++j) {
+    if (j < frame.transmittances.size())
+      frame.transmittances[j](d, scratch);
+    else
+      star_transmittance(frame.atmospheres[j], frame.camera_m, d, scratch);
+    for (std::size_t k = 0; k < n; ++k) out[k] *= scratch[k];
+  }
+}
+
+std::array<double, 3> star_colour(const StarField& field, std::size_t i, const double* transmittance,
+                                  const StarFrame& frame) {
+  std::array<double, 3> rgb{0, 0, 0};
+  for (std::size_t k = 0; k < field.wavelengths_nm().size(); ++k) {
+    const double e = field.irradiance(i, k) * transmittance[k];
+    for (std::size_t c = 0; c < 3; ++c) rgb[c] += frame.rgb_weights[k][c] * e;
+  }
+  return rgb;
+}
+
+void StarFrame::set_twinkling(const astro::ScintillationOptions& options, std::int64_t interval,
+                              double observer_altitude, double refractivity) {
+  scintillation = &options;
+  scintillation_interval = interval;
+  observer_altitude_m = observer_altitude;
+  ground_refractivity = refractivity;
+  scintillation_per_cubed_air_mass =
+      astro::scintillation_variance_per_cubed_air_mass(options, observer_altitude, refractivity);
+  twinkle_sigma.emplace(scintillation_per_cubed_air_mass);
+}
+
+TwinkleSigmaTable::TwinkleSigmaTable(double per_cubed_air_mass) : per_cubed_air_mass_(per_cubed_air_mass) {
+  // Where σ_I² reaches its cap of 1 (X falls as μ rises): s is √ln 2 below, smooth above.
+  const auto capped = [&](double mu) {
+    const double elevation_deg = std::asin(mu) * (180.0 / 3.14159265358979323846);
+    const double x = atmosphere::pickering_air_mass(elevation_deg);
+    return per_cubed_air_mass_ * (x * x * x) >= 1.0;
+  };
+  if (capped(1.0)) {
+    mu_cap_ = 1.0;
+  } else if (capped(0.0)) {
+    double lo = 0.0, hi = 1.0;
+    for (int k = 0; k < 64; ++k) (capped(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+    mu_cap_ = hi;
+  }
+  s_cap_ = astro::scintillation_log_sigma(1.0);
+  span_ = 1.0 - mu_cap_;
+  s_.resize(kNodes + 1);
+  for (std::size_t j = 0; j <= kNodes; ++j) {
+    const double t = double(j) / double(kNodes);
+    s_[j] = exact(mu_cap_ + span_ * t * t);
+  }
+  std::vector<double> second(kNodes + 1, 0.0);
+  for (std::size_t j = 1; j < kNodes; ++j) second[j] = std::abs(s_[j - 1] - 2.0 * s_[j] + s_[j + 1]);
+  second[0] = second[1];
+  second[kNodes] = second[kNodes - 1];
+  bound_.resize(kNodes);
+  for (std::size_t j = 0; j < kNodes; ++j) {
+    bound_[j] = 2.0 * 0.25 * (second[j] + second[j + 1]) + 1e-15;
+    largest_bound_ = std::max(largest_bound_, bound_[j]);
+  }
+}
+
+double TwinkleSigmaTable::exact(double mu) const { return twinkle_log_sigma(per_cubed_air_mass_, mu); }
+
+double TwinkleSigmaTable::operator()(double mu) const {
+  if (mu_cap_ > 0.0 && !(mu > mu_cap_)) return s_cap_;
+  const double x = std::sqrt((std::clamp(mu, mu_cap_, 1.0) - mu_cap_) / span_) * double(kNodes);
+  const std::size_t j = std::min(static_cast<std::size_t>(x), kNodes - 1);
+  const double f = x - double(j);
+  return s_[j] + (s_[j + 1] - s_[j]) * f;
+}
+
+double TwinkleSigmaTable::bound_at(double mu) const {
+  if (mu_cap_ > 0.0 && !(mu > mu_cap_)) return 1e-15;
+  const double x = std::sqrt((std::clamp(mu, mu_cap_, 1.0) - mu_cap_) / span_) * double(kNodes);
+  return bound_[std::min(static_cast<std::size_t>(x), kNodes - 1)];
+}
+
+double star_twinkle(std::size_t i, const glm::dvec3& d, const StarFrame& frame) {
+  if (!frame.scintillation) return 1.0;
+  const double g = frame.scintillation_normals ? (*frame.scintillation_normals)[i]
+                                               : astro::scintillation_normal(i, frame.scintillation_interval);
+  const double mu = glm::dot(d, frame.up);
+  return astro::scintillation_factor_of_log_sigma(
+      frame.twinkle_sigma ? (*frame.twinkle_sigma)(mu) : twinkle_log_sigma(frame.scintillation_per_cubed_air_mass, mu),
+      g);
+}
+
 std::optional<PlacedStar> place_star(const StarField& field, std::size_t i, const glm::dvec3& enu,
                                      const StarFrame& frame, std::vector<double>& transmittance,
                                      std::vector<double>& one) {
-  const warp::Projection& projection = *frame.projection;
-  const std::size_t n = field.wavelengths_nm().size();
-  if (enu.z < frame.lowest_sin_altitude) return std::nullopt;  // under the ground
-  glm::dvec3 d = enu.x * frame.east + enu.y * frame.north + enu.z * frame.up;
-  if (glm::dot(d, frame.view_axis) < frame.view_cos_limit) return std::nullopt;  // outside the view
-  if (frame.refraction) {
-    const double true_altitude = std::asin(std::clamp(enu.z, -1.0, 1.0));
-    const double apparent = frame.refraction->apparent_from_true_rad(true_altitude);
-    const glm::dvec3 level = enu.x * frame.east + enu.y * frame.north;
-    const double l = glm::length(level);
-    if (l > 0.0) d = level / l * std::cos(apparent) + frame.up * std::sin(apparent);
-  }
-  d = glm::normalize(d);
-  for (const auto& [centre, radius] : frame.occluders)
-    if (ray_meets_sphere(frame.camera_m - centre, d, radius)) return std::nullopt;
-  const auto exact = projection.pixel(frame.world_to_camera * d);
-  if (!exact) return std::nullopt;
+  if (star_rejected(enu, frame)) return std::nullopt;
+  const glm::dvec3 d = star_apparent_direction(enu, frame);
+  if (star_hidden(d, frame)) return std::nullopt;
+  const std::optional<glm::dvec2> pixel = star_pixel(d, frame);
+  if (!pixel) return std::nullopt;
   PlacedStar s;
-  s.pixel = on_splat_grid(*exact);
+  s.pixel = *pixel;
   s.direction = d;
-  if (!splat_touches_image(s.pixel, projection.width(), projection.height())) return std::nullopt;
-  transmittance.assign(n, 1.0);
+  const std::size_t n = field.wavelengths_nm().size();
+  transmittance.resize(n);
   one.resize(n);
-  for (const StarAtmosphere& a : frame.atmospheres) {
-    star_transmittance(a, frame.camera_m, d, one.data());
-    for (std::size_t k = 0; k < n; ++k) transmittance[k] *= one[k];
-  }
-  s.omega_sr = pixel_solid_angle_sr(projection, s.pixel.x, s.pixel.y);
+  star_line_of_sight_transmittance(d, frame, transmittance.data(), one.data());
+  s.omega_sr = frame.solid_angle ? (*frame.solid_angle)(s.pixel.x, s.pixel.y)
+                                 : pixel_solid_angle_sr(*frame.projection, s.pixel.x, s.pixel.y);
   if (!(s.omega_sr > 0.0)) return std::nullopt;
-  std::array<double, 3> rgb{0, 0, 0};
-  for (std::size_t k = 0; k < n; ++k) {
-    const double e = field.irradiance(i, k) * transmittance[k];
-    for (int c = 0; c < 3; ++c)
-      rgb[static_cast<std::size_t>(c)] += frame.rgb_weights[k][static_cast<std::size_t>(c)] * e;
-  }
+  std::array<double, 3> rgb = star_colour(field, i, transmittance.data(), frame);
   if (rgb[0] == 0.0 && rgb[1] == 0.0 && rgb[2] == 0.0) return std::nullopt;
-  if (frame.scintillation) {  // the star's intensity over this integration interval
-    const double altitude_deg =
-        std::asin(std::clamp(glm::dot(d, frame.up), 0.0, 1.0)) * (180.0 / 3.14159265358979323846);
-    const double variance =
-        astro::scintillation_variance(*frame.scintillation, atmosphere::pickering_air_mass(altitude_deg),
-                                      frame.observer_altitude_m, frame.ground_refractivity);
-    const double factor =
-        astro::scintillation_factor(variance, astro::scintillation_normal(i, frame.scintillation_interval));
-    for (double& c : rgb) c *= factor;
-  }
-  for (std::size_t c = 0; c < 3; ++c) s.rgb[c] = rgb[c] * frame.exposure / s.omega_sr;
+  const double factor = star_twinkle(i, d, frame);  // the star's intensity over this integration interval
+  for (std::size_t c = 0; c < 3; ++c) s.rgb[c] = rgb[c] * factor * frame.exposure / s.omega_sr;
   return s;
 }
 

@@ -134,6 +134,9 @@ class StarField {
   /// interval `interval`: the brightest twinkle of that interval is
   /// scintillation_factor(σ², this). Cached for the last interval.
   double largest_scintillation_normal(std::int64_t interval);
+  /// Every star's astro::scintillation_normal for `interval` (by index), where
+  /// largest_scintillation_normal computed them for it last; else null.
+  const std::vector<double>* scintillation_normals(std::int64_t interval) const;
 
   /// Every star's geometric direction at `time` from `site` as (east, north,
   /// up) unit vectors into `out`: ERFA at the epoch, turned by the Earth's
@@ -157,6 +160,7 @@ class StarField {
   bool have_normal_ = false;
   std::int64_t normal_interval_ = 0;
   double largest_normal_ = 0.0;
+  std::vector<double> normals_;
   bool have_epoch_ = false;
   double epoch_ut1_jd_ = 0.0;
   astro::Site epoch_site_;
@@ -165,6 +169,102 @@ class StarField {
 
 /// A unit vector `v` turned by `angle_rad` about unit `axis` (right-handed; Rodrigues).
 glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& axis, double angle_rad);
+
+/// Ω of a pixel as pixel_solid_angle_sr finds it (its rays half a pixel
+/// either side), by the Jacobian's closed form where the projection has one —
+/// a tenth of the cost, each star of each frame:
+///  * the equidistant fisheye (a radians per pixel, θ = a r from the axis):
+///    Ω = a² sin θ / θ, within 150° of the axis and a pixel of its rim's
+///    inside; it differs from the rays' difference quotient by the latter's
+///    truncation, |Ω/Ω_rays − 1| ≤ a²/6 there (9.4e-6 · 1/6 on a 1024² 180°
+///    master; from its Taylor series, a²/12 at the axis, 0.143 a² at 150°, and
+///    asserted by StarField.TheClosedFormSolidAngleIsTheRaysWithinItsBound);
+///    elsewhere (near θ = 180°, where sin θ/θ vanishes, and at the rim) the rays;
+///  * the planar view (t_x, t_y its tangent steps per pixel, (u, v) the point
+///    of its image plane z = −1): Ω = |t_x t_y| / (1 + u² + v²)^(3/2),
+///    |Ω/Ω_rays − 1| ≤ max(t_x, t_y)²/4 (attained on the axis, where the
+///    rays' chords are t/√(1 + t²/4); with 1e-3 of it and 1e-12 for rounding);
+///  * any other projection (a warp mesh's ray table, ...): the rays.
+class PixelSolidAngle {
+ public:
+  explicit PixelSolidAngle(const warp::Projection& projection);
+  double operator()(double x_px, double y_px) const;
+  /// The bound above of |Ω/Ω_rays − 1| (0 for the rays themselves).
+  double relative_bound() const { return bound_; }
+
+ private:
+  enum class Kind { rays, fisheye, planar };
+  const warp::Projection* projection_;
+  Kind kind_ = Kind::rays;
+  double bound_ = 0.0;
+  // The fisheye: centre, rim radius [px], radians per pixel, θ's limit. The planar: u, v at pixel 0, steps.
+  double cx_ = 0.0, cy_ = 0.0, rim_px_ = 0.0, a_ = 0.0, theta_limit_ = 0.0;
+  double u0_ = 0.0, v0_ = 0.0, tx_ = 0.0, ty_ = 0.0;
+};
+
+/// star_transmittance from one camera, for every direction of a frame: every
+/// ray is read at one radius — the camera's, or the top's where the camera is
+/// outside the shell and the ray enters it — so the bilinear filter's weight
+/// between the table's two rows there is the same for all, and the rows are
+/// blended once, per channel, into one row. A star then costs its distance to
+/// the top (the row's coordinate u_μ, as transmittance_uv), the row's two taps
+/// and one lerp per channel, where star_transmittance recomputes the row
+/// weight's square roots and reads four texels. The same bilinear filter with
+/// its sum reordered: the same figures to a few ulps (values ≤ 1; asserted
+/// within 1e-15 of star_transmittance by
+/// StarField.TheCameraTransmittanceIsTheTablesReadWithinRounding), so neither
+/// the pass's stars nor star_visibility's bounds move.
+class CameraTransmittance {
+ public:
+  CameraTransmittance(const StarAtmosphere& atmosphere, const glm::dvec3& camera_m);
+  /// star_transmittance(atmosphere, camera_m, d, out).
+  void operator()(const glm::dvec3& d, double* out) const;
+
+ private:
+  atmosphere::lut::ShellGeometry geometry_;  // the table's
+  glm::dvec3 p_;                             // the camera from the planet's centre
+  double ground_ = 0.0, top_ = 0.0;          // StarAtmosphere's radii
+  double r_ = 0.0, r_at_ = 0.0, d_min_ = 0.0, d_max_ = 0.0;
+  std::size_t width_ = 0, channels_ = 0;
+  std::vector<double> row_;  // [texel][channel]
+};
+
+/// The twinkle's s = √ln(1 + σ_I²) of a frame's stars (astro/scintillation.h),
+/// a function of a star's apparent elevation alone: of μ = sin e (d · up,
+/// clamped to [0, 1]) through Pickering's air mass X(e) and σ_I² = min(1,
+/// C X³), C the frame's astro::scintillation_variance_per_cubed_air_mass.
+/// Below μ_cap, where C X³ reaches the cap, s = √ln 2 exactly; above,
+/// tabulated at μ_j = μ_cap + (1 − μ_cap) t_j², t_j = j/N (N = kNodes: dense
+/// at the horizon, where Pickering's h^1.1 bends X; the cap's kink at the
+/// first node) and read linearly in t: a star then costs a root and a lerp
+/// where the formula takes an arcsine, a power, a sine, a log and a root.
+/// The error on [t_j, t_j+1] is at most (h/4) times the variation of ds/dt there
+/// (linear interpolation's kernel is ≤ h/4), which the table's own second
+/// differences D_j = s_j−1 − 2 s_j + s_j+1 bound where s″ keeps its sign over
+/// the neighbouring intervals: bound_j = (|D_j| + |D_j+1|)/4, doubled for
+/// inflections and + 1e-15 for rounding
+/// (StarField.TheTwinkleTableIsTheFormulaWithinItsOwnBound checks it at 64
+/// points per interval). A factor exp(s g − s²/2) read with s + ε is within
+/// exp(|ε| (|g| + s + |ε|)) of the formula's: star_visibility's first stage
+/// widens its twinkle by that for error_bound().
+class TwinkleSigmaTable {
+ public:
+  static constexpr std::size_t kNodes = 2048;
+  explicit TwinkleSigmaTable(double per_cubed_air_mass);
+  /// s at μ by the table.
+  double operator()(double mu) const;
+  /// s at μ by the formula.
+  double exact(double mu) const;
+  /// The bound above on the interval holding μ, and the largest over all.
+  double bound_at(double mu) const;
+  double error_bound() const { return largest_bound_; }
+
+ private:
+  double per_cubed_air_mass_;
+  double mu_cap_ = 0.0, s_cap_ = 0.0, span_ = 1.0;  // σ_I² = 1 at and below μ_cap; 1 − μ_cap
+  std::vector<double> s_, bound_;                   // at the nodes; per interval
+  double largest_bound_ = 0.0;
+};
 
 /// What star_splats needs of a frame.
 struct StarFrame {
@@ -194,6 +294,22 @@ struct StarFrame {
   std::int64_t scintillation_interval = 0;
   double observer_altitude_m = 0.0;
   double ground_refractivity = 0.0;
+  /// astro::scintillation_variance_per_cubed_air_mass of the above: the frame's
+  /// part of every star's variance (set_twinkling keeps it with them).
+  double scintillation_per_cubed_air_mass = 0.0;
+  /// Every star's deviate for scintillation_interval, by index
+  /// (StarField::scintillation_normals: the star test's; null: drawn per star).
+  const std::vector<double>* scintillation_normals = nullptr;
+  /// s of the twinkle by the table (set_twinkling fills it; empty: the formula).
+  std::optional<TwinkleSigmaTable> twinkle_sigma;
+  /// Per atmosphere, its CameraTransmittance from camera_m (star_frame sets
+  /// them; empty: star_transmittance).
+  std::vector<CameraTransmittance> transmittances;
+  /// Ω at a star's pixel (star_frame sets it; empty: pixel_solid_angle_sr).
+  std::optional<PixelSolidAngle> solid_angle;
+  /// Sets the twinkling's five fields above together.
+  void set_twinkling(const astro::ScintillationOptions& options, std::int64_t interval, double observer_altitude,
+                     double refractivity);
 };
 
 /// The cone around the image's centre ray that holds every pixel's ray, widened
@@ -210,6 +326,25 @@ void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, con
 /// Ω of the pixel at continuous image position (x, y) [sr], from the
 /// projection's rays half a pixel either side; 0 where a ray is missing.
 double pixel_solid_angle_sr(const warp::Projection& projection, double x_px, double y_px);
+
+/// place_star's steps, each on its own (render_bench --stars-placement times
+/// them one by one). Whether the geometric direction `enu` (east, north, up) is
+/// dropped before any per-star work: under the ground, outside the view's cone.
+bool star_rejected(const glm::dvec3& enu, const StarFrame& frame);
+/// Its apparent direction (world, unit): lifted by the frame's refraction.
+glm::dvec3 star_apparent_direction(const glm::dvec3& enu, const StarFrame& frame);
+/// Whether a body of the frame hides unit direction `d` from the camera.
+bool star_hidden(const glm::dvec3& d, const StarFrame& frame);
+/// Where `d` lands: the projection's pixel on the splat grid; nullopt off the image.
+std::optional<glm::dvec2> star_pixel(const glm::dvec3& d, const StarFrame& frame);
+/// The transmittance along `d` through every atmosphere of the frame into
+/// `out` (one per wavelength); `scratch` as many.
+void star_line_of_sight_transmittance(const glm::dvec3& d, const StarFrame& frame, double* out, double* scratch);
+/// Σ_λ w(λ) E_i(λ) T(λ): star i's linear sRGB irradiance through `transmittance`.
+std::array<double, 3> star_colour(const StarField& field, std::size_t i, const double* transmittance,
+                                  const StarFrame& frame);
+/// Star i's twinkle factor in the frame's interval at apparent direction `d` (1: steady).
+double star_twinkle(std::size_t i, const glm::dvec3& d, const StarFrame& frame);
 
 /// One star in a frame, in double (steps 1–5 above, with its twinkle): its
 /// pixel on the splat grid, its apparent direction (world, unit), the solid

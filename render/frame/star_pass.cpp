@@ -61,6 +61,54 @@ MoonWorldAxes moon_world_axes(const astro::MoonAxes& axes, const astro::SkyPosit
 
 }  // namespace
 
+StarFrame star_frame(const scene::Scene& scene, const warp::Projection& projection, const glm::dmat3& camera_to_world,
+                     std::vector<StarAtmosphere> atmospheres, const std::vector<std::array<double, 3>>& rgb_weights,
+                     RefractionCache& refractions) {
+  const scene::SkyClock& clock = scene.sky_clock.value();
+  const astro::AstroTime time = astro::AstroTime::from_utc(clock.time);
+  const std::size_t site_body = scene.night_sky ? scene.night_sky->body : clock.body;
+  const scene::Body& planet = scene.bodies.at(site_body);
+  bool in_air = false;  // the camera inside the site body's atmosphere
+  for (const StarAtmosphere& a : atmospheres)
+    in_air = in_air ||
+             (a.centre_m == planet.position_m && glm::length(scene.camera.position_m - a.centre_m) <= a.top_radius_m);
+  StarFrame f;
+  const scene::LocalHorizon horizon = scene::local_horizon_at(scene.camera.position_m, scene.bodies.at(clock.body));
+  f.projection = &projection;
+  f.solid_angle.emplace(projection);
+  f.camera_m = scene.camera.position_m;
+  f.world_to_camera = glm::transpose(camera_to_world);
+  f.east = horizon.east;
+  f.north = horizon.north;
+  f.up = horizon.up;
+  if (in_air && clock.body == site_body && planet.atmosphere) {
+    const double altitude_m = std::max(0.0, glm::length(scene.camera.position_m - planet.position_m) - planet.radius_m);
+    f.refraction = refractions.get(*planet.atmosphere, altitude_m);
+    if (f.refraction && scene.night_sky && scene.night_sky->scintillation && scene.night_sky->body == clock.body) {
+      // One draw per star and integration interval of the sky's clock (seconds from J2000 UTC).
+      const astro::ScintillationOptions& twinkle = *scene.night_sky->scintillation;
+      const double seconds = ((time.utc().day1 - 2451545.0) + time.utc().day2) * 86400.0;
+      f.set_twinkling(twinkle, static_cast<std::int64_t>(std::floor(seconds / twinkle.integration_s)), altitude_m,
+                      f.refraction->ground_refractivity());
+    }
+  }
+  f.atmospheres = std::move(atmospheres);
+  for (const StarAtmosphere& a : f.atmospheres) f.transmittances.emplace_back(a, f.camera_m);
+  for (const scene::Body& b : scene.bodies) f.occluders.emplace_back(b.position_m, b.radius_m);
+  f.rgb_weights = rgb_weights;
+  f.exposure = scene.camera.exposure;
+  // Rejections before the per-star work: the view's cone widened by refraction's
+  // largest lift (under 1°) and a splat's reach (two pixels, at most 5°), and the ground.
+  const double margin = 1.0 * core::kDeg + std::min(2.0 * projection.max_pixel_angle_rad(), 5.0 * core::kDeg);
+  const auto [axis, cos_limit] = view_cone(projection, margin);
+  f.view_axis = glm::normalize(camera_to_world * axis);
+  f.view_cos_limit = cos_limit;
+  const double r = glm::length(scene.camera.position_m - scene.bodies.at(clock.body).position_m);
+  const double dip = std::acos(std::min(1.0, scene.bodies.at(clock.body).radius_m / r));  // the horizon's depression
+  f.lowest_sin_altitude = std::sin(std::max(-0.5 * core::kPi, -dip - 2.0 * core::kDeg));
+  return f;
+}
+
 NightSkyPass::NightSkyPass(const NightSkyRenderOptions& options, RefractionCache& refractions)
     : options_(options), refractions_(refractions) {}
 NightSkyPass::~NightSkyPass() = default;
@@ -137,49 +185,15 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
   if (want_stars) {
     const scene::SkyClock& clock = *scene.sky_clock;
     const astro::AstroTime time = astro::AstroTime::from_utc(clock.time);
-    StarFrame f;
-    {
-      const scene::LocalHorizon horizon = scene::local_horizon_at(scene.camera.position_m, scene.bodies.at(clock.body));
-      f.projection = &frame.projection;
-      f.camera_m = scene.camera.position_m;
-      f.world_to_camera = frame.world_to_camera;
-      f.east = horizon.east;
-      f.north = horizon.north;
-      f.up = horizon.up;
-      if (air && clock.body == site_body && planet.atmosphere) {
-        const double altitude_m =
-            std::max(0.0, glm::length(scene.camera.position_m - planet.position_m) - planet.radius_m);
-        f.refraction = refractions_.get(*planet.atmosphere, altitude_m);
-        if (f.refraction && scene.night_sky && scene.night_sky->scintillation && scene.night_sky->body == clock.body) {
-          // One draw per star and integration interval of the sky's clock (seconds from J2000 UTC).
-          const astro::ScintillationOptions& twinkle = *scene.night_sky->scintillation;
-          const double seconds = ((time.utc().day1 - 2451545.0) + time.utc().day2) * 86400.0;
-          f.scintillation = &twinkle;
-          f.scintillation_interval = static_cast<std::int64_t>(std::floor(seconds / twinkle.integration_s));
-          f.observer_altitude_m = altitude_m;
-          f.ground_refractivity = f.refraction->ground_refractivity();
-        }
-      }
-      f.atmospheres = atmospheres;
-      for (const scene::Body& b : scene.bodies) f.occluders.emplace_back(b.position_m, b.radius_m);
-      f.rgb_weights = frame.rgb_weights;
-      f.exposure = exposure;
-      // Rejections before the per-star work: the view's cone widened by refraction's
-      // largest lift (under 1°) and a splat's reach (two pixels, at most 5°), and the ground.
-      const double margin = 1.0 * core::kDeg + std::min(2.0 * frame.projection.max_pixel_angle_rad(), 5.0 * core::kDeg);
-      const auto [axis, cos_limit] = view_cone(frame.projection, margin);
-      f.view_axis = glm::normalize(frame.camera_to_world * axis);
-      f.view_cos_limit = cos_limit;
-      const double r = glm::length(scene.camera.position_m - scene.bodies.at(clock.body).position_m);
-      const double dip =
-          std::acos(std::min(1.0, scene.bodies.at(clock.body).radius_m / r));  // the horizon's depression
-      f.lowest_sin_altitude = std::sin(std::max(-0.5 * core::kPi, -dip - 2.0 * core::kDeg));
-    }
+    StarFrame f =
+        star_frame(scene, frame.projection, frame.camera_to_world, atmospheres, frame.rgb_weights, refractions_);
     if (options_.stars && ensure_field(scene) && field_->size() > 0) {
       timer.cpu("star test", [&] { stats_.star_test = star_visibility(frame, *field_, f, time, clock.site); });
       if (stats_.star_test.could_show || !options_.skip_hidden_stars) {
         timer.cpu("star placement", [&] {
           field_->directions_enu(time, clock.site, directions_);
+          // The star test's deviates for the interval, where it drew them.
+          if (f.scintillation) f.scintillation_normals = field_->scintillation_normals(f.scintillation_interval);
           splats_ = star_splats(*field_, directions_, f);
         });
         stats_.catalogue_identity = field_->catalogue().identity_sha256;

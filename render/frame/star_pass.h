@@ -58,6 +58,18 @@ inline constexpr double kStarCountsPerUnit = 268435456.0;
 inline constexpr double kStarRadianceLimit = 65504.0;
 inline constexpr std::size_t kStarAccumulatorUintsPerPixel = 8;
 
+/// The frame star_splats places `scene`'s stars in (render/frame/star_field.h;
+/// the scene has a sky clock): the sky clock's body's horizon at the camera;
+/// the refraction of the site body's air (from `refractions`) and its
+/// twinkling where the camera is inside that air; every body as an occluder;
+/// the view's cone and the ground's dip as rejections — through `projection`
+/// turned into the world by `camera_to_world`, the resident atmospheres
+/// `atmospheres`, the colour weights `rgb_weights` and the scene's exposure.
+/// The pass's own and render_bench --stars-placement's.
+StarFrame star_frame(const scene::Scene& scene, const warp::Projection& projection, const glm::dmat3& camera_to_world,
+                     std::vector<StarAtmosphere> atmospheres, const std::vector<std::array<double, 3>>& rgb_weights,
+                     RefractionCache& refractions);
+
 /// What the pass did in the last frame.
 struct NightSkyStats {
   bool skipped = true;             ///< nothing drawn (no sky clock or night sky, or the test above)

@@ -228,7 +228,10 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
       const double variance =
           astro::scintillation_variance(*sky.scintillation, atmosphere::pickering_air_mass(elevation_deg),
                                         sky.observer_altitude_m, sky.ground_refractivity);
-      return astro::scintillation_factor(variance, g);
+      // The pass reads s from its table (TwinkleSigmaTable): within ε of the
+      // formula's, so its factor within exp(ε (|g| + s + ε)) of this one's (s ≤ √ln 2).
+      const double e = sky.twinkle_sigma ? sky.twinkle_sigma->error_bound() : 0.0;
+      return astro::scintillation_factor(variance, g) * std::exp(e * (std::abs(g) + std::sqrt(std::log(2.0)) + e));
     };
     glm::dvec3 level = glm::cross(up, glm::dvec3(1, 0, 0));
     if (glm::length(level) < 0.1) level = glm::cross(up, glm::dvec3(0, 1, 0));

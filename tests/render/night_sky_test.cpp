@@ -21,6 +21,8 @@
 #include "astro/moon_orientation.h"
 #include "astro/moon_photometry.h"
 #include "astro/night_sky_floor.h"
+#include "astro/refraction.h"
+#include "astro/scintillation.h"
 #include "astro/sky_positions.h"
 #include "astro/star_catalogue.h"
 #include "astro/star_photometry.h"
@@ -32,6 +34,7 @@
 #include "render/frame/moon_albedo_map.h"
 #include "render/frame/sky_radiance_floor.h"
 #include "render/frame/star_field.h"
+#include "render/frame/star_pass.h"
 #include "render/frame/star_visibility.h"
 #include "render/gl/texture.h"
 #include "render/renderer.h"
@@ -156,6 +159,210 @@ TEST(StarField, TransmittanceIsTheTablesAndZeroThroughTheGroundAndOneOutside) {
   star_transmittance(a, far, {grazing, 0, -std::sqrt(1 - grazing * grazing)}, got.data());
   EXPECT_GT(got[1], 0.0);
   EXPECT_LT(got[1], 1.0);
+}
+
+TEST(StarField, TheCameraTransmittanceIsTheTablesReadWithinRounding) {
+  // The pass reads every star's transmittance from one row per atmosphere and
+  // frame (CameraTransmittance): the same bilinear filter as
+  // star_transmittance with its sum reordered, so within a few ulps of it —
+  // from the zenith through the horizon to below it (where a star still shows
+  // from altitude) and the ground, for Earth's and Mars's tables, a camera 2 m
+  // up, 10 km up, just above the shell and in orbit (rays entering the shell).
+  for (const char* preset : {"earth-advanced", "mars"}) {
+    const SmallTables& t = SmallTables::get(preset);
+    const StarAtmosphere a{{0, 0, 0}, t.model.ground_radius_m, t.model.top_radius_m, &t.tables};
+    for (const double altitude_m : {2.0, 10e3, t.model.top_radius_m - t.model.ground_radius_m + 1e3,
+                                    2.0 * t.model.top_radius_m - t.model.ground_radius_m}) {
+      const glm::dvec3 camera(0, 0, t.model.ground_radius_m + altitude_m);
+      const CameraTransmittance fast(a, camera);
+      std::array<double, 8> got{}, want{};
+      double worst = 0.0;
+      std::size_t ground = 0, outside = 0, through = 0;
+      for (int k = 0; k <= 20000; ++k) {
+        // Elevations from 90° up to 90° down, dense near the horizon; three azimuths.
+        const double x = -1.0 + k / 10000.0;
+        const double elevation = 0.5 * core::kPi * x * x * x;
+        const double azimuth = 2.0 * k;
+        const glm::dvec3 d(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
+                           std::sin(elevation));
+        fast(d, got.data());
+        star_transmittance(a, camera, d, want.data());
+        for (std::size_t c = 0; c < t.tables.channels; ++c) {
+          worst = std::max(worst, std::abs(got[c] - want[c]));
+          ASSERT_EQ(got[c] == 0.0, want[c] == 0.0) << preset << ' ' << altitude_m << " m " << elevation / kDeg;
+          ASSERT_EQ(got[c] == 1.0, want[c] == 1.0) << preset << ' ' << altitude_m << " m " << elevation / kDeg;
+        }
+        ground += want[0] == 0.0;
+        outside += want[0] == 1.0;
+        through += want[0] > 0.0 && want[0] < 1.0;
+      }
+      EXPECT_LT(worst, 1e-15) << preset << ' ' << altitude_m << " m";
+      EXPECT_GT(ground, 0u) << "rays into the ground";
+      const bool in_orbit = altitude_m > 1.5 * t.model.top_radius_m - t.model.ground_radius_m;
+      EXPECT_GT(through, in_orbit ? 10u : 1000u) << preset << ' ' << altitude_m << " m: rays through the air";
+      if (altitude_m > t.model.top_radius_m - t.model.ground_radius_m) {
+        EXPECT_GT(outside, 0u) << "rays missing the shell";
+      }
+    }
+  }
+}
+
+TEST(StarField, TheClosedFormSolidAngleIsTheRaysWithinItsBound) {
+  // PixelSolidAngle's closed forms against the rays' difference quotient
+  // (pixel_solid_angle_sr) on positions of the splat grid over the whole
+  // image (centre, rim, corners): within relative_bound() (a²/6 for the
+  // fisheye, max(t_x, t_y)²/4 for the planar view) and the same zeros (no
+  // ray).
+  const warp::FisheyeProjection dome(64, 64), master(1024, 1024);
+  warp::FisheyeParameters wide;
+  wide.fov_deg = 220.0;
+  warp::FisheyeParameters whole;
+  whole.fov_deg = 360.0;
+  warp::FisheyeParameters quadrant;  // the upper left of a 1024² master
+  quadrant.centre_x_px = 512.0;
+  quadrant.centre_y_px = 512.0;
+  quadrant.radius_px = 512.0;
+  const warp::FisheyeProjection fisheye_220(512, 512, wide), fisheye_360(64, 64, whole),
+      master_quadrant(512, 512, quadrant);
+  const warp::PlanarProjection ground_view = warp::PlanarProjection::symmetric(1280, 720, 79.0),
+                               small = warp::PlanarProjection::symmetric(48, 40, 90.0),
+                               turned(64, 48, warp::PlanarFrustum{-10.0, 50.0, -30.0, 5.0, 30.0, 20.0, 10.0});
+  const std::pair<const warp::Projection*, double> cases[] = {{&dome, 0.5 * core::kPi / 32.0},
+                                                              {&master, 0.5 * core::kPi / 512.0},
+                                                              {&fisheye_220, 110.0 * kDeg / 256.0},
+                                                              {&fisheye_360, core::kPi / 32.0},
+                                                              {&master_quadrant, 0.5 * core::kPi / 512.0},
+                                                              {&ground_view, 0.0},
+                                                              {&small, 0.0},
+                                                              {&turned, 0.0}};
+  for (const auto& [projection, a] : cases) {
+    const PixelSolidAngle omega(*projection);
+    if (a > 0.0) {
+      EXPECT_NEAR(omega.relative_bound(), a * a / 6.0, 1e-12 * a * a) << projection->describe();
+    }
+    EXPECT_GT(omega.relative_bound(), 0.0) << projection->describe();
+    const int w = projection->width(), h = projection->height();
+    double worst = 0.0;
+    std::size_t zeros = 0;
+    for (int j = 0; j <= 400; ++j)
+      for (int i = 0; i <= 400; ++i) {
+        const glm::dvec2 at = on_splat_grid({-0.5 + (w + 1.0) * i / 400.0, -0.5 + (h + 1.0) * j / 400.0});
+        const double want = pixel_solid_angle_sr(*projection, at.x, at.y), got = omega(at.x, at.y);
+        ASSERT_EQ(got == 0.0, want == 0.0) << projection->describe() << " at " << at.x << ", " << at.y;
+        zeros += want == 0.0;
+        if (want > 0.0) worst = std::max(worst, std::abs(got / want - 1.0));
+      }
+    EXPECT_LE(worst, omega.relative_bound()) << projection->describe();
+    EXPECT_GT(worst, 0.01 * omega.relative_bound()) << projection->describe() << ": the bound is tight";
+    if (a > 0.0 && projection != &master_quadrant) {
+      EXPECT_GT(zeros, 0u) << "the square's corners have no ray";
+    }
+  }
+}
+
+TEST(StarField, TheTwinkleTableIsTheFormulaWithinItsOwnBound) {
+  // TwinkleSigmaTable's s at 64 points of every interval, from the horizon
+  // (σ_I² capped at 1 for the eye on Earth) to the zenith, against the
+  // formula: within the interval's bound from the table's second differences;
+  // the eye on Earth at 2 m and at 10 km, a 20 cm telescope (uncapped down to
+  // a few degrees) and the eye on Mars (~1e-4 of Earth's variance).
+  const astro::ScintillationOptions eye;
+  astro::ScintillationOptions telescope;
+  telescope.pupil_mm = 200.0;
+  const double mars = astro::ground_refractivity(atmosphere::load_preset("mars"), 550.0);
+  const std::pair<const astro::ScintillationOptions*, std::pair<double, double>> cases[] = {
+      {&eye, {2.0, astro::kEarthGroundRefractivity550}},
+      {&eye, {10e3, astro::kEarthGroundRefractivity550}},
+      {&telescope, {2.0, astro::kEarthGroundRefractivity550}},
+      {&eye, {2.0, mars}}};
+  for (const auto& [options, where] : cases) {
+    const TwinkleSigmaTable table(
+        astro::scintillation_variance_per_cubed_air_mass(*options, where.first, where.second));
+    double worst = 0.0, worst_ratio = 0.0;
+    for (std::size_t j = 0; j < TwinkleSigmaTable::kNodes; ++j)
+      for (int k = 0; k <= 64; ++k) {
+        const double mu = (double(j) + k / 64.0) / double(TwinkleSigmaTable::kNodes);
+        const double error = std::abs(table(mu) - table.exact(mu));
+        ASSERT_LE(error, table.bound_at(std::min(mu, 1.0 - 1e-12))) << "μ " << mu << ", " << where.first << " m";
+        worst = std::max(worst, error);
+        worst_ratio = std::max(worst_ratio, error / table.bound_at(std::min(mu, 1.0 - 1e-12)));
+      }
+    EXPECT_LE(worst, table.error_bound());
+    EXPECT_LT(table.error_bound(), 1e-5) << "a small bound: " << where.first << " m";
+    EXPECT_GT(worst_ratio, 0.05) << "the bound follows the error";
+  }
+}
+
+TEST(StarField, TheFastPlacementIsTheExactOneWithinItsBoundAndHalfACode) {
+  // The pass's frame (star_frame: the transmittance's rows, the solid angle's
+  // closed form, the twinkle's table) against the same frame with the exact
+  // reads (star_transmittance, the rays' pixel_solid_angle_sr, the twinkle's
+  // formula): the stars to V 6 over Greenwich on a 256² dome and a 79° planar
+  // view, twinkling through earth-advanced from 2 m. The same stars at the
+  // same pixels, and each one's rgb within the parts' bounds: the solid
+  // angle's relative_bound(), the twinkle's exp(ε (|g| + s + ε)) − 1 for its
+  // table's error_bound() ε, 1e-12 for the transmittance's few ulps (≥ 1e-5
+  // of light kept) and two float roundings. A pixel's code then moves by at
+  // most r · max_x D′(x) x (D concave: a relative change r of a star's part of
+  // x moves the code by ≤ D′(x) · r x): below half a code. With the star
+  // test's deviates of the interval (StarField::scintillation_normals) the
+  // splats are the same bit for bit.
+  REQUIRE_CATALOGUE();
+  astro::StarCatalogueOptions o;
+  o.magnitude_limit = 6.0;
+  StarField field(astro::load_star_catalogue(o), {440.0, 550.0, 680.0});
+  scene::Scene s = greenwich("earth-advanced", {0, 0, 1}, 2e5);
+  s.night_sky = scene::NightSky{};
+  s.night_sky->scintillation = astro::ScintillationOptions{};
+  const SmallTables& t = SmallTables::get("earth-advanced");
+  const std::vector<StarAtmosphere> air = {
+      {s.bodies[0].position_m, t.model.ground_radius_m, t.model.top_radius_m, &t.tables}};
+  const std::vector<std::array<double, 3>> weights = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+  RefractionCache refractions;
+  std::vector<glm::dvec3> enu;
+  field.directions_enu(astro::AstroTime::from_utc(kTime), s.sky_clock->site, enu);
+  const warp::FisheyeProjection dome(256, 256);
+  const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(320, 180, 79.0);
+  double worst_code = 0.0;
+  for (const warp::Projection* p : std::initializer_list<const warp::Projection*>{&dome, &planar}) {
+    const StarFrame fast =
+        star_frame(s, *p, glm::mat3_cast(glm::normalize(s.camera.orientation)), air, weights, refractions);
+    ASSERT_TRUE(fast.twinkle_sigma && fast.solid_angle && fast.transmittances.size() == 1);
+    StarFrame exact = fast;
+    exact.transmittances.clear();
+    exact.solid_angle.reset();
+    exact.twinkle_sigma.reset();
+    const std::vector<StarSplat> a = star_splats(field, enu, fast), b = star_splats(field, enu, exact);
+    ASSERT_EQ(a.size(), b.size()) << p->describe();
+    ASSERT_GT(a.size(), p == &dome ? 1000u : 100u) << p->describe();
+    const double e = fast.twinkle_sigma->error_bound();
+    const double bound = (1.0 + fast.solid_angle->relative_bound()) *
+                             std::exp(e * (8.572 + std::sqrt(std::log(2.0)) + e)) * (1.0 + 1e-12) *
+                             (1.0 + 2.0 * 0x1.0p-24) -
+                         1.0;
+    double worst = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      ASSERT_EQ(a[k].x_px, b[k].x_px);
+      ASSERT_EQ(a[k].y_px, b[k].y_px);
+      for (std::size_t c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(a[k].rgb[c]) / b[k].rgb[c] - 1.0));
+    }
+    EXPECT_LE(worst, bound) << p->describe();
+    EXPECT_GT(worst, 0.0) << p->describe() << ": the fast parts are used";
+    // The star test's deviates of the interval, kept by the field, are the ones drawn per star: bit for bit.
+    field.largest_scintillation_normal(fast.scintillation_interval);
+    StarFrame cached = fast;
+    cached.scintillation_normals = field.scintillation_normals(fast.scintillation_interval);
+    ASSERT_NE(cached.scintillation_normals, nullptr);
+    const std::vector<StarSplat> c = star_splats(field, enu, cached);
+    ASSERT_EQ(c.size(), a.size());
+    for (std::size_t k = 0; k < a.size(); ++k)
+      for (std::size_t ch = 0; ch < 3; ++ch) ASSERT_EQ(c[k].rgb[ch], a[k].rgb[ch]) << k;
+    double slope_times_x = 0.0;
+    for (double x = 1e-6; x < 1e3; x *= 1.01)
+      slope_times_x = std::max(slope_times_x, image::display_code_slope_bound(x) * x);
+    worst_code = std::max(worst_code, bound * slope_times_x);
+  }
+  EXPECT_LT(worst_code, 0.5) << "codes";
 }
 
 // ------------------------------------------------------------------------- GPU

@@ -57,9 +57,7 @@ TEST(StarScintillation, EachSplatIsTheSteadyOneTimesItsOwnFactor) {
   const std::vector<StarSplat> steady = star_splats(s.field, s.directions, s.frame);
   ASSERT_EQ(steady.size(), 2u);
   const astro::ScintillationOptions eye;
-  s.frame.scintillation = &eye;
-  s.frame.scintillation_interval = 17739521;
-  s.frame.ground_refractivity = astro::kEarthGroundRefractivity550;
+  s.frame.set_twinkling(eye, 17739521, 0.0, astro::kEarthGroundRefractivity550);
   const std::vector<StarSplat> twinkling = star_splats(s.field, s.directions, s.frame);
   ASSERT_EQ(twinkling.size(), 2u);
   for (std::size_t k = 0; k < 2; ++k) {
@@ -81,8 +79,7 @@ TEST(StarScintillation, TheLowStarTwinklesMoreAndBothKeepTheirMeanFlux) {
   TwoStars s;
   const std::vector<StarSplat> steady = star_splats(s.field, s.directions, s.frame);
   const astro::ScintillationOptions eye;
-  s.frame.scintillation = &eye;
-  s.frame.ground_refractivity = astro::kEarthGroundRefractivity550;
+  s.frame.set_twinkling(eye, 0, 0.0, astro::kEarthGroundRefractivity550);
   constexpr int kIntervals = 4000;
   double sum[2] = {0, 0}, log_sum[2] = {0, 0}, log_sum2[2] = {0, 0};
   for (int t = 0; t < kIntervals; ++t) {
