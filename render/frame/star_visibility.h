@@ -101,7 +101,12 @@
 // nodes decide each for its own pixels. It costs a turn of every star's
 // place, a pass over the drawable ones per rung of the ladder, the sky over
 // a few hundred cubes and the placing of the m brightest (render_bench
-// --stars-show: docs/night-sky.md, "Where it skips, measured").
+// --stars-show: docs/night-sky.md, "Where it skips, measured"). Before the
+// ladder, the 16 brightest alone: where one of them, its own splat against
+// the sky behind it, could move a code, so could it within any rung (its Δ
+// there only adds to its own light, and the bound grows with Δ), and the test
+// answers "could show" at once — at night, the price of placing a few stars
+// instead of the ladder's.
 //
 // The pass's placement reads three figures faster than their formulas
 // (star_field.h; render_bench --stars-placement), and the bounds above cover

@@ -244,6 +244,11 @@ TEST(StarVisibility, ABrightStarOnADarkSkyThatMovesACodeIsNeverSkipped) {
     const double moved = testing::code_difference(b, none).largest_code_change;
     if (moved >= 0.5) {
       EXPECT_TRUE(runs) << "exposure " << exposure << ": the star moves " << moved << " code";
+      // Sirius alone moves a code: the second stage says so from the brightest
+      // stars alone, before its ladder (which tests at least kFirstStarsTested).
+      const std::size_t tested_stars = tested.renderer.last_frame().stars_tested;
+      EXPECT_GE(tested_stars, 1u) << "exposure " << exposure;
+      EXPECT_LT(tested_stars, kFirstStarsTested) << "exposure " << exposure;
     }
     if (moved >= 0.5 && first_visible == 0.0) first_visible = exposure;
     if (runs && first_run == 0.0) first_run = exposure;
