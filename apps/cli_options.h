@@ -38,7 +38,8 @@ inline void add_view_options(CLI::App* cmd, std::string& projection, const std::
 /// --tables paper|twilight|small|large, --orders N, --cache DIR.
 inline void add_table_options(CLI::App* cmd, std::string& tables, int& orders, std::string& cache_dir) {
   cmd->add_option("--tables", tables,
-                  "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
+                  "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "
+                  "small, large")
       ->check(CLI::IsMember(atmosphere::table_size_names()));
   const std::string orders_help =
       "Scattering orders of the tables (default " + std::to_string(atmosphere::lut::kDefaultScatteringOrders) + ")";

@@ -75,7 +75,8 @@ void register_precompute_command(CLI::App& app) {
   cmd->add_flag("--no-series-tail", args->no_series_tail,
                 "Drop the orders after the last one instead of adding their geometric tail");
   cmd->add_option("--tables", args->tables,
-                  "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
+                  "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "
+                  "small, large")
       ->check(CLI::IsMember(atmosphere::table_size_names()));
   cmd->add_option("--cache", args->cache_dir, "Cache directory (default $XDG_CACHE_HOME/zenith)");
   cmd->add_flag("--no-cache", args->no_cache, "Neither read nor write the cache");

@@ -77,7 +77,7 @@ void run_sample(const SampleArgs& a) {
   r.method = a.method == "reference" ? SamplingMethod::Reference : SamplingMethod::Tables;
   r.reference_samples = a.samples;
   r.threads = a.threads;
-  r.tables.options.sizes = atmosphere::table_sizes_by_name(a.tables);
+  atmosphere::apply_table_set(a.tables, r.tables.options);
   r.tables.options.max_orders = a.orders;
   r.tables.options.threads = a.threads;
   r.tables.backend = a.cpu ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
@@ -125,7 +125,8 @@ void register_sample_command(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
   cmd->add_option("--orders", args->orders, "Scattering orders of the tables")->check(CLI::Range(1, 50));
   cmd->add_option("--tables", args->tables,
-                  "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
+                  "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "
+                  "small, large")
       ->check(CLI::IsMember(atmosphere::table_size_names()));
   cmd->add_flag("--cpu", args->cpu, "Precompute tables on the CPU");
   cmd->add_option("--cache", args->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");

@@ -530,7 +530,8 @@ void register_validate_cie(CLI::App& validate) {
   cmd->add_option("--out", args->out_dir, "Output directory (CSV, gnuplot scripts, PNG)")->capture_default_str();
   cmd->add_flag("--csv", args->csv_stdout, "Print the per-case table as CSV on stdout instead of the text summary");
   cmd->add_option("--tables", args->tables,
-                  "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
+                  "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "
+                  "small, large")
       ->check(CLI::IsMember(atmosphere::table_size_names()));
   cmd->add_flag("--cpu", args->cpu, "Precompute on the CPU instead of the GPU (when not cached)");
   cmd->add_option("--orders", args->orders, "Scattering orders n of the precompute")->check(CLI::Range(1, 50));

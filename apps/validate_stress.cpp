@@ -121,7 +121,7 @@ void run_stress(const StressArgs& a) {
   }
 
   render::TableRequest request;
-  request.options.sizes = atmosphere::table_sizes_by_name(a.tables);
+  atmosphere::apply_table_set(a.tables, request.options);
   request.backend = a.cpu_precompute ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
   if (!a.cache_dir.empty()) request.cache_directory = a.cache_dir;
   for (StressModel& m : models) m.tables = render::obtain_tables(m.loaded.model, request).tables;
@@ -239,7 +239,8 @@ void register_validate_stress(CLI::App& validate) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 36));
   cmd->add_option("--seed", args->seed, "Random seed (samples and random parameter sets)");
   cmd->add_option("--tables", args->tables,
-                  "Table sizes: paper (default), twilight (64 mu_s texels, for dusk and night), small, large")
+                  "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "
+                  "small, large")
       ->check(CLI::IsMember(atmosphere::table_size_names()));
   cmd->add_option("--presets", args->presets, "Presets to stress (default: all)")->delimiter(',');
   cmd->add_option("--random-models", args->random_models, "Random parameter sets besides the presets")

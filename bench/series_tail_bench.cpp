@@ -149,7 +149,7 @@ int main(int argc, char** argv) try {
     const auto loaded = zenith::atmosphere::load_atmosphere_argument(preset);
     const AtmosphereModel& model = loaded.model;
     lut::PrecomputeOptions base;
-    base.sizes = zenith::atmosphere::table_sizes_by_name(o.tables);
+    zenith::atmosphere::apply_table_set(o.tables, base);
     auto run = [&](int orders, bool tail, lut::PrecomputeReport& report) {
       lut::PrecomputeOptions options = base;
       options.max_orders = orders;

@@ -8,9 +8,11 @@
 //                  [--orders N] [--no-series-tail]
 //                  [--out DIR] [--no-chart]
 //
-// Table sets (--sizes, default paper,twilight): each SPEC is a named size
-// (docs/lookup-tables.md, "Named sizes") optionally followed by overrides,
-// NAME[:KEY=VALUE...], for experiments, e.g. paper:mu_s=64:samples=100:
+// Table sets (--sizes, default paper,twilight): each SPEC is a named set, its
+// sizes and ray samples (docs/lookup-tables.md, "Named sizes";
+// atmosphere::apply_table_set) optionally followed by overrides,
+// NAME[:KEY=VALUE...], for experiments, e.g. paper:mu_s=64:samples=100 or
+// twilight:mu_s=64:samples=50 (the twilight set before 2026-11-27):
 //   scattering sizes     r, mu, mu_s, nu;  transmittance t_mu, t_r;  irradiance e_mu_s, e_r
 //   precompute options   samples (scattering_samples), sphere (sphere_zenith_samples),
 //                        degree (harmonic_degree), t_samples (transmittance_samples),
@@ -97,7 +99,7 @@ lut::PrecomputeOptions options_for_spec(const std::string& spec, lut::Precompute
   std::stringstream in(spec);
   std::string name;
   std::getline(in, name, ':');
-  base.sizes = table_sizes_by_name(name);
+  apply_table_set(name, base);
   for (std::string item; std::getline(in, item, ':');) {
     const auto eq = item.find('=');
     if (eq == std::string::npos) throw std::invalid_argument("--sizes " + spec + ": '" + item + "' is not KEY=VALUE");

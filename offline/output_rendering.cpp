@@ -74,7 +74,7 @@ ViewportSelection select_viewport_outputs(const std::string& spec) {
 render::TableRequest make_table_request(const std::string& table_sizes, int orders, bool cpu_precompute, bool use_cache,
                                         const std::string& cache_dir) {
   render::TableRequest request;
-  request.options.sizes = atmosphere::table_sizes_by_name(table_sizes);
+  atmosphere::apply_table_set(table_sizes, request.options);
   request.options.max_orders = orders;
   request.backend = cpu_precompute ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
   request.use_cache = use_cache;

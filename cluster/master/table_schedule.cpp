@@ -34,7 +34,7 @@ render::TableRequest TableSchedule::request_for(const ClusterConfig& config,
                                                 const std::optional<std::filesystem::path>& cache_directory,
                                                 bool cpu_precompute) {
   render::TableRequest request;
-  request.options.sizes = atmosphere::table_sizes_by_name(config.table_sizes);
+  atmosphere::apply_table_set(config.table_sizes, request.options);
   request.options.max_orders = config.table_orders;
   request.backend = cpu_precompute ? render::PrecomputeBackend::Cpu : render::PrecomputeBackend::Gpu;
   request.cache_directory = cache_directory;

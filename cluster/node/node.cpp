@@ -218,7 +218,7 @@ struct Node::Impl {
     base_scene = scene::load_scene(options.scene ? *options.scene : options.config.scene);
     viewports = warp::load_viewport_config(options.config.viewports);
     for (const std::string& name : me->outputs) outputs.push_back(viewports.index_of(name));
-    table_options.sizes = atmosphere::table_sizes_by_name(options.config.table_sizes);
+    atmosphere::apply_table_set(options.config.table_sizes, table_options);
     table_options.max_orders = options.config.table_orders;
     atmospheres.add_scene_and_candidates(options.atmosphere_files);
     atmospheres.load_kept_definitions();

@@ -17,8 +17,8 @@ TEST(NamedInputs, TableSizeSetsByName) {
   EXPECT_EQ(table_sizes_by_name("small"), lut::TableSizes::small());
   const lut::TableSizes large = table_sizes_by_name("large");
   EXPECT_EQ(large.describe(), "T512x128 E128x32 S64x256x64x16");
-  // The paper's sizes with 64 μs texels: the twilight bench's "paper-mu-s-x2".
-  EXPECT_EQ(table_sizes_by_name("twilight").describe(), "T256x64 E64x16 S32x128x64x8");
+  // The paper's sizes with 128 μs texels (docs/night-sky.md, "Twilight in the tables").
+  EXPECT_EQ(table_sizes_by_name("twilight").describe(), "T256x64 E64x16 S32x128x128x8");
   for (const std::string& name : table_size_names()) EXPECT_NO_THROW((void)table_sizes_by_name(name)) << name;
   try {
     (void)table_sizes_by_name("huge");
@@ -28,6 +28,22 @@ TEST(NamedInputs, TableSizeSetsByName) {
     EXPECT_NE(message.find("'huge'"), std::string::npos) << message;
     EXPECT_NE(message.find("paper, twilight, small or large"), std::string::npos) << message;
   }
+}
+
+TEST(NamedInputs, ATableSetSetsItsSizesAndRaySamplesAndNothingElse) {
+  lut::PrecomputeOptions options;
+  options.max_orders = 9;
+  options.sphere_zenith_samples = 32;
+  apply_table_set("twilight", options);
+  EXPECT_EQ(options.sizes, table_sizes_by_name("twilight"));
+  EXPECT_EQ(options.scattering_samples, 200);  // 4× the day's: the rays toward the sunlit air below −12°
+  EXPECT_EQ(options.max_orders, 9);
+  EXPECT_EQ(options.sphere_zenith_samples, 32);
+  apply_table_set("paper", options);  // back to the day's samples
+  EXPECT_EQ(options.sizes, lut::TableSizes{});
+  EXPECT_EQ(options.scattering_samples, lut::PrecomputeOptions{}.scattering_samples);
+  EXPECT_EQ(options.max_orders, 9);
+  EXPECT_THROW(apply_table_set("huge", options), std::invalid_argument);
 }
 
 TEST(NamedInputs, AnAtmosphereByPresetNameOrByFile) {
