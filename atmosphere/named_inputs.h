@@ -23,10 +23,10 @@ LoadedAtmosphere load_atmosphere_argument(const std::string& value, const LoadOp
 ///  - "twilight": the paper's with 128 μs texels instead of 32 (144 MiB), the
 ///    sun's elevation resolved four times as finely where dusk needs it, and
 ///    200 samples along the precompute's rays instead of 50 (apply_table_set):
-///    the zenith within 3 % of the lit-air reference from sun 0° to −15° and
-///    within 1 % at 680 and 550 nm at −18°, where 64 texels and 50 samples
-///    were 5–17 % low below −12° (docs/night-sky.md, "Twilight in the
-///    tables"), for 4× the memory and transfer of "paper";
+///    the zenith within 3 % of the lit-air reference from sun 0° to −18° at
+///    every wavelength, where 64 texels and 50 samples were 4–13 % low below
+///    −12° (docs/night-sky.md, "Twilight in the tables"), for 4× the memory
+///    and transfer of "paper";
 ///  - "small": quick tables for tests; "large": every dimension doubled.
 /// Throws std::invalid_argument naming the value and the names.
 lut::TableSizes table_sizes_by_name(const std::string& name);
