@@ -285,6 +285,16 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
                    frame.sun, pass->sky_view, sky.rgb_weights, scene.sun.irradiance_W_m2_nm, sky.exposure,
                    std::move(bodies), out.sky_floor);
   }
+  // The most |delta| on a placed star's splat can move a code: against the
+  // darkest sky, and where that could show, against the sky behind the star.
+  const auto splat_change = [&](const PlacedStar& star, const std::array<double, 3>& delta) {
+    double change = largest_code_change(out.sky_floor, delta, may_subtract);
+    if (change >= kInvisibleCodeChange && behind) {
+      const auto rho = splat_footprint_radius(frame.projection, frame.camera_to_world, star.pixel, star.direction);
+      if (rho) change = largest_code_change(behind->at(star.direction, *rho), delta, may_subtract);
+    }
+    return change;
+  };
   // At night the stars show, and the ladder below would say so only after a
   // pass over every drawable star per rung and the sky over the rest's cubes
   // (~25 ms a frame on this project's VM). The brightest kFirstStarsTested
@@ -299,12 +309,7 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
     for (std::size_t i = 0; i < std::min(kFirstStarsTested, enu.size()); ++i) {
       const auto p = place_star(field, i, enu[i], sky, scratch_a, scratch_b);
       if (!p) continue;
-      const std::array<double, 3> own{std::abs(p->rgb[0]), std::abs(p->rgb[1]), std::abs(p->rgb[2])};
-      double change = largest_code_change(out.sky_floor, own, may_subtract);
-      if (change >= kInvisibleCodeChange && behind) {
-        const auto rho = splat_footprint_radius(frame.projection, frame.camera_to_world, p->pixel, p->direction);
-        if (rho) change = largest_code_change(behind->at(p->direction, *rho), own, may_subtract);
-      }
+      const double change = splat_change(*p, {std::abs(p->rgb[0]), std::abs(p->rgb[1]), std::abs(p->rgb[2])});
       if (change >= kInvisibleCodeChange) {
         out.stars_tested = i + 1;
         out.code_change = change;
@@ -463,11 +468,7 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
             for (std::size_t c = 0; c < 3; ++c) delta[c] += std::abs(placed[o].star.rgb[c]);
       }
     for (std::size_t c = 0; c < 3; ++c) delta[c] = delta[c] * (1.0 + 1e-3) + b.rest[c];
-    double change = largest_code_change(out.sky_floor, delta, may_subtract);
-    if (change >= kInvisibleCodeChange && behind) {  // against the sky behind this star
-      const auto rho = splat_footprint_radius(frame.projection, frame.camera_to_world, s.pixel, s.direction);
-      if (rho) change = largest_code_change(behind->at(s.direction, *rho), delta, may_subtract);
-    }
+    const double change = splat_change(s, delta);
     largest = std::max(largest, change);
     if (change >= kInvisibleCodeChange) {
       out.code_change = change;
