@@ -305,12 +305,16 @@ const MoonAlbedoMap& NightSkyPass::moon_map() {
   return *moon_map_;
 }
 
-const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameState& frame, bool floor) {
-  const std::string key = fmt::format("{} {}", frame.variant.key(), floor);
+const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameState& frame, const NightSkyVariant& variant) {
+  const std::string key = fmt::format("{} {}", frame.variant.key(), variant.key());
   auto it = resolve_.find(key);
   if (it == resolve_.end()) {
     std::vector<gl::ShaderDefine> defines = frame.variant.defines();
-    defines.push_back({"NIGHT_FLOOR", floor ? "1" : "0"});
+    const auto flag = [](bool on) { return std::string(on ? "1" : "0"); };
+    defines.push_back({"NIGHT_FLOOR", flag(variant.floor)});
+    defines.push_back({"NIGHT_STARS", flag(variant.stars)});
+    defines.push_back({"NIGHT_MOON", flag(variant.moon)});
+    defines.push_back({"NIGHT_BODIES", flag(variant.bodies)});
     it = resolve_.emplace(key, load_compute_program("render/night_sky.comp", defines)).first;
   }
   return it->second;
@@ -328,16 +332,24 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
   if (count == 0 && !floor_ && !moon_disc_) return;
 
   // Tiles to resolve: the band's drawn tiles (the floor goes on every sky
-  // pixel) or only those a star touches; black tiles a star touches are overwritten.
-  std::vector<std::uint8_t> touched(band.tiles, 0);
+  // pixel) or only those a star or the Moon's disc touches; black tiles those
+  // touch are overwritten. Each list gets the program for what its tiles hold
+  // (NightSkyVariant): the stars' and the Moon's code only where they are,
+  // the ray's body test only where a body can be, no floor-only tile whose
+  // every ray meets a body.
+  const std::size_t tiles = band.tiles;
+  std::vector<std::uint8_t> star_touched(tiles, 0), moon_touched(tiles, 0);
+  const auto tile_of = [&](int x, int band_y) {
+    return static_cast<std::size_t>(band_y / kTileSize) * static_cast<std::size_t>(columns) +
+           static_cast<std::size_t>(x / kTileSize);
+  };
   for (auto s = begin; s != end; ++s) {
     const int x0 = static_cast<int>(std::floor(s->x_px - 0.5f)), y0 = static_cast<int>(std::floor(s->y_px - 0.5f));
     for (int y = y0; y <= y0 + 1; ++y)
       for (int x = x0; x <= x0 + 1; ++x) {
         const int by = y - band.first_row;
         if (x < 0 || x >= width || by < 0 || by >= rows) continue;
-        touched[static_cast<std::size_t>(by / kTileSize) * static_cast<std::size_t>(columns) +
-                static_cast<std::size_t>(x / kTileSize)] = 1;
+        star_touched[tile_of(x, by)] = 1;
       }
   }
   if (moon_disc_) {  // the disc's tiles, with two pixels for its edge
@@ -346,27 +358,24 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
          y < std::min(rows, static_cast<int>(moon_pixel_.y + reach) + 1 - band.first_row); y += 1)
       for (int x = std::max(0, static_cast<int>(moon_pixel_.x - reach));
            x < std::min(width, static_cast<int>(moon_pixel_.x + reach) + 1); x += 1)
-        touched[static_cast<std::size_t>(y / kTileSize) * static_cast<std::size_t>(columns) +
-                static_cast<std::size_t>(x / kTileSize)] = 1;
+        moon_touched[tile_of(x, y)] = 1;
   }
-  std::vector<std::uint32_t> add_tiles, floor_tiles, overwrite_tiles;
-  for (std::size_t t = 0; t < band.tiles; ++t) {
-    const auto word = pack_tile(static_cast<std::uint32_t>(t % static_cast<std::size_t>(columns)),
-                                static_cast<std::uint32_t>(t / static_cast<std::size_t>(columns)));
-    if (band.black[t]) {
-      if (touched[t]) {
-        overwrite_tiles.push_back(word);
-        band.black[t] = 0;  // drawn now
-      }
-    } else if (touched[t]) {
-      add_tiles.push_back(word);
-    } else if (floor_) {
-      floor_tiles.push_back(word);  // no star: the accumulator is not read
-    }
+  // The lists by program and by overwrite, in a fixed order (the map's): every node dispatches alike.
+  std::map<std::pair<int, bool>, std::vector<std::uint32_t>> by_list;
+  for (std::size_t t = 0; t < tiles; ++t) {
+    const bool stars = star_touched[t] != 0, moon = moon_touched[t] != 0;
+    const TileCover bodies = band.bodies.empty() ? TileCover::some : band.bodies[t];
+    const bool overwrite = band.black[t] != 0;
+    if (overwrite && !stars && !moon) continue;                              // nothing drawn there, nothing to add
+    if (!stars && !moon && (!floor_ || bodies == TileCover::all)) continue;  // the floor only, on no sky
+    const NightSkyVariant v{floor_, stars, moon, bodies != TileCover::none};
+    by_list[{v.key(), overwrite}].push_back(
+        pack_tile(static_cast<std::uint32_t>(t % static_cast<std::size_t>(columns)),
+                  static_cast<std::uint32_t>(t / static_cast<std::size_t>(columns))));
+    if (overwrite) band.black[t] = 0;  // drawn now
   }
-  std::vector<std::uint32_t> lists = add_tiles;
-  lists.insert(lists.end(), overwrite_tiles.begin(), overwrite_tiles.end());
-  lists.insert(lists.end(), floor_tiles.begin(), floor_tiles.end());
+  std::vector<std::uint32_t> lists;
+  for (const auto& [key, list] : by_list) lists.insert(lists.end(), list.begin(), list.end());
   if (lists.empty()) return;
 
   // The accumulator: a 64-bit fixed-point value per pixel and channel of a
@@ -399,56 +408,52 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
 
-  const gl::ShaderProgram& p = frame.prepare(resolve_program(frame, floor_));
-  p.set_uniform("moon_disc", moon_disc_ ? 1 : 0);
-  if (moon_disc_) {
-    p.set_uniform("moon_direction",
-                  std::array<float, 3>{static_cast<float>(moon_direction_.x), static_cast<float>(moon_direction_.y),
-                                       static_cast<float>(moon_direction_.z)});
-    p.set_uniform("moon_radius", static_cast<float>(moon_radius_rad_));
-    p.set_uniform("moon_rgb", std::array<float, 3>{static_cast<float>(moon_rgb_[0]), static_cast<float>(moon_rgb_[1]),
-                                                   static_cast<float>(moon_rgb_[2])});
-    const bool mapped = !moon_map().is_uniform();
-    p.set_uniform("moon_mapped", mapped ? 1 : 0);
-    if (mapped) {
-      if (moon_texture_.id() == 0) {  // once per renderer
-        moon_texture_ = gl::Texture::create_2d_mipmapped(gl::TextureFormat::r32f, moon_map().width(),
-                                                         moon_map().height(), moon_map().texels());
-        moon_texture_.set_repeat_s(true);
-      }
-      moon_texture_.bind(binding::kMoonAlbedoUnit);
-      const auto vec = [](const glm::dvec3& v) {
-        return std::array<float, 3>{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
-      };
-      p.set_uniform("moon_axis_x", vec(moon_axes_[0]));
-      p.set_uniform("moon_axis_y", vec(moon_axes_[1]));
-      p.set_uniform("moon_axis_z", vec(moon_axes_[2]));
-      p.set_uniform("moon_map_lod", static_cast<float>(moon_map_lod_));
-    }
-  }
-  if (floor_) {
-    const std::size_t bytes = floor_table_.size() * sizeof(floor_table_[0]);
-    if (table_buffer_.id() == 0 || table_buffer_.size() < bytes) table_buffer_ = gl::Buffer(bytes);
-    table_buffer_.upload(std::span<const std::array<float, 4>>(floor_table_));
-    table_buffer_.bind_storage(binding::kNightSkyTable);
-    p.set_uniform("night_sky_entries", static_cast<int>(floor_table_.size()));
-    p.set_uniform("night_up", std::array<float, 3>{static_cast<float>(floor_up_.x), static_cast<float>(floor_up_.y),
-                                                   static_cast<float>(floor_up_.z)});
-    p.set_uniform("night_horizon_mu", static_cast<float>(floor_horizon_mu_));
-  }
   const std::size_t bytes = lists.size() * sizeof(std::uint32_t);
   if (tiles_.id() == 0 || tiles_.size() < bytes) tiles_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
   tiles_.upload(std::span<const std::uint32_t>(lists));
   tiles_.bind_storage(binding::kTiles);
-  const auto dispatch = [&](std::size_t offset, std::size_t tiles, bool overwrite, bool with_stars) {
-    if (tiles == 0) return;
-    p.set_uniform("overwrite", overwrite ? 1 : 0);
-    p.set_uniform("with_stars", with_stars ? 1 : 0);
-    timer.gpu("night sky", [&] { frame.dispatch_tiles(p, TileList{offset, tiles}); });
+  if (floor_) {
+    const std::size_t table_bytes = floor_table_.size() * sizeof(floor_table_[0]);
+    if (table_buffer_.id() == 0 || table_buffer_.size() < table_bytes) table_buffer_ = gl::Buffer(table_bytes);
+    table_buffer_.upload(std::span<const std::array<float, 4>>(floor_table_));
+    table_buffer_.bind_storage(binding::kNightSkyTable);
+  }
+  const auto vec = [](const glm::dvec3& v) {
+    return std::array<float, 3>{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
   };
-  dispatch(0, add_tiles.size(), false, true);
-  dispatch(add_tiles.size(), overwrite_tiles.size(), true, true);
-  dispatch(add_tiles.size() + overwrite_tiles.size(), floor_tiles.size(), false, false);
+  std::size_t offset = 0;
+  for (const auto& [key, list] : by_list) {
+    const NightSkyVariant v = NightSkyVariant::from_key(key.first);
+    const gl::ShaderProgram& p = frame.prepare(resolve_program(frame, v));
+    if (v.moon) {
+      p.set_uniform("moon_direction", vec(moon_direction_));
+      p.set_uniform("moon_radius", static_cast<float>(moon_radius_rad_));
+      p.set_uniform("moon_rgb", std::array<float, 3>{static_cast<float>(moon_rgb_[0]), static_cast<float>(moon_rgb_[1]),
+                                                     static_cast<float>(moon_rgb_[2])});
+      const bool mapped = !moon_map().is_uniform();
+      p.set_uniform("moon_mapped", mapped ? 1 : 0);
+      if (mapped) {
+        if (moon_texture_.id() == 0) {  // once per renderer
+          moon_texture_ = gl::Texture::create_2d_mipmapped(gl::TextureFormat::r32f, moon_map().width(),
+                                                           moon_map().height(), moon_map().texels());
+          moon_texture_.set_repeat_s(true);
+        }
+        moon_texture_.bind(binding::kMoonAlbedoUnit);
+        p.set_uniform("moon_axis_x", vec(moon_axes_[0]));
+        p.set_uniform("moon_axis_y", vec(moon_axes_[1]));
+        p.set_uniform("moon_axis_z", vec(moon_axes_[2]));
+        p.set_uniform("moon_map_lod", static_cast<float>(moon_map_lod_));
+      }
+    }
+    if (v.floor) {
+      p.set_uniform("night_sky_entries", static_cast<int>(floor_table_.size()));
+      p.set_uniform("night_up", vec(floor_up_));
+      p.set_uniform("night_horizon_mu", static_cast<float>(floor_horizon_mu_));
+    }
+    p.set_uniform("overwrite", key.second ? 1 : 0);
+    timer.gpu("night sky", [&] { frame.dispatch_tiles(p, TileList{offset, list.size()}); });
+    offset += list.size();
+  }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

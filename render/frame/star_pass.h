@@ -84,6 +84,19 @@ struct NightSkyStats {
   double moon_mean_albedo = 1.0;  ///< the map's photometric mean over the lit disc (moon_disc_mean_albedo)
 };
 
+/// What a list of tiles of night_sky.comp holds: the program is compiled for
+/// it (its NIGHT_* defines), since llvmpipe runs every branch a program has.
+struct NightSkyVariant {
+  bool floor = false;   ///< the night floor's table
+  bool stars = false;   ///< a star's splat reaches the tiles (the accumulator is read and cleared)
+  bool moon = false;    ///< the Moon's disc can be in the tiles
+  bool bodies = false;  ///< a body can be in the tiles: the ray's nearest body decides what is sky
+  int key() const { return int{floor} | int{stars} << 1 | int{moon} << 2 | int{bodies} << 3; }
+  static NightSkyVariant from_key(int key) {
+    return NightSkyVariant{(key & 1) != 0, (key & 2) != 0, (key & 4) != 0, (key & 8) != 0};
+  }
+};
+
 class NightSkyPass {
  public:
   /// `refractions` (shared with the Sun's disc) outlives the pass.
@@ -105,7 +118,7 @@ class NightSkyPass {
   std::string catalogue_identity() const;
 
  private:
-  const gl::ShaderProgram& resolve_program(const FrameState& frame, bool floor);
+  const gl::ShaderProgram& resolve_program(const FrameState& frame, const NightSkyVariant& variant);
   bool ensure_field(const scene::Scene& scene);
   NightSkyRenderOptions options_;
   NightSkyStats stats_;

@@ -73,6 +73,9 @@ BandTiles classify_band_tiles(const TileScene& frame, int first_row, int rows) {
     body_tiles_of[b] = body_touches(b);
     mark(body_tiles_of[b], kBody);
   }
+  band.bodies.assign(band_tiles, TileCover::some);
+  for (std::size_t i = 0; i < band_tiles; ++i)
+    if ((use[i] & kBody) == 0) band.bodies[i] = TileCover::none;
   if (frame.sun_disc)
     mark(cones.tiles_touching_sphere(frame.sun_camera, 1.0, std::sin(frame.sun_reach_rad), first_row, rows), kSun);
   for (std::size_t a = 0; a < passes.size(); ++a) {
@@ -93,6 +96,7 @@ BandTiles classify_band_tiles(const TileScene& frame, int first_row, int rows) {
     }
     for (std::uint32_t t : lists.shell_tiles) {
       const std::size_t i = tile_index(t);
+      if (ground[i] == TileCover::all) band.bodies[i] = TileCover::all;
       if (shells[i] > 1 || !frame.one_pass_tiles) {
         lists.gbuffer_tiles.push_back(t);
         continue;

@@ -74,9 +74,15 @@ struct TileScene {
 /// other in one buffer (`all_tiles`, words of pack_tile), and the counts.
 struct BandTiles {
   int first_row = 0, rows = 0, tile_rows = 0;
-  std::size_t tiles = 0;                 // tiles of the band
-  std::vector<std::uint8_t> shells;      // shells that can touch the tile (saturating at 2)
-  std::vector<std::uint8_t> black;       // nothing is dispatched for the tile
+  std::size_t tiles = 0;             // tiles of the band
+  std::vector<std::uint8_t> shells;  // shells that can touch the tile (saturating at 2)
+  std::vector<std::uint8_t> black;   // nothing is dispatched for the tile
+  /// How the tile's rays can meet bodies: none where no body's sphere touches
+  /// the tile's cone, all where the cone lies within the disc of an
+  /// atmosphere's planet (its ground, TileVariant::ground), some elsewhere.
+  /// The night sky's pass (render/frame/star_pass.h) draws only on rays that
+  /// meet no body: it skips the ray test where none can and the tile where all do.
+  std::vector<TileCover> bodies;
   std::vector<std::uint32_t> all_tiles;  // every list below, one after the other
   struct ShellLists {
     std::vector<std::pair<TileVariant, TileList>> one_pass;  // by variant (TileVariant::key order)

@@ -21,6 +21,15 @@
 //
 // The tiles listed are the band's drawn tiles (add to what is there) or, with
 // `overwrite`, tiles no pass drew (whose output holds stale values: replaced).
+// Each list is dispatched with the program compiled for what its tiles hold
+// (render/frame/star_pass.cpp), since llvmpipe runs every branch a program has
+// for every pixel (the Moon's and the stars' code, never taken in most tiles,
+// was half of the pass on a night ground view):
+//   NIGHT_FLOOR   the night floor's table
+//   NIGHT_STARS   a star's splat reaches the tiles: read (and clear) the accumulator
+//   NIGHT_MOON    the Moon's disc can be in the tiles
+//   NIGHT_BODIES  0: no body can be in the tiles (BandTiles::bodies), so every
+//                 ray with a pixel is sky; 1: the ray's nearest body decides
 
 #include "frame.glsl"
 #include "frame_rgb.glsl"
@@ -30,9 +39,8 @@
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
 uniform bool overwrite;
-uniform bool with_stars;  // the tiles hold stars: read (and clear) the accumulator
 
-uniform bool moon_disc;
+#if NIGHT_MOON
 uniform vec3 moon_direction;  // world, unit: the disc's centre (refracted)
 uniform float moon_radius;    // angular radius [rad]
 uniform vec3 moon_rgb;        // 2 L_LS(1, 1) through the line of sight, linear sRGB × exposure
@@ -68,6 +76,7 @@ vec3 moon_light(vec3 ray) {
   }
   return moon_rgb * (albedo * mu0 / (mu0 + mu)) * coverage;
 }
+#endif
 
 #if NIGHT_FLOOR
 /// Entry j at t = j / (n − 1) of μ = μh + (1 − μh) t² (μ the ray's cosine to
@@ -88,30 +97,33 @@ vec3 night_sky_light(vec3 ray) {
 void main() {
   ivec2 p;
   if (!tile_pixel(p)) return;
-  const uint i = frame_rgb_index(p);
-  vec3 add = vec3(0.0);
-  if (with_stars) {
-    const uvec4 rg = star_pixels[2u * i], b = star_pixels[2u * i + 1u];
-    if (any(notEqual(rg, uvec4(0u))) || any(notEqual(b.xy, uvec2(0u)))) {
-      // Only pixels that show the sky carry starlight: not a fisheye's corners
-      // beyond its circle, a warp's pixels beyond its mesh, nor a pixel whose ray
-      // ends on the ground or another body next to a star at its limb (the
-      // pass's test, render/frame/star_visibility.h, bounds the stars against the sky).
-      vec3 seen;
-      float seen_m;
-      if (pixel_ray(p, seen) && nearest_body(seen, seen_m) < 0)
-        add = vec3(star_value(rg.x, rg.y), star_value(rg.z, rg.w), star_value(b.x, b.y));
-      star_pixels[2u * i] = uvec4(0u);
-      star_pixels[2u * i + 1u] = uvec4(0u);
-    }
-  }
+  // Only pixels that show the sky get the night's light: not a fisheye's
+  // corners beyond its circle, a warp's pixels beyond its mesh, nor a pixel
+  // whose ray ends on the ground or another body (next to a star at a limb:
+  // the pass's test, render/frame/star_visibility.h, bounds the stars against the sky).
   vec3 ray;
+  bool sky = pixel_ray(p, ray);
+#if NIGHT_BODIES
   float distance_m;
-  if (pixel_ray(p, ray) && nearest_body(ray, distance_m) < 0) {
+  sky = sky && nearest_body(ray, distance_m) < 0;
+#endif
+  vec3 add = vec3(0.0);
+#if NIGHT_STARS
+  const uint i = frame_rgb_index(p);
+  const uvec4 rg = star_pixels[2u * i], b = star_pixels[2u * i + 1u];
+  if (any(notEqual(rg, uvec4(0u))) || any(notEqual(b.xy, uvec2(0u)))) {
+    if (sky) add = vec3(star_value(rg.x, rg.y), star_value(rg.z, rg.w), star_value(b.x, b.y));
+    star_pixels[2u * i] = uvec4(0u);
+    star_pixels[2u * i + 1u] = uvec4(0u);
+  }
+#endif
+  if (sky) {
 #if NIGHT_FLOOR
     add += night_sky_light(ray);
 #endif
-    if (moon_disc) add += moon_light(ray);
+#if NIGHT_MOON
+    add += moon_light(ray);
+#endif
   }
   const vec3 before = overwrite ? vec3(0.0) : load_frame_rgb(p);
   store_frame_rgb(p, clip_negative(before + add));

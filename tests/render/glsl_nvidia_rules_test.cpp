@@ -58,6 +58,7 @@
 #include <thread>
 #include <vector>
 
+#include "astro/sky_positions.h"
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/parameters.h"
 #include "render/gl/egl_context.h"
@@ -65,8 +66,11 @@
 #include "render/lut/gpu_precompute.h"
 #include "render/renderer.h"
 #include "render/shader_programs.h"
+#include "scene/local_horizon.h"
 #include "scene/scene_loader.h"
+#include "scene/sky_clock.h"
 #include "tests/render/glsl_ast.h"
+#include "tests/render/render_test_support.h"
 #include "tests/render/tiny_precompute_options.h"
 #include "warp/cube_face_projection.h"
 #include "warp/cylindrical_projection.h"
@@ -306,6 +310,22 @@ void render_every_variant() {
              std::initializer_list<const warp::Projection*>{&equirectangular, &cylindrical, &cube_face})
           renderer.render_image(s, *p);
     }
+    // The Moon's disc (the night sky's pass compiles its code only into the
+    // tiles the disc reaches, NightSkyVariant): 2° on the full Moon of
+    // 2026-01-03 from Greenwich, 57° up, at a night exposure.
+    scene::Scene s = scene::load_scene(scenes / "earth-dusk-greenwich.json");
+    s.sky_clock->time = astro::UtcTime{2026, 1, 3, 23, 0, 0.0};
+    s.camera.exposure = scene::kMaxExposure;
+    s.sun.direction =
+        scene::ephemeris_sun(s, *s.sky_clock, astro::AstroTime::from_utc(s.sky_clock->time), s.camera.position_m)
+            .direction;
+    const std::size_t earth = s.sky_clock->body;
+    const scene::LocalHorizon h = scene::local_horizon_at(s.camera.position_m, s.bodies[earth]);
+    const auto moon = astro::SkyPositions(astro::AstroTime::from_utc(s.sky_clock->time), s.sky_clock->site)
+                          .moon()
+                          .horizontal.east_north_up();
+    s.camera.orientation = testing::look_rotation(moon[0] * h.east + moon[1] * h.north + moon[2] * h.up, h.up);
+    renderer.render_image(s, warp::PlanarProjection::symmetric(48, 32, 2.0));
   }
 }
 

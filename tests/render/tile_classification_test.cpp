@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <vector>
@@ -138,6 +139,46 @@ TEST(TileClassification, OneShellIsDrawnInOnePassAndAMoonOutsideItDirectly) {
   EXPECT_EQ(band.one_body_tiles[0].second.count, moon_direct);
   EXPECT_GT(moon_direct, 0u);
   EXPECT_EQ(band.direct_tiles(), moon_direct);
+}
+
+/// Whether the camera-frame ray `d` from the origin meets the sphere (double, exact).
+bool meets(const scene::Body& b, const glm::dvec3& d) {
+  const double q = glm::dot(b.position_m, d), c = glm::dot(b.position_m, b.position_m) - b.radius_m * b.radius_m;
+  return q > 0.0 && q * q >= c;
+}
+
+TEST(TileClassification, TheBodyCoverIsNoneWhereNoRayMeetsABodyAndAllWhereEveryRayMeetsThePlanet) {
+  // The night sky's pass skips the ray test where the cover is none and the
+  // floor-only tile where it is all (render/frame/star_pass.cpp): both must
+  // hold for every pixel's ray. A planet filling the lower part of the view,
+  // its shell drawn, and a moon beyond it.
+  View v;
+  v.scene.bodies = {body("planet", {0, -6.4e6, -2.0e6}, kGround), body("moon", {2.0e6, 1.5e6, -2.0e7}, 1.7e6)};
+  v.add_shell(0);
+  const BandTiles band = classify_band_tiles(v.tiles, 0, v.projection.height());
+  ASSERT_EQ(band.bodies.size(), band.tiles);
+  std::map<TileCover, int> tiles_of;
+  for (std::size_t i = 0; i < band.tiles; ++i) {
+    const int tx = static_cast<int>(i % static_cast<std::size_t>(v.cones.columns()));
+    const int ty = static_cast<int>(i / static_cast<std::size_t>(v.cones.columns()));
+    ++tiles_of[band.bodies[i]];
+    for (int y = ty * kTileSize; y < std::min((ty + 1) * kTileSize, v.projection.height()); ++y)
+      for (int x = tx * kTileSize; x < std::min((tx + 1) * kTileSize, v.projection.width()); ++x) {
+        const std::optional<glm::dvec3> d = v.projection.ray(x + 0.5, y + 0.5);
+        ASSERT_TRUE(d.has_value());
+        const bool planet = meets(v.scene.bodies[0], *d), moon = meets(v.scene.bodies[1], *d);
+        if (band.bodies[i] == TileCover::none) {
+          EXPECT_FALSE(planet || moon) << "pixel " << x << ", " << y;
+        } else if (band.bodies[i] == TileCover::all) {
+          EXPECT_TRUE(planet) << "pixel " << x << ", " << y;
+        }
+      }
+  }
+  // Each kind is there, and the tiles a body's disc only partly fills are few.
+  EXPECT_GT(tiles_of[TileCover::none], 30);
+  EXPECT_GT(tiles_of[TileCover::all], 30);
+  EXPECT_GT(tiles_of[TileCover::some], 0);
+  EXPECT_LT(tiles_of[TileCover::some], tiles_of[TileCover::none] + tiles_of[TileCover::all]);
 }
 
 TEST(TileClassification, OverlappingShellsGoThroughTheGbufferPathTogether) {
