@@ -31,6 +31,7 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
       {"STAR_SPLATS_BINDING", kStarSplats},
       {"STAR_ACCUMULATOR_BINDING", kStarAccumulator},
       {"NIGHT_SKY_TABLE_BINDING", kNightSkyTable},
+      {"STAR_PIXEL_LIST_BINDING", kStarPixelList},
       {"TRANSMITTANCE_UNIT", kTransmittanceUnit},
       {"SINGLE_RAYLEIGH_UNIT", kSingleRayleighUnit},
       {"SINGLE_MIE_UNIT", kSingleMieUnit},

@@ -32,6 +32,7 @@ inline constexpr unsigned kBlackTiles = 10;           ///< BLACK_TILES_BINDING (
 inline constexpr unsigned kStarSplats = 11;           ///< STAR_SPLATS_BINDING (render/star_splat.comp)
 inline constexpr unsigned kStarAccumulator = 12;      ///< STAR_ACCUMULATOR_BINDING (render/star_accumulator.glsl)
 inline constexpr unsigned kNightSkyTable = 13;        ///< NIGHT_SKY_TABLE_BINDING (render/night_sky.comp)
+inline constexpr unsigned kStarPixelList = 14;        ///< STAR_PIXEL_LIST_BINDING (render/star_pixels.comp)
 
 // ---- uniform buffers
 inline constexpr unsigned kWavelengthData =

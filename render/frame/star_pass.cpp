@@ -188,10 +188,12 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
     StarFrame f =
         star_frame(scene, frame.projection, frame.camera_to_world, atmospheres, frame.rgb_weights, refractions_);
     if (options_.stars && ensure_field(scene) && field_->size() > 0) {
-      timer.cpu("star test", [&] { stats_.star_test = star_visibility(frame, *field_, f, time, clock.site); });
+      timer.cpu("star test",
+                [&] { stats_.star_test = star_visibility(frame, *field_, f, time, clock.site, directions_); });
       if (stats_.star_test.could_show || !options_.skip_hidden_stars) {
         timer.cpu("star placement", [&] {
-          field_->directions_enu(time, clock.site, directions_);
+          // The test's directions where its second stage turned the catalogue to the instant.
+          if (directions_.empty()) field_->directions_enu(time, clock.site, directions_);
           // The star test's deviates for the interval, where it drew them.
           if (f.scintillation) f.scintillation_normals = field_->scintillation_normals(f.scintillation_interval);
           splats_ = star_splats(*field_, directions_, f);
@@ -312,7 +314,6 @@ const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameState& frame, 
     std::vector<gl::ShaderDefine> defines = frame.variant.defines();
     const auto flag = [](bool on) { return std::string(on ? "1" : "0"); };
     defines.push_back({"NIGHT_FLOOR", flag(variant.floor)});
-    defines.push_back({"NIGHT_STARS", flag(variant.stars)});
     defines.push_back({"NIGHT_MOON", flag(variant.moon)});
     defines.push_back({"NIGHT_BODIES", flag(variant.bodies)});
     it = resolve_.emplace(key, load_compute_program("render/night_sky.comp", defines)).first;
@@ -331,27 +332,30 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
   const std::size_t count = static_cast<std::size_t>(end - begin);
   if (count == 0 && !floor_ && !moon_disc_) return;
 
-  // Tiles to resolve: the band's drawn tiles (the floor goes on every sky
-  // pixel) or only those a star or the Moon's disc touches; black tiles those
-  // touch are overwritten. Each list gets the program for what its tiles hold
-  // (NightSkyVariant): the stars' and the Moon's code only where they are,
-  // the ray's body test only where a body can be, no floor-only tile whose
-  // every ray meets a body.
+  // The pixels the band's splats reach, each once (band pixel y · width + x):
+  // star_pixels.comp adds the accumulator there and nowhere else.
   const std::size_t tiles = band.tiles;
-  std::vector<std::uint8_t> star_touched(tiles, 0), moon_touched(tiles, 0);
   const auto tile_of = [&](int x, int band_y) {
     return static_cast<std::size_t>(band_y / kTileSize) * static_cast<std::size_t>(columns) +
            static_cast<std::size_t>(x / kTileSize);
   };
+  std::vector<std::uint8_t> star_touched(tiles, 0), moon_touched(tiles, 0);
+  star_pixels_.clear();
+  pixel_listed_.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(rows), 0);
   for (auto s = begin; s != end; ++s) {
     const int x0 = static_cast<int>(std::floor(s->x_px - 0.5f)), y0 = static_cast<int>(std::floor(s->y_px - 0.5f));
     for (int y = y0; y <= y0 + 1; ++y)
       for (int x = x0; x <= x0 + 1; ++x) {
         const int by = y - band.first_row;
         if (x < 0 || x >= width || by < 0 || by >= rows) continue;
+        const auto pixel = static_cast<std::uint32_t>(by * width + x);
+        if (pixel_listed_[pixel]) continue;
+        pixel_listed_[pixel] = 1;
+        star_pixels_.push_back(pixel);
         star_touched[tile_of(x, by)] = 1;
       }
   }
+  for (const std::uint32_t pixel : star_pixels_) pixel_listed_[pixel] = 0;
   if (moon_disc_) {  // the disc's tiles, with two pixels for its edge
     const double reach = moon_radius_px_ + 2.0;
     for (int y = std::max(0, static_cast<int>(moon_pixel_.y - reach) - band.first_row);
@@ -360,15 +364,21 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
            x < std::min(width, static_cast<int>(moon_pixel_.x + reach) + 1); x += 1)
         moon_touched[tile_of(x, y)] = 1;
   }
+  // Tiles for night_sky.comp: the band's drawn tiles (the floor goes on every
+  // sky pixel), else only those the Moon's disc reaches; black tiles a star or
+  // the disc reaches are overwritten (from zero: the stars add to them after).
+  // Each list gets the program for what its tiles hold (NightSkyVariant): the
+  // Moon's code only where the disc is, the ray's body test only where a body
+  // can be, no floor-only tile whose every ray meets a body.
   // The lists by program and by overwrite, in a fixed order (the map's): every node dispatches alike.
   std::map<std::pair<int, bool>, std::vector<std::uint32_t>> by_list;
   for (std::size_t t = 0; t < tiles; ++t) {
-    const bool stars = star_touched[t] != 0, moon = moon_touched[t] != 0;
+    const bool moon = moon_touched[t] != 0;
     const TileCover bodies = band.bodies.empty() ? TileCover::some : band.bodies[t];
     const bool overwrite = band.black[t] != 0;
-    if (overwrite && !stars && !moon) continue;                              // nothing drawn there, nothing to add
-    if (!stars && !moon && (!floor_ || bodies == TileCover::all)) continue;  // the floor only, on no sky
-    const NightSkyVariant v{floor_, stars, moon, bodies != TileCover::none};
+    if (overwrite ? !star_touched[t] && !moon : !moon && (!floor_ || bodies == TileCover::all))
+      continue;  // nothing drawn there and nothing to add, or the floor only on no sky
+    const NightSkyVariant v{floor_, moon, bodies != TileCover::none};
     by_list[{v.key(), overwrite}].push_back(
         pack_tile(static_cast<std::uint32_t>(t % static_cast<std::size_t>(columns)),
                   static_cast<std::uint32_t>(t / static_cast<std::size_t>(columns))));
@@ -376,7 +386,7 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
   }
   std::vector<std::uint32_t> lists;
   for (const auto& [key, list] : by_list) lists.insert(lists.end(), list.begin(), list.end());
-  if (lists.empty()) return;
+  if (lists.empty() && star_pixels_.empty()) return;
 
   // The accumulator: a 64-bit fixed-point value per pixel and channel of a
   // constant step (star_accumulator.glsl), the same on every node and band.
@@ -410,7 +420,7 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
 
   const std::size_t bytes = lists.size() * sizeof(std::uint32_t);
   if (tiles_.id() == 0 || tiles_.size() < bytes) tiles_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
-  tiles_.upload(std::span<const std::uint32_t>(lists));
+  if (!lists.empty()) tiles_.upload(std::span<const std::uint32_t>(lists));
   tiles_.bind_storage(binding::kTiles);
   if (floor_) {
     const std::size_t table_bytes = floor_table_.size() * sizeof(floor_table_[0]);
@@ -455,6 +465,26 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
     offset += list.size();
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  if (star_pixels_.empty()) return;
+  // Then the stars, on the pixels their splats reach (after the tiles' writes above).
+  const std::size_t pixel_bytes = star_pixels_.size() * sizeof(std::uint32_t);
+  if (pixel_list_.id() == 0 || pixel_list_.size() < pixel_bytes)
+    pixel_list_ = gl::Buffer(std::max<std::size_t>(pixel_bytes, 4096));
+  pixel_list_.upload(std::span<const std::uint32_t>(star_pixels_));
+  pixel_list_.bind_storage(binding::kStarPixelList);
+  const gl::ShaderProgram& p = frame.prepare(star_pixels_program(frame));
+  p.set_uniform("star_pixel_count", static_cast<int>(star_pixels_.size()));
+  timer.gpu("stars", [&] { p.dispatch(static_cast<unsigned>((star_pixels_.size() + 63) / 64)); });
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+const gl::ShaderProgram& NightSkyPass::star_pixels_program(const FrameState& frame) {
+  const std::string key = frame.variant.key();
+  auto it = star_pixels_programs_.find(key);
+  if (it == star_pixels_programs_.end())
+    it = star_pixels_programs_.emplace(key, load_compute_program("render/star_pixels.comp", frame.variant.defines()))
+             .first;
+  return it->second;
 }
 
 }  // namespace zenith::render

@@ -88,13 +88,10 @@ struct NightSkyStats {
 /// it (its NIGHT_* defines), since llvmpipe runs every branch a program has.
 struct NightSkyVariant {
   bool floor = false;   ///< the night floor's table
-  bool stars = false;   ///< a star's splat reaches the tiles (the accumulator is read and cleared)
   bool moon = false;    ///< the Moon's disc can be in the tiles
   bool bodies = false;  ///< a body can be in the tiles: the ray's nearest body decides what is sky
-  int key() const { return int{floor} | int{stars} << 1 | int{moon} << 2 | int{bodies} << 3; }
-  static NightSkyVariant from_key(int key) {
-    return NightSkyVariant{(key & 1) != 0, (key & 2) != 0, (key & 4) != 0, (key & 8) != 0};
-  }
+  int key() const { return int{floor} | int{moon} << 1 | int{bodies} << 2; }
+  static NightSkyVariant from_key(int key) { return NightSkyVariant{(key & 1) != 0, (key & 2) != 0, (key & 4) != 0}; }
 };
 
 class NightSkyPass {
@@ -119,6 +116,7 @@ class NightSkyPass {
 
  private:
   const gl::ShaderProgram& resolve_program(const FrameState& frame, const NightSkyVariant& variant);
+  const gl::ShaderProgram& star_pixels_program(const FrameState& frame);
   bool ensure_field(const scene::Scene& scene);
   NightSkyRenderOptions options_;
   NightSkyStats stats_;
@@ -156,8 +154,11 @@ class NightSkyPass {
   std::unique_ptr<astro::LightPollution> light_pollution_;
   // GL objects.
   gl::ShaderProgram splat_;
-  std::map<std::string, gl::ShaderProgram> resolve_;
-  gl::Buffer splats_buffer_, accumulator_, tiles_, table_buffer_;
+  std::map<std::string, gl::ShaderProgram> resolve_, star_pixels_programs_;
+  gl::Buffer splats_buffer_, accumulator_, tiles_, table_buffer_, pixel_list_;
+  // The band's pixels its splats reach, each once, and a flag per band pixel to list them once (all 0 between bands).
+  std::vector<std::uint32_t> star_pixels_;
+  std::vector<std::uint8_t> pixel_listed_;
   std::size_t accumulator_bytes_ = 0;
 };
 

@@ -138,6 +138,10 @@ inline constexpr double kInvisibleCodeChange = 0.495;
 /// The second stage's ladder of the brightest stars tested one by one: 16,
 /// 64, 256, 1024, 4096 (kNeighbourhoodFirsts after the whole catalogue); past that the pass runs.
 inline constexpr std::size_t kFirstStarsTested = kNeighbourhoodFirsts[1], kMostStarsTested = kNeighbourhoodFirsts[5];
+/// Before the ladder, the first kFirstStarsTested stars placed in the image
+/// among the catalogue's kFirstStarsScanned brightest answer alone where one
+/// of them could show.
+inline constexpr std::size_t kFirstStarsScanned = kNeighbourhoodFirsts[4];
 
 /// Whether adding at most |delta| of exposed linear radiance to a display
 /// channel whose background is at least `background` changes its 8-bit sRGB
@@ -196,7 +200,9 @@ struct StarVisibility {
   std::array<double, 3> sky_peak{};   ///< the most the stars add to a pixel of sky (first stage)
   bool could_show = true;             ///< a change of half a code is possible somewhere
   /// The second stage (0 where the first decided): how many of the brightest
-  /// stars it tested one by one, how many of them landed in the image.
+  /// stars it tested one by one (where one alone decided before the ladder:
+  /// that star's rank, counting from 1, among the catalogue's brightest), how
+  /// many of them landed in the image.
   std::size_t stars_tested = 0, stars_placed = 0;
   /// The largest change of a code value the deciding stage allows [codes]:
   /// D'(B) · peak (first stage) or the largest star's D'(B_s) Δ_s (second; where
@@ -212,9 +218,14 @@ struct StarVisibility {
 /// The test for `field`'s stars in `frame` with the sky of `sky` (star_splats'
 /// frame: its atmospheres, exposure, colour weights, twinkling) at the sky
 /// clock's `time` and `site` (the brightest stars' places; proper motion).
-/// `star_by_star` false: the first stage alone.
+/// `star_by_star` false: the first stage alone. `directions_enu`: the
+/// catalogue's directions at the instant (StarField::directions_enu), filled
+/// where the second stage needs them and left empty otherwise, so the pass
+/// places its stars from the same vector instead of turning the catalogue
+/// twice a frame (0.9 ms for 101 922 stars on this project's VM).
 StarVisibility star_visibility(const FrameState& frame, StarField& field, const StarFrame& sky,
-                               const astro::AstroTime& time, const astro::Site& site, bool star_by_star = true);
+                               const astro::AstroTime& time, const astro::Site& site,
+                               std::vector<glm::dvec3>& directions_enu, bool star_by_star = true);
 
 /// The smallest pixel solid angle over a 33 × 33 grid of the image [sr], half
 /// of it as the margin for what the grid misses (the projections' solid

@@ -3,8 +3,6 @@
 // docs/night-sky.md, "Rendering the night sky"), after the atmosphere passes
 // and before the band leaves (a file's readback or the live display pass):
 //
-//   * the stars, from the star accumulator (star_splat.comp), in 64-bit fixed
-//     point of a constant step (star_accumulator.glsl);
 //   * the Moon's disc where it is larger than a pixel (a smaller Moon is a
 //     point source among the stars): the Lommel–Seeliger law of
 //     astro/moon_photometry.h, L = L(1, 1) · 2μ0/(μ0 + μ), its phase from the
@@ -20,21 +18,20 @@
 //     that meets no body (the ground included).
 //
 // The tiles listed are the band's drawn tiles (add to what is there) or, with
-// `overwrite`, tiles no pass drew (whose output holds stale values: replaced).
+// `overwrite`, tiles no pass drew (whose output holds stale values: replaced)
+// where a star's splat or the Moon's disc reaches them. The stars themselves
+// join after this pass, pixel by pixel (star_pixels.comp).
 // Each list is dispatched with the program compiled for what its tiles hold
 // (render/frame/star_pass.cpp), since llvmpipe runs every branch a program has
-// for every pixel (the Moon's and the stars' code, never taken in most tiles,
-// was half of the pass on a night ground view):
+// for every pixel (the Moon's disc code and the star accumulator's reads, never
+// taken in most tiles, were half of the pass on a night ground view):
 //   NIGHT_FLOOR   the night floor's table
-//   NIGHT_STARS   a star's splat reaches the tiles: read (and clear) the accumulator
 //   NIGHT_MOON    the Moon's disc can be in the tiles
 //   NIGHT_BODIES  0: no body can be in the tiles (BandTiles::bodies), so every
 //                 ray with a pixel is sky; 1: the ray's nearest body decides
 
 #include "frame.glsl"
 #include "frame_rgb.glsl"
-#define STAR_PIXELS
-#include "star_accumulator.glsl"
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
@@ -99,8 +96,7 @@ void main() {
   if (!tile_pixel(p)) return;
   // Only pixels that show the sky get the night's light: not a fisheye's
   // corners beyond its circle, a warp's pixels beyond its mesh, nor a pixel
-  // whose ray ends on the ground or another body (next to a star at a limb:
-  // the pass's test, render/frame/star_visibility.h, bounds the stars against the sky).
+  // whose ray ends on the ground or another body.
   vec3 ray;
   bool sky = pixel_ray(p, ray);
 #if NIGHT_BODIES
@@ -108,15 +104,6 @@ void main() {
   sky = sky && nearest_body(ray, distance_m) < 0;
 #endif
   vec3 add = vec3(0.0);
-#if NIGHT_STARS
-  const uint i = frame_rgb_index(p);
-  const uvec4 rg = star_pixels[2u * i], b = star_pixels[2u * i + 1u];
-  if (any(notEqual(rg, uvec4(0u))) || any(notEqual(b.xy, uvec2(0u)))) {
-    if (sky) add = vec3(star_value(rg.x, rg.y), star_value(rg.z, rg.w), star_value(b.x, b.y));
-    star_pixels[2u * i] = uvec4(0u);
-    star_pixels[2u * i + 1u] = uvec4(0u);
-  }
-#endif
   if (sky) {
 #if NIGHT_FLOOR
     add += night_sky_light(ray);

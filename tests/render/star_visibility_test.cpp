@@ -216,6 +216,56 @@ TEST(StarVisibility, WhereItSkipsTheFrameWithTheStarsForcedOnIsTheSameToTheCode)
   EXPECT_GE(second, 3) << "the second stage skips frames the first could not";
 }
 
+TEST(StarVisibility, BeforeItsLadderTheBrightestStarInTheViewAnswers) {
+  // A 4° view on the first star after the 16 brightest (to V 3) with no
+  // brighter star within 5° of it, 25° or more up, the sun 18° down: where
+  // the forced star moves a code, the test decides from that star alone,
+  // before its ladder (whose rungs test 16, 64 and all of the catalogue's stars
+  // one by one: never that star's rank). The 16 brightest out of view used to
+  // send every narrow night view through the ladder (3.7 ms of a 79° ground
+  // view's frame on this project's VM).
+  REQUIRE_CATALOGUE();
+  constexpr double kLimit = 3.0;
+  astro::StarCatalogueOptions catalogue_options;
+  catalogue_options.magnitude_limit = kLimit;
+  const astro::StarCatalogue catalogue = astro::load_star_catalogue(catalogue_options);
+  const astro::SkyPositions sky(astro::AstroTime::from_utc(kTime),
+                                astro::Site{testing::kGreenwichLatitudeDeg, testing::kGreenwichLongitudeDeg, 46.0});
+  std::vector<glm::dvec3> enu;
+  for (const auto& star : catalogue.stars) {
+    const auto e = sky.star(star).east_north_up();
+    enu.emplace_back(e[0], e[1], e[2]);
+  }
+  std::size_t k = kFirstStarsTested;
+  const auto alone = [&](std::size_t j) {
+    for (std::size_t i = 0; i < j; ++i)
+      if (glm::dot(enu[i], enu[j]) > std::cos(5.0 * kDeg)) return false;
+    return enu[j].z > std::sin(25.0 * kDeg);
+  };
+  while (k < enu.size() && !alone(k)) ++k;
+  ASSERT_LT(k, enu.size());
+  ASSERT_NE(k + 1, kNeighbourhoodFirsts[2]);  // a rung's count
+  ASSERT_NE(k + 1, enu.size());
+  RenderOptions o = options(true, kLimit), always = o;
+  always.night_sky.skip_hidden_stars = false;
+  TestRenderer tested(o), forced(always), without(options(false));
+  const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(32, 32, 4.0);
+  int decided = 0;
+  for (double exposure = 1e3; exposure < 2e6; exposure *= std::sqrt(10.0)) {
+    const scene::Scene s = greenwich_sky(enu[k], exposure, -18.0, 0.0);
+    const auto image = forced.renderer.render_image(s, planar);
+    ASSERT_GE(forced.renderer.last_frame().stars, 1u) << "exposure " << exposure;
+    if (testing::code_difference(image, without.renderer.render_image(s, planar)).largest_code_change < 0.5) continue;
+    tested.renderer.render_image(s, planar);
+    EXPECT_TRUE(tested.renderer.last_frame().stars_could_show) << "exposure " << exposure;
+    EXPECT_EQ(tested.renderer.last_frame().stars_tested, k + 1) << "exposure " << exposure;
+    ++decided;
+  }
+  std::printf("the view on the catalogue's star %zu (V %.2f): decided by it alone at %d exposures\n", k + 1,
+              catalogue.stars[k].v_mag, decided);
+  EXPECT_GE(decided, 2);
+}
+
 TEST(StarVisibility, ABrightStarOnADarkSkyThatMovesACodeIsNeverSkipped) {
   // Sirius 20° up in the south, the sun 9° down in the north (the dark side of
   // the sky), a 4° planar view on the star: raising the exposure, the test
