@@ -40,6 +40,10 @@ struct NightSkyRenderOptions {
   /// Skip the stars when the frame's sky hides them all (render/frame/star_visibility.h);
   /// false: place and draw them whenever they are on (the frame the test is checked against).
   bool skip_hidden_stars = true;
+  /// Skip the night floor and the glow when the frame's sky hides them
+  /// (render/frame/star_pass.h); false: against a black sky only (the frame the
+  /// test is checked against).
+  bool skip_hidden_floor = true;
   /// The catalogue (astro/star_catalogue.h): stellarium-data's directory and
   /// the faintest V kept, [−2, 10.5]. Loaded once per renderer, on the first
   /// frame that needs it; a missing catalogue logs a warning and draws no stars.

@@ -170,8 +170,22 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
     timer.cpu("night sky table", [&] {
       const NightSkyTable t = night_sky_table(*air, scene.camera.position_m, night_floor_.get(), light_pollution_.get(),
                                               frame.rgb_weights, exposure);
-      // The test: does the brightest direction move a display value by half a code step?
-      if (t.max_component >= kInvisibleDisplayStep) {
+      // The test: could the brightest direction move a display value by half
+      // a code step, on the darkest sky the atmosphere passes draw (the floor
+      // goes on pixels of sky only; zeros where that bound does not apply:
+      // then on black)?
+      std::array<double, 3> largest{0.0, 0.0, 0.0};
+      bool may_subtract = false;
+      for (const auto& entry : t.rgb)
+        for (std::size_t c = 0; c < 3; ++c) {
+          largest[c] = std::max(largest[c], std::abs(static_cast<double>(entry[c])));
+          may_subtract = may_subtract || entry[c] < 0.0f;
+        }
+      for (const auto& w : frame.rgb_weights) may_subtract = may_subtract || w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0;
+      const std::array<double, 3> sky = options_.skip_hidden_floor
+                                            ? darkest_sky(frame, site_body, exposure, frame.rgb_weights)
+                                            : std::array<double, 3>{0.0, 0.0, 0.0};
+      if (largest_code_change(sky, largest, may_subtract) >= kInvisibleCodeChange) {
         floor_ = true;
         floor_table_ = t.rgb;
         floor_up_ = t.up;

@@ -18,7 +18,9 @@
 // they can make, against the least the sky behind them can be (from the
 // tables: render/frame/star_visibility.h), would change no display value by
 // half a code step of 8-bit sRGB; the night floor when its brightest direction
-// would not on a black sky (1.5e-4 of linear). Then neither the CPU placement
+// would not against the least the sky can be (the stars' first-stage bound,
+// darkest_sky; on a black sky, 1.5e-4 of linear, where that does not apply).
+// Then neither the CPU placement
 // nor a GPU pass runs: a daylight exposure, and a twilight sky bright enough to
 // hide every star, cost nothing.
 #include <cstddef>

@@ -32,9 +32,14 @@ double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
   return 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(a - b)));
 }
 
-/// The most a channel's code value can move for a change |delta_c| on a
-/// background ≥ background_c, over the channels [codes]: D'(y) |Δ| at the
-/// lowest value y it passes through (invisible_change).
+bool non_negative(const std::vector<std::array<double, 3>>& rgb_weights) {
+  bool yes = true;
+  for (const auto& w : rgb_weights) yes &= w[0] >= 0.0 && w[1] >= 0.0 && w[2] >= 0.0;
+  return yes;
+}
+
+}  // namespace
+
 double largest_code_change(const std::array<double, 3>& background, const std::array<double, 3>& delta,
                            bool may_subtract) {
   double worst = 0.0;
@@ -46,7 +51,20 @@ double largest_code_change(const std::array<double, 3>& background, const std::a
   return worst;
 }
 
-}  // namespace
+std::array<double, 3> darkest_sky(const FrameState& frame, std::size_t site, double exposure,
+                                  const std::vector<std::array<double, 3>>& rgb_weights) {
+  std::array<double, 3> out{0.0, 0.0, 0.0};
+  const AtmospherePass* pass = non_negative(rgb_weights) ? sky_at_camera(frame, site) : nullptr;
+  if (!pass) return out;
+  const scene::Scene& scene = frame.scene;
+  const glm::dvec3 camera_m = scene.camera.position_m, planet_m = scene.bodies.at(site).position_m;
+  const glm::dvec3 up = glm::normalize(camera_m - planet_m);
+  const double radius = std::max(pass->distance_m, pass->gpu->ground_radius_m());
+  const std::vector<double> k = pass->gpu->radiance_floor().radiance_per_irradiance(glm::dot(up, frame.sun), radius);
+  for (std::size_t i = 0; i < rgb_weights.size() && i < k.size() && i < scene.sun.irradiance_W_m2_nm.size(); ++i)
+    for (std::size_t c = 0; c < 3; ++c) out[c] += exposure * rgb_weights[i][c] * scene.sun.irradiance_W_m2_nm[i] * k[i];
+  return out;
+}
 
 std::optional<double> splat_footprint_radius(const warp::Projection& projection, const glm::dmat3& camera_to_world,
                                              const glm::dvec2& pixel, const glm::dvec3& direction) {
@@ -249,16 +267,9 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
   }
 
   // The sky's floor B from the tables, where it applies.
-  bool weights_non_negative = true;
-  for (const auto& w : sky.rgb_weights) weights_non_negative &= w[0] >= 0.0 && w[1] >= 0.0 && w[2] >= 0.0;
+  const bool weights_non_negative = non_negative(sky.rgb_weights);
   const AtmospherePass* pass = weights_non_negative ? sky_at_camera(frame, site) : nullptr;
-  if (pass) {
-    const double radius = std::max(pass->distance_m, pass->gpu->ground_radius_m());
-    const std::vector<double> k = pass->gpu->radiance_floor().radiance_per_irradiance(glm::dot(up, frame.sun), radius);
-    for (std::size_t i = 0; i < n && i < k.size() && i < scene.sun.irradiance_W_m2_nm.size(); ++i)
-      for (std::size_t c = 0; c < 3; ++c)
-        out.sky_floor[c] += sky.exposure * sky.rgb_weights[i][c] * scene.sun.irradiance_W_m2_nm[i] * k[i];
-  }
+  out.sky_floor = darkest_sky(frame, site, sky.exposure, sky.rgb_weights);
 
   const double scale = sky.exposure / omega;
   for (std::size_t c = 0; c < 3; ++c)

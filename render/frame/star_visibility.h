@@ -151,6 +151,21 @@ inline constexpr std::size_t kFirstStarsScanned = kNeighbourhoodFirsts[4];
 /// colour weights) max(background − |delta|, 0).
 bool invisible_change(double background, double delta, bool may_subtract);
 
+/// The most a channel's code value can move for a change |delta_c| on a
+/// background ≥ background_c, over the channels [codes]: D'(y) |Δ| at the
+/// lowest value y it passes through (invisible_change).
+double largest_code_change(const std::array<double, 3>& background, const std::array<double, 3>& delta,
+                           bool may_subtract);
+
+/// The first stage's B: per linear sRGB channel × exposure, the least the
+/// atmosphere passes draw on any pixel of sky of `frame` (a ray from the camera
+/// inside the air of body `site` that meets no body), from that air's
+/// SkyRadianceFloor through the colour weights and the sun's irradiance. Zeros
+/// where it does not apply: no such air resident, or colour weights that may
+/// subtract. What the stars and the night floor are tested against.
+std::array<double, 3> darkest_sky(const FrameState& frame, std::size_t site, double exposure,
+                                  const std::vector<std::array<double, 3>>& rgb_weights);
+
 /// The sky behind one star: the second stage's B_s (above), per linear sRGB
 /// channel × exposure. Built per frame for the camera in the site body's air.
 class StarSkyFloor {

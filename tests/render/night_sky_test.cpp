@@ -805,6 +805,44 @@ TEST(NightSkyPass, WhereTheSkyHidesEveryStarItsTestSkipsThemAndTheFrameMovesByLe
   EXPECT_GT(tested.renderer.last_frame().stars, 0u);
 }
 
+TEST(NightSkyPass, WhereTheTwilightSkyHidesTheNightFloorItsTestSkipsItAndTheFrameMovesByLessThanHalfACode) {
+  // The night floor's test against the sky behind it (render/frame/star_pass.h,
+  // the star test's B): through twilight, where the floor could move a code
+  // on a black sky but not on the darkest sky the passes draw, the pass is
+  // skipped, and the frame with the test against black only (which draws the
+  // floor) is within half a code of it. At night the floor is drawn.
+  RenderOptions o = options(false, true);
+  o.night_sky.moonlight = false;
+  RenderOptions against_black = o;
+  against_black.night_sky.skip_hidden_floor = false;
+  TestRenderer tested(o), forced(against_black);
+  const warp::FisheyeProjection dome(48, 48);
+  int skipped = 0;
+  for (double depression : {0.0, 4.0, 8.0, 12.0})
+    for (double exposure : {1e5, 3e5, 1e6}) {
+      const scene::Scene s = at_twilight(depression, exposure);
+      const auto a = tested.renderer.render_image(s, dome);
+      const bool drawn = tested.renderer.last_frame().night_sky_drawn;
+      const auto b = forced.renderer.render_image(s, dome);
+      const bool drawn_on_black = forced.renderer.last_frame().night_sky_drawn;
+      EXPECT_TRUE(drawn_on_black || !drawn) << "the test against the sky is the stricter";
+      if (!drawn_on_black) continue;  // invisible on black too
+      if (drawn) {
+        EXPECT_EQ(a, b);
+        continue;
+      }
+      ++skipped;
+      const testing::CodeDifference d = testing::code_difference(a, b);
+      std::printf("sun %4.1f° down, exposure %g: the floor skipped, %.3g code from the frame with it\n", depression,
+                  exposure, d.largest_code_change);
+      EXPECT_LT(d.largest_code_change, kInvisibleCodeChange) << "sun " << depression << "° down, exposure " << exposure;
+      EXPECT_LE(d.largest_byte_change, 1) << "sun " << depression << "° down, exposure " << exposure;
+    }
+  EXPECT_GE(skipped, 3) << "the twilight sky hides the floor in several of these frames";
+  tested.renderer.render_image(at_twilight(30.0, 3e5), dome);
+  EXPECT_TRUE(tested.renderer.last_frame().night_sky_drawn) << "night: the floor shows";
+}
+
 TEST(NightSkyPass, TheGpuPathCarriesTheStarsAsTheReadBackFrameDoes) {
   // From space (airless Earth below, black tiles around): stars land in tiles
   // no other pass drew; render_to_texture (the live path's bands) equals render_image.
