@@ -112,10 +112,12 @@ void time_stars(const StarTiming& t, const std::string& device, const scene::Sce
   if (!csv) throw std::runtime_error("cannot write " + t.csv.string());
   if (t.moonlight)
     csv << "device,resolution,projection,case,moonlight_drawn,moonlight_bound,frame_ms_without_moonlight,"
-           "frame_ms_with_moonlight,overhead_percent,moonlight_passes_ms,moonlight_sky_view_ms,atmosphere_passes_ms,"
+           "frame_ms_with_moonlight,overhead_percent,paired_overhead_percent,moonlight_passes_ms,moonlight_sky_view_ms,"
+           "atmosphere_passes_ms,"
            "frames\n";
   else
     csv << "device,resolution,projection,case,stars_drawn,frame_ms_without_stars,frame_ms_with_stars,overhead_percent,"
+           "paired_overhead_percent,"
            "star_placement_ms,star_splat_ms,night_sky_ms,frames\n";
   for (const auto& [w, h] : sizes) {
     const warp::PlanarProjection projection = warp::PlanarProjection::symmetric(w, h, t.fov_deg);
@@ -139,6 +141,12 @@ void time_stars(const StarTiming& t, const std::string& device, const scene::Sce
       const auto part = [&](const char* name) { return ms.contains(name) ? ms.at(name) : 0.0; };
       const double ma = median(a.ms), mb = median(b.ms);
       const double overhead = 100.0 * (mb - ma) / ma;
+      // The frames alternate without, with: the median of each pair's
+      // difference cancels the machine's slow drifts (a shared VM's frame times
+      // wander by more than the stars cost between runs).
+      std::vector<double> pairs;
+      for (std::size_t i = 0; i < std::min(a.ms.size(), b.ms.size()); ++i) pairs.push_back(b.ms[i] - a.ms[i]);
+      const double paired = 100.0 * median(pairs) / ma;
       const std::string label = day ? "day (scene's sun and exposure)" : "night";
       if (t.moonlight) {
         // The GPU time of the Moon's passes and of the sun's atmosphere passes, summed over their names.
@@ -150,26 +158,27 @@ void time_stars(const StarTiming& t, const std::string& device, const scene::Sce
             sun_ms += v;
         fmt::print(
             "  {}x{} planar {:g}°, {}: moonlight {} (bound {:.3g}); {:.1f} ms without, {:.1f} ms with: {:+.1f} %"
-            " (its passes {:.1f} ms, its sky-view table {:.2f} ms, the sun's atmosphere passes {:.1f} ms GPU; {} "
+            " (paired {:+.1f} %; its passes {:.1f} ms, its sky-view table {:.2f} ms, the sun's atmosphere passes "
+            "{:.1f} ms GPU; {} "
             "frames each)\n",
             w, h, t.fov_deg, label, b.stats.moonlight ? "drawn" : "skipped", b.stats.moonlight_bound, ma, mb, overhead,
-            moon_ms, part("sky-view table, moonlight"), sun_ms, a.ms.size());
+            paired, moon_ms, part("sky-view table, moonlight"), sun_ms, a.ms.size());
         csv << '"' << device << "\"," << w << 'x' << h << ",planar " << t.fov_deg << "deg," << (day ? "day" : "night")
             << ',' << b.stats.moonlight << ',' << b.stats.moonlight_bound << ','
-            << fmt::format("{:.3f},{:.3f},{:.2f},{:.3f},{:.3f},{:.3f}", ma, mb, overhead, moon_ms,
+            << fmt::format("{:.3f},{:.3f},{:.2f},{:.2f},{:.3f},{:.3f},{:.3f}", ma, mb, overhead, paired, moon_ms,
                            part("sky-view table, moonlight"), sun_ms)
             << ',' << a.ms.size() << '\n';
         continue;
       }
       fmt::print(
           "  {}x{} planar {:g}°, {}: {} stars drawn; {:.1f} ms without stars, {:.1f} ms with: {:+.1f} %"
-          " (placement {:.1f} ms CPU, splat {:.2f} ms, night sky {:.2f} ms GPU; {} frames each)\n",
-          w, h, t.fov_deg, label, b.stats.stars, ma, mb, overhead, part("star placement"), part("stars"),
+          " (paired {:+.1f} %; placement {:.1f} ms CPU, splat {:.2f} ms, night sky {:.2f} ms GPU; {} frames each)\n",
+          w, h, t.fov_deg, label, b.stats.stars, ma, mb, overhead, paired, part("star placement"), part("stars"),
           part("night sky"), a.ms.size());
       csv << '"' << device << "\"," << w << 'x' << h << ",planar " << t.fov_deg << "deg," << (day ? "day" : "night")
           << ',' << b.stats.stars << ','
-          << fmt::format("{:.3f},{:.3f},{:.2f},{:.3f},{:.3f},{:.3f}", ma, mb, overhead, part("star placement"),
-                         part("stars"), part("night sky"))
+          << fmt::format("{:.3f},{:.3f},{:.2f},{:.2f},{:.3f},{:.3f},{:.3f}", ma, mb, overhead, paired,
+                         part("star placement"), part("stars"), part("night sky"))
           << ',' << a.ms.size() << '\n';
     }
   }
