@@ -166,10 +166,15 @@ void StarField::directions_enu(const astro::AstroTime& time, const astro::Site& 
   const double angle = -kEarthRotationRate_rad_s * dt_s;
   out.resize(std::min(count, epoch_enu_.size()));
   const double c = std::cos(angle), s = std::sin(angle);
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const glm::dvec3& v = epoch_enu_[i];
-    out[i] = v * c + glm::cross(pole, v) * s + pole * (glm::dot(pole, v) * (1.0 - c));
-  }
+  // On the worker threads in chunks (0.7–0.9 ms for 101 922 stars on one of
+  // this project's VM's cores, every frame of a show).
+  constexpr std::size_t kChunk = 16384;
+  core::parallel_for((out.size() + kChunk - 1) / kChunk, 0, [&](std::size_t chunk) {
+    for (std::size_t i = chunk * kChunk; i < std::min(out.size(), (chunk + 1) * kChunk); ++i) {
+      const glm::dvec3& v = epoch_enu_[i];
+      out[i] = v * c + glm::cross(pole, v) * s + pole * (glm::dot(pole, v) * (1.0 - c));
+    }
+  });
 }
 
 namespace {
