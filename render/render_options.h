@@ -68,6 +68,11 @@ struct RenderOptions {
   /// goes through the G-buffer, atmosphere and resolve passes (the path the
   /// one-pass tiles are tested against).
   bool one_pass_tiles = true;
+  /// Zero an atmosphere's sky-and-ground tiles instead of drawing the sun's
+  /// pass over them where the sun's light could not move a display value
+  /// (render/frame/sun_light.h: the sun far below the horizon); false: the
+  /// sun's passes always run (the frame the test is checked against).
+  bool skip_hidden_sunlight = true;
   SkyViewTableUse sky_view_table = SkyViewTableUse::automatic;
   /// Time every pass (GL_TIME_ELAPSED queries; CPU steps by the wall clock) into
   /// FrameStats::pass_ms. Serialises the frame: for profiling, not for frame times.

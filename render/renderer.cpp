@@ -28,6 +28,7 @@
 #include "render/frame/moon_light.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/star_pass.h"
+#include "render/frame/sun_light.h"
 #include "render/frame/sun_refraction.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
@@ -176,6 +177,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   prepare_bodies(frame);
   make_tables_resident(frame);
   light_by_the_moon(frame, timer);
+  light_by_the_sun(frame, timer);
   choose_sky_view(frame);
   prepare_programs(frame);
   classify_bands(frame, timer);
@@ -346,12 +348,20 @@ void Renderer::choose_sky_view(Frame& frame) const {
 }
 
 void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
-  for (const AtmospherePass& pass : frame.passes) {
+  for (std::size_t a = 0; a < frame.passes.size(); ++a) {
+    const AtmospherePass& pass = frame.passes[a];
     if (!pass.sky_view) continue;
     const scene::Body& planet = frame.scene.bodies[static_cast<std::size_t>(pass.body)];
     const glm::dvec3 up = glm::normalize(frame.scene.camera.position_m - planet.position_m);
-    timer.gpu("sky-view table",
-              [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius); });
+    // The sun's table, unless no tile the sun's pass draws reads it (its sky
+    // and ground left black: render/frame/sun_light.h).
+    bool read = false;
+    for (const BandTiles& band : *frame.bands)
+      for (const auto& [variant, list] : band.lists[a].one_pass)
+        read = read || (variant.sky_view && !sky_and_ground_unlit(pass, variant));
+    if (read)
+      timer.gpu("sky-view table",
+                [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius); });
     if (pass.moon_sky_view)
       timer.gpu("sky-view table, moonlight", [&] {
         pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.moon.direction), frame.moon.angular_radius_rad,
@@ -383,6 +393,18 @@ void Renderer::light_by_the_moon(Frame& frame, PassTimer& timer) {
   }
   frame.moonlit = moon.any();
   frame.moon = std::move(moon.light);
+}
+
+void Renderer::light_by_the_sun(Frame& frame, PassTimer& timer) {
+  if (!options_.skip_hidden_sunlight) return;
+  std::vector<double> bounds;
+  timer.cpu("sunlight test", [&] { bounds = sunlight_bounds(frame); });
+  for (std::size_t a = 0; a < frame.passes.size(); ++a) {
+    if (!frame.passes[a].gpu) continue;
+    frame.passes[a].sunlit = bounds[a] >= kInvisibleDisplayStep;
+    stats_.sunlight_bound = std::max(stats_.sunlight_bound, bounds[a]);
+    stats_.sunlight_skipped = stats_.sunlight_skipped || !frame.passes[a].sunlit;
+  }
 }
 
 void Renderer::prepare_programs(Frame& frame) {
@@ -462,6 +484,17 @@ void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& t
     BandTiles band = bands[static_cast<std::size_t>(first_row / band_rows)];
     add_tile_stats(band);
     upload_tile_lists(band);
+    // Tiles the sun's pass leaves to black (render/frame/sun_light.h): the
+    // band's output zeroed first, one buffer clear instead of a pass's stores.
+    bool unlit = false;
+    for (std::size_t a = 0; a < frame.passes.size(); ++a)
+      for (const auto& [variant, list] : band.lists[a].one_pass)
+        unlit = unlit || sky_and_ground_unlit(frame.passes[a], variant);
+    if (unlit)
+      timer.gpu("clear (sun below)", [&] {
+        im.frame_rgb.clear_to_zero(
+            0, static_cast<std::size_t>(width) * static_cast<std::size_t>(rows) * 4 * sizeof(float));
+      });
     draw_direct_tiles(frame, band, timer);
     draw_one_pass_tiles(frame, band, timer);
     draw_gbuffer_tiles(frame, band, timer);
@@ -567,6 +600,11 @@ void Renderer::draw_one_pass_tiles(Frame& frame, const BandTiles& band, PassTime
       im.bodies.bind_storage(kBodies);
       im.tiles.bind_storage(kTiles);
       for (const auto& [tile_variant, list] : band.lists[a].one_pass) {
+        // The sun's light invisible through this atmosphere: its sky and
+        // ground stay as the band's clear left them (render_bands: zero);
+        // what lies beyond the shell (another body, the sun's disc) is drawn
+        // as always.
+        if (!moon && sky_and_ground_unlit(pass, tile_variant)) continue;
         TileVariant variant = tile_variant;
         if (moon) {
           variant.sun = false;

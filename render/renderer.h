@@ -20,6 +20,9 @@
 //     transmittance) and resolve.comp (airless surfaces, the sun's disc, colour);
 //   - where the Moon could light the sky visibly (render/frame/moon_light.h),
 //     the atmosphere tiles again with the Moon as the light, added;
+//   - where the sun could not (render/frame/sun_light.h: far below the
+//     horizon), an atmosphere's one-pass tiles of sky and ground are left at
+//     zero (the band's output cleared first) instead of drawn by the sun's pass;
 //
 // then the night sky's pass (render/frame/star_pass.h: the catalogue's stars as
 // point sources of flux, the night floor, light pollution) adds its light to
@@ -122,6 +125,12 @@ struct FrameStats {
   /// The test's bound: the largest linear display value the Moon's light could
   /// add through one atmosphere (the largest over them; 0 without a Moon).
   double moonlight_bound = 0.0;
+  /// The sun's light of the atmospheres (render/frame/sun_light.h): the
+  /// largest linear display value it could add through one of them, and
+  /// whether the test zeroed some atmosphere's sky-and-ground tiles instead of
+  /// drawing the sun's pass (the sun far below the horizon).
+  double sunlight_bound = 0.0;
+  bool sunlight_skipped = false;
   /// With RenderOptions::time_passes: milliseconds per pass or CPU step, summed over bands and groups.
   std::map<std::string, double> pass_ms;
 };
@@ -186,6 +195,7 @@ class Renderer {
   /// The Moon as a second light (render/frame/moon_light.h): its direction and
   /// irradiance, and whether its passes run (their own test).
   void light_by_the_moon(Frame& frame, PassTimer& timer);
+  void light_by_the_sun(Frame& frame, PassTimer& timer);
   /// Which atmospheres read a sky-view table: those whose shell holds the
   /// camera where the table is accurate (one table per table set); the Moon's
   /// own table too where it lights the pass and is as accurate for its cosine.

@@ -31,6 +31,7 @@ struct AtmospherePass {
   glm::dvec3 direction_camera{0.0};
   GpuAtmosphere* gpu = nullptr;
   bool sky_view = false;       // the camera is inside: the sky-view variant where it can
+  bool sunlit = true;          // the sun lights it visibly this frame (render/frame/sun_light.h)
   bool moonlit = false;        // the Moon lights it this frame (render/frame/moon_light.h)
   bool moon_sky_view = false;  // and the Moon's sky-view table is filled too
 };

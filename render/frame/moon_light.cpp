@@ -10,6 +10,7 @@
 #include "astro/sky_positions.h"
 #include "render/frame/sky_radiance_bound.h"
 #include "render/frame/star_pass.h"
+#include "render/frame/sun_light.h"
 #include "render/frame/tile_classification.h"
 #include "scene/local_horizon.h"
 
@@ -41,25 +42,8 @@ MoonLight moon_light(const FrameState& frame) {
   // exposure · Σ_λ max_c |w_c(λ)| E_moon(λ) K(λ), K the tables' bound per unit
   // irradiance for the Moon's cosine over the points a pixel reads.
   for (std::size_t a = 0; a < frame.passes.size(); ++a) {
-    const AtmospherePass& pass = frame.passes[a];
-    if (!pass.gpu) continue;
-    const scene::Body& planet = scene.bodies[static_cast<std::size_t>(pass.body)];
-    const glm::dvec3 up = glm::normalize(scene.camera.position_m - planet.position_m);
-    const ShellInView shell{pass.body, pass.direction_camera, pass.distance_m, pass.top_radius_m, true, false};
-    const bool bodies_inside = !bodies_inside_shell(scene, shell).empty();
-    const double mu_s_max = source_cosine_bound(glm::dot(up, out.light.direction), pass.distance_m,
-                                                pass.gpu->ground_radius_m(), pass.gpu->top_radius_m(), bodies_inside);
-    // A camera inside the shell with no other body in it reads the 4D tables at its own radius only.
-    const bool at_camera = !bodies_inside && pass.distance_m <= pass.gpu->top_radius_m();
-    const std::vector<double> k = pass.gpu->radiance_bound().radiance_per_irradiance(
-        mu_s_max,
-        at_camera ? std::optional<double>(std::max(pass.distance_m, pass.gpu->ground_radius_m())) : std::nullopt);
-    double bound = 0.0;
-    for (std::size_t i = 0; i < k.size() && i < frame.rgb_weights.size(); ++i) {
-      const auto& w = frame.rgb_weights[i];
-      bound += std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])}) * out.light.irradiance_W_m2_nm[i] * k[i];
-    }
-    out.bounds[a] = bound * scene.camera.exposure;
+    if (!frame.passes[a].gpu) continue;
+    out.bounds[a] = light_display_bound(frame, frame.passes[a], out.light.direction, out.light.irradiance_W_m2_nm);
     out.lit[a] = out.bounds[a] >= kInvisibleDisplayStep;
   }
   return out;

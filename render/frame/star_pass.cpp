@@ -175,13 +175,10 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
       // goes on pixels of sky only; zeros where that bound does not apply:
       // then on black)?
       std::array<double, 3> largest{0.0, 0.0, 0.0};
-      bool may_subtract = false;
       for (const auto& entry : t.rgb)
-        for (std::size_t c = 0; c < 3; ++c) {
-          largest[c] = std::max(largest[c], std::abs(static_cast<double>(entry[c])));
-          may_subtract = may_subtract || entry[c] < 0.0f;
-        }
-      for (const auto& w : frame.rgb_weights) may_subtract = may_subtract || w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0;
+        for (std::size_t c = 0; c < 3; ++c) largest[c] = std::max(largest[c], std::abs(static_cast<double>(entry[c])));
+      // A channel can go below its background only through a negative colour weight.
+      const bool may_subtract = !colour_weights_non_negative(frame.rgb_weights);
       const std::array<double, 3> sky = options_.skip_hidden_floor
                                             ? darkest_sky(frame, site_body, exposure, frame.rgb_weights)
                                             : std::array<double, 3>{0.0, 0.0, 0.0};

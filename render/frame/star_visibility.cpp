@@ -17,11 +17,13 @@ namespace {
 
 /// The pass's atmosphere that holds the camera and surrounds the site body
 /// (`site`): every ray from the camera that meets no body reads its sky at the
-/// camera from the 4D tables' sky half. Null where there is none.
+/// camera from the 4D tables' sky half. Null where there is none, and where
+/// the sun's pass does not draw that sky (AtmospherePass::sunlit: the sun too
+/// far down to show, its sky zeroed): then the sky is at least black only.
 const AtmospherePass* sky_at_camera(const FrameState& frame, std::size_t site) {
   for (const AtmospherePass& pass : frame.passes)
     if (pass.gpu && static_cast<std::size_t>(pass.body) == site && pass.distance_m <= pass.gpu->top_radius_m())
-      return &pass;
+      return pass.sunlit ? &pass : nullptr;
   return nullptr;
 }
 
@@ -32,13 +34,13 @@ double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
   return 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(a - b)));
 }
 
-bool non_negative(const std::vector<std::array<double, 3>>& rgb_weights) {
+}  // namespace
+
+bool colour_weights_non_negative(const std::vector<std::array<double, 3>>& rgb_weights) {
   bool yes = true;
   for (const auto& w : rgb_weights) yes &= w[0] >= 0.0 && w[1] >= 0.0 && w[2] >= 0.0;
   return yes;
 }
-
-}  // namespace
 
 double largest_code_change(const std::array<double, 3>& background, const std::array<double, 3>& delta,
                            bool may_subtract) {
@@ -54,7 +56,7 @@ double largest_code_change(const std::array<double, 3>& background, const std::a
 std::array<double, 3> darkest_sky(const FrameState& frame, std::size_t site, double exposure,
                                   const std::vector<std::array<double, 3>>& rgb_weights) {
   std::array<double, 3> out{0.0, 0.0, 0.0};
-  const AtmospherePass* pass = non_negative(rgb_weights) ? sky_at_camera(frame, site) : nullptr;
+  const AtmospherePass* pass = colour_weights_non_negative(rgb_weights) ? sky_at_camera(frame, site) : nullptr;
   if (!pass) return out;
   const scene::Scene& scene = frame.scene;
   const glm::dvec3 camera_m = scene.camera.position_m, planet_m = scene.bodies.at(site).position_m;
@@ -267,7 +269,7 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
   }
 
   // The sky's floor B from the tables, where it applies.
-  const bool weights_non_negative = non_negative(sky.rgb_weights);
+  const bool weights_non_negative = colour_weights_non_negative(sky.rgb_weights);
   const AtmospherePass* pass = weights_non_negative ? sky_at_camera(frame, site) : nullptr;
   out.sky_floor = darkest_sky(frame, site, sky.exposure, sky.rgb_weights);
 

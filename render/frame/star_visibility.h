@@ -157,6 +157,10 @@ bool invisible_change(double background, double delta, bool may_subtract);
 double largest_code_change(const std::array<double, 3>& background, const std::array<double, 3>& delta,
                            bool may_subtract);
 
+/// Whether every colour weight is ≥ 0 (the direct and sRGB mappings; the
+/// cie1931 mapping's negative lobes can take light away from a channel).
+bool colour_weights_non_negative(const std::vector<std::array<double, 3>>& rgb_weights);
+
 /// The first stage's B: per linear sRGB channel × exposure, the least the
 /// atmosphere passes draw on any pixel of sky of `frame` (a ray from the camera
 /// inside the air of body `site` that meets no body), from that air's

@@ -64,6 +64,17 @@ void Buffer::upload(std::span<const std::byte> data, std::size_t offset_bytes) {
   check_gl_error("Buffer::upload");
 }
 
+void Buffer::clear_to_zero(std::size_t offset_bytes, std::size_t size_bytes) {
+  if (id_ == 0) throw std::logic_error("Buffer::clear_to_zero on an empty buffer");
+  if (offset_bytes > size_ || size_bytes > size_ - offset_bytes)
+    throw std::out_of_range(fmt::format("Buffer::clear_to_zero: {} bytes at offset {} past the end of a {}-byte buffer",
+                                        size_bytes, offset_bytes, size_));
+  if (size_bytes == 0) return;
+  glClearNamedBufferSubData(id_, GL_R32UI, static_cast<GLintptr>(offset_bytes), static_cast<GLsizeiptr>(size_bytes),
+                            GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+  check_gl_error("Buffer::clear_to_zero");
+}
+
 std::vector<std::byte> Buffer::read_bytes(std::size_t offset_bytes, std::size_t size_bytes) const {
   if (id_ == 0) throw std::logic_error("Buffer::read_bytes on an empty buffer");
   if (offset_bytes > size_ || size_bytes > size_ - offset_bytes)

@@ -33,6 +33,10 @@ class Buffer {
   requires std::is_trivially_copyable_v<T>
   void upload(std::span<const T> data, std::size_t offset_bytes = 0) { upload(std::as_bytes(data), offset_bytes); }
 
+  /// Zeros `size_bytes` bytes from `offset_bytes` (a multiple of 4 each; on the
+  /// GPU, no upload); throws std::out_of_range past the end.
+  void clear_to_zero(std::size_t offset_bytes, std::size_t size_bytes);
+
   /// `size_bytes` bytes from `offset_bytes`. Issues
   /// glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first, so shader stores of
   /// earlier dispatches are visible.

@@ -732,6 +732,7 @@ TEST(NightSkyPass, TheSkyIsNoDarkerThanItsFloorFromTheTables) {
   const SkyRadianceFloor floor(t.model, t.tables, true);
   RenderOptions o = options(false, false);
   o.night_sky.moonlight = false;
+  o.skip_hidden_sunlight = false;  // the sky the tables give, also where it is too faint to show
   const warp::FisheyeProjection dome(48, 48);
   for (const SkyViewTableUse use : {SkyViewTableUse::automatic, SkyViewTableUse::off}) {
     o.sky_view_table = use;
@@ -841,6 +842,46 @@ TEST(NightSkyPass, WhereTheTwilightSkyHidesTheNightFloorItsTestSkipsItAndTheFram
   EXPECT_GE(skipped, 3) << "the twilight sky hides the floor in several of these frames";
   tested.renderer.render_image(at_twilight(30.0, 3e5), dome);
   EXPECT_TRUE(tested.renderer.last_frame().night_sky_drawn) << "night: the floor shows";
+}
+
+TEST(NightSkyPass, TheSunFarBelowTheHorizonIsNotDrawnAndTheFrameMovesByLessThanHalfACode) {
+  // render/frame/sun_light.h: where the sun's light through the atmosphere
+  // could not move a display value (the tables' bound for its cosine, times
+  // its irradiance and the exposure, under half a code step at black), the
+  // atmosphere's sky-and-ground tiles are zeroed instead of drawn by the sun's
+  // pass; the frame with the sun's passes forced on is within half a code of
+  // it, with the stars, the night floor and the Moon's light (the Moon up,
+  // 2026-01-03) added to both. In deep twilight the sun's pass runs.
+  REQUIRE_CATALOGUE();
+  RenderOptions o = options(true, true);
+  o.night_sky.moon = true;
+  RenderOptions forced = o;
+  forced.skip_hidden_sunlight = false;
+  TestRenderer tested(o), always(forced);
+  const warp::FisheyeProjection dome(48, 48);
+  for (double depression : {45.0, 60.0, 80.0})
+    for (double exposure : {3e5, 1e6}) {
+      scene::Scene s = at_twilight(depression, exposure);
+      s.sky_clock->time = astro::UtcTime{2026, 1, 3, 23, 0, 0.0};  // the full Moon 57° up
+      const std::string at = "sun " + std::to_string(depression) + "° down, exposure " + std::to_string(exposure);
+      const auto a = tested.renderer.render_image(s, dome);
+      const FrameStats stats = tested.renderer.last_frame();
+      EXPECT_TRUE(stats.sunlight_skipped) << at;
+      EXPECT_LT(stats.sunlight_bound, kInvisibleDisplayStep) << at;
+      EXPECT_TRUE(stats.moonlight) << at;
+      EXPECT_GT(stats.stars, 0u) << at;
+      const auto b = always.renderer.render_image(s, dome);
+      EXPECT_FALSE(always.renderer.last_frame().sunlight_skipped) << at;
+      const testing::CodeDifference d = testing::code_difference(a, b);
+      std::printf("%s: the sun's bound %.3g, its passes skipped; %.3g code from the frame with them\n", at.c_str(),
+                  stats.sunlight_bound, d.largest_code_change);
+      EXPECT_LT(d.largest_code_change, kInvisibleCodeChange) << at;
+      EXPECT_LE(d.largest_byte_change, 1) << at;
+    }
+  for (double depression : {14.0, 18.0}) {
+    tested.renderer.render_image(at_twilight(depression, 3e5), dome);
+    EXPECT_FALSE(tested.renderer.last_frame().sunlight_skipped) << "sun " << depression << "° down: its twilight shows";
+  }
 }
 
 TEST(NightSkyPass, TheGpuPathCarriesTheStarsAsTheReadBackFrameDoes) {
