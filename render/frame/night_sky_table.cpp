@@ -44,7 +44,7 @@ NightSkyTable night_sky_table(const StarAtmosphere& atmosphere, const glm::dvec3
       double v = 0.0;
       for (std::size_t k = 0; k < n; ++k) v += rgb_weights[k][c] * radiance[k];
       out[c] = static_cast<float>(v * exposure);
-      table.max_component = std::max(table.max_component, std::abs(v * exposure));
+      table.largest[c] = std::max(table.largest[c], std::abs(v * exposure));
     }
   }
   return table;

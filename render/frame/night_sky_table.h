@@ -24,7 +24,7 @@ struct NightSkyTable {
   glm::dvec3 up{0, 0, 1};                 ///< world frame, from the planet's centre through the camera
   double horizon_mu = 0.0;                ///< μh = −√(1 − (R/r)²)
   std::vector<std::array<float, 4>> rgb;  ///< (r, g, b, 0) × exposure per entry
-  double max_component = 0.0;             ///< the largest |r|, |g|, |b| of the table
+  std::array<double, 3> largest{};        ///< per channel, the largest |value| of the table
 };
 
 /// The table for a camera at `camera_m` inside `atmosphere`; `floor` and

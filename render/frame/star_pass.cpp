@@ -174,15 +174,12 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
       // a code step, on the darkest sky the atmosphere passes draw (the floor
       // goes on pixels of sky only; zeros where that bound does not apply:
       // then on black)?
-      std::array<double, 3> largest{0.0, 0.0, 0.0};
-      for (const auto& entry : t.rgb)
-        for (std::size_t c = 0; c < 3; ++c) largest[c] = std::max(largest[c], std::abs(static_cast<double>(entry[c])));
       // A channel can go below its background only through a negative colour weight.
       const bool may_subtract = !colour_weights_non_negative(frame.rgb_weights);
       const std::array<double, 3> sky = options_.skip_hidden_floor
                                             ? darkest_sky(frame, site_body, exposure, frame.rgb_weights)
                                             : std::array<double, 3>{0.0, 0.0, 0.0};
-      if (largest_code_change(sky, largest, may_subtract) >= kInvisibleCodeChange) {
+      if (largest_code_change(sky, t.largest, may_subtract) >= kInvisibleCodeChange) {
         floor_ = true;
         floor_table_ = t.rgb;
         floor_up_ = t.up;
