@@ -8,10 +8,8 @@
 #include "astro/civil_time.h"
 #include "astro/moon_photometry.h"
 #include "astro/sky_positions.h"
-#include "render/frame/sky_radiance_bound.h"
 #include "render/frame/star_pass.h"
 #include "render/frame/sun_light.h"
-#include "render/frame/tile_classification.h"
 #include "scene/local_horizon.h"
 
 namespace zenith::render {
