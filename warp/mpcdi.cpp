@@ -167,9 +167,7 @@ class MpcdiReader {
       fail(root, "<MPCDI> attribute 'profile' = '" + profile + "': must be one of 2d, 3d, a3, sl");
     }
     if (const std::string* version = root.attribute("version")) file.version = *version;
-    // color="1".."5" (table 3-3): the stages' types it allows; absent (v1 files, some writers): not checked.
-    if (const std::string* level = root.attribute("color"))
-      file.colour_level = integer_value(root, "attribute 'color' (the colour level, table 3-3)", *level, 1, 5);
+    if (const std::string* level = root.attribute("color")) file.colour_level = colour_level(root, *level);
 
     const XmlElement& display = required_child(root, "display");
     std::set<std::string> region_ids;
@@ -252,6 +250,21 @@ class MpcdiReader {
       fail(element, "<" + element.name + "> " + std::string(what) + " = '" + text + "': must be an integer in [" +
                         std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return static_cast<int>(value);
+  }
+  /// <MPCDI color="..">: the colour level, 1..5 (VESA MPCDI v2.0 table 3-3),
+  /// which bounds the stage types a <color> may use. Evans & Sutherland's
+  /// Digistar writes color="TBD": text that is no number (or is empty) reads
+  /// as "no level given" (0, nothing checked against it, no profile assumed),
+  /// with one warning; a number outside the table stays an error.
+  int colour_level(const XmlElement& root, const std::string& text) const {
+    if (!finite_number(text)) {
+      spdlog::warn(
+          "{}:{}: <MPCDI> attribute 'color' = '{}' is not a colour level (an integer in [1, 5], VESA MPCDI "
+          "v2.0 table 3-3): read as no colour level given",
+          source_, root.line, text);
+      return 0;
+    }
+    return integer_value(root, "attribute 'color' (the colour level, table 3-3)", text, 1, 5);
   }
   int optional_resolution(const XmlElement& element, std::string_view name) const {
     const std::string* text = element.attribute(name);

@@ -156,7 +156,7 @@ struct MpcdiFile {
   std::string descriptor;  ///< the member read as mpcdi.xml (also mpacs.xml, or the only .xml member)
   MpcdiProfile profile = MpcdiProfile::media_2d;
   std::string version;   ///< as written, "" when absent
-  int colour_level = 0;  ///< <MPCDI color=".."> in [1, 5] (table 3-3); 0 when absent (then not checked)
+  int colour_level = 0;  ///< <MPCDI color=".."> in [1, 5] (table 3-3); 0 when absent or not a number (then not checked)
   std::vector<MpcdiBuffer> buffers;
 
   /// The region with that id (ids are unique across buffers); nullptr when none.
