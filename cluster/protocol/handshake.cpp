@@ -140,6 +140,11 @@ Digest master_mac(const SharedSecret& secret, std::string_view cluster_name, std
                   const Nonce& node_nonce, const Nonce& master_nonce, PeerRole role) {
   return hmac_sha256(secret.bytes(), master_mac_input(cluster_name, node_name, node_nonce, master_nonce, role));
 }
+Digest datagram_key(const SharedSecret& secret, std::string_view cluster_name, std::string_view node_name,
+                    const Nonce& master_nonce, const Nonce& node_nonce) {
+  return hmac_sha256(secret.bytes(),
+                     mac_input("zenith datagrams v1", cluster_name, node_name, master_nonce, node_nonce));
+}
 
 // ---- node ------------------------------------------------------------------------
 
@@ -186,6 +191,11 @@ void NodeHandshake::on_welcome(const Welcome& welcome) {
   state_ = State::done;
 }
 
+Digest NodeHandshake::datagram_key() const {
+  if (state_ != State::done) throw std::logic_error("NodeHandshake::datagram_key before the master was verified");
+  return cluster::datagram_key(secret_, cluster_name_, node_name_, master_nonce_, node_nonce_);
+}
+
 // ---- master ----------------------------------------------------------------------
 
 MasterHandshake::MasterHandshake(SharedSecret secret, std::string cluster_name)
@@ -223,10 +233,20 @@ void MasterHandshake::on_authenticate(const Authenticate& authenticate) {
 }
 
 Welcome MasterHandshake::welcome(std::uint32_t node_id, std::uint64_t current_frame,
-                                 std::uint32_t heartbeat_interval_ms, std::uint32_t barrier_timeout_ms) const {
+                                 std::uint32_t heartbeat_interval_ms, std::uint32_t barrier_timeout_ms,
+                                 std::uint64_t master_time_ns) const {
   if (state_ != State::done) throw std::logic_error("MasterHandshake::welcome before the node authenticated");
-  return Welcome{node_id, master_mac(secret_, cluster_name_, node_name_, node_nonce_, master_nonce_, role_),
-                 current_frame, heartbeat_interval_ms, barrier_timeout_ms};
+  return Welcome{node_id,
+                 master_mac(secret_, cluster_name_, node_name_, node_nonce_, master_nonce_, role_),
+                 current_frame,
+                 heartbeat_interval_ms,
+                 barrier_timeout_ms,
+                 master_time_ns};
+}
+
+Digest MasterHandshake::datagram_key() const {
+  if (state_ != State::done) throw std::logic_error("MasterHandshake::datagram_key before the node authenticated");
+  return cluster::datagram_key(secret_, cluster_name_, node_name_, master_nonce_, node_nonce_);
 }
 
 }  // namespace zenith::cluster

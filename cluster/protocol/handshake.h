@@ -84,6 +84,13 @@ std::vector<std::uint8_t> master_mac_input(std::string_view cluster_name, std::s
 /// The connecting peer's proof (a node's, or a standby's with `role` standby).
 Digest node_mac(const SharedSecret& secret, std::string_view cluster_name, std::string_view node_name,
                 const Nonce& master_nonce, const Nonce& node_nonce, PeerRole role = PeerRole::node);
+/// The key of the session's datagrams (cluster/protocol/datagram.h):
+///   HMAC(secret, str("zenith datagrams v1") ‖ str(cluster) ‖ str(node) ‖ Nm ‖ Nn)
+/// Both sides derive it once the handshake is done; it never travels, and a
+/// new connection (new nonces) has a new key, so no datagram of an earlier
+/// session is ever accepted.
+Digest datagram_key(const SharedSecret& secret, std::string_view cluster_name, std::string_view node_name,
+                    const Nonce& master_nonce, const Nonce& node_nonce);
 /// The master's proof to a peer of `role`.
 Digest master_mac(const SharedSecret& secret, std::string_view cluster_name, std::string_view node_name,
                   const Nonce& node_nonce, const Nonce& master_nonce, PeerRole role = PeerRole::node);
@@ -113,6 +120,8 @@ class NodeHandshake {
   /// wrong (it does not know the secret) or when called out of order.
   void on_welcome(const Welcome& welcome);
   bool authenticated() const { return state_ == State::done; }
+  /// datagram_key() of this session; only once authenticated (else std::logic_error).
+  Digest datagram_key() const;
 
  private:
   enum class State { initial, hello_sent, authenticate_sent, done };
@@ -139,8 +148,10 @@ class MasterHandshake {
   void on_authenticate(const Authenticate& authenticate);
   /// Only after on_authenticate succeeded (else std::logic_error).
   Welcome welcome(std::uint32_t node_id, std::uint64_t current_frame, std::uint32_t heartbeat_interval_ms,
-                  std::uint32_t barrier_timeout_ms) const;
+                  std::uint32_t barrier_timeout_ms, std::uint64_t master_time_ns = 0) const;
   bool authenticated() const { return state_ == State::done; }
+  /// datagram_key() of this session; only once authenticated (else std::logic_error).
+  Digest datagram_key() const;
   /// The node's name from its Hello (empty before).
   const std::string& node_name() const { return node_name_; }
   /// The peer's role from its Hello (node before).

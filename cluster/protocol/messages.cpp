@@ -18,7 +18,7 @@ constexpr std::size_t kStringMax(std::size_t max_bytes) { return 2 + max_bytes; 
 constexpr std::size_t kDigestBytes = 32;
 
 constexpr std::size_t kHelloMax = 2 + kStringMax(kMaxNameBytes) * 2 + kDigestBytes + 1 + 8;
-constexpr std::size_t kWelcomeMax = 4 + kDigestBytes + 8 + 4 + 4;
+constexpr std::size_t kWelcomeMax = 4 + kDigestBytes + 8 + 4 + 4 + 8;
 constexpr std::size_t kRejectMax = 2 + kStringMax(kMaxReasonBytes);
 constexpr std::size_t kAtmosphereRefMax = kStringMax(kMaxNameBytes) + kDigestBytes + 8;
 /// FrameState's sky fields (scene::SkyFrame): flags u8, UTC Julian date 2 × f64, catalogue identity.
@@ -144,6 +144,16 @@ void validate(const Thumbnail& m, const Check& check) {
   check(m.rgb.size() == expected, "Thumbnail.rgb: " + std::to_string(m.rgb.size()) +
                                       " bytes, expected width · height · 3 = " + std::to_string(expected));
 }
+void validate(const FrameSchedule& m, const Check& check) {
+  check(m.period_ns >= kMinFramePeriodNs && m.period_ns <= kMaxFramePeriodNs,
+        "FrameSchedule.period_ns: " + std::to_string(m.period_ns) + " outside [" + std::to_string(kMinFramePeriodNs) +
+            ", " + std::to_string(kMaxFramePeriodNs) + "] (240 Hz to 1 Hz)");
+}
+void validate(const ClockPong& m, const Check& check) {
+  check(m.master_sent_ns >= m.master_received_ns,
+        "ClockPong.master_sent_ns: " + std::to_string(m.master_sent_ns) +
+            ", before master_received_ns = " + std::to_string(m.master_received_ns));
+}
 template <class T>
 void validate(const T&, const Check&) {}
 
@@ -181,6 +191,23 @@ void layout(Io&& io, M& m) {
   io(m.current_frame, "Welcome.current_frame");
   io(m.heartbeat_interval_ms, "Welcome.heartbeat_interval_ms");
   io(m.barrier_timeout_ms, "Welcome.barrier_timeout_ms");
+  io(m.master_time_ns, "Welcome.master_time_ns");
+}
+template <class Io, MessageOf<FrameSchedule> M>
+void layout(Io&& io, M& m) {
+  io(m.frame, "FrameSchedule.frame");
+  io(m.present_at_ns, "FrameSchedule.present_at_ns");
+  io(m.period_ns, "FrameSchedule.period_ns");
+}
+template <class Io, MessageOf<ClockPing> M>
+void layout(Io&& io, M& m) {
+  io(m.node_sent_ns, "ClockPing.node_sent_ns");
+}
+template <class Io, MessageOf<ClockPong> M>
+void layout(Io&& io, M& m) {
+  io(m.node_sent_ns, "ClockPong.node_sent_ns");
+  io(m.master_received_ns, "ClockPong.master_received_ns");
+  io(m.master_sent_ns, "ClockPong.master_sent_ns");
 }
 template <class Io, MessageOf<RenderDone> M>
 void layout(Io&& io, M& m) {
@@ -189,6 +216,7 @@ void layout(Io&& io, M& m) {
   io(m.presents, "RenderDone.presents");
   io(m.late_presents, "RenderDone.late_presents");
   io(m.present_ms, "RenderDone.present_ms");
+  io(m.missed_frames, "RenderDone.missed_frames");
 }
 template <class Io, MessageOf<PreviewRequest> M>
 void layout(Io&& io, M& m) {
@@ -403,6 +431,9 @@ Message read(MessageType type, ByteReader& r) {
     }
     case MessageType::heartbeat: return Heartbeat{r.u64("Heartbeat.sent_time_ns")};
     case MessageType::goodbye: return Goodbye{r.string(kMaxReasonBytes, "Goodbye.reason")};
+    case MessageType::frame_schedule: return read_fields<FrameSchedule>(r);
+    case MessageType::clock_ping: return read_fields<ClockPing>(r);
+    case MessageType::clock_pong: return read_fields<ClockPong>(r);
   }
   throw ProtocolError(ProtocolErrorCode::unknown_type, "message type " + std::to_string(static_cast<int>(type)));
 }
@@ -439,6 +470,12 @@ constexpr MessageType type_of() {
     return MessageType::preview_request;
   else if constexpr (std::is_same_v<T, Thumbnail>)
     return MessageType::thumbnail;
+  else if constexpr (std::is_same_v<T, FrameSchedule>)
+    return MessageType::frame_schedule;
+  else if constexpr (std::is_same_v<T, ClockPing>)
+    return MessageType::clock_ping;
+  else if constexpr (std::is_same_v<T, ClockPong>)
+    return MessageType::clock_pong;
   else {
     static_assert(std::is_same_v<T, Goodbye>);
     return MessageType::goodbye;
@@ -479,6 +516,9 @@ const char* to_string(MessageType type) {
     case MessageType::atmosphere_definition: return "AtmosphereDefinition";
     case MessageType::heartbeat: return "Heartbeat";
     case MessageType::goodbye: return "Goodbye";
+    case MessageType::frame_schedule: return "FrameSchedule";
+    case MessageType::clock_ping: return "ClockPing";
+    case MessageType::clock_pong: return "ClockPong";
   }
   return "unknown";
 }
@@ -491,7 +531,7 @@ std::optional<std::size_t> max_payload_bytes(std::uint16_t type_value) {
     case MessageType::welcome: return kWelcomeMax;
     case MessageType::reject: return kRejectMax;
     case MessageType::frame_state: return kFrameStateMax;
-    case MessageType::render_done: return 40;
+    case MessageType::render_done: return 48;
     case MessageType::present: return 8;
     case MessageType::preview_request: return kPreviewRequestMax;
     case MessageType::thumbnail: return kThumbnailMax;
@@ -501,6 +541,9 @@ std::optional<std::size_t> max_payload_bytes(std::uint16_t type_value) {
     case MessageType::atmosphere_definition: return kDefinitionMax;
     case MessageType::heartbeat: return 8;
     case MessageType::goodbye: return kGoodbyeMax;
+    case MessageType::frame_schedule: return 24;
+    case MessageType::clock_ping: return 8;
+    case MessageType::clock_pong: return 24;
   }
   return std::nullopt;
 }

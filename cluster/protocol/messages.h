@@ -33,7 +33,7 @@
 namespace zenith::cluster {
 
 /// Bumped on any change to the header or to any payload layout (docs/protocol.md, "Versioning").
-inline constexpr std::uint16_t kProtocolVersion = 4;
+inline constexpr std::uint16_t kProtocolVersion = 5;
 inline constexpr std::array<std::uint8_t, 4> kMagic = {'Z', 'N', 'T', 'H'};
 inline constexpr std::size_t kHeaderBytes = 20;
 
@@ -71,12 +71,15 @@ enum class MessageType : std::uint16_t {
   present = 18,                ///< master → node: every node is done, swap now
   preview_request = 19,        ///< master → node, before a FrameState: send thumbnails of that frame
   thumbnail = 20,              ///< node → master, before the RenderDone of a frame the master asked thumbnails of
+  frame_schedule = 21,         ///< master → node, right before a FrameState: when to present it (scheduled frames)
   table_announce = 32,         ///< master → node
   table_chunk = 33,            ///< master → node
   table_ready = 34,            ///< node → master
   atmosphere_definition = 35,  ///< master → node, before the TableAnnounce of a set
   heartbeat = 48,              ///< both ways
   goodbye = 49,                ///< both ways, then close
+  clock_ping = 50,             ///< node → master, in a datagram: the node's clock (clock offset, link check)
+  clock_pong = 51,             ///< master → node, in a datagram: the ping answered with the master's clock
 };
 /// "Hello", "FrameState", ...; "unknown" for values outside the enum.
 const char* to_string(MessageType type);
@@ -122,6 +125,10 @@ struct Welcome {
   std::uint64_t current_frame = 0;          ///< the frame the master is at
   std::uint32_t heartbeat_interval_ms = 0;  ///< each side sends a Heartbeat at least this often
   std::uint32_t barrier_timeout_ms = 0;     ///< a node not done within this is dropped from the frame
+  /// The master's steady clock when it sent the Welcome (ns): the node's
+  /// first estimate of the clock offset, good to the one-way delay, until
+  /// its ClockPings give a better one (cluster/link/clock_sync.h). Version 5.
+  std::uint64_t master_time_ns = 0;
   bool operator==(const Welcome&) const = default;
 };
 /// Reason codes of Reject. Unknown values are kept as they are (a newer peer
@@ -171,12 +178,28 @@ struct RenderDone {
   std::uint64_t presents = 0;       ///< frames this node's process presented in windows so far (0 headless)
   std::uint64_t late_presents = 0;  ///< of those, presented late (a missed vblank); ≤ presents
   double present_ms = 0.0;  ///< its last present: Present's arrival to the completed swap (ms, ≥ 0; 0 headless)
+  /// Scheduled frames this node did not present so far in this connection:
+  /// they came after their moment, or not at all (cluster/node/present_schedule.h). Version 5.
+  std::uint64_t missed_frames = 0;
   bool operator==(const RenderDone&) const = default;
 };
 struct Present {
   std::uint64_t frame = 0;
   bool operator==(const Present&) const = default;
 };
+/// Master → node, right before the FrameState of `frame` when the frames are
+/// scheduled (docs/cluster.md, "The frame schedule"): present that frame when
+/// the master's steady clock reads `present_at_ns` (the node maps it to its
+/// own clock), whether or not any other node has rendered it. No Present
+/// follows. `period_ns` is the schedule's frame period. Version 5.
+struct FrameSchedule {
+  std::uint64_t frame = 0;
+  std::uint64_t present_at_ns = 0;  ///< the master's steady clock (ns)
+  std::uint64_t period_ns = 0;      ///< in [kMinFramePeriodNs, kMaxFramePeriodNs]
+  bool operator==(const FrameSchedule&) const = default;
+};
+/// A frame period the schedule may have: 240 Hz to 1 Hz.
+inline constexpr std::uint64_t kMinFramePeriodNs = 4'000'000, kMaxFramePeriodNs = 1'000'000'000;
 
 /// Master → node, right before the FrameState of `frame`: send a thumbnail
 /// of every output of that frame (at most `edge_px` on its longer side) with
@@ -245,10 +268,26 @@ struct Goodbye {
   std::string reason;  ///< ≤ kMaxReasonBytes UTF-8 bytes
   bool operator==(const Goodbye&) const = default;
 };
+/// Node → master in a datagram (cluster/protocol/datagram.h), a few times a
+/// second: the node's steady clock when it sent it (t1). Version 5.
+struct ClockPing {
+  std::uint64_t node_sent_ns = 0;
+  bool operator==(const ClockPing&) const = default;
+};
+/// Master → node in a datagram, at once: the ping's t1 echoed, and the
+/// master's steady clock when the ping arrived (t2) and when this left (t3).
+/// With its arrival (t4) the node has one sample of the clock offset
+/// ((t2 − t1) + (t3 − t4)) / 2 and of the round trip (t4 − t1) − (t3 − t2). Version 5.
+struct ClockPong {
+  std::uint64_t node_sent_ns = 0;
+  std::uint64_t master_received_ns = 0;
+  std::uint64_t master_sent_ns = 0;  ///< ≥ master_received_ns
+  bool operator==(const ClockPong&) const = default;
+};
 
-using Message =
-    std::variant<Hello, Challenge, Authenticate, Welcome, Reject, FrameState, RenderDone, Present, TableAnnounce,
-                 TableChunk, TableReady, Heartbeat, Goodbye, AtmosphereDefinition, PreviewRequest, Thumbnail>;
+using Message = std::variant<Hello, Challenge, Authenticate, Welcome, Reject, FrameState, RenderDone, Present,
+                             TableAnnounce, TableChunk, TableReady, Heartbeat, Goodbye, AtmosphereDefinition,
+                             PreviewRequest, Thumbnail, FrameSchedule, ClockPing, ClockPong>;
 
 MessageType message_type(const Message& message);
 

@@ -40,10 +40,10 @@ std::vector<Message> sample_messages() {
   out.push_back(Hello{kProtocolVersion, "dome-a", "node-3", pattern<32>(1)});
   out.push_back(Challenge{pattern<32>(2)});
   out.push_back(Authenticate{pattern<32>(3)});
-  out.push_back(Welcome{3, pattern<32>(4), 1000, 250, 2000});
+  out.push_back(Welcome{3, pattern<32>(4), 1000, 250, 2000, 5'000'000'123ull});
   out.push_back(Reject{RejectReason::authentication_failed, "wrong shared secret"});
   out.push_back(sample_frame_state(3, 2, 0));
-  out.push_back(RenderDone{123456789012ull, 8.25, 5000, 3, 16.5});
+  out.push_back(RenderDone{123456789012ull, 8.25, 5000, 3, 16.5, 2});
   out.push_back(Present{123456789012ull});
   out.push_back(TableAnnounce{pattern<32>(5), 10000, 4096, 3, pattern<32>(6)});
   TableChunk chunk{pattern<32>(5), 2, {}};
@@ -61,6 +61,9 @@ std::vector<Message> sample_messages() {
   out.push_back(thumbnail);
   out.push_back(Hello{kProtocolVersion, "dome-a", "standby@10.0.0.2:47101", pattern<32>(8), PeerRole::standby});
   out.push_back(Reject{RejectReason::wrong_role, "the cluster config has no standby"});
+  out.push_back(FrameSchedule{123456789014ull, 7'000'016'666'667ull, 16'666'667ull});
+  out.push_back(ClockPing{6'000'000'001ull});
+  out.push_back(ClockPong{6'000'000'001ull, 7'000'000'250ull, 7'000'000'270ull});
   return out;
 }
 
@@ -73,14 +76,14 @@ std::vector<Message> max_size_messages() {
   out.push_back(Hello{kProtocolVersion, name, name, pattern<32>(11), PeerRole::standby});
   out.push_back(Challenge{pattern<32>(12)});
   out.push_back(Authenticate{pattern<32>(13)});
-  out.push_back(Welcome{0xFFFFFFFFu, pattern<32>(14), ~std::uint64_t{0}, 0xFFFFFFFFu, 0xFFFFFFFFu});
+  out.push_back(Welcome{0xFFFFFFFFu, pattern<32>(14), ~std::uint64_t{0}, 0xFFFFFFFFu, 0xFFFFFFFFu, ~std::uint64_t{0}});
   out.push_back(Reject{static_cast<RejectReason>(0xFFFF), reason});
   FrameState f = sample_frame_state(kMaxWavelengths, kMaxAtmospheres, kMaxNameBytes);
   f.frame = ~std::uint64_t{0};
   f.render_flags = kKnownRenderFlags;
   f.sky = {true, 2488069.0, 0.5, pattern<32>(19)};  // the largest sky: a date, a catalogue identity
   out.push_back(f);
-  out.push_back(RenderDone{~std::uint64_t{0}, 1e300, ~std::uint64_t{0}, ~std::uint64_t{0}, 1e300});
+  out.push_back(RenderDone{~std::uint64_t{0}, 1e300, ~std::uint64_t{0}, ~std::uint64_t{0}, 1e300, ~std::uint64_t{0}});
   out.push_back(Present{~std::uint64_t{0}});
   out.push_back(TableAnnounce{pattern<32>(15), kMaxTableTotalBytes, static_cast<std::uint32_t>(kMaxTableChunkBytes),
                               static_cast<std::uint32_t>(kMaxTableTotalBytes / kMaxTableChunkBytes), pattern<32>(16)});
@@ -100,6 +103,9 @@ std::vector<Message> max_size_messages() {
   thumbnail.rgb.resize(std::size_t{kMaxThumbnailEdgePx} * kMaxThumbnailEdgePx * 3);
   for (std::size_t i = 0; i < thumbnail.rgb.size(); ++i) thumbnail.rgb[i] = static_cast<std::uint8_t>(i * 13);
   out.push_back(std::move(thumbnail));
+  out.push_back(FrameSchedule{~std::uint64_t{0}, ~std::uint64_t{0}, kMaxFramePeriodNs});
+  out.push_back(ClockPing{~std::uint64_t{0}});
+  out.push_back(ClockPong{~std::uint64_t{0}, ~std::uint64_t{0}, ~std::uint64_t{0}});
   return out;
 }
 

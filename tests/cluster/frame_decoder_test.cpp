@@ -112,10 +112,12 @@ TEST(FrameDecoder, UnsupportedVersionInTheHeader) {
   put_be16(f, 4, 1);  // the first release: no AtmosphereDefinition
   expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 1");
   put_be16(f, 4, 2);  // no PreviewRequest and Thumbnail: a node of version 2 is refused, not half served
-  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 4");
+  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 2, this build speaks 5");
   put_be16(f, 4,
            3);  // no Hello.instance_id, FrameState without the fade and the sky, RenderDone without present counts
-  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 3, this build speaks 4");
+  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 3, this build speaks 5");
+  put_be16(f, 4, 4);  // no scheduled frames, datagrams or clock exchange: its nodes would wait for Presents
+  expect_error(f, ProtocolErrorCode::unsupported_version, "frame header version: 4, this build speaks 5");
 }
 
 TEST(FrameDecoder, UnsupportedVersionInHello) {

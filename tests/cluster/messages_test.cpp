@@ -39,7 +39,7 @@ TEST(Messages, HeaderBytesOfAKnownFrameStateAreBigEndian) {
   const Bytes payload(frame.begin() + kHeaderBytes, frame.end());
   const std::uint32_t crc = crc32c(payload);
   const Bytes expected_header = {'Z', 'N', 'T', 'H',                                          // magic
-                                 0x00, 0x04,                                                  // version 4
+                                 0x00, 0x05,                                                  // version 5
                                  0x00, 0x10,                                                  // type 16 = FrameState
                                  0x00, 0x00, 0x00, static_cast<std::uint8_t>(payload_bytes),  // length
                                  // payload CRC-32C
@@ -104,15 +104,15 @@ TEST(Messages, DocumentedMaximumPayloads) {
       {MessageType::hello, 2u + 66u + 66u + 32u + 1u + 8u},
       {MessageType::challenge, 32u},     // nonce
       {MessageType::authenticate, 32u},  // MAC
-      // node id, MAC, current frame, heartbeat interval, barrier timeout
-      {MessageType::welcome, 4u + 32u + 8u + 4u + 4u},
+      // node id, MAC, current frame, heartbeat interval, barrier timeout, master's clock
+      {MessageType::welcome, 4u + 32u + 8u + 4u + 4u + 8u},
       {MessageType::reject, 2u + 1026u},  // reason, text
       // frame, show time, camera position and orientation, exposure, sun direction and radius; 64 irradiance
       // samples; 8 atmospheres (body name, table hash, from frame); flags; fade level and colour; sky clock
       // (has time, two-part Julian date, catalogue digest)
       {MessageType::frame_state, 8u + 8u + 3u * 8u + 4u * 8u + 8u + 3u * 8u + 8u + (1u + 64u * 8u) +
                                      (1u + 8u * (66u + 32u + 8u)) + 4u + 8u + 3u * 8u + 1u + 2u * 8u + 32u},
-      {MessageType::render_done, 5u * 8u},  // frame, render ms, presents, late presents, present ms
+      {MessageType::render_done, 6u * 8u},  // frame, render ms, presents, late presents, present ms, missed frames
       {MessageType::present, 8u},           // frame
       // hash, total bytes, chunk bytes, chunk count, content digest
       {MessageType::table_announce, 32u + 8u + 4u + 4u + 32u},
@@ -124,7 +124,10 @@ TEST(Messages, DocumentedMaximumPayloads) {
       {MessageType::atmosphere_definition, 66u + 32u + 4u + 262144u},
       {MessageType::preview_request, 8u + 2u},  // frame, edge
       // frame, output name, width, height, length, 64 × 64 RGB bytes
-      {MessageType::thumbnail, 8u + 66u + 2u + 2u + 4u + 64u * 64u * 3u}};
+      {MessageType::thumbnail, 8u + 66u + 2u + 2u + 4u + 64u * 64u * 3u},
+      {MessageType::frame_schedule, 3u * 8u},  // frame, moment on the master's clock, period
+      {MessageType::clock_ping, 8u},           // the node's clock
+      {MessageType::clock_pong, 3u * 8u}};     // the ping's stamp, the master's clock at arrival and answer
   for (const auto& [type, bytes] : expected)
     EXPECT_EQ(max_payload_bytes(static_cast<std::uint16_t>(type)), bytes) << to_string(type);
   EXPECT_FALSE(max_payload_bytes(0).has_value());
