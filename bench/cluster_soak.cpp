@@ -283,11 +283,12 @@ int run(const Options& opt) {
   const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
 
   const fs::path config = zenith::bench::write_tiny_cluster(
-      dir,
-      {"soak", opt.nodes, opt.size_px, port,
-       fmt::format(R"({{"heartbeat_ms": 200, "barrier_timeout_ms": 2000, "frame_rate_hz": {}, "reconnect_s": 60}})",
-                   opt.fps),
-       kSecretVar, "small", 1});
+      dir, {"soak", opt.nodes, opt.size_px, port,
+            // The barrier: the soak counts every frame each surviving node presents.
+            fmt::format(R"({{"heartbeat_ms": 200, "barrier_timeout_ms": 2000, "frame_rate_hz": {}, "reconnect_s": 60, )"
+                        R"("lookahead_frames": 0}})",
+                        opt.fps),
+            kSecretVar, "small", 1});
   const auto started = Clock::now();
   const auto deadline = started + std::chrono::seconds(opt.timeout_s);
 

@@ -11,6 +11,10 @@ using SteadyClock = std::chrono::steady_clock;
 inline double ms_since(SteadyClock::time_point start) {
   return std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();
 }
+/// Milliseconds from `start` to `end` (negative when `end` comes first).
+inline double ms_between(SteadyClock::time_point start, SteadyClock::time_point end) {
+  return std::chrono::duration<double, std::milli>(end - start).count();
+}
 /// Seconds since `start`.
 inline double seconds_since(SteadyClock::time_point start) {
   return std::chrono::duration<double>(SteadyClock::now() - start).count();

@@ -48,6 +48,12 @@ void read_timing(JsonReader& t, ClusterConfig& c) {
   c.heartbeat_ms = static_cast<std::uint32_t>(t.integer("heartbeat_ms", 10, 60000));
   c.barrier_timeout_ms = static_cast<std::uint32_t>(t.integer("barrier_timeout_ms", 10, 600000));
   c.frame_rate_hz = t.number("frame_rate_hz", kMinFrameRateHz, kMaxFrameRateHz, "Hz");
+  c.lookahead_frames = static_cast<int>(
+      std::lround(t.number_or("lookahead_frames", kDefaultLookaheadFrames, 0, kMaxLookaheadFrames, "frames")));
+  c.black_when_link_lost = t.string_or("link_lost", "hold", {"hold", "black"}) == "black";
+  if (t.has("lookahead_frames") && !t.raw("lookahead_frames").is_number_integer())
+    t.fail("lookahead_frames",
+           cat("must be an integer in [0, ", kMaxLookaheadFrames, "], got ", t.raw("lookahead_frames").dump()));
   c.reconnect_ms = static_cast<std::uint32_t>(
       std::lround(1000.0 * t.number_or("reconnect_s", kDefaultReconnectMs / 1000.0, 0.0, kMaxReconnectS, "s")));
   t.finish();

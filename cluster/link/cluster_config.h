@@ -71,6 +71,10 @@ struct ClusterNodeConfig {
 /// The range of timing.frame_rate_hz: up to the fastest projectors (240 Hz).
 inline constexpr double kMinFrameRateHz = 0.01;
 inline constexpr double kMaxFrameRateHz = 240.0;
+/// The range and default of timing.lookahead_frames: 3 frames (50 ms at 60 Hz)
+/// cover a lost datagram twice over and a node's render.
+inline constexpr int kMaxLookaheadFrames = 30;
+inline constexpr int kDefaultLookaheadFrames = 3;
 /// The largest swap_group accepted (drivers offer a few; the driver's own limit is checked on the node).
 inline constexpr int kMaxSwapGroup = 64;
 
@@ -89,6 +93,16 @@ struct ClusterConfig {
   /// The master starts frames no faster than this: the projectors' refresh
   /// rate on a live dome (60, 120 Hz), [kMinFrameRateHz, kMaxFrameRateHz].
   double frame_rate_hz = 30.0;
+  /// Scheduled frames (timing.lookahead_frames, [0, kMaxLookaheadFrames]):
+  /// each frame is sent this many periods before its moment and every node
+  /// presents it then, waiting for no other node (docs/cluster.md, "The
+  /// frame schedule"); the operator's input shows this much later. 0: the
+  /// frame barrier (each frame presented once every node has rendered it).
+  int lookahead_frames = kDefaultLookaheadFrames;
+  /// What a node's projectors show while its link to the master is cut
+  /// (timing.link_lost, "hold" or "black"), once its scheduled frames ran out:
+  /// the last frame (hold), or black (docs/cluster.md, "The frame schedule").
+  bool black_when_link_lost = false;
   /// Every node's windows join this swap group (GLX_NV_swap_group, bound to
   /// swap barrier 1: Quadro Sync); 0: none (render/window/swap_sync.h).
   unsigned swap_group = 0;

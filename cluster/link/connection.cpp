@@ -136,4 +136,11 @@ void Connection::finish(const std::string& reason) {
   }
 }
 
+std::optional<boost::asio::ip::tcp::endpoint> Connection::remote_endpoint() const {
+  boost::system::error_code ec;
+  const boost::asio::ip::tcp::endpoint endpoint = socket_.remote_endpoint(ec);
+  if (ec) return std::nullopt;
+  return endpoint;
+}
+
 }  // namespace zenith::cluster

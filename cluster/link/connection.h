@@ -15,6 +15,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,8 @@ class Connection : public std::enable_shared_from_this<Connection> {
   /// "127.0.0.1:53122" (or the name given), for logs.
   const std::string& peer() const { return peer_; }
   void set_peer(std::string peer) { peer_ = std::move(peer); }
+  /// The peer's address and port (nothing once the socket is closed).
+  std::optional<boost::asio::ip::tcp::endpoint> remote_endpoint() const;
   /// When bytes last arrived from the peer (for liveness).
   std::chrono::steady_clock::time_point last_received() const { return last_received_; }
   /// Until lift_payload_limit(): every payload at most `max_bytes` (a larger

@@ -262,4 +262,14 @@ void MasterLink::heartbeat_tick(std::uint64_t generation) {
   });
 }
 
+std::optional<boost::asio::ip::tcp::endpoint> MasterLink::master_endpoint() const {
+  if (!connection_ || !protocol_.welcomed()) return std::nullopt;
+  return connection_->remote_endpoint();
+}
+
+std::optional<Digest> MasterLink::datagram_key() const {
+  if (!connection_ || !protocol_.welcomed()) return std::nullopt;
+  return protocol_.datagram_key();
+}
+
 }  // namespace zenith::cluster

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,10 @@ class MasterLink {
   void stop();
 
   bool stopping() const { return stopping_; }
+  /// The welcomed connection's master (address and port) and the session's
+  /// datagram key (cluster/protocol/datagram.h); nothing while not welcomed.
+  std::optional<boost::asio::ip::tcp::endpoint> master_endpoint() const;
+  std::optional<Digest> datagram_key() const;
   /// "host:port" of the master in use (or tried next), for logs.
   std::string master_address() const;
 

@@ -104,6 +104,8 @@ class MasterLinkProtocol {
   Step on_message(const Message& message);
 
   bool welcomed() const { return welcomed_; }
+  /// The session's datagram key (handshake.h); only once welcomed.
+  Digest datagram_key() const { return handshake_->datagram_key(); }
   /// Between ticks and Heartbeats: the configuration's before Welcome, the master's after.
   std::uint32_t heartbeat_ms() const { return heartbeat_ms_; }
   /// After Welcome: silence after which the master counts as silent,

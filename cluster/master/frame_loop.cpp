@@ -8,6 +8,7 @@
 
 #include <boost/asio/post.hpp>
 
+#include "cluster/protocol/datagram.h"
 #include "core/strings.h"
 #include "core/timing.h"
 #include "scene/frame_scene.h"
@@ -78,26 +79,27 @@ bool FrameLoop::next_frame(FrameState& next) {
   return true;
 }
 
-void FrameLoop::start_frame() {
-  if (p_.progress.stopping) return;
-  const std::vector<std::uint32_t> participants = p_.barrier.participants_among(p_.sessions.ready_ids());
+std::optional<FrameState> FrameLoop::frame_for(const std::vector<std::uint32_t>& participants,
+                                               const std::vector<std::uint32_t>& holders) {
   if (participants.empty()) {
     if (!waiting_logged_) spdlog::warn("master: no node is ready for frame {}; waiting", p_.barrier.frame());
     waiting_logged_ = true;
-    return retry_after(milliseconds(20));
+    retry_after(milliseconds(20));
+    return std::nullopt;
   }
   waiting_logged_ = false;
   p_.tables.maybe_start_switch();
   if (!held_frame_) {
     FrameState next;
-    if (!next_frame(next)) return;
+    if (!next_frame(next)) return std::nullopt;
     held_frame_ = std::move(next);
     held_since_ = Clock::now();
     held_logged_ = false;
   }
-  if (!p_.tables.participants_hold(*held_frame_, participants, !held_logged_)) {
+  if (!p_.tables.participants_hold(*held_frame_, holders, !held_logged_)) {
     held_logged_ = true;
-    return retry_after(milliseconds(20));
+    retry_after(milliseconds(20));
+    return std::nullopt;
   }
   if (held_logged_) {
     spdlog::info("master: frame {} goes on after waiting {:.1f} s for its tables", held_frame_->frame,
@@ -106,10 +108,20 @@ void FrameLoop::start_frame() {
     // catching up on the time spent waiting.
     pacer_.hold(Clock::now() - held_since_);
   }
-  FrameState& state = p_.progress.in_flight;
-  state = std::move(*held_frame_);
+  FrameState state = std::move(*held_frame_);
   held_frame_.reset();
   if (p_.play.show && !p_.options.feed) p_.tables.apply_overrides(state);
+  return state;
+}
+
+void FrameLoop::start_frame() {
+  if (p_.progress.stopping) return;
+  if (schedule_started_) return schedule_tick();
+  const std::vector<std::uint32_t> participants = p_.barrier.participants_among(p_.sessions.ready_ids());
+  std::optional<FrameState> next = frame_for(participants, participants);
+  if (!next) return;
+  FrameState& state = p_.progress.in_flight;
+  state = std::move(*next);
   const std::uint64_t frame = p_.options.feed ? state.frame : p_.barrier.frame();
   auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode(state));
   if (p_.desk.wants_preview(frame)) {  // before the FrameState it names
@@ -130,6 +142,15 @@ void FrameLoop::start_frame() {
 
 void FrameLoop::on_render_done(const NodeSession& s, const RenderDone& done) {
   note_presents(s, done);
+  if (schedule_started_ && done.frame > 0) {  // scheduled: a report, nothing waits for it
+    p_.statistics.rendered(s.name, done.render_ms, false);
+    if (const std::uint64_t missed = p_.statistics.missed(s.name, done.missed_frames); missed > 0)
+      spdlog::warn(
+          "master: node '{}' missed {} scheduled frame{} (they reached it too late, or not at all); {} so "
+          "far",
+          s.name, missed, missed == 1 ? "" : "s", p_.statistics.of(s.name).missed_frames);
+    return;
+  }
   switch (p_.barrier.on_render_done(s.id, done.frame)) {
     case FrameBarrier::Report::counted:
       p_.statistics.rendered(s.name, done.render_ms, p_.barrier.complete() && p_.barrier.participant_count() > 1);
@@ -198,7 +219,18 @@ void FrameLoop::complete_frame() {
     p_.play.recorder->record(p_.progress.in_flight);
   }
   if (p_.options.feed) p_.options.feed->presented(frame);
-  if (p_.options.paced && p_.progress.presented == 0) {
+  if (p_.options.paced && p_.progress.presented == 0 && scheduled()) {
+    // Frame 0 warmed the nodes up; frame 1 is due a full lookahead from now,
+    // so that it too reaches every node that far ahead of its moment.
+    const int lookahead = p_.options.config.lookahead_frames;
+    pacer_.start(Clock::now() + (lookahead - 1) * pacer_.period());
+    schedule_started_ = true;
+    spdlog::info(
+        "master: warm-up frame {} presented after {:.1f} ms; scheduled frames at {} Hz from now, each sent {} "
+        "frame{} ({:.1f} ms) ahead of its moment",
+        frame, ms_since(frame_started_), p_.play.fps, lookahead, lookahead == 1 ? "" : "s",
+        lookahead * std::chrono::duration<double, std::milli>(pacer_.period()).count());
+  } else if (p_.options.paced && p_.progress.presented == 0) {
     // Frame 0 warmed the nodes up (its programs, buffers, uploads and first
     // swap, however long they took): the schedule starts at its Present.
     pacer_.start(Clock::now());
@@ -216,6 +248,7 @@ void FrameLoop::complete_frame() {
     boost::asio::post(frame_timer_.get_executor(), [this] { start_frame(); });
     return;
   }
+  if (schedule_started_) return after_tick(false);  // frame 1 goes out a lookahead before its moment
   // Pace: frame N starts no earlier than show start + N / rate (frame_pacer.h).
   const std::uint64_t slips = pacer_.slips();
   const Clock::duration wait = pacer_.wait_before(presented, Clock::now());
@@ -226,6 +259,116 @@ void FrameLoop::complete_frame() {
         "master: frame {} is more than a period behind the {} Hz schedule (the slowest node, or the tables): "
         "the schedule moves on instead of bursting frames ({} time{} so far)",
         presented, p_.play.fps, pacer_.slips(), pacer_.slips() == 1 ? "" : "s");
+  }
+  retry_after(wait);
+}
+
+// ---- scheduled frames -----------------------------------------------------------
+
+namespace {
+std::uint64_t ns_of(FrameLoop::Clock::time_point t) {
+  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count());
+}
+}  // namespace
+
+void FrameLoop::schedule_tick() {
+  const std::vector<std::uint32_t> nodes = p_.sessions.ready_ids();
+  // A frame waits for its tables on the nodes that can be reached, not on
+  // one cut off: that node skips the frames whose tables it lacks until they
+  // arrive, as a late joiner does, and the dome goes on.
+  std::vector<std::uint32_t> reachable;
+  for (const std::uint32_t id : nodes)
+    if (const NodeSession* s = p_.sessions.find(id); s && !s->link_quiet) reachable.push_back(id);
+  std::optional<FrameState> next = frame_for(nodes, reachable);
+  if (!next) return;
+  const FrameState state = std::move(*next);
+  const std::uint64_t frame = p_.barrier.frame();
+  const std::uint64_t n = p_.progress.presented;  // frames since the start: frame 0 was the warm-up
+  const auto period_ns = static_cast<std::uint64_t>(std::chrono::nanoseconds(pacer_.period()).count());
+  const FrameSchedule when{frame, ns_of(pacer_.due(n)), period_ns};
+
+  // The frames still ahead of their moment go again to the nodes heard on
+  // UDP: a lost datagram costs nothing while one of its copies arrives.
+  const auto now = Clock::now();
+  while (!ahead_.empty() && ahead_.front().when.present_at_ns <= ns_of(now)) ahead_.pop_front();
+  for (const Scheduled& a : ahead_)
+    for (const std::uint32_t id : nodes)
+      if (const NodeSession* s = p_.sessions.find(id); s && p_.datagrams.reaches(*s, now))
+        p_.datagrams.send(*s, std::make_shared<const std::vector<std::uint8_t>>(
+                                  seal_datagram(*s->datagram_key, s->id, std::vector<Message>{a.when, a.state})));
+  if (p_.desk.wants_preview(frame)) {  // before the frame it names
+    auto request =
+        std::make_shared<const std::vector<std::uint8_t>>(encode(PreviewRequest{frame, kMaxThumbnailEdgePx}));
+    for (const std::uint32_t id : nodes) p_.sessions.find(id)->connection->send_encoded(request);
+  }
+  send_scheduled(state, when, nodes);
+  ahead_.push_back({when, state});
+
+  // A standby follows every frame as under the barrier (its takeover goes on from the last one sent).
+  p_.sessions.send_to_standbys(std::make_shared<const std::vector<std::uint8_t>>(encode(state)));
+  p_.sessions.send_to_standbys(std::make_shared<const std::vector<std::uint8_t>>(encode(Present{frame})));
+  if (p_.play.recorder) {
+    for (const AtmosphereTableRef& r : state.atmospheres)
+      p_.play.recorder->add_version(p_.tables.tables().version(r.table_hash));
+    p_.play.recorder->record(state);
+  }
+  p_.progress.in_flight = state;
+  p_.barrier.start_at(frame + 1);
+  const std::uint64_t sent = ++p_.progress.presented;
+  spdlog::debug("master: frame {} scheduled on {} node{} for {:.1f} ms from now", frame, nodes.size(),
+                nodes.size() == 1 ? "" : "s",
+                static_cast<double>(static_cast<std::int64_t>(when.present_at_ns - ns_of(now))) / 1e6);
+  const bool last =
+      (p_.options.frames != 0 && sent >= p_.options.frames) || (p_.play.clock && p_.play.clock->finished());
+  after_tick(last);
+}
+
+void FrameLoop::send_scheduled(const FrameState& state, const FrameSchedule& when,
+                               const std::vector<std::uint32_t>& nodes) {
+  const auto now = Clock::now();
+  std::shared_ptr<const std::vector<std::uint8_t>> tcp_schedule, tcp_state;
+  for (const std::uint32_t id : nodes) {
+    NodeSession* s = p_.sessions.find(id);
+    if (s == nullptr) continue;
+    if (p_.datagrams.reaches(*s, now)) {
+      p_.datagrams.send(*s, std::make_shared<const std::vector<std::uint8_t>>(
+                                seal_datagram(*s->datagram_key, s->id, std::vector<Message>{when, state})));
+      continue;
+    }
+    // Not heard on UDP (a firewall, a node just welcomed): TCP, once.
+    if (!tcp_state) {
+      tcp_schedule = std::make_shared<const std::vector<std::uint8_t>>(encode(when));
+      tcp_state = std::make_shared<const std::vector<std::uint8_t>>(encode(state));
+    }
+    s->connection->send_encoded(tcp_schedule);
+    s->connection->send_encoded(tcp_state);
+  }
+}
+
+void FrameLoop::after_tick(bool last_frame) {
+  const std::uint64_t sent = p_.progress.presented;
+  if (last_frame) {
+    // Stop once the nodes have presented the last frame: its moment and a period more.
+    const std::string reason = p_.options.frames != 0 && sent >= p_.options.frames
+                                   ? cat("show finished after ", sent, " frames")
+                                   : cat("show '", p_.play.show->name(), "' finished after ", sent, " frames");
+    frame_timer_.expires_at(pacer_.due(sent - 1) + pacer_.period());
+    frame_timer_.async_wait([this, reason](const boost::system::error_code& ec) {
+      if (!ec) p_.stop(reason);
+    });
+    return;
+  }
+  // The tick of frame n: lookahead periods before its moment.
+  const Clock::duration lookahead = p_.options.config.lookahead_frames * pacer_.period();
+  const std::uint64_t slips = pacer_.slips();
+  const Clock::duration wait = pacer_.wait_before(sent, Clock::now() + lookahead);
+  if (pacer_.slips() != slips && (slips == 0 || sent >= last_slip_logged_ + static_cast<std::uint64_t>(p_.play.fps))) {
+    last_slip_logged_ = sent;
+    spdlog::info(
+        "master: frame {} could not be sent {} frame{} ahead of its moment (the master was held up): the schedule "
+        "moves on ({} time{} so far)",
+        sent, p_.options.config.lookahead_frames, p_.options.config.lookahead_frames == 1 ? "" : "s", pacer_.slips(),
+        pacer_.slips() == 1 ? "" : "s");
   }
   retry_after(wait);
 }

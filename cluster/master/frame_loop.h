@@ -8,8 +8,17 @@
 // drops the late ones) releases Present; the next frame starts at the frame
 // rate (live) or at once (offline). The master stops after its frames, at the
 // end of a show or of a feed. On the master's io_context, its timers only.
+//
+// Scheduled frames (a paced show with timing.lookahead_frames > 0; docs/cluster.md,
+// "The frame schedule"): after the warm-up frame 0, no barrier. Frame n is
+// sent lookahead periods before its moment t0 + n / rate, with that moment
+// (FrameSchedule), to every ready node — as a datagram to the nodes heard on
+// UDP, again at every tick until its moment, else on TCP — and each node
+// presents it at that moment on its own; RenderDone only reports. No node and
+// no link can hold up another node's frames.
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <optional>
@@ -21,6 +30,7 @@
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/frame_pacer.h"
 #include "cluster/master/master.h"
+#include "cluster/master/node_datagrams.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
 #include "cluster/master/operator_desk.h"
@@ -47,6 +57,7 @@ class FrameLoop {
     const OperatorDesk& desk;
     NodeStatistics& statistics;
     FrameProgress& progress;
+    NodeDatagrams& datagrams;
     std::function<void(const std::string& reason)> stop;  ///< the master stops (the show is over)
   };
 
@@ -69,11 +80,33 @@ class FrameLoop {
  private:
   void start_frame();
   bool next_frame(FrameState& next);
+  /// The next frame for `participants`, once `holders` hold its table sets
+  /// (the operator's overrides applied); nothing when there is none yet —
+  /// no participant, the feed has none, or its tables are on their way: a
+  /// retry is then set.
+  std::optional<FrameState> frame_for(const std::vector<std::uint32_t>& participants,
+                                      const std::vector<std::uint32_t>& holders);
   void on_barrier_timeout();
   void complete_frame();
   void note_presents(const NodeSession& session, const RenderDone& done);
   /// start_frame after `delay` unless the timer is cancelled (stop) or set again.
   void retry_after(Clock::duration delay);
+
+  // ---- scheduled frames ----
+  bool scheduled() const { return p_.options.paced && !p_.options.feed && p_.options.config.lookahead_frames > 0; }
+  /// Sends the next frame, lookahead periods before its moment, and the
+  /// frames still ahead again to the nodes heard on UDP; then waits for the next tick.
+  void schedule_tick();
+  /// After a tick: the next one, or the stop once the last frame's moment has passed.
+  void after_tick(bool last_frame);
+  void send_scheduled(const FrameState& state, const FrameSchedule& when, const std::vector<std::uint32_t>& nodes);
+  /// A frame sent with its moment, kept to be sent again until then.
+  struct Scheduled {
+    FrameSchedule when;
+    FrameState state;
+  };
+  std::deque<Scheduled> ahead_;
+  bool schedule_started_ = false;
 
   Parts p_;
   boost::asio::steady_timer barrier_timer_, frame_timer_;

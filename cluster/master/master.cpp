@@ -15,6 +15,7 @@
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/frame_loop.h"
 #include "cluster/master/heartbeat_monitor.h"
+#include "cluster/master/node_datagrams.h"
 #include "cluster/master/node_listener.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
@@ -52,10 +53,11 @@ struct Master::Impl {
   /// it: SIGINT then cancels their precompute); before, SIGINT/SIGTERM end the process at once.
   std::optional<asio::signal_set> signals;
   asio::steady_timer heartbeat_timer{io};
-  NodeSessions sessions;               ///< every node connection, from accept to close
-  NodeListener listener;               ///< accepts connections as sessions in their handshake
-  core::LogLimiters anonymous_closes;  ///< log lines of connections closed before their Hello, per kind of reason
-  FrameBarrier barrier;                ///< the frame in flight (or the next one), its participants, lagging nodes
+  NodeSessions sessions;                  ///< every node connection, from accept to close
+  NodeListener listener;                  ///< accepts connections as sessions in their handshake
+  NodeDatagrams datagrams{io, sessions};  ///< the nodes' ClockPings answered, scheduled frames sent
+  core::LogLimiters anonymous_closes;     ///< log lines of connections closed before their Hello, per kind of reason
+  FrameBarrier barrier;                   ///< the frame in flight (or the next one), its participants, lagging nodes
   HeartbeatMonitor heartbeats{options.config.heartbeat_ms};  ///< when to send Heartbeats, when to close
   NodeStatistics node_statistics;                            ///< per node name, for the console's status
   FrameProgress progress;  ///< frame 0 started, stopping, frames presented, the frame in flight
@@ -110,7 +112,7 @@ struct Master::Impl {
                                       [this](const std::string& reason) { stop(reason); }},
                  scene);
     loop.emplace(io, FrameLoop::Parts{options, play, sessions, barrier, *tables, *desk, node_statistics, progress,
-                                      [this](const std::string& reason) { stop(reason); }});
+                                      datagrams, [this](const std::string& reason) { stop(reason); }});
   }
 
   /// A standby taking over (docs/cluster.md, "Standby master"): the table
@@ -217,6 +219,7 @@ struct Master::Impl {
 
   void heartbeat_tick() {
     sessions.check_heartbeats(heartbeats, Clock::now());
+    datagrams.check_links(Clock::now(), options.config.black_when_link_lost);
     if (options.feed && options.feed->done() && !barrier.in_flight())  // the feeding side ended (or gave up)
       return stop("the frame feed ended");
     if (!progress.started) loop->maybe_start();
@@ -248,6 +251,7 @@ struct Master::Impl {
     if (tables) tables->stop();
     boost::system::error_code ec;
     listener.close();
+    datagrams.close();
     if (desk) desk->close();
     if (signals) signals->cancel(ec);
     heartbeat_timer.cancel();
@@ -262,6 +266,7 @@ struct Master::Impl {
     // are served once the tables are ready.
     const std::uint16_t port = options.port.value_or(options.config.master_port);
     listener.listen(options.config.master_host, port);
+    datagrams.open(options.config.master_host, port);  // UDP, the same port number
     listener.limit_unauthenticated(options.config.max_unauthenticated_connections);
     desk->start_console(io, options.operator_console);
     if (options.on_listening) options.on_listening();  // `zenith cluster` starts its nodes now

@@ -1,5 +1,6 @@
 #include "cluster/master/master_status.h"
 
+#include <chrono>
 #include <stdexcept>
 #include <vector>
 
@@ -29,6 +30,18 @@ std::string node_state(const NodeSession& session, const FrameBarrier& barrier) 
   return "unknown";
 }
 
+/// How the node's datagrams reach the master (docs/cluster.md, "The frame
+/// schedule"): "datagrams" (its ClockPings arrive: frames go that way),
+/// "unreachable" (none for NodeDatagrams::kQuiet: its link is cut, its
+/// projectors hold the last frame while the others go on), "tcp only" (never
+/// heard on UDP: a firewall), or null without a session.
+json link_status(const NodeSession* session, std::chrono::steady_clock::time_point now) {
+  if (session == nullptr || session->state == NodeSession::State::handshake) return nullptr;
+  if (!session->datagram_peer) return {{"state", "tcp only"}, {"silent_ms", nullptr}};
+  const double silent_ms = std::chrono::duration<double, std::milli>(now - session->last_datagram).count();
+  return {{"state", session->link_quiet ? "unreachable" : "datagrams"}, {"silent_ms", silent_ms}};
+}
+
 /// One configured node: its newest open session, if any, and its statistics.
 json node_status(const StatusSources& s, const ClusterNodeConfig& node) {
   // The newest session of the node (a reconnecting node replaces its old one).
@@ -53,6 +66,8 @@ json node_status(const StatusSources& s, const ClusterNodeConfig& node) {
           {"presents", counts.presents},
           {"late_presents", counts.late_presents},
           {"last_present_ms", counts.last_present_ms ? json(*counts.last_present_ms) : json(nullptr)},
+          {"missed_frames", counts.missed_frames},
+          {"link", link_status(session, std::chrono::steady_clock::now())},
           {"tables_held", std::move(held)}};
 }
 

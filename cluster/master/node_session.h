@@ -9,6 +9,8 @@
 #include <set>
 #include <string>
 
+#include <boost/asio/ip/udp.hpp>
+
 #include "cluster/link/connection.h"
 #include "cluster/protocol/handshake.h"
 
@@ -40,6 +42,16 @@ struct NodeSession {
   std::set<Digest> tables_ready;  ///< TableReady after the inventory: held, verified and loaded
   std::uint64_t chunks_sent = 0;
   std::chrono::steady_clock::time_point connected_at = std::chrono::steady_clock::now();
+  /// Datagrams (cluster/protocol/datagram.h): the session's key, once
+  /// authenticated; where its ClockPings come from (where its scheduled
+  /// frames go), and when the last one came: a node silent on UDP for
+  /// kDatagramSilenceMs gets its frames over TCP.
+  std::optional<Digest> datagram_key;
+  std::optional<boost::asio::ip::udp::endpoint> datagram_peer;
+  std::chrono::steady_clock::time_point last_datagram{};
+  std::uint64_t clock_pings = 0;
+  /// No datagram for NodeDatagrams::kQuiet: its link is cut (logged once, and again when it is back).
+  bool link_quiet = false;
 
   /// "node 'a' (127.0.0.1:5000)", "the standby (127.0.0.1:5000)", or "connection from 127.0.0.1:5000" before Hello: for
   /// logs.

@@ -136,7 +136,11 @@ void NodeSessions::on_handshake_message(NodeSession& s, const Message& message, 
       other->connection->close("replaced by a new connection of the same node");
       break;
     }
-    s.connection->send(s.handshake->welcome(s.id, current_frame, config.heartbeat_ms, config.barrier_timeout_ms));
+    s.connection->send(s.handshake->welcome(
+        s.id, current_frame, config.heartbeat_ms, config.barrier_timeout_ms,
+        static_cast<std::uint64_t>(
+            std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count())));
+    s.datagram_key = s.handshake->datagram_key();
     s.state = NodeSession::State::tables;
     s.connection->lift_payload_limit();  // it proved the secret: table sets and thumbnails may follow
     if (s.role == PeerRole::standby)

@@ -27,6 +27,18 @@ std::uint64_t NodeStatistics::presented(const std::string& node, std::uint64_t p
   return new_late;
 }
 
+std::uint64_t NodeStatistics::missed(const std::string& node, std::uint64_t missed_frames) {
+  PresentBase& b = present_bases_[node];
+  if (missed_frames < b.reported_missed) {  // a new process
+    b.missed += b.reported_missed;
+    b.reported_missed = 0;
+  }
+  const std::uint64_t new_missed = missed_frames - b.reported_missed;
+  b.reported_missed = missed_frames;
+  counts_[node].missed_frames = b.missed + missed_frames;
+  return new_missed;
+}
+
 NodeStatistics::Counts NodeStatistics::of(const std::string& node) const {
   const auto it = counts_.find(node);
   return it == counts_.end() ? Counts{} : it->second;

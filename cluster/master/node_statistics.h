@@ -26,6 +26,9 @@ class NodeStatistics {
     std::uint64_t presents = 0;             ///< frames presented in windows (0: headless)
     std::uint64_t late_presents = 0;        ///< of those, late: a missed vblank
     std::optional<double> last_present_ms;  ///< its latest present: Present's arrival to the completed swap
+    /// Scheduled frames it did not present (they reached it after their moment,
+    /// or not at all: a cut link), summed over its processes (RenderDone.missed_frames).
+    std::uint64_t missed_frames = 0;
   };
 
   /// RenderDone for the frame in flight took `render_ms` on the node;
@@ -39,6 +42,10 @@ class NodeStatistics {
   std::uint64_t presented(const std::string& node, std::uint64_t presents, std::uint64_t late_presents,
                           double present_ms);
 
+  /// A RenderDone's missed scheduled frames (the node process's total so far);
+  /// returns how many are new since its previous report.
+  std::uint64_t missed(const std::string& node, std::uint64_t missed_frames);
+
   /// The counts of `node`; all zero for a node never seen.
   Counts of(const std::string& node) const;
 
@@ -47,6 +54,7 @@ class NodeStatistics {
   struct PresentBase {
     std::uint64_t presents = 0, late = 0;                    ///< summed over earlier processes
     std::uint64_t reported_presents = 0, reported_late = 0;  ///< the current process's last report
+    std::uint64_t missed = 0, reported_missed = 0;
   };
   std::map<std::string, Counts> counts_;
   std::map<std::string, PresentBase> present_bases_;

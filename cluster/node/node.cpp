@@ -13,12 +13,16 @@
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/named_inputs.h"
 #include "cluster/link/link_exit.h"
+#include "cluster/link/master_datagrams.h"
 #include "cluster/link/master_link.h"
 #include "cluster/node/known_atmospheres.h"
+#include "cluster/node/present_schedule.h"
 #include "cluster/node/render_worker.h"
 #include "cluster/protocol/heartbeat.h"
 #include "cluster/protocol/table_transfer.h"
+#include "core/log_limiter.h"
 #include "core/strings.h"
+#include "core/timing.h"
 #include "render/lut/table_provider.h"
 #include "scene/scene_loader.h"
 #include "warp/viewport_config.h"
@@ -72,6 +76,21 @@ struct Node::Impl {
   bool connected = false;  ///< welcomed, and the connection not lost since
   /// The master's latest PreviewRequest: thumbnails of that frame go with its RenderDone.
   std::optional<PreviewRequest> preview_request;
+  /// Scheduled frames (docs/cluster.md, "The frame schedule"): they come in
+  /// datagrams (or, where none get through, as FrameSchedule + FrameState on
+  /// TCP), each with its moment on the master's clock; the schedule says when
+  /// to render and present them, the timer wakes the node at the next moment.
+  MasterDatagrams datagrams{io, cat("node '", options.node_name, "'"),
+                            [this](MasterDatagrams::ScheduledFrame&& f) { on_scheduled_frame(f.schedule, f.state); }};
+  PresentSchedule schedule;
+  asio::steady_timer present_timer{io};
+  std::optional<FrameSchedule> tcp_schedule;  ///< a FrameSchedule on TCP, for the FrameState that follows it
+  core::LogLimiter late_frames_log, held_tables_log;
+  std::uint64_t reported_missed = 0;  ///< schedule.missed() at the last log line
+  bool scheduled_frames = false;      ///< the master schedules its frames (else: the barrier)
+  /// Every 100 ms: whether the master's datagrams stopped (the link is cut).
+  asio::steady_timer link_watch{io};
+  bool link_watched = false, link_quiet = false, blanked = false;
   LinkEnd end;  // the exit code, decided by the first finish()
 
   // ---- the render thread: GL, the renderer, the frame files ----
@@ -80,7 +99,7 @@ struct Node::Impl {
   Impl(NodeOptions o, SharedSecret secret)
       : options(std::move(o)),
         link(io, link_setup(options), std::move(secret),
-             MasterLink::Events{[this](const Welcome&) { on_welcomed(); }, [this](const std::string&) { on_lost(); },
+             MasterLink::Events{[this](const Welcome& w) { on_welcomed(w); }, [this](const std::string&) { on_lost(); },
                                 [this](const Message& m) { on_master_message(m); },
                                 [this](int code) { finish(code); }}) {}
 
@@ -94,11 +113,46 @@ struct Node::Impl {
 
   /// Welcomed (first, or again after a loss): a new session; the inventory
   /// tells the master which tables not to send again.
-  void on_welcomed() {
+  void on_welcomed(const Welcome& welcome) {
     ++session;
     connected = true;
     receiver = TableReceiver{};
     send_inventory();
+    // Datagrams go to the master's port number over UDP (docs/cluster.md, "Setting up the network").
+    if (const auto master = link.master_endpoint(); master && link.datagram_key())
+      datagrams.start(asio::ip::udp::endpoint(master->address(), master->port()), welcome.node_id, *link.datagram_key(),
+                      welcome.master_time_ns, Clock::now());
+    if (!link_watched) watch_link();
+  }
+
+  /// The master's datagrams (its clock answers, every 100 ms) stopped for
+  /// 0.5 s: the link is cut. Logged once; once the scheduled frames ran out,
+  /// the projectors show black where the config says "link_lost": "black"
+  /// (else they hold the last frame). Logged again when datagrams come back.
+  void watch_link() {
+    link_watched = true;
+    const auto now = Clock::now();
+    const std::optional<Clock::time_point> heard = datagrams.last_heard();
+    const bool quiet = scheduled_frames && heard && now - *heard > std::chrono::milliseconds(500);
+    if (quiet && !link_quiet)
+      spdlog::warn(
+          "node '{}': nothing from the master for 0.5 s (link cut?): its scheduled frames play out, then "
+          "the projectors {}",
+          options.node_name, options.config.black_when_link_lost ? "show black" : "hold the last frame");
+    if (!quiet && link_quiet) spdlog::info("node '{}': the master's datagrams come again", options.node_name);
+    link_quiet = quiet;
+    if (quiet && options.config.black_when_link_lost && !blanked && !schedule.wake_at() && schedule.pending() == 0) {
+      worker->blank();
+      blanked = true;
+      spdlog::warn(
+          "node '{}': its scheduled frames ran out: showing black until frames come again "
+          "(timing.link_lost)",
+          options.node_name);
+    }
+    link_watch.expires_after(std::chrono::milliseconds(100));
+    link_watch.async_wait([this](const boost::system::error_code& ec) {
+      if (!ec && !end.finished) watch_link();
+    });
   }
 
   /// The connection is lost (MasterLink reconnects): forget the frame in
@@ -108,12 +162,84 @@ struct Node::Impl {
     connected = false;
     preview_request.reset();
     receiver = TableReceiver{};
-    worker->abandon_frames();
+    datagrams.stop();
+    tcp_schedule.reset();
+    // Scheduled frames stay: the master decided them, and each is shown at
+    // its moment (a standby taking over goes on after the last one it saw).
+    // A barrier's frame in flight is never presented: its Present cannot come.
+    if (!scheduled_frames) worker->abandon_frames();
+  }
+
+  /// A scheduled frame (a datagram's, or FrameSchedule + FrameState on TCP):
+  /// into the schedule at its moment on this node's clock. A frame whose
+  /// tables this node does not hold yet is skipped (the projector keeps the
+  /// last frame): a datagram may overtake the TableAnnounce on TCP.
+  void on_scheduled_frame(const FrameSchedule& when, const FrameState& state) {
+    if (!connected) return;
+    scheduled_frames = true;
+    const auto now = Clock::now();
+    for (const AtmosphereTableRef& ref : state.atmospheres)
+      if (!held_tables.count(ref.table_hash) || ref.effective_from_frame > state.frame) {
+        if (const auto more = held_tables_log.admit(now))
+          spdlog::warn(
+              "node '{}': skipping scheduled frame {}: it uses table set {} of '{}', which this node does "
+              "not hold yet{}",
+              options.node_name, state.frame, short_hex(ref.table_hash), ref.body_name, *more);
+        return;
+      }
+    const Clock::time_point moment = datagrams.to_local(when.present_at_ns);
+    const PresentSchedule::Arrival arrival = schedule.on_frame(state, moment, now);
+    if (arrival == PresentSchedule::Arrival::taken) blanked = false;
+    if (arrival == PresentSchedule::Arrival::late)
+      if (const auto more = late_frames_log.admit(now))
+        spdlog::warn(
+            "node '{}': frame {} arrived {:.1f} ms after its moment: dropped (the projector keeps the last "
+            "frame){}",
+            options.node_name, state.frame, core::ms_between(moment, now), *more);
+    pump_schedule();
+  }
+
+  /// Does what the schedule says is due now (render the next frame, present
+  /// the current one), then sleeps until its next moment.
+  void pump_schedule() {
+    const auto now = Clock::now();
+    while (std::optional<PresentSchedule::Step> step = schedule.next(now)) {
+      if (step->kind == PresentSchedule::Step::Kind::render) {
+        const bool thumbnails = preview_request && preview_request->frame == step->frame;
+        worker->render(step->state, session, thumbnails ? preview_request->edge_px : 0);
+        if (thumbnails) preview_request.reset();
+      } else {
+        worker->present(step->frame, step->present_at);
+      }
+    }
+    if (schedule.missed() > reported_missed) {
+      spdlog::warn(
+          "node '{}': {} scheduled frame{} not presented so far (they came too late, or not at all; last "
+          "presented {})",
+          options.node_name, schedule.missed(), schedule.missed() == 1 ? "" : "s",
+          schedule.last_presented().value_or(0));
+      reported_missed = schedule.missed();
+    }
+    if (const std::optional<Clock::time_point> wake = schedule.wake_at()) {
+      present_timer.expires_at(*wake);
+      present_timer.async_wait([this](const boost::system::error_code& ec) {
+        if (!ec) pump_schedule();
+      });
+    }
   }
 
   /// A message of the master after Welcome (MasterLink: not Heartbeat, not Goodbye).
   void on_master_message(const Message& message) {
-    if (const auto* fs = std::get_if<FrameState>(&message)) {
+    if (const auto* next = std::get_if<FrameSchedule>(&message)) {
+      tcp_schedule = *next;  // for the FrameState that follows it
+    } else if (const auto* fs = std::get_if<FrameState>(&message); fs && tcp_schedule) {
+      if (tcp_schedule->frame != fs->frame)
+        throw std::runtime_error(
+            cat("FrameSchedule of frame ", tcp_schedule->frame, " followed by FrameState ", fs->frame));
+      const FrameSchedule when = *tcp_schedule;
+      tcp_schedule.reset();
+      on_scheduled_frame(when, *fs);
+    } else if (fs) {
       for (const AtmosphereTableRef& ref : fs->atmospheres)
         if (!held_tables.count(ref.table_hash) || ref.effective_from_frame > fs->frame)
           throw std::runtime_error(cat("FrameState ", fs->frame, " uses table set ",
@@ -195,6 +321,9 @@ struct Node::Impl {
   void finish(int code) {
     if (!end.finish(code, signals)) return;
     link.stop();
+    datagrams.stop();
+    present_timer.cancel();
+    link_watch.cancel();
     worker->stop();
   }
 
@@ -203,8 +332,10 @@ struct Node::Impl {
   void report_render_done(const RenderDone& done, std::uint64_t of_session, std::vector<Thumbnail> thumbnails) {
     asio::post(io, [this, done, of_session, thumbnails = std::move(thumbnails)]() mutable {
       if (!connected || of_session != session) return;
+      RenderDone report = done;
+      report.missed_frames = schedule.missed();
       for (Thumbnail& t : thumbnails) link.send(std::move(t));
-      link.send(done);
+      link.send(report);
     });
   }
   void report_failure(const std::string& what) {

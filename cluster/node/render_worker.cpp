@@ -47,8 +47,11 @@ void RenderWorker::prepare(const Digest& hash, std::uint64_t session) {
 void RenderWorker::render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px) {
   push(Job{Job::Kind::render, state, state.frame, {}, session, thumbnail_edge_px});
 }
-void RenderWorker::present(std::uint64_t frame) { push(Job{Job::Kind::present, {}, frame, {}, 0, 0, Clock::now()}); }
+void RenderWorker::present(std::uint64_t frame, std::optional<Clock::time_point> scheduled) {
+  push(Job{Job::Kind::present, {}, frame, {}, 0, 0, scheduled.value_or(Clock::now()), scheduled.has_value()});
+}
 void RenderWorker::stop() { push(Job{Job::Kind::stop, {}, 0, {}, 0}); }
+void RenderWorker::blank() { push(Job{Job::Kind::blank, {}, 0, {}, 0}); }
 
 void RenderWorker::abandon_frames() {
   {
@@ -76,7 +79,8 @@ RenderWorker::Job RenderWorker::next_job() {
     jobs_.pop_front();
     if (job.kind == Job::Kind::render &&
         std::any_of(jobs_.begin(), jobs_.end(), [](const Job& j) { return j.kind == Job::Kind::render; })) {
-      spdlog::warn("node '{}': skipping frame {}: a newer frame is queued", setup_.options.node_name, job.frame);
+      spdlog::warn("node '{}': skipping frame {}: another frame is queued after it", setup_.options.node_name,
+                   job.frame);
       continue;
     }
     return job;
@@ -90,8 +94,9 @@ void RenderWorker::run() {
       switch (job.kind) {
         case Job::Kind::prepare: prepare_tables(job.table_hash, job.session); break;
         case Job::Kind::render: render_frame(job.state, job.session, job.thumbnail_edge_px); break;
-        case Job::Kind::present: present_frame(job.frame, job.queued); break;
+        case Job::Kind::present: present_frame(job.frame, job.queued, job.scheduled); break;
         case Job::Kind::discard: writer_.discard(); break;
+        case Job::Kind::blank: blank_outputs(); break;
         case Job::Kind::stop: writer_.discard(); return;
       }
     } catch (const std::exception& e) {
@@ -297,7 +302,7 @@ std::vector<const render::gl::Texture*> RenderWorker::display_textures() const {
   return displays;
 }
 
-void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked) {
+void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked, bool scheduled) {
   // Swap first (the projectors), then the files and the log.
   if (windows_) {
     windows_->present(display_textures(), asked);
@@ -311,7 +316,32 @@ void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked) {
                  frame);
     return;
   }
+  note_present_time(frame, asked, scheduled);
   spdlog::debug("node '{}': presented frame {}", setup_.options.node_name, frame);
+}
+
+void RenderWorker::note_present_time(std::uint64_t frame, Clock::time_point asked, bool scheduled) {
+  const auto ns = [](Clock::time_point t) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+  };
+  const Clock::time_point presented = Clock::now();
+  if (!present_times_.is_open()) {
+    const std::filesystem::path path = setup_.node_directory / "presents.csv";
+    const bool fresh = !std::filesystem::exists(path);
+    present_times_.open(path, std::ios::app);
+    if (fresh) present_times_ << "frame,presented_ns,asked_ns,scheduled\n";
+  }
+  present_times_ << frame << ',' << ns(presented) << ',' << ns(asked) << ',' << (scheduled ? 1 : 0) << '\n';
+  present_times_.flush();  // read while the show runs (tests, benchmarks)
+}
+
+void RenderWorker::blank_outputs() {
+  if (!windows_) return;  // headless: no projector to blank (the files keep the last frame)
+  make_current();
+  const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+  for (OutputFrame& f : frames_)
+    if (f.display.id() != 0) glClearTexImage(f.display.id(), 0, GL_RGBA, GL_FLOAT, black);
+  windows_->present(display_textures(), Clock::now());
 }
 
 /// Renders with the set once: every output the first time (shaders), then the

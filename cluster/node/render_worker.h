@@ -9,6 +9,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -72,7 +73,12 @@ class RenderWorker {
   /// Render a frame; with `thumbnail_edge_px` > 0 also a thumbnail of every
   /// output (thumbnail.h) for the master's dome preview.
   void render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px = 0);
-  void present(std::uint64_t frame);
+  /// Present `frame`: now (a Present of the barrier), or a scheduled frame
+  /// whose moment `scheduled` has come (its lateness is measured from it).
+  void present(std::uint64_t frame, std::optional<std::chrono::steady_clock::time_point> scheduled = std::nullopt);
+  /// The outputs' windows show black (the link to the master is cut and the
+  /// config says "link_lost": "black"); the next present shows frames again.
+  void blank();
   /// The connection to the master is lost: drops the queued render and
   /// present jobs and, after the frame being rendered (if any), its partial
   /// files. The presented frames stay (files and window): the projector
@@ -89,13 +95,14 @@ class RenderWorker {
 
  private:
   struct Job {
-    enum class Kind { prepare, render, present, discard, stop } kind = Kind::stop;
+    enum class Kind { prepare, render, present, discard, blank, stop } kind = Kind::stop;
     FrameState state;                                ///< render
     std::uint64_t frame = 0;                         ///< render, present
     Digest table_hash{};                             ///< prepare
     std::uint64_t session = 0;                       ///< render, prepare: passed back with the answer
     int thumbnail_edge_px = 0;                       ///< render: > 0 for thumbnails of the frame
     std::chrono::steady_clock::time_point queued{};  ///< present: when the Present arrived (the late-frame clock)
+    bool scheduled = false;                          ///< present: `queued` is the frame's scheduled moment
   };
   void push(Job job);
   Job next_job();
@@ -107,8 +114,14 @@ class RenderWorker {
   /// The scene with body `body`'s atmosphere replaced by table version `hash`.
   void use_table_version(scene::Scene& scene, const std::string& body, const Digest& hash) const;
   void render_frame(const FrameState& state, std::uint64_t session, int thumbnail_edge_px);
-  void present_frame(std::uint64_t frame, std::chrono::steady_clock::time_point asked);
+  void present_frame(std::uint64_t frame, std::chrono::steady_clock::time_point asked, bool scheduled);
+  /// One line of presents.csv: the frame, when it was presented and when it
+  /// was asked for (the scheduled moment, or the Present's arrival), in ns of
+  /// the steady clock (CLOCK_MONOTONIC: on one machine every process's, so
+  /// nodes in network namespaces compare exactly).
+  void note_present_time(std::uint64_t frame, std::chrono::steady_clock::time_point asked, bool scheduled);
   void prepare_tables(const Digest& hash, std::uint64_t session);
+  void blank_outputs();
   /// Output k's radiance read back as RGB rows for its file (width · height · 3 floats).
   std::vector<float> read_back_radiance(std::size_t k) const;
   /// Events::window_closed, once.
@@ -146,6 +159,7 @@ class RenderWorker {
   bool warmed_up_ = false;
   std::uint64_t warm_up_late_ = 0;  ///< whether the windows' first present was late (not reported)
   bool close_reported_ = false;
+  std::ofstream present_times_;  ///< presents.csv in the node's directory, opened at the first present
 };
 
 }  // namespace zenith::cluster

@@ -401,6 +401,13 @@ function renderAtmosphere(a, live) {
   v.pending.dataset.stage = a.pending ? a.pending.stage : '';
 }
 
+/// A node's link (docs/operator.md, "Status"): how its frames reach it.
+function linkText(link) {
+  if (!link) return '–';
+  if (link.state === 'unreachable') return 'UNREACHABLE ' + (link.silent_ms / 1000).toFixed(1) + ' s';
+  return link.state;
+}
+
 function renderNodes(nodes) {
   const body = $('nodes').tBodies[0];
   const rows = nodes.map((n) => {
@@ -408,7 +415,7 @@ function renderNodes(nodes) {
     tr.dataset.node = n.name;
     const cells = [n.name, n.host, n.state, n.last_render_ms === null ? '–' : n.last_render_ms.toFixed(1) + ' ms',
                    n.frames_rendered, n.barrier_waits, n.drops, n.rejoins, n.presents, n.late_presents,
-                   n.tables_held.join(', ')];
+                   n.missed_frames, linkText(n.link), n.tables_held.join(', ')];
     cells.forEach((c, i) => {
       const td = document.createElement('td');
       td.textContent = c;

@@ -1,0 +1,79 @@
+#pragma once
+// A node's datagrams with its master (docs/cluster.md, "The frame schedule"
+// and "Clocks"; docs/protocol.md, "Datagrams"), on the node's networking
+// thread: a UDP socket to the master's port (the same number as its TCP
+// port), a ClockPing every kPingInterval — whose ClockPongs feed the node's
+// ClockSync and tell the master where to send — and the master's scheduled
+// frames (FrameSchedule + FrameState) handed to the node. Datagrams that fail
+// their tag, or come from elsewhere, are dropped with a rate-limited line.
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "cluster/link/clock_sync.h"
+#include "cluster/protocol/messages.h"
+#include "core/log_limiter.h"
+
+namespace zenith::cluster {
+
+class MasterDatagrams {
+ public:
+  using Clock = std::chrono::steady_clock;
+  static constexpr std::chrono::milliseconds kPingInterval{100};
+
+  /// A frame the master scheduled, as it arrived in a datagram.
+  struct ScheduledFrame {
+    FrameSchedule schedule;
+    FrameState state;
+  };
+  using FrameHandler = std::function<void(ScheduledFrame&& frame)>;
+
+  MasterDatagrams(boost::asio::io_context& io, std::string who, FrameHandler on_frame);
+  MasterDatagrams(const MasterDatagrams&) = delete;
+  MasterDatagrams& operator=(const MasterDatagrams&) = delete;
+
+  /// A welcomed session: datagrams to `master` as node `node_id` under `key`;
+  /// the clock estimate starts from the Welcome's `master_time_ns` (received
+  /// at `welcomed`). Starts pinging.
+  void start(const boost::asio::ip::udp::endpoint& master, std::uint32_t node_id, const Digest& key,
+             std::uint64_t master_time_ns, Clock::time_point welcomed);
+  /// The session ended: the socket closes; the clock estimate is kept (a
+  /// reconnection to the same master goes on from it, the seed of the next
+  /// Welcome replaces it otherwise).
+  void stop();
+
+  const ClockSync& clock() const { return clock_; }
+  /// The node's steady time at which the master's clock reads `master_ns`.
+  Clock::time_point to_local(std::uint64_t master_ns) const;
+  /// When the last valid datagram of the master arrived (nothing before one).
+  std::optional<Clock::time_point> last_heard() const { return last_heard_; }
+
+ private:
+  void receive();
+  void on_datagram(std::size_t bytes);
+  void ping();
+
+  boost::asio::io_context& io_;
+  std::string who_;
+  FrameHandler on_frame_;
+  std::optional<boost::asio::ip::udp::socket> socket_;
+  boost::asio::ip::udp::endpoint master_, sender_;
+  std::uint32_t node_id_ = 0;
+  Digest key_{};
+  std::uint64_t generation_ = 0;  ///< handlers of an earlier session do nothing
+  boost::asio::steady_timer ping_timer_;
+  std::vector<std::uint8_t> buffer_;
+  ClockSync clock_;
+  std::optional<Clock::time_point> last_heard_;
+  core::LogLimiter refused_;
+  bool synchronized_logged_ = false;
+};
+
+}  // namespace zenith::cluster
