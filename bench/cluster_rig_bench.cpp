@@ -1,0 +1,255 @@
+// The cluster across a real network, measured (docs/cluster.md, "Measured on
+// the rig"): a master and --nodes nodes, each host in its own network
+// namespace on a bridge (tests/rig/network_rig.h), paced at --hz for
+// --frames frames, one node's link ("n1") impaired in each case:
+//
+//   none          no impairment
+//   loss1, loss5  1 % / 5 % of its packets dropped, each way (nftables)
+//   partition2s   its link cut for 2 s, one second into the show
+//
+// each with the frame barrier (timing.lookahead_frames 0, what zenith did
+// before) and the frame schedule (--lookahead frames). The impairment starts
+// once the nodes are warmed up (frame 0 presented). From every node's
+// presents.csv (CLOCK_MONOTONIC, the same clock in every namespace):
+//
+//   presented     frames 1 … frames − 1 the node presented, of those expected
+//   missing       frames it never presented
+//   in_order      whether its frame numbers only grew
+//   longest_ms    the longest interval between two of its presents
+//   over_2T       intervals longer than two frame periods (a frame held
+//                 twice or more: what the projector's audience sees)
+//   over_100ms    intervals longer than 100 ms (a visible freeze)
+//   latest_ms     the latest present after its scheduled moment (scheduled only)
+//
+// and per case the spread of the nodes' present times for one frame (max −
+// min over the nodes, for the frames every node presented): its largest and
+// 99th percentile; and, scheduled, the spread of the moments the nodes had
+// for one frame — on one machine all share CLOCK_MONOTONIC, so that is the
+// clock synchronisation's error alone (the present spread adds how promptly
+// each node's render thread got a core). Needs root (network namespaces).
+//
+//   cluster_rig_bench [--zenith PATH] [--nodes 4] [--hz 60] [--frames 600] [--lookahead 3]
+//                     [--cases none,loss1,loss5,partition2s] [--schedules barrier,scheduled]
+//                     [--size 32] [--tables small] [--work DIR] [--cache DIR]
+//                     [--csv bench/results/cluster_rig.csv]
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/command_line.h"
+#include "tests/rig/network_rig.h"
+#include "tests/rig/rig_cluster.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+using zenith::testing::NetworkRig;
+using zenith::testing::NodeTimeline;
+using zenith::testing::RigCluster;
+using zenith::testing::RigClusterSetup;
+
+constexpr const char* kUsage = R"(cluster_rig_bench: the cluster across network namespaces, one link impaired
+(docs/cluster.md, "Measured on the rig"); needs root
+
+  --zenith PATH        the zenith binary (default: this build's)
+  --nodes N            render nodes (default 4)
+  --hz R               frame rate (default 60)
+  --frames N           frames per run, the warm-up frame 0 included (default 600)
+  --lookahead N        the schedule's lookahead in frames (default 3)
+  --cases LIST         none, loss1, loss5, partition2s (default all)
+  --schedules LIST     barrier, scheduled (default both)
+  --size PX            each node's output is PX×PX (default 32)
+  --tables SIZE        table sizes (default small)
+  --work DIR           run folders (default $TMPDIR/zenith-cluster-rig-bench)
+  --cache DIR          the master's table cache (default WORK/table-cache)
+  --csv FILE           results (default bench/results/cluster_rig.csv)
+)";
+
+struct Options {
+  fs::path zenith = ZENITH_BINARY;
+  int nodes = 4;
+  double hz = 60.0;
+  std::uint64_t frames = 600;
+  int lookahead = 3;
+  std::vector<std::string> cases = {"none", "loss1", "loss5", "partition2s"};
+  std::vector<std::string> schedules = {"barrier", "scheduled"};
+  int size_px = 32;
+  std::string tables = "small";
+  fs::path work = fs::temp_directory_path() / "zenith-cluster-rig-bench";
+  std::optional<fs::path> cache;
+  fs::path csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/cluster_rig.csv";
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (zenith::bench::CommandLine args(argc, argv); args.next();) {
+    const std::string& a = args.option();
+    if (a == "--zenith")
+      o.zenith = args.value();
+    else if (a == "--nodes")
+      o.nodes = std::stoi(args.value());
+    else if (a == "--hz")
+      o.hz = std::stod(args.value());
+    else if (a == "--frames")
+      o.frames = std::stoull(args.value());
+    else if (a == "--lookahead")
+      o.lookahead = std::stoi(args.value());
+    else if (a == "--cases")
+      o.cases = zenith::bench::split_list(args.value());
+    else if (a == "--schedules")
+      o.schedules = zenith::bench::split_list(args.value());
+    else if (a == "--size")
+      o.size_px = std::stoi(args.value());
+    else if (a == "--tables")
+      o.tables = args.value();
+    else if (a == "--work")
+      o.work = args.value();
+    else if (a == "--cache")
+      o.cache = fs::path(args.value());
+    else if (a == "--csv")
+      o.csv = args.value();
+    else
+      zenith::bench::help_or_unknown_option(a, kUsage);
+  }
+  if (o.nodes < 2) throw std::invalid_argument("--nodes: at least 2 (node n1 is the impaired one)");
+  if (o.frames < 10) throw std::invalid_argument("--frames: at least 10");
+  if (o.lookahead < 1 || o.lookahead > 30) throw std::invalid_argument("--lookahead: in [1, 30]");
+  for (const std::string& c : o.cases)
+    if (c != "none" && c != "loss1" && c != "loss5" && c != "partition2s")
+      throw std::invalid_argument("--cases: unknown case '" + c + "'");
+  for (const std::string& s : o.schedules)
+    if (s != "barrier" && s != "scheduled") throw std::invalid_argument("--schedules: barrier or scheduled");
+  return o;
+}
+
+std::int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size() - 1) + 0.5))];
+}
+
+struct Row {
+  std::string schedule, case_name, node;
+  std::uint64_t presented = 0, expected = 0, missing = 0, over_2t = 0, over_100ms = 0;
+  bool in_order = true;
+  double longest_ms = 0.0, latest_ms = 0.0, spread_max_ms = 0.0, spread_p99_ms = 0.0, moment_max_ms = 0.0;
+};
+
+std::vector<Row> run_case(const Options& o, const std::string& schedule, const std::string& case_name) {
+  NetworkRig rig("bench");
+  RigClusterSetup setup;
+  setup.zenith = o.zenith;
+  setup.work = o.work / (schedule + "-" + case_name);
+  setup.cache = o.cache.value_or(o.work / "table-cache");
+  setup.scene = fs::path(ZENITH_SOURCE_DIR) / "configs/scenes/earth-sunset.json";
+  setup.nodes = o.nodes;
+  setup.frame_rate_hz = o.hz;
+  setup.frames = o.frames;
+  setup.lookahead_frames = schedule == "scheduled" ? o.lookahead : 0;
+  setup.output_px = o.size_px;
+  setup.tables = o.tables;
+  RigCluster cluster(rig, setup);
+  cluster.start();
+  if (!cluster.wait_until_warmed_up(600s))
+    throw std::runtime_error("no warm-up frame; see " + cluster.log("master").string());
+  const std::int64_t from = now_ns();
+  if (case_name == "loss1") rig.set_loss("n1", 1.0);
+  if (case_name == "loss5") rig.set_loss("n1", 5.0);
+  if (case_name == "partition2s") {
+    std::this_thread::sleep_for(1s);
+    rig.partition("n1");
+    std::this_thread::sleep_for(2s);
+    rig.heal("n1");
+  }
+  const auto timeout =
+      std::chrono::milliseconds(static_cast<long long>(static_cast<double>(o.frames) * 1000.0 / o.hz) + 120000);
+  const std::optional<int> status = cluster.wait_for_master(timeout);
+  if (!status || *status != 0)
+    throw std::runtime_error("the master did not finish cleanly; see " + cluster.log("master").string());
+  cluster.wait_for_nodes(60s);
+
+  std::vector<std::vector<zenith::testing::NodePresent>> all;
+  std::vector<Row> rows;
+  for (int k = 0; k < o.nodes; ++k) {
+    all.push_back(cluster.presents(k));
+    const NodeTimeline t = zenith::testing::timeline_of(all.back(), 1, o.frames - 1, from, 2.0 * cluster.period_ms());
+    const NodeTimeline freezes = zenith::testing::timeline_of(all.back(), 1, o.frames - 1, from, 100.0);
+    Row r{schedule, case_name, RigCluster::node_name(k)};
+    r.expected = o.frames - 1;
+    r.missing = t.missing.size();
+    r.presented = r.expected - r.missing;
+    r.in_order = t.in_order;
+    r.longest_ms = t.longest_interval_ms;
+    r.over_2t = t.long_intervals;
+    r.over_100ms = freezes.long_intervals;
+    r.latest_ms = t.latest_ms;
+    rows.push_back(r);
+  }
+  const std::vector<double> spreads = zenith::testing::swap_spreads_ms(all);
+  const std::vector<double> moments = zenith::testing::moment_spreads_ms(all);
+  for (Row& r : rows) {
+    r.spread_max_ms = spreads.empty() ? 0.0 : *std::max_element(spreads.begin(), spreads.end());
+    r.spread_p99_ms = percentile(spreads, 0.99);
+    r.moment_max_ms = moments.empty() ? 0.0 : *std::max_element(moments.begin(), moments.end());
+  }
+  return rows;
+}
+
+int run(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  if (const std::optional<std::string> why = NetworkRig::unavailable())
+    throw std::runtime_error("no network rig here: " + *why);
+  fs::create_directories(o.work);
+  fmt::print("cluster_rig_bench: {} nodes at {} Hz, {} frames, {}x{} px outputs, {} tables, lookahead {}\n", o.nodes,
+             o.hz, o.frames, o.size_px, o.size_px, o.tables, o.lookahead);
+  fmt::print("{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11} {:>7} {:>9} {:>10} {:>10} {:>10} {:>10}\n", "schedule",
+             "case", "node", "presented", "missing", "order", "longest ms", "> 2T", "> 100 ms", "latest ms",
+             "spread ms", "p99 ms", "clock ms");
+  std::vector<Row> rows;
+  for (const std::string& schedule : o.schedules)
+    for (const std::string& c : o.cases)
+      for (const Row& r : run_case(o, schedule, c)) {
+        fmt::print(
+            "{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11.1f} {:>7} {:>9} {:>10.1f} {:>10.2f} {:>10.2f} {:>10.3f}\n",
+            r.schedule, r.case_name, r.node, r.presented, r.missing, r.in_order ? "yes" : "NO", r.longest_ms, r.over_2t,
+            r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms);
+        std::fflush(stdout);
+        rows.push_back(r);
+      }
+  fs::create_directories(o.csv.parent_path());
+  std::ofstream csv(o.csv);
+  csv << "schedule,case,node,hz,frames_expected,presented,missing,in_order,longest_interval_ms,"
+         "intervals_over_2_periods,intervals_over_100ms,latest_after_moment_ms,swap_spread_max_ms,swap_spread_p99_ms,"
+         "moment_spread_max_ms\n";
+  for (const Row& r : rows)
+    csv << fmt::format("{},{},{},{},{},{},{},{},{:.2f},{},{},{:.2f},{:.3f},{:.3f},{:.3f}\n", r.schedule, r.case_name,
+                       r.node, o.hz, r.expected, r.presented, r.missing, r.in_order ? 1 : 0, r.longest_ms, r.over_2t,
+                       r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms);
+  fmt::print("csv: {}\n", o.csv.string());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "cluster_rig_bench: {}\n(cluster_rig_bench --help lists the options)\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,176 @@
+#include "tests/rig/rig_cluster.h"
+
+#include <signal.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/process.h"
+
+namespace zenith::testing {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+namespace {
+constexpr const char* kSecretVar = "ZENITH_RIG_SECRET";
+constexpr int kMasterPort = 47100;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+}  // namespace
+
+RigCluster::RigCluster(NetworkRig& rig, RigClusterSetup setup) : rig_(rig), setup_(std::move(setup)) {
+  fs::remove_all(setup_.work);
+  fs::create_directories(setup_.work);
+  const NetworkRig::Host master = rig_.add_host("master");  // a copy: more hosts follow
+  for (int k = 0; k < setup_.nodes; ++k) rig_.add_host(node_name(k));
+
+  std::ofstream v(setup_.work / "viewports.json");
+  v << R"({"zenith_viewports": 1, "name": "rig", "outputs": [)";
+  for (int k = 0; k < setup_.nodes; ++k)
+    v << (k ? "," : "") << R"({"name": "o)" << k << R"(", "size": [)" << setup_.output_px << ", " << setup_.output_px
+      << R"(], "projection": {"type": "fisheye", "fov_deg": 180, "rotation_deg": )" << (360.0 * k / setup_.nodes)
+      << "}}";
+  v << "]}";
+  v.close();
+
+  std::ostringstream nodes;
+  for (int k = 0; k < setup_.nodes; ++k)
+    nodes << (k ? "," : "") << R"({"name": ")" << node_name(k) << R"(", "host": ")" << rig_.host(node_name(k)).address
+          << R"(", "outputs": ["o)" << k << R"("]})";
+  config_ = setup_.work / "cluster.json";
+  std::ofstream c(config_);
+  c << R"({"zenith_cluster": 1, "name": "rig-dome", "master": {"host": ")" << master.address << R"(", "port": )"
+    << kMasterPort << R"(}, "scene": ")" << setup_.scene.string() << R"(", "viewports": "viewports.json",
+  "timing": {"heartbeat_ms": 200, "barrier_timeout_ms": 20000, "frame_rate_hz": )"
+    << setup_.frame_rate_hz << R"(, "lookahead_frames": )" << setup_.lookahead_frames << R"(, "link_lost": ")"
+    << (setup_.black_when_link_lost ? "black" : "hold") << R"("},
+  "secret": {"env": ")"
+    << kSecretVar << R"("}, "tables": {"sizes": ")" << setup_.tables << R"(", "orders": 4},
+  "nodes": [)"
+    << nodes.str() << R"(], "output": {"directory": ")" << (setup_.work / "out").string() << R"(", "format": "png"}})";
+  c.close();
+  ::setenv(kSecretVar, "rig-secret-0123456789abcdef", 1);
+}
+
+RigCluster::~RigCluster() = default;
+
+std::string RigCluster::node_name(int k) {
+  std::string name = std::to_string(k);
+  name.insert(name.begin(), 'n');  // not "n" + std::to_string(k): GCC 12's -Wrestrict false positive
+  return name;
+}  // the rig kills what it started
+
+void RigCluster::start() {
+  master_ = rig_.spawn("master", setup_.zenith,
+                       {"master", "--cluster", config_.string(), "--frames", std::to_string(setup_.frames), "--cache",
+                        setup_.cache.string(), "--wait-for-nodes-ms", "120000"},
+                       log("master"));
+  for (int k = 0; k < setup_.nodes; ++k)
+    nodes_.push_back(
+        rig_.spawn(node_name(k), setup_.zenith,
+                   {"node", "--cluster", config_.string(), "--name", node_name(k), "--cache",
+                    (setup_.work / "node-cache" / node_name(k)).string(), "--connect-timeout-ms", "300000"},
+                   log(node_name(k))));
+}
+
+bool RigCluster::wait_until_warmed_up(std::chrono::milliseconds timeout) {
+  const auto warmed_up = [&] {
+    return read_text(log("master")).find("warm-up frame 0 presented") != std::string::npos;
+  };
+  core::wait_until([&] { return core::process_gone(master_) || warmed_up(); }, timeout);
+  return warmed_up();
+}
+
+std::optional<int> RigCluster::wait_for_master(std::chrono::milliseconds timeout) {
+  const std::optional<int> status = core::wait_for_exit(master_, timeout);
+  if (status && *status < 0) return std::nullopt;
+  return status;
+}
+
+bool RigCluster::wait_for_nodes(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  for (const pid_t pid : nodes_) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (!core::wait_for_exit(pid, std::max(left, 0ms))) return false;
+  }
+  return true;
+}
+
+std::vector<NodePresent> RigCluster::presents(int node) const {
+  std::vector<NodePresent> out;
+  std::ifstream in(setup_.work / "out" / node_name(node) / "presents.csv");
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    NodePresent p;
+    char comma = 0;
+    int scheduled = 0;
+    std::istringstream fields(line);
+    if (fields >> p.frame >> comma >> p.presented_ns >> comma >> p.asked_ns >> comma >> scheduled) {
+      p.scheduled = scheduled != 0;
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
+NodeTimeline timeline_of(const std::vector<NodePresent>& presents, std::uint64_t first, std::uint64_t last,
+                         std::int64_t from_ns, double long_ms) {
+  NodeTimeline t;
+  t.presents = presents;
+  std::set<std::uint64_t> seen;
+  for (std::size_t i = 0; i < presents.size(); ++i) {
+    const NodePresent& p = presents[i];
+    seen.insert(p.frame);
+    if (i > 0 && p.frame <= presents[i - 1].frame) t.in_order = false;
+    if (p.scheduled) t.latest_ms = std::max(t.latest_ms, static_cast<double>(p.presented_ns - p.asked_ns) / 1e6);
+    if (i > 0 && presents[i - 1].presented_ns >= from_ns) {
+      const double interval = static_cast<double>(p.presented_ns - presents[i - 1].presented_ns) / 1e6;
+      t.longest_interval_ms = std::max(t.longest_interval_ms, interval);
+      if (interval > long_ms) ++t.long_intervals;
+    }
+  }
+  for (std::uint64_t f = first; f <= last; ++f)
+    if (!seen.count(f)) t.missing.push_back(f);
+  return t;
+}
+
+namespace {
+/// max − min of `time` over the nodes' presents of each frame all of them presented (and `keep`).
+template <class Time, class Keep>
+std::vector<double> spreads_ms(const std::vector<std::vector<NodePresent>>& nodes, Time time, Keep keep) {
+  std::map<std::uint64_t, std::vector<std::int64_t>> by_frame;
+  for (const auto& presents : nodes)
+    for (const NodePresent& p : presents)
+      if (keep(p)) by_frame[p.frame].push_back(time(p));
+  std::vector<double> spreads;
+  for (const auto& [frame, times] : by_frame) {
+    if (times.size() != nodes.size()) continue;
+    const auto [lo, hi] = std::minmax_element(times.begin(), times.end());
+    spreads.push_back(static_cast<double>(*hi - *lo) / 1e6);
+  }
+  return spreads;
+}
+}  // namespace
+
+std::vector<double> swap_spreads_ms(const std::vector<std::vector<NodePresent>>& nodes) {
+  return spreads_ms(
+      nodes, [](const NodePresent& p) { return p.presented_ns; }, [](const NodePresent&) { return true; });
+}
+
+std::vector<double> moment_spreads_ms(const std::vector<std::vector<NodePresent>>& nodes) {
+  return spreads_ms(
+      nodes, [](const NodePresent& p) { return p.asked_ns; }, [](const NodePresent& p) { return p.scheduled; });
+}
+
+}  // namespace zenith::testing

@@ -1,0 +1,93 @@
+#pragma once
+// A zenith cluster on a NetworkRig (tests/rig/network_rig.h): the master on
+// host "master", nodes "n0" … on hosts of their own, each rendering one small
+// fisheye output, frames paced and scheduled; what each node presented and
+// when, read back from its presents.csv (cluster/node/render_worker.h). Shared
+// by the rig tests (tests/cluster/network_rig_test.cpp, pass/fail properties)
+// and the rig benchmark (bench/cluster_bench.cpp --rig, the figures).
+#include <sys/types.h>
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tests/rig/network_rig.h"
+
+namespace zenith::testing {
+
+struct RigClusterSetup {
+  std::filesystem::path zenith;  ///< the zenith binary
+  std::filesystem::path work;    ///< configs, logs and node outputs go here (made afresh)
+  std::filesystem::path cache;   ///< the master's table cache (shared between runs)
+  std::filesystem::path scene;   ///< the scene file
+  int nodes = 2;
+  double frame_rate_hz = 30.0;
+  std::uint64_t frames = 150;  ///< presented frames, the warm-up frame 0 included
+  int lookahead_frames = 3;    ///< 0: the barrier
+  int output_px = 32;          ///< each node's square fisheye output
+  std::string tables = "small";
+  bool black_when_link_lost = false;  ///< timing.link_lost: "black" (else "hold")
+};
+
+/// One present of a node, from its presents.csv (ns of CLOCK_MONOTONIC).
+struct NodePresent {
+  std::uint64_t frame = 0;
+  std::int64_t presented_ns = 0, asked_ns = 0;
+  bool scheduled = false;
+};
+
+/// What a node showed over a run, from its presents.
+struct NodeTimeline {
+  std::vector<NodePresent> presents;   ///< in the order presented
+  bool in_order = true;                ///< frame numbers strictly increasing
+  std::vector<std::uint64_t> missing;  ///< frames in [first, last expected] never presented
+  double longest_interval_ms = 0.0;    ///< between consecutive presents (from `from_ns` on)
+  std::uint64_t long_intervals = 0;    ///< longer than `long_ms`
+  double latest_ms = 0.0;              ///< the largest present − scheduled moment
+};
+/// The timeline of `presents` over the frames [first, last], intervals counted
+/// between presents at or after `from_ns`; `long_ms`: what counts as long.
+NodeTimeline timeline_of(const std::vector<NodePresent>& presents, std::uint64_t first, std::uint64_t last,
+                         std::int64_t from_ns, double long_ms);
+/// max − min of the nodes' present times (ms), for each frame every node presented, in frame order.
+std::vector<double> swap_spreads_ms(const std::vector<std::vector<NodePresent>>& nodes);
+/// max − min of the moments the nodes had for each frame every node presented
+/// as scheduled (ms): their clock estimates' disagreement. On one machine the
+/// truth is 0 (one CLOCK_MONOTONIC), so this is the clock synchronisation's
+/// error, apart from how promptly each node then presented.
+std::vector<double> moment_spreads_ms(const std::vector<std::vector<NodePresent>>& nodes);
+
+class RigCluster {
+ public:
+  RigCluster(NetworkRig& rig, RigClusterSetup setup);
+  ~RigCluster();
+
+  /// Starts the master and every node in their namespaces.
+  void start();
+  /// Waits until the nodes are warmed up (the master presented frame 0, and
+  /// the frame rate's schedule started); false on timeout or when the master ended.
+  bool wait_until_warmed_up(std::chrono::milliseconds timeout);
+  /// Waits for the master's exit; its status, nothing on timeout.
+  std::optional<int> wait_for_master(std::chrono::milliseconds timeout);
+  /// Waits for every node's exit (after the master's Goodbye).
+  bool wait_for_nodes(std::chrono::milliseconds timeout);
+
+  /// "n0", "n1", …
+  static std::string node_name(int k);
+  std::vector<NodePresent> presents(int node) const;
+  std::filesystem::path log(const std::string& host) const { return setup_.work / (host + ".log"); }
+  const RigClusterSetup& setup() const { return setup_; }
+  double period_ms() const { return 1000.0 / setup_.frame_rate_hz; }
+
+ private:
+  NetworkRig& rig_;
+  RigClusterSetup setup_;
+  std::filesystem::path config_;
+  pid_t master_ = -1;
+  std::vector<pid_t> nodes_;
+};
+
+}  // namespace zenith::testing
