@@ -54,6 +54,7 @@ void MasterLink::connect() {
     });
   }
   auto socket = std::make_shared<tcp::socket>(io_);
+  connecting_ = socket;
   tcp::resolver resolver(io_);
   boost::system::error_code ec;
   const auto endpoints = resolver.resolve(master.host, std::to_string(master.port), ec);
@@ -64,6 +65,7 @@ void MasterLink::connect() {
   asio::async_connect(*socket, endpoints,
                       [this, socket, generation](const boost::system::error_code& e, const tcp::endpoint&) {
                         if (stopping_ || generation != generation_) return;
+                        connecting_.reset();
                         if (e) {
                           connection_failed(e.message());
                           return;
@@ -98,6 +100,7 @@ void MasterLink::on_closed(const std::string& reason) {
 }
 
 void MasterLink::connection_failed(const std::string& reason) {
+  abandon_connect();  // a master whose machine dropped off the network never answers the SYN
   const bool was_welcomed = protocol_.welcomed();
   ++generation_;  // the handlers and timers of this connection do nothing any more
   heartbeat_timer_.cancel();
@@ -170,11 +173,19 @@ void MasterLink::say_goodbye(const std::string& reason) {
   }
 }
 
+void MasterLink::abandon_connect() {
+  if (!connecting_) return;
+  boost::system::error_code ignored;
+  connecting_->close(ignored);  // its async_connect ends now (operation_aborted), not after the kernel's SYN retries
+  connecting_.reset();
+}
+
 void MasterLink::stop() {
   stopping_ = true;
   heartbeat_timer_.cancel();
   retry_timer_.cancel();
   attempt_timer_.cancel();
+  abandon_connect();
   if (connection_ && connection_->is_open()) connection_->close_after_flush("node stopping");
 }
 

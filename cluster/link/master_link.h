@@ -98,6 +98,11 @@ class MasterLink {
   void end(const std::string& close_reason, int exit_code);
   /// Every listed master, "host:port, host:port", for logs.
   std::string listed() const;
+  /// Closes the socket of a connect still in progress (an attempt that timed
+  /// out, or the link stopping): a master whose machine dropped off the
+  /// network never answers, and the pending connect would keep the
+  /// io_context running for the kernel's SYN retries (about two minutes).
+  void abandon_connect();
 
   boost::asio::io_context& io_;
   Setup setup_;
@@ -107,6 +112,7 @@ class MasterLink {
   /// attempts; attempt_timer_ ends an attempt past the protocol's attempt limit.
   boost::asio::steady_timer heartbeat_timer_, retry_timer_, attempt_timer_;
   std::shared_ptr<Connection> connection_;
+  std::shared_ptr<boost::asio::ip::tcp::socket> connecting_;  ///< the socket of a connect in progress
   /// Counts connections and attempts: handlers of an earlier one see another number and do nothing.
   std::uint64_t generation_ = 0;
   std::chrono::steady_clock::time_point connect_started_, lost_at_;

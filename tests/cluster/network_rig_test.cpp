@@ -13,11 +13,13 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <thread>
 
+#include "core/process.h"
 #include "tests/rig/network_rig.h"
 #include "tests/rig/rig_cluster.h"
 
@@ -131,6 +133,59 @@ TEST_F(NetworkRigTest, ATwoSecondPartitionOfOneNodeFreezesNoOtherNode) {
       EXPECT_LE(std::abs(static_cast<double>(p.presented_ns - back->presented_ns)) / 1e6, 5.0)
           << "frame " << p.frame << " on both nodes";
     }
+  }
+}
+
+// The active master's machine drops off the network (its namespace cut, the
+// process alive): no socket closes, so the standby and the nodes find it
+// silent past the silence limit (10 s). Meanwhile the nodes play out the
+// frames they hold and then hold the last one; the standby takes over on
+// its own address and every node goes on with the frames after the last one
+// the standby saw, in order.
+TEST_F(NetworkRigTest, TheStandbyTakesOverWhenTheMastersMachineDropsOffTheNetwork) {
+  NetworkRig rig("standby");
+  RigClusterSetup s = setup("standby", 0);  // until stopped
+  s.standby = true;
+  RigCluster cluster(rig, s);
+  cluster.start();
+  ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no warm-up frame; see " << cluster.log("master");
+  ASSERT_TRUE(core::wait_until(
+      [&] { return read_text(cluster.log("standby")).find("standby: the show runs") != std::string::npos; }, 60s))
+      << read_text(cluster.log("standby"));
+  std::this_thread::sleep_for(1s);
+  rig.partition("master");
+  const std::int64_t cut = now_ns();
+  std::uint64_t before_cut = 0;
+  for (const NodePresent& p : cluster.presents(0))
+    if (p.presented_ns < cut) before_cut = p.frame;
+  // Every node presents frames again, well past those it held at the cut.
+  const auto presenting_after = [&](int node, std::uint64_t frame) {
+    const std::vector<NodePresent> p = cluster.presents(node);
+    return !p.empty() && p.back().frame > frame && p.back().presented_ns > cut;
+  };
+  ASSERT_TRUE(core::wait_until(
+      [&] { return presenting_after(0, before_cut + 30) && presenting_after(1, before_cut + 30); }, 60s))
+      << read_text(cluster.log("standby"));
+  const std::optional<int> standby = cluster.stop_standby(30s);
+  ASSERT_TRUE(standby);
+  EXPECT_EQ(*standby, 0);
+  EXPECT_TRUE(cluster.wait_for_nodes(30s));
+
+  const std::string log = read_text(cluster.log("standby"));
+  EXPECT_NE(log.find("the active master is gone"), std::string::npos) << log;
+  for (int k = 0; k < 2; ++k) {
+    const std::vector<NodePresent> p = cluster.presents(k);
+    EXPECT_TRUE(timeline_of(p, 1, p.back().frame, 0, 1e9).in_order) << "node " << k;
+    // The first present after the hold: the standby's frames, later than every frame before.
+    const NodePresent* resumed = nullptr;
+    for (std::size_t i = 1; i < p.size() && !resumed; ++i)
+      if (p[i].presented_ns > cut && p[i].presented_ns - p[i - 1].presented_ns > 5'000'000'000) resumed = &p[i];
+    ASSERT_NE(resumed, nullptr) << "node " << k << " never held: did the cut take effect?";
+    const double held_s = static_cast<double>(resumed->presented_ns - cut) / 1e9;
+    std::printf("[ measured ] node %d presented again %.1f s after the master's machine dropped off (frame %llu)\n", k,
+                held_s, static_cast<unsigned long long>(resumed->frame));
+    EXPECT_GT(held_s, 10.0) << "not before the silence limit";
+    EXPECT_LT(held_s, 30.0);
   }
 }
 

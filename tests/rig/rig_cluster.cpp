@@ -31,6 +31,10 @@ RigCluster::RigCluster(NetworkRig& rig, RigClusterSetup setup) : rig_(rig), setu
   fs::remove_all(setup_.work);
   fs::create_directories(setup_.work);
   const NetworkRig::Host master = rig_.add_host("master");  // a copy: more hosts follow
+  std::string standby_entry;
+  if (setup_.standby)
+    standby_entry = std::string(R"("standby": {"host": ")") + rig_.add_host("standby").address + R"(", "port": )" +
+                    std::to_string(kMasterPort) + "},";
   for (int k = 0; k < setup_.nodes; ++k) rig_.add_host(node_name(k));
 
   std::ofstream v(setup_.work / "viewports.json");
@@ -49,7 +53,8 @@ RigCluster::RigCluster(NetworkRig& rig, RigClusterSetup setup) : rig_(rig), setu
   config_ = setup_.work / "cluster.json";
   std::ofstream c(config_);
   c << R"({"zenith_cluster": 1, "name": "rig-dome", "master": {"host": ")" << master.address << R"(", "port": )"
-    << kMasterPort << R"(}, "scene": ")" << setup_.scene.string() << R"(", "viewports": "viewports.json",
+    << kMasterPort << R"(}, )" << standby_entry << R"("scene": ")" << setup_.scene.string()
+    << R"(", "viewports": "viewports.json",
   "timing": {"heartbeat_ms": 200, "barrier_timeout_ms": 20000, "frame_rate_hz": )"
     << setup_.frame_rate_hz << R"(, "lookahead_frames": )" << setup_.lookahead_frames << R"(, "link_lost": ")"
     << (setup_.black_when_link_lost ? "black" : "hold") << R"("},
@@ -74,6 +79,12 @@ void RigCluster::start() {
                        {"master", "--cluster", config_.string(), "--frames", std::to_string(setup_.frames), "--cache",
                         setup_.cache.string(), "--wait-for-nodes-ms", "120000"},
                        log("master"));
+  if (setup_.standby)
+    standby_ =
+        rig_.spawn("standby", setup_.zenith,
+                   {"master", "--standby", "--cluster", config_.string(), "--frames", std::to_string(setup_.frames),
+                    "--cache", (setup_.work / "standby-cache").string(), "--wait-for-nodes-ms", "120000"},
+                   log("standby"));
   for (int k = 0; k < setup_.nodes; ++k)
     nodes_.push_back(
         rig_.spawn(node_name(k), setup_.zenith,
@@ -104,6 +115,14 @@ bool RigCluster::wait_for_nodes(std::chrono::milliseconds timeout) {
     if (!core::wait_for_exit(pid, std::max(left, 0ms))) return false;
   }
   return true;
+}
+
+std::optional<int> RigCluster::stop_standby(std::chrono::milliseconds timeout) {
+  if (standby_ < 0) return std::nullopt;
+  ::kill(standby_, SIGTERM);
+  const std::optional<int> status = core::wait_for_exit(standby_, timeout);
+  if (status && *status < 0) return std::nullopt;
+  return status;
 }
 
 std::vector<NodePresent> RigCluster::presents(int node) const {

@@ -30,6 +30,7 @@ struct RigClusterSetup {
   int output_px = 32;          ///< each node's square fisheye output
   std::string tables = "small";
   bool black_when_link_lost = false;  ///< timing.link_lost: "black" (else "hold")
+  bool standby = false;               ///< a standby master on host "standby" (docs/cluster.md, "Standby master")
 };
 
 /// One present of a node, from its presents.csv (ns of CLOCK_MONOTONIC).
@@ -74,6 +75,9 @@ class RigCluster {
   std::optional<int> wait_for_master(std::chrono::milliseconds timeout);
   /// Waits for every node's exit (after the master's Goodbye).
   bool wait_for_nodes(std::chrono::milliseconds timeout);
+  /// The standby master (setup().standby): SIGTERM, then its exit status
+  /// within `timeout` (nothing when it did not end).
+  std::optional<int> stop_standby(std::chrono::milliseconds timeout);
 
   /// "n0", "n1", …
   static std::string node_name(int k);
@@ -86,7 +90,7 @@ class RigCluster {
   NetworkRig& rig_;
   RigClusterSetup setup_;
   std::filesystem::path config_;
-  pid_t master_ = -1;
+  pid_t master_ = -1, standby_ = -1;
   std::vector<pid_t> nodes_;
 };
 
