@@ -136,6 +136,30 @@ TEST_F(NetworkRigTest, ATwoSecondPartitionOfOneNodeFreezesNoOtherNode) {
   }
 }
 
+// A node's cable pulled for good: its connection is half-open on the
+// master's side (no FIN, no reset). The other node presents every frame on
+// schedule all along; the master says the node is unreachable at once and
+// closes its connection at the silence limit.
+TEST_F(NetworkRigTest, AHalfOpenNodeHoldsNoOtherNode) {
+  NetworkRig rig("unplug");
+  RigCluster cluster(rig, setup("unplug", 451));  // 15 s at 30 Hz: past the 10 s silence limit
+  cluster.start();
+  ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no warm-up frame; see " << cluster.log("master");
+  std::this_thread::sleep_for(1s);
+  rig.unplug("n1");
+  const std::int64_t from = now_ns() - 1'000'000'000;
+  const std::optional<int> master = cluster.wait_for_master(180s);
+  ASSERT_TRUE(master) << "the master did not finish";
+  EXPECT_EQ(*master, 0);
+  const NodeTimeline other = timeline_of(cluster.presents(0), 1, 450, from, 2.0 * cluster.period_ms());
+  EXPECT_TRUE(other.in_order);
+  EXPECT_TRUE(other.missing.empty()) << other.missing.size() << " frames missing";
+  EXPECT_LE(other.longest_interval_ms, 2.0 * cluster.period_ms());
+  const std::string log = read_text(cluster.log("master"));
+  EXPECT_NE(log.find("node 'n1' unreachable"), std::string::npos) << log;
+  EXPECT_NE(log.find("closing node 'n1'"), std::string::npos) << log;
+}
+
 // The active master's machine drops off the network (its namespace cut, the
 // process alive): no socket closes, so the standby and the nodes find it
 // silent past the silence limit (10 s). Meanwhile the nodes play out the

@@ -210,6 +210,11 @@ void NetworkRig::heal(const std::string& name) {
   apply_filter(h);
 }
 
+void NetworkRig::unplug(const std::string& name) {
+  const Host& h = find(name);
+  run({"ip", "-n", h.netns, "link", "delete", h.interface});  // a veth pair goes with either end
+}
+
 void NetworkRig::set_rate(const std::string& name, double bits_per_s) {
   const Host& h = find(name);
   const std::vector<std::string> tc = {"ip", "netns", "exec", h.netns, "tc", "qdisc"};

@@ -58,6 +58,10 @@ class NetworkRig {
   /// Cuts the host's link (every packet dropped, both ways) / restores it.
   void partition(const std::string& host);
   void heal(const std::string& host);
+  /// Pulls the host's cable: its link is deleted (both ends), so its
+  /// connections end without a FIN or a reset — half-open on the other side.
+  /// There is no way back for that host.
+  void unplug(const std::string& host);
   /// Limits what the host sends to `bits_per_s` (tc tbf); 0 removes the limit.
   void set_rate(const std::string& host, double bits_per_s);
 
