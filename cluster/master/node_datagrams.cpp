@@ -103,7 +103,6 @@ void NodeDatagrams::on_datagram(std::size_t bytes, const udp::endpoint& from) {
       s->link_quiet = false;
     }
     s->last_datagram = now;
-    ++s->clock_pings;
     const std::vector<Message> pong = {ClockPong{ping->node_sent_ns, received_ns, ns_now()}};
     send(*s, std::make_shared<const std::vector<std::uint8_t>>(seal_datagram(*s->datagram_key, *id, pong)));
   }

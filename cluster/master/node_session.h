@@ -49,7 +49,6 @@ struct NodeSession {
   std::optional<Digest> datagram_key;
   std::optional<boost::asio::ip::udp::endpoint> datagram_peer;
   std::chrono::steady_clock::time_point last_datagram{};
-  std::uint64_t clock_pings = 0;
   /// No datagram for NodeDatagrams::kQuiet: its link is cut (logged once, and again when it is back).
   bool link_quiet = false;
 
