@@ -85,7 +85,7 @@ struct Node::Impl {
   PresentSchedule schedule;
   asio::steady_timer present_timer{io};
   std::optional<FrameSchedule> tcp_schedule;  ///< a FrameSchedule on TCP, for the FrameState that follows it
-  core::LogLimiter late_frames_log, held_tables_log;
+  core::LogLimiter late_frames_log, held_tables_log, missed_log;
   std::uint64_t reported_missed = 0;  ///< schedule.missed() at the last log line
   bool scheduled_frames = false;      ///< the master schedules its frames (else: the barrier)
   /// Every 100 ms: whether the master's datagrams stopped (the link is cut).
@@ -212,7 +212,9 @@ struct Node::Impl {
         worker->present(step->frame, step->present_at);
       }
     }
-    if (schedule.missed() > reported_missed) {
+    // At most a line a second, with the running total: a node that cannot
+    // keep up misses a frame now and then, and must not flood its log.
+    if (schedule.missed() > reported_missed && missed_log.admit(now)) {
       spdlog::warn(
           "node '{}': {} scheduled frame{} not presented so far (they came too late, or not at all; last "
           "presented {})",
