@@ -32,7 +32,10 @@ constexpr std::size_t kDefinitionMax = kStringMax(kMaxNameBytes) + kDigestBytes 
 constexpr std::size_t kPreviewRequestMax = 8 + 2;
 constexpr std::size_t kThumbnailMax =
     8 + kStringMax(kMaxNameBytes) + 2 + 2 + 4 + std::size_t{kMaxThumbnailEdgePx} * kMaxThumbnailEdgePx * 3;
+constexpr std::size_t kLinkFillMax = 4 + 4 + kMaxTableChunkBytes;
+constexpr std::size_t kLinkReportMax = 4 + 4 + 2 * 8 + 4 * 8 + 4 * 8 + 8 + 4 + 3 * 8;
 static_assert(kThumbnailMax == 12370);
+static_assert(kLinkReportMax == 124);
 static_assert(kFrameStateMax == 1559);
 static_assert(kTableChunkMax == 1048616);
 
@@ -154,6 +157,32 @@ void validate(const ClockPong& m, const Check& check) {
         "ClockPong.master_sent_ns: " + std::to_string(m.master_sent_ns) +
             ", before master_received_ns = " + std::to_string(m.master_received_ns));
 }
+void validate(const LinkCheck& m, const Check& check) {
+  check(m.duration_ms >= kMinLinkCheckMs && m.duration_ms <= kMaxLinkCheckMs,
+        "LinkCheck.duration_ms: " + std::to_string(m.duration_ms) + " outside [" + std::to_string(kMinLinkCheckMs) +
+            ", " + std::to_string(kMaxLinkCheckMs) + "]");
+  check(m.ping_interval_us >= kMinLinkPingIntervalUs && m.ping_interval_us <= kMaxLinkPingIntervalUs,
+        "LinkCheck.ping_interval_us: " + std::to_string(m.ping_interval_us) + " outside [" +
+            std::to_string(kMinLinkPingIntervalUs) + ", " + std::to_string(kMaxLinkPingIntervalUs) + "]");
+  check(m.fill_bytes <= kMaxLinkFillBytes,
+        "LinkCheck.fill_bytes: " + std::to_string(m.fill_bytes) + " above " + std::to_string(kMaxLinkFillBytes));
+}
+void validate(const LinkFill& m, const Check& check) {
+  check(!m.bytes.empty() && m.bytes.size() <= kMaxTableChunkBytes, "LinkFill.bytes: " + std::to_string(m.bytes.size()) +
+                                                                       " bytes outside [1, " +
+                                                                       std::to_string(kMaxTableChunkBytes) + "]");
+}
+void validate(const LinkReport& m, const Check& check) {
+  check(m.pongs_received <= m.pings_sent, "LinkReport.pongs_received: " + std::to_string(m.pongs_received) +
+                                              ", more than pings_sent = " + std::to_string(m.pings_sent));
+  check(m.first_ping_ns <= m.last_ping_ns, "LinkReport.first_ping_ns: after last_ping_ns");
+  check(m.round_trip_min_ns <= m.round_trip_p50_ns && m.round_trip_p50_ns <= m.round_trip_p99_ns &&
+            m.round_trip_p99_ns <= m.round_trip_max_ns,
+        "LinkReport.round_trip_*_ns: not min ≤ p50 ≤ p99 ≤ max");
+  check(std::isfinite(m.clock_drift_ppm) && std::abs(m.clock_drift_ppm) <= 1e6,
+        "LinkReport.clock_drift_ppm: not a finite value within ±10⁶");
+  check(m.fill_timed_bytes <= m.fill_bytes, "LinkReport.fill_timed_bytes: more than fill_bytes");
+}
 template <class T>
 void validate(const T&, const Check&) {}
 
@@ -208,6 +237,32 @@ void layout(Io&& io, M& m) {
   io(m.node_sent_ns, "ClockPong.node_sent_ns");
   io(m.master_received_ns, "ClockPong.master_received_ns");
   io(m.master_sent_ns, "ClockPong.master_sent_ns");
+}
+template <class Io, MessageOf<LinkCheck> M>
+void layout(Io&& io, M& m) {
+  io(m.duration_ms, "LinkCheck.duration_ms");
+  io(m.ping_interval_us, "LinkCheck.ping_interval_us");
+  io(m.fill_bytes, "LinkCheck.fill_bytes");
+}
+template <class Io, MessageOf<LinkReport> M>
+void layout(Io&& io, M& m) {
+  io(m.pings_sent, "LinkReport.pings_sent");
+  io(m.pongs_received, "LinkReport.pongs_received");
+  io(m.first_ping_ns, "LinkReport.first_ping_ns");
+  io(m.last_ping_ns, "LinkReport.last_ping_ns");
+  io(m.round_trip_min_ns, "LinkReport.round_trip_min_ns");
+  io(m.round_trip_p50_ns, "LinkReport.round_trip_p50_ns");
+  io(m.round_trip_p99_ns, "LinkReport.round_trip_p99_ns");
+  io(m.round_trip_max_ns, "LinkReport.round_trip_max_ns");
+  io(m.node_steady_ns, "LinkReport.node_steady_ns");
+  io(m.master_steady_ns, "LinkReport.master_steady_ns");
+  io(m.node_wall_ns, "LinkReport.node_wall_ns");
+  io(m.clock_uncertainty_ns, "LinkReport.clock_uncertainty_ns");
+  io(m.clock_drift_ppm, "LinkReport.clock_drift_ppm");
+  io(m.clock_steps, "LinkReport.clock_steps");
+  io(m.fill_bytes, "LinkReport.fill_bytes");
+  io(m.fill_timed_bytes, "LinkReport.fill_timed_bytes");
+  io(m.fill_ns, "LinkReport.fill_ns");
 }
 template <class Io, MessageOf<RenderDone> M>
 void layout(Io&& io, M& m) {
@@ -307,6 +362,11 @@ void write(ByteWriter& w, const TableChunk& m) {
   w.u32(static_cast<std::uint32_t>(m.bytes.size()));
   w.bytes(m.bytes);
 }
+void write(ByteWriter& w, const LinkFill& m) {
+  w.u32(m.index);
+  w.u32(static_cast<std::uint32_t>(m.bytes.size()));
+  w.bytes(m.bytes);
+}
 void write(ByteWriter& w, const TableReady& m) { w.bytes(m.table_hash); }
 void write(ByteWriter& w, const AtmosphereDefinition& m) {
   w.string(m.body_name, kMaxNameBytes, "AtmosphereDefinition.body_name");
@@ -387,6 +447,18 @@ TableChunk read_table_chunk(ByteReader& r) {
   return m;
 }
 
+LinkFill read_link_fill(ByteReader& r) {
+  LinkFill m;
+  m.index = r.u32("LinkFill.index");
+  const std::size_t length = r.u32("LinkFill.bytes length");
+  if (length > kMaxTableChunkBytes)
+    ByteReader::fail("LinkFill.bytes length: " + std::to_string(length) + ", at most " +
+                     std::to_string(kMaxTableChunkBytes));
+  auto view = r.bytes(length, "LinkFill.bytes");  // checked against the payload before copying
+  m.bytes.assign(view.begin(), view.end());
+  return m;
+}
+
 Thumbnail read_thumbnail(ByteReader& r) {
   Thumbnail m;
   m.frame = r.u64("Thumbnail.frame");
@@ -434,6 +506,9 @@ Message read(MessageType type, ByteReader& r) {
     case MessageType::frame_schedule: return read_fields<FrameSchedule>(r);
     case MessageType::clock_ping: return read_fields<ClockPing>(r);
     case MessageType::clock_pong: return read_fields<ClockPong>(r);
+    case MessageType::link_check: return read_fields<LinkCheck>(r);
+    case MessageType::link_fill: return read_link_fill(r);
+    case MessageType::link_report: return read_fields<LinkReport>(r);
   }
   throw ProtocolError(ProtocolErrorCode::unknown_type, "message type " + std::to_string(static_cast<int>(type)));
 }
@@ -476,6 +551,12 @@ constexpr MessageType type_of() {
     return MessageType::clock_ping;
   else if constexpr (std::is_same_v<T, ClockPong>)
     return MessageType::clock_pong;
+  else if constexpr (std::is_same_v<T, LinkCheck>)
+    return MessageType::link_check;
+  else if constexpr (std::is_same_v<T, LinkFill>)
+    return MessageType::link_fill;
+  else if constexpr (std::is_same_v<T, LinkReport>)
+    return MessageType::link_report;
   else {
     static_assert(std::is_same_v<T, Goodbye>);
     return MessageType::goodbye;
@@ -519,6 +600,9 @@ const char* to_string(MessageType type) {
     case MessageType::frame_schedule: return "FrameSchedule";
     case MessageType::clock_ping: return "ClockPing";
     case MessageType::clock_pong: return "ClockPong";
+    case MessageType::link_check: return "LinkCheck";
+    case MessageType::link_fill: return "LinkFill";
+    case MessageType::link_report: return "LinkReport";
   }
   return "unknown";
 }
@@ -544,6 +628,9 @@ std::optional<std::size_t> max_payload_bytes(std::uint16_t type_value) {
     case MessageType::frame_schedule: return 24;
     case MessageType::clock_ping: return 8;
     case MessageType::clock_pong: return 24;
+    case MessageType::link_check: return 16;
+    case MessageType::link_fill: return kLinkFillMax;
+    case MessageType::link_report: return kLinkReportMax;
   }
   return std::nullopt;
 }
@@ -559,7 +646,8 @@ std::vector<std::uint8_t> encode_payload(const Message& message) {
   std::visit(
       [&](const auto& m) {
         validate(m, Check{false});
-        if constexpr (std::is_same_v<std::decay_t<decltype(m)>, TableChunk>) out.reserve(40 + m.bytes.size());
+        using T = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<T, TableChunk> || std::is_same_v<T, LinkFill>) out.reserve(40 + m.bytes.size());
         ByteWriter w(out);
         write(w, m);
       },

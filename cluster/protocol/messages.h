@@ -72,6 +72,9 @@ enum class MessageType : std::uint16_t {
   preview_request = 19,        ///< master → node, before a FrameState: send thumbnails of that frame
   thumbnail = 20,              ///< node → master, before the RenderDone of a frame the master asked thumbnails of
   frame_schedule = 21,         ///< master → node, right before a FrameState: when to present it (scheduled frames)
+  link_check = 22,             ///< master → node, from `zenith cluster check`: measure the link
+  link_fill = 23,              ///< master → node: bytes of the link check's throughput measurement
+  link_report = 24,            ///< node → master: what the node measured of the link check
   table_announce = 32,         ///< master → node
   table_chunk = 33,            ///< master → node
   table_ready = 34,            ///< node → master
@@ -285,9 +288,55 @@ struct ClockPong {
   bool operator==(const ClockPong&) const = default;
 };
 
-using Message = std::variant<Hello, Challenge, Authenticate, Welcome, Reject, FrameState, RenderDone, Present,
-                             TableAnnounce, TableChunk, TableReady, Heartbeat, Goodbye, AtmosphereDefinition,
-                             PreviewRequest, Thumbnail, FrameSchedule, ClockPing, ClockPong>;
+// ---- the link check (`zenith cluster check`; docs/cluster.md, "Checking the network") ----
+
+/// Master → node, right after Welcome, from `zenith cluster check` instead of
+/// a show: send a ClockPing every `ping_interval_us` for `duration_ms` (its
+/// round trips, losses and clock), then take `fill_bytes` of LinkFill (the
+/// throughput toward the node) and answer with a LinkReport. Version 5.
+struct LinkCheck {
+  std::uint32_t duration_ms = 0;       ///< [kMinLinkCheckMs, kMaxLinkCheckMs]
+  std::uint32_t ping_interval_us = 0;  ///< [kMinLinkPingIntervalUs, kMaxLinkPingIntervalUs]
+  std::uint64_t fill_bytes = 0;        ///< [0, kMaxLinkFillBytes]
+  bool operator==(const LinkCheck&) const = default;
+};
+inline constexpr std::uint32_t kMinLinkCheckMs = 100, kMaxLinkCheckMs = 60'000;
+inline constexpr std::uint32_t kMinLinkPingIntervalUs = 1'000, kMaxLinkPingIntervalUs = 100'000;
+inline constexpr std::uint64_t kMaxLinkFillBytes = std::uint64_t{1} << 30;  ///< 1 GiB
+/// Master → node after a LinkCheck's pings: `bytes` of no meaning, numbered
+/// from 0, until the check's fill_bytes have been sent.
+struct LinkFill {
+  std::uint32_t index = 0;
+  std::vector<std::uint8_t> bytes;  ///< 1..kMaxTableChunkBytes
+  bool operator==(const LinkFill&) const = default;
+};
+/// Node → master, once the LinkCheck's pings and fill are done: what the
+/// node measured (cluster/node/link_check_answer.h). Times in ns of the
+/// node's steady clock unless named otherwise. Version 5.
+struct LinkReport {
+  std::uint32_t pings_sent = 0;      ///< ClockPings of the check
+  std::uint32_t pongs_received = 0;  ///< distinct ClockPongs answering them (≤ pings_sent)
+  std::uint64_t first_ping_ns = 0;   ///< the check's first ping (≤ last_ping_ns)
+  std::uint64_t last_ping_ns = 0;
+  /// The answered pings' round trips δ = (t4 − t1) − (t3 − t2) (cluster/link/clock_sync.h):
+  /// least, median, 99th percentile, largest (non-decreasing; all 0 without a pong).
+  std::uint64_t round_trip_min_ns = 0, round_trip_p50_ns = 0, round_trip_p99_ns = 0, round_trip_max_ns = 0;
+  std::uint64_t node_steady_ns = 0;        ///< the node's steady clock when it wrote the report
+  std::uint64_t master_steady_ns = 0;      ///< the master's steady clock then, as the node's ClockSync has it
+  std::uint64_t node_wall_ns = 0;          ///< the node's wall clock then (CLOCK_REALTIME, ns since 1970)
+  std::uint64_t clock_uncertainty_ns = 0;  ///< the estimate's bound: half the least round trip
+  double clock_drift_ppm = 0.0;            ///< master − node rate; finite, |·| ≤ 10⁶
+  std::uint32_t clock_steps = 0;           ///< times the estimate started afresh (a clock stepped)
+  std::uint64_t fill_bytes = 0;            ///< LinkFill bytes received
+  std::uint64_t fill_timed_bytes = 0;      ///< of those, the ones after the first LinkFill (≤ fill_bytes)
+  std::uint64_t fill_ns = 0;               ///< the first LinkFill's arrival to the last's
+  bool operator==(const LinkReport&) const = default;
+};
+
+using Message =
+    std::variant<Hello, Challenge, Authenticate, Welcome, Reject, FrameState, RenderDone, Present, TableAnnounce,
+                 TableChunk, TableReady, Heartbeat, Goodbye, AtmosphereDefinition, PreviewRequest, Thumbnail,
+                 FrameSchedule, ClockPing, ClockPong, LinkCheck, LinkFill, LinkReport>;
 
 MessageType message_type(const Message& message);
 

@@ -64,6 +64,14 @@ std::vector<Message> sample_messages() {
   out.push_back(FrameSchedule{123456789014ull, 7'000'016'666'667ull, 16'666'667ull});
   out.push_back(ClockPing{6'000'000'001ull});
   out.push_back(ClockPong{6'000'000'001ull, 7'000'000'250ull, 7'000'000'270ull});
+  out.push_back(LinkCheck{5000, 10'000, 32ull << 20});
+  LinkFill fill{3, {}};
+  fill.bytes.resize(700);
+  std::iota(fill.bytes.begin(), fill.bytes.end(), std::uint8_t{3});
+  out.push_back(fill);
+  out.push_back(LinkReport{500, 497, 6'000'000'000ull, 10'990'000'000ull, 180'000ull, 240'000ull, 900'000ull,
+                           2'100'000ull, 11'000'000'000ull, 7'000'000'011ull, 1'796'000'000'000'000'000ull, 90'000ull,
+                           -1.5, 0, 33'554'432ull, 32'505'856ull, 280'000'000ull});
   return out;
 }
 
@@ -106,6 +114,14 @@ std::vector<Message> max_size_messages() {
   out.push_back(FrameSchedule{~std::uint64_t{0}, ~std::uint64_t{0}, kMaxFramePeriodNs});
   out.push_back(ClockPing{~std::uint64_t{0}});
   out.push_back(ClockPong{~std::uint64_t{0}, ~std::uint64_t{0}, ~std::uint64_t{0}});
+  out.push_back(LinkCheck{kMaxLinkCheckMs, kMaxLinkPingIntervalUs, kMaxLinkFillBytes});
+  LinkFill fill{~std::uint32_t{0}, {}};
+  fill.bytes.resize(kMaxTableChunkBytes);
+  for (std::size_t i = 0; i < fill.bytes.size(); ++i) fill.bytes[i] = static_cast<std::uint8_t>(i * 7);
+  out.push_back(std::move(fill));
+  constexpr std::uint64_t kMax = ~std::uint64_t{0};
+  out.push_back(LinkReport{~std::uint32_t{0}, ~std::uint32_t{0}, kMax, kMax, kMax, kMax, kMax, kMax, kMax, kMax, kMax,
+                           kMax, 1e6, ~std::uint32_t{0}, kMax, kMax, kMax});
   return out;
 }
 

@@ -125,9 +125,14 @@ TEST(Messages, DocumentedMaximumPayloads) {
       {MessageType::preview_request, 8u + 2u},  // frame, edge
       // frame, output name, width, height, length, 64 × 64 RGB bytes
       {MessageType::thumbnail, 8u + 66u + 2u + 2u + 4u + 64u * 64u * 3u},
-      {MessageType::frame_schedule, 3u * 8u},  // frame, moment on the master's clock, period
-      {MessageType::clock_ping, 8u},           // the node's clock
-      {MessageType::clock_pong, 3u * 8u}};     // the ping's stamp, the master's clock at arrival and answer
+      {MessageType::frame_schedule, 3u * 8u},          // frame, moment on the master's clock, period
+      {MessageType::clock_ping, 8u},                   // the node's clock
+      {MessageType::clock_pong, 3u * 8u},              // the ping's stamp, the master's clock at arrival and answer
+      {MessageType::link_check, 4u + 4u + 8u},         // duration, ping interval, fill bytes
+      {MessageType::link_fill, 4u + 4u + (1u << 20)},  // index, length, 1 MiB
+      // pings, pongs, first and last ping, four round trips, node's clock, master's, wall clock,
+      // uncertainty, drift, steps, fill bytes, timed bytes, fill time
+      {MessageType::link_report, 4u + 4u + 2u * 8u + 4u * 8u + 3u * 8u + 8u + 8u + 4u + 3u * 8u}};
   for (const auto& [type, bytes] : expected)
     EXPECT_EQ(max_payload_bytes(static_cast<std::uint16_t>(type)), bytes) << to_string(type);
   EXPECT_FALSE(max_payload_bytes(0).has_value());
