@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+
 #include "cluster/protocol/datagram.h"
 
 namespace zenith::cluster {
@@ -64,16 +66,32 @@ MasterDatagrams::Clock::time_point MasterDatagrams::to_local(std::uint64_t maste
   return Clock::time_point(std::chrono::nanoseconds(clock_.to_node(static_cast<std::int64_t>(master_ns))));
 }
 
+void MasterDatagrams::start_probe(std::chrono::microseconds interval, Clock::time_point until) {
+  probe_ = PingProbe{};
+  probe_interval_ = interval;
+  probe_until_ = until;
+  ping_timer_.cancel();  // the next ping now, at the probe's rate
+  ++ping_chain_;         // a wait that already ended sends nothing more
+  if (socket_) ping();
+}
+
+void MasterDatagrams::end_probe() { probe_until_ = Clock::time_point{}; }
+
 void MasterDatagrams::ping() {
   if (!socket_) return;
-  const std::vector<Message> message = {ClockPing{static_cast<std::uint64_t>(ns_of(Clock::now()))}};
+  const auto now = Clock::now();
+  const bool probing = now < probe_until_;
+  const auto t1 = static_cast<std::uint64_t>(ns_of(now));
+  if (probing) probe_.sent(t1);
+  const std::vector<Message> message = {ClockPing{t1}};
   auto datagram = std::make_shared<std::vector<std::uint8_t>>(seal_datagram(key_, node_id_, message));
   // A send that fails (the link is down, no route) is the same as a lost datagram: the next ping tries again.
   socket_->async_send(asio::buffer(*datagram), [datagram](const boost::system::error_code&, std::size_t) {});
-  const std::uint64_t generation = generation_;
-  ping_timer_.expires_after(kPingInterval);
-  ping_timer_.async_wait([this, generation](const boost::system::error_code& ec) {
-    if (!ec && generation == generation_) ping();
+  const std::uint64_t generation = generation_, chain = ping_chain_;
+  ping_timer_.expires_after(probing ? std::chrono::duration_cast<Clock::duration>(probe_interval_)
+                                    : std::chrono::duration_cast<Clock::duration>(kPingInterval));
+  ping_timer_.async_wait([this, generation, chain](const boost::system::error_code& ec) {
+    if (!ec && generation == generation_ && chain == ping_chain_) ping();
   });
 }
 
@@ -101,8 +119,25 @@ void MasterDatagrams::on_datagram(std::size_t bytes) {
   std::optional<FrameSchedule> schedule;
   for (const Message& m : d.messages) {
     if (const auto* pong = std::get_if<ClockPong>(&m)) {
+      const std::int64_t round_trip = (ns_of(now) - static_cast<std::int64_t>(pong->node_sent_ns)) -
+                                      static_cast<std::int64_t>(pong->master_sent_ns - pong->master_received_ns);
+      if (round_trip >= 0) probe_.answered(pong->node_sent_ns, static_cast<std::uint64_t>(round_trip));
       clock_.add({static_cast<std::int64_t>(pong->node_sent_ns), static_cast<std::int64_t>(pong->master_received_ns),
                   static_cast<std::int64_t>(pong->master_sent_ns), ns_of(now)});
+      if (clock_.steps() > steps_logged_) {
+        steps_logged_ = clock_.steps();
+        spdlog::warn(
+            "{}: its clock and the master's stepped apart (three exchanges in a row more than 2 ms off the "
+            "estimate): the estimate starts afresh; scheduled frames follow it within a few pings ({} step{} so far)",
+            who_, steps_logged_, steps_logged_ == 1 ? "" : "s");
+      }
+      if (!drift_logged_ && std::abs(clock_.drift_ppm()) > kDriftWarnPpm) {
+        drift_logged_ = true;
+        spdlog::warn(
+            "{}: its clock runs {:.0f} ppm off the master's (crystals differ by tens): followed, but check "
+            "the PC's clock",
+            who_, clock_.drift_ppm());
+      }
       if (!synchronized_logged_ && clock_.synchronized()) {
         synchronized_logged_ = true;
         spdlog::info("{}: clock synchronized with the master over datagrams (offset {:.3f} ms, round trip {:.3f} ms)",

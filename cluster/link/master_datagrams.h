@@ -18,6 +18,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "cluster/link/clock_sync.h"
+#include "cluster/link/ping_probe.h"
 #include "cluster/protocol/messages.h"
 #include "core/log_limiter.h"
 
@@ -27,6 +28,8 @@ class MasterDatagrams {
  public:
   using Clock = std::chrono::steady_clock;
   static constexpr std::chrono::milliseconds kPingInterval{100};
+  /// Crystals differ by tens of ppm: a drift beyond this is a clock being slewed hard, or broken (logged once).
+  static constexpr double kDriftWarnPpm = 500.0;
 
   /// A frame the master scheduled, as it arrived in a datagram.
   struct ScheduledFrame {
@@ -49,6 +52,14 @@ class MasterDatagrams {
   /// Welcome replaces it otherwise).
   void stop();
 
+  /// A link check (docs/cluster.md, "Checking the network"): a ping every
+  /// `interval` from now until `until` (then every kPingInterval again),
+  /// each counted in probe() with its pong. A probe started afresh.
+  void start_probe(std::chrono::microseconds interval, Clock::time_point until);
+  /// Ends the probe's pings now (its counts stay).
+  void end_probe();
+  const PingProbe& probe() const { return probe_; }
+
   const ClockSync& clock() const { return clock_; }
   /// The node's steady time at which the master's clock reads `master_ns`.
   Clock::time_point to_local(std::uint64_t master_ns) const;
@@ -68,12 +79,18 @@ class MasterDatagrams {
   std::uint32_t node_id_ = 0;
   Digest key_{};
   std::uint64_t generation_ = 0;  ///< handlers of an earlier session do nothing
+  std::uint64_t ping_chain_ = 0;  ///< a ping timer of an earlier chain (before a probe started) does nothing
   boost::asio::steady_timer ping_timer_;
   std::vector<std::uint8_t> buffer_;
   ClockSync clock_;
+  PingProbe probe_;
+  std::chrono::microseconds probe_interval_{0};
+  Clock::time_point probe_until_{};
   std::optional<Clock::time_point> last_heard_;
   core::LogLimiter refused_;
   bool synchronized_logged_ = false;
+  std::uint64_t steps_logged_ = 0;  ///< clock steps already logged
+  bool drift_logged_ = false;       ///< a drift beyond kDriftWarnPpm logged
 };
 
 }  // namespace zenith::cluster

@@ -16,6 +16,7 @@
 #include "cluster/link/master_datagrams.h"
 #include "cluster/link/master_link.h"
 #include "cluster/node/known_atmospheres.h"
+#include "cluster/node/link_check_answer.h"
 #include "cluster/node/present_schedule.h"
 #include "cluster/node/render_worker.h"
 #include "cluster/protocol/heartbeat.h"
@@ -85,12 +86,15 @@ struct Node::Impl {
   PresentSchedule schedule;
   asio::steady_timer present_timer{io};
   std::optional<FrameSchedule> tcp_schedule;  ///< a FrameSchedule on TCP, for the FrameState that follows it
-  core::LogLimiter late_frames_log, held_tables_log, missed_log;
+  core::LogLimiter late_frames_log, stale_frames_log, held_tables_log, missed_log;
   std::uint64_t reported_missed = 0;  ///< schedule.missed() at the last log line
   bool scheduled_frames = false;      ///< the master schedules its frames (else: the barrier)
   /// Every 100 ms: whether the master's datagrams stopped (the link is cut).
   asio::steady_timer link_watch{io};
   bool link_watched = false, link_quiet = false, blanked = false;
+  /// A link check (`zenith cluster check`): its pings, fill and report.
+  LinkCheckAnswer link_check;
+  asio::steady_timer link_check_timer{io};
   LinkEnd end;  // the exit code, decided by the first finish()
 
   // ---- the render thread: GL, the renderer, the frame files ----
@@ -164,6 +168,8 @@ struct Node::Impl {
     receiver = TableReceiver{};
     datagrams.stop();
     tcp_schedule.reset();
+    link_check = LinkCheckAnswer{};  // a check of that connection: the master gave up on it
+    link_check_timer.cancel();
     // Scheduled frames stay: the master decided them, and each is shown at
     // its moment (a standby taking over goes on after the last one it saw).
     // A barrier's frame in flight is never presented: its Present cannot come.
@@ -190,6 +196,12 @@ struct Node::Impl {
     const Clock::time_point moment = datagrams.to_local(when.present_at_ns);
     const PresentSchedule::Arrival arrival = schedule.on_frame(state, moment, now);
     if (arrival == PresentSchedule::Arrival::taken) blanked = false;
+    if (arrival == PresentSchedule::Arrival::stale)
+      if (const auto more = stale_frames_log.admit(now))
+        spdlog::info(
+            "node '{}': frame {} arrived after frame {} was presented: ignored (the network delayed or "
+            "reordered its datagram){}",
+            options.node_name, state.frame, schedule.last_presented().value_or(0), *more);
     if (arrival == PresentSchedule::Arrival::late)
       if (const auto more = late_frames_log.admit(now))
         spdlog::warn(
@@ -251,6 +263,12 @@ struct Node::Impl {
       const bool thumbnails = preview_request && preview_request->frame == fs->frame;
       worker->render(*fs, session, thumbnails ? preview_request->edge_px : 0);
       if (thumbnails) preview_request.reset();
+    } else if (const auto* check = std::get_if<LinkCheck>(&message)) {
+      start_link_check(*check);
+    } else if (const auto* fill = std::get_if<LinkFill>(&message)) {
+      link_check.on_fill(*fill, Clock::now());
+      datagrams.end_probe();
+      maybe_report_link_check();
     } else if (const auto* request = std::get_if<PreviewRequest>(&message)) {
       preview_request = *request;  // for the FrameState that follows it
     } else if (const auto* p = std::get_if<Present>(&message)) {
@@ -275,6 +293,38 @@ struct Node::Impl {
     } else {
       throw std::runtime_error(cat(to_string(message_type(message)), " is not sent by a master"));
     }
+  }
+
+  /// `zenith cluster check` (docs/cluster.md, "Checking the network"): pings
+  /// at the check's rate for its duration, then its fill, then the report.
+  void start_link_check(const LinkCheck& check) {
+    const auto now = Clock::now();
+    link_check.start(check, now);
+    datagrams.start_probe(std::chrono::microseconds(check.ping_interval_us), link_check.pings_until());
+    spdlog::info("node '{}': link check: pinging the master every {:.1f} ms for {:.1f} s, then {} bytes to take",
+                 options.node_name, check.ping_interval_us / 1e3, check.duration_ms / 1e3, check.fill_bytes);
+    link_check_timer.expires_at(link_check.pings_until());
+    link_check_timer.async_wait([this](const boost::system::error_code& ec) {
+      if (!ec) maybe_report_link_check();
+    });
+  }
+
+  void maybe_report_link_check() {
+    const auto now = Clock::now();
+    if (!link_check.complete(now)) return;
+    const auto steady_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count();
+    const auto wall_ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+            .count();
+    const LinkReport report = link_check.report(datagrams.probe().summary(), datagrams.clock(), steady_ns,
+                                                static_cast<std::uint64_t>(std::max<std::int64_t>(wall_ns, 0)));
+    link.send(report);
+    const auto ms = [](std::uint64_t ns) { return static_cast<double>(ns) / 1e6; };
+    spdlog::info(
+        "node '{}': link check done: {} of {} pings answered, round trip {:.3f} / {:.3f} / {:.3f} ms (least, "
+        "median, 99th percentile); {} bytes in {:.3f} s",
+        options.node_name, report.pongs_received, report.pings_sent, ms(report.round_trip_min_ns),
+        ms(report.round_trip_p50_ns), ms(report.round_trip_p99_ns), report.fill_bytes, ms(report.fill_ns) / 1e3);
   }
 
   void store_tables(const Digest& hash, const std::vector<std::uint8_t>& bytes) {
@@ -326,6 +376,7 @@ struct Node::Impl {
     datagrams.stop();
     present_timer.cancel();
     link_watch.cancel();
+    link_check_timer.cancel();
     worker->stop();
   }
 
