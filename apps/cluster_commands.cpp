@@ -698,7 +698,10 @@ void register_cluster_commands(CLI::App& app) {
     cmd->add_option("--restart-window-s", a->restart_window_s,
                     "With --restart-nodes: the window of --max-restarts (default 60)")
         ->check(CLI::Range(1.0, 86400.0));
-    cmd->callback([a] { run_cluster(*a); });
+    register_cluster_check(*cmd);
+    cmd->callback([a, cmd] {
+      if (!cmd->got_subcommand("check")) run_cluster(*a);
+    });
   }
 }
 

@@ -16,6 +16,8 @@ void register_render_command(CLI::App& app);
 void register_export_calibration_command(CLI::App& app);
 /// `zenith master`, `zenith node`, `zenith cluster` (apps/cluster_commands.cpp).
 void register_cluster_commands(CLI::App& app);
+/// `cluster check` under `cluster` (apps/cluster_check_command.cpp).
+void register_cluster_check(CLI::App& cluster);
 /// `zenith displays` (apps/displays_command.cpp).
 void register_displays_command(CLI::App& app);
 /// `zenith validate cie|stress|night` (apps/validate_command.cpp).

@@ -103,6 +103,7 @@ void NodeDatagrams::on_datagram(std::size_t bytes, const udp::endpoint& from) {
       s->link_quiet = false;
     }
     s->last_datagram = now;
+    if (s->link_check_pings) s->link_check_pings->insert(ping->node_sent_ns);
     const std::vector<Message> pong = {ClockPong{ping->node_sent_ns, received_ns, ns_now()}};
     send(*s, std::make_shared<const std::vector<std::uint8_t>>(seal_datagram(*s->datagram_key, *id, pong)));
   }

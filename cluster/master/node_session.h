@@ -51,6 +51,9 @@ struct NodeSession {
   std::chrono::steady_clock::time_point last_datagram{};
   /// No datagram for NodeDatagrams::kQuiet: its link is cut (logged once, and again when it is back).
   bool link_quiet = false;
+  /// During a link check (cluster/check/link_check.h): the stamps of the
+  /// distinct ClockPings heard from it.
+  std::optional<std::set<std::uint64_t>> link_check_pings;
 
   /// "node 'a' (127.0.0.1:5000)", "the standby (127.0.0.1:5000)", or "connection from 127.0.0.1:5000" before Hello: for
   /// logs.

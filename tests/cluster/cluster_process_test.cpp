@@ -497,6 +497,65 @@ TEST_F(ClusterProcess, KilledNodeRestartsAndRejoinsWhileTheOthersSkipNoFrame) {
   EXPECT_NE(master_log.find("disconnected"), std::string::npos) << master_log;
 }
 
+/// The JSON `zenith cluster check --json` printed: its standard output, after the log lines.
+nlohmann::json check_json(const std::string& output) {
+  const std::size_t start = output.starts_with("{") ? 0 : output.find("\n{\n");
+  if (start == std::string::npos) return nullptr;
+  return nlohmann::json::parse(output.substr(start), nullptr, false);
+}
+
+TEST_F(ClusterProcess, ClusterCheckMeasuresEveryNodesLinkThenLetsItGo) {
+  const fs::path config = write_config(10);
+  // No node: each is reported as never connected, and the check fails (exit 2) once the wait is over.
+  const Child empty =
+      spawn({"cluster", "check", "--cluster", config.string(), "--json", "--wait-s", "1"}, dir_ / "check-empty.log");
+  children_.push_back(empty);
+  ASSERT_EQ(wait_exit(empty, 30s), 2) << read_text(empty.log);
+  const nlohmann::json none = check_json(read_text(empty.log));
+  ASSERT_TRUE(none.is_object()) << read_text(empty.log);
+  EXPECT_EQ(none["verdict"], "fail");
+  ASSERT_EQ(none["nodes"].size(), 3u);
+  EXPECT_EQ(none["nodes"][2]["connected"], false);
+  EXPECT_NE(none["nodes"][2]["problem"].get<std::string>().find("nothing connected as 'c' within 1 s"),
+            std::string::npos);
+
+  const Child check = spawn({"cluster", "check", "--cluster", config.string(), "--json", "--seconds", "1", "--fill-mib",
+                             "8", "--wait-s", "150"},
+                            dir_ / "check.log");
+  children_.push_back(check);
+  std::vector<Child> nodes;
+  for (const char* n : {"a", "b", "c"}) nodes.push_back(start_node(config, n));
+  ASSERT_EQ(wait_exit(check, 200s), 0) << read_text(check.log) << logs();
+  const nlohmann::json j = check_json(read_text(check.log));
+  ASSERT_TRUE(j.is_object()) << read_text(check.log);
+  EXPECT_EQ(j["verdict"], "ok") << j.dump(2);
+  EXPECT_EQ(j["cluster"], "test-dome");
+  ASSERT_EQ(j["nodes"].size(), 3u);
+  for (const nlohmann::json& n : j["nodes"]) {
+    SCOPED_TRACE(n.dump(2));
+    EXPECT_EQ(n["verdict"], "ok");
+    EXPECT_EQ(n["reported"], true);
+    // A ping every 10 ms for 1 s (timers of a loaded machine run late, never early).
+    const auto pings = n["datagrams"]["pings_sent"].get<int>();
+    EXPECT_GE(pings, 40);
+    EXPECT_LE(pings, 101);
+    EXPECT_EQ(n["datagrams"]["pongs"].get<int>(), pings) << "loopback loses nothing";
+    EXPECT_EQ(n["datagrams"]["loss_to_node"].get<double>(), 0.0);
+    EXPECT_EQ(n["fill"]["bytes"].get<std::uint64_t>(), 8u << 20);
+    EXPECT_GT(n["throughput_mbit_s"].get<double>(), 100.0);
+    const nlohmann::json& rt = n["round_trip_ms"];
+    EXPECT_LE(rt["min"].get<double>(), rt["p50"].get<double>());
+    EXPECT_LE(rt["p99"].get<double>(), rt["max"].get<double>());
+    // One machine, one CLOCK_MONOTONIC and one wall clock: both offsets are the estimate's error.
+    EXPECT_LT(std::abs(n["clock"]["steady_offset_ms"].get<double>()), 1.0);
+    EXPECT_LT(std::abs(n["clock"]["wall_offset_ms"].get<double>()), 5.0);
+    EXPECT_LT(n["clock"]["uncertainty_ms"].get<double>(), 0.5);
+  }
+  // The nodes leave as at a show's end (their services start them again for the next master).
+  for (const Child& n : nodes) EXPECT_EQ(wait_exit(n, 30s), 0) << read_text(n.log);
+  EXPECT_NE(read_text(dir_ / "a.log").find("link check done"), std::string::npos);
+}
+
 TEST_F(ClusterProcess, NodesExitWithAClearMessageWhenTheMasterStaysGonePastTheReconnectTime) {
   const fs::path config = write_config(10, 20000, 200);
   const Child master = start_master(config, 0, 1000);
