@@ -170,8 +170,13 @@ struct Master::Impl {
   void become_ready(NodeSession& s) {
     s.state = NodeSession::State::ready;
     node_statistics.joined(s.name);
-    spdlog::info("master: node '{}' is ready: it joins the barrier at the next frame boundary (frame {})", s.name,
-                 barrier.next_boundary());
+    const double seconds = std::chrono::duration<double>(Clock::now() - s.inventory_done_at).count();
+    node_statistics.tables_received(s.name, s.table_bytes_sent, seconds);
+    const double mb = static_cast<double>(s.table_bytes_sent) / 1e6;
+    spdlog::info(
+        "master: node '{}' is ready: {:.1f} MB of tables sent to it, received and loaded in {:.2f} s ({:.0f} Mbit/s); "
+        "it joins at the next frame boundary (frame {})",
+        s.name, mb, seconds, seconds > 0 ? 8 * mb / seconds : 0.0, barrier.next_boundary());
     loop->maybe_start();
   }
 

@@ -53,22 +53,24 @@ json node_status(const StatusSources& s, const ClusterNodeConfig& node) {
   json held = json::array();
   if (session != nullptr)
     for (const Digest& hash : session->tables_ready) held.push_back(version_hex16(hash));
-  return {{"name", node.name},
-          {"host", node.host},
-          {"state", session == nullptr ? std::string("disconnected") : node_state(*session, s.barrier)},
-          {"address", session == nullptr ? json(nullptr) : json(session->connection->peer())},
-          {"last_render_ms", counts.last_render_ms ? json(*counts.last_render_ms) : json(nullptr)},
-          {"frames_rendered", counts.frames_rendered},
-          {"barrier_waits", counts.barrier_waits},
-          {"drops", counts.drops},
-          {"rejoins", counts.rejoins},
-          {"joins", counts.joins},
-          {"presents", counts.presents},
-          {"late_presents", counts.late_presents},
-          {"last_present_ms", counts.last_present_ms ? json(*counts.last_present_ms) : json(nullptr)},
-          {"missed_frames", counts.missed_frames},
-          {"link", link_status(session, std::chrono::steady_clock::now())},
-          {"tables_held", std::move(held)}};
+  return {
+      {"name", node.name},
+      {"host", node.host},
+      {"state", session == nullptr ? std::string("disconnected") : node_state(*session, s.barrier)},
+      {"address", session == nullptr ? json(nullptr) : json(session->connection->peer())},
+      {"last_render_ms", counts.last_render_ms ? json(*counts.last_render_ms) : json(nullptr)},
+      {"frames_rendered", counts.frames_rendered},
+      {"barrier_waits", counts.barrier_waits},
+      {"drops", counts.drops},
+      {"rejoins", counts.rejoins},
+      {"joins", counts.joins},
+      {"presents", counts.presents},
+      {"late_presents", counts.late_presents},
+      {"last_present_ms", counts.last_present_ms ? json(*counts.last_present_ms) : json(nullptr)},
+      {"missed_frames", counts.missed_frames},
+      {"tables", counts.tables_s ? json{{"bytes", counts.tables_bytes}, {"seconds", *counts.tables_s}} : json(nullptr)},
+      {"link", link_status(session, std::chrono::steady_clock::now())},
+      {"tables_held", std::move(held)}};
 }
 
 /// The version on its way: its stage, the precompute's progress, the nodes holding it.

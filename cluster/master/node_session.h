@@ -41,6 +41,11 @@ struct NodeSession {
   std::set<Digest> cached;
   std::set<Digest> tables_ready;  ///< TableReady after the inventory: held, verified and loaded
   std::uint64_t chunks_sent = 0;
+  /// The table bytes sent to it (AtmosphereDefinitions, announcements and
+  /// chunks) since its inventory ended, and when that was: the time it takes
+  /// to become ready is its link's and its loading's (logged, in the status).
+  std::uint64_t table_bytes_sent = 0;
+  std::chrono::steady_clock::time_point inventory_done_at{};
   std::chrono::steady_clock::time_point connected_at = std::chrono::steady_clock::now();
   /// Datagrams (cluster/protocol/datagram.h): the session's key, once
   /// authenticated; where its ClockPings come from (where its scheduled

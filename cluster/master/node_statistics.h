@@ -29,6 +29,10 @@ class NodeStatistics {
     /// Scheduled frames it did not present (they reached it after their moment,
     /// or not at all: a cut link), summed over its processes (RenderDone.missed_frames).
     std::uint64_t missed_frames = 0;
+    /// Its latest join: the table bytes sent to it and the time from its
+    /// inventory to ready (transfer, verification, caching and loading).
+    std::uint64_t tables_bytes = 0;
+    std::optional<double> tables_s;
   };
 
   /// RenderDone for the frame in flight took `render_ms` on the node;
@@ -37,6 +41,11 @@ class NodeStatistics {
   void dropped(const std::string& node) { counts_[node].drops += 1; }
   void rejoined(const std::string& node) { counts_[node].rejoins += 1; }
   void joined(const std::string& node) { counts_[node].joins += 1; }
+  /// It became ready `seconds` after its inventory, `bytes` of tables sent to it.
+  void tables_received(const std::string& node, std::uint64_t bytes, double seconds) {
+    counts_[node].tables_bytes = bytes;
+    counts_[node].tables_s = seconds;
+  }
   /// A RenderDone's present counts (the node process's totals so far);
   /// returns how many late presents are new since the node's previous report.
   std::uint64_t presented(const std::string& node, std::uint64_t presents, std::uint64_t late_presents,

@@ -203,17 +203,25 @@ void TableSchedule::on_set_failed(const Digest& hash, std::exception_ptr error) 
 /// Sends one set: the whole transfer, or only its TableAnnounce when the
 /// node's inventory holds it (the node then loads its cached copy).
 void TableSchedule::send_set(NodeSession& s, const TableSetFile& set) {
-  if (auto definition = tables_.definition(set.table_hash)) actions_.send(s, definition);
+  if (auto definition = tables_.definition(set.table_hash)) {
+    actions_.send(s, definition);
+    s.table_bytes_sent += definition->size();
+  }
   if (s.cached.count(set.table_hash)) {
     actions_.send(s, set.frames.front());
+    s.table_bytes_sent += set.frames.front()->size();
     return;
   }
-  for (const auto& f : set.frames) actions_.send(s, f);
+  for (const auto& f : set.frames) {
+    actions_.send(s, f);
+    s.table_bytes_sent += f->size();
+  }
   s.chunks_sent += set.frames.size() - 1;
 }
 
 void TableSchedule::finish_inventory(NodeSession& s) {
   s.inventory_done = true;
+  s.inventory_done_at = std::chrono::steady_clock::now();
   const std::vector<Digest> wanted = tables_.wanted_sets();
   const std::uint64_t chunks_before = s.chunks_sent;
   std::size_t cached = 0;

@@ -408,6 +408,12 @@ function linkText(link) {
   return link.state;
 }
 
+/// How long its tables took at its latest join (docs/operator.md, "Status").
+function tablesText(tables) {
+  if (!tables) return '–';
+  return (tables.bytes / 1e6).toFixed(1) + ' MB in ' + tables.seconds.toFixed(1) + ' s';
+}
+
 function renderNodes(nodes) {
   const body = $('nodes').tBodies[0];
   const rows = nodes.map((n) => {
@@ -415,7 +421,7 @@ function renderNodes(nodes) {
     tr.dataset.node = n.name;
     const cells = [n.name, n.host, n.state, n.last_render_ms === null ? '–' : n.last_render_ms.toFixed(1) + ' ms',
                    n.frames_rendered, n.barrier_waits, n.drops, n.rejoins, n.presents, n.late_presents,
-                   n.missed_frames, linkText(n.link), n.tables_held.join(', ')];
+                   n.missed_frames, linkText(n.link), tablesText(n.tables), n.tables_held.join(', ')];
     cells.forEach((c, i) => {
       const td = document.createElement('td');
       td.textContent = c;
