@@ -12,12 +12,17 @@
 // Linux's minimum retransmission timeout (200 ms, six periods) and break it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <thread>
+
+#include <nlohmann/json.hpp>
 
 #include "core/process.h"
 #include "tests/rig/network_rig.h"
@@ -83,6 +88,92 @@ TEST_F(NetworkRigTest, FivePercentLossOnOneLinkStallsNoNode) {
                                    << (t.missing.empty() ? 0 : t.missing.front());
     EXPECT_LE(t.longest_interval_ms, 2.0 * cluster.period_ms()) << "node " << k;
   }
+}
+
+/// Every frame of [1, last] presented in order on every node, no interval over two periods after `from`.
+void expect_every_frame_on_time(const RigCluster& cluster, std::uint64_t last, std::int64_t from) {
+  for (int k = 0; k < cluster.setup().nodes; ++k) {
+    const NodeTimeline t = timeline_of(cluster.presents(k), 1, last, from, 2.0 * cluster.period_ms());
+    EXPECT_TRUE(t.in_order) << "node " << k;
+    EXPECT_TRUE(t.missing.empty()) << "node " << k << " missed " << t.missing.size() << " frames, the first "
+                                   << (t.missing.empty() ? 0 : t.missing.front());
+    EXPECT_LE(t.longest_interval_ms, 2.0 * cluster.period_ms()) << "node " << k;
+  }
+}
+
+// Latency with jitter on every link (the delaying relay: the kernel has no
+// netem): 5 ms ± 1 ms each way, a 10 ms round trip, at the default lookahead.
+TEST_F(NetworkRigTest, FiveMillisecondsOfLatencyWithJitterOnEveryLinkStallsNoNode) {
+  NetworkRig rig("lat");
+  RigClusterSetup s = setup("latency", 151);
+  s.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, 5.0, 1.0, 0.0, 0.0};
+  RigCluster cluster(rig, s);
+  cluster.start();
+  ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no scheduled frames; see " << cluster.log("master");
+  const std::int64_t from = now_ns();
+  finish(cluster);
+  expect_every_frame_on_time(cluster, 150, from);
+  // The nodes' clock estimates agree within what the jitter allows: an exchange's offset is off by half
+  // its legs' difference, at most (6 − 4) / 2 = 1 ms per node, so 2 ms between two nodes; the Welcome's
+  // one-way seed alone would be 5 ms off.
+  std::vector<double> moments = moment_spreads_ms({cluster.presents(0), cluster.presents(1)});
+  ASSERT_FALSE(moments.empty());
+  EXPECT_LT(*std::max_element(moments.begin(), moments.end()), 2.0) << "the nodes' moments for one frame";
+}
+
+// Datagrams duplicated and reordered (held back 50 ms, past later ones) on
+// every link, 10 % each: copies and stale frames are ignored, no frame is lost.
+TEST_F(NetworkRigTest, DuplicatedAndReorderedDatagramsLoseNoFrame) {
+  NetworkRig rig("dup");
+  RigClusterSetup s = setup("duplicates", 151);
+  s.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, 1.0, 0.5, 10.0, 10.0};
+  RigCluster cluster(rig, s);
+  cluster.start();
+  ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no scheduled frames; see " << cluster.log("master");
+  const std::int64_t from = now_ns();
+  finish(cluster);
+  expect_every_frame_on_time(cluster, 150, from);
+  // The relays did what they were told (their counts at SIGKILL are not written: the log's first line).
+  EXPECT_NE(read_text(cluster.log("relay-n0")).find("10 % duplicated, 10 % held back"), std::string::npos);
+}
+
+// A node joining mid-show over a 100 Mbit/s link (tc tbf toward it): its
+// tables travel while the others play, and none of them misses a frame; it
+// presents in order from the frame it joins at; the master logs how long its
+// tables took.
+TEST_F(NetworkRigTest, ANodeJoiningMidShowOverASlowLinkHoldsNoOtherNode) {
+  NetworkRig rig("join");
+  RigClusterSetup s = setup("join", 271);
+  s.nodes = 3;
+  s.late_nodes = {2};
+  s.wait_for_nodes_ms = 20000;  // frame 0 with n0 and n1
+  RigCluster cluster(rig, s);
+  rig.set_rate("n2", 100e6, NetworkRig::Way::to_host);
+  cluster.start();
+  ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no scheduled frames; see " << cluster.log("master");
+  const std::int64_t from = now_ns();
+  cluster.join(2);
+  const bool joined = core::wait_until(
+      [&] { return read_text(cluster.log("master")).find("node 'n2' is ready") != std::string::npos; }, 120s);
+  ASSERT_TRUE(joined) << read_text(cluster.log("master"));
+  finish(cluster);
+  for (int k = 0; k < 2; ++k) {
+    const NodeTimeline t = timeline_of(cluster.presents(k), 1, 270, from, 2.0 * cluster.period_ms());
+    EXPECT_TRUE(t.in_order) << "node " << k;
+    EXPECT_TRUE(t.missing.empty()) << "node " << k << " missed " << t.missing.size() << " frames, the first "
+                                   << (t.missing.empty() ? 0 : t.missing.front());
+    EXPECT_LE(t.longest_interval_ms, 2.0 * cluster.period_ms()) << "node " << k;
+  }
+  const std::vector<NodePresent> late = cluster.presents(2);
+  ASSERT_GT(late.size(), 30u) << "the joined node presented too little";
+  // In order from its first present to the show's last frame, every frame after its first few (its first
+  // renders compile its programs).
+  const NodeTimeline t = timeline_of(late, late[10].frame, 270, 0, 1e9);
+  EXPECT_TRUE(t.in_order);
+  EXPECT_TRUE(t.missing.empty()) << "n2 missed " << t.missing.size() << " frames after joining, the first "
+                                 << (t.missing.empty() ? 0 : t.missing.front());
+  EXPECT_NE(read_text(cluster.log("master")).find("MB of tables sent to it, received and loaded in"),
+            std::string::npos);
 }
 
 TEST_F(NetworkRigTest, ATwoSecondPartitionOfOneNodeFreezesNoOtherNode) {
@@ -210,6 +301,121 @@ TEST_F(NetworkRigTest, TheStandbyTakesOverWhenTheMastersMachineDropsOffTheNetwor
                 held_s, static_cast<unsigned long long>(resumed->frame));
     EXPECT_GT(held_s, 10.0) << "not before the silence limit";
     EXPECT_LT(held_s, 30.0);
+  }
+}
+
+}  // namespace
+}  // namespace zenith::testing
+
+namespace zenith::testing {
+namespace {
+
+/// The JSON of a `zenith cluster check --json` run: its log lines, then the JSON.
+nlohmann::json check_json(const fs::path& log) {
+  const std::string text = read_text(log);
+  const std::size_t start = text.starts_with("{") ? 0 : text.find("\n{\n");
+  if (start == std::string::npos) return nullptr;
+  return nlohmann::json::parse(text.substr(start), nullptr, false);
+}
+
+/// Runs one check on the rig (the nodes start afresh: a check ends with their
+/// Goodbye); `during` runs once node n1's pings began.
+nlohmann::json run_check(RigCluster& cluster, const std::string& name, const std::function<void()>& during = nullptr) {
+  cluster.start_check({"--seconds", "3", "--fill-mib", "8", "--wait-s", "120", "--fill-timeout-s", "20"}, name);
+  if (during) {
+    const bool started = core::wait_until(
+        [&] { return read_text(cluster.log(name)).find("node 'n1' connected from") != std::string::npos; }, 120s);
+    EXPECT_TRUE(started) << read_text(cluster.log(name));
+    if (started) during();
+  }
+  const std::optional<int> status = cluster.wait_for_master(180s);
+  EXPECT_TRUE(status) << "the check did not finish";
+  EXPECT_TRUE(cluster.wait_for_nodes(60s));
+  nlohmann::json j = check_json(cluster.log(name));
+  EXPECT_TRUE(j.is_object()) << read_text(cluster.log(name));
+  if (j.is_object() && status) {
+    EXPECT_EQ(*status, j["verdict"] == "fail" ? 2 : 0);
+  }
+  return j;
+}
+
+std::string reasons_of(const nlohmann::json& node) {
+  std::string all;
+  for (const auto& r : node["reasons"]) all += r.get<std::string>() + "\n";
+  return all;
+}
+
+// `zenith cluster check` on real links (docs/cluster.md, "Checking the
+// network"): clean, 5 % loss, a slow port and a cut, each seen as such on
+// the impaired node only. 3 s of pings every 10 ms (300), 8 MiB of fill.
+TEST_F(NetworkRigTest, ClusterCheckSeesEachImpairmentOnItsNodeOnly) {
+  NetworkRig rig("chk");
+  RigCluster cluster(rig, setup("check", 1));
+
+  const nlohmann::json clean = run_check(cluster, "check-clean");
+  ASSERT_TRUE(clean.is_object());
+  EXPECT_EQ(clean["verdict"], "ok") << clean.dump(2);
+  for (const auto& n : clean["nodes"]) {
+    SCOPED_TRACE(n.dump(2));
+    EXPECT_EQ(n["datagrams"]["loss_to_node"].get<double>(), 0.0);
+    EXPECT_EQ(n["datagrams"]["loss_from_node"].get<double>(), 0.0);
+    EXPECT_GE(n["datagrams"]["pings_sent"].get<int>(), 150);
+    EXPECT_LT(n["round_trip_ms"]["p50"].get<double>(), 5.0);
+    EXPECT_LT(n["clock"]["uncertainty_ms"].get<double>(), 0.5);
+    // One kernel: one CLOCK_MONOTONIC and one wall clock, so the offsets are the estimate's error.
+    EXPECT_LT(std::abs(n["clock"]["steady_offset_ms"].get<double>()), 0.5);
+    EXPECT_GT(n["throughput_mbit_s"].get<double>(), 100.0);
+    EXPECT_EQ(n["copies_in_time"], 3);
+  }
+
+  rig.set_loss("n1", 5);
+  const nlohmann::json lossy = run_check(cluster, "check-loss");
+  rig.set_loss("n1", 0);
+  ASSERT_TRUE(lossy.is_object());
+  {
+    const nlohmann::json& n1 = lossy["nodes"][1];
+    SCOPED_TRACE(n1.dump(2));
+    // 5 % each way, over ~300 pings: within [1 %, 12 %] (binomial, far beyond 3 σ ≈ 3.8 %).
+    for (const char* way : {"loss_to_node", "loss_from_node"}) {
+      EXPECT_GE(n1["datagrams"][way].get<double>(), 0.01) << way;
+      EXPECT_LE(n1["datagrams"][way].get<double>(), 0.12) << way;
+    }
+    EXPECT_NE(n1["verdict"], "ok");
+    EXPECT_NE(reasons_of(n1).find("of the datagrams lost"), std::string::npos);
+    EXPECT_EQ(lossy["nodes"][0]["verdict"], "ok") << lossy["nodes"][0].dump(2);
+  }
+
+  rig.set_rate("n1", 50e6, NetworkRig::Way::to_host);
+  const nlohmann::json slow = run_check(cluster, "check-slow");
+  rig.set_rate("n1", 0, NetworkRig::Way::to_host);
+  ASSERT_TRUE(slow.is_object());
+  {
+    const nlohmann::json& n1 = slow["nodes"][1];
+    SCOPED_TRACE(n1.dump(2));
+    // tbf at 50 Mbit/s on the switch's port toward n1: IP, TCP and framing take a few %.
+    EXPECT_GT(n1["throughput_mbit_s"].get<double>(), 35.0);
+    EXPECT_LT(n1["throughput_mbit_s"].get<double>(), 52.0);
+    EXPECT_EQ(n1["verdict"], "warn");
+    EXPECT_NE(reasons_of(n1).find("Mbit/s toward it"), std::string::npos);
+    EXPECT_GT(slow["nodes"][0]["throughput_mbit_s"].get<double>(), 100.0);
+  }
+
+  // n1's link cut for 1 s of its 3 s of pings.
+  const nlohmann::json cut = run_check(cluster, "check-cut", [&] {
+    std::this_thread::sleep_for(500ms);
+    rig.partition("n1");
+    std::this_thread::sleep_for(1000ms);
+    rig.heal("n1");
+  });
+  ASSERT_TRUE(cut.is_object());
+  {
+    const nlohmann::json& n1 = cut["nodes"][1];
+    SCOPED_TRACE(n1.dump(2));
+    EXPECT_EQ(n1["verdict"], "fail");
+    EXPECT_GE(n1["datagrams"]["loss_from_node"].get<double>(), 0.2);
+    EXPECT_LE(n1["datagrams"]["loss_from_node"].get<double>(), 0.5);
+    EXPECT_EQ(cut["nodes"][0]["verdict"], "ok") << cut["nodes"][0].dump(2);
+    EXPECT_EQ(cut["verdict"], "fail");
   }
 }
 

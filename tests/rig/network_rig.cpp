@@ -129,6 +129,15 @@ void NetworkRig::run(const std::vector<std::string>& argv) const {
     throw std::runtime_error("network rig: `" + joined(argv) + "` failed (" + std::to_string(status) + "): " + output);
 }
 
+namespace {
+/// The switch's side of the k-th host's link: "p<k>".
+std::string port_name(std::size_t k) {
+  std::string port = "p";
+  port += std::to_string(k);
+  return port;
+}
+}  // namespace
+
 const NetworkRig::Host& NetworkRig::add_host(const std::string& name) {
   const std::size_t k = hosts_.size();
   if (k >= 200) throw std::length_error("network rig: at most 200 hosts");
@@ -138,8 +147,7 @@ const NetworkRig::Host& NetworkRig::add_host(const std::string& name) {
   h.address = kSubnet;
   h.address += std::to_string(10 + k);
   h.interface = kHostInterface;
-  std::string port = "p";
-  port += std::to_string(k);
+  const std::string port = port_name(k);
   run({"ip", "netns", "add", h.netns});
   hosts_.push_back(h);
   impairments_.emplace_back();
@@ -215,16 +223,24 @@ void NetworkRig::unplug(const std::string& name) {
   run({"ip", "-n", h.netns, "link", "delete", h.interface});  // a veth pair goes with either end
 }
 
-void NetworkRig::set_rate(const std::string& name, double bits_per_s) {
+std::string NetworkRig::switch_port(const std::string& name) const {
+  for (std::size_t k = 0; k < hosts_.size(); ++k)
+    if (hosts_[k].name == name) return port_name(k);
+  throw std::invalid_argument("network rig: no host '" + name + "'");
+}
+
+void NetworkRig::set_rate(const std::string& name, double bits_per_s, Way way) {
   const Host& h = find(name);
-  const std::vector<std::string> tc = {"ip", "netns", "exec", h.netns, "tc", "qdisc"};
+  // The egress of one side of the link: the host's (what it sends) or the switch's port (what it receives).
+  const std::string netns = way == Way::from_host ? h.netns : switch_netns_;
+  const std::string device = way == Way::from_host ? h.interface : switch_port(name);
   if (bits_per_s <= 0.0) {
-    run_command({"ip", "netns", "exec", h.netns, "tc", "qdisc", "del", "dev", h.interface, "root"});
+    run_command({"ip", "netns", "exec", netns, "tc", "qdisc", "del", "dev", device, "root"});
     return;
   }
   // A burst of 10 ms at the rate (at least 32 KiB), a queue of 50 ms.
   const auto burst = std::max<long long>(32768, std::llround(bits_per_s / 8.0 * 0.010));
-  run({"ip", "netns", "exec", h.netns, "tc", "qdisc", "replace", "dev", h.interface, "root", "tbf", "rate",
+  run({"ip", "netns", "exec", netns, "tc", "qdisc", "replace", "dev", device, "root", "tbf", "rate",
        std::to_string(std::llround(bits_per_s)) + "bit", "burst", std::to_string(burst), "latency", "50ms"});
 }
 

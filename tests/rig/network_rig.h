@@ -62,8 +62,11 @@ class NetworkRig {
   /// connections end without a FIN or a reset — half-open on the other side.
   /// There is no way back for that host.
   void unplug(const std::string& host);
-  /// Limits what the host sends to `bits_per_s` (tc tbf); 0 removes the limit.
-  void set_rate(const std::string& host, double bits_per_s);
+  /// Which way of a host's link a rate limits.
+  enum class Way { from_host, to_host };
+  /// Limits what the host sends (from_host: tc tbf on its side of the link) or
+  /// receives (to_host: on the switch's side) to `bits_per_s`; 0 removes the limit.
+  void set_rate(const std::string& host, double bits_per_s, Way way = Way::from_host);
 
   /// Starts `program args...` in the host's namespace, its output in `log`;
   /// the rig kills it (SIGKILL) when it goes, if it still runs.
@@ -75,6 +78,8 @@ class NetworkRig {
   void run(const std::vector<std::string>& argv) const;
   void apply_filter(const Host& host);
   Host& find(const std::string& name);
+  /// The switch's side of the host's link (in the switch's namespace).
+  std::string switch_port(const std::string& name) const;
 
   std::string tag_;
   std::string switch_netns_;

@@ -31,6 +31,18 @@ struct RigClusterSetup {
   std::string tables = "small";
   bool black_when_link_lost = false;  ///< timing.link_lost: "black" (else "hold")
   bool standby = false;               ///< a standby master on host "standby" (docs/cluster.md, "Standby master")
+  /// A delaying relay (tests/rig/delay_relay.cpp) in front of each node, in
+  /// its namespace: the node connects to it as to its master (127.0.0.1), and
+  /// it forwards to the master and back with these impairments, each way.
+  struct Relay {
+    std::filesystem::path program;  ///< zenith_delay_relay
+    double delay_ms = 0, jitter_ms = 0, duplicate_percent = 0, reorder_percent = 0;
+  };
+  std::optional<Relay> relay;
+  /// The master starts frame 0 when every node is ready, or after this long with those that are.
+  int wait_for_nodes_ms = 120000;
+  /// Nodes start() leaves out (join() starts them later: a node joining mid-show).
+  std::vector<int> late_nodes;
 };
 
 /// One present of a node, from its presents.csv (ns of CLOCK_MONOTONIC).
@@ -50,7 +62,9 @@ struct NodeTimeline {
   double latest_ms = 0.0;              ///< the largest present − scheduled moment
 };
 /// The timeline of `presents` over the frames [first, last], intervals counted
-/// between presents at or after `from_ns`; `long_ms`: what counts as long.
+/// from presents of frames ≥ `first` at or after `from_ns` (so not from the
+/// warm-up frame 0 to the schedule's first frame, which is `lookahead_frames`
+/// periods after it by design); `long_ms`: what counts as long.
 NodeTimeline timeline_of(const std::vector<NodePresent>& presents, std::uint64_t first, std::uint64_t last,
                          std::int64_t from_ns, double long_ms);
 /// max − min of the nodes' present times (ms), for each frame every node presented, in frame order.
@@ -66,8 +80,14 @@ class RigCluster {
   RigCluster(NetworkRig& rig, RigClusterSetup setup);
   ~RigCluster();
 
-  /// Starts the master and every node in their namespaces.
+  /// Starts the master and every node but the late ones in their namespaces.
   void start();
+  /// Starts a late node (setup().late_nodes).
+  void join(int node);
+  /// Starts `zenith cluster check --json` (with `args`) on the master's host
+  /// instead of the master, and every node: wait_for_master() waits for the
+  /// check, whose output (its log lines, then the JSON) is log(`name`).
+  void start_check(const std::vector<std::string>& args, const std::string& name);
   /// Waits until the nodes are warmed up (the master presented frame 0, and
   /// the frame rate's schedule started); false on timeout or when the master ended.
   bool wait_until_warmed_up(std::chrono::milliseconds timeout);
@@ -90,8 +110,12 @@ class RigCluster {
   NetworkRig& rig_;
   RigClusterSetup setup_;
   std::filesystem::path config_;
+  std::vector<std::filesystem::path> node_configs_;  ///< each node's: config_, or its relay's address as the master
+  void start_nodes();
+  pid_t start_node(int k);
+
   pid_t master_ = -1, standby_ = -1;
-  std::vector<pid_t> nodes_;
+  std::vector<pid_t> nodes_, relays_;
 };
 
 }  // namespace zenith::testing
