@@ -6,6 +6,14 @@
 //   none          no impairment
 //   loss1, loss5  1 % / 5 % of its packets dropped, each way (nftables)
 //   partition2s   its link cut for 2 s, one second into the show
+//   latency5      5 ms ± 1 ms each way on every node's link (the delaying
+//                 relay, tests/rig/delay_relay.cpp: the kernel has no netem)
+//   join1g, join100m   n1 joins mid-show (started once the others are warmed
+//                 up) over a link of 1 Gbit/s / 100 Mbit/s toward it (tc
+//                 tbf): the tables it lacks travel while the others play;
+//                 table_mb and table_s are the master's log of its join
+//                 (sent, received and loaded); its own rows count the
+//                 frames before it joined as missing
 //
 // each with the frame barrier (timing.lookahead_frames 0, what zenith did
 // before) and the frame schedule (--lookahead frames). The impairment starts
@@ -29,8 +37,9 @@
 // each node's render thread got a core). Needs root (network namespaces).
 //
 //   cluster_rig_bench [--zenith PATH] [--nodes 4] [--hz 60] [--frames 600] [--lookahead 3]
-//                     [--cases none,loss1,loss5,partition2s] [--schedules barrier,scheduled]
-//                     [--size 32] [--tables small] [--work DIR] [--cache DIR]
+//                     [--cases none,loss1,loss5,partition2s,latency5,join1g,join100m]
+//                     [--schedules barrier,scheduled] [--size 32] [--tables small]
+//                     [--scene configs/scenes/earth-sunset.json] [--work DIR] [--cache DIR]
 //                     [--csv bench/results/cluster_rig.csv]
 #include <fmt/format.h>
 
@@ -39,6 +48,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -65,10 +75,12 @@ constexpr const char* kUsage = R"(cluster_rig_bench: the cluster across network 
   --hz R               frame rate (default 60)
   --frames N           frames per run, the warm-up frame 0 included (default 600)
   --lookahead N        the schedule's lookahead in frames (default 3)
-  --cases LIST         none, loss1, loss5, partition2s (default all)
+  --cases LIST         none, loss1, loss5, partition2s, latency5, join1g, join100m
+                       (default: the first four)
   --schedules LIST     barrier, scheduled (default both)
   --size PX            each node's output is PX×PX (default 32)
   --tables SIZE        table sizes (default small)
+  --scene FILE         the scene (default configs/scenes/earth-sunset.json; three-worlds.json: three atmospheres)
   --work DIR           run folders (default $TMPDIR/zenith-cluster-rig-bench)
   --cache DIR          the master's table cache (default WORK/table-cache)
   --csv FILE           results (default bench/results/cluster_rig.csv)
@@ -84,6 +96,7 @@ struct Options {
   std::vector<std::string> schedules = {"barrier", "scheduled"};
   int size_px = 32;
   std::string tables = "small";
+  fs::path scene = fs::path(ZENITH_SOURCE_DIR) / "configs/scenes/earth-sunset.json";
   fs::path work = fs::temp_directory_path() / "zenith-cluster-rig-bench";
   std::optional<fs::path> cache;
   fs::path csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/cluster_rig.csv";
@@ -111,6 +124,8 @@ Options parse(int argc, char** argv) {
       o.size_px = std::stoi(args.value());
     else if (a == "--tables")
       o.tables = args.value();
+    else if (a == "--scene")
+      o.scene = args.value();
     else if (a == "--work")
       o.work = args.value();
     else if (a == "--cache")
@@ -123,8 +138,9 @@ Options parse(int argc, char** argv) {
   if (o.nodes < 2) throw std::invalid_argument("--nodes: at least 2 (node n1 is the impaired one)");
   if (o.frames < 10) throw std::invalid_argument("--frames: at least 10");
   if (o.lookahead < 1 || o.lookahead > 30) throw std::invalid_argument("--lookahead: in [1, 30]");
+  const std::vector<std::string> known = {"none", "loss1", "loss5", "partition2s", "latency5", "join1g", "join100m"};
   for (const std::string& c : o.cases)
-    if (c != "none" && c != "loss1" && c != "loss5" && c != "partition2s")
+    if (std::find(known.begin(), known.end(), c) == known.end())
       throw std::invalid_argument("--cases: unknown case '" + c + "'");
   for (const std::string& s : o.schedules)
     if (s != "barrier" && s != "scheduled") throw std::invalid_argument("--schedules: barrier or scheduled");
@@ -147,7 +163,20 @@ struct Row {
   std::uint64_t presented = 0, expected = 0, missing = 0, over_2t = 0, over_100ms = 0;
   bool in_order = true;
   double longest_ms = 0.0, latest_ms = 0.0, spread_max_ms = 0.0, spread_p99_ms = 0.0, moment_max_ms = 0.0;
+  double table_mb = 0.0, table_s = 0.0;  ///< the joining node's (join cases), from the master's log
 };
+
+/// The master's line for a node becoming ready: its tables' megabytes and seconds (nothing without it).
+std::optional<std::pair<double, double>> join_of(const fs::path& master_log, const std::string& node) {
+  std::ifstream in(master_log);
+  const std::regex line("node '" + node +
+                        "' is ready: ([0-9.]+) MB of tables sent to it, received and loaded in ([0-9.]+) s");
+  std::optional<std::pair<double, double>> found;
+  std::smatch m;
+  for (std::string text; std::getline(in, text);)
+    if (std::regex_search(text, m, line)) found = std::make_pair(std::stod(m[1]), std::stod(m[2]));
+  return found;
+}
 
 std::vector<Row> run_case(const Options& o, const std::string& schedule, const std::string& case_name) {
   NetworkRig rig("bench");
@@ -155,18 +184,26 @@ std::vector<Row> run_case(const Options& o, const std::string& schedule, const s
   setup.zenith = o.zenith;
   setup.work = o.work / (schedule + "-" + case_name);
   setup.cache = o.cache.value_or(o.work / "table-cache");
-  setup.scene = fs::path(ZENITH_SOURCE_DIR) / "configs/scenes/earth-sunset.json";
+  setup.scene = o.scene;
   setup.nodes = o.nodes;
   setup.frame_rate_hz = o.hz;
   setup.frames = o.frames;
   setup.lookahead_frames = schedule == "scheduled" ? o.lookahead : 0;
   setup.output_px = o.size_px;
   setup.tables = o.tables;
+  const bool join = case_name == "join1g" || case_name == "join100m";
+  if (case_name == "latency5") setup.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, 5.0, 1.0, 0.0, 0.0};
+  if (join) {
+    setup.late_nodes = {1};
+    setup.wait_for_nodes_ms = 60000;  // frame 0 with the others, once they are ready
+  }
   RigCluster cluster(rig, setup);
+  if (join) rig.set_rate("n1", case_name == "join1g" ? 1e9 : 100e6, NetworkRig::Way::to_host);
   cluster.start();
-  if (!cluster.wait_until_warmed_up(600s))
+  if (!cluster.wait_until_warmed_up(1200s))
     throw std::runtime_error("no warm-up frame; see " + cluster.log("master").string());
   const std::int64_t from = now_ns();
+  if (join) cluster.join(1);
   if (case_name == "loss1") rig.set_loss("n1", 1.0);
   if (case_name == "loss5") rig.set_loss("n1", 5.0);
   if (case_name == "partition2s") {
@@ -197,6 +234,8 @@ std::vector<Row> run_case(const Options& o, const std::string& schedule, const s
     r.over_2t = t.long_intervals;
     r.over_100ms = freezes.long_intervals;
     r.latest_ms = t.latest_ms;
+    if (join && k == 1)
+      if (const auto tables = join_of(cluster.log("master"), "n1")) std::tie(r.table_mb, r.table_s) = *tables;
     rows.push_back(r);
   }
   const std::vector<double> spreads = zenith::testing::swap_spreads_ms(all);
@@ -216,17 +255,19 @@ int run(int argc, char** argv) {
   fs::create_directories(o.work);
   fmt::print("cluster_rig_bench: {} nodes at {} Hz, {} frames, {}x{} px outputs, {} tables, lookahead {}\n", o.nodes,
              o.hz, o.frames, o.size_px, o.size_px, o.tables, o.lookahead);
-  fmt::print("{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11} {:>7} {:>9} {:>10} {:>10} {:>10} {:>10}\n", "schedule",
-             "case", "node", "presented", "missing", "order", "longest ms", "> 2T", "> 100 ms", "latest ms",
-             "spread ms", "p99 ms", "clock ms");
+  fmt::print("{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11} {:>7} {:>9} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
+             "schedule", "case", "node", "presented", "missing", "order", "longest ms", "> 2T", "> 100 ms", "latest ms",
+             "spread ms", "p99 ms", "clock ms", "table MB", "table s");
   std::vector<Row> rows;
   for (const std::string& schedule : o.schedules)
     for (const std::string& c : o.cases)
       for (const Row& r : run_case(o, schedule, c)) {
         fmt::print(
-            "{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11.1f} {:>7} {:>9} {:>10.1f} {:>10.2f} {:>10.2f} {:>10.3f}\n",
+            "{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11.1f} {:>7} {:>9} {:>10.1f} {:>10.2f} {:>10.2f} {:>10.3f} "
+            "{:>9.1f} "
+            "{:>8.2f}\n",
             r.schedule, r.case_name, r.node, r.presented, r.missing, r.in_order ? "yes" : "NO", r.longest_ms, r.over_2t,
-            r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms);
+            r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms, r.table_mb, r.table_s);
         std::fflush(stdout);
         rows.push_back(r);
       }
@@ -234,11 +275,12 @@ int run(int argc, char** argv) {
   std::ofstream csv(o.csv);
   csv << "schedule,case,node,hz,frames_expected,presented,missing,in_order,longest_interval_ms,"
          "intervals_over_2_periods,intervals_over_100ms,latest_after_moment_ms,swap_spread_max_ms,swap_spread_p99_ms,"
-         "moment_spread_max_ms\n";
+         "moment_spread_max_ms,table_mb,table_s\n";
   for (const Row& r : rows)
-    csv << fmt::format("{},{},{},{},{},{},{},{},{:.2f},{},{},{:.2f},{:.3f},{:.3f},{:.3f}\n", r.schedule, r.case_name,
-                       r.node, o.hz, r.expected, r.presented, r.missing, r.in_order ? 1 : 0, r.longest_ms, r.over_2t,
-                       r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms);
+    csv << fmt::format("{},{},{},{},{},{},{},{},{:.2f},{},{},{:.2f},{:.3f},{:.3f},{:.3f},{:.2f},{:.3f}\n", r.schedule,
+                       r.case_name, r.node, o.hz, r.expected, r.presented, r.missing, r.in_order ? 1 : 0, r.longest_ms,
+                       r.over_2t, r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms,
+                       r.table_mb, r.table_s);
   fmt::print("csv: {}\n", o.csv.string());
   return 0;
 }
