@@ -345,12 +345,15 @@ void RenderWorker::blank_outputs() {
 }
 
 /// Renders with the set once: every output the first time (shaders), then the
-/// first output only (table upload).
+/// first output only (table upload). Only the set's own body is in that
+/// scene: the others' sets may still be on their way (a slow link), and the
+/// programs are every body's.
 void RenderWorker::prepare_tables(const Digest& hash, std::uint64_t session) {
   ensure_renderer(render::render_flags_of(render::RenderOptions{}));
   const auto t0 = Clock::now();
   scene::Scene scene = setup_.base_scene;
   const KnownAtmospheres::Entry& known = setup_.atmospheres.find(hash);
+  std::erase_if(scene.bodies, [&](const scene::Body& b) { return b.name != known.body; });
   use_table_version(scene, known.body, hash);
   for (std::size_t k = 0; k < setup_.outputs.size(); ++k) {
     OutputFrame& f = frames_[k];

@@ -46,6 +46,17 @@ std::int64_t now_ns() {
       .count();
 }
 
+/// Every frame of [1, last] presented in order on every node, no interval over two periods after `from`.
+void expect_every_frame_on_time(const RigCluster& cluster, std::uint64_t last, std::int64_t from) {
+  for (int k = 0; k < cluster.setup().nodes; ++k) {
+    const NodeTimeline t = timeline_of(cluster.presents(k), 1, last, from, 2.0 * cluster.period_ms());
+    EXPECT_TRUE(t.in_order) << "node " << k;
+    EXPECT_TRUE(t.missing.empty()) << "node " << k << " missed " << t.missing.size() << " frames, the first "
+                                   << (t.missing.empty() ? 0 : t.missing.front());
+    EXPECT_LE(t.longest_interval_ms, 2.0 * cluster.period_ms()) << "node " << k;
+  }
+}
+
 class NetworkRigTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -71,6 +82,14 @@ class NetworkRigTest : public ::testing::Test {
     EXPECT_EQ(*master, 0);
     EXPECT_TRUE(cluster.wait_for_nodes(60s));
   }
+  /// Plays the show (`last` + 1 frames) with nothing done to it after the warm-up: every frame on time.
+  static void play_untouched(RigCluster& cluster, std::uint64_t last) {
+    cluster.start();
+    ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no scheduled frames; see " << cluster.log("master");
+    const std::int64_t from = now_ns();
+    finish(cluster);
+    expect_every_frame_on_time(cluster, last, from);
+  }
 };
 
 TEST_F(NetworkRigTest, FivePercentLossOnOneLinkStallsNoNode) {
@@ -81,24 +100,7 @@ TEST_F(NetworkRigTest, FivePercentLossOnOneLinkStallsNoNode) {
   rig.set_loss("n1", 5.0);
   const std::int64_t from = now_ns();
   finish(cluster);
-  for (int k = 0; k < 2; ++k) {
-    const NodeTimeline t = timeline_of(cluster.presents(k), 1, 150, from, 2.0 * cluster.period_ms());
-    EXPECT_TRUE(t.in_order) << "node " << k;
-    EXPECT_TRUE(t.missing.empty()) << "node " << k << " missed " << t.missing.size() << " frames, the first "
-                                   << (t.missing.empty() ? 0 : t.missing.front());
-    EXPECT_LE(t.longest_interval_ms, 2.0 * cluster.period_ms()) << "node " << k;
-  }
-}
-
-/// Every frame of [1, last] presented in order on every node, no interval over two periods after `from`.
-void expect_every_frame_on_time(const RigCluster& cluster, std::uint64_t last, std::int64_t from) {
-  for (int k = 0; k < cluster.setup().nodes; ++k) {
-    const NodeTimeline t = timeline_of(cluster.presents(k), 1, last, from, 2.0 * cluster.period_ms());
-    EXPECT_TRUE(t.in_order) << "node " << k;
-    EXPECT_TRUE(t.missing.empty()) << "node " << k << " missed " << t.missing.size() << " frames, the first "
-                                   << (t.missing.empty() ? 0 : t.missing.front());
-    EXPECT_LE(t.longest_interval_ms, 2.0 * cluster.period_ms()) << "node " << k;
-  }
+  expect_every_frame_on_time(cluster, 150, from);
 }
 
 // Latency with jitter on every link (the delaying relay: the kernel has no
@@ -108,11 +110,7 @@ TEST_F(NetworkRigTest, FiveMillisecondsOfLatencyWithJitterOnEveryLinkStallsNoNod
   RigClusterSetup s = setup("latency", 151);
   s.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, 5.0, 1.0, 0.0, 0.0};
   RigCluster cluster(rig, s);
-  cluster.start();
-  ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no scheduled frames; see " << cluster.log("master");
-  const std::int64_t from = now_ns();
-  finish(cluster);
-  expect_every_frame_on_time(cluster, 150, from);
+  play_untouched(cluster, 150);
   // The nodes' clock estimates agree within what the jitter allows: an exchange's offset is off by half
   // its legs' difference, at most (6 − 4) / 2 = 1 ms per node, so 2 ms between two nodes; the Welcome's
   // one-way seed alone would be 5 ms off.
@@ -128,27 +126,28 @@ TEST_F(NetworkRigTest, DuplicatedAndReorderedDatagramsLoseNoFrame) {
   RigClusterSetup s = setup("duplicates", 151);
   s.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, 1.0, 0.5, 10.0, 10.0};
   RigCluster cluster(rig, s);
-  cluster.start();
-  ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no scheduled frames; see " << cluster.log("master");
-  const std::int64_t from = now_ns();
-  finish(cluster);
-  expect_every_frame_on_time(cluster, 150, from);
+  play_untouched(cluster, 150);
   // The relays did what they were told (their counts at SIGKILL are not written: the log's first line).
   EXPECT_NE(read_text(cluster.log("relay-n0")).find("10 % duplicated, 10 % held back"), std::string::npos);
 }
 
-// A node joining mid-show over a 100 Mbit/s link (tc tbf toward it): its
-// tables travel while the others play, and none of them misses a frame; it
-// presents in order from the frame it joins at; the master logs how long its
-// tables took.
+// A node joining mid-show over a slow link (tc tbf toward it: 5 Mbit/s, a
+// port that fell back to 10 Mbit/s half duplex, so each of the three worlds'
+// small table sets takes about 4 s): its tables
+// travel while the others play, and none of them misses a frame; it presents
+// in order from the frame it joins at; the master logs how long its tables
+// took. (A set that arrived was once warmed up with the whole scene, whose
+// other sets were still on their way: the node failed.)
 TEST_F(NetworkRigTest, ANodeJoiningMidShowOverASlowLinkHoldsNoOtherNode) {
   NetworkRig rig("join");
-  RigClusterSetup s = setup("join", 271);
+  RigClusterSetup s = setup("join", 601);
+  s.scene = fs::path(ZENITH_SOURCE_DIR) / "configs/scenes/three-worlds.json";
   s.nodes = 3;
   s.late_nodes = {2};
+  s.late_node_niceness = 19;    // its loading on its own PC's cores, as on a dome (rig_cluster.h)
   s.wait_for_nodes_ms = 20000;  // frame 0 with n0 and n1
   RigCluster cluster(rig, s);
-  rig.set_rate("n2", 100e6, NetworkRig::Way::to_host);
+  rig.set_rate("n2", 5e6, NetworkRig::Way::to_host);
   cluster.start();
   ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no scheduled frames; see " << cluster.log("master");
   const std::int64_t from = now_ns();
@@ -157,18 +156,22 @@ TEST_F(NetworkRigTest, ANodeJoiningMidShowOverASlowLinkHoldsNoOtherNode) {
       [&] { return read_text(cluster.log("master")).find("node 'n2' is ready") != std::string::npos; }, 120s);
   ASSERT_TRUE(joined) << read_text(cluster.log("master"));
   finish(cluster);
+  // The others: every frame in order, none held visibly. Their link is not the joiner's, but on the rig
+  // its loading (checksums, decoding, its first renders on llvmpipe) shares this machine's two cores with
+  // them even at nice 19, which a dome's PCs do not: a frame or two may come late (cluster_rig_bench's join
+  // cases give the figures). Anything that waited for the joiner would hold them for its 12 s transfer.
   for (int k = 0; k < 2; ++k) {
-    const NodeTimeline t = timeline_of(cluster.presents(k), 1, 270, from, 2.0 * cluster.period_ms());
+    const NodeTimeline t = timeline_of(cluster.presents(k), 1, 600, from, 2.0 * cluster.period_ms());
     EXPECT_TRUE(t.in_order) << "node " << k;
-    EXPECT_TRUE(t.missing.empty()) << "node " << k << " missed " << t.missing.size() << " frames, the first "
-                                   << (t.missing.empty() ? 0 : t.missing.front());
-    EXPECT_LE(t.longest_interval_ms, 2.0 * cluster.period_ms()) << "node " << k;
+    EXPECT_LE(t.missing.size(), 2u) << "node " << k << " missed " << t.missing.size() << " frames, the first "
+                                    << (t.missing.empty() ? 0 : t.missing.front());
+    EXPECT_LE(t.longest_interval_ms, 3.0 * cluster.period_ms()) << "node " << k;
   }
   const std::vector<NodePresent> late = cluster.presents(2);
   ASSERT_GT(late.size(), 30u) << "the joined node presented too little";
   // In order from its first present to the show's last frame, every frame after its first few (its first
   // renders compile its programs).
-  const NodeTimeline t = timeline_of(late, late[10].frame, 270, 0, 1e9);
+  const NodeTimeline t = timeline_of(late, late[10].frame, 600, 0, 1e9);
   EXPECT_TRUE(t.in_order);
   EXPECT_TRUE(t.missing.empty()) << "n2 missed " << t.missing.size() << " frames after joining, the first "
                                  << (t.missing.empty() ? 0 : t.missing.front());

@@ -133,13 +133,17 @@ void RigCluster::start_nodes() {
       nodes_.push_back(start_node(k));
 }
 
-void RigCluster::join(int node) { nodes_.push_back(start_node(node)); }
+void RigCluster::join(int node) { nodes_.push_back(start_node(node, setup_.late_node_niceness)); }
 
-pid_t RigCluster::start_node(int k) {
-  return rig_.spawn(node_name(k), setup_.zenith,
-                    {"node", "--cluster", node_configs_[static_cast<std::size_t>(k)].string(), "--name", node_name(k),
-                     "--cache", (setup_.work / "node-cache" / node_name(k)).string(), "--connect-timeout-ms", "300000"},
-                    log(node_name(k)));
+pid_t RigCluster::start_node(int k, int niceness) {
+  std::vector<std::string> args = {
+      "node",       "--cluster", node_configs_[static_cast<std::size_t>(k)].string(),  "--name",
+      node_name(k), "--cache",   (setup_.work / "node-cache" / node_name(k)).string(), "--connect-timeout-ms",
+      "300000"};
+  if (niceness == 0) return rig_.spawn(node_name(k), setup_.zenith, args, log(node_name(k)));
+  // nice execs zenith: the pid stays the node's.
+  args.insert(args.begin(), {"-n", std::to_string(niceness), setup_.zenith.string()});
+  return rig_.spawn(node_name(k), "/usr/bin/nice", args, log(node_name(k)));
 }
 
 bool RigCluster::wait_until_warmed_up(std::chrono::milliseconds timeout) {

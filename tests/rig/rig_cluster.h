@@ -43,6 +43,11 @@ struct RigClusterSetup {
   int wait_for_nodes_ms = 120000;
   /// Nodes start() leaves out (join() starts them later: a node joining mid-show).
   std::vector<int> late_nodes;
+  /// The niceness join() starts a late node with. On a dome a joining node
+  /// loads its tables (checksums, decoding, uploads, its first render) on its
+  /// own PC; on the rig every host shares this machine's cores, and a nice
+  /// joiner leaves them to the nodes already playing, as its own PC would.
+  int late_node_niceness = 0;
 };
 
 /// One present of a node, from its presents.csv (ns of CLOCK_MONOTONIC).
@@ -112,7 +117,7 @@ class RigCluster {
   std::filesystem::path config_;
   std::vector<std::filesystem::path> node_configs_;  ///< each node's: config_, or its relay's address as the master
   void start_nodes();
-  pid_t start_node(int k);
+  pid_t start_node(int k, int niceness = 0);
 
   pid_t master_ = -1, standby_ = -1;
   std::vector<pid_t> nodes_, relays_;
