@@ -125,7 +125,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--tables")
       o.tables = args.value();
     else if (a == "--scene")
-      o.scene = args.value();
+      o.scene = fs::absolute(args.value());  // the config is written elsewhere
     else if (a == "--work")
       o.work = args.value();
     else if (a == "--cache")
@@ -195,6 +195,7 @@ std::vector<Row> run_case(const Options& o, const std::string& schedule, const s
   if (case_name == "latency5") setup.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, 5.0, 1.0, 0.0, 0.0};
   if (join) {
     setup.late_nodes = {1};
+    setup.late_node_niceness = 19;    // its loading on its own PC's cores, as on a dome (rig_cluster.h)
     setup.wait_for_nodes_ms = 60000;  // frame 0 with the others, once they are ready
   }
   RigCluster cluster(rig, setup);
