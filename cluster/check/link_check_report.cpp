@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace zenith::cluster {
 
 LinkCheckReport make_report(const LinkCheckOptions& options, std::vector<LinkMeasurement> links) {
@@ -31,24 +33,35 @@ std::string format_table(const LinkCheckReport& r) {
           ? "the barrier"
           : fmt::format("{:.1f} ms", r.target.lookahead_frames * 1000.0 / r.target.frame_rate_hz),
       r.seconds, r.ping_interval_ms, static_cast<double>(r.fill_bytes) / (1 << 20));
-  out += fmt::format("{:<12} {:<21} {:>24} {:>9} {:>17} {:>11} {:>17} {:>9} {:>11}  {}\n", "node", "address",
-                     "round trip ms min/p50/p99", "jitter ms", "lost to/from node", "Mbit/s", "clock ±ms, ppm", "steps",
-                     "wall Δ ms", "verdict");
+  // Columns as wide as their longest entry: node names are the config's, up to 64 bytes.
+  std::size_t node_w = 4, address_w = 7;
+  for (const LinkMeasurement& m : r.links) {
+    node_w = std::max(node_w, m.node.size());
+    address_w = std::max(address_w, m.address.size());
+  }
+  const auto row = [&](const std::string& node, const std::string& address, const std::string& round_trip,
+                       const std::string& jitter, const std::string& loss, const std::string& mbit,
+                       const std::string& clock, const std::string& steps, const std::string& wall,
+                       const std::string& verdict) {
+    return fmt::format("{:<{}}  {:<{}}  {:>25}  {:>9}  {:>17}  {:>7}  {:>15}  {:>5}  {:>9}  {}\n", node, node_w,
+                       address, address_w, round_trip, jitter, loss, mbit, clock, steps, wall, verdict);
+  };
+  out += row("node", "address", "round trip ms min/p50/p99", "jitter ms", "lost to/from node", "Mbit/s",
+             "clock ±ms, ppm", "steps", "wall Δ ms", "verdict");
   for (std::size_t i = 0; i < r.links.size(); ++i) {
     const LinkMeasurement& m = r.links[i];
     const LinkVerdict& v = r.verdicts[i];
     if (!m.reported) {
-      out += fmt::format("{:<12} {:<21} {:>24} {:>9} {:>17} {:>11} {:>17} {:>9} {:>11}  {}\n", m.node,
-                         m.address.empty() ? "–" : m.address, "–", "–", "–", "–", "–", "–", "–", to_string(v.grade));
+      out += row(m.node, m.address.empty() ? "–" : m.address, "–", "–", "–", "–", "–", "–", "–", to_string(v.grade));
       continue;
     }
-    out +=
-        fmt::format("{:<12} {:<21} {:>24} {:>9.2f} {:>17} {:>11} {:>17} {:>9} {:>11.1f}  {}\n", m.node, m.address,
-                    fmt::format("{:.2f}/{:.2f}/{:.2f}", m.round_trip_min_ms, m.round_trip_p50_ms, m.round_trip_p99_ms),
-                    m.jitter_ms(), fmt::format("{} / {}", percent(m.loss_to_node()), percent(m.loss_from_node())),
-                    m.throughput_bits_per_s ? fmt::format("{:.0f}", *m.throughput_bits_per_s / 1e6) : std::string("–"),
-                    fmt::format("{:.3f}, {:+.1f}", m.clock_uncertainty_ms, m.clock_drift_ppm), m.clock_steps,
-                    m.wall_clock_offset_ms, to_string(v.grade));
+    out += row(m.node, m.address,
+               fmt::format("{:.2f}/{:.2f}/{:.2f}", m.round_trip_min_ms, m.round_trip_p50_ms, m.round_trip_p99_ms),
+               fmt::format("{:.2f}", m.jitter_ms()),
+               fmt::format("{} / {}", percent(m.loss_to_node()), percent(m.loss_from_node())),
+               m.throughput_bits_per_s ? fmt::format("{:.0f}", *m.throughput_bits_per_s / 1e6) : std::string("–"),
+               fmt::format("{:.3f}, {:+.1f}", m.clock_uncertainty_ms, m.clock_drift_ppm),
+               fmt::format("{}", m.clock_steps), fmt::format("{:.1f}", m.wall_clock_offset_ms), to_string(v.grade));
   }
   bool any = false;
   for (std::size_t i = 0; i < r.links.size(); ++i)
