@@ -68,7 +68,7 @@ struct LinkChecker {
   std::map<std::string, LinkMeasurement> results;
   struct Running {
     std::uint32_t session = 0;
-    Clock::time_point started, fill_due, give_up;
+    Clock::time_point fill_due, give_up;
     bool filling = false;
   };
   std::map<std::string, Running> running;
@@ -120,7 +120,7 @@ struct LinkChecker {
     m.address = s.connection->peer();
     m.problem = "the check did not finish";
     const auto now = Clock::now();
-    running[s.name] = {s.id, now, now + options.duration, now + options.duration + options.fill_timeout, false};
+    running[s.name] = {s.id, now + options.duration, now + options.duration + options.fill_timeout, false};
     s.link_check_pings.emplace();
     s.connection->send(LinkCheck{static_cast<std::uint32_t>(options.duration.count()),
                                  static_cast<std::uint32_t>(options.ping_interval.count()), options.fill_bytes});

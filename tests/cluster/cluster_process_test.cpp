@@ -45,6 +45,7 @@
 #include "image/image_io.h"
 #include "image/tone_mapping.h"
 #include "test_support.h"
+#include "tests/cluster/check_output.h"
 #include "tests/cluster/http_client.h"
 #include "tests/cluster/webdriver.h"
 
@@ -497,12 +498,7 @@ TEST_F(ClusterProcess, KilledNodeRestartsAndRejoinsWhileTheOthersSkipNoFrame) {
   EXPECT_NE(master_log.find("disconnected"), std::string::npos) << master_log;
 }
 
-/// The JSON `zenith cluster check --json` printed: its standard output, after the log lines.
-nlohmann::json check_json(const std::string& output) {
-  const std::size_t start = output.starts_with("{") ? 0 : output.find("\n{\n");
-  if (start == std::string::npos) return nullptr;
-  return nlohmann::json::parse(output.substr(start), nullptr, false);
-}
+using zenith::testing::check_json;
 
 TEST_F(ClusterProcess, ClusterCheckMeasuresEveryNodesLinkThenLetsItGo) {
   const fs::path config = write_config(10);

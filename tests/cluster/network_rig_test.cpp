@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/process.h"
+#include "tests/cluster/check_output.h"
 #include "tests/rig/network_rig.h"
 #include "tests/rig/rig_cluster.h"
 
@@ -313,14 +314,6 @@ TEST_F(NetworkRigTest, TheStandbyTakesOverWhenTheMastersMachineDropsOffTheNetwor
 namespace zenith::testing {
 namespace {
 
-/// The JSON of a `zenith cluster check --json` run: its log lines, then the JSON.
-nlohmann::json check_json(const fs::path& log) {
-  const std::string text = read_text(log);
-  const std::size_t start = text.starts_with("{") ? 0 : text.find("\n{\n");
-  if (start == std::string::npos) return nullptr;
-  return nlohmann::json::parse(text.substr(start), nullptr, false);
-}
-
 /// Runs one check on the rig (the nodes start afresh: a check ends with their
 /// Goodbye); `during` runs once node n1's pings began.
 nlohmann::json run_check(RigCluster& cluster, const std::string& name, const std::function<void()>& during = nullptr) {
@@ -334,7 +327,7 @@ nlohmann::json run_check(RigCluster& cluster, const std::string& name, const std
   const std::optional<int> status = cluster.wait_for_master(180s);
   EXPECT_TRUE(status) << "the check did not finish";
   EXPECT_TRUE(cluster.wait_for_nodes(60s));
-  nlohmann::json j = check_json(cluster.log(name));
+  nlohmann::json j = check_json(read_text(cluster.log(name)));
   EXPECT_TRUE(j.is_object()) << read_text(cluster.log(name));
   if (j.is_object() && status) {
     EXPECT_EQ(*status, j["verdict"] == "fail" ? 2 : 0);
