@@ -25,10 +25,13 @@ void ClockSync::add(const Exchange& e) {
   if (recent_delays_.size() > kRecentDelays) recent_delays_.pop_front();
 
   // A step: the clocks jumped apart (a clock set by hand, another master). The
-  // line no longer holds; kStepConfirmations exchanges in a row say so.
-  if (const std::optional<std::int64_t> line = predicted(s.node_ns)) {
-    const std::int64_t off = std::llabs(s.offset_ns - *line);
-    if (off > kStepThresholdNs && off > 4 * s.delay_ns) {
+  // line no longer holds; kStepConfirmations exchanges in a row say so. The
+  // true offset lies within both bounds (the sample's and the line's) unless
+  // the clocks moved, so only a gap between the bounds is evidence.
+  if (const std::optional<Prediction> line = predicted(s.node_ns)) {
+    const std::int64_t off = std::llabs(s.offset_ns - line->offset_ns);
+    const std::int64_t gap = off - line->bound_ns - s.delay_ns / 2;
+    if (gap > kStepThresholdNs && off > 4 * s.delay_ns) {
       if (++off_line_ >= kStepConfirmations) {
         ++steps_;
         kept_.clear();
@@ -78,10 +81,12 @@ void ClockSync::fit() {
   int used = 0;
   t0_ = kept_.back().node_ns;
   double sw = 0, st = 0, so = 0, stt = 0, sto = 0;
+  std::int64_t widest = 0;
   for (const Sample& s : kept_) {
     if (!tight(s.delay_ns, least)) continue;
     if (used++ == 0) first = s.node_ns;
     last = s.node_ns;
+    widest = std::max(widest, s.delay_ns);
     const double d = std::max<double>(static_cast<double>(s.delay_ns), 1e4);
     const double w = 1.0 / (d * d);
     const double t = static_cast<double>(s.node_ns - t0_);
@@ -93,21 +98,24 @@ void ClockSync::fit() {
   if (!(det > 0.0)) return;
   drift_ = (sw * sto - st * so) / det;
   offset0_ = (so - drift_ * st) / sw;
+  fitted_delay_ns_ = widest;
   fitted_ = true;
 }
 
-std::optional<std::int64_t> ClockSync::predicted(std::int64_t node_ns) const {
-  if (fitted_) return static_cast<std::int64_t>(std::llround(offset0_ + drift_ * static_cast<double>(node_ns - t0_)));
+std::optional<ClockSync::Prediction> ClockSync::predicted(std::int64_t node_ns) const {
+  if (fitted_)
+    return Prediction{static_cast<std::int64_t>(std::llround(offset0_ + drift_ * static_cast<double>(node_ns - t0_))),
+                      fitted_delay_ns_ / 2};
   if (kept_.empty()) return std::nullopt;
   // Before a line: the latest of the tightest kept samples.
   const std::int64_t least = least_kept_delay();
   for (auto s = kept_.rbegin(); s != kept_.rend(); ++s)
-    if (tight(s->delay_ns, least)) return s->offset_ns;
-  return kept_.back().offset_ns;
+    if (tight(s->delay_ns, least)) return Prediction{s->offset_ns, s->delay_ns / 2};
+  return Prediction{kept_.back().offset_ns, kept_.back().delay_ns / 2};
 }
 
 std::int64_t ClockSync::offset_ns(std::int64_t node_ns) const {
-  if (const std::optional<std::int64_t> line = predicted(node_ns)) return *line;
+  if (const std::optional<Prediction> line = predicted(node_ns)) return line->offset_ns;
   if (group_best_) return group_best_->offset_ns;
   if (seed_) return seed_->offset_ns;
   return 0;

@@ -19,10 +19,12 @@
 // exchange the one-way estimate of the Welcome (good to the one-way delay).
 //
 // A node whose clock steps (or a master replaced by a standby on another
-// machine) shows samples far off the line: kStepConfirmations in a row more
-// than kStepThresholdNs (and several δ) away start the estimate afresh, and
-// steps() counts it. Pure bookkeeping: time is passed in (tests drive it with
-// clocks that drift and step).
+// machine) shows samples far off the line: kStepConfirmations in a row whose
+// bounds miss the line's by more than kStepThresholdNs (and that lie several
+// δ away) start the estimate afresh, and steps() counts it. The line's own
+// bound counts: a first exchange held up 10 ms on a busy host is a poor
+// estimate, not a clock that stepped when the clean exchanges disagree. Pure bookkeeping: time is passed in (tests
+// drive it with clocks that drift and step).
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -37,7 +39,7 @@ class ClockSync {
   };
   static constexpr int kGroupSamples = 4;                      ///< exchanges per kept sample (the least δ of them)
   static constexpr std::size_t kKeptSamples = 64;              ///< kept samples the line is fitted to
-  static constexpr std::int64_t kStepThresholdNs = 2'000'000;  ///< 2 ms off the line, and 4 δ: a step
+  static constexpr std::int64_t kStepThresholdNs = 2'000'000;  ///< 2 ms between the bounds, and 4 δ: a step
   static constexpr int kStepConfirmations = 3;
 
   /// The Welcome's one-way estimate: the master's clock read `master_ns` when
@@ -73,11 +75,17 @@ class ClockSync {
     std::int64_t offset_ns;  ///< θ
     std::int64_t delay_ns;   ///< δ
   };
+  /// What the kept samples say of the offset at one time: θ, and the
+  /// half-width of its bound (half the δ of the samples it rests on).
+  struct Prediction {
+    std::int64_t offset_ns;
+    std::int64_t bound_ns;
+  };
   void keep(const Sample& sample);
   void fit();
   std::int64_t least_kept_delay() const;  ///< precondition: kept_ not empty
   /// The offset the current line predicts at `node_ns` (no fallback to the group's best).
-  std::optional<std::int64_t> predicted(std::int64_t node_ns) const;
+  std::optional<Prediction> predicted(std::int64_t node_ns) const;
 
   std::optional<Sample> seed_;
   std::optional<Sample> group_best_;
@@ -88,6 +96,7 @@ class ClockSync {
   // The fitted line: θ(t) = offset0_ + drift_ · (t − t0_).
   std::int64_t t0_ = 0;
   double offset0_ = 0.0, drift_ = 0.0;
+  std::int64_t fitted_delay_ns_ = 0;  ///< the largest δ among the samples the line was fitted to
   bool fitted_ = false;
   std::uint64_t steps_ = 0, exchanges_ = 0;
 };

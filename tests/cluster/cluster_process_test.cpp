@@ -1607,9 +1607,10 @@ std::optional<double> held_show_time(int port) {
 
 /// Whether the status lists the three nodes, all in `state`.
 bool all_nodes(const nlohmann::json& status, const std::string& state) {
-  if (!status.is_object() || status["nodes"].size() != 3) return false;
-  for (const auto& n : status["nodes"])
-    if (n["state"] != state) return false;
+  // Before the console answers the status is {}: a const json's [] on a missing key is undefined.
+  if (!status.contains("nodes") || status.at("nodes").size() != 3) return false;
+  for (const auto& n : status.at("nodes"))
+    if (n.value("state", "") != state) return false;
   return true;
 }
 
