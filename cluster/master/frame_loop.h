@@ -29,7 +29,7 @@
 
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/frame_pacer.h"
-#include "cluster/master/master.h"
+#include "cluster/master/master_options.h"
 #include "cluster/master/node_datagrams.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"

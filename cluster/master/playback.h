@@ -6,7 +6,7 @@
 #include <memory>
 #include <optional>
 
-#include "cluster/master/master.h"
+#include "cluster/master/master_options.h"
 #include "scene/scene.h"
 #include "show/playback_clock.h"
 #include "show/show.h"
