@@ -1,48 +1,35 @@
 // `zenith master`, `zenith node` and `zenith cluster` (docs/cluster.md): the
-// master and a render node of a networked cluster, and a local cluster that
-// starts the master and every node configured for this machine as child
-// processes, stops them cleanly and stitches the last frame's outputs.
+// command lines of the master and a render node of a networked cluster, and
+// of a local cluster (cluster/launcher/local_cluster.h).
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
-#include <sys/wait.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "apps/default_configs.h"
 #include "atmosphere/lut/table_cache.h"
-#include "cluster/launcher/child_process.h"
 #include "cluster/launcher/launcher_signals.h"
-#include "cluster/launcher/restart_limit.h"
+#include "cluster/launcher/local_cluster.h"
 #include "cluster/link/cluster_config.h"
 #include "cluster/master/master.h"
 #include "cluster/node/node.h"
 #include "cluster/protocol/handshake.h"
 #include "cluster/standby/standby.h"
 #include "core/strings.h"
-#include "image/image_io.h"
-#include "image/image_writer.h"
 #include "show/show.h"
-#include "warp/dome_tiles.h"
-#include "warp/viewport_config.h"
 
 namespace zenith::app {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 using core::cat;
 
 /// --switch-atmosphere "FRAME:BODY:PRESET_OR_FILE"; throws std::invalid_argument naming the value.
@@ -290,287 +277,44 @@ struct ClusterArgs {
   double restart_window_s = 60.0;     ///< … within this many seconds
 };
 
-/// "exit status 3", "killed by signal 9 (Killed)": a child's end, for logs.
-std::string describe_exit(int status) {
-  if (status > 128 && status < 128 + 65)
-    return fmt::format("killed by signal {} ({})", status - 128, ::strsignal(status - 128));
-  return fmt::format("exit status {}", status);
-}
-
-/// A node process of the local cluster (or its standby master) and its restarts.
-struct LocalNode {
-  std::string name;
-  std::vector<std::string> args;
-  pid_t pid = -1;
-  std::optional<int> status;  ///< set once it ended for good
-  RestartLimit limit;
-};
-
-/// Stitches frame `frame` of fisheye outputs that share one image circle (a dome
-/// master cut into tiles) into one image; false (with a log line) when the
-/// outputs are not such tiles or a file is missing.
-bool stitch_dome(const cluster::ClusterConfig& config, const fs::path& out, std::uint64_t frame,
-                 const fs::path& target) {
-  const warp::ViewportConfig viewports = warp::load_viewport_config(config.viewports);
-  struct Tile {
-    const warp::OutputConfig* output;
-    std::string node;
-  };
-  std::vector<Tile> tiles;
-  std::vector<const warp::OutputConfig*> outputs;
-  for (const auto& node : config.nodes)
-    for (const std::string& name : node.outputs) {
-      tiles.push_back({viewports.find(name), node.name});
-      outputs.push_back(tiles.back().output);
-    }
-  const auto origins = warp::dome_tile_origins(outputs);
-  if (!origins) {
-    spdlog::info("cluster: not stitching: the outputs are not whole-pixel tiles of one fisheye dome master");
-    return false;
-  }
-  int width = 0, height = 0;
-  for (std::size_t i = 0; i < tiles.size(); ++i) {
-    width = std::max(width, (*origins)[i][0] + tiles[i].output->width_px);
-    height = std::max(height, (*origins)[i][1] + tiles[i].output->height_px);
-  }
-  std::vector<float> rgb(static_cast<std::size_t>(width) * height * 3, 0.0f);
-  for (std::size_t i = 0; i < tiles.size(); ++i) {
-    const Tile& t = tiles[i];
-    const fs::path file = out / t.node / t.output->name / fmt::format("frame-{:06d}.png", frame);
-    if (!fs::exists(file)) {
-      spdlog::warn("cluster: not stitching frame {}: {} is missing", frame, file.string());
-      return false;
-    }
-    const image::LinearImage tile = image::read_image(file);
-    const int x0 = (*origins)[i][0], y0 = (*origins)[i][1];
-    for (int y = 0; y < tile.height; ++y)
-      for (int x = 0; x < tile.width; ++x)
-        for (int c = 0; c < 3; ++c)
-          rgb[(static_cast<std::size_t>(y0 + y) * width + (x0 + x)) * 3 + c] =
-              tile.rgb[(static_cast<std::size_t>(y) * tile.width + x) * 3 + c];
-  }
-  fs::create_directories(target.parent_path());
-  // The tiles are decoded sRGB; clamp re-encodes each value to its own byte.
-  image::write_png(target, width, height, rgb, image::ToneMapping::clamp,
-                   {{"zenith:stitched", fmt::format("frame {} of cluster '{}'", frame, config.name)}});
-  fmt::print("stitched {} ({}x{} from {} tiles)\n", target.string(), width, height, tiles.size());
-  return true;
-}
-
 void run_cluster(const ClusterArgs& a) {
-  const std::string config_path = cluster_path(a.cluster);
-  const cluster::ClusterConfig config = cluster::load_cluster_config(config_path);
+  LocalClusterOptions o;
+  o.config_path = cluster_path(a.cluster);
+  o.config = cluster::load_cluster_config(o.config_path.string());
   // A show brings its own scene: master and nodes render it instead of the configuration's.
-  std::optional<fs::path> show_scene;
   std::uint64_t show_frames = 0;
   if (!a.playback.show.empty()) {
     const show::Show loaded = show::load_show(a.playback.show);  // errors before any child starts
-    show_scene = loaded.scene_path();
+    o.scene = loaded.scene_path();
     const double fps = a.playback.fps > 0.0                           ? a.playback.fps
                        : loaded.kind() == show::Show::Kind::recording ? loaded.frame_rate_hz()
-                                                                      : config.frame_rate_hz;
+                                                                      : o.config.frame_rate_hz;
     show_frames = loaded.frame_count(fps);
   }
-  const std::uint64_t frames = a.frames.value_or(show_scene ? 0 : 10);
-  const fs::path out = !a.record_frames.empty() ? fs::path(a.record_frames)
-                       : a.out.empty()          ? config.output_directory
-                                                : fs::path(a.out);
-  const bool frame_files = !a.out.empty() || !a.record_frames.empty();  // a live show writes none unless asked
-  ensure_local_secret(config);
-  mark_children_as_launched();  // they get SIGTERM if this process dies, kill -9 included
-  ForwardedSignals signals;     // SIGINT, SIGTERM, SIGHUP: logged and forwarded to the master
-  const std::string level = log_level_argument();
-  std::vector<std::string> common = {"--cluster", config_path};
-  if (a.port) common.insert(common.end(), {"--port", std::to_string(*a.port)});
-
-  std::vector<std::string> master_args = {"--log-level",
-                                          level,
-                                          "master",
-                                          "--frames",
-                                          std::to_string(frames),
-                                          "--sun-step-deg",
-                                          fmt::format("{}", a.sun_step_deg)};
-  master_args.insert(master_args.end(), common.begin(), common.end());
+  const std::uint64_t frames = a.frames.value_or(o.scene ? 0 : 10);
+  if (!a.out.empty() || !a.record_frames.empty()) {  // a live show writes no frame files unless asked
+    o.frame_directory = !a.record_frames.empty() ? fs::path(a.record_frames) : fs::path(a.out);
+    if (const std::uint64_t last = frames > 0 ? frames : show_frames; last > 0)
+      o.stitch_frame = a.stitch_frame.value_or(last - 1);
+  }
+  o.port = a.port;
+  o.master_options = {"--frames", std::to_string(frames), "--sun-step-deg", fmt::format("{}", a.sun_step_deg)};
   const std::vector<std::string> playback = a.playback.arguments();
-  master_args.insert(master_args.end(), playback.begin(), playback.end());
+  o.master_options.insert(o.master_options.end(), playback.begin(), playback.end());
   const std::vector<std::string> console = a.operator_console.arguments();
-  master_args.insert(master_args.end(), console.begin(), console.end());
-  if (!a.cache_dir.empty()) master_args.insert(master_args.end(), {"--cache", a.cache_dir});
+  o.master_options.insert(o.master_options.end(), console.begin(), console.end());
+  if (!a.cache_dir.empty()) {
+    o.master_options.insert(o.master_options.end(), {"--cache", a.cache_dir});
+    o.cache_directory = a.cache_dir;
+  }
   // Nodes need no atmosphere files: the master sends each version's parameters (AtmosphereDefinition).
-  for (const std::string& text : a.switches) master_args.insert(master_args.end(), {"--switch-atmosphere", text});
-  // The master says through a pipe when it listens: only then are the nodes
-  // started, so if it cannot bind (another cluster's master holds the port)
-  // none of them joins that other master.
-  ReadyPipe ready;
-  std::vector<std::string> with_ready = master_args;
-  with_ready.insert(std::find(with_ready.begin(), with_ready.end(), "master") + 1,
-                    {"--ready-fd", std::to_string(ready.write_end())});
-  pid_t master = spawn_self(with_ready);
-  ready.close_write_end();
-  spdlog::info("cluster: master started (pid {})", master);
-  int stop_signal = 0;
-  std::optional<int> early_exit;
-  if (!ready.wait([&] {
-        stop_signal = signals.take();
-        early_exit = wait_for(master, std::chrono::milliseconds(0));
-        return stop_signal != 0 || early_exit.has_value();
-      })) {
-    if (stop_signal != 0 && !early_exit) {
-      spdlog::warn("cluster: {} received before the master listened: stopping it (SIGTERM)", ::strsignal(stop_signal));
-      ::kill(master, SIGTERM);
-    }
-    const int status = early_exit ? *early_exit : stop_child(master, "the master", std::chrono::milliseconds(5000));
-    throw std::runtime_error(stop_signal != 0 ? fmt::format("stopped by {}", ::strsignal(stop_signal))
-                                              : fmt::format("the master could not start ({}; see its log lines above): "
-                                                            "no node was started",
-                                                            describe_exit(status)));
-  }
-  // The standby master, when the config has one on this machine: the master's
-  // arguments but the recording (one file, the active master's).
-  std::optional<LocalNode> standby;
-  if (config.standby && is_local_host(config.standby->host)) {
-    std::vector<std::string> args = master_args;
-    const auto record = std::find(args.begin(), args.end(), "--record");
-    if (record != args.end()) args.erase(record, record + 2);
-    args.insert(std::find(args.begin(), args.end(), "master") + 1, "--standby");
-    const pid_t pid = spawn_self(args);
-    standby =
-        LocalNode{"standby", std::move(args), pid, std::nullopt,
-                  RestartLimit(a.max_restarts, std::chrono::milliseconds(std::llround(a.restart_window_s * 1000.0)))};
-    spdlog::info("cluster: standby master started (pid {}; it takes over on {} if the master dies)", pid,
-                 config.standby->text());
-  } else if (config.standby) {
-    spdlog::info("cluster: the standby master runs on {}: start it there with `zenith master --standby --cluster {}`",
-                 config.standby->host, config_path);
-  }
-
-  std::vector<LocalNode> nodes;
-  for (const auto& node : config.nodes) {
-    if (!is_local_host(node.host)) {
-      spdlog::info("cluster: node '{}' runs on {}: start it there with `zenith node --cluster {} --name {}`", node.name,
-                   node.host, config_path, node.name);
-      continue;
-    }
-    // The master may precompute tables for minutes before its Welcome (paper sizes on a CPU GL): wait for it.
-    std::vector<std::string> args = {"--log-level",          level,   "node", "--name", node.name,
-                                     "--connect-timeout-ms", "900000"};
-    if (frame_files) args.insert(args.end(), {"--out", out.string()});
-    args.insert(args.end(), common.begin(), common.end());
-    if (show_scene) args.insert(args.end(), {"--scene", show_scene->string()});
-    if (a.windows) args.push_back("--window");
-    if (!a.cache_dir.empty())
-      args.insert(args.end(), {"--cache", (fs::path(a.cache_dir) / "nodes" / node.name).string()});
-    const pid_t pid = spawn_self(args);
-    nodes.push_back(
-        LocalNode{node.name, std::move(args), pid, std::nullopt,
-                  RestartLimit(a.max_restarts, std::chrono::milliseconds(std::llround(a.restart_window_s * 1000.0)))});
-    spdlog::info("cluster: node '{}' started (pid {})", node.name, pid);
-  }
-  if (a.restart_nodes)
-    spdlog::info("cluster: a local node that dies is restarted, at most {} time{} within {} s", a.max_restarts,
-                 a.max_restarts == 1 ? "" : "s", a.restart_window_s);
-
-  // Wait for the master; if every local node ends first (they could not join), stop it.
-  int status = -1;
-  std::optional<Clock::time_point> nodes_ended_at;
-  for (;;) {
-    if (const int signal = signals.take(); signal != 0) {
-      spdlog::warn("cluster: {} received: forwarding SIGTERM to the master{} (its Goodbye stops the nodes)",
-                   ::strsignal(signal), standby && !standby->status ? " and the standby" : "");
-      stop_signal = signal;
-      ::kill(master, SIGTERM);
-      if (standby && !standby->status) ::kill(standby->pid, SIGTERM);
-    }
-    if (auto s = wait_for(master, std::chrono::milliseconds(200))) {
-      // Killed (a crash, kill -9): the standby takes over and is the master
-      // now. A master that exits with an error status reported it (a bad
-      // option, a port in use): the cluster ends as without a standby.
-      if (*s > 128 && standby && !standby->status && stop_signal == 0) {
-        spdlog::warn("cluster: the master died ({}): the standby master (pid {}) takes over", describe_exit(*s),
-                     standby->pid);
-        master = standby->pid;
-        standby.reset();
-        continue;
-      }
-      status = *s;
-      break;
-    }
-    if (standby && !standby->status) {
-      if (const std::optional<int> ended = wait_for(standby->pid, std::chrono::milliseconds(0))) {
-        if (a.restart_nodes && RestartLimit::died(*ended) && standby->limit.allow(Clock::now())) {
-          standby->pid = spawn_self(standby->args);
-          spdlog::warn("cluster: the standby master died ({}): restarted it (pid {}); it follows the master again",
-                       describe_exit(*ended), standby->pid);
-        } else {
-          standby->status = ended;
-          spdlog::warn("cluster: the standby master ended ({}): no takeover if the master dies", describe_exit(*ended));
-        }
-      }
-    }
-    for (LocalNode& n : nodes) {
-      if (n.status) continue;
-      const std::optional<int> ended = wait_for(n.pid, std::chrono::milliseconds(0));
-      if (!ended) continue;
-      if (a.restart_nodes && RestartLimit::died(*ended)) {
-        if (n.limit.allow(Clock::now())) {
-          n.pid = spawn_self(n.args);
-          spdlog::warn("cluster: node '{}' died ({}): restarted it (pid {}; restart {}, {} of at most {} within {} s)",
-                       n.name, describe_exit(*ended), n.pid, n.limit.total(), n.limit.recent(Clock::now()),
-                       n.limit.max_restarts(), a.restart_window_s);
-          continue;
-        }
-        spdlog::error(
-            "cluster: node '{}' died ({}) after {} restarts within {} s: giving up on it, it stays down "
-            "(--max-restarts {}, --restart-window-s {})",
-            n.name, describe_exit(*ended), n.limit.max_restarts(), a.restart_window_s, a.max_restarts,
-            a.restart_window_s);
-      }
-      n.status = ended;
-    }
-    if (!nodes.empty() &&
-        std::all_of(nodes.begin(), nodes.end(), [](const LocalNode& n) { return n.status.has_value(); })) {
-      // Nodes that exited 0 said goodbye to the master's Goodbye: its own exit follows within moments.
-      if (!nodes_ended_at) nodes_ended_at = Clock::now();
-      const bool clean = std::all_of(nodes.begin(), nodes.end(), [](const LocalNode& n) { return *n.status == 0; });
-      if (after_nodes_ended(clean, std::chrono::duration_cast<std::chrono::milliseconds>(
-                                       Clock::now() - *nodes_ended_at)) == NodesEndedVerdict::wait_for_master)
-        continue;
-      spdlog::error("cluster: every local node has exited; stopping the master");
-      ::kill(master, SIGTERM);
-      stop_child(master, "the master", std::chrono::milliseconds(5000));
-      if (standby && !standby->status) {
-        ::kill(standby->pid, SIGTERM);
-        stop_child(standby->pid, "the standby master", std::chrono::milliseconds(5000));
-      }
-      throw std::runtime_error("the nodes exited before the show ended (see their log lines above)");
-    }
-  }
-  // The master's Goodbye ends the nodes and the standby; stop any that linger.
-  if (standby && !standby->status) {
-    if (status != 0) ::kill(standby->pid, SIGTERM);
-    stop_child(standby->pid, "the standby master", std::chrono::milliseconds(5000));
-  }
-  int failed_nodes = 0;
-  for (const LocalNode& n : nodes) {
-    const int exit_status =
-        n.status ? *n.status : stop_child(n.pid, fmt::format("node '{}'", n.name), std::chrono::milliseconds(5000));
-    if (exit_status != 0) {
-      spdlog::warn("cluster: node '{}' ended with {}", n.name, describe_exit(exit_status));
-      ++failed_nodes;
-    }
-  }
-  if (stop_signal != 0)
-    throw std::runtime_error(fmt::format("stopped by {} (master {})", ::strsignal(stop_signal), describe_exit(status)));
-  if (status != 0) throw std::runtime_error(fmt::format("the master exited with status {}", status));
-  spdlog::info("cluster: master and {} node{} stopped{}", nodes.size(), nodes.size() == 1 ? "" : "s",
-               failed_nodes ? fmt::format(" ({} with an error)", failed_nodes) : std::string());
-  const std::uint64_t last_frame = frames > 0 ? frames : show_frames;
-  if (frame_files && config.output_format == "png" && last_frame > 0) {
-    const std::uint64_t frame = a.stitch_frame.value_or(last_frame - 1);
-    stitch_dome(config, out, frame, out / "stitched" / fmt::format("frame-{:06d}.png", frame));
-  }
-  if (failed_nodes)
-    throw std::runtime_error(fmt::format("{} node{} failed", failed_nodes, failed_nodes == 1 ? "" : "s"));
+  for (const std::string& text : a.switches)
+    o.master_options.insert(o.master_options.end(), {"--switch-atmosphere", text});
+  o.windows = a.windows;
+  o.restart_nodes = a.restart_nodes;
+  o.max_restarts = a.max_restarts;
+  o.restart_window_s = a.restart_window_s;
+  run_local_cluster(o);
 }
 
 // Options the master, a node and a local cluster share.

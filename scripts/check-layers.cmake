@@ -17,7 +17,7 @@
 #     master/    … show, render, link       the master: table schedule, barrier, operator desk
 #     node/      … render, link             a render node
 #     standby/   … master, link             the standby master
-#     launcher/  core, protocol, link       a local cluster's child processes
+#     launcher/  core, image, warp, link    a local cluster: its child processes, the stitched dome
 #   stress/      core … render (not show)   `zenith validate stress`: CPU and GPU against the reference
 #   offline/     the above, show, cluster   offline rendering of shows (frames, manifest, outputs)
 #   apps/        all of the above           the `zenith` command
@@ -62,7 +62,7 @@ set(allowed_cluster/master core image atmosphere warp astro scene show render cl
 set(allowed_cluster/node core image atmosphere warp astro scene render cluster/protocol cluster/link)
 set(allowed_cluster/standby core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/master)
 set(allowed_cluster/check core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/master)
-set(allowed_cluster/launcher core cluster/protocol cluster/link)
+set(allowed_cluster/launcher core image warp cluster/protocol cluster/link)
 set(allowed_stress core image atmosphere warp astro scene render)
 set(allowed_offline core image atmosphere warp astro scene show render ${cluster})
 set(allowed_apps core image atmosphere warp astro scene show render ${cluster} stress offline)
