@@ -6,7 +6,7 @@
 
 #include "cluster/protocol/datagram.h"
 #include "cluster/protocol/handshake.h"
-#include "cluster/protocol/sample_messages.h"
+#include "tests/cluster/sample_messages.h"
 
 namespace zenith::cluster {
 namespace {

@@ -12,8 +12,8 @@
 #include <random>
 
 #include "cluster/protocol/frame_decoder.h"
-#include "cluster/protocol/sample_messages.h"
 #include "test_support.h"
+#include "tests/cluster/sample_messages.h"
 
 namespace zenith::cluster {
 namespace {

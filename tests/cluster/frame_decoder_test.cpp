@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "cluster/protocol/byte_io.h"
-#include "cluster/protocol/sample_messages.h"
 #include "test_support.h"
+#include "tests/cluster/sample_messages.h"
 
 namespace zenith::cluster {
 namespace {

@@ -7,8 +7,8 @@
 #include <utility>
 
 #include "cluster/protocol/crc32c.h"
-#include "cluster/protocol/sample_messages.h"
 #include "test_support.h"
+#include "tests/cluster/sample_messages.h"
 
 namespace zenith::cluster {
 namespace {

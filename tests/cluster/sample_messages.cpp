@@ -1,4 +1,4 @@
-#include "cluster/protocol/sample_messages.h"
+#include "tests/cluster/sample_messages.h"
 
 #include <cmath>
 #include <numeric>

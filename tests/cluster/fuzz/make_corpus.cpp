@@ -9,7 +9,7 @@
 #include <string>
 
 #include "cluster/protocol/messages.h"
-#include "cluster/protocol/sample_messages.h"
+#include "tests/cluster/sample_messages.h"
 
 int main(int argc, char** argv) {
   using namespace zenith::cluster;
