@@ -20,8 +20,8 @@
 #include "render/frame/band_to_texture.h"
 #include "render/frame/frame_conditions.h"
 #include "render/frame/frame_constants.h"
+#include "render/frame/frame_in_progress.h"
 #include "render/frame/frame_programs.h"
-#include "render/frame/frame_state.h"
 #include "render/frame/frame_tiles.h"
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
@@ -146,9 +146,9 @@ std::vector<float> Renderer::render_image(const scene::Scene& scene, const warp:
   return image;
 }
 
-/// One frame in progress (render/frame/frame_state.h).
-struct Renderer::Frame : FrameState {
-  using FrameState::FrameState;
+/// One frame in progress (render/frame/frame_in_progress.h).
+struct Renderer::Frame : FrameInProgress {
+  using FrameInProgress::FrameInProgress;
 };
 
 void Renderer::render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink) {

@@ -65,7 +65,8 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   cpu_transmittance_.transmittance = tables.transmittance;
   cpu_transmittance_.hash = tables.hash;
   radiance_bound_ = SkyRadianceBound(model, tables);
-  radiance_floor_ = SkyRadianceFloor(model, tables, features.multiple_scattering && tables.scattering_orders >= 2);
+  radiance_lower_bound_ =
+      SkyRadianceLowerBound(model, tables, features.multiple_scattering && tables.scattering_orders >= 2);
 
   atmosphere::lut::PrecomputeOptions options;
   options.sizes = tables.sizes;

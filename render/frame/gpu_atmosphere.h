@@ -16,7 +16,7 @@
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
 #include "render/frame/sky_radiance_bound.h"
-#include "render/frame/sky_radiance_floor.h"
+#include "render/frame/sky_radiance_lower_bound.h"
 #include "render/frame/sky_view_table.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
@@ -95,8 +95,8 @@ class GpuAtmosphere {
   /// (render/frame/sky_radiance_bound.h): the moonlight passes' test.
   const SkyRadianceBound& radiance_bound() const { return radiance_bound_; }
   /// The least these tables give on a ray to space from a camera inside, per
-  /// unit irradiance of the sun (render/frame/sky_radiance_floor.h): the star pass's test.
-  const SkyRadianceFloor& radiance_floor() const { return radiance_floor_; }
+  /// unit irradiance of the sun (render/frame/sky_radiance_lower_bound.h): the star pass's test.
+  const SkyRadianceLowerBound& radiance_lower_bound() const { return radiance_lower_bound_; }
 
  private:
   /// Group g's tables (texture units 0–4), the model's buffers and the texel coordinates.
@@ -119,7 +119,7 @@ class GpuAtmosphere {
   std::size_t table_bytes_ = 0;
   atmosphere::lut::LookupTables cpu_transmittance_;
   SkyRadianceBound radiance_bound_;
-  SkyRadianceFloor radiance_floor_;
+  SkyRadianceLowerBound radiance_lower_bound_;
 };
 
 }  // namespace zenith::render

@@ -16,7 +16,7 @@ namespace zenith::render {
 
 bool MoonLight::any() const { return std::find(lit.begin(), lit.end(), true) != lit.end(); }
 
-MoonLight moon_light(const FrameState& frame) {
+MoonLight moon_light(const FrameInProgress& frame) {
   MoonLight out;
   const scene::Scene& scene = frame.scene;
   out.lit.assign(frame.passes.size(), false);

@@ -20,7 +20,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "render/frame/frame_state.h"
+#include "render/frame/frame_in_progress.h"
 
 namespace zenith::render {
 
@@ -39,6 +39,6 @@ struct MoonLight {
 /// nothing it could show. The test depends on the camera, the exposure, the
 /// colour weights and the tables, not on the projection: every node of a
 /// cluster decides the same for each atmosphere, so no seam can come of it.
-MoonLight moon_light(const FrameState& frame);
+MoonLight moon_light(const FrameInProgress& frame);
 
 }  // namespace zenith::render

@@ -25,7 +25,7 @@ namespace zenith::render {
 namespace {
 
 /// The atmospheres a star's light can cross: those resident this frame.
-std::vector<StarAtmosphere> star_atmospheres(const FrameState& frame) {
+std::vector<StarAtmosphere> star_atmospheres(const FrameInProgress& frame) {
   std::vector<StarAtmosphere> out;
   for (const AtmospherePass& pass : frame.passes) {
     if (!pass.gpu) continue;
@@ -113,8 +113,6 @@ NightSkyPass::NightSkyPass(const NightSkyRenderOptions& options, RefractionCache
     : options_(options), refractions_(refractions) {}
 NightSkyPass::~NightSkyPass() = default;
 
-std::string NightSkyPass::catalogue_identity() const { return field_ ? field_->catalogue().identity_sha256 : ""; }
-
 bool NightSkyPass::ensure_field(const scene::Scene& scene) {
   if (field_ && field_->wavelengths_nm() == scene.wavelengths_nm) return true;
   if (catalogue_failed_) return false;
@@ -134,7 +132,7 @@ bool NightSkyPass::ensure_field(const scene::Scene& scene) {
   }
 }
 
-void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
+void NightSkyPass::prepare(const FrameInProgress& frame, PassTimer& timer) {
   stats_ = NightSkyStats{};
   splats_.clear();
   floor_ = false;
@@ -217,7 +215,7 @@ void NightSkyPass::prepare(const FrameState& frame, PassTimer& timer) {
   stats_.skipped = splats_.empty() && !floor_ && !moon_disc_;
 }
 
-void NightSkyPass::place_moon(const FrameState& frame, const StarFrame& sky, const astro::AstroTime& time) {
+void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky, const astro::AstroTime& time) {
   const scene::SkyClock& clock = *frame.scene.sky_clock;
   const astro::SkyPositions positions(time, clock.site);
   const astro::MoonPlace moon = positions.moon();
@@ -315,7 +313,7 @@ const MoonAlbedoMap& NightSkyPass::moon_map() {
   return *moon_map_;
 }
 
-const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameState& frame, const NightSkyVariant& variant) {
+const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameInProgress& frame, const NightSkyVariant& variant) {
   const std::string key = fmt::format("{} {}", frame.variant.key(), variant.key());
   auto it = resolve_.find(key);
   if (it == resolve_.end()) {
@@ -329,7 +327,7 @@ const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameState& frame, 
   return it->second;
 }
 
-void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& timer) {
+void NightSkyPass::draw_band(FrameInProgress& frame, BandTiles& band, PassTimer& timer) {
   if (stats_.skipped) return;
   const int width = frame.band_size[0], rows = band.rows, columns = frame.cones->columns();
   // The band's stars: those whose 2 × 2 footprint reaches its rows (splats_ is sorted by y).
@@ -486,7 +484,7 @@ void NightSkyPass::draw_band(FrameState& frame, BandTiles& band, PassTimer& time
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-const gl::ShaderProgram& NightSkyPass::star_pixels_program(const FrameState& frame) {
+const gl::ShaderProgram& NightSkyPass::star_pixels_program(const FrameInProgress& frame) {
   const std::string key = frame.variant.key();
   auto it = star_pixels_programs_.find(key);
   if (it == star_pixels_programs_.end())

@@ -33,7 +33,7 @@
 #include "astro/light_pollution.h"
 #include "astro/night_sky_floor.h"
 #include "astro/refraction.h"
-#include "render/frame/frame_state.h"
+#include "render/frame/frame_in_progress.h"
 #include "render/frame/moon_albedo_map.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/refraction_cache.h"
@@ -106,19 +106,17 @@ class NightSkyPass {
 
   /// The frame's CPU work (after the atmospheres are resident): whether there
   /// is anything to draw, the stars' splats, the night floor's table.
-  void prepare(const FrameState& frame, PassTimer& timer);
+  void prepare(const FrameInProgress& frame, PassTimer& timer);
   /// Adds the stars and the floor to the band's output (bound at
   /// FRAME_RGB_BINDING); tiles nothing had drawn that now hold a star lose their
   /// black flag. Rebinds TILES_BINDING to its own list.
-  void draw_band(FrameState& frame, BandTiles& band, PassTimer& timer);
+  void draw_band(FrameInProgress& frame, BandTiles& band, PassTimer& timer);
 
   const NightSkyStats& stats() const { return stats_; }
-  /// The loaded catalogue's identity ("" before the first frame with stars or without a catalogue).
-  std::string catalogue_identity() const;
 
  private:
-  const gl::ShaderProgram& resolve_program(const FrameState& frame, const NightSkyVariant& variant);
-  const gl::ShaderProgram& star_pixels_program(const FrameState& frame);
+  const gl::ShaderProgram& resolve_program(const FrameInProgress& frame, const NightSkyVariant& variant);
+  const gl::ShaderProgram& star_pixels_program(const FrameInProgress& frame);
   bool ensure_field(const scene::Scene& scene);
   NightSkyRenderOptions options_;
   NightSkyStats stats_;
@@ -135,7 +133,7 @@ class NightSkyPass {
   glm::dvec2 moon_pixel_{0.0};
   std::array<double, 3> moon_rgb_{};
   /// The Moon at the frame's sky time: a disc, a star-like point, or nothing.
-  void place_moon(const FrameState& frame, const StarFrame& sky, const astro::AstroTime& time);
+  void place_moon(const FrameInProgress& frame, const StarFrame& sky, const astro::AstroTime& time);
   // The Moon's face (render/frame/moon_albedo_map.h): the map (loaded with the
   // first disc, the uniform one when missing), its texture (uploaded once), the
   // disc's body axes in the world and the texture's level.

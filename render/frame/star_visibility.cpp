@@ -20,7 +20,7 @@ namespace {
 /// camera from the 4D tables' sky half. Null where there is none, and where
 /// the sun's pass does not draw that sky (AtmospherePass::sunlit: the sun too
 /// far down to show, its sky zeroed): then the sky is at least black only.
-const AtmospherePass* sky_at_camera(const FrameState& frame, std::size_t site) {
+const AtmospherePass* sky_at_camera(const FrameInProgress& frame, std::size_t site) {
   for (const AtmospherePass& pass : frame.passes)
     if (pass.gpu && static_cast<std::size_t>(pass.body) == site && pass.distance_m <= pass.gpu->top_radius_m())
       return pass.sunlit ? &pass : nullptr;
@@ -53,7 +53,7 @@ double largest_code_change(const std::array<double, 3>& background, const std::a
   return worst;
 }
 
-std::array<double, 3> darkest_sky(const FrameState& frame, std::size_t site, double exposure,
+std::array<double, 3> darkest_sky(const FrameInProgress& frame, std::size_t site, double exposure,
                                   const std::vector<std::array<double, 3>>& rgb_weights) {
   std::array<double, 3> out{0.0, 0.0, 0.0};
   const AtmospherePass* pass = colour_weights_non_negative(rgb_weights) ? sky_at_camera(frame, site) : nullptr;
@@ -62,7 +62,8 @@ std::array<double, 3> darkest_sky(const FrameState& frame, std::size_t site, dou
   const glm::dvec3 camera_m = scene.camera.position_m, planet_m = scene.bodies.at(site).position_m;
   const glm::dvec3 up = glm::normalize(camera_m - planet_m);
   const double radius = std::max(pass->distance_m, pass->gpu->ground_radius_m());
-  const std::vector<double> k = pass->gpu->radiance_floor().radiance_per_irradiance(glm::dot(up, frame.sun), radius);
+  const std::vector<double> k =
+      pass->gpu->radiance_lower_bound().radiance_per_irradiance(glm::dot(up, frame.sun), radius);
   for (std::size_t i = 0; i < rgb_weights.size() && i < k.size() && i < scene.sun.irradiance_W_m2_nm.size(); ++i)
     for (std::size_t c = 0; c < 3; ++c) out[c] += exposure * rgb_weights[i][c] * scene.sun.irradiance_W_m2_nm[i] * k[i];
   return out;
@@ -104,11 +105,12 @@ Interval nu_over(Interval theta, Interval phi, double sun_theta) {
 
 }  // namespace
 
-StarSkyFloor::StarSkyFloor(const SkyRadianceFloor& floor, const glm::dvec3& camera_m, const glm::dvec3& planet_centre_m,
-                           double ground_radius_m, const glm::dvec3& sun, bool sky_view,
-                           const std::vector<std::array<double, 3>>& rgb_weights,
-                           const std::vector<double>& sun_irradiance, double exposure,
-                           std::vector<std::pair<glm::dvec3, double>> bodies, std::array<double, 3> whole_sky)
+SkyBehindStarBound::SkyBehindStarBound(const SkyRadianceLowerBound& floor, const glm::dvec3& camera_m,
+                                       const glm::dvec3& planet_centre_m, double ground_radius_m, const glm::dvec3& sun,
+                                       bool sky_view, const std::vector<std::array<double, 3>>& rgb_weights,
+                                       const std::vector<double>& sun_irradiance, double exposure,
+                                       std::vector<std::pair<glm::dvec3, double>> bodies,
+                                       std::array<double, 3> whole_sky)
     : camera_m_(camera_m),
       up_(glm::normalize(camera_m - planet_centre_m)),
       sun_(sun),
@@ -126,7 +128,7 @@ StarSkyFloor::StarSkyFloor(const SkyRadianceFloor& floor, const glm::dvec3& came
   slice_ = floor.slice(glm::dot(up_, sun_), radius_m_);
 }
 
-bool StarSkyFloor::kept(const glm::dvec3& d, double radius_rad) const {
+bool SkyBehindStarBound::kept(const glm::dvec3& d, double radius_rad) const {
   if (angle_between(d, sun_) < radius_rad + 5.0 * core::kDeg) return true;
   const double lowest_elevation = 0.5 * kPi - std::acos(std::clamp(glm::dot(d, up_), -1.0, 1.0)) - radius_rad;
   if (lowest_elevation < std::asin(mu_horizon_) + 1.0 * core::kDeg) return true;
@@ -139,7 +141,7 @@ bool StarSkyFloor::kept(const glm::dvec3& d, double radius_rad) const {
   return false;
 }
 
-std::array<double, 3> StarSkyFloor::at(const glm::dvec3& d, double radius_rad) const {
+std::array<double, 3> SkyBehindStarBound::at(const glm::dvec3& d, double radius_rad) const {
   if (kept(d, radius_rad)) return whole_sky_;
   const double theta = std::acos(std::clamp(glm::dot(d, up_), -1.0, 1.0));
   const Interval thetas{std::max(0.0, theta - radius_rad), std::min(theta_horizon_, theta + radius_rad)};
@@ -206,7 +208,7 @@ double smallest_pixel_solid_angle_sr(const warp::Projection& projection) {
   return 0.5 * smallest;
 }
 
-StarVisibility star_visibility(const FrameState& frame, StarField& field, const StarFrame& sky,
+StarVisibility star_visibility(const FrameInProgress& frame, StarField& field, const StarFrame& sky,
                                const astro::AstroTime& time, const astro::Site& clock_site,
                                std::vector<glm::dvec3>& directions_enu, bool star_by_star) {
   StarVisibility out;
@@ -291,12 +293,12 @@ StarVisibility star_visibility(const FrameState& frame, StarField& field, const 
   // ---- The second stage: the brightest m stars one by one, the rest together.
   std::vector<glm::dvec3>& enu = directions_enu;
   field.directions_enu(time, clock_site, enu);
-  std::optional<StarSkyFloor> behind;  // the sky behind one star (the second stage's B_s)
+  std::optional<SkyBehindStarBound> behind;  // the sky behind one star (the second stage's B_s)
   if (pass) {
     std::vector<std::pair<glm::dvec3, double>> bodies;
     for (std::size_t b = 0; b < scene.bodies.size(); ++b)
       if (b != site) bodies.emplace_back(scene.bodies[b].position_m, scene.bodies[b].radius_m);
-    behind.emplace(pass->gpu->radiance_floor(), sky.camera_m, planet.position_m, pass->gpu->ground_radius_m(),
+    behind.emplace(pass->gpu->radiance_lower_bound(), sky.camera_m, planet.position_m, pass->gpu->ground_radius_m(),
                    frame.sun, pass->sky_view, sky.rgb_weights, scene.sun.irradiance_W_m2_nm, sky.exposure,
                    std::move(bodies), out.sky_floor);
   }

@@ -27,7 +27,7 @@
 // any star's draw gives in the frame's interval at e's variance, which falls
 // as e rises; per degree, T at its top and f at its bottom),
 // Ω_min the smallest pixel solid angle, and the sky's floor from the tables
-// (render/frame/sky_radiance_floor.h)
+// (render/frame/sky_radiance_lower_bound.h)
 //     B = exposure · Σ_λ w_c(λ) E_sun(λ) S_min(λ).
 // Starlight lands only on pixels whose ray meets no body (night_sky.comp):
 // the ground and other bodies may be darker than any sky, and a star's splat
@@ -81,11 +81,11 @@
 //       Δ_s,c = (Σ_{s' within 2 px} |rgb_s',c|) (1 + 1e-3) + F_s,c
 //     (1e-3: the splat's float and the accumulator's 2⁻²⁸ step; F_s,c as
 //     F_j,c with s's neighbourhood of the rest);
-//   the sky behind it (StarSkyFloor): every pixel it touches has its centre
+//   the sky behind it (SkyBehindStarBound): every pixel it touches has its centre
 //     within 1 pixel of the star's position in x and y, so its ray lies within
 //     ρ of the star's direction (splat_footprint_radius); the sky those pixels
 //     read is bounded from the same tables the frame reads over that cap only
-//     (SkyFloorSlice: the camera's rows and the sun's μs columns, the μ texels
+//     (SkyLowerBoundSlice: the camera's rows and the sun's μs columns, the μ texels
 //     and ν slices a read in the cap weighs, the phases over the cap's ν; with
 //     the sky-view table, over the texels of that table the cap's pixels
 //     interpolate, each a read of the 4D tables at its own direction; the
@@ -126,8 +126,8 @@
 
 #include "astro/civil_time.h"
 #include "astro/sky_positions.h"
-#include "render/frame/frame_state.h"
-#include "render/frame/sky_radiance_floor.h"
+#include "render/frame/frame_in_progress.h"
+#include "render/frame/sky_radiance_lower_bound.h"
 #include "render/frame/star_field.h"
 
 namespace zenith::render {
@@ -164,15 +164,15 @@ bool colour_weights_non_negative(const std::vector<std::array<double, 3>>& rgb_w
 /// The first stage's B: per linear sRGB channel × exposure, the least the
 /// atmosphere passes draw on any pixel of sky of `frame` (a ray from the camera
 /// inside the air of body `site` that meets no body), from that air's
-/// SkyRadianceFloor through the colour weights and the sun's irradiance. Zeros
+/// SkyRadianceLowerBound through the colour weights and the sun's irradiance. Zeros
 /// where it does not apply: no such air resident, or colour weights that may
 /// subtract. What the stars and the night floor are tested against.
-std::array<double, 3> darkest_sky(const FrameState& frame, std::size_t site, double exposure,
+std::array<double, 3> darkest_sky(const FrameInProgress& frame, std::size_t site, double exposure,
                                   const std::vector<std::array<double, 3>>& rgb_weights);
 
 /// The sky behind one star: the second stage's B_s (above), per linear sRGB
 /// channel × exposure. Built per frame for the camera in the site body's air.
-class StarSkyFloor {
+class SkyBehindStarBound {
  public:
   /// `floor` of the site body's tables; the camera and the planet's centre
   /// (world), its ground radius; the sun (world, unit); whether the sky-view
@@ -180,10 +180,11 @@ class StarSkyFloor {
   /// ways); the colour weights (≥ 0), the sun's irradiance and the exposure;
   /// the other bodies (centre, radius) whose limbs keep a star; `whole_sky`
   /// the first stage's B, the least of every sky pixel.
-  StarSkyFloor(const SkyRadianceFloor& floor, const glm::dvec3& camera_m, const glm::dvec3& planet_centre_m,
-               double ground_radius_m, const glm::dvec3& sun, bool sky_view,
-               const std::vector<std::array<double, 3>>& rgb_weights, const std::vector<double>& sun_irradiance,
-               double exposure, std::vector<std::pair<glm::dvec3, double>> bodies, std::array<double, 3> whole_sky);
+  SkyBehindStarBound(const SkyRadianceLowerBound& floor, const glm::dvec3& camera_m, const glm::dvec3& planet_centre_m,
+                     double ground_radius_m, const glm::dvec3& sun, bool sky_view,
+                     const std::vector<std::array<double, 3>>& rgb_weights, const std::vector<double>& sun_irradiance,
+                     double exposure, std::vector<std::pair<glm::dvec3, double>> bodies,
+                     std::array<double, 3> whole_sky);
 
   /// At least the sky on every pixel of sky whose ray lies within `radius_rad`
   /// of unit `direction` (world): max(B_s, B), or B where the star is kept.
@@ -192,7 +193,7 @@ class StarSkyFloor {
   bool kept(const glm::dvec3& direction, double radius_rad) const;
 
  private:
-  SkyFloorSlice slice_;
+  SkyLowerBoundSlice slice_;
   glm::dvec3 camera_m_, up_, sun_;
   double radius_m_, mu_horizon_, theta_horizon_, sun_theta_;
   bool sky_view_;
@@ -242,7 +243,7 @@ struct StarVisibility {
 /// where the second stage needs them and left empty otherwise, so the pass
 /// places its stars from the same vector instead of turning the catalogue
 /// twice a frame (0.9 ms for 101 922 stars on this project's VM).
-StarVisibility star_visibility(const FrameState& frame, StarField& field, const StarFrame& sky,
+StarVisibility star_visibility(const FrameInProgress& frame, StarField& field, const StarFrame& sky,
                                const astro::AstroTime& time, const astro::Site& site,
                                std::vector<glm::dvec3>& directions_enu, bool star_by_star = true);
 

@@ -11,7 +11,7 @@
 
 namespace zenith::render {
 
-double light_display_bound(const FrameState& frame, const AtmospherePass& pass, const glm::dvec3& direction,
+double light_display_bound(const FrameInProgress& frame, const AtmospherePass& pass, const glm::dvec3& direction,
                            const std::vector<double>& irradiance_W_m2_nm) {
   if (!pass.gpu) return 0.0;
   const scene::Scene& scene = frame.scene;
@@ -35,7 +35,7 @@ double light_display_bound(const FrameState& frame, const AtmospherePass& pass, 
   return bound * scene.camera.exposure;
 }
 
-std::vector<double> sunlight_bounds(const FrameState& frame) {
+std::vector<double> sunlight_bounds(const FrameInProgress& frame) {
   std::vector<double> out(frame.passes.size(), 0.0);
   for (std::size_t a = 0; a < frame.passes.size(); ++a)
     out[a] = light_display_bound(frame, frame.passes[a], frame.sun, frame.scene.sun.irradiance_W_m2_nm);

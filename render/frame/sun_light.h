@@ -15,7 +15,7 @@
 // lit by the sun whatever the atmosphere's night). No GL.
 #include <vector>
 
-#include "render/frame/frame_state.h"
+#include "render/frame/frame_in_progress.h"
 #include "render/frame/tile_classification.h"
 
 namespace zenith::render {
@@ -30,14 +30,14 @@ inline bool sky_and_ground_unlit(const AtmospherePass& pass, const TileVariant& 
 
 /// Per frame.passes: the largest linear display value the sun's light could add
 /// through that atmosphere's passes (0 where none is resident).
-std::vector<double> sunlight_bounds(const FrameState& frame);
+std::vector<double> sunlight_bounds(const FrameInProgress& frame);
 
 /// The largest linear display value a source at infinity in `direction`
 /// (world, unit) with `irradiance_W_m2_nm` at the top of the atmosphere can add
 /// through `pass`'s atmosphere (its sky, the aerial perspective, the ground it
 /// lights; seen through T ≤ 1 of any atmosphere in front), for the frame's
 /// exposure and colour weights: the Moon's test and the sun's.
-double light_display_bound(const FrameState& frame, const AtmospherePass& pass, const glm::dvec3& direction,
+double light_display_bound(const FrameInProgress& frame, const AtmospherePass& pass, const glm::dvec3& direction,
                            const std::vector<double>& irradiance_W_m2_nm);
 
 }  // namespace zenith::render

@@ -32,7 +32,7 @@
 #include "image/colour.h"
 #include "image/tone_mapping.h"
 #include "render/frame/moon_albedo_map.h"
-#include "render/frame/sky_radiance_floor.h"
+#include "render/frame/sky_radiance_lower_bound.h"
 #include "render/frame/star_field.h"
 #include "render/frame/star_pass.h"
 #include "render/frame/star_visibility.h"
@@ -723,13 +723,13 @@ scene::Scene at_twilight(double depression_deg, double exposure) {
 }
 
 TEST(NightSkyPass, TheSkyIsNoDarkerThanItsFloorFromTheTables) {
-  // The star test's B (render/frame/sky_radiance_floor.h): every pixel of sky
+  // The star test's B (render/frame/sky_radiance_lower_bound.h): every pixel of sky
   // the passes draw (direct colour: channel k = exposure · L(λ_k)) is at least
   // exposure · E_sun · S_min, from the sun at the horizon to deep twilight,
   // through the 4D tables and through the sky-view table; and the floor is
   // not empty (within a factor 5 of the darkest pixel).
   const SmallTables& t = SmallTables::get("earth-advanced");
-  const SkyRadianceFloor floor(t.model, t.tables, true);
+  const SkyRadianceLowerBound floor(t.model, t.tables, true);
   RenderOptions o = options(false, false);
   o.night_sky.moonlight = false;
   o.skip_hidden_sunlight = false;  // the sky the tables give, also where it is too faint to show

@@ -24,7 +24,7 @@
 #include "core/units.h"
 #include "image/colour.h"
 #include "image/tone_mapping.h"
-#include "render/frame/sky_radiance_floor.h"
+#include "render/frame/sky_radiance_lower_bound.h"
 #include "render/frame/star_visibility.h"
 #include "scene/frame_scene.h"
 #include "scene/local_horizon.h"
@@ -84,12 +84,12 @@ glm::dvec3 sirius_enu() {
 TEST(StarVisibility, TheSkyBehindAStarIsNoDarkerThanItsOwnBound) {
   // Every pixel a star's splat would touch, for a star at every pixel of a 64²
   // dome (offset from the centres), is at least the star's own bound B_s
-  // (StarSkyFloor::at over the splat's footprint), from the sun at the horizon
+  // (SkyBehindStarBound::at over the splat's footprint), from the sun at the horizon
   // to 14° down at the evening show's first and last exposures, through the
   // 4D tables and through the sky-view table; and B_s is well above the
   // darkest sky's B where the star is not kept.
   const SmallTables& t = SmallTables::get("earth-advanced");
-  const SkyRadianceFloor floor(t.model, t.tables, true);
+  const SkyRadianceLowerBound floor(t.model, t.tables, true);
   const warp::FisheyeProjection dome(64, 64);
   for (const SkyViewTableUse use : {SkyViewTableUse::automatic, SkyViewTableUse::off}) {
     RenderOptions o = options(false);
@@ -109,9 +109,9 @@ TEST(StarVisibility, TheSkyBehindAStarIsNoDarkerThanItsOwnBound) {
         for (std::size_t c = 0; c < 3; ++c)
           for (std::size_t i = 0; i < weights.size(); ++i)
             whole[c] += exposure * weights[i][c] * s.sun.irradiance_W_m2_nm[i] * k[i];
-        const StarSkyFloor behind(floor, s.camera.position_m, s.bodies[0].position_m, t.model.ground_radius_m,
-                                  s.sun.direction, use == SkyViewTableUse::automatic, weights, s.sun.irradiance_W_m2_nm,
-                                  exposure, {}, whole);
+        const SkyBehindStarBound behind(floor, s.camera.position_m, s.bodies[0].position_m, t.model.ground_radius_m,
+                                        s.sun.direction, use == SkyViewTableUse::automatic, weights,
+                                        s.sun.irradiance_W_m2_nm, exposure, {}, whole);
         std::size_t checked = 0, stars = 0, kept = 0, above = 0;
         double least_ratio = 1e300;  // B_s over the darkest pixel its splat touches
         for (int y = 0; y < 64; ++y)

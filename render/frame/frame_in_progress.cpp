@@ -1,4 +1,4 @@
-#include "render/frame/frame_state.h"
+#include "render/frame/frame_in_progress.h"
 
 #include <fmt/format.h>
 
@@ -33,7 +33,7 @@ std::array<float, 4> group_lanes(const std::vector<std::array<double, 3>>& weigh
   return out;
 }
 
-void FrameState::set_the_body(const gl::ShaderProgram& p, std::size_t b) const {
+void FrameInProgress::set_the_body(const gl::ShaderProgram& p, std::size_t b) const {
   const GpuBody& g = bodies[b];
   p.set_uniform("the_body.centre", g.centre);
   p.set_uniform("the_body.shape", g.shape);
@@ -43,7 +43,7 @@ void FrameState::set_the_body(const gl::ShaderProgram& p, std::size_t b) const {
   p.set_uniform("the_body.world_to_body2", g.world_to_body[2]);
 }
 
-void FrameState::set_frame_uniforms(const gl::ShaderProgram& p) const {
+void FrameInProgress::set_frame_uniforms(const gl::ShaderProgram& p) const {
   p.set_uniform("body_count", static_cast<int>(scene.bodies.size()));
   p.set_uniform("camera_to_world", camera_matrix);
   p.set_uniform("sun_direction",
@@ -71,7 +71,7 @@ void FrameState::set_frame_uniforms(const gl::ShaderProgram& p) const {
     p.set_uniform(name, world_ray[static_cast<std::size_t>(k)]);
 }
 
-const gl::ShaderProgram& FrameState::prepare(const gl::ShaderProgram& p) {
+const gl::ShaderProgram& FrameInProgress::prepare(const gl::ShaderProgram& p) {
   if (frame_ready.insert(&p).second) {
     set_frame_uniforms(p);
     p.set_uniform("exposure", static_cast<float>(scene.camera.exposure));
@@ -84,7 +84,7 @@ const gl::ShaderProgram& FrameState::prepare(const gl::ShaderProgram& p) {
   return p;
 }
 
-void FrameState::dispatch_tiles(const gl::ShaderProgram& p, TileList list, std::size_t tiles_per_group) {
+void FrameInProgress::dispatch_tiles(const gl::ShaderProgram& p, TileList list, std::size_t tiles_per_group) {
   prepare(p);
   p.set_uniform("tile_offset", static_cast<int>(list.offset));
   p.set_uniform("tile_count", static_cast<int>(list.count));
@@ -92,7 +92,7 @@ void FrameState::dispatch_tiles(const gl::ShaderProgram& p, TileList list, std::
   p.dispatch(grid[0], grid[1]);
 }
 
-void FrameState::set_group_uniforms(const gl::ShaderProgram& p, std::size_t g) {
+void FrameInProgress::set_group_uniforms(const gl::ShaderProgram& p, std::size_t g) {
   prepare(p);
   p.set_uniform("first_group", g == 0 && !light ? 1 : 0);  // a second light adds to the sun's
   p.set_uniform("last_group", g + 1 == groups ? 1 : 0);
@@ -106,7 +106,7 @@ void FrameState::set_group_uniforms(const gl::ShaderProgram& p, std::size_t g) {
   p.set_uniform("rgb_from_lanes_b", group_lanes(rgb_weights, 2, g));
 }
 
-void FrameState::set_light_uniforms(const gl::ShaderProgram& p, std::size_t g) const {
+void FrameInProgress::set_light_uniforms(const gl::ShaderProgram& p, std::size_t g) const {
   const glm::dvec3 d = light ? light->direction : sun;
   p.set_uniform("sun_direction",
                 std::array<float, 3>{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)});
@@ -115,7 +115,7 @@ void FrameState::set_light_uniforms(const gl::ShaderProgram& p, std::size_t g) c
   p.set_uniform("sun_centre_radiance", light ? std::array<float, 4>{0, 0, 0, 0} : group_lanes(sun_centre, g));
 }
 
-bool FrameState::touches_view(const AtmospherePass& pass) const {
+bool FrameInProgress::touches_view(const AtmospherePass& pass) const {
   return !cones
               ->tiles_touching_sphere(pass.direction_camera, pass.distance_m, pass.top_radius_m, 0, projection.height())
               .empty();

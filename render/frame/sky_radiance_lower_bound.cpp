@@ -1,10 +1,11 @@
-#include "render/frame/sky_radiance_floor.h"
+#include "render/frame/sky_radiance_lower_bound.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "atmosphere/lut/parameterization.h"
+#include "core/units.h"
 
 namespace zenith::render {
 namespace {
@@ -83,8 +84,8 @@ double largest_quadratic(double a, double b, Interval nu) {
 
 }  // namespace
 
-SkyRadianceFloor::SkyRadianceFloor(const atmosphere::AtmosphereModel& model,
-                                   const atmosphere::lut::LookupTables& tables, bool multiple_scattering)
+SkyRadianceLowerBound::SkyRadianceLowerBound(const atmosphere::AtmosphereModel& model,
+                                             const atmosphere::lut::LookupTables& tables, bool multiple_scattering)
     : geometry_(tables.geometry), sizes_(tables.sizes), channels_(tables.channels) {
   const std::size_t n = sizes_.scattering_mu_s;
   // The Rayleigh phase k (1 + a ν²) is extreme at ν = 0 or ±1.
@@ -129,7 +130,7 @@ SkyRadianceFloor::SkyRadianceFloor(const atmosphere::AtmosphereModel& model,
   }
 }
 
-std::vector<double> SkyRadianceFloor::radiance_per_irradiance(double mu_s, double radius_m) const {
+std::vector<double> SkyRadianceLowerBound::radiance_per_irradiance(double mu_s, double radius_m) const {
   std::vector<double> out(channels_, 0.0);
   if (channels_ == 0) return out;
   const double mu = std::clamp(mu_s, -1.0, 1.0);
@@ -159,8 +160,8 @@ std::vector<double> SkyRadianceFloor::radiance_per_irradiance(double mu_s, doubl
   return out;
 }
 
-SkyFloorSlice SkyRadianceFloor::slice(double mu_s, double radius_m) const {
-  SkyFloorSlice out;
+SkyLowerBoundSlice SkyRadianceLowerBound::slice(double mu_s, double radius_m) const {
+  SkyLowerBoundSlice out;
   if (channels_ == 0) return out;
   out.floor_ = this;
   out.channels_ = channels_;
@@ -175,7 +176,7 @@ SkyFloorSlice SkyRadianceFloor::slice(double mu_s, double radius_m) const {
                                    sizes_.scattering_r);
   // The row weight the texture unit applies: within 1/256 of the exact one.
   const double tr_lo = std::max(0.0, rows.t - 1.0 / 256.0), tr_hi = std::min(1.0, rows.t + 1.0 / 256.0);
-  const auto fill = [&](const std::vector<float>& sky, AngleMapping mapping, SkyFloorSlice::Term& term) {
+  const auto fill = [&](const std::vector<float>& sky, AngleMapping mapping, SkyLowerBoundSlice::Term& term) {
     if (sky.empty()) return false;
     const Between columns = texels_read(atmosphere::lut::scattering_u_mu_s(geometry_, sizes_, out.mu_s_, mapping), n);
     term.a = columns.lo;
@@ -203,8 +204,8 @@ SkyFloorSlice SkyRadianceFloor::slice(double mu_s, double radius_m) const {
   return out;
 }
 
-double SkyFloorSlice::least(const Term& term, std::size_t y0, std::size_t y1, std::size_t k0, std::size_t k1,
-                            std::size_t i) const {
+double SkyLowerBoundSlice::least(const Term& term, std::size_t y0, std::size_t y1, std::size_t k0, std::size_t k1,
+                                 std::size_t i) const {
   double a = std::numeric_limits<double>::infinity(), b = a;
   for (std::size_t k = k0; k <= k1; ++k)
     for (std::size_t y = y0; y <= y1; ++y) {
@@ -215,9 +216,9 @@ double SkyFloorSlice::least(const Term& term, std::size_t y0, std::size_t y1, st
   return std::min(least_blend(a, b, term.t_lo), least_blend(a, b, term.t_hi));
 }
 
-void SkyFloorSlice::texel_ranges(Interval mu, Interval phi_rad, bool blended, std::size_t& y0, std::size_t& y1,
-                                 std::size_t& k0, std::size_t& k1) const {
-  const SkyRadianceFloor& f = *floor_;
+void SkyLowerBoundSlice::texel_ranges(Interval mu, Interval phi_rad, bool blended, std::size_t& y0, std::size_t& y1,
+                                      std::size_t& k0, std::size_t& k1) const {
+  const SkyRadianceLowerBound& f = *floor_;
   const AngleMapping mapping = blended ? AngleMapping::Blended : AngleMapping::Distance;
   const double n_mu = static_cast<double>(f.sizes_.scattering_mu);
   // u_μ of the sky half falls as μ rises; the read weighs the texels either
@@ -236,16 +237,15 @@ void SkyFloorSlice::texel_ranges(Interval mu, Interval phi_rad, bool blended, st
   // u_ν = φ/π over nu_ − 1 slice spacings; acos in float near φ = 0 or π is
   // off by up to ~1e-3 rad: 1e-2 of a slice.
   const double slices = static_cast<double>(nu_ - 1);
-  const double pi = 3.14159265358979323846;
-  k0 = static_cast<std::size_t>(std::clamp(std::floor(phi_rad.lo / pi * slices - 1e-2), 0.0, slices));
-  k1 = static_cast<std::size_t>(std::clamp(std::ceil(phi_rad.hi / pi * slices + 1e-2), 0.0, slices));
+  k0 = static_cast<std::size_t>(std::clamp(std::floor(phi_rad.lo / core::kPi * slices - 1e-2), 0.0, slices));
+  k1 = static_cast<std::size_t>(std::clamp(std::ceil(phi_rad.hi / core::kPi * slices + 1e-2), 0.0, slices));
 }
 
-void SkyFloorSlice::radiance_per_irradiance(Interval mu, Interval phi_rad, Interval nu_rayleigh, Interval nu_mie,
-                                            double* out) const {
+void SkyLowerBoundSlice::radiance_per_irradiance(Interval mu, Interval phi_rad, Interval nu_rayleigh, Interval nu_mie,
+                                                 double* out) const {
   std::fill(out, out + channels_, 0.0);
   if (!floor_) return;
-  const SkyRadianceFloor& f = *floor_;
+  const SkyRadianceLowerBound& f = *floor_;
   std::size_t y0, y1, k0, k1, yb0, yb1, kb0, kb1;
   texel_ranges(mu, phi_rad, false, y0, y1, k0, k1);
   texel_ranges(mu, phi_rad, true, yb0, yb1, kb0, kb1);

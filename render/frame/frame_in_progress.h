@@ -49,8 +49,8 @@ struct FrameLight {
 /// One frame in progress: its constants in double on the CPU, the bodies and
 /// atmosphere passes, the uniforms every pass shares, the programs, and which
 /// programs have their frame and band uniforms set.
-struct FrameState : FrameConstants {
-  FrameState(const scene::Scene& s, const warp::Projection& p) : scene(s), projection(p) {}
+struct FrameInProgress : FrameConstants {
+  FrameInProgress(const scene::Scene& s, const warp::Projection& p) : scene(s), projection(p) {}
 
   const scene::Scene& scene;
   const warp::Projection& projection;

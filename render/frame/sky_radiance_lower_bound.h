@@ -37,10 +37,10 @@ struct Interval {
   double lo = 0.0, hi = 0.0;
 };
 
-class SkyRadianceFloor;
+class SkyRadianceLowerBound;
 
 /// The frame's part of the tables for bounds over parts of the sky
-/// (SkyRadianceFloor::slice): every read of a frame from a camera inside the
+/// (SkyRadianceLowerBound::slice): every read of a frame from a camera inside the
 /// shell has the camera's radius r and the sun's cosine μs there, so the same
 /// two radius rows with the same weights and the same two μs columns with the
 /// same blend; only μ and ν vary. Per table, per μs column, ν slice, sky-half
@@ -50,9 +50,9 @@ class SkyRadianceFloor;
 /// around it with weights in [0, 1] summing to 1, so it is at least their
 /// least; the μs blend of two columns at least a and b is at least the
 /// geometric a^(1−t) b^t (least_blend), t within 1e-3 of the frame's.
-class SkyFloorSlice {
+class SkyLowerBoundSlice {
  public:
-  SkyFloorSlice() = default;
+  SkyLowerBoundSlice() = default;
   /// Per wavelength [sr⁻¹] into `out` (channels values): a lower bound of S per
   /// unit sun irradiance of every sky-half read whose view cosine μ lies in
   /// `mu` and whose azimuth from the sun's vertical φ (scattering_u_nu: u_ν =
@@ -62,7 +62,7 @@ class SkyFloorSlice {
   std::size_t channels() const { return channels_; }
 
  private:
-  friend class SkyRadianceFloor;
+  friend class SkyRadianceLowerBound;
   struct Term {
     std::size_t a = 0, b = 0;                // μs columns
     double t_lo = 0.0, t_hi = 0.0;           // the blend's weight of b, widened
@@ -73,22 +73,22 @@ class SkyFloorSlice {
   /// The sky-half μ texel range and ν slice range a read in (mu, phi) weighs, per μ mapping.
   void texel_ranges(Interval mu, Interval phi_rad, bool blended, std::size_t& y0, std::size_t& y1, std::size_t& k0,
                     std::size_t& k1) const;
-  const SkyRadianceFloor* floor_ = nullptr;
+  const SkyRadianceLowerBound* floor_ = nullptr;
   double radius_m_ = 0.0, mu_s_ = 0.0;  // clamped to the tables' ranges
   std::size_t channels_ = 0, half_ = 0, nu_ = 0;
   Term rayleigh_, mie_, multiple_;
   bool multiple_on_ = false, mie_on_ = false;
 };
 
-class SkyRadianceFloor {
+class SkyRadianceLowerBound {
  public:
-  SkyRadianceFloor() = default;
+  SkyRadianceLowerBound() = default;
   /// The tables' sky-half minima per radius row, μs column and wavelength (one
   /// pass over the 4D tables); `multiple_scattering`: whether the passes read
   /// the multiple-scattering table (AtmospherePassFeatures::multiple_scattering
   /// and a table of order ≥ 2).
-  SkyRadianceFloor(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
-                   bool multiple_scattering);
+  SkyRadianceLowerBound(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
+                        bool multiple_scattering);
 
   /// Per wavelength [sr⁻¹], a lower bound of the sky radiance per unit sun
   /// irradiance on every ray from a camera at `radius_m` (in the shell) that
@@ -98,11 +98,11 @@ class SkyRadianceFloor {
 
   /// The frame's slice of the tables' sky half for a camera at `radius_m`
   /// with the sun's cosine `mu_s` there: bounds over parts of the sky
-  /// (SkyFloorSlice). Empty for an empty floor.
-  SkyFloorSlice slice(double mu_s, double radius_m) const;
+  /// (SkyLowerBoundSlice). Empty for an empty floor.
+  SkyLowerBoundSlice slice(double mu_s, double radius_m) const;
 
  private:
-  friend class SkyFloorSlice;
+  friend class SkyLowerBoundSlice;
   atmosphere::lut::ShellGeometry geometry_{};
   atmosphere::lut::TableSizes sizes_{};
   std::size_t channels_ = 0;
