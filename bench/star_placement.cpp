@@ -165,8 +165,8 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
     std::vector<double> omega(enu.size());
     timed(landed.size(), [&] {
       for (std::size_t i : landed)
-        omega[i] = frame.solid_angle ? (*frame.solid_angle)(pixel[i].x, pixel[i].y)
-                                     : render::pixel_solid_angle_sr(dome, pixel[i].x, pixel[i].y);
+        omega[i] = frame.closed_form_solid_angle ? dome.pixel_solid_angle_sr(pixel[i].x, pixel[i].y)
+                                                 : dome.pixel_solid_angle_by_rays_sr(pixel[i].x, pixel[i].y);
     });
     std::vector<std::array<double, 3>> rgb(enu.size());
     timed(landed.size(), [&] {
@@ -188,7 +188,7 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
     // The same three steps and the whole placement with the exact reads (the frame without its tables).
     render::StarFrame exact = frame;
     exact.transmittances.clear();
-    exact.solid_angle.reset();
+    exact.closed_form_solid_angle = false;
     exact.twinkle_sigma.reset();
     exact.scintillation_normals = nullptr;
     timed(landed.size(), [&] {
@@ -196,7 +196,7 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
         render::star_line_of_sight_transmittance(d[i], exact, &transmittance[i * n], scratch.data());
     });
     timed(landed.size(), [&] {
-      for (std::size_t i : landed) omega[i] = render::pixel_solid_angle_sr(dome, pixel[i].x, pixel[i].y);
+      for (std::size_t i : landed) omega[i] = dome.pixel_solid_angle_by_rays_sr(pixel[i].x, pixel[i].y);
     });
     timed(landed.size(), [&] {
       for (std::size_t i : landed) twinkle[i] = render::star_twinkle(i, d[i], exact);

@@ -141,4 +141,15 @@ std::optional<glm::dvec2> FisheyeProjection::pixel(const glm::dvec3& direction) 
   return glm::dvec2(centre_x_px_ + dx, centre_y_px_ - dy);
 }
 
+double FisheyeProjection::pixel_solid_angle_sr(double x_px, double y_px) const {
+  const double dx = x_px - centre_x_px_, dy = centre_y_px_ - y_px;
+  // The rays' four points lie within this of the centre: at the rim, the rays decide.
+  if (std::hypot(std::abs(dx) + 0.5, std::abs(dy) + 0.5) < radius_px_ - 1.0) {
+    const double a = rad_per_px_, theta = a * std::hypot(dx, dy);
+    if (theta <= kClosedFormSolidAngleLimit_rad)
+      return theta > 1e-4 ? a * a * std::sin(theta) / theta : a * a * (1.0 - theta * theta / 6.0);
+  }
+  return pixel_solid_angle_by_rays_sr(x_px, y_px);
+}
+
 }  // namespace zenith::warp

@@ -160,4 +160,14 @@ std::optional<glm::dvec2> PlanarProjection::pixel(const glm::dvec3& direction) c
   return glm::dvec2((u - tan_left_) / tan_per_px_x_, (v - tan_up_) / tan_per_px_y_);
 }
 
+double PlanarProjection::pixel_solid_angle_sr(double x_px, double y_px) const {
+  const double u = tan_left_ + x_px * tan_per_px_x_, v = tan_up_ + y_px * tan_per_px_y_;
+  const double q = 1.0 + u * u + v * v;
+  return std::abs(tan_per_px_x_ * tan_per_px_y_) / (q * std::sqrt(q));
+}
+
+double PlanarProjection::solid_angle_relative_bound() const {
+  return 0.25 * std::max(tan_per_px_x_ * tan_per_px_x_, tan_per_px_y_ * tan_per_px_y_) * (1.0 + 1e-3) + 1e-12;
+}
+
 }  // namespace zenith::warp

@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include <glm/geometric.hpp>
+
 namespace zenith::warp {
 namespace {
 
@@ -22,6 +24,13 @@ void check_size(const char* name, int value_px) {
 Projection::Projection(int width_px, int height_px) : width_(width_px), height_(height_px) {
   check_size("width_px", width_px);
   check_size("height_px", height_px);
+}
+
+double Projection::pixel_solid_angle_by_rays_sr(double x_px, double y_px) const {
+  const auto xa = ray(x_px - 0.5, y_px), xb = ray(x_px + 0.5, y_px);
+  const auto ya = ray(x_px, y_px - 0.5), yb = ray(x_px, y_px + 0.5);
+  if (!xa || !xb || !ya || !yb) return 0.0;
+  return glm::length(glm::cross(glm::normalize(*xb) - glm::normalize(*xa), glm::normalize(*yb) - glm::normalize(*ya)));
 }
 
 void ClosedFormProjection::set_closed_form(const GpuProjection& gpu, std::string description,

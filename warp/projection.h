@@ -99,6 +99,21 @@ class Projection {
     return max_pixel_angle_rad();
   }
 
+  /// The solid angle [sr] of the pixel at the continuous position (x, y) by
+  /// the rays' difference quotient: with unit rays r,
+  ///   Ω_rays = |(r(x + ½, y) − r(x − ½, y)) × (r(x, y + ½) − r(x, y − ½))|,
+  /// 0 where one of the four rays is missing (past a fisheye's rim).
+  double pixel_solid_angle_by_rays_sr(double x_px, double y_px) const;
+  /// The same from the map's Jacobian where the projection has a closed form
+  /// for it (about a tenth of the cost: the equidistant fisheye, the planar
+  /// view), else Ω_rays. Within solid_angle_relative_bound() of Ω_rays:
+  /// |Ω/Ω_rays − 1| ≤ the bound.
+  virtual double pixel_solid_angle_sr(double x_px, double y_px) const {
+    return pixel_solid_angle_by_rays_sr(x_px, y_px);
+  }
+  /// The bound of |Ω/Ω_rays − 1| for pixel_solid_angle_sr (0: it is Ω_rays).
+  virtual double solid_angle_relative_bound() const { return 0.0; }
+
  protected:
   Projection(int width_px, int height_px);  ///< throws std::invalid_argument unless both are in [1, 65536]
 

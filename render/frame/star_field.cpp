@@ -11,8 +11,7 @@
 #include "atmosphere/air_mass.h"
 #include "atmosphere/lut/parameterization.h"
 #include "core/parallel_for.h"
-#include "warp/fisheye_projection.h"
-#include "warp/planar_projection.h"
+#include "core/units.h"
 
 namespace zenith::render {
 
@@ -131,11 +130,6 @@ const std::vector<double>& StarField::brightest_cluster_irradiance(double radius
   std::vector<double> brightest(n, 0.0);
   for (std::size_t i = first * n; i < sums.size(); ++i) brightest[i % n] = std::max(brightest[i % n], sums[i]);
   return clusters_[{step, first}] = brightest;
-}
-
-glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& axis, double angle_rad) {
-  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
-  return v * c + glm::cross(axis, v) * s + axis * (glm::dot(axis, v) * (1.0 - c));
 }
 
 void StarField::directions_enu(const astro::AstroTime& time, const astro::Site& site, std::vector<glm::dvec3>& out,
@@ -289,55 +283,6 @@ glm::dvec2 on_splat_grid(const glm::dvec2& pixel) {
 
 bool splat_touches_image(const glm::dvec2& pixel, double width, double height) {
   return pixel.x >= -0.5 && pixel.x < width + 0.5 && pixel.y >= -0.5 && pixel.y < height + 0.5;
-}
-
-double pixel_solid_angle_sr(const warp::Projection& projection, double x_px, double y_px) {
-  const auto xa = projection.ray(x_px - 0.5, y_px), xb = projection.ray(x_px + 0.5, y_px);
-  const auto ya = projection.ray(x_px, y_px - 0.5), yb = projection.ray(x_px, y_px + 0.5);
-  if (!xa || !xb || !ya || !yb) return 0.0;
-  return glm::length(glm::cross(glm::normalize(*xb) - glm::normalize(*xa), glm::normalize(*yb) - glm::normalize(*ya)));
-}
-
-PixelSolidAngle::PixelSolidAngle(const warp::Projection& projection) : projection_(&projection) {
-  constexpr double kPi = 3.14159265358979323846;
-  if (const auto* fisheye = dynamic_cast<const warp::FisheyeProjection*>(&projection)) {
-    kind_ = Kind::fisheye;
-    cx_ = fisheye->centre_x_px();
-    cy_ = fisheye->centre_y_px();
-    rim_px_ = fisheye->radius_px();
-    a_ = 0.5 * fisheye->fov_deg() * kPi / 180.0 / rim_px_;
-    theta_limit_ = 150.0 * kPi / 180.0;
-    bound_ = a_ * a_ / 6.0;
-  } else if (const auto* planar = dynamic_cast<const warp::PlanarProjection*>(&projection)) {
-    kind_ = Kind::planar;
-    const warp::PlanarFrustum& f = planar->frustum();
-    const auto tan_deg = [&](double deg) { return std::tan(deg * kPi / 180.0); };
-    u0_ = tan_deg(f.left_deg);
-    v0_ = tan_deg(f.up_deg);
-    tx_ = (tan_deg(f.right_deg) - u0_) / projection.width();
-    ty_ = (tan_deg(f.down_deg) - v0_) / projection.height();
-    bound_ = 0.25 * std::max(tx_ * tx_, ty_ * ty_) * (1.0 + 1e-3) + 1e-12;  // attained at the axis: with rounding
-  }
-}
-
-double PixelSolidAngle::operator()(double x_px, double y_px) const {
-  switch (kind_) {
-    case Kind::fisheye: {
-      const double dx = x_px - cx_, dy = cy_ - y_px;
-      // The rays' four points lie within this of the centre: at the rim, the rays decide.
-      if (!(std::hypot(std::abs(dx) + 0.5, std::abs(dy) + 0.5) < rim_px_ - 1.0)) break;
-      const double theta = a_ * std::hypot(dx, dy);
-      if (theta > theta_limit_) break;
-      return theta > 1e-4 ? a_ * a_ * std::sin(theta) / theta : a_ * a_ * (1.0 - theta * theta / 6.0);
-    }
-    case Kind::planar: {
-      const double u = u0_ + x_px * tx_, v = v0_ + y_px * ty_;
-      const double q = 1.0 + u * u + v * v;
-      return std::abs(tx_ * ty_) / (q * std::sqrt(q));
-    }
-    case Kind::rays: break;
-  }
-  return pixel_solid_angle_sr(*projection_, x_px, y_px);
 }
 
 std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, double margin_rad) {
@@ -507,8 +452,8 @@ std::optional<PlacedStar> place_star(const StarField& field, std::size_t i, cons
   transmittance.resize(n);
   one.resize(n);
   star_line_of_sight_transmittance(d, frame, transmittance.data(), one.data());
-  s.omega_sr = frame.solid_angle ? (*frame.solid_angle)(s.pixel.x, s.pixel.y)
-                                 : pixel_solid_angle_sr(*frame.projection, s.pixel.x, s.pixel.y);
+  s.omega_sr = frame.closed_form_solid_angle ? frame.projection->pixel_solid_angle_sr(s.pixel.x, s.pixel.y)
+                                             : frame.projection->pixel_solid_angle_by_rays_sr(s.pixel.x, s.pixel.y);
   if (!(s.omega_sr > 0.0)) return std::nullopt;
   std::array<double, 3> rgb = star_colour(field, i, transmittance.data(), frame);
   if (rgb[0] == 0.0 && rgb[1] == 0.0 && rgb[2] == 0.0) return std::nullopt;

@@ -167,41 +167,6 @@ class StarField {
   std::vector<glm::dvec3> epoch_enu_;
 };
 
-/// A unit vector `v` turned by `angle_rad` about unit `axis` (right-handed; Rodrigues).
-glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& axis, double angle_rad);
-
-/// Ω of a pixel as pixel_solid_angle_sr finds it (its rays half a pixel
-/// either side), by the Jacobian's closed form where the projection has one —
-/// a tenth of the cost, each star of each frame:
-///  * the equidistant fisheye (a radians per pixel, θ = a r from the axis):
-///    Ω = a² sin θ / θ, within 150° of the axis and a pixel of its rim's
-///    inside; it differs from the rays' difference quotient by the latter's
-///    truncation, |Ω/Ω_rays − 1| ≤ a²/6 there (9.4e-6 · 1/6 on a 1024² 180°
-///    master; from its Taylor series, a²/12 at the axis, 0.143 a² at 150°, and
-///    asserted by StarField.TheClosedFormSolidAngleIsTheRaysWithinItsBound);
-///    elsewhere (near θ = 180°, where sin θ/θ vanishes, and at the rim) the rays;
-///  * the planar view (t_x, t_y its tangent steps per pixel, (u, v) the point
-///    of its image plane z = −1): Ω = |t_x t_y| / (1 + u² + v²)^(3/2),
-///    |Ω/Ω_rays − 1| ≤ max(t_x, t_y)²/4 (attained on the axis, where the
-///    rays' chords are t/√(1 + t²/4); with 1e-3 of it and 1e-12 for rounding);
-///  * any other projection (a warp mesh's ray table, ...): the rays.
-class PixelSolidAngle {
- public:
-  explicit PixelSolidAngle(const warp::Projection& projection);
-  double operator()(double x_px, double y_px) const;
-  /// The bound above of |Ω/Ω_rays − 1| (0 for the rays themselves).
-  double relative_bound() const { return bound_; }
-
- private:
-  enum class Kind { rays, fisheye, planar };
-  const warp::Projection* projection_;
-  Kind kind_ = Kind::rays;
-  double bound_ = 0.0;
-  // The fisheye: centre, rim radius [px], radians per pixel, θ's limit. The planar: u, v at pixel 0, steps.
-  double cx_ = 0.0, cy_ = 0.0, rim_px_ = 0.0, a_ = 0.0, theta_limit_ = 0.0;
-  double u0_ = 0.0, v0_ = 0.0, tx_ = 0.0, ty_ = 0.0;
-};
-
 /// star_transmittance from one camera, for every direction of a frame: every
 /// ray is read at one radius — the camera's, or the top's where the camera is
 /// outside the shell and the ray enters it — so the bilinear filter's weight
@@ -305,8 +270,11 @@ struct StarFrame {
   /// Per atmosphere, its CameraTransmittance from camera_m (star_frame sets
   /// them; empty: star_transmittance).
   std::vector<CameraTransmittance> transmittances;
-  /// Ω at a star's pixel (star_frame sets it; empty: pixel_solid_angle_sr).
-  std::optional<PixelSolidAngle> solid_angle;
+  /// Ω at a star's pixel by the projection's closed form where it has one
+  /// (warp::Projection::pixel_solid_angle_sr; star_frame sets it), within the
+  /// projection's solid_angle_relative_bound() of the rays' quotient; false:
+  /// the quotient itself (pixel_solid_angle_by_rays_sr).
+  bool closed_form_solid_angle = false;
   /// Sets the twinkling's five fields above together.
   void set_twinkling(const astro::ScintillationOptions& options, std::int64_t interval, double observer_altitude,
                      double refractivity);
@@ -322,10 +290,6 @@ std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, doub
 /// infinity through `a` (1 where it misses the shell, 0 where it meets the
 /// ground) into `out` (channels values).
 void star_transmittance(const StarAtmosphere& a, const glm::dvec3& camera_m, const glm::dvec3& d, double* out);
-
-/// Ω of the pixel at continuous image position (x, y) [sr], from the
-/// projection's rays half a pixel either side; 0 where a ray is missing.
-double pixel_solid_angle_sr(const warp::Projection& projection, double x_px, double y_px);
 
 /// place_star's steps, each on its own (render_bench --stars-placement times
 /// them one by one). Whether the geometric direction `enu` (east, north, up) is

@@ -75,7 +75,7 @@ StarFrame star_frame(const scene::Scene& scene, const warp::Projection& projecti
   StarFrame f;
   const scene::LocalHorizon horizon = scene::local_horizon_at(scene.camera.position_m, scene.bodies.at(clock.body));
   f.projection = &projection;
-  f.solid_angle.emplace(projection);
+  f.closed_form_solid_angle = true;
   f.camera_m = scene.camera.position_m;
   f.world_to_camera = glm::transpose(camera_to_world);
   f.east = horizon.east;
@@ -241,7 +241,7 @@ void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky
   }
   const auto pixel = frame.projection.pixel(frame.world_to_camera * d);
   if (!pixel) return;
-  const double omega = pixel_solid_angle_sr(frame.projection, pixel->x, pixel->y);
+  const double omega = frame.projection.pixel_solid_angle_by_rays_sr(pixel->x, pixel->y);
   if (!(omega > 0.0)) return;
   const double radius_px = moon.angular_radius_rad / std::sqrt(omega);
   const double w = frame.projection.width(), h = frame.projection.height();
@@ -253,7 +253,7 @@ void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky
     // Smaller than a pixel: a point source of the whole Moon's irradiance, as a star.
     const glm::dvec2 at = on_splat_grid(*pixel);  // as the stars (star_field.h)
     if (!splat_touches_image(at, w, h)) return;
-    const double omega_at = pixel_solid_angle_sr(frame.projection, at.x, at.y);
+    const double omega_at = frame.projection.pixel_solid_angle_by_rays_sr(at.x, at.y);
     if (!(omega_at > 0.0)) return;
     const std::vector<double> e = astro::moon_irradiance_W_m2_nm(moon, wavelengths);
     StarSplat s;

@@ -201,8 +201,8 @@ double smallest_pixel_solid_angle_sr(const warp::Projection& projection) {
   double smallest = 0.0;
   for (int j = 0; j <= 32; ++j)
     for (int i = 0; i <= 32; ++i) {
-      const double omega = pixel_solid_angle_sr(projection, (projection.width() - 1) * i / 32.0 + 0.5,
-                                                (projection.height() - 1) * j / 32.0 + 0.5);
+      const double omega = projection.pixel_solid_angle_by_rays_sr((projection.width() - 1) * i / 32.0 + 0.5,
+                                                                   (projection.height() - 1) * j / 32.0 + 0.5);
       if (omega > 0.0 && (smallest == 0.0 || omega < smallest)) smallest = omega;
     }
   return 0.5 * smallest;

@@ -113,7 +113,7 @@
 // each: the transmittance from CameraTransmittance's blended row is the same
 // bilinear read as star_transmittance to a few ulps (1e-15 of values ≤ 1),
 // inside the 1 % kInvisibleCodeChange keeps from half a code, so K is unchanged; Ω_s by
-// PixelSolidAngle's closed form is within a²/6 (fisheye) or t²/4 (planar) of
+// the projection's closed form (warp::Projection::pixel_solid_angle_sr) is within a²/6 (fisheye) or t²/4 (planar) of
 // the rays' quotient, so never below the first stage's Ω_min, half the
 // rays' smallest on the grid (1 − 1e-5 ≫ ½ at any pixel size), and the second
 // stage places its bright stars with the same place_star as the pass; the

@@ -208,9 +208,10 @@ TEST(StarField, TheCameraTransmittanceIsTheTablesReadWithinRounding) {
 }
 
 TEST(StarField, TheClosedFormSolidAngleIsTheRaysWithinItsBound) {
-  // PixelSolidAngle's closed forms against the rays' difference quotient
-  // (pixel_solid_angle_sr) on positions of the splat grid over the whole
-  // image (centre, rim, corners): within relative_bound() (a²/6 for the
+  // The projections' closed forms (warp::Projection::pixel_solid_angle_sr)
+  // against the rays' difference quotient (pixel_solid_angle_by_rays_sr) on
+  // positions of the splat grid over the whole image (centre, rim, corners):
+  // within solid_angle_relative_bound() (a²/6 for the
   // fisheye, max(t_x, t_y)²/4 for the planar view) and the same zeros (no
   // ray).
   const warp::FisheyeProjection dome(64, 64), master(1024, 1024);
@@ -236,24 +237,25 @@ TEST(StarField, TheClosedFormSolidAngleIsTheRaysWithinItsBound) {
                                                               {&small, 0.0},
                                                               {&turned, 0.0}};
   for (const auto& [projection, a] : cases) {
-    const PixelSolidAngle omega(*projection);
     if (a > 0.0) {
-      EXPECT_NEAR(omega.relative_bound(), a * a / 6.0, 1e-12 * a * a) << projection->describe();
+      EXPECT_NEAR(projection->solid_angle_relative_bound(), a * a / 6.0, 1e-12 * a * a) << projection->describe();
     }
-    EXPECT_GT(omega.relative_bound(), 0.0) << projection->describe();
+    EXPECT_GT(projection->solid_angle_relative_bound(), 0.0) << projection->describe();
     const int w = projection->width(), h = projection->height();
     double worst = 0.0;
     std::size_t zeros = 0;
     for (int j = 0; j <= 400; ++j)
       for (int i = 0; i <= 400; ++i) {
         const glm::dvec2 at = on_splat_grid({-0.5 + (w + 1.0) * i / 400.0, -0.5 + (h + 1.0) * j / 400.0});
-        const double want = pixel_solid_angle_sr(*projection, at.x, at.y), got = omega(at.x, at.y);
+        const double want = projection->pixel_solid_angle_by_rays_sr(at.x, at.y),
+                     got = projection->pixel_solid_angle_sr(at.x, at.y);
         ASSERT_EQ(got == 0.0, want == 0.0) << projection->describe() << " at " << at.x << ", " << at.y;
         zeros += want == 0.0;
         if (want > 0.0) worst = std::max(worst, std::abs(got / want - 1.0));
       }
-    EXPECT_LE(worst, omega.relative_bound()) << projection->describe();
-    EXPECT_GT(worst, 0.01 * omega.relative_bound()) << projection->describe() << ": the bound is tight";
+    EXPECT_LE(worst, projection->solid_angle_relative_bound()) << projection->describe();
+    EXPECT_GT(worst, 0.01 * projection->solid_angle_relative_bound())
+        << projection->describe() << ": the bound is tight";
     if (a > 0.0 && projection != &master_quadrant) {
       EXPECT_GT(zeros, 0u) << "the square's corners have no ray";
     }
@@ -296,11 +298,11 @@ TEST(StarField, TheTwinkleTableIsTheFormulaWithinItsOwnBound) {
 TEST(StarField, TheFastPlacementIsTheExactOneWithinItsBoundAndHalfACode) {
   // The pass's frame (star_frame: the transmittance's rows, the solid angle's
   // closed form, the twinkle's table) against the same frame with the exact
-  // reads (star_transmittance, the rays' pixel_solid_angle_sr, the twinkle's
+  // reads (star_transmittance, the rays' pixel_solid_angle_by_rays_sr, the twinkle's
   // formula): the stars to V 6 over Greenwich on a 256² dome and a 79° planar
   // view, twinkling through earth-advanced from 2 m. The same stars at the
   // same pixels, and each one's rgb within the parts' bounds: the solid
-  // angle's relative_bound(), the twinkle's exp(ε (|g| + s + ε)) − 1 for its
+  // angle's solid_angle_relative_bound(), the twinkle's exp(ε (|g| + s + ε)) − 1 for its
   // table's error_bound() ε, 1e-12 for the transmittance's few ulps (≥ 1e-5
   // of light kept) and two float roundings. A pixel's code then moves by at
   // most r · max_x D′(x) x (D concave: a relative change r of a star's part of
@@ -327,16 +329,16 @@ TEST(StarField, TheFastPlacementIsTheExactOneWithinItsBoundAndHalfACode) {
   for (const warp::Projection* p : std::initializer_list<const warp::Projection*>{&dome, &planar}) {
     const StarFrame fast =
         star_frame(s, *p, glm::mat3_cast(glm::normalize(s.camera.orientation)), air, weights, refractions);
-    ASSERT_TRUE(fast.twinkle_sigma && fast.solid_angle && fast.transmittances.size() == 1);
+    ASSERT_TRUE(fast.twinkle_sigma && fast.closed_form_solid_angle && fast.transmittances.size() == 1);
     StarFrame exact = fast;
     exact.transmittances.clear();
-    exact.solid_angle.reset();
+    exact.closed_form_solid_angle = false;
     exact.twinkle_sigma.reset();
     const std::vector<StarSplat> a = star_splats(field, enu, fast), b = star_splats(field, enu, exact);
     ASSERT_EQ(a.size(), b.size()) << p->describe();
     ASSERT_GT(a.size(), p == &dome ? 1000u : 100u) << p->describe();
     const double e = fast.twinkle_sigma->error_bound();
-    const double bound = (1.0 + fast.solid_angle->relative_bound()) *
+    const double bound = (1.0 + p->solid_angle_relative_bound()) *
                              std::exp(e * (8.572 + std::sqrt(std::log(2.0)) + e)) * (1.0 + 1e-12) *
                              (1.0 + 2.0 * 0x1.0p-24) -
                          1.0;
