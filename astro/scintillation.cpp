@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/units.h"
+
 namespace zenith::astro {
 
 namespace {
@@ -47,7 +49,7 @@ double scintillation_normal(std::uint64_t star, std::int64_t interval) {
   const std::uint64_t h1 = splitmix64(star * 0x632BE59BD9B4E019ull ^ splitmix64(std::uint64_t(interval)));
   const std::uint64_t h2 = splitmix64(h1);
   // Box–Muller: √(−2 ln u1) cos(2π u2).
-  return std::sqrt(-2.0 * std::log(unit_interval(h1))) * std::cos(2.0 * 3.14159265358979323846 * unit_interval(h2));
+  return std::sqrt(-2.0 * std::log(unit_interval(h1))) * std::cos(2.0 * core::kPi * unit_interval(h2));
 }
 
 double scintillation_log_sigma(double variance) { return std::sqrt(std::log1p(std::max(0.0, variance))); }

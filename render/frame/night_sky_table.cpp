@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/units.h"
+
 namespace zenith::render {
 
 NightSkyTable night_sky_table(const StarAtmosphere& atmosphere, const glm::dvec3& camera_m,
@@ -32,7 +34,7 @@ NightSkyTable night_sky_table(const StarAtmosphere& atmosphere, const glm::dvec3
     std::vector<double> radiance(n, 0.0);
     if (floor) {
       star_transmittance(atmosphere, camera_m, d, transmittance.data());
-      radiance = floor->observed_radiance(std::min(zenith_angle, 0.5 * 3.14159265358979323846), transmittance);
+      radiance = floor->observed_radiance(std::min(zenith_angle, 0.5 * core::kPi), transmittance);
     }
     if (glow && glow->zenith_mcd_m2() > 0.0) {
       const std::vector<double> g = glow->radiance(zenith_angle);

@@ -25,7 +25,7 @@ StarField::StarField(astro::StarCatalogue catalogue, const std::vector<double>& 
     astro::star_irradiance_W_m2_nm(s.v_mag, s.b_minus_v, wavelengths_nm_, std::span<double>(&irradiance_[i * n], n));
   }
   if (!irradiance_.empty()) brightest_ = *std::max_element(irradiance_.begin(), irradiance_.end());
-  constexpr double kMasToRad = 3.14159265358979323846 / (180.0 * 3600.0 * 1000.0);
+  constexpr double kMasToRad = core::kDeg / (3600.0 * 1000.0);
   for (const astro::CatalogueStar& s : catalogue_.stars)
     largest_proper_motion_rad_yr_ =
         std::max(largest_proper_motion_rad_yr_, std::hypot(s.pm_ra_cosdec_mas_yr, s.pm_dec_mas_yr) * kMasToRad);
@@ -64,7 +64,7 @@ const std::vector<double>& StarField::neighbourhood_irradiance(double radius_rad
   const int step = radius_step(radius_rad, years_from_j2000);
   const auto cached = neighbourhoods_.find({step, first});
   if (cached != neighbourhoods_.end()) return cached->second;
-  const double radius = std::min(std::exp2(step / 4.0), 0.5 * 3.14159265358979323846);
+  const double radius = std::min(std::exp2(step / 4.0), 0.5 * core::kPi);
   // Candidates from a grid of cubes of side the chord of 2 · radius (every
   // star within it lies in the 27 cubes around a star's cube), then the chord
   // itself. One pass fills the tables of every first star of
@@ -153,7 +153,7 @@ void StarField::directions_enu(const astro::AstroTime& time, const astro::Site& 
   // The sky turns westward about the celestial pole, which stands at the
   // site's latitude above the northern horizon (polar motion neglected, as
   // SkyPositions does): a rotation by −ω Δt about (0, cos φ, sin φ).
-  const double phi = site.latitude_deg * 3.14159265358979323846 / 180.0;
+  const double phi = site.latitude_deg * core::kDeg;
   const glm::dvec3 pole(0.0, std::cos(phi), std::sin(phi));
   // Two-part difference: the day parts cancel in double without losing the seconds.
   const double dt_s = ((time.ut1().day1 - epoch_ut1_jd_) + time.ut1().day2) * 86400.0;
@@ -186,7 +186,7 @@ bool ray_meets_sphere(const glm::dvec3& p, const glm::dvec3& d, double radius_m)
 
 /// The twinkle's s = √ln(1 + σ_I²) at μ = sin e (TwinkleSigmaTable's formula).
 double twinkle_log_sigma(double per_cubed_air_mass, double mu) {
-  const double elevation_deg = std::asin(std::clamp(mu, 0.0, 1.0)) * (180.0 / 3.14159265358979323846);
+  const double elevation_deg = std::asin(std::clamp(mu, 0.0, 1.0)) * core::kRadToDeg;
   return astro::scintillation_log_sigma(
       astro::scintillation_variance_at(per_cubed_air_mass, atmosphere::pickering_air_mass(elevation_deg)));
 }
@@ -298,14 +298,14 @@ std::pair<glm::dvec3, double> view_cone(const warp::Projection& projection, doub
                                glm::dvec2(w, t * h), glm::dvec2(t * w, 0.5 * h), glm::dvec2(0.5 * w, t * h)}) {
       const auto r = projection.ray(p.x, p.y);
       if (!r) {
-        widest = std::max(widest, 0.5 * 3.14159265358979323846);  // a fisheye's circle: at least its field
+        widest = std::max(widest, 0.5 * core::kPi);  // a fisheye's circle: at least its field
         continue;
       }
       widest = std::max(widest, std::acos(std::clamp(glm::dot(glm::normalize(*r), axis), -1.0, 1.0)));
     }
   }
   const double limit = widest + margin_rad;
-  return {axis, limit >= 3.14159265358979323846 ? -1.0 : std::cos(limit)};
+  return {axis, limit >= core::kPi ? -1.0 : std::cos(limit)};
 }
 
 bool star_rejected(const glm::dvec3& enu, const StarFrame& frame) {
@@ -382,7 +382,7 @@ void StarFrame::set_twinkling(const astro::ScintillationOptions& options, std::i
 TwinkleSigmaTable::TwinkleSigmaTable(double per_cubed_air_mass) : per_cubed_air_mass_(per_cubed_air_mass) {
   // Where σ_I² reaches its cap of 1 (X falls as μ rises): s is √ln 2 below, smooth above.
   const auto capped = [&](double mu) {
-    const double elevation_deg = std::asin(mu) * (180.0 / 3.14159265358979323846);
+    const double elevation_deg = std::asin(mu) * core::kRadToDeg;
     const double x = atmosphere::pickering_air_mass(elevation_deg);
     return per_cubed_air_mass_ * (x * x * x) >= 1.0;
   };

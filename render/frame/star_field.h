@@ -45,6 +45,7 @@
 #include "astro/sky_positions.h"
 #include "astro/star_catalogue.h"
 #include "atmosphere/lut/lookup_tables.h"
+#include "core/units.h"
 #include "scene/scene.h"
 #include "warp/projection.h"
 
@@ -55,7 +56,7 @@ namespace zenith::render {
 /// aberration move a star by < 0.2″ about the rotation's pole.
 inline constexpr double kStarEpochSpan_s = 6.0 * 3600.0;
 /// The Earth rotation angle's rate [rad per UT1 second].
-inline constexpr double kEarthRotationRate_rad_s = 2.0 * 3.14159265358979323846 * 1.00273781191135448 / 86400.0;
+inline constexpr double kEarthRotationRate_rad_s = 2.0 * core::kPi * 1.00273781191135448 / 86400.0;
 
 /// One star's light in a frame: its continuous image pixel (the projection's
 /// convention: pixel (i, j) covers [i, i+1) × [j, j+1)) and the linear sRGB

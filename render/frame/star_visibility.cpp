@@ -27,7 +27,7 @@ const AtmospherePass* sky_at_camera(const FrameInProgress& frame, std::size_t si
   return nullptr;
 }
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 
 /// The angle between unit vectors, well conditioned at small angles.
 double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
