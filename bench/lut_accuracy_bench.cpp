@@ -43,7 +43,7 @@
 // three tiny settings on Earth, 64² frames. --only: the settings whose label contains TEXT
 // (e.g. --only "paper 8 orders GPU" for the project default, "paper 4 orders" for the 4-order variants).
 // Settings marked "direct density" compute the scattering density by the
-// per-texel sphere sum of the method before spherical harmonics (issue 13). Exit 1 on any non-finite radiance
+// per-texel sphere sum of the method before spherical harmonics. Exit 1 on any non-finite radiance
 // or pixel, or (with --max-rms) any setting's pooled RMS error above the bound.
 #include <fmt/format.h>
 
@@ -324,7 +324,7 @@ std::vector<Setting> settings_for(const Options& o) {
   add("paper", {8}, true);
   if (lut::kDefaultScatteringOrders != 5 && lut::kDefaultScatteringOrders != 6 && lut::kDefaultScatteringOrders != 8)
     add("paper", {lut::kDefaultScatteringOrders}, true);
-  // The orders after the last dropped, as before the series tail (issue 13).
+  // The orders after the last dropped, as before the series tail.
   add("paper", Variant{4}.without_tail(), true);
   add("paper", Variant{8}.without_tail(), true);
   add("paper", Variant{16}.without_tail(), true);  // the series summed to 16 orders: what the tail stands for
@@ -333,7 +333,7 @@ std::vector<Setting> settings_for(const Options& o) {
   add("paper", {lut::kDefaultScatteringOrders, false, 50, 16, false, 1}, true);  // every sample at every order
   add("paper", {4, false, 50, 8}, true);
   add("paper", {4, false, 50, 32}, true);
-  // The scattering density of the method before (issue 13): the per-texel sphere sum.
+  // The scattering density of the method before spherical harmonics: the per-texel sphere sum.
   add("small", {4, false, 50, 16, true}, true);
   add("paper", {4, false, 50, 16, true}, true);
   // CPU: the same tables (same errors) at other precompute times.

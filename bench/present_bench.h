@@ -1,6 +1,6 @@
 #pragma once
-// `render_bench --present`: the frame of a live node, which stays on the GPU
-// (issue 26): Renderer::render_on_gpu → the display pass band by band
+// `render_bench --present`: the frame of a live node, which stays on the GPU:
+// Renderer::render_on_gpu → the display pass band by band
 // (DisplayEncoder::encode_band, render/display/display_encoder.h) → drawn in a window
 // (render/window/output_windows.h) and swapped; nothing is read back. Timed by
 // GL timer queries (GL_TIME_ELAPSED around the GPU's commands: the GPU's own

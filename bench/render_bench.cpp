@@ -48,7 +48,7 @@
 //                [--benchmark_filter=REGEX] ...
 //   render_bench --present ...   the live frame that stays on the GPU (bench/present_bench.h)
 //
-// The ground view of docs/rendering-performance.md (issue 13):
+// The ground view of docs/rendering-performance.md:
 //   render_bench --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79
 // and the ratio against another build from one interleaved run: scripts/bench-compare.
 //
@@ -169,7 +169,7 @@ constexpr const char* kUsage =
     "  --sky-view-error  also render each size with all atmospheres without the sky-view table (4D\n"
     "                 lookups per pixel) and print the relative difference of the two images\n"
     "  --gbuffer-path every tile through the G-buffer, atmosphere and resolve passes, 4D lookups per\n"
-    "                 pixel (the frame's structure before issue 13; with --time-passes: its split)\n"
+    "                 pixel (the frame's structure before the sky-view table; with --time-passes: its split)\n"
     "  --cache        table cache directory (default $ZENITH_CACHE_DIR, $XDG_CACHE_HOME/zenith, ~/.cache/zenith)\n"
     "  --device       GL device: auto (default), software (llvmpipe), hardware\n"
     "  --viewport     also time every output of a viewport config (configs/viewports/), with all\n"

@@ -1,6 +1,6 @@
 #pragma once
 // The attacks of the cluster soak (bench/cluster_soak.cpp --attacks;
-// docs/cluster.md, "Soak"; issue 30): what a web page, a clumsy operator or a
+// docs/cluster.md, "Soak"): what a web page, a clumsy operator or a
 // stray process can do to a master on loopback, each checked for the answer
 // a hardened master gives while the show goes on:
 //

@@ -1,5 +1,5 @@
 #pragma once
-// render_bench --stars LIMIT (issue 29 goal 8): what the night sky's pass
+// render_bench --stars LIMIT : what the night sky's pass
 // (render/frame/star_pass.h) adds to a frame. The scene (the ground view by
 // default) gets a sky clock at the camera's own latitude and longitude at
 // --stars-time (default 2026-12-21T22:00:00Z, a winter night) and a night

@@ -1,6 +1,6 @@
 #pragma once
-// render_bench --stars LIMIT --stars-show SHOW --stars-placement (issue 29
-// goal 8): what placing the stars costs the frame's thread, and where it goes.
+// render_bench --stars LIMIT --stars-show SHOW --stars-placement: what
+// placing the stars costs the frame's thread, and where it goes.
 //
 // 1. The renderer through the show's own exposure track every --stars-step
 //    show seconds on a fisheye dome master of --stars-dome pixels, each frame

@@ -1,5 +1,5 @@
 #pragma once
-// render_bench --stars LIMIT --stars-show SHOW (issue 29 goal 8): where the
+// render_bench --stars LIMIT --stars-show SHOW : where the
 // star pass's test (render/frame/star_visibility.h) lets the stars run
 // through a show's twilight, and what skipping them saves. The show's frames
 // every --stars-step seconds of show time on a fisheye dome master of

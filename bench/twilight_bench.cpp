@@ -1,5 +1,5 @@
 // Zenith radiance through twilight, sun 0° to −18°, from the tables at named
-// table sizes against the reference (issue 29, goal 6).
+// table sizes against the reference.
 //
 //   twilight_bench [--preset NAME] [--sizes SPEC[,SPEC...]] [--gpu] [--step-deg 0.25]
 //                  [--reference-deg 0,-3,-6,-9,-12,-15,-18] [--reference lit-air|path-tracer]

@@ -1,4 +1,4 @@
-# Per-module include roots (issue 15, docs/architecture.md "Include roots").
+# Per-module include roots (docs/architecture.md, "Include roots").
 #
 # Sources include each other as "<module>/<path>" ("core/json_reader.h",
 # "atmosphere/lut/table.h"). Instead of the repository root, every library

@@ -57,7 +57,7 @@ struct FadeState {
 };
 inline constexpr double kMaxFadeLevel = 1.0;
 
-/// The sky by date of a frame (issue 29; docs/protocol.md, "FrameState",
+/// The sky by date of a frame (docs/protocol.md, "FrameState",
 /// the sky fields): the instant it shows, so that every node of a cluster
 /// places the same stars, Sun and Moon at the same frame, and the identity of
 /// the star catalogue they are drawn from (never its data: each node reads

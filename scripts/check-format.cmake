@@ -1,5 +1,5 @@
-# Checks that every C++ source of the project is formatted by .clang-format
-# (issue 27): `clang-format --dry-run --Werror` over the project's folders.
+# Checks that every C++ source of the project is formatted by .clang-format:
+# `clang-format --dry-run --Werror` over the project's folders.
 # Run by ctest as style.clang_format; by hand:
 #   cmake -DCLANG_FORMAT=/usr/bin/clang-format -DSOURCE_DIR=$PWD -P scripts/check-format.cmake
 # Fix what it reports with scripts/format (clang-format -i on the same files).

@@ -1,5 +1,5 @@
-# Checks that the modules include each other only downward (issue 15;
-# docs/architecture.md). The layers, bottom to top, and what each may include
+# Checks that the modules include each other only downward
+# (docs/architecture.md). The layers, bottom to top, and what each may include
 # besides itself:
 #
 #   core/        nothing of zenith (config reading, files, embedded resources,
@@ -135,7 +135,7 @@ endforeach()
 # module may: "folder:allowed prefix;…". The generic GL wrapper render/gl/
 # takes plain #defines and knows no engine constant (render/shader_bindings.h,
 # the frame's tiles), so it includes nothing of render/ outside render/gl/;
-# the engine's program factory is render/shader_programs.h (issue 27).
+# the engine's program factory is render/shader_programs.h.
 set(folder_rules "render/gl:render/gl/")
 foreach(rule IN LISTS folder_rules)
   string(REPLACE ":" ";" rule "${rule}")

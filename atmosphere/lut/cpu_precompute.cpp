@@ -503,7 +503,7 @@ double Precompute::compute_multiple_scattering(const Table3D& density, int sampl
   // sample_stride-th of them and the last, next_ray_sample). J is read
   // geometrically in μs (sample_scattering_table_geometric_mu_s): through the
   // deep twilight it falls about e-fold per degree of the sun's depression, 3–4°
-  // per μs texel there, and a linear read overshoots (issue 29, goal 6).
+  // per μs texel there, and a linear read overshoots.
   const TableSizes& s = sizes();
   const int samples = options_.scattering_samples;
   const std::size_t width = s.scattering_width(), height = s.scattering_mu;

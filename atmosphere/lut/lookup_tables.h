@@ -53,8 +53,8 @@ void sample_scattering_table(const Table3D& table, const TableSizes& sizes, cons
 /// the path tracer), geometric blending gives RMS 0.07, better than linear
 /// interpolation in a table with twice the μs texels (0.09). Elsewhere the two
 /// agree to second order. The precompute reads its own tables the same way: the
-/// scattering density along each ray and the last order's radiance (issue 29,
-/// goal 6: read linearly, J's e-fold fall per degree of depression across
+/// scattering density along each ray and the last order's radiance (read
+/// linearly, J's e-fold fall per degree of depression across
 /// 3–4° texels made the deep twilight 2–3× too bright at −18°; an earlier
 /// test at sun −4° on small tables had measured these reads slightly worse,
 /// 0.10 against 0.07) (docs/lookup-tables.md, "Interpolation in μs"). On a

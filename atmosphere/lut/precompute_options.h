@@ -19,8 +19,8 @@ struct PrecomputeProgress {
 /// Scattering orders of the tables unless the user says otherwise (every
 /// command, the cluster config, the benchmarks), the orders after them added
 /// as their series tail (PrecomputeOptions::series_tail, series_tail.h). Once
-/// the view rays were integrated without their log-convex bias (issue 13,
-/// quadrature.h), 4 orders left Earth's noon sky 4.8 % RMS from the path
+/// the view rays were integrated without their log-convex bias
+/// (quadrature.h), 4 orders left Earth's noon sky 4.8 % RMS from the path
 /// tracer and Mars' twilight 15.5 %, and the default became 8 orders. With the
 /// tail, 6 orders are closer to the converged series than 8 without it in
 /// every statistic (paper sizes, every texel: Earth 0.08 % RMS against 0.20 %,

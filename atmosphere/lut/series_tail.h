@@ -1,5 +1,5 @@
 #pragma once
-// Closing the series of scattering orders (issue 13).
+// Closing the series of scattering orders.
 //
 // The tables hold L = L_1 + L_2 + … + L_N for the N orders computed, and the
 // orders left out are not small enough to drop: on Earth each order adds about

@@ -71,14 +71,14 @@ std::filesystem::path default_cache_directory() {
 
 /// Revision of the precompute's method: tables computed by an older method
 /// under the same options must not be reused. 2: the scattering density by
-/// spherical harmonics (issue 13; the density line below names the method);
+/// spherical harmonics (the density line below names the method);
 /// 3: the second order's source reads the single-scattering tables
 /// geometrically in μs (sample_scattering_table_geometric_mu_s); 4: view-ray
 /// samples crowded toward the ray's lowest point, T accumulated along the ray
 /// (quadrature.h, view_ray_samples); 5: ν slices uniform in the azimuth
 /// between view and sun at each μ, μs (scattering_u_nu); 6: the scattering
 /// density along the rays and the last order's radiance read geometrically in
-/// μs (sample_scattering_table_geometric_mu_s; issue 29, goal 6).
+/// μs (sample_scattering_table_geometric_mu_s).
 constexpr int kPrecomputeMethodRevision = 6;
 
 std::string table_set_key(const AtmosphereModel& model, const PrecomputeOptions& o) {
@@ -115,7 +115,7 @@ void write_tables_exr(const std::filesystem::path& path, const AtmosphereModel& 
     // Uncompressed: ZIP saved 16 % of the file (float tables hardly compress)
     // and cost 0.55 s of CPU per set written, five times per set in a local
     // cluster (the master's cache and each node's): 8 s of a cold 3-set show's
-    // 2-core time (issue 13). Files written with ZIP before are still read.
+    // 2-core time. Files written with ZIP before are still read.
     h.compression() = Imf::NO_COMPRESSION;
     for (std::size_t c = 0; c < p.channels; ++c) h.channels().insert(channel_name(c), Imf::Channel(Imf::FLOAT));
     h.insert("zenith.format", Imf::IntAttribute(kCacheFormatVersion));

@@ -15,7 +15,8 @@
 // Pixels leave the GPU only where they leave the machine: a thumbnail is
 // reduced on the GPU (at most kMaxThumbnailEdgePx a side) before its few
 // values are read back; a file or a test reads the display texture itself
-// (issue 28 reads it back asynchronously through pixel buffer objects).
+// (offline frames read it back asynchronously through pixel buffer objects,
+// frame_readback.h).
 // Needs a current GL 4.5 context.
 #include <array>
 #include <vector>

@@ -23,7 +23,7 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Pr
   // The worst-case footprint over the image bounds culling and decides
   // ALBEDO_LOD0 (the shaders take each pixel's own footprint for the level of
   // detail, frame.glsl); the sun is sized from the footprint where it lands (a
-  // warp mesh's worst case can be tens of times the local one: issue 14).
+  // warp mesh's worst case can be tens of times the local one).
   f.pixel_angle = projection.max_pixel_angle_rad();
   f.sun_camera = f.world_to_camera * f.sun;
   f.sun_pixel_angle = projection.pixel_angle_rad_at(f.sun_camera);

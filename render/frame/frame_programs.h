@@ -21,7 +21,7 @@ namespace zenith::render {
 /// Tiles per work group of direct_light.comp (its local size is 16 × 16 × this,
 /// 1024 invocations, the most GL guarantees). Its pixels are cheap, so llvmpipe's
 /// cost per work group showed: the no-atmosphere ground view's frame took
-/// 7.4–7.6 ms instead of 7.5–8.0 ms with one tile per group (issue 13).
+/// 7.4–7.6 ms instead of 7.5–8.0 ms with one tile per group.
 inline constexpr std::size_t kDirectLightTilesPerGroup = 4;
 
 /// One variant's programs (owned by the ProgramBuilds they came from).

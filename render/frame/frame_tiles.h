@@ -5,7 +5,7 @@
 //
 // The classification is the CPU's share of a frame on a GPU: on an H100 it was
 // about half of a live 3840×2160 ground-view frame and of an 8192² dome
-// master with three atmospheres (issue 26), with the GPU waiting. A node's
+// master with three atmospheres, with the GPU waiting. A node's
 // frames of a still scene (a paused show, a fade, a slide) classify once; a
 // moving camera, sun or body classifies every frame, band by band in parallel.
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// The Moon's albedo map (issue 29 goal 5; docs/night-sky.md, "The Moon's
+// The Moon's albedo map (docs/night-sky.md, "The Moon's
 // face"): stellarium-data's textures/moon.png, read at run time, as relative
 // albedo for the disc of shaders/render/night_sky.comp.
 //

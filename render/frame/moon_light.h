@@ -1,6 +1,6 @@
 #pragma once
-// The Moon as the atmosphere passes' second light (issue 29 goal 5;
-// docs/night-sky.md, "Moonlight"). The precomputed tables are radiance per unit
+// The Moon as the atmosphere passes' second light
+// (docs/night-sky.md, "Moonlight"). The precomputed tables are radiance per unit
 // irradiance of a source at infinity, linear in it, so the sky and the ground
 // lit by the Moon are the same passes evaluated with the Moon's direction and
 // scaled by its spectral irradiance at the top of the atmosphere

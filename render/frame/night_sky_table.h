@@ -1,7 +1,7 @@
 #pragma once
 // The night sky's own light seen from a camera inside an atmosphere, as a
-// table against the view ray's cosine μ to the camera's up (issue 29 goal 4;
-// shaders/render/night_sky.comp reads it): the natural floor
+// table against the view ray's cosine μ to the camera's up
+// (shaders/render/night_sky.comp reads it): the natural floor
 // (astro/night_sky_floor.h: airglow with van Rhijn's brightening, zodiacal
 // light and starlight, given above the atmosphere) through the line of
 // sight's transmittance from the atmosphere's own table, plus the glow of

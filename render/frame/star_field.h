@@ -1,5 +1,5 @@
 #pragma once
-// Stars as light (issue 29 goal 3; docs/night-sky.md, "Rendering the night
+// Stars as light (docs/night-sky.md, "Rendering the night
 // sky"): the catalogue's stars placed in a frame, on the CPU in double, as
 // point sources of flux. No GL: render/frame/star_pass.h draws what this
 // computes.

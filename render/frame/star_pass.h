@@ -1,5 +1,5 @@
 #pragma once
-// The night sky's pass (issue 29 goals 3–4; docs/night-sky.md, "Rendering the
+// The night sky's pass (docs/night-sky.md, "Rendering the
 // night sky"): after a band's atmosphere passes and before the band leaves the
 // renderer (a file's readback, render_to_texture's copy, or the live display
 // pass of render_on_gpu), the stars and the night sky's own light are added

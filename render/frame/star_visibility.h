@@ -1,6 +1,6 @@
 #pragma once
-// Whether any catalogue star can show in a frame (issue 29 goal 8;
-// docs/night-sky.md, "Rendering the night sky"): the star pass's own test,
+// Whether any catalogue star can show in a frame
+// (docs/night-sky.md, "Rendering the night sky"): the star pass's own test,
 // on the CPU before any star is placed or any GPU work, against the sky the
 // atmosphere passes will draw behind the stars — not against black.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The sun's disc where the eye sees it (issue 29; docs/night-sky.md,
+// The sun's disc where the eye sees it (docs/night-sky.md,
 // "Refraction"): air bends the light of a low sun upward, so its disc is drawn
 // higher than its geometric place — at the horizon by about 0.6° on the Earth,
 // more than its own diameter — and flattened, because its lower limb is lifted

@@ -53,7 +53,7 @@ struct ShaderModel {
   /// radii, …) as the C++ double, in the order the defines name them
   /// (PI → fp64_constants[k / 4].xyzw[k % 4]): the Fp64Constants uniform block,
   /// whole dvec4s. No double constant is a GLSL literal, which a driver may read
-  /// through float (NVIDIA 580.159.04, issue 26). fp32 shaders get float literals.
+  /// through float (NVIDIA 580.159.04). fp32 shaders get float literals.
   std::vector<double> fp64_constants;
 };
 

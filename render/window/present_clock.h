@@ -1,6 +1,6 @@
 #pragma once
 // Whether a presented frame reached the display at the refresh it was meant
-// for: the hook the cluster's late-frame counts build on (issue 26, pacing).
+// for: the hook the cluster's late-frame counts build on.
 // A node swaps right after the Present it receives; with vsync the swap (and
 // a glFinish after it) completes at the next vertical blank. If more than one
 // refresh period (plus a margin for the clock's jitter) passes between the

@@ -21,7 +21,7 @@
 /// named by the shader model's defines (LN2_HI → fp64_constants[0].x;
 /// render/lut/shader_model.cpp). None is a GLSL literal: NVIDIA's compiler
 /// (driver 580.159.04) gave fp64 shaders π, 0.7629, 0.932 and 1e-4 rounded to
-/// float (issue 26); a uniform reaches any driver exactly. The series'
+/// float; a uniform reaches any driver exactly. The series'
 /// coefficients below are quotients of integers that float holds exactly up
 /// to 13! (and terms beyond r^13 are below 1e-17 of the sum).
 layout(std140, binding = FP64_CONSTANTS_BINDING) uniform Fp64Constants { dvec4 fp64_constants[FP64_CONSTANT_VECTORS]; };

@@ -32,7 +32,7 @@ uniform float pixel_angle;         // upper bound of one pixel's angular size [r
 /// sized per pixel (the albedo's level of detail) uses it, not the bound over
 /// the image. pixel_angle for the closed-form projections (uniform enough); for
 /// a ray table (a warp mesh, whose bound can be tens of degrees where it parks
-/// unused nodes: issue 14) the local value from the neighbouring rays.
+/// unused nodes) the local value from the neighbouring rays.
 float pixel_footprint = 0.0;
 
 /// The TILE_SIZE² tiles (kTileSize of render/frame/tile_culling.h) of band

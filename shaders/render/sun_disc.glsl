@@ -16,7 +16,7 @@ uniform float sun_point_sigma;  // > 0: the sun is smaller than the pixels; draw
 // The footprint of the pixels where the sun lands [rad]
 // (Projection::pixel_angle_rad_at(sun)): the disc's edge is antialiased over it.
 // Not frame.glsl's pixel_angle, the worst case over the image, which through a
-// warp mesh can be tens of degrees (issue 14).
+// warp mesh can be tens of degrees.
 uniform float sun_pixel_angle;
 
 // R(h) over the apparent altitudes the disc can cover; sun_lift_count 0: no refraction.
