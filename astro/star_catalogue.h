@@ -78,7 +78,6 @@ struct CatalogueFileHeader {
   std::uint32_t type = 0, major = 0, minor = 0, level = 0;
   std::int32_t mag_min_millimag = 0, mag_range_millimag = 0, mag_steps = 0;
   double brightest_mag() const { return mag_min_millimag / 1000.0; }
-  double faintest_mag() const { return (mag_min_millimag + mag_range_millimag) / 1000.0; }
 };
 
 /// Reads one catalogue file, keeping stars with V ≤ `magnitude_limit`. Throws

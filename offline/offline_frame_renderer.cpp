@@ -120,7 +120,6 @@ int LocalFrameRenderer::allocated_slots() const {
   return static_cast<int>(
       std::count_if(slots_.begin(), slots_.end(), [](const Slot& s) { return s.buffer != nullptr; }));
 }
-std::size_t LocalFrameRenderer::slot_bytes() const { return slot_bytes_; }
 
 void LocalFrameRenderer::precompute_missing(const show::TablePlan& plan,
                                             const std::set<scene::TableHash>& table_hashes) {

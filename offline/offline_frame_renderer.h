@@ -133,12 +133,7 @@ class LocalFrameRenderer final : public FrameRenderer {
   /// The writer threads and readback slots in use (settled by the first frame: −1/0 resolved).
   int threads() const;
   int frames_in_flight() const;
-  /// Bytes one readback slot holds (every output's pixels of one frame): the
-  /// pipeline holds at most frames_in_flight() of them, allocated_slots() so far.
-  std::size_t slot_bytes() const;
   int allocated_slots() const;
-  /// Where the start went (filled by the first frame).
-  const StartupTimes& startup() const { return startup_; }
   /// Obtains every set of `plan` among `table_hashes` that is not cached yet
   /// (precomputed and stored in the cache), with a line per set, then starts
   /// loading the sets first used earliest (the first frame's) from the cache,

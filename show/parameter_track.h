@@ -48,7 +48,6 @@ class ParameterTrack {
   ParameterTrack(nlohmann::json::json_pointer pointer, std::optional<double> step, std::vector<ParameterKey> keys);
 
   const nlohmann::json::json_pointer& pointer() const { return pointer_; }
-  bool numeric() const { return step_.has_value(); }
   const std::vector<ParameterKey>& keys() const { return keys_; }
 
   /// Numeric tracks: the interpolated value before quantization.

@@ -87,7 +87,6 @@ class AutoBlend {
     /// distance to the nearest centre without one, minus half a pixel (≥ 0).
     std::vector<float> ray_border_px;
   };
-  double raw_weight_own(std::size_t output, double x_px, double y_px, const glm::dvec3& direction) const;
 
   const ViewportConfig& config_;
   std::vector<Output> outputs_;

@@ -134,10 +134,4 @@ std::optional<std::int64_t> ClockSync::round_trip_ns() const {
   return *std::min_element(recent_delays_.begin(), recent_delays_.end());
 }
 
-std::int64_t ClockSync::jitter_ns() const {
-  if (recent_delays_.empty()) return 0;
-  const auto [lo, hi] = std::minmax_element(recent_delays_.begin(), recent_delays_.end());
-  return *hi - *lo;
-}
-
 }  // namespace zenith::cluster

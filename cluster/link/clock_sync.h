@@ -62,8 +62,6 @@ class ClockSync {
   double drift_ppm() const { return drift_ * 1e6; }
   /// The least round trip among the recent exchanges (ns); nothing before one.
   std::optional<std::int64_t> round_trip_ns() const;
-  /// The spread of the recent exchanges' round trips (largest − least, ns).
-  std::int64_t jitter_ns() const;
   /// How often the estimate started afresh because the clocks stepped apart.
   std::uint64_t steps() const { return steps_; }
   /// Exchanges taken (not counting ignored ones).
@@ -91,7 +89,7 @@ class ClockSync {
   std::optional<Sample> group_best_;
   int group_count_ = 0;
   std::deque<Sample> kept_;
-  std::deque<std::int64_t> recent_delays_;  ///< the last 16 exchanges' δ (jitter)
+  std::deque<std::int64_t> recent_delays_;  ///< the last 16 exchanges' δ
   int off_line_ = 0;                        ///< consecutive exchanges far off the line
   // The fitted line: θ(t) = offset0_ + drift_ · (t − t0_).
   std::int64_t t0_ = 0;

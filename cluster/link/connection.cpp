@@ -74,7 +74,6 @@ void Connection::send(const Message& message) {
 
 void Connection::send_encoded(std::shared_ptr<const std::vector<std::uint8_t>> frame) {
   if (!open_ || closing_) return;
-  queued_bytes_ += frame->size();
   queue_.push_back(std::move(frame));
   if (!writing_) write_next();
 }
@@ -89,7 +88,6 @@ void Connection::write_next() {
   auto self = shared_from_this();
   asio::async_write(socket_, asio::buffer(*queue_.front()), [self](const boost::system::error_code& ec, std::size_t) {
     if (self->finished_) return;
-    self->queued_bytes_ -= self->queue_.front()->size();
     self->queue_.pop_front();
     if (ec) {
       self->finish(self->closing_ ? self->closing_reason_ : "write error: " + ec.message());
@@ -128,7 +126,6 @@ void Connection::finish(const std::string& reason) {
   socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ec);
   socket_.close(ec);
   queue_.clear();
-  queued_bytes_ = 0;
   if (on_close_) {
     CloseHandler handler = std::move(on_close_);
     on_close_ = nullptr;

@@ -58,7 +58,6 @@ class Connection : public std::enable_shared_from_this<Connection> {
   bool is_open() const { return open_ && !closing_; }
   /// "127.0.0.1:53122" (or the name given), for logs.
   const std::string& peer() const { return peer_; }
-  void set_peer(std::string peer) { peer_ = std::move(peer); }
   /// The peer's address and port (nothing once the socket is closed).
   std::optional<boost::asio::ip::tcp::endpoint> remote_endpoint() const;
   /// When bytes last arrived from the peer (for liveness).
@@ -71,8 +70,6 @@ class Connection : public std::enable_shared_from_this<Connection> {
   void lift_payload_limit();
   /// Bytes asked of the socket per read while the payload is limited.
   static constexpr std::size_t kLimitedReadBytes = 2048;
-  /// Bytes queued but not yet written.
-  std::size_t queued_bytes() const { return queued_bytes_; }
 
  private:
   void read_more();
@@ -85,7 +82,6 @@ class Connection : public std::enable_shared_from_this<Connection> {
   FrameDecoder decoder_;
   std::vector<std::uint8_t> read_buffer_;
   std::deque<std::shared_ptr<const std::vector<std::uint8_t>>> queue_;
-  std::size_t queued_bytes_ = 0;
   bool writing_ = false;
   bool open_ = false;     ///< started and not finished
   bool closing_ = false;  ///< close_after_flush() called

@@ -77,7 +77,6 @@ class MasterLink {
   /// Stops: no more events, timers cancelled, the connection closed once its queue is flushed.
   void stop();
 
-  bool stopping() const { return stopping_; }
   /// The welcomed connection's master (address and port) and the session's
   /// datagram key (cluster/protocol/datagram.h); nothing while not welcomed.
   std::optional<boost::asio::ip::tcp::endpoint> master_endpoint() const;

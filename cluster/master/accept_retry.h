@@ -34,8 +34,6 @@ class AcceptRetry {
   void cancel();
   /// Failures seen in all (tests).
   std::uint64_t failures() const { return log_.total(); }
-  /// The delay the next failure waits.
-  std::chrono::milliseconds delay() const { return delay_; }
 
  private:
   boost::asio::steady_timer timer_;

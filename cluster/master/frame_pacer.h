@@ -47,7 +47,6 @@ class FramePacer {
   /// period after it was due. Never frame 0, the warm-up frame.
   bool late(std::uint64_t n, Clock::time_point presented) const { return n > 0 && presented - due(n) > period_; }
 
-  double rate_hz() const { return rate_hz_; }
   Clock::duration period() const { return period_; }
   /// Times the schedule moved because the cluster fell more than a period behind.
   std::uint64_t slips() const { return slips_; }

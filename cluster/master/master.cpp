@@ -200,6 +200,8 @@ struct Master::Impl {
                    core::escaped(goodbye->reason));
       s.connection->close(cat("Goodbye: ", core::escaped(goodbye->reason)));
     } else if (std::holds_alternative<Heartbeat>(message)) {
+      // Nothing more to do: every message, a heartbeat too, already renewed the
+      // connection's last_received() that the heartbeat check reads.
     } else if (standby) {
       s.close_for_protocol_violation(cat(to_string(message_type(message)), " is not sent by a standby master"));
     } else if (const auto* ready = std::get_if<TableReady>(&message)) {
@@ -217,8 +219,6 @@ struct Master::Impl {
       s.close_for_protocol_violation(cat(to_string(message_type(message)), " is not sent by nodes"));
     }
   }
-
-  // ---- the frame loop -------------------------------------------------------
 
   // ---- liveness, stop -------------------------------------------------------
 

@@ -214,7 +214,6 @@ Challenge MasterHandshake::on_hello(const Hello& hello) {
                                                           "', this is '" + cluster_name_ + "'");
   node_name_ = hello.node_name;
   role_ = hello.role;
-  instance_id_ = hello.instance_id;
   node_nonce_ = hello.node_nonce;
   master_nonce_ = random_nonce();
   state_ = State::challenge_sent;

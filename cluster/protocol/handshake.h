@@ -156,15 +156,12 @@ class MasterHandshake {
   const std::string& node_name() const { return node_name_; }
   /// The peer's role from its Hello (node before).
   PeerRole role() const { return role_; }
-  /// The peer process's instance id from its Hello (0 before).
-  std::uint64_t instance_id() const { return instance_id_; }
 
  private:
   enum class State { initial, challenge_sent, done };
   SharedSecret secret_;
   std::string cluster_name_, node_name_;
   PeerRole role_ = PeerRole::node;
-  std::uint64_t instance_id_ = 0;
   Nonce node_nonce_{}, master_nonce_{};
   State state_ = State::initial;
 };

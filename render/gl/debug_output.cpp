@@ -62,9 +62,4 @@ void enable_debug_output(bool synchronous) {
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
 }
 
-void disable_debug_output() {
-  glDebugMessageCallback(nullptr, nullptr);
-  glDisable(GL_DEBUG_OUTPUT);
-}
-
 }  // namespace zenith::render::gl

@@ -10,7 +10,5 @@ namespace zenith::render::gl {
 /// `synchronous`: messages arrive inside the offending GL call (slower, but the
 /// stack is the caller's). Needs a current context; the callback keeps no state.
 void enable_debug_output(bool synchronous = true);
-/// Removes the callback and disables GL_DEBUG_OUTPUT on the current context.
-void disable_debug_output();
 
 }  // namespace zenith::render::gl

@@ -101,7 +101,6 @@ class ShaderProgram {
 
   unsigned id() const { return id_; }
   const std::string& name() const { return name_; }
-  bool is_compute() const { return compute_; }
   void use() const;
 
   /// -1 when the program has no such active uniform (absent, or optimized out

@@ -61,7 +61,6 @@ class Texture {
   /// Wrap mode of the s (x) coordinate: repeat (longitude of an equirectangular
   /// map) or clamp to edge (the default).
   void set_repeat_s(bool repeat);
-  int mip_levels() const { return levels_; }
 
   unsigned id() const { return id_; }
   TextureFormat format() const { return format_; }

@@ -59,8 +59,6 @@ class OutputWindows {
   WindowContext& primary() { return windows_.front().context; }
   const WindowContext& primary() const { return windows_.front().context; }
   std::size_t window_count() const { return windows_.size(); }
-  /// The window output k is drawn in (an index of the windows, in order of first appearance).
-  std::size_t window_of(std::size_t output) const { return placements_.at(output).window; }
   const WindowContext& window(std::size_t index) const { return windows_.at(index).context; }
 
   /// Draws output k's texture `displays[k]` (an rgba8 or rgba16 display
