@@ -18,7 +18,7 @@
 #     node/      … render, link             a render node
 #     standby/   … master, link             the standby master
 #     launcher/  core, image, warp, link    a local cluster: its child processes, the stitched dome
-#   stress/      core … render (not show)   `zenith validate stress`: CPU and GPU against the reference
+#   validate/    core … render (not show)   `zenith validate`: CIE, night sky, stress; the reference models only it uses
 #   offline/     the above, show, cluster   offline rendering of shows (frames, manifest, outputs)
 #   apps/        all of the above           the `zenith` command
 #   (bench/ and tests/ may include anything)
@@ -47,7 +47,7 @@ endif()
 get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 
 set(cluster cluster/protocol cluster/link cluster/master cluster/node cluster/standby cluster/check cluster/launcher)
-set(modules core image atmosphere warp astro scene show render ${cluster} stress offline apps)
+set(modules core image atmosphere warp astro scene show render ${cluster} validate offline apps)
 set(allowed_core "")
 set(allowed_image core)
 set(allowed_atmosphere core)
@@ -63,9 +63,9 @@ set(allowed_cluster/node core image atmosphere warp astro scene render cluster/p
 set(allowed_cluster/standby core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/master)
 set(allowed_cluster/check core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/master)
 set(allowed_cluster/launcher core image warp cluster/protocol cluster/link)
-set(allowed_stress core image atmosphere warp astro scene render)
+set(allowed_validate core image atmosphere warp astro scene render)
 set(allowed_offline core image atmosphere warp astro scene show render ${cluster})
-set(allowed_apps core image atmosphere warp astro scene show render ${cluster} stress offline)
+set(allowed_apps core image atmosphere warp astro scene show render ${cluster} validate offline)
 
 if(LINK_GRAPH)
   file(STRINGS "${LINK_GRAPH}" edges)

@@ -1,5 +1,5 @@
 // Star, Moon and night-sky photometry (astro/v_band.h, star_photometry.h,
-// moon_photometry.h, night_sky_floor.h, light_pollution.h, visibility.h)
+// moon_photometry.h, night_sky_floor.h, light_pollution.h)
 // against published figures.
 #include <gtest/gtest.h>
 
@@ -11,7 +11,6 @@
 #include "astro/night_sky_floor.h"
 #include "astro/star_photometry.h"
 #include "astro/v_band.h"
-#include "astro/visibility.h"
 #include "atmosphere/parameters.h"
 #include "atmosphere/photometry.h"
 #include "core/units.h"
@@ -147,21 +146,6 @@ TEST(NightSky, LightPollutionInPhysicalUnits) {
   EXPECT_THROW(bortle_zenith_v_mag_arcsec2(10), std::invalid_argument);
   EXPECT_THROW(LightPollution(earth.model, {-1.0, 3000.0}), std::invalid_argument);
   EXPECT_THROW(LightPollution(earth.model, {1.0, 500.0}), std::invalid_argument);
-}
-
-TEST(Visibility, SchaefersLimitingMagnitude) {
-  // Schaefer 1990: a dark sky (22 mag/arcsec² ≈ 54 nL) gives the naked eye ~6.5.
-  EXPECT_NEAR(nanolamberts_from_v_mag_arcsec2(22.0), 54.0, 0.5);
-  EXPECT_NEAR(naked_eye_limiting_magnitude(22.0), 6.6, 0.1);
-  // A city sky (18 mag/arcsec²) ~4.4, a civil-twilight sky (12) below 3.
-  EXPECT_NEAR(naked_eye_limiting_magnitude(18.0), 4.4, 0.3);
-  EXPECT_LT(naked_eye_limiting_magnitude(12.0), 3.5);
-  double last = 100.0;
-  for (double mu = 23.0; mu >= 4.0; mu -= 0.25) {
-    const double m = naked_eye_limiting_magnitude(mu);
-    EXPECT_LE(m, last + 0.3) << mu;  // brighter sky, fewer stars (a small jump at the rod–cone switch)
-    last = m;
-  }
 }
 
 }  // namespace

@@ -18,7 +18,6 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "astro/moon_photometry.h"
-#include "astro/moonlit_sky.h"
 #include "astro/sky_positions.h"
 #include "astro/v_band.h"
 #include "atmosphere/lut/lookup_tables.h"
@@ -26,6 +25,7 @@
 #include "render/frame/sky_radiance_bound.h"
 #include "render/frame/star_pass.h"
 #include "tests/render/greenwich_night.h"
+#include "validate/moonlit_sky.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 
@@ -194,8 +194,8 @@ TEST(Moonlight, ZenithUnderAFullMoonAgainstKrisciunasSchaefer1991) {
   const std::size_t green = 1;  // 550 nm
   ASSERT_NEAR(t.model.wavelengths_nm[green], 550.0, 1.0);
   const double k_v = 1.0857 * t.model.zenith_optical_depth().total[green];
-  const double published = astro::v_mag_arcsec2_from_nanolamberts(
-      astro::krisciunas_schaefer_moon_nL(moon.phase_angle_rad / kDeg, moon_zenith_deg, moon_zenith_deg, 0.0, k_v));
+  const double published = validate::v_mag_arcsec2_from_nanolamberts(
+      validate::krisciunas_schaefer_moon_nL(moon.phase_angle_rad / kDeg, moon_zenith_deg, moon_zenith_deg, 0.0, k_v));
   std::printf("full Moon (phase %.1f deg) %.1f deg up, k = %.3f: zenith %.2f mag/arcsec^2, K&S 1991 %.2f\n",
               moon.phase_angle_rad / kDeg, 90.0 - moon_zenith_deg, k_v, ours, published);
   EXPECT_NEAR(ours, published, 0.5);  // docs/night-sky.md, "Moonlight": their scatter and the aerosol

@@ -1,8 +1,8 @@
-#include "astro/visibility.h"
+#include "validate/visibility.h"
 
 #include <cmath>
 
-namespace zenith::astro {
+namespace zenith::validate {
 
 double nanolamberts_from_v_mag_arcsec2(double mu) { return 34.08 * std::exp(20.7233 - 0.92104 * mu); }
 
@@ -16,4 +16,4 @@ double naked_eye_limiting_magnitude(double sky_v_mag_arcsec2) {
   return -16.57 - 2.5 * std::log10(illuminance_ft_cd);
 }
 
-}  // namespace zenith::astro
+}  // namespace zenith::validate

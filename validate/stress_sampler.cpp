@@ -1,4 +1,4 @@
-#include "stress/stress_sampler.h"
+#include "validate/stress_sampler.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "atmosphere/reference/random.h"
 #include "core/units.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 namespace {
 
 using atmosphere::reference::Pcg32;
@@ -102,4 +102,4 @@ StressSample StressSampler::random(std::uint64_t index) const {
   return s;
 }
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

@@ -14,11 +14,11 @@
 // 22.0 mag/arcsec² gives 6.6 (the eye's textbook ~6.5). No corrections for age,
 // experience, pupil or seeing (Schaefer's F factors) are applied: a typical
 // observer, both eyes, dark-adapted.
-namespace zenith::astro {
+namespace zenith::validate {
 
 /// Garstang's surface brightness in nanolamberts of a V surface brightness [mag/arcsec²].
 double nanolamberts_from_v_mag_arcsec2(double mag_per_arcsec2);
 /// Schaefer's naked-eye limiting V magnitude against a sky of `sky_v_mag_arcsec2`.
 double naked_eye_limiting_magnitude(double sky_v_mag_arcsec2);
 
-}  // namespace zenith::astro
+}  // namespace zenith::validate

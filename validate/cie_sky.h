@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-namespace zenith::atmosphere {
+namespace zenith::validate {
 
 /// One CIE standard general sky type: gradation parameters a, b and
 /// indicatrix parameters c, d, e.
@@ -32,7 +32,7 @@ struct CieSkyType {
 };
 
 /// The 15 types of the standard, in order, from the CSV compiled into the
-/// binary (atmosphere/data/cie_general_sky_types.csv).
+/// binary (validate/data/cie_general_sky_types.csv).
 std::vector<CieSkyType> cie_general_sky_types();
 /// Parses a table with '#' comment lines, the header
 /// "type,a,b,c,d,e,description" and one row per type. Throws
@@ -55,4 +55,4 @@ double cie_sun_distance_rad(double view_zenith_rad, double azimuth_from_sun_rad,
 double cie_relative_luminance(const CieSkyType& type, double view_zenith_rad, double azimuth_from_sun_rad,
                               double sun_zenith_rad);
 
-}  // namespace zenith::atmosphere
+}  // namespace zenith::validate

@@ -13,7 +13,7 @@
 //   f(ρ)   = 10^5.36 (1.06 + cos² ρ) + 10^(6.15 − ρ/40)  Rayleigh and aerosol scattering (eq. 21, ρ > 10°)
 //   X(Z)   = (1 − 0.96 sin² Z)^(−1/2)                    their air mass
 // The authors give the model's agreement with their measurements as 8–23 %.
-namespace zenith::astro {
+namespace zenith::validate {
 
 /// K&S 1991's moonlit sky brightness [nL] for a Moon at phase angle
 /// `phase_angle_deg`, zenith distance `moon_zenith_deg` (< 90°), `separation_deg`
@@ -22,7 +22,7 @@ double krisciunas_schaefer_moon_nL(double phase_angle_deg, double separation_deg
                                    double sky_zenith_deg, double k_v);
 
 /// A surface brightness in nanolamberts as V mag/arcsec² (the inverse of
-/// Garstang's conversion, astro/visibility.h: μ = (20.7233 − ln(B/34.08)) / 0.92104).
+/// Garstang's conversion, validate/visibility.h: μ = (20.7233 − ln(B/34.08)) / 0.92104).
 double v_mag_arcsec2_from_nanolamberts(double nanolamberts);
 
-}  // namespace zenith::astro
+}  // namespace zenith::validate

@@ -1,11 +1,11 @@
-#include "stress/stress_report.h"
+#include "validate/stress_report.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <sstream>
 
-namespace zenith::stress {
+namespace zenith::validate {
 namespace {
 
 /// A CSV field: quoted, inner quotes doubled.
@@ -110,4 +110,4 @@ std::string summary_table(const std::vector<ModelResult>& models, const std::vec
   return out;
 }
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

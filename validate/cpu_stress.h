@@ -25,10 +25,10 @@
 #include <string>
 
 #include "atmosphere/lut/lookup_tables.h"
-#include "stress/stress_sampler.h"
-#include "stress/stress_statistics.h"
+#include "validate/stress_sampler.h"
+#include "validate/stress_statistics.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 struct CpuStressOptions {
   std::size_t random_samples = 0;  ///< after the sweep
@@ -54,4 +54,4 @@ void evaluate_configuration(const atmosphere::lut::TableQueries& queries, const 
 CpuStressResult run_cpu_stress(const atmosphere::lut::TableQueries& queries, const std::string& label,
                                const CpuStressOptions& options);
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

@@ -18,9 +18,9 @@
 
 #include <nlohmann/json.hpp>
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 /// Parameter set `index` of `seed` (zenith_atmosphere 1, standard mode), named "random-<seed>-<index>".
 nlohmann::json random_atmosphere_parameters(std::uint64_t seed, std::uint64_t index);
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

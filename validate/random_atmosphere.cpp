@@ -1,4 +1,4 @@
-#include "stress/random_atmosphere.h"
+#include "validate/random_atmosphere.h"
 
 #include <cmath>
 #include <string>
@@ -7,7 +7,7 @@
 #include "core/json_reader.h"
 #include "core/strings.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 namespace {
 
 using atmosphere::reference::Pcg32;
@@ -72,4 +72,4 @@ json random_atmosphere_parameters(std::uint64_t seed, std::uint64_t index) {
   return j;
 }
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

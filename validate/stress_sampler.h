@@ -19,9 +19,9 @@
 #include <optional>
 #include <vector>
 
-#include "stress/stress_geometry.h"
+#include "validate/stress_geometry.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 struct HorizonPair {
   Vec3 above, below;  ///< view directions at δ = +ε and −ε
@@ -50,4 +50,4 @@ class StressSampler {
   std::uint64_t seed_, stream_;
 };
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

@@ -1,16 +1,16 @@
-// The CIE standard general sky (atmosphere/cie_sky.h) against values computed
+// The CIE standard general sky (validate/cie_sky.h) against values computed
 // by hand from ISO 15469:2004 / CIE S 011/E:2003 and the embedded table.
-#include "atmosphere/cie_sky.h"
+#include "validate/cie_sky.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 
-#include "atmosphere/constants.h"
 #include "core/units.h"
 
-using namespace zenith::atmosphere;
+using namespace zenith::validate;
+using zenith::core::kPi;
 
 using zenith::core::kDeg;
 

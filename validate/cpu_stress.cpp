@@ -1,4 +1,4 @@
-#include "stress/cpu_stress.h"
+#include "validate/cpu_stress.h"
 
 #include <algorithm>
 #include <array>
@@ -11,7 +11,7 @@
 #include "core/strings.h"
 #include "core/units.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 namespace {
 
 using atmosphere::lut::kMaxChannels;
@@ -101,4 +101,4 @@ CpuStressResult run_cpu_stress(const atmosphere::lut::TableQueries& q, const std
   return result;
 }
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

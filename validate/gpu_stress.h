@@ -25,7 +25,7 @@
 #include "atmosphere/parameters.h"
 #include "render/renderer.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 struct GpuFrameResult {
   std::string model, view;
@@ -51,4 +51,4 @@ std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std
                                            const atmosphere::lut::TableQueries& queries,
                                            const GpuStressOptions& options);
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

@@ -1,11 +1,11 @@
-#include "astro/moonlit_sky.h"
+#include "validate/moonlit_sky.h"
 
 #include <cmath>
 #include <stdexcept>
 
 #include "core/units.h"
 
-namespace zenith::astro {
+namespace zenith::validate {
 namespace {
 
 double ks_air_mass(double zenith_deg) {
@@ -31,4 +31,4 @@ double v_mag_arcsec2_from_nanolamberts(double nanolamberts) {
   return (20.7233 - std::log(nanolamberts / 34.08)) / 0.92104;
 }
 
-}  // namespace zenith::astro
+}  // namespace zenith::validate

@@ -6,10 +6,10 @@
 #include <utility>
 #include <vector>
 
-#include "stress/gpu_stress.h"
-#include "stress/stress_statistics.h"
+#include "validate/gpu_stress.h"
+#include "validate/stress_statistics.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 /// The CPU results of one model.
 struct ModelResult {
@@ -31,4 +31,4 @@ std::string summary_table(const std::vector<ModelResult>& models, const std::vec
 /// All models merged, per region.
 RegionTable all_models(const std::vector<ModelResult>& models);
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

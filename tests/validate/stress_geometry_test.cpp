@@ -9,12 +9,12 @@
 #include "atmosphere/parameters.h"
 #include "atmosphere/reference/geometry.h"
 #include "core/units.h"
-#include "stress/random_atmosphere.h"
-#include "stress/stress_geometry.h"
-#include "stress/stress_sampler.h"
-#include "stress/stress_statistics.h"
+#include "validate/random_atmosphere.h"
+#include "validate/stress_geometry.h"
+#include "validate/stress_sampler.h"
+#include "validate/stress_statistics.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 namespace {
 
 constexpr double kR = 6371e3, kTop = 6471e3;
@@ -136,4 +136,4 @@ TEST(RandomAtmosphere, ParameterSetsAreValidAndDeterministic) {
 }
 
 }  // namespace
-}  // namespace zenith::stress
+}  // namespace zenith::validate

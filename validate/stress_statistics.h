@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "stress/stress_geometry.h"
+#include "validate/stress_geometry.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 /// Counts of checked values and of the bad ones among them.
 struct ValueHealth {
@@ -79,4 +79,4 @@ using RegionTable = std::array<RegionStatistics, kRegionCount>;
 void merge(RegionTable& into, const RegionTable& from);
 RegionStatistics total(const RegionTable& table);
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

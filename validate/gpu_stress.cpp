@@ -1,4 +1,4 @@
-#include "stress/gpu_stress.h"
+#include "validate/gpu_stress.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,11 +10,11 @@
 
 #include "atmosphere/photometry.h"
 #include "core/units.h"
-#include "stress/stress_geometry.h"
+#include "validate/stress_geometry.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 namespace {
 
 using core::kDeg;
@@ -145,4 +145,4 @@ std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std
   return results;
 }
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

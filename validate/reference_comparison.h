@@ -33,10 +33,10 @@
 
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
-#include "stress/stress_geometry.h"
-#include "stress/stress_statistics.h"
+#include "validate/stress_geometry.h"
+#include "validate/stress_statistics.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 /// L1_tables above [sr^-1 per unit solar irradiance].
 atmosphere::Spectrum table_single_scattering(const atmosphere::AtmosphereModel& model,
@@ -60,4 +60,4 @@ struct ReferenceComparisonOptions {
 void compare_with_reference(const atmosphere::AtmosphereModel& model, const atmosphere::lut::TableQueries& queries,
                             const std::string& label, const ReferenceComparisonOptions& options, RegionTable& regions);
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

@@ -1,9 +1,9 @@
-#include "stress/stress_geometry.h"
+#include "validate/stress_geometry.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 double horizon_nadir_angle_rad(double r_m, double ground_radius_m) {
   // √((r − R)(r + R)): the distance to the horizon, free of the cancellation of r² − R².
@@ -59,4 +59,4 @@ Region classify(const Configuration& c, double ground_radius_m, double top_radiu
   return offset < 0.0 ? Region::ground : Region::sky;
 }
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

@@ -1,4 +1,4 @@
-#include "stress/reference_comparison.h"
+#include "validate/reference_comparison.h"
 
 #include <algorithm>
 #include <array>
@@ -14,7 +14,7 @@
 #include "core/strings.h"
 #include "core/units.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 namespace {
 
 using atmosphere::Spectrum;
@@ -154,4 +154,4 @@ void compare_with_reference(const atmosphere::AtmosphereModel& model, const atmo
     regions[std::size_t(kRegions[k / per_region])].reference.add(outcomes[k].error, outcomes[k].where);
 }
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

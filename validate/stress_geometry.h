@@ -26,7 +26,7 @@
 #include "atmosphere/vec3.h"
 #include "core/units.h"
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 using atmosphere::Vec3;
 
@@ -80,4 +80,4 @@ std::string_view region_name(Region region);
 
 Region classify(const Configuration& c, double ground_radius_m, double top_radius_m);
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate

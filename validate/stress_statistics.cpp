@@ -1,10 +1,10 @@
-#include "stress/stress_statistics.h"
+#include "validate/stress_statistics.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace zenith::stress {
+namespace zenith::validate {
 
 void ValueHealth::check(double value, bool transmittance) {
   ++values;
@@ -82,4 +82,4 @@ RegionStatistics total(const RegionTable& table) {
   return t;
 }
 
-}  // namespace zenith::stress
+}  // namespace zenith::validate
