@@ -287,15 +287,8 @@ void FrameLoop::schedule_tick() {
   const auto period_ns = static_cast<std::uint64_t>(std::chrono::nanoseconds(pacer_.period()).count());
   const FrameSchedule when{frame, ns_of(pacer_.due(n)), period_ns};
 
-  // The frames still ahead of their moment go again to the nodes heard on
-  // UDP: a lost datagram costs nothing while one of its copies arrives.
+  resend_ahead(nodes);
   const auto now = Clock::now();
-  while (!ahead_.empty() && ahead_.front().when.present_at_ns <= ns_of(now)) ahead_.pop_front();
-  for (const Scheduled& a : ahead_)
-    for (const std::uint32_t id : nodes)
-      if (const NodeSession* s = p_.sessions.find(id); s && p_.datagrams.reaches(*s, now))
-        p_.datagrams.send(*s, std::make_shared<const std::vector<std::uint8_t>>(
-                                  seal_datagram(*s->datagram_key, s->id, std::vector<Message>{a.when, a.state})));
   if (p_.desk.wants_preview(frame)) {  // before the frame it names
     auto request =
         std::make_shared<const std::vector<std::uint8_t>>(encode(PreviewRequest{frame, kMaxThumbnailEdgePx}));
@@ -323,6 +316,17 @@ void FrameLoop::schedule_tick() {
   after_tick(last);
 }
 
+void FrameLoop::resend_ahead(const std::vector<std::uint32_t>& nodes) {
+  // A lost datagram costs nothing while one of its copies arrives.
+  const auto now = Clock::now();
+  while (!ahead_.empty() && ahead_.front().when.present_at_ns <= ns_of(now)) ahead_.pop_front();
+  for (const Scheduled& a : ahead_)
+    for (const std::uint32_t id : nodes)
+      if (const NodeSession* s = p_.sessions.find(id); s && p_.datagrams.reaches(*s, now))
+        p_.datagrams.send(*s, std::make_shared<const std::vector<std::uint8_t>>(
+                                  seal_datagram(*s->datagram_key, s->id, std::vector<Message>{a.when, a.state})));
+}
+
 void FrameLoop::send_scheduled(const FrameState& state, const FrameSchedule& when,
                                const std::vector<std::uint32_t>& nodes) {
   const auto now = Clock::now();
@@ -348,15 +352,10 @@ void FrameLoop::send_scheduled(const FrameState& state, const FrameSchedule& whe
 void FrameLoop::after_tick(bool last_frame) {
   const std::uint64_t sent = p_.progress.presented;
   if (last_frame) {
-    // Stop once the nodes have presented the last frame: its moment and a period more.
     const std::string reason = p_.options.frames != 0 && sent >= p_.options.frames
                                    ? cat("show finished after ", sent, " frames")
                                    : cat("show '", p_.play.show->name(), "' finished after ", sent, " frames");
-    frame_timer_.expires_at(pacer_.due(sent - 1) + pacer_.period());
-    frame_timer_.async_wait([this, reason](const boost::system::error_code& ec) {
-      if (!ec) p_.stop(reason);
-    });
-    return;
+    return tail_tick(sent, reason);
   }
   // The tick of frame n: lookahead periods before its moment.
   const Clock::duration lookahead = p_.options.config.lookahead_frames * pacer_.period();
@@ -371,6 +370,26 @@ void FrameLoop::after_tick(bool last_frame) {
         pacer_.slips() == 1 ? "" : "s");
   }
   retry_after(wait);
+}
+
+void FrameLoop::tail_tick(std::uint64_t k, const std::string& reason) {
+  const std::uint64_t sent = p_.progress.presented;
+  const Clock::time_point last_moment = pacer_.due(sent - 1);
+  const Clock::time_point tick = pacer_.due(k) - p_.options.config.lookahead_frames * pacer_.period();
+  if (tick >= last_moment) {
+    // Stop once the nodes have presented the last frame: its moment and a period more.
+    frame_timer_.expires_at(last_moment + pacer_.period());
+    frame_timer_.async_wait([this, reason](const boost::system::error_code& ec) {
+      if (!ec) p_.stop(reason);
+    });
+    return;
+  }
+  frame_timer_.expires_at(tick);
+  frame_timer_.async_wait([this, k, reason](const boost::system::error_code& ec) {
+    if (ec) return;
+    resend_ahead(p_.sessions.ready_ids());
+    tail_tick(k + 1, reason);
+  });
 }
 
 }  // namespace zenith::cluster

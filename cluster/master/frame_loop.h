@@ -97,8 +97,15 @@ class FrameLoop {
   /// Sends the next frame, lookahead periods before its moment, and the
   /// frames still ahead again to the nodes heard on UDP; then waits for the next tick.
   void schedule_tick();
-  /// After a tick: the next one, or the stop once the last frame's moment has passed.
+  /// After a tick: the next one, or after the last frame its tail (tail_tick).
   void after_tick(bool last_frame);
+  /// After the last frame, the ticks that would have sent frames `k`, k + 1, …
+  /// send only the copies of the frames still ahead, so the show's last
+  /// frames get as many copies as every other (a lost datagram costs nothing
+  /// there either); one period after the last frame's moment, the stop.
+  void tail_tick(std::uint64_t k, const std::string& reason);
+  /// The frames still ahead of their moment, again, to `nodes` heard on UDP.
+  void resend_ahead(const std::vector<std::uint32_t>& nodes);
   void send_scheduled(const FrameState& state, const FrameSchedule& when, const std::vector<std::uint32_t>& nodes);
   /// A frame sent with its moment, kept to be sent again until then.
   struct Scheduled {
