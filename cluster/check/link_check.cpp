@@ -18,6 +18,7 @@
 #include "cluster/master/node_listener.h"
 #include "cluster/master/node_sessions.h"
 #include "core/strings.h"
+#include "core/wall_clock.h"
 
 namespace zenith::cluster {
 
@@ -33,9 +34,6 @@ double ms_of_ns(std::uint64_t ns) { return static_cast<double>(ns) / 1e6; }
 template <class Duration>
 double seconds(Duration d) {
   return std::chrono::duration<double>(d).count();
-}
-std::int64_t ns_of(Clock::time_point t) {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
 }
 
 /// The fill, encoded once and shared by every node's connection.
@@ -154,10 +152,8 @@ struct LinkChecker {
     m.clock_offset_ms = (static_cast<double>(r.master_steady_ns) - static_cast<double>(r.node_steady_ns)) / 1e6;
     // The master's wall clock when its steady clock read master_steady_ns (the
     // node's estimate of the report's moment), against the node's wall clock then.
-    const auto wall_now =
-        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
-            .count();
-    const double master_wall_ns = static_cast<double>(wall_now) - static_cast<double>(ns_of(Clock::now())) +
+    const core::WallAtSteady clocks = core::wall_at_steady();
+    const double master_wall_ns = static_cast<double>(clocks.wall_ns) - static_cast<double>(clocks.steady_ns) +
                                   static_cast<double>(r.master_steady_ns);
     m.wall_clock_offset_ms = (static_cast<double>(r.node_wall_ns) - master_wall_ns) / 1e6;
     m.fill_bytes = r.fill_bytes;

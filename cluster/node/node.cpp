@@ -24,6 +24,7 @@
 #include "core/log_limiter.h"
 #include "core/strings.h"
 #include "core/timing.h"
+#include "core/wall_clock.h"
 #include "render/lut/table_provider.h"
 #include "scene/scene_loader.h"
 #include "warp/viewport_config.h"
@@ -312,12 +313,10 @@ struct Node::Impl {
   void maybe_report_link_check() {
     const auto now = Clock::now();
     if (!link_check.complete(now)) return;
-    const auto steady_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count();
-    const auto wall_ns =
-        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
-            .count();
-    const LinkReport report = link_check.report(datagrams.probe().summary(), datagrams.clock(), steady_ns,
-                                                static_cast<std::uint64_t>(std::max<std::int64_t>(wall_ns, 0)));
+    // The wall clock against the steady one at one moment (the master compares its own pair).
+    const core::WallAtSteady clocks = core::wall_at_steady();
+    const LinkReport report = link_check.report(datagrams.probe().summary(), datagrams.clock(), clocks.steady_ns,
+                                                static_cast<std::uint64_t>(std::max<std::int64_t>(clocks.wall_ns, 0)));
     link.send(report);
     const auto ms = [](std::uint64_t ns) { return static_cast<double>(ns) / 1e6; };
     spdlog::info(
