@@ -232,6 +232,7 @@ struct NodeArgs {
   std::optional<double> reconnect_s;
   std::vector<std::string> atmosphere_files;
   std::uint32_t debug_render_delay_ms = 0;
+  double debug_clock_drift_ppm = 0.0, debug_clock_step_ms = 0.0, debug_clock_step_every_s = 0.0;
   bool window = false;
 };
 
@@ -251,6 +252,9 @@ int run_node(const NodeArgs& a) {
   if (a.reconnect_s) options.reconnect_ms = static_cast<std::uint32_t>(std::lround(*a.reconnect_s * 1000.0));
   for (const std::string& f : a.atmosphere_files) options.atmosphere_files.emplace_back(f);
   options.debug_render_delay_ms = a.debug_render_delay_ms;
+  options.debug_clock_faults.drift_ppm = a.debug_clock_drift_ppm;
+  options.debug_clock_faults.step_ns = std::llround(a.debug_clock_step_ms * 1e6);
+  options.debug_clock_faults.step_every = std::chrono::nanoseconds(std::llround(a.debug_clock_step_every_s * 1e9));
   if (!a.scene.empty()) options.scene = fs::path(a.scene);
   options.window = a.window;
   options.layout = a.layout == "offline" ? cluster::FrameFileLayout::offline : cluster::FrameFileLayout::per_node;
@@ -403,6 +407,21 @@ void register_cluster_commands(CLI::App& app) {
                   "config gives it, the others side by side in one window (needs a display; docs/window.md)");
     cmd->add_option("--debug-render-delay-ms", a->debug_render_delay_ms,
                     "Test hook: sleep this long before rendering each frame (plays a slow node)");
+    // A rehearsal of a PC whose clock misbehaves; the machine's time is never touched.
+    const double max_step_ms = static_cast<double>(cluster::LocalClock::kMaxStepNs) / 1e6;
+    cmd->add_option("--debug-clock-drift-ppm", a->debug_clock_drift_ppm,
+                    "Test hook: the node's clock, as its clock synchronisation reads it, runs this many ppm fast "
+                    "(negative: slow)")
+        ->check(CLI::Range(-cluster::LocalClock::kMaxDriftPpm, cluster::LocalClock::kMaxDriftPpm));
+    CLI::Option* step_every =
+        cmd->add_option("--debug-clock-step-every-s", a->debug_clock_step_every_s,
+                        "Test hook: with --debug-clock-step-ms, the interval between the clock's jumps")
+            ->check(CLI::Range(0.1, 3600.0));
+    cmd->add_option("--debug-clock-step-ms", a->debug_clock_step_ms,
+                    "Test hook: the node's clock jumps this far ahead (negative: back) every "
+                    "--debug-clock-step-every-s, and back again the next time")
+        ->check(CLI::Range(-max_step_ms, max_step_ms))
+        ->needs(step_every);
     cmd->callback([a] {
       const int code = run_node(*a);
       if (code != 0) std::exit(code);  // the NodeExit code (docs/cluster.md)

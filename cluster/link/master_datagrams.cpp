@@ -11,18 +11,13 @@ namespace zenith::cluster {
 namespace asio = boost::asio;
 using asio::ip::udp;
 
-namespace {
-std::int64_t ns_of(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
-}
-}  // namespace
-
-MasterDatagrams::MasterDatagrams(asio::io_context& io, std::string who, FrameHandler on_frame)
+MasterDatagrams::MasterDatagrams(asio::io_context& io, std::string who, FrameHandler on_frame, LocalClock local)
     : io_(io),
       who_(std::move(who)),
       on_frame_(std::move(on_frame)),
       ping_timer_(io),
-      buffer_(max_datagram_bytes() + 1) {}
+      buffer_(max_datagram_bytes() + 1),
+      local_(local) {}
 
 void MasterDatagrams::start(const udp::endpoint& master, std::uint32_t node_id, const Digest& key,
                             std::uint64_t master_time_ns, Clock::time_point welcomed) {
@@ -35,7 +30,7 @@ void MasterDatagrams::start(const udp::endpoint& master, std::uint32_t node_id, 
   master_ = master;
   node_id_ = node_id;
   key_ = key;
-  if (!clock_.synchronized()) clock_.seed(static_cast<std::int64_t>(master_time_ns), ns_of(welcomed));
+  if (!clock_.synchronized()) clock_.seed(static_cast<std::int64_t>(master_time_ns), local_.read_ns(welcomed));
   boost::system::error_code ec;
   socket_.emplace(io_);
   socket_->open(master.protocol(), ec);
@@ -63,7 +58,7 @@ void MasterDatagrams::stop() {
 }
 
 MasterDatagrams::Clock::time_point MasterDatagrams::to_local(std::uint64_t master_ns) const {
-  return Clock::time_point(std::chrono::nanoseconds(clock_.to_node(static_cast<std::int64_t>(master_ns))));
+  return local_.steady_at(clock_.to_node(static_cast<std::int64_t>(master_ns)));
 }
 
 void MasterDatagrams::start_probe(std::chrono::microseconds interval, Clock::time_point until) {
@@ -81,7 +76,7 @@ void MasterDatagrams::ping() {
   if (!socket_) return;
   const auto now = Clock::now();
   const bool probing = now < probe_until_;
-  const auto t1 = static_cast<std::uint64_t>(ns_of(now));
+  const auto t1 = static_cast<std::uint64_t>(local_.read_ns(now));
   if (probing) probe_.sent(t1);
   const std::vector<Message> message = {ClockPing{t1}};
   auto datagram = std::make_shared<std::vector<std::uint8_t>>(seal_datagram(key_, node_id_, message));
@@ -119,11 +114,12 @@ void MasterDatagrams::on_datagram(std::size_t bytes) {
   std::optional<FrameSchedule> schedule;
   for (const Message& m : d.messages) {
     if (const auto* pong = std::get_if<ClockPong>(&m)) {
-      const std::int64_t round_trip = (ns_of(now) - static_cast<std::int64_t>(pong->node_sent_ns)) -
+      const std::int64_t t4 = local_.read_ns(now);
+      const std::int64_t round_trip = (t4 - static_cast<std::int64_t>(pong->node_sent_ns)) -
                                       static_cast<std::int64_t>(pong->master_sent_ns - pong->master_received_ns);
       if (round_trip >= 0) probe_.answered(pong->node_sent_ns, static_cast<std::uint64_t>(round_trip));
       clock_.add({static_cast<std::int64_t>(pong->node_sent_ns), static_cast<std::int64_t>(pong->master_received_ns),
-                  static_cast<std::int64_t>(pong->master_sent_ns), ns_of(now)});
+                  static_cast<std::int64_t>(pong->master_sent_ns), t4});
       if (clock_.steps() > steps_logged_) {
         steps_logged_ = clock_.steps();
         spdlog::warn(
@@ -141,7 +137,7 @@ void MasterDatagrams::on_datagram(std::size_t bytes) {
       if (!synchronized_logged_ && clock_.synchronized()) {
         synchronized_logged_ = true;
         spdlog::info("{}: clock synchronized with the master over datagrams (offset {:.3f} ms, round trip {:.3f} ms)",
-                     who_, static_cast<double>(clock_.offset_ns(ns_of(now))) / 1e6,
+                     who_, static_cast<double>(clock_.offset_ns(t4)) / 1e6,
                      static_cast<double>(clock_.round_trip_ns().value_or(0)) / 1e6);
       }
     } else if (const auto* s = std::get_if<FrameSchedule>(&m)) {

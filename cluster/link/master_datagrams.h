@@ -18,6 +18,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "cluster/link/clock_sync.h"
+#include "cluster/link/local_clock.h"
 #include "cluster/link/ping_probe.h"
 #include "cluster/protocol/messages.h"
 #include "core/log_limiter.h"
@@ -38,7 +39,9 @@ class MasterDatagrams {
   };
   using FrameHandler = std::function<void(ScheduledFrame&& frame)>;
 
-  MasterDatagrams(boost::asio::io_context& io, std::string who, FrameHandler on_frame);
+  /// `local`: the node's own clock as the clock synchronisation reads it
+  /// (the steady clock, unless a rehearsal of clock faults skews it).
+  MasterDatagrams(boost::asio::io_context& io, std::string who, FrameHandler on_frame, LocalClock local = {});
   MasterDatagrams(const MasterDatagrams&) = delete;
   MasterDatagrams& operator=(const MasterDatagrams&) = delete;
 
@@ -61,7 +64,10 @@ class MasterDatagrams {
   const PingProbe& probe() const { return probe_; }
 
   const ClockSync& clock() const { return clock_; }
-  /// The node's steady time at which the master's clock reads `master_ns`.
+  /// The node's own clock, which ClockSync's node times are read on.
+  const LocalClock& local_clock() const { return local_; }
+  /// The node's steady time at which the master's clock reads `master_ns`
+  /// (as far as the node's own clock and its estimate of the offset tell).
   Clock::time_point to_local(std::uint64_t master_ns) const;
   /// When the last valid datagram of the master arrived (nothing before one).
   std::optional<Clock::time_point> last_heard() const { return last_heard_; }
@@ -82,6 +88,7 @@ class MasterDatagrams {
   std::uint64_t ping_chain_ = 0;  ///< a ping timer of an earlier chain (before a probe started) does nothing
   boost::asio::steady_timer ping_timer_;
   std::vector<std::uint8_t> buffer_;
+  LocalClock local_;
   ClockSync clock_;
   PingProbe probe_;
   std::chrono::microseconds probe_interval_{0};

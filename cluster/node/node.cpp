@@ -83,7 +83,8 @@ struct Node::Impl {
   /// TCP), each with its moment on the master's clock; the schedule says when
   /// to render and present them, the timer wakes the node at the next moment.
   MasterDatagrams datagrams{io, cat("node '", options.node_name, "'"),
-                            [this](MasterDatagrams::ScheduledFrame&& f) { on_scheduled_frame(f.schedule, f.state); }};
+                            [this](MasterDatagrams::ScheduledFrame&& f) { on_scheduled_frame(f.schedule, f.state); },
+                            LocalClock(options.debug_clock_faults, Clock::now())};
   PresentSchedule schedule;
   asio::steady_timer present_timer{io};
   std::optional<FrameSchedule> tcp_schedule;  ///< a FrameSchedule on TCP, for the FrameState that follows it
@@ -315,7 +316,9 @@ struct Node::Impl {
     if (!link_check.complete(now)) return;
     // The wall clock against the steady one at one moment (the master compares its own pair).
     const core::WallAtSteady clocks = core::wall_at_steady();
-    const LinkReport report = link_check.report(datagrams.probe().summary(), datagrams.clock(), clocks.steady_ns,
+    const std::int64_t local_ns =
+        datagrams.local_clock().read_ns(Clock::time_point(std::chrono::nanoseconds(clocks.steady_ns)));
+    const LinkReport report = link_check.report(datagrams.probe().summary(), datagrams.clock(), local_ns,
                                                 static_cast<std::uint64_t>(std::max<std::int64_t>(clocks.wall_ns, 0)));
     link.send(report);
     const auto ms = [](std::uint64_t ns) { return static_cast<double>(ns) / 1e6; };
@@ -408,6 +411,15 @@ struct Node::Impl {
     node_directory = options.layout == FrameFileLayout::offline ? options.output_directory / "nodes" / options.node_name
                                                                 : options.output_directory / options.node_name;
     std::filesystem::create_directories(node_directory);
+    if (const LocalClock::Faults& f = options.debug_clock_faults; f.any())
+      spdlog::warn(
+          "node '{}': rehearsing a misbehaving clock: it runs {:+.1f} ppm off{} (only as its clock "
+          "synchronisation reads it; the machine's time is untouched)",
+          options.node_name, f.drift_ppm,
+          f.step_every.count() > 0 && f.step_ns != 0
+              ? fmt::format(" and jumps {:+.3f} ms every {:.3f} s, then back", static_cast<double>(f.step_ns) / 1e6,
+                            std::chrono::duration<double>(f.step_every).count())
+              : std::string());
     worker.emplace(
         RenderWorker::Setup{options, base_scene, viewports, outputs, atmospheres, table_options, node_directory},
         RenderWorker::Events{

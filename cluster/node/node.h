@@ -26,6 +26,7 @@
 
 #include "cluster/link/cluster_config.h"
 #include "cluster/link/link_exit.h"
+#include "cluster/link/local_clock.h"
 #include "cluster/protocol/handshake.h"
 
 namespace zenith::cluster {
@@ -69,6 +70,12 @@ struct NodeOptions {
   /// Test hook (`--debug-render-delay-ms`): sleep this long before each frame,
   /// to play a slow node. 0 in production.
   std::uint32_t debug_render_delay_ms = 0;
+  /// Rehearsal of a PC whose clock misbehaves (`--debug-clock-drift-ppm`,
+  /// `--debug-clock-step-ms`, `--debug-clock-step-every-s`): the node's clock,
+  /// as its clock synchronisation reads it, drifts and steps this way from the
+  /// node's start (cluster/link/local_clock.h); the machine's time is never
+  /// touched. None in production.
+  LocalClock::Faults debug_clock_faults;
 };
 
 class Node {

@@ -233,6 +233,47 @@ TEST_F(NetworkRigTest, ATwoSecondPartitionOfOneNodeFreezesNoOtherNode) {
   }
 }
 
+// A node whose clock misbehaves (rehearsed: `zenith node --debug-clock-*`,
+// only its clock synchronisation's reading is skewed, never the machine's
+// time): it runs 300 ppm fast (a bad crystal is 50; NTP slews at most 500)
+// and jumps 20 ms ahead, then back, every 2 s. It loses no frame and holds
+// no other node up; each jump is seen within a few pings (three exchanges in
+// a row far off the estimate), logged, and the estimate starts afresh, so its
+// frames' moments leave the other node's only for those few pings.
+TEST_F(NetworkRigTest, ANodeWhoseClockDriftsAndStepsLosesNoFrame) {
+  NetworkRig rig("clk");
+  RigClusterSetup s = setup("clock", 181);
+  s.node_args[1] = {"--debug-clock-drift-ppm", "300", "--debug-clock-step-ms", "20", "--debug-clock-step-every-s", "2"};
+  RigCluster cluster(rig, s);
+  // A step moves the moments 20 ms, so an interval may last one period and 20 ms (53 ms): within two periods.
+  play_untouched(cluster, 180);
+
+  const std::string log = read_text(cluster.log("n1"));
+  EXPECT_NE(log.find("rehearsing a misbehaving clock: it runs +300.0 ppm off and jumps +20.000 ms every 2.000 s"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("stepped apart"), std::string::npos) << log;
+
+  // The two nodes' moments for each frame: together (the clock synchronisation's error, well under 2 ms)
+  // but for a few frames after each jump. The show lasts 6 s, so it saw at least two jumps.
+  const std::vector<double> apart = moment_spreads_ms({cluster.presents(0), cluster.presents(1)});
+  ASSERT_GE(apart.size(), 150u);
+  int runs = 0, run = 0, longest_run = 0;
+  for (double ms : apart) {
+    if (ms < 2.0) {
+      run = 0;
+      continue;
+    }
+    EXPECT_LT(ms, 25.0) << "moments further apart than the jump";
+    if (run++ == 0) ++runs;
+    longest_run = std::max(longest_run, run);
+  }
+  EXPECT_GE(runs, 2) << "the jumps did not reach the moments: was the clock rehearsed?";
+  // Three exchanges in a row 100 ms apart confirm a jump, a few more when one of them waited on this busy
+  // machine: a second (30 frames) at most.
+  EXPECT_LE(longest_run, 30) << "frames on the wrong moment in a row";
+}
+
 // A node's cable pulled for good: its connection is half-open on the
 // master's side (no FIN, no reset). The other node presents every frame on
 // schedule all along; the master says the node is unreachable at once and

@@ -140,6 +140,8 @@ pid_t RigCluster::start_node(int k, int niceness) {
       "node",       "--cluster", node_configs_[static_cast<std::size_t>(k)].string(),  "--name",
       node_name(k), "--cache",   (setup_.work / "node-cache" / node_name(k)).string(), "--connect-timeout-ms",
       "300000"};
+  if (const auto more = setup_.node_args.find(k); more != setup_.node_args.end())
+    args.insert(args.end(), more->second.begin(), more->second.end());
   if (niceness == 0) return rig_.spawn(node_name(k), setup_.zenith, args, log(node_name(k)));
   // nice execs zenith: the pid stays the node's.
   args.insert(args.begin(), {"-n", std::to_string(niceness), setup_.zenith.string()});

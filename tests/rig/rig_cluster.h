@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,8 @@ struct RigClusterSetup {
   /// own PC; on the rig every host shares this machine's cores, and a nice
   /// joiner leaves them to the nodes already playing, as its own PC would.
   int late_node_niceness = 0;
+  /// More arguments for node k's `zenith node` (a rehearsal of faults, e.g. its clock's).
+  std::map<int, std::vector<std::string>> node_args;
 };
 
 /// One present of a node, from its presents.csv (ns of CLOCK_MONOTONIC).
