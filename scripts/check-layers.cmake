@@ -14,7 +14,8 @@
 #   cluster/     a module of modules, each folder one (no loops, no sideways steps):
 #     protocol/  core, scene                the wire protocol: messages, framing, handshake, table transfer
 #     link/      … warp, scene, protocol    configuration, a connection, a link to the master, takeover state
-#     master/    … show, render, link       the master: table schedule, barrier, operator desk
+#     operator/  … show, link               the operator: commands, desk, consoles; the master only through DeskMaster
+#     master/    … show, render, link, operator   the master: table schedule, barrier, status
 #     node/      … render, link             a render node
 #     standby/   … master, link             the standby master
 #     launcher/  core, image, warp, link    a local cluster: its child processes, the stitched dome
@@ -46,7 +47,7 @@ if(NOT SOURCE_DIR)
 endif()
 get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 
-set(cluster cluster/protocol cluster/link cluster/master cluster/node cluster/standby cluster/check cluster/launcher)
+set(cluster cluster/protocol cluster/link cluster/operator cluster/master cluster/node cluster/standby cluster/check cluster/launcher)
 set(modules core image atmosphere warp astro scene show render ${cluster} validate offline apps)
 set(allowed_core "")
 set(allowed_image core)
@@ -58,10 +59,11 @@ set(allowed_show core image atmosphere astro scene)
 set(allowed_render core image atmosphere warp astro scene)
 set(allowed_cluster/protocol core scene)
 set(allowed_cluster/link core image atmosphere warp astro scene cluster/protocol)
-set(allowed_cluster/master core image atmosphere warp astro scene show render cluster/protocol cluster/link)
+set(allowed_cluster/operator core image atmosphere warp astro scene show cluster/protocol cluster/link)
+set(allowed_cluster/master core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/operator)
 set(allowed_cluster/node core image atmosphere warp astro scene render cluster/protocol cluster/link)
-set(allowed_cluster/standby core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/master)
-set(allowed_cluster/check core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/master)
+set(allowed_cluster/standby core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/operator cluster/master)
+set(allowed_cluster/check core image atmosphere warp astro scene show render cluster/protocol cluster/link cluster/operator cluster/master)
 set(allowed_cluster/launcher core image warp cluster/protocol cluster/link)
 set(allowed_validate core image atmosphere warp astro scene render)
 set(allowed_offline core image atmosphere warp astro scene show render ${cluster})

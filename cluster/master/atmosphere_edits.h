@@ -19,7 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "atmosphere/parameters.h"
-#include "cluster/master/operator_command.h"
+#include "cluster/operator/operator_command.h"
 #include "scene/scene.h"
 
 namespace zenith::cluster {

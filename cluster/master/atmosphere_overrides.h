@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cluster/master/operator_command.h"
+#include "cluster/operator/operator_command.h"
 #include "cluster/protocol/messages.h"
 
 namespace zenith::cluster {

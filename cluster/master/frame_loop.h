@@ -29,13 +29,14 @@
 
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/frame_pacer.h"
+#include "cluster/master/frame_progress.h"
 #include "cluster/master/master_options.h"
 #include "cluster/master/node_datagrams.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
-#include "cluster/master/operator_desk.h"
 #include "cluster/master/playback.h"
 #include "cluster/master/table_schedule.h"
+#include "cluster/operator/operator_desk.h"
 #include "cluster/protocol/messages.h"
 
 namespace zenith::cluster {

@@ -15,15 +15,16 @@
 #include "cluster/master/frame_barrier.h"
 #include "cluster/master/frame_loop.h"
 #include "cluster/master/heartbeat_monitor.h"
+#include "cluster/master/master_desk.h"
 #include "cluster/master/node_datagrams.h"
 #include "cluster/master/node_listener.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/master/node_statistics.h"
-#include "cluster/master/operator_desk.h"
 #include "cluster/master/playback.h"
 #include "cluster/master/table_preparer.h"
 #include "cluster/master/table_schedule.h"
 #include "cluster/master/takeover.h"
+#include "cluster/operator/operator_desk.h"
 #include "core/log_limiter.h"
 #include "core/strings.h"
 #include "core/timing.h"
@@ -36,7 +37,7 @@ using Clock = std::chrono::steady_clock;
 using core::cat;
 using std::chrono::milliseconds;
 
-/// The wiring: the parts (table_schedule.h, operator_desk.h, frame_loop.h,
+/// The wiring: the parts (table_schedule.h, the operator's desk, frame_loop.h,
 /// node_listener.h), the message dispatch, heartbeats, signals and stopping.
 struct Master::Impl {
   MasterOptions options;
@@ -63,6 +64,7 @@ struct Master::Impl {
   FrameProgress progress;  ///< frame 0 started, stopping, frames presented, the frame in flight
   // Made once the show is loaded (make_parts):
   std::optional<TableSchedule> tables;  ///< which set each node gets and when, every version
+  std::optional<MasterDesk> door;       ///< what the operator's desk may read of the parts above and ask of them
   std::optional<OperatorDesk> desk;     ///< the operator's commands and overrides, the status
   std::optional<FrameLoop> loop;        ///< frames started, held for tables, sent, presented, paced
 
@@ -106,10 +108,13 @@ struct Master::Impl {
                                           options.config.barrier_timeout_ms, options.atmosphere_switches, fps,
                                           options.paced, !(show && options.feed)},
                    scene, show ? &*show : nullptr, sessions, barrier, std::move(actions));
-    desk.emplace(OperatorDesk::Master{options.config, sessions, barrier, *tables, node_statistics, progress,
-                                      show ? &*show : nullptr, clock ? &*clock : nullptr, fps, options.feed != nullptr,
-                                      [this] { return preparer.running(); },
-                                      [this](const std::string& reason) { stop(reason); }},
+    door.emplace(MasterDesk::Parts{options.config, sessions, barrier, *tables, node_statistics, progress,
+                                   show ? &*show : nullptr, clock ? &*clock : nullptr, fps,
+                                   [this] { return preparer.running(); },
+                                   [this](const std::string& reason) { stop(reason); }});
+    desk.emplace(*door,
+                 OperatorDesk::Setup{options.config, show ? &*show : nullptr, clock ? &*clock : nullptr, fps,
+                                     options.feed != nullptr},
                  scene);
     loop.emplace(io, FrameLoop::Parts{options, play, sessions, barrier, *tables, *desk, node_statistics, progress,
                                       datagrams, [this](const std::string& reason) { stop(reason); }});

@@ -14,7 +14,7 @@
 #include "cluster/link/takeover_state.h"
 #include "cluster/master/atmosphere_switch.h"
 #include "cluster/master/frame_feed.h"
-#include "cluster/master/operator_console_options.h"
+#include "cluster/operator/operator_console_options.h"
 
 namespace zenith::cluster {
 

@@ -11,7 +11,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 
-#include "cluster/master/accept_retry.h"
+#include "cluster/link/accept_retry.h"
 #include "cluster/master/node_sessions.h"
 #include "cluster/protocol/handshake.h"
 #include "cluster/protocol/messages.h"

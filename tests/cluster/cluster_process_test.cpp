@@ -35,7 +35,7 @@
 #include <boost/beast/websocket.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cluster/master/osc_packet.h"
+#include "cluster/operator/osc_packet.h"
 #include "cluster/protocol/frame_decoder.h"
 #include "cluster/protocol/handshake.h"
 #include "cluster/protocol/messages.h"

@@ -1,9 +1,9 @@
 // The dome preview from node thumbnails (cluster/node/thumbnail.h,
-// cluster/master/dome_preview.h; docs/operator.md, "Dome preview"): a node's
+// cluster/operator/dome_preview.h; docs/operator.md, "Dome preview"): a node's
 // box-filtered sRGB thumbnail, tiles of a dome master placed by their
 // viewport, other outputs in a grid, thumbnails of another node's output
 // refused.
-#include "cluster/master/dome_preview.h"
+#include "cluster/operator/dome_preview.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// The operator's fade as a ramp over frames (cluster/master/fade_control.h):
+// The operator's fade as a ramp over frames (cluster/operator/fade_control.h):
 // the curve, where a fade starts and lands, colours, blackouts, ranges.
-#include "cluster/master/fade_control.h"
+#include "cluster/operator/fade_control.h"
 
 #include <gtest/gtest.h>
 

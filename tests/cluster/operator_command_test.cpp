@@ -1,7 +1,7 @@
-// The operator's JSON commands (cluster/master/operator_command.h;
+// The operator's JSON commands (cluster/operator/operator_command.h;
 // docs/operator.md, "Commands"): every command, the errors naming the key and
 // the range, and a property test of 100 000 mutated inputs.
-#include "cluster/master/operator_command.h"
+#include "cluster/operator/operator_command.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,13 @@
-// The master's operator desk without sockets (cluster/master/operator_desk.h;
+// The operator's desk without sockets (cluster/operator/operator_desk.h;
 // docs/shows.md, "Playback"; docs/operator.md): what each command does to the
 // next frame, the clock and the status, and what it refuses.
-#include "cluster/master/operator_desk.h"
+#include "cluster/operator/operator_desk.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
+#include "cluster/master/master_desk.h"
 #include "scene/frame_scene.h"
 #include "scene/scene_loader.h"
 
@@ -40,10 +41,10 @@ class OperatorDeskTest : public ::testing::Test {
 
   /// The desk of the default show (`clock` nullptr) or of a show with `clock`.
   OperatorDesk desk(show::PlaybackClock* clock = nullptr) {
-    return OperatorDesk(OperatorDesk::Master{config_, sessions_, barrier_, *schedule_, statistics_, progress_, nullptr,
-                                             clock, 30.0, false, [] { return std::nullopt; },
-                                             [this](const std::string& reason) { stopped_ = reason; }},
-                        scene_);
+    door_.emplace(MasterDesk::Parts{config_, sessions_, barrier_, *schedule_, statistics_, progress_, nullptr, clock,
+                                    30.0, [] { return std::nullopt; },
+                                    [this](const std::string& reason) { stopped_ = reason; }});
+    return OperatorDesk(*door_, OperatorDesk::Setup{config_, nullptr, clock, 30.0, false}, scene_);
   }
 
   FrameState frame(std::uint64_t n) const { return scene::default_show_frame(scene_, n, 0.0, {}, 0); }
@@ -55,6 +56,7 @@ class OperatorDeskTest : public ::testing::Test {
   NodeStatistics statistics_;
   FrameProgress progress_;
   std::optional<TableSchedule> schedule_;
+  std::optional<MasterDesk> door_;  ///< the master's side of the desk's door, over the parts above
   std::string stopped_;
 };
 

@@ -1,8 +1,8 @@
 // The operator console's HTTP rules without sockets
-// (cluster/master/operator_http_server.h; docs/operator.md, "JSON API" and
+// (cluster/operator/operator_http_server.h; docs/operator.md, "JSON API" and
 // "Security"): routes, the embedded page, commands and their errors, the
 // token, and the Host, Origin and Content-Type rules.
-#include "cluster/master/operator_http_server.h"
+#include "cluster/operator/operator_http_server.h"
 
 #include <gtest/gtest.h>
 

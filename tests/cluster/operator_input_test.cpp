@@ -1,7 +1,7 @@
-// The control socket's limits on real loopback sockets (cluster/master/operator_input.h;
+// The control socket's limits on real loopback sockets (cluster/operator/operator_input.h;
 // docs/operator.md, "Threat model"; issue 30, defect 2): no web page's request
 // runs a command, no client holds a line, a slot or the acceptor.
-#include "cluster/master/operator_input.h"
+#include "cluster/operator/operator_input.h"
 
 #include <gtest/gtest.h>
 #include <poll.h>

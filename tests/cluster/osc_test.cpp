@@ -1,4 +1,4 @@
-// OSC for show-control desks (cluster/master/osc_packet.h, osc_command.h,
+// OSC for show-control desks (cluster/operator/osc_packet.h, osc_command.h,
 // osc_receiver.h; docs/operator.md, "OSC"): the decoder against hand-made
 // packets, a property test of 200 000 mutated packets, the addresses and the
 // allowed senders.
@@ -9,9 +9,9 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/address.hpp>
 
-#include "cluster/master/osc_command.h"
-#include "cluster/master/osc_packet.h"
-#include "cluster/master/osc_receiver.h"
+#include "cluster/operator/osc_command.h"
+#include "cluster/operator/osc_packet.h"
+#include "cluster/operator/osc_receiver.h"
 #include "core/json_reader.h"
 #include "core/strings.h"
 #include "tests/cluster/captured_log.h"

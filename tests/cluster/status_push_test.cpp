@@ -1,9 +1,9 @@
 // The operator console's status pushes over a real loopback WebSocket
-// (cluster/master/status_push.h, operator_http_server.h; docs/operator.md,
+// (cluster/operator/status_push.h, operator_http_server.h; docs/operator.md,
 // "Status pushes"): the status on connecting and whenever it changes, the
 // Host and Origin rules, the token as a header or as the first message, and
 // close().
-#include "cluster/master/status_push.h"
+#include "cluster/operator/status_push.h"
 
 #include <gtest/gtest.h>
 #include <sys/socket.h>
@@ -21,7 +21,7 @@
 #include <boost/beast/core/flat_buffer.hpp>
 #include <boost/beast/websocket.hpp>
 
-#include "cluster/master/operator_http_server.h"
+#include "cluster/operator/operator_http_server.h"
 #include "core/process.h"
 
 namespace zenith::cluster {

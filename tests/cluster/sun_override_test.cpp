@@ -1,7 +1,7 @@
-// The operator's sun (cluster/master/sun_override.h; docs/operator.md, "Sun"):
+// The operator's sun (cluster/operator/sun_override.h; docs/operator.md, "Sun"):
 // angles in the camera's sky replace the frame's sun direction, an angle left
 // out keeps its value, clear gives the show's sun back.
-#include "cluster/master/sun_override.h"
+#include "cluster/operator/sun_override.h"
 
 #include <gtest/gtest.h>
 

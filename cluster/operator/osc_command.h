@@ -13,8 +13,8 @@
 // The message becomes the JSON command and goes through parse_operator_command,
 // so it has the same ranges and errors as POST /api/command. There is no
 // /zenith/quit: OSC has no authentication (docs/operator.md, "Security").
-#include "cluster/master/operator_command.h"
-#include "cluster/master/osc_packet.h"
+#include "cluster/operator/operator_command.h"
+#include "cluster/operator/osc_packet.h"
 
 namespace zenith::cluster {
 

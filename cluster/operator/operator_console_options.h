@@ -1,7 +1,7 @@
 #pragma once
 // Where the operator console listens (docs/operator.md): a web page and JSON
 // API over HTTP, and OSC over UDP for show-control desks, both on the master's
-// event loop (cluster/master/operator_desk.h serves them).
+// event loop (cluster/operator/operator_desk.h serves them).
 #include <cstdint>
 #include <optional>
 #include <string>

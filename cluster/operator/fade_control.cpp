@@ -1,4 +1,4 @@
-#include "cluster/master/fade_control.h"
+#include "cluster/operator/fade_control.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "cluster/master/operator_desk.h"
+#include "cluster/operator/operator_desk.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -7,7 +7,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "cluster/master/master_status.h"
 #include "core/strings.h"
 #include "image/png_encoder.h"
 #include "warp/viewport_config.h"
@@ -16,8 +15,8 @@ namespace zenith::cluster {
 
 using core::cat;
 
-OperatorDesk::OperatorDesk(Master master, const scene::Scene& scene)
-    : m_(std::move(master)), sun_(scene), fade_(m_.fps) {}
+OperatorDesk::OperatorDesk(DeskMaster& master, Setup setup, const scene::Scene& scene)
+    : master_(master), setup_(std::move(setup)), sun_(scene), fade_(setup_.fps) {}
 
 // ---------------------------------------------------------------------------- commands
 
@@ -33,16 +32,16 @@ std::string OperatorDesk::on_line(std::string line) {
     }
   }
   if (line == "quit" || line == "stop") {
-    m_.stop("stopped by the operator");
+    master_.stop("stopped by the operator");
     return "stopping";
   }
-  if (!m_.clock) {
+  if (!setup_.clock) {
     if (line == "status")
-      return cat("default show at frame ", m_.barrier.frame(), " (no show file: only status and quit)");
+      return cat("default show at frame ", master_.barrier_frame(), " (no show file: only status and quit)");
     return "no show is playing: only 'status' and 'quit' are available";
   }
   try {
-    std::string reply = m_.clock->apply_command(line);
+    std::string reply = setup_.clock->apply_command(line);
     spdlog::info("master: operator: {} → {}", line, reply);
     return reply;
   } catch (const std::invalid_argument& e) {
@@ -55,14 +54,14 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
   try {
     std::string reply;
     if (std::holds_alternative<oc::Quit>(command)) {
-      m_.stop("stopped by the operator");
+      master_.stop("stopped by the operator");
       reply = "stopping";
     } else if (const auto* exposure = std::get_if<oc::Exposure>(&command)) {
       exposure_ = exposure->exposure;
       reply = exposure->exposure ? cat("exposure ", *exposure->exposure, " from the next frame on")
                                  : std::string("the show's own exposure from the next frame on");
     } else if (const auto* set = std::get_if<oc::Set>(&command)) {
-      reply = m_.tables.set_atmosphere(*set);
+      reply = master_.set_atmosphere(*set);
     } else if (const auto* sun = std::get_if<oc::Sun>(&command)) {
       reply = apply_sun(*sun);
     } else if (const auto* clear = std::get_if<oc::Clear>(&command)) {
@@ -73,17 +72,17 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
       reply = apply_fade(*fade);
     } else if (const auto* blackout = std::get_if<oc::Blackout>(&command)) {
       reply = apply_blackout(*blackout);
-    } else if (!m_.clock) {
+    } else if (!setup_.clock) {
       if (!std::holds_alternative<oc::Status>(command))
         throw std::invalid_argument(cat(describe(command),
                                         ": no show is playing (the default show has no clock: start "
                                         "the master with --show FILE for play, pause, seek, rate and loop)"));
-      reply = cat("default show at frame ", m_.barrier.frame());
+      reply = cat("default show at frame ", master_.barrier_frame());
     } else {
-      if (const auto* seek = std::get_if<oc::Seek>(&command); seek && seek->seconds > m_.clock->duration_s())
+      if (const auto* seek = std::get_if<oc::Seek>(&command); seek && seek->seconds > setup_.clock->duration_s())
         throw std::invalid_argument(cat("command: /seconds = ", seek->seconds, ": must be in [0, ",
-                                        m_.clock->duration_s(), "] s (the show's duration)"));
-      reply = m_.clock->apply_command(describe(command));  // the clock's own words: "seek 12.5", "loop on"
+                                        setup_.clock->duration_s(), "] s (the show's duration)"));
+      reply = setup_.clock->apply_command(describe(command));  // the clock's own words: "seek 12.5", "loop on"
     }
     spdlog::info("master: operator ({}): {} → {}", source, core::escaped(describe(command)), core::escaped(reply));
     return reply;
@@ -96,8 +95,8 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
 
 /// An operator's `sun` (docs/operator.md, "Sun"): the show's sun replaced from the next frame on.
 std::string OperatorDesk::apply_sun(const operator_command::Sun& sun) {
-  if (m_.feed) throw std::invalid_argument(cat(describe(sun), ": the frames come from an offline render's feed"));
-  const scene::SkyAngles angles = sun_.set(sun, m_.progress.started ? &m_.progress.in_flight : nullptr);
+  if (setup_.feed) throw std::invalid_argument(cat(describe(sun), ": the frames come from an offline render's feed"));
+  const scene::SkyAngles angles = sun_.set(sun, master_.latest_frame());
   return fmt::format("sun at elevation {}°, azimuth {}° from the next frame on, until cleared", angles.elevation_deg,
                      angles.azimuth_deg);
 }
@@ -122,22 +121,23 @@ std::string OperatorDesk::apply_preview(const operator_command::Preview& on) {
 
 /// An operator's `clear`: the show's (or scene's) own sun, exposure or atmosphere again.
 std::string OperatorDesk::apply_clear(const operator_command::Clear& clear) {
-  if (clear.what == operator_command::Clear::What::atmosphere) return m_.tables.clear_atmosphere(clear.body);
+  if (clear.what == operator_command::Clear::What::atmosphere) return master_.clear_atmosphere(clear.body);
   if (clear.what == operator_command::Clear::What::exposure) {
     exposure_.reset();
     return "the show's own exposure from the next frame on";
   }
   sun_.clear();
-  return m_.show ? "the show's sun track from the next frame on" : "the default show's sun from the next frame on";
+  return setup_.show ? "the show's sun track from the next frame on" : "the default show's sun from the next frame on";
 }
 
 std::uint64_t OperatorDesk::next_frame() const {
-  return m_.progress.started ? m_.progress.in_flight.frame + 1 : m_.barrier.frame();
+  const FrameState* latest = master_.latest_frame();
+  return latest ? latest->frame + 1 : master_.barrier_frame();
 }
 
 /// An operator's `fade` (docs/operator.md, "Fades"): from the next frame on, on every node.
 std::string OperatorDesk::apply_fade(const operator_command::Fade& fade) {
-  if (m_.feed) throw std::invalid_argument(cat(describe(fade), ": the frames come from an offline render's feed"));
+  if (setup_.feed) throw std::invalid_argument(cat(describe(fade), ": the frames come from an offline render's feed"));
   const std::uint64_t frame = next_frame();
   std::optional<glm::dvec3> colour;
   if (fade.colour) colour = glm::dvec3((*fade.colour)[0], (*fade.colour)[1], (*fade.colour)[2]);
@@ -147,12 +147,13 @@ std::string OperatorDesk::apply_fade(const operator_command::Fade& fade) {
                                                : fmt::format("level {} of [{}, {}, {}]", fade.level, c.x, c.y, c.z);
   if (fade_.frames() == 0) return fmt::format("fade to {} at frame {}", toward, frame);
   return fmt::format("fade to {} over {} frames ({} s at {} Hz), frames {} to {}", toward, fade_.frames(), fade.seconds,
-                     m_.fps, frame, frame + fade_.frames() - 1);
+                     setup_.fps, frame, frame + fade_.frames() - 1);
 }
 
 /// An operator's `blackout`: black (or the picture again) at the next frame on every node.
 std::string OperatorDesk::apply_blackout(const operator_command::Blackout& blackout) {
-  if (m_.feed) throw std::invalid_argument(cat(describe(blackout), ": the frames come from an offline render's feed"));
+  if (setup_.feed)
+    throw std::invalid_argument(cat(describe(blackout), ": the frames come from an offline render's feed"));
   const std::uint64_t frame = next_frame();
   if (blackout.on) {
     fade_.start(frame, 1.0, glm::dvec3(0.0), 0.0);
@@ -181,30 +182,19 @@ void OperatorDesk::add_thumbnail(const std::string& node, const Thumbnail& thumb
 
 std::uint64_t OperatorDesk::preview_interval_frames() const {
   constexpr double kPreviewsPerSecond = 2.0;
-  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::lround(m_.fps / kPreviewsPerSecond)));
+  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::lround(setup_.fps / kPreviewsPerSecond)));
 }
 
 // ---------------------------------------------------------------------------- status
 
 nlohmann::json OperatorDesk::status() const {
-  const FrameProgress& p = m_.progress;
-  const TableSchedule& t = m_.tables;
-  nlohmann::json status = master_status(
-      StatusSources{m_.config,         m_.sessions,
-                    m_.barrier,        t.tables(),
-                    m_.preparing(),    m_.statistics,
-                    t.edits(),         m_.show,
-                    m_.clock,          p.started,
-                    p.stopping,        p.started ? &p.in_flight : nullptr,
-                    p.presented,       m_.fps,
-                    exposure_,         t.pending_change(),
-                    t.last_error(),    p.started ? std::optional(sun_.angles_of(p.in_flight)) : std::nullopt,
-                    sun_.angles(),     m_.show ? &t.overrides() : nullptr,
-                    t.show_versions(), preview_ ? &*preview_ : nullptr,
-                    preview_on_});
+  const FrameState* latest = master_.latest_frame();
+  nlohmann::json status =
+      master_.status(DeskStatus{exposure_, latest ? std::optional(sun_.angles_of(*latest)) : std::nullopt,
+                                sun_.angles(), preview_ ? &*preview_ : nullptr, preview_on_});
   // The latest frame's fade and the operator's (docs/operator.md, "Status").
-  const scene::FadeState shown = p.started ? p.in_flight.fade : scene::FadeState{};
-  const std::uint64_t frame = p.started ? p.in_flight.frame : 0;
+  const scene::FadeState shown = latest ? latest->fade : scene::FadeState{};
+  const std::uint64_t frame = latest ? latest->frame : 0;
   status["fade"] = {{"level", shown.level},
                     {"colour", {shown.colour.x, shown.colour.y, shown.colour.z}},
                     {"operator", fade_.active(frame)},
@@ -225,7 +215,7 @@ std::optional<std::string> OperatorDesk::preview_png() const {
 void OperatorDesk::start_console(boost::asio::io_context& io, const OperatorConsoleOptions& console) {
   const auto command = [this](const OperatorCommand& c, const std::string& source) { return run(c, source); };
   if (console.http_port) {
-    preview_.emplace(m_.config, warp::load_viewport_config(m_.config.viewports));
+    preview_.emplace(setup_.config, warp::load_viewport_config(setup_.config.viewports));
     http_.emplace(io,
                   OperatorHttpServer::Options{console.http_host, *console.http_port, console.token, console.http_names},
                   OperatorHttpServer::Handlers{[this] { return status(); }, command, [this] { return preview_png(); }});

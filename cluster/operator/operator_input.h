@@ -25,7 +25,7 @@
 #include <boost/asio/posix/stream_descriptor.hpp>
 #include <boost/asio/streambuf.hpp>
 
-#include "cluster/master/accept_retry.h"
+#include "cluster/link/accept_retry.h"
 #include "core/log_limiter.h"
 
 namespace zenith::cluster {

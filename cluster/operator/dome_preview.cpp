@@ -1,4 +1,4 @@
-#include "cluster/master/dome_preview.h"
+#include "cluster/operator/dome_preview.h"
 
 #include <algorithm>
 #include <cmath>

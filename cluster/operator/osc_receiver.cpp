@@ -1,11 +1,11 @@
-#include "cluster/master/osc_receiver.h"
+#include "cluster/operator/osc_receiver.h"
 
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "cluster/master/osc_command.h"
+#include "cluster/operator/osc_command.h"
 #include "core/strings.h"
 
 namespace zenith::cluster {

@@ -1,4 +1,4 @@
-#include "cluster/master/sun_override.h"
+#include "cluster/operator/sun_override.h"
 
 #include <cmath>
 

@@ -21,8 +21,8 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/udp.hpp>
 
-#include "cluster/master/operator_command.h"
-#include "cluster/master/osc_packet.h"
+#include "cluster/operator/operator_command.h"
+#include "cluster/operator/osc_packet.h"
 #include "core/log_limiter.h"
 
 namespace zenith::cluster {

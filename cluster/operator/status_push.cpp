@@ -1,4 +1,4 @@
-#include "cluster/master/status_push.h"
+#include "cluster/operator/status_push.h"
 
 #include <spdlog/spdlog.h>
 

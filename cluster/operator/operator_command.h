@@ -22,7 +22,8 @@
 //   {"command": "preview", "preview": true|false}   also "on" / "off": the dome preview from node thumbnails
 //   {"command": "fade", "level": L, "seconds": S, "colour": [R, G, B]}
 //       every output toward colour (display-linear, each in [0, 1]; default: the colour it has, black at first)
-//       to level L in [0, 1] (default 1; 0: back to the picture) over S in [0, 3600] s (cluster/master/fade_control.h)
+//       to level L in [0, 1] (default 1; 0: back to the picture) over S in [0, 3600] s
+//       (cluster/operator/fade_control.h)
 //   {"command": "blackout", "blackout": true|false}  also "on" / "off"; default true: black (or the picture) at the
 //   next frame
 // Unknown keys are errors.

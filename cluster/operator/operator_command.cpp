@@ -1,9 +1,9 @@
-#include "cluster/master/operator_command.h"
+#include "cluster/operator/operator_command.h"
 
 #include <cmath>
 #include <sstream>
 
-#include "cluster/master/fade_control.h"
+#include "cluster/operator/fade_control.h"
 #include "core/json_reader.h"
 #include "core/strings.h"
 #include "scene/scene.h"

@@ -1,15 +1,18 @@
 #pragma once
-// The master's operator desk (docs/shows.md, "Playback"; docs/operator.md):
-// what an operator's command does, the operator's overrides of the show
-// (exposure, sun, dome preview on or off; atmospheres go to the table
-// schedule), and the status the console shows. Commands come as lines from
-// the console and the control socket (OperatorInput), and as parsed commands
-// from the HTTP console (OperatorHttpServer) and OSC (OscReceiver), which the
-// desk starts on the master's io_context when asked to; every command changes
-// the show between frames, so that every node gets one consistent state per
-// frame. Without start_*() it opens nothing: tests/cluster/operator_desk_test.cpp
-// drives it with a scene, a clock and a table schedule, no sockets.
-// Networking thread only.
+// The operator's desk (docs/shows.md, "Playback"; docs/operator.md): what an
+// operator's command does, the operator's overrides of the show (exposure,
+// sun, fade, dome preview on or off), and the status the console shows.
+// Commands come as lines from the console and the control socket
+// (OperatorInput), and as parsed commands from the HTTP console
+// (OperatorHttpServer) and OSC (OscReceiver), which the desk starts on the
+// master's io_context when asked to; every command changes the show between
+// frames, so that every node gets one consistent state per frame. What the
+// master owns — where the frames are, the atmospheres' table versions (a
+// `set` goes to the master's table schedule), the nodes' status, the end of
+// the show — the desk reaches through one door, DeskMaster
+// (cluster/operator/desk_master.h). Without start_*() it opens nothing:
+// tests/cluster/operator_desk_test.cpp drives it with a scene, a clock and
+// the master's parts, no sockets. Networking thread only.
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -19,19 +22,15 @@
 #include <nlohmann/json.hpp>
 
 #include "cluster/link/cluster_config.h"
-#include "cluster/master/dome_preview.h"
-#include "cluster/master/fade_control.h"
-#include "cluster/master/frame_barrier.h"
-#include "cluster/master/node_sessions.h"
-#include "cluster/master/node_statistics.h"
-#include "cluster/master/operator_command.h"
-#include "cluster/master/operator_console_options.h"
-#include "cluster/master/operator_http_server.h"
-#include "cluster/master/operator_input.h"
-#include "cluster/master/osc_receiver.h"
-#include "cluster/master/sun_override.h"
-#include "cluster/master/table_preparer.h"
-#include "cluster/master/table_schedule.h"
+#include "cluster/operator/desk_master.h"
+#include "cluster/operator/dome_preview.h"
+#include "cluster/operator/fade_control.h"
+#include "cluster/operator/operator_command.h"
+#include "cluster/operator/operator_console_options.h"
+#include "cluster/operator/operator_http_server.h"
+#include "cluster/operator/operator_input.h"
+#include "cluster/operator/osc_receiver.h"
+#include "cluster/operator/sun_override.h"
 #include "cluster/protocol/messages.h"
 #include "scene/scene.h"
 #include "show/playback_clock.h"
@@ -39,36 +38,22 @@
 
 namespace zenith::cluster {
 
-/// How far the frames are: written by the master's frame loop, read by the desk.
-struct FrameProgress {
-  bool started = false;  ///< frame 0 has started
-  bool stopping = false;
-  std::uint64_t presented = 0;  ///< frames presented so far
-  FrameState in_flight;         ///< the latest frame started (meaningful once started)
-};
-
 /// Invariant: the overrides change frames only through shape() (the next frame
 /// on), and a refused command changes nothing.
 class OperatorDesk {
  public:
-  /// The master's parts the desk reads (they outlive it) and what it asks of the master.
-  struct Master {
-    const ClusterConfig& config;
-    const NodeSessions& sessions;
-    const FrameBarrier& barrier;
-    TableSchedule& tables;
-    const NodeStatistics& statistics;
-    const FrameProgress& progress;
+  /// What the desk knows of the show from the start.
+  struct Setup {
+    const ClusterConfig& config;           ///< its viewports place the dome preview's thumbnails
     const show::Show* show = nullptr;      ///< nullptr: the default show
     show::PlaybackClock* clock = nullptr;  ///< a show's clock (nullptr with the default show)
     double fps = 30.0;
     bool feed = false;  ///< the frames come from an offline render's feed
-    std::function<std::optional<TablePreparer::Progress>()> preparing;  ///< the preparer's running job
-    std::function<void(const std::string& reason)> stop;
   };
 
-  /// `scene`: the master's (the local horizons of the operator's sun).
-  OperatorDesk(Master master, const scene::Scene& scene);
+  /// `master`: the door to the master (outlives the desk); `scene`: the
+  /// master's (the local horizons of the operator's sun).
+  OperatorDesk(DeskMaster& master, Setup setup, const scene::Scene& scene);
 
   // ---- commands ----
   /// One command line from the console or the control socket; the reply line.
@@ -119,7 +104,8 @@ class OperatorDesk {
   /// The first frame a command changes: the next one to start.
   std::uint64_t next_frame() const;
 
-  Master m_;
+  DeskMaster& master_;
+  Setup setup_;
   std::optional<double> exposure_;  ///< the operator's exposure, replacing the show's (or scene's)
   SunOverride sun_;                 ///< the operator's sun, replacing the show's until cleared
   FadeControl fade_;                ///< the operator's fade and blackout, on every output

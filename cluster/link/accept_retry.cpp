@@ -1,4 +1,4 @@
-#include "cluster/master/accept_retry.h"
+#include "cluster/link/accept_retry.h"
 
 #include <spdlog/spdlog.h>
 

@@ -11,7 +11,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "cluster/master/operator_command.h"
+#include "cluster/operator/operator_command.h"
 #include "cluster/protocol/messages.h"
 #include "scene/local_horizon.h"
 #include "scene/scene.h"

@@ -1,4 +1,4 @@
-#include "cluster/master/osc_packet.h"
+#include "cluster/operator/osc_packet.h"
 
 #include <bit>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "cluster/master/operator_input.h"
+#include "cluster/operator/operator_input.h"
 
 #include <spdlog/spdlog.h>
 

@@ -1,4 +1,4 @@
-#include "cluster/master/osc_command.h"
+#include "cluster/operator/osc_command.h"
 
 #include <cstdio>
 #include <cstdlib>

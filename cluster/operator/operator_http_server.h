@@ -2,7 +2,7 @@
 // The operator console's HTTP server (docs/operator.md), on the master's own
 // io_context (Boost.Beast): the web page compiled into the binary at `/`,
 // GET /api/status (the master's state as JSON), POST /api/command (one
-// JSON command, cluster/master/operator_command.h), GET /api/preview (the
+// JSON command, cluster/operator/operator_command.h), GET /api/preview (the
 // dome preview as PNG, while it is on) and the WebSocket /api/events that
 // pushes the status whenever it changes (status_push.h). Commands are handed to the
 // master on its networking thread, between frames, like console commands.
@@ -30,9 +30,9 @@
 #include <boost/beast/http/string_body.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cluster/master/accept_retry.h"
-#include "cluster/master/operator_command.h"
-#include "cluster/master/status_push.h"
+#include "cluster/link/accept_retry.h"
+#include "cluster/operator/operator_command.h"
+#include "cluster/operator/status_push.h"
 #include "cluster/protocol/handshake.h"
 #include "core/log_limiter.h"
 

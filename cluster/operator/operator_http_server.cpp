@@ -1,4 +1,4 @@
-#include "cluster/master/operator_http_server.h"
+#include "cluster/operator/operator_http_server.h"
 
 #include <spdlog/spdlog.h>
 
@@ -38,7 +38,7 @@ constexpr std::uint32_t kMaxHeaderBytes = 8 * 1024;
 /// long is closed: a browser sends one at once, a slow client holds no slot.
 constexpr std::chrono::seconds kRequestTimeout{5};
 
-/// The files of the page (cluster/master/console/), by URL path.
+/// The files of the page (cluster/operator/console/), by URL path.
 struct PageFile {
   std::string_view path, name, content_type;
 };
