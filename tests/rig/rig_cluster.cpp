@@ -90,10 +90,17 @@ std::string RigCluster::node_name(int k) {
 }  // the rig kills what it started
 
 void RigCluster::start() {
-  master_ = rig_.spawn("master", setup_.zenith,
-                       {"master", "--cluster", config_.string(), "--frames", std::to_string(setup_.frames), "--cache",
-                        setup_.cache.string(), "--wait-for-nodes-ms", std::to_string(setup_.wait_for_nodes_ms)},
-                       log("master"));
+  std::vector<std::string> args = {"master",
+                                   "--cluster",
+                                   config_.string(),
+                                   "--frames",
+                                   std::to_string(setup_.frames),
+                                   "--cache",
+                                   setup_.cache.string(),
+                                   "--wait-for-nodes-ms",
+                                   std::to_string(setup_.wait_for_nodes_ms)};
+  if (setup_.sun_step_deg) args.insert(args.end(), {"--sun-step-deg", std::to_string(*setup_.sun_step_deg)});
+  master_ = rig_.spawn("master", setup_.zenith, args, log("master"));
   if (setup_.standby)
     standby_ =
         rig_.spawn("standby", setup_.zenith,

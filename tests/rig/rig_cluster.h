@@ -49,6 +49,8 @@ struct RigClusterSetup {
   /// own PC; on the rig every host shares this machine's cores, and a nice
   /// joiner leaves them to the nodes already playing, as its own PC would.
   int late_node_niceness = 0;
+  /// The default show's sun turns this much a frame (`zenith master --sun-step-deg`; unset: the master's default).
+  std::optional<double> sun_step_deg;
   /// More arguments for node k's `zenith node` (a rehearsal of faults, e.g. its clock's).
   std::map<int, std::vector<std::string>> node_args;
 };
