@@ -2,7 +2,7 @@
 // What a cluster's nodes compare of the sky data each reads from its own copy
 // of stellarium-data (docs/protocol.md, FrameState's sky.star_catalogue): the
 // star catalogue's identity (astro/star_catalogue.h) joined with the Moon's
-// albedo map's (render/frame/moon_albedo_map.h), so every node draws the same
+// albedo map's (render/night/moon_albedo_map.h), so every node draws the same
 // stars and the same Moon. The data never travel, only this digest.
 #include <filesystem>
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
 // render_bench --stars LIMIT : what the night sky's pass
-// (render/frame/star_pass.h) adds to a frame. The scene (the ground view by
+// (render/night/star_pass.h) adds to a frame. The scene (the ground view by
 // default) gets a sky clock at the camera's own latitude and longitude at
 // --stars-time (default 2026-12-21T22:00:00Z, a winter night) and a night
 // exposure (--stars-exposure, default 3e5); the stars are the catalogue's to V
@@ -11,7 +11,7 @@
 // bench/results/star_frame_times.csv).
 //
 // render_bench --moonlight: the same for the Moon's light of the atmosphere
-// passes (render/frame/moon_light.h): frames with the moonlight and without
+// passes (render/night/moon_light.h): frames with the moonlight and without
 // (no stars, the night floor and the Moon's disc in both) at a full Moon
 // (--stars-time, default for it 2026-01-03T20:00:00Z: the full Moon some 20°
 // up in the east of the ground view's site), then by day with the Moon up

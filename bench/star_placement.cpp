@@ -14,7 +14,7 @@
 #include "core/units.h"
 #include "render/frame/frame_constants.h"
 #include "render/frame/refraction_cache.h"
-#include "render/frame/star_pass.h"
+#include "render/night/star_pass.h"
 #include "scene/frame_scene.h"
 #include "show/show.h"
 #include "warp/fisheye_projection.h"

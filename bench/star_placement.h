@@ -5,12 +5,12 @@
 // 1. The renderer through the show's own exposure track every --stars-step
 //    show seconds on a fisheye dome master of --stars-dome pixels, each frame
 //    drawn twice and the second timed (PassTimer's CPU parts): the star test
-//    (render/frame/star_visibility.h, both stages) and the star placement
+//    (render/night/star_visibility.h, both stages) and the star placement
 //    (the catalogue's turn and star_splats), with the stars placed and tested.
 // 2. At the show's last frame (night), star_splats alone on the CPU, outside
 //    the renderer, on the catalogue's stars at that instant: the whole
 //    placement on the worker threads, then place_star's steps
-//    (render/frame/star_field.h) one after the other over every star on one
+//    (render/night/star_placement.h) one after the other over every star on one
 //    thread — the star test's deviates of the twinkle's interval for every star
 //    (StarField::largest_scintillation_normal, on the worker threads; the
 //    placement reads them), the turn, the rejections, refraction, the occluders, the

@@ -11,7 +11,7 @@
 #include "astro/sky_positions.h"
 #include "bench/star_frames.h"
 #include "core/units.h"
-#include "render/frame/star_pass.h"
+#include "render/night/star_pass.h"
 #include "scene/frame_scene.h"
 #include "show/show.h"
 #include "warp/fisheye_projection.h"

@@ -1,6 +1,6 @@
 #pragma once
 // render_bench --stars LIMIT --stars-show SHOW : where the
-// star pass's test (render/frame/star_visibility.h) lets the stars run
+// star pass's test (render/night/star_visibility.h) lets the stars run
 // through a show's twilight, and what skipping them saves. The show's frames
 // every --stars-step seconds of show time on a fisheye dome master of
 // --stars-dome pixels: the sun's altitude, the exposure, the test this one

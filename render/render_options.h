@@ -27,21 +27,21 @@ enum class SkyViewTableUse {
   off,        ///< never: the 4D tables for every pixel (the reference the table is tested against)
 };
 
-/// The night sky's light (render/frame/star_pass.h, docs/night-sky.md,
+/// The night sky's light (render/night/star_pass.h, docs/night-sky.md,
 /// "Rendering the night sky"), drawn for scenes with a "time" and "site" (the
 /// stars) or a "night_sky"/"light_pollution" (the floor and the glow).
 struct NightSkyRenderOptions {
   bool stars = true;        ///< the catalogue's stars as point sources
   bool night_floor = true;  ///< the natural night sky and light pollution
   bool moon = true;         ///< the Moon's disc by its phase (Lommel–Seeliger), with the stars' sky clock
-  /// The Moon lights the atmospheres (render/frame/moon_light.h): the sky and the
+  /// The Moon lights the atmospheres (render/night/moon_light.h): the sky and the
   /// ground by moonlight, from the same tables, where its own test finds it visible.
   bool moonlight = true;
-  /// Skip the stars when the frame's sky hides them all (render/frame/star_visibility.h);
+  /// Skip the stars when the frame's sky hides them all (render/night/star_visibility.h);
   /// false: place and draw them whenever they are on (the frame the test is checked against).
   bool skip_hidden_stars = true;
   /// Skip the night floor and the glow when the frame's sky hides them
-  /// (render/frame/star_pass.h); false: against a black sky only (the frame the
+  /// (render/night/star_pass.h); false: against a black sky only (the frame the
   /// test is checked against).
   bool skip_hidden_floor = true;
   /// The catalogue (astro/star_catalogue.h): stellarium-data's directory and
@@ -49,7 +49,7 @@ struct NightSkyRenderOptions {
   /// frame that needs it; a missing catalogue logs a warning and draws no stars.
   std::filesystem::path star_directory = "/usr/share/stellarium/stars/default";
   double star_magnitude_limit = 7.0;
-  /// The Moon's albedo map (render/frame/moon_albedo_map.h): stellarium-data's
+  /// The Moon's albedo map (render/night/moon_albedo_map.h): stellarium-data's
   /// equirectangular texture, loaded once per renderer with the first disc; a
   /// missing or unreadable file logs one warning and draws a uniform albedo.
   std::filesystem::path moon_albedo_map = "/usr/share/stellarium/textures/moon.png";  // astro::kStellariumMoonMap

@@ -25,9 +25,7 @@
 #include "render/frame/frame_tiles.h"
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
-#include "render/frame/moon_light.h"
 #include "render/frame/pass_timer.h"
-#include "render/frame/star_pass.h"
 #include "render/frame/sun_light.h"
 #include "render/frame/sun_refraction.h"
 #include "render/frame/tile_classification.h"
@@ -37,6 +35,8 @@
 #include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/night/moon_light.h"
+#include "render/night/star_pass.h"
 #include "render/shader_bindings.h"
 #include "scene/albedo_map.h"
 
@@ -77,7 +77,7 @@ struct Renderer::Impl {
   std::unique_ptr<gl::ProgramBuilds> builds;
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
   RefractionCache refractions;   // the air's refraction at the camera: stars, the Moon, the Sun's disc
-  NightSkyPass night_sky;        // stars, the night floor, light pollution (render/frame/star_pass.h)
+  NightSkyPass night_sky;        // stars, the night floor, light pollution (render/night/star_pass.h)
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   AlbedoArray albedo;  // the bodies' maps, one layer per body (render/frame/albedo_array.h)
   std::string projection_key;
@@ -675,7 +675,7 @@ void Renderer::draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer
 
 void Renderer::draw_moonlight(Frame& frame, const BandTiles& band, PassTimer& timer) {
   // The same passes over the band's atmosphere tiles, lit by the Moon and
-  // added to the output the sun's passes wrote (render/frame/moon_light.h).
+  // added to the output the sun's passes wrote (render/night/moon_light.h).
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   frame.light = &frame.moon;
   draw_one_pass_tiles(frame, band, timer);

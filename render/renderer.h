@@ -18,13 +18,13 @@
 //     pass (gbuffer.comp: nearest sphere, albedo → G-buffer), per group one pass
 //     per atmosphere front to back (atmosphere_pass.comp: running radiance and
 //     transmittance) and resolve.comp (airless surfaces, the sun's disc, colour);
-//   - where the Moon could light the sky visibly (render/frame/moon_light.h),
+//   - where the Moon could light the sky visibly (render/night/moon_light.h),
 //     the atmosphere tiles again with the Moon as the light, added;
 //   - where the sun could not (render/frame/sun_light.h: far below the
 //     horizon), an atmosphere's one-pass tiles of sky and ground are left at
 //     zero (the band's output cleared first) instead of drawn by the sun's pass;
 //
-// then the night sky's pass (render/frame/star_pass.h: the catalogue's stars as
+// then the night sky's pass (render/night/star_pass.h: the catalogue's stars as
 // point sources of flux, the night floor, light pollution) adds its light to
 // the band's radiance, skipped by its own test where nothing would show;
 // then the band is read back and its rows handed to the caller (EXR/PNG writers
@@ -93,13 +93,13 @@ struct FrameStats {
   /// (the first frame of a variant), with how many were built.
   double tables_s = 0.0, programs_s = 0.0;
   int programs_built = 0;
-  /// The night sky's pass (render/frame/star_pass.h): stars placed in the
+  /// The night sky's pass (render/night/star_pass.h): stars placed in the
   /// image, whether it ran (false: no sky clock or night sky, or its own test
   /// found nothing visible), the catalogue's identity of the stars drawn.
   std::size_t stars = 0;
   bool night_sky_drawn = false;
   std::string star_catalogue_identity;
-  /// The stars' own test (render/frame/star_visibility.h), per linear sRGB
+  /// The stars' own test (render/night/star_visibility.h), per linear sRGB
   /// channel × exposure, largest channel: the least the sky behind any star
   /// can be, the most the stars can add to a pixel of sky; whether they could
   /// show (false: skipped, no star placed). Zeros and true where it did not run.
@@ -112,14 +112,14 @@ struct FrameStats {
   /// value the deciding stage allowed [codes; < 0.495: skipped].
   std::size_t stars_tested = 0;
   double star_code_change = 0.0;
-  /// The Moon's disc (render/frame/moon_albedo_map.h): the identity of its
+  /// The Moon's disc (render/night/moon_albedo_map.h): the identity of its
   /// albedo map, given with the stars or the disc ("" neither, or the uniform
   /// albedo of a missing map: astro/sky_data_identity.h joins it with the
   /// catalogue's), and the map's photometric mean over the lit disc the
   /// disc's radiance was divided by (1 without a disc).
   std::string moon_map_identity;
   double moon_mean_albedo = 1.0;
-  /// The Moon lit the atmospheres (render/frame/moon_light.h): false where its
+  /// The Moon lit the atmospheres (render/night/moon_light.h): false where its
   /// own test found nothing it could show (daylight, the Moon far below the horizon).
   bool moonlight = false;
   /// The test's bound: the largest linear display value the Moon's light could
@@ -192,7 +192,7 @@ class Renderer {
   void prepare_bodies(Frame& frame);
   /// The tables of every atmosphere the view touches, uploaded when not resident.
   void make_tables_resident(Frame& frame);
-  /// The Moon as a second light (render/frame/moon_light.h): its direction and
+  /// The Moon as a second light (render/night/moon_light.h): its direction and
   /// irradiance, and whether its passes run (their own test).
   void light_by_the_moon(Frame& frame, PassTimer& timer);
   void light_by_the_sun(Frame& frame, PassTimer& timer);

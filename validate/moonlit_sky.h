@@ -1,6 +1,6 @@
 #pragma once
 // The published model of the moonlit sky's brightness that the renderer's
-// moonlight (the precomputed tables lit by the Moon, render/frame/moon_light.h)
+// moonlight (the precomputed tables lit by the Moon, render/night/moon_light.h)
 // is checked against (docs/night-sky.md, "Moonlight").
 //
 // Krisciunas & Schaefer (1991, PASP 103, 1033), fitted to V-band sky

@@ -32,12 +32,12 @@ struct AtmospherePass {
   GpuAtmosphere* gpu = nullptr;
   bool sky_view = false;       // the camera is inside: the sky-view variant where it can
   bool sunlit = true;          // the sun lights it visibly this frame (render/frame/sun_light.h)
-  bool moonlit = false;        // the Moon lights it this frame (render/frame/moon_light.h)
+  bool moonlit = false;        // the Moon lights it this frame (render/night/moon_light.h)
   bool moon_sky_view = false;  // and the Moon's sky-view table is filled too
 };
 
 /// A light of the atmosphere passes other than the scene's sun: the Moon
-/// (render/frame/moon_light.h). The tables are per unit irradiance of their
+/// (render/night/moon_light.h). The tables are per unit irradiance of their
 /// source, so a second source is the same passes with its direction and
 /// irradiance, added to what the sun's passes drew.
 struct FrameLight {
@@ -76,7 +76,7 @@ struct FrameInProgress : FrameConstants {
   int band_rows = 0;
   const std::vector<BandTiles>* bands = nullptr;
 
-  // ---- the Moon's light (render/frame/moon_light.h): drawn for the passes
+  // ---- the Moon's light (render/night/moon_light.h): drawn for the passes
   // marked moonlit, when `moonlit` (any is)
   bool moonlit = false;
   FrameLight moon;

@@ -64,9 +64,9 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   cpu_transmittance_.channels = tables.channels;
   cpu_transmittance_.transmittance = tables.transmittance;
   cpu_transmittance_.hash = tables.hash;
-  radiance_bound_ = SkyRadianceBound(model, tables);
-  radiance_lower_bound_ =
-      SkyRadianceLowerBound(model, tables, features.multiple_scattering && tables.scattering_orders >= 2);
+  radiance_bound_ = atmosphere::lut::SkyRadianceBound(model, tables);
+  radiance_lower_bound_ = atmosphere::lut::SkyRadianceLowerBound(
+      model, tables, features.multiple_scattering && tables.scattering_orders >= 2);
 
   atmosphere::lut::PrecomputeOptions options;
   options.sizes = tables.sizes;

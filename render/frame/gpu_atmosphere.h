@@ -15,8 +15,8 @@
 
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
-#include "render/frame/sky_radiance_bound.h"
-#include "render/frame/sky_radiance_lower_bound.h"
+#include "atmosphere/lut/sky_radiance_bound.h"
+#include "atmosphere/lut/sky_radiance_lower_bound.h"
 #include "render/frame/sky_view_table.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
@@ -75,7 +75,7 @@ class GpuAtmosphere {
   std::size_t table_bytes() const { return table_bytes_; }
   /// The transmittance table on the CPU too (geometry, sizes, channels and
   /// transmittance of the table set; the other tables empty): the stars'
-  /// extinction and the night sky's (render/frame/star_field.h) read it per
+  /// extinction and the night sky's (render/night/star_transmittance.h) read it per
   /// star, as the sky's passes read the same table on the GPU. A few hundred kB.
   const atmosphere::lut::LookupTables& cpu_transmittance() const { return cpu_transmittance_; }
 
@@ -92,11 +92,11 @@ class GpuAtmosphere {
   void fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad, std::size_t light = 0);
 
   /// The most these tables can give per unit irradiance of a source
-  /// (render/frame/sky_radiance_bound.h): the moonlight passes' test.
-  const SkyRadianceBound& radiance_bound() const { return radiance_bound_; }
+  /// (atmosphere/lut/sky_radiance_bound.h): the moonlight passes' test.
+  const atmosphere::lut::SkyRadianceBound& radiance_bound() const { return radiance_bound_; }
   /// The least these tables give on a ray to space from a camera inside, per
-  /// unit irradiance of the sun (render/frame/sky_radiance_lower_bound.h): the star pass's test.
-  const SkyRadianceLowerBound& radiance_lower_bound() const { return radiance_lower_bound_; }
+  /// unit irradiance of the sun (atmosphere/lut/sky_radiance_lower_bound.h): the star pass's test.
+  const atmosphere::lut::SkyRadianceLowerBound& radiance_lower_bound() const { return radiance_lower_bound_; }
 
  private:
   /// Group g's tables (texture units 0–4), the model's buffers and the texel coordinates.
@@ -118,8 +118,8 @@ class GpuAtmosphere {
   std::unique_ptr<SkyViewTable> sky_view_;
   std::size_t table_bytes_ = 0;
   atmosphere::lut::LookupTables cpu_transmittance_;
-  SkyRadianceBound radiance_bound_;
-  SkyRadianceLowerBound radiance_lower_bound_;
+  atmosphere::lut::SkyRadianceBound radiance_bound_;
+  atmosphere::lut::SkyRadianceLowerBound radiance_lower_bound_;
 };
 
 }  // namespace zenith::render

@@ -3,7 +3,7 @@
 // 512-entry table by quadrature, milliseconds to build), kept while the
 // atmosphere and the camera's altitude to the metre stay the same, and shared
 // by the passes that refract what they draw: the star pass (stars and the
-// Moon, render/frame/star_pass.h) and the Sun's disc
+// Moon, render/night/star_pass.h) and the Sun's disc
 // (render/frame/sun_refraction.h) — one table per camera altitude for both.
 #include <memory>
 #include <string>

@@ -31,7 +31,7 @@ class SkyViewTable {
   static constexpr int kZenithTexels = 64;    ///< SKY_VIEW_ZENITH_TEXELS, per half
   static constexpr int kLayersPerGroup = 6;   ///< SKY_VIEW_LAYERS
   /// Tables per atmosphere: one per light of the passes (0 the sun, 1 the
-  /// Moon: render/frame/moon_light.h); the Moon's is allocated on its first fill.
+  /// Moon: render/night/moon_light.h); the Moon's is allocated on its first fill.
   static constexpr std::size_t kLights = 2;
 
   /// SKY_VIEW_AZIMUTH_TEXELS, SKY_VIEW_ZENITH_TEXELS and SKY_VIEW_LAYERS from the

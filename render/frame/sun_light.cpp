@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/frame/sky_radiance_bound.h"
+#include "atmosphere/lut/sky_radiance_bound.h"
 #include "render/frame/tile_classification.h"
 
 namespace zenith::render {
@@ -19,8 +19,8 @@ double light_display_bound(const FrameInProgress& frame, const AtmospherePass& p
   const glm::dvec3 up = glm::normalize(scene.camera.position_m - planet.position_m);
   const ShellInView shell{pass.body, pass.direction_camera, pass.distance_m, pass.top_radius_m, true, false};
   const bool bodies_inside = !bodies_inside_shell(scene, shell).empty();
-  const double mu_s_max = source_cosine_bound(glm::dot(up, direction), pass.distance_m, pass.gpu->ground_radius_m(),
-                                              pass.gpu->top_radius_m(), bodies_inside);
+  const double mu_s_max = atmosphere::lut::source_cosine_bound(
+      glm::dot(up, direction), pass.distance_m, pass.gpu->ground_radius_m(), pass.gpu->top_radius_m(), bodies_inside);
   // A camera inside the shell with no other body in it reads the 4D tables at its own radius only.
   const bool at_camera = !bodies_inside && pass.distance_m <= pass.gpu->top_radius_m();
   const std::vector<double> k = pass.gpu->radiance_bound().radiance_per_irradiance(

@@ -4,8 +4,8 @@
 // below the horizon that no point any pixel reads is lit — for the Earth below
 // μs_min = −sin 3α, about 24° down, where the tables hold their vanishing
 // values — and its passes draw a black sky at the full cost of the day's.
-// The test is the Moon's (render/frame/moon_light.h): the tables' bound for the
-// sun's cosine over every point a pixel reads (render/frame/sky_radiance_bound.h),
+// The test is the Moon's (render/night/moon_light.h): the tables' bound for the
+// sun's cosine over every point a pixel reads (atmosphere/lut/sky_radiance_bound.h),
 // times the sun's irradiance, the colour weights and the exposure, against half
 // an 8-bit code step at black (kInvisibleDisplayStep). Where it cannot reach
 // that, the renderer leaves the atmosphere's one-pass tiles that hold nothing

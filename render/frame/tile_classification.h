@@ -80,7 +80,7 @@ struct BandTiles {
   /// How the tile's rays can meet bodies: none where no body's sphere touches
   /// the tile's cone, all where the cone lies within the disc of an
   /// atmosphere's planet (its ground, TileVariant::ground), some elsewhere.
-  /// The night sky's pass (render/frame/star_pass.h) draws only on rays that
+  /// The night sky's pass (render/night/star_pass.h) draws only on rays that
   /// meet no body: it skips the ray test where none can and the tile where all do.
   std::vector<TileCover> bodies;
   std::vector<std::uint32_t> all_tiles;  // every list below, one after the other

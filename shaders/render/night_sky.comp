@@ -1,5 +1,5 @@
 #version 450
-// The night sky's own light joins the band's output (render/frame/star_pass.h;
+// The night sky's own light joins the band's output (render/night/star_pass.h;
 // docs/night-sky.md, "Rendering the night sky"), after the atmosphere passes
 // and before the band leaves (a file's readback or the live display pass):
 //
@@ -8,13 +8,13 @@
 //     astro/moon_photometry.h, L = L(1, 1) · 2μ0/(μ0 + μ), its phase from the
 //     sun's direction on each point of the sphere, its edge antialiased over
 //     the pixel's footprint; with moon_mapped, each point's albedo from the
-//     Moon's map (render/frame/moon_albedo_map.h) at its selenographic place;
+//     Moon's map (render/night/moon_albedo_map.h) at its selenographic place;
 //   * with NIGHT_FLOOR, the natural night sky (airglow with van Rhijn's
 //     brightening, zodiacal light, starlight) through the line of sight's
 //     transmittance, plus the artificial glow of light pollution: a table of
 //     linear sRGB × exposure against the view ray's cosine to the camera's up,
 //     computed on the CPU from astro/night_sky_floor.h and
-//     astro/light_pollution.h (render/frame/night_sky_table.h), on every ray
+//     astro/light_pollution.h (render/night/night_sky_table.h), on every ray
 //     that meets no body (the ground included).
 //
 // The tiles listed are the band's drawn tiles (add to what is there) or, with
@@ -22,7 +22,7 @@
 // where a star's splat or the Moon's disc reaches them. The stars themselves
 // join after this pass, pixel by pixel (star_pixels.comp).
 // Each list is dispatched with the program compiled for what its tiles hold
-// (render/frame/star_pass.cpp), since llvmpipe runs every branch a program has
+// (render/night/star_pass.cpp), since llvmpipe runs every branch a program has
 // for every pixel (the Moon's disc code and the star accumulator's reads, never
 // taken in most tiles, were half of the pass on a night ground view):
 //   NIGHT_FLOOR   the night floor's table

@@ -1,5 +1,5 @@
 // The stars' light of a band before it joins the band's output
-// (render/frame/star_pass.h): per band pixel and channel (r, g, b) a 64-bit
+// (render/night/star_pass.h): per band pixel and channel (r, g, b) a 64-bit
 // two's-complement integer of the linear sRGB radiance × exposure in fixed
 // point, STAR_COUNTS_PER_UNIT counts per unit: a constant, the same on every
 // node, band and frame, so two outputs that hold the same star at the same

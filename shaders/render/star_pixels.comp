@@ -1,5 +1,5 @@
 #version 450
-// The stars' light joins the band's output (render/frame/star_pass.h;
+// The stars' light joins the band's output (render/night/star_pass.h;
 // docs/night-sky.md, "Rendering the night sky"), pixel by pixel: one
 // invocation per pixel a star's 2 × 2 splat reaches (star_splat.comp), listed
 // once each on the CPU, after night_sky.comp has added the night floor and
@@ -8,7 +8,7 @@
 // where the pixel shows the sky: not a fisheye's corners beyond its circle, a
 // warp's pixels beyond its mesh, nor a pixel whose ray ends on the ground or
 // another body next to a star at its limb (the pass's test,
-// render/frame/star_visibility.h, bounds the stars against the sky). The list
+// render/night/star_visibility.h, bounds the stars against the sky). The list
 // holds each pixel once, so no two invocations touch the same pixel.
 //
 // Only those pixels read the accumulator: when every pixel of a tile a splat

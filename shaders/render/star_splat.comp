@@ -1,5 +1,5 @@
 #version 450
-// Stars as point sources of flux (render/frame/star_field.h computes each
+// Stars as point sources of flux (render/night/star_placement.h computes each
 // star's pixel position and radiance on the CPU; docs/night-sky.md,
 // "Rendering the night sky"): one invocation per star of the band spreads
 // its radiance bilinearly over the 2 × 2 pixels around its position (weights

@@ -2,7 +2,7 @@
 // How far two frames are apart on the display (the star tests: a frame where
 // the stars' test skipped them against the same frame with them forced on).
 // The test's bound is on the continuous code value 255 E(T(x))
-// (render/frame/star_visibility.h): where it skips, every value moves by less
+// (render/night/star_visibility.h): where it skips, every value moves by less
 // than half a code, so each 8-bit code is the same — or one step away where the
 // sky sits within that change of a rounding boundary.
 #include <algorithm>

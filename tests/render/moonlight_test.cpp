@@ -1,4 +1,4 @@
-// The Moon as the atmosphere passes' second light (render/frame/moon_light.h,
+// The Moon as the atmosphere passes' second light (render/night/moon_light.h,
 // docs/night-sky.md, "Moonlight"): the moonlit sky is the sunlit sky with the
 // sun at the Moon's place, scaled by the Moon's irradiance (the tables are
 // linear in their source); the passes skipped by their own test by day; the
@@ -21,9 +21,9 @@
 #include "astro/sky_positions.h"
 #include "astro/v_band.h"
 #include "atmosphere/lut/lookup_tables.h"
+#include "atmosphere/lut/sky_radiance_bound.h"
 #include "core/units.h"
-#include "render/frame/sky_radiance_bound.h"
-#include "render/frame/star_pass.h"
+#include "render/night/star_pass.h"
 #include "tests/render/greenwich_night.h"
 #include "validate/moonlit_sky.h"
 #include "warp/fisheye_projection.h"
@@ -142,7 +142,7 @@ TEST(Moonlight, SkippedByItsOwnTestByDayAndWithTheMoonFarBelowTheHorizon) {
 }
 
 TEST(Moonlight, TheBoundHoldsEveryPixel) {
-  // The test's bound (render/frame/sky_radiance_bound.h) is above what the passes draw.
+  // The test's bound (atmosphere/lut/sky_radiance_bound.h) is above what the passes draw.
   const astro::MoonPlace moon = moon_at(kFullMoon);
   const scene::Scene s = testing::greenwich("earth-advanced", toward_moon_azimuth(moon), 1e6, kFullMoon);
   TestRenderer lit(options(true)), dark(options(false));

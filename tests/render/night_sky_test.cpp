@@ -1,4 +1,4 @@
-// The night sky's pass (render/frame/star_pass.h, render/frame/star_field.h):
+// The night sky's pass (render/night/star_pass.h, render/night/star_placement.h):
 // stars placed by the rotating sky against ERFA, their extinction from the
 // transmittance table, the same energy through a fisheye, a planar view and a
 // warp mesh, the night floor's radiance at the zenith, the pass skipped by its
@@ -26,17 +26,17 @@
 #include "astro/sky_positions.h"
 #include "astro/star_catalogue.h"
 #include "astro/star_photometry.h"
+#include "atmosphere/lut/sky_radiance_lower_bound.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/photometry.h"
 #include "core/units.h"
 #include "image/colour.h"
 #include "image/tone_mapping.h"
-#include "render/frame/moon_albedo_map.h"
-#include "render/frame/sky_radiance_lower_bound.h"
-#include "render/frame/star_field.h"
-#include "render/frame/star_pass.h"
-#include "render/frame/star_visibility.h"
 #include "render/gl/texture.h"
+#include "render/night/moon_albedo_map.h"
+#include "render/night/star_pass.h"
+#include "render/night/star_placement.h"
+#include "render/night/star_visibility.h"
 #include "render/renderer.h"
 #include "scene/local_horizon.h"
 #include "tests/render/code_difference.h"
@@ -420,7 +420,7 @@ TEST(NightSkyPass, TheQuadrantsOfADomeMasterCarryItsStarsWithoutASeam) {
   // No atmosphere, no floor: the image is the stars alone. A cluster's nodes
   // render a dome master's quadrants (configs/viewports/dome-quadrants.json);
   // where they meet, a star within half a pixel beyond a quadrant's edge must
-  // still light the edge's pixels (star_field.h, splat_touches_image), and
+  // still light the edge's pixels (star_placement.h, splat_touches_image), and
   // every pixel must carry what it carries in the whole dome master, bit for
   // bit: the splat positions sit on the same 1/256-pixel grid, and the star
   // accumulator's step is a constant (star_accumulator.glsl), so a star adds
@@ -725,13 +725,13 @@ scene::Scene at_twilight(double depression_deg, double exposure) {
 }
 
 TEST(NightSkyPass, TheSkyIsNoDarkerThanItsFloorFromTheTables) {
-  // The star test's B (render/frame/sky_radiance_lower_bound.h): every pixel of sky
+  // The star test's B (atmosphere/lut/sky_radiance_lower_bound.h): every pixel of sky
   // the passes draw (direct colour: channel k = exposure · L(λ_k)) is at least
   // exposure · E_sun · S_min, from the sun at the horizon to deep twilight,
   // through the 4D tables and through the sky-view table; and the floor is
   // not empty (within a factor 5 of the darkest pixel).
   const SmallTables& t = SmallTables::get("earth-advanced");
-  const SkyRadianceLowerBound floor(t.model, t.tables, true);
+  const atmosphere::lut::SkyRadianceLowerBound floor(t.model, t.tables, true);
   RenderOptions o = options(false, false);
   o.night_sky.moonlight = false;
   o.skip_hidden_sunlight = false;  // the sky the tables give, also where it is too faint to show
@@ -769,7 +769,7 @@ TEST(NightSkyPass, TheSkyIsNoDarkerThanItsFloorFromTheTables) {
 }
 
 TEST(NightSkyPass, WhereTheSkyHidesEveryStarItsTestSkipsThemAndTheFrameMovesByLessThanHalfACode) {
-  // The stars' test against the sky (render/frame/star_visibility.h): at
+  // The stars' test against the sky (render/night/star_visibility.h): at
   // twilight exposures under a sky bright enough to hide every star the test
   // skips them; the frame with the stars forced on moves no value by half a
   // code, for both tone operators: each 8-bit code the same, or one step away
@@ -809,7 +809,7 @@ TEST(NightSkyPass, WhereTheSkyHidesEveryStarItsTestSkipsThemAndTheFrameMovesByLe
 }
 
 TEST(NightSkyPass, WhereTheTwilightSkyHidesTheNightFloorItsTestSkipsItAndTheFrameMovesByLessThanHalfACode) {
-  // The night floor's test against the sky behind it (render/frame/star_pass.h,
+  // The night floor's test against the sky behind it (render/night/star_pass.h,
   // the star test's B): through twilight, where the floor could move a code
   // on a black sky but not on the darkest sky the passes draw, the pass is
   // skipped, and the frame with the test against black only (which draws the

@@ -1,4 +1,4 @@
-// Twinkling in the star pass (render/frame/star_field.h, astro/scintillation.h):
+// Twinkling in the star pass (render/night/star_placement.h, astro/scintillation.h):
 // on the CPU, without GL — two synthetic stars, one at the zenith and one 10°
 // above the horizon, placed with and without scintillation. Each twinkling
 // splat is the steady one times the log-normal factor of its own air mass and
@@ -13,7 +13,7 @@
 
 #include "astro/scintillation.h"
 #include "atmosphere/air_mass.h"
-#include "render/frame/star_field.h"
+#include "render/night/star_placement.h"
 #include "warp/fisheye_projection.h"
 
 namespace zenith::render {

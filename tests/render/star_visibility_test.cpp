@@ -1,4 +1,4 @@
-// The star pass's test, star by star (render/frame/star_visibility.h): the
+// The star pass's test, star by star (render/night/star_visibility.h): the
 // sky bound behind one star below every pixel its splat touches, from the sun
 // at the horizon to deep twilight, through the 4D tables and the sky-view
 // table; where the test skips, the frame with the stars forced on within half
@@ -21,11 +21,11 @@
 
 #include "../atmosphere/lut_fixture.h"
 #include "astro/star_catalogue.h"
+#include "atmosphere/lut/sky_radiance_lower_bound.h"
 #include "core/units.h"
 #include "image/colour.h"
 #include "image/tone_mapping.h"
-#include "render/frame/sky_radiance_lower_bound.h"
-#include "render/frame/star_visibility.h"
+#include "render/night/star_visibility.h"
 #include "scene/frame_scene.h"
 #include "scene/local_horizon.h"
 #include "show/show.h"
@@ -89,7 +89,7 @@ TEST(StarVisibility, TheSkyBehindAStarIsNoDarkerThanItsOwnBound) {
   // 4D tables and through the sky-view table; and B_s is well above the
   // darkest sky's B where the star is not kept.
   const SmallTables& t = SmallTables::get("earth-advanced");
-  const SkyRadianceLowerBound floor(t.model, t.tables, true);
+  const atmosphere::lut::SkyRadianceLowerBound floor(t.model, t.tables, true);
   const warp::FisheyeProjection dome(64, 64);
   for (const SkyViewTableUse use : {SkyViewTableUse::automatic, SkyViewTableUse::off}) {
     RenderOptions o = options(false);

@@ -149,7 +149,7 @@ bool meets(const scene::Body& b, const glm::dvec3& d) {
 
 TEST(TileClassification, TheBodyCoverIsNoneWhereNoRayMeetsABodyAndAllWhereEveryRayMeetsThePlanet) {
   // The night sky's pass skips the ray test where the cover is none and the
-  // floor-only tile where it is all (render/frame/star_pass.cpp): both must
+  // floor-only tile where it is all (render/night/star_pass.cpp): both must
   // hold for every pixel's ray. A planet filling the lower part of the view,
   // its shell drawn, and a moon beyond it.
   View v;

@@ -1,4 +1,4 @@
-#include "render/frame/sky_radiance_lower_bound.h"
+#include "atmosphere/lut/sky_radiance_lower_bound.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,8 @@
 #include "atmosphere/lut/parameterization.h"
 #include "core/units.h"
 
-namespace zenith::render {
+namespace zenith::atmosphere::lut {
 namespace {
-
-using atmosphere::lut::AngleMapping;
 
 /// The float arithmetic of the GPU's reads (weights, the geometric blend's
 /// exp and log) can land a few ulp under the smallest texel: a margin of 1e-3.
@@ -41,7 +39,7 @@ double least_blend(double a, double b, double t) {
 /// half (y ≥ height / 2) over every ν slice into out[(z * mu_s_size + c) *
 /// channels + channel]. The multiple-scattering table's tail of orders can
 /// leave a texel below 0: the minimum keeps its sign.
-void sky_half_minima(const atmosphere::lut::Table3D& t, std::size_t mu_s_size, std::vector<double>& out) {
+void sky_half_minima(const Table3D& t, std::size_t mu_s_size, std::vector<double>& out) {
   out.assign(t.depth * mu_s_size * t.channels, std::numeric_limits<double>::infinity());
   for (std::size_t z = 0; z < t.depth; ++z)
     for (std::size_t y = t.height / 2; y < t.height; ++y)
@@ -58,7 +56,7 @@ double least_product(double lowest, double p_min, double p_max) {
 }
 
 /// The sky half (y ≥ height / 2) of a table, row after row.
-void copy_sky_half(const atmosphere::lut::Table3D& t, std::vector<float>& out) {
+void copy_sky_half(const Table3D& t, std::vector<float>& out) {
   const std::size_t half = t.height / 2, row = t.width * t.channels;
   out.resize(t.depth * (t.height - half) * row);
   for (std::size_t z = 0; z < t.depth; ++z)
@@ -84,8 +82,8 @@ double largest_quadratic(double a, double b, Interval nu) {
 
 }  // namespace
 
-SkyRadianceLowerBound::SkyRadianceLowerBound(const atmosphere::AtmosphereModel& model,
-                                             const atmosphere::lut::LookupTables& tables, bool multiple_scattering)
+SkyRadianceLowerBound::SkyRadianceLowerBound(const AtmosphereModel& model, const LookupTables& tables,
+                                             bool multiple_scattering)
     : geometry_(tables.geometry), sizes_(tables.sizes), channels_(tables.channels) {
   const std::size_t n = sizes_.scattering_mu_s;
   // The Rayleigh phase k (1 + a ν²) is extreme at ν = 0 or ±1.
@@ -138,13 +136,10 @@ std::vector<double> SkyRadianceLowerBound::radiance_per_irradiance(double mu_s, 
   const std::size_t n = sizes_.scattering_mu_s;
   // Every pixel's read is at the camera's radius and the sun's cosine there:
   // the same row weights and μs blend for all; only μ and ν vary.
-  const Between single =
-      texels_read(atmosphere::lut::scattering_u_mu_s(geometry_, sizes_, mu, AngleMapping::Distance), n);
-  const Between multiple =
-      texels_read(atmosphere::lut::scattering_u_mu_s(geometry_, sizes_, mu, AngleMapping::Blended), n);
+  const Between single = texels_read(scattering_u_mu_s(geometry_, sizes_, mu, AngleMapping::Distance), n);
+  const Between multiple = texels_read(scattering_u_mu_s(geometry_, sizes_, mu, AngleMapping::Blended), n);
   const Between rows = texels_read(
-      atmosphere::lut::scattering_uvwz(geometry_, sizes_, r, 1.0, mu, mu, false, AngleMapping::Distance).u_r,
-      sizes_.scattering_r);
+      scattering_uvwz(geometry_, sizes_, r, 1.0, mu, mu, false, AngleMapping::Distance).u_r, sizes_.scattering_r);
   // The least a column's read gives: bilinear in (μ, r) with the rows' weights, each row's least texel.
   const auto column = [&](const std::vector<double>& minima, std::size_t c, std::size_t i) {
     return (1.0 - rows.t) * minima[(rows.lo * n + c) * channels_ + i] +
@@ -170,15 +165,14 @@ SkyLowerBoundSlice SkyRadianceLowerBound::slice(double mu_s, double radius_m) co
   out.mu_s_ = std::clamp(mu_s, -1.0, 1.0);
   out.radius_m_ = std::clamp(radius_m, geometry_.bottom_radius_m, geometry_.top_radius_m);
   const std::size_t n = sizes_.scattering_mu_s, width = sizes_.scattering_width(), half = out.half_;
-  const Between rows = texels_read(atmosphere::lut::scattering_uvwz(geometry_, sizes_, out.radius_m_, 1.0, out.mu_s_,
-                                                                    out.mu_s_, false, AngleMapping::Distance)
-                                       .u_r,
-                                   sizes_.scattering_r);
+  const Between rows = texels_read(
+      scattering_uvwz(geometry_, sizes_, out.radius_m_, 1.0, out.mu_s_, out.mu_s_, false, AngleMapping::Distance).u_r,
+      sizes_.scattering_r);
   // The row weight the texture unit applies: within 1/256 of the exact one.
   const double tr_lo = std::max(0.0, rows.t - 1.0 / 256.0), tr_hi = std::min(1.0, rows.t + 1.0 / 256.0);
   const auto fill = [&](const std::vector<float>& sky, AngleMapping mapping, SkyLowerBoundSlice::Term& term) {
     if (sky.empty()) return false;
-    const Between columns = texels_read(atmosphere::lut::scattering_u_mu_s(geometry_, sizes_, out.mu_s_, mapping), n);
+    const Between columns = texels_read(scattering_u_mu_s(geometry_, sizes_, out.mu_s_, mapping), n);
     term.a = columns.lo;
     term.b = columns.hi;
     // The shader's blend weight, from float coordinates: within 1e-3 of this one.
@@ -224,8 +218,7 @@ void SkyLowerBoundSlice::texel_ranges(Interval mu, Interval phi_rad, bool blende
   // u_μ of the sky half falls as μ rises; the read weighs the texels either
   // side of u n − 0.5, here widened by 1e-3 of a texel for the GPU's float coordinates.
   const auto y_of = [&](double m) {
-    return atmosphere::lut::scattering_uvwz(f.geometry_, f.sizes_, radius_m_, std::clamp(m, -1.0, 1.0), mu_s_, 0.0,
-                                            false, mapping)
+    return scattering_uvwz(f.geometry_, f.sizes_, radius_m_, std::clamp(m, -1.0, 1.0), mu_s_, 0.0, false, mapping)
                    .u_mu *
                n_mu -
            0.5;
@@ -272,4 +265,4 @@ void SkyLowerBoundSlice::radiance_per_irradiance(Interval mu, Interval phi_rad, 
   }
 }
 
-}  // namespace zenith::render
+}  // namespace zenith::atmosphere::lut

@@ -6,8 +6,8 @@
 // to the band's radiance, so they go through the same tone mapping and
 // display response as the sky and are seen where the sky lets them be.
 //
-// Per frame, on the CPU (render/frame/star_field.h): every star's pixel,
-// colour and extinction; the night floor's table (render/frame/night_sky_table.h).
+// Per frame, on the CPU (render/night/star_placement.h): every star's pixel,
+// colour and extinction; the night floor's table (render/night/night_sky_table.h).
 // Per band, on the GPU: star_splat.comp spreads the band's stars over 2 × 2
 // pixels into a 64-bit fixed-point accumulator of a constant step (integer
 // atomics with an explicit carry: the same sum in any order, the same counts
@@ -16,7 +16,7 @@
 //
 // Skipped by its own tests (prepare()): the stars when the brightest pixel
 // they can make, against the least the sky behind them can be (from the
-// tables: render/frame/star_visibility.h), would change no display value by
+// tables: render/night/star_visibility.h), would change no display value by
 // half a code step of 8-bit sRGB; the night floor when its brightest direction
 // would not against the least the sky can be (the stars' first-stage bound,
 // darkest_sky; on a black sky, 1.5e-4 of linear, where that does not apply).
@@ -34,15 +34,15 @@
 #include "astro/night_sky_floor.h"
 #include "astro/refraction.h"
 #include "render/frame/frame_in_progress.h"
-#include "render/frame/moon_albedo_map.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/refraction_cache.h"
-#include "render/frame/star_field.h"
-#include "render/frame/star_visibility.h"
 #include "render/frame/tile_classification.h"
 #include "render/gl/buffer.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/night/moon_albedo_map.h"
+#include "render/night/star_placement.h"
+#include "render/night/star_visibility.h"
 #include "render/render_options.h"
 
 namespace zenith::render {
@@ -60,7 +60,7 @@ inline constexpr double kStarCountsPerUnit = 268435456.0;
 inline constexpr double kStarRadianceLimit = 65504.0;
 inline constexpr std::size_t kStarAccumulatorUintsPerPixel = 8;
 
-/// The frame star_splats places `scene`'s stars in (render/frame/star_field.h;
+/// The frame star_splats places `scene`'s stars in (render/night/star_placement.h;
 /// the scene has a sky clock): the sky clock's body's horizon at the camera;
 /// the refraction of the site body's air (from `refractions`) and its
 /// twinkling where the camera is inside that air; every body as an occluder;
@@ -134,7 +134,7 @@ class NightSkyPass {
   std::array<double, 3> moon_rgb_{};
   /// The Moon at the frame's sky time: a disc, a star-like point, or nothing.
   void place_moon(const FrameInProgress& frame, const StarFrame& sky, const astro::AstroTime& time);
-  // The Moon's face (render/frame/moon_albedo_map.h): the map (loaded with the
+  // The Moon's face (render/night/moon_albedo_map.h): the map (loaded with the
   // first disc, the uniform one when missing), its texture (uploaded once), the
   // disc's body axes in the world and the texture's level.
   std::unique_ptr<MoonAlbedoMap> moon_map_;

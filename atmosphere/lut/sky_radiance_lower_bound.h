@@ -2,9 +2,9 @@
 // A lower bound of the sky radiance the atmosphere passes draw per unit of the
 // sun's irradiance on any ray that leaves the atmosphere, for a camera inside
 // it (docs/night-sky.md, "Rendering the night sky"): what the star pass's test
-// (render/frame/star_visibility.h) needs to know, before any GPU work, that
+// (render/night/star_visibility.h) needs to know, before any GPU work, that
 // the sky behind every star in view is at least this bright. No GL. The
-// counterpart of SkyRadianceBound (render/frame/sky_radiance_bound.h), which
+// counterpart of SkyRadianceBound (atmosphere/lut/sky_radiance_bound.h), which
 // bounds the same reads from above.
 //
 // A pixel whose ray from a camera at radius r leaves the shell without meeting
@@ -30,7 +30,7 @@
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
 
-namespace zenith::render {
+namespace zenith::atmosphere::lut {
 
 /// A closed interval [lo, hi].
 struct Interval {
@@ -87,8 +87,7 @@ class SkyRadianceLowerBound {
   /// pass over the 4D tables); `multiple_scattering`: whether the passes read
   /// the multiple-scattering table (AtmospherePassFeatures::multiple_scattering
   /// and a table of order ≥ 2).
-  SkyRadianceLowerBound(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
-                        bool multiple_scattering);
+  SkyRadianceLowerBound(const AtmosphereModel& model, const LookupTables& tables, bool multiple_scattering);
 
   /// Per wavelength [sr⁻¹], a lower bound of the sky radiance per unit sun
   /// irradiance on every ray from a camera at `radius_m` (in the shell) that
@@ -103,8 +102,8 @@ class SkyRadianceLowerBound {
 
  private:
   friend class SkyLowerBoundSlice;
-  atmosphere::lut::ShellGeometry geometry_{};
-  atmosphere::lut::TableSizes sizes_{};
+  ShellGeometry geometry_{};
+  TableSizes sizes_{};
   std::size_t channels_ = 0;
   // Per radius row z, μs column c and wavelength i, at [(z * columns + c) *
   // channels + i]: the smallest sky-half texel of single Rayleigh times the
@@ -121,4 +120,4 @@ class SkyRadianceLowerBound {
   std::vector<double> mie_phase_grid_;  // [k * channels + i]
 };
 
-}  // namespace zenith::render
+}  // namespace zenith::atmosphere::lut

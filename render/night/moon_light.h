@@ -10,7 +10,7 @@
 // sun's drew (render/renderer.cpp; the Moon's disc itself is night_sky.comp's).
 //
 // Skipped by its own test, as the star pass: when the Moon's light, bounded
-// from the tables (render/frame/sky_radiance_bound.h) for the Moon's cosine at
+// from the tables (atmosphere/lut/sky_radiance_bound.h) for the Moon's cosine at
 // every point the pixels read, times the frame's exposure and the colour
 // weights, could not reach half an 8-bit code step at black
 // (kInvisibleDisplayStep), no moonlight pass runs and the frame is the same

@@ -1,4 +1,4 @@
-#include "render/frame/star_pass.h"
+#include "render/night/star_pass.h"
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
@@ -15,8 +15,8 @@
 #include "astro/moon_photometry.h"
 #include "astro/star_catalogue.h"
 #include "core/units.h"
-#include "render/frame/night_sky_table.h"
-#include "render/frame/star_visibility.h"
+#include "render/night/night_sky_table.h"
+#include "render/night/star_visibility.h"
 #include "render/shader_bindings.h"
 #include "render/shader_programs.h"
 #include "scene/local_horizon.h"
@@ -251,7 +251,7 @@ void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky
   const std::vector<double>& wavelengths = frame.scene.wavelengths_nm;
   if (radius_px < 1.0) {
     // Smaller than a pixel: a point source of the whole Moon's irradiance, as a star.
-    const glm::dvec2 at = on_splat_grid(*pixel);  // as the stars (star_field.h)
+    const glm::dvec2 at = on_splat_grid(*pixel);  // as the stars (star_placement.h)
     if (!splat_touches_image(at, w, h)) return;
     const double omega_at = frame.projection.pixel_solid_angle_by_rays_sr(at.x, at.y);
     if (!(omega_at > 0.0)) return;

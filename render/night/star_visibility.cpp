@@ -1,4 +1,4 @@
-#include "render/frame/star_visibility.h"
+#include "render/night/star_visibility.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +27,7 @@ const AtmospherePass* sky_at_camera(const FrameInProgress& frame, std::size_t si
   return nullptr;
 }
 
+using atmosphere::lut::Interval;
 using core::kPi;
 
 /// The angle between unit vectors, well conditioned at small angles.
@@ -105,7 +106,7 @@ Interval nu_over(Interval theta, Interval phi, double sun_theta) {
 
 }  // namespace
 
-SkyBehindStarBound::SkyBehindStarBound(const SkyRadianceLowerBound& floor, const glm::dvec3& camera_m,
+SkyBehindStarBound::SkyBehindStarBound(const atmosphere::lut::SkyRadianceLowerBound& floor, const glm::dvec3& camera_m,
                                        const glm::dvec3& planet_centre_m, double ground_radius_m, const glm::dvec3& sun,
                                        bool sky_view, const std::vector<std::array<double, 3>>& rgb_weights,
                                        const std::vector<double>& sun_irradiance, double exposure,

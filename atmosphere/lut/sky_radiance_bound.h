@@ -2,7 +2,7 @@
 // An upper bound of what an atmosphere's passes can draw per unit of a
 // source's irradiance (docs/night-sky.md, "Moonlight"), for a source whose
 // cosine to the local zenith is at most μs_max wherever the pixels' lookups
-// read the tables: what the moonlight passes' test (render/frame/moon_light.h)
+// read the tables: what the moonlight passes' test (render/night/moon_light.h)
 // needs to know, before any GPU work, whether the Moon could change a display
 // value. No GL.
 //
@@ -24,13 +24,13 @@
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
 
-namespace zenith::render {
+namespace zenith::atmosphere::lut {
 
 class SkyRadianceBound {
  public:
   SkyRadianceBound() = default;
   /// The tables' maxima per μs column and wavelength (one pass over the 4D tables).
-  SkyRadianceBound(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables);
+  SkyRadianceBound(const AtmosphereModel& model, const LookupTables& tables);
 
   /// Per wavelength [sr⁻¹], the largest radiance per unit source irradiance any
   /// pixel of sky or ground can have when the source's cosine at every point read
@@ -41,8 +41,8 @@ class SkyRadianceBound {
   std::vector<double> radiance_per_irradiance(double mu_s_max, std::optional<double> radius_m = std::nullopt) const;
 
  private:
-  atmosphere::lut::ShellGeometry geometry_{};
-  atmosphere::lut::TableSizes sizes_{};
+  ShellGeometry geometry_{};
+  TableSizes sizes_{};
   std::size_t channels_ = 0;
   // Per radius row z, μs column c and wavelength i, at [(z * columns + c) *
   // channels + i]: the largest single Rayleigh (times the largest P_R), single
@@ -60,4 +60,4 @@ class SkyRadianceBound {
 double source_cosine_bound(double mu_s_camera, double camera_radius_m, double ground_radius_m, double top_radius_m,
                            bool bodies_inside);
 
-}  // namespace zenith::render
+}  // namespace zenith::atmosphere::lut

@@ -1,4 +1,4 @@
-#include "render/frame/moon_light.h"
+#include "render/night/moon_light.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include "astro/civil_time.h"
 #include "astro/moon_photometry.h"
 #include "astro/sky_positions.h"
-#include "render/frame/star_pass.h"
 #include "render/frame/sun_light.h"
+#include "render/night/star_pass.h"
 #include "scene/local_horizon.h"
 
 namespace zenith::render {

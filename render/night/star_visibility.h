@@ -27,7 +27,7 @@
 // any star's draw gives in the frame's interval at e's variance, which falls
 // as e rises; per degree, T at its top and f at its bottom),
 // Ω_min the smallest pixel solid angle, and the sky's floor from the tables
-// (render/frame/sky_radiance_lower_bound.h)
+// (atmosphere/lut/sky_radiance_lower_bound.h)
 //     B = exposure · Σ_λ w_c(λ) E_sun(λ) S_min(λ).
 // Starlight lands only on pixels whose ray meets no body (night_sky.comp):
 // the ground and other bodies may be darker than any sky, and a star's splat
@@ -109,7 +109,7 @@
 // instead of the ladder's.
 //
 // The pass's placement reads three figures faster than their formulas
-// (star_field.h; render_bench --stars-placement), and the bounds above cover
+// (star_placement.h; render_bench --stars-placement), and the bounds above cover
 // each: the transmittance from CameraTransmittance's blended row is the same
 // bilinear read as star_transmittance to a few ulps (1e-15 of values ≤ 1),
 // inside the 1 % kInvisibleCodeChange keeps from half a code, so K is unchanged; Ω_s by
@@ -126,9 +126,9 @@
 
 #include "astro/civil_time.h"
 #include "astro/sky_positions.h"
+#include "atmosphere/lut/sky_radiance_lower_bound.h"
 #include "render/frame/frame_in_progress.h"
-#include "render/frame/sky_radiance_lower_bound.h"
-#include "render/frame/star_field.h"
+#include "render/night/star_placement.h"
 
 namespace zenith::render {
 
@@ -180,8 +180,8 @@ class SkyBehindStarBound {
   /// ways); the colour weights (≥ 0), the sun's irradiance and the exposure;
   /// the other bodies (centre, radius) whose limbs keep a star; `whole_sky`
   /// the first stage's B, the least of every sky pixel.
-  SkyBehindStarBound(const SkyRadianceLowerBound& floor, const glm::dvec3& camera_m, const glm::dvec3& planet_centre_m,
-                     double ground_radius_m, const glm::dvec3& sun, bool sky_view,
+  SkyBehindStarBound(const atmosphere::lut::SkyRadianceLowerBound& floor, const glm::dvec3& camera_m,
+                     const glm::dvec3& planet_centre_m, double ground_radius_m, const glm::dvec3& sun, bool sky_view,
                      const std::vector<std::array<double, 3>>& rgb_weights, const std::vector<double>& sun_irradiance,
                      double exposure, std::vector<std::pair<glm::dvec3, double>> bodies,
                      std::array<double, 3> whole_sky);
@@ -193,7 +193,7 @@ class SkyBehindStarBound {
   bool kept(const glm::dvec3& direction, double radius_rad) const;
 
  private:
-  SkyLowerBoundSlice slice_;
+  atmosphere::lut::SkyLowerBoundSlice slice_;
   glm::dvec3 camera_m_, up_, sun_;
   double radius_m_, mu_horizon_, theta_horizon_, sun_theta_;
   bool sky_view_;

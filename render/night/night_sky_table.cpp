@@ -1,4 +1,4 @@
-#include "render/frame/night_sky_table.h"
+#include "render/night/night_sky_table.h"
 
 #include <algorithm>
 #include <cmath>

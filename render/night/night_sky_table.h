@@ -16,7 +16,7 @@
 
 #include "astro/light_pollution.h"
 #include "astro/night_sky_floor.h"
-#include "render/frame/star_field.h"
+#include "render/night/star_placement.h"
 
 namespace zenith::render {
 

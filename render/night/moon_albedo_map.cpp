@@ -1,4 +1,4 @@
-#include "render/frame/moon_albedo_map.h"
+#include "render/night/moon_albedo_map.h"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "render/frame/sky_radiance_bound.h"
+#include "atmosphere/lut/sky_radiance_bound.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,8 @@
 #include "atmosphere/lut/parameterization.h"
 #include "core/units.h"
 
-namespace zenith::render {
+namespace zenith::atmosphere::lut {
 namespace {
-
-using atmosphere::lut::AngleMapping;
 
 /// The column above `mu_s` of a texel-centred coordinate over n columns: the
 /// last column any read at a cosine ≤ mu_s can weigh.
@@ -21,7 +19,7 @@ std::size_t column_above(double u, std::size_t n) {
 
 /// Per radius row z, column of the packed 4D table (x = ν index · mu_s_size +
 /// μs index) and channel, the largest texel into out[(z * mu_s_size + column) * channels + channel].
-void column_maxima(const atmosphere::lut::Table3D& t, std::size_t mu_s_size, std::vector<double>& out) {
+void column_maxima(const Table3D& t, std::size_t mu_s_size, std::vector<double>& out) {
   out.assign(t.depth * mu_s_size * t.channels, 0.0);
   for (std::size_t z = 0; z < t.depth; ++z)
     for (std::size_t y = 0; y < t.height; ++y)
@@ -38,10 +36,9 @@ void column_maxima(const atmosphere::lut::Table3D& t, std::size_t mu_s_size, std
 /// least the difference of their zenith angles and, from the azimuth φ ≥
 /// φ_min of that ν slice, cos γ ≤ cos(θv − θs) − sin θv sin θs (1 − cos φ_min).
 /// The forward peak then counts only where view and source can be close.
-void mie_column_maxima(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
-                       std::vector<double>& out) {
-  const atmosphere::lut::Table3D& t = tables.single_mie;
-  const atmosphere::lut::TableSizes& s = tables.sizes;
+void mie_column_maxima(const AtmosphereModel& model, const LookupTables& tables, std::vector<double>& out) {
+  const Table3D& t = tables.single_mie;
+  const TableSizes& s = tables.sizes;
   const std::size_t n_mu_s = s.scattering_mu_s, n_nu = s.scattering_nu, n_mu = t.height, n_r = t.depth;
   const std::size_t channels = t.channels;
   out.assign(n_r * n_mu_s * channels, 0.0);
@@ -57,13 +54,11 @@ void mie_column_maxima(const atmosphere::AtmosphereModel& model, const atmospher
   std::vector<double> theta_v(n_mu * n_r), theta_s(n_mu_s);
   for (std::size_t z = 0; z < n_r; ++z)
     for (std::size_t y = 0; y < n_mu; ++y)
-      theta_v[z * n_mu + y] = std::acos(std::clamp(
-          atmosphere::lut::scattering_texel_coordinates(tables.geometry, s, 0, y, z, AngleMapping::Distance).mu, -1.0,
-          1.0));
+      theta_v[z * n_mu + y] = std::acos(
+          std::clamp(scattering_texel_coordinates(tables.geometry, s, 0, y, z, AngleMapping::Distance).mu, -1.0, 1.0));
   for (std::size_t c = 0; c < n_mu_s; ++c)
-    theta_s[c] = std::acos(std::clamp(
-        atmosphere::lut::scattering_texel_coordinates(tables.geometry, s, c, 0, 0, AngleMapping::Distance).mu_s, -1.0,
-        1.0));
+    theta_s[c] = std::acos(
+        std::clamp(scattering_texel_coordinates(tables.geometry, s, c, 0, 0, AngleMapping::Distance).mu_s, -1.0, 1.0));
   const auto range = [](const std::vector<double>& v, std::size_t lo, std::size_t hi) {
     const auto [a, b] = std::minmax_element(v.begin() + static_cast<std::ptrdiff_t>(lo),
                                             v.begin() + static_cast<std::ptrdiff_t>(hi) + 1);
@@ -98,8 +93,7 @@ void mie_column_maxima(const atmosphere::AtmosphereModel& model, const atmospher
 
 }  // namespace
 
-SkyRadianceBound::SkyRadianceBound(const atmosphere::AtmosphereModel& model,
-                                   const atmosphere::lut::LookupTables& tables)
+SkyRadianceBound::SkyRadianceBound(const AtmosphereModel& model, const LookupTables& tables)
     : geometry_(tables.geometry), sizes_(tables.sizes), channels_(tables.channels) {
   const std::size_t n = sizes_.scattering_mu_s;
   std::vector<double> rayleigh;
@@ -112,7 +106,7 @@ SkyRadianceBound::SkyRadianceBound(const atmosphere::AtmosphereModel& model,
   single_ = rayleigh;
   for (double& v : single_) v *= p_r;
   // The ground's sky irradiance is read at RB: the table's first row (texel-centred, clamped).
-  const atmosphere::lut::Table2D& e = tables.irradiance;  // x: μs, y: r
+  const Table2D& e = tables.irradiance;  // x: μs, y: r
   irradiance_.assign(e.width * channels_, 0.0);
   for (std::size_t y = 0; y < std::min<std::size_t>(e.height, 1); ++y)
     for (std::size_t x = 0; x < e.width; ++x)
@@ -126,18 +120,15 @@ std::vector<double> SkyRadianceBound::radiance_per_irradiance(double mu_s_max, s
   if (channels_ == 0) return out;
   const double mu = std::clamp(mu_s_max, -1.0, 1.0);
   const std::size_t n = sizes_.scattering_mu_s, rows = sizes_.scattering_r;
-  const std::size_t single_top =
-      column_above(atmosphere::lut::scattering_u_mu_s(geometry_, sizes_, mu, AngleMapping::Distance), n);
-  const std::size_t multiple_top =
-      column_above(atmosphere::lut::scattering_u_mu_s(geometry_, sizes_, mu, AngleMapping::Blended), n);
+  const std::size_t single_top = column_above(scattering_u_mu_s(geometry_, sizes_, mu, AngleMapping::Distance), n);
+  const std::size_t multiple_top = column_above(scattering_u_mu_s(geometry_, sizes_, mu, AngleMapping::Blended), n);
   const std::size_t irradiance_columns = irradiance_.size() / channels_;
-  const std::size_t irradiance_top = column_above(
-      atmosphere::lut::irradiance_uv(geometry_, sizes_, geometry_.bottom_radius_m, mu).u_mu_s, irradiance_columns);
+  const std::size_t irradiance_top =
+      column_above(irradiance_uv(geometry_, sizes_, geometry_.bottom_radius_m, mu).u_mu_s, irradiance_columns);
   // The rows a read at `radius_m` weighs (all without one): the two around its texel-centred coordinate.
   std::size_t row_lo = 0, row_hi = rows - 1;
   if (radius_m) {
-    const double u =
-        atmosphere::lut::scattering_uvwz(geometry_, sizes_, *radius_m, 1.0, mu, mu, false, AngleMapping::Distance).u_r;
+    const double u = scattering_uvwz(geometry_, sizes_, *radius_m, 1.0, mu, mu, false, AngleMapping::Distance).u_r;
     const double x = std::clamp(u * static_cast<double>(rows) - 0.5, 0.0, static_cast<double>(rows - 1));
     row_lo = static_cast<std::size_t>(std::floor(x));
     row_hi = static_cast<std::size_t>(std::ceil(x));
@@ -169,4 +160,4 @@ double source_cosine_bound(double mu_s_camera, double camera_radius_m, double gr
   return std::cos(std::max(zenith - arc, 0.0));
 }
 
-}  // namespace zenith::render
+}  // namespace zenith::atmosphere::lut
