@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -209,206 +211,321 @@ double smallest_pixel_solid_angle_sr(const warp::Projection& projection) {
   return 0.5 * smallest;
 }
 
-StarVisibility star_visibility(const FrameInProgress& frame, StarField& field, const StarFrame& sky,
-                               const astro::AstroTime& time, const astro::Site& clock_site,
-                               std::vector<glm::dvec3>& directions_enu, bool star_by_star) {
-  StarVisibility out;
-  directions_enu.clear();
-  const double years_from_j2000 = ((time.utc().day1 - 2451545.0) + time.utc().day2) / 365.25;
-  const scene::Scene& scene = frame.scene;
-  const std::size_t n = sky.rgb_weights.size();
-  const std::size_t site = scene.sky_clock ? scene.sky_clock->body : 0;
-  const scene::Body& planet = scene.bodies.at(site);
-  const glm::dvec3 up = glm::normalize(sky.camera_m - planet.position_m);
-  const double r = glm::length(sky.camera_m - planet.position_m);
+namespace {
 
-  // A pixel gathers the stars whose 2 × 2 splat reaches its centre: within
-  // √2 pixel spacings, two pixel angles with the margin. On the catalogue's
-  // places the cluster is widened by half for refraction's compression of
-  // the sky near the horizon (at most a fifth on Earth) and by 1′ for the
-  // aberration's difference across it.
-  const double reach = 2.0 * frame.projection.max_pixel_angle_rad();
-  const double cluster_radius = 1.5 * reach + core::kDeg / 60.0;
-  const std::vector<double>& gathered = field.brightest_cluster_irradiance(cluster_radius, years_from_j2000);
-  const double omega = smallest_pixel_solid_angle_sr(frame.projection);
-  if (!(omega > 0.0)) return out;  // no pixel to bound: the pass runs
+/// star_visibility()'s two stages step by step (star_visibility.h gives the
+/// argument of each), with what the steps share: the frame's reach and
+/// cluster radius, the smallest pixel's solid angle, the light a line of
+/// sight keeps per degree of elevation, and, star by star, the stars' places,
+/// the sky behind one star and the stars that can be drawn.
+class StarTest {
+ public:
+  StarTest(const FrameInProgress& frame, StarField& field, const StarFrame& sky, const astro::AstroTime& time)
+      : frame_(frame),
+        field_(field),
+        sky_(sky),
+        scene_(frame.scene),
+        years_from_j2000_(((time.utc().day1 - 2451545.0) + time.utc().day2) / 365.25),
+        n_(sky.rgb_weights.size()),
+        site_(scene_.sky_clock ? scene_.sky_clock->body : 0),
+        planet_(scene_.bodies.at(site_)),
+        up_(glm::normalize(sky.camera_m - planet_.position_m)),
+        r_(glm::length(sky.camera_m - planet_.position_m)),
+        // A pixel gathers the stars whose 2 × 2 splat reaches its centre: within
+        // √2 pixel spacings, two pixel angles with the margin. On the catalogue's
+        // places the cluster is widened by half for refraction's compression of
+        // the sky near the horizon (at most a fifth on Earth) and by 1′ for the
+        // aberration's difference across it.
+        reach_(2.0 * frame.projection.max_pixel_angle_rad()),
+        cluster_radius_(1.5 * reach_ + core::kDeg / 60.0),
+        gathered_(field.brightest_cluster_irradiance(cluster_radius_, years_from_j2000_)),
+        omega_(smallest_pixel_solid_angle_sr(frame.projection)),
+        scale_(sky.exposure / omega_),
+        lanes_(std::max<std::size_t>(n_, 8)),
+        weights_non_negative_(colour_weights_non_negative(sky.rgb_weights)),
+        may_subtract_(!weights_non_negative_) {}
 
-  // The most a star's light can keep through the air the camera is in and
-  // its twinkling, per wavelength: T(r, μ) grows with the elevation and the
-  // twinkling's variance falls with it (X³, capped at 1), so over each degree
-  // [e_k, e_k+1] of apparent elevation T ≤ T(e_k+1) and the factor ≤ its value
-  // at e_k with the largest normal any draw gives; without twinkling T at the
-  // zenith. Without such air, 1 (and the largest factor at the horizon).
-  const StarAtmosphere* air = nullptr;
-  for (const StarAtmosphere& a : sky.atmospheres)
-    if (a.centre_m == planet.position_m && r <= a.top_radius_m) air = &a;
-  // Per degree k of apparent elevation, by_degree[k]: T(e_k+1) times the
-  // twinkle factor at e_k; K is their largest.
-  const std::size_t lanes = std::max<std::size_t>(n, 8);
-  std::vector<double> by_degree(90 * lanes, 1.0), kept(lanes, 0.0);
-  {
-    const double g = sky.scintillation ? field.largest_scintillation_normal(sky.scintillation_interval) : 0.0;
+  /// Whether the image has a pixel to bound (else the pass runs).
+  bool has_pixels() const { return omega_ > 0.0; }
+
+  // ---- The first stage: every star at once.
+
+  /// The most a star's light can keep through the air the camera is in and
+  /// its twinkling, per wavelength: T(r, μ) grows with the elevation and the
+  /// twinkling's variance falls with it (X³, capped at 1), so over each degree
+  /// [e_k, e_k+1] of apparent elevation T ≤ T(e_k+1) and the factor ≤ its value
+  /// at e_k with the largest normal any draw gives; without twinkling T at the
+  /// zenith. Without such air, 1 (and the largest factor at the horizon).
+  /// Per degree k, by_degree_[k]: T(e_k+1) times the twinkle factor at e_k;
+  /// kept_ is their largest.
+  void bound_light_kept_by_elevation() {
+    const StarAtmosphere* air = nullptr;
+    for (const StarAtmosphere& a : sky_.atmospheres)
+      if (a.centre_m == planet_.position_m && r_ <= a.top_radius_m) air = &a;
+    by_degree_.assign(90 * lanes_, 1.0);
+    kept_.assign(lanes_, 0.0);
+    const double g = sky_.scintillation ? field_.largest_scintillation_normal(sky_.scintillation_interval) : 0.0;
     const auto factor = [&](double elevation_deg) {
-      if (!sky.scintillation) return 1.0;
+      if (!sky_.scintillation) return 1.0;
       const double variance =
-          astro::scintillation_variance(*sky.scintillation, atmosphere::pickering_air_mass(elevation_deg),
-                                        sky.observer_altitude_m, sky.ground_refractivity);
+          astro::scintillation_variance(*sky_.scintillation, atmosphere::pickering_air_mass(elevation_deg),
+                                        sky_.observer_altitude_m, sky_.ground_refractivity);
       // The pass reads s from its table (TwinkleSigmaTable): within ε of the
       // formula's, so its factor within exp(ε (|g| + s + ε)) of this one's (s ≤ √ln 2).
-      const double e = sky.twinkle_sigma ? sky.twinkle_sigma->error_bound() : 0.0;
+      const double e = sky_.twinkle_sigma ? sky_.twinkle_sigma->error_bound() : 0.0;
       return astro::scintillation_factor(variance, g) * std::exp(e * (std::abs(g) + std::sqrt(std::log(2.0)) + e));
     };
-    glm::dvec3 level = glm::cross(up, glm::dvec3(1, 0, 0));
-    if (glm::length(level) < 0.1) level = glm::cross(up, glm::dvec3(0, 1, 0));
+    glm::dvec3 level = glm::cross(up_, glm::dvec3(1, 0, 0));
+    if (glm::length(level) < 0.1) level = glm::cross(up_, glm::dvec3(0, 1, 0));
     level = glm::normalize(level);
     for (int e = 0; e < 90; ++e) {
-      double* t = &by_degree[static_cast<std::size_t>(e) * lanes];
+      double* t = &by_degree_[static_cast<std::size_t>(e) * lanes_];
       const double above = (e + 1) * core::kDeg;
-      if (air) star_transmittance(*air, sky.camera_m, std::cos(above) * level + std::sin(above) * up, t);
+      if (air) star_transmittance(*air, sky_.camera_m, std::cos(above) * level + std::sin(above) * up_, t);
       const double f = factor(e);
-      for (std::size_t i = 0; i < lanes; ++i) kept[i] = std::max(kept[i], t[i] * f);
-      for (std::size_t i = 0; i < lanes; ++i) t[i] *= f;
+      for (std::size_t i = 0; i < lanes_; ++i) kept_[i] = std::max(kept_[i], t[i] * f);
+      for (std::size_t i = 0; i < lanes_; ++i) t[i] *= f;
     }
   }
 
-  // The sky's floor B from the tables, where it applies.
-  const bool weights_non_negative = colour_weights_non_negative(sky.rgb_weights);
-  const AtmospherePass* pass = weights_non_negative ? sky_at_camera(frame, site) : nullptr;
-  out.sky_floor = darkest_sky(frame, site, sky.exposure, sky.rgb_weights);
-
-  const double scale = sky.exposure / omega;
-  for (std::size_t c = 0; c < 3; ++c)
-    for (std::size_t i = 0; i < n && i < gathered.size(); ++i)
-      out.sky_peak[c] += scale * std::abs(sky.rgb_weights[i][c]) * gathered[i] * kept[i];
-  double weight = 0.0;
-  for (const auto& w : sky.rgb_weights) weight += std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
-  const double twinkle = sky.scintillation ? astro::scintillation_factor(1.0, astro::kLargestScintillationNormal) : 1.0;
-  out.black_sky_peak = sky.exposure * field.brightest_irradiance() * weight * twinkle / omega;
-  out.could_show = false;
-  for (std::size_t c = 0; c < 3; ++c)
-    out.could_show = out.could_show || !invisible_change(out.sky_floor[c], out.sky_peak[c], !weights_non_negative);
-  const bool may_subtract = !weights_non_negative;
-  out.code_change = largest_code_change(out.sky_floor, out.sky_peak, may_subtract);
-  if (!out.could_show || !star_by_star) return out;
+  /// The first stage's answer into `out`: the sky's floor B from the tables
+  /// (where it applies), the most the brightest cluster can add to one pixel
+  /// through the air and against a black sky, whether that could show, and
+  /// the code change it could make.
+  void bound_every_star_at_once(StarVisibility& out) {
+    pass_ = weights_non_negative_ ? sky_at_camera(frame_, site_) : nullptr;
+    out.sky_floor = darkest_sky(frame_, site_, sky_.exposure, sky_.rgb_weights);
+    for (std::size_t c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n_ && i < gathered_.size(); ++i)
+        out.sky_peak[c] += scale_ * std::abs(sky_.rgb_weights[i][c]) * gathered_[i] * kept_[i];
+    double weight = 0.0;
+    for (const auto& w : sky_.rgb_weights) weight += std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
+    const double twinkle =
+        sky_.scintillation ? astro::scintillation_factor(1.0, astro::kLargestScintillationNormal) : 1.0;
+    out.black_sky_peak = sky_.exposure * field_.brightest_irradiance() * weight * twinkle / omega_;
+    out.could_show = false;
+    for (std::size_t c = 0; c < 3; ++c)
+      out.could_show = out.could_show || !invisible_change(out.sky_floor[c], out.sky_peak[c], may_subtract_);
+    out.code_change = largest_code_change(out.sky_floor, out.sky_peak, may_subtract_);
+    sky_floor_ = out.sky_floor;
+  }
 
   // ---- The second stage: the brightest m stars one by one, the rest together.
-  std::vector<glm::dvec3>& enu = directions_enu;
-  field.directions_enu(time, clock_site, enu);
-  std::optional<SkyBehindStarBound> behind;  // the sky behind one star (the second stage's B_s)
-  if (pass) {
+
+  /// The stars' places (`enu`, filled by the caller: StarField::directions_enu)
+  /// and the sky behind one star (the second stage's B_s) where the tables give it.
+  void start_star_by_star(const std::vector<glm::dvec3>& enu) {
+    enu_ = &enu;
+    if (!pass_) return;
     std::vector<std::pair<glm::dvec3, double>> bodies;
-    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-      if (b != site) bodies.emplace_back(scene.bodies[b].position_m, scene.bodies[b].radius_m);
-    behind.emplace(pass->gpu->radiance_lower_bound(), sky.camera_m, planet.position_m, pass->gpu->ground_radius_m(),
-                   frame.sun, pass->sky_view, sky.rgb_weights, scene.sun.irradiance_W_m2_nm, sky.exposure,
-                   std::move(bodies), out.sky_floor);
+    for (std::size_t b = 0; b < scene_.bodies.size(); ++b)
+      if (b != site_) bodies.emplace_back(scene_.bodies[b].position_m, scene_.bodies[b].radius_m);
+    behind_.emplace(pass_->gpu->radiance_lower_bound(), sky_.camera_m, planet_.position_m,
+                    pass_->gpu->ground_radius_m(), frame_.sun, pass_->sky_view, sky_.rgb_weights,
+                    scene_.sun.irradiance_W_m2_nm, sky_.exposure, std::move(bodies), sky_floor_);
   }
-  // The most |delta| on a placed star's splat can move a code: against the
-  // darkest sky, and where that could show, against the sky behind the star.
-  const auto splat_change = [&](const PlacedStar& star, const std::array<double, 3>& delta) {
-    double change = largest_code_change(out.sky_floor, delta, may_subtract);
-    if (change >= kInvisibleCodeChange && behind) {
-      const auto rho = splat_footprint_radius(frame.projection, frame.camera_to_world, star.pixel, star.direction);
-      if (rho) change = largest_code_change(behind->at(star.direction, *rho), delta, may_subtract);
-    }
-    return change;
-  };
-  // At night the stars show, and the ladder below would say so only after a
-  // pass over every drawable star per rung and the sky over the rest's cubes
-  // (~25 ms a frame on this project's VM). The brightest kFirstStarsTested
-  // stars in the image alone answer first: a star whose own splat, against the
-  // sky behind it, could move a code half a step makes the whole test answer
-  // "could show" as well — every rung keeps it among the bright stars placed
-  // below, whose `delta` only adds its neighbours and the rest to its own
-  // light, or among the rest, whose bound for it holds its own light against
-  // a sky no brighter than the one behind its splat; the code change grows
-  // with what is added — so the pass runs now, on the same decision, for the
-  // price of placing a few stars. Those are the first to land in the image
-  // among the catalogue's kFirstStarsScanned brightest (one dot product
-  // rejects each of the others): a narrow view holds few of the very
-  // brightest (a 79° ground view none of the 16 at 22:00 on the winter
-  // solstice, where the ladder took 3.7 ms of its frame).
-  {
-    std::vector<double> scratch_a(n), scratch_b(n);
+
+  /// At night the stars show, and the ladder below would say so only after a
+  /// pass over every drawable star per rung and the sky over the rest's cubes
+  /// (~25 ms a frame on this project's VM). The brightest kFirstStarsTested
+  /// stars in the image alone answer first: a star whose own splat, against the
+  /// sky behind it, could move a code half a step makes the whole test answer
+  /// "could show" as well — every rung keeps it among the bright stars placed
+  /// below, whose `delta` only adds its neighbours and the rest to its own
+  /// light, or among the rest, whose bound for it holds its own light against
+  /// a sky no brighter than the one behind its splat; the code change grows
+  /// with what is added — so the pass runs now, on the same decision, for the
+  /// price of placing a few stars. Those are the first to land in the image
+  /// among the catalogue's kFirstStarsScanned brightest (one dot product
+  /// rejects each of the others): a narrow view holds few of the very
+  /// brightest (a 79° ground view none of the 16 at 22:00 on the winter
+  /// solstice, where the ladder took 3.7 ms of its frame).
+  /// True (and `out` says so) when one of them could show.
+  bool a_bright_star_could_show_alone(StarVisibility& out) const {
+    const std::vector<glm::dvec3>& enu = *enu_;
+    std::vector<double> scratch_a(n_), scratch_b(n_);
     std::size_t placed = 0;
     for (std::size_t i = 0; i < std::min(kFirstStarsScanned, enu.size()) && placed < kFirstStarsTested; ++i) {
-      const auto p = place_star(field, i, enu[i], sky, scratch_a, scratch_b);
+      const auto p = place_star(field_, i, enu[i], sky_, scratch_a, scratch_b);
       if (!p) continue;
       ++placed;
       const double change = splat_change(*p, {std::abs(p->rgb[0]), std::abs(p->rgb[1]), std::abs(p->rgb[2])});
       if (change >= kInvisibleCodeChange) {
         out.stars_tested = i + 1;
         out.code_change = change;
-        return out;  // this star could show on its own: the pass runs
+        return true;
       }
     }
+    return false;
   }
-  // The rest: per star j after the m-th that can be drawn (above the ground,
-  // within the view's cone), the stars after the m-th within twice the
-  // cluster's radius of it (StarField::neighbourhood_irradiance: a pixel that
-  // gathers j gathers no more of them) through the most a line of sight
-  // within that reach (and refraction's lift, < 1°) of j's elevation keeps.
-  const double reach_deg = 2.0 * cluster_radius / core::kDeg + 1.0;
-  const int window = static_cast<int>(std::ceil(reach_deg)) + 1;
-  std::vector<double> near_kept(90 * lanes, 0.0);  // per degree, the largest of by_degree within the window
-  for (int k = 0; k < 90; ++k)
-    for (int e = std::max(0, k - window); e <= std::min(89, k + window); ++e)
-      for (std::size_t i = 0; i < lanes; ++i)
-        near_kept[static_cast<std::size_t>(k) * lanes + i] = std::max(
-            near_kept[static_cast<std::size_t>(k) * lanes + i], by_degree[static_cast<std::size_t>(e) * lanes + i]);
-  // The stars that can be drawn (above the ground, within the view's cone) and their elevation's degree.
-  std::vector<std::pair<std::size_t, int>> drawable;
-  for (std::size_t j = 0; j < enu.size(); ++j) {
-    const glm::dvec3& v = enu[j];
-    if (v.z < sky.lowest_sin_altitude) continue;
-    if (glm::dot(v.x * sky.east + v.y * sky.north + v.z * sky.up, sky.view_axis) < sky.view_cos_limit) continue;
-    drawable.emplace_back(
-        j, std::clamp(static_cast<int>(std::floor(std::asin(std::clamp(v.z, -1.0, 1.0)) / core::kDeg)), 0, 89));
+
+  /// The rest: per star j after the m-th that can be drawn (above the ground,
+  /// within the view's cone), the stars after the m-th within twice the
+  /// cluster's radius of it (StarField::neighbourhood_irradiance: a pixel that
+  /// gathers j gathers no more of them) through the most a line of sight
+  /// within that reach (and refraction's lift, < 1°) of j's elevation keeps.
+  /// Here: that most per degree (near_kept_), and the drawable stars with
+  /// their elevation's degree.
+  void list_drawable_stars() {
+    const double reach_deg = 2.0 * cluster_radius_ / core::kDeg + 1.0;
+    const int window = static_cast<int>(std::ceil(reach_deg)) + 1;
+    near_kept_.assign(90 * lanes_, 0.0);  // per degree, the largest of by_degree_ within the window
+    for (int k = 0; k < 90; ++k)
+      for (int e = std::max(0, k - window); e <= std::min(89, k + window); ++e)
+        for (std::size_t i = 0; i < lanes_; ++i)
+          near_kept_[static_cast<std::size_t>(k) * lanes_ + i] =
+              std::max(near_kept_[static_cast<std::size_t>(k) * lanes_ + i],
+                       by_degree_[static_cast<std::size_t>(e) * lanes_ + i]);
+    const std::vector<glm::dvec3>& enu = *enu_;
+    drawable_.clear();
+    for (std::size_t j = 0; j < enu.size(); ++j) {
+      const glm::dvec3& v = enu[j];
+      if (v.z < sky_.lowest_sin_altitude) continue;
+      if (glm::dot(v.x * sky_.east + v.y * sky_.north + v.z * sky_.up, sky_.view_axis) < sky_.view_cos_limit) continue;
+      drawable_.emplace_back(j, degree_of(v));
+    }
   }
-  // Per drawable star j after the m-th: its neighbourhood's most on one pixel (per channel).
-  const auto rest_each = [&](std::size_t m, auto&& visit) {
-    const std::vector<double>& near = field.neighbourhood_irradiance(cluster_radius, years_from_j2000, m);
-    const auto first = std::lower_bound(drawable.begin(), drawable.end(), std::pair<std::size_t, int>{m, -1});
-    for (auto it = first; it != drawable.end(); ++it) {
+
+  /// The ladder: the rest after the brightest m = 16, 64, … stars until the
+  /// rest alone cannot show (or, at kMostStarsTested, can show only where its
+  /// own sky allows). The rung it stopped at and what the rest alone can do
+  /// there; nothing when too many stars could matter (`out` says so: the pass runs).
+  struct Rung {
+    std::size_t m = 0;
+    double rest_change = 0.0;  ///< the most the rest alone can move a code
+  };
+  std::optional<Rung> climb_the_ladder(StarVisibility& out) {
+    Rung rung;
+    for (std::size_t trial = kFirstStarsTested;; trial *= 4) {
+      rung.m = std::min(trial, field_.size());
+      rung.rest_change = largest_code_change(sky_floor_, rest_of(rung.m), may_subtract_);
+      if (rung.rest_change <= 0.25 * kInvisibleCodeChange) return rung;
+      if (rung.m < std::min(field_.size(), kMostStarsTested)) continue;
+      if (rung.rest_change < kInvisibleCodeChange) return rung;  // the bright stars get what the rest leaves
+      rung.rest_change = rest_against_the_sky_behind_it(rung.m);
+      if (rung.rest_change < kInvisibleCodeChange) return rung;
+      out.stars_tested = rung.m;  // too many stars could matter: the pass runs
+      out.code_change = rung.rest_change;
+      return std::nullopt;
+    }
+  }
+
+  /// The brightest m stars placed, each with the rest's stars within twice the
+  /// cluster's radius of it (their sum through the line of sight near its
+  /// elevation) and its placed neighbours whose splats can share a pixel with
+  /// its own: true (and `out` says so) when one could show; else `out` holds
+  /// the largest code change of all.
+  bool a_bright_star_could_show_with_its_neighbours(const Rung& rung, StarVisibility& out) const {
+    const std::vector<glm::dvec3>& enu = *enu_;
+    const std::size_t m = rung.m;
+    struct Bright {
+      PlacedStar star;
+      std::array<double, 3> rest{};
+    };
+    std::vector<Bright> placed;
+    std::vector<double> scratch_a(n_), scratch_b(n_);
+    const std::vector<double>& near = field_.neighbourhood_irradiance(cluster_radius_, years_from_j2000_, m);
+    for (std::size_t i = 0; i < m && i < enu.size(); ++i)
+      if (auto p = place_star(field_, i, enu[i], sky_, scratch_a, scratch_b)) {
+        Bright b{*p, {}};
+        const int degree = degree_of(enu[i]);
+        for (std::size_t c = 0; c < 3; ++c)
+          for (std::size_t k = 0; k < n_; ++k)
+            b.rest[c] += scale_ * std::abs(sky_.rgb_weights[k][c]) * near[i * n_ + k] *
+                         near_kept_[static_cast<std::size_t>(degree) * lanes_ + k];
+        placed.push_back(b);
+      }
+    out.stars_placed = placed.size();
+
+    // Neighbours whose splats can share a pixel: within 2 pixels in x and y, in cells of 2 pixels.
+    const auto cell = [](double x, double y) {
+      return (static_cast<std::int64_t>(std::floor(0.5 * x)) << 32) ^
+             static_cast<std::int64_t>(static_cast<std::uint32_t>(static_cast<std::int32_t>(std::floor(0.5 * y))));
+    };
+    std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
+    for (std::size_t s = 0; s < placed.size(); ++s)
+      cells[cell(placed[s].star.pixel.x, placed[s].star.pixel.y)].push_back(s);
+    double largest = rung.rest_change;
+    for (const Bright& b : placed) {
+      const PlacedStar& s = b.star;
+      std::array<double, 3> delta{};
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = cells.find(cell(s.pixel.x + 2.0 * dx, s.pixel.y + 2.0 * dy));
+          if (it == cells.end()) continue;
+          for (std::size_t o : it->second)
+            if (std::abs(placed[o].star.pixel.x - s.pixel.x) <= 2.0 &&
+                std::abs(placed[o].star.pixel.y - s.pixel.y) <= 2.0)
+              for (std::size_t c = 0; c < 3; ++c) delta[c] += std::abs(placed[o].star.rgb[c]);
+        }
+      for (std::size_t c = 0; c < 3; ++c) delta[c] = delta[c] * (1.0 + 1e-3) + b.rest[c];
+      const double change = splat_change(s, delta);
+      largest = std::max(largest, change);
+      if (change >= kInvisibleCodeChange) {
+        out.code_change = change;
+        return true;
+      }
+    }
+    out.code_change = largest;
+    return false;
+  }
+
+ private:
+  /// The degree of elevation [0, 89] a geometric direction (east, north, up) lies in.
+  static int degree_of(const glm::dvec3& enu) {
+    return std::clamp(static_cast<int>(std::floor(std::asin(std::clamp(enu.z, -1.0, 1.0)) / core::kDeg)), 0, 89);
+  }
+
+  /// The most |delta| on a placed star's splat can move a code: against the
+  /// darkest sky, and where that could show, against the sky behind the star.
+  double splat_change(const PlacedStar& star, const std::array<double, 3>& delta) const {
+    double change = largest_code_change(sky_floor_, delta, may_subtract_);
+    if (change >= kInvisibleCodeChange && behind_) {
+      const auto rho = splat_footprint_radius(frame_.projection, frame_.camera_to_world, star.pixel, star.direction);
+      if (rho) change = largest_code_change(behind_->at(star.direction, *rho), delta, may_subtract_);
+    }
+    return change;
+  }
+
+  /// Per drawable star j after the m-th: its neighbourhood's most on one pixel (per channel).
+  template <class Visit>
+  void for_each_rest_star(std::size_t m, Visit&& visit) const {
+    const std::vector<double>& near = field_.neighbourhood_irradiance(cluster_radius_, years_from_j2000_, m);
+    const auto first = std::lower_bound(drawable_.begin(), drawable_.end(), std::pair<std::size_t, int>{m, -1});
+    for (auto it = first; it != drawable_.end(); ++it) {
       const std::size_t j = it->first;
-      const double* k = &near_kept[static_cast<std::size_t>(it->second) * lanes];
-      const double* e = &near[j * n];
+      const double* k = &near_kept_[static_cast<std::size_t>(it->second) * lanes_];
+      const double* e = &near[j * n_];
       std::array<double, 3> f{};
       for (std::size_t c = 0; c < 3; ++c) {
-        for (std::size_t i = 0; i < n; ++i) f[c] += std::abs(sky.rgb_weights[i][c]) * e[i] * k[i];
-        f[c] *= scale;
+        for (std::size_t i = 0; i < n_; ++i) f[c] += std::abs(sky_.rgb_weights[i][c]) * e[i] * k[i];
+        f[c] *= scale_;
       }
       visit(j, f);
     }
-  };
-  const auto rest_of = [&](std::size_t m) {
+  }
+
+  /// The most the rest after the m-th star puts on one pixel, per channel.
+  std::array<double, 3> rest_of(std::size_t m) const {
     std::array<double, 3> rest{};
-    rest_each(m, [&](std::size_t, const std::array<double, 3>& f) {
+    for_each_rest_star(m, [&](std::size_t, const std::array<double, 3>& f) {
       for (std::size_t c = 0; c < 3; ++c) rest[c] = std::max(rest[c], f[c]);
     });
     return rest;
-  };
-  std::size_t m = 0;
-  std::array<double, 3> rest{};
-  double rest_change = 0.0;  // the most the rest alone can move a code
-  for (std::size_t trial = kFirstStarsTested;; trial *= 4) {
-    m = std::min(trial, field.size());
-    rest = rest_of(m);
-    rest_change = largest_code_change(out.sky_floor, rest, may_subtract);
-    if (rest_change <= 0.25 * kInvisibleCodeChange) break;
-    if (m < std::min(field.size(), kMostStarsTested)) continue;
-    if (rest_change < kInvisibleCodeChange) break;  // the bright stars get what the rest leaves
-    // Pixels only the rest touches, against the sky behind each star of the
-    // rest whose neighbourhood could show on the darkest sky: its pixels lie
-    // within `reach` of its apparent direction, which refraction lifts by
-    // under 1° from its geometric one, which lies in a cube of side h of the
-    // (east, north, up) grid: within δ = √3 h / 2 of the cube's centre c, so
-    // within asin(δ / (1 − δ)) of c's direction. The sky over that cap, once per cube.
+  }
+
+  /// Pixels only the rest touches, against the sky behind each star of the
+  /// rest whose neighbourhood could show on the darkest sky: its pixels lie
+  /// within `reach` of its apparent direction, which refraction lifts by
+  /// under 1° from its geometric one, which lies in a cube of side h of the
+  /// (east, north, up) grid: within δ = √3 h / 2 of the cube's centre c, so
+  /// within asin(δ / (1 − δ)) of c's direction. The sky over that cap, once
+  /// per cube (or, with colour weights that may subtract, the darkest sky's);
+  /// per channel the code's slope there. The most the rest can move a code.
+  double rest_against_the_sky_behind_it(std::size_t m) const {
     constexpr double kCube = 0.06;
     const double delta = 0.5 * std::sqrt(3.0) * kCube;
-    const double cap = std::asin(delta / (1.0 - delta)) + 1.0 * core::kDeg + reach;
-    // Per cube, the sky's floor over its cap (or, with colour weights that
-    // may subtract, the darkest sky's); per channel the code's slope there.
+    const double cap = std::asin(delta / (1.0 - delta)) + 1.0 * core::kDeg + reach_;
     std::unordered_map<std::int64_t, std::pair<std::array<double, 3>, std::array<double, 3>>> cells;
     const auto slopes = [](const std::array<double, 3>& background) {
       return std::array<double, 3>{image::display_code_slope_bound(background[0]),
@@ -417,14 +534,15 @@ StarVisibility star_visibility(const FrameInProgress& frame, StarField& field, c
     };
     const auto change_at = [&](const std::array<double, 3>& slope, const std::array<double, 3>& background,
                                const std::array<double, 3>& f) {
-      if (may_subtract) return largest_code_change(background, f, true);
+      if (may_subtract_) return largest_code_change(background, f, true);
       return std::max({slope[0] * f[0], slope[1] * f[1], slope[2] * f[2]});
     };
-    const std::array<double, 3> darkest = slopes(out.sky_floor);
+    const std::vector<glm::dvec3>& enu = *enu_;
+    const std::array<double, 3> darkest = slopes(sky_floor_);
     double worst = 0.0;
-    rest_each(m, [&](std::size_t j, const std::array<double, 3>& f) {
-      double c = change_at(darkest, out.sky_floor, f);
-      if (c >= kInvisibleCodeChange && behind) {
+    for_each_rest_star(m, [&](std::size_t j, const std::array<double, 3>& f) {
+      double c = change_at(darkest, sky_floor_, f);
+      if (c >= kInvisibleCodeChange && behind_) {
         const glm::dvec3& v = enu[j];
         const std::int64_t x = static_cast<std::int64_t>(std::floor(v.x / kCube)),
                            y = static_cast<std::int64_t>(std::floor(v.y / kCube)),
@@ -434,75 +552,65 @@ StarVisibility star_visibility(const FrameInProgress& frame, StarField& field, c
         if (it == cells.end()) {
           const glm::dvec3 centre =
               (glm::dvec3(static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)) + 0.5) * kCube;
-          const glm::dvec3 d = glm::normalize(centre.x * sky.east + centre.y * sky.north + centre.z * sky.up);
-          const std::array<double, 3> floor = behind->at(d, cap);
+          const glm::dvec3 d = glm::normalize(centre.x * sky_.east + centre.y * sky_.north + centre.z * sky_.up);
+          const std::array<double, 3> floor = behind_->at(d, cap);
           it = cells.emplace(key, std::pair{floor, slopes(floor)}).first;
         }
         c = change_at(it->second.second, it->second.first, f);
       }
       worst = std::max(worst, c);
     });
-    rest_change = worst;
-    if (worst < kInvisibleCodeChange) break;
-    out.stars_tested = m;  // too many stars could matter: the pass runs
-    out.code_change = worst;
-    return out;
+    return worst;
   }
-  out.stars_tested = m;
-  // A bright star's splat shares its pixels with the rest's stars within
-  // twice the cluster's radius of it: their sum through the line of sight near
-  // its elevation.
-  struct Bright {
-    PlacedStar star;
-    std::array<double, 3> rest{};
-  };
-  std::vector<Bright> placed;
-  std::vector<double> scratch_a(n), scratch_b(n);
-  const std::vector<double>& near = field.neighbourhood_irradiance(cluster_radius, years_from_j2000, m);
-  for (std::size_t i = 0; i < m && i < enu.size(); ++i)
-    if (auto p = place_star(field, i, enu[i], sky, scratch_a, scratch_b)) {
-      Bright b{*p, {}};
-      const int degree =
-          std::clamp(static_cast<int>(std::floor(std::asin(std::clamp(enu[i].z, -1.0, 1.0)) / core::kDeg)), 0, 89);
-      for (std::size_t c = 0; c < 3; ++c)
-        for (std::size_t k = 0; k < n; ++k)
-          b.rest[c] += scale * std::abs(sky.rgb_weights[k][c]) * near[i * n + k] *
-                       near_kept[static_cast<std::size_t>(degree) * lanes + k];
-      placed.push_back(b);
-    }
-  out.stars_placed = placed.size();
 
-  // Neighbours whose splats can share a pixel: within 2 pixels in x and y, in cells of 2 pixels.
-  const auto cell = [](double x, double y) {
-    return (static_cast<std::int64_t>(std::floor(0.5 * x)) << 32) ^
-           static_cast<std::int64_t>(static_cast<std::uint32_t>(static_cast<std::int32_t>(std::floor(0.5 * y))));
-  };
-  std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
-  for (std::size_t s = 0; s < placed.size(); ++s)
-    cells[cell(placed[s].star.pixel.x, placed[s].star.pixel.y)].push_back(s);
-  double largest = rest_change;
-  for (const Bright& b : placed) {
-    const PlacedStar& s = b.star;
-    std::array<double, 3> delta{};
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const auto it = cells.find(cell(s.pixel.x + 2.0 * dx, s.pixel.y + 2.0 * dy));
-        if (it == cells.end()) continue;
-        for (std::size_t o : it->second)
-          if (std::abs(placed[o].star.pixel.x - s.pixel.x) <= 2.0 &&
-              std::abs(placed[o].star.pixel.y - s.pixel.y) <= 2.0)
-            for (std::size_t c = 0; c < 3; ++c) delta[c] += std::abs(placed[o].star.rgb[c]);
-      }
-    for (std::size_t c = 0; c < 3; ++c) delta[c] = delta[c] * (1.0 + 1e-3) + b.rest[c];
-    const double change = splat_change(s, delta);
-    largest = std::max(largest, change);
-    if (change >= kInvisibleCodeChange) {
-      out.code_change = change;
-      return out;  // this star could show: the pass runs
-    }
-  }
+  const FrameInProgress& frame_;
+  StarField& field_;
+  const StarFrame& sky_;
+  const scene::Scene& scene_;
+  double years_from_j2000_;
+  std::size_t n_;     ///< wavelengths
+  std::size_t site_;  ///< the body the sky clock stands on
+  const scene::Body& planet_;
+  glm::dvec3 up_;
+  double r_;                             ///< the camera's distance from the site body's centre
+  double reach_;                         ///< two pixel angles
+  double cluster_radius_;                ///< the radius of sky one pixel gathers stars from
+  const std::vector<double>& gathered_;  ///< the brightest cluster's irradiance per wavelength
+  double omega_;                         ///< half the smallest pixel solid angle
+  double scale_;                         ///< exposure / Ω
+  std::size_t lanes_;                    ///< wavelengths, at least 8 (star_transmittance's width)
+  bool weights_non_negative_, may_subtract_;
+  std::vector<double> by_degree_, kept_, near_kept_;
+  const AtmospherePass* pass_ = nullptr;  ///< the sky at the camera, where the tables give its floor
+  std::array<double, 3> sky_floor_{};
+  const std::vector<glm::dvec3>* enu_ = nullptr;
+  std::optional<SkyBehindStarBound> behind_;
+  std::vector<std::pair<std::size_t, int>> drawable_;  ///< the stars that can be drawn, and their degree
+};
+
+}  // namespace
+
+StarVisibility star_visibility(const FrameInProgress& frame, StarField& field, const StarFrame& sky,
+                               const astro::AstroTime& time, const astro::Site& clock_site,
+                               std::vector<glm::dvec3>& directions_enu, bool star_by_star) {
+  StarVisibility out;
+  directions_enu.clear();
+  StarTest test(frame, field, sky, time);
+  if (!test.has_pixels()) return out;  // no pixel to bound: the pass runs
+
+  test.bound_light_kept_by_elevation();
+  test.bound_every_star_at_once(out);
+  if (!out.could_show || !star_by_star) return out;
+
+  field.directions_enu(time, clock_site, directions_enu);
+  test.start_star_by_star(directions_enu);
+  if (test.a_bright_star_could_show_alone(out)) return out;  // the pass runs
+  test.list_drawable_stars();
+  const std::optional<StarTest::Rung> rung = test.climb_the_ladder(out);
+  if (!rung) return out;  // too many stars could matter: the pass runs
+  out.stars_tested = rung->m;
+  if (test.a_bright_star_could_show_with_its_neighbours(*rung, out)) return out;  // the pass runs
   out.could_show = false;
-  out.code_change = largest;
   return out;
 }
 
