@@ -8,6 +8,11 @@
 //   partition2s   its link cut for 2 s, one second into the show
 //   latency5      5 ms ± 1 ms each way on every node's link (the delaying
 //                 relay, tests/rig/delay_relay.cpp: the kernel has no netem)
+//   clockstep     n1's clock runs 300 ppm fast and jumps 20 ms ahead, then
+//                 back, every 2 s (`zenith node --debug-clock-*`: only as its
+//                 clock synchronisation reads it): "clock ms" shows a jump
+//                 until it is seen, "clock p50" the rest, "apart" how many
+//                 frames the nodes' moments were more than 2 ms apart
 //   join1g, join100m   n1 joins mid-show (started once the others are warmed
 //                 up) over a link of 1 Gbit/s / 100 Mbit/s toward it (tc
 //                 tbf): the tables it lacks travel while the others play;
@@ -37,7 +42,7 @@
 // each node's render thread got a core). Needs root (network namespaces).
 //
 //   cluster_rig_bench [--zenith PATH] [--nodes 4] [--hz 60] [--frames 600] [--lookahead 3]
-//                     [--cases none,loss1,loss5,partition2s,latency5,join1g,join100m]
+//                     [--cases none,loss1,loss5,partition2s,latency5,clockstep,join1g,join100m]
 //                     [--schedules barrier,scheduled] [--size 32] [--tables small]
 //                     [--scene configs/scenes/earth-sunset.json] [--work DIR] [--cache DIR]
 //                     [--csv bench/results/cluster_rig.csv]
@@ -75,7 +80,7 @@ constexpr const char* kUsage = R"(cluster_rig_bench: the cluster across network 
   --hz R               frame rate (default 60)
   --frames N           frames per run, the warm-up frame 0 included (default 600)
   --lookahead N        the schedule's lookahead in frames (default 3)
-  --cases LIST         none, loss1, loss5, partition2s, latency5, join1g, join100m
+  --cases LIST         none, loss1, loss5, partition2s, latency5, clockstep, join1g, join100m
                        (default: the first four)
   --schedules LIST     barrier, scheduled (default both)
   --size PX            each node's output is PX×PX (default 32)
@@ -138,7 +143,8 @@ Options parse(int argc, char** argv) {
   if (o.nodes < 2) throw std::invalid_argument("--nodes: at least 2 (node n1 is the impaired one)");
   if (o.frames < 10) throw std::invalid_argument("--frames: at least 10");
   if (o.lookahead < 1 || o.lookahead > 30) throw std::invalid_argument("--lookahead: in [1, 30]");
-  const std::vector<std::string> known = {"none", "loss1", "loss5", "partition2s", "latency5", "join1g", "join100m"};
+  const std::vector<std::string> known = {"none",     "loss1",     "loss5",  "partition2s",
+                                          "latency5", "clockstep", "join1g", "join100m"};
   for (const std::string& c : o.cases)
     if (std::find(known.begin(), known.end(), c) == known.end())
       throw std::invalid_argument("--cases: unknown case '" + c + "'");
@@ -162,7 +168,9 @@ struct Row {
   std::string schedule, case_name, node;
   std::uint64_t presented = 0, expected = 0, missing = 0, over_2t = 0, over_100ms = 0;
   bool in_order = true;
-  double longest_ms = 0.0, latest_ms = 0.0, spread_max_ms = 0.0, spread_p99_ms = 0.0, moment_max_ms = 0.0;
+  double longest_ms = 0.0, latest_ms = 0.0, spread_max_ms = 0.0, spread_p99_ms = 0.0, moment_max_ms = 0.0,
+         moment_p50_ms = 0.0;
+  std::uint64_t moments_apart = 0;       ///< frames whose moments lay more than 2 ms apart on the nodes
   double table_mb = 0.0, table_s = 0.0;  ///< the joining node's (join cases), from the master's log
 };
 
@@ -193,6 +201,9 @@ std::vector<Row> run_case(const Options& o, const std::string& schedule, const s
   setup.tables = o.tables;
   const bool join = case_name == "join1g" || case_name == "join100m";
   if (case_name == "latency5") setup.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, 5.0, 1.0, 0.0, 0.0};
+  if (case_name == "clockstep")
+    setup.node_args[1] = {"--debug-clock-drift-ppm",    "300", "--debug-clock-step-ms", "20",
+                          "--debug-clock-step-every-s", "2"};
   if (join) {
     setup.late_nodes = {1};
     setup.late_node_niceness = 19;    // its loading on its own PC's cores, as on a dome (rig_cluster.h)
@@ -245,6 +256,9 @@ std::vector<Row> run_case(const Options& o, const std::string& schedule, const s
     r.spread_max_ms = spreads.empty() ? 0.0 : *std::max_element(spreads.begin(), spreads.end());
     r.spread_p99_ms = percentile(spreads, 0.99);
     r.moment_max_ms = moments.empty() ? 0.0 : *std::max_element(moments.begin(), moments.end());
+    r.moment_p50_ms = percentile(moments, 0.5);
+    r.moments_apart =
+        static_cast<std::uint64_t>(std::count_if(moments.begin(), moments.end(), [](double ms) { return ms > 2.0; }));
   }
   return rows;
 }
@@ -256,19 +270,20 @@ int run(int argc, char** argv) {
   fs::create_directories(o.work);
   fmt::print("cluster_rig_bench: {} nodes at {} Hz, {} frames, {}x{} px outputs, {} tables, lookahead {}\n", o.nodes,
              o.hz, o.frames, o.size_px, o.size_px, o.tables, o.lookahead);
-  fmt::print("{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11} {:>7} {:>9} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
-             "schedule", "case", "node", "presented", "missing", "order", "longest ms", "> 2T", "> 100 ms", "latest ms",
-             "spread ms", "p99 ms", "clock ms", "table MB", "table s");
+  fmt::print(
+      "{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11} {:>7} {:>9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
+      "schedule", "case", "node", "presented", "missing", "order", "longest ms", "> 2T", "> 100 ms", "latest ms",
+      "spread ms", "p99 ms", "clock ms", "clock p50", "apart", "table MB", "table s");
   std::vector<Row> rows;
   for (const std::string& schedule : o.schedules)
     for (const std::string& c : o.cases)
       for (const Row& r : run_case(o, schedule, c)) {
         fmt::print(
             "{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11.1f} {:>7} {:>9} {:>10.1f} {:>10.2f} {:>10.2f} {:>10.3f} "
-            "{:>9.1f} "
-            "{:>8.2f}\n",
+            "{:>10.3f} {:>6} {:>9.1f} {:>8.2f}\n",
             r.schedule, r.case_name, r.node, r.presented, r.missing, r.in_order ? "yes" : "NO", r.longest_ms, r.over_2t,
-            r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms, r.table_mb, r.table_s);
+            r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms, r.moment_p50_ms,
+            r.moments_apart, r.table_mb, r.table_s);
         std::fflush(stdout);
         rows.push_back(r);
       }
@@ -276,12 +291,12 @@ int run(int argc, char** argv) {
   std::ofstream csv(o.csv);
   csv << "schedule,case,node,hz,frames_expected,presented,missing,in_order,longest_interval_ms,"
          "intervals_over_2_periods,intervals_over_100ms,latest_after_moment_ms,swap_spread_max_ms,swap_spread_p99_ms,"
-         "moment_spread_max_ms,table_mb,table_s\n";
+         "moment_spread_max_ms,table_mb,table_s,moment_spread_p50_ms,frames_moments_over_2ms_apart\n";
   for (const Row& r : rows)
-    csv << fmt::format("{},{},{},{},{},{},{},{},{:.2f},{},{},{:.2f},{:.3f},{:.3f},{:.3f},{:.2f},{:.3f}\n", r.schedule,
-                       r.case_name, r.node, o.hz, r.expected, r.presented, r.missing, r.in_order ? 1 : 0, r.longest_ms,
-                       r.over_2t, r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms,
-                       r.table_mb, r.table_s);
+    csv << fmt::format("{},{},{},{},{},{},{},{},{:.2f},{},{},{:.2f},{:.3f},{:.3f},{:.3f},{:.2f},{:.3f},{:.3f},{}\n",
+                       r.schedule, r.case_name, r.node, o.hz, r.expected, r.presented, r.missing, r.in_order ? 1 : 0,
+                       r.longest_ms, r.over_2t, r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms,
+                       r.moment_max_ms, r.table_mb, r.table_s, r.moment_p50_ms, r.moments_apart);
   fmt::print("csv: {}\n", o.csv.string());
   return 0;
 }
