@@ -15,9 +15,8 @@ std::int64_t ns_of(LocalClock::Steady::time_point s) {
 LocalClock::LocalClock(const Faults& faults, Steady::time_point origin) : faults_(faults), origin_ns_(ns_of(origin)) {}
 
 bool LocalClock::jumped(std::int64_t since_origin_ns) const {
-  const std::int64_t every = faults_.step_every.count();
-  if (faults_.step_ns == 0 || every <= 0 || since_origin_ns < 0) return false;
-  return (since_origin_ns / every) % 2 == 1;
+  if (!faults_.steps() || since_origin_ns < 0) return false;
+  return (since_origin_ns / faults_.step_every.count()) % 2 == 1;
 }
 
 std::int64_t LocalClock::read_ns(Steady::time_point s) const {
@@ -43,7 +42,8 @@ LocalClock::Steady::time_point LocalClock::steady_at(std::int64_t local_ns) cons
   const auto u0 = static_cast<std::int64_t>(std::floor(target / rate)) - 2;
   const auto u1 = static_cast<std::int64_t>(std::floor((target - static_cast<double>(faults_.step_ns)) / rate)) - 2;
   std::int64_t candidates[4] = {u0, u1, u0, u1};
-  if (const std::int64_t every = faults_.step_every.count(); faults_.step_ns != 0 && every > 0) {
+  if (faults_.steps()) {
+    const std::int64_t every = faults_.step_every.count();
     const std::int64_t earliest = std::max<std::int64_t>(std::min(u0, u1), 0);
     const std::int64_t start = (earliest + every - 1) / every * every;  // the first interval start at or after it
     candidates[2] = start;

@@ -27,7 +27,9 @@ class LocalClock {
     double drift_ppm = 0.0;  ///< runs this fast (negative: slow)
     std::int64_t step_ns = 0;
     std::chrono::nanoseconds step_every{0};  ///< 0: no steps
-    bool any() const { return drift_ppm != 0.0 || (step_ns != 0 && step_every.count() > 0); }
+    /// Whether the clock jumps at all (a step and an interval).
+    bool steps() const { return step_ns != 0 && step_every.count() > 0; }
+    bool any() const { return drift_ppm != 0.0 || steps(); }
   };
   /// The limits of the rehearsal (`zenith node --help`): 10 000 ppm is a
   /// clock 36 s an hour off, a hundred times a bad crystal; a step of 10 s.

@@ -416,7 +416,7 @@ struct Node::Impl {
           "node '{}': rehearsing a misbehaving clock: it runs {:+.1f} ppm off{} (only as its clock "
           "synchronisation reads it; the machine's time is untouched)",
           options.node_name, f.drift_ppm,
-          f.step_every.count() > 0 && f.step_ns != 0
+          f.steps()
               ? fmt::format(" and jumps {:+.3f} ms every {:.3f} s, then back", static_cast<double>(f.step_ns) / 1e6,
                             std::chrono::duration<double>(f.step_every).count())
               : std::string());
