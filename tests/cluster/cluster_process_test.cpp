@@ -2087,7 +2087,7 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) 
   const Child master = start_sunset_show(config, http);
   ASSERT_TRUE(wait_until([&] { return console_status(http).value("frames_presented", -1) >= 2; }, 400s)) << logs();
 
-  test::WebDriver browser(port_ + 4, port_ + 5, dir_ / "chromedriver.log");
+  test::WebDriver browser(port_ + 5, dir_ / "chromedriver.log");
   browser.open("http://127.0.0.1:" + std::to_string(http) + "/");
   ASSERT_TRUE(wait_in_page(browser, "document.getElementById('state').textContent === 'playing'", 60s));
   EXPECT_EQ(browser.script("return document.getElementById('show-name').textContent;"), "offline-sunset");
@@ -2140,7 +2140,7 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserChangesTurbidityAndTheNewVersion
   ASSERT_TRUE(wait_until([&] { return all_nodes(console_status(http), "ready"); }, 400s)) << logs();
   const std::string first_version = console_status(http)["atmospheres"][0]["version"];
 
-  test::WebDriver browser(port_ + 4, port_ + 5, dir_ / "chromedriver.log");
+  test::WebDriver browser(port_ + 5, dir_ / "chromedriver.log");
   browser.open("http://127.0.0.1:" + std::to_string(http) + "/");
   const std::string version_in_page =
       "document.querySelector('.atmosphere[data-body=\"Earth\"] .row[data-version]').dataset.version";

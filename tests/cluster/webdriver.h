@@ -6,8 +6,10 @@
 #include <signal.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -59,14 +61,33 @@ inline std::vector<std::uint8_t> decode_base64(const std::string& text) {
 /// throws std::runtime_error with the driver's answer when it fails.
 class WebDriver {
  public:
-  /// Starts chromedriver on `port` (its log in `log`) and a headless session
-  /// whose DevTools listen on `browser_port` (by default the browser picks a
-  /// free port among the ephemeral ones, which the tests' own ports overlap).
-  WebDriver(int port, int browser_port, const std::filesystem::path& log) : port_(port) {
-    driver_ = core::spawn_process(kChromedriver, {"--port=" + std::to_string(port)}, log);
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  /// Starts chromedriver (its log in `log`) on a port the driver picks itself
+  /// and a headless session whose DevTools listen on `browser_port` (by
+  /// default the browser picks a free port among the ephemeral ones, which the
+  /// tests' own ports overlap). A port chosen here could be taken by another
+  /// test between the choice and the driver's bind; port 0 cannot be.
+  WebDriver(int browser_port, const std::filesystem::path& log) {
+    driver_ = core::spawn_process(kChromedriver, {"--port=0"}, log);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    const auto fail = [&](const std::string& why) {
+      ::kill(driver_, SIGTERM);
+      core::wait_for_exit(driver_, std::chrono::milliseconds(5000));
+      throw std::runtime_error("chromedriver " + why + "; its log (" + log.string() + "):\n" + read_text(log));
+    };
+    // "ChromeDriver was started successfully on port 38115."
+    const std::string started = "started successfully on port ";
+    for (;;) {
+      const std::string text = read_text(log);
+      if (const std::size_t at = text.find(started); at != std::string::npos) {
+        port_ = std::atoi(text.c_str() + at + started.size());
+        if (port_ > 0) break;
+      }
+      if (core::wait_for_exit(driver_, std::chrono::milliseconds(0))) fail("exited before it listened");
+      if (std::chrono::steady_clock::now() > deadline) fail("did not say its port within 60 s");
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
     while (http_request(port_, boost::beast::http::verb::get, "/status", "", "application/json", 5).status != 200) {
-      if (std::chrono::steady_clock::now() > deadline) throw std::runtime_error("chromedriver did not start");
+      if (std::chrono::steady_clock::now() > deadline) fail("did not answer /status on its port within 60 s");
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
     const nlohmann::json capabilities = {
@@ -78,7 +99,11 @@ class WebDriver {
               {"args",
                {"--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1280,1500",
                 "--remote-debugging-port=" + std::to_string(browser_port)}}}}}}}}};
-    session_ = call(boost::beast::http::verb::post, "/session", capabilities)["sessionId"];
+    try {
+      session_ = call(boost::beast::http::verb::post, "/session", capabilities)["sessionId"];
+    } catch (const std::exception& e) {
+      fail(std::string("started no browser session: ") + e.what());
+    }
   }
   ~WebDriver() {
     if (!session_.empty())
@@ -117,6 +142,10 @@ class WebDriver {
   }
 
  private:
+  static std::string read_text(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
   std::string path(const std::string& rest) const { return "/session/" + session_ + rest; }
   nlohmann::json call(boost::beast::http::verb verb, const std::string& target, const nlohmann::json& body) {
     const HttpReply r = http_request(port_, verb, target, body.is_null() ? "" : body.dump(), "application/json", 120);
@@ -127,7 +156,7 @@ class WebDriver {
     return answer["value"];
   }
 
-  int port_;
+  int port_ = 0;
   pid_t driver_ = -1;
   std::string session_;
 };
