@@ -173,10 +173,10 @@ void time_stars(const StarTiming& t, const std::string& device, const scene::Sce
       fmt::print(
           "  {}x{} planar {:g}°, {}: {} stars drawn; {:.1f} ms without stars, {:.1f} ms with: {:+.1f} %"
           " (paired {:+.1f} %; placement {:.1f} ms CPU, splat {:.2f} ms, night sky {:.2f} ms GPU; {} frames each)\n",
-          w, h, t.fov_deg, label, b.stats.stars, ma, mb, overhead, paired, part("star placement"), part("stars"),
-          part("night sky"), a.ms.size());
+          w, h, t.fov_deg, label, b.stats.night_sky.stars, ma, mb, overhead, paired, part("star placement"),
+          part("stars"), part("night sky"), a.ms.size());
       csv << '"' << device << "\"," << w << 'x' << h << ",planar " << t.fov_deg << "deg," << (day ? "day" : "night")
-          << ',' << b.stats.stars << ','
+          << ',' << b.stats.night_sky.stars << ','
           << fmt::format("{:.3f},{:.3f},{:.2f},{:.2f},{:.3f},{:.3f},{:.3f}", ma, mb, overhead, paired,
                          part("star placement"), part("stars"), part("night sky"))
           << ',' << a.ms.size() << '\n';

@@ -74,11 +74,12 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
     fmt::print(
         "  t {:4.1f} s: sun {:6.2f}°, exposure {:8.3g}: stars {} ({} tested one by one), star test {:6.2f} ms, "
         "placement {:6.2f} ms CPU, {} placed\n",
-        t, sun_deg, s.camera.exposure, f.stars_could_show ? "run  " : "skipped", f.stars_tested, part("star test"),
-        part("star placement"), f.stars);
+        t, sun_deg, s.camera.exposure, f.night_sky.star_test.could_show ? "run  " : "skipped",
+        f.night_sky.star_test.stars_tested, part("star test"), part("star placement"), f.night_sky.stars);
     frames << '"' << device << "\"," << b.dome_px << ','
            << fmt::format("{:.2f},{:.3f},{:.6g},{},{},{},{:.3f},{:.3f}", t, sun_deg, s.camera.exposure,
-                          int(f.stars_could_show), f.stars_tested, f.stars, part("star test"), part("star placement"))
+                          int(f.night_sky.star_test.could_show), f.night_sky.star_test.stars_tested, f.night_sky.stars,
+                          part("star test"), part("star placement"))
            << '\n';
   }
 

@@ -75,15 +75,16 @@ void sweep_star_twilight(const StarTwilight& w, const std::string& device, const
         const astro::SkyPositions sky(astro::AstroTime::from_utc(s.sky_clock->time), s.sky_clock->site);
         r.sun_altitude_deg = sky.sun().horizontal.altitude_rad / core::kDeg;
       }
-      r.black_peak = f.star_black_sky_peak;
-      r.black_sky = f.star_black_sky_peak >= render::kInvisibleDisplayStep;
-      r.sky = f.stars_could_show;
-      r.global = f.stars_could_show || f.stars_tested > 0;  // the second stage runs where the first could not skip
-      r.tested = f.stars_tested;
-      r.code_change = f.star_code_change;
-      r.floor = f.star_sky_floor;
-      r.peak = f.star_sky_peak;
-      r.stars = f.stars;
+      r.black_peak = f.night_sky.star_test.black_sky_peak;
+      r.black_sky = f.night_sky.star_test.black_sky_peak >= render::kInvisibleDisplayStep;
+      r.sky = f.night_sky.star_test.could_show;
+      r.global = f.night_sky.star_test.could_show ||
+                 f.night_sky.star_test.stars_tested > 0;  // the second stage runs where the first could not skip
+      r.tested = f.night_sky.star_test.stars_tested;
+      r.code_change = f.night_sky.star_test.code_change;
+      r.floor = f.night_sky.star_test.largest_sky_floor();
+      r.peak = f.night_sky.star_test.largest_sky_peak();
+      r.stars = f.night_sky.stars;
       fmt::print(
           "  t {:4.1f} s: sun {:6.2f}°, exposure {:9.4g}: black-sky test {}, global sky test {}, star by star {} "
           "(floor {:.3g}, peak {:.3g}; {} tested one by one, ≤ {:.3g} code; {} stars placed)\n",
@@ -170,11 +171,11 @@ void sweep_star_twilight(const StarTwilight& w, const std::string& device, const
   fmt::print(
       "at t {:.1f} s (sun {:.2f}°, exposure {:.4g}): {:.1f} ms with the sky test (skipped), {:.1f} ms with "
       "the stars forced ({} placed): {:.1f} ms saved ({:.1f} %), medians of {}\n",
-      at.t_s, at.sun_altitude_deg, at.exposure, a, b, always.last_frame().stars, b - a, 100.0 * (b - a) / b,
+      at.t_s, at.sun_altitude_deg, at.exposure, a, b, always.last_frame().night_sky.stars, b - a, 100.0 * (b - a) / b,
       skipped.size());
   timing << '"' << device << "\"," << w.dome_px << ','
          << fmt::format("{:.2f},{:.3f},{:.6g},{:.3f},{:.3f},{:.3f},{:.2f},{},{:.3f},{}", at.t_s, at.sun_altitude_deg,
-                        at.exposure, a, b, b - a, 100.0 * (b - a) / b, always.last_frame().stars, test_ms,
+                        at.exposure, a, b, b - a, 100.0 * (b - a) / b, always.last_frame().night_sky.stars, test_ms,
                         skipped.size())
          << '\n';
   fmt::print("csv: {}, {}\n", csv.string(), times.string());

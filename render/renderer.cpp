@@ -16,8 +16,10 @@
 
 #include "atmosphere/model_hash.h"
 #include "core/parallel_for.h"
+#include "render/band/band_passes.h"
+#include "render/band/band_resources.h"
+#include "render/band/band_to_texture.h"
 #include "render/frame/albedo_array.h"
-#include "render/frame/band_to_texture.h"
 #include "render/frame/frame_conditions.h"
 #include "render/frame/frame_constants.h"
 #include "render/frame/frame_in_progress.h"
@@ -43,21 +45,8 @@
 namespace zenith::render {
 namespace {
 
-using gl::ShaderProgram;
-using gl::Texture;
 using gl::TextureFormat;
-
 using scene::kMaxBodies;
-
-// Texture units, storage bindings and image units of the render passes
-// (frame.glsl, *.comp), from render/shader_bindings.h.
-constexpr unsigned kAlbedoMapUnit = binding::kAlbedoMapsUnit;  // albedo_maps (a 2D array texture)
-constexpr unsigned kRayTableUnit = binding::kRayTableUnit;     // projection_ray_table of projection.glsl
-using binding::kBodies, binding::kTiles, binding::kFrameRgb;
-constexpr unsigned kGbufferHit = binding::kGbufferHitImage, kGbufferAlbedo = binding::kGbufferAlbedoImage,
-                   kRadianceSum = binding::kRadianceSumImage, kTransmittance = binding::kTransmittanceProductImage;
-constexpr int kMaxSpectrumUniforms = kSunSpectrumSize;  // direct_light.comp's sun_spectrum[]
-constexpr std::size_t kMoonSkyView = 1;                 // the Moon's sky-view table (SkyViewTable::kLights)
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -82,49 +71,9 @@ struct Renderer::Impl {
   AlbedoArray albedo;  // the bodies' maps, one layer per body (render/frame/albedo_array.h)
   std::string projection_key;
   std::unique_ptr<TileCones> cones;
-  FrameTiles frame_tiles;  // every band's tiles, kept while the scene holds still
-  gl::Buffer bodies;
-  gl::Buffer tiles;
-  // Ray tables of projections without a GPU form, per band (keyed with the projection).
-  std::map<int, std::vector<float>> ray_tables;  // by first row
-  Texture ray_table;
-  std::size_t tiles_capacity = 0;
-  // Band images, (re)allocated when the band size changes; the output is a
-  // buffer of one vec4 per pixel, mapped and packed into the rows (frame_rgb.glsl).
-  // The G-buffer path's four images only once a band has tiles where shells
-  // overlap: 224 MiB of GPU memory for an 8192-pixel band of 512 rows.
-  int band_width = 0, band_height = 0;
-  Texture gbuffer_hit, gbuffer_albedo, radiance_sum, transmittance;
-  gl::Buffer frame_rgb;
-  // render()'s rows of a band as RGB floats, kept from frame to frame: a new
-  // 50 MB vector per frame (a 3840-pixel band) costs its page faults every frame.
-  std::vector<float> rows_rgb;
-
-  void ensure_band_images(int width, int height) {
-    if (width == band_width && height == band_height) return;
-    for (Texture* t : {&gbuffer_hit, &gbuffer_albedo, &radiance_sum, &transmittance}) *t = Texture();
-    frame_rgb = gl::Buffer::mappable(static_cast<std::size_t>(width) * height * 4 * sizeof(float));
-    band_width = width;
-    band_height = height;
-  }
-  void ensure_gbuffer_images() {
-    if (gbuffer_hit.id() != 0) return;
-    gbuffer_hit = Texture::create_2d(TextureFormat::rgba32f, band_width, band_height);
-    gbuffer_albedo = Texture::create_2d(TextureFormat::rgba16f, band_width, band_height);
-    radiance_sum = Texture::create_2d(TextureFormat::rgba32f, band_width, band_height);
-    transmittance = Texture::create_2d(TextureFormat::rgba32f, band_width, band_height);
-  }
-
-  // render_to_texture()'s band copy (render/frame/band_to_texture.h); the
-  // band's black-tile flags (one uint per tile).
-  BandToTexture band_to_texture;
-  gl::Buffer black_tiles;
-
-  void ensure_tiles_buffer(std::size_t count) {
-    if (count <= tiles_capacity && tiles.id() != 0) return;
-    tiles_capacity = std::max<std::size_t>(count, 1024);
-    tiles = gl::Buffer(tiles_capacity * sizeof(std::uint32_t));
-  }
+  FrameTiles frame_tiles;         // every band's tiles, kept while the scene holds still
+  BandResources band;             // the bodies, tile lists, band images and rays on the GPU
+  BandToTexture band_to_texture;  // render_to_texture()'s band copy
 };
 
 Renderer::Renderer(const RenderOptions& options, TableSource tables)
@@ -152,9 +101,9 @@ struct Renderer::Frame : FrameInProgress {
 };
 
 void Renderer::render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink) {
-  std::vector<float>& rows_rgb = impl_->rows_rgb;
   render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
-    read_back_band(frame, band, rows_rgb, timer);
+    const std::span<const float> rows_rgb =
+        impl_->band.read_back(band, frame.projection.width(), frame.cones->columns(), timer);
     timer.cpu("sink", [&] { sink(band.first_row, band.rows, rows_rgb); });
   });
 }
@@ -173,6 +122,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   const gl::ProgramBuilds::Statistics builds_before = im.builds->statistics();
   Frame frame = frame_constants(scene, projection);
   if (options_.sun_disc) frame.sun_lift = sun_disc_lift(scene, sun_reach_rad(frame), impl_->refractions);
+  frame.lights = {frame.sun_light()};
   update_tile_cones(frame);
   prepare_bodies(frame);
   make_tables_resident(frame);
@@ -186,19 +136,8 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   frame.programs = &im.frame_programs.passes_for(*im.builds, frame.variant);
   set_direct_light_uniforms(frame);
   impl_->night_sky.prepare(frame, timer);
-  const NightSkyStats& night = impl_->night_sky.stats();
-  stats_.stars = night.stars;
-  stats_.night_sky_drawn = !night.skipped;
-  stats_.star_catalogue_identity = night.catalogue_identity;
-  stats_.star_sky_floor = *std::max_element(night.star_test.sky_floor.begin(), night.star_test.sky_floor.end());
-  stats_.star_sky_peak = *std::max_element(night.star_test.sky_peak.begin(), night.star_test.sky_peak.end());
-  stats_.stars_could_show = night.star_test.could_show;
-  stats_.star_black_sky_peak = night.star_test.black_sky_peak;
-  stats_.stars_tested = night.star_test.stars_tested;
-  stats_.star_code_change = night.star_test.code_change;
-  stats_.moon_map_identity = night.moon_map_identity;
-  stats_.moon_mean_albedo = night.moon_mean_albedo;
-  stats_.moonlight = frame.moonlit;
+  stats_.night_sky = impl_->night_sky.stats();
+  stats_.moonlight = frame.moon() != nullptr;
   render_bands(frame, output, timer);
   const gl::ProgramBuilds::Statistics& builds_after = im.builds->statistics();
   stats_.programs_built = builds_after.built - builds_before.built;
@@ -237,7 +176,7 @@ void Renderer::update_tile_cones(Frame& frame) {
   if (key.str() != im.projection_key || !im.cones) {
     im.cones = std::make_unique<TileCones>(projection);
     im.projection_key = key.str();
-    im.ray_tables.clear();
+    im.band.forget_rays();
     im.frame_tiles.forget();
   }
   frame.cones = im.cones.get();
@@ -295,8 +234,8 @@ void Renderer::prepare_bodies(Frame& frame) {
   }
   im.albedo.ensure(albedo_layers);
   for (GpuBody& g : bodies) g.albedo_map = {static_cast<float>(im.albedo.texture().width()), 0, 0, 0};
-  im.albedo.texture().bind(kAlbedoMapUnit);
-  im.bodies = gl::Buffer::from(std::span<const GpuBody>(bodies.empty() ? std::vector<GpuBody>(1) : bodies));
+  im.albedo.texture().bind(binding::kAlbedoMapsUnit);
+  im.band.upload_bodies(bodies);
 }
 
 void Renderer::make_tables_resident(Frame& frame) {
@@ -342,7 +281,7 @@ void Renderer::choose_sky_view(Frame& frame) const {
     // The Moon's own table where it is as accurate for the Moon's cosine; else
     // its passes read the 4D tables in the sky-view tiles.
     pass.moon_sky_view = pass.moonlit && sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(),
-                                                           pass.top_radius_m, glm::dot(up, frame.moon.direction));
+                                                           pass.top_radius_m, glm::dot(up, frame.moon()->direction));
     chosen.push_back(pass.gpu);
   }
 }
@@ -364,8 +303,9 @@ void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
                 [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius); });
     if (pass.moon_sky_view)
       timer.gpu("sky-view table, moonlight", [&] {
-        pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.moon.direction), frame.moon.angular_radius_rad,
-                                kMoonSkyView);
+        const FrameLight& moon = *frame.moon();
+        pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, moon.direction), moon.angular_radius_rad,
+                                moon.sky_view_slot());
       });
   }
 }
@@ -391,8 +331,7 @@ void Renderer::light_by_the_moon(Frame& frame, PassTimer& timer) {
     frame.passes[a].moonlit = moon.lit[a];
     stats_.moonlight_bound = std::max(stats_.moonlight_bound, moon.bounds[a]);
   }
-  frame.moonlit = moon.any();
-  frame.moon = std::move(moon.light);
+  if (moon.any()) frame.lights.push_back(std::move(moon.light));
 }
 
 void Renderer::light_by_the_sun(Frame& frame, PassTimer& timer) {
@@ -427,31 +366,6 @@ void Renderer::prepare_programs(Frame& frame) {
   frame.sun_reach = sun_reach_rad(frame);
 }
 
-void Renderer::set_direct_light_uniforms(Frame& frame) {
-  // direct_light.comp: every wavelength at once (render/frame/frame_constants.h);
-  // the sun's disc rgb = Σ_λ exposure w(λ) I_centre(λ) μ^α(λ) × coverage.
-  const scene::Scene& scene = frame.scene;
-  const FramePasses& fp = *frame.programs;
-  const double exposure = scene.camera.exposure;
-  const std::array<float, 9> rgb_from_albedo = direct_light_colour_matrix(frame, scene);
-  frame.prepare(*fp.direct_light).set_uniform("rgb_from_albedo", rgb_from_albedo);
-  frame.prepare(*fp.direct_light_one).set_uniform("rgb_from_albedo", rgb_from_albedo);
-  if (fp.direct_light_sun) {
-    const ShaderProgram& p = frame.prepare(*fp.direct_light_sun);
-    p.set_uniform("rgb_from_albedo", rgb_from_albedo);
-    p.set_uniform("wavelength_count", static_cast<int>(std::min<std::size_t>(frame.n, kMaxSpectrumUniforms)));
-    for (std::size_t i = 0; i < frame.n && i < static_cast<std::size_t>(kMaxSpectrumUniforms); ++i) {
-      const double c = exposure * frame.sun_centre[i];
-      p.set_uniform(
-          fmt::format("sun_spectrum[{}]", i),
-          std::array<float, 4>{static_cast<float>(frame.rgb_weights[i][0] * c),
-                               static_cast<float>(frame.rgb_weights[i][1] * c),
-                               static_cast<float>(frame.rgb_weights[i][2] * c),
-                               static_cast<float>(frame.sun_point_sigma > 0.0 ? 0.0 : frame.limb_exponent[i])});
-    }
-  }
-}
-
 void Renderer::classify_bands(Frame& frame, PassTimer& timer) {
   Impl& im = *impl_;
   const int width = frame.projection.width(), height = frame.projection.height();
@@ -459,16 +373,18 @@ void Renderer::classify_bands(Frame& frame, PassTimer& timer) {
   frame.band_rows = static_cast<int>(std::max<std::size_t>(
       kTileSize, std::min<std::size_t>(static_cast<std::size_t>(height + kTileSize - 1) / kTileSize * kTileSize,
                                        rows_fit / kTileSize * kTileSize)));
-  timer.cpu("tile classification",
-            [&] { frame.bands = &im.frame_tiles.classify(tile_scene(frame), height, frame.band_rows); });
+  timer.cpu("tile classification", [&] {
+    frame.bands =
+        &im.frame_tiles.classify(frame.tile_scene(options_.sun_disc, options_.one_pass_tiles), height, frame.band_rows);
+  });
   stats_.tiles_reused = im.frame_tiles.reused();
 }
 
 void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& timer) {
   Impl& im = *impl_;
   const int width = frame.projection.width(), height = frame.projection.height(), band_rows = frame.band_rows;
-  im.ensure_band_images(width, std::min(band_rows, (height + kTileSize - 1) / kTileSize * kTileSize));
-  im.bodies.bind_storage(kBodies);
+  im.band.fit_bands(width, std::min(band_rows, (height + kTileSize - 1) / kTileSize * kTileSize));
+  im.band.bind_bodies();
   const std::vector<BandTiles>& bands = *frame.bands;
 
   for (int first_row = 0; first_row < height; first_row += band_rows) {
@@ -478,77 +394,28 @@ void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& t
     frame.band_size = {width, rows};
     frame.band_ready.clear();
 
-    if (frame.gpu_projection.kind == warp::ProjectionKind::ray_table) upload_ray_table(frame, first_row, rows);
+    if (frame.gpu_projection.kind == warp::ProjectionKind::ray_table)
+      im.band.upload_rays(frame.projection, first_row, rows);
     // A copy: the night sky's pass clears the black flags of tiles it lights,
     // and the kept bands must stay as classified.
     BandTiles band = bands[static_cast<std::size_t>(first_row / band_rows)];
     add_tile_stats(band);
-    upload_tile_lists(band);
+    im.band.upload_tile_lists(band);
     // Tiles the sun's pass leaves to black (render/frame/sun_light.h): the
     // band's output zeroed first, one buffer clear instead of a pass's stores.
     bool unlit = false;
     for (std::size_t a = 0; a < frame.passes.size(); ++a)
       for (const auto& [variant, list] : band.lists[a].one_pass)
         unlit = unlit || sky_and_ground_unlit(frame.passes[a], variant);
-    if (unlit)
-      timer.gpu("clear (sun below)", [&] {
-        im.frame_rgb.clear_to_zero(
-            0, static_cast<std::size_t>(width) * static_cast<std::size_t>(rows) * 4 * sizeof(float));
-      });
+    if (unlit) timer.gpu("clear (sun below)", [&] { im.band.clear_output(rows); });
     draw_direct_tiles(frame, band, timer);
-    draw_one_pass_tiles(frame, band, timer);
-    draw_gbuffer_tiles(frame, band, timer);
-    if (frame.moonlit) draw_moonlight(frame, band, timer);
+    for (const FrameLight& light : frame.lights) draw_atmosphere_tiles(frame, im.band, band, light, timer);
     // The stars and the night sky join the radiance before the band leaves
     // (readback, texture copy or the live display pass): one tone mapping for all.
     impl_->night_sky.draw_band(frame, band, timer);
     output(frame, band, timer);
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, frame.scene.name));
   }
-}
-
-void Renderer::upload_ray_table(const Frame& frame, int first_row, int rows) {
-  // Rays of this band on the CPU, in double, kept for the next frames.
-  Impl& im = *impl_;
-  const warp::Projection& projection = frame.projection;
-  const int width = projection.width();
-  auto table = im.ray_tables.find(first_row);
-  if (table == im.ray_tables.end()) {
-    std::vector<float> rays(static_cast<std::size_t>(width) * im.band_height * 4, 0.0f);
-    core::parallel_for(static_cast<std::size_t>(rows), 0, [&](std::size_t row) {
-      for (int x = 0; x < width; ++x) {
-        const auto r = projection.ray(x + 0.5, first_row + static_cast<double>(row) + 0.5);
-        if (!r) continue;
-        const glm::dvec3 d = glm::normalize(*r);
-        float* t = &rays[(row * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4];
-        t[0] = static_cast<float>(d.x);
-        t[1] = static_cast<float>(d.y);
-        t[2] = static_cast<float>(d.z);
-        t[3] = 1.0f;
-      }
-    });
-    table = im.ray_tables.emplace(first_row, std::move(rays)).first;
-  }
-  if (im.ray_table.width() != width || im.ray_table.height() != im.band_height)
-    im.ray_table = Texture::create_2d(TextureFormat::rgba32f, width, im.band_height);
-  im.ray_table.upload(table->second);
-  im.ray_table.bind(kRayTableUnit);
-}
-
-TileScene Renderer::tile_scene(const Frame& frame) const {
-  TileScene tiles;
-  tiles.scene = &frame.scene;
-  tiles.cones = frame.cones;
-  tiles.world_to_camera = frame.world_to_camera;
-  // The disc is drawn where it is seen: lifted by the air (sun_refraction.h).
-  tiles.sun_camera = frame.sun_lift.active ? frame.world_to_camera * frame.sun_lift.apparent_sun : frame.sun_camera;
-  tiles.sun_reach_rad = frame.sun_reach;
-  tiles.sun_disc = options_.sun_disc;
-  tiles.one_pass_tiles = options_.one_pass_tiles;
-  for (const AtmospherePass& pass : frame.passes)
-    tiles.shells.push_back(
-        {pass.body, pass.direction_camera, pass.distance_m, pass.top_radius_m, pass.gpu != nullptr, pass.sky_view});
-  return tiles;
 }
 
 void Renderer::add_tile_stats(const BandTiles& band) {
@@ -564,160 +431,6 @@ void Renderer::add_tile_stats(const BandTiles& band) {
   stats_.tiles_black += band.black_tiles();
 }
 
-void Renderer::upload_tile_lists(const BandTiles& band) {
-  Impl& im = *impl_;
-  im.ensure_tiles_buffer(band.all_tiles.size());
-  if (!band.all_tiles.empty()) im.tiles.upload(std::span<const std::uint32_t>(band.all_tiles));
-  im.tiles.bind_storage(kTiles);
-  im.frame_rgb.bind_storage(kFrameRgb);
-}
-
-void Renderer::draw_direct_tiles(Frame& frame, const BandTiles& band, PassTimer& timer) {
-  const FramePasses& fp = *frame.programs;
-  for (const auto& [b, list] : band.one_body_tiles) {
-    frame.set_the_body(frame.prepare(*fp.direct_light_one), b);
-    fp.direct_light_one->set_uniform("one_body", static_cast<int>(b));
-    timer.gpu("direct light", [&] { frame.dispatch_tiles(*fp.direct_light_one, list, kDirectLightTilesPerGroup); });
-  }
-  if (band.body_tiles.count > 0)
-    timer.gpu("direct light",
-              [&] { frame.dispatch_tiles(*fp.direct_light, band.body_tiles, kDirectLightTilesPerGroup); });
-  if (band.sun_tiles.count > 0)
-    timer.gpu("direct light, sun",
-              [&] { frame.dispatch_tiles(*fp.direct_light_sun, band.sun_tiles, kDirectLightTilesPerGroup); });
-}
-
-void Renderer::draw_one_pass_tiles(Frame& frame, const BandTiles& band, PassTimer& timer) {
-  if (band.one_pass_atmosphere_tiles == 0) return;
-  Impl& im = *impl_;
-  for (std::size_t g = 0; g < frame.groups; ++g) {
-    for (std::size_t a = 0; a < frame.passes.size(); ++a) {
-      const AtmospherePass& pass = frame.passes[a];
-      const bool moon = frame.light != nullptr;
-      if (band.lists[a].one_pass.empty() || (moon && !pass.moonlit)) continue;
-      // The Moon's passes: its own sky-view table where it has one, and no sun disc.
-      pass.gpu->bind(g, moon && pass.moon_sky_view ? kMoonSkyView : 0);
-      im.bodies.bind_storage(kBodies);
-      im.tiles.bind_storage(kTiles);
-      for (const auto& [tile_variant, list] : band.lists[a].one_pass) {
-        // The sun's light invisible through this atmosphere: its sky and
-        // ground stay as the band's clear left them (render_bands: zero);
-        // what lies beyond the shell (another body, the sun's disc) is drawn
-        // as always.
-        if (!moon && sky_and_ground_unlit(pass, tile_variant)) continue;
-        TileVariant variant = tile_variant;
-        if (moon) {
-          variant.sun = false;
-          variant.sky_view = variant.sky_view && pass.moon_sky_view;
-        }
-        const ShaderProgram& p = pass.gpu->tile_program(frame.variant, variant);
-        frame.set_group_uniforms(p, g);
-        pass.gpu->set_group(p, g);
-        frame.set_the_body(p, static_cast<std::size_t>(pass.body));
-        p.set_uniform("planet", pass.body);
-        p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
-        timer.gpu(fmt::format("{}atmosphere {}, one pass, {}, {}{}{}", moon ? "moonlight: " : "",
-                              stats_.atmospheres[a].body, variant.sky_view ? "sky view" : "4D tables",
-                              variant.ground == TileCover::none  ? "sky"
-                              : variant.ground == TileCover::all ? "ground"
-                                                                 : "horizon",
-                              variant.others == 0 ? "" : " + bodies", variant.sun ? " + sun" : ""),
-                  [&] { frame.dispatch_tiles(p, list); });
-      }
-    }
-    if (g + 1 < frame.groups) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next group adds to these pixels
-  }
-}
-
-void Renderer::draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer& timer) {
-  if (band.gbuffer_tiles.count == 0) return;
-  Impl& im = *impl_;
-  const FramePasses& fp = *frame.programs;
-  im.ensure_gbuffer_images();
-  im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::write_only);
-  im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::write_only);
-  im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::write_only);
-  im.transmittance.bind_image(kTransmittance, gl::ImageAccess::write_only);
-  timer.gpu("g-buffer", [&] { frame.dispatch_tiles(*fp.gbuffer, band.gbuffer_tiles); });
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-
-  for (std::size_t g = 0; g < frame.groups; ++g) {
-    im.gbuffer_hit.bind_image(kGbufferHit, gl::ImageAccess::read_only);
-    im.gbuffer_albedo.bind_image(kGbufferAlbedo, gl::ImageAccess::read_only);
-    im.radiance_sum.bind_image(kRadianceSum, gl::ImageAccess::read_write);
-    im.transmittance.bind_image(kTransmittance, gl::ImageAccess::read_write);
-    for (std::size_t a = 0; a < frame.passes.size(); ++a) {
-      const AtmospherePass& pass = frame.passes[a];
-      if (band.lists[a].gbuffer.count == 0 || (frame.light && !pass.moonlit)) continue;
-      const ShaderProgram& p = pass.gpu->gbuffer_path_program(frame.variant);
-      pass.gpu->bind(g);
-      im.bodies.bind_storage(kBodies);
-      im.tiles.bind_storage(kTiles);
-      frame.prepare(p);
-      pass.gpu->set_group(p, g);
-      frame.set_the_body(p, static_cast<std::size_t>(pass.body));
-      p.set_uniform("planet", pass.body);
-      p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));
-      frame.set_light_uniforms(p, g);
-      p.set_uniform("albedo_from_r", group_lanes(frame.albedo_weights, 0, g));
-      p.set_uniform("albedo_from_g", group_lanes(frame.albedo_weights, 1, g));
-      p.set_uniform("albedo_from_b", group_lanes(frame.albedo_weights, 2, g));
-      timer.gpu(
-          fmt::format("{}atmosphere {}, g-buffer path", frame.light ? "moonlight: " : "", stats_.atmospheres[a].body),
-          [&] { frame.dispatch_tiles(p, band.lists[a].gbuffer); });
-      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    }
-    frame.set_group_uniforms(*fp.resolve, g);
-    timer.gpu("resolve", [&] { frame.dispatch_tiles(*fp.resolve, band.gbuffer_tiles); });
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  }
-}
-
-void Renderer::draw_moonlight(Frame& frame, const BandTiles& band, PassTimer& timer) {
-  // The same passes over the band's atmosphere tiles, lit by the Moon and
-  // added to the output the sun's passes wrote (render/night/moon_light.h).
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  frame.light = &frame.moon;
-  draw_one_pass_tiles(frame, band, timer);
-  if (band.one_pass_atmosphere_tiles > 0) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  draw_gbuffer_tiles(frame, band, timer);
-  frame.light = nullptr;
-}
-
-void Renderer::read_back_band(const Frame& frame, const BandTiles& band, std::vector<float>& rows_rgb,
-                              PassTimer& timer) {
-  // RGB of each (r, g, b, 0), packed from the mapped buffer by both cores, a
-  // tile row per task; zeros for the black tiles, whose memory is not read.
-  Impl& im = *impl_;
-  const int width = frame.projection.width(), rows = band.rows;
-  const int columns = frame.cones->columns();
-  const std::size_t band_bytes = static_cast<std::size_t>(width) * rows * 4 * sizeof(float);
-  rows_rgb.resize(static_cast<std::size_t>(width) * rows * 3);
-  timer.cpu("readback", [&] {
-    im.frame_rgb.read_mapped(band_bytes, [&](std::span<const std::byte> bytes) {
-      const auto* rgba = reinterpret_cast<const float*>(bytes.data());
-      core::parallel_for(static_cast<std::size_t>(band.tile_rows), 0, [&](std::size_t tile_row) {
-        const int y_end = std::min(rows, static_cast<int>(tile_row + 1) * kTileSize);
-        for (int y = static_cast<int>(tile_row) * kTileSize; y < y_end; ++y)
-          for (int tx = 0; tx < columns; ++tx) {
-            const std::size_t begin = static_cast<std::size_t>(y) * width + static_cast<std::size_t>(tx) * kTileSize;
-            const std::size_t end = static_cast<std::size_t>(y) * width + std::min(width, (tx + 1) * kTileSize);
-            if (band.black[tile_row * static_cast<std::size_t>(columns) + static_cast<std::size_t>(tx)]) {
-              std::fill(rows_rgb.begin() + static_cast<std::ptrdiff_t>(3 * begin),
-                        rows_rgb.begin() + static_cast<std::ptrdiff_t>(3 * end), 0.0f);
-              continue;
-            }
-            for (std::size_t i = begin; i < end; ++i) {
-              rows_rgb[3 * i] = rgba[4 * i];
-              rows_rgb[3 * i + 1] = rgba[4 * i + 1];
-              rows_rgb[3 * i + 2] = rgba[4 * i + 2];
-            }
-          }
-      });
-    });
-  });
-}
-
 // ---- the frame on the GPU (render_to_texture) ---------------------------------
 
 void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projection& projection, gl::Texture& target) {
@@ -730,30 +443,17 @@ void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projecti
         target.id() == 0 ? "missing" : gl::to_string(target.format()), target.width(), target.height(),
         projection.width(), projection.height()));
   render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
-    impl_->band_to_texture.copy(bind_band_on_gpu(frame, band), target, timer);
+    impl_->band_to_texture.copy(impl_->band.bind_band_on_gpu(band, frame.projection.width(), frame.cones->columns()),
+                                target, timer);
   });
 }
 
 void Renderer::render_on_gpu(const scene::Scene& scene, const warp::Projection& projection, const GpuBandSink& sink) {
   render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
-    const GpuBand gpu_band = bind_band_on_gpu(frame, band);
+    const GpuBand gpu_band = impl_->band.bind_band_on_gpu(band, frame.projection.width(), frame.cones->columns());
     timer.gpu("band output", [&] { sink(gpu_band); });
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next band's passes write what the sink read
   });
-}
-
-GpuBand Renderer::bind_band_on_gpu(const Frame& frame, const BandTiles& band) {
-  Impl& im = *impl_;
-  // One flag per tile of the band, 1 where nothing was dispatched: those
-  // pixels of the output buffer hold whatever an earlier band left there.
-  const std::vector<std::uint32_t> black(band.black.begin(), band.black.end());
-  const std::size_t bytes = std::max<std::size_t>(black.size(), 1) * sizeof(std::uint32_t);
-  if (im.black_tiles.id() == 0 || im.black_tiles.size() < bytes) im.black_tiles = gl::Buffer(bytes);
-  im.black_tiles.upload(std::span<const std::uint32_t>(black));
-  im.frame_rgb.bind_storage(kFrameRgb);
-  im.black_tiles.bind_storage(binding::kBlackTiles);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the passes' stores to the output buffer
-  return {band.first_row, band.rows, frame.band_size[0], frame.cones->columns()};
 }
 
 }  // namespace zenith::render

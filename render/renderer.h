@@ -3,7 +3,7 @@
 // through any projection (paper section 5.2, Algorithm 1). Per frame and band,
 // the 16×16 tiles are sorted by what can be in them (render/frame/tile_culling.h)
 // and each kind is drawn by its own pass straight into the band's RGB output
-// (docs/rendering-performance.md):
+// (render/band/band_passes.h; docs/rendering-performance.md):
 //
 //   - no atmosphere (shaders/render/direct_light.comp): bodies lit by the sun,
 //     the sun's disc, every wavelength at once; tiles with neither are not
@@ -28,7 +28,8 @@
 // point sources of flux, the night floor, light pollution) adds its light to
 // the band's radiance, skipped by its own test where nothing would show;
 // then the band is read back and its rows handed to the caller (EXR/PNG writers
-// stream them).
+// stream them), or left on the GPU (render/band/band_resources.h holds the
+// band's buffers and images from frame to frame).
 //
 // Large frames are rendered in horizontal bands of at most
 // RenderOptions::max_band_pixels so GPU memory stays bounded (8K dome masters).
@@ -42,7 +43,8 @@
 #include <vector>
 
 #include "atmosphere/lut/lookup_tables.h"
-#include "render/frame/gpu_band.h"
+#include "render/band/gpu_band.h"
+#include "render/night/night_sky_stats.h"
 #include "render/render_options.h"
 #include "scene/scene.h"
 #include "warp/projection.h"
@@ -51,7 +53,6 @@ namespace zenith::render {
 
 class PassTimer;   // render/frame/pass_timer.h
 struct BandTiles;  // render/frame/tile_classification.h
-struct TileScene;  // render/frame/tile_classification.h
 namespace gl {
 class Texture;  // render/gl/texture.h
 }  // namespace gl
@@ -64,7 +65,7 @@ using TableSource = std::function<atmosphere::lut::LookupTables(const atmosphere
 /// sRGB radiance × exposure, 3 floats per pixel, x fastest.
 using RowSink = std::function<void(int first_row, int row_count, std::span<const float> rgb)>;
 
-/// Called once per band (render/frame/gpu_band.h) while its buffers are bound: draws what it needs from them.
+/// Called once per band (render/band/gpu_band.h) while its buffers are bound: draws what it needs from them.
 using GpuBandSink = std::function<void(const GpuBand& band)>;
 
 /// What the last frame did, for logs, tests and benchmarks.
@@ -93,32 +94,9 @@ struct FrameStats {
   /// (the first frame of a variant), with how many were built.
   double tables_s = 0.0, programs_s = 0.0;
   int programs_built = 0;
-  /// The night sky's pass (render/night/star_pass.h): stars placed in the
-  /// image, whether it ran (false: no sky clock or night sky, or its own test
-  /// found nothing visible), the catalogue's identity of the stars drawn.
-  std::size_t stars = 0;
-  bool night_sky_drawn = false;
-  std::string star_catalogue_identity;
-  /// The stars' own test (render/night/star_visibility.h), per linear sRGB
-  /// channel × exposure, largest channel: the least the sky behind any star
-  /// can be, the most the stars can add to a pixel of sky; whether they could
-  /// show (false: skipped, no star placed). Zeros and true where it did not run.
-  double star_sky_floor = 0.0, star_sky_peak = 0.0;
-  /// The test it replaced (StarVisibility::black_sky_peak; 0 where it did not run).
-  double star_black_sky_peak = 0.0;
-  bool stars_could_show = true;
-  /// The test's second stage (StarVisibility): the brightest stars it tested
-  /// one by one (0: the first stage decided), and the largest change of a code
-  /// value the deciding stage allowed [codes; < 0.495: skipped].
-  std::size_t stars_tested = 0;
-  double star_code_change = 0.0;
-  /// The Moon's disc (render/night/moon_albedo_map.h): the identity of its
-  /// albedo map, given with the stars or the disc ("" neither, or the uniform
-  /// albedo of a missing map: astro/sky_data_identity.h joins it with the
-  /// catalogue's), and the map's photometric mean over the lit disc the
-  /// disc's radiance was divided by (1 without a disc).
-  std::string moon_map_identity;
-  double moon_mean_albedo = 1.0;
+  /// The night sky's pass (render/night/star_pass.h): whether it drew, its
+  /// stars, the floor, the Moon's disc and the stars' own test.
+  NightSkyStats night_sky;
   /// The Moon lit the atmospheres (render/night/moon_light.h): false where its
   /// own test found nothing it could show (daylight, the Moon far below the horizon).
   bool moonlight = false;
@@ -192,8 +170,8 @@ class Renderer {
   void prepare_bodies(Frame& frame);
   /// The tables of every atmosphere the view touches, uploaded when not resident.
   void make_tables_resident(Frame& frame);
-  /// The Moon as a second light (render/night/moon_light.h): its direction and
-  /// irradiance, and whether its passes run (their own test).
+  /// The Moon as a second light of the atmospheres (render/night/moon_light.h)
+  /// where its own test finds it could show: its direction and irradiance.
   void light_by_the_moon(Frame& frame, PassTimer& timer);
   void light_by_the_sun(Frame& frame, PassTimer& timer);
   /// Which atmospheres read a sky-view table: those whose shell holds the
@@ -212,8 +190,6 @@ class Renderer {
   void start_programs(const Frame& frame);
   /// The sky-view table of each atmosphere choose_sky_view chose (the sun's; the Moon's where chosen).
   void fill_sky_view_tables(Frame& frame, PassTimer& timer);
-  /// direct_light.comp's colour matrix and sun spectrum; where the sun can be drawn.
-  void set_direct_light_uniforms(Frame& frame);
   /// What becomes of a band once its tiles are drawn: read back for a RowSink
   /// (render()), or copied into a texture (render_to_texture()).
   using BandOutput = std::function<void(const Frame& frame, const BandTiles& band, PassTimer& timer)>;
@@ -222,34 +198,11 @@ class Renderer {
   /// The frame band by band: each band's tiles drawn, then handed to `output`.
   void render_bands(Frame& frame, const BandOutput& output, PassTimer& timer);
 
-  // The steps of one band, in this order.
+  // Of each band, before its passes (render/band/band_passes.h):
 
-  /// Rays of a ray-table projection for this band (computed once, kept), uploaded and bound.
-  void upload_ray_table(const Frame& frame, int first_row, int rows);
-  /// What the tiles of the frame can hold, for the classification of its bands
-  /// (render/frame/frame_tiles.h: every band at once, before the first is
-  /// drawn, or the last frame's bands where nothing moved).
-  TileScene tile_scene(const Frame& frame) const;
   /// A band's tile counts (one-pass atmosphere tiles by variant, G-buffer path
   /// tiles, direct tiles, black tiles) added to the frame's statistics.
   void add_tile_stats(const BandTiles& band);
-  /// The band's tile lists into the tiles buffer; binds it and the output buffer.
-  void upload_tile_lists(const BandTiles& band);
-  /// Tiles no atmosphere touches: bodies and the sun, one pass each, every wavelength.
-  void draw_direct_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
-  /// Tiles one atmosphere touches: a pass per wavelength group and variant, straight to the output.
-  void draw_one_pass_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
-  /// Tiles where shells overlap: the G-buffer, then per wavelength group the
-  /// atmospheres front to back and the resolve.
-  void draw_gbuffer_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
-  /// The atmosphere tiles again (one pass and G-buffer path) lit by the Moon,
-  /// added to the band's output; the sun's disc is not drawn.
-  void draw_moonlight(Frame& frame, const BandTiles& band, PassTimer& timer);
-  /// The band's rows as RGB floats from the output buffer (zeros for black tiles) into `rows_rgb`.
-  void read_back_band(const Frame& frame, const BandTiles& band, std::vector<float>& rows_rgb, PassTimer& timer);
-  /// Binds the band's output buffer and its black-tile flags for a pass that
-  /// reads them (render_on_gpu()'s band output), after the passes' stores.
-  GpuBand bind_band_on_gpu(const Frame& frame, const BandTiles& band);
 
   RenderOptions options_;
   TableSource table_source_;

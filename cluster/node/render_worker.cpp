@@ -260,9 +260,10 @@ void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, 
   // master named (their identity, docs/protocol.md: FrameState's sky fields;
   // astro/sky_data_identity.h), or the quadrants differ.
   const render::FrameStats& drawn = renderer_->last_frame();
-  const std::string stars = drawn.star_catalogue_identity.empty()
-                                ? ""
-                                : astro::sky_data_identity(drawn.star_catalogue_identity, drawn.moon_map_identity);
+  const std::string stars =
+      drawn.night_sky.catalogue_identity.empty()
+          ? ""
+          : astro::sky_data_identity(drawn.night_sky.catalogue_identity, drawn.night_sky.moon_map_identity);
   if (state.sky.star_catalogue != Digest{} && !stars.empty() && stars != to_hex(state.sky.star_catalogue))
     throw std::runtime_error(cat("FrameState.sky.star_catalogue is ", to_hex(state.sky.star_catalogue).substr(0, 16),
                                  "…, but this node's stars and Moon map are ", stars.substr(0, 16),

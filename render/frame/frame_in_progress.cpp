@@ -92,11 +92,11 @@ void FrameInProgress::dispatch_tiles(const gl::ShaderProgram& p, TileList list, 
   p.dispatch(grid[0], grid[1]);
 }
 
-void FrameInProgress::set_group_uniforms(const gl::ShaderProgram& p, std::size_t g) {
+void FrameInProgress::set_group_uniforms(const gl::ShaderProgram& p, std::size_t g, const FrameLight& light) {
   prepare(p);
-  p.set_uniform("first_group", g == 0 && !light ? 1 : 0);  // a second light adds to the sun's
+  p.set_uniform("first_group", g == 0 && light.is_sun() ? 1 : 0);  // a second light adds to the sun's
   p.set_uniform("last_group", g + 1 == groups ? 1 : 0);
-  set_light_uniforms(p, g);
+  set_light_uniforms(p, g, light);
   p.set_uniform("limb_exponent", group_lanes(limb_exponent, g));
   p.set_uniform("albedo_from_r", group_lanes(albedo_weights, 0, g));
   p.set_uniform("albedo_from_g", group_lanes(albedo_weights, 1, g));
@@ -106,13 +106,41 @@ void FrameInProgress::set_group_uniforms(const gl::ShaderProgram& p, std::size_t
   p.set_uniform("rgb_from_lanes_b", group_lanes(rgb_weights, 2, g));
 }
 
-void FrameInProgress::set_light_uniforms(const gl::ShaderProgram& p, std::size_t g) const {
-  const glm::dvec3 d = light ? light->direction : sun;
+void FrameInProgress::set_light_uniforms(const gl::ShaderProgram& p, std::size_t g, const FrameLight& light) const {
+  const glm::dvec3 d = light.direction;
   p.set_uniform("sun_direction",
                 std::array<float, 3>{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)});
-  p.set_uniform("sun_angular_radius", static_cast<float>(light ? light->angular_radius_rad : sun_radius));
-  p.set_uniform("sun_irradiance", group_lanes(light ? light->irradiance_W_m2_nm : scene.sun.irradiance_W_m2_nm, g));
-  p.set_uniform("sun_centre_radiance", light ? std::array<float, 4>{0, 0, 0, 0} : group_lanes(sun_centre, g));
+  p.set_uniform("sun_angular_radius", static_cast<float>(light.angular_radius_rad));
+  p.set_uniform("sun_irradiance", group_lanes(light.irradiance_W_m2_nm, g));
+  p.set_uniform("sun_centre_radiance", group_lanes(light.centre_radiance_W_m2_sr_nm, g));  // 0: no disc
+}
+
+FrameLight FrameInProgress::sun_light() const {
+  return {FrameLight::Source::sun, sun, sun_radius, scene.sun.irradiance_W_m2_nm, sun_centre};
+}
+
+const FrameLight* FrameInProgress::moon() const {
+  for (const FrameLight& light : lights)
+    if (light.source == FrameLight::Source::moon) return &light;
+  return nullptr;
+}
+
+bool FrameLight::lights(const AtmospherePass& pass) const { return is_sun() || pass.moonlit; }
+
+TileScene FrameInProgress::tile_scene(bool sun_disc, bool one_pass_tiles) const {
+  TileScene tiles;
+  tiles.scene = &scene;
+  tiles.cones = cones;
+  tiles.world_to_camera = world_to_camera;
+  // The disc is drawn where it is seen: lifted by the air (sun_refraction.h).
+  tiles.sun_camera = sun_lift.active ? world_to_camera * sun_lift.apparent_sun : sun_camera;
+  tiles.sun_reach_rad = sun_reach;
+  tiles.sun_disc = sun_disc;
+  tiles.one_pass_tiles = one_pass_tiles;
+  for (const AtmospherePass& pass : passes)
+    tiles.shells.push_back(
+        {pass.body, pass.direction_camera, pass.distance_m, pass.top_radius_m, pass.gpu != nullptr, pass.sky_view});
+  return tiles;
 }
 
 bool FrameInProgress::touches_view(const AtmospherePass& pass) const {

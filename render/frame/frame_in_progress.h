@@ -36,14 +36,26 @@ struct AtmospherePass {
   bool moon_sky_view = false;  // and the Moon's sky-view table is filled too
 };
 
-/// A light of the atmosphere passes other than the scene's sun: the Moon
+/// A light of the atmosphere passes: the scene's sun, or the Moon
 /// (render/night/moon_light.h). The tables are per unit irradiance of their
 /// source, so a second source is the same passes with its direction and
 /// irradiance, added to what the sun's passes drew.
 struct FrameLight {
+  enum class Source { sun, moon };
+  Source source = Source::sun;
   glm::dvec3 direction{0.0, 0.0, 1.0};     ///< unit, world frame (geometric: the tables' rays are straight)
   double angular_radius_rad = 0.0;         ///< its disc: the fading at the horizon, the eclipses
   std::vector<double> irradiance_W_m2_nm;  ///< at the top of the atmosphere, per wavelength
+  /// The disc's radiance at its centre per wavelength, for the passes that
+  /// draw the disc; empty for the Moon, whose disc is the night sky's pass's.
+  std::vector<double> centre_radiance_W_m2_sr_nm;
+
+  bool is_sun() const { return source == Source::sun; }
+  /// Its sky-view table among an atmosphere's (GpuAtmosphere::bind: 0 the sun's, 1 the Moon's).
+  std::size_t sky_view_slot() const { return is_sun() ? 0 : 1; }
+  /// Whether its passes draw `pass`'s atmosphere: the sun every one (its own
+  /// test leaves some tiles unlit: render/frame/sun_light.h), the Moon those it lights.
+  bool lights(const struct AtmospherePass& pass) const;
 };
 
 /// One frame in progress: its constants in double on the CPU, the bodies and
@@ -76,13 +88,12 @@ struct FrameInProgress : FrameConstants {
   int band_rows = 0;
   const std::vector<BandTiles>* bands = nullptr;
 
-  // ---- the Moon's light (render/night/moon_light.h): drawn for the passes
-  // marked moonlit, when `moonlit` (any is)
-  bool moonlit = false;
-  FrameLight moon;
-  /// The light the atmosphere passes are drawn with now: null the sun (they
-  /// start the band's output), else a light whose passes add to it and draw no sun disc.
-  const FrameLight* light = nullptr;
+  // ---- the lights of the atmosphere passes, in the order they are drawn:
+  // the sun, whose passes start the band's output, then the Moon where its
+  // own test found it could show (render/night/moon_light.h), added
+  std::vector<FrameLight> lights;
+  /// The Moon among `lights`; null where it lights nothing this frame.
+  const FrameLight* moon() const;
 
   // Frame uniforms on first use in the frame, band uniforms on first use in the band.
   std::set<const gl::ShaderProgram*> frame_ready, band_ready;
@@ -103,12 +114,17 @@ struct FrameInProgress : FrameConstants {
   void dispatch_tiles(const gl::ShaderProgram& p, TileList list, std::size_t tiles_per_group = 1);
 
   /// Per-group uniforms of the passes that turn a group's radiance into colour,
-  /// and the current light's (set_light_uniforms).
-  void set_group_uniforms(const gl::ShaderProgram& p, std::size_t g);
-  /// The current light's direction, angular radius and irradiance for group g
-  /// (sun_direction, sun_angular_radius, sun_irradiance; sun_centre_radiance 0
-  /// for a light other than the sun, whose disc is not drawn by these passes).
-  void set_light_uniforms(const gl::ShaderProgram& p, std::size_t g) const;
+  /// and `light`'s (set_light_uniforms).
+  void set_group_uniforms(const gl::ShaderProgram& p, std::size_t g, const FrameLight& light);
+  /// `light`'s direction, angular radius, irradiance and disc radiance for group g
+  /// (sun_direction, sun_angular_radius, sun_irradiance, sun_centre_radiance).
+  void set_light_uniforms(const gl::ShaderProgram& p, std::size_t g, const FrameLight& light) const;
+  /// The sun as the first light of the atmosphere passes.
+  FrameLight sun_light() const;
+
+  /// What the tiles of the frame can hold, for the classification of its bands
+  /// (render/frame/frame_tiles.h); `sun_disc`, `one_pass_tiles`: RenderOptions'.
+  TileScene tile_scene(bool sun_disc, bool one_pass_tiles) const;
 
   /// Whether an atmosphere's shell can touch any tile of the view.
   bool touches_view(const AtmospherePass& pass) const;

@@ -4,7 +4,7 @@
 // from an empty vertex array (the vertex shader makes the triangle that covers
 // the viewport from gl_VertexID, as shaders/render/present.vert does).
 // Fragment (x, y) writes texel (x, y). Used by the renderer's band copy
-// (render/frame/band_to_texture.h) and the display pass
+// (render/band/band_to_texture.h) and the display pass
 // (render/display/display_encoder.h).
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"

@@ -18,6 +18,7 @@ bool MoonLight::any() const { return std::find(lit.begin(), lit.end(), true) != 
 
 MoonLight moon_light(const FrameInProgress& frame) {
   MoonLight out;
+  out.light.source = FrameLight::Source::moon;
   const scene::Scene& scene = frame.scene;
   out.lit.assign(frame.passes.size(), false);
   out.bounds.assign(frame.passes.size(), 0.0);

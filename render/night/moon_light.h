@@ -26,8 +26,9 @@ namespace zenith::render {
 
 /// The frame's Moon as a light and the test's outcome.
 struct MoonLight {
-  FrameLight light;       ///< direction (world, geometric), angular radius, irradiance at the top of the atmosphere
-  std::vector<bool> lit;  ///< per frame.passes: that atmosphere's moonlight passes run
+  FrameLight light;            ///< the Moon: direction (world, geometric), angular radius, irradiance at the top
+                               ///< of the atmosphere
+  std::vector<bool> lit;       ///< per frame.passes: that atmosphere's moonlight passes run
   std::vector<double> bounds;  ///< per frame.passes: the largest linear display value its moonlight could add
   double altitude_rad = 0.0;   ///< geometric, at the site
   bool any() const;

@@ -212,7 +212,7 @@ void NightSkyPass::prepare(const FrameInProgress& frame, PassTimer& timer) {
     if (options_.moon) timer.cpu("moon", [&] { place_moon(frame, f, time); });
   }
   stats_.night_floor = floor_;
-  stats_.skipped = splats_.empty() && !floor_ && !moon_disc_;
+  stats_.drawn = !splats_.empty() || floor_ || moon_disc_;
 }
 
 void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky, const astro::AstroTime& time) {
@@ -328,7 +328,7 @@ const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameInProgress& fr
 }
 
 void NightSkyPass::draw_band(FrameInProgress& frame, BandTiles& band, PassTimer& timer) {
-  if (stats_.skipped) return;
+  if (!stats_.drawn) return;
   const int width = frame.band_size[0], rows = band.rows, columns = frame.cones->columns();
   // The band's stars: those whose 2 × 2 footprint reaches its rows (splats_ is sorted by y).
   const auto begin = std::lower_bound(splats_.begin(), splats_.end(), static_cast<float>(band.first_row) - 1.0f,

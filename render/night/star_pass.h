@@ -41,6 +41,7 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/night/moon_albedo_map.h"
+#include "render/night/night_sky_stats.h"
 #include "render/night/star_placement.h"
 #include "render/night/star_visibility.h"
 #include "render/render_options.h"
@@ -71,20 +72,6 @@ inline constexpr std::size_t kStarAccumulatorUintsPerPixel = 8;
 StarFrame star_frame(const scene::Scene& scene, const warp::Projection& projection, const glm::dmat3& camera_to_world,
                      std::vector<StarAtmosphere> atmospheres, const std::vector<std::array<double, 3>>& rgb_weights,
                      RefractionCache& refractions);
-
-/// What the pass did in the last frame.
-struct NightSkyStats {
-  bool skipped = true;             ///< nothing drawn (no sky clock or night sky, or the test above)
-  std::size_t stars = 0;           ///< stars placed in the image
-  bool night_floor = false;        ///< the night floor was added
-  bool moon = false;               ///< the Moon was drawn (a disc, or a point below a pixel's size)
-  std::string catalogue_identity;  ///< StarCatalogue::identity_sha256 of the stars drawn ("" none)
-  StarVisibility star_test;        ///< the stars' test (could_show true where it did not run)
-  /// MoonAlbedoMap::identity_sha256 of the map loaded, given with the stars or the Moon's
-  /// disc ("" neither drawn, or the uniform albedo of a missing map)
-  std::string moon_map_identity;
-  double moon_mean_albedo = 1.0;  ///< the map's photometric mean over the lit disc (moon_disc_mean_albedo)
-};
 
 /// What a list of tiles of night_sky.comp holds: the program is compiled for
 /// it (its NIGHT_* defines), since llvmpipe runs every branch a program has.

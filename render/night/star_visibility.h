@@ -128,6 +128,7 @@
 #include "astro/sky_positions.h"
 #include "atmosphere/lut/sky_radiance_lower_bound.h"
 #include "render/frame/frame_in_progress.h"
+#include "render/night/night_sky_stats.h"
 #include "render/night/star_placement.h"
 
 namespace zenith::render {
@@ -213,27 +214,6 @@ class SkyBehindStarBound {
 /// fisheye's rim): the star is then tested on the darkest sky.
 std::optional<double> splat_footprint_radius(const warp::Projection& projection, const glm::dmat3& camera_to_world,
                                              const glm::dvec2& pixel, const glm::dvec3& direction);
-
-/// The test's figures for one frame (per linear sRGB channel, × exposure).
-struct StarVisibility {
-  std::array<double, 3> sky_floor{};  ///< B: the least the sky behind any star is (0: no bound)
-  std::array<double, 3> sky_peak{};   ///< the most the stars add to a pixel of sky (first stage)
-  bool could_show = true;             ///< a change of half a code is possible somewhere
-  /// The second stage (0 where the first decided): how many of the brightest
-  /// stars it tested one by one (where one alone decided before the ladder:
-  /// that star's rank, counting from 1, among the catalogue's brightest), how
-  /// many of them landed in the image.
-  std::size_t stars_tested = 0, stars_placed = 0;
-  /// The largest change of a code value the deciding stage allows [codes]:
-  /// D'(B) · peak (first stage) or the largest star's D'(B_s) Δ_s (second; where
-  /// it stopped at a star that could show, that star's). Below
-  /// kInvisibleCodeChange: skipped.
-  double code_change = 0.0;
-  /// The test this one replaced, for comparison (render_bench --stars-show):
-  /// the brightest star alone through no air on a black sky, exposure ·
-  /// E_max · Σ_λ max_c |w_c(λ)| · twinkle / Ω_min, drawn where ≥ kInvisibleDisplayStep.
-  double black_sky_peak = 0.0;
-};
 
 /// The test for `field`'s stars in `frame` with the sky of `sky` (star_splats'
 /// frame: its atmospheres, exposure, colour weights, twinkling) at the sky

@@ -403,8 +403,8 @@ TEST(NightSkyPass, AStarHasTheSameEnergyOnADomeMasterAFlatScreenAndThroughAWarpM
   for (const warp::Projection* p : std::initializer_list<const warp::Projection*>{dome.get(), &flat, &projector}) {
     const scene::Scene& s = p == &flat ? flat_scene : dome_scene;
     const auto image = stars.renderer.render_image(s, *p);
-    EXPECT_TRUE(stars.renderer.last_frame().night_sky_drawn) << p->describe();
-    EXPECT_EQ(stars.renderer.last_frame().star_catalogue_identity, c.identity_sha256);
+    EXPECT_TRUE(stars.renderer.last_frame().night_sky.drawn) << p->describe();
+    EXPECT_EQ(stars.renderer.last_frame().night_sky.catalogue_identity, c.identity_sha256);
     const auto background = none.renderer.render_image(s, *p);
     const auto energy = energy_near(image, background, *p, where(s, *p), 3.0);
     std::printf("%s: Sirius's energy / E × exposure = %.5f, %.5f, %.5f\n", p->describe().c_str(),
@@ -492,7 +492,7 @@ TEST(NightSkyPass, AStarIsDimmedByTheTransmittanceAlongItsLineOfSightAndTheFloor
   // The zenith's night floor: the calibrated spectrum through the zenith's transmittance.
   const scene::Scene& up = s;  // the dome's centre is the zenith
   const auto lit = floor_only.renderer.render_image(up, *dome);
-  EXPECT_TRUE(floor_only.renderer.last_frame().night_sky_drawn);
+  EXPECT_TRUE(floor_only.renderer.last_frame().night_sky.drawn);
   const auto dark = none.renderer.render_image(up, *dome);
   q.transmittance_to_top(glm::length(up.camera.position_m), 1.0, transmittance.data());
   const astro::NightSkyFloor floor(t.model);
@@ -530,7 +530,7 @@ TEST(NightSkyPass, TheMoonCarriesItsIrradianceAsADiscAndAsAPointBelowAPixel) {
   const scene::Scene narrow = at_time(greenwich("", at, 1.0));
   const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(64, 64, 2.0);
   const auto image = moonlit.renderer.render_image(narrow, planar);
-  EXPECT_TRUE(moonlit.renderer.last_frame().night_sky_drawn);
+  EXPECT_TRUE(moonlit.renderer.last_frame().night_sky.drawn);
   const auto disc = energy_near(image, dark.renderer.render_image(narrow, planar), planar, {32.0, 32.0}, 20.0);
   const scene::Scene dome = at_time(greenwich("", {0, -1, 0}, 1.0));
   const warp::FisheyeProjection fisheye(64, 64);
@@ -604,10 +604,10 @@ TEST(NightSkyPass, TheMoonsFaceShowsMareCrisiumInTheSkysWestAndTychoInTheSouth) 
       scene::ephemeris_sun(s, *s.sky_clock, astro::AstroTime::from_utc(kFullMoon), s.camera.position_m).direction;
   const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(128, 128, 1.2);
   const auto image = mapped.renderer.render_image(s, planar);
-  const std::string identity = mapped.renderer.last_frame().moon_map_identity;
-  const double mean = mapped.renderer.last_frame().moon_mean_albedo;
+  const std::string identity = mapped.renderer.last_frame().night_sky.moon_map_identity;
+  const double mean = mapped.renderer.last_frame().night_sky.moon_mean_albedo;
   const auto flat = plain.renderer.render_image(s, planar);
-  EXPECT_EQ(plain.renderer.last_frame().moon_map_identity, "");
+  EXPECT_EQ(plain.renderer.last_frame().night_sky.moon_map_identity, "");
   const auto black = dark.renderer.render_image(s, planar);
   EXPECT_EQ(identity.size(), 64u);
   const auto pixel = [&](const MoonGeometry& g) {
@@ -670,9 +670,9 @@ TEST(NightSkyPass, AMissingMoonMapDrawsAUniformDiscWithTheSameEnergy) {
       scene::ephemeris_sun(s, *s.sky_clock, astro::AstroTime::from_utc(kFullMoon), s.camera.position_m).direction;
   const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(64, 64, 2.0);
   const auto image = moonlit.renderer.render_image(s, planar);
-  EXPECT_TRUE(moonlit.renderer.last_frame().night_sky_drawn);
-  EXPECT_EQ(moonlit.renderer.last_frame().moon_map_identity, "");
-  EXPECT_EQ(moonlit.renderer.last_frame().moon_mean_albedo, 1.0);
+  EXPECT_TRUE(moonlit.renderer.last_frame().night_sky.drawn);
+  EXPECT_EQ(moonlit.renderer.last_frame().night_sky.moon_map_identity, "");
+  EXPECT_EQ(moonlit.renderer.last_frame().night_sky.moon_mean_albedo, 1.0);
   const auto disc = energy_near(image, dark.renderer.render_image(s, planar), planar, {32.0, 32.0}, 20.0);
   for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(disc[k], e[k], 0.02 * e[k]) << "channel " << k;
 }
@@ -711,8 +711,8 @@ TEST(NightSkyPass, SkippedByItsOwnTestWhenNoStarCouldShow) {
   TestRenderer stars(o), none(options(false, false));
   const warp::FisheyeProjection dome(48, 48);
   const auto a = stars.renderer.render_image(s, dome);
-  EXPECT_FALSE(stars.renderer.last_frame().night_sky_drawn);
-  EXPECT_EQ(stars.renderer.last_frame().stars, 0u);
+  EXPECT_FALSE(stars.renderer.last_frame().night_sky.drawn);
+  EXPECT_EQ(stars.renderer.last_frame().night_sky.stars, 0u);
   EXPECT_EQ(a, none.renderer.render_image(s, dome));
 }
 
@@ -790,12 +790,13 @@ TEST(NightSkyPass, WhereTheSkyHidesEveryStarItsTestSkipsThemAndTheFrameMovesByLe
       const auto a = tested.renderer.render_image(s, dome);
       const FrameStats stats = tested.renderer.last_frame();
       std::printf("sun %.0f° down, exposure %g: sky floor %.3g, stars' peak %.3g: %s\n", depression, exposure,
-                  stats.star_sky_floor, stats.star_sky_peak, stats.stars_could_show ? "runs" : "skipped");
-      if (stats.stars_could_show) continue;
+                  stats.night_sky.star_test.largest_sky_floor(), stats.night_sky.star_test.largest_sky_peak(),
+                  stats.night_sky.star_test.could_show ? "runs" : "skipped");
+      if (stats.night_sky.star_test.could_show) continue;
       ++skipped;
-      EXPECT_EQ(stats.stars, 0u);
+      EXPECT_EQ(stats.night_sky.stars, 0u);
       const auto b = always.renderer.render_image(s, dome);
-      ASSERT_GT(always.renderer.last_frame().stars, 0u) << "the forced frame holds stars";
+      ASSERT_GT(always.renderer.last_frame().night_sky.stars, 0u) << "the forced frame holds stars";
       const testing::CodeDifference d = testing::code_difference(a, b);
       EXPECT_LT(d.largest_code_change, kInvisibleCodeChange) << "sun " << depression << "° down, exposure " << exposure;
       EXPECT_LE(d.largest_byte_change, 1) << "sun " << depression << "° down, exposure " << exposure;
@@ -804,8 +805,8 @@ TEST(NightSkyPass, WhereTheSkyHidesEveryStarItsTestSkipsThemAndTheFrameMovesByLe
   EXPECT_GE(skipped, 4) << "the sky hides the stars in several of these frames";
   // Night, the sun 30° down: the stars show and the test says so.
   tested.renderer.render_image(at_twilight(30.0, 1e6), dome);
-  EXPECT_TRUE(tested.renderer.last_frame().stars_could_show);
-  EXPECT_GT(tested.renderer.last_frame().stars, 0u);
+  EXPECT_TRUE(tested.renderer.last_frame().night_sky.star_test.could_show);
+  EXPECT_GT(tested.renderer.last_frame().night_sky.stars, 0u);
 }
 
 TEST(NightSkyPass, WhereTheTwilightSkyHidesTheNightFloorItsTestSkipsItAndTheFrameMovesByLessThanHalfACode) {
@@ -825,9 +826,9 @@ TEST(NightSkyPass, WhereTheTwilightSkyHidesTheNightFloorItsTestSkipsItAndTheFram
     for (double exposure : {1e5, 3e5, 1e6}) {
       const scene::Scene s = at_twilight(depression, exposure);
       const auto a = tested.renderer.render_image(s, dome);
-      const bool drawn = tested.renderer.last_frame().night_sky_drawn;
+      const bool drawn = tested.renderer.last_frame().night_sky.drawn;
       const auto b = forced.renderer.render_image(s, dome);
-      const bool drawn_on_black = forced.renderer.last_frame().night_sky_drawn;
+      const bool drawn_on_black = forced.renderer.last_frame().night_sky.drawn;
       EXPECT_TRUE(drawn_on_black || !drawn) << "the test against the sky is the stricter";
       if (!drawn_on_black) continue;  // invisible on black too
       if (drawn) {
@@ -843,7 +844,7 @@ TEST(NightSkyPass, WhereTheTwilightSkyHidesTheNightFloorItsTestSkipsItAndTheFram
     }
   EXPECT_GE(skipped, 3) << "the twilight sky hides the floor in several of these frames";
   tested.renderer.render_image(at_twilight(30.0, 3e5), dome);
-  EXPECT_TRUE(tested.renderer.last_frame().night_sky_drawn) << "night: the floor shows";
+  EXPECT_TRUE(tested.renderer.last_frame().night_sky.drawn) << "night: the floor shows";
 }
 
 TEST(NightSkyPass, TheSunFarBelowTheHorizonIsNotDrawnAndTheFrameMovesByLessThanHalfACode) {
@@ -871,7 +872,7 @@ TEST(NightSkyPass, TheSunFarBelowTheHorizonIsNotDrawnAndTheFrameMovesByLessThanH
       EXPECT_TRUE(stats.sunlight_skipped) << at;
       EXPECT_LT(stats.sunlight_bound, kInvisibleDisplayStep) << at;
       EXPECT_TRUE(stats.moonlight) << at;
-      EXPECT_GT(stats.stars, 0u) << at;
+      EXPECT_GT(stats.night_sky.stars, 0u) << at;
       const auto b = always.renderer.render_image(s, dome);
       EXPECT_FALSE(always.renderer.last_frame().sunlight_skipped) << at;
       const testing::CodeDifference d = testing::code_difference(a, b);
@@ -897,7 +898,7 @@ TEST(NightSkyPass, TheGpuPathCarriesTheStarsAsTheReadBackFrameDoes) {
   TestRenderer t(o);
   const warp::FisheyeProjection dome(48, 48);
   const auto image = t.renderer.render_image(s, dome);
-  ASSERT_GT(t.renderer.last_frame().stars, 0u);
+  ASSERT_GT(t.renderer.last_frame().night_sky.stars, 0u);
   gl::Texture target = gl::Texture::create_2d(gl::TextureFormat::rgba32f, 48, 48);
   t.renderer.render_to_texture(s, dome, target);
   const std::vector<float> rgba = target.read();

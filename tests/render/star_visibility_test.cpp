@@ -170,20 +170,20 @@ int check_skip(TestRenderer& tested, TestRenderer& forced, const scene::Scene& s
                const std::string& what) {
   const auto a = tested.renderer.render_image(s, p);
   const FrameStats stats = tested.renderer.last_frame();
-  if (stats.stars_could_show) return 0;
-  EXPECT_EQ(stats.stars, 0u) << what;
-  EXPECT_LT(stats.star_code_change, kInvisibleCodeChange) << what;
+  if (stats.night_sky.star_test.could_show) return 0;
+  EXPECT_EQ(stats.night_sky.stars, 0u) << what;
+  EXPECT_LT(stats.night_sky.star_test.code_change, kInvisibleCodeChange) << what;
   const auto b = forced.renderer.render_image(s, p);
-  if (forced.renderer.last_frame().stars == 0) return 0;  // nothing to compare with
+  if (forced.renderer.last_frame().night_sky.stars == 0) return 0;  // nothing to compare with
   // Every value within half a code: each 8-bit code the same, or one step
   // away where the sky sits within that change of a rounding boundary.
   const testing::CodeDifference d = testing::code_difference(a, b);
   EXPECT_LT(d.largest_code_change, kInvisibleCodeChange) << what;
   EXPECT_LE(d.largest_byte_change, 1) << what;
   EXPECT_LE(d.codes_differing, a.size() / 100) << what;
-  const bool second = stats.stars_tested > 0;
+  const bool second = stats.night_sky.star_test.stars_tested > 0;
   std::printf("%s: skipped by the %s stage (bound %.3g code), the forced frame %.3g code away, %zu codes differ\n",
-              what.c_str(), second ? "second" : "first", stats.star_code_change, d.largest_code_change,
+              what.c_str(), second ? "second" : "first", stats.night_sky.star_test.code_change, d.largest_code_change,
               d.codes_differing);
   return second ? 1 : 0;
 }
@@ -255,11 +255,11 @@ TEST(StarVisibility, BeforeItsLadderTheBrightestStarInTheViewAnswers) {
   for (double exposure = 1e3; exposure < 2e6; exposure *= std::sqrt(10.0)) {
     const scene::Scene s = greenwich_sky(enu[k], exposure, -18.0, 0.0);
     const auto image = forced.renderer.render_image(s, planar);
-    ASSERT_GE(forced.renderer.last_frame().stars, 1u) << "exposure " << exposure;
+    ASSERT_GE(forced.renderer.last_frame().night_sky.stars, 1u) << "exposure " << exposure;
     if (testing::code_difference(image, without.renderer.render_image(s, planar)).largest_code_change < 0.5) continue;
     tested.renderer.render_image(s, planar);
-    EXPECT_TRUE(tested.renderer.last_frame().stars_could_show) << "exposure " << exposure;
-    EXPECT_EQ(tested.renderer.last_frame().stars_tested, k + 1) << "exposure " << exposure;
+    EXPECT_TRUE(tested.renderer.last_frame().night_sky.star_test.could_show) << "exposure " << exposure;
+    EXPECT_EQ(tested.renderer.last_frame().night_sky.star_test.stars_tested, k + 1) << "exposure " << exposure;
     ++decided;
   }
   std::printf("the view on the catalogue's star %zu (V %.2f): decided by it alone at %d exposures\n", k + 1,
@@ -283,9 +283,9 @@ TEST(StarVisibility, ABrightStarOnADarkSkyThatMovesACodeIsNeverSkipped) {
   for (double exposure = 0.1; exposure < 2e6; exposure *= std::sqrt(std::sqrt(10.0))) {
     const scene::Scene s = greenwich_sky(sirius, exposure, -9.0, 0.0);
     const auto a = tested.renderer.render_image(s, planar);
-    const bool runs = tested.renderer.last_frame().stars_could_show;
+    const bool runs = tested.renderer.last_frame().night_sky.star_test.could_show;
     const auto b = forced.renderer.render_image(s, planar);
-    ASSERT_GT(forced.renderer.last_frame().stars, 0u);
+    ASSERT_GT(forced.renderer.last_frame().night_sky.stars, 0u);
     // The star's change against the same frame without stars.
     const auto none = [&] {
       RenderOptions without = options(false);
@@ -297,7 +297,7 @@ TEST(StarVisibility, ABrightStarOnADarkSkyThatMovesACodeIsNeverSkipped) {
       EXPECT_TRUE(runs) << "exposure " << exposure << ": the star moves " << moved << " code";
       // Sirius alone moves a code: the second stage says so from the brightest
       // stars alone, before its ladder (which tests at least kFirstStarsTested).
-      const std::size_t tested_stars = tested.renderer.last_frame().stars_tested;
+      const std::size_t tested_stars = tested.renderer.last_frame().night_sky.star_test.stars_tested;
       EXPECT_GE(tested_stars, 1u) << "exposure " << exposure;
       EXPECT_LT(tested_stars, kFirstStarsTested) << "exposure " << exposure;
     }

@@ -1,4 +1,4 @@
-#include "render/frame/gpu_band.h"
+#include "render/band/gpu_band.h"
 
 #include <array>
 

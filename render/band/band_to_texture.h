@@ -1,11 +1,11 @@
 #pragma once
 // render_to_texture()'s band output: a fragment pass
 // (shaders/render/band_to_texture.frag, compiled on first use) that draws a
-// band's pixels from the output buffer (render/frame/gpu_band.h) into rows
+// band's pixels from the output buffer (render/band/gpu_band.h) into rows
 // first_row… of the frame's texture, black tiles as 0. A draw, not a dispatch:
 // it leaves the default draw framebuffer bound.
 
-#include "render/frame/gpu_band.h"
+#include "render/band/gpu_band.h"
 #include "render/frame/pass_timer.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"

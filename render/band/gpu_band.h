@@ -1,6 +1,6 @@
 #pragma once
 // A band of a frame kept on the GPU, as Renderer::render_on_gpu hands it to
-// its sink and render_to_texture copies it (render/frame/band_to_texture.h):
+// its sink and render_to_texture copies it (render/band/band_to_texture.h):
 // the band's pixels are in the output buffer bound at FRAME_RGB_BINDING
 // (render/shader_bindings.h: one vec4 (rgb, 0) per pixel, rows of `width`
 // pixels from row `first_row` of the frame), the band's black-tile flags at

@@ -1,4 +1,4 @@
-#include "render/frame/band_to_texture.h"
+#include "render/band/band_to_texture.h"
 
 #include <epoxy/gl.h>
 

@@ -1,0 +1,122 @@
+#include "render/band/band_resources.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+#include "core/parallel_for.h"
+#include "render/band/band_readback.h"
+#include "render/shader_bindings.h"
+
+namespace zenith::render {
+
+using gl::ImageAccess;
+using gl::Texture;
+using gl::TextureFormat;
+
+void BandResources::upload_bodies(std::span<const GpuBody> bodies) {
+  const std::vector<GpuBody> none(1);
+  bodies_ = gl::Buffer::from(bodies.empty() ? std::span<const GpuBody>(none) : bodies);
+}
+
+void BandResources::bind_bodies() const { bodies_.bind_storage(binding::kBodies); }
+
+void BandResources::fit_bands(int width, int height) {
+  if (width == band_width_ && height == band_height_) return;
+  for (Texture* t : {&gbuffer_hit_, &gbuffer_albedo_, &radiance_sum_, &transmittance_}) *t = Texture();
+  output_ =
+      gl::Buffer::mappable(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4 * sizeof(float));
+  band_width_ = width;
+  band_height_ = height;
+}
+
+void BandResources::clear_output(int rows) {
+  output_.clear_to_zero(0, static_cast<std::size_t>(band_width_) * static_cast<std::size_t>(rows) * 4 * sizeof(float));
+}
+
+void BandResources::upload_tile_lists(const BandTiles& band) {
+  const std::size_t count = band.all_tiles.size();
+  if (count > tiles_capacity_ || tiles_.id() == 0) {
+    tiles_capacity_ = std::max<std::size_t>(count, 1024);
+    tiles_ = gl::Buffer(tiles_capacity_ * sizeof(std::uint32_t));
+  }
+  if (!band.all_tiles.empty()) tiles_.upload(std::span<const std::uint32_t>(band.all_tiles));
+  tiles_.bind_storage(binding::kTiles);
+  output_.bind_storage(binding::kFrameRgb);
+}
+
+void BandResources::bind_tiles() const { tiles_.bind_storage(binding::kTiles); }
+
+void BandResources::bind_gbuffer_for_the_body_pass() {
+  if (gbuffer_hit_.id() == 0) {
+    gbuffer_hit_ = Texture::create_2d(TextureFormat::rgba32f, band_width_, band_height_);
+    gbuffer_albedo_ = Texture::create_2d(TextureFormat::rgba16f, band_width_, band_height_);
+    radiance_sum_ = Texture::create_2d(TextureFormat::rgba32f, band_width_, band_height_);
+    transmittance_ = Texture::create_2d(TextureFormat::rgba32f, band_width_, band_height_);
+  }
+  gbuffer_hit_.bind_image(binding::kGbufferHitImage, ImageAccess::write_only);
+  gbuffer_albedo_.bind_image(binding::kGbufferAlbedoImage, ImageAccess::write_only);
+  radiance_sum_.bind_image(binding::kRadianceSumImage, ImageAccess::write_only);
+  transmittance_.bind_image(binding::kTransmittanceProductImage, ImageAccess::write_only);
+}
+
+void BandResources::bind_gbuffer_for_the_atmosphere_passes() {
+  gbuffer_hit_.bind_image(binding::kGbufferHitImage, ImageAccess::read_only);
+  gbuffer_albedo_.bind_image(binding::kGbufferAlbedoImage, ImageAccess::read_only);
+  radiance_sum_.bind_image(binding::kRadianceSumImage, ImageAccess::read_write);
+  transmittance_.bind_image(binding::kTransmittanceProductImage, ImageAccess::read_write);
+}
+
+void BandResources::upload_rays(const warp::Projection& projection, int first_row, int rows) {
+  const int width = projection.width();
+  auto table = ray_tables_.find(first_row);
+  if (table == ray_tables_.end()) {
+    std::vector<float> rays(static_cast<std::size_t>(width) * static_cast<std::size_t>(band_height_) * 4, 0.0f);
+    core::parallel_for(static_cast<std::size_t>(rows), 0, [&](std::size_t row) {
+      for (int x = 0; x < width; ++x) {
+        const auto r = projection.ray(x + 0.5, first_row + static_cast<double>(row) + 0.5);
+        if (!r) continue;
+        const glm::dvec3 d = glm::normalize(*r);
+        float* t = &rays[(row * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4];
+        t[0] = static_cast<float>(d.x);
+        t[1] = static_cast<float>(d.y);
+        t[2] = static_cast<float>(d.z);
+        t[3] = 1.0f;
+      }
+    });
+    table = ray_tables_.emplace(first_row, std::move(rays)).first;
+  }
+  if (ray_table_.width() != width || ray_table_.height() != band_height_)
+    ray_table_ = Texture::create_2d(TextureFormat::rgba32f, width, band_height_);
+  ray_table_.upload(table->second);
+  ray_table_.bind(binding::kRayTableUnit);
+}
+
+std::span<const float> BandResources::read_back(const BandTiles& band, int width, int tile_columns, PassTimer& timer) {
+  const std::size_t band_bytes =
+      static_cast<std::size_t>(width) * static_cast<std::size_t>(band.rows) * 4 * sizeof(float);
+  timer.cpu("readback", [&] {
+    output_.read_mapped(band_bytes, [&](std::span<const std::byte> bytes) {
+      const std::span<const float> rgba(reinterpret_cast<const float*>(bytes.data()), bytes.size() / sizeof(float));
+      pack_band_rows(rgba, band, width, tile_columns, rows_rgb_);
+    });
+  });
+  return rows_rgb_;
+}
+
+GpuBand BandResources::bind_band_on_gpu(const BandTiles& band, int width, int tile_columns) {
+  // One flag per tile of the band, 1 where nothing was dispatched: those
+  // pixels of the output buffer hold whatever an earlier band left there.
+  const std::vector<std::uint32_t> black(band.black.begin(), band.black.end());
+  const std::size_t bytes = std::max<std::size_t>(black.size(), 1) * sizeof(std::uint32_t);
+  if (black_tiles_.id() == 0 || black_tiles_.size() < bytes) black_tiles_ = gl::Buffer(bytes);
+  black_tiles_.upload(std::span<const std::uint32_t>(black));
+  output_.bind_storage(binding::kFrameRgb);
+  black_tiles_.bind_storage(binding::kBlackTiles);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the passes' stores to the output buffer
+  return {band.first_row, band.rows, width, tile_columns};
+}
+
+}  // namespace zenith::render

@@ -1,0 +1,76 @@
+#pragma once
+// The GPU memory the renderer draws a frame's bands with, kept from frame to
+// frame and (re)allocated only when a size changes: the bodies buffer, the
+// band's tile lists, its output buffer (one vec4 per pixel, frame_rgb.glsl),
+// the G-buffer path's four images, a ray-table projection's rays, and the
+// black-tile flags of a band read on the GPU. Each is bound at the binding
+// render/shader_bindings.h gives it.
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <span>
+#include <vector>
+
+#include "render/band/gpu_band.h"
+#include "render/frame/gpu_body.h"
+#include "render/frame/pass_timer.h"
+#include "render/frame/tile_classification.h"
+#include "render/gl/buffer.h"
+#include "render/gl/texture.h"
+#include "warp/projection.h"
+
+namespace zenith::render {
+
+class BandResources {
+ public:
+  /// The frame's bodies into the bodies buffer (one zero body where there are none).
+  void upload_bodies(std::span<const GpuBody> bodies);
+  void bind_bodies() const;
+
+  /// Sizes the band's output for bands of `width` × `height` pixels: the
+  /// output buffer reallocated, the G-buffer images dropped, when that changes.
+  void fit_bands(int width, int height);
+  int band_height() const { return band_height_; }
+  /// Zeroes the output of a band of `rows` rows (the tiles no pass will write).
+  void clear_output(int rows);
+
+  /// The band's tile lists into the tiles buffer; binds it and the output buffer.
+  void upload_tile_lists(const BandTiles& band);
+  void bind_tiles() const;
+
+  /// The G-buffer path's images, allocated on first use (224 MiB of GPU
+  /// memory for an 8192-pixel band of 512 rows): bound for gbuffer.comp to
+  /// write, or for the atmosphere passes and resolve.comp to read (hit,
+  /// albedo) and accumulate (radiance, transmittance).
+  void bind_gbuffer_for_the_body_pass();
+  void bind_gbuffer_for_the_atmosphere_passes();
+
+  /// The rays of `projection` (one without a GPU form) for the band of `rows`
+  /// rows from `first_row`: computed on the CPU in double once, kept until
+  /// forget_rays(), uploaded and bound as projection.glsl's ray table.
+  void upload_rays(const warp::Projection& projection, int first_row, int rows);
+  void forget_rays() { ray_tables_.clear(); }
+
+  /// The band's rows as RGB floats (render/band/band_readback.h), read from
+  /// the output buffer; valid until the next band. "readback" in `timer`.
+  std::span<const float> read_back(const BandTiles& band, int width, int tile_columns, PassTimer& timer);
+  /// Binds the output buffer and uploads and binds the band's black-tile
+  /// flags, for a pass that reads the band on the GPU (render/band/gpu_band.h).
+  GpuBand bind_band_on_gpu(const BandTiles& band, int width, int tile_columns);
+
+ private:
+  gl::Buffer bodies_;
+  gl::Buffer tiles_;
+  std::size_t tiles_capacity_ = 0;
+  int band_width_ = 0, band_height_ = 0;
+  gl::Buffer output_;
+  gl::Texture gbuffer_hit_, gbuffer_albedo_, radiance_sum_, transmittance_;
+  std::map<int, std::vector<float>> ray_tables_;  // by the band's first row
+  gl::Texture ray_table_;
+  gl::Buffer black_tiles_;
+  // The rows of a band read back, kept from frame to frame: a new 50 MB vector
+  // per frame (a 3840-pixel band) costs its page faults every frame.
+  std::vector<float> rows_rgb_;
+};
+
+}  // namespace zenith::render
