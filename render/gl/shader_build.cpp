@@ -11,7 +11,8 @@
 #include "render/gl/gl_error.h"
 #include "render/gl/glsl_text.h"
 #include "render/gl/program_binary_cache.h"
-#include "render/gl/shader_hooks.h"
+#include "render/gl/shader_dump.h"
+#include "render/gl/shader_text_hook.h"
 
 namespace zenith::render::gl {
 
@@ -67,7 +68,7 @@ ShaderBuild ShaderBuild::compute(const ShaderCode& code, std::span<const ShaderD
                                  ProgramBinaryCache* binaries) {
   std::string key;
   if (binaries != nullptr && binaries->enabled()) {
-    const std::string text[] = {with_test_hooks(code.name, inject_defines(code.name, code.text, defines))};
+    const std::string text[] = {apply_shader_text_hook(code.name, inject_defines(code.name, code.text, defines))};
     key = binaries->key(text);
     if (const unsigned program = binaries->start_load(key); program != 0) {
       ShaderBuild b;
@@ -113,7 +114,7 @@ ShaderBuild ShaderBuild::start_compute(const ShaderCode& code, std::span<const S
 }
 
 void ShaderBuild::start_stage(ShaderStage stage, const ShaderCode& code) {
-  Stage s{stage, code.name, with_test_hooks(code.name, inject_defines(code.name, code.text, defines_)),
+  Stage s{stage, code.name, apply_shader_text_hook(code.name, inject_defines(code.name, code.text, defines_)),
           code.files.empty() ? std::vector<std::string>{code.name} : code.files, 0};
   dump_shader_source(s.name, stage, s.text, s.files);
   s.shader = glCreateShader(stage_enum(stage));

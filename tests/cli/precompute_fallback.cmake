@@ -1,8 +1,9 @@
 # A GPU precompute whose program the driver refuses falls back to the CPU with
 # one warning naming the program and the driver (render/lut/table_provider.cpp),
 # for `zenith precompute` and for `zenith render` (a show must still start).
-# ZENITH_FAIL_SHADER (render/gl/shader_hooks.h) makes one program fail to
-# compile, as a driver would refuse it.
+# ZENITH_FAIL_SHADER makes one program fail to compile, as a driver would
+# refuse it: the zenith command line of the test binary
+# ZENITH_WITH_SHADER_FAULTS (tests/cli/zenith_with_shader_faults.cpp).
 set(cache "${WORK_DIR}/fallback-cache")
 file(REMOVE_RECURSE "${cache}")
 
@@ -17,7 +18,7 @@ function(expect_one_fallback_warning program err)
 endfunction()
 
 execute_process(COMMAND ${CMAKE_COMMAND} -E env ZENITH_FAIL_SHADER=harmonic_density.comp
-                        ${ZENITH} precompute --atmosphere mars --tables small --orders 2 --cache "${cache}"
+                        ${ZENITH_WITH_SHADER_FAULTS} precompute --atmosphere mars --tables small --orders 2 --cache "${cache}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "precompute with a refused program failed (${rc}):\n${out}\n${err}")
@@ -32,7 +33,7 @@ endforeach()
 
 # A render whose tables are missing: the first program of the precompute is refused.
 execute_process(COMMAND ${CMAKE_COMMAND} -E env ZENITH_FAIL_SHADER=transmittance.comp
-                        ${ZENITH} render --scene "${SOURCE_DIR}/configs/scenes/earth-sunset.json" --projection planar
+                        ${ZENITH_WITH_SHADER_FAULTS} render --scene "${SOURCE_DIR}/configs/scenes/earth-sunset.json" --projection planar
                         --size 32x18 --tables small --orders 2 --cache "${cache}" --out "${WORK_DIR}/fallback.png"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK_DIR}/fallback.png")

@@ -31,6 +31,7 @@
 #include "render/shader_bindings.h"
 #include "render/shader_programs.h"
 #include "render/shader_source.h"
+#include "tests/render/shader_faults.h"
 #include "tests/render/test_shaders.h"
 
 namespace zenith::render {
@@ -410,33 +411,22 @@ TEST_F(GlTest, AStartedBuildReportsItsCompileErrorAtFinishWithFileAndLine) {
   }
 }
 
-/// Sets an environment variable for one scope.
-class ScopedEnvironment {
- public:
-  ScopedEnvironment(const char* name, const char* value) : name_(name) { setenv(name, value, 1); }
-  ~ScopedEnvironment() { unsetenv(name_); }
-  ScopedEnvironment(const ScopedEnvironment&) = delete;
-  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
-
- private:
-  const char* name_;
-};
-
 /// NVIDIA's C5025 (a loop its compiler unrolled and could not index) is built
 /// again with loop unrolling off (gl::kNvidiaLoopUnrollOff), from a started
-/// build as from ShaderProgram::compute. ZENITH_FAIL_SHADER_C5025 makes any
-/// driver fail that way while the pragma is absent (render/gl/shader_hooks.h).
+/// build as from ShaderProgram::compute. ShaderFaults::fail_shader_c5025 makes any
+/// driver fail that way while the pragma is absent (tests/render/shader_faults.h).
 TEST_F(GlTest, TheC5025RetryBuildsAStartedProgramWithLoopUnrollingOff) {
   const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
   const gl::ShaderCode code{pattern.name, pattern.text, pattern.files};
-  const ScopedEnvironment fail("ZENITH_FAIL_SHADER_C5025", "test_pattern.comp");
+  std::optional<testing::ScopedShaderFaults> fail(std::in_place, testing::ShaderFaults::c5025_in("test_pattern.comp"));
   gl::ShaderBuild build = gl::ShaderBuild::compute(code, interface_and());
   gl::ShaderBuild other = gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", "2.0"}}));
   const ShaderProgram retried = build.finish();
   expect_floats_near(run_pattern(retried, 5, 3, 2), expected_pattern(5, 3, 2), 1e-6f);
   expect_floats_near(run_pattern(other.finish(), 5, 3, 2), expected_pattern(5, 3, 2, 2.0f), 1e-6f);
   // The hook fails the first try for real: a graphics pair, which has no retry, shows its message.
-  const ScopedEnvironment fail_vertex("ZENITH_FAIL_SHADER_C5025", "v.vert");
+  fail.reset();
+  const testing::ScopedShaderFaults fail_vertex(testing::ShaderFaults::c5025_in("v.vert"));
   const gl::ShaderCode vertex{"v.vert", "#version 450 core\nvoid main() { gl_Position = vec4(0); }\n", {}};
   const gl::ShaderCode fragment{"f.frag", "#version 450 core\nout vec4 c;\nvoid main() { c = vec4(1); }\n", {}};
   try {

@@ -9,7 +9,7 @@
 // quadratures and both density methods, 1 to 3 orders, the series tail) and the
 // renderer over a ground view, an eclipse and three atmospheres in each
 // projection kind, with and without fp64, multiple scattering, eclipses, the
-// sky-view table and the one-pass tiles, with ZENITH_SHADER_DUMP_DIR set (render/gl/shader_hooks.h):
+// sky-view table and the one-pass tiles, with ZENITH_SHADER_DUMP_DIR set (render/gl/shader_dump.h):
 // each distinct final text given to glShaderSource is written out, includes
 // expanded and #defines injected. glslangValidator (Debian: glslang-tools)
 // parses each one and prints its syntax tree (-i); the test walks the tree.

@@ -37,6 +37,7 @@
 
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/parameters.h"
+#include "tests/render/shader_faults.h"
 #include "tests/render/tiny_precompute_options.h"
 
 namespace zenith::render {
@@ -324,17 +325,8 @@ TEST(GpuPrecompute, TheSeriesTailBringsFiveOrdersCloserToTheConvergedSeriesThanE
   EXPECT_EQ(tail.report.orders_used, 5);
 }
 
-/// ZENITH_SHADER_DEFINES (render/gl/shader_hooks.h) for the lifetime of the object.
-class ShaderDefinesForTest {
- public:
-  explicit ShaderDefinesForTest(const std::string& defines) { setenv("ZENITH_SHADER_DEFINES", defines.c_str(), 1); }
-  ~ShaderDefinesForTest() { unsetenv("ZENITH_SHADER_DEFINES"); }
-  ShaderDefinesForTest(const ShaderDefinesForTest&) = delete;
-  ShaderDefinesForTest& operator=(const ShaderDefinesForTest&) = delete;
-};
-
 /// NVIDIA's fp64 on llvmpipe: sqrt, exp_r and log_r 1 ulp away from zero, then 1
-/// ulp toward it (ULP_PERTURBATION, atmosphere_common.glsl). NVIDIA's sqrt is
+/// ulp toward it (tests/render/shader_faults.h). NVIDIA's sqrt is
 /// not correctly rounded (driver 580.159.04: 1 ulp) and its compiler may fuse
 /// the series of exp_r and log_r into FMAs. The bounds at the top must hold.
 TEST(GpuPrecompute, BoundsHoldWithTheElementaryFunctionsOneUlpOff) {
@@ -342,7 +334,7 @@ TEST(GpuPrecompute, BoundsHoldWithTheElementaryFunctionsOneUlpOff) {
     const AtmosphereModel model = atmosphere::load_preset(preset).model;
     const PrecomputeOptions options = small_options();
     const Result cpu = run_cpu(model, options);
-    const ShaderDefinesForTest perturbed("ULP_PERTURBATION=" + std::to_string(ulps));
+    const testing::ScopedShaderFaults perturbed(testing::ShaderFaults::ulps_off(ulps));
     expect_same_tables(std::string(preset) + ", sqrt/exp/log " + std::to_string(ulps) + " ulp", cpu,
                        run_gpu(model, options));
   }

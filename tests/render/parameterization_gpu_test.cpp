@@ -21,7 +21,7 @@
 //    coordinates within 1.2e-15. transmittance_r_mu's μ near the top, where
 //    the law of cosines divides a cancelling numerator by a short chord, gets
 //    transmittance_mu_bound on top. The ...WithSqrtOneUlpOff tests run the
-//    same with sqrt, exp_r and log_r 1 ulp off (ULP_PERTURBATION), as NVIDIA's
+//    same with sqrt, exp_r and log_r 1 ulp off (tests/render/shader_faults.h), as NVIDIA's
 //    fp64 sqrt is: every function within 1e-15 but that μ (6.3e-11 Earth,
 //    3.3e-11 Mars, at 1 m below the top).
 //  * fp32: 1e-2, and 5e-2 for transmittance_r_mu's μ (a cancelling numerator
@@ -58,6 +58,7 @@
 #include "render/shader_bindings.h"
 #include "render/shader_programs.h"
 #include "tests/render/render_test_support.h"
+#include "tests/render/shader_faults.h"
 #include "tests/render/test_shaders.h"
 
 namespace zenith::render {
@@ -86,7 +87,7 @@ double ulp(double x) { return std::nextafter(std::abs(x), INFINITY) - std::abs(x
 /// not correctly rounded) moves d_min = rt − r, hence d, by ulp(r): μ by
 /// 2 ulp(r) / d. Both grow as the chord d shrinks: 1 m below the top, at μ = 1,
 /// Earth 2.5e-9, Mars 1.2e-9; at d = 100 km, 1e-14 (NVIDIA gave 6.1e-12 there;
-/// llvmpipe with ULP_PERTURBATION 6.3e-11 at μ = 0.25, d = 4 m).
+/// llvmpipe with ULP perturbation 6.3e-11 at μ = 0.25, d = 4 m).
 double transmittance_mu_bound(const ShellGeometry& g, double r, double mu) {
   const double d = g.distance_to_top_m(r, mu);
   if (d <= 0.0) return 0.0;  // μ = 1 exactly on both sides
@@ -157,14 +158,12 @@ struct Worst {
 
 class GpuParameterization {
  public:
-  GpuParameterization(const atmosphere::AtmosphereModel& model, const TableSizes& sizes, bool fp64,
-                      const std::vector<gl::ShaderDefine>& extra_defines = {})
+  GpuParameterization(const atmosphere::AtmosphereModel& model, const TableSizes& sizes, bool fp64)
       : fp64_(fp64), sizes_(sizes) {
     testing::context();
     atmosphere::lut::PrecomputeOptions options;
     options.sizes = sizes;
-    ShaderModel m = shader_model(model, options, fp64);
-    m.defines.insert(m.defines.end(), extra_defines.begin(), extra_defines.end());
+    const ShaderModel m = shader_model(model, options, fp64);
     model_buffers_ = ModelBuffers(m);
     texel_values_ = gl::Buffer(m.texel_layout.count * real_size());
     model_buffers_.bind();
@@ -225,9 +224,8 @@ void compare_parameterization(const std::string& preset, bool fp64, double toler
                (ulp_perturbation ? ", sqrt/exp/log " + std::to_string(ulp_perturbation) + " ulp" : ""));
   const atmosphere::AtmosphereModel model = atmosphere::load_preset(preset).model;
   const ShellGeometry g{model.ground_radius_m, model.top_radius_m};
-  std::vector<gl::ShaderDefine> extra;
-  if (ulp_perturbation != 0) extra.push_back({"ULP_PERTURBATION", std::to_string(ulp_perturbation)});
-  const GpuParameterization gpu(model, TableSizes::small(), fp64, extra);
+  const testing::ScopedShaderFaults perturbed(testing::ShaderFaults::ulps_off(ulp_perturbation));
+  const GpuParameterization gpu(model, TableSizes::small(), fp64);
   const TableSizes& s = gpu.sizes();
 
   // Mode 0: the functions at the edge cases (inputs rounded to what the shader holds).
@@ -344,7 +342,7 @@ TEST(ParameterizationGpu, MatchesCppAtTheEdgesForMarsInFp32) {
 }
 
 // NVIDIA's rounding on llvmpipe: sqrt, exp_r and log_r of double 1 ulp away from
-// zero (ULP_PERTURBATION, atmosphere_common.glsl), as NVIDIA's fp64 sqrt (driver
+// zero (tests/render/shader_faults.h), as NVIDIA's fp64 sqrt (driver
 // 580.159.04) is.
 TEST(ParameterizationGpu, MatchesCppAtTheEdgesForEarthInFp64WithSqrtOneUlpOff) {
   compare_parameterization("earth-advanced", true, kFp64Tolerance, 1);

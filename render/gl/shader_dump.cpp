@@ -1,9 +1,8 @@
-#include "render/gl/shader_hooks.h"
+#include "render/gl/shader_dump.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -32,36 +31,6 @@ std::string flat_name(std::string_view name) {
 }
 
 }  // namespace
-
-std::string with_test_hooks(std::string_view name, std::string text) {
-  std::vector<std::string> lines;
-  if (const char* defines = std::getenv("ZENITH_SHADER_DEFINES"); defines != nullptr && *defines != '\0') {
-    std::vector<ShaderDefine> parsed;
-    std::string_view rest = defines;
-    while (!rest.empty()) {
-      const std::string_view item = rest.substr(0, rest.find(','));
-      rest.remove_prefix(std::min(rest.size(), item.size() + 1));
-      const std::size_t equals = item.find('=');
-      parsed.push_back({std::string(item.substr(0, equals)),
-                        equals == std::string_view::npos ? std::string() : std::string(item.substr(equals + 1))});
-    }
-    // inject_defines checks the names and values; its #line is replaced below.
-    const std::string with = inject_defines(name, "#version 450\n", parsed);
-    for (std::string_view l = with; !l.empty();) {
-      const std::string_view line = l.substr(0, l.find('\n'));
-      l.remove_prefix(std::min(l.size(), line.size() + 1));
-      if (line.starts_with("#define")) lines.emplace_back(line);
-    }
-  }
-  if (const char* target = std::getenv("ZENITH_FAIL_SHADER"); target != nullptr && name == target)
-    lines.push_back(fmt::format("#error {} made to fail by ZENITH_FAIL_SHADER", name));
-  if (const char* target = std::getenv("ZENITH_FAIL_SHADER_C5025");
-      target != nullptr && name == target && text.find(kNvidiaLoopUnrollOff) == std::string::npos)
-    lines.push_back(
-        fmt::format("#error C5025: {} made to fail as NVIDIA's loop unrolling does by ZENITH_FAIL_SHADER_C5025", name));
-  if (lines.empty()) return text;
-  return insert_after_version(name, text, lines);
-}
 
 void dump_shader_source(std::string_view name, ShaderStage stage, std::string_view text,
                         const std::vector<std::string>& files) {
