@@ -5,17 +5,18 @@
 #include <stdexcept>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 namespace zenith::astro {
 namespace {
 
-Vec3d add(const Vec3d& a, const Vec3d& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+using glm::dvec3;
 
 // The icosahedron of StelGeodesicGrid: corners (±a, ±b, 0), (0, ±a, ±b),
 // (±b, 0, ±a) with b = 1/√(1 + G²), a = bG, G the golden ratio, and its 20
 // faces in the catalogue's zone order (counter-clockwise seen from outside).
 struct Icosahedron {
-  std::array<Vec3d, 12> corner;
+  std::array<dvec3, 12> corner;
   static constexpr int face[20][3] = {{1, 0, 10}, {0, 1, 9},  {0, 9, 6},   {9, 8, 6},   {0, 7, 10},
                                       {6, 7, 0},  {7, 6, 3},  {6, 8, 3},   {11, 10, 7}, {7, 3, 11},
                                       {3, 2, 11}, {2, 3, 8},  {10, 11, 4}, {2, 4, 11},  {5, 4, 2},
@@ -23,27 +24,27 @@ struct Icosahedron {
   Icosahedron() {
     const double g = 0.5 * (1.0 + std::sqrt(5.0));
     const double b = 1.0 / std::sqrt(1.0 + g * g), a = b * g;
-    corner = {Vec3d{a, -b, 0}, {a, b, 0},   {-a, b, 0}, {-a, -b, 0}, {0, a, -b}, {0, a, b},
+    corner = {dvec3{a, -b, 0}, {a, b, 0},   {-a, b, 0}, {-a, -b, 0}, {0, a, -b}, {0, a, b},
               {0, -a, b},      {0, -a, -b}, {-b, 0, a}, {b, 0, a},   {b, 0, -a}, {-b, 0, -a}};
   }
 };
 
-void subdivide(int level, int target, const Vec3d& c0, const Vec3d& c1, const Vec3d& c2, ZoneGrid& grid) {
+void subdivide(int level, int target, const dvec3& c0, const dvec3& c1, const dvec3& c2, ZoneGrid& grid) {
   if (level == target) {
     CatalogueZone z;
-    z.centre = normalized(add(add(c0, c1), c2));
-    z.axis0 = normalized(cross(Vec3d{0, 0, 1}, z.centre));
-    z.axis1 = cross(z.centre, z.axis0);
-    for (const Vec3d* c : {&c0, &c1, &c2}) {
-      const Vec3d d = sub(*c, z.centre);
-      const double mu0 = dot(d, z.axis0), mu1 = dot(d, z.axis1);
+    z.centre = glm::normalize(c0 + c1 + c2);
+    z.axis0 = glm::normalize(glm::cross(dvec3{0, 0, 1}, z.centre));
+    z.axis1 = glm::cross(z.centre, z.axis0);
+    for (const dvec3* c : {&c0, &c1, &c2}) {
+      const dvec3 d = *c - z.centre;
+      const double mu0 = glm::dot(d, z.axis0), mu1 = glm::dot(d, z.axis1);
       const double f = 1.0 / std::sqrt(1.0 - mu0 * mu0 - mu1 * mu1);
       grid.gnomonic_extent = std::max({grid.gnomonic_extent, std::abs(mu0) * f, std::abs(mu1) * f});
     }
     grid.zones.push_back(z);
     return;
   }
-  const Vec3d e0 = normalized(add(c1, c2)), e1 = normalized(add(c2, c0)), e2 = normalized(add(c0, c1));
+  const dvec3 e0 = glm::normalize(c1 + c2), e1 = glm::normalize(c2 + c0), e2 = glm::normalize(c0 + c1);
   subdivide(level + 1, target, c0, e2, e1, grid);
   subdivide(level + 1, target, e2, c1, e0, grid);
   subdivide(level + 1, target, e1, e0, c2, grid);

@@ -21,13 +21,13 @@
 #include <cstddef>
 #include <vector>
 
-#include "astro/vec3d.h"
+#include <glm/vec3.hpp>
 
 namespace zenith::astro {
 
 /// One zone's tangent-plane frame (unit vectors, J2000 equatorial).
 struct CatalogueZone {
-  Vec3d centre, axis0, axis1;
+  glm::dvec3 centre, axis0, axis1;
 };
 
 struct ZoneGrid {

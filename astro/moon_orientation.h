@@ -25,7 +25,7 @@
 // light time of the Moon (1.3 s, < 0.001°). Conventions: IAU (east longitude
 // positive, toward Mare Crisium; north toward Mare Frigoris); l > 0 shows more
 // of the eastern limb.
-#include <array>
+#include <glm/vec3.hpp>
 
 #include "astro/civil_time.h"
 #include "astro/sky_positions.h"
@@ -38,7 +38,7 @@ inline constexpr double kLunarEquatorInclination_deg = 1.54242;
 /// The Moon's body-fixed axes as unit vectors on GCRS axes: x toward
 /// selenographic (0°, 0°), y toward (90° E, 0°), z toward the north pole.
 struct MoonAxes {
-  std::array<double, 3> x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
+  glm::dvec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
 };
 
 /// The mean axes at a time (TT), as above.
@@ -49,7 +49,7 @@ MoonAxes moon_axes_gcrs(const JulianDate& tt);
 struct Selenographic {
   double longitude_rad = 0.0, latitude_rad = 0.0;
 };
-Selenographic selenographic(const MoonAxes& axes, const std::array<double, 3>& v);
+Selenographic selenographic(const MoonAxes& axes, const glm::dvec3& v);
 
 struct MoonOrientation {
   MoonAxes axes;                   ///< on GCRS axes

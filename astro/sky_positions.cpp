@@ -52,7 +52,7 @@ void check_site(const Site& site) {
   require_in_range("site altitude_m", site.altitude_m, -500.0, 10000.0, "m");
 }
 
-std::array<double, 3> Horizontal::east_north_up() const {
+glm::dvec3 Horizontal::east_north_up() const {
   const double c = std::cos(altitude_rad);
   return {c * std::sin(azimuth_rad), c * std::cos(azimuth_rad), std::sin(altitude_rad)};
 }
@@ -180,9 +180,10 @@ SkyPositions::MoonVectors SkyPositions::moon_vectors(bool geocentric) const {
   return v;
 }
 
-std::array<double, 3> SkyPositions::gcrs_direction_enu(const std::array<double, 3>& v) const {
+glm::dvec3 SkyPositions::gcrs_direction_enu(const glm::dvec3& v) const {
   double ri = 0.0, di = 0.0;
-  gcrs_vector_to_cirs(v.data(), state_->site, &ri, &di);
+  const double gcrs[3] = {v.x, v.y, v.z};
+  gcrs_vector_to_cirs(gcrs, state_->site, &ri, &di);
   return observed(ri, di, state_->site).east_north_up();
 }
 

@@ -21,6 +21,8 @@
 #include <memory>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "astro/civil_time.h"
 #include "astro/star_catalogue.h"
 
@@ -42,7 +44,7 @@ struct Horizontal {
   double azimuth_rad = 0.0;   ///< from north through east, [0, 2π)
   double altitude_rad = 0.0;  ///< above the horizon (geometric: no refraction)
   /// Unit vector in the local frame (east, north, up).
-  std::array<double, 3> east_north_up() const;
+  glm::dvec3 east_north_up() const;
 };
 
 /// Right ascension and declination on the true equator and equinox of date
@@ -95,13 +97,13 @@ class SkyPositions {
   /// Sun; `geocentric`: from the Earth's centre instead of the site
   /// (astro/moon_orientation.h orients the Moon with them).
   struct MoonVectors {
-    std::array<double, 3> moon_from_observer_au{}, sun_from_moon_au{};
+    glm::dvec3 moon_from_observer_au{}, sun_from_moon_au{};
   };
   MoonVectors moon_vectors(bool geocentric = false) const;
   /// A direction given on GCRS axes (a body's axis, not a place) as a unit
   /// vector of the site's (east, north, up): the Earth's orientation only, as
   /// moon() turns the Moon's vector.
-  std::array<double, 3> gcrs_direction_enu(const std::array<double, 3>& v) const;
+  glm::dvec3 gcrs_direction_enu(const glm::dvec3& v) const;
 
  private:
   AstroTime time_;

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <glm/geometric.hpp>
+
 #include "astro/geodesic_grid.h"
 #include "core/sha256.h"
 #include "core/units.h"
@@ -50,23 +52,23 @@ std::int64_t bits(const unsigned char* p, int first, int count, bool is_signed) 
 /// t years after J2000; its unit vector p and the rate dp/dt = (dq − p (p·dq)) / |q|
 /// projected on the local east and north give μα* and μδ.
 void place(CatalogueStar& s, const CatalogueZone& z, double x0, double x1, double d0, double d1) {
-  Vec3d q, dq;
+  glm::dvec3 q, dq;
   for (int k = 0; k < 3; ++k) {
     q[k] = z.centre[k] + z.axis0[k] * x0 + z.axis1[k] * x1;
     dq[k] = z.axis0[k] * d0 + z.axis1[k] * d1;
   }
-  const double n = std::sqrt(dot(q, q));
-  const Vec3d p{q[0] / n, q[1] / n, q[2] / n};
+  const double n = std::sqrt(glm::dot(q, q));
+  const glm::dvec3 p{q[0] / n, q[1] / n, q[2] / n};
   s.dec_rad = std::asin(std::clamp(p[2], -1.0, 1.0));
   s.ra_rad = std::atan2(p[1], p[0]);
   if (s.ra_rad < 0.0) s.ra_rad += 2.0 * core::kPi;
-  const double along = dot(p, dq);
-  const Vec3d rate{(dq[0] - p[0] * along) / n, (dq[1] - p[1] * along) / n, (dq[2] - p[2] * along) / n};
-  const Vec3d east{-std::sin(s.ra_rad), std::cos(s.ra_rad), 0.0};
-  const Vec3d north{-std::sin(s.dec_rad) * std::cos(s.ra_rad), -std::sin(s.dec_rad) * std::sin(s.ra_rad),
-                    std::cos(s.dec_rad)};
-  s.pm_ra_cosdec_mas_yr = dot(rate, east) * kRadToMas;
-  s.pm_dec_mas_yr = dot(rate, north) * kRadToMas;
+  const double along = glm::dot(p, dq);
+  const glm::dvec3 rate{(dq[0] - p[0] * along) / n, (dq[1] - p[1] * along) / n, (dq[2] - p[2] * along) / n};
+  const glm::dvec3 east{-std::sin(s.ra_rad), std::cos(s.ra_rad), 0.0};
+  const glm::dvec3 north{-std::sin(s.dec_rad) * std::cos(s.ra_rad), -std::sin(s.dec_rad) * std::sin(s.ra_rad),
+                         std::cos(s.dec_rad)};
+  s.pm_ra_cosdec_mas_yr = glm::dot(rate, east) * kRadToMas;
+  s.pm_dec_mas_yr = glm::dot(rate, north) * kRadToMas;
 }
 
 std::vector<unsigned char> read_bytes(const std::filesystem::path& path) {
@@ -164,7 +166,7 @@ std::vector<std::pair<double, double>> read_hipparcos_proper_motions(const std::
 
 }  // namespace
 
-std::array<double, 3> equatorial_unit_vector(double ra_rad, double dec_rad) {
+glm::dvec3 equatorial_unit_vector(double ra_rad, double dec_rad) {
   return {std::cos(dec_rad) * std::cos(ra_rad), std::cos(dec_rad) * std::sin(ra_rad), std::sin(dec_rad)};
 }
 

@@ -37,6 +37,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 namespace zenith::astro {
 
 /// Where stellarium-data installs its catalogue.
@@ -94,6 +96,6 @@ std::vector<CatalogueStar> read_catalogue_file(const std::filesystem::path& path
 StarCatalogue load_star_catalogue(const StarCatalogueOptions& options = {});
 
 /// The J2000 unit vector (x toward RA 0, z north) of a right ascension and declination.
-std::array<double, 3> equatorial_unit_vector(double ra_rad, double dec_rad);
+glm::dvec3 equatorial_unit_vector(double ra_rad, double dec_rad);
 
 }  // namespace zenith::astro

@@ -9,43 +9,24 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_access.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+#include <glm/vec3.hpp>
+
 namespace zenith::image {
 namespace {
 
-using Vec3 = std::array<double, 3>;
-using Mat3 = std::array<Vec3, 3>;  ///< rows
+// Colour triples (XYZ, RGB, cone responses) and their 3 × 3 transforms are
+// GLM's, the project's one vector library: glm::dmat3 is column-major, m[c][r].
+using glm::dmat3;
+using glm::dvec3;
 
-Vec3 operator*(const Mat3& m, const Vec3& v) {
-  return {m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2], m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
-          m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2]};
-}
-
-Mat3 operator*(const Mat3& a, const Mat3& b) {
-  Mat3 c{};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) c[i][j] += a[i][k] * b[k][j];
-  return c;
-}
-
-Mat3 inverse(const Mat3& m) {
-  const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  Mat3 r{};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      // Cofactor of m[j][i] (transposed), by cyclic indices.
-      const int a = (j + 1) % 3, b = (j + 2) % 3, c = (i + 1) % 3, d = (i + 2) % 3;
-      r[i][j] = (m[a][c] * m[b][d] - m[a][d] * m[b][c]) / det;
-    }
-  return r;
-}
-
-Mat3 diagonal(const Vec3& v) { return {{{v[0], 0, 0}, {0, v[1], 0}, {0, 0, v[2]}}}; }
+dmat3 diagonal(const dvec3& v) { return dmat3(v.x, 0, 0, 0, v.y, 0, 0, 0, v.z); }
 
 /// XYZ of a white point given by its chromaticity (x, y), scaled to Y = 1.
-Vec3 white_xyz(double x, double y) { return {x / y, 1.0, (1.0 - x - y) / y}; }
+dvec3 white_xyz(double x, double y) { return {x / y, 1.0, (1.0 - x - y) / y}; }
 
 // ---------------------------------------------------------------- CIE 1931
 
@@ -65,7 +46,7 @@ double lobe(double wavelength_nm, double mu_nm, double sigma_below_nm, double si
 ///   z̄ = 1.217 g(λ; 437.0, 11.8, 36.0) + 0.681 g(λ; 459.0, 26.0, 13.8)
 /// (λ in nm). The paper reports it within the variability of the measured data;
 /// ∫x̄, ∫ȳ, ∫z̄ come out 106.8, 106.9, 106.9 against the tables' 106.9 each.
-Vec3 cie1931_xyz_bar(double nm) {
+dvec3 cie1931_xyz_bar(double nm) {
   return {
       1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7) - 0.065 * lobe(nm, 501.1, 20.4, 26.2),
       0.821 * lobe(nm, 568.8, 46.9, 40.5) + 0.286 * lobe(nm, 530.9, 16.3, 31.1),
@@ -80,10 +61,9 @@ Vec3 cie1931_xyz_bar(double nm) {
 /// printed one (3.2406 −1.5372 −0.4986; −0.9689 1.8758 0.0415; 0.0557 −0.2040
 /// 1.0570) by at most 4e-4, because the standard rounded its forward matrix
 /// before inverting; derived, D65 maps to exactly (1, 1, 1).
-Mat3 srgb_to_xyz() {
-  const Vec3 r = white_xyz(0.64, 0.33), g = white_xyz(0.30, 0.60), b = white_xyz(0.15, 0.06);
-  const Mat3 primaries{{{r[0], g[0], b[0]}, {r[1], g[1], b[1]}, {r[2], g[2], b[2]}}};
-  const Vec3 scale = inverse(primaries) * white_xyz(0.3127, 0.3290);
+dmat3 srgb_to_xyz() {
+  const dmat3 primaries(white_xyz(0.64, 0.33), white_xyz(0.30, 0.60), white_xyz(0.15, 0.06));  // columns R, G, B
+  const dvec3 scale = glm::inverse(primaries) * white_xyz(0.3127, 0.3290);
   return primaries * diagonal(scale);
 }
 
@@ -95,10 +75,10 @@ Mat3 srgb_to_xyz() {
 /// is spectrally flat in these units — so a flat spectrum is the scene's white,
 /// as it is for the direct mapping; without adapting, it would come out pink
 /// (linear sRGB ≈ 1.20, 0.95, 0.91).
-Mat3 bradford_e_to_d65() {
-  const Mat3 m{{{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
-  const Vec3 cone_d65 = m * white_xyz(0.3127, 0.3290), cone_e = m * Vec3{1.0, 1.0, 1.0};
-  return inverse(m) * diagonal({cone_d65[0] / cone_e[0], cone_d65[1] / cone_e[1], cone_d65[2] / cone_e[2]}) * m;
+dmat3 bradford_e_to_d65() {
+  const dmat3 m = glm::transpose(dmat3(0.8951, 0.2664, -0.1614, -0.7502, 1.7135, 0.0367, 0.0389, -0.0685, 1.0296));
+  const dvec3 cone_d65 = m * white_xyz(0.3127, 0.3290), cone_e = m * dvec3(1.0);
+  return glm::inverse(m) * diagonal(cone_d65 / cone_e) * m;
 }
 
 /// Bin widths by the midpoint rule, as atmosphere::luminance_weights: half the
@@ -206,15 +186,15 @@ std::vector<std::array<double, 3>> spectral_to_rgb_weights(std::span<const doubl
 
   // rgb = k · Σ_i L_i Δλ_i · T · (x̄, ȳ, z̄)(λ_i),  T = sRGB⁻¹ · Bradford(E → D65),
   // k such that a flat L_i = 1 gives luminance Y = 0.2126 R + 0.7152 G + 0.0722 B = 1.
-  const Mat3 to_xyz = srgb_to_xyz();
-  const Mat3 xyz_to_rgb = inverse(to_xyz) * bradford_e_to_d65();
+  const dmat3 to_xyz = srgb_to_xyz();
+  const dmat3 xyz_to_rgb = glm::inverse(to_xyz) * bradford_e_to_d65();
   const std::vector<double> widths = bin_widths_nm(wavelengths_nm);
   std::vector<std::array<double, 3>> weights(wavelengths_nm.size());
   double flat_luminance = 0.0;
   for (std::size_t i = 0; i < wavelengths_nm.size(); ++i) {
-    const Vec3 xyz = cie1931_xyz_bar(wavelengths_nm[i]);
-    weights[i] = xyz_to_rgb * Vec3{xyz[0] * widths[i], xyz[1] * widths[i], xyz[2] * widths[i]};
-    flat_luminance += to_xyz[1][0] * weights[i][0] + to_xyz[1][1] * weights[i][1] + to_xyz[1][2] * weights[i][2];
+    const dvec3 rgb = xyz_to_rgb * (cie1931_xyz_bar(wavelengths_nm[i]) * widths[i]);
+    weights[i] = {rgb.r, rgb.g, rgb.b};
+    flat_luminance += glm::dot(glm::row(to_xyz, 1), rgb);  // Y of the weights
   }
   // A flat spectrum over the whole visible range has Σ ȳ Δλ ≈ 107 nm; wavelengths
   // that together see less than 1e-3 nm of it (all far outside 380–780 nm) make no colour.

@@ -19,9 +19,6 @@ namespace {
 
 using core::kDeg;
 
-glm::dvec3 to_glm(const Vec3& v) { return {v.x, v.y, v.z}; }
-Vec3 from_glm(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-
 /// Camera frame (+x right, +y up, −z forward) → world, looking along `forward` with `up` above.
 glm::dquat look_rotation(const glm::dvec3& forward, const glm::dvec3& up) {
   const glm::dvec3 z = -glm::normalize(forward);
@@ -57,11 +54,11 @@ std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std
   for (double altitude : {1.0, 0.5 * H, H + 1e6, kMaxCameraDistance_m - R}) {
     const double r = R + altitude;
     const Vec3 camera = r * up;
-    s.camera.position_m = to_glm(camera);
+    s.camera.position_m = camera;
     const bool outside = r > m.top_radius_m;
     for (double sun_zenith_deg : {30.0, 89.5, 96.0, 104.0, 150.0}) {
       const Vec3 sun = std::cos(sun_zenith_deg * kDeg) * up + std::sin(sun_zenith_deg * kDeg) * east;
-      s.sun.direction = to_glm(sun);
+      s.sun.direction = sun;
       for (const char* view : {"horizon", "wide"}) {
         GpuFrameResult f;
         f.model = label;
@@ -74,18 +71,18 @@ std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std
         if (horizon) {
           const Vec3 forward = horizon_direction(camera, north, R, 0.0);
           const Vec3 frame_up = atmosphere::normalize(atmosphere::cross(atmosphere::cross(forward, up), forward));
-          s.camera.orientation = look_rotation(to_glm(forward), to_glm(frame_up));
+          s.camera.orientation = look_rotation(forward, frame_up);
           const double half_deg = outside ? std::max(0.25 * planet_angular_radius, 2e-7) / kDeg : 0.5;
           const double half_width_deg = half_deg / 16.0;
           projection = std::make_unique<warp::PlanarProjection>(
               4, o.size_px, warp::PlanarFrustum{-half_width_deg, half_width_deg, -half_deg, half_deg});
         } else if (outside) {
-          s.camera.orientation = look_rotation(to_glm(-up), to_glm(east));
+          s.camera.orientation = look_rotation(-up, east);
           const double half_deg = std::min(80.0, 1.5 * std::asin(std::min(1.0, m.top_radius_m / r)) / kDeg);
           projection = std::make_unique<warp::PlanarProjection>(
               o.size_px, o.size_px, warp::PlanarFrustum{-half_deg, half_deg, -half_deg, half_deg});
         } else {
-          s.camera.orientation = look_rotation(to_glm(north), to_glm(up));
+          s.camera.orientation = look_rotation(north, up);
           warp::FisheyeParameters p;
           p.fov_deg = 220.0;
           p.tilt_deg = 90.0;
@@ -125,7 +122,7 @@ std::vector<GpuFrameResult> run_gpu_stress(render::Renderer& renderer, const std
           for (int x = 0; x < w; ++x) {
             const auto ray_camera = projection->ray(x + 0.5, y + 0.5);
             if (!ray_camera) continue;
-            const Vec3 ray = atmosphere::normalize(from_glm(s.camera.orientation * *ray_camera));
+            const Vec3 ray = atmosphere::normalize(s.camera.orientation * *ray_camera);
             // Away from the sun's disc, which a pixel larger than it spreads over the pixel.
             if (atmosphere::dot(ray, sun) > std::cos(std::max(1.0 * kDeg, 3.0 * projection->max_pixel_angle_rad())))
               continue;

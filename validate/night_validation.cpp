@@ -300,16 +300,14 @@ void check_visibility(Report& r, const SkyModel& sky, const atmosphere::LoadedAt
     const astro::AstroTime t = when_sun_at(greenwich, afternoon, -depression);
     const astro::SkyPositions positions(t, greenwich);
     const astro::SunPlace sun = positions.sun();
-    const auto sun_enu = sun.horizontal.east_north_up();
-    const Vec3 sun_dir{sun_enu[0], sun_enu[1], sun_enu[2]};
+    const Vec3 sun_dir = sun.horizontal.east_north_up();
     std::size_t seen = 0;
     for (const astro::CatalogueStar& star : catalogue.stars) {
       const astro::Horizontal h = positions.star(star);
       astro::Horizontal apparent = h;
       apparent.altitude_rad = refraction.apparent_from_true_rad(h.altitude_rad);
       if (apparent.altitude_rad <= 0.0) continue;
-      const auto enu = apparent.east_north_up();
-      const Vec3 view{enu[0], enu[1], enu[2]};
+      const Vec3 view = apparent.east_north_up();
       sky.tables.transmittance_to_top(radius, view.z, transmittance.data());
       const double extinction = -2.5 * std::log10(astro::v_band_mean(sky.model.wavelengths_nm, transmittance));
       if (star.v_mag + extinction <= naked_eye_limiting_magnitude(sky.v_mag_arcsec2(view, sun_dir))) ++seen;

@@ -60,9 +60,9 @@ Vec3 tangent_at_azimuth(const Vec3& up, double azimuth_rad);
 
 /// One configuration of the stress: camera, view and sun (planet-centred, unit directions).
 struct Configuration {
-  Vec3 camera_m;
-  Vec3 view;
-  Vec3 sun;
+  Vec3 camera_m{};
+  Vec3 view{};
+  Vec3 sun{};
 };
 
 /// Where a configuration is reported. Exclusive, assigned in this order:

@@ -24,7 +24,7 @@
 namespace zenith::validate {
 
 struct HorizonPair {
-  Vec3 above, below;  ///< view directions at δ = +ε and −ε
+  Vec3 above{}, below{};  ///< view directions at δ = +ε and −ε
   double epsilon_rad;
 };
 

@@ -7,7 +7,7 @@ namespace zenith::atmosphere::reference {
 /// Right-handed orthonormal basis (u, v, w) with w a given unit vector (the
 /// branchless construction of Duff et al. 2017, valid for every w).
 struct Frame {
-  Vec3 u, v, w;
+  Vec3 u{}, v{}, w{};
   static Frame around(const Vec3& w);
   /// x u + y v + z w.
   Vec3 to_world(double x, double y, double z) const { return x * u + y * v + z * w; }

@@ -52,9 +52,9 @@ class Ray {
   std::optional<SphereCrossings> sphere_crossings(double radius_m) const;
 
  private:
-  Vec3 origin_m_, direction_;
+  Vec3 origin_m_{}, direction_{};
   double perigee_t_m_ = 0.0;
-  Vec3 perigee_point_m_;
+  Vec3 perigee_point_m_{};
   double impact_parameter_m_ = 0.0;
 };
 

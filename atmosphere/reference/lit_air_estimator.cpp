@@ -94,7 +94,7 @@ class TwilightLobe {
 
  private:
   double mu0_, width_, gamma_, atan_low_ = 0.0, atan_high_ = 0.0, rho_ = 0.0;
-  Vec3 up_, toward_sun_, side_;
+  Vec3 up_{}, toward_sun_{}, side_{};
 };
 
 /// One path's estimator (the derivation is in lit_air_estimator.h).
@@ -203,7 +203,7 @@ class LitAirPath {
     const Vec3 normal = normalize(vertex);
     const double u_choice = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(),
                  u4 = rng.uniform(), u5 = rng.uniform();
-    Vec3 w;
+    Vec3 w{};
     if (u_choice < f) {
       w = lobe.sample(u1, u2);
     } else if (u_choice < f + f_sun) {
@@ -232,7 +232,7 @@ class LitAirPath {
 
   const AtmosphereModel& model_;
   const LitAirOptions& options_;
-  Vec3 sun_;
+  Vec3 sun_{};
   std::size_t n_;
   AtmosphereMedium medium_;
   MajorantGrid majorants_;

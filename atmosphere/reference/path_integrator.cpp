@@ -70,7 +70,7 @@ double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng,
     const bool last = order >= settings_.max_scattering_order;
     const Vec3& d = ray.direction();
     Vec3 vertex = ray.point_at(flight.t_m);
-    Vec3 next_direction;
+    Vec3 next_direction{};
 
     if (flight.event == FreeFlight::Event::Scattering) {
       const LocalCoefficients& c = flight.coefficients;

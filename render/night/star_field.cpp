@@ -140,10 +140,7 @@ void StarField::directions_enu(const astro::AstroTime& time, const astro::Site& 
     std::vector<astro::Horizontal> places;
     sky.stars(catalogue_.stars, places);
     epoch_enu_.resize(places.size());
-    for (std::size_t i = 0; i < places.size(); ++i) {
-      const auto enu = places[i].east_north_up();
-      epoch_enu_[i] = {enu[0], enu[1], enu[2]};
-    }
+    for (std::size_t i = 0; i < places.size(); ++i) epoch_enu_[i] = places[i].east_north_up();
     epoch_ut1_jd_ = ut1_jd;
     epoch_site_ = site;
     have_epoch_ = true;

@@ -40,9 +40,9 @@ std::vector<StarAtmosphere> star_atmospheres(const FrameInProgress& frame) {
 /// then turned with the disc by refraction's lift (`geometric` → `apparent`).
 MoonWorldAxes moon_world_axes(const astro::MoonAxes& axes, const astro::SkyPositions& positions, const StarFrame& sky,
                               const glm::dvec3& geometric, const glm::dvec3& apparent) {
-  const auto world = [&](const std::array<double, 3>& v) {
-    const auto e = positions.gcrs_direction_enu(v);
-    return glm::normalize(e[0] * sky.east + e[1] * sky.north + e[2] * sky.up);
+  const auto world = [&](const glm::dvec3& v) {
+    const glm::dvec3 e = positions.gcrs_direction_enu(v);
+    return glm::normalize(e.x * sky.east + e.y * sky.north + e.z * sky.up);
   };
   MoonWorldAxes out{world(axes.x), glm::dvec3(0.0), world(axes.z)};
   // Rodrigues' rotation about geometric × apparent by the angle between them.
@@ -219,8 +219,8 @@ void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky
   const scene::SkyClock& clock = *frame.scene.sky_clock;
   const astro::SkyPositions positions(time, clock.site);
   const astro::MoonPlace moon = positions.moon();
-  const auto enu = moon.horizontal.east_north_up();
-  glm::dvec3 d = enu[0] * sky.east + enu[1] * sky.north + enu[2] * sky.up;
+  const glm::dvec3 enu = moon.horizontal.east_north_up();
+  glm::dvec3 d = enu.x * sky.east + enu.y * sky.north + enu.z * sky.up;
   const glm::dvec3 geometric = glm::normalize(d);
   if (sky.refraction) {
     const double apparent = sky.refraction->apparent_from_true_rad(moon.horizontal.altitude_rad);

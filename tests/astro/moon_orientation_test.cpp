@@ -10,6 +10,8 @@
 
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "astro/moon_orientation.h"
 #include "core/units.h"
 
@@ -49,13 +51,10 @@ TEST(MoonOrientation, TheSubSolarPointIsThePhaseAngleFromTheObserver) {
     const MoonOrientation o = moon_orientation(sky);
     EXPECT_NEAR(arc_between(o.observer, o.sun), sky.moon().phase_angle_rad, 1e-9);
     const MoonAxes& a = o.axes;
-    const auto dot = [](const std::array<double, 3>& u, const std::array<double, 3>& v) {
-      return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-    };
-    EXPECT_NEAR(dot(a.x, a.x), 1.0, 1e-12);
-    EXPECT_NEAR(dot(a.z, a.z), 1.0, 1e-12);
-    EXPECT_NEAR(dot(a.x, a.z), 0.0, 1e-12);
-    EXPECT_NEAR(dot(a.y, a.y), 1.0, 1e-12);
+    EXPECT_NEAR(glm::dot(a.x, a.x), 1.0, 1e-12);
+    EXPECT_NEAR(glm::dot(a.z, a.z), 1.0, 1e-12);
+    EXPECT_NEAR(glm::dot(a.x, a.z), 0.0, 1e-12);
+    EXPECT_NEAR(glm::dot(a.y, a.y), 1.0, 1e-12);
     // Optical libration stays within its bounds: |l| ≤ 8.1°, |b| ≤ 6.9° plus the parallax (≤ 1°).
     EXPECT_LT(std::abs(o.observer.longitude_rad), 9.1 * kDeg);
     EXPECT_LT(std::abs(o.observer.latitude_rad), 7.9 * kDeg);

@@ -11,6 +11,8 @@
 #include <fstream>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 #include "astro/geodesic_grid.h"
 #include "astro/star_catalogue.h"
 #include "core/units.h"
@@ -265,11 +267,10 @@ TEST(GeodesicGrid, ZonesTileTheSphere) {
     ASSERT_EQ(g.zones.size(), catalogue_zone_count(level));
     double mean[3] = {};
     for (const auto& z : g.zones) {
-      auto dot = [](const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
-      ASSERT_NEAR(dot(z.centre, z.centre), 1.0, 1e-12);
-      ASSERT_NEAR(dot(z.axis0, z.axis0), 1.0, 1e-12);
-      ASSERT_NEAR(dot(z.axis0, z.centre), 0.0, 1e-12);
-      ASSERT_NEAR(dot(z.axis1, z.centre), 0.0, 1e-12);
+      ASSERT_NEAR(glm::dot(z.centre, z.centre), 1.0, 1e-12);
+      ASSERT_NEAR(glm::dot(z.axis0, z.axis0), 1.0, 1e-12);
+      ASSERT_NEAR(glm::dot(z.axis0, z.centre), 0.0, 1e-12);
+      ASSERT_NEAR(glm::dot(z.axis1, z.centre), 0.0, 1e-12);
       ASSERT_NEAR(z.axis0[2], 0.0, 1e-12);  // axis 0 is ẑ × centre: horizontal
       for (int k = 0; k < 3; ++k) mean[k] += z.centre[k] / double(g.zones.size());
     }

@@ -408,7 +408,7 @@ TEST(ReferenceSingleScattering, OpticallyThinHomogeneousLayerIsBetaTimesPhaseTim
   const AtmosphereModel m = exponential_model(beta, 1e12, 10e3);
   const Vec3 sun = direction_from_angles(degrees(40.0), 0.0);
   struct Case {
-    Vec3 observer, view;
+    Vec3 observer{}, view{};
   };
   const Case cases[] = {{above_ground(m, 1.0), {0.0, 0.0, 1.0}},
                         {above_ground(m, 5e3), direction_from_angles(degrees(90.0), 1.0)},

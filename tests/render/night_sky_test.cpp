@@ -87,8 +87,7 @@ using testing::TestRenderer;
 /// Sirius (the catalogue's brightest) in the site's east-north-up frame at kTime, geometric.
 glm::dvec3 sirius_enu(const astro::StarCatalogue& c) {
   const astro::SkyPositions sky(astro::AstroTime::from_utc(kTime), astro::Site{kLatitudeDeg, kLongitudeDeg, 46.0});
-  const auto e = sky.star(c.stars.front()).east_north_up();
-  return {e[0], e[1], e[2]};
+  return sky.star(c.stars.front()).east_north_up();
 }
 
 /// Σ (L − L_background) Ω over the pixels within `radius_px` of `centre`, per
@@ -127,8 +126,8 @@ TEST(StarField, TheTurningSkyFollowsErfaWithinAnArcsecondOverSixHours) {
     const astro::SkyPositions erfa(t0.plus_seconds(dt_s), site);
     double worst = 0.0, moved = 0.0;
     for (std::size_t i = 0; i < field.size(); ++i) {
-      const auto e = erfa.star(field.catalogue().stars[i]).east_north_up();
-      worst = std::max(worst, std::acos(std::min(1.0, glm::dot(later[i], glm::dvec3(e[0], e[1], e[2])))));
+      const glm::dvec3 e = erfa.star(field.catalogue().stars[i]).east_north_up();
+      worst = std::max(worst, std::acos(std::min(1.0, glm::dot(later[i], e))));
       moved = std::max(moved, std::acos(std::min(1.0, glm::dot(later[i], epoch[i]))));
     }
     EXPECT_LT(worst / kDeg * 3600.0, 1.0) << dt_s << " s after the epoch";
@@ -513,8 +512,7 @@ TEST(NightSkyPass, TheMoonCarriesItsIrradianceAsADiscAndAsAPointBelowAPixel) {
   const astro::Site site{kLatitudeDeg, kLongitudeDeg, 46.0};
   const astro::MoonPlace moon = astro::SkyPositions(astro::AstroTime::from_utc(time), site).moon();
   ASSERT_GT(moon.horizontal.altitude_rad, 20 * kDeg);
-  const auto enu = moon.horizontal.east_north_up();
-  const glm::dvec3 at(enu[0], enu[1], enu[2]);
+  const glm::dvec3 at = moon.horizontal.east_north_up();
   const auto e = astro::moon_irradiance_W_m2_nm(moon, std::vector<double>{680.0, 550.0, 440.0});
   RenderOptions with = options(false, false), without = options(false, false);
   with.night_sky.moon = true;
@@ -564,7 +562,7 @@ MoonGeometry moon_point(const scene::Scene& s, double latitude_deg, double longi
   const astro::MoonPlace moon = sky.moon();
   const astro::MoonAxes axes = astro::moon_orientation(sky).axes;
   const scene::LocalHorizon h = scene::local_horizon_at(s.camera.position_m, s.bodies[0]);
-  const auto world = [&](const std::array<double, 3>& e) { return e[0] * h.east + e[1] * h.north + e[2] * h.up; };
+  const auto world = [&](const glm::dvec3& e) { return e.x * h.east + e.y * h.north + e.z * h.up; };
   const glm::dvec3 centre = glm::normalize(world(moon.horizontal.east_north_up()));
   const glm::dvec3 x = world(sky.gcrs_direction_enu(axes.x)), z = world(sky.gcrs_direction_enu(axes.z));
   const glm::dvec3 y = glm::cross(z, x);
@@ -664,7 +662,7 @@ TEST(NightSkyPass, AMissingMoonMapDrawsAUniformDiscWithTheSameEnergy) {
   with.night_sky.moon = true;
   with.night_sky.moon_albedo_map = "/nonexistent/moon.png";
   TestRenderer moonlit(with), dark(without);
-  scene::Scene s = greenwich("", {enu[0], enu[1], enu[2]}, 1.0);
+  scene::Scene s = greenwich("", enu, 1.0);
   s.sky_clock->time = kFullMoon;
   s.sun.direction =
       scene::ephemeris_sun(s, *s.sky_clock, astro::AstroTime::from_utc(kFullMoon), s.camera.position_m).direction;

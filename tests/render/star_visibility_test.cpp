@@ -77,8 +77,7 @@ glm::dvec3 sirius_enu() {
                                 astro::Site{testing::kGreenwichLatitudeDeg, testing::kGreenwichLongitudeDeg, 46.0});
   astro::StarCatalogueOptions bright;
   bright.magnitude_limit = 1.5;
-  const auto e = sky.star(astro::load_star_catalogue(bright).stars.front()).east_north_up();
-  return {e[0], e[1], e[2]};
+  return sky.star(astro::load_star_catalogue(bright).stars.front()).east_north_up();
 }
 
 TEST(StarVisibility, TheSkyBehindAStarIsNoDarkerThanItsOwnBound) {
@@ -234,8 +233,7 @@ TEST(StarVisibility, BeforeItsLadderTheBrightestStarInTheViewAnswers) {
                                 astro::Site{testing::kGreenwichLatitudeDeg, testing::kGreenwichLongitudeDeg, 46.0});
   std::vector<glm::dvec3> enu;
   for (const auto& star : catalogue.stars) {
-    const auto e = sky.star(star).east_north_up();
-    enu.emplace_back(e[0], e[1], e[2]);
+    enu.push_back(sky.star(star).east_north_up());
   }
   std::size_t k = kFirstStarsTested;
   const auto alone = [&](std::size_t j) {
