@@ -33,7 +33,14 @@ void Connection::start(MessageHandler on_message, CloseHandler on_close) {
 void Connection::read_more() {
   auto self = shared_from_this();
   socket_.async_read_some(asio::buffer(read_buffer_), [self](const boost::system::error_code& ec, std::size_t n) {
-    if (!self->open_ || self->closing_) return;
+    if (!self->open_) return;
+    if (self->closing_) {  // lingering (close_after_flush): dropped, until the peer closes
+      if (ec)
+        self->finish(self->closing_reason_);
+      else
+        self->read_more();
+      return;
+    }
     if (ec) {
       std::string reason = ec == asio::error::eof ? std::string("end of stream") : "read error: " + ec.message();
       if (self->decoder_.buffered_bytes() > 0)
@@ -54,7 +61,7 @@ void Connection::read_more() {
       self->finish(std::string("protocol error: ") + e.what());
       return;
     }
-    if (self->open_ && !self->closing_) self->read_more();
+    if (self->open_) self->read_more();  // closing: on to the end of stream
   });
 }
 
@@ -81,7 +88,7 @@ void Connection::send_encoded(std::shared_ptr<const std::vector<std::uint8_t>> f
 void Connection::write_next() {
   if (queue_.empty()) {
     writing_ = false;
-    if (closing_) finish(closing_reason_);
+    if (closing_) shut_down_sending();
     return;
   }
   writing_ = true;
@@ -101,15 +108,20 @@ void Connection::close_after_flush(const std::string& reason, std::chrono::milli
   if (!open_ || closing_) return;
   closing_ = true;
   closing_reason_ = reason;
-  if (!writing_) {
-    finish(reason);
-    return;
-  }
   auto self = shared_from_this();
   grace_timer_.expires_after(grace);
   grace_timer_.async_wait([self](const boost::system::error_code& ec) {
     if (!ec) self->finish(self->closing_reason_);
   });
+  if (!writing_) shut_down_sending();
+}
+
+void Connection::shut_down_sending() {
+  // FIN after the last queued byte; the read loop (still pending) sees the
+  // peer's end of stream and finishes.
+  boost::system::error_code ec;
+  socket_.shutdown(asio::ip::tcp::socket::shutdown_send, ec);
+  if (ec) finish(closing_reason_);
 }
 
 void Connection::close(const std::string& reason) {

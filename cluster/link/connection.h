@@ -48,9 +48,14 @@ class Connection : public std::enable_shared_from_this<Connection> {
   void send(const Message& message);
   /// Queues already encoded frames (e.g. shared table chunks).
   void send_encoded(std::shared_ptr<const std::vector<std::uint8_t>> frame);
-  /// Sends what is queued, then shuts the connection down; `reason` goes to
-  /// the close handler. Reading stops at once (nothing more is handled).
-  /// Gives up and closes after `grace` if the peer does not take the bytes.
+  /// Sends what is queued, then shuts sending down (the peer reads to the
+  /// end, then end of stream) and closes once the peer has closed too;
+  /// `reason` goes to the close handler. Nothing received from now on is
+  /// handled (it is read and dropped). Closes after `grace` at the latest.
+  /// Why wait for the peer: closing a socket with unread bytes in its
+  /// receive buffer makes the kernel send a reset, which discards what the
+  /// peer has not acknowledged yet — on a lossy link the Goodbye itself, and
+  /// the node would then take the master's stop for a crash.
   void close_after_flush(const std::string& reason, std::chrono::milliseconds grace = std::chrono::milliseconds(2000));
   /// Closes now, dropping unsent frames.
   void close(const std::string& reason);
@@ -75,6 +80,8 @@ class Connection : public std::enable_shared_from_this<Connection> {
   void read_more();
   void write_next();
   void finish(const std::string& reason);
+  /// close_after_flush with the queue empty: our end of stream, then the wait for the peer's.
+  void shut_down_sending();
 
   boost::asio::ip::tcp::socket socket_;
   boost::asio::steady_timer grace_timer_;
