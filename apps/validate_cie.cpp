@@ -6,8 +6,6 @@
 
 #include "apps/commands.h"
 #include "apps/validation_tables.h"
-#include "atmosphere/named_inputs.h"
-#include "offline/output_rendering.h"
 #include "validate/cie_validation.h"
 
 namespace zenith::app {
@@ -15,16 +13,11 @@ namespace {
 
 struct ValidateCieArgs {
   validate::CieValidationOptions validation;
-  std::string cache_dir;
-  int orders = atmosphere::lut::kDefaultScatteringOrders;
-  unsigned threads = 0;
-  bool cpu = false, no_cache = false;
+  ValidationTableArgs tables;
 };
 
 void run_validate_cie(const ValidateCieArgs& a) {
-  render::TableRequest request = make_table_request(a.validation.tables, a.orders, a.cpu, !a.no_cache, a.cache_dir);
-  request.options.threads = a.threads;
-  validate::validate_cie(a.validation, validation_tables(std::move(request)));
+  validate::validate_cie(a.validation, validation_tables(a.tables.request(a.validation.tables)));
 }
 
 }  // namespace
@@ -45,15 +38,7 @@ void register_validate_cie(CLI::App& validate) {
       ->capture_default_str();
   cmd->add_flag("--csv", args->validation.csv_stdout,
                 "Print the per-case table as CSV on stdout instead of the text summary");
-  cmd->add_option("--tables", args->validation.tables,
-                  "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "
-                  "small, large")
-      ->check(CLI::IsMember(atmosphere::table_size_names()));
-  cmd->add_flag("--cpu", args->cpu, "Precompute on the CPU instead of the GPU (when not cached)");
-  cmd->add_option("--orders", args->orders, "Scattering orders n of the precompute")->check(CLI::Range(1, 50));
-  cmd->add_option("--cache", args->cache_dir, "Cache directory (default $XDG_CACHE_HOME/zenith)");
-  cmd->add_flag("--no-cache", args->no_cache, "Neither read nor write the table cache");
-  cmd->add_option("--threads", args->threads, "CPU threads (default: all)");
+  add_validation_table_options(cmd, args->validation.tables, args->tables);
   cmd->add_flag("--no-variants", args->validation.no_variants,
                 "Only the presets as given (no classic-Rayleigh and geometric-air-mass variants)");
   cmd->add_flag("--no-plots", args->validation.no_plots, "Write the data but no gnuplot scripts or PNG");

@@ -3,10 +3,8 @@
 #include <memory>
 #include <string>
 
-#include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "apps/validation_tables.h"
-#include "offline/output_rendering.h"
 #include "validate/night_validation.h"
 
 namespace zenith::app {
@@ -14,16 +12,11 @@ namespace {
 
 struct ValidateNightArgs {
   validate::NightValidationOptions validation;
-  std::string cache_dir;
-  int orders = atmosphere::lut::kDefaultScatteringOrders;
-  bool cpu = false, no_cache = false;
-  unsigned threads = 0;
+  ValidationTableArgs tables;
 };
 
 void run_validate_night(const ValidateNightArgs& a) {
-  render::TableRequest request = make_table_request(a.validation.tables, a.orders, a.cpu, !a.no_cache, a.cache_dir);
-  request.options.threads = a.threads;
-  validate::validate_night(a.validation, validation_tables(std::move(request)));
+  validate::validate_night(a.validation, validation_tables(a.tables.request(a.validation.tables)));
 }
 
 }  // namespace
@@ -36,10 +29,7 @@ void register_validate_night(CLI::App& validate) {
       ->capture_default_str();
   cmd->add_option("--out", args->validation.out_dir, "Output directory (CSV, gnuplot scripts, PNG)")
       ->capture_default_str();
-  add_table_options(cmd, args->validation.tables, args->orders, args->cache_dir);
-  cmd->add_flag("--cpu", args->cpu, "Precompute on the CPU instead of the GPU (when not cached)");
-  cmd->add_flag("--no-cache", args->no_cache, "Neither read nor write the table cache");
-  cmd->add_option("--threads", args->threads, "CPU threads (default: all)");
+  add_validation_table_options(cmd, args->validation.tables, args->tables);
   cmd->add_flag("--no-plots", args->validation.no_plots, "Write the data but no gnuplot scripts or PNG");
   cmd->callback([args] { run_validate_night(*args); });
 }

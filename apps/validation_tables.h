@@ -5,10 +5,38 @@
 #include <string>
 #include <utility>
 
+#include <CLI/CLI.hpp>
+
+#include "apps/cli_options.h"
+#include "offline/output_rendering.h"
 #include "render/lut/table_provider.h"
 #include "validate/validation_tables.h"
 
 namespace zenith::app {
+
+/// Where the tables of a `zenith validate` check come from, as its command
+/// line says (--tables, --orders, --cache, --cpu, --no-cache, --threads).
+struct ValidationTableArgs {
+  std::string cache_dir;
+  int orders = atmosphere::lut::kDefaultScatteringOrders;
+  unsigned threads = 0;
+  bool cpu = false, no_cache = false;
+
+  /// The request for tables of the sizes named `table_sizes`.
+  render::TableRequest request(const std::string& table_sizes) const {
+    render::TableRequest r = make_table_request(table_sizes, orders, cpu, !no_cache, cache_dir);
+    r.options.threads = threads;
+    return r;
+  }
+};
+
+/// The options of ValidationTableArgs, the sizes into `table_sizes`.
+inline void add_validation_table_options(CLI::App* cmd, std::string& table_sizes, ValidationTableArgs& args) {
+  add_table_options(cmd, table_sizes, args.orders, args.cache_dir);
+  cmd->add_flag("--cpu", args.cpu, "Precompute on the CPU instead of the GPU (when not cached)");
+  cmd->add_flag("--no-cache", args.no_cache, "Neither read nor write the table cache");
+  cmd->add_option("--threads", args.threads, "CPU threads (default: all)");
+}
 
 inline validate::TablesFor validation_tables(render::TableRequest request) {
   return [request = std::move(request)](const atmosphere::AtmosphereModel& model) {

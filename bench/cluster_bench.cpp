@@ -587,11 +587,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "cluster_bench: {}\n(cluster_bench --help lists the options)\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return zenith::bench::main_reporting_errors("cluster_bench", argc, argv, run); }

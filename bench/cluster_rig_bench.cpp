@@ -303,11 +303,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "cluster_rig_bench: {}\n(cluster_rig_bench --help lists the options)\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return zenith::bench::main_reporting_errors("cluster_rig_bench", argc, argv, run); }

@@ -3,6 +3,7 @@
 // read the same way by each: cluster_bench, cluster_soak, series_tail_bench.
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -36,6 +37,18 @@ class CommandLine {
   int i_ = 0;
   std::string option_;
 };
+
+/// A benchmark's main: `run(argc, argv)`'s status, or 1 after printing
+/// "<program>: <what went wrong>" and where the options are listed.
+template <typename Run>
+int main_reporting_errors(const char* program, int argc, char** argv, Run run) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n(%s --help lists the options)\n", program, e.what(), program);
+    return 1;
+  }
+}
 
 /// The last branch of an option chain: for --help or -h prints `usage` and
 /// exits with status 0; any other `option` throws std::invalid_argument
