@@ -41,20 +41,23 @@ Vec3 sun_at_elevation(double elevation_deg) {
 
 Vec3 camera(const AtmosphereModel& m) { return {0.0, 0.0, m.ground_radius_m + 1.0}; }
 
-LitAirOptions lit_air(std::size_t samples, int min_order = 1, int max_order = 1000) {
-  LitAirOptions o;
-  o.samples = samples;
+/// Either estimator's options: `samples` (per wavelength), scattering orders min_order…max_order.
+template <typename Options>
+Options estimator(std::size_t samples, int min_order, int max_order) {
+  Options o;
+  if constexpr (requires { o.samples; })
+    o.samples = samples;
+  else
+    o.samples_per_wavelength = samples;
   o.min_scattering_order = min_order;
   o.max_scattering_order = max_order;
   return o;
 }
-
+LitAirOptions lit_air(std::size_t samples, int min_order = 1, int max_order = 1000) {
+  return estimator<LitAirOptions>(samples, min_order, max_order);
+}
 PathTracerOptions path_tracer(std::size_t samples, int min_order = 1, int max_order = 1000) {
-  PathTracerOptions o;
-  o.samples_per_wavelength = samples;
-  o.min_scattering_order = min_order;
-  o.max_scattering_order = max_order;
-  return o;
+  return estimator<PathTracerOptions>(samples, min_order, max_order);
 }
 
 struct OrderRange {

@@ -320,14 +320,19 @@ TEST_F(GlTest, NvidiasLoopUnrollPragmaKeepsLineNumbersAndIsIgnoredElsewhere) {
   EXPECT_NO_THROW(ShaderProgram::compute(fine));
 }
 
-TEST_F(GlTest, ErrorInAnIncludedFileNamesThatFileAndLine) {
+/// main.comp, which includes lib/common.glsl, whose line 3 does not compile.
+ExpandedShader main_with_an_error_in_its_include() {
   const std::map<std::string, std::string, std::less<>> files = {
       {"main.comp", "#version 450 core\nlayout(local_size_x = 1) in;\n#include \"lib/common.glsl\"\nvoid main() {}\n"},
       {"lib/common.glsl", "// common\nfloat f() { return 1.0; }\nfloat g() { return undefined_name; }\n"}};
-  const ExpandedShader e = expand_includes("main.comp", files.at("main.comp"), [&](std::string_view n) {
+  return expand_includes("main.comp", files.at("main.comp"), [&](std::string_view n) {
     auto it = files.find(n);
     return it == files.end() ? std::nullopt : std::optional<std::string_view>(it->second);
   });
+}
+
+TEST_F(GlTest, ErrorInAnIncludedFileNamesThatFileAndLine) {
+  const ExpandedShader e = main_with_an_error_in_its_include();
   try {
     ShaderProgram::compute(gl::ShaderCode{e.name, e.text, e.files});
     FAIL() << "compiled";
@@ -375,13 +380,7 @@ TEST_F(GlTest, ShaderBuildsStartedTogetherFinishInAnyOrder) {
 }
 
 TEST_F(GlTest, AStartedBuildReportsItsCompileErrorAtFinishWithFileAndLine) {
-  const std::map<std::string, std::string, std::less<>> files = {
-      {"main.comp", "#version 450 core\nlayout(local_size_x = 1) in;\n#include \"lib/common.glsl\"\nvoid main() {}\n"},
-      {"lib/common.glsl", "// common\nfloat f() { return 1.0; }\nfloat g() { return undefined_name; }\n"}};
-  const ExpandedShader e = expand_includes("main.comp", files.at("main.comp"), [&](std::string_view n) {
-    auto it = files.find(n);
-    return it == files.end() ? std::nullopt : std::optional<std::string_view>(it->second);
-  });
+  const ExpandedShader e = main_with_an_error_in_its_include();
   const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
   gl::ShaderBuild broken = gl::ShaderBuild::compute(gl::ShaderCode{e.name, e.text, e.files});  // does not throw
   gl::ShaderBuild fine =
