@@ -48,14 +48,17 @@ std::int64_t now_ns() {
 }
 
 /// Every frame of [1, last] presented in order on every node, no interval over two periods after `from`.
+/// Node `k` presented frames 1…`last` in order, none missing, never two periods apart (from `from` on).
+void expect_node_on_time(const RigCluster& cluster, int k, std::uint64_t last, std::int64_t from) {
+  const NodeTimeline t = timeline_of(cluster.presents(k), 1, last, from, 2.0 * cluster.period_ms());
+  EXPECT_TRUE(t.in_order) << "node " << k;
+  EXPECT_TRUE(t.missing.empty()) << "node " << k << " missed " << t.missing.size() << " frames, the first "
+                                 << (t.missing.empty() ? 0 : t.missing.front());
+  EXPECT_LE(t.longest_interval_ms, 2.0 * cluster.period_ms()) << "node " << k;
+}
+
 void expect_every_frame_on_time(const RigCluster& cluster, std::uint64_t last, std::int64_t from) {
-  for (int k = 0; k < cluster.setup().nodes; ++k) {
-    const NodeTimeline t = timeline_of(cluster.presents(k), 1, last, from, 2.0 * cluster.period_ms());
-    EXPECT_TRUE(t.in_order) << "node " << k;
-    EXPECT_TRUE(t.missing.empty()) << "node " << k << " missed " << t.missing.size() << " frames, the first "
-                                   << (t.missing.empty() ? 0 : t.missing.front());
-    EXPECT_LE(t.longest_interval_ms, 2.0 * cluster.period_ms()) << "node " << k;
-  }
+  for (int k = 0; k < cluster.setup().nodes; ++k) expect_node_on_time(cluster, k, last, from);
 }
 
 class NetworkRigTest : public ::testing::Test {
@@ -204,10 +207,7 @@ TEST_F(NetworkRigTest, ATwoSecondPartitionOfOneNodeFreezesNoOtherNode) {
   finish(cluster);
 
   // The other node: every frame, on schedule, all along.
-  const NodeTimeline other = timeline_of(cluster.presents(0), 1, 180, cut - 1'000'000'000, 2.0 * cluster.period_ms());
-  EXPECT_TRUE(other.in_order);
-  EXPECT_TRUE(other.missing.empty()) << other.missing.size() << " frames missing";
-  EXPECT_LE(other.longest_interval_ms, 2.0 * cluster.period_ms());
+  expect_node_on_time(cluster, 0, 180, cut - 1'000'000'000);
 
   // The node cut off said so, played out its scheduled frames, then showed black.
   const std::string log = read_text(cluster.log("n1"));
@@ -295,10 +295,7 @@ TEST_F(NetworkRigTest, AHalfOpenNodeHoldsNoOtherNode) {
   const std::optional<int> master = cluster.wait_for_master(180s);
   ASSERT_TRUE(master) << "the master did not finish";
   EXPECT_EQ(*master, 0);
-  const NodeTimeline other = timeline_of(cluster.presents(0), 1, 450, from, 2.0 * cluster.period_ms());
-  EXPECT_TRUE(other.in_order);
-  EXPECT_TRUE(other.missing.empty()) << other.missing.size() << " frames missing";
-  EXPECT_LE(other.longest_interval_ms, 2.0 * cluster.period_ms());
+  expect_node_on_time(cluster, 0, 450, from);
   const std::string log = read_text(cluster.log("master"));
   EXPECT_NE(log.find("node 'n1' unreachable"), std::string::npos) << log;
   EXPECT_NE(log.find("closing node 'n1'"), std::string::npos) << log;
