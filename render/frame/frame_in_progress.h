@@ -55,7 +55,7 @@ struct FrameLight {
   std::size_t sky_view_slot() const { return is_sun() ? 0 : 1; }
   /// Whether its passes draw `pass`'s atmosphere: the sun every one (its own
   /// test leaves some tiles unlit: render/frame/sun_light.h), the Moon those it lights.
-  bool lights(const struct AtmospherePass& pass) const;
+  bool lights(const AtmospherePass& pass) const;
 };
 
 /// One frame in progress: its constants in double on the CPU, the bodies and
