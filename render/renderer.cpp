@@ -101,9 +101,8 @@ struct Renderer::Frame : FrameInProgress {
 };
 
 void Renderer::render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink) {
-  render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
-    const std::span<const float> rows_rgb =
-        impl_->band.read_back(band, frame.projection.width(), frame.cones->columns(), timer);
+  render_frame(scene, projection, [&](const BandTiles& band, PassTimer& timer) {
+    const std::span<const float> rows_rgb = impl_->band.read_back(band, timer);
     timer.cpu("sink", [&] { sink(band.first_row, band.rows, rows_rgb); });
   });
 }
@@ -413,7 +412,7 @@ void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& t
     // The stars and the night sky join the radiance before the band leaves
     // (readback, texture copy or the live display pass): one tone mapping for all.
     impl_->night_sky.draw_band(frame, band, timer);
-    output(frame, band, timer);
+    output(band, timer);
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, frame.scene.name));
   }
 }
@@ -442,15 +441,14 @@ void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projecti
         "of the projection's size {}x{}",
         target.id() == 0 ? "missing" : gl::to_string(target.format()), target.width(), target.height(),
         projection.width(), projection.height()));
-  render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
-    impl_->band_to_texture.copy(impl_->band.bind_band_on_gpu(band, frame.projection.width(), frame.cones->columns()),
-                                target, timer);
+  render_frame(scene, projection, [&](const BandTiles& band, PassTimer& timer) {
+    impl_->band_to_texture.copy(impl_->band.bind_band_on_gpu(band), target, timer);
   });
 }
 
 void Renderer::render_on_gpu(const scene::Scene& scene, const warp::Projection& projection, const GpuBandSink& sink) {
-  render_frame(scene, projection, [&](const Frame& frame, const BandTiles& band, PassTimer& timer) {
-    const GpuBand gpu_band = impl_->band.bind_band_on_gpu(band, frame.projection.width(), frame.cones->columns());
+  render_frame(scene, projection, [&](const BandTiles& band, PassTimer& timer) {
+    const GpuBand gpu_band = impl_->band.bind_band_on_gpu(band);
     timer.gpu("band output", [&] { sink(gpu_band); });
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next band's passes write what the sink read
   });

@@ -192,7 +192,7 @@ class Renderer {
   void fill_sky_view_tables(Frame& frame, PassTimer& timer);
   /// What becomes of a band once its tiles are drawn: read back for a RowSink
   /// (render()), or copied into a texture (render_to_texture()).
-  using BandOutput = std::function<void(const Frame& frame, const BandTiles& band, PassTimer& timer)>;
+  using BandOutput = std::function<void(const BandTiles& band, PassTimer& timer)>;
   /// The steps of a frame, in the order below, each band handed to `output`.
   void render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output);
   /// The frame band by band: each band's tiles drawn, then handed to `output`.

@@ -94,19 +94,19 @@ void BandResources::upload_rays(const warp::Projection& projection, int first_ro
   ray_table_.bind(binding::kRayTableUnit);
 }
 
-std::span<const float> BandResources::read_back(const BandTiles& band, int width, int tile_columns, PassTimer& timer) {
+std::span<const float> BandResources::read_back(const BandTiles& band, PassTimer& timer) {
   const std::size_t band_bytes =
-      static_cast<std::size_t>(width) * static_cast<std::size_t>(band.rows) * 4 * sizeof(float);
+      static_cast<std::size_t>(band_width_) * static_cast<std::size_t>(band.rows) * 4 * sizeof(float);
   timer.cpu("readback", [&] {
     output_.read_mapped(band_bytes, [&](std::span<const std::byte> bytes) {
       const std::span<const float> rgba(reinterpret_cast<const float*>(bytes.data()), bytes.size() / sizeof(float));
-      pack_band_rows(rgba, band, width, tile_columns, rows_rgb_);
+      pack_band_rows(rgba, band, band_width_, tile_columns(), rows_rgb_);
     });
   });
   return rows_rgb_;
 }
 
-GpuBand BandResources::bind_band_on_gpu(const BandTiles& band, int width, int tile_columns) {
+GpuBand BandResources::bind_band_on_gpu(const BandTiles& band) {
   // One flag per tile of the band, 1 where nothing was dispatched: those
   // pixels of the output buffer hold whatever an earlier band left there.
   const std::vector<std::uint32_t> black(band.black.begin(), band.black.end());
@@ -116,7 +116,7 @@ GpuBand BandResources::bind_band_on_gpu(const BandTiles& band, int width, int ti
   output_.bind_storage(binding::kFrameRgb);
   black_tiles_.bind_storage(binding::kBlackTiles);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the passes' stores to the output buffer
-  return {band.first_row, band.rows, width, tile_columns};
+  return {band.first_row, band.rows, band_width_, tile_columns()};
 }
 
 }  // namespace zenith::render

@@ -15,6 +15,7 @@
 #include "render/frame/gpu_body.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/tile_classification.h"
+#include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
 #include "render/gl/texture.h"
 #include "warp/projection.h"
@@ -31,6 +32,8 @@ class BandResources {
   /// output buffer reallocated, the G-buffer images dropped, when that changes.
   void fit_bands(int width, int height);
   int band_height() const { return band_height_; }
+  /// Tiles across a band (the last one partial where the width is not a multiple of kTileSize).
+  int tile_columns() const { return (band_width_ + kTileSize - 1) / kTileSize; }
   /// Zeroes the output of a band of `rows` rows (the tiles no pass will write).
   void clear_output(int rows);
 
@@ -53,10 +56,10 @@ class BandResources {
 
   /// The band's rows as RGB floats (render/band/band_readback.h), read from
   /// the output buffer; valid until the next band. "readback" in `timer`.
-  std::span<const float> read_back(const BandTiles& band, int width, int tile_columns, PassTimer& timer);
+  std::span<const float> read_back(const BandTiles& band, PassTimer& timer);
   /// Binds the output buffer and uploads and binds the band's black-tile
   /// flags, for a pass that reads the band on the GPU (render/band/gpu_band.h).
-  GpuBand bind_band_on_gpu(const BandTiles& band, int width, int tile_columns);
+  GpuBand bind_band_on_gpu(const BandTiles& band);
 
  private:
   gl::Buffer bodies_;
