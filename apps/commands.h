@@ -22,12 +22,8 @@ void register_cluster_check(CLI::App& cluster);
 void register_displays_command(CLI::App& app);
 /// `zenith validate cie|stress|night` (apps/validate_command.cpp).
 void register_validate_command(CLI::App& app);
-/// `validate cie` under `validate` (apps/validate_cie.cpp).
-void register_validate_cie(CLI::App& validate);
 /// `validate stress` under `validate` (apps/validate_stress.cpp).
 void register_validate_stress(CLI::App& validate);
-/// `validate night` under `validate` (apps/validate_night.cpp).
-void register_validate_night(CLI::App& validate);
 /// `zenith show ...` (apps/show_command.cpp).
 void register_show_command(CLI::App& app);
 /// `show render` under `show` (apps/show_render.cpp).

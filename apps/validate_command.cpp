@@ -1,11 +1,54 @@
 // `zenith validate` (docs/RESULTS.md): measured evidence that the physics is
-// right — `validate cie` (apps/validate_cie.cpp) compares the Earth presets
-// with the CIE standard general sky, `validate stress` (apps/validate_stress.cpp)
-// sweeps the numerically hard corners on the CPU and GPU paths, `validate night`
-// (apps/validate_night.cpp) checks the night sky against published figures.
+// right — `validate cie` compares the Earth presets with the CIE standard
+// general sky (validate/cie_validation.h, docs/validation.md), `validate
+// night` checks the night sky against published figures
+// (validate/night_validation.h, docs/night-sky.md), `validate stress`
+// (apps/validate_stress.cpp) sweeps the numerically hard corners on the CPU
+// and GPU paths.
 #include "apps/commands.h"
+#include "apps/validation_tables.h"
+#include "validate/cie_validation.h"
+#include "validate/night_validation.h"
 
 namespace zenith::app {
+namespace {
+
+void register_validate_cie(CLI::App& validate) {
+  const auto [cmd, args] = add_validation_check<validate::CieValidationOptions>(
+      validate, "cie",
+      "Relative sky luminance L/Lz of the Earth presets against the CIE standard general sky (type 12)",
+      validate::validate_cie);
+  cmd->add_option("--preset", args->validation.presets,
+                  "Preset name or atmosphere JSON file (repeatable; default earth-advanced and earth-standard)")
+      ->delimiter(',');
+  cmd->add_option("--sun-zenith", args->validation.sun_zeniths_deg,
+                  "Sun zenith angles [deg], comma-separated (default "
+                  "20,30,45,60,70,80)")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 89.0));
+  cmd->add_flag("--csv", args->validation.csv_stdout,
+                "Print the per-case table as CSV on stdout instead of the text summary");
+  cmd->add_flag("--no-variants", args->validation.no_variants,
+                "Only the presets as given (no classic-Rayleigh and geometric-air-mass variants)");
+  cmd->add_option("--zenith-step", args->validation.zenith_step_deg, "Step of the view zenith angle [deg]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 45.0));
+  cmd->add_option("--exclude-sun-deg", args->validation.exclude_sun_deg,
+                  "Leave out directions closer than this to the sun [deg]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 30.0));
+}
+
+void register_validate_night(CLI::App& validate) {
+  const auto [cmd, args] = add_validation_check<validate::NightValidationOptions>(
+      validate, "night",
+      "Positions, refraction, extinction, twilight brightness and star visibility against published figures",
+      validate::validate_night);
+  cmd->add_option("--preset", args->validation.preset, "The Earth atmosphere for twilight and stars")
+      ->capture_default_str();
+}
+
+}  // namespace
 
 void register_validate_command(CLI::App& app) {
   CLI::App* validate = app.add_subcommand("validate", "Accuracy and numerical-stability validation (docs/RESULTS.md)");
