@@ -79,6 +79,13 @@ class NetworkRigTest : public ::testing::Test {
     s.output_px = 32;
     return s;
   }
+  /// setup() of 151 frames with every link through the delaying relay.
+  RigClusterSetup relayed(const std::string& name, double delay_ms, double jitter_ms, double duplicate_percent,
+                          double reorder_percent) const {
+    RigClusterSetup s = setup(name, 151);
+    s.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, delay_ms, jitter_ms, duplicate_percent, reorder_percent};
+    return s;
+  }
   /// Waits for the end of the show: the master exits 0, then the nodes.
   static void finish(RigCluster& cluster) {
     const std::optional<int> master = cluster.wait_for_master(180s);
@@ -111,9 +118,7 @@ TEST_F(NetworkRigTest, FivePercentLossOnOneLinkStallsNoNode) {
 // netem): 5 ms ± 1 ms each way, a 10 ms round trip, at the default lookahead.
 TEST_F(NetworkRigTest, FiveMillisecondsOfLatencyWithJitterOnEveryLinkStallsNoNode) {
   NetworkRig rig("lat");
-  RigClusterSetup s = setup("latency", 151);
-  s.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, 5.0, 1.0, 0.0, 0.0};
-  RigCluster cluster(rig, s);
+  RigCluster cluster(rig, relayed("latency", 5.0, 1.0, 0.0, 0.0));
   play_untouched(cluster, 150);
   // The nodes' clock estimates agree within what the jitter allows: an exchange's offset is off by half
   // its legs' difference, at most (6 − 4) / 2 = 1 ms per node, so 2 ms between two nodes; the Welcome's
@@ -127,9 +132,7 @@ TEST_F(NetworkRigTest, FiveMillisecondsOfLatencyWithJitterOnEveryLinkStallsNoNod
 // every link, 10 % each: copies and stale frames are ignored, no frame is lost.
 TEST_F(NetworkRigTest, DuplicatedAndReorderedDatagramsLoseNoFrame) {
   NetworkRig rig("dup");
-  RigClusterSetup s = setup("duplicates", 151);
-  s.relay = RigClusterSetup::Relay{ZENITH_DELAY_RELAY, 1.0, 0.5, 10.0, 10.0};
-  RigCluster cluster(rig, s);
+  RigCluster cluster(rig, relayed("duplicates", 1.0, 0.5, 10.0, 10.0));
   play_untouched(cluster, 150);
   // The relays did what they were told (their counts at SIGKILL are not written: the log's first line).
   EXPECT_NE(read_text(cluster.log("relay-n0")).find("10 % duplicated, 10 % held back"), std::string::npos);

@@ -27,11 +27,11 @@
 namespace zenith::cluster {
 namespace {
 
+using nlohmann::json;
 namespace asio = boost::asio;
 namespace beast = boost::beast;
 namespace websocket = beast::websocket;
 using asio::ip::tcp;
-using nlohmann::json;
 
 /// An operator console on 127.0.0.1 (any free port) whose status is {"n": counter}, run on its own thread.
 class StatusPushTest : public ::testing::Test {

@@ -119,6 +119,14 @@ AstNode syntax_tree_of(const std::string& name, const std::string& text) {
   return tree;
 }
 
+/// A compute shader of one invocation: its buffer block (`members`) and a
+/// uniform `g` the body indexes with on lines 1–4, then `body`, which starts
+/// with a line break (a raw string's), so its first line is line 5.
+std::string compute_shader(const std::string& members, const std::string& body) {
+  return "#version 450 core\nlayout(local_size_x = 1) in;\nlayout(std430, binding = 0) buffer B { " + members +
+         " };\nuniform int g;" + body;
+}
+
 std::vector<int> lines_of(const std::vector<Finding>& findings) {
   std::vector<int> lines;
   for (const Finding& f : findings) lines.push_back(f.line);
@@ -136,10 +144,7 @@ bool have_validator() { return std::string(ZENITH_GLSLANG_VALIDATOR).size() > 0;
 
 TEST(GlslNvidiaRules, Rule1FindsEveryKindOfWriteToADoubleVectorAtAVariableIndex) {
   REQUIRE_VALIDATOR();
-  const std::string shader = R"(#version 450 core
-layout(local_size_x = 1) in;
-layout(std430, binding = 0) buffer B { dvec4 w[8]; double v[]; };
-uniform int g;
+  const std::string shader = compute_shader("dvec4 w[8]; double v[];", R"(
 void add_one(inout dvec4 x, int k) { x[k] += 1.0; }
 void set_one(out double y) { y = 1.0; }
 void main() {
@@ -160,7 +165,7 @@ void main() {
   f[g] = 1.0;
   v[g] = s[g];
 }
-)";
+)");
   const std::vector<Finding> found = double_vector_index_writes(syntax_tree_of("rule1.comp", shader));
   for (const Finding& f : found) std::printf("  %d:%d %s\n", f.source, f.line, f.what.c_str());
   // Lines 5 (x[k] +=, inout x), 9, 10, 11, 13 (out argument), 14 (modf's out), 16, 17;
@@ -171,10 +176,7 @@ void main() {
 
 TEST(GlslNvidiaRules, Rule2FindsBufferIndicesOfNestedConstantLoopsThroughCalls) {
   REQUIRE_VALIDATOR();
-  const std::string shader = R"(#version 450 core
-layout(local_size_x = 1) in;
-layout(std430, binding = 0) buffer B { double result[64]; double table[]; };
-uniform int g;
+  const std::string shader = compute_shader("double result[64]; double table[];", R"(
 double field(int f) { return table[g * 8 + f]; }
 double absorbers(double h) {
   double e = 0.0;
@@ -198,7 +200,7 @@ void main() {
   for (int l = m0; l <= 7; ++l)
     for (int k = 0; k < 4; ++k) sum += table[k];
 }
-)";
+)");
   const std::vector<Finding> found = nested_unrolled_buffer_indices(syntax_tree_of("rule2.comp", shader));
   for (const Finding& f : found) std::printf("  %d:%d %s\n", f.source, f.line, f.what.c_str());
   // Line 5 (field's index, from the a loop inside the i loop), 18 (l inside m), 23 (k inside f);

@@ -25,11 +25,8 @@ namespace zenith::warp {
 namespace {
 
 using nlohmann::json;
-using testing::expect_config_error;
 using testing::expect_error;
-using testing::make_grey_png;
 using testing::make_pfm;
-using testing::make_zip;
 using testing::Members;
 using testing::ScratchDir;
 using Rgb = std::array<double, 3>;
@@ -266,7 +263,7 @@ std::filesystem::path colour_archive(const ScratchDir& dir, const std::string& n
   Members members = geometry_members();
   members.emplace_back("mpcdi.xml", xml);
   for (auto& m : luts) members.push_back(std::move(m));
-  return make_zip(dir, name, members);
+  return testing::make_zip(dir, name, members);
 }
 
 const char* const kGammaColour =
@@ -415,7 +412,7 @@ TEST(MpcdiColour, AWindowEncodingBesideARegionsColourIsRefused) {
                        {"size", {64, 48}},
                        {"warp", {{"file", "g.mpcdi"}, {"format", "mpcdi"}, {"region", "p1"}}},
                        {"window", {{"encoding", {{"gamma", 2.4}}}}}};
-  expect_config_error(
+  testing::expect_config_error(
       [&] {
         parse_viewport_config(json{{"zenith_viewports", 1}, {"name", "t"}, {"outputs", json::array({output})}},
                               "t.json", dir.path());

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
 
 #include <glm/geometric.hpp>
@@ -40,14 +41,30 @@ double offset_v(int x, int y) { return 0.01 - 0.03 * node_s(x) * node_t(y); }
 double true_u(int x, int y) { return node_s(x) + offset_u(x, y); }
 double true_v(int x, int y) { return node_t(y) + offset_v(x, y); }
 
-/// zenith's convention: absolute, v down; classic row order (bottom row stored first).
-std::string absolute_pfm() {
+/// A warp map of columns × rows nodes holding (u(x, y), v(x, y), 0), little
+/// endian; `top_first`: the top row stored first (else the classic bottom first).
+std::string uv_pfm(int columns, int rows, double (*u)(int, int), double (*v)(int, int), bool top_first) {
   return make_pfm(
-      kColumns, kRows, 3,
-      [](int x, int y, int c) {
-        return static_cast<float>(c == 0 ? true_u(x, y) : c == 1 ? true_v(x, y) : 0.0);
+      columns, rows, 3,
+      [&](int x, int y, int c) {
+        return static_cast<float>(c == 0 ? u(x, y) : c == 1 ? v(x, y) : 0.0);
       },
-      true, false);
+      true, top_first);
+}
+
+/// zenith's convention: absolute, v down; classic row order (bottom row stored first).
+std::string absolute_pfm() { return uv_pfm(kColumns, kRows, true_u, true_v, false); }
+/// E&S: offsets from the node's place, v down, bottom row first.
+std::string offsets_pfm() { return uv_pfm(kColumns, kRows, offset_u, offset_v, false); }
+/// SGCT: absolute, top row first, v counting up from the bottom.
+std::string sgct_pfm() {
+  return uv_pfm(
+      kColumns, kRows, true_u, [](int x, int y) { return 1.0 - true_v(x, y); }, true);
+}
+
+/// A warp map read with Catmull–Rom interpolation as `rows` and `conventions` say.
+WarpMesh load_as(const std::filesystem::path& file, PfmRowOrder rows, const WarpMapConventions& conventions) {
+  return load_pfm_warp_mesh(file, rows, WarpInterpolation::catmull_rom, conventions);
 }
 
 void expect_same_nodes(const WarpMesh& a, const WarpMesh& b, double tolerance) {
@@ -103,15 +120,9 @@ TEST(WarpMapConventions, OffsetMapGivesTheRaysOfItsAbsoluteTwin) {
   ScratchDir dir("conv_offsets");
   LogCapture log;
   const WarpMesh absolute = load_pfm_warp_mesh(dir.write("absolute.pfm", absolute_pfm()));
-  const auto offsets_file =
-      dir.write("offsets.pfm", make_pfm(
-                                   kColumns, kRows, 3,
-                                   [](int x, int y, int c) {
-                                     return static_cast<float>(c == 0 ? offset_u(x, y) : c == 1 ? offset_v(x, y) : 0.0);
-                                   },
-                                   true, false));
-  const WarpMesh offsets = load_pfm_warp_mesh(offsets_file, PfmRowOrder::bottom_to_top, WarpInterpolation::catmull_rom,
-                                              {WarpValues::offsets, WarpVDirection::down});
+  const auto offsets_file = dir.write("offsets.pfm", offsets_pfm());
+  const WarpMesh offsets =
+      load_as(offsets_file, PfmRowOrder::bottom_to_top, {WarpValues::offsets, WarpVDirection::down});
   expect_same_nodes(absolute, offsets, 1e-6);
   EXPECT_NEAR(offsets.node(2, 1).u, 0.25 + 0.04 * std::sin(3.14159265358979 * 0.25) * (1.0 / 6 - 0.5), 1e-7);
   EXPECT_NEAR(offsets.node(2, 1).v, 1.0 / 6 + 0.01 - 0.03 * 0.25 / 6, 1e-7);
@@ -162,15 +173,8 @@ TEST(WarpMapConventions, SgctTopFirstVUpMatchesOnceConfiguredAndMirrorsWithTheDe
   LogCapture log;
   const WarpMesh reference = load_pfm_warp_mesh(dir.write("absolute.pfm", absolute_pfm()));
   // SGCT / E&S surface: the first stored row is the top, v counts up from the bottom.
-  const auto sgct =
-      dir.write("sgct.pfm", make_pfm(
-                                kColumns, kRows, 3,
-                                [](int x, int y, int c) {
-                                  return static_cast<float>(c == 0 ? true_u(x, y) : c == 1 ? 1.0 - true_v(x, y) : 0.0);
-                                },
-                                true, true));
-  const WarpMesh configured = load_pfm_warp_mesh(sgct, PfmRowOrder::top_to_bottom, WarpInterpolation::catmull_rom,
-                                                 {WarpValues::absolute, WarpVDirection::up});
+  const auto sgct = dir.write("sgct.pfm", sgct_pfm());
+  const WarpMesh configured = load_as(sgct, PfmRowOrder::top_to_bottom, {WarpValues::absolute, WarpVDirection::up});
   expect_same_nodes(reference, configured, 1e-6);
   EXPECT_LT(max_ray_difference_rad(reference, configured), 1e-6);
 
@@ -190,20 +194,15 @@ TEST(WarpMapConventions, SgctTopFirstVUpMatchesOnceConfiguredAndMirrorsWithTheDe
       EXPECT_NEAR(v_wrong.node(x, y).v, 1.0 - true_v(x, y), 1e-6);
     }
   // Only the row order wrong: rows swapped top for bottom, v in place.
-  const WarpMesh rows_wrong = load_pfm_warp_mesh(sgct, PfmRowOrder::bottom_to_top, WarpInterpolation::catmull_rom,
-                                                 {WarpValues::absolute, WarpVDirection::up});
+  const WarpMesh rows_wrong = load_as(sgct, PfmRowOrder::bottom_to_top, {WarpValues::absolute, WarpVDirection::up});
   for (int y = 0; y < kRows; ++y)
     for (int x = 0; x < kColumns; ++x) EXPECT_NEAR(rows_wrong.node(x, y).v, true_v(x, kRows - 1 - y), 1e-6);
 
   // An identity map written v up and read v down shows the source upside down:
   // the ray of (x, y) is the fisheye's at (x, height − y).
-  const auto identity_up =
-      dir.write("identity_up.pfm", make_pfm(
-                                       3, 3, 3,
-                                       [](int x, int y, int c) {
-                                         return static_cast<float>(c == 0 ? 0.5 * x : c == 1 ? 1.0 - 0.5 * y : 0.0);
-                                       },
-                                       true, true));
+  const auto identity_up = dir.write(
+      "identity_up.pfm", uv_pfm(
+                             3, 3, [](int x, int) { return 0.5 * x; }, [](int, int y) { return 1.0 - 0.5 * y; }, true));
   auto fisheye = std::make_shared<FisheyeProjection>(100, 100);
   const WarpedProjection upside_down(
       100, 100, load_pfm_warp_mesh(identity_up, PfmRowOrder::top_to_bottom, WarpInterpolation::bilinear), fisheye);
@@ -222,15 +221,10 @@ TEST(WarpMapConventions, WarnsWhenMostSamplesMapOutsideTheSource) {
   ScratchDir dir("conv_outside");
   LogCapture log;
   // An absolute identity map read as offsets: u = 2s, v = 2t, outside for 3/4 of the nodes.
-  const auto identity =
-      dir.write("identity.pfm", make_pfm(
-                                    5, 5, 3,
-                                    [](int x, int y, int c) {
-                                      return static_cast<float>(c == 0 ? 0.25 * x : c == 1 ? 0.25 * y : 0.0);
-                                    },
-                                    true, false));
-  load_pfm_warp_mesh(identity, PfmRowOrder::bottom_to_top, WarpInterpolation::catmull_rom,
-                     {WarpValues::offsets, WarpVDirection::down});
+  const auto identity = dir.write(
+      "identity.pfm", uv_pfm(
+                          5, 5, [](int x, int) { return 0.25 * x; }, [](int, int y) { return 0.25 * y; }, false));
+  load_as(identity, PfmRowOrder::bottom_to_top, {WarpValues::offsets, WarpVDirection::down});
   log.expect_warning({"identity.pfm", "16 of 25 valid samples (64 %) map outside the source image", "u in [0, 2]",
                       "read as offsets values, v down", "\"values\""});
   // Plausible maps give no warning: no message from the checks.
@@ -255,18 +249,8 @@ json pfm_output(const json& warp) {
 TEST(WarpMapConventions, ViewportKeysSelectTheConventions) {
   ScratchDir dir("conv_viewport");
   dir.write("absolute.pfm", absolute_pfm());
-  dir.write("sgct.pfm", make_pfm(
-                            kColumns, kRows, 3,
-                            [](int x, int y, int c) {
-                              return static_cast<float>(c == 0 ? true_u(x, y) : c == 1 ? 1.0 - true_v(x, y) : 0.0);
-                            },
-                            true, true));
-  dir.write("es.pfm", make_pfm(
-                          kColumns, kRows, 3,
-                          [](int x, int y, int c) {
-                            return static_cast<float>(c == 0 ? offset_u(x, y) : c == 1 ? offset_v(x, y) : 0.0);
-                          },
-                          true, false));
+  dir.write("sgct.pfm", sgct_pfm());
+  dir.write("es.pfm", offsets_pfm());
   const auto parse = [&](const json& warp) { return parse_viewport_config(pfm_output(warp), "v.json", dir.path()); };
   // A warp the config refuses: the error names each of `parts`.
   const auto expect_warp_error = [&](const json& warp, const std::vector<std::string>& parts) {
