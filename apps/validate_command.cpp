@@ -1,13 +1,15 @@
 // `zenith validate` (docs/RESULTS.md): measured evidence that the physics is
-// right — `validate cie` compares the Earth presets with the CIE standard
-// general sky (validate/cie_validation.h, docs/validation.md), `validate
-// night` checks the night sky against published figures
-// (validate/night_validation.h, docs/night-sky.md), `validate stress`
-// (apps/validate_stress.cpp) sweeps the numerically hard corners on the CPU
-// and GPU paths.
+// right — `validate measured` compares the sky with measured skies
+// (validate/measured_sky_validation.h, docs/validation.md), `validate cie`
+// compares the Earth presets with the CIE standard general sky
+// (validate/cie_validation.h), `validate night` checks the night sky against
+// published figures (validate/night_validation.h, docs/night-sky.md),
+// `validate stress` (apps/validate_stress.cpp) sweeps the numerically hard
+// corners on the CPU and GPU paths.
 #include "apps/commands.h"
 #include "apps/validation_tables.h"
 #include "validate/cie_validation.h"
+#include "validate/measured_sky_validation.h"
 #include "validate/night_validation.h"
 
 namespace zenith::app {
@@ -48,6 +50,30 @@ void register_validate_night(CLI::App& validate) {
       ->capture_default_str();
 }
 
+void register_validate_measured(CLI::App& validate) {
+  const auto [cmd, args] = add_validation_check<validate::MeasuredSkyOptions>(
+      validate, "measured",
+      "Spectral sky radiance against Kider et al. 2014's measured skies (Cornell, 2013-05-27), with Bruneton "
+      "2017's metric and the published models' scores",
+      validate::validate_measured);
+  cmd->add_option("--atmosphere", args->validation.atmosphere,
+                  "Preset or atmosphere file whose wavelengths_nm hold the measured wavelengths (default: the day's "
+                  "atmosphere, validate/data/cornell_2013-05-27.json)");
+  cmd->add_option("--measurements", args->validation.measurements,
+                  "Measured radiance CSV (default: Kider 2014, compiled in; with --suns)");
+  cmd->add_option("--suns", args->validation.suns, "The captures' sun CSV (with --measurements)");
+  cmd->add_option("--reference-samples", args->validation.reference_samples,
+                  "Also check the tables against the reference solver with this many paths per wavelength (0: no)")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{1} << 24));
+  cmd->add_option("--reference-directions", args->validation.reference_directions,
+                  "Directions of the reference check, spread over the capture's rings")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{1}, std::size_t{81}));
+  cmd->add_option("--reference-capture", args->validation.reference_capture,
+                  "The capture of the reference check and of the rings plot")
+      ->capture_default_str();
+}
+
 }  // namespace
 
 void register_validate_command(CLI::App& app) {
@@ -56,6 +82,7 @@ void register_validate_command(CLI::App& app) {
   register_validate_cie(*validate);
   register_validate_stress(*validate);
   register_validate_night(*validate);
+  register_validate_measured(*validate);
 }
 
 }  // namespace zenith::app

@@ -11,7 +11,8 @@ Two uses (called by scripts/results; standard library only):
       reads DIR/machine.json, DIR/commands.tsv (step, seconds, exit code,
       command), lut_accuracy.csv, render_frame_times.csv,
       projector_frame_times.csv, cluster_bench.csv, cie/cie_summary.csv,
-      cie/cie_cases.csv, stress/stress_regions.csv, stress/stress_gpu.csv
+      cie/cie_cases.csv, measured/measured_summary.csv, measured/measured_captures.csv,
+      stress/stress_regions.csv, stress/stress_gpu.csv
       (a missing file leaves its section saying so), copies the PNG charts
       into --images and writes the markdown.
 """
@@ -174,6 +175,16 @@ class Report:
         self.provenance(key)
         return self.csv(*path)
 
+    def validation(self, key, summary_file, rows_file, what):
+        """A validation's provenance line, its summary and its rows (key/ folder); (None, None) after saying
+        which file is missing."""
+        summary = self.measured(key, key, summary_file)
+        rows = self.csv(key, rows_file)
+        if not summary or not rows:
+            self.add(f"*No {what} results ({summary_file} / {rows_file} missing).*", "")
+            return None, None
+        return summary, rows
+
     def provenance(self, key):
         """The 'measured by' line of a section: command, duration, machine."""
         s = self.steps.get(key)
@@ -305,10 +316,8 @@ class Report:
                  "paper's extensions switched back (classic Rayleigh phase instead of Penndorf's, geometric instead "
                  "of Pickering's air mass). Directions within 5° of the sun are left out. Method: "
                  "[validation.md](validation.md).", "")
-        summary = self.measured("cie", "cie", "cie_summary.csv")
-        cases = self.csv("cie", "cie_cases.csv")
-        if not summary or not cases:
-            self.add("*No CIE results (cie_summary.csv / cie_cases.csv missing).*", "")
+        summary, cases = self.validation("cie", "cie_summary.csv", "cie_cases.csv", "CIE")
+        if not summary:
             return
         self.add("**Per model variant**, over all sun zenith angles and azimuths: RMS and largest |ΔL/Lz|, where "
                  "the largest is, the RMS at least 30° from the sun, and the best-fitting of the 15 CIE types.", "")
@@ -362,6 +371,47 @@ class Report:
                          ", ".join(x for x, c in (("project default", "project_default"),
                                                   ("recommended for this atmosphere", "recommended")) if r[c] == "1")]
                         for r in sel]) if sel else "*Neither measured.*", "")
+
+    def measured_skies(self):
+        self.add("### Sky radiance against measured skies (Kider et al. 2014)", "")
+        self.add("The spectral sky radiance of the 15 public captures measured at Cornell on 2013-05-27 (81 "
+                 "directions, 31 wavelengths 360–712.5 nm), against zenith on the atmosphere Bruneton 2017 inverted "
+                 "for that day (nothing fitted to the captures), lit by the ASTM G173 sun; Bruneton's metric: per "
+                 "capture the RMSE over directions and wavelengths, over the day the RMS of the captures'. The "
+                 "published models' scores are his evaluation code's on the same captures. Method: "
+                 "[validation.md](validation.md#measured-skies).", "")
+        summary, captures = self.validation("measured", "measured_summary.csv", "measured_captures.csv",
+                                            "measured-sky")
+        if not summary:
+            return
+        r = summary[0]
+        peers = [("Bruneton 2017 (40 wavelengths, 4 orders)", 11.34), ("Nishita 1996", 18.1),
+                 ("Nishita 1993", 26.49), ("Hosek–Wilkie 2012 (turbidity 2.53)", 41.59), ("O'Neal 2005", 49.75),
+                 ("Preetham 1999 (turbidity 2.53)", 88.72)]
+        rows = [[f"**zenith ({r['tables']} tables, {r['wavelengths']} wavelengths)**",
+                 f"**{num(r['spectral_rmse_mW_m2_sr_nm']):.2f}**"]]
+        rows += [[m, f"{v:.2f}"] for m, v in peers]
+        self.add(table(["model", "total RMSE (mW m⁻² sr⁻¹ nm⁻¹)"], rows), "")
+        self.add(f"Luminance RMSE {f1(num(r['luminance_rmse_cd_m2']))} cd m⁻², linear-sRGB chromaticity RMSE "
+                 f"{g(num(r['chromaticity_rmse']))}.", "")
+        if r.get("reference_samples"):
+            self.add(f"The tables against the reference solver at {r['reference_directions']} directions of capture "
+                     f"{r['reference_capture']} ({r['reference_samples']} paths per wavelength): RMSE "
+                     f"{g(num(r['tables_vs_reference_mW_m2_sr_nm']))} mW m⁻² sr⁻¹ nm⁻¹ "
+                     f"({g(num(r['tables_vs_reference_percent']))} % of the mean radiance; the path tracer's standard "
+                     f"error {g(num(r['reference_standard_error_mW_m2_sr_nm']))}); against the measurements at these "
+                     f"directions the tables score {g(num(r['tables_vs_measured_mW_m2_sr_nm']))} and the reference "
+                     f"{g(num(r['reference_vs_measured_mW_m2_sr_nm']))}.", "")
+        self.add(table(["capture (EDT)", "sun zenith", "RMSE (mW m⁻² sr⁻¹ nm⁻¹)", "luminance RMSE (cd m⁻²)",
+                        "model / measured"],
+                       [[c["time"], f"{f1(num(c['sun_zenith_deg']))}°", g(num(c["spectral_rmse_mW_m2_sr_nm"])),
+                         f1(num(c["luminance_rmse_cd_m2"])), g(num(c["model_over_measured"]))] for c in captures]), "")
+        self.image(os.path.join("measured", "measured_captures.png"), "measured_captures.png",
+                   "spectral RMSE per capture")
+        self.image(os.path.join("measured", "measured_spectral_ratio.png"), "measured_spectral_ratio.png",
+                   "model over measured per wavelength")
+        self.image(os.path.join("measured", "measured_rings.png"), "measured_rings.png",
+                   "luminance along each ring of directions")
 
     def stability(self):
         self.add("## Numerical stability", "")
@@ -548,6 +598,7 @@ class Report:
         self.header()
         self.headline()
         self.accuracy()
+        self.measured_skies()
         self.stability()
         self.pareto()
         self.speed()

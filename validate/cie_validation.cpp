@@ -22,6 +22,7 @@
 #include "core/strings.h"
 #include "core/units.h"
 #include "validate/cie_sky.h"
+#include "validate/gnuplot.h"
 
 namespace zenith::validate {
 namespace {
@@ -425,11 +426,7 @@ std::optional<std::filesystem::path> write_plot(const std::filesystem::path& dir
   s << "unset multiplot\n";
   s.close();
   if (!s) throw std::runtime_error(cat("cannot write ", gp.string()));
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return std::nullopt;
-  if (std::system(cat("gnuplot '", gp.string(), "' 2>/dev/null").c_str()) != 0) {
-    spdlog::warn("gnuplot failed on {}", gp.string());
-    return std::nullopt;
-  }
+  if (!run_gnuplot(gp)) return std::nullopt;
   return png;
 }
 

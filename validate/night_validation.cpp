@@ -24,6 +24,7 @@
 #include "core/json_reader.h"
 #include "core/strings.h"
 #include "core/units.h"
+#include "validate/gnuplot.h"
 #include "validate/moonlit_sky.h"
 #include "validate/visibility.h"
 
@@ -439,8 +440,7 @@ void write_plots(const std::filesystem::path& dir, const std::vector<TwilightRow
      << "plot 'night_moonlit.csv' skip 1 using 1:4 with lines lw 2 title 'ours', \\\n"
      << "     '' skip 1 using 1:5 with linespoints lw 2 title 'Schaefer 1990 over K&S 1991'\n";
   gp.close();
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0 ||
-      std::system(cat("gnuplot '", (dir / "night.gp").string(), "' 2>/dev/null").c_str()) != 0)
+  if (!run_gnuplot(dir / "night.gp"))
     spdlog::warn("gnuplot not found or failed: night.gp and the CSV files are in {}", dir.string());
   else
     spdlog::info(
