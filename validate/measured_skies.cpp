@@ -136,4 +136,9 @@ SolarSpectrum astm_g173_extraterrestrial_sun() {
                               "validate/data/astm_g173_extraterrestrial_11.75nm.csv");
 }
 
+SolarSpectrum astm_g173_extraterrestrial_sun_through_3nm_slit() {
+  return parse_solar_spectrum(compiled_in("data/astm_g173_extraterrestrial_3nm_slit.csv"),
+                              "validate/data/astm_g173_extraterrestrial_3nm_slit.csv");
+}
+
 }  // namespace zenith::validate

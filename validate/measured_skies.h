@@ -55,6 +55,10 @@ struct SolarSpectrum {
   double at(double wavelength_nm) const;
 };
 SolarSpectrum astm_g173_extraterrestrial_sun();
+/// The same sun as the measurements' spectroradiometer sees it: ASTM G173's
+/// ETR column through a Gaussian slit of 3 nm FWHM (an ASD FieldSpec's in
+/// 350–1000 nm), at the 31 measured wavelengths (compiled in).
+SolarSpectrum astm_g173_extraterrestrial_sun_through_3nm_slit();
 /// Parses such a table (columns lambda_nm, irradiance_W_m2_nm); errors as above.
 SolarSpectrum parse_solar_spectrum(std::string_view csv, const std::string& name);
 

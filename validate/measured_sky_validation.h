@@ -83,6 +83,8 @@ struct MeasuredSkyOptions {
   std::string atmosphere;    ///< preset or file; empty: validate/data/cornell_2013-05-27.json (compiled in)
   std::string measurements;  ///< radiance CSV; empty: Kider 2014 (compiled in); needs `suns`
   std::string suns;          ///< the captures' sun CSV, with `measurements`
+  std::string sun_spectrum;  ///< extraterrestrial sun CSV (lambda_nm, irradiance_W_m2_nm); empty: ASTM G173 in
+                             ///< the evaluation's bins (compiled in)
   std::string out_dir = "out/validate/measured";
   std::string tables = "paper";             ///< the table sizes' name, for the report
   std::size_t reference_samples = 0;        ///< paths per wavelength of the reference check; 0: no reference check

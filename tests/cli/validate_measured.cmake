@@ -22,7 +22,8 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "validate measured failed (${rc}):\n${stdout}\n${err}")
 endif()
 foreach(needle "15 captures of 81 directions, 31 wavelengths 360.00..712.50 nm scored"
-               "Bruneton 2017 (40 wavelengths, 4 orders)    11.34" "Preetham 1999" "reference solver, capture 11:45")
+               "Bruneton 2017 (40 wavelengths, 4 orders)    11.34" "Preetham 1999" "reference solver, capture 11:45"
+               "with the sun as the spectroradiometer sees it")
   expect_mentions("${stdout}" "${needle}" "the report")
 endforeach()
 string(REGEX MATCH "total \\(RMS over captures\\): spectral ([0-9.]+) mW" total "${stdout}")

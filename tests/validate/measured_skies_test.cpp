@@ -61,6 +61,20 @@ TEST(MeasuredSkies, TheSunIsAstmG173AveragedOverTheEvaluationsBins) {
   expect_refused([&] { sun.at(550.0); }, {"550 nm", "40 samples from 360 to 818.25 nm"});
 }
 
+TEST(MeasuredSkies, TheInstrumentsSunIsAstmG173ThroughA3NmSlitAtEachMeasuredWavelength) {
+  const SolarSpectrum slit = astm_g173_extraterrestrial_sun_through_3nm_slit();
+  const SolarSpectrum bins = astm_g173_extraterrestrial_sun();
+  ASSERT_EQ(slit.wavelengths_nm.size(), 31u);
+  // Between the Ca II K and H lines (393.4, 396.8 nm) the slit sees far less than the bin above 395.25 nm holds;
+  // in the smooth red they agree within a few per cent.
+  EXPECT_LT(slit.at(395.25), 0.85 * bins.at(395.25));
+  EXPECT_NEAR(slit.at(618.5) / bins.at(618.5), 1.0, 0.03);
+  // Over the whole range the two carry about the same energy (ASTM G173: ~1.8 W m^-2 nm^-1 at 500 nm).
+  double slit_sum = 0.0, bins_sum = 0.0;
+  for (double nm : slit.wavelengths_nm) slit_sum += slit.at(nm), bins_sum += bins.at(nm);
+  EXPECT_NEAR(slit_sum / bins_sum, 1.0, 0.03);
+}
+
 TEST(MeasuredSkies, ReadersNameTheFileLineAndColumnOfWhatIsWrong) {
   const std::string header = "capture_time_EDT,sample_index,azimuth_deg,elevation_deg,L400,L500\n";
   const MeasuredSkies ok = parse_measured_skies(header + "09:30,0,0,12.1,0.05,0.04\n", "r.csv", kSuns, "s.csv");
