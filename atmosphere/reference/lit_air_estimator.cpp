@@ -245,6 +245,10 @@ LitAirEstimate lit_air_radiance(const AtmosphereModel& model, const Vec3& observ
                                 const SunDisc& sun_in, const LitAirOptions& options) {
   check(options);
   const SunDisc sun = validated(sun_in);
+  // Its sunlit-air sums take the whole disc; an eclipse needs the path tracer.
+  if (sun.occulter.radius_m > 0.0 || !sun.limb_exponents.empty())
+    throw std::invalid_argument(
+        "lit_air_radiance: an occulter or a limb-darkened disc is the path tracer's (path_tracer.h)");
   const std::size_t n = model.wavelength_count();
   if (length(observer_m) < model.ground_radius_m * (1.0 - 1e-12))
     throw std::invalid_argument("lit_air_radiance: observer below the ground");

@@ -31,7 +31,10 @@ PathIntegrator::PathIntegrator(const AtmosphereModel& model, const SunDisc& sun,
       tracking_{&medium_, &majorants_},
       sun_(validated(sun)),
       sun_weight_(sun_sample_weight(sun_)),
-      settings_(settings) {}
+      settings_(settings) {
+  if (!sun_.limb_exponents.empty() && sun_.limb_exponents.size() != model.wavelengths_nm.size())
+    throw std::invalid_argument("SunDisc: one limb exponent per wavelength of the model, or none");
+}
 
 double PathIntegrator::transmittance_to_space(const Vec3& point_m, const Vec3& direction, std::size_t i, Pcg32& rng,
                                               std::size_t& violations) const {
@@ -48,8 +51,9 @@ double PathIntegrator::direct_irradiance(const Vec3& point_m, const Vec3& normal
   const double u1 = rng.uniform(), u2 = rng.uniform();
   const Vec3 to_sun = sample_sun_direction(sun_, u1, u2);
   const double cosine = dot(normal, to_sun);
-  if (!(cosine > 0.0)) return 0.0;
-  return sun_weight_ * cosine * transmittance_to_space(point_m, to_sun, i, rng, violations);
+  if (!(cosine > 0.0) || occulted(sun_.occulter, point_m, to_sun)) return 0.0;
+  return sun_weight_ * limb_weight(sun_, to_sun, i) * cosine *
+         transmittance_to_space(point_m, to_sun, i, rng, violations);
 }
 
 double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng, std::size_t& violations) const {
@@ -82,8 +86,9 @@ double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng,
         const double u1 = rng.uniform(), u2 = rng.uniform();
         const Vec3 to_sun = sample_sun_direction(sun_, u1, u2);
         const double phase = medium_.mixture_phase(c, i, dot(to_sun, d));
-        if (phase > 0.0)
-          radiance += weight * sun_weight_ * phase * transmittance_to_space(vertex, to_sun, i, rng, violations);
+        if (phase > 0.0 && !occulted(sun_.occulter, vertex, to_sun))
+          radiance += weight * sun_weight_ * limb_weight(sun_, to_sun, i) * phase *
+                      transmittance_to_space(vertex, to_sun, i, rng, violations);
       }
       if (last) break;
       // One-sample mixture of the Rayleigh and Mie proposals; weight P(ν)/q(ν).

@@ -1,5 +1,6 @@
 #include "atmosphere/reference/sun_disc.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,7 +14,39 @@ SunDisc validated(const SunDisc& sun) {
   if (!(len > 0.0) || !std::isfinite(len)) throw std::invalid_argument("SunDisc: zero or non-finite direction");
   if (!(sun.angular_radius_rad >= 0.0 && sun.angular_radius_rad < 0.5 * kPi))
     throw std::invalid_argument("SunDisc: angular radius must be in [0, pi/2) rad");
-  return SunDisc{sun.direction / len, sun.angular_radius_rad};
+  for (double a : sun.limb_exponents)
+    if (!(a >= 0.0 && a <= 10.0)) throw std::invalid_argument("SunDisc: limb exponents must be in [0, 10]");
+  if (!sun.limb_exponents.empty() && sun.angular_radius_rad == 0.0)
+    throw std::invalid_argument("SunDisc: a point sun has no limb to darken");
+  const Occulter& o = sun.occulter;
+  if (!(std::isfinite(o.centre_m.x) && std::isfinite(o.centre_m.y) && std::isfinite(o.centre_m.z)) ||
+      !(o.radius_m >= 0.0 && std::isfinite(o.radius_m)))
+    throw std::invalid_argument("SunDisc: the occulter needs a finite centre and a finite radius >= 0 m");
+  SunDisc v = sun;
+  v.direction = sun.direction / len;
+  return v;
+}
+
+bool occulted(const Occulter& occulter, const Vec3& point_m, const Vec3& direction) {
+  if (!(occulter.radius_m > 0.0)) return false;
+  const Vec3 to_centre = occulter.centre_m - point_m;
+  const double r2 = occulter.radius_m * occulter.radius_m;
+  const double along = dot(to_centre, direction);
+  const double centre2 = dot(to_centre, to_centre);
+  if (centre2 <= r2) return true;       // inside the sphere
+  if (along <= 0.0) return false;       // the sphere is behind the point
+  return centre2 - along * along < r2;  // the line passes closer to the centre than the radius
+}
+
+double limb_weight(const SunDisc& sun, const Vec3& to_sun, std::size_t wavelength) {
+  if (sun.limb_exponents.empty()) return 1.0;
+  const double a = sun.limb_exponents.at(wavelength);
+  // sin²θ = 1 − cos²θ, from the sampled direction's cosine to the centre.
+  const double cos_theta = std::min(1.0, dot(to_sun, sun.direction));
+  const double sin_radius = std::sin(sun.angular_radius_rad);
+  const double mu2 = 1.0 - (1.0 - cos_theta * cos_theta) / (sin_radius * sin_radius);
+  if (!(mu2 > 0.0)) return 0.0;
+  return 0.5 * (a + 2.0) * std::pow(mu2, 0.5 * a);
 }
 
 namespace {

@@ -9,18 +9,53 @@
 // then has radiance
 //   L_sun = E / ∫_cone cos θ dω = 1 / (π sin²α)     [sr^-1].
 // α = 0 is a point sun (a delta in direction with irradiance 1).
+//
+// Limb darkening (optional, per wavelength): the power law of
+// scene/sun_disc.h, I(μ)/I(1) = μ^a with μ = sqrt(1 − sin²θ / sin²α) at an
+// angle θ from the centre. Normalised to the same irradiance, the centre
+// radiance is L_0 = (a + 2) / (2π sin²α), so a direction sampled uniformly
+// over the cone weighs L(θ)/L_uniform = (a + 2)/2 · μ^a times the uniform
+// disc's weight.
+//
+// An occulter (optional): a sphere between the air and the sun — the Moon in
+// a solar eclipse. Light from a direction of the disc that passes through it
+// does not arrive, so every point of the air, the ground and the camera sees
+// exactly the part of the (limb-darkened) disc the sphere leaves uncovered:
+// the umbra, the penumbra and the antumbra follow from the geometry.
+#include <vector>
+
 #include "atmosphere/vec3.h"
 
 namespace zenith::atmosphere::reference {
 
+/// A sphere that can stand in front of the sun, in the planet's frame.
+struct Occulter {
+  Vec3 centre_m{0.0, 0.0, 0.0};  ///< from the planet's centre
+  double radius_m = 0.0;         ///< 0: nothing in the way
+};
+
 struct SunDisc {
   Vec3 direction{0.0, 0.0, 1.0};        ///< unit vector from the planet toward the disc's centre
   double angular_radius_rad = 4.65e-3;  ///< half the apparent diameter (Earth: 4.65e-3); 0 = point sun
+  /// Limb-darkening exponent a per wavelength of the model (μ^a); empty: a uniform disc.
+  std::vector<double> limb_exponents = {};
+  Occulter occulter = {};
 };
 
-/// Throws std::invalid_argument unless the direction is non-zero and finite and
-/// 0 ≤ α < π/2. Returns the disc with its direction normalized.
+/// Throws std::invalid_argument unless the direction is non-zero and finite,
+/// 0 ≤ α < π/2, every limb exponent is finite and in [0, 10] (a point sun
+/// has none), and the occulter's centre is finite and its radius finite and
+/// ≥ 0. Returns the disc with its direction normalized.
 SunDisc validated(const SunDisc& sun);
+
+/// Whether the half-line from `point_m` along the unit `direction` passes
+/// through the occulter's sphere (a point inside it sees nothing either).
+bool occulted(const Occulter& occulter, const Vec3& point_m, const Vec3& direction);
+
+/// The weight of a direction sampled uniformly over the disc's cone relative
+/// to the uniform disc's: (a + 2)/2 · μ^a for the exponent of wavelength
+/// `wavelength` (1 for a uniform disc or a point sun).
+double limb_weight(const SunDisc& sun, const Vec3& to_sun, std::size_t wavelength);
 
 /// Ω = 2π(1 − cos α) = 4π sin²(α/2) [sr] (0 for a point sun).
 double sun_solid_angle_sr(const SunDisc& sun);
