@@ -1,0 +1,40 @@
+#pragma once
+// A solar eclipse as a site sees it at one instant: how far apart the Sun's
+// and the Moon's discs are, how much of the Sun the Moon covers and what kind
+// of eclipse that is — from the topocentric places of astro/sky_positions.h
+// (ERFA's Sun and Moon98, ~10″: about 0.5 % of the Sun's diameter).
+//
+// With r_s, r_m the two angular radii and d the separation of the centres
+// (all small angles, so the discs are treated as plane circles):
+//   magnitude  M = (r_s + r_m − d) / (2 r_s) in a partial phase (the share of
+//              the Sun's diameter covered) and r_m / r_s in an annular or total
+//              one (the ratio of the diameters), as NASA's eclipse tables
+//              define it,
+//   obscuration = covered area / π r_s²  (the lens of two circles, below).
+// Kinds: none (d ≥ r_s + r_m), partial, annular (the Moon wholly inside the
+// Sun, r_m < r_s, d ≤ r_s − r_m) and total (d ≤ r_m − r_s).
+#include "astro/sky_positions.h"
+
+namespace zenith::astro {
+
+enum class EclipseKind { none, partial, annular, total };
+const char* to_string(EclipseKind kind);
+
+struct SolarEclipseView {
+  double separation_rad = 0.0;  ///< between the discs' centres
+  double sun_radius_rad = 0.0, moon_radius_rad = 0.0;
+  double magnitude = 0.0;    ///< share of the Sun's diameter covered, r_m / r_s when central (≤ 0: none)
+  double obscuration = 0.0;  ///< share of the Sun's disc area covered, in [0, 1]
+  EclipseKind kind = EclipseKind::none;
+};
+
+/// The eclipse seen from `sky`'s site at its time.
+SolarEclipseView solar_eclipse_view(const SkyPositions& sky);
+
+/// The covered share of a circle of radius r_s by a circle of radius r_m whose
+/// centre is d away (plane geometry): 0 apart, min(1, r_m²/r_s²) when one
+/// holds the other, else the lens area / π r_s². Throws std::invalid_argument
+/// for a negative or non-finite argument or a zero r_s.
+double disc_obscuration(double separation, double sun_radius, double moon_radius);
+
+}  // namespace zenith::astro
