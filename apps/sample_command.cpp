@@ -10,6 +10,9 @@
 
 #include "apps/commands.h"
 #include "apps/sampling.h"
+#include "astro/civil_time.h"
+#include "astro/sky_positions.h"
+#include "astro/solar_eclipse.h"
 #include "atmosphere/named_inputs.h"
 #include "core/json_reader.h"
 #include "render/lut/table_provider.h"
@@ -19,7 +22,8 @@ namespace {
 
 struct SampleArgs {
   std::string atmosphere, directions_file, grid, method = "lut", out = "-", tables = "paper", quantity = "radiance",
-                                                 cache_dir;
+                                                 cache_dir, eclipse_at;
+  std::vector<double> site;  ///< latitude, longitude [deg] with eclipse_at
   double altitude_m = 0.0, sun_zenith_deg = 30.0, sun_azimuth_deg = 0.0, sun_radius_deg = 0.2666;
   std::uint64_t seed = 1;
   std::size_t samples = 4096;
@@ -64,6 +68,22 @@ std::vector<ViewDirection> grid_directions(const std::string& grid) {
   return dirs;
 }
 
+/// `a.eclipse_at` seen from `a.site` (sampling.h's place_sun_and_moon), after the command line's checks.
+void place_eclipse(const SampleArgs& a, const atmosphere::AtmosphereModel& model, SamplingRequest& r) {
+  if (a.site.size() != 2) throw std::invalid_argument("--eclipse-at needs --site LATITUDE,LONGITUDE [deg]");
+  if (a.method != "reference")
+    throw std::invalid_argument(
+        "--eclipse-at: the lookup tables do not hold the Moon's shadow; use --method reference (the path tracer)");
+  const astro::Site site{a.site[0], a.site[1], std::min(a.altitude_m, 10000.0)};
+  const astro::SkyPositions sky(astro::AstroTime::from_utc(astro::parse_utc_time(a.eclipse_at)), site);
+  place_sun_and_moon(sky, model, r);
+  const astro::SolarEclipseView v = astro::solar_eclipse_view(sky);
+  spdlog::info(
+      "{} at {:.4f}, {:.4f}: sun {:.2f}° up, azimuth {:.2f}°; eclipse {}, magnitude {:.4f}, obscuration {:.4f}",
+      a.eclipse_at, a.site[0], a.site[1], 90.0 - r.geometry.sun_zenith_deg, r.geometry.sun_azimuth_deg,
+      astro::to_string(v.kind), v.magnitude, v.obscuration);
+}
+
 void run_sample(const SampleArgs& a) {
   const auto loaded = atmosphere::load_atmosphere_argument(a.atmosphere);
   SamplingRequest r;
@@ -71,6 +91,7 @@ void run_sample(const SampleArgs& a) {
   r.geometry.sun_zenith_deg = a.sun_zenith_deg;
   r.geometry.sun_azimuth_deg = a.sun_azimuth_deg;
   r.sun_angular_radius_deg = a.sun_radius_deg;
+  if (!a.eclipse_at.empty()) place_eclipse(a, loaded.model, r);
   r.seed = a.seed;
   r.directions = a.directions_file.empty() ? grid_directions(a.grid.empty() ? "10x4" : a.grid)
                                            : read_directions(a.directions_file);
@@ -108,8 +129,20 @@ void register_sample_command(CLI::App& app) {
   cmd->add_option("--atmosphere", args->atmosphere, "Preset name or atmosphere JSON file")->required();
   cmd->add_option("--altitude-m", args->altitude_m, "Observer altitude above the ground [m]")
       ->check(CLI::Range(0.0, 1e13));
-  cmd->add_option("--sun-zenith-deg", args->sun_zenith_deg, "Sun zenith angle [deg]")->check(CLI::Range(0.0, 180.0));
-  cmd->add_option("--sun-azimuth-deg", args->sun_azimuth_deg, "Sun azimuth [deg]")->check(CLI::Range(-360.0, 360.0));
+  auto* sun_zenith = cmd->add_option("--sun-zenith-deg", args->sun_zenith_deg, "Sun zenith angle [deg]")
+                         ->check(CLI::Range(0.0, 180.0));
+  auto* sun_azimuth = cmd->add_option("--sun-azimuth-deg", args->sun_azimuth_deg, "Sun azimuth [deg]")
+                          ->check(CLI::Range(-360.0, 360.0));
+  auto* eclipse =
+      cmd->add_option("--eclipse-at", args->eclipse_at,
+                      "UTC instant (YYYY-MM-DDThh:mm[:ss]Z): the Sun and the Moon then, seen from --site, with the "
+                      "Moon in front of the limb-darkened disc (a solar eclipse's sky; --method reference); azimuths "
+                      "count from north through east");
+  eclipse->excludes(sun_zenith)->excludes(sun_azimuth);
+  cmd->add_option("--site", args->site, "LATITUDE,LONGITUDE [deg] of --eclipse-at")
+      ->delimiter(',')
+      ->expected(2)
+      ->needs(eclipse);
   auto* dirs = cmd->add_option("--directions", args->directions_file, "CSV of zenith_deg,azimuth_deg per line")
                    ->check(CLI::ExistingFile);
   auto* grid = cmd->add_option("--grid", args->grid, "ZxA: zenith angles 0..90 in Z steps, A azimuths (default 10x4)");

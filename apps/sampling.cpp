@@ -7,6 +7,8 @@
 #include "atmosphere/reference/optical_depth.h"
 #include "atmosphere/reference/path_tracer.h"
 #include "core/progress_bar.h"
+#include "core/units.h"
+#include "scene/sun_disc.h"
 
 namespace zenith::app {
 namespace {
@@ -14,7 +16,12 @@ namespace {
 using namespace atmosphere;
 
 reference::SunDisc sun_disc(const SamplingRequest& r) {
-  return {r.geometry.sun_direction(), r.sun_angular_radius_deg * kPi / 180.0};
+  reference::SunDisc disc;
+  disc.direction = r.geometry.sun_direction();
+  disc.angular_radius_rad = r.sun_angular_radius_deg * kPi / 180.0;
+  disc.limb_exponents = r.limb_exponents;
+  disc.occulter = r.occulter;
+  return disc;
 }
 
 reference::PathTracerOptions tracer_options(const SamplingRequest& r) {
@@ -32,6 +39,20 @@ std::string spectrum_header(const AtmosphereModel& m, const std::string& prefix)
 }
 
 }  // namespace
+
+void place_sun_and_moon(const astro::SkyPositions& sky, const AtmosphereModel& model, SamplingRequest& r) {
+  const astro::SunPlace sun = sky.sun();
+  const astro::MoonPlace moon = sky.moon();
+  const auto north_east_up = [](const glm::dvec3& enu) { return glm::dvec3{enu.y, enu.x, enu.z}; };
+  r.geometry.sun_zenith_deg = 90.0 - sun.horizontal.altitude_rad / core::kDeg;
+  r.geometry.sun_azimuth_deg = sun.horizontal.azimuth_rad / core::kDeg;
+  r.sun_angular_radius_deg = sun.angular_radius_rad / core::kDeg;
+  r.limb_exponents.clear();
+  for (double nm : model.wavelengths_nm) r.limb_exponents.push_back(scene::limb_darkening_exponent(nm));
+  r.occulter.centre_m =
+      r.geometry.observer_m(model) + moon.distance_km * 1e3 * north_east_up(moon.horizontal.east_north_up());
+  r.occulter.radius_m = astro::kMoonRadius_km * 1e3;
+}
 
 std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequest& r) {
   std::vector<RadianceSample> samples;

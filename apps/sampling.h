@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "astro/sky_positions.h"
+#include "atmosphere/reference/sun_disc.h"
 #include "atmosphere/sky_sampling.h"
 #include "render/lut/table_provider.h"
 
@@ -16,11 +18,20 @@ struct SamplingRequest {
   std::vector<atmosphere::ViewDirection> directions;
   SamplingMethod method = SamplingMethod::Tables;
   double sun_angular_radius_deg = 0.2666;  ///< the sun seen from Earth
-  std::size_t reference_samples = 4096;    ///< Monte Carlo paths per wavelength and direction
+  /// Reference method: a limb-darkened disc (one exponent per wavelength; empty: uniform) and the Moon in
+  /// front of it (a solar eclipse), in the frame of `geometry`.
+  std::vector<double> limb_exponents;
+  atmosphere::reference::Occulter occulter;
+  std::size_t reference_samples = 4096;  ///< Monte Carlo paths per wavelength and direction
   std::uint64_t seed = 1;
   unsigned threads = 0;
   render::TableRequest tables;
 };
+
+/// The Sun and the Moon of `sky` (its time and site) put into `r` for the reference method: the sun's place
+/// and true size, its limb darkening (scene/sun_disc.h) and the Moon as the occulter. The frame of
+/// sky_sampling.h with +x north and +y east, so azimuths count from north through east as an almanac's.
+void place_sun_and_moon(const astro::SkyPositions& sky, const atmosphere::AtmosphereModel& model, SamplingRequest& r);
 
 std::string sample_radiance_csv(const atmosphere::AtmosphereModel& model, const SamplingRequest& request);
 std::string sample_transmittance_csv(const atmosphere::AtmosphereModel& model, const SamplingRequest& request);

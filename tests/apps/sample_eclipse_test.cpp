@@ -1,0 +1,57 @@
+// `zenith sample --eclipse-at`: the Sun and the Moon by date and place put
+// into the reference solver (apps/sampling.h). At the point of greatest
+// eclipse of 2017-08-21 in totality the zenith keeps ~1e-4 of its light and
+// turns bluer (Dandekar & Turtle 1971, Appl. Opt. 10(6): ~1e-4 with the sun
+// 40–50° up; ~11 000 K against ~9 000 K).
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apps/sampling.h"
+#include "astro/civil_time.h"
+#include "astro/solar_eclipse.h"
+#include "atmosphere/parameters.h"
+
+namespace zenith::app {
+namespace {
+
+/// The CSV's first data row: radiance per unit solar irradiance at each wavelength.
+std::vector<double> first_radiance_row(const std::string& csv, std::size_t wavelengths) {
+  std::istringstream in(csv);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  std::vector<double> cells;
+  std::istringstream cells_in(row);
+  for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(std::stod(cell));
+  return {cells.begin() + 2, cells.begin() + 2 + static_cast<std::ptrdiff_t>(wavelengths)};
+}
+
+TEST(SampleEclipse, AtTheGreatestEclipseOf2017TheZenithKeepsATenThousandthOfItsLightAndTurnsBluer) {
+  const atmosphere::AtmosphereModel m = atmosphere::load_preset("earth-advanced").model;  // 680, 550, 440 nm
+  const astro::Site site{36.9667, -87.6667, 150.0};
+  const astro::SkyPositions sky(astro::AstroTime::from_utc(astro::UtcTime{2017, 8, 21, 18, 25, 30.0}), site);
+  ASSERT_EQ(astro::solar_eclipse_view(sky).kind, astro::EclipseKind::total);
+  SamplingRequest eclipsed;
+  eclipsed.method = SamplingMethod::Reference;
+  eclipsed.reference_samples = 400000;
+  eclipsed.directions = {{0.0, 0.0}};
+  place_sun_and_moon(sky, m, eclipsed);
+  EXPECT_NEAR(90.0 - eclipsed.geometry.sun_zenith_deg, 64.0, 1.0);  // NASA: the sun 64° up there
+  SamplingRequest uneclipsed = eclipsed;
+  uneclipsed.occulter = {};
+  uneclipsed.reference_samples = 4000;
+  const std::vector<double> dark = first_radiance_row(sample_radiance_csv(m, eclipsed), 3);
+  const std::vector<double> day = first_radiance_row(sample_radiance_csv(m, uneclipsed), 3);
+  for (std::size_t i = 0; i < 3; ++i) {
+    std::printf("%.0f nm: totality / daylight %.3g\n", m.wavelengths_nm[i], dark[i] / day[i]);
+    EXPECT_GT(dark[i] / day[i], 1e-5) << m.wavelengths_nm[i];
+    EXPECT_LT(dark[i] / day[i], 5e-4) << m.wavelengths_nm[i];
+  }
+  EXPECT_GT(dark[2] / day[2], 1.5 * dark[0] / day[0]) << "bluer: 440 nm keeps more of its daylight than 680 nm";
+}
+
+}  // namespace
+}  // namespace zenith::app
