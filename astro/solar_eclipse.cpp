@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
+#include "atmosphere/lut/gauss_legendre.h"
 #include "core/strings.h"
 #include "core/units.h"
 
@@ -36,6 +38,43 @@ double disc_obscuration(double d, double r_s, double r_m) {
   const double lens =
       r_s * r_s * (phi_s - std::sin(phi_s) * std::cos(phi_s)) + r_m * r_m * (phi_m - std::sin(phi_m) * std::cos(phi_m));
   return std::clamp(lens / (kPi * r_s * r_s), 0.0, 1.0);
+}
+
+namespace {
+
+/// The angle of the circle of radius ρ about the disc's centre that lies inside the occulter
+/// (radius r_m, centre d away): 0, 2π, or twice the half-angle from the law of cosines.
+double covered_angle(double rho, double d, double r_m) {
+  if (rho + d <= r_m) return 2.0 * kPi;  // the whole ring inside
+  if (rho >= d + r_m || rho <= d - r_m || rho == 0.0) return 0.0;
+  return 2.0 * std::acos(std::clamp((rho * rho + d * d - r_m * r_m) / (2.0 * rho * d), -1.0, 1.0));
+}
+
+}  // namespace
+
+double limb_darkened_obscuration(double d, double r_s, double r_m, double a) {
+  const double uniform = disc_obscuration(d, r_s, r_m);  // checks the geometry
+  if (!(a >= 0.0 && a <= 10.0))
+    throw std::invalid_argument(core::cat("limb_darkened_obscuration: limb exponent ", a, " must be in [0, 10]"));
+  if (uniform == 0.0 || uniform == 1.0 || a == 0.0) return uniform;  // none, total, uniform
+  // In μ = sqrt(1 − ρ²/r_s²): ρ dρ = −r_s² μ dμ, so the covered share of the light is
+  //   (a + 2)/(2π) ∫_0^1 μ^{a+1} c(ρ(μ)) dμ,
+  // integrated piecewise between the rings where c(ρ) starts or stops changing.
+  static const atmosphere::lut::GaussLegendre rule(64);
+  std::vector<double> breaks = {0.0, 1.0};
+  for (double rho : {std::abs(d - r_m), d + r_m})
+    if (rho > 0.0 && rho < r_s) breaks.push_back(std::sqrt(1.0 - (rho * rho) / (r_s * r_s)));
+  std::sort(breaks.begin(), breaks.end());
+  double covered = 0.0;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double lo = breaks[k], hi = breaks[k + 1], half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+    for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+      const double mu = mid + half * rule.nodes[i];
+      const double rho = r_s * std::sqrt(std::max(0.0, 1.0 - mu * mu));
+      covered += half * rule.weights[i] * std::pow(mu, a + 1.0) * covered_angle(rho, d, r_m);
+    }
+  }
+  return std::clamp((a + 2.0) / (2.0 * kPi) * covered, 0.0, 1.0);
 }
 
 SolarEclipseView solar_eclipse_view(const SkyPositions& sky) {

@@ -37,4 +37,12 @@ SolarEclipseView solar_eclipse_view(const SkyPositions& sky);
 /// for a negative or non-finite argument or a zero r_s.
 double disc_obscuration(double separation, double sun_radius, double moon_radius);
 
+/// The covered share of the light of a limb-darkened disc (I(μ)/I(1) = μ^a,
+/// μ = sqrt(1 − ρ²/r_s²), scene/sun_disc.h's law) by a circle of radius r_m
+/// whose centre is d away: ∫ I(ρ) c(ρ) ρ dρ / ∫ I(ρ) 2π ρ dρ, with c(ρ) the
+/// covered angle of the ring of radius ρ (2 acos((ρ² + d² − r_m²) / 2ρd),
+/// clamped), integrated in μ by 64-point Gauss–Legendre panels. a = 0 is
+/// disc_obscuration(). Throws as disc_obscuration, and for a outside [0, 10].
+double limb_darkened_obscuration(double separation, double sun_radius, double moon_radius, double limb_exponent);
+
 }  // namespace zenith::astro

@@ -33,6 +33,28 @@ TEST(SolarEclipse, DiscObscurationIsTheLensOfTwoCircles) {
   EXPECT_THROW(disc_obscuration(std::nan(""), 1.0, 1.0), std::invalid_argument);
 }
 
+TEST(SolarEclipse, TheLimbDarkenedShareIsTheLightBehindTheMoon) {
+  // Uniform: the area share.
+  EXPECT_NEAR(limb_darkened_obscuration(1.0, 1.0, 1.0, 0.0), disc_obscuration(1.0, 1.0, 1.0), 1e-15);
+  // Centred annulus ρ = 0.9 r_s: 1 − (1 − 0.81)^{(a+2)/2} (sun_disc.h's normalisation up to ρ).
+  for (double a : {0.3, 0.51, 1.0, 2.0})
+    EXPECT_NEAR(limb_darkened_obscuration(0.0, 1.0, 0.9, a), 1.0 - std::pow(0.19, 0.5 * (a + 2.0)), 1e-9) << a;
+  // Total and none as the geometry says.
+  EXPECT_EQ(limb_darkened_obscuration(0.01, 1.0, 1.03, 0.51), 1.0);
+  EXPECT_EQ(limb_darkened_obscuration(2.5, 1.0, 1.03, 0.51), 0.0);
+  // A Moon over the limb hides less light than area (the limb is dark); over the centre, more.
+  EXPECT_LT(limb_darkened_obscuration(1.6, 1.0, 1.03, 0.51), disc_obscuration(1.6, 1.0, 1.03));
+  EXPECT_GT(limb_darkened_obscuration(0.3, 1.0, 0.5, 0.51), disc_obscuration(0.3, 1.0, 0.5));
+  // Continuous and monotone as the Moon slides across, from first contact to second.
+  double previous = 0.0;
+  for (double d = 2.03; d >= 0.03; d -= 0.01) {
+    const double share = limb_darkened_obscuration(d, 1.0, 1.03, 0.51);
+    EXPECT_GE(share, previous - 1e-12) << d;
+    EXPECT_LT(share - previous, 0.03) << d;
+    previous = share;
+  }
+}
+
 TEST(SolarEclipse, TheGreatEclipseOf2017IsTotalWhereNasaPutsItsGreatestEclipse) {
   // NASA (Espenak, Five Millennium Canon): 2017 August 21, greatest eclipse at
   // 36°58′N 87°40′W, magnitude 1.0306 (for a total eclipse the ratio of the
