@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "astro/solar_eclipse.h"
 #include "atmosphere/constants.h"
 #include "atmosphere/reference/geometry.h"
 #include "atmosphere/reference/optical_depth.h"
@@ -41,17 +42,14 @@ std::string spectrum_header(const AtmosphereModel& m, const std::string& prefix)
 }  // namespace
 
 void place_sun_and_moon(const astro::SkyPositions& sky, const AtmosphereModel& model, SamplingRequest& r) {
-  const astro::SunPlace sun = sky.sun();
-  const astro::MoonPlace moon = sky.moon();
-  const auto north_east_up = [](const glm::dvec3& enu) { return glm::dvec3{enu.y, enu.x, enu.z}; };
-  r.geometry.sun_zenith_deg = 90.0 - sun.horizontal.altitude_rad / core::kDeg;
-  r.geometry.sun_azimuth_deg = sun.horizontal.azimuth_rad / core::kDeg;
-  r.sun_angular_radius_deg = sun.angular_radius_rad / core::kDeg;
+  const astro::SunAndMoon s = astro::sun_and_moon(sky, r.geometry.observer_m(model).z);
+  r.geometry.sun_zenith_deg = s.sun_zenith_deg;
+  r.geometry.sun_azimuth_deg = s.sun_azimuth_deg;
+  r.sun_angular_radius_deg = s.sun_angular_radius_rad / core::kDeg;
   r.limb_exponents.clear();
   for (double nm : model.wavelengths_nm) r.limb_exponents.push_back(scene::limb_darkening_exponent(nm));
-  r.occulter.centre_m =
-      r.geometry.observer_m(model) + moon.distance_km * 1e3 * north_east_up(moon.horizontal.east_north_up());
-  r.occulter.radius_m = astro::kMoonRadius_km * 1e3;
+  r.occulter.centre_m = s.moon_centre_m;
+  r.occulter.radius_m = s.moon_radius_m;
 }
 
 std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequest& r) {

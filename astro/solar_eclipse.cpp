@@ -77,6 +77,20 @@ double limb_darkened_obscuration(double d, double r_s, double r_m, double a) {
   return std::clamp((a + 2.0) / (2.0 * kPi) * covered, 0.0, 1.0);
 }
 
+SunAndMoon sun_and_moon(const SkyPositions& sky, double observer_radius_m) {
+  const SunPlace sun = sky.sun();
+  const MoonPlace moon = sky.moon();
+  const auto north_east_up = [](const glm::dvec3& enu) { return glm::dvec3{enu.y, enu.x, enu.z}; };
+  SunAndMoon s;
+  s.sun_zenith_deg = 90.0 - sun.horizontal.altitude_rad / core::kDeg;
+  s.sun_azimuth_deg = sun.horizontal.azimuth_rad / core::kDeg;
+  s.sun_angular_radius_rad = sun.angular_radius_rad;
+  s.moon_centre_m =
+      glm::dvec3{0.0, 0.0, observer_radius_m} + moon.distance_km * 1e3 * north_east_up(moon.horizontal.east_north_up());
+  s.moon_radius_m = kMoonRadius_km * 1e3;
+  return s;
+}
+
 SolarEclipseView solar_eclipse_view(const SkyPositions& sky) {
   const SunPlace sun = sky.sun();
   const MoonPlace moon = sky.moon();

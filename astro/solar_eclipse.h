@@ -13,6 +13,8 @@
 //   obscuration = covered area / π r_s²  (the lens of two circles, below).
 // Kinds: none (d ≥ r_s + r_m), partial, annular (the Moon wholly inside the
 // Sun, r_m < r_s, d ≤ r_s − r_m) and total (d ≤ r_m − r_s).
+#include <glm/vec3.hpp>
+
 #include "astro/sky_positions.h"
 
 namespace zenith::astro {
@@ -36,6 +38,18 @@ SolarEclipseView solar_eclipse_view(const SkyPositions& sky);
 /// holds the other, else the lens area / π r_s². Throws std::invalid_argument
 /// for a negative or non-finite argument or a zero r_s.
 double disc_obscuration(double separation, double sun_radius, double moon_radius);
+
+/// The Sun and the Moon of `sky` in the frame of atmosphere/sky_sampling.h
+/// (the observer on the +z axis, `observer_radius_m` from the planet's
+/// centre), turned so that +x is north and +y east: azimuths count from north
+/// through east as an almanac's. For the reference solver's eclipsed sun.
+struct SunAndMoon {
+  double sun_zenith_deg = 0.0, sun_azimuth_deg = 0.0;
+  double sun_angular_radius_rad = 0.0;
+  glm::dvec3 moon_centre_m{0.0};  ///< from the planet's centre
+  double moon_radius_m = 0.0;
+};
+SunAndMoon sun_and_moon(const SkyPositions& sky, double observer_radius_m);
 
 /// The covered share of the light of a limb-darkened disc (I(μ)/I(1) = μ^a,
 /// μ = sqrt(1 − ρ²/r_s²), scene/sun_disc.h's law) by a circle of radius r_m
