@@ -20,7 +20,7 @@ void register_cluster_commands(CLI::App& app);
 void register_cluster_check(CLI::App& cluster);
 /// `zenith displays` (apps/displays_command.cpp).
 void register_displays_command(CLI::App& app);
-/// `zenith validate cie|measured|night|stress` (apps/validate_command.cpp).
+/// `zenith validate cie|eclipse|measured|night|stress` (apps/validate_command.cpp).
 void register_validate_command(CLI::App& app);
 /// `validate stress` under `validate` (apps/validate_stress.cpp).
 void register_validate_stress(CLI::App& validate);

@@ -4,11 +4,14 @@
 // compares the Earth presets with the CIE standard general sky
 // (validate/cie_validation.h), `validate night` checks the night sky against
 // published figures (validate/night_validation.h, docs/night-sky.md),
-// `validate stress` (apps/validate_stress.cpp) sweeps the numerically hard
-// corners on the CPU and GPU paths.
+// `validate eclipse` holds the sky of a total eclipse to measured totality
+// skies (validate/eclipse_validation.h), `validate stress`
+// (apps/validate_stress.cpp) sweeps the numerically hard corners on the CPU
+// and GPU paths.
 #include "apps/commands.h"
 #include "apps/validation_tables.h"
 #include "validate/cie_validation.h"
+#include "validate/eclipse_validation.h"
 #include "validate/measured_sky_validation.h"
 #include "validate/night_validation.h"
 
@@ -77,6 +80,18 @@ void register_validate_measured(CLI::App& validate) {
       ->capture_default_str();
 }
 
+void register_validate_eclipse(CLI::App& validate) {
+  auto options = std::make_shared<validate::EclipseValidationOptions>();
+  CLI::App* cmd = validate.add_subcommand(
+      "eclipse", "The sky of the total eclipse of 2017-08-21 by the reference solver against measured totality skies");
+  cmd->add_option("--out", options->out_dir, "Output directory (CSV, gnuplot script, PNG)")->capture_default_str();
+  cmd->add_option("--samples", options->samples, "Paths per wavelength in totality (a tenth outside it)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{1000}, std::size_t{1} << 30));
+  cmd->add_flag("--no-plots", options->no_plots, "Write the data but no gnuplot script or PNG");
+  cmd->callback([options] { validate::validate_eclipse(*options); });
+}
+
 }  // namespace
 
 void register_validate_command(CLI::App& app) {
@@ -86,6 +101,7 @@ void register_validate_command(CLI::App& app) {
   register_validate_stress(*validate);
   register_validate_night(*validate);
   register_validate_measured(*validate);
+  register_validate_eclipse(*validate);
 }
 
 }  // namespace zenith::app
