@@ -16,13 +16,8 @@ namespace zenith::astro {
 using core::kPi;
 
 const char* to_string(EclipseKind kind) {
-  switch (kind) {
-    case EclipseKind::none: return "none";
-    case EclipseKind::partial: return "partial";
-    case EclipseKind::annular: return "annular";
-    case EclipseKind::total: return "total";
-  }
-  return "none";
+  constexpr const char* kNames[] = {"none", "partial", "annular", "total"};  // in the enum's order
+  return kNames[static_cast<int>(kind)];
 }
 
 double disc_obscuration(double d, double r_s, double r_m) {
