@@ -102,6 +102,32 @@ Moment moment(const atmosphere::AtmosphereModel& model, const AstroTime& start, 
   return m;
 }
 
+/// The sky 10° above the horizon at eight azimuths (every 45° from north), eclipsed, per unit solar
+/// irradiance: at mid-totality the ring of sunlit air beyond the umbra.
+std::vector<std::vector<double>> horizon_ring(const atmosphere::AtmosphereModel& model, const AstroTime& t,
+                                              std::size_t samples) {
+  const astro::SkyPositions sky(t, kSite);
+  const astro::SunAndMoon s = astro::sun_and_moon(sky, model.ground_radius_m + kObserverAltitude_m);
+  atmosphere::SkyGeometry g;
+  g.altitude_m = kObserverAltitude_m;
+  g.sun_zenith_deg = s.sun_zenith_deg;
+  g.sun_azimuth_deg = s.sun_azimuth_deg;
+  atmosphere::reference::SunDisc sun;
+  sun.direction = g.sun_direction();
+  sun.angular_radius_rad = s.sun_angular_radius_rad;
+  for (double nm : model.wavelengths_nm) sun.limb_exponents.push_back(scene::limb_darkening_exponent(nm));
+  sun.occulter = {s.moon_centre_m, s.moon_radius_m};
+  atmosphere::reference::PathTracerOptions o;
+  o.samples_per_wavelength = samples;
+  std::vector<std::vector<double>> ring;
+  for (int k = 0; k < 8; ++k) {
+    const auto e = atmosphere::reference::path_traced_radiance(model, g.observer_m(model),
+                                                               atmosphere::view_vector({80.0, 45.0 * k}), sun, o);
+    ring.emplace_back(e.mean.begin(), e.mean.end());
+  }
+  return ring;
+}
+
 void write_outputs(const fs::path& dir, const atmosphere::AtmosphereModel& model, const std::vector<Moment>& moments,
                    bool plots) {
   fs::create_directories(dir);
@@ -206,6 +232,14 @@ void validate_eclipse(const EclipseValidationOptions& o) {
 
   std::vector<EclipseCheck> checks;
   const Moment& mid = moments[7];
+  spdlog::info("reference solver: the horizon ring at mid-totality");
+  const auto ring = horizon_ring(model, at(start, 0.5 * (c2 + c3)), std::max<std::size_t>(1000, o.samples / 4));
+  const double zenith_colour = mid.eclipsed[red] / mid.eclipsed[blue];
+  double dimmest_over_zenith = 1e300, least_red = 1e300;
+  for (const std::vector<double>& l : ring) {
+    dimmest_over_zenith = std::min(dimmest_over_zenith, l[green] / mid.eclipsed[green]);
+    least_red = std::min(least_red, (l[red] / l[blue]) / zenith_colour);
+  }
   checks.push_back({"mid-totality zenith / daylight at 550 nm within a factor 3 of 1e-4",
                     "Dandekar & Turtle 1971, Appl. Opt. 10(6)", mid.ratio(green) > 1e-4 / 3 && mid.ratio(green) < 3e-4,
                     fmt::format("{:.3g}", mid.ratio(green))});
@@ -213,6 +247,12 @@ void validate_eclipse(const EclipseValidationOptions& o) {
                     "SQM and spectra at totality, 2017-08-21: ~11 000 K against ~9 000 K",
                     mid.ratio(blue) > mid.ratio(red),
                     fmt::format("{:.3g} against {:.3g}", mid.ratio(blue), mid.ratio(red))});
+  checks.push_back({"mid-totality: the horizon (10° up) brighter than the zenith and redder, at every azimuth",
+                    "the 360° sunset of totality (photographs and spectra of every total eclipse)",
+                    dimmest_over_zenith > 1.0 && least_red > 1.0,
+                    fmt::format("dimmest of 8 azimuths {:.1f}x the zenith at 550 nm; 680/440 nm at least {:.1f}x the "
+                                "zenith's",
+                                dimmest_over_zenith, least_red)});
   // The air above the site sees nearly the site's disc until the umbra comes close: within 5 % (the sky at
   // 69 % obscuration is 3 % off, redder light a little darker, bluer a little brighter) plus three standard
   // errors of the two estimates.
