@@ -13,7 +13,9 @@
 #include "astro/civil_time.h"
 #include "astro/sky_positions.h"
 #include "astro/solar_eclipse.h"
+#include "astro/v_band.h"
 #include "atmosphere/parameters.h"
+#include "atmosphere/photometry.h"
 #include "atmosphere/reference/path_tracer.h"
 #include "atmosphere/sky_sampling.h"
 #include "core/strings.h"
@@ -247,6 +249,15 @@ void validate_eclipse(const EclipseValidationOptions& o) {
                     "SQM and spectra at totality, 2017-08-21: ~11 000 K against ~9 000 K",
                     mid.ratio(blue) > mid.ratio(red),
                     fmt::format("{:.3g} against {:.3g}", mid.ratio(blue), mid.ratio(red))});
+  // The zenith's V surface brightness at mid-totality: the tables' unit (radiance per unit solar irradiance)
+  // times the Kurucz sun (atmosphere/photometry.h), V-band mean (astro/v_band.h).
+  std::vector<double> zenith_W_m2_sr_nm;
+  for (std::size_t i = 0; i < model.wavelengths_nm.size(); ++i)
+    zenith_W_m2_sr_nm.push_back(mid.eclipsed[i] * atmosphere::solar_irradiance_W_m2_nm(model.wavelengths_nm[i]));
+  const double zenith_v = astro::v_surface_brightness(astro::v_band_mean(model.wavelengths_nm, zenith_W_m2_sr_nm));
+  checks.push_back({"mid-totality zenith, V mag/arcsec², within 1 mag of the SQM readings 12.4–13.3",
+                    "SQM readings in totality, 2017-08-21, sun ~46° up (SQM's band is not V: up to ~0.3 mag)",
+                    zenith_v > 12.4 - 1.0 && zenith_v < 13.3 + 1.0, fmt::format("{:.2f}", zenith_v)});
   checks.push_back({"mid-totality: the horizon (10° up) brighter than the zenith and redder, at every azimuth",
                     "the 360° sunset of totality (photographs and spectra of every total eclipse)",
                     dimmest_over_zenith > 1.0 && least_red > 1.0,
