@@ -9,8 +9,12 @@
 // with and without the Moon. Checks, each with its source and tolerance:
 //   * mid-totality: the zenith keeps ~1e-4 of its light (Dandekar & Turtle
 //     1971, Appl. Opt. 10(6), the sun 40–50° up) — within a factor 3;
+//   * its V surface brightness within a magnitude of the SQM readings in
+//     totality on 2017-08-21 (12.4–13.3 mag/arcsec²);
 //   * and turns bluer (measured ~11 000 K against ~9 000 K): 440 nm keeps
 //     more of its light than 680 nm;
+//   * the horizon (10° up) brighter and redder than the zenith at every
+//     azimuth (the 360° sunset of totality);
 //   * the partial phases follow the light the Moon leaves of the
 //     limb-darkened disc (not its area), within 5 %;
 //   * the zenith darkens monotonically from first to second contact and
