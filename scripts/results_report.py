@@ -11,7 +11,7 @@ Two uses (called by scripts/results; standard library only):
       reads DIR/machine.json, DIR/commands.tsv (step, seconds, exit code,
       command), lut_accuracy.csv, render_frame_times.csv,
       projector_frame_times.csv, cluster_bench.csv, cie/cie_summary.csv,
-      cie/cie_cases.csv, measured/measured_summary.csv, measured/measured_captures.csv,
+      cie/cie_cases.csv, measured/measured_summary.csv, measured/measured_captures.csv, eclipse/eclipse_zenith.csv,
       stress/stress_regions.csv, stress/stress_gpu.csv
       (a missing file leaves its section saying so), copies the PNG charts
       into --images and writes the markdown.
@@ -416,6 +416,25 @@ class Report:
         self.image(os.path.join("measured", "measured_rings.png"), "measured_rings.png",
                    "luminance along each ring of directions")
 
+    def eclipse(self):
+        self.add("### The sky of a total solar eclipse (reference solver)", "")
+        self.add("The zenith at NASA's point of greatest eclipse of 2017-08-21 from first to fourth contact, with "
+                 "and without the Moon in front of the limb-darkened disc (the path tracer; the renderer's tables do "
+                 "not hold the Moon's shadow yet), against measured totality skies. Method: "
+                 "[validation.md](validation.md#eclipses).", "")
+        self.provenance("eclipse")
+        rows = self.csv("eclipse", "eclipse_zenith.csv")
+        if not rows:
+            self.add("*eclipse_zenith.csv missing.*", "")
+            return
+        self.add(table(["moment", "s from C2", "kind", "obscuration", "zenith / daylight 680 nm", "550 nm",
+                        "440 nm"],
+                       [[r["moment"], r["seconds_from_second_contact"], r["kind"], g(num(r["obscuration"])),
+                         g(num(r["zenith_ratio_680nm"])), g(num(r["zenith_ratio_550nm"])),
+                         g(num(r["zenith_ratio_440nm"]))] for r in rows]), "")
+        self.image(os.path.join("eclipse", "eclipse_zenith.png"), "eclipse_zenith.png",
+                   "the zenith through the 2017 eclipse")
+
     def stability(self):
         self.add("## Numerical stability", "")
         self.add("`zenith validate stress` drives the hard corners — cameras from 1 m to 40 au, views on and within "
@@ -602,6 +621,7 @@ class Report:
         self.headline()
         self.accuracy()
         self.measured_skies()
+        self.eclipse()
         self.stability()
         self.pareto()
         self.speed()
