@@ -69,6 +69,34 @@ double contact(const AstroTime& start, double a, double b) {
   return 0.5 * (a + b);
 }
 
+/// The site's observer and the sun of instant `t` for the path tracer: the limb-darkened disc with the
+/// Moon in front of it (sun.occulter; clear it for the same sky without the Moon).
+struct EclipsedSky {
+  atmosphere::Vec3 observer_m;
+  atmosphere::reference::SunDisc sun;
+};
+
+EclipsedSky eclipsed_sky(const atmosphere::AtmosphereModel& model, const astro::SkyPositions& sky) {
+  const astro::SunAndMoon s = astro::sun_and_moon(sky, model.ground_radius_m + kObserverAltitude_m);
+  atmosphere::SkyGeometry g;
+  g.altitude_m = kObserverAltitude_m;
+  g.sun_zenith_deg = s.sun_zenith_deg;
+  g.sun_azimuth_deg = s.sun_azimuth_deg;
+  EclipsedSky e;
+  e.observer_m = g.observer_m(model);
+  e.sun.direction = g.sun_direction();
+  e.sun.angular_radius_rad = s.sun_angular_radius_rad;
+  for (double nm : model.wavelengths_nm) e.sun.limb_exponents.push_back(scene::limb_darkening_exponent(nm));
+  e.sun.occulter = {s.moon_centre_m, s.moon_radius_m};
+  return e;
+}
+
+atmosphere::reference::PathTracerOptions paths(std::size_t samples) {
+  atmosphere::reference::PathTracerOptions o;
+  o.samples_per_wavelength = samples;
+  return o;
+}
+
 Moment moment(const atmosphere::AtmosphereModel& model, const AstroTime& start, double seconds_from_start,
               double c2_seconds, std::string label, std::size_t samples) {
   const astro::SkyPositions sky(at(start, seconds_from_start), kSite);
@@ -76,27 +104,15 @@ Moment moment(const atmosphere::AtmosphereModel& model, const AstroTime& start, 
   m.label = std::move(label);
   m.seconds_from_c2 = seconds_from_start - c2_seconds;
   m.view = astro::solar_eclipse_view(sky);
-  const double observer_radius_m = model.ground_radius_m + kObserverAltitude_m;
-  const astro::SunAndMoon s = astro::sun_and_moon(sky, observer_radius_m);
-  atmosphere::SkyGeometry g;
-  g.altitude_m = kObserverAltitude_m;
-  g.sun_zenith_deg = s.sun_zenith_deg;
-  g.sun_azimuth_deg = s.sun_azimuth_deg;
-  atmosphere::reference::SunDisc sun;
-  sun.direction = g.sun_direction();
-  sun.angular_radius_rad = s.sun_angular_radius_rad;
-  for (double nm : model.wavelengths_nm) {
-    const double a = scene::limb_darkening_exponent(nm);
-    sun.limb_exponents.push_back(a);
+  for (double nm : model.wavelengths_nm)
     m.uncovered_light.push_back(1.0 - astro::limb_darkened_obscuration(m.view.separation_rad, m.view.sun_radius_rad,
-                                                                       m.view.moon_radius_rad, a));
-  }
-  atmosphere::reference::PathTracerOptions o;
-  o.samples_per_wavelength = samples;
+                                                                       m.view.moon_radius_rad,
+                                                                       scene::limb_darkening_exponent(nm)));
+  EclipsedSky e = eclipsed_sky(model, sky);
   const atmosphere::Vec3 zenith{0.0, 0.0, 1.0};
-  const auto day = atmosphere::reference::path_traced_radiance(model, g.observer_m(model), zenith, sun, o);
-  sun.occulter = {s.moon_centre_m, s.moon_radius_m};
-  const auto dark = atmosphere::reference::path_traced_radiance(model, g.observer_m(model), zenith, sun, o);
+  const auto dark = atmosphere::reference::path_traced_radiance(model, e.observer_m, zenith, e.sun, paths(samples));
+  e.sun.occulter = {};
+  const auto day = atmosphere::reference::path_traced_radiance(model, e.observer_m, zenith, e.sun, paths(samples));
   m.daylight.assign(day.mean.begin(), day.mean.end());
   m.eclipsed.assign(dark.mean.begin(), dark.mean.end());
   m.eclipsed_error.assign(dark.standard_error.begin(), dark.standard_error.end());
@@ -108,24 +124,12 @@ Moment moment(const atmosphere::AtmosphereModel& model, const AstroTime& start, 
 /// irradiance: at mid-totality the ring of sunlit air beyond the umbra.
 std::vector<std::vector<double>> horizon_ring(const atmosphere::AtmosphereModel& model, const AstroTime& t,
                                               std::size_t samples) {
-  const astro::SkyPositions sky(t, kSite);
-  const astro::SunAndMoon s = astro::sun_and_moon(sky, model.ground_radius_m + kObserverAltitude_m);
-  atmosphere::SkyGeometry g;
-  g.altitude_m = kObserverAltitude_m;
-  g.sun_zenith_deg = s.sun_zenith_deg;
-  g.sun_azimuth_deg = s.sun_azimuth_deg;
-  atmosphere::reference::SunDisc sun;
-  sun.direction = g.sun_direction();
-  sun.angular_radius_rad = s.sun_angular_radius_rad;
-  for (double nm : model.wavelengths_nm) sun.limb_exponents.push_back(scene::limb_darkening_exponent(nm));
-  sun.occulter = {s.moon_centre_m, s.moon_radius_m};
-  atmosphere::reference::PathTracerOptions o;
-  o.samples_per_wavelength = samples;
+  const EclipsedSky e = eclipsed_sky(model, astro::SkyPositions(t, kSite));
   std::vector<std::vector<double>> ring;
   for (int k = 0; k < 8; ++k) {
-    const auto e = atmosphere::reference::path_traced_radiance(model, g.observer_m(model),
-                                                               atmosphere::view_vector({80.0, 45.0 * k}), sun, o);
-    ring.emplace_back(e.mean.begin(), e.mean.end());
+    const auto l = atmosphere::reference::path_traced_radiance(
+        model, e.observer_m, atmosphere::view_vector({80.0, 45.0 * k}), e.sun, paths(samples));
+    ring.emplace_back(l.mean.begin(), l.mean.end());
   }
   return ring;
 }
