@@ -268,6 +268,8 @@ struct Node {
   std::optional<std::uint64_t> last_before_restart;
   std::optional<double> rss_start;  ///< when the show started (its first process)
   std::optional<double> rss_end;    ///< the last sample of its current process
+  /// Set once its process left at the master's Goodbye (reaped: never signal its pid again).
+  std::optional<int> exit_status;
 };
 
 int run(const Options& opt) {
@@ -368,11 +370,11 @@ int run(const Options& opt) {
     // The memory figures end with the last sample before the master's Goodbye.
     if (const auto r = rss_mib(master)) master_rss_end = r;
     for (Node& n : nodes)
-      if (const auto r = rss_mib(n.pid)) n.rss_end = r;
+      if (const auto r = n.exit_status ? std::nullopt : rss_mib(n.pid)) n.rss_end = r;
     // Resume stopped nodes; close garbage connections whose time is up.
     for (Node& n : nodes)
       if (n.stopped_until && now >= *n.stopped_until) {
-        kill(n.pid, SIGCONT);
+        if (!n.exit_status) kill(n.pid, SIGCONT);
         n.stopped_until.reset();
       }
     std::erase_if(garbage, [&](const Garbage& g) {
@@ -382,12 +384,16 @@ int run(const Options& opt) {
     });
     // A killed node's new process (its old one is reaped here too).
     for (Node& n : nodes)
-      if (const auto s = zenith::core::wait_for_exit(n.pid, 0ms); s && *s >= 0) {
+      if (const auto s = n.exit_status ? std::nullopt : zenith::core::wait_for_exit(n.pid, 0ms); s && *s >= 0) {
         if (*s == 128 + SIGKILL) {
           n.pid = zenith::core::spawn_process(opt.zenith, n.args, n.log, zenith::core::LogMode::append);
           ++n.restarts;
           n.restarted_at = now;
           n.last_before_restart = last_presented(presented_log(n));
+        } else if (*s == 0 && read_text(n.log).find("the master said goodbye") != std::string::npos) {
+          // The show's end: the node leaves at the master's Goodbye, which can be before the master
+          // process itself exits (it lingers while its connections flush and close).
+          n.exit_status = 0;
         } else {
           failure = fmt::format("node '{}' exited with status {} during the show (see {})", n.name, *s, n.log.string());
         }
@@ -416,6 +422,7 @@ int run(const Options& opt) {
       const double pick = uniform(0.0, 3.0);
       const std::size_t victim = static_cast<std::size_t>(uniform(0.0, static_cast<double>(opt.nodes) - 1e-9));
       Node& n = nodes[victim];
+      if (n.exit_status) continue;  // the show is over for it
       if (pick < 1.0 && victim != 0 && !n.stopped_until && !n.restarted_at && fits(rejoin_s)) {
         kill(n.pid, SIGKILL);  // restarted above, at the next poll
         ++kills;
@@ -456,7 +463,7 @@ int run(const Options& opt) {
   }
   for (const Garbage& g : garbage) close(g.fd);
   for (Node& n : nodes)
-    if (n.stopped_until) kill(n.pid, SIGCONT);
+    if (n.stopped_until && !n.exit_status) kill(n.pid, SIGCONT);
   attacks.finish();
   const double run_s = std::chrono::duration<double>(Clock::now() - started).count();
   if (!master_status) {
@@ -467,7 +474,7 @@ int run(const Options& opt) {
   }
   std::vector<int> node_status;
   for (Node& n : nodes) {
-    std::optional<int> s = zenith::core::wait_for_exit(n.pid, 20000ms);
+    std::optional<int> s = n.exit_status ? n.exit_status : zenith::core::wait_for_exit(n.pid, 20000ms);
     if (!s || *s < 0) {
       kill(n.pid, SIGKILL);
       zenith::core::wait_for_exit(n.pid, 5000ms);
