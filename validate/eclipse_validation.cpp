@@ -104,11 +104,10 @@ Moment moment(const atmosphere::AtmosphereModel& model, const AstroTime& start, 
   m.label = std::move(label);
   m.seconds_from_c2 = seconds_from_start - c2_seconds;
   m.view = astro::solar_eclipse_view(sky);
-  for (double nm : model.wavelengths_nm)
-    m.uncovered_light.push_back(1.0 - astro::limb_darkened_obscuration(m.view.separation_rad, m.view.sun_radius_rad,
-                                                                       m.view.moon_radius_rad,
-                                                                       scene::limb_darkening_exponent(nm)));
   EclipsedSky e = eclipsed_sky(model, sky);
+  for (double a : e.sun.limb_exponents)
+    m.uncovered_light.push_back(1.0 - astro::limb_darkened_obscuration(m.view.separation_rad, m.view.sun_radius_rad,
+                                                                       m.view.moon_radius_rad, a));
   const atmosphere::Vec3 zenith{0.0, 0.0, 1.0};
   const auto dark = atmosphere::reference::path_traced_radiance(model, e.observer_m, zenith, e.sun, paths(samples));
   e.sun.occulter = {};

@@ -346,12 +346,18 @@ void validate_measured(const MeasuredSkyOptions& o, const TablesFor& tables_for)
   const ValidationTables t = tables_for(loaded.model);
   const double tables_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const atmosphere::lut::TableQueries queries(loaded.model, t.tables);
+  // The tables' sky per unit solar irradiance at each capture's directions, queried once (captures have
+  // distinct times); each sun below only scales it.
+  std::map<std::string, std::vector<atmosphere::RadianceSample>> per_unit;
+  for (const MeasuredCapture& c : skies.captures) {
+    std::vector<atmosphere::ViewDirection> views;
+    for (const MeasuredDirection& d : c.directions) views.push_back(view_of(d));
+    per_unit[c.time] = atmosphere::sample_radiance(queries, geometry_of(c), views);
+  }
   const auto tables_sky_under = [&](const std::vector<double>& sun_W_m2_nm) -> CaptureSky {
     return [&, sun_W_m2_nm](const MeasuredCapture& c) {
-      std::vector<atmosphere::ViewDirection> views;
-      for (const MeasuredDirection& d : c.directions) views.push_back(view_of(d));
       std::vector<std::vector<double>> L;
-      for (const atmosphere::RadianceSample& r : atmosphere::sample_radiance(queries, geometry_of(c), views))
+      for (const atmosphere::RadianceSample& r : per_unit.at(c.time))
         L.push_back(physical(r.radiance, index, sun_W_m2_nm));
       return L;
     };
