@@ -1,0 +1,55 @@
+#pragma once
+// The sky of a solar eclipse from an atmosphere's lookup tables and the
+// Moon's shadow (astro/moon_shadow.h; docs/rendering.md, "Eclipses"). The
+// CPU form of the renderer's eclipsed sky-view fill
+// (shaders/render/sky_view.comp, ECLIPSE_SKY), and what `zenith validate
+// eclipse` holds against the path tracer with the Moon in front of the disc.
+//
+// Along the view ray from x to its end e, cut at x = p_0, p_1, …, p_N = e,
+// each table term S (single Rayleigh, single Mie, multiple) splits by the
+// tables' own identity S(x → p_N) = Σ_k [T(x, p_k) S(p_k) − T(x, p_k+1) S(p_k+1)]
+// (S(p_N) = 0: nothing scatters beyond the ray's end), and each segment's
+// share is weighted by the shadow at its middle:
+//   L = Σ_k V(m_k) [single R P_R + single M P_M]_k + V̄(m_k) [multiple]_k
+//       + T(x, e) ρ/π (E_sun(e) V(e) + E_sky(e) V̄(e))     on the ground,
+// with V the direct light the Moon leaves and V̄ the scattered light. Without
+// a Moon (V = V̄ = 1) the sum telescopes to the tables' sky exactly. Segment
+// k ends at t_k = d (k/N)²: short near the camera, where the air is densest
+// along rays that climb, and each ≤ 2d/N.
+#include <array>
+
+#include <glm/vec3.hpp>
+
+#include "astro/moon_shadow.h"
+#include "atmosphere/atmosphere_model.h"
+#include "atmosphere/lut/lookup_tables.h"
+
+namespace zenith::astro {
+
+/// Segments along each ray.
+inline constexpr int kEclipsedSkySegments = 24;
+
+/// Radiance per unit solar irradiance [sr⁻¹] seen from `camera_m`
+/// (planet-centred) along the unit `view`, the Sun toward
+/// shadow.geometry().sun_direction, the sun's disc excluded; a camera outside
+/// the atmosphere looks from where the ray enters it (as
+/// TableQueries::sky_radiance).
+atmosphere::Spectrum eclipsed_sky_radiance(const atmosphere::lut::TableQueries& tables,
+                                           const atmosphere::AtmosphereModel& model, const MoonShadow& shadow,
+                                           const glm::dvec3& camera_m, const glm::dvec3& view,
+                                           int segments = kEclipsedSkySegments);
+
+/// The light arriving at `point_m` (inside the atmosphere) from the
+/// direction `direction` (travelling along −direction), with the shadow's V
+/// and V̄ (eclipsed) and without (daylight): single Rayleigh and Mie along the
+/// ray and, where it ends on the ground, the direct sun the ground reflects;
+/// with `all_orders`, also the multiple scattering (weighted by the shadow's
+/// V̄ so far) and the skylight the ground reflects. For MoonShadow's V̄.
+struct ArrivingLight {
+  std::array<double, atmosphere::lut::kMaxChannels> eclipsed{}, daylight{};
+};
+ArrivingLight arriving_light(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
+                             const MoonShadow& shadow, const glm::dvec3& point_m, const glm::dvec3& direction,
+                             int segments, bool all_orders);
+
+}  // namespace zenith::astro

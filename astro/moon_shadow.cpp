@@ -1,0 +1,310 @@
+#include "astro/moon_shadow.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "astro/eclipsed_sky.h"
+#include "astro/solar_eclipse.h"
+#include "atmosphere/lut/gauss_legendre.h"
+#include "core/parallel_for.h"
+#include "core/strings.h"
+
+namespace zenith::astro {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+/// A unit vector across `axis` (unit): `hint` without its part along the axis, or any perpendicular.
+glm::dvec3 across(const glm::dvec3& axis, const glm::dvec3& hint) {
+  glm::dvec3 v = hint - glm::dot(hint, axis) * axis;
+  if (glm::length(v) < 1e-9) {
+    const glm::dvec3 other = std::abs(axis.x) < 0.9 ? glm::dvec3{1, 0, 0} : glm::dvec3{0, 1, 0};
+    v = other - glm::dot(other, axis) * axis;
+  }
+  return glm::normalize(v);
+}
+
+/// `n` directions spread evenly over the sphere (a Fibonacci lattice).
+std::vector<glm::dvec3> sphere_directions(std::size_t n) {
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  std::vector<glm::dvec3> d;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = 1.0 - (2.0 * double(i) + 1.0) / double(n), rho = std::sqrt(std::max(0.0, 1.0 - z * z));
+    d.push_back({rho * std::cos(golden * double(i)), rho * std::sin(golden * double(i)), z});
+  }
+  return d;
+}
+
+/// k₁, k₂ of a phase function P(x) normalised over the sphere: P = (1/4π) Σ (2l+1) k_l P_l(x),
+/// k_l = 2π ∫ P(x) P_l(x) dx (Henyey–Greenstein: g, g²; Rayleigh: 0, 0.1), by 256 Gauss–Legendre nodes
+/// on [−1, 1] in 16 panels crowded forward, where an aerosol's peak is.
+template <class Phase>
+std::pair<double, double> legendre_k1_k2(Phase phase) {
+  static const atmosphere::lut::GaussLegendre rule(16);
+  const double breaks[] = {-1.0, 0.0, 0.5, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995, 0.998, 0.999, 1.0};
+  double k1 = 0.0, k2 = 0.0;
+  for (std::size_t b = 0; b + 1 < std::size(breaks); ++b) {
+    const double half = 0.5 * (breaks[b + 1] - breaks[b]), mid = 0.5 * (breaks[b + 1] + breaks[b]);
+    for (std::size_t n = 0; n < rule.nodes.size(); ++n) {
+      const double x = mid + half * rule.nodes[n], w = 2.0 * kPi * half * rule.weights[n] * phase(x);
+      k1 += w * x;
+      k2 += w * 0.5 * (3.0 * x * x - 1.0);
+    }
+  }
+  return {k1, k2};
+}
+
+}  // namespace
+
+MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQueries& tables,
+                       const atmosphere::AtmosphereModel& model, const glm::dvec3& camera_m,
+                       const MoonShadowOptions& options)
+    : geometry_(g), options_(options), wavelengths_(model.wavelengths_nm.size()) {
+  if (!finite(g.moon_centre_m) || !finite(g.sun_direction) || !finite(camera_m))
+    throw std::invalid_argument("MoonShadow: the Moon's centre, the Sun's direction and the camera must be finite");
+  if (!(g.moon_radius_m > 0.0) || !(g.sun_angular_radius_rad > 0.0) || !(g.sun_angular_radius_rad < 0.1))
+    throw std::invalid_argument(core::cat("MoonShadow: Moon radius ", g.moon_radius_m,
+                                          " m must be > 0 and the Sun's angular radius ", g.sun_angular_radius_rad,
+                                          " rad in (0, 0.1)"));
+  if (std::abs(glm::length(g.sun_direction) - 1.0) > 1e-6)
+    throw std::invalid_argument("MoonShadow: the Sun's direction must be a unit vector");
+  if (glm::length(g.moon_centre_m - camera_m) <= g.moon_radius_m)
+    throw std::invalid_argument("MoonShadow: the camera is inside the Moon");
+  if (g.limb_exponents.size() != wavelengths_)
+    throw std::invalid_argument(
+        core::cat("MoonShadow: ", g.limb_exponents.size(), " limb exponents for ", wavelengths_, " wavelengths"));
+  for (double a : g.limb_exponents)
+    if (!(a >= 0.0 && a <= 10.0))
+      throw std::invalid_argument(core::cat("MoonShadow: limb exponent ", a, " must be in [0, 10]"));
+  const std::vector<double>& z = options.field_altitudes_m;
+  if (options.profile_samples < 2 || options.field_across < 3 || options.field_side < 2 || z.empty() ||
+      z.front() != 0.0 || !std::is_sorted(z.begin(), z.end()) || std::adjacent_find(z.begin(), z.end()) != z.end() ||
+      options.directions < 1 || options.segments < 1)
+    throw std::invalid_argument(
+        "MoonShadow: the profile needs ≥ 2 samples, the field ≥ 3 × 2 nodes and increasing altitudes from 0, the "
+        "rays ≥ 1 direction and segment");
+  ground_radius_m_ = model.ground_radius_m;
+  rayleigh_density_ = model.rayleigh_density;
+  mie_density_ = model.mie_density;
+  for (std::size_t i = 0; i < wavelengths_; ++i) {
+    const auto r = legendre_k1_k2([&](double x) { return model.rayleigh_phase_function(x); });
+    const auto m = legendre_k1_k2([&](double x) { return model.mie_phase(i, x); });
+    rayleigh_.push_back({model.rayleigh_scattering_m1[i], r.first, r.second});
+    mie_.push_back({model.mie_scattering_m1[i], m.first, m.second});
+  }
+  set_frame(camera_m);
+  fill_profile();
+  fill_field(tables, model);
+}
+
+void MoonShadow::set_frame(const glm::dvec3& camera_m) {
+  const glm::dvec3& s = geometry_.sun_direction;
+  const glm::dvec3 up = glm::normalize(camera_m);
+  // e1 toward the planet's centre across the axis: the planet and the shadow are then mirror images of
+  // themselves across the plane of the axis and e1 (along a central line, any direction across will do).
+  const glm::dvec3 to_centre = -geometry_.moon_centre_m;
+  const glm::dvec3 centre_across = to_centre - glm::dot(to_centre, s) * s;
+  e1_ = glm::length(centre_across) > 1.0 ? glm::normalize(centre_across) : across(s, up);
+  e2_ = glm::cross(s, e1_);
+  const glm::dvec3 w = geometry_.moon_centre_m - camera_m;
+  moon_distance_0_m_ = glm::length(w);
+  moon_radius_0_rad_ = std::asin(std::min(1.0, geometry_.moon_radius_m / moon_distance_0_m_));
+  sun_zenith_0_rad_ = std::acos(std::clamp(glm::dot(up, s), -1.0, 1.0));
+}
+
+void MoonShadow::fill_profile() {
+  const double r_s = geometry_.sun_angular_radius_rad, r_m = moon_radius_0_rad_;
+  profile_end_rad_ = r_s + r_m;
+  const std::size_t n = options_.profile_samples;
+  profile_.assign(n * wavelengths_, 1.0f);
+  for (std::size_t i = 0; i < wavelengths_; ++i) {
+    const double a = geometry_.limb_exponents[i];
+    for (std::size_t k = 0; k < n; ++k) {
+      const double x = profile_end_rad_ * double(k) / double(n - 1);
+      profile_[k * wavelengths_ + i] = float(1.0 - limb_darkened_obscuration(x, r_s, r_m, a));
+    }
+  }
+}
+
+void MoonShadow::fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model) {
+  // Beyond the penumbra's edge V̄ = V = 1.
+  field_end_m_ = moon_distance_0_m_ * std::tan(profile_end_rad_);
+  const std::size_t nodes = options_.field_across * options_.field_side * options_.field_altitudes_m.size();
+  // Until the first pass: V̄ = 1, the daylight's light everywhere (a_e = 1, no moments).
+  field_.assign(nodes * wavelengths_ * kShadowFieldValues, 0.0f);
+  for (std::size_t n = 0; n < nodes * wavelengths_; ++n) field_[n * kShadowFieldValues] = 1.0f;
+  for (int pass = 0; pass < options_.iterations; ++pass) field_ = field_pass(tables, model, pass > 0);
+}
+
+std::vector<float> MoonShadow::field_pass(const atmosphere::lut::TableQueries& tables,
+                                          const atmosphere::AtmosphereModel& model, bool all_orders) const {
+  const MoonShadowOptions& o = options_;
+  const glm::dvec3& s = geometry_.sun_direction;
+  const std::vector<glm::dvec3> directions = sphere_directions(o.directions);
+  const std::size_t nodes = o.field_across * o.field_side * o.field_altitudes_m.size();
+  std::vector<float> field(nodes * wavelengths_ * kShadowFieldValues, 0.0f);
+  core::parallel_for(nodes, o.threads, [&](std::size_t node) {
+    const std::size_t j = node % o.field_across, k = (node / o.field_across) % o.field_side;
+    const double altitude = o.field_altitudes_m[node / (o.field_across * o.field_side)];
+    const double tu = -1.0 + 2.0 * double(j) / double(o.field_across - 1), tv = double(k) / double(o.field_side - 1);
+    const double u = field_end_m_ * tu * std::abs(tu), v = field_end_m_ * tv * tv;
+    float* out = &field[node * wavelengths_ * kShadowFieldValues];
+    // The point at this altitude on the line through (u, v) parallel to the axis, on the Sun's side.
+    const glm::dvec3 line = geometry_.moon_centre_m + u * e1_ + v * e2_;
+    const double radius = ground_radius_m_ + altitude, b = glm::dot(line, s);
+    const double disc = b * b - (glm::dot(line, line) - radius * radius);
+    if (disc < 0.0) {
+      // No air there: V itself, isotropic, so interpolation toward the air is smooth.
+      const double limb = std::atan(std::hypot(u, v) / moon_distance_0_m_);
+      for (std::size_t i = 0; i < wavelengths_; ++i) out[i * kShadowFieldValues] = float(profile_at(limb, i));
+      return;
+    }
+    const glm::dvec3 p = line - (b - std::sqrt(disc)) * s;
+    // Sums of L, L ω and L ωωᵀ over the directions, eclipsed then daylight, per wavelength.
+    std::vector<std::array<double, 20>> sums(wavelengths_, std::array<double, 20>{});
+    for (const glm::dvec3& d : directions) {
+      const ArrivingLight l = arriving_light(tables, model, *this, p, d, o.segments, all_orders);
+      const double w[3] = {glm::dot(d, e1_), glm::dot(d, e2_), glm::dot(d, s)};
+      const double moments[10] = {1.0,         w[0],        w[1],        w[2],        w[0] * w[0],
+                                  w[1] * w[1], w[2] * w[2], w[0] * w[1], w[0] * w[2], w[1] * w[2]};
+      for (std::size_t i = 0; i < wavelengths_; ++i)
+        for (std::size_t c = 0; c < 10; ++c) {
+          sums[i][c] += l.eclipsed[i] * moments[c];
+          sums[i][10 + c] += l.daylight[i] * moments[c];
+        }
+    }
+    for (std::size_t i = 0; i < wavelengths_; ++i) {
+      float* values = out + i * kShadowFieldValues;
+      const double daylight = sums[i][10];
+      if (!(daylight > 0.0)) {
+        values[0] = 1.0f;  // no light arrives even in daylight (the night side): nothing to take away
+        continue;
+      }
+      for (std::size_t c = 0; c < 10; ++c) values[c] = float(sums[i][c] / daylight);
+      for (std::size_t c = 1; c < 10; ++c) values[9 + c] = float(sums[i][10 + c] / daylight);
+    }
+  });
+  return field;
+}
+
+MoonShadow::Place MoonShadow::place(const glm::dvec3& p) const {
+  const glm::dvec3 w = geometry_.moon_centre_m - p;
+  const double along = glm::dot(w, geometry_.sun_direction);
+  const glm::dvec3 w_across = w - along * geometry_.sun_direction;
+  const double perp = glm::length(w_across);
+  // q = −w⊥: the point's offset from the axis.
+  Place place{std::numeric_limits<double>::infinity(),
+              {-glm::dot(w_across, e1_), -glm::dot(w_across, e2_)},
+              glm::length(p) - ground_radius_m_};
+  if (along <= 0.0) return place;  // the Moon is behind the point
+  const double distance = std::hypot(along, perp);
+  const double moon_radius = std::asin(std::min(1.0, geometry_.moon_radius_m / distance));
+  place.limb_rad = std::max(0.0, std::atan2(perp, along) - (moon_radius - moon_radius_0_rad_));
+  return place;
+}
+
+double MoonShadow::profile_at(double x, std::size_t i) const {
+  if (!(x < profile_end_rad_)) return 1.0;
+  const std::size_t n = options_.profile_samples;
+  const double f = std::max(0.0, x) / profile_end_rad_ * double(n - 1);
+  const std::size_t k = std::min<std::size_t>(std::size_t(f), n - 2);
+  const double t = f - double(k);
+  return (1.0 - t) * profile_[k * wavelengths_ + i] + t * profile_[(k + 1) * wavelengths_ + i];
+}
+
+double MoonShadow::direct_light(const glm::dvec3& p, std::size_t i) const { return profile_at(place(p).limb_rad, i); }
+
+double MoonShadow::scattered_light(const glm::dvec3& p, const glm::dvec3& direction, std::size_t i) const {
+  const Place place = this->place(p);
+  if (std::isinf(place.limb_rad)) return 1.0;
+  const double h = std::clamp(place.altitude_m, 0.0, options_.field_altitudes_m.back());
+  const Scatterer air[2] = {{rayleigh_[i].scattering_m1 * rayleigh_density_(h), rayleigh_[i].k1, rayleigh_[i].k2},
+                            {mie_[i].scattering_m1 * mie_density_(h), mie_[i].k1, mie_[i].k2}};
+  return share_left(place, direction, i, air);
+}
+
+double MoonShadow::skylight_left(const glm::dvec3& ground_m, std::size_t i) const {
+  const Place place = this->place(ground_m);
+  if (std::isinf(place.limb_rad)) return 1.0;
+  // A horizontal surface weights the light from above by max(0, n·ω) = ¼ (1 + 2 P₁ + 5/4 P₂ + …).
+  const Scatterer lambert[1] = {{1.0, 2.0 / 3.0, 0.25}};
+  return share_left(place, glm::normalize(ground_m), i, lambert);
+}
+
+double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, std::size_t i,
+                              std::span<const Scatterer> scatterers) const {
+  const MoonShadowOptions& o = options_;
+  // Node coordinates: q·e1 = end t|t| over [−1, 1], |q·e2| = end t² over [0, 1]: crowded toward the axis.
+  const double u = std::clamp(place.across_m[0] / field_end_m_, -1.0, 1.0);
+  const double fu = 0.5 * (1.0 + std::copysign(std::sqrt(std::abs(u)), u)) * double(o.field_across - 1);
+  const double fv = std::sqrt(std::min(std::abs(place.across_m[1]) / field_end_m_, 1.0)) * double(o.field_side - 1);
+  const std::size_t j = std::min<std::size_t>(std::size_t(fu), o.field_across - 2);
+  const std::size_t k = std::min<std::size_t>(std::size_t(fv), o.field_side - 2);
+  const double tu = fu - double(j), tv = fv - double(k);
+  const std::vector<double>& z = o.field_altitudes_m;
+  const double altitude = std::clamp(place.altitude_m, 0.0, z.back());
+  const std::size_t level =
+      std::clamp<std::size_t>(std::size_t(std::upper_bound(z.begin(), z.end(), altitude) - z.begin()), 1, z.size()) - 1;
+  const std::size_t upper = std::min(level + 1, z.size() - 1);
+  const double tz = upper == level ? 0.0 : (altitude - z[level]) / (z[upper] - z[level]);
+  // Trilinear weights of the eight nodes around the point.
+  double values[kShadowFieldValues] = {};
+  for (std::size_t corner = 0; corner < 8; ++corner) {
+    const std::size_t dj = corner & 1, dk = (corner >> 1) & 1, dl = corner >> 2;
+    const double weight = (dj ? tu : 1.0 - tu) * (dk ? tv : 1.0 - tv) * (dl ? tz : 1.0 - tz);
+    if (weight == 0.0) continue;
+    const std::size_t node = ((dl ? upper : level) * o.field_side + k + dk) * o.field_across + j + dj;
+    const float* at = &field_[(node * wavelengths_ + i) * kShadowFieldValues];
+    for (std::size_t c = 0; c < kShadowFieldValues; ++c) values[c] += weight * double(at[c]);
+  }
+  // v in the basis (e1, e2, s), mirrored across the plane of the axis and e1 where the point lies beyond it.
+  const glm::dvec3& s = geometry_.sun_direction;
+  const double v[3] = {glm::dot(direction, e1_), (place.across_m[1] < 0.0 ? -1.0 : 1.0) * glm::dot(direction, e2_),
+                       glm::dot(direction, s)};
+  // ∫ P(ω·v) L dω with P = (1/4π) Σ (2l+1) k_l P_l to l = 2 (the 1/4π dropped: it cancels):
+  //   a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2.
+  const auto weighted = [&](double a, const double* m, const double* M, const Scatterer& t) {
+    const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
+    const double vMv = M[0] * v[0] * v[0] + M[1] * v[1] * v[1] + M[2] * v[2] * v[2] +
+                       2.0 * (M[3] * v[0] * v[1] + M[4] * v[0] * v[2] + M[5] * v[1] * v[2]);
+    return a + 3.0 * t.k1 * mv + 2.5 * t.k2 * (3.0 * vMv - a);
+  };
+  double eclipsed = 0.0, daylight = 0.0;
+  for (const Scatterer& t : scatterers) {
+    eclipsed += t.scattering_m1 * std::max(0.0, weighted(values[0], values + 1, values + 4, t));
+    daylight += t.scattering_m1 * std::max(0.0, weighted(1.0, values + 10, values + 13, t));
+  }
+  if (!(daylight > 0.0)) return 1.0;
+  return std::clamp(eclipsed / daylight, 0.0, 1.0);
+}
+
+bool MoonShadow::still_fits(const EclipseGeometry& g, const glm::dvec3& camera_m) const {
+  const double distance = glm::length(g.moon_centre_m - camera_m);
+  const double moon_radius = std::asin(std::min(1.0, g.moon_radius_m / distance));
+  const double zenith = std::acos(std::clamp(glm::dot(glm::normalize(camera_m), g.sun_direction), -1.0, 1.0));
+  constexpr double kRelative = 1e-4, kZenith_rad = 0.2 * kPi / 180.0;
+  return g.limb_exponents == geometry_.limb_exponents &&
+         std::abs(moon_radius / moon_radius_0_rad_ - 1.0) <= kRelative &&
+         std::abs(g.sun_angular_radius_rad / geometry_.sun_angular_radius_rad - 1.0) <= kRelative &&
+         std::abs(zenith - sun_zenith_0_rad_) <= kZenith_rad;
+}
+
+void MoonShadow::move_to(const EclipseGeometry& g, const glm::dvec3& camera_m) {
+  const double moon_radius_0 = moon_radius_0_rad_, zenith_0 = sun_zenith_0_rad_;
+  geometry_ = g;
+  set_frame(camera_m);
+  // The tables were made for these: keep mapping points onto them as they were.
+  moon_radius_0_rad_ = moon_radius_0;
+  sun_zenith_0_rad_ = zenith_0;
+}
+
+}  // namespace zenith::astro

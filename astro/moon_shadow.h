@@ -1,0 +1,175 @@
+#pragma once
+// The Moon's shadow on the air during a solar eclipse (docs/rendering.md,
+// "Eclipses"): for any point of the air, the share of the Sun's light that
+// still reaches it directly, and the share of the light that reaches it after
+// more than one scattering.
+//
+// Direct light, V(p, λ). A point p sees the Moon's centre m at the angle
+//   σ(p) = atan2(|w⊥|, w·s)   from the Sun's centre,  w = m − p,  w⊥ = w − (w·s) s,
+// with s the unit vector toward the Sun, and the Moon's disc at the radius
+// r_m(p) = asin(R_m / |w|); the Sun's radius r_s is the same everywhere.
+//   V(p, λ) = 1 − limb_darkened_obscuration(σ, r_s, r_m, a(λ))
+// (astro/solar_eclipse.h; the limb darkening μ^a(λ) of scene/sun_disc.h). Across
+// the air a camera can see (≲ 2 000 km) |w| changes by < 0.6 %, so V is
+// tabulated once, at the camera's Moon radius r_m0, over the distance of the
+// Moon's limb from the Sun's centre, x(p) = σ(p) − (r_m(p) − r_m0): near the
+// contacts, where V changes fastest, the covered light depends on where the
+// limbs meet, which x keeps exact (the umbra's cone narrows by r_s per metre
+// along the axis, 4.7 km over 1 000 km).
+//
+// Scattered light, V̄(p, v, λ). In totality no sunlight reaches the air over
+// the observer; the sky there is lit by light first scattered in the sunlit
+// air outside the umbra, tens to hundreds of kilometres away. The multiple
+// scattering that p sends along v is taken as the tables' (the uneclipsed
+// sky's) times V̄(p, v), the share the Moon leaves of the light arriving at p,
+// each direction weighted as p scatters it along v:
+//   V̄(p, v) = ∫ w(ω·v) L_ecl(p, ω) dω / ∫ w(ω·v) L(p, ω) dω,   w = 1 + (ω·v)²
+// (Rayleigh's angular shape; the aerosols' forward peak is left out), L the
+// light arriving at p from direction ω, computed from the tables along rays
+// over a Fibonacci sphere (astro/eclipsed_sky.h, arriving_light): the single
+// scattering and the sunlit ground, so V̄ is the second order's share, given
+// to every order (MoonShadowOptions::iterations). The weight is the phase
+// function of the air at p, Rayleigh's and the aerosols' by their scattering
+// coefficients there, to its Legendre terms l ≤ 2 (Rayleigh's are exact; an
+// aerosol's forward peak is cut, its asymmetry kept):
+//   ∫ P(ω·v) L dω = (1/4π) [a + 3 k₁ m·v + 5 k₂ (3 vᵀMv − a)/2],
+//   a = ∫ L dω,  m = ∫ L ω dω,  M = ∫ L ωωᵀ dω,
+// so a node keeps a, m and M of the eclipsed light and m, M of the daylight,
+// per unit a of daylight: 19 numbers per wavelength.
+// The nodes lie over (q·e1, |q·e2|, altitude), q the offset of p from the
+// axis and e1 the direction from the axis toward the planet's centre (the
+// planet and the shadow are mirror images of themselves across the plane of
+// the axis and e1: a point with q·e2 < 0 reads its mirror image's node with v
+// mirrored), crowded toward the axis; beyond the penumbra V̄ = V = 1.
+// docs/validation.md ("Eclipses") holds V̄ against the path tracer.
+//
+// Both tables depend on the eclipse only through r_s, r_m0, the Sun's zenith
+// angle at the camera and the wavelengths: a moving shadow reads the same
+// tables (MoonShadow::still_fits).
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "atmosphere/atmosphere_model.h"
+#include "atmosphere/lut/lookup_tables.h"
+
+namespace zenith::astro {
+
+/// The Moon and the Sun of a solar eclipse, in a planet's frame (planet-centred, metres).
+struct EclipseGeometry {
+  glm::dvec3 moon_centre_m{0.0};
+  double moon_radius_m = 0.0;
+  glm::dvec3 sun_direction{0.0, 0.0, 1.0};  ///< unit, toward the Sun
+  double sun_angular_radius_rad = 0.0;
+  /// The Sun's limb darkening μ^a per wavelength of the model (scene/sun_disc.h's
+  /// limb_darkening_exponent); all 0: a uniform disc.
+  std::vector<double> limb_exponents;
+};
+
+/// The tables' sizes and the rays behind V̄.
+struct MoonShadowOptions {
+  std::size_t profile_samples = 1024;  ///< V over x ∈ [0, r_s + r_m0]
+  std::size_t field_across = 33;       ///< V̄ nodes along e1, −end … end
+  std::size_t field_side = 17;         ///< V̄ nodes along e2, 0 … end
+  /// V̄'s altitudes [m], increasing from 0.
+  std::vector<double> field_altitudes_m = {0.0, 0.5e3, 1e3, 1.5e3, 2.5e3, 4e3, 6e3, 9e3, 13e3, 19e3, 28e3, 40e3, 60e3};
+  std::size_t directions = 32;  ///< rays per V̄ node
+  int segments = 12;            ///< segments per ray
+  /// 1: V̄ from the once-scattered light. Each more pass adds to the light
+  /// arriving at p the multiple scattering weighted by the V̄ before — the
+  /// higher orders' own share — but over-weights it: at mid-totality on
+  /// 2017-08-21 two passes put the zenith 90 % above the path tracer at
+  /// 550 nm, one pass 9 % below it (docs/validation.md, "Eclipses").
+  int iterations = 1;
+  unsigned threads = 0;  ///< 0: all
+};
+
+/// Numbers per node and wavelength of V̄'s table: a_e, m_e, M_e, m_d, M_d, in
+/// the basis (e1, e2, s), m as x, y, z and M as xx, yy, zz, xy, xz, yz.
+inline constexpr std::size_t kShadowFieldValues = 19;
+
+class MoonShadow {
+ public:
+  /// For a sky seen from `camera_m` (planet-centred) at `model`'s wavelengths.
+  /// Throws std::invalid_argument for a non-finite geometry, a Moon radius or
+  /// Sun radius ≤ 0, a non-unit Sun direction, a camera inside the Moon or
+  /// limb exponents not one per wavelength in [0, 10], or options out of range.
+  MoonShadow(const EclipseGeometry& geometry, const atmosphere::lut::TableQueries& tables,
+             const atmosphere::AtmosphereModel& model, const glm::dvec3& camera_m,
+             const MoonShadowOptions& options = {});
+
+  /// V(p, λ_i): the share of the Sun's limb-darkened light that reaches p directly.
+  double direct_light(const glm::dvec3& point_m, std::size_t wavelength) const;
+  /// V̄(p, v, λ_i): the share of the multiple scattering left that the air at
+  /// p sends along v (unit; the light travels along −v, toward where v starts).
+  double scattered_light(const glm::dvec3& point_m, const glm::dvec3& direction, std::size_t wavelength) const;
+  /// The share of the skylight left on a horizontal surface of the ground at `ground_m`.
+  double skylight_left(const glm::dvec3& ground_m, std::size_t wavelength) const;
+
+  /// The place of a point relative to the shadow: the distance of the Moon's
+  /// limb from the Sun's centre x [rad] (> profile_end_rad(): V = 1; no Moon
+  /// ahead of the point: +∞), its offset q from the axis, q·e1 and q·e2 [m],
+  /// and its altitude [m].
+  struct Place {
+    double limb_rad;
+    double across_m[2];
+    double altitude_m;
+  };
+  Place place(const glm::dvec3& point_m) const;
+
+  /// The same shadow with `geometry` seen from `camera_m`: whether the tables
+  /// still hold (the same limb exponents, r_m0 and r_s within 1e-4 relative,
+  /// the Sun's zenith angle at the camera within 0.2°). The caller then moves this one (move_to).
+  bool still_fits(const EclipseGeometry& geometry, const glm::dvec3& camera_m) const;
+  /// Takes the new geometry and camera keeping the tables (after still_fits).
+  void move_to(const EclipseGeometry& geometry, const glm::dvec3& camera_m);
+
+  // The tables. V at x_k = profile_end_rad() k / (n − 1), wavelength fastest.
+  // V̄'s kShadowFieldValues per wavelength (fastest), wavelengths, then nodes:
+  // q·e1 = end t|t|, t = −1 + 2j / (field_across − 1), fastest; |q·e2| = end t²,
+  // t = k / (field_side − 1); the altitudes.
+  const std::vector<float>& profile() const { return profile_; }
+  const std::vector<float>& field() const { return field_; }
+  const MoonShadowOptions& options() const { return options_; }
+  double profile_end_rad() const { return profile_end_rad_; }
+  double field_end_m() const { return field_end_m_; }
+  std::size_t wavelengths() const { return wavelengths_; }
+  const EclipseGeometry& geometry() const { return geometry_; }
+  /// The shadow plane's axes: e1 from the axis toward the planet's centre, e2 = s × e1.
+  const glm::dvec3& axis_1() const { return e1_; }
+  const glm::dvec3& axis_2() const { return e2_; }
+  double camera_moon_radius_rad() const { return moon_radius_0_rad_; }
+
+ private:
+  double profile_at(double limb_rad, std::size_t wavelength) const;
+  /// What scatters at a point: its scattering coefficient [m⁻¹] and its phase
+  /// function's Legendre k₁, k₂ (P = (1/4π) Σ (2l+1) k_l P_l).
+  struct Scatterer {
+    double scattering_m1, k1, k2;
+  };
+  /// V̄ at `place` for light scattered along `direction` by `scatterers`.
+  double share_left(const Place& place, const glm::dvec3& direction, std::size_t wavelength,
+                    std::span<const Scatterer> scatterers) const;
+  void set_frame(const glm::dvec3& camera_m);
+  void fill_profile();
+  void fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model);
+  /// One pass over the nodes: the light arriving there with this shadow's
+  /// field so far (`all_orders` false: the once-scattered light only).
+  std::vector<float> field_pass(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
+                                bool all_orders) const;
+
+  EclipseGeometry geometry_;
+  MoonShadowOptions options_;
+  std::size_t wavelengths_ = 0;
+  double moon_radius_0_rad_ = 0.0, sun_zenith_0_rad_ = 0.0, moon_distance_0_m_ = 0.0, ground_radius_m_ = 0.0;
+  double profile_end_rad_ = 0.0, field_end_m_ = 0.0;
+  glm::dvec3 e1_{1.0, 0.0, 0.0}, e2_{0.0, 1.0, 0.0};
+  std::vector<float> profile_, field_;
+  /// The air's scatterers at reference density per wavelength, and their density profiles.
+  std::vector<Scatterer> rayleigh_, mie_;
+  atmosphere::DensityProfile rayleigh_density_, mie_density_;
+};
+
+}  // namespace zenith::astro

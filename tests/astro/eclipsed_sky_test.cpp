@@ -1,0 +1,214 @@
+// The Moon's shadow on the air (astro/moon_shadow.h) and the eclipsed sky read
+// from the tables (astro/eclipsed_sky.h): V against the limb-darkened share of
+// astro/solar_eclipse.h, the tables' sky exactly where the Moon is out of the
+// way, what totality leaves, the shadow's tables reused as it moves, and bad
+// input. Its agreement with the path tracer is `zenith validate eclipse`'s
+// (tests/cli/validate_eclipse.cmake).
+#include "astro/eclipsed_sky.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "astro/moon_shadow.h"
+#include "astro/sky_positions.h"
+#include "astro/solar_eclipse.h"
+#include "atmosphere/lut/cpu_precompute.h"
+#include "atmosphere/parameters.h"
+#include "core/units.h"
+
+namespace zenith::astro {
+namespace {
+
+using atmosphere::AtmosphereModel;
+using atmosphere::lut::LookupTables;
+using atmosphere::lut::TableQueries;
+
+/// NASA's point of greatest eclipse, 2017-08-21, and a moment in its totality.
+const Site kSite{36.9667, -87.6667, 150.0};
+AstroTime totality(double seconds_after = 0.0) {
+  return AstroTime::from_utc(UtcTime{2017, 8, 21, 18, 25, 27.0}).plus_seconds(seconds_after);
+}
+
+/// scene/sun_disc.h's law (Hestroffer & Magnan 1998), μ^α with α(λ) = −0.023 + 0.292/λ[µm].
+double limb_exponent(double nm) { return -0.023 + 0.292 / (nm * 1e-3); }
+
+struct EclipseSetup {
+  EclipseGeometry geometry;
+  glm::dvec3 observer_m;
+};
+
+EclipseSetup setup_at(const AtmosphereModel& model, const AstroTime& t) {
+  const SkyPositions sky(t, kSite);
+  const SunAndMoon s = sun_and_moon(sky, model.ground_radius_m + 2.0);
+  const double z = s.sun_zenith_deg * core::kDeg, a = s.sun_azimuth_deg * core::kDeg;
+  EclipseSetup e;
+  e.geometry.moon_centre_m = s.moon_centre_m;
+  e.geometry.moon_radius_m = s.moon_radius_m;
+  e.geometry.sun_direction = {std::sin(z) * std::cos(a), std::sin(z) * std::sin(a), std::cos(z)};
+  e.geometry.sun_angular_radius_rad = s.sun_angular_radius_rad;
+  for (double nm : model.wavelengths_nm) e.geometry.limb_exponents.push_back(limb_exponent(nm));
+  e.observer_m = {0.0, 0.0, model.ground_radius_m + 2.0};
+  return e;
+}
+
+/// Coarse nodes and few rays: these tests check the shadow's logic, not its accuracy.
+MoonShadowOptions quick() {
+  MoonShadowOptions o;
+  o.field_across = 9;
+  o.field_side = 5;
+  o.field_altitudes_m = {0.0, 5e3, 20e3, 60e3};
+  o.directions = 12;
+  o.segments = 6;
+  return o;
+}
+
+class EclipsedSky : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    model_ = new AtmosphereModel(atmosphere::load_preset("earth-advanced").model);
+    atmosphere::lut::PrecomputeOptions o;
+    o.sizes = atmosphere::lut::TableSizes::small();
+    o.max_orders = 3;
+    tables_ = new LookupTables(atmosphere::lut::precompute_tables_cpu(*model_, o));
+  }
+  static void TearDownTestSuite() {
+    delete tables_;
+    delete model_;
+  }
+  static AtmosphereModel* model_;
+  static LookupTables* tables_;
+};
+AtmosphereModel* EclipsedSky::model_ = nullptr;
+LookupTables* EclipsedSky::tables_ = nullptr;
+
+TEST_F(EclipsedSky, DirectLightIsTheUncoveredLimbDarkenedShare) {
+  const TableQueries q(*model_, *tables_);
+  // 40 minutes before totality: a partial phase, the Moon over part of the disc.
+  const AstroTime t = totality(-2400.0);
+  const EclipseSetup e = setup_at(*model_, t);
+  const MoonShadow shadow(e.geometry, q, *model_, e.observer_m, quick());
+  const SolarEclipseView view = solar_eclipse_view(SkyPositions(t, kSite));
+  ASSERT_EQ(view.kind, EclipseKind::partial);
+  for (std::size_t i = 0; i < model_->wavelengths_nm.size(); ++i) {
+    const double expected = 1.0 - limb_darkened_obscuration(view.separation_rad, view.sun_radius_rad,
+                                                            view.moon_radius_rad, e.geometry.limb_exponents[i]);
+    // The profile's 1024 samples, linear between: 1e-4 (ERFA's topocentric place vs sun_and_moon's: 1e-4).
+    EXPECT_NEAR(shadow.direct_light(e.observer_m, i), expected, 3e-4) << model_->wavelengths_nm[i] << " nm";
+  }
+  // 30 km up, 20 km east: V from that point's own separation and Moon radius (the profile's shift of the
+  // Moon's radius into x keeps the limbs' distance, good to 1e-3 of the light here).
+  const glm::dvec3 p = e.observer_m + glm::dvec3{0.0, 20e3, 30e3};
+  const glm::dvec3 to_moon = e.geometry.moon_centre_m - p;
+  const double separation = std::atan2(glm::length(glm::cross(to_moon, e.geometry.sun_direction)),
+                                       glm::dot(to_moon, e.geometry.sun_direction));
+  const double moon_radius = std::asin(e.geometry.moon_radius_m / glm::length(to_moon));
+  const double expected = 1.0 - limb_darkened_obscuration(separation, e.geometry.sun_angular_radius_rad, moon_radius,
+                                                          e.geometry.limb_exponents[1]);
+  EXPECT_NEAR(shadow.direct_light(p, 1), expected, 1e-3);
+  EXPECT_NE(shadow.direct_light(p, 1), shadow.direct_light(e.observer_m, 1)) << "the shadow has parallax";
+}
+
+TEST_F(EclipsedSky, WithTheMoonOutOfTheWayItIsTheTablesSky) {
+  const TableQueries q(*model_, *tables_);
+  EclipseSetup e = setup_at(*model_, totality());
+  e.geometry.moon_centre_m = -e.geometry.moon_centre_m;  // behind the Earth: no eclipse anywhere
+  const MoonShadow shadow(e.geometry, q, *model_, e.observer_m, quick());
+  const glm::dvec3 views[] = {{0, 0, 1},
+                              glm::normalize(glm::dvec3{1, 0.3, 0.17}),
+                              glm::normalize(glm::dvec3{0, 1, 0.02}),
+                              glm::normalize(glm::dvec3{-0.5, 0.5, -0.3})};
+  for (const glm::dvec3& v : views) {
+    const atmosphere::Spectrum eclipsed = eclipsed_sky_radiance(q, *model_, shadow, e.observer_m, v);
+    const atmosphere::Spectrum day = q.sky_radiance(e.observer_m, v, e.geometry.sun_direction);
+    for (std::size_t i = 0; i < day.size(); ++i)
+      EXPECT_NEAR(eclipsed[i], day[i], 1e-9 * day[i]) << "the segments' sum telescopes to the tables' sky";
+  }
+}
+
+TEST_F(EclipsedSky, TotalityLeavesOnlyLightFromAfar) {
+  const TableQueries q(*model_, *tables_);
+  const EclipseSetup e = setup_at(*model_, totality());
+  ASSERT_EQ(solar_eclipse_view(SkyPositions(totality(), kSite)).kind, EclipseKind::total);
+  // The full nodes: the umbra is 100 km across, the quick nodes' first step from the axis 225 km.
+  const MoonShadow shadow(e.geometry, q, *model_, e.observer_m);
+  const glm::dvec3 up{0, 0, 1};
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(shadow.direct_light(e.observer_m, i), 0.0) << "no sunlight in the umbra";
+    const double ground = shadow.scattered_light(e.observer_m, up, i);
+    const double high = shadow.scattered_light(e.observer_m + 40e3 * up, up, i);
+    EXPECT_GT(ground, 0.0);
+    EXPECT_LT(ground, 1e-3) << "a thousandth of the scattered light at most reaches the umbra's floor";
+    EXPECT_GT(high, 10.0 * ground) << "light from the sunlit air far away reaches the thin upper air";
+    // 3 000 km across the axis lies the penumbra's outer edge: the Moon leaves almost all the light.
+    const glm::dvec3 far = e.observer_m + 3.6e6 * glm::normalize(glm::cross(up, e.geometry.sun_direction));
+    EXPECT_GT(shadow.scattered_light(far, up, i), 0.99);
+  }
+  // The zenith: dark, but lit; the horizon brighter.
+  const atmosphere::Spectrum zenith = eclipsed_sky_radiance(q, *model_, shadow, e.observer_m, up);
+  const atmosphere::Spectrum day = q.sky_radiance(e.observer_m, up, e.geometry.sun_direction);
+  const atmosphere::Spectrum horizon =
+      eclipsed_sky_radiance(q, *model_, shadow, e.observer_m, glm::normalize(glm::dvec3{1, 0, 0.18}));
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_GT(zenith[i], 1e-6 * day[i]);
+    EXPECT_LT(zenith[i], 1e-3 * day[i]);
+    EXPECT_GT(horizon[i], 3.0 * zenith[i]);
+  }
+}
+
+TEST_F(EclipsedSky, TheShadowsTablesFollowItAsItMoves) {
+  const TableQueries q(*model_, *tables_);
+  const EclipseSetup now = setup_at(*model_, totality(-20.0));
+  MoonShadow shadow(now.geometry, q, *model_, now.observer_m, quick());
+  const EclipseSetup soon = setup_at(*model_, totality(20.0));
+  const EclipseSetup later = setup_at(*model_, totality(1800.0));
+  EXPECT_TRUE(shadow.still_fits(soon.geometry, soon.observer_m)) << "40 s: the sun moves 0.17°";
+  EXPECT_FALSE(shadow.still_fits(later.geometry, later.observer_m)) << "half an hour: the sun moves ~6°";
+  shadow.move_to(soon.geometry, soon.observer_m);
+  const MoonShadow fresh(soon.geometry, q, *model_, soon.observer_m, quick());
+  const glm::dvec3 up{0, 0, 1};
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(shadow.direct_light(soon.observer_m + 10e3 * up, i), fresh.direct_light(soon.observer_m + 10e3 * up, i),
+                1e-6);
+    const double moved = shadow.scattered_light(soon.observer_m + 10e3 * up, up, i);
+    const double built = fresh.scattered_light(soon.observer_m + 10e3 * up, up, i);
+    EXPECT_NEAR(moved, built, 0.05 * built);
+  }
+}
+
+TEST_F(EclipsedSky, RefusesWhatIsNoEclipse) {
+  const TableQueries q(*model_, *tables_);
+  const EclipseSetup good = setup_at(*model_, totality());
+  const auto refuses = [&](EclipseSetup e, const char* what) {
+    EXPECT_THROW(MoonShadow(e.geometry, q, *model_, e.observer_m, quick()), std::invalid_argument) << what;
+  };
+  EclipseSetup e = good;
+  e.geometry.moon_radius_m = 0.0;
+  refuses(e, "no Moon");
+  e = good;
+  e.geometry.limb_exponents.pop_back();
+  refuses(e, "a limb exponent missing");
+  e = good;
+  e.geometry.limb_exponents[0] = 11.0;
+  refuses(e, "a limb exponent out of range");
+  e = good;
+  e.geometry.sun_direction *= 2.0;
+  refuses(e, "a sun direction not of unit length");
+  e = good;
+  e.observer_m = e.geometry.moon_centre_m;
+  refuses(e, "a camera inside the Moon");
+  e = good;
+  e.geometry.moon_centre_m.x = std::nan("");
+  refuses(e, "a non-finite Moon");
+  MoonShadowOptions o = quick();
+  o.field_altitudes_m = {1e3, 5e3};
+  EXPECT_THROW(MoonShadow(good.geometry, q, *model_, good.observer_m, o), std::invalid_argument)
+      << "the field's altitudes must start at the ground";
+}
+
+}  // namespace
+}  // namespace zenith::astro
