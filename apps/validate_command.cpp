@@ -81,15 +81,14 @@ void register_validate_measured(CLI::App& validate) {
 }
 
 void register_validate_eclipse(CLI::App& validate) {
-  auto options = std::make_shared<validate::EclipseValidationOptions>();
-  CLI::App* cmd = validate.add_subcommand(
-      "eclipse", "The sky of the total eclipse of 2017-08-21 by the reference solver against measured totality skies");
-  cmd->add_option("--out", options->out_dir, "Output directory (CSV, gnuplot script, PNG)")->capture_default_str();
-  cmd->add_option("--samples", options->samples, "Paths per wavelength in totality (a tenth outside it)")
+  auto [cmd, args] = add_validation_check<validate::EclipseValidationOptions>(
+      validate, "eclipse",
+      "The sky of the total eclipse of 2017-08-21, the reference solver's and the tables', against measured totality "
+      "skies",
+      validate::validate_eclipse);
+  cmd->add_option("--samples", args->validation.samples, "Paths per wavelength in totality (a tenth outside it)")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{1000}, std::size_t{1} << 30));
-  cmd->add_flag("--no-plots", options->no_plots, "Write the data but no gnuplot script or PNG");
-  cmd->callback([options] { validate::validate_eclipse(*options); });
 }
 
 }  // namespace

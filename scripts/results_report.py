@@ -417,23 +417,25 @@ class Report:
                    "luminance along each ring of directions")
 
     def eclipse(self):
-        self.add("### The sky of a total solar eclipse (reference solver)", "")
+        self.add("### The sky of a total solar eclipse (reference solver and tables)", "")
         self.add("The zenith at NASA's point of greatest eclipse of 2017-08-21 from first to fourth contact, with "
-                 "and without the Moon in front of the limb-darkened disc (the path tracer; the renderer's tables do "
-                 "not hold the Moon's shadow yet), against measured totality skies. Method: "
-                 "[validation.md](validation.md#eclipses).", "")
+                 "and without the Moon in front of the limb-darkened disc: the path tracer's, and the small tables' "
+                 "with the Moon's shadow (astro/eclipsed_sky.h; the renderer does not read it yet), against measured "
+                 "totality skies. Method: [validation.md](validation.md#eclipses).", "")
         self.provenance("eclipse")
         rows = self.csv("eclipse", "eclipse_zenith.csv")
         if not rows:
             self.add("*eclipse_zenith.csv missing.*", "")
             return
-        self.add(table(["moment", "s from C2", "kind", "obscuration", "zenith / daylight 680 nm", "550 nm",
-                        "440 nm"],
-                       [[r["moment"], r["seconds_from_second_contact"], r["kind"], g(num(r["obscuration"])),
-                         g(num(r["zenith_ratio_680nm"])), g(num(r["zenith_ratio_550nm"])),
-                         g(num(r["zenith_ratio_440nm"]))] for r in rows]), "")
+        self.add(table(["moment", "s from C2", "kind", "obscuration", "zenith / daylight 680 nm: reference",
+                        "tables", "550 nm: reference", "tables", "440 nm: reference", "tables"],
+                       [[r["moment"], r["seconds_from_second_contact"], r["kind"], g(num(r["obscuration"]))] +
+                        [g(num(r.get(k % nm))) for nm in (680, 550, 440)
+                         for k in ("zenith_ratio_%dnm", "tables_zenith_ratio_%dnm")] for r in rows]), "")
         self.image(os.path.join("eclipse", "eclipse_zenith.png"), "eclipse_zenith.png",
                    "the zenith through the 2017 eclipse")
+        self.image(os.path.join("eclipse", "eclipse_totality.png"), "eclipse_totality.png",
+                   "second to third contact")
 
     def stability(self):
         self.add("## Numerical stability", "")

@@ -5,8 +5,10 @@
 // 64° up): the contacts are found from the ephemeris (astro/solar_eclipse.h),
 // and at times from first to fourth contact the reference solver — the path
 // tracer with the Moon in front of the limb-darkened disc
-// (atmosphere/reference/README.md, "Eclipses") — gives the zenith's radiance
-// with and without the Moon. Checks, each with its source and tolerance:
+// (atmosphere/reference/README.md, "Eclipses") — and the tables with the
+// Moon's shadow over them (astro/eclipsed_sky.h, the sky the renderer is to
+// read) each give the zenith's radiance with and without the Moon. Checks,
+// each with its source and tolerance, on both:
 //   * mid-totality: the zenith keeps ~1e-4 of its light (Dandekar & Turtle
 //     1971, Appl. Opt. 10(6), the sun 40–50° up) — within a factor 3;
 //   * its V surface brightness within a magnitude of the SQM readings in
@@ -19,15 +21,19 @@
 //     limb-darkened disc (not its area), within 5 %;
 //   * the zenith darkens monotonically from first to second contact and
 //     brightens from third to fourth (no jump at any contact).
-// The renderer's tables do not hold the Moon's shadow yet: these are the
-// ground truth it will be held to.
+// and the tables against the reference: the zenith and the horizon at
+// mid-totality within 25 %, the zenith at 90 % obscuration within 5 % (each
+// plus three standard errors of the reference).
 #include <cstddef>
 #include <string>
+
+#include "validate/validation_tables.h"
 
 namespace zenith::validate {
 
 struct EclipseValidationOptions {
   std::string out_dir = "out/validate/eclipse";
+  std::string tables = "small";  ///< the sizes of the tables the eclipsed sky is read from
   std::size_t samples = 400000;  ///< paths per wavelength in totality (a tenth outside it)
   bool no_plots = false;
 };
@@ -35,6 +41,6 @@ struct EclipseValidationOptions {
 /// Runs the checks, prints the report, writes CSV, a gnuplot script and its
 /// PNG to options.out_dir; throws std::runtime_error naming how many checks
 /// fell outside their tolerance.
-void validate_eclipse(const EclipseValidationOptions& options);
+void validate_eclipse(const EclipseValidationOptions& options, const TablesFor& tables);
 
 }  // namespace zenith::validate
