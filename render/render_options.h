@@ -33,7 +33,8 @@ enum class SkyViewTableUse {
 struct NightSkyRenderOptions {
   bool stars = true;        ///< the catalogue's stars as point sources
   bool night_floor = true;  ///< the natural night sky and light pollution
-  bool moon = true;         ///< the Moon's disc by its phase (Lommel–Seeliger), with the stars' sky clock
+  bool moon = true;  ///< the Moon's disc by its phase (Lommel–Seeliger), with the stars' sky clock; it covers the sun
+                     ///< in an eclipse
   /// The Moon lights the atmospheres (render/night/moon_light.h): the sky and the
   /// ground by moonlight, from the same tables, where its own test finds it visible.
   bool moonlight = true;

@@ -159,7 +159,7 @@ void Renderer::check_scene(const scene::Scene& scene) const {
 Renderer::Frame Renderer::frame_constants(const scene::Scene& scene, const warp::Projection& projection) const {
   Frame f(scene, projection);
   static_cast<FrameConstants&>(f) =
-      compute_frame_constants(scene, projection, options_.colour, options_.limb_darkening);
+      compute_frame_constants(scene, projection, options_.colour, options_.limb_darkening, options_.night_sky.moon);
   return f;
 }
 

@@ -12,7 +12,7 @@
 namespace zenith::render {
 
 FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Projection& projection,
-                                       image::ColourMapping colour, bool limb_darkening) {
+                                       image::ColourMapping colour, bool limb_darkening, bool moon) {
   FrameConstants f;
   f.n = scene.wavelengths_nm.size();
   f.groups = (f.n + kWavelengthLanes - 1) / kWavelengthLanes;
@@ -35,12 +35,14 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Pr
   // same irradiance (exp(−θ²/2σ²) E / 2πσ²): a disc sampled at pixel centres
   // would flicker and lose or gain light with its sub-pixel position.
   f.sun_point_sigma = f.sun_radius < 1.5 * f.sun_pixel_angle ? 0.7 * f.sun_pixel_angle : 0.0;
+  if (moon) f.occulter = sun_occulter(scene, limb_darkening);
   f.sun_centre.resize(f.n);
   f.limb_exponent.resize(f.n);
   for (std::size_t i = 0; i < f.n; ++i) {
     const double e = scene.sun.irradiance_W_m2_nm[i];
-    if (f.sun_point_sigma > 0.0)
-      f.sun_centre[i] = e / (2.0 * core::kPi * f.sun_point_sigma * f.sun_point_sigma);
+    if (f.sun_point_sigma > 0.0)  // the Gaussian carries the light the Moon leaves of the disc
+      f.sun_centre[i] = e * (f.occulter.any() ? f.occulter.uncovered[i] : 1.0) /
+                        (2.0 * core::kPi * f.sun_point_sigma * f.sun_point_sigma);
     else
       f.sun_centre[i] = limb_darkening ? scene::disc_centre_radiance(e, f.sun_radius, scene.wavelengths_nm[i])
                                        : scene::uniform_disc_radiance(e, f.sun_radius);

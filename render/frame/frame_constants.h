@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "image/colour.h"
+#include "render/frame/sun_occulter.h"
 #include "scene/scene.h"
 #include "warp/projection.h"
 
@@ -30,12 +31,14 @@ struct FrameConstants {
   std::vector<std::array<double, 3>> albedo_weights;  ///< the albedo's RGB → reflectance, per wavelength
   std::vector<double> sun_centre;     ///< the disc's centre radiance (or the Gaussian's peak) per wavelength
   std::vector<double> limb_exponent;  ///< μ^α limb darkening per wavelength
+  SunOcculter occulter;               ///< the Moon in front of the sun (render/frame/sun_occulter.h)
 };
 
 /// The constants of a frame of `scene` through `projection` with the colour
-/// mapping and the sun's limb darkening (RenderOptions::colour, limb_darkening).
+/// mapping, the sun's limb darkening and the Moon (RenderOptions::colour,
+/// limb_darkening, moon: the Moon's disc masks the sun's in a solar eclipse).
 FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Projection& projection,
-                                       image::ColourMapping colour, bool limb_darkening);
+                                       image::ColourMapping colour, bool limb_darkening, bool moon);
 
 /// direct_light.comp's colour matrix, column-major (column = albedo channel):
 /// a body lit by the sun alone is rgb = (cos i V / π) M a with

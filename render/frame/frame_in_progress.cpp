@@ -56,6 +56,10 @@ void FrameInProgress::set_frame_uniforms(const gl::ShaderProgram& p) const {
   p.set_uniform("sun_draw_radius", static_cast<float>(sun_radius));
   p.set_uniform("sun_pixel_angle", static_cast<float>(sun_pixel_angle));
   p.set_uniform("sun_point_sigma", static_cast<float>(sun_point_sigma));
+  const glm::dvec3& moon = occulter.direction;
+  p.set_uniform("sun_occulter_direction", std::array<float, 3>{static_cast<float>(moon.x), static_cast<float>(moon.y),
+                                                               static_cast<float>(moon.z)});
+  p.set_uniform("sun_occulter_radius", static_cast<float>(occulter.angular_radius_rad));
   p.set_uniform("sun_lift_count", sun_lift.active ? kSunLiftSamples : 0);
   if (sun_lift.active) {
     const glm::dvec3& up = sun_lift.up;

@@ -9,6 +9,11 @@
 // altitude h came from true altitude h − R(h); the ray is turned down by R(h)
 // in its vertical plane before it is compared with the geometric disc, which
 // lifts the disc and flattens it as the eye sees a low sun.
+// A solar eclipse (render/frame/sun_occulter.h): the Moon's disc, placed as
+// geometrically as the sun's and compared with the same unrefracted ray, masks
+// the disc's pixels, antialiased as its edge (no rim in totality, where the
+// edges lie within a pixel); a Gaussian sun carries the light the Moon leaves
+// in sun_centre_radiance already.
 // Include after frame.glsl.
 
 uniform float sun_draw_radius;  // the disc's radius [rad]
@@ -18,6 +23,8 @@ uniform float sun_point_sigma;  // > 0: the sun is smaller than the pixels; draw
 // Not frame.glsl's pixel_angle, the worst case over the image, which through a
 // warp mesh can be tens of degrees.
 uniform float sun_pixel_angle;
+uniform vec3 sun_occulter_direction;  // world, unit: the Moon's centre
+uniform float sun_occulter_radius;    // its angular radius [rad]; 0: nothing in front of the sun
 
 // R(h) over the apparent altitudes the disc can cover; sun_lift_count 0: no refraction.
 const int kSunLiftSamples = 32;  // render/frame/sun_refraction.h kSunLiftSamples
@@ -49,14 +56,23 @@ struct SunSample {
 };
 
 SunSample sun_sample(vec3 ray) {
-  const float theta = angle_between(unrefracted(ray), sun_direction);
+  const vec3 geometric = unrefracted(ray);
+  const float theta = angle_between(geometric, sun_direction);
   if (sun_point_sigma > 0.0) {
     const float x = theta / sun_point_sigma;
     return SunSample(x < 6.0 ? exp(-0.5 * x * x) : 0.0, 1.0);
   }
   const float R = sun_draw_radius;
   if (theta >= R + sun_pixel_angle) return SunSample(0.0, 1.0);
-  const float coverage = clamp((R - theta) / sun_pixel_angle + 0.5, 0.0, 1.0);
+  // Signed distances from the pixel's centre to the edges, in pixels: inside the sun, outside the Moon.
+  const float inside_sun = (R - theta) / sun_pixel_angle;
+  float coverage = clamp(inside_sun + 0.5, 0.0, 1.0);
+  if (sun_occulter_radius > 0.0) {
+    // What the Moon's disc leaves of the pixel: the strip between two near-parallel edges,
+    // min(d_sun, ½) + min(d_moon, ½), so a Moon that holds the sun leaves no rim at its edge.
+    const float outside_moon = (angle_between(geometric, sun_occulter_direction) - sun_occulter_radius) / sun_pixel_angle;
+    coverage = clamp(min(inside_sun, 0.5) + min(outside_moon, 0.5), 0.0, 1.0);
+  }
   const float s = min(sin(theta) / sin(R), 1.0);
   return SunSample(coverage, sqrt(max(1.0 - s * s, 0.0)));
 }

@@ -24,6 +24,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "../atmosphere/lut_fixture.h"
+#include "astro/sky_positions.h"
+#include "astro/solar_eclipse.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/reference/path_tracer.h"
@@ -32,6 +34,9 @@
 #include "render/frame/tile_culling.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/texture.h"
+#include "scene/local_horizon.h"
+#include "scene/sky_clock.h"
+#include "scene/sun_disc.h"
 #include "tests/render/render_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
@@ -249,6 +254,70 @@ TEST(RendererSun, ASunSmallerThanAPixelKeepsItsLight) {
   const auto image = t.renderer.render_image(s, p);
   const auto e = integrated_irradiance(image, p);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(e[k], s.sun.irradiance_W_m2_nm[k], 0.05 * s.sun.irradiance_W_m2_nm[k]);
+}
+
+/// The Earth on 2017-08-21 at NASA's point of greatest eclipse, the sun
+/// placed by the ephemeris, the camera 2 m up looking at it.
+scene::Scene eclipse_scene(const astro::UtcTime& time) {
+  constexpr double kLatitudeDeg = 36.9667, kLongitudeDeg = -87.6667;
+  scene::Scene s = testing::one_planet_scene("eclipse test", "Earth", "earth-advanced", "earth-advanced");
+  s.camera.position_m = scene::direction_from_latitude_longitude(kLatitudeDeg * kDeg, kLongitudeDeg * kDeg) *
+                        (s.bodies[0].radius_m + 2.0);
+  s.sky_clock = scene::SkyClock{time, astro::Site{kLatitudeDeg, kLongitudeDeg, 150.0}, 0};
+  const scene::EphemerisSun sun =
+      scene::ephemeris_sun(s, *s.sky_clock, astro::AstroTime::from_utc(time), s.camera.position_m);
+  s.sun.direction = sun.direction;
+  s.sun.angular_radius_rad = sun.angular_radius_rad;
+  s.camera.orientation = look_rotation(sun.direction, scene::local_horizon_at(s.camera.position_m, s.bodies[0]).up);
+  s.camera.exposure = 1.0;
+  return s;
+}
+
+/// The sun's disc alone, Σ (frame − the same frame without the disc) ΔΩ, with the Moon or without it.
+std::array<double, 3> disc_irradiance(const scene::Scene& s, const warp::Projection& p, bool moon) {
+  RenderOptions with_disc = direct_colour();
+  with_disc.night_sky.moon = moon;
+  RenderOptions no_disc = with_disc;
+  no_disc.sun_disc = false;
+  TestRenderer a(with_disc), b(no_disc);
+  std::vector<float> image = a.renderer.render_image(s, p);
+  const std::vector<float> sky = b.renderer.render_image(s, p);
+  for (std::size_t i = 0; i < image.size(); ++i) image[i] -= sky[i];
+  return integrated_irradiance(image, p);
+}
+
+TEST(RendererSun, TheMoonCoversTheSunsDiscInAnEclipse) {
+  // 20 minutes before totality (73 % of the disc's area covered) and in totality, the disc ~34 pixels
+  // across and a sun smaller than a pixel (a Gaussian): the light left is the limb-darkened disc's
+  // (astro::limb_darkened_obscuration), per wavelength, from the pixels.
+  const astro::Site site{36.9667, -87.6667, 150.0};
+  const warp::PlanarProjection disc = warp::PlanarProjection::symmetric(96, 96, 1.5);
+  const warp::PlanarProjection point = warp::PlanarProjection::symmetric(24, 24, 30.0);
+  for (const astro::UtcTime& time :
+       {astro::UtcTime{2017, 8, 21, 18, 5, 0.0}, astro::UtcTime{2017, 8, 21, 18, 25, 30.0}}) {
+    const scene::Scene s = eclipse_scene(time);
+    const astro::SolarEclipseView view =
+        astro::solar_eclipse_view(astro::SkyPositions(astro::AstroTime::from_utc(time), site));
+    for (const warp::PlanarProjection* p : {&disc, &point}) {
+      const auto eclipsed = disc_irradiance(s, *p, true), whole = disc_irradiance(s, *p, false);
+      for (int k = 0; k < 3; ++k) {
+        const double left =
+            1.0 - astro::limb_darkened_obscuration(view.separation_rad, view.sun_radius_rad, view.moon_radius_rad,
+                                                   scene::limb_darkening_exponent(s.wavelengths_nm[k]));
+        const double ratio = eclipsed[k] / whole[k];
+        if (view.kind == astro::EclipseKind::total) {
+          EXPECT_LT(std::abs(ratio), 1e-5) << "totality: no sun, no rim (" << p->width() << " px)";
+        } else {
+          // The crescent's edges are antialiased over a pixel of a 34-pixel disc (measured 0.3 % of the light).
+          EXPECT_NEAR(ratio, left, 0.005) << s.wavelengths_nm[k] << " nm, " << p->width() << " px";
+        }
+      }
+    }
+    if (view.kind != astro::EclipseKind::total) {
+      ASSERT_EQ(view.kind, astro::EclipseKind::partial);
+      EXPECT_NEAR(view.obscuration, 0.73, 0.01);
+    }
+  }
 }
 
 // ---------------------------------------------------------------- agreement

@@ -1,0 +1,35 @@
+#pragma once
+// The Moon in front of the sun's disc: a solar eclipse as the sun's passes
+// draw it (docs/rendering.md, "Sun, shadows, eclipses"). From the scene's sky
+// clock, the Moon's topocentric place (ERFA's Moon98, geometric, as the Sun's)
+// in the camera's local horizon; where its disc overlaps the sun's, the pixels
+// of the sun's disc behind it are masked (shaders/render/sun_disc.glsl,
+// antialiased over the sun's pixel footprint), and a sun drawn as a Gaussian
+// (smaller than the pixels) keeps the share of the limb-darkened disc's light
+// the Moon leaves, per wavelength (astro::limb_darkened_obscuration).
+//
+// The test is one ephemeris evaluation and one angle: no Moon (no sky clock,
+// RenderOptions::moon off) or a separation ≥ r_sun + r_moon, and nothing
+// changes, bit for bit.
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "scene/scene.h"
+
+namespace zenith::render {
+
+struct SunOcculter {
+  glm::dvec3 direction{0.0, 0.0, 1.0};  ///< world, unit: the Moon's centre (geometric, as the sun's direction)
+  double angular_radius_rad = 0.0;      ///< 0: nothing in front of the sun this frame
+  double separation_rad = 0.0;          ///< between the discs' centres
+  /// Per wavelength: the share of the disc's light the Moon leaves (the
+  /// limb-darkened disc's, or the uniform disc's without limb darkening).
+  std::vector<double> uncovered;
+  bool any() const { return angular_radius_rad > 0.0; }
+};
+
+/// The Moon of `scene`'s sky clock in front of its sun, or none (see above).
+SunOcculter sun_occulter(const scene::Scene& scene, bool limb_darkening);
+
+}  // namespace zenith::render
