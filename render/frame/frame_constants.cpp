@@ -66,8 +66,10 @@ std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, con
 }
 
 double sun_reach_rad(const FrameConstants& frame) {
-  return std::min(core::kPi / 2,
-                  frame.sun_point_sigma > 0.0 ? 6.0 * frame.sun_point_sigma : frame.sun_radius + frame.sun_pixel_angle);
+  if (frame.sun_point_sigma > 0.0) return std::min(core::kPi / 2, 6.0 * frame.sun_point_sigma);
+  // In an eclipse the corona reaches kCoronaOuterRadii solar radii.
+  const double drawn = frame.occulter.any() ? kCoronaOuterRadii * frame.sun_radius : frame.sun_radius;
+  return std::min(core::kPi / 2, drawn + frame.sun_pixel_angle);
 }
 
 }  // namespace zenith::render

@@ -46,8 +46,8 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Pr
 /// albedo's RGB → reflectance weights).
 std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, const scene::Scene& scene);
 
-/// Where the sun can be drawn: a cone of the disc's radius plus a pixel (or
-/// 6σ of the Gaussian), at most π/2.
+/// Where the sun can be drawn: a cone of the disc's radius (in an eclipse, the
+/// corona's) plus a pixel, or 6σ of the Gaussian, at most π/2.
 double sun_reach_rad(const FrameConstants& frame);
 
 }  // namespace zenith::render

@@ -6,7 +6,9 @@
 // of the sun's disc behind it are masked (shaders/render/sun_disc.glsl,
 // antialiased over the sun's pixel footprint), and a sun drawn as a Gaussian
 // (smaller than the pixels) keeps the share of the limb-darkened disc's light
-// the Moon leaves, per wavelength (astro::limb_darkened_obscuration).
+// the Moon leaves, per wavelength (astro::limb_darkened_obscuration). The
+// corona is drawn around a disc the Moon overlaps (Baumbach's profile,
+// sun_disc.glsl), out to kCoronaOuterRadii.
 //
 // The test is one ephemeris evaluation and one angle: no Moon (no sky clock,
 // RenderOptions::moon off) or a separation ≥ r_sun + r_moon, and nothing
@@ -18,6 +20,11 @@
 #include "scene/scene.h"
 
 namespace zenith::render {
+
+/// How far from the sun's centre the corona is drawn in an eclipse, in solar
+/// radii (shaders/render/sun_disc.glsl's kCoronaOuterRadii): beyond it, Baumbach's
+/// profile is under 1e-9 of the disc.
+inline constexpr double kCoronaOuterRadii = 6.0;
 
 struct SunOcculter {
   glm::dvec3 direction{0.0, 0.0, 1.0};  ///< world, unit: the Moon's centre (geometric, as the sun's direction)

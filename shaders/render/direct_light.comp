@@ -64,12 +64,14 @@ void main() {
 #if SUN
     else {
       const SunSample s = sun_sample(ray);
-      if (s.weight > 0.0)
+      if (s.weight > 0.0 || s.corona > 0.0)
         for (int i = 0; i < wavelength_count; ++i) {
 #if LIMB_DARKENING
-          rgb += sun_spectrum[i].xyz * (pow(max(s.mu, 1e-4), sun_spectrum[i].w) * s.weight);
+          // The corona over the limb-darkened disc's mean radiance, 2 / (α + 2) of its centre's.
+          rgb += sun_spectrum[i].xyz * (pow(max(s.mu, 1e-4), sun_spectrum[i].w) * s.weight +
+                                        2.0 / (sun_spectrum[i].w + 2.0) * s.corona);
 #else
-          rgb += sun_spectrum[i].xyz * s.weight;
+          rgb += sun_spectrum[i].xyz * (s.weight + s.corona);
 #endif
         }
     }

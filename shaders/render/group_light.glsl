@@ -26,18 +26,21 @@ uniform vec4 rgb_from_lanes_b;
 /// Reflectance per wavelength of the group from a linear sRGB albedo.
 vec4 reflectance(vec3 albedo) { return albedo_from_r * albedo.r + albedo_from_g * albedo.g + albedo_from_b * albedo.b; }
 
-/// The sun's limb-darkened disc along `ray` (sun_disc.glsl); sun_centre_radiance
-/// is its centre radiance, so the disc integrates to the sun's irradiance.
+/// The sun's limb-darkened disc along `ray` (sun_disc.glsl), and in an eclipse
+/// its corona; sun_centre_radiance is the disc's centre radiance, so the disc
+/// integrates to the sun's irradiance.
 vec4 sun_disc(vec3 ray) {
 #if SUN_DISC
   const SunSample s = sun_sample(ray);
-  if (s.weight <= 0.0) return vec4(0.0);
+  if (s.weight <= 0.0 && s.corona <= 0.0) return vec4(0.0);
 #if LIMB_DARKENING
   const vec4 profile = pow(vec4(max(s.mu, 1e-4)), limb_exponent);
+  const vec4 mean_over_centre = 2.0 / (limb_exponent + 2.0);  // the limb-darkened disc's mean radiance
 #else
   const vec4 profile = vec4(1.0);
+  const vec4 mean_over_centre = vec4(1.0);
 #endif
-  return sun_centre_radiance * profile * s.weight;
+  return sun_centre_radiance * (profile * s.weight + mean_over_centre * s.corona);
 #else
   return vec4(0.0);
 #endif

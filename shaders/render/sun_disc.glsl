@@ -53,26 +53,49 @@ vec3 unrefracted(vec3 ray) {
 struct SunSample {
   float weight;  // coverage of the pixel by the disc, or the Gaussian's value; 0: no sun
   float mu;      // cosine at the sun's surface (limb darkening); 1 for the Gaussian
+  float corona;  // the corona's radiance over the disc's mean radiance (an eclipse only); 0: none
 };
+
+// The corona, drawn in a solar eclipse (sun_occulter_radius > 0), where it can
+// be seen: elsewhere it is ~1e-6 of the disc against an aureole of 1e-4 of it.
+// Its K + F brightness over the disc's mean radiance at ρ solar radii from the
+// centre (Baumbach 1937, Astron. Nachr. 263, 121):
+//   1e-6 (0.0532 ρ^−2.5 + 1.425 ρ^−7 + 2.565 ρ^−17),
+// ~1.1e-6 of the sun's light in all (half a full Moon), faded to nothing from
+// 4 to kCoronaOuterRadii solar radii (smoothstep: no edge at any exposure;
+// 10 % of the profile's light lies beyond 4). Spherically symmetric: no
+// streamers. Behind the Moon as the disc is.
+const float kCoronaOuterRadii = 6.0;  // render/frame/sun_occulter.h kCoronaOuterRadii
+
+float corona_over_mean_disc(float rho) {
+  if (rho >= kCoronaOuterRadii) return 0.0;
+  const float fade = 1.0 - smoothstep(4.0, kCoronaOuterRadii, rho);
+  return 1e-6 * (0.0532 * pow(rho, -2.5) + 1.425 * pow(rho, -7.0) + 2.565 * pow(rho, -17.0)) * fade;
+}
 
 SunSample sun_sample(vec3 ray) {
   const vec3 geometric = unrefracted(ray);
   const float theta = angle_between(geometric, sun_direction);
   if (sun_point_sigma > 0.0) {
     const float x = theta / sun_point_sigma;
-    return SunSample(x < 6.0 ? exp(-0.5 * x * x) : 0.0, 1.0);
+    return SunSample(x < 6.0 ? exp(-0.5 * x * x) : 0.0, 1.0, 0.0);
   }
   const float R = sun_draw_radius;
-  if (theta >= R + sun_pixel_angle) return SunSample(0.0, 1.0);
+  const bool eclipse = sun_occulter_radius > 0.0;
+  if (theta >= (eclipse ? kCoronaOuterRadii * R : R) + sun_pixel_angle) return SunSample(0.0, 1.0, 0.0);
   // Signed distances from the pixel's centre to the edges, in pixels: inside the sun, outside the Moon.
   const float inside_sun = (R - theta) / sun_pixel_angle;
   float coverage = clamp(inside_sun + 0.5, 0.0, 1.0);
-  if (sun_occulter_radius > 0.0) {
+  float corona = 0.0;
+  if (eclipse) {
     // What the Moon's disc leaves of the pixel: the strip between two near-parallel edges,
     // min(d_sun, ½) + min(d_moon, ½), so a Moon that holds the sun leaves no rim at its edge.
     const float outside_moon = (angle_between(geometric, sun_occulter_direction) - sun_occulter_radius) / sun_pixel_angle;
     coverage = clamp(min(inside_sun, 0.5) + min(outside_moon, 0.5), 0.0, 1.0);
+    // The corona where neither disc covers the pixel.
+    const float off_disc = clamp(0.5 - inside_sun, 0.0, 1.0);
+    corona = corona_over_mean_disc(max(theta / R, 1.0)) * min(off_disc, clamp(outside_moon + 0.5, 0.0, 1.0));
   }
   const float s = min(sin(theta) / sin(R), 1.0);
-  return SunSample(coverage, sqrt(max(1.0 - s * s, 0.0)));
+  return SunSample(coverage, sqrt(max(1.0 - s * s, 0.0)), corona);
 }

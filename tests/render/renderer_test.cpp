@@ -320,6 +320,58 @@ TEST(RendererSun, TheMoonCoversTheSunsDiscInAnEclipse) {
   }
 }
 
+TEST(RendererSun, TheCoronaSurroundsTheMoonInTotality) {
+  // Mid-totality 2017-08-21 with no air, so the corona is the only light: the pixels carry Baumbach's
+  // profile (shaders/render/sun_disc.glsl) over the sky outside the Moon, and it falls with ρ as it says.
+  const astro::Site site{36.9667, -87.6667, 150.0};
+  const astro::UtcTime time{2017, 8, 21, 18, 25, 30.0};
+  scene::Scene s = eclipse_scene(time);
+  s.bodies[0].atmosphere.reset();
+  RenderOptions options = direct_colour();
+  options.night_sky.stars = false;
+  options.night_sky.night_floor = false;
+  TestRenderer t(options);
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(256, 256, 4.0);  // R☉ ~17 pixels
+  const auto image = t.renderer.render_image(s, p);
+  expect_finite_non_negative(image, "corona");
+  const astro::SolarEclipseView view =
+      astro::solar_eclipse_view(astro::SkyPositions(astro::AstroTime::from_utc(time), site));
+  ASSERT_EQ(view.kind, astro::EclipseKind::total);
+  // Baumbach's K + F corona over the mean disc radiance, faded from 4 to 6 radii, as the shader draws it.
+  const auto profile = [](double rho) {
+    const double x = std::clamp((rho - 4.0) / 2.0, 0.0, 1.0), fade = 1.0 - x * x * (3.0 - 2.0 * x);
+    return 1e-6 * (0.0532 * std::pow(rho, -2.5) + 1.425 * std::pow(rho, -7.0) + 2.565 * std::pow(rho, -17.0)) * fade;
+  };
+  // Its irradiance over the sun's: ∫ profile dA / (π R²) outside the Moon's disc (radius r_m / r_s, its centre
+  // d / r_s from the sun's), on a polar grid in solar radii.
+  const double moon = view.moon_radius_rad / view.sun_radius_rad, d = view.separation_rad / view.sun_radius_rad;
+  double share = 0.0;
+  const int radii = 4000, angles = 360;
+  for (int i = 0; i < radii; ++i) {
+    const double rho = 1.0 + 5.0 * (i + 0.5) / radii;
+    for (int j = 0; j < angles; ++j) {
+      const double a = 2.0 * std::numbers::pi * (j + 0.5) / angles;
+      if (std::hypot(rho * std::cos(a) - d, rho * std::sin(a)) < moon) continue;
+      share += profile(rho) * rho * (5.0 / radii) * (2.0 * std::numbers::pi / angles) / std::numbers::pi;
+    }
+  }
+  const auto e = integrated_irradiance(image, p);
+  for (int k = 0; k < 3; ++k) {
+    const double expected = share * s.sun.irradiance_W_m2_nm[k];
+    // The inner corona falls as ρ^−17 across the pixel at the Moon's limb: 3 %.
+    EXPECT_NEAR(e[k], expected, 0.03 * expected) << s.wavelengths_nm[k] << " nm";
+  }
+  EXPECT_GT(share, 5e-7);
+  EXPECT_LT(share, 1.1e-6) << "the Moon hides the brightest ring";
+  // Along a row through the centre: 1.5 and 3 solar radii out, the profile's ratio (the limb darkening's
+  // mean over centre cancels).
+  const double pixels_per_radius = view.sun_radius_rad / (4.0 * kDeg / 256.0);
+  const auto at = [&](double rho) {
+    return pixel(image, 256, 128 + static_cast<int>(std::lround(rho * pixels_per_radius)), 128).g;
+  };
+  EXPECT_NEAR(at(1.5) / at(3.0), profile(1.5) / profile(3.0), 0.1 * profile(1.5) / profile(3.0));
+}
+
 // ---------------------------------------------------------------- agreement
 
 TEST(RendererAccuracy, SkyPixelsMatchTheCpuTableQueries) {
