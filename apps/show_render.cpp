@@ -32,6 +32,7 @@
 #include "render/lut/table_provider.h"
 #include "render/render_flags.h"
 #include "scene/frame_digest.h"
+#include "show/eclipse_plan.h"
 #include "show/show.h"
 #include "show/table_plan.h"
 #include "warp/dome_tiles.h"
@@ -420,7 +421,9 @@ void register_show_render(CLI::App& show_command) {
 void register_show_plan(CLI::App& show_command) {
   auto a = std::make_shared<ShowRenderArgs>();
   CLI::App* cmd = show_command.add_subcommand(
-      "plan", "Print the lookup-table sets a show needs at a frame rate, their size and which are cached");
+      "plan",
+      "Print the lookup-table sets a show needs at a frame rate, their size and which are cached, and for a show by "
+      "date and place the solar eclipse its sky holds or the next one its site sees");
   cmd->add_option("--show", a->show, "Show file (configs/shows/)")->required();
   cmd->add_option("--fps", a->fps, "Frame rate [Hz] in (0, 1000] (default: the show's)");
   add_table_options(cmd, a->tables.tables, a->tables.orders, a->tables.cache_dir);
@@ -431,6 +434,8 @@ void register_show_plan(CLI::App& show_command) {
     const show::TablePlan plan = plan_for(loaded, fps, table_request(a->tables));
     fmt::print(stderr, "{}", show::budget_warning(plan, a->table_budget_gib));
     fmt::print("{}", show::describe(plan));
+    if (const std::optional<show::EclipsePlan> eclipses = show::plan_eclipses(loaded))
+      fmt::print("{}", show::describe(*eclipses));
   });
 }
 

@@ -1,0 +1,36 @@
+#pragma once
+// The solar eclipse a show's sky passes through, or when its site sees the
+// next one (`zenith show plan`, docs/shows.md "Eclipses"). A show whose date
+// and place have no eclipse is not an error — the show simply has none — but
+// the planner says when the next one is (astro/eclipse_search.h).
+#include <optional>
+#include <string>
+
+#include "astro/civil_time.h"
+#include "astro/eclipse_search.h"
+#include "astro/sky_positions.h"
+#include "show/show.h"
+
+namespace zenith::show {
+
+/// How far ahead of the show's sky the next eclipse is looked for.
+inline constexpr double kEclipseSearchYears = 5.0;
+
+struct EclipsePlan {
+  astro::Site site;
+  astro::AstroTime first, last;  ///< the show's earliest and latest sky time
+  /// The first solar eclipse the site sees that is not over at `first`, within kEclipseSearchYears.
+  std::optional<astro::LocalSolarEclipse> eclipse;
+  /// Whether the show's sky time reaches it: its first contact before `last`.
+  bool during_show() const;
+};
+
+/// For a show whose scene gives "time" and "site"; none for one without a sky clock.
+std::optional<EclipsePlan> plan_eclipses(const Show& show);
+
+/// One or two lines: the eclipse in the show (kind, maximum, magnitude,
+/// obscuration, the Sun's altitude, contacts) or that there is none and when
+/// the next one is.
+std::string describe(const EclipsePlan& plan);
+
+}  // namespace zenith::show

@@ -1,0 +1,33 @@
+# `zenith show plan` for shows by date and place (docs/shows.md, "Eclipses"):
+# one whose sky passes through the total eclipse of 2017-08-21 at NASA's point
+# of greatest eclipse names it (maximum within seconds of NASA's 18:25:32
+# UTC); one a day later has none, which is not an error, and the plan says no
+# other is seen from there within its five years of search.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
+set(dir "${WORK_DIR}/show-plan-eclipse")
+file(REMOVE_RECURSE "${dir}")
+file(MAKE_DIRECTORY "${dir}")
+foreach(case "during;2017-08-21T18:00:00Z" "after;2017-08-22T00:00:00Z")
+  list(GET case 0 name)
+  list(GET case 1 start)
+  file(WRITE "${dir}/${name}.json"
+       "{\"zenith_show\": 1, \"name\": \"eclipse-${name}\", "
+       "\"scene\": \"${SOURCE_DIR}/configs/scenes/earth-eclipse-2017-totality.json\", \"fps\": 30, "
+       "\"time\": {\"start\": \"${start}\", \"time_rate\": 60, \"end_s\": 60}}\n")
+endforeach()
+execute_process(COMMAND ${ZENITH} show plan --show "${dir}/during.json" --tables small
+                RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "show plan failed (${rc}):\n${stdout}\n${err}")
+endif()
+foreach(needle "holds a total solar eclipse, maximum 2017-08-21 18:25:" "the Sun 63.9° up"
+               "contacts 2017-08-21 16:56:0")
+  expect_mentions("${stdout}" "${needle}" "the plan")
+endforeach()
+execute_process(COMMAND ${ZENITH} show plan --show "${dir}/after.json" --tables small
+                RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "show plan of a show without an eclipse failed (${rc}):\n${stdout}\n${err}")
+endif()
+expect_mentions("${stdout}" "eclipse: none at 36.9667°, -87.6667° during the show's sky time" "the plan")
+expect_mentions("${stdout}" "none seen from there within 5 years" "the plan")
