@@ -15,19 +15,21 @@ foreach(case "during;2017-08-21T18:00:00Z" "after;2017-08-22T00:00:00Z")
        "\"scene\": \"${SOURCE_DIR}/configs/scenes/earth-eclipse-2017-totality.json\", \"fps\": 30, "
        "\"time\": {\"start\": \"${start}\", \"time_rate\": 60, \"end_s\": 60}}\n")
 endforeach()
-execute_process(COMMAND ${ZENITH} show plan --show "${dir}/during.json" --tables small
-                RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "show plan failed (${rc}):\n${stdout}\n${err}")
-endif()
+# The plan of show NAME into `out`; fails the test if the command does.
+function(show_plan name out)
+  execute_process(COMMAND ${ZENITH} show plan --show "${dir}/${name}.json" --tables small
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "show plan of ${name}.json failed (${rc}):\n${stdout}\n${err}")
+  endif()
+  set(${out} "${stdout}" PARENT_SCOPE)
+endfunction()
+
+show_plan(during stdout)
 foreach(needle "holds a total solar eclipse, maximum 2017-08-21 18:25:" "the Sun 63.9° up"
                "contacts 2017-08-21 16:56:0")
   expect_mentions("${stdout}" "${needle}" "the plan")
 endforeach()
-execute_process(COMMAND ${ZENITH} show plan --show "${dir}/after.json" --tables small
-                RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "show plan of a show without an eclipse failed (${rc}):\n${stdout}\n${err}")
-endif()
+show_plan(after stdout)
 expect_mentions("${stdout}" "eclipse: none at 36.9667°, -87.6667° during the show's sky time" "the plan")
 expect_mentions("${stdout}" "none seen from there within 5 years" "the plan")
