@@ -1,9 +1,9 @@
 #pragma once
 // The sky of a solar eclipse from an atmosphere's lookup tables and the
-// Moon's shadow (astro/moon_shadow.h; docs/rendering.md, "Eclipses"). The
-// CPU form of the renderer's eclipsed sky-view fill
-// (shaders/render/sky_view.comp, ECLIPSE_SKY), and what `zenith validate
-// eclipse` holds against the path tracer with the Moon in front of the disc.
+// Moon's shadow (astro/moon_shadow.h; docs/validation.md, "Eclipses"): what
+// `zenith validate eclipse` holds against the path tracer with the Moon in
+// front of the disc, and the sum the renderer's sky-view fill is to run (it
+// does not yet: docs/rendering.md, "Sun, shadows, eclipses").
 //
 // Along the view ray from x to its end e, cut at x = p_0, p_1, …, p_N = e,
 // each table term S (single Rayleigh, single Mie, multiple) splits by the

@@ -1,5 +1,5 @@
 #pragma once
-// The Moon's shadow on the air during a solar eclipse (docs/rendering.md,
+// The Moon's shadow on the air during a solar eclipse (docs/validation.md,
 // "Eclipses"): for any point of the air, the share of the Sun's light that
 // still reaches it directly, and the share of the light that reaches it after
 // more than one scattering.
@@ -23,12 +23,11 @@
 // scattering that p sends along v is taken as the tables' (the uneclipsed
 // sky's) times V̄(p, v), the share the Moon leaves of the light arriving at p,
 // each direction weighted as p scatters it along v:
-//   V̄(p, v) = ∫ w(ω·v) L_ecl(p, ω) dω / ∫ w(ω·v) L(p, ω) dω,   w = 1 + (ω·v)²
-// (Rayleigh's angular shape; the aerosols' forward peak is left out), L the
-// light arriving at p from direction ω, computed from the tables along rays
-// over a Fibonacci sphere (astro/eclipsed_sky.h, arriving_light): the single
-// scattering and the sunlit ground, so V̄ is the second order's share, given
-// to every order (MoonShadowOptions::iterations). The weight is the phase
+//   V̄(p, v) = ∫ P(ω·v) L_ecl(p, ω) dω / ∫ P(ω·v) L(p, ω) dω,
+// L the light arriving at p from direction ω, computed from the tables along
+// rays over a Fibonacci sphere (astro/eclipsed_sky.h, arriving_light): the
+// single scattering and the sunlit ground, so V̄ is the second order's share,
+// given to every order (MoonShadowOptions::iterations). P is the phase
 // function of the air at p, Rayleigh's and the aerosols' by their scattering
 // coefficients there, to its Legendre terms l ≤ 2 (Rayleigh's are exact; an
 // aerosol's forward peak is cut, its asymmetry kept):
@@ -80,8 +79,8 @@ struct MoonShadowOptions {
   /// 1: V̄ from the once-scattered light. Each more pass adds to the light
   /// arriving at p the multiple scattering weighted by the V̄ before — the
   /// higher orders' own share — but over-weights it: at mid-totality on
-  /// 2017-08-21 two passes put the zenith 90 % above the path tracer at
-  /// 550 nm, one pass 9 % below it (docs/validation.md, "Eclipses").
+  /// 2017-08-21 two passes put the zenith 89 % above the path tracer at
+  /// 550 nm, one pass 7 % below it (docs/validation.md, "Eclipses").
   int iterations = 1;
   unsigned threads = 0;  ///< 0: all
 };
