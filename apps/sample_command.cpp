@@ -71,9 +71,10 @@ std::vector<ViewDirection> grid_directions(const std::string& grid) {
 /// `a.eclipse_at` seen from `a.site` (sampling.h's place_sun_and_moon), after the command line's checks.
 void place_eclipse(const SampleArgs& a, const atmosphere::AtmosphereModel& model, SamplingRequest& r) {
   if (a.site.size() != 2) throw std::invalid_argument("--eclipse-at needs --site LATITUDE,LONGITUDE [deg]");
-  if (a.method != "reference")
+  if (a.method != "reference" && a.quantity == "irradiance")
     throw std::invalid_argument(
-        "--eclipse-at: the lookup tables do not hold the Moon's shadow; use --method reference (the path tracer)");
+        "--eclipse-at with --method lut gives radiance and transmittance; the eclipsed ground irradiance is "
+        "--method reference's (the path tracer)");
   const astro::Site site{a.site[0], a.site[1], std::min(a.altitude_m, 10000.0)};
   const astro::SkyPositions sky(astro::AstroTime::from_utc(astro::parse_utc_time(a.eclipse_at)), site);
   place_sun_and_moon(sky, model, r);
@@ -133,11 +134,12 @@ void register_sample_command(CLI::App& app) {
                          ->check(CLI::Range(0.0, 180.0));
   auto* sun_azimuth = cmd->add_option("--sun-azimuth-deg", args->sun_azimuth_deg, "Sun azimuth [deg]")
                           ->check(CLI::Range(-360.0, 360.0));
-  auto* eclipse =
-      cmd->add_option("--eclipse-at", args->eclipse_at,
-                      "UTC instant (YYYY-MM-DDThh:mm[:ss]Z): the Sun and the Moon then, seen from --site, with the "
-                      "Moon in front of the limb-darkened disc (a solar eclipse's sky; --method reference); azimuths "
-                      "count from north through east");
+  auto* eclipse = cmd->add_option(
+      "--eclipse-at", args->eclipse_at,
+      "UTC instant (YYYY-MM-DDThh:mm[:ss]Z): the Sun and the Moon then, seen from --site, with the "
+      "Moon in front of the limb-darkened disc (a solar eclipse's sky: the tables with the Moon's shadow, or the "
+      "path tracer with --method reference); azimuths "
+      "count from north through east");
   eclipse->excludes(sun_zenith)->excludes(sun_azimuth);
   cmd->add_option("--site", args->site, "LATITUDE,LONGITUDE [deg] of --eclipse-at")
       ->delimiter(',')

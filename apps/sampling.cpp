@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "astro/eclipsed_sky.h"
+#include "astro/moon_shadow.h"
 #include "astro/solar_eclipse.h"
 #include "atmosphere/constants.h"
 #include "atmosphere/reference/geometry.h"
@@ -57,7 +59,17 @@ std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequ
   if (r.method == SamplingMethod::Tables) {
     const render::ObtainedTables t = render::obtain_tables(model, r.tables);
     const lut::TableQueries queries(model, t.tables);
-    samples = sample_radiance(queries, r.geometry, r.directions);
+    if (r.occulter.radius_m > 0.0) {
+      // A solar eclipse: the tables with the Moon's shadow over them (astro/eclipsed_sky.h).
+      const Vec3 observer = r.geometry.observer_m(model);
+      const astro::EclipseGeometry g{r.occulter.centre_m, r.occulter.radius_m, r.geometry.sun_direction(),
+                                     r.sun_angular_radius_deg * core::kDeg, r.limb_exponents};
+      const astro::MoonShadow shadow(g, queries, model, observer);
+      for (const ViewDirection& d : r.directions)
+        samples.push_back({d, astro::eclipsed_sky_radiance(queries, model, shadow, observer, view_vector(d)), {}});
+    } else {
+      samples = sample_radiance(queries, r.geometry, r.directions);
+    }
   } else {
     core::ProgressBar bar("reference");
     const Vec3 observer = r.geometry.observer_m(model);
