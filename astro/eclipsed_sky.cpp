@@ -7,10 +7,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/units.h"
+
 namespace zenith::astro {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 using Channels = std::array<double, atmosphere::lut::kMaxChannels>;
 
 /// The three table terms at one point of a ray, carried to its start: T(x, p) S(p).
@@ -120,7 +122,7 @@ ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereMod
   CarriedTerms near = ray.carried(0, all_orders);
   for (int k = 0; k < ray.segments(); ++k) {
     const CarriedTerms far = ray.carried(k + 1, all_orders);
-    const glm::dvec3 middle = ray.middle(k);
+    const MoonShadow::Place middle = shadow.place(ray.middle(k));
     for (std::size_t i = 0; i < channels; ++i) {
       const double single = std::max(0.0, near.rayleigh[i] - far.rayleigh[i]) * phase_r +
                             std::max(0.0, near.mie[i] - far.mie[i]) * model.mie_phase(i, ray.nu());
@@ -136,10 +138,11 @@ ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereMod
   if (ray.hits_ground()) {
     // Lambertian ground: ρ/π (E_sun V + E_sky V̄), carried to the ray's start.
     const SegmentedRay::Ground e = ray.ground(shadow.geometry().sun_direction);
+    const MoonShadow::Place ground = shadow.place(e.point_m);
     for (std::size_t i = 0; i < channels; ++i) {
       const double carried = e.transmittance[i] * model.ground_albedo[i] / kPi;
       light.daylight[i] += carried * e.direct[i];
-      light.eclipsed[i] += carried * e.direct[i] * shadow.direct_light(e.point_m, i);
+      light.eclipsed[i] += carried * e.direct[i] * shadow.direct_light(ground, i);
       if (!all_orders) continue;
       light.daylight[i] += carried * e.sky[i];
       light.eclipsed[i] += carried * e.sky[i] * shadow.skylight_left(e.point_m, i);

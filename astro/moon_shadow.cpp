@@ -15,11 +15,12 @@
 #include "atmosphere/lut/gauss_legendre.h"
 #include "core/parallel_for.h"
 #include "core/strings.h"
+#include "core/units.h"
 
 namespace zenith::astro {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -95,8 +96,8 @@ MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQue
   ground_radius_m_ = model.ground_radius_m;
   rayleigh_density_ = model.rayleigh_density;
   mie_density_ = model.mie_density;
+  const auto r = legendre_k1_k2([&](double x) { return model.rayleigh_phase_function(x); });  // one for all λ
   for (std::size_t i = 0; i < wavelengths_; ++i) {
-    const auto r = legendre_k1_k2([&](double x) { return model.rayleigh_phase_function(x); });
     const auto m = legendre_k1_k2([&](double x) { return model.mie_phase(i, x); });
     rayleigh_.push_back({model.rayleigh_scattering_m1[i], r.first, r.second});
     mie_.push_back({model.mie_scattering_m1[i], m.first, m.second});
@@ -221,10 +222,15 @@ double MoonShadow::profile_at(double x, std::size_t i) const {
   return (1.0 - t) * profile_[k * wavelengths_ + i] + t * profile_[(k + 1) * wavelengths_ + i];
 }
 
-double MoonShadow::direct_light(const glm::dvec3& p, std::size_t i) const { return profile_at(place(p).limb_rad, i); }
+double MoonShadow::direct_light(const glm::dvec3& p, std::size_t i) const { return direct_light(place(p), i); }
+
+double MoonShadow::direct_light(const Place& place, std::size_t i) const { return profile_at(place.limb_rad, i); }
 
 double MoonShadow::scattered_light(const glm::dvec3& p, const glm::dvec3& direction, std::size_t i) const {
-  const Place place = this->place(p);
+  return scattered_light(place(p), direction, i);
+}
+
+double MoonShadow::scattered_light(const Place& place, const glm::dvec3& direction, std::size_t i) const {
   if (std::isinf(place.limb_rad)) return 1.0;
   const double h = std::clamp(place.altitude_m, 0.0, options_.field_altitudes_m.back());
   const Scatterer air[2] = {{rayleigh_[i].scattering_m1 * rayleigh_density_(h), rayleigh_[i].k1, rayleigh_[i].k2},
@@ -291,7 +297,7 @@ bool MoonShadow::still_fits(const EclipseGeometry& g, const glm::dvec3& camera_m
   const double distance = glm::length(g.moon_centre_m - camera_m);
   const double moon_radius = std::asin(std::min(1.0, g.moon_radius_m / distance));
   const double zenith = std::acos(std::clamp(glm::dot(glm::normalize(camera_m), g.sun_direction), -1.0, 1.0));
-  constexpr double kRelative = 1e-4, kZenith_rad = 0.2 * kPi / 180.0;
+  constexpr double kRelative = 1e-4, kZenith_rad = 0.2 * core::kDeg;
   return g.limb_exponents == geometry_.limb_exponents &&
          std::abs(moon_radius / moon_radius_0_rad_ - 1.0) <= kRelative &&
          std::abs(g.sun_angular_radius_rad / geometry_.sun_angular_radius_rad - 1.0) <= kRelative &&

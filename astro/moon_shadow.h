@@ -117,6 +117,10 @@ class MoonShadow {
     double altitude_m;
   };
   Place place(const glm::dvec3& point_m) const;
+  /// direct_light and scattered_light at a point already placed (every
+  /// wavelength of a point shares its place).
+  double direct_light(const Place& place, std::size_t wavelength) const;
+  double scattered_light(const Place& place, const glm::dvec3& direction, std::size_t wavelength) const;
 
   /// The same shadow with `geometry` seen from `camera_m`: whether the tables
   /// still hold (the same limb exponents, r_m0 and r_s within 1e-4 relative,
