@@ -170,9 +170,14 @@ std::vector<float> MoonShadow::field_pass(const atmosphere::lut::TableQueries& t
       return;
     }
     const glm::dvec3 p = line - (b - std::sqrt(disc)) * s;
+    // The directions in the node's own frame (up, the sun's azimuth): as the shadow moves over the planet
+    // the rays keep their place relative to the node's horizon and sun, so no ray crosses the horizon
+    // from one frame to the next and the field changes smoothly with the eclipse.
+    const glm::dvec3 up = glm::normalize(p), toward_sun = across(up, s), side = glm::cross(up, toward_sun);
     // Sums of L, L ω and L ωωᵀ over the directions, eclipsed then daylight, per wavelength.
     std::vector<std::array<double, 20>> sums(wavelengths_, std::array<double, 20>{});
-    for (const glm::dvec3& d : directions) {
+    for (const glm::dvec3& local : directions) {
+      const glm::dvec3 d = local.x * toward_sun + local.y * side + local.z * up;
       const ArrivingLight l = arriving_light(tables, model, *this, p, d, o.segments, all_orders);
       const double w[3] = {glm::dot(d, e1_), glm::dot(d, e2_), glm::dot(d, s)};
       const double moments[10] = {1.0,         w[0],        w[1],        w[2],        w[0] * w[0],
@@ -249,6 +254,12 @@ double MoonShadow::skylight_left(const glm::dvec3& ground_m, std::size_t i) cons
 double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, std::size_t i,
                               std::span<const Scatterer> scatterers) const {
   const MoonShadowOptions& o = options_;
+  // Beyond the penumbra the nodes' edge holds light arriving from inside it;
+  // farther out, over one more penumbra radius, V̄ eases to 1, so a shadow
+  // that first reaches the air a camera sees changes nothing at once.
+  const double reach = std::hypot(place.across_m[0], place.across_m[1]) / field_end_m_;
+  if (reach >= 2.0) return 1.0;
+  const double fade = reach <= 1.0 ? 0.0 : (reach - 1.0) * (reach - 1.0) * (3.0 - 2.0 * (reach - 1.0));
   // Node coordinates: q·e1 = end t|t| over [−1, 1], |q·e2| = end t² over [0, 1]: crowded toward the axis.
   const double u = std::clamp(place.across_m[0] / field_end_m_, -1.0, 1.0);
   const double fu = 0.5 * (1.0 + std::copysign(std::sqrt(std::abs(u)), u)) * double(o.field_across - 1);
@@ -290,7 +301,7 @@ double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, s
     daylight += t.scattering_m1 * std::max(0.0, weighted(1.0, values + 10, values + 13, t));
   }
   if (!(daylight > 0.0)) return 1.0;
-  return std::clamp(eclipsed / daylight, 0.0, 1.0);
+  return std::clamp(eclipsed / daylight, 0.0, 1.0) * (1.0 - fade) + fade;
 }
 
 bool MoonShadow::still_fits(const EclipseGeometry& g, const glm::dvec3& camera_m) const {
