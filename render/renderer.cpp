@@ -277,6 +277,8 @@ void Renderer::choose_sky_view(Frame& frame) const {
     pass.sky_view =
         sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(), pass.top_radius_m, glm::dot(up, frame.sun));
     if (!pass.sky_view) continue;
+    // The Moon's shadow on the air of the sky clock's planet (render/frame/sun_occulter.h).
+    pass.eclipse_sky = frame.occulter.shadow && scene.sky_clock && pass.body == static_cast<int>(scene.sky_clock->body);
     // The Moon's own table where it is as accurate for the Moon's cosine; else
     // its passes read the 4D tables in the sky-view tiles.
     pass.moon_sky_view = pass.moonlit && sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(),
@@ -300,6 +302,12 @@ void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
     if (read)
       timer.gpu("sky-view table",
                 [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius); });
+    if (read && pass.eclipse_sky) {
+      follow_moon_shadow(frame, pass, timer);
+      timer.gpu("eclipse-sky table",
+                [&] { pass.gpu->fill_eclipse_sky(frame.scene.camera.position_m - planet.position_m); });
+      stats_.eclipse_sky = true;
+    }
     if (pass.moon_sky_view)
       timer.gpu("sky-view table, moonlight", [&] {
         const FrameLight& moon = *frame.moon();
@@ -309,16 +317,37 @@ void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
   }
 }
 
+void Renderer::follow_moon_shadow(const Frame& frame, const AtmospherePass& pass, PassTimer& timer) {
+  const scene::Body& planet = frame.scene.bodies[static_cast<std::size_t>(pass.body)];
+  const glm::dvec3 camera = frame.scene.camera.position_m - planet.position_m;
+  EclipseSkyTable& table = pass.gpu->eclipse_sky();
+  if (table.follow(*frame.occulter.shadow, camera)) return;
+  const auto start = std::chrono::steady_clock::now();
+  timer.cpu("moon's shadow", [&] {
+    const atmosphere::AtmosphereModel& model = planet.atmosphere->loaded.model;
+    ++stats_.table_sets_requested;
+    const atmosphere::lut::LookupTables tables = table_source_(model);
+    const atmosphere::lut::TableQueries queries(model, tables);
+    table.set_shadow(std::make_unique<astro::MoonShadow>(*frame.occulter.shadow, queries, model, camera));
+  });
+  ++stats_.moon_shadows_built;
+  stats_.moon_shadow_s += seconds_since(start);
+  spdlog::info("the Moon's shadow on the air of '{}' built in {:.2f} s", planet.name, stats_.moon_shadow_s);
+}
+
 void Renderer::start_programs(const Frame& frame) {
   Impl& im = *impl_;
   im.frame_programs.start(*im.builds, frame.variant);
-  for (const AtmospherePass& pass : frame.passes)
+  for (const AtmospherePass& pass : frame.passes) {
     if (pass.sky_view) pass.gpu->start_sky_view_program();
+    if (pass.eclipse_sky) pass.gpu->eclipse_sky().start_program();
+  }
   for (const BandTiles& band : *frame.bands)
     for (std::size_t a = 0; a < band.lists.size(); ++a) {
       const GpuAtmosphere* gpu = frame.passes[a].gpu;
       if (band.lists[a].gbuffer.count > 0) gpu->start_gbuffer_path_program(frame.variant);
-      for (const auto& [variant, list] : band.lists[a].one_pass) gpu->start_tile_program(frame.variant, variant);
+      for (const auto& [variant, list] : band.lists[a].one_pass)
+        gpu->start_tile_program(frame.variant, variant, frame.passes[a].eclipse_sky);
     }
 }
 

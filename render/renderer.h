@@ -51,8 +51,9 @@
 
 namespace zenith::render {
 
-class PassTimer;   // render/frame/pass_timer.h
-struct BandTiles;  // render/frame/tile_classification.h
+class PassTimer;        // render/frame/pass_timer.h
+struct BandTiles;       // render/frame/tile_classification.h
+struct AtmospherePass;  // render/frame/frame_in_progress.h
 namespace gl {
 class Texture;  // render/gl/texture.h
 }  // namespace gl
@@ -94,6 +95,13 @@ struct FrameStats {
   /// (the first frame of a variant), with how many were built.
   double tables_s = 0.0, programs_s = 0.0;
   int programs_built = 0;
+  /// Of `seconds`: building the Moon's shadow on an atmosphere in a solar
+  /// eclipse (render/frame/eclipse_sky_table.h), and how many were built (0
+  /// where the one held still fit).
+  double moon_shadow_s = 0.0;
+  int moon_shadows_built = 0;
+  /// An atmosphere's sky read the eclipse-sky table (the Moon's shadow on its air).
+  bool eclipse_sky = false;
   /// The night sky's pass (render/night/star_pass.h): whether it drew, its
   /// stars, the floor, the Moon's disc and the stars' own test.
   NightSkyStats night_sky;
@@ -188,8 +196,12 @@ class Renderer {
   /// parallel shader compile builds them at once (render/gl/program_builds.h;
   /// RenderOptions::serial_compile: one at a time, where first used).
   void start_programs(const Frame& frame);
-  /// The sky-view table of each atmosphere choose_sky_view chose (the sun's; the Moon's where chosen).
+  /// The sky-view table of each atmosphere choose_sky_view chose (the sun's;
+  /// the Moon's where chosen), and the eclipse-sky table where the Moon's shadow lies on its air.
   void fill_sky_view_tables(Frame& frame, PassTimer& timer);
+  /// The Moon's shadow on `pass`'s atmosphere for this frame's eclipse: the
+  /// one held, moved, while it fits; else built from the tables (TableSource).
+  void follow_moon_shadow(const Frame& frame, const AtmospherePass& pass, PassTimer& timer);
   /// What becomes of a band once its tiles are drawn: read back for a RowSink
   /// (render()), or copied into a texture (render_to_texture()).
   using BandOutput = std::function<void(const BandTiles& band, PassTimer& timer)>;

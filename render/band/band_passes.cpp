@@ -57,9 +57,15 @@ void draw_one_pass_tiles(FrameInProgress& frame, BandResources& resources, const
           variant.sun = false;
           variant.sky_view = variant.sky_view && pass.moon_sky_view;
         }
-        const ShaderProgram& p = pass.gpu->tile_program(frame.variant, variant);
+        // The Moon's shadow on the sun's sky (render/frame/eclipse_sky_table.h).
+        const bool eclipse_sky = light.is_sun() && pass.eclipse_sky && variant.sky_view;
+        const ShaderProgram& p = pass.gpu->tile_program(frame.variant, variant, eclipse_sky);
         frame.set_group_uniforms(p, g, light);
         pass.gpu->set_group(p, g);
+        if (eclipse_sky) {
+          pass.gpu->eclipse_sky().set_uniforms(p, g);
+          pass.gpu->eclipse_sky().bind(g);
+        }
         frame.set_the_body(p, static_cast<std::size_t>(pass.body));
         p.set_uniform("planet", pass.body);
         p.set_uniform("camera_top_power", static_cast<float>(pass.power_m2));

@@ -95,6 +95,7 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   eclipses_ = features.eclipses;
   defines_ = defines;
   defines.push_back({"ECLIPSES", "0"});  // the fill shades no surface
+  fill_defines_ = defines;
   sky_view_ = std::make_unique<SkyViewTable>(builds, defines, groups_.size());
   tile_defines_ = defines_;
   tile_defines_.insert(tile_defines_.end(), frame_defines.begin(), frame_defines.end());
@@ -139,7 +140,8 @@ std::vector<gl::ShaderDefine> GpuAtmosphere::gbuffer_path_defines(const FrameVar
   return defines;
 }
 
-std::vector<gl::ShaderDefine> GpuAtmosphere::tile_defines(const FrameVariant& frame, const TileVariant& v) const {
+std::vector<gl::ShaderDefine> GpuAtmosphere::tile_defines(const FrameVariant& frame, const TileVariant& v,
+                                                          bool eclipse_sky) const {
   FrameVariant f = frame;
   f.eclipses = frame.eclipses && eclipses_;
   std::vector<gl::ShaderDefine> defines = tile_defines_;
@@ -148,6 +150,10 @@ std::vector<gl::ShaderDefine> GpuAtmosphere::tile_defines(const FrameVariant& fr
                                  {"TILE_GROUND", std::to_string(static_cast<int>(v.ground))},
                                  {"TILE_OTHERS", std::to_string(v.others)},
                                  {"SUN", v.sun ? "1" : "0"}});
+  if (eclipse_sky && v.sky_view) {
+    defines.push_back({"ECLIPSE_SKY", "1"});
+    for (const gl::ShaderDefine& d : EclipseSkyTable::defines()) defines.push_back(d);
+  }
   return defines;
 }
 
@@ -155,16 +161,17 @@ const gl::ShaderProgram& GpuAtmosphere::gbuffer_path_program(const FrameVariant&
   return built_program(*builds_, "render/atmosphere_pass.comp", gbuffer_path_defines(frame));
 }
 
-const gl::ShaderProgram& GpuAtmosphere::tile_program(const FrameVariant& frame, const TileVariant& v) {
-  return built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v));
+const gl::ShaderProgram& GpuAtmosphere::tile_program(const FrameVariant& frame, const TileVariant& v,
+                                                     bool eclipse_sky) {
+  return built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v, eclipse_sky));
 }
 
 void GpuAtmosphere::start_gbuffer_path_program(const FrameVariant& frame) const {
   start_built_program(*builds_, "render/atmosphere_pass.comp", gbuffer_path_defines(frame));
 }
 
-void GpuAtmosphere::start_tile_program(const FrameVariant& frame, const TileVariant& v) const {
-  start_built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v));
+void GpuAtmosphere::start_tile_program(const FrameVariant& frame, const TileVariant& v, bool eclipse_sky) const {
+  start_built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v, eclipse_sky));
 }
 
 void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad,
@@ -176,6 +183,19 @@ void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, dou
     set_group(fill, g);
     sky_view_->fill_group(g, light);
   }
+}
+
+EclipseSkyTable& GpuAtmosphere::eclipse_sky() {
+  if (!eclipse_sky_)
+    eclipse_sky_ = std::make_unique<EclipseSkyTable>(*builds_, fill_defines_, groups_.size(), ground_radius_m_);
+  return *eclipse_sky_;
+}
+
+void GpuAtmosphere::fill_eclipse_sky(const glm::dvec3& camera_m) {
+  eclipse_sky().fill(camera_m, [&](const gl::ShaderProgram& fill, std::size_t g) {
+    bind_tables(g);
+    set_group(fill, g);
+  });
 }
 
 }  // namespace zenith::render

@@ -17,6 +17,7 @@
 #include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/sky_radiance_bound.h"
 #include "atmosphere/lut/sky_radiance_lower_bound.h"
+#include "render/frame/eclipse_sky_table.h"
 #include "render/frame/sky_view_table.h"
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
@@ -60,12 +61,14 @@ class GpuAtmosphere {
   double ground_radius_m() const { return ground_radius_m_; }
   /// atmosphere_tile.comp for tiles only this shell touches, compiled for the
   /// frame's variant and the tiles' (render/frame/tile_classification.h).
-  const gl::ShaderProgram& tile_program(const FrameVariant& frame, const TileVariant& variant);
+  /// With `eclipse_sky`, the SKY_VIEW variant that reads the eclipse-sky table too (ECLIPSE_SKY).
+  const gl::ShaderProgram& tile_program(const FrameVariant& frame, const TileVariant& variant,
+                                        bool eclipse_sky = false);
   /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).
   const gl::ShaderProgram& gbuffer_path_program(const FrameVariant& frame);
   /// Start building those programs (and the sky-view table's fill) with the
   /// frame's others, to be finished where first used.
-  void start_tile_program(const FrameVariant& frame, const TileVariant& variant) const;
+  void start_tile_program(const FrameVariant& frame, const TileVariant& variant, bool eclipse_sky = false) const;
   void start_gbuffer_path_program(const FrameVariant& frame) const;
   void start_sky_view_program() const { sky_view_->start_program(); }
   /// Sets `wavelength_group` (the model's parameters of group g are read from
@@ -91,6 +94,14 @@ class GpuAtmosphere {
   /// unit 0 and texture units 0–4 bound to its own images and tables.
   void fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad, std::size_t light = 0);
 
+  /// The Moon's shadow on this atmosphere and its eclipse-sky table
+  /// (render/frame/eclipse_sky_table.h), made on first use.
+  EclipseSkyTable& eclipse_sky();
+  /// Fills the eclipse-sky table for a camera at `camera_m` (planet-centred,
+  /// inside the shell) with the shadow it holds. Leaves image unit 0 and
+  /// texture units 0–4 bound to its own images and tables.
+  void fill_eclipse_sky(const glm::dvec3& camera_m);
+
   /// The most these tables can give per unit irradiance of a source
   /// (atmosphere/lut/sky_radiance_bound.h): the moonlight passes' test.
   const atmosphere::lut::SkyRadianceBound& radiance_bound() const { return radiance_bound_; }
@@ -110,12 +121,15 @@ class GpuAtmosphere {
   ModelBuffers model_buffers_;    // the model's parameters and constants (render/lut/shader_model.h)
   gl::Buffer texel_coordinates_;  // acos(μs_min) at TEXEL_SUN_THETA_MAX
   /// The defines of atmosphere_tile.comp for a variant, of atmosphere_pass.comp for a frame.
-  std::vector<gl::ShaderDefine> tile_defines(const FrameVariant& frame, const TileVariant& variant) const;
+  std::vector<gl::ShaderDefine> tile_defines(const FrameVariant& frame, const TileVariant& variant,
+                                             bool eclipse_sky) const;
   std::vector<gl::ShaderDefine> gbuffer_path_defines(const FrameVariant& frame) const;
   std::vector<gl::ShaderDefine> defines_, tile_defines_;  // atmosphere_pass.comp's; atmosphere_tile.comp's
   bool eclipses_ = true;                                  // AtmospherePassFeatures::eclipses
   gl::ProgramBuilds* builds_;                             // the programs, by text
   std::unique_ptr<SkyViewTable> sky_view_;
+  std::vector<gl::ShaderDefine> fill_defines_;  // the sky-view and eclipse-sky fills'
+  std::unique_ptr<EclipseSkyTable> eclipse_sky_;
   std::size_t table_bytes_ = 0;
   atmosphere::lut::LookupTables cpu_transmittance_;
   atmosphere::lut::SkyRadianceBound radiance_bound_;

@@ -1,5 +1,6 @@
 #include "render/frame/sun_occulter.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -7,10 +8,38 @@
 #include "astro/civil_time.h"
 #include "astro/sky_positions.h"
 #include "astro/solar_eclipse.h"
+#include "core/units.h"
 #include "scene/local_horizon.h"
 #include "scene/sun_disc.h"
 
 namespace zenith::render {
+
+namespace {
+
+/// The eclipse's geometry where the Moon's shadow can reach the air the camera
+/// sees: the camera within two penumbra radii (where V̄ reaches 1,
+/// astro/moon_shadow.h) plus the air's reach (the camera's horizon distance
+/// and the top of the atmosphere's) of the shadow's axis.
+std::optional<astro::EclipseGeometry> shadow_on_the_air(const scene::Scene& scene, const glm::dvec3& moon_direction,
+                                                        double moon_distance_m, double separation_rad,
+                                                        const std::vector<double>& limb_exponents) {
+  const scene::Body& planet = scene.bodies.at(scene.sky_clock->body);
+  if (!planet.atmosphere) return std::nullopt;
+  const atmosphere::AtmosphereModel& model = planet.atmosphere->loaded.model;
+  const glm::dvec3 camera = scene.camera.position_m - planet.position_m;
+  const double r = glm::length(camera), bottom = model.ground_radius_m, top = model.top_radius_m;
+  const double reach_m =
+      std::sqrt(std::max(0.0, (r - bottom) * (r + bottom))) + std::sqrt(std::max(0.0, (top - bottom) * (top + bottom)));
+  const double penumbra_m =
+      moon_distance_m *
+      std::tan(scene.sun.angular_radius_rad + std::asin(std::min(1.0, astro::kMoonRadius_km * 1e3 / moon_distance_m)));
+  if (separation_rad >= 0.5 * core::kPi || moon_distance_m * std::sin(separation_rad) >= 2.0 * penumbra_m + reach_m)
+    return std::nullopt;
+  return astro::EclipseGeometry{camera + moon_direction * moon_distance_m, astro::kMoonRadius_km * 1e3,
+                                glm::normalize(scene.sun.direction), scene.sun.angular_radius_rad, limb_exponents};
+}
+
+}  // namespace
 
 SunOcculter sun_occulter(const scene::Scene& scene, bool limb_darkening) {
   SunOcculter out;
@@ -24,14 +53,16 @@ SunOcculter sun_occulter(const scene::Scene& scene, bool limb_darkening) {
   // atan2(|a × b|, a · b): accurate for the small angles that matter here.
   const double separation = std::atan2(glm::length(glm::cross(direction, sun)), glm::dot(direction, sun));
   const double r_s = scene.sun.angular_radius_rad, r_m = moon.angular_radius_rad;
+  std::vector<double> limb_exponents;
+  for (double nm : scene.wavelengths_nm)
+    limb_exponents.push_back(limb_darkening ? scene::limb_darkening_exponent(nm) : 0.0);
+  out.shadow = shadow_on_the_air(scene, direction, moon.distance_km * 1e3, separation, limb_exponents);
   if (separation >= r_s + r_m) return out;
   out.direction = direction;
   out.angular_radius_rad = r_m;
   out.separation_rad = separation;
-  for (double nm : scene.wavelengths_nm) {
-    const double a = limb_darkening ? scene::limb_darkening_exponent(nm) : 0.0;
+  for (double a : limb_exponents)
     out.uncovered.push_back(1.0 - astro::limb_darkened_obscuration(separation, r_s, r_m, a));
-  }
   return out;
 }
 

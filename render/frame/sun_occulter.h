@@ -10,13 +10,20 @@
 // corona is drawn around a disc the Moon overlaps (Baumbach's profile,
 // sun_disc.glsl), out to kCoronaOuterRadii.
 //
+// Before the discs touch and after they part, the Moon's penumbra can already
+// lie on the air the camera sees (a few hundred kilometres around it): while
+// it is near enough to matter, `shadow` holds the eclipse's geometry for the
+// sky's passes (render/frame/eclipse_sky_table.h).
+//
 // The test is one ephemeris evaluation and one angle: no Moon (no sky clock,
-// RenderOptions::moon off) or a separation ≥ r_sun + r_moon, and nothing
-// changes, bit for bit.
+// RenderOptions::moon off) or a Moon whose shadow is far from the air in view,
+// and nothing changes, bit for bit.
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "astro/moon_shadow.h"
 #include "scene/scene.h"
 
 namespace zenith::render {
@@ -33,6 +40,11 @@ struct SunOcculter {
   /// Per wavelength: the share of the disc's light the Moon leaves (the
   /// limb-darkened disc's, or the uniform disc's without limb darkening).
   std::vector<double> uncovered;
+  /// The Moon's shadow may lie on the air the camera sees (the clock's planet
+  /// has an atmosphere, and the camera's distance from the shadow's axis is
+  /// under two penumbra radii plus the air's reach): its geometry centred on
+  /// that planet, world-oriented (astro/moon_shadow.h).
+  std::optional<astro::EclipseGeometry> shadow;
   bool any() const { return angular_radius_rad > 0.0; }
 };
 

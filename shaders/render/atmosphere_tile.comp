@@ -29,6 +29,12 @@
 //                (seen through it); 2: one may be inside the shell (aerial
 //                perspective, SKY_VIEW 0 only)
 //   SUN          1: the sun's disc can be in the tile
+// and, in the frames of a solar eclipse (render/frame/eclipse_sky_table.h),
+//   ECLIPSE_SKY  1 (SKY_VIEW 1 only): the Moon's shadow on the air: A and M
+//                times their shares left from the frame's eclipse-sky table
+//                (eclipse_sky.comp), the ground's skylight times the share
+//                left from the same table and its direct sun times V per
+//                pixel (moon_shadow.glsl); with its defines (EclipseSkyTable::defines())
 // Other defines: those of atmosphere_common.glsl, MULTIPLE_SCATTERING,
 // ECLIPSES, SUN_DISC, LIMB_DARKENING.
 #include "atmosphere_common.glsl"
@@ -38,6 +44,10 @@
 #include "surface_albedo.glsl"
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+
+#ifndef ECLIPSE_SKY
+#define ECLIPSE_SKY 0
+#endif
 
 // Something can lie behind the atmosphere in these tiles: light seen through T.
 #define BEHIND ((SUN && TILE_GROUND != 1) || TILE_OTHERS != 0)
@@ -49,6 +59,15 @@ layout(binding = SKY_VIEW_UNIT) uniform sampler2DArray sky_view_table;
 uniform int sky_view_layer_base;       // SKY_VIEW_LAYERS · wavelength group
 uniform float sky_view_theta_horizon;  // zenith angle of the geometric horizon at the camera [rad]
 
+#if ECLIPSE_SKY
+#include "moon_shadow.glsl"
+#include "eclipse_sky_mapping.glsl"
+/// The frame's eclipse-sky table (eclipse_sky.comp): ECLIPSE_SKY_LAYERS layers per group.
+layout(binding = ECLIPSE_SKY_UNIT) uniform sampler2DArray eclipse_sky_table;
+uniform int eclipse_sky_layer_base;        // ECLIPSE_SKY_LAYERS · wavelength group
+uniform vec3 eclipse_sky_h, eclipse_sky_w;  // its azimuth's axes: φ = 0 toward h, π/2 toward w
+#endif
+
 /// Variant 1's radiance: the camera is inside the shell and nothing but this
 /// planet's ground lies inside it along the ray; `behind` is the light of
 /// what lies beyond the shell.
@@ -59,11 +78,25 @@ vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albed
   const float norms = dot(ray_horizontal, ray_horizontal) * dot(sun_horizontal, sun_horizontal);
   // At the zenith or with the sun overhead every azimuth is the same direction.
   const float cos_phi = norms > 1e-12 ? dot(ray_horizontal, sun_horizontal) * inversesqrt(norms) : 1.0;
-  const vec2 uv = sky_view_uv(acos(clamp(mu_view, -1.0, 1.0)), cos_phi, sky_view_theta_horizon, own_ground);
+  const float theta = acos(clamp(mu_view, -1.0, 1.0));
+  const vec2 uv = sky_view_uv(theta, cos_phi, sky_view_theta_horizon, own_ground);
   const float layer = float(sky_view_layer_base + (own_ground ? SKY_VIEW_GROUND : SKY_VIEW_SKY));
   vec4 S = texture(sky_view_table, vec3(uv, layer));
 #if HAS_MIE
-  S += texture(sky_view_table, vec3(uv, layer + 1.0)) * vec4(model_mie_phase(real(dot(ray, sun_direction))));
+  vec4 S_mie = texture(sky_view_table, vec3(uv, layer + 1.0)) * vec4(model_mie_phase(real(dot(ray, sun_direction))));
+#endif
+#if ECLIPSE_SKY
+  // The shares the Moon's shadow leaves of A and M along this direction.
+  const vec2 e_uv = eclipse_sky_uv(theta, atan(dot(ray, eclipse_sky_w), dot(ray, eclipse_sky_h)),
+                                   sky_view_theta_horizon, own_ground);
+  const float e_layer = float(eclipse_sky_layer_base + (own_ground ? ECLIPSE_SKY_GROUND : ECLIPSE_SKY_SKY));
+  S *= texture(eclipse_sky_table, vec3(e_uv, e_layer));
+#if HAS_MIE
+  S_mie *= texture(eclipse_sky_table, vec3(e_uv, e_layer + 1.0));
+#endif
+#endif
+#if HAS_MIE
+  S += S_mie;
 #endif
   vec4 L = S * sun_irradiance;
 #if TILE_GROUND != 0
@@ -71,7 +104,15 @@ vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albed
   // tile these read the ground half's A and M, and are not used.
   const vec4 g_sun = texture(sky_view_table, vec3(uv, layer + 2.0));
   const vec4 g_sky = texture(sky_view_table, vec3(uv, layer + 3.0));
+#if ECLIPSE_SKY
+  // The Moon's shadow on the ground: V of the direct sun, the skylight's share left.
+  const ShadowPlace at_ground = shadow_place(ray * hit_distance, 0.0);
+  const vec4 ground = reflectance(albedo) *
+                      (g_sun * sun_visibility(ray * hit_distance, planet) * shadow_direct_light(at_ground) +
+                       g_sky * texture(eclipse_sky_table, vec3(e_uv, e_layer + 2.0)));
+#else
   const vec4 ground = reflectance(albedo) * (g_sun * sun_visibility(ray * hit_distance, planet) + g_sky);
+#endif
   if (own_ground) L += ground * sun_irradiance;
 #endif
 #if BEHIND && TILE_GROUND != 1

@@ -277,9 +277,9 @@ void precompute_every_variant(const gl::HeadlessContext& context) {
   }
 }
 
-/// The renderer's programs: a ground view, an eclipse seen from orbit and three
-/// atmospheres side by side, in a planar and a fisheye view under each set of
-/// options, and the other projection kinds once.
+/// The renderer's programs: a ground view, an eclipse seen from orbit and from
+/// inside the Moon's shadow, three atmospheres side by side, in a planar and a
+/// fisheye view under each set of options, and the other projection kinds once.
 void render_every_variant() {
   const PrecomputeOptions tables = testing::tiny_precompute_options();
   const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(48, 32, 70.0);
@@ -300,9 +300,10 @@ void render_every_variant() {
     Renderer renderer(options[i], [&](const AtmosphereModel& model) {
       return atmosphere::lut::precompute_tables_cpu(model, tables);
     });
-    // earth-dusk-greenwich at a night exposure: the night sky's pass (stars, floor).
-    for (const char* name :
-         {"earth-ground-view.json", "earth-moon.json", "three-worlds.json", "earth-dusk-greenwich.json"}) {
+    // earth-dusk-greenwich at a night exposure: the night sky's pass (stars, floor);
+    // the 2017 totality: the Moon's shadow on the sky (eclipse_sky.comp, ECLIPSE_SKY tiles).
+    for (const char* name : {"earth-ground-view.json", "earth-moon.json", "three-worlds.json",
+                             "earth-dusk-greenwich.json", "earth-eclipse-2017-totality.json"}) {
       scene::Scene s = scene::load_scene(scenes / name);
       if (s.sky_clock) s.camera.exposure = scene::kMaxExposure;
       renderer.render_image(s, planar);

@@ -1,0 +1,102 @@
+#pragma once
+// The sky of a solar eclipse as the renderer draws it (docs/rendering.md,
+// "Sun, shadows, eclipses"): the Moon's shadow on one atmosphere
+// (astro/moon_shadow.h, built on the CPU from the atmosphere's tables) and,
+// once per frame, the eclipse-sky table filled from it on the GPU
+// (shaders/render/eclipse_sky.comp): per direction from a camera inside the
+// shell, the share of the sky-view table's light the shadow leaves, for the
+// smooth part A and the single Mie part M of each wavelength. The one-pass
+// tiles that read the sky-view table multiply by it (atmosphere_tile.comp's
+// ECLIPSE_SKY variant), and the ground's skylight by the share left there
+// (a fifth layer); the ground's direct sun by the shadow's V per pixel
+// (shaders/render/moon_shadow.glsl), sharp at the umbra's edge.
+//
+// The shares vary over tens of degrees, so the table is coarse: 64 azimuths
+// all the way round (the shadow breaks the sky's symmetry about the sun's
+// vertical) × 32 zenith angles per half, 5 RGBA32F layers per group of 4
+// wavelengths; each texel sums 24 segments of its ray (astro/eclipsed_sky.h's
+// count) with the shadow at each segment's middle. The shadow itself, 1–2 s
+// of CPU, is kept while it still fits the eclipse (MoonShadow::still_fits:
+// the sun's zenith angle at the camera within 0.2°) and moved with the Moon.
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "astro/moon_shadow.h"
+#include "render/gl/program_builds.h"
+#include "render/gl/shader_program.h"
+#include "render/gl/texture.h"
+
+namespace zenith::render {
+
+class EclipseSkyTable {
+ public:
+  static constexpr int kAzimuthTexels = 64;  ///< ECLIPSE_SKY_AZIMUTH_TEXELS, all the way round
+  static constexpr int kZenithTexels = 32;   ///< ECLIPSE_SKY_ZENITH_TEXELS, per half
+  static constexpr int kLayersPerGroup = 5;  ///< ECLIPSE_SKY_LAYERS
+  static constexpr int kSegments = 24;       ///< ECLIPSE_SKY_SEGMENTS
+
+  /// The defines of eclipse_sky_mapping.glsl and moon_shadow.glsl (the shadow's table sizes).
+  static std::vector<gl::ShaderDefine> defines();
+
+  /// For an atmosphere of `groups` wavelength groups over a ground of radius
+  /// `ground_radius_m`; the fill program, with the atmosphere's defines, is one
+  /// of `builds` (which outlives this). Needs a current GL context.
+  EclipseSkyTable(gl::ProgramBuilds& builds, std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups,
+                  double ground_radius_m);
+
+  /// Keeps the shadow for the eclipse `geometry` seen from `camera_m`
+  /// (planet-centred): true where the one held still fits it (moved to it),
+  /// false where a new one is needed (set_shadow).
+  bool follow(const astro::EclipseGeometry& geometry, const glm::dvec3& camera_m);
+  /// Takes a new shadow and uploads its tables.
+  void set_shadow(std::unique_ptr<astro::MoonShadow> shadow);
+  const astro::MoonShadow* shadow() const { return shadow_.get(); }
+
+  /// Starts building the fill program (with the frame's other programs).
+  void start_program() const;
+  /// Fills every group's layers for a camera at `camera_m` (planet-centred,
+  /// world-oriented; inside the shell) with the shadow held. `bind_group(g)`
+  /// binds group g's atmosphere tables (GpuAtmosphere::bind_tables) and sets
+  /// its `wavelength_group`.
+  template <class BindGroup>
+  void fill(const glm::dvec3& camera_m, BindGroup bind_group) {
+    prepare_fill(camera_m);
+    for (std::size_t g = 0; g < groups_; ++g) {
+      bind_group(fill_program(), g);
+      fill_group(g);
+    }
+  }
+
+  /// The uniforms of moon_shadow.glsl and the tile pass's eclipse-sky
+  /// lookups for wavelength group g, on `program`.
+  void set_uniforms(const gl::ShaderProgram& program, std::size_t group) const;
+  /// Binds the table (ECLIPSE_SKY_UNIT) and group g's shadow tables (SHADOW_PROFILE_UNIT, SHADOW_FIELD_UNIT).
+  void bind(std::size_t group) const;
+
+  const gl::ShaderProgram& fill_program() const;
+
+ private:
+  void prepare_fill(const glm::dvec3& camera_m);
+  void fill_group(std::size_t group);
+  /// The shadow's frame at the camera: its offset from the axis and distance along it.
+  void set_shadow_frame(const gl::ShaderProgram& program) const;
+
+  gl::ProgramBuilds* builds_;
+  std::vector<gl::ShaderDefine> defines_;  // the fill program's
+  std::size_t groups_ = 1;
+  double ground_radius_m_ = 0.0;
+  gl::Texture table_;
+  std::unique_ptr<astro::MoonShadow> shadow_;
+  std::vector<gl::Texture> profiles_, fields_;  // per group
+  std::vector<std::array<float, 4>> mie_k1_, mie_k2_;
+  float rayleigh_k1_ = 0.0f, rayleigh_k2_ = 0.0f;
+  glm::dvec3 camera_m_{0.0}, up_{0.0, 0.0, 1.0}, azimuth_h_{1.0, 0.0, 0.0}, azimuth_w_{0.0, 1.0, 0.0};
+  double theta_horizon_rad_ = 0.0;
+};
+
+}  // namespace zenith::render
