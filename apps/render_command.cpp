@@ -67,6 +67,7 @@ render::RenderOptions make_render_options(const RenderArgs& a) {
   options.atmosphere.eclipses = !a.no_eclipses;
   options.atmosphere.fp64 = a.fp64;
   options.colour = image::parse_colour_mapping(a.colour);
+  options.background_shadow_builds = a.window;  // a window's frames are live: they never wait for the Moon's shadow
   return options;
 }
 

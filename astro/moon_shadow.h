@@ -44,9 +44,12 @@
 // so the shadow's first touch on the air a camera sees is no jump.
 // docs/validation.md ("Eclipses") holds V̄ against the path tracer.
 //
-// Both tables depend on the eclipse only through r_s, r_m0, the Sun's zenith
-// angle at the camera and the wavelengths: a moving shadow reads the same
-// tables (MoonShadow::still_fits).
+// Both tables depend on the eclipse only through r_s, r_m0, the wavelengths
+// and where the axis passes the planet — its distance b from the planet's
+// centre, as the zenith angle asin(b/R) of the Sun where the axis meets the
+// ground: the planet is a sphere, so the air around the axis is the same
+// wherever along the planet the shadow falls for the same b. A moving shadow
+// reads the same tables while these hold (MoonShadow::still_fits).
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -128,8 +131,8 @@ class MoonShadow {
   double scattered_light(const Place& place, const glm::dvec3& direction, std::size_t wavelength) const;
 
   /// The same shadow with `geometry` seen from `camera_m`: whether the tables
-  /// still hold (the same limb exponents, r_m0 and r_s within 1e-4 relative,
-  /// the Sun's zenith angle at the camera within 0.2°). The caller then moves this one (move_to).
+  /// still hold (the same limb exponents, r_m0 and r_s within 1e-3 relative,
+  /// the axis' zenith angle within 0.3°). The caller then moves this one (move_to).
   bool still_fits(const EclipseGeometry& geometry, const glm::dvec3& camera_m) const;
   /// Takes the new geometry and camera keeping the tables (after still_fits).
   void move_to(const EclipseGeometry& geometry, const glm::dvec3& camera_m);
@@ -175,7 +178,11 @@ class MoonShadow {
   EclipseGeometry geometry_;
   MoonShadowOptions options_;
   std::size_t wavelengths_ = 0;
-  double moon_radius_0_rad_ = 0.0, sun_zenith_0_rad_ = 0.0, moon_distance_0_m_ = 0.0, ground_radius_m_ = 0.0;
+  /// The zenith angle of the Sun where the axis meets the ground, asin(b/R), b
+  /// the axis' distance from the planet's centre (past the edge π/2 + b/R − 1).
+  double axis_zenith_rad(const EclipseGeometry& geometry) const;
+
+  double moon_radius_0_rad_ = 0.0, axis_zenith_0_rad_ = 0.0, moon_distance_0_m_ = 0.0, ground_radius_m_ = 0.0;
   double profile_end_rad_ = 0.0, field_end_m_ = 0.0;
   glm::dvec3 e1_{1.0, 0.0, 0.0}, e2_{0.0, 1.0, 0.0};
   std::vector<float> profile_, field_;

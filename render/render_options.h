@@ -84,6 +84,14 @@ struct RenderOptions {
   /// them (GL_KHR_parallel_shader_compile). To compare, as `zenith precompute
   /// --serial-compile` does for the precompute.
   bool serial_compile = false;
+  /// In a solar eclipse, build a new Moon's shadow on the air
+  /// (render/frame/eclipse_sky_table.h; seconds of CPU) on a worker thread
+  /// while frames go on with the one held, moved with the Moon: live frames
+  /// (a window, a cluster's node) never wait for it. false: the frame waits
+  /// (offline renders, tests: the same frames every run). The first shadow of
+  /// an eclipse is waited for either way where the penumbra already reaches
+  /// the air in view.
+  bool background_shadow_builds = false;
   NightSkyRenderOptions night_sky;
 };
 

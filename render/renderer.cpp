@@ -289,7 +289,7 @@ void Renderer::choose_sky_view(Frame& frame) const {
 
 void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
   for (std::size_t a = 0; a < frame.passes.size(); ++a) {
-    const AtmospherePass& pass = frame.passes[a];
+    AtmospherePass& pass = frame.passes[a];
     if (!pass.sky_view) continue;
     const scene::Body& planet = frame.scene.bodies[static_cast<std::size_t>(pass.body)];
     const glm::dvec3 up = glm::normalize(frame.scene.camera.position_m - planet.position_m);
@@ -302,8 +302,13 @@ void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
     if (read)
       timer.gpu("sky-view table",
                 [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius); });
-    if (read && pass.eclipse_sky) {
-      follow_moon_shadow(frame, pass, timer);
+    if (pass.eclipse_sky) {
+      if (read)
+        follow_moon_shadow(frame, pass, timer);
+      else
+        pass.eclipse_sky = false;  // no tile draws the sun's sky
+    }
+    if (pass.eclipse_sky) {
       timer.gpu("eclipse-sky table",
                 [&] { pass.gpu->fill_eclipse_sky(frame.scene.camera.position_m - planet.position_m); });
       stats_.eclipse_sky = true;
@@ -317,22 +322,33 @@ void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
   }
 }
 
-void Renderer::follow_moon_shadow(const Frame& frame, const AtmospherePass& pass, PassTimer& timer) {
+void Renderer::follow_moon_shadow(const Frame& frame, AtmospherePass& pass, PassTimer& timer) {
   const scene::Body& planet = frame.scene.bodies[static_cast<std::size_t>(pass.body)];
   const glm::dvec3 camera = frame.scene.camera.position_m - planet.position_m;
   EclipseSkyTable& table = pass.gpu->eclipse_sky();
-  if (table.follow(*frame.occulter.shadow, camera)) return;
   const auto start = std::chrono::steady_clock::now();
-  timer.cpu("moon's shadow", [&] {
+  if (!table.has_tables()) {
+    // Kept on the CPU for this eclipse's shadows: a worker thread may not call the TableSource.
     const atmosphere::AtmosphereModel& model = planet.atmosphere->loaded.model;
     ++stats_.table_sets_requested;
-    const atmosphere::lut::LookupTables tables = table_source_(model);
-    const atmosphere::lut::TableQueries queries(model, tables);
-    table.set_shadow(std::make_unique<astro::MoonShadow>(*frame.occulter.shadow, queries, model, camera));
-  });
-  ++stats_.moon_shadows_built;
+    timer.cpu("moon's shadow: tables", [&] {
+      table.keep_tables(model, std::make_shared<const atmosphere::lut::LookupTables>(table_source_(model)));
+    });
+  }
+  // Live frames never wait for a shadow (RenderOptions::background_shadow_builds), not even the
+  // first where the penumbra is still far from the air in view (V̄ eased to within 1 % of 1 there).
+  const bool background =
+      options_.background_shadow_builds && (table.shadow() != nullptr || frame.occulter.air_from_axis_penumbrae >= 1.8);
+  EclipseSkyTable::ShadowUpdate update{};
+  timer.cpu("moon's shadow", [&] { update = table.update(*frame.occulter.shadow, camera, background); });
+  if (update == EclipseSkyTable::ShadowUpdate::built || update == EclipseSkyTable::ShadowUpdate::swapped) {
+    ++stats_.moon_shadows_built;
+    spdlog::info("the Moon's shadow on the air of '{}' {} ({:.2f} s this frame)", planet.name,
+                 update == EclipseSkyTable::ShadowUpdate::built ? "built" : "built in the background",
+                 seconds_since(start));
+  }
   stats_.moon_shadow_s += seconds_since(start);
-  spdlog::info("the Moon's shadow on the air of '{}' built in {:.2f} s", planet.name, stats_.moon_shadow_s);
+  pass.eclipse_sky = table.shadow() != nullptr;
 }
 
 void Renderer::start_programs(const Frame& frame) {

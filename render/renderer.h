@@ -95,9 +95,10 @@ struct FrameStats {
   /// (the first frame of a variant), with how many were built.
   double tables_s = 0.0, programs_s = 0.0;
   int programs_built = 0;
-  /// Of `seconds`: building the Moon's shadow on an atmosphere in a solar
-  /// eclipse (render/frame/eclipse_sky_table.h), and how many were built (0
-  /// where the one held still fit).
+  /// Of `seconds`: the Moon's shadow on an atmosphere in a solar eclipse
+  /// (render/frame/eclipse_sky_table.h): its tables' first request, following
+  /// it, building a new one; how many were built and uploaded (0 where the
+  /// one held still fit or a new one is still being built on a worker thread).
   double moon_shadow_s = 0.0;
   int moon_shadows_built = 0;
   /// An atmosphere's sky read the eclipse-sky table (the Moon's shadow on its air).
@@ -200,8 +201,11 @@ class Renderer {
   /// the Moon's where chosen), and the eclipse-sky table where the Moon's shadow lies on its air.
   void fill_sky_view_tables(Frame& frame, PassTimer& timer);
   /// The Moon's shadow on `pass`'s atmosphere for this frame's eclipse: the
-  /// one held, moved, while it fits; else built from the tables (TableSource).
-  void follow_moon_shadow(const Frame& frame, const AtmospherePass& pass, PassTimer& timer);
+  /// one held, moved, while it fits; else a new one from a CPU copy of the
+  /// tables (the TableSource's, once), now or on a worker thread
+  /// (RenderOptions::background_shadow_builds). Clears pass.eclipse_sky while
+  /// there is none yet.
+  void follow_moon_shadow(const Frame& frame, AtmospherePass& pass, PassTimer& timer);
   /// What becomes of a band once its tiles are drawn: read back for a RowSink
   /// (render()), or copied into a texture (render_to_texture()).
   using BandOutput = std::function<void(const BandTiles& band, PassTimer& timer)>;

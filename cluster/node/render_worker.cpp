@@ -183,8 +183,12 @@ void RenderWorker::ensure_renderer(std::uint32_t flags) {
   renderer_.reset();
   renderer_flags_ = flags;
   const atmosphere::lut::TableCache cache(options.cache_directory);
-  renderer_ = std::make_unique<render::Renderer>(
-      render::render_options_of(flags), [this, cache](const atmosphere::AtmosphereModel& model) {
+  render::RenderOptions render_options = render::render_options_of(flags);
+  // A node's frames are live: a new Moon's shadow in an eclipse is built on a
+  // worker thread, never at the barrier (render/frame/eclipse_sky_table.h).
+  render_options.background_shadow_builds = true;
+  renderer_ =
+      std::make_unique<render::Renderer>(render_options, [this, cache](const atmosphere::AtmosphereModel& model) {
         std::string problem;
         std::optional<atmosphere::lut::LookupTables> tables = cache.load(model, setup_.table_options, &problem);
         if (!tables)

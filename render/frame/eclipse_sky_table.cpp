@@ -3,8 +3,11 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -57,10 +60,44 @@ EclipseSkyTable::EclipseSkyTable(gl::ProgramBuilds& builds, std::span<const gl::
                                         static_cast<int>(groups_) * kLayersPerGroup);
 }
 
-bool EclipseSkyTable::follow(const astro::EclipseGeometry& geometry, const glm::dvec3& camera_m) {
-  if (!shadow_ || !shadow_->still_fits(geometry, camera_m)) return false;
-  shadow_->move_to(geometry, camera_m);
-  return true;
+void EclipseSkyTable::keep_tables(const atmosphere::AtmosphereModel& model,
+                                  std::shared_ptr<const atmosphere::lut::LookupTables> tables) {
+  model_ = model;
+  tables_ = std::move(tables);
+  queries_ = std::make_unique<atmosphere::lut::TableQueries>(*model_, *tables_);
+}
+
+EclipseSkyTable::ShadowUpdate EclipseSkyTable::update(const astro::EclipseGeometry& geometry,
+                                                      const glm::dvec3& camera_m, bool background) {
+  if (!queries_) throw std::logic_error("EclipseSkyTable::update: no tables kept");
+  ShadowUpdate done = ShadowUpdate::moved;
+  if (next_.valid() && next_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    set_shadow(next_.get());
+    done = ShadowUpdate::swapped;
+  }
+  if (shadow_ && shadow_->still_fits(geometry, camera_m)) {
+    shadow_->move_to(geometry, camera_m);
+    return done;
+  }
+  if (background) {
+    // Frames go on with the shadow held, moved, until the new one is ready:
+    // its sky differs by 1.4 % per degree of the axis' zenith angle
+    // (docs/validation.md), which moves ~0.01° in a second of sky time.
+    // With none held yet the caller draws the sky without the Moon's shadow.
+    if (shadow_) shadow_->move_to(geometry, camera_m);
+    if (!next_.valid()) {
+      astro::MoonShadowOptions options;
+      options.threads = std::max(1u, std::thread::hardware_concurrency() / 2);  // the frames need the rest
+      next_ = std::async(std::launch::async, [this, geometry, camera_m, options] {
+        return std::make_unique<astro::MoonShadow>(geometry, *queries_, *model_, camera_m, options);
+      });
+    }
+    return ShadowUpdate::building;
+  }
+  if (next_.valid()) next_.wait();  // not needed now: let it finish before its tables' owner moves on
+  next_ = {};
+  set_shadow(std::make_unique<astro::MoonShadow>(geometry, *queries_, *model_, camera_m));
+  return ShadowUpdate::built;
 }
 
 void EclipseSkyTable::set_shadow(std::unique_ptr<astro::MoonShadow> shadow) {

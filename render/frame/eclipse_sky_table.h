@@ -17,16 +17,22 @@
 // wavelengths; each texel sums 24 segments of its ray (astro/eclipsed_sky.h's
 // count) with the shadow at each segment's middle. The shadow itself, 1–2 s
 // of CPU, is kept while it still fits the eclipse (MoonShadow::still_fits:
-// the sun's zenith angle at the camera within 0.2°) and moved with the Moon.
+// the axis' zenith angle within 0.3°) and moved with the Moon; a new one is
+// built from a CPU copy of the tables, on a worker thread for live frames
+// (RenderOptions::background_shadow_builds).
 #include <array>
 #include <cstddef>
+#include <future>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "astro/moon_shadow.h"
+#include "atmosphere/atmosphere_model.h"
+#include "atmosphere/lut/lookup_tables.h"
 #include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
@@ -49,12 +55,26 @@ class EclipseSkyTable {
   EclipseSkyTable(gl::ProgramBuilds& builds, std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups,
                   double ground_radius_m);
 
-  /// Keeps the shadow for the eclipse `geometry` seen from `camera_m`
-  /// (planet-centred): true where the one held still fits it (moved to it),
-  /// false where a new one is needed (set_shadow).
-  bool follow(const astro::EclipseGeometry& geometry, const glm::dvec3& camera_m);
-  /// Takes a new shadow and uploads its tables.
-  void set_shadow(std::unique_ptr<astro::MoonShadow> shadow);
+  /// The tables (and their model) the shadows are built from, kept on the
+  /// CPU while this exists: a TableSource may need the GL context, a worker
+  /// thread may not call it.
+  bool has_tables() const { return tables_ != nullptr; }
+  void keep_tables(const atmosphere::AtmosphereModel& model,
+                   std::shared_ptr<const atmosphere::lut::LookupTables> tables);
+
+  /// What update() did.
+  enum class ShadowUpdate {
+    moved,     ///< the shadow held still fits: moved with the Moon
+    built,     ///< a new one built and uploaded, the frame waiting for it
+    swapped,   ///< one built on the worker thread is ready: uploaded
+    building,  ///< a new one is being built on the worker thread; the one held (if any) moved meanwhile
+  };
+  /// A shadow for the eclipse `geometry` seen from `camera_m` (planet-centred),
+  /// from the kept tables: the one held while it fits; else a new one, built
+  /// now or, with `background`, on a worker thread while the one held is
+  /// moved (MoonShadow::still_fits, docs/rendering.md): with none held yet,
+  /// shadow() stays null until it is ready.
+  ShadowUpdate update(const astro::EclipseGeometry& geometry, const glm::dvec3& camera_m, bool background);
   const astro::MoonShadow* shadow() const { return shadow_.get(); }
 
   /// Starts building the fill program (with the frame's other programs).
@@ -81,6 +101,8 @@ class EclipseSkyTable {
   const gl::ShaderProgram& fill_program() const;
 
  private:
+  /// Takes a new shadow and uploads its tables.
+  void set_shadow(std::unique_ptr<astro::MoonShadow> shadow);
   void prepare_fill(const glm::dvec3& camera_m);
   void fill_group(std::size_t group);
   /// The shadow's frame at the camera: its offset from the axis and distance along it.
@@ -92,7 +114,11 @@ class EclipseSkyTable {
   double ground_radius_m_ = 0.0;
   gl::Texture table_;
   std::unique_ptr<astro::MoonShadow> shadow_;
-  std::vector<gl::Texture> profiles_, fields_;  // per group
+  std::optional<atmosphere::AtmosphereModel> model_;
+  std::shared_ptr<const atmosphere::lut::LookupTables> tables_;
+  std::unique_ptr<atmosphere::lut::TableQueries> queries_;
+  std::future<std::unique_ptr<astro::MoonShadow>> next_;  // the one built on the worker thread
+  std::vector<gl::Texture> profiles_, fields_;            // per group
   std::vector<std::array<float, 4>> mie_k1_, mie_k2_;
   float rayleigh_k1_ = 0.0f, rayleigh_k2_ = 0.0f;
   glm::dvec3 camera_m_{0.0}, up_{0.0, 0.0, 1.0}, azimuth_h_{1.0, 0.0, 0.0}, azimuth_w_{0.0, 1.0, 0.0};

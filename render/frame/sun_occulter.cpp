@@ -22,7 +22,8 @@ namespace {
 /// and the top of the atmosphere's) of the shadow's axis.
 std::optional<astro::EclipseGeometry> shadow_on_the_air(const scene::Scene& scene, const glm::dvec3& moon_direction,
                                                         double moon_distance_m, double separation_rad,
-                                                        const std::vector<double>& limb_exponents) {
+                                                        const std::vector<double>& limb_exponents,
+                                                        double& air_from_axis_penumbrae) {
   const scene::Body& planet = scene.bodies.at(scene.sky_clock->body);
   if (!planet.atmosphere) return std::nullopt;
   const atmosphere::AtmosphereModel& model = planet.atmosphere->loaded.model;
@@ -35,6 +36,7 @@ std::optional<astro::EclipseGeometry> shadow_on_the_air(const scene::Scene& scen
       std::tan(scene.sun.angular_radius_rad + std::asin(std::min(1.0, astro::kMoonRadius_km * 1e3 / moon_distance_m)));
   if (separation_rad >= 0.5 * core::kPi || moon_distance_m * std::sin(separation_rad) >= 2.0 * penumbra_m + reach_m)
     return std::nullopt;
+  air_from_axis_penumbrae = (moon_distance_m * std::sin(separation_rad) - reach_m) / penumbra_m;
   return astro::EclipseGeometry{camera + moon_direction * moon_distance_m, astro::kMoonRadius_km * 1e3,
                                 glm::normalize(scene.sun.direction), scene.sun.angular_radius_rad, limb_exponents};
 }
@@ -56,7 +58,8 @@ SunOcculter sun_occulter(const scene::Scene& scene, bool limb_darkening) {
   std::vector<double> limb_exponents;
   for (double nm : scene.wavelengths_nm)
     limb_exponents.push_back(limb_darkening ? scene::limb_darkening_exponent(nm) : 0.0);
-  out.shadow = shadow_on_the_air(scene, direction, moon.distance_km * 1e3, separation, limb_exponents);
+  out.shadow = shadow_on_the_air(scene, direction, moon.distance_km * 1e3, separation, limb_exponents,
+                                 out.air_from_axis_penumbrae);
   if (separation >= r_s + r_m) return out;
   out.direction = direction;
   out.angular_radius_rad = r_m;

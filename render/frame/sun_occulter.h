@@ -45,6 +45,9 @@ struct SunOcculter {
   /// under two penumbra radii plus the air's reach): its geometry centred on
   /// that planet, world-oriented (astro/moon_shadow.h).
   std::optional<astro::EclipseGeometry> shadow;
+  /// With `shadow`: how far the nearest air in view lies from the shadow's
+  /// axis, in penumbra radii (≤ 1: the penumbra reaches it; ≥ 2: V = V̄ = 1 there).
+  double air_from_axis_penumbrae = 0.0;
   bool any() const { return angular_radius_rad > 0.0; }
 };
 

@@ -12,12 +12,14 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
 #include <numbers>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -512,6 +514,54 @@ TEST(RendererEclipse, TheShadowArrivesAndMovesWithoutAJump) {
   const double rebuilt = largest_difference(a, b, p, s, s.sun.direction, 0.0);
   std::printf("a shadow moved over 40 s against one built for the instant: %.2e\n", rebuilt);
   EXPECT_LT(rebuilt, 2e-3);
+}
+
+TEST(RendererEclipse, LiveFramesNeverWaitForAShadow) {
+  // RenderOptions::background_shadow_builds: a shadow that no longer fits (30 minutes after
+  // mid-totality the axis' zenith angle has moved by degrees) is rebuilt on a worker thread while the
+  // frames go on with the one held; the first, while the penumbra is still far from the air in view, is
+  // built the same way while the frames show the sky without it. Each becomes the frames' shadow within
+  // a bounded number of frames and gives the frame a renderer that waited for it gives.
+  const astro::AstroTime totality = astro::AstroTime::from_utc({2017, 8, 21, 18, 25, 30.0});
+  RenderOptions live = sky_alone();
+  live.background_shadow_builds = true;
+  const warp::FisheyeProjection p(32, 32);
+  const auto until_swapped = [&](TestRenderer& t, const scene::Scene& s) {
+    std::vector<float> image;
+    for (int frame = 0; frame < 400; ++frame) {
+      image = t.renderer.render_image(s, p);
+      if (t.renderer.last_frame().moon_shadows_built == 1) return image;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    ADD_FAILURE() << "no shadow after 400 frames";
+    return image;
+  };
+  {
+    TestRenderer t(live), waiting(sky_alone());
+    t.renderer.render_image(eclipse_scene(totality.calendar_utc()), p);
+    EXPECT_EQ(t.renderer.last_frame().moon_shadows_built, 1) << "the penumbra on the air in view: waited for";
+    const scene::Scene later = eclipse_scene(totality.plus_seconds(1800.0).calendar_utc());
+    t.renderer.render_image(later, p);
+    EXPECT_EQ(t.renderer.last_frame().moon_shadows_built, 0) << "the frame did not wait";
+    EXPECT_TRUE(t.renderer.last_frame().eclipse_sky) << "the shadow held, moved";
+    const auto image = until_swapped(t, later);
+    EXPECT_LT(largest_difference(image, waiting.renderer.render_image(later, p), p, later, later.sun.direction, 0.0),
+              1e-5);
+  }
+  {
+    // 3.3 h before mid-totality: the air in view is over 1.8 penumbra radii from the axis.
+    const scene::Scene early = eclipse_scene(totality.plus_seconds(-11900.0).calendar_utc());
+    const SunOcculter occulter = sun_occulter(early, true);
+    ASSERT_TRUE(occulter.shadow.has_value());
+    EXPECT_GE(occulter.air_from_axis_penumbrae, 1.8);
+    TestRenderer t(live), waiting(sky_alone());
+    t.renderer.render_image(early, p);
+    EXPECT_FALSE(t.renderer.last_frame().eclipse_sky) << "no shadow yet, no wait";
+    const auto image = until_swapped(t, early);
+    EXPECT_TRUE(t.renderer.last_frame().eclipse_sky);
+    EXPECT_LT(largest_difference(image, waiting.renderer.render_image(early, p), p, early, early.sun.direction, 0.0),
+              1e-5);
+  }
 }
 
 // ---------------------------------------------------------------- agreement
