@@ -107,6 +107,16 @@ double ground_refractivity(const atmosphere::LoadedAtmosphere& loaded, double wa
 
 Refraction::Refraction(double ground_radius_m, double top_radius_m, const atmosphere::DensityProfile& density,
                        double ground_refractivity, double observer_altitude_m)
+    : Refraction(ground_radius_m, top_radius_m, density, ground_refractivity, observer_altitude_m, true) {}
+
+double Refraction::horizon_rad(double ground_radius_m, double top_radius_m, const atmosphere::DensityProfile& density,
+                               double ground_refractivity, double observer_altitude_m) {
+  return Refraction(ground_radius_m, top_radius_m, density, ground_refractivity, observer_altitude_m, false)
+      .integral_rad(0.0);
+}
+
+Refraction::Refraction(double ground_radius_m, double top_radius_m, const atmosphere::DensityProfile& density,
+                       double ground_refractivity, double observer_altitude_m, bool tabulate)
     : ground_radius_m_(ground_radius_m),
       top_radius_m_(top_radius_m),
       observer_radius_m_(ground_radius_m + observer_altitude_m),
@@ -125,6 +135,7 @@ Refraction::Refraction(double ground_radius_m, double top_radius_m, const atmosp
     if (!(d_nr > 0.0))
       throw std::invalid_argument("refraction: the gas is so dense that horizontal rays are trapped (d(nr)/dr <= 0)");
   }
+  if (!tabulate) return;
   table_rad_.resize(kTableSize);
   for (std::size_t i = 0; i < kTableSize; ++i) {
     const double t = double(i) / double(kTableSize - 1);

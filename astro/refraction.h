@@ -52,6 +52,12 @@ class Refraction {
   static Refraction for_atmosphere(const atmosphere::LoadedAtmosphere& loaded, double wavelength_nm = 550.0,
                                    double observer_altitude_m = 0.0);
 
+  /// R [rad] at the horizon (apparent altitude 0) for an observer
+  /// `observer_altitude_m` up, by the integral alone (no table): half the
+  /// bending of a ray through the whole air whose lowest point is there.
+  static double horizon_rad(double ground_radius_m, double top_radius_m, const atmosphere::DensityProfile& density,
+                            double ground_refractivity, double observer_altitude_m);
+
   double ground_refractivity() const { return refractivity_; }
   /// R [rad] of a ray arriving at apparent altitude h ∈ [0, π/2], by the integral.
   double integral_rad(double apparent_altitude_rad) const;
@@ -63,6 +69,8 @@ class Refraction {
   double apparent_from_true_rad(double true_altitude_rad) const;
 
  private:
+  Refraction(double ground_radius_m, double top_radius_m, const atmosphere::DensityProfile& density,
+             double ground_refractivity, double observer_altitude_m, bool tabulate);
   double refractivity_at(double r_m) const;
   double ground_radius_m_, top_radius_m_, observer_radius_m_, refractivity_;
   atmosphere::DensityProfile density_;

@@ -26,6 +26,8 @@
 #include "core/units.h"
 #include "scene/sun_disc.h"
 #include "validate/gnuplot.h"
+#include "validate/lunar_eclipse_validation.h"
+#include "validate/validation_check.h"
 
 namespace zenith::validate {
 namespace {
@@ -54,12 +56,6 @@ struct Moment {
   double ratio_error(std::size_t i) const {
     return std::hypot(eclipsed_error[i] / eclipsed[i], daylight_error[i] / daylight[i]);
   }
-};
-
-struct EclipseCheck {
-  std::string what, source;
-  bool pass = false;
-  std::string detail;
 };
 
 AstroTime at(const AstroTime& start, double seconds) { return start.plus_seconds(seconds); }
@@ -329,7 +325,7 @@ void validate_eclipse(const EclipseValidationOptions& o, const TablesFor& tables
       horizon_ring(model, tables_sky, at(start, 0.5 * (c2 + c3)), std::max<std::size_t>(1000, o.samples / 4));
 
   // The measured anchors, held to both solvers: the reference's sky and the tables'.
-  std::vector<EclipseCheck> checks;
+  std::vector<ValidationCheck> checks;
   struct Solver {
     std::string name;
     std::function<double(const Moment&, std::size_t)> ratio, ratio_error;
@@ -442,16 +438,18 @@ void validate_eclipse(const EclipseValidationOptions& o, const TablesFor& tables
   agree("90 % obscuration zenith", ninety_moment.tables_eclipsed, ninety_moment.eclipsed, ninety_moment.eclipsed_error,
         0.05);
 
+  for (ValidationCheck& c : lunar_eclipse_checks(o.out_dir, !o.no_plots)) checks.push_back(std::move(c));
+
   fmt::print("\n");
   std::size_t failures = 0;
-  for (const EclipseCheck& c : checks) {
+  for (const ValidationCheck& c : checks) {
     fmt::print("  {:<96} {}  {}  [{}]\n", c.what, c.pass ? "ok  " : "FAIL", c.detail, c.source);
     failures += c.pass ? 0 : 1;
   }
   fmt::print("{} checks, {} outside their tolerance\n", checks.size(), failures);
   write_outputs(o.out_dir, model, moments, !o.no_plots);
-  spdlog::info("wrote {}/eclipse_zenith.csv{}", o.out_dir,
-               o.no_plots ? "" : ", eclipse_zenith.png and eclipse_totality.png");
+  spdlog::info("wrote {}/eclipse_zenith.csv and lunar_eclipse_2019.csv{}", o.out_dir,
+               o.no_plots ? "" : ", eclipse_zenith.png, eclipse_totality.png and lunar_eclipse_2019.png");
   if (failures > 0)
     throw std::runtime_error(core::cat("validate eclipse: ", failures, " checks outside their tolerance"));
 }

@@ -4,7 +4,9 @@
 # Moon's shadow, every check within its tolerance (the command fails
 # otherwise), the CSV, gnuplot script and PNGs written. 200 000 paths in
 # totality (20 000 outside): ~25 s on 2 cores; the checks' noise allowances are
-# three standard errors of the estimates.
+# three standard errors of the estimates. Then the lunar eclipses: the Moon's
+# drop at mid-totality of three eclipses, the 2019 light curve, the umbra's
+# edge and colours (validate/lunar_eclipse_validation.h), its CSV and plot.
 include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(cache "${WORK_DIR}/cache")  # shared with cli.render and the other validations: small tables computed once
 set(out "${WORK_DIR}/validate-eclipse-out")
@@ -16,14 +18,20 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "validate eclipse failed (${rc}):\n${stdout}\n${err}")
 endif()
 foreach(needle "C2 2017-08-21T18:24:0" "totality 16" "Dandekar & Turtle 1971" "tables against the reference: mid-totality zenith"
-       "15 checks, 0 outside their tolerance")
+       "lunar 2022-11-08: the drop at mid-totality" "lunar 2019-01-21: 04:43 UTC" "the umbra's edge beyond"
+       "22 checks, 0 outside their tolerance")
   expect_mentions("${stdout}" "${needle}" "the report")
 endforeach()
-expect_files("${out}" "validate eclipse" eclipse_zenith.csv eclipse.gp)
-expect_gnuplot_pngs("${out}" eclipse_zenith.png eclipse_totality.png)
+expect_files("${out}" "validate eclipse" eclipse_zenith.csv eclipse.gp lunar_eclipse_2019.csv lunar_eclipse.gp)
+expect_gnuplot_pngs("${out}" eclipse_zenith.png eclipse_totality.png lunar_eclipse_2019.png)
 file(STRINGS "${out}/eclipse_zenith.csv" rows)
 list(LENGTH rows n)
 if(NOT n EQUAL 15)
   message(FATAL_ERROR "eclipse_zenith.csv: ${n} lines, expected a header and 14 moments")
+endif()
+file(STRINGS "${out}/lunar_eclipse_2019.csv" rows)
+list(LENGTH rows n)
+if(NOT n EQUAL 125)
+  message(FATAL_ERROR "lunar_eclipse_2019.csv: ${n} lines, expected a header, 121 model rows and 3 measured")
 endif()
 expect_zenith_refuses("--samples" validate eclipse --samples 10 --out "${out}")

@@ -1,0 +1,88 @@
+#pragma once
+// A lunar eclipse: the Sun's light inside a planet's shadow at the Moon's
+// distance, refracted and extinguished through the planet's air
+// (docs/validation.md, "Lunar eclipses").
+//
+// A ray of the Sun passing the planet's centre at impact parameter b = R + h
+// (h the height of its lowest point, R the ground's radius) is bent toward
+// the centre by twice the refraction at the horizon seen from height h,
+//   δ(h) = 2 R_h(0)        (astro/refraction.h: the model's own air, Bouguer's invariant),
+// and dimmed by the transmittance of the whole grazing path, twice the path
+// from its lowest point to the top,
+//   T(h) = exp(−2 f(h) τ(h)),   f = (1 − k)^(−1/2),   k = r |dn/dr| / n
+// (τ the model's own extinction — Rayleigh, aerosols, ozone — from the
+// lowest point horizontally out to the top, by the reference solver's
+// quadrature, atmosphere/reference/optical_depth.h; f the refracted
+// ray's longer path through the air — Chapman's grazing optical depth grows
+// as √r, and a ray bent with curvature k/r keeps the height of a straight
+// ray over a planet of radius r / (1 − k)). At the distance D behind the
+// planet the ray lands at y = b − D δ(h) from the shadow's axis (y < 0: it
+// crossed the axis). With the Sun a point, the ring [b, b + db] sends its
+// light T · 2π b db onto the annulus between |y(b)| and |y(b + db)|; rays
+// above the top of the air land at y = b unchanged, rays below the ground
+// are stopped. The Sun's limb-darkened disc (μ^a(λ), scene/sun_disc.h) then
+// spreads this pattern: E(Y) = Σ_k w_k E_point(|Y − D σ_k|) over points σ_k
+// of the disc. E is per unit of the Sun's irradiance: 1 outside the shadow,
+// the penumbra's fall, and the umbra's red light.
+#include <cstddef>
+#include <vector>
+
+#include "astro/civil_time.h"
+#include "atmosphere/parameters.h"
+
+namespace zenith::astro {
+
+struct EarthShadowOptions {
+  std::size_t heights = 600;   ///< impact parameters across the air, crowded toward the ground
+  double bin_m = 2e3;          ///< radial bins of the point-source pattern
+  std::size_t sun_rings = 16;  ///< the Sun's disc: rings × sectors
+  std::size_t sun_sectors = 32;
+};
+
+class EarthShadow {
+ public:
+  /// The shadow of `loaded`'s planet at `distance_m` behind its centre, lit by
+  /// a Sun of angular radius `sun_angular_radius_rad` with limb exponents per
+  /// wavelength (all 0: a uniform disc). Throws std::invalid_argument for a
+  /// distance under ten times the top of the air, a Sun radius outside
+  /// (0, 0.1) rad or limb exponents not one per wavelength.
+  EarthShadow(const atmosphere::LoadedAtmosphere& loaded, double distance_m, double sun_angular_radius_rad,
+              const std::vector<double>& limb_exponents, const EarthShadowOptions& options = {});
+
+  /// E / E_sun at `axis_distance_m` from the shadow's axis, wavelength i.
+  double illumination(double axis_distance_m, std::size_t wavelength) const;
+  /// The mean of E / E_sun over a disc of radius `radius_m` whose centre lies
+  /// `axis_distance_m` from the axis (the Moon's face, of uniform albedo).
+  double disc_illumination(double axis_distance_m, double radius_m, std::size_t wavelength) const;
+
+  /// The umbra of the solid planet alone, straight rays: R − D (r_s − R / D_sun), D_sun → ∞.
+  double geometric_umbra_radius_m() const;
+  /// The umbra's edge as the light shows it: where ln E falls fastest between
+  /// the geometric umbra and penumbra's edges (what observers time crater
+  /// contacts by), at wavelength i.
+  double apparent_umbra_radius_m(std::size_t wavelength) const;
+  /// δ(h) [rad] and T(h) of the grazing ray whose lowest point is `height_m` up.
+  double deflection_rad(double height_m, std::size_t wavelength) const;
+  double grazing_transmittance(double height_m, std::size_t wavelength) const;
+  std::size_t wavelengths() const { return wavelengths_; }
+
+ private:
+  double distance_m_, sun_radius_rad_, ground_radius_m_, top_radius_m_, bin_m_;
+  std::size_t wavelengths_;
+  std::vector<double> heights_m_;                   // the impact parameters' heights
+  std::vector<std::vector<double>> deflection_;     // [wavelength][height]
+  std::vector<std::vector<double>> transmittance_;  // [wavelength][height]
+  std::vector<std::vector<double>> illumination_;   // [wavelength][bin]: E at (k + ½) bin
+};
+
+/// Where the Moon is in the Earth's shadow at `time` (geocentric: ERFA's
+/// Moon98 and EPV00, the Sun's geometric direction; its aberration moves the
+/// shadow by 20″, ~40 km at the Moon).
+struct LunarEclipseGeometry {
+  double moon_distance_m = 0.0;  ///< from the Earth's centre, along the shadow's axis
+  double axis_distance_m = 0.0;  ///< of the Moon's centre from the axis
+  double sun_angular_radius_rad = 0.0;
+};
+LunarEclipseGeometry lunar_eclipse_geometry(const AstroTime& time);
+
+}  // namespace zenith::astro
