@@ -35,6 +35,9 @@ struct NightSkyRenderOptions {
   bool night_floor = true;  ///< the natural night sky and light pollution
   bool moon = true;  ///< the Moon's disc by its phase (Lommel–Seeliger), with the stars' sky clock; it covers the sun
                      ///< in an eclipse
+  /// The Earth's shadow on the Moon in a lunar eclipse (render/night/moon_in_shadow.h): its disc and its
+  /// light on the sky take the sunlight refracted through the Earth's air; false: the Moon stays full.
+  bool lunar_eclipses = true;
   /// The Moon lights the atmospheres (render/night/moon_light.h): the sky and the
   /// ground by moonlight, from the same tables, where its own test finds it visible.
   bool moonlight = true;

@@ -37,6 +37,7 @@
 #include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/night/moon_in_shadow.h"
 #include "render/night/moon_light.h"
 #include "render/night/star_pass.h"
 #include "render/shader_bindings.h"
@@ -67,6 +68,7 @@ struct Renderer::Impl {
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
   RefractionCache refractions;   // the air's refraction at the camera: stars, the Moon, the Sun's disc
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/night/star_pass.h)
+  MoonInShadow moon_shadow;      // the Earth's shadow on the Moon in a lunar eclipse
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   AlbedoArray albedo;  // the bodies' maps, one layer per body (render/frame/albedo_array.h)
   std::string projection_key;
@@ -120,6 +122,10 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
                                                                             : gl::CompileMode::parallel);
   const gl::ProgramBuilds::Statistics builds_before = im.builds->statistics();
   Frame frame = frame_constants(scene, projection);
+  if (options_.night_sky.moon && options_.night_sky.lunar_eclipses && scene.sky_clock) {
+    timer.cpu("moon's shadow", [&] { im.moon_shadow.update(scene); });
+    frame.moon_shadow = &im.moon_shadow;
+  }
   if (options_.sun_disc) frame.sun_lift = sun_disc_lift(scene, sun_reach_rad(frame), impl_->refractions);
   frame.lights = {frame.sun_light()};
   update_tile_cones(frame);

@@ -9,6 +9,7 @@
 #include "astro/moon_photometry.h"
 #include "astro/sky_positions.h"
 #include "render/frame/sun_light.h"
+#include "render/night/moon_in_shadow.h"
 #include "render/night/star_pass.h"
 #include "scene/local_horizon.h"
 
@@ -36,6 +37,9 @@ MoonLight moon_light(const FrameInProgress& frame) {
   out.light.direction = glm::normalize(horizon.direction(moon.horizontal.azimuth_rad, moon.horizontal.altitude_rad));
   out.light.angular_radius_rad = moon.angular_radius_rad;
   out.light.irradiance_W_m2_nm = astro::moon_irradiance_W_m2_nm(moon, scene.wavelengths_nm);
+  if (frame.moon_shadow && frame.moon_shadow->shadowed())  // a lunar eclipse: the face's light left
+    for (std::size_t k = 0; k < out.light.irradiance_W_m2_nm.size(); ++k)
+      out.light.irradiance_W_m2_nm[k] *= frame.moon_shadow->face()[k];
 
   // The test, per atmosphere (seen through T ≤ 1 of those in front):
   // exposure · Σ_λ max_c |w_c(λ)| E_moon(λ) K(λ), K the tables' bound per unit

@@ -15,6 +15,7 @@
 #include "astro/moon_photometry.h"
 #include "astro/star_catalogue.h"
 #include "core/units.h"
+#include "render/night/moon_in_shadow.h"
 #include "render/night/night_sky_table.h"
 #include "render/night/star_visibility.h"
 #include "render/shader_bindings.h"
@@ -255,7 +256,9 @@ void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky
     if (!splat_touches_image(at, w, h)) return;
     const double omega_at = frame.projection.pixel_solid_angle_by_rays_sr(at.x, at.y);
     if (!(omega_at > 0.0)) return;
-    const std::vector<double> e = astro::moon_irradiance_W_m2_nm(moon, wavelengths);
+    std::vector<double> e = astro::moon_irradiance_W_m2_nm(moon, wavelengths);
+    if (frame.moon_shadow && frame.moon_shadow->shadowed())  // a lunar eclipse: the face's mean light left
+      for (std::size_t k = 0; k < n; ++k) e[k] *= frame.moon_shadow->face()[k];
     StarSplat s;
     s.x_px = static_cast<float>(at.x);
     s.y_px = static_cast<float>(at.y);
@@ -273,11 +276,12 @@ void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky
   // A disc: L = 2 L_LS(1, 1) · μ0/(μ0 + μ) per point (the shape factor is grey).
   moon_rgb_ = {0, 0, 0};
   double largest = 0.0;
+  std::vector<double> radiance(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const double l = 2.0 *
-                     astro::moon_disc_radiance(1.0, 1.0, moon.phase_angle_rad, wavelengths[k], moon.sun_distance_au) *
-                     transmittance[k];
-    for (std::size_t c = 0; c < 3; ++c) moon_rgb_[c] += frame.rgb_weights[k][c] * l * sky.exposure;
+    radiance[k] = 2.0 *
+                  astro::moon_disc_radiance(1.0, 1.0, moon.phase_angle_rad, wavelengths[k], moon.sun_distance_au) *
+                  transmittance[k];
+    for (std::size_t c = 0; c < 3; ++c) moon_rgb_[c] += frame.rgb_weights[k][c] * radiance[k] * sky.exposure;
   }
   // The face: the map's albedo relative to its photometric mean over the lit
   // disc, so the disc keeps the Moon's irradiance (moon_albedo_map.h).
@@ -287,7 +291,22 @@ void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky
   for (double& v : moon_rgb_) v /= mean;
   // A pixel spans 1/radius_px of the Moon's radius at the centre; a texel 2π/width.
   moon_map_lod_ = std::max(0.0, std::log2(map.width() / (2.0 * core::kPi * radius_px)));
-  for (double v : moon_rgb_) largest = std::max(largest, std::abs(v) * map.largest());
+  moon_shadow_table_.clear();
+  if (frame.moon_shadow && frame.moon_shadow->shadowed()) {
+    // A lunar eclipse: the disc's colour by a point's distance from the shadow's axis, over [0, reach].
+    const MoonInShadow& shadow = *frame.moon_shadow;
+    for (int j = 0; j < kMoonShadowEntries; ++j) {
+      const double y = shadow.reach_m() * j / (kMoonShadowEntries - 1);
+      std::array<double, 3> rgb{};
+      for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t c = 0; c < 3; ++c)
+          rgb[c] += frame.rgb_weights[k][c] * radiance[k] * shadow.illumination(y, k) * sky.exposure / mean;
+      moon_shadow_table_.push_back({float(rgb[0]), float(rgb[1]), float(rgb[2]), 0.0f});
+      for (double v : rgb) largest = std::max(largest, std::abs(v) * map.largest());
+    }
+  } else {
+    for (double v : moon_rgb_) largest = std::max(largest, std::abs(v) * map.largest());
+  }
   if (largest < kInvisibleDisplayStep) return;
   stats_.moon_map_identity = map.identity_sha256();
   stats_.moon_mean_albedo = mean;
@@ -428,10 +447,14 @@ void NightSkyPass::draw_band(FrameInProgress& frame, BandTiles& band, PassTimer&
   if (tiles_.id() == 0 || tiles_.size() < bytes) tiles_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
   if (!lists.empty()) tiles_.upload(std::span<const std::uint32_t>(lists));
   tiles_.bind_storage(binding::kTiles);
-  if (floor_) {
-    const std::size_t table_bytes = floor_table_.size() * sizeof(floor_table_[0]);
+  // The floor's table, then the eclipsed Moon's: one buffer at NIGHT_SKY_TABLE_BINDING.
+  const std::size_t moon_shadow_first = floor_ ? floor_table_.size() : 0;
+  if (floor_ || !moon_shadow_table_.empty()) {
+    std::vector<std::array<float, 4>> tables = floor_ ? floor_table_ : std::vector<std::array<float, 4>>{};
+    tables.insert(tables.end(), moon_shadow_table_.begin(), moon_shadow_table_.end());
+    const std::size_t table_bytes = tables.size() * sizeof(tables[0]);
     if (table_buffer_.id() == 0 || table_buffer_.size() < table_bytes) table_buffer_ = gl::Buffer(table_bytes);
-    table_buffer_.upload(std::span<const std::array<float, 4>>(floor_table_));
+    table_buffer_.upload(std::span<const std::array<float, 4>>(tables));
     table_buffer_.bind_storage(binding::kNightSkyTable);
   }
   const auto vec = [](const glm::dvec3& v) {
@@ -448,6 +471,16 @@ void NightSkyPass::draw_band(FrameInProgress& frame, BandTiles& band, PassTimer&
                                                      static_cast<float>(moon_rgb_[2])});
       const bool mapped = !moon_map().is_uniform();
       p.set_uniform("moon_mapped", mapped ? 1 : 0);
+      p.set_uniform("moon_shadowed", moon_shadow_table_.empty() ? 0 : 1);
+      if (!moon_shadow_table_.empty()) {
+        const MoonInShadow& shadow = *frame.moon_shadow;
+        p.set_uniform("moon_shadow_centre", vec(shadow.moon_centre_m()));
+        p.set_uniform("moon_shadow_axis", vec(shadow.axis()));
+        p.set_uniform("moon_shadow_radius", static_cast<float>(shadow.moon_radius_m()));
+        p.set_uniform("moon_shadow_reach", static_cast<float>(shadow.reach_m()));
+        p.set_uniform("moon_shadow_first", static_cast<int>(moon_shadow_first));
+        p.set_uniform("moon_shadow_entries", kMoonShadowEntries);
+      }
       if (mapped) {
         if (moon_texture_.id() == 0) {  // once per renderer
           moon_texture_ = gl::Texture::create_2d_mipmapped(gl::TextureFormat::r32f, moon_map().width(),

@@ -119,6 +119,11 @@ class NightSkyPass {
   double moon_radius_rad_ = 0.0, moon_radius_px_ = 0.0;
   glm::dvec2 moon_pixel_{0.0};
   std::array<double, 3> moon_rgb_{};
+  /// In a lunar eclipse: the disc's linear sRGB × exposure (moon_rgb_ times the
+  /// sunlight left, render/night/moon_in_shadow.h) at kMoonShadowEntries
+  /// distances from the shadow's axis over [0, its reach]; empty otherwise.
+  static constexpr int kMoonShadowEntries = 256;
+  std::vector<std::array<float, 4>> moon_shadow_table_;
   /// The Moon at the frame's sky time: a disc, a star-like point, or nothing.
   void place_moon(const FrameInProgress& frame, const StarFrame& sky, const astro::AstroTime& time);
   // The Moon's face (render/night/moon_albedo_map.h): the map (loaded with the

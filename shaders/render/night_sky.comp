@@ -9,6 +9,9 @@
 //     sun's direction on each point of the sphere, its edge antialiased over
 //     the pixel's footprint; with moon_mapped, each point's albedo from the
 //     Moon's map (render/night/moon_albedo_map.h) at its selenographic place;
+//     with moon_shadowed (a lunar eclipse), each point's colour from a table
+//     by its distance from the Earth's shadow's axis (the sunlight refracted
+//     and extinguished through the Earth's air: render/night/moon_in_shadow.h);
 //   * with NIGHT_FLOOR, the natural night sky (airglow with van Rhijn's
 //     brightening, zodiacal light, starlight) through the line of sight's
 //     transmittance, plus the artificial glow of light pollution: a table of
@@ -37,6 +40,11 @@ layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
 uniform bool overwrite;
 
+#if NIGHT_FLOOR || NIGHT_MOON
+/// The night floor's table (NIGHT_FLOOR), then the eclipsed Moon's (moon_shadow_first …).
+layout(std430, binding = NIGHT_SKY_TABLE_BINDING) readonly buffer NightSkyTable { vec4 night_sky_table[]; };
+#endif
+
 #if NIGHT_MOON
 uniform vec3 moon_direction;  // world, unit: the disc's centre (refracted)
 uniform float moon_radius;    // angular radius [rad]
@@ -47,6 +55,25 @@ uniform bool moon_mapped;
 uniform vec3 moon_axis_x, moon_axis_y, moon_axis_z;  // world: toward (0°, 0°), (90° E, 0°), the north pole
 uniform float moon_map_lod;  // log2(a pixel's arc on the Moon / a texel's) at the disc's centre, ≥ 0
 layout(binding = MOON_ALBEDO_UNIT) uniform sampler2D moon_albedo;  // x: longitude −180°…180°, y: latitude 90°…−90°
+// A lunar eclipse: the disc's rgb × exposure at moon_shadow_entries distances
+// from the shadow's axis over [0, moon_shadow_reach] (moon_rgb beyond).
+uniform bool moon_shadowed;
+uniform vec3 moon_shadow_centre;  // the Moon's centre from the Earth's centre [m], world
+uniform vec3 moon_shadow_axis;    // unit, away from the Sun
+uniform float moon_shadow_radius;  // the Moon's radius [m]
+uniform float moon_shadow_reach;   // [m]
+uniform int moon_shadow_first, moon_shadow_entries;
+
+/// The disc's rgb at the point of the Moon's sphere whose outward normal is `normal`.
+vec3 moon_colour(vec3 normal) {
+  if (!moon_shadowed) return moon_rgb;
+  const vec3 p = moon_shadow_centre + moon_shadow_radius * normal;
+  const float y = length(p - dot(p, moon_shadow_axis) * moon_shadow_axis);
+  if (y >= moon_shadow_reach) return moon_rgb;
+  const float f = y / moon_shadow_reach * float(moon_shadow_entries - 1);
+  const int j = min(int(f), moon_shadow_entries - 2);
+  return mix(night_sky_table[moon_shadow_first + j].rgb, night_sky_table[moon_shadow_first + j + 1].rgb, f - float(j));
+}
 
 /// The Moon's light along `ray`: on the sphere's point seen there (small
 /// angles: its offset from the centre in units of the radius is sin θ of that
@@ -71,14 +98,13 @@ vec3 moon_light(vec3 ray) {
     const vec2 uv = vec2(atan(body.y, body.x) / (2.0 * PI_F) + 0.5, 0.5 - asin(clamp(body.z, -1.0, 1.0)) / PI_F);
     albedo = textureLod(moon_albedo, uv, moon_map_lod - 0.5 * log2(max(mu, 1e-3))).r;
   }
-  return moon_rgb * (albedo * mu0 / (mu0 + mu)) * coverage;
+  return moon_colour(normal) * (albedo * mu0 / (mu0 + mu)) * coverage;
 }
 #endif
 
 #if NIGHT_FLOOR
 /// Entry j at t = j / (n − 1) of μ = μh + (1 − μh) t² (μ the ray's cosine to
 /// `night_up`, μh the ground's horizon): the sky's night light, rgb × exposure.
-layout(std430, binding = NIGHT_SKY_TABLE_BINDING) readonly buffer NightSkyTable { vec4 night_sky_table[]; };
 uniform int night_sky_entries;
 uniform vec3 night_up;
 uniform float night_horizon_mu;

@@ -34,6 +34,7 @@
 #include "image/tone_mapping.h"
 #include "render/gl/texture.h"
 #include "render/night/moon_albedo_map.h"
+#include "render/night/moon_in_shadow.h"
 #include "render/night/star_pass.h"
 #include "render/night/star_placement.h"
 #include "render/night/star_visibility.h"
@@ -687,6 +688,41 @@ TEST(NightSkyPass, AMissingMoonMapDrawsAUniformDiscWithTheSameEnergy) {
   EXPECT_EQ(moonlit.renderer.last_frame().night_sky.moon_mean_albedo, 1.0);
   const auto disc = energy_near(image, dark.renderer.render_image(s, planar), planar, {32.0, 32.0}, 20.0);
   for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(disc[k], e[k], 0.02 * e[k]) << "channel " << k;
+}
+
+TEST(NightSkyPass, TheEclipsedMoonKeepsTheLightTheEarthsShadowLeavesIt) {
+  // The total lunar eclipse of 2019-01-21 at mid-totality from Greenwich (the Moon ~20° up in the west),
+  // earth-advanced's air, a uniform face (no map): the disc's light over the same disc without the
+  // Earth's shadow (RenderOptions::night_sky.lunar_eclipses off; the transmittance cancels) is, per
+  // channel, the mean over the face of the sunlight the shadow leaves (render/night/moon_in_shadow.h,
+  // astro/lunar_eclipse.h), within 3 % (the disc's antialiased edge); and red: 680 nm keeps ~100× the
+  // share 440 nm keeps.
+  const astro::UtcTime time{2019, 1, 21, 5, 12, 16.0};
+  const astro::MoonPlace moon =
+      astro::SkyPositions(astro::AstroTime::from_utc(time), astro::Site{kLatitudeDeg, kLongitudeDeg, 46.0}).moon();
+  ASSERT_GT(moon.horizontal.altitude_rad, 10 * kDeg);
+  scene::Scene s = testing::greenwich("earth-advanced", moon.horizontal.east_north_up(), 1.0, time);
+  s.sun.direction =
+      scene::ephemeris_sun(s, *s.sky_clock, astro::AstroTime::from_utc(time), s.camera.position_m).direction;
+  RenderOptions eclipsed = options(false, false);
+  eclipsed.night_sky.moon = true;
+  eclipsed.night_sky.moonlight = false;
+  eclipsed.night_sky.moon_albedo_map = "/nonexistent/moon.png";
+  RenderOptions full = eclipsed, dark = eclipsed;
+  full.night_sky.lunar_eclipses = false;
+  dark.night_sky.moon = false;
+  TestRenderer in_shadow(eclipsed), outside(full), none(dark);
+  const warp::PlanarProjection planar = warp::PlanarProjection::symmetric(64, 64, 2.0);
+  const auto background = none.renderer.render_image(s, planar);
+  const auto a = energy_near(in_shadow.renderer.render_image(s, planar), background, planar, {32.0, 32.0}, 20.0);
+  const auto b = energy_near(outside.renderer.render_image(s, planar), background, planar, {32.0, 32.0}, 20.0);
+  MoonInShadow shadow;
+  shadow.update(s);
+  ASSERT_TRUE(shadow.shadowed());
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], shadow.face()[k], 0.03 * shadow.face()[k]) << k;
+  std::printf("the eclipsed Moon keeps %.3g %.3g %.3g of its light (the face's mean: %.3g %.3g %.3g)\n", a[0] / b[0],
+              a[1] / b[1], a[2] / b[2], shadow.face()[0], shadow.face()[1], shadow.face()[2]);
+  EXPECT_GT(shadow.face()[0], 30.0 * shadow.face()[2]);
 }
 
 TEST(MoonAlbedoMap, StellariumsMapIsRelativeToItsNearSideMeanAndNamesItsFile) {
