@@ -123,7 +123,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   const gl::ProgramBuilds::Statistics builds_before = im.builds->statistics();
   Frame frame = frame_constants(scene, projection);
   if (options_.night_sky.moon && options_.night_sky.lunar_eclipses && scene.sky_clock) {
-    timer.cpu("moon's shadow", [&] { im.moon_shadow.update(scene); });
+    timer.cpu("earth's shadow on the moon", [&] { im.moon_shadow.update(scene); });
     frame.moon_shadow = &im.moon_shadow;
   }
   if (options_.sun_disc) frame.sun_lift = sun_disc_lift(scene, sun_reach_rad(frame), impl_->refractions);
