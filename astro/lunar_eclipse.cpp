@@ -1,6 +1,7 @@
 #include "astro/lunar_eclipse.h"
 
 #include <erfa.h>
+#include <erfam.h>
 
 #include <algorithm>
 #include <cmath>
@@ -231,7 +232,14 @@ LunarEclipseGeometry lunar_eclipse_geometry(const AstroTime& time) {
   double sun[3], axis[3];
   for (int k = 0; k < 3; ++k) sun[k] = -pvh[0][k];
   const double sun_distance = eraPm(sun);
-  for (int k = 0; k < 3; ++k) axis[k] = -sun[k] / sun_distance;  // the shadow's axis, away from the Sun
+  // The shadow lies along the light's path in the Earth's frame: the Sun's direction moved by the Earth's
+  // velocity over c (annual aberration, 20.5″: the shadow's axis trails the geometric antisolar point, and
+  // the Moon reaches it ~35 s later).
+  const double c_au_per_day = 86400.0 / ERFA_AULT;
+  double apparent[3];
+  for (int k = 0; k < 3; ++k) apparent[k] = sun[k] / sun_distance + pvh[1][k] / c_au_per_day;
+  const double apparent_norm = eraPm(apparent);
+  for (int k = 0; k < 3; ++k) axis[k] = -apparent[k] / apparent_norm;  // the shadow's axis, away from the Sun
   LunarEclipseGeometry g;
   const double along = eraPdp(moon[0], axis);
   double across[3];
@@ -240,6 +248,118 @@ LunarEclipseGeometry lunar_eclipse_geometry(const AstroTime& time) {
   g.axis_distance_m = eraPm(across) * au_m;
   g.sun_angular_radius_rad = std::asin(kSunRadius_km / (sun_distance * kAstronomicalUnit_km));
   return g;
+}
+
+EarthShadowRadii earth_shadow_radii(const AstroTime& time) {
+  constexpr double kEarthRadius_m = 6378.137e3, kDanjon = 1.0 + 1.0 / 85.0;
+  const LunarEclipseGeometry g = lunar_eclipse_geometry(time);
+  const double sun_distance_m = kSunRadius_km * 1e3 / std::sin(g.sun_angular_radius_rad);
+  const double parallax = std::asin(kEarthRadius_m / sun_distance_m);
+  return {kEarthRadius_m * kDanjon - g.moon_distance_m * (g.sun_angular_radius_rad - parallax),
+          kEarthRadius_m * kDanjon + g.moon_distance_m * (g.sun_angular_radius_rad + parallax)};
+}
+
+const char* to_string(LunarEclipseKind kind) {
+  switch (kind) {
+    case LunarEclipseKind::penumbral: return "penumbral";
+    case LunarEclipseKind::partial: return "partial";
+    case LunarEclipseKind::total: return "total";
+  }
+  return "?";
+}
+
+namespace {
+
+/// How far inside the shadow the Moon's disc reaches at `seconds` after `base`, in units of its diameter,
+/// against the umbra (umbra = true) or the penumbra: the eclipse's magnitude then.
+double magnitude_at(const AstroTime& base, double seconds, bool umbra) {
+  const AstroTime t = base.plus_seconds(seconds);
+  const LunarEclipseGeometry g = lunar_eclipse_geometry(t);
+  const EarthShadowRadii r = earth_shadow_radii(t);
+  const double moon = kMoonRadius_km * 1e3;
+  return ((umbra ? r.umbra_m : r.penumbra_m) - (g.axis_distance_m - moon)) / (2.0 * moon);
+}
+
+/// The time in [a, b] (seconds after `base`) where f crosses `level`, f(a) and f(b) on either side.
+template <class F>
+double crossing(F f, double a, double b, double level) {
+  const bool rising = f(a) < level;
+  while (b - a > 0.5) {
+    const double m = 0.5 * (a + b);
+    ((f(m) < level) == rising ? a : b) = m;
+  }
+  return 0.5 * (a + b);
+}
+
+double moon_altitude_deg(const Site& site, const AstroTime& t) {
+  return SkyPositions(t, site).moon().horizontal.altitude_rad / core::kDeg;
+}
+
+}  // namespace
+
+std::optional<LocalLunarEclipse> next_lunar_eclipse(const Site& site, const AstroTime& from, double years) {
+  if (!(years > 0.0 && years <= 30.0))
+    throw std::invalid_argument(core::cat("lunar eclipse search: ", years, " years must be in (0, 30]"));
+  const double day = 86400.0, span = years * 365.25 * day;
+  // The Moon's angle from the antisolar point seen from the Earth's centre: least at full moon, π at new moon.
+  const auto from_antisolar = [&](double s) {
+    const LunarEclipseGeometry g = lunar_eclipse_geometry(from.plus_seconds(s));
+    return std::atan2(g.axis_distance_m, g.moon_distance_m);
+  };
+  // Full moons: local minima of the daily samples (the Moon gains ~12° a day on the antisolar point).
+  // Start two days early so an eclipse in progress at `from` is found.
+  double before = from_antisolar(-3.0 * day), now = from_antisolar(-2.0 * day);
+  for (double s = -2.0 * day; s < span; s += day) {
+    const double next = from_antisolar(s + day);
+    const bool minimum = now <= before && now <= next;
+    before = now;
+    now = next;
+    if (!minimum) continue;
+    // The least distance on a 20-minute grid over the two days around it, then golden section to a second.
+    double best = s - day, least = from_antisolar(best);
+    for (double t = s - day; t <= s + day; t += 1200.0)
+      if (const double d = from_antisolar(t); d < least) least = d, best = t;
+    double a = best - 1200.0, b = best + 1200.0;
+    const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+    while (b - a > 1.0) {
+      const double c = b - phi * (b - a), d = a + phi * (b - a);
+      if (from_antisolar(c) < from_antisolar(d))
+        b = d;
+      else
+        a = c;
+    }
+    const double max_s = 0.5 * (a + b);
+    if (magnitude_at(from, max_s, false) <= 0.0) continue;  // the Moon misses the penumbra
+    LocalLunarEclipse e;
+    e.maximum = from.plus_seconds(max_s);
+    e.umbral_magnitude = magnitude_at(from, max_s, true);
+    e.penumbral_magnitude = magnitude_at(from, max_s, false);
+    e.kind = e.umbral_magnitude >= 1.0  ? LunarEclipseKind::total
+             : e.umbral_magnitude > 0.0 ? LunarEclipseKind::partial
+                                        : LunarEclipseKind::penumbral;
+    // Contacts: the magnitude against the penumbra crosses 0 (P1, P4), against the umbra 0 (U1, U4) and 1 (U2, U3).
+    const double reach = 4.0 * 3600.0;
+    const auto penumbral = [&](double t) { return magnitude_at(from, t, false); };
+    const auto umbral = [&](double t) { return magnitude_at(from, t, true); };
+    const double p1 = crossing(penumbral, max_s - reach, max_s, 0.0),
+                 p4 = crossing(penumbral, max_s, max_s + reach, 0.0);
+    e.penumbra_begins = from.plus_seconds(p1);
+    e.penumbra_ends = from.plus_seconds(p4);
+    if (e.kind != LunarEclipseKind::penumbral) {
+      e.umbra_begins = from.plus_seconds(crossing(umbral, p1, max_s, 0.0));
+      e.umbra_ends = from.plus_seconds(crossing(umbral, max_s, p4, 0.0));
+    }
+    if (e.kind == LunarEclipseKind::total) {
+      e.totality_begins = from.plus_seconds(crossing(umbral, p1, max_s, 1.0));
+      e.totality_ends = from.plus_seconds(crossing(umbral, max_s, p4, 1.0));
+    }
+    if (p4 < 0.0) continue;  // over before `from`
+    e.moon_altitude_deg = moon_altitude_deg(site, e.maximum);
+    bool seen = e.moon_altitude_deg > 0.0;
+    for (double t = p1; t <= p4 && !seen; t += 300.0) seen = moon_altitude_deg(site, from.plus_seconds(t)) > 0.0;
+    if (seen) return e;
+  }
+  return std::nullopt;
 }
 
 }  // namespace zenith::astro

@@ -25,9 +25,11 @@
 // of the disc. E is per unit of the Sun's irradiance: 1 outside the shadow,
 // the penumbra's fall, and the umbra's red light.
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "astro/civil_time.h"
+#include "astro/sky_positions.h"
 #include "atmosphere/parameters.h"
 
 namespace zenith::astro {
@@ -76,13 +78,44 @@ class EarthShadow {
 };
 
 /// Where the Moon is in the Earth's shadow at `time` (geocentric: ERFA's
-/// Moon98 and EPV00, the Sun's geometric direction; its aberration moves the
-/// shadow by 20″, ~40 km at the Moon).
+/// Moon98 and EPV00; the shadow's axis along the sunlight's path in the
+/// Earth's frame, the Sun's direction moved by the annual aberration, 20.5″).
 struct LunarEclipseGeometry {
   double moon_distance_m = 0.0;  ///< from the Earth's centre, along the shadow's axis
   double axis_distance_m = 0.0;  ///< of the Moon's centre from the axis
   double sun_angular_radius_rad = 0.0;
 };
 LunarEclipseGeometry lunar_eclipse_geometry(const AstroTime& time);
+
+/// The Earth's shadow's radii at the Moon's distance by Danjon's rule (the
+/// Earth's radius enlarged by 1/85, as the Five Millennium Canon takes it):
+/// umbra R' − D (r_s − π_s), penumbra R' + D (r_s + π_s), π_s the Sun's
+/// parallax; and the eclipse's magnitudes: (radius − (y − R_moon)) / 2 R_moon.
+struct EarthShadowRadii {
+  double umbra_m = 0.0, penumbra_m = 0.0;
+};
+EarthShadowRadii earth_shadow_radii(const AstroTime& time);
+
+enum class LunarEclipseKind { penumbral, partial, total };
+const char* to_string(LunarEclipseKind kind);
+
+/// A lunar eclipse and how one site sees it.
+struct LocalLunarEclipse {
+  LunarEclipseKind kind = LunarEclipseKind::penumbral;
+  AstroTime maximum;  ///< the Moon's centre nearest the shadow's axis
+  double umbral_magnitude = 0.0, penumbral_magnitude = 0.0;
+  AstroTime penumbra_begins, penumbra_ends;                 ///< P1, P4
+  std::optional<AstroTime> umbra_begins, umbra_ends;        ///< U1, U4 (partial and total)
+  std::optional<AstroTime> totality_begins, totality_ends;  ///< U2, U3 (total)
+  double moon_altitude_deg = 0.0;                           ///< geometric, at the site, at the maximum
+};
+
+/// The first lunar eclipse with the Moon above `site`'s horizon at some time
+/// between P1 and P4 that has not ended at `from`, within `years` (at most
+/// 30), or none. Full moons bracketed by daily samples of the Moon's distance
+/// from the shadow's axis, the least by golden section to a second, contacts
+/// by bisection; penumbral eclipses included. Throws std::invalid_argument
+/// for years outside (0, 30].
+std::optional<LocalLunarEclipse> next_lunar_eclipse(const Site& site, const AstroTime& from, double years = 5.0);
 
 }  // namespace zenith::astro

@@ -18,6 +18,10 @@ std::string utc(const astro::AstroTime& t) {
 
 bool EclipsePlan::during_show() const { return eclipse && eclipse->first_contact.utc().value() <= last.utc().value(); }
 
+bool EclipsePlan::lunar_during_show() const {
+  return lunar && lunar->penumbra_begins.utc().value() <= last.utc().value();
+}
+
 std::optional<EclipsePlan> plan_eclipses(const Show& show) {
   const std::optional<scene::SkyClock>& clock = show.scene().sky_clock;
   if (!clock) return std::nullopt;
@@ -32,7 +36,8 @@ std::optional<EclipsePlan> plan_eclipses(const Show& show) {
     if (t >= duration) break;
   }
   if (!first) return std::nullopt;
-  return EclipsePlan{clock->site, *first, *last, astro::next_solar_eclipse(clock->site, *first, kEclipseSearchYears)};
+  return EclipsePlan{clock->site, *first, *last, astro::next_solar_eclipse(clock->site, *first, kEclipseSearchYears),
+                     astro::next_lunar_eclipse(clock->site, *first, kEclipseSearchYears)};
 }
 
 std::string describe(const EclipsePlan& p) {
@@ -44,11 +49,29 @@ std::string describe(const EclipsePlan& p) {
         astro::to_string(e.at_maximum.kind), utc(e.maximum), e.at_maximum.magnitude, 100.0 * e.at_maximum.obscuration,
         e.sun_altitude_deg, utc(e.first_contact), utc(e.last_contact));
   };
-  if (p.during_show()) return fmt::format("eclipse: the show's sky at {} holds a {}\n", where, about(*p.eclipse));
-  std::string out =
-      fmt::format("eclipse: none at {} during the show's sky time ({} – {}); ", where, utc(p.first), utc(p.last));
-  if (p.eclipse) return out + fmt::format("the next one seen from there: a {}\n", about(*p.eclipse));
-  return out + fmt::format("none seen from there within {:.0f} years\n", kEclipseSearchYears);
+  std::string out;
+  if (p.during_show()) {
+    out = fmt::format("eclipse: the show's sky at {} holds a {}\n", where, about(*p.eclipse));
+  } else {
+    out = fmt::format("eclipse: none at {} during the show's sky time ({} – {}); ", where, utc(p.first), utc(p.last));
+    out += p.eclipse ? fmt::format("the next one seen from there: a {}\n", about(*p.eclipse))
+                     : fmt::format("none seen from there within {:.0f} years\n", kEclipseSearchYears);
+  }
+  const auto about_lunar = [](const astro::LocalLunarEclipse& e) {
+    std::string text =
+        fmt::format("{} lunar eclipse, maximum {} (umbral magnitude {:.3f}, the Moon {})", astro::to_string(e.kind),
+                    utc(e.maximum), e.umbral_magnitude,
+                    e.moon_altitude_deg >= 0.0
+                        ? fmt::format("{:.1f}° up", e.moon_altitude_deg)
+                        : fmt::format("{:.1f}° below the horizon then: seen before or after", -e.moon_altitude_deg));
+    if (e.umbra_begins) text += fmt::format(", umbra {} – {}", utc(*e.umbra_begins), utc(*e.umbra_ends));
+    if (e.totality_begins) text += fmt::format(", totality {} – {}", utc(*e.totality_begins), utc(*e.totality_ends));
+    return text;
+  };
+  if (p.lunar_during_show())
+    return out + fmt::format("lunar eclipse: the show's sky holds a {}\n", about_lunar(*p.lunar));
+  if (p.lunar) return out + fmt::format("lunar eclipse: the next one seen from there: a {}\n", about_lunar(*p.lunar));
+  return out + fmt::format("lunar eclipse: none seen from there within {:.0f} years\n", kEclipseSearchYears);
 }
 
 }  // namespace zenith::show

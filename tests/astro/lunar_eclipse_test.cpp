@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -95,6 +96,36 @@ TEST_F(LunarEclipse, TheMoonSitsInTheShadowAtAnEclipsesMaximum) {
   EXPECT_NEAR(g.axis_distance_m / 6378.137e3, 0.368, 0.01);
   EXPECT_NEAR(g.moon_distance_m, 357.7e6, 1.5e6);
   EXPECT_NEAR(g.sun_angular_radius_rad / core::kDeg * 60.0, 16.26, 0.05) << "arcmin, in January";
+}
+
+TEST(LunarEclipseSearch, FindsTheNextEclipseASiteSeesAsNasasCanonHasIt) {
+  // NASA's Five Millennium Canon (Espenak & Meeus): 2025-03-14, total, greatest eclipse 06:58:43, umbral
+  // magnitude 1.1784, totality 65 min, the Moon up over Greenwich at its start; 2025-09-07, total,
+  // 18:11:48, 1.3619, 82 min, seen from Sydney. Times within 3 min (TD and UT are 69 s apart), magnitudes
+  // within 0.01 (Danjon's rule on both sides), totality within 2 min.
+  const auto minutes_between = [](const AstroTime& a, const AstroTime& b) {
+    return (b.utc().value() - a.utc().value()) * 1440.0;
+  };
+  const auto march = next_lunar_eclipse(Site{51.4779, -0.0015, 46.0}, AstroTime::from_utc({2025, 1, 1, 0, 0, 0.0}));
+  ASSERT_TRUE(march.has_value());
+  EXPECT_EQ(march->kind, LunarEclipseKind::total);
+  EXPECT_NEAR(minutes_between(AstroTime::from_utc({2025, 3, 14, 6, 58, 43.0}), march->maximum), 0.0, 3.0);
+  EXPECT_NEAR(march->umbral_magnitude, 1.1784, 0.01);
+  EXPECT_NEAR(minutes_between(*march->totality_begins, *march->totality_ends), 65.0, 2.0);
+  const auto september =
+      next_lunar_eclipse(Site{-33.8688, 151.2093, 10.0}, AstroTime::from_utc({2025, 3, 20, 0, 0, 0.0}));
+  ASSERT_TRUE(september.has_value());
+  EXPECT_EQ(september->kind, LunarEclipseKind::total);
+  EXPECT_NEAR(minutes_between(AstroTime::from_utc({2025, 9, 7, 18, 11, 48.0}), september->maximum), 0.0, 3.0);
+  EXPECT_NEAR(september->umbral_magnitude, 1.3619, 0.01);
+  EXPECT_NEAR(minutes_between(*september->totality_begins, *september->totality_ends), 82.0, 2.0);
+  EXPECT_GT(september->moon_altitude_deg, 0.0);
+  for (const LocalLunarEclipse* e : {&*march, &*september})
+    std::printf("%s, maximum %s, umbral magnitude %.4f, totality %.1f min\n", to_string(e->kind),
+                format_utc_time(e->maximum.calendar_utc()).c_str(), e->umbral_magnitude,
+                minutes_between(*e->totality_begins, *e->totality_ends));
+  EXPECT_THROW(next_lunar_eclipse(Site{0, 0, 0}, AstroTime::from_utc({2025, 1, 1, 0, 0, 0.0}), 31.0),
+               std::invalid_argument);
 }
 
 TEST_F(LunarEclipse, RefusesWhatIsNoShadow) {

@@ -2,7 +2,8 @@
 # one whose sky passes through the total eclipse of 2017-08-21 at NASA's point
 # of greatest eclipse names it (maximum within seconds of NASA's 18:25:32
 # UTC); one a day later has none, which is not an error, and the plan says no
-# other is seen from there within its five years of search.
+# other is seen from there within its five years of search; and the next lunar
+# eclipse seen from there.
 include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(dir "${WORK_DIR}/show-plan-eclipse")
 file(REMOVE_RECURSE "${dir}")
@@ -33,3 +34,7 @@ endforeach()
 show_plan(after stdout)
 expect_mentions("${stdout}" "eclipse: none at 36.9667°, -87.6667° during the show's sky time" "the plan")
 expect_mentions("${stdout}" "none seen from there within 5 years" "the plan")
+# The next lunar eclipse seen from there: 2018-01-31, total (NASA: greatest 13:29:50, umbral magnitude 1.316),
+# the Moon setting in Kentucky during it.
+expect_mentions("${stdout}" "lunar eclipse: the next one seen from there: a total lunar eclipse, maximum 2018-01-31 13:29:"
+                "the plan")
