@@ -205,22 +205,21 @@ double EarthShadow::apparent_umbra_radius_m(std::size_t i) const {
   return best;
 }
 
-double EarthShadow::deflection_rad(double height_m, std::size_t i) const {
+double EarthShadow::over_heights(const std::vector<double>& values, double height_m, double above_the_air) const {
   const auto it = std::upper_bound(heights_m_.begin(), heights_m_.end(), height_m);
-  if (it == heights_m_.begin()) return deflection_.at(i).front();
-  if (it == heights_m_.end()) return 0.0;
+  if (it == heights_m_.begin()) return values.front();
+  if (it == heights_m_.end()) return above_the_air;
   const std::size_t j = std::size_t(it - heights_m_.begin()) - 1;
   const double t = (height_m - heights_m_[j]) / (heights_m_[j + 1] - heights_m_[j]);
-  return (1.0 - t) * deflection_[i][j] + t * deflection_[i][j + 1];
+  return (1.0 - t) * values[j] + t * values[j + 1];
+}
+
+double EarthShadow::deflection_rad(double height_m, std::size_t i) const {
+  return over_heights(deflection_.at(i), height_m, 0.0);
 }
 
 double EarthShadow::grazing_transmittance(double height_m, std::size_t i) const {
-  const auto it = std::upper_bound(heights_m_.begin(), heights_m_.end(), height_m);
-  if (it == heights_m_.begin()) return transmittance_.at(i).front();
-  if (it == heights_m_.end()) return 1.0;
-  const std::size_t j = std::size_t(it - heights_m_.begin()) - 1;
-  const double t = (height_m - heights_m_[j]) / (heights_m_[j + 1] - heights_m_[j]);
-  return (1.0 - t) * transmittance_[i][j] + t * transmittance_[i][j + 1];
+  return over_heights(transmittance_.at(i), height_m, 1.0);
 }
 
 LunarEclipseGeometry lunar_eclipse_geometry(const AstroTime& time) {

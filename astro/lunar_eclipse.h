@@ -69,6 +69,9 @@ class EarthShadow {
   std::size_t wavelengths() const { return wavelengths_; }
 
  private:
+  /// A per-height table at `height_m`, linear between the heights; `above_the_air` past the top.
+  double over_heights(const std::vector<double>& values, double height_m, double above_the_air) const;
+
   double distance_m_, sun_radius_rad_, ground_radius_m_, top_radius_m_, bin_m_;
   std::size_t wavelengths_;
   std::vector<double> heights_m_;                   // the impact parameters' heights
