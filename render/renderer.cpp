@@ -122,16 +122,17 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
                                                                             : gl::CompileMode::parallel);
   const gl::ProgramBuilds::Statistics builds_before = im.builds->statistics();
   Frame frame = frame_constants(scene, projection);
+  const MoonInShadow* moon_shadow = nullptr;  // a lunar eclipse this frame (render/night/moon_in_shadow.h)
   if (options_.night_sky.moon && options_.night_sky.lunar_eclipses && scene.sky_clock) {
     timer.cpu("earth's shadow on the moon", [&] { im.moon_shadow.update(scene); });
-    frame.moon_shadow = &im.moon_shadow;
+    moon_shadow = &im.moon_shadow;
   }
   if (options_.sun_disc) frame.sun_lift = sun_disc_lift(scene, sun_reach_rad(frame), impl_->refractions);
   frame.lights = {frame.sun_light()};
   update_tile_cones(frame);
   prepare_bodies(frame);
   make_tables_resident(frame);
-  light_by_the_moon(frame, timer);
+  light_by_the_moon(frame, moon_shadow, timer);
   light_by_the_sun(frame, timer);
   choose_sky_view(frame);
   prepare_programs(frame);
@@ -140,7 +141,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   fill_sky_view_tables(frame, timer);
   frame.programs = &im.frame_programs.passes_for(*im.builds, frame.variant);
   set_direct_light_uniforms(frame);
-  impl_->night_sky.prepare(frame, timer);
+  impl_->night_sky.prepare(frame, moon_shadow, timer);
   stats_.night_sky = impl_->night_sky.stats();
   stats_.moonlight = frame.moon() != nullptr;
   render_bands(frame, output, timer);
@@ -373,10 +374,10 @@ void Renderer::start_programs(const Frame& frame) {
     }
 }
 
-void Renderer::light_by_the_moon(Frame& frame, PassTimer& timer) {
+void Renderer::light_by_the_moon(Frame& frame, const MoonInShadow* moon_shadow, PassTimer& timer) {
   if (!options_.night_sky.moonlight) return;
   MoonLight moon;
-  timer.cpu("moonlight test", [&] { moon = moon_light(frame); });
+  timer.cpu("moonlight test", [&] { moon = moon_light(frame, moon_shadow); });
   for (std::size_t a = 0; a < frame.passes.size(); ++a) {
     frame.passes[a].moonlit = moon.lit[a];
     stats_.moonlight_bound = std::max(stats_.moonlight_bound, moon.bounds[a]);

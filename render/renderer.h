@@ -54,6 +54,7 @@ namespace zenith::render {
 class PassTimer;        // render/frame/pass_timer.h
 struct BandTiles;       // render/frame/tile_classification.h
 struct AtmospherePass;  // render/frame/frame_in_progress.h
+class MoonInShadow;     // render/night/moon_in_shadow.h
 namespace gl {
 class Texture;  // render/gl/texture.h
 }  // namespace gl
@@ -181,7 +182,8 @@ class Renderer {
   void make_tables_resident(Frame& frame);
   /// The Moon as a second light of the atmospheres (render/night/moon_light.h)
   /// where its own test finds it could show: its direction and irradiance.
-  void light_by_the_moon(Frame& frame, PassTimer& timer);
+  /// `moon_shadow`: the Earth's shadow on the Moon this frame (a lunar eclipse), or null.
+  void light_by_the_moon(Frame& frame, const MoonInShadow* moon_shadow, PassTimer& timer);
   void light_by_the_sun(Frame& frame, PassTimer& timer);
   /// Which atmospheres read a sky-view table: those whose shell holds the
   /// camera where the table is accurate (one table per table set); the Moon's

@@ -23,8 +23,6 @@
 
 namespace zenith::render {
 
-class MoonInShadow;  // render/night/moon_in_shadow.h
-
 /// One atmosphere the frame draws: its body, where its shell is from the
 /// camera, its tables on the GPU.
 struct AtmospherePass {
@@ -97,9 +95,6 @@ struct FrameInProgress : FrameConstants {
   std::vector<FrameLight> lights;
   /// The Moon among `lights`; null where it lights nothing this frame.
   const FrameLight* moon() const;
-  /// The Earth's shadow on the Moon this frame (a lunar eclipse:
-  /// render/night/moon_in_shadow.h); null without the Moon.
-  const MoonInShadow* moon_shadow = nullptr;
 
   // Frame uniforms on first use in the frame, band uniforms on first use in the band.
   std::set<const gl::ShaderProgram*> frame_ready, band_ready;

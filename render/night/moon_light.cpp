@@ -17,7 +17,7 @@ namespace zenith::render {
 
 bool MoonLight::any() const { return std::find(lit.begin(), lit.end(), true) != lit.end(); }
 
-MoonLight moon_light(const FrameInProgress& frame) {
+MoonLight moon_light(const FrameInProgress& frame, const MoonInShadow* moon_shadow) {
   MoonLight out;
   out.light.source = FrameLight::Source::moon;
   const scene::Scene& scene = frame.scene;
@@ -37,9 +37,9 @@ MoonLight moon_light(const FrameInProgress& frame) {
   out.light.direction = glm::normalize(horizon.direction(moon.horizontal.azimuth_rad, moon.horizontal.altitude_rad));
   out.light.angular_radius_rad = moon.angular_radius_rad;
   out.light.irradiance_W_m2_nm = astro::moon_irradiance_W_m2_nm(moon, scene.wavelengths_nm);
-  if (frame.moon_shadow && frame.moon_shadow->shadowed())  // a lunar eclipse: the face's light left
+  if (moon_shadow && moon_shadow->shadowed())  // a lunar eclipse: the face's light left
     for (std::size_t k = 0; k < out.light.irradiance_W_m2_nm.size(); ++k)
-      out.light.irradiance_W_m2_nm[k] *= frame.moon_shadow->face()[k];
+      out.light.irradiance_W_m2_nm[k] *= moon_shadow->face()[k];
 
   // The test, per atmosphere (seen through T ≤ 1 of those in front):
   // exposure · Σ_λ max_c |w_c(λ)| E_moon(λ) K(λ), K the tables' bound per unit

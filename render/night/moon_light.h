@@ -24,6 +24,8 @@
 
 namespace zenith::render {
 
+class MoonInShadow;  // render/night/moon_in_shadow.h
+
 /// The frame's Moon as a light and the test's outcome.
 struct MoonLight {
   FrameLight light;            ///< the Moon: direction (world, geometric), angular radius, irradiance at the top
@@ -40,6 +42,8 @@ struct MoonLight {
 /// nothing it could show. The test depends on the camera, the exposure, the
 /// colour weights and the tables, not on the projection: every node of a
 /// cluster decides the same for each atmosphere, so no seam can come of it.
-MoonLight moon_light(const FrameInProgress& frame);
+/// `moon_shadow`: the Earth's shadow on the Moon this frame (a lunar eclipse:
+/// the Moon's light is the face's mean left; render/night/moon_in_shadow.h), or null.
+MoonLight moon_light(const FrameInProgress& frame, const MoonInShadow* moon_shadow);
 
 }  // namespace zenith::render

@@ -133,8 +133,9 @@ bool NightSkyPass::ensure_field(const scene::Scene& scene) {
   }
 }
 
-void NightSkyPass::prepare(const FrameInProgress& frame, PassTimer& timer) {
+void NightSkyPass::prepare(const FrameInProgress& frame, const MoonInShadow* moon_shadow, PassTimer& timer) {
   stats_ = NightSkyStats{};
+  moon_shadow_ = moon_shadow;
   splats_.clear();
   floor_ = false;
   const scene::Scene& scene = frame.scene;
@@ -257,8 +258,8 @@ void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky
     const double omega_at = frame.projection.pixel_solid_angle_by_rays_sr(at.x, at.y);
     if (!(omega_at > 0.0)) return;
     std::vector<double> e = astro::moon_irradiance_W_m2_nm(moon, wavelengths);
-    if (frame.moon_shadow && frame.moon_shadow->shadowed())  // a lunar eclipse: the face's mean light left
-      for (std::size_t k = 0; k < n; ++k) e[k] *= frame.moon_shadow->face()[k];
+    if (moon_shadow_ && moon_shadow_->shadowed())  // a lunar eclipse: the face's mean light left
+      for (std::size_t k = 0; k < n; ++k) e[k] *= moon_shadow_->face()[k];
     StarSplat s;
     s.x_px = static_cast<float>(at.x);
     s.y_px = static_cast<float>(at.y);
@@ -292,9 +293,9 @@ void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky
   // A pixel spans 1/radius_px of the Moon's radius at the centre; a texel 2π/width.
   moon_map_lod_ = std::max(0.0, std::log2(map.width() / (2.0 * core::kPi * radius_px)));
   moon_shadow_table_.clear();
-  if (frame.moon_shadow && frame.moon_shadow->shadowed()) {
+  if (moon_shadow_ && moon_shadow_->shadowed()) {
     // A lunar eclipse: the disc's colour by a point's distance from the shadow's axis, over [0, reach].
-    const MoonInShadow& shadow = *frame.moon_shadow;
+    const MoonInShadow& shadow = *moon_shadow_;
     for (int j = 0; j < kMoonShadowEntries; ++j) {
       const double y = shadow.reach_m() * j / (kMoonShadowEntries - 1);
       std::array<double, 3> rgb{};
@@ -473,7 +474,7 @@ void NightSkyPass::draw_band(FrameInProgress& frame, BandTiles& band, PassTimer&
       p.set_uniform("moon_mapped", mapped ? 1 : 0);
       p.set_uniform("moon_shadowed", moon_shadow_table_.empty() ? 0 : 1);
       if (!moon_shadow_table_.empty()) {
-        const MoonInShadow& shadow = *frame.moon_shadow;
+        const MoonInShadow& shadow = *moon_shadow_;
         p.set_uniform("moon_shadow_centre", vec(shadow.moon_centre_m()));
         p.set_uniform("moon_shadow_axis", vec(shadow.axis()));
         p.set_uniform("moon_shadow_radius", static_cast<float>(shadow.moon_radius_m()));

@@ -48,6 +48,8 @@
 
 namespace zenith::render {
 
+class MoonInShadow;  // render/night/moon_in_shadow.h
+
 /// Half an 8-bit sRGB code step at black as linear display value: 0.5 / 255 /
 /// 12.92 (the sRGB curve's slope there); the tone curve's slope at 0 is 1.
 inline constexpr double kInvisibleDisplayStep = 0.5 / 255.0 / 12.92;
@@ -93,7 +95,9 @@ class NightSkyPass {
 
   /// The frame's CPU work (after the atmospheres are resident): whether there
   /// is anything to draw, the stars' splats, the night floor's table.
-  void prepare(const FrameInProgress& frame, PassTimer& timer);
+  /// `moon_shadow`: the Earth's shadow on the Moon this frame (a lunar eclipse,
+  /// render/night/moon_in_shadow.h), or null; it outlives the frame's draw_band calls.
+  void prepare(const FrameInProgress& frame, const MoonInShadow* moon_shadow, PassTimer& timer);
   /// Adds the stars and the floor to the band's output (bound at
   /// FRAME_RGB_BINDING); tiles nothing had drawn that now hold a star lose their
   /// black flag. Rebinds TILES_BINDING to its own list.
@@ -124,6 +128,7 @@ class NightSkyPass {
   /// distances from the shadow's axis over [0, its reach]; empty otherwise.
   static constexpr int kMoonShadowEntries = 256;
   std::vector<std::array<float, 4>> moon_shadow_table_;
+  const MoonInShadow* moon_shadow_ = nullptr;  // this frame's (prepare)
   /// The Moon at the frame's sky time: a disc, a star-like point, or nothing.
   void place_moon(const FrameInProgress& frame, const StarFrame& sky, const astro::AstroTime& time);
   // The Moon's face (render/night/moon_albedo_map.h): the map (loaded with the
