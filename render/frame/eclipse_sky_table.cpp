@@ -148,19 +148,19 @@ const gl::ShaderProgram& EclipseSkyTable::fill_program() const {
 void EclipseSkyTable::prepare_fill(const glm::dvec3& camera_m) {
   const glm::dvec3& sun = shadow_->geometry().sun_direction;
   const double r = std::max(glm::length(camera_m), ground_radius_m_);
-  up_ = glm::normalize(camera_m);
+  const glm::dvec3 up = glm::normalize(camera_m);
   // φ = 0 toward the sun's azimuth; with the sun overhead any horizontal direction will do.
-  glm::dvec3 h = sun - glm::dot(sun, up_) * up_;
-  if (glm::length(h) < 1e-9) h = std::abs(up_.x) < 0.9 ? glm::dvec3{1, 0, 0} : glm::dvec3{0, 1, 0};
-  azimuth_h_ = glm::normalize(h - glm::dot(h, up_) * up_);
-  azimuth_w_ = glm::cross(up_, azimuth_h_);
+  glm::dvec3 h = sun - glm::dot(sun, up) * up;
+  if (glm::length(h) < 1e-9) h = std::abs(up.x) < 0.9 ? glm::dvec3{1, 0, 0} : glm::dvec3{0, 1, 0};
+  azimuth_h_ = glm::normalize(h - glm::dot(h, up) * up);
+  azimuth_w_ = glm::cross(up, azimuth_h_);
   camera_m_ = camera_m;
-  theta_horizon_rad_ = core::kPi - std::asin(std::min(ground_radius_m_ / r, 1.0));
+  const double theta_horizon_rad = core::kPi - std::asin(std::min(ground_radius_m_ / r, 1.0));
   const gl::ShaderProgram& fill = fill_program();
   fill.set_uniform("camera_r", static_cast<float>(r));
   fill.set_uniform("camera_ground_power", static_cast<float>((r - ground_radius_m_) * (r + ground_radius_m_)));
-  fill.set_uniform("theta_horizon", static_cast<float>(theta_horizon_rad_));
-  fill.set_uniform("camera_up", vec3_of(up_));
+  fill.set_uniform("theta_horizon", static_cast<float>(theta_horizon_rad));
+  fill.set_uniform("camera_up", vec3_of(up));
   fill.set_uniform("azimuth_h", vec3_of(azimuth_h_));
   fill.set_uniform("azimuth_w", vec3_of(azimuth_w_));
   fill.set_uniform("fill_sun", vec3_of(sun));
