@@ -58,6 +58,10 @@ std::unique_ptr<warp::Projection> make_projection(const RenderArgs& a, int width
   return app::make_projection(a.projection, a.fov_deg, a.tilt_deg, width, height);
 }
 
+render::TableRequest make_table_request(const RenderArgs& a) {
+  return app::make_table_request(a.tables, a.orders, a.cpu_precompute, !a.no_cache, a.cache_dir);
+}
+
 render::RenderOptions make_render_options(const RenderArgs& a) {
   render::RenderOptions options;
   options.atmospheres = !a.bodies_only;
@@ -68,11 +72,8 @@ render::RenderOptions make_render_options(const RenderArgs& a) {
   options.atmosphere.fp64 = a.fp64;
   options.colour = image::parse_colour_mapping(a.colour);
   options.background_shadow_builds = a.window;  // a window's frames are live: they never wait for the Moon's shadow
+  options.albedo_cache_directory = render::cache_directory_of(make_table_request(a));
   return options;
-}
-
-render::TableRequest make_table_request(const RenderArgs& a) {
-  return app::make_table_request(a.tables, a.orders, a.cpu_precompute, !a.no_cache, a.cache_dir);
 }
 
 void log_frame_stats(const render::FrameStats& s) {

@@ -68,13 +68,13 @@ int default_writer_threads(unsigned cpus, bool software_renderer) {
 
 std::string describe(const StartupTimes& t) {
   const double other =
-      t.total_s - t.context_s - t.precompute_s - t.tables_s - t.programs_s - t.buffers_s - t.first_frame_s;
+      t.total_s - t.context_s - t.precompute_s - t.tables_s - t.programs_s - t.albedo_s - t.buffers_s - t.first_frame_s;
   return fmt::format(
       "start-up {:.2f} s to the first frame: GL context {:.2f} s, tables precomputed {:.2f} s, tables loaded and "
-      "uploaded {:.2f} s ({} set{}), programs {:.2f} s ({} built), buffers {:.2f} s ({:.1f} MiB), the first frame's "
-      "rendering {:.2f} s, the rest {:.2f} s (the show's checks, the manifest)",
+      "uploaded {:.2f} s ({} set{}), programs {:.2f} s ({} built), albedo maps {:.2f} s, buffers {:.2f} s ({:.1f} "
+      "MiB), the first frame's rendering {:.2f} s, the rest {:.2f} s (the show's checks, the manifest)",
       t.total_s, t.context_s, t.precompute_s, t.tables_s, t.table_sets, t.table_sets == 1 ? "" : "s", t.programs_s,
-      t.programs, t.buffers_s, static_cast<double>(t.buffer_bytes) / (1024.0 * 1024.0), t.first_frame_s,
+      t.programs, t.albedo_s, t.buffers_s, static_cast<double>(t.buffer_bytes) / (1024.0 * 1024.0), t.first_frame_s,
       std::max(0.0, other));
 }
 
@@ -176,6 +176,7 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
     render::RenderOptions options = render::render_options_of(render_flags);
     options.colour = colour_;
     options.serial_compile = settings_.serial_compile;
+    options.albedo_cache_directory = render::cache_directory_of(tables_);
     renderer_ = std::make_unique<render::Renderer>(
         options, [this](const atmosphere::AtmosphereModel& model) { return tables_for(model); });
     render_flags_ = render_flags;
@@ -275,6 +276,7 @@ void LocalFrameRenderer::render_outputs(const scene::Scene& scene, const scene::
     startup_.table_sets += f.table_sets_uploaded;
     startup_.programs_s += f.programs_s;
     startup_.programs += f.programs_built;
+    startup_.albedo_s += f.albedo_s;
   };
   for (std::size_t o = 0; o < outputs_.size(); ++o) {
     const LocalOutput& out = outputs_[o];
@@ -437,7 +439,8 @@ void LocalFrameRenderer::submit_frame(const scene::FrameDescription& state,
 
 void LocalFrameRenderer::log_startup(double submit_s) {
   started_ = true;
-  startup_.first_frame_s = std::max(0.0, submit_s - startup_.tables_s - startup_.programs_s - startup_.buffers_s);
+  startup_.first_frame_s =
+      std::max(0.0, submit_s - startup_.tables_s - startup_.programs_s - startup_.albedo_s - startup_.buffers_s);
   startup_.total_s = seconds_since(created_);
   spdlog::info("{}", describe(startup_));
   if (renderer_) spdlog::info("renderer's programs: {}", renderer_->program_builds_summary());

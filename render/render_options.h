@@ -95,6 +95,10 @@ struct RenderOptions {
   /// an eclipse is waited for either way where the penumbra already reaches
   /// the air in view.
   bool background_shadow_builds = false;
+  /// Where generated albedo maps are kept between runs
+  /// (scene/albedo_map_cache.h; the commands give it the table cache's
+  /// directory); empty: each renderer generates its maps.
+  std::filesystem::path albedo_cache_directory;
   NightSkyRenderOptions night_sky;
 };
 

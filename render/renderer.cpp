@@ -61,7 +61,9 @@ std::array<float, 4> vec4_of(const glm::dvec3& v, double w) {
 
 struct Renderer::Impl {
   explicit Impl(const RenderOptions& options)
-      : frame_programs(options.sun_disc, options.limb_darkening), night_sky(options.night_sky, refractions) {}
+      : frame_programs(options.sun_disc, options.limb_darkening),
+        night_sky(options.night_sky, refractions),
+        albedo(options.albedo_cache_directory) {}
   // Every program of the renderer, by text (created by the first frame, with a
   // current context): a frame starts all it needs before finishing any.
   std::unique_ptr<gl::ProgramBuilds> builds;
@@ -210,7 +212,9 @@ void Renderer::prepare_bodies(Frame& frame) {
       g.world_to_body[row] =
           vec4_of(glm::dvec3(world_to_body[0][row], world_to_body[1][row], world_to_body[2][row]), 0.0);
 
+    const auto albedo_start = std::chrono::steady_clock::now();
     albedo_layers.push_back(im.albedo.load(body.albedo));
+    stats_.albedo_s += seconds_since(albedo_start);
 
     if (!body.atmosphere || !options_.atmospheres) continue;
     const atmosphere::AtmosphereModel& model = body.atmosphere->loaded.model;
@@ -238,7 +242,9 @@ void Renderer::prepare_bodies(Frame& frame) {
     s.tiles_total = frame.tiles_total;
     stats_.atmospheres.push_back(s);
   }
+  const auto albedo_start = std::chrono::steady_clock::now();
   im.albedo.ensure(albedo_layers);
+  stats_.albedo_s += seconds_since(albedo_start);
   for (GpuBody& g : bodies) g.albedo_map = {static_cast<float>(im.albedo.texture().width()), 0, 0, 0};
   im.albedo.texture().bind(binding::kAlbedoMapsUnit);
   im.band.upload_bodies(bodies);

@@ -96,6 +96,9 @@ struct FrameStats {
   /// (the first frame of a variant), with how many were built.
   double tables_s = 0.0, programs_s = 0.0;
   int programs_built = 0;
+  /// Of `seconds`: the bodies' albedo maps read or generated (the first
+  /// frame with a map; scene/albedo_map_cache.h) and uploaded.
+  double albedo_s = 0.0;
   /// Of `seconds`: the Moon's shadow on an atmosphere in a solar eclipse
   /// (render/frame/eclipse_sky_table.h): its tables' first request, following
   /// it, building a new one; how many were built and uploaded (0 where the

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/parallel_for.h"
+#include "core/sha256.h"
 #include "core/units.h"
 
 namespace zenith::scene {
@@ -108,20 +109,24 @@ double smoothstep(double edge0, double edge1, double x) {
 
 dvec3 mix(const dvec3& a, const dvec3& b, double t) { return a + (b - a) * t; }
 
+/// Point i of the n-point Fibonacci lattice on the unit sphere: equal areas
+/// (z evenly spaced), longitudes turning by the golden angle.
+dvec3 fibonacci_point(int i, int n) {
+  const double golden_angle = kPi * (3.0 - std::sqrt(5.0));
+  const double z = 1.0 - (2.0 * i + 1.0) / n;
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  const double phi = golden_angle * i;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
 /// The q-quantile of a field over the unit sphere, estimated from 16384 points
 /// of a Fibonacci lattice (equal-area, so the quantile is an area fraction).
 /// Independent of the map size, so a seed gives the same planet at any size.
 template <typename Field>
 double sphere_quantile(const Field& field, double q) {
   constexpr int kPoints = 16384;
-  const double golden_angle = kPi * (3.0 - std::sqrt(5.0));
   std::vector<double> values(kPoints);
-  for (int i = 0; i < kPoints; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / kPoints;
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const double phi = golden_angle * i;
-    values[std::size_t(i)] = field(dvec3(r * std::cos(phi), r * std::sin(phi), z));
-  }
+  for (int i = 0; i < kPoints; ++i) values[std::size_t(i)] = field(fibonacci_point(i, kPoints));
   const auto k = std::size_t(std::clamp(q, 0.0, 1.0) * (kPoints - 1));
   std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(k), values.end());
   return values[k];
@@ -348,6 +353,18 @@ image::LinearImage generate_albedo_map(const std::string& generator, std::uint32
     }
   });
   return out;
+}
+
+std::string procedural_albedo_fingerprint(const std::string& generator, std::uint32_t seed) {
+  const std::unique_ptr<Generator> g = make_generator(generator, seed);
+  constexpr int kPoints = 4096;
+  std::vector<double> colours;
+  colours.reserve(3 * kPoints);
+  for (int i = 0; i < kPoints; ++i) {
+    const dvec3 colour = g->albedo(fibonacci_point(i, kPoints));
+    colours.insert(colours.end(), {colour.r, colour.g, colour.b});
+  }
+  return core::sha256_hex(colours.data(), colours.size() * sizeof(double));
 }
 
 image::LinearImage load_albedo_map(const AlbedoSource& source) {

@@ -43,6 +43,15 @@ std::vector<std::string> albedo_generators();
 /// width [2, 16384], height [2, 8192].
 image::LinearImage generate_albedo_map(const std::string& generator, std::uint32_t seed, int width_px, int height_px);
 
+/// A fingerprint of a generator's planet for a seed: the SHA-256 (hex) of its
+/// colours at the 4096 points of a Fibonacci lattice on the sphere (about 3°
+/// apart), independent of any map size. A change to a generator that moves
+/// its colours anywhere at the scale of its fields changes the fingerprint, so
+/// a map stored under it (scene/albedo_map_cache.h) is never one an older
+/// generator made. A few milliseconds. Throws as generate_albedo_map for an
+/// unknown generator.
+std::string procedural_albedo_fingerprint(const std::string& generator, std::uint32_t seed);
+
 /// The map of a body: a 1×1 image of the colour (Kind::constant), the image file
 /// read by image::read_image (Kind::image; throws its std::runtime_error), or a
 /// generated map (Kind::procedural). Values clamped to [0, 1].

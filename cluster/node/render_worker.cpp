@@ -187,6 +187,7 @@ void RenderWorker::ensure_renderer(std::uint32_t flags) {
   // A node's frames are live: a new Moon's shadow in an eclipse is built on a
   // worker thread, never at the barrier (render/frame/eclipse_sky_table.h).
   render_options.background_shadow_builds = true;
+  render_options.albedo_cache_directory = options.cache_directory;
   renderer_ =
       std::make_unique<render::Renderer>(render_options, [this, cache](const atmosphere::AtmosphereModel& model) {
         std::string problem;

@@ -4,9 +4,13 @@
 
 namespace zenith::render {
 
+AlbedoArray::AlbedoArray(const std::filesystem::path& cache_directory) {
+  if (!cache_directory.empty()) cache_.emplace(cache_directory);
+}
+
 std::string AlbedoArray::load(const scene::AlbedoSource& source) {
   std::string key = albedo_key(source);
-  if (!images_.contains(key)) images_.emplace(key, scene::load_albedo_map(source));
+  if (!images_.contains(key)) images_.emplace(key, cache_ ? cache_->load(source) : scene::load_albedo_map(source));
   return key;
 }
 

@@ -4,18 +4,25 @@
 // (render/frame/albedo_layers.h: body b's map is layer b), rebuilt only when
 // the frame's list of maps changes. The render passes read it as albedo_maps
 // (shaders/render/surface_albedo.glsl).
+#include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "image/image_io.h"
 #include "render/gl/texture.h"
 #include "scene/albedo_map.h"
+#include "scene/albedo_map_cache.h"
 
 namespace zenith::render {
 
 class AlbedoArray {
  public:
+  /// With a `cache_directory`, generated maps are read from it and stored in
+  /// it (scene/albedo_map_cache.h); empty: generated each time.
+  explicit AlbedoArray(const std::filesystem::path& cache_directory = {});
+
   /// Loads `source`'s map unless it is held already (scene::load_albedo_map,
   /// which throws for a missing or unreadable image); returns its key.
   std::string load(const scene::AlbedoSource& source);
@@ -26,6 +33,7 @@ class AlbedoArray {
   const gl::Texture& texture() const { return array_; }
 
  private:
+  std::optional<scene::AlbedoMapCache> cache_;
   std::map<std::string, image::LinearImage> images_;  // by albedo_key
   std::string keys_;                                  // the array's keys, one a line
   gl::Texture array_;                                 // one layer per body, all at the largest map's size

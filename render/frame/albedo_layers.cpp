@@ -31,6 +31,16 @@ AlbedoLayers resample_albedo_layers(const std::vector<const image::LinearImage*>
   std::vector<float> rgba(std::max<std::size_t>(maps.size(), 1) * layer_floats, 1.0f);
   for (std::size_t layer = 0; layer < maps.size(); ++layer) {
     const image::LinearImage& m = *maps[layer];
+    float* const first = &rgba[layer * layer_floats];
+    if (m.width == 1 && m.height == 1) {  // a constant albedo: its colour everywhere
+      for (std::size_t t = 0; t < layer_floats; t += 4) std::copy_n(m.rgb.data(), 3, first + t);
+      continue;
+    }
+    if (m.width == width && m.height == height) {  // at the array's size: texel for texel
+      for (std::size_t t = 0, n = static_cast<std::size_t>(width) * height; t < n; ++t)
+        std::copy_n(&m.rgb[3 * t], 3, first + 4 * t);
+      continue;
+    }
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
         // Texel centres map to texel centres; x wraps (longitude), y clamps (poles).

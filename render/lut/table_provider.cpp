@@ -88,4 +88,9 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
   return out;
 }
 
+std::filesystem::path cache_directory_of(const TableRequest& request) {
+  if (!request.use_cache) return {};
+  return request.cache_directory.value_or(atmosphere::lut::default_cache_directory());
+}
+
 }  // namespace zenith::render

@@ -34,4 +34,9 @@ struct ObtainedTables {
 
 ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const TableRequest& request);
 
+/// The directory the request's cache lives in (its own or
+/// default_cache_directory()); empty where it uses none. The renderer keeps
+/// its generated albedo maps there too (RenderOptions::albedo_cache_directory).
+std::filesystem::path cache_directory_of(const TableRequest& request);
+
 }  // namespace zenith::render

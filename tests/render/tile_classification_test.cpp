@@ -452,6 +452,25 @@ TEST(AlbedoLayers, MapsAreResampledToTheLargestSizeWrappingInLongitude) {
   EXPECT_EQ(none.rgba, std::vector<float>(4, 1.0f)) << "no map: one white texel";
 }
 
+TEST(AlbedoLayers, AMapOfTheArraysSizeIsCopiedAndAConstantFillsItsLayer) {
+  image::LinearImage one, three;
+  one.width = one.height = 1;
+  one.rgb = {0.28f, 0.17f, 0.07f};
+  three.width = 3;
+  three.height = 2;
+  for (int i = 0; i < 3 * 2 * 3; ++i) three.rgb.push_back(0.01f * static_cast<float>(i * i) + 0.003f);
+  const AlbedoLayers layers = resample_albedo_layers({&one, &three});
+  ASSERT_EQ(layers.width, 3);
+  ASSERT_EQ(layers.height, 2);
+  ASSERT_EQ(layers.rgba.size(), 2u * 3 * 2 * 4);
+  for (std::size_t t = 0; t < 3 * 2; ++t)
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(layers.rgba[4 * t + k], one.rgb[k]) << "the constant, texel " << t;
+      EXPECT_EQ(layers.rgba[3 * 2 * 4 + 4 * t + k], three.rgb[3 * t + k]) << "the same bits, texel " << t;
+      EXPECT_EQ(layers.rgba[3 * 2 * 4 + 4 * t + 3], 1.0f) << "alpha";
+    }
+}
+
 TEST(AlbedoLayers, TheKeyNamesTheSource) {
   scene::AlbedoSource a, b;
   b.colour_linear_rgb = {0.3, 0.3, 0.31};
