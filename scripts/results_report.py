@@ -10,7 +10,8 @@ Two uses (called by scripts/results; standard library only):
   results_report.py --data DIR --out docs/RESULTS.md --images docs/images/results [--quick]
       reads DIR/machine.json, DIR/commands.tsv (step, seconds, exit code,
       command), lut_accuracy.csv, render_frame_times.csv,
-      projector_frame_times.csv, cluster_bench.csv, cie/cie_summary.csv,
+      projector_frame_times.csv, cluster_bench.csv, startup_times.csv,
+      startup_pass_compile.csv, cie/cie_summary.csv,
       cie/cie_cases.csv, measured/measured_summary.csv, measured/measured_captures.csv, eclipse/eclipse_zenith.csv,
       stress/stress_regions.csv, stress/stress_gpu.csv
       (a missing file leaves its section saying so), copies the PNG charts
@@ -626,6 +627,43 @@ class Report:
                                  g(num(r["transfer_s"])), g(num(r["mb_per_s"]))] for r in bc]), "")
             self.add(f"Data: {self.data_path('cluster_bench.csv')}.", "")
 
+    def startup(self):
+        self.add("### A show's start, Mesa's shader cache warm and empty", "")
+        self.add("The process `zenith show render` up to its first frame (the three-worlds dome; tables from the "
+                 "cache), median per case: **warm** as a second run leaves the caches, **cold-programs** with "
+                 "the driver's shader cache empty (a new machine or driver: every program's machine code made "
+                 "again), **cold-maps** with the albedo maps not cached either. Then each pass's first use "
+                 "(first frame less second, on llvmpipe its programs' code generation). "
+                 "Method: [shows.md](shows.md#where-the-start-goes).", "")
+        runs = self.measured("startup", "startup_times.csv")
+        if runs:
+            cases = list(dict.fromkeys(r["case"] for r in runs))
+            columns = [k for k in runs[0] if k.endswith("_s") and k != "wall_s"]
+
+            def median(values):
+                values = sorted(v for v in values if v is not None)
+                if not values:
+                    return None
+                n = len(values)
+                return values[n // 2] if n % 2 else 0.5 * (values[n // 2 - 1] + values[n // 2])
+
+            rows = [["whole process (wall)"] + [f"{median(num(r['wall_s']) for r in runs if r['case'] == c):.2f}"
+                                                 for c in cases]]
+            for k in columns:
+                rows.append([k[:-2]] + [f"{median(num(r[k]) for r in runs if r['case'] == c):.2f}" for c in cases])
+            self.add(table(["seconds"] + cases, rows), "")
+            passes = self.csv("startup_pass_compile.csv")
+            if passes:
+                top = sorted(passes, key=lambda r: -(num(r["cold_first_use_ms"]) or 0))
+                total_cold = sum(num(r["cold_first_use_ms"]) or 0 for r in passes)
+                total_warm = sum(num(r["warm_first_use_ms"]) or 0 for r in passes)
+                self.add(table(["pass", "first use, cache empty [ms]", "first use, cache warm [ms]"],
+                               [[r["pass"], f1(num(r["cold_first_use_ms"])), f1(num(r["warm_first_use_ms"]))]
+                                for r in top if (num(r["cold_first_use_ms"]) or 0) >= 1.0]
+                               + [["**all passes**", f1(total_cold), f1(total_warm)]]), "")
+            self.add(f"Data: {self.data_path('startup_times.csv')}, {self.data_path('startup_pass_compile.csv')}.",
+                     "")
+
     def durations(self):
         self.add("## This run", "")
         self.add(table(["step", "command", "seconds", "exit code"],
@@ -640,6 +678,7 @@ class Report:
         self.stability()
         self.pareto()
         self.speed()
+        self.startup()
         self.durations()
         text = "\n".join(self.lines).rstrip() + "\n"
         with open(self.out, "w", encoding="utf-8") as f:
