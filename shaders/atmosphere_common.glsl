@@ -29,8 +29,15 @@
 //   MIE_PHASE                              0 Henyey–Greenstein, 1 double HG, 2 Cornette–Shanks
 //   ABSORBER_COUNT                         0 drops the absorber loop
 //   AIR_MASS                               0 drops the air-mass stretch
+//   MODEL_HEADER_VECTORS                   real4s of WavelengthData before the groups' fields
 //   WAVELENGTH_FIELDS                      real4s per wavelength group in WavelengthData
-//   WAVELENGTH_DATA_SIZE                   real4s of WavelengthData (groups × fields)
+//   WAVELENGTH_DATA_SIZE                   real4s of WavelengthData (header + groups × fields)
+//   MODEL_AT_RUN_TIME                      0: the precompute's programs, every value above a define;
+//                                          1: the render passes' programs, shared by every atmosphere
+//                                          (ShaderModel::shared_defines): the radii, δ, the phase models
+//                                          and the field stride read from WavelengthData's header; the
+//                                          precompute's own defines (rules, moments, absorbers, air mass)
+//                                          absent, extinction() and air_mass_stretch() with them
 //   RAYLEIGH_PROFILE, MIE_PROFILE, AIR_MASS_PROFILE, ABSORBER_PROFILES
 //                                          offsets of profile descriptors in TableData
 //   AIR_MASS_GROUND_RADIUS, AIR_MASS_TABLE, AIR_MASS_TABLE_SIZE   the stretch table

@@ -89,7 +89,8 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   texel_values[shader.texel_layout.sun_theta_max] = std::acos(tables.geometry.min_sun_cosine());
   texel_coordinates_ = real_buffer(texel_values, features.fp64);
 
-  std::vector<gl::ShaderDefine> defines = shader.defines;
+  // One program for every atmosphere of these table sizes: the model is in its buffers.
+  std::vector<gl::ShaderDefine> defines = shader.shared_defines;
   for (const gl::ShaderDefine& d : SkyViewTable::defines()) defines.push_back(d);
   defines.push_back({"MULTIPLE_SCATTERING", features.multiple_scattering && tables.scattering_orders >= 2 ? "1" : "0"});
   eclipses_ = features.eclipses;

@@ -3,8 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "atmosphere/lut/gauss_legendre.h"
@@ -52,6 +56,36 @@ constexpr std::pair<const char*, double> kFp64MathsConstants[] = {
     {"SQRT_HALF", 7.07106781186547524401e-01},
 };
 
+/// The precompute's defines as the shared render programs take them
+/// (ShaderModel::shared_defines): the model's own values from WavelengthData's
+/// header, the precompute's alone dropped.
+std::vector<gl::ShaderDefine> shared_render_defines(const std::vector<gl::ShaderDefine>& defines, bool fp64) {
+  static const std::map<std::string, std::string> kAtRunTime = {
+      {"BOTTOM_RADIUS", "wavelength_data[0].x"},
+      {"TOP_RADIUS", "wavelength_data[0].y"},
+      {"RAYLEIGH_DEPOLARIZATION", "wavelength_data[0].z"},
+      {"WAVELENGTH_FIELDS", "int(wavelength_data[1].z)"},
+  };
+  static const std::set<std::string> kPrecomputeOnly = {
+      "RAYLEIGH_PHASE",         "MIE_PHASE",      "ABSORBER_COUNT",      "AIR_MASS",
+      "AIR_MASS_GROUND_RADIUS", "AIR_MASS_TABLE", "AIR_MASS_TABLE_SIZE", "SPHERE_RULE",
+      "HEMISPHERE_RULE",        "HARMONIC_RULE",  "RAYLEIGH_MOMENTS",    "MIE_MOMENTS"};
+  std::vector<gl::ShaderDefine> out;
+  for (const gl::ShaderDefine& d : defines) {
+    if (kPrecomputeOnly.contains(d.name)) continue;
+    if (const auto it = kAtRunTime.find(d.name); it != kAtRunTime.end()) {
+      out.push_back({d.name, it->second});
+    } else if (d.name == "WAVELENGTH_DATA_SIZE") {
+      out.push_back(
+          {d.name, std::to_string(kMaxWavelengthDataBytes / (kLanes * (fp64 ? sizeof(double) : sizeof(float))))});
+    } else {
+      out.push_back(d);
+    }
+  }
+  out.push_back({"MODEL_AT_RUN_TIME", "1"});
+  return out;
+}
+
 }  // namespace
 
 TexelCoordinateLayout texel_coordinate_layout(const TableSizes& sizes) {
@@ -68,6 +102,39 @@ std::string glsl_literal(double v, bool fp64) {
   return fp64 ? fmt::format("{:.16e}LF", v) : fmt::format("{:.8e}", v);
 }
 
+namespace {
+
+/// H = √(rt² − rb²) and the limit A of the μs distance mapping, with the
+/// operations of horizon_distance_at_top() and distance_mapping_limit()
+/// (parameterization.glsl, PRECISE: no fused multiply-add) in the shaders'
+/// precision `Real`: a shared render program reads them from WavelengthData's
+/// header and gets the bits the precompute's compiler folds from its literals.
+template <typename Real>
+std::pair<double, double> shell_constants(double bottom_radius_m, double top_radius_m) {
+  const Real rb = static_cast<Real>(bottom_radius_m), rt = static_cast<Real>(top_radius_m);
+  const auto safe_sqrt = [](Real a) { return std::sqrt(std::max(a, Real(0))); };
+  const Real H = safe_sqrt((rt - rb) * (rt + rb));
+  const Real s = H / rt;
+  const Real mu_s_min = s >= Real(0.5) ? Real(-1) : -(Real(3) * s - Real(4) * s * s * s);
+  const Real r_mu = rb * mu_s_min;
+  const Real disc = r_mu * r_mu - (rb - rt) * (rb + rt);
+  const Real distance = std::max(Real(0), -r_mu + safe_sqrt(disc));
+  const Real d_min = rt - rb, d_max = H;
+  const Real A = (distance - d_min) / (d_max - d_min);
+  return {static_cast<double>(H), static_cast<double>(A)};
+}
+
+/// WavelengthData padded to kMaxWavelengthDataBytes: the shared render
+/// programs declare the block at that size, and a buffer smaller than a block
+/// leaves its reads undefined (GL 4.5, 7.6.3).
+std::vector<double> wavelength_block(const ShaderModel& model) {
+  std::vector<double> block = model.wavelength_data;
+  block.resize(std::max(block.size(), kMaxWavelengthDataBytes / (model.fp64 ? sizeof(double) : sizeof(float))), 0.0);
+  return block;
+}
+
+}  // namespace
+
 gl::Buffer real_buffer(const std::vector<double>& values, bool fp64) {
   if (fp64) return gl::Buffer::from(std::span<const double>(values));
   std::vector<float> f(values.size());
@@ -76,7 +143,7 @@ gl::Buffer real_buffer(const std::vector<double>& values, bool fp64) {
 }
 
 ModelBuffers::ModelBuffers(const ShaderModel& model)
-    : wavelength_data(real_buffer(model.wavelength_data, model.fp64)),
+    : wavelength_data(real_buffer(wavelength_block(model), model.fp64)),
       table_data(real_buffer(model.table_data, model.fp64)) {
   if (!model.fp64_constants.empty()) fp64_constants = gl::Buffer::from(std::span<const double>(model.fp64_constants));
 }
@@ -94,11 +161,45 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   const std::size_t absorbers = model.absorbers.size();
   const std::size_t fields = kAbsorbers + absorbers;
 
-  // Per-wavelength coefficients, 4 lanes per group; lanes past N stay zero.
-  std::vector<double> wavelength_data(out.group_count * fields * kLanes, 0.0);
+  auto rayleigh_phase = [&] {
+    switch (model.rayleigh_phase) {
+      case RayleighPhaseModel::Classic: return 0;
+      case RayleighPhaseModel::Penndorf: return 1;
+      case RayleighPhaseModel::Depolarized: return 2;
+    }
+    return 1;
+  };
+  auto mie_phase = [&] {
+    switch (model.mie_phase.model) {
+      case MiePhase::Model::HenyeyGreenstein: return 0;
+      case MiePhase::Model::DoubleHenyeyGreenstein: return 1;
+      case MiePhase::Model::CornetteShanks: return 2;
+    }
+    return 0;
+  };
+
+  // The header the shared render programs read (ShaderModel::wavelength_data),
+  // then the per-wavelength coefficients, 4 lanes per group; lanes past N stay zero.
+  std::vector<double> wavelength_data((kModelHeaderVectors + out.group_count * fields) * kLanes, 0.0);
+  const auto [horizon_distance_m, mapping_limit] =
+      fp64 ? shell_constants<double>(model.ground_radius_m, model.top_radius_m)
+           : shell_constants<float>(model.ground_radius_m, model.top_radius_m);
+  const double header[kModelHeaderVectors * kLanes] = {model.ground_radius_m,
+                                                       model.top_radius_m,
+                                                       model.rayleigh_depolarization,
+                                                       horizon_distance_m,  //
+                                                       double(rayleigh_phase()),
+                                                       double(mie_phase()),
+                                                       double(fields),
+                                                       model.has_mie() ? 1.0 : 0.0,  //
+                                                       mapping_limit,
+                                                       0.0,
+                                                       0.0,
+                                                       0.0};
+  std::copy(std::begin(header), std::end(header), wavelength_data.begin());
   auto put = [&](std::size_t field, const atmosphere::Spectrum& s) {
     for (std::size_t i = 0; i < n && i < s.size(); ++i)
-      wavelength_data[((i / kLanes) * fields + field) * kLanes + i % kLanes] = s[i];
+      wavelength_data[(kModelHeaderVectors + (i / kLanes) * fields + field) * kLanes + i % kLanes] = s[i];
   };
   put(kRayleighScattering, model.rayleigh_scattering_m1);
   put(kMieScattering, model.mie_scattering_m1);
@@ -187,22 +288,6 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   out.wavelength_data = std::move(wavelength_data);
   out.table_data = std::move(table);
 
-  auto rayleigh_phase = [&] {
-    switch (model.rayleigh_phase) {
-      case RayleighPhaseModel::Classic: return 0;
-      case RayleighPhaseModel::Penndorf: return 1;
-      case RayleighPhaseModel::Depolarized: return 2;
-    }
-    return 1;
-  };
-  auto mie_phase = [&] {
-    switch (model.mie_phase.model) {
-      case MiePhase::Model::HenyeyGreenstein: return 0;
-      case MiePhase::Model::DoubleHenyeyGreenstein: return 1;
-      case MiePhase::Model::CornetteShanks: return 2;
-    }
-    return 0;
-  };
   const TableSizes& s = options.sizes;
   auto define = [&](const char* name, const auto& value) { out.defines.push_back({name, fmt::format("{}", value)}); };
   define("USE_FP64", fp64 ? 1 : 0);
@@ -257,8 +342,9 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("HAS_MIE", model.has_mie() ? 1 : 0);
   define("MIE_PHASE", mie_phase());
   define("ABSORBER_COUNT", absorbers);
+  define("MODEL_HEADER_VECTORS", kModelHeaderVectors);
   define("WAVELENGTH_FIELDS", fields);
-  define("WAVELENGTH_DATA_SIZE", out.group_count * fields);
+  define("WAVELENGTH_DATA_SIZE", kModelHeaderVectors + out.group_count * fields);
   define("RAYLEIGH_PROFILE", 0);
   define("MIE_PROFILE", 4);
   define("AIR_MASS_PROFILE", 8);
@@ -283,6 +369,8 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
     define("FP64_CONSTANT_VECTORS", (out.fp64_constants.size() + 3) / 4);
     out.fp64_constants.resize((out.fp64_constants.size() + 3) / 4 * 4, 0.0);  // whole dvec4s (std140)
   }
+  out.shared_defines = shared_render_defines(out.defines, fp64);
+  define("MODEL_AT_RUN_TIME", 0);
   return out;
 }
 

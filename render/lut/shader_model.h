@@ -19,6 +19,9 @@ namespace zenith::render {
 
 /// Wavelengths per group: one RGBA32F texel, one real4 in the shaders.
 inline constexpr std::size_t kWavelengthLanes = 4;
+/// real4s of WavelengthData before the first group's fields: the model values
+/// the shared render programs read at run time (ShaderModel::wavelength_data).
+inline constexpr std::size_t kModelHeaderVectors = 3;
 /// The largest WavelengthData block shader_model makes (bytes): the uniform
 /// block size every GL 4.5 implementation supports (GL_MAX_UNIFORM_BLOCK_SIZE).
 inline constexpr std::size_t kMaxWavelengthDataBytes = 16384;
@@ -41,8 +44,22 @@ struct ShaderModel {
   /// TexelCoordinates layout), each from its C++ definition (real constants:
   /// float literals in fp32, names of fp64_constants entries in fp64).
   std::vector<gl::ShaderDefine> defines;
-  /// WavelengthData (a uniform block, binding::kWavelengthData): real4 fields per
-  /// group, the one way the model's parameters reach every shader.
+  /// The same for the render passes' programs, with everything that differs
+  /// between atmospheres of the same table sizes and precision read at run
+  /// time instead (MODEL_AT_RUN_TIME 1): the radii, the Rayleigh and Mie phase
+  /// models, δ and the WavelengthData stride from its header; WavelengthData
+  /// declared at its largest size; the precompute's own values (quadrature
+  /// rules, moments, absorbers, the air-mass table) left out, so no render
+  /// program can read them. Atmospheres that differ only in those share every
+  /// program: a frame's programs do not multiply with its atmospheres.
+  std::vector<gl::ShaderDefine> shared_defines;
+  /// WavelengthData (a uniform block, binding::kWavelengthData): a header of
+  /// kModelHeaderVectors real4s — (bottom radius, top radius, Rayleigh
+  /// depolarisation δ, H = √(rt² − rb²)), (Rayleigh phase model, Mie phase
+  /// model, fields per group, has Mie), (the μs distance mapping's limit A,
+  /// 0, 0, 0) — then real4 fields per group: the one way the model's
+  /// parameters reach every shader. H and A are computed as the shaders
+  /// compute them, in their precision (shader_model.cpp: shell_constants).
   std::vector<double> wavelength_data;
   std::vector<double> table_data;  ///< TableData (binding 1)
   std::size_t group_count = 0;     ///< ceil(wavelengths / 4)

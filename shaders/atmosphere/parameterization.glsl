@@ -21,9 +21,17 @@ real difference_of_squares(real a, real b) {
   return d;
 }
 
+/// H = √(rt² − rb²). The shared render programs (MODEL_AT_RUN_TIME) read it
+/// from WavelengthData's header, computed on the CPU with these operations in
+/// the shader's precision (shader_model.cpp: shell_constants), where the
+/// precompute's compiler folds the literals: the same bits either way.
 real horizon_distance_at_top() {
+#if MODEL_AT_RUN_TIME
+  return wavelength_data[0].w;
+#else
   PRECISE real h = safe_sqrt(difference_of_squares(RT, RB));
   return h;
+#endif
 }
 real horizon_distance(real r) {
   PRECISE real rho = safe_sqrt(difference_of_squares(r, RB));
@@ -136,10 +144,22 @@ const int ANGLE_MAPPING_BLENDED = 1;
 /// [mapping][z][y − SCATTERING_MU/2], TEXEL_VALUE_COUNT in all.
 layout(std430, binding = TEXEL_COORDINATES_BINDING) buffer TexelCoordinates { real texel_values[]; };
 
+/// A of distance_mapping_mu_s, its value at μs_min: from WavelengthData's
+/// header in the shared render programs, as horizon_distance_at_top().
+real distance_mapping_limit() {
+#if MODEL_AT_RUN_TIME
+  return wavelength_data[2].x;
+#else
+  PRECISE real d_min = RT - RB, d_max = horizon_distance_at_top();
+  PRECISE real A = (distance_to_top(RB, min_sun_cosine()) - d_min) / (d_max - d_min);
+  return A;
+#endif
+}
+
 real distance_mapping_mu_s(real mu_s) {
   PRECISE real d_min = RT - RB, d_max = horizon_distance_at_top();
   PRECISE real a = (distance_to_top(RB, mu_s) - d_min) / (d_max - d_min);
-  PRECISE real A = (distance_to_top(RB, min_sun_cosine()) - d_min) / (d_max - d_min);
+  PRECISE real A = distance_mapping_limit();
   return max(real(1) - a / A, real(0)) / (real(1) + a);
 }
 

@@ -5,13 +5,18 @@
 
 // ------------------------------------------------------------ model data
 
-/// Per wavelength group g, WAVELENGTH_FIELDS real4s from g·WAVELENGTH_FIELDS
+/// A header of MODEL_HEADER_VECTORS real4s — (bottom radius, top radius,
+/// Rayleigh depolarisation δ, 0), (Rayleigh phase model, Mie phase model,
+/// WAVELENGTH_FIELDS, has Mie) — which the render passes' shared programs
+/// (MODEL_AT_RUN_TIME 1) read where the precompute's have defines; then per
+/// wavelength group g, WAVELENGTH_FIELDS real4s
 /// (the FIELD_* indices, defined by the shader model), one lane per wavelength:
 /// the model's parameters (scattering and extinction coefficients, the Mie
 /// phase's g1, g2 and α, the ground albedo, the absorbers). This block is the one
 /// way they reach a shader, the precompute's and the render passes' alike
 /// (render/lut/shader_model.h: ModelBuffers). A uniform block (std140, whose
-/// real4 array has the std430 stride, WAVELENGTH_DATA_SIZE = groups × fields):
+/// real4 array has the std430 stride, WAVELENGTH_DATA_SIZE = header + groups ×
+/// fields in the precompute, the largest block in the shared programs):
 /// a CPU rasterizer reads it once per SIMD vector, where it would read a storage
 /// buffer lane by lane inside branches.
 layout(std140, binding = WAVELENGTH_DATA_BINDING) uniform WavelengthData { real4 wavelength_data[WAVELENGTH_DATA_SIZE]; };
@@ -22,7 +27,9 @@ layout(std430, binding = TABLE_DATA_BINDING) readonly buffer TableData { real ta
 
 uniform int wavelength_group;
 
-real4 wavelength_field(int field) { return wavelength_data[wavelength_group * WAVELENGTH_FIELDS + field]; }
+real4 wavelength_field(int field) {
+  return wavelength_data[MODEL_HEADER_VECTORS + wavelength_group * WAVELENGTH_FIELDS + field];
+}
 
 // ------------------------------------------------------------ density profiles (density_profile.cpp)
 
@@ -64,6 +71,7 @@ real rayleigh_density(real h) { return profile_density(RAYLEIGH_PROFILE, h); }
 real mie_density(real h) { return profile_density(MIE_PROFILE, h); }
 #endif
 
+#if !MODEL_AT_RUN_TIME  // the precompute's alone: the render passes read them from the tables
 /// AtmosphereModel::extinction_m1: β_R ρ_R + β_M^ext ρ_M + Σ β_a ρ_a (no air-mass stretch).
 real4 extinction(real h) {
   real4 e = wavelength_field(FIELD_RAYLEIGH_SCATTERING) * rayleigh_density(h);
@@ -102,19 +110,35 @@ real air_mass_stretch(real r, real mu) {
   return real(1);
 #endif
 }
+#endif  // !MODEL_AT_RUN_TIME
 
 // ------------------------------------------------------------ phase functions (phase_functions.cpp)
 
-real rayleigh_phase(real c) {
-#if RAYLEIGH_PHASE == 0
-  return real(0.75) * (real(1) + c * c) * INV_4PI;
-#elif RAYLEIGH_PHASE == 1
-  return PENNDORF_A * (real(1) + PENNDORF_B * c * c) * INV_4PI;
-#else
+/// The three Rayleigh phases (RayleighPhaseModel): 0 classic 3/4 (1 + c²),
+/// 1 Penndorf A (1 + B c²), 2 depolarised with γ = δ/(2 − δ); each / 4π.
+/// RAYLEIGH_PHASE picks one, or in the shared render programs WavelengthData's
+/// header, a branch every invocation takes alike.
+real rayleigh_phase_classic(real c) { return real(0.75) * (real(1) + c * c) * INV_4PI; }
+real rayleigh_phase_penndorf(real c) { return PENNDORF_A * (real(1) + PENNDORF_B * c * c) * INV_4PI; }
+real rayleigh_phase_depolarized(real c) {
   const real delta = RAYLEIGH_DEPOLARIZATION;
   const real gamma = delta / (real(2) - delta);
   return real(3) / (real(4) * (real(1) + real(2) * gamma)) * ((real(1) + real(3) * gamma) + (real(1) - gamma) * c * c) *
          INV_4PI;
+}
+
+real rayleigh_phase(real c) {
+#if MODEL_AT_RUN_TIME
+  const int model = int(wavelength_data[1].x);
+  if (model == 0) return rayleigh_phase_classic(c);
+  if (model == 1) return rayleigh_phase_penndorf(c);
+  return rayleigh_phase_depolarized(c);
+#elif RAYLEIGH_PHASE == 0
+  return rayleigh_phase_classic(c);
+#elif RAYLEIGH_PHASE == 1
+  return rayleigh_phase_penndorf(c);
+#else
+  return rayleigh_phase_depolarized(c);
 #endif
 }
 
@@ -124,23 +148,33 @@ real4 henyey_greenstein(real c, real4 g) {
   return (real(1) - g * g) / (denom * sqrt(denom)) * INV_4PI;
 }
 
+real4 cornette_shanks(real c, real4 g) {
+  const real4 denom = real(1) + g * g - real(2) * g * c;
+  return real(3) * (real(1) - g * g) * (real(1) + c * c) / (real(2) * (real(2) + g * g) * denom * sqrt(denom)) *
+         INV_4PI;
+}
+
 /// MiePhase (atmosphere/phase_functions.cpp): P_M(cos θ) for 4 wavelengths with
 /// their asymmetry parameters g1 and, for the double Henyey–Greenstein, the
 /// second lobe's g2 and the first lobe's weight α (the only function that reads
-/// them; MIE_PHASE picks the model):
+/// them; MIE_PHASE picks the model, or in the shared render programs
+/// WavelengthData's header, a branch every invocation takes alike):
 ///   0 Henyey–Greenstein   P = HG(c, g1),  HG(c, g) = (1 − g²) / (1 + g² − 2 g c)^{3/2} / 4π
 ///   1 double HG           P = α HG(c, g1) + (1 − α) HG(c, g2)
 ///   2 Cornette–Shanks     P = 3 (1 − g1²)(1 + c²) / (2 (2 + g1²)(1 + g1² − 2 g1 c)^{3/2}) / 4π
 /// The precompute and the render passes call it through model_mie_phase.
 real4 mie_phase(real c, real4 g1, real4 g2, real4 alpha) {
-#if MIE_PHASE == 0
+#if MODEL_AT_RUN_TIME
+  const int model = int(wavelength_data[1].y);
+  if (model == 0) return henyey_greenstein(c, g1);
+  if (model == 1) return alpha * henyey_greenstein(c, g1) + (real(1) - alpha) * henyey_greenstein(c, g2);
+  return cornette_shanks(c, g1);
+#elif MIE_PHASE == 0
   return henyey_greenstein(c, g1);
 #elif MIE_PHASE == 1
   return alpha * henyey_greenstein(c, g1) + (real(1) - alpha) * henyey_greenstein(c, g2);
 #else
-  const real4 denom = real(1) + g1 * g1 - real(2) * g1 * c;
-  return real(3) * (real(1) - g1 * g1) * (real(1) + c * c) / (real(2) * (real(2) + g1 * g1) * denom * sqrt(denom)) *
-         INV_4PI;
+  return cornette_shanks(c, g1);
 #endif
 }
 

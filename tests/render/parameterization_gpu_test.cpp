@@ -47,6 +47,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -158,7 +159,9 @@ struct Worst {
 
 class GpuParameterization {
  public:
-  GpuParameterization(const atmosphere::AtmosphereModel& model, const TableSizes& sizes, bool fp64)
+  /// `shared`: the test program built as the render passes' programs are
+  /// (ShaderModel::shared_defines: the model read from WavelengthData's header).
+  GpuParameterization(const atmosphere::AtmosphereModel& model, const TableSizes& sizes, bool fp64, bool shared = false)
       : fp64_(fp64), sizes_(sizes) {
     testing::context();
     atmosphere::lut::PrecomputeOptions options;
@@ -171,7 +174,7 @@ class GpuParameterization {
     // As the precompute does before its scattering stages.
     load_compute_program("texel_coordinates.comp", m.defines).dispatch_covering(static_cast<int>(m.texel_layout.count));
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    std::vector<gl::ShaderDefine> defines = m.defines;
+    std::vector<gl::ShaderDefine> defines = shared ? m.shared_defines : m.defines;
     defines.insert(defines.end(), {{"CASES_BINDING", std::to_string(kCasesBinding)},
                                    {"RESULTS_BINDING", std::to_string(kResultsBinding)},
                                    {"CASE_STRIDE", std::to_string(kCaseStride)},
@@ -219,13 +222,32 @@ std::string describe(const Case& c) {
 
 /// Checks every quantity of every case within `tolerance`; prints the worst
 /// difference of each (the measured figures of the comment at the top).
-void compare_parameterization(const std::string& preset, bool fp64, double tolerance, int ulp_perturbation = 0) {
+/// `shared`: also the render passes' shared program (ShaderModel::shared_defines),
+/// which must give the precompute program's values: the same bits in fp32 (its
+/// H and A computed on the CPU in float as the compiler folds them), within an
+/// ulp in fp64 (there the precompute's H is the driver's double sqrt).
+void compare_parameterization(const std::string& preset, bool fp64, double tolerance, int ulp_perturbation = 0,
+                              bool shared = false) {
   SCOPED_TRACE(preset + (fp64 ? " fp64" : " fp32") +
-               (ulp_perturbation ? ", sqrt/exp/log " + std::to_string(ulp_perturbation) + " ulp" : ""));
+               (ulp_perturbation ? ", sqrt/exp/log " + std::to_string(ulp_perturbation) + " ulp" : "") +
+               (shared ? ", shared render program" : ""));
   const atmosphere::AtmosphereModel model = atmosphere::load_preset(preset).model;
   const ShellGeometry g{model.ground_radius_m, model.top_radius_m};
   const testing::ScopedShaderFaults perturbed(testing::ShaderFaults::ulps_off(ulp_perturbation));
-  const GpuParameterization gpu(model, TableSizes::small(), fp64);
+  const GpuParameterization gpu(model, TableSizes::small(), fp64, shared);
+  std::optional<GpuParameterization> precompute;
+  if (shared) precompute.emplace(model, TableSizes::small(), fp64, false);
+  const auto same_as_precompute = [&](int mode, const std::vector<double>& inputs, const std::vector<double>& results) {
+    if (!precompute) return;
+    const std::vector<double> reference = precompute->run(mode, inputs);
+    ASSERT_EQ(reference.size(), results.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      const double d = std::abs(results[i] - reference[i]) / std::max(1.0, std::abs(reference[i]));
+      if (fp64 ? d > 4e-16 : results[i] != reference[i]) ++differing;
+    }
+    EXPECT_EQ(differing, 0u) << "mode " << mode << ": values of the shared program not those of the precompute's";
+  };
   const TableSizes& s = gpu.sizes();
 
   // Mode 0: the functions at the edge cases (inputs rounded to what the shader holds).
@@ -257,6 +279,7 @@ void compare_parameterization(const std::string& preset, bool fp64, double toler
   }
   const std::vector<double> results = gpu.run(0, inputs);
   ASSERT_EQ(results.size(), expected.size());
+  same_as_precompute(0, inputs, results);
   Worst worst[kResultStride];
   for (std::size_t i = 0; i < cases.size(); ++i)
     for (int q = 0; q < kResultStride; ++q) {
@@ -294,6 +317,7 @@ void compare_parameterization(const std::string& preset, bool fp64, double toler
           texel_expected.insert(texel_expected.end(), {c.r_m, c.mu, c.mu_s, c.nu, c.ray_hits_ground ? 1.0 : 0.0});
         }
   const std::vector<double> texel_results = gpu.run(1, texels);
+  same_as_precompute(1, texels, texel_results);
   Worst texel_worst[5];
   const std::size_t texel_count = texels.size() / kCaseStride;
   for (std::size_t i = 0; i < texel_count; ++i)
@@ -339,6 +363,18 @@ TEST(ParameterizationGpu, MatchesCppAtTheEdgesForEarthInFp32) {
 }
 TEST(ParameterizationGpu, MatchesCppAtTheEdgesForMarsInFp32) {
   compare_parameterization("mars", false, kFp32Tolerance);
+}
+
+// The render passes' programs, one for every atmosphere (the radii and the
+// μs mapping's limit from WavelengthData's header): the C++ values as the
+// precompute's programs, and those programs' own.
+TEST(ParameterizationGpu, TheSharedRenderProgramIsThePrecomputesForEarthAndMarsInFp32) {
+  compare_parameterization("earth-advanced", false, kFp32Tolerance, 0, true);
+  compare_parameterization("mars", false, kFp32Tolerance, 0, true);
+}
+TEST(ParameterizationGpu, TheSharedRenderProgramIsThePrecomputesForEarthAndMarsInFp64) {
+  compare_parameterization("earth-advanced", true, kFp64Tolerance, 0, true);
+  compare_parameterization("mars", true, kFp64Tolerance, 0, true);
 }
 
 // NVIDIA's rounding on llvmpipe: sqrt, exp_r and log_r of double 1 ulp away from

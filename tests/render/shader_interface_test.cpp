@@ -17,12 +17,16 @@
 #include <epoxy/gl.h>
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <numeric>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "atmosphere/lut/parameterization.h"
 #include "atmosphere/lut/quadrature.h"
 #include "atmosphere/parameters.h"
 #include "atmosphere/phase_functions.h"
@@ -150,6 +154,54 @@ TEST(ShaderInterface, ShaderModelConstantsAndFieldsAreTheCppOnesInFp64) {
 TEST(ShaderInterface, ShaderModelConstantsAndFieldsAreTheCppOnesInFp32) {
   expect_shader_model_constants("earth-advanced", false);
   expect_shader_model_constants("mars", false);
+}
+
+/// The render passes build one program for every atmosphere of the same table
+/// sizes and precision (ShaderModel::shared_defines): no define of theirs
+/// holds a model's own value, and the model reaches them in WavelengthData's header.
+TEST(ShaderInterface, EveryPresetSharesTheRenderProgramsAndHeadsItsWavelengthData) {
+  atmosphere::lut::PrecomputeOptions options;
+  options.sizes = atmosphere::lut::TableSizes::small();
+  const std::set<std::string> precompute_only = {
+      "RAYLEIGH_PHASE", "MIE_PHASE",   "ABSORBER_COUNT", "AIR_MASS",        "SPHERE_RULE",
+      "HARMONIC_RULE",  "MIE_MOMENTS", "AIR_MASS_TABLE", "HEMISPHERE_RULE", "RAYLEIGH_MOMENTS"};
+  for (bool fp64 : {false, true}) {
+    std::map<bool, std::vector<gl::ShaderDefine>> by_mie;  // has Mie → the shared defines
+    for (const std::string& preset : atmosphere::preset_names()) {
+      SCOPED_TRACE(preset + (fp64 ? " fp64" : " fp32"));
+      const atmosphere::AtmosphereModel model = atmosphere::load_preset(preset).model;
+      const ShaderModel m = shader_model(model, options, fp64);
+      const auto value_of = [](const std::vector<gl::ShaderDefine>& defines, const std::string& name) {
+        for (const gl::ShaderDefine& d : defines)
+          if (d.name == name) return d.value;
+        return std::string("(absent)");
+      };
+      EXPECT_EQ(value_of(m.defines, "MODEL_AT_RUN_TIME"), "0");
+      EXPECT_EQ(value_of(m.shared_defines, "MODEL_AT_RUN_TIME"), "1");
+      for (const gl::ShaderDefine& d : m.shared_defines) EXPECT_FALSE(precompute_only.contains(d.name)) << d.name;
+      const auto [it, first] = by_mie.try_emplace(model.has_mie(), m.shared_defines);
+      if (!first) {
+        ASSERT_EQ(it->second.size(), m.shared_defines.size());
+        for (std::size_t i = 0; i < m.shared_defines.size(); ++i)
+          EXPECT_EQ(it->second[i].value, m.shared_defines[i].value) << m.shared_defines[i].name << " differs";
+      }
+      // The header (shader_model.h): the radii, δ, H; the phase models, the fields, Mie; A.
+      const std::vector<double>& w = m.wavelength_data;
+      ASSERT_GE(w.size(), kModelHeaderVectors * kWavelengthLanes);
+      EXPECT_EQ(w[0], model.ground_radius_m);
+      EXPECT_EQ(w[1], model.top_radius_m);
+      EXPECT_EQ(w[2], model.rayleigh_depolarization);
+      const atmosphere::lut::ShellGeometry g{model.ground_radius_m, model.top_radius_m};
+      const double H = g.horizon_distance_at_top_m();
+      EXPECT_NEAR(w[3], H, (fp64 ? 1e-15 : 1e-7) * H) << "H in the shaders' precision";
+      EXPECT_EQ(w[6], std::stod(value_of(m.defines, "FIELD_ABSORBERS")) + double(model.absorbers.size()));
+      EXPECT_EQ(w[7], model.has_mie() ? 1.0 : 0.0);
+      // A: the μs distance mapping's (d_top(rb, μs_min) − d_min) / (d_max − d_min), in double here.
+      const double d_min = model.top_radius_m - model.ground_radius_m;
+      const double A = (g.distance_to_top_m(model.ground_radius_m, g.min_sun_cosine()) - d_min) / (H - d_min);
+      EXPECT_NEAR(w[8], A, (fp64 ? 1e-12 : 1e-4) * A) << "A in the shaders' precision";
+    }
+  }
 }
 
 TEST(ShaderInterface, TileWordsReachTheShadersAsTheCppPacksThem) {
