@@ -13,6 +13,8 @@
 #include "core/timing.h"
 #include "image/image_writer.h"
 #include "render/render_flags.h"
+#include "scene/albedo_map.h"
+#include "scene/albedo_map_cache.h"
 
 namespace zenith::app::offline {
 namespace {
@@ -106,6 +108,7 @@ LocalFrameRenderer::LocalFrameRenderer(const show::Show& show,
 LocalFrameRenderer::~LocalFrameRenderer() {
   pool_.reset();            // waits for the frames in flight: their files are written from the slots
   loading_.clear();         // waits for table sets still loading (an error before the first frame)
+  albedo_loading_.clear();  // and for albedo maps
   context_.make_current();  // the GL objects belong to this context
   fenced_.clear();
   slots_.clear();
@@ -155,6 +158,28 @@ void LocalFrameRenderer::precompute_missing(const show::TablePlan& plan,
                        return render::obtain_tables(model, request);
                      }));
   }
+  // The bodies' albedo maps too (a second of a start on a CPU: reading,
+  // or generating, Earth's and Mars's), beside the tables.
+  const std::filesystem::path albedo_cache = render::cache_directory_of(tables_);
+  for (const scene::Body& body : show_.scene().bodies) {
+    if (body.albedo.kind == scene::AlbedoSource::Kind::constant) continue;
+    const std::string key = scene::albedo_key(body.albedo);
+    if (albedo_loading_.contains(key)) continue;
+    albedo_loading_.emplace(key, std::async(std::launch::async, [albedo_cache, source = body.albedo] {
+                              return albedo_cache.empty() ? scene::load_albedo_map(source)
+                                                          : scene::AlbedoMapCache(albedo_cache).load(source);
+                            }));
+  }
+}
+
+image::LinearImage LocalFrameRenderer::albedo_for(const scene::AlbedoSource& source) {
+  if (auto it = albedo_loading_.find(scene::albedo_key(source)); it != albedo_loading_.end()) {
+    std::future<image::LinearImage> loading = std::move(it->second);
+    albedo_loading_.erase(it);
+    return loading.get();
+  }
+  const std::filesystem::path albedo_cache = render::cache_directory_of(tables_);
+  return albedo_cache.empty() ? scene::load_albedo_map(source) : scene::AlbedoMapCache(albedo_cache).load(source);
 }
 
 atmosphere::lut::LookupTables LocalFrameRenderer::tables_for(const atmosphere::AtmosphereModel& model) {
@@ -179,6 +204,7 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
     options.albedo_cache_directory = render::cache_directory_of(tables_);
     renderer_ = std::make_unique<render::Renderer>(
         options, [this](const atmosphere::AtmosphereModel& model) { return tables_for(model); });
+    renderer_->set_albedo_source([this](const scene::AlbedoSource& source) { return albedo_for(source); });
     render_flags_ = render_flags;
   }
   return *renderer_;

@@ -170,6 +170,8 @@ class LocalFrameRenderer final : public FrameRenderer {
   render::Renderer& renderer_for(std::uint32_t render_flags);
   /// The renderer's TableSource: a set loading ahead (precompute_missing), else obtained now.
   atmosphere::lut::LookupTables tables_for(const atmosphere::AtmosphereModel& model);
+  /// The renderer's AlbedoMapSource: a map loading ahead (precompute_missing), else loaded now.
+  image::LinearImage albedo_for(const scene::AlbedoSource& source);
   void start_pipeline();       // the first frame: threads, slots, regions
   std::size_t acquire_slot();  // a free slot (allocated when none allocated is free); waits for one
   void log_startup(double submit_s);
@@ -195,6 +197,8 @@ class LocalFrameRenderer final : public FrameRenderer {
   std::size_t slot_bytes_ = 0;
   /// Table sets being read from the cache ahead of the first frame, by atmosphere::lookup_table_hash.
   std::map<std::string, std::future<render::ObtainedTables>> loading_;
+  /// The show's albedo maps read from their cache (or generated) beside them, by scene::albedo_key.
+  std::map<std::string, std::future<image::LinearImage>> albedo_loading_;
   StartupTimes startup_;
   bool started_ = false;  ///< the first frame was submitted
 

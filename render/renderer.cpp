@@ -88,6 +88,8 @@ Renderer::Renderer(const RenderOptions& options, TableSource tables)
 
 Renderer::~Renderer() = default;
 
+void Renderer::set_albedo_source(AlbedoMapSource source) { impl_->albedo.set_source(std::move(source)); }
+
 std::string Renderer::program_builds_summary() const { return impl_->builds ? impl_->builds->summary() : ""; }
 
 std::vector<float> Renderer::render_image(const scene::Scene& scene, const warp::Projection& projection) {

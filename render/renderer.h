@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "atmosphere/lut/lookup_tables.h"
+#include "image/image_io.h"
 #include "render/band/gpu_band.h"
 #include "render/night/night_sky_stats.h"
 #include "render/render_options.h"
@@ -62,6 +63,9 @@ class Texture;  // render/gl/texture.h
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
 /// called only for table sets the renderer does not hold yet.
 using TableSource = std::function<atmosphere::lut::LookupTables(const atmosphere::AtmosphereModel&)>;
+/// Where a renderer gets a body's albedo map the first time a frame needs it
+/// (Renderer::set_albedo_source); the same contract as scene::load_albedo_map.
+using AlbedoMapSource = std::function<image::LinearImage(const scene::AlbedoSource&)>;
 
 /// Receives finished rows, top first: `row_count` rows from `first_row`, linear
 /// sRGB radiance × exposure, 3 floats per pixel, x fastest.
@@ -130,6 +134,12 @@ class Renderer {
  public:
   Renderer(const RenderOptions& options, TableSource tables);
   ~Renderer();
+
+  /// Where the bodies' albedo maps come from: by default the cache of
+  /// RenderOptions::albedo_cache_directory (else generated) on the frame's
+  /// thread; a caller that reads them ahead — the offline renderer, while the
+  /// tables load — hands them over here. Each map is asked for once.
+  void set_albedo_source(AlbedoMapSource source);
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 

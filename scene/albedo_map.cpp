@@ -367,6 +367,20 @@ std::string procedural_albedo_fingerprint(const std::string& generator, std::uin
   return core::sha256_hex(colours.data(), colours.size() * sizeof(double));
 }
 
+std::string albedo_key(const AlbedoSource& a) {
+  std::ostringstream key;
+  switch (a.kind) {
+    case AlbedoSource::Kind::constant:
+      key << "constant " << a.colour_linear_rgb.r << ' ' << a.colour_linear_rgb.g << ' ' << a.colour_linear_rgb.b;
+      break;
+    case AlbedoSource::Kind::image: key << "image " << a.image_path.string(); break;
+    case AlbedoSource::Kind::procedural:
+      key << "procedural " << a.procedural << ' ' << a.seed << ' ' << a.width_px << 'x' << a.height_px;
+      break;
+  }
+  return key.str();
+}
+
 image::LinearImage load_albedo_map(const AlbedoSource& source) {
   image::LinearImage out;
   switch (source.kind) {

@@ -52,6 +52,11 @@ image::LinearImage generate_albedo_map(const std::string& generator, std::uint32
 /// unknown generator.
 std::string procedural_albedo_fingerprint(const std::string& generator, std::uint32_t seed);
 
+/// A key identifying an albedo source: the same key, the same map (the
+/// renderer loads each source once and keeps it; the offline renderer reads
+/// them ahead by it).
+std::string albedo_key(const AlbedoSource& albedo);
+
 /// The map of a body: a 1×1 image of the colour (Kind::constant), the image file
 /// read by image::read_image (Kind::image; throws its std::runtime_error), or a
 /// generated map (Kind::procedural). Values clamped to [0, 1].

@@ -9,8 +9,9 @@ AlbedoArray::AlbedoArray(const std::filesystem::path& cache_directory) {
 }
 
 std::string AlbedoArray::load(const scene::AlbedoSource& source) {
-  std::string key = albedo_key(source);
-  if (!images_.contains(key)) images_.emplace(key, cache_ ? cache_->load(source) : scene::load_albedo_map(source));
+  std::string key = scene::albedo_key(source);
+  if (!images_.contains(key))
+    images_.emplace(key, source_ ? source_(source) : cache_ ? cache_->load(source) : scene::load_albedo_map(source));
   return key;
 }
 

@@ -2,24 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <utility>
 
 namespace zenith::render {
-
-std::string albedo_key(const scene::AlbedoSource& a) {
-  std::ostringstream key;
-  switch (a.kind) {
-    case scene::AlbedoSource::Kind::constant:
-      key << "constant " << a.colour_linear_rgb.r << ' ' << a.colour_linear_rgb.g << ' ' << a.colour_linear_rgb.b;
-      break;
-    case scene::AlbedoSource::Kind::image: key << "image " << a.image_path.string(); break;
-    case scene::AlbedoSource::Kind::procedural:
-      key << "procedural " << a.procedural << ' ' << a.seed << ' ' << a.width_px << 'x' << a.height_px;
-      break;
-  }
-  return key.str();
-}
 
 AlbedoLayers resample_albedo_layers(const std::vector<const image::LinearImage*>& maps) {
   int width = 1, height = 1;

@@ -12,10 +12,6 @@
 
 namespace zenith::render {
 
-/// A key identifying an albedo source: the same key, the same map (the
-/// renderer loads each source once and keeps it).
-std::string albedo_key(const scene::AlbedoSource& albedo);
-
 /// The layers of the array, RGBA floats, x fastest, then y, then the layer.
 struct AlbedoLayers {
   int width = 1, height = 1;

@@ -471,18 +471,5 @@ TEST(AlbedoLayers, AMapOfTheArraysSizeIsCopiedAndAConstantFillsItsLayer) {
     }
 }
 
-TEST(AlbedoLayers, TheKeyNamesTheSource) {
-  scene::AlbedoSource a, b;
-  b.colour_linear_rgb = {0.3, 0.3, 0.31};
-  EXPECT_NE(albedo_key(a), albedo_key(b));
-  scene::AlbedoSource p = a;
-  p.kind = scene::AlbedoSource::Kind::procedural;
-  p.procedural = "moon";
-  scene::AlbedoSource q = p;
-  q.seed = 2;
-  EXPECT_NE(albedo_key(p), albedo_key(q));
-  EXPECT_EQ(albedo_key(p), albedo_key(scene::AlbedoSource(p)));
-}
-
 }  // namespace
 }  // namespace zenith::render

@@ -223,5 +223,18 @@ TEST(AlbedoMaps, LoadConstantAndProcedural) {
   EXPECT_THROW(load_albedo_map(missing), std::runtime_error);
 }
 
+TEST(AlbedoMaps, TheKeyNamesTheSource) {
+  AlbedoSource a, b;
+  b.colour_linear_rgb = {0.3, 0.3, 0.31};
+  EXPECT_NE(albedo_key(a), albedo_key(b));
+  AlbedoSource p = a;
+  p.kind = AlbedoSource::Kind::procedural;
+  p.procedural = "moon";
+  AlbedoSource q = p;
+  q.seed = 2;
+  EXPECT_NE(albedo_key(p), albedo_key(q));
+  EXPECT_EQ(albedo_key(p), albedo_key(AlbedoSource(p)));
+}
+
 }  // namespace
 }  // namespace zenith::scene
