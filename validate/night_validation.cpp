@@ -202,9 +202,10 @@ void check_extinction(Report& r, const std::string& preset) {
 
 // ---- 4./5. twilight, limiting magnitude, stars
 
-/// Patat, Ugolnikov & Postylyakov 2006 (A&A 455, 385), Table 3: the V zenith
-/// brightness at Paranal (2635 m) fitted for sun zenith distance ζ in 95–105°,
-/// m = a0 + a1 (ζ − 95) + a2 (ζ − 95)².
+/// Patat, Ugolnikov & Postylyakov 2006 (A&A 455, 385), their fit table: the V
+/// zenith brightness at Paranal (2635 m) for sun zenith distance ζ in 95–105°,
+/// m = a0 + a1 (ζ − 95) + a2 (ζ − 95)² (coefficients as docs/night-sky.md
+/// "Twilight" checks them).
 double patat_v_mag_arcsec2(double sun_zenith_deg) {
   const double x = sun_zenith_deg - 95.0;
   return 11.84 + 1.518 * x - 0.057 * x * x;
