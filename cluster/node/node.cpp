@@ -352,11 +352,14 @@ struct Node::Impl {
       std::error_code ec;
       if (!std::filesystem::exists(path, ec)) continue;
       std::string problem;
-      if (!cache.load(known.loaded.model, table_options, &problem)) {
+      std::optional<atmosphere::lut::LookupTables> tables = cache.load(known.loaded.model, table_options, &problem);
+      if (!tables) {
         spdlog::warn("node '{}': cached tables {} are not usable ({}); the master will send them again",
                      options.node_name, path.string(), problem);
         continue;
       }
+      // Checked and in memory: the render thread's prepare takes them, not the file again.
+      worker->offer_tables(known.loaded.model, std::move(*tables));
       inventory.insert(hash);
       link.send(TableReady{hash});
     }

@@ -10,6 +10,7 @@
 
 #include "astro/sky_data_identity.h"
 #include "atmosphere/lut/table_cache.h"
+#include "atmosphere/model_hash.h"
 #include "cluster/node/thumbnail.h"
 #include "core/json_reader.h"
 #include "core/timing.h"
@@ -176,6 +177,24 @@ void RenderWorker::ensure_context() {
   }
 }
 
+void RenderWorker::offer_tables(const atmosphere::AtmosphereModel& model, atmosphere::lut::LookupTables tables) {
+  std::lock_guard lock(offered_mutex_);
+  offered_.emplace_back(atmosphere::lookup_table_hash(model), std::move(tables));
+  while (offered_.size() > kMaxOfferedTables) offered_.pop_front();
+}
+
+std::optional<atmosphere::lut::LookupTables> RenderWorker::take_offered(const atmosphere::AtmosphereModel& model) {
+  const std::string key = atmosphere::lookup_table_hash(model);
+  std::lock_guard lock(offered_mutex_);
+  for (auto it = offered_.begin(); it != offered_.end(); ++it)
+    if (it->first == key) {
+      atmosphere::lut::LookupTables tables = std::move(it->second);
+      offered_.erase(it);
+      return tables;
+    }
+  return std::nullopt;
+}
+
 void RenderWorker::ensure_renderer(std::uint32_t flags) {
   const NodeOptions& options = setup_.options;
   ensure_context();
@@ -190,6 +209,7 @@ void RenderWorker::ensure_renderer(std::uint32_t flags) {
   render_options.albedo_cache_directory = options.cache_directory;
   renderer_ =
       std::make_unique<render::Renderer>(render_options, [this, cache](const atmosphere::AtmosphereModel& model) {
+        if (std::optional<atmosphere::lut::LookupTables> offered = take_offered(model)) return std::move(*offered);
         std::string problem;
         std::optional<atmosphere::lut::LookupTables> tables = cache.load(model, setup_.table_options, &problem);
         if (!tables)
@@ -215,6 +235,10 @@ void RenderWorker::use_table_version(scene::Scene& scene, const std::string& bod
 
 void RenderWorker::render_frame(const FrameState& state, std::uint64_t session, int thumbnail_edge_px) {
   writer_.discard();
+  {  // the sets the show starts with are prepared by now; a later one is read from its file then
+    std::lock_guard lock(offered_mutex_);
+    offered_.clear();
+  }
   if (setup_.options.debug_render_delay_ms > 0)
     std::this_thread::sleep_for(milliseconds(setup_.options.debug_render_delay_ms));  // test hook: a slow node
   const auto t0 = Clock::now();

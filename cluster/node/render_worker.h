@@ -15,8 +15,10 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "atmosphere/lut/lookup_tables.h"
 #include "atmosphere/lut/precompute_options.h"
 #include "cluster/node/known_atmospheres.h"
 #include "cluster/node/node.h"
@@ -66,6 +68,14 @@ class RenderWorker {
   RenderWorker(Setup setup, Events events);
   RenderWorker(const RenderWorker&) = delete;
   RenderWorker& operator=(const RenderWorker&) = delete;
+
+  // ---- any thread ----
+  /// Tables just read from the cache with their checksums checked (the
+  /// inventory a node sends after Welcome): the next prepare of that model's
+  /// set takes them instead of reading the file a second time. The last
+  /// kMaxOfferedTables offered are kept, until the first frame renders.
+  void offer_tables(const atmosphere::AtmosphereModel& model, atmosphere::lut::LookupTables tables);
+  static constexpr std::size_t kMaxOfferedTables = 4;
 
   // ---- any thread: queue a job ----
   /// Load table set `hash` (checksums checked) and render with it once; then Events::tables_ready.
@@ -145,6 +155,10 @@ class RenderWorker {
   OutputWriter writer_;
 
   std::mutex mutex_;
+  /// offer_tables: by atmosphere::lookup_table_hash, oldest first.
+  std::mutex offered_mutex_;
+  std::deque<std::pair<std::string, atmosphere::lut::LookupTables>> offered_;
+  std::optional<atmosphere::lut::LookupTables> take_offered(const atmosphere::AtmosphereModel& model);
   std::condition_variable wake_;
   std::deque<Job> jobs_;
 
