@@ -166,8 +166,7 @@ void LocalFrameRenderer::precompute_missing(const show::TablePlan& plan,
     const std::string key = scene::albedo_key(body.albedo);
     if (albedo_loading_.contains(key)) continue;
     albedo_loading_.emplace(key, std::async(std::launch::async, [albedo_cache, source = body.albedo] {
-                              return albedo_cache.empty() ? scene::load_albedo_map(source)
-                                                          : scene::AlbedoMapCache(albedo_cache).load(source);
+                              return scene::load_albedo_map(source, albedo_cache);
                             }));
   }
 }
@@ -178,8 +177,7 @@ image::LinearImage LocalFrameRenderer::albedo_for(const scene::AlbedoSource& sou
     albedo_loading_.erase(it);
     return loading.get();
   }
-  const std::filesystem::path albedo_cache = render::cache_directory_of(tables_);
-  return albedo_cache.empty() ? scene::load_albedo_map(source) : scene::AlbedoMapCache(albedo_cache).load(source);
+  return scene::load_albedo_map(source, render::cache_directory_of(tables_));
 }
 
 atmosphere::lut::LookupTables LocalFrameRenderer::tables_for(const atmosphere::AtmosphereModel& model) {

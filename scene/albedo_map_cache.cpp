@@ -108,4 +108,8 @@ void AlbedoMapCache::store(const std::filesystem::path& path, const image::Linea
   }
 }
 
+image::LinearImage load_albedo_map(const AlbedoSource& source, const std::filesystem::path& cache_directory) {
+  return cache_directory.empty() ? load_albedo_map(source) : AlbedoMapCache(cache_directory).load(source);
+}
+
 }  // namespace zenith::scene

@@ -54,4 +54,8 @@ class AlbedoMapCache {
   Statistics statistics_;
 };
 
+/// `source`'s map through the cache in `cache_directory` (AlbedoMapCache::load),
+/// or load_albedo_map's where the directory is empty (no cache).
+image::LinearImage load_albedo_map(const AlbedoSource& source, const std::filesystem::path& cache_directory);
+
 }  // namespace zenith::scene

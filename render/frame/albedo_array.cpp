@@ -1,17 +1,17 @@
 #include "render/frame/albedo_array.h"
 
+#include <utility>
+
 #include "render/frame/albedo_layers.h"
 
 namespace zenith::render {
 
-AlbedoArray::AlbedoArray(const std::filesystem::path& cache_directory) {
-  if (!cache_directory.empty()) cache_.emplace(cache_directory);
-}
+AlbedoArray::AlbedoArray(std::filesystem::path cache_directory) : cache_directory_(std::move(cache_directory)) {}
 
 std::string AlbedoArray::load(const scene::AlbedoSource& source) {
   std::string key = scene::albedo_key(source);
   if (!images_.contains(key))
-    images_.emplace(key, source_ ? source_(source) : cache_ ? cache_->load(source) : scene::load_albedo_map(source));
+    images_.emplace(key, source_ ? source_(source) : scene::load_albedo_map(source, cache_directory_));
   return key;
 }
 

@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <functional>
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,7 +21,7 @@ class AlbedoArray {
  public:
   /// With a `cache_directory`, generated maps are read from it and stored in
   /// it (scene/albedo_map_cache.h); empty: generated each time.
-  explicit AlbedoArray(const std::filesystem::path& cache_directory = {});
+  explicit AlbedoArray(std::filesystem::path cache_directory = {});
 
   /// Where maps not held come from instead (Renderer::set_albedo_source).
   void set_source(std::function<image::LinearImage(const scene::AlbedoSource&)> source) { source_ = std::move(source); }
@@ -38,7 +37,7 @@ class AlbedoArray {
   const gl::Texture& texture() const { return array_; }
 
  private:
-  std::optional<scene::AlbedoMapCache> cache_;
+  std::filesystem::path cache_directory_;  // empty: no cache
   std::function<image::LinearImage(const scene::AlbedoSource&)> source_;
   std::map<std::string, image::LinearImage> images_;  // by scene::albedo_key
   std::string keys_;                                  // the array's keys, one a line

@@ -86,24 +86,6 @@ std::vector<gl::ShaderDefine> shared_render_defines(const std::vector<gl::Shader
   return out;
 }
 
-}  // namespace
-
-TexelCoordinateLayout texel_coordinate_layout(const TableSizes& sizes) {
-  TexelCoordinateLayout l;
-  l.mu_s = 0;
-  l.sun_theta_max = l.mu_s + 2 * sizes.scattering_mu_s;  // both angle mappings
-  l.mu_sky = l.sun_theta_max + 1;
-  l.count = l.mu_sky + 2 * sizes.scattering_r * (sizes.scattering_mu / 2);
-  return l;
-}
-
-std::string glsl_literal(double v, bool fp64) {
-  // 17 significant digits round-trip a double exactly; 9 a float.
-  return fp64 ? fmt::format("{:.16e}LF", v) : fmt::format("{:.8e}", v);
-}
-
-namespace {
-
 /// H = √(rt² − rb²) and the limit A of the μs distance mapping, with the
 /// operations of horizon_distance_at_top() and distance_mapping_limit()
 /// (parameterization.glsl, PRECISE: no fused multiply-add) in the shaders'
@@ -134,6 +116,20 @@ std::vector<double> wavelength_block(const ShaderModel& model) {
 }
 
 }  // namespace
+
+TexelCoordinateLayout texel_coordinate_layout(const TableSizes& sizes) {
+  TexelCoordinateLayout l;
+  l.mu_s = 0;
+  l.sun_theta_max = l.mu_s + 2 * sizes.scattering_mu_s;  // both angle mappings
+  l.mu_sky = l.sun_theta_max + 1;
+  l.count = l.mu_sky + 2 * sizes.scattering_r * (sizes.scattering_mu / 2);
+  return l;
+}
+
+std::string glsl_literal(double v, bool fp64) {
+  // 17 significant digits round-trip a double exactly; 9 a float.
+  return fp64 ? fmt::format("{:.16e}LF", v) : fmt::format("{:.8e}", v);
+}
 
 gl::Buffer real_buffer(const std::vector<double>& values, bool fp64) {
   if (fp64) return gl::Buffer::from(std::span<const double>(values));
