@@ -73,6 +73,7 @@ render::RenderOptions make_render_options(const RenderArgs& a) {
   options.colour = image::parse_colour_mapping(a.colour);
   options.background_shadow_builds = a.window;  // a window's frames are live: they never wait for the Moon's shadow
   options.albedo_cache_directory = render::cache_directory_of(make_table_request(a));
+  options.program_cache_directory = render::program_cache_directory_of(make_table_request(a));
   return options;
 }
 

@@ -73,11 +73,12 @@ std::string describe(const StartupTimes& t) {
       t.total_s - t.context_s - t.precompute_s - t.tables_s - t.programs_s - t.albedo_s - t.buffers_s - t.first_frame_s;
   return fmt::format(
       "start-up {:.2f} s to the first frame: GL context {:.2f} s, tables precomputed {:.2f} s, tables loaded and "
-      "uploaded {:.2f} s ({} set{}), programs {:.2f} s ({} built), albedo maps {:.2f} s, buffers {:.2f} s ({:.1f} "
+      "uploaded {:.2f} s ({} set{}), programs {:.2f} s ({} built, {} from stored binaries), albedo maps {:.2f} s, "
+      "buffers {:.2f} s ({:.1f} "
       "MiB), the first frame's rendering {:.2f} s, the rest {:.2f} s (the show's checks, the manifest)",
       t.total_s, t.context_s, t.precompute_s, t.tables_s, t.table_sets, t.table_sets == 1 ? "" : "s", t.programs_s,
-      t.programs, t.albedo_s, t.buffers_s, static_cast<double>(t.buffer_bytes) / (1024.0 * 1024.0), t.first_frame_s,
-      std::max(0.0, other));
+      t.programs, t.programs_from_binaries, t.albedo_s, t.buffers_s,
+      static_cast<double>(t.buffer_bytes) / (1024.0 * 1024.0), t.first_frame_s, std::max(0.0, other));
 }
 
 std::span<const std::byte> LocalFrameRenderer::Slot::bytes() const {
@@ -200,6 +201,7 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
     options.colour = colour_;
     options.serial_compile = settings_.serial_compile;
     options.albedo_cache_directory = render::cache_directory_of(tables_);
+    options.program_cache_directory = render::program_cache_directory_of(tables_);
     renderer_ = std::make_unique<render::Renderer>(
         options, [this](const atmosphere::AtmosphereModel& model) { return tables_for(model); });
     renderer_->set_albedo_source([this](const scene::AlbedoSource& source) { return albedo_for(source); });
@@ -300,6 +302,7 @@ void LocalFrameRenderer::render_outputs(const scene::Scene& scene, const scene::
     startup_.table_sets += f.table_sets_uploaded;
     startup_.programs_s += f.programs_s;
     startup_.programs += f.programs_built;
+    startup_.programs_from_binaries += f.programs_from_binaries;
     startup_.albedo_s += f.albedo_s;
   };
   for (std::size_t o = 0; o < outputs_.size(); ++o) {

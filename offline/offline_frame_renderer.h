@@ -105,8 +105,9 @@ struct StartupTimes {
   int table_sets = 0;
   double programs_s = 0.0;  ///< building the first frame's programs (waiting for the driver included)
   int programs = 0;
-  double albedo_s = 0.0;   ///< the bodies' albedo maps: read from the cache or generated, and uploaded
-  double buffers_s = 0.0;  ///< output textures, writer threads, the first readback slot
+  int programs_from_binaries = 0;  ///< of those, made from a stored binary (render/gl/program_binary_cache.h)
+  double albedo_s = 0.0;           ///< the bodies' albedo maps: read from the cache or generated, and uploaded
+  double buffers_s = 0.0;          ///< output textures, writer threads, the first readback slot
   std::size_t buffer_bytes = 0;
   double first_frame_s = 0.0;  ///< the first frame's submit, less its tables, programs and buffers
   double total_s = 0.0;        ///< from the renderer's construction to the first frame submitted

@@ -99,6 +99,10 @@ struct RenderOptions {
   /// (scene/albedo_map_cache.h; the commands give it the table cache's
   /// directory); empty: each renderer generates its maps.
   std::filesystem::path albedo_cache_directory;
+  /// Where the renderer's linked programs are kept between runs
+  /// (render/gl/program_binary_cache.h; the commands give it the table
+  /// cache's "programs" folder, the precompute's); empty: compiled each run.
+  std::filesystem::path program_cache_directory;
   NightSkyRenderOptions night_sky;
 };
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -34,6 +35,7 @@
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
 #include "render/gl/gl_error.h"
+#include "render/gl/program_binary_cache.h"
 #include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
@@ -66,6 +68,7 @@ struct Renderer::Impl {
         albedo(options.albedo_cache_directory) {}
   // Every program of the renderer, by text (created by the first frame, with a
   // current context): a frame starts all it needs before finishing any.
+  std::optional<gl::ProgramBinaryCache> binaries;  // RenderOptions::program_cache_directory, with the builds
   std::unique_ptr<gl::ProgramBuilds> builds;
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
   RefractionCache refractions;   // the air's refraction at the camera: stars, the Moon, the Sun's disc
@@ -121,10 +124,16 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
 
   check_scene(scene);
   Impl& im = *impl_;
-  if (!im.builds)
+  if (!im.builds) {
     im.builds = std::make_unique<gl::ProgramBuilds>(options_.serial_compile ? gl::CompileMode::serial
                                                                             : gl::CompileMode::parallel);
+    if (!options_.program_cache_directory.empty()) {
+      im.binaries.emplace(options_.program_cache_directory);
+      im.builds->set_binary_cache(&*im.binaries);
+    }
+  }
   const gl::ProgramBuilds::Statistics builds_before = im.builds->statistics();
+  const int binaries_before = im.binaries ? im.binaries->statistics().loaded : 0;
   Frame frame = frame_constants(scene, projection);
   const MoonInShadow* moon_shadow = nullptr;  // a lunar eclipse this frame (render/night/moon_in_shadow.h)
   if (options_.night_sky.moon && options_.night_sky.lunar_eclipses && scene.sky_clock) {
@@ -152,6 +161,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   const gl::ProgramBuilds::Statistics& builds_after = im.builds->statistics();
   stats_.programs_built = builds_after.built - builds_before.built;
   stats_.programs_s = builds_after.seconds() - builds_before.seconds();
+  stats_.programs_from_binaries = im.binaries ? im.binaries->statistics().loaded - binaries_before : 0;
   stats_.pass_ms = timer.milliseconds();
   stats_.seconds = seconds_since(start);
 }

@@ -100,6 +100,8 @@ struct FrameStats {
   /// (the first frame of a variant), with how many were built.
   double tables_s = 0.0, programs_s = 0.0;
   int programs_built = 0;
+  /// Of those, the programs made from a stored binary (RenderOptions::program_cache_directory).
+  int programs_from_binaries = 0;
   /// Of `seconds`: the bodies' albedo maps read or generated (the first
   /// frame with a map; scene/albedo_map_cache.h) and uploaded.
   double albedo_s = 0.0;

@@ -53,12 +53,13 @@ gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::strin
 }
 
 void start_built_program(gl::ProgramBuilds& builds, std::string_view name, std::span<const gl::ShaderDefine> defines) {
-  builds.start(program_key(name, defines), [&] { return start_compute_program(name, defines); });
+  builds.start(program_key(name, defines), [&] { return start_compute_program(name, defines, builds.binary_cache()); });
 }
 
 const gl::ShaderProgram& built_program(gl::ProgramBuilds& builds, std::string_view name,
                                        std::span<const gl::ShaderDefine> defines) {
-  return builds.get(program_key(name, defines), [&] { return start_compute_program(name, defines); });
+  return builds.get(program_key(name, defines),
+                    [&] { return start_compute_program(name, defines, builds.binary_cache()); });
 }
 
 }  // namespace zenith::render

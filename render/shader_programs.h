@@ -38,7 +38,8 @@ gl::ShaderBuild start_graphics_program(std::string_view vertex_name, std::string
 /// text: the embedded shader's name and every define, so that equal texts
 /// are built once whoever asks. start_built_program starts it (the driver
 /// compiles it on its threads while the caller starts others);
-/// built_program finishes it, or builds it now. Throws what
+/// built_program finishes it, or builds it now; both through the builds'
+/// binary cache where they have one (ProgramBuilds::set_binary_cache). Throws what
 /// ShaderBuild::finish throws.
 void start_built_program(gl::ProgramBuilds& builds, std::string_view name,
                          std::span<const gl::ShaderDefine> defines = {});

@@ -207,6 +207,7 @@ void RenderWorker::ensure_renderer(std::uint32_t flags) {
   // worker thread, never at the barrier (render/frame/eclipse_sky_table.h).
   render_options.background_shadow_builds = true;
   render_options.albedo_cache_directory = options.cache_directory;
+  if (!options.cache_directory.empty()) render_options.program_cache_directory = options.cache_directory / "programs";
   renderer_ =
       std::make_unique<render::Renderer>(render_options, [this, cache](const atmosphere::AtmosphereModel& model) {
         if (std::optional<atmosphere::lut::LookupTables> offered = take_offered(model)) return std::move(*offered);

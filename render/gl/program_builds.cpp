@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include "render/gl/program_binary_cache.h"
+
 namespace zenith::render::gl {
 
 namespace {
@@ -81,8 +83,15 @@ std::string ProgramBuilds::summary() const {
   else
     how = fmt::format("{} started at once, compiled one at a time (the driver has no parallel shader compile)",
                       s.most_in_flight);
-  return fmt::format("{} programs, {:.3f} s building them ({:.3f} s starting, {:.3f} s waiting), {}", s.built,
-                     s.seconds(), s.start_s, s.wait_s, how);
+  std::string out = fmt::format("{} programs, {:.3f} s building them ({:.3f} s starting, {:.3f} s waiting), {}",
+                                s.built, s.seconds(), s.start_s, s.wait_s, how);
+  if (binaries_ != nullptr) {
+    const ProgramBinaryCache::Statistics& b = binaries_->statistics();
+    out += binaries_->enabled() ? fmt::format("; binaries: {} of {} loaded, {} stored, {} refused ({})", b.loaded,
+                                              s.built, b.stored, b.refused, binaries_->directory().string())
+                                : std::string("; binaries: none (the driver offers no binary format)");
+  }
+  return out;
 }
 
 }  // namespace zenith::render::gl

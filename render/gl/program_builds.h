@@ -20,6 +20,8 @@
 
 namespace zenith::render::gl {
 
+class ProgramBinaryCache;  // render/gl/program_binary_cache.h
+
 class ProgramBuilds {
  public:
   using Starter = std::function<ShaderBuild()>;
@@ -33,6 +35,11 @@ class ProgramBuilds {
   ProgramBuilds& operator=(const ProgramBuilds&) = delete;
 
   CompileMode mode() const { return mode_; }
+  /// Where the programs' linked binaries are kept between runs (null: none,
+  /// every program compiled); the caller's starters pass it to
+  /// ShaderBuild::compute. The cache must outlive these builds.
+  void set_binary_cache(ProgramBinaryCache* binaries) { binaries_ = binaries; }
+  ProgramBinaryCache* binary_cache() const { return binaries_; }
   /// Starts building `key`'s program with `starter` unless it is already
   /// started or built; in serial mode does nothing (get builds it).
   void start(const std::string& key, const Starter& starter);
@@ -50,7 +57,8 @@ class ProgramBuilds {
   };
   const Statistics& statistics() const { return statistics_; }
   /// "11 programs, 2.310 s building them (0.120 s starting, 2.190 s waiting),
-  /// at most 11 at once on the driver's compiler threads (parallel shader compile)".
+  /// at most 11 at once on the driver's compiler threads (parallel shader compile)",
+  /// and with a binary cache "; binaries: 11 of 11 loaded, 0 stored, 0 refused (DIR)".
   std::string summary() const;
 
  private:
@@ -58,6 +66,7 @@ class ProgramBuilds {
 
   CompileMode mode_;
   bool driver_threads_ = false;  ///< the driver has the extension
+  ProgramBinaryCache* binaries_ = nullptr;
   int previous_threads_ = 0;
   std::map<std::string, ShaderBuild, std::less<>> pending_;
   std::map<std::string, ShaderProgram, std::less<>> programs_;

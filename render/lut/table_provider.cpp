@@ -56,7 +56,7 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
     try {
       // The linked programs beside the tables: a warm run skips compiling them.
       std::optional<std::filesystem::path> programs;
-      if (request.use_cache) programs = cache.directory() / "programs";
+      if (request.use_cache) programs = program_cache_directory_of(request);
       out.tables = render::precompute_tables_gpu(model, options, &out.report, &*context, GpuPrecision::automatic,
                                                  programs, request.compile);
       gpu_done = true;
@@ -91,6 +91,11 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
 std::filesystem::path cache_directory_of(const TableRequest& request) {
   if (!request.use_cache) return {};
   return request.cache_directory.value_or(atmosphere::lut::default_cache_directory());
+}
+
+std::filesystem::path program_cache_directory_of(const TableRequest& request) {
+  const std::filesystem::path tables = cache_directory_of(request);
+  return tables.empty() ? tables : tables / "programs";
 }
 
 }  // namespace zenith::render

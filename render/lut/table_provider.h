@@ -38,5 +38,9 @@ ObtainedTables obtain_tables(const atmosphere::AtmosphereModel& model, const Tab
 /// default_cache_directory()); empty where it uses none. The renderer keeps
 /// its generated albedo maps there too (RenderOptions::albedo_cache_directory).
 std::filesystem::path cache_directory_of(const TableRequest& request);
+/// Where the request's linked programs are kept (render/gl/program_binary_cache.h):
+/// the "programs" folder of its cache, the precompute's and the renderer's
+/// (RenderOptions::program_cache_directory); empty where it uses no cache.
+std::filesystem::path program_cache_directory_of(const TableRequest& request);
 
 }  // namespace zenith::render

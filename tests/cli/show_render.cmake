@@ -71,7 +71,7 @@ if(pos EQUAL -1)
   message(FATAL_ERROR "show render did not print the table plan first:\n${last_stdout}")
 endif()
 # The start-up breakdown, at info level, once the first frame is on its way (its one table set).
-string(REGEX MATCH "start-up [0-9.]+ s to the first frame: GL context [0-9.]+ s, tables precomputed [0-9.]+ s, tables loaded and uploaded [0-9.]+ s \\(1 set\\), programs [0-9.]+ s \\([1-9][0-9]* built\\)" startup "${last_stdout}${last_stderr}")
+string(REGEX MATCH "start-up [0-9.]+ s to the first frame: GL context [0-9.]+ s, tables precomputed [0-9.]+ s, tables loaded and uploaded [0-9.]+ s \\(1 set\\), programs [0-9.]+ s \\([1-9][0-9]* built, [0-9]+ from stored binaries\\)" startup "${last_stdout}${last_stderr}")
 if(NOT startup)
   message(FATAL_ERROR "show render did not log where its start went:\n${last_stdout}\n${last_stderr}")
 endif()

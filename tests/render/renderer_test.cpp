@@ -8,13 +8,18 @@
 // channel is the spectral radiance at its wavelength × exposure.
 #include "render/renderer.h"
 
+#include <epoxy/gl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <numbers>
@@ -1126,6 +1131,60 @@ TEST(RendererPrograms, BuiltOnceByTheFirstFrameTogetherOrOneAtATimeAlike) {
   EXPECT_EQ(serial.renderer.render_image(s, p), image);
   EXPECT_EQ(serial.renderer.last_frame().programs_built, first.programs_built);
   EXPECT_NE(serial.renderer.program_builds_summary().find("one at a time"), std::string::npos);
+}
+
+/// With a program cache (RenderOptions::program_cache_directory) a renderer
+/// stores every program it builds; the next renderer, of another run, makes
+/// them all from those binaries and renders the same image bit for bit. A
+/// binary the driver refuses (here: one overwritten with noise) is compiled
+/// again, and the frame is the same.
+TEST(RendererPrograms, ASecondRunMakesEveryProgramFromItsStoredBinary) {
+  context();
+  const std::filesystem::path cache =
+      std::filesystem::temp_directory_path() / fmt::format("zenith-renderer-binaries-{}", ::getpid());
+  std::filesystem::remove_all(cache);
+  RenderOptions options = direct_colour();
+  options.program_cache_directory = cache;
+  const scene::Scene s = planet_scene("earth-advanced", 2.0, 80.0, {1, 0, 0.2});
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(48, 32, 100.0);
+  if (GLint formats = 0; glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats), formats == 0) {
+    std::filesystem::remove_all(cache);
+    GTEST_SKIP() << "the driver offers no program binary format (Mesa: its shader cache is off)";
+  }
+
+  std::vector<float> image;
+  int built = 0;
+  {
+    TestRenderer first(options);
+    image = first.renderer.render_image(s, p);
+    built = first.renderer.last_frame().programs_built;
+    EXPECT_EQ(first.renderer.last_frame().programs_from_binaries, 0);
+    EXPECT_NE(first.renderer.program_builds_summary().find(fmt::format("0 of {} loaded, {} stored", built, built)),
+              std::string::npos)
+        << first.renderer.program_builds_summary();
+  }
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(cache)) files.push_back(entry.path());
+  ASSERT_EQ(static_cast<int>(files.size()), built);
+  {
+    TestRenderer second(options);
+    EXPECT_EQ(second.renderer.render_image(s, p), image);
+    EXPECT_EQ(second.renderer.last_frame().programs_built, built);
+    EXPECT_EQ(second.renderer.last_frame().programs_from_binaries, built);
+  }
+  {  // the file's header (magic, the driver's format) kept, its binary replaced with noise
+    std::string header(12, '\0');
+    std::ifstream(files.front(), std::ios::binary).read(header.data(), 12);
+    std::ofstream(files.front(), std::ios::binary | std::ios::trunc) << header << std::string(4096, '\x5a');
+  }
+  {
+    TestRenderer third(options);
+    EXPECT_EQ(third.renderer.render_image(s, p), image);
+    EXPECT_EQ(third.renderer.last_frame().programs_from_binaries, built - 1);
+    EXPECT_NE(third.renderer.program_builds_summary().find("1 stored, 1 refused"), std::string::npos)
+        << third.renderer.program_builds_summary();
+  }
+  std::filesystem::remove_all(cache);
 }
 
 TEST(RendererSkipping, AnAtmosphereOutsideTheViewCostsNothing) {
