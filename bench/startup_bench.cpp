@@ -1,14 +1,17 @@
 // Where a show's start goes, cold and warm (docs/shows.md, "Where the start goes").
 //
 //   build/bench/startup_bench [--show FILE] [--size WxH] [--tables paper|small] [--rounds N]
-//                             [--cases warm,cold-programs,cold-maps] [--csv FILE] [--passes-csv FILE]
+//                             [--cases warm,cold-mesa,cold-programs,cold-maps] [--csv FILE] [--passes-csv FILE]
 //                             [--cache DIR] [--zenith PATH]
 //
 // 1. The process: `zenith show render --show FILE --projection fisheye --size WxH --to 0`, run as a
-//    user runs it, in three cases, each --rounds times, interleaved:
-//      warm           Mesa's shader cache and zenith's caches (tables, albedo maps) as a second run leaves them;
-//      cold-programs  Mesa's shader cache empty (a new machine, a new driver): every program's machine code
-//                     generated again; tables and maps from the cache;
+//    user runs it, in four cases, each --rounds times, interleaved:
+//      warm           Mesa's shader cache and zenith's caches (tables, albedo maps, program binaries) as a
+//                     second run leaves them;
+//      cold-mesa      Mesa's shader cache empty (evicted, or turned off), zenith's caches warm: the programs
+//                     from zenith's stored binaries, their machine code generated again;
+//      cold-programs  Mesa's cache and zenith's program binaries empty (a new machine, a new driver): every
+//                     program compiled again; tables and maps from the cache;
 //      cold-maps      that, and a cache holding the tables only: the albedo maps generated again.
 //    Wall time of the whole process and the phases of its start-up line (offline/offline_frame_renderer.h),
 //    the median per case; every run to --csv.
@@ -59,7 +62,7 @@ struct Options {
   int width = 512, height = 512;
   std::string tables = "paper";
   int rounds = 3;
-  std::vector<std::string> cases = {"warm", "cold-programs", "cold-maps"};
+  std::vector<std::string> cases = {"warm", "cold-mesa", "cold-programs", "cold-maps"};
   fs::path csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/startup_times.csv";
   fs::path passes_csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/startup_pass_compile.csv";
   fs::path cache = atmosphere::lut::default_cache_directory();
@@ -95,8 +98,8 @@ Options parse(int argc, char** argv) {
     } else if (a == "--cases") {
       o.cases = split(args.value(), ',');
       for (const std::string& c : o.cases)
-        if (c != "warm" && c != "cold-programs" && c != "cold-maps")
-          throw std::invalid_argument("--cases: '" + c + "' is not warm, cold-programs or cold-maps");
+        if (c != "warm" && c != "cold-mesa" && c != "cold-programs" && c != "cold-maps")
+          throw std::invalid_argument("--cases: '" + c + "' is not warm, cold-mesa, cold-programs or cold-maps");
     } else if (a == "--csv") {
       o.csv = args.value();
     } else if (a == "--passes-csv") {
@@ -174,12 +177,16 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-/// A cache directory with `cache`'s tables linked in and nothing else (no albedo maps).
-fs::path tables_only_cache(const fs::path& cache, const fs::path& directory) {
+/// A cache directory with `cache`'s tables linked in, and its albedo maps
+/// with `maps`; no program binaries.
+fs::path linked_cache(const fs::path& cache, const fs::path& directory, bool maps) {
   fs::create_directories(directory);
-  for (const auto& entry : fs::directory_iterator(cache))
-    if (entry.path().filename().string().starts_with("tables-") && entry.path().extension() == ".exr")
+  for (const auto& entry : fs::directory_iterator(cache)) {
+    const std::string name = entry.path().filename().string();
+    if ((name.starts_with("tables-") && entry.path().extension() == ".exr") ||
+        (maps && name.starts_with("albedo-") && entry.path().extension() == ".bin"))
       fs::create_symlink(entry.path(), directory / entry.path().filename());
+  }
   return directory;
 }
 
@@ -224,11 +231,11 @@ void process_starts(const Options& o) {
       const fs::path run_dir = o.work / fmt::format("{}-{}", c, r);
       const fs::path mesa = c == "warm" ? warm_mesa : run_dir / "mesa";
       fs::create_directories(run_dir);
-      const fs::path cache = c == "cold-maps" ? tables_only_cache(o.cache, run_dir / "cache") : fs::path();
+      const bool own_cache = c == "cold-programs" || c == "cold-maps";
+      const fs::path cache = own_cache ? linked_cache(o.cache, run_dir / "cache", c == "cold-programs") : o.cache;
       const fs::path log = run_dir / "zenith.log";
       const auto start = std::chrono::steady_clock::now();
-      const int status = run(show_command(o, run_dir / "out", c == "cold-maps" ? cache : o.cache),
-                             {{"MESA_SHADER_CACHE_DIR", mesa.string()}}, log);
+      const int status = run(show_command(o, run_dir / "out", cache), {{"MESA_SHADER_CACHE_DIR", mesa.string()}}, log);
       if (status != 0) throw std::runtime_error(fmt::format("{} exited with {}: {}", c, status, log.string()));
       Startup s = parse_startup(log);
       s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

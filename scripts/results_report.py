@@ -630,9 +630,10 @@ class Report:
     def startup(self):
         self.add("### A show's start, Mesa's shader cache warm and empty", "")
         self.add("The process `zenith show render` up to its first frame (the three-worlds dome; tables from the "
-                 "cache), median per case: **warm** as a second run leaves the caches, **cold-programs** with "
-                 "the driver's shader cache empty (a new machine or driver: every program's machine code made "
-                 "again), **cold-maps** with the albedo maps not cached either. Then each pass's first use "
+                 "cache), median per case: **warm** as a second run leaves the caches, **cold-mesa** with the "
+                 "driver's shader cache empty and zenith's program binaries kept, **cold-programs** with both "
+                 "empty (a new machine or driver: every program compiled again), **cold-maps** with the albedo "
+                 "maps not cached either. Then each pass's first use "
                  "(first frame less second, on llvmpipe its programs' code generation). "
                  "Method: [shows.md](shows.md#where-the-start-goes).", "")
         runs = self.measured("startup", "startup_times.csv")
