@@ -124,6 +124,7 @@ const std::filesystem::path& Show::scene_path() const { return impl_->scene_path
 const std::optional<std::filesystem::path>& Show::cluster_path() const { return impl_->cluster_path; }
 double Show::duration_s() const { return impl_->duration_s; }
 bool Show::loop() const { return impl_->loop; }
+const std::optional<Show::HouseTimecode>& Show::timecode() const { return impl_->timecode; }
 double Show::frame_rate_hz() const { return impl_->frame_rate_hz; }
 
 std::uint64_t Show::frame_count(double fps) const {

@@ -26,6 +26,7 @@
 #include "astro/civil_time.h"
 #include "scene/frame_description.h"
 #include "scene/scene.h"
+#include "show/timecode/timecode_chase.h"
 
 namespace zenith::show {
 
@@ -65,6 +66,14 @@ class Show {
   double duration_s() const;
   /// Whether playback loops by default.
   bool loop() const;
+  /// The house timecode the show chases (its "timecode" block: the rate,
+  /// the label at show time 0 as ChaseSettings::offset_s, what a dropout
+  /// does); nullopt: the show runs on its own clock.
+  struct HouseTimecode {
+    TimecodeRate rate = TimecodeRate::fps25;
+    ChaseSettings chase;
+  };
+  const std::optional<HouseTimecode>& timecode() const;
   /// Recordings: the frame rate they were recorded at [Hz]; keyframed: the
   /// show's suggested rate ("fps" key, default 30).
   double frame_rate_hz() const;

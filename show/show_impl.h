@@ -48,6 +48,7 @@ struct Show::Impl {
   double duration_s = 0.0;
   double frame_rate_hz = 30.0;
   bool loop = false;
+  std::optional<Show::HouseTimecode> timecode;  ///< the "timecode" block
 
   // Keyframed shows: absent tracks leave the scene's value.
   std::optional<CameraTrack> camera;

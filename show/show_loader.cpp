@@ -330,6 +330,30 @@ std::vector<AtmosphereTracks> read_atmosphere_tracks(JsonReader& root, const sce
   return out;
 }
 
+// ------------------------------------------------------------------ timecode
+
+/// "timecode": {"rate": "25", "start": "01:00:00:00", "freewheel_s": 2, "after_dropout": "hold"}
+/// (docs/shows.md, "Chasing timecode").
+Show::HouseTimecode read_timecode(JsonReader& root) {
+  JsonReader r = root.object("timecode");
+  allow(r, root.raw("timecode"), {"rate", "start", "freewheel_s", "after_dropout"});
+  Show::HouseTimecode tc;
+  const std::string rate = r.string("rate", {"24", "25", "29.97df", "30"});
+  tc.rate = *parse_timecode_rate(rate);
+  const std::string start = r.string("start");
+  try {
+    tc.chase.offset_s = timecode_seconds(parse_timecode(start, tc.rate), tc.rate);
+  } catch (const std::invalid_argument& e) {
+    r.fail("start", e.what());
+  }
+  tc.chase.freewheel_s = r.number_or("freewheel_s", tc.chase.freewheel_s, 0.0, 3600.0, "s");
+  tc.chase.after_dropout = r.string_or("after_dropout", "hold", {"hold", "stop"}) == "stop"
+                               ? ChaseSettings::AfterDropout::stop
+                               : ChaseSettings::AfterDropout::hold;
+  r.finish();
+  return tc;
+}
+
 // ------------------------------------------------------------------ recordings
 
 void read_recording(JsonReader& root, Show::Impl& show) {
@@ -445,7 +469,7 @@ Show load_show(const fs::path& path, const ShowLimits& limits) {
   JsonReader root(j, file);
   allow(root, j,
         {"zenith_show", "name", "description", "scene", "cluster", "fps", "loop", "camera", "sun", "time", "exposure",
-         "atmospheres", "recording"});
+         "atmospheres", "recording", "timecode"});
   const json& version = root.raw("zenith_show");
   if (!version.is_number_integer() || version.get<long long>() != kShowFormatVersion)
     root.fail("zenith_show", cat("= ", brief(version), ": unsupported show format version; this build reads version ",
@@ -467,6 +491,7 @@ Show load_show(const fs::path& path, const ShowLimits& limits) {
   }
   if (root.has("cluster")) show.cluster_path = root.existing_file("cluster", base_dir);
   show.loop = boolean_or(root, "loop", false);
+  if (root.has("timecode")) show.timecode = read_timecode(root);
 
   for (const scene::Body& body : show.scene.bodies)
     if (body.atmosphere) {

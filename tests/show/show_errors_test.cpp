@@ -53,6 +53,36 @@ const Case kCases[] = {
     {"fps_zero", [](json& j) { j["fps"] = 0; }, "/fps", "(0, 240]"},
     {"fps_too_high", [](json& j) { j["fps"] = 500; }, "/fps", "must be in [0, 240] Hz"},
     {"loop_not_bool", [](json& j) { j["loop"] = "yes"; }, "/loop", "must be true or false"},
+    {"timecode_rate",
+     [](json& j) {
+       j["timecode"] = {{"rate", "50"}, {"start", "01:00:00:00"}};
+     },
+     "/timecode/rate", "29.97df"},
+    {"timecode_start",
+     [](json& j) {
+       j["timecode"] = {{"rate", "25"}, {"start", "01:00:00:25"}};
+     },
+     "/timecode/start", "frames [0, 25)"},
+    {"timecode_drop_label",
+     [](json& j) {
+       j["timecode"] = {{"rate", "29.97df"}, {"start", "01:01:00;00"}};
+     },
+     "/timecode/start", "drop-frame skips frames 0 and 1"},
+    {"timecode_after_dropout",
+     [](json& j) {
+       j["timecode"] = {{"rate", "25"}, {"start", "01:00:00:00"}, {"after_dropout", "pause"}};
+     },
+     "/timecode/after_dropout", "hold"},
+    {"timecode_freewheel",
+     [](json& j) {
+       j["timecode"] = {{"rate", "25"}, {"start", "01:00:00:00"}, {"freewheel_s", -1}};
+     },
+     "/timecode/freewheel_s", "[0, 3600]"},
+    {"timecode_unknown_key",
+     [](json& j) {
+       j["timecode"] = {{"rate", "25"}, {"start", "01:00:00:00"}, {"offset", 3}};
+     },
+     "/timecode/offset", "unknown key"},
     {"camera_not_array", [](json& j) { j["camera"] = json::object(); }, "/camera", "must be an array of 1 to"},
     {"camera_empty", [](json& j) { j["camera"] = json::array(); }, "/camera", "must be an array of 1 to"},
     {"camera_key_not_object", [](json& j) { j["camera"][1] = 5; }, "/camera/1", "must be a key object"},

@@ -57,6 +57,26 @@ TEST(ShowLoader, WithoutTracksEveryFrameIsTheScene) {
             atmosphere::lookup_table_hash(show.scene().bodies[0].atmosphere->loaded.model));
 }
 
+/// The "timecode" block: the rate, the label at show time 0 as the chase's offset, what a dropout does.
+TEST(ShowLoader, TheHouseTimecodeItChases) {
+  EXPECT_FALSE(load("timecode_none", minimal_show("earth-sunset")).timecode());
+  const Show show = load(
+      "timecode",
+      minimal_show("earth-sunset",
+                   {{"timecode",
+                     {{"rate", "29.97df"}, {"start", "01:00:00;00"}, {"freewheel_s", 4}, {"after_dropout", "stop"}}}}));
+  ASSERT_TRUE(show.timecode());
+  EXPECT_EQ(show.timecode()->rate, TimecodeRate::fps29_97_drop);
+  EXPECT_NEAR(show.timecode()->chase.offset_s, 107892.0 * 1001.0 / 30000.0, 1e-9);  // 3599.9964 s
+  EXPECT_EQ(show.timecode()->chase.freewheel_s, 4.0);
+  EXPECT_EQ(show.timecode()->chase.after_dropout, ChaseSettings::AfterDropout::stop);
+  const Show defaults = load("timecode_defaults",
+                             minimal_show("earth-sunset", {{"timecode", {{"rate", "25"}, {"start", "10:00:00:00"}}}}));
+  EXPECT_EQ(defaults.timecode()->chase.offset_s, 36000.0);
+  EXPECT_EQ(defaults.timecode()->chase.freewheel_s, ChaseSettings{}.freewheel_s);
+  EXPECT_EQ(defaults.timecode()->chase.after_dropout, ChaseSettings::AfterDropout::hold);
+}
+
 TEST(ShowLoader, FrameCountsAndTimes) {
   const Show show = load(
       "frames",

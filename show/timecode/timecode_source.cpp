@@ -1,0 +1,178 @@
+#include "show/timecode/timecode_source.h"
+
+#include <alsa/asoundlib.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <span>
+#include <stdexcept>
+#include <thread>
+#include <utility>
+
+#include "show/timecode/audio_file.h"
+#include "show/timecode/ltc_codec.h"
+
+namespace zenith::show {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_of(Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
+
+/// The decoder and the queue both sources share: samples in, frames of the
+/// show's rate out, stamped from the stream's first sample's local time.
+class LtcStream {
+ public:
+  LtcStream(double sample_rate_hz, TimecodeRate rate, std::string name)
+      : decoder_(sample_rate_hz, frames_per_second(rate)), rate_(rate), name_(std::move(name)) {}
+
+  /// Decodes `samples`, the stream's next, of which the first sounded at `first_local_s`.
+  void decode(std::span<const float> samples, double first_local_s) {
+    const std::int64_t first = decoder_.position();
+    for (const LtcFrame& f : decoder_.decode(samples)) {
+      const double length = static_cast<double>(f.last_sample - f.first_sample + 1);
+      const double fps = decoder_.sample_rate_hz() / length;
+      const bool drop_frame = rate_ == TimecodeRate::fps29_97_drop;
+      if (std::abs(fps / frames_per_second(rate_) - 1.0) > 0.02 || f.drop_frame != drop_frame) {
+        if (!warned_)
+          spdlog::warn(
+              "{}: the timecode runs at {:.2f} fps{}, the show's is {} fps: its frames are ignored and the "
+              "show holds (the show file's \"timecode\": \"rate\", or the house's timecode)",
+              name_, fps, f.drop_frame ? " drop-frame" : "", to_string(rate_));
+        warned_ = true;
+        continue;
+      }
+      std::lock_guard lock(mutex_);
+      events_.push_back(
+          {f.timecode, rate_, first_local_s + static_cast<double>(f.first_sample - first) / decoder_.sample_rate_hz()});
+    }
+  }
+  std::vector<TimecodeEvent> take() {
+    std::lock_guard lock(mutex_);
+    return std::exchange(events_, {});
+  }
+  const std::string& name() const { return name_; }
+
+ private:
+  LtcDecoder decoder_;
+  TimecodeRate rate_;
+  std::string name_;
+  bool warned_ = false;
+  std::mutex mutex_;
+  std::vector<TimecodeEvent> events_;
+};
+
+class FileSource final : public TimecodeSource {
+ public:
+  FileSource(const std::filesystem::path& path, int channel, TimecodeRate rate)
+      : audio_(read_audio_channel(path, channel)),
+        stream_(audio_.sample_rate_hz, rate,
+                fmt::format("LTC from {} (channel {}, {} Hz)", path.string(), channel, audio_.sample_rate_hz)),
+        thread_([this] { play(); }) {}
+  ~FileSource() override {
+    stop_ = true;
+    thread_.join();
+  }
+  std::vector<TimecodeEvent> take() override { return stream_.take(); }
+  std::string describe() const override { return stream_.name(); }
+
+ private:
+  /// The file as a live input: 10 ms blocks, each decoded once its last sample has sounded.
+  void play() {
+    const Clock::time_point start = Clock::now();
+    const double rate = audio_.sample_rate_hz;
+    const auto block = static_cast<std::size_t>(rate / 100.0);
+    for (std::size_t at = 0; at < audio_.samples.size() && !stop_; at += block) {
+      const std::size_t n = std::min(block, audio_.samples.size() - at);
+      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>(static_cast<double>(at + n) / rate)));
+      stream_.decode(std::span<const float>(audio_.samples).subspan(at, n),
+                     seconds_of(start) + static_cast<double>(at) / rate);
+    }
+  }
+
+  AudioChannel audio_;
+  LtcStream stream_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+class CaptureSource final : public TimecodeSource {
+ public:
+  CaptureSource(const std::string& device, int channel, TimecodeRate rate)
+      : channel_(static_cast<std::size_t>(channel)) {
+    int err = snd_pcm_open(&pcm_, device.c_str(), SND_PCM_STREAM_CAPTURE, 0);
+    if (err < 0) throw std::runtime_error(fmt::format("ALSA capture device '{}': {}", device, snd_strerror(err)));
+    unsigned int sample_rate = 48000;
+    channels_ = static_cast<unsigned int>(channel) + 1;
+    // 48 kHz float, as many channels as reach the LTC's; 20 ms of latency at most.
+    err = snd_pcm_set_params(pcm_, SND_PCM_FORMAT_FLOAT_LE, SND_PCM_ACCESS_RW_INTERLEAVED, channels_, sample_rate, 1,
+                             20000);
+    if (err < 0) {
+      snd_pcm_close(pcm_);
+      throw std::runtime_error(fmt::format("ALSA capture device '{}': {} channels of 32-bit float at {} Hz: {}", device,
+                                           channels_, sample_rate, snd_strerror(err)));
+    }
+    stream_ = std::make_unique<LtcStream>(
+        sample_rate, rate, fmt::format("LTC from ALSA '{}' (channel {}, {} Hz)", device, channel, sample_rate));
+    sample_rate_ = sample_rate;
+    thread_ = std::thread([this] { capture(); });
+  }
+  ~CaptureSource() override {
+    stop_ = true;
+    thread_.join();
+    snd_pcm_close(pcm_);
+  }
+  std::vector<TimecodeEvent> take() override { return stream_->take(); }
+  std::string describe() const override { return stream_->name(); }
+
+ private:
+  void capture() {
+    const snd_pcm_uframes_t block = sample_rate_ / 100;
+    std::vector<float> interleaved(block * channels_), mono(block);
+    while (!stop_) {
+      const snd_pcm_sframes_t got = snd_pcm_readi(pcm_, interleaved.data(), block);
+      const Clock::time_point now = Clock::now();
+      if (got < 0) {
+        if (snd_pcm_recover(pcm_, static_cast<int>(got), 1) < 0) {
+          spdlog::error("{}: {}; timecode input stopped", stream_->name(), snd_strerror(static_cast<int>(got)));
+          return;
+        }
+        continue;
+      }
+      snd_pcm_sframes_t delay = 0;  // frames captured but not yet read: the block's end sounded that long ago
+      if (snd_pcm_delay(pcm_, &delay) < 0) delay = 0;
+      for (snd_pcm_sframes_t i = 0; i < got; ++i)
+        mono[static_cast<std::size_t>(i)] = interleaved[static_cast<std::size_t>(i) * channels_ + channel_];
+      const double first_s = seconds_of(now) - static_cast<double>(got + delay) / sample_rate_;
+      stream_->decode(std::span<const float>(mono).first(static_cast<std::size_t>(got)), first_s);
+    }
+  }
+
+  snd_pcm_t* pcm_ = nullptr;
+  unsigned int channels_ = 1, sample_rate_ = 48000;
+  std::size_t channel_ = 0;
+  std::unique_ptr<LtcStream> stream_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace
+
+std::unique_ptr<TimecodeSource> ltc_file_source(const std::filesystem::path& path, int channel, TimecodeRate rate) {
+  return std::make_unique<FileSource>(path, channel, rate);
+}
+
+std::unique_ptr<TimecodeSource> ltc_capture_source(const std::string& device, int channel, TimecodeRate rate) {
+  if (channel < 0 || channel > 63)
+    throw std::invalid_argument(fmt::format("ALSA capture device '{}': channel {} outside [0, 63]", device, channel));
+  return std::make_unique<CaptureSource>(device, channel, rate);
+}
+
+}  // namespace zenith::show

@@ -1,0 +1,41 @@
+#pragma once
+// Where a live chase (show/timecode/timecode_chase.h) gets its frames: LTC
+// read on a thread of its own, each frame stamped on std::chrono::steady_clock
+// (seconds since its epoch, as TimecodeEvent::local_s) when its first bit
+// sounded. Two sources: an audio file played in real time from the moment
+// the source starts (a rehearsal against the soundtrack's LTC track, the
+// tests), and an ALSA capture device (the audio interface's input that the
+// house's timecode is patched into).
+//
+// Frames of another rate than the show's (measured from the frames' length,
+// and the drop-frame flag) are dropped with one warning naming both rates:
+// the chase then holds the show instead of running it at the wrong speed.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "show/timecode/timecode_chase.h"
+
+namespace zenith::show {
+
+class TimecodeSource {
+ public:
+  virtual ~TimecodeSource() = default;
+  /// The frames read since the last call, in order (from any thread).
+  virtual std::vector<TimecodeEvent> take() = 0;
+  /// "LTC from show.wav (channel 1, 48000 Hz)", for logs and the status.
+  virtual std::string describe() const = 0;
+};
+
+/// LTC of channel `channel` of the audio file `path`, played in real time from
+/// now; the file ends in silence (the chase freewheels, then holds or stops).
+/// Throws what read_audio_channel throws.
+std::unique_ptr<TimecodeSource> ltc_file_source(const std::filesystem::path& path, int channel, TimecodeRate rate);
+
+/// LTC of channel `channel` of the ALSA capture device `device` ("hw:1,0",
+/// "default"). Throws std::runtime_error naming the device and ALSA's reason
+/// where it cannot be opened.
+std::unique_ptr<TimecodeSource> ltc_capture_source(const std::string& device, int channel, TimecodeRate rate);
+
+}  // namespace zenith::show

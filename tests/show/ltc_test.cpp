@@ -1,0 +1,105 @@
+// LTC through libltc (show/timecode/ltc_codec.h) and WAV files
+// (show/timecode/audio_file.h): what the encoder writes the decoder reads
+// back, frame for frame and sample for sample, at every rate.
+#include "show/timecode/ltc_codec.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "show/timecode/audio_file.h"
+
+namespace zenith::show {
+namespace {
+
+constexpr TimecodeRate kRates[] = {TimecodeRate::fps24, TimecodeRate::fps25, TimecodeRate::fps29_97_drop,
+                                   TimecodeRate::fps30};
+
+/// Every rate: 100 frames across a minute's turn (drop-frame: across its skipped labels) read back in
+/// order, the drop-frame flag where it belongs, each frame where the encoder put it.
+TEST(Ltc, EveryRateReadsBackFrameForFrame) {
+  for (const TimecodeRate rate : kRates) {
+    LtcSignal signal;
+    signal.start = {0, 0, 58, 0};
+    signal.rate = rate;
+    signal.frames = 100;
+    const std::vector<float> samples = encode_ltc(signal);
+    const double samples_per_frame = signal.sample_rate_hz / frames_per_second(rate);
+    EXPECT_NEAR(static_cast<double>(samples.size()), 100 * samples_per_frame, 2.0) << to_string(rate);
+    LtcDecoder decoder(signal.sample_rate_hz, frames_per_second(rate));
+    const std::vector<LtcFrame> frames = decoder.decode(samples);
+    // libltc needs the first frame to find the signal's speed: it reads from the second.
+    ASSERT_GE(frames.size(), 98u) << to_string(rate);
+    const std::int64_t first = frame_index(signal.start, rate);
+    for (const LtcFrame& f : frames) {
+      const std::int64_t k = frame_index(f.timecode, rate) - first;
+      ASSERT_GE(k, 0) << format_timecode(f.timecode, rate);
+      EXPECT_EQ(f.drop_frame, rate == TimecodeRate::fps29_97_drop);
+      EXPECT_FALSE(f.reverse);
+      // Within two samples of where frame k starts.
+      EXPECT_NEAR(static_cast<double>(f.first_sample), static_cast<double>(k) * samples_per_frame, 2.0)
+          << to_string(rate) << " " << format_timecode(f.timecode, rate);
+      EXPECT_NEAR(f.volume_dbfs, -18.0, 1.0);
+    }
+    // The last frame ends on an edge only the next frame's first bit makes: without it, it is not read.
+    EXPECT_EQ(frames.back().timecode, timecode_at(first + 98, rate)) << to_string(rate);
+  }
+}
+
+TEST(Ltc, AWavFileCarriesItAtSixteenBits) {
+  LtcSignal signal;
+  signal.start = {10, 0, 0, 0};
+  signal.rate = TimecodeRate::fps30;
+  signal.frames = 60;
+  signal.sample_rate_hz = 44100.0;
+  const std::filesystem::path wav =
+      std::filesystem::temp_directory_path() / ("zenith-ltc-" + std::to_string(getpid()) + ".wav");
+  write_wav(wav, encode_ltc(signal), signal.sample_rate_hz);
+  const AudioChannel audio = read_audio_channel(wav);
+  EXPECT_EQ(audio.sample_rate_hz, 44100.0);
+  EXPECT_EQ(audio.channels, 1);
+  LtcDecoder decoder(audio.sample_rate_hz, 30.0);
+  const std::vector<LtcFrame> frames = decoder.decode(audio.samples);
+  ASSERT_GE(frames.size(), 58u);
+  EXPECT_EQ(frames.back().timecode, (Timecode{10, 0, 1, 28}));  // the last frame's end is the next one's start
+  EXPECT_THROW(read_audio_channel(wav, 1), std::invalid_argument);
+  std::filesystem::remove(wav);
+  try {
+    read_audio_channel(wav);
+    ADD_FAILURE() << "a missing file was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(wav.string() + ": ", 0), 0u) << e.what();
+  }
+}
+
+TEST(Ltc, ASignalBadlyAskedForIsRefusedByName) {
+  LtcSignal signal;
+  signal.frames = 1;
+  signal.start = {0, 0, 0, 25};
+  EXPECT_THROW(encode_ltc(signal), std::invalid_argument);
+  signal.start = {};
+  signal.speed = 3.0;
+  EXPECT_THROW(encode_ltc(signal), std::invalid_argument);
+  signal.speed = 1.0;
+  signal.sample_rate_hz = 1000.0;
+  EXPECT_THROW(encode_ltc(signal), std::invalid_argument);
+  EXPECT_THROW(LtcDecoder(48000.0, 60.0), std::invalid_argument);
+}
+
+/// Noise is no timecode: nothing decoded.
+TEST(Ltc, NoiseIsNotTimecode) {
+  std::vector<float> noise(48000);
+  std::uint32_t state = 12345;
+  for (float& x : noise) {
+    state = state * 1664525u + 1013904223u;
+    x = static_cast<float>(state >> 8) / static_cast<float>(1u << 24) - 0.5f;
+  }
+  LtcDecoder decoder(48000.0);
+  EXPECT_TRUE(decoder.decode(noise).empty());
+}
+
+}  // namespace
+}  // namespace zenith::show
