@@ -71,7 +71,8 @@ cluster::SharedSecret load_secret(const cluster::ClusterConfig& config) {
 
 /// Playback options shared by `zenith master` and `zenith cluster` (docs/shows.md).
 struct PlaybackArgs {
-  std::string show, record;
+  std::string show, record, ltc_device, ltc_file;
+  int ltc_channel = 0;
   double fps = 0.0;
   bool loop = false, no_loop = false, console = false, unpaced = false;
   std::optional<int> control_port;
@@ -89,6 +90,14 @@ struct PlaybackArgs {
     cmd.add_option("--control-port", control_port, "Playback commands on a control socket at 127.0.0.1:PORT")
         ->check(CLI::Range(1, 65535));
     cmd.add_flag("--unpaced", unpaced, "Start each frame as soon as the last is presented (offline rendering)");
+    cmd.add_option("--ltc-device", ltc_device,
+                   "Chase the house's LTC timecode from this ALSA capture device, e.g. hw:1,0 (the show needs a "
+                   "\"timecode\" block; docs/shows.md, \"Chasing timecode\")");
+    cmd.add_option("--ltc-file", ltc_file,
+                   "Chase the LTC of this audio file, played in real time from the master's start (a rehearsal)")
+        ->excludes("--ltc-device");
+    cmd.add_option("--ltc-channel", ltc_channel, "The channel carrying the LTC, 0 the first (default 0)")
+        ->check(CLI::Range(0, 63));
   }
   void apply(cluster::MasterOptions& options) const {
     if (!show.empty()) options.show = fs::path(show);
@@ -100,6 +109,9 @@ struct PlaybackArgs {
     options.console = console;
     if (control_port) options.control_port = static_cast<std::uint16_t>(*control_port);
     options.paced = !unpaced;
+    options.ltc_device = ltc_device;
+    if (!ltc_file.empty()) options.ltc_file = fs::path(ltc_file);
+    options.ltc_channel = ltc_channel;
   }
   /// The same options as command-line arguments for a child master.
   std::vector<std::string> arguments() const {
@@ -112,6 +124,9 @@ struct PlaybackArgs {
     if (console) args.push_back("--console");
     if (control_port) args.insert(args.end(), {"--control-port", std::to_string(*control_port)});
     if (unpaced) args.push_back("--unpaced");
+    if (!ltc_device.empty()) args.insert(args.end(), {"--ltc-device", ltc_device});
+    if (!ltc_file.empty()) args.insert(args.end(), {"--ltc-file", ltc_file});
+    if (ltc_channel != 0) args.insert(args.end(), {"--ltc-channel", std::to_string(ltc_channel)});
     return args;
   }
 };

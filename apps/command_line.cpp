@@ -30,6 +30,7 @@ int run_command_line(int argc, char** argv) {
   register_displays_command(app);
   register_validate_command(app);
   register_show_command(app);
+  register_timecode_command(app);
 
   try {
     app.parse(argc, argv);

@@ -24,6 +24,8 @@ void register_displays_command(CLI::App& app);
 void register_validate_command(CLI::App& app);
 /// `validate stress` under `validate` (apps/validate_stress.cpp).
 void register_validate_stress(CLI::App& validate);
+/// `zenith timecode write|read` (apps/timecode_command.cpp).
+void register_timecode_command(CLI::App& app);
 /// `zenith show ...` (apps/show_command.cpp).
 void register_show_command(CLI::App& app);
 /// `show render` under `show` (apps/show_render.cpp).

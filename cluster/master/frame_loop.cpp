@@ -1,9 +1,12 @@
 #include "cluster/master/frame_loop.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <boost/asio/post.hpp>
@@ -71,12 +74,37 @@ bool FrameLoop::next_frame(FrameState& next) {
     }
   }
   const std::uint64_t frame = p_.barrier.frame();
+  if (p_.play.chase) {
+    // The frame's moment: its due time on the schedule, else (under the barrier) now.
+    const Clock::time_point moment = schedule_started_ ? pacer_.due(p_.progress.presented) : Clock::now();
+    next = p_.play.show->state_at(chased_show_time(moment), frame, p_.play.render_flags);
+    p_.desk.shape(next);
+    return true;
+  }
   next = p_.play.show ? p_.play.show->state_at(p_.play.clock->next_frame_time_s(), frame, p_.play.render_flags)
                       : scene::default_show_frame(p_.play.scene, frame, p_.options.sun_step_deg,
                                                   p_.tables.tables().current(), p_.play.render_flags);
   if (!p_.play.show) next.show_time_s = static_cast<double>(frame) / p_.play.fps;  // the live session's clock
   p_.desk.shape(next);
   return true;
+}
+
+double FrameLoop::chased_show_time(Clock::time_point moment) {
+  show::TimecodeChase& chase = *p_.play.chase;
+  for (const show::TimecodeEvent& e : p_.play.timecode->take()) chase.receive(e);
+  const show::ChasePosition before = p_.play.chased;
+  const auto seconds = [](Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); };
+  const show::ChasePosition& now = p_.play.chased = chase.position(seconds(moment), seconds(Clock::now()));
+  const std::string label = now.last ? show::format_timecode(*now.last, now.rate) : std::string("none");
+  if (now.state != before.state)
+    spdlog::info("master: timecode {} (last frame {}, show time {:.3f} s{})", show::to_string(now.state), label,
+                 now.show_time_s,
+                 now.state == show::ChaseState::locked ? fmt::format(", drift {:+.0f} ppm", now.drift_ppm) : "");
+  if (now.locates != before.locates)
+    spdlog::info("master: timecode located to {}: show time {:.3f} s", label, now.show_time_s);
+  if (now.before_start && !before.before_start)
+    spdlog::warn("master: timecode {} is before the show's start: the show holds at its start", label);
+  return now.show_time_s;
 }
 
 std::optional<FrameState> FrameLoop::frame_for(const std::vector<std::uint32_t>& participants,

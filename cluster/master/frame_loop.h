@@ -87,6 +87,9 @@ class FrameLoop {
   /// retry is then set.
   std::optional<FrameState> frame_for(const std::vector<std::uint32_t>& participants,
                                       const std::vector<std::uint32_t>& holders);
+  /// The show time of the frame presented at `moment`, from the chase of the
+  /// house's timecode (its new frames taken first); logs the chase's changes.
+  double chased_show_time(Clock::time_point moment);
   void on_barrier_timeout();
   void complete_frame();
   void note_presents(const NodeSession& session, const RenderDone& done);

@@ -108,13 +108,13 @@ struct Master::Impl {
                                           options.config.barrier_timeout_ms, options.atmosphere_switches, fps,
                                           options.paced, !(show && options.feed)},
                    scene, show ? &*show : nullptr, sessions, barrier, std::move(actions));
-    door.emplace(MasterDesk::Parts{options.config, sessions, barrier, *tables, node_statistics, progress,
-                                   show ? &*show : nullptr, clock ? &*clock : nullptr, fps,
-                                   [this] { return preparer.running(); },
-                                   [this](const std::string& reason) { stop(reason); }});
+    door.emplace(MasterDesk::Parts{
+        options.config, sessions, barrier, *tables, node_statistics, progress, show ? &*show : nullptr,
+        clock ? &*clock : nullptr, fps, [this] { return preparer.running(); },
+        [this](const std::string& reason) { stop(reason); }, play.chase ? &play.chased : nullptr});
     desk.emplace(*door,
                  OperatorDesk::Setup{options.config, show ? &*show : nullptr, clock ? &*clock : nullptr, fps,
-                                     options.feed != nullptr},
+                                     options.feed != nullptr, play.chase ? &*play.chase : nullptr},
                  scene);
     loop.emplace(io, FrameLoop::Parts{options, play, sessions, barrier, *tables, *desk, node_statistics, progress,
                                       datagrams, [this](const std::string& reason) { stop(reason); }});

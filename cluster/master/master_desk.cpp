@@ -29,7 +29,8 @@ nlohmann::json MasterDesk::status(const DeskStatus& desk) const {
                                      p_.show ? &t.overrides() : nullptr,
                                      t.show_versions(),
                                      desk.preview,
-                                     desk.preview_on});
+                                     desk.preview_on,
+                                     p_.timecode});
 }
 
 }  // namespace zenith::cluster

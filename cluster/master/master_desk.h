@@ -35,6 +35,8 @@ class MasterDesk final : public DeskMaster {
     double fps = 30.0;
     std::function<std::optional<TablePreparer::Progress>()> preparing;  ///< the preparer's running job
     std::function<void(const std::string& reason)> stop;
+    /// The chase of the house's timecode at the latest frame; nullptr: the show runs on its clock.
+    const show::ChasePosition* timecode = nullptr;
   };
   explicit MasterDesk(Parts parts) : p_(std::move(parts)) {}
 

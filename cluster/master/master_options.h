@@ -51,6 +51,13 @@ struct MasterOptions {
   /// Records every presented frame state into this show file (a recording),
   /// written when the master stops.
   std::optional<std::filesystem::path> record;
+  /// The house's timecode the show chases (its "timecode" block; docs/shows.md,
+  /// "Chasing timecode"): LTC from an ALSA capture device ("hw:1,0") or from
+  /// an audio file played in real time from the master's start (a rehearsal);
+  /// `ltc_channel` the channel that carries it. At most one of the two.
+  std::string ltc_device;
+  std::optional<std::filesystem::path> ltc_file;
+  int ltc_channel = 0;
   /// Playback commands from standard input, one per line (docs/shows.md, "Playback").
   bool console = false;
   /// Playback commands on a TCP control socket at 127.0.0.1:PORT (`zenith show control`).

@@ -144,6 +144,17 @@ json sky_angles(const std::optional<scene::SkyAngles>& angles) {
   return {{"elevation_deg", angles->elevation_deg}, {"azimuth_deg", angles->azimuth_deg}};
 }
 
+/// The chase of the house's timecode: {"state", "last", "rate", "drift_ppm", "locates", "before_start"}, or null.
+json timecode_status(const show::ChasePosition* p) {
+  if (p == nullptr) return nullptr;
+  return {{"state", show::to_string(p->state)},
+          {"last", p->last ? json(show::format_timecode(*p->last, p->rate)) : json(nullptr)},
+          {"rate", show::to_string(p->rate)},
+          {"drift_ppm", p->drift_ppm},
+          {"locates", p->locates},
+          {"before_start", p->before_start}};
+}
+
 }  // namespace
 
 std::string version_hex16(const Digest& hash) { return core::to_hex(hash).substr(0, 16); }
@@ -177,7 +188,8 @@ json master_status(const StatusSources& s) {
           {"live_atmospheres", s.edits != nullptr},
           {"nodes", std::move(nodes)},
           {"atmospheres", std::move(atmospheres)},
-          {"last_error", s.last_error.empty() ? json(nullptr) : json(s.last_error)}};
+          {"last_error", s.last_error.empty() ? json(nullptr) : json(s.last_error)},
+          {"timecode", timecode_status(s.timecode)}};
 }
 
 }  // namespace zenith::cluster

@@ -54,6 +54,7 @@ struct StatusSources {
   std::vector<AtmosphereTableRef> show_versions;   ///< a show's own versions of the latest frame
   const DomePreview* preview = nullptr;            ///< the dome preview; nullptr without the HTTP console
   bool preview_on = false;
+  const show::ChasePosition* timecode = nullptr;  ///< the chase of the house's timecode; nullptr: none
 };
 
 /// The status as JSON (schema in docs/operator.md, "Status"):

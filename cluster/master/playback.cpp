@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "core/strings.h"
@@ -30,6 +31,25 @@ void load_playback(const MasterOptions& options, Playback& p) {
     p.clock.emplace(p.show->duration_s(), p.fps, options.loop.value_or(p.show->loop()));
     spdlog::info("master: playing show '{}' ({:.1f} s at {} fps, {} frames{})", p.show->name(), p.show->duration_s(),
                  p.fps, p.show->frame_count(p.fps), p.clock->looping() ? ", looping" : "");
+  }
+  if (!options.ltc_device.empty() || options.ltc_file) {
+    const std::string input = options.ltc_file ? "--ltc-file" : "--ltc-device";
+    if (!p.show || !p.show->timecode())
+      throw std::invalid_argument(cat(input,
+                                      ": the show to chase timecode needs a show file with a \"timecode\" "
+                                      "block (its rate and start; docs/shows.md, \"Chasing timecode\")"));
+    const show::Show::HouseTimecode& tc = *p.show->timecode();
+    p.chase.emplace(tc.chase);
+    p.timecode = options.ltc_file ? show::ltc_file_source(*options.ltc_file, options.ltc_channel, tc.rate)
+                                  : show::ltc_capture_source(options.ltc_device, options.ltc_channel, tc.rate);
+    spdlog::info(
+        "master: chasing {} at {} fps: show time 0 at {}, through a dropout {:.1f} s, then {}", p.timecode->describe(),
+        show::to_string(tc.rate),
+        show::format_timecode(
+            show::timecode_at(
+                static_cast<std::int64_t>(std::llround(tc.chase.offset_s * show::frames_per_second(tc.rate))), tc.rate),
+            tc.rate),
+        tc.chase.freewheel_s, tc.chase.after_dropout == show::ChaseSettings::AfterDropout::hold ? "hold" : "stop");
   }
   if (options.record)
     p.recorder = std::make_unique<show::ShowRecorder>(

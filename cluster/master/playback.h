@@ -10,6 +10,8 @@
 #include "scene/scene.h"
 #include "show/playback_clock.h"
 #include "show/show.h"
+#include "show/timecode/timecode_chase.h"
+#include "show/timecode/timecode_source.h"
 
 namespace zenith::cluster {
 
@@ -20,10 +22,18 @@ struct Playback {
   double fps = 30.0;                             ///< frames per second of show time (and of pacing)
   std::uint32_t render_flags = 0;                ///< every frame's (render::RenderOptions' defaults)
   std::unique_ptr<show::ShowRecorder> recorder;  ///< with MasterOptions::record
+  /// Chasing the house's timecode (MasterOptions::ltc_device or ltc_file):
+  /// show time from the chase at each frame's moment instead of the clock.
+  std::optional<show::TimecodeChase> chase;
+  std::unique_ptr<show::TimecodeSource> timecode;
+  show::ChasePosition chased;  ///< the last frame's, for the status and the log
 };
 
-/// Loads what `options` plays into `playback` (logged). Throws for a bad show
-/// or scene file, and std::invalid_argument for atmosphere switches with a show.
+/// Loads what `options` plays into `playback` (logged) and starts its
+/// timecode input. Throws for a bad show or scene file, std::invalid_argument
+/// for atmosphere switches with a show and for timecode without a show that
+/// has a "timecode" block, std::runtime_error for an LTC input that cannot be
+/// opened.
 void load_playback(const MasterOptions& options, Playback& playback);
 
 }  // namespace zenith::cluster

@@ -41,7 +41,7 @@ std::string OperatorDesk::on_line(std::string line) {
     return "no show is playing: only 'status' and 'quit' are available";
   }
   try {
-    std::string reply = setup_.clock->apply_command(line);
+    std::string reply = setup_.chase ? apply_to_chase(line) : setup_.clock->apply_command(line);
     spdlog::info("master: operator: {} → {}", line, reply);
     return reply;
   } catch (const std::invalid_argument& e) {
@@ -82,7 +82,8 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
       if (const auto* seek = std::get_if<oc::Seek>(&command); seek && seek->seconds > setup_.clock->duration_s())
         throw std::invalid_argument(cat("command: /seconds = ", seek->seconds, ": must be in [0, ",
                                         setup_.clock->duration_s(), "] s (the show's duration)"));
-      reply = setup_.clock->apply_command(describe(command));  // the clock's own words: "seek 12.5", "loop on"
+      // The clock's own words: "seek 12.5", "loop on".
+      reply = setup_.chase ? apply_to_chase(describe(command)) : setup_.clock->apply_command(describe(command));
     }
     spdlog::info("master: operator ({}): {} → {}", source, core::escaped(describe(command)), core::escaped(reply));
     return reply;
@@ -91,6 +92,33 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
                  core::escaped(e.what()));
     throw;
   }
+}
+
+std::string OperatorDesk::apply_to_chase(const std::string& line) {
+  show::TimecodeChase& chase = *setup_.chase;
+  const show::TimecodeRate rate = setup_.show->timecode()->rate;
+  const std::string start = show::format_timecode(
+      show::timecode_at(
+          static_cast<std::int64_t>(std::llround(chase.settings().offset_s * show::frames_per_second(rate))), rate),
+      rate);
+  if (line == "play") {
+    chase.resume();
+    return cat("chasing the house's timecode from ", start, " (", show::to_string(rate), " fps)");
+  }
+  if (line == "status") {
+    const FrameState* latest = master_.latest_frame();
+    return cat("chasing timecode, show time 0 at ", start, ": show time ",
+               fmt::format("{:.3f}", latest != nullptr ? latest->show_time_s : 0.0), " s");
+  }
+  if (line.rfind("timecode offset ", 0) == 0) {
+    const show::Timecode at = show::parse_timecode(line.substr(16), rate);  // throws std::invalid_argument
+    chase.set_offset_s(show::timecode_seconds(at, rate));
+    return cat("show time 0 at ", show::format_timecode(at, rate), " from the next frame on");
+  }
+  throw std::invalid_argument(cat("'", line,
+                                  "': the show follows the house's timecode (pause, seek, rate and loop are its); "
+                                  "'play' resumes a stopped chase, 'timecode offset hh:mm:ss:ff' moves the show's "
+                                  "start, 'status' says where it is"));
 }
 
 /// An operator's `sun` (docs/operator.md, "Sun"): the show's sun replaced from the next frame on.

@@ -49,6 +49,11 @@ class OperatorDesk {
     show::PlaybackClock* clock = nullptr;  ///< a show's clock (nullptr with the default show)
     double fps = 30.0;
     bool feed = false;  ///< the frames come from an offline render's feed
+    /// The chase of the house's timecode (the show's clock does not run):
+    /// `play` resumes a stopped chase, `timecode offset hh:mm:ss:ff` moves the
+    /// show's start against the timecode, `status` says where it is; pause,
+    /// seek, rate and loop are refused (the timecode decides them). nullptr: none.
+    show::TimecodeChase* chase = nullptr;
   };
 
   /// `master`: the door to the master (outlives the desk); `scene`: the
@@ -101,6 +106,8 @@ class OperatorDesk {
   std::string apply_clear(const operator_command::Clear& clear);
   std::string apply_fade(const operator_command::Fade& fade);
   std::string apply_blackout(const operator_command::Blackout& blackout);
+  /// A playback command (the clock's words: "play", "status", …) while the show chases timecode.
+  std::string apply_to_chase(const std::string& line);
   /// The first frame a command changes: the next one to start.
   std::uint64_t next_frame() const;
 

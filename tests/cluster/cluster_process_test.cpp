@@ -470,6 +470,58 @@ void expect_b_rejoined(const fs::path& out, std::uint64_t last_before) {
   for (const Presented& p : bp) EXPECT_EQ(p.digest, a[p.frame].digest) << "frame " << p.frame;
 }
 
+/// A show chasing the house's LTC (docs/shows.md, "Chasing timecode"), here a WAV played in real time
+/// from the master's start, 0.1 % fast, from 8 s before the show's start: the show holds at its start
+/// while the timecode is before it, then every scheduled frame carries the timecode's time at its
+/// moment (consecutive frames a period × 1.001 apart, to a millisecond, or whole periods where the
+/// schedule moved on), and when the audio ends the show freewheels, then holds its frame.
+TEST_F(ClusterProcess, AShowChasingLtcFollowsItFrameForFrameThenHoldsWhenItStops) {
+  fs::path config = write_config(10);
+  {  // scheduled frames (a lookahead of 3), so each frame has its moment on the master's clock
+    std::string text = read_text(config);
+    text.replace(text.find(R"("lookahead_frames": 0)"), 21, R"("lookahead_frames": 3)");
+    std::ofstream(config) << text;
+  }
+  const fs::path wav = dir_ / "ltc.wav";
+  const Child writer = spawn({"timecode", "write", wav.string(), "--start", "00:59:52:00", "--rate", "25", "--seconds",
+                              "14", "--speed", "1.001"},
+                             dir_ / "timecode.log");
+  ASSERT_EQ(wait_exit(writer, 30s), std::optional<int>(0)) << read_text(dir_ / "timecode.log");
+  const fs::path recording = dir_ / "recorded.json";
+  const Child master = start_master(config, 190, 120000,
+                                    {"--show", (kSource / "tests/data/shows/chase-sunset.json").string(), "--ltc-file",
+                                     wav.string(), "--record", recording.string()});
+  for (const char* n : {"a", "b", "c"})
+    start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  ASSERT_EQ(wait_exit(master, 180s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+  expect_in_master_log({"master: chasing LTC from", "is before the show's start: the show holds at its start",
+                        "master: timecode locked", "ppm)", "master: timecode freewheeling",
+                        "master: timecode held (no timecode)"});
+
+  const nlohmann::json frames = nlohmann::json::parse(read_text(recording))["recording"]["frames"];
+  ASSERT_GE(frames.size(), 150u);
+  std::vector<double> t;
+  for (const nlohmann::json& f : frames) t.push_back(f["show_time_s"].get<double>());
+  EXPECT_EQ(t[1], 0.0) << "the timecode was before the show's start";
+  const double held = t.back(), period = 0.1 * 1.001;
+  int followed = 0, held_frames = 0;
+  for (std::size_t i = 1; i + 1 < t.size(); ++i) {
+    EXPECT_GE(t[i + 1], t[i]) << "frame " << i + 1 << ": the show never steps back";
+    if (t[i] > 0.0 && t[i + 1] < held) {
+      const double step = t[i + 1] - t[i];
+      const double periods = std::max(1.0, std::round(step / period));
+      EXPECT_NEAR(step, periods * period, 0.001) << "frames " << i << " and " << i + 1;
+      ++followed;
+    }
+    held_frames += t[i] == held;
+  }
+  EXPECT_GE(followed, 40) << "frames that followed the timecode";
+  EXPECT_GE(held_frames, 5) << "frames held after the timecode stopped";
+  EXPECT_GT(held, 5.0);
+  EXPECT_LT(held, 6.0 * 1.001 + 1.0 + 0.5) << "the audio ends 6 s past the start: a second of freewheel, then held";
+}
+
 TEST_F(ClusterProcess, KilledNodeRestartsAndRejoinsWhileTheOthersSkipNoFrame) {
   const fs::path config = write_config(10);
   const Child master = start_master(config, 0);

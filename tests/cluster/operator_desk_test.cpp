@@ -10,6 +10,7 @@
 #include "cluster/master/master_desk.h"
 #include "scene/frame_scene.h"
 #include "scene/scene_loader.h"
+#include "show/show.h"
 
 namespace zenith::cluster {
 namespace {
@@ -59,6 +60,41 @@ class OperatorDeskTest : public ::testing::Test {
   std::optional<MasterDesk> door_;  ///< the master's side of the desk's door, over the parts above
   std::string stopped_;
 };
+
+/// A show chasing the house's timecode: `play` resumes a stopped chase, `timecode offset` moves the
+/// show's start, and the clock's own commands are refused with what to do instead.
+TEST_F(OperatorDeskTest, AChasingShowTakesPlayAndAnOffsetAndRefusesTheClocksCommands) {
+  const show::Show chasing = show::load_show(kSource / "tests/data/shows/chase-sunset.json");
+  show::PlaybackClock clock(chasing.duration_s(), 10.0, false);
+  show::ChaseSettings settings = chasing.timecode()->chase;
+  settings.after_dropout = show::ChaseSettings::AfterDropout::stop;
+  settings.freewheel_s = 0.0;
+  show::TimecodeChase chase(settings);
+  door_.emplace(MasterDesk::Parts{config_, sessions_, barrier_, *schedule_, statistics_, progress_, &chasing, &clock,
+                                  10.0, [] { return std::nullopt; },
+                                  [this](const std::string& reason) { stopped_ = reason; }});
+  OperatorDesk d(*door_, OperatorDesk::Setup{config_, &chasing, &clock, 10.0, false, &chase}, scene_);
+
+  // Locked on 01:00:05:00 onwards, then silent past the dropout: stopped.
+  for (int f = 0; f < 5; ++f) chase.receive({{1, 0, 5, f}, show::TimecodeRate::fps25, f / 25.0});
+  EXPECT_EQ(chase.position(0.2).state, show::ChaseState::locked);
+  EXPECT_NEAR(chase.position(0.2).show_time_s, 5.2, 1e-9);
+  EXPECT_EQ(chase.position(1.0).state, show::ChaseState::stopped);
+  for (int f = 0; f < 3; ++f) chase.receive({{1, 0, 9, f}, show::TimecodeRate::fps25, 4.0 + f / 25.0});
+  EXPECT_EQ(chase.position(4.1).state, show::ChaseState::stopped) << "the timecode is back: the show waits";
+  EXPECT_EQ(d.on_line("play"), "chasing the house's timecode from 01:00:00:00 (25 fps)");
+  chase.receive({{1, 0, 9, 3}, show::TimecodeRate::fps25, 4.12});
+  EXPECT_EQ(chase.position(4.12).state, show::ChaseState::locked);
+  EXPECT_NEAR(chase.position(4.12).show_time_s, 9.12, 1e-9);
+
+  EXPECT_EQ(d.on_line("timecode offset 01:00:02:00"), "show time 0 at 01:00:02:00 from the next frame on");
+  EXPECT_NEAR(chase.position(4.12).show_time_s, 7.12, 1e-9);
+  EXPECT_NE(d.on_line("timecode offset 01:00:02:30").find("frames [0, 25)"), std::string::npos);
+  EXPECT_NE(d.on_line("seek 3").find("the show follows the house's timecode"), std::string::npos);
+  EXPECT_NE(refusal([&] { d.run(oc::Pause{}, "control"); }).find("the show follows the house's timecode"),
+            std::string::npos);
+  EXPECT_EQ(clock.time_s(), 0.0) << "the clock was not touched";
+}
 
 TEST_F(OperatorDeskTest, TheExposureReplacesTheShowsFromTheNextFrameUntilCleared) {
   OperatorDesk d = desk();
