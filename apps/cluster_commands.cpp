@@ -71,7 +71,7 @@ cluster::SharedSecret load_secret(const cluster::ClusterConfig& config) {
 
 /// Playback options shared by `zenith master` and `zenith cluster` (docs/shows.md).
 struct PlaybackArgs {
-  std::string show, record, ltc_device, ltc_file;
+  std::string show, record, ltc_device, ltc_file, mtc_device;
   int ltc_channel = 0;
   double fps = 0.0;
   bool loop = false, no_loop = false, console = false, unpaced = false;
@@ -98,6 +98,10 @@ struct PlaybackArgs {
         ->excludes("--ltc-device");
     cmd.add_option("--ltc-channel", ltc_channel, "The channel carrying the LTC, 0 the first (default 0)")
         ->check(CLI::Range(0, 63));
+    cmd.add_option("--mtc-device", mtc_device,
+                   "Chase MIDI timecode from this ALSA raw MIDI port, e.g. hw:1,0,0 (amidi -l lists them)")
+        ->excludes("--ltc-device")
+        ->excludes("--ltc-file");
   }
   void apply(cluster::MasterOptions& options) const {
     if (!show.empty()) options.show = fs::path(show);
@@ -110,6 +114,7 @@ struct PlaybackArgs {
     if (control_port) options.control_port = static_cast<std::uint16_t>(*control_port);
     options.paced = !unpaced;
     options.ltc_device = ltc_device;
+    options.mtc_device = mtc_device;
     if (!ltc_file.empty()) options.ltc_file = fs::path(ltc_file);
     options.ltc_channel = ltc_channel;
   }
@@ -126,6 +131,7 @@ struct PlaybackArgs {
     if (unpaced) args.push_back("--unpaced");
     if (!ltc_device.empty()) args.insert(args.end(), {"--ltc-device", ltc_device});
     if (!ltc_file.empty()) args.insert(args.end(), {"--ltc-file", ltc_file});
+    if (!mtc_device.empty()) args.insert(args.end(), {"--mtc-device", mtc_device});
     if (ltc_channel != 0) args.insert(args.end(), {"--ltc-channel", std::to_string(ltc_channel)});
     return args;
   }

@@ -104,7 +104,7 @@ void read_command(const ReadArgs& a) {
     if (p.state != previous || p.locates != locates || k % 100 == 0)
       fmt::print("{:>9.2f}  {:>12}  {:<22}  {:>11.3f}  {:>10.0f}\n", t,
                  p.last ? show::format_timecode(*p.last, *rate) : std::string("-"), show::to_string(p.state),
-                 p.show_time_s, p.drift_ppm);
+                 p.show_time_s, std::round(p.drift_ppm) + 0.0);  // + 0.0: no "-0"
     previous = p.state;
     locates = p.locates;
   }

@@ -53,9 +53,10 @@ struct MasterOptions {
   std::optional<std::filesystem::path> record;
   /// The house's timecode the show chases (its "timecode" block; docs/shows.md,
   /// "Chasing timecode"): LTC from an ALSA capture device ("hw:1,0") or from
-  /// an audio file played in real time from the master's start (a rehearsal);
-  /// `ltc_channel` the channel that carries it. At most one of the two.
-  std::string ltc_device;
+  /// an audio file played in real time from the master's start (a rehearsal),
+  /// `ltc_channel` the channel that carries it; or MIDI timecode from an ALSA
+  /// raw MIDI port ("hw:1,0,0"). At most one of the three.
+  std::string ltc_device, mtc_device;
   std::optional<std::filesystem::path> ltc_file;
   int ltc_channel = 0;
   /// Playback commands from standard input, one per line (docs/shows.md, "Playback").

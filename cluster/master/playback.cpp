@@ -32,16 +32,22 @@ void load_playback(const MasterOptions& options, Playback& p) {
     spdlog::info("master: playing show '{}' ({:.1f} s at {} fps, {} frames{})", p.show->name(), p.show->duration_s(),
                  p.fps, p.show->frame_count(p.fps), p.clock->looping() ? ", looping" : "");
   }
-  if (!options.ltc_device.empty() || options.ltc_file) {
-    const std::string input = options.ltc_file ? "--ltc-file" : "--ltc-device";
+  if (!options.ltc_device.empty() || options.ltc_file || !options.mtc_device.empty()) {
+    const std::string input = options.ltc_file              ? "--ltc-file"
+                              : !options.mtc_device.empty() ? "--mtc-device"
+                                                            : "--ltc-device";
     if (!p.show || !p.show->timecode())
       throw std::invalid_argument(cat(input,
                                       ": the show to chase timecode needs a show file with a \"timecode\" "
                                       "block (its rate and start; docs/shows.md, \"Chasing timecode\")"));
     const show::Show::HouseTimecode& tc = *p.show->timecode();
     p.chase.emplace(tc.chase);
-    p.timecode = options.ltc_file ? show::ltc_file_source(*options.ltc_file, options.ltc_channel, tc.rate)
-                                  : show::ltc_capture_source(options.ltc_device, options.ltc_channel, tc.rate);
+    if (options.ltc_file)
+      p.timecode = show::ltc_file_source(*options.ltc_file, options.ltc_channel, tc.rate);
+    else if (!options.mtc_device.empty())
+      p.timecode = show::mtc_midi_source(options.mtc_device, tc.rate);
+    else
+      p.timecode = show::ltc_capture_source(options.ltc_device, options.ltc_channel, tc.rate);
     spdlog::info(
         "master: chasing {} at {} fps: show time 0 at {}, through a dropout {:.1f} s, then {}", p.timecode->describe(),
         show::to_string(tc.rate),

@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <poll.h>
 #include <algorithm>
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -16,6 +18,7 @@
 
 #include "show/timecode/audio_file.h"
 #include "show/timecode/ltc_codec.h"
+#include "show/timecode/mtc_decoder.h"
 
 namespace zenith::show {
 
@@ -163,7 +166,73 @@ class CaptureSource final : public TimecodeSource {
   std::thread thread_;
 };
 
+/// MTC from a raw MIDI port: bytes read as they arrive (polled every 100 ms for the stop), stamped on arrival.
+class MidiSource final : public TimecodeSource {
+ public:
+  MidiSource(const std::string& device, TimecodeRate rate)
+      : rate_(rate), name_(fmt::format("MTC from ALSA MIDI '{}'", device)) {
+    const int err = snd_rawmidi_open(&in_, nullptr, device.c_str(), SND_RAWMIDI_NONBLOCK);
+    if (err < 0) throw std::runtime_error(fmt::format("ALSA MIDI port '{}': {}", device, snd_strerror(err)));
+    thread_ = std::thread([this] { read(); });
+  }
+  ~MidiSource() override {
+    stop_ = true;
+    thread_.join();
+    snd_rawmidi_close(in_);
+  }
+  std::vector<TimecodeEvent> take() override {
+    std::lock_guard lock(mutex_);
+    return std::exchange(events_, {});
+  }
+  std::string describe() const override { return name_; }
+
+ private:
+  void read() {
+    std::vector<pollfd> fds(static_cast<std::size_t>(std::max(1, snd_rawmidi_poll_descriptors_count(in_))));
+    snd_rawmidi_poll_descriptors(in_, fds.data(), static_cast<unsigned int>(fds.size()));
+    std::uint8_t buffer[256];
+    while (!stop_) {
+      if (::poll(fds.data(), fds.size(), 100) <= 0) continue;
+      const ssize_t n = snd_rawmidi_read(in_, buffer, sizeof buffer);
+      if (n == -EAGAIN) continue;
+      if (n < 0) {
+        spdlog::error("{}: {}; timecode input stopped", name_, snd_strerror(static_cast<int>(n)));
+        return;
+      }
+      const double now = seconds_of(Clock::now());
+      for (const TimecodeEvent& e :
+           decoder_.decode(std::span<const std::uint8_t>(buffer, static_cast<std::size_t>(n)), now)) {
+        if (e.rate != rate_) {
+          if (!warned_)
+            spdlog::warn(
+                "{}: the timecode is at {} fps, the show's at {} fps: its frames are ignored and the show "
+                "holds (the show file's \"timecode\": \"rate\", or the house's timecode)",
+                name_, to_string(e.rate), to_string(rate_));
+          warned_ = true;
+          continue;
+        }
+        std::lock_guard lock(mutex_);
+        events_.push_back(e);
+      }
+    }
+  }
+
+  TimecodeRate rate_;
+  std::string name_;
+  snd_rawmidi_t* in_ = nullptr;
+  MtcDecoder decoder_;
+  bool warned_ = false;
+  std::mutex mutex_;
+  std::vector<TimecodeEvent> events_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
 }  // namespace
+
+std::unique_ptr<TimecodeSource> mtc_midi_source(const std::string& device, TimecodeRate rate) {
+  return std::make_unique<MidiSource>(device, rate);
+}
 
 std::unique_ptr<TimecodeSource> ltc_file_source(const std::filesystem::path& path, int channel, TimecodeRate rate) {
   return std::make_unique<FileSource>(path, channel, rate);

@@ -1,15 +1,17 @@
 #pragma once
-// Where a live chase (show/timecode/timecode_chase.h) gets its frames: LTC
-// read on a thread of its own, each frame stamped on std::chrono::steady_clock
-// (seconds since its epoch, as TimecodeEvent::local_s) when its first bit
-// sounded. Two sources: an audio file played in real time from the moment
-// the source starts (a rehearsal against the soundtrack's LTC track, the
-// tests), and an ALSA capture device (the audio interface's input that the
-// house's timecode is patched into).
+// Where a live chase (show/timecode/timecode_chase.h) gets its frames, read
+// on a thread of its own, each stamped on std::chrono::steady_clock (seconds
+// since its epoch, as TimecodeEvent::local_s) when its frame began. Three
+// sources: LTC from an ALSA capture device (the audio interface's input that
+// the house's timecode is patched into), LTC from an audio file played in
+// real time from the moment the source starts (a rehearsal against the
+// soundtrack's LTC track, the tests), and MIDI timecode from an ALSA raw MIDI
+// port (show/timecode/mtc_decoder.h).
 //
-// Frames of another rate than the show's (measured from the frames' length,
-// and the drop-frame flag) are dropped with one warning naming both rates:
-// the chase then holds the show instead of running it at the wrong speed.
+// Frames of another rate than the show's (LTC: measured from the frames'
+// length, and the drop-frame flag; MTC: the rate it names) are dropped with
+// one warning naming both rates: the chase then holds the show instead of
+// running it at the wrong speed.
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -37,5 +39,10 @@ std::unique_ptr<TimecodeSource> ltc_file_source(const std::filesystem::path& pat
 /// "default"). Throws std::runtime_error naming the device and ALSA's reason
 /// where it cannot be opened.
 std::unique_ptr<TimecodeSource> ltc_capture_source(const std::string& device, int channel, TimecodeRate rate);
+
+/// MIDI timecode from the ALSA raw MIDI port `device` ("hw:1,0,0"; `amidi -l`
+/// lists them). Throws std::runtime_error naming the port and ALSA's reason
+/// where it cannot be opened.
+std::unique_ptr<TimecodeSource> mtc_midi_source(const std::string& device, TimecodeRate rate);
 
 }  // namespace zenith::show

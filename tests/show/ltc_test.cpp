@@ -8,9 +8,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "show/timecode/audio_file.h"
+#include "show/timecode/timecode_source.h"
 
 namespace zenith::show {
 namespace {
@@ -99,6 +101,24 @@ TEST(Ltc, NoiseIsNotTimecode) {
   }
   LtcDecoder decoder(48000.0);
   EXPECT_TRUE(decoder.decode(noise).empty());
+}
+
+/// A device that is not there is named with ALSA's reason (no sound card needed to check it).
+TEST(TimecodeSources, AnAbsentDeviceIsNamed) {
+  const auto message = [](const std::function<void()>& open) {
+    try {
+      open();
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(
+      message([] { ltc_capture_source("hw:97,0", 0, TimecodeRate::fps25); }).find("ALSA capture device 'hw:97,0': "),
+      std::string::npos);
+  EXPECT_NE(message([] { mtc_midi_source("hw:97,0,0", TimecodeRate::fps25); }).find("ALSA MIDI port 'hw:97,0,0': "),
+            std::string::npos);
+  EXPECT_THROW(ltc_capture_source("default", 64, TimecodeRate::fps25), std::invalid_argument);
 }
 
 }  // namespace
