@@ -83,12 +83,8 @@ void read_command(const ReadArgs& a) {
              a.channel, audio.channels, audio.sample_rate_hz, length_s, frames.size(), show::to_string(*rate),
              show::format_timecode(frames.front().timecode, *rate),
              show::format_timecode(frames.back().timecode, *rate), frames[frames.size() / 2].volume_dbfs);
-  fmt::print(
-      "show time 0 at {}; a line a second, and where the chase changes state:\n",
-      show::format_timecode(
-          show::timecode_at(static_cast<std::int64_t>(std::llround(settings.offset_s * show::frames_per_second(*rate))),
-                            *rate),
-          *rate));
+  fmt::print("show time 0 at {}; a line a second, and where the chase changes state:\n",
+             show::format_timecode(show::timecode_at_seconds(settings.offset_s, *rate), *rate));
   fmt::print("{:>9}  {:>12}  {:<22}  {:>11}  {:>10}\n", "audio s", "timecode", "chase", "show time s", "drift ppm");
   std::size_t next = 0;
   show::ChaseState previous = show::ChaseState::waiting;

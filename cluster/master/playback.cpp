@@ -2,7 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <cmath>
 #include <stdexcept>
 
 #include "core/strings.h"
@@ -50,11 +49,7 @@ void load_playback(const MasterOptions& options, Playback& p) {
       p.timecode = show::ltc_capture_source(options.ltc_device, options.ltc_channel, tc.rate);
     spdlog::info(
         "master: chasing {} at {} fps: show time 0 at {}, through a dropout {:.1f} s, then {}", p.timecode->describe(),
-        show::to_string(tc.rate),
-        show::format_timecode(
-            show::timecode_at(
-                static_cast<std::int64_t>(std::llround(tc.chase.offset_s * show::frames_per_second(tc.rate))), tc.rate),
-            tc.rate),
+        show::to_string(tc.rate), show::format_timecode(show::timecode_at_seconds(tc.chase.offset_s, tc.rate), tc.rate),
         tc.chase.freewheel_s, tc.chase.after_dropout == show::ChaseSettings::AfterDropout::hold ? "hold" : "stop");
   }
   if (options.record)

@@ -97,10 +97,7 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
 std::string OperatorDesk::apply_to_chase(const std::string& line) {
   show::TimecodeChase& chase = *setup_.chase;
   const show::TimecodeRate rate = setup_.show->timecode()->rate;
-  const std::string start = show::format_timecode(
-      show::timecode_at(
-          static_cast<std::int64_t>(std::llround(chase.settings().offset_s * show::frames_per_second(rate))), rate),
-      rate);
+  const std::string start = show::format_timecode(show::timecode_at_seconds(chase.settings().offset_s, rate), rate);
   if (line == "play") {
     chase.resume();
     return cat("chasing the house's timecode from ", start, " (", show::to_string(rate), " fps)");

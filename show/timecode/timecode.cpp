@@ -109,6 +109,10 @@ double timecode_seconds(const Timecode& tc, TimecodeRate rate) {
   return static_cast<double>(frame_index(tc, rate)) / frames_per_second(rate);
 }
 
+Timecode timecode_at_seconds(double seconds, TimecodeRate rate) {
+  return timecode_at(static_cast<std::int64_t>(std::llround(seconds * frames_per_second(rate))), rate);
+}
+
 std::string format_timecode(const Timecode& tc, TimecodeRate rate) {
   return fmt::format("{:02}:{:02}:{:02}{}{:02}", tc.hours, tc.minutes, tc.seconds,
                      rate == TimecodeRate::fps29_97_drop ? ';' : ':', tc.frames);

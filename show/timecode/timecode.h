@@ -50,6 +50,8 @@ std::int64_t frame_index(const Timecode& tc, TimecodeRate rate);
 Timecode timecode_at(std::int64_t index, TimecodeRate rate);
 /// Real seconds since 00:00:00:00: frame_index / frames_per_second.
 double timecode_seconds(const Timecode& tc, TimecodeRate rate);
+/// The label of the frame nearest `seconds` since 00:00:00:00 (timecode_seconds' inverse).
+Timecode timecode_at_seconds(double seconds, TimecodeRate rate);
 /// "01:02:03:04", drop-frame "01:02:03;04" (the semicolon, as editors write it).
 std::string format_timecode(const Timecode& tc, TimecodeRate rate);
 /// Parses "hh:mm:ss:ff" (or "hh:mm:ss;ff", "hh:mm:ss.ff"). Throws

@@ -27,6 +27,8 @@ TEST(Timecode, DropFrameSkipsTwoLabelsAMinuteButEachTenth) {
   EXPECT_EQ(timecode_at(17981, df), (Timecode{0, 9, 59, 29}));
   // The label keeps to the wall clock: an hour of drop-frame is 3.6 ms short of 3600 s.
   EXPECT_NEAR(timecode_seconds({1, 0, 0, 0}, df), 3599.9964, 1e-9);
+  EXPECT_EQ(timecode_at_seconds(3599.9964, df), (Timecode{1, 0, 0, 0}));
+  EXPECT_EQ(timecode_at_seconds(3600.0, TimecodeRate::fps25), (Timecode{1, 0, 0, 0}));
   EXPECT_FALSE(valid_timecode({0, 1, 0, 1}, df));
   EXPECT_TRUE(valid_timecode({0, 10, 0, 1}, df));
   EXPECT_TRUE(valid_timecode({0, 1, 0, 1}, TimecodeRate::fps30));
