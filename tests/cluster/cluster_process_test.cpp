@@ -520,6 +520,27 @@ TEST_F(ClusterProcess, AShowChasingLtcFollowsItFrameForFrameThenHoldsWhenItStops
   EXPECT_GE(held_frames, 5) << "frames held after the timecode stopped";
   EXPECT_GT(held, 5.0);
   EXPECT_LT(held, 6.0 * 1.001 + 1.0 + 0.5) << "the audio ends 6 s past the start: a second of freewheel, then held";
+
+  // The recording of the chased show plays back without the timecode, frame for frame: every frame a
+  // node presented live has the same state digest in the replay.
+  std::map<std::uint64_t, std::string> live;
+  for (const Presented& p : presented(dir_ / "out/a")) live[p.frame] = p.digest;
+  fs::rename(dir_ / "out", dir_ / "out-live");
+  for (const char* n : {"master", "a", "b", "c"})
+    fs::rename(dir_ / (std::string(n) + ".log"), dir_ / (std::string(n) + "-live.log"));
+  children_.clear();
+  const Child replay = start_master(config, 0, 120000, {"--show", recording.string(), "--unpaced"});
+  for (const char* n : {"a", "b", "c"})
+    start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  ASSERT_EQ(wait_exit(replay, 180s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(replay);
+  int compared = 0;
+  for (const Presented& p : presented(dir_ / "out/a"))
+    if (const auto it = live.find(p.frame); it != live.end()) {
+      EXPECT_EQ(p.digest, it->second) << "frame " << p.frame;
+      ++compared;
+    }
+  EXPECT_GE(compared, 150) << "frames presented in both runs";
 }
 
 TEST_F(ClusterProcess, KilledNodeRestartsAndRejoinsWhileTheOthersSkipNoFrame) {
