@@ -70,9 +70,10 @@ TEST_F(OperatorDeskTest, AChasingShowTakesPlayAndAnOffsetAndRefusesTheClocksComm
   settings.after_dropout = show::ChaseSettings::AfterDropout::stop;
   settings.freewheel_s = 0.0;
   show::TimecodeChase chase(settings);
+  show::ChasePosition chased;  // the master's: the chase at its latest frame
   door_.emplace(MasterDesk::Parts{config_, sessions_, barrier_, *schedule_, statistics_, progress_, &chasing, &clock,
                                   10.0, [] { return std::nullopt; },
-                                  [this](const std::string& reason) { stopped_ = reason; }});
+                                  [this](const std::string& reason) { stopped_ = reason; }, &chased});
   OperatorDesk d(*door_, OperatorDesk::Setup{config_, &chasing, &clock, 10.0, false, &chase}, scene_);
 
   // Locked on 01:00:05:00 onwards, then silent past the dropout: stopped.
@@ -86,6 +87,14 @@ TEST_F(OperatorDeskTest, AChasingShowTakesPlayAndAnOffsetAndRefusesTheClocksComm
   chase.receive({{1, 0, 9, 3}, show::TimecodeRate::fps25, 4.12});
   EXPECT_EQ(chase.position(4.12).state, show::ChaseState::locked);
   EXPECT_NEAR(chase.position(4.12).show_time_s, 9.12, 1e-9);
+  chased = chase.position(4.12);
+  const nlohmann::json status = d.status()["timecode"];
+  EXPECT_EQ(status["state"], "locked");
+  EXPECT_EQ(status["last"], "01:00:09:03");
+  EXPECT_EQ(status["rate"], "25");
+  EXPECT_EQ(status["locates"], 0) << "the return after the dropout is no locate";
+  EXPECT_EQ(status["before_start"], false);
+  EXPECT_TRUE(desk().status()["timecode"].is_null()) << "a show on its own clock";
 
   EXPECT_EQ(d.on_line("timecode offset 01:00:02:00"), "show time 0 at 01:00:02:00 from the next frame on");
   EXPECT_NEAR(chase.position(4.12).show_time_s, 7.12, 1e-9);

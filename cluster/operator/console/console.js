@@ -127,6 +127,14 @@ function render(s) {
   $('frame').textContent = s.frame === null ? '–' : s.frame;
   $('show-time').textContent = number(s.show_time_s, 3) + ' s';
   $('show-name').textContent = s.show ? s.show.name : 'default show';
+  // A show chasing the house's timecode: its state, last frame and drift (docs/operator.md, "Status").
+  $('timecode').hidden = !s.timecode;
+  if (s.timecode) {
+    $('timecode-state').textContent = s.timecode.state + (s.timecode.before_start ? ', before the start' : '');
+    $('timecode-detail').textContent = (s.timecode.last || '–') + ' at ' + s.timecode.rate + ' fps, drift ' +
+        Math.round(s.timecode.drift_ppm) + ' ppm, ' + s.timecode.locates + ' locate' +
+        (s.timecode.locates === 1 ? '' : 's');
+  }
 
   $('no-clock').hidden = s.show !== null;
   $('clock-controls').hidden = s.show === null;
