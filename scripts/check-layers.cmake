@@ -9,7 +9,7 @@
 #   warp/        core, image                projections, warp meshes, blending, calibration export; no GL
 #   astro/       core, atmosphere           star catalogue, ephemerides (ERFA), refraction, night-sky photometry; no GL
 #   scene/       core, image, atmosphere, astro   scenes, albedo maps, the sun's disc, frame descriptions; no GL
-#   show/        core, image, atmosphere, astro, scene   shows, playback clock, table plans; no GL, no protocol
+#   show/        core, image, atmosphere, astro, scene   shows, playback clock, table plans, timecode; no GL, no protocol
 #   render/      core … scene (not show)    GL, tables on the GPU, the frame renderer
 #   cluster/     a module of modules, each folder one (no loops, no sideways steps):
 #     protocol/  core, scene                the wire protocol: messages, framing, handshake, table transfer
