@@ -28,12 +28,46 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_of(Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
 
-/// The decoder and the queue both sources share: samples in, frames of the
-/// show's rate out, stamped from the stream's first sample's local time.
+/// Frames of the show's rate from a reading thread to the master's, and the
+/// one warning for a timecode of another rate.
+class FrameQueue {
+ public:
+  FrameQueue(TimecodeRate rate, std::string name) : rate_(rate), name_(std::move(name)) {}
+  TimecodeRate rate() const { return rate_; }
+  const std::string& name() const { return name_; }
+
+  void push(const TimecodeEvent& e) {
+    std::lock_guard lock(mutex_);
+    events_.push_back(e);
+  }
+  /// A frame of another rate (`found`: "30 fps", "24.98 fps drop-frame"): dropped, warned of once.
+  void refuse(const std::string& found) {
+    if (!warned_)
+      spdlog::warn(
+          "{}: the timecode runs at {}, the show's is {} fps: its frames are ignored and the show holds "
+          "(the show file's \"timecode\": \"rate\", or the house's timecode)",
+          name_, found, to_string(rate_));
+    warned_ = true;
+  }
+  std::vector<TimecodeEvent> take() {
+    std::lock_guard lock(mutex_);
+    return std::exchange(events_, {});
+  }
+
+ private:
+  TimecodeRate rate_;
+  std::string name_;
+  bool warned_ = false;  ///< touched by the reading thread only
+  std::mutex mutex_;
+  std::vector<TimecodeEvent> events_;
+};
+
+/// LTC samples in, frames of the show's rate out (the two LTC sources'),
+/// stamped from the stream's first sample's local time.
 class LtcStream {
  public:
   LtcStream(double sample_rate_hz, TimecodeRate rate, std::string name)
-      : decoder_(sample_rate_hz, frames_per_second(rate)), rate_(rate), name_(std::move(name)) {}
+      : decoder_(sample_rate_hz, frames_per_second(rate)), frames_(rate, std::move(name)) {}
 
   /// Decodes `samples`, the stream's next, of which the first sounded at `first_local_s`.
   void decode(std::span<const float> samples, double first_local_s) {
@@ -41,34 +75,22 @@ class LtcStream {
     for (const LtcFrame& f : decoder_.decode(samples)) {
       const double length = static_cast<double>(f.last_sample - f.first_sample + 1);
       const double fps = decoder_.sample_rate_hz() / length;
-      const bool drop_frame = rate_ == TimecodeRate::fps29_97_drop;
-      if (std::abs(fps / frames_per_second(rate_) - 1.0) > 0.02 || f.drop_frame != drop_frame) {
-        if (!warned_)
-          spdlog::warn(
-              "{}: the timecode runs at {:.2f} fps{}, the show's is {} fps: its frames are ignored and the "
-              "show holds (the show file's \"timecode\": \"rate\", or the house's timecode)",
-              name_, fps, f.drop_frame ? " drop-frame" : "", to_string(rate_));
-        warned_ = true;
+      const TimecodeRate rate = frames_.rate();
+      if (std::abs(fps / frames_per_second(rate) - 1.0) > 0.02 ||
+          f.drop_frame != (rate == TimecodeRate::fps29_97_drop)) {
+        frames_.refuse(fmt::format("{:.2f} fps{}", fps, f.drop_frame ? " drop-frame" : ""));
         continue;
       }
-      std::lock_guard lock(mutex_);
-      events_.push_back(
-          {f.timecode, rate_, first_local_s + static_cast<double>(f.first_sample - first) / decoder_.sample_rate_hz()});
+      frames_.push(
+          {f.timecode, rate, first_local_s + static_cast<double>(f.first_sample - first) / decoder_.sample_rate_hz()});
     }
   }
-  std::vector<TimecodeEvent> take() {
-    std::lock_guard lock(mutex_);
-    return std::exchange(events_, {});
-  }
-  const std::string& name() const { return name_; }
+  std::vector<TimecodeEvent> take() { return frames_.take(); }
+  const std::string& name() const { return frames_.name(); }
 
  private:
   LtcDecoder decoder_;
-  TimecodeRate rate_;
-  std::string name_;
-  bool warned_ = false;
-  std::mutex mutex_;
-  std::vector<TimecodeEvent> events_;
+  FrameQueue frames_;
 };
 
 class FileSource final : public TimecodeSource {
@@ -170,7 +192,7 @@ class CaptureSource final : public TimecodeSource {
 class MidiSource final : public TimecodeSource {
  public:
   MidiSource(const std::string& device, TimecodeRate rate)
-      : rate_(rate), name_(fmt::format("MTC from ALSA MIDI '{}'", device)) {
+      : frames_(rate, fmt::format("MTC from ALSA MIDI '{}'", device)) {
     const int err = snd_rawmidi_open(&in_, nullptr, device.c_str(), SND_RAWMIDI_NONBLOCK);
     if (err < 0) throw std::runtime_error(fmt::format("ALSA MIDI port '{}': {}", device, snd_strerror(err)));
     thread_ = std::thread([this] { read(); });
@@ -180,11 +202,8 @@ class MidiSource final : public TimecodeSource {
     thread_.join();
     snd_rawmidi_close(in_);
   }
-  std::vector<TimecodeEvent> take() override {
-    std::lock_guard lock(mutex_);
-    return std::exchange(events_, {});
-  }
-  std::string describe() const override { return name_; }
+  std::vector<TimecodeEvent> take() override { return frames_.take(); }
+  std::string describe() const override { return frames_.name(); }
 
  private:
   void read() {
@@ -196,34 +215,23 @@ class MidiSource final : public TimecodeSource {
       const ssize_t n = snd_rawmidi_read(in_, buffer, sizeof buffer);
       if (n == -EAGAIN) continue;
       if (n < 0) {
-        spdlog::error("{}: {}; timecode input stopped", name_, snd_strerror(static_cast<int>(n)));
+        spdlog::error("{}: {}; timecode input stopped", frames_.name(), snd_strerror(static_cast<int>(n)));
         return;
       }
       const double now = seconds_of(Clock::now());
       for (const TimecodeEvent& e :
            decoder_.decode(std::span<const std::uint8_t>(buffer, static_cast<std::size_t>(n)), now)) {
-        if (e.rate != rate_) {
-          if (!warned_)
-            spdlog::warn(
-                "{}: the timecode is at {} fps, the show's at {} fps: its frames are ignored and the show "
-                "holds (the show file's \"timecode\": \"rate\", or the house's timecode)",
-                name_, to_string(e.rate), to_string(rate_));
-          warned_ = true;
-          continue;
-        }
-        std::lock_guard lock(mutex_);
-        events_.push_back(e);
+        if (e.rate != frames_.rate())
+          frames_.refuse(fmt::format("{} fps", to_string(e.rate)));
+        else
+          frames_.push(e);
       }
     }
   }
 
-  TimecodeRate rate_;
-  std::string name_;
+  FrameQueue frames_;
   snd_rawmidi_t* in_ = nullptr;
   MtcDecoder decoder_;
-  bool warned_ = false;
-  std::mutex mutex_;
-  std::vector<TimecodeEvent> events_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
