@@ -54,16 +54,25 @@ std::vector<TimecodeEvent> MtcDecoder::decode(std::span<const std::uint8_t> byte
 
 void MtcDecoder::quarter_frame(std::uint8_t data, double local_s, std::vector<TimecodeEvent>& out) {
   const int piece = data >> 4;
-  if (piece != next_piece_) {
-    if (next_piece_ != 0) ++restarts_;  // an assembly broken off (counted once, not per piece while waiting)
-    next_piece_ = 0;
-    if (piece != 0) return;  // wait for the next piece 0
+  if (direction_ == Direction::none || piece != next_piece_) {
+    // An assembly broken off, counted once. A lone first piece is not counted:
+    // after a lost byte, the forward label's piece 7 starts a backward label
+    // that the next piece 0 breaks at once.
+    if (pieces_ >= 2) ++restarts_;
+    // A label starts at piece 0 going forward, at piece 7 going backward; other pieces wait for one.
+    direction_ = piece == 0 ? Direction::forward : piece == 7 ? Direction::backward : Direction::none;
+    pieces_ = 0;
+    if (direction_ == Direction::none) return;
   }
+  ++pieces_;
+  const bool forward = direction_ == Direction::forward;
   nibbles_[piece] = data & 0x0F;
-  if (piece == 0) piece0_s_ = local_s;
-  if (piece == 4) piece4_s_ = local_s;
-  next_piece_ = (piece + 1) % 8;
-  if (piece != 7) return;
+  if (piece == (forward ? 0 : 7)) first_half_s_ = local_s;
+  if (piece == (forward ? 4 : 3)) second_half_s_ = local_s;
+  next_piece_ = forward ? piece + 1 : piece - 1;
+  if (piece != (forward ? 7 : 0)) return;
+  direction_ = Direction::none;  // the next label starts afresh, in either direction
+  pieces_ = 0;
   const TimecodeRate rate = mtc_rate(nibbles_[7] >> 1);
   const Timecode tc{(nibbles_[7] & 1) << 4 | nibbles_[6], nibbles_[5] << 4 | nibbles_[4],
                     nibbles_[3] << 4 | nibbles_[2], nibbles_[1] << 4 | nibbles_[0]};
@@ -72,10 +81,11 @@ void MtcDecoder::quarter_frame(std::uint8_t data, double local_s, std::vector<Ti
     return;
   }
   ++labels_;
-  // Piece 0 was sent as the label's frame began, piece 4 as the next one did.
+  // Forward, piece 0 was sent as the label's frame began and piece 4 as the
+  // next one did; backward, piece 7 at the label and piece 3 a frame below it.
   const std::int64_t index = frame_index(tc, rate);
-  out.push_back({tc, rate, piece0_s_});
-  out.push_back({timecode_at(index + 1, rate), rate, piece4_s_});
+  out.push_back({tc, rate, first_half_s_});
+  out.push_back({timecode_at(index + (forward ? 1 : -1), rate), rate, second_half_s_});
 }
 
 void MtcDecoder::full_frame(double local_s, std::vector<TimecodeEvent>& out) {
@@ -83,7 +93,8 @@ void MtcDecoder::full_frame(double local_s, std::vector<TimecodeEvent>& out) {
   if (sysex_.size() != kFullFrameBytes || sysex_[1] != 0x7F || sysex_[3] != 0x01 || sysex_[4] != 0x01) return;
   const TimecodeRate rate = mtc_rate(sysex_[5] >> 5);
   const Timecode tc{sysex_[5] & 0x1F, sysex_[6] & 0x3F, sysex_[7] & 0x3F, sysex_[8] & 0x1F};
-  next_piece_ = 0;  // quarter frames start again from the located frame
+  direction_ = Direction::none;  // quarter frames start again from the located frame
+  pieces_ = 0;
   if (!valid_timecode(tc, rate)) {
     ++restarts_;
     return;

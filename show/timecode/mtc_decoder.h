@@ -30,7 +30,8 @@ class MtcDecoder {
   /// The bytes of the stream that arrived at `local_s` (in order); the frames they completed.
   std::vector<TimecodeEvent> decode(std::span<const std::uint8_t> bytes, double local_s);
 
-  /// Labels made (quarter-frame pairs and full frames) and quarter frames that arrived out of order.
+  /// Labels made (quarter-frame pairs and full frames), and labels broken off
+  /// by a piece out of order after two or more of theirs had arrived.
   int labels() const { return labels_; }
   int restarts() const { return restarts_; }
 
@@ -38,10 +39,13 @@ class MtcDecoder {
   void quarter_frame(std::uint8_t data, double local_s, std::vector<TimecodeEvent>& out);
   void full_frame(double local_s, std::vector<TimecodeEvent>& out);
 
-  // Quarter frames: the next piece expected, the nibbles so far, when pieces 0 and 4 arrived.
-  int next_piece_ = 0;
+  enum class Direction { none, forward, backward };
+  // Quarter frames: the label's direction and next piece, the nibbles so far,
+  // when the pieces that begin its two frames arrived (forward 0 and 4, backward 7 and 3).
+  Direction direction_ = Direction::none;
+  int next_piece_ = 0, pieces_ = 0;
   std::uint8_t nibbles_[8] = {};
-  double piece0_s_ = 0.0, piece4_s_ = 0.0;
+  double first_half_s_ = 0.0, second_half_s_ = 0.0;
   // The stream: a system exclusive message being read, the data bytes of another message to skip.
   bool in_sysex_ = false;
   std::vector<std::uint8_t> sysex_;

@@ -46,6 +46,23 @@ std::vector<Sent> quarter_frames(const Timecode& start, TimecodeRate rate, int f
   return out;
 }
 
+/// The same played backwards: from `start` down, piece 7 first; the label's
+/// timecode at piece 7's sending, the frame below it at piece 3's.
+std::vector<Sent> quarter_frames_backwards(const Timecode& start, TimecodeRate rate, int frames, double t0_s) {
+  std::vector<Sent> out;
+  const double frame_s = 1.0 / frames_per_second(rate);
+  const std::int64_t first = frame_index(start, rate);
+  for (int f = 0; f < frames; f += 2) {
+    const Timecode tc = timecode_at(first - f, rate);
+    const int nibbles[8] = {tc.frames & 15,  tc.frames >> 4,  tc.seconds & 15, tc.seconds >> 4,
+                            tc.minutes & 15, tc.minutes >> 4, tc.hours & 15,   (tc.hours >> 4) | rate_bits(rate) << 1};
+    for (int piece = 7; piece >= 0; --piece)
+      out.push_back(
+          {{0xF1, static_cast<std::uint8_t>(piece << 4 | nibbles[piece])}, t0_s + (f + (7 - piece) / 4.0) * frame_s});
+  }
+  return out;
+}
+
 Sent full_frame(const Timecode& tc, TimecodeRate rate, double at_s) {
   return {{0xF0, 0x7F, 0x7F, 0x01, 0x01, static_cast<std::uint8_t>(rate_bits(rate) << 5 | tc.hours),
            static_cast<std::uint8_t>(tc.minutes), static_cast<std::uint8_t>(tc.seconds),
@@ -115,6 +132,41 @@ TEST(Mtc, ALostByteMakesNoWrongLabelAndAFullFrameLocates) {
   EXPECT_TRUE(decoder.decode(full_frame({0, 59, 30, 29}, TimecodeRate::fps25, 2.0).bytes, 2.0).empty());
 }
 
+TEST(Mtc, PlayedBackwardsEveryFrameIsReadWhereItWas) {
+  for (const TimecodeRate rate :
+       {TimecodeRate::fps24, TimecodeRate::fps25, TimecodeRate::fps29_97_drop, TimecodeRate::fps30}) {
+    // Back across a minute's turn: drop-frame's skipped labels included.
+    const Timecode start{1, 1, 0, 4};
+    MtcDecoder decoder;
+    const std::vector<TimecodeEvent> events = decode_all(decoder, quarter_frames_backwards(start, rate, 40, 10.0));
+    ASSERT_EQ(events.size(), 40u) << to_string(rate);
+    const std::int64_t first = frame_index(start, rate);
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      EXPECT_EQ(events[i].timecode, timecode_at(first - static_cast<std::int64_t>(i), rate)) << to_string(rate);
+      EXPECT_NEAR(events[i].local_s, 10.0 + static_cast<double>(i) / frames_per_second(rate), 1e-9);
+    }
+    EXPECT_EQ(decoder.restarts(), 0);
+  }
+}
+
+TEST(Mtc, TheTransportTurningRoundBreaksNoLabelIntoAWrongOne) {
+  // Forward from 01:00:00:00 for 10 frames, then backward from where it stopped.
+  const TimecodeRate rate = TimecodeRate::fps25;
+  std::vector<Sent> stream = quarter_frames({1, 0, 0, 0}, rate, 10, 0.0);
+  for (const Sent& s : quarter_frames_backwards({1, 0, 0, 10}, rate, 10, 0.4)) stream.push_back(s);
+  stream.erase(stream.begin() + 13);  // and a byte lost going forward: piece 5 of the second label
+  MtcDecoder decoder;
+  const std::vector<TimecodeEvent> events = decode_all(decoder, stream);
+  std::vector<Timecode> labels;
+  for (const TimecodeEvent& e : events) labels.push_back(e.timecode);
+  const std::vector<Timecode> expected = {{1, 0, 0, 0}, {1, 0, 0, 1}, {1, 0, 0, 4}, {1, 0, 0, 5},  {1, 0, 0, 6},
+                                          {1, 0, 0, 7}, {1, 0, 0, 8}, {1, 0, 0, 9}, {1, 0, 0, 10}, {1, 0, 0, 9},
+                                          {1, 0, 0, 8}, {1, 0, 0, 7}, {1, 0, 0, 6}, {1, 0, 0, 5},  {1, 0, 0, 4},
+                                          {1, 0, 0, 3}, {1, 0, 0, 2}, {1, 0, 0, 1}};
+  EXPECT_EQ(labels, expected);
+  EXPECT_EQ(decoder.restarts(), 1);
+}
+
 /// The chase on MTC: a label a frame and three quarters late, yet the show at the timecode of its moment.
 TEST(Mtc, TheChaseFollowsItToAFractionOfAFrame) {
   const TimecodeRate rate = TimecodeRate::fps25;
@@ -135,6 +187,32 @@ TEST(Mtc, TheChaseFollowsItToAFractionOfAFrame) {
     if (t > 0.3 && t < 5.9) {
       EXPECT_EQ(p.state, ChaseState::locked) << t;
       worst = std::max(worst, std::abs(p.show_time_s - t));
+    }
+  }
+  EXPECT_LT(worst, 0.05 / 25.0);
+}
+
+/// Shuttling back: the chase follows MTC played backwards, its speed −1.
+TEST(Mtc, TheChaseFollowsItBackwards) {
+  const TimecodeRate rate = TimecodeRate::fps25;
+  const std::vector<Sent> stream = quarter_frames_backwards({1, 0, 6, 0}, rate, 150, 0.0);
+  ChaseSettings settings;
+  settings.offset_s = 3600.0;
+  TimecodeChase chase(settings);
+  MtcDecoder decoder;
+  std::size_t next = 0;
+  double worst = 0.0;
+  for (int k = 0; k < 170; ++k) {
+    const double t = k / 30.0;
+    while (next < stream.size() && stream[next].at_s <= t) {
+      const Sent& s = stream[next++];
+      for (const TimecodeEvent& e : decoder.decode(s.bytes, s.at_s)) chase.receive(e);
+    }
+    const ChasePosition p = chase.position(t);
+    if (t > 0.3 && t < 5.9) {
+      EXPECT_EQ(p.state, ChaseState::locked) << t;
+      EXPECT_NEAR(p.speed, -1.0, 1e-9) << t;
+      worst = std::max(worst, std::abs(p.show_time_s - (6.0 - t)));
     }
   }
   EXPECT_LT(worst, 0.05 / 25.0);
