@@ -144,12 +144,14 @@ json sky_angles(const std::optional<scene::SkyAngles>& angles) {
   return {{"elevation_deg", angles->elevation_deg}, {"azimuth_deg", angles->azimuth_deg}};
 }
 
-/// The chase of the house's timecode: {"state", "last", "rate", "drift_ppm", "locates", "before_start"}, or null.
+/// The chase of the house's timecode: {"state", "last", "rate", "offset", "drift_ppm", "locates", "before_start"},
+/// or null.
 json timecode_status(const show::ChasePosition* p) {
   if (p == nullptr) return nullptr;
   return {{"state", show::to_string(p->state)},
           {"last", p->last ? json(show::format_timecode(*p->last, p->rate)) : json(nullptr)},
           {"rate", show::to_string(p->rate)},
+          {"offset", show::format_timecode(show::timecode_at_seconds(p->offset_s, p->rate), p->rate)},
           {"drift_ppm", p->drift_ppm},
           {"locates", p->locates},
           {"before_start", p->before_start}};

@@ -8,6 +8,7 @@
 #include "core/strings.h"
 #include "scene/scene.h"
 #include "show/playback_clock.h"
+#include "show/timecode/timecode.h"
 
 namespace zenith::cluster {
 namespace {
@@ -27,9 +28,9 @@ constexpr int kMaxDepth = 16;
 /// Body names: 1..64 bytes, as on the wire (AtmosphereTableRef).
 constexpr std::size_t kMaxBodyBytes = 64;
 
-const std::vector<std::string> kCommands = {"play", "pause", "toggle",  "status",   "quit",
-                                            "seek", "rate",  "loop",    "exposure", "set",
-                                            "sun",  "clear", "preview", "fade",     "blackout"};
+const std::vector<std::string> kCommands = {"play",    "pause", "toggle",   "status",  "quit", "seek",
+                                            "rate",    "loop",  "exposure", "set",     "sun",  "clear",
+                                            "preview", "fade",  "blackout", "timecode"};
 /// What `clear` ends.
 const std::vector<std::string> kClearable = {"sun", "exposure", "atmosphere"};
 /// The ranges of a sun given in the sky, as in scene files (docs/scenes.md).
@@ -152,6 +153,20 @@ oc::Fade read_fade(JsonReader& r) {
 /// "1.5" for 1.5, as JSON writes numbers.
 std::string number_text(double x) { return json(x).dump(); }
 
+/// `timecode`: the offset's label, in the ranges of the rate with the most
+/// labels a second (30); the master checks it against the show's own rate.
+oc::TimecodeOffset read_timecode_offset(JsonReader& r) {
+  const std::string label = r.string("offset");
+  try {
+    show::parse_timecode(label, show::TimecodeRate::fps30);
+  } catch (const std::invalid_argument&) {
+    r.fail("offset", cat("= ", brief(json(label)),
+                         ": must be a timecode label hh:mm:ss:ff (or hh:mm:ss;ff), hours [0, 23], minutes and seconds "
+                         "[0, 59], frames [0, 29]"));
+  }
+  return {label};
+}
+
 }  // namespace
 
 OperatorCommand parse_operator_command(const json& request) {
@@ -190,6 +205,8 @@ OperatorCommand parse_operator_command(const json& request) {
     command = read_fade(r);
   else if (name == "blackout")
     command = oc::Blackout{r.has("blackout") ? read_on_off(r, "blackout") : true};
+  else if (name == "timecode")
+    command = read_timecode_offset(r);
   else
     command = read_set(r);
   r.finish();
@@ -242,6 +259,8 @@ json to_json(const OperatorCommand& command) {
           return j;
         } else if constexpr (std::is_same_v<T, oc::Blackout>)
           return {{"command", "blackout"}, {"blackout", c.on}};
+        else if constexpr (std::is_same_v<T, oc::TimecodeOffset>)
+          return {{"command", "timecode"}, {"offset", c.label}};
         else
           return {{"command", "preview"}, {"preview", c.on}};
       },
@@ -288,6 +307,8 @@ std::string describe(const OperatorCommand& command) {
           return text;
         } else if constexpr (std::is_same_v<T, oc::Blackout>)
           return cat("blackout ", c.on ? "on" : "off");
+        else if constexpr (std::is_same_v<T, oc::TimecodeOffset>)
+          return cat("timecode offset ", c.label);
         else
           return cat("preview ", c.on ? "on" : "off");
       },

@@ -26,6 +26,9 @@
 //       (cluster/operator/fade_control.h)
 //   {"command": "blackout", "blackout": true|false}  also "on" / "off"; default true: black (or the picture) at the
 //   next frame
+//   {"command": "timecode", "offset": "hh:mm:ss:ff"}
+//       a show chasing the house's timecode starts (show time 0) at that label from the next frame on;
+//       hh [0, 23], mm and ss [0, 59], ff [0, 29] (the master checks the label against the show's rate)
 // Unknown keys are errors.
 #include <array>
 #include <cstddef>
@@ -111,13 +114,19 @@ struct Blackout {
   bool on = true;
   bool operator==(const Blackout&) const = default;
 };
+/// A chasing show's start on the house's timecode (docs/shows.md, "Chasing timecode").
+struct TimecodeOffset {
+  std::string label;  ///< "hh:mm:ss:ff" (or ";ff", ".ff"), fields in range for some rate
+  bool operator==(const TimecodeOffset&) const = default;
+};
 }  // namespace operator_command
 
 using OperatorCommand =
     std::variant<operator_command::Play, operator_command::Pause, operator_command::Toggle, operator_command::Status,
                  operator_command::Quit, operator_command::Seek, operator_command::Rate, operator_command::Loop,
                  operator_command::Exposure, operator_command::Set, operator_command::Sun, operator_command::Clear,
-                 operator_command::Preview, operator_command::Fade, operator_command::Blackout>;
+                 operator_command::Preview, operator_command::Fade, operator_command::Blackout,
+                 operator_command::TimecodeOffset>;
 
 /// Reads one command object. Throws zenith::ConfigError (file "command", the
 /// key as a JSON pointer, the value and the allowed range) for anything else.

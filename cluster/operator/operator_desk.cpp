@@ -15,6 +15,11 @@ namespace zenith::cluster {
 
 using core::cat;
 
+/// Why a `timecode` command has nothing to act on.
+constexpr const char* kNoChase =
+    "the show runs on its own clock, not the house's timecode (a show file with a \"timecode\" block and "
+    "--ltc-device, --ltc-file or --mtc-device make it chase; docs/shows.md, \"Chasing timecode\")";
+
 OperatorDesk::OperatorDesk(DeskMaster& master, Setup setup, const scene::Scene& scene)
     : master_(master), setup_(std::move(setup)), sun_(scene), fade_(setup_.fps) {}
 
@@ -41,6 +46,7 @@ std::string OperatorDesk::on_line(std::string line) {
     return "no show is playing: only 'status' and 'quit' are available";
   }
   try {
+    if (!setup_.chase && line.rfind("timecode ", 0) == 0) throw std::invalid_argument(cat("'", line, "': ", kNoChase));
     std::string reply = setup_.chase ? apply_to_chase(line) : setup_.clock->apply_command(line);
     spdlog::info("master: operator: {} → {}", line, reply);
     return reply;
@@ -78,6 +84,8 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
                                         ": no show is playing (the default show has no clock: start "
                                         "the master with --show FILE for play, pause, seek, rate and loop)"));
       reply = cat("default show at frame ", master_.barrier_frame());
+    } else if (std::holds_alternative<oc::TimecodeOffset>(command) && !setup_.chase) {
+      throw std::invalid_argument(cat(describe(command), ": ", kNoChase));
     } else {
       if (const auto* seek = std::get_if<oc::Seek>(&command); seek && seek->seconds > setup_.clock->duration_s())
         throw std::invalid_argument(cat("command: /seconds = ", seek->seconds, ": must be in [0, ",

@@ -113,6 +113,8 @@ OperatorCommand osc_command(const OscMessage& m) {
     json on = m.arguments.empty() ? json(true) : value_of(m);
     if (on.is_number_integer()) on = on.get<std::int64_t>() != 0;
     request = {{"command", "blackout"}, {"blackout", on}};
+  } else if (name == "timecode/offset") {  // a label such as "01:00:00:00"
+    request = {{"command", "timecode"}, {"offset", value_of(m)}};
   } else if (name == "sun/elevation") {
     request = {{"command", "sun"}, {"elevation_deg", value_of(m)}};
   } else if (name == "sun/azimuth") {
@@ -133,7 +135,8 @@ OperatorCommand osc_command(const OscMessage& m) {
   } else {
     refuse(m,
            "unknown address (known: /zenith/play, /zenith/pause, /zenith/toggle, /zenith/seek, /zenith/rate, "
-           "/zenith/exposure, /zenith/loop, /zenith/preview, /zenith/fade, /zenith/blackout, /zenith/sun/elevation, "
+           "/zenith/exposure, /zenith/loop, /zenith/preview, /zenith/fade, /zenith/blackout, /zenith/timecode/offset, "
+           "/zenith/sun/elevation, "
            "/zenith/sun/azimuth, /zenith/clear/sun, "
            "/zenith/clear/exposure, /zenith/clear/atmosphere/<body>, /zenith/atmosphere/<body>/<parameter>)");
   }

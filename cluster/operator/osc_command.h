@@ -3,6 +3,8 @@
 //   /zenith/play  /zenith/pause  /zenith/toggle      any arguments ignored (a button sends 1 on press, 0 on release)
 //   /zenith/seek f   /zenith/rate f   /zenith/exposure f (N: the show's own)   /zenith/loop T|F|i
 //   /zenith/preview T|F|i                            the dome preview on or off
+//   /zenith/timecode/offset s                        a chasing show's start on the house's timecode,
+//                                                    s a label "hh:mm:ss:ff"
 //   /zenith/sun/elevation f   /zenith/sun/azimuth f (degrees in the camera's sky; the other angle stays)
 //   /zenith/clear/sun   /zenith/clear/exposure   /zenith/clear/atmosphere/<body>
 //                                                    any arguments ignored: the show's (or scene's) own again

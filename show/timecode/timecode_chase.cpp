@@ -149,6 +149,7 @@ ChasePosition TimecodeChase::position(double local_s, double now_s) {
   p.last = last_;
   p.rate = rate_;
   p.locates = locates_;
+  p.offset_s = settings_.offset_s;
   switch (state_) {
     case ChaseState::locked:
     case ChaseState::freewheeling:

@@ -70,6 +70,7 @@ struct ChasePosition {
   double drift_ppm = 0.0;        ///< (|speed| − 1) · 10⁶ while locked or freewheeling
   std::optional<Timecode> last;  ///< the last frame received, and its rate
   TimecodeRate rate = TimecodeRate::fps25;
+  double offset_s = 0.0;      ///< the timecode's real seconds at show time 0 (ChaseSettings::offset_s)
   int locates = 0;            ///< jumps followed since the start
   bool before_start = false;  ///< the timecode is before the show's offset: held at 0
 };

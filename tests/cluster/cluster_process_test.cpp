@@ -2202,6 +2202,71 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) 
   quit_in_sync(http, master);
 }
 
+/// A show chasing the house's timecode takes its start on the timecode from every desk: the API's JSON
+/// command, OSC, and the web console's box (where a browser is installed), which shows the chase's
+/// controls in place of the clock's; a label the show's rate does not have is refused by name.
+TEST_F(ClusterProcess, OperatorConsoleMovesAChasedShowsStartOverTheApiOscAndTheBrowser) {
+  const fs::path config = write_config(5);
+  const int http = port_ + 2, osc = port_ + 3;
+  const fs::path wav = dir_ / "ltc.wav";
+  const Child writer =
+      spawn({"timecode", "write", wav.string(), "--start", "01:00:00:00", "--rate", "25", "--seconds", "120"},
+            dir_ / "timecode.log");
+  ASSERT_EQ(wait_exit(writer, 30s), std::optional<int>(0)) << read_text(dir_ / "timecode.log");
+  const Child master =
+      start_master(config, 0, 120000,
+                   {"--show", (kSource / "tests/data/shows/chase-sunset.json").string(), "--ltc-file", wav.string(),
+                    "--operator-port", std::to_string(http), "--osc-port", std::to_string(osc)});
+  for (const char* n : {"a", "b", "c"})
+    start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  const auto chase = [&] { return console_status(http).value("timecode", nlohmann::json::object()); };
+  ASSERT_TRUE(wait_until([&] { return chase().value("state", "") == "locked"; }, 300s)) << logs();
+  EXPECT_EQ(chase()["offset"], "01:00:00:00");
+
+  // The API: show time 0 two seconds earlier on the timecode, so the show jumps 2 s on.
+  const double before_s = console_status(http).value("show_time_s", 0.0);
+  const test::HttpReply moved = console_command(http, R"({"command": "timecode", "offset": "00:59:58:00"})");
+  EXPECT_EQ(moved.status, 200) << moved.body;
+  EXPECT_EQ(moved.json()["reply"], "show time 0 at 00:59:58:00 from the next frame on");
+  EXPECT_TRUE(wait_until([&] { return chase()["offset"] == "00:59:58:00"; }, 30s)) << chase().dump();  // next frame
+  EXPECT_TRUE(wait_until([&] { return console_status(http).value("show_time_s", 0.0) > before_s + 2.0; }, 30s))
+      << console_status(http).dump();
+  const test::HttpReply refused = console_command(http, R"({"command": "timecode", "offset": "01:00:00:29"})");
+  EXPECT_EQ(refused.status, 400) << refused.body;
+  EXPECT_NE(refused.body.find("frames [0, 25)"), std::string::npos) << refused.body;
+  EXPECT_NE(console_command(http, R"({"command": "pause"})").body.find("the show follows the house's timecode"),
+            std::string::npos);
+
+  // OSC.
+  send_osc(osc, encode_osc_message({"/zenith/timecode/offset", {std::string("00:59:59:00")}}));
+  EXPECT_TRUE(wait_until([&] { return chase()["offset"] == "00:59:59:00"; }, 30s)) << chase().dump();
+
+  // The web console.
+  if (test::browser_available()) {
+    test::WebDriver browser(port_ + 5, dir_ / "chromedriver.log");
+    browser.open("http://127.0.0.1:" + std::to_string(http) + "/");
+    ASSERT_TRUE(wait_in_page(browser, "!document.getElementById('chase-controls').hidden", 60s));
+    EXPECT_EQ(browser.script("return document.getElementById('clock-controls').hidden;"), true)
+        << "the clock's controls give way to the chase's";
+    EXPECT_TRUE(
+        wait_in_page(browser, "document.getElementById('timecode-offset-now').textContent === '00:59:59:00'", 30s));
+    EXPECT_TRUE(wait_in_page(browser, "document.getElementById('timecode-state').textContent === 'locked'", 30s));
+    const std::string box = browser.element("#timecode-offset");
+    browser.click(box);
+    browser.type(box, "\ue009a\ue00001:00:00:00");  // Control-A, then the label
+    browser.click(browser.element("#timecode-offset-apply"));
+    EXPECT_TRUE(wait_until([&] { return chase()["offset"] == "01:00:00:00"; }, 30s)) << chase().dump();
+    EXPECT_TRUE(
+        wait_in_page(browser, "document.getElementById('timecode-offset-now').textContent === '01:00:00:00'", 30s));
+    browser.screenshot(dir_ / "operator-console-chase.png");
+  } else {
+    std::printf("[ skipped  ] the web console's part: chromium and chromium-driver are not installed\n");
+  }
+  quit_in_sync(http, master);
+  expect_in_master_log({"): timecode offset 00:59:58:00 → show time 0 at 00:59:58:00 from the next frame on",
+                        "): timecode offset 00:59:59:00 → show time 0 at 00:59:59:00", "master: operator (osc "});
+}
+
 TEST_F(ClusterProcess, OperatorConsoleInABrowserChangesTurbidityAndTheNewVersionReachesEveryNode) {
   if (!test::browser_available()) GTEST_SKIP() << "chromium and chromium-driver are not installed (scripts/bootstrap)";
   const fs::path config = write_config(10);

@@ -66,10 +66,16 @@ TEST(OperatorCommand, ReadsEveryCommand) {
   EXPECT_EQ(describe(parse(R"({"command": "preview", "preview": "on"})")), "preview on");
   EXPECT_EQ(describe(parse(R"({"command": "set", "body": "Earth", "pointer": "/ozone", "value": null})")),
             "set Earth /ozone = null");
+  EXPECT_EQ(parse(R"({"command": "timecode", "offset": "01:00:00:00"})"),
+            OperatorCommand(oc::TimecodeOffset{"01:00:00:00"}));
+  EXPECT_EQ(describe(parse(R"({"command": "timecode", "offset": "00:59:58;02"})")), "timecode offset 00:59:58;02");
 }
 
 TEST(OperatorCommand, ErrorsNameTheKeyTheValueAndTheRange) {
   EXPECT_EQ(error_of(R"({"command": "rate", "rate": 20})"), "command: /rate = 20: must be in [-16, 16]");
+  EXPECT_EQ(error_of(R"({"command": "timecode", "offset": "25:00:00:00"})"),
+            "command: /offset = \"25:00:00:00\": must be a timecode label hh:mm:ss:ff (or hh:mm:ss;ff), hours "
+            "[0, 23], minutes and seconds [0, 59], frames [0, 29]");
   EXPECT_EQ(error_of(R"({"command": "seek", "seconds": -1})"), "command: /seconds = -1: must be in [0, 1e+09] s");
   EXPECT_EQ(error_of(R"({"command": "exposure", "exposure": 0})"), "command: /exposure = 0: must be in (0, 1e+06]");
   EXPECT_EQ(error_of(R"({"command": "exposure", "exposure": "bright"})"),
@@ -148,6 +154,7 @@ TEST(OperatorCommand, ToJsonIsTheInverseOfParsing) {
         R"({"command": "clear", "what": "atmosphere", "body": "Earth"})", R"({"command": "preview", "preview": false})",
         R"({"command": "fade", "level": 0.25, "seconds": 1.5, "colour": [0, 0.5, 1]})",
         R"({"command": "fade", "seconds": 0})", R"({"command": "blackout", "blackout": "on"})",
+        R"({"command": "timecode", "offset": "10:00:00:00"})",
         R"({"command": "set", "body": "Mars", "pointer": "/planet/ground_albedo", "value": {"680": 0.3}})"}) {
     const OperatorCommand command = parse(text);
     EXPECT_EQ(parse_operator_command(to_json(command)), command) << text;
@@ -172,6 +179,7 @@ const std::vector<std::string> kSeeds = {
     R"({"command": "clear", "what": "sun"})",
     R"({"command": "clear", "what": "atmosphere", "body": "Earth"})",
     R"({"command": "preview", "preview": true})",
+    R"({"command": "timecode", "offset": "01:00:00:00"})",
 };
 
 /// Pieces a mutation inserts: JSON punctuation, keys, values at and beyond the ranges' edges.

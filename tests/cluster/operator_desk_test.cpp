@@ -94,15 +94,34 @@ TEST_F(OperatorDeskTest, AChasingShowTakesPlayAndAnOffsetAndRefusesTheClocksComm
   EXPECT_EQ(status["rate"], "25");
   EXPECT_EQ(status["locates"], 0) << "the return after the dropout is no locate";
   EXPECT_EQ(status["before_start"], false);
-  EXPECT_TRUE(desk().status()["timecode"].is_null()) << "a show on its own clock";
+
+  EXPECT_EQ(status["offset"], "01:00:00:00");
 
   EXPECT_EQ(d.on_line("timecode offset 01:00:02:00"), "show time 0 at 01:00:02:00 from the next frame on");
   EXPECT_NEAR(chase.position(4.12).show_time_s, 7.12, 1e-9);
   EXPECT_NE(d.on_line("timecode offset 01:00:02:30").find("frames [0, 25)"), std::string::npos);
+  // The same from the web console, scripts and OSC desks: the JSON command.
+  EXPECT_EQ(d.run(parse_operator_command({{"command", "timecode"}, {"offset", "01:00:03:00"}}), "console"),
+            "show time 0 at 01:00:03:00 from the next frame on");
+  chased = chase.position(4.12);
+  EXPECT_NEAR(chased.show_time_s, 6.12, 1e-9);
+  EXPECT_EQ(d.status()["timecode"]["offset"], "01:00:03:00");
+  EXPECT_NE(refusal([&] { d.run(oc::TimecodeOffset{"01:00:03:29"}, "console"); }).find("frames [0, 25)"),
+            std::string::npos)
+      << "a label of 30 fps the show's 25 fps does not have";
   EXPECT_NE(d.on_line("seek 3").find("the show follows the house's timecode"), std::string::npos);
   EXPECT_NE(refusal([&] { d.run(oc::Pause{}, "control"); }).find("the show follows the house's timecode"),
             std::string::npos);
   EXPECT_EQ(clock.time_s(), 0.0) << "the clock was not touched";
+
+  // A show on its own clock has no timecode to show or move.
+  OperatorDesk own = desk(&clock);
+  EXPECT_TRUE(own.status()["timecode"].is_null());
+  EXPECT_NE(refusal([&] {
+              own.run(oc::TimecodeOffset{"01:00:03:00"}, "console");
+            }).find("the show runs on its own clock, not the house's timecode"),
+            std::string::npos);
+  EXPECT_NE(own.on_line("timecode offset 01:00:03:00").find("the show runs on its own clock"), std::string::npos);
 }
 
 TEST_F(OperatorDeskTest, TheExposureReplacesTheShowsFromTheNextFrameUntilCleared) {

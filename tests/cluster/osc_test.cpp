@@ -162,6 +162,8 @@ TEST(OscCommand, AddressesBecomeTheApisCommandsWithItsRanges) {
   EXPECT_EQ(osc_command({"/zenith/blackout", {}}), OperatorCommand(oc::Blackout{true}));
   EXPECT_EQ(osc_command({"/zenith/blackout", {std::int32_t{0}}}), OperatorCommand(oc::Blackout{false}));
   EXPECT_EQ(osc_command({"/zenith/blackout", {true}}), OperatorCommand(oc::Blackout{true}));
+  EXPECT_EQ(osc_command({"/zenith/timecode/offset", {std::string("01:00:00:00")}}),
+            OperatorCommand(oc::TimecodeOffset{"01:00:00:00"}));
   const auto error_of = [](const OscMessage& m) {
     try {
       osc_command(m);
@@ -179,6 +181,8 @@ TEST(OscCommand, AddressesBecomeTheApisCommandsWithItsRanges) {
   EXPECT_NE(error_of({"/zenith/fade", {std::string("x"), 2.0f}}).find("argument 1 (level) must be a number"),
             std::string::npos);
   EXPECT_EQ(error_of({"/zenith/seek", {}}), "OSC /zenith/seek: takes one argument, got 0");
+  EXPECT_NE(error_of({"/zenith/timecode/offset", {3600.0f}}).find("/offset: must be a string, got 3600.0"),
+            std::string::npos);
   EXPECT_EQ(error_of({"/zenith/sun/elevation", {95.0f}}), "command: /elevation_deg = 95.0: must be in [-90, 90] deg");
   EXPECT_NE(error_of({"/zenith/quit", {}}).find("OSC /zenith/quit: unknown address"), std::string::npos);
   EXPECT_NE(error_of({"/other/play", {}}).find("not a zenith address"), std::string::npos);

@@ -136,8 +136,15 @@ function render(s) {
         (s.timecode.locates === 1 ? '' : 's');
   }
 
+  // A chasing show takes its start on the timecode, not the clock's commands.
+  $('chase-controls').hidden = !s.timecode;
+  if (s.timecode) {
+    $('timecode-offset-now').textContent = s.timecode.offset;
+    if (!editing($('timecode-offset')) && $('timecode-offset').value === '') $('timecode-offset').value = s.timecode.offset;
+  }
+
   $('no-clock').hidden = s.show !== null;
-  $('clock-controls').hidden = s.show === null;
+  $('clock-controls').hidden = s.show === null || !!s.timecode;
   if (s.show) {
     const seek = $('seek');
     seek.max = s.show.duration_s;
@@ -453,6 +460,9 @@ function wire() {
     send({command: 'seek', seconds: Number(seek.value)});
   });
   $('rate-apply').addEventListener('click', () => send({command: 'rate', rate: Number($('rate').value)}));
+  $('timecode-offset-apply').addEventListener('click',
+      () => send({command: 'timecode', offset: $('timecode-offset').value.trim()}));
+  $('chase-play').addEventListener('click', () => send({command: 'play'}));
   $('exposure-apply').addEventListener('click', () => send({command: 'exposure', exposure: Number($('exposure').value)}));
   $('exposure-reset').addEventListener('click', () => {
     $('exposure').value = '';
