@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -73,6 +74,7 @@ cluster::SharedSecret load_secret(const cluster::ClusterConfig& config) {
 struct PlaybackArgs {
   std::string show, record, ltc_device, ltc_file, mtc_device;
   int ltc_channel = 0;
+  std::optional<double> ltc_file_epoch_s;
   double fps = 0.0;
   bool loop = false, no_loop = false, console = false, unpaced = false;
   std::optional<int> control_port;
@@ -96,6 +98,12 @@ struct PlaybackArgs {
     cmd.add_option("--ltc-file", ltc_file,
                    "Chase the LTC of this audio file, played in real time from the master's start (a rehearsal)")
         ->excludes("--ltc-device");
+    cmd.add_option("--ltc-file-epoch", ltc_file_epoch_s,
+                   "When the --ltc-file's first sample sounds, in Unix seconds (default: the master's start; `zenith "
+                   "cluster`: its own start, for its master and standby alike), so that two masters chase one "
+                   "rehearsal")
+        ->needs("--ltc-file")
+        ->check(CLI::Range(0.0, 1e11));
     cmd.add_option("--ltc-channel", ltc_channel, "The channel carrying the LTC, 0 the first (default 0)")
         ->check(CLI::Range(0, 63));
     cmd.add_option("--mtc-device", mtc_device,
@@ -117,6 +125,7 @@ struct PlaybackArgs {
     options.mtc_device = mtc_device;
     if (!ltc_file.empty()) options.ltc_file = fs::path(ltc_file);
     options.ltc_channel = ltc_channel;
+    options.ltc_file_epoch_s = ltc_file_epoch_s;
   }
   /// The same options as command-line arguments for a child master.
   std::vector<std::string> arguments() const {
@@ -130,7 +139,12 @@ struct PlaybackArgs {
     if (control_port) args.insert(args.end(), {"--control-port", std::to_string(*control_port)});
     if (unpaced) args.push_back("--unpaced");
     if (!ltc_device.empty()) args.insert(args.end(), {"--ltc-device", ltc_device});
-    if (!ltc_file.empty()) args.insert(args.end(), {"--ltc-file", ltc_file});
+    if (!ltc_file.empty()) {
+      // The rehearsal plays from this instant for the master and for a standby that takes over from it.
+      const double epoch_s = ltc_file_epoch_s.value_or(
+          std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+      args.insert(args.end(), {"--ltc-file", ltc_file, "--ltc-file-epoch", fmt::format("{:.3f}", epoch_s)});
+    }
     if (!mtc_device.empty()) args.insert(args.end(), {"--mtc-device", mtc_device});
     if (ltc_channel != 0) args.insert(args.end(), {"--ltc-channel", std::to_string(ltc_channel)});
     return args;

@@ -74,7 +74,7 @@ bool FrameLoop::next_frame(FrameState& next) {
     }
   }
   const std::uint64_t frame = p_.barrier.frame();
-  if (p_.play.chase) {
+  if (p_.play.timecode) {
     // The frame's moment: its due time on the schedule, else (under the barrier) now.
     const Clock::time_point moment = schedule_started_ ? pacer_.due(p_.progress.presented) : Clock::now();
     next = p_.play.show->state_at(chased_show_time(moment), frame, p_.play.render_flags);
@@ -90,8 +90,8 @@ bool FrameLoop::next_frame(FrameState& next) {
 }
 
 double FrameLoop::chased_show_time(Clock::time_point moment) {
-  show::TimecodeChase& chase = *p_.play.chase;
-  for (const show::TimecodeEvent& e : p_.play.timecode->take()) chase.receive(e);
+  show::TimecodeChase& chase = p_.play.timecode->chase;
+  p_.play.timecode->take_frames();
   const show::ChasePosition before = p_.play.chased;
   const auto seconds = [](Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); };
   const show::ChasePosition& now = p_.play.chased = chase.position(seconds(moment), seconds(Clock::now()));
@@ -104,6 +104,10 @@ double FrameLoop::chased_show_time(Clock::time_point moment) {
     spdlog::info("master: timecode located to {}: show time {:.3f} s", label, now.show_time_s);
   if (now.before_start && !before.before_start)
     spdlog::warn("master: timecode {} is before the show's start: the show holds at its start", label);
+  if (std::optional<double>& floor = p_.play.chase_floor_s) {
+    if (now.speed >= 0.0 && now.show_time_s < *floor) return *floor;
+    floor.reset();  // the timecode has passed the active master's last frame (or runs backwards)
+  }
   return now.show_time_s;
 }
 

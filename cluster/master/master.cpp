@@ -111,10 +111,10 @@ struct Master::Impl {
     door.emplace(MasterDesk::Parts{
         options.config, sessions, barrier, *tables, node_statistics, progress, show ? &*show : nullptr,
         clock ? &*clock : nullptr, fps, [this] { return preparer.running(); },
-        [this](const std::string& reason) { stop(reason); }, play.chase ? &play.chased : nullptr});
+        [this](const std::string& reason) { stop(reason); }, play.timecode ? &play.chased : nullptr});
     desk.emplace(*door,
                  OperatorDesk::Setup{options.config, show ? &*show : nullptr, clock ? &*clock : nullptr, fps,
-                                     options.feed != nullptr, play.chase ? &*play.chase : nullptr},
+                                     options.feed != nullptr, play.timecode ? &play.timecode->chase : nullptr},
                  scene);
     loop.emplace(io, FrameLoop::Parts{options, play, sessions, barrier, *tables, *desk, node_statistics, progress,
                                       datagrams, [this](const std::string& reason) { stop(reason); }});
@@ -137,6 +137,11 @@ struct Master::Impl {
     // The operator's fade (or blackout) stays on the domes: the frame's own fade unless the show gave it.
     if (last.fade != expected.fade) desk->hold_fade(last.fade, c.next_frame);
     if (clock) continue_clock(c, *clock);
+    // A chase not yet locked (the standby's input silent, or opened late) holds the last frame, not the start.
+    if (play.timecode) {
+      play.timecode->chase.hold_until_locked(last.show_time_s);
+      play.chase_floor_s = last.show_time_s;
+    }
   }
 
   // ---- connections ----------------------------------------------------------

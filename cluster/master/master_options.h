@@ -18,6 +18,8 @@
 
 namespace zenith::cluster {
 
+struct HouseTimecode;
+
 struct MasterOptions {
   ClusterConfig config;
   std::uint64_t frames = 0;           ///< frames to present, then say Goodbye and return; 0: run until stopped
@@ -53,12 +55,18 @@ struct MasterOptions {
   std::optional<std::filesystem::path> record;
   /// The house's timecode the show chases (its "timecode" block; docs/shows.md,
   /// "Chasing timecode"): LTC from an ALSA capture device ("hw:1,0") or from
-  /// an audio file played in real time from the master's start (a rehearsal),
-  /// `ltc_channel` the channel that carries it; or MIDI timecode from an ALSA
-  /// raw MIDI port ("hw:1,0,0"). At most one of the three.
+  /// an audio file played in real time (a rehearsal), `ltc_channel` the
+  /// channel that carries it; or MIDI timecode from an ALSA raw MIDI port
+  /// ("hw:1,0,0"). At most one of the three.
   std::string ltc_device, mtc_device;
   std::optional<std::filesystem::path> ltc_file;
   int ltc_channel = 0;
+  /// When `ltc_file`'s first sample sounds, in Unix seconds (unset: the
+  /// master's start): masters given the same instant chase one rehearsal.
+  std::optional<double> ltc_file_epoch_s;
+  /// The input above already open and chased (a standby's, opened while it
+  /// followed; set by cluster/standby/standby.h): used instead of opening it again.
+  std::shared_ptr<HouseTimecode> house_timecode;
   /// Playback commands from standard input, one per line (docs/shows.md, "Playback").
   bool console = false;
   /// Playback commands on a TCP control socket at 127.0.0.1:PORT (`zenith show control`).

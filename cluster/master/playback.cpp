@@ -31,26 +31,12 @@ void load_playback(const MasterOptions& options, Playback& p) {
     spdlog::info("master: playing show '{}' ({:.1f} s at {} fps, {} frames{})", p.show->name(), p.show->duration_s(),
                  p.fps, p.show->frame_count(p.fps), p.clock->looping() ? ", looping" : "");
   }
-  if (!options.ltc_device.empty() || options.ltc_file || !options.mtc_device.empty()) {
-    const std::string input = options.ltc_file              ? "--ltc-file"
-                              : !options.mtc_device.empty() ? "--mtc-device"
-                                                            : "--ltc-device";
-    if (!p.show || !p.show->timecode())
-      throw std::invalid_argument(cat(input,
-                                      ": the show to chase timecode needs a show file with a \"timecode\" "
-                                      "block (its rate and start; docs/shows.md, \"Chasing timecode\")"));
-    const show::Show::HouseTimecode& tc = *p.show->timecode();
-    p.chase.emplace(tc.chase);
-    if (options.ltc_file)
-      p.timecode = show::ltc_file_source(*options.ltc_file, options.ltc_channel, tc.rate);
-    else if (!options.mtc_device.empty())
-      p.timecode = show::mtc_midi_source(options.mtc_device, tc.rate);
-    else
-      p.timecode = show::ltc_capture_source(options.ltc_device, options.ltc_channel, tc.rate);
-    spdlog::info(
-        "master: chasing {} at {} fps: show time 0 at {}, through a dropout {:.1f} s, then {}", p.timecode->describe(),
-        show::to_string(tc.rate), show::format_timecode(show::timecode_at_seconds(tc.chase.offset_s, tc.rate), tc.rate),
-        tc.chase.freewheel_s, tc.chase.after_dropout == show::ChaseSettings::AfterDropout::hold ? "hold" : "stop");
+  if (options.house_timecode) {
+    p.timecode = options.house_timecode;
+    spdlog::info("master: chasing {} (the standby's input, chased while it followed)", p.timecode->summary);
+  } else if (chases_timecode(options)) {
+    p.timecode = open_house_timecode(options, p.show ? &*p.show : nullptr);
+    spdlog::info("master: chasing {}", p.timecode->summary);
   }
   if (options.record)
     p.recorder = std::make_unique<show::ShowRecorder>(

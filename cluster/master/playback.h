@@ -6,12 +6,11 @@
 #include <memory>
 #include <optional>
 
+#include "cluster/master/house_timecode.h"
 #include "cluster/master/master_options.h"
 #include "scene/scene.h"
 #include "show/playback_clock.h"
 #include "show/show.h"
-#include "show/timecode/timecode_chase.h"
-#include "show/timecode/timecode_source.h"
 
 namespace zenith::cluster {
 
@@ -22,18 +21,21 @@ struct Playback {
   double fps = 30.0;                             ///< frames per second of show time (and of pacing)
   std::uint32_t render_flags = 0;                ///< every frame's (render::RenderOptions' defaults)
   std::unique_ptr<show::ShowRecorder> recorder;  ///< with MasterOptions::record
-  /// Chasing the house's timecode (MasterOptions::ltc_device or ltc_file):
-  /// show time from the chase at each frame's moment instead of the clock.
-  std::optional<show::TimecodeChase> chase;
-  std::unique_ptr<show::TimecodeSource> timecode;
+  /// Chasing the house's timecode (MasterOptions::ltc_device, ltc_file or
+  /// mtc_device): show time from the chase at each frame's moment instead of the clock.
+  std::shared_ptr<HouseTimecode> timecode;
   show::ChasePosition chased;  ///< the last frame's, for the status and the log
+  /// A standby taking over a chased show: the show time of the active
+  /// master's last frame, which nodes may present after the first frames the
+  /// standby sends now (it was sent ahead of its moment): the chase's frames
+  /// hold there until the timecode passes it, so no node steps back.
+  std::optional<double> chase_floor_s;
 };
 
 /// Loads what `options` plays into `playback` (logged) and starts its
-/// timecode input. Throws for a bad show or scene file, std::invalid_argument
-/// for atmosphere switches with a show and for timecode without a show that
-/// has a "timecode" block, std::runtime_error for an LTC input that cannot be
-/// opened.
+/// timecode input (or takes MasterOptions::house_timecode's). Throws for a bad show or scene file,
+/// std::invalid_argument for atmosphere switches with a show and for timecode without a show that has a "timecode"
+/// block, std::runtime_error for an LTC input that cannot be opened.
 void load_playback(const MasterOptions& options, Playback& playback);
 
 }  // namespace zenith::cluster

@@ -11,11 +11,13 @@
 
 #include "cluster/link/link_exit.h"
 #include "cluster/link/master_link.h"
+#include "cluster/master/house_timecode.h"
 #include "cluster/protocol/heartbeat.h"
 #include "cluster/standby/standby_follower.h"
 #include "cluster/standby/takeover_rule.h"
 #include "core/strings.h"
 #include "core/timing.h"
+#include "show/show.h"
 
 namespace zenith::cluster {
 
@@ -31,6 +33,9 @@ struct Standby::Impl {
   StandbyFollower follower;  ///< every table version and the last frames of the active master
   TakeoverRule rule;         ///< following, checking after a loss, taking over
   std::optional<MasterLink> link;
+  /// The house's timecode, opened and chased while following: locked when it takes over.
+  std::shared_ptr<HouseTimecode> timecode;
+  bool timecode_locked_logged = false;
   LinkEnd end;  // the exit code, decided by the first finish()
   Clock::time_point lost_at;
 
@@ -85,6 +90,19 @@ struct Standby::Impl {
     }
     if (frames == 0 && follower.frames_seen() == 1)
       spdlog::info("standby: the show runs: following from frame {}", follower.last_frame()->frame);
+    if (timecode) chase_timecode();
+  }
+
+  /// The timecode read since the last message, into the chase; its first lock logged.
+  void chase_timecode() {
+    timecode->take_frames();
+    if (timecode_locked_logged) return;
+    const double now_s = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+    const show::ChasePosition p = timecode->chase.position(now_s);
+    if (p.state != show::ChaseState::locked) return;
+    spdlog::info("standby: timecode locked while following (at {}, show time {:.3f} s): a takeover goes on from it",
+                 p.last ? show::format_timecode(*p.last, p.rate) : std::string("?"), p.show_time_s);
+    timecode_locked_logged = true;
   }
 
   void on_attempt_failed(const std::string& reason) {
@@ -123,6 +141,8 @@ struct Standby::Impl {
       spdlog::info("standby: the active master had not started the show: starting it from frame 0");
     }
     master.takeover = state;
+    if (timecode) timecode->take_frames();
+    master.house_timecode = std::move(timecode);
     Master taken_over(std::move(master), secret);
     return taken_over.run();
   }
@@ -151,6 +171,13 @@ struct Standby::Impl {
     });
     spdlog::info("standby: cluster '{}': following the active master at {}, standing by to take over on {}",
                  config().name, link->master_address(), config().standby->text());
+    if (chases_timecode(options.master)) {
+      // Its own input of the house's timecode, chased from now on (the show file names its rate and start).
+      std::optional<show::Show> show;
+      if (options.master.show) show.emplace(show::load_show(*options.master.show));
+      timecode = open_house_timecode(options.master, show ? &*show : nullptr);
+      spdlog::info("standby: chasing {} while it follows", timecode->summary);
+    }
     link->start();
     io.run();
     if (rule.phase() != TakeoverRule::Phase::taking_over) return end.exit_code;

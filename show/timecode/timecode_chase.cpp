@@ -45,6 +45,13 @@ void TimecodeChase::resume() {
   if (state_ == ChaseState::stopped) state_ = ChaseState::locking;
 }
 
+void TimecodeChase::hold_until_locked(double show_time_s) {
+  if (ever_locked_) return;
+  held_timecode_s_ = settings_.offset_s + show_time_s;
+  ever_locked_ = true;
+  if (state_ == ChaseState::waiting) state_ = ChaseState::held;
+}
+
 TimecodeChase::Line TimecodeChase::fit(const std::deque<Point>& points, double default_speed) {
   Line line;
   if (points.empty()) return line;

@@ -99,6 +99,10 @@ class TimecodeChase {
   void set_offset_s(double offset_s);
   /// The operator starts a stopped chase again: it locks to the timecode as it arrives.
   void resume();
+  /// A chase that has never locked holds the show at `show_time_s` until it
+  /// does, instead of at its start (a standby taking over holds the active
+  /// master's last frame); one that has locked keeps to its timecode.
+  void hold_until_locked(double show_time_s);
 
  private:
   struct Point {
@@ -126,7 +130,7 @@ class TimecodeChase {
   double last_local_s_ = 0.0;
   double held_timecode_s_ = 0.0;  ///< where a held or stopped show stays
   int locates_ = 0;
-  bool ever_locked_ = false;
+  bool ever_locked_ = false;  ///< a frame to hold: the chase locked once, or hold_until_locked
 };
 
 }  // namespace zenith::show

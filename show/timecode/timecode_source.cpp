@@ -95,10 +95,11 @@ class LtcStream {
 
 class FileSource final : public TimecodeSource {
  public:
-  FileSource(const std::filesystem::path& path, int channel, TimecodeRate rate)
+  FileSource(const std::filesystem::path& path, int channel, TimecodeRate rate, Clock::time_point first_sample)
       : audio_(read_audio_channel(path, channel)),
         stream_(audio_.sample_rate_hz, rate,
                 fmt::format("LTC from {} (channel {}, {} Hz)", path.string(), channel, audio_.sample_rate_hz)),
+        first_sample_(first_sample),
         thread_([this] { play(); }) {}
   ~FileSource() override {
     stop_ = true;
@@ -108,12 +109,16 @@ class FileSource final : public TimecodeSource {
   std::string describe() const override { return stream_.name(); }
 
  private:
-  /// The file as a live input: 10 ms blocks, each decoded once its last sample has sounded.
+  /// The file as a live input: 10 ms blocks, each decoded once its last
+  /// sample has sounded; a file that started sounding earlier from a second
+  /// before now (the decoder's time to find the frames again).
   void play() {
-    const Clock::time_point start = Clock::now();
+    const Clock::time_point start = first_sample_;
     const double rate = audio_.sample_rate_hz;
     const auto block = static_cast<std::size_t>(rate / 100.0);
-    for (std::size_t at = 0; at < audio_.samples.size() && !stop_; at += block) {
+    const double late_s = std::chrono::duration<double>(Clock::now() - start).count() - 1.0;
+    const std::size_t first_block = late_s > 0.0 ? static_cast<std::size_t>(late_s * rate) / block : 0;
+    for (std::size_t at = first_block * block; at < audio_.samples.size() && !stop_; at += block) {
       const std::size_t n = std::min(block, audio_.samples.size() - at);
       std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
                                                 std::chrono::duration<double>(static_cast<double>(at + n) / rate)));
@@ -124,6 +129,7 @@ class FileSource final : public TimecodeSource {
 
   AudioChannel audio_;
   LtcStream stream_;
+  Clock::time_point first_sample_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
@@ -242,8 +248,13 @@ std::unique_ptr<TimecodeSource> mtc_midi_source(const std::string& device, Timec
   return std::make_unique<MidiSource>(device, rate);
 }
 
-std::unique_ptr<TimecodeSource> ltc_file_source(const std::filesystem::path& path, int channel, TimecodeRate rate) {
-  return std::make_unique<FileSource>(path, channel, rate);
+std::unique_ptr<TimecodeSource> ltc_file_source(const std::filesystem::path& path, int channel, TimecodeRate rate,
+                                                std::optional<std::chrono::system_clock::time_point> first_sample_at) {
+  // The instant on the wall clock, on the steady clock the frames are stamped on.
+  Clock::time_point first = Clock::now();
+  if (first_sample_at)
+    first += std::chrono::duration_cast<Clock::duration>(*first_sample_at - std::chrono::system_clock::now());
+  return std::make_unique<FileSource>(path, channel, rate, first);
 }
 
 std::unique_ptr<TimecodeSource> ltc_capture_source(const std::string& device, int channel, TimecodeRate rate) {

@@ -12,8 +12,10 @@
 // length, and the drop-frame flag; MTC: the rate it names) are dropped with
 // one warning naming both rates: the chase then holds the show instead of
 // running it at the wrong speed.
+#include <chrono>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,10 +32,15 @@ class TimecodeSource {
   virtual std::string describe() const = 0;
 };
 
-/// LTC of channel `channel` of the audio file `path`, played in real time from
-/// now; the file ends in silence (the chase freewheels, then holds or stops).
-/// Throws what read_audio_channel throws.
-std::unique_ptr<TimecodeSource> ltc_file_source(const std::filesystem::path& path, int channel, TimecodeRate rate);
+/// LTC of channel `channel` of the audio file `path`, played in real time as
+/// if its first sample sounded at `first_sample_at` (now where unset; in the
+/// past, the file plays on from where it would be); the file ends in silence
+/// (the chase freewheels, then holds or stops). Two masters given the same
+/// instant chase one rehearsal, as they would one house's timecode. Throws
+/// what read_audio_channel throws.
+std::unique_ptr<TimecodeSource> ltc_file_source(
+    const std::filesystem::path& path, int channel, TimecodeRate rate,
+    std::optional<std::chrono::system_clock::time_point> first_sample_at = std::nullopt);
 
 /// LTC of channel `channel` of the ALSA capture device `device` ("hw:1,0",
 /// "default"). Throws std::runtime_error naming the device and ALSA's reason

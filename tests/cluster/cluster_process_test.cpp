@@ -471,7 +471,8 @@ void expect_b_rejoined(const fs::path& out, std::uint64_t last_before) {
 }
 
 /// A show chasing the house's LTC (docs/shows.md, "Chasing timecode"), here a WAV played in real time
-/// from the master's start, 0.1 % fast, from 8 s before the show's start: the show holds at its start
+/// from the master's start, 0.1 % fast, from 20 s before the show's start (the first frame may take
+/// 15 s on a loaded 2-core machine: tables, three nodes): the show holds at its start
 /// while the timecode is before it, then every scheduled frame carries the timecode's time at its
 /// moment (consecutive frames a period × 1.001 apart, to a millisecond, or whole periods where the
 /// schedule moved on), and when the audio ends the show freewheels, then holds its frame.
@@ -483,12 +484,12 @@ TEST_F(ClusterProcess, AShowChasingLtcFollowsItFrameForFrameThenHoldsWhenItStops
     std::ofstream(config) << text;
   }
   const fs::path wav = dir_ / "ltc.wav";
-  const Child writer = spawn({"timecode", "write", wav.string(), "--start", "00:59:52:00", "--rate", "25", "--seconds",
-                              "14", "--speed", "1.001"},
+  const Child writer = spawn({"timecode", "write", wav.string(), "--start", "00:59:40:00", "--rate", "25", "--seconds",
+                              "26", "--speed", "1.001"},
                              dir_ / "timecode.log");
   ASSERT_EQ(wait_exit(writer, 30s), std::optional<int>(0)) << read_text(dir_ / "timecode.log");
   const fs::path recording = dir_ / "recorded.json";
-  const Child master = start_master(config, 190, 120000,
+  const Child master = start_master(config, 280, 120000,
                                     {"--show", (kSource / "tests/data/shows/chase-sunset.json").string(), "--ltc-file",
                                      wav.string(), "--record", recording.string()});
   for (const char* n : {"a", "b", "c"})
@@ -865,6 +866,99 @@ TEST_F(ClusterProcess, StandbyTakesOverWhenTheMasterIsKilledAndEveryNodePresents
         << "the nodes rejoin the standby with their cached tables: " << after;
   EXPECT_NE(after.find(fmt::format("welcomed again by the master at 127.0.0.1:{}", standby_port_)), std::string::npos)
       << after;
+}
+
+/// A show chasing the house's LTC with a standby (docs/shows.md, "Chasing timecode"): both masters chase
+/// one rehearsal file from the same instant (`--ltc-file-epoch`), the standby from while it follows. kill -9
+/// of the master mid-show: the standby takes over with its chase already locked, so the first frames it
+/// sends carry the timecode's time at their moment — not the last frame's, not the show's start — and the
+/// show goes on frame for frame with the timecode.
+TEST_F(ClusterProcess, AStandbyTakesOverAChasedShowInStepWithTheTimecode) {
+  fs::path config = write_config(10, 20000, 200, standby_port_);
+  {  // scheduled frames (a lookahead of 3), so each frame has its moment
+    std::string text = read_text(config);
+    text.replace(text.find(R"("lookahead_frames": 0)"), 21, R"("lookahead_frames": 3)");
+    std::ofstream(config) << text;
+  }
+  const fs::path wav = dir_ / "ltc.wav";
+  const Child writer = spawn({"timecode", "write", wav.string(), "--start", "00:59:58:00", "--rate", "25", "--seconds",
+                              "40", "--speed", "1.001"},
+                             dir_ / "timecode.log");
+  ASSERT_EQ(wait_exit(writer, 30s), std::optional<int>(0)) << read_text(dir_ / "timecode.log");
+  // The file's first sample sounds at `epoch`: the show's start (01:00:00:00) 2 s / 1.001 later.
+  const double epoch_s =
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() + 1.0;
+  const auto expected_show_time = [&](double wall_s) { return (wall_s - epoch_s) * 1.001 - 2.0; };
+  const Child cluster =
+      spawn({"cluster", "--cluster", config.string(), "--frames", "150", "--out", (dir_ / "out").string(), "--cache",
+             cache_.string(), "--show", (kSource / "tests/data/shows/chase-sunset.json").string(), "--ltc-file",
+             wav.string(), "--ltc-file-epoch", fmt::format("{:.3f}", epoch_s)},
+            dir_ / "cluster.log");
+  children_.push_back(cluster);
+
+  // Every frame node a presents, with the wall time it was first seen in its log (polled every 10 ms).
+  std::map<std::uint64_t, std::pair<double, double>> seen;  // frame → (show time, wall time seen)
+  const auto watch = [&] {
+    const double now_s = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    for (const Presented& p : presented(dir_ / "out/a")) seen.try_emplace(p.frame, p.show_time_s, now_s);
+  };
+  const auto watching_until = [&](const std::function<bool()>& done, std::chrono::seconds limit) {
+    for (const auto deadline = Clock::now() + limit; Clock::now() < deadline; std::this_thread::sleep_for(10ms)) {
+      watch();
+      if (done()) return true;
+    }
+    return false;
+  };
+  ASSERT_TRUE(watching_until(
+      [&] {
+        return seen.size() >= 30 &&
+               read_text(dir_ / "cluster.log").find("standby: timecode locked while following") != std::string::npos;
+      },
+      300s))
+      << logs();
+  const pid_t master = launcher_master_pid(read_text(dir_ / "cluster.log"));
+  ASSERT_GT(master, 0) << logs();
+  ASSERT_EQ(kill(master, SIGKILL), 0);
+  const std::uint64_t last_before = seen.rbegin()->first;
+  ASSERT_TRUE(watching_until([&] { return seen.rbegin()->first >= last_before + 20; }, 60s)) << logs();
+  ASSERT_EQ(wait_exit(cluster, 300s), std::optional<int>(0)) << logs();
+
+  // The first frame the standby sent, from its log.
+  const std::string log = read_text(dir_ / "cluster.log");
+  const std::string taking_over = "master: taking over the show at frame ";
+  const auto took_over = log.find(taking_over);
+  ASSERT_NE(took_over, std::string::npos) << log;
+  const std::uint64_t first_new = std::stoull(log.substr(took_over + taking_over.size()));
+
+  // The frames in order: never a step back, and every one at the timecode's time of its moment (it is seen
+  // in the log after it is presented: up to the poll and the write later, and never before). The
+  // standby's first two frames, presented at once, may hold the active master's last frame, which was
+  // sent up to the lookahead (0.3 s) ahead of its moment.
+  double previous = -1.0, worst_before = 0.0, worst_after = 0.0;
+  for (const auto& [frame, times] : seen) {
+    const auto [show_time_s, seen_s] = times;
+    EXPECT_GE(show_time_s, previous) << "frame " << frame << ": the show never steps back";
+    previous = show_time_s;
+    if (show_time_s <= 0.0) continue;  // before the show's start: held at 0
+    const double lag = expected_show_time(seen_s) - show_time_s;
+    const bool may_hold = frame == first_new || frame == first_new + 1;
+    EXPECT_GT(lag, may_hold ? -0.35 : -0.05) << "frame " << frame << " presented before its moment";
+    double& worst = frame < first_new ? worst_before : worst_after;
+    worst = std::max(worst, lag);
+  }
+  std::printf(
+      "[ measured ] frames seen after their timecode's moment by at most %.3f s before the takeover (frame "
+      "%llu), %.3f s after it\n",
+      worst_before, static_cast<unsigned long long>(first_new), worst_after);
+  EXPECT_LT(worst_after, 0.2) << "the frames after the takeover carry the timecode's time of their moment";
+  EXPECT_GE(seen.rbegin()->first, first_new + 15);
+
+  EXPECT_NE(log.find("standby: chasing LTC from"), std::string::npos) << log;
+  EXPECT_NE(log.find("master: chasing LTC from"), std::string::npos) << log;
+  const auto gone = log.find("standby: the active master is gone");
+  ASSERT_NE(gone, std::string::npos) << log;
+  EXPECT_NE(log.find("(the standby's input, chased while it followed)", gone), std::string::npos) << log;
+  EXPECT_NE(log.find("master: taking over the show at frame ", gone), std::string::npos) << log;
 }
 
 TEST_F(ClusterProcess, StandbyKilledAndRestartedFollowsAgainWhileTheShowGoesOnThenTakesOver) {
