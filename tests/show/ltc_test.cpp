@@ -8,7 +8,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "show/timecode/audio_file.h"
@@ -119,6 +121,62 @@ TEST(TimecodeSources, AnAbsentDeviceIsNamed) {
   EXPECT_NE(message([] { mtc_midi_source("hw:97,0,0", TimecodeRate::fps25); }).find("ALSA MIDI port 'hw:97,0,0': "),
             std::string::npos);
   EXPECT_THROW(ltc_capture_source("default", 64, TimecodeRate::fps25), std::invalid_argument);
+}
+
+/// The ALSA capture path itself, without a sound card: ALSA's own `file`
+/// plugin (alsa-lib, user space) plays a raw capture stream from a file, as
+/// a card's input would deliver it — two channels of 32-bit float at 48 kHz,
+/// a tone on the first and the house's LTC on the second. The plugin delivers
+/// it as fast as it is read (no card clock), so this checks the device's
+/// opening, its format, the channel's extraction and the decoding, not the
+/// frames' timing (the WAV source's tests check that).
+TEST(TimecodeSources, AnAlsaCaptureDeviceDeliversTheLtcOfItsChannel) {
+  const std::filesystem::path alsa_conf = "/usr/share/alsa/alsa.conf";
+  if (!std::filesystem::exists(alsa_conf)) GTEST_SKIP() << alsa_conf << " is missing (libasound2-data)";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("zenith-alsa-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  LtcSignal signal;
+  signal.start = {10, 0, 0, 0};
+  signal.frames = 50;
+  const std::vector<float> ltc = encode_ltc(signal);
+  {
+    std::vector<float> interleaved;
+    for (std::size_t i = 0; i < ltc.size(); ++i) {
+      interleaved.push_back(0.5f *
+                            static_cast<float>(std::sin(2.0 * M_PI * 1000.0 * static_cast<double>(i) / 48000.0)));
+      interleaved.push_back(ltc[i]);
+    }
+    std::ofstream raw(dir / "capture.raw", std::ios::binary);
+    raw.write(reinterpret_cast<const char*>(interleaved.data()),
+              static_cast<std::streamsize>(interleaved.size() * sizeof(float)));
+    std::ofstream conf(dir / "asound.conf");
+    conf << "<" << alsa_conf.string() << ">\n"
+         << "pcm.zenith_ltc_test { type file slave.pcm \"null\" file \"/dev/null\" infile \""
+         << (dir / "capture.raw").string() << "\" format \"raw\" }\n";
+  }
+  ::setenv("ALSA_CONFIG_PATH", (dir / "asound.conf").c_str(), 1);
+  std::vector<TimecodeEvent> events;
+  {
+    const std::unique_ptr<TimecodeSource> source = ltc_capture_source("zenith_ltc_test", 1, TimecodeRate::fps25);
+    EXPECT_EQ(source->describe(), "LTC from ALSA 'zenith_ltc_test' (channel 1, 48000 Hz)");
+    for (int i = 0; i < 500 && events.size() < 49; ++i) {
+      for (const TimecodeEvent& e : source->take()) events.push_back(e);
+      usleep(10000);
+    }
+  }
+  ::unsetenv("ALSA_CONFIG_PATH");
+  std::filesystem::remove_all(dir);
+  // Every frame in order from the first or second (libltc may need the first to find the signal's speed).
+  ASSERT_GE(events.size(), 49u);
+  const std::int64_t first = frame_index(signal.start, TimecodeRate::fps25);
+  const std::int64_t skipped = frame_index(events[0].timecode, TimecodeRate::fps25) - first;
+  EXPECT_TRUE(skipped == 0 || skipped == 1) << skipped;
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    EXPECT_EQ(events[i].timecode, timecode_at(first + skipped + static_cast<std::int64_t>(i), TimecodeRate::fps25))
+        << i;
+    EXPECT_EQ(events[i].rate, TimecodeRate::fps25);
+  }
 }
 
 }  // namespace
