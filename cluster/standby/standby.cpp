@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <stdexcept>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
@@ -175,8 +176,18 @@ struct Standby::Impl {
       // Its own input of the house's timecode, chased from now on (the show file names its rate and start).
       std::optional<show::Show> show;
       if (options.master.show) show.emplace(show::load_show(*options.master.show));
-      timecode = open_house_timecode(options.master, show ? &*show : nullptr);
-      spdlog::info("standby: chasing {} while it follows", timecode->summary);
+      try {
+        timecode = open_house_timecode(options.master, show ? &*show : nullptr);
+        spdlog::info("standby: chasing {} while it follows", timecode->summary);
+      } catch (const std::runtime_error& e) {
+        // A sound device opens once: on the master's own machine the master holds it until it dies.
+        if (options.master.ltc_file) throw;
+        spdlog::warn(
+            "standby: cannot open the timecode input while following ({}); it opens it when it takes over "
+            "(then the show holds its last frame until the timecode locks). Give the standby an input of its "
+            "own on its own machine (docs/shows.md, \"Chasing timecode\")",
+            e.what());
+      }
     }
     link->start();
     io.run();

@@ -961,6 +961,37 @@ TEST_F(ClusterProcess, AStandbyTakesOverAChasedShowInStepWithTheTimecode) {
   EXPECT_NE(log.find("master: taking over the show at frame ", gone), std::string::npos) << log;
 }
 
+/// A standby whose timecode input cannot be opened while it follows (a sound device the master holds
+/// on the same machine; here one that is not there) says so and follows all the same: it opens the
+/// input when it takes over.
+TEST_F(ClusterProcess, AStandbyThatCannotOpenItsTimecodeInputYetFollowsAllTheSame) {
+  const fs::path config = write_config(10, 20000, 200, standby_port_);
+  const fs::path wav = dir_ / "ltc.wav";
+  const Child writer =
+      spawn({"timecode", "write", wav.string(), "--start", "00:59:58:00", "--rate", "25", "--seconds", "60"},
+            dir_ / "timecode.log");
+  ASSERT_EQ(wait_exit(writer, 30s), std::optional<int>(0)) << read_text(dir_ / "timecode.log");
+  const std::string show = (kSource / "tests/data/shows/chase-sunset.json").string();
+  const Child master = start_master(config, 0, 120000, {"--show", show, "--ltc-file", wav.string()});
+  const Child standby = spawn({"master", "--standby", "--cluster", config.string(), "--frames", "0", "--cache",
+                               (dir_ / "standby-cache").string(), "--show", show, "--ltc-device", "hw:97,0"},
+                              dir_ / "standby.log");
+  children_.push_back(standby);
+  for (const char* n : {"a", "b", "c"})
+    start_node(config, n, {"--scene", (kSource / "configs/scenes/earth-sunset.json").string()});
+  ASSERT_TRUE(wait_until(
+      [&] { return read_text(dir_ / "standby.log").find("standby: the show runs") != std::string::npos; }, 300s))
+      << logs();
+  const std::string log = read_text(dir_ / "standby.log");
+  EXPECT_NE(log.find("standby: cannot open the timecode input while following (ALSA capture device 'hw:97,0': "),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("it opens it when it takes over"), std::string::npos) << log;
+  kill(master.pid, SIGTERM);
+  ASSERT_EQ(wait_exit(master, 30s), std::optional<int>(0)) << logs();
+  expect_nodes_exit_cleanly(master);
+}
+
 TEST_F(ClusterProcess, StandbyKilledAndRestartedFollowsAgainWhileTheShowGoesOnThenTakesOver) {
   // kill -9 of the standby while the master runs: the show is undisturbed
   // (the master never waits for a standby); a new standby follows again, and
