@@ -23,6 +23,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -172,6 +173,24 @@ class ClusterProcess : public ::testing::Test {
       "output": {"directory": "out", "format": "png"}})";
     c.close();
     return dir_ / file;
+  }
+
+  /// Frames scheduled `frames` ahead of their moment in `config` (written by write_config).
+  static void use_lookahead(const fs::path& config, int frames) {
+    std::string text = read_text(config);
+    text.replace(text.find(R"("lookahead_frames": 0)"), 21, fmt::format(R"("lookahead_frames": {})", frames));
+    std::ofstream(config) << text;
+  }
+  /// An LTC track at 25 fps from `start` (`zenith timecode write`), `speed` × real time: its path.
+  /// Throws where it cannot be written.
+  fs::path write_ltc(const std::string& start, int seconds, const std::string& speed = "1") {
+    const fs::path wav = dir_ / "ltc.wav";
+    const Child writer = spawn({"timecode", "write", wav.string(), "--start", start, "--rate", "25", "--seconds",
+                                std::to_string(seconds), "--speed", speed},
+                               dir_ / "timecode.log");
+    if (wait_exit(writer, 30s) != std::optional<int>(0))  // thrown: the test fails here, not at a silent master
+      throw std::runtime_error("zenith timecode write failed: " + read_text(dir_ / "timecode.log"));
+    return wav;
   }
 
   Child start_master(const fs::path& config, std::uint64_t frames, int wait_for_nodes_ms = 120000,
@@ -478,16 +497,8 @@ void expect_b_rejoined(const fs::path& out, std::uint64_t last_before) {
 /// schedule moved on), and when the audio ends the show freewheels, then holds its frame.
 TEST_F(ClusterProcess, AShowChasingLtcFollowsItFrameForFrameThenHoldsWhenItStops) {
   fs::path config = write_config(10);
-  {  // scheduled frames (a lookahead of 3), so each frame has its moment on the master's clock
-    std::string text = read_text(config);
-    text.replace(text.find(R"("lookahead_frames": 0)"), 21, R"("lookahead_frames": 3)");
-    std::ofstream(config) << text;
-  }
-  const fs::path wav = dir_ / "ltc.wav";
-  const Child writer = spawn({"timecode", "write", wav.string(), "--start", "00:59:40:00", "--rate", "25", "--seconds",
-                              "26", "--speed", "1.001"},
-                             dir_ / "timecode.log");
-  ASSERT_EQ(wait_exit(writer, 30s), std::optional<int>(0)) << read_text(dir_ / "timecode.log");
+  use_lookahead(config, 3);  // scheduled frames, so each frame has its moment on the master's clock
+  const fs::path wav = write_ltc("00:59:40:00", 26, "1.001");
   const fs::path recording = dir_ / "recorded.json";
   const Child master = start_master(config, 280, 120000,
                                     {"--show", (kSource / "tests/data/shows/chase-sunset.json").string(), "--ltc-file",
@@ -875,16 +886,8 @@ TEST_F(ClusterProcess, StandbyTakesOverWhenTheMasterIsKilledAndEveryNodePresents
 /// show goes on frame for frame with the timecode.
 TEST_F(ClusterProcess, AStandbyTakesOverAChasedShowInStepWithTheTimecode) {
   fs::path config = write_config(10, 20000, 200, standby_port_);
-  {  // scheduled frames (a lookahead of 3), so each frame has its moment
-    std::string text = read_text(config);
-    text.replace(text.find(R"("lookahead_frames": 0)"), 21, R"("lookahead_frames": 3)");
-    std::ofstream(config) << text;
-  }
-  const fs::path wav = dir_ / "ltc.wav";
-  const Child writer = spawn({"timecode", "write", wav.string(), "--start", "00:59:58:00", "--rate", "25", "--seconds",
-                              "40", "--speed", "1.001"},
-                             dir_ / "timecode.log");
-  ASSERT_EQ(wait_exit(writer, 30s), std::optional<int>(0)) << read_text(dir_ / "timecode.log");
+  use_lookahead(config, 3);  // scheduled frames, so each frame has its moment on the master's clock
+  const fs::path wav = write_ltc("00:59:58:00", 40, "1.001");
   // The file's first sample sounds at `epoch`: the show's start (01:00:00:00) 2 s / 1.001 later.
   const double epoch_s =
       std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() + 1.0;
@@ -966,11 +969,7 @@ TEST_F(ClusterProcess, AStandbyTakesOverAChasedShowInStepWithTheTimecode) {
 /// input when it takes over.
 TEST_F(ClusterProcess, AStandbyThatCannotOpenItsTimecodeInputYetFollowsAllTheSame) {
   const fs::path config = write_config(10, 20000, 200, standby_port_);
-  const fs::path wav = dir_ / "ltc.wav";
-  const Child writer =
-      spawn({"timecode", "write", wav.string(), "--start", "00:59:58:00", "--rate", "25", "--seconds", "60"},
-            dir_ / "timecode.log");
-  ASSERT_EQ(wait_exit(writer, 30s), std::optional<int>(0)) << read_text(dir_ / "timecode.log");
+  const fs::path wav = write_ltc("00:59:58:00", 60);
   const std::string show = (kSource / "tests/data/shows/chase-sunset.json").string();
   const Child master = start_master(config, 0, 120000, {"--show", show, "--ltc-file", wav.string()});
   const Child standby = spawn({"master", "--standby", "--cluster", config.string(), "--frames", "0", "--cache",
@@ -2333,11 +2332,7 @@ TEST_F(ClusterProcess, OperatorConsoleInABrowserPausesAShowAndTheShowTimeStops) 
 TEST_F(ClusterProcess, OperatorConsoleMovesAChasedShowsStartOverTheApiOscAndTheBrowser) {
   const fs::path config = write_config(5);
   const int http = port_ + 2, osc = port_ + 3;
-  const fs::path wav = dir_ / "ltc.wav";
-  const Child writer =
-      spawn({"timecode", "write", wav.string(), "--start", "01:00:00:00", "--rate", "25", "--seconds", "120"},
-            dir_ / "timecode.log");
-  ASSERT_EQ(wait_exit(writer, 30s), std::optional<int>(0)) << read_text(dir_ / "timecode.log");
+  const fs::path wav = write_ltc("01:00:00:00", 120);
   const Child master =
       start_master(config, 0, 120000,
                    {"--show", (kSource / "tests/data/shows/chase-sunset.json").string(), "--ltc-file", wav.string(),

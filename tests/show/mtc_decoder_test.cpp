@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace zenith::show {
@@ -167,10 +168,10 @@ TEST(Mtc, TheTransportTurningRoundBreaksNoLabelIntoAWrongOne) {
   EXPECT_EQ(decoder.restarts(), 1);
 }
 
-/// The chase on MTC: a label a frame and three quarters late, yet the show at the timecode of its moment.
-TEST(Mtc, TheChaseFollowsItToAFractionOfAFrame) {
-  const TimecodeRate rate = TimecodeRate::fps25;
-  const std::vector<Sent> stream = quarter_frames({1, 0, 0, 0}, rate, 150, 0.0);
+/// Feeds `stream` to a chase (show time 0 at 01:00:00:00) through the decoder, asked 30 times a second
+/// for 170 frames; returns the worst distance of its show time from `expected(t)` while it should be
+/// locked (0.3 to 5.9 s), where it must be locked at `speed`.
+double worst_chase_error(const std::vector<Sent>& stream, const std::function<double(double)>& expected, double speed) {
   ChaseSettings settings;
   settings.offset_s = 3600.0;
   TimecodeChase chase(settings);
@@ -186,36 +187,27 @@ TEST(Mtc, TheChaseFollowsItToAFractionOfAFrame) {
     const ChasePosition p = chase.position(t);
     if (t > 0.3 && t < 5.9) {
       EXPECT_EQ(p.state, ChaseState::locked) << t;
-      worst = std::max(worst, std::abs(p.show_time_s - t));
+      EXPECT_NEAR(p.speed, speed, 1e-9) << t;
+      worst = std::max(worst, std::abs(p.show_time_s - expected(t)));
     }
   }
-  EXPECT_LT(worst, 0.05 / 25.0);
+  return worst;
+}
+
+/// The chase on MTC: a label a frame and three quarters late, yet the show at the timecode of its moment.
+TEST(Mtc, TheChaseFollowsItToAFractionOfAFrame) {
+  const std::vector<Sent> stream = quarter_frames({1, 0, 0, 0}, TimecodeRate::fps25, 150, 0.0);
+  EXPECT_LT(worst_chase_error(
+                stream, [](double t) { return t; }, 1.0),
+            0.05 / 25.0);
 }
 
 /// Shuttling back: the chase follows MTC played backwards, its speed −1.
 TEST(Mtc, TheChaseFollowsItBackwards) {
-  const TimecodeRate rate = TimecodeRate::fps25;
-  const std::vector<Sent> stream = quarter_frames_backwards({1, 0, 6, 0}, rate, 150, 0.0);
-  ChaseSettings settings;
-  settings.offset_s = 3600.0;
-  TimecodeChase chase(settings);
-  MtcDecoder decoder;
-  std::size_t next = 0;
-  double worst = 0.0;
-  for (int k = 0; k < 170; ++k) {
-    const double t = k / 30.0;
-    while (next < stream.size() && stream[next].at_s <= t) {
-      const Sent& s = stream[next++];
-      for (const TimecodeEvent& e : decoder.decode(s.bytes, s.at_s)) chase.receive(e);
-    }
-    const ChasePosition p = chase.position(t);
-    if (t > 0.3 && t < 5.9) {
-      EXPECT_EQ(p.state, ChaseState::locked) << t;
-      EXPECT_NEAR(p.speed, -1.0, 1e-9) << t;
-      worst = std::max(worst, std::abs(p.show_time_s - (6.0 - t)));
-    }
-  }
-  EXPECT_LT(worst, 0.05 / 25.0);
+  const std::vector<Sent> stream = quarter_frames_backwards({1, 0, 6, 0}, TimecodeRate::fps25, 150, 0.0);
+  EXPECT_LT(worst_chase_error(
+                stream, [](double t) { return 6.0 - t; }, -1.0),
+            0.05 / 25.0);
 }
 
 }  // namespace
