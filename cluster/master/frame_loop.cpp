@@ -104,10 +104,6 @@ double FrameLoop::chased_show_time(Clock::time_point moment) {
     spdlog::info("master: timecode located to {}: show time {:.3f} s", label, now.show_time_s);
   if (now.before_start && !before.before_start)
     spdlog::warn("master: timecode {} is before the show's start: the show holds at its start", label);
-  if (std::optional<double>& floor = p_.play.chase_floor_s) {
-    if (now.speed >= 0.0 && now.show_time_s < *floor) return *floor;
-    floor.reset();  // the timecode has passed the active master's last frame (or runs backwards)
-  }
   return now.show_time_s;
 }
 

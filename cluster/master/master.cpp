@@ -137,11 +137,9 @@ struct Master::Impl {
     // The operator's fade (or blackout) stays on the domes: the frame's own fade unless the show gave it.
     if (last.fade != expected.fade) desk->hold_fade(last.fade, c.next_frame);
     if (clock) continue_clock(c, *clock);
-    // A chase not yet locked (the standby's input silent, or opened late) holds the last frame, not the start.
-    if (play.timecode) {
-      play.timecode->chase.hold_until_locked(last.show_time_s);
-      play.chase_floor_s = last.show_time_s;
-    }
+    // A chase goes on from the last frame: held there until locked (the standby's input silent, or opened
+    // late), never below it while the timecode catches up with a frame sent ahead of its moment.
+    if (play.timecode) play.timecode->chase.continue_from(last.show_time_s);
   }
 
   // ---- connections ----------------------------------------------------------

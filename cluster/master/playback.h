@@ -25,11 +25,6 @@ struct Playback {
   /// mtc_device): show time from the chase at each frame's moment instead of the clock.
   std::shared_ptr<HouseTimecode> timecode;
   show::ChasePosition chased;  ///< the last frame's, for the status and the log
-  /// A standby taking over a chased show: the show time of the active
-  /// master's last frame, which nodes may present after the first frames the
-  /// standby sends now (it was sent ahead of its moment): the chase's frames
-  /// hold there until the timecode passes it, so no node steps back.
-  std::optional<double> chase_floor_s;
 };
 
 /// Loads what `options` plays into `playback` (logged) and starts its

@@ -46,8 +46,7 @@ std::string OperatorDesk::on_line(std::string line) {
     return "no show is playing: only 'status' and 'quit' are available";
   }
   try {
-    if (!setup_.chase && line.rfind("timecode ", 0) == 0) throw std::invalid_argument(cat("'", line, "': ", kNoChase));
-    std::string reply = setup_.chase ? apply_to_chase(line) : setup_.clock->apply_command(line);
+    std::string reply = apply_to_show(line);
     spdlog::info("master: operator: {} → {}", line, reply);
     return reply;
   } catch (const std::invalid_argument& e) {
@@ -84,14 +83,12 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
                                         ": no show is playing (the default show has no clock: start "
                                         "the master with --show FILE for play, pause, seek, rate and loop)"));
       reply = cat("default show at frame ", master_.barrier_frame());
-    } else if (std::holds_alternative<oc::TimecodeOffset>(command) && !setup_.chase) {
-      throw std::invalid_argument(cat(describe(command), ": ", kNoChase));
     } else {
       if (const auto* seek = std::get_if<oc::Seek>(&command); seek && seek->seconds > setup_.clock->duration_s())
         throw std::invalid_argument(cat("command: /seconds = ", seek->seconds, ": must be in [0, ",
                                         setup_.clock->duration_s(), "] s (the show's duration)"));
       // The clock's own words: "seek 12.5", "loop on".
-      reply = setup_.chase ? apply_to_chase(describe(command)) : setup_.clock->apply_command(describe(command));
+      reply = apply_to_show(describe(command));
     }
     spdlog::info("master: operator ({}): {} → {}", source, core::escaped(describe(command)), core::escaped(reply));
     return reply;
@@ -100,6 +97,12 @@ std::string OperatorDesk::run(const OperatorCommand& command, const std::string&
                  core::escaped(e.what()));
     throw;
   }
+}
+
+std::string OperatorDesk::apply_to_show(const std::string& line) {
+  if (setup_.chase) return apply_to_chase(line);
+  if (line.rfind("timecode ", 0) == 0) throw std::invalid_argument(cat("'", line, "': ", kNoChase));
+  return setup_.clock->apply_command(line);
 }
 
 std::string OperatorDesk::apply_to_chase(const std::string& line) {

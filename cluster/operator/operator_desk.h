@@ -106,6 +106,8 @@ class OperatorDesk {
   std::string apply_clear(const operator_command::Clear& clear);
   std::string apply_fade(const operator_command::Fade& fade);
   std::string apply_blackout(const operator_command::Blackout& blackout);
+  /// A playback command in the clock's words, to the chase or the clock of the show (one is playing).
+  std::string apply_to_show(const std::string& line);
   /// A playback command (the clock's words: "play", "status", …) while the show chases timecode.
   std::string apply_to_chase(const std::string& line);
   /// The first frame a command changes: the next one to start.

@@ -45,7 +45,8 @@ void TimecodeChase::resume() {
   if (state_ == ChaseState::stopped) state_ = ChaseState::locking;
 }
 
-void TimecodeChase::hold_until_locked(double show_time_s) {
+void TimecodeChase::continue_from(double show_time_s) {
+  floor_s_ = show_time_s;
   if (ever_locked_) return;
   held_timecode_s_ = settings_.offset_s + show_time_s;
   ever_locked_ = true;
@@ -177,6 +178,12 @@ ChasePosition TimecodeChase::position(double local_s, double now_s) {
       p.speed = 0.0;
       p.show_time_s = show_time(held_timecode_s_, p);
       break;
+  }
+  if (floor_s_) {
+    if (p.speed < 0.0 || p.show_time_s > *floor_s_)
+      floor_s_.reset();  // the timecode has passed it (or runs backwards)
+    else
+      p.show_time_s = *floor_s_;
   }
   return p;
 }

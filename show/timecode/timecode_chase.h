@@ -99,10 +99,13 @@ class TimecodeChase {
   void set_offset_s(double offset_s);
   /// The operator starts a stopped chase again: it locks to the timecode as it arrives.
   void resume();
-  /// A chase that has never locked holds the show at `show_time_s` until it
-  /// does, instead of at its start (a standby taking over holds the active
-  /// master's last frame); one that has locked keeps to its timecode.
-  void hold_until_locked(double show_time_s);
+  /// The show goes on from `show_time_s` (a standby taking over from the
+  /// active master's last frame): a chase that has never locked holds there
+  /// until it does, instead of at its start; and while the timecode runs
+  /// forward no position is below it until the timecode passes it (that
+  /// frame was sent ahead of its moment: nodes may present it after the
+  /// first ones asked for now).
+  void continue_from(double show_time_s);
 
  private:
   struct Point {
@@ -130,7 +133,8 @@ class TimecodeChase {
   double last_local_s_ = 0.0;
   double held_timecode_s_ = 0.0;  ///< where a held or stopped show stays
   int locates_ = 0;
-  bool ever_locked_ = false;  ///< a frame to hold: the chase locked once, or hold_until_locked
+  bool ever_locked_ = false;       ///< a frame to hold: the chase locked once, or continue_from
+  std::optional<double> floor_s_;  ///< continue_from's show time, until the timecode passes it
 };
 
 }  // namespace zenith::show

@@ -229,6 +229,26 @@ TEST(TimecodeChase, AStoppedShowWaitsForTheOperator) {
   EXPECT_LT(worst_error(signal, run, 7200.0, 4.8, 5.9), 0.05 / 30.0);
 }
 
+/// A standby taking over from the active master's last frame: held there until its chase locks, and —
+/// locked on timecode a little behind that frame, which was sent ahead of its moment — never below it
+/// until the timecode passes it.
+TEST(TimecodeChase, ATakeoverGoesOnFromTheLastFrameNeverBelowIt) {
+  ChaseSettings settings;
+  settings.offset_s = 3600.0;
+  TimecodeChase unlocked(settings);
+  unlocked.continue_from(5.0);
+  EXPECT_EQ(unlocked.position(0.0).state, ChaseState::held);
+  EXPECT_EQ(unlocked.position(0.0).show_time_s, 5.0) << "not the show's start";
+
+  TimecodeChase locked(settings);
+  for (int f = 0; f < 5; ++f) locked.receive({{1, 0, 4, f}, TimecodeRate::fps25, f / 25.0});  // 4 s at local 0
+  locked.continue_from(4.3);
+  EXPECT_EQ(locked.position(0.16).show_time_s, 4.3) << "the timecode (4.16 s) is behind the last frame";
+  EXPECT_EQ(locked.position(0.2).state, ChaseState::locked);
+  for (int f = 5; f < 15; ++f) locked.receive({{1, 0, 4, f}, TimecodeRate::fps25, f / 25.0});
+  EXPECT_NEAR(locked.position(0.56).show_time_s, 4.56, 1e-9) << "past it: the timecode's own time";
+}
+
 TEST(TimecodeChase, ALocateIsFollowedADamagedFrameIsNot) {
   const TimecodeRate rate = TimecodeRate::fps25;
   // 3 s from 01:00:10:00, then the audio located back to 01:00:00:00.
