@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
+#include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/program_binary_cache.h"
 
 namespace zenith::render::gl {
@@ -48,6 +50,7 @@ ShaderBuild ProgramBuilds::timed_start(const Starter& starter) {
 void ProgramBuilds::start(const std::string& key, const Starter& starter) {
   if (mode_ == CompileMode::serial || programs_.contains(key) || pending_.contains(key)) return;
   pending_.emplace(key, timed_start(starter));
+  started_.push_back(key);
   statistics_.most_in_flight = std::max(statistics_.most_in_flight, static_cast<int>(pending_.size()));
 }
 
@@ -70,6 +73,19 @@ const ShaderProgram& ProgramBuilds::get(const std::string& key, const Starter& s
                 seconds_between(start, end));
   ++statistics_.built;
   return programs_.emplace(key, std::move(program)).first->second;
+}
+
+void ProgramBuilds::warm_started(FirstDispatchWarmup& warmup, const DispatchShapes& shapes,
+                                 const std::function<int(const ShaderProgram&)>& order) {
+  std::vector<std::pair<int, ShaderProgram*>> queue;
+  for (const std::string& key : std::exchange(started_, {})) {
+    if (pending_.contains(key)) get(key, {});
+    auto it = programs_.find(key);
+    if (it == programs_.end() || it->second.dispatched()) continue;
+    if (const int place = order(it->second); place >= 0) queue.emplace_back(place, &it->second);
+  }
+  std::stable_sort(queue.begin(), queue.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (const auto& [place, program] : queue) warmup.warm(*program, shapes);
 }
 
 std::string ProgramBuilds::summary() const {

@@ -14,13 +14,16 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "render/gl/shader_build.h"
 #include "render/gl/shader_program.h"
 
 namespace zenith::render::gl {
 
-class ProgramBinaryCache;  // render/gl/program_binary_cache.h
+class ProgramBinaryCache;   // render/gl/program_binary_cache.h
+class FirstDispatchWarmup;  // render/gl/first_dispatch_warmup.h
+struct DispatchShapes;
 
 class ProgramBuilds {
  public:
@@ -47,6 +50,14 @@ class ProgramBuilds {
   /// with `starter` and finished). Throws what ShaderBuild::finish throws; a
   /// program that failed is not kept, so asking again builds it again.
   const ShaderProgram& get(const std::string& key, const Starter& starter);
+  /// Queues every program started since the last call (its build finished
+  /// now where it was not) for a first dispatch on `warmup`'s thread with
+  /// stand-ins shaped as `shapes`, but those already dispatched. `order`
+  /// gives where each comes in the caller's dispatches (negative: not
+  /// dispatched, not queued); the warm-up takes the last first, so that the
+  /// caller's thread and its own work from opposite ends and rarely wait for each other.
+  void warm_started(FirstDispatchWarmup& warmup, const DispatchShapes& shapes,
+                    const std::function<int(const ShaderProgram&)>& order);
 
   struct Statistics {
     int built = 0;           ///< programs finished
@@ -69,6 +80,7 @@ class ProgramBuilds {
   ProgramBinaryCache* binaries_ = nullptr;
   int previous_threads_ = 0;
   std::map<std::string, ShaderBuild, std::less<>> pending_;
+  std::vector<std::string> started_;  // keys started since warm_started, in order
   std::map<std::string, ShaderProgram, std::less<>> programs_;
   Statistics statistics_;
 };

@@ -94,7 +94,9 @@ ShaderProgram::ShaderProgram(ShaderProgram&& other) noexcept
     : id_(std::exchange(other.id_, 0u)),
       name_(std::move(other.name_)),
       compute_(std::exchange(other.compute_, false)),
-      local_size_(std::exchange(other.local_size_, {0, 0, 0})) {}
+      local_size_(std::exchange(other.local_size_, {0, 0, 0})),
+      before_first_dispatch_(std::exchange(other.before_first_dispatch_, nullptr)),
+      dispatched_(std::exchange(other.dispatched_, false)) {}
 
 ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
   if (this != &other) {
@@ -103,6 +105,8 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
     name_ = std::move(other.name_);
     compute_ = std::exchange(other.compute_, false);
     local_size_ = std::exchange(other.local_size_, {0, 0, 0});
+    before_first_dispatch_ = std::exchange(other.before_first_dispatch_, nullptr);
+    dispatched_ = std::exchange(other.dispatched_, false);
   }
   return *this;
 }
@@ -176,6 +180,8 @@ std::array<int, 3> ShaderProgram::work_group_size() const {
 
 void ShaderProgram::dispatch(unsigned groups_x, unsigned groups_y, unsigned groups_z) const {
   if (!compute_) throw std::logic_error(fmt::format("shader program '{}' is not a compute program", name_));
+  if (before_first_dispatch_) std::exchange(before_first_dispatch_, nullptr)();
+  dispatched_ = true;
   use();
   glDispatchCompute(groups_x, groups_y, groups_z);
 }

@@ -4,6 +4,7 @@
 // line, so a shader can drop the terms a variant disables at compile time.
 // Needs a current GL 4.5 context.
 #include <array>
+#include <functional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -127,6 +128,12 @@ class ShaderProgram {
   /// Compute programs: enough work groups to cover width × height × depth
   /// invocations (the shader discards those outside its domain).
   void dispatch_covering(int width, int height = 1, int depth = 1) const;
+  /// Runs `hook` once, just before this program's first dispatch, then drops
+  /// it: where another thread may be generating the program's machine code
+  /// (render/gl/first_dispatch_warmup.h), the hook waits for it.
+  void set_before_first_dispatch(std::function<void()> hook) { before_first_dispatch_ = std::move(hook); }
+  /// Whether dispatch() has run.
+  bool dispatched() const { return dispatched_; }
 
  private:
   friend class ShaderBuild;
@@ -138,6 +145,8 @@ class ShaderProgram {
   std::string name_;
   bool compute_ = false;
   std::array<int, 3> local_size_ = {0, 0, 0};
+  mutable std::function<void()> before_first_dispatch_;  // set_before_first_dispatch
+  mutable bool dispatched_ = false;
 };
 
 }  // namespace zenith::render::gl

@@ -94,7 +94,7 @@ const char* to_string(TextureFormat format) {
 }
 
 Texture::Texture(TextureFormat format, int width, int height, int depth, int levels, bool array)
-    : format_(format), width_(width), height_(height), depth_(depth), levels_(levels) {
+    : format_(format), width_(width), height_(height), depth_(depth), levels_(levels), array_(array) {
   const bool three_d = depth > 0;
   if (width < 1 || height < 1 || depth < 0)
     throw std::invalid_argument(fmt::format("Texture: invalid size {}x{}{}", width, height,
@@ -151,6 +151,7 @@ Texture Texture::create_2d_array(TextureFormat format, int width, int height, in
 }
 
 void Texture::set_repeat_s(bool repeat) {
+  repeat_s_ = repeat;
   glTextureParameteri(id_, GL_TEXTURE_WRAP_S, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
 }
 
@@ -169,7 +170,9 @@ Texture::Texture(Texture&& other) noexcept
       width_(std::exchange(other.width_, 0)),
       height_(std::exchange(other.height_, 0)),
       depth_(std::exchange(other.depth_, 0)),
-      levels_(std::exchange(other.levels_, 1)) {}
+      levels_(std::exchange(other.levels_, 1)),
+      array_(std::exchange(other.array_, false)),
+      repeat_s_(std::exchange(other.repeat_s_, false)) {}
 
 Texture& Texture::operator=(Texture&& other) noexcept {
   if (this != &other) {
@@ -180,6 +183,8 @@ Texture& Texture::operator=(Texture&& other) noexcept {
     height_ = std::exchange(other.height_, 0);
     depth_ = std::exchange(other.depth_, 0);
     levels_ = std::exchange(other.levels_, 1);
+    array_ = std::exchange(other.array_, false);
+    repeat_s_ = std::exchange(other.repeat_s_, false);
   }
   return *this;
 }
@@ -191,6 +196,20 @@ void Texture::release() noexcept {
 
 std::size_t Texture::texel_count() const {
   return static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * static_cast<std::size_t>(depth());
+}
+
+TextureShape Texture::shape() const {
+  TextureShape s;
+  s.kind = array_    ? TextureShape::Kind::texture_2d_array
+           : is_3d() ? TextureShape::Kind::texture_3d
+                     : TextureShape::Kind::texture_2d;
+  s.format = format_;
+  s.width = width_;
+  s.height = height_;
+  s.depth = depth();
+  s.mipmapped = levels_ > 1;
+  s.repeat_s = repeat_s_;
+  return s;
 }
 
 void Texture::upload(std::span<const float> data) {

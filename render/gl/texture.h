@@ -19,6 +19,21 @@ const char* to_string(TextureFormat format);
 /// How a compute shader accesses a texture bound as an image.
 enum class ImageAccess { read_only, write_only, read_write };
 
+/// What a driver's machine code for a program can depend on in a texture
+/// bound to one of its units: the kind, format, filtering and wrap, and
+/// whether each size is a power of two (Mesa's llvmpipe keys a program's
+/// code by these; render/gl/first_dispatch_warmup.h makes stand-ins so shaped).
+struct TextureShape {
+  enum class Kind { texture_2d, texture_2d_array, texture_3d };
+  Kind kind = Kind::texture_2d;
+  TextureFormat format = TextureFormat::rgba32f;
+  int width = 1, height = 1;
+  int depth = 1;           ///< a 3D texture's depth, an array's layers
+  bool mipmapped = false;  ///< a full mipmap chain, trilinear filtering
+  bool repeat_s = false;   ///< GL_REPEAT in s, else clamped to the edge
+  bool operator==(const TextureShape&) const = default;
+};
+
 class Texture {
  public:
   /// `data`: empty (the texture is zero-filled) or width·height·channels floats,
@@ -69,6 +84,7 @@ class Texture {
   int height() const { return height_; }
   int depth() const { return depth_ > 0 ? depth_ : 1; }
   std::size_t texel_count() const;
+  TextureShape shape() const;
   std::size_t float_count() const { return texel_count() * static_cast<std::size_t>(channel_count(format_)); }
 
  private:
@@ -79,6 +95,8 @@ class Texture {
   TextureFormat format_ = TextureFormat::rgba32f;
   int width_ = 0, height_ = 0, depth_ = 0;  // depth_ == 0: a 2D texture
   int levels_ = 1;
+  bool array_ = false;
+  bool repeat_s_ = false;
 };
 
 }  // namespace zenith::render::gl

@@ -1,0 +1,81 @@
+#pragma once
+// A program's machine code generated on a second thread while the
+// renderer's thread goes on.
+//
+// Mesa's llvmpipe generates a compute program's machine code at its first
+// dispatch, on the dispatching thread, and keeps it in Mesa's shader cache
+// keyed by the program and the shape of what is bound at that dispatch
+// (each texture's and image's kind, format, filtering, wrap and
+// power-of-two sizes). With that cache cold, a frame's first dispatches are
+// mostly LLVM, one program after another on one core (docs/shows.md, "Where
+// the start goes").
+//
+// FirstDispatchWarmup dispatches programs once each on a thread of its own,
+// in a context that shares the renderer's objects, with stand-in textures,
+// images and buffers shaped as the renderer will bind them
+// (DispatchShapes): the code lands in Mesa's cache, and the renderer's own
+// first dispatch of the program loads it from there. The renderer's thread
+// meanwhile dispatches what it reaches first itself: a program's first
+// dispatch there takes it off this queue, or waits while this thread is
+// generating its code (ShaderProgram::set_before_first_dispatch), so no
+// program is compiled twice and two cores compile at once.
+//
+// Only where it helps (first_dispatch_warmup_worthwhile): llvmpipe with its
+// shader cache on. A GPU driver compiles at link time (render/gl/program_builds.h).
+#include <map>
+#include <memory>
+#include <thread>
+#include <utility>
+
+#include "render/gl/shader_program.h"
+#include "render/gl/texture.h"
+
+namespace zenith::render::gl {
+
+/// How the renderer's textures and images will be bound when it dispatches:
+/// by unit and kind (a unit serves different kinds in different programs).
+/// A unit a program uses that is not listed gets a single-level rgba32f
+/// stand-in, linear and clamped, of power-of-two size.
+struct DispatchShapes {
+  using Slot = std::pair<int, TextureShape::Kind>;
+  std::map<Slot, TextureShape> sampled;  ///< texture units (sampler2D, sampler2DArray, sampler3D)
+  std::map<Slot, TextureShape> images;   ///< image units (image2D, image2DArray, image3D), format as declared
+};
+
+/// Whether first dispatches are worth warming on the current context's
+/// driver: Mesa's llvmpipe with its shader cache on (MESA_SHADER_CACHE_DISABLE
+/// unset or false).
+bool first_dispatch_warmup_worthwhile();
+
+class FirstDispatchWarmup {
+ public:
+  /// Needs a current EGL context (surfaceless), whose objects the thread's
+  /// own context shares. Throws std::runtime_error where EGL gives none.
+  FirstDispatchWarmup();
+  /// Drops what is still queued and waits for the program in hand.
+  ~FirstDispatchWarmup();
+  FirstDispatchWarmup(const FirstDispatchWarmup&) = delete;
+  FirstDispatchWarmup& operator=(const FirstDispatchWarmup&) = delete;
+
+  /// Queues a dispatch of `program` (linked; it must outlive this object)
+  /// with stand-ins shaped as `shapes`, and sets the program's
+  /// before-first-dispatch hook. Programs are warmed in the order queued.
+  void warm(ShaderProgram& program, const DispatchShapes& shapes);
+
+  struct Statistics {
+    int queued = 0;
+    int warmed = 0;       ///< dispatched on the thread (their code in Mesa's cache)
+    int taken_back = 0;   ///< dispatched by the renderer before the thread reached them
+    int waited = 0;       ///< first dispatches that waited for the thread
+    double wait_s = 0.0;  ///< the renderer's thread, waiting
+    double warm_s = 0.0;  ///< the thread, dispatching
+  };
+  Statistics statistics() const;
+
+ private:
+  struct State;
+  std::shared_ptr<State> state_;
+  std::thread thread_;
+};
+
+}  // namespace zenith::render::gl

@@ -1,0 +1,195 @@
+// render/gl/first_dispatch_warmup.h: a program dispatched once on the warm-up
+// thread with stand-ins of the renderer's shapes leaves its machine code in
+// Mesa's shader cache, where the renderer's own first dispatch finds it — and
+// with stand-ins of another shape it does not (what the shapes are for).
+#include "render/gl/first_dispatch_warmup.h"
+
+#include <epoxy/gl.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "render/gl/egl_context.h"
+#include "render/gl/shader_program.h"
+#include "render/gl/texture.h"
+
+namespace zenith::render::gl {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+/// Samples a 3D table into a 2D half-float image, times `scale`.
+ShaderProgram sampling_program(const std::string& variant) {
+  const ShaderCode code{"warmup_test.comp",
+                        "#version 450 core\n"
+                        "layout(local_size_x = 4, local_size_y = 4) in;\n"
+                        "layout(binding = 1) uniform sampler3D table;\n"
+                        "layout(binding = 0, rgba16f) uniform writeonly image2D target;\n"
+                        "uniform float scale;\n"
+                        "void main() {\n"
+                        "  const ivec2 p = ivec2(gl_GlobalInvocationID.xy);\n"
+                        "  if (any(greaterThanEqual(p, imageSize(target)))) return;\n"
+                        "  const vec3 uvw = vec3((vec2(p) + 0.5) / vec2(imageSize(target)), 0.5);\n"
+                        "  imageStore(target, p, texture(table, uvw) * scale * VARIANT);\n"
+                        "}\n",
+                        {}};
+  return ShaderProgram::compute(code, std::vector<ShaderDefine>{{"VARIANT", variant}});
+}
+
+std::size_t files_under(const fs::path& dir) {
+  std::size_t n = 0;
+  std::error_code error;
+  for (fs::recursive_directory_iterator it(dir, error), end; !error && it != end; it.increment(error))
+    if (it->is_regular_file()) ++n;
+  return n;
+}
+
+/// Waits, at most `limit`, until `done` holds.
+template <typename Done>
+bool wait_for(Done done, std::chrono::milliseconds limit) {
+  const auto until = std::chrono::steady_clock::now() + limit;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > until) return false;
+    std::this_thread::sleep_for(5ms);
+  }
+  return true;
+}
+
+/// A context whose Mesa shader cache is a fresh folder of the test's own.
+class FirstDispatchWarmupTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    cache_ = fs::temp_directory_path() / ("zenith-warmup-mesa-cache-" + std::to_string(::getpid()));
+    fs::remove_all(cache_);
+    fs::create_directories(cache_);
+    ::setenv("MESA_SHADER_CACHE_DIR", cache_.c_str(), 1);
+    context_.emplace();
+    if (!first_dispatch_warmup_worthwhile())
+      GTEST_SKIP() << "not llvmpipe with its shader cache on (" << context_->renderer() << ")";
+  }
+  void TearDown() override {
+    context_.reset();
+    fs::remove_all(cache_);
+  }
+
+  fs::path cache_;
+  std::optional<HeadlessContext> context_;
+};
+
+TEST_F(FirstDispatchWarmupTest, AWarmedProgramsFirstDispatchLoadsItsCodeFromMesasCache) {
+  std::vector<float> texels(4 * 4 * 4 * 4);
+  for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = static_cast<float>(i % 4 + 1);  // (1, 2, 3, 4)
+  const Texture table = Texture::create_3d(TextureFormat::rgba32f, 4, 4, 4, texels);
+  const Texture target = Texture::create_2d(TextureFormat::rgba16f, 3, 5);  // not a power of two
+  DispatchShapes shapes;
+  shapes.sampled[{1, TextureShape::Kind::texture_3d}] = table.shape();
+  shapes.images[{0, TextureShape::Kind::texture_2d}] = target.shape();
+  DispatchShapes other_shapes = shapes;  // the same image, but 4 × 4: other machine code
+  other_shapes.images[{0, TextureShape::Kind::texture_2d}].width = 4;
+  other_shapes.images[{0, TextureShape::Kind::texture_2d}].height = 4;
+
+  ShaderProgram warmed = sampling_program("1.0");
+  ShaderProgram warmed_otherwise = sampling_program("2.0");
+  FirstDispatchWarmup warmup;
+  warmup.warm(warmed, shapes);
+  warmup.warm(warmed_otherwise, other_shapes);
+  ASSERT_TRUE(wait_for([&] { return warmup.statistics().warmed == 2; }, 60s)) << "the warm-up thread never ran";
+  if (!wait_for([&] { return files_under(cache_) >= 2; }, 5s))
+    GTEST_SKIP() << "Mesa's shader cache was opened before this test set its folder; run it alone, as ctest does";
+  const std::size_t after_warmup = files_under(cache_);
+
+  // The renderer's side: the real texture and image, the program's first dispatch.
+  const auto run = [&](const ShaderProgram& program, float scale) {
+    table.bind(1);
+    target.bind_image(0, ImageAccess::write_only);
+    program.set_uniform("scale", scale);
+    program.dispatch_covering(3, 5);
+    return target.read();
+  };
+  const std::vector<float> out = run(warmed, 0.5f);
+  for (std::size_t i = 0; i < out.size(); ++i) ASSERT_EQ(out[i], 0.5f * static_cast<float>(i % 4 + 1)) << "value " << i;
+  std::this_thread::sleep_for(300ms);  // Mesa writes its cache on a thread of its own
+  EXPECT_EQ(files_under(cache_), after_warmup) << "the warmed program's code was generated again";
+
+  const std::vector<float> other = run(warmed_otherwise, 0.5f);
+  EXPECT_EQ(other[4], 2.0f * 0.5f * 1.0f);
+  EXPECT_TRUE(wait_for([&] { return files_under(cache_) > after_warmup; }, 5s))
+      << "stand-ins of another shape made the same code: the test could not tell a miss";
+
+  const FirstDispatchWarmup::Statistics s = warmup.statistics();
+  EXPECT_EQ(s.queued, 2);
+  EXPECT_EQ(s.warmed, 2);
+  EXPECT_EQ(s.taken_back, 0);
+  EXPECT_GT(s.warm_s, 0.0);
+}
+
+TEST_F(FirstDispatchWarmupTest, EveryProgramIsDispatchedRightWhoeverGetsToItFirst) {
+  std::vector<float> texels(2 * 2 * 2 * 4, 1.0f);
+  const Texture table = Texture::create_3d(TextureFormat::rgba32f, 2, 2, 2, texels);
+  const Texture target = Texture::create_2d(TextureFormat::rgba16f, 3, 5);
+  DispatchShapes shapes;
+  shapes.sampled[{1, TextureShape::Kind::texture_3d}] = table.shape();
+  shapes.images[{0, TextureShape::Kind::texture_2d}] = target.shape();
+  std::vector<ShaderProgram> programs;
+  for (int k = 1; k <= 6; ++k) programs.push_back(sampling_program(std::to_string(k) + ".0"));
+  {
+    FirstDispatchWarmup warmup;
+    for (ShaderProgram& p : programs) warmup.warm(p, shapes);
+    // The renderer's thread from the other end: it takes back what the warm-up
+    // has not reached, waits for what it has in hand, and gets the right values either way.
+    for (int k = 6; k >= 1; --k) {
+      const ShaderProgram& p = programs[static_cast<std::size_t>(k - 1)];
+      table.bind(1);
+      target.bind_image(0, ImageAccess::write_only);
+      p.set_uniform("scale", 0.25f);
+      p.dispatch_covering(3, 5);
+      const std::vector<float> out = target.read();
+      EXPECT_EQ(out[0], 0.25f * static_cast<float>(k)) << "program " << k;
+      EXPECT_TRUE(p.dispatched());
+    }
+    ASSERT_TRUE(wait_for([&] { return warmup.statistics().warmed + warmup.statistics().taken_back == 6; }, 60s));
+    const FirstDispatchWarmup::Statistics s = warmup.statistics();
+    EXPECT_EQ(s.queued, 6);
+    EXPECT_GE(s.warmed, 1) << "the thread takes the first at once";
+    EXPECT_LE(s.waited, s.warmed);
+  }
+  // The hooks outlive the warm-up: a program dispatched after it is gone runs as any other.
+  ShaderProgram late = sampling_program("7.0");
+  {
+    FirstDispatchWarmup warmup;
+    warmup.warm(late, shapes);
+  }
+  table.bind(1);
+  target.bind_image(0, ImageAccess::write_only);
+  late.set_uniform("scale", 1.0f);
+  late.dispatch_covering(3, 5);
+  EXPECT_EQ(target.read()[0], 7.0f);
+}
+
+TEST(TextureShape, SaysWhatADriversCodeDependsOn) {
+  const HeadlessContext context;
+  const Texture plain = Texture::create_2d(TextureFormat::rgba32f, 256, 64);
+  EXPECT_EQ(plain.shape(),
+            (TextureShape{TextureShape::Kind::texture_2d, TextureFormat::rgba32f, 256, 64, 1, false, false}));
+  const Texture volume = Texture::create_3d(TextureFormat::rg32f, 8, 3, 5);
+  EXPECT_EQ(volume.shape(),
+            (TextureShape{TextureShape::Kind::texture_3d, TextureFormat::rg32f, 8, 3, 5, false, false}));
+  Texture maps =
+      Texture::create_2d_array_mipmapped(TextureFormat::rgba16f, 8, 4, 3, std::vector<float>(8 * 4 * 3 * 4, 0.5f));
+  maps.set_repeat_s(true);
+  EXPECT_EQ(maps.shape(),
+            (TextureShape{TextureShape::Kind::texture_2d_array, TextureFormat::rgba16f, 8, 4, 3, true, true}));
+  const Texture moved = std::move(maps);
+  EXPECT_TRUE(moved.shape().repeat_s) << "a move keeps the wrap";
+}
+
+}  // namespace
+}  // namespace zenith::render::gl
