@@ -87,6 +87,11 @@ struct RenderOptions {
   /// them (GL_KHR_parallel_shader_compile). To compare, as `zenith precompute
   /// --serial-compile` does for the precompute.
   bool serial_compile = false;
+  /// Where the driver generates a program's machine code at its first
+  /// dispatch and keeps it in its shader cache (Mesa's llvmpipe), dispatch the
+  /// frame's started programs once on a second thread so two cores generate
+  /// code at once (render/gl/first_dispatch_warmup.h). Off with serial_compile.
+  bool warm_first_dispatches = true;
   /// In a solar eclipse, build a new Moon's shadow on the air
   /// (render/frame/eclipse_sky_table.h; seconds of CPU) on a worker thread
   /// while frames go on with the one held, moved with the Moon: live frames

@@ -34,6 +34,7 @@
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
+#include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/gl_error.h"
 #include "render/gl/program_binary_cache.h"
 #include "render/gl/program_builds.h"
@@ -50,6 +51,11 @@ namespace {
 
 using gl::TextureFormat;
 using scene::kMaxBodies;
+
+/// The rows of the band's images: a band's rows, whole tiles of a shorter image.
+int band_texture_rows(const FrameInProgress& frame) {
+  return std::min(frame.band_rows, (frame.projection.height() + kTileSize - 1) / kTileSize * kTileSize);
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -81,6 +87,10 @@ struct Renderer::Impl {
   FrameTiles frame_tiles;         // every band's tiles, kept while the scene holds still
   BandResources band;             // the bodies, tile lists, band images and rays on the GPU
   BandToTexture band_to_texture;  // render_to_texture()'s band copy
+  // First dispatches on a second thread (RenderOptions::warm_first_dispatches):
+  // last, so that it stops before the programs and textures go.
+  std::unique_ptr<gl::FirstDispatchWarmup> warmup;
+  bool warmup_tried = false;
 };
 
 Renderer::Renderer(const RenderOptions& options, TableSource tables)
@@ -93,7 +103,18 @@ Renderer::~Renderer() = default;
 
 void Renderer::set_albedo_source(AlbedoMapSource source) { impl_->albedo.set_source(std::move(source)); }
 
-std::string Renderer::program_builds_summary() const { return impl_->builds ? impl_->builds->summary() : ""; }
+std::string Renderer::program_builds_summary() const {
+  if (!impl_->builds) return "";
+  std::string summary = impl_->builds->summary();
+  if (impl_->warmup) {
+    const gl::FirstDispatchWarmup::Statistics w = impl_->warmup->statistics();
+    summary += fmt::format(
+        "; first dispatches: {} of {} warmed on a second thread ({:.2f} s there), {} dispatched here first, "
+        "{:.2f} s waited for it",
+        w.warmed, w.queued, w.warm_s, w.taken_back, w.wait_s);
+  }
+  return summary;
+}
 
 std::vector<float> Renderer::render_image(const scene::Scene& scene, const warp::Projection& projection) {
   std::vector<float> image(static_cast<std::size_t>(projection.width()) * projection.height() * 3);
@@ -153,6 +174,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   start_programs(frame);
   fill_sky_view_tables(frame, timer);
   frame.programs = &im.frame_programs.passes_for(*im.builds, frame.variant);
+  stats_.programs_warmed = warm_first_dispatches(frame);
   set_direct_light_uniforms(frame);
   impl_->night_sky.prepare(frame, moon_shadow, timer);
   stats_.night_sky = impl_->night_sky.stats();
@@ -392,6 +414,73 @@ void Renderer::start_programs(const Frame& frame) {
     }
 }
 
+int Renderer::warm_first_dispatches(const Frame& frame) {
+  Impl& im = *impl_;
+  if (!im.warmup_tried) {
+    im.warmup_tried = true;
+    if (options_.warm_first_dispatches && !options_.serial_compile && gl::first_dispatch_warmup_worthwhile()) {
+      try {
+        im.warmup = std::make_unique<gl::FirstDispatchWarmup>();
+      } catch (const std::runtime_error& e) {
+        spdlog::info("first dispatches not warmed: {}", e.what());
+      }
+    }
+  }
+  if (!im.warmup) return 0;
+  bool one_body = false, bodies = false, sun = false, gbuffer = false;
+  for (const BandTiles& band : *frame.bands) {
+    one_body = one_body || !band.one_body_tiles.empty();
+    bodies = bodies || band.body_tiles.count > 0;
+    sun = sun || band.sun_tiles.count > 0;
+    gbuffer = gbuffer || band.gbuffer_tiles.count > 0;
+  }
+  // Where each program comes in the band's passes (render/band/band_passes.h):
+  // the direct light, the one-pass tiles, the G-buffer path (g-buffer,
+  // atmospheres, resolve). Passes whose tiles no band has are not run.
+  const FramePasses& fp = *frame.programs;
+  const auto order = [&](const gl::ShaderProgram& p) {
+    if (&p == fp.direct_light_one) return one_body ? 0 : -1;
+    if (&p == fp.direct_light) return bodies ? 1 : -1;
+    if (&p == fp.direct_light_sun) return sun ? 2 : -1;
+    if (&p == fp.gbuffer) return gbuffer ? 4 : -1;
+    if (&p == fp.resolve) return gbuffer ? 6 : -1;
+    if (p.name() == "render/atmosphere_pass.comp") return 5;
+    return 3;  // the one-pass tiles (and any other)
+  };
+  const int before = im.warmup->statistics().queued;
+  im.builds->warm_started(*im.warmup, dispatch_shapes(frame), order);
+  return im.warmup->statistics().queued - before;
+}
+
+gl::DispatchShapes Renderer::dispatch_shapes(const Frame& frame) const {
+  const Impl& im = *impl_;
+  gl::DispatchShapes shapes;
+  for (const AtmospherePass& pass : frame.passes)
+    if (pass.gpu) {
+      pass.gpu->add_dispatch_shapes(shapes);
+      break;  // one program serves every atmosphere: their tables are alike
+    }
+  if (im.albedo.texture().id() != 0) {
+    const gl::TextureShape albedo = im.albedo.texture().shape();
+    shapes.sampled[{static_cast<int>(binding::kAlbedoMapsUnit), albedo.kind}] = albedo;
+  }
+  // The band's images and ray table (render/band/band_resources.h), as render_bands fits them.
+  gl::TextureShape band;
+  band.width = frame.projection.width();
+  band.height = band_texture_rows(frame);
+  const auto image = [&](unsigned unit, gl::TextureFormat format) {
+    band.format = format;
+    shapes.images[{static_cast<int>(unit), band.kind}] = band;
+  };
+  image(binding::kGbufferHitImage, gl::TextureFormat::rgba32f);
+  image(binding::kGbufferAlbedoImage, gl::TextureFormat::rgba16f);
+  image(binding::kRadianceSumImage, gl::TextureFormat::rgba32f);
+  image(binding::kTransmittanceProductImage, gl::TextureFormat::rgba32f);
+  band.format = gl::TextureFormat::rgba32f;
+  shapes.sampled[{static_cast<int>(binding::kRayTableUnit), band.kind}] = band;
+  return shapes;
+}
+
 void Renderer::light_by_the_moon(Frame& frame, const MoonInShadow* moon_shadow, PassTimer& timer) {
   if (!options_.night_sky.moonlight) return;
   MoonLight moon;
@@ -452,7 +541,7 @@ void Renderer::classify_bands(Frame& frame, PassTimer& timer) {
 void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& timer) {
   Impl& im = *impl_;
   const int width = frame.projection.width(), height = frame.projection.height(), band_rows = frame.band_rows;
-  im.band.fit_bands(width, std::min(band_rows, (height + kTileSize - 1) / kTileSize * kTileSize));
+  im.band.fit_bands(width, band_texture_rows(frame));
   im.band.bind_bodies();
   const std::vector<BandTiles>& bands = *frame.bands;
 

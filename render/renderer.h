@@ -57,7 +57,8 @@ struct BandTiles;       // render/frame/tile_classification.h
 struct AtmospherePass;  // render/frame/frame_in_progress.h
 class MoonInShadow;     // render/night/moon_in_shadow.h
 namespace gl {
-class Texture;  // render/gl/texture.h
+class Texture;          // render/gl/texture.h
+struct DispatchShapes;  // render/gl/first_dispatch_warmup.h
 }  // namespace gl
 
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
@@ -102,6 +103,9 @@ struct FrameStats {
   int programs_built = 0;
   /// Of those, the programs made from a stored binary (RenderOptions::program_cache_directory).
   int programs_from_binaries = 0;
+  /// Of those, the programs handed to the warm-up thread for their first
+  /// dispatch (RenderOptions::warm_first_dispatches).
+  int programs_warmed = 0;
   /// Of `seconds`: the bodies' albedo maps read or generated (the first
   /// frame with a map; scene/albedo_map_cache.h) and uploaded.
   double albedo_s = 0.0;
@@ -214,6 +218,12 @@ class Renderer {
   /// parallel shader compile builds them at once (render/gl/program_builds.h;
   /// RenderOptions::serial_compile: one at a time, where first used).
   void start_programs(const Frame& frame);
+  /// Hands the programs start_programs started to the warm-up thread
+  /// (RenderOptions::warm_first_dispatches), made on the first call where
+  /// worthwhile; how many it queued.
+  int warm_first_dispatches(const Frame& frame);
+  /// How this frame's passes will bind textures and images (render/gl/first_dispatch_warmup.h).
+  gl::DispatchShapes dispatch_shapes(const Frame& frame) const;
   /// The sky-view table of each atmosphere choose_sky_view chose (the sun's;
   /// the Moon's where chosen), and the eclipse-sky table where the Moon's shadow lies on its air.
   void fill_sky_view_tables(Frame& frame, PassTimer& timer);

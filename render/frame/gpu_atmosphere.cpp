@@ -119,6 +119,22 @@ void GpuAtmosphere::bind(std::size_t group, std::size_t light) const {
   sky_view_->bind(kSkyViewUnit, light);
 }
 
+void GpuAtmosphere::add_dispatch_shapes(gl::DispatchShapes& shapes) const {
+  const GroupTextures& t = groups_.front();
+  const auto sampled = [&](unsigned unit, const gl::Texture& texture) {
+    const gl::TextureShape shape = texture.shape();
+    shapes.sampled[{static_cast<int>(unit), shape.kind}] = shape;
+  };
+  sampled(kTransmittanceUnit, t.transmittance);
+  sampled(kSingleRayleighUnit, t.single_rayleigh);
+  sampled(kSingleMieUnit, t.single_mie);
+  sampled(kMultipleUnit, t.multiple);
+  sampled(kIrradianceUnit, t.irradiance);
+  const gl::TextureShape sky_view = sky_view_->shape();
+  shapes.sampled[{static_cast<int>(kSkyViewUnit), sky_view.kind}] = sky_view;
+  shapes.images[{static_cast<int>(kOutputImage), sky_view.kind}] = sky_view;
+}
+
 void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t group) const {
   program.set_uniform("wavelength_group", static_cast<int>(group));
   program.set_uniform("sky_view_layer_base", static_cast<int>(group) * SkyViewTable::kLayersPerGroup);

@@ -22,6 +22,7 @@
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
+#include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
@@ -86,6 +87,9 @@ class GpuAtmosphere {
   /// table of light `light` (unit 5; 0 the sun, 1 the Moon), the model's
   /// buffers (ModelBuffers) and the texel coordinates.
   void bind(std::size_t group, std::size_t light = 0) const;
+  /// The shapes of what bind() and the sky-view fill bind, into `shapes`
+  /// (every group's tables are alike): render/gl/first_dispatch_warmup.h.
+  void add_dispatch_shapes(gl::DispatchShapes& shapes) const;
 
   /// Fills the sky-view table of light `light` (0 the sun, 1 the Moon) for
   /// every wavelength group, for a camera inside the shell at

@@ -61,6 +61,8 @@ class SkyViewTable {
   double theta_horizon_rad() const { return theta_horizon_rad_; }
   /// Binds light `light`'s table for sampling (sampler2DArray) on texture unit `unit`.
   void bind(unsigned unit, std::size_t light = 0) const { tables_.at(light).bind(unit); }
+  /// What bind() and the fill's output image bind (every light's table is alike).
+  gl::TextureShape shape() const { return tables_[0].shape(); }
 
  private:
   gl::ProgramBuilds* builds_;

@@ -43,6 +43,7 @@
 #include "render/frame/sun_occulter.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/egl_context.h"
+#include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/texture.h"
 #include "scene/local_horizon.h"
 #include "scene/sky_clock.h"
@@ -1185,6 +1186,24 @@ TEST(RendererPrograms, ASecondRunMakesEveryProgramFromItsStoredBinary) {
         << third.renderer.program_builds_summary();
   }
   std::filesystem::remove_all(cache);
+}
+
+TEST(RendererPrograms, WarmingFirstDispatchesOnASecondThreadChangesNoPixel) {
+  context();
+  // Ground, horizon and sky tiles, and the sun's disc: several programs.
+  const scene::Scene s = planet_scene("earth-advanced", 2.0, 60.0, {1, 0, 0.1});
+  const warp::FisheyeProjection p(64, 64, warp::FisheyeParameters{});
+  RenderOptions on = direct_colour(), off = direct_colour();
+  off.warm_first_dispatches = false;
+  TestRenderer warmed(on), plain(off);
+  const std::vector<float> image = warmed.renderer.render_image(s, p);
+  EXPECT_EQ(plain.renderer.render_image(s, p), image);
+  EXPECT_EQ(plain.renderer.last_frame().programs_warmed, 0);
+  if (!gl::first_dispatch_warmup_worthwhile()) GTEST_SKIP() << "no warm-up on this driver: compared with it off only";
+  EXPECT_GT(warmed.renderer.last_frame().programs_warmed, 0);
+  EXPECT_NE(warmed.renderer.program_builds_summary().find("first dispatches: "), std::string::npos)
+      << warmed.renderer.program_builds_summary();
+  EXPECT_EQ(warmed.renderer.render_image(s, p), image) << "the second frame, every program warmed or dispatched";
 }
 
 TEST(RendererSkipping, AnAtmosphereOutsideTheViewCostsNothing) {
