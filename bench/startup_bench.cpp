@@ -1,7 +1,8 @@
 // Where a show's start goes, cold and warm (docs/shows.md, "Where the start goes").
 //
 //   build/bench/startup_bench [--show FILE] [--size WxH] [--tables paper|small] [--rounds N]
-//                             [--cases warm,cold-mesa,cold-programs,cold-maps] [--csv FILE] [--passes-csv FILE]
+//                             [--cases warm,cold-mesa,cold-programs,cold-maps,cold-unwarmed] [--csv FILE] [--passes-csv
+//                             FILE]
 //                             [--cache DIR] [--zenith PATH]
 //
 // 1. The process: `zenith show render --show FILE --projection fisheye --size WxH --to 0`, run as a
@@ -12,7 +13,9 @@
 //                     from zenith's stored binaries, their machine code generated again;
 //      cold-programs  Mesa's cache and zenith's program binaries empty (a new machine, a new driver): every
 //                     program compiled again; tables and maps from the cache;
-//      cold-maps      that, and a cache holding the tables only: the albedo maps generated again.
+//      cold-maps      that, and a cache holding the tables only: the albedo maps generated again;
+//      cold-unwarmed  cold-mesa with --serial-compile: every first dispatch's machine code generated on the
+//                     renderer's thread, none on the warm-up thread (render/gl/first_dispatch_warmup.h).
 //    Wall time of the whole process and the phases of its start-up line (offline/offline_frame_renderer.h),
 //    the median per case; every run to --csv.
 // 2. The programs: a child process with an empty Mesa cache renders the show's scene twice in process, every
@@ -62,7 +65,7 @@ struct Options {
   int width = 512, height = 512;
   std::string tables = "paper";
   int rounds = 3;
-  std::vector<std::string> cases = {"warm", "cold-mesa", "cold-programs", "cold-maps"};
+  std::vector<std::string> cases = {"warm", "cold-mesa", "cold-programs", "cold-maps", "cold-unwarmed"};
   fs::path csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/startup_times.csv";
   fs::path passes_csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/startup_pass_compile.csv";
   fs::path cache = atmosphere::lut::default_cache_directory();
@@ -98,8 +101,9 @@ Options parse(int argc, char** argv) {
     } else if (a == "--cases") {
       o.cases = split(args.value(), ',');
       for (const std::string& c : o.cases)
-        if (c != "warm" && c != "cold-mesa" && c != "cold-programs" && c != "cold-maps")
-          throw std::invalid_argument("--cases: '" + c + "' is not warm, cold-mesa, cold-programs or cold-maps");
+        if (c != "warm" && c != "cold-mesa" && c != "cold-programs" && c != "cold-maps" && c != "cold-unwarmed")
+          throw std::invalid_argument("--cases: '" + c +
+                                      "' is not warm, cold-mesa, cold-programs, cold-maps or cold-unwarmed");
     } else if (a == "--csv") {
       o.csv = args.value();
     } else if (a == "--passes-csv") {
@@ -190,7 +194,8 @@ fs::path linked_cache(const fs::path& cache, const fs::path& directory, bool map
   return directory;
 }
 
-std::vector<std::string> show_command(const Options& o, const fs::path& out, const fs::path& cache) {
+std::vector<std::string> show_command(const Options& o, const fs::path& out, const fs::path& cache,
+                                      bool serial_compile = false) {
   std::vector<std::string> argv = {o.zenith.string(),
                                    "show",
                                    "render",
@@ -207,6 +212,7 @@ std::vector<std::string> show_command(const Options& o, const fs::path& out, con
                                    "--out",
                                    out.string()};
   argv.insert(argv.end(), {"--cache", cache.string()});
+  if (serial_compile) argv.push_back("--serial-compile");
   return argv;
 }
 
@@ -235,7 +241,8 @@ void process_starts(const Options& o) {
       const fs::path cache = own_cache ? linked_cache(o.cache, run_dir / "cache", c == "cold-programs") : o.cache;
       const fs::path log = run_dir / "zenith.log";
       const auto start = std::chrono::steady_clock::now();
-      const int status = run(show_command(o, run_dir / "out", cache), {{"MESA_SHADER_CACHE_DIR", mesa.string()}}, log);
+      const int status = run(show_command(o, run_dir / "out", cache, c == "cold-unwarmed"),
+                             {{"MESA_SHADER_CACHE_DIR", mesa.string()}}, log);
       if (status != 0) throw std::runtime_error(fmt::format("{} exited with {}: {}", c, status, log.string()));
       Startup s = parse_startup(log);
       s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
