@@ -1,5 +1,5 @@
-// When `zenith cluster` counts a show as ended early (cluster/launcher/launcher_signals.h;
-// issue 30, defect 3): its nodes exit 0 on the master's Goodbye a moment
+// When `zenith cluster` counts a show as ended early (cluster/launcher/launcher_signals.h):
+// its nodes exit 0 on the master's Goodbye a moment
 // before the master itself exits. The launcher once polled the master every
 // 200 ms and, finding every node gone in between, reported "the nodes exited
 // before the show ended" (1 normal run in 12).

@@ -130,7 +130,7 @@ Agreement compare(const std::string& preset, const std::string& fixture_name, bo
 // 0.03 (docs/lookup-tables.md, "ν slices in azimuth").
 // Re-measured when the precompute came to read the scattering density along the
 // rays and the last order's radiance geometrically in μs, with 24 sphere nodes
-// (issue 29, goal 6): with 4 orders and no tail the twilight cases are darker,
+// (the deep-twilight fix): with 4 orders and no tail the twilight cases are darker,
 // Earth 0.057 / 0.213 (was 0.050 / 0.14), Mars 0.145 / 0.344 (was 0.111 / 0.29):
 // 4 orders are too few for twilight and the linear reads' overshoot had hidden
 // part of it; the default orders below gain 4× and 3×; the rest within 0.003.
@@ -169,7 +169,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // The project's default orders and their series tail (series_tail.h) on the
 // same small tables, bounds about 1.3× the RMS / max measured when the tail
-// came (issue 13): Earth noon 0.052 / 0.094, low sun 0.039 / 0.092, twilight
+// came: Earth noon 0.052 / 0.094, low sun 0.039 / 0.092, twilight
 // 0.094 / 0.25, limb 0.280 / 0.66; Mars 0.015 / 0.031, 0.011 / 0.032,
 // twilight 0.024 / 0.087, limb 0.135 / 0.33 (4 orders without the tail,
 // above: Mars 4–8× farther, Earth's twilight and limb closer). Against the
@@ -177,7 +177,7 @@ INSTANTIATE_TEST_SUITE_P(
 // excess at the limb and in twilight (these tables' few r and μs texels there)
 // the dropped orders had partly hidden; paper-size tables:
 // docs/lookup-tables.md, "Closing the series". With the geometric μs reads of the
-// precompute and 24 sphere nodes (issue 29, goal 6) the twilight cases went to
+// precompute and 24 sphere nodes (the deep-twilight fix) the twilight cases went to
 // Earth 0.021 / 0.073 (was 0.094 / 0.25), Mars 0.0084 / 0.027 (was 0.024 /
 // 0.087), the rest within 0.001: bounds 1.3× those.
 INSTANTIATE_TEST_SUITE_P(
@@ -324,7 +324,7 @@ TEST(NightSide, HighCameraGrazingTowardTheSetSunSeesNoDaylight) {
   // 9.0e-4) on Mars; now 6e-9 and 1.5e-6 (all orders 2.5e-6), docs/lookup-tables.md.
   // With the harmonic scattering density Mars' all orders are 7.4e-6 at 550 nm
   // (the reference path tracer, 10^7 paths: 1.4e-6 ± 0.2e-6; the 8-node sphere sum
-  // gave 2.3e-6): 1e-3 of the day sky; not understood yet (issue 13 note).
+  // gave 2.3e-6): 1e-3 of the day sky; not understood yet, left open.
   for (const auto& [preset, bound_sr] : {std::pair{"earth-standard", 1e-7}, std::pair{"mars", 1e-5}}) {
     const double rb = load_preset(preset).model.ground_radius_m;
     const double r = rb + 47237.0;

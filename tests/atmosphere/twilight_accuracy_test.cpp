@@ -50,7 +50,7 @@ std::vector<ZenithReference> read_zenith_fixture(const std::string& name, double
 // standard error 0.6 %, 0.7 %, 1.6 %).
 // Measured (tables / reference − 1 at 680, 550, 440 nm) since the precompute
 // reads the scattering density along the rays and the last order's radiance
-// geometrically in μs, with 24 sphere nodes (issue 29, goal 6): +3.7 %, −10.9 %,
+// geometrically in μs, with 24 sphere nodes (the deep-twilight fix): +3.7 %, −10.9 %,
 // −30.4 % (against the first reference of 80 000 paths, 1.2–4.3 % lower:
 // +5.0 %, −9.4 %, −27.4 %; when introduced, with linear reads and 16 nodes:
 // +16.0 %, +8.3 %, −3.6 %). These tables have 32 μs texels but only 8 radii and

@@ -1,4 +1,4 @@
-# Live shows write no frame files unless asked (issue 26): `zenith cluster`
+# Live shows write no frame files unless asked: `zenith cluster`
 # without --out leaves none (presented.log still records every presented
 # frame); with --record-frames DIR exactly one file per output and presented
 # frame, named by the frames presented.log lists. Headless nodes. Called with

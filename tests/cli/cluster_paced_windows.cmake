@@ -1,5 +1,5 @@
 # A cluster of 2 nodes × 2 windows paced at 60 Hz on a virtual display
-# (xvfb-run; issue 26): `zenith cluster --windows` for 300 frames; every node
+# (xvfb-run): `zenith cluster --windows` for 300 frames; every node
 # presents every frame once, in order (presented.log), each node reports how
 # it detects late presents and how many it had, the master the counts per
 # node, and the swap group the config asks for is detected and logged (Mesa

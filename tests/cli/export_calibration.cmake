@@ -1,4 +1,4 @@
-# `zenith export-calibration` (issue 14): one output of a generated viewport
+# `zenith export-calibration`: one output of a generated viewport
 # config exported into a folder; the command prints every file it wrote, the
 # exported config loads back (zenith export-calibration on it again), and an
 # unknown output or an unwritable folder is refused naming the name or folder.
@@ -43,7 +43,7 @@ foreach(kind pfm mpcdi)
   endif()
 endforeach()
 
-# The sl profile (issue 31): a planar output as a pinhole projector; the
+# The sl profile: a planar output as a pinhole projector; the
 # exported config gives no projection and loads (exported again).
 execute_process(COMMAND ${ZENITH} export-calibration --viewport "${out}/show.json#flat" --out "${out}/sl"
                         --mpcdi-profile sl

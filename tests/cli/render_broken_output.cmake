@@ -1,4 +1,4 @@
-# One broken output must not stop another (issue 14): `zenith render --viewport
+# One broken output must not stop another: `zenith render --viewport
 # FILE#good` renders `good` while another output of FILE has a broken warp;
 # asking for the broken output, or for every output, gives its error naming
 # the config, the key, the warp file, the line and the field.

@@ -75,7 +75,7 @@ TEST_F(AtmosphereEditsTest, BadValuesGetTheLoadersMessageNamingThePointerAndTheR
       << error_of(set("Earth", "/planet/radius_m", 6400000));
 }
 
-// Issue 30, defect 6: the scene's wavelengths override the parameters' own,
+// The scene's wavelengths override the parameters' own,
 // so `set /wavelengths_nm/0 "banana"` was ignored and answered ok.
 TEST_F(AtmosphereEditsTest, TheWavelengthsAreTheScenesAndCannotBeSet) {
   EXPECT_NE(error_of(set("Earth", "/wavelengths_nm/0", "banana"))

@@ -418,7 +418,7 @@ int point_sources(const image::LinearImage& image) {
   return count;
 }
 
-// Issue 29 goal 8: the evening show (configs/shows/earth-evening-hayden.json:
+// The evening show (configs/shows/earth-evening-hayden.json:
 // dusk at the Hayden Planetarium, the stars coming out, the full Moon rising)
 // rendered on the cluster's three nodes shows at each frame the same stars in
 // every quadrant, which stitch into the single-process dome master: no seam
@@ -1536,7 +1536,7 @@ TEST_F(ClusterProcess, ShowRendersOfflineOnTheNodesResumesAndMatchesASingleProce
 
   // The quadrants of frame 5 (after the turbidity step) equal one process rendering the whole dome master,
   // within one code: the single process encodes its PNGs on the GPU (the display pass of the offline
-  // pipeline, issue 28), the nodes on the CPU (render/display/display_encoder.h: ±1 code).
+  // pipeline), the nodes on the CPU (render/display/display_encoder.h: ±1 code).
   const fs::path single = dir_ / "single";
   std::tie(status, text) = render(single,
                                   {"--projection", "fisheye", "--size", "128x128", "--tables", "small", "--orders", "4",

@@ -152,7 +152,7 @@ TEST(FrameDecoder, OversizedLengthIsRejectedFromTheHeaderAloneWithoutBufferingTh
   EXPECT_EQ(decoder.buffered_bytes(), 0u);
 }
 
-// Issue 30, defect 5: the master accepted 1 MiB TableChunk headers before
+// The master once accepted 1 MiB TableChunk headers before
 // the handshake (300 such peers: 22 -> 349 MB). Until the peer proved the
 // secret its payloads are at most a handshake message's, checked at the header.
 TEST(FrameDecoder, APayloadLimitBeforeTheHandshakeRefusesAChunkHeaderAndIsLiftedAfter) {

@@ -1,5 +1,5 @@
-// The cluster against stray processes and hostile peers on loopback (issue 30;
-// docs/cluster.md and docs/operator.md, "Threat model"): the `zenith` binary
+// The cluster against stray processes and hostile peers on loopback
+// (docs/cluster.md and docs/operator.md, "Threat model"): the `zenith` binary
 // as master and two nodes, 32² outputs, small tables. Each test is bounded in
 // time and asserts counts, not timings: the machine may be loaded.
 #include <arpa/inet.h>
@@ -142,7 +142,7 @@ class HardeningProcess : public ::testing::Test {
   std::vector<pid_t> pids_;
 };
 
-// Issue 30, defect 3: one stray `zenith node --name left` caused 467
+// One stray `zenith node --name left` once caused 467
 // replacements in 8 s. A second process with a connected name is refused;
 // both sides say why; the node keeps its place.
 TEST_F(HardeningProcess, AStrayNodeWithATakenNameIsRefusedOnBothSidesAndTheShowGoesOn) {
@@ -162,7 +162,7 @@ TEST_F(HardeningProcess, AStrayNodeWithATakenNameIsRefusedOnBothSidesAndTheShowG
   EXPECT_EQ(core::wait_for_exit(master, 30s), std::optional<int>(0)) << logs();
 }
 
-// Issue 30, defect 5: 1 MiB TableChunk headers were accepted before the
+// 1 MiB TableChunk headers were once accepted before the
 // handshake, from any number of peers (300: 22 → 349 MB, never returned).
 TEST_F(HardeningProcess, UnauthenticatedPeersAreBoundedInMessageSizeAndNumber) {
   const fs::path config = write_config(R"("limits": {"max_unauthenticated_connections": 4},)");
@@ -197,7 +197,7 @@ TEST_F(HardeningProcess, UnauthenticatedPeersAreBoundedInMessageSizeAndNumber) {
   EXPECT_TRUE(wait_until([&] { return presented_count(dir_ / "out-b/b") > before + 10; }, 60s)) << logs();
 }
 
-// Issue 30, defect 3: kill -9 or SIGTERM of `zenith cluster` left the master
+// A kill -9 or SIGTERM of `zenith cluster` once left the master
 // and every node running under PID 1, holding their ports.
 TEST_F(HardeningProcess, TheLaunchersChildrenDieWithItAndItsSignalsAreForwarded) {
   const fs::path config = write_config();
@@ -223,7 +223,7 @@ TEST_F(HardeningProcess, TheLaunchersChildrenDieWithItAndItsSignalsAreForwarded)
   EXPECT_TRUE(wait_until([&] { return std::all_of(second.begin(), second.end(), process_gone); }, 30s)) << logs();
 }
 
-// Issue 30, defect 3: a new master that could not bind let its nodes join the
+// A new master that could not bind once let its nodes join the
 // master already on the port (812 replacements between the two sets).
 TEST_F(HardeningProcess, ALauncherWhoseMasterCannotBindStartsNoNode) {
   const fs::path config = write_config();

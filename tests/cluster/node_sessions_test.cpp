@@ -1,5 +1,5 @@
 // Who holds a node name (cluster/master/node_sessions.h; docs/protocol.md,
-// "Names"; issue 30, defect 3): the master's handshake on real loopback
+// "Names"): the master's handshake on real loopback
 // sockets, the node's side played by NodeHandshake. A second process with a
 // connected name is refused, the same process rejoining after a drop replaces
 // its old connection, and a holder silent past the limit is taken for dead.

@@ -144,7 +144,7 @@ TEST_F(OperatorHttpServerTest, WithATokenEveryApiRequestMustCarryIt) {
   EXPECT_EQ(commands_, std::vector<std::string>{"quit from http x"});
 }
 
-// Issue 30, defect 1: "127.evil.example" resolved to 127.0.0.1 by its owner's
+// DNS rebinding: "127.evil.example" resolved to 127.0.0.1 by its owner's
 // DNS once passed as loopback, with a matching Origin: a page there had the
 // console. Only the loopback literals with the console's own port pass now.
 TEST_F(OperatorHttpServerTest, RefusesDnsRebindingToLoopbackLookAlikesAndOtherPorts) {

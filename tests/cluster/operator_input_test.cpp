@@ -1,5 +1,5 @@
 // The control socket's limits on real loopback sockets (cluster/operator/operator_input.h;
-// docs/operator.md, "Threat model"; issue 30, defect 2): no web page's request
+// docs/operator.md, "Threat model"): no web page's request
 // runs a command, no client holds a line, a slot or the acceptor.
 #include "cluster/operator/operator_input.h"
 

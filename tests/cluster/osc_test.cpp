@@ -224,7 +224,7 @@ TEST(OscReceiverTest, AppliesMessagesFromAllowedSendersOnly) {
   allowing.close();
 }
 
-// Issue 30, defect 6: an address with a newline or escape codes was written
+// An OSC address with a newline or escape codes was once written
 // raw into the log (forged log lines), and a flood logged a line per packet.
 TEST(OscReceiverTest, LogsPeerBytesEscapedAndAFloodOfRefusalsOnceASecondWithItsCount) {
   boost::asio::io_context io;

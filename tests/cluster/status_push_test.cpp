@@ -134,7 +134,7 @@ TEST_F(StatusPushTest, WithATokenNothingIsSentBeforeTheToken) {
   EXPECT_EQ(wrong->reason().code, websocket::close_code::policy_error);
 }
 
-// Issue 30, defect 4: 16 WebSockets without the token once held every push
+// 16 WebSockets without the token once held every push
 // slot, so the operator's page fell back to polling. Connections waiting for
 // the token have slots of their own now, the oldest closed for a new one.
 TEST_F(StatusPushTest, ConnectionsWithoutTheTokenNeverTakeTheOperatorsSlots) {
@@ -155,7 +155,7 @@ TEST_F(StatusPushTest, ConnectionsWithoutTheTokenNeverTakeTheOperatorsSlots) {
   EXPECT_TRUE(ec) << "the oldest connection without a token was closed";
 }
 
-// Issue 30, defect 4: 32 half-sent requests once filled every connection for
+// 32 half-sent requests once filled every connection for
 // 30 s. A new connection now closes the oldest one waiting for its request.
 TEST_F(StatusPushTest, HalfSentRequestsNeverLockTheOperatorOutOfTheConsole) {
   start();

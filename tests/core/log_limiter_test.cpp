@@ -1,5 +1,5 @@
 // core::LogLimiter (core/log_limiter.h): a flood of refusals is one log line
-// a window with the count held back (issue 30: an OSC flood logged a line per
+// a window with the count held back (an OSC flood once logged a line per
 // packet; EMFILE wrote a million lines in 4 s).
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // core::escaped (core/strings.h): what every peer-supplied string becomes
-// before it is logged (issue 30: an OSC address with a newline once forged a
+// before it is logged (an OSC address with a newline once forged a
 // log line, escape codes coloured the terminal).
 #include <gtest/gtest.h>
 

@@ -189,7 +189,7 @@ TEST(ImageWriter, AnUnwritableDirectoryIsARuntimeErrorNamingTheFile) {
   }
 }
 
-// Issue 30: a full disk during a live show stopped the nodes with
+// A full disk during a live show once stopped the nodes with
 // "error writing ….png.partial.partial" and no cause. A file-size limit
 // (RLIMIT_FSIZE, SIGXFSZ ignored: writes fail with EFBIG) plays the full disk
 // for this process alone; the message names the file and the cause.

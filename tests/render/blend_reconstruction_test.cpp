@@ -141,7 +141,7 @@ TEST(BlendReconstruction, SixBlendedProjectorsReproduceTheDomeMaster) {
   // sky meets ground within a pixel), max 0.026 above 5° elevation. At 64 × 40
   // projectors the same figures are 0.0053, 0.0013, 0.060, 0.092 and 0.078:
   // the error shrinks with the square of the pixel size, as resampling error does.
-  // Since the precompute accumulates T along its view rays (issue 13) the horizon
+  // Since the precompute accumulates T along its view rays the horizon
   // sky is no longer 13–53 % dark in these small tables, so the step from sky to
   // ground across a horizon pixel, and its resampling error, grew: max 0.160
   // (mean 0.0012, median 0.0002, 99th percentile 0.0125, above 5° 0.026 as before).

@@ -1,4 +1,4 @@
-// An MPCDI region's colour profile in the display pass (issue 31): the GPU's
+// An MPCDI region's colour profile in the display pass: the GPU's
 // codes (render/display/display_encoder.h, display_transform.glsl) against the
 // CPU path that writes files (render/display/colour_signal.h), and a region of
 // each profile loaded from an archive whose frame differs from the identity

@@ -1,4 +1,4 @@
-// An MPCDI region's alpha and beta maps in the display pass (issue 31): the
+// An MPCDI region's alpha and beta maps in the display pass: the
 // output's α and β from an archive whose maps are smaller than the output
 // (warp/mpcdi_blend.h), as one rg32f texture (α, β) on the GPU
 // (render/display/display_encoder.h) against the CPU path that writes files

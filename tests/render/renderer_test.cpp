@@ -636,7 +636,7 @@ TEST(RendererAccuracy, SkyPixelsMatchTheReferencePathTracer) {
       const double expected = ref.mean[c] * scale, sigma = ref.standard_error[c] * scale;
       const double error = std::abs(values[c] - expected);
       worst = std::max(worst, error / expected);
-      // 0.08 until issue 13; with the harmonic scattering density (the sphere
+      // 0.08 before the harmonic scattering density; with it (the sphere
       // integral exact, where the 8-node sum was ~20 % low on the second order)
       // these small tables read up to 15.7 % above the reference here (pixel
       // (3, 12) at 440 nm, (12, 12) at 550–680 nm): their own excess, no longer
@@ -775,7 +775,7 @@ TEST(RendererComposition, AMoonEclipsesTheSun) {
   const auto lit = b.renderer.render_image(s, p);
   const auto [x, y] = pixel_of(p, s, glm::normalize(glm::dvec3(0.0, 0.0, R) - s.camera.position_m));
   const Rgb e = pixel(eclipsed, 33, x, y), l = pixel(lit, 33, x, y);
-  // 0.59–0.60 of the lit value with the harmonic scattering density (issue 13:
+  // 0.59–0.60 of the lit value with the harmonic scattering density (it counts
   // more of the air's in-scattered light, which the eclipse does not remove).
   EXPECT_LT(e.g, 0.65 * l.g) << "the umbra is darker";
   EXPECT_GT(e.g, 0.0) << "skylight and the air's in-scattering remain";
@@ -922,7 +922,7 @@ SunEnergy sun_energy(const std::vector<float>& with, const std::vector<float>& w
 }
 
 TEST(RendererWarp, TheSunKeepsItsEnergyAndSizeThroughAMeshWithParkedNodes) {
-  // issue 14: a Bourke mesh parks an unused node at (0, 0) with a faint but
+  // A Bourke mesh parks an unused node at (0, 0) with a faint but
   // valid intensity; the mesh's worst-case pixel angle is then tens of degrees.
   // The sun must be sized from the footprint where it lands: the same energy as
   // in the dome master (both from the same transmittance table, so within the
@@ -1005,7 +1005,7 @@ TEST(RendererWarp, TheAlbedoKeepsItsDetailThroughAMeshWithParkedNodes) {
 
 /// Answers like `inner` but culls every tile with the worst case over the
 /// whole image (Projection's default max_pixel_angle_rad_within): how the
-/// renderer culled through a warp mesh before issue 14's per-tile bound.
+/// renderer culled through a warp mesh before the per-tile bound.
 class WorstCaseCulling final : public warp::Projection {
  public:
   explicit WorstCaseCulling(const warp::Projection& inner) : Projection(inner.width(), inner.height()), inner_(inner) {}
@@ -1032,7 +1032,7 @@ warp::WarpMesh corner_parked_mesh(bool parked) {
 }
 
 TEST(TileCulling, AParkedNodeWidensOnlyTheTilesItsCellsReach) {
-  // issue 14: the culling cone of a tile is widened by the bound of the mesh
+  // The culling cone of a tile is widened by the bound of the mesh
   // nodes that reach the tile. The parked node's cells (the top-right 2 × 2
   // of 8 px each, and their cubic's stencil: 16 px) lie in the top-right tile;
   // every other tile has the cone it has without the parked node. (A 90°

@@ -1,4 +1,4 @@
-// A show's bounds (show/show.h, ShowLimits; core/files.h; issue 30, defect 6):
+// A show's bounds (show/show.h, ShowLimits; core/files.h):
 // input that is not a regular file is refused by name at once, a file too
 // large for its kind is refused before it is parsed, a track that steps
 // through too many table sets stops at the limit, and the plan warns when

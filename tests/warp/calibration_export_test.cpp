@@ -1,4 +1,4 @@
-// Export for hardware that warps and blends itself (issue 14, item 6): every
+// Export for hardware that warps and blends itself: every
 // output of a generated viewport config (a spherical-mirror Bourke mesh with
 // unused nodes, two automatically blended planar frusta with black levels, a
 // PFM warp in the SGCT convention with a hole and a blend file, an MPCDI
@@ -264,7 +264,7 @@ std::vector<int> displayed_codes(const ViewportConfig& config, std::size_t index
   return codes;
 }
 
-// Issue 31: export → load → render. viewport-mpcdi.json reads the archive's
+// Export → load → render. viewport-mpcdi.json reads the archive's
 // alpha and beta maps ("blend": {"type": "mpcdi"}); its frames equal the
 // source config's within ±1 code in 8 bits. In 16 bits the maps' own
 // quantization shows: half a step (7.6e-6) in β, and in α times L ≤ 1, moves
@@ -370,7 +370,7 @@ TEST_F(CalibrationExport, RefusesAnOutputWhoseWarpIsBrokenNamingTheField) {
   EXPECT_EQ(app::export_calibration(broken, "mirror", out).size(), 9u);
 }
 
-// The sl profile (issue 31): planar outputs exported as pinhole projectors,
+// The sl profile: planar outputs exported as pinhole projectors,
 // a frustum and a coordinate frame, and loaded back through the exported
 // viewport-mpcdi.json, which gives no projection: the region's rays.
 TEST(CalibrationExportShaderLamps, ExportThenLoadGivesTheSameRays) {

@@ -1,4 +1,4 @@
-// MPCDI colour profiles (issue 31): the .cube reader (warp/cube_lut.h), the
+// MPCDI colour profiles: the .cube reader (warp/cube_lut.h), the
 // three stages of VESA MPCDI v2.0 §2.5 (warp/colour_profile.h) against their
 // closed forms, and <color> with its LUTs read from archives of each profile
 // (warp/mpcdi.h), every refusal naming the file, the line and the field.

@@ -525,7 +525,7 @@ TEST(ProjectionFactory, BuildsEveryType) {
 
 // Calibration tools write angles in [0, 360): every orientation angle of a
 // viewport's projection is read in [−360, 360] and gives the rotation of the
-// same angle in (−180, 180] (issue 31: yaw_deg 326.7 was refused).
+// same angle in (−180, 180] (yaw_deg 326.7 was once refused).
 TEST(ProjectionFactory, OrientationAnglesIn0To360GiveTheSameRays) {
   const auto rays_equal = [](const Projection& a, const Projection& b) {
     for (double y = 0.5; y < a.height(); y += 7.0)

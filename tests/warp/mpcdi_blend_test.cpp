@@ -1,4 +1,4 @@
-// An MPCDI region's alpha and beta maps as its output's α and β (issue 31):
+// An MPCDI region's alpha and beta maps as its output's α and β:
 // "blend": {"type": "mpcdi"} (and its default), the maps placed on the
 // output's pixels as OpenGL UV mapping does (warp/mpcdi_blend.h), the output
 // stage α·L·(1 − β) + β on the CPU path, two projectors' complementary maps,

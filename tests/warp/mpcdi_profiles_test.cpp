@@ -1,4 +1,4 @@
-// MPCDI's 3d, sl and a3 profiles (issue 31): archives written here by
+// MPCDI's 3d, sl and a3 profiles: archives written here by
 // generators (nothing downloaded) whose regions define their rays by a frustum,
 // a frustum and a coordinate frame, or a 3D geometry warp of screen points,
 // loaded through a viewport config and compared with independent computations:

@@ -496,7 +496,7 @@ TEST(WarpedProjection, IsTabulatedOnTheGpuAndNeedsABase) {
   expect_error([&] { WarpedProjection(0, 64, mesh, std::make_shared<FisheyeProjection>(64, 64)); }, {"width_px"});
 }
 
-// ---------------------------------------------------------------- local pixel footprint (issue 14)
+// ---------------------------------------------------------------- local pixel footprint (not the mesh's worst case)
 
 /// A mesh whose source pixel is affine in the projector pixel: source px =
 /// c + J (x − w/2, y − h/2) for a w × h projector over a base of size (wb, hb),
@@ -581,7 +581,7 @@ TEST(WarpedProjectionFootprint, ParkedNodesDoNotInflateIt) {
   }
 }
 
-// ---------------------------------------------------------------- culling bound per tile (issue 14)
+// ---------------------------------------------------------------- culling bound per tile (not the mesh's worst case)
 
 TEST(WarpedProjectionCulling, ARectanglesBoundComesFromTheNodesThatReachIt) {
   // A 200 × 200 projector, 9 × 9 nodes (cells of 25 px), source px = 1.5 ×

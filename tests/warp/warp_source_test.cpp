@@ -1,4 +1,4 @@
-// A warp's source image has its own size (issue 14, the spherical-mirror
+// A warp's source image has its own size (the spherical-mirror
 // setup): a Bourke mesh's (u, v) address a square fisheye dome master while the
 // projector output is 16:9. The rays of a viewport output are compared with an
 // independent sampler (output pixel → bilinear in the generated mesh → (u, v)
