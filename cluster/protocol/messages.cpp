@@ -150,7 +150,7 @@ void validate(const Thumbnail& m, const Check& check) {
 void validate(const FrameSchedule& m, const Check& check) {
   check(m.period_ns >= kMinFramePeriodNs && m.period_ns <= kMaxFramePeriodNs,
         "FrameSchedule.period_ns: " + std::to_string(m.period_ns) + " outside [" + std::to_string(kMinFramePeriodNs) +
-            ", " + std::to_string(kMaxFramePeriodNs) + "] (240 Hz to 1 Hz)");
+            ", " + std::to_string(kMaxFramePeriodNs) + "] (250 Hz to 0.01 Hz)");
 }
 void validate(const ClockPong& m, const Check& check) {
   check(m.master_sent_ns >= m.master_received_ns,

@@ -201,8 +201,9 @@ struct FrameSchedule {
   std::uint64_t period_ns = 0;      ///< in [kMinFramePeriodNs, kMaxFramePeriodNs]
   bool operator==(const FrameSchedule&) const = default;
 };
-/// A frame period the schedule may have: 240 Hz to 1 Hz.
-inline constexpr std::uint64_t kMinFramePeriodNs = 4'000'000, kMaxFramePeriodNs = 1'000'000'000;
+/// A frame period the schedule may have: 250 Hz to 0.01 Hz (every timing.frame_rate_hz,
+/// cluster/link/cluster_config.h).
+inline constexpr std::uint64_t kMinFramePeriodNs = 4'000'000, kMaxFramePeriodNs = 100'000'000'000;
 
 /// Master → node, right before the FrameState of `frame`: send a thumbnail
 /// of every output of that frame (at most `edge_px` on its longer side) with

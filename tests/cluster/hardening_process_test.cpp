@@ -248,5 +248,26 @@ TEST_F(HardeningProcess, ALauncherWhoseMasterCannotBindStartsNoNode) {
   ::close(taken);
 }
 
+// A paced show's frames go out on a schedule whose period the protocol bounds:
+// --fps 0.4 once started the master and its nodes, then stopped the master at
+// the first frame ("cannot encode: FrameSchedule.period_ns ..."). Now the rate
+// is checked with the show, before any node starts, naming the option and the range.
+TEST_F(HardeningProcess, ALauncherWhoseShowRateNoScheduleCanHoldStartsNoNode) {
+  const fs::path config = write_config();
+  const pid_t launcher = spawn({"cluster", "--cluster", config.string(), "--show",
+                                (kSource / "configs/shows/earth-lunar-eclipse-2029-buenos-aires.json").string(),
+                                "--fps", "0.004", "--out", (dir_ / "out-rate").string(), "--cache", cache_.string()},
+                               "cluster-rate.log");
+  const std::optional<int> status = core::wait_for_exit(launcher, 120s);
+  ASSERT_TRUE(status.has_value()) << logs();
+  EXPECT_NE(*status, 0);
+  const std::string log = read_text(dir_ / "cluster-rate.log");
+  EXPECT_NE(log.find("master: 0.004 frames per second (--fps): a paced show presents 0.01 to 240 frames per second"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("the master could not start"), std::string::npos) << log;
+  EXPECT_EQ(count_of(log, "node 'a' started"), 0u) << log;
+}
+
 }  // namespace
 }  // namespace zenith::cluster
