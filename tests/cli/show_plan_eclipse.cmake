@@ -3,7 +3,7 @@
 # of greatest eclipse names it (maximum within seconds of NASA's 18:25:32
 # UTC); one a day later has none, which is not an error, and the plan says no
 # other is seen from there within its five years of search; and the next lunar
-# eclipse seen from there.
+# eclipse seen from there; and the lunar eclipse show holds its eclipse.
 include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(dir "${WORK_DIR}/show-plan-eclipse")
 file(REMOVE_RECURSE "${dir}")
@@ -38,3 +38,15 @@ expect_mentions("${stdout}" "none seen from there within 5 years" "the plan")
 # the Moon setting in Kentucky during it.
 expect_mentions("${stdout}" "lunar eclipse: the next one seen from there: a total lunar eclipse, maximum 2018-01-31 13:29:"
                 "the plan")
+# The lunar eclipse show (configs/shows/earth-lunar-eclipse-2029-buenos-aires.json) holds its eclipse: NASA's
+# greatest eclipse 03:22:05 UTC, umbral magnitude 1.8452, totality 02:31:18–04:13:01, the Moon high over Buenos Aires.
+execute_process(COMMAND ${ZENITH} show plan --show "${SOURCE_DIR}/configs/shows/earth-lunar-eclipse-2029-buenos-aires.json"
+                        --tables small
+                RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "show plan of the lunar eclipse show failed (${rc}):\n${stdout}\n${err}")
+endif()
+foreach(needle "lunar eclipse: the show's sky holds a total lunar eclipse, maximum 2029-06-26 03:22:"
+               "umbral magnitude 1.84" "the Moon 76." "totality 2029-06-26 02:31:" "– 2029-06-26 04:13:")
+  expect_mentions("${stdout}" "${needle}" "the lunar eclipse show's plan")
+endforeach()

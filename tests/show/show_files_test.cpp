@@ -24,7 +24,8 @@ std::vector<fs::path> show_files() {
 TEST(ShowFiles, TheExamplesAreThere) {
   std::vector<std::string> names;
   for (const fs::path& p : show_files()) names.push_back(p.stem().string());
-  for (const char* expected : {"earth-limb-pass", "earth-sunrise-dome", "mars-descent", "mars-sunset-aureole"})
+  for (const char* expected : {"earth-limb-pass", "earth-sunrise-dome", "mars-descent", "mars-sunset-aureole",
+                               "earth-lunar-eclipse-2029-buenos-aires"})
     EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
 }
 
