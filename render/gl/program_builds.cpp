@@ -77,8 +77,10 @@ const ShaderProgram& ProgramBuilds::get(const std::string& key, const Starter& s
 
 void ProgramBuilds::warm_started(FirstDispatchWarmup& warmup, const DispatchShapes& shapes,
                                  const std::function<int(const ShaderProgram&)>& order) {
-  std::vector<std::pair<int, ShaderProgram*>> queue;
-  for (const std::string& key : std::exchange(started_, {})) {
+  std::vector<std::pair<int, ShaderProgram*>> queue;  // the last started first, then by `order`
+  const std::vector<std::string> started = std::exchange(started_, {});
+  for (auto key_it = started.rbegin(); key_it != started.rend(); ++key_it) {
+    const std::string& key = *key_it;
     if (pending_.contains(key)) get(key, {});
     auto it = programs_.find(key);
     if (it == programs_.end() || it->second.dispatched()) continue;

@@ -54,8 +54,9 @@ class ProgramBuilds {
   /// now where it was not) for a first dispatch on `warmup`'s thread with
   /// stand-ins shaped as `shapes`, but those already dispatched. `order`
   /// gives where each comes in the caller's dispatches (negative: not
-  /// dispatched, not queued); the warm-up takes the last first, so that the
-  /// caller's thread and its own work from opposite ends and rarely wait for each other.
+  /// dispatched, not queued; equal: in the order started); the warm-up takes
+  /// the last first, so that the caller's thread and its own work from
+  /// opposite ends and rarely wait for each other.
   void warm_started(FirstDispatchWarmup& warmup, const DispatchShapes& shapes,
                     const std::function<int(const ShaderProgram&)>& order);
 

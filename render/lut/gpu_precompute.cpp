@@ -8,6 +8,7 @@
 #include <array>
 #include <chrono>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include "atmosphere/lut/spherical_harmonics.h"
 #include "atmosphere/model_hash.h"
 #include "render/gl/buffer.h"
+#include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/gl_error.h"
 #include "render/gl/gl_limits.h"
 #include "render/gl/program_binary_cache.h"
@@ -140,6 +142,7 @@ class GpuPrecompute {
   std::vector<GroupTables> groups_;
   gl::ProgramBinaryCache* binaries_;  ///< null: every program compiled
   gl::ProgramBuilds builds_;
+  std::unique_ptr<gl::FirstDispatchWarmup> warmup_;  // after builds_: stops before the programs go
   double fraction_done_ = 0.0;
   /// Σ over the table of each wavelength's radiance in the last radiance_sum,
   /// and in the one before that of the last order (the series tail's caps).
@@ -233,6 +236,18 @@ std::vector<std::pair<std::string, std::vector<ShaderDefine>>> GpuPrecompute::ne
 void GpuPrecompute::start_programs() {
   for (const auto& [file, extra] : needed_programs())
     builds_.start(program_key(file, extra), program_starter(file, extra));
+  // llvmpipe: the later stages' machine code generated on a second thread
+  // while the first stages run (render/gl/first_dispatch_warmup.h). Every
+  // table here is rgba32f, one level, linear, clamped, with power-of-two sides
+  // (TableSizes): the stand-ins' shape when none is given.
+  if (builds_.mode() != gl::CompileMode::parallel || !gl::first_dispatch_warmup_worthwhile()) return;
+  try {
+    warmup_ = std::make_unique<gl::FirstDispatchWarmup>();
+  } catch (const std::runtime_error& e) {
+    spdlog::info("precompute: first dispatches not warmed: {}", e.what());
+    return;
+  }
+  builds_.warm_started(*warmup_, {}, [](const ShaderProgram&) { return 0; });  // needed_programs(): in stage order
 }
 
 std::string GpuPrecompute::program_key(const std::string& file, const std::vector<ShaderDefine>& extra) {

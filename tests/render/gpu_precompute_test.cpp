@@ -358,7 +358,8 @@ TEST(GpuPrecompute, UsesAGivenContextAndLeavesItCurrent) {
 }
 
 /// The programs' builds started all at once (the default, on the driver's
-/// compiler threads where it has them) or one at a time where first used
+/// compiler threads where it has them; on llvmpipe the later stages' first
+/// dispatches warmed on a second thread too) or one at a time where first used
 /// (gl::CompileMode::serial) are the same programs from the same texts: the
 /// tables agree bit for bit, whatever the driver's arithmetic. With the
 /// series tail (its program started ahead too) and with a tolerance that stops
