@@ -35,18 +35,6 @@ bool environment_says_yes(const char* name) {
   return v == "1" || v == "true" || v == "y" || v == "yes";
 }
 
-GLenum internal_format_of(TextureFormat f) {
-  switch (f) {
-    case TextureFormat::r32f: return GL_R32F;
-    case TextureFormat::rg32f: return GL_RG32F;
-    case TextureFormat::rgba32f: return GL_RGBA32F;
-    case TextureFormat::rgba16f: return GL_RGBA16F;
-    case TextureFormat::rgba8: return GL_RGBA8;
-    case TextureFormat::rgba16: return GL_RGBA16;
-  }
-  return GL_RGBA32F;
-}
-
 GLenum target_of(TextureShape::Kind kind) {
   switch (kind) {
     case TextureShape::Kind::texture_2d: return GL_TEXTURE_2D;
@@ -101,9 +89,9 @@ class StandIns {
     GLuint id = 0;
     glCreateTextures(target, 1, &id);
     if (shape.kind == TextureShape::Kind::texture_2d)
-      glTextureStorage2D(id, levels, internal_format_of(shape.format), w, h);
+      glTextureStorage2D(id, levels, internal_format(shape.format), w, h);
     else
-      glTextureStorage3D(id, levels, internal_format_of(shape.format), w, h, d);
+      glTextureStorage3D(id, levels, internal_format(shape.format), w, h, d);
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, shape.mipmapped ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, shape.repeat_s ? GL_REPEAT : GL_CLAMP_TO_EDGE);
@@ -160,7 +148,7 @@ void dispatch_with_stand_ins(const Job& job, StandIns& stand_ins) {
       else
         glBindImageTexture(static_cast<GLuint>(unit), texture, 0,
                            kind == TextureShape::Kind::texture_2d ? GL_FALSE : GL_TRUE, 0, GL_READ_WRITE,
-                           internal_format_of(shape.format));
+                           internal_format(shape.format));
     }
   }
   for (const GLenum block : {GL_UNIFORM_BLOCK, GL_SHADER_STORAGE_BLOCK}) {

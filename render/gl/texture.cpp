@@ -11,9 +11,8 @@
 #include "render/gl/gl_error.h"
 
 namespace zenith::render::gl {
-namespace {
 
-GLenum internal_format(TextureFormat f) {
+unsigned internal_format(TextureFormat f) {
   switch (f) {
     case TextureFormat::r32f: return GL_R32F;
     case TextureFormat::rg32f: return GL_RG32F;
@@ -24,6 +23,8 @@ GLenum internal_format(TextureFormat f) {
   }
   return GL_RGBA32F;
 }
+
+namespace {
 
 GLenum pixel_format(TextureFormat f) {
   switch (f) {

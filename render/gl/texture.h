@@ -15,6 +15,8 @@ enum class TextureFormat { r32f, rg32f, rgba32f, rgba16f, rgba8, rgba16 };
 int channel_count(TextureFormat format);
 /// "r32f", "rg32f", "rgba32f", "rgba16f", "rgba8", "rgba16" (the GLSL image format qualifier).
 const char* to_string(TextureFormat format);
+/// GL's sized internal format of `format` (GL_R32F, …, GL_RGBA16).
+unsigned internal_format(TextureFormat format);
 
 /// How a compute shader accesses a texture bound as an image.
 enum class ImageAccess { read_only, write_only, read_write };
