@@ -9,6 +9,10 @@ namespace zenith::cluster {
 namespace {
 constexpr std::size_t kRecentDelays = 16;
 constexpr std::int64_t kMinFitSpanNs = 1'000'000'000;  // a line needs samples a second apart
+/// The clocks' rate difference a node may believe without evidence: NTP's
+/// largest frequency correction (RFC 5905, MAXFREQ = 500 ppm). Crystals
+/// differ by tens of ppm; a fitted slope beyond this is noise.
+constexpr double kDriftPrior = 500e-6;
 }  // namespace
 
 void ClockSync::seed(std::int64_t master_ns, std::int64_t node_ns) { seed_ = Sample{node_ns, master_ns - node_ns, 0}; }
@@ -72,7 +76,13 @@ std::int64_t ClockSync::least_kept_delay() const {
 
 /// Least squares of θ against the node's time over the tight kept samples,
 /// each weighted by 1 / δ² (δ floored at 10 µs so that one lucky sample does
-/// not rule).
+/// not rule). A sample's θ is off by at most δ/2, so the slope is known to
+/// about σ_d = 1 / (2 √(Σ w (t − t̄)²)); over a short span of noisy samples
+/// (a second of 5 ± 1 ms legs: σ_d of thousands of ppm) it would invent a
+/// drift that the prediction then carries forward. So the slope is shrunk
+/// toward 0 by a prior of width kDriftPrior, as a Gaussian prior's posterior
+/// mean is: d · D² / (D² + σ_d²) — the full slope once the span pins it down
+/// (a minute of clean exchanges: σ_d of a few ppm), none while it cannot.
 void ClockSync::fit() {
   fitted_ = false;
   if (kept_.size() < 2) return;
@@ -96,8 +106,11 @@ void ClockSync::fit() {
   if (used < 2 || last - first < kMinFitSpanNs) return;
   const double det = sw * stt - st * st;
   if (!(det > 0.0)) return;
-  drift_ = (sw * sto - st * so) / det;
-  offset0_ = (so - drift_ * st) / sw;
+  const double spread = det / sw;  // Σ w (t − t̄)², ns⁰ (w in 1/ns²)
+  const double slope_variance = 1.0 / (4.0 * spread);
+  const double prior = kDriftPrior * kDriftPrior;
+  drift_ = (sw * sto - st * so) / det * prior / (prior + slope_variance);
+  offset0_ = (so - drift_ * st) / sw;  // the weighted mean's line through that slope
   fitted_delay_ns_ = widest;
   fitted_ = true;
 }

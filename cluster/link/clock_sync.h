@@ -14,9 +14,11 @@
 // the worst bounded, so of each group of kGroupSamples exchanges only the one
 // with the least δ is kept (the clock filter). The kept samples of the last
 // minute or so give the offset and the drift (the clocks' rate difference, in
-// ppm) by a least-squares line θ(t) = θ0 + drift · (t − t0); until two of them
-// span a second, the latest kept sample's offset alone, and before any
-// exchange the one-way estimate of the Welcome (good to the one-way delay).
+// ppm) by a least-squares line θ(t) = θ0 + drift · (t − t0), its slope shrunk
+// toward 0 while the samples cannot pin it down (clock_sync.cpp: a drift of
+// thousands of ppm from a second of jittery samples is noise, not a clock);
+// until two of them span a second, the latest kept sample's offset alone, and
+// before any exchange the one-way estimate of the Welcome (good to the one-way delay).
 //
 // A node whose clock steps (or a master replaced by a standby on another
 // machine) shows samples far off the line: kStepConfirmations in a row whose

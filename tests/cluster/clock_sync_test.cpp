@@ -80,6 +80,25 @@ TEST(ClockSync, ADriftingClockIsFollowed) {
   EXPECT_NEAR(static_cast<double>(sync.to_node(master.at(later))), static_cast<double>(later), 2e4);
 }
 
+// Two seconds of exchanges over a jittery link (5 ± 1 ms each way, as the
+// rig's delaying relay makes it) whose offsets ramp by chance from 1 ms below
+// the truth to 1 ms above. A straight line through the kept samples says
+// ~1000 ppm, which would carry the estimate 2 ms off a second later; clocks
+// differ by tens of ppm, so the estimate keeps to the samples' mean.
+TEST(ClockSync, TwoSecondsOfJitteryExchangesInventNoDrift) {
+  const SimulatedMaster master{4e8, 0.0};
+  ClockSync sync;
+  std::int64_t t = 0;
+  for (int k = 0; k < 20; ++k, t += 100'000'000LL) {
+    // θ is off by (out − back) / 2: from −1 ms at k = 0 to +1 ms at k = 19, δ always 10 ms.
+    const std::int64_t skew = -2'000'000 + k * 4'000'000 / 19;
+    sync.add(exchange(master, t, 5'000'000 + skew / 2, 5'000'000 - skew / 2));
+  }
+  EXPECT_LT(std::abs(sync.drift_ppm()), 500.0);
+  const std::int64_t later = t + 1'000'000'000LL;
+  EXPECT_NEAR(static_cast<double>(sync.offset_ns(later)), static_cast<double>(master.true_offset(later)), 1.1e6);
+}
+
 TEST(ClockSync, AStepStartsTheEstimateAfreshAfterThreeExchangesSayIt) {
   SimulatedMaster master{0.0, 0.0};
   ClockSync sync;
