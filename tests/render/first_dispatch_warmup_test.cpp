@@ -52,6 +52,26 @@ std::size_t files_under(const fs::path& dir) {
   return n;
 }
 
+/// The files under `dir` once Mesa has written what it had queued: the count
+/// unchanged for half a second (its cache writes go through a queue thread
+/// of its own), at most 10 s.
+std::size_t settled_files_under(const fs::path& dir) {
+  std::size_t count = files_under(dir);
+  auto quiet_since = std::chrono::steady_clock::now();
+  const auto until = quiet_since + 10s;
+  while (std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(20ms);
+    const std::size_t now = files_under(dir);
+    if (now != count) {
+      count = now;
+      quiet_since = std::chrono::steady_clock::now();
+    } else if (std::chrono::steady_clock::now() - quiet_since >= 500ms) {
+      break;
+    }
+  }
+  return count;
+}
+
 /// Waits, at most `limit`, until `done` holds.
 template <typename Done>
 bool wait_for(Done done, std::chrono::milliseconds limit) {
@@ -104,7 +124,7 @@ TEST_F(FirstDispatchWarmupTest, AWarmedProgramsFirstDispatchLoadsItsCodeFromMesa
   ASSERT_TRUE(wait_for([&] { return warmup.statistics().warmed == 2; }, 60s)) << "the warm-up thread never ran";
   if (!wait_for([&] { return files_under(cache_) >= 2; }, 5s))
     GTEST_SKIP() << "Mesa's shader cache was opened before this test set its folder; run it alone, as ctest does";
-  const std::size_t after_warmup = files_under(cache_);
+  const std::size_t after_warmup = settled_files_under(cache_);
 
   // The renderer's side: the real texture and image, the program's first dispatch.
   const auto run = [&](const ShaderProgram& program, float scale) {
@@ -116,8 +136,7 @@ TEST_F(FirstDispatchWarmupTest, AWarmedProgramsFirstDispatchLoadsItsCodeFromMesa
   };
   const std::vector<float> out = run(warmed, 0.5f);
   for (std::size_t i = 0; i < out.size(); ++i) ASSERT_EQ(out[i], 0.5f * static_cast<float>(i % 4 + 1)) << "value " << i;
-  std::this_thread::sleep_for(300ms);  // Mesa writes its cache on a thread of its own
-  EXPECT_EQ(files_under(cache_), after_warmup) << "the warmed program's code was generated again";
+  EXPECT_EQ(settled_files_under(cache_), after_warmup) << "the warmed program's code was generated again";
 
   const std::vector<float> other = run(warmed_otherwise, 0.5f);
   EXPECT_EQ(other[4], 2.0f * 0.5f * 1.0f);
