@@ -418,15 +418,10 @@ int Renderer::warm_first_dispatches(const Frame& frame) {
   Impl& im = *impl_;
   if (!im.warmup_tried) {
     im.warmup_tried = true;
-    if (options_.warm_first_dispatches && !options_.serial_compile && gl::first_dispatch_warmup_worthwhile()) {
-      try {
-        im.warmup = std::make_unique<gl::FirstDispatchWarmup>();
-      } catch (const std::runtime_error& e) {
-        spdlog::info("first dispatches not warmed: {}", e.what());
-      }
-    }
+    if (options_.warm_first_dispatches && !options_.serial_compile)
+      im.warmup = gl::FirstDispatchWarmup::if_worthwhile("renderer");
   }
-  if (!im.warmup) return 0;
+  if (!im.warmup || !im.builds->started_since_warm()) return 0;  // most frames: nothing new
   bool one_body = false, bodies = false, sun = false, gbuffer = false;
   for (const BandTiles& band : *frame.bands) {
     one_body = one_body || !band.one_body_tiles.empty();
@@ -464,20 +459,8 @@ gl::DispatchShapes Renderer::dispatch_shapes(const Frame& frame) const {
     const gl::TextureShape albedo = im.albedo.texture().shape();
     shapes.sampled[{static_cast<int>(binding::kAlbedoMapsUnit), albedo.kind}] = albedo;
   }
-  // The band's images and ray table (render/band/band_resources.h), as render_bands fits them.
-  gl::TextureShape band;
-  band.width = frame.projection.width();
-  band.height = band_texture_rows(frame);
-  const auto image = [&](unsigned unit, gl::TextureFormat format) {
-    band.format = format;
-    shapes.images[{static_cast<int>(unit), band.kind}] = band;
-  };
-  image(binding::kGbufferHitImage, gl::TextureFormat::rgba32f);
-  image(binding::kGbufferAlbedoImage, gl::TextureFormat::rgba16f);
-  image(binding::kRadianceSumImage, gl::TextureFormat::rgba32f);
-  image(binding::kTransmittanceProductImage, gl::TextureFormat::rgba32f);
-  band.format = gl::TextureFormat::rgba32f;
-  shapes.sampled[{static_cast<int>(binding::kRayTableUnit), band.kind}] = band;
+  BandResources::add_dispatch_shapes(shapes, frame.projection.width(),
+                                     band_texture_rows(frame));  // as render_bands fits them
   return shapes;
 }
 

@@ -16,6 +16,13 @@ using gl::ImageAccess;
 using gl::Texture;
 using gl::TextureFormat;
 
+namespace {
+/// The G-buffer images' formats, as gbuffer.comp and the passes declare them.
+constexpr TextureFormat kHitFormat = TextureFormat::rgba32f, kAlbedoFormat = TextureFormat::rgba16f,
+                        kRadianceFormat = TextureFormat::rgba32f, kTransmittanceFormat = TextureFormat::rgba32f,
+                        kRayTableFormat = TextureFormat::rgba32f;
+}  // namespace
+
 void BandResources::upload_bodies(std::span<const GpuBody> bodies) {
   const std::vector<GpuBody> none(1);
   bodies_ = gl::Buffer::from(bodies.empty() ? std::span<const GpuBody>(none) : bodies);
@@ -51,10 +58,10 @@ void BandResources::bind_tiles() const { tiles_.bind_storage(binding::kTiles); }
 
 void BandResources::bind_gbuffer_for_the_body_pass() {
   if (gbuffer_hit_.id() == 0) {
-    gbuffer_hit_ = Texture::create_2d(TextureFormat::rgba32f, band_width_, band_height_);
-    gbuffer_albedo_ = Texture::create_2d(TextureFormat::rgba16f, band_width_, band_height_);
-    radiance_sum_ = Texture::create_2d(TextureFormat::rgba32f, band_width_, band_height_);
-    transmittance_ = Texture::create_2d(TextureFormat::rgba32f, band_width_, band_height_);
+    gbuffer_hit_ = Texture::create_2d(kHitFormat, band_width_, band_height_);
+    gbuffer_albedo_ = Texture::create_2d(kAlbedoFormat, band_width_, band_height_);
+    radiance_sum_ = Texture::create_2d(kRadianceFormat, band_width_, band_height_);
+    transmittance_ = Texture::create_2d(kTransmittanceFormat, band_width_, band_height_);
   }
   gbuffer_hit_.bind_image(binding::kGbufferHitImage, ImageAccess::write_only);
   gbuffer_albedo_.bind_image(binding::kGbufferAlbedoImage, ImageAccess::write_only);
@@ -67,6 +74,22 @@ void BandResources::bind_gbuffer_for_the_atmosphere_passes() {
   gbuffer_albedo_.bind_image(binding::kGbufferAlbedoImage, ImageAccess::read_only);
   radiance_sum_.bind_image(binding::kRadianceSumImage, ImageAccess::read_write);
   transmittance_.bind_image(binding::kTransmittanceProductImage, ImageAccess::read_write);
+}
+
+void BandResources::add_dispatch_shapes(gl::DispatchShapes& shapes, int width, int rows) {
+  gl::TextureShape band;
+  band.width = width;
+  band.height = rows;
+  const auto image = [&](unsigned unit, TextureFormat format) {
+    band.format = format;
+    shapes.images[{static_cast<int>(unit), band.kind}] = band;
+  };
+  image(binding::kGbufferHitImage, kHitFormat);
+  image(binding::kGbufferAlbedoImage, kAlbedoFormat);
+  image(binding::kRadianceSumImage, kRadianceFormat);
+  image(binding::kTransmittanceProductImage, kTransmittanceFormat);
+  band.format = kRayTableFormat;
+  shapes.sampled[{static_cast<int>(binding::kRayTableUnit), band.kind}] = band;
 }
 
 void BandResources::upload_rays(const warp::Projection& projection, int first_row, int rows) {
@@ -89,7 +112,7 @@ void BandResources::upload_rays(const warp::Projection& projection, int first_ro
     table = ray_tables_.emplace(first_row, std::move(rays)).first;
   }
   if (ray_table_.width() != width || ray_table_.height() != band_height_)
-    ray_table_ = Texture::create_2d(TextureFormat::rgba32f, width, band_height_);
+    ray_table_ = Texture::create_2d(kRayTableFormat, width, band_height_);
   ray_table_.upload(table->second);
   ray_table_.bind(binding::kRayTableUnit);
 }

@@ -17,6 +17,7 @@
 #include "render/frame/tile_classification.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/buffer.h"
+#include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/texture.h"
 #include "warp/projection.h"
 
@@ -47,6 +48,10 @@ class BandResources {
   /// albedo) and accumulate (radiance, transmittance).
   void bind_gbuffer_for_the_body_pass();
   void bind_gbuffer_for_the_atmosphere_passes();
+  /// The shapes of the G-buffer images and the ray table for bands of
+  /// `width` × `rows` (fit_bands' size), into `shapes`
+  /// (render/gl/first_dispatch_warmup.h): before the first band allocates them.
+  static void add_dispatch_shapes(gl::DispatchShapes& shapes, int width, int rows);
 
   /// The rays of `projection` (one without a GPU form) for the band of `rows`
   /// rows from `first_row`: computed on the CPU in double once, kept until

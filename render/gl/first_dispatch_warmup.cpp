@@ -284,6 +284,16 @@ struct FirstDispatchWarmup::State {
   }
 };
 
+std::unique_ptr<FirstDispatchWarmup> FirstDispatchWarmup::if_worthwhile(const char* who) {
+  if (!first_dispatch_warmup_worthwhile()) return nullptr;
+  try {
+    return std::make_unique<FirstDispatchWarmup>();
+  } catch (const std::runtime_error& e) {
+    spdlog::info("{}: first dispatches not warmed: {}", who, e.what());
+    return nullptr;
+  }
+}
+
 FirstDispatchWarmup::FirstDispatchWarmup() : state_(std::make_shared<State>()) {
   thread_ = std::thread([state = state_] { state->run(); });
 }

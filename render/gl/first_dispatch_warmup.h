@@ -49,6 +49,10 @@ bool first_dispatch_warmup_worthwhile();
 
 class FirstDispatchWarmup {
  public:
+  /// A warm-up where first_dispatch_warmup_worthwhile(), else null; also null,
+  /// with one info line naming `who` and EGL's reason, where no shared
+  /// context can be made (then every first dispatch compiles where it runs).
+  static std::unique_ptr<FirstDispatchWarmup> if_worthwhile(const char* who);
   /// Needs a current EGL context (surfaceless), whose objects the thread's
   /// own context shares. Throws std::runtime_error where EGL gives none.
   FirstDispatchWarmup();

@@ -59,6 +59,8 @@ class ProgramBuilds {
   /// opposite ends and rarely wait for each other.
   void warm_started(FirstDispatchWarmup& warmup, const DispatchShapes& shapes,
                     const std::function<int(const ShaderProgram&)>& order);
+  /// Whether any program was started since the last warm_started.
+  bool started_since_warm() const { return !started_.empty(); }
 
   struct Statistics {
     int built = 0;           ///< programs finished

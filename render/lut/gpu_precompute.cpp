@@ -240,14 +240,10 @@ void GpuPrecompute::start_programs() {
   // while the first stages run (render/gl/first_dispatch_warmup.h). Every
   // table here is rgba32f, one level, linear, clamped, with power-of-two sides
   // (TableSizes): the stand-ins' shape when none is given.
-  if (builds_.mode() != gl::CompileMode::parallel || !gl::first_dispatch_warmup_worthwhile()) return;
-  try {
-    warmup_ = std::make_unique<gl::FirstDispatchWarmup>();
-  } catch (const std::runtime_error& e) {
-    spdlog::info("precompute: first dispatches not warmed: {}", e.what());
-    return;
-  }
-  builds_.warm_started(*warmup_, {}, [](const ShaderProgram&) { return 0; });  // needed_programs(): in stage order
+  if (builds_.mode() != gl::CompileMode::parallel) return;
+  warmup_ = gl::FirstDispatchWarmup::if_worthwhile("precompute");
+  if (warmup_)
+    builds_.warm_started(*warmup_, {}, [](const ShaderProgram&) { return 0; });  // needed_programs(): in stage order
 }
 
 std::string GpuPrecompute::program_key(const std::string& file, const std::vector<ShaderDefine>& extra) {
