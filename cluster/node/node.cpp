@@ -220,7 +220,7 @@ struct Node::Impl {
     while (std::optional<PresentSchedule::Step> step = schedule.next(now)) {
       if (step->kind == PresentSchedule::Step::Kind::render) {
         const bool thumbnails = preview_request && preview_request->frame == step->frame;
-        worker->render(step->state, session, thumbnails ? preview_request->edge_px : 0);
+        worker->render(step->state, session, thumbnails ? preview_request->edge_px : 0, step->present_at);
         if (thumbnails) preview_request.reset();
       } else {
         worker->present(step->frame, step->present_at);

@@ -52,6 +52,11 @@ std::optional<PresentSchedule::Clock::time_point> PresentSchedule::wake_at() con
   return std::nullopt;
 }
 
+bool drop_frame_behind(std::optional<PresentSchedule::Clock::time_point> later_moment,
+                       PresentSchedule::Clock::time_point now) {
+  return !later_moment || *later_moment <= now;
+}
+
 const char* to_string(PresentSchedule::Arrival arrival) {
   switch (arrival) {
     case PresentSchedule::Arrival::taken: return "taken";

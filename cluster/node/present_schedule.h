@@ -78,4 +78,14 @@ class PresentSchedule {
 /// "taken", "duplicate", "stale", "late".
 const char* to_string(PresentSchedule::Arrival arrival);
 
+/// The render thread's rule for a frame it is about to render while a later
+/// frame's render waits behind it (the machine was busy: the frame before took
+/// longer than a period). Under the barrier (`later_moment` empty) the frame is
+/// dropped: the master has moved on. On a schedule it is dropped only once the
+/// later frame's moment `later_moment` has come: until then there is time to
+/// show it, late, and the later one on time — a few milliseconds of one
+/// projector behind the others instead of a frame missing from it.
+bool drop_frame_behind(std::optional<PresentSchedule::Clock::time_point> later_moment,
+                       PresentSchedule::Clock::time_point now);
+
 }  // namespace zenith::cluster

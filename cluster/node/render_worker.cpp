@@ -11,6 +11,7 @@
 #include "astro/sky_data_identity.h"
 #include "atmosphere/lut/table_cache.h"
 #include "atmosphere/model_hash.h"
+#include "cluster/node/present_schedule.h"
 #include "cluster/node/thumbnail.h"
 #include "core/json_reader.h"
 #include "core/timing.h"
@@ -45,8 +46,16 @@ void RenderWorker::push(Job job) {
 void RenderWorker::prepare(const Digest& hash, std::uint64_t session) {
   push(Job{Job::Kind::prepare, {}, 0, hash, session});
 }
-void RenderWorker::render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px) {
-  push(Job{Job::Kind::render, state, state.frame, {}, session, thumbnail_edge_px});
+void RenderWorker::render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px,
+                          std::optional<Clock::time_point> moment) {
+  push(Job{Job::Kind::render,
+           state,
+           state.frame,
+           {},
+           session,
+           thumbnail_edge_px,
+           moment.value_or(Clock::time_point{}),
+           moment.has_value()});
 }
 void RenderWorker::present(std::uint64_t frame, std::optional<Clock::time_point> scheduled) {
   push(Job{Job::Kind::present, {}, frame, {}, 0, 0, scheduled.value_or(Clock::now()), scheduled.has_value()});
@@ -78,11 +87,19 @@ RenderWorker::Job RenderWorker::next_job() {
     }
     Job job = std::move(jobs_.front());
     jobs_.pop_front();
-    if (job.kind == Job::Kind::render &&
-        std::any_of(jobs_.begin(), jobs_.end(), [](const Job& j) { return j.kind == Job::Kind::render; })) {
-      spdlog::warn("node '{}': skipping frame {}: another frame is queued after it", setup_.options.node_name,
-                   job.frame);
-      continue;
+    if (job.kind == Job::Kind::render) {
+      const auto later =
+          std::find_if(jobs_.begin(), jobs_.end(), [](const Job& j) { return j.kind == Job::Kind::render; });
+      if (later != jobs_.end() &&
+          drop_frame_behind(later->scheduled ? std::optional(later->asked) : std::nullopt, Clock::now())) {
+        if (later->scheduled)
+          spdlog::warn("node '{}': skipping frame {}: frame {} is due already (rendering fell behind)",
+                       setup_.options.node_name, job.frame, later->frame);
+        else
+          spdlog::warn("node '{}': skipping frame {}: another frame is queued after it", setup_.options.node_name,
+                       job.frame);
+        continue;
+      }
     }
     return job;
   }
@@ -95,7 +112,7 @@ void RenderWorker::run() {
       switch (job.kind) {
         case Job::Kind::prepare: prepare_tables(job.table_hash, job.session); break;
         case Job::Kind::render: render_frame(job.state, job.session, job.thumbnail_edge_px); break;
-        case Job::Kind::present: present_frame(job.frame, job.queued, job.scheduled); break;
+        case Job::Kind::present: present_frame(job.frame, job.asked, job.scheduled); break;
         case Job::Kind::discard: writer_.discard(); break;
         case Job::Kind::blank: blank_outputs(); break;
         case Job::Kind::stop: writer_.discard(); return;

@@ -36,7 +36,9 @@ namespace zenith::cluster {
 
 /// Invariants: only run() touches GL, the renderer and the files; the queue
 /// is the only state shared with other threads. A render job is skipped when
-/// a newer one is queued behind it (the master moved on). A job that throws
+/// a newer one is queued behind it: under the barrier at once (the master
+/// moved on), on a schedule once the newer one is due (drop_frame_behind() in
+/// present_schedule.h). A job that throws
 /// reports Events::failed and the worker goes on with the next job. Every
 /// answer carries the `session` its job was queued with (the node's count of
 /// Welcomes), so that the node can drop answers meant for a connection that
@@ -81,8 +83,10 @@ class RenderWorker {
   /// Load table set `hash` (checksums checked) and render with it once; then Events::tables_ready.
   void prepare(const Digest& hash, std::uint64_t session);
   /// Render a frame; with `thumbnail_edge_px` > 0 also a thumbnail of every
-  /// output (thumbnail.h) for the master's dome preview.
-  void render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px = 0);
+  /// output (thumbnail.h) for the master's dome preview; `moment`: a scheduled
+  /// frame's moment (when a later frame is queued behind it: drop_frame_behind()).
+  void render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px = 0,
+              std::optional<std::chrono::steady_clock::time_point> moment = std::nullopt);
   /// Present `frame`: now (a Present of the barrier), or a scheduled frame
   /// whose moment `scheduled` has come (its lateness is measured from it).
   void present(std::uint64_t frame, std::optional<std::chrono::steady_clock::time_point> scheduled = std::nullopt);
@@ -106,13 +110,15 @@ class RenderWorker {
  private:
   struct Job {
     enum class Kind { prepare, render, present, discard, blank, stop } kind = Kind::stop;
-    FrameState state;                                ///< render
-    std::uint64_t frame = 0;                         ///< render, present
-    Digest table_hash{};                             ///< prepare
-    std::uint64_t session = 0;                       ///< render, prepare: passed back with the answer
-    int thumbnail_edge_px = 0;                       ///< render: > 0 for thumbnails of the frame
-    std::chrono::steady_clock::time_point queued{};  ///< present: when the Present arrived (the late-frame clock)
-    bool scheduled = false;                          ///< present: `queued` is the frame's scheduled moment
+    FrameState state;           ///< render
+    std::uint64_t frame = 0;    ///< render, present
+    Digest table_hash{};        ///< prepare
+    std::uint64_t session = 0;  ///< render, prepare: passed back with the answer
+    int thumbnail_edge_px = 0;  ///< render: > 0 for thumbnails of the frame
+    /// When the frame was asked for: a scheduled frame's moment (`scheduled`;
+    /// render, present), or the Present's arrival under the barrier (present).
+    std::chrono::steady_clock::time_point asked{};
+    bool scheduled = false;
   };
   void push(Job job);
   Job next_job();

@@ -125,5 +125,18 @@ TEST(PresentSchedule, FramesWhoseMomentPassedWhileWaitingAreSkipped) {
   EXPECT_EQ(s.missed(), 1u);
 }
 
+// The render thread, about to render a frame while a later one waits behind it
+// (the frame before took longer than a period on a busy machine): on a
+// schedule it renders it, late, while the later frame's moment is ahead, and
+// drops it once that moment has come; under the barrier it always drops it.
+TEST(PresentSchedule, ARenderThatFellBehindDropsAFrameOnlyOnceTheNextIsDue) {
+  // Frame 2 is about to be rendered at 33 ms, 1 ms after its moment; frame 3 is due at 48 ms.
+  EXPECT_FALSE(drop_frame_behind(due(3), at_ms(33))) << "15 ms left: frame 2 shown late, frame 3 on time";
+  EXPECT_FALSE(drop_frame_behind(due(3), at_ms(47.9)));
+  EXPECT_TRUE(drop_frame_behind(due(3), due(3))) << "frame 3 is due: frame 2 would follow it";
+  EXPECT_TRUE(drop_frame_behind(due(3), at_ms(60)));
+  EXPECT_TRUE(drop_frame_behind(std::nullopt, at_ms(0))) << "the barrier: the master moved on";
+}
+
 }  // namespace
 }  // namespace zenith::cluster
