@@ -51,8 +51,9 @@ constexpr const char* kUsage =
     "  --no-before only the live frame\n"
     "  --split     time the live frame's steps apart (render to a texture, display pass, window; glFinish\n"
     "              between) instead of the node's fused frame (each band straight into the display texture)\n"
-    "  --moving    the camera turns by 1 µrad every frame (bench/moving_camera.h): no frame reuses the tile\n"
-    "              classification of the one before, as in a show whose camera moves\n";
+    "  --moving    the camera and the sun turn by 1 µrad every frame (bench/moving_camera.h): no frame\n"
+    "              reuses the tile classification or sky-view tables of the one before, as in a show\n"
+    "              whose camera and clock run\n";
 
 struct Options {
   fs::path scene = fs::path(ZENITH_SOURCE_DIR) / "configs/scenes/earth-ground-view.json";
@@ -197,7 +198,7 @@ int run_present(int argc, char** argv) {
 
   // The live frame: nothing leaves the GPU.
   auto live_frame = [&](render::Renderer& renderer, Times& t) {
-    if (opt.moving) turn_camera(scene, still.camera.orientation, ++frame_number);
+    if (opt.moving) move_camera_and_sun(scene, still, ++frame_number);
     const double cpu_start = process_cpu_s();
     const auto start = Clock::now();
     auto since = [](Clock::time_point from) {
@@ -240,7 +241,7 @@ int run_present(int argc, char** argv) {
   // The node's --window path before: readback, CPU display values, a PNG per
   // frame, the picture uploaded and drawn (cluster/node/render_worker.cpp at f28d6b6).
   auto before_frame = [&](render::Renderer& renderer, Times& t) {
-    if (opt.moving) turn_camera(scene, still.camera.orientation, ++frame_number);
+    if (opt.moving) move_camera_and_sun(scene, still, ++frame_number);
     const double cpu_start = process_cpu_s();
     const auto start = Clock::now();
     std::vector<float> rgb = renderer.render_image(scene, *projection);

@@ -42,7 +42,8 @@
 //
 //   render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]
 //                [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]
-//                [--scene FILE] [--fov DEG] [--time-passes] [--moving] [--sky-view-error] [--gbuffer-path]
+//                [--scene FILE] [--fov DEG] [--time-passes] [--moving] [--sky-view-error] [--no-sky-view]
+//                [--gbuffer-path]
 //                [--cache DIR]
 //                [--device auto|software|hardware]
 //                [--benchmark_filter=REGEX] ...
@@ -105,6 +106,7 @@ constexpr int kTile = 16;                 // render::kTileSize: tiles of the atm
 struct Options {
   bool quick = false, chart = true, chart_only = false, time_passes = false, sky_view_error = false, moving = false;
   bool gbuffer_path = false;
+  bool no_sky_view = false;
   double planar_fov_deg = kPlanarFovDeg;
   std::string tables = "paper", device = "auto";
   int orders = atmosphere::lut::kDefaultScatteringOrders, iterations = 3, rounds = 3;
@@ -129,7 +131,8 @@ struct Options {
 constexpr const char* kUsage =
     "usage: render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]\n"
     "                    [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]\n"
-    "                    [--scene FILE] [--fov DEG] [--time-passes] [--moving] [--sky-view-error] [--gbuffer-path]\n"
+    "                    [--scene FILE] [--fov DEG] [--time-passes] [--moving] [--sky-view-error] [--no-sky-view] "
+    "[--gbuffer-path]\n"
     "                    [--cache DIR]\n"
     "                    [--device auto|software|hardware]\n"
     "                    [Google Benchmark flags, e.g. --benchmark_filter=planar]\n"
@@ -164,10 +167,12 @@ constexpr const char* kUsage =
     "  --fov          horizontal field of the planar views in degrees (default 90); the ground view:\n"
     "                 --scene configs/scenes/earth-ground-view.json --sizes 1280x720 --fov 79\n"
     "  --time-passes  time every pass of each case's last frame (glFinish-bracketed) and print the split\n"
-    "  --moving       the camera turns by 1 µrad every frame (bench/moving_camera.h): no frame reuses the\n"
-    "                 tile classification of the one before, as in a show whose camera moves\n"
+    "  --moving       the camera and the sun turn by 1 µrad every frame (bench/moving_camera.h): no frame\n"
+    "                 reuses the tile classification or sky-view tables of the one before, as in a show\n"
+    "                 whose camera and clock run\n"
     "  --sky-view-error  also render each size with all atmospheres without the sky-view table (4D\n"
     "                 lookups per pixel) and print the relative difference of the two images\n"
+    "  --no-sky-view  the one-pass tiles read the 4D tables per pixel instead of the sky-view table\n"
     "  --gbuffer-path every tile through the G-buffer, atmosphere and resolve passes, 4D lookups per\n"
     "                 pixel (the frame's structure before the sky-view table; with --time-passes: its split)\n"
     "  --cache        table cache directory (default $ZENITH_CACHE_DIR, $XDG_CACHE_HOME/zenith, ~/.cache/zenith)\n"
@@ -237,6 +242,8 @@ Options parse_options(int argc, char** argv) {
       o.sky_view_error = true;
     else if (a == "--gbuffer-path")
       o.gbuffer_path = true;
+    else if (a == "--no-sky-view")
+      o.no_sky_view = true;
     else if (a == "--fov") {
       o.planar_fov_deg = std::stod(value(i, a));
       if (!(o.planar_fov_deg > 0.0 && o.planar_fov_deg < 180.0))
@@ -486,7 +493,7 @@ void print_sky_view_error(const std::vector<Resolution>& res, const scene::Scene
   off.sun_disc = false;  // the sky and the ground alone: the disc would set the floor below
   off.sky_view_table = render::SkyViewTableUse::off;
   render::RenderOptions on = off;
-  on.sky_view_table = render::SkyViewTableUse::automatic;
+  on.sky_view_table = render::SkyViewTableUse::always;
   render::Renderer with_table(on, tables), direct(off, tables);
   fmt::print("\nsky-view table against the 4D lookups per pixel (scene '{}', all atmospheres, no sun disc):\n",
              scene.name);
@@ -557,6 +564,7 @@ int run(int argc, char** argv) {
     atm_options.one_pass_tiles = body_options.one_pass_tiles = false;
     atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
   }
+  if (opt.no_sky_view) atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
   if (opt.star_placement) {
     if (!opt.stars || opt.star_twilight.show.empty())
       throw std::invalid_argument("--stars-placement needs --stars LIMIT and --stars-show SHOW");
@@ -640,7 +648,7 @@ int run(int argc, char** argv) {
             double spent = 0.0;
             for (int attempt = 0; static_cast<int>(times.size()) < opt.iterations && attempt < opt.iterations + 3;
                  ++attempt) {
-              if (opt.moving) bench::turn_camera(s, variants[static_cast<std::size_t>(n)].camera.orientation, attempt);
+              if (opt.moving) bench::move_camera_and_sun(s, variants[static_cast<std::size_t>(n)], attempt);
               const auto start = Clock::now();
               const double cpu_start = bench::process_cpu_s();
               renderer.render(s, projection, discard);

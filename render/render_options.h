@@ -22,9 +22,15 @@ struct AtmospherePassFeatures {
 /// (and the ground's light) along view rays from a per-frame sky-view table
 /// (render/frame/sky_view_table.h, docs/rendering-performance.md) instead of the 4D tables.
 enum class SkyViewTableUse {
-  automatic,  ///< yes, in one-pass tiles of an atmosphere the camera is inside, where no other body inside the shell
-              ///< can be
-  off,        ///< never: the 4D tables for every pixel (the reference the table is tested against)
+  /// Where the table is accurate (one-pass tiles of an atmosphere the camera
+  /// is inside, where no other body inside the shell can be) in frames of at
+  /// least SkyViewTable::kMinFramePixels (a smaller frame's 4D lookups cost
+  /// less than filling the table), and at any size in a scene whose Moon can
+  /// eclipse the sun (a sky clock and NightSkyRenderOptions::moon: an
+  /// eclipsed sky is drawn from it).
+  automatic,
+  always,  ///< where it is accurate, in frames of any size (the table's own tests and benchmarks)
+  off,     ///< never: the 4D tables for every pixel (the reference the table is tested against)
 };
 
 /// The night sky's light (render/night/star_pass.h, docs/night-sky.md,

@@ -29,6 +29,7 @@
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
 #include "render/frame/pass_timer.h"
+#include "render/frame/sky_view_table.h"
 #include "render/frame/sun_light.h"
 #include "render/frame/sun_refraction.h"
 #include "render/frame/tile_classification.h"
@@ -315,9 +316,20 @@ void Renderer::make_tables_resident(Frame& frame) {
 
 void Renderer::choose_sky_view(Frame& frame) const {
   const scene::Scene& scene = frame.scene;
+  // A small frame's 4D lookups cost less than the table's fill. But the
+  // Moon's shadow on the air is drawn from the table (eclipse_sky_table.h),
+  // so a scene where the Moon can eclipse the sun keeps it at any size: its
+  // sky does not switch paths (a jump) when the shadow comes near.
+  const std::size_t pixels =
+      static_cast<std::size_t>(frame.projection.width()) * static_cast<std::size_t>(frame.projection.height());
+  const bool eclipses_possible = scene.sky_clock && options_.night_sky.moon;
+  const bool small = pixels < SkyViewTable::kMinFramePixels && !eclipses_possible;
+  if (options_.sky_view_table == SkyViewTableUse::off ||
+      (options_.sky_view_table == SkyViewTableUse::automatic && small))
+    return;
   std::vector<const GpuAtmosphere*> chosen;  // a table set's table is filled once
   for (AtmospherePass& pass : frame.passes) {
-    if (!pass.gpu || options_.sky_view_table == SkyViewTableUse::off || pass.power_m2 > 0.0) continue;
+    if (!pass.gpu || pass.power_m2 > 0.0) continue;
     if (std::find(chosen.begin(), chosen.end(), pass.gpu) != chosen.end()) continue;
     const scene::Body& planet = scene.bodies[static_cast<std::size_t>(pass.body)];
     const glm::dvec3 up = glm::normalize(scene.camera.position_m - planet.position_m);
@@ -347,8 +359,10 @@ void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
       for (const auto& [variant, list] : band.lists[a].one_pass)
         read = read || (variant.sky_view && !sky_and_ground_unlit(pass, variant));
     if (read)
-      timer.gpu("sky-view table",
-                [&] { pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius); });
+      timer.gpu("sky-view table", [&] {
+        if (pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius))
+          ++stats_.sky_view_tables_filled;
+      });
     if (pass.eclipse_sky) {
       if (read)
         follow_moon_shadow(frame, pass, timer);
@@ -363,8 +377,9 @@ void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
     if (pass.moon_sky_view)
       timer.gpu("sky-view table, moonlight", [&] {
         const FrameLight& moon = *frame.moon();
-        pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, moon.direction), moon.angular_radius_rad,
-                                moon.sky_view_slot());
+        if (pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, moon.direction), moon.angular_radius_rad,
+                                    moon.sky_view_slot()))
+          ++stats_.sky_view_tables_filled;
       });
   }
 }

@@ -117,6 +117,10 @@ struct FrameStats {
   int moon_shadows_built = 0;
   /// An atmosphere's sky read the eclipse-sky table (the Moon's shadow on its air).
   bool eclipse_sky = false;
+  /// Sky-view tables filled (one per atmosphere and light): none where each
+  /// held this frame's camera and light already (an output of the same frame
+  /// before this one, a still sky; render/frame/sky_view_table.h).
+  int sky_view_tables_filled = 0;
   /// The night sky's pass (render/night/star_pass.h): whether it drew, its
   /// stars, the floor, the Moon's disc and the stars' own test.
   NightSkyStats night_sky;

@@ -191,15 +191,17 @@ void GpuAtmosphere::start_tile_program(const FrameVariant& frame, const TileVari
   start_built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v, eclipse_sky));
 }
 
-void GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad,
+bool GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad,
                                   std::size_t light) {
   sky_view_->set_camera(camera_radius_m, ground_radius_m_, sun_cosine, sun_angular_radius_rad);
+  if (sky_view_->holds(light)) return false;
   const gl::ShaderProgram& fill = sky_view_->fill_program();
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     bind_tables(g);
     set_group(fill, g);
     sky_view_->fill_group(g, light);
   }
+  return true;
 }
 
 EclipseSkyTable& GpuAtmosphere::eclipse_sky() {

@@ -95,8 +95,10 @@ class GpuAtmosphere {
   /// every wavelength group, for a camera inside the shell at
   /// `camera_radius_m` from the centre, the light's cosine there `sun_cosine`
   /// and its angular radius (render/frame/sky_view_table.h). Leaves image
-  /// unit 0 and texture units 0–4 bound to its own images and tables.
-  void fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad, std::size_t light = 0);
+  /// unit 0 and texture units 0–4 bound to its own images and tables. Returns
+  /// false, filling nothing, where the table holds that camera and light
+  /// already (SkyViewTable::holds: another output of the frame, a still sky).
+  bool fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad, std::size_t light = 0);
 
   /// The Moon's shadow on this atmosphere and its eclipse-sky table
   /// (render/frame/eclipse_sky_table.h), made on first use.

@@ -38,12 +38,15 @@ void SkyViewTable::set_camera(double camera_radius_m, double ground_radius_m, do
                               double sun_angular_radius_rad) {
   const double r = std::max(camera_radius_m, ground_radius_m);
   theta_horizon_rad_ = core::kPi - std::asin(std::min(ground_radius_m / r, 1.0));
+  camera_ = {static_cast<float>(r), static_cast<float>((r - ground_radius_m) * (r + ground_radius_m)),
+             static_cast<float>(std::clamp(sun_cosine, -1.0, 1.0)), static_cast<float>(theta_horizon_rad_),
+             static_cast<float>(sun_angular_radius_rad)};
   const gl::ShaderProgram& fill = fill_program();
-  fill.set_uniform("camera_r", static_cast<float>(r));
-  fill.set_uniform("camera_ground_power", static_cast<float>((r - ground_radius_m) * (r + ground_radius_m)));
-  fill.set_uniform("camera_mu_s", static_cast<float>(std::clamp(sun_cosine, -1.0, 1.0)));
-  fill.set_uniform("theta_horizon", static_cast<float>(theta_horizon_rad_));
-  fill.set_uniform("sun_angular_radius", static_cast<float>(sun_angular_radius_rad));
+  fill.set_uniform("camera_r", camera_.camera_r);
+  fill.set_uniform("camera_ground_power", camera_.camera_ground_power);
+  fill.set_uniform("camera_mu_s", camera_.camera_mu_s);
+  fill.set_uniform("theta_horizon", camera_.theta_horizon);
+  fill.set_uniform("sun_angular_radius", camera_.sun_angular_radius);
 }
 
 void SkyViewTable::fill_group(std::size_t group, std::size_t light) {
@@ -56,6 +59,11 @@ void SkyViewTable::fill_group(std::size_t group, std::size_t light) {
   table.bind_image(binding::kOutputImage, gl::ImageAccess::write_only);
   fill.dispatch_covering(kAzimuthTexels, kZenithTexels);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  // Whole once its last group is filled; part filled, it holds no camera.
+  if (group + 1 == groups_)
+    filled_.at(light) = camera_;
+  else
+    filled_.at(light).reset();
 }
 
 }  // namespace zenith::render

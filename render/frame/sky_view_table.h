@@ -16,6 +16,7 @@
 // (RendererSkyView) and docs/rendering-performance.md.
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -33,6 +34,13 @@ class SkyViewTable {
   /// Tables per atmosphere: one per light of the passes (0 the sun, 1 the
   /// Moon: render/night/moon_light.h); the Moon's is allocated on its first fill.
   static constexpr std::size_t kLights = 2;
+  /// The smallest frame the renderer fills the table for (SkyViewTableUse::
+  /// automatic): four pixels per direction of the table, a 256² dome master.
+  /// Measured on llvmpipe (docs/rendering-performance.md, "The sky-view
+  /// table"), a dome master with the sun moving each frame took 4.5–5.4 ms with
+  /// the table and 1.1–1.2 ms without at 32², 6.2–8.2 against 2.7–3.5 at 128²,
+  /// and about as long either way at 256² (9.1–10.6 against 8.1–10.4).
+  static constexpr std::size_t kMinFramePixels = 4 * 2 * kAzimuthTexels * kZenithTexels;
 
   /// SKY_VIEW_AZIMUTH_TEXELS, SKY_VIEW_ZENITH_TEXELS and SKY_VIEW_LAYERS from the
   /// constants above, for the shaders that include render/sky_view_mapping.glsl.
@@ -54,6 +62,12 @@ class SkyViewTable {
   /// cosine at the camera and the sun's angular radius (the fading of the direct
   /// sun at the horizon) for the following fill_group calls.
   void set_camera(double camera_radius_m, double ground_radius_m, double sun_cosine, double sun_angular_radius_rad);
+  /// Whether light `light`'s table was last filled, every group, with the
+  /// values set_camera() has just set: the fill reads nothing else that
+  /// changes (its atmosphere's tables and model are fixed), so filling it
+  /// again would write the same texels. A dome node's outputs share their
+  /// camera, and a still sky (a hold, a paused show) its sun.
+  bool holds(std::size_t light) const { return filled_.at(light) == camera_; }
   /// Fills the layers of wavelength group g of light `light`'s table (the group's tables must be bound).
   void fill_group(std::size_t group, std::size_t light = 0);
 
@@ -70,6 +84,14 @@ class SkyViewTable {
   std::size_t groups_ = 1;
   std::array<gl::Texture, kLights> tables_;
   double theta_horizon_rad_ = 0.0;
+  /// The fill's uniforms, as the shader receives them.
+  struct FillCamera {
+    float camera_r = 0.0f, camera_ground_power = 0.0f, camera_mu_s = 0.0f, theta_horizon = 0.0f,
+          sun_angular_radius = 0.0f;
+    bool operator==(const FillCamera&) const = default;
+  };
+  FillCamera camera_;                                      // set_camera()'s
+  std::array<std::optional<FillCamera>, kLights> filled_;  // each light's table's, once filled
 };
 
 }  // namespace zenith::render

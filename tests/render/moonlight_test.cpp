@@ -41,7 +41,7 @@ const astro::UtcTime kFullMoon{2026, 1, 3, 23, 0, 0.0};  // 99 % lit, high in th
 /// A dome master's camera: looking south, the dome's centre at the zenith.
 const glm::dvec3 kDomeLook{0.0, -1.0, 0.0};
 
-RenderOptions options(bool moonlight, SkyViewTableUse sky_view = SkyViewTableUse::automatic) {
+RenderOptions options(bool moonlight, SkyViewTableUse sky_view = SkyViewTableUse::always) {
   RenderOptions o;
   o.colour = image::ColourMapping::direct;
   o.sun_disc = false;
@@ -74,7 +74,7 @@ TEST(Moonlight, TheMoonlitSkyIsTheSunlitSkyWithTheSunAtTheMoonTimesItsIrradiance
   ASSERT_LT(moon.phase_angle_rad, 10 * kDeg);
   const warp::FisheyeProjection dome(64, 64);
   const warp::PlanarProjection horizon = warp::PlanarProjection::symmetric(64, 48, 90.0);
-  for (const SkyViewTableUse use : {SkyViewTableUse::automatic, SkyViewTableUse::off})
+  for (const SkyViewTableUse use : {SkyViewTableUse::always, SkyViewTableUse::off})
     for (const bool dome_view : {true, false}) {
       const warp::Projection& p = dome_view ? static_cast<const warp::Projection&>(dome) : horizon;
       const scene::Scene s =

@@ -800,7 +800,7 @@ TEST(NightSkyPass, TheSkyIsNoDarkerThanItsFloorFromTheTables) {
   RenderOptions o = twilight_options(false, false);
   o.skip_hidden_sunlight = false;  // the sky the tables give, also where it is too faint to show
   const warp::FisheyeProjection dome(48, 48);
-  for (const SkyViewTableUse use : {SkyViewTableUse::automatic, SkyViewTableUse::off}) {
+  for (const SkyViewTableUse use : {SkyViewTableUse::always, SkyViewTableUse::off}) {
     o.sky_view_table = use;
     TestRenderer r(o);
     for (double depression : {0.0, 3.0, 6.0, 10.0, 14.0}) {

@@ -40,6 +40,7 @@
 #include "atmosphere/reference/path_tracer.h"
 #include "core/units.h"
 #include "render/display/display_encoder.h"
+#include "render/frame/sky_view_table.h"
 #include "render/frame/sun_occulter.h"
 #include "render/frame/tile_culling.h"
 #include "render/gl/egl_context.h"
@@ -500,6 +501,7 @@ TEST(RendererEclipse, TheShadowArrivesAndMovesWithoutAJump) {
     const scene::Scene s = eclipse_scene(totality.plus_seconds(after + 1.0).calendar_utc());
     RenderOptions no_moon = sky_alone();
     no_moon.night_sky.moon = false;
+    no_moon.sky_view_table = SkyViewTableUse::always;  // the same path as `with`'s, which may have an eclipse
     TestRenderer with(sky_alone()), without(no_moon);
     const auto a = with.renderer.render_image(s, p);
     EXPECT_TRUE(with.renderer.last_frame().eclipse_sky);
@@ -1336,12 +1338,18 @@ TEST(RendererFramePaths, NothingInViewIsBlackAndDispatchesNothing) {
             0u);
 }
 
-/// Renders `s` through `p` with the sky-view table (automatic) and without
-/// (the 4D tables for every pixel) and returns their difference.
+/// The sky-view table wherever it is accurate, in frames of any size.
+RenderOptions sky_view_always(RenderOptions o = direct_colour()) {
+  o.sky_view_table = SkyViewTableUse::always;
+  return o;
+}
+
+/// Renders `s` through `p` with the sky-view table (wherever it is accurate)
+/// and without (the 4D tables for every pixel) and returns their difference.
 ImageDifference sky_view_against_direct(const scene::Scene& s, const warp::Projection& p, std::size_t* table_tiles) {
   RenderOptions off = direct_colour();
   off.sky_view_table = SkyViewTableUse::off;
-  TestRenderer with_table, direct(off);
+  TestRenderer with_table(sky_view_always()), direct(off);
   const auto a = with_table.renderer.render_image(s, p);
   const auto b = direct.renderer.render_image(s, p);
   expect_finite_non_negative(a, "sky-view table");
@@ -1384,7 +1392,7 @@ TEST(RendererSkyView, DifferenceFromTheDirectPathIsFarBelowTheTablesOwnError) {
   no_disc.sun_disc = false;  // the reference is the sky alone
   RenderOptions off = no_disc;
   off.sky_view_table = SkyViewTableUse::off;
-  TestRenderer with_table(no_disc), direct(off);
+  TestRenderer with_table(sky_view_always(no_disc)), direct(off);
   const scene::Scene s = ground_view_scene();
   const warp::PlanarProjection p = warp::PlanarProjection::symmetric(160, 90, 79.0);
   const auto a = with_table.renderer.render_image(s, p);
@@ -1455,7 +1463,7 @@ TEST(RendererFramePaths, BodiesOnlyGroundViewMatchesTheGbufferPath) {
 TEST(RendererSkyView, NotUsedHighUpInTwilight) {
   // 10 km up (10 % of the shell): with the sun above the horizon the table is
   // used, with the sun 4° below it not (its horizon would be up to 25 % off).
-  TestRenderer t;
+  TestRenderer t(sky_view_always());
   const warp::PlanarProjection p = warp::PlanarProjection::symmetric(64, 36, 60.0);
   const glm::dvec3 forward = sky_direction(92.0, 90.0);
   t.renderer.render_image(planet_scene("earth-advanced", 10e3, 60.0, forward), p);
@@ -1467,8 +1475,58 @@ TEST(RendererSkyView, NotUsedHighUpInTwilight) {
   EXPECT_GT(t.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
 }
 
+// A dome node's outputs share the camera, and a still sky its sun: the table
+// is filled once for them, and an output that reads a table filled for
+// another renders exactly what it would have with a table of its own; a sun
+// that moved fills it again.
+TEST(RendererSkyView, FilledOncePerCameraAndSunForEveryOutputOfTheFrame) {
+  const scene::Scene s = planet_scene("earth-advanced", 2.0, 80.0, {0, 0, 1});
+  warp::FisheyeParameters turned;
+  turned.rotation_deg = 180.0;  // the other projector of the node
+  const warp::FisheyeProjection front(32, 32), back(32, 32, turned);
+  TestRenderer shared(sky_view_always());
+  shared.renderer.render_image(s, front);
+  EXPECT_EQ(shared.renderer.last_frame().sky_view_tables_filled, 1);
+  const std::vector<float> back_shared = shared.renderer.render_image(s, back);
+  ASSERT_GT(shared.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  EXPECT_EQ(shared.renderer.last_frame().sky_view_tables_filled, 0) << "the second output of the frame";
+  TestRenderer own(sky_view_always());
+  EXPECT_EQ(own.renderer.render_image(s, back), back_shared) << "bit for bit";
+
+  scene::Scene later = s;
+  later.sun.direction = sky_direction(80.01, 0.0);
+  const std::vector<float> moved = shared.renderer.render_image(later, back);
+  EXPECT_EQ(shared.renderer.last_frame().sky_view_tables_filled, 1) << "the sun moved";
+  EXPECT_NE(moved, back_shared);
+  later.camera.exposure *= 2.0;  // the exposure is not the table's
+  shared.renderer.render_image(later, back);
+  EXPECT_EQ(shared.renderer.last_frame().sky_view_tables_filled, 0);
+  shared.renderer.render_image(s, back);
+  EXPECT_EQ(shared.renderer.last_frame().sky_view_tables_filled, 1) << "the sun back where it was";
+  EXPECT_EQ(shared.renderer.render_image(s, back), back_shared);
+}
+
+// By default the table is filled only for frames of at least
+// SkyViewTable::kMinFramePixels (a smaller frame's 4D lookups cost less than
+// the fill); such a frame is the direct path's, bit for bit.
+TEST(RendererSkyView, NotFilledForASmallFrame) {
+  const scene::Scene s = planet_scene("earth-advanced", 2.0, 80.0, {0, 0, 1});
+  RenderOptions off = direct_colour();
+  off.sky_view_table = SkyViewTableUse::off;
+  TestRenderer automatic, direct(off);
+  const warp::FisheyeProjection small(255, 255), large(256, 256);
+  ASSERT_LT(std::size_t{255} * 255, SkyViewTable::kMinFramePixels);
+  ASSERT_GE(std::size_t{256} * 256, SkyViewTable::kMinFramePixels);
+  EXPECT_EQ(automatic.renderer.render_image(s, small), direct.renderer.render_image(s, small));
+  EXPECT_EQ(automatic.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  EXPECT_EQ(automatic.renderer.last_frame().sky_view_tables_filled, 0);
+  automatic.renderer.render_image(s, large);
+  EXPECT_GT(automatic.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
+  EXPECT_EQ(automatic.renderer.last_frame().sky_view_tables_filled, 1);
+}
+
 TEST(RendererSkyView, NotUsedFromSpace) {
-  TestRenderer t;
+  TestRenderer t(sky_view_always());
   const scene::Scene s = planet_scene("earth-advanced", 400e3, 60.0, {1.0, 0.0, -0.35});
   t.renderer.render_image(s, warp::PlanarProjection::symmetric(64, 64, 60.0));
   ASSERT_EQ(t.renderer.last_frame().atmospheres.size(), 1u);

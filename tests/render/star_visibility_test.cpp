@@ -90,7 +90,7 @@ TEST(StarVisibility, TheSkyBehindAStarIsNoDarkerThanItsOwnBound) {
   const SmallTables& t = SmallTables::get("earth-advanced");
   const atmosphere::lut::SkyRadianceLowerBound floor(t.model, t.tables, true);
   const warp::FisheyeProjection dome(64, 64);
-  for (const SkyViewTableUse use : {SkyViewTableUse::automatic, SkyViewTableUse::off}) {
+  for (const SkyViewTableUse use : {SkyViewTableUse::always, SkyViewTableUse::off}) {
     RenderOptions o = options(false);
     o.sky_view_table = use;
     o.skip_hidden_sunlight = false;  // the sky the tables give, also where it is too faint to show
@@ -109,7 +109,7 @@ TEST(StarVisibility, TheSkyBehindAStarIsNoDarkerThanItsOwnBound) {
           for (std::size_t i = 0; i < weights.size(); ++i)
             whole[c] += exposure * weights[i][c] * s.sun.irradiance_W_m2_nm[i] * k[i];
         const SkyBehindStarBound behind(floor, s.camera.position_m, s.bodies[0].position_m, t.model.ground_radius_m,
-                                        s.sun.direction, use == SkyViewTableUse::automatic, weights,
+                                        s.sun.direction, use == SkyViewTableUse::always, weights,
                                         s.sun.irradiance_W_m2_nm, exposure, {}, whole);
         std::size_t checked = 0, stars = 0, kept = 0, above = 0;
         double least_ratio = 1e300;  // B_s over the darkest pixel its splat touches
@@ -140,7 +140,7 @@ TEST(StarVisibility, TheSkyBehindAStarIsNoDarkerThanItsOwnBound) {
                   const double v = image[(static_cast<std::size_t>(py) * 64 + px) * 3 + c];
                   EXPECT_LE(b[c], v) << "sun " << depression << "° down, exposure " << exposure << ", star at (" << p.x
                                      << ", " << p.y << "), pixel (" << px << ", " << py << "), channel " << c
-                                     << (use == SkyViewTableUse::automatic ? ", sky-view" : ", 4D");
+                                     << (use == SkyViewTableUse::always ? ", sky-view" : ", 4D");
                   darkest = std::min(darkest, v / b[c]);
                   ++checked;
                 }
