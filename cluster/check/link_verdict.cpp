@@ -17,6 +17,9 @@ constexpr double kDriftWarnPpm = 500.0;
 constexpr double kWallClockWarnMs = 1000.0;
 /// Held frames an hour that warn (one) and fail (one a minute).
 constexpr double kHeldWarnPerHour = 1.0, kHeldFailPerHour = 60.0;
+/// Datagram loss that warns even where the frames' copies hide it: a link of a
+/// dedicated switch loses none, so this much is a cable or port failing.
+constexpr double kLossWarn = 0.02;
 /// A retransmission timeout on Linux: what a lost TCP segment costs the barrier.
 constexpr double kRetransmissionMs = 200.0;
 
@@ -57,8 +60,8 @@ const char* to_string(LinkGrade grade) {
 int copies_in_time(double one_way_ms, const LinkTarget& target) {
   const double period_ms = 1000.0 / target.frame_rate_hz;
   int copies = 0;
-  for (int k = 1; k <= target.lookahead_frames; ++k)
-    if (k * period_ms - one_way_ms >= period_ms / 2) ++copies;
+  for (int j = 1; j <= 2 * target.lookahead_frames; ++j)  // copy j leaves j half periods ahead
+    if (j * period_ms / 2 - one_way_ms >= period_ms / 2) ++copies;
   return copies;
 }
 
@@ -89,8 +92,9 @@ LinkVerdict judge(const LinkMeasurement& link, const LinkTarget& target) {
   const double one_way_ms = link.round_trip_p99_ms / 2;
   if (scheduled) {
     v.copies_in_time = copies_in_time(one_way_ms, target);
-    // Copy k is in time from k ≥ 1/2 + d/T on: two copies need one more frame of lookahead than that.
-    const int lookahead = static_cast<int>(std::min(std::ceil(0.5 + one_way_ms / period_ms), 1e6)) + 1;
+    // Copy j is in time from j ≥ 1 + 2d/T on; two copies need copies up to one more, j ≤ 2L.
+    const double first_in_time = std::min(std::ceil(1.0 + 2.0 * one_way_ms / period_ms), 1e6);
+    const int lookahead = static_cast<int>(std::ceil((first_in_time + 1.0) / 2.0));
     v.lookahead_for_two_copies = lookahead;
     v.held_frames_per_hour = v.copies_in_time == 0 ? 3600.0 * target.frame_rate_hz
                                                    : 3600.0 * target.frame_rate_hz * std::pow(p, v.copies_in_time);
@@ -98,13 +102,13 @@ LinkVerdict judge(const LinkMeasurement& link, const LinkTarget& target) {
       f.add(LinkGrade::fail, fmt::format("round trips up to {:.1f} ms (99th percentile) leave no copy of a frame in "
                                          "time with {} frames of lookahead: every frame late; use {}",
                                          link.round_trip_p99_ms, target.lookahead_frames, lookahead));
-    else if (v.held_frames_per_hour >= kHeldWarnPerHour)
+    else if (v.held_frames_per_hour >= kHeldWarnPerHour || p >= kLossWarn)
       f.add(v.held_frames_per_hour >= kHeldFailPerHour ? LinkGrade::fail : LinkGrade::warn,
-            fmt::format("{:.1f} % of the datagrams lost (toward it {:.1f} %, from it {:.1f} %): about {:.0f} frames "
+            fmt::format("{:.1f} % of the datagrams lost (toward it {:.1f} %, from it {:.1f} %): about {:.3g} frames "
                         "an hour held a period longer ({} of {} copies in time); look for a bad cable or switch "
                         "port{}",
                         100 * p, 100 * link.loss_to_node().value_or(1.0), 100 * link.loss_from_node().value_or(0.0),
-                        v.held_frames_per_hour, v.copies_in_time, target.lookahead_frames,
+                        v.held_frames_per_hour, v.copies_in_time, 2 * target.lookahead_frames,
                         lookahead > target.lookahead_frames ? fmt::format(", or use a lookahead of {}", lookahead)
                                                             : std::string()));
   } else {

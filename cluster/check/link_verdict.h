@@ -4,12 +4,12 @@
 // the cluster's frame rate and lookahead. Pure: the numbers in, the grade and
 // its reasons out.
 //
-// The schedule sends frame N in every tick from lookahead_frames periods
-// before its moment until one period before it (docs/cluster.md, "The frame
-// schedule"). A copy helps when it arrives at least half a period before the
-// moment (the node renders it meanwhile): with T the period and d the
-// one-way delay (half the 99th-percentile round trip), copy k (sent k·T
-// ahead) is in time when k·T − d ≥ T/2. A frame is held — the projector
+// The schedule sends frame N at every tick and half a period after it, from
+// lookahead_frames periods before its moment until half a period before it
+// (docs/cluster.md, "The frame schedule"). A copy helps when it arrives at
+// least half a period before the moment (the node renders it meanwhile): with
+// T the period and d the one-way delay (half the 99th-percentile round trip),
+// copy j (sent j·T/2 ahead) is in time when j·T/2 − d ≥ T/2. A frame is held — the projector
 // shows the last one a period longer — when every copy in time is lost:
 // with a fraction p of the datagrams lost independently, held frames an
 // hour = 3600 · f · p^(copies in time). p is the larger of the losses toward

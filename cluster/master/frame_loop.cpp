@@ -23,7 +23,7 @@ using core::ms_since;
 using std::chrono::milliseconds;
 
 FrameLoop::FrameLoop(boost::asio::io_context& io, Parts parts)
-    : p_(std::move(parts)), barrier_timer_(io), frame_timer_(io), pacer_(p_.play.fps) {}
+    : p_(std::move(parts)), barrier_timer_(io), frame_timer_(io), resend_timer_(io), pacer_(p_.play.fps) {}
 
 void FrameLoop::retry_after(Clock::duration delay) {
   frame_timer_.expires_after(delay);
@@ -39,6 +39,7 @@ void FrameLoop::on_node_left(std::uint32_t session) {
 void FrameLoop::stop() {
   barrier_timer_.cancel();
   frame_timer_.cancel();
+  resend_timer_.cancel();
   if (p_.options.paced && p_.progress.presented > 0)
     spdlog::info(
         "master: pacing at {} Hz: {} frames presented, {} more than a period after they were due (the warm-up "
@@ -324,6 +325,7 @@ void FrameLoop::schedule_tick() {
   }
   send_scheduled(state, when, nodes);
   ahead_.push_back({when, state});
+  resend_between_ticks();
 
   // A standby follows every frame as under the barrier (its takeover goes on from the last one sent).
   p_.sessions.send_to_standbys(std::make_shared<const std::vector<std::uint8_t>>(encode(state)));
@@ -416,7 +418,15 @@ void FrameLoop::tail_tick(std::uint64_t k, const std::string& reason) {
   frame_timer_.async_wait([this, k, reason](const boost::system::error_code& ec) {
     if (ec) return;
     resend_ahead(p_.sessions.ready_ids());
+    resend_between_ticks();
     tail_tick(k + 1, reason);
+  });
+}
+
+void FrameLoop::resend_between_ticks() {
+  resend_timer_.expires_after(pacer_.period() / 2);
+  resend_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) resend_ahead(p_.sessions.ready_ids());
   });
 }
 
