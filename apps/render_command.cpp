@@ -354,7 +354,10 @@ void run_viewport_render(const RenderArgs& a, const scene::Scene& scene) {
   context_options.prefer = render::gl::parse_device_preference(a.device);
   render::gl::HeadlessContext context(context_options);
   const render::TableRequest request = make_table_request(a);
-  render::Renderer renderer(make_render_options(a), [&](const atmosphere::AtmosphereModel& model) {
+  render::RenderOptions options = make_render_options(a);
+  // The outputs take the sky-view table's path alike, whatever their sizes (no seam between them).
+  options.sky_view_table = render::sky_view_use_for_outputs(config.largest_output_pixels());
+  render::Renderer renderer(options, [&](const atmosphere::AtmosphereModel& model) {
     render::ObtainedTables t = render::obtain_tables(model, request);
     context.make_current();
     return std::move(t.tables);

@@ -33,6 +33,13 @@ enum class SkyViewTableUse {
   off,     ///< never: the 4D tables for every pixel (the reference the table is tested against)
 };
 
+/// The sky-view table's use for each output of a dome or wall whose largest
+/// output has `largest_output_pixels`: `always` where that one is large enough
+/// to fill the table (SkyViewTable::kMinFramePixels), so that a small output
+/// beside it takes the same path and no seam runs between projectors; else
+/// `automatic` (every output small: the 4D lookups, or the table for eclipses).
+SkyViewTableUse sky_view_use_for_outputs(std::size_t largest_output_pixels);
+
 /// The night sky's light (render/night/star_pass.h, docs/night-sky.md,
 /// "Rendering the night sky"), drawn for scenes with a "time" and "site" (the
 /// stars) or a "night_sky"/"light_pollution" (the floor and the glow).

@@ -314,6 +314,10 @@ void Renderer::make_tables_resident(Frame& frame) {
   }
 }
 
+SkyViewTableUse sky_view_use_for_outputs(std::size_t largest_output_pixels) {
+  return largest_output_pixels >= SkyViewTable::kMinFramePixels ? SkyViewTableUse::always : SkyViewTableUse::automatic;
+}
+
 void Renderer::choose_sky_view(Frame& frame) const {
   const scene::Scene& scene = frame.scene;
   // A small frame's 4D lookups cost less than the table's fill. But the

@@ -419,6 +419,13 @@ const OutputConfig* ViewportConfig::find(const std::string& output_name) const {
   return nullptr;
 }
 
+std::size_t ViewportConfig::largest_output_pixels() const {
+  std::size_t largest = 0;
+  for (const OutputConfig& o : outputs)
+    largest = std::max(largest, static_cast<std::size_t>(o.width_px) * static_cast<std::size_t>(o.height_px));
+  return largest;
+}
+
 std::size_t ViewportConfig::index_of(const std::string& output_name) const {
   for (std::size_t i = 0; i < outputs.size(); ++i)
     if (outputs[i].name == output_name) return i;

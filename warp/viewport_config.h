@@ -156,6 +156,8 @@ struct ViewportConfig {
   const OutputConfig* find(const std::string& output_name) const;
   /// Its index in outputs; throws std::invalid_argument listing the names when none.
   std::size_t index_of(const std::string& output_name) const;
+  /// The pixels (width × height) of its largest output; 0 without outputs.
+  std::size_t largest_output_pixels() const;
   /// Throws what stops output `index` from being rendered: its own warp_error,
   /// or, when it blends automatically, a ConfigError at /outputs/<index>/blend
   /// naming the automatically blended output whose warp is broken (its

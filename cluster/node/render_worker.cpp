@@ -220,6 +220,9 @@ void RenderWorker::ensure_renderer(std::uint32_t flags) {
   renderer_flags_ = flags;
   const atmosphere::lut::TableCache cache(options.cache_directory);
   render::RenderOptions render_options = render::render_options_of(flags);
+  // Every node's outputs take the sky-view table's path alike, whatever their
+  // sizes: a small output beside a large one would otherwise show a seam.
+  render_options.sky_view_table = render::sky_view_use_for_outputs(setup_.viewports.largest_output_pixels());
   // A node's frames are live: a new Moon's shadow in an eclipse is built on a
   // worker thread, never at the barrier (render/frame/eclipse_sky_table.h).
   render_options.background_shadow_builds = true;

@@ -52,6 +52,7 @@
 #include "tests/render/render_test_support.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
+#include "warp/viewport_config.h"
 #include "warp/warped_projection.h"
 
 namespace zenith::render {
@@ -1523,6 +1524,25 @@ TEST(RendererSkyView, NotFilledForASmallFrame) {
   automatic.renderer.render_image(s, large);
   EXPECT_GT(automatic.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u);
   EXPECT_EQ(automatic.renderer.last_frame().sky_view_tables_filled, 1);
+}
+
+// The outputs of one dome or wall take one path whatever their sizes (a
+// node's and `zenith render --viewport`'s choice): a small output beside a
+// large one reads the table too, so no seam runs between them.
+TEST(RendererSkyView, TheOutputsOfOneDomeTakeOnePath) {
+  warp::ViewportConfig dome;
+  dome.outputs.resize(2);
+  dome.outputs[0].width_px = dome.outputs[0].height_px = 32;
+  dome.outputs[1].width_px = 256;
+  dome.outputs[1].height_px = 300;
+  EXPECT_EQ(dome.largest_output_pixels(), 256u * 300u);
+  EXPECT_EQ(sky_view_use_for_outputs(dome.largest_output_pixels()), SkyViewTableUse::always);
+  EXPECT_EQ(sky_view_use_for_outputs(32 * 32), SkyViewTableUse::automatic);
+  RenderOptions o = direct_colour();
+  o.sky_view_table = sky_view_use_for_outputs(dome.largest_output_pixels());
+  TestRenderer t(o);
+  t.renderer.render_image(planet_scene("earth-advanced", 2.0, 80.0, {0, 0, 1}), warp::FisheyeProjection(32, 32));
+  EXPECT_GT(t.renderer.last_frame().atmospheres.at(0).sky_view_tiles, 0u) << "the small output reads the table";
 }
 
 TEST(RendererSkyView, NotUsedFromSpace) {
