@@ -205,6 +205,7 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
     renderer_ = std::make_unique<render::Renderer>(
         options, [this](const atmosphere::AtmosphereModel& model) { return tables_for(model); });
     renderer_->set_albedo_source([this](const scene::AlbedoSource& source) { return albedo_for(source); });
+    renderer_->set_band_sink_warmup([this](render::gl::FirstDispatchWarmup& warmup) { warm_display_pass(warmup); });
     render_flags_ = render_flags;
   }
   return *renderer_;
@@ -293,6 +294,33 @@ std::size_t LocalFrameRenderer::acquire_slot() {
   }
 }
 
+render::display::OutputStage LocalFrameRenderer::output_stage(std::size_t o, const scene::FadeState& fade) const {
+  const LocalOutput& out = outputs_[o];
+  const OutputTextures& t = textures_[o];
+  render::display::OutputStage stage;
+  stage.tone = settings_.tone;
+  stage.blended = out.blend.has_value();
+  stage.blend_mask = out.blend ? &t.blend_mask : nullptr;
+  stage.black_level = out.blend ? out.black_level : 0.0;
+  stage.fade = {fade.level, {fade.colour.x, fade.colour.y, fade.colour.z}};
+  stage.colour = t.colour.empty() ? nullptr : &t.colour;
+  return stage;
+}
+
+void LocalFrameRenderer::warm_display_pass(render::gl::FirstDispatchWarmup& warmup) {
+  for (std::size_t o = 0; o < outputs_.size(); ++o) {
+    const OutputTextures& t = textures_[o];
+    const render::display::OutputStage stage = output_stage(o, {});
+    for (const Texture* display : {&t.display8, &t.display16}) {
+      if (display->id() == 0) continue;
+      if (t.radiance.id() != 0)
+        encoder_.warm_encode(warmup, t.radiance, stage, *display);
+      else
+        encoder_.warm_band(warmup, stage, *display);
+    }
+  }
+}
+
 void LocalFrameRenderer::render_outputs(const scene::Scene& scene, const scene::FadeState& fade, Slot& slot) {
   render::Renderer& renderer = renderer_for(render_flags_);
   const auto note_startup = [&] {  // the first frame's share of tables and programs
@@ -309,13 +337,7 @@ void LocalFrameRenderer::render_outputs(const scene::Scene& scene, const scene::
     const LocalOutput& out = outputs_[o];
     OutputTextures& t = textures_[o];
     const Region& r = regions_[o];
-    render::display::OutputStage stage;
-    stage.tone = settings_.tone;
-    stage.blended = out.blend.has_value();
-    stage.blend_mask = out.blend ? &t.blend_mask : nullptr;
-    stage.black_level = out.blend ? out.black_level : 0.0;
-    stage.fade = {fade.level, {fade.colour.x, fade.colour.y, fade.colour.z}};
-    stage.colour = t.colour.empty() ? nullptr : &t.colour;
+    const render::display::OutputStage stage = output_stage(o, fade);
     if (t.radiance.id() != 0) {  // EXR wanted: the radiance texture, then the display pass from it
       renderer.render_to_texture(scene, *out.projection, t.radiance);
       note_startup();

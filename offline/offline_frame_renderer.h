@@ -179,6 +179,11 @@ class LocalFrameRenderer final : public FrameRenderer {
   void hand_off(std::size_t slot);  // waits its fence, queues its files
   /// Every output of one frame into its slot; `fade` on the display codes (EXR keeps the radiance).
   void render_outputs(const scene::Scene& scene, const scene::FadeState& fade, Slot& slot);
+  /// Output `o`'s display pass at `fade`.
+  render::display::OutputStage output_stage(std::size_t o, const scene::FadeState& fade) const;
+  /// Queues every output's display pass on the renderer's warm-up thread
+  /// (Renderer::set_band_sink_warmup): its first draw's code generated there.
+  void warm_display_pass(render::gl::FirstDispatchWarmup& warmup);
   /// The pool's work for the frame in `slot` (slot_frames_): a task per file, the video, the slot's release.
   FrameWriterPool::Frame files_of(std::size_t slot);
 

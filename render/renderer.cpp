@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -92,6 +93,7 @@ struct Renderer::Impl {
   // last, so that it stops before the programs and textures go.
   std::unique_ptr<gl::FirstDispatchWarmup> warmup;
   bool warmup_tried = false;
+  WarmupQueue band_sink_warmup;  // set_band_sink_warmup: render_on_gpu's sink's programs
 };
 
 Renderer::Renderer(const RenderOptions& options, TableSource tables)
@@ -103,6 +105,8 @@ Renderer::Renderer(const RenderOptions& options, TableSource tables)
 Renderer::~Renderer() = default;
 
 void Renderer::set_albedo_source(AlbedoMapSource source) { impl_->albedo.set_source(std::move(source)); }
+
+void Renderer::set_band_sink_warmup(WarmupQueue queue) { impl_->band_sink_warmup = std::move(queue); }
 
 std::string Renderer::program_builds_summary() const {
   if (!impl_->builds) return "";
@@ -138,7 +142,8 @@ void Renderer::render(const scene::Scene& scene, const warp::Projection& project
   });
 }
 
-void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output) {
+void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output,
+                            const WarmupQueue& output_warmup) {
   const auto start = std::chrono::steady_clock::now();
   stats_ = FrameStats{};
   PassTimer timer(options_.time_passes);
@@ -175,7 +180,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   start_programs(frame);
   fill_sky_view_tables(frame, timer);
   frame.programs = &im.frame_programs.passes_for(*im.builds, frame.variant);
-  stats_.programs_warmed = warm_first_dispatches(frame);
+  stats_.programs_warmed = warm_first_dispatches(frame, output_warmup);
   set_direct_light_uniforms(frame);
   impl_->night_sky.prepare(frame, moon_shadow, timer);
   stats_.night_sky = impl_->night_sky.stats();
@@ -433,7 +438,7 @@ void Renderer::start_programs(const Frame& frame) {
     }
 }
 
-int Renderer::warm_first_dispatches(const Frame& frame) {
+int Renderer::warm_first_dispatches(const Frame& frame, const WarmupQueue& output) {
   Impl& im = *impl_;
   if (!im.warmup_tried) {
     im.warmup_tried = true;
@@ -462,6 +467,7 @@ int Renderer::warm_first_dispatches(const Frame& frame) {
     return 3;  // the one-pass tiles (and any other)
   };
   const int before = im.warmup->statistics().queued;
+  if (output) output(*im.warmup);  // the band's last pass: first
   im.builds->warm_started(*im.warmup, dispatch_shapes(frame), order);
   return im.warmup->statistics().queued - before;
 }
@@ -602,17 +608,23 @@ void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projecti
         "of the projection's size {}x{}",
         target.id() == 0 ? "missing" : gl::to_string(target.format()), target.width(), target.height(),
         projection.width(), projection.height()));
-  render_frame(scene, projection, [&](const BandTiles& band, PassTimer& timer) {
-    impl_->band_to_texture.copy(impl_->band.bind_band_on_gpu(band), target, timer);
-  });
+  render_frame(
+      scene, projection,
+      [&](const BandTiles& band, PassTimer& timer) {
+        impl_->band_to_texture.copy(impl_->band.bind_band_on_gpu(band), target, timer);
+      },
+      [&](gl::FirstDispatchWarmup& warmup) { impl_->band_to_texture.warm(warmup, target.format()); });
 }
 
 void Renderer::render_on_gpu(const scene::Scene& scene, const warp::Projection& projection, const GpuBandSink& sink) {
-  render_frame(scene, projection, [&](const BandTiles& band, PassTimer& timer) {
-    const GpuBand gpu_band = impl_->band.bind_band_on_gpu(band);
-    timer.gpu("band output", [&] { sink(gpu_band); });
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next band's passes write what the sink read
-  });
+  render_frame(
+      scene, projection,
+      [&](const BandTiles& band, PassTimer& timer) {
+        const GpuBand gpu_band = impl_->band.bind_band_on_gpu(band);
+        timer.gpu("band output", [&] { sink(gpu_band); });
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next band's passes write what the sink read
+      },
+      impl_->band_sink_warmup);
 }
 
 }  // namespace zenith::render

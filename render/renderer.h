@@ -57,8 +57,9 @@ struct BandTiles;       // render/frame/tile_classification.h
 struct AtmospherePass;  // render/frame/frame_in_progress.h
 class MoonInShadow;     // render/night/moon_in_shadow.h
 namespace gl {
-class Texture;          // render/gl/texture.h
-struct DispatchShapes;  // render/gl/first_dispatch_warmup.h
+class Texture;              // render/gl/texture.h
+struct DispatchShapes;      // render/gl/first_dispatch_warmup.h
+class FirstDispatchWarmup;  // render/gl/first_dispatch_warmup.h
 }  // namespace gl
 
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
@@ -74,6 +75,10 @@ using RowSink = std::function<void(int first_row, int row_count, std::span<const
 
 /// Called once per band (render/band/gpu_band.h) while its buffers are bound: draws what it needs from them.
 using GpuBandSink = std::function<void(const GpuBand& band)>;
+
+/// Queues the first use of the caller's own programs on the renderer's
+/// warm-up thread (Renderer::set_band_sink_warmup).
+using WarmupQueue = std::function<void(gl::FirstDispatchWarmup& warmup)>;
 
 /// What the last frame did, for logs, tests and benchmarks.
 struct FrameStats {
@@ -150,6 +155,14 @@ class Renderer {
   /// thread; a caller that reads them ahead — the offline renderer, while the
   /// tables load — hands them over here. Each map is asked for once.
   void set_albedo_source(AlbedoMapSource source);
+  /// The programs render_on_gpu's sink runs on each band after the
+  /// renderer's passes (a display pass), queued by `queue` on the renderer's
+  /// warm-up thread (RenderOptions::warm_first_dispatches;
+  /// render/gl/first_dispatch_warmup.h) ahead of the renderer's own, since
+  /// the thread takes a frame's last passes first. Called in each frame that
+  /// hands the warm-up new programs (the first, mostly); never without a
+  /// warm-up (a GPU). render_to_texture warms its own copy pass alike.
+  void set_band_sink_warmup(WarmupQueue queue);
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
@@ -225,7 +238,9 @@ class Renderer {
   /// Hands the programs start_programs started to the warm-up thread
   /// (RenderOptions::warm_first_dispatches), made on the first call where
   /// worthwhile; how many it queued.
-  int warm_first_dispatches(const Frame& frame);
+  /// `output`: queues the programs that take each band after the frame's
+  /// passes (the caller's display pass, render_to_texture's copy); may be empty.
+  int warm_first_dispatches(const Frame& frame, const WarmupQueue& output);
   /// How this frame's passes will bind textures and images (render/gl/first_dispatch_warmup.h).
   gl::DispatchShapes dispatch_shapes(const Frame& frame) const;
   /// The sky-view table of each atmosphere choose_sky_view chose (the sun's;
@@ -241,7 +256,9 @@ class Renderer {
   /// (render()), or copied into a texture (render_to_texture()).
   using BandOutput = std::function<void(const BandTiles& band, PassTimer& timer)>;
   /// The steps of a frame, in the order below, each band handed to `output`.
-  void render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output);
+  /// `output_warmup`: what warm_first_dispatches queues for `output`'s programs.
+  void render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output,
+                    const WarmupQueue& output_warmup = {});
   /// The frame band by band: each band's tiles drawn, then handed to `output`.
   void render_bands(Frame& frame, const BandOutput& output, PassTimer& timer);
 

@@ -46,8 +46,7 @@ ColourProfileTextures::ColourProfileTextures(const warp::MpcdiColourProfile& pro
   }
 }
 
-void ColourProfileTextures::bind(const gl::ShaderProgram& p) const {
-  p.set_uniform("colour_profile", present_ ? 1 : 0);
+void ColourProfileTextures::set_uniforms(const gl::ShaderProgram& p) const {
   if (!present_) return;
   const Profile& c = profile_;
   p.set_uniform("decode_type", c.decode.type == Profile::Decode::Type::lut1d ? 1 : 0);
@@ -69,22 +68,18 @@ void ColourProfileTextures::bind(const gl::ShaderProgram& p) const {
   if (c.encode.type == Profile::Encode::Type::lut3d) encode_type = 3;
   p.set_uniform("encode_type", encode_type);
   p.set_uniform("encode_inverse_gamma", static_cast<float>(1.0 / c.encode.gamma));
-  const auto bind_1d = [&](const Texture& t, unsigned unit, const char* size_uniform, const warp::CubeLut* lut) {
-    if (t.id() == 0) return;
-    t.bind(unit);
-    p.set_uniform(size_uniform, lut->size);
-  };
-  bind_1d(decode_1d_, binding::kDecodeLutUnit, "decode_lut_size", c.decode.lut ? &*c.decode.lut : nullptr);
-  bind_1d(correct_1d_, binding::kCorrectLut1dUnit, "correct_lut_size", c.correct.lut ? &*c.correct.lut : nullptr);
-  bind_1d(encode_1d_, binding::kEncodeLut1dUnit, "encode_lut_size", c.encode.lut ? &*c.encode.lut : nullptr);
-  if (correct_3d_.id() != 0) {
-    correct_3d_.bind(binding::kCorrectLut3dUnit);
-    p.set_uniform("correct_lut_size", c.correct.lut->size);
-  }
-  if (encode_3d_.id() != 0) {
-    encode_3d_.bind(binding::kEncodeLut3dUnit);
-    p.set_uniform("encode_lut_size", c.encode.lut->size);
-  }
+  if (decode_1d_.id() != 0) p.set_uniform("decode_lut_size", c.decode.lut->size);
+  if (correct_1d_.id() != 0 || correct_3d_.id() != 0) p.set_uniform("correct_lut_size", c.correct.lut->size);
+  if (encode_1d_.id() != 0 || encode_3d_.id() != 0) p.set_uniform("encode_lut_size", c.encode.lut->size);
+}
+
+std::array<std::pair<unsigned, const Texture*>, 5> ColourProfileTextures::lut_textures() const {
+  const auto held = [](const Texture& t) { return t.id() != 0 ? &t : nullptr; };
+  return {{{binding::kDecodeLutUnit, held(decode_1d_)},
+           {binding::kCorrectLut1dUnit, held(correct_1d_)},
+           {binding::kCorrectLut3dUnit, held(correct_3d_)},
+           {binding::kEncodeLut1dUnit, held(encode_1d_)},
+           {binding::kEncodeLut3dUnit, held(encode_3d_)}}};
 }
 
 }  // namespace zenith::render::display

@@ -19,9 +19,12 @@
 //    linear light — below one 8-bit code after the encode where the signal is
 //    above black (docs/warp-meshes.md, "Colour profile").
 // Needs a current GL 4.5 context.
+#include <array>
+#include <utility>
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
+
 #include "warp/colour_profile.h"
 
 namespace zenith::render::display {
@@ -35,8 +38,12 @@ class ColourProfileTextures {
   const warp::MpcdiColourProfile& profile() const { return profile_; }
   bool empty() const { return !present_; }
 
-  /// Sets the colour uniforms of display_transform.glsl on `program` and binds the textures.
-  void bind(const gl::ShaderProgram& program) const;
+  /// Sets the colour uniforms of display_transform.glsl on `program` (one
+  /// compiled with COLOUR_PROFILE 1); nothing without a profile.
+  void set_uniforms(const gl::ShaderProgram& program) const;
+  /// The LUT textures by the unit display_transform.glsl reads each from;
+  /// null where the profile has no such LUT.
+  std::array<std::pair<unsigned, const gl::Texture*>, 5> lut_textures() const;
 
  private:
   warp::MpcdiColourProfile profile_;

@@ -61,7 +61,32 @@ std::array<int, 2> thumbnail_size(int width_px, int height_px, int edge_px) {
           std::max(1, static_cast<int>(std::lround(height_px * scale)))};
 }
 
-void DisplayEncoder::set_stage(const gl::ShaderProgram& p, int width, int height, const OutputStage& stage) const {
+std::vector<std::pair<unsigned, const gl::Texture*>> DisplayEncoder::stage_textures(const OutputStage& stage) {
+  if (unused_2d_.id() == 0) {
+    const std::vector<float> zero(4, 0.0f);
+    unused_2d_ = gl::Texture::create_2d(TextureFormat::rgba32f, 1, 1, zero);
+    unused_3d_ = gl::Texture::create_3d(TextureFormat::rgba32f, 1, 1, 1, zero);
+  }
+  const bool mask = stage.blended && stage.blend_mask != nullptr;
+  std::vector<std::pair<unsigned, const gl::Texture*>> textures = {
+      {binding::kBlendMaskUnit, mask ? stage.blend_mask : &unused_2d_}};
+  const bool profile = stage.colour != nullptr && !stage.colour->empty();
+  const ColourProfileTextures none;
+  for (const auto& [unit, lut] : (profile ? *stage.colour : none).lut_textures()) {
+    const bool three_d = unit == binding::kCorrectLut3dUnit || unit == binding::kEncodeLut3dUnit;
+    textures.emplace_back(unit, lut != nullptr ? lut : three_d ? &unused_3d_ : &unused_2d_);
+  }
+  return textures;
+}
+
+gl::DispatchShapes DisplayEncoder::stage_shapes(const OutputStage& stage) {
+  gl::DispatchShapes shapes;
+  for (const auto& [unit, texture] : stage_textures(stage))
+    shapes.sampled[{static_cast<int>(unit), texture->shape().kind}] = texture->shape();
+  return shapes;
+}
+
+void DisplayEncoder::set_stage(const gl::ShaderProgram& p, int width, int height, const OutputStage& stage) {
   check_stage(stage, width, height);
   p.set_uniform("tone_mapping", stage.tone == image::ToneMapping::clamp ? 1 : 0);
   p.set_uniform("output_stage", stage.blended ? 1 : 0);
@@ -76,11 +101,19 @@ void DisplayEncoder::set_stage(const gl::ShaderProgram& p, int width, int height
   const bool gamma = stage.encoding.transfer == image::DisplayEncoding::Transfer::gamma;
   p.set_uniform("transfer", gamma ? 1 : 0);
   p.set_uniform("inverse_gamma", static_cast<float>(gamma ? 1.0 / stage.encoding.gamma : 1.0));
-  if (stage.blended && stage.blend_mask != nullptr) stage.blend_mask->bind(binding::kBlendMaskUnit);
-  if (stage.colour != nullptr && !stage.colour->empty())
-    stage.colour->bind(p);
-  else
-    p.set_uniform("colour_profile", 0);
+  if (stage.colour != nullptr) stage.colour->set_uniforms(p);  // a program with COLOUR_PROFILE 1
+  for (const auto& [unit, texture] : stage_textures(stage)) texture->bind(unit);
+}
+
+gl::ShaderProgram& DisplayEncoder::encode_program(bool from_band, const OutputStage& stage) {
+  const bool profile = stage.colour != nullptr && !stage.colour->empty();
+  gl::ShaderProgram& program = encode_programs_[(from_band ? 2 : 0) + (profile ? 1 : 0)];
+  if (program.id() == 0) {
+    const std::vector<gl::ShaderDefine> defines = {{"FROM_BAND", from_band ? "1" : "0"},
+                                                   {"COLOUR_PROFILE", profile ? "1" : "0"}};
+    program = load_graphics_program("render/present.vert", "render/display_encode.frag", defines);
+  }
+  return program;
 }
 
 void DisplayEncoder::encode(const gl::Texture& radiance, const OutputStage& stage, gl::Texture& display) {
@@ -89,11 +122,7 @@ void DisplayEncoder::encode(const gl::Texture& radiance, const OutputStage& stag
     throw std::invalid_argument(fmt::format(
         "display pass: the target is a {} {}x{} texture; it must be rgba8 or rgba16 of the frame's size {}x{}",
         gl::to_string(display.format()), display.width(), display.height(), radiance.width(), radiance.height()));
-  if (encode_program_.id() == 0) {
-    const std::vector<gl::ShaderDefine> defines = {{"FROM_BAND", "0"}};
-    encode_program_ = load_graphics_program("render/present.vert", "render/display_encode.frag", defines);
-  }
-  const gl::ShaderProgram& p = encode_program_;
+  const gl::ShaderProgram& p = encode_program(false, stage);
   set_stage(p, radiance.width(), radiance.height(), stage);
   radiance.bind(binding::kDisplayRadianceUnit);
   draw_rows(p, display, 0, display.height());
@@ -107,14 +136,21 @@ void DisplayEncoder::encode_band(const GpuBand& band, const OutputStage& stage, 
         "display pass: the target is a {} {}x{} texture; rows {}+{} of a {}-pixel-wide band do not fit it (rgba8 or "
         "rgba16 of the frame's size)",
         gl::to_string(display.format()), display.width(), display.height(), band.first_row, band.rows, band.width));
-  if (band_program_.id() == 0) {
-    const std::vector<gl::ShaderDefine> defines = {{"FROM_BAND", "1"}};
-    band_program_ = load_graphics_program("render/present.vert", "render/display_encode.frag", defines);
-  }
-  const gl::ShaderProgram& p = band_program_;
+  const gl::ShaderProgram& p = encode_program(true, stage);
   set_stage(p, display.width(), display.height(), stage);
   set_band_uniforms(p, band);
   draw_rows(p, display, band.first_row, band.rows);
+}
+
+void DisplayEncoder::warm_band(gl::FirstDispatchWarmup& warmup, const OutputStage& stage, const gl::Texture& display) {
+  warmup.warm_draw(encode_program(true, stage), stage_shapes(stage), display.format());
+}
+
+void DisplayEncoder::warm_encode(gl::FirstDispatchWarmup& warmup, const gl::Texture& radiance, const OutputStage& stage,
+                                 const gl::Texture& display) {
+  gl::DispatchShapes shapes = stage_shapes(stage);
+  shapes.sampled[{static_cast<int>(binding::kDisplayRadianceUnit), radiance.shape().kind}] = radiance.shape();
+  warmup.warm_draw(encode_program(false, stage), shapes, display.format());
 }
 
 void DisplayEncoder::draw_rows(const gl::ShaderProgram& p, gl::Texture& display, int first_row, int rows) {
@@ -129,7 +165,10 @@ ThumbnailMeans DisplayEncoder::thumbnail(const gl::Texture& radiance, const Outp
   if (edge_px < 1 || edge_px > kMaxThumbnailEdgePx)
     throw std::invalid_argument(fmt::format("thumbnail edge {} px: must be in [1, {}]", edge_px, kMaxThumbnailEdgePx));
   const auto [tw, th] = thumbnail_size(radiance.width(), radiance.height(), edge_px);
-  if (thumbnail_program_.id() == 0) thumbnail_program_ = load_compute_program("render/display_thumbnail.comp");
+  if (thumbnail_program_.id() == 0) {
+    const std::vector<gl::ShaderDefine> defines = {{"COLOUR_PROFILE", "0"}};  // its means need no profile
+    thumbnail_program_ = load_compute_program("render/display_thumbnail.comp", defines);
+  }
   if (thumbnail_target_.id() == 0 || thumbnail_target_.width() != tw || thumbnail_target_.height() != th)
     thumbnail_target_ = gl::Texture::create_2d(TextureFormat::rgba32f, tw, th);
   const gl::ShaderProgram& p = thumbnail_program_;

@@ -19,11 +19,13 @@
 // frame_readback.h).
 // Needs a current GL 4.5 context.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "image/display_encoding.h"
 #include "image/tone_mapping.h"
 #include "render/display/colour_profile_textures.h"
+#include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/gl/texture_rows_draw.h"
@@ -102,17 +104,40 @@ class DisplayEncoder {
   /// for its viewer). Reads back thumbnail_size() pixels only.
   ThumbnailMeans thumbnail(const gl::Texture& radiance, const OutputStage& stage, int edge_px);
 
+  /// Queues encode_band's first draw for `stage` into a texture of
+  /// `display`'s format on `warmup`'s thread (render/gl/first_dispatch_warmup.h),
+  /// with stand-ins shaped as the textures encode_band binds: where llvmpipe
+  /// generates the program's machine code at its first draw, a first frame's
+  /// display pass then loads it from Mesa's cache instead. Builds the program now.
+  void warm_band(gl::FirstDispatchWarmup& warmup, const OutputStage& stage, const gl::Texture& display);
+  /// The same for encode()'s program, reading `radiance`.
+  void warm_encode(gl::FirstDispatchWarmup& warmup, const gl::Texture& radiance, const OutputStage& stage,
+                   const gl::Texture& display);
+
  private:
-  /// Sets display_transform.glsl's uniforms and binds the mask (of `width` × `height`).
-  void set_stage(const gl::ShaderProgram& program, int width, int height, const OutputStage& stage) const;
+  /// The textures the display pass binds for `stage`, by unit: one for every
+  /// sampler display_transform.glsl declares — the stage's blend mask and
+  /// colour LUTs, and a 1 × 1 texture of the sampler's kind where the stage
+  /// has none — so that what llvmpipe keys the program's machine code by never
+  /// depends on what another pass left bound to those units.
+  std::vector<std::pair<unsigned, const gl::Texture*>> stage_textures(const OutputStage& stage);
+  /// `stage_textures`' shapes, for a warm-up.
+  gl::DispatchShapes stage_shapes(const OutputStage& stage);
+  /// Sets display_transform.glsl's uniforms and binds stage_textures (the mask of `width` × `height`).
+  void set_stage(const gl::ShaderProgram& program, int width, int height, const OutputStage& stage);
+  /// display_encode.frag's program reading a band (FROM_BAND) or a radiance
+  /// texture, with the stage's colour profile compiled in or not
+  /// (COLOUR_PROFILE); built on first use.
+  gl::ShaderProgram& encode_program(bool from_band, const OutputStage& stage);
   /// Draws `program` over rows [first_row, first_row + rows) of `display`.
   void draw_rows(const gl::ShaderProgram& program, gl::Texture& display, int first_row, int rows);
 
-  gl::ShaderProgram encode_program_;  // present.vert + display_encode.frag
-  gl::ShaderProgram band_program_;    // the same, FROM_BAND 1
-  gl::TextureRowsDraw rows_;          // the display texture's rows as the framebuffer
+  std::array<gl::ShaderProgram, 4>
+      encode_programs_;       // present.vert + display_encode.frag, [2·FROM_BAND + COLOUR_PROFILE]
+  gl::TextureRowsDraw rows_;  // the display texture's rows as the framebuffer
   gl::ShaderProgram thumbnail_program_;
-  gl::Texture thumbnail_target_;  // rgba32f, (re)allocated per thumbnail size
+  gl::Texture thumbnail_target_;       // rgba32f, (re)allocated per thumbnail size
+  gl::Texture unused_2d_, unused_3d_;  // bound to the samplers a stage leaves without a texture
 };
 
 }  // namespace zenith::render::display

@@ -12,10 +12,13 @@
 #include <cstdlib>
 #include <deque>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "render/gl/texture_rows_draw.h"
 
 namespace zenith::render::gl {
 
@@ -70,6 +73,7 @@ struct Job {
   unsigned program = 0;
   std::string name;  // for the debug log
   DispatchShapes shapes;
+  std::optional<TextureFormat> draw_target;  // a draw into a texture of this format; none: a dispatch
 };
 
 /// The stand-in textures and buffer of the thread's context, made on first need.
@@ -79,6 +83,9 @@ class StandIns {
     for (auto& [shape, id] : textures_) glDeleteTextures(1, &id);
     if (buffer_ != 0) glDeleteBuffers(1, &buffer_);
   }
+  StandIns() = default;
+  StandIns(const StandIns&) = delete;
+  StandIns& operator=(const StandIns&) = delete;
 
   unsigned texture(const TextureShape& shape) {
     for (const auto& [s, id] : textures_)
@@ -101,6 +108,18 @@ class StandIns {
     return id;
   }
 
+  /// A 2 × 2 texture of `format` to draw into, and the framebuffer and
+  /// vertex array of this thread's context that draw it (TextureRowsDraw).
+  struct DrawTarget {
+    Texture texture;
+    TextureRowsDraw draw;
+  };
+  DrawTarget& draw_target(TextureFormat format) {
+    for (auto& [f, target] : draw_targets_)
+      if (f == format) return target;
+    return draw_targets_.emplace_back(format, DrawTarget{Texture::create_2d(format, 2, 2), {}}).second;
+  }
+
   /// A zero-filled buffer for every uniform and storage block: what the
   /// stand-in dispatch reads there is never used.
   unsigned buffer(GLint64 at_least_bytes) {
@@ -119,11 +138,13 @@ class StandIns {
   std::vector<std::pair<TextureShape, GLuint>> textures_;
   GLuint buffer_ = 0;
   GLint64 buffer_bytes_ = 0;
+  std::vector<std::pair<TextureFormat, DrawTarget>> draw_targets_;
 };
 
 /// Binds stand-ins for every texture, image and block `program` uses, and
-/// dispatches one work group (the machine code is generated there).
-void dispatch_with_stand_ins(const Job& job, StandIns& stand_ins) {
+/// dispatches one work group or draws one triangle into a 2 × 2 target (the
+/// machine code is generated there).
+void run_with_stand_ins(const Job& job, StandIns& stand_ins) {
   const GLuint program = job.program;
   GLint uniforms = 0;
   glGetProgramInterfaceiv(program, GL_UNIFORM, GL_ACTIVE_RESOURCES, &uniforms);
@@ -161,6 +182,16 @@ void dispatch_with_stand_ins(const Job& job, StandIns& stand_ins) {
       glBindBufferBase(block == GL_UNIFORM_BLOCK ? GL_UNIFORM_BUFFER : GL_SHADER_STORAGE_BUFFER,
                        static_cast<GLuint>(values[0]), stand_ins.buffer(values[1]));
     }
+  }
+  if (job.draw_target) {
+    StandIns::DrawTarget& target = stand_ins.draw_target(*job.draw_target);
+    target.draw.bind(target.texture, 0, 2);
+    glUseProgram(program);
+    target.draw.draw_with_program_in_use();
+    glUseProgram(0);
+    target.draw.unbind();
+    glFinish();
+    return;
   }
   glUseProgram(program);
   glDispatchCompute(1, 1, 1);
@@ -226,7 +257,8 @@ struct FirstDispatchWarmup::State {
   std::mutex mutex;
   std::condition_variable changed;
   std::deque<Job> queue;
-  unsigned in_hand = 0;  // the program the thread is dispatching; 0: none
+  std::vector<Job> ever_queued;  // what warm() was given, for its one-time rule
+  unsigned in_hand = 0;          // the program the thread is dispatching; 0: none
   bool stop = false;
   Statistics statistics;
 
@@ -270,7 +302,7 @@ struct FirstDispatchWarmup::State {
         in_hand = job.program;
         lock.unlock();
         const auto start = std::chrono::steady_clock::now();
-        dispatch_with_stand_ins(job, stand_ins);
+        run_with_stand_ins(job, stand_ins);
         const double seconds = seconds_since(start);
         spdlog::debug("first dispatch of {} warmed on the warm-up thread: {:.3f} s", job.name, seconds);
         lock.lock();
@@ -309,11 +341,25 @@ FirstDispatchWarmup::~FirstDispatchWarmup() {
 }
 
 void FirstDispatchWarmup::warm(ShaderProgram& program, const DispatchShapes& shapes) {
+  queue(program, shapes, std::nullopt);
+}
+
+void FirstDispatchWarmup::warm_draw(ShaderProgram& program, const DispatchShapes& shapes, TextureFormat target) {
+  queue(program, shapes, target);
+}
+
+void FirstDispatchWarmup::queue(ShaderProgram& program, const DispatchShapes& shapes,
+                                std::optional<TextureFormat> draw_target) {
   const unsigned id = program.id();
   {
     std::lock_guard lock(state_->mutex);
     if (state_->stop) return;
-    state_->queue.push_back({id, program.name(), shapes});
+    const auto same = [&](const Job& j) {
+      return j.program == id && j.shapes == shapes && j.draw_target == draw_target;
+    };
+    if (std::any_of(state_->ever_queued.begin(), state_->ever_queued.end(), same)) return;
+    state_->queue.push_back({id, program.name(), shapes, draw_target});
+    state_->ever_queued.push_back(state_->queue.back());
     ++state_->statistics.queued;
   }
   state_->changed.notify_all();

@@ -10,7 +10,8 @@
 // mostly LLVM, one program after another on one core (docs/shows.md, "Where
 // the start goes").
 //
-// FirstDispatchWarmup dispatches programs once each on a thread of its own,
+// FirstDispatchWarmup dispatches programs once each (or draws, for the
+// display pass's fragment program) on a thread of its own,
 // in a context that shares the renderer's objects, with stand-in textures,
 // images and buffers shaped as the renderer will bind them
 // (DispatchShapes): the code lands in Mesa's cache, and the renderer's own
@@ -24,6 +25,7 @@
 // shader cache on. A GPU driver compiles at link time (render/gl/program_builds.h).
 #include <map>
 #include <memory>
+#include <optional>
 #include <thread>
 #include <utility>
 
@@ -40,6 +42,7 @@ struct DispatchShapes {
   using Slot = std::pair<int, TextureShape::Kind>;
   std::map<Slot, TextureShape> sampled;  ///< texture units (sampler2D, sampler2DArray, sampler3D)
   std::map<Slot, TextureShape> images;   ///< image units (image2D, image2DArray, image3D), format as declared
+  bool operator==(const DispatchShapes&) const = default;
 };
 
 /// Whether first dispatches are worth warming on the current context's
@@ -63,8 +66,14 @@ class FirstDispatchWarmup {
 
   /// Queues a dispatch of `program` (linked; it must outlive this object)
   /// with stand-ins shaped as `shapes`, and sets the program's
-  /// before-first-dispatch hook. Programs are warmed in the order queued.
+  /// before-first-dispatch hook. Programs are warmed in the order queued; the
+  /// same program with the same shapes is queued once per warm-up.
   void warm(ShaderProgram& program, const DispatchShapes& shapes);
+  /// The same for a graphics program drawn over a framebuffer of one
+  /// `target`-format texture as TextureRowsDraw draws it (one triangle; no
+  /// blending, depth, scissor or sRGB): the display pass's fragment code,
+  /// which llvmpipe keys by the target's format as well.
+  void warm_draw(ShaderProgram& program, const DispatchShapes& shapes, TextureFormat target);
 
   struct Statistics {
     int queued = 0;
@@ -77,6 +86,8 @@ class FirstDispatchWarmup {
   Statistics statistics() const;
 
  private:
+  void queue(ShaderProgram& program, const DispatchShapes& shapes, std::optional<TextureFormat> draw_target);
+
   struct State;
   std::shared_ptr<State> state_;
   std::thread thread_;

@@ -186,6 +186,14 @@ void ShaderProgram::dispatch(unsigned groups_x, unsigned groups_y, unsigned grou
   glDispatchCompute(groups_x, groups_y, groups_z);
 }
 
+void ShaderProgram::draw_triangles(int vertices) const {
+  if (compute_) throw std::logic_error(fmt::format("shader program '{}' is a compute program", name_));
+  if (before_first_dispatch_) std::exchange(before_first_dispatch_, nullptr)();
+  dispatched_ = true;
+  use();
+  glDrawArrays(GL_TRIANGLES, 0, vertices);
+}
+
 void ShaderProgram::dispatch_covering(int width, int height, int depth) const {
   if (width < 1 || height < 1 || depth < 1)
     throw std::invalid_argument(

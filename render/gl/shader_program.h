@@ -128,11 +128,14 @@ class ShaderProgram {
   /// Compute programs: enough work groups to cover width × height × depth
   /// invocations (the shader discards those outside its domain).
   void dispatch_covering(int width, int height = 1, int depth = 1) const;
-  /// Runs `hook` once, just before this program's first dispatch, then drops
-  /// it: where another thread may be generating the program's machine code
-  /// (render/gl/first_dispatch_warmup.h), the hook waits for it.
+  /// Graphics programs: use() and glDrawArrays(GL_TRIANGLES, 0, vertices),
+  /// with the caller's framebuffer and vertex array bound.
+  void draw_triangles(int vertices) const;
+  /// Runs `hook` once, just before this program's first dispatch or draw,
+  /// then drops it: where another thread may be generating the program's
+  /// machine code (render/gl/first_dispatch_warmup.h), the hook waits for it.
   void set_before_first_dispatch(std::function<void()> hook) { before_first_dispatch_ = std::move(hook); }
-  /// Whether dispatch() has run.
+  /// Whether dispatch() or draw_triangles() has run.
   bool dispatched() const { return dispatched_; }
 
  private:

@@ -39,7 +39,12 @@ void TextureRowsDraw::bind(const Texture& target, int first_row, int rows) {
 }
 
 void TextureRowsDraw::draw(const ShaderProgram& program) const {
-  program.use();
+  glBindVertexArray(vertex_array_);
+  program.draw_triangles(3);
+  glBindVertexArray(0);
+}
+
+void TextureRowsDraw::draw_with_program_in_use() const {
   glBindVertexArray(vertex_array_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);

@@ -24,8 +24,11 @@ class TextureRowsDraw {
   /// attachment and rows [first_row, first_row + rows) as the viewport; no sRGB
   /// conversion, scissor, depth test or blending, every channel written.
   void bind(const Texture& target, int first_row, int rows);
-  /// The triangle, drawn with `program`.
+  /// The triangle, drawn with `program` (ShaderProgram::draw_triangles).
   void draw(const ShaderProgram& program) const;
+  /// The triangle, drawn with the program in use (glUseProgram): a warm-up
+  /// thread's draw, which holds the program's id only.
+  void draw_with_program_in_use() const;
   /// Binds the default draw framebuffer and detaches the texture (the
   /// framebuffer keeps no texture alive).
   void unbind() const;

@@ -44,8 +44,11 @@ uniform vec3 fade_colour;   // display-linear RGB in [0, 1]
 uniform int transfer;
 uniform float inverse_gamma;
 
-// The MPCDI colour profile (render/display/colour_profile_textures.h).
-uniform bool colour_profile;
+// The MPCDI colour profile (render/display/colour_profile_textures.h):
+// COLOUR_PROFILE 1 compiles its stages in, 0 leaves them out — a display pass
+// without a profile is a program of its own, without the LUT reads (on a CPU
+// rasterizer they were most of its machine code, generated at its first draw).
+#if COLOUR_PROFILE
 uniform int decode_type;   // 0 gamma, 1 lut1d
 uniform float decode_gamma;
 uniform int correct_type;  // 0 none, 1 lut1d-primary, 2 lut3d
@@ -61,6 +64,7 @@ layout(binding = ENCODE_LUT_1D_UNIT) uniform sampler2D encode_lut_1d;
 // 3D LUTs: red along x, trilinear filtering.
 layout(binding = CORRECT_LUT_3D_UNIT) uniform sampler3D correct_lut_3d;
 layout(binding = ENCODE_LUT_3D_UNIT) uniform sampler3D encode_lut_3d;
+#endif  // COLOUR_PROFILE
 
 /// The tone mapping operator for x ≥ 0; negative and NaN give 0, +∞ gives 1.
 float tone_map(float x) {
@@ -105,6 +109,7 @@ float display_encode(float linear) {
   return linear <= 0.0031308 ? 12.92 * linear : 1.055 * pow(linear, 1.0 / 2.4) - 0.055;
 }
 
+#if COLOUR_PROFILE
 /// Entry i of a 1D LUT's texture.
 vec3 lut_entry(sampler2D lut, int i) {
   return texelFetch(lut, ivec2(i % LUT_1D_ROW_TEXELS, i / LUT_1D_ROW_TEXELS), 0).rgb;
@@ -150,16 +155,18 @@ vec3 mpcdi_process(vec3 s, float alpha, float beta) {
   if (encode_type == 3) l = apply_lut_3d(encode_lut_3d, encode_lut_size, l);
   return clamp(l, 0.0, 1.0);
 }
+#endif  // COLOUR_PROFILE
 
 /// V: what pixel p sends the display for exposed radiance x, each channel in
 /// [0, 1] (times code_max: the code): E(P') without a colour profile, the
 /// profile's processPixel of E(P) with one.
 vec3 display_signal(ivec2 p, vec3 x) {
-  if (!colour_profile) {
-    const vec3 v = display_linear(p, x);
-    return vec3(display_encode(v.r), display_encode(v.g), display_encode(v.b));
-  }
+#if COLOUR_PROFILE
   const vec3 v = content_linear(x);
   const vec3 s = vec3(display_encode(v.r), display_encode(v.g), display_encode(v.b));
   return mpcdi_process(s, stage_alpha(p), stage_black_level(p));
+#else
+  const vec3 v = display_linear(p, x);
+  return vec3(display_encode(v.r), display_encode(v.g), display_encode(v.b));
+#endif
 }

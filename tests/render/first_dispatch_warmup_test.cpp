@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -16,9 +17,11 @@
 #include <thread>
 #include <vector>
 
+#include "render/display/display_encoder.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/shader_bindings.h"
 
 namespace zenith::render::gl {
 namespace {
@@ -191,6 +194,68 @@ TEST_F(FirstDispatchWarmupTest, EveryProgramIsDispatchedRightWhoeverGetsToItFirs
   late.set_uniform("scale", 1.0f);
   late.dispatch_covering(3, 5);
   EXPECT_EQ(target.read()[0], 7.0f);
+}
+
+/// A frame's radiance of 48 × 30 pixels (not powers of two), and a blend mask of its size.
+struct DisplayFrame {
+  static constexpr int kWidth = 48, kHeight = 30;
+  Texture radiance = Texture::create_2d(TextureFormat::rgba32f, kWidth, kHeight,
+                                        std::vector<float>(std::size_t{kWidth} * kHeight * 4, 0.5f));
+  Texture mask = Texture::create_2d(TextureFormat::r32f, kWidth, kHeight,
+                                    std::vector<float>(std::size_t{kWidth} * kHeight, 0.25f));
+  display::OutputStage blended() const {
+    display::OutputStage stage;
+    stage.blended = true;
+    stage.blend_mask = &mask;
+    return stage;
+  }
+};
+
+TEST_F(FirstDispatchWarmupTest, AWarmedDrawLeavesTheDisplayPassCodeInMesasCache) {
+  const DisplayFrame frame;
+  Texture display8 = Texture::create_2d(TextureFormat::rgba8, DisplayFrame::kWidth, DisplayFrame::kHeight);
+  Texture display16 = Texture::create_2d(TextureFormat::rgba16, DisplayFrame::kWidth, DisplayFrame::kHeight);
+  display::DisplayEncoder encoder;
+  FirstDispatchWarmup warmup;
+  encoder.warm_encode(warmup, frame.radiance, frame.blended(), display8);
+  encoder.warm_encode(warmup, frame.radiance, frame.blended(), display8);  // queued once
+  ASSERT_TRUE(wait_for([&] { return warmup.statistics().warmed >= 1; }, 60s)) << "the warm-up thread never drew";
+  if (!wait_for([&] { return files_under(cache_) >= 1; }, 5s))
+    GTEST_SKIP() << "Mesa's shader cache was opened before this test set its folder; run it alone, as ctest does";
+  const std::size_t after_warmup = settled_files_under(cache_);
+
+  encoder.encode(frame.radiance, frame.blended(), display8);
+  // 0.5 tone mapped (1 − e^−0.5), times α = 0.25, sRGB-encoded, in codes.
+  const double linear = (1.0 - std::exp(-0.5)) * 0.25;
+  const double code = std::round(255.0 * (1.055 * std::pow(linear, 1.0 / 2.4) - 0.055));
+  EXPECT_NEAR(display8.read()[0] * 255.0, code, 1.0);
+  EXPECT_EQ(settled_files_under(cache_), after_warmup) << "the warmed display pass's code was generated again";
+  EXPECT_EQ(warmup.statistics().queued, 1);
+
+  encoder.encode(frame.radiance, frame.blended(), display16);  // not warmed: a 16-bit target is other code
+  EXPECT_TRUE(wait_for([&] { return files_under(cache_) > after_warmup; }, 5s))
+      << "a target of another format made the same code: the test could not tell a miss";
+}
+
+TEST_F(FirstDispatchWarmupTest, TheDisplayPassCodeDoesNotDependOnWhatOtherPassesLeftBound) {
+  const DisplayFrame frame;
+  Texture display = Texture::create_2d(TextureFormat::rgba8, DisplayFrame::kWidth, DisplayFrame::kHeight);
+  const display::OutputStage unblended;  // no mask: its sampler reads nothing
+  display::DisplayEncoder first;
+  first.encode(frame.radiance, unblended, display);
+  const std::vector<float> codes = display.read();
+  if (!wait_for([&] { return files_under(cache_) >= 1; }, 5s))
+    GTEST_SKIP() << "Mesa's shader cache was opened before this test set its folder; run it alone, as ctest does";
+  const std::size_t after_first = settled_files_under(cache_);
+
+  // Another pass leaves a texture of another format and shape on the blend mask's unit.
+  const Texture stray = Texture::create_2d(TextureFormat::rg32f, 3, 5);
+  stray.bind(binding::kBlendMaskUnit);
+  display::DisplayEncoder second;  // a program of its own, the same code
+  second.encode(frame.radiance, unblended, display);
+  EXPECT_EQ(display.read(), codes);
+  EXPECT_EQ(settled_files_under(cache_), after_first)
+      << "the display pass compiled again for what another pass left bound (warm-ups could not match it)";
 }
 
 TEST(TextureShape, SaysWhatADriversCodeDependsOn) {
