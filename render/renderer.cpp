@@ -331,8 +331,8 @@ void Renderer::choose_sky_view(Frame& frame) const {
   // sky does not switch paths (a jump) when the shadow comes near.
   const std::size_t pixels =
       static_cast<std::size_t>(frame.projection.width()) * static_cast<std::size_t>(frame.projection.height());
-  const bool eclipses_possible = scene.sky_clock && options_.night_sky.moon;
-  const bool small = pixels < SkyViewTable::kMinFramePixels && !eclipses_possible;
+  const bool small =
+      pixels < SkyViewTable::kMinFramePixels && !moon_can_eclipse_the_sun(scene, options_.night_sky.moon);
   if (options_.sky_view_table == SkyViewTableUse::off ||
       (options_.sky_view_table == SkyViewTableUse::automatic && small))
     return;

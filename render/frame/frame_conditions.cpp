@@ -9,6 +9,10 @@
 
 namespace zenith::render {
 
+bool moon_can_eclipse_the_sun(const scene::Scene& scene, bool moon_drawn) {
+  return moon_drawn && scene.sky_clock.has_value();
+}
+
 bool eclipses_possible(const scene::Scene& scene) {
   const glm::dvec3 s = glm::normalize(scene.sun.direction);
   const double tan_alpha = std::tan(std::min(scene.sun.angular_radius_rad, 1.0));

@@ -19,6 +19,14 @@ namespace zenith::render {
 /// point is at least (its centre's distance from the axis) − b from it.
 bool eclipses_possible(const scene::Scene& scene);
 
+/// Whether the Moon can cover the sun in this frame's sky: the scene keeps a
+/// sky clock (the Moon by date and place) and the Moon is drawn
+/// (`moon_drawn`: RenderOptions::night_sky.moon). Then the frame places the
+/// Moon as the sun's occulter (render/frame/sun_occulter.h), and the renderer
+/// keeps the sky-view table at every frame size, since the Moon's shadow on
+/// the air is drawn from it.
+bool moon_can_eclipse_the_sun(const scene::Scene& scene, bool moon_drawn);
+
 /// Whether every albedo lookup of the frame is at level 0 of the maps
 /// (surface_albedo.glsl: lod = max(0, log2(footprint / texel))): a pixel's
 /// footprint on a body is at most pixel angle × distance / 0.05 (the clamp of

@@ -6,6 +6,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/units.h"
+#include "render/frame/frame_conditions.h"
 #include "render/lut/shader_model.h"
 #include "scene/sun_disc.h"
 
@@ -35,7 +36,7 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Pr
   // same irradiance (exp(−θ²/2σ²) E / 2πσ²): a disc sampled at pixel centres
   // would flicker and lose or gain light with its sub-pixel position.
   f.sun_point_sigma = f.sun_radius < 1.5 * f.sun_pixel_angle ? 0.7 * f.sun_pixel_angle : 0.0;
-  if (moon) f.occulter = sun_occulter(scene, limb_darkening);
+  if (moon_can_eclipse_the_sun(scene, moon)) f.occulter = sun_occulter(scene, limb_darkening);
   f.sun_centre.resize(f.n);
   f.limb_exponent.resize(f.n);
   for (std::size_t i = 0; i < f.n; ++i) {
