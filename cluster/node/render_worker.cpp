@@ -239,6 +239,12 @@ void RenderWorker::ensure_renderer(std::uint32_t flags) {
         make_current();
         return std::move(*tables);
       });
+  // With windows the steady frame goes band by band into each output's display
+  // pass: its first draw warmed on the renderer's warm-up thread (llvmpipe).
+  if (windows_)
+    renderer_->set_band_sink_warmup([this](render::gl::FirstDispatchWarmup& warmup) {
+      for (const OutputFrame& f : frames_) encoder_.warm_band(warmup, f.stage, f.display);
+    });
 }
 
 void RenderWorker::use_table_version(scene::Scene& scene, const std::string& body, const Digest& hash) const {
