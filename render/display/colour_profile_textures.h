@@ -21,10 +21,10 @@
 // Needs a current GL 4.5 context.
 #include <array>
 #include <utility>
+
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
-
 #include "warp/colour_profile.h"
 
 namespace zenith::render::display {
