@@ -53,7 +53,10 @@ gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::strin
 }
 
 void start_built_program(gl::ProgramBuilds& builds, std::string_view name, std::span<const gl::ShaderDefine> defines) {
-  builds.start(program_key(name, defines), [&] { return start_compute_program(name, defines, builds.binary_cache()); });
+  // The starter may run on another thread after this returns (ProgramBuilds::build_on): it owns its inputs.
+  builds.start(program_key(name, defines),
+               [name = std::string(name), defines = std::vector<gl::ShaderDefine>(defines.begin(), defines.end()),
+                binaries = builds.binary_cache()] { return start_compute_program(name, defines, binaries); });
 }
 
 const gl::ShaderProgram& built_program(gl::ProgramBuilds& builds, std::string_view name,

@@ -11,6 +11,8 @@
 #include <condition_variable>
 #include <cstdlib>
 #include <deque>
+#include <exception>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -257,8 +259,9 @@ struct FirstDispatchWarmup::State {
   std::mutex mutex;
   std::condition_variable changed;
   std::deque<Job> queue;
-  std::vector<Job> ever_queued;  // what warm() was given, for its one-time rule
-  unsigned in_hand = 0;          // the program the thread is dispatching; 0: none
+  std::deque<std::function<void()>> builds;  // build(): before the queue's dispatches
+  std::vector<Job> ever_queued;              // what warm() was given, for its one-time rule
+  unsigned in_hand = 0;                      // the program the thread is dispatching; 0: none
   bool stop = false;
   Statistics statistics;
 
@@ -288,6 +291,7 @@ struct FirstDispatchWarmup::State {
                    static_cast<unsigned>(eglGetError()));
       std::lock_guard lock(mutex);
       queue.clear();
+      builds.clear();
       stop = true;
       return;
     }
@@ -295,8 +299,20 @@ struct FirstDispatchWarmup::State {
       StandIns stand_ins;
       std::unique_lock lock(mutex);
       while (true) {
-        changed.wait(lock, [&] { return stop || !queue.empty(); });
+        changed.wait(lock, [&] { return stop || !queue.empty() || !builds.empty(); });
         if (stop) break;
+        if (!builds.empty()) {
+          const std::function<void()> build = std::move(builds.front());
+          builds.pop_front();
+          lock.unlock();
+          const auto start = std::chrono::steady_clock::now();
+          build();
+          const double seconds = seconds_since(start);
+          lock.lock();
+          ++statistics.built;
+          statistics.build_s += seconds;
+          continue;
+        }
         const Job job = std::move(queue.front());
         queue.pop_front();
         in_hand = job.program;
@@ -335,9 +351,31 @@ FirstDispatchWarmup::~FirstDispatchWarmup() {
     std::lock_guard lock(state_->mutex);
     state_->stop = true;
     state_->queue.clear();
+    state_->builds.clear();
   }
   state_->changed.notify_all();
   thread_.join();
+}
+
+std::future<ShaderProgram> FirstDispatchWarmup::build(std::function<ShaderProgram()> build) {
+  auto program = std::make_shared<std::promise<ShaderProgram>>();  // dropped unset: broken_promise
+  std::future<ShaderProgram> result = program->get_future();
+  std::function<void()> task = [build = std::move(build), program] {
+    try {
+      ShaderProgram built = build();
+      glFinish();  // the link complete before the renderer's context uses the program
+      program->set_value(std::move(built));
+    } catch (...) {
+      program->set_exception(std::current_exception());
+    }
+  };
+  {
+    std::lock_guard lock(state_->mutex);
+    if (state_->stop) return result;  // the task dropped: broken_promise
+    state_->builds.push_back(std::move(task));
+  }
+  state_->changed.notify_all();
+  return result;
 }
 
 void FirstDispatchWarmup::warm(ShaderProgram& program, const DispatchShapes& shapes) {

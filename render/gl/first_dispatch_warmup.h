@@ -21,8 +21,16 @@
 // generating its code (ShaderProgram::set_before_first_dispatch), so no
 // program is compiled twice and two cores compile at once.
 //
+// The same thread builds programs ahead of their first use (build()): Mesa
+// 22.3 compiles and links GLSL in the calling thread whatever
+// GL_KHR_parallel_shader_compile says, so a frame's programs built there
+// leave the renderer's thread to its table uploads meanwhile
+// (ProgramBuilds::build_on).
+//
 // Only where it helps (first_dispatch_warmup_worthwhile): llvmpipe with its
 // shader cache on. A GPU driver compiles at link time (render/gl/program_builds.h).
+#include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -74,8 +82,17 @@ class FirstDispatchWarmup {
   /// blending, depth, scissor or sRGB): the display pass's fragment code,
   /// which llvmpipe keys by the target's format as well.
   void warm_draw(ShaderProgram& program, const DispatchShapes& shapes, TextureFormat target);
+  /// Runs `build` (a program's compile and link: ShaderBuild's start and
+  /// finish) on the thread, before any first dispatch still queued; the
+  /// program, or what `build` threw, comes back through the future, complete
+  /// for every context (glFinish after the link). `build` must own what it
+  /// reads. A build still queued when this object goes is dropped (the
+  /// future then holds std::future_error, broken_promise).
+  std::future<ShaderProgram> build(std::function<ShaderProgram()> build);
 
   struct Statistics {
+    int built = 0;         ///< programs built on the thread (build())
+    double build_s = 0.0;  ///< the thread, building
     int queued = 0;
     int warmed = 0;       ///< dispatched on the thread (their code in Mesa's cache)
     int taken_back = 0;   ///< dispatched by the renderer before the thread reached them

@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "core/sha256.h"
@@ -68,6 +70,7 @@ bool ProgramBinaryCache::finish_load(const std::string& key, unsigned program) {
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (ok == GL_TRUE) {
+    std::lock_guard lock(mutex_);
     ++statistics_.loaded;
     return true;
   }
@@ -80,7 +83,10 @@ void ProgramBinaryCache::refuse(const std::string& key, unsigned program) {
   while (glGetError() != GL_NO_ERROR) {
   }
   if (program != 0) glDeleteProgram(program);
-  ++statistics_.refused;
+  {
+    std::lock_guard lock(mutex_);
+    ++statistics_.refused;
+  }
   const std::filesystem::path path = directory_ / (key + ".bin");
   std::error_code ec;
   std::filesystem::remove(path, ec);
@@ -100,7 +106,9 @@ void ProgramBinaryCache::store(const std::string& key, unsigned program) {
   try {
     std::filesystem::create_directories(directory_);
     const std::filesystem::path path = directory_ / (key + ".bin");
-    const std::filesystem::path temporary = directory_ / fmt::format("{}.{}.tmp", key, ::getpid());
+    const std::filesystem::path temporary =
+        directory_ /
+        fmt::format("{}.{}.{}.tmp", key, ::getpid(), std::hash<std::thread::id>{}(std::this_thread::get_id()));
     {
       std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
       const auto f = static_cast<std::uint32_t>(format);
@@ -110,8 +118,10 @@ void ProgramBinaryCache::store(const std::string& key, unsigned program) {
       if (!out) throw std::runtime_error("write failed");
     }
     std::filesystem::rename(temporary, path);
+    std::lock_guard lock(mutex_);
     ++statistics_.stored;
   } catch (const std::exception& e) {
+    std::lock_guard lock(mutex_);
     if (!warned_)
       spdlog::warn("program binary cache in {}: {}; programs are compiled each run", directory_.string(), e.what());
     warned_ = true;

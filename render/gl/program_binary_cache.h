@@ -15,8 +15,10 @@
 // with no binary format (GL_NUM_PROGRAM_BINARY_FORMATS = 0) disables the cache.
 //
 // Files: <directory>/<key>.bin, written to a temporary name and renamed, so a
-// reader sees a whole file or none; several processes may share a directory.
+// reader sees a whole file or none; several processes may share a directory,
+// and several threads one cache (each with a context of its own).
 #include <filesystem>
+#include <mutex>
 #include <span>
 #include <string>
 
@@ -55,7 +57,10 @@ class ProgramBinaryCache {
     int refused = 0;  ///< stored binaries the driver refused (compiled instead)
     int stored = 0;   ///< binaries written
   };
-  const Statistics& statistics() const { return statistics_; }
+  Statistics statistics() const {
+    std::lock_guard lock(mutex_);
+    return statistics_;
+  }
 
  private:
   /// A refused binary: `program` (0: none) deleted, the file removed, counted.
@@ -64,6 +69,7 @@ class ProgramBinaryCache {
   std::filesystem::path directory_;
   std::string driver_;
   int formats_ = 0;
+  mutable std::mutex mutex_;  // guards warned_ and statistics_
   bool warned_ = false;
   Statistics statistics_;
 };

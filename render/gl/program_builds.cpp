@@ -49,14 +49,29 @@ ShaderBuild ProgramBuilds::timed_start(const Starter& starter) {
 
 void ProgramBuilds::start(const std::string& key, const Starter& starter) {
   if (mode_ == CompileMode::serial || programs_.contains(key) || pending_.contains(key)) return;
-  pending_.emplace(key, timed_start(starter));
+  if (thread_ != nullptr)
+    pending_.emplace(key, OnThread{thread_->build([starter] { return starter().finish(); }), starter});
+  else
+    pending_.emplace(key, timed_start(starter));
   started_.push_back(key);
   statistics_.most_in_flight = std::max(statistics_.most_in_flight, static_cast<int>(pending_.size()));
 }
 
+ShaderProgram ProgramBuilds::finish(Pending& build) {
+  if (auto* here = std::get_if<ShaderBuild>(&build)) return here->finish();
+  OnThread& there = std::get<OnThread>(build);
+  try {
+    ShaderProgram program = there.program.get();
+    ++statistics_.built_on_thread;
+    return program;
+  } catch (const std::future_error&) {  // dropped by the thread: built here
+    return timed_start(there.starter).finish();
+  }
+}
+
 const ShaderProgram& ProgramBuilds::get(const std::string& key, const Starter& starter) {
   if (auto it = programs_.find(key); it != programs_.end()) return it->second;
-  ShaderBuild build;
+  Pending build;
   const bool ahead = pending_.contains(key);
   if (auto it = pending_.find(key); it != pending_.end()) {
     build = std::move(it->second);
@@ -66,10 +81,13 @@ const ShaderProgram& ProgramBuilds::get(const std::string& key, const Starter& s
     statistics_.most_in_flight = std::max(statistics_.most_in_flight, static_cast<int>(pending_.size()) + 1);
   }
   const auto start = std::chrono::steady_clock::now();
-  ShaderProgram program = build.finish();
+  ShaderProgram program = finish(build);
   const auto end = std::chrono::steady_clock::now();
   statistics_.wait_s += seconds_between(start, end);
-  spdlog::debug("program {}: {} {:.3f} s", key, ahead ? "started ahead, waited" : "built in",
+  spdlog::debug("program {}: {} {:.3f} s", key,
+                !ahead                                    ? "built in"
+                : std::holds_alternative<OnThread>(build) ? "started ahead on a second thread, waited"
+                                                          : "started ahead, waited",
                 seconds_between(start, end));
   ++statistics_.built;
   return programs_.emplace(key, std::move(program)).first->second;
@@ -93,7 +111,12 @@ void ProgramBuilds::warm_started(FirstDispatchWarmup& warmup, const DispatchShap
 std::string ProgramBuilds::summary() const {
   const Statistics& s = statistics_;
   std::string how;
-  if (mode_ == CompileMode::serial)
+  if (s.built_on_thread > 0)
+    how = fmt::format(
+        "{} of them compiled on a second thread, one at a time (the driver compiles in the calling "
+        "thread)",
+        s.built_on_thread);
+  else if (mode_ == CompileMode::serial)
     how = driver_threads_ ? "one at a time (serial; the driver's compiler threads off)" : "one at a time (serial)";
   else if (driver_threads_)
     how =
@@ -104,7 +127,7 @@ std::string ProgramBuilds::summary() const {
   std::string out = fmt::format("{} programs, {:.3f} s building them ({:.3f} s starting, {:.3f} s waiting), {}",
                                 s.built, s.seconds(), s.start_s, s.wait_s, how);
   if (binaries_ != nullptr) {
-    const ProgramBinaryCache::Statistics& b = binaries_->statistics();
+    const ProgramBinaryCache::Statistics b = binaries_->statistics();
     out += binaries_->enabled() ? fmt::format("; binaries: {} of {} loaded, {} stored, {} refused ({})", b.loaded,
                                               s.built, b.stored, b.refused, binaries_->directory().string())
                                 : std::string("; binaries: none (the driver offers no binary format)");

@@ -11,9 +11,17 @@
 // for the driver's threads, checking, storing binaries), and how many builds
 // were in flight at once. (llvmpipe generates a program's machine code at its
 // first dispatch, which neither counts.)
+//
+// Where the driver compiles in the calling thread (Mesa 22.3's llvmpipe, whose
+// GLSL front end and link run in glCompileShader and glLinkProgram despite
+// the parallel-compile extension), build_on() moves the started builds to a
+// thread with a context of its own: the caller goes on with other work (the
+// renderer uploads its tables) while they compile.
 #include <functional>
+#include <future>
 #include <map>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "render/gl/shader_build.h"
@@ -27,6 +35,8 @@ struct DispatchShapes;
 
 class ProgramBuilds {
  public:
+  /// Starts a program's build. With build_on, it runs on that thread, after
+  /// start() has returned: it must own (capture by value) what it reads.
   using Starter = std::function<ShaderBuild()>;
 
   /// Sets the current context's compiler threads (kAllCompilerThreads in
@@ -43,6 +53,12 @@ class ProgramBuilds {
   /// ShaderBuild::compute. The cache must outlive these builds.
   void set_binary_cache(ProgramBinaryCache* binaries) { binaries_ = binaries; }
   ProgramBinaryCache* binary_cache() const { return binaries_; }
+  /// Builds started from now on are built on `thread` (its context shares
+  /// this one's objects), started and finished there, and get() waits for
+  /// them; null: in the calling thread. Serial mode builds where first used
+  /// whatever this says. `thread` must outlive the builds started on it or
+  /// be unset first.
+  void build_on(FirstDispatchWarmup* thread) { thread_ = thread; }
   /// Starts building `key`'s program with `starter` unless it is already
   /// started or built; in serial mode does nothing (get builds it).
   void start(const std::string& key, const Starter& starter);
@@ -63,27 +79,40 @@ class ProgramBuilds {
   bool started_since_warm() const { return !started_.empty(); }
 
   struct Statistics {
-    int built = 0;           ///< programs finished
-    int most_in_flight = 0;  ///< builds started and not yet finished, at most
-    double start_s = 0.0;    ///< in the start calls (giving the texts to the driver)
-    double wait_s = 0.0;     ///< in finish(): waiting for the driver, checking, storing binaries
+    int built = 0;            ///< programs finished
+    int built_on_thread = 0;  ///< of them, built on build_on's thread
+    int most_in_flight = 0;   ///< builds started and not yet finished, at most
+    double start_s = 0.0;     ///< in the start calls (giving the texts to the driver)
+    double wait_s = 0.0;      ///< in finish(): waiting for the driver, checking, storing binaries
     double seconds() const { return start_s + wait_s; }
   };
   const Statistics& statistics() const { return statistics_; }
   /// "11 programs, 2.310 s building them (0.120 s starting, 2.190 s waiting),
-  /// at most 11 at once on the driver's compiler threads (parallel shader compile)",
+  /// at most 11 at once on the driver's compiler threads (parallel shader compile)"
+  /// (or "…, 9 of them compiled on a second thread, one at a time (…)"),
   /// and with a binary cache "; binaries: 11 of 11 loaded, 0 stored, 0 refused (DIR)".
   std::string summary() const;
 
  private:
   ShaderBuild timed_start(const Starter& starter);
+  /// A build handed to build_on's thread, with its starter: built here
+  /// instead where the thread dropped it (it went before reaching it, or its
+  /// context could not be made current).
+  struct OnThread {
+    std::future<ShaderProgram> program;
+    Starter starter;
+  };
+  using Pending = std::variant<ShaderBuild, OnThread>;
+  /// The program of a started build: finished here, or waited for.
+  ShaderProgram finish(Pending& build);
 
   CompileMode mode_;
   bool driver_threads_ = false;  ///< the driver has the extension
   ProgramBinaryCache* binaries_ = nullptr;
+  FirstDispatchWarmup* thread_ = nullptr;  // build_on
   int previous_threads_ = 0;
-  std::map<std::string, ShaderBuild, std::less<>> pending_;
-  std::vector<std::string> started_;  // keys started since warm_started, in order
+  std::map<std::string, Pending, std::less<>> pending_;  // started, not yet finished
+  std::vector<std::string> started_;                     // keys started since warm_started, in order
   std::map<std::string, ShaderProgram, std::less<>> programs_;
   Statistics statistics_;
 };

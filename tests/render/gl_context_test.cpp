@@ -1,6 +1,7 @@
 // The GL foundation: a headless EGL context, the RAII wrappers, embedded shaders
 // with #include, #define variants, compile errors. Runs on Mesa llvmpipe (CPU).
 #include <epoxy/gl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,6 +22,7 @@
 
 #include "render/gl/buffer.h"
 #include "render/gl/egl_context.h"
+#include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/gl_error.h"
 #include "render/gl/gl_limits.h"
 #include "render/gl/program_binary_cache.h"
@@ -471,6 +474,64 @@ TEST_F(GlTest, ProgramBuildsStartAheadOrOneAtATimeAndCountWhatTheyCost) {
     EXPECT_GT(s.seconds(), s.wait_s);
     EXPECT_NE(builds.summary().find("3 programs, "), std::string::npos) << builds.summary();
   }
+  gl::check_gl_error("after the builds");
+}
+
+/// ProgramBuilds::build_on: builds started while a thread of a shared context
+/// is set are compiled and linked there (llvmpipe compiles in the calling
+/// thread), from starters that own their inputs, and give this context the
+/// same programs, the same errors, and — where the thread goes before it
+/// reached a build — a program built here instead.
+TEST_F(GlTest, ProgramBuildsOnASecondThreadGiveTheSameProgramsAndErrors) {
+  const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
+  const auto starter = [&](std::string scale) {  // owns its code and its scale, as build_on needs
+    return [code = gl::ShaderCode{pattern.name, pattern.text, pattern.files}, scale] {
+      return gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", scale}}));
+    };
+  };
+  const gl::ShaderCode broken{
+      "broken_test.comp", "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {\n  x;\n}\n", {}};
+  const auto broken_starter = [broken] { return gl::ShaderBuild::compute(broken); };
+  std::string in_place_error;
+  try {
+    broken_starter().finish();
+  } catch (const gl::ShaderBuildError& e) {
+    in_place_error = e.what();
+  }
+  ASSERT_FALSE(in_place_error.empty());
+
+  gl::ProgramBuilds builds(gl::CompileMode::parallel);
+  {
+    gl::FirstDispatchWarmup thread;
+    builds.build_on(&thread);
+    builds.start("one", starter("1.0"));
+    builds.start("two", starter("2.0"));
+    builds.start("broken", broken_starter);
+    expect_floats_near(run_pattern(builds.get("two", {}), 4, 2, 2), expected_pattern(4, 2, 2, 2.0f), 1e-6f);
+    expect_floats_near(run_pattern(builds.get("one", {}), 4, 2, 2), expected_pattern(4, 2, 2), 1e-6f);
+    try {
+      builds.get("broken", broken_starter);
+      ADD_FAILURE() << "the broken shader built";
+    } catch (const gl::ShaderBuildError& e) {
+      EXPECT_EQ(std::string(e.what()), in_place_error) << "the same message as built here";
+    }
+    EXPECT_EQ(builds.statistics().built_on_thread, 2);
+    EXPECT_EQ(thread.statistics().built, 3);
+    EXPECT_GT(thread.statistics().build_s, 0.0);
+    EXPECT_NE(builds.summary().find("2 of them compiled on a second thread"), std::string::npos) << builds.summary();
+    builds.build_on(nullptr);
+  }
+  {  // six builds queued and the thread gone at once: it finishes the one in hand, drops the rest
+    auto thread = std::make_unique<gl::FirstDispatchWarmup>();
+    builds.build_on(thread.get());
+    for (int k = 3; k <= 8; ++k) builds.start(fmt::format("scale {}", k), starter(fmt::format("{}.0", k)));
+    thread.reset();
+    builds.build_on(nullptr);
+  }
+  for (int k = 3; k <= 8; ++k)
+    expect_floats_near(run_pattern(builds.get(fmt::format("scale {}", k), {}), 4, 2, 2),
+                       expected_pattern(4, 2, 2, static_cast<float>(k)), 1e-6f);
+  EXPECT_LT(builds.statistics().built_on_thread, 2 + 6) << "the dropped builds were built here";
   gl::check_gl_error("after the builds");
 }
 
