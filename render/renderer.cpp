@@ -171,13 +171,15 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   frame.lights = {frame.sun_light()};
   update_tile_cones(frame);
   prepare_bodies(frame);
-  make_tables_resident(frame);
+  prepare_programs(frame);
+  start_frame_programs(frame);
+  read_tables(frame);
   light_by_the_moon(frame, moon_shadow, timer);
   light_by_the_sun(frame, timer);
   choose_sky_view(frame);
-  prepare_programs(frame);
   classify_bands(frame, timer);
   start_programs(frame);
+  upload_tables(frame);
   fill_sky_view_tables(frame, timer);
   frame.programs = &im.frame_programs.passes_for(*im.builds, frame.variant);
   stats_.programs_warmed = warm_first_dispatches(frame, output_warmup);
@@ -290,7 +292,7 @@ void Renderer::prepare_bodies(Frame& frame) {
   im.band.upload_bodies(bodies);
 }
 
-void Renderer::make_tables_resident(Frame& frame) {
+void Renderer::read_tables(Frame& frame) {
   Impl& im = *impl_;
   const scene::Scene& scene = frame.scene;
   for (AtmospherePass& pass : frame.passes) {
@@ -304,18 +306,26 @@ void Renderer::make_tables_resident(Frame& frame) {
     if (it == im.atmospheres.end()) {
       const auto start = std::chrono::steady_clock::now();
       ++stats_.table_sets_requested;
-      const atmosphere::lut::LookupTables tables = table_source_(model);
       it = im.atmospheres
-               .emplace(key, std::make_unique<GpuAtmosphere>(model, tables, options_.atmosphere,
+               .emplace(key, std::make_unique<GpuAtmosphere>(model, table_source_(model), options_.atmosphere,
                                                              im.frame_programs.sun_defines(), *im.builds))
                .first;
-      ++stats_.table_sets_uploaded;
       stats_.tables_s += seconds_since(start);
-      spdlog::debug("renderer: atmosphere of '{}' resident ({:.1f} MB of tables)",
-                    scene.bodies[static_cast<std::size_t>(pass.body)].name,
-                    static_cast<double>(it->second->table_bytes()) / 1e6);
     }
     pass.gpu = it->second.get();
+  }
+}
+
+void Renderer::upload_tables(const Frame& frame) {
+  for (const AtmospherePass& pass : frame.passes) {
+    if (!pass.gpu || pass.gpu->tables_uploaded()) continue;
+    const auto start = std::chrono::steady_clock::now();
+    pass.gpu->upload_tables();
+    ++stats_.table_sets_uploaded;
+    stats_.tables_s += seconds_since(start);
+    spdlog::debug("renderer: atmosphere of '{}' resident ({:.1f} MB of tables)",
+                  frame.scene.bodies[static_cast<std::size_t>(pass.body)].name,
+                  static_cast<double>(pass.gpu->table_bytes()) / 1e6);
   }
 }
 
@@ -422,9 +432,15 @@ void Renderer::follow_moon_shadow(const Frame& frame, AtmospherePass& pass, Pass
   pass.eclipse_sky = table.shadow() != nullptr;
 }
 
-void Renderer::start_programs(const Frame& frame) {
+void Renderer::start_frame_programs(const Frame& frame) {
   Impl& im = *impl_;
+  // llvmpipe compiles and links in the calling thread: there the programs
+  // build on the warm-up thread while this one uploads the tables.
+  im.builds->build_on(warmup_thread());
   im.frame_programs.start(*im.builds, frame.variant);
+}
+
+void Renderer::start_programs(const Frame& frame) {
   for (const AtmospherePass& pass : frame.passes) {
     if (pass.sky_view) pass.gpu->start_sky_view_program();
     if (pass.eclipse_sky) pass.gpu->eclipse_sky().start_program();
@@ -438,14 +454,19 @@ void Renderer::start_programs(const Frame& frame) {
     }
 }
 
-int Renderer::warm_first_dispatches(const Frame& frame, const WarmupQueue& output) {
+gl::FirstDispatchWarmup* Renderer::warmup_thread() {
   Impl& im = *impl_;
   if (!im.warmup_tried) {
     im.warmup_tried = true;
     if (options_.warm_first_dispatches && !options_.serial_compile)
       im.warmup = gl::FirstDispatchWarmup::if_worthwhile("renderer");
   }
-  if (!im.warmup || !im.builds->started_since_warm()) return 0;  // most frames: nothing new
+  return im.warmup.get();
+}
+
+int Renderer::warm_first_dispatches(const Frame& frame, const WarmupQueue& output) {
+  Impl& im = *impl_;
+  if (warmup_thread() == nullptr || !im.builds->started_since_warm()) return 0;  // most frames: nothing new
   bool one_body = false, bodies = false, sun = false, gbuffer = false;
   for (const BandTiles& band : *frame.bands) {
     one_body = one_body || !band.one_body_tiles.empty();

@@ -214,8 +214,12 @@ class Renderer {
   /// The bodies camera-relative for the GPU, the atmosphere passes front to
   /// back, the albedo array texture; uploads and binds the bodies buffer.
   void prepare_bodies(Frame& frame);
-  /// The tables of every atmosphere the view touches, uploaded when not resident.
-  void make_tables_resident(Frame& frame);
+  /// The tables of every atmosphere the view touches, taken from the table
+  /// source where not held; upload_tables uploads them.
+  void read_tables(Frame& frame);
+  /// Uploads the tables read_tables took, after start_programs: a driver
+  /// that compiles on the warm-up thread compiles meanwhile.
+  void upload_tables(const Frame& frame);
   /// The Moon as a second light of the atmospheres (render/night/moon_light.h)
   /// where its own test finds it could show: its direction and irradiance.
   /// `moon_shadow`: the Earth's shadow on the Moon this frame (a lunar eclipse), or null.
@@ -229,15 +233,23 @@ class Renderer {
   void prepare_programs(Frame& frame);
   /// Every band's tiles (render/frame/frame_tiles.h), before any is drawn.
   void classify_bands(Frame& frame, PassTimer& timer);
-  /// Starts building every program the frame's bands use that is not built
-  /// yet (the frame's passes, the sky-view fills, each atmosphere's tile
-  /// variants and G-buffer path), all before any is finished: a driver with
-  /// parallel shader compile builds them at once (render/gl/program_builds.h;
+  /// Starts building the frame's own passes' programs (gbuffer, resolve,
+  /// direct light) of its variant that are not built yet; they depend on
+  /// nothing the tables decide, so they start before the uploads. Where
+  /// there is a warm-up thread (a driver that compiles in the calling
+  /// thread: llvmpipe) every program builds there from now on.
+  void start_frame_programs(const Frame& frame);
+  /// Starts building every other program the frame's bands use that is not
+  /// built yet (the sky-view fills, each atmosphere's tile variants and
+  /// G-buffer path), all before any is finished: a driver with parallel
+  /// shader compile builds them at once (render/gl/program_builds.h;
   /// RenderOptions::serial_compile: one at a time, where first used).
   void start_programs(const Frame& frame);
-  /// Hands the programs start_programs started to the warm-up thread
-  /// (RenderOptions::warm_first_dispatches), made on the first call where
-  /// worthwhile; how many it queued.
+  /// The warm-up thread (RenderOptions::warm_first_dispatches), made on the
+  /// first call where worthwhile (render/gl/first_dispatch_warmup.h); null where not.
+  gl::FirstDispatchWarmup* warmup_thread();
+  /// Hands the programs start_programs started to the warm-up thread for
+  /// their first dispatch; how many it queued.
   /// `output`: queues the programs that take each band after the frame's
   /// passes (the caller's display pass, render_to_texture's copy); may be empty.
   int warm_first_dispatches(const Frame& frame, const WarmupQueue& output);

@@ -49,7 +49,7 @@ gl::Texture texture_3d(const Table3D& t, std::size_t group) {
 
 }  // namespace
 
-GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
+GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, atmosphere::lut::LookupTables tables,
                              const AtmospherePassFeatures& features, std::span<const gl::ShaderDefine> frame_defines,
                              gl::ProgramBuilds& builds)
     : hash_(tables.hash), top_radius_m_(model.top_radius_m), ground_radius_m_(model.ground_radius_m), builds_(&builds) {
@@ -72,16 +72,6 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   options.sizes = tables.sizes;
   ShaderModel shader = shader_model(model, options, features.fp64);
   groups_.resize(shader.group_count);
-  for (std::size_t g = 0; g < groups_.size(); ++g) {
-    GroupTextures& t = groups_[g];
-    t.transmittance = texture_2d(tables.transmittance, g);
-    t.irradiance = texture_2d(tables.irradiance, g);
-    t.single_rayleigh = texture_3d(tables.single_rayleigh, g);
-    t.single_mie = texture_3d(tables.single_mie, g);
-    t.multiple = texture_3d(tables.multiple, g);
-    for (const gl::Texture* x : {&t.transmittance, &t.irradiance, &t.single_rayleigh, &t.single_mie, &t.multiple})
-      table_bytes_ += x->float_count() * sizeof(float);
-  }
   model_buffers_ = ModelBuffers(shader);
   // Of the texel-coordinate values the precompute derives, rendering reads one:
   // acos(μs_min) at TEXEL_SUN_THETA_MAX (ShaderModel::texel_layout).
@@ -100,10 +90,35 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atm
   sky_view_ = std::make_unique<SkyViewTable>(builds, defines, groups_.size());
   tile_defines_ = defines_;
   tile_defines_.insert(tile_defines_.end(), frame_defines.begin(), frame_defines.end());
-  gl::check_gl_error(fmt::format("uploading the tables of atmosphere '{}'", model.name));
+  gl::check_gl_error(fmt::format("the buffers of atmosphere '{}'", model.name));
+  name_ = model.name;
+  tables_to_upload_ = std::move(tables);
+}
+
+void GpuAtmosphere::upload_tables() {
+  if (!tables_to_upload_) return;
+  const atmosphere::lut::LookupTables& tables = *tables_to_upload_;
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    GroupTextures& t = groups_[g];
+    t.transmittance = texture_2d(tables.transmittance, g);
+    t.irradiance = texture_2d(tables.irradiance, g);
+    t.single_rayleigh = texture_3d(tables.single_rayleigh, g);
+    t.single_mie = texture_3d(tables.single_mie, g);
+    t.multiple = texture_3d(tables.multiple, g);
+    for (const gl::Texture* x : {&t.transmittance, &t.irradiance, &t.single_rayleigh, &t.single_mie, &t.multiple})
+      table_bytes_ += x->float_count() * sizeof(float);
+  }
+  tables_to_upload_.reset();
+  gl::check_gl_error(fmt::format("uploading the tables of atmosphere '{}'", name_));
+}
+
+void GpuAtmosphere::expect_uploaded(const char* what) const {
+  if (tables_to_upload_)
+    throw std::logic_error(fmt::format("GpuAtmosphere '{}': {} before upload_tables()", name_, what));
 }
 
 void GpuAtmosphere::bind_tables(std::size_t group) const {
+  expect_uploaded("tables bound");
   const GroupTextures& t = groups_.at(group);
   t.transmittance.bind(kTransmittanceUnit);
   t.single_rayleigh.bind(kSingleRayleighUnit);
@@ -120,6 +135,7 @@ void GpuAtmosphere::bind(std::size_t group, std::size_t light) const {
 }
 
 void GpuAtmosphere::add_dispatch_shapes(gl::DispatchShapes& shapes) const {
+  expect_uploaded("the tables' shapes asked for");
   const GroupTextures& t = groups_.front();
   const auto sampled = [&](unsigned unit, const gl::Texture& texture) {
     const gl::TextureShape shape = texture.shape();

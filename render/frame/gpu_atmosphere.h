@@ -9,6 +9,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -47,14 +48,23 @@ struct FrameVariant {
 
 class GpuAtmosphere {
  public:
-  /// Uploads `tables` (made for `model`); `frame_defines` are the renderer's
-  /// defines of the sun's disc (SUN_DISC, LIMB_DARKENING) for the one-pass
-  /// tiles, which draw it behind the atmosphere. Its programs are `builds`'s
-  /// (the renderer's, which outlives this), built per variant when first
-  /// started or used. Needs a current GL context.
-  GpuAtmosphere(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables,
+  /// Takes `tables` (made for `model`) to upload them in upload_tables();
+  /// `frame_defines` are the renderer's defines of the sun's disc (SUN_DISC,
+  /// LIMB_DARKENING) for the one-pass tiles, which draw it behind the
+  /// atmosphere. Its programs are `builds`'s (the renderer's, which outlives
+  /// this), built per variant when first started or used. Needs a current GL
+  /// context.
+  GpuAtmosphere(const atmosphere::AtmosphereModel& model, atmosphere::lut::LookupTables tables,
                 const AtmospherePassFeatures& features, std::span<const gl::ShaderDefine> frame_defines,
                 gl::ProgramBuilds& builds);
+
+  /// Uploads the tables to textures (once; then drops the CPU copy). Apart
+  /// from the constructor so that a renderer can start its programs, which
+  /// need only the tables' sizes, before this upload: a driver that compiles
+  /// on another thread (render/gl/program_builds.h) compiles meanwhile.
+  /// Everything below that binds or fills needs it done first.
+  void upload_tables();
+  bool tables_uploaded() const { return !tables_to_upload_; }
 
   const std::string& hash() const { return hash_; }
   std::size_t group_count() const { return groups_.size(); }
@@ -75,7 +85,7 @@ class GpuAtmosphere {
   /// Sets `wavelength_group` (the model's parameters of group g are read from
   /// WavelengthData) and the sky-view uniforms of one of these programs.
   void set_group(const gl::ShaderProgram& program, std::size_t group) const;
-  /// Bytes of GPU memory the tables take.
+  /// Bytes of GPU memory the tables take (once uploaded).
   std::size_t table_bytes() const { return table_bytes_; }
   /// The transmittance table on the CPU too (geometry, sizes, channels and
   /// transmittance of the table set; the other tables empty): the stars'
@@ -118,12 +128,16 @@ class GpuAtmosphere {
  private:
   /// Group g's tables (texture units 0–4), the model's buffers and the texel coordinates.
   void bind_tables(std::size_t group) const;
+  /// Throws std::logic_error, naming `what`, before upload_tables().
+  void expect_uploaded(const char* what) const;
   struct GroupTextures {
     gl::Texture transmittance, irradiance, single_rayleigh, single_mie, multiple;
   };
   std::string hash_;
+  std::string name_;  // the model's, for messages
   double top_radius_m_ = 0.0, ground_radius_m_ = 0.0;
-  std::vector<GroupTextures> groups_;
+  std::vector<GroupTextures> groups_;                              // empty textures before upload_tables
+  std::optional<atmosphere::lut::LookupTables> tables_to_upload_;  // until upload_tables
   ModelBuffers model_buffers_;    // the model's parameters and constants (render/lut/shader_model.h)
   gl::Buffer texel_coordinates_;  // acos(μs_min) at TEXEL_SUN_THETA_MAX
   /// The defines of atmosphere_tile.comp for a variant, of atmosphere_pass.comp for a frame.

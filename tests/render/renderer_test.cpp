@@ -1191,6 +1191,9 @@ TEST(RendererPrograms, ASecondRunMakesEveryProgramFromItsStoredBinary) {
   std::filesystem::remove_all(cache);
 }
 
+/// On llvmpipe the warm-up thread builds the programs (their GLSL front end
+/// and link) and dispatches each once; the frames are the same bits as
+/// without it.
 TEST(RendererPrograms, WarmingFirstDispatchesOnASecondThreadChangesNoPixel) {
   context();
   // Ground, horizon and sky tiles, and the sun's disc: several programs.
@@ -1206,6 +1209,8 @@ TEST(RendererPrograms, WarmingFirstDispatchesOnASecondThreadChangesNoPixel) {
   EXPECT_GT(warmed.renderer.last_frame().programs_warmed, 0);
   EXPECT_NE(warmed.renderer.program_builds_summary().find("first dispatches: "), std::string::npos)
       << warmed.renderer.program_builds_summary();
+  EXPECT_NE(warmed.renderer.program_builds_summary().find("compiled on a second thread"), std::string::npos)
+      << "llvmpipe compiles in the calling thread: the warm-up thread builds them";
   EXPECT_EQ(warmed.renderer.render_image(s, p), image) << "the second frame, every program warmed or dispatched";
 }
 
