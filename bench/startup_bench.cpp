@@ -3,7 +3,7 @@
 //   build/bench/startup_bench [--show FILE] [--size WxH] [--tables paper|small] [--rounds N]
 //                             [--cases warm,cold-mesa,cold-programs,cold-maps,cold-unwarmed] [--csv FILE] [--passes-csv
 //                             FILE]
-//                             [--cache DIR] [--zenith PATH]
+//                             [--cache DIR] [--zenith PATH] [--spirv-csv FILE]
 //
 // 1. The process: `zenith show render --show FILE --projection fisheye --size WxH --to 0`, run as a
 //    user runs it, in four cases, each --rounds times, interleaved:
@@ -22,6 +22,12 @@
 //    pass timed (RenderOptions::time_passes: glFinish-bracketed); each pass's first-frame time less its
 //    second's is its programs' first-use cost (on llvmpipe, generating their machine code at the first
 //    dispatch); to --passes-csv, with the warm cache's figures beside them.
+// 3. SPIR-V against GLSL (GL_ARB_gl_spirv): the show's compute programs as the renderer gives them to the
+//    driver (a run with empty caches and ZENITH_SHADER_DUMP_DIR), each made into SPIR-V for OpenGL by
+//    glslangValidator (-G, locations and bindings mapped automatically), then built from either in a child
+//    with Mesa's cache off and dispatched once, --rounds times (bench/spirv_compile.h): the medians, and
+//    glslangValidator's own time, to --spirv-csv. Skipped where glslangValidator (Debian glslang-tools) or the
+//    extension is missing.
 //
 // The tables come from --cache (default: zenith's own cache); the first, unrecorded run precomputes
 // what it lacks.
@@ -33,7 +39,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -46,6 +54,7 @@
 #include "atmosphere/lut/table_cache.h"
 #include "bench/bench_tables.h"
 #include "bench/command_line.h"
+#include "bench/spirv_compile.h"
 #include "render/gl/egl_context.h"
 #include "render/render_flags.h"
 #include "render/renderer.h"
@@ -68,9 +77,11 @@ struct Options {
   std::vector<std::string> cases = {"warm", "cold-mesa", "cold-programs", "cold-maps", "cold-unwarmed"};
   fs::path csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/startup_times.csv";
   fs::path passes_csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/startup_pass_compile.csv";
+  fs::path spirv_csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/startup_spirv.csv";
   fs::path cache = atmosphere::lut::default_cache_directory();
   fs::path work = fs::temp_directory_path() / fmt::format("zenith-startup-bench-{}", ::getpid());
   bool pass_child = false;  // internal: the in-process pass split, run by the parent with its own Mesa cache
+  fs::path spirv_child;     // internal: time the GLSL and SPIR-V builds of the programs in this folder
 };
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -108,6 +119,10 @@ Options parse(int argc, char** argv) {
       o.csv = args.value();
     } else if (a == "--passes-csv") {
       o.passes_csv = args.value();
+    } else if (a == "--spirv-csv") {
+      o.spirv_csv = args.value();
+    } else if (a == "--spirv-child") {
+      o.spirv_child = args.value();
     } else if (a == "--cache") {
       o.cache = args.value();
     } else if (a == "--zenith") {
@@ -338,6 +353,101 @@ void pass_compile(const Options& o) {
   fmt::print("  {:<60} {:8.1f} {:8.1f}\nevery pass: {}\n", "all passes", cold_sum, warm_sum, o.passes_csv.string());
 }
 
+/// The path of `program` on PATH, or empty.
+fs::path on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  for (const std::string& dir : split(path == nullptr ? "" : path, ':'))
+    if (const fs::path p = fs::path(dir) / program; ::access(p.c_str(), X_OK) == 0) return p;
+  return {};
+}
+
+/// The compute programs' dumped texts under `dir` that have their SPIR-V beside them, sorted.
+std::vector<fs::path> dumped_programs(const fs::path& dir) {
+  std::vector<fs::path> out;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".comp" && fs::exists(entry.path().string() + ".spv")) out.push_back(entry.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+int spirv_child(const Options& o) {
+  const render::gl::HeadlessContext context;
+  if (!has_gl_spirv()) {
+    fmt::print("NO-SPIRV\n");
+    return 0;
+  }
+  for (const fs::path& glsl : dumped_programs(o.spirv_child)) {
+    const CompileTimes t = time_glsl_and_spirv(glsl, glsl.string() + ".spv", o.rounds);
+    fmt::print("SPIRV\t{}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\n", glsl.filename().string(), t.glsl_build_ms,
+               t.spirv_build_ms, t.glsl_dispatch_ms, t.spirv_dispatch_ms);
+  }
+  return 0;
+}
+
+void spirv_against_glsl(const Options& o) {
+  const fs::path glslang = on_path("glslangValidator");
+  if (glslang.empty()) {
+    fmt::print("\nSPIR-V against GLSL: skipped, no glslangValidator on PATH (Debian glslang-tools)\n");
+    return;
+  }
+  const fs::path dump = o.work / "spirv-dump";
+  fs::remove_all(dump);
+  fs::create_directories(dump);
+  const fs::path cache =
+      linked_cache(o.cache, o.work / "spirv-cache", true);  // no program binaries: every program compiled
+  if (run(show_command(o, o.work / "spirv-out", cache),
+          {{"ZENITH_SHADER_DUMP_DIR", dump.string()}, {"MESA_SHADER_CACHE_DIR", (o.work / "spirv-mesa").string()}},
+          o.work / "spirv-dump.log") != 0)
+    throw std::runtime_error("the run that dumps the programs failed: " + (o.work / "spirv-dump.log").string());
+  std::map<std::string, double> glslang_ms;
+  for (const auto& entry : fs::directory_iterator(dump)) {
+    if (entry.path().extension() != ".comp") continue;
+    const auto start = std::chrono::steady_clock::now();
+    const int status = run({glslang.string(), "-G", "--aml", "--amb", "-S", "comp", "-o",
+                            entry.path().string() + ".spv", entry.path().string()},
+                           {}, entry.path().string() + ".glslang.log");
+    if (status != 0) {
+      fmt::print("  {}: glslangValidator refused it ({}), left out\n", entry.path().filename().string(),
+                 entry.path().string() + ".glslang.log");
+      fs::remove(entry.path().string() + ".spv");
+      continue;
+    }
+    glslang_ms[entry.path().filename().string()] =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  const fs::path log = o.work / "spirv-child.log";
+  if (run({fs::read_symlink("/proc/self/exe").string(), "--spirv-child", dump.string(), "--rounds",
+           std::to_string(o.rounds)},
+          {{"MESA_SHADER_CACHE_DISABLE", "true"}}, log) != 0)
+    throw std::runtime_error("the SPIR-V timing child failed: " + log.string());
+  std::ifstream in(log);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line == "NO-SPIRV") {
+      fmt::print("\nSPIR-V against GLSL: skipped, the driver has no GL_ARB_gl_spirv\n");
+      return;
+    }
+    if (std::vector<std::string> f = split(line, '\t'); f.size() == 6 && f[0] == "SPIRV") rows.push_back(f);
+  }
+  fs::create_directories(o.spirv_csv.parent_path());
+  std::ofstream csv(o.spirv_csv);
+  csv << "program,glslang_ms,glsl_build_ms,spirv_build_ms,glsl_first_dispatch_ms,spirv_first_dispatch_ms\n";
+  fmt::print(
+      "\nSPIR-V against GLSL, ms (median of {}; Mesa's cache off): glslangValidator, then the driver's build "
+      "and first dispatch from GLSL and from SPIR-V\n",
+      o.rounds);
+  std::array<double, 5> sums{};
+  for (const auto& f : rows) {
+    const double to_spirv = glslang_ms[f[1]];
+    const std::array<double, 5> v = {to_spirv, std::stod(f[2]), std::stod(f[3]), std::stod(f[4]), std::stod(f[5])};
+    for (std::size_t k = 0; k < v.size(); ++k) sums[k] += v[k];
+    csv << fmt::format("\"{}\",{:.2f},{:.2f},{:.2f},{:.2f},{:.2f}\n", f[1], v[0], v[1], v[2], v[3], v[4]);
+    fmt::print("  {:<56} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f}\n", f[1], v[0], v[1], v[2], v[3], v[4]);
+  }
+  fmt::print("  {:<56} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f}\nevery program: {}\n", "all", sums[0], sums[1], sums[2],
+             sums[3], sums[4], o.spirv_csv.string());
+}
+
 }  // namespace
 }  // namespace zenith::bench
 
@@ -346,8 +456,10 @@ int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
     if (o.pass_child) return pass_child(o);
+    if (!o.spirv_child.empty()) return spirv_child(o);
     process_starts(o);
     pass_compile(o);
+    spirv_against_glsl(o);
     std::filesystem::remove_all(o.work);
     return 0;
   } catch (const std::exception& e) {
