@@ -164,7 +164,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   Frame frame = frame_constants(scene, projection);
   const MoonInShadow* moon_shadow = nullptr;  // a lunar eclipse this frame (render/night/moon_in_shadow.h)
   if (options_.night_sky.moon && options_.night_sky.lunar_eclipses && scene.sky_clock) {
-    timer.cpu("earth's shadow on the moon", [&] { im.moon_shadow.update(scene); });
+    timer.cpu("earth's shadow on the moon", [&] { im.moon_shadow.update(scene, frame.sky); });
     moon_shadow = &im.moon_shadow;
   }
   if (options_.sun_disc) frame.sun_lift = sun_disc_lift(scene, sun_reach_rad(frame), impl_->refractions);
@@ -209,8 +209,8 @@ void Renderer::check_scene(const scene::Scene& scene) const {
 
 Renderer::Frame Renderer::frame_constants(const scene::Scene& scene, const warp::Projection& projection) const {
   Frame f(scene, projection);
-  static_cast<FrameConstants&>(f) =
-      compute_frame_constants(scene, projection, options_.colour, options_.limb_darkening, options_.night_sky.moon);
+  static_cast<FrameConstants&>(f) = compute_frame_constants(scene, f.sky, projection, options_.colour,
+                                                            options_.limb_darkening, options_.night_sky.moon);
   return f;
 }
 

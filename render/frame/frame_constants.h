@@ -37,8 +37,9 @@ struct FrameConstants {
 /// The constants of a frame of `scene` through `projection` with the colour
 /// mapping, the sun's limb darkening and the Moon (RenderOptions::colour,
 /// limb_darkening, moon: the Moon's disc masks the sun's in a solar eclipse).
-FrameConstants compute_frame_constants(const scene::Scene& scene, const warp::Projection& projection,
-                                       image::ColourMapping colour, bool limb_darkening, bool moon);
+FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky& sky,
+                                       const warp::Projection& projection, image::ColourMapping colour,
+                                       bool limb_darkening, bool moon);
 
 /// direct_light.comp's colour matrix, column-major (column = albedo channel):
 /// a body lit by the sun alone is rgb = (cos i V / π) M a with

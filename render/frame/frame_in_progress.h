@@ -12,6 +12,7 @@
 
 #include "render/frame/frame_constants.h"
 #include "render/frame/frame_programs.h"
+#include "render/frame/frame_sky.h"
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
 #include "render/frame/sun_refraction.h"
@@ -63,10 +64,11 @@ struct FrameLight {
 /// atmosphere passes, the uniforms every pass shares, the programs, and which
 /// programs have their frame and band uniforms set.
 struct FrameInProgress : FrameConstants {
-  FrameInProgress(const scene::Scene& s, const warp::Projection& p) : scene(s), projection(p) {}
+  FrameInProgress(const scene::Scene& s, const warp::Projection& p) : scene(s), projection(p), sky(s) {}
 
   const scene::Scene& scene;
   const warp::Projection& projection;
+  FrameSky sky;  // the sky clock's ephemeris, made once for the frame's readers
 
   // ---- the projection's tile cones (update_tile_cones)
   const TileCones* cones = nullptr;

@@ -43,11 +43,11 @@ std::optional<astro::EclipseGeometry> shadow_on_the_air(const scene::Scene& scen
 
 }  // namespace
 
-SunOcculter sun_occulter(const scene::Scene& scene, bool limb_darkening) {
+SunOcculter sun_occulter(const scene::Scene& scene, const FrameSky& sky, bool limb_darkening) {
   SunOcculter out;
   if (!scene.sky_clock) return out;
   const scene::SkyClock& clock = *scene.sky_clock;
-  const astro::MoonPlace moon = astro::SkyPositions(astro::AstroTime::from_utc(clock.time), clock.site).moon();
+  const astro::MoonPlace moon = sky.positions().moon();
   const scene::LocalHorizon horizon = scene::local_horizon_at(scene.camera.position_m, scene.bodies.at(clock.body));
   const glm::dvec3 direction =
       glm::normalize(horizon.direction(moon.horizontal.azimuth_rad, moon.horizontal.altitude_rad));

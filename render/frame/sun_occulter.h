@@ -24,6 +24,7 @@
 #include <glm/vec3.hpp>
 
 #include "astro/moon_shadow.h"
+#include "render/frame/frame_sky.h"
 #include "scene/scene.h"
 
 namespace zenith::render {
@@ -51,7 +52,8 @@ struct SunOcculter {
   bool any() const { return angular_radius_rad > 0.0; }
 };
 
-/// The Moon of `scene`'s sky clock in front of its sun, or none (see above).
-SunOcculter sun_occulter(const scene::Scene& scene, bool limb_darkening);
+/// The Moon of `scene`'s sky clock in front of its sun, or none (see above);
+/// `sky`: that clock's ephemeris for the frame.
+SunOcculter sun_occulter(const scene::Scene& scene, const FrameSky& sky, bool limb_darkening);
 
 }  // namespace zenith::render

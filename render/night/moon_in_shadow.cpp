@@ -16,7 +16,7 @@ namespace zenith::render {
 
 double MoonInShadow::moon_radius_m() const { return astro::kMoonRadius_km * 1e3; }
 
-void MoonInShadow::update(const scene::Scene& scene) {
+void MoonInShadow::update(const scene::Scene& scene, const FrameSky& sky) {
   shadowed_ = false;
   face_.assign(scene.wavelengths_nm.size(), 1.0);
   if (!scene.sky_clock) return;
@@ -25,7 +25,7 @@ void MoonInShadow::update(const scene::Scene& scene) {
   if (!planet.atmosphere) return;
   // The Moon's centre from the planet's centre: the camera's place plus the
   // topocentric, geometric Moon (ERFA), in the world frame; the axis away from the Sun.
-  const astro::MoonPlace moon = astro::SkyPositions(astro::AstroTime::from_utc(clock.time), clock.site).moon();
+  const astro::MoonPlace moon = sky.positions().moon();
   const scene::LocalHorizon horizon = scene::local_horizon_at(scene.camera.position_m, planet);
   const glm::dvec3 toward_moon =
       glm::normalize(horizon.direction(moon.horizontal.azimuth_rad, moon.horizontal.altitude_rad));

@@ -20,6 +20,7 @@
 
 #include "astro/civil_time.h"
 #include "astro/lunar_eclipse.h"
+#include "render/frame/frame_sky.h"
 #include "scene/scene.h"
 
 namespace zenith::render {
@@ -27,8 +28,8 @@ namespace zenith::render {
 class MoonInShadow {
  public:
   /// For `scene`'s sky clock at its time: whether the Moon's face reaches the
-  /// Earth's penumbra, and if so the shadow.
-  void update(const scene::Scene& scene);
+  /// Earth's penumbra, and if so the shadow; `sky`: that clock's ephemeris for the frame.
+  void update(const scene::Scene& scene, const FrameSky& sky);
   bool shadowed() const { return shadowed_; }
   /// Per wavelength: the mean of E / E_sun over the Moon's face (all 1 when not shadowed).
   const std::vector<double>& face() const { return face_; }

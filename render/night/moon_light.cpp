@@ -31,7 +31,7 @@ MoonLight moon_light(const FrameInProgress& frame, const MoonInShadow* moon_shad
   // The Moon's place at the sky time (ERFA, topocentric, geometric) in the
   // camera's local horizon, as ephemeris_sun places the Sun.
   const scene::SkyClock& clock = *scene.sky_clock;
-  const astro::MoonPlace moon = astro::SkyPositions(astro::AstroTime::from_utc(clock.time), clock.site).moon();
+  const astro::MoonPlace moon = frame.sky.positions().moon();
   const scene::LocalHorizon horizon = scene::local_horizon_at(scene.camera.position_m, scene.bodies.at(clock.body));
   out.altitude_rad = moon.horizontal.altitude_rad;
   out.light.direction = glm::normalize(horizon.direction(moon.horizontal.azimuth_rad, moon.horizontal.altitude_rad));

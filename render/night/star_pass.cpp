@@ -211,15 +211,14 @@ void NightSkyPass::prepare(const FrameInProgress& frame, const MoonInShadow* moo
       }
     }
     stats_.stars = splats_.size();
-    if (options_.moon) timer.cpu("moon", [&] { place_moon(frame, f, time); });
+    if (options_.moon) timer.cpu("moon", [&] { place_moon(frame, f); });
   }
   stats_.night_floor = floor_;
   stats_.drawn = !splats_.empty() || floor_ || moon_disc_;
 }
 
-void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky, const astro::AstroTime& time) {
-  const scene::SkyClock& clock = *frame.scene.sky_clock;
-  const astro::SkyPositions positions(time, clock.site);
+void NightSkyPass::place_moon(const FrameInProgress& frame, const StarFrame& sky) {
+  const astro::SkyPositions& positions = frame.sky.positions();
   const astro::MoonPlace moon = positions.moon();
   const glm::dvec3 enu = moon.horizontal.east_north_up();
   glm::dvec3 d = enu.x * sky.east + enu.y * sky.north + enu.z * sky.up;

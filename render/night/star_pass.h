@@ -130,7 +130,7 @@ class NightSkyPass {
   std::vector<std::array<float, 4>> moon_shadow_table_;
   const MoonInShadow* moon_shadow_ = nullptr;  // this frame's (prepare)
   /// The Moon at the frame's sky time: a disc, a star-like point, or nothing.
-  void place_moon(const FrameInProgress& frame, const StarFrame& sky, const astro::AstroTime& time);
+  void place_moon(const FrameInProgress& frame, const StarFrame& sky);
   // The Moon's face (render/night/moon_albedo_map.h): the map (loaded with the
   // first disc, the uniform one when missing), its texture (uploaded once), the
   // disc's body axes in the world and the texture's level.

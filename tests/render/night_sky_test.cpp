@@ -32,6 +32,7 @@
 #include "core/units.h"
 #include "image/colour.h"
 #include "image/tone_mapping.h"
+#include "render/frame/frame_sky.h"
 #include "render/gl/texture.h"
 #include "render/night/moon_albedo_map.h"
 #include "render/night/moon_in_shadow.h"
@@ -717,12 +718,34 @@ TEST(NightSkyPass, TheEclipsedMoonKeepsTheLightTheEarthsShadowLeavesIt) {
   const auto a = energy_near(in_shadow.renderer.render_image(s, planar), background, planar, {32.0, 32.0}, 20.0);
   const auto b = energy_near(outside.renderer.render_image(s, planar), background, planar, {32.0, 32.0}, 20.0);
   MoonInShadow shadow;
-  shadow.update(s);
+  shadow.update(s, FrameSky(s));
   ASSERT_TRUE(shadow.shadowed());
   for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], shadow.face()[k], 0.03 * shadow.face()[k]) << k;
   std::printf("the eclipsed Moon keeps %.3g %.3g %.3g of its light (the face's mean: %.3g %.3g %.3g)\n", a[0] / b[0],
               a[1] / b[1], a[2] / b[2], shadow.face()[0], shadow.face()[1], shadow.face()[2]);
   EXPECT_GT(shadow.face()[0], 30.0 * shadow.face()[2]);
+}
+
+/// render/frame/frame_sky.h: the frame's readers of the Moon share one
+/// ephemeris of the sky clock, made at the first reading, the same places as
+/// SkyPositions made anew; a scene without a clock has none to give.
+TEST(FrameSky, TheFramesReadersShareOneEphemerisOfTheClock) {
+  const astro::UtcTime time{2019, 1, 21, 5, 12, 16.0};
+  const astro::Site site{kLatitudeDeg, kLongitudeDeg, 46.0};
+  const scene::Scene s = testing::greenwich("earth-advanced", glm::dvec3(0, 0, 1), 1.0, time);
+  ASSERT_TRUE(s.sky_clock);
+  const FrameSky sky(s);
+  const astro::SkyPositions& first = sky.positions();
+  EXPECT_EQ(&sky.positions(), &first) << "made once";
+  const astro::MoonPlace moon = first.moon(),
+                         fresh = astro::SkyPositions(astro::AstroTime::from_utc(time), site).moon();
+  EXPECT_EQ(moon.horizontal.azimuth_rad, fresh.horizontal.azimuth_rad);
+  EXPECT_EQ(moon.horizontal.altitude_rad, fresh.horizontal.altitude_rad);
+  EXPECT_EQ(moon.distance_km, fresh.distance_km);
+
+  scene::Scene no_clock = s;
+  no_clock.sky_clock.reset();
+  EXPECT_THROW(FrameSky(no_clock).positions(), std::logic_error);
 }
 
 TEST(MoonAlbedoMap, StellariumsMapIsRelativeToItsNearSideMeanAndNamesItsFile) {

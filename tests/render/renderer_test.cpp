@@ -391,7 +391,7 @@ class CpuEclipsedSky {
  public:
   explicit CpuEclipsedSky(const scene::Scene& s)
       : scene_(s), tables_(SmallTables::get("earth-advanced")), camera_(s.camera.position_m - s.bodies[0].position_m) {
-    const SunOcculter occulter = sun_occulter(s, true);
+    const SunOcculter occulter = sun_occulter(s, FrameSky(s), true);
     EXPECT_TRUE(occulter.shadow.has_value());
     shadow_ = std::make_unique<astro::MoonShadow>(*occulter.shadow, *tables_.queries, tables_.model, camera_);
   }
@@ -489,7 +489,8 @@ TEST(RendererEclipse, TheShadowArrivesAndMovesWithoutAJump) {
   // hours before totality at greatest eclipse, 2017-08-21.
   const astro::AstroTime totality = astro::AstroTime::from_utc({2017, 8, 21, 18, 25, 30.0});
   const auto shadowed = [&](double seconds) {
-    return sun_occulter(eclipse_scene(totality.plus_seconds(seconds).calendar_utc()), true).shadow.has_value();
+    const scene::Scene s = eclipse_scene(totality.plus_seconds(seconds).calendar_utc());
+    return sun_occulter(s, FrameSky(s), true).shadow.has_value();
   };
   double before = -4.0 * 3600.0, after = 0.0;
   ASSERT_FALSE(shadowed(before));
@@ -560,7 +561,7 @@ TEST(RendererEclipse, LiveFramesNeverWaitForAShadow) {
   {
     // 3.3 h before mid-totality: the air in view is over 1.8 penumbra radii from the axis.
     const scene::Scene early = eclipse_scene(totality.plus_seconds(-11900.0).calendar_utc());
-    const SunOcculter occulter = sun_occulter(early, true);
+    const SunOcculter occulter = sun_occulter(early, FrameSky(early), true);
     ASSERT_TRUE(occulter.shadow.has_value());
     EXPECT_GE(occulter.air_from_axis_penumbrae, 1.8);
     TestRenderer t(live), waiting(sky_alone());
