@@ -1,7 +1,6 @@
 #include "astro/sky_positions.h"
 
 #include <erfa.h>
-#include <fmt/format.h>
 
 #include <cmath>
 #include <stdexcept>
@@ -60,20 +59,28 @@ glm::dvec3 Horizontal::east_north_up() const {
 SkyPositions::SkyPositions(const AstroTime& time, const Site& site) : time_(time), site_(site) {
   check_site(site);
   auto state = std::make_shared<State>();
-  const JulianDate& utc = time.utc();
-  const int status = eraApco13(utc.day1, utc.day2, time.dut1_s(), site.longitude_deg * core::kDeg,
-                               site.latitude_deg * core::kDeg, site.altitude_m, 0.0, 0.0,
-                               /*phpa: no refraction*/ 0.0, 0.0, 0.0, 0.55, &state->site, &state->eo_site);
-  if (status < 0)
-    throw std::invalid_argument(fmt::format("time {}: ERFA refuses the date", format_utc_time(time.calendar_utc())));
+  // What eraApco13 (the site) and eraApci13 (the geocentre) each compute
+  // from the date — the Earth's ephemeris and the IAU 2006/2000A
+  // precession–nutation, most of their cost — computed once for both, with
+  // the times AstroTime took from the same ERFA calls.
   const JulianDate& tt = time.tt();  // TDB − TT < 2 ms: TT serves as TDB
-  eraApci13(tt.day1, tt.day2, &state->geocentre, &state->eo_geocentre);
-  double pvh[2][3], pvb[2][3], moon[2][3];
-  eraEpv00(tt.day1, tt.day2, pvh, pvb);
+  const JulianDate& ut1 = time.ut1();
+  double ehpv[2][3], ebpv[2][3], bpn[3][3], x = 0.0, y = 0.0;
+  eraEpv00(tt.day1, tt.day2, ehpv, ebpv);
+  eraPnm06a(tt.day1, tt.day2, bpn);
+  eraBpn2xy(bpn, &x, &y);
+  const double s = eraS06(tt.day1, tt.day2, x, y);
+  const double era = eraEra00(ut1.day1, ut1.day2), sp = eraSp00(tt.day1, tt.day2);
+  // Polar motion 0 (< 0.3″); refraction off (ERFA's pressure 0: its constants 0), ours applies later.
+  eraApco(tt.day1, tt.day2, ebpv, ehpv[0], x, y, s, era, site.longitude_deg * core::kDeg,
+          site.latitude_deg * core::kDeg, site.altitude_m, 0.0, 0.0, sp, 0.0, 0.0, &state->site);
+  eraApci(tt.day1, tt.day2, ebpv, ehpv[0], x, y, s, &state->geocentre);
+  state->eo_site = state->eo_geocentre = eraEors(bpn, s);
+  double moon[2][3];
   eraMoon98(tt.day1, tt.day2, moon);
   for (int k = 0; k < 3; ++k) {
-    state->earth_bary_au[k] = pvb[0][k];
-    state->sun_bary_au[k] = pvb[0][k] - pvh[0][k];
+    state->earth_bary_au[k] = ebpv[0][k];
+    state->sun_bary_au[k] = ebpv[0][k] - ehpv[0][k];
     state->moon_geo_au[k] = moon[0][k];
   }
   state_ = std::move(state);

@@ -70,7 +70,8 @@ struct MoonPlace {
 
 class SkyPositions {
  public:
-  /// Throws std::invalid_argument for a bad site or a date ERFA refuses.
+  /// Throws std::invalid_argument for a bad site (AstroTime has refused any
+  /// date ERFA cannot convert).
   SkyPositions(const AstroTime& time, const Site& site);
 
   const AstroTime& time() const { return time_; }
