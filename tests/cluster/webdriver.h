@@ -4,6 +4,7 @@
 // load the operator console, click, type, run a script and take a
 // screenshot. Tests skip when the browser or its driver is absent.
 #include <signal.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -66,12 +67,24 @@ class WebDriver {
   /// default the browser picks a free port among the ephemeral ones, which the
   /// tests' own ports overlap). A port chosen here could be taken by another
   /// test between the choice and the driver's bind; port 0 cannot be.
-  WebDriver(int browser_port, const std::filesystem::path& log) {
-    driver_ = core::spawn_process(kChromedriver, {"--port=0"}, log);
+  ///
+  /// The driver and its browser get a temporary folder of their own (TMPDIR,
+  /// through env, which executes the driver in its place): the browser leaves
+  /// its singleton socket's folder there, not in /tmp, and the folder goes
+  /// with this object.
+  WebDriver(int browser_port, const std::filesystem::path& log)
+      : temporary_(std::filesystem::temp_directory_path() /
+                   ("zenith-webdriver-" + std::to_string(::getpid()) + "-" + std::to_string(browser_port))) {
+    std::filesystem::remove_all(temporary_);
+    std::filesystem::create_directories(temporary_);
+    driver_ =
+        core::spawn_process("/usr/bin/env", {"TMPDIR=" + temporary_.string(), kChromedriver.string(), "--port=0"}, log);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     const auto fail = [&](const std::string& why) {
       ::kill(driver_, SIGTERM);
       core::wait_for_exit(driver_, std::chrono::milliseconds(5000));
+      std::error_code ignored;
+      std::filesystem::remove_all(temporary_, ignored);
       throw std::runtime_error("chromedriver " + why + "; its log (" + log.string() + "):\n" + read_text(log));
     };
     // "ChromeDriver was started successfully on port 38115."
@@ -110,6 +123,8 @@ class WebDriver {
       http_request(port_, boost::beast::http::verb::delete_, "/session/" + session_, "", "application/json", 30);
     ::kill(driver_, SIGTERM);
     core::wait_for_exit(driver_, std::chrono::milliseconds(5000));
+    std::error_code ignored;
+    std::filesystem::remove_all(temporary_, ignored);
   }
   WebDriver(const WebDriver&) = delete;
   WebDriver& operator=(const WebDriver&) = delete;
@@ -156,6 +171,7 @@ class WebDriver {
     return answer["value"];
   }
 
+  std::filesystem::path temporary_;  // the driver's and the browser's TMPDIR
   int port_ = 0;
   pid_t driver_ = -1;
   std::string session_;
