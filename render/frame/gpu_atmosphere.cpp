@@ -52,7 +52,11 @@ gl::Texture texture_3d(const Table3D& t, std::size_t group) {
 GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, atmosphere::lut::LookupTables tables,
                              const AtmospherePassFeatures& features, std::span<const gl::ShaderDefine> frame_defines,
                              gl::ProgramBuilds& builds)
-    : hash_(tables.hash), top_radius_m_(model.top_radius_m), ground_radius_m_(model.ground_radius_m), builds_(&builds) {
+    : hash_(tables.hash),
+      name_(model.name),
+      top_radius_m_(model.top_radius_m),
+      ground_radius_m_(model.ground_radius_m),
+      builds_(&builds) {
   if (tables.channels != model.wavelength_count())
     throw std::invalid_argument(fmt::format("atmosphere '{}': tables have {} channels, the model {} wavelengths",
                                             model.name, tables.channels, model.wavelength_count()));
@@ -91,7 +95,6 @@ GpuAtmosphere::GpuAtmosphere(const atmosphere::AtmosphereModel& model, atmospher
   tile_defines_ = defines_;
   tile_defines_.insert(tile_defines_.end(), frame_defines.begin(), frame_defines.end());
   gl::check_gl_error(fmt::format("the buffers of atmosphere '{}'", model.name));
-  name_ = model.name;
   tables_to_upload_ = std::move(tables);
 }
 
