@@ -51,6 +51,7 @@ void read_timing(JsonReader& t, ClusterConfig& c) {
   c.lookahead_frames = static_cast<int>(
       std::lround(t.number_or("lookahead_frames", kDefaultLookaheadFrames, 0, kMaxLookaheadFrames, "frames")));
   c.black_when_link_lost = t.string_or("link_lost", "hold", {"hold", "black"}) == "black";
+  c.realtime_presents = t.string_or("present_priority", "realtime", {"realtime", "normal"}) == "realtime";
   if (t.has("lookahead_frames") && !t.raw("lookahead_frames").is_number_integer())
     t.fail("lookahead_frames",
            cat("must be an integer in [0, ", kMaxLookaheadFrames, "], got ", t.raw("lookahead_frames").dump()));

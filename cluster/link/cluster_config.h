@@ -103,6 +103,10 @@ struct ClusterConfig {
   /// (timing.link_lost, "hold" or "black"), once its scheduled frames ran out:
   /// the last frame (hold), or black (docs/cluster.md, "The frame schedule").
   bool black_when_link_lost = false;
+  /// A node's render thread waits for a scheduled frame's moment and presents
+  /// it at real-time priority (timing.present_priority, "realtime" or
+  /// "normal"; cluster/node/present_timing.h): on time however busy the PC.
+  bool realtime_presents = true;
   /// Every node's windows join this swap group (GLX_NV_swap_group, bound to
   /// swap barrier 1: Quadro Sync); 0: none (render/window/swap_sync.h).
   unsigned swap_group = 0;

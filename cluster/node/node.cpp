@@ -85,7 +85,7 @@ struct Node::Impl {
   MasterDatagrams datagrams{io, cat("node '", options.node_name, "'"),
                             [this](MasterDatagrams::ScheduledFrame&& f) { on_scheduled_frame(f.schedule, f.state); },
                             LocalClock(options.debug_clock_faults, Clock::now())};
-  PresentSchedule schedule;
+  PresentSchedule schedule{present_handoff(options.config.frame_rate_hz)};
   asio::steady_timer present_timer{io};
   std::optional<FrameSchedule> tcp_schedule;  ///< a FrameSchedule on TCP, for the FrameState that follows it
   core::LogLimiter late_frames_log, stale_frames_log, held_tables_log, missed_log;

@@ -1,5 +1,7 @@
 #include "cluster/node/present_schedule.h"
 
+#include <algorithm>
+
 namespace zenith::cluster {
 
 PresentSchedule::Arrival PresentSchedule::on_frame(const FrameState& state, Clock::time_point present_at,
@@ -24,7 +26,7 @@ PresentSchedule::Arrival PresentSchedule::on_frame(const FrameState& state, Cloc
 
 std::optional<PresentSchedule::Step> PresentSchedule::next(Clock::time_point now) {
   if (current_) {
-    if (now < current_->present_at) return std::nullopt;
+    if (now + handoff_ < current_->present_at) return std::nullopt;
     Step present{Step::Kind::present, current_->frame, {}, current_->present_at};
     // Frames between the last presented and this one never reached the screen.
     if (last_presented_ && present.frame > *last_presented_ + 1) missed_ += present.frame - *last_presented_ - 1;
@@ -48,8 +50,14 @@ std::optional<PresentSchedule::Step> PresentSchedule::next(Clock::time_point now
 }
 
 std::optional<PresentSchedule::Clock::time_point> PresentSchedule::wake_at() const {
-  if (current_) return current_->present_at;
+  if (current_) return current_->present_at - handoff_;
   return std::nullopt;
+}
+
+PresentSchedule::Clock::duration present_handoff(double frame_rate_hz) {
+  using Duration = PresentSchedule::Clock::duration;
+  const auto half_period = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(0.5 / frame_rate_hz));
+  return std::min<Duration>(std::chrono::milliseconds(4), half_period);
 }
 
 bool drop_frame_behind(std::optional<PresentSchedule::Clock::time_point> later_moment,

@@ -17,6 +17,11 @@
 // ignored; one older than the current frame but still in time (its earlier
 // copies were lost) goes first, and the current one is rendered again after it.
 //
+// A present is handed out `handoff` before its moment (present_handoff()):
+// the render thread then sleeps until the moment itself, so the moment is met
+// by one thread waking (present_timing.h), not by the networking thread's
+// timer and then the render thread's queue.
+//
 // Pure bookkeeping: time is passed in (tests/cluster/present_schedule_test.cpp).
 #include <chrono>
 #include <cstdint>
@@ -30,6 +35,9 @@ namespace zenith::cluster {
 class PresentSchedule {
  public:
   using Clock = std::chrono::steady_clock;
+
+  /// `handoff`: how long before its moment a present step is handed out.
+  explicit PresentSchedule(Clock::duration handoff = Clock::duration::zero()) : handoff_(handoff) {}
 
   /// What became of a frame handed to on_frame().
   enum class Arrival {
@@ -48,10 +56,12 @@ class PresentSchedule {
 
   Arrival on_frame(const FrameState& state, Clock::time_point present_at, Clock::time_point now);
   /// The next step at `now`, if any: present the current frame when its
-  /// moment has come, else make the next pending frame current (render it).
+  /// moment is at most the handoff away (the step carries the moment, which
+  /// the render thread waits for), else make the next pending frame current
+  /// (render it).
   /// Call until it returns nothing, then wait until wake_at().
   std::optional<Step> next(Clock::time_point now);
-  /// When next() has something to do again (the current frame's moment);
+  /// When next() has something to do again (the current frame's moment less the handoff);
   /// nothing while there is no current frame (a new frame wakes the node).
   std::optional<Clock::time_point> wake_at() const;
 
@@ -69,11 +79,19 @@ class PresentSchedule {
     FrameState state;
     Clock::time_point present_at;
   };
+  Clock::duration handoff_;
   std::map<std::uint64_t, Pending> pending_;
   std::optional<Step> current_;  ///< rendered (or queued), waiting for its moment
   std::optional<std::uint64_t> last_presented_;
   std::uint64_t presented_ = 0, missed_ = 0;
 };
+
+/// How long before its moment a node hands a frame's present to its render
+/// thread: long enough that the networking thread, woken by its timer on a busy
+/// machine, is rarely later than the moment; short, because the render thread
+/// waits for the moment and does nothing else meanwhile: 4 ms, at most half a
+/// period (2.1 ms at 240 Hz).
+PresentSchedule::Clock::duration present_handoff(double frame_rate_hz);
 
 /// "taken", "duplicate", "stale", "late".
 const char* to_string(PresentSchedule::Arrival arrival);

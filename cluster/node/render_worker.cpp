@@ -31,7 +31,8 @@ RenderWorker::RenderWorker(Setup setup, Events events)
     : setup_(std::move(setup)),
       events_(std::move(events)),
       writer_(setup_.viewports, setup_.options.layout, setup_.options.output_directory, setup_.node_directory,
-              setup_.options.config.output_format) {}
+              setup_.options.config.output_format),
+      present_priority_(setup_.options.config.realtime_presents, setup_.options.node_name) {}
 
 // ---- the queue --------------------------------------------------------------
 
@@ -360,8 +361,19 @@ std::vector<const render::gl::Texture*> RenderWorker::display_textures() const {
 }
 
 void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked, bool scheduled) {
+  // A scheduled frame: wait for its moment and present at once, ahead of any
+  // normal thread on the machine (present_timing.h).
+  std::optional<PresentPriority::Raised> raised;
+  if (scheduled) {
+    raised.emplace(present_priority_.raise());
+    sleep_until_moment(asked);
+  }
   // Swap first (the projectors), then the files and the log.
   if (windows_) {
+    // A driver may spin in the swap until the vertical blank (yielding, which
+    // does not yield to normal threads once real-time): the swap is queued at
+    // normal priority, promptly, since the thread is already running.
+    raised.reset();
     windows_->present(display_textures(), asked);
     // The windows' first swap is part of the warm-up (the driver's buffers, the
     // compositor): a late first present is not counted (frame_pacer.h).

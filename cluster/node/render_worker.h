@@ -23,6 +23,7 @@
 #include "cluster/node/known_atmospheres.h"
 #include "cluster/node/node.h"
 #include "cluster/node/output_writer.h"
+#include "cluster/node/present_timing.h"
 #include "cluster/protocol/messages.h"
 #include "render/display/display_encoder.h"
 #include "render/gl/egl_context.h"
@@ -87,8 +88,10 @@ class RenderWorker {
   /// frame's moment (when a later frame is queued behind it: drop_frame_behind()).
   void render(const FrameState& state, std::uint64_t session, int thumbnail_edge_px = 0,
               std::optional<std::chrono::steady_clock::time_point> moment = std::nullopt);
-  /// Present `frame`: now (a Present of the barrier), or a scheduled frame
-  /// whose moment `scheduled` has come (its lateness is measured from it).
+  /// Present `frame`: now (a Present of the barrier), or a scheduled frame at
+  /// its moment `scheduled` (handed over up to present_handoff() before it:
+  /// the render thread waits for it, at the present's priority; its lateness
+  /// is measured from it).
   void present(std::uint64_t frame, std::optional<std::chrono::steady_clock::time_point> scheduled = std::nullopt);
   /// The outputs' windows show black (the link to the master is cut and the
   /// config says "link_lost": "black"); the next present shows frames again.
@@ -159,6 +162,7 @@ class RenderWorker {
   Setup setup_;
   Events events_;
   OutputWriter writer_;
+  PresentPriority present_priority_;
 
   std::mutex mutex_;
   /// offer_tables: by atmosphere::lookup_table_hash, oldest first.

@@ -96,6 +96,20 @@ TEST(ClusterConfig, ReconnectTimeIsOptionalInSecondsAndChecked) {
   EXPECT_NE(error_of(j).find("/timing/reconnect_s"), std::string::npos) << error_of(j);
 }
 
+TEST(ClusterConfig, ThePresentPriorityIsRealtimeUnlessSaidAndChecked) {
+  EXPECT_TRUE(parse(valid()).realtime_presents) << "docs/cluster.md, \"Presenting on time\"";
+  auto j = valid();
+  j["timing"]["present_priority"] = "normal";
+  EXPECT_FALSE(parse(j).realtime_presents);
+  j["timing"]["present_priority"] = "realtime";
+  EXPECT_TRUE(parse(j).realtime_presents);
+  j["timing"]["present_priority"] = "high";
+  const std::string error = error_of(j);
+  EXPECT_NE(error.find("t.json: /timing/present_priority"), std::string::npos) << error;
+  EXPECT_NE(error.find("realtime"), std::string::npos) << error;
+  EXPECT_NE(error.find("normal"), std::string::npos) << error;
+}
+
 TEST(ClusterConfig, TheCapOfUnauthenticatedConnectionsIsOptionalAndChecked) {
   EXPECT_EQ(parse(valid()).max_unauthenticated_connections, 16u) << "docs/cluster.md, \"Threat model\"";
   nlohmann::json j = valid();

@@ -138,5 +138,43 @@ TEST(PresentSchedule, ARenderThatFellBehindDropsAFrameOnlyOnceTheNextIsDue) {
   EXPECT_TRUE(drop_frame_behind(std::nullopt, at_ms(0))) << "the barrier: the master moved on";
 }
 
+// The present is handed to the render thread `handoff` before its moment
+// (it waits for the moment itself); the next frame is made current with it,
+// and frames are still dropped only once their true moment has passed.
+TEST(PresentSchedule, APresentIsHandedOutItsHandoffBeforeItsMoment) {
+  PresentSchedule s(milliseconds(4));
+  for (std::uint64_t n = 1; n <= 3; ++n) s.on_frame(frame(n), due(n), at_ms(0));
+  ASSERT_EQ(s.next(at_ms(0))->frame, 1u);
+  EXPECT_EQ(s.wake_at(), due(1) - milliseconds(4));
+  EXPECT_FALSE(s.next(at_ms(11.9))) << "more than 4 ms before frame 1's moment";
+  auto step = s.next(at_ms(12));
+  ASSERT_TRUE(step);
+  EXPECT_EQ(step->kind, Kind::present);
+  EXPECT_EQ(step->frame, 1u);
+  EXPECT_EQ(step->present_at, due(1)) << "the step carries the moment the render thread waits for";
+  step = s.next(at_ms(12));
+  ASSERT_TRUE(step);
+  EXPECT_EQ(step->kind, Kind::render);
+  EXPECT_EQ(step->frame, 2u);
+  // The node wakes late, 1 ms before frame 3's moment: frame 2 is presented
+  // (late), and frame 3, still ahead, rendered — not dropped for being inside the handoff.
+  step = s.next(due(3) - milliseconds(1));
+  ASSERT_EQ(step->kind, Kind::present);
+  EXPECT_EQ(step->frame, 2u);
+  step = s.next(due(3) - milliseconds(1));
+  ASSERT_TRUE(step);
+  EXPECT_EQ(step->kind, Kind::render);
+  EXPECT_EQ(step->frame, 3u);
+  EXPECT_EQ(s.missed(), 0u);
+}
+
+TEST(PresentSchedule, TheHandoffIsFourMillisecondsAtMostHalfAPeriod) {
+  EXPECT_EQ(present_handoff(30.0), milliseconds(4));
+  EXPECT_EQ(present_handoff(60.0), milliseconds(4));
+  EXPECT_EQ(present_handoff(125.0), milliseconds(4));
+  using Ms = std::chrono::duration<double, std::milli>;
+  EXPECT_NEAR(Ms(present_handoff(240.0)).count(), 1000.0 / 480.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace zenith::cluster
