@@ -35,13 +35,14 @@
 //   latest_ms     the latest present after its scheduled moment (scheduled only)
 //
 // and per case the spread of the nodes' present times for one frame (max −
-// min over the nodes, for the frames every node presented): its largest and
-// 99th percentile; and, scheduled, the spread of the moments the nodes had
+// min over the nodes, for the frames every node presented): its largest,
+// 99th percentile and median, and the frames over 1 ms apart; and, scheduled, the spread of the moments the nodes had
 // for one frame — on one machine all share CLOCK_MONOTONIC, so that is the
 // clock synchronisation's error alone (the present spread adds how promptly
 // each node's render thread got a core). Needs root (network namespaces).
 //
 //   cluster_rig_bench [--zenith PATH] [--nodes 4] [--hz 60] [--frames 600] [--lookahead 3]
+//                     [--present-priority realtime|normal]
 //                     [--cases none,loss1,loss5,partition2s,latency5,clockstep,join1g,join100m]
 //                     [--schedules barrier,scheduled] [--size 32] [--tables small]
 //                     [--scene configs/scenes/earth-sunset.json] [--work DIR] [--cache DIR]
@@ -80,6 +81,7 @@ constexpr const char* kUsage = R"(cluster_rig_bench: the cluster across network 
   --hz R               frame rate (default 60)
   --frames N           frames per run, the warm-up frame 0 included (default 600)
   --lookahead N        the schedule's lookahead in frames (default 3)
+  --present-priority P timing.present_priority: realtime or normal (default: not written, realtime)
   --cases LIST         none, loss1, loss5, partition2s, latency5, clockstep, join1g, join100m
                        (default: the first four)
   --schedules LIST     barrier, scheduled (default both)
@@ -97,6 +99,7 @@ struct Options {
   double hz = 60.0;
   std::uint64_t frames = 600;
   int lookahead = 3;
+  std::string present_priority;  ///< empty: the key not written (the config's default; older builds lack it)
   std::vector<std::string> cases = {"none", "loss1", "loss5", "partition2s"};
   std::vector<std::string> schedules = {"barrier", "scheduled"};
   int size_px = 32;
@@ -121,6 +124,8 @@ Options parse(int argc, char** argv) {
       o.frames = std::stoull(args.value());
     else if (a == "--lookahead")
       o.lookahead = std::stoi(args.value());
+    else if (a == "--present-priority")
+      o.present_priority = args.value();
     else if (a == "--cases")
       o.cases = zenith::bench::split_list(args.value());
     else if (a == "--schedules")
@@ -143,6 +148,8 @@ Options parse(int argc, char** argv) {
   if (o.nodes < 2) throw std::invalid_argument("--nodes: at least 2 (node n1 is the impaired one)");
   if (o.frames < 10) throw std::invalid_argument("--frames: at least 10");
   if (o.lookahead < 1 || o.lookahead > 30) throw std::invalid_argument("--lookahead: in [1, 30]");
+  if (!o.present_priority.empty() && o.present_priority != "realtime" && o.present_priority != "normal")
+    throw std::invalid_argument("--present-priority: realtime or normal");
   const std::vector<std::string> known = {"none",     "loss1",     "loss5",  "partition2s",
                                           "latency5", "clockstep", "join1g", "join100m"};
   for (const std::string& c : o.cases)
@@ -168,9 +175,10 @@ struct Row {
   std::string schedule, case_name, node;
   std::uint64_t presented = 0, expected = 0, missing = 0, over_2t = 0, over_100ms = 0;
   bool in_order = true;
-  double longest_ms = 0.0, latest_ms = 0.0, spread_max_ms = 0.0, spread_p99_ms = 0.0, moment_max_ms = 0.0,
-         moment_p50_ms = 0.0;
+  double longest_ms = 0.0, latest_ms = 0.0, spread_max_ms = 0.0, spread_p99_ms = 0.0, spread_p50_ms = 0.0,
+         moment_max_ms = 0.0, moment_p50_ms = 0.0;
   std::uint64_t moments_apart = 0;       ///< frames whose moments lay more than 2 ms apart on the nodes
+  std::uint64_t swaps_apart = 0;         ///< frames the nodes presented more than 1 ms apart
   double table_mb = 0.0, table_s = 0.0;  ///< the joining node's (join cases), from the master's log
 };
 
@@ -197,6 +205,7 @@ std::vector<Row> run_case(const Options& o, const std::string& schedule, const s
   setup.frame_rate_hz = o.hz;
   setup.frames = o.frames;
   setup.lookahead_frames = schedule == "scheduled" ? o.lookahead : 0;
+  setup.present_priority = o.present_priority;
   setup.output_px = o.size_px;
   setup.tables = o.tables;
   const bool join = case_name == "join1g" || case_name == "join100m";
@@ -255,6 +264,9 @@ std::vector<Row> run_case(const Options& o, const std::string& schedule, const s
   for (Row& r : rows) {
     r.spread_max_ms = spreads.empty() ? 0.0 : *std::max_element(spreads.begin(), spreads.end());
     r.spread_p99_ms = percentile(spreads, 0.99);
+    r.spread_p50_ms = percentile(spreads, 0.5);
+    r.swaps_apart =
+        static_cast<std::uint64_t>(std::count_if(spreads.begin(), spreads.end(), [](double ms) { return ms > 1.0; }));
     r.moment_max_ms = moments.empty() ? 0.0 : *std::max_element(moments.begin(), moments.end());
     r.moment_p50_ms = percentile(moments, 0.5);
     r.moments_apart =
@@ -271,19 +283,20 @@ int run(int argc, char** argv) {
   fmt::print("cluster_rig_bench: {} nodes at {} Hz, {} frames, {}x{} px outputs, {} tables, lookahead {}\n", o.nodes,
              o.hz, o.frames, o.size_px, o.size_px, o.tables, o.lookahead);
   fmt::print(
-      "{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11} {:>7} {:>9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
+      "{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11} {:>7} {:>9} {:>10} {:>10} {:>10} {:>10} {:>7} {:>10} {:>10} "
+      "{:>9} {:>8}\n",
       "schedule", "case", "node", "presented", "missing", "order", "longest ms", "> 2T", "> 100 ms", "latest ms",
-      "spread ms", "p99 ms", "clock ms", "clock p50", "apart", "table MB", "table s");
+      "spread ms", "p99 ms", "p50 ms", "> 1 ms", "clock ms", "clock p50", "apart", "table MB", "table s");
   std::vector<Row> rows;
   for (const std::string& schedule : o.schedules)
     for (const std::string& c : o.cases)
       for (const Row& r : run_case(o, schedule, c)) {
         fmt::print(
-            "{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11.1f} {:>7} {:>9} {:>10.1f} {:>10.2f} {:>10.2f} {:>10.3f} "
-            "{:>10.3f} {:>6} {:>9.1f} {:>8.2f}\n",
+            "{:<10} {:<12} {:<4} {:>9} {:>8} {:>6} {:>11.1f} {:>7} {:>9} {:>10.1f} {:>10.2f} {:>10.2f} {:>10.2f} "
+            "{:>7} {:>10.3f} {:>10.3f} {:>6} {:>9.1f} {:>8.2f}\n",
             r.schedule, r.case_name, r.node, r.presented, r.missing, r.in_order ? "yes" : "NO", r.longest_ms, r.over_2t,
-            r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms, r.moment_p50_ms,
-            r.moments_apart, r.table_mb, r.table_s);
+            r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.spread_p50_ms, r.swaps_apart,
+            r.moment_max_ms, r.moment_p50_ms, r.moments_apart, r.table_mb, r.table_s);
         std::fflush(stdout);
         rows.push_back(r);
       }
@@ -291,12 +304,14 @@ int run(int argc, char** argv) {
   std::ofstream csv(o.csv);
   csv << "schedule,case,node,hz,frames_expected,presented,missing,in_order,longest_interval_ms,"
          "intervals_over_2_periods,intervals_over_100ms,latest_after_moment_ms,swap_spread_max_ms,swap_spread_p99_ms,"
-         "moment_spread_max_ms,table_mb,table_s,moment_spread_p50_ms,frames_moments_over_2ms_apart\n";
+         "moment_spread_max_ms,table_mb,table_s,moment_spread_p50_ms,frames_moments_over_2ms_apart,swap_spread_p50_ms,"
+         "frames_swaps_over_1ms_apart\n";
   for (const Row& r : rows)
-    csv << fmt::format("{},{},{},{},{},{},{},{},{:.2f},{},{},{:.2f},{:.3f},{:.3f},{:.3f},{:.2f},{:.3f},{:.3f},{}\n",
-                       r.schedule, r.case_name, r.node, o.hz, r.expected, r.presented, r.missing, r.in_order ? 1 : 0,
-                       r.longest_ms, r.over_2t, r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms,
-                       r.moment_max_ms, r.table_mb, r.table_s, r.moment_p50_ms, r.moments_apart);
+    csv << fmt::format(
+        "{},{},{},{},{},{},{},{},{:.2f},{},{},{:.2f},{:.3f},{:.3f},{:.3f},{:.2f},{:.3f},{:.3f},{},{:.3f},{}\n",
+        r.schedule, r.case_name, r.node, o.hz, r.expected, r.presented, r.missing, r.in_order ? 1 : 0, r.longest_ms,
+        r.over_2t, r.over_100ms, r.latest_ms, r.spread_max_ms, r.spread_p99_ms, r.moment_max_ms, r.table_mb, r.table_s,
+        r.moment_p50_ms, r.moments_apart, r.spread_p50_ms, r.swaps_apart);
   fmt::print("csv: {}\n", o.csv.string());
   return 0;
 }

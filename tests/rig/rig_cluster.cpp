@@ -57,7 +57,8 @@ RigCluster::RigCluster(NetworkRig& rig, RigClusterSetup setup) : rig_(rig), setu
       << R"(", "viewports": "viewports.json",
   "timing": {"heartbeat_ms": 200, "barrier_timeout_ms": 20000, "frame_rate_hz": )"
       << setup_.frame_rate_hz << R"(, "lookahead_frames": )" << setup_.lookahead_frames << R"(, "link_lost": ")"
-      << (setup_.black_when_link_lost ? "black" : "hold") << R"("},
+      << (setup_.black_when_link_lost ? "black" : "hold") << '"'
+      << (setup_.present_priority.empty() ? "" : R"(, "present_priority": ")" + setup_.present_priority + '"') << R"(},
   "secret": {"env": ")"
       << kSecretVar << R"("}, "tables": {"sizes": ")" << setup_.tables << R"(", "orders": 4},
   "nodes": [)"

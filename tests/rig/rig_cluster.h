@@ -31,7 +31,9 @@ struct RigClusterSetup {
   int output_px = 32;          ///< each node's square fisheye output
   std::string tables = "small";
   bool black_when_link_lost = false;  ///< timing.link_lost: "black" (else "hold")
-  bool standby = false;               ///< a standby master on host "standby" (docs/cluster.md, "Standby master")
+  /// timing.present_priority ("realtime", "normal"); empty: not written (the default, realtime).
+  std::string present_priority;
+  bool standby = false;  ///< a standby master on host "standby" (docs/cluster.md, "Standby master")
   /// A delaying relay (tests/rig/delay_relay.cpp) in front of each node, in
   /// its namespace: the node connects to it as to its master (127.0.0.1), and
   /// it forwards to the master and back with these impairments, each way.
