@@ -19,26 +19,35 @@ namespace {
 /// The eclipse's geometry where the Moon's shadow can reach the air the camera
 /// sees: the camera within two penumbra radii (where V̄ reaches 1,
 /// astro/moon_shadow.h) plus the air's reach (the camera's horizon distance
-/// and the top of the atmosphere's) of the shadow's axis.
+/// and the top of the atmosphere's) of the shadow's axis. The Moon is placed
+/// from the clock's site (its topocentric direction and distance), the site
+/// below the camera at its altitude: a camera in orbit is not where the
+/// ephemeris looked from, and 400 km of it would move the umbra by as much.
 std::optional<astro::EclipseGeometry> shadow_on_the_air(const scene::Scene& scene, const glm::dvec3& moon_direction,
-                                                        double moon_distance_m, double separation_rad,
+                                                        double moon_distance_m,
                                                         const std::vector<double>& limb_exponents,
                                                         double& air_from_axis_penumbrae) {
   const scene::Body& planet = scene.bodies.at(scene.sky_clock->body);
   if (!planet.atmosphere) return std::nullopt;
   const atmosphere::AtmosphereModel& model = planet.atmosphere->loaded.model;
   const glm::dvec3 camera = scene.camera.position_m - planet.position_m;
+  const glm::dvec3 site = glm::normalize(camera) * (planet.radius_m + scene.sky_clock->site.altitude_m);
+  const glm::dvec3 moon_centre = site + moon_direction * moon_distance_m;
+  const glm::dvec3 sun = glm::normalize(scene.sun.direction);
+  // The camera behind the Moon along the sunlight, and its distance from the shadow's axis.
+  const glm::dvec3 from_moon = camera - moon_centre;
+  const double behind_m = -glm::dot(from_moon, sun);
+  if (behind_m <= 0.0) return std::nullopt;  // the camera is sunward of the Moon
+  const double off_axis_m = glm::length(from_moon + behind_m * sun);
   const double r = glm::length(camera), bottom = model.ground_radius_m, top = model.top_radius_m;
   const double reach_m =
       std::sqrt(std::max(0.0, (r - bottom) * (r + bottom))) + std::sqrt(std::max(0.0, (top - bottom) * (top + bottom)));
-  const double penumbra_m =
-      moon_distance_m *
-      std::tan(scene.sun.angular_radius_rad + std::asin(std::min(1.0, astro::kMoonRadius_km * 1e3 / moon_distance_m)));
-  if (separation_rad >= 0.5 * core::kPi || moon_distance_m * std::sin(separation_rad) >= 2.0 * penumbra_m + reach_m)
-    return std::nullopt;
-  air_from_axis_penumbrae = (moon_distance_m * std::sin(separation_rad) - reach_m) / penumbra_m;
-  return astro::EclipseGeometry{camera + moon_direction * moon_distance_m, astro::kMoonRadius_km * 1e3,
-                                glm::normalize(scene.sun.direction), scene.sun.angular_radius_rad, limb_exponents};
+  const double penumbra_m = behind_m * std::tan(scene.sun.angular_radius_rad +
+                                                std::asin(std::min(1.0, astro::kMoonRadius_km * 1e3 / behind_m)));
+  if (off_axis_m >= 2.0 * penumbra_m + reach_m) return std::nullopt;
+  air_from_axis_penumbrae = (off_axis_m - reach_m) / penumbra_m;
+  return astro::EclipseGeometry{moon_centre, astro::kMoonRadius_km * 1e3, sun, scene.sun.angular_radius_rad,
+                                limb_exponents};
 }
 
 }  // namespace
@@ -58,8 +67,7 @@ SunOcculter sun_occulter(const scene::Scene& scene, const FrameSky& sky, bool li
   std::vector<double> limb_exponents;
   for (double nm : scene.wavelengths_nm)
     limb_exponents.push_back(limb_darkening ? scene::limb_darkening_exponent(nm) : 0.0);
-  out.shadow = shadow_on_the_air(scene, direction, moon.distance_km * 1e3, separation, limb_exponents,
-                                 out.air_from_axis_penumbrae);
+  out.shadow = shadow_on_the_air(scene, direction, moon.distance_km * 1e3, limb_exponents, out.air_from_axis_penumbrae);
   if (separation >= r_s + r_m) return out;
   out.direction = direction;
   out.angular_radius_rad = r_m;
