@@ -335,6 +335,12 @@ SkyViewTableUse sky_view_use_for_outputs(std::size_t largest_output_pixels) {
 
 void Renderer::choose_sky_view(Frame& frame) const {
   const scene::Scene& scene = frame.scene;
+  // The Moon's shadow on the air of the sky clock's planet (render/frame/sun_occulter.h):
+  // on the sky-view table's terms where the camera is inside the shell, on
+  // the 4D tables' from orbit (eclipse_sky_table.h).
+  for (AtmospherePass& pass : frame.passes)
+    pass.eclipse_sky =
+        pass.gpu && frame.occulter.shadow && scene.sky_clock && pass.body == static_cast<int>(scene.sky_clock->body);
   // A small frame's 4D lookups cost less than the table's fill. But the
   // Moon's shadow on the air is drawn from the table (eclipse_sky_table.h),
   // so a scene where the Moon can eclipse the sun keeps it at any size: its
@@ -355,8 +361,6 @@ void Renderer::choose_sky_view(Frame& frame) const {
     pass.sky_view =
         sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(), pass.top_radius_m, glm::dot(up, frame.sun));
     if (!pass.sky_view) continue;
-    // The Moon's shadow on the air of the sky clock's planet (render/frame/sun_occulter.h).
-    pass.eclipse_sky = frame.occulter.shadow && scene.sky_clock && pass.body == static_cast<int>(scene.sky_clock->body);
     // The Moon's own table where it is as accurate for the Moon's cosine; else
     // its passes read the 4D tables in the sky-view tiles.
     pass.moon_sky_view = pass.moonlit && sky_view_accurate(pass.distance_m, pass.gpu->ground_radius_m(),
@@ -368,22 +372,26 @@ void Renderer::choose_sky_view(Frame& frame) const {
 void Renderer::fill_sky_view_tables(Frame& frame, PassTimer& timer) {
   for (std::size_t a = 0; a < frame.passes.size(); ++a) {
     AtmospherePass& pass = frame.passes[a];
-    if (!pass.sky_view) continue;
+    if (!pass.sky_view && !pass.eclipse_sky) continue;
     const scene::Body& planet = frame.scene.bodies[static_cast<std::size_t>(pass.body)];
     const glm::dvec3 up = glm::normalize(frame.scene.camera.position_m - planet.position_m);
     // The sun's table, unless no tile the sun's pass draws reads it (its sky
-    // and ground left black: render/frame/sun_light.h).
-    bool read = false;
+    // and ground left black: render/frame/sun_light.h); the eclipse-sky table
+    // likewise, for the one-pass tiles of either kind.
+    bool read = false, drawn = false;
     for (const BandTiles& band : *frame.bands)
-      for (const auto& [variant, list] : band.lists[a].one_pass)
-        read = read || (variant.sky_view && !sky_and_ground_unlit(pass, variant));
+      for (const auto& [variant, list] : band.lists[a].one_pass) {
+        const bool lit = !sky_and_ground_unlit(pass, variant);
+        read = read || (pass.sky_view && variant.sky_view && lit);
+        drawn = drawn || lit;
+      }
     if (read)
       timer.gpu("sky-view table", [&] {
         if (pass.gpu->fill_sky_view(pass.distance_m, glm::dot(up, frame.sun), frame.sun_radius))
           ++stats_.sky_view_tables_filled;
       });
     if (pass.eclipse_sky) {
-      if (read)
+      if (drawn)
         follow_moon_shadow(frame, pass, timer);
       else
         pass.eclipse_sky = false;  // no tile draws the sun's sky

@@ -58,7 +58,7 @@ void draw_one_pass_tiles(FrameInProgress& frame, BandResources& resources, const
           variant.sky_view = variant.sky_view && pass.moon_sky_view;
         }
         // The Moon's shadow on the sun's sky (render/frame/eclipse_sky_table.h).
-        const bool eclipse_sky = light.is_sun() && pass.eclipse_sky && variant.sky_view;
+        const bool eclipse_sky = light.is_sun() && pass.eclipse_sky;
         const ShaderProgram& p = pass.gpu->tile_program(frame.variant, variant, eclipse_sky);
         frame.set_group_uniforms(p, g, light);
         pass.gpu->set_group(p, g);

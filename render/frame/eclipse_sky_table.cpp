@@ -50,11 +50,12 @@ std::vector<gl::ShaderDefine> EclipseSkyTable::defines() {
 }
 
 EclipseSkyTable::EclipseSkyTable(gl::ProgramBuilds& builds, std::span<const gl::ShaderDefine> atmosphere_defines,
-                                 std::size_t groups, double ground_radius_m)
+                                 std::size_t groups, double ground_radius_m, double top_radius_m)
     : builds_(&builds),
       defines_(atmosphere_defines.begin(), atmosphere_defines.end()),
       groups_(std::max<std::size_t>(groups, 1)),
-      ground_radius_m_(ground_radius_m) {
+      ground_radius_m_(ground_radius_m),
+      top_radius_m_(top_radius_m) {
   for (const gl::ShaderDefine& d : defines()) defines_.push_back(d);
   table_ = gl::Texture::create_2d_array(gl::TextureFormat::rgba32f, kAzimuthTexels, kZenithTexels,
                                         static_cast<int>(groups_) * kLayersPerGroup);
@@ -156,9 +157,15 @@ void EclipseSkyTable::prepare_fill(const glm::dvec3& camera_m) {
   azimuth_w_ = glm::cross(up, azimuth_h_);
   camera_m_ = camera_m;
   const double theta_horizon_rad = core::kPi - std::asin(std::min(ground_radius_m_ / r, 1.0));
+  // From outside the shell only the directions within its disc meet air.
+  const bool outside = r > top_radius_m_;
+  theta_top_rad_ = outside ? static_cast<float>(core::kPi - std::asin(top_radius_m_ / r)) : 0.0f;
+  theta_horizon_rad_ = static_cast<float>(theta_horizon_rad);
   const gl::ShaderProgram& fill = fill_program();
   fill.set_uniform("camera_r", static_cast<float>(r));
   fill.set_uniform("camera_ground_power", static_cast<float>((r - ground_radius_m_) * (r + ground_radius_m_)));
+  fill.set_uniform("camera_top_power", outside ? static_cast<float>((r - top_radius_m_) * (r + top_radius_m_)) : 0.0f);
+  fill.set_uniform("theta_top", theta_top_rad_);
   fill.set_uniform("theta_horizon", static_cast<float>(theta_horizon_rad));
   fill.set_uniform("camera_up", vec3_of(up));
   fill.set_uniform("azimuth_h", vec3_of(azimuth_h_));
@@ -203,6 +210,8 @@ void EclipseSkyTable::set_uniforms(const gl::ShaderProgram& p, std::size_t group
   p.set_uniform("shadow_mie_k2", mie_k2_.at(group));
   p.set_uniform("eclipse_sky_h", vec3_of(azimuth_h_));
   p.set_uniform("eclipse_sky_w", vec3_of(azimuth_w_));
+  p.set_uniform("eclipse_sky_theta_top", theta_top_rad_);
+  p.set_uniform("eclipse_sky_theta_horizon", theta_horizon_rad_);
   p.set_uniform("eclipse_sky_layer_base", static_cast<int>(group) * kLayersPerGroup);
 }
 

@@ -3,13 +3,14 @@
 // "Sun, shadows, eclipses"): the Moon's shadow on one atmosphere
 // (astro/moon_shadow.h, built on the CPU from the atmosphere's tables) and,
 // once per frame, the eclipse-sky table filled from it on the GPU
-// (shaders/render/eclipse_sky.comp): per direction from a camera inside the
-// shell, the share of the sky-view table's light the shadow leaves, for the
-// smooth part A and the single Mie part M of each wavelength. The one-pass
-// tiles that read the sky-view table multiply by it (atmosphere_tile.comp's
-// ECLIPSE_SKY variant), and the ground's skylight by the share left there
-// (a fifth layer); the ground's direct sun by the shadow's V per pixel
-// (shaders/render/moon_shadow.glsl), sharp at the umbra's edge.
+// (shaders/render/eclipse_sky.comp): per direction from the camera, the share
+// of the sky's light the shadow leaves, for the smooth part A and the single
+// Mie part M of each wavelength. The one-pass tiles multiply by it
+// (atmosphere_tile.comp's ECLIPSE_SKY variant: the sky-view table's terms for
+// a camera inside the shell, the 4D tables' along the ray for one in orbit,
+// whose table covers the shell's disc), and the ground's skylight by the
+// share left there (a fifth layer); the ground's direct sun by the shadow's V
+// per pixel (shaders/render/moon_shadow.glsl), sharp at the umbra's edge.
 //
 // The shares vary over tens of degrees, so the table is coarse: 64 azimuths
 // all the way round (the shadow breaks the sky's symmetry about the sun's
@@ -49,11 +50,12 @@ class EclipseSkyTable {
   /// The defines of eclipse_sky_mapping.glsl and moon_shadow.glsl (the shadow's table sizes).
   static std::vector<gl::ShaderDefine> defines();
 
-  /// For an atmosphere of `groups` wavelength groups over a ground of radius
-  /// `ground_radius_m`; the fill program, with the atmosphere's defines, is one
-  /// of `builds` (which outlives this). Needs a current GL context.
+  /// For an atmosphere of `groups` wavelength groups between the radii
+  /// `ground_radius_m` and `top_radius_m`; the fill program, with the
+  /// atmosphere's defines, is one of `builds` (which outlives this). Needs a
+  /// current GL context.
   EclipseSkyTable(gl::ProgramBuilds& builds, std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups,
-                  double ground_radius_m);
+                  double ground_radius_m, double top_radius_m);
 
   /// The tables (and their model) the shadows are built from, kept on the
   /// CPU while this exists: a TableSource may need the GL context, a worker
@@ -80,7 +82,7 @@ class EclipseSkyTable {
   /// Starts building the fill program (with the frame's other programs).
   void start_program() const;
   /// Fills every group's layers for a camera at `camera_m` (planet-centred,
-  /// world-oriented; inside the shell) with the shadow held. `bind_group(g)`
+  /// world-oriented; inside the shell or outside it) with the shadow held. `bind_group(g)`
   /// binds group g's atmosphere tables (GpuAtmosphere::bind_tables) and sets
   /// its `wavelength_group`.
   template <class BindGroup>
@@ -111,7 +113,7 @@ class EclipseSkyTable {
   gl::ProgramBuilds* builds_;
   std::vector<gl::ShaderDefine> defines_;  // the fill program's
   std::size_t groups_ = 1;
-  double ground_radius_m_ = 0.0;
+  double ground_radius_m_ = 0.0, top_radius_m_ = 0.0;
   gl::Texture table_;
   std::unique_ptr<astro::MoonShadow> shadow_;
   std::optional<atmosphere::AtmosphereModel> model_;
@@ -123,6 +125,7 @@ class EclipseSkyTable {
   float rayleigh_k1_ = 0.0f, rayleigh_k2_ = 0.0f;
   // The camera of the last fill and its azimuth's axes: the tile passes read the table with them.
   glm::dvec3 camera_m_{0.0}, azimuth_h_{1.0, 0.0, 0.0}, azimuth_w_{0.0, 1.0, 0.0};
+  float theta_top_rad_ = 0.0f, theta_horizon_rad_ = 0.0f;  // its zenith angles' mapping (eclipse_sky_mapping.glsl)
 };
 
 }  // namespace zenith::render

@@ -35,7 +35,7 @@ struct AtmospherePass {
   bool sunlit = true;          // the sun lights it visibly this frame (render/frame/sun_light.h)
   bool moonlit = false;        // the Moon lights it this frame (render/night/moon_light.h)
   bool moon_sky_view = false;  // and the Moon's sky-view table is filled too
-  bool eclipse_sky = false;    // the Moon's shadow lies on its air: the sun's sky-view tiles read the eclipse-sky table
+  bool eclipse_sky = false;    // the Moon's shadow lies on its air: the sun's one-pass tiles read the eclipse-sky table
 };
 
 /// A light of the atmosphere passes: the scene's sun, or the Moon

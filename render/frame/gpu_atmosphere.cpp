@@ -186,7 +186,7 @@ std::vector<gl::ShaderDefine> GpuAtmosphere::tile_defines(const FrameVariant& fr
                                  {"TILE_GROUND", std::to_string(static_cast<int>(v.ground))},
                                  {"TILE_OTHERS", std::to_string(v.others)},
                                  {"SUN", v.sun ? "1" : "0"}});
-  if (eclipse_sky && v.sky_view) {
+  if (eclipse_sky) {
     defines.push_back({"ECLIPSE_SKY", "1"});
     for (const gl::ShaderDefine& d : EclipseSkyTable::defines()) defines.push_back(d);
   }
@@ -225,7 +225,8 @@ bool GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, dou
 
 EclipseSkyTable& GpuAtmosphere::eclipse_sky() {
   if (!eclipse_sky_)
-    eclipse_sky_ = std::make_unique<EclipseSkyTable>(*builds_, fill_defines_, groups_.size(), ground_radius_m_);
+    eclipse_sky_ =
+        std::make_unique<EclipseSkyTable>(*builds_, fill_defines_, groups_.size(), ground_radius_m_, top_radius_m_);
   return *eclipse_sky_;
 }
 

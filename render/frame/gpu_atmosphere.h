@@ -72,7 +72,7 @@ class GpuAtmosphere {
   double ground_radius_m() const { return ground_radius_m_; }
   /// atmosphere_tile.comp for tiles only this shell touches, compiled for the
   /// frame's variant and the tiles' (render/frame/tile_classification.h).
-  /// With `eclipse_sky`, the SKY_VIEW variant that reads the eclipse-sky table too (ECLIPSE_SKY).
+  /// With `eclipse_sky`, the variant that reads the eclipse-sky table too (ECLIPSE_SKY).
   const gl::ShaderProgram& tile_program(const FrameVariant& frame, const TileVariant& variant,
                                         bool eclipse_sky = false);
   /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).

@@ -19,11 +19,33 @@
 //   TILE_GROUND, TILE_OTHERS  what the rays can meet (atmosphere_tile.comp):
 //                        the cases they cannot meet are left out; both
 //                        default to 2, every case
+//   ECLIPSE_SKY          1: the Moon's shadow on the air (a solar eclipse):
+//                        the includer defines eclipse_shares() and
+//                        eclipse_direct_light() (atmosphere_tile.comp, from the
+//                        frame's eclipse-sky table): S's smooth and Mie parts
+//                        times the shares the shadow leaves along the ray, the
+//                        ground's direct sun times V and its skylight times
+//                        the share left where the ray ends
 #ifndef TILE_GROUND
 #define TILE_GROUND 2
 #endif
 #ifndef TILE_OTHERS
 #define TILE_OTHERS 2
+#endif
+#ifndef ECLIPSE_SKY
+#define ECLIPSE_SKY 0
+#endif
+
+#if ECLIPSE_SKY
+/// What the Moon's shadow leaves of the light along `ray` from the camera (to
+/// the ground where `ground`): of the smooth part A, of the single Mie part M,
+/// and of the skylight on the ground where the ray ends.
+struct EclipseShares {
+  vec4 smooth_part, mie, skylight;
+};
+EclipseShares eclipse_shares(vec3 ray, bool ground);
+/// V: the share of the sun's direct light the Moon leaves at `point` (camera-relative) on the ground.
+vec4 eclipse_direct_light(vec3 point);
 #endif
 
 layout(binding = SINGLE_RAYLEIGH_UNIT) uniform sampler3D single_rayleigh_texture;
@@ -115,12 +137,16 @@ real4 sky_irradiance(real mu_s) {
 }
 
 /// The ground's reflected light where the ray meets this planet at distance t,
-/// per unit solar irradiance: L_g = ρ/π (E_sun T_sun(y) V + E_sky(y)).
-real4 ground_radiance(vec3 ray, float t, real4 rho) {
+/// per unit solar irradiance: L_g = ρ/π (E_sun T_sun(y) V + E_sky(y)), in an
+/// eclipse with V the Moon's too and E_sky times the share `skylight_share` left.
+real4 ground_radiance(vec3 ray, float t, real4 rho, real4 skylight_share) {
   const vec3 n = body_normal(the_body, ray, t);
   const real mu_s_ground = real(dot(n, sun_direction));
-  const real visibility = real(sun_visibility(ray * t, planet));
-  return rho / PI * (direct_irradiance(RB, mu_s_ground) * visibility + sky_irradiance(mu_s_ground));
+  real4 visibility = real4(sun_visibility(ray * t, planet));
+#if ECLIPSE_SKY
+  visibility *= real4(eclipse_direct_light(ray * t));
+#endif
+  return rho / PI * (direct_irradiance(RB, mu_s_ground) * visibility + sky_irradiance(mu_s_ground) * skylight_share);
 }
 
 /// This atmosphere's segment of `ray` (the 4D tables at the entry point):
@@ -172,7 +198,18 @@ bool atmosphere_segment(vec3 ray, float hit_distance, int hit_body, real4 rho, o
 #else
   const bool continues_to_ground = own_ground;
 #endif
+#if ECLIPSE_SKY
+  const EclipseShares shares = eclipse_shares(ray, continues_to_ground);
+  const Inscatter s = inscatter(r, mu, mu_s, nu, continues_to_ground);
+  radiance = s.smooth_part * real4(shares.smooth_part);
+#if HAS_MIE
+  radiance += s.mie * real4(shares.mie) * model_mie_phase(nu);
+#endif
+  const real4 skylight_share = real4(shares.skylight);
+#else
   radiance = scattering(r, mu, mu_s, nu, continues_to_ground);
+  const real4 skylight_share = real4(1);
+#endif
 
   // What the segment ends on; a case these rays cannot meet is left out of
   // the program (atmosphere_tile.comp), as a CPU rasterizer would run it anyway.
@@ -180,7 +217,7 @@ bool atmosphere_segment(vec3 ray, float hit_distance, int hit_body, real4 rho, o
   if (own_ground) {
     const real d = real(hit_distance - d_entry);
     const real4 t = transmittance(r, mu, d, true);
-    radiance += t * ground_radiance(ray, hit_distance, rho);
+    radiance += t * ground_radiance(ray, hit_distance, rho, skylight_share);
     transmittance_segment = real4(0);
   }
 #endif
@@ -192,7 +229,17 @@ bool atmosphere_segment(vec3 ray, float hit_distance, int hit_body, real4 rho, o
     const real r_y = clamp(sqrt(d * d + real(2) * r * mu * d + r * r), RB, RT);
     const real mu_y = clamp_cosine((r * mu + d) / r_y);
     const real mu_s_y = clamp_cosine((r * mu_s + d * nu) / r_y);
-    radiance = max(radiance - transmittance_segment * scattering(r_y, mu_y, mu_s_y, nu, continues_to_ground), real4(0));
+#if ECLIPSE_SKY
+    // The shares are the whole ray's: the part beyond y is taken away with them.
+    const Inscatter s_y = inscatter(r_y, mu_y, mu_s_y, nu, continues_to_ground);
+    real4 beyond = s_y.smooth_part * real4(shares.smooth_part);
+#if HAS_MIE
+    beyond += s_y.mie * real4(shares.mie) * model_mie_phase(nu);
+#endif
+#else
+    const real4 beyond = scattering(r_y, mu_y, mu_s_y, nu, continues_to_ground);
+#endif
+    radiance = max(radiance - transmittance_segment * beyond, real4(0));
   }
   const bool to_top = !own_ground && !(hits_body && hit_distance < d_exit);
 #else

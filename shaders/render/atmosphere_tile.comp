@@ -30,11 +30,14 @@
 //                perspective, SKY_VIEW 0 only)
 //   SUN          1: the sun's disc can be in the tile
 // and, in the frames of a solar eclipse (render/frame/eclipse_sky_table.h),
-//   ECLIPSE_SKY  1 (SKY_VIEW 1 only): the Moon's shadow on the air: A and M
-//                times their shares left from the frame's eclipse-sky table
-//                (eclipse_sky.comp), the ground's skylight times the share
-//                left from the same table and its direct sun times V per
-//                pixel (moon_shadow.glsl); with its defines (EclipseSkyTable::defines())
+//   ECLIPSE_SKY  1: the Moon's shadow on the air: A and M times their shares
+//                left from the frame's eclipse-sky table (eclipse_sky.comp),
+//                the ground's skylight times the share left from the same
+//                table and its direct sun times V per pixel (moon_shadow.glsl);
+//                with its defines (EclipseSkyTable::defines()). SKY_VIEW 1
+//                multiplies the sky-view table's terms; SKY_VIEW 0 (a camera
+//                in orbit, bodies inside the shell) the 4D tables' terms
+//                (atmosphere_segment.glsl's hook, the functions below)
 // Other defines: those of atmosphere_common.glsl, MULTIPLE_SCATTERING,
 // ECLIPSES, SUN_DISC, LIMB_DARKENING.
 #include "atmosphere_common.glsl"
@@ -45,8 +48,30 @@
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
-#ifndef ECLIPSE_SKY
-#define ECLIPSE_SKY 0
+#if ECLIPSE_SKY
+#include "moon_shadow.glsl"
+#include "eclipse_sky_mapping.glsl"
+/// The frame's eclipse-sky table (eclipse_sky.comp): ECLIPSE_SKY_LAYERS layers per group.
+layout(binding = ECLIPSE_SKY_UNIT) uniform sampler2DArray eclipse_sky_table;
+uniform int eclipse_sky_layer_base;            // ECLIPSE_SKY_LAYERS · wavelength group
+uniform vec3 eclipse_sky_h, eclipse_sky_w;     // its azimuth's axes: φ = 0 toward h, π/2 toward w
+uniform float eclipse_sky_theta_top;           // θ0 of its mapping: 0 inside the shell
+uniform float eclipse_sky_theta_horizon;       // θh of its mapping [rad]
+
+/// atmosphere_segment.glsl's hook (its SKY_VIEW 0 rays): the table's shares along `ray` from the camera.
+EclipseShares eclipse_shares(vec3 ray, bool ground) {
+  const vec3 up = -the_body.centre.xyz;
+  const float theta = acos(clamp(dot(up, ray), -1.0, 1.0));
+  const vec2 uv = eclipse_sky_uv(theta, atan(dot(ray, eclipse_sky_w), dot(ray, eclipse_sky_h)),
+                                 eclipse_sky_theta_top, eclipse_sky_theta_horizon, ground);
+  const float layer = float(eclipse_sky_layer_base + (ground ? ECLIPSE_SKY_GROUND : ECLIPSE_SKY_SKY));
+  EclipseShares shares;
+  shares.smooth_part = texture(eclipse_sky_table, vec3(uv, layer));
+  shares.mie = texture(eclipse_sky_table, vec3(uv, layer + 1.0));
+  shares.skylight = ground ? texture(eclipse_sky_table, vec3(uv, layer + 2.0)) : vec4(1.0);
+  return shares;
+}
+vec4 eclipse_direct_light(vec3 point) { return shadow_direct_light(shadow_place(point, 0.0)); }
 #endif
 
 // Something can lie behind the atmosphere in these tiles: light seen through T.
@@ -58,15 +83,6 @@ layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 layout(binding = SKY_VIEW_UNIT) uniform sampler2DArray sky_view_table;
 uniform int sky_view_layer_base;       // SKY_VIEW_LAYERS · wavelength group
 uniform float sky_view_theta_horizon;  // zenith angle of the geometric horizon at the camera [rad]
-
-#if ECLIPSE_SKY
-#include "moon_shadow.glsl"
-#include "eclipse_sky_mapping.glsl"
-/// The frame's eclipse-sky table (eclipse_sky.comp): ECLIPSE_SKY_LAYERS layers per group.
-layout(binding = ECLIPSE_SKY_UNIT) uniform sampler2DArray eclipse_sky_table;
-uniform int eclipse_sky_layer_base;        // ECLIPSE_SKY_LAYERS · wavelength group
-uniform vec3 eclipse_sky_h, eclipse_sky_w;  // its azimuth's axes: φ = 0 toward h, π/2 toward w
-#endif
 
 /// Variant 1's radiance: the camera is inside the shell and nothing but this
 /// planet's ground lies inside it along the ray; `behind` is the light of
@@ -87,7 +103,7 @@ vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albed
 #endif
 #if ECLIPSE_SKY
   // The shares the Moon's shadow leaves of A and M along this direction.
-  const vec2 e_uv = eclipse_sky_uv(theta, atan(dot(ray, eclipse_sky_w), dot(ray, eclipse_sky_h)),
+  const vec2 e_uv = eclipse_sky_uv(theta, atan(dot(ray, eclipse_sky_w), dot(ray, eclipse_sky_h)), 0.0,
                                    sky_view_theta_horizon, own_ground);
   const float e_layer = float(eclipse_sky_layer_base + (own_ground ? ECLIPSE_SKY_GROUND : ECLIPSE_SKY_SKY));
   S *= texture(eclipse_sky_table, vec3(e_uv, e_layer));

@@ -17,6 +17,10 @@
 // the direct sun's V, which changes sharply at the umbra's edge, is per pixel
 // in atmosphere_tile.comp.
 //
+// A camera outside the shell (orbit) sums from where each ray enters the air,
+// as astro/eclipsed_sky.cpp does (nothing scatters before it): the entry
+// point's r = RT, μ and μs, the segment positions offset by the entry distance.
+//
 // Defines: those of atmosphere_common.glsl, MULTIPLE_SCATTERING, those of
 // moon_shadow.glsl and eclipse_sky_mapping.glsl, ECLIPSE_SKY_SEGMENTS.
 #include "atmosphere_common.glsl"
@@ -29,8 +33,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = OUTPUT_IMAGE, rgba32f) uniform writeonly image2DArray eclipse_sky_table;
 
-uniform float camera_r;             // [m], in [RB, RT)
+uniform float camera_r;             // [m], ≥ RB
 uniform float camera_ground_power;  // r² − RB² [m²], in double on the CPU
+uniform float theta_top;            // θ0: 0 inside the shell, π − asin(RT / r) outside (eclipse_sky_mapping.glsl)
 uniform float theta_horizon;        // θh = π − asin(RB / r), in double on the CPU
 uniform vec3 camera_up;             // world frame, unit
 uniform vec3 azimuth_h, azimuth_w;  // φ = 0 toward h (the sun's azimuth), φ = π/2 toward w = up × h
@@ -71,19 +76,30 @@ Carried carried(real r, real mu, real mu_s, real nu, bool ground, real t, bool a
 void main() {
   const ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(texel, ivec2(ECLIPSE_SKY_AZIMUTH_TEXELS, ECLIPSE_SKY_ZENITH_TEXELS)))) return;
-  const real r = real(camera_r);
+  // camera_top_power (atmosphere_segment.glsl): r² − RT², set for this fill; > 0 outside the shell.
+  const bool outside = camera_top_power > 0.0;
   for (int half_index = 0; half_index < 2; ++half_index) {
     const bool ground = half_index == 1;
     float theta, phi;
-    eclipse_sky_direction(texel, theta_horizon, ground, theta, phi);
+    eclipse_sky_direction(texel, theta_top, theta_horizon, ground, theta, phi);
     const vec3 v = cos(theta) * camera_up + sin(theta) * (cos(phi) * azimuth_h + sin(phi) * azimuth_w);
-    const real mu = clamp_cosine(real(cos(theta)));
-    const real mu_s = clamp_cosine(real(dot(camera_up, fill_sun)));
     const real nu = clamp(real(dot(v, fill_sun)), real(-1), real(1));
+    // Where the sum starts: the camera, or where the ray enters the shell
+    // (the entry distance in the stable form C / (q + √(q² − C)), q = −r μ,
+    // C = r² − RT²; a ray that grazes past the shell enters where it is closest).
+    real r = real(camera_r), mu = clamp_cosine(real(cos(theta))), mu_s = clamp_cosine(real(dot(camera_up, fill_sun)));
+    real entry = real(0);
+    if (outside) {
+      const real C = real(camera_top_power), q = -r * mu;
+      entry = C / (q + sqrt(max(q * q - C, real(0))));
+      mu = clamp_cosine((r * mu + entry) / RT);
+      mu_s = clamp_cosine((r * mu_s + entry * nu) / RT);
+      r = RT;
+    }
     real d;
     if (ground) {
-      // Distance to the ground in the stable form C / (q + √(q² − C)), q = −r μ > 0, C = r² − RB².
-      const real C = real(camera_ground_power), q = -r * mu;
+      // Distance to the ground in the same stable form, C = r² − RB² at the start.
+      const real C = outside ? (RT - RB) * (RT + RB) : real(camera_ground_power), q = -r * mu;
       d = C / (q + sqrt(max(q * q - C, real(0))));
     } else {
       d = distance_to_top(r, mu);
@@ -97,7 +113,7 @@ void main() {
       const Carried far = carried(r, mu, mu_s, nu, ground, t_far, k + 1 == ECLIPSE_SKY_SEGMENTS);
       const real t_mid = real(0.5) * (d * real(float(k * k) / (n * n)) + t_far);
       const float r_mid = float(sqrt(t_mid * t_mid + real(2) * r * mu * t_mid + r * r));
-      const ShadowPlace middle = shadow_place(v * float(t_mid), r_mid - float(RB));
+      const ShadowPlace middle = shadow_place(v * float(entry + t_mid), r_mid - float(RB));
       const vec4 V = shadow_direct_light(middle);
       const vec4 rayleigh = max(near.rayleigh - far.rayleigh, 0.0) * phase_r;
       const vec4 mie = max(near.mie - far.mie, 0.0);
@@ -117,7 +133,7 @@ void main() {
                mix(vec4(1.0), dark_m / day_m, greaterThan(day_m, vec4(0.0))));
     if (ground) {
       // The skylight's share left where the ray meets the ground (MoonShadow::skylight_left).
-      const vec3 at_ground = v * float(d);
+      const vec3 at_ground = v * float(entry + d);
       const vec3 normal = normalize(camera_up * camera_r + at_ground);
       imageStore(eclipse_sky_table, ivec3(texel, layer + 2), shadow_skylight_left(shadow_place(at_ground, 0.0), normal));
     }
