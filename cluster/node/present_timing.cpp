@@ -1,6 +1,5 @@
 #include "cluster/node/present_timing.h"
 
-#include <pthread.h>
 #include <sched.h>
 #include <spdlog/spdlog.h>
 #include <time.h>
@@ -28,13 +27,19 @@ PresentPriority::PresentPriority(bool realtime, std::string node_name)
 PresentPriority::Raised PresentPriority::raise() {
   Raised raised;
   if (!realtime_possible()) return raised;
+  // pid 0: the calling thread (Linux schedules threads).
+  raised.old_policy_ = sched_getscheduler(0);
   sched_param old{};
-  if (pthread_getschedparam(pthread_self(), &raised.old_policy_, &old) != 0) return raised;
+  if (raised.old_policy_ < 0 || sched_getparam(0, &old) != 0) return raised;
   raised.old_priority_ = old.sched_priority;
-  if (raised.old_policy_ == SCHED_FIFO || raised.old_policy_ == SCHED_RR) return raised;  // already real-time
+  const int policy = raised.old_policy_ & ~SCHED_RESET_ON_FORK;
+  if (policy == SCHED_FIFO || policy == SCHED_RR) return raised;  // already real-time
+  // SCHED_RESET_ON_FORK: a thread started meanwhile (a driver's worker, a
+  // log's) must not inherit the real-time policy and run every frame at it.
   sched_param fifo{};
   fifo.sched_priority = kPresentFifoPriority;
-  if (const int error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &fifo); error != 0) {
+  if (sched_setscheduler(0, SCHED_FIFO | SCHED_RESET_ON_FORK, &fifo) != 0) {
+    const int error = errno;
     refused_ = true;
     spdlog::info(
         "node '{}': presents run at normal priority: the kernel refused SCHED_FIFO ({}); give the node "
@@ -56,7 +61,7 @@ PresentPriority::Raised::~Raised() {
   if (!raised_) return;
   sched_param old{};
   old.sched_priority = old_priority_;
-  pthread_setschedparam(pthread_self(), old_policy_, &old);  // lowering is always allowed
+  sched_setscheduler(0, old_policy_, &old);  // lowering is always allowed
 }
 
 }  // namespace zenith::cluster

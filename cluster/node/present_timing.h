@@ -35,7 +35,9 @@ class PresentPriority {
   PresentPriority(bool realtime, std::string node_name);
 
   /// While alive, the thread that made it runs SCHED_FIFO at
-  /// kPresentFifoPriority (when wanted and allowed); then its own policy again.
+  /// kPresentFifoPriority (when wanted and allowed), with
+  /// SCHED_RESET_ON_FORK (threads it starts meanwhile run normally); then its
+  /// own policy again.
   class Raised {
    public:
     Raised(Raised&& other) noexcept;

@@ -14,13 +14,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct Policy {
-  int policy = -1;
+  int policy = -1;  ///< without SCHED_RESET_ON_FORK
   int priority = -1;
 };
 Policy this_threads_policy() {
   Policy p;
   sched_param param{};
-  pthread_getschedparam(pthread_self(), &p.policy, &param);
+  p.policy = sched_getscheduler(0) & ~SCHED_RESET_ON_FORK;
+  sched_getparam(0, &param);
   p.priority = param.sched_priority;
   return p;
 }
@@ -54,6 +55,11 @@ TEST(PresentTiming, ThePresentsPriorityIsRealTimeForTheScopeOnlyWhereAllowed) {
         if (raised.realtime()) {
           EXPECT_EQ(inside.policy, SCHED_FIFO);
           EXPECT_EQ(inside.priority, kPresentFifoPriority);
+          // A thread started while raised (a driver's worker) runs normally.
+          Policy started;
+          std::thread([&] { started = this_threads_policy(); }).join();
+          EXPECT_EQ(started.policy, SCHED_OTHER);
+          EXPECT_EQ(started.priority, 0);
         } else {
           EXPECT_EQ(inside.policy, SCHED_OTHER) << "refused: the thread keeps its policy";
           EXPECT_FALSE(priority.realtime_possible()) << "a refusal is remembered";
