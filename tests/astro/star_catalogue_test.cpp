@@ -16,6 +16,7 @@
 #include "astro/geodesic_grid.h"
 #include "astro/star_catalogue.h"
 #include "core/units.h"
+#include "tests/scratch_folder.h"
 
 namespace zenith::astro {
 namespace {
@@ -168,7 +169,7 @@ struct Writer {
     bytes.insert(bytes.end(), w, w + 10);
   }
   std::filesystem::path save(const std::string& name) const {
-    const auto path = std::filesystem::temp_directory_path() / ("zenith_astro_" + name);
+    const auto path = zenith::testing::process_scratch_folder() / ("astro_" + name);
     std::ofstream(path, std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     return path;

@@ -14,6 +14,7 @@
 #include "core/json_reader.h"
 #include "core/units.h"
 #include "scene/sun_disc.h"
+#include "tests/scratch_folder.h"
 
 namespace zenith::scene {
 namespace {
@@ -25,9 +26,9 @@ namespace fs = std::filesystem;
 using core::kDeg;
 using core::kPi;
 
-/// A folder of its own for files the tests write.
+/// A folder of its own for files the tests write, removed when the test process ends.
 fs::path test_dir() {
-  const fs::path dir = fs::path(::testing::TempDir()) / "zenith_scene_tests";
+  const fs::path dir = zenith::testing::process_scratch_folder() / "scene";
   fs::create_directories(dir);
   return dir;
 }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/json_reader.h"
+#include "tests/scratch_folder.h"
 
 namespace zenith::show::test {
 
@@ -14,9 +15,9 @@ inline std::filesystem::path scene_file(const std::string& name) {
   return std::filesystem::path(ZENITH_SOURCE_DIR) / "configs" / "scenes" / (name + ".json");
 }
 
-/// A fresh folder under the temporary directory for one test.
+/// A fresh folder for one test, removed when the test process ends.
 inline std::filesystem::path temp_folder(const std::string& test) {
-  const auto dir = std::filesystem::temp_directory_path() / "zenith-show-tests" / test;
+  const auto dir = zenith::testing::process_scratch_folder() / "show" / test;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
