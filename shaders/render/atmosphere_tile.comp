@@ -58,7 +58,9 @@ uniform vec3 eclipse_sky_h, eclipse_sky_w;     // its azimuth's axes: φ = 0 tow
 uniform float eclipse_sky_theta_top;           // θ0 of its mapping: 0 inside the shell
 uniform float eclipse_sky_theta_horizon;       // θh of its mapping [rad]
 
-/// atmosphere_segment.glsl's hook (its SKY_VIEW 0 rays): the table's shares along `ray` from the camera.
+/// The table's shares along `ray` from the camera (to the ground where
+/// `ground`): atmosphere_segment.glsl's hook for SKY_VIEW 0, and SKY_VIEW 1's.
+/// The skylight's share only where `ground`.
 EclipseShares eclipse_shares(vec3 ray, bool ground) {
   const vec3 up = -the_body.centre.xyz;
   const float theta = acos(clamp(dot(up, ray), -1.0, 1.0));
@@ -103,12 +105,10 @@ vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albed
 #endif
 #if ECLIPSE_SKY
   // The shares the Moon's shadow leaves of A and M along this direction.
-  const vec2 e_uv = eclipse_sky_uv(theta, atan(dot(ray, eclipse_sky_w), dot(ray, eclipse_sky_h)), 0.0,
-                                   sky_view_theta_horizon, own_ground);
-  const float e_layer = float(eclipse_sky_layer_base + (own_ground ? ECLIPSE_SKY_GROUND : ECLIPSE_SKY_SKY));
-  S *= texture(eclipse_sky_table, vec3(e_uv, e_layer));
+  const EclipseShares shares = eclipse_shares(ray, own_ground);
+  S *= shares.smooth_part;
 #if HAS_MIE
-  S_mie *= texture(eclipse_sky_table, vec3(e_uv, e_layer + 1.0));
+  S_mie *= shares.mie;
 #endif
 #endif
 #if HAS_MIE
@@ -122,10 +122,9 @@ vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albed
   const vec4 g_sky = texture(sky_view_table, vec3(uv, layer + 3.0));
 #if ECLIPSE_SKY
   // The Moon's shadow on the ground: V of the direct sun, the skylight's share left.
-  const ShadowPlace at_ground = shadow_place(ray * hit_distance, 0.0);
-  const vec4 ground = reflectance(albedo) *
-                      (g_sun * sun_visibility(ray * hit_distance, planet) * shadow_direct_light(at_ground) +
-                       g_sky * texture(eclipse_sky_table, vec3(e_uv, e_layer + 2.0)));
+  const vec4 ground = reflectance(albedo) * (g_sun * sun_visibility(ray * hit_distance, planet) *
+                                                 eclipse_direct_light(ray * hit_distance) +
+                                             g_sky * shares.skylight);
 #else
   const vec4 ground = reflectance(albedo) * (g_sun * sun_visibility(ray * hit_distance, planet) + g_sky);
 #endif
