@@ -52,11 +52,18 @@ gl::ShaderProgram load_graphics_program(std::string_view vertex_name, std::strin
   return start_graphics_program(vertex_name, fragment_name, defines).finish();
 }
 
-void start_built_program(gl::ProgramBuilds& builds, std::string_view name, std::span<const gl::ShaderDefine> defines) {
+void start_built_program(gl::ProgramBuilds& builds, std::string_view name, std::span<const gl::ShaderDefine> defines,
+                         gl::BuildFor build_for) {
   // The starter may run on another thread after this returns (ProgramBuilds::build_on): it owns its inputs.
-  builds.start(program_key(name, defines),
-               [name = std::string(name), defines = std::vector<gl::ShaderDefine>(defines.begin(), defines.end()),
-                binaries = builds.binary_cache()] { return start_compute_program(name, defines, binaries); });
+  builds.start(
+      program_key(name, defines),
+      [name = std::string(name), defines = std::vector<gl::ShaderDefine>(defines.begin(), defines.end()),
+       binaries = builds.binary_cache()] { return start_compute_program(name, defines, binaries); },
+      build_for);
+}
+
+bool program_built(const gl::ProgramBuilds& builds, std::string_view name, std::span<const gl::ShaderDefine> defines) {
+  return builds.built(program_key(name, defines));
 }
 
 const gl::ShaderProgram& built_program(gl::ProgramBuilds& builds, std::string_view name,

@@ -40,11 +40,15 @@ gl::ShaderBuild start_graphics_program(std::string_view vertex_name, std::string
 /// compiles it on its threads while the caller starts others);
 /// built_program finishes it, or builds it now; both through the builds'
 /// binary cache where they have one (ProgramBuilds::set_binary_cache). Throws what
-/// ShaderBuild::finish throws.
+/// ShaderBuild::finish throws. `build_for`: see ProgramBuilds::start.
 void start_built_program(gl::ProgramBuilds& builds, std::string_view name,
-                         std::span<const gl::ShaderDefine> defines = {});
+                         std::span<const gl::ShaderDefine> defines = {},
+                         gl::BuildFor build_for = gl::BuildFor::this_frame);
 const gl::ShaderProgram& built_program(gl::ProgramBuilds& builds, std::string_view name,
                                        std::span<const gl::ShaderDefine> defines = {});
+/// Whether built_program would return the program at once (it is built).
+bool program_built(const gl::ProgramBuilds& builds, std::string_view name,
+                   std::span<const gl::ShaderDefine> defines = {});
 /// A compute program from an already expanded shader (one resolved among
 /// other files than the embedded ones, e.g. the tests' shaders), with the same
 /// shared defines.

@@ -33,9 +33,16 @@ std::vector<FramePrograms::Source> FramePrograms::sources(const FrameVariant& fr
   return s;
 }
 
-void FramePrograms::start(gl::ProgramBuilds& builds, const FrameVariant& frame) const {
+void FramePrograms::start(gl::ProgramBuilds& builds, const FrameVariant& frame, gl::BuildFor build_for) const {
   if (passes_.contains(frame.key())) return;
-  for (const Source& s : sources(frame)) start_built_program(builds, s.file, s.defines);
+  for (const Source& s : sources(frame)) start_built_program(builds, s.file, s.defines, build_for);
+}
+
+bool FramePrograms::built(const gl::ProgramBuilds& builds, const FrameVariant& frame) const {
+  if (passes_.contains(frame.key())) return true;
+  for (const Source& s : sources(frame))
+    if (!program_built(builds, s.file, s.defines)) return false;
+  return true;
 }
 
 const FramePasses& FramePrograms::passes_for(gl::ProgramBuilds& builds, const FrameVariant& frame) {

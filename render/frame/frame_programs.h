@@ -39,8 +39,12 @@ class FramePrograms {
   /// SUN_DISC and LIMB_DARKENING, the sun's defines: of the resolve here and of
   /// atmosphere_tile.comp (GpuAtmosphere), which draw the disc behind an atmosphere.
   const std::vector<gl::ShaderDefine>& sun_defines() const { return sun_defines_; }
-  /// Starts building the programs of `frame`'s variant that are not built yet.
-  void start(gl::ProgramBuilds& builds, const FrameVariant& frame) const;
+  /// Starts building the programs of `frame`'s variant that are not built yet
+  /// (for this frame, or a later one: ProgramBuilds::start).
+  void start(gl::ProgramBuilds& builds, const FrameVariant& frame,
+             gl::BuildFor build_for = gl::BuildFor::this_frame) const;
+  /// Whether every program of `frame`'s variant is built.
+  bool built(const gl::ProgramBuilds& builds, const FrameVariant& frame) const;
   /// The programs of `frame`'s variant, finished (or built) now where not yet. Needs a current GL context.
   const FramePasses& passes_for(gl::ProgramBuilds& builds, const FrameVariant& frame);
 

@@ -202,12 +202,21 @@ const gl::ShaderProgram& GpuAtmosphere::tile_program(const FrameVariant& frame, 
   return built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v, eclipse_sky));
 }
 
-void GpuAtmosphere::start_gbuffer_path_program(const FrameVariant& frame) const {
-  start_built_program(*builds_, "render/atmosphere_pass.comp", gbuffer_path_defines(frame));
+void GpuAtmosphere::start_gbuffer_path_program(const FrameVariant& frame, gl::BuildFor build_for) const {
+  start_built_program(*builds_, "render/atmosphere_pass.comp", gbuffer_path_defines(frame), build_for);
 }
 
-void GpuAtmosphere::start_tile_program(const FrameVariant& frame, const TileVariant& v, bool eclipse_sky) const {
-  start_built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v, eclipse_sky));
+void GpuAtmosphere::start_tile_program(const FrameVariant& frame, const TileVariant& v, bool eclipse_sky,
+                                       gl::BuildFor build_for) const {
+  start_built_program(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v, eclipse_sky), build_for);
+}
+
+bool GpuAtmosphere::tile_program_built(const FrameVariant& frame, const TileVariant& v, bool eclipse_sky) const {
+  return program_built(*builds_, "render/atmosphere_tile.comp", tile_defines(frame, v, eclipse_sky));
+}
+
+bool GpuAtmosphere::gbuffer_path_program_built(const FrameVariant& frame) const {
+  return program_built(*builds_, "render/atmosphere_pass.comp", gbuffer_path_defines(frame));
 }
 
 bool GpuAtmosphere::fill_sky_view(double camera_radius_m, double sun_cosine, double sun_angular_radius_rad,

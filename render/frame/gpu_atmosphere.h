@@ -78,10 +78,15 @@ class GpuAtmosphere {
   /// atmosphere_pass.comp for the G-buffer path (tiles where shells overlap).
   const gl::ShaderProgram& gbuffer_path_program(const FrameVariant& frame);
   /// Start building those programs (and the sky-view table's fill) with the
-  /// frame's others, to be finished where first used.
-  void start_tile_program(const FrameVariant& frame, const TileVariant& variant, bool eclipse_sky = false) const;
-  void start_gbuffer_path_program(const FrameVariant& frame) const;
+  /// frame's others, to be finished where first used (or for a later frame:
+  /// ProgramBuilds::start).
+  void start_tile_program(const FrameVariant& frame, const TileVariant& variant, bool eclipse_sky = false,
+                          gl::BuildFor build_for = gl::BuildFor::this_frame) const;
+  void start_gbuffer_path_program(const FrameVariant& frame, gl::BuildFor build_for = gl::BuildFor::this_frame) const;
   void start_sky_view_program() const { sky_view_->start_program(); }
+  /// Whether those programs are built (tile_program, gbuffer_path_program return them at once).
+  bool tile_program_built(const FrameVariant& frame, const TileVariant& variant, bool eclipse_sky) const;
+  bool gbuffer_path_program_built(const FrameVariant& frame) const;
   /// Sets `wavelength_group` (the model's parameters of group g are read from
   /// WavelengthData) and the sky-view uniforms of one of these programs.
   void set_group(const gl::ShaderProgram& program, std::size_t group) const;

@@ -407,6 +407,11 @@ void FirstDispatchWarmup::queue(ShaderProgram& program, const DispatchShapes& sh
   });
 }
 
+bool FirstDispatchWarmup::idle() const {
+  std::lock_guard lock(state_->mutex);
+  return state_->queue.empty() && state_->builds.empty() && state_->in_hand == 0;
+}
+
 FirstDispatchWarmup::Statistics FirstDispatchWarmup::statistics() const {
   std::lock_guard lock(state_->mutex);
   return state_->statistics;

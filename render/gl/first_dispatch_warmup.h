@@ -90,6 +90,10 @@ class FirstDispatchWarmup {
   /// future then holds std::future_error, broken_promise).
   std::future<ShaderProgram> build(std::function<ShaderProgram()> build);
 
+  /// Whether the thread has nothing left to do: every program queued so far
+  /// is warmed (or was taken back) and every build queued is done.
+  bool idle() const;
+
   struct Statistics {
     int built = 0;         ///< programs built on the thread (build())
     double build_s = 0.0;  ///< the thread, building

@@ -47,13 +47,13 @@ ShaderBuild ProgramBuilds::timed_start(const Starter& starter) {
   return build;
 }
 
-void ProgramBuilds::start(const std::string& key, const Starter& starter) {
+void ProgramBuilds::start(const std::string& key, const Starter& starter, BuildFor build_for) {
   if (mode_ == CompileMode::serial || programs_.contains(key) || pending_.contains(key)) return;
   if (thread_ != nullptr)
     pending_.emplace(key, OnThread{thread_->build([starter] { return starter().finish(); }), starter});
   else
     pending_.emplace(key, timed_start(starter));
-  started_.push_back(key);
+  (build_for == BuildFor::this_frame ? started_ : ahead_).push_back(key);
   statistics_.most_in_flight = std::max(statistics_.most_in_flight, static_cast<int>(pending_.size()));
 }
 
@@ -67,6 +67,29 @@ ShaderProgram ProgramBuilds::finish(Pending& build) {
   } catch (const std::future_error&) {  // dropped by the thread: built here
     return timed_start(there.starter).finish();
   }
+}
+
+bool ProgramBuilds::ready(const Pending& build) {
+  if (const auto* here = std::get_if<ShaderBuild>(&build)) return here->ready();
+  return std::get<OnThread>(build).program.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+}
+
+bool ProgramBuilds::finish_ahead(FirstDispatchWarmup* warmup, const DispatchShapes& shapes) {
+  std::erase_if(ahead_, [&](const std::string& key) {
+    const auto pending = pending_.find(key);
+    if (pending != pending_.end() && !ready(pending->second)) return false;
+    if (pending != pending_.end()) {  // else a frame needed it first and finished it
+      const int on_thread = statistics_.built_on_thread;
+      programs_.emplace(key, finish(pending->second));
+      statistics_.built_on_thread = on_thread;  // built_on_thread counts the frames' builds
+      pending_.erase(pending);
+      ++statistics_.built_ahead;
+    }
+    ShaderProgram& program = programs_.find(key)->second;
+    if (warmup != nullptr && !program.dispatched()) warmup->warm(program, shapes);
+    return true;
+  });
+  return ahead_.empty();
 }
 
 const ShaderProgram& ProgramBuilds::get(const std::string& key, const Starter& starter) {
@@ -108,6 +131,13 @@ void ProgramBuilds::warm_started(FirstDispatchWarmup& warmup, const DispatchShap
   for (const auto& [place, program] : queue) warmup.warm(*program, shapes);
 }
 
+void ProgramBuilds::warm(FirstDispatchWarmup& warmup, const DispatchShapes& shapes,
+                         const std::vector<const ShaderProgram*>& programs) {
+  for (auto& [key, program] : programs_)
+    if (!program.dispatched() && std::find(programs.begin(), programs.end(), &program) != programs.end())
+      warmup.warm(program, shapes);
+}
+
 std::string ProgramBuilds::summary() const {
   const Statistics& s = statistics_;
   std::string how;
@@ -126,6 +156,7 @@ std::string ProgramBuilds::summary() const {
                       s.most_in_flight);
   std::string out = fmt::format("{} programs, {:.3f} s building them ({:.3f} s starting, {:.3f} s waiting), {}",
                                 s.built, s.seconds(), s.start_s, s.wait_s, how);
+  if (s.built_ahead > 0) out += fmt::format("; {} more built ahead for later frames", s.built_ahead);
   if (binaries_ != nullptr) {
     const ProgramBinaryCache::Statistics b = binaries_->statistics();
     out += binaries_->enabled() ? fmt::format("; binaries: {} of {} loaded, {} stored, {} refused ({})", b.loaded,

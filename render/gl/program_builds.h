@@ -33,6 +33,11 @@ class ProgramBinaryCache;   // render/gl/program_binary_cache.h
 class FirstDispatchWarmup;  // render/gl/first_dispatch_warmup.h
 struct DispatchShapes;
 
+/// Which frame waits for a build: the one being drawn (its programs), or a
+/// later one (a variant the renderer will switch to once it is built:
+/// ProgramBuilds::finish_ahead).
+enum class BuildFor { this_frame, a_later_frame };
+
 class ProgramBuilds {
  public:
   /// Starts a program's build. With build_on, it runs on that thread, after
@@ -60,8 +65,9 @@ class ProgramBuilds {
   /// be unset first.
   void build_on(FirstDispatchWarmup* thread) { thread_ = thread; }
   /// Starts building `key`'s program with `starter` unless it is already
-  /// started or built; in serial mode does nothing (get builds it).
-  void start(const std::string& key, const Starter& starter);
+  /// started or built; in serial mode does nothing (get builds it). Built for
+  /// a later frame, warm_started leaves it to finish_ahead.
+  void start(const std::string& key, const Starter& starter, BuildFor build_for = BuildFor::this_frame);
   /// `key`'s program: its started build finished now, or built now (started
   /// with `starter` and finished). Throws what ShaderBuild::finish throws; a
   /// program that failed is not kept, so asking again builds it again.
@@ -75,12 +81,23 @@ class ProgramBuilds {
   /// opposite ends and rarely wait for each other.
   void warm_started(FirstDispatchWarmup& warmup, const DispatchShapes& shapes,
                     const std::function<int(const ShaderProgram&)>& order);
+  /// Whether `key`'s program is built (get() returns it at once).
+  bool built(const std::string& key) const { return programs_.contains(key); }
+  /// Finishes every build started for a later frame whose program is ready,
+  /// never waiting for one, and queues its first dispatch on `warmup` (where
+  /// given) with stand-ins shaped as `shapes`. True once none is left.
+  bool finish_ahead(FirstDispatchWarmup* warmup, const DispatchShapes& shapes);
+  /// Queues the first dispatch of each of `programs` (built here) that was
+  /// never dispatched on `warmup`, with stand-ins shaped as `shapes`.
+  void warm(FirstDispatchWarmup& warmup, const DispatchShapes& shapes,
+            const std::vector<const ShaderProgram*>& programs);
   /// Whether any program was started since the last warm_started.
   bool started_since_warm() const { return !started_.empty(); }
 
   struct Statistics {
     int built = 0;            ///< programs finished
     int built_on_thread = 0;  ///< of them, built on build_on's thread
+    int built_ahead = 0;      ///< besides them, built for later frames (finish_ahead)
     int most_in_flight = 0;   ///< builds started and not yet finished, at most
     double start_s = 0.0;     ///< in the start calls (giving the texts to the driver)
     double wait_s = 0.0;      ///< in finish(): waiting for the driver, checking, storing binaries
@@ -105,6 +122,8 @@ class ProgramBuilds {
   using Pending = std::variant<ShaderBuild, OnThread>;
   /// The program of a started build: finished here, or waited for.
   ShaderProgram finish(Pending& build);
+  /// Whether finishing `build` would not wait (its thread or the driver is done with it).
+  static bool ready(const Pending& build);
 
   CompileMode mode_;
   bool driver_threads_ = false;  ///< the driver has the extension
@@ -113,6 +132,7 @@ class ProgramBuilds {
   int previous_threads_ = 0;
   std::map<std::string, Pending, std::less<>> pending_;  // started, not yet finished
   std::vector<std::string> started_;                     // keys started since warm_started, in order
+  std::vector<std::string> ahead_;                       // keys started for a later frame, not finished
   std::map<std::string, ShaderProgram, std::less<>> programs_;
   Statistics statistics_;
 };
