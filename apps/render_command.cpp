@@ -71,7 +71,9 @@ render::RenderOptions make_render_options(const RenderArgs& a) {
   options.atmosphere.eclipses = !a.no_eclipses;
   options.atmosphere.fp64 = a.fp64;
   options.colour = image::parse_colour_mapping(a.colour);
-  options.background_shadow_builds = a.window;  // a window's frames are live: they never wait for the Moon's shadow
+  // A window's frames are live: they never wait for the Moon's shadow nor for a new program variant.
+  options.background_shadow_builds = a.window;
+  options.background_variant_builds = a.window;
   options.albedo_cache_directory = render::cache_directory_of(make_table_request(a));
   options.program_cache_directory = render::program_cache_directory_of(make_table_request(a));
   return options;

@@ -113,6 +113,13 @@ struct RenderOptions {
   /// an eclipse is waited for either way where the penumbra already reaches
   /// the air in view.
   bool background_shadow_builds = false;
+  /// Live frames (a window, a cluster's node) never wait for a program
+  /// variant's compile (render/frame/live_variants.h): a frame whose leaner
+  /// variant is not built yet draws with the one in use, which gives the same
+  /// pixels, while the leaner one builds on a second thread; the general
+  /// variant is built ahead too. false: every frame builds and draws its own
+  /// variant (offline renders, tests).
+  bool background_variant_builds = false;
   /// Where generated albedo maps are kept between runs
   /// (scene/albedo_map_cache.h; the commands give it the table cache's
   /// directory); empty: each renderer generates its maps.

@@ -29,6 +29,7 @@
 #include "render/frame/frame_tiles.h"
 #include "render/frame/gpu_atmosphere.h"
 #include "render/frame/gpu_body.h"
+#include "render/frame/live_variants.h"
 #include "render/frame/pass_timer.h"
 #include "render/frame/sky_view_table.h"
 #include "render/frame/sun_light.h"
@@ -79,6 +80,7 @@ struct Renderer::Impl {
   std::optional<gl::ProgramBinaryCache> binaries;  // RenderOptions::program_cache_directory, with the builds
   std::unique_ptr<gl::ProgramBuilds> builds;
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
+  LiveVariants live_variants;    // RenderOptions::background_variant_builds
   RefractionCache refractions;   // the air's refraction at the camera: stars, the Moon, the Sun's disc
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/night/star_pass.h)
   MoonInShadow moon_shadow;      // the Earth's shadow on the Moon in a lunar eclipse
@@ -178,11 +180,13 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   light_by_the_sun(frame, timer);
   choose_sky_view(frame);
   classify_bands(frame, timer);
+  choose_variant(frame);
   start_programs(frame);
   upload_tables(frame);
   fill_sky_view_tables(frame, timer);
   frame.programs = &im.frame_programs.passes_for(*im.builds, frame.variant);
   stats_.programs_warmed = warm_first_dispatches(frame, output_warmup);
+  build_variants_ahead(frame);
   set_direct_light_uniforms(frame);
   impl_->night_sky.prepare(frame, moon_shadow, timer);
   stats_.night_sky = impl_->night_sky.stats();
@@ -453,13 +457,7 @@ void Renderer::start_programs(const Frame& frame) {
     if (pass.sky_view) pass.gpu->start_sky_view_program();
     if (pass.eclipse_sky) pass.gpu->eclipse_sky().start_program();
   }
-  for (const BandTiles& band : *frame.bands)
-    for (std::size_t a = 0; a < band.lists.size(); ++a) {
-      const GpuAtmosphere* gpu = frame.passes[a].gpu;
-      if (band.lists[a].gbuffer.count > 0) gpu->start_gbuffer_path_program(frame.variant);
-      for (const auto& [variant, list] : band.lists[a].one_pass)
-        gpu->start_tile_program(frame.variant, variant, frame.passes[a].eclipse_sky);
-    }
+  start_variant_programs(frame, frame.variant, gl::BuildFor::this_frame);
 }
 
 gl::FirstDispatchWarmup* Renderer::warmup_thread() {
@@ -499,6 +497,82 @@ int Renderer::warm_first_dispatches(const Frame& frame, const WarmupQueue& outpu
   if (output) output(*im.warmup);  // the band's last pass: first
   im.builds->warm_started(*im.warmup, dispatch_shapes(frame), order);
   return im.warmup->statistics().queued - before;
+}
+
+bool Renderer::live_variants() const { return options_.background_variant_builds && !options_.serial_compile; }
+
+bool Renderer::variant_built(const Frame& frame, const FrameVariant& variant) const {
+  const Impl& im = *impl_;
+  if (!im.frame_programs.built(*im.builds, variant)) return false;
+  for (const BandTiles& band : *frame.bands)
+    for (std::size_t a = 0; a < band.lists.size(); ++a) {
+      const GpuAtmosphere* gpu = frame.passes[a].gpu;
+      if (band.lists[a].gbuffer.count > 0 && !gpu->gbuffer_path_program_built(variant)) return false;
+      for (const auto& [tiles, list] : band.lists[a].one_pass)
+        if (!gpu->tile_program_built(variant, tiles, frame.passes[a].eclipse_sky)) return false;
+    }
+  return true;
+}
+
+void Renderer::choose_variant(Frame& frame) {
+  if (!live_variants()) return;
+  Impl& im = *impl_;
+  // Built and warmed: the warm-up thread has nothing left of the variants built ahead.
+  gl::FirstDispatchWarmup* warmup = warmup_thread();
+  const bool warmed = warmup == nullptr || warmup->idle();
+  frame.variant = im.live_variants.choose(frame.wanted_variant,
+                                          [&](const FrameVariant& v) { return warmed && variant_built(frame, v); });
+  stats_.variant_held = frame.variant.key() != frame.wanted_variant.key();
+}
+
+void Renderer::build_variants_ahead(const Frame& frame) {
+  if (!live_variants()) return;
+  Impl& im = *impl_;
+  const bool shadows_can_fall = options_.atmosphere.eclipses && frame.scene.bodies.size() > 1;
+  if (const std::optional<FrameVariant> next =
+          im.live_variants.drew(frame.variant, frame.wanted_variant, shadows_can_fall,
+                                [&](const FrameVariant& v) { return variant_built(frame, v); }))
+    spdlog::debug("programs of variant {} building on a second thread for later frames (this one drew with {})",
+                  next->key(), frame.variant.key());
+  const std::optional<FrameVariant>& ahead = im.live_variants.building();
+  if (!ahead) return;
+  // Every program this frame's tiles would need of it: started where not
+  // built (tiles change), finished where built, and its first dispatch warmed.
+  start_variant_programs(frame, *ahead, gl::BuildFor::a_later_frame);
+  gl::FirstDispatchWarmup* warmup = warmup_thread();
+  const gl::DispatchShapes shapes = dispatch_shapes(frame);
+  if (!im.builds->finish_ahead(warmup, shapes) || !variant_built(frame, *ahead)) return;
+  if (warmup != nullptr) im.builds->warm(*warmup, shapes, variant_programs(frame, *ahead));
+  if (warmup != nullptr && !warmup->idle()) return;
+  spdlog::debug("programs of variant {} built on a second thread: later frames draw with them", ahead->key());
+  im.live_variants.built_ahead();
+}
+
+void Renderer::start_variant_programs(const Frame& frame, const FrameVariant& variant, gl::BuildFor build_for) {
+  Impl& im = *impl_;
+  im.frame_programs.start(*im.builds, variant, build_for);
+  for (const BandTiles& band : *frame.bands)
+    for (std::size_t a = 0; a < band.lists.size(); ++a) {
+      const GpuAtmosphere* gpu = frame.passes[a].gpu;
+      if (band.lists[a].gbuffer.count > 0) gpu->start_gbuffer_path_program(variant, build_for);
+      for (const auto& [tiles, list] : band.lists[a].one_pass)
+        gpu->start_tile_program(variant, tiles, frame.passes[a].eclipse_sky, build_for);
+    }
+}
+
+std::vector<const gl::ShaderProgram*> Renderer::variant_programs(const Frame& frame, const FrameVariant& variant) {
+  Impl& im = *impl_;
+  const FramePasses& p = im.frame_programs.passes_for(*im.builds, variant);
+  std::vector<const gl::ShaderProgram*> programs = {p.gbuffer, p.resolve, p.direct_light_one, p.direct_light};
+  if (p.direct_light_sun != nullptr) programs.push_back(p.direct_light_sun);
+  for (const BandTiles& band : *frame.bands)
+    for (std::size_t a = 0; a < band.lists.size(); ++a) {
+      GpuAtmosphere* gpu = frame.passes[a].gpu;
+      if (band.lists[a].gbuffer.count > 0) programs.push_back(&gpu->gbuffer_path_program(variant));
+      for (const auto& [tiles, list] : band.lists[a].one_pass)
+        programs.push_back(&gpu->tile_program(variant, tiles, frame.passes[a].eclipse_sky));
+    }
+  return programs;
 }
 
 gl::DispatchShapes Renderer::dispatch_shapes(const Frame& frame) const {
@@ -555,9 +629,11 @@ void Renderer::prepare_programs(Frame& frame) {
   }
   // Programs are compiled per projection kind, and with the eclipse code only
   // when another body can cast a shadow (a CPU rasterizer runs all of it).
-  frame.variant.projection_kind = static_cast<int>(frame.gpu_projection.kind);
-  frame.variant.eclipses = options_.atmosphere.eclipses && eclipses_possible(frame.scene);
-  frame.variant.albedo_lod0 = albedo_at_full_resolution(frame.scene, frame.pixel_angle, im.albedo.texture().width());
+  FrameVariant& wanted = frame.wanted_variant;
+  wanted.projection_kind = static_cast<int>(frame.gpu_projection.kind);
+  wanted.eclipses = options_.atmosphere.eclipses && eclipses_possible(frame.scene);
+  wanted.albedo_lod0 = albedo_at_full_resolution(frame.scene, frame.pixel_angle, im.albedo.texture().width());
+  frame.variant = live_variants() ? im.live_variants.provisional(wanted) : wanted;
   frame.sun_reach = sun_reach_rad(frame);
 }
 

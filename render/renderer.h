@@ -56,10 +56,13 @@ class PassTimer;        // render/frame/pass_timer.h
 struct BandTiles;       // render/frame/tile_classification.h
 struct AtmospherePass;  // render/frame/frame_in_progress.h
 class MoonInShadow;     // render/night/moon_in_shadow.h
+struct FrameVariant;    // render/frame/gpu_atmosphere.h
 namespace gl {
 class Texture;              // render/gl/texture.h
 struct DispatchShapes;      // render/gl/first_dispatch_warmup.h
 class FirstDispatchWarmup;  // render/gl/first_dispatch_warmup.h
+class ShaderProgram;        // render/gl/shader_program.h
+enum class BuildFor;        // render/gl/program_builds.h
 }  // namespace gl
 
 /// Tables for an atmosphere model (e.g. from the cache, else precomputed):
@@ -100,6 +103,9 @@ struct FrameStats {
   /// The tiles were the frame before's (nothing they depend on moved:
   /// render/frame/frame_tiles.h); the counts above are the same.
   bool tiles_reused = false;
+  /// Drawn with the program variant in use while the leaner one its scene
+  /// allows builds on a second thread (RenderOptions::background_variant_builds).
+  bool variant_held = false;
   double seconds = 0.0;  ///< wall time of render(), readback included
   /// Of `seconds`: obtaining and uploading table sets (the TableSource's
   /// calls and the upload: the first frame with a set), and building programs
@@ -253,6 +259,21 @@ class Renderer {
   /// `output`: queues the programs that take each band after the frame's
   /// passes (the caller's display pass, render_to_texture's copy); may be empty.
   int warm_first_dispatches(const Frame& frame, const WarmupQueue& output);
+  /// Live frames (RenderOptions::background_variant_builds): the variant
+  /// built ahead finished and warmed where it is ready, and the next one to
+  /// build started for later frames (render/frame/live_variants.h).
+  void build_variants_ahead(const Frame& frame);
+  bool live_variants() const;
+  /// Live frames: the variant the frame draws with, once its tiles are known
+  /// (render/frame/live_variants.h); before, the variant in use.
+  void choose_variant(Frame& frame);
+  /// Starts building the programs `frame` would draw with in `variant` (its
+  /// own passes', each atmosphere's for its tiles) that are not built.
+  void start_variant_programs(const Frame& frame, const FrameVariant& variant, gl::BuildFor build_for);
+  /// Those programs, built (all must be: variant_built).
+  std::vector<const gl::ShaderProgram*> variant_programs(const Frame& frame, const FrameVariant& variant);
+  /// Whether every program `frame` would draw with in `variant` is built.
+  bool variant_built(const Frame& frame, const FrameVariant& variant) const;
   /// How this frame's passes will bind textures and images (render/gl/first_dispatch_warmup.h).
   gl::DispatchShapes dispatch_shapes(const Frame& frame) const;
   /// The sky-view table of each atmosphere choose_sky_view chose (the sun's;

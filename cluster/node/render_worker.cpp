@@ -224,9 +224,11 @@ void RenderWorker::ensure_renderer(std::uint32_t flags) {
   // Every node's outputs take the sky-view table's path alike, whatever their
   // sizes: a small output beside a large one would otherwise show a seam.
   render_options.sky_view_table = render::sky_view_use_for_outputs(setup_.viewports.largest_output_pixels());
-  // A node's frames are live: a new Moon's shadow in an eclipse is built on a
-  // worker thread, never at the barrier (render/frame/eclipse_sky_table.h).
+  // A node's frames are live: a new Moon's shadow in an eclipse, and the
+  // programs of a new variant, are built on a worker thread while frames go
+  // on (render/frame/eclipse_sky_table.h, render/frame/live_variants.h).
   render_options.background_shadow_builds = true;
+  render_options.background_variant_builds = true;
   render_options.albedo_cache_directory = options.cache_directory;
   if (!options.cache_directory.empty()) render_options.program_cache_directory = options.cache_directory / "programs";
   renderer_ =

@@ -82,7 +82,8 @@ struct FrameInProgress : FrameConstants {
   std::array<float, 9> camera_matrix{};
   warp::GpuProjection gpu_projection;
   std::array<std::array<float, 3>, 3> world_ray{};
-  FrameVariant variant;
+  FrameVariant variant;         // what the frame draws with
+  FrameVariant wanted_variant;  // the leanest its scene allows (render/frame/live_variants.h)
   const FramePasses* programs = nullptr;
   double sun_reach = 0.0;  // where the sun can be drawn (prepare_programs)
   SunDiscLift sun_lift;    // the disc's refraction (refract_sun)

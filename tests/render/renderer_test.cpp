@@ -40,6 +40,7 @@
 #include "atmosphere/reference/path_tracer.h"
 #include "core/units.h"
 #include "render/display/display_encoder.h"
+#include "render/frame/frame_conditions.h"
 #include "render/frame/sky_view_table.h"
 #include "render/frame/sun_occulter.h"
 #include "render/frame/tile_culling.h"
@@ -835,9 +836,9 @@ TEST(RendererComposition, BodyOrderInTheSceneDoesNotMatter) {
   EXPECT_EQ(t.renderer.render_image(a, p), t.renderer.render_image(b, p));
 }
 
-TEST(RendererComposition, AMoonEclipsesTheSun) {
-  // A moon placed between the sun and the sub-solar point: with eclipses on,
-  // the ground in its umbra gets skylight only.
+/// A moon placed between the sun and the sub-solar point (a total eclipse
+/// there), seen from beside the sun–Earth axis (the moon far behind the view).
+scene::Scene moon_over_the_subsolar_point() {
   scene::Scene s = planet_scene("earth-advanced", 0.0, 0.0, {0, 0, -1});
   const double R = s.bodies[0].radius_m;
   s.sun.direction = {0.0, 0.0, 1.0};
@@ -849,9 +850,15 @@ TEST(RendererComposition, AMoonEclipsesTheSun) {
   // in radius, larger than the sun's 4.65e-3: a total eclipse there.
   moon.position_m = {0.0, 0.0, 3.0e8};
   s.bodies.push_back(moon);
-  // Looking at the sub-solar point from beside the sun–Earth axis (the moon is far behind the camera's view).
   s.camera.position_m = {1.5 * R, 0.0, 2.0 * R};
   s.camera.orientation = look_rotation(glm::dvec3(0.0, 0.0, R) - s.camera.position_m, {0.0, 1.0, 0.0});
+  return s;
+}
+
+TEST(RendererComposition, AMoonEclipsesTheSun) {
+  // With eclipses on, the ground in the moon's umbra gets skylight only.
+  const scene::Scene s = moon_over_the_subsolar_point();
+  const double R = s.bodies[0].radius_m;
   const warp::PlanarProjection p = warp::PlanarProjection::symmetric(33, 33, 10.0);
   RenderOptions with = direct_colour(), without = direct_colour();
   without.atmosphere.eclipses = false;
@@ -864,6 +871,49 @@ TEST(RendererComposition, AMoonEclipsesTheSun) {
   // more of the air's in-scattered light, which the eclipse does not remove).
   EXPECT_LT(e.g, 0.65 * l.g) << "the umbra is darker";
   EXPECT_GT(e.g, 0.0) << "skylight and the air's in-scattering remain";
+}
+
+TEST(RendererVariants, ALiveFrameNeverWaitsForALeanerVariant) {
+  // RenderOptions::background_variant_builds (render/frame/live_variants.h):
+  // once the moon leaves the sun–Earth line no shadow can fall, and the
+  // frame's programs may leave the eclipse code out. A live renderer draws
+  // such frames with the programs in use — the same pixels — while the
+  // leaner ones build on a second thread, then switches to them without
+  // building any program on a frame; an offline renderer builds them at once.
+  const scene::Scene eclipsed = moon_over_the_subsolar_point();
+  scene::Scene apart = eclipsed;
+  apart.bodies[1].position_m = {2.0e8, 0.0, 3.0e8};  // 36° off the axis
+  ASSERT_TRUE(eclipses_possible(eclipsed));
+  ASSERT_FALSE(eclipses_possible(apart));
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(33, 33, 10.0);
+  RenderOptions live = direct_colour();
+  live.background_variant_builds = true;
+  TestRenderer t(live), offline;
+  const std::vector<float> expected = offline.renderer.render_image(apart, p);
+
+  t.renderer.render_image(eclipsed, p);
+  EXPECT_FALSE(t.renderer.last_frame().variant_held) << "the first frame builds what it needs";
+  std::vector<float> image = t.renderer.render_image(apart, p);
+  EXPECT_TRUE(t.renderer.last_frame().variant_held) << "drawn with the eclipse code";
+  EXPECT_EQ(t.renderer.last_frame().programs_built, 0) << "no program built for the frame";
+  const double held = largest_difference(image, expected, p, apart, apart.sun.direction, 0.0);
+  std::printf("the eclipse code with no shadow to draw against the lean programs: %.2e\n", held);
+  EXPECT_LT(held, 1e-6);
+
+  int frames = 1;
+  for (; frames < 400 && t.renderer.last_frame().variant_held; ++frames) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    image = t.renderer.render_image(apart, p);
+    EXPECT_EQ(t.renderer.last_frame().programs_built, 0) << "frame " << frames << " waited for a build";
+  }
+  ASSERT_FALSE(t.renderer.last_frame().variant_held) << "still the eclipse code after 400 frames";
+  std::printf("the leaner programs drawn from frame %d on\n", frames);
+  EXPECT_EQ(image, expected) << "the offline renderer's programs, the same pixels";
+
+  // The moon back on the axis: the eclipse code is still built.
+  t.renderer.render_image(eclipsed, p);
+  EXPECT_FALSE(t.renderer.last_frame().variant_held);
+  EXPECT_EQ(t.renderer.last_frame().programs_built, 0);
 }
 
 // ---------------------------------------------------------------- numerical hygiene
