@@ -262,6 +262,7 @@ struct FirstDispatchWarmup::State {
   std::deque<std::function<void()>> builds;  // build(): before the queue's dispatches
   std::vector<Job> ever_queued;              // what warm() was given, for its one-time rule
   unsigned in_hand = 0;                      // the program the thread is dispatching; 0: none
+  bool building = false;                     // the thread is running a build()
   bool stop = false;
   Statistics statistics;
 
@@ -304,11 +305,13 @@ struct FirstDispatchWarmup::State {
         if (!builds.empty()) {
           const std::function<void()> build = std::move(builds.front());
           builds.pop_front();
+          building = true;
           lock.unlock();
           const auto start = std::chrono::steady_clock::now();
           build();
           const double seconds = seconds_since(start);
           lock.lock();
+          building = false;
           ++statistics.built;
           statistics.build_s += seconds;
           continue;
@@ -409,7 +412,7 @@ void FirstDispatchWarmup::queue(ShaderProgram& program, const DispatchShapes& sh
 
 bool FirstDispatchWarmup::idle() const {
   std::lock_guard lock(state_->mutex);
-  return state_->queue.empty() && state_->builds.empty() && state_->in_hand == 0;
+  return state_->queue.empty() && state_->builds.empty() && !state_->building && state_->in_hand == 0;
 }
 
 FirstDispatchWarmup::Statistics FirstDispatchWarmup::statistics() const {

@@ -79,14 +79,16 @@ bool ProgramBuilds::finish_ahead(FirstDispatchWarmup* warmup, const DispatchShap
     const auto pending = pending_.find(key);
     if (pending != pending_.end() && !ready(pending->second)) return false;
     if (pending != pending_.end()) {  // else a frame needed it first and finished it
+      Pending build = std::move(pending->second);
+      pending_.erase(pending);  // a build that throws is not tried again
       const int on_thread = statistics_.built_on_thread;
-      programs_.emplace(key, finish(pending->second));
+      programs_.emplace(key, finish(build));
       statistics_.built_on_thread = on_thread;  // built_on_thread counts the frames' builds
-      pending_.erase(pending);
       ++statistics_.built_ahead;
     }
-    ShaderProgram& program = programs_.find(key)->second;
-    if (warmup != nullptr && !program.dispatched()) warmup->warm(program, shapes);
+    const auto program = programs_.find(key);  // absent: it failed where a frame asked for it
+    if (program != programs_.end() && warmup != nullptr && !program->second.dispatched())
+      warmup->warm(program->second, shapes);
     return true;
   });
   return ahead_.empty();

@@ -516,6 +516,8 @@ TEST_F(GlTest, ProgramBuildsOnASecondThreadGiveTheSameProgramsAndErrors) {
       EXPECT_EQ(std::string(e.what()), in_place_error) << "the same message as built here";
     }
     EXPECT_EQ(builds.statistics().built_on_thread, 2);
+    // The thread counts a build once it returns, after the program went back through its future.
+    for (int k = 0; k < 400 && !thread.idle(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     EXPECT_EQ(thread.statistics().built, 3);
     EXPECT_GT(thread.statistics().build_s, 0.0);
     EXPECT_NE(builds.summary().find("2 of them compiled on a second thread"), std::string::npos) << builds.summary();
@@ -532,6 +534,62 @@ TEST_F(GlTest, ProgramBuildsOnASecondThreadGiveTheSameProgramsAndErrors) {
     expect_floats_near(run_pattern(builds.get(fmt::format("scale {}", k), {}), 4, 2, 2),
                        expected_pattern(4, 2, 2, static_cast<float>(k)), 1e-6f);
   EXPECT_LT(builds.statistics().built_on_thread, 2 + 6) << "the dropped builds were built here";
+  gl::check_gl_error("after the builds");
+}
+
+/// ProgramBuilds' builds for a later frame (BuildFor::a_later_frame): left
+/// alone by warm_started, finished by finish_ahead once ready without
+/// waiting (counted apart from the frames' builds), their first dispatch
+/// warmed on the thread; a failing one is thrown once, where it is finished.
+TEST_F(GlTest, ProgramBuildsForALaterFrameAreFinishedOnceReadyWithoutWaiting) {
+  const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
+  const auto starter = [&](std::string scale) {
+    return [code = gl::ShaderCode{pattern.name, pattern.text, pattern.files}, scale] {
+      return gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", scale}}));
+    };
+  };
+  gl::ProgramBuilds builds(gl::CompileMode::parallel);
+  gl::FirstDispatchWarmup thread;
+  builds.build_on(&thread);
+  builds.start("now", starter("1.0"));
+  builds.start("later", starter("3.0"), gl::BuildFor::a_later_frame);
+  builds.start("later too", starter("5.0"), gl::BuildFor::a_later_frame);
+  builds.warm_started(thread, {}, [](const gl::ShaderProgram&) { return 0; });
+  EXPECT_TRUE(builds.built("now")) << "this frame's build: finished by warm_started";
+  EXPECT_FALSE(builds.built("later")) << "left for finish_ahead";
+  bool finished = false;
+  for (int k = 0; k < 400 && !finished; ++k) {  // the thread builds them meanwhile
+    finished = builds.finish_ahead(&thread, {});
+    if (!finished) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(finished) << "not built within 4 s";
+  EXPECT_TRUE(builds.built("later"));
+  EXPECT_EQ(builds.statistics().built, 1) << "the frames' builds";
+  EXPECT_EQ(builds.statistics().built_ahead, 2);
+  EXPECT_EQ(builds.statistics().built_on_thread, 1);
+  for (int k = 0; k < 400 && !thread.idle(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_TRUE(thread.idle());
+  EXPECT_GE(thread.statistics().warmed, 2) << "the later frame's programs warmed";
+  expect_floats_near(run_pattern(builds.get("later", {}), 4, 2, 2), expected_pattern(4, 2, 2, 3.0f), 1e-6f);
+  EXPECT_NE(builds.summary().find("2 more built ahead for later frames"), std::string::npos) << builds.summary();
+
+  const gl::ShaderCode broken{
+      "broken_test.comp", "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {\n  x;\n}\n", {}};
+  builds.start(
+      "broken", [broken] { return gl::ShaderBuild::compute(broken); }, gl::BuildFor::a_later_frame);
+  bool thrown = false;
+  for (int k = 0; k < 400 && !thrown; ++k) {
+    try {
+      if (builds.finish_ahead(&thread, {})) break;
+    } catch (const gl::ShaderBuildError&) {
+      thrown = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(thrown);
+  EXPECT_TRUE(builds.finish_ahead(&thread, {})) << "thrown once, then dropped";
+  EXPECT_FALSE(builds.built("broken"));
+  builds.build_on(nullptr);
   gl::check_gl_error("after the builds");
 }
 
