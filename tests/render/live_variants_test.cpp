@@ -10,11 +10,7 @@ namespace zenith::render {
 namespace {
 
 FrameVariant variant(int projection_kind, bool eclipses, bool albedo_lod0) {
-  FrameVariant v;
-  v.projection_kind = projection_kind;
-  v.eclipses = eclipses;
-  v.albedo_lod0 = albedo_lod0;
-  return v;
+  return {.projection_kind = projection_kind, .eclipses = eclipses, .albedo_lod0 = albedo_lod0};
 }
 
 TEST(LiveVariants, AVariantServesThoseThatNeedLess) {
