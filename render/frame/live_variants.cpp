@@ -8,7 +8,8 @@ bool variant_serves(const FrameVariant& general, const FrameVariant& specific) {
 }
 
 FrameVariant LiveVariants::choose(const FrameVariant& wanted, const Built& built) const {
-  if (built(wanted)) return wanted;
+  // Most frames want the variant in use: no need to ask about its programs.
+  if ((in_use_ && in_use_->key() == wanted.key()) || built(wanted)) return wanted;
   if (in_use_ && variant_serves(*in_use_, wanted)) return *in_use_;
   return wanted;
 }
