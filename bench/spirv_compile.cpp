@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace zenith::bench {
@@ -61,20 +62,21 @@ double first_dispatch_ms(GLuint program) {
 
 bool has_gl_spirv() { return epoxy_has_gl_extension("GL_ARB_gl_spirv"); }
 
-CompileTimes time_glsl_and_spirv(const std::filesystem::path& glsl, const std::filesystem::path& spirv, int rounds) {
-  std::vector<char> text = read_bytes(glsl);
-  text.push_back('\0');
+CompileTimes time_glsl_and_spirv(const std::filesystem::path& glsl, const std::filesystem::path& spirv, int rounds,
+                                 bool dispatch) {
+  const std::vector<char> text = read_bytes(glsl);
   const std::vector<char> binary = read_bytes(spirv);
   std::vector<double> glsl_build, spirv_build, glsl_dispatch, spirv_dispatch;
   for (int r = 0; r < rounds; ++r) {
+    const std::string round_text = std::string(text.begin(), text.end()) + fmt::format("\n// round {}\n", r);
     auto start = std::chrono::steady_clock::now();
     GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    const char* source = text.data();
+    const char* source = round_text.c_str();
     glShaderSource(shader, 1, &source, nullptr);
     glCompileShader(shader);
     GLuint program = link(shader, glsl, "GLSL");
     glsl_build.push_back(ms_since(start));
-    glsl_dispatch.push_back(first_dispatch_ms(program));
+    glsl_dispatch.push_back(dispatch ? first_dispatch_ms(program) : 0.0);
     glDeleteProgram(program);
 
     start = std::chrono::steady_clock::now();
@@ -83,10 +85,11 @@ CompileTimes time_glsl_and_spirv(const std::filesystem::path& glsl, const std::f
     glSpecializeShaderARB(shader, "main", 0, nullptr, nullptr);
     program = link(shader, spirv, "SPIR-V");
     spirv_build.push_back(ms_since(start));
-    spirv_dispatch.push_back(first_dispatch_ms(program));
+    spirv_dispatch.push_back(dispatch ? first_dispatch_ms(program) : 0.0);
     glDeleteProgram(program);
   }
-  return {median(glsl_build), median(spirv_build), median(glsl_dispatch), median(spirv_dispatch)};
+  return {median(glsl_build),     median(spirv_build), median(glsl_dispatch),
+          median(spirv_dispatch), glsl_build.front(),  spirv_build.front()};
 }
 
 }  // namespace zenith::bench

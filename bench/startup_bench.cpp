@@ -3,7 +3,8 @@
 //   build/bench/startup_bench [--show FILE] [--size WxH] [--tables paper|small] [--rounds N]
 //                             [--cases warm,cold-mesa,cold-programs,cold-maps,cold-unwarmed] [--csv FILE] [--passes-csv
 //                             FILE]
-//                             [--cache DIR] [--zenith PATH] [--spirv-csv FILE]
+//                             [--cache DIR] [--zenith PATH] [--spirv-csv FILE] [--parts starts,passes,spirv]
+//                             [--spirv-no-dispatch]
 //
 // 1. The process: `zenith show render --show FILE --projection fisheye --size WxH --to 0`, run as a
 //    user runs it, in four cases, each --rounds times, interleaved:
@@ -22,12 +23,18 @@
 //    pass timed (RenderOptions::time_passes: glFinish-bracketed); each pass's first-frame time less its
 //    second's is its programs' first-use cost (on llvmpipe, generating their machine code at the first
 //    dispatch); to --passes-csv, with the warm cache's figures beside them.
-// 3. SPIR-V against GLSL (GL_ARB_gl_spirv): the show's compute programs as the renderer gives them to the
-//    driver (a run with empty caches and ZENITH_SHADER_DUMP_DIR), each made into SPIR-V for OpenGL by
-//    glslangValidator (-G, locations and bindings mapped automatically), then built from either in a child
-//    with Mesa's cache off and dispatched once, --rounds times (bench/spirv_compile.h): the medians, and
-//    glslangValidator's own time, to --spirv-csv. Skipped where glslangValidator (Debian glslang-tools) or the
-//    extension is missing.
+// 3. SPIR-V against GLSL (GL_ARB_gl_spirv), and each program's build time: the show's compute programs as
+//    the renderer gives them to the driver (a run with empty caches and ZENITH_SHADER_DUMP_DIR) and the
+//    precompute's (`zenith precompute` of earth-advanced, 2 orders, no cache), each made into SPIR-V for
+//    OpenGL by glslangValidator (-G, locations and bindings mapped automatically), then built from either in
+//    a child with the driver's disk cache off and dispatched once, --rounds times (bench/spirv_compile.h):
+//    the medians, the first round's builds, and glslangValidator's own time, to --spirv-csv. Skipped where
+//    glslangValidator (Debian glslang-tools) or the extension is missing. --spirv-no-dispatch builds without
+//    the dispatch: a program run with nothing bound is safe on llvmpipe only, and a GPU driver generates
+//    its code at the link, which the build already times.
+//
+// The driver's shader cache is Mesa's or NVIDIA's: each case points both at its own folder
+// (MESA_SHADER_CACHE_DIR, __GL_SHADER_DISK_CACHE_PATH) or turns both off. --parts runs some of the three.
 //
 // The tables come from --cache (default: zenith's own cache); the first, unrecorded run precomputes
 // what it lacks.
@@ -80,6 +87,8 @@ struct Options {
   fs::path spirv_csv = fs::path(ZENITH_SOURCE_DIR) / "bench/results/startup_spirv.csv";
   fs::path cache = atmosphere::lut::default_cache_directory();
   fs::path work = fs::temp_directory_path() / fmt::format("zenith-startup-bench-{}", ::getpid());
+  std::vector<std::string> parts = {"starts", "passes", "spirv"};
+  bool spirv_dispatch = true;
   bool pass_child = false;  // internal: the in-process pass split, run by the parent with its own Mesa cache
   fs::path spirv_child;     // internal: time the GLSL and SPIR-V builds of the programs in this folder
 };
@@ -123,6 +132,13 @@ Options parse(int argc, char** argv) {
       o.spirv_csv = args.value();
     } else if (a == "--spirv-child") {
       o.spirv_child = args.value();
+    } else if (a == "--spirv-no-dispatch") {
+      o.spirv_dispatch = false;
+    } else if (a == "--parts") {
+      o.parts = split(args.value(), ',');
+      for (const std::string& p : o.parts)
+        if (p != "starts" && p != "passes" && p != "spirv")
+          throw std::invalid_argument("--parts: '" + p + "' is not starts, passes or spirv");
     } else if (a == "--cache") {
       o.cache = args.value();
     } else if (a == "--zenith") {
@@ -164,6 +180,17 @@ int run(const std::vector<std::string>& argv, const std::map<std::string, std::s
   waitpid(pid, &status, 0);
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
+
+using Environment = std::map<std::string, std::string>;
+
+/// The driver's shader cache in `directory`: Mesa's and NVIDIA's (which wants the folder to exist).
+Environment driver_cache_in(const fs::path& directory) {
+  fs::create_directories(directory);
+  return {{"MESA_SHADER_CACHE_DIR", directory.string()}, {"__GL_SHADER_DISK_CACHE_PATH", directory.string()}};
+}
+
+/// The driver's shader cache off: every build compiles.
+Environment driver_cache_off() { return {{"MESA_SHADER_CACHE_DISABLE", "true"}, {"__GL_SHADER_DISK_CACHE", "0"}}; }
 
 /// The phases of a start-up line, by name, in seconds.
 struct Startup {
@@ -237,8 +264,7 @@ void process_starts(const Options& o) {
   fmt::print("startup_bench: {} at {}x{}, {} tables, {} round(s) of {}\n", o.show.filename().string(), o.width,
              o.height, o.tables, o.rounds, fmt::join(o.cases, ", "));
   // One run unrecorded: the tables, the maps and Mesa's warm cache in place.
-  if (run(show_command(o, o.work / "prime", o.cache), {{"MESA_SHADER_CACHE_DIR", warm_mesa.string()}},
-          o.work / "prime.log") != 0)
+  if (run(show_command(o, o.work / "prime", o.cache), driver_cache_in(warm_mesa), o.work / "prime.log") != 0)
     throw std::runtime_error("the priming run failed: " + (o.work / "prime.log").string());
 
   std::map<std::string, std::vector<Startup>> runs;
@@ -256,8 +282,7 @@ void process_starts(const Options& o) {
       const fs::path cache = own_cache ? linked_cache(o.cache, run_dir / "cache", c == "cold-programs") : o.cache;
       const fs::path log = run_dir / "zenith.log";
       const auto start = std::chrono::steady_clock::now();
-      const int status = run(show_command(o, run_dir / "out", cache, c == "cold-unwarmed"),
-                             {{"MESA_SHADER_CACHE_DIR", mesa.string()}}, log);
+      const int status = run(show_command(o, run_dir / "out", cache, c == "cold-unwarmed"), driver_cache_in(mesa), log);
       if (status != 0) throw std::runtime_error(fmt::format("{} exited with {}: {}", c, status, log.string()));
       Startup s = parse_startup(log);
       s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -327,7 +352,7 @@ void pass_compile(const Options& o) {
     const fs::path log = o.work / ("passes-" + c + ".log");
     const int status = run({fs::read_symlink("/proc/self/exe").string(), "--pass-child", "--show", o.show.string(),
                             "--size", fmt::format("{}x{}", o.width, o.height), "--tables", o.tables},
-                           {{"MESA_SHADER_CACHE_DIR", mesa.string()}}, log);
+                           driver_cache_in(mesa), log);
     if (status != 0)
       throw std::runtime_error(fmt::format("the pass split ({}) exited with {}: {}", c, status, log.string()));
     std::ifstream in(log);
@@ -370,35 +395,30 @@ std::vector<fs::path> dumped_programs(const fs::path& dir) {
   return out;
 }
 
+/// The two sets of programs part 3 times: the show's renderer and the precompute.
+const std::array<std::string, 2> kProgramSets = {"show", "precompute"};
+
 int spirv_child(const Options& o) {
   const render::gl::HeadlessContext context;
   if (!has_gl_spirv()) {
     fmt::print("NO-SPIRV\n");
     return 0;
   }
-  for (const fs::path& glsl : dumped_programs(o.spirv_child)) {
-    const CompileTimes t = time_glsl_and_spirv(glsl, glsl.string() + ".spv", o.rounds);
-    fmt::print("SPIRV\t{}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\n", glsl.filename().string(), t.glsl_build_ms,
-               t.spirv_build_ms, t.glsl_dispatch_ms, t.spirv_dispatch_ms);
+  for (const std::string& set : kProgramSets) {
+    if (!fs::is_directory(o.spirv_child / set)) continue;
+    for (const fs::path& glsl : dumped_programs(o.spirv_child / set)) {
+      const CompileTimes t = time_glsl_and_spirv(glsl, glsl.string() + ".spv", o.rounds, o.spirv_dispatch);
+      fmt::print("SPIRV\t{}\t{}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\n", set, glsl.filename().string(),
+                 t.glsl_build_ms, t.spirv_build_ms, t.glsl_dispatch_ms, t.spirv_dispatch_ms, t.glsl_first_build_ms,
+                 t.spirv_first_build_ms);
+    }
   }
   return 0;
 }
 
-void spirv_against_glsl(const Options& o) {
-  const fs::path glslang = on_path("glslangValidator");
-  if (glslang.empty()) {
-    fmt::print("\nSPIR-V against GLSL: skipped, no glslangValidator on PATH (Debian glslang-tools)\n");
-    return;
-  }
-  const fs::path dump = o.work / "spirv-dump";
-  fs::remove_all(dump);
-  fs::create_directories(dump);
-  const fs::path cache =
-      linked_cache(o.cache, o.work / "spirv-cache", true);  // no program binaries: every program compiled
-  if (run(show_command(o, o.work / "spirv-out", cache),
-          {{"ZENITH_SHADER_DUMP_DIR", dump.string()}, {"MESA_SHADER_CACHE_DIR", (o.work / "spirv-mesa").string()}},
-          o.work / "spirv-dump.log") != 0)
-    throw std::runtime_error("the run that dumps the programs failed: " + (o.work / "spirv-dump.log").string());
+/// Each .comp under `dump` made into SPIR-V beside it; glslangValidator's time by file name. A program
+/// glslangValidator refuses is left out, said so.
+std::map<std::string, double> make_spirv(const fs::path& glslang, const fs::path& dump) {
   std::map<std::string, double> glslang_ms;
   for (const auto& entry : fs::directory_iterator(dump)) {
     if (entry.path().extension() != ".comp") continue;
@@ -415,10 +435,41 @@ void spirv_against_glsl(const Options& o) {
     glslang_ms[entry.path().filename().string()] =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
+  return glslang_ms;
+}
+
+void spirv_against_glsl(const Options& o) {
+  const fs::path glslang = on_path("glslangValidator");
+  if (glslang.empty()) {
+    fmt::print("\nSPIR-V against GLSL: skipped, no glslangValidator on PATH (Debian glslang-tools)\n");
+    return;
+  }
+  const fs::path dump = o.work / "spirv-dump";
+  fs::remove_all(dump);
+  // The show's programs, as its first frame builds them with no program binary to load.
+  const fs::path cache =
+      linked_cache(o.cache, o.work / "spirv-cache", true);  // no program binaries: every program compiled
+  Environment environment = driver_cache_in(o.work / "spirv-driver-cache");
+  environment["ZENITH_SHADER_DUMP_DIR"] = (dump / "show").string();
+  fs::create_directories(dump / "show");
+  if (run(show_command(o, o.work / "spirv-out", cache), environment, o.work / "spirv-dump.log") != 0)
+    throw std::runtime_error("the run that dumps the show's programs failed: " + (o.work / "spirv-dump.log").string());
+  // The precompute's: every program of every stage (two orders run the same programs as eight).
+  environment["ZENITH_SHADER_DUMP_DIR"] = (dump / "precompute").string();
+  fs::create_directories(dump / "precompute");
+  if (run({o.zenith.string(), "precompute", "--atmosphere", "earth-advanced", "--tables", o.tables, "--orders", "2",
+           "--no-cache"},
+          environment, o.work / "spirv-precompute.log") != 0)
+    throw std::runtime_error("the precompute that dumps its programs failed: " +
+                             (o.work / "spirv-precompute.log").string());
+  std::map<std::string, std::map<std::string, double>> glslang_ms;
+  for (const std::string& set : kProgramSets) glslang_ms[set] = make_spirv(glslang, dump / set);
+
   const fs::path log = o.work / "spirv-child.log";
-  if (run({fs::read_symlink("/proc/self/exe").string(), "--spirv-child", dump.string(), "--rounds",
-           std::to_string(o.rounds)},
-          {{"MESA_SHADER_CACHE_DISABLE", "true"}}, log) != 0)
+  std::vector<std::string> child = {fs::read_symlink("/proc/self/exe").string(), "--spirv-child", dump.string(),
+                                    "--rounds", std::to_string(o.rounds)};
+  if (!o.spirv_dispatch) child.push_back("--spirv-no-dispatch");
+  if (run(child, driver_cache_off(), log) != 0)
     throw std::runtime_error("the SPIR-V timing child failed: " + log.string());
   std::ifstream in(log);
   std::vector<std::vector<std::string>> rows;
@@ -427,25 +478,34 @@ void spirv_against_glsl(const Options& o) {
       fmt::print("\nSPIR-V against GLSL: skipped, the driver has no GL_ARB_gl_spirv\n");
       return;
     }
-    if (std::vector<std::string> f = split(line, '\t'); f.size() == 6 && f[0] == "SPIRV") rows.push_back(f);
+    if (std::vector<std::string> f = split(line, '\t'); f.size() == 9 && f[0] == "SPIRV") rows.push_back(f);
   }
   fs::create_directories(o.spirv_csv.parent_path());
   std::ofstream csv(o.spirv_csv);
-  csv << "program,glslang_ms,glsl_build_ms,spirv_build_ms,glsl_first_dispatch_ms,spirv_first_dispatch_ms\n";
+  csv << "set,program,glslang_ms,glsl_build_ms,spirv_build_ms,glsl_first_dispatch_ms,spirv_first_dispatch_ms,"
+         "glsl_first_build_ms,spirv_first_build_ms\n";
   fmt::print(
-      "\nSPIR-V against GLSL, ms (median of {}; Mesa's cache off): glslangValidator, then the driver's build "
-      "and first dispatch from GLSL and from SPIR-V\n",
-      o.rounds);
-  std::array<double, 5> sums{};
-  for (const auto& f : rows) {
-    const double to_spirv = glslang_ms[f[1]];
-    const std::array<double, 5> v = {to_spirv, std::stod(f[2]), std::stod(f[3]), std::stod(f[4]), std::stod(f[5])};
-    for (std::size_t k = 0; k < v.size(); ++k) sums[k] += v[k];
-    csv << fmt::format("\"{}\",{:.2f},{:.2f},{:.2f},{:.2f},{:.2f}\n", f[1], v[0], v[1], v[2], v[3], v[4]);
-    fmt::print("  {:<56} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f}\n", f[1], v[0], v[1], v[2], v[3], v[4]);
+      "\nSPIR-V against GLSL, ms (median of {}; the driver's disk cache off): glslangValidator, the driver's build "
+      "from GLSL and from SPIR-V, {}the first round's builds\n",
+      o.rounds, o.spirv_dispatch ? "the first dispatch of each, " : "");
+  for (const std::string& set : kProgramSets) {
+    std::array<double, 7> sums{};
+    int programs = 0;
+    for (const auto& f : rows) {
+      if (f[1] != set) continue;
+      const std::array<double, 7> v = {glslang_ms[set][f[2]], std::stod(f[3]), std::stod(f[4]), std::stod(f[5]),
+                                       std::stod(f[6]),       std::stod(f[7]), std::stod(f[8])};
+      for (std::size_t k = 0; k < v.size(); ++k) sums[k] += v[k];
+      ++programs;
+      csv << fmt::format("{},\"{}\",{:.2f},{:.2f},{:.2f},{:.2f},{:.2f},{:.2f},{:.2f}\n", set, f[2], v[0], v[1], v[2],
+                         v[3], v[4], v[5], v[6]);
+      fmt::print("  {:<11} {:<56} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f}\n", set, f[2], v[0], v[1],
+                 v[2], v[3], v[4], v[5], v[6]);
+    }
+    fmt::print("  {:<11} {:<56} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f}\n", set,
+               fmt::format("all {} programs", programs), sums[0], sums[1], sums[2], sums[3], sums[4], sums[5], sums[6]);
   }
-  fmt::print("  {:<56} {:7.1f} {:7.1f} {:7.1f} {:7.1f} {:7.1f}\nevery program: {}\n", "all", sums[0], sums[1], sums[2],
-             sums[3], sums[4], o.spirv_csv.string());
+  fmt::print("every program: {}\n", o.spirv_csv.string());
 }
 
 }  // namespace
@@ -457,9 +517,10 @@ int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     if (o.pass_child) return pass_child(o);
     if (!o.spirv_child.empty()) return spirv_child(o);
-    process_starts(o);
-    pass_compile(o);
-    spirv_against_glsl(o);
+    const auto wanted = [&](const char* part) { return std::ranges::find(o.parts, part) != o.parts.end(); };
+    if (wanted("starts")) process_starts(o);
+    if (wanted("passes")) pass_compile(o);
+    if (wanted("spirv")) spirv_against_glsl(o);
     std::filesystem::remove_all(o.work);
     return 0;
   } catch (const std::exception& e) {
