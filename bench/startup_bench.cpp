@@ -407,10 +407,15 @@ int spirv_child(const Options& o) {
   for (const std::string& set : kProgramSets) {
     if (!fs::is_directory(o.spirv_child / set)) continue;
     for (const fs::path& glsl : dumped_programs(o.spirv_child / set)) {
-      const CompileTimes t = time_glsl_and_spirv(glsl, glsl.string() + ".spv", o.rounds, o.spirv_dispatch);
-      fmt::print("SPIRV\t{}\t{}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\n", set, glsl.filename().string(),
-                 t.glsl_build_ms, t.spirv_build_ms, t.glsl_dispatch_ms, t.spirv_dispatch_ms, t.glsl_first_build_ms,
-                 t.spirv_first_build_ms);
+      try {
+        const CompileTimes t = time_glsl_and_spirv(glsl, glsl.string() + ".spv", o.rounds, o.spirv_dispatch);
+        fmt::print("SPIRV\t{}\t{}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\t{:.2f}\n", set, glsl.filename().string(),
+                   t.glsl_build_ms, t.spirv_build_ms, t.glsl_dispatch_ms, t.spirv_dispatch_ms, t.glsl_first_build_ms,
+                   t.spirv_first_build_ms);
+      } catch (const std::exception& e) {  // the others are still timed; the parent reads no row for this one
+        fmt::print("REFUSED\t{}\t{}\t{}\n", set, glsl.filename().string(), e.what());
+      }
+      std::fflush(stdout);
     }
   }
   return 0;
