@@ -977,12 +977,27 @@ TEST(NightSkyPass, TheGpuPathCarriesTheStarsAsTheReadBackFrameDoes) {
   gl::Texture target = gl::Texture::create_2d(gl::TextureFormat::rgba32f, 48, 48);
   t.renderer.render_to_texture(s, dome, target);
   const std::vector<float> rgba = target.read();
+  // Then the read-back frame again, and the texture again: a difference says
+  // whether a path or a frame's place in the sequence loses a pixel.
+  const auto image_again = t.renderer.render_image(s, dome);
+  t.renderer.render_to_texture(s, dome, target);
+  const std::vector<float> rgba_again = target.read();
   double largest = 0.0;
+  std::size_t differing = 0, image_changed = 0, texture_changed = 0;
   for (std::size_t i = 0; i < 48 * 48; ++i)
     for (std::size_t k = 0; k < 3; ++k) {
-      EXPECT_EQ(rgba[i * 4 + k], image[i * 3 + k]) << "pixel " << i;
-      largest = std::max(largest, double(image[i * 3 + k]));
+      const float texture = rgba[i * 4 + k], read_back = image[i * 3 + k];
+      if (texture != read_back && ++differing <= 6)
+        ADD_FAILURE() << "pixel " << i << " channel " << k << ": the texture " << texture << ", the read-back frame "
+                      << read_back << "; rendered again: the read-back frame " << image_again[i * 3 + k]
+                      << ", the texture " << rgba_again[i * 4 + k];
+      image_changed += image_again[i * 3 + k] != read_back;
+      texture_changed += rgba_again[i * 4 + k] != texture;
+      largest = std::max(largest, double(read_back));
     }
+  EXPECT_EQ(differing, 0u) << "values of the read-back frame not the texture's";
+  EXPECT_EQ(image_changed, 0u) << "values of the read-back frame rendered again not the first's";
+  EXPECT_EQ(texture_changed, 0u) << "values of the texture rendered again not the first's";
   EXPECT_GT(largest, 0.0);
 }
 

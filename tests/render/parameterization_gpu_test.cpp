@@ -45,8 +45,11 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -212,6 +215,15 @@ class GpuParameterization {
   gl::ShaderProgram program_;
 };
 
+/// How many representable floats lie between `a` and `b` (as floats).
+std::int64_t float_steps_apart(double a, double b) {
+  const auto ordered = [](float f) {
+    const auto bits = std::bit_cast<std::int32_t>(f);
+    return bits < 0 ? std::int64_t{std::numeric_limits<std::int32_t>::min()} - bits : std::int64_t{bits};
+  };
+  return std::abs(ordered(static_cast<float>(a)) - ordered(static_cast<float>(b)));
+}
+
 std::string describe(const Case& c) {
   char text[256];
   std::snprintf(text, sizeof text, "r=%.17g mu=%.17g mu_s=%.17g nu=%.17g hits_ground=%d mapping=%s x_nu=%g", c.r, c.mu,
@@ -241,12 +253,17 @@ void compare_parameterization(const std::string& preset, bool fp64, double toler
     if (!precompute) return;
     const std::vector<double> reference = precompute->run(mode, inputs);
     ASSERT_EQ(reference.size(), results.size());
-    std::size_t differing = 0;
+    std::size_t differing = 0, worst = 0;
+    double worst_d = 0.0;
     for (std::size_t i = 0; i < results.size(); ++i) {
       const double d = std::abs(results[i] - reference[i]) / std::max(1.0, std::abs(reference[i]));
       if (fp64 ? d > 4e-16 : results[i] != reference[i]) ++differing;
+      if (d > worst_d) worst_d = d, worst = i;
     }
-    EXPECT_EQ(differing, 0u) << "mode " << mode << ": values of the shared program not those of the precompute's";
+    EXPECT_EQ(differing, 0u) << "mode " << mode << ": values of the shared program not those of the precompute's; "
+                             << "the largest difference " << worst_d << " (relative to max(1, |value|)) at output "
+                             << worst << ": " << results[worst] << " against " << reference[worst] << ", "
+                             << float_steps_apart(results[worst], reference[worst]) << " float steps apart";
   };
   const TableSizes& s = gpu.sizes();
 
