@@ -717,6 +717,7 @@ void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projecti
       scene, projection,
       [&](const BandTiles& band, PassTimer& timer) {
         impl_->band_to_texture.copy(impl_->band.bind_band_on_gpu(band), target, timer);
+        impl_->band.end_band_on_gpu();  // the next band's passes rewrite what the copy read
       },
       [&](gl::FirstDispatchWarmup& warmup) { impl_->band_to_texture.warm(warmup, target.format()); });
 }
@@ -727,7 +728,7 @@ void Renderer::render_on_gpu(const scene::Scene& scene, const warp::Projection& 
       [&](const BandTiles& band, PassTimer& timer) {
         const GpuBand gpu_band = impl_->band.bind_band_on_gpu(band);
         timer.gpu("band output", [&] { sink(gpu_band); });
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the next band's passes write what the sink read
+        impl_->band.end_band_on_gpu();  // the next band's passes rewrite what the sink read
       },
       impl_->band_sink_warmup);
 }

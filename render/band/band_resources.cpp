@@ -142,4 +142,10 @@ GpuBand BandResources::bind_band_on_gpu(const BandTiles& band) {
   return {band.first_row, band.rows, band_width_, tile_columns()};
 }
 
+void BandResources::end_band_on_gpu() {
+  GLsync read = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  glWaitSync(read, 0, GL_TIMEOUT_IGNORED);
+  glDeleteSync(read);
+}
+
 }  // namespace zenith::render

@@ -65,6 +65,13 @@ class BandResources {
   /// Binds the output buffer and uploads and binds the band's black-tile
   /// flags, for a pass that reads the band on the GPU (render/band/gpu_band.h).
   GpuBand bind_band_on_gpu(const BandTiles& band);
+  /// After the pass that read the band on the GPU: the GPU starts nothing more
+  /// until that pass has finished, since the next band's passes rewrite the
+  /// output buffer and the black-tile flags it reads. A memory barrier orders
+  /// writes before later accesses; this is a read before later writes, which
+  /// NVIDIA's driver let overlap (an H200: a band's copy to the display texture
+  /// read the next band's stars). A fence waited on by the GPU, not the CPU.
+  void end_band_on_gpu();
 
  private:
   gl::Buffer bodies_;

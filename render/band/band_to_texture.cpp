@@ -1,7 +1,5 @@
 #include "render/band/band_to_texture.h"
 
-#include <epoxy/gl.h>
-
 #include "render/shader_programs.h"
 
 namespace zenith::render {
@@ -21,8 +19,6 @@ void BandToTexture::copy(const GpuBand& band, gl::Texture& target, PassTimer& ti
   rows_.bind(target, band.first_row, band.rows);
   timer.gpu("copy to texture", [&] { rows_.draw(program_); });
   rows_.unbind();
-  // The next band's passes write the output buffer this pass reads.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 }  // namespace zenith::render
