@@ -503,7 +503,7 @@ bool Renderer::live_variants() const { return options_.background_variant_builds
 
 bool Renderer::variant_built(const Frame& frame, const FrameVariant& variant) const {
   const Impl& im = *impl_;
-  if (!im.frame_programs.built(*im.builds, variant)) return false;
+  if (!im.frame_programs.built(*im.builds, variant) || !im.night_sky.programs_built(*im.builds, variant)) return false;
   for (const BandTiles& band : *frame.bands)
     for (std::size_t a = 0; a < band.lists.size(); ++a) {
       const GpuAtmosphere* gpu = frame.passes[a].gpu;
@@ -551,6 +551,7 @@ void Renderer::build_variants_ahead(const Frame& frame) {
 void Renderer::start_variant_programs(const Frame& frame, const FrameVariant& variant, gl::BuildFor build_for) {
   Impl& im = *impl_;
   im.frame_programs.start(*im.builds, variant, build_for);
+  im.night_sky.start_programs(*im.builds, variant, build_for);
   for (const BandTiles& band : *frame.bands)
     for (std::size_t a = 0; a < band.lists.size(); ++a) {
       const GpuAtmosphere* gpu = frame.passes[a].gpu;
@@ -572,6 +573,7 @@ std::vector<const gl::ShaderProgram*> Renderer::variant_programs(const Frame& fr
       for (const auto& [tiles, list] : band.lists[a].one_pass)
         programs.push_back(&gpu->tile_program(variant, tiles, frame.passes[a].eclipse_sky));
     }
+  im.night_sky.add_programs(*im.builds, variant, programs);
   return programs;
 }
 
@@ -683,7 +685,7 @@ void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& t
     for (const FrameLight& light : frame.lights) draw_atmosphere_tiles(frame, im.band, band, light, timer);
     // The stars and the night sky join the radiance before the band leaves
     // (readback, texture copy or the live display pass): one tone mapping for all.
-    impl_->night_sky.draw_band(frame, band, timer);
+    impl_->night_sky.draw_band(frame, *im.builds, band, timer);
     output(band, timer);
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, frame.scene.name));
   }

@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <span>
+#include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -332,21 +335,44 @@ const MoonAlbedoMap& NightSkyPass::moon_map() {
   return *moon_map_;
 }
 
-const gl::ShaderProgram& NightSkyPass::resolve_program(const FrameInProgress& frame, const NightSkyVariant& variant) {
-  const std::string key = fmt::format("{} {}", frame.variant.key(), variant.key());
-  auto it = resolve_.find(key);
-  if (it == resolve_.end()) {
-    std::vector<gl::ShaderDefine> defines = frame.variant.defines();
-    const auto flag = [](bool on) { return std::string(on ? "1" : "0"); };
-    defines.push_back({"NIGHT_FLOOR", flag(variant.floor)});
-    defines.push_back({"NIGHT_MOON", flag(variant.moon)});
-    defines.push_back({"NIGHT_BODIES", flag(variant.bodies)});
-    it = resolve_.emplace(key, load_compute_program("render/night_sky.comp", defines)).first;
-  }
-  return it->second;
+namespace {
+
+/// night_sky.comp's defines for one kind of tile of a frame variant.
+std::vector<gl::ShaderDefine> night_sky_defines(const FrameVariant& frame, const NightSkyVariant& tiles) {
+  std::vector<gl::ShaderDefine> defines = frame.defines();
+  const auto flag = [](bool on) { return std::string(on ? "1" : "0"); };
+  defines.push_back({"NIGHT_FLOOR", flag(tiles.floor)});
+  defines.push_back({"NIGHT_MOON", flag(tiles.moon)});
+  defines.push_back({"NIGHT_BODIES", flag(tiles.bodies)});
+  return defines;
 }
 
-void NightSkyPass::draw_band(FrameInProgress& frame, BandTiles& band, PassTimer& timer) {
+constexpr const char* kNightSky = "render/night_sky.comp";
+constexpr const char* kStarPixels = "render/star_pixels.comp";
+
+}  // namespace
+
+void NightSkyPass::start_programs(gl::ProgramBuilds& builds, const FrameVariant& variant,
+                                  gl::BuildFor build_for) const {
+  for (const int kind : kinds_drawn_)
+    start_built_program(builds, kNightSky, night_sky_defines(variant, NightSkyVariant::from_key(kind)), build_for);
+  if (star_pixels_drawn_) start_built_program(builds, kStarPixels, variant.defines(), build_for);
+}
+
+bool NightSkyPass::programs_built(const gl::ProgramBuilds& builds, const FrameVariant& variant) const {
+  for (const int kind : kinds_drawn_)
+    if (!program_built(builds, kNightSky, night_sky_defines(variant, NightSkyVariant::from_key(kind)))) return false;
+  return !star_pixels_drawn_ || program_built(builds, kStarPixels, variant.defines());
+}
+
+void NightSkyPass::add_programs(gl::ProgramBuilds& builds, const FrameVariant& variant,
+                                std::vector<const gl::ShaderProgram*>& programs) const {
+  for (const int kind : kinds_drawn_)
+    programs.push_back(&built_program(builds, kNightSky, night_sky_defines(variant, NightSkyVariant::from_key(kind))));
+  if (star_pixels_drawn_) programs.push_back(&built_program(builds, kStarPixels, variant.defines()));
+}
+
+void NightSkyPass::draw_band(FrameInProgress& frame, gl::ProgramBuilds& builds, BandTiles& band, PassTimer& timer) {
   if (!stats_.drawn) return;
   const int width = frame.band_size[0], rows = band.rows, columns = frame.cones->columns();
   // The band's stars: those whose 2 × 2 footprint reaches its rows (splats_ is sorted by y).
@@ -463,7 +489,8 @@ void NightSkyPass::draw_band(FrameInProgress& frame, BandTiles& band, PassTimer&
   std::size_t offset = 0;
   for (const auto& [key, list] : by_list) {
     const NightSkyVariant v = NightSkyVariant::from_key(key.first);
-    const gl::ShaderProgram& p = frame.prepare(resolve_program(frame, v));
+    const gl::ShaderProgram& p = frame.prepare(built_program(builds, kNightSky, night_sky_defines(frame.variant, v)));
+    kinds_drawn_.insert(key.first);
     if (v.moon) {
       p.set_uniform("moon_direction", vec(moon_direction_));
       p.set_uniform("moon_radius", static_cast<float>(moon_radius_rad_));
@@ -511,19 +538,11 @@ void NightSkyPass::draw_band(FrameInProgress& frame, BandTiles& band, PassTimer&
     pixel_list_ = gl::Buffer(std::max<std::size_t>(pixel_bytes, 4096));
   pixel_list_.upload(std::span<const std::uint32_t>(star_pixels_));
   pixel_list_.bind_storage(binding::kStarPixelList);
-  const gl::ShaderProgram& p = frame.prepare(star_pixels_program(frame));
+  const gl::ShaderProgram& p = frame.prepare(built_program(builds, kStarPixels, frame.variant.defines()));
+  star_pixels_drawn_ = true;
   p.set_uniform("star_pixel_count", static_cast<int>(star_pixels_.size()));
   timer.gpu("stars", [&] { p.dispatch(static_cast<unsigned>((star_pixels_.size() + 63) / 64)); });
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-}
-
-const gl::ShaderProgram& NightSkyPass::star_pixels_program(const FrameInProgress& frame) {
-  const std::string key = frame.variant.key();
-  auto it = star_pixels_programs_.find(key);
-  if (it == star_pixels_programs_.end())
-    it = star_pixels_programs_.emplace(key, load_compute_program("render/star_pixels.comp", frame.variant.defines()))
-             .first;
-  return it->second;
 }
 
 }  // namespace zenith::render

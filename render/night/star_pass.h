@@ -24,9 +24,9 @@
 // nor a GPU pass runs: a daylight exposure, and a twilight sky bright enough to
 // hide every star, cost nothing.
 #include <cstddef>
-#include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -38,6 +38,7 @@
 #include "render/frame/refraction_cache.h"
 #include "render/frame/tile_classification.h"
 #include "render/gl/buffer.h"
+#include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/night/moon_albedo_map.h"
@@ -100,14 +101,24 @@ class NightSkyPass {
   void prepare(const FrameInProgress& frame, const MoonInShadow* moon_shadow, PassTimer& timer);
   /// Adds the stars and the floor to the band's output (bound at
   /// FRAME_RGB_BINDING); tiles nothing had drawn that now hold a star lose their
-  /// black flag. Rebinds TILES_BINDING to its own list.
-  void draw_band(FrameInProgress& frame, BandTiles& band, PassTimer& timer);
+  /// black flag. Rebinds TILES_BINDING to its own list. Its programs come from
+  /// `builds` (the frame's variant's, built now where they are not).
+  void draw_band(FrameInProgress& frame, gl::ProgramBuilds& builds, BandTiles& band, PassTimer& timer);
+
+  /// The programs this pass has drawn with so far (each kind of tile its
+  /// night_sky.comp, and star_pixels.comp), for the frame variant `variant`:
+  /// started on `builds` for `build_for`, whether all are built, and the
+  /// built ones (to warm their first dispatches). A live renderer switches to
+  /// a leaner variant once these are built too (render/frame/live_variants.h),
+  /// so that the switch builds nothing on the frame's thread.
+  void start_programs(gl::ProgramBuilds& builds, const FrameVariant& variant, gl::BuildFor build_for) const;
+  bool programs_built(const gl::ProgramBuilds& builds, const FrameVariant& variant) const;
+  void add_programs(gl::ProgramBuilds& builds, const FrameVariant& variant,
+                    std::vector<const gl::ShaderProgram*>& programs) const;
 
   const NightSkyStats& stats() const { return stats_; }
 
  private:
-  const gl::ShaderProgram& resolve_program(const FrameInProgress& frame, const NightSkyVariant& variant);
-  const gl::ShaderProgram& star_pixels_program(const FrameInProgress& frame);
   bool ensure_field(const scene::Scene& scene);
   NightSkyRenderOptions options_;
   NightSkyStats stats_;
@@ -151,7 +162,9 @@ class NightSkyPass {
   std::unique_ptr<astro::LightPollution> light_pollution_;
   // GL objects.
   gl::ShaderProgram splat_;
-  std::map<std::string, gl::ShaderProgram> resolve_, star_pixels_programs_;
+  // The kinds of tile (NightSkyVariant keys) drawn so far, and whether stars were.
+  std::set<int> kinds_drawn_;
+  bool star_pixels_drawn_ = false;
   gl::Buffer splats_buffer_, accumulator_, tiles_, table_buffer_, pixel_list_;
   // The band's pixels its splats reach, each once, and a flag per band pixel to list them once (all 0 between bands).
   std::vector<std::uint32_t> star_pixels_;

@@ -9,10 +9,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <thread>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -32,6 +34,7 @@
 #include "core/units.h"
 #include "image/colour.h"
 #include "image/tone_mapping.h"
+#include "render/frame/frame_conditions.h"
 #include "render/frame/frame_sky.h"
 #include "render/gl/texture.h"
 #include "render/night/moon_albedo_map.h"
@@ -999,6 +1002,55 @@ TEST(NightSkyPass, TheGpuPathCarriesTheStarsAsTheReadBackFrameDoes) {
   EXPECT_EQ(image_changed, 0u) << "values of the read-back frame rendered again not the first's";
   EXPECT_EQ(texture_changed, 0u) << "values of the texture rendered again not the first's";
   EXPECT_GT(largest, 0.0);
+}
+
+TEST(NightSkyPass, ALiveRendererSwitchesVariantsWithTheNightSkysProgramsBuiltAhead) {
+  // A live renderer draws with the frame variant in use while a leaner one
+  // builds on a second thread, then switches (render/frame/live_variants.h).
+  // The night sky's programs are compiled for each variant too: they are
+  // built ahead with the others, so no frame builds a program — the switch
+  // in a live show used to compile them on the frame's thread — and the
+  // frames after it are the offline renderer's. The sky from space with its
+  // stars; a moon on the sun–Earth line (its shadow can fall: the eclipse
+  // code), then a quarter turn away from it (none can: the leaner variant).
+  REQUIRE_CATALOGUE();
+  const astro::StarCatalogue c = bright_stars();
+  scene::Scene apart = greenwich("", glm::normalize(sirius_enu(c) + glm::dvec3(0.17, 0, 0)), 1e6);
+  scene::Body moon = apart.bodies[0];
+  moon.name = "moon";
+  moon.atmosphere.reset();
+  moon.radius_m = 1.7374e6;
+  const glm::dvec3 sun = glm::normalize(apart.sun.direction);
+  scene::Scene eclipsed = apart;
+  moon.position_m = sun * 3.844e8;
+  eclipsed.bodies.push_back(moon);
+  moon.position_m = glm::normalize(glm::cross(sun, glm::dvec3(0.0, 0.0, 1.0))) * 3.844e8;
+  apart.bodies.push_back(moon);
+  ASSERT_TRUE(eclipses_possible(eclipsed));
+  ASSERT_FALSE(eclipses_possible(apart));
+  const warp::FisheyeProjection dome(48, 48);
+  RenderOptions live = options(true, false);
+  live.background_variant_builds = true;
+  TestRenderer t(live), offline(options(true, false));
+  const std::vector<float> expected = offline.renderer.render_image(apart, dome);
+  ASSERT_GT(offline.renderer.last_frame().night_sky.stars, 0u);
+
+  t.renderer.render_image(eclipsed, dome);
+  ASSERT_GT(t.renderer.last_frame().night_sky.stars, 0u);
+  EXPECT_FALSE(t.renderer.last_frame().variant_held) << "the first frame builds what it needs";
+  std::vector<float> image = t.renderer.render_image(apart, dome);
+  EXPECT_TRUE(t.renderer.last_frame().variant_held) << "drawn with the eclipse code";
+  EXPECT_EQ(t.renderer.last_frame().programs_built, 0) << "no program built for the frame";
+  int frames = 1;
+  for (; frames < 400 && t.renderer.last_frame().variant_held; ++frames) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    image = t.renderer.render_image(apart, dome);
+    EXPECT_EQ(t.renderer.last_frame().programs_built, 0) << "frame " << frames << " built a program";
+  }
+  ASSERT_FALSE(t.renderer.last_frame().variant_held) << "still the eclipse code after 400 frames";
+  std::printf("the leaner programs, the night sky's too, drawn from frame %d on\n", frames);
+  EXPECT_GT(t.renderer.last_frame().night_sky.stars, 0u);
+  EXPECT_EQ(image, expected) << "the offline renderer's programs, the same pixels";
 }
 
 }  // namespace
