@@ -9,12 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <memory>
-#include <thread>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -47,6 +45,7 @@
 #include "tests/render/code_difference.h"
 #include "tests/render/greenwich_night.h"
 #include "tests/render/render_test_support.h"
+#include "tests/render/variant_switch.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/warped_projection.h"
@@ -1041,12 +1040,8 @@ TEST(NightSkyPass, ALiveRendererSwitchesVariantsWithTheNightSkysProgramsBuiltAhe
   std::vector<float> image = t.renderer.render_image(apart, dome);
   EXPECT_TRUE(t.renderer.last_frame().variant_held) << "drawn with the eclipse code";
   EXPECT_EQ(t.renderer.last_frame().programs_built, 0) << "no program built for the frame";
-  int frames = 1;
-  for (; frames < 400 && t.renderer.last_frame().variant_held; ++frames) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    image = t.renderer.render_image(apart, dome);
-    EXPECT_EQ(t.renderer.last_frame().programs_built, 0) << "frame " << frames << " built a program";
-  }
+  const int frames =
+      testing::frames_until_the_wanted_variant(t.renderer, [&] { image = t.renderer.render_image(apart, dome); });
   ASSERT_FALSE(t.renderer.last_frame().variant_held) << "still the eclipse code after 400 frames";
   std::printf("the leaner programs, the night sky's too, drawn from frame %d on\n", frames);
   EXPECT_GT(t.renderer.last_frame().night_sky.stars, 0u);

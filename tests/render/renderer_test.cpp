@@ -51,6 +51,7 @@
 #include "scene/sky_clock.h"
 #include "scene/sun_disc.h"
 #include "tests/render/render_test_support.h"
+#include "tests/render/variant_switch.h"
 #include "warp/fisheye_projection.h"
 #include "warp/planar_projection.h"
 #include "warp/viewport_config.h"
@@ -900,12 +901,8 @@ TEST(RendererVariants, ALiveFrameNeverWaitsForALeanerVariant) {
   std::printf("the eclipse code with no shadow to draw against the lean programs: %.2e\n", held);
   EXPECT_LT(held, 1e-6);
 
-  int frames = 1;
-  for (; frames < 400 && t.renderer.last_frame().variant_held; ++frames) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    image = t.renderer.render_image(apart, p);
-    EXPECT_EQ(t.renderer.last_frame().programs_built, 0) << "frame " << frames << " waited for a build";
-  }
+  const int frames =
+      testing::frames_until_the_wanted_variant(t.renderer, [&] { image = t.renderer.render_image(apart, p); });
   ASSERT_FALSE(t.renderer.last_frame().variant_held) << "still the eclipse code after 400 frames";
   std::printf("the leaner programs drawn from frame %d on\n", frames);
   EXPECT_EQ(image, expected) << "the offline renderer's programs, the same pixels";
