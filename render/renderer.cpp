@@ -551,7 +551,9 @@ void Renderer::build_variants_ahead(const Frame& frame) {
 void Renderer::start_variant_programs(const Frame& frame, const FrameVariant& variant, gl::BuildFor build_for) {
   Impl& im = *impl_;
   im.frame_programs.start(*im.builds, variant, build_for);
-  im.night_sky.start_programs(*im.builds, variant, build_for);
+  // The night sky's, for a variant built ahead only: this frame's night pass
+  // builds what it draws with, and a kind drawn long ago may not come back.
+  if (build_for == gl::BuildFor::a_later_frame) im.night_sky.start_programs(*im.builds, variant, build_for);
   for (const BandTiles& band : *frame.bands)
     for (std::size_t a = 0; a < band.lists.size(); ++a) {
       const GpuAtmosphere* gpu = frame.passes[a].gpu;
