@@ -41,6 +41,7 @@
 #include "render/gl/gl_error.h"
 #include "render/gl/program_binary_cache.h"
 #include "render/gl/program_builds.h"
+#include "render/gl/shader_cache_writes.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/night/moon_in_shadow.h"
@@ -81,6 +82,7 @@ struct Renderer::Impl {
   std::unique_ptr<gl::ProgramBuilds> builds;
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
   LiveVariants live_variants;    // RenderOptions::background_variant_builds
+  int frames_held = 0;           // frames in a row drawn with a variant other than the one wanted
   RefractionCache refractions;   // the air's refraction at the camera: stars, the Moon, the Sun's disc
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/night/star_pass.h)
   MoonInShadow moon_shadow;      // the Earth's shadow on the Moon in a lunar eclipse
@@ -517,12 +519,18 @@ bool Renderer::variant_built(const Frame& frame, const FrameVariant& variant) co
 void Renderer::choose_variant(Frame& frame) {
   if (!live_variants()) return;
   Impl& im = *impl_;
-  // Built and warmed: the warm-up thread has nothing left of the variants built ahead.
+  // Built and warmed: the warm-up thread has nothing left of the variants
+  // built ahead, and the code it generated is in the driver's shader cache,
+  // where this context's first dispatches find it (gl/shader_cache_writes.h).
   gl::FirstDispatchWarmup* warmup = warmup_thread();
-  const bool warmed = warmup == nullptr || warmup->idle();
+  const auto warmed = [&] { return warmup == nullptr || (warmup->idle() && gl::shader_cache_writes_done()); };
   frame.variant = im.live_variants.choose(frame.wanted_variant,
-                                          [&](const FrameVariant& v) { return warmed && variant_built(frame, v); });
+                                          [&](const FrameVariant& v) { return variant_built(frame, v) && warmed(); });
   stats_.variant_held = frame.variant.key() != frame.wanted_variant.key();
+  if (im.frames_held > 0 && !stats_.variant_held)
+    spdlog::debug("frames draw with variant {} from now on, after {} drawn with the one before", frame.variant.key(),
+                  im.frames_held);
+  im.frames_held = stats_.variant_held ? im.frames_held + 1 : 0;
 }
 
 void Renderer::build_variants_ahead(const Frame& frame) {

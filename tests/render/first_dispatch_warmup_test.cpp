@@ -6,12 +6,16 @@
 
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
+#include <pthread.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
@@ -19,6 +23,7 @@
 
 #include "render/display/display_encoder.h"
 #include "render/gl/egl_context.h"
+#include "render/gl/shader_cache_writes.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
 #include "render/shader_bindings.h"
@@ -256,6 +261,40 @@ TEST_F(FirstDispatchWarmupTest, TheDisplayPassCodeDoesNotDependOnWhatOtherPasses
   EXPECT_EQ(display.read(), codes);
   EXPECT_EQ(settled_files_under(cache_), after_first)
       << "the display pass compiled again for what another pass left bound (warm-ups could not match it)";
+}
+
+TEST(ShaderCacheWrites, AWriterRunningMeansNotDoneAndOneAsleepMeansDone) {
+  // A thread named as Mesa's shader-cache writers are: busy (a write in hand),
+  // the writes are not done; waiting for work, they are. Mesa's own writers
+  // in this process may be busy for a moment: the "done" side is polled.
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::atomic<bool> named = false, spin = true;
+  bool stop = false;
+  std::thread writer([&] {
+    pthread_setname_np(pthread_self(), "test:disk$7");
+    named = true;
+    while (spin) {
+    }
+    std::unique_lock lock(mutex);
+    wake.wait(lock, [&] { return stop; });
+  });
+  for (int i = 0; i < 2000 && !named; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_TRUE(named);
+  EXPECT_FALSE(shader_cache_writes_done()) << "a writer running";
+  spin = false;
+  bool done = false;
+  for (int i = 0; i < 2000 && !done; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    done = shader_cache_writes_done();
+  }
+  EXPECT_TRUE(done) << "the writer asleep, waiting for work";
+  {
+    std::lock_guard lock(mutex);
+    stop = true;
+  }
+  wake.notify_one();
+  writer.join();
 }
 
 TEST(TextureShape, SaysWhatADriversCodeDependsOn) {
