@@ -140,14 +140,14 @@ struct Renderer::Frame : FrameInProgress {
 };
 
 void Renderer::render(const scene::Scene& scene, const warp::Projection& projection, const RowSink& sink) {
-  render_frame(scene, projection, [&](const BandTiles& band, PassTimer& timer) {
+  render_frame(scene, projection, BandReader::cpu, [&](const BandTiles& band, PassTimer& timer) {
     const std::span<const float> rows_rgb = impl_->band.read_back(band, timer);
     timer.cpu("sink", [&] { sink(band.first_row, band.rows, rows_rgb); });
   });
 }
 
-void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output,
-                            const WarmupQueue& output_warmup) {
+void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& projection, BandReader reader,
+                            const BandOutput& output, const WarmupQueue& output_warmup) {
   const auto start = std::chrono::steady_clock::now();
   stats_ = FrameStats{};
   PassTimer timer(options_.time_passes);
@@ -193,7 +193,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   impl_->night_sky.prepare(frame, moon_shadow, timer);
   stats_.night_sky = impl_->night_sky.stats();
   stats_.moonlight = frame.moon() != nullptr;
-  render_bands(frame, output, timer);
+  render_bands(frame, reader, output, timer);
   const gl::ProgramBuilds::Statistics& builds_after = im.builds->statistics();
   stats_.programs_built = builds_after.built - builds_before.built;
   stats_.programs_s = builds_after.seconds() - builds_before.seconds();
@@ -663,10 +663,10 @@ void Renderer::classify_bands(Frame& frame, PassTimer& timer) {
   stats_.tiles_reused = im.frame_tiles.reused();
 }
 
-void Renderer::render_bands(Frame& frame, const BandOutput& output, PassTimer& timer) {
+void Renderer::render_bands(Frame& frame, BandReader reader, const BandOutput& output, PassTimer& timer) {
   Impl& im = *impl_;
   const int width = frame.projection.width(), height = frame.projection.height(), band_rows = frame.band_rows;
-  im.band.fit_bands(width, band_texture_rows(frame));
+  im.band.fit_bands(width, band_texture_rows(frame), reader);
   im.band.bind_bodies();
   const std::vector<BandTiles>& bands = *frame.bands;
 
@@ -726,7 +726,7 @@ void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projecti
         target.id() == 0 ? "missing" : gl::to_string(target.format()), target.width(), target.height(),
         projection.width(), projection.height()));
   render_frame(
-      scene, projection,
+      scene, projection, BandReader::gpu,
       [&](const BandTiles& band, PassTimer& timer) {
         impl_->band_to_texture.copy(impl_->band.bind_band_on_gpu(band), target, timer);
         impl_->band.end_band_on_gpu();  // the next band's passes rewrite what the copy read
@@ -736,7 +736,7 @@ void Renderer::render_to_texture(const scene::Scene& scene, const warp::Projecti
 
 void Renderer::render_on_gpu(const scene::Scene& scene, const warp::Projection& projection, const GpuBandSink& sink) {
   render_frame(
-      scene, projection,
+      scene, projection, BandReader::gpu,
       [&](const BandTiles& band, PassTimer& timer) {
         const GpuBand gpu_band = impl_->band.bind_band_on_gpu(band);
         timer.gpu("band output", [&] { sink(gpu_band); });

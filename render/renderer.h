@@ -57,6 +57,7 @@ struct BandTiles;       // render/frame/tile_classification.h
 struct AtmospherePass;  // render/frame/frame_in_progress.h
 class MoonInShadow;     // render/night/moon_in_shadow.h
 struct FrameVariant;    // render/frame/gpu_atmosphere.h
+enum class BandReader;  // render/band/band_resources.h
 namespace gl {
 class Texture;              // render/gl/texture.h
 struct DispatchShapes;      // render/gl/first_dispatch_warmup.h
@@ -288,12 +289,13 @@ class Renderer {
   /// What becomes of a band once its tiles are drawn: read back for a RowSink
   /// (render()), or copied into a texture (render_to_texture()).
   using BandOutput = std::function<void(const BandTiles& band, PassTimer& timer)>;
-  /// The steps of a frame, in the order below, each band handed to `output`.
+  /// The steps of a frame, in the order below, each band handed to `output`,
+  /// which reads it on the CPU or on the GPU (`reader`).
   /// `output_warmup`: what warm_first_dispatches queues for `output`'s programs.
-  void render_frame(const scene::Scene& scene, const warp::Projection& projection, const BandOutput& output,
-                    const WarmupQueue& output_warmup = {});
+  void render_frame(const scene::Scene& scene, const warp::Projection& projection, BandReader reader,
+                    const BandOutput& output, const WarmupQueue& output_warmup = {});
   /// The frame band by band: each band's tiles drawn, then handed to `output`.
-  void render_bands(Frame& frame, const BandOutput& output, PassTimer& timer);
+  void render_bands(Frame& frame, BandReader reader, const BandOutput& output, PassTimer& timer);
 
   // Of each band, before its passes (render/band/band_passes.h):
 

@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -30,13 +31,17 @@ void BandResources::upload_bodies(std::span<const GpuBody> bodies) {
 
 void BandResources::bind_bodies() const { bodies_.bind_storage(binding::kBodies); }
 
-void BandResources::fit_bands(int width, int height) {
-  if (width == band_width_ && height == band_height_) return;
-  for (Texture* t : {&gbuffer_hit_, &gbuffer_albedo_, &radiance_sum_, &transmittance_}) *t = Texture();
-  output_ =
-      gl::Buffer::mappable(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4 * sizeof(float));
+void BandResources::fit_bands(int width, int height, BandReader reader) {
+  const bool resized = width != band_width_ || height != band_height_;
+  if (!resized && reader == reader_ && output_.id() != 0) return;
+  if (resized)
+    for (Texture* t : {&gbuffer_hit_, &gbuffer_albedo_, &radiance_sum_, &transmittance_}) *t = Texture();
+  const std::size_t bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4 * sizeof(float);
+  output_ = gl::Buffer();  // the old one's memory freed before the new one's is taken
+  output_ = reader == BandReader::cpu ? gl::Buffer::mappable(bytes) : gl::Buffer(bytes);
   band_width_ = width;
   band_height_ = height;
+  reader_ = reader;
 }
 
 void BandResources::clear_output(int rows) {
@@ -118,6 +123,7 @@ void BandResources::upload_rays(const warp::Projection& projection, int first_ro
 }
 
 std::span<const float> BandResources::read_back(const BandTiles& band, PassTimer& timer) {
+  if (reader_ != BandReader::cpu) throw std::logic_error("BandResources::read_back: the bands were fitted for the GPU");
   const std::size_t band_bytes =
       static_cast<std::size_t>(band_width_) * static_cast<std::size_t>(band.rows) * 4 * sizeof(float);
   timer.cpu("readback", [&] {
@@ -130,6 +136,8 @@ std::span<const float> BandResources::read_back(const BandTiles& band, PassTimer
 }
 
 GpuBand BandResources::bind_band_on_gpu(const BandTiles& band) {
+  if (reader_ != BandReader::gpu)
+    throw std::logic_error("BandResources::bind_band_on_gpu: the bands were fitted for the CPU");
   // One flag per tile of the band, 1 where nothing was dispatched: those
   // pixels of the output buffer hold whatever an earlier band left there.
   const std::vector<std::uint32_t> black(band.black.begin(), band.black.end());
@@ -143,9 +151,9 @@ GpuBand BandResources::bind_band_on_gpu(const BandTiles& band) {
 }
 
 void BandResources::end_band_on_gpu() {
-  GLsync read = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-  glWaitSync(read, 0, GL_TIMEOUT_IGNORED);
-  glDeleteSync(read);
+  // The bits name the later accesses: the passes' stores to the buffers, the
+  // output's clear and the flags' upload.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 }  // namespace zenith::render

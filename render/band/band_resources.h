@@ -23,15 +23,22 @@
 
 namespace zenith::render {
 
+/// Who reads a band's output buffer once its passes are done: the CPU
+/// (read_back: the buffer is mappable, which a discrete GPU's driver may keep
+/// in system memory, every pass's stores then crossing the bus) or a pass on
+/// the GPU (bind_band_on_gpu: the buffer in the GPU's own memory).
+enum class BandReader { cpu, gpu };
+
 class BandResources {
  public:
   /// The frame's bodies into the bodies buffer (one zero body where there are none).
   void upload_bodies(std::span<const GpuBody> bodies);
   void bind_bodies() const;
 
-  /// Sizes the band's output for bands of `width` × `height` pixels: the
-  /// output buffer reallocated, the G-buffer images dropped, when that changes.
-  void fit_bands(int width, int height);
+  /// Sizes the band's output for bands of `width` × `height` pixels read by
+  /// `reader`: the output buffer reallocated when the size or the reader
+  /// changes, the G-buffer images dropped when the size does.
+  void fit_bands(int width, int height, BandReader reader);
   int band_height() const { return band_height_; }
   /// Tiles across a band (the last one partial where the width is not a multiple of kTileSize).
   int tile_columns() const { return (band_width_ + kTileSize - 1) / kTileSize; }
@@ -65,12 +72,12 @@ class BandResources {
   /// Binds the output buffer and uploads and binds the band's black-tile
   /// flags, for a pass that reads the band on the GPU (render/band/gpu_band.h).
   GpuBand bind_band_on_gpu(const BandTiles& band);
-  /// After the pass that read the band on the GPU: the GPU starts nothing more
-  /// until that pass has finished, since the next band's passes rewrite the
-  /// output buffer and the black-tile flags it reads. A memory barrier orders
-  /// writes before later accesses; this is a read before later writes, which
-  /// NVIDIA's driver let overlap (an H200: a band's copy to the display texture
-  /// read the next band's stars). A fence waited on by the GPU, not the CPU.
+  /// After the pass that read the band on the GPU: a memory barrier, since
+  /// the next band's passes and clear rewrite the output buffer and the
+  /// black-tile flags that pass reads. Shader accesses to buffers are
+  /// unordered across commands without one, reads before later writes too
+  /// (an H200: a band's copy to the frame's texture read the next band's
+  /// stars); glMemoryBarrier finishes the accesses issued before it.
   void end_band_on_gpu();
 
  private:
@@ -78,6 +85,7 @@ class BandResources {
   gl::Buffer tiles_;
   std::size_t tiles_capacity_ = 0;
   int band_width_ = 0, band_height_ = 0;
+  BandReader reader_ = BandReader::cpu;
   gl::Buffer output_;
   gl::Texture gbuffer_hit_, gbuffer_albedo_, radiance_sum_, transmittance_;
   std::map<int, std::vector<float>> ray_tables_;  // by the band's first row
