@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 #include <spdlog/spdlog.h>
 
+#include <cstdlib>
 #include <string_view>
 
 namespace zenith::render::gl {
@@ -60,6 +61,11 @@ void enable_debug_output(bool synchronous) {
     glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
   glDebugMessageCallback(on_debug_message, nullptr);
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+}
+
+bool debug_output_requested() {
+  const char* value = std::getenv("ZENITH_GL_DEBUG");
+  return value != nullptr && *value != '\0' && std::string_view(value) != "0";
 }
 
 }  // namespace zenith::render::gl

@@ -291,7 +291,12 @@ std::optional<std::string> try_candidate(const Candidate& candidate, const Clien
 
 }  // namespace
 
-HeadlessContext::HeadlessContext(const ContextOptions& options) {
+HeadlessContext::HeadlessContext(const ContextOptions& requested) {
+  // ZENITH_GL_DEBUG: a debug context for a support log, its messages
+  // asynchronous so that the frames keep their timing.
+  const bool debug_from_environment = !requested.debug && debug_output_requested();
+  ContextOptions options = requested;
+  options.debug = requested.debug || debug_from_environment;
   default_software_rasterizer_threads();  // before any display exists: Mesa reads it then
   if (options.gl_major < 3 || (options.gl_major == 3 && options.gl_minor < 2) || options.gl_minor < 0)
     throw std::invalid_argument(fmt::format("HeadlessContext: GL {}.{} requested: a core profile needs GL 3.2 or later",
@@ -358,7 +363,7 @@ HeadlessContext::HeadlessContext(const ContextOptions& options) {
     core_profile_ = true;
     debug_ = (flags & GL_CONTEXT_FLAG_DEBUG_BIT) != 0;
     software_ = software;
-    if (options.debug) enable_debug_output();
+    if (options.debug) enable_debug_output(/*synchronous=*/!debug_from_environment);
     return;
   }
 

@@ -211,6 +211,44 @@ TEST(HeadlessContext, DebugContextRoutesMessages) {
   gl::check_gl_error("after draining");
 }
 
+/// ZENITH_GL_DEBUG set for the test's length, restored after.
+class GlDebugVariable {
+ public:
+  explicit GlDebugVariable(const char* value) {
+    if (const char* old = std::getenv(kName)) previous_ = old;
+    setenv(kName, value, 1);
+  }
+  ~GlDebugVariable() {
+    if (previous_)
+      setenv(kName, previous_->c_str(), 1);
+    else
+      unsetenv(kName);
+  }
+  GlDebugVariable(const GlDebugVariable&) = delete;
+  GlDebugVariable& operator=(const GlDebugVariable&) = delete;
+
+ private:
+  static constexpr const char* kName = "ZENITH_GL_DEBUG";
+  std::optional<std::string> previous_;
+};
+
+TEST(HeadlessContext, ZenithGlDebugMakesEveryContextADebugOneWithAsynchronousMessages) {
+  {
+    const GlDebugVariable on("1");
+    const HeadlessContext context;
+    EXPECT_TRUE(context.debug());
+    EXPECT_TRUE(glIsEnabled(GL_DEBUG_OUTPUT));
+    EXPECT_FALSE(glIsEnabled(GL_DEBUG_OUTPUT_SYNCHRONOUS)) << "a support log must not slow the frames";
+    glBindTexture(GL_TEXTURE_2D, 123456);
+    EXPECT_THROW(gl::check_gl_error("bind of an invalid texture"), std::runtime_error);
+  }
+  for (const char* off : {"0", ""}) {
+    const GlDebugVariable value(off);
+    const HeadlessContext context;
+    EXPECT_FALSE(context.debug()) << "ZENITH_GL_DEBUG=\"" << off << "\"";
+  }
+}
+
 TEST_F(GlTest, TestPatternComputeShaderMatchesCpp) {
   const ShaderProgram program = testing::load_test_compute_program("test_pattern.comp");
   EXPECT_EQ(program.work_group_size(), (std::array<int, 3>{4, 4, 2}));
