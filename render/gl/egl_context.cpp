@@ -88,12 +88,6 @@ std::string gl_string(GLenum name) {
   return s != nullptr ? std::string(s) : std::string();
 }
 
-bool renderer_is_software(const std::string& renderer) {
-  for (const char* cpu : {"llvmpipe", "softpipe", "swrast", "SWR", "Software Rasterizer", "software rasterizer"})
-    if (renderer.find(cpu) != std::string::npos) return true;
-  return false;
-}
-
 enum class DeviceKind { nvidia, other_gpu, software, unknown };
 
 /// One way to obtain an EGLDisplay.

@@ -1,5 +1,9 @@
 #include "render/gl/software_rasterizer.h"
 
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <mutex>
 #include <string>
@@ -29,6 +33,20 @@ std::string default_software_rasterizer_threads() {
     setting = std::to_string(*threads) + " (set by zenith)";
   });
   return setting;
+}
+
+bool renderer_is_software(std::string_view gl_renderer) {
+  std::string lower(gl_renderer);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (std::string_view cpu : {"llvmpipe", "softpipe", "swrast", "swr", "software rasterizer"})
+    if (lower.find(cpu) != std::string::npos) return true;
+  return false;
+}
+
+bool current_renderer_is_software() {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return renderer != nullptr && renderer_is_software(renderer);
 }
 
 }  // namespace zenith::render::gl

@@ -3,6 +3,7 @@
 // machines without a GPU (docs/rendering-performance.md, "Threads of llvmpipe").
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace zenith::render::gl {
 
@@ -21,5 +22,11 @@ std::optional<int> software_rasterizer_threads_for(unsigned cpus);
 /// when it creates its screen). Other drivers ignore it. Returns the setting in
 /// effect ("4 (set by zenith)", "3 (LP_NUM_THREADS)", or "Mesa's default").
 std::string default_software_rasterizer_threads();
+
+/// Whether a GL_RENDERER string names a CPU rasterizer (llvmpipe, softpipe,
+/// swrast, SWR, "software rasterizer"; any case).
+bool renderer_is_software(std::string_view gl_renderer);
+/// renderer_is_software() of the current context's GL_RENDERER (needs one).
+bool current_renderer_is_software();
 
 }  // namespace zenith::render::gl

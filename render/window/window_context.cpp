@@ -58,14 +58,6 @@ std::string gl_string(GLenum name) {
   return s != nullptr ? std::string(s) : std::string();
 }
 
-bool renderer_is_software(std::string renderer) {
-  std::transform(renderer.begin(), renderer.end(), renderer.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  for (std::string_view name : {"llvmpipe", "softpipe", "swrast", "software rasterizer"})
-    if (renderer.find(name) != std::string::npos) return true;
-  return false;
-}
-
 /// Detaches an EGL context (a gl::HeadlessContext's) from the calling thread.
 /// With libglvnd a thread has at most one current context across GLX and EGL:
 /// glXMakeCurrent while an EGL context is current fails with an X BadAccess
@@ -213,7 +205,7 @@ WindowContext::WindowContext(const WindowOptions& window, const gl::ContextOptio
   state->gl_major = major;
   state->gl_minor = minor;
   state->debug = (flags & GL_CONTEXT_FLAG_DEBUG_BIT) != 0;
-  state->software = renderer_is_software(state->renderer);
+  state->software = gl::renderer_is_software(state->renderer);
   if (context.debug) gl::enable_debug_output();
   state_ = std::move(state);
 }
