@@ -33,6 +33,14 @@ enum class SkyViewTableUse {
   off,     ///< never: the 4D tables for every pixel (the reference the table is tested against)
 };
 
+/// How the band's output is zeroed on the tiles the sun's pass leaves black
+/// (RenderOptions::skip_hidden_sunlight).
+enum class UnlitTileZeroing {
+  automatic,     ///< buffer_clear on a CPU rasterizer, compute_pass on a GPU
+  buffer_clear,  ///< the band's whole output cleared by the driver (glClearNamedBufferSubData)
+  compute_pass,  ///< zeros stored by a pass over those tiles only (shaders/render/zero_tiles.comp)
+};
+
 /// The sky-view table's use for each output of a dome or wall whose largest
 /// output has `largest_output_pixels`: `always` where that one is large enough
 /// to fill the table (SkyViewTable::kMinFramePixels), so that a small output
@@ -90,6 +98,10 @@ struct RenderOptions {
   /// (render/frame/sun_light.h: the sun far below the horizon); false: the
   /// sun's passes always run (the frame the test is checked against).
   bool skip_hidden_sunlight = true;
+  /// How those tiles are zeroed: `automatic` is a buffer clear on a CPU
+  /// rasterizer (a memset there) and a pass of zero stores on a GPU
+  /// (shaders/render/zero_tiles.comp says why); either may be asked for.
+  UnlitTileZeroing unlit_tile_zeroing = UnlitTileZeroing::automatic;
   SkyViewTableUse sky_view_table = SkyViewTableUse::automatic;
   /// Time every pass (GL_TIME_ELAPSED queries; CPU steps by the wall clock) into
   /// FrameStats::pass_ms. Serialises the frame: for profiling, not for frame times.

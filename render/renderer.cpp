@@ -43,6 +43,7 @@
 #include "render/gl/program_builds.h"
 #include "render/gl/shader_cache_writes.h"
 #include "render/gl/shader_program.h"
+#include "render/gl/software_rasterizer.h"
 #include "render/gl/texture.h"
 #include "render/night/moon_in_shadow.h"
 #include "render/night/moon_light.h"
@@ -162,6 +163,9 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
       im.binaries.emplace(options_.program_cache_directory);
       im.builds->set_binary_cache(&*im.binaries);
     }
+    im.frame_programs.set_zero_tiles(
+        options_.unlit_tile_zeroing == UnlitTileZeroing::compute_pass ||
+        (options_.unlit_tile_zeroing == UnlitTileZeroing::automatic && !gl::current_renderer_is_software()));
   }
   const gl::ProgramBuilds::Statistics builds_before = im.builds->statistics();
   const int binaries_before = im.binaries ? im.binaries->statistics().loaded : 0;
@@ -684,13 +688,7 @@ void Renderer::render_bands(Frame& frame, BandReader reader, const BandOutput& o
     BandTiles band = bands[static_cast<std::size_t>(first_row / band_rows)];
     add_tile_stats(band);
     im.band.upload_tile_lists(band);
-    // Tiles the sun's pass leaves to black (render/frame/sun_light.h): the
-    // band's output zeroed first, one buffer clear instead of a pass's stores.
-    bool unlit = false;
-    for (std::size_t a = 0; a < frame.passes.size(); ++a)
-      for (const auto& [variant, list] : band.lists[a].one_pass)
-        unlit = unlit || sky_and_ground_unlit(frame.passes[a], variant);
-    if (unlit) timer.gpu("clear (sun below)", [&] { im.band.clear_output(rows); });
+    zero_unlit_tiles(frame, band, timer);
     draw_direct_tiles(frame, band, timer);
     for (const FrameLight& light : frame.lights) draw_atmosphere_tiles(frame, im.band, band, light, timer);
     // The stars and the night sky join the radiance before the band leaves
@@ -699,6 +697,26 @@ void Renderer::render_bands(Frame& frame, BandReader reader, const BandOutput& o
     output(band, timer);
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, frame.scene.name));
   }
+}
+
+void Renderer::zero_unlit_tiles(Frame& frame, const BandTiles& band, PassTimer& timer) {
+  // Tiles the sun's pass leaves to black (render/frame/sun_light.h), zeroed
+  // before the Moon's light, the night floor and the stars add to them:
+  // on a CPU rasterizer the band's whole output by one buffer clear (a
+  // memset), on a GPU by a pass over those tiles (UnlitTileZeroing).
+  const gl::ShaderProgram* zero = frame.programs->zero_tiles;
+  bool unlit = false;
+  for (std::size_t a = 0; a < frame.passes.size(); ++a)
+    for (const auto& [variant, list] : band.lists[a].one_pass) {
+      if (!sky_and_ground_unlit(frame.passes[a], variant)) continue;
+      unlit = true;
+      if (zero != nullptr) timer.gpu("zero (sun below)", [&] { frame.dispatch_tiles(*zero, list); });
+    }
+  if (!unlit) return;
+  if (zero == nullptr)
+    timer.gpu("clear (sun below)", [&] { impl_->band.clear_output(band.rows); });
+  else
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the later passes add to these pixels
 }
 
 void Renderer::add_tile_stats(const BandTiles& band) {

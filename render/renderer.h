@@ -302,6 +302,9 @@ class Renderer {
   /// A band's tile counts (one-pass atmosphere tiles by variant, G-buffer path
   /// tiles, direct tiles, black tiles) added to the frame's statistics.
   void add_tile_stats(const BandTiles& band);
+  /// The band's output zeroed where the sun's pass leaves its tiles black
+  /// (RenderOptions::unlit_tile_zeroing).
+  void zero_unlit_tiles(Frame& frame, const BandTiles& band, PassTimer& timer);
 
   RenderOptions options_;
   TableSource table_source_;

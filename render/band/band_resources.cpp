@@ -32,20 +32,22 @@ void BandResources::upload_bodies(std::span<const GpuBody> bodies) {
 void BandResources::bind_bodies() const { bodies_.bind_storage(binding::kBodies); }
 
 void BandResources::fit_bands(int width, int height, BandReader reader) {
-  const bool resized = width != band_width_ || height != band_height_;
-  if (!resized && reader == reader_ && output_.id() != 0) return;
-  if (resized)
+  if (width != band_width_ || height != band_height_) {
     for (Texture* t : {&gbuffer_hit_, &gbuffer_albedo_, &radiance_sum_, &transmittance_}) *t = Texture();
-  const std::size_t bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4 * sizeof(float);
-  output_ = gl::Buffer();  // the old one's memory freed before the new one's is taken
-  output_ = reader == BandReader::cpu ? gl::Buffer::mappable(bytes) : gl::Buffer(bytes);
-  band_width_ = width;
-  band_height_ = height;
+    read_on_cpu_ = gl::Buffer();
+    read_on_gpu_ = gl::Buffer();
+    band_width_ = width;
+    band_height_ = height;
+  }
   reader_ = reader;
+  gl::Buffer& buffer = reader == BandReader::cpu ? read_on_cpu_ : read_on_gpu_;
+  if (buffer.id() != 0) return;
+  const std::size_t bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4 * sizeof(float);
+  buffer = reader == BandReader::cpu ? gl::Buffer::mappable(bytes) : gl::Buffer(bytes);
 }
 
 void BandResources::clear_output(int rows) {
-  output_.clear_to_zero(0, static_cast<std::size_t>(band_width_) * static_cast<std::size_t>(rows) * 4 * sizeof(float));
+  output().clear_to_zero(0, static_cast<std::size_t>(band_width_) * static_cast<std::size_t>(rows) * 4 * sizeof(float));
 }
 
 void BandResources::upload_tile_lists(const BandTiles& band) {
@@ -56,7 +58,7 @@ void BandResources::upload_tile_lists(const BandTiles& band) {
   }
   if (!band.all_tiles.empty()) tiles_.upload(std::span<const std::uint32_t>(band.all_tiles));
   tiles_.bind_storage(binding::kTiles);
-  output_.bind_storage(binding::kFrameRgb);
+  output().bind_storage(binding::kFrameRgb);
 }
 
 void BandResources::bind_tiles() const { tiles_.bind_storage(binding::kTiles); }
@@ -127,7 +129,7 @@ std::span<const float> BandResources::read_back(const BandTiles& band, PassTimer
   const std::size_t band_bytes =
       static_cast<std::size_t>(band_width_) * static_cast<std::size_t>(band.rows) * 4 * sizeof(float);
   timer.cpu("readback", [&] {
-    output_.read_mapped(band_bytes, [&](std::span<const std::byte> bytes) {
+    output().read_mapped(band_bytes, [&](std::span<const std::byte> bytes) {
       const std::span<const float> rgba(reinterpret_cast<const float*>(bytes.data()), bytes.size() / sizeof(float));
       pack_band_rows(rgba, band, band_width_, tile_columns(), rows_rgb_);
     });
@@ -144,7 +146,7 @@ GpuBand BandResources::bind_band_on_gpu(const BandTiles& band) {
   const std::size_t bytes = std::max<std::size_t>(black.size(), 1) * sizeof(std::uint32_t);
   if (black_tiles_.id() == 0 || black_tiles_.size() < bytes) black_tiles_ = gl::Buffer(bytes);
   black_tiles_.upload(std::span<const std::uint32_t>(black));
-  output_.bind_storage(binding::kFrameRgb);
+  output().bind_storage(binding::kFrameRgb);
   black_tiles_.bind_storage(binding::kBlackTiles);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the passes' stores to the output buffer
   return {band.first_row, band.rows, band_width_, tile_columns()};

@@ -24,9 +24,11 @@
 namespace zenith::render {
 
 /// Who reads a band's output buffer once its passes are done: the CPU
-/// (read_back: the buffer is mappable, which a discrete GPU's driver may keep
-/// in system memory, every pass's stores then crossing the bus) or a pass on
-/// the GPU (bind_band_on_gpu: the buffer in the GPU's own memory).
+/// (read_back: a mappable buffer, which NVIDIA's driver moves into the host's
+/// memory once mapped, every later store then crossing the bus) or a pass on
+/// the GPU (bind_band_on_gpu: a buffer never mapped, kept in the GPU's memory).
+/// A renderer that does both (a live benchmark's read-back and live frames)
+/// keeps one of each.
 enum class BandReader { cpu, gpu };
 
 class BandResources {
@@ -36,8 +38,8 @@ class BandResources {
   void bind_bodies() const;
 
   /// Sizes the band's output for bands of `width` × `height` pixels read by
-  /// `reader`: the output buffer reallocated when the size or the reader
-  /// changes, the G-buffer images dropped when the size does.
+  /// `reader`: that reader's output buffer allocated where it is not, every
+  /// buffer and image dropped when the size changes.
   void fit_bands(int width, int height, BandReader reader);
   int band_height() const { return band_height_; }
   /// Tiles across a band (the last one partial where the width is not a multiple of kTileSize).
@@ -86,7 +88,8 @@ class BandResources {
   std::size_t tiles_capacity_ = 0;
   int band_width_ = 0, band_height_ = 0;
   BandReader reader_ = BandReader::cpu;
-  gl::Buffer output_;
+  gl::Buffer read_on_cpu_, read_on_gpu_;  // the band's output, by its reader
+  gl::Buffer& output() { return reader_ == BandReader::cpu ? read_on_cpu_ : read_on_gpu_; }
   gl::Texture gbuffer_hit_, gbuffer_albedo_, radiance_sum_, transmittance_;
   std::map<int, std::vector<float>> ray_tables_;  // by the band's first row
   gl::Texture ray_table_;

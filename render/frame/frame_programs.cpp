@@ -30,6 +30,7 @@ std::vector<FramePrograms::Source> FramePrograms::sources(const FrameVariant& fr
                            {"render/direct_light.comp", direct_defines(false, true)},
                            {"render/direct_light.comp", direct_defines(false, false)}};
   if (sun_disc_) s.push_back({"render/direct_light.comp", direct_defines(true, false)});
+  if (zero_tiles_) s.push_back({"render/zero_tiles.comp", frame_defines});
   return s;
 }
 
@@ -58,6 +59,7 @@ const FramePasses& FramePrograms::passes_for(gl::ProgramBuilds& builds, const Fr
   p.direct_light_one = &built_program(builds, s[2].file, s[2].defines);
   p.direct_light = &built_program(builds, s[3].file, s[3].defines);
   if (sun_disc_) p.direct_light_sun = &built_program(builds, s[4].file, s[4].defines);
+  if (zero_tiles_) p.zero_tiles = &built_program(builds, s.back().file, s.back().defines);
   return passes_.emplace(frame.key(), p).first->second;
 }
 

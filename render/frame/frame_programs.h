@@ -2,10 +2,11 @@
 // The programs of a frame's own passes, those that are no atmosphere's
 // (an atmosphere's are GpuAtmosphere's, render/frame/gpu_atmosphere.h):
 // the G-buffer (shaders/render/gbuffer.comp), the resolve (resolve.comp) and
-// the direct light of tiles no shell touches (direct_light.comp), for the
-// frame's variant (FrameVariant: projection kind, eclipses, albedo level).
+// the direct light of tiles no shell touches (direct_light.comp) and, on a
+// GPU, the zeros of tiles the sun's pass leaves black (zero_tiles.comp), for
+// the frame's variant (FrameVariant: projection kind, eclipses, albedo level).
 // They live in the renderer's ProgramBuilds (render/gl/program_builds.h):
-// start() hands the five to the driver with the frame's other programs,
+// start() hands them to the driver with the frame's other programs,
 // passes_for() finishes them where the frame first uses them.
 #include <cstddef>
 #include <map>
@@ -30,12 +31,18 @@ struct FramePasses {
   // Tiles no atmosphere touches: bodies (one body: ONE_BODY = 1; several), and
   // the sun's tiles (SUN = 1; null without RenderOptions::sun_disc).
   const gl::ShaderProgram *direct_light_one = nullptr, *direct_light = nullptr, *direct_light_sun = nullptr;
+  // The unlit tiles' zeros (zero_tiles.comp; null unless FramePrograms::zero_tiles()).
+  const gl::ShaderProgram* zero_tiles = nullptr;
 };
 
 class FramePrograms {
  public:
   /// RenderOptions::sun_disc (no sun program without it) and limb_darkening.
   FramePrograms(bool sun_disc, bool limb_darkening);
+  /// Whether each variant has zero_tiles.comp too (UnlitTileZeroing::compute_pass):
+  /// set before the first start().
+  void set_zero_tiles(bool zero_tiles) { zero_tiles_ = zero_tiles; }
+  bool zero_tiles() const { return zero_tiles_; }
   /// SUN_DISC and LIMB_DARKENING, the sun's defines: of the resolve here and of
   /// atmosphere_tile.comp (GpuAtmosphere), which draw the disc behind an atmosphere.
   const std::vector<gl::ShaderDefine>& sun_defines() const { return sun_defines_; }
@@ -53,12 +60,13 @@ class FramePrograms {
     const char* file;
     std::vector<gl::ShaderDefine> defines;
   };
-  /// gbuffer, resolve, direct light of one body, of several, of the sun (without the sun's disc: four).
+  /// gbuffer, resolve, direct light of one body, of several, of the sun (without
+  /// the sun's disc: none), the unlit tiles' zeros (with zero_tiles()).
   std::vector<Source> sources(const FrameVariant& frame) const;
 
   std::map<std::string, FramePasses> passes_;  // by FrameVariant::key
   std::vector<gl::ShaderDefine> sun_defines_;
-  bool sun_disc_ = true, limb_darkening_ = true;
+  bool sun_disc_ = true, limb_darkening_ = true, zero_tiles_ = false;
 };
 
 }  // namespace zenith::render

@@ -288,6 +288,7 @@ void render_every_variant() {
   const warp::CylindricalProjection cylindrical(48, 24, warp::CylindricalParameters{});
   const warp::CubeFaceProjection cube_face(32, warp::CubeFace::positive_x);
   std::vector<RenderOptions> options(3);
+  options[0].unlit_tile_zeroing = UnlitTileZeroing::compute_pass;  // a GPU's way: zero_tiles.comp built
   options[1].atmosphere.fp64 = true;
   options[1].sky_view_table = SkyViewTableUse::off;
   options[1].one_pass_tiles = false;

@@ -964,6 +964,45 @@ TEST(NightSkyPass, TheSunFarBelowTheHorizonIsNotDrawnAndTheFrameMovesByLessThanH
   }
 }
 
+TEST(NightSkyPass, TheUnlitTilesZeroedByAPassOrByABufferClearGiveTheSameFrame) {
+  // UnlitTileZeroing: a GPU zeroes the tiles the sun's pass leaves black
+  // with zero_tiles.comp, a CPU rasterizer by clearing the band's output;
+  // the Moon's light, the night floor and the stars then add to either,
+  // bit for bit the same, read back or read on the GPU, band by band.
+  REQUIRE_CATALOGUE();
+  RenderOptions o = options(true, true);
+  o.night_sky.moon = true;
+  o.max_band_pixels = 48 * 16;  // three bands
+  o.time_passes = true;         // the pass_ms labels say which way ran
+  RenderOptions by_pass = o, by_clear = o;
+  by_pass.unlit_tile_zeroing = UnlitTileZeroing::compute_pass;
+  by_clear.unlit_tile_zeroing = UnlitTileZeroing::buffer_clear;
+  TestRenderer pass(by_pass), clear(by_clear);
+  const warp::FisheyeProjection dome(48, 48);
+  scene::Scene s = at_twilight(60.0, 1e6);
+  s.sky_clock->time = astro::UtcTime{2026, 1, 3, 23, 0, 0.0};  // the full Moon 57° up
+  const auto a = pass.renderer.render_image(s, dome);
+  const FrameStats with_pass = pass.renderer.last_frame();
+  const auto b = clear.renderer.render_image(s, dome);
+  const FrameStats with_clear = clear.renderer.last_frame();
+  ASSERT_TRUE(with_pass.sunlight_skipped && with_clear.sunlight_skipped);
+  EXPECT_TRUE(with_pass.pass_ms.contains("zero (sun below)") && !with_pass.pass_ms.contains("clear (sun below)"));
+  EXPECT_TRUE(with_clear.pass_ms.contains("clear (sun below)") && !with_clear.pass_ms.contains("zero (sun below)"));
+  EXPECT_TRUE(with_pass.moonlight);
+  EXPECT_GT(with_pass.night_sky.stars, 0u);
+  double largest = 0.0;
+  for (float v : a) largest = std::max(largest, double(v));
+  EXPECT_GT(largest, 0.0) << "a night frame with the Moon's light";
+  EXPECT_EQ(a, b) << "the frame zeroed by a pass is the one zeroed by a buffer clear";
+  gl::Texture target = gl::Texture::create_2d(gl::TextureFormat::rgba32f, 48, 48);
+  pass.renderer.render_to_texture(s, dome, target);
+  const std::vector<float> rgba = target.read();
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < 48 * 48; ++i)
+    for (std::size_t k = 0; k < 3; ++k) differing += rgba[i * 4 + k] != a[i * 3 + k];
+  EXPECT_EQ(differing, 0u) << "values of the texture not the read-back frame's";
+}
+
 TEST(NightSkyPass, TheGpuPathCarriesTheStarsAsTheReadBackFrameDoes) {
   // From space (airless Earth below, black tiles around): stars land in tiles
   // no other pass drew; render_to_texture (the live path's bands) equals render_image.
