@@ -6,6 +6,7 @@
 //
 // Small images (≤ 64²), stars to V 1.5 (the catalogue's first file), the
 // shared small tables. Needs stellarium-data (scripts/bootstrap); skipped without it.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -1028,10 +1030,18 @@ TEST(NightSkyPass, TheGpuPathCarriesTheStarsAsTheReadBackFrameDoes) {
   for (std::size_t i = 0; i < 48 * 48; ++i)
     for (std::size_t k = 0; k < 3; ++k) {
       const float texture = rgba[i * 4 + k], read_back = image[i * 3 + k];
-      if (texture != read_back && ++differing <= 6)
-        ADD_FAILURE() << "pixel " << i << " channel " << k << ": the texture " << texture << ", the read-back frame "
-                      << read_back << "; rendered again: the read-back frame " << image_again[i * 3 + k]
-                      << ", the texture " << rgba_again[i * 4 + k];
+      if (texture != read_back && ++differing <= 6) {
+        // Where a wrong value may come from: the same place in the other
+        // bands (16 rows each) of the read-back frame.
+        const std::size_t x = i % 48, y = i / 48;
+        std::string others;
+        for (std::size_t band = 0; band < 3; ++band)
+          others += fmt::format(" band {} {}", band, image[((band * 16 + y % 16) * 48 + x) * 3 + k]);
+        ADD_FAILURE() << "pixel " << i << " (x " << x << ", y " << y << ": band " << y / 16 << ", its row " << y % 16
+                      << ") channel " << k << ": the texture " << texture << ", the read-back frame " << read_back
+                      << "; rendered again: the read-back frame " << image_again[i * 3 + k] << ", the texture "
+                      << rgba_again[i * 4 + k] << "; the read-back frame at this place of each band:" << others;
+      }
       image_changed += image_again[i * 3 + k] != read_back;
       texture_changed += rgba_again[i * 4 + k] != texture;
       largest = std::max(largest, double(read_back));
