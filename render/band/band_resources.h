@@ -76,10 +76,11 @@ class BandResources {
   GpuBand bind_band_on_gpu(const BandTiles& band);
   /// After the pass that read the band on the GPU: a memory barrier, since
   /// the next band's passes and clear rewrite the output buffer and the
-  /// black-tile flags that pass reads. Shader accesses to buffers are
+  /// black-tile flags that pass reads, and shader accesses to buffers are
   /// unordered across commands without one, reads before later writes too
-  /// (an H200: a band's copy to the frame's texture read the next band's
-  /// stars); glMemoryBarrier finishes the accesses issued before it.
+  /// (glMemoryBarrier finishes the accesses issued before it). It did not
+  /// change the H200's six stray star pixels of the texture path
+  /// (docs/night-sky.md, "Seen on NVIDIA"), nor did a fence there.
   void end_band_on_gpu();
 
  private:
