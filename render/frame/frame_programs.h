@@ -31,7 +31,7 @@ struct FramePasses {
   // Tiles no atmosphere touches: bodies (one body: ONE_BODY = 1; several), and
   // the sun's tiles (SUN = 1; null without RenderOptions::sun_disc).
   const gl::ShaderProgram *direct_light_one = nullptr, *direct_light = nullptr, *direct_light_sun = nullptr;
-  // The unlit tiles' zeros (zero_tiles.comp; null unless FramePrograms::zero_tiles()).
+  // The unlit tiles' zeros (zero_tiles.comp; null unless FramePrograms::set_zero_tiles(true)).
   const gl::ShaderProgram* zero_tiles = nullptr;
 };
 
@@ -42,7 +42,6 @@ class FramePrograms {
   /// Whether each variant has zero_tiles.comp too (UnlitTileZeroing::compute_pass):
   /// set before the first start().
   void set_zero_tiles(bool zero_tiles) { zero_tiles_ = zero_tiles; }
-  bool zero_tiles() const { return zero_tiles_; }
   /// SUN_DISC and LIMB_DARKENING, the sun's defines: of the resolve here and of
   /// atmosphere_tile.comp (GpuAtmosphere), which draw the disc behind an atmosphere.
   const std::vector<gl::ShaderDefine>& sun_defines() const { return sun_defines_; }
@@ -61,7 +60,7 @@ class FramePrograms {
     std::vector<gl::ShaderDefine> defines;
   };
   /// gbuffer, resolve, direct light of one body, of several, of the sun (without
-  /// the sun's disc: none), the unlit tiles' zeros (with zero_tiles()).
+  /// the sun's disc: none), the unlit tiles' zeros (with set_zero_tiles(true)).
   std::vector<Source> sources(const FrameVariant& frame) const;
 
   std::map<std::string, FramePasses> passes_;  // by FrameVariant::key
