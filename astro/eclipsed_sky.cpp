@@ -58,8 +58,9 @@ class SegmentedRay {
   glm::dvec3 middle(int k) const { return point(0.5 * (distance(k) + distance(k + 1))); }
 
   /// The terms at the k-th cut carried to the start; zero at the end (nothing
-  /// scatters beyond it). `multiple`: read the multiple-scattering table too.
-  CarriedTerms carried(int k, bool multiple) const {
+  /// scatters beyond it). Reads the single-scattering tables with `single`,
+  /// the multiple-scattering one with `multiple`.
+  CarriedTerms carried(int k, bool single, bool multiple) const {
     CarriedTerms c;
     if (k == segments_) return c;
     const atmosphere::lut::ShellGeometry& g = tables_.tables().geometry;
@@ -67,8 +68,8 @@ class SegmentedRay {
     const double r_k = std::clamp(std::sqrt(t * t + 2.0 * r_ * mu_ * t + r_ * r_), g.bottom_radius_m, g.top_radius_m);
     const double mu_k = std::clamp((r_ * mu_ + t) / r_k, -1.0, 1.0);
     const double mu_s_k = std::clamp((r_ * mu_s_ + t * nu_) / r_k, -1.0, 1.0);
-    tables_.scattering_terms(r_k, mu_k, mu_s_k, nu_, hits_ground_, c.rayleigh.data(), c.mie.data(),
-                             multiple ? c.multiple.data() : nullptr);
+    tables_.scattering_terms(r_k, mu_k, mu_s_k, nu_, hits_ground_, single ? c.rayleigh.data() : nullptr,
+                             single ? c.mie.data() : nullptr, multiple ? c.multiple.data() : nullptr);
     if (k == 0) return c;
     Channels transmittance{};
     tables_.transmittance(r_, mu_, t, hits_ground_, transmittance.data());
@@ -111,27 +112,32 @@ class SegmentedRay {
   bool hits_ground_ = false;
 };
 
-/// The light arriving at the ray's start, eclipsed and in daylight: the
-/// single scattering (V), with `all_orders` the multiple scattering (V̄ along
-/// the ray's direction) and the ground's reflected skylight (the skylight's
-/// share left), and the ground's reflected direct sun (V).
+/// The light arriving at the ray's start, eclipsed and in daylight, of the
+/// `orders` asked for: the single scattering and the ground's reflected direct
+/// sun (V); the multiple scattering (V̄ along the ray's direction) and the
+/// ground's reflected skylight (the skylight's share left).
 ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereModel& model, const MoonShadow& shadow,
-                        const glm::dvec3& view, std::size_t channels, bool all_orders) {
+                        const glm::dvec3& view, std::size_t channels, ArrivingOrders orders) {
+  const bool single = orders != ArrivingOrders::multiply_scattered;
+  const bool multiple = orders != ArrivingOrders::once_scattered;
   ArrivingLight light;
   const double phase_r = model.rayleigh_phase_function(ray.nu());
-  CarriedTerms near = ray.carried(0, all_orders);
+  CarriedTerms near = ray.carried(0, single, multiple);
   for (int k = 0; k < ray.segments(); ++k) {
-    const CarriedTerms far = ray.carried(k + 1, all_orders);
+    const CarriedTerms far = ray.carried(k + 1, single, multiple);
     const MoonShadow::Place middle = shadow.place(ray.middle(k));
     for (std::size_t i = 0; i < channels; ++i) {
-      const double single = std::max(0.0, near.rayleigh[i] - far.rayleigh[i]) * phase_r +
-                            std::max(0.0, near.mie[i] - far.mie[i]) * model.mie_phase(i, ray.nu());
-      light.daylight[i] += single;
-      light.eclipsed[i] += shadow.direct_light(middle, i) * single;
-      if (!all_orders) continue;
-      const double multiple = std::max(0.0, near.multiple[i] - far.multiple[i]);
-      light.daylight[i] += multiple;
-      light.eclipsed[i] += shadow.scattered_light(middle, view, i) * multiple;
+      if (single) {
+        const double in = std::max(0.0, near.rayleigh[i] - far.rayleigh[i]) * phase_r +
+                          std::max(0.0, near.mie[i] - far.mie[i]) * model.mie_phase(i, ray.nu());
+        light.daylight[i] += in;
+        light.eclipsed[i] += shadow.direct_light(middle, i) * in;
+      }
+      if (multiple) {
+        const double in = std::max(0.0, near.multiple[i] - far.multiple[i]);
+        light.daylight[i] += in;
+        light.eclipsed[i] += shadow.scattered_light(middle, view, i) * in;
+      }
     }
     near = far;
   }
@@ -141,11 +147,14 @@ ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereMod
     const MoonShadow::Place ground = shadow.place(e.point_m);
     for (std::size_t i = 0; i < channels; ++i) {
       const double carried = e.transmittance[i] * model.ground_albedo[i] / kPi;
-      light.daylight[i] += carried * e.direct[i];
-      light.eclipsed[i] += carried * e.direct[i] * shadow.direct_light(ground, i);
-      if (!all_orders) continue;
-      light.daylight[i] += carried * e.sky[i];
-      light.eclipsed[i] += carried * e.sky[i] * shadow.skylight_left(e.point_m, i);
+      if (single) {
+        light.daylight[i] += carried * e.direct[i];
+        light.eclipsed[i] += carried * e.direct[i] * shadow.direct_light(ground, i);
+      }
+      if (multiple) {
+        light.daylight[i] += carried * e.sky[i];
+        light.eclipsed[i] += carried * e.sky[i] * shadow.skylight_left(e.point_m, i);
+      }
     }
   }
   return light;
@@ -160,18 +169,18 @@ atmosphere::Spectrum eclipsed_sky_radiance(const atmosphere::lut::TableQueries& 
   const std::optional<SegmentedRay> ray =
       SegmentedRay::make(tables, camera_m, view, shadow.geometry().sun_direction, segments);
   if (!ray) return result;
-  const ArrivingLight light = sum_along(*ray, model, shadow, view, tables.channels(), true);
+  const ArrivingLight light = sum_along(*ray, model, shadow, view, tables.channels(), ArrivingOrders::all);
   for (std::size_t i = 0; i < tables.channels(); ++i) result[i] = light.eclipsed[i];
   return result;
 }
 
 ArrivingLight arriving_light(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
                              const MoonShadow& shadow, const glm::dvec3& point_m, const glm::dvec3& direction,
-                             int segments, bool all_orders) {
+                             int segments, ArrivingOrders orders) {
   const std::optional<SegmentedRay> ray =
       SegmentedRay::make(tables, point_m, direction, shadow.geometry().sun_direction, segments);
   if (!ray) return {};
-  return sum_along(*ray, model, shadow, direction, tables.channels(), all_orders);
+  return sum_along(*ray, model, shadow, direction, tables.channels(), orders);
 }
 
 }  // namespace zenith::astro

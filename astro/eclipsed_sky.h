@@ -39,17 +39,24 @@ atmosphere::Spectrum eclipsed_sky_radiance(const atmosphere::lut::TableQueries& 
                                            const glm::dvec3& camera_m, const glm::dvec3& view,
                                            int segments = kEclipsedSkySegments);
 
+/// Which light arriving_light sums.
+enum class ArrivingOrders {
+  once_scattered,      ///< the single scattering and the direct sun the ground reflects
+  multiply_scattered,  ///< the multiple scattering and the skylight the ground reflects
+  all,                 ///< both
+};
+
 /// The light arriving at `point_m` (inside the atmosphere) from the
 /// direction `direction` (travelling along −direction), with the shadow's V
-/// and V̄ (eclipsed) and without (daylight): single Rayleigh and Mie along the
-/// ray and, where it ends on the ground, the direct sun the ground reflects;
-/// with `all_orders`, also the multiple scattering (weighted by the shadow's
-/// V̄ so far) and the skylight the ground reflects. For MoonShadow's V̄.
+/// and V̄ (eclipsed) and without (daylight): the single scattering along the
+/// ray and, where it ends on the ground, the direct sun the ground reflects
+/// (V); the multiple scattering (weighted by the shadow's V̄ so far) and the
+/// skylight the ground reflects. For MoonShadow's V̄.
 struct ArrivingLight {
   std::array<double, atmosphere::lut::kMaxChannels> eclipsed{}, daylight{};
 };
 ArrivingLight arriving_light(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
                              const MoonShadow& shadow, const glm::dvec3& point_m, const glm::dvec3& direction,
-                             int segments, bool all_orders);
+                             int segments, ArrivingOrders orders);
 
 }  // namespace zenith::astro

@@ -89,7 +89,7 @@ MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQue
   const std::vector<double>& z = options.field_altitudes_m;
   if (options.profile_samples < 2 || options.field_across < 3 || options.field_side < 2 || z.empty() ||
       z.front() != 0.0 || !std::is_sorted(z.begin(), z.end()) || std::adjacent_find(z.begin(), z.end()) != z.end() ||
-      options.directions < 1 || options.segments < 1)
+      options.directions < 1 || options.higher_order_directions < 1 || options.segments < 1)
     throw std::invalid_argument(
         "MoonShadow: the profile needs ≥ 2 samples, the field ≥ 3 × 2 nodes and increasing altitudes from 0, the "
         "rays ≥ 1 direction and segment");
@@ -139,34 +139,49 @@ void MoonShadow::fill_profile() {
 void MoonShadow::fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model) {
   // Beyond the penumbra's edge V̄ = V = 1.
   field_end_m_ = moon_distance_0_m_ * std::tan(profile_end_rad_);
-  const std::size_t nodes = options_.field_across * options_.field_side * options_.field_altitudes_m.size();
   // Until the first pass: V̄ = 1, the daylight's light everywhere (a_e = 1, no moments).
+  const std::size_t nodes = options_.field_across * options_.field_side * options_.field_altitudes_m.size();
   field_.assign(nodes * wavelengths_ * kShadowFieldValues, 0.0f);
   for (std::size_t n = 0; n < nodes * wavelengths_; ++n) field_[n * kShadowFieldValues] = 1.0f;
-  for (int pass = 0; pass < options_.iterations; ++pass) field_ = field_pass(tables, model, pass > 0);
+  // The once-scattered light does not depend on V̄: summed once, and each
+  // later pass adds to it only the multiply scattered light under the V̄ before.
+  const std::vector<double> once = light_sums(tables, model, ArrivingOrders::once_scattered);
+  field_ = field_from(once);
+  for (int pass = 1; pass < options_.iterations; ++pass) {
+    std::vector<double> all = light_sums(tables, model, ArrivingOrders::multiply_scattered);
+    for (std::size_t n = 0; n < all.size(); ++n) all[n] += once[n];
+    field_ = field_from(all);
+  }
 }
 
-std::vector<float> MoonShadow::field_pass(const atmosphere::lut::TableQueries& tables,
-                                          const atmosphere::AtmosphereModel& model, bool all_orders) const {
+std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& tables,
+                                           const atmosphere::AtmosphereModel& model, ArrivingOrders orders) const {
   const MoonShadowOptions& o = options_;
   const glm::dvec3& s = geometry_.sun_direction;
-  const std::vector<glm::dvec3> directions = sphere_directions(o.directions);
+  const std::vector<glm::dvec3> directions =
+      sphere_directions(orders == ArrivingOrders::multiply_scattered ? o.higher_order_directions : o.directions);
+  const double weight = 1.0 / double(directions.size());  // means over the sphere: passes may differ in rays
   const std::size_t nodes = o.field_across * o.field_side * o.field_altitudes_m.size();
-  std::vector<float> field(nodes * wavelengths_ * kShadowFieldValues, 0.0f);
+  std::vector<double> sums(nodes * wavelengths_ * kLightSums, 0.0);
   core::parallel_for(nodes, o.threads, [&](std::size_t node) {
     const std::size_t j = node % o.field_across, k = (node / o.field_across) % o.field_side;
     const double altitude = o.field_altitudes_m[node / (o.field_across * o.field_side)];
     const double tu = -1.0 + 2.0 * double(j) / double(o.field_across - 1), tv = double(k) / double(o.field_side - 1);
     const double u = field_end_m_ * tu * std::abs(tu), v = field_end_m_ * tv * tv;
-    float* out = &field[node * wavelengths_ * kShadowFieldValues];
+    double* out = &sums[node * wavelengths_ * kLightSums];
     // The point at this altitude on the line through (u, v) parallel to the axis, on the Sun's side.
     const glm::dvec3 line = geometry_.moon_centre_m + u * e1_ + v * e2_;
     const double radius = ground_radius_m_ + altitude, b = glm::dot(line, s);
     const double disc = b * b - (glm::dot(line, line) - radius * radius);
     if (disc < 0.0) {
-      // No air there: V itself, isotropic, so interpolation toward the air is smooth.
+      // No air there: V itself, isotropic, so interpolation toward the air is smooth (the once-scattered
+      // sums only: a later pass adds nothing here).
+      if (orders == ArrivingOrders::multiply_scattered) return;
       const double limb = std::atan(std::hypot(u, v) / moon_distance_0_m_);
-      for (std::size_t i = 0; i < wavelengths_; ++i) out[i * kShadowFieldValues] = float(profile_at(limb, i));
+      for (std::size_t i = 0; i < wavelengths_; ++i) {
+        out[i * kLightSums] = profile_at(limb, i);
+        out[i * kLightSums + 10] = 1.0;
+      }
       return;
     }
     const glm::dvec3 p = line - (b - std::sqrt(disc)) * s;
@@ -174,31 +189,35 @@ std::vector<float> MoonShadow::field_pass(const atmosphere::lut::TableQueries& t
     // the rays keep their place relative to the node's horizon and sun, so no ray crosses the horizon
     // from one frame to the next and the field changes smoothly with the eclipse.
     const glm::dvec3 up = glm::normalize(p), toward_sun = across(up, s), side = glm::cross(up, toward_sun);
-    // Sums of L, L ω and L ωωᵀ over the directions, eclipsed then daylight, per wavelength.
-    std::vector<std::array<double, 20>> sums(wavelengths_, std::array<double, 20>{});
     for (const glm::dvec3& local : directions) {
       const glm::dvec3 d = local.x * toward_sun + local.y * side + local.z * up;
-      const ArrivingLight l = arriving_light(tables, model, *this, p, d, o.segments, all_orders);
+      const ArrivingLight l = arriving_light(tables, model, *this, p, d, o.segments, orders);
       const double w[3] = {glm::dot(d, e1_), glm::dot(d, e2_), glm::dot(d, s)};
       const double moments[10] = {1.0,         w[0],        w[1],        w[2],        w[0] * w[0],
                                   w[1] * w[1], w[2] * w[2], w[0] * w[1], w[0] * w[2], w[1] * w[2]};
       for (std::size_t i = 0; i < wavelengths_; ++i)
         for (std::size_t c = 0; c < 10; ++c) {
-          sums[i][c] += l.eclipsed[i] * moments[c];
-          sums[i][10 + c] += l.daylight[i] * moments[c];
+          out[i * kLightSums + c] += weight * l.eclipsed[i] * moments[c];
+          out[i * kLightSums + 10 + c] += weight * l.daylight[i] * moments[c];
         }
     }
-    for (std::size_t i = 0; i < wavelengths_; ++i) {
-      float* values = out + i * kShadowFieldValues;
-      const double daylight = sums[i][10];
-      if (!(daylight > 0.0)) {
-        values[0] = 1.0f;  // no light arrives even in daylight (the night side): nothing to take away
-        continue;
-      }
-      for (std::size_t c = 0; c < 10; ++c) values[c] = float(sums[i][c] / daylight);
-      for (std::size_t c = 1; c < 10; ++c) values[9 + c] = float(sums[i][10 + c] / daylight);
-    }
   });
+  return sums;
+}
+
+std::vector<float> MoonShadow::field_from(const std::vector<double>& sums) const {
+  std::vector<float> field(sums.size() / kLightSums * kShadowFieldValues, 0.0f);
+  for (std::size_t n = 0; n < sums.size() / kLightSums; ++n) {
+    const double* sum = &sums[n * kLightSums];
+    float* values = &field[n * kShadowFieldValues];
+    const double daylight = sum[10];
+    if (!(daylight > 0.0)) {
+      values[0] = 1.0f;  // no light arrives even in daylight (the night side): nothing to take away
+      continue;
+    }
+    for (std::size_t c = 0; c < 10; ++c) values[c] = float(sum[c] / daylight);
+    for (std::size_t c = 1; c < 10; ++c) values[9 + c] = float(sum[10 + c] / daylight);
+  }
   return field;
 }
 

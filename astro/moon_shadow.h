@@ -25,9 +25,10 @@
 // each direction weighted as p scatters it along v:
 //   V̄(p, v) = ∫ P(ω·v) L_ecl(p, ω) dω / ∫ P(ω·v) L(p, ω) dω,
 // L the light arriving at p from direction ω, computed from the tables along
-// rays over a Fibonacci sphere (astro/eclipsed_sky.h, arriving_light): the
-// single scattering and the sunlit ground, so V̄ is the second order's share,
-// given to every order (MoonShadowOptions::iterations). P is the phase
+// rays over a Fibonacci sphere (astro/eclipsed_sky.h, arriving_light): first
+// the single scattering and the sunlit ground (V̄ the second order's share),
+// then with the multiply scattered light under that V̄ added, the share of
+// every order (MoonShadowOptions::iterations). P is the phase
 // function of the air at p, Rayleigh's and the aerosols' by their scattering
 // coefficients there, to its Legendre terms l ≤ 2 (Rayleigh's are exact; an
 // aerosol's forward peak is cut, its asymmetry kept):
@@ -61,6 +62,8 @@
 
 namespace zenith::astro {
 
+enum class ArrivingOrders;  // astro/eclipsed_sky.h
+
 /// The Moon and the Sun of a solar eclipse, in a planet's frame (planet-centred, metres).
 struct EclipseGeometry {
   glm::dvec3 moon_centre_m{0.0};
@@ -79,23 +82,37 @@ struct MoonShadowOptions {
   std::size_t field_side = 17;         ///< V̄ nodes along e2, 0 … end
   /// V̄'s altitudes [m], increasing from 0.
   std::vector<double> field_altitudes_m = {0.0, 0.5e3, 1e3, 1.5e3, 2.5e3, 4e3, 6e3, 9e3, 13e3, 19e3, 28e3, 40e3, 60e3};
-  /// Rays per V̄ node, a Fibonacci sphere in the node's own frame (its up, the
-  /// sun's azimuth there): converged at 64 (mid-totality 2017, 550 nm: the
-  /// zenith −7.7 % of the path tracer with 64 rays, −8.8 % with 128, −11.2 % with 32).
+  /// Rays per V̄ node for the once-scattered light, a Fibonacci sphere in the
+  /// node's own frame (its up, the sun's azimuth there): converged at 64
+  /// (mid-totality 2017, 550 nm, one pass, small tables: the zenith −7.7 % of
+  /// the path tracer with 64 rays, −8.8 % with 128, −11.2 % with 32).
   std::size_t directions = 64;
+  /// Rays per node for the multiply scattered light (passes after the first),
+  /// which comes from all around: at mid-totality 2017 (paper tables) 32 rays
+  /// give the zenith within 1 % and the sky 10° up within 5 % of 64 rays (16: 11 %).
+  std::size_t higher_order_directions = 32;
   int segments = 12;  ///< segments per ray
-  /// 1: V̄ from the once-scattered light. Each more pass adds to the light
-  /// arriving at p the multiple scattering weighted by the V̄ before — the
-  /// higher orders' own share — but over-weights it: at mid-totality on
-  /// 2017-08-21 two passes put the zenith 89 % above the path tracer at
-  /// 550 nm, one pass 7 % below it (docs/validation.md, "Eclipses").
-  int iterations = 1;
+  /// 1: V̄ from the once-scattered light, given to every order. Each more
+  /// pass adds to the light arriving at p the multiply scattered light under
+  /// the V̄ before, so the higher orders — which come from farther, where more
+  /// of the Sun is left, and make three quarters of the totality sky at
+  /// 440 nm — get their own share. At mid-totality on 2017-08-21, paper
+  /// tables, against the path tracer (`zenith validate eclipse`): the zenith
+  /// −16, −9, −3 % at 680, 550, 440 nm with two passes (1 M paths, σ 6–9 %),
+  /// −27, −40, −44 % with one (400 000 paths). The small tables (8 radii)
+  /// find 1.45× the paper tables' light in totality already with one pass,
+  /// and two passes carry it on (+127, +36, +70 %): the eclipsed sky needs
+  /// the paper tables (docs/validation.md, "Eclipses").
+  int iterations = 2;
   unsigned threads = 0;  ///< 0: all
 };
 
 /// Numbers per node and wavelength of V̄'s table: a_e, m_e, M_e, m_d, M_d, in
 /// the basis (e1, e2, s), m as x, y, z and M as xx, yy, zz, xy, xz, yz.
 inline constexpr std::size_t kShadowFieldValues = 19;
+/// Sums per node and wavelength while V̄'s table is made: L, L ω and L ωωᵀ
+/// (10 numbers) of the eclipsed light, then of the daylight.
+inline constexpr std::size_t kLightSums = 20;
 
 class MoonShadow {
  public:
@@ -170,10 +187,13 @@ class MoonShadow {
   void set_frame(const glm::dvec3& camera_m);
   void fill_profile();
   void fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model);
-  /// One pass over the nodes: the light arriving there with this shadow's
-  /// field so far (`all_orders` false: the once-scattered light only).
-  std::vector<float> field_pass(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
-                                bool all_orders) const;
+  /// One pass over the nodes: the sums of the light of `orders` arriving
+  /// at each (under this shadow's field so far), eclipsed and in daylight,
+  /// of 1, ω and ωωᵀ (kLightSums per wavelength, wavelengths, nodes).
+  std::vector<double> light_sums(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
+                                 ArrivingOrders orders) const;
+  /// V̄'s table from such sums.
+  std::vector<float> field_from(const std::vector<double>& sums) const;
 
   EclipseGeometry geometry_;
   MoonShadowOptions options_;

@@ -125,10 +125,12 @@ void sample_scattering_table_geometric_mu_s(const Table3D& table, const TableSiz
 
 void TableQueries::scattering_terms(double r_m, double mu, double mu_s, double nu, bool hits_ground, double* rayleigh,
                                     double* mie, double* multiple) const {
-  const ScatteringUVWZ single =
-      scattering_uvwz(tables_.geometry, tables_.sizes, r_m, mu, mu_s, nu, hits_ground, AngleMapping::Distance);
-  sample_scattering_table_geometric_mu_s(tables_.single_rayleigh, tables_.sizes, single, rayleigh);
-  sample_scattering_table_geometric_mu_s(tables_.single_mie, tables_.sizes, single, mie);
+  if (rayleigh || mie) {
+    const ScatteringUVWZ single =
+        scattering_uvwz(tables_.geometry, tables_.sizes, r_m, mu, mu_s, nu, hits_ground, AngleMapping::Distance);
+    if (rayleigh) sample_scattering_table_geometric_mu_s(tables_.single_rayleigh, tables_.sizes, single, rayleigh);
+    if (mie) sample_scattering_table_geometric_mu_s(tables_.single_mie, tables_.sizes, single, mie);
+  }
   if (multiple)
     sample_scattering_table_geometric_mu_s(
         tables_.multiple, tables_.sizes,

@@ -91,8 +91,8 @@ class TableQueries {
   void irradiance(double r_m, double mu_s, bool include_direct, double* out) const;
   /// In-scattered radiance S(r, μ, μs, ν) along the ray to its boundary, all orders, phases applied.
   void scattering(double r_m, double mu, double mu_s, double nu, bool hits_ground, double* out) const;
-  /// The three terms separately (no phase applied to the single terms);
-  /// `multiple` may be null when only the single terms are needed.
+  /// The three terms separately (no phase applied to the single terms); any
+  /// of them may be null where it is not needed.
   void scattering_terms(double r_m, double mu, double mu_s, double nu, bool hits_ground, double* rayleigh, double* mie,
                         double* multiple) const;
 
