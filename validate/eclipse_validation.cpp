@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -100,7 +101,9 @@ atmosphere::reference::PathTracerOptions paths(std::size_t samples) {
   return o;
 }
 
-/// The eclipsed sky as the renderer will read it: the tables and the Moon's shadow over them.
+/// The eclipsed sky as the renderer will read it: the tables and the Moon's
+/// shadow over them, a shadow kept while it still fits the eclipse's geometry
+/// and moved with the Moon, as the renderer keeps it (MoonShadow::still_fits).
 class TablesSky {
  public:
   TablesSky(const atmosphere::AtmosphereModel& model, const atmosphere::lut::LookupTables& tables)
@@ -110,11 +113,11 @@ class TablesSky {
   struct Views {
     std::vector<std::vector<double>> eclipsed, daylight;
   };
-  Views views(const astro::SkyPositions& sky, const std::vector<atmosphere::Vec3>& views) const {
+  Views views(const astro::SkyPositions& sky, const std::vector<atmosphere::Vec3>& views) {
     const EclipsedSky e = eclipsed_sky(model_, sky);
     const astro::EclipseGeometry g{e.sun.occulter.centre_m, e.sun.occulter.radius_m, e.sun.direction,
                                    e.sun.angular_radius_rad, e.sun.limb_exponents};
-    const astro::MoonShadow shadow(g, queries_, model_, e.observer_m);
+    const astro::MoonShadow& shadow = shadow_for(g, e.observer_m);
     Views v;
     for (const atmosphere::Vec3& view : views) {
       const atmosphere::Spectrum dark = astro::eclipsed_sky_radiance(queries_, model_, shadow, e.observer_m, view);
@@ -126,11 +129,21 @@ class TablesSky {
   }
 
  private:
+  const astro::MoonShadow& shadow_for(const astro::EclipseGeometry& g, const glm::dvec3& camera_m) {
+    for (const std::unique_ptr<astro::MoonShadow>& held : shadows_)
+      if (held->still_fits(g, camera_m)) {
+        held->move_to(g, camera_m);
+        return *held;
+      }
+    return *shadows_.emplace_back(std::make_unique<astro::MoonShadow>(g, queries_, model_, camera_m));
+  }
+
   const atmosphere::AtmosphereModel& model_;
   atmosphere::lut::TableQueries queries_;
+  std::vector<std::unique_ptr<astro::MoonShadow>> shadows_;  // every one built, for moments out of order
 };
 
-Moment moment(const atmosphere::AtmosphereModel& model, const TablesSky& tables, const AstroTime& start,
+Moment moment(const atmosphere::AtmosphereModel& model, TablesSky& tables, const AstroTime& start,
               double seconds_from_start, double c2_seconds, std::string label, std::size_t samples) {
   const astro::SkyPositions sky(at(start, seconds_from_start), kSite);
   Moment m;
@@ -167,7 +180,7 @@ std::vector<atmosphere::Vec3> ring_views() {
   return views;
 }
 
-HorizonRing horizon_ring(const atmosphere::AtmosphereModel& model, const TablesSky& tables, const AstroTime& t,
+HorizonRing horizon_ring(const atmosphere::AtmosphereModel& model, TablesSky& tables, const AstroTime& t,
                          std::size_t samples) {
   const astro::SkyPositions sky(t, kSite);
   const EclipsedSky e = eclipsed_sky(model, sky);
@@ -250,7 +263,7 @@ void write_outputs(const fs::path& dir, const atmosphere::AtmosphereModel& model
 void validate_eclipse(const EclipseValidationOptions& o, const TablesFor& tables_for) {
   const atmosphere::AtmosphereModel model = atmosphere::load_preset("earth-advanced").model;
   const ValidationTables tables = tables_for(model);
-  const TablesSky tables_sky(model, tables.tables);
+  TablesSky tables_sky(model, tables.tables);
   // The contacts, from a scan every 20 s and bisection.
   const AstroTime start = AstroTime::from_utc(astro::UtcTime{2017, 8, 21, 16, 50, 0.0});
   std::vector<double> contacts;
