@@ -58,7 +58,8 @@ TEST(SampleEclipse, AtTheGreatestEclipseOf2017TheZenithKeepsATenThousandthOfItsL
   tables.tables.backend = render::PrecomputeBackend::Gpu;  // llvmpipe here: the paper tables in ~20 s, the CPU ~40 s
   tables.tables.use_cache = false;
   tables.tables.show_progress = false;
-  tables.tables.options.sizes = atmosphere::lut::TableSizes{};  // the paper's: the small ones are too coarse in the umbra
+  // The paper's sizes: the small tables are too coarse for the light in the umbra (docs/validation.md).
+  tables.tables.options.sizes = atmosphere::lut::TableSizes{};
   const std::vector<double> from_tables = first_radiance_row(sample_radiance_csv(m, tables), 3);
   for (std::size_t i = 0; i < 3; ++i) {
     std::printf("%.0f nm: tables / reference in totality %.3f\n", m.wavelengths_nm[i], from_tables[i] / dark[i]);
