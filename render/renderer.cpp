@@ -433,6 +433,14 @@ void Renderer::follow_moon_shadow(const Frame& frame, AtmospherePass& pass, Pass
     timer.cpu("moon's shadow: tables", [&] {
       table.keep_tables(model, std::make_shared<const atmosphere::lut::LookupTables>(table_source_(model)));
     });
+    const atmosphere::lut::TableSizes& sizes = table.tables()->sizes;
+    const atmosphere::lut::TableSizes paper;
+    if (sizes.scattering_r < paper.scattering_r || sizes.scattering_mu < paper.scattering_mu)
+      spdlog::warn(
+          "the Moon's shadow on the air of '{}': its tables ({}) are coarser than the paper's; from "
+          "such tables the sky in totality came out 1.4-2.3x the path tracer's (docs/validation.md, "
+          "\"Eclipses\"): use the paper tables or larger",
+          planet.name, sizes.describe());
   }
   // Live frames never wait for a shadow (RenderOptions::background_shadow_builds), not even the
   // first where the penumbra is still far from the air in view (V̄ eased to within 1 % of 1 there).

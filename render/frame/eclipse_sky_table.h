@@ -61,6 +61,7 @@ class EclipseSkyTable {
   /// CPU while this exists: a TableSource may need the GL context, a worker
   /// thread may not call it.
   bool has_tables() const { return tables_ != nullptr; }
+  const std::shared_ptr<const atmosphere::lut::LookupTables>& tables() const { return tables_; }
   void keep_tables(const atmosphere::AtmosphereModel& model,
                    std::shared_ptr<const atmosphere::lut::LookupTables> tables);
 
