@@ -89,10 +89,10 @@ MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQue
   const std::vector<double>& z = options.field_altitudes_m;
   if (options.profile_samples < 2 || options.field_across < 3 || options.field_side < 2 || z.empty() ||
       z.front() != 0.0 || !std::is_sorted(z.begin(), z.end()) || std::adjacent_find(z.begin(), z.end()) != z.end() ||
-      options.directions < 1 || options.higher_order_directions < 1 || options.segments < 1)
+      options.directions < 1 || options.higher_order_directions < 1 || options.segments < 1 || options.iterations < 1)
     throw std::invalid_argument(
         "MoonShadow: the profile needs ≥ 2 samples, the field ≥ 3 × 2 nodes and increasing altitudes from 0, the "
-        "rays ≥ 1 direction and segment");
+        "rays ≥ 1 direction and segment, the field ≥ 1 pass");
   ground_radius_m_ = model.ground_radius_m;
   rayleigh_density_ = model.rayleigh_density;
   mie_density_ = model.mie_density;
@@ -139,12 +139,9 @@ void MoonShadow::fill_profile() {
 void MoonShadow::fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model) {
   // Beyond the penumbra's edge V̄ = V = 1.
   field_end_m_ = moon_distance_0_m_ * std::tan(profile_end_rad_);
-  // Until the first pass: V̄ = 1, the daylight's light everywhere (a_e = 1, no moments).
-  const std::size_t nodes = options_.field_across * options_.field_side * options_.field_altitudes_m.size();
-  field_.assign(nodes * wavelengths_ * kShadowFieldValues, 0.0f);
-  for (std::size_t n = 0; n < nodes * wavelengths_; ++n) field_[n * kShadowFieldValues] = 1.0f;
-  // The once-scattered light does not depend on V̄: summed once, and each
-  // later pass adds to it only the multiply scattered light under the V̄ before.
+  // The once-scattered light does not depend on V̄ (only on V): summed once,
+  // and each later pass adds to it only the multiply scattered light under
+  // the V̄ before.
   const std::vector<double> once = light_sums(tables, model, ArrivingOrders::once_scattered);
   field_ = field_from(once);
   for (int pass = 1; pass < options_.iterations; ++pass) {

@@ -284,6 +284,13 @@ TEST_F(EclipsedSky, RefusesWhatIsNoEclipse) {
   o.field_altitudes_m = {1e3, 5e3};
   EXPECT_THROW(MoonShadow(good.geometry, q, *model_, good.observer_m, o), std::invalid_argument)
       << "the field's altitudes must start at the ground";
+  o = quick();
+  o.iterations = 0;
+  EXPECT_THROW(MoonShadow(good.geometry, q, *model_, good.observer_m, o), std::invalid_argument) << "no pass";
+  o = quick();
+  o.higher_order_directions = 0;
+  EXPECT_THROW(MoonShadow(good.geometry, q, *model_, good.observer_m, o), std::invalid_argument)
+      << "no ray for the higher orders";
 }
 
 }  // namespace
