@@ -95,8 +95,8 @@ struct MoonShadowOptions {
   /// 1: V̄ from the once-scattered light, given to every order. Each more
   /// pass adds to the light arriving at p the multiply scattered light under
   /// the V̄ before, so the higher orders — which come from farther, where more
-  /// of the Sun is left, and make three quarters of the totality sky at
-  /// 440 nm — get their own share. At mid-totality on 2017-08-21, paper
+  /// of the Sun is left, and make two thirds to three quarters of the totality
+  /// sky at 440 nm — get their own share. At mid-totality on 2017-08-21, paper
   /// tables, against the path tracer (`zenith validate eclipse`): the zenith
   /// −16, −9, −3 % at 680, 550, 440 nm with two passes (1 M paths, σ 6–9 %),
   /// −27, −40, −44 % with one (400 000 paths). The small tables (8 radii)

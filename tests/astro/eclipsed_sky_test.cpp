@@ -189,8 +189,8 @@ TEST_F(EclipsedSky, TheLightOfAllOrdersIsTheOnceAndTheMultiplyScatteredLight) {
 
 TEST_F(EclipsedSky, TheSecondPassGivesTheHigherOrdersTheLightFromFarther) {
   // In totality the higher orders come from farther than the second, where more of the Sun is left, and
-  // more so in the blue (the path tracer: three quarters of the zenith's light at 440 nm, half at 550):
-  // V̄ from the once-scattered light alone leaves the zenith too dark, most in the blue
+  // more so in the blue (the path tracer: two thirds to three quarters of the zenith's light at 440 nm,
+  // half at 550): V̄ from the once-scattered light alone leaves the zenith too dark, most in the blue
   // (docs/validation.md, "Eclipses"). Fewer rays than the defaults, the same nodes.
   const TableQueries q(*model_, *tables_);
   const EclipseSetup e = setup_at(*model_, totality());
