@@ -1,11 +1,15 @@
 // `zenith atmosphere show` prints every derived per-wavelength coefficient with
-// its unit, the zenith optical depths, the lookup-table hash and any warnings.
+// its unit, the zenith optical depths, the lookup-table hash and any warnings;
+// `zenith atmosphere import-phase` turns a measured phase function into the
+// tabulated phase object of an atmosphere file.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "atmosphere/aeronet_phase_file.h"
 #include "atmosphere/model_hash.h"
 #include "atmosphere/parameters.h"
 
@@ -27,6 +31,8 @@ std::string phase_name(const AtmosphereModel& m) {
     case atmosphere::MiePhase::Model::HenyeyGreenstein: return "Henyey-Greenstein";
     case atmosphere::MiePhase::Model::DoubleHenyeyGreenstein: return "double Henyey-Greenstein (eq. 16)";
     case atmosphere::MiePhase::Model::CornetteShanks: return "Cornette-Shanks";
+    case atmosphere::MiePhase::Model::Tabulated:
+      return fmt::format("tabulated, {} samples of sin(theta/2)", atmosphere::TabulatedPhase::kSamples);
   }
   return "";
 }
@@ -103,7 +109,7 @@ void print_text(const LoadedAtmosphere& a, const std::string& hash) {
     Spectrum ssa(m.wavelength_count());
     for (std::size_t i = 0; i < ssa.size(); ++i) ssa[i] = m.mie_scattering_m1[i] / m.mie_extinction_m1[i];
     row("  single-scattering albedo", ssa, "");
-    row("  g1", m.mie_phase.g1, "");
+    row(m.mie_phase.model == atmosphere::MiePhase::Model::Tabulated ? "  g (the table's)" : "  g1", m.mie_phase.g1, "");
     if (m.mie_phase.model == atmosphere::MiePhase::Model::DoubleHenyeyGreenstein) {
       row("  g2", m.mie_phase.g2, "");
       row("  alpha", m.mie_phase.alpha, "");
@@ -146,6 +152,31 @@ void run_show(const ShowOptions& o) {
     print_text(a, hash);
 }
 
+/// The phase object of an atmosphere file ("model": "tabulated") from an
+/// AERONET phase-function file: the mean of its retrievals at each wavelength.
+nlohmann::json tabulated_phase_object(const std::string& path) {
+  const atmosphere::AeronetPhaseFunctions a = atmosphere::read_aeronet_phase_functions(path);
+  std::string times;
+  for (const auto& r : a.retrievals) times += (times.empty() ? "" : ", ") + r.time;
+  // The retrievals' own aerosol optical depth and Ångström exponent, where the file has them.
+  std::string aerosol;
+  for (const char* column : {"tau440(measured)", "alpha440-870"}) {
+    std::string values;
+    for (const auto& r : a.retrievals)
+      if (const auto it = r.diagnostics.find(column); it != r.diagnostics.end())
+        values += (values.empty() ? "" : " ") + it->second;
+    if (!values.empty()) aerosol += fmt::format("; {} {}", column, values);
+  }
+  nlohmann::json phase;
+  phase["model"] = "tabulated";
+  phase["source"] = fmt::format("AERONET, {}, site {}, {}: the mean of {} retrievals ({} UTC), total mode ({}){}",
+                                a.level, a.site, a.retrievals.front().date, a.retrievals.size(), times,
+                                std::filesystem::path(path).filename().string(), aerosol);
+  phase["scattering_angle_deg"] = a.angles_deg;
+  for (const auto& c : a.mean_columns()) phase["values"][fmt::format("{}", c.wavelength_nm)] = c.values;
+  return phase;
+}
+
 }  // namespace
 
 void register_atmosphere_command(CLI::App& app) {
@@ -164,6 +195,15 @@ void register_atmosphere_command(CLI::App& app) {
     if (preset->count() + file->count() != 1) throw CLI::ValidationError("give exactly one of --preset or --file");
     run_show(*options);
   });
+
+  auto aeronet = std::make_shared<std::string>();
+  CLI::App* import_phase = atm->add_subcommand(
+      "import-phase", "Print a tabulated Mie phase object (docs/atmosphere-config.md) from a measured phase function");
+  import_phase
+      ->add_option("--aeronet", *aeronet, "AERONET almucantar phase-function file (.pfn); the mean of its retrievals")
+      ->required()
+      ->check(CLI::ExistingFile);
+  import_phase->callback([aeronet] { fmt::print("{}\n", tabulated_phase_object(*aeronet).dump(1)); });
 
   CLI::App* list = atm->add_subcommand("list", "List the built-in presets");
   list->callback([] {

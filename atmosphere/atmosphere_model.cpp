@@ -12,6 +12,7 @@ double MiePhase::operator()(std::size_t i, double cos_theta) const {
     case Model::HenyeyGreenstein: return henyey_greenstein(cos_theta, g1[i]);
     case Model::DoubleHenyeyGreenstein: return double_henyey_greenstein(cos_theta, g1[i], g2[i], alpha[i]);
     case Model::CornetteShanks: return cornette_shanks(cos_theta, g1[i]);
+    case Model::Tabulated: return (*table)(i, cos_theta);
   }
   return 0.0;
 }
@@ -101,6 +102,8 @@ void AtmosphereModel::check() const {
       check_asymmetry(mie_phase.g2, "Mie g2");
       check_spectrum(mie_phase.alpha, "Mie alpha", 1.0);
     }
+    if (mie_phase.model == MiePhase::Model::Tabulated && (!mie_phase.table || mie_phase.table->wavelength_count() != n))
+      fail("Mie phase table missing or resampled at other wavelengths");
   }
 }
 

@@ -7,12 +7,14 @@
 // Extinction at altitude h and wavelength λ_i (paper eq. 1):
 //   β^ext(h) = β_R^scat ρ_R(h) + β_M^ext ρ_M(h) + Σ_absorbers β_a^abs ρ_a(h)
 // Scattering: β_R^scat ρ_R(h) with the Rayleigh phase, β_M^scat ρ_M(h) with the Mie phase.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "atmosphere/air_mass.h"
 #include "atmosphere/density_profile.h"
 #include "atmosphere/spectrum.h"
+#include "atmosphere/tabulated_phase.h"
 
 namespace zenith::atmosphere {
 
@@ -27,11 +29,14 @@ const char* rayleigh_phase_name(RayleighPhaseModel model);
 
 /// Mie phase function, per wavelength. Henyey–Greenstein is the double HG with α = 1.
 struct MiePhase {
-  enum class Model { HenyeyGreenstein, DoubleHenyeyGreenstein, CornetteShanks };
+  enum class Model { HenyeyGreenstein, DoubleHenyeyGreenstein, CornetteShanks, Tabulated };
   Model model = Model::HenyeyGreenstein;
-  Spectrum g1;     ///< forward-lobe asymmetry per wavelength, (−1, 1)
+  Spectrum g1;     ///< forward-lobe asymmetry per wavelength, (−1, 1); a table's own asymmetry
   Spectrum g2;     ///< second-lobe asymmetry (DHG only), (−1, 1)
   Spectrum alpha;  ///< weight of the g1 lobe (DHG only), [0, 1]
+  /// The table (Tabulated only), resampled at the model's wavelengths; shared,
+  /// never changed once built.
+  std::shared_ptr<const TabulatedPhase> table;
 
   /// P_M(cos θ) at wavelength index i [sr^-1].
   double operator()(std::size_t i, double cos_theta) const;

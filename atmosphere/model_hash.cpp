@@ -54,6 +54,8 @@ std::string canonical_description(const AtmosphereModel& m) {
     line(out, "mie.phase.g1", m.mie_phase.g1.values());
     line(out, "mie.phase.g2", m.mie_phase.g2.values());
     line(out, "mie.phase.alpha", m.mie_phase.alpha.values());
+    if (m.mie_phase.model == MiePhase::Model::Tabulated && m.mie_phase.table)
+      line(out, "mie.phase.table", m.mie_phase.table->samples());
   }
   for (const Absorber& a : m.absorbers) {
     // The absorber's name is a label; only its optics shape the tables.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 #include "atmosphere/air_mass.h"
@@ -169,12 +170,93 @@ RayleighPhaseModel read_rayleigh_phase(JsonReader& r) {
   return RayleighPhaseModel::Penndorf;
 }
 
+/// A phase function as a table (TabulatedPhase): "scattering_angle_deg", an
+/// array strictly increasing from 0 to 180, and "values", {"<nm>": [P at each
+/// angle, any positive scale], ...}; an optional "source" line.
+std::shared_ptr<const TabulatedPhase> read_phase_table(JsonReader& r, const Context& ctx) {
+  const nlohmann::json& angles = r.raw("scattering_angle_deg");
+  if (!angles.is_array() || angles.size() < 2)
+    r.fail("scattering_angle_deg", "must be an array of at least 2 angles in degrees, from 0 to 180");
+  std::vector<double> angles_deg;
+  for (std::size_t j = 0; j < angles.size(); ++j) {
+    const nlohmann::json& a = angles[j];
+    const std::string at = "[" + std::to_string(j) + "] = " + a.dump() + ": ";
+    if (!a.is_number() || !(a.get<double>() >= 0.0 && a.get<double>() <= 180.0))
+      r.fail("scattering_angle_deg", at + "must be in [0, 180] deg");
+    if (!angles_deg.empty() && !(a.get<double>() > angles_deg.back()))
+      r.fail("scattering_angle_deg", at + "must be greater than the angle before it");
+    angles_deg.push_back(a.get<double>());
+  }
+  if (angles_deg.front() != 0.0 || angles_deg.back() != 180.0)
+    r.fail("scattering_angle_deg", "must start at 0 and end at 180 deg (the whole range of the scattering angle)");
+
+  const nlohmann::json& values = r.raw("values");
+  if (!values.is_object() || values.empty())
+    r.fail("values", "must be an object {\"<wavelength nm>\": [one value per angle], ...}");
+  std::vector<TabulatedPhase::Column> columns;
+  for (const auto& [wl_text, column] : values.items()) {
+    double wl = 0.0;
+    std::size_t used = 0;
+    try {
+      wl = std::stod(wl_text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != wl_text.size() || !(wl >= 100.0 && wl <= 5000.0))
+      r.fail("values", "wavelength key \"" + wl_text + "\" must be a number of nanometres in [100, 5000]");
+    const std::string at = "[\"" + wl_text + "\"]";
+    if (!column.is_array() || column.size() != angles_deg.size())
+      r.fail("values", at + " must be an array of " + std::to_string(angles_deg.size()) +
+                           " values, one per scattering_angle_deg");
+    TabulatedPhase::Column c{wl, {}};
+    for (std::size_t j = 0; j < column.size(); ++j) {
+      const nlohmann::json& v = column[j];
+      if (!v.is_number() || !std::isfinite(v.get<double>()) || !(v.get<double>() > 0.0))
+        r.fail("values", at + "[" + std::to_string(j) + "] = " + v.dump() + ": must be a finite number > 0");
+      c.values.push_back(v.get<double>());
+    }
+    for (const TabulatedPhase::Column& other : columns)
+      if (other.wavelength_nm == wl) r.fail("values", "wavelength " + wl_text + " listed twice");
+    columns.push_back(std::move(c));
+  }
+  if (r.has("source")) r.string("source");
+  const auto [lo, hi] = std::minmax_element(
+      columns.begin(), columns.end(), [](const auto& a, const auto& b) { return a.wavelength_nm < b.wavelength_nm; });
+  std::ostringstream outside;
+  for (double wl : ctx.wavelengths_nm)
+    if (wl < lo->wavelength_nm || wl > hi->wavelength_nm) outside << (outside.tellp() > 0 ? ", " : "") << wl;
+  if (outside.tellp() > 0) {
+    std::ostringstream s;
+    s << r.file() << ": " << r.key_path("values") << " is given from " << lo->wavelength_nm << " to "
+      << hi->wavelength_nm << " nm; " << outside.str() << " nm use the nearest column";
+    ctx.warnings->push_back(s.str());
+  }
+  auto table = std::make_shared<const TabulatedPhase>(angles_deg, columns, ctx.wavelengths_nm);
+  if (ctx.derivation) {
+    std::ostringstream s;
+    s << "Mie phase table: " << angles_deg.size() << " angles at " << columns.size() << " wavelengths, resampled on "
+      << TabulatedPhase::kSamples << " samples of sin(theta/2); integral of P over "
+      << "the sphere as given " << table->integral_as_given(0) << " at " << ctx.wavelengths_nm.front()
+      << " nm (normalised to 1); asymmetry g " << table->asymmetry(0) << " there";
+    ctx.derivation->push_back(s.str());
+  }
+  return table;
+}
+
 MiePhase read_mie_phase(JsonReader& parent, const Context& ctx) {
   JsonReader r = parent.object("phase");
   MiePhase phase;
-  const std::string model = r.string("model", {"henyey_greenstein", "double_henyey_greenstein", "cornette_shanks"});
+  const std::string model =
+      r.string("model", {"henyey_greenstein", "double_henyey_greenstein", "cornette_shanks", "tabulated"});
   const std::size_t n = ctx.wavelengths_nm.size();
-  if (model == "double_henyey_greenstein") {
+  if (model == "tabulated") {
+    phase.model = MiePhase::Model::Tabulated;
+    phase.table = read_phase_table(r, ctx);
+    phase.g1 = Spectrum(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) phase.g1[i] = phase.table->asymmetry(i);
+    phase.g2 = Spectrum(n, 0.0);
+    phase.alpha = Spectrum(n, 1.0);
+  } else if (model == "double_henyey_greenstein") {
     phase.model = MiePhase::Model::DoubleHenyeyGreenstein;
     phase.g1 = spectral(r, "g1", kAsymmetry, ctx);
     phase.g2 = spectral(r, "g2", kAsymmetry, ctx);
@@ -263,7 +345,7 @@ void resolve_standard(JsonReader& root, AtmosphereModel& m, const Context& ctx) 
   }
   const std::size_t n = ctx.wavelengths_nm.size();
   m.mie_scattering_m1 = m.mie_extinction_m1 = Spectrum(n, 0.0);
-  m.mie_phase = {MiePhase::Model::HenyeyGreenstein, Spectrum(n, 0.0), Spectrum(n, 0.0), Spectrum(n, 1.0)};
+  m.mie_phase = {MiePhase::Model::HenyeyGreenstein, Spectrum(n, 0.0), Spectrum(n, 0.0), Spectrum(n, 1.0), nullptr};
   if (auto r = root.optional_object("mie")) {
     m.mie_scattering_m1 = spectral(*r, "scattering_m1", kCoefficient, ctx);
     m.mie_extinction_m1 = spectral(*r, "extinction_m1", kCoefficient, ctx);
@@ -464,7 +546,7 @@ void resolve_oxygen(JsonReader& root, AtmosphereModel& m, const Gas& gas, const 
 void resolve_aerosol(JsonReader& root, AtmosphereModel& m, const Context& ctx) {
   const std::size_t n = ctx.wavelengths_nm.size();
   m.mie_scattering_m1 = m.mie_extinction_m1 = Spectrum(n, 0.0);
-  m.mie_phase = {MiePhase::Model::HenyeyGreenstein, Spectrum(n, 0.0), Spectrum(n, 0.0), Spectrum(n, 1.0)};
+  m.mie_phase = {MiePhase::Model::HenyeyGreenstein, Spectrum(n, 0.0), Spectrum(n, 0.0), Spectrum(n, 1.0), nullptr};
   auto r = root.optional_object("aerosol");
   if (!r) return;
   m.mie_density = DensityProfile::exponential(number(*r, "scale_height_m", kScaleHeight));

@@ -26,7 +26,9 @@
 //   RAYLEIGH_PHASE                         0 classic, 1 Penndorf, 2 depolarized
 //   RAYLEIGH_DEPOLARIZATION                δ (a real; used by RAYLEIGH_PHASE 2)
 //   HAS_MIE                                0 drops every Mie term
-//   MIE_PHASE                              0 Henyey–Greenstein, 1 double HG, 2 Cornette–Shanks
+//   MIE_PHASE                              0 Henyey–Greenstein, 1 double HG, 2 Cornette–Shanks, 3 tabulated
+//   MIE_TABLE, MIE_TABLE_SAMPLES           the tabulated phase's offset in TableData (read from
+//                                          WavelengthData's header at run time) and samples per wavelength
 //   ABSORBER_COUNT                         0 drops the absorber loop
 //   AIR_MASS                               0 drops the air-mass stretch
 //   MODEL_HEADER_VECTORS                   real4s of WavelengthData before the groups' fields

@@ -30,12 +30,14 @@ double henyey_greenstein_proposal_pdf(double g, double cos_scattering) {
 }
 
 double sample_mie_proposal_cosine(const MiePhase& phase, std::size_t i, double u_lobe, double u) {
+  if (phase.model == MiePhase::Model::Tabulated) return phase.table->sample_cosine(i, u_lobe, u);
   if (phase.model == MiePhase::Model::DoubleHenyeyGreenstein && !(u_lobe < phase.alpha[i]))
     return sample_henyey_greenstein_cosine(phase.g2[i], u);
   return sample_henyey_greenstein_cosine(phase.g1[i], u);
 }
 
 double mie_proposal_pdf(const MiePhase& phase, std::size_t i, double cos_scattering) {
+  if (phase.model == MiePhase::Model::Tabulated) return phase.table->proposal_pdf(i, cos_scattering);
   if (phase.model == MiePhase::Model::DoubleHenyeyGreenstein) {
     const double alpha = phase.alpha[i];
     double pdf = 0.0;

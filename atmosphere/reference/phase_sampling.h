@@ -8,7 +8,8 @@
 // Cornette–Shanks) is honoured exactly. Proposals:
 //  * molecules: the classic Rayleigh phase 3/(16π)(1 + ν²), inverted in closed form;
 //  * aerosols: Henyey–Greenstein lobes — the model's own HG or double HG, and HG(g1)
-//    for Cornette–Shanks (the ratio CS/HG = 3(1 + ν²)/(2(2 + g²)) ≤ 3/(2 + g²) is bounded).
+//    for Cornette–Shanks (the ratio CS/HG = 3(1 + ν²)/(2(2 + g²)) ≤ 3/(2 + g²) is bounded);
+//    a tabulated phase's own piecewise-uniform proposal (TabulatedPhase::sample_cosine).
 // ν is the cosine of the scattering angle (ν = 1 forward).
 #include <cstddef>
 
@@ -29,7 +30,8 @@ double sample_henyey_greenstein_cosine(double g, double u);
 double henyey_greenstein_proposal_pdf(double g, double cos_scattering);
 
 /// ν from the aerosol proposal of `phase` at wavelength i: HG(g1), or the DHG
-/// mixture α HG(g1) + (1 − α) HG(g2) (lobe chosen with u_lobe).
+/// mixture α HG(g1) + (1 − α) HG(g2) (lobe chosen with u_lobe), or a table's
+/// segment chosen with u_lobe.
 double sample_mie_proposal_cosine(const MiePhase& phase, std::size_t wavelength, double u_lobe, double u);
 /// Its pdf [sr^-1].
 double mie_proposal_pdf(const MiePhase& phase, std::size_t wavelength, double cos_scattering);

@@ -61,10 +61,9 @@ constexpr std::pair<const char*, double> kFp64MathsConstants[] = {
 /// header, the precompute's alone dropped.
 std::vector<gl::ShaderDefine> shared_render_defines(const std::vector<gl::ShaderDefine>& defines, bool fp64) {
   static const std::map<std::string, std::string> kAtRunTime = {
-      {"BOTTOM_RADIUS", "wavelength_data[0].x"},
-      {"TOP_RADIUS", "wavelength_data[0].y"},
-      {"RAYLEIGH_DEPOLARIZATION", "wavelength_data[0].z"},
-      {"WAVELENGTH_FIELDS", "int(wavelength_data[1].z)"},
+      {"BOTTOM_RADIUS", "wavelength_data[0].x"},           {"TOP_RADIUS", "wavelength_data[0].y"},
+      {"RAYLEIGH_DEPOLARIZATION", "wavelength_data[0].z"}, {"WAVELENGTH_FIELDS", "int(wavelength_data[1].z)"},
+      {"MIE_TABLE", "int(wavelength_data[2].y)"},
   };
   static const std::set<std::string> kPrecomputeOnly = {
       "RAYLEIGH_PHASE",         "MIE_PHASE",      "ABSORBER_COUNT",      "AIR_MASS",
@@ -170,6 +169,7 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
       case MiePhase::Model::HenyeyGreenstein: return 0;
       case MiePhase::Model::DoubleHenyeyGreenstein: return 1;
       case MiePhase::Model::CornetteShanks: return 2;
+      case MiePhase::Model::Tabulated: return 3;
     }
     return 0;
   };
@@ -189,7 +189,7 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
                                                        double(fields),
                                                        model.has_mie() ? 1.0 : 0.0,  //
                                                        mapping_limit,
-                                                       0.0,
+                                                       0.0,  // the Mie phase table's offset, set below
                                                        0.0,
                                                        0.0};
   std::copy(std::begin(header), std::end(header), wavelength_data.begin());
@@ -273,6 +273,15 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
     table.insert(table.end(), model.air_mass.cos_zenith_table().begin(), model.air_mass.cos_zenith_table().end());
     table.insert(table.end(), model.air_mass.stretch_table().begin(), model.air_mass.stretch_table().end());
   }
+
+  // A tabulated Mie phase: TabulatedPhase::kSamples per wavelength (lanes past N zero).
+  const std::size_t mie_table = table.size();
+  if (model.has_mie() && model.mie_phase.model == MiePhase::Model::Tabulated) {
+    const std::vector<double>& samples = model.mie_phase.table->samples();
+    table.resize(table.size() + out.group_count * kLanes * atmosphere::TabulatedPhase::kSamples, 0.0);
+    std::copy(samples.begin(), samples.end(), table.begin() + static_cast<std::ptrdiff_t>(mie_table));
+  }
+  wavelength_data[2 * kLanes + 1] = double(mie_table);
 
   // WavelengthData is a uniform block: GL guarantees 16 KiB of one (GL_MAX_UNIFORM_BLOCK_SIZE).
   const std::size_t block_bytes = wavelength_data.size() * (fp64 ? sizeof(double) : sizeof(float));
@@ -361,6 +370,8 @@ ShaderModel shader_model(const AtmosphereModel& model, const PrecomputeOptions& 
   define("HARMONIC_RULE", harmonic_rule);
   define("RAYLEIGH_MOMENTS", rayleigh_moments);
   define("MIE_MOMENTS", mie_moments);
+  define("MIE_TABLE", mie_table);
+  define("MIE_TABLE_SAMPLES", atmosphere::TabulatedPhase::kSamples);
   if (fp64) {
     define("FP64_CONSTANT_VECTORS", (out.fp64_constants.size() + 3) / 4);
     out.fp64_constants.resize((out.fp64_constants.size() + 3) / 4 * 4, 0.0);  // whole dvec4s (std140)

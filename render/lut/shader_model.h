@@ -57,7 +57,7 @@ struct ShaderModel {
   /// kModelHeaderVectors real4s — (bottom radius, top radius, Rayleigh
   /// depolarisation δ, H = √(rt² − rb²)), (Rayleigh phase model, Mie phase
   /// model, fields per group, has Mie), (the μs distance mapping's limit A,
-  /// 0, 0, 0) — then real4 fields per group: the one way the model's
+  /// the tabulated Mie phase's offset in TableData, 0, 0) — then real4 fields per group: the one way the model's
   /// parameters reach every shader. H and A are computed as the shaders
   /// compute them, in their precision (shader_model.cpp: shell_constants).
   std::vector<double> wavelength_data;

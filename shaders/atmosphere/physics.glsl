@@ -6,8 +6,8 @@
 // ------------------------------------------------------------ model data
 
 /// A header of MODEL_HEADER_VECTORS real4s — (bottom radius, top radius,
-/// Rayleigh depolarisation δ, 0), (Rayleigh phase model, Mie phase model,
-/// WAVELENGTH_FIELDS, has Mie) — which the render passes' shared programs
+/// Rayleigh depolarisation δ, H), (Rayleigh phase model, Mie phase model,
+/// WAVELENGTH_FIELDS, has Mie), (the μs mapping's limit, MIE_TABLE, 0, 0) — which the render passes' shared programs
 /// (MODEL_AT_RUN_TIME 1) read where the precompute's have defines; then per
 /// wavelength group g, WAVELENGTH_FIELDS real4s
 /// (the FIELD_* indices, defined by the shader model), one lane per wavelength:
@@ -162,20 +162,43 @@ real4 cornette_shanks(real c, real4 g) {
 ///   0 Henyey–Greenstein   P = HG(c, g1),  HG(c, g) = (1 − g²) / (1 + g² − 2 g c)^{3/2} / 4π
 ///   1 double HG           P = α HG(c, g1) + (1 − α) HG(c, g2)
 ///   2 Cornette–Shanks     P = 3 (1 − g1²)(1 + c²) / (2 (2 + g1²)(1 + g1² − 2 g1 c)^{3/2}) / 4π
+///   3 tabulated           P linear in u = sin(θ/2) between MIE_TABLE_SAMPLES samples
 /// The precompute and the render passes call it through model_mie_phase.
+real4 tabulated_mie_phase(real c);
 real4 mie_phase(real c, real4 g1, real4 g2, real4 alpha) {
 #if MODEL_AT_RUN_TIME
   const int model = int(wavelength_data[1].y);
   if (model == 0) return henyey_greenstein(c, g1);
   if (model == 1) return alpha * henyey_greenstein(c, g1) + (real(1) - alpha) * henyey_greenstein(c, g2);
+  if (model == 3) return tabulated_mie_phase(c);
   return cornette_shanks(c, g1);
 #elif MIE_PHASE == 0
   return henyey_greenstein(c, g1);
 #elif MIE_PHASE == 1
   return alpha * henyey_greenstein(c, g1) + (real(1) - alpha) * henyey_greenstein(c, g2);
+#elif MIE_PHASE == 3
+  return tabulated_mie_phase(c);
 #else
   return cornette_shanks(c, g1);
 #endif
+}
+
+/// TabulatedPhase::operator() (atmosphere/tabulated_phase.cpp) for the
+/// wavelength group's 4 lanes: MIE_TABLE_SAMPLES samples per wavelength in
+/// TableData from MIE_TABLE, on a grid uniform in u = √((1 − c)/2), P linear
+/// in u between them.
+real4 tabulated_mie_phase(real c) {
+  PRECISE real u = sqrt(max(real(0), real(0.5) - real(0.5) * c));
+  PRECISE real x = min(u, real(1)) * real(MIE_TABLE_SAMPLES - 1);
+  const int k = min(int(x), MIE_TABLE_SAMPLES - 2);
+  const real f = x - real(k);
+  const int row = MIE_TABLE + wavelength_group * 4 * MIE_TABLE_SAMPLES + k;
+  real4 p;
+  for (int lane = 0; lane < 4; ++lane) {
+    const int at = row + lane * MIE_TABLE_SAMPLES;
+    p[lane] = table_data[at] + f * (table_data[at + 1] - table_data[at]);
+  }
+  return p;
 }
 
 /// The model's Mie phase for the wavelength group being computed: mie_phase

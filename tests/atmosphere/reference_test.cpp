@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "atmosphere/constants.h"
@@ -54,6 +55,21 @@ AtmosphereModel exponential_model(double beta_m1, double scale_height_m, double 
 }
 
 AtmosphereModel preset(const char* name) { return load_preset(name).model; }
+
+/// `m` with its Mie phase replaced by a table of Cornette–Shanks (g 0.8 at
+/// 440 nm, 0.6 at 680 nm) every 2°: a phase no proposal of the solver matches.
+AtmosphereModel with_tabulated_mie_phase(AtmosphereModel m) {
+  std::vector<double> angles;
+  for (int a = 0; a <= 180; a += 2) angles.push_back(a);
+  std::vector<TabulatedPhase::Column> columns = {{440.0, {}}, {680.0, {}}};
+  for (double a : angles) {
+    columns[0].values.push_back(cornette_shanks(std::cos(a * kPi / 180.0), 0.8));
+    columns[1].values.push_back(cornette_shanks(std::cos(a * kPi / 180.0), 0.6));
+  }
+  m.mie_phase.model = MiePhase::Model::Tabulated;
+  m.mie_phase.table = std::make_shared<const TabulatedPhase>(angles, columns, m.wavelengths_nm);
+  return m;
+}
 
 Vec3 above_ground(const AtmosphereModel& m, double altitude_m) { return {0.0, 0.0, m.ground_radius_m + altitude_m}; }
 
@@ -343,6 +359,11 @@ TEST(ReferenceSampling, PhaseSamplersInvertTheirCumulativeDistributions) {
   for (std::size_t i = 0; i < mars.wavelength_count(); ++i)
     EXPECT_NEAR(test::integrate_over_sphere([&](double c) { return mie_proposal_pdf(mars.mie_phase, i, c); }), 1.0,
                 1e-9);
+  const AtmosphereModel tabulated = with_tabulated_mie_phase(preset("earth-standard"));
+  for (std::size_t i = 0; i < tabulated.wavelength_count(); ++i)
+    EXPECT_NEAR(test::integrate_over_sphere_in_sin_half_angle(
+                    [&](double c) { return mie_proposal_pdf(tabulated.mie_phase, i, c); }),
+                1.0, 1e-12);
 }
 
 TEST(ReferenceSampling, ScatteringWeightsReproduceThePhaseFunctionsAngularMoments) {
@@ -350,7 +371,8 @@ TEST(ReferenceSampling, ScatteringWeightsReproduceThePhaseFunctionsAngularMoment
   // 0.99991 for Penndorf's fit), ν, ν² and the forward cone ν > 0.95.
   AtmosphereModel cornette_shanks = preset("earth-standard");
   cornette_shanks.mie_phase.model = MiePhase::Model::CornetteShanks;
-  const AtmosphereModel models[] = {preset("earth-standard"), preset("mars"), preset("titan"), cornette_shanks};
+  const AtmosphereModel models[] = {preset("earth-standard"), preset("mars"), preset("titan"), cornette_shanks,
+                                    with_tabulated_mie_phase(preset("earth-standard"))};
   for (const AtmosphereModel& m : models) {
     const AtmosphereMedium medium(m);
     for (std::size_t i = 0; i < m.wavelength_count(); ++i) {

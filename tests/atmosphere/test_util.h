@@ -24,6 +24,25 @@ inline double integrate_over_sphere(const std::function<double(double)>& phase, 
   return 2.0 * kPi * sum;
 }
 
+/// The same integral with u = sin(θ/2) as the variable, cos θ = 1 − 2u²:
+///   ∫_{4π} f dω = 8π ∫_0^1 f(1 − 2u²) u du,
+/// on `panels` equal panels of u. With panels a multiple of 255 every panel
+/// lies inside one segment of TabulatedPhase's grid, where its interpolant and
+/// its proposal are smooth: the rule is exact to rounding for them.
+inline double integrate_over_sphere_in_sin_half_angle(const std::function<double(double)>& f, int panels = 255 * 8) {
+  static constexpr double x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+  static constexpr double w[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+  double sum = 0.0;
+  for (int p = 0; p < panels; ++p) {
+    const double a = double(p) / panels, b = double(p + 1) / panels;
+    for (int k = 0; k < 4; ++k) {
+      const double u = 0.5 * (a + b) + 0.5 * (b - a) * x[k];
+      sum += w[k] * 0.5 * (b - a) * f(1.0 - 2.0 * u * u) * u;
+    }
+  }
+  return 8.0 * kPi * sum;
+}
+
 /// A published value of a function of one variable: f(x) = expected within tolerance.
 struct PublishedValue {
   double x, expected, tolerance;

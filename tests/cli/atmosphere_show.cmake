@@ -23,3 +23,42 @@ string(FIND "${err}${out}" "unknown preset" pos)
 if(rc EQUAL 0 OR pos EQUAL -1)
   message(FATAL_ERROR "unknown preset not reported (rc ${rc}): ${err}${out}")
 endif()
+
+# A measured phase function into an atmosphere file: `import-phase` reads
+# AERONET's export (tests/data/aeronet) and prints the tabulated phase object;
+# the day's atmosphere with it (validate/data) is that object verbatim.
+set(pfn "${SOURCE_DIR}/tests/data/aeronet/egbert_2013-05-27.pfn")
+execute_process(COMMAND ${ZENITH} atmosphere import-phase --aeronet "${pfn}" RESULT_VARIABLE rc OUTPUT_VARIABLE phase
+                ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "import-phase failed (${rc}): ${err}")
+endif()
+string(JSON model GET "${phase}" model)
+string(JSON angles LENGTH "${phase}" scattering_angle_deg)
+string(JSON forward GET "${phase}" values 442 0)
+if(NOT model STREQUAL "tabulated" OR NOT angles EQUAL 83 OR NOT forward MATCHES "^76\\.35")
+  message(FATAL_ERROR "import-phase: model '${model}', ${angles} angles, P(0, 442 nm) '${forward}' "
+                      "(expected tabulated, 83, the mean 76.35...):\n${phase}")
+endif()
+file(READ "${SOURCE_DIR}/validate/data/cornell_2013-05-27_aeronet_phase.json" day)
+string(JSON committed GET "${day}" mie phase)
+string(JSON same EQUAL "${committed}" "${phase}")
+if(NOT same)
+  message(FATAL_ERROR "validate/data/cornell_2013-05-27_aeronet_phase.json's /mie/phase is not what import-phase "
+                      "prints for ${pfn}")
+endif()
+execute_process(COMMAND ${ZENITH} atmosphere show --file "${SOURCE_DIR}/validate/data/cornell_2013-05-27_aeronet_phase.json"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+foreach(needle "tabulated, 256 samples of sin(theta/2)" "g (the table's)" "Mie phase table: 83 angles at 4 wavelengths")
+  string(FIND "${out}" "${needle}" pos)
+  if(NOT rc EQUAL 0 OR pos EQUAL -1)
+    message(FATAL_ERROR "show of the AERONET-phase atmosphere lacks '${needle}' (rc ${rc}):\n${out}\n${err}")
+  endif()
+endforeach()
+file(WRITE "${WORK_DIR}/not-aeronet.pfn" "a\nb\nc\nSite,Date\n1,2\n")
+execute_process(COMMAND ${ZENITH} atmosphere import-phase --aeronet "${WORK_DIR}/not-aeronet.pfn" RESULT_VARIABLE rc
+                OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${err}${out}" "line 4" pos)
+if(rc EQUAL 0 OR pos EQUAL -1)
+  message(FATAL_ERROR "a file that is not AERONET's was not refused naming its line (rc ${rc}): ${err}${out}")
+endif()

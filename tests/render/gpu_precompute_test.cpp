@@ -31,12 +31,15 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/parameters.h"
+#include "atmosphere/phase_functions.h"
+#include "core/units.h"
 #include "tests/render/shader_faults.h"
 #include "tests/render/tiny_precompute_options.h"
 
@@ -264,6 +267,20 @@ TEST(GpuPrecompute, ShaderVariantsMatchCpu) {
          o.tolerance = 0.05;
        }},
       {"no series tail", "mars", [](AtmosphereModel&, PrecomputeOptions& o) { o.series_tail = false; }},
+      {"tabulated Mie phase, two columns", "earth-advanced",
+       [](AtmosphereModel& m, PrecomputeOptions&) {
+         // A forward peak and a backward rise, different at 440 and 680 nm.
+         std::vector<double> angles;
+         for (int a = 0; a <= 180; a += 3) angles.push_back(a);
+         std::vector<atmosphere::TabulatedPhase::Column> columns = {{440.0, {}}, {680.0, {}}};
+         for (double a : angles) {
+           const double c = std::cos(a * core::kPi / 180.0);
+           columns[0].values.push_back(atmosphere::double_henyey_greenstein(c, 0.9, -0.3, 0.8));
+           columns[1].values.push_back(atmosphere::double_henyey_greenstein(c, 0.8, -0.2, 0.9));
+         }
+         m.mie_phase.model = atmosphere::MiePhase::Model::Tabulated;
+         m.mie_phase.table = std::make_shared<const atmosphere::TabulatedPhase>(angles, columns, m.wavelengths_nm);
+       }},
   };
   for (const Variant& v : variants) {
     AtmosphereModel model = atmosphere::load_preset(v.preset).model;
