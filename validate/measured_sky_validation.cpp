@@ -167,13 +167,18 @@ void write_csv(const fs::path& dir, const MeasuredSkyScore& s) {
   ratio << "wavelength_nm,model_over_measured\n";
   for (std::size_t k = 0; k < s.wavelengths_nm.size(); ++k)
     ratio << fmt::format("{:.2f},{:.4f}\n", s.wavelengths_nm[k], s.spectral_ratio[k]);
+  std::ofstream bands(dir / "measured_sun_angles.csv");
+  bands << "from_deg,to_deg,directions,model_over_measured\n";
+  for (const SunAngleBand& b : s.sun_angle_bands)
+    bands << fmt::format("{:.0f},{:.0f},{},{:.4f}\n", b.from_deg, b.to_deg, b.directions, b.model_over_measured);
   std::ofstream directions(dir / "measured_directions.csv");
   directions << "time,sample_index,azimuth_deg,elevation_deg,measured_luminance_cd_m2,model_luminance_cd_m2\n";
   for (const DirectionComparison& d : s.directions)
     directions << fmt::format("{},{},{:.3f},{:.3f},{:.2f},{:.2f}\n", d.time, d.measured.sample_index,
                               d.measured.azimuth_deg, d.measured.elevation_deg, d.measured_luminance_cd_m2,
                               d.model_luminance_cd_m2);
-  if (!captures || !ratio || !directions) throw std::runtime_error(cat("cannot write the CSV files in ", dir.string()));
+  if (!captures || !ratio || !bands || !directions)
+    throw std::runtime_error(cat("cannot write the CSV files in ", dir.string()));
 }
 
 /// One line of totals (and of the reference check where it ran), for scripts/results.
@@ -276,6 +281,9 @@ MeasuredSkyScore score_measured_skies(const MeasuredSkies& skies, const CaptureS
       image::spectral_to_rgb_weights(skies.wavelengths_nm, image::ColourMapping::cie1931);
 
   std::vector<double> model_sum(scored.size(), 0.0), measured_sum(scored.size(), 0.0);
+  constexpr std::size_t kBands = std::size(kSunAngleBandEdges_deg) - 1;
+  std::vector<double> band_model(kBands, 0.0), band_measured(kBands, 0.0);
+  std::vector<std::size_t> band_count(kBands, 0);
   double spectral_squares = 0.0, luminance_squares = 0.0, chromaticity_squares = 0.0;
   for (const MeasuredCapture& capture : skies.captures) {
     const std::vector<std::vector<double>> L = model(capture);
@@ -291,11 +299,21 @@ MeasuredSkyScore score_measured_skies(const MeasuredSkies& skies, const CaptureS
       if (L[i].size() != skies.wavelengths_nm.size())
         throw std::invalid_argument(cat("the model gave ", L[i].size(), " wavelengths of ", skies.wavelengths_nm.size(),
                                         " for capture ", capture.time));
+      // The angle from the sun: cos γ = cos z☉ sin e + sin z☉ cos e cos(a − a☉).
+      const double zs = capture.sun_zenith_deg * core::kDeg, e = d.elevation_deg * core::kDeg;
+      const double cos_gamma =
+          std::cos(zs) * std::sin(e) +
+          std::sin(zs) * std::cos(e) * std::cos((d.azimuth_deg - capture.sun_azimuth_deg) * core::kDeg);
+      const double gamma_deg = std::acos(std::clamp(cos_gamma, -1.0, 1.0)) / core::kDeg;
+      std::size_t band = 0;
+      while (band + 1 < kBands && gamma_deg >= kSunAngleBandEdges_deg[band + 1]) ++band;
+      ++band_count[band];
       for (std::size_t k = 0; k < scored.size(); ++k) {
         const double m = L[i][scored[k]], measured = d.radiance_W_m2_sr_nm[scored[k]];
         d2 += (m - measured) * (m - measured);
         model_sum[k] += m, measured_sum[k] += measured;
         model_total += m, measured_total += measured;
+        band_model[band] += m, band_measured[band] += measured;
       }
       const double y_model = dot(y_weights, L[i]), y = dot(y_weights, d.radiance_W_m2_sr_nm);
       y2 += (y_model - y) * (y_model - y);
@@ -320,6 +338,9 @@ MeasuredSkyScore score_measured_skies(const MeasuredSkies& skies, const CaptureS
   s.chromaticity_rmse = rms(chromaticity_squares, s.captures.size());
   for (std::size_t k = 0; k < scored.size(); ++k)
     s.spectral_ratio.push_back(measured_sum[k] > 0.0 ? model_sum[k] / measured_sum[k] : 0.0);
+  for (std::size_t b = 0; b < kBands; ++b)
+    s.sun_angle_bands.push_back({kSunAngleBandEdges_deg[b], kSunAngleBandEdges_deg[b + 1], band_count[b],
+                                 band_measured[b] > 0.0 ? band_model[b] / band_measured[b] : 0.0});
   return s;
 }
 
@@ -394,6 +415,9 @@ void validate_measured(const MeasuredSkyOptions& o, const TablesFor& tables_for)
   fmt::print("zenith over measured per wavelength (every direction and capture):\n ");
   for (std::size_t k = 0; k < s.wavelengths_nm.size(); ++k)
     fmt::print(" {:.0f}:{:.3f}", s.wavelengths_nm[k], s.spectral_ratio[k]);
+  fmt::print("\nzenith over measured by angle from the sun (every capture; directions):\n ");
+  for (const SunAngleBand& b : s.sun_angle_bands)
+    fmt::print(" {:.0f}-{:.0f}°: {:.3f} ({})", b.from_deg, b.to_deg, b.model_over_measured, b.directions);
   fmt::print("\n");
 
   std::optional<ReferenceCheck> reference;
@@ -416,7 +440,7 @@ void validate_measured(const MeasuredSkyOptions& o, const TablesFor& tables_for)
                 o.reference_samples);
   spdlog::info(
       "wrote {}/measured_summary.csv, measured_captures.csv, measured_spectral_ratio.csv, "
-      "measured_directions.csv",
+      "measured_sun_angles.csv, measured_directions.csv",
       dir.string());
   if (o.no_plots) return;
   const std::string rings = o.reference_capture;

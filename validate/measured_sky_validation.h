@@ -64,13 +64,25 @@ struct DirectionComparison {
   double measured_luminance_cd_m2 = 0.0, model_luminance_cd_m2 = 0.0;
 };
 
+/// The directions of every capture at angles from the sun in [from, to):
+/// Σ model / Σ measured over them and the scored wavelengths. Where the error
+/// lies around the sun says which physics makes it (the aerosol's phase
+/// function near the sun, its amount and the molecules' away from it).
+struct SunAngleBand {
+  double from_deg = 0.0, to_deg = 0.0;
+  std::size_t directions = 0;
+  double model_over_measured = 0.0;
+};
+inline constexpr double kSunAngleBandEdges_deg[] = {0.0, 10.0, 20.0, 30.0, 45.0, 70.0, 100.0, 180.0};
+
 struct MeasuredSkyScore {
   std::vector<double> wavelengths_nm;  ///< the scored ones
   std::vector<CaptureScore> captures;
   double spectral_rmse_W_m2_sr_nm = 0.0;  ///< RMS over the captures' RMSEs
   double luminance_rmse_cd_m2 = 0.0;
   double chromaticity_rmse = 0.0;
-  std::vector<double> spectral_ratio;  ///< per scored wavelength: Σ model / Σ measured over every direction
+  std::vector<double> spectral_ratio;         ///< per scored wavelength: Σ model / Σ measured over every direction
+  std::vector<SunAngleBand> sun_angle_bands;  ///< between kSunAngleBandEdges_deg (bands without directions kept)
   std::vector<DirectionComparison> directions;
 };
 

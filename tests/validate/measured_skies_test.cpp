@@ -156,6 +156,39 @@ TEST(MeasuredSkyScore, IsTheRmsOverCapturesOfEachCapturesRmseOverDirectionsAndSc
   EXPECT_EQ(exact.chromaticity_rmse, 0.0);
 }
 
+TEST(MeasuredSkyScore, SumsModelAndMeasurementInBandsOfTheAngleFromTheSun) {
+  // cos γ = cos z☉ sin e + sin z☉ cos e cos(a − a☉). 09:30 (sun at zenith 48.9°,
+  // azimuth 91.1°): the direction at azimuth 90°, elevation 40° is 1.38° from the
+  // sun, the one at azimuth 0°, elevation 12° 83.0°; 11:45 (26.7°, 122.3°): 30.1°
+  // and 92.8°. A model twice the measurement at 09:30's near-sun direction and
+  // half of it at 11:45's far one, exact elsewhere.
+  const MeasuredSkies skies = two_captures();
+  const MeasuredSkyScore s = score_measured_skies(skies, [](const MeasuredCapture& c) {
+    std::vector<std::vector<double>> L;
+    for (const MeasuredDirection& d : c.directions) {
+      std::vector<double> l = d.radiance_W_m2_sr_nm;
+      const bool near = c.time == "09:30" && d.azimuth_deg == 90.0, far = c.time == "11:45" && d.azimuth_deg == 0.0;
+      for (double& x : l) x *= near ? 2.0 : far ? 0.5 : 1.0;
+      L.push_back(l);
+    }
+    return L;
+  });
+  ASSERT_EQ(s.sun_angle_bands.size(), std::size(kSunAngleBandEdges_deg) - 1);
+  const auto band = [&](double from) {
+    for (const SunAngleBand& b : s.sun_angle_bands)
+      if (b.from_deg == from) return b;
+    return SunAngleBand{};
+  };
+  EXPECT_EQ(band(0).directions, 1u);
+  EXPECT_DOUBLE_EQ(band(0).model_over_measured, 2.0);
+  EXPECT_EQ(band(30).directions, 1u);
+  EXPECT_DOUBLE_EQ(band(30).model_over_measured, 1.0);
+  // 83.0° and 92.8°, the scored wavelengths' sums 0.1 + 0.2 and 0.3 + 0.2: (0.3 + 0.5 / 2) / 0.8.
+  EXPECT_EQ(band(70).directions, 2u);
+  EXPECT_NEAR(band(70).model_over_measured, 0.55 / 0.8, 1e-12);
+  EXPECT_EQ(band(10).directions + band(20).directions + band(45).directions + band(100).directions, 0u);
+}
+
 TEST(MeasuredSkyScore, AModelOfTheWrongShapeIsRefused) {
   const MeasuredSkies skies = two_captures();
   expect_refused(
