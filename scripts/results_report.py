@@ -12,7 +12,8 @@ Two uses (called by scripts/results; standard library only):
       command), lut_accuracy.csv, render_frame_times.csv,
       projector_frame_times.csv, cluster_bench.csv, startup_times.csv,
       startup_pass_compile.csv, cie/cie_summary.csv,
-      cie/cie_cases.csv, measured/measured_summary.csv, measured/measured_captures.csv, eclipse/eclipse_zenith.csv,
+      cie/cie_cases.csv, measured/measured_summary.csv, measured/measured_captures.csv,
+      measured_aeronet/measured_summary.csv, eclipse/eclipse_zenith.csv,
       stress/stress_regions.csv, stress/stress_gpu.csv
       (a missing file leaves its section saying so), copies the PNG charts
       into --images and writes the markdown.
@@ -391,8 +392,19 @@ class Report:
                  ("Preetham 1999 (turbidity 2.53)", 88.72)]
         rows = [[f"**zenith ({r['tables']} tables, {r['wavelengths']} wavelengths)**",
                  f"**{num(r['spectral_rmse_mW_m2_sr_nm']):.2f}**"]]
+        aeronet = self.csv("measured_aeronet", "measured_summary.csv")
+        if aeronet:
+            a = aeronet[0]
+            rows.insert(0, [f"**zenith, the aerosol AERONET measured that day and ozone ({a['tables']} tables)**",
+                            f"**{num(a['spectral_rmse_mW_m2_sr_nm']):.2f}**"])
         rows += [[m, f"{v:.2f}"] for m, v in peers]
         self.add(table(["model", "total RMSE (mW m⁻² sr⁻¹ nm⁻¹)"], rows), "")
+        if aeronet:
+            self.add("The first row: validate/data/cornell_2013-05-27_aeronet_ozone.json — the same atmosphere with "
+                     "the aerosol phase function and optical depth AERONET retrieved that day at Egbert and the U.S. "
+                     "Standard Atmosphere's ozone, nothing fitted to the captures "
+                     "([validation.md](validation.md#measured-skies)).", "")
+            self.provenance("measured_aeronet")
         self.add(f"Luminance RMSE {f1(num(r['luminance_rmse_cd_m2']))} cd m⁻², linear-sRGB chromaticity RMSE "
                  f"{g(num(r['chromaticity_rmse']))}. With the sun as the spectroradiometer sees it (ASTM G173 "
                  f"through a 3 nm slit at each measured wavelength instead of the evaluation's 11.75 nm bins, a change "

@@ -246,6 +246,13 @@ bool write_plots(const fs::path& dir, const MeasuredSkyScore& s, const std::stri
      << "set ylabel 'model / measured'\nset xlabel 'wavelength [nm]'\nset yrange [0.7:1.3]\n"
      << "plot 'measured_spectral_ratio.csv' skip 1 using 1:2 with linespoints lw 2 pt 7 title 'zenith', 1 with lines "
         "dt 2 title ''\n"
+     << "set output 'measured_sun_angles.png'\n"
+     << "set title 'zenith over measured by angle from the sun (bands; every direction and capture), " << label << "'\n"
+     << "set ylabel 'model / measured'\nset xlabel 'angle from the sun [deg]'\nset yrange [0.6:1.4]\n"
+     << "set xrange [0:180]\nset xtics 0,10,180\n"
+     << "plot 'measured_sun_angles.csv' skip 1 using (($1 + $2) / 2):($3 > 0 ? $4 : 1/0):1:2 with xerrorbars lw 2 "
+        "pt 7 title 'zenith', 1 with lines dt 2 title ''\n"
+     << "unset xtics\nset xtics\n"
      << "set datafile separator whitespace\n"
      << "set output 'measured_rings.png'\n"
      << "set title 'Luminance along each ring of directions, capture " << rings_capture
@@ -445,7 +452,10 @@ void validate_measured(const MeasuredSkyOptions& o, const TablesFor& tables_for)
   if (o.no_plots) return;
   const std::string rings = o.reference_capture;
   if (write_plots(dir, s, rings, label))
-    spdlog::info("wrote {}/measured_captures.png, measured_spectral_ratio.png, measured_rings.png", dir.string());
+    spdlog::info(
+        "wrote {}/measured_captures.png, measured_spectral_ratio.png, measured_sun_angles.png, "
+        "measured_rings.png",
+        dir.string());
   else
     spdlog::warn("gnuplot not found or failed: measured.gp and the CSV files are in {}", dir.string());
 }

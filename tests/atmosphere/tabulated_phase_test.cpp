@@ -144,6 +144,19 @@ TEST(AeronetPhaseFile, ReadsEgbertsRetrievalsOfTheMeasuredSkysDay) {
   EXPECT_NEAR(table.asymmetry(0), g_trapezoid / norm_trapezoid, 0.01);
   EXPECT_GT(table.asymmetry(0), 0.6);
   EXPECT_LT(table.asymmetry(0), 0.7);
+
+  // Against the Cornette–Shanks phase (g 0.7) of the day's atmosphere as
+  // Bruneton inverted it (docs/physics.md, docs/validation.md): 3.4× at 0°,
+  // 0.55× at 10–15°, 1.3–2× at 42–90°.
+  const auto ratio = [&](double theta_deg) {
+    const double c = std::cos(theta_deg * kDeg);
+    return table(0, c) / cornette_shanks(c, 0.7);
+  };
+  EXPECT_NEAR(ratio(0.0), 3.4, 0.05);
+  for (double theta : {10.63, 12.86, 15.10}) EXPECT_NEAR(ratio(theta), 0.555, 0.025) << theta;
+  EXPECT_NEAR(ratio(41.93), 1.33, 0.03);
+  EXPECT_NEAR(ratio(75.47), 1.97, 0.04);
+  EXPECT_NEAR(ratio(90.0), 1.88, 0.04);
 }
 
 /// The Egbert file with one line replaced (0-based), written to a temporary file.
