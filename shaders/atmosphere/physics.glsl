@@ -183,22 +183,23 @@ real4 mie_phase(real c, real4 g1, real4 g2, real4 alpha) {
 #endif
 }
 
+/// One lane of tabulated_mie_phase: the samples at `at` and `at` + 1, f of the way.
+real tabulated_mie_sample(int at, real f) { return table_data[at] + f * (table_data[at + 1] - table_data[at]); }
+
 /// TabulatedPhase::operator() (atmosphere/tabulated_phase.cpp) for the
 /// wavelength group's 4 lanes: MIE_TABLE_SAMPLES samples per wavelength in
 /// TableData from MIE_TABLE, on a grid uniform in u = √((1 − c)/2), P linear
-/// in u between them.
+/// in u between them. The lanes are read one by one, no loop: NVIDIA refuses a
+/// double vector written at a variable index, and a buffer index that follows
+/// a loop's counter inside the callers' loops (tests/render/glsl_nvidia_rules_test.cpp).
 real4 tabulated_mie_phase(real c) {
   PRECISE real u = sqrt(max(real(0), real(0.5) - real(0.5) * c));
   PRECISE real x = min(u, real(1)) * real(MIE_TABLE_SAMPLES - 1);
   const int k = min(int(x), MIE_TABLE_SAMPLES - 2);
   const real f = x - real(k);
-  const int row = MIE_TABLE + wavelength_group * 4 * MIE_TABLE_SAMPLES + k;
-  real4 p;
-  for (int lane = 0; lane < 4; ++lane) {
-    const int at = row + lane * MIE_TABLE_SAMPLES;
-    p[lane] = table_data[at] + f * (table_data[at + 1] - table_data[at]);
-  }
-  return p;
+  const int at = MIE_TABLE + wavelength_group * 4 * MIE_TABLE_SAMPLES + k;
+  return real4(tabulated_mie_sample(at, f), tabulated_mie_sample(at + MIE_TABLE_SAMPLES, f),
+               tabulated_mie_sample(at + 2 * MIE_TABLE_SAMPLES, f), tabulated_mie_sample(at + 3 * MIE_TABLE_SAMPLES, f));
 }
 
 /// The model's Mie phase for the wavelength group being computed: mie_phase

@@ -45,6 +45,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -61,6 +62,8 @@
 #include "astro/sky_positions.h"
 #include "atmosphere/lut/cpu_precompute.h"
 #include "atmosphere/parameters.h"
+#include "atmosphere/phase_functions.h"
+#include "core/units.h"
 #include "render/gl/egl_context.h"
 #include "render/gl/shader_program.h"
 #include "render/lut/gpu_precompute.h"
@@ -224,6 +227,18 @@ struct DumpDirectory {
   }
 };
 
+/// A tabulated aerosol phase (MIE_PHASE 3): Cornette–Shanks every 5°.
+void with_tabulated_mie_phase(AtmosphereModel& m, PrecomputeOptions&) {
+  std::vector<double> angles;
+  std::vector<atmosphere::TabulatedPhase::Column> columns = {{550.0, {}}};
+  for (int a = 0; a <= 180; a += 5) {
+    angles.push_back(a);
+    columns[0].values.push_back(atmosphere::cornette_shanks(std::cos(a * core::kPi / 180.0), 0.7));
+  }
+  m.mie_phase.model = atmosphere::MiePhase::Model::Tabulated;
+  m.mie_phase.table = std::make_shared<const atmosphere::TabulatedPhase>(angles, columns, m.wavelengths_nm);
+}
+
 void precompute_every_variant(const gl::HeadlessContext& context) {
   struct Variant {
     const char* preset;
@@ -266,6 +281,8 @@ void precompute_every_variant(const gl::HeadlessContext& context) {
          o.series_tail = false;
        }},
       {"titan", GpuPrecision::fp64, {}, [](AtmosphereModel&, PrecomputeOptions& o) { o.max_orders = 1; }},
+      {"earth-advanced", GpuPrecision::fp64, {}, with_tabulated_mie_phase},
+      {"earth-advanced", GpuPrecision::fp32, {}, with_tabulated_mie_phase},
   };
   for (const Variant& v : variants) {
     atmosphere::LoadOptions load;
