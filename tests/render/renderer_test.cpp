@@ -660,6 +660,34 @@ TEST(RendererEclipse, LiveFramesNeverWaitForAShadow) {
 
 // ---------------------------------------------------------------- agreement
 
+/// The worst relative difference between a 48² fisheye image of `s` and the
+/// CPU's table queries, every `step` pixels above 5° (away from the horizon's
+/// steep gradient), and the pixels compared.
+std::pair<double, int> worst_against_queries(const std::vector<float>& image, const warp::FisheyeProjection& p,
+                                             const scene::Scene& s, const atmosphere::lut::TableQueries& queries,
+                                             int step) {
+  double worst = 0.0;
+  int compared = 0;
+  for (int y = 2; y < 48; y += step)
+    for (int x = 2; x < 48; x += step) {
+      const auto ray_cam = p.ray(x + 0.5, y + 0.5);
+      if (!ray_cam) continue;
+      const glm::dvec3 d = s.camera.orientation * *ray_cam;
+      if (d.z < std::cos(85.0 * kDeg)) continue;
+      const atmosphere::Spectrum expected =
+          queries.sky_radiance({s.camera.position_m.x, s.camera.position_m.y, s.camera.position_m.z}, {d.x, d.y, d.z},
+                               {s.sun.direction.x, s.sun.direction.y, s.sun.direction.z});
+      const Rgb got = pixel(image, 48, x, y);
+      const double values[3] = {got.r, got.g, got.b};
+      for (int c = 0; c < 3; ++c) {
+        const double e = expected[c] * s.sun.irradiance_W_m2_nm[c] * s.camera.exposure;
+        worst = std::max(worst, std::abs(values[c] - e) / e);
+      }
+      ++compared;
+    }
+  return {worst, compared};
+}
+
 TEST(RendererAccuracy, SkyPixelsMatchTheCpuTableQueries) {
   // Same tables, same queries: the GPU pass (float) against TableQueries::sky_radiance (double).
   RenderOptions options = direct_colour();
@@ -669,25 +697,7 @@ TEST(RendererAccuracy, SkyPixelsMatchTheCpuTableQueries) {
   const scene::Scene s = planet_scene("earth-advanced", 2.0, 50.0, sky_direction(60.0, 40.0));
   const warp::FisheyeProjection p(48, 48);  // the whole sky dome around the forward-looking camera's up
   const auto image = t.renderer.render_image(s, p);
-  double worst = 0.0;
-  int compared = 0;
-  for (int y = 2; y < 48; y += 5)
-    for (int x = 2; x < 48; x += 5) {
-      const auto ray_cam = p.ray(x + 0.5, y + 0.5);
-      if (!ray_cam) continue;
-      const glm::dvec3 d = s.camera.orientation * *ray_cam;
-      if (d.z < std::cos(85.0 * kDeg)) continue;  // sky above 5°: away from the horizon's steep gradient
-      const atmosphere::Spectrum expected =
-          tables.queries->sky_radiance({s.camera.position_m.x, s.camera.position_m.y, s.camera.position_m.z},
-                                       {d.x, d.y, d.z}, {s.sun.direction.x, s.sun.direction.y, s.sun.direction.z});
-      const Rgb got = pixel(image, 48, x, y);
-      const double values[3] = {got.r, got.g, got.b};
-      for (int c = 0; c < 3; ++c) {
-        const double e = expected[c] * s.sun.irradiance_W_m2_nm[c] * s.camera.exposure;
-        worst = std::max(worst, std::abs(values[c] - e) / e);
-      }
-      ++compared;
-    }
+  const auto [worst, compared] = worst_against_queries(image, p, s, *tables.queries, 5);
   EXPECT_GT(compared, 20);
   std::printf("GPU pass vs CPU table queries: worst relative difference %.2e over %d pixels\n", worst, compared);
   EXPECT_LT(worst, 5e-3) << "GPU atmosphere pass vs CPU table queries";
@@ -720,25 +730,7 @@ TEST(RendererAccuracy, ATabulatedPhaseRendersAsTheCpuTableQueriesReadIt) {
   s.bodies[0].atmosphere = scene::BodyAtmosphere{"inline", loaded};
   const warp::FisheyeProjection p(48, 48);
   const auto image = renderer.render_image(s, p);
-  double worst = 0.0;
-  int compared = 0;
-  for (int y = 2; y < 48; y += 3)
-    for (int x = 2; x < 48; x += 3) {
-      const auto ray_cam = p.ray(x + 0.5, y + 0.5);
-      if (!ray_cam) continue;
-      const glm::dvec3 d = s.camera.orientation * *ray_cam;
-      if (d.z < std::cos(85.0 * kDeg)) continue;
-      const atmosphere::Spectrum expected =
-          queries.sky_radiance({s.camera.position_m.x, s.camera.position_m.y, s.camera.position_m.z}, {d.x, d.y, d.z},
-                               {s.sun.direction.x, s.sun.direction.y, s.sun.direction.z});
-      const Rgb got = pixel(image, 48, x, y);
-      const double values[3] = {got.r, got.g, got.b};
-      for (int c = 0; c < 3; ++c) {
-        const double e = expected[c] * s.sun.irradiance_W_m2_nm[c] * s.camera.exposure;
-        worst = std::max(worst, std::abs(values[c] - e) / e);
-      }
-      ++compared;
-    }
+  const auto [worst, compared] = worst_against_queries(image, p, s, queries, 3);
   EXPECT_GT(compared, 60);
   std::printf("tabulated phase, GPU pass vs CPU table queries: worst relative difference %.2e over %d pixels\n", worst,
               compared);
