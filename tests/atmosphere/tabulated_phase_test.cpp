@@ -9,8 +9,10 @@
 #include <string>
 
 #include "atmosphere/aeronet_phase_file.h"
+#include "atmosphere/parameters.h"
 #include "atmosphere/phase_functions.h"
 #include "atmosphere/reference/random.h"
+#include "atmosphere/reference_data.h"
 #include "core/json_reader.h"
 #include "tests/atmosphere/test_util.h"
 
@@ -157,6 +159,51 @@ TEST(AeronetPhaseFile, ReadsEgbertsRetrievalsOfTheMeasuredSkysDay) {
   EXPECT_NEAR(ratio(41.93), 1.33, 0.03);
   EXPECT_NEAR(ratio(75.47), 1.97, 0.04);
   EXPECT_NEAR(ratio(90.0), 1.88, 0.04);
+}
+
+TEST(AeronetPhaseFile, TheMeasuredDaysAtmospheresHoldWhatItsFileAndTheTablesGive) {
+  // validate/data's variants of the Cornell day (docs/validation.md, "Better
+  // physics"), from their sources: the aerosol optical depth of the AERONET
+  // retrievals (means of tau440 and alpha440-870; extinction beta lambda^-alpha / H_M,
+  // beta = tau440 0.44^alpha, H_M 1.2 km, albedo 0.8), their phase function, and
+  // ozone sigma(233 K) times the U.S. Standard Atmosphere's peak density.
+  const AeronetPhaseFunctions a = read_aeronet_phase_functions(kEgbert);
+  double tau440 = 0.0, alpha = 0.0;
+  for (const auto& r : a.retrievals) {
+    tau440 += std::stod(r.diagnostics.at("tau440(measured)"));
+    alpha += std::stod(r.diagnostics.at("alpha440-870"));
+  }
+  tau440 /= static_cast<double>(a.retrievals.size());
+  alpha /= static_cast<double>(a.retrievals.size());
+  const double beta = tau440 * std::pow(0.44, alpha);
+  EXPECT_NEAR(beta, 0.05295, 1e-5);
+  const std::filesystem::path data = std::filesystem::path(ZENITH_SOURCE_DIR) / "validate/data";
+  double o3_peak_m3 = 0.0;
+  us_standard_1976_profile("o3", &o3_peak_m3);
+  for (const char* name : {"aeronet_aod", "aeronet", "aeronet_ozone", "ozone"}) {
+    SCOPED_TRACE(name);
+    const AtmosphereModel m =
+        load_atmosphere_file((data / (std::string("cornell_2013-05-27_") + name + ".json")).string()).model;
+    const bool aod = std::string(name) != "ozone", phase = aod && std::string(name) != "aeronet_aod";
+    const bool ozone = std::string(name).find("ozone") != std::string::npos;
+    const TabulatedPhase measured(a.angles_deg, a.mean_columns(), m.wavelengths_nm);
+    for (std::size_t i = 0; i < m.wavelength_count(); ++i) {
+      const double lambda_um = m.wavelengths_nm[i] / 1000.0;
+      if (aod) {
+        EXPECT_NEAR(m.mie_extinction_m1[i] / (beta * std::pow(lambda_um, -alpha) / 1200.0), 1.0, 1e-5);
+        EXPECT_NEAR(m.mie_scattering_m1[i] / m.mie_extinction_m1[i], 0.8, 1e-5);
+      }
+      EXPECT_EQ(m.mie_phase.model, phase ? MiePhase::Model::Tabulated : MiePhase::Model::CornetteShanks);
+      if (phase) {
+        for (double c : {1.0, 0.9, 0.0, -1.0}) EXPECT_NEAR(m.mie_phase(i, c) / measured(i, c), 1.0, 1e-12);
+      }
+      ASSERT_EQ(m.absorbers.size(), ozone ? 1u : 0u);
+      if (ozone) {
+        EXPECT_NEAR(m.absorbers[0].absorption_m1[i] / (ozone_cross_section_m2(m.wavelengths_nm[i], 233.0) * o3_peak_m3),
+                    1.0, 1e-4);
+      }
+    }
+  }
 }
 
 /// The Egbert file with one line replaced (0-based), written to a temporary file.
