@@ -301,16 +301,13 @@ MeasuredSkyScore score_measured_skies(const MeasuredSkies& skies, const CaptureS
     c.time = capture.time;
     c.sun_zenith_deg = capture.sun_zenith_deg;
     double d2 = 0.0, y2 = 0.0, rgb2 = 0.0, model_total = 0.0, measured_total = 0.0, y_measured = 0.0;
+    const atmosphere::Vec3 sun = geometry_of(capture).sun_direction();  // for the angle of each direction from it
     for (std::size_t i = 0; i < L.size(); ++i) {
       const MeasuredDirection& d = capture.directions[i];
       if (L[i].size() != skies.wavelengths_nm.size())
         throw std::invalid_argument(cat("the model gave ", L[i].size(), " wavelengths of ", skies.wavelengths_nm.size(),
                                         " for capture ", capture.time));
-      // The angle from the sun: cos γ = cos z☉ sin e + sin z☉ cos e cos(a − a☉).
-      const double zs = capture.sun_zenith_deg * core::kDeg, e = d.elevation_deg * core::kDeg;
-      const double cos_gamma =
-          std::cos(zs) * std::sin(e) +
-          std::sin(zs) * std::cos(e) * std::cos((d.azimuth_deg - capture.sun_azimuth_deg) * core::kDeg);
+      const double cos_gamma = glm::dot(atmosphere::view_vector(view_of(d)), sun);
       const double gamma_deg = std::acos(std::clamp(cos_gamma, -1.0, 1.0)) / core::kDeg;
       std::size_t band = 0;
       while (band + 1 < kBands && gamma_deg >= kSunAngleBandEdges_deg[band + 1]) ++band;
