@@ -68,6 +68,9 @@ void register_validate_measured(CLI::App& validate) {
   cmd->add_option("--sun-spectrum", args->validation.sun_spectrum,
                   "Extraterrestrial sun CSV (lambda_nm, irradiance_W_m2_nm at every measured wavelength; default: "
                   "ASTM G173 in the evaluation's 11.75 nm bins)");
+  cmd->add_option("--sun-distance-au", args->validation.sun_distance_au,
+                  "The Sun's distance at the captures for the day's sun [au, 0.983..1.017] (default: from the "
+                  "ephemeris for the compiled-in captures, 1 for --measurements)");
   cmd->add_option("--reference-samples", args->validation.reference_samples,
                   "Also check the tables against the reference solver with this many paths per wavelength (0: no)")
       ->check(CLI::Range(std::size_t{0}, std::size_t{1} << 24));

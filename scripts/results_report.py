@@ -397,18 +397,25 @@ class Report:
             a = aeronet[0]
             rows.insert(0, [f"**zenith, the aerosol AERONET measured that day and ozone ({a['tables']} tables)**",
                             f"**{num(a['spectral_rmse_mW_m2_sr_nm']):.2f}**"])
+            if a.get("days_sun_spectral_rmse_mW_m2_sr_nm"):
+                rows.insert(0, [f"**the same under the Sun of that day ({num(a['sun_distance_au']):.5f} au, "
+                                f"not the evaluation's 1 au)**",
+                                f"**{num(a['days_sun_spectral_rmse_mW_m2_sr_nm']):.2f}**"])
         rows += [[m, f"{v:.2f}"] for m, v in peers]
         self.add(table(["model", "total RMSE (mW m⁻² sr⁻¹ nm⁻¹)"], rows), "")
         if aeronet:
-            self.add("The first row: validate/data/cornell_2013-05-27_aeronet_ozone.json — the same atmosphere with "
-                     "the aerosol phase function and optical depth AERONET retrieved that day at Egbert and the U.S. "
-                     "Standard Atmosphere's ozone, nothing fitted to the captures "
-                     "([validation.md](validation.md#measured-skies)).", "")
+            self.add("The AERONET rows: validate/data/cornell_2013-05-27_aeronet_ozone.json — the same atmosphere "
+                     "with the aerosol phase function and optical depth AERONET retrieved that day at Egbert and the "
+                     "U.S. Standard Atmosphere's ozone, nothing fitted to the captures; the first lit by the Sun at "
+                     "its distance that day (ASTM G173 is at 1 au; the ephemeris), as zenith lights a dated sky, the "
+                     "second by the evaluation's sun like the peers ([validation.md](validation.md#measured-skies)).",
+                     "")
             self.provenance("measured_aeronet")
         self.add(f"Luminance RMSE {f1(num(r['luminance_rmse_cd_m2']))} cd m⁻², linear-sRGB chromaticity RMSE "
                  f"{g(num(r['chromaticity_rmse']))}. With the sun as the spectroradiometer sees it (ASTM G173 "
                  f"through a 3 nm slit at each measured wavelength instead of the evaluation's 11.75 nm bins, a change "
-                 f"of input that would help every model): {num(r['instrument_sun_spectral_rmse_mW_m2_sr_nm']):.2f}.",
+                 f"of input that would help every model, at the day's distance): "
+                 f"{num(r['instrument_sun_spectral_rmse_mW_m2_sr_nm']):.2f}.",
                  "")
         if r.get("reference_samples"):
             self.add(f"The tables against the reference solver at {r['reference_directions']} directions of capture "

@@ -1,6 +1,7 @@
 #include "validate/measured_skies.h"
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -107,9 +108,29 @@ MeasuredSkies load_measured_skies(const std::filesystem::path& radiance_csv, con
 }
 
 MeasuredSkies kider2014_cornell_skies() {
-  return parse_measured_skies(
+  MeasuredSkies skies = parse_measured_skies(
       compiled_in("data/kider2014_cornell_2013-05-27.csv"), "validate/data/kider2014_cornell_2013-05-27.csv",
       compiled_in("data/kider2014_cornell_2013-05-27_sun.csv"), "validate/data/kider2014_cornell_2013-05-27_sun.csv");
+  // The site and clock of the sun table's header; the height changes the distance by < 1e-9 au.
+  set_sun_distances(skies, astro::UtcTime{2013, 5, 27, 0, 0, 0.0}, -4.0, astro::Site{42.44337, -76.48163, 0.0});
+  return skies;
+}
+
+void set_sun_distances(MeasuredSkies& skies, const astro::UtcTime& day, double utc_offset_h, const astro::Site& site) {
+  for (MeasuredCapture& c : skies.captures) {
+    int hour = -1, minute = -1;
+    char colon = 0, rest = 0;
+    if (std::sscanf(c.time.c_str(), "%d%c%d%c", &hour, &colon, &minute, &rest) != 3 || colon != ':' || hour < 0 ||
+        hour > 23 || minute < 0 || minute > 59)
+      throw std::invalid_argument(cat(skies.source, ": capture \"", c.time,
+                                      "\" is not a local time hh:mm, so the Sun's distance then is unknown"));
+    astro::UtcTime local = day;
+    local.hour = hour;
+    local.minute = minute;
+    local.second = 0.0;
+    const astro::AstroTime utc = astro::AstroTime::from_utc(local).plus_seconds(-utc_offset_h * 3600.0);
+    c.sun_distance_au = astro::SkyPositions(utc, site).sun().distance_au;
+  }
 }
 
 double SolarSpectrum::at(double wavelength_nm) const {

@@ -9,6 +9,9 @@
 #include <string_view>
 #include <vector>
 
+#include "astro/civil_time.h"
+#include "astro/sky_positions.h"
+
 namespace zenith::validate {
 
 struct MeasuredDirection {
@@ -23,6 +26,10 @@ struct MeasuredCapture {
   double sun_zenith_deg = 0.0;
   double sun_azimuth_deg = 0.0;  ///< clockwise from north, as the evaluation uses it
   std::vector<MeasuredDirection> directions;
+  /// The Sun's distance from the site at the capture [au]. Extraterrestrial
+  /// spectra are given at 1 au; the sky that day had them × (1 au / distance)².
+  /// 1 where the files do not say on which day the capture was taken.
+  double sun_distance_au = 1.0;
 };
 
 struct MeasuredSkies {
@@ -42,8 +49,16 @@ MeasuredSkies parse_measured_skies(std::string_view radiance_csv, const std::str
                                    std::string_view sun_csv, const std::string& sun_name);
 /// The same from files; a file that cannot be read is named in the error.
 MeasuredSkies load_measured_skies(const std::filesystem::path& radiance_csv, const std::filesystem::path& sun_csv);
-/// Kider et al. 2014, Cornell, 2013-05-27: the 15 public captures, compiled in.
+/// Kider et al. 2014, Cornell, 2013-05-27: the 15 public captures, compiled in,
+/// with the Sun's distance at each (set_sun_distances: the site of the sun
+/// table's header, EDT = UTC − 4 h).
 MeasuredSkies kider2014_cornell_skies();
+
+/// Sets every capture's sun_distance_au from the ephemeris (astro/sky_positions.h,
+/// EPV00): the captures' times ("hh:mm", local) on `day` (its hour and minute
+/// ignored), `utc_offset_h` ahead of UTC, seen from `site`. Throws
+/// std::invalid_argument naming a capture whose time is not hh:mm.
+void set_sun_distances(MeasuredSkies& skies, const astro::UtcTime& day, double utc_offset_h, const astro::Site& site);
 
 /// The extraterrestrial sun of Bruneton 2017's evaluation: ASTM G173-03's
 /// ETR column averaged over 11.75 nm bins starting at 360 nm (compiled in).

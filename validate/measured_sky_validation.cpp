@@ -182,17 +182,19 @@ void write_csv(const fs::path& dir, const MeasuredSkyScore& s) {
 }
 
 /// One line of totals (and of the reference check where it ran), for scripts/results.
-void write_summary(const fs::path& file, const MeasuredSkyScore& s, const MeasuredSkyScore& instrument,
-                   const std::string& tables, std::size_t wavelengths, const std::optional<ReferenceCheck>& r,
-                   std::size_t reference_samples) {
+void write_summary(const fs::path& file, const MeasuredSkyScore& s, const MeasuredSkyScore& days_sun,
+                   const MeasuredSkyScore& instrument, double sun_distance_au, const std::string& tables,
+                   std::size_t wavelengths, const std::optional<ReferenceCheck>& r, std::size_t reference_samples) {
   std::ofstream out(file);
   out << "tables,wavelengths,captures,spectral_rmse_mW_m2_sr_nm,luminance_rmse_cd_m2,chromaticity_rmse,"
-         "instrument_sun_spectral_rmse_mW_m2_sr_nm,reference_"
-         "capture,"
+         "sun_distance_au,days_sun_spectral_rmse_mW_m2_sr_nm,days_sun_luminance_rmse_cd_m2,days_sun_chromaticity_"
+         "rmse,instrument_sun_spectral_rmse_mW_m2_sr_nm,reference_capture,"
          "reference_directions,reference_samples,tables_vs_reference_mW_m2_sr_nm,tables_vs_reference_percent,"
          "reference_standard_error_mW_m2_sr_nm,tables_vs_measured_mW_m2_sr_nm,reference_vs_measured_mW_m2_sr_nm\n";
-  out << fmt::format("{},{},{},{:.4f},{:.2f},{:.5f},{:.4f}", tables, wavelengths, s.captures.size(),
-                     s.spectral_rmse_W_m2_sr_nm * kMilli, s.luminance_rmse_cd_m2, s.chromaticity_rmse,
+  out << fmt::format("{},{},{},{:.4f},{:.2f},{:.5f},{:.6f},{:.4f},{:.2f},{:.5f},{:.4f}", tables, wavelengths,
+                     s.captures.size(), s.spectral_rmse_W_m2_sr_nm * kMilli, s.luminance_rmse_cd_m2,
+                     s.chromaticity_rmse, sun_distance_au, days_sun.spectral_rmse_W_m2_sr_nm * kMilli,
+                     days_sun.luminance_rmse_cd_m2, days_sun.chromaticity_rmse,
                      instrument.spectral_rmse_W_m2_sr_nm * kMilli);
   if (r)
     out << fmt::format(",{},{},{},{:.4f},{:.3f},{:.4f},{:.4f},{:.4f}\n", r->time, r->directions, reference_samples,
@@ -351,8 +353,15 @@ MeasuredSkyScore score_measured_skies(const MeasuredSkies& skies, const CaptureS
 void validate_measured(const MeasuredSkyOptions& o, const TablesFor& tables_for) {
   if (o.measurements.empty() != o.suns.empty())
     throw std::invalid_argument("--measurements and --suns go together: the radiance file and its captures' suns");
-  const MeasuredSkies skies =
+  MeasuredSkies skies =
       o.measurements.empty() ? kider2014_cornell_skies() : load_measured_skies(o.measurements, o.suns);
+  if (o.sun_distance_au != 0.0) {
+    // The Earth's orbit: perihelion 0.98329 au, aphelion 1.01671 au.
+    if (!(o.sun_distance_au >= 0.983 && o.sun_distance_au <= 1.017))
+      throw std::invalid_argument(cat("--sun-distance-au ", o.sun_distance_au,
+                                      ": the Sun's distance from the Earth is within [0.983, 1.017] au"));
+    for (MeasuredCapture& c : skies.captures) c.sun_distance_au = o.sun_distance_au;
+  }
   const atmosphere::LoadedAtmosphere loaded = cornell_or(o.atmosphere);
   const std::string atmosphere_name = o.atmosphere.empty() ? "validate/data/cornell_2013-05-27.json" : o.atmosphere;
   const std::vector<std::size_t> index = model_indices(skies, loaded.model, atmosphere_name);
@@ -379,17 +388,25 @@ void validate_measured(const MeasuredSkyOptions& o, const TablesFor& tables_for)
     for (const MeasuredDirection& d : c.directions) views.push_back(view_of(d));
     per_unit[c.time] = atmosphere::sample_radiance(queries, geometry_of(c), views);
   }
-  const auto tables_sky_under = [&](const std::vector<double>& sun_W_m2_nm) -> CaptureSky {
-    return [&, sun_W_m2_nm](const MeasuredCapture& c) {
+  // `sun_W_m2_nm` is at 1 au; `at_the_days_distance` scales it by (1 au / r)² with r each capture's.
+  const auto tables_sky_under = [&](const std::vector<double>& sun_W_m2_nm, bool at_the_days_distance) -> CaptureSky {
+    return [&, sun_W_m2_nm, at_the_days_distance](const MeasuredCapture& c) {
+      const double r_au = at_the_days_distance ? c.sun_distance_au : 1.0;
       std::vector<std::vector<double>> L;
-      for (const atmosphere::RadianceSample& r : per_unit.at(c.time))
+      for (const atmosphere::RadianceSample& r : per_unit.at(c.time)) {
         L.push_back(physical(r.radiance, index, sun_W_m2_nm));
+        for (double& l : L.back()) l /= r_au * r_au;
+      }
       return L;
     };
   };
-  const CaptureSky tables_sky = tables_sky_under(sun);
+  const CaptureSky tables_sky = tables_sky_under(sun, false);
   const MeasuredSkyScore s = score_measured_skies(skies, tables_sky);
-  const MeasuredSkyScore instrument = score_measured_skies(skies, tables_sky_under(instrument_sun));
+  const MeasuredSkyScore days_sun = score_measured_skies(skies, tables_sky_under(sun, true));
+  const MeasuredSkyScore instrument = score_measured_skies(skies, tables_sky_under(instrument_sun, true));
+  double sun_distance_au = 0.0;
+  for (const MeasuredCapture& c : skies.captures)
+    sun_distance_au += c.sun_distance_au / static_cast<double>(skies.captures.size());
 
   const std::string label = fmt::format("{} tables, {} wavelengths", o.tables, loaded.model.wavelengths_nm.size());
   fmt::print("zenith validate measured: {} ({} captures of {} directions, {} wavelengths {:.2f}..{:.2f} nm scored)\n",
@@ -412,7 +429,13 @@ void validate_measured(const MeasuredSkyOptions& o, const TablesFor& tables_for)
   for (const PeerScore& p : kPeerScores) fmt::print("  {:<42} {:>6.2f}\n", p.model, p.total_rmse_mW_m2_sr_nm);
   fmt::print("  {:<42} {:>6.2f}\n\n", "zenith (" + label + ")", s.spectral_rmse_W_m2_sr_nm * kMilli);
   fmt::print(
-      "with the sun as the spectroradiometer sees it (ASTM G173 through its 3 nm slit at each measured wavelength, "
+      "with the Sun at its distance on the captures' day ({:.5f} au; the evaluation's sun is at 1 au, the sky "
+      "that day had {:.4f} of it), as zenith lights a dated sky: spectral {:.2f} mW m-2 sr-1 nm-1, luminance "
+      "{:.0f} cd m-2, chromaticity {:.4f}\n",
+      sun_distance_au, 1.0 / (sun_distance_au * sun_distance_au), days_sun.spectral_rmse_W_m2_sr_nm * kMilli,
+      days_sun.luminance_rmse_cd_m2, days_sun.chromaticity_rmse);
+  fmt::print(
+      "and the sun as the spectroradiometer sees it (ASTM G173 through its 3 nm slit at each measured wavelength, "
       "not the evaluation's 11.75 nm bin from it; a change of input that would help every model): spectral {:.2f} "
       "mW m-2 sr-1 nm-1, luminance {:.0f} cd m-2, chromaticity {:.4f}\n\n",
       instrument.spectral_rmse_W_m2_sr_nm * kMilli, instrument.luminance_rmse_cd_m2, instrument.chromaticity_rmse);
@@ -440,8 +463,8 @@ void validate_measured(const MeasuredSkyOptions& o, const TablesFor& tables_for)
   const fs::path dir = o.out_dir;
   fs::create_directories(dir);
   write_csv(dir, s);
-  write_summary(dir / "measured_summary.csv", s, instrument, o.tables, loaded.model.wavelengths_nm.size(), reference,
-                o.reference_samples);
+  write_summary(dir / "measured_summary.csv", s, days_sun, instrument, sun_distance_au, o.tables,
+                loaded.model.wavelengths_nm.size(), reference, o.reference_samples);
   spdlog::info(
       "wrote {}/measured_summary.csv, measured_captures.csv, measured_spectral_ratio.csv, "
       "measured_sun_angles.csv, measured_directions.csv",

@@ -97,6 +97,10 @@ struct MeasuredSkyOptions {
   std::string suns;          ///< the captures' sun CSV, with `measurements`
   std::string sun_spectrum;  ///< extraterrestrial sun CSV (lambda_nm, irradiance_W_m2_nm); empty: ASTM G173 in
                              ///< the evaluation's bins (compiled in)
+  /// The Sun's distance at every capture [au], for the day's sun; 0: the
+  /// captures' own (the ephemeris for the compiled-in ones, 1 au for files).
+  /// Within the Earth's orbit, [0.983, 1.017].
+  double sun_distance_au = 0.0;
   std::string out_dir = "out/validate/measured";
   std::string tables = "paper";             ///< the table sizes' name, for the report
   std::size_t reference_samples = 0;        ///< paths per wavelength of the reference check; 0: no reference check

@@ -51,6 +51,36 @@ TEST(MeasuredSkies, TheCompiledInCapturesAreKidersFifteenWithTheirSuns) {
   EXPECT_DOUBLE_EQ(skies.captures.front().sun_azimuth_deg, 91.14246196);
 }
 
+TEST(MeasuredSkies, EachCaptureHasTheSunsDistanceOfThatDay) {
+  // The Astronomical Almanac's low-precision Sun: R = 1.00014 − 0.01671 cos g − 0.00014 cos 2g au with the mean
+  // anomaly g = 357.528° + 0.9856003° n, n days from J2000.0 (JD 2451545.0); EPV00 from the site within 1e-4 au.
+  const MeasuredSkies skies = kider2014_cornell_skies();
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const auto almanac_au = [&](double julian_date_utc) {
+    const double g = (357.528 + 0.9856003 * (julian_date_utc - 2451545.0)) * kDeg;
+    return 1.00014 - 0.01671 * std::cos(g) - 0.00014 * std::cos(2.0 * g);
+  };
+  // 2013-05-27 09:30 EDT is 13:30 UTC, JD 2456440.0625; 13:30 EDT four hours later.
+  EXPECT_NEAR(skies.captures.front().sun_distance_au, almanac_au(2456440.0625), 1e-4);
+  EXPECT_NEAR(skies.captures.back().sun_distance_au, almanac_au(2456440.0625 + 4.0 / 24.0), 1e-4);
+  // Late May the Earth recedes towards aphelion: dR/dt = 0.01671 sin g dg/dt, 1.76e-4 au a day; and as the Sun
+  // climbs from 48.94° to 21.78° from the zenith the site turns towards it by R_earth (cos 21.78° − cos 48.94°).
+  const double g = (357.528 + 0.9856003 * (2456440.0625 - 2451545.0)) * kDeg;
+  const double receding_au = 0.01671 * std::sin(g) * 0.9856003 * kDeg * 4.0 / 24.0;
+  const double turning_au = 6378.137 / 1.495978707e8 * (std::cos(21.78 * kDeg) - std::cos(48.94 * kDeg));
+  EXPECT_NEAR(skies.captures.back().sun_distance_au - skies.captures.front().sun_distance_au, receding_au - turning_au,
+              1e-6);
+
+  // A capture time that is no local time is refused, naming it.
+  MeasuredSkies odd = skies;
+  odd.captures[1].time = "9h45";
+  expect_refused(
+      [&] {
+        set_sun_distances(odd, astro::UtcTime{2013, 5, 27}, -4.0, astro::Site{42.4, -76.5, 0.0});
+      },
+      {"9h45", "hh:mm"});
+}
+
 TEST(MeasuredSkies, TheSunIsAstmG173AveragedOverTheEvaluationsBins) {
   const SolarSpectrum sun = astm_g173_extraterrestrial_sun();
   ASSERT_EQ(sun.wavelengths_nm.size(), 40u);
