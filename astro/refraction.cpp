@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "atmosphere/rayleigh.h"
 #include "core/units.h"
 
@@ -105,6 +107,18 @@ double ground_refractivity(const atmosphere::LoadedAtmosphere& loaded, double wa
   return std::sqrt(1.0 + g.refractivity_per_molecule_m3 * n0) - 1.0;  // n₀² − 1 = P N₀
 }
 
+std::optional<double> ducting_altitude_m(double ground_radius_m, double top_radius_m,
+                                         const atmosphere::DensityProfile& density, double ground_refractivity,
+                                         double observer_altitude_m) {
+  // n r with n = 1 + (n₀ − 1) ρ(r − R), differenced over the metre above (the air ends at the ground).
+  const auto n_r = [&](double r) { return (1.0 + ground_refractivity * density(r - ground_radius_m)) * r; };
+  for (double h = observer_altitude_m; h < top_radius_m - ground_radius_m; h += 50.0) {
+    const double r = ground_radius_m + h;
+    if (!(n_r(r + 1.0) - n_r(r) > 0.0)) return h;
+  }
+  return std::nullopt;
+}
+
 Refraction::Refraction(double ground_radius_m, double top_radius_m, const atmosphere::DensityProfile& density,
                        double ground_refractivity, double observer_altitude_m)
     : Refraction(ground_radius_m, top_radius_m, density, ground_refractivity, observer_altitude_m, true) {}
@@ -129,12 +143,11 @@ Refraction::Refraction(double ground_radius_m, double top_radius_m, const atmosp
     throw std::invalid_argument("refraction: observer altitude " + std::to_string(observer_altitude_m) +
                                 " m: must be in [0, the atmosphere's height)");
   // No ducting: n r must grow with r, or horizontal rays are trapped and the integral diverges.
-  for (double h = observer_altitude_m; h < top_radius_m_ - ground_radius_m_; h += 50.0) {
-    const double r = ground_radius_m_ + h;
-    const double d_nr = (refractivity_at(r + 1.0) + 1.0) * (r + 1.0) - (refractivity_at(r - 1.0) + 1.0) * (r - 1.0);
-    if (!(d_nr > 0.0))
-      throw std::invalid_argument("refraction: the gas is so dense that horizontal rays are trapped (d(nr)/dr <= 0)");
-  }
+  if (const auto duct_m =
+          ducting_altitude_m(ground_radius_m, top_radius_m, density, ground_refractivity, observer_altitude_m))
+    throw std::invalid_argument(
+        fmt::format("refraction: the gas is so dense that horizontal rays are trapped {:.2f} km up (d(nr)/dr <= 0)",
+                    *duct_m / 1000.0));
   if (!tabulate) return;
   table_rad_.resize(kTableSize);
   for (std::size_t i = 0; i < kTableSize; ++i) {

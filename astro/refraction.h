@@ -24,6 +24,7 @@
 // substitution r = r₀ + u² removes it (dr = 2u du), and the midpoint rule in u
 // (2048 intervals) converges to 1e-6 relative. R is tabulated once against the
 // apparent altitude and inverted for the lift of an object at a true altitude.
+#include <optional>
 #include <vector>
 
 #include "atmosphere/density_profile.h"
@@ -40,6 +41,14 @@ double ground_refractivity(const atmosphere::LoadedAtmosphere& loaded, double wa
 
 /// The ground number density N₀ [m⁻³] the same derivation finds.
 double ground_number_density_m3(const atmosphere::LoadedAtmosphere& loaded);
+
+/// The lowest altitude [m] from `observer_altitude_m` up where n r stops growing
+/// with r (d(nr)/dr ≤ 0, checked every 50 m): rays near the horizontal are
+/// trapped there and R(0) diverges — a duct, as in Venus' lowest 30 km. None
+/// for the Earth's and Mars' air (d(nr)/dr ≥ 0.97 at the ground).
+std::optional<double> ducting_altitude_m(double ground_radius_m, double top_radius_m,
+                                         const atmosphere::DensityProfile& density, double ground_refractivity,
+                                         double observer_altitude_m);
 
 class Refraction {
  public:

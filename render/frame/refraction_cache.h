@@ -17,8 +17,9 @@ class RefractionCache {
  public:
   /// The refraction of `air` (around a body of ground radius `air.loaded.model.ground_radius_m`)
   /// for a camera `altitude_m` above its ground, at 550 nm. Null where nothing
-  /// is refracted: the camera at or above the atmosphere's top, or a gas with no
-  /// refractivity (no Rayleigh scattering).
+  /// is refracted: the camera at or above the atmosphere's top, a gas with no
+  /// refractivity (no Rayleigh scattering), or one dense enough to trap
+  /// horizontal rays above the camera (astro::ducting_altitude_m; warned once).
   const astro::Refraction* get(const scene::BodyAtmosphere& air, double altitude_m);
 
  private:

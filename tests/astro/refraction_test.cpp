@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "astro/refraction.h"
 #include "atmosphere/constants.h"
@@ -137,6 +138,36 @@ TEST(Refraction, TheClosedFormInversionIsTheRootOfTheTablesOwnFunction) {
       ASSERT_GE(got, h_true) << "refraction lifts: " << h_true;
     }
     EXPECT_LT(worst, 1e-14) << "ground refractivity " << r.ground_refractivity();
+  }
+}
+
+TEST(Refraction, ADuctIsWhereNrStopsGrowingWithHeight) {
+  // n r = (1 + ε e^(−h/H)) (R + h) grows with h while ε e^(−h/H) ((R + h)/H − 1) < 1: in an exponential
+  // atmosphere a duct reaches from the ground up to the root h* of ε e^(−h/H) ((R + h)/H − 1) = 1.
+  const double radius = 6.371e6, height = 8000.0;
+  const auto profile = atmosphere::DensityProfile::exponential(height);
+  const auto duct = [&](double epsilon, double observer_m) {
+    return ducting_altitude_m(radius, radius + 150000.0, profile, epsilon, observer_m);
+  };
+  EXPECT_FALSE(duct(2.9e-4, 0.0));  // the Earth's air: ε (R/H − 1) = 0.23
+  const double epsilon = 2e-3;      // 1.59 at the ground
+  ASSERT_TRUE(duct(epsilon, 0.0));
+  EXPECT_EQ(*duct(epsilon, 0.0), 0.0);
+  double lo = 0.0, hi = 20000.0;  // h* by bisection
+  while (hi - lo > 1e-3) {
+    const double mid = 0.5 * (lo + hi);
+    (epsilon * std::exp(-mid / height) * ((radius + mid) / height - 1.0) > 1.0 ? lo : hi) = mid;
+  }
+  const double top_m = lo;
+  EXPECT_NEAR(top_m, height * std::log(epsilon * (radius / height - 1.0)), 50.0);  // ~3.7 km
+  ASSERT_TRUE(duct(epsilon, top_m - 10.0));
+  EXPECT_EQ(*duct(epsilon, top_m - 10.0), top_m - 10.0);  // inside it, at the observer
+  EXPECT_FALSE(duct(epsilon, top_m + 10.0));              // above it, rays escape
+  try {
+    Refraction(radius, radius + 150000.0, profile, epsilon);
+    ADD_FAILURE() << "a duct at the observer was not refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("trapped 0.00 km up"), std::string::npos) << e.what();
   }
 }
 

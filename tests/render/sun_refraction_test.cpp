@@ -161,5 +161,20 @@ TEST_F(SunRefractionFrames, FromAboveTheAirTheDiscIsWhereItIs) {
   EXPECT_NEAR(m.vertical_rad / m.horizontal_rad, 1.0, 0.01);
 }
 
+TEST_F(SunRefractionFrames, AirThatTrapsHorizontalRaysKeepsTheDiscWhereItIs) {
+  // earth-advanced's refractivity (2.9e-4) over a 1 km scale height: ε R / H = 1.8 > 1, so n r falls with height
+  // from the ground up (astro::ducting_altitude_m) and R(0) diverges. Such air's refraction is not drawn (one
+  // warning): the frame renders and the disc stays at its geometric place.
+  scene::Scene s = scene(2.0, 2.3);
+  atmosphere::AtmosphereModel& model = s.bodies[0].atmosphere->loaded.model;
+  model.rayleigh_density = atmosphere::DensityProfile::exponential(1000.0);
+  ASSERT_TRUE(astro::ducting_altitude_m(model.ground_radius_m, model.top_radius_m, model.rayleigh_density,
+                                        astro::ground_refractivity(s.bodies[0].atmosphere->loaded), kCameraAltitudeM));
+  const DiscMoments m = moments(s);
+  ASSERT_GT(m.weight, 0.0);
+  EXPECT_NEAR(m.altitude_rad, 2.0 * kDeg, 0.1 * kPixelRad);
+  EXPECT_NEAR(m.vertical_rad / m.horizontal_rad, 1.0, 0.01);
+}
+
 }  // namespace
 }  // namespace zenith::render
