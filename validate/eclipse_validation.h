@@ -33,7 +33,8 @@ namespace zenith::validate {
 
 struct EclipseValidationOptions {
   std::string out_dir = "out/validate/eclipse";
-  std::string tables = "small";  ///< the sizes of the tables the eclipsed sky is read from
+  std::string tables =
+      "paper";  ///< the sizes of the tables the eclipsed sky is read from (small ones are too coarse inside the umbra)
   std::size_t samples = 400000;  ///< paths per wavelength in totality (a tenth outside it)
   bool no_plots = false;
 };
