@@ -231,7 +231,8 @@ lut::TableSizes sizes_by_name(const std::string& name) {
 }
 
 struct Variant {
-  Variant(int orders_, bool trapezoid_ = false, int ray_samples_ = 50, int sphere_ = 16, bool direct_ = false,
+  Variant(int orders_, bool trapezoid_ = false, int ray_samples_ = 50,
+          int sphere_ = lut::PrecomputeOptions{}.sphere_zenith_samples, bool direct_ = false,
           int coarse_stride_ = lut::PrecomputeOptions{}.coarse_ray_stride)
       : orders(orders_),
         trapezoid(trapezoid_),
@@ -270,9 +271,9 @@ Setting make_setting(const std::string& sizes, const Variant& v, bool gpu) {
   s.label = fmt::format("{} {} order{}", sizes, v.orders, v.orders == 1 ? "" : "s");
   if (v.trapezoid) s.label = fmt::format("{} trapezoid", s.label);
   if (v.ray_samples != 50) s.label = fmt::format("{} {} ray samples", s.label, v.ray_samples);
-  if (v.sphere != 16) s.label = fmt::format("{} sphere {}", s.label, v.sphere);
-  if (v.direct_density) s.label = fmt::format("{} direct density", s.label);
   const lut::PrecomputeOptions defaults;
+  if (v.sphere != defaults.sphere_zenith_samples) s.label = fmt::format("{} sphere {}", s.label, v.sphere);
+  if (v.direct_density) s.label = fmt::format("{} direct density", s.label);
   if (v.coarse_stride != defaults.coarse_ray_stride)
     s.label = fmt::format("{} coarse rays every {}", s.label, v.coarse_stride);
   if (v.series_tail != defaults.series_tail && v.orders >= 3)
@@ -330,12 +331,14 @@ std::vector<Setting> settings_for(const Options& o) {
   add("paper", Variant{16}.without_tail(), true);  // the series summed to 16 orders: what the tail stands for
   add("paper-mu-s-x2", {lut::kDefaultScatteringOrders}, true);
   add("paper-nu-x2", {lut::kDefaultScatteringOrders}, true);
-  add("paper", {lut::kDefaultScatteringOrders, false, 50, 16, false, 1}, true);  // every sample at every order
+  const int sphere = lut::PrecomputeOptions{}.sphere_zenith_samples;
+  add("paper", {lut::kDefaultScatteringOrders, false, 50, sphere, false, 1}, true);  // every sample at every order
   add("paper", {4, false, 50, 8}, true);
+  add("paper", {4, false, 50, 16}, true);
   add("paper", {4, false, 50, 32}, true);
   // The scattering density of the method before spherical harmonics: the per-texel sphere sum.
-  add("small", {4, false, 50, 16, true}, true);
-  add("paper", {4, false, 50, 16, true}, true);
+  add("small", {4, false, 50, sphere, true}, true);
+  add("paper", {4, false, 50, sphere, true}, true);
   // CPU: the same tables (same errors) at other precompute times.
   add("small", {4}, false);
   add("medium", {4}, false);

@@ -32,6 +32,15 @@ import sys
 # ---------------------------------------------------------------- machine
 
 
+def default_sphere_nodes(rows):
+    """The sphere-integral nodes of the project default's row of lut_accuracy.csv (the precompute's default,
+    atmosphere/lut/precompute_options.h), which settings not named otherwise use."""
+    for r in rows:
+        if r.get("project_default") == "1":
+            return r["sphere_samples"]
+    return "24"
+
+
 def run_text(args):
     try:
         return subprocess.run(args, capture_output=True, text=True, check=False).stdout.strip()
@@ -439,7 +448,7 @@ class Report:
     def eclipse(self):
         self.add("### The sky of a total solar eclipse (reference solver and tables)", "")
         self.add("The zenith at NASA's point of greatest eclipse of 2017-08-21 from first to fourth contact, with "
-                 "and without the Moon in front of the limb-darkened disc: the path tracer's, and the small tables' "
+                 "and without the Moon in front of the limb-darkened disc: the path tracer's, and the paper tables' "
                  "with the Moon's shadow (astro/eclipsed_sky.h, the sum the renderer draws), against measured "
                  "totality skies. Method: [validation.md](validation.md#eclipses).", "")
         self.provenance("eclipse")
@@ -532,7 +541,7 @@ class Report:
         sizes = dict((r["sizes"], r["table_sizes"]) for r in rows)
         self.add("Table sizes: " + ", ".join(f"{k} `{v}`" for k, v in sizes.items()) +
                  " (transmittance μ×r, irradiance μs×r, scattering r×μ×μs×ν). Unless the name says otherwise: "
-                 "log-linear quadrature with 50 samples along rays, 16 sphere nodes.", "")
+                 f"log-linear quadrature with 50 samples along rays, {default_sphere_nodes(rows)} sphere nodes.", "")
         presets = []
         for r in rows:
             if r["preset"] != "all" and r["preset"] not in presets:
@@ -602,14 +611,15 @@ class Report:
                              r["peak_memory_mb"]] for r in proj]), "")
 
         self.add("### Precompute time per table size, CPU and GPU", "")
-        self.add("From the run-time-against-error measurement above (4 orders, log-linear, 50 ray samples, 16 sphere "
-                 "nodes; GPU: a fresh headless EGL context per precompute, shader compilation included; CPU: every "
-                 "core).", "")
         rows = self.measured("pareto", "lut_accuracy.csv")
+        sphere = default_sphere_nodes(rows or [])
+        self.add(f"From the run-time-against-error measurement above (4 orders, log-linear, 50 ray samples, {sphere} "
+                 "sphere nodes; GPU: a fresh headless EGL context per precompute, shader compilation included; CPU: "
+                 "every core).", "")
         if rows:
             presets = [p for p in dict.fromkeys(r["preset"] for r in rows) if p != "all"]
             plain = [r for r in rows if r["orders"] == "4" and r["quadrature"] == "log-linear"
-                     and r["ray_samples"] == "50" and r["sphere_samples"] == "16" and r["preset"] != "all"]
+                     and r["ray_samples"] == "50" and r["sphere_samples"] == sphere and r["preset"] != "all"]
             sizes = list(dict.fromkeys(r["sizes"] for r in plain))
             t = {(r["sizes"], r["preset"], r["backend"]): r for r in plain}
             out = []
