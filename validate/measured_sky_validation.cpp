@@ -243,7 +243,7 @@ bool write_plots(const fs::path& dir, const MeasuredSkyScore& s, const std::stri
      << fmt::format("{:.2f}", s.spectral_rmse_W_m2_sr_nm * kMilli) << "', \\\n"
      << "     " << kPeerScores[0].total_rmse_mW_m2_sr_nm << " with lines dt 3 lw 2 title 'Bruneton 2017, total "
      << kPeerScores[0].total_rmse_mW_m2_sr_nm << "'\n"
-     << "set output 'measured_spectral_ratio.png'\nunset xtics\nset xtics\n"
+     << "set output 'measured_spectral_ratio.png'\nset xtics norotate autofreq\n"
      << "set title 'zenith over measured, summed over every direction and capture'\n"
      << "set ylabel 'model / measured'\nset xlabel 'wavelength [nm]'\nset yrange [0.7:1.3]\n"
      << "plot 'measured_spectral_ratio.csv' skip 1 using 1:2 with linespoints lw 2 pt 7 title 'zenith', 1 with lines "
@@ -254,7 +254,7 @@ bool write_plots(const fs::path& dir, const MeasuredSkyScore& s, const std::stri
      << "set xrange [0:180]\nset xtics 0,10,180\n"
      << "plot 'measured_sun_angles.csv' skip 1 using (($1 + $2) / 2):($3 > 0 ? $4 : 1/0):1:2 with xerrorbars lw 2 "
         "pt 7 title 'zenith', 1 with lines dt 2 title ''\n"
-     << "unset xtics\nset xtics\n"
+     << "set xtics norotate autofreq\n"
      << "set datafile separator whitespace\n"
      << "set output 'measured_rings.png'\n"
      << "set title 'Luminance along each ring of directions, capture " << rings_capture
