@@ -44,8 +44,9 @@ double ground_number_density_m3(const atmosphere::LoadedAtmosphere& loaded);
 
 /// The lowest altitude [m] from `observer_altitude_m` up where n r stops growing
 /// with r (d(nr)/dr ≤ 0, checked every 50 m): rays near the horizontal are
-/// trapped there and R(0) diverges — a duct, as in Venus' lowest 30 km. None
-/// for the Earth's and Mars' air (d(nr)/dr ≥ 0.97 at the ground).
+/// trapped there and R(0) diverges — a duct, as in Venus' dense lower air.
+/// None for the Earth's presets (d(nr)/dr = 1 − (n₀ − 1)(R/H − 1) = 0.77 at the
+/// ground) or Mars' (0.999).
 std::optional<double> ducting_altitude_m(double ground_radius_m, double top_radius_m,
                                          const atmosphere::DensityProfile& density, double ground_refractivity,
                                          double observer_altitude_m);

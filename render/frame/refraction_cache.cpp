@@ -25,8 +25,8 @@ const astro::Refraction* RefractionCache::get(const scene::BodyAtmosphere& air, 
     return nullptr;  // no Rayleigh scattering to derive a refractivity from: straight rays
   }
   if (!(refractivity > 0.0)) return nullptr;
-  // A gas so dense that n r falls with height above the camera traps the rays near the horizontal (a duct:
-  // Venus' lowest 30 km): the refraction of a ray from below the duct's reach diverges, which a table of R
+  // A gas so dense that n r falls with height above the camera traps the rays near the horizontal (a duct, as
+  // in Venus' dense lower air): the refraction of a ray from below the duct's reach diverges, which a table of R
   // against the apparent altitude cannot hold. Such air keeps straight rays, said once per air and altitude.
   if (const auto duct_m = astro::ducting_altitude_m(model.ground_radius_m, model.top_radius_m, model.rayleigh_density,
                                                     refractivity, altitude_m)) {
