@@ -69,21 +69,6 @@ double number(JsonReader& r, const std::string& key, const Range& range) {
   return r.number(key, range.lo, range.hi, range.unit);
 }
 
-/// The wavelength a key of a spectral object names ("550", "442.25"), in nm;
-/// anything else fails naming `key`.
-double wavelength_key(JsonReader& r, const std::string& key, const std::string& text) {
-  double wl = 0.0;
-  std::size_t used = 0;
-  try {
-    wl = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !(wl >= 100.0 && wl <= 5000.0))
-    r.fail(key, "wavelength key \"" + text + "\" must be a number of nanometres in [100, 5000]");
-  return wl;
-}
-
 /// A spectral quantity: either one number for all wavelengths, or an object
 /// {"680": v, "550": v, ...} sampled at wavelengths in nm, interpolated
 /// linearly to the working wavelengths (nearest sample outside, with a warning).
@@ -99,7 +84,7 @@ SpectralTable spectral_table(JsonReader& r, const std::string& key, const Range&
     r.fail(key, "must be a number or an object {\"<wavelength nm>\": value, ...}, got " + v.dump());
   std::vector<std::pair<double, double>> samples;
   for (const auto& [wl_text, x] : v.items())
-    samples.emplace_back(wavelength_key(r, key, wl_text), check_value(x, "[\"" + wl_text + "\"] "));
+    samples.emplace_back(config::wavelength_key(r, key, wl_text), check_value(x, "[\"" + wl_text + "\"] "));
   std::sort(samples.begin(), samples.end());
   for (std::size_t i = 1; i < samples.size(); ++i)
     if (samples[i].first == samples[i - 1].first) r.fail(key, "wavelength listed twice");
@@ -200,7 +185,7 @@ std::shared_ptr<const TabulatedPhase> read_phase_table(JsonReader& r, const Cont
     r.fail("values", "must be an object {\"<wavelength nm>\": [one value per angle], ...}");
   std::vector<TabulatedPhase::Column> columns;
   for (const auto& [wl_text, column] : values.items()) {
-    const double wl = wavelength_key(r, "values", wl_text);
+    const double wl = config::wavelength_key(r, "values", wl_text);
     const std::string at = "[\"" + wl_text + "\"]";
     if (!column.is_array() || column.size() != angles_deg.size())
       r.fail("values", at + " must be an array of " + std::to_string(angles_deg.size()) +

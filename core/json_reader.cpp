@@ -134,6 +134,19 @@ std::string brief(const nlohmann::json& value) {
   return text;
 }
 
+double wavelength_key(const JsonReader& r, const std::string& key, const std::string& text) {
+  double nm = 0.0;
+  std::size_t used = 0;
+  try {
+    nm = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !(nm >= 100.0 && nm <= 5000.0))
+    r.fail(key, "wavelength key \"" + text + "\" must be a number of nanometres in [100, 5000]");
+  return nm;
+}
+
 void reject_unknown_keys(const JsonReader& r, const nlohmann::json& object,
                          std::initializer_list<std::string_view> allowed, std::string_view docs_page) {
   if (!object.is_object()) return;

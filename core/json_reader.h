@@ -88,6 +88,10 @@ using core::cat;
 /// A JSON value for a message, shortened to 80 characters when long (an inline object).
 std::string brief(const nlohmann::json& value);
 
+/// The wavelength a key of a spectral object names ("550", "442.25") in nm,
+/// within [100, 5000]; anything else fails through r.fail(key, ...).
+double wavelength_key(const JsonReader& r, const std::string& key, const std::string& text);
+
 /// Rejects, through r.fail(), the first key of `object` not in `allowed`, listing
 /// those that are and pointing to `docs_page` ("docs/scenes.md"). Objects that
 /// are not objects are left to JsonReader's constructor to report.

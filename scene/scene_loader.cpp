@@ -525,15 +525,7 @@ std::vector<double> read_irradiance(JsonReader& r, double distance_au, const Con
   // Samples at wavelengths, interpolated linearly; not scaled by the distance.
   std::vector<std::pair<double, double>> samples;
   for (const auto& [text, x] : v.items()) {
-    double nm = 0.0;
-    std::size_t used = 0;
-    try {
-      nm = std::stod(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != text.size() || !(nm >= 100.0 && nm <= 5000.0))
-      r.fail("irradiance", cat("wavelength key \"", text, "\" must be a number of nanometres in [100, 5000]"));
+    const double nm = config::wavelength_key(r, "irradiance", text);
     if (!x.is_number() || !(x.get<double>() >= kIrradiance.lo && x.get<double>() <= kIrradiance.hi))
       r.fail(cat("irradiance/", text),
              cat("= ", brief(x), ": ", JsonReader::range_text(kIrradiance.lo, kIrradiance.hi, kIrradiance.unit)));
