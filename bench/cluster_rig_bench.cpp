@@ -165,12 +165,6 @@ std::int64_t now_ns() {
       .count();
 }
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size() - 1) + 0.5))];
-}
-
 struct Row {
   std::string schedule, case_name, node;
   std::uint64_t presented = 0, expected = 0, missing = 0, over_2t = 0, over_100ms = 0;
@@ -263,12 +257,12 @@ std::vector<Row> run_case(const Options& o, const std::string& schedule, const s
   const std::vector<double> moments = zenith::testing::moment_spreads_ms(all);
   for (Row& r : rows) {
     r.spread_max_ms = spreads.empty() ? 0.0 : *std::max_element(spreads.begin(), spreads.end());
-    r.spread_p99_ms = percentile(spreads, 0.99);
-    r.spread_p50_ms = percentile(spreads, 0.5);
+    r.spread_p99_ms = zenith::testing::percentile(spreads, 0.99);
+    r.spread_p50_ms = zenith::testing::percentile(spreads, 0.5);
     r.swaps_apart =
         static_cast<std::uint64_t>(std::count_if(spreads.begin(), spreads.end(), [](double ms) { return ms > 1.0; }));
     r.moment_max_ms = moments.empty() ? 0.0 : *std::max_element(moments.begin(), moments.end());
-    r.moment_p50_ms = percentile(moments, 0.5);
+    r.moment_p50_ms = zenith::testing::percentile(moments, 0.5);
     r.moments_apart =
         static_cast<std::uint64_t>(std::count_if(moments.begin(), moments.end(), [](double ms) { return ms > 2.0; }));
   }

@@ -35,6 +35,7 @@
 #include "tests/cluster/check_output.h"
 #include "tests/rig/network_rig.h"
 #include "tests/rig/rig_cluster.h"
+#include "tests/rig/wake_probe.h"
 
 namespace zenith::testing {
 namespace {
@@ -74,23 +75,43 @@ void expect_every_frame_on_time(const RigCluster& cluster, std::uint64_t last, s
 }
 
 /// Both nodes present each frame at its moment, within 1 ms of each other for
-/// nine frames in ten (the others: this shared machine's stalls) — where the
-/// kernel lets them present real-time (docs/cluster.md, "Presenting on time");
-/// a node it refused says so in its log, and then this is not checked.
-void expect_presents_together(const RigCluster& cluster) {
+/// nine frames in ten (the others: this shared machine's stalls), where the
+/// kernel lets them present real-time (docs/cluster.md, "Presenting on time";
+/// a node it refused says so in its log, and then the presents are not
+/// checked). How close they can be is also the machine's: `probe`, which ran
+/// through the show, measures how late this machine wakes a real-time thread
+/// (0.04–0.1 ms at the 90th percentile on this VM, 1 ms and more on a
+/// noisy shared one); where that is over 0.25 ms, the bound is four times it
+/// — two such wake-ups, and the present's work after each. Their clocks are
+/// checked either way, apart from the machine: the moments the nodes had for
+/// a frame agree within 0.5 ms nine times in ten (0.01–0.03 ms on this VM).
+void expect_presents_together(const RigCluster& cluster, const WakeProbe& probe) {
+  std::vector<std::vector<NodePresent>> presents;
+  for (int k = 0; k < cluster.setup().nodes; ++k) presents.push_back(cluster.presents(k));
+  const std::vector<double> spreads = swap_spreads_ms(presents);
+  const std::vector<double> moments = moment_spreads_ms(presents);
+  ASSERT_GT(spreads.size(), 100u);
+  ASSERT_GT(moments.size(), 100u);
+  const double probe_p90_ms = percentile(probe.lateness_ms(), 0.9);
+  std::printf(
+      "presents %.3f / %.3f / %.3f ms apart (median, p90, largest), moments %.3f / %.3f / %.3f ms; "
+      "a real-time wake-up here %.3f / %.3f ms late (median, p90; %zu probes)\n",
+      percentile(spreads, 0.5), percentile(spreads, 0.9), percentile(spreads, 1.0), percentile(moments, 0.5),
+      percentile(moments, 0.9), percentile(moments, 1.0), percentile(probe.lateness_ms(), 0.5), probe_p90_ms,
+      probe.lateness_ms().size());
+  EXPECT_LE(percentile(moments, 0.9), 0.5) << "ms between the nodes' moments of one frame, 90th percentile";
   for (int k = 0; k < cluster.setup().nodes; ++k) {
     if (read_text(cluster.log(RigCluster::node_name(k))).find("presents run at normal priority") != std::string::npos) {
       std::printf("presents not checked: node %d may not present real-time here\n", k);
       return;
     }
   }
-  std::vector<std::vector<NodePresent>> presents;
-  for (int k = 0; k < cluster.setup().nodes; ++k) presents.push_back(cluster.presents(k));
-  std::vector<double> spreads = swap_spreads_ms(presents);
-  ASSERT_GT(spreads.size(), 100u);
-  const auto p90 = spreads.begin() + static_cast<std::ptrdiff_t>(spreads.size() * 9 / 10);
-  std::nth_element(spreads.begin(), p90, spreads.end());
-  EXPECT_LE(*p90, 1.0) << "ms between the nodes' presents of one frame, 90th percentile";
+  if (!probe.realtime()) {
+    std::printf("presents not checked: the kernel refused the probe real-time\n");
+    return;
+  }
+  const double bound_ms = std::max(1.0, 4.0 * probe_p90_ms);
+  EXPECT_LE(percentile(spreads, 0.9), bound_ms) << "ms between the nodes' presents of one frame, 90th percentile";
 }
 
 class NetworkRigTest : public ::testing::Test {
@@ -142,9 +163,11 @@ TEST_F(NetworkRigTest, FivePercentLossOnOneLinkStallsNoNode) {
   ASSERT_TRUE(cluster.wait_until_warmed_up(240s)) << "no scheduled frames; see " << cluster.log("master");
   rig.set_loss("n1", 5.0);
   const std::int64_t from = now_ns();
+  WakeProbe probe;
   finish(cluster);
+  probe.stop();
   expect_every_frame_on_time(cluster, 150, from);
-  expect_presents_together(cluster);
+  expect_presents_together(cluster, probe);
 }
 
 // Latency with jitter on every link (the delaying relay: the kernel has no

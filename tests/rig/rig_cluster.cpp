@@ -250,6 +250,14 @@ std::vector<double> swap_spreads_ms(const std::vector<std::vector<NodePresent>>&
       nodes, [](const NodePresent& p) { return p.presented_ns; }, [](const NodePresent&) { return true; });
 }
 
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  const double rank = std::clamp(p, 0.0, 1.0) * static_cast<double>(values.size() - 1) + 0.5;
+  const auto at = values.begin() + static_cast<std::ptrdiff_t>(rank);
+  std::nth_element(values.begin(), at, values.end());
+  return *at;
+}
+
 std::vector<double> moment_spreads_ms(const std::vector<std::vector<NodePresent>>& nodes) {
   return spreads_ms(
       nodes, [](const NodePresent& p) { return p.asked_ns; }, [](const NodePresent& p) { return p.scheduled; });

@@ -87,6 +87,9 @@ std::vector<double> swap_spreads_ms(const std::vector<std::vector<NodePresent>>&
 /// error, apart from how promptly each node then presented.
 std::vector<double> moment_spreads_ms(const std::vector<std::vector<NodePresent>>& nodes);
 
+/// The `p` quantile of `values` (0: the smallest, 1: the largest; the nearest rank); 0 for none.
+double percentile(std::vector<double> values, double p);
+
 class RigCluster {
  public:
   RigCluster(NetworkRig& rig, RigClusterSetup setup);
