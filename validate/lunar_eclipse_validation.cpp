@@ -10,6 +10,7 @@
 #include <string>
 
 #include "astro/civil_time.h"
+#include "astro/danjon_scale.h"
 #include "astro/lunar_eclipse.h"
 #include "astro/moon_photometry.h"
 #include "astro/sky_positions.h"
@@ -92,31 +93,41 @@ std::vector<ValidationCheck> lunar_eclipse_checks(const fs::path& out_dir, bool 
   // The drop at mid-totality, measured by photometry against the same Moon outside the shadow. Eclipses of
   // like depth differ by 1–2 mag with the stratosphere's aerosol and the clouds along the limb (Keen 1983,
   // Science 222, 1011); the model has neither clouds nor volcanic aerosol, and all three were in quiet
-  // years: within 1 mag.
+  // years: within 1 mag. Beside each, the observers' Danjon class and the one the model implies
+  // (astro/danjon_scale.h): theirs moved by the model's error in brightness.
   const struct {
     AstroTime guess;
     double measured, error;
     const char* source;
+    double danjon, danjon_error;
+    const char* danjon_source;
   } drops[] = {
-      {utc(2003, 5, 16, 3, 40, 0.0), 10.73, 0.07, "Georgia Journal of Science 62(2), art. 9 (photoelectric)"},
-      {utc(2004, 10, 28, 3, 4, 0.0), 10.61, 0.15, "Georgia Journal of Science 62(2), art. 9 (photoelectric)"},
+      {utc(2003, 5, 16, 3, 40, 0.0), 10.73, 0.07, "Georgia Journal of Science 62(2), art. 9 (photoelectric)", 1.5, 0.5,
+       "most reports to Sky & Telescope: between 1 and 2; \"The Dark of an Eclipsed Moon\", 2003"},
+      {utc(2004, 10, 28, 3, 4, 0.0), 10.61, 0.15, "Georgia Journal of Science 62(2), art. 9 (photoelectric)", 2.4, 0.5,
+       "P. Harrington at mid-eclipse, Oakdale NY; philharrington.net/ec04.htm"},
       {utc(2022, 11, 8, 10, 59, 0.0), 10.78, 0.03,
-       "E. Schmidt, -13.09 to -2.31 mvis at air mass 1 (forum.meteoros.de, t=61057)"},
+       "E. Schmidt, -13.09 to -2.31 mvis at air mass 1 (forum.meteoros.de, t=61057)", 2.4, 0.2,
+       "H. C. Vital, from the Moon's magnitude in images; geocities.ws/lunissolar2003/Nov08.htm"},
   };
   for (const auto& d : drops) {
     const AstroTime mid = mid_eclipse(d.guess);
     const MoonInShadow moon(air, mid);
     const double model = moon.drop_v_mag(mid);
+    const double implied = astro::implied_danjon_class(d.danjon, d.measured, model);
     const astro::UtcTime t = mid.calendar_utc();
     fmt::print(
         "  {:04d}-{:02d}-{:02d} mid-totality {:02d}:{:02d} UTC, the Moon's centre {:.0f} km from the axis: "
-        "{:.2f} mag (measured {:.2f} ± {:.2f})\n",
+        "{:.2f} mag (measured {:.2f} ± {:.2f})\n    Danjon L observed {:.1f} ± {:.1f} ({}); the model implies "
+        "L {:.1f} (nearest class {}: {})\n",
         t.year, t.month, t.day, t.hour, t.minute, astro::lunar_eclipse_geometry(mid).axis_distance_m / 1e3, model,
-        d.measured, d.error);
+        d.measured, d.error, d.danjon, d.danjon_error, d.danjon_source, implied, astro::nearest_danjon_class(implied),
+        astro::danjon_description(implied));
     checks.push_back(
         {fmt::format("lunar {:04d}-{:02d}-{:02d}: the drop at mid-totality within 1 mag", t.year, t.month, t.day),
          d.source, std::abs(model - d.measured) <= 1.0,
-         fmt::format("{:.2f} mag against {:.2f} ± {:.2f} ({:+.2f})", model, d.measured, d.error, model - d.measured)});
+         fmt::format("{:.2f} mag against {:.2f} ± {:.2f} ({:+.2f}); Danjon L {:.1f} implied, {:.1f} ± {:.1f} observed",
+                     model, d.measured, d.error, model - d.measured, implied, d.danjon, d.danjon_error)});
   }
 
   // 2019-01-21 through totality (SSP-3, Johnson V): −3.18 at 04:43, −2.04 at 05:13:30, −2.70 at 05:31 UTC.

@@ -5,7 +5,8 @@
 // face of uniform albedo, the Kurucz sun in the V band) against photometry of
 // real eclipses, each with its source and tolerance:
 //   * the drop at mid-totality of 2003-05-16, 2004-10-28 and 2022-11-08,
-//     within a magnitude;
+//     within a magnitude, each with the Danjon class observers gave it and
+//     the one the model implies (astro/danjon_scale.h);
 //   * the light curve of 2019-01-21 through totality (V photometry), each
 //     measured change within half a magnitude;
 //   * the umbra's edge beyond the solid planet's, as crater timings find it;

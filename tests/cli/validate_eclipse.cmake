@@ -24,6 +24,13 @@ foreach(needle "C2 2017-08-21T18:24:0" "totality 16" "Dandekar & Turtle 1971" "t
        "22 checks, 0 outside their tolerance")
   expect_mentions("${stdout}" "${needle}" "the report")
 endforeach()
+# The Danjon class the model implies for 2022-11-08: the observers' 2.4 moved by 0.6 a magnitude of the
+# model's error at mid-totality (astro/danjon_scale.h; 10.59 against 10.78 mag: 2.5).
+string(REGEX MATCH "Danjon L observed 2\\.4 ± 0\\.2 \\(H\\. C\\. Vital[^)]*\\); the model implies L ([0-9]\\.[0-9])"
+       danjon "${stdout}")
+if(NOT danjon OR CMAKE_MATCH_1 LESS 2.2 OR CMAKE_MATCH_1 GREATER 2.8)
+  message(FATAL_ERROR "validate eclipse: no Danjon class for 2022-11-08 within [2.2, 2.8] (\"${danjon}\"):\n${stdout}")
+endif()
 expect_files("${out}" "validate eclipse" eclipse_zenith.csv eclipse.gp lunar_eclipse_2019.csv lunar_eclipse.gp)
 expect_gnuplot_pngs("${out}" eclipse_zenith.png eclipse_totality.png lunar_eclipse_2019.png)
 file(STRINGS "${out}/eclipse_zenith.csv" rows)
