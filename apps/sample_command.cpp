@@ -15,6 +15,7 @@
 #include "astro/solar_eclipse.h"
 #include "atmosphere/named_inputs.h"
 #include "core/json_reader.h"
+#include "image/colour.h"
 #include "render/lut/table_provider.h"
 
 namespace zenith::app {
@@ -28,7 +29,7 @@ struct SampleArgs {
   std::uint64_t seed = 1;
   std::size_t samples = 4096;
   int orders = atmosphere::lut::kDefaultScatteringOrders;
-  bool cpu = false;
+  bool cpu = false, colour = false;
   unsigned threads = 0;
 };
 
@@ -93,6 +94,14 @@ void run_sample(const SampleArgs& a) {
   r.geometry.sun_azimuth_deg = a.sun_azimuth_deg;
   r.sun_angular_radius_deg = a.sun_radius_deg;
   if (!a.eclipse_at.empty()) place_eclipse(a, loaded.model, r);
+  if (a.colour) {
+    if (a.quantity != "radiance")
+      throw std::invalid_argument("--colour is the colour of the sky's radiance; it does not apply to --quantity " +
+                                  a.quantity);
+    if (const std::string why = image::colour_spectrum_problem(loaded.model.wavelengths_nm); !why.empty())
+      throw ConfigError(a.atmosphere, "wavelengths_nm", "--colour: " + why);
+    r.colour = true;
+  }
   r.seed = a.seed;
   r.directions = a.directions_file.empty() ? grid_directions(a.grid.empty() ? "10x4" : a.grid)
                                            : read_directions(a.directions_file);
@@ -163,6 +172,9 @@ void register_sample_command(CLI::App& app) {
                   "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "
                   "small, large")
       ->check(CLI::IsMember(atmosphere::table_size_names()));
+  cmd->add_flag("--colour", args->colour,
+                "Radiance: add each direction's colour under the Kurucz sun — CIE 1931 x, y, correlated colour "
+                "temperature CCT_K and Duv (the atmosphere needs at least 16 wavelengths spanning 400-700 nm)");
   cmd->add_flag("--cpu", args->cpu, "Precompute tables on the CPU");
   cmd->add_option("--cache", args->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
   cmd->add_option("--threads", args->threads, "CPU threads (default: all)");

@@ -1,16 +1,19 @@
 #include "apps/sampling.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "astro/eclipsed_sky.h"
 #include "astro/moon_shadow.h"
 #include "astro/solar_eclipse.h"
 #include "atmosphere/constants.h"
+#include "atmosphere/photometry.h"
 #include "atmosphere/reference/geometry.h"
 #include "atmosphere/reference/optical_depth.h"
 #include "atmosphere/reference/path_tracer.h"
 #include "core/progress_bar.h"
 #include "core/units.h"
+#include "image/colour.h"
 #include "scene/sun_disc.h"
 
 namespace zenith::app {
@@ -81,7 +84,20 @@ std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequ
       samples.push_back({r.directions[i], e.mean, e.standard_error});
     }
   }
-  return radiance_csv(model, samples);
+  atmosphere::ExtraColumns colour;
+  if (r.colour) {
+    // The colour the sky has under the Kurucz sun (the CSV's spectral radiance columns).
+    colour.names = {"x", "y", "CCT_K", "Duv"};
+    for (const RadianceSample& s : samples) {
+      std::vector<double> spectral;
+      for (std::size_t i = 0; i < model.wavelengths_nm.size(); ++i)
+        spectral.push_back(std::max(0.0, s.radiance[i]) * solar_irradiance_W_m2_nm(model.wavelengths_nm[i]));
+      const image::Chromaticity c = image::spectrum_chromaticity(model.wavelengths_nm, spectral);
+      const image::ColourTemperature t = image::correlated_colour_temperature(c);
+      colour.rows.push_back({c.x, c.y, t.kelvin, t.duv});
+    }
+  }
+  return radiance_csv(model, samples, colour);
 }
 
 std::string sample_transmittance_csv(const AtmosphereModel& model, const SamplingRequest& r) {

@@ -1,6 +1,7 @@
 #include "atmosphere/sky_sampling.h"
 
 #include <sstream>
+#include <stdexcept>
 
 #include "atmosphere/constants.h"
 #include "atmosphere/photometry.h"
@@ -27,7 +28,15 @@ std::vector<RadianceSample> sample_radiance(const lut::TableQueries& tables, con
   return out;
 }
 
-std::string radiance_csv(const AtmosphereModel& model, const std::vector<RadianceSample>& samples) {
+std::string radiance_csv(const AtmosphereModel& model, const std::vector<RadianceSample>& samples,
+                         const ExtraColumns& extra) {
+  if (!extra.rows.empty() && extra.rows.size() != samples.size())
+    throw std::invalid_argument("radiance CSV: " + std::to_string(extra.rows.size()) + " rows of extra columns for " +
+                                std::to_string(samples.size()) + " samples");
+  for (const std::vector<double>& row : extra.rows)
+    if (row.size() != extra.names.size())
+      throw std::invalid_argument("radiance CSV: an extra row of " + std::to_string(row.size()) + " values for " +
+                                  std::to_string(extra.names.size()) + " columns");
   std::ostringstream csv;
   csv.precision(9);
   const auto& wl = model.wavelengths_nm;
@@ -37,10 +46,12 @@ std::string radiance_csv(const AtmosphereModel& model, const std::vector<Radianc
   for (double w : wl) csv << ",L_rel_" << w << "nm_per_sr";
   for (double w : wl) csv << ",L_" << w << "nm_W_m2_sr_nm";
   csv << ",Y_cd_m2";
+  for (const std::string& name : extra.names) csv << ',' << name;
   if (with_errors)
     for (double w : wl) csv << ",se_rel_" << w << "nm_per_sr";
   csv << '\n';
-  for (const RadianceSample& s : samples) {
+  for (std::size_t row = 0; row < samples.size(); ++row) {
+    const RadianceSample& s = samples[row];
     csv << s.direction.zenith_deg << ',' << s.direction.azimuth_deg;
     for (double v : s.radiance) csv << ',' << v;
     double y = 0.0;
@@ -50,6 +61,8 @@ std::string radiance_csv(const AtmosphereModel& model, const std::vector<Radianc
       y += weights[i] * spectral;
     }
     csv << ',' << y;
+    if (!extra.rows.empty())
+      for (double v : extra.rows[row]) csv << ',' << v;
     if (with_errors)
       for (double v : s.standard_error) csv << ',' << v;
     csv << '\n';

@@ -38,10 +38,20 @@ struct RadianceSample {
 std::vector<RadianceSample> sample_radiance(const lut::TableQueries& tables, const SkyGeometry& geometry,
                                             const std::vector<ViewDirection>& directions);
 
+/// Columns a caller adds after the radiance_csv's own: one name each, and per
+/// sample one value each (rows: as many as samples, or none).
+struct ExtraColumns {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+};
+
 /// CSV: zenith_deg, azimuth_deg, radiance per unit solar irradiance per
 /// wavelength, spectral radiance for the Kurucz sun at 1 AU per wavelength,
-/// luminance Y [cd m^-2] (docs/physics.md, "Photometry"), and for the
-/// reference method the standard errors.
-std::string radiance_csv(const AtmosphereModel& model, const std::vector<RadianceSample>& samples);
+/// luminance Y [cd m^-2] (docs/physics.md, "Photometry"), `extra`'s columns,
+/// and for the reference method the standard errors. Throws
+/// std::invalid_argument when `extra` has rows but not one per sample, or a
+/// row not one value per name.
+std::string radiance_csv(const AtmosphereModel& model, const std::vector<RadianceSample>& samples,
+                         const ExtraColumns& extra = {});
 
 }  // namespace zenith::atmosphere

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <sstream>
@@ -226,6 +227,95 @@ std::vector<std::array<double, 3>> rgb_to_spectral_weights(std::span<const doubl
       weights[i] = {1.0, 0.0, 0.0};
   }
   return weights;
+}
+
+namespace {
+
+/// CIE 1960 UCS (u, v) of a chromaticity.
+std::array<double, 2> uv_1960(Chromaticity c) {
+  const double d = -2.0 * c.x + 12.0 * c.y + 3.0;
+  return {4.0 * c.x / d, 6.0 * c.y / d};
+}
+
+/// The chromaticity of a Planckian radiator at `kelvin` through the colour
+/// matching functions above, 360–830 nm every nm.
+Chromaticity planckian(double kelvin) {
+  constexpr double c2_m_K = 1.438777e-2;  // second radiation constant h c / k (CODATA 2018)
+  dvec3 xyz(0.0);
+  for (int nm = 360; nm <= 830; ++nm) {
+    const double lambda_m = nm * 1e-9;
+    const double b = 1.0 / (std::pow(lambda_m, 5) * std::expm1(c2_m_K / (lambda_m * kelvin)));
+    xyz += cie1931_xyz_bar(nm) * b;
+  }
+  const double sum = xyz.x + xyz.y + xyz.z;
+  return {xyz.x / sum, xyz.y / sum};
+}
+
+}  // namespace
+
+Chromaticity spectrum_chromaticity(std::span<const double> wavelengths_nm, std::span<const double> spectrum) {
+  spectral_to_rgb_weights(wavelengths_nm, ColourMapping::cie1931);  // the same checks of the wavelengths
+  if (spectrum.size() != wavelengths_nm.size())
+    throw std::invalid_argument("chromaticity: " + std::to_string(spectrum.size()) + " values for " +
+                                std::to_string(wavelengths_nm.size()) + " wavelengths " + describe(wavelengths_nm));
+  const std::vector<double> widths = bin_widths_nm(wavelengths_nm);
+  dvec3 xyz(0.0);
+  for (std::size_t i = 0; i < spectrum.size(); ++i) {
+    if (!std::isfinite(spectrum[i]) || spectrum[i] < 0.0)
+      throw std::invalid_argument("chromaticity: the value at " + std::to_string(wavelengths_nm[i]) + " nm is " +
+                                  std::to_string(spectrum[i]) + " (must be finite and not negative)");
+    xyz += cie1931_xyz_bar(wavelengths_nm[i]) * (spectrum[i] * widths[i]);
+  }
+  const double sum = xyz.x + xyz.y + xyz.z;
+  if (!(sum > 0.0)) throw std::invalid_argument("chromaticity: the spectrum holds no light");
+  return {xyz.x / sum, xyz.y / sum};
+}
+
+std::string colour_spectrum_problem(std::span<const double> wavelengths_nm) {
+  if (wavelengths_nm.empty()) return "no wavelengths";
+  const auto [lo, hi] = std::minmax_element(wavelengths_nm.begin(), wavelengths_nm.end());
+  if (wavelengths_nm.size() >= 16 && *lo <= 400.0 && *hi >= 700.0) return {};
+  std::ostringstream why;
+  why << "a spectrum's colour needs at least 16 wavelengths from 400 nm or below to 700 nm or above; these are "
+      << wavelengths_nm.size() << ", " << *lo << "–" << *hi << " nm";
+  return why.str();
+}
+
+ColourTemperature correlated_colour_temperature(Chromaticity c) {
+  if (!(std::isfinite(c.x) && std::isfinite(c.y) && c.x > 0.0 && c.y > 0.0 && c.x + c.y < 1.0))
+    throw std::invalid_argument("colour temperature: (" + std::to_string(c.x) + ", " + std::to_string(c.y) +
+                                ") is not a chromaticity");
+  const std::array<double, 2> p = uv_1960(c);
+  const auto distance = [&](double log_kelvin) {
+    const std::array<double, 2> q = uv_1960(planckian(std::exp(log_kelvin)));
+    return std::hypot(p[0] - q[0], p[1] - q[1]);
+  };
+  // A scan of the locus in ln T, then golden section around the nearest node.
+  const double lo = std::log(1000.0), hi = std::log(1e6);
+  constexpr int kNodes = 200;
+  int best = 0;
+  double best_distance = 1e300;
+  for (int k = 0; k <= kNodes; ++k) {
+    const double d = distance(lo + (hi - lo) * k / kNodes);
+    if (d < best_distance) best_distance = d, best = k;
+  }
+  double a = lo + (hi - lo) * std::max(best - 1, 0) / kNodes, b = lo + (hi - lo) * std::min(best + 1, kNodes) / kNodes;
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  while (b - a > 1e-7) {
+    const double m1 = b - phi * (b - a), m2 = a + phi * (b - a);
+    if (distance(m1) < distance(m2))
+      b = m2;
+    else
+      a = m1;
+  }
+  double kelvin = std::exp(0.5 * (a + b));
+  // Nearest at the search's hot end: the point lies beyond the locus' blue end, the chromaticity of
+  // Planck's law as T → ∞ (Rayleigh–Jeans, B ∝ λ⁻⁴), which 10⁶ K is within 2e-4 in (u, v) of.
+  if (kelvin > 0.99e6) kelvin = std::numeric_limits<double>::infinity();
+  const std::array<double, 2> q = uv_1960(planckian(std::isinf(kelvin) ? 1e12 : kelvin));
+  // Above the locus (v larger, toward green) is positive Duv.
+  const double duv = std::copysign(std::hypot(p[0] - q[0], p[1] - q[1]), p[1] - q[1]);
+  return {kelvin, duv};
 }
 
 }  // namespace zenith::image

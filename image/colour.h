@@ -40,4 +40,41 @@ std::vector<std::array<double, 3>> spectral_to_rgb_weights(std::span<const doubl
 std::vector<std::array<double, 3>> rgb_to_spectral_weights(std::span<const double> wavelengths_nm,
                                                            ColourMapping mapping);
 
+/// CIE 1931 chromaticity.
+struct Chromaticity {
+  double x = 0.0, y = 0.0;
+};
+
+/// The chromaticity of a spectrum sampled at `wavelengths_nm` (any unit of
+/// spectral radiance; its absolute colour, no adaptation):
+///   (X, Y, Z) = Σ_i S_i · (x̄, ȳ, z̄)(λ_i) · Δλ_i,   x = X / (X + Y + Z),  y = Y / (X + Y + Z),
+/// with the cie1931 mapping's colour matching functions and midpoint bins.
+/// Meaningful only where the wavelengths span the visible range densely
+/// (colour_spectrum_problem). Throws std::invalid_argument for wavelengths
+/// spectral_to_rgb_weights refuses, a spectrum not one value per wavelength,
+/// a negative or non-finite value, or no light (X + Y + Z = 0).
+Chromaticity spectrum_chromaticity(std::span<const double> wavelengths_nm, std::span<const double> spectrum);
+
+/// Why `wavelengths_nm` cannot give a spectrum's colour, or empty if they
+/// can: at least 16 wavelengths, from 400 nm or below to 700 nm or above
+/// (where a flat spectrum comes out white within 3 %, docs/colour.md).
+std::string colour_spectrum_problem(std::span<const double> wavelengths_nm);
+
+/// The correlated colour temperature of a chromaticity (CIE 15): the
+/// temperature of the Planckian radiator whose chromaticity is nearest in the
+/// CIE 1960 (u, v) plane, u = 4x / (−2x + 12y + 3), v = 6y / (−2x + 12y + 3);
+/// and Duv, that distance, positive above the locus (toward green). The
+/// locus is Planck's law, B(λ, T) ∝ λ⁻⁵ / (exp(c₂ / λT) − 1) with
+/// c₂ = 1.438777e-2 m K, through the same colour matching functions (360–830
+/// nm every nm), searched over 1 000 K – 1 000 000 K; a chromaticity beyond
+/// the locus' blue end (bluer than any Planckian radiator, nearest to its
+/// T → ∞ limit) has kelvin = +∞, Duv its distance from that end. CIE 15
+/// calls a CCT meaningful within |Duv| ≤ 0.05. Throws std::invalid_argument
+/// for (x, y) outside the chromaticity triangle x, y > 0, x + y < 1.
+struct ColourTemperature {
+  double kelvin = 0.0;
+  double duv = 0.0;
+};
+ColourTemperature correlated_colour_temperature(Chromaticity c);
+
 }  // namespace zenith::image

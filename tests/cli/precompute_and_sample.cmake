@@ -36,6 +36,37 @@ foreach(method lut reference)
   endif()
 endforeach()
 
+# The sky's colour (--colour): the earth-advanced preset at 16 wavelengths, 380-755 nm; the blue zenith with the
+# sun 30 degrees from it lies between 10 000 and 20 000 K (13 400 K with these tables, 12 500 K with the paper
+# tables and the sun 61 degrees up, docs/rendering.md "Eclipses").
+file(READ "${SOURCE_DIR}/configs/atmospheres/earth-advanced.json" earth)
+string(JSON earth SET "${earth}" wavelengths_nm "[380, 405, 430, 455, 480, 505, 530, 555, 580, 605, 630, 655, 680, 705, 730, 755]")
+file(WRITE "${WORK_DIR}/earth-16.json" "${earth}")
+execute_process(COMMAND ${ZENITH} sample --atmosphere "${WORK_DIR}/earth-16.json" --tables small --orders 2 --cache "${cache}"
+                        --sun-zenith-deg 30 --grid 1x1 --colour
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(REGEX MATCH ",Y_cd_m2,x,y,CCT_K,Duv
+0,0,[^
+]*,([0-9.]+),(-?[0-9.e-]+)
+" row "${out}")
+if(NOT rc EQUAL 0 OR NOT row OR CMAKE_MATCH_1 LESS 10000 OR CMAKE_MATCH_1 GREATER 20000)
+  message(FATAL_ERROR "sample --colour: no zenith CCT within 10 000-20 000 K (${rc}):\n${out}\n${err}")
+endif()
+# Three wavelengths make no colour; a transmittance has none.
+execute_process(COMMAND ${ZENITH} sample --atmosphere mars --tables small --cpu --orders 2 --cache "${cache}" --colour
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${err}" "wavelengths_nm: --colour: a spectrum's colour needs at least 16 wavelengths" pos)
+if(rc EQUAL 0 OR pos EQUAL -1)
+  message(FATAL_ERROR "sample --colour with 3 wavelengths not refused (${rc}): ${err}")
+endif()
+execute_process(COMMAND ${ZENITH} sample --atmosphere "${WORK_DIR}/earth-16.json" --quantity transmittance --colour
+                        --cache "${cache}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${err}" "does not apply to --quantity transmittance" pos)
+if(rc EQUAL 0 OR pos EQUAL -1)
+  message(FATAL_ERROR "sample --colour --quantity transmittance not refused (${rc}): ${err}")
+endif()
+
 # A malformed directions file is rejected naming the file and the line.
 file(WRITE "${WORK_DIR}/bad-directions.csv" "0,0\n200,0\n")
 execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --directions "${WORK_DIR}/bad-directions.csv"

@@ -180,5 +180,87 @@ TEST(Colour, NamesRoundTripAndUnknownNamesAreListed) {
   }
 }
 
+/// Planck's law at `kelvin` sampled at `wavelengths_nm` (arbitrary scale).
+std::vector<double> planck(const std::vector<double>& wavelengths_nm, double kelvin) {
+  std::vector<double> b;
+  for (double nm : wavelengths_nm) {
+    const double m = nm * 1e-9;
+    b.push_back(1e-30 / (std::pow(m, 5) * std::expm1(1.438777e-2 / (m * kelvin))));
+  }
+  return b;
+}
+
+TEST(Chromaticity, AFlatSpectrumIsTheEqualEnergyWhite) {
+  const std::vector<double> nm = even_wavelengths(64);
+  const Chromaticity c = spectrum_chromaticity(nm, std::vector<double>(nm.size(), 2.5));
+  EXPECT_NEAR(c.x, 1.0 / 3.0, 0.001);  // 0.3331, 0.3336
+  EXPECT_NEAR(c.y, 1.0 / 3.0, 0.001);
+}
+
+TEST(Chromaticity, ThePublishedWhitesHaveTheirColourTemperatures) {
+  // CIE 15: D65 (0.3127, 0.3290) has a CCT of 6504 K, illuminant A (0.44757, 0.40745) 2856 K, both on or
+  // near the Planckian locus (D65 0.0032 above it). The colour matching functions are Wyman et al.'s fit,
+  // not the tables: measured 6499 K (Duv 0.0031) and 2829 K (−0.0005).
+  const ColourTemperature d65 = correlated_colour_temperature({0.3127, 0.3290});
+  EXPECT_NEAR(d65.kelvin, 6504.0, 20.0);
+  EXPECT_NEAR(d65.duv, 0.0032, 0.0005);
+  const ColourTemperature a = correlated_colour_temperature({0.44757, 0.40745});
+  EXPECT_NEAR(a.kelvin, 2856.0, 35.0);
+  EXPECT_NEAR(a.duv, 0.0, 0.001);
+}
+
+TEST(Chromaticity, APlanckSpectrumAt31WavelengthsGivesBackItsTemperature) {
+  const std::vector<double> nm = even_wavelengths(31);
+  // The 31-point midpoint quadrature: +0.1 % at 2 856 K, +0.4 % at 11 000 K, +0.9 % at 20 000 K.
+  for (double kelvin : {2000.0, 2856.0, 6500.0, 9000.0, 11000.0, 20000.0}) {
+    const ColourTemperature t = correlated_colour_temperature(spectrum_chromaticity(nm, planck(nm, kelvin)));
+    EXPECT_NEAR(t.kelvin, kelvin, (kelvin > 12000.0 ? 0.015 : 0.006) * kelvin) << kelvin << " K";
+    EXPECT_LT(std::abs(t.duv), 0.002) << kelvin << " K";
+  }
+  // Bluer is hotter: more light at 440 nm than a 9 000 K radiator's, relative to 680 nm.
+  std::vector<double> bluer = planck(nm, 9000.0);
+  for (std::size_t i = 0; i < nm.size(); ++i) bluer[i] *= std::pow(550.0 / nm[i], 1.0);
+  EXPECT_GT(correlated_colour_temperature(spectrum_chromaticity(nm, bluer)).kelvin, 11000.0);
+}
+
+TEST(Chromaticity, BluerThanAnyPlanckianRadiatorIsInfinitelyHot) {
+  const std::vector<double> nm = even_wavelengths(31);
+  // λ⁻⁴ is Planck's law as T → ∞ (Rayleigh–Jeans): the locus' blue end itself.
+  std::vector<double> rayleigh_jeans, bluer;
+  for (double l : nm) {
+    rayleigh_jeans.push_back(std::pow(l / 550.0, -4.0));
+    bluer.push_back(std::pow(l / 550.0, -6.0));
+  }
+  const ColourTemperature end = correlated_colour_temperature(spectrum_chromaticity(nm, rayleigh_jeans));
+  EXPECT_TRUE(std::isinf(end.kelvin)) << end.kelvin;
+  EXPECT_LT(std::abs(end.duv), 0.001);
+  const ColourTemperature beyond = correlated_colour_temperature(spectrum_chromaticity(nm, bluer));
+  EXPECT_TRUE(std::isinf(beyond.kelvin)) << beyond.kelvin;
+  EXPECT_GT(std::abs(beyond.duv), 0.005);
+  // 200 000 K is still on the locus, and found — within a mired (10⁶ / K): there the locus is so short
+  // that the 31-point quadrature's error moves the temperature by 14 % (5.0 against 4.4 mired).
+  const double found = correlated_colour_temperature(spectrum_chromaticity(nm, planck(nm, 2e5))).kelvin;
+  EXPECT_NEAR(1e6 / found, 1e6 / 2e5, 1.0) << found;
+}
+
+TEST(Chromaticity, SaysWhichWavelengthsCannotCarryAColourAndRefusesBadSpectra) {
+  const std::vector<double> three = {680.0, 550.0, 440.0};
+  const std::string why = colour_spectrum_problem(three);
+  EXPECT_NE(why.find("at least 16 wavelengths"), std::string::npos) << why;
+  EXPECT_NE(why.find("440–680 nm"), std::string::npos) << why;
+  EXPECT_TRUE(colour_spectrum_problem(even_wavelengths(16, 380.0, 755.0)).empty());
+  EXPECT_FALSE(colour_spectrum_problem(even_wavelengths(16, 420.0, 755.0)).empty());
+  EXPECT_FALSE(colour_spectrum_problem(even_wavelengths(15, 380.0, 780.0)).empty());
+
+  const std::vector<double> nm = even_wavelengths(16);
+  EXPECT_THROW(spectrum_chromaticity(nm, std::vector<double>(15, 1.0)), std::invalid_argument);
+  std::vector<double> negative(16, 1.0);
+  negative[3] = -0.5;
+  EXPECT_THROW(spectrum_chromaticity(nm, negative), std::invalid_argument);
+  EXPECT_THROW(spectrum_chromaticity(nm, std::vector<double>(16, 0.0)), std::invalid_argument);
+  EXPECT_THROW(correlated_colour_temperature({0.7, 0.5}), std::invalid_argument);
+  EXPECT_THROW(correlated_colour_temperature({std::nan(""), 0.3}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace zenith::image
