@@ -68,7 +68,7 @@ std::pair<double, double> legendre_k1_k2(Phase phase) {
 
 MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQueries& tables,
                        const atmosphere::AtmosphereModel& model, const glm::dvec3& camera_m,
-                       const MoonShadowOptions& options)
+                       const MoonShadowOptions& options, std::stop_token stop)
     : geometry_(g), options_(options), wavelengths_(model.wavelengths_nm.size()) {
   if (!finite(g.moon_centre_m) || !finite(g.sun_direction) || !finite(camera_m))
     throw std::invalid_argument("MoonShadow: the Moon's centre, the Sun's direction and the camera must be finite");
@@ -105,7 +105,7 @@ MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQue
   set_frame(camera_m);
   axis_zenith_0_rad_ = axis_zenith_rad(g);
   fill_profile();
-  fill_field(tables, model);
+  fill_field(tables, model, stop);
 }
 
 void MoonShadow::set_frame(const glm::dvec3& camera_m) {
@@ -136,23 +136,25 @@ void MoonShadow::fill_profile() {
   }
 }
 
-void MoonShadow::fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model) {
+void MoonShadow::fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
+                            const std::stop_token& stop) {
   // Beyond the penumbra's edge V̄ = V = 1.
   field_end_m_ = moon_distance_0_m_ * std::tan(profile_end_rad_);
   // The once-scattered light does not depend on V̄ (only on V): summed once,
   // and each later pass adds to it only the multiply scattered light under
   // the V̄ before.
-  const std::vector<double> once = light_sums(tables, model, ArrivingOrders::once_scattered);
+  const std::vector<double> once = light_sums(tables, model, ArrivingOrders::once_scattered, stop);
   field_ = field_from(once);
   for (int pass = 1; pass < options_.iterations; ++pass) {
-    std::vector<double> all = light_sums(tables, model, ArrivingOrders::multiply_scattered);
+    std::vector<double> all = light_sums(tables, model, ArrivingOrders::multiply_scattered, stop);
     for (std::size_t n = 0; n < all.size(); ++n) all[n] += once[n];
     field_ = field_from(all);
   }
 }
 
 std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& tables,
-                                           const atmosphere::AtmosphereModel& model, ArrivingOrders orders) const {
+                                           const atmosphere::AtmosphereModel& model, ArrivingOrders orders,
+                                           const std::stop_token& stop) const {
   const MoonShadowOptions& o = options_;
   const glm::dvec3& s = geometry_.sun_direction;
   const std::vector<glm::dvec3> directions =
@@ -161,6 +163,8 @@ std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& 
   const std::size_t nodes = o.field_across * o.field_side * o.field_altitudes_m.size();
   std::vector<double> sums(nodes * wavelengths_ * kLightSums, 0.0);
   core::parallel_for(nodes, o.threads, [&](std::size_t node) {
+    // parallel_for stops handing out nodes at the first exception and rethrows it.
+    if (stop.stop_requested()) throw ShadowBuildStopped();
     const std::size_t j = node % o.field_across, k = (node / o.field_across) % o.field_side;
     const double altitude = o.field_altitudes_m[node / (o.field_across * o.field_side)];
     const double tu = -1.0 + 2.0 * double(j) / double(o.field_across - 1), tv = double(k) / double(o.field_side - 1);

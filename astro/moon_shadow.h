@@ -53,6 +53,8 @@
 // reads the same tables while these hold (MoonShadow::still_fits).
 #include <cstddef>
 #include <span>
+#include <stdexcept>
+#include <stop_token>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -114,15 +116,24 @@ inline constexpr std::size_t kShadowFieldValues = 19;
 /// (10 numbers) of the eclipsed light, then of the daylight.
 inline constexpr std::size_t kLightSums = 20;
 
+/// Thrown by MoonShadow's constructor when its `stop` was requested: a build
+/// on a worker thread whose shadow no frame will use (the renderer going away).
+class ShadowBuildStopped : public std::runtime_error {
+ public:
+  ShadowBuildStopped() : std::runtime_error("the Moon's shadow: build stopped") {}
+};
+
 class MoonShadow {
  public:
   /// For a sky seen from `camera_m` (planet-centred) at `model`'s wavelengths.
   /// Throws std::invalid_argument for a non-finite geometry, a Moon radius or
   /// Sun radius ≤ 0, a non-unit Sun direction, a camera inside the Moon or
-  /// limb exponents not one per wavelength in [0, 10], or options out of range.
+  /// limb exponents not one per wavelength in [0, 10], or options out of range;
+  /// ShadowBuildStopped soon after `stop` is requested (each V̄ node checks it:
+  /// a millisecond or two of work, where a whole build takes seconds).
   MoonShadow(const EclipseGeometry& geometry, const atmosphere::lut::TableQueries& tables,
              const atmosphere::AtmosphereModel& model, const glm::dvec3& camera_m,
-             const MoonShadowOptions& options = {});
+             const MoonShadowOptions& options = {}, std::stop_token stop = {});
 
   /// V(p, λ_i): the share of the Sun's limb-darkened light that reaches p directly.
   double direct_light(const glm::dvec3& point_m, std::size_t wavelength) const;
@@ -186,12 +197,13 @@ class MoonShadow {
                     std::span<const Scatterer> scatterers) const;
   void set_frame(const glm::dvec3& camera_m);
   void fill_profile();
-  void fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model);
+  void fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
+                  const std::stop_token& stop);
   /// One pass over the nodes: the sums of the light of `orders` arriving
   /// at each (under this shadow's field so far), eclipsed and in daylight,
   /// of 1, ω and ωωᵀ (kLightSums per wavelength, wavelengths, nodes).
   std::vector<double> light_sums(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
-                                 ArrivingOrders orders) const;
+                                 ArrivingOrders orders, const std::stop_token& stop) const;
   /// V̄'s table from such sums.
   std::vector<float> field_from(const std::vector<double>& sums) const;
 

@@ -61,6 +61,16 @@ EclipseSkyTable::EclipseSkyTable(gl::ProgramBuilds& builds, std::span<const gl::
                                         static_cast<int>(groups_) * kLayersPerGroup);
 }
 
+EclipseSkyTable::~EclipseSkyTable() { stop_building(); }
+
+void EclipseSkyTable::stop_building() {
+  if (!next_.valid()) return;
+  next_stop_.request_stop();
+  next_.wait();  // holds ShadowBuildStopped (or the shadow, if it had just finished): dropped
+  next_ = {};
+  next_stop_ = {};
+}
+
 void EclipseSkyTable::keep_tables(const atmosphere::AtmosphereModel& model,
                                   std::shared_ptr<const atmosphere::lut::LookupTables> tables) {
   model_ = model;
@@ -89,14 +99,13 @@ EclipseSkyTable::ShadowUpdate EclipseSkyTable::update(const astro::EclipseGeomet
     if (!next_.valid()) {
       astro::MoonShadowOptions options;
       options.threads = std::max(1u, std::thread::hardware_concurrency() / 2);  // the frames need the rest
-      next_ = std::async(std::launch::async, [this, geometry, camera_m, options] {
-        return std::make_unique<astro::MoonShadow>(geometry, *queries_, *model_, camera_m, options);
+      next_ = std::async(std::launch::async, [this, geometry, camera_m, options, stop = next_stop_.get_token()] {
+        return std::make_unique<astro::MoonShadow>(geometry, *queries_, *model_, camera_m, options, stop);
       });
     }
     return ShadowUpdate::building;
   }
-  if (next_.valid()) next_.wait();  // not needed now: let it finish before its tables' owner moves on
-  next_ = {};
+  stop_building();  // not needed now: the frame builds the shadow it needs itself
   set_shadow(std::make_unique<astro::MoonShadow>(geometry, *queries_, *model_, camera_m));
   return ShadowUpdate::built;
 }

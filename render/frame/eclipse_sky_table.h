@@ -27,6 +27,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stop_token>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -56,6 +57,13 @@ class EclipseSkyTable {
   /// current GL context.
   EclipseSkyTable(gl::ProgramBuilds& builds, std::span<const gl::ShaderDefine> atmosphere_defines, std::size_t groups,
                   double ground_radius_m, double top_radius_m);
+  /// Stops a shadow still being built on the worker thread and waits for it
+  /// (milliseconds: MoonShadow checks its stop at every V̄ node), so a node
+  /// at the end of a show or on SIGTERM exits at once instead of after the
+  /// seconds a whole build takes.
+  ~EclipseSkyTable();
+  EclipseSkyTable(const EclipseSkyTable&) = delete;
+  EclipseSkyTable& operator=(const EclipseSkyTable&) = delete;
 
   /// The tables (and their model) the shadows are built from, kept on the
   /// CPU while this exists: a TableSource may need the GL context, a worker
@@ -104,6 +112,8 @@ class EclipseSkyTable {
   const gl::ShaderProgram& fill_program() const;
 
  private:
+  /// Stops the worker thread's build, if any, and waits for it.
+  void stop_building();
   /// Takes a new shadow and uploads its tables.
   void set_shadow(std::unique_ptr<astro::MoonShadow> shadow);
   void prepare_fill(const glm::dvec3& camera_m);
@@ -121,6 +131,7 @@ class EclipseSkyTable {
   std::shared_ptr<const atmosphere::lut::LookupTables> tables_;
   std::unique_ptr<atmosphere::lut::TableQueries> queries_;
   std::future<std::unique_ptr<astro::MoonShadow>> next_;  // the one built on the worker thread
+  std::stop_source next_stop_;                            // stops it
   std::vector<gl::Texture> profiles_, fields_;            // per group
   std::vector<std::array<float, 4>> mie_k1_, mie_k2_;
   float rayleigh_k1_ = 0.0f, rayleigh_k2_ = 0.0f;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <stop_token>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -254,6 +255,18 @@ TEST_F(EclipsedSky, ItIsRebuiltWhenTheAxisMovesNotWhenTheCameraDoes) {
   }
   std::printf("a shadow moved for 30 s against one built for the instant: %.2e\n", worst);
   EXPECT_LT(worst, 0.005);
+}
+
+TEST_F(EclipsedSky, AShadowWhoseBuildIsStoppedThrowsInsteadOfFinishing) {
+  // A renderer going away stops the shadow its worker thread is building (render/frame/eclipse_sky_table.h):
+  // every node of V̄'s table checks the stop, so the build ends at the first one.
+  const TableQueries q(*model_, *tables_);
+  const EclipseSetup e = setup_at(*model_, totality());
+  std::stop_source stop;
+  stop.request_stop();
+  EXPECT_THROW(MoonShadow(e.geometry, q, *model_, e.observer_m, quick(), stop.get_token()), ShadowBuildStopped);
+  // Not stopped: built as before.
+  EXPECT_NO_THROW(MoonShadow(e.geometry, q, *model_, e.observer_m, quick(), std::stop_source().get_token()));
 }
 
 TEST_F(EclipsedSky, RefusesWhatIsNoEclipse) {
