@@ -174,7 +174,8 @@ void register_sample_command(CLI::App& app) {
       ->check(CLI::IsMember(atmosphere::table_size_names()));
   cmd->add_flag("--colour", args->colour,
                 "Radiance: add each direction's colour under the Kurucz sun — CIE 1931 x, y, correlated colour "
-                "temperature CCT_K and Duv (the atmosphere needs at least 16 wavelengths spanning 400-700 nm)");
+                "temperature CCT_K and Duv, effective blackbody temperature T_eff_K over 410-800 nm (the "
+                "atmosphere needs at least 16 wavelengths spanning 400-700 nm)");
   cmd->add_flag("--cpu", args->cpu, "Precompute tables on the CPU");
   cmd->add_option("--cache", args->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
   cmd->add_option("--threads", args->threads, "CPU threads (default: all)");

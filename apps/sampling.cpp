@@ -87,14 +87,16 @@ std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequ
   atmosphere::ExtraColumns colour;
   if (r.colour) {
     // The colour the sky has under the Kurucz sun (the CSV's spectral radiance columns).
-    colour.names = {"x", "y", "CCT_K", "Duv"};
+    colour.names = {"x", "y", "CCT_K", "Duv", "T_eff_K"};
     for (const RadianceSample& s : samples) {
       std::vector<double> spectral;
       for (std::size_t i = 0; i < model.wavelengths_nm.size(); ++i)
         spectral.push_back(std::max(0.0, s.radiance[i]) * solar_irradiance_W_m2_nm(model.wavelengths_nm[i]));
       const image::Chromaticity c = image::spectrum_chromaticity(model.wavelengths_nm, spectral);
       const image::ColourTemperature t = image::correlated_colour_temperature(c);
-      colour.rows.push_back({c.x, c.y, t.kelvin, t.duv});
+      // And the effective blackbody temperature, as eclipse photometry gives the sky's colour (410–800 nm).
+      const double effective = image::effective_blackbody_temperature_K(model.wavelengths_nm, spectral, 410.0, 800.0);
+      colour.rows.push_back({c.x, c.y, t.kelvin, t.duv, effective});
     }
   }
   return radiance_csv(model, samples, colour);

@@ -24,7 +24,8 @@ struct SamplingRequest {
   atmosphere::reference::Occulter occulter;
   std::size_t reference_samples = 4096;  ///< Monte Carlo paths per wavelength and direction
   /// Radiance: also each direction's colour — CIE 1931 x, y of the spectral radiance, its correlated colour
-  /// temperature and Duv (image/colour.h); needs wavelengths that span the visible (colour_spectrum_problem).
+  /// temperature and Duv, and its effective blackbody temperature over 410–800 nm (image/colour.h); needs
+  /// wavelengths that span the visible (colour_spectrum_problem).
   bool colour = false;
   std::uint64_t seed = 1;
   unsigned threads = 0;

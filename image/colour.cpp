@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_access.hpp>
@@ -316,6 +317,56 @@ ColourTemperature correlated_colour_temperature(Chromaticity c) {
   // Above the locus (v larger, toward green) is positive Duv.
   const double duv = std::copysign(std::hypot(p[0] - q[0], p[1] - q[1]), p[1] - q[1]);
   return {kelvin, duv};
+}
+
+double effective_blackbody_temperature_K(std::span<const double> wavelengths_nm, std::span<const double> spectrum,
+                                         double from_nm, double to_nm) {
+  if (spectrum.size() != wavelengths_nm.size())
+    throw std::invalid_argument("effective blackbody temperature: " + std::to_string(spectrum.size()) + " values for " +
+                                std::to_string(wavelengths_nm.size()) + " wavelengths");
+  std::vector<std::pair<double, double>> band;  // λ [m], ln S
+  for (std::size_t i = 0; i < spectrum.size(); ++i) {
+    if (!(wavelengths_nm[i] >= from_nm && wavelengths_nm[i] <= to_nm)) continue;
+    if (!std::isfinite(spectrum[i]) || !(spectrum[i] > 0.0))
+      throw std::invalid_argument("effective blackbody temperature: the value at " + std::to_string(wavelengths_nm[i]) +
+                                  " nm is " + std::to_string(spectrum[i]) + " (must be finite and positive)");
+    band.emplace_back(wavelengths_nm[i] * 1e-9, std::log(spectrum[i]));
+  }
+  if (band.size() < 3)
+    throw std::invalid_argument("effective blackbody temperature: " + std::to_string(band.size()) + " wavelengths in " +
+                                std::to_string(from_nm) + "–" + std::to_string(to_nm) + " nm (at least 3)");
+  constexpr double c2_m_K = 1.438777e-2;
+  // The scale drops out: the residuals' variance about their mean.
+  const auto misfit = [&](double log_kelvin) {
+    const double kelvin = std::exp(log_kelvin);
+    double sum = 0.0, sum2 = 0.0;
+    for (const auto& [m, ln_s] : band) {
+      const double r = ln_s + 5.0 * std::log(m) + std::log(std::expm1(c2_m_K / (m * kelvin)));
+      sum += r;
+      sum2 += r * r;
+    }
+    const double n = double(band.size());
+    return sum2 / n - (sum / n) * (sum / n);
+  };
+  const double lo = std::log(1000.0), hi = std::log(1e8);
+  constexpr int kNodes = 400;
+  int best = 0;
+  double best_misfit = 1e300;
+  for (int k = 0; k <= kNodes; ++k) {
+    const double e = misfit(lo + (hi - lo) * k / kNodes);
+    if (e < best_misfit) best_misfit = e, best = k;
+  }
+  if (best == kNodes) return std::numeric_limits<double>::infinity();
+  double a = lo + (hi - lo) * std::max(best - 1, 0) / kNodes, b = lo + (hi - lo) * (best + 1) / kNodes;
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  while (b - a > 1e-7) {
+    const double m1 = b - phi * (b - a), m2 = a + phi * (b - a);
+    if (misfit(m1) < misfit(m2))
+      b = m2;
+    else
+      a = m1;
+  }
+  return std::exp(0.5 * (a + b));
 }
 
 }  // namespace zenith::image

@@ -77,4 +77,16 @@ struct ColourTemperature {
 };
 ColourTemperature correlated_colour_temperature(Chromaticity c);
 
+/// The effective blackbody temperature of a spectrum over [`from_nm`,
+/// `to_nm`]: the temperature of the Planck curve whose shape fits the
+/// spectrum there best, least squares in ln S (a free scale), as eclipse
+/// photometry reports the sky's colour (Dandekar & Turtle 1971: 410–800 nm).
+/// Searched over 1 000 K – 10⁸ K; a spectrum falling faster with wavelength
+/// than any Planck curve (steeper than the Rayleigh–Jeans λ⁻⁴) fits best at
+/// the hot end and gives +∞. Throws std::invalid_argument for fewer than 3
+/// wavelengths in the band, a spectrum not one value per wavelength, or a
+/// value in the band that is not finite and positive.
+double effective_blackbody_temperature_K(std::span<const double> wavelengths_nm, std::span<const double> spectrum,
+                                         double from_nm, double to_nm);
+
 }  // namespace zenith::image

@@ -365,7 +365,7 @@ void validate_eclipse(const EclipseValidationOptions& o, const TablesFor& tables
                       ratio(mid, green) > 1e-4 / 3 && ratio(mid, green) < 3e-4,
                       fmt::format("{:.3g}", ratio(mid, green))});
     checks.push_back({who + "mid-totality zenith bluer than the daylit zenith (440 nm keeps more than 680 nm)",
-                      "SQM and spectra at totality, 2017-08-21: ~11 000 K against ~9 000 K",
+                      "Dandekar & Turtle 1971: effective blackbody temperature 11 000 K against 9 000 K",
                       ratio(mid, blue) > ratio(mid, red),
                       fmt::format("{:.3g} against {:.3g}", ratio(mid, blue), ratio(mid, red))});
     // The zenith's V surface brightness at mid-totality: the tables' unit (radiance per unit solar irradiance)

@@ -45,12 +45,11 @@ file(WRITE "${WORK_DIR}/earth-16.json" "${earth}")
 execute_process(COMMAND ${ZENITH} sample --atmosphere "${WORK_DIR}/earth-16.json" --tables small --orders 2 --cache "${cache}"
                         --sun-zenith-deg 30 --grid 1x1 --colour
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(REGEX MATCH ",Y_cd_m2,x,y,CCT_K,Duv
-0,0,[^
-]*,([0-9.]+),(-?[0-9.e-]+)
-" row "${out}")
-if(NOT rc EQUAL 0 OR NOT row OR CMAKE_MATCH_1 LESS 10000 OR CMAKE_MATCH_1 GREATER 20000)
-  message(FATAL_ERROR "sample --colour: no zenith CCT within 10 000-20 000 K (${rc}):\n${out}\n${err}")
+string(REGEX MATCH ",Y_cd_m2,x,y,CCT_K,Duv,T_eff_K\n0,0,[^\n]*,([0-9.]+),(-?[0-9.e-]+),([0-9.]+)\n" row "${out}")
+if(NOT rc EQUAL 0 OR NOT row OR CMAKE_MATCH_1 LESS 10000 OR CMAKE_MATCH_1 GREATER 20000 OR CMAKE_MATCH_3 LESS 9000
+   OR CMAKE_MATCH_3 GREATER 20000)
+  message(FATAL_ERROR "sample --colour: no zenith CCT and effective temperature within 10 000 (9 000)-20 000 K "
+                      "(${rc}):\n${out}\n${err}")
 endif()
 # Three wavelengths make no colour; a transmittance has none.
 execute_process(COMMAND ${ZENITH} sample --atmosphere mars --tables small --cpu --orders 2 --cache "${cache}" --colour

@@ -243,6 +243,29 @@ TEST(Chromaticity, BluerThanAnyPlanckianRadiatorIsInfinitelyHot) {
   EXPECT_NEAR(1e6 / found, 1e6 / 2e5, 1.0) << found;
 }
 
+TEST(Chromaticity, TheEffectiveBlackbodyTemperatureIsThePlanckCurveOfTheSpectrumsShape) {
+  // Eclipse photometry's measure (Dandekar & Turtle 1971, 410–800 nm): the shape alone, any scale.
+  const std::vector<double> nm = even_wavelengths(16, 380.0, 755.0);
+  for (double kelvin : {5000.0, 9000.0, 11000.0, 30000.0}) {
+    std::vector<double> b = planck(nm, kelvin);
+    for (double& v : b) v *= 3.7e4;
+    EXPECT_NEAR(effective_blackbody_temperature_K(nm, b, 410.0, 800.0), kelvin, 1e-4 * kelvin) << kelvin;
+  }
+  // Only the band counts: a spectrum 9 000 K's inside 530–660 nm and anything outside.
+  std::vector<double> mixed = planck(nm, 9000.0);
+  for (std::size_t i = 0; i < nm.size(); ++i)
+    if (nm[i] < 530.0 || nm[i] > 660.0) mixed[i] *= 5.0;
+  EXPECT_NEAR(effective_blackbody_temperature_K(nm, mixed, 530.0, 660.0), 9000.0, 1.0);
+  // Steeper than Rayleigh–Jeans: no Planck curve, infinitely hot.
+  std::vector<double> steep;
+  for (double l : nm) steep.push_back(std::pow(l / 550.0, -6.0));
+  EXPECT_TRUE(std::isinf(effective_blackbody_temperature_K(nm, steep, 410.0, 800.0)));
+  EXPECT_THROW(effective_blackbody_temperature_K(nm, steep, 700.0, 720.0), std::invalid_argument);  // one λ
+  std::vector<double> zero = steep;
+  zero[5] = 0.0;
+  EXPECT_THROW(effective_blackbody_temperature_K(nm, zero, 410.0, 800.0), std::invalid_argument);
+}
+
 TEST(Chromaticity, SaysWhichWavelengthsCannotCarryAColourAndRefusesBadSpectra) {
   const std::vector<double> three = {680.0, 550.0, 440.0};
   const std::string why = colour_spectrum_problem(three);
