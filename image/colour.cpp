@@ -252,6 +252,36 @@ Chromaticity planckian(double kelvin) {
   return {xyz.x / sum, xyz.y / sum};
 }
 
+/// Where f is least over [lo, hi]: a scan of `nodes` + 1 evenly spaced points,
+/// then golden section between the best one's neighbours (the functions here
+/// are smooth and have one minimum, but a scan first costs little and keeps a
+/// flat stretch from misleading the section). `at_upper_end`: the best scanned
+/// point was `hi` itself — the minimum lies there or beyond.
+struct Minimum {
+  double x = 0.0;
+  bool at_upper_end = false;
+};
+template <class F>
+Minimum scan_then_golden_section(F f, double lo, double hi, int nodes) {
+  int best = 0;
+  double best_value = f(lo);
+  for (int k = 1; k <= nodes; ++k) {
+    const double value = f(lo + (hi - lo) * k / nodes);
+    if (value < best_value) best_value = value, best = k;
+  }
+  if (best == nodes) return {hi, true};
+  double a = lo + (hi - lo) * std::max(best - 1, 0) / nodes, b = lo + (hi - lo) * (best + 1) / nodes;
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  while (b - a > 1e-7) {
+    const double m1 = b - phi * (b - a), m2 = a + phi * (b - a);
+    if (f(m1) < f(m2))
+      b = m2;
+    else
+      a = m1;
+  }
+  return {0.5 * (a + b), false};
+}
+
 }  // namespace
 
 Chromaticity spectrum_chromaticity(std::span<const double> wavelengths_nm, std::span<const double> spectrum) {
@@ -291,28 +321,10 @@ ColourTemperature correlated_colour_temperature(Chromaticity c) {
     const std::array<double, 2> q = uv_1960(planckian(std::exp(log_kelvin)));
     return std::hypot(p[0] - q[0], p[1] - q[1]);
   };
-  // A scan of the locus in ln T, then golden section around the nearest node.
-  const double lo = std::log(1000.0), hi = std::log(1e6);
-  constexpr int kNodes = 200;
-  int best = 0;
-  double best_distance = 1e300;
-  for (int k = 0; k <= kNodes; ++k) {
-    const double d = distance(lo + (hi - lo) * k / kNodes);
-    if (d < best_distance) best_distance = d, best = k;
-  }
-  double a = lo + (hi - lo) * std::max(best - 1, 0) / kNodes, b = lo + (hi - lo) * std::min(best + 1, kNodes) / kNodes;
-  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-  while (b - a > 1e-7) {
-    const double m1 = b - phi * (b - a), m2 = a + phi * (b - a);
-    if (distance(m1) < distance(m2))
-      b = m2;
-    else
-      a = m1;
-  }
-  double kelvin = std::exp(0.5 * (a + b));
   // Nearest at the search's hot end: the point lies beyond the locus' blue end, the chromaticity of
   // Planck's law as T → ∞ (Rayleigh–Jeans, B ∝ λ⁻⁴), which 10⁶ K is within 2e-4 in (u, v) of.
-  if (kelvin > 0.99e6) kelvin = std::numeric_limits<double>::infinity();
+  const Minimum nearest = scan_then_golden_section(distance, std::log(1000.0), std::log(1e6), 200);
+  const double kelvin = nearest.at_upper_end ? std::numeric_limits<double>::infinity() : std::exp(nearest.x);
   const std::array<double, 2> q = uv_1960(planckian(std::isinf(kelvin) ? 1e12 : kelvin));
   // Above the locus (v larger, toward green) is positive Duv.
   const double duv = std::copysign(std::hypot(p[0] - q[0], p[1] - q[1]), p[1] - q[1]);
@@ -348,25 +360,8 @@ double effective_blackbody_temperature_K(std::span<const double> wavelengths_nm,
     const double n = double(band.size());
     return sum2 / n - (sum / n) * (sum / n);
   };
-  const double lo = std::log(1000.0), hi = std::log(1e8);
-  constexpr int kNodes = 400;
-  int best = 0;
-  double best_misfit = 1e300;
-  for (int k = 0; k <= kNodes; ++k) {
-    const double e = misfit(lo + (hi - lo) * k / kNodes);
-    if (e < best_misfit) best_misfit = e, best = k;
-  }
-  if (best == kNodes) return std::numeric_limits<double>::infinity();
-  double a = lo + (hi - lo) * std::max(best - 1, 0) / kNodes, b = lo + (hi - lo) * (best + 1) / kNodes;
-  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-  while (b - a > 1e-7) {
-    const double m1 = b - phi * (b - a), m2 = a + phi * (b - a);
-    if (misfit(m1) < misfit(m2))
-      b = m2;
-    else
-      a = m1;
-  }
-  return std::exp(0.5 * (a + b));
+  const Minimum best = scan_then_golden_section(misfit, std::log(1000.0), std::log(1e8), 400);
+  return best.at_upper_end ? std::numeric_limits<double>::infinity() : std::exp(best.x);
 }
 
 }  // namespace zenith::image
