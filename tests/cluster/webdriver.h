@@ -83,8 +83,7 @@ class WebDriver {
     const auto fail = [&](const std::string& why) {
       ::kill(driver_, SIGTERM);
       core::wait_for_exit(driver_, std::chrono::milliseconds(5000));
-      std::error_code ignored;
-      std::filesystem::remove_all(temporary_, ignored);
+      remove_folder(temporary_);
       throw std::runtime_error("chromedriver " + why + "; its log (" + log.string() + "):\n" + read_text(log));
     };
     // "ChromeDriver was started successfully on port 38115."
@@ -123,11 +122,24 @@ class WebDriver {
       http_request(port_, boost::beast::http::verb::delete_, "/session/" + session_, "", "application/json", 30);
     ::kill(driver_, SIGTERM);
     core::wait_for_exit(driver_, std::chrono::milliseconds(5000));
-    std::error_code ignored;
-    std::filesystem::remove_all(temporary_, ignored);
+    remove_folder(temporary_);
   }
   WebDriver(const WebDriver&) = delete;
   WebDriver& operator=(const WebDriver&) = delete;
+
+  /// Removes `folder`, again while it comes back: a browser still quitting
+  /// after its session ended can write its profile and singleton folders
+  /// there after a first removal (one run in a few left them in /tmp). At
+  /// most 5 s; it must stay gone for 300 ms.
+  static void remove_folder(const std::filesystem::path& folder) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    std::error_code ignored;
+    for (;;) {
+      std::filesystem::remove_all(folder, ignored);
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      if (!std::filesystem::exists(folder, ignored) || std::chrono::steady_clock::now() > deadline) return;
+    }
+  }
 
   void open(const std::string& url) { call(boost::beast::http::verb::post, path("/url"), {{"url", url}}); }
   /// The element a CSS selector finds first.
