@@ -12,13 +12,6 @@ double ballesteros_temperature_K(double b_minus_v) {
   return 4600.0 * (1.0 / (0.92 * bv + 1.7) + 1.0 / (0.92 * bv + 0.62));
 }
 
-double planck_W_m2_sr_nm(double wavelength_nm, double temperature_K) {
-  constexpr double h = 6.62607015e-34, c = 299792458.0, k = 1.380649e-23;
-  const double l = wavelength_nm * 1e-9;
-  const double per_m = 2.0 * h * c * c / (l * l * l * l * l) / std::expm1(h * c / (l * k * temperature_K));
-  return per_m * 1e-9;  // per metre → per nanometre
-}
-
 void star_irradiance_W_m2_nm(double v_mag, double b_minus_v, std::span<const double> wavelengths_nm,
                              std::span<double> out) {
   const double t = ballesteros_temperature_K(b_minus_v);

@@ -16,12 +16,14 @@
 #include <span>
 #include <vector>
 
+#include "core/planck.h"
+
 namespace zenith::astro {
 
 /// Ballesteros' colour temperature [K] of B−V, for B−V in [−0.4, 2.5] (clamped).
 double ballesteros_temperature_K(double b_minus_v);
-/// Planck's spectral radiance B_λ(T) [W m⁻² sr⁻¹ nm⁻¹].
-double planck_W_m2_sr_nm(double wavelength_nm, double temperature_K);
+/// Planck's spectral radiance B_λ(T) [W m⁻² sr⁻¹ nm⁻¹] (core/planck.h).
+using core::planck_W_m2_sr_nm;
 
 /// The star's spectral irradiance at `wavelengths_nm` above the atmosphere [W m⁻² nm⁻¹].
 std::vector<double> star_irradiance_W_m2_nm(double v_mag, double b_minus_v, std::span<const double> wavelengths_nm);

@@ -17,6 +17,8 @@
 #include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/planck.h"
+
 namespace zenith::image {
 namespace {
 
@@ -241,13 +243,8 @@ std::array<double, 2> uv_1960(Chromaticity c) {
 /// The chromaticity of a Planckian radiator at `kelvin` through the colour
 /// matching functions above, 360–830 nm every nm.
 Chromaticity planckian(double kelvin) {
-  constexpr double c2_m_K = 1.438777e-2;  // second radiation constant h c / k (CODATA 2018)
   dvec3 xyz(0.0);
-  for (int nm = 360; nm <= 830; ++nm) {
-    const double lambda_m = nm * 1e-9;
-    const double b = 1.0 / (std::pow(lambda_m, 5) * std::expm1(c2_m_K / (lambda_m * kelvin)));
-    xyz += cie1931_xyz_bar(nm) * b;
-  }
+  for (int nm = 360; nm <= 830; ++nm) xyz += cie1931_xyz_bar(nm) * core::planck_W_m2_sr_nm(nm, kelvin);
   const double sum = xyz.x + xyz.y + xyz.z;
   return {xyz.x / sum, xyz.y / sum};
 }
@@ -336,24 +333,23 @@ double effective_blackbody_temperature_K(std::span<const double> wavelengths_nm,
   if (spectrum.size() != wavelengths_nm.size())
     throw std::invalid_argument("effective blackbody temperature: " + std::to_string(spectrum.size()) + " values for " +
                                 std::to_string(wavelengths_nm.size()) + " wavelengths");
-  std::vector<std::pair<double, double>> band;  // λ [m], ln S
+  std::vector<std::pair<double, double>> band;  // λ [nm], ln S
   for (std::size_t i = 0; i < spectrum.size(); ++i) {
     if (!(wavelengths_nm[i] >= from_nm && wavelengths_nm[i] <= to_nm)) continue;
     if (!std::isfinite(spectrum[i]) || !(spectrum[i] > 0.0))
       throw std::invalid_argument("effective blackbody temperature: the value at " + std::to_string(wavelengths_nm[i]) +
                                   " nm is " + std::to_string(spectrum[i]) + " (must be finite and positive)");
-    band.emplace_back(wavelengths_nm[i] * 1e-9, std::log(spectrum[i]));
+    band.emplace_back(wavelengths_nm[i], std::log(spectrum[i]));
   }
   if (band.size() < 3)
     throw std::invalid_argument("effective blackbody temperature: " + std::to_string(band.size()) + " wavelengths in " +
                                 std::to_string(from_nm) + "–" + std::to_string(to_nm) + " nm (at least 3)");
-  constexpr double c2_m_K = 1.438777e-2;
   // The scale drops out: the residuals' variance about their mean.
   const auto misfit = [&](double log_kelvin) {
     const double kelvin = std::exp(log_kelvin);
     double sum = 0.0, sum2 = 0.0;
-    for (const auto& [m, ln_s] : band) {
-      const double r = ln_s + 5.0 * std::log(m) + std::log(std::expm1(c2_m_K / (m * kelvin)));
+    for (const auto& [nm, ln_s] : band) {
+      const double r = ln_s - std::log(core::planck_W_m2_sr_nm(nm, kelvin));
       sum += r;
       sum2 += r * r;
     }

@@ -64,8 +64,7 @@ std::string colour_spectrum_problem(std::span<const double> wavelengths_nm);
 /// temperature of the Planckian radiator whose chromaticity is nearest in the
 /// CIE 1960 (u, v) plane, u = 4x / (−2x + 12y + 3), v = 6y / (−2x + 12y + 3);
 /// and Duv, that distance, positive above the locus (toward green). The
-/// locus is Planck's law, B(λ, T) ∝ λ⁻⁵ / (exp(c₂ / λT) − 1) with
-/// c₂ = 1.438777e-2 m K, through the same colour matching functions (360–830
+/// locus is Planck's law (core/planck.h) through the same colour matching functions (360–830
 /// nm every nm), searched over 1 000 K – 1 000 000 K; a chromaticity beyond
 /// the locus' blue end (bluer than any Planckian radiator, nearest to its
 /// T → ∞ limit) has kelvin = +∞, Duv its distance from that end. CIE 15
