@@ -15,7 +15,7 @@ namespace {
 
 struct PrecomputeArgs {
   std::string atmosphere, out_dir, tables = "paper", cache_dir;
-  bool cpu = false, no_cache = false, no_series_tail = false, serial_compile = false;
+  bool cpu = false, no_cache = false, no_series_tail = false, serial_compile = false, compile_contexts = false;
   int orders = atmosphere::lut::kDefaultScatteringOrders;
   double tolerance = 0.0;
   unsigned threads = 0;
@@ -28,6 +28,7 @@ void run_precompute(const PrecomputeArgs& a) {
   request.options.series_tail = !a.no_series_tail;
   request.options.threads = a.threads;
   if (a.serial_compile) request.compile = render::gl::CompileMode::serial;
+  if (a.compile_contexts) request.compile = render::gl::CompileMode::contexts;
 
   const render::ObtainedTables t = render::obtain_tables(loaded.model, request);
   fmt::print("atmosphere      {}\n", loaded.model.name);
@@ -81,9 +82,14 @@ void register_precompute_command(CLI::App& app) {
   cmd->add_option("--cache", args->cache_dir, "Cache directory (default $XDG_CACHE_HOME/zenith)");
   cmd->add_flag("--no-cache", args->no_cache, "Neither read nor write the cache");
   cmd->add_option("--threads", args->threads, "CPU threads (default: all)");
-  cmd->add_flag("--serial-compile", args->serial_compile,
-                "Build the GPU programs one at a time where first used, instead of starting them all at once on "
-                "the driver's compiler threads (to compare; --log-level debug prints what the builds took)");
+  auto* serial = cmd->add_flag("--serial-compile", args->serial_compile,
+                               "Build the GPU programs one at a time where first used, instead of starting them all "
+                               "at once on the driver's compiler threads (to compare; --log-level debug prints what "
+                               "the builds took)");
+  cmd->add_flag("--compile-contexts", args->compile_contexts,
+                "Build the GPU programs all at once, each on a thread with a GL context of its own, instead of on "
+                "the driver's compiler threads (to compare)")
+      ->excludes(serial);
   cmd->callback([args, tol] {
     PrecomputeArgs a = *args;
     if (tol->count() > 0) a.orders = 50;

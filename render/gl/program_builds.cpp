@@ -25,6 +25,7 @@ const char* to_string(CompileMode mode) {
   switch (mode) {
     case CompileMode::parallel: return "parallel";
     case CompileMode::serial: return "serial";
+    case CompileMode::contexts: return "contexts";
   }
   return "?";
 }
@@ -32,7 +33,7 @@ const char* to_string(CompileMode mode) {
 ProgramBuilds::ProgramBuilds(CompileMode mode) : mode_(mode), driver_threads_(has_parallel_shader_compile()) {
   if (!driver_threads_) return;
   glGetIntegerv(GL_MAX_SHADER_COMPILER_THREADS_KHR, &previous_threads_);
-  set_shader_compiler_threads(mode == CompileMode::parallel ? kAllCompilerThreads : 0u);
+  set_shader_compiler_threads(mode == CompileMode::serial ? 0u : kAllCompilerThreads);
 }
 
 ProgramBuilds::~ProgramBuilds() {
@@ -49,9 +50,10 @@ ShaderBuild ProgramBuilds::timed_start(const Starter& starter) {
 
 void ProgramBuilds::start(const std::string& key, const Starter& starter, BuildFor build_for) {
   if (mode_ == CompileMode::serial || programs_.contains(key) || pending_.contains(key)) return;
-  if (thread_ != nullptr)
-    pending_.emplace(key, OnThread{thread_->build([starter] { return starter().finish(); }), starter});
-  else
+  if (!threads_.empty()) {
+    FirstDispatchWarmup* thread = threads_[next_thread_++ % threads_.size()];
+    pending_.emplace(key, OnThread{thread->build([starter] { return starter().finish(); }), starter});
+  } else
     pending_.emplace(key, timed_start(starter));
   (build_for == BuildFor::this_frame ? started_ : ahead_).push_back(key);
   statistics_.most_in_flight = std::max(statistics_.most_in_flight, static_cast<int>(pending_.size()));
@@ -143,7 +145,10 @@ void ProgramBuilds::warm(FirstDispatchWarmup& warmup, const DispatchShapes& shap
 std::string ProgramBuilds::summary() const {
   const Statistics& s = statistics_;
   std::string how;
-  if (s.built_on_thread > 0)
+  if (s.built_on_thread > 0 && threads_.size() > 1)
+    how = fmt::format("{} of them compiled on {} threads of their own, a context each", s.built_on_thread,
+                      threads_.size());
+  else if (s.built_on_thread > 0)
     how = fmt::format(
         "{} of them compiled on a second thread, one at a time (the driver compiles in the calling "
         "thread)",

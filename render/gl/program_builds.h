@@ -16,7 +16,9 @@
 // GLSL front end and link run in glCompileShader and glLinkProgram despite
 // the parallel-compile extension), build_on() moves the started builds to a
 // thread with a context of its own: the caller goes on with other work (the
-// renderer uploads its tables) while they compile.
+// renderer uploads its tables) while they compile. CompileMode::contexts
+// builds each program on a thread and context of its own, all at once, for a
+// driver whose compiler threads overlap little (NVIDIA's: docs/gpu-precompute.md).
 #include <functional>
 #include <future>
 #include <map>
@@ -63,7 +65,15 @@ class ProgramBuilds {
   /// them; null: in the calling thread. Serial mode builds where first used
   /// whatever this says. `thread` must outlive the builds started on it or
   /// be unset first.
-  void build_on(FirstDispatchWarmup* thread) { thread_ = thread; }
+  void build_on(FirstDispatchWarmup* thread) {
+    build_on(thread ? std::vector{thread} : std::vector<FirstDispatchWarmup*>{});
+  }
+  /// The same on several threads, each build on the next in turn (with as
+  /// many threads as builds, each its own: CompileMode::contexts).
+  void build_on(std::vector<FirstDispatchWarmup*> threads) {
+    threads_ = std::move(threads);
+    next_thread_ = 0;
+  }
   /// Starts building `key`'s program with `starter` unless it is already
   /// started or built; in serial mode does nothing (get builds it). Built for
   /// a later frame, warm_started leaves it to finish_ahead.
@@ -128,7 +138,8 @@ class ProgramBuilds {
   CompileMode mode_;
   bool driver_threads_ = false;  ///< the driver has the extension
   ProgramBinaryCache* binaries_ = nullptr;
-  FirstDispatchWarmup* thread_ = nullptr;  // build_on
+  std::vector<FirstDispatchWarmup*> threads_;  // build_on
+  std::size_t next_thread_ = 0;
   int previous_threads_ = 0;
   std::map<std::string, Pending, std::less<>> pending_;  // started, not yet finished
   std::vector<std::string> started_;                     // keys started since warm_started, in order

@@ -43,6 +43,8 @@ bool set_shader_compiler_threads(unsigned threads);
 enum class CompileMode {
   parallel,  ///< builds started ahead, on the driver's compiler threads where it has them
   serial,    ///< each program built where first used, the driver told to compile in the calling thread
+  contexts,  ///< builds started ahead, each on a thread with a context of its own (sharing the caller's
+             ///< objects), all at once: for a driver whose own compiler threads overlap little
 };
 const char* to_string(CompileMode mode);
 

@@ -13,6 +13,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "atmosphere/lut/series_tail.h"
@@ -93,6 +94,8 @@ class GpuPrecompute {
   /// variant: their builds start together at the beginning (ProgramBuilds).
   std::vector<std::pair<std::string, std::vector<ShaderDefine>>> needed_programs() const;
   void start_programs();
+  /// CompileMode::contexts: up to `programs` threads with a context each, the builds' (ProgramBuilds::build_on).
+  void start_compile_threads(std::size_t programs);
   static std::string program_key(const std::string& file, const std::vector<ShaderDefine>& extra);
   gl::ProgramBuilds::Starter program_starter(const std::string& file, const std::vector<ShaderDefine>& extra) const;
   /// The program of `file` with `extra` defines: its build (started by
@@ -143,6 +146,8 @@ class GpuPrecompute {
   gl::ProgramBinaryCache* binaries_;  ///< null: every program compiled
   gl::ProgramBuilds builds_;
   std::unique_ptr<gl::FirstDispatchWarmup> warmup_;  // after builds_: stops before the programs go
+  /// CompileMode::contexts: a thread and context per program, building (after builds_, as warmup_).
+  std::vector<std::unique_ptr<gl::FirstDispatchWarmup>> compile_threads_;
   double fraction_done_ = 0.0;
   /// Σ over the table of each wavelength's radiance in the last radiance_sum,
   /// and in the one before that of the last order (the series tail's caps).
@@ -234,16 +239,35 @@ std::vector<std::pair<std::string, std::vector<ShaderDefine>>> GpuPrecompute::ne
 }
 
 void GpuPrecompute::start_programs() {
-  for (const auto& [file, extra] : needed_programs())
-    builds_.start(program_key(file, extra), program_starter(file, extra));
+  const auto programs = needed_programs();
+  if (builds_.mode() == gl::CompileMode::contexts) start_compile_threads(programs.size());
+  for (const auto& [file, extra] : programs) builds_.start(program_key(file, extra), program_starter(file, extra));
   // llvmpipe: the later stages' machine code generated on a second thread
   // while the first stages run (render/gl/first_dispatch_warmup.h). Every
   // table here is rgba32f, one level, linear, clamped, with power-of-two sides
   // (TableSizes): the stand-ins' shape when none is given.
-  if (builds_.mode() != gl::CompileMode::parallel) return;
+  if (builds_.mode() == gl::CompileMode::serial) return;
   warmup_ = gl::FirstDispatchWarmup::if_worthwhile("precompute");
   if (warmup_)
     builds_.warm_started(*warmup_, {}, [](const ShaderProgram&) { return 0; });  // needed_programs(): in stage order
+}
+
+void GpuPrecompute::start_compile_threads(std::size_t programs) {
+  // As many as the programs, up to the cores: NVIDIA's compile of the slowest
+  // programs takes a second each, and its own compiler threads overlap little
+  // (docs/gpu-precompute.md, "On an NVIDIA H200").
+  const std::size_t wanted = std::min<std::size_t>(programs, std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<gl::FirstDispatchWarmup*> threads;
+  while (compile_threads_.size() < wanted) {
+    try {
+      threads.push_back(compile_threads_.emplace_back(std::make_unique<gl::FirstDispatchWarmup>()).get());
+    } catch (const std::runtime_error& e) {  // EGL gave no more contexts: the builds share those made
+      spdlog::info("GPU precompute: {} compile context{} of {} ({})", compile_threads_.size(),
+                   compile_threads_.size() == 1 ? "" : "s", wanted, e.what());
+      break;
+    }
+  }
+  builds_.build_on(std::move(threads));
 }
 
 std::string GpuPrecompute::program_key(const std::string& file, const std::vector<ShaderDefine>& extra) {

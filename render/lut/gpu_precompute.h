@@ -41,8 +41,10 @@ const char* to_string(GpuPrecision precision);
 /// (render/gl/program_binary_cache.h; zenith uses <table cache>/programs).
 /// The programs' builds all start at the beginning, each finished where first
 /// used, so that a driver with parallel shader compile builds them at once;
-/// CompileMode::serial builds each where first used, one at a time
-/// (render/gl/program_builds.h; `zenith precompute --serial-compile`).
+/// CompileMode::serial builds each where first used, one at a time, and
+/// CompileMode::contexts each on a thread and context of its own, all at once
+/// (render/gl/program_builds.h; `zenith precompute --serial-compile`,
+/// `--compile-contexts`).
 /// Throws std::invalid_argument for bad options (as the CPU path),
 /// std::runtime_error when no GL context can be created or a table exceeds the
 /// GL limits, gl::ShaderBuildError when the driver refuses a program.

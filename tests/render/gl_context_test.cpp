@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <unistd.h>
 
@@ -572,6 +573,36 @@ TEST_F(GlTest, ProgramBuildsOnASecondThreadGiveTheSameProgramsAndErrors) {
     expect_floats_near(run_pattern(builds.get(fmt::format("scale {}", k), {}), 4, 2, 2),
                        expected_pattern(4, 2, 2, static_cast<float>(k)), 1e-6f);
   EXPECT_LT(builds.statistics().built_on_thread, 2 + 6) << "the dropped builds were built here";
+  gl::check_gl_error("after the builds");
+}
+
+/// ProgramBuilds::build_on with several threads (CompileMode::contexts): each
+/// build goes to the next thread in turn, so three builds on three threads run
+/// one per thread, and each program is the one its starter asked for.
+TEST_F(GlTest, ProgramBuildsOnSeveralThreadsTakeTurnsAndGiveTheSamePrograms) {
+  const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
+  const auto starter = [&](std::string scale) {
+    return [code = gl::ShaderCode{pattern.name, pattern.text, pattern.files}, scale] {
+      return gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", scale}}));
+    };
+  };
+  gl::ProgramBuilds builds(gl::CompileMode::contexts);
+  std::vector<std::unique_ptr<gl::FirstDispatchWarmup>> threads;
+  for (int k = 0; k < 3; ++k) threads.push_back(std::make_unique<gl::FirstDispatchWarmup>());
+  builds.build_on({threads[0].get(), threads[1].get(), threads[2].get()});
+  for (int k = 1; k <= 3; ++k) builds.start(fmt::format("scale {}", k), starter(fmt::format("{}.0", k)));
+  for (int k = 3; k >= 1; --k)
+    expect_floats_near(run_pattern(builds.get(fmt::format("scale {}", k), {}), 4, 2, 2),
+                       expected_pattern(4, 2, 2, static_cast<float>(k)), 1e-6f);
+  EXPECT_EQ(builds.statistics().built_on_thread, 3);
+  for (const auto& thread : threads) {
+    for (int k = 0; k < 400 && !thread->idle(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    EXPECT_EQ(thread->statistics().built, 1) << "one build per thread";
+  }
+  EXPECT_NE(builds.summary().find("3 of them compiled on 3 threads of their own"), std::string::npos)
+      << builds.summary();
+  EXPECT_STREQ(to_string(gl::CompileMode::contexts), "contexts");
+  builds.build_on(nullptr);
   gl::check_gl_error("after the builds");
 }
 

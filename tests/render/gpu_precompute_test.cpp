@@ -24,6 +24,7 @@
 // near the ground.
 #include "render/lut/gpu_precompute.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -376,33 +377,37 @@ TEST(GpuPrecompute, UsesAGivenContextAndLeavesItCurrent) {
 
 /// The programs' builds started all at once (the default, on the driver's
 /// compiler threads where it has them; on llvmpipe the later stages' first
-/// dispatches warmed on a second thread too) or one at a time where first used
-/// (gl::CompileMode::serial) are the same programs from the same texts: the
+/// dispatches warmed on a second thread too), one at a time where first used
+/// (gl::CompileMode::serial) or all at once on threads with a context each
+/// (gl::CompileMode::contexts) are the same programs from the same texts: the
 /// tables agree bit for bit, whatever the driver's arithmetic. With the
 /// series tail (its program started ahead too) and with a tolerance that stops
 /// before the last order (the builds started for orders never reached are abandoned).
-TEST(GpuPrecompute, SerialAndParallelCompileGiveTheSameTablesBitForBit) {
+TEST(GpuPrecompute, EveryCompileModeGivesTheSameTablesBitForBit) {
   const AtmosphereModel model = atmosphere::load_preset("earth-advanced").model;
   PrecomputeOptions options = testing::tiny_precompute_options();
   options.max_orders = 4;
   for (const double tolerance : {0.0, 0.5}) {
     options.tolerance = tolerance;
-    PrecomputeReport serial_report, parallel_report;
+    PrecomputeReport serial_report;
     const LookupTables serial = precompute_tables_gpu(model, options, &serial_report, nullptr, GpuPrecision::automatic,
                                                       {}, gl::CompileMode::serial);
-    const LookupTables parallel = precompute_tables_gpu(model, options, &parallel_report, nullptr,
-                                                        GpuPrecision::automatic, {}, gl::CompileMode::parallel);
-    SCOPED_TRACE(tolerance);
-    EXPECT_EQ(parallel.scattering_orders, serial.scattering_orders);
     if (tolerance > 0.0) {
       EXPECT_LT(serial.scattering_orders, options.max_orders);
     }
-    EXPECT_EQ(parallel.transmittance.data, serial.transmittance.data);
-    EXPECT_EQ(parallel.irradiance.data, serial.irradiance.data);
-    EXPECT_EQ(parallel.single_rayleigh.data, serial.single_rayleigh.data);
-    EXPECT_EQ(parallel.single_mie.data, serial.single_mie.data);
-    EXPECT_EQ(parallel.multiple.data, serial.multiple.data);
-    EXPECT_EQ(parallel_report.order_fraction, serial_report.order_fraction);
+    for (const gl::CompileMode mode : {gl::CompileMode::parallel, gl::CompileMode::contexts}) {
+      SCOPED_TRACE(fmt::format("tolerance {}, {}", tolerance, to_string(mode)));
+      PrecomputeReport report;
+      const LookupTables tables =
+          precompute_tables_gpu(model, options, &report, nullptr, GpuPrecision::automatic, {}, mode);
+      EXPECT_EQ(tables.scattering_orders, serial.scattering_orders);
+      EXPECT_EQ(tables.transmittance.data, serial.transmittance.data);
+      EXPECT_EQ(tables.irradiance.data, serial.irradiance.data);
+      EXPECT_EQ(tables.single_rayleigh.data, serial.single_rayleigh.data);
+      EXPECT_EQ(tables.single_mie.data, serial.single_mie.data);
+      EXPECT_EQ(tables.multiple.data, serial.multiple.data);
+      EXPECT_EQ(report.order_fraction, serial_report.order_fraction);
+    }
   }
 }
 
