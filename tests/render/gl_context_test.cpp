@@ -393,6 +393,14 @@ std::vector<gl::ShaderDefine> interface_and(std::vector<gl::ShaderDefine> extra 
   return all;
 }
 
+/// A starter of the test pattern scaled by `scale` that owns its code and its
+/// scale, as ProgramBuilds::build_on needs.
+gl::ProgramBuilds::Starter pattern_starter(const ExpandedShader& pattern, std::string scale) {
+  return [code = gl::ShaderCode{pattern.name, pattern.text, pattern.files}, scale = std::move(scale)] {
+    return gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", scale}}));
+  };
+}
+
 /// render/gl/shader_build.h: builds started together (on the driver's
 /// threads where it has GL_KHR_parallel_shader_compile), finished later, in
 /// any order; each is the program ShaderProgram::compute makes.
@@ -523,11 +531,7 @@ TEST_F(GlTest, ProgramBuildsStartAheadOrOneAtATimeAndCountWhatTheyCost) {
 /// reached a build — a program built here instead.
 TEST_F(GlTest, ProgramBuildsOnASecondThreadGiveTheSameProgramsAndErrors) {
   const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
-  const auto starter = [&](std::string scale) {  // owns its code and its scale, as build_on needs
-    return [code = gl::ShaderCode{pattern.name, pattern.text, pattern.files}, scale] {
-      return gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", scale}}));
-    };
-  };
+  const auto starter = [&](std::string scale) { return pattern_starter(pattern, std::move(scale)); };
   const gl::ShaderCode broken{
       "broken_test.comp", "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {\n  x;\n}\n", {}};
   const auto broken_starter = [broken] { return gl::ShaderBuild::compute(broken); };
@@ -581,11 +585,7 @@ TEST_F(GlTest, ProgramBuildsOnASecondThreadGiveTheSameProgramsAndErrors) {
 /// one per thread, and each program is the one its starter asked for.
 TEST_F(GlTest, ProgramBuildsOnSeveralThreadsTakeTurnsAndGiveTheSamePrograms) {
   const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
-  const auto starter = [&](std::string scale) {
-    return [code = gl::ShaderCode{pattern.name, pattern.text, pattern.files}, scale] {
-      return gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", scale}}));
-    };
-  };
+  const auto starter = [&](std::string scale) { return pattern_starter(pattern, std::move(scale)); };
   gl::ProgramBuilds builds(gl::CompileMode::contexts);
   std::vector<std::unique_ptr<gl::FirstDispatchWarmup>> threads;
   for (int k = 0; k < 3; ++k) threads.push_back(std::make_unique<gl::FirstDispatchWarmup>());
@@ -612,11 +612,7 @@ TEST_F(GlTest, ProgramBuildsOnSeveralThreadsTakeTurnsAndGiveTheSamePrograms) {
 /// warmed on the thread; a failing one is thrown once, where it is finished.
 TEST_F(GlTest, ProgramBuildsForALaterFrameAreFinishedOnceReadyWithoutWaiting) {
   const ExpandedShader pattern = testing::load_test_shader("test_pattern.comp");
-  const auto starter = [&](std::string scale) {
-    return [code = gl::ShaderCode{pattern.name, pattern.text, pattern.files}, scale] {
-      return gl::ShaderBuild::compute(code, interface_and({{"PATTERN_SCALE", scale}}));
-    };
-  };
+  const auto starter = [&](std::string scale) { return pattern_starter(pattern, std::move(scale)); };
   gl::ProgramBuilds builds(gl::CompileMode::parallel);
   gl::FirstDispatchWarmup thread;
   builds.build_on(&thread);
