@@ -257,16 +257,17 @@ void GpuPrecompute::start_compile_threads(std::size_t programs) {
   // programs takes a second each, and its own compiler threads overlap little
   // (docs/gpu-precompute.md, "On an NVIDIA H200").
   const std::size_t wanted = std::min<std::size_t>(programs, std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<gl::FirstDispatchWarmup*> threads;
   while (compile_threads_.size() < wanted) {
     try {
-      threads.push_back(compile_threads_.emplace_back(std::make_unique<gl::FirstDispatchWarmup>()).get());
+      compile_threads_.push_back(std::make_unique<gl::FirstDispatchWarmup>());
     } catch (const std::runtime_error& e) {  // EGL gave no more contexts: the builds share those made
       spdlog::info("GPU precompute: {} compile context{} of {} ({})", compile_threads_.size(),
                    compile_threads_.size() == 1 ? "" : "s", wanted, e.what());
       break;
     }
   }
+  std::vector<gl::FirstDispatchWarmup*> threads;
+  for (const auto& thread : compile_threads_) threads.push_back(thread.get());
   builds_.build_on(std::move(threads));
 }
 
