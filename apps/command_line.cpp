@@ -24,6 +24,7 @@ int run_command_line(int argc, char** argv) {
   register_atmosphere_command(app);
   register_precompute_command(app);
   register_sample_command(app);
+  register_colour_command(app);
   register_render_command(app);
   register_export_calibration_command(app);
   register_cluster_commands(app);

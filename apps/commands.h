@@ -10,6 +10,8 @@ void register_atmosphere_command(CLI::App& app);
 void register_precompute_command(CLI::App& app);
 /// `zenith sample`.
 void register_sample_command(CLI::App& app);
+/// `zenith colour` (apps/colour_command.cpp).
+void register_colour_command(CLI::App& app);
 /// `zenith render`.
 void register_render_command(CLI::App& app);
 /// `zenith export-calibration` (apps/export_command.cpp).

@@ -5,6 +5,7 @@
 #include <fmt/os.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -30,6 +31,7 @@ struct SampleArgs {
   std::size_t samples = 4096;
   int orders = atmosphere::lut::kDefaultScatteringOrders;
   bool cpu = false, colour = false;
+  std::vector<double> colour_band_nm = {410.0, 800.0};
   unsigned threads = 0;
 };
 
@@ -100,7 +102,20 @@ void run_sample(const SampleArgs& a) {
                                   a.quantity);
     if (const std::string why = image::colour_spectrum_problem(loaded.model.wavelengths_nm); !why.empty())
       throw ConfigError(a.atmosphere, "wavelengths_nm", "--colour: " + why);
+    if (!(a.colour_band_nm[0] < a.colour_band_nm[1]))
+      throw std::invalid_argument(
+          fmt::format("--colour-band-nm {},{}: the band's first wavelength must be below its last", a.colour_band_nm[0],
+                      a.colour_band_nm[1]));
+    const auto in_band =
+        std::count_if(loaded.model.wavelengths_nm.begin(), loaded.model.wavelengths_nm.end(),
+                      [&](double nm) { return nm >= a.colour_band_nm[0] && nm <= a.colour_band_nm[1]; });
+    if (in_band < 3)
+      throw ConfigError(a.atmosphere, "wavelengths_nm",
+                        fmt::format("--colour-band-nm {},{} holds {} of the wavelengths (an effective temperature "
+                                    "needs at least 3)",
+                                    a.colour_band_nm[0], a.colour_band_nm[1], in_band));
     r.colour = true;
+    r.colour_band_nm = {a.colour_band_nm[0], a.colour_band_nm[1]};
   }
   r.seed = a.seed;
   r.directions = a.directions_file.empty() ? grid_directions(a.grid.empty() ? "10x4" : a.grid)
@@ -174,8 +189,14 @@ void register_sample_command(CLI::App& app) {
       ->check(CLI::IsMember(atmosphere::table_size_names()));
   cmd->add_flag("--colour", args->colour,
                 "Radiance: add each direction's colour under the Kurucz sun — CIE 1931 x, y, correlated colour "
-                "temperature CCT_K and Duv, effective blackbody temperature T_eff_K over 410-800 nm (the "
+                "temperature CCT_K and Duv, effective blackbody temperature T_eff_K over --colour-band-nm (the "
                 "atmosphere needs at least 16 wavelengths spanning 400-700 nm)");
+  cmd->add_option("--colour-band-nm", args->colour_band_nm,
+                  "--colour: the effective temperature's band, first,last wavelength [nm] (default 410,800, as "
+                  "Dandekar & Turtle 1971; at least 3 of the atmosphere's wavelengths inside)")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(CLI::Range(100.0, 100000.0));
   cmd->add_flag("--cpu", args->cpu, "Precompute tables on the CPU");
   cmd->add_option("--cache", args->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
   cmd->add_option("--threads", args->threads, "CPU threads (default: all)");

@@ -94,8 +94,9 @@ std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequ
         spectral.push_back(std::max(0.0, s.radiance[i]) * solar_irradiance_W_m2_nm(model.wavelengths_nm[i]));
       const image::Chromaticity c = image::spectrum_chromaticity(model.wavelengths_nm, spectral);
       const image::ColourTemperature t = image::correlated_colour_temperature(c);
-      // And the effective blackbody temperature, as eclipse photometry gives the sky's colour (410–800 nm).
-      const double effective = image::effective_blackbody_temperature_K(model.wavelengths_nm, spectral, 410.0, 800.0);
+      // And the effective blackbody temperature, as eclipse photometry gives the sky's colour.
+      const double effective = image::effective_blackbody_temperature_K(model.wavelengths_nm, spectral,
+                                                                        r.colour_band_nm[0], r.colour_band_nm[1]);
       colour.rows.push_back({c.x, c.y, t.kelvin, t.duv, effective});
     }
   }

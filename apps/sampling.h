@@ -1,6 +1,7 @@
 #pragma once
 // `zenith sample` queries, as CSV text: sky radiance, transmittance along the
 // view direction, ground irradiance — from the lookup tables or the reference.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -24,9 +25,10 @@ struct SamplingRequest {
   atmosphere::reference::Occulter occulter;
   std::size_t reference_samples = 4096;  ///< Monte Carlo paths per wavelength and direction
   /// Radiance: also each direction's colour — CIE 1931 x, y of the spectral radiance, its correlated colour
-  /// temperature and Duv, and its effective blackbody temperature over 410–800 nm (image/colour.h); needs
-  /// wavelengths that span the visible (colour_spectrum_problem).
+  /// temperature and Duv, and its effective blackbody temperature over `colour_band_nm` (image/colour.h);
+  /// needs wavelengths that span the visible (colour_spectrum_problem).
   bool colour = false;
+  std::array<double, 2> colour_band_nm = {410.0, 800.0};  ///< first, last wavelength of the effective temperature
   std::uint64_t seed = 1;
   unsigned threads = 0;
   render::TableRequest tables;

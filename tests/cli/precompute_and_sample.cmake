@@ -51,6 +51,20 @@ if(NOT rc EQUAL 0 OR NOT row OR CMAKE_MATCH_1 LESS 10000 OR CMAKE_MATCH_1 GREATE
   message(FATAL_ERROR "sample --colour: no zenith CCT and effective temperature within 10 000 (9 000)-20 000 K "
                       "(${rc}):\n${out}\n${err}")
 endif()
+# --colour-band-nm reaches the fit: 720-800 nm holds two of the 16 wavelengths (730, 755), too few for a
+# temperature; a band whose ends are reversed is refused before any table is read.
+foreach(band_and_needle "720,800|wavelengths_nm: --colour-band-nm 720,800 holds 2 of the wavelengths" "665,525|--colour-band-nm 665,525: the band's first")
+  string(REPLACE "|" ";" band_and_needle "${band_and_needle}")
+  list(GET band_and_needle 0 band)
+  list(GET band_and_needle 1 needle)
+  execute_process(COMMAND ${ZENITH} sample --atmosphere "${WORK_DIR}/earth-16.json" --tables small --orders 2
+                          --cache "${cache}" --sun-zenith-deg 30 --grid 1x1 --colour --colour-band-nm ${band}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${err}" "${needle}" pos)
+  if(rc EQUAL 0 OR pos EQUAL -1)
+    message(FATAL_ERROR "sample --colour-band-nm ${band} not refused with '${needle}' (${rc}):\n${out}\n${err}")
+  endif()
+endforeach()
 # Three wavelengths make no colour; a transmittance has none.
 execute_process(COMMAND ${ZENITH} sample --atmosphere mars --tables small --cpu --orders 2 --cache "${cache}" --colour
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
