@@ -2,6 +2,8 @@
 // docs/colour.md explains the choices).
 #include "image/colour.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -337,13 +339,15 @@ double effective_blackbody_temperature_K(std::span<const double> wavelengths_nm,
   for (std::size_t i = 0; i < spectrum.size(); ++i) {
     if (!(wavelengths_nm[i] >= from_nm && wavelengths_nm[i] <= to_nm)) continue;
     if (!std::isfinite(spectrum[i]) || !(spectrum[i] > 0.0))
-      throw std::invalid_argument("effective blackbody temperature: the value at " + std::to_string(wavelengths_nm[i]) +
-                                  " nm is " + std::to_string(spectrum[i]) + " (must be finite and positive)");
+      throw std::invalid_argument(
+          fmt::format("effective blackbody temperature: the value at {:g} nm is {:g} (must be "
+                      "finite and positive)",
+                      wavelengths_nm[i], spectrum[i]));
     band.emplace_back(wavelengths_nm[i], std::log(spectrum[i]));
   }
   if (band.size() < 3)
-    throw std::invalid_argument("effective blackbody temperature: " + std::to_string(band.size()) + " wavelengths in " +
-                                std::to_string(from_nm) + "–" + std::to_string(to_nm) + " nm (at least 3)");
+    throw std::invalid_argument(fmt::format(
+        "effective blackbody temperature: {} wavelengths in {:g}–{:g} nm (at least 3)", band.size(), from_nm, to_nm));
   // The scale drops out: the residuals' variance about their mean.
   const auto misfit = [&](double log_kelvin) {
     const double kelvin = std::exp(log_kelvin);
