@@ -8,13 +8,12 @@
 #include <fmt/os.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "apps/commands.h"
+#include "core/files.h"
 #include "core/json_reader.h"
 #include "image/colour.h"
 #include "validate/csv_table.h"
@@ -27,14 +26,6 @@ struct ColourArgs {
   std::vector<double> band_nm = {410.0, 800.0};
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 /// A temperature for the CSV: +∞ (bluer than any Planck curve) as "inf".
 std::string kelvin_cell(double kelvin) { return std::isinf(kelvin) ? "inf" : fmt::format("{:.0f}", kelvin); }
 
@@ -44,7 +35,7 @@ void run_colour(const ColourArgs& a) {
     throw std::invalid_argument(
         fmt::format("--band-nm {},{}: the band's first wavelength must be below its last", from_nm, to_nm));
   // CsvTable's errors name the file, the line and the column.
-  const validate::CsvTable table(read_text(a.spectrum), a.spectrum);
+  const validate::CsvTable table(core::file_bytes(a.spectrum), a.spectrum);
   if (table.header().size() < 2 || table.header().front() != "wavelength_nm")
     throw ConfigError(a.spectrum, "header",
                       "expected 'wavelength_nm' and at least one column of spectral values, got '" +
