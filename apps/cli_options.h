@@ -4,8 +4,12 @@
 // spectral-to-RGB mapping; docs/colour.md), the lookup tables they use
 // (sizes, orders, cache, where missing ones are computed; docs/lookup-tables.md),
 // the view without a viewport config and the GL device they render on.
+#include <fmt/format.h>
+
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -56,6 +60,21 @@ inline void add_cpu_precompute_flag(CLI::App* cmd, bool& cpu_precompute) {
 inline void add_gl_device_option(CLI::App* cmd, std::string& device) {
   cmd->add_option("--device", device, "GL device: auto, software (llvmpipe), hardware")
       ->check(CLI::IsMember({"auto", "software", "hardware"}));
+}
+
+/// A band of wavelengths FIRST,LAST [nm] (`zenith colour --band-nm`, `zenith
+/// sample --colour-band-nm`): two numbers in 100–100 000 nm; the order is
+/// checked by check_wavelength_band once the command runs.
+inline void add_wavelength_band_option(CLI::App* cmd, const std::string& name, std::vector<double>& band_nm,
+                                       const std::string& help) {
+  cmd->add_option(name, band_nm, help)->delimiter(',')->expected(2)->check(CLI::Range(100.0, 100000.0));
+}
+
+/// Throws std::invalid_argument naming `name` where the band's first wavelength is not below its last.
+inline void check_wavelength_band(const std::string& name, const std::vector<double>& band_nm) {
+  if (!(band_nm[0] < band_nm[1]))
+    throw std::invalid_argument(
+        fmt::format("{} {},{}: the band's first wavelength must be below its last", name, band_nm[0], band_nm[1]));
 }
 
 }  // namespace zenith::app

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "core/files.h"
 #include "core/json_reader.h"
@@ -31,9 +32,7 @@ std::string kelvin_cell(double kelvin) { return std::isinf(kelvin) ? "inf" : fmt
 
 void run_colour(const ColourArgs& a) {
   const double from_nm = a.band_nm[0], to_nm = a.band_nm[1];
-  if (!(from_nm < to_nm))
-    throw std::invalid_argument(
-        fmt::format("--band-nm {},{}: the band's first wavelength must be below its last", from_nm, to_nm));
+  check_wavelength_band("--band-nm", a.band_nm);
   // CsvTable's errors name the file, the line and the column.
   const validate::CsvTable table(core::file_bytes(a.spectrum), a.spectrum);
   if (table.header().size() < 2 || table.header().front() != "wavelength_nm")
@@ -90,12 +89,9 @@ void register_colour_command(CLI::App& app) {
                   "CSV: a header 'wavelength_nm,NAME[,NAME...]', then one row per wavelength (increasing) with "
                   "each column's spectral radiance in any one unit; lines starting with '#' are comments")
       ->required();
-  cmd->add_option("--band-nm", args->band_nm,
-                  "The effective temperature's band: first,last wavelength [nm] (default 410,800, as Dandekar & "
-                  "Turtle 1971; at least 3 of the spectrum's wavelengths inside)")
-      ->delimiter(',')
-      ->expected(2)
-      ->check(CLI::Range(100.0, 100000.0));
+  add_wavelength_band_option(cmd, "--band-nm", args->band_nm,
+                             "The effective temperature's band: first,last wavelength [nm] (default 410,800, as "
+                             "Dandekar & Turtle 1971; at least 3 of the spectrum's wavelengths inside)");
   cmd->add_option("--out", args->out, "Output CSV file ('-' for standard output)");
   cmd->callback([args] { run_colour(*args); });
 }

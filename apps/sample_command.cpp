@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "apps/cli_options.h"
 #include "apps/commands.h"
 #include "apps/sampling.h"
 #include "astro/civil_time.h"
@@ -102,10 +103,7 @@ void run_sample(const SampleArgs& a) {
                                   a.quantity);
     if (const std::string why = image::colour_spectrum_problem(loaded.model.wavelengths_nm); !why.empty())
       throw ConfigError(a.atmosphere, "wavelengths_nm", "--colour: " + why);
-    if (!(a.colour_band_nm[0] < a.colour_band_nm[1]))
-      throw std::invalid_argument(
-          fmt::format("--colour-band-nm {},{}: the band's first wavelength must be below its last", a.colour_band_nm[0],
-                      a.colour_band_nm[1]));
+    check_wavelength_band("--colour-band-nm", a.colour_band_nm);
     const auto in_band =
         std::count_if(loaded.model.wavelengths_nm.begin(), loaded.model.wavelengths_nm.end(),
                       [&](double nm) { return nm >= a.colour_band_nm[0] && nm <= a.colour_band_nm[1]; });
@@ -191,12 +189,9 @@ void register_sample_command(CLI::App& app) {
                 "Radiance: add each direction's colour under the Kurucz sun — CIE 1931 x, y, correlated colour "
                 "temperature CCT_K and Duv, effective blackbody temperature T_eff_K over --colour-band-nm (the "
                 "atmosphere needs at least 16 wavelengths spanning 400-700 nm)");
-  cmd->add_option("--colour-band-nm", args->colour_band_nm,
-                  "--colour: the effective temperature's band, first,last wavelength [nm] (default 410,800, as "
-                  "Dandekar & Turtle 1971; at least 3 of the atmosphere's wavelengths inside)")
-      ->delimiter(',')
-      ->expected(2)
-      ->check(CLI::Range(100.0, 100000.0));
+  add_wavelength_band_option(cmd, "--colour-band-nm", args->colour_band_nm,
+                             "--colour: the effective temperature's band, first,last wavelength [nm] (default "
+                             "410,800, as Dandekar & Turtle 1971; at least 3 of the atmosphere's wavelengths inside)");
   cmd->add_flag("--cpu", args->cpu, "Precompute tables on the CPU");
   cmd->add_option("--cache", args->cache_dir, "Table cache directory (default $XDG_CACHE_HOME/zenith)");
   cmd->add_option("--threads", args->threads, "CPU threads (default: all)");
