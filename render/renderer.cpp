@@ -680,6 +680,7 @@ void Renderer::render_bands(Frame& frame, BandReader reader, const BandOutput& o
   const int width = frame.projection.width(), height = frame.projection.height(), band_rows = frame.band_rows;
   im.band.fit_bands(width, band_texture_rows(frame), reader);
   im.band.bind_bodies();
+  im.band.end_frame();  // a no-op, unless a frame before stopped midway (an exception): its uploads are fenced now
   const std::vector<BandTiles>& bands = *frame.bands;
 
   for (int first_row = 0; first_row < height; first_row += band_rows) {
@@ -701,10 +702,11 @@ void Renderer::render_bands(Frame& frame, BandReader reader, const BandOutput& o
     for (const FrameLight& light : frame.lights) draw_atmosphere_tiles(frame, im.band, band, light, timer);
     // The stars and the night sky join the radiance before the band leaves
     // (readback, texture copy or the live display pass): one tone mapping for all.
-    impl_->night_sky.draw_band(frame, *im.builds, band, timer);
+    impl_->night_sky.draw_band(frame, *im.builds, im.band.uploads(), band, timer);
     output(band, timer);
     gl::check_gl_error(fmt::format("rendering rows {}–{} of '{}'", first_row, first_row + rows - 1, frame.scene.name));
   }
+  im.band.end_frame();
 }
 
 void Renderer::zero_unlit_tiles(Frame& frame, const BandTiles& band, PassTimer& timer) {

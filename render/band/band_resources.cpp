@@ -51,17 +51,21 @@ void BandResources::clear_output(int rows) {
 }
 
 void BandResources::upload_tile_lists(const BandTiles& band) {
-  const std::size_t count = band.all_tiles.size();
-  if (count > tiles_capacity_ || tiles_.id() == 0) {
-    tiles_capacity_ = std::max<std::size_t>(count, 1024);
-    tiles_ = gl::Buffer(tiles_capacity_ * sizeof(std::uint32_t));
-  }
-  if (!band.all_tiles.empty()) tiles_.upload(std::span<const std::uint32_t>(band.all_tiles));
+  tiles_ = uploads().upload(std::span<const std::uint32_t>(band.all_tiles));
   tiles_.bind_storage(binding::kTiles);
   output().bind_storage(binding::kFrameRgb);
 }
 
 void BandResources::bind_tiles() const { tiles_.bind_storage(binding::kTiles); }
+
+gl::UploadStream& BandResources::uploads() {
+  if (!uploads_) uploads_.emplace();
+  return *uploads_;
+}
+
+void BandResources::end_frame() {
+  if (uploads_) uploads_->end_frame();
+}
 
 void BandResources::bind_gbuffer_for_the_body_pass() {
   if (gbuffer_hit_.id() == 0) {
@@ -143,11 +147,8 @@ GpuBand BandResources::bind_band_on_gpu(const BandTiles& band) {
   // One flag per tile of the band, 1 where nothing was dispatched: those
   // pixels of the output buffer hold whatever an earlier band left there.
   const std::vector<std::uint32_t> black(band.black.begin(), band.black.end());
-  const std::size_t bytes = std::max<std::size_t>(black.size(), 1) * sizeof(std::uint32_t);
-  if (black_tiles_.id() == 0 || black_tiles_.size() < bytes) black_tiles_ = gl::Buffer(bytes);
-  black_tiles_.upload(std::span<const std::uint32_t>(black));
   output().bind_storage(binding::kFrameRgb);
-  black_tiles_.bind_storage(binding::kBlackTiles);
+  uploads().upload(std::span<const std::uint32_t>(black)).bind_storage(binding::kBlackTiles);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the passes' stores to the output buffer
   return {band.first_row, band.rows, band_width_, tile_columns()};
 }

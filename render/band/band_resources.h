@@ -4,10 +4,14 @@
 // band's tile lists, its output buffer (one vec4 per pixel, frame_rgb.glsl),
 // the G-buffer path's four images, a ray-table projection's rays, and the
 // black-tile flags of a band read on the GPU. Each is bound at the binding
-// render/shader_bindings.h gives it.
+// render/shader_bindings.h gives it. What the CPU writes for a band's
+// commands (the tile lists, the black-tile flags) goes through an upload
+// stream (render/gl/upload_stream.h): no band rewrites bytes an earlier
+// band's commands, perhaps not yet run, read.
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -19,6 +23,7 @@
 #include "render/gl/buffer.h"
 #include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/texture.h"
+#include "render/gl/upload_stream.h"
 #include "warp/projection.h"
 
 namespace zenith::render {
@@ -47,9 +52,15 @@ class BandResources {
   /// Zeroes the output of a band of `rows` rows (the tiles no pass will write).
   void clear_output(int rows);
 
-  /// The band's tile lists into the tiles buffer; binds it and the output buffer.
+  /// The band's tile lists into the upload stream; binds them and the output buffer.
   void upload_tile_lists(const BandTiles& band);
   void bind_tiles() const;
+
+  /// Where the frame's passes put what the CPU hands a band's commands
+  /// (made on first use: it needs the GL context).
+  gl::UploadStream& uploads();
+  /// After the frame's last band: its uploads' bytes are reused once the GPU has run it.
+  void end_frame();
 
   /// The G-buffer path's images, allocated on first use (224 MiB of GPU
   /// memory for an 8192-pixel band of 512 rows): bound for gbuffer.comp to
@@ -79,14 +90,15 @@ class BandResources {
   /// black-tile flags that pass reads, and shader accesses to buffers are
   /// unordered across commands without one, reads before later writes too
   /// (glMemoryBarrier finishes the accesses issued before it). It did not
-  /// change the H200's six stray star pixels of the texture path
-  /// (docs/night-sky.md, "Seen on NVIDIA"), nor did a fence there.
+  /// change the H200's six stray star pixels of the texture path, nor did a
+  /// fence there: the lists a band uploads now go through the upload stream
+  /// (docs/night-sky.md, "Seen on NVIDIA").
   void end_band_on_gpu();
 
  private:
   gl::Buffer bodies_;
-  gl::Buffer tiles_;
-  std::size_t tiles_capacity_ = 0;
+  std::optional<gl::UploadStream> uploads_;
+  gl::UploadRange tiles_;  // the band's tile lists
   int band_width_ = 0, band_height_ = 0;
   BandReader reader_ = BandReader::cpu;
   gl::Buffer read_on_cpu_, read_on_gpu_;  // the band's output, by its reader
@@ -94,7 +106,6 @@ class BandResources {
   gl::Texture gbuffer_hit_, gbuffer_albedo_, radiance_sum_, transmittance_;
   std::map<int, std::vector<float>> ray_tables_;  // by the band's first row
   gl::Texture ray_table_;
-  gl::Buffer black_tiles_;
   // The rows of a band read back, kept from frame to frame: a new 50 MB vector
   // per frame (a 3840-pixel band) costs its page faults every frame.
   std::vector<float> rows_rgb_;

@@ -372,7 +372,8 @@ void NightSkyPass::add_programs(gl::ProgramBuilds& builds, const FrameVariant& v
   if (star_pixels_drawn_) programs.push_back(&built_program(builds, kStarPixels, variant.defines()));
 }
 
-void NightSkyPass::draw_band(FrameInProgress& frame, gl::ProgramBuilds& builds, BandTiles& band, PassTimer& timer) {
+void NightSkyPass::draw_band(FrameInProgress& frame, gl::ProgramBuilds& builds, gl::UploadStream& uploads,
+                             BandTiles& band, PassTimer& timer) {
   if (!stats_.drawn) return;
   const int width = frame.band_size[0], rows = band.rows, columns = frame.cones->columns();
   // The band's stars: those whose 2 × 2 footprint reaches its rows (splats_ is sorted by y).
@@ -457,11 +458,7 @@ void NightSkyPass::draw_band(FrameInProgress& frame, gl::ProgramBuilds& builds, 
       data.push_back({s->x_px, s->y_px, 0.0f, 0.0f});
       data.push_back({s->rgb[0], s->rgb[1], s->rgb[2], 0.0f});
     }
-    const std::size_t bytes = data.size() * sizeof(data[0]);
-    if (splats_buffer_.id() == 0 || splats_buffer_.size() < bytes)
-      splats_buffer_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
-    splats_buffer_.upload(std::span<const std::array<float, 4>>(data));
-    splats_buffer_.bind_storage(binding::kStarSplats);
+    uploads.upload(std::span<const std::array<float, 4>>(data)).bind_storage(binding::kStarSplats);
     splat_.set_uniform("star_count", static_cast<int>(count));
     splat_.set_uniform("band_origin", std::array<int, 2>{0, band.first_row});
     splat_.set_uniform("band_size", std::array<int, 2>{width, rows});
@@ -469,19 +466,13 @@ void NightSkyPass::draw_band(FrameInProgress& frame, gl::ProgramBuilds& builds, 
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
 
-  const std::size_t bytes = lists.size() * sizeof(std::uint32_t);
-  if (tiles_.id() == 0 || tiles_.size() < bytes) tiles_ = gl::Buffer(std::max<std::size_t>(bytes, 4096));
-  if (!lists.empty()) tiles_.upload(std::span<const std::uint32_t>(lists));
-  tiles_.bind_storage(binding::kTiles);
+  uploads.upload(std::span<const std::uint32_t>(lists)).bind_storage(binding::kTiles);
   // The floor's table, then the eclipsed Moon's: one buffer at NIGHT_SKY_TABLE_BINDING.
   const std::size_t moon_shadow_first = floor_ ? floor_table_.size() : 0;
   if (floor_ || !moon_shadow_table_.empty()) {
     std::vector<std::array<float, 4>> tables = floor_ ? floor_table_ : std::vector<std::array<float, 4>>{};
     tables.insert(tables.end(), moon_shadow_table_.begin(), moon_shadow_table_.end());
-    const std::size_t table_bytes = tables.size() * sizeof(tables[0]);
-    if (table_buffer_.id() == 0 || table_buffer_.size() < table_bytes) table_buffer_ = gl::Buffer(table_bytes);
-    table_buffer_.upload(std::span<const std::array<float, 4>>(tables));
-    table_buffer_.bind_storage(binding::kNightSkyTable);
+    uploads.upload(std::span<const std::array<float, 4>>(tables)).bind_storage(binding::kNightSkyTable);
   }
   const auto vec = [](const glm::dvec3& v) {
     return std::array<float, 3>{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
@@ -533,11 +524,7 @@ void NightSkyPass::draw_band(FrameInProgress& frame, gl::ProgramBuilds& builds, 
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   if (star_pixels_.empty()) return;
   // Then the stars, on the pixels their splats reach (after the tiles' writes above).
-  const std::size_t pixel_bytes = star_pixels_.size() * sizeof(std::uint32_t);
-  if (pixel_list_.id() == 0 || pixel_list_.size() < pixel_bytes)
-    pixel_list_ = gl::Buffer(std::max<std::size_t>(pixel_bytes, 4096));
-  pixel_list_.upload(std::span<const std::uint32_t>(star_pixels_));
-  pixel_list_.bind_storage(binding::kStarPixelList);
+  uploads.upload(std::span<const std::uint32_t>(star_pixels_)).bind_storage(binding::kStarPixelList);
   const gl::ShaderProgram& p = frame.prepare(built_program(builds, kStarPixels, frame.variant.defines()));
   star_pixels_drawn_ = true;
   p.set_uniform("star_pixel_count", static_cast<int>(star_pixels_.size()));

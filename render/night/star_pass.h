@@ -41,6 +41,7 @@
 #include "render/gl/program_builds.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/texture.h"
+#include "render/gl/upload_stream.h"
 #include "render/night/moon_albedo_map.h"
 #include "render/night/night_sky_stats.h"
 #include "render/night/star_placement.h"
@@ -102,8 +103,10 @@ class NightSkyPass {
   /// Adds the stars and the floor to the band's output (bound at
   /// FRAME_RGB_BINDING); tiles nothing had drawn that now hold a star lose their
   /// black flag. Rebinds TILES_BINDING to its own list. Its programs come from
-  /// `builds` (the frame's variant's, built now where they are not).
-  void draw_band(FrameInProgress& frame, gl::ProgramBuilds& builds, BandTiles& band, PassTimer& timer);
+  /// `builds` (the frame's variant's, built now where they are not); the
+  /// band's star and tile lists go through `uploads`.
+  void draw_band(FrameInProgress& frame, gl::ProgramBuilds& builds, gl::UploadStream& uploads, BandTiles& band,
+                 PassTimer& timer);
 
   /// The programs this pass has drawn with so far (each kind of tile its
   /// night_sky.comp, and star_pixels.comp), for the frame variant `variant`:
@@ -165,7 +168,7 @@ class NightSkyPass {
   // The kinds of tile (NightSkyVariant keys) drawn so far, and whether stars were.
   std::set<int> kinds_drawn_;
   bool star_pixels_drawn_ = false;
-  gl::Buffer splats_buffer_, accumulator_, tiles_, table_buffer_, pixel_list_;
+  gl::Buffer accumulator_;
   // The band's pixels its splats reach, each once, and a flag per band pixel to list them once (all 0 between bands).
   std::vector<std::uint32_t> star_pixels_;
   std::vector<std::uint8_t> pixel_listed_;

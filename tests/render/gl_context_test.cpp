@@ -32,6 +32,7 @@
 #include "render/gl/shader_program.h"
 #include "render/gl/software_rasterizer.h"
 #include "render/gl/texture.h"
+#include "render/gl/upload_stream.h"
 #include "render/shader_bindings.h"
 #include "render/shader_programs.h"
 #include "render/shader_source.h"
@@ -709,6 +710,105 @@ TEST_F(GlTest, StorageBufferThroughACompute) {
   gl::Buffer zeros(16);
   EXPECT_EQ(zeros.read<std::uint32_t>(), std::vector<std::uint32_t>(4, 0u));
   EXPECT_THROW(zeros.upload(std::span<const float>(params), 4), std::out_of_range);
+}
+
+/// Sums the uints bound at binding 0 (`count` of them) into sums[slot] at binding 1.
+ShaderProgram summing_program() {
+  return ShaderProgram::compute({"sum.comp",
+                                 "#version 450 core\n"
+                                 "layout(local_size_x = 1) in;\n"
+                                 "layout(std430, binding = 0) readonly buffer In { uint values[]; };\n"
+                                 "layout(std430, binding = 1) buffer Out { uint sums[]; };\n"
+                                 "uniform uint count, slot;\n"
+                                 "void main() {\n"
+                                 "  uint s = 0u;\n"
+                                 "  for (uint i = 0u; i < count; ++i) s += values[i];\n"
+                                 "  sums[slot] = s;\n"
+                                 "}\n",
+                                 {}});
+}
+
+TEST_F(GlTest, UploadStreamGivesEveryUploadOfAFrameBytesOfItsOwn) {
+  // A band's lists are uploaded while the commands of the bands before, which
+  // read other lists, may not have run: each upload must land where no
+  // earlier one lies, and a shader bound to its range reads it from its first
+  // element. Five uploads and five dispatches with no wait between them.
+  const ShaderProgram sum = summing_program();
+  gl::UploadStream stream(4096);
+  gl::Buffer sums(8 * sizeof(std::uint32_t));
+  sums.bind_storage(1);
+  std::vector<gl::UploadRange> ranges;
+  std::uint32_t expected[5] = {};
+  for (std::uint32_t k = 0; k < 5; ++k) {
+    // 700 uints (2 800 bytes) from the third upload on: no two of them fit one 4 096-byte chunk.
+    std::vector<std::uint32_t> values(k < 2 ? 10 + k : 700);
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = 1000 * (k + 1) + static_cast<std::uint32_t>(i);
+    for (std::uint32_t v : values) expected[k] += v;
+    ranges.push_back(stream.upload(std::span<const std::uint32_t>(values)));
+    ranges.back().bind_storage(0);
+    sum.set_uniform("count", static_cast<unsigned>(values.size()));
+    sum.set_uniform("slot", k);
+    sum.dispatch(1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  const std::vector<std::uint32_t> out = sums.read<std::uint32_t>();
+  for (std::uint32_t k = 0; k < 5; ++k) EXPECT_EQ(out[k], expected[k]) << "upload " << k;
+  GLint alignment = 0;
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
+  for (std::size_t a = 0; a < ranges.size(); ++a) {
+    EXPECT_EQ(ranges[a].offset_bytes % static_cast<std::size_t>(std::max(alignment, 16)), 0u) << "upload " << a;
+    for (std::size_t b = 0; b < a; ++b)
+      EXPECT_TRUE(ranges[a].buffer != ranges[b].buffer ||
+                  ranges[a].offset_bytes >= ranges[b].offset_bytes + ranges[b].size_bytes ||
+                  ranges[b].offset_bytes >= ranges[a].offset_bytes + ranges[a].size_bytes)
+          << "uploads " << b << " and " << a << " overlap";
+  }
+  EXPECT_GE(stream.chunks(), 2u) << "2 800-byte uploads do not all fit one 4 096-byte chunk";
+  // Nothing to upload still gives a range a storage binding takes (a positive size).
+  const gl::UploadRange empty = stream.upload(std::span<const std::uint32_t>());
+  EXPECT_GT(empty.size_bytes, 0u);
+  empty.bind_storage(0);
+  gl::check_gl_error("binding an empty upload");
+  // An upload larger than a chunk gets a chunk of its size.
+  const std::vector<std::uint32_t> large(3000, 1u);
+  const gl::UploadRange big = stream.upload(std::span<const std::uint32_t>(large));
+  big.bind_storage(0);
+  sum.set_uniform("count", 3000u);
+  sum.set_uniform("slot", 5u);
+  sum.dispatch(1);
+  EXPECT_EQ(sums.read<std::uint32_t>()[5], 3000u);
+  EXPECT_THROW(gl::UploadStream(0), std::invalid_argument);
+}
+
+TEST_F(GlTest, UploadStreamReusesAFramesBytesOnceTheGpuHasRunItsCommands) {
+  // Frame after frame, each finished before the next: the first chunk is free
+  // again every time (its fence signalled), so the stream holds one chunk.
+  const ShaderProgram sum = summing_program();
+  gl::UploadStream stream(4096);
+  gl::Buffer sums(4 * sizeof(std::uint32_t));
+  sums.bind_storage(1);
+  for (std::uint32_t frame = 0; frame < 40; ++frame) {
+    const std::vector<std::uint32_t> values(100, frame);
+    const gl::UploadRange r = stream.upload(std::span<const std::uint32_t>(values));
+    r.bind_storage(0);
+    sum.set_uniform("count", 100u);
+    sum.set_uniform("slot", 0u);
+    sum.dispatch(1);
+    stream.end_frame();
+    glFinish();
+    ASSERT_EQ(sums.read<std::uint32_t>()[0], 100 * frame) << "frame " << frame;
+  }
+  EXPECT_EQ(stream.chunks(), 1u);
+  // Frames that never wait for the GPU: new chunks only while the fences
+  // before have not signalled, never more than the bound.
+  for (std::uint32_t frame = 0; frame < 200; ++frame) {
+    const std::vector<std::uint32_t> values(900, frame);  // 3 600 bytes: a chunk a frame
+    stream.upload(std::span<const std::uint32_t>(values)).bind_storage(0);
+    sum.set_uniform("count", 900u);
+    sum.dispatch(1);
+    stream.end_frame();
+  }
+  EXPECT_LE(stream.chunks(), gl::UploadStream::kMaxChunks);
 }
 
 // --- GL-free: embedded shaders, includes, define injection --------------------
