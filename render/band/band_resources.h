@@ -74,8 +74,9 @@ class BandResources {
   static void add_dispatch_shapes(gl::DispatchShapes& shapes, int width, int rows);
 
   /// The rays of `projection` (one without a GPU form) for the band of `rows`
-  /// rows from `first_row`: computed on the CPU in double once, kept until
-  /// forget_rays(), uploaded and bound as projection.glsl's ray table.
+  /// rows from `first_row`, bound as projection.glsl's ray table: computed on
+  /// the CPU in double and uploaded once per band, then kept on the GPU until
+  /// forget_rays() (a new projection) or a new band size.
   void upload_rays(const warp::Projection& projection, int first_row, int rows);
   void forget_rays() { ray_tables_.clear(); }
 
@@ -104,8 +105,7 @@ class BandResources {
   gl::Buffer read_on_cpu_, read_on_gpu_;  // the band's output, by its reader
   gl::Buffer& output() { return reader_ == BandReader::cpu ? read_on_cpu_ : read_on_gpu_; }
   gl::Texture gbuffer_hit_, gbuffer_albedo_, radiance_sum_, transmittance_;
-  std::map<int, std::vector<float>> ray_tables_;  // by the band's first row
-  gl::Texture ray_table_;
+  std::map<int, gl::Texture> ray_tables_;  // by the band's first row
   // The rows of a band read back, kept from frame to frame: a new 50 MB vector
   // per frame (a 3840-pixel band) costs its page faults every frame.
   std::vector<float> rows_rgb_;

@@ -1073,6 +1073,28 @@ TEST(RendererWarp, AProjectorShowsTheDomeThroughItsMesh) {
     }
 }
 
+TEST(RendererWarp, EachBandKeepsItsRaysOnTheGpuFromFrameToFrame) {
+  // A mesh's rays are computed and uploaded once per band, then bound frame
+  // after frame: three bands, three frames with a dome master between the
+  // second and third (a new projection: the rays again), each the frame of a
+  // renderer that draws it first.
+  RenderOptions options;
+  options.max_band_pixels = 48 * 16;  // three bands of 16 rows
+  TestRenderer t(options), fresh(options);
+  const scene::Scene s = planet_scene("earth-advanced", 2.0, 60.0, sky_direction(90.0, 0.0));
+  const auto dome = std::make_shared<warp::FisheyeProjection>(48, 48);
+  const warp::WarpedProjection projector(
+      48, 48, mesh_of([](double u, double v) { return glm::dvec2(0.05 + 0.6 * u, 0.1 + 0.5 * v * v); }), dome);
+  const std::vector<float> expected = fresh.renderer.render_image(s, projector);
+  EXPECT_EQ(fresh.renderer.last_frame().bands, 3);
+  expect_finite_non_negative(expected, "projector");
+  EXPECT_EQ(t.renderer.render_image(s, projector), expected) << "the first frame";
+  EXPECT_EQ(t.renderer.render_image(s, projector), expected) << "the second frame, the rays kept";
+  const std::vector<float> master = t.renderer.render_image(s, *dome);
+  EXPECT_NE(master, expected);
+  EXPECT_EQ(t.renderer.render_image(s, projector), expected) << "after the dome master";
+}
+
 /// The sun's part of a render, Σ (L_with − L_without) ΔΩ per channel, split
 /// into what lies within `cone_rad` of the sun and what lies beyond (pixel
 /// solid angles from their corner rays; pixels without all three rays skipped).
