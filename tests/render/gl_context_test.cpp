@@ -811,6 +811,44 @@ TEST_F(GlTest, UploadStreamReusesAFramesBytesOnceTheGpuHasRunItsCommands) {
   EXPECT_LE(stream.chunks(), gl::UploadStream::kMaxChunks);
 }
 
+TEST_F(GlTest, UploadStreamNeverRefillsAChunkWhoseFrameTheGpuIsStillRunning) {
+  // A frame whose dispatch runs long (10⁸ steps, each needing the one before), its
+  // fence laid, then the next frame's upload at once: the first chunk is not
+  // free yet, so the upload takes a second chunk instead of rewriting it.
+  const ShaderProgram slow =
+      ShaderProgram::compute({"slow.comp",
+                              "#version 450 core\n"
+                              "layout(local_size_x = 1) in;\n"
+                              "layout(std430, binding = 0) readonly buffer In { uint values[]; };\n"
+                              "layout(std430, binding = 1) buffer Out { uint sums[]; };\n"
+                              "uniform uint steps;\n"
+                              "void main() {\n"
+                              "  uint s = 0u;\n"
+                              "  for (uint i = 0u; i < steps; ++i) s = s * 1664525u + 1013904223u + values[s >> 30];\n"
+                              "  sums[0] = s;\n"
+                              "}\n",
+                              {}});
+  gl::UploadStream stream(4096);
+  gl::Buffer sums(4 * sizeof(std::uint32_t));
+  sums.bind_storage(1);
+  const std::vector<std::uint32_t> first = {1, 2, 3, 4}, second = {5, 6, 7, 8};
+  const gl::UploadRange a = stream.upload(std::span<const std::uint32_t>(first));
+  a.bind_storage(0);
+  ASSERT_TRUE(slow.set_uniform("steps", 100000000u));
+  glFlush();
+  const auto start = std::chrono::steady_clock::now();
+  slow.dispatch(1);
+  stream.end_frame();
+  const gl::UploadRange b = stream.upload(std::span<const std::uint32_t>(second));
+  const double issued_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  glFinish();
+  const double ran_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("the slow dispatch: issued in %.3f s, ran in %.3f s\n", issued_s, ran_s);
+  if (ran_s < 2.0 * issued_s) GTEST_SKIP() << "this driver ran the dispatch before returning from it";
+  EXPECT_NE(b.buffer, a.buffer) << "the upload rewrote the chunk the running dispatch reads";
+  EXPECT_EQ(stream.chunks(), 2u);
+}
+
 // --- GL-free: embedded shaders, includes, define injection --------------------
 
 TEST(ShaderSource, EmbeddedShadersAreThere) {
