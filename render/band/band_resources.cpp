@@ -107,7 +107,7 @@ void BandResources::add_dispatch_shapes(gl::DispatchShapes& shapes, int width, i
 void BandResources::upload_rays(const warp::Projection& projection, int first_row, int rows) {
   // Each band's rays stay on the GPU from frame to frame. Uploading them per
   // band and frame into one texture moved the whole frame's rays every frame
-  // (37 MB for a 1920 × 1200 projector) and rewrote a texture the band before
+  // (33 MB for a 1920 × 1080 projector) and rewrote a texture the band before
   // might still be reading.
   const int width = projection.width();
   Texture& table = ray_tables_[first_row];
