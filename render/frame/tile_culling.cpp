@@ -5,14 +5,21 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/parallel_for.h"
+
 namespace zenith::render {
 
 TileCones::TileCones(const warp::Projection& projection)
     : columns_((projection.width() + kTileSize - 1) / kTileSize),
       rows_((projection.height() + kTileSize - 1) / kTileSize),
       cones_(static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_)) {
-  std::vector<glm::dvec3> rays;
-  for (int ty = 0; ty < rows_; ++ty)
+  // Rows of tiles on every core: an 8192² dome master's 512 × 512 tiles take
+  // 15.7 M border rays, 0.57 s on one core of this project's VM, all before
+  // the projection's first frame (each tile is its own; Projection is const).
+  core::parallel_for(static_cast<std::size_t>(rows_), 0, [&](std::size_t row) {
+    const int ty = static_cast<int>(row);
+    std::vector<glm::dvec3> rays;
+    rays.reserve(4 * kTileSize);
     for (int tx = 0; tx < columns_; ++tx) {
       const int x0 = tx * kTileSize, y0 = ty * kTileSize;
       const int x1 = std::min(x0 + kTileSize, projection.width()) - 1;
@@ -39,13 +46,15 @@ TileCones::TileCones(const warp::Projection& projection)
       // Rays spread over more than a hemisphere (a 360° fisheye's rim): the cone is everything.
       const double length = glm::length(sum);
       glm::dvec3 axis = length > 1e-9 ? sum / length : rays.front();
-      double half_angle = 0.0;
-      for (const glm::dvec3& r : rays)
-        half_angle = std::max(half_angle, 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(r - axis))));
+      // The angle 2 asin(|r − axis| / 2) grows with the chord: one asin, of the longest.
+      double chord = 0.0;
+      for (const glm::dvec3& r : rays) chord = std::max(chord, glm::length(r - axis));
+      const double half_angle = 2.0 * std::asin(std::min(1.0, 0.5 * chord));
       cone.axis = glm::vec3(axis);
       cone.half_angle_rad = static_cast<float>(length > 1e-9 ? half_angle + margin : 4.0);
       cone.has_rays = true;
     }
+  });
   // Blocks of kTileBlock² tiles: the axis is the mean of the tiles' axes, the
   // half-angle the farthest tile cone's edge from it (triangle inequality), padded.
   block_columns_ = (columns_ + kTileBlock - 1) / kTileBlock;
