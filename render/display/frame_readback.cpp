@@ -59,7 +59,6 @@ ReadbackBuffer::ReadbackBuffer(std::size_t bytes) : bytes_(bytes) {
 }
 
 ReadbackBuffer::~ReadbackBuffer() {
-  if (fence_ != nullptr) glDeleteSync(static_cast<GLsync>(fence_));
   if (buffer_ != 0) {
     glUnmapNamedBuffer(buffer_);
     glDeleteBuffers(1, &buffer_);
@@ -83,25 +82,11 @@ void ReadbackBuffer::queue_read(const gl::Texture& texture, std::size_t offset) 
 }
 
 void ReadbackBuffer::fence() {
-  if (fence_ != nullptr) glDeleteSync(static_cast<GLsync>(fence_));
-  fence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  fence_ = gl::Fence::after_issued_commands();
   glFlush();
 }
 
-void ReadbackBuffer::wait() {
-  if (fence_ == nullptr) return;
-  const GLsync sync = static_cast<GLsync>(fence_);
-  for (;;) {  // one second at a time, so that a lost GPU shows as an error, not a hang
-    const GLenum status = glClientWaitSync(sync, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
-    if (status == GL_ALREADY_SIGNALED || status == GL_CONDITION_SATISFIED) break;
-    if (status == GL_WAIT_FAILED) {
-      gl::check_gl_error("waiting for a readback");
-      throw std::runtime_error("readback: waiting for the GPU's fence failed");
-    }
-  }
-  glDeleteSync(sync);
-  fence_ = nullptr;
-}
+void ReadbackBuffer::wait() { fence_.wait("readback"); }
 
 void read_texture_now(const gl::Texture& texture, std::vector<std::byte>& out) {
   const auto [format, type] = pack_format(texture);

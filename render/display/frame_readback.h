@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "render/gl/fence.h"
 #include "render/gl/texture.h"
 
 namespace zenith::render::display {
@@ -50,7 +51,7 @@ class ReadbackBuffer {
   unsigned buffer_ = 0;
   std::byte* mapped_ = nullptr;
   std::size_t bytes_ = 0;
-  void* fence_ = nullptr;  // GLsync
+  gl::Fence fence_;
 };
 
 /// Reads `texture` into `out` (resized to readback_bytes) at once, without a

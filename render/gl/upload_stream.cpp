@@ -27,21 +27,6 @@ UploadStream::UploadStream(std::size_t chunk_bytes) : chunk_bytes_(chunk_bytes) 
   alignment_ = std::max<std::size_t>(16, static_cast<std::size_t>(std::max(alignment, 1)));
 }
 
-UploadStream::~UploadStream() {
-  for (Chunk& c : chunks_)
-    if (c.fence != nullptr) glDeleteSync(static_cast<GLsync>(c.fence));
-}
-
-bool UploadStream::free_now(Chunk& chunk) const {
-  if (chunk.fence == nullptr) return true;
-  const GLenum status = glClientWaitSync(static_cast<GLsync>(chunk.fence), 0, 0);
-  if (status == GL_WAIT_FAILED) throw std::runtime_error("UploadStream: glClientWaitSync failed");
-  if (status == GL_TIMEOUT_EXPIRED) return false;
-  glDeleteSync(static_cast<GLsync>(chunk.fence));
-  chunk.fence = nullptr;
-  return true;
-}
-
 UploadStream::Chunk& UploadStream::chunk_with_room(std::size_t bytes) {
   if (current_ < chunks_.size()) {
     Chunk& c = chunks_[current_];
@@ -54,7 +39,7 @@ UploadStream::Chunk& UploadStream::chunk_with_room(std::size_t bytes) {
     return chunks_[i];
   };
   for (std::size_t i = 0; i < chunks_.size(); ++i)
-    if (!chunks_[i].in_frame && chunks_[i].buffer.size() >= bytes && free_now(chunks_[i])) return take(i);
+    if (!chunks_[i].in_frame && chunks_[i].buffer.size() >= bytes && chunks_[i].fence.signalled()) return take(i);
   // None free: wait for the oldest fence that frees a chunk large enough, once the stream holds as many
   // chunks as it may; else a new chunk.
   std::size_t oldest = chunks_.size();
@@ -63,17 +48,10 @@ UploadStream::Chunk& UploadStream::chunk_with_room(std::size_t bytes) {
         (oldest == chunks_.size() || chunks_[i].fenced_at < chunks_[oldest].fenced_at))
       oldest = i;
   if (chunks_.size() >= kMaxChunks && oldest < chunks_.size()) {
-    const auto fence = static_cast<GLsync>(chunks_[oldest].fence);
-    for (;;) {
-      const GLenum status = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
-      if (status == GL_WAIT_FAILED) throw std::runtime_error("UploadStream: glClientWaitSync failed");
-      if (status != GL_TIMEOUT_EXPIRED) break;
-    }
-    glDeleteSync(fence);
-    chunks_[oldest].fence = nullptr;
+    chunks_[oldest].fence.wait("an upload stream's oldest chunk");
     return take(oldest);
   }
-  chunks_.push_back(Chunk{Buffer(std::max(chunk_bytes_, bytes))});
+  chunks_.emplace_back().buffer = Buffer(std::max(chunk_bytes_, bytes));
   return take(chunks_.size() - 1);
 }
 
@@ -89,8 +67,7 @@ UploadRange UploadStream::upload(std::span<const std::byte> data) {
 void UploadStream::end_frame() {
   for (Chunk& c : chunks_) {
     if (!c.in_frame) continue;
-    c.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    if (c.fence == nullptr) throw std::runtime_error("UploadStream: glFenceSync failed");
+    c.fence = Fence::after_issued_commands();
     c.in_frame = false;
     c.fenced_at = frames_;
   }

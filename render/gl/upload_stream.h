@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "render/gl/buffer.h"
+#include "render/gl/fence.h"
 
 namespace zenith::render::gl {
 
@@ -39,7 +40,6 @@ class UploadStream {
  public:
   /// Chunks of at least `chunk_bytes` (> 0) each. Needs a current GL 4.5 context.
   explicit UploadStream(std::size_t chunk_bytes = std::size_t{4} << 20);
-  ~UploadStream();
   UploadStream(const UploadStream&) = delete;
   UploadStream& operator=(const UploadStream&) = delete;
 
@@ -67,11 +67,9 @@ class UploadStream {
     Buffer buffer;
     std::size_t used_bytes = 0;
     bool in_frame = false;             // filled by the frame in progress
-    void* fence = nullptr;             // GLsync laid after its last frame; null: free
+    Fence fence;                       // laid after its last frame; empty: free
     unsigned long long fenced_at = 0;  // end_frame count when fenced: the oldest is waited for first
   };
-  /// Whether `chunk` is free now (its fence signalled, then deleted).
-  bool free_now(Chunk& chunk) const;
   /// A chunk of the frame in progress with `bytes` free after alignment.
   Chunk& chunk_with_room(std::size_t bytes);
 

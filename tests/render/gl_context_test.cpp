@@ -23,6 +23,7 @@
 
 #include "render/gl/buffer.h"
 #include "render/gl/egl_context.h"
+#include "render/gl/fence.h"
 #include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/gl_error.h"
 #include "render/gl/gl_limits.h"
@@ -710,6 +711,22 @@ TEST_F(GlTest, StorageBufferThroughACompute) {
   gl::Buffer zeros(16);
   EXPECT_EQ(zeros.read<std::uint32_t>(), std::vector<std::uint32_t>(4, 0u));
   EXPECT_THROW(zeros.upload(std::span<const float>(params), 4), std::out_of_range);
+}
+
+TEST_F(GlTest, AFenceSignalsOnceTheCommandsBeforeItAreDoneAndIsEmptyAfterAWait) {
+  gl::Fence none;
+  EXPECT_TRUE(none.empty());
+  EXPECT_TRUE(none.signalled());
+  none.wait("nothing");  // returns at once
+  gl::Fence fence = gl::Fence::after_issued_commands();
+  EXPECT_FALSE(fence.empty());
+  glFinish();
+  EXPECT_TRUE(fence.signalled());
+  gl::Fence moved = std::move(fence);
+  EXPECT_TRUE(fence.empty());  // NOLINT(bugprone-use-after-move): a moved-from fence is empty
+  EXPECT_FALSE(moved.empty());
+  moved.wait("the test's commands");
+  EXPECT_TRUE(moved.empty());
 }
 
 /// Sums the uints bound at binding 0 (`count` of them) into sums[slot] at binding 1.
