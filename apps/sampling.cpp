@@ -11,10 +11,10 @@
 #include "atmosphere/reference/geometry.h"
 #include "atmosphere/reference/optical_depth.h"
 #include "atmosphere/reference/path_tracer.h"
+#include "atmosphere/solar_limb_darkening.h"
 #include "core/progress_bar.h"
 #include "core/units.h"
 #include "image/colour.h"
-#include "scene/sun_disc.h"
 
 namespace zenith::app {
 namespace {
@@ -25,7 +25,7 @@ reference::SunDisc sun_disc(const SamplingRequest& r) {
   reference::SunDisc disc;
   disc.direction = r.geometry.sun_direction();
   disc.angular_radius_rad = r.sun_angular_radius_deg * kPi / 180.0;
-  disc.limb_exponents = r.limb_exponents;
+  disc.limb_darkening = r.limb_darkening;
   disc.occulter = r.occulter;
   return disc;
 }
@@ -51,8 +51,8 @@ void place_sun_and_moon(const astro::SkyPositions& sky, const AtmosphereModel& m
   r.geometry.sun_zenith_deg = s.sun_zenith_deg;
   r.geometry.sun_azimuth_deg = s.sun_azimuth_deg;
   r.sun_angular_radius_deg = s.sun_angular_radius_rad / core::kDeg;
-  r.limb_exponents.clear();
-  for (double nm : model.wavelengths_nm) r.limb_exponents.push_back(scene::limb_darkening_exponent(nm));
+  r.limb_darkening.clear();
+  for (double nm : model.wavelengths_nm) r.limb_darkening.push_back(solar_limb_darkening(nm));
   r.occulter.centre_m = s.moon_centre_m;
   r.occulter.radius_m = s.moon_radius_m;
 }
@@ -66,7 +66,7 @@ std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequ
       // A solar eclipse: the tables with the Moon's shadow over them (astro/eclipsed_sky.h).
       const Vec3 observer = r.geometry.observer_m(model);
       const astro::EclipseGeometry g{r.occulter.centre_m, r.occulter.radius_m, r.geometry.sun_direction(),
-                                     r.sun_angular_radius_deg * core::kDeg, r.limb_exponents};
+                                     r.sun_angular_radius_deg * core::kDeg, r.limb_darkening};
       const astro::MoonShadow shadow(g, queries, model, observer);
       for (const ViewDirection& d : r.directions)
         samples.push_back({d, astro::eclipsed_sky_radiance(queries, model, shadow, observer, view_vector(d)), {}});

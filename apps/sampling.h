@@ -19,9 +19,9 @@ struct SamplingRequest {
   std::vector<atmosphere::ViewDirection> directions;
   SamplingMethod method = SamplingMethod::Tables;
   double sun_angular_radius_deg = 0.2666;  ///< the sun seen from Earth
-  /// Reference method: a limb-darkened disc (one exponent per wavelength; empty: uniform) and the Moon in
+  /// Reference method: a limb-darkened disc (one law per wavelength; empty: uniform) and the Moon in
   /// front of it (a solar eclipse), in the frame of `geometry`.
-  std::vector<double> limb_exponents;
+  std::vector<atmosphere::LimbDarkening> limb_darkening;
   atmosphere::reference::Occulter occulter;
   std::size_t reference_samples = 4096;  ///< Monte Carlo paths per wavelength and direction
   /// Radiance: also each direction's colour — CIE 1931 x, y of the spectral radiance, its correlated colour

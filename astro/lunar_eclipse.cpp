@@ -60,7 +60,8 @@ class RadialBins {
 }  // namespace
 
 EarthShadow::EarthShadow(const atmosphere::LoadedAtmosphere& loaded, double distance_m, double sun_angular_radius_rad,
-                         const std::vector<double>& limb_exponents, const EarthShadowOptions& options)
+                         const std::vector<atmosphere::LimbDarkening>& limb_darkening,
+                         const EarthShadowOptions& options)
     : distance_m_(distance_m),
       sun_radius_rad_(sun_angular_radius_rad),
       ground_radius_m_(loaded.model.ground_radius_m),
@@ -74,9 +75,10 @@ EarthShadow::EarthShadow(const atmosphere::LoadedAtmosphere& loaded, double dist
   if (!(sun_angular_radius_rad > 0.0 && sun_angular_radius_rad < 0.1))
     throw std::invalid_argument(
         core::cat("lunar eclipse: the Sun's angular radius ", sun_angular_radius_rad, " rad must be in (0, 0.1)"));
-  if (limb_exponents.size() != wavelengths_)
+  if (limb_darkening.size() != wavelengths_)
     throw std::invalid_argument(
-        core::cat("lunar eclipse: ", limb_exponents.size(), " limb exponents for ", wavelengths_, " wavelengths"));
+        core::cat("lunar eclipse: ", limb_darkening.size(), " limb darkening laws for ", wavelengths_, " wavelengths"));
+  for (const atmosphere::LimbDarkening& law : limb_darkening) atmosphere::check_limb_darkening(law, "lunar eclipse");
   if (options.heights < 16 || !(options.bin_m > 0.0) || options.sun_rings < 1 || options.sun_sectors < 4)
     throw std::invalid_argument("lunar eclipse: options out of range");
 
@@ -146,7 +148,7 @@ EarthShadow::EarthShadow(const atmosphere::LoadedAtmosphere& loaded, double dist
     for (std::size_t ring = 0; ring < options.sun_rings; ++ring) {
       const double rho = (double(ring) + 0.5) / double(options.sun_rings);
       const double mu = std::sqrt(std::max(0.0, 1.0 - rho * rho));
-      const double weight = std::pow(mu, limb_exponents[i]) * rho;  // ring area ∝ ρ
+      const double weight = limb_darkening[i].intensity(mu) * rho;  // ring area ∝ ρ
       for (std::size_t s = 0; s < options.sun_sectors; ++s) {
         const double phi = 2.0 * kPi * (double(s) + 0.5) / double(options.sun_sectors);
         sun.push_back({sun_image_m * rho * std::cos(phi), sun_image_m * rho * std::sin(phi), weight});

@@ -20,7 +20,7 @@
 // crossed the axis). With the Sun a point, the ring [b, b + db] sends its
 // light T · 2π b db onto the annulus between |y(b)| and |y(b + db)|; rays
 // above the top of the air land at y = b unchanged, rays below the ground
-// are stopped. The Sun's limb-darkened disc (μ^a(λ), scene/sun_disc.h) then
+// are stopped. The Sun's limb-darkened disc (atmosphere/solar_limb_darkening.h) then
 // spreads this pattern: E(Y) = Σ_k w_k E_point(|Y − D σ_k|) over points σ_k
 // of the disc. E is per unit of the Sun's irradiance: 1 outside the shadow,
 // the penumbra's fall, and the umbra's red light.
@@ -31,6 +31,7 @@
 #include "astro/civil_time.h"
 #include "astro/sky_positions.h"
 #include "atmosphere/parameters.h"
+#include "atmosphere/solar_limb_darkening.h"
 
 namespace zenith::astro {
 
@@ -44,12 +45,12 @@ struct EarthShadowOptions {
 class EarthShadow {
  public:
   /// The shadow of `loaded`'s planet at `distance_m` behind its centre, lit by
-  /// a Sun of angular radius `sun_angular_radius_rad` with limb exponents per
-  /// wavelength (all 0: a uniform disc). Throws std::invalid_argument for a
-  /// distance under ten times the top of the air, a Sun radius outside
-  /// (0, 0.1) rad or limb exponents not one per wavelength.
+  /// a Sun of angular radius `sun_angular_radius_rad` with a limb darkening
+  /// law per wavelength (all uniform: a uniform disc). Throws
+  /// std::invalid_argument for a distance under ten times the top of the air, a
+  /// Sun radius outside (0, 0.1) rad or limb darkening not one valid law per wavelength.
   EarthShadow(const atmosphere::LoadedAtmosphere& loaded, double distance_m, double sun_angular_radius_rad,
-              const std::vector<double>& limb_exponents, const EarthShadowOptions& options = {});
+              const std::vector<atmosphere::LimbDarkening>& limb_darkening, const EarthShadowOptions& options = {});
 
   /// E / E_sun at `axis_distance_m` from the shadow's axis, wavelength i.
   double illumination(double axis_distance_m, std::size_t wavelength) const;

@@ -80,12 +80,10 @@ MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQue
     throw std::invalid_argument("MoonShadow: the Sun's direction must be a unit vector");
   if (glm::length(g.moon_centre_m - camera_m) <= g.moon_radius_m)
     throw std::invalid_argument("MoonShadow: the camera is inside the Moon");
-  if (g.limb_exponents.size() != wavelengths_)
+  if (g.limb_darkening.size() != wavelengths_)
     throw std::invalid_argument(
-        core::cat("MoonShadow: ", g.limb_exponents.size(), " limb exponents for ", wavelengths_, " wavelengths"));
-  for (double a : g.limb_exponents)
-    if (!(a >= 0.0 && a <= 10.0))
-      throw std::invalid_argument(core::cat("MoonShadow: limb exponent ", a, " must be in [0, 10]"));
+        core::cat("MoonShadow: ", g.limb_darkening.size(), " limb darkening laws for ", wavelengths_, " wavelengths"));
+  for (const atmosphere::LimbDarkening& law : g.limb_darkening) atmosphere::check_limb_darkening(law, "MoonShadow");
   const std::vector<double>& z = options.field_altitudes_m;
   if (options.profile_samples < 2 || options.field_across < 3 || options.field_side < 2 || z.empty() ||
       z.front() != 0.0 || !std::is_sorted(z.begin(), z.end()) || std::adjacent_find(z.begin(), z.end()) != z.end() ||
@@ -128,10 +126,10 @@ void MoonShadow::fill_profile() {
   const std::size_t n = options_.profile_samples;
   profile_.assign(n * wavelengths_, 1.0f);
   for (std::size_t i = 0; i < wavelengths_; ++i) {
-    const double a = geometry_.limb_exponents[i];
+    const atmosphere::LimbDarkening& law = geometry_.limb_darkening[i];
     for (std::size_t k = 0; k < n; ++k) {
       const double x = profile_end_rad_ * double(k) / double(n - 1);
-      profile_[k * wavelengths_ + i] = float(1.0 - limb_darkened_obscuration(x, r_s, r_m, a));
+      profile_[k * wavelengths_ + i] = float(1.0 - limb_darkened_obscuration(x, r_s, r_m, law));
     }
   }
 }
@@ -337,7 +335,7 @@ bool MoonShadow::still_fits(const EclipseGeometry& g, const glm::dvec3& camera_m
   // A 1e-3 change of a radius moves the profile by half a sample; 0.3° of the axis' zenith angle changes the
   // sky by < 0.5 % (1.4 % per degree measured at 2017-08-21 17:50 UTC, docs/validation.md, "Eclipses").
   constexpr double kRelative = 1e-3, kAxisZenith_rad = 0.3 * core::kDeg;
-  return g.limb_exponents == geometry_.limb_exponents &&
+  return g.limb_darkening == geometry_.limb_darkening &&
          std::abs(moon_radius / moon_radius_0_rad_ - 1.0) <= kRelative &&
          std::abs(g.sun_angular_radius_rad / geometry_.sun_angular_radius_rad - 1.0) <= kRelative &&
          std::abs(axis_zenith_rad(g) - axis_zenith_0_rad_) <= kAxisZenith_rad;

@@ -8,8 +8,8 @@
 //   σ(p) = atan2(|w⊥|, w·s)   from the Sun's centre,  w = m − p,  w⊥ = w − (w·s) s,
 // with s the unit vector toward the Sun, and the Moon's disc at the radius
 // r_m(p) = asin(R_m / |w|); the Sun's radius r_s is the same everywhere.
-//   V(p, λ) = 1 − limb_darkened_obscuration(σ, r_s, r_m, a(λ))
-// (astro/solar_eclipse.h; the limb darkening μ^a(λ) of scene/sun_disc.h). Across
+//   V(p, λ) = 1 − limb_darkened_obscuration(σ, r_s, r_m, I_λ)
+// (astro/solar_eclipse.h; I_λ the Sun's limb darkening, atmosphere/solar_limb_darkening.h). Across
 // the air a camera can see (≲ 2 000 km) |w| changes by < 0.6 %, so V is
 // tabulated once, at the camera's Moon radius r_m0, over the distance of the
 // Moon's limb from the Sun's centre, x(p) = σ(p) − (r_m(p) − r_m0): near the
@@ -61,6 +61,7 @@
 
 #include "atmosphere/atmosphere_model.h"
 #include "atmosphere/lut/lookup_tables.h"
+#include "atmosphere/solar_limb_darkening.h"
 
 namespace zenith::astro {
 
@@ -72,9 +73,9 @@ struct EclipseGeometry {
   double moon_radius_m = 0.0;
   glm::dvec3 sun_direction{0.0, 0.0, 1.0};  ///< unit, toward the Sun
   double sun_angular_radius_rad = 0.0;
-  /// The Sun's limb darkening μ^a per wavelength of the model (scene/sun_disc.h's
-  /// limb_darkening_exponent); all 0: a uniform disc.
-  std::vector<double> limb_exponents;
+  /// The Sun's limb darkening per wavelength of the model
+  /// (atmosphere::solar_limb_darkening; all uniform: a uniform disc).
+  std::vector<atmosphere::LimbDarkening> limb_darkening;
 };
 
 /// The tables' sizes and the rays behind V̄.
@@ -128,7 +129,7 @@ class MoonShadow {
   /// For a sky seen from `camera_m` (planet-centred) at `model`'s wavelengths.
   /// Throws std::invalid_argument for a non-finite geometry, a Moon radius or
   /// Sun radius ≤ 0, a non-unit Sun direction, a camera inside the Moon or
-  /// limb exponents not one per wavelength in [0, 10], or options out of range;
+  /// a limb darkening law not one per wavelength or invalid, or options out of range;
   /// ShadowBuildStopped soon after `stop` is requested (each V̄ node checks it:
   /// a millisecond or two of work, where a whole build takes seconds).
   MoonShadow(const EclipseGeometry& geometry, const atmosphere::lut::TableQueries& tables,
@@ -159,7 +160,7 @@ class MoonShadow {
   double scattered_light(const Place& place, const glm::dvec3& direction, std::size_t wavelength) const;
 
   /// The same shadow with `geometry` seen from `camera_m`: whether the tables
-  /// still hold (the same limb exponents, r_m0 and r_s within 1e-3 relative,
+  /// still hold (the same limb darkening, r_m0 and r_s within 1e-3 relative,
   /// the axis' zenith angle within 0.3°). The caller then moves this one (move_to).
   bool still_fits(const EclipseGeometry& geometry, const glm::dvec3& camera_m) const;
   /// Takes the new geometry and camera keeping the tables (after still_fits).

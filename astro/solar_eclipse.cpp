@@ -47,13 +47,12 @@ double covered_angle(double rho, double d, double r_m) {
 
 }  // namespace
 
-double limb_darkened_obscuration(double d, double r_s, double r_m, double a) {
+double limb_darkened_obscuration(double d, double r_s, double r_m, const atmosphere::LimbDarkening& limb) {
   const double uniform = disc_obscuration(d, r_s, r_m);  // checks the geometry
-  if (!(a >= 0.0 && a <= 10.0))
-    throw std::invalid_argument(core::cat("limb_darkened_obscuration: limb exponent ", a, " must be in [0, 10]"));
-  if (uniform == 0.0 || uniform == 1.0 || a == 0.0) return uniform;  // none, total, uniform
+  atmosphere::check_limb_darkening(limb, "limb_darkened_obscuration");
+  if (uniform == 0.0 || uniform == 1.0 || limb == atmosphere::LimbDarkening{}) return uniform;  // none, total, uniform
   // In μ = sqrt(1 − ρ²/r_s²): ρ dρ = −r_s² μ dμ, so the covered share of the light is
-  //   (a + 2)/(2π) ∫_0^1 μ^{a+1} c(ρ(μ)) dμ,
+  //   1/(π m) ∫_0^1 I(μ)/I(1) μ c(ρ(μ)) dμ,
   // integrated piecewise between the rings where c(ρ) starts or stops changing.
   static const atmosphere::lut::GaussLegendre rule(64);
   std::vector<double> breaks = {0.0, 1.0};
@@ -66,10 +65,10 @@ double limb_darkened_obscuration(double d, double r_s, double r_m, double a) {
     for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
       const double mu = mid + half * rule.nodes[i];
       const double rho = r_s * std::sqrt(std::max(0.0, 1.0 - mu * mu));
-      covered += half * rule.weights[i] * std::pow(mu, a + 1.0) * covered_angle(rho, d, r_m);
+      covered += half * rule.weights[i] * limb.intensity(mu) * mu * covered_angle(rho, d, r_m);
     }
   }
-  return std::clamp((a + 2.0) / (2.0 * kPi) * covered, 0.0, 1.0);
+  return std::clamp(covered / (kPi * limb.mean_over_centre()), 0.0, 1.0);
 }
 
 SunAndMoon sun_and_moon(const SkyPositions& sky, double observer_radius_m) {

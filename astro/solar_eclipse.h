@@ -16,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "astro/sky_positions.h"
+#include "atmosphere/solar_limb_darkening.h"
 
 namespace zenith::astro {
 
@@ -51,12 +52,15 @@ struct SunAndMoon {
 };
 SunAndMoon sun_and_moon(const SkyPositions& sky, double observer_radius_m);
 
-/// The covered share of the light of a limb-darkened disc (I(μ)/I(1) = μ^a,
-/// μ = sqrt(1 − ρ²/r_s²), scene/sun_disc.h's law) by a circle of radius r_m
-/// whose centre is d away: ∫ I(ρ) c(ρ) ρ dρ / ∫ I(ρ) 2π ρ dρ, with c(ρ) the
-/// covered angle of the ring of radius ρ (2 acos((ρ² + d² − r_m²) / 2ρd),
-/// clamped), integrated in μ by 64-point Gauss–Legendre panels. a = 0 is
-/// disc_obscuration(). Throws as disc_obscuration, and for a outside [0, 10].
-double limb_darkened_obscuration(double separation, double sun_radius, double moon_radius, double limb_exponent);
+/// The covered share of the light of a limb-darkened disc (I(μ)/I(1) =
+/// Σ a_k μ^k, μ = sqrt(1 − ρ²/r_s²), atmosphere/solar_limb_darkening.h) by a
+/// circle of radius r_m whose centre is d away:
+///   ∫ I(ρ) c(ρ) ρ dρ / ∫ I(ρ) 2π ρ dρ = 1/(π m) ∫_0^1 I(μ)/I(1) μ c(ρ(μ)) dμ,
+/// c(ρ) the covered angle of the ring of radius ρ (2 acos((ρ² + d² − r_m²) /
+/// 2ρd), clamped) and m the law's mean over its centre, integrated in μ by
+/// 64-point Gauss–Legendre panels. A uniform law is disc_obscuration(). Throws
+/// as disc_obscuration, and as atmosphere::check_limb_darkening.
+double limb_darkened_obscuration(double separation, double sun_radius, double moon_radius,
+                                 const atmosphere::LimbDarkening& limb);
 
 }  // namespace zenith::astro

@@ -93,4 +93,19 @@ double ozone_cross_section_m2(double wavelength_nm, double temperature_K, bool* 
   return (1.0 - t) * tables.first(wavelength_nm) + t * tables.second(wavelength_nm);
 }
 
+const std::vector<LimbDarkeningRow>& neckel_labs_1994_limb_darkening() {
+  static const std::vector<LimbDarkeningRow> rows = [] {
+    const Csv csv = parse_csv(embedded_file("data/solar_limb_darkening_neckel_labs_1994.csv"));
+    const std::size_t l = csv.column("lambda_nm"), a0 = csv.column("a0"), m = csv.column("mean_over_centre");
+    std::vector<LimbDarkeningRow> out;
+    for (const auto& row : csv.rows) {
+      LimbDarkeningRow r{row[l], {}, row[m]};
+      for (std::size_t k = 0; k < r.coefficients.size(); ++k) r.coefficients[k] = row[a0 + k];
+      out.push_back(r);
+    }
+    return out;
+  }();
+  return rows;
+}
+
 }  // namespace zenith::atmosphere

@@ -1,6 +1,7 @@
 #pragma once
 // Published tables compiled into the binary (copied from ../shared/data/ with
 // their source lines; see atmosphere/data/).
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -35,5 +36,17 @@ DensityProfile us_standard_1976_profile(const std::string& species, double* peak
 /// wavelength between bins and linear in temperature between the 233 K and 293 K
 /// columns. Returns false in `covered` when the wavelength is outside the table.
 double ozone_cross_section_m2(double wavelength_nm, double temperature_K, bool* covered = nullptr);
+
+/// One row of Neckel & Labs (1994)'s solar limb darkening
+/// (atmosphere/solar_limb_darkening.h): the continuum wavelength, the
+/// coefficients a_0 … a_5 of I(μ)/I(1) = Σ a_k μ^k, and the disc's mean
+/// intensity over its centre's as they tabulate it.
+struct LimbDarkeningRow {
+  double wavelength_nm = 0.0;
+  std::array<double, 6> coefficients{};
+  double mean_over_centre = 0.0;
+};
+/// The 30 rows, 303–1099 nm, by increasing wavelength.
+const std::vector<LimbDarkeningRow>& neckel_labs_1994_limb_darkening();
 
 }  // namespace zenith::atmosphere

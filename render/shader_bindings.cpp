@@ -67,8 +67,8 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
   defines.push_back({"TILE_SIZE", fmt::format("{}", kTileSize)});
   defines.push_back({"TILE_ROW_SHIFT", fmt::format("{}u", kTileRowShift)});
   defines.push_back({"TILE_COLUMN_MASK", fmt::format("{:#x}u", kTileColumnMask)});
-  defines.push_back({"SUN_SPECTRUM_SIZE", fmt::format("{}", kSunSpectrumSize)});
   defines.push_back({"LUT_1D_ROW_TEXELS", fmt::format("{}", kLut1dRowTexels)});
+  defines.push_back({"LIMB_COEFFICIENTS", fmt::format("{}", kLimbCoefficients)});
   struct Kind {
     const char* name;
     warp::ProjectionKind kind;

@@ -11,8 +11,10 @@
 // only differ within one kind among the resources of one program (the
 // precompute's harmonic buffers and the frame's FrameRgb share 6, for example,
 // and never meet in a program).
+#include <tuple>
 #include <vector>
 
+#include "atmosphere/solar_limb_darkening.h"
 #include "render/gl/shader_program.h"
 
 namespace zenith::render::binding {
@@ -83,16 +85,16 @@ namespace zenith::render {
 /// render/display/colour_profile_textures.h, display_transform.glsl).
 inline constexpr int kLut1dRowTexels = 1024;
 
-/// Entries of direct_light.comp's sun_spectrum[] uniform array (SUN_SPECTRUM_SIZE):
-/// a scene's wavelengths at most.
-inline constexpr int kSunSpectrumSize = 64;
+/// Coefficients of the sun's limb darkening polynomial (LIMB_COEFFICIENTS:
+/// group_light.glsl's limb_polynomial[], direct_light.comp's sun_rgb_limb[]).
+inline constexpr int kLimbCoefficients = int(std::tuple_size_v<decltype(atmosphere::LimbDarkening::coefficients)>);
 
 }  // namespace zenith::render
 
 namespace zenith::render {
 
 /// The defines every shader loaded from shaders/ gets before its own: each
-/// binding point above, SUN_SPECTRUM_SIZE, TILE_SIZE, TILE_ROW_SHIFT and
+/// binding point above, LIMB_COEFFICIENTS, TILE_SIZE, TILE_ROW_SHIFT and
 /// TILE_COLUMN_MASK (render/frame/tile_culling.h: the render passes' work
 /// groups and tiles, the packing of a tile list's words), PROJECTION_KIND_*
 /// (warp/projection.h's ProjectionKind), and PI_F, π as a float literal

@@ -2,12 +2,8 @@
 // The solar disc as the camera sees it: a limb-darkened sphere, so that the
 // renderer can draw the sun (the paper's model stops at the sky).
 //
-// Limb darkening (Hestroffer & Magnan 1998, "Wavelength dependency of the
-// solar limb darkening", A&A 333, 338–342): the specific intensity leaving the
-// photosphere at an angle arccos μ to the local vertical, relative to the disc
-// centre, follows a power law
-//   I(μ, λ) / I(1, λ) = μ^α(λ),   α(λ) = −0.023 + 0.292 / λ_µm.
-// (α ≈ 0.41 at 680 nm, 0.51 at 550 nm, 0.64 at 440 nm: blue light darkens more.)
+// Limb darkening: I(μ, λ)/I(1, λ) = Σ a_k(λ) μ^k, Neckel & Labs (1994)
+// (atmosphere/solar_limb_darkening.h), μ the cosine at the photosphere.
 //
 // Geometry (exact, not small-angle): the sun is a sphere of radius R at distance
 // D, seen under the angular radius θ_s with sin θ_s = R / D. The line of sight at
@@ -21,27 +17,21 @@
 // Normalization: the irradiance E [W m^-2 nm^-1] is the flux through a plane
 // facing the sun's centre (the convention of the Kurucz spectrum and of the
 // reference solver), E = ∫_disc L(θ) cos θ dΩ with dΩ = sin θ dθ dφ. With
-// L = L_0 μ^α and s = sin θ (ds = cos θ dθ), u = s² / sin²θ_s:
-//   E = 2π L_0 ∫_0^{sin θ_s} (1 − s²/sin²θ_s)^{α/2} s ds
-//     = π L_0 sin²θ_s ∫_0^1 (1 − u)^{α/2} du
-//     = 2π L_0 sin²θ_s / (α + 2),
-// hence the centre radiance L_0 = E (α + 2) / (2π sin²θ_s). With α = 0 this is
-// the uniform disc of the reference solver, E / (π sin²θ_s). Radiance is
-// conserved along rays in vacuum, so L is the same at any distance; the
-// atmosphere then attenuates it.
+// L = L_0 I(μ)/I(1), s = sin θ (ds = cos θ dθ) and u = s² / sin²θ_s = 1 − μ²:
+//   E = 2π L_0 ∫_0^{sin θ_s} I(μ(s))/I(1) s ds
+//     = π L_0 sin²θ_s ∫_0^1 I(μ)/I(1) 2μ dμ = π L_0 sin²θ_s m,
+// m the disc's mean radiance over its centre's (2 Σ a_k/(k + 2)), hence the
+// centre radiance L_0 = E / (π sin²θ_s m). A uniform disc (m = 1) is the
+// reference solver's, E / (π sin²θ_s). Radiance is conserved along rays in
+// vacuum, so L is the same at any distance; the atmosphere then attenuates it.
+#include "atmosphere/solar_limb_darkening.h"
+
 namespace zenith::scene {
 
 /// The astronomical unit [m] (IAU 2012 Resolution B2, exact).
 inline constexpr double kAstronomicalUnit_m = 1.495978707e11;
 /// The nominal solar radius [m] (IAU 2015 Resolution B3): 2 asin(R/1 AU) = 0.533°.
 inline constexpr double kSolarRadius_m = 6.957e8;
-
-/// α(λ) = −0.023 + 0.292 / λ_µm (Hestroffer & Magnan 1998). Throws
-/// std::invalid_argument unless λ is finite and in [100, 10000] nm (α > 0 there).
-double limb_darkening_exponent(double wavelength_nm);
-
-/// I(μ)/I(1) = μ^α(λ) for μ in [0, 1] (clamped; 1 at the centre, 0 at the limb).
-double limb_darkening(double mu, double wavelength_nm);
 
 /// μ at the photosphere for a line of sight at `angle_from_centre_rad` from the
 /// disc centre, on a disc of angular radius θ_s: sqrt(1 − sin²θ / sin²θ_s);
@@ -50,17 +40,18 @@ double disc_mu(double angle_from_centre_rad, double angular_radius_rad);
 
 /// Radiance at the disc centre L_0 [W m^-2 sr^-1 nm^-1] such that the
 /// limb-darkened disc delivers exactly `irradiance_W_m2_nm` on a plane facing
-/// it: L_0 = E (α + 2) / (2π sin²θ_s). Throws std::invalid_argument unless
-/// E ≥ 0 and finite and 0 < θ_s < π/2.
+/// it: L_0 = E / (π sin²θ_s m), m of the Sun's law at the wavelength. Throws
+/// std::invalid_argument unless E ≥ 0 and finite, 0 < θ_s < π/2 and the
+/// wavelength is in [100, 10000] nm.
 double disc_centre_radiance(double irradiance_W_m2_nm, double angular_radius_rad, double wavelength_nm);
 
 /// Radiance of a uniform disc (no limb darkening) delivering the same
-/// irradiance: E / (π sin²θs) = L_0 · 2 / (α + 2). For drawing the sun with limb
+/// irradiance: E / (π sin²θs) = L_0 m. For drawing the sun with limb
 /// darkening turned off.
 double uniform_disc_radiance(double irradiance_W_m2_nm, double angular_radius_rad);
 
 /// Radiance of the disc along a line of sight at `angle_from_centre_rad` from
-/// its centre: L_0 μ^α (0 outside the disc).
+/// its centre: L_0 I(μ)/I(1) (0 outside the disc).
 double disc_radiance(double irradiance_W_m2_nm, double angular_radius_rad, double wavelength_nm,
                      double angle_from_centre_rad);
 

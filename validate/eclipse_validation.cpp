@@ -23,9 +23,9 @@
 #include "atmosphere/photometry.h"
 #include "atmosphere/reference/path_tracer.h"
 #include "atmosphere/sky_sampling.h"
+#include "atmosphere/solar_limb_darkening.h"
 #include "core/strings.h"
 #include "core/units.h"
-#include "scene/sun_disc.h"
 #include "validate/gnuplot.h"
 #include "validate/lunar_eclipse_validation.h"
 #include "validate/validation_check.h"
@@ -90,7 +90,7 @@ EclipsedSky eclipsed_sky(const atmosphere::AtmosphereModel& model, const astro::
   e.observer_m = g.observer_m(model);
   e.sun.direction = g.sun_direction();
   e.sun.angular_radius_rad = s.sun_angular_radius_rad;
-  for (double nm : model.wavelengths_nm) e.sun.limb_exponents.push_back(scene::limb_darkening_exponent(nm));
+  for (double nm : model.wavelengths_nm) e.sun.limb_darkening.push_back(atmosphere::solar_limb_darkening(nm));
   e.sun.occulter = {s.moon_centre_m, s.moon_radius_m};
   return e;
 }
@@ -116,7 +116,7 @@ class TablesSky {
   Views views(const astro::SkyPositions& sky, const std::vector<atmosphere::Vec3>& views) {
     const EclipsedSky e = eclipsed_sky(model_, sky);
     const astro::EclipseGeometry g{e.sun.occulter.centre_m, e.sun.occulter.radius_m, e.sun.direction,
-                                   e.sun.angular_radius_rad, e.sun.limb_exponents};
+                                   e.sun.angular_radius_rad, e.sun.limb_darkening};
     const astro::MoonShadow& shadow = shadow_for(g, e.observer_m);
     Views v;
     for (const atmosphere::Vec3& view : views) {
@@ -151,9 +151,9 @@ Moment moment(const atmosphere::AtmosphereModel& model, TablesSky& tables, const
   m.seconds_from_c2 = seconds_from_start - c2_seconds;
   m.view = astro::solar_eclipse_view(sky);
   EclipsedSky e = eclipsed_sky(model, sky);
-  for (double a : e.sun.limb_exponents)
+  for (const atmosphere::LimbDarkening& law : e.sun.limb_darkening)
     m.uncovered_light.push_back(1.0 - astro::limb_darkened_obscuration(m.view.separation_rad, m.view.sun_radius_rad,
-                                                                       m.view.moon_radius_rad, a));
+                                                                       m.view.moon_radius_rad, law));
   const atmosphere::Vec3 zenith{0.0, 0.0, 1.0};
   const auto dark = atmosphere::reference::path_traced_radiance(model, e.observer_m, zenith, e.sun, paths(samples));
   e.sun.occulter = {};

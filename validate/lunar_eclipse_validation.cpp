@@ -17,8 +17,8 @@
 #include "astro/v_band.h"
 #include "atmosphere/parameters.h"
 #include "atmosphere/photometry.h"
+#include "atmosphere/solar_limb_darkening.h"
 #include "core/strings.h"
-#include "scene/sun_disc.h"
 #include "validate/gnuplot.h"
 
 namespace zenith::validate {
@@ -57,8 +57,8 @@ class MoonInShadow {
 
  private:
   static astro::EarthShadow make_shadow(const atmosphere::LoadedAtmosphere& air, const astro::LunarEclipseGeometry& g) {
-    std::vector<double> limb;
-    for (double nm : air.model.wavelengths_nm) limb.push_back(scene::limb_darkening_exponent(nm));
+    std::vector<atmosphere::LimbDarkening> limb;
+    for (double nm : air.model.wavelengths_nm) limb.push_back(atmosphere::solar_limb_darkening(nm));
     return astro::EarthShadow(air, g.moon_distance_m, g.sun_angular_radius_rad, limb);
   }
   const atmosphere::LoadedAtmosphere& air_;

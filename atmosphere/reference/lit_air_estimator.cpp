@@ -246,7 +246,7 @@ LitAirEstimate lit_air_radiance(const AtmosphereModel& model, const Vec3& observ
   check(options);
   const SunDisc sun = validated(sun_in);
   // Its sunlit-air sums take the whole disc; an eclipse needs the path tracer.
-  if (sun.occulter.radius_m > 0.0 || !sun.limb_exponents.empty())
+  if (sun.occulter.radius_m > 0.0 || !sun.limb_darkening.empty())
     throw std::invalid_argument(
         "lit_air_radiance: an occulter or a limb-darkened disc is the path tracer's (path_tracer.h)");
   const std::size_t n = model.wavelength_count();

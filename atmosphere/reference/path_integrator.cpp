@@ -32,8 +32,8 @@ PathIntegrator::PathIntegrator(const AtmosphereModel& model, const SunDisc& sun,
       sun_(validated(sun)),
       sun_weight_(sun_sample_weight(sun_)),
       settings_(settings) {
-  if (!sun_.limb_exponents.empty() && sun_.limb_exponents.size() != model.wavelengths_nm.size())
-    throw std::invalid_argument("SunDisc: one limb exponent per wavelength of the model, or none");
+  if (!sun_.limb_darkening.empty() && sun_.limb_darkening.size() != model.wavelengths_nm.size())
+    throw std::invalid_argument("SunDisc: one limb darkening law per wavelength of the model, or none");
 }
 
 double PathIntegrator::transmittance_to_space(const Vec3& point_m, const Vec3& direction, std::size_t i, Pcg32& rng,

@@ -14,9 +14,8 @@ SunDisc validated(const SunDisc& sun) {
   if (!(len > 0.0) || !std::isfinite(len)) throw std::invalid_argument("SunDisc: zero or non-finite direction");
   if (!(sun.angular_radius_rad >= 0.0 && sun.angular_radius_rad < 0.5 * kPi))
     throw std::invalid_argument("SunDisc: angular radius must be in [0, pi/2) rad");
-  for (double a : sun.limb_exponents)
-    if (!(a >= 0.0 && a <= 10.0)) throw std::invalid_argument("SunDisc: limb exponents must be in [0, 10]");
-  if (!sun.limb_exponents.empty() && sun.angular_radius_rad == 0.0)
+  for (const LimbDarkening& law : sun.limb_darkening) check_limb_darkening(law, "SunDisc");
+  if (!sun.limb_darkening.empty() && sun.angular_radius_rad == 0.0)
     throw std::invalid_argument("SunDisc: a point sun has no limb to darken");
   const Occulter& o = sun.occulter;
   if (!(std::isfinite(o.centre_m.x) && std::isfinite(o.centre_m.y) && std::isfinite(o.centre_m.z)) ||
@@ -39,14 +38,14 @@ bool occulted(const Occulter& occulter, const Vec3& point_m, const Vec3& directi
 }
 
 double limb_weight(const SunDisc& sun, const Vec3& to_sun, std::size_t wavelength) {
-  if (sun.limb_exponents.empty()) return 1.0;
-  const double a = sun.limb_exponents.at(wavelength);
+  if (sun.limb_darkening.empty()) return 1.0;
+  const LimbDarkening& law = sun.limb_darkening.at(wavelength);
   // sin²θ = 1 − cos²θ, from the sampled direction's cosine to the centre.
   const double cos_theta = std::min(1.0, dot(to_sun, sun.direction));
   const double sin_radius = std::sin(sun.angular_radius_rad);
   const double mu2 = 1.0 - (1.0 - cos_theta * cos_theta) / (sin_radius * sin_radius);
   if (!(mu2 > 0.0)) return 0.0;
-  return 0.5 * (a + 2.0) * std::pow(mu2, 0.5 * a);
+  return law.intensity(std::sqrt(mu2)) / law.mean_over_centre();
 }
 
 namespace {

@@ -10,12 +10,12 @@
 //   L_sun = E / ∫_cone cos θ dω = 1 / (π sin²α)     [sr^-1].
 // α = 0 is a point sun (a delta in direction with irradiance 1).
 //
-// Limb darkening (optional, per wavelength): the power law of
-// scene/sun_disc.h, I(μ)/I(1) = μ^a with μ = sqrt(1 − sin²θ / sin²α) at an
+// Limb darkening (optional, per wavelength): I(μ)/I(1) = Σ a_k μ^k
+// (atmosphere/solar_limb_darkening.h) with μ = sqrt(1 − sin²θ / sin²α) at an
 // angle θ from the centre. Normalised to the same irradiance, the centre
-// radiance is L_0 = (a + 2) / (2π sin²α), so a direction sampled uniformly
-// over the cone weighs L(θ)/L_uniform = (a + 2)/2 · μ^a times the uniform
-// disc's weight.
+// radiance is L_0 = 1 / (π sin²α m), m = 2 Σ a_k/(k + 2) the disc's mean over
+// its centre, so a direction sampled uniformly over the cone weighs
+// L(θ)/L_uniform = I(μ)/(I(1) m) times the uniform disc's weight.
 //
 // An occulter (optional): a sphere between the air and the sun — the Moon in
 // a solar eclipse. Light from a direction of the disc that passes through it
@@ -24,6 +24,7 @@
 // the umbra, the penumbra and the antumbra follow from the geometry.
 #include <vector>
 
+#include "atmosphere/solar_limb_darkening.h"
 #include "atmosphere/vec3.h"
 
 namespace zenith::atmosphere::reference {
@@ -37,14 +38,14 @@ struct Occulter {
 struct SunDisc {
   Vec3 direction{0.0, 0.0, 1.0};        ///< unit vector from the planet toward the disc's centre
   double angular_radius_rad = 4.65e-3;  ///< half the apparent diameter (Earth: 4.65e-3); 0 = point sun
-  /// Limb-darkening exponent a per wavelength of the model (μ^a); empty: a uniform disc.
-  std::vector<double> limb_exponents = {};
+  /// The limb darkening per wavelength of the model; empty: a uniform disc.
+  std::vector<LimbDarkening> limb_darkening = {};
   Occulter occulter = {};
 };
 
 /// Throws std::invalid_argument unless the direction is non-zero and finite,
-/// 0 ≤ α < π/2, every limb exponent is finite and in [0, 10] (a point sun
-/// has none), and the occulter's centre is finite and its radius finite and
+/// 0 ≤ α < π/2, every limb darkening law is valid (check_limb_darkening; a
+/// point sun has none), and the occulter's centre is finite and its radius finite and
 /// ≥ 0. Returns the disc with its direction normalized.
 SunDisc validated(const SunDisc& sun);
 
@@ -53,8 +54,8 @@ SunDisc validated(const SunDisc& sun);
 bool occulted(const Occulter& occulter, const Vec3& point_m, const Vec3& direction);
 
 /// The weight of a direction sampled uniformly over the disc's cone relative
-/// to the uniform disc's: (a + 2)/2 · μ^a for the exponent of wavelength
-/// `wavelength` (1 for a uniform disc or a point sun).
+/// to the uniform disc's: I(μ)/(I(1) m) for the law of wavelength
+/// `wavelength` (1 for a uniform disc or a point sun; 0 outside the disc).
 double limb_weight(const SunDisc& sun, const Vec3& to_sun, std::size_t wavelength);
 
 /// Ω = 2π(1 − cos α) = 4π sin²(α/2) [sr] (0 for a point sun).

@@ -17,8 +17,6 @@ namespace {
 
 using gl::ShaderProgram;
 
-constexpr int kMaxSpectrumUniforms = kSunSpectrumSize;  // direct_light.comp's sun_spectrum[]
-
 const std::string& body_name(const FrameInProgress& frame, const AtmospherePass& pass) {
   return frame.scene.bodies[static_cast<std::size_t>(pass.body)].name;
 }
@@ -119,7 +117,8 @@ void draw_gbuffer_tiles(FrameInProgress& frame, BandResources& resources, const 
 
 void set_direct_light_uniforms(FrameInProgress& frame) {
   // direct_light.comp: every wavelength at once (render/frame/frame_constants.h);
-  // the sun's disc rgb = Σ_λ exposure w(λ) I_centre(λ) μ^α(λ) × coverage.
+  // the sun's disc rgb = Σ_λ exposure w(λ) I_centre(λ) Σ_k a_k(λ) μ^k × coverage,
+  // a polynomial in μ whose coefficients are summed here over λ.
   const scene::Scene& scene = frame.scene;
   const FramePasses& fp = *frame.programs;
   const double exposure = scene.camera.exposure;
@@ -129,15 +128,22 @@ void set_direct_light_uniforms(FrameInProgress& frame) {
   if (!fp.direct_light_sun) return;
   const ShaderProgram& p = frame.prepare(*fp.direct_light_sun);
   p.set_uniform("rgb_from_albedo", rgb_from_albedo);
-  p.set_uniform("wavelength_count", static_cast<int>(std::min<std::size_t>(frame.n, kMaxSpectrumUniforms)));
-  for (std::size_t i = 0; i < frame.n && i < static_cast<std::size_t>(kMaxSpectrumUniforms); ++i) {
-    const double c = exposure * frame.sun_centre[i];
-    p.set_uniform(fmt::format("sun_spectrum[{}]", i),
-                  std::array<float, 4>{static_cast<float>(frame.rgb_weights[i][0] * c),
-                                       static_cast<float>(frame.rgb_weights[i][1] * c),
-                                       static_cast<float>(frame.rgb_weights[i][2] * c),
-                                       static_cast<float>(frame.sun_point_sigma > 0.0 ? 0.0 : frame.limb_exponent[i])});
+  std::array<std::array<double, 3>, kLimbCoefficients> limb{};
+  std::array<double, 3> mean{};
+  for (std::size_t i = 0; i < frame.n; ++i) {
+    const atmosphere::LimbDarkening& law = frame.sun_limb[i];
+    const double m = law.mean_over_centre();
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double rgb = exposure * frame.rgb_weights[i][c] * frame.sun_centre[i];
+      for (std::size_t k = 0; k < limb.size(); ++k) limb[k][c] += rgb * law.coefficients[k];
+      mean[c] += rgb * m;
+    }
   }
+  const auto to_float = [](const std::array<double, 3>& v) {
+    return std::array<float, 3>{static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+  };
+  for (std::size_t k = 0; k < limb.size(); ++k) p.set_uniform(fmt::format("sun_rgb_limb[{}]", k), to_float(limb[k]));
+  p.set_uniform("sun_rgb_mean", to_float(mean));
 }
 
 void draw_direct_tiles(FrameInProgress& frame, const BandTiles& band, PassTimer& timer) {

@@ -39,7 +39,7 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky
   f.sun_point_sigma = f.sun_radius < 1.5 * f.sun_pixel_angle ? 0.7 * f.sun_pixel_angle : 0.0;
   if (moon_can_eclipse_the_sun(scene, moon)) f.occulter = sun_occulter(scene, sky, limb_darkening);
   f.sun_centre.resize(f.n);
-  f.limb_exponent.resize(f.n);
+  f.sun_limb.resize(f.n);
   for (std::size_t i = 0; i < f.n; ++i) {
     const double e = scene.sun.irradiance_W_m2_nm[i];
     if (f.sun_point_sigma > 0.0)  // the Gaussian carries the light the Moon leaves of the disc
@@ -48,7 +48,8 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky
     else
       f.sun_centre[i] = limb_darkening ? scene::disc_centre_radiance(e, f.sun_radius, scene.wavelengths_nm[i])
                                        : scene::uniform_disc_radiance(e, f.sun_radius);
-    f.limb_exponent[i] = scene::limb_darkening_exponent(scene.wavelengths_nm[i]);
+    if (limb_darkening && f.sun_point_sigma == 0.0)
+      f.sun_limb[i] = atmosphere::solar_limb_darkening(scene.wavelengths_nm[i]);
   }
   return f;
 }

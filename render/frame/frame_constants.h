@@ -11,6 +11,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "atmosphere/solar_limb_darkening.h"
 #include "image/colour.h"
 #include "render/frame/sun_occulter.h"
 #include "scene/scene.h"
@@ -29,9 +30,10 @@ struct FrameConstants {
   double sun_point_sigma = 0.0;                       ///< > 0: the sun drawn as a Gaussian of this σ [rad]
   std::vector<std::array<double, 3>> rgb_weights;     ///< spectral → RGB, per wavelength
   std::vector<std::array<double, 3>> albedo_weights;  ///< the albedo's RGB → reflectance, per wavelength
-  std::vector<double> sun_centre;     ///< the disc's centre radiance (or the Gaussian's peak) per wavelength
-  std::vector<double> limb_exponent;  ///< μ^α limb darkening per wavelength
-  SunOcculter occulter;               ///< the Moon in front of the sun (render/frame/sun_occulter.h)
+  std::vector<double> sun_centre;  ///< the disc's centre radiance (or the Gaussian's peak) per wavelength
+  /// The drawn sun's limb darkening per wavelength: uniform without limb darkening or for a Gaussian point.
+  std::vector<atmosphere::LimbDarkening> sun_limb;
+  SunOcculter occulter;  ///< the Moon in front of the sun (render/frame/sun_occulter.h)
 };
 
 /// The constants of a frame of `scene` through `projection` with the colour

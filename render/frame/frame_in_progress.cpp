@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "render/lut/shader_model.h"
+#include "render/shader_bindings.h"
 
 namespace zenith::render {
 namespace {
@@ -101,7 +102,11 @@ void FrameInProgress::set_group_uniforms(const gl::ShaderProgram& p, std::size_t
   p.set_uniform("first_group", g == 0 && light.is_sun() ? 1 : 0);  // a second light adds to the sun's
   p.set_uniform("last_group", g + 1 == groups ? 1 : 0);
   set_light_uniforms(p, g, light);
-  p.set_uniform("limb_exponent", group_lanes(limb_exponent, g));
+  for (std::size_t k = 0; k < std::size_t(kLimbCoefficients); ++k) {
+    std::vector<double> a_k;
+    for (const atmosphere::LimbDarkening& law : sun_limb) a_k.push_back(law.coefficients[k]);
+    p.set_uniform(fmt::format("limb_polynomial[{}]", k), group_lanes(a_k, g));
+  }
   p.set_uniform("albedo_from_r", group_lanes(albedo_weights, 0, g));
   p.set_uniform("albedo_from_g", group_lanes(albedo_weights, 1, g));
   p.set_uniform("albedo_from_b", group_lanes(albedo_weights, 2, g));

@@ -8,9 +8,9 @@
 #include "astro/civil_time.h"
 #include "astro/sky_positions.h"
 #include "astro/solar_eclipse.h"
+#include "atmosphere/solar_limb_darkening.h"
 #include "core/units.h"
 #include "scene/local_horizon.h"
-#include "scene/sun_disc.h"
 
 namespace zenith::render {
 
@@ -25,7 +25,7 @@ namespace {
 /// ephemeris looked from, and 400 km of it would move the umbra by as much.
 std::optional<astro::EclipseGeometry> shadow_on_the_air(const scene::Scene& scene, const glm::dvec3& moon_direction,
                                                         double moon_distance_m,
-                                                        const std::vector<double>& limb_exponents,
+                                                        const std::vector<atmosphere::LimbDarkening>& limb,
                                                         double& air_from_axis_penumbrae) {
   const scene::Body& planet = scene.bodies.at(scene.sky_clock->body);
   if (!planet.atmosphere) return std::nullopt;
@@ -46,8 +46,7 @@ std::optional<astro::EclipseGeometry> shadow_on_the_air(const scene::Scene& scen
                                                 std::asin(std::min(1.0, astro::kMoonRadius_km * 1e3 / behind_m)));
   if (off_axis_m >= 2.0 * penumbra_m + reach_m) return std::nullopt;
   air_from_axis_penumbrae = (off_axis_m - reach_m) / penumbra_m;
-  return astro::EclipseGeometry{moon_centre, astro::kMoonRadius_km * 1e3, sun, scene.sun.angular_radius_rad,
-                                limb_exponents};
+  return astro::EclipseGeometry{moon_centre, astro::kMoonRadius_km * 1e3, sun, scene.sun.angular_radius_rad, limb};
 }
 
 }  // namespace
@@ -64,16 +63,16 @@ SunOcculter sun_occulter(const scene::Scene& scene, const FrameSky& sky, bool li
   // atan2(|a × b|, a · b): accurate for the small angles that matter here.
   const double separation = std::atan2(glm::length(glm::cross(direction, sun)), glm::dot(direction, sun));
   const double r_s = scene.sun.angular_radius_rad, r_m = moon.angular_radius_rad;
-  std::vector<double> limb_exponents;
+  std::vector<atmosphere::LimbDarkening> limb;  // uniform discs without limb darkening
   for (double nm : scene.wavelengths_nm)
-    limb_exponents.push_back(limb_darkening ? scene::limb_darkening_exponent(nm) : 0.0);
-  out.shadow = shadow_on_the_air(scene, direction, moon.distance_km * 1e3, limb_exponents, out.air_from_axis_penumbrae);
+    limb.push_back(limb_darkening ? atmosphere::solar_limb_darkening(nm) : atmosphere::LimbDarkening{});
+  out.shadow = shadow_on_the_air(scene, direction, moon.distance_km * 1e3, limb, out.air_from_axis_penumbrae);
   if (separation >= r_s + r_m) return out;
   out.direction = direction;
   out.angular_radius_rad = r_m;
   out.separation_rad = separation;
-  for (double a : limb_exponents)
-    out.uncovered.push_back(1.0 - astro::limb_darkened_obscuration(separation, r_s, r_m, a));
+  for (const atmosphere::LimbDarkening& law : limb)
+    out.uncovered.push_back(1.0 - astro::limb_darkened_obscuration(separation, r_s, r_m, law));
   return out;
 }
 

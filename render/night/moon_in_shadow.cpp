@@ -9,8 +9,8 @@
 
 #include "astro/sky_positions.h"
 #include "atmosphere/model_hash.h"
+#include "atmosphere/solar_limb_darkening.h"
 #include "scene/local_horizon.h"
-#include "scene/sun_disc.h"
 
 namespace zenith::render {
 
@@ -41,8 +41,8 @@ void MoonInShadow::update(const scene::Scene& scene, const FrameSky& sky) {
   if (!shadow_ || key != shadow_atmosphere_ || std::abs(along / shadow_distance_m_ - 1.0) > 1e-3 ||
       std::abs(scene.sun.angular_radius_rad / shadow_sun_radius_rad_ - 1.0) > 1e-3) {
     const auto start = std::chrono::steady_clock::now();
-    std::vector<double> limb;
-    for (double nm : scene.wavelengths_nm) limb.push_back(scene::limb_darkening_exponent(nm));
+    std::vector<atmosphere::LimbDarkening> limb;
+    for (double nm : scene.wavelengths_nm) limb.push_back(atmosphere::solar_limb_darkening(nm));
     shadow_ = std::make_unique<astro::EarthShadow>(air, along, scene.sun.angular_radius_rad, limb);
     shadow_atmosphere_ = key;
     shadow_distance_m_ = along;

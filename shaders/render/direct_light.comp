@@ -8,8 +8,15 @@
 //              rgb = exposure · Σ_λ w(λ) L(λ) = (cos i · V / π) · M a,
 //              M = exposure · Σ_λ w(λ) E(λ) f(λ)ᵀ, a 3×3 matrix summed over
 //              every wavelength on the CPU in double (rgb_from_albedo);
-//   the sun:   rgb = Σ_λ exposure · w(λ) I_centre(λ) · μ^α(λ) · coverage
-//              (sun_spectrum), only in the variant for the sun's tiles (SUN = 1);
+//   the sun:   rgb = Σ_λ exposure · w(λ) I_centre(λ) · I_λ(μ)/I_λ(1) · coverage;
+//              with the limb darkening Σ_k a_k(λ) μ^k (atmosphere/solar_limb_darkening.h)
+//              the sum over λ is a polynomial in μ whose coefficients
+//              sun_rgb_limb[k] = Σ_λ exposure · w(λ) I_centre(λ) a_k(λ) are
+//              summed on the CPU in double, and the corona's Σ_λ … m(λ), m
+//              the disc's mean over its centre, likewise (sun_rgb_mean; the
+//              CPU gives a uniform law to a sun drawn without limb darkening
+//              or as a Gaussian point, render/frame/frame_constants.h); only
+//              in the variant for the sun's tiles (SUN = 1);
 //   otherwise black: tiles with neither a body nor the sun are not dispatched
 //              (the band's output starts at 0).
 //
@@ -29,8 +36,8 @@ layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE, local_size_z = TILES_
 
 uniform mat3 rgb_from_albedo;  // M above, exposure included
 #if SUN
-uniform int wavelength_count;
-uniform vec4 sun_spectrum[SUN_SPECTRUM_SIZE];  // per wavelength: xyz = exposure · w(λ) · I_centre(λ), w = α(λ)
+uniform vec3 sun_rgb_limb[LIMB_COEFFICIENTS];  // Σ_λ exposure · w(λ) · I_centre(λ) · a_k(λ)
+uniform vec3 sun_rgb_mean;     // Σ_λ exposure · w(λ) · I_centre(λ) · m(λ)
 #endif
 
 #if ONE_BODY
@@ -64,16 +71,17 @@ void main() {
 #if SUN
     else {
       const SunSample s = sun_sample(ray);
-      if (s.weight > 0.0 || s.corona > 0.0)
-        for (int i = 0; i < wavelength_count; ++i) {
+      if (s.weight > 0.0 || s.corona > 0.0) {
 #if LIMB_DARKENING
-          // The corona over the limb-darkened disc's mean radiance, 2 / (α + 2) of its centre's.
-          rgb += sun_spectrum[i].xyz * (pow(max(s.mu, 1e-4), sun_spectrum[i].w) * s.weight +
-                                        2.0 / (sun_spectrum[i].w + 2.0) * s.corona);
+        const float mu = clamp(s.mu, 0.0, 1.0);
+        vec3 disc = sun_rgb_limb[LIMB_COEFFICIENTS - 1];  // Horner: Σ_k sun_rgb_limb[k] μ^k
+        for (int k = LIMB_COEFFICIENTS - 2; k >= 0; --k) disc = sun_rgb_limb[k] + mu * disc;
+        // The corona over the limb-darkened disc's mean radiance.
+        rgb = disc * s.weight + sun_rgb_mean * s.corona;
 #else
-          rgb += sun_spectrum[i].xyz * (s.weight + s.corona);
+        rgb = sun_rgb_mean * (s.weight + s.corona);  // a uniform disc: its mean is its centre
 #endif
-        }
+      }
     }
 #endif
   }

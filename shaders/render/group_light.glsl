@@ -15,7 +15,7 @@ uniform bool last_group;
 uniform float exposure;
 uniform vec4 sun_irradiance;       // E_sun per wavelength of the group [W m^-2 nm^-1]
 uniform vec4 sun_centre_radiance;  // at the drawn disc's centre [W m^-2 sr^-1 nm^-1] (scene/sun_disc.h)
-uniform vec4 limb_exponent;        // α(λ) of I(μ)/I(1) = μ^α
+uniform vec4 limb_polynomial[LIMB_COEFFICIENTS];  // a_k(λ) of I(μ)/I(1) = Σ a_k μ^k (atmosphere/solar_limb_darkening.h)
 uniform vec4 albedo_from_r;        // reflectance of each wavelength from linear sRGB albedo
 uniform vec4 albedo_from_g;
 uniform vec4 albedo_from_b;
@@ -34,8 +34,11 @@ vec4 sun_disc(vec3 ray) {
   const SunSample s = sun_sample(ray);
   if (s.weight <= 0.0 && s.corona <= 0.0) return vec4(0.0);
 #if LIMB_DARKENING
-  const vec4 profile = pow(vec4(max(s.mu, 1e-4)), limb_exponent);
-  const vec4 mean_over_centre = 2.0 / (limb_exponent + 2.0);  // the limb-darkened disc's mean radiance
+  const float mu = clamp(s.mu, 0.0, 1.0);
+  vec4 profile = limb_polynomial[LIMB_COEFFICIENTS - 1];  // Horner: Σ a_k μ^k
+  for (int k = LIMB_COEFFICIENTS - 2; k >= 0; --k) profile = limb_polynomial[k] + mu * profile;
+  vec4 mean_over_centre = vec4(0.0);  // the limb-darkened disc's mean radiance over its centre's: 2 Σ a_k / (k + 2)
+  for (int k = 0; k < LIMB_COEFFICIENTS; ++k) mean_over_centre += limb_polynomial[k] * (2.0 / float(k + 2));
 #else
   const vec4 profile = vec4(1.0);
   const vec4 mean_over_centre = vec4(1.0);

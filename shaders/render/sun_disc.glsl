@@ -1,6 +1,6 @@
 // Where a ray sees the sun's disc (scene/sun_disc.h, docs/rendering.md):
 // the disc's coverage of the pixel, antialiased over one pixel, and μ, the
-// cosine at the sun's surface for the limb darkening I(μ)/I(1) = μ^α(λ),
+// cosine at the sun's surface for the limb darkening I(μ)/I(1) = Σ a_k(λ) μ^k,
 // √(1 − sin²θ / sin²θ_disc) at angle θ from the centre (exact, not the
 // small-angle form). A sun under 1.5 pixels in radius is a Gaussian splat of
 // σ = sun_point_sigma instead (its pixel-sampled sum keeps the irradiance to

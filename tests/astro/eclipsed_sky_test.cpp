@@ -37,9 +37,6 @@ AstroTime totality(double seconds_after = 0.0) {
   return AstroTime::from_utc(UtcTime{2017, 8, 21, 18, 25, 27.0}).plus_seconds(seconds_after);
 }
 
-/// scene/sun_disc.h's law (Hestroffer & Magnan 1998), μ^α with α(λ) = −0.023 + 0.292/λ[µm].
-double limb_exponent(double nm) { return -0.023 + 0.292 / (nm * 1e-3); }
-
 struct EclipseSetup {
   EclipseGeometry geometry;
   glm::dvec3 observer_m;
@@ -54,7 +51,7 @@ EclipseSetup setup_at(const AtmosphereModel& model, const AstroTime& t) {
   e.geometry.moon_radius_m = s.moon_radius_m;
   e.geometry.sun_direction = {std::sin(z) * std::cos(a), std::sin(z) * std::sin(a), std::cos(z)};
   e.geometry.sun_angular_radius_rad = s.sun_angular_radius_rad;
-  for (double nm : model.wavelengths_nm) e.geometry.limb_exponents.push_back(limb_exponent(nm));
+  for (double nm : model.wavelengths_nm) e.geometry.limb_darkening.push_back(atmosphere::solar_limb_darkening(nm));
   e.observer_m = {0.0, 0.0, model.ground_radius_m + 2.0};
   return e;
 }
@@ -99,7 +96,7 @@ TEST_F(EclipsedSky, DirectLightIsTheUncoveredLimbDarkenedShare) {
   ASSERT_EQ(view.kind, EclipseKind::partial);
   for (std::size_t i = 0; i < model_->wavelengths_nm.size(); ++i) {
     const double expected = 1.0 - limb_darkened_obscuration(view.separation_rad, view.sun_radius_rad,
-                                                            view.moon_radius_rad, e.geometry.limb_exponents[i]);
+                                                            view.moon_radius_rad, e.geometry.limb_darkening[i]);
     // The profile's 1024 samples, linear between: 1e-4 (ERFA's topocentric place vs sun_and_moon's: 1e-4).
     EXPECT_NEAR(shadow.direct_light(e.observer_m, i), expected, 3e-4) << model_->wavelengths_nm[i] << " nm";
   }
@@ -111,7 +108,7 @@ TEST_F(EclipsedSky, DirectLightIsTheUncoveredLimbDarkenedShare) {
                                        glm::dot(to_moon, e.geometry.sun_direction));
   const double moon_radius = std::asin(e.geometry.moon_radius_m / glm::length(to_moon));
   const double expected = 1.0 - limb_darkened_obscuration(separation, e.geometry.sun_angular_radius_rad, moon_radius,
-                                                          e.geometry.limb_exponents[1]);
+                                                          e.geometry.limb_darkening[1]);
   EXPECT_NEAR(shadow.direct_light(p, 1), expected, 1e-3);
   EXPECT_NE(shadow.direct_light(p, 1), shadow.direct_light(e.observer_m, 1)) << "the shadow has parallax";
 }
@@ -279,11 +276,11 @@ TEST_F(EclipsedSky, RefusesWhatIsNoEclipse) {
   e.geometry.moon_radius_m = 0.0;
   refuses(e, "no Moon");
   e = good;
-  e.geometry.limb_exponents.pop_back();
-  refuses(e, "a limb exponent missing");
+  e.geometry.limb_darkening.pop_back();
+  refuses(e, "a limb darkening law missing");
   e = good;
-  e.geometry.limb_exponents[0] = 11.0;
-  refuses(e, "a limb exponent out of range");
+  e.geometry.limb_darkening[0].coefficients[0] = 11.0;
+  refuses(e, "limb darkening coefficients that do not sum to 1");
   e = good;
   e.geometry.sun_direction *= 2.0;
   refuses(e, "a sun direction not of unit length");

@@ -33,7 +33,7 @@ class LunarEclipse : public ::testing::Test {
   static void SetUpTestSuite() {
     loaded_ = new LoadedAtmosphere(atmosphere::load_preset("earth-advanced"));
     shadow_ = new EarthShadow(*loaded_, kMoonDistance_m, kSunRadius_rad,
-                              std::vector<double>(loaded_->model.wavelengths_nm.size(), 0.0));
+                              std::vector<atmosphere::LimbDarkening>(loaded_->model.wavelengths_nm.size()));
   }
   static void TearDownTestSuite() {
     delete shadow_;
@@ -129,10 +129,14 @@ TEST(LunarEclipseSearch, FindsTheNextEclipseASiteSeesAsNasasCanonHasIt) {
 }
 
 TEST_F(LunarEclipse, RefusesWhatIsNoShadow) {
-  const std::vector<double> exponents(loaded_->model.wavelengths_nm.size(), 0.0);
-  EXPECT_THROW(EarthShadow(*loaded_, 1e6, kSunRadius_rad, exponents), std::invalid_argument);
-  EXPECT_THROW(EarthShadow(*loaded_, kMoonDistance_m, 0.0, exponents), std::invalid_argument);
-  EXPECT_THROW(EarthShadow(*loaded_, kMoonDistance_m, kSunRadius_rad, {0.5}), std::invalid_argument);
+  const std::vector<atmosphere::LimbDarkening> uniform(loaded_->model.wavelengths_nm.size());
+  EXPECT_THROW(EarthShadow(*loaded_, 1e6, kSunRadius_rad, uniform), std::invalid_argument);
+  EXPECT_THROW(EarthShadow(*loaded_, kMoonDistance_m, 0.0, uniform), std::invalid_argument);
+  EXPECT_THROW(EarthShadow(*loaded_, kMoonDistance_m, kSunRadius_rad, {atmosphere::LimbDarkening{}}),
+               std::invalid_argument);
+  std::vector<atmosphere::LimbDarkening> not_a_law = uniform;
+  not_a_law[1].coefficients[0] = 0.5;
+  EXPECT_THROW(EarthShadow(*loaded_, kMoonDistance_m, kSunRadius_rad, not_a_law), std::invalid_argument);
 }
 
 }  // namespace

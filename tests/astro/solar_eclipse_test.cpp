@@ -34,25 +34,44 @@ TEST(SolarEclipse, DiscObscurationIsTheLensOfTwoCircles) {
 }
 
 TEST(SolarEclipse, TheLimbDarkenedShareIsTheLightBehindTheMoon) {
+  using atmosphere::LimbDarkening;
+  const LimbDarkening sun_550 = atmosphere::solar_limb_darkening(550.0);
   // Uniform: the area share.
-  EXPECT_NEAR(limb_darkened_obscuration(1.0, 1.0, 1.0, 0.0), disc_obscuration(1.0, 1.0, 1.0), 1e-15);
-  // Centred annulus ρ = 0.9 r_s: 1 − (1 − 0.81)^{(a+2)/2} (sun_disc.h's normalisation up to ρ).
-  for (double a : {0.3, 0.51, 1.0, 2.0})
-    EXPECT_NEAR(limb_darkened_obscuration(0.0, 1.0, 0.9, a), 1.0 - std::pow(0.19, 0.5 * (a + 2.0)), 1e-9) << a;
+  EXPECT_NEAR(limb_darkened_obscuration(1.0, 1.0, 1.0, LimbDarkening{}), disc_obscuration(1.0, 1.0, 1.0), 1e-15);
+  // Centred annulus ρ = 0.9 r_s: the light outside it is the ring μ < μ_0 = sqrt(0.19), whose share is
+  // Σ a_k μ_0^{k+2}/(k+2) / Σ a_k/(k+2) (sun_disc.h's normalisation up to ρ): for the linear law I = μ,
+  // 0.19^{3/2}; for the Sun's at every wavelength, the same sum over its polynomial.
+  const double mu_0 = std::sqrt(0.19);
+  EXPECT_NEAR(limb_darkened_obscuration(0.0, 1.0, 0.9, LimbDarkening{{0.0, 1.0, 0.0, 0.0, 0.0, 0.0}}),
+              1.0 - std::pow(0.19, 1.5), 1e-12);
+  for (double nm : {320.0, 440.0, 550.0, 680.0, 1000.0}) {
+    const LimbDarkening law = atmosphere::solar_limb_darkening(nm);
+    double outside = 0.0, whole = 0.0;
+    for (std::size_t k = 0; k < law.coefficients.size(); ++k) {
+      outside += law.coefficients[k] * std::pow(mu_0, double(k + 2)) / double(k + 2);
+      whole += law.coefficients[k] / double(k + 2);
+    }
+    EXPECT_NEAR(limb_darkened_obscuration(0.0, 1.0, 0.9, law), 1.0 - outside / whole, 1e-12) << nm;
+  }
   // Total and none as the geometry says.
-  EXPECT_EQ(limb_darkened_obscuration(0.01, 1.0, 1.03, 0.51), 1.0);
-  EXPECT_EQ(limb_darkened_obscuration(2.5, 1.0, 1.03, 0.51), 0.0);
+  EXPECT_EQ(limb_darkened_obscuration(0.01, 1.0, 1.03, sun_550), 1.0);
+  EXPECT_EQ(limb_darkened_obscuration(2.5, 1.0, 1.03, sun_550), 0.0);
   // A Moon over the limb hides less light than area (the limb is dark); over the centre, more.
-  EXPECT_LT(limb_darkened_obscuration(1.6, 1.0, 1.03, 0.51), disc_obscuration(1.6, 1.0, 1.03));
-  EXPECT_GT(limb_darkened_obscuration(0.3, 1.0, 0.5, 0.51), disc_obscuration(0.3, 1.0, 0.5));
+  EXPECT_LT(limb_darkened_obscuration(1.6, 1.0, 1.03, sun_550), disc_obscuration(1.6, 1.0, 1.03));
+  EXPECT_GT(limb_darkened_obscuration(0.3, 1.0, 0.5, sun_550), disc_obscuration(0.3, 1.0, 0.5));
   // Continuous and monotone as the Moon slides across, from first contact to second.
   double previous = 0.0;
   for (double d = 2.03; d >= 0.03; d -= 0.01) {
-    const double share = limb_darkened_obscuration(d, 1.0, 1.03, 0.51);
+    const double share = limb_darkened_obscuration(d, 1.0, 1.03, sun_550);
     EXPECT_GE(share, previous - 1e-12) << d;
     EXPECT_LT(share - previous, 0.03) << d;
     previous = share;
   }
+  // A law that is not one: coefficients that do not sum to 1, or a negative intensity.
+  EXPECT_THROW(limb_darkened_obscuration(1.0, 1.0, 1.0, LimbDarkening{{0.5, 0.0, 0.0, 0.0, 0.0, 0.0}}),
+               std::invalid_argument);
+  EXPECT_THROW(limb_darkened_obscuration(1.0, 1.0, 1.0, LimbDarkening{{-0.5, 1.5, 0.0, 0.0, 0.0, 0.0}}),
+               std::invalid_argument);
 }
 
 TEST(SolarEclipse, TheGreatEclipseOf2017IsTotalWhereNasaPutsItsGreatestEclipse) {

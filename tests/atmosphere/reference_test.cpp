@@ -27,6 +27,7 @@
 #include "atmosphere/reference/phase_sampling.h"
 #include "atmosphere/reference/single_scattering.h"
 #include "atmosphere/reference/sun_disc.h"
+#include "atmosphere/solar_limb_darkening.h"
 #include "tests/atmosphere/test_util.h"
 
 namespace zenith::atmosphere::reference {
@@ -710,12 +711,12 @@ TEST(ReferencePathTracer, GroundIrradianceDirectPartMatchesTheTransmittance) {
 
 /// The sun at the zenith of the observer at `point`, and a sphere of angular
 /// radius `radius_rad` centred `separation_rad` from the sun's centre, 380 000 km away.
-SunDisc eclipsed_sun(const Vec3& point, double separation_rad, double radius_rad, double limb_exponent) {
+SunDisc eclipsed_sun(const Vec3& point, double separation_rad, double radius_rad, const LimbDarkening& limb = {}) {
   constexpr double kMoonDistance_m = 3.8e8;
   SunDisc sun;
   sun.direction = normalize(point);
   sun.angular_radius_rad = 4.65e-3;
-  if (limb_exponent > 0.0) sun.limb_exponents = {limb_exponent};
+  if (limb != LimbDarkening{}) sun.limb_darkening = {limb};
   const Vec3 towards = Frame::around(sun.direction).to_world(std::sin(separation_rad), 0.0, std::cos(separation_rad));
   sun.occulter.centre_m = point + kMoonDistance_m * towards;
   sun.occulter.radius_m = kMoonDistance_m * std::sin(radius_rad);
@@ -740,23 +741,31 @@ TEST(ReferenceEclipse, TheDirectSunIsTheUncoveredPartOfTheLimbDarkenedDisc) {
   const double r_s = 4.65e-3;
   constexpr std::size_t kSamples = 400000;
   // Nothing in the way: the whole disc, limb-darkened or not.
-  EXPECT_NEAR(direct_fraction(eclipsed_sun(point, 0.1, 0.0, 0.0), point, kSamples), 1.0, 2e-3);
-  EXPECT_NEAR(direct_fraction(eclipsed_sun(point, 0.1, 0.0, 0.6), point, kSamples), 1.0, 4e-3);
+  const LimbDarkening sun_550 = solar_limb_darkening(550.0);
+  EXPECT_NEAR(direct_fraction(eclipsed_sun(point, 0.1, 0.0), point, kSamples), 1.0, 2e-3);
+  EXPECT_NEAR(direct_fraction(eclipsed_sun(point, 0.1, 0.0, sun_550), point, kSamples), 1.0, 4e-3);
   // Total: a larger sphere on the line to the centre covers every direction of the disc.
-  EXPECT_EQ(direct_fraction(eclipsed_sun(point, 0.0, 1.04 * r_s, 0.6), point, 10000), 0.0);
-  // Annular, centred (sin ρ / sin r_s = 0.9): with I(μ) = μ^a the covered share is
-  // 1 − (1 − 0.81)^{(a+2)/2} (the integral of sun_disc.h's normalisation up to the
-  // sphere's edge) — 0.81 of the disc's area but more of its light, the centre being brightest.
+  EXPECT_EQ(direct_fraction(eclipsed_sun(point, 0.0, 1.04 * r_s, sun_550), point, 10000), 0.0);
+  // Annular, centred (sin ρ / sin r_s = 0.9): with I(μ) = Σ a_k μ^k the uncovered ring is
+  // μ < μ_0 = sqrt(1 − 0.81), whose share of the light is Σ a_k μ_0^{k+2}/(k+2) / Σ a_k/(k+2)
+  // (sun_disc.h's normalisation integrated up to the sphere's edge) — 0.19 of the disc's area but
+  // less of its light, the limb being darkest.
   const double rho = std::asin(0.9 * std::sin(r_s));
-  for (double a : {0.0, 0.6}) {
-    const double expected = std::pow(1.0 - 0.81, 0.5 * (a + 2.0));
-    EXPECT_NEAR(direct_fraction(eclipsed_sun(point, 0.0, rho, a), point, kSamples), expected, 3e-3) << "a = " << a;
+  for (const LimbDarkening& law : {LimbDarkening{}, sun_550}) {
+    const double mu_0 = std::sqrt(1.0 - 0.81);
+    double uncovered = 0.0, whole = 0.0;
+    for (std::size_t k = 0; k < law.coefficients.size(); ++k) {
+      uncovered += law.coefficients[k] * std::pow(mu_0, double(k + 2)) / double(k + 2);
+      whole += law.coefficients[k] / double(k + 2);
+    }
+    EXPECT_NEAR(direct_fraction(eclipsed_sun(point, 0.0, rho, law), point, kSamples), uncovered / whole, 3e-3)
+        << "a_0 = " << law.coefficients[0];
   }
   // Partial, uniform disc: the uncovered area of two overlapping discs of equal radius r at
   // centre distance d is 1 − (2 acos(d/2r) − (d/r) sqrt(1 − d²/4r²)) / π of the disc.
   const double d_over_r = 1.2;
   const double lens = (2.0 * std::acos(0.5 * d_over_r) - d_over_r * std::sqrt(1.0 - 0.25 * d_over_r * d_over_r)) / kPi;
-  EXPECT_NEAR(direct_fraction(eclipsed_sun(point, d_over_r * r_s, r_s, 0.0), point, kSamples), 1.0 - lens, 3e-3);
+  EXPECT_NEAR(direct_fraction(eclipsed_sun(point, d_over_r * r_s, r_s), point, kSamples), 1.0 - lens, 3e-3);
 }
 
 TEST(ReferenceEclipse, AtTotalityTheZenithIsAboutATenThousandthOfItsDaylightAndBluer) {

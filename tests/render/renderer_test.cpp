@@ -322,7 +322,7 @@ TEST(RendererSun, TheMoonCoversTheSunsDiscInAnEclipse) {
       for (int k = 0; k < 3; ++k) {
         const double left =
             1.0 - astro::limb_darkened_obscuration(view.separation_rad, view.sun_radius_rad, view.moon_radius_rad,
-                                                   scene::limb_darkening_exponent(s.wavelengths_nm[k]));
+                                                   atmosphere::solar_limb_darkening(s.wavelengths_nm[k]));
         const double ratio = eclipsed[k] / whole[k];
         if (view.kind == astro::EclipseKind::total) {
           EXPECT_LT(std::abs(ratio), 1e-5) << "totality: no sun, no rim (" << p->width() << " px)";
