@@ -3,8 +3,8 @@
 // an angle arccos μ to the local vertical, relative to the disc's centre,
 //   I(μ, λ) / I(1, λ) = Σ_{k=0..5} a_k(λ) μ^k,
 // the fifth-degree polynomials Neckel & Labs (1994, Solar Physics 153, 91–114)
-// fitted to the centre-to-limb curves they measured with the McMath–Pierce
-// telescope at 30 continuum wavelengths from 303 to 1099 nm
+// fitted to the centre-to-limb curves they observed from 1986 to 1990 at 30
+// continuum wavelengths from 303 to 1099 nm
 // (atmosphere/data/solar_limb_darkening_neckel_labs_1994.csv). Between those
 // wavelengths the coefficients are interpolated linearly; beyond them the
 // nearest row's are kept (the law changes slowly there, and the presets'
@@ -18,8 +18,9 @@
 // leaves 6–9 % less light than Neckel & Labs at 430–590 nm, at 98.5 % 10–13 %
 // (docs/validation.md, "The Sun's limb"). Bernhard & Petkov (ACP 19, 4703,
 // 2019) found the spectral irradiance measured through the 2017 eclipse within
-// 4 % of the McMath–Pierce limb darkening above 400 nm, up to 97.8 % of the
-// disc covered.
+// 4 % of limb darkening observed with the McMath–Pierce telescope above
+// 400 nm, up to 97.8 % of the disc covered; Neckel & Labs's coefficients
+// "agree basically" with Pierce & Slaughter's (1977), observed there.
 //
 // The disc's mean radiance over its centre's — what sets the centre radiance
 // of a disc of given irradiance (scene/sun_disc.h) — is, with ρ dρ = −r² μ dμ,
