@@ -214,7 +214,7 @@ class Renderer {
   /// (no wavelengths, too many bodies, a sun spectrum of another length).
   void check_scene(const scene::Scene& scene) const;
   /// The frame's constants in double on the CPU: camera and sun, pixel
-  /// footprints, colour weights, the sun's centre radiance and limb exponents.
+  /// footprints, colour weights, the sun's centre radiance and limb darkening.
   Frame frame_constants(const scene::Scene& scene, const warp::Projection& projection) const;
   /// The projection's tile cones, rebuilt (and the ray tables dropped) when the projection changed.
   void update_tile_cones(Frame& frame);

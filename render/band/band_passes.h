@@ -13,7 +13,8 @@
 namespace zenith::render {
 
 /// direct_light.comp's uniforms for the frame: the colour matrix of the
-/// bodies' albedo and, where the sun can be drawn, its spectrum and limb exponents.
+/// bodies' albedo and, where the sun can be drawn, its colour as a polynomial in μ
+/// (the limb darkening summed over the wavelengths).
 void set_direct_light_uniforms(FrameInProgress& frame);
 
 /// Tiles no atmosphere touches: bodies and the sun, one pass each, every wavelength.
