@@ -51,8 +51,7 @@ void place_sun_and_moon(const astro::SkyPositions& sky, const AtmosphereModel& m
   r.geometry.sun_zenith_deg = s.sun_zenith_deg;
   r.geometry.sun_azimuth_deg = s.sun_azimuth_deg;
   r.sun_angular_radius_deg = s.sun_angular_radius_rad / core::kDeg;
-  r.limb_darkening.clear();
-  for (double nm : model.wavelengths_nm) r.limb_darkening.push_back(solar_limb_darkening(nm));
+  r.limb_darkening = solar_limb_darkening(model.wavelengths_nm);
   r.occulter.centre_m = s.moon_centre_m;
   r.occulter.radius_m = s.moon_radius_m;
 }

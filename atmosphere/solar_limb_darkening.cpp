@@ -46,6 +46,12 @@ LimbDarkening solar_limb_darkening(double wavelength_nm) {
   return law;
 }
 
+std::vector<LimbDarkening> solar_limb_darkening(const std::vector<double>& wavelengths_nm) {
+  std::vector<LimbDarkening> laws;
+  for (double nm : wavelengths_nm) laws.push_back(solar_limb_darkening(nm));
+  return laws;
+}
+
 void check_limb_darkening(const LimbDarkening& law, std::string_view who) {
   double sum = 0.0;
   for (double a : law.coefficients) {

@@ -27,6 +27,7 @@
 //   m = 2 ∫_0^1 I(μ)/I(1) μ dμ = 2 Σ a_k / (k + 2)      (1 for a uniform disc).
 #include <array>
 #include <string_view>
+#include <vector>
 
 namespace zenith::atmosphere {
 
@@ -45,6 +46,8 @@ struct LimbDarkening {
 /// Neckel & Labs's law at `wavelength_nm`. Throws std::invalid_argument unless
 /// the wavelength is finite and in [100, 10000] nm.
 LimbDarkening solar_limb_darkening(double wavelength_nm);
+/// The law at each of `wavelengths_nm` (a model's or a scene's), in order.
+std::vector<LimbDarkening> solar_limb_darkening(const std::vector<double>& wavelengths_nm);
 
 /// Throws std::invalid_argument, naming `who`, unless the coefficients are
 /// finite, sum to 1 within 1e-3, and I(μ) ≥ 0 at μ = 0, 0.1, …, 1.

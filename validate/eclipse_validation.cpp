@@ -90,7 +90,7 @@ EclipsedSky eclipsed_sky(const atmosphere::AtmosphereModel& model, const astro::
   e.observer_m = g.observer_m(model);
   e.sun.direction = g.sun_direction();
   e.sun.angular_radius_rad = s.sun_angular_radius_rad;
-  for (double nm : model.wavelengths_nm) e.sun.limb_darkening.push_back(atmosphere::solar_limb_darkening(nm));
+  e.sun.limb_darkening = atmosphere::solar_limb_darkening(model.wavelengths_nm);
   e.sun.occulter = {s.moon_centre_m, s.moon_radius_m};
   return e;
 }

@@ -57,9 +57,8 @@ class MoonInShadow {
 
  private:
   static astro::EarthShadow make_shadow(const atmosphere::LoadedAtmosphere& air, const astro::LunarEclipseGeometry& g) {
-    std::vector<atmosphere::LimbDarkening> limb;
-    for (double nm : air.model.wavelengths_nm) limb.push_back(atmosphere::solar_limb_darkening(nm));
-    return astro::EarthShadow(air, g.moon_distance_m, g.sun_angular_radius_rad, limb);
+    return astro::EarthShadow(air, g.moon_distance_m, g.sun_angular_radius_rad,
+                              atmosphere::solar_limb_darkening(air.model.wavelengths_nm));
   }
   const atmosphere::LoadedAtmosphere& air_;
   astro::LunarEclipseGeometry geometry_;

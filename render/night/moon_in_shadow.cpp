@@ -41,9 +41,8 @@ void MoonInShadow::update(const scene::Scene& scene, const FrameSky& sky) {
   if (!shadow_ || key != shadow_atmosphere_ || std::abs(along / shadow_distance_m_ - 1.0) > 1e-3 ||
       std::abs(scene.sun.angular_radius_rad / shadow_sun_radius_rad_ - 1.0) > 1e-3) {
     const auto start = std::chrono::steady_clock::now();
-    std::vector<atmosphere::LimbDarkening> limb;
-    for (double nm : scene.wavelengths_nm) limb.push_back(atmosphere::solar_limb_darkening(nm));
-    shadow_ = std::make_unique<astro::EarthShadow>(air, along, scene.sun.angular_radius_rad, limb);
+    shadow_ = std::make_unique<astro::EarthShadow>(air, along, scene.sun.angular_radius_rad,
+                                                   atmosphere::solar_limb_darkening(scene.wavelengths_nm));
     shadow_atmosphere_ = key;
     shadow_distance_m_ = along;
     shadow_sun_radius_rad_ = scene.sun.angular_radius_rad;

@@ -51,7 +51,7 @@ EclipseSetup setup_at(const AtmosphereModel& model, const AstroTime& t) {
   e.geometry.moon_radius_m = s.moon_radius_m;
   e.geometry.sun_direction = {std::sin(z) * std::cos(a), std::sin(z) * std::sin(a), std::cos(z)};
   e.geometry.sun_angular_radius_rad = s.sun_angular_radius_rad;
-  for (double nm : model.wavelengths_nm) e.geometry.limb_darkening.push_back(atmosphere::solar_limb_darkening(nm));
+  e.geometry.limb_darkening = atmosphere::solar_limb_darkening(model.wavelengths_nm);
   e.observer_m = {0.0, 0.0, model.ground_radius_m + 2.0};
   return e;
 }
