@@ -21,6 +21,7 @@
 #include "render/band/band_passes.h"
 #include "render/band/band_resources.h"
 #include "render/band/band_to_texture.h"
+#include "render/frame/air_shadows.h"
 #include "render/frame/albedo_array.h"
 #include "render/frame/frame_conditions.h"
 #include "render/frame/frame_constants.h"
@@ -87,6 +88,7 @@ struct Renderer::Impl {
   RefractionCache refractions;   // the air's refraction at the camera: stars, the Moon, the Sun's disc
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/night/star_pass.h)
   MoonInShadow moon_shadow;      // the Earth's shadow on the Moon in a lunar eclipse
+  AirShadows air_shadows;        // the scene's bodies' shadows through their air (the red Moon from space)
   std::map<std::string, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by table hash + features
   AlbedoArray albedo;  // the bodies' maps, one layer per body (render/frame/albedo_array.h)
   std::string projection_key;
@@ -179,6 +181,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   frame.lights = {frame.sun_light()};
   update_tile_cones(frame);
   prepare_bodies(frame);
+  prepare_air_shadows(frame, timer);
   prepare_programs(frame);
   start_frame_programs(frame);
   read_tables(frame);
@@ -300,6 +303,26 @@ void Renderer::prepare_bodies(Frame& frame) {
   for (GpuBody& g : bodies) g.albedo_map = {static_cast<float>(im.albedo.texture().width()), 0, 0, 0};
   im.albedo.texture().bind(binding::kAlbedoMapsUnit);
   im.band.upload_bodies(bodies);
+}
+
+void Renderer::prepare_air_shadows(Frame& frame, PassTimer& timer) {
+  Impl& im = *impl_;
+  const scene::Scene& scene = frame.scene;
+  frame.air_shadow_occluders.clear();
+  frame.air_shadow_bodies.clear();
+  // Without the atmospheres drawn (RenderOptions::atmospheres) the bodies are solid.
+  if (!options_.atmospheres || !options_.atmosphere.eclipses || !eclipses_possible(scene)) return;
+  timer.cpu("shadows through the air", [&] { im.air_shadows.update(scene); });
+  const std::vector<AirShadow>& shadows = im.air_shadows.shadows();
+  im.band.upload_air_shadows(air_shadow_buffer(shadows, frame, scene));
+  const int values = static_cast<int>(air_shadow_values_per_entry(frame));
+  for (std::size_t s = 0; s < shadows.size(); ++s) {
+    const AirShadow& shadow = shadows[s];
+    const glm::dvec3 c = scene.bodies[shadow.occluder].position_m - scene.camera.position_m;  // in double
+    frame.air_shadow_occluders.push_back(vec4_of(c, shadow.reach_m));
+    frame.air_shadow_bodies.push_back({static_cast<int>(shadow.occluder), static_cast<int>(shadow.receiver),
+                                       static_cast<int>(s * kAirShadowEntries) * values, values});
+  }
 }
 
 void Renderer::read_tables(Frame& frame) {
@@ -656,6 +679,7 @@ void Renderer::prepare_programs(Frame& frame) {
   FrameVariant& wanted = frame.wanted_variant;
   wanted.projection_kind = static_cast<int>(frame.gpu_projection.kind);
   wanted.eclipses = options_.atmosphere.eclipses && eclipses_possible(frame.scene);
+  wanted.air_shadows = !frame.air_shadow_bodies.empty();  // its code costs a CPU rasterizer even unused
   wanted.albedo_lod0 = albedo_at_full_resolution(frame.scene, frame.pixel_angle, im.albedo.texture().width());
   frame.variant = live_variants() ? im.live_variants.provisional(wanted) : wanted;
   frame.sun_reach = sun_reach_rad(frame);

@@ -221,6 +221,9 @@ class Renderer {
   /// The bodies camera-relative for the GPU, the atmosphere passes front to
   /// back, the albedo array texture; uploads and binds the bodies buffer.
   void prepare_bodies(Frame& frame);
+  /// Where a body's air can shadow another (a lunar eclipse seen from space),
+  /// the sunlight left across its shadow (render/frame/air_shadows.h), uploaded.
+  void prepare_air_shadows(Frame& frame, PassTimer& timer);
   /// The tables of every atmosphere the view touches, taken from the table
   /// source where not held; upload_tables uploads them.
   void read_tables(Frame& frame);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/units.h"
+#include "render/frame/air_shadows.h"
 #include "render/frame/tile_culling.h"
 #include "warp/projection.h"
 
@@ -32,6 +33,7 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
       {"STAR_ACCUMULATOR_BINDING", kStarAccumulator},
       {"NIGHT_SKY_TABLE_BINDING", kNightSkyTable},
       {"STAR_PIXEL_LIST_BINDING", kStarPixelList},
+      {"AIR_SHADOWS_BINDING", kAirShadows},
       {"TRANSMITTANCE_UNIT", kTransmittanceUnit},
       {"SINGLE_RAYLEIGH_UNIT", kSingleRayleighUnit},
       {"SINGLE_MIE_UNIT", kSingleMieUnit},
@@ -69,6 +71,8 @@ std::vector<gl::ShaderDefine> shader_interface_defines() {
   defines.push_back({"TILE_COLUMN_MASK", fmt::format("{:#x}u", kTileColumnMask)});
   defines.push_back({"LUT_1D_ROW_TEXELS", fmt::format("{}", kLut1dRowTexels)});
   defines.push_back({"LIMB_COEFFICIENTS", fmt::format("{}", kLimbCoefficients)});
+  defines.push_back({"AIR_SHADOW_ENTRIES", fmt::format("{}", kAirShadowEntries)});
+  defines.push_back({"MAX_AIR_SHADOWS", fmt::format("{}", kMaxAirShadows)});
   struct Kind {
     const char* name;
     warp::ProjectionKind kind;

@@ -35,6 +35,7 @@ inline constexpr unsigned kStarSplats = 11;           ///< STAR_SPLATS_BINDING (
 inline constexpr unsigned kStarAccumulator = 12;      ///< STAR_ACCUMULATOR_BINDING (render/star_accumulator.glsl)
 inline constexpr unsigned kNightSkyTable = 13;        ///< NIGHT_SKY_TABLE_BINDING (render/night_sky.comp)
 inline constexpr unsigned kStarPixelList = 14;        ///< STAR_PIXEL_LIST_BINDING (render/star_pixels.comp)
+inline constexpr unsigned kAirShadows = 15;           ///< AIR_SHADOWS_BINDING (render/frame.glsl)
 
 // ---- uniform buffers
 inline constexpr unsigned kWavelengthData =

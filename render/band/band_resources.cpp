@@ -29,7 +29,15 @@ void BandResources::upload_bodies(std::span<const GpuBody> bodies) {
   bodies_ = gl::Buffer::from(bodies.empty() ? std::span<const GpuBody>(none) : bodies);
 }
 
-void BandResources::bind_bodies() const { bodies_.bind_storage(binding::kBodies); }
+void BandResources::upload_air_shadows(std::span<const std::array<float, 4>> values) {
+  air_shadows_ = gl::Buffer::from(values);
+  air_shadows_.bind_storage(binding::kAirShadows);
+}
+
+void BandResources::bind_bodies() const {
+  bodies_.bind_storage(binding::kBodies);
+  if (air_shadows_.id() != 0) air_shadows_.bind_storage(binding::kAirShadows);
+}
 
 void BandResources::fit_bands(int width, int height, BandReader reader) {
   if (width != band_width_ || height != band_height_) {

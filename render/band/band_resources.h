@@ -40,6 +40,8 @@ class BandResources {
  public:
   /// The frame's bodies into the bodies buffer (one zero body where there are none).
   void upload_bodies(std::span<const GpuBody> bodies);
+  /// The frame's air shadows (render/frame/air_shadows.h's air_shadow_buffer), bound with the bodies.
+  void upload_air_shadows(std::span<const std::array<float, 4>> values);
   void bind_bodies() const;
 
   /// Sizes the band's output for bands of `width` × `height` pixels read by
@@ -98,6 +100,7 @@ class BandResources {
 
  private:
   gl::Buffer bodies_;
+  gl::Buffer air_shadows_;
   std::optional<gl::UploadStream> uploads_;
   gl::UploadRange tiles_;  // the band's tile lists
   int band_width_ = 0, band_height_ = 0;

@@ -23,9 +23,13 @@ bool eclipses_possible(const scene::Scene& scene) {
       const double d = glm::dot(oc, s) + receiver.radius_m;  // largest d over the receiver
       if (d <= 0.0) continue;                                // the occluder is behind the receiver, away from the sun
       const double off_axis = glm::length(oc - glm::dot(oc, s) * s) - receiver.radius_m;
-      if (off_axis < 1.01 * (occluder.radius_m + d * tan_alpha) + 1.0) return true;
+      if (off_axis < 1.01 * (shadow_casting_radius_m(occluder) + d * tan_alpha) + 1.0) return true;
     }
   return false;
+}
+
+double shadow_casting_radius_m(const scene::Body& body) {
+  return body.atmosphere ? body.atmosphere->loaded.model.top_radius_m : body.radius_m;
 }
 
 bool albedo_at_full_resolution(const scene::Scene& scene, double pixel_angle, int map_width) {

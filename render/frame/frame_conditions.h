@@ -17,7 +17,13 @@ namespace zenith::render {
 /// occluder lie within a + d tan α (·1.01, and a metre) of the shadow axis
 /// through o, at d = (o − p)·s > 0 in front of them; the receiver's nearest
 /// point is at least (its centre's distance from the axis) − b from it.
+/// An occluder with an atmosphere casts its shadow out to the top of its air
+/// (shadow_casting_radius_m; render/frame/air_shadows.h).
 bool eclipses_possible(const scene::Scene& scene);
+
+/// The outer radius of the shadow a body casts: the top of its air where it
+/// has one (the sunlight refracted and dimmed through it), else its own radius.
+double shadow_casting_radius_m(const scene::Body& body);
 
 /// Whether the Moon can cover the sun in this frame's sky: the scene keeps a
 /// sky clock (the Moon by date and place) and the Moon is drawn

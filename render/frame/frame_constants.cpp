@@ -54,7 +54,8 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky
   return f;
 }
 
-std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, const scene::Scene& scene) {
+std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, const scene::Scene& scene,
+                                                const std::vector<double>& light_left) {
   const double exposure = scene.camera.exposure;
   std::array<float, 9> rgb_from_albedo{};  // column-major: column = albedo channel
   for (int out = 0; out < 3; ++out)
@@ -62,7 +63,7 @@ std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, con
       double m = 0.0;
       for (std::size_t i = 0; i < frame.n; ++i)
         m += frame.rgb_weights[i][static_cast<std::size_t>(out)] * scene.sun.irradiance_W_m2_nm[i] *
-             frame.albedo_weights[i][static_cast<std::size_t>(in)];
+             (light_left.empty() ? 1.0 : light_left[i]) * frame.albedo_weights[i][static_cast<std::size_t>(in)];
       rgb_from_albedo[static_cast<std::size_t>(in * 3 + out)] = static_cast<float>(exposure * m);
     }
   return rgb_from_albedo;

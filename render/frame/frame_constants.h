@@ -46,8 +46,11 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky
 /// direct_light.comp's colour matrix, column-major (column = albedo channel):
 /// a body lit by the sun alone is rgb = (cos i V / π) M a with
 /// M = exposure Σ_λ w(λ) E(λ) f(λ)ᵀ (w: the spectral → RGB weights, f: the
-/// albedo's RGB → reflectance weights).
-std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, const scene::Scene& scene);
+/// albedo's RGB → reflectance weights). With `light_left` (per wavelength,
+/// E / E_sun where another body's air shadows the sun: render/frame/air_shadows.h)
+/// E(λ) is that share of the sun's; empty: the whole sun.
+std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, const scene::Scene& scene,
+                                                const std::vector<double>& light_left = {});
 
 /// Where the sun can be drawn: a cone of the disc's radius (in an eclipse, the
 /// corona's) plus a pixel, or 6σ of the Gaussian, at most π/2.

@@ -50,6 +50,11 @@ void FrameInProgress::set_frame_uniforms(const gl::ShaderProgram& p) const {
   p.set_uniform("sun_direction",
                 std::array<float, 3>{static_cast<float>(sun.x), static_cast<float>(sun.y), static_cast<float>(sun.z)});
   p.set_uniform("sun_angular_radius", static_cast<float>(sun_radius));
+  p.set_uniform("air_shadow_count", static_cast<int>(air_shadow_bodies.size()));
+  for (std::size_t s = 0; s < air_shadow_bodies.size(); ++s) {
+    p.set_uniform(fmt::format("air_shadow_occluder[{}]", s), air_shadow_occluders[s]);
+    p.set_uniform(fmt::format("air_shadow_bodies[{}]", s), air_shadow_bodies[s]);
+  }
   p.set_uniform("pixel_angle", static_cast<float>(pixel_angle));
   p.set_uniform("projection_kind", static_cast<int>(gpu_projection.kind));
   for (int k = 0; k < 4; ++k)
@@ -122,6 +127,8 @@ void FrameInProgress::set_light_uniforms(const gl::ShaderProgram& p, std::size_t
   p.set_uniform("sun_angular_radius", static_cast<float>(light.angular_radius_rad));
   p.set_uniform("sun_irradiance", group_lanes(light.irradiance_W_m2_nm, g));
   p.set_uniform("sun_centre_radiance", group_lanes(light.centre_radiance_W_m2_sr_nm, g));  // 0: no disc
+  p.set_uniform("wavelength_group", static_cast<int>(g));
+  p.set_uniform("air_shadow_count", light.is_sun() ? static_cast<int>(air_shadow_bodies.size()) : 0);
 }
 
 FrameLight FrameInProgress::sun_light() const {

@@ -77,6 +77,10 @@ struct FrameInProgress : FrameConstants {
   // ---- bodies and atmospheres (prepare_bodies)
   std::vector<GpuBody> bodies;
   std::vector<AtmospherePass> passes;
+  // the bodies' shadows through their air (render/frame/air_shadows.h; their
+  // values uploaded): frame.glsl's air_shadow_occluder[] and air_shadow_bodies[]
+  std::vector<std::array<float, 4>> air_shadow_occluders;
+  std::vector<std::array<int, 4>> air_shadow_bodies;
 
   // ---- uniforms shared by all passes and the programs (prepare_programs)
   std::array<float, 9> camera_matrix{};
@@ -121,7 +125,8 @@ struct FrameInProgress : FrameConstants {
   /// and `light`'s (set_light_uniforms).
   void set_group_uniforms(const gl::ShaderProgram& p, std::size_t g, const FrameLight& light);
   /// `light`'s direction, angular radius, irradiance and disc radiance for group g
-  /// (sun_direction, sun_angular_radius, sun_irradiance, sun_centre_radiance).
+  /// (sun_direction, sun_angular_radius, sun_irradiance, sun_centre_radiance),
+  /// the group (wavelength_group) and the air shadows it casts (the sun's only).
   void set_light_uniforms(const gl::ShaderProgram& p, std::size_t g, const FrameLight& light) const;
   /// The sun as the first light of the atmosphere passes.
   FrameLight sun_light() const;

@@ -163,10 +163,13 @@ void GpuAtmosphere::set_group(const gl::ShaderProgram& program, std::size_t grou
 std::vector<gl::ShaderDefine> FrameVariant::defines() const {
   return {{"PROJECTION_KIND", std::to_string(projection_kind)},
           {"ECLIPSES", eclipses ? "1" : "0"},
+          {"AIR_SHADOWS", eclipses && air_shadows ? "1" : "0"},
           {"ALBEDO_LOD0", albedo_lod0 ? "1" : "0"}};
 }
 
-std::string FrameVariant::key() const { return fmt::format("{} {:d} {:d}", projection_kind, eclipses, albedo_lod0); }
+std::string FrameVariant::key() const {
+  return fmt::format("{} {:d} {:d} {:d}", projection_kind, eclipses, eclipses && air_shadows, albedo_lod0);
+}
 
 std::vector<gl::ShaderDefine> GpuAtmosphere::gbuffer_path_defines(const FrameVariant& frame) const {
   FrameVariant f = frame;

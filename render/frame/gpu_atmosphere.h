@@ -34,13 +34,15 @@ namespace zenith::render {
 
 /// What a frame's passes are compiled for (render/renderer.cpp): the
 /// projection kind (shaders/projection.glsl's PROJECTION_KIND), whether other
-/// bodies' shadows can fall (ECLIPSES) and whether every albedo lookup is at
+/// bodies' shadows can fall (ECLIPSES) and, of those, shadows through a body's
+/// air (AIR_SHADOWS: a lunar eclipse seen from space), and whether every albedo lookup is at
 /// the maps' full resolution (ALBEDO_LOD0, surface_albedo.glsl). A CPU
 /// rasterizer runs all the code a program has, so what a frame cannot need is
 /// compiled out; each combination is compiled on first use.
 struct FrameVariant {
   int projection_kind = 0;
   bool eclipses = true;
+  bool air_shadows = true;  // with eclipses: a body's shadow through its air (render/frame/air_shadows.h)
   bool albedo_lod0 = false;
   std::vector<gl::ShaderDefine> defines() const;
   std::string key() const;

@@ -3,8 +3,10 @@
 namespace zenith::render {
 
 bool variant_serves(const FrameVariant& general, const FrameVariant& specific) {
+  const bool general_air = general.eclipses && general.air_shadows,
+             specific_air = specific.eclipses && specific.air_shadows;
   return general.projection_kind == specific.projection_kind && (general.eclipses || !specific.eclipses) &&
-         (specific.albedo_lod0 || !general.albedo_lod0);
+         (general_air || !specific_air) && (specific.albedo_lod0 || !general.albedo_lod0);
 }
 
 FrameVariant LiveVariants::choose(const FrameVariant& wanted, const Built& built) const {
@@ -20,6 +22,7 @@ std::optional<FrameVariant> LiveVariants::drew(const FrameVariant& used, const F
   if (building_) return std::nullopt;
   FrameVariant general = used;
   general.eclipses = shadows_can_fall;
+  general.air_shadows = shadows_can_fall;
   general.albedo_lod0 = false;
   for (const FrameVariant& next : {wanted, general})
     if (next.key() != used.key() && !built(next)) return building_ = next;

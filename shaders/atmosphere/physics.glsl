@@ -26,6 +26,7 @@ layout(std140, binding = WAVELENGTH_DATA_BINDING) uniform WavelengthData { real4
 layout(std430, binding = TABLE_DATA_BINDING) readonly buffer TableData { real table_data[]; };
 
 uniform int wavelength_group;
+#define WAVELENGTH_GROUP_DECLARED 1  // render/frame.glsl reads the same uniform
 
 real4 wavelength_field(int field) {
   return wavelength_data[MODEL_HEADER_VECTORS + wavelength_group * WAVELENGTH_FIELDS + field];

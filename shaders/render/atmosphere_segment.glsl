@@ -142,7 +142,7 @@ real4 sky_irradiance(real mu_s) {
 real4 ground_radiance(vec3 ray, float t, real4 rho, real4 skylight_share) {
   const vec3 n = body_normal(the_body, ray, t);
   const real mu_s_ground = real(dot(n, sun_direction));
-  real4 visibility = real4(sun_visibility(ray * t, planet));
+  real4 visibility = real4(sunlight_left(ray * t, planet));
 #if ECLIPSE_SKY
   visibility *= real4(eclipse_direct_light(ray * t));
 #endif

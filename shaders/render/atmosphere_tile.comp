@@ -122,11 +122,11 @@ vec4 sky_view_radiance(vec3 ray, bool own_ground, float hit_distance, vec3 albed
   const vec4 g_sky = texture(sky_view_table, vec3(uv, layer + 3.0));
 #if ECLIPSE_SKY
   // The Moon's shadow on the ground: V of the direct sun, the skylight's share left.
-  const vec4 ground = reflectance(albedo) * (g_sun * sun_visibility(ray * hit_distance, planet) *
+  const vec4 ground = reflectance(albedo) * (g_sun * sunlight_left(ray * hit_distance, planet) *
                                                  eclipse_direct_light(ray * hit_distance) +
                                              g_sky * shares.skylight);
 #else
-  const vec4 ground = reflectance(albedo) * (g_sun * sun_visibility(ray * hit_distance, planet) + g_sky);
+  const vec4 ground = reflectance(albedo) * (g_sun * sunlight_left(ray * hit_distance, planet) + g_sky);
 #endif
   if (own_ground) L += ground * sun_irradiance;
 #endif

@@ -7,7 +7,9 @@
 //              from the linear sRGB albedo a (colour.md), so its colour is
 //              rgb = exposure · Σ_λ w(λ) L(λ) = (cos i · V / π) · M a,
 //              M = exposure · Σ_λ w(λ) E(λ) f(λ)ᵀ, a 3×3 matrix summed over
-//              every wavelength on the CPU in double (rgb_from_albedo);
+//              every wavelength on the CPU in double (rgb_from_albedo); in
+//              another body's shadow through its air, E(λ) the light left
+//              there, M from the frame's table (frame.glsl's sunlit_rgb);
 //   the sun:   rgb = Σ_λ exposure · w(λ) I_centre(λ) · I_λ(μ)/I_λ(1) · coverage;
 //              with the limb darkening Σ_k a_k(λ) μ^k (atmosphere/solar_limb_darkening.h)
 //              the sum over λ is a polynomial in μ whose coefficients
@@ -56,7 +58,7 @@ void main() {
     if (b >= 0) {
       const vec3 n = body_normal(the_body, ray, t);
       const float cos_i = max(dot(n, sun_direction), 0.0);
-      rgb = rgb_from_albedo * surface_albedo(the_body, ray, t, n) *
+      rgb = sunlit_rgb(ray * t, one_body, rgb_from_albedo, surface_albedo(the_body, ray, t, n)) *
             (cos_i * sun_visibility(ray * t, one_body) * (1.0 / PI_F));
     }
 #else
@@ -65,7 +67,8 @@ void main() {
     if (b >= 0) {
       const vec3 n = body_normal(b, ray, t);
       const float cos_i = max(dot(n, sun_direction), 0.0);
-      rgb = rgb_from_albedo * surface_albedo(b, ray, t, n) * (cos_i * sun_visibility(ray * t, b) * (1.0 / PI_F));
+      rgb = sunlit_rgb(ray * t, b, rgb_from_albedo, surface_albedo(b, ray, t, n)) *
+            (cos_i * sun_visibility(ray * t, b) * (1.0 / PI_F));
     }
 #endif
 #if SUN

@@ -186,16 +186,78 @@ float disc_overlap_area(float a, float b, float d) {
   return a * a * acos(ca) + b * b * acos(cb) - 0.5 * sqrt(k);
 }
 
+#ifndef AIR_SHADOWS
+#define AIR_SHADOWS 0
+#endif
+#if ECLIPSES && AIR_SHADOWS
+/// Other bodies' shadows through their own air (render/frame/air_shadows.h),
+/// at most MAX_AIR_SHADOWS: shadow s is cast by the body whose centre lies at
+/// air_shadow_occluder[s].xyz from the camera [m] on body air_shadow_bodies[s].y,
+/// out to air_shadow_occluder[s].w [m] from its axis, its AIR_SHADOW_ENTRIES
+/// entries evenly over [0, reach] in air_shadow_data from index
+/// air_shadow_bodies[s].z, air_shadow_bodies[s].w values each: the colour
+/// matrix of direct_light.comp with the sunlight left (three columns), then the
+/// sunlight left E / E_sun per lane of each wavelength group. Where the shadows
+/// are (uniforms) is read once per SIMD vector on a CPU rasterizer; only the
+/// values are read per pixel.
+layout(std430, binding = AIR_SHADOWS_BINDING) readonly buffer AirShadows { vec4 air_shadow_data[]; };
+uniform int air_shadow_count;  // 0 while a light other than the sun draws (the Moon's)
+uniform vec4 air_shadow_occluder[MAX_AIR_SHADOWS];
+uniform ivec4 air_shadow_bodies[MAX_AIR_SHADOWS];  // occluder, receiver, first value, values per entry
+#ifndef WAVELENGTH_GROUP_DECLARED  // atmosphere/physics.glsl's, where a pass includes it
+uniform int wavelength_group;     // the group a per-group pass draws
+#endif
+
+/// Whether body b's air casts one of the frame's shadows on body `self`: then
+/// that shadow's table replaces b's geometric one.
+bool casts_air_shadow(int b, int self) {
+  for (int s = 0; s < air_shadow_count; ++s)
+    if (air_shadow_bodies[s].x == b && air_shadow_bodies[s].y == self) return true;
+  return false;
+}
+
+/// Where the point at camera-relative p on body `self` lies in an air shadow:
+/// the index of the values of the entry below it, the values per entry and the
+/// weight of the next entry; false outside every air shadow on `self`. The
+/// distance from the axis is |(p − c) + ((p − c)·s) s| for the occluder's
+/// centre c, the sunlight parallel to s = −sun_direction.
+bool air_shadow_entry(vec3 p, int self, out int value, out int stride, out float next) {
+  value = 0;
+  stride = 0;
+  next = 0.0;
+  for (int s = 0; s < air_shadow_count; ++s) {
+    if (air_shadow_bodies[s].y != self) continue;
+    const vec3 from_occluder = p - air_shadow_occluder[s].xyz;
+    const float behind = -dot(from_occluder, sun_direction);
+    if (behind <= 0.0) continue;  // on the sun's side of the occluder
+    const float f = length(from_occluder + behind * sun_direction) / air_shadow_occluder[s].w *
+                    float(AIR_SHADOW_ENTRIES - 1);
+    if (!(f < float(AIR_SHADOW_ENTRIES - 1))) continue;  // beyond its reach: the whole sun
+    const int k = int(f);
+    stride = air_shadow_bodies[s].w;
+    value = air_shadow_bodies[s].z + k * stride;
+    next = f - float(k);
+    return true;
+  }
+  return false;
+}
+#endif
+
 /// Fraction of the sun's disc visible from the point at camera-relative
 /// position p, with every body but `self` as a possible occluder (eclipses:
 /// the Moon's shadow on the Earth, the Earth's on the Moon). The disc is taken
-/// as uniformly bright here (limb darkening would shift partial phases by a few percent).
+/// as uniformly bright here (limb darkening would shift partial phases by a few
+/// percent). A body whose air shadows `self` (the Earth the Moon, where the
+/// Earth has its atmosphere) is left to the table of sunlight_left and sunlit_rgb.
 float sun_visibility(vec3 p, int self) {
 #if ECLIPSES
   float visible = 1.0;
   const float sun_area = PI_F * sun_angular_radius * sun_angular_radius;
   for (int b = 0; b < body_count; ++b) {
     if (b == self) continue;
+#if AIR_SHADOWS
+    if (casts_air_shadow(b, self)) continue;
+#endif
     const vec3 to_centre = body_centre(b) - p;
     const float distance = length(to_centre);
     const float R = bodies[b].shape.x;
@@ -209,4 +271,39 @@ float sun_visibility(vec3 p, int self) {
 #else
   return 1.0;
 #endif
+}
+
+/// The share of the sun's light reaching the point at camera-relative p on
+/// body `self`, per lane of the group `wavelength_group`: the solid bodies'
+/// sun_visibility times the sunlight an air shadow leaves there.
+vec4 sunlight_left(vec3 p, int self) {
+  vec4 left = vec4(sun_visibility(p, self));
+#if ECLIPSES && AIR_SHADOWS
+  int value, stride;
+  float next;
+  if (air_shadow_entry(p, self, value, stride, next)) {
+    const int lanes = value + 3 + wavelength_group;
+    left *= mix(air_shadow_data[lanes], air_shadow_data[lanes + stride], next);
+  }
+#endif
+  return left;
+}
+
+/// direct_light.comp's M a (rgb = (cos i V / π) M a) at the point at
+/// camera-relative p on body `self` of albedo a: M `rgb_from_albedo` (the whole
+/// sun's), or in an air shadow the matrix summed over the wavelengths with the
+/// sunlight left there, which no single factor of M could give (the umbra's
+/// light is red).
+vec3 sunlit_rgb(vec3 p, int self, mat3 rgb_from_albedo, vec3 albedo) {
+#if ECLIPSES && AIR_SHADOWS
+  int value, stride;
+  float next;
+  if (air_shadow_entry(p, self, value, stride, next)) {
+    vec3 rgb = vec3(0.0);
+    for (int column = 0; column < 3; ++column)
+      rgb += mix(air_shadow_data[value + column], air_shadow_data[value + column + stride], next).xyz * albedo[column];
+    return rgb;
+  }
+#endif
+  return rgb_from_albedo * albedo;
 }

@@ -53,7 +53,7 @@ vec4 sun_disc(vec3 ray) {
 vec4 airless_surface(int b, vec3 ray, float t, vec3 albedo) {
   const vec3 n = body_normal(b, ray, t);
   const float cos_i = max(dot(n, sun_direction), 0.0);
-  return reflectance(albedo) * (1.0 / PI_F) * sun_irradiance * (cos_i * sun_visibility(ray * t, b));
+  return reflectance(albedo) * (1.0 / PI_F) * sun_irradiance * (cos_i * sunlight_left(ray * t, b));
 }
 
 /// Adds the group's radiance L at band pixel p to the band's output.

@@ -347,9 +347,11 @@ void render_every_variant() {
       return atmosphere::lut::precompute_tables_cpu(model, tables);
     });
     // earth-dusk-greenwich at a night exposure: the night sky's pass (stars, floor);
-    // the 2017 totality: the Moon's shadow on the sky (eclipse_sky.comp, ECLIPSE_SKY tiles).
-    for (const char* name : {"earth-ground-view.json", "earth-moon.json", "three-worlds.json",
-                             "earth-dusk-greenwich.json", "earth-eclipse-2017-totality.json"}) {
+    // the 2017 totality: the Moon's shadow on the sky (eclipse_sky.comp, ECLIPSE_SKY tiles);
+    // the Moon in the Earth's shadow from space: the air shadows' code (AIR_SHADOWS).
+    for (const char* name :
+         {"earth-ground-view.json", "earth-moon.json", "three-worlds.json", "earth-dusk-greenwich.json",
+          "earth-eclipse-2017-totality.json", "earth-moon-lunar-eclipse.json"}) {
       scene::Scene s = scene::load_scene(scenes / name);
       if (s.sky_clock) s.camera.exposure = scene::kMaxExposure;
       renderer.render_image(s, planar);

@@ -21,6 +21,17 @@ TEST(LiveVariants, AVariantServesThoseThatNeedLess) {
   EXPECT_FALSE(variant_serves(variant(1, true, false), variant(0, false, false))) << "another projection";
 }
 
+TEST(LiveVariants, OnlyAVariantWithTheAirShadowCodeServesAFrameWithAnAirShadow) {
+  FrameVariant solid = variant(0, true, false), air = solid;
+  solid.air_shadows = false;
+  EXPECT_TRUE(variant_serves(air, solid));
+  EXPECT_FALSE(variant_serves(solid, air)) << "a lunar eclipse seen from space needs the air shadows' code";
+  EXPECT_NE(solid.key(), air.key());
+  FrameVariant none = variant(0, false, false), none_air = none;
+  none.air_shadows = false;
+  EXPECT_EQ(none.key(), none_air.key()) << "without eclipses there is no air shadow code either way";
+}
+
 TEST(LiveVariants, TheVariantInUseDrawsWhileTheLeanerOneBuilds) {
   LiveVariants live;
   std::set<std::string> built;  // the frame's programs built, by variant

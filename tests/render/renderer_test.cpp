@@ -32,6 +32,7 @@
 
 #include "../atmosphere/lut_fixture.h"
 #include "astro/eclipsed_sky.h"
+#include "astro/lunar_eclipse.h"
 #include "astro/moon_shadow.h"
 #include "astro/sky_positions.h"
 #include "astro/solar_eclipse.h"
@@ -39,6 +40,7 @@
 #include "atmosphere/phase_functions.h"
 #include "atmosphere/photometry.h"
 #include "atmosphere/reference/path_tracer.h"
+#include "atmosphere/solar_limb_darkening.h"
 #include "core/units.h"
 #include "render/display/display_encoder.h"
 #include "render/frame/frame_conditions.h"
@@ -920,6 +922,148 @@ TEST(RendererComposition, AMoonEclipsesTheSun) {
   // more of the air's in-scattered light, which the eclipse does not remove).
   EXPECT_LT(e.g, 0.65 * l.g) << "the umbra is darker";
   EXPECT_GT(e.g, 0.0) << "skylight and the air's in-scattering remain";
+}
+
+/// The Earth at the origin with its air, the sun along +z, and a grey moon
+/// 384 400 km behind it, its centre `off_axis_m` from the shadow's axis along +x.
+scene::Scene moon_in_the_earths_shadow(double off_axis_m) {
+  scene::Scene s = planet_scene("earth-advanced", 0.0, 0.0, {0, 0, -1}, 1.0);
+  s.sun.direction = {0.0, 0.0, 1.0};
+  scene::Body moon = s.bodies[0];
+  moon.name = "moon";
+  moon.atmosphere.reset();
+  moon.radius_m = 1.7374e6;
+  moon.albedo.colour_linear_rgb = {0.12, 0.12, 0.12};
+  moon.position_m = {off_axis_m, 0.0, -3.844e8};
+  s.bodies.push_back(moon);
+  return s;
+}
+
+/// The Earth's shadow at the moon's centre's distance (render/frame/air_shadows.h's table is of it).
+astro::EarthShadow earths_shadow_at_the_moon(const scene::Scene& s) {
+  return astro::EarthShadow(s.bodies[0].atmosphere->loaded, -s.bodies[1].position_m.z, s.sun.angular_radius_rad,
+                            atmosphere::solar_limb_darkening(s.wavelengths_nm));
+}
+
+/// The moon's radiance along ray d from `camera` per wavelength (exposure 1):
+/// ρ/π E_sun cos i · E(y)/E_sun, y the point's distance from the axis; empty
+/// where the ray misses the moon's disc inside 0.9 of its radius (no limb pixels).
+std::vector<double> moon_radiance_through_the_shadow(const scene::Scene& s, const astro::EarthShadow& shadow,
+                                                     const glm::dvec3& camera, const glm::dvec3& d, double* y) {
+  const scene::Body& moon = s.bodies[1];
+  const glm::dvec3 f = moon.position_m - camera;
+  const double b = glm::dot(f, d), impact2 = glm::dot(f, f) - b * b, R = moon.radius_m;
+  if (impact2 > 0.81 * R * R) return {};
+  const glm::dvec3 hit = camera + d * (b - std::sqrt(R * R - impact2));
+  const double cos_i = glm::dot((hit - moon.position_m) / R, s.sun.direction);
+  *y = std::hypot(hit.x, hit.y);
+  std::vector<double> L;
+  for (std::size_t i = 0; i < s.wavelengths_nm.size(); ++i)
+    L.push_back(0.12 / std::numbers::pi * s.sun.irradiance_W_m2_nm[i] * std::max(cos_i, 0.0) *
+                shadow.illumination(*y, i));
+  return L;
+}
+
+/// Direct colour: channel c holds the c-th longest wavelength (image/colour.h).
+std::vector<std::size_t> wavelength_of_channel(const scene::Scene& s) {
+  std::vector<std::size_t> order(s.wavelengths_nm.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return s.wavelengths_nm[a] > s.wavelengths_nm[b]; });
+  return order;
+}
+
+TEST(RendererEclipse, AMoonInAPlanetsShadowIsLitThroughItsAirSeenFromSpace) {
+  // A lunar eclipse seen from 20 000 km off the moon, sunward: the moon's
+  // face from the penumbra into the umbra, drawn by direct_light.comp (no
+  // air in view), carries the sunlight the Earth's air refracts and dims into
+  // its shadow (astro::EarthShadow), point by point: red in the umbra, where
+  // the solid Earth's geometric shadow would leave it black.
+  scene::Scene s = moon_in_the_earths_shadow(3.0e6);
+  s.camera.position_m = s.bodies[1].position_m + glm::dvec3(0.0, 0.0, 2.0e7);
+  s.camera.orientation = look_rotation({0.0, 0.0, -1.0}, {0.0, 1.0, 0.0});
+  ASSERT_TRUE(eclipses_possible(s));
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(48, 48, 11.0);
+  TestRenderer t;
+  const auto image = t.renderer.render_image(s, p);
+  expect_finite_non_negative(image, "the moon in the Earth's shadow");
+  EXPECT_GT(t.renderer.last_frame().tiles_direct, 0u);
+  const astro::EarthShadow shadow = earths_shadow_at_the_moon(s);
+  const std::vector<std::size_t> channel_wavelength = wavelength_of_channel(s);
+  int checked = 0;
+  double worst = 0.0, deepest = 1e30;
+  Rgb deepest_pixel{};
+  for (int y = 0; y < p.height(); ++y)
+    for (int x = 0; x < p.width(); ++x) {
+      double axis_distance = 0.0;
+      const std::vector<double> L =
+          moon_radiance_through_the_shadow(s, shadow, s.camera.position_m, ray_of(p, s, x, y), &axis_distance);
+      if (L.empty()) continue;
+      const Rgb got = pixel(image, p.width(), x, y);
+      const double g[3] = {got.r, got.g, got.b};
+      for (int c = 0; c < 3; ++c) {
+        const double expected = L[channel_wavelength[static_cast<std::size_t>(c)]];
+        EXPECT_NEAR(g[c], expected, 0.02 * expected + 1e-9)
+            << "pixel " << x << "," << y << " channel " << c << ", " << axis_distance << " m from the axis";
+        worst = std::max(worst, std::abs(g[c] - expected) / expected);
+      }
+      if (axis_distance < deepest) {
+        deepest = axis_distance;
+        deepest_pixel = got;
+      }
+      ++checked;
+    }
+  EXPECT_GT(checked, 500);
+  std::printf(
+      "%d pixels of the moon against EarthShadow: largest relative difference %.2e; nearest the axis "
+      "(%.0f km) rgb %.3g %.3g %.3g\n",
+      checked, worst, deepest / 1e3, deepest_pixel.r, deepest_pixel.g, deepest_pixel.b);
+  EXPECT_LT(deepest, 1.6e6);
+  EXPECT_GT(deepest_pixel.b, 0.0) << "lit in the umbra";
+  EXPECT_GT(deepest_pixel.r, 4.0 * deepest_pixel.b) << "and red";
+}
+
+TEST(RendererEclipse, AMoonInAPlanetsShadowIsLitThroughItsAirSeenThroughTheAir) {
+  // The same moon seen from the Earth's ground at the antisolar point, through
+  // the air: atmosphere_tile.comp's group path, L = S + T · L_moon per
+  // wavelength group, with S and T from the CPU queries of the Earth's tables.
+  scene::Scene s = moon_in_the_earths_shadow(3.0e6);
+  const double RB = s.bodies[0].radius_m;
+  s.camera.position_m = {0.0, 0.0, -(RB + 2.0)};
+  s.camera.orientation = look_rotation(glm::normalize(s.bodies[1].position_m - s.camera.position_m), {0.0, 1.0, 0.0});
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(48, 48, 0.6);
+  TestRenderer t;
+  const auto image = t.renderer.render_image(s, p);
+  expect_finite_non_negative(image, "the moon in the Earth's shadow, from the ground");
+  EXPECT_EQ(t.renderer.last_frame().tiles_direct, 0u) << "every pixel through the air";
+  const astro::EarthShadow shadow = earths_shadow_at_the_moon(s);
+  const SmallTables& earth = SmallTables::get("earth-advanced");
+  const std::vector<std::size_t> channel_wavelength = wavelength_of_channel(s);
+  const glm::dvec3 c = s.camera.position_m;
+  const double r = glm::length(c);
+  int checked = 0;
+  double worst = 0.0;
+  for (int y = 0; y < p.height(); ++y)
+    for (int x = 0; x < p.width(); ++x) {
+      const glm::dvec3 d = ray_of(p, s, x, y);
+      double axis_distance = 0.0;
+      const std::vector<double> L = moon_radiance_through_the_shadow(s, shadow, c, d, &axis_distance);
+      if (L.empty()) continue;
+      const atmosphere::Spectrum S = earth.queries->sky_radiance({c.x, c.y, c.z}, {d.x, d.y, d.z}, {0.0, 0.0, 1.0});
+      double T[atmosphere::lut::kMaxChannels];
+      earth.queries->transmittance_to_top(r, glm::dot(c, d) / r, T);
+      const Rgb got = pixel(image, p.width(), x, y);
+      const double g[3] = {got.r, got.g, got.b};
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t i = channel_wavelength[static_cast<std::size_t>(k)];
+        const double expected = S[i] * s.sun.irradiance_W_m2_nm[i] + T[i] * L[i];
+        EXPECT_NEAR(g[k], expected, 0.02 * expected + 1e-9) << "pixel " << x << "," << y << " channel " << k;
+        worst = std::max(worst, std::abs(g[k] - expected) / expected);
+      }
+      ++checked;
+    }
+  EXPECT_GT(checked, 500);
+  std::printf("%d pixels of the moon through the air: largest relative difference %.2e\n", checked, worst);
 }
 
 TEST(RendererVariants, ALiveFrameNeverWaitsForALeanerVariant) {
