@@ -10,7 +10,7 @@
 namespace zenith::render {
 
 /// Whether some body's shadow (its penumbra) can fall on another: then the
-/// passes are compiled with the eclipse code (frame.glsl's sun_visibility),
+/// passes are compiled with the eclipse code (frame.glsl's covered_moments),
 /// which a CPU rasterizer would otherwise run for every lit pixel in vain. For
 /// an occluder of radius a at o and a receiver of radius b at c: the points
 /// that see part of the sun (angular radius α, direction s) behind the

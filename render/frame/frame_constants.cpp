@@ -40,6 +40,7 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky
   if (moon_can_eclipse_the_sun(scene, moon)) f.occulter = sun_occulter(scene, sky, limb_darkening);
   f.sun_centre.resize(f.n);
   f.sun_limb.resize(f.n);
+  f.shadow_limb.resize(f.n);
   for (std::size_t i = 0; i < f.n; ++i) {
     const double e = scene.sun.irradiance_W_m2_nm[i];
     if (f.sun_point_sigma > 0.0)  // the Gaussian carries the light the Moon leaves of the disc
@@ -48,9 +49,10 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky
     else
       f.sun_centre[i] = limb_darkening ? scene::disc_centre_radiance(e, f.sun_radius, scene.wavelengths_nm[i])
                                        : scene::uniform_disc_radiance(e, f.sun_radius);
-    if (limb_darkening && f.sun_point_sigma == 0.0)
-      f.sun_limb[i] = atmosphere::solar_limb_darkening(scene.wavelengths_nm[i]);
+    if (limb_darkening) f.shadow_limb[i] = atmosphere::solar_limb_darkening(scene.wavelengths_nm[i]);
+    if (limb_darkening && f.sun_point_sigma == 0.0) f.sun_limb[i] = f.shadow_limb[i];
   }
+  f.shadow_limb_channels = shadow_limb_rgb(f, scene);
   return f;
 }
 
@@ -67,6 +69,30 @@ std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, con
       rgb_from_albedo[static_cast<std::size_t>(in * 3 + out)] = static_cast<float>(exposure * m);
     }
   return rgb_from_albedo;
+}
+
+std::vector<double> shadow_limb_over_mean(const FrameConstants& frame, std::size_t k) {
+  std::vector<double> b;
+  for (const atmosphere::LimbDarkening& law : frame.shadow_limb)
+    b.push_back(law.coefficients[k] / law.mean_over_centre());
+  return b;
+}
+
+std::vector<std::array<float, 4>> shadow_limb_rgb(const FrameConstants& frame, const scene::Scene& scene) {
+  const std::size_t terms = std::tuple_size_v<decltype(atmosphere::LimbDarkening::coefficients)>;
+  std::vector<std::array<float, 4>> out(terms, {0.0f, 0.0f, 0.0f, 0.0f});
+  for (std::size_t c = 0; c < 3; ++c) {
+    double weight = 0.0;
+    for (std::size_t i = 0; i < frame.n; ++i) weight += frame.rgb_weights[i][c] * scene.sun.irradiance_W_m2_nm[i];
+    for (std::size_t k = 0; k < terms; ++k) {
+      const std::vector<double> b = shadow_limb_over_mean(frame, k);
+      double sum = 0.0;
+      for (std::size_t i = 0; i < frame.n; ++i) sum += frame.rgb_weights[i][c] * scene.sun.irradiance_W_m2_nm[i] * b[i];
+      // A channel the sun does not reach (weight 0) keeps the uniform disc's share.
+      out[k][c] = static_cast<float>(weight != 0.0 ? sum / weight : (k == 0 ? 1.0 : 0.0));
+    }
+  }
+  return out;
 }
 
 double sun_reach_rad(const FrameConstants& frame) {

@@ -33,6 +33,10 @@ struct FrameConstants {
   std::vector<double> sun_centre;  ///< the disc's centre radiance (or the Gaussian's peak) per wavelength
   /// The drawn sun's limb darkening per wavelength: uniform without limb darkening or for a Gaussian point.
   std::vector<atmosphere::LimbDarkening> sun_limb;
+  /// The sun's limb darkening behind the bodies' shadows, per wavelength: the
+  /// disc the shadow covers, however it is drawn (uniform without limb darkening).
+  std::vector<atmosphere::LimbDarkening> shadow_limb;
+  std::vector<std::array<float, 4>> shadow_limb_channels;  ///< shadow_limb_rgb(): frame.glsl's shadow_limb_rgb[]
   SunOcculter occulter;  ///< the Moon in front of the sun (render/frame/sun_occulter.h)
 };
 
@@ -51,6 +55,16 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky
 /// E(λ) is that share of the sun's; empty: the whole sun.
 std::array<float, 9> direct_light_colour_matrix(const FrameConstants& frame, const scene::Scene& scene,
                                                 const std::vector<double>& light_left = {});
+
+/// frame.glsl's shadow_limb_rgb[k] for direct_light.comp: per channel c,
+/// B_ck = Σ_λ w_c(λ) E(λ) b_k(λ) / Σ_λ w_c(λ) E(λ), with b_k = a_k / m each
+/// wavelength's law over its disc's mean (shadow_limb): a grey surface in a
+/// body's shadow keeps 1 − Σ_k B_ck J_k of channel c's light, J_k the moments
+/// of the disc the body covers (frame.glsl's covered_moments).
+std::vector<std::array<float, 4>> shadow_limb_rgb(const FrameConstants& frame, const scene::Scene& scene);
+
+/// b_k = a_k / m of each wavelength's shadow_limb law: frame.glsl's shadow_limb_lanes[k].
+std::vector<double> shadow_limb_over_mean(const FrameConstants& frame, std::size_t k);
 
 /// Where the sun can be drawn: a cone of the disc's radius (in an eclipse, the
 /// corona's) plus a pixel, or 6σ of the Gaussian, at most π/2.

@@ -50,6 +50,8 @@ void FrameInProgress::set_frame_uniforms(const gl::ShaderProgram& p) const {
   p.set_uniform("sun_direction",
                 std::array<float, 3>{static_cast<float>(sun.x), static_cast<float>(sun.y), static_cast<float>(sun.z)});
   p.set_uniform("sun_angular_radius", static_cast<float>(sun_radius));
+  for (std::size_t k = 0; k < shadow_limb_channels.size(); ++k)
+    p.set_uniform(fmt::format("shadow_limb_rgb[{}]", k), shadow_limb_channels[k]);
   p.set_uniform("air_shadow_count", static_cast<int>(air_shadow_bodies.size()));
   for (std::size_t s = 0; s < air_shadow_bodies.size(); ++s) {
     p.set_uniform(fmt::format("air_shadow_occluder[{}]", s), air_shadow_occluders[s]);
@@ -129,6 +131,12 @@ void FrameInProgress::set_light_uniforms(const gl::ShaderProgram& p, std::size_t
   p.set_uniform("sun_centre_radiance", group_lanes(light.centre_radiance_W_m2_sr_nm, g));  // 0: no disc
   p.set_uniform("wavelength_group", static_cast<int>(g));
   p.set_uniform("air_shadow_count", light.is_sun() ? static_cast<int>(air_shadow_bodies.size()) : 0);
+  // The bodies' shadows cover the sun's limb-darkened disc, or the Moon's uniform one.
+  for (std::size_t k = 0; k < std::size_t(kLimbCoefficients); ++k)
+    p.set_uniform(fmt::format("shadow_limb_lanes[{}]", k),
+                  light.is_sun() ? group_lanes(shadow_limb_over_mean(*this, k), g)
+                                 : std::array<float, 4>{k == 0 ? 1.0f : 0.0f, k == 0 ? 1.0f : 0.0f,
+                                                        k == 0 ? 1.0f : 0.0f, k == 0 ? 1.0f : 0.0f});
 }
 
 FrameLight FrameInProgress::sun_light() const {

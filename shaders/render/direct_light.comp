@@ -3,9 +3,11 @@
 // (frame_rgb.glsl): no G-buffer, no per-wavelength-group passes, no resolve.
 // What such a pixel shows is lit by the sun alone:
 //
-//   a body:    L(λ) = ρ(λ)/π · E(λ) · cos i · V, ρ(λ) = a_r f_r(λ) + a_g f_g(λ) + a_b f_b(λ)
+//   a body:    L(λ) = ρ(λ)/π · E(λ) · cos i · V(λ), ρ(λ) = a_r f_r(λ) + a_g f_g(λ) + a_b f_b(λ)
 //              from the linear sRGB albedo a (colour.md), so its colour is
-//              rgb = exposure · Σ_λ w(λ) L(λ) = (cos i · V / π) · M a,
+//              rgb = exposure · Σ_λ w(λ) L(λ) = (cos i / π) · V_rgb ⊙ M a, V the
+//              share of the limb-darkened disc other bodies leave (per channel,
+//              exact for a grey albedo: frame.glsl's sunlight_left_rgb),
 //              M = exposure · Σ_λ w(λ) E(λ) f(λ)ᵀ, a 3×3 matrix summed over
 //              every wavelength on the CPU in double (rgb_from_albedo); in
 //              another body's shadow through its air, E(λ) the light left
@@ -59,7 +61,7 @@ void main() {
       const vec3 n = body_normal(the_body, ray, t);
       const float cos_i = max(dot(n, sun_direction), 0.0);
       rgb = sunlit_rgb(ray * t, one_body, rgb_from_albedo, surface_albedo(the_body, ray, t, n)) *
-            (cos_i * sun_visibility(ray * t, one_body) * (1.0 / PI_F));
+            sunlight_left_rgb(ray * t, one_body) * (cos_i * (1.0 / PI_F));
     }
 #else
     float t;
@@ -67,8 +69,8 @@ void main() {
     if (b >= 0) {
       const vec3 n = body_normal(b, ray, t);
       const float cos_i = max(dot(n, sun_direction), 0.0);
-      rgb = sunlit_rgb(ray * t, b, rgb_from_albedo, surface_albedo(b, ray, t, n)) *
-            (cos_i * sun_visibility(ray * t, b) * (1.0 / PI_F));
+      rgb = sunlit_rgb(ray * t, b, rgb_from_albedo, surface_albedo(b, ray, t, n)) * sunlight_left_rgb(ray * t, b) *
+            (cos_i * (1.0 / PI_F));
     }
 #endif
 #if SUN

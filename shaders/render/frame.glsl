@@ -243,16 +243,66 @@ bool air_shadow_entry(vec3 p, int self, out int value, out int stride, out float
 }
 #endif
 
-/// Fraction of the sun's disc visible from the point at camera-relative
-/// position p, with every body but `self` as a possible occluder (eclipses:
-/// the Moon's shadow on the Earth, the Earth's on the Moon). The disc is taken
-/// as uniformly bright here (limb darkening would shift partial phases by a few
-/// percent). A body whose air shadows `self` (the Earth the Moon, where the
-/// Earth has its atmosphere) is left to the table of sunlight_left and sunlit_rgb.
-float sun_visibility(vec3 p, int self) {
 #if ECLIPSES
-  float visible = 1.0;
-  const float sun_area = PI_F * sun_angular_radius * sun_angular_radius;
+/// The sun's limb darkening behind the bodies' shadows over its disc's mean,
+/// b_k = a_k / m (I(μ)/I(1) = Σ a_k μ^k, m = Σ a_k 2/(k + 2):
+/// atmosphere/solar_limb_darkening.h), per lane of the group, and per channel
+/// of direct_light.comp's colour (Σ_λ w_c E b_k / Σ_λ w_c E:
+/// render/frame/frame_constants.h's shadow_limb_rgb). A uniform disc: (1, 0, …).
+uniform vec4 shadow_limb_lanes[LIMB_COEFFICIENTS];
+uniform vec4 shadow_limb_rgb[LIMB_COEFFICIENTS];  // .w unused
+
+/// Adds to J the moments of the sun's disc (angular radius r) that a disc of
+/// angular radius a covers, its centre d from the sun's (radians, small-angle
+/// plane geometry): J_k = (1/π r²) ∫_covered μ^k dA, μ = √(1 − ρ²/r²) at
+/// distance ρ from the disc's centre, so that the covered share of the light
+/// is Σ_k b_k J_k (Σ_k b_k · 2/(k + 2) = 1). J_0 is the overlap's area
+/// (disc_overlap_area: a uniform disc's share, exact). For k ≥ 1: the rings
+/// wholly behind the occluder (ρ < a − d) give ∫_μ1^1 μ^k 2μ dμ =
+/// 2(1 − μ1^(k+2))/(k + 2); a ring partly behind it (|a − d| < ρ < a + d) is
+/// covered over c(ρ) = acos((ρ² + d² − a²) / 2ρd) / π, integrated as
+/// ∫ μ^k c 2ρ dρ / r² with ρ = lo + (hi − lo)(1 − cos θ)/2, which leaves the
+/// square-root ends of c(ρ) and μ(ρ) smooth, by 8-point Gauss–Legendre in θ.
+void add_covered_moments(float r, float a, float d, inout float J[LIMB_COEFFICIENTS]) {
+  const float area = disc_overlap_area(r, a, d);
+  if (area <= 0.0) return;
+  J[0] += area / (PI_F * r * r);
+  const float full = clamp(a - d, 0.0, r) / r;
+  if (full > 0.0) {
+    const float mu1 = sqrt(max(0.0, 1.0 - full * full));
+    float power = mu1 * mu1;  // μ1^(k+2)
+    for (int k = 1; k < LIMB_COEFFICIENTS; ++k) {
+      power *= mu1;
+      J[k] += 2.0 * (1.0 - power) / float(k + 2);
+    }
+  }
+  const float lo = abs(a - d), hi = min(a + d, r);
+  if (hi <= lo) return;
+  // 8-point Gauss–Legendre in θ (nodes ±x_i, weights w_i on [−1, 1]).
+  const float x[4] = float[4](0.1834346425, 0.5255324099, 0.7966664774, 0.9602898565);
+  const float w[4] = float[4](0.3626837834, 0.3137066459, 0.2223810345, 0.1012285363);
+  for (int j = 0; j < 8; ++j) {
+    const float node = j < 4 ? -x[j] : x[j - 4];
+    const float theta = 0.5 * PI_F * (1.0 + node);
+    const float rho = lo + (hi - lo) * 0.5 * (1.0 - cos(theta));
+    const float covered = acos(clamp((rho * rho + d * d - a * a) / (2.0 * rho * d), -1.0, 1.0)) / PI_F;
+    const float mu = sqrt(max(0.0, 1.0 - (rho / r) * (rho / r)));
+    // c 2ρ dρ / r², dρ = (hi − lo) sin θ / 2 dθ, dθ = π/2 dx.
+    float weight = w[j < 4 ? j : j - 4] * covered * rho * (hi - lo) * sin(theta) * (0.5 * PI_F) / (r * r);
+    for (int k = 1; k < LIMB_COEFFICIENTS; ++k) {
+      weight *= mu;
+      J[k] += weight;
+    }
+  }
+}
+
+/// The moments of the sun's disc that every body but `self` covers, seen from
+/// the point at camera-relative position p (eclipses: the Moon's shadow on
+/// the Earth, the Earth's on the Moon), summed over the bodies. A body whose
+/// air shadows `self` (the Earth the Moon, where the Earth has its atmosphere)
+/// is left to the air shadow's table (sunlight_left, sunlit_rgb).
+void covered_moments(vec3 p, int self, out float J[LIMB_COEFFICIENTS]) {
+  for (int k = 0; k < LIMB_COEFFICIENTS; ++k) J[k] = 0.0;
   for (int b = 0; b < body_count; ++b) {
     if (b == self) continue;
 #if AIR_SHADOWS
@@ -265,20 +315,31 @@ float sun_visibility(vec3 p, int self) {
     const vec3 dir = to_centre / distance;
     if (dot(dir, sun_direction) <= 0.0) continue;  // behind the point
     const float radius = asin(min(R / distance, 1.0));
-    visible -= disc_overlap_area(sun_angular_radius, radius, angle_between(dir, sun_direction)) / sun_area;
+    add_covered_moments(sun_angular_radius, radius, angle_between(dir, sun_direction), J);
   }
-  return clamp(visible, 0.0, 1.0);
-#else
-  return 1.0;
-#endif
 }
+#endif
+
+#if ECLIPSES
+/// What the bodies leave of the limb-darkened disc seen from the point at
+/// camera-relative p on body `self`, 1 − Σ_k b_k J_k, for the four values of
+/// `b` at once (the lanes of a group, or the channels of an RGB colour).
+vec4 disc_left(vec4 b[LIMB_COEFFICIENTS], vec3 p, int self) {
+  float J[LIMB_COEFFICIENTS];
+  covered_moments(p, self, J);
+  vec4 covered = vec4(0.0);
+  for (int k = 0; k < LIMB_COEFFICIENTS; ++k) covered += b[k] * J[k];
+  return clamp(vec4(1.0) - covered, 0.0, 1.0);
+}
+#endif
 
 /// The share of the sun's light reaching the point at camera-relative p on
-/// body `self`, per lane of the group `wavelength_group`: the solid bodies'
-/// sun_visibility times the sunlight an air shadow leaves there.
+/// body `self`, per lane of the group `wavelength_group`: what the bodies
+/// leave of the limb-darkened disc times the sunlight an air shadow leaves there.
 vec4 sunlight_left(vec3 p, int self) {
-  vec4 left = vec4(sun_visibility(p, self));
-#if ECLIPSES && AIR_SHADOWS
+#if ECLIPSES
+  vec4 left = disc_left(shadow_limb_lanes, p, self);
+#if AIR_SHADOWS
   int value, stride;
   float next;
   if (air_shadow_entry(p, self, value, stride, next)) {
@@ -287,6 +348,19 @@ vec4 sunlight_left(vec3 p, int self) {
   }
 #endif
   return left;
+#else
+  return vec4(1.0);
+#endif
+}
+
+/// sunlight_left per channel of direct_light.comp's colour (an air shadow's
+/// light is in sunlit_rgb's matrix instead).
+vec3 sunlight_left_rgb(vec3 p, int self) {
+#if ECLIPSES
+  return disc_left(shadow_limb_rgb, p, self).rgb;
+#else
+  return vec3(1.0);
+#endif
 }
 
 /// direct_light.comp's M a (rgb = (cos i V / π) M a) at the point at

@@ -973,6 +973,64 @@ std::vector<std::size_t> wavelength_of_channel(const scene::Scene& s) {
   return order;
 }
 
+TEST(RendererComposition, AMoonsShadowOnAPlanetCoversTheSunsLimbDarkenedDisc) {
+  // The moon over the sub-solar point of an airless Earth, drawn by
+  // direct_light.comp: each ground pixel keeps the share of the
+  // limb-darkened disc the moon leaves at its own wavelength (the grey
+  // ground's channels are the three wavelengths), against
+  // astro::limb_darkened_obscuration in double; without limb darkening, the
+  // uniform disc's share.
+  scene::Scene s = moon_over_the_subsolar_point();
+  s.bodies[0].atmosphere.reset();
+  s.camera.exposure = 1.0;
+  const double R = s.bodies[0].radius_m;
+  const warp::PlanarProjection p = warp::PlanarProjection::symmetric(64, 64, 40.0);
+  const std::vector<std::size_t> channel_wavelength = wavelength_of_channel(s);
+  for (const bool limb_darkening : {true, false}) {
+    RenderOptions options = direct_colour();
+    options.limb_darkening = limb_darkening;
+    TestRenderer t(options);
+    const auto image = t.renderer.render_image(s, p);
+    int penumbra = 0;
+    double worst = 0.0, deepest_shift = 0.0;
+    for (int y = 0; y < p.height(); ++y)
+      for (int x = 0; x < p.width(); ++x) {
+        const glm::dvec3 d = ray_of(p, s, x, y), c = s.camera.position_m;
+        const double b = glm::dot(c, d), impact2 = glm::dot(c, c) - b * b;
+        if (impact2 > 0.95 * R * R) continue;
+        const glm::dvec3 hit = c + d * (-b - std::sqrt(R * R - impact2));
+        const double cos_i = glm::dot(hit / R, s.sun.direction);
+        const glm::dvec3 to_moon = s.bodies[1].position_m - hit;
+        const double moon_radius = std::asin(s.bodies[1].radius_m / glm::length(to_moon));
+        const double separation = std::acos(std::clamp(glm::dot(glm::normalize(to_moon), s.sun.direction), -1.0, 1.0));
+        const Rgb got = pixel(image, p.width(), x, y);
+        const double g[3] = {got.r, got.g, got.b};
+        const double uniform = astro::disc_obscuration(separation, s.sun.angular_radius_rad, moon_radius);
+        if (uniform <= 0.02 || uniform >= 0.98) continue;  // the penumbra, clear of its edges' pixels
+        ++penumbra;
+        for (int k = 0; k < 3; ++k) {
+          const std::size_t i = channel_wavelength[static_cast<std::size_t>(k)];
+          const double covered =
+              limb_darkening ? astro::limb_darkened_obscuration(separation, s.sun.angular_radius_rad, moon_radius,
+                                                                atmosphere::solar_limb_darkening(s.wavelengths_nm[i]))
+                             : uniform;
+          const double expected = 0.1 / std::numbers::pi * s.sun.irradiance_W_m2_nm[i] * cos_i * (1.0 - covered);
+          EXPECT_NEAR(g[k], expected, 5e-3 * expected + 1e-6) << "pixel " << x << "," << y << " channel " << k;
+          worst = std::max(worst, std::abs(g[k] - expected) / expected);
+          deepest_shift = std::max(deepest_shift, std::abs(covered - uniform) / (1.0 - uniform));
+        }
+      }
+    EXPECT_GT(penumbra, 100);
+    std::printf(
+        "limb darkening %s: %d penumbra pixels, largest relative difference %.2e; the law moves the light "
+        "left by up to %.1f %%\n",
+        limb_darkening ? "on" : "off", penumbra, worst, 100.0 * deepest_shift);
+    if (limb_darkening) {
+      EXPECT_GT(deepest_shift, 0.05) << "a test that could tell the laws apart";
+    }
+  }
+}
+
 TEST(RendererEclipse, AMoonInAPlanetsShadowIsLitThroughItsAirSeenFromSpace) {
   // A lunar eclipse seen from 20 000 km off the moon, sunward: the moon's
   // face from the penumbra into the umbra, drawn by direct_light.comp (no
