@@ -9,7 +9,7 @@
 
 #include "atmosphere/model_hash.h"
 #include "atmosphere/solar_limb_darkening.h"
-#include "render/lut/shader_model.h"
+#include "render/frame/frame_in_progress.h"
 
 namespace zenith::render {
 
@@ -86,12 +86,7 @@ std::vector<std::array<float, 4>> air_shadow_buffer(const std::vector<AirShadow>
       const std::array<float, 9> m = direct_light_colour_matrix(frame, scene, left);
       for (std::size_t column = 0; column < 3; ++column)
         out.push_back({m[column * 3], m[column * 3 + 1], m[column * 3 + 2], 0.0f});
-      for (std::size_t g = 0; g < frame.groups; ++g) {
-        std::array<float, 4> lanes{1.0f, 1.0f, 1.0f, 1.0f};
-        for (std::size_t k = 0; k < kWavelengthLanes && g * kWavelengthLanes + k < left.size(); ++k)
-          lanes[k] = static_cast<float>(left[g * kWavelengthLanes + k]);
-        out.push_back(lanes);
-      }
+      for (std::size_t g = 0; g < frame.groups; ++g) out.push_back(group_lanes(left, g));
     }
   return out;
 }

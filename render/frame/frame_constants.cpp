@@ -81,11 +81,13 @@ std::vector<double> shadow_limb_over_mean(const FrameConstants& frame, std::size
 std::vector<std::array<float, 4>> shadow_limb_rgb(const FrameConstants& frame, const scene::Scene& scene) {
   const std::size_t terms = std::tuple_size_v<decltype(atmosphere::LimbDarkening::coefficients)>;
   std::vector<std::array<float, 4>> out(terms, {0.0f, 0.0f, 0.0f, 0.0f});
+  std::vector<std::vector<double>> b_k;
+  for (std::size_t k = 0; k < terms; ++k) b_k.push_back(shadow_limb_over_mean(frame, k));
   for (std::size_t c = 0; c < 3; ++c) {
     double weight = 0.0;
     for (std::size_t i = 0; i < frame.n; ++i) weight += frame.rgb_weights[i][c] * scene.sun.irradiance_W_m2_nm[i];
     for (std::size_t k = 0; k < terms; ++k) {
-      const std::vector<double> b = shadow_limb_over_mean(frame, k);
+      const std::vector<double>& b = b_k[k];
       double sum = 0.0;
       for (std::size_t i = 0; i < frame.n; ++i) sum += frame.rgb_weights[i][c] * scene.sun.irradiance_W_m2_nm[i] * b[i];
       // A channel the sun does not reach (weight 0) keeps the uniform disc's share.
