@@ -83,16 +83,24 @@ bool OutputWriter::present(std::uint64_t frame) {
   if (!rendered_ || rendered_->frame != frame) return false;
   for (const auto& [partial, final_path] : partials_) std::filesystem::rename(partial, final_path);
   partials_.clear();
-  const RenderedFrame rendered = std::move(*rendered_);
+  presented_ = std::move(rendered_);
   rendered_.reset();
-  std::ofstream log(node_directory_ / "presented.log", std::ios::app);
-  log << "frame " << frame << " state " << rendered.state_digest << " tables " << rendered.tables << " show_time_s "
-      << fmt::format("{}", rendered.show_time_s);
-  if (rendered.fade.level > 0.0)
-    log << fmt::format(" fade {} {},{},{}", rendered.fade.level, rendered.fade.colour.x, rendered.fade.colour.y,
-                       rendered.fade.colour.z);
-  log << "\n";
   return true;
+}
+
+void OutputWriter::log_presented() {
+  if (!presented_) return;
+  const RenderedFrame presented = std::move(*presented_);
+  presented_.reset();
+  // Kept open: a present is one write, not a file opened and closed each frame.
+  if (!log_.is_open()) log_.open(node_directory_ / "presented.log", std::ios::app);
+  log_ << "frame " << presented.frame << " state " << presented.state_digest << " tables " << presented.tables
+       << " show_time_s " << fmt::format("{}", presented.show_time_s);
+  if (presented.fade.level > 0.0)
+    log_ << fmt::format(" fade {} {},{},{}", presented.fade.level, presented.fade.colour.x, presented.fade.colour.y,
+                        presented.fade.colour.z);
+  log_ << "\n";
+  log_.flush();  // read while the show runs (tests, the console)
 }
 
 void OutputWriter::discard() {

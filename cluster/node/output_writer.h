@@ -1,12 +1,13 @@
 #pragma once
 // A render node's frame files (docs/cluster.md, "The frame barrier"): each
 // output of a rendered frame is written as FILE.partial and renamed into place
-// on Present, so a presented frame appears atomically; every present appends
-// one line to the node's presented.log:
+// on Present, so a presented frame appears atomically; every present then
+// appends one line to the node's presented.log:
 //
 //   frame N state DIGEST tables BODY=HASH16,... show_time_s T
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <utility>
@@ -59,10 +60,13 @@ class OutputWriter {
              const scene::FadeState& fade = {});
   /// Every output of the frame is written.
   void finish_frame(RenderedFrame rendered);
-  /// Present `frame`: renames its partial files into place and appends its
-  /// presented.log line. false (nothing done) when `frame` is not the
-  /// finished frame.
+  /// Present `frame`: renames its partial files into place, the act that
+  /// shows it. false (nothing done) when `frame` is not the finished frame.
   bool present(std::uint64_t frame);
+  /// Appends the presented.log line of the frame present() last showed (once;
+  /// nothing when there is none). Apart from present() so that the node can
+  /// note the moment of the act before this bookkeeping (render_worker.h).
+  void log_presented();
   /// Removes the partial files and forgets the frame (a new frame starts, or the node stops).
   void discard();
 
@@ -73,6 +77,8 @@ class OutputWriter {
   std::string format_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> partials_;  ///< partial → final
   std::optional<RenderedFrame> rendered_;
+  std::optional<RenderedFrame> presented_;  ///< shown by present(), not yet logged
+  std::ofstream log_;                       ///< presented.log, opened at the first line
 };
 
 }  // namespace zenith::cluster

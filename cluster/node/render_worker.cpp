@@ -370,32 +370,41 @@ void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked, b
     raised.emplace(present_priority_.raise());
     sleep_until_moment(asked);
   }
-  // Swap first (the projectors), then the files and the log.
+  // The act first — the swap (the projectors), else the frame files renamed
+  // into place — and its time; then the bookkeeping, at normal priority: a log
+  // line's file system call (a slow disk, the journal's commit) is no part of
+  // when the frame was shown.
   if (windows_) {
     // A driver may spin in the swap until the vertical blank (yielding, which
     // does not yield to normal threads once real-time): the swap is queued at
     // normal priority, promptly, since the thread is already running.
     raised.reset();
     windows_->present(display_textures(), asked);
+  }
+  const bool rendered = writer_.present(frame);
+  const Clock::time_point presented = Clock::now();
+  raised.reset();
+  if (windows_) {
     // The windows' first swap is part of the warm-up (the driver's buffers, the
     // compositor): a late first present is not counted (frame_pacer.h).
     if (windows_->clock().presented() == 1) warm_up_late_ = windows_->clock().late();
     if (windows_->poll_close_request()) report_window_closed();
   }
-  if (!writer_.present(frame)) {
+  if (!rendered) {
     spdlog::warn("node '{}': Present {} for a frame this node has not rendered; ignored", setup_.options.node_name,
                  frame);
     return;
   }
-  note_present_time(frame, asked, scheduled);
+  writer_.log_presented();
+  note_present_time(frame, presented, asked, scheduled);
   spdlog::debug("node '{}': presented frame {}", setup_.options.node_name, frame);
 }
 
-void RenderWorker::note_present_time(std::uint64_t frame, Clock::time_point asked, bool scheduled) {
+void RenderWorker::note_present_time(std::uint64_t frame, Clock::time_point presented, Clock::time_point asked,
+                                     bool scheduled) {
   const auto ns = [](Clock::time_point t) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
   };
-  const Clock::time_point presented = Clock::now();
   if (!present_times_.is_open()) {
     const std::filesystem::path path = setup_.node_directory / "presents.csv";
     const bool fresh = !std::filesystem::exists(path);

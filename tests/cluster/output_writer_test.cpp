@@ -69,9 +69,15 @@ TEST_F(OutputWriterTest, PresentRenamesThePartialFilesAndLogsTheFrame) {
   EXPECT_TRUE(fs::exists(left));
   EXPECT_TRUE(fs::exists(writer.frame_path(viewports.outputs[1], 3)));
   EXPECT_FALSE(fs::exists(fs::path(left.string() + ".partial")));
+  EXPECT_FALSE(fs::exists(root / "a" / "presented.log")) << "the act before the bookkeeping";
+  writer.log_presented();
   EXPECT_EQ(read_text(root / "a" / "presented.log"),
             "frame 3 state abcd tables Earth=0123456789abcdef show_time_s 0.1\n");
   EXPECT_FALSE(writer.present(3)) << "presented once";
+  writer.log_presented();
+  EXPECT_EQ(read_text(root / "a" / "presented.log"),
+            "frame 3 state abcd tables Earth=0123456789abcdef show_time_s 0.1\n")
+      << "logged once";
 }
 
 TEST_F(OutputWriterTest, AnUnfinishedFrameIsNotPresented) {
@@ -88,6 +94,7 @@ TEST_F(OutputWriterTest, DiscardRemovesThePartialFiles) {
   writer.discard();
   EXPECT_FALSE(fs::exists(fs::path(writer.frame_path(viewports.outputs[0], 1).string() + ".partial")));
   EXPECT_FALSE(writer.present(1));
+  writer.log_presented();
   EXPECT_FALSE(fs::exists(root / "a" / "presented.log"));
 }
 
@@ -107,6 +114,7 @@ TEST_F(OutputWriterTest, TheLogNamesAFrameFade) {
   writer.write(0, 4, grey, {}, {1.0, glm::dvec3(0.0)});
   writer.finish_frame({4, "ef", "-", 0.5, {1.0, glm::dvec3(0.0)}});
   EXPECT_TRUE(writer.present(4));
+  writer.log_presented();
   EXPECT_EQ(read_text(root / "a" / "presented.log"), "frame 4 state ef tables - show_time_s 0.5 fade 1 0,0,0\n");
   // A blackout is black in the file (tone map, then the fade).
   const image::LinearImage black = image::read_image(writer.frame_path(viewports.outputs[0], 4));
