@@ -85,8 +85,9 @@ void time_star_placement(const StarTwilight& b, const std::string& device, const
 
   // ---- 2. star_splats on its own at the show's last frame.
   const scene::Scene s = scene_at(show.duration_s());
-  const render::FrameConstants constants = render::compute_frame_constants(
-      s, render::FrameSky(s), dome, options.colour, options.limb_darkening, options.night_sky.moon);
+  const render::FrameConstants constants =
+      render::compute_frame_constants(s, render::FrameSky(s), dome, options.colour, options.limb_darkening,
+                                      options.night_sky.moon, options.atmosphere.eclipses);
   std::deque<atmosphere::lut::LookupTables> luts;
   std::vector<render::StarAtmosphere> atmospheres;
   for (const scene::Body& body : s.bodies)

@@ -222,8 +222,9 @@ void Renderer::check_scene(const scene::Scene& scene) const {
 
 Renderer::Frame Renderer::frame_constants(const scene::Scene& scene, const warp::Projection& projection) const {
   Frame f(scene, projection);
-  static_cast<FrameConstants&>(f) = compute_frame_constants(scene, f.sky, projection, options_.colour,
-                                                            options_.limb_darkening, options_.night_sky.moon);
+  static_cast<FrameConstants&>(f) =
+      compute_frame_constants(scene, f.sky, projection, options_.colour, options_.limb_darkening,
+                              options_.night_sky.moon, options_.atmosphere.eclipses);
   return f;
 }
 
@@ -368,20 +369,19 @@ SkyViewTableUse sky_view_use_for_outputs(std::size_t largest_output_pixels) {
 
 void Renderer::choose_sky_view(Frame& frame) const {
   const scene::Scene& scene = frame.scene;
-  // The Moon's shadow on the air of the sky clock's planet (render/frame/sun_occulter.h):
-  // on the sky-view table's terms where the camera is inside the shell, on
-  // the 4D tables' from orbit (eclipse_sky_table.h).
+  // The Moon's shadow on a planet's air (render/frame/sun_occulter.h): on
+  // the sky-view table's terms where the camera is inside the shell, on the
+  // 4D tables' from orbit (eclipse_sky_table.h).
   for (AtmospherePass& pass : frame.passes)
-    pass.eclipse_sky =
-        pass.gpu && frame.occulter.shadow && scene.sky_clock && pass.body == static_cast<int>(scene.sky_clock->body);
+    pass.eclipse_sky = pass.gpu && frame.occulter.shadow && pass.body == static_cast<int>(frame.occulter.shadow_planet);
   // A small frame's 4D lookups cost less than the table's fill. But the
   // Moon's shadow on the air is drawn from the table (eclipse_sky_table.h),
   // so a scene where the Moon can eclipse the sun keeps it at any size: its
   // sky does not switch paths (a jump) when the shadow comes near.
   const std::size_t pixels =
       static_cast<std::size_t>(frame.projection.width()) * static_cast<std::size_t>(frame.projection.height());
-  const bool small =
-      pixels < SkyViewTable::kMinFramePixels && !moon_can_eclipse_the_sun(scene, options_.night_sky.moon);
+  const bool small = pixels < SkyViewTable::kMinFramePixels &&
+                     !moon_can_eclipse_the_sun(scene, options_.night_sky.moon, options_.atmosphere.eclipses);
   if (options_.sky_view_table == SkyViewTableUse::off ||
       (options_.sky_view_table == SkyViewTableUse::automatic && small))
     return;
@@ -601,8 +601,16 @@ void Renderer::start_variant_programs(const Frame& frame, const FrameVariant& va
     for (std::size_t a = 0; a < band.lists.size(); ++a) {
       const GpuAtmosphere* gpu = frame.passes[a].gpu;
       if (band.lists[a].gbuffer.count > 0) gpu->start_gbuffer_path_program(variant, build_for);
-      for (const auto& [tiles, list] : band.lists[a].one_pass)
+      // Where the Moon's shadow is near this air, its frames draw with the
+      // shadow's tile programs or without them as it comes and goes (and as
+      // its shadows build in the background): both are built, so that no
+      // later frame builds one when it flips.
+      const bool flips =
+          frame.occulter.shadow && frame.passes[a].body == static_cast<int>(frame.occulter.shadow_planet);
+      for (const auto& [tiles, list] : band.lists[a].one_pass) {
         gpu->start_tile_program(variant, tiles, frame.passes[a].eclipse_sky, build_for);
+        if (flips) gpu->start_tile_program(variant, tiles, !frame.passes[a].eclipse_sky, build_for);
+      }
     }
 }
 

@@ -63,6 +63,7 @@ void draw_one_pass_tiles(FrameInProgress& frame, BandResources& resources, const
         if (eclipse_sky) {
           pass.gpu->eclipse_sky().set_uniforms(p, g);
           pass.gpu->eclipse_sky().bind(g);
+          p.set_uniform("eclipse_shadows_ground", frame.occulter.shadow_caster_is_a_body ? 0 : 1);
         }
         frame.set_the_body(p, static_cast<std::size_t>(pass.body));
         p.set_uniform("planet", pass.body);

@@ -9,22 +9,44 @@
 
 namespace zenith::render {
 
-bool moon_can_eclipse_the_sun(const scene::Scene& scene, bool moon_drawn) {
-  return moon_drawn && scene.sky_clock.has_value();
+bool moon_can_eclipse_the_sun(const scene::Scene& scene, bool moon_drawn, bool bodies_shadow) {
+  return scene.sky_clock ? moon_drawn : bodies_shadow && airless_shadow_on_air_possible(scene);
 }
 
-bool eclipses_possible(const scene::Scene& scene) {
+namespace {
+/// Whether `occluder` (a sphere of `occluder_radius_m`) can shadow any part
+/// of a sphere of `receiver_radius_m` around `receiver`: the receiver within
+/// the penumbra's cone, with a 1 % margin.
+bool shadow_can_reach(const scene::Scene& scene, const glm::dvec3& occluder, double occluder_radius_m,
+                      const glm::dvec3& receiver, double receiver_radius_m) {
   const glm::dvec3 s = glm::normalize(scene.sun.direction);
   const double tan_alpha = std::tan(std::min(scene.sun.angular_radius_rad, 1.0));
+  const glm::dvec3 oc = occluder - receiver;
+  const double d = glm::dot(oc, s) + receiver_radius_m;  // largest d over the receiver
+  if (d <= 0.0) return false;                            // the occluder is behind the receiver, away from the sun
+  const double off_axis = glm::length(oc - glm::dot(oc, s) * s) - receiver_radius_m;
+  return off_axis < 1.01 * (occluder_radius_m + d * tan_alpha) + 1.0;
+}
+}  // namespace
+
+bool eclipses_possible(const scene::Scene& scene) {
   for (const scene::Body& occluder : scene.bodies)
-    for (const scene::Body& receiver : scene.bodies) {
-      if (&occluder == &receiver) continue;
-      const glm::dvec3 oc = occluder.position_m - receiver.position_m;
-      const double d = glm::dot(oc, s) + receiver.radius_m;  // largest d over the receiver
-      if (d <= 0.0) continue;                                // the occluder is behind the receiver, away from the sun
-      const double off_axis = glm::length(oc - glm::dot(oc, s) * s) - receiver.radius_m;
-      if (off_axis < 1.01 * (shadow_casting_radius_m(occluder) + d * tan_alpha) + 1.0) return true;
-    }
+    for (const scene::Body& receiver : scene.bodies)
+      if (&occluder != &receiver && shadow_can_reach(scene, occluder.position_m, shadow_casting_radius_m(occluder),
+                                                     receiver.position_m, receiver.radius_m))
+        return true;
+  return false;
+}
+
+bool airless_shadow_on_air_possible(const scene::Scene& scene) {
+  for (const scene::Body& occluder : scene.bodies) {
+    if (occluder.atmosphere) continue;
+    for (const scene::Body& receiver : scene.bodies)
+      if (&occluder != &receiver && receiver.atmosphere &&
+          shadow_can_reach(scene, occluder.position_m, occluder.radius_m, receiver.position_m,
+                           receiver.atmosphere->loaded.model.top_radius_m))
+        return true;
+  }
   return false;
 }
 

@@ -27,11 +27,19 @@ double shadow_casting_radius_m(const scene::Body& body);
 
 /// Whether the Moon can cover the sun in this frame's sky: the scene keeps a
 /// sky clock (the Moon by date and place) and the Moon is drawn
-/// (`moon_drawn`: RenderOptions::night_sky.moon). Then the frame places the
-/// Moon as the sun's occulter (render/frame/sun_occulter.h), and the renderer
-/// keeps the sky-view table at every frame size, since the Moon's shadow on
-/// the air is drawn from it.
-bool moon_can_eclipse_the_sun(const scene::Scene& scene, bool moon_drawn);
+/// (`moon_drawn`: RenderOptions::night_sky.moon); or, in a scene of bodies
+/// where bodies shadow one another (`bodies_shadow`:
+/// RenderOptions::atmosphere.eclipses), an airless body's shadow can fall on
+/// another's air (airless_shadow_on_air_possible). Then the frame places the Moon as the
+/// sun's occulter (render/frame/sun_occulter.h), and the renderer keeps the
+/// sky-view table at every frame size, since the Moon's shadow on the air is
+/// drawn from it.
+bool moon_can_eclipse_the_sun(const scene::Scene& scene, bool moon_drawn, bool bodies_shadow);
+
+/// Whether the shadow of a body without an atmosphere can reach the air of one
+/// with an atmosphere: the test of eclipses_possible for those pairs, with the
+/// receiver's top of the atmosphere for its radius.
+bool airless_shadow_on_air_possible(const scene::Scene& scene);
 
 /// Whether every albedo lookup of the frame is at level 0 of the maps
 /// (surface_albedo.glsl: lod = max(0, log2(footprint / texel))): a pixel's

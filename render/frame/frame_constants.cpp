@@ -14,7 +14,7 @@ namespace zenith::render {
 
 FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky& sky,
                                        const warp::Projection& projection, image::ColourMapping colour,
-                                       bool limb_darkening, bool moon) {
+                                       bool limb_darkening, bool moon, bool eclipses) {
   FrameConstants f;
   f.n = scene.wavelengths_nm.size();
   f.groups = (f.n + kWavelengthLanes - 1) / kWavelengthLanes;
@@ -37,7 +37,7 @@ FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky
   // same irradiance (exp(−θ²/2σ²) E / 2πσ²): a disc sampled at pixel centres
   // would flicker and lose or gain light with its sub-pixel position.
   f.sun_point_sigma = f.sun_radius < 1.5 * f.sun_pixel_angle ? 0.7 * f.sun_pixel_angle : 0.0;
-  if (moon_can_eclipse_the_sun(scene, moon)) f.occulter = sun_occulter(scene, sky, limb_darkening);
+  if (moon_can_eclipse_the_sun(scene, moon, eclipses)) f.occulter = sun_occulter(scene, sky, limb_darkening);
   f.sun_centre.resize(f.n);
   f.sun_limb.resize(f.n);
   f.shadow_limb.resize(f.n);

@@ -41,11 +41,13 @@ struct FrameConstants {
 };
 
 /// The constants of a frame of `scene` through `projection` with the colour
-/// mapping, the sun's limb darkening and the Moon (RenderOptions::colour,
-/// limb_darkening, moon: the Moon's disc masks the sun's in a solar eclipse).
+/// mapping, the sun's limb darkening, the Moon and the bodies' shadows
+/// (RenderOptions::colour, limb_darkening, night_sky.moon: the Moon's disc
+/// masks the sun's in a solar eclipse; atmosphere.eclipses: a body's shadow
+/// falls on another and its air).
 FrameConstants compute_frame_constants(const scene::Scene& scene, const FrameSky& sky,
                                        const warp::Projection& projection, image::ColourMapping colour,
-                                       bool limb_darkening, bool moon);
+                                       bool limb_darkening, bool moon, bool eclipses);
 
 /// direct_light.comp's colour matrix, column-major (column = albedo channel):
 /// a body lit by the sun alone is rgb = (cos i V / π) M a with

@@ -18,6 +18,12 @@
 // The test is one ephemeris evaluation and one angle: no Moon (no sky clock,
 // RenderOptions::moon off) or a Moon whose shadow is far from the air in view,
 // and nothing changes, bit for bit.
+//
+// In a scene of bodies (no sky clock) the Moon is a body like the others: it
+// is drawn, and covers the sun's disc, as a body. What it adds here is its
+// shadow on another body's air (an airless body's umbra on the Earth seen
+// from space), found from the bodies' places in the same way.
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -46,6 +52,12 @@ struct SunOcculter {
   /// under two penumbra radii plus the air's reach): its geometry centred on
   /// that planet, world-oriented (astro/moon_shadow.h).
   std::optional<astro::EclipseGeometry> shadow;
+  /// With `shadow`: the index in Scene::bodies of the planet whose air it lies on.
+  std::size_t shadow_planet = 0;
+  /// With `shadow`: the Moon is a body of the scene, whose own shadow on the
+  /// planet's ground the bodies' code draws exactly (frame.glsl's
+  /// covered_moments), so the eclipse tables darken only the air and its skylight.
+  bool shadow_caster_is_a_body = false;
   /// With `shadow`: how far the nearest air in view lies from the shadow's
   /// axis, in penumbra radii (≤ 1: the penumbra reaches it; ≥ 2: V = V̄ = 1 there).
   double air_from_axis_penumbrae = 0.0;
@@ -53,7 +65,10 @@ struct SunOcculter {
 };
 
 /// The Moon of `scene`'s sky clock in front of its sun, or none (see above);
-/// `sky`: that clock's ephemeris for the frame.
+/// `sky`: that clock's ephemeris for the frame. Without a sky clock, the
+/// shadow of an airless body on the air of the body with an atmosphere
+/// nearest the camera, where one reaches the air in view (the nearest to it
+/// of those that do); never a disc in front of the sun.
 SunOcculter sun_occulter(const scene::Scene& scene, const FrameSky& sky, bool limb_darkening);
 
 }  // namespace zenith::render

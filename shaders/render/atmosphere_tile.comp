@@ -73,7 +73,13 @@ EclipseShares eclipse_shares(vec3 ray, bool ground) {
   shares.skylight = ground ? texture(eclipse_sky_table, vec3(uv, layer + 2.0)) : vec4(1.0);
   return shares;
 }
-vec4 eclipse_direct_light(vec3 point) { return shadow_direct_light(shadow_place(point, 0.0)); }
+/// 1: the ground's direct sun takes V from the shadow's tables; 0: the Moon
+/// is a body of the scene, whose shadow on the ground sunlight_left already
+/// draws exactly (frame.glsl's covered_moments), and the tables shade the air only.
+uniform int eclipse_shadows_ground;
+vec4 eclipse_direct_light(vec3 point) {
+  return eclipse_shadows_ground != 0 ? shadow_direct_light(shadow_place(point, 0.0)) : vec4(1.0);
+}
 #endif
 
 // Something can lie behind the atmosphere in these tiles: light seen through T.
