@@ -603,10 +603,10 @@ void Renderer::start_variant_programs(const Frame& frame, const FrameVariant& va
       if (band.lists[a].gbuffer.count > 0) gpu->start_gbuffer_path_program(variant, build_for);
       // Where the Moon's shadow is near this air, its frames draw with the
       // shadow's tile programs or without them as it comes and goes (and as
-      // its shadows build in the background): both are built, so that no
-      // later frame builds one when it flips.
-      const bool flips =
-          frame.occulter.shadow && frame.passes[a].body == static_cast<int>(frame.occulter.shadow_planet);
+      // its shadows build in the background): live, both are built, so that
+      // no later frame builds one when it flips. Offline frames wait anyway.
+      const bool flips = live_variants() && frame.occulter.shadow &&
+                         frame.passes[a].body == static_cast<int>(frame.occulter.shadow_planet);
       for (const auto& [tiles, list] : band.lists[a].one_pass) {
         gpu->start_tile_program(variant, tiles, frame.passes[a].eclipse_sky, build_for);
         if (flips) gpu->start_tile_program(variant, tiles, !frame.passes[a].eclipse_sky, build_for);
