@@ -38,15 +38,19 @@ bool eclipses_possible(const scene::Scene& scene) {
   return false;
 }
 
+bool shadow_on_air_possible(const scene::Scene& scene, const scene::Body& occluder, const scene::Body& receiver) {
+  if (occluder.atmosphere || !receiver.atmosphere || occluder.radius_m <= 0.0) return false;
+  const double top_m = receiver.atmosphere->loaded.model.top_radius_m;
+  const double above_air_m = glm::length(occluder.position_m - receiver.position_m) - top_m - occluder.radius_m;
+  constexpr double kLeastRadius = 0.316;  // of the sun's: √0.1, a tenth of its disc
+  if (above_air_m <= 0.0 || occluder.radius_m < kLeastRadius * scene.sun.angular_radius_rad * above_air_m) return false;
+  return shadow_can_reach(scene, occluder.position_m, occluder.radius_m, receiver.position_m, top_m);
+}
+
 bool airless_shadow_on_air_possible(const scene::Scene& scene) {
-  for (const scene::Body& occluder : scene.bodies) {
-    if (occluder.atmosphere) continue;
+  for (const scene::Body& occluder : scene.bodies)
     for (const scene::Body& receiver : scene.bodies)
-      if (&occluder != &receiver && receiver.atmosphere &&
-          shadow_can_reach(scene, occluder.position_m, occluder.radius_m, receiver.position_m,
-                           receiver.atmosphere->loaded.model.top_radius_m))
-        return true;
-  }
+      if (&occluder != &receiver && shadow_on_air_possible(scene, occluder, receiver)) return true;
   return false;
 }
 

@@ -37,9 +37,18 @@ double shadow_casting_radius_m(const scene::Body& body);
 bool moon_can_eclipse_the_sun(const scene::Scene& scene, bool moon_drawn, bool bodies_shadow);
 
 /// Whether the shadow of a body without an atmosphere can reach the air of one
-/// with an atmosphere: the test of eclipses_possible for those pairs, with the
-/// receiver's top of the atmosphere for its radius.
+/// with an atmosphere (shadow_on_air_possible, for some pair).
 bool airless_shadow_on_air_possible(const scene::Scene& scene);
+
+/// Whether `occluder`, without an atmosphere, can shadow the air of
+/// `receiver`, with one, as render/frame/sun_occulter.h draws it: the test of
+/// eclipses_possible with the top of the receiver's atmosphere for its
+/// radius; the occluder outside that air (as the shadow's model has it), and
+/// covering at least a tenth of the sun's disc from the air nearest it. A
+/// smaller body (a spacecraft) takes under a tenth of the light there, over
+/// a patch far finer than the eclipse-sky table's texels: its shadow on the
+/// ground, which the bodies' code draws, is all of it that shows.
+bool shadow_on_air_possible(const scene::Scene& scene, const scene::Body& occluder, const scene::Body& receiver);
 
 /// Whether every albedo lookup of the frame is at level 0 of the maps
 /// (surface_albedo.glsl: lod = max(0, log2(footprint / texel))): a pixel's

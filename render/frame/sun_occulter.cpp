@@ -10,6 +10,7 @@
 #include "astro/solar_eclipse.h"
 #include "atmosphere/solar_limb_darkening.h"
 #include "core/units.h"
+#include "render/frame/frame_conditions.h"
 #include "scene/local_horizon.h"
 
 namespace zenith::render {
@@ -70,7 +71,7 @@ SunOcculter shadow_among_bodies(const scene::Scene& scene, bool limb_darkening) 
   const scene::Body& air = scene.bodies[*planet];
   const std::vector<atmosphere::LimbDarkening> limb = limb_darkening_laws(scene, limb_darkening);
   for (const scene::Body& moon : scene.bodies) {
-    if (&moon == &air || moon.atmosphere || moon.radius_m <= 0.0) continue;
+    if (&moon == &air || !shadow_on_air_possible(scene, moon, air)) continue;
     double from_axis = 0.0;
     std::optional<astro::EclipseGeometry> shadow =
         shadow_on_the_air(scene, air, moon.position_m - air.position_m, moon.radius_m, limb, from_axis);

@@ -410,6 +410,33 @@ TEST(FrameConditions, EclipsesArePossibleOnlyNearTheShadowAxis) {
   EXPECT_TRUE(eclipses_possible(s));
 }
 
+TEST(FrameConditions, AnAirlessBodyShadowsTheAirWhereItsShadowReachesItAndItIsLargeEnough) {
+  scene::Scene s;
+  s.sun.direction = {1, 0, 0};
+  s.sun.angular_radius_rad = 0.00465;
+  scene::Body planet = body("planet", {0, 0, 0}, kGround);
+  planet.atmosphere.emplace();
+  planet.atmosphere->loaded.model.ground_radius_m = kGround;
+  planet.atmosphere->loaded.model.top_radius_m = kGround + 100e3;
+  // The Moon's distance, 0.5 Earth radii off the axis: its shadow reaches the air.
+  s.bodies = {planet, body("moon", {3.8e8, 0.5 * kGround, 0}, 1.74e6)};
+  EXPECT_TRUE(shadow_on_air_possible(s, s.bodies[1], s.bodies[0]));
+  EXPECT_TRUE(airless_shadow_on_air_possible(s));
+  EXPECT_FALSE(shadow_on_air_possible(s, s.bodies[0], s.bodies[1])) << "the receiver has no air";
+  // Its penumbra (≈ 3.5e6 m) passes 100 km above the top of the air: out of reach.
+  s.bodies[1].position_m = {3.8e8, kGround + 100e3 + 3.6e6, 0};
+  EXPECT_FALSE(shadow_on_air_possible(s, s.bodies[1], s.bodies[0]));
+  // A spacecraft 50 m in radius 400 km up, on the axis: 1.7e-4 rad in radius seen from the top of the
+  // air, under a third of the sun's (its shadow on the ground is the bodies' code's).
+  s.bodies[1] = body("spacecraft", {kGround + 400e3, 0, 0}, 50.0);
+  EXPECT_FALSE(shadow_on_air_possible(s, s.bodies[1], s.bodies[0]));
+  EXPECT_TRUE(eclipses_possible(s));
+  // A body in the air itself: not the shadow model's Moon.
+  s.bodies[1] = body("balloon", {kGround + 30e3, 0, 0}, 20e3);
+  EXPECT_FALSE(shadow_on_air_possible(s, s.bodies[1], s.bodies[0]));
+  EXPECT_FALSE(airless_shadow_on_air_possible(s));
+}
+
 TEST(FrameConditions, AlbedoAtFullResolutionWhileTwentyPixelFootprintsStayUnderATexel) {
   scene::Scene s;
   s.bodies = {body("moon", {0, 0, -1e8}, 1.74e6)};
