@@ -64,3 +64,30 @@ function(expect_gnuplot_pngs dir)
     endif()
   endforeach()
 endfunction()
+
+# Runs `zenith cluster` (COMMAND, its whole command line but --port) with a
+# master port of its own: other tests on this machine (the cluster tests'
+# masters, any connection's ephemeral port) may hold any fixed one, so a port
+# the master finds taken means another try on another, five at most. Sets
+# status, out and err in the caller, as execute_process would.
+function(run_cluster_on_a_free_port)
+  cmake_parse_arguments(RUN "" "WORKING_DIRECTORY;TIMEOUT" "COMMAND" ${ARGN})
+  if(NOT RUN_WORKING_DIRECTORY)
+    set(RUN_WORKING_DIRECTORY "${CMAKE_CURRENT_BINARY_DIR}")
+  endif()
+  foreach(attempt RANGE 1 5)
+    string(RANDOM LENGTH 4 ALPHABET 0123456789 digits)
+    math(EXPR port "30000 + ${digits} % 20000")
+    execute_process(
+      COMMAND ${RUN_COMMAND} --port ${port}
+      WORKING_DIRECTORY "${RUN_WORKING_DIRECTORY}"
+      RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT ${RUN_TIMEOUT})
+    string(FIND "${err}" "Address already in use" taken)
+    if(taken EQUAL -1)
+      break()
+    endif()
+  endforeach()
+  set(status "${status}" PARENT_SCOPE)
+  set(out "${out}" PARENT_SCOPE)
+  set(err "${err}" PARENT_SCOPE)
+endfunction()

@@ -9,20 +9,10 @@ set(dir "${WORK_DIR}/cluster-default")
 file(REMOVE_RECURSE "${dir}/run")
 file(MAKE_DIRECTORY "${dir}/run")
 # A port of its own: another suite on the machine (another checkout) may run
-# this test at the same time, so a taken port means another try on another one.
-foreach(attempt RANGE 1 5)
-  string(RANDOM LENGTH 4 ALPHABET 0123456789 digits)
-  math(EXPR port "30000 + ${digits} % 20000")
-  execute_process(
-    COMMAND ${CMAKE_COMMAND} -E env ZENITH_CACHE_DIR=${dir}/cache
-            ${ZENITH} cluster --frames 2 --port ${port} --out "${dir}/run/out"
-    WORKING_DIRECTORY "${dir}/run"
-    RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 900)
-  string(FIND "${err}" "Address already in use" taken)
-  if(taken EQUAL -1)
-    break()
-  endif()
-endforeach()
+# this test at the same time.
+run_cluster_on_a_free_port(
+  COMMAND ${CMAKE_COMMAND} -E env ZENITH_CACHE_DIR=${dir}/cache ${ZENITH} cluster --frames 2 --out "${dir}/run/out"
+  WORKING_DIRECTORY "${dir}/run" TIMEOUT 900)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "zenith cluster (built-in default) failed (${status}):\n${out}\n${err}")
 endif()

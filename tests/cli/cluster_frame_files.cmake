@@ -3,6 +3,7 @@
 # frame); with --record-frames DIR exactly one file per output and presented
 # frame, named by the frames presented.log lists. Headless nodes. Called with
 # ZENITH, SOURCE_DIR and WORK_DIR.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(dir "${WORK_DIR}/cluster-frame-files")
 file(REMOVE_RECURSE "${dir}")
 file(MAKE_DIRECTORY "${dir}/live")
@@ -10,10 +11,9 @@ set(config "${SOURCE_DIR}/tests/data/clusters/windowed-halves.json")
 
 # Without --out: the config's output directory (out/windowed, relative to the
 # working directory) gets the logs only.
-execute_process(
-  COMMAND ${ZENITH} cluster --frames 3 --port 47193 --cluster "${config}" --cache "${dir}/cache"
-  WORKING_DIRECTORY "${dir}/live"
-  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 600)
+run_cluster_on_a_free_port(
+  COMMAND ${ZENITH} cluster --frames 3 --cluster "${config}" --cache "${dir}/cache"
+  WORKING_DIRECTORY "${dir}/live" TIMEOUT 600)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "zenith cluster without --out failed (${status}):\n${out}\n${err}")
 endif()
@@ -34,11 +34,9 @@ foreach(node left right)
 endforeach()
 
 # With --record-frames DIR: one file per output and presented frame, no more.
-execute_process(
-  COMMAND ${ZENITH} cluster --frames 3 --port 47193 --cluster "${config}" --cache "${dir}/cache"
-          --record-frames "${dir}/recorded"
-  WORKING_DIRECTORY "${dir}/live"
-  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 600)
+run_cluster_on_a_free_port(
+  COMMAND ${ZENITH} cluster --frames 3 --cluster "${config}" --cache "${dir}/cache" --record-frames "${dir}/recorded"
+  WORKING_DIRECTORY "${dir}/live" TIMEOUT 600)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "zenith cluster --record-frames failed (${status}):\n${out}\n${err}")
 endif()

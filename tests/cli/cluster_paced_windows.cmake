@@ -5,15 +5,15 @@
 # node, and the swap group the config asks for is detected and logged (Mesa
 # has none: the network barrier plus vsync). Called with XVFB_RUN, ZENITH,
 # SOURCE_DIR and WORK_DIR.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(dir "${WORK_DIR}/cluster-paced-windows")
 file(REMOVE_RECURSE "${dir}")
 file(MAKE_DIRECTORY "${dir}")
 set(frames 300)
-execute_process(
+run_cluster_on_a_free_port(
   COMMAND ${XVFB_RUN} -a -s "-screen 0 64x64x24 -noreset" ${ZENITH} cluster --windows --frames ${frames}
           --cluster "${SOURCE_DIR}/tests/data/clusters/paced-2x2.json" --cache "${dir}/cache"
-  WORKING_DIRECTORY "${dir}"
-  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 600)
+  WORKING_DIRECTORY "${dir}" TIMEOUT 600)
 file(WRITE "${dir}/cluster.log" "${out}\n${err}")
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "zenith cluster --windows at 60 Hz failed (${status}):\n${out}\n${err}")

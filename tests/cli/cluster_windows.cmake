@@ -6,10 +6,10 @@ include("${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake")
 set(dir "${WORK_DIR}/cluster-windows")
 file(REMOVE_RECURSE "${dir}")
 file(MAKE_DIRECTORY "${dir}")
-execute_process(
+run_cluster_on_a_free_port(
   COMMAND ${XVFB_RUN} -a -s "-screen 0 640x480x24 -noreset" ${ZENITH} cluster --windows --frames 3
           --cluster "${SOURCE_DIR}/tests/data/clusters/windowed-halves.json" --out "${dir}/out" --cache "${dir}/cache"
-  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 600)
+  TIMEOUT 600)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "zenith cluster --windows failed (${status}):\n${out}\n${err}")
 endif()
