@@ -373,7 +373,7 @@ void Renderer::choose_sky_view(Frame& frame) const {
   // the sky-view table's terms where the camera is inside the shell, on the
   // 4D tables' from orbit (eclipse_sky_table.h).
   for (AtmospherePass& pass : frame.passes)
-    pass.eclipse_sky = pass.gpu && frame.occulter.shadow && pass.body == static_cast<int>(frame.occulter.shadow_planet);
+    pass.eclipse_sky = pass.gpu && frame.occulter.shadow_on_the_air_of(pass.body);
   // A small frame's 4D lookups cost less than the table's fill. But the
   // Moon's shadow on the air is drawn from the table (eclipse_sky_table.h),
   // so a scene where the Moon can eclipse the sun keeps it at any size: its
@@ -605,8 +605,7 @@ void Renderer::start_variant_programs(const Frame& frame, const FrameVariant& va
       // shadow's tile programs or without them as it comes and goes (and as
       // its shadows build in the background): live, both are built, so that
       // no later frame builds one when it flips. Offline frames wait anyway.
-      const bool flips = live_variants() && frame.occulter.shadow &&
-                         frame.passes[a].body == static_cast<int>(frame.occulter.shadow_planet);
+      const bool flips = live_variants() && frame.occulter.shadow_on_the_air_of(frame.passes[a].body);
       for (const auto& [tiles, list] : band.lists[a].one_pass) {
         gpu->start_tile_program(variant, tiles, frame.passes[a].eclipse_sky, build_for);
         if (flips) gpu->start_tile_program(variant, tiles, !frame.passes[a].eclipse_sky, build_for);

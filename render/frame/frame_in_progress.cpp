@@ -132,11 +132,12 @@ void FrameInProgress::set_light_uniforms(const gl::ShaderProgram& p, std::size_t
   p.set_uniform("wavelength_group", static_cast<int>(g));
   p.set_uniform("air_shadow_count", light.is_sun() ? static_cast<int>(air_shadow_bodies.size()) : 0);
   // The bodies' shadows cover the sun's limb-darkened disc, or the Moon's uniform one.
-  for (std::size_t k = 0; k < std::size_t(kLimbCoefficients); ++k)
+  for (std::size_t k = 0; k < std::size_t(kLimbCoefficients); ++k) {
+    const float uniform_disc = k == 0 ? 1.0f : 0.0f;  // b = (1, 0, …)
     p.set_uniform(fmt::format("shadow_limb_lanes[{}]", k),
                   light.is_sun() ? group_lanes(shadow_limb_over_mean(*this, k), g)
-                                 : std::array<float, 4>{k == 0 ? 1.0f : 0.0f, k == 0 ? 1.0f : 0.0f,
-                                                        k == 0 ? 1.0f : 0.0f, k == 0 ? 1.0f : 0.0f});
+                                 : std::array<float, 4>{uniform_disc, uniform_disc, uniform_disc, uniform_disc});
+  }
 }
 
 FrameLight FrameInProgress::sun_light() const {

@@ -58,6 +58,8 @@ struct SunOcculter {
   /// planet's ground the bodies' code draws exactly (frame.glsl's
   /// covered_moments), so the eclipse tables darken only the air and its skylight.
   bool shadow_caster_is_a_body = false;
+  /// Whether `shadow` lies on the air of body `body` (an index in Scene::bodies).
+  bool shadow_on_the_air_of(int body) const { return shadow && body == static_cast<int>(shadow_planet); }
   /// With `shadow`: how far the nearest air in view lies from the shadow's
   /// axis, in penumbra radii (≤ 1: the penumbra reaches it; ≥ 2: V = V̄ = 1 there).
   double air_from_axis_penumbrae = 0.0;

@@ -318,9 +318,7 @@ void covered_moments(vec3 p, int self, out float J[LIMB_COEFFICIENTS]) {
     add_covered_moments(sun_angular_radius, radius, angle_between(dir, sun_direction), J);
   }
 }
-#endif
 
-#if ECLIPSES
 /// What the bodies leave of the limb-darkened disc seen from the point at
 /// camera-relative p on body `self`, 1 − Σ_k b_k J_k, for the four values of
 /// `b` at once (the lanes of a group, or the channels of an RGB colour).
