@@ -370,6 +370,7 @@ void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked, b
     raised.emplace(present_priority_.raise());
     sleep_until_moment(asked);
   }
+  const Clock::time_point woke = Clock::now();
   // The act first — the swap (the projectors), else the frame files renamed
   // into place — and its time; then the bookkeeping, at normal priority: a log
   // line's file system call (a slow disk, the journal's commit) is no part of
@@ -396,12 +397,12 @@ void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked, b
     return;
   }
   writer_.log_presented();
-  note_present_time(frame, presented, asked, scheduled);
+  note_present_time(frame, woke, presented, asked, scheduled);
   spdlog::debug("node '{}': presented frame {}", setup_.options.node_name, frame);
 }
 
-void RenderWorker::note_present_time(std::uint64_t frame, Clock::time_point presented, Clock::time_point asked,
-                                     bool scheduled) {
+void RenderWorker::note_present_time(std::uint64_t frame, Clock::time_point woke, Clock::time_point presented,
+                                     Clock::time_point asked, bool scheduled) {
   const auto ns = [](Clock::time_point t) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
   };
@@ -409,9 +410,10 @@ void RenderWorker::note_present_time(std::uint64_t frame, Clock::time_point pres
     const std::filesystem::path path = setup_.node_directory / "presents.csv";
     const bool fresh = !std::filesystem::exists(path);
     present_times_.open(path, std::ios::app);
-    if (fresh) present_times_ << "frame,presented_ns,asked_ns,scheduled\n";
+    if (fresh) present_times_ << "frame,presented_ns,asked_ns,scheduled,woke_ns\n";
   }
-  present_times_ << frame << ',' << ns(presented) << ',' << ns(asked) << ',' << (scheduled ? 1 : 0) << '\n';
+  present_times_ << frame << ',' << ns(presented) << ',' << ns(asked) << ',' << (scheduled ? 1 : 0) << ',' << ns(woke)
+                 << '\n';
   present_times_.flush();  // read while the show runs (tests, benchmarks)
 }
 

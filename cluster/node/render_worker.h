@@ -135,12 +135,15 @@ class RenderWorker {
   void render_frame(const FrameState& state, std::uint64_t session, int thumbnail_edge_px);
   void present_frame(std::uint64_t frame, std::chrono::steady_clock::time_point asked, bool scheduled);
   /// One line of presents.csv: the frame, when it was presented (the swap
-  /// queued, or its files renamed into place) and when it was asked for (the
-  /// scheduled moment, or the Present's arrival), in ns of the steady clock
+  /// queued, or its files renamed into place), when it was asked for (the
+  /// scheduled moment, or the Present's arrival) and when the render thread
+  /// took up the present (after its sleep to the moment: later than the moment
+  /// where a render held the thread), in ns of the steady clock
   /// (CLOCK_MONOTONIC: on one machine every process's, so nodes in network
   /// namespaces compare exactly).
-  void note_present_time(std::uint64_t frame, std::chrono::steady_clock::time_point presented,
-                         std::chrono::steady_clock::time_point asked, bool scheduled);
+  void note_present_time(std::uint64_t frame, std::chrono::steady_clock::time_point woke,
+                         std::chrono::steady_clock::time_point presented, std::chrono::steady_clock::time_point asked,
+                         bool scheduled);
   void prepare_tables(const Digest& hash, std::uint64_t session);
   void blank_outputs();
   /// Output k's radiance read back as RGB rows for its file (width · height · 3 floats).

@@ -200,6 +200,7 @@ std::vector<NodePresent> RigCluster::presents(int node) const {
     std::istringstream fields(line);
     if (fields >> p.frame >> comma >> p.presented_ns >> comma >> p.asked_ns >> comma >> scheduled) {
       p.scheduled = scheduled != 0;
+      if (!(fields >> comma >> p.woke_ns)) p.woke_ns = 0;
       out.push_back(p);
     }
   }

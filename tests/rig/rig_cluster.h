@@ -62,6 +62,7 @@ struct NodePresent {
   std::uint64_t frame = 0;
   std::int64_t presented_ns = 0, asked_ns = 0;
   bool scheduled = false;
+  std::int64_t woke_ns = 0;  ///< when the render thread took the present up (0: not recorded)
 };
 
 /// What a node showed over a run, from its presents.
