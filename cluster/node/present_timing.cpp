@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <time.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <utility>
@@ -19,6 +20,34 @@ void sleep_until_moment(std::chrono::steady_clock::time_point moment) {
   at.tv_nsec = static_cast<long>(ns % 1'000'000'000);
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &at, nullptr) == EINTR) {
   }
+}
+
+WakeMargin::WakeMargin(Duration largest) : largest_(std::max(largest, kSmallest)) {}
+
+WakeMargin::Duration WakeMargin::margin() const {
+  if (recorded_ == 0) return largest_;
+  const std::size_t held = std::min(recorded_, kWindow);
+  const Duration latest = *std::max_element(lateness_.begin(), lateness_.begin() + static_cast<std::ptrdiff_t>(held));
+  return std::clamp(latest + kHeadroom, kSmallest, largest_);
+}
+
+void WakeMargin::record(Duration lateness) {
+  lateness_[recorded_ % kWindow] = std::max(lateness, Duration::zero());
+  ++recorded_;
+}
+
+MomentWake wait_for_moment(std::chrono::steady_clock::time_point moment, WakeMargin& margin) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point asked = moment - margin.margin();
+  if (Clock::now() >= moment) return {asked, Clock::now()};
+  sleep_until_moment(asked);
+  const Clock::time_point woke = Clock::now();
+  margin.record(woke - asked);
+  // Yielding, not spinning flat out: a real-time thread yields to another
+  // node's present woken on the same core (several nodes on one machine), a
+  // normal one to the machine's other threads; each is back within microseconds.
+  while (Clock::now() < moment) sched_yield();
+  return {asked, woke};
 }
 
 PresentPriority::PresentPriority(bool realtime, std::string node_name)

@@ -2,9 +2,10 @@
 // How a node's render thread meets a scheduled frame's moment (docs/cluster.md,
 // "Presenting on time"). The networking thread hands the present over a little
 // before the moment (present_handoff() in present_schedule.h); the render
-// thread sleeps until the moment on the kernel's clock and presents — one
-// thread's wake-up at the moment instead of two (the networking thread's
-// timer, then the render thread's queue).
+// thread sleeps until just before the moment on the kernel's clock, waits the
+// rest awake (WakeMargin) and presents — one thread's wake-up at the moment
+// instead of two (the networking thread's timer, then the render thread's
+// queue).
 //
 // On a busy machine (several nodes on one PC, the rig's two cores, another
 // output's renderer still drawing) a thread that wakes at normal priority
@@ -15,7 +16,9 @@
 // fires; it renders at its normal priority. SCHED_FIFO needs CAP_SYS_NICE or
 // an RLIMIT_RTPRIO of at least kPresentFifoPriority: without either the
 // presents run at normal priority, said once in the log.
+#include <array>
 #include <chrono>
+#include <cstddef>
 #include <string>
 
 namespace zenith::cluster {
@@ -27,6 +30,51 @@ inline constexpr int kPresentFifoPriority = 10;
 /// Sleeps until `moment` of the steady clock (CLOCK_MONOTONIC, absolute:
 /// no drift from computing a duration first); returns at once if it passed.
 void sleep_until_moment(std::chrono::steady_clock::time_point moment);
+
+/// How long before a moment the render thread asks to wake, learnt from how
+/// late its wake-ups came. A thread's timer fires late when its core is idle:
+/// the core must leave a deep sleep state, or — in a virtual machine — the
+/// hypervisor must run the halted virtual CPU again. On the rig's VM the
+/// kernel's own timer events showed a sleeping present's timer interrupt
+/// 0.5–2 ms late a few times in a hundred frames with the scheduler then
+/// prompt (0.14 ms at most): a projector a millisecond or two behind the
+/// others. The thread therefore wakes early by the margin and spins to the
+/// moment on a core already running.
+///
+/// The margin is the latest of the last kWindow wake-ups plus kHeadroom,
+/// within [kSmallest, largest]: on a machine that wakes in tens of
+/// microseconds it spins a quarter of a millisecond a frame; on one that wakes
+/// late it spins up to `largest` (half the handoff: 2 ms a frame below 125
+/// Hz). A long stall — the VM stopped — widens it for kWindow frames only.
+class WakeMargin {
+ public:
+  using Duration = std::chrono::steady_clock::duration;
+  static constexpr std::size_t kWindow = 256;
+  static constexpr Duration kSmallest = std::chrono::microseconds(250);
+  static constexpr Duration kHeadroom = std::chrono::microseconds(100);
+
+  /// `largest`: the most the thread may spin before a present. Until the
+  /// first wake-up is recorded the margin is `largest`.
+  explicit WakeMargin(Duration largest);
+  Duration margin() const;
+  /// How late a wake-up came after the time asked (negative counts as 0).
+  void record(Duration lateness);
+
+ private:
+  Duration largest_;
+  std::array<Duration, kWindow> lateness_{};
+  std::size_t recorded_ = 0;  ///< all time; the window holds the last kWindow
+};
+
+/// When the thread asked to wake before a moment, and when it did.
+struct MomentWake {
+  std::chrono::steady_clock::time_point asked;
+  std::chrono::steady_clock::time_point woke;
+};
+/// Sleeps until `moment` less the margin, records how late that wake-up came
+/// in `margin`, then spins until the moment; returns at once (having slept
+/// nothing) if the moment has passed.
+MomentWake wait_for_moment(std::chrono::steady_clock::time_point moment, WakeMargin& margin);
 
 class PresentPriority {
  public:

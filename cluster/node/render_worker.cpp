@@ -32,7 +32,8 @@ RenderWorker::RenderWorker(Setup setup, Events events)
       events_(std::move(events)),
       writer_(setup_.viewports, setup_.options.layout, setup_.options.output_directory, setup_.node_directory,
               setup_.options.config.output_format),
-      present_priority_(setup_.options.config.realtime_presents, setup_.options.node_name) {}
+      present_priority_(setup_.options.config.realtime_presents, setup_.options.node_name),
+      wake_margin_(present_handoff(setup_.options.config.frame_rate_hz) / 2) {}
 
 // ---- the queue --------------------------------------------------------------
 
@@ -363,14 +364,15 @@ std::vector<const render::gl::Texture*> RenderWorker::display_textures() const {
 }
 
 void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked, bool scheduled) {
-  // A scheduled frame: wait for its moment and present at once, ahead of any
-  // normal thread on the machine (present_timing.h).
+  // A scheduled frame: wait for its moment — asleep, then awake for the wake
+  // margin — and present at once, ahead of any normal thread on the machine
+  // (present_timing.h).
   std::optional<PresentPriority::Raised> raised;
+  MomentWake wake{Clock::time_point{}, Clock::now()};
   if (scheduled) {
     raised.emplace(present_priority_.raise());
-    sleep_until_moment(asked);
+    wake = wait_for_moment(asked, wake_margin_);
   }
-  const Clock::time_point woke = Clock::now();
   // The act first — the swap (the projectors), else the frame files renamed
   // into place — and its time; then the bookkeeping, at normal priority: a log
   // line's file system call (a slow disk, the journal's commit) is no part of
@@ -397,11 +399,11 @@ void RenderWorker::present_frame(std::uint64_t frame, Clock::time_point asked, b
     return;
   }
   writer_.log_presented();
-  note_present_time(frame, woke, presented, asked, scheduled);
+  note_present_time(frame, wake, presented, asked, scheduled);
   spdlog::debug("node '{}': presented frame {}", setup_.options.node_name, frame);
 }
 
-void RenderWorker::note_present_time(std::uint64_t frame, Clock::time_point woke, Clock::time_point presented,
+void RenderWorker::note_present_time(std::uint64_t frame, const MomentWake& wake, Clock::time_point presented,
                                      Clock::time_point asked, bool scheduled) {
   const auto ns = [](Clock::time_point t) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
@@ -410,10 +412,10 @@ void RenderWorker::note_present_time(std::uint64_t frame, Clock::time_point woke
     const std::filesystem::path path = setup_.node_directory / "presents.csv";
     const bool fresh = !std::filesystem::exists(path);
     present_times_.open(path, std::ios::app);
-    if (fresh) present_times_ << "frame,presented_ns,asked_ns,scheduled,woke_ns\n";
+    if (fresh) present_times_ << "frame,presented_ns,asked_ns,scheduled,woke_ns,wake_asked_ns\n";
   }
-  present_times_ << frame << ',' << ns(presented) << ',' << ns(asked) << ',' << (scheduled ? 1 : 0) << ',' << ns(woke)
-                 << '\n';
+  present_times_ << frame << ',' << ns(presented) << ',' << ns(asked) << ',' << (scheduled ? 1 : 0) << ','
+                 << ns(wake.woke) << ',' << ns(wake.asked) << '\n';
   present_times_.flush();  // read while the show runs (tests, benchmarks)
 }
 

@@ -136,14 +136,14 @@ class RenderWorker {
   void present_frame(std::uint64_t frame, std::chrono::steady_clock::time_point asked, bool scheduled);
   /// One line of presents.csv: the frame, when it was presented (the swap
   /// queued, or its files renamed into place), when it was asked for (the
-  /// scheduled moment, or the Present's arrival) and when the render thread
-  /// took up the present (after its sleep to the moment: later than the moment
-  /// where a render held the thread), in ns of the steady clock
-  /// (CLOCK_MONOTONIC: on one machine every process's, so nodes in network
-  /// namespaces compare exactly).
-  void note_present_time(std::uint64_t frame, std::chrono::steady_clock::time_point woke,
-                         std::chrono::steady_clock::time_point presented, std::chrono::steady_clock::time_point asked,
-                         bool scheduled);
+  /// scheduled moment, or the Present's arrival), when the render thread woke
+  /// for it (from its sleep before the moment; after the moment where a render
+  /// held the thread) and when it had asked to wake (the moment less the wake
+  /// margin; 0 under the barrier), in ns of the steady clock (CLOCK_MONOTONIC:
+  /// on one machine every process's, so nodes in network namespaces compare
+  /// exactly).
+  void note_present_time(std::uint64_t frame, const MomentWake& wake, std::chrono::steady_clock::time_point presented,
+                         std::chrono::steady_clock::time_point asked, bool scheduled);
   void prepare_tables(const Digest& hash, std::uint64_t session);
   void blank_outputs();
   /// Output k's radiance read back as RGB rows for its file (width · height · 3 floats).
@@ -168,6 +168,7 @@ class RenderWorker {
   Events events_;
   OutputWriter writer_;
   PresentPriority present_priority_;
+  WakeMargin wake_margin_;  ///< how early the render thread wakes before a moment
 
   std::mutex mutex_;
   /// offer_tables: by atmosphere::lookup_table_hash, oldest first.

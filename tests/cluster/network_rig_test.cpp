@@ -99,14 +99,23 @@ void expect_presents_together(const RigCluster& cluster, const WakeProbe& probe)
       percentile(spreads, 0.5), percentile(spreads, 0.9), percentile(spreads, 1.0), percentile(moments, 0.5),
       percentile(moments, 0.9), percentile(moments, 1.0), percentile(probe.lateness_ms(), 0.5), probe_p90_ms,
       probe.lateness_ms().size());
-  // How late each node took a present up after its moment (a render holding its thread, or the wake-up):
-  // where the presents are far apart and this is not, the time went to the act itself.
+  // How early each node asked to wake before its moments (the wake margin it
+  // learnt) and how late those wake-ups came: where the presents are far apart
+  // and a wake-up was later than its margin, the time went to the machine's
+  // wake-up (or a render holding the thread); where not, to the act itself.
   for (int k = 0; k < cluster.setup().nodes; ++k) {
-    std::vector<double> late_ms;
-    for (const NodePresent& p : presents[static_cast<std::size_t>(k)])
-      if (p.scheduled && p.woke_ns > 0) late_ms.push_back(static_cast<double>(p.woke_ns - p.asked_ns) / 1e6);
-    std::printf("node %d took its presents up %.3f / %.3f / %.3f ms after their moments (median, p90, largest)\n", k,
-                percentile(late_ms, 0.5), percentile(late_ms, 0.9), percentile(late_ms, 1.0));
+    std::vector<double> margin_ms, late_ms, past_moment_ms;
+    for (const NodePresent& p : presents[static_cast<std::size_t>(k)]) {
+      if (!p.scheduled || p.woke_ns == 0 || p.wake_asked_ns == 0) continue;
+      margin_ms.push_back(static_cast<double>(p.asked_ns - p.wake_asked_ns) / 1e6);
+      late_ms.push_back(static_cast<double>(p.woke_ns - p.wake_asked_ns) / 1e6);
+      past_moment_ms.push_back(std::max(0.0, static_cast<double>(p.woke_ns - p.asked_ns) / 1e6));
+    }
+    std::printf(
+        "node %d asked to wake %.3f / %.3f ms before its moments (median, largest) and woke %.3f / %.3f / %.3f ms "
+        "later than asked, %.3f / %.3f ms past the moment (median, p90, largest; p90, largest)\n",
+        k, percentile(margin_ms, 0.5), percentile(margin_ms, 1.0), percentile(late_ms, 0.5), percentile(late_ms, 0.9),
+        percentile(late_ms, 1.0), percentile(past_moment_ms, 0.9), percentile(past_moment_ms, 1.0));
   }
   EXPECT_LE(percentile(moments, 0.9), 0.5) << "ms between the nodes' moments of one frame, 90th percentile";
   for (int k = 0; k < cluster.setup().nodes; ++k) {

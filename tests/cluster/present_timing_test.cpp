@@ -3,6 +3,7 @@
 #include <pthread.h>
 #include <sched.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -36,6 +37,49 @@ TEST(PresentTiming, TheSleepEndsAtTheMomentNotBefore) {
   const Clock::time_point before = Clock::now();
   sleep_until_moment(passed);
   EXPECT_LT(Clock::now() - before, std::chrono::milliseconds(500)) << "a moment that passed does not wait";
+}
+
+using std::chrono::microseconds;
+
+TEST(PresentTiming, TheWakeMarginIsTheLatestRecentWakeUpWithHeadroomWithinItsBounds) {
+  WakeMargin margin(microseconds(2000));
+  EXPECT_EQ(margin.margin(), microseconds(2000)) << "before any wake-up: the most it may be";
+  margin.record(microseconds(30));
+  EXPECT_EQ(margin.margin(), WakeMargin::kSmallest) << "30 us + 100 us of headroom is under the smallest";
+  margin.record(microseconds(700));
+  margin.record(microseconds(40));
+  EXPECT_EQ(margin.margin(), microseconds(800)) << "the latest of the window, 700 us, + 100 us";
+  margin.record(microseconds(9000));
+  EXPECT_EQ(margin.margin(), microseconds(2000)) << "a stall of the machine: held to the largest";
+  margin.record(microseconds(-50));
+  // The stall leaves the window kWindow wake-ups after it, the 700 us one before it.
+  for (std::size_t i = 0; i + 2 < WakeMargin::kWindow; ++i) margin.record(microseconds(60));
+  EXPECT_EQ(margin.margin(), microseconds(2000)) << "the stall is the oldest wake-up the window holds";
+  margin.record(microseconds(60));
+  EXPECT_EQ(margin.margin(), WakeMargin::kSmallest) << "the window holds only prompt wake-ups now";
+  EXPECT_EQ(WakeMargin(microseconds(100)).margin(), WakeMargin::kSmallest) << "never below the smallest";
+}
+
+TEST(PresentTiming, TheWaitWakesBeforeTheMomentByTheMarginAndEndsAtTheMoment) {
+  WakeMargin margin(microseconds(1500));
+  for (int i = 0; i < 5; ++i) {
+    const WakeMargin::Duration before = margin.margin();
+    const Clock::time_point moment = Clock::now() + microseconds(3000 + 500 * i);
+    const MomentWake wake = wait_for_moment(moment, margin);
+    const Clock::time_point after = Clock::now();
+    EXPECT_GE(after, moment) << "round " << i;
+    EXPECT_EQ(moment - wake.asked, before) << "it asked to wake the margin before the moment, round " << i;
+    EXPECT_GE(wake.woke, wake.asked) << "round " << i;
+    EXPECT_EQ(margin.margin(), std::clamp(wake.woke - wake.asked + WakeMargin::kHeadroom, WakeMargin::kSmallest,
+                                          WakeMargin::Duration(microseconds(1500))))
+        << "the wake-up is recorded, round " << i;
+    margin = WakeMargin(microseconds(1500));
+  }
+  const Clock::time_point before = Clock::now();
+  const MomentWake passed = wait_for_moment(before - std::chrono::seconds(1), margin);
+  EXPECT_LT(Clock::now() - before, std::chrono::milliseconds(500)) << "a moment that passed does not wait";
+  EXPECT_GE(passed.woke, before);
+  EXPECT_EQ(margin.margin(), microseconds(1500)) << "no sleep, nothing recorded";
 }
 
 // Run in a thread of its own, so that the test's thread keeps its policy

@@ -201,6 +201,7 @@ std::vector<NodePresent> RigCluster::presents(int node) const {
     if (fields >> p.frame >> comma >> p.presented_ns >> comma >> p.asked_ns >> comma >> scheduled) {
       p.scheduled = scheduled != 0;
       if (!(fields >> comma >> p.woke_ns)) p.woke_ns = 0;
+      if (!(fields >> comma >> p.wake_asked_ns)) p.wake_asked_ns = 0;
       out.push_back(p);
     }
   }

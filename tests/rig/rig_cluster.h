@@ -62,7 +62,8 @@ struct NodePresent {
   std::uint64_t frame = 0;
   std::int64_t presented_ns = 0, asked_ns = 0;
   bool scheduled = false;
-  std::int64_t woke_ns = 0;  ///< when the render thread took the present up (0: not recorded)
+  std::int64_t woke_ns = 0;        ///< when the render thread woke for it (0: not recorded)
+  std::int64_t wake_asked_ns = 0;  ///< when it had asked to wake: the moment less its margin (0: none)
 };
 
 /// What a node showed over a run, from its presents.
