@@ -38,14 +38,14 @@ void sleep_until_moment(std::chrono::steady_clock::time_point moment);
 /// kernel's own timer events showed a sleeping present's timer interrupt
 /// 0.5–2 ms late a few times in a hundred frames with the scheduler then
 /// prompt (0.14 ms at most): a projector a millisecond or two behind the
-/// others. The thread therefore wakes early by the margin and spins to the
-/// moment on a core already running.
+/// others. The thread therefore wakes early by the margin and waits the rest
+/// awake, on a core already running.
 ///
 /// The margin is the latest of the last kWindow wake-ups plus kHeadroom,
 /// within [kSmallest, largest]: on a machine that wakes in tens of
-/// microseconds it spins a quarter of a millisecond a frame; on one that wakes
-/// late it spins up to `largest` (half the handoff: 2 ms a frame below 125
-/// Hz). A long stall — the VM stopped — widens it for kWindow frames only.
+/// microseconds it waits awake a quarter of a millisecond a frame; on one that
+/// wakes late up to `largest` (half the handoff: 2 ms a frame below 125 Hz). A long stall — the VM stopped — widens it
+/// for kWindow frames only.
 class WakeMargin {
  public:
   using Duration = std::chrono::steady_clock::duration;
@@ -53,7 +53,7 @@ class WakeMargin {
   static constexpr Duration kSmallest = std::chrono::microseconds(250);
   static constexpr Duration kHeadroom = std::chrono::microseconds(100);
 
-  /// `largest`: the most the thread may spin before a present. Until the
+  /// `largest`: the most the thread may wait awake before a present. Until the
   /// first wake-up is recorded the margin is `largest`.
   explicit WakeMargin(Duration largest);
   Duration margin() const;
@@ -72,7 +72,7 @@ struct MomentWake {
   std::chrono::steady_clock::time_point woke;
 };
 /// Sleeps until `moment` less the margin, records how late that wake-up came
-/// in `margin`, then spins until the moment; returns at once (having slept
+/// in `margin`, then waits awake (yielding) until the moment; returns at once (having slept
 /// nothing) if the moment has passed.
 MomentWake wait_for_moment(std::chrono::steady_clock::time_point moment, WakeMargin& margin);
 
