@@ -39,7 +39,7 @@ void WakeMargin::record(Duration lateness) {
 MomentWake wait_for_moment(std::chrono::steady_clock::time_point moment, WakeMargin& margin) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point asked = moment - margin.margin();
-  if (Clock::now() >= moment) return {asked, Clock::now()};
+  if (const Clock::time_point now = Clock::now(); now >= moment) return {asked, now};
   sleep_until_moment(asked);
   const Clock::time_point woke = Clock::now();
   margin.record(woke - asked);

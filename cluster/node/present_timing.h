@@ -44,8 +44,8 @@ void sleep_until_moment(std::chrono::steady_clock::time_point moment);
 /// The margin is the latest of the last kWindow wake-ups plus kHeadroom,
 /// within [kSmallest, largest]: on a machine that wakes in tens of
 /// microseconds it waits awake a quarter of a millisecond a frame; on one that
-/// wakes late up to `largest` (half the handoff: 2 ms a frame below 125 Hz). A long stall — the VM stopped — widens it
-/// for kWindow frames only.
+/// wakes late up to `largest` (half the handoff: 2 ms a frame below 125 Hz).
+/// A long stall — the VM stopped — widens it for kWindow frames only.
 class WakeMargin {
  public:
   using Duration = std::chrono::steady_clock::duration;
@@ -72,8 +72,8 @@ struct MomentWake {
   std::chrono::steady_clock::time_point woke;
 };
 /// Sleeps until `moment` less the margin, records how late that wake-up came
-/// in `margin`, then waits awake (yielding) until the moment; returns at once (having slept
-/// nothing) if the moment has passed.
+/// in `margin`, then waits awake (yielding) until the moment; returns at once
+/// (having slept nothing) if the moment has passed.
 MomentWake wait_for_moment(std::chrono::steady_clock::time_point moment, WakeMargin& margin);
 
 class PresentPriority {
