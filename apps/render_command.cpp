@@ -74,6 +74,8 @@ render::RenderOptions make_render_options(const RenderArgs& a) {
   // A window's frames are live: they never wait for the Moon's shadow nor for a new program variant.
   options.background_shadow_builds = a.window;
   options.background_variant_builds = a.window;
+  // A cold start builds one tile program per shell, not one per tile kind (the same pixels).
+  options.tile_programs = render::TilePrograms::own_once_built;
   options.albedo_cache_directory = render::cache_directory_of(make_table_request(a));
   options.program_cache_directory = render::program_cache_directory_of(make_table_request(a));
   return options;

@@ -43,7 +43,7 @@
 //   render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]
 //                [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]
 //                [--scene FILE] [--fov DEG] [--time-passes] [--moving] [--sky-view-error] [--no-sky-view]
-//                [--gbuffer-path]
+//                [--gbuffer-path] [--general-tiles]
 //                [--cache DIR]
 //                [--device auto|software|hardware]
 //                [--benchmark_filter=REGEX] ...
@@ -107,6 +107,7 @@ struct Options {
   bool quick = false, chart = true, chart_only = false, time_passes = false, sky_view_error = false, moving = false;
   bool gbuffer_path = false;
   bool no_sky_view = false;
+  bool general_tiles = false;
   double planar_fov_deg = kPlanarFovDeg;
   std::string tables = "paper", device = "auto";
   int orders = atmosphere::lut::kDefaultScatteringOrders, iterations = 3, rounds = 3;
@@ -132,7 +133,7 @@ constexpr const char* kUsage =
     "usage: render_bench [--quick] [--tables paper|small] [--orders N] [--sizes WxH[,WxH...]]\n"
     "                    [--iterations N] [--rounds R] [--budget-s S] [--csv FILE] [--no-chart] [--chart-only]\n"
     "                    [--scene FILE] [--fov DEG] [--time-passes] [--moving] [--sky-view-error] [--no-sky-view] "
-    "[--gbuffer-path]\n"
+    "[--gbuffer-path] [--general-tiles]\n"
     "                    [--cache DIR]\n"
     "                    [--device auto|software|hardware]\n"
     "                    [Google Benchmark flags, e.g. --benchmark_filter=planar]\n"
@@ -175,6 +176,8 @@ constexpr const char* kUsage =
     "  --no-sky-view  the one-pass tiles read the 4D tables per pixel instead of the sky-view table\n"
     "  --gbuffer-path every tile through the G-buffer, atmosphere and resolve passes, 4D lookups per\n"
     "                 pixel (the frame's structure before the sky-view table; with --time-passes: its split)\n"
+    "  --general-tiles  each shell's one-pass tiles with its general program, as a cold start draws\n"
+    "                 them until their kinds' own are built (RenderOptions::tile_programs)\n"
     "  --cache        table cache directory (default $ZENITH_CACHE_DIR, $XDG_CACHE_HOME/zenith, ~/.cache/zenith)\n"
     "  --device       GL device: auto (default), software (llvmpipe), hardware\n"
     "  --viewport     also time every output of a viewport config (configs/viewports/), with all\n"
@@ -244,6 +247,8 @@ Options parse_options(int argc, char** argv) {
       o.gbuffer_path = true;
     else if (a == "--no-sky-view")
       o.no_sky_view = true;
+    else if (a == "--general-tiles")
+      o.general_tiles = true;
     else if (a == "--fov") {
       o.planar_fov_deg = std::stod(value(i, a));
       if (!(o.planar_fov_deg > 0.0 && o.planar_fov_deg < 180.0))
@@ -565,6 +570,7 @@ int run(int argc, char** argv) {
     atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
   }
   if (opt.no_sky_view) atm_options.sky_view_table = body_options.sky_view_table = render::SkyViewTableUse::off;
+  if (opt.general_tiles) atm_options.tile_programs = render::TilePrograms::general;
   if (opt.star_placement) {
     if (!opt.stars || opt.star_twilight.show.empty())
       throw std::invalid_argument("--stars-placement needs --stars LIMIT and --stars-show SHOW");

@@ -200,6 +200,8 @@ render::Renderer& LocalFrameRenderer::renderer_for(std::uint32_t render_flags) {
     render::RenderOptions options = render::render_options_of(render_flags);
     options.colour = colour_;
     options.serial_compile = settings_.serial_compile;
+    // A cold start builds one tile program per shell, not one per tile kind (the same pixels).
+    options.tile_programs = render::TilePrograms::own_once_built;
     options.albedo_cache_directory = render::cache_directory_of(tables_);
     options.program_cache_directory = render::program_cache_directory_of(tables_);
     renderer_ = std::make_unique<render::Renderer>(

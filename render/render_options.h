@@ -33,6 +33,23 @@ enum class SkyViewTableUse {
   off,     ///< never: the 4D tables for every pixel (the reference the table is tested against)
 };
 
+/// Which program draws a list of one atmosphere's tiles (atmosphere_tile.comp,
+/// compiled for what the tiles can hold: render/frame/tile_classification.h).
+enum class TilePrograms {
+  own,  ///< each list's own program, built by the frame that first needs it
+  /// Where the renderer's programs build one at a time on a second thread
+  /// (llvmpipe: render/gl/program_builds.h), a shell's tiles draw with its
+  /// general program (general_tile_variant: one program for its ground,
+  /// horizon and sky tiles, the same pixels) until their kinds' own programs,
+  /// started after the first frame that lacked them, are built and their
+  /// first dispatches warmed: a cold start builds one program where it would
+  /// build three, and the frames meanwhile cost what the general program
+  /// costs. Elsewhere (a GPU driver compiles them at once on its own threads)
+  /// as `own`. What the commands' renderers use (offline shows, nodes, windows).
+  own_once_built,
+  general,  ///< always the general programs (their frame cost: render_bench --general-tiles; their pixels: tested)
+};
+
 /// How the band's output is zeroed on the tiles the sun's pass leaves black
 /// (RenderOptions::skip_hidden_sunlight).
 enum class UnlitTileZeroing {
@@ -103,6 +120,7 @@ struct RenderOptions {
   /// (shaders/render/zero_tiles.comp says why); either may be asked for.
   UnlitTileZeroing unlit_tile_zeroing = UnlitTileZeroing::automatic;
   SkyViewTableUse sky_view_table = SkyViewTableUse::automatic;
+  TilePrograms tile_programs = TilePrograms::own;
   /// Time every pass (GL_TIME_ELAPSED queries; CPU steps by the wall clock) into
   /// FrameStats::pass_ms. Serialises the frame: for profiling, not for frame times.
   bool time_passes = false;

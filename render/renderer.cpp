@@ -85,6 +85,7 @@ struct Renderer::Impl {
   FramePrograms frame_programs;  // gbuffer, resolve and direct light, per FrameVariant
   LiveVariants live_variants;    // RenderOptions::background_variant_builds
   int frames_held = 0;           // frames in a row drawn with a variant other than the one wanted
+  int general_tile_frames = 0;   // frames in a row some atmosphere's tiles drew with their general program
   RefractionCache refractions;   // the air's refraction at the camera: stars, the Moon, the Sun's disc
   NightSkyPass night_sky;        // stars, the night floor, light pollution (render/night/star_pass.h)
   MoonInShadow moon_shadow;      // the Earth's shadow on the Moon in a lunar eclipse
@@ -190,6 +191,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   choose_sky_view(frame);
   classify_bands(frame, timer);
   choose_variant(frame);
+  choose_tile_programs(frame);
   start_programs(frame);
   upload_tables(frame);
   fill_sky_view_tables(frame, timer);
@@ -201,6 +203,7 @@ void Renderer::render_frame(const scene::Scene& scene, const warp::Projection& p
   stats_.night_sky = impl_->night_sky.stats();
   stats_.moonlight = frame.moon() != nullptr;
   render_bands(frame, reader, output, timer);
+  build_tile_programs_ahead(frame);
   const gl::ProgramBuilds::Statistics& builds_after = im.builds->statistics();
   stats_.programs_built = builds_after.built - builds_before.built;
   stats_.programs_s = builds_after.seconds() - builds_before.seconds();
@@ -545,10 +548,83 @@ bool Renderer::variant_built(const Frame& frame, const FrameVariant& variant) co
     for (std::size_t a = 0; a < band.lists.size(); ++a) {
       const GpuAtmosphere* gpu = frame.passes[a].gpu;
       if (band.lists[a].gbuffer.count > 0 && !gpu->gbuffer_path_program_built(variant)) return false;
-      for (const auto& [tiles, list] : band.lists[a].one_pass)
-        if (!gpu->tile_program_built(variant, tiles, frame.passes[a].eclipse_sky)) return false;
     }
+  for (std::size_t a = 0; a < frame.passes.size(); ++a)
+    if (!own_tile_programs_built(frame, a, variant) &&
+        !(general_tiles_first() && general_tile_programs_built(frame, a, variant)))
+      return false;
   return true;
+}
+
+bool Renderer::general_tiles_first() const {
+  // The warm-up thread is made, where worthwhile, before the frame's first programs start.
+  return options_.tile_programs == TilePrograms::own_once_built && impl_->warmup != nullptr;
+}
+
+namespace {
+
+/// Whether the tile program of every one-pass list of atmosphere `a` in
+/// `frame`, its tiles' variant made into the one `kind` gives, is built for `variant`.
+template <typename Kind>
+bool tile_programs_built(const FrameInProgress& frame, std::size_t a, const FrameVariant& variant, Kind kind) {
+  const AtmospherePass& pass = frame.passes[a];
+  if (!pass.gpu) return true;  // outside the view: no tiles
+  for (const BandTiles& band : *frame.bands)
+    for (const auto& [tiles, list] : band.lists[a].one_pass)
+      if (!pass.gpu->tile_program_built(variant, kind(tiles), pass.eclipse_sky)) return false;
+  return true;
+}
+
+}  // namespace
+
+bool Renderer::own_tile_programs_built(const Frame& frame, std::size_t a, const FrameVariant& variant) const {
+  return tile_programs_built(frame, a, variant, [](const TileVariant& v) { return v; });
+}
+
+bool Renderer::general_tile_programs_built(const Frame& frame, std::size_t a, const FrameVariant& variant) const {
+  return tile_programs_built(frame, a, variant, general_tile_variant);
+}
+
+void Renderer::choose_tile_programs(Frame& frame) {
+  if (options_.tile_programs == TilePrograms::own) return;
+  const bool always = options_.tile_programs == TilePrograms::general;
+  if (!always && !general_tiles_first()) return;
+  // Own programs built ahead are warmed by the warm-up thread (build_tile_programs_ahead):
+  // drawn with before it is idle, a first dispatch would generate their code on this one.
+  gl::FirstDispatchWarmup* warmup = warmup_thread();
+  const bool warmed = warmup == nullptr || (warmup->idle() && gl::shader_cache_writes_done());
+  for (std::size_t a = 0; a < frame.passes.size(); ++a) {
+    AtmospherePass& pass = frame.passes[a];
+    const bool one_pass_tiles = std::any_of(frame.bands->begin(), frame.bands->end(),
+                                            [&](const BandTiles& band) { return !band.lists[a].one_pass.empty(); });
+    if (!pass.gpu || !one_pass_tiles) continue;
+    pass.general_tiles = always || !warmed || !own_tile_programs_built(frame, a, frame.variant);
+    if (pass.general_tiles) ++stats_.general_tile_atmospheres;
+  }
+  Impl& im = *impl_;
+  if (stats_.general_tile_atmospheres == 0 && im.general_tile_frames > 0)
+    spdlog::debug(
+        "the atmospheres' tiles draw with their own programs from now on, after {} frame{} with the general ones",
+        im.general_tile_frames, im.general_tile_frames == 1 ? "" : "s");
+  im.general_tile_frames = stats_.general_tile_atmospheres > 0 ? im.general_tile_frames + 1 : 0;
+}
+
+void Renderer::build_tile_programs_ahead(const Frame& frame) {
+  if (options_.tile_programs != TilePrograms::own_once_built) return;
+  const bool general = std::any_of(frame.passes.begin(), frame.passes.end(),
+                                   [](const AtmospherePass& pass) { return pass.general_tiles; });
+  if (!general) return;
+  // Started after the frame's bands, not with its programs: the warm-up
+  // thread takes builds before first dispatches, and this frame's come first.
+  for (std::size_t a = 0; a < frame.passes.size(); ++a) {
+    const AtmospherePass& pass = frame.passes[a];
+    if (!pass.general_tiles) continue;
+    for (const BandTiles& band : *frame.bands)
+      for (const auto& [tiles, list] : band.lists[a].one_pass)
+        pass.gpu->start_tile_program(frame.variant, tiles, pass.eclipse_sky, gl::BuildFor::a_later_frame);
+  }
+  Impl& im = *impl_;
+  im.builds->finish_ahead(warmup_thread(), dispatch_shapes(frame));
 }
 
 void Renderer::choose_variant(Frame& frame) {
@@ -606,7 +682,10 @@ void Renderer::start_variant_programs(const Frame& frame, const FrameVariant& va
       // its shadows build in the background): live, both are built, so that
       // no later frame builds one when it flips. Offline frames wait anyway.
       const bool flips = live_variants() && frame.occulter.shadow_on_the_air_of(frame.passes[a].body);
-      for (const auto& [tiles, list] : band.lists[a].one_pass) {
+      // Tiles drawn with the general programs: their own build after the frame (build_tile_programs_ahead).
+      const bool general = frame.passes[a].general_tiles && build_for == gl::BuildFor::this_frame;
+      for (const auto& [list_tiles, list] : band.lists[a].one_pass) {
+        const TileVariant tiles = general ? general_tile_variant(list_tiles) : list_tiles;
         gpu->start_tile_program(variant, tiles, frame.passes[a].eclipse_sky, build_for);
         if (flips) gpu->start_tile_program(variant, tiles, !frame.passes[a].eclipse_sky, build_for);
       }

@@ -107,6 +107,9 @@ struct FrameStats {
   /// Drawn with the program variant in use while the leaner one its scene
   /// allows builds on a second thread (RenderOptions::background_variant_builds).
   bool variant_held = false;
+  /// Atmospheres whose one-pass tiles drew with their general program while
+  /// their kinds' own programs build (RenderOptions::tile_programs).
+  int general_tile_atmospheres = 0;
   double seconds = 0.0;  ///< wall time of render(), readback included
   /// Of `seconds`: obtaining and uploading table sets (the TableSource's
   /// calls and the upload: the first frame with a set), and building programs
@@ -276,8 +279,24 @@ class Renderer {
   void start_variant_programs(const Frame& frame, const FrameVariant& variant, gl::BuildFor build_for);
   /// Those programs, built (all must be: variant_built).
   std::vector<const gl::ShaderProgram*> variant_programs(const Frame& frame, const FrameVariant& variant);
-  /// Whether every program `frame` would draw with in `variant` is built.
+  /// Whether every program `frame` would draw with in `variant` is built
+  /// (a shell's tiles: their own programs, or their general ones where those serve).
   bool variant_built(const Frame& frame, const FrameVariant& variant) const;
+  /// RenderOptions::tile_programs: whether tiles draw with their general
+  /// programs until their own are built (own_once_built, with a warm-up thread).
+  bool general_tiles_first() const;
+  /// Whether the programs of atmosphere `a`'s one-pass tile lists are built for
+  /// `variant`: each list's own, or the general ones (general_tile_variant).
+  bool own_tile_programs_built(const Frame& frame, std::size_t a, const FrameVariant& variant) const;
+  bool general_tile_programs_built(const Frame& frame, std::size_t a, const FrameVariant& variant) const;
+  /// Which atmospheres' tiles draw with their general programs this frame
+  /// (AtmospherePass::general_tiles, RenderOptions::tile_programs): those
+  /// whose own are not all built and warmed.
+  void choose_tile_programs(Frame& frame);
+  /// After the frame's bands: the own programs of the tiles that drew with
+  /// the general ones started for later frames, those ready finished and
+  /// their first dispatches queued on the warm-up thread.
+  void build_tile_programs_ahead(const Frame& frame);
   /// How this frame's passes will bind textures and images (render/gl/first_dispatch_warmup.h).
   gl::DispatchShapes dispatch_shapes(const Frame& frame) const;
   /// The sky-view table of each atmosphere choose_sky_view chose (the sun's;

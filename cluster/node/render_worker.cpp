@@ -230,6 +230,8 @@ void RenderWorker::ensure_renderer(std::uint32_t flags) {
   // on (render/frame/eclipse_sky_table.h, render/frame/live_variants.h).
   render_options.background_shadow_builds = true;
   render_options.background_variant_builds = true;
+  // A restarted node builds one tile program per shell, not one per tile kind (the same pixels).
+  render_options.tile_programs = render::TilePrograms::own_once_built;
   render_options.albedo_cache_directory = options.cache_directory;
   if (!options.cache_directory.empty()) render_options.program_cache_directory = options.cache_directory / "programs";
   renderer_ =

@@ -57,7 +57,10 @@ void draw_one_pass_tiles(FrameInProgress& frame, BandResources& resources, const
         }
         // The Moon's shadow on the sun's sky (render/frame/eclipse_sky_table.h).
         const bool eclipse_sky = light.is_sun() && pass.eclipse_sky;
-        const ShaderProgram& p = pass.gpu->tile_program(frame.variant, variant, eclipse_sky);
+        // Until the tiles' own program is built, their kind's general one: the same pixels.
+        const bool general = light.is_sun() && pass.general_tiles;
+        const ShaderProgram& p =
+            pass.gpu->tile_program(frame.variant, general ? general_tile_variant(variant) : variant, eclipse_sky);
         frame.set_group_uniforms(p, g, light);
         pass.gpu->set_group(p, g);
         if (eclipse_sky) {

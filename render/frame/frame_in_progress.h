@@ -36,6 +36,7 @@ struct AtmospherePass {
   bool moonlit = false;        // the Moon lights it this frame (render/night/moon_light.h)
   bool moon_sky_view = false;  // and the Moon's sky-view table is filled too
   bool eclipse_sky = false;    // the Moon's shadow lies on its air: the sun's one-pass tiles read the eclipse-sky table
+  bool general_tiles = false;  // the sun's one-pass tiles draw with the general programs (RenderOptions::tile_programs)
 };
 
 /// A light of the atmosphere passes: the scene's sun, or the Moon

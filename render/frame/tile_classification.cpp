@@ -12,6 +12,11 @@ int TileVariant::key() const {
   return (sky_view ? 1 : 0) | static_cast<int>(ground) << 1 | others << 3 | (sun ? 1 : 0) << 5;
 }
 
+TileVariant general_tile_variant(TileVariant v) {
+  v.ground = TileCover::some;
+  return v;
+}
+
 std::vector<std::size_t> bodies_inside_shell(const scene::Scene& scene, const ShellInView& shell) {
   std::vector<std::size_t> inside;
   const glm::dvec3 centre = scene.bodies[static_cast<std::size_t>(shell.body)].position_m;

@@ -23,7 +23,8 @@
 // can hold (render/renderer.cpp decides per tile from the tiles' cones): Mesa's
 // llvmpipe, 8 pixels per SIMD vector, runs the code of every branch for every
 // pixel even where no pixel takes it, so what a tile cannot hold must not be
-// in its program.
+// in its program. (A cold start draws every kind with TILE_GROUND 2, the same
+// pixels, until the kinds' own are built: RenderOptions::tile_programs.)
 //   TILE_GROUND  0: no ray meets this planet; 1: every ray does; 2: some
 //   TILE_OTHERS  0: no other body; 1: other bodies, all beyond the shell
 //                (seen through it); 2: one may be inside the shell (aerial

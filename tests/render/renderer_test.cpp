@@ -1688,6 +1688,82 @@ TEST(RendererPrograms, WarmingFirstDispatchesOnASecondThreadChangesNoPixel) {
   EXPECT_EQ(warmed.renderer.render_image(s, p), image) << "the second frame, every program warmed or dispatched";
 }
 
+/// A shell's ground, horizon and sky tiles drawn with one general program
+/// (general_tile_variant: RenderOptions::tile_programs) are the same bits as
+/// drawn with each kind's own: the code a kind's program leaves out runs for
+/// no pixel of its tiles. From the ground with and without the sky-view
+/// table, with the sun's disc; from space, with a moon beyond the shell; and
+/// in totality (the eclipse-sky table's tiles).
+TEST(RendererPrograms, TheGeneralTileProgramsDrawTheSameBitsAsEachKindsOwn) {
+  struct Case {
+    const char* name;
+    scene::Scene scene;
+    SkyViewTableUse sky_view;
+  };
+  const double R = SmallTables::get("earth-advanced").model.ground_radius_m;
+  scene::Scene from_space = planet_scene("earth-advanced", 1.5 * R, 60.0, {0.3, 0.0, -1.0});
+  scene::Body moon = from_space.bodies[0];
+  moon.name = "moon";
+  moon.atmosphere.reset();
+  moon.radius_m = 1.7374e6;
+  moon.position_m = {-0.4 * R, 0.0, -3.0 * R};  // beyond the planet's shell, in the tiles around its limb
+  from_space.bodies.push_back(moon);
+  const std::vector<Case> cases = {
+      {"the ground, the sun's disc, 4D tables", planet_scene("earth-advanced", 2.0, 85.0, {1, 0, 0.1}),
+       SkyViewTableUse::off},
+      {"the ground, the sky-view table", planet_scene("earth-advanced", 2.0, 85.0, {1, 0, 0.1}),
+       SkyViewTableUse::always},
+      {"from space, a moon beyond the shell", from_space, SkyViewTableUse::automatic},
+      {"totality", eclipse_scene(astro::UtcTime{2017, 8, 21, 18, 25, 30.0}), SkyViewTableUse::automatic},
+  };
+  const warp::FisheyeProjection p(64, 64, warp::FisheyeParameters{});
+  int fewer_programs = 0;
+  for (const Case& c : cases) {
+    RenderOptions own = direct_colour(), general = direct_colour();
+    general.tile_programs = TilePrograms::general;
+    own.sky_view_table = general.sky_view_table = c.sky_view;
+    TestRenderer a(own), b(general);
+    const std::vector<float> expected = a.renderer.render_image(c.scene, p);
+    const std::vector<float> image = b.renderer.render_image(c.scene, p);
+    EXPECT_EQ(a.renderer.last_frame().general_tile_atmospheres, 0) << c.name;
+    EXPECT_EQ(b.renderer.last_frame().general_tile_atmospheres, 1) << c.name;
+    EXPECT_GE(a.renderer.last_frame().programs_built, b.renderer.last_frame().programs_built) << c.name;
+    fewer_programs += a.renderer.last_frame().programs_built - b.renderer.last_frame().programs_built;
+    EXPECT_EQ(image, expected) << c.name;
+  }
+  EXPECT_GT(fewer_programs, 0) << "the general programs stand for several kinds' own";
+}
+
+/// A renderer whose programs build one at a time on the warm-up thread
+/// (llvmpipe) draws a cold start's tiles with the general program, one build
+/// where each kind would need its own, then its later frames with the kinds'
+/// own programs once built and warmed on that thread; no frame builds a
+/// program for it, and every frame is the same bits.
+TEST(RendererPrograms, AColdStartDrawsItsTilesWithTheGeneralProgramUntilTheirOwnAreBuilt) {
+  context();
+  const scene::Scene s = planet_scene("earth-advanced", 2.0, 85.0, {1, 0, 0.1});
+  const warp::FisheyeProjection p(64, 64, warp::FisheyeParameters{});
+  RenderOptions once_built = direct_colour();
+  once_built.tile_programs = TilePrograms::own_once_built;
+  TestRenderer own, t(once_built);
+  const std::vector<float> expected = own.renderer.render_image(s, p);
+  if (!gl::first_dispatch_warmup_worthwhile()) GTEST_SKIP() << "no warm-up thread on this driver: each kind's own";
+  std::vector<float> image = t.renderer.render_image(s, p);
+  EXPECT_EQ(image, expected);
+  ASSERT_EQ(t.renderer.last_frame().general_tile_atmospheres, 1);
+  EXPECT_LT(t.renderer.last_frame().programs_built, own.renderer.last_frame().programs_built)
+      << "one tile program where the kinds (ground, horizon, sky, the sun's) have their own";
+  int frames = 1;
+  for (; frames < 400 && t.renderer.last_frame().general_tile_atmospheres > 0; ++frames) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    image = t.renderer.render_image(s, p);
+    EXPECT_EQ(t.renderer.last_frame().programs_built, 0) << "frame " << frames << " built a program";
+    EXPECT_EQ(image, expected) << "frame " << frames;
+  }
+  ASSERT_EQ(t.renderer.last_frame().general_tile_atmospheres, 0) << "still the general program after 400 frames";
+  std::printf("the tiles' own programs drawn from frame %d on\n", frames);
+}
+
 TEST(RendererSkipping, AnAtmosphereOutsideTheViewCostsNothing) {
   TestRenderer t;
   // 1000 km above the pole, looking straight up: the planet is behind the camera.
