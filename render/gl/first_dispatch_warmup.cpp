@@ -259,7 +259,7 @@ struct FirstDispatchWarmup::State {
   std::mutex mutex;
   std::condition_variable changed;
   std::deque<Job> queue;
-  std::deque<std::function<void()>> builds;  // build(): before the queue's dispatches
+  std::deque<std::function<bool()>> builds;  // build(): before the queue's dispatches; false: taken back
   std::vector<Job> ever_queued;              // what warm() was given, for its one-time rule
   unsigned in_hand = 0;                      // the program the thread is dispatching; 0: none
   bool building = false;                     // the thread is running a build()
@@ -303,17 +303,20 @@ struct FirstDispatchWarmup::State {
         changed.wait(lock, [&] { return stop || !queue.empty() || !builds.empty(); });
         if (stop) break;
         if (!builds.empty()) {
-          const std::function<void()> build = std::move(builds.front());
+          const std::function<bool()> build = std::move(builds.front());
           builds.pop_front();
           building = true;
           lock.unlock();
           const auto start = std::chrono::steady_clock::now();
-          build();
+          const bool built = build();
           const double seconds = seconds_since(start);
           lock.lock();
           building = false;
-          ++statistics.built;
-          statistics.build_s += seconds;
+          if (built) {
+            ++statistics.built;
+            statistics.build_s += seconds;
+          }
+          changed.notify_all();
           continue;
         }
         const Job job = std::move(queue.front());
@@ -360,10 +363,12 @@ FirstDispatchWarmup::~FirstDispatchWarmup() {
   thread_.join();
 }
 
-std::future<ShaderProgram> FirstDispatchWarmup::build(std::function<ShaderProgram()> build) {
+FirstDispatchWarmup::QueuedBuild FirstDispatchWarmup::build(std::function<ShaderProgram()> build) {
   auto program = std::make_shared<std::promise<ShaderProgram>>();  // dropped unset: broken_promise
-  std::future<ShaderProgram> result = program->get_future();
-  std::function<void()> task = [build = std::move(build), program] {
+  QueuedBuild result;
+  result.program = program->get_future();
+  std::function<bool()> task = [build = std::move(build), program, begun = result.begun_] {
+    if (begun->exchange(true)) return false;  // taken back: the caller builds it
     try {
       ShaderProgram built = build();
       glFinish();  // the link complete before the renderer's context uses the program
@@ -371,6 +376,7 @@ std::future<ShaderProgram> FirstDispatchWarmup::build(std::function<ShaderProgra
     } catch (...) {
       program->set_exception(std::current_exception());
     }
+    return true;
   };
   {
     std::lock_guard lock(state_->mutex);

@@ -29,6 +29,7 @@
 //
 // Only where it helps (first_dispatch_warmup_worthwhile): llvmpipe with its
 // shader cache on. A GPU driver compiles at link time (render/gl/program_builds.h).
+#include <atomic>
 #include <functional>
 #include <future>
 #include <map>
@@ -82,20 +83,35 @@ class FirstDispatchWarmup {
   /// blending, depth, scissor or sRGB): the display pass's fragment code,
   /// which llvmpipe keys by the target's format as well.
   void warm_draw(ShaderProgram& program, const DispatchShapes& shapes, TextureFormat target);
+  /// A build queued on the thread (build()).
+  class QueuedBuild {
+   public:
+    /// The program, or what the build threw; std::future_error
+    /// (broken_promise) where the build was dropped or taken back.
+    std::future<ShaderProgram> program;
+    /// Claims the build for the caller where the thread has not begun it:
+    /// then it never will, and the caller builds the program itself (a
+    /// thread that would otherwise wait for it). False: the thread has it.
+    bool take_back() { return !begun_->exchange(true); }
+
+   private:
+    friend class FirstDispatchWarmup;
+    std::shared_ptr<std::atomic<bool>> begun_ = std::make_shared<std::atomic<bool>>(false);
+  };
   /// Runs `build` (a program's compile and link: ShaderBuild's start and
   /// finish) on the thread, before any first dispatch still queued; the
   /// program, or what `build` threw, comes back through the future, complete
   /// for every context (glFinish after the link). `build` must own what it
   /// reads. A build still queued when this object goes is dropped (the
   /// future then holds std::future_error, broken_promise).
-  std::future<ShaderProgram> build(std::function<ShaderProgram()> build);
+  QueuedBuild build(std::function<ShaderProgram()> build);
 
   /// Whether the thread has nothing left to do: every program queued so far
   /// is warmed (or was taken back) and every build queued is done.
   bool idle() const;
 
   struct Statistics {
-    int built = 0;         ///< programs built on the thread (build())
+    int built = 0;         ///< programs built on the thread (build(); not those taken back)
     double build_s = 0.0;  ///< the thread, building
     int queued = 0;
     int warmed = 0;       ///< dispatched on the thread (their code in Mesa's cache)

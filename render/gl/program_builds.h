@@ -26,13 +26,13 @@
 #include <variant>
 #include <vector>
 
+#include "render/gl/first_dispatch_warmup.h"
 #include "render/gl/shader_build.h"
 #include "render/gl/shader_program.h"
 
 namespace zenith::render::gl {
 
-class ProgramBinaryCache;   // render/gl/program_binary_cache.h
-class FirstDispatchWarmup;  // render/gl/first_dispatch_warmup.h
+class ProgramBinaryCache;  // render/gl/program_binary_cache.h
 struct DispatchShapes;
 
 /// Which frame waits for a build: the one being drawn (its programs), or a
@@ -107,16 +107,19 @@ class ProgramBuilds {
   struct Statistics {
     int built = 0;            ///< programs finished
     int built_on_thread = 0;  ///< of them, built on build_on's thread
-    int built_ahead = 0;      ///< besides them, built for later frames (finish_ahead)
-    int most_in_flight = 0;   ///< builds started and not yet finished, at most
-    double start_s = 0.0;     ///< in the start calls (giving the texts to the driver)
-    double wait_s = 0.0;      ///< in finish(): waiting for the driver, checking, storing binaries
+    /// Of them, taken back from that thread before it began them and built
+    /// here, where finishing would otherwise have waited.
+    int built_while_waiting = 0;
+    int built_ahead = 0;     ///< besides them, built for later frames (finish_ahead)
+    int most_in_flight = 0;  ///< builds started and not yet finished, at most
+    double start_s = 0.0;    ///< in the start calls (giving the texts to the driver)
+    double wait_s = 0.0;     ///< in finish(): waiting for the driver, checking, storing binaries
     double seconds() const { return start_s + wait_s; }
   };
   const Statistics& statistics() const { return statistics_; }
   /// "11 programs, 2.310 s building them (0.120 s starting, 2.190 s waiting),
   /// at most 11 at once on the driver's compiler threads (parallel shader compile)"
-  /// (or "…, 9 of them compiled on a second thread, one at a time (…)"),
+  /// (or "…, 6 of them compiled on a second thread, one at a time, 3 here while waiting for it (…)"),
   /// and with a binary cache "; binaries: 11 of 11 loaded, 0 stored, 0 refused (DIR)".
   std::string summary() const;
 
@@ -126,7 +129,7 @@ class ProgramBuilds {
   /// instead where the thread dropped it (it went before reaching it, or its
   /// context could not be made current).
   struct OnThread {
-    std::future<ShaderProgram> program;
+    FirstDispatchWarmup::QueuedBuild queued;
     Starter starter;
   };
   using Pending = std::variant<ShaderBuild, OnThread>;
