@@ -49,7 +49,7 @@ inline constexpr std::size_t kVariantKeys = 64;
 /// The variant whose program draws `v`'s tiles too, with the same pixels: the
 /// ground in some of each tile (TILE_GROUND 2), whose program tests every ray
 /// against the planet and then computes what `v`'s program computes for it —
-/// the code `v`'s leaves out runs for no pixel. One program for a shell's
+/// no pixel of `v`'s tiles takes the code `v`'s leaves out. One program for a shell's
 /// ground, horizon and sky tiles: fewer builds where a start builds them one
 /// at a time (RenderOptions::tile_programs), at the cost of running that
 /// code's masked lanes (docs/shows.md, "One tile program at the start").

@@ -90,8 +90,8 @@ class FirstDispatchWarmup {
     /// (broken_promise) where the build was dropped or taken back.
     std::future<ShaderProgram> program;
     /// Claims the build for the caller where the thread has not begun it:
-    /// then it never will, and the caller builds the program itself (a
-    /// thread that would otherwise wait for it). False: the thread has it.
+    /// then it never will, and the caller, which would otherwise wait for
+    /// it, builds the program itself. False: the thread has it.
     bool take_back() { return !begun_->exchange(true); }
 
    private:

@@ -156,7 +156,7 @@ std::string ProgramBuilds::summary() const {
   if (s.built_on_thread > 0 && threads_.size() > 1)
     how = fmt::format("{} of them compiled on {} threads of their own, a context each", s.built_on_thread,
                       threads_.size());
-  else if (s.built_on_thread > 0)
+  else if (s.built_on_thread + s.built_while_waiting > 0)
     how = fmt::format(
         "{} of them compiled on a second thread, one at a time, {} here while waiting for it (the driver compiles "
         "in the calling thread)",
