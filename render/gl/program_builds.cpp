@@ -65,18 +65,18 @@ ShaderProgram ProgramBuilds::finish(Pending& build) {
   // Queued behind others on the one thread and not begun there yet: built
   // here rather than waited for, while the thread builds the others (two
   // cores compile instead of one). A thread per build begins at once.
-  if (threads_.size() == 1 && there.queued.take_back()) {
-    ShaderProgram program = timed_start(there.starter).finish();
-    ++statistics_.built_while_waiting;
-    return program;
+  const bool taken_back = threads_.size() == 1 && there.queued.take_back();
+  if (!taken_back) {
+    try {
+      ShaderProgram program = there.queued.program.get();
+      ++statistics_.built_on_thread;
+      return program;
+    } catch (const std::future_error&) {  // dropped by the thread: built here
+    }
   }
-  try {
-    ShaderProgram program = there.queued.program.get();
-    ++statistics_.built_on_thread;
-    return program;
-  } catch (const std::future_error&) {  // dropped by the thread: built here
-    return timed_start(there.starter).finish();
-  }
+  ShaderProgram program = timed_start(there.starter).finish();
+  if (taken_back) ++statistics_.built_while_waiting;
+  return program;
 }
 
 bool ProgramBuilds::ready(const Pending& build) {
