@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -403,6 +405,28 @@ gl::ProgramBuilds::Starter pattern_starter(const ExpandedShader& pattern, std::s
   };
 }
 
+/// A starter that says when it is called (on the build thread, where that
+/// thread begins the build) and, where asked, holds the build there until
+/// the test lets it go: the tests below order the two threads by these
+/// signals, never by sleeping, so a loaded machine cannot reorder them.
+struct BuildSignals {
+  std::atomic<bool> called{false};
+  std::promise<void> begun;
+  std::shared_future<void> begun_future = begun.get_future().share();
+  std::promise<void> release;
+  std::shared_future<void> release_future = release.get_future().share();
+
+  gl::ProgramBuilds::Starter signalling(gl::ProgramBuilds::Starter starter, bool held) {
+    return [this, starter = std::move(starter), held] {
+      if (!called.exchange(true)) begun.set_value();
+      // Bounded: a test that fails before letting it go does not hang the thread.
+      if (held) release_future.wait_for(std::chrono::seconds(20));
+      return starter();
+    };
+  }
+  bool wait_begun() const { return begun_future.wait_for(std::chrono::seconds(20)) == std::future_status::ready; }
+};
+
 /// render/gl/shader_build.h: builds started together (on the driver's
 /// threads where it has GL_KHR_parallel_shader_compile), finished later, in
 /// any order; each is the program ShaderProgram::compute makes.
@@ -547,11 +571,13 @@ TEST_F(GlTest, ProgramBuildsOnASecondThreadGiveTheSameProgramsAndErrors) {
 
   gl::ProgramBuilds builds(gl::CompileMode::parallel);
   {
+    BuildSignals one;
     gl::FirstDispatchWarmup thread;
     builds.build_on(&thread);
-    builds.start("one", starter("1.0"));
+    builds.start("one", one.signalling(starter("1.0"), false));
     builds.start("two", starter("2.0"));
     builds.start("broken", broken_starter);
+    ASSERT_TRUE(one.wait_begun()) << "the thread began no build in 20 s";
     expect_floats_near(run_pattern(builds.get("two", {}), 4, 2, 2), expected_pattern(4, 2, 2, 2.0f), 1e-6f);
     expect_floats_near(run_pattern(builds.get("one", {}), 4, 2, 2), expected_pattern(4, 2, 2), 1e-6f);
     try {
@@ -563,7 +589,7 @@ TEST_F(GlTest, ProgramBuildsOnASecondThreadGiveTheSameProgramsAndErrors) {
     // A build the thread had not begun when asked for is taken back and built here (usually "two",
     // queued behind "one"); the others the thread built.
     EXPECT_EQ(builds.statistics().built_on_thread + builds.statistics().built_while_waiting, 2);
-    EXPECT_GT(builds.statistics().built_on_thread, 0) << "\"one\", begun at once";
+    EXPECT_GT(builds.statistics().built_on_thread, 0) << "\"one\", begun there before it was asked for";
     // The thread counts a build once it returns, after the program went back through its future: those
     // it built, and the broken one where it began it before it was asked for.
     for (int k = 0; k < 400 && !thread.idle(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -579,16 +605,16 @@ TEST_F(GlTest, ProgramBuildsOnASecondThreadGiveTheSameProgramsAndErrors) {
     builds.build_on(nullptr);
   }
   {  // the thread held up by a slow build: the one queued behind it, asked for, is built here meanwhile
+    BuildSignals slow;
     gl::FirstDispatchWarmup thread;
     builds.build_on(&thread);
     const int here_before = builds.statistics().built_while_waiting;
-    builds.start("slow", [slow = starter("9.0")] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(500));
-      return slow();
-    });
+    builds.start("slow", slow.signalling(starter("9.0"), true));
     builds.start("queued", starter("10.0"));
+    ASSERT_TRUE(slow.wait_begun()) << "the thread began no build in 20 s";
     expect_floats_near(run_pattern(builds.get("queued", {}), 4, 2, 2), expected_pattern(4, 2, 2, 10.0f), 1e-6f);
     EXPECT_EQ(builds.statistics().built_while_waiting, here_before + 1);
+    slow.release.set_value();
     expect_floats_near(run_pattern(builds.get("slow", {}), 4, 2, 2), expected_pattern(4, 2, 2, 9.0f), 1e-6f);
     EXPECT_EQ(builds.statistics().built_while_waiting, here_before + 1) << "the slow one was begun there";
     builds.build_on(nullptr);
