@@ -16,7 +16,10 @@ constexpr double kDay_s = 86400.0;
 struct Sample {
   SolarEclipseView view;
   double sun_altitude_rad = 0.0;
+  /// > 0 where the discs overlap (first to last contact).
   double overlap() const { return view.sun_radius_rad + view.moon_radius_rad - view.separation_rad; }
+  /// > 0 where one disc lies wholly over or inside the other (second to third contact).
+  double nested() const { return std::abs(view.sun_radius_rad - view.moon_radius_rad) - view.separation_rad; }
 };
 
 class Search {
@@ -48,12 +51,12 @@ class Search {
     return 0.5 * (lo + hi);
   }
 
-  /// The instant in [a, b] where the discs start (or stop) touching, to a second;
-  /// `touching_at_b`: whether they overlap at b.
-  double contact(double a, double b, bool touching_at_b) const {
+  /// The instant in [a, b] where `measure` (Sample::overlap or Sample::nested)
+  /// changes sign, to a second; `positive_at_b`: its sign at b.
+  double contact(double a, double b, bool positive_at_b, double (Sample::*measure)() const) const {
     while (b - a > 1.0) {
       const double m = 0.5 * (a + b);
-      ((at(m).overlap() > 0.0) == touching_at_b ? b : a) = m;
+      (((at(m).*measure)() > 0.0) == positive_at_b ? b : a) = m;
     }
     return 0.5 * (a + b);
   }
@@ -83,7 +86,8 @@ std::optional<LocalSolarEclipse> next_solar_eclipse(const Site& site, const Astr
     const double t_min = search.least_separation(double(k - 1) * kDay_s, double(k + 1) * kDay_s);
     if (search.at(t_min).overlap() <= 0.0) continue;  // the Moon passes by the Sun
     const double hours4 = 4.0 * 3600.0;
-    const double c1 = search.contact(t_min - hours4, t_min, true), c4 = search.contact(t_min, t_min + hours4, false);
+    const double c1 = search.contact(t_min - hours4, t_min, true, &Sample::overlap),
+                 c4 = search.contact(t_min, t_min + hours4, false, &Sample::overlap);
     if (c4 <= from_s) continue;  // over before `from`
     // Seen where the Sun is up between the contacts: the least separation then.
     std::optional<double> maximum;
@@ -97,8 +101,16 @@ std::optional<LocalSolarEclipse> next_solar_eclipse(const Site& site, const Astr
     const Sample up = search.at(t_min);
     const double t_max = up.sun_altitude_rad > 0.0 ? t_min : *maximum;
     const Sample at_max = search.at(t_max);
-    return LocalSolarEclipse{search.time(t_max), at_max.view, search.time(c1), search.time(c4),
-                             at_max.sun_altitude_rad / core::kDeg};
+    LocalSolarEclipse eclipse{
+        search.time(t_max), at_max.view, search.time(c1), search.time(c4), at_max.sun_altitude_rad / core::kDeg,
+        std::nullopt,       std::nullopt};
+    // Totality or annularity lasts at most 12.5 minutes: an hour either side brackets it.
+    if (search.at(t_min).nested() > 0.0) {
+      const double hour = 3600.0;
+      eclipse.second_contact = search.time(search.contact(t_min - hour, t_min, true, &Sample::nested));
+      eclipse.third_contact = search.time(search.contact(t_min, t_min + hour, false, &Sample::nested));
+    }
+    return eclipse;
   }
   return std::nullopt;
 }

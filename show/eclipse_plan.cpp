@@ -43,11 +43,18 @@ std::optional<EclipsePlan> plan_eclipses(const Show& show) {
 std::string describe(const EclipsePlan& p) {
   const std::string where = fmt::format("{:.4f}°, {:.4f}°", p.site.latitude_deg, p.site.longitude_deg);
   const auto about = [](const astro::LocalSolarEclipse& e) {
-    return fmt::format(
+    std::string text = fmt::format(
         "{} solar eclipse, maximum {} (magnitude {:.3f}, {:.1f} % of the disc covered, the Sun "
         "{:.1f}° up), contacts {} – {}",
         astro::to_string(e.at_maximum.kind), utc(e.maximum), e.at_maximum.magnitude, 100.0 * e.at_maximum.obscuration,
         e.sun_altitude_deg, utc(e.first_contact), utc(e.last_contact));
+    if (e.second_contact) {
+      const bool covered = e.at_maximum.moon_radius_rad >= e.at_maximum.sun_radius_rad;
+      const long seconds = std::lround((e.third_contact->utc().value() - e.second_contact->utc().value()) * 86400.0);
+      text += fmt::format(", {} {} – {} ({} min {:02d} s)", covered ? "totality" : "annularity", utc(*e.second_contact),
+                          utc(*e.third_contact), seconds / 60, seconds % 60);
+    }
+    return text;
   };
   std::string out;
   if (p.during_show()) {
