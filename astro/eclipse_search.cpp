@@ -101,9 +101,8 @@ std::optional<LocalSolarEclipse> next_solar_eclipse(const Site& site, const Astr
     const Sample up = search.at(t_min);
     const double t_max = up.sun_altitude_rad > 0.0 ? t_min : *maximum;
     const Sample at_max = search.at(t_max);
-    LocalSolarEclipse eclipse{
-        search.time(t_max), at_max.view, search.time(c1), search.time(c4), at_max.sun_altitude_rad / core::kDeg,
-        std::nullopt,       std::nullopt};
+    LocalSolarEclipse eclipse{search.time(t_max), at_max.view, search.time(c1), search.time(c4),
+                              at_max.sun_altitude_rad / core::kDeg};
     // Totality or annularity lasts at most 12.5 minutes: an hour either side brackets it.
     if (search.at(t_min).nested() > 0.0) {
       const double hour = 3600.0;

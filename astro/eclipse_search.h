@@ -10,10 +10,11 @@
 //      section to a second (one minimum: the Moon gains 0.5° an hour on the
 //      Sun, the diurnal parallax moves it 0.08° an hour);
 //   3. where σ < r_sun + r_moon there is an eclipse at the site: its contacts
-//      (σ = r_sun + r_moon, and σ = |r_sun − r_moon| around the least σ where
-//      it falls below that: totality or annularity) by bisection; it is seen if the Sun is above the
-//      geometric horizon at some time between them (sampled every minute),
-//      and its maximum is the least σ while the Sun is up.
+//      by bisection — first and last at σ = r_sun + r_moon, second and third
+//      at σ = |r_sun − r_moon| where the least σ falls below that (totality
+//      or annularity); it is seen if the Sun is above the geometric horizon
+//      at some time between the first and last (sampled every minute), and
+//      its maximum is the least σ while the Sun is up.
 //
 // Tested against NASA's Five Millennium Canon (Espenak & Meeus) for 2017,
 // 2023, 2026 and 2027 (tests/astro/eclipse_search_test.cpp).
@@ -34,7 +35,7 @@ struct LocalSolarEclipse {
   /// σ = |r_sun − r_moon|: where the Moon's disc comes to lie wholly over the
   /// Sun's (totality) or wholly inside it (annularity), and where that ends;
   /// absent where the site sees only a partial eclipse (the Sun may be down at either).
-  std::optional<AstroTime> second_contact, third_contact;
+  std::optional<AstroTime> second_contact = std::nullopt, third_contact = std::nullopt;
 };
 
 /// The first solar eclipse `site` sees that has not ended at `from` (one in
