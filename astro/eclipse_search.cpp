@@ -84,7 +84,8 @@ std::optional<LocalSolarEclipse> next_solar_eclipse(const Site& site, const Astr
     // latitude, 1° of parallax).
     if (!(daily[k] <= daily[k - 1] && daily[k] < daily[k + 1]) || daily[k] > 15.0 * core::kDeg) continue;
     const double t_min = search.least_separation(double(k - 1) * kDay_s, double(k + 1) * kDay_s);
-    if (search.at(t_min).overlap() <= 0.0) continue;  // the Moon passes by the Sun
+    const Sample nearest = search.at(t_min);
+    if (nearest.overlap() <= 0.0) continue;  // the Moon passes by the Sun
     const double hours4 = 4.0 * 3600.0;
     const double c1 = search.contact(t_min - hours4, t_min, true, &Sample::overlap),
                  c4 = search.contact(t_min, t_min + hours4, false, &Sample::overlap);
@@ -98,13 +99,12 @@ std::optional<LocalSolarEclipse> next_solar_eclipse(const Site& site, const Astr
       if (!maximum || s.view.separation_rad < least) maximum = t, least = s.view.separation_rad;
     }
     if (!maximum) continue;  // the Sun is down throughout
-    const Sample up = search.at(t_min);
-    const double t_max = up.sun_altitude_rad > 0.0 ? t_min : *maximum;
+    const double t_max = nearest.sun_altitude_rad > 0.0 ? t_min : *maximum;
     const Sample at_max = search.at(t_max);
     LocalSolarEclipse eclipse{search.time(t_max), at_max.view, search.time(c1), search.time(c4),
                               at_max.sun_altitude_rad / core::kDeg};
     // Totality or annularity lasts at most 12.5 minutes: an hour either side brackets it.
-    if (search.at(t_min).nested() > 0.0) {
+    if (nearest.nested() > 0.0) {
       const double hour = 3600.0;
       eclipse.second_contact = search.time(search.contact(t_min - hour, t_min, true, &Sample::nested));
       eclipse.third_contact = search.time(search.contact(t_min, t_min + hour, false, &Sample::nested));
