@@ -1,0 +1,98 @@
+"""What the eclipse studies (scripts/eclipse-colour, scripts/eclipse-zenith-shift) share.
+
+Standard library only; each function runs the `zenith` binary it is given.
+
+* Where a total eclipse is: `total_eclipse_maximum` asks `zenith show plan`
+  whether a place sees totality on a day, and when its maximum is there;
+  `central_line` finds, at one longitude, the latitude midway between the
+  path's edges (where the plan stops finding totality).
+* What an instrument would have measured: `implied_temperatures` multiplies a
+  measured day sky (a Planck curve) by the model's eclipse ratio R(λ), the
+  zenith with the Moon over the zenith without it, and fits each product with
+  `zenith colour` — the same fit `zenith sample --colour` gives the model's
+  own sky (image/colour.h).
+"""
+import csv
+import io
+import json
+import math
+import re
+import subprocess
+
+C2_NM_K = 1.438776877e7  # second radiation constant hc/k [nm K]
+
+
+def planck(wavelength_nm, temperature_K):
+    """Planck's spectral radiance up to a constant factor: λ⁻⁵ / (exp(c₂ / λT) − 1)."""
+    return wavelength_nm ** -5 / math.expm1(C2_NM_K / (wavelength_nm * temperature_K))
+
+
+def read_spectrum(path):
+    """The first row of a `zenith sample` CSV: its wavelengths [nm], relative radiances and the row itself."""
+    row = next(csv.DictReader(open(path)))
+    wavelengths = [int(k[len("L_rel_"):-len("nm_per_sr")]) for k in row if k.startswith("L_rel_")]
+    return wavelengths, [float(row[f"L_rel_{w}nm_per_sr"]) for w in wavelengths], row
+
+
+def kelvin(cell):
+    """A temperature as `zenith colour` and `zenith sample --colour` write it, in whole kelvins, or inf."""
+    return cell if cell == "inf" else f"{float(cell):.0f}"
+
+
+def implied_temperatures(zenith, path, wavelengths, ratios, day_temperature_K, band_nm):
+    """For each R(λ) in ratios, the effective blackbody temperature over band_nm (first, last) of a day sky that
+    is a day_temperature_K Planck curve times R — what its observer would have measured at totality if the model
+    were the sky. The spectra go to path (one column each) for `zenith colour`."""
+    with open(path, "w") as f:
+        f.write("wavelength_nm," + ",".join(f"case{k}" for k in range(len(ratios))) + "\n")
+        for i, w in enumerate(wavelengths):
+            f.write(f"{w}," + ",".join(f"{planck(w, day_temperature_K) * 1e15 * r[i]:.9g}" for r in ratios) + "\n")
+    fitted = subprocess.run([zenith, "colour", "--spectrum", path, "--band-nm", f"{band_nm[0]},{band_nm[1]}"],
+                            check=True, capture_output=True, text=True).stdout
+    by_column = {r["column"]: r["T_eff_K"] for r in csv.DictReader(io.StringIO(fitted))}
+    return [kelvin(by_column[f"case{k}"]) for k in range(len(ratios))]
+
+
+def total_eclipse_maximum(zenith, out, date, latitude_deg, longitude_deg):
+    """The moment of maximum (ISO 8601, UTC) of a total solar eclipse seen from this sea-level place on this day,
+    from `zenith show plan`; None where the eclipse there is partial or there is none. Writes a scene and a show
+    into the folder out."""
+    scene = json.load(open("configs/scenes/earth-eclipse-2027-luxor.json"))
+    scene["time"] = f"{date}T00:00:00Z"
+    scene["site"] = {"latitude_deg": latitude_deg, "longitude_deg": longitude_deg, "altitude_m": 0}
+    scene["camera"]["surface"].update({"latitude_deg": latitude_deg, "longitude_deg": longitude_deg})
+    json.dump(scene, open(f"{out}/scene.json", "w"))
+    show = {"zenith_show": 1, "name": "eclipse-study", "scene": "scene.json", "fps": 1, "loop": False,
+            "time": {"start": f"{date}T00:00:00Z", "time_rate": 3600, "end_s": 24}}
+    json.dump(show, open(f"{out}/show.json", "w"))
+    plan = subprocess.run([zenith, "show", "plan", "--show", f"{out}/show.json"], capture_output=True, text=True,
+                          check=True).stdout
+    m = re.search(r"holds a total solar eclipse, maximum (\S+) (\S+) UTC", plan)
+    return f"{m.group(1)}T{m.group(2)}Z" if m else None
+
+
+def central_line(zenith, out, date, latitude0_deg, longitude_deg):
+    """The latitude midway between the path's edges at this longitude (each found by bisection to 0.002°, walking
+    out from latitude0_deg, which must be inside the path, in 0.5° steps) and the moment of maximum there. The
+    path must cross the meridian steeply here, or its edges are its ends, not its sides."""
+    def maximum(latitude):
+        return total_eclipse_maximum(zenith, out, date, latitude, longitude_deg)
+
+    if maximum(latitude0_deg) is None:
+        raise SystemExit(f"no total eclipse on {date} at {latitude0_deg}°, {longitude_deg}°: "
+                         "give a latitude inside the path")
+
+    def edge(step):
+        inside, outside = latitude0_deg, latitude0_deg + step
+        while maximum(outside) is not None:
+            inside, outside = outside, outside + step
+        while abs(outside - inside) > 0.002:
+            middle = 0.5 * (inside + outside)
+            if maximum(middle) is None:
+                outside = middle
+            else:
+                inside = middle
+        return inside
+
+    latitude = round(0.5 * (edge(0.5) + edge(-0.5)), 3)
+    return latitude, maximum(latitude)
