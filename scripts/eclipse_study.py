@@ -6,6 +6,8 @@ Standard library only; each function runs the `zenith` binary it is given.
   whether a place sees totality on a day, and when its maximum is there;
   `central_line` finds, at one longitude, the latitude midway between the
   path's edges (where the plan stops finding totality).
+* What the model says: `sample_zenith` runs `zenith sample` for the zenith
+  alone (the direction file `zenith.csv` in the run's folder).
 * What an instrument would have measured: `implied_temperatures` multiplies a
   measured day sky (a Planck curve) by the model's eclipse ratio R(λ), the
   zenith with the Moon over the zenith without it, and fits each product with
@@ -32,6 +34,16 @@ def read_spectrum(path):
     row = next(csv.DictReader(open(path)))
     wavelengths = [int(k[len("L_rel_"):-len("nm_per_sr")]) for k in row if k.startswith("L_rel_")]
     return wavelengths, [float(row[f"L_rel_{w}nm_per_sr"]) for w in wavelengths], row
+
+
+def sample_zenith(zenith, out, atmosphere, method, samples, name, args):
+    """`zenith sample` of the zenith of this atmosphere (a preset's name or a JSON path), with `args` added:
+    read_spectrum's answer for the CSV it writes (out/name.csv), and the run's log."""
+    path = f"{out}/{name}.csv"
+    run = subprocess.run([zenith, "sample", "--atmosphere", atmosphere, "--directions", f"{out}/zenith.csv",
+                          "--method", method, "--samples", str(samples), "--out", path] + args,
+                         capture_output=True, text=True, check=True)
+    return read_spectrum(path), run.stderr
 
 
 def kelvin(cell):
