@@ -8,6 +8,7 @@
 #include "atmosphere/reference/direction_sampling.h"
 #include "atmosphere/reference/optical_depth.h"
 #include "atmosphere/reference/phase_sampling.h"
+#include "atmosphere/reference/polarization.h"
 
 namespace zenith::atmosphere::reference {
 
@@ -19,6 +20,16 @@ const PathSettings& checked(const PathSettings& s) {
   if (s.russian_roulette_start_order < 1)
     throw std::invalid_argument("PathSettings: russian_roulette_start_order must be >= 1");
   if (s.majorant_shell_count == 0) throw std::invalid_argument("PathSettings: majorant_shell_count must be > 0");
+  return s;
+}
+
+/// The scalar parts of what scatters at a point with coefficients `c`, for light turned by cos ν.
+PolarizedScatterers scatterers(const AtmosphereModel& model, const LocalCoefficients& c, std::size_t wavelength,
+                               double cos_scattering) {
+  PolarizedScatterers s;
+  s.rayleigh_m1_sr1 = c.rayleigh_scattering_m1 * model.rayleigh_phase_function(cos_scattering);
+  if (c.mie_scattering_m1 > 0.0) s.aerosol_m1_sr1 = c.mie_scattering_m1 * model.mie_phase(wavelength, cos_scattering);
+  s.depolarization = model.rayleigh_depolarization;
   return s;
 }
 
@@ -62,6 +73,9 @@ double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng,
   double radiance = 0.0, weight = 1.0;
   int order = 0;
   Ray ray = first_ray;
+  // Vector transfer: the path's importance for the light's polarization, divided by the scalar weight
+  // (polarization.h); the camera measures the radiance, ⟨1, T⟩.
+  Mat3 importance(1.0);
   while (true) {
     const AtmosphereInterval interval = atmosphere_interval(ray, ground_radius, model.top_radius_m);
     if (!interval.intersects) break;
@@ -85,7 +99,15 @@ double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng,
         // Light from ω_s travels along −ω_s and leaves along −d: cos(scattering angle) = ω_s·d.
         const double u1 = rng.uniform(), u2 = rng.uniform();
         const Vec3 to_sun = sample_sun_direction(sun_, u1, u2);
-        const double phase = medium_.mixture_phase(c, i, dot(to_sun, d));
+        const double cos_sun = dot(to_sun, d);
+        double phase = medium_.mixture_phase(c, i, cos_sun);
+        if (settings_.polarized && phase > 0.0) {
+          // The sun's light is unpolarized: T = Π(k_in)/2 along k_in = −ω_s, leaving along −d.
+          const Vec3 k_in = -to_sun;
+          const Mat3 scattered =
+              scattered_coherency(scatterers(model, c, i, cos_sun), k_in, -d, 0.5 * transverse_projector(k_in));
+          phase = contract(importance, scattered) / c.scattering_m1();
+        }
         if (phase > 0.0 && !occulted(sun_.occulter, vertex, to_sun))
           radiance += weight * sun_weight_ * limb_weight(sun_, to_sun, i) * phase *
                       transmittance_to_space(vertex, to_sun, i, rng, violations);
@@ -96,12 +118,22 @@ double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng,
       const PhaseSample scattered = sample_scattering_cosine(medium_, c, i, u_component, u_lobe, u_cos);
       weight *= scattered.weight;
       next_direction = direction_with_cosine(d, scattered.cos_scattering, u_phi);
+      if (settings_.polarized) {
+        const double cos_next = scattered.cos_scattering;
+        const double phase = medium_.mixture_phase(c, i, cos_next);
+        if (!(phase > 0.0)) break;
+        importance = scattered_importance(scatterers(model, c, i, cos_next), -next_direction, -d, importance) /
+                     (c.scattering_m1() * phase);
+      }
     } else {  // the ground: Lambertian, BRDF a/π
       const Vec3 normal = normalize(vertex);
       vertex = ground_radius * normal;
       const double albedo = model.ground_albedo[i];
+      // The ground depolarizes: what leaves it toward −d is Π(−d)/2 per unit radiance.
+      const double unpolarized = settings_.polarized ? 0.5 * contract(importance, transverse_projector(d)) : 1.0;
       if (counted && albedo > 0.0)
-        radiance += weight * albedo / kPi * direct_irradiance(vertex, normal, i, rng, violations);
+        radiance += weight * unpolarized * albedo / kPi * direct_irradiance(vertex, normal, i, rng, violations);
+      if (settings_.polarized) importance = unpolarized * Mat3(1.0);
       if (last) break;
       weight *= albedo;  // cosine-weighted sampling: (a/π) cos θ / (cos θ/π) = a
       if (!(weight > 0.0)) break;

@@ -20,6 +20,7 @@ struct PathSettings {
   int max_scattering_order = 1000;         ///< ≥ min_scattering_order
   int russian_roulette_start_order = 4;    ///< ≥ 1
   std::size_t majorant_shell_count = 128;  ///< sub-shells of the delta-tracking majorant
+  bool polarized = false;                  ///< vector radiative transfer (polarization.h); scalar if false
 };
 
 /// Read-only after construction; share one between threads. Keeps a reference

@@ -23,6 +23,7 @@ PathSettings path_settings(const PathTracerOptions& o) {
   s.max_scattering_order = o.max_scattering_order;
   s.russian_roulette_start_order = o.russian_roulette_start_order;
   s.majorant_shell_count = o.majorant_shell_count;
+  s.polarized = o.polarized;
   return s;
 }
 

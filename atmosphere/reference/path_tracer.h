@@ -52,6 +52,11 @@
 //  * Each sample (wavelength i, index j) draws from its own PCG32 stream derived
 //    from (seed, i, j); chunks of samples run on std::threads and are reduced in
 //    a fixed order, so the result does not depend on the thread count.
+//  * Polarization (optional, PathTracerOptions::polarized): the path also carries
+//    the importance tensor of polarization.h, which replaces the phase P(ν) of
+//    each next-event estimate by ⟨M, L(Π/2)⟩ and is updated at each scattering;
+//    directions are drawn as above, so the scalar and the vector estimates of one
+//    seed share their paths and differ only by the polarization.
 // One path is PathIntegrator::radiance (path_integrator.h).
 //
 // Majorants: per wavelength, a piecewise-constant bound of β_ext over 128 (by
@@ -82,6 +87,7 @@ struct PathTracerOptions {
   int max_scattering_order = 1000;         ///< ≥ min_scattering_order
   int russian_roulette_start_order = 4;    ///< first order after which roulette may end a path
   std::size_t majorant_shell_count = 128;  ///< sub-shells of the delta-tracking majorant
+  bool polarized = false;                  ///< vector radiative transfer (polarization.h) instead of scalar
 };
 
 struct RadianceEstimate {
