@@ -31,7 +31,7 @@ struct SampleArgs {
   std::uint64_t seed = 1;
   std::size_t samples = 4096;
   int orders = atmosphere::lut::kDefaultScatteringOrders;
-  bool cpu = false, colour = false;
+  bool cpu = false, colour = false, polarized = false;
   std::vector<double> colour_band_nm = {410.0, 800.0};
   unsigned threads = 0;
 };
@@ -115,6 +115,11 @@ void run_sample(const SampleArgs& a) {
     r.colour = true;
     r.colour_band_nm = {a.colour_band_nm[0], a.colour_band_nm[1]};
   }
+  if (a.polarized && a.method != "reference")
+    throw std::invalid_argument(
+        "--polarized is the reference solver's vector radiative transfer; it needs --method "
+        "reference (the tables are scalar)");
+  r.polarized = a.polarized;
   r.seed = a.seed;
   r.directions = a.directions_file.empty() ? grid_directions(a.grid.empty() ? "10x4" : a.grid)
                                            : read_directions(a.directions_file);
@@ -180,6 +185,9 @@ void register_sample_command(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "Random seed of the reference method");
   cmd->add_option("--samples", args->samples, "Monte Carlo paths per direction for --method reference")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
+  cmd->add_flag("--polarized", args->polarized,
+                "--method reference: vector radiative transfer, the light's linear polarization carried through "
+                "every scattering (default: scalar, as the tables)");
   cmd->add_option("--orders", args->orders, "Scattering orders of the tables")->check(CLI::Range(1, 50));
   cmd->add_option("--tables", args->tables,
                   "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "

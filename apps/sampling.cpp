@@ -35,6 +35,7 @@ reference::PathTracerOptions tracer_options(const SamplingRequest& r) {
   o.samples_per_wavelength = r.reference_samples;
   o.seed = r.seed;
   o.thread_count = r.threads;
+  o.polarized = r.polarized;
   return o;
 }
 

@@ -24,6 +24,7 @@ struct SamplingRequest {
   std::vector<atmosphere::LimbDarkening> limb_darkening;
   atmosphere::reference::Occulter occulter;
   std::size_t reference_samples = 4096;  ///< Monte Carlo paths per wavelength and direction
+  bool polarized = false;                ///< reference method: vector radiative transfer instead of scalar
   /// Radiance: also each direction's colour — CIE 1931 x, y of the spectral radiance, its correlated colour
   /// temperature and Duv, and its effective blackbody temperature over `colour_band_nm` (image/colour.h);
   /// needs wavelengths that span the visible (colour_spectrum_problem).

@@ -79,6 +79,18 @@ string(FIND "${err}" "does not apply to --quantity transmittance" pos)
 if(rc EQUAL 0 OR pos EQUAL -1)
   message(FATAL_ERROR "sample --colour --quantity transmittance not refused (${rc}): ${err}")
 endif()
+# --polarized is the path tracer's: the tables (scalar) refuse it, the reference method takes it.
+execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --grid 1x1 --polarized
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${err}" "--polarized is the reference solver's vector radiative transfer; it needs --method reference" pos)
+if(rc EQUAL 0 OR pos EQUAL -1)
+  message(FATAL_ERROR "sample --polarized with the tables not refused (${rc}): ${err}")
+endif()
+execute_process(COMMAND ${ZENITH} sample --atmosphere mars --method reference --samples 2000 --grid 1x1 --polarized
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "\n0,0,[0-9.e-]+,")
+  message(FATAL_ERROR "sample --method reference --polarized failed (${rc}):\n${out}\n${err}")
+endif()
 
 # A malformed directions file is rejected naming the file and the line.
 file(WRITE "${WORK_DIR}/bad-directions.csv" "0,0\n200,0\n")
