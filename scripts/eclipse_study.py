@@ -36,12 +36,19 @@ def read_spectrum(path):
     return wavelengths, [float(row[f"L_rel_{w}nm_per_sr"]) for w in wavelengths], row
 
 
+def method_arguments(method):
+    """`zenith sample`'s arguments for a method as the studies' CSVs name it: lut (the tables), reference (the
+    path tracer) or reference-polarized (the path tracer's vector radiative transfer)."""
+    return ["--method", "reference", "--polarized"] if method == "reference-polarized" else ["--method", method]
+
+
 def sample_zenith(zenith, out, atmosphere, method, samples, name, args):
-    """`zenith sample` of the zenith of this atmosphere (a preset's name or a JSON path), with `args` added:
-    read_spectrum's answer for the CSV it writes (out/name.csv), and the run's log."""
+    """`zenith sample` of the zenith of this atmosphere (a preset's name or a JSON path) by `method`
+    (method_arguments), with `args` added: read_spectrum's answer for the CSV it writes (out/name.csv), and the
+    run's log."""
     path = f"{out}/{name}.csv"
     run = subprocess.run([zenith, "sample", "--atmosphere", atmosphere, "--directions", f"{out}/zenith.csv",
-                          "--method", method, "--samples", str(samples), "--out", path] + args,
+                          "--samples", str(samples), "--out", path] + method_arguments(method) + args,
                          capture_output=True, text=True, check=True)
     return read_spectrum(path), run.stderr
 
