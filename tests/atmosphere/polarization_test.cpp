@@ -98,7 +98,8 @@ TEST(Polarization, TheImportanceMapIsTheAdjointOfTheScatteringMap) {
 }
 
 /// A plane-parallel Rayleigh slab of optical thickness 0.5 over a black ground: a planet of radius
-/// 1e11 m (the horizon 5 000 km away drops 0.1 m), the molecules' conservative, non-depolarizing
+/// 1e11 m (the ground 5 000 km away, where a ray 1.1° below the horizon leaves the slab, has dropped
+/// 125 m, against the layer's 8 km scale height), the molecules' conservative, non-depolarizing
 /// scattering (the classic phase) in an exponential layer — in a plane-parallel slab of one
 /// scatterer only the optical thickness matters, not its profile.
 AtmosphereModel rayleigh_slab() {
