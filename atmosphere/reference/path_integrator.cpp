@@ -100,13 +100,15 @@ double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng,
         const double u1 = rng.uniform(), u2 = rng.uniform();
         const Vec3 to_sun = sample_sun_direction(sun_, u1, u2);
         const double cos_sun = dot(to_sun, d);
-        double phase = medium_.mixture_phase(c, i, cos_sun);
-        if (settings_.polarized && phase > 0.0) {
+        double phase = 0.0;
+        if (settings_.polarized) {
           // The sun's light is unpolarized: T = Π(k_in)/2 along k_in = −ω_s, leaving along −d.
           const Vec3 k_in = -to_sun;
           const Mat3 scattered =
               scattered_coherency(scatterers(model, c, i, cos_sun), k_in, -d, 0.5 * transverse_projector(k_in));
-          phase = contract(importance, scattered) / c.scattering_m1();
+          phase = contract(importance, scattered) / scattering;
+        } else {
+          phase = medium_.mixture_phase(c, i, cos_sun);
         }
         if (phase > 0.0 && !occulted(sun_.occulter, vertex, to_sun))
           radiance += weight * sun_weight_ * limb_weight(sun_, to_sun, i) * phase *
@@ -119,11 +121,11 @@ double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng,
       weight *= scattered.weight;
       next_direction = direction_with_cosine(d, scattered.cos_scattering, u_phi);
       if (settings_.polarized) {
-        const double cos_next = scattered.cos_scattering;
-        const double phase = medium_.mixture_phase(c, i, cos_next);
-        if (!(phase > 0.0)) break;
-        importance = scattered_importance(scatterers(model, c, i, cos_next), -next_direction, -d, importance) /
-                     (c.scattering_m1() * phase);
+        // Divided by β_scat P(ν), the scalar part the weight already carries.
+        const PolarizedScatterers parts = scatterers(model, c, i, scattered.cos_scattering);
+        const double scalar_part = parts.rayleigh_m1_sr1 + parts.aerosol_m1_sr1;
+        if (!(scalar_part > 0.0)) break;
+        importance = scattered_importance(parts, -next_direction, -d, importance) / scalar_part;
       }
     } else {  // the ground: Lambertian, BRDF a/π
       const Vec3 normal = normalize(vertex);
