@@ -8,14 +8,6 @@ namespace zenith::atmosphere::reference {
 
 namespace {
 
-/// Δ = (1 − ρ)/(1 + ρ/2): the share of the gas's scattering that a dipole radiates.
-double dipole_share(double depolarization) { return (1.0 - depolarization) / (1.0 + 0.5 * depolarization); }
-
-/// The trace of eq. (1) for unpolarized light: Δ·(3/4)(1 + ν²) + (1 − Δ) (4π times the phase).
-double depolarized_rayleigh_shape(double delta, double cos_scattering) {
-  return delta * 0.75 * (1.0 + cos_scattering * cos_scattering) + (1.0 - delta);
-}
-
 /// [K]v = axis × v.
 Mat3 cross_product_matrix(const Vec3& axis) {
   // GLM is column-major: the three arguments of each line are one column.
@@ -25,8 +17,6 @@ Mat3 cross_product_matrix(const Vec3& axis) {
 }
 
 }  // namespace
-
-Mat3 transverse_projector(const Vec3& k) { return Mat3(1.0) - glm::outerProduct(k, k); }
 
 double contract(const Mat3& a, const Mat3& b) {
   double sum = 0.0;
@@ -50,14 +40,11 @@ Mat3 rotation_between(const Vec3& k_in, const Vec3& k_out) {
 }
 
 Mat3 scattered_coherency(const PolarizedScatterers& s, const Vec3& k_in, const Vec3& k_out, const Mat3& t_in) {
-  const double delta = dipole_share(s.depolarization);
-  const Mat3 across_out = transverse_projector(k_out);
+  const double delta = atmosphere::dipole_share(s.depolarization);
   Mat3 out(0.0);
-  if (s.rayleigh_m1_sr1 > 0.0) {
-    const Mat3 rayleigh = delta * 1.5 * (across_out * t_in * across_out) +
-                          (1.0 - delta) * 0.5 * (t_in[0][0] + t_in[1][1] + t_in[2][2]) * across_out;
-    out += (s.rayleigh_m1_sr1 / depolarized_rayleigh_shape(delta, dot(k_in, k_out))) * rayleigh;
-  }
+  if (s.rayleigh_m1_sr1 > 0.0)
+    out += (s.rayleigh_m1_sr1 / atmosphere::depolarized_rayleigh_shape(delta, dot(k_in, k_out))) *
+           atmosphere::rayleigh_scattered_coherency(delta, k_out, t_in);
   if (s.aerosol_m1_sr1 > 0.0) {
     const Mat3 r = rotation_between(k_in, k_out);
     out += s.aerosol_m1_sr1 * (r * t_in * glm::transpose(r));
@@ -66,14 +53,11 @@ Mat3 scattered_coherency(const PolarizedScatterers& s, const Vec3& k_in, const V
 }
 
 Mat3 scattered_importance(const PolarizedScatterers& s, const Vec3& k_in, const Vec3& k_out, const Mat3& m_out) {
-  const double delta = dipole_share(s.depolarization);
-  const Mat3 across_out = transverse_projector(k_out);
+  const double delta = atmosphere::dipole_share(s.depolarization);
   Mat3 in(0.0);
-  if (s.rayleigh_m1_sr1 > 0.0) {
-    const Mat3 rayleigh =
-        delta * 1.5 * (across_out * m_out * across_out) + (1.0 - delta) * 0.5 * contract(m_out, across_out) * Mat3(1.0);
-    in += (s.rayleigh_m1_sr1 / depolarized_rayleigh_shape(delta, dot(k_in, k_out))) * rayleigh;
-  }
+  if (s.rayleigh_m1_sr1 > 0.0)
+    in += (s.rayleigh_m1_sr1 / atmosphere::depolarized_rayleigh_shape(delta, dot(k_in, k_out))) *
+          atmosphere::rayleigh_scattered_importance(delta, k_out, m_out);
   if (s.aerosol_m1_sr1 > 0.0) {
     const Mat3 r = rotation_between(k_in, k_out);
     in += s.aerosol_m1_sr1 * (glm::transpose(r) * m_out * r);

@@ -3,20 +3,10 @@
 // Stokes frames.
 //
 // A beam travelling along the unit vector k is described by its coherency
-// tensor T = ⟨E Eᵀ⟩, a real symmetric 3×3 matrix with T k = 0 (circular
-// polarization, V, is never made from the unpolarized sun by these scatterers
-// and is dropped). Its radiance is I = tr T; unpolarized light is (I/2) Π(k),
-// Π(k) = 1 − k kᵀ the projector onto the plane across k. In this form Rayleigh
-// scattering needs no rotation of reference planes: a dipole driven by E
-// radiates Π(k_out) E toward k_out, so (with the depolarization ρ of the gas,
-// Δ = (1 − ρ)/(1 + ρ/2): Hansen & Travis, Space Sci. Rev. 16, 527, 1974, §2)
-//
-//   T_out = Δ·(3/2)·Π_out T_in Π_out + (1 − Δ)·tr(T_in)·Π_out/2,             (1)
-//
-// whose trace for unpolarized light is the depolarized Rayleigh phase
-// Δ·(3/4)(1 + ν²) + (1 − Δ) (×1/4π), ν = k_in·k_out, and whose first row is
-// Hansen & Travis's P11, P12 (the degree of polarization of once-scattered
-// light is Δ·(3/4)(1 − ν²) / that phase). The path tracer keeps its scalar
+// tensor T = ⟨E Eᵀ⟩ (circular polarization, V, is never made from the
+// unpolarized sun by these scatterers and is dropped), and Rayleigh scattering
+// is the dipole's eq. (1) of atmosphere/rayleigh_polarization.h, with the
+// gas's depolarization: no rotation of reference planes. The path tracer keeps its scalar
 // phase functions — the model's Rayleigh phase (Penndorf's fit, say) and the
 // aerosol's — as the trace of each map, so unpolarized light is scattered
 // exactly as by the scalar solver and only the light's state of polarization
@@ -41,16 +31,13 @@
 // P(ν), and the two are equal while M is 1: the first order is the scalar
 // solver's, exactly. Every map keeps tensors positive semidefinite, so no
 // estimate is ever negative.
-#include <glm/mat3x3.hpp>
-
+#include "atmosphere/rayleigh_polarization.h"
 #include "atmosphere/vec3.h"
 
 namespace zenith::atmosphere::reference {
 
-using Mat3 = glm::dmat3;
-
-/// Π(k) = 1 − k kᵀ, the projector onto the plane across the unit vector k.
-Mat3 transverse_projector(const Vec3& k);
+using atmosphere::Mat3;
+using atmosphere::transverse_projector;
 
 /// ⟨A, B⟩ = Σ_ij A_ij B_ij = tr(Aᵀ B).
 double contract(const Mat3& a, const Mat3& b);

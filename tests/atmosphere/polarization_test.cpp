@@ -1,12 +1,14 @@
 // Tests of the path tracer's vector radiative transfer (atmosphere/reference/polarization.h):
 // the coherency-tensor maps against Rayleigh scattering's closed forms, and the path tracer
-// against the benchmark tables of polarized Rayleigh scattering.
+// against the benchmark tables of polarized Rayleigh scattering; and the gas's once-scattered
+// light as the Moon's shadow weights it (atmosphere/rayleigh_polarization.h, astro/moon_shadow.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
 
+#include "atmosphere/rayleigh_polarization.h"
 #include "atmosphere/reference/path_tracer.h"
 #include "atmosphere/reference/polarization.h"
 
@@ -124,6 +126,48 @@ AtmosphereModel rayleigh_slab() {
 struct ReflectionCase {
   double mu, phi_deg, intensity;  ///< the tables' μ, φ and I (incident flux π)
 };
+
+TEST(RayleighPolarization, OnceScatteredLightHasUnitRadianceAndTheScatteringMapsPolarization) {
+  // N, the gas's once-scattered light per unit radiance: the scattering map's tensor over its trace,
+  // across k_out, polarized across the scattering plane by the degree of the closed form above.
+  const Vec3 k_in = unit(0.2, -0.4, -0.9);
+  for (double rho : {0.0, 0.0279, 0.1})
+    for (const Vec3& k_out : {unit(0.9, 0.1, 0.3), unit(-0.1, 0.3, 0.2), k_in, -k_in}) {
+      const double delta = dipole_share(rho), c = dot(k_in, k_out);
+      const Mat3 n = once_scattered_rayleigh_coherency(delta, k_in, k_out);
+      const Mat3 t = scattered_coherency(molecules(rho), k_in, k_out, 0.5 * transverse_projector(k_in));
+      EXPECT_NEAR(contract(Mat3(1.0), n), 1.0, 1e-12);
+      EXPECT_NEAR(length(n * k_out), 0.0, 1e-12);
+      for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row) EXPECT_NEAR(n[col][row], t[col][row] / contract(Mat3(1.0), t), 1e-12);
+      const Vec3 normal = cross(k_in, k_out);
+      if (length(normal) < 1e-9) continue;  // forward and backward: unpolarized, no plane
+      const Vec3 across = normalize(normal), in_plane = cross(across, k_out);
+      const double degree = delta * 0.75 * (1.0 - c * c) / depolarized_rayleigh_shape(delta, c);
+      EXPECT_NEAR(dot(across, n * across) - dot(in_plane, n * in_plane), degree, 1e-12);
+    }
+}
+
+TEST(RayleighPolarization, TheShadowsWeightOfPolarizedLightIsTheDipolesScattering) {
+  // The Moon's shadow weights the light arriving at a point from ω by the gas's phase to l = 2 plus
+  // (3Δ/4) vᵀPv, P = L₁(Π(ω) − 2N) for the gas's once-scattered light (astro/moon_shadow.h). For the
+  // dipole's own phase (k₂ = Δ/10) that must be eq. (1)'s trace for the polarized light, exactly:
+  // light once scattered from the sun's beam along −s into −ω, turned again toward −v.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec3 s = unit(u(rng), u(rng), u(rng)), omega = unit(u(rng), u(rng), u(rng)), v = unit(u(rng), u(rng), u(rng));
+    for (double rho : {0.0, 0.0279, 0.1}) {
+      const double delta = dipole_share(rho), k2 = delta / 10.0, w = dot(omega, v);
+      const Mat3 n = once_scattered_rayleigh_coherency(delta, -s, -omega);
+      const Mat3 p = transverse_projector(omega) - 2.0 * n;
+      const double weight = 1.0 + 2.5 * k2 * (3.0 * w * w - 1.0) + 0.75 * delta * dot(v, p * v);
+      const Mat3 scattered = rayleigh_scattered_coherency(delta, -v, n);
+      EXPECT_NEAR(weight, contract(Mat3(1.0), scattered), 1e-12);
+      EXPECT_NEAR(contract(Mat3(1.0), p), 0.0, 1e-12) << "P is traceless: nothing for unpolarized light";
+    }
+  }
+}
 
 TEST(ReferencePolarization, TheSlabReflectsAsTheCorrectedCoulsonTablesSay) {
   // Natraj, Li & Yung (ApJ 691, 1909, 2009), the corrected tables of Coulson, Dave & Sekera (1960):
