@@ -128,10 +128,13 @@ ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereMod
     const MoonShadow::Place middle = shadow.place(ray.middle(k));
     for (std::size_t i = 0; i < channels; ++i) {
       if (single) {
-        const double in = std::max(0.0, near.rayleigh[i] - far.rayleigh[i]) * phase_r +
-                          std::max(0.0, near.mie[i] - far.mie[i]) * model.mie_phase(i, ray.nu());
+        const double direct = shadow.direct_light(middle, i);
+        const double rayleigh = std::max(0.0, near.rayleigh[i] - far.rayleigh[i]) * phase_r;
+        const double in = rayleigh + std::max(0.0, near.mie[i] - far.mie[i]) * model.mie_phase(i, ray.nu());
         light.daylight[i] += in;
-        light.eclipsed[i] += shadow.direct_light(middle, i) * in;
+        light.eclipsed[i] += direct * in;
+        light.rayleigh_single_daylight[i] += rayleigh;
+        light.rayleigh_single_eclipsed[i] += direct * rayleigh;
       }
       if (multiple) {
         const double in = std::max(0.0, near.multiple[i] - far.multiple[i]);

@@ -51,9 +51,15 @@ enum class ArrivingOrders {
 /// and V̄ (eclipsed) and without (daylight): the single scattering along the
 /// ray and, where it ends on the ground, the direct sun the ground reflects
 /// (V); the multiple scattering (weighted by the shadow's V̄ so far) and the
-/// skylight the ground reflects. For MoonShadow's V̄.
+/// skylight the ground reflects. For MoonShadow's V̄. Of the once-scattered
+/// light, the gas's (Rayleigh's) part is also given apart: the only light
+/// arriving polarized (across the plane of the Sun and the ray) in the
+/// model's terms — the aerosols scatter the unpolarized sun unpolarized and
+/// the ground reflects it so; the multiply scattered light is taken as
+/// unpolarized.
 struct ArrivingLight {
   std::array<double, atmosphere::lut::kMaxChannels> eclipsed{}, daylight{};
+  std::array<double, atmosphere::lut::kMaxChannels> rayleigh_single_eclipsed{}, rayleigh_single_daylight{};
 };
 ArrivingLight arriving_light(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
                              const MoonShadow& shadow, const glm::dvec3& point_m, const glm::dvec3& direction,

@@ -13,6 +13,7 @@
 #include "astro/eclipsed_sky.h"
 #include "astro/solar_eclipse.h"
 #include "atmosphere/lut/gauss_legendre.h"
+#include "atmosphere/rayleigh_polarization.h"
 #include "core/parallel_for.h"
 #include "core/strings.h"
 #include "core/units.h"
@@ -95,9 +96,13 @@ MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQue
   rayleigh_density_ = model.rayleigh_density;
   mie_density_ = model.mie_density;
   const auto r = legendre_k1_k2([&](double x) { return model.rayleigh_phase_function(x); });  // one for all λ
+  if (!(model.rayleigh_depolarization >= 0.0) || !(model.rayleigh_depolarization < 1.0))
+    throw std::invalid_argument(
+        core::cat("MoonShadow: the gas's depolarization ", model.rayleigh_depolarization, " must be in [0, 1)"));
+  dipole_share_ = atmosphere::dipole_share(model.rayleigh_depolarization);
   for (std::size_t i = 0; i < wavelengths_; ++i) {
     const auto m = legendre_k1_k2([&](double x) { return model.mie_phase(i, x); });
-    rayleigh_.push_back({model.rayleigh_scattering_m1[i], r.first, r.second});
+    rayleigh_.push_back({model.rayleigh_scattering_m1[i], r.first, r.second, 0.75 * dipole_share_});
     mie_.push_back({model.mie_scattering_m1[i], m.first, m.second});
   }
   set_frame(camera_m);
@@ -199,6 +204,19 @@ std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& 
           out[i * kLightSums + c] += weight * l.eclipsed[i] * moments[c];
           out[i * kLightSums + 10 + c] += weight * l.daylight[i] * moments[c];
         }
+      if (!o.polarized || orders == ArrivingOrders::multiply_scattered) continue;
+      // The gas's once-scattered light, from the sun's beam along −s into −d: Π(d) − 2 N, in the basis (e1, e2, s).
+      const glm::dmat3 excess = atmosphere::transverse_projector(d) -
+                                2.0 * atmosphere::once_scattered_rayleigh_coherency(dipole_share_, -s, -d);
+      const glm::dvec3 basis[3] = {e1_, e2_, s};
+      const auto component = [&](int row, int column) { return glm::dot(basis[row], excess * basis[column]); };
+      const double polarization[6] = {component(0, 0), component(1, 1), component(2, 2),
+                                      component(0, 1), component(0, 2), component(1, 2)};
+      for (std::size_t i = 0; i < wavelengths_; ++i)
+        for (std::size_t c = 0; c < 6; ++c) {
+          out[i * kLightSums + 20 + c] += weight * l.rayleigh_single_eclipsed[i] * polarization[c];
+          out[i * kLightSums + 26 + c] += weight * l.rayleigh_single_daylight[i] * polarization[c];
+        }
     }
   });
   return sums;
@@ -216,6 +234,7 @@ std::vector<float> MoonShadow::field_from(const std::vector<double>& sums) const
     }
     for (std::size_t c = 0; c < 10; ++c) values[c] = float(sum[c] / daylight);
     for (std::size_t c = 1; c < 10; ++c) values[9 + c] = float(sum[10 + c] / daylight);
+    for (std::size_t c = 0; c < 12; ++c) values[19 + c] = float(sum[20 + c] / daylight);
   }
   return field;
 }
@@ -256,8 +275,9 @@ double MoonShadow::scattered_light(const glm::dvec3& p, const glm::dvec3& direct
 double MoonShadow::scattered_light(const Place& place, const glm::dvec3& direction, std::size_t i) const {
   if (std::isinf(place.limb_rad)) return 1.0;
   const double h = std::clamp(place.altitude_m, 0.0, options_.field_altitudes_m.back());
-  const Scatterer air[2] = {{rayleigh_[i].scattering_m1 * rayleigh_density_(h), rayleigh_[i].k1, rayleigh_[i].k2},
-                            {mie_[i].scattering_m1 * mie_density_(h), mie_[i].k1, mie_[i].k2}};
+  const Scatterer air[2] = {
+      {rayleigh_[i].scattering_m1 * rayleigh_density_(h), rayleigh_[i].k1, rayleigh_[i].k2, rayleigh_[i].dipole},
+      {mie_[i].scattering_m1 * mie_density_(h), mie_[i].k1, mie_[i].k2}};
   return share_left(place, direction, i, air);
 }
 
@@ -305,18 +325,21 @@ double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, s
   const glm::dvec3& s = geometry_.sun_direction;
   const double v[3] = {glm::dot(direction, e1_), (place.across_m[1] < 0.0 ? -1.0 : 1.0) * glm::dot(direction, e2_),
                        glm::dot(direction, s)};
-  // ∫ P(ω·v) L dω with P = (1/4π) Σ (2l+1) k_l P_l to l = 2 (the 1/4π dropped: it cancels):
-  //   a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2.
-  const auto weighted = [&](double a, const double* m, const double* M, const Scatterer& t) {
+  // ∫ P(ω·v) L dω with P = (1/4π) Σ (2l+1) k_l P_l to l = 2 (the 1/4π dropped: it cancels), and the
+  // polarization's part for the gas (the header):
+  //   a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2 + (3Δ/4) vᵀPv.
+  const auto quadratic = [&](const double* M) {
+    return M[0] * v[0] * v[0] + M[1] * v[1] * v[1] + M[2] * v[2] * v[2] +
+           2.0 * (M[3] * v[0] * v[1] + M[4] * v[0] * v[2] + M[5] * v[1] * v[2]);
+  };
+  const auto weighted = [&](double a, const double* m, const double* M, const double* P, const Scatterer& t) {
     const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
-    const double vMv = M[0] * v[0] * v[0] + M[1] * v[1] * v[1] + M[2] * v[2] * v[2] +
-                       2.0 * (M[3] * v[0] * v[1] + M[4] * v[0] * v[2] + M[5] * v[1] * v[2]);
-    return a + 3.0 * t.k1 * mv + 2.5 * t.k2 * (3.0 * vMv - a);
+    return a + 3.0 * t.k1 * mv + 2.5 * t.k2 * (3.0 * quadratic(M) - a) + t.dipole * quadratic(P);
   };
   double eclipsed = 0.0, daylight = 0.0;
   for (const Scatterer& t : scatterers) {
-    eclipsed += t.scattering_m1 * std::max(0.0, weighted(values[0], values + 1, values + 4, t));
-    daylight += t.scattering_m1 * std::max(0.0, weighted(1.0, values + 10, values + 13, t));
+    eclipsed += t.scattering_m1 * std::max(0.0, weighted(values[0], values + 1, values + 4, values + 19, t));
+    daylight += t.scattering_m1 * std::max(0.0, weighted(1.0, values + 10, values + 13, values + 25, t));
   }
   if (!(daylight > 0.0)) return 1.0;
   return std::clamp(eclipsed / daylight, 0.0, 1.0) * (1.0 - fade) + fade;

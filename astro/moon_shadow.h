@@ -35,7 +35,27 @@
 //   ∫ P(ω·v) L dω = (1/4π) [a + 3 k₁ m·v + 5 k₂ (3 vᵀMv − a)/2],
 //   a = ∫ L dω,  m = ∫ L ω dω,  M = ∫ L ωωᵀ dω,
 // so a node keeps a, m and M of the eclipsed light and m, M of the daylight,
-// per unit a of daylight: 19 numbers per wavelength.
+// per unit a of daylight.
+//
+// The light's polarization. The gas's once-scattered light arriving at p is
+// polarized across the plane of the Sun and its ray (94.6 % at 90° for air),
+// and the gas at p, a dipole (atmosphere/rayleigh_polarization.h, eq. 1),
+// scatters it along v by how much of its field lies across v: in totality the
+// zenith's air is lit sideways and turns that light up by about 90°, where
+// the scalar average misses most (docs/validation.md, "Eclipses": 7–10 % of
+// the 430/680 nm ratio at the zenith in the 1970 study). With T the
+// arriving light's coherency tensor (tr T = L), eq. (1) weights it by
+// (1 + Δ/2) tr T − (3Δ/2) vᵀTv; the gas's once-scattered light has
+// T = L₁ N(ω), N its eq. (1) shape of trace 1, all other light (the aerosols'
+// scattering of the unpolarized sun, the ground's, and — an approximation —
+// every higher order) T = L Π(ω)/2. So against the scalar weight the gas's
+// gains
+//   (3Δ/4) vᵀ P v,   P = ∫ L₁ (Π(ω) − 2 N(ω)) dω   (traceless, 0 for unpolarized light),
+// added to its l ≤ 2 weight above; Δ = (1 − ρ)/(1 + ρ/2) the dipole's share of
+// the gas's scattering. A node keeps P of the eclipsed light and of the
+// daylight too: 31 numbers per wavelength. The tables' multiple scattering
+// stays scalar (by day its error is under 1 % at the zenith), and V̄ is the
+// vector transfer's share of it.
 // The nodes lie over (q·e1, |q·e2|, altitude), q the offset of p from the
 // axis and e1 the direction from the axis toward the planet's centre (the
 // planet and the shadow are mirror images of themselves across the plane of
@@ -107,15 +127,20 @@ struct MoonShadowOptions {
   /// and two passes carry it on (+127, +36, +70 %): the eclipsed sky needs
   /// the paper tables (docs/validation.md, "Eclipses").
   int iterations = 2;
+  /// Whether V̄ weights the gas's once-scattered light by its polarization (the
+  /// header): as the path tracer's vector transfer (`--polarized`) does. Off:
+  /// the scalar transfer of the tables and the scalar path tracer.
+  bool polarized = true;
   unsigned threads = 0;  ///< 0: all
 };
 
-/// Numbers per node and wavelength of V̄'s table: a_e, m_e, M_e, m_d, M_d, in
-/// the basis (e1, e2, s), m as x, y, z and M as xx, yy, zz, xy, xz, yz.
-inline constexpr std::size_t kShadowFieldValues = 19;
+/// Numbers per node and wavelength of V̄'s table: a_e, m_e, M_e, m_d, M_d, P_e,
+/// P_d, in the basis (e1, e2, s), m as x, y, z and M, P as xx, yy, zz, xy, xz, yz.
+inline constexpr std::size_t kShadowFieldValues = 31;
 /// Sums per node and wavelength while V̄'s table is made: L, L ω and L ωωᵀ
-/// (10 numbers) of the eclipsed light, then of the daylight.
-inline constexpr std::size_t kLightSums = 20;
+/// (10 numbers) of the eclipsed light, then of the daylight; then P's
+/// integrand, L₁ (Π(ω) − 2 N(ω)) (6), of the eclipsed light and of the daylight.
+inline constexpr std::size_t kLightSums = 32;
 
 /// Thrown by MoonShadow's constructor when its `stop` was requested: a build
 /// on a worker thread whose shadow no frame will use (the renderer going away).
@@ -182,10 +207,12 @@ class MoonShadow {
   const glm::dvec3& axis_2() const { return e2_; }
   double camera_moon_radius_rad() const { return moon_radius_0_rad_; }
 
-  /// What scatters at a point: its scattering coefficient [m⁻¹] and its phase
-  /// function's Legendre k₁, k₂ (P = (1/4π) Σ (2l+1) k_l P_l).
+  /// What scatters at a point: its scattering coefficient [m⁻¹], its phase
+  /// function's Legendre k₁, k₂ (P = (1/4π) Σ (2l+1) k_l P_l) and the weight
+  /// of the arriving light's polarization P, 3Δ/4 for the gas (the header),
+  /// 0 for what scatters all polarizations alike.
   struct Scatterer {
-    double scattering_m1, k1, k2;
+    double scattering_m1, k1, k2, dipole = 0.0;
   };
   /// The air's Rayleigh and aerosol scatterers at reference density, per wavelength.
   const std::vector<Scatterer>& rayleigh_scatterers() const { return rayleigh_; }
@@ -221,6 +248,7 @@ class MoonShadow {
   std::vector<float> profile_, field_;
   /// The air's scatterers at reference density per wavelength, and their density profiles.
   std::vector<Scatterer> rayleigh_, mie_;
+  double dipole_share_ = 1.0;  ///< Δ of the gas
   atmosphere::DensityProfile rayleigh_density_, mie_density_;
 };
 

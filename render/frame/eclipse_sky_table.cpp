@@ -147,6 +147,7 @@ void EclipseSkyTable::set_shadow(std::unique_ptr<astro::MoonShadow> shadow) {
   }
   rayleigh_k1_ = static_cast<float>(s.rayleigh_scatterers().front().k1);
   rayleigh_k2_ = static_cast<float>(s.rayleigh_scatterers().front().k2);
+  rayleigh_dipole_ = static_cast<float>(s.rayleigh_scatterers().front().dipole);
 }
 
 void EclipseSkyTable::start_program() const { start_built_program(*builds_, "render/eclipse_sky.comp", defines_); }
@@ -211,6 +212,7 @@ void EclipseSkyTable::set_shadow_frame(const gl::ShaderProgram& p) const {
   p.set_uniform("shadow_field_end", static_cast<float>(s.field_end_m()));
   p.set_uniform("shadow_rayleigh_k1", rayleigh_k1_);
   p.set_uniform("shadow_rayleigh_k2", rayleigh_k2_);
+  p.set_uniform("shadow_rayleigh_dipole", rayleigh_dipole_);
 }
 
 void EclipseSkyTable::set_uniforms(const gl::ShaderProgram& p, std::size_t group) const {

@@ -134,7 +134,7 @@ class EclipseSkyTable {
   std::stop_source next_stop_;                            // stops it
   std::vector<gl::Texture> profiles_, fields_;            // per group
   std::vector<std::array<float, 4>> mie_k1_, mie_k2_;
-  float rayleigh_k1_ = 0.0f, rayleigh_k2_ = 0.0f;
+  float rayleigh_k1_ = 0.0f, rayleigh_k2_ = 0.0f, rayleigh_dipole_ = 0.0f;
   // The camera of the last fill and its azimuth's axes: the tile passes read the table with them.
   glm::dvec3 camera_m_{0.0}, azimuth_h_{1.0, 0.0, 0.0}, azimuth_w_{0.0, 1.0, 0.0};
   float theta_top_rad_ = 0.0f, theta_horizon_rad_ = 0.0f;  // its zenith angles' mapping (eclipse_sky_mapping.glsl)
