@@ -68,6 +68,14 @@ MoonShadowOptions quick() {
   return o;
 }
 
+/// The full nodes and half the rays: for tests that compare two shadows of one instant.
+MoonShadowOptions fewer_rays() {
+  MoonShadowOptions o;
+  o.directions = 32;
+  o.higher_order_directions = 16;
+  return o;
+}
+
 class EclipsedSky : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -193,9 +201,7 @@ TEST_F(EclipsedSky, TheSecondPassGivesTheHigherOrdersTheLightFromFarther) {
   // (docs/validation.md, "Eclipses"). Fewer rays than the defaults, the same nodes.
   const TableQueries q(*model_, *tables_);
   const EclipseSetup e = setup_at(*model_, totality());
-  MoonShadowOptions o;
-  o.directions = 32;
-  o.higher_order_directions = 16;
+  MoonShadowOptions o = fewer_rays();
   o.iterations = 1;
   const MoonShadow one(e.geometry, q, *model_, e.observer_m, o);
   o.iterations = 2;
@@ -221,9 +227,7 @@ TEST_F(EclipsedSky, ThePolarizationOfTheLightFromAfarBrightensTheTotalityZenithA
   // than either; its own gain must be over 10 % at each of these three wavelengths.
   const TableQueries q(*model_, *tables_);
   const EclipseSetup e = setup_at(*model_, totality());
-  MoonShadowOptions o;
-  o.directions = 32;
-  o.higher_order_directions = 16;
+  MoonShadowOptions o = fewer_rays();
   const MoonShadow vector(e.geometry, q, *model_, e.observer_m, o);
   o.polarized = false;
   const MoonShadow scalar(e.geometry, q, *model_, e.observer_m, o);
