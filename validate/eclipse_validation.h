@@ -4,7 +4,7 @@
 // point of greatest eclipse on 2017-08-21 (36.9667° N, 87.6667° W, the sun
 // 64° up): the contacts are found from the ephemeris (astro/solar_eclipse.h),
 // and at times from first to fourth contact the reference solver — the path
-// tracer with the Moon in front of the limb-darkened disc
+// tracer with the Moon in front of the limb-darkened disc, in vector transfer
 // (atmosphere/reference/README.md, "Eclipses") — and the tables with the
 // Moon's shadow over them (astro/eclipsed_sky.h, the sky the renderer is to
 // read) each give the zenith's radiance with and without the Moon. Checks,
