@@ -6,6 +6,12 @@ namespace zenith::atmosphere {
 
 Mat3 transverse_projector(const Vec3& k) { return Mat3(1.0) - glm::outerProduct(k, k); }
 
+double contract(const Mat3& a, const Mat3& b) {
+  double sum = 0.0;
+  for (int column = 0; column < 3; ++column) sum += dot(a[column], b[column]);
+  return sum;
+}
+
 double dipole_share(double depolarization) { return (1.0 - depolarization) / (1.0 + 0.5 * depolarization); }
 
 double depolarized_rayleigh_shape(double delta, double cos_scattering) {
@@ -20,9 +26,8 @@ Mat3 rayleigh_scattered_coherency(double delta, const Vec3& k_out, const Mat3& t
 
 Mat3 rayleigh_scattered_importance(double delta, const Vec3& k_out, const Mat3& m_out) {
   const Mat3 across_out = transverse_projector(k_out);
-  double m_across = 0.0;  // ⟨M, Π_out⟩
-  for (int column = 0; column < 3; ++column) m_across += dot(m_out[column], across_out[column]);
-  return delta * 1.5 * (across_out * m_out * across_out) + (1.0 - delta) * 0.5 * m_across * Mat3(1.0);
+  return delta * 1.5 * (across_out * m_out * across_out) +
+         (1.0 - delta) * 0.5 * contract(m_out, across_out) * Mat3(1.0);
 }
 
 Mat3 once_scattered_rayleigh_coherency(double delta, const Vec3& k_in, const Vec3& k_out) {

@@ -27,6 +27,9 @@ using Mat3 = glm::dmat3;
 /// Π(k) = 1 − k kᵀ, the projector onto the plane across the unit vector k.
 Mat3 transverse_projector(const Vec3& k);
 
+/// ⟨A, B⟩ = Σ_ij A_ij B_ij = tr(Aᵀ B).
+double contract(const Mat3& a, const Mat3& b);
+
 /// Δ = (1 − ρ)/(1 + ρ/2): the share of the gas's scattering a dipole radiates, ρ ∈ [0, 1).
 double dipole_share(double depolarization);
 

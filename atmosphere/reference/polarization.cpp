@@ -18,12 +18,6 @@ Mat3 cross_product_matrix(const Vec3& axis) {
 
 }  // namespace
 
-double contract(const Mat3& a, const Mat3& b) {
-  double sum = 0.0;
-  for (int column = 0; column < 3; ++column) sum += dot(a[column], b[column]);
-  return sum;
-}
-
 Mat3 rotation_between(const Vec3& k_in, const Vec3& k_out) {
   const Vec3 axis = cross(k_in, k_out);
   const double sine = length(axis), cosine = dot(k_in, k_out);

@@ -36,11 +36,9 @@
 
 namespace zenith::atmosphere::reference {
 
+using atmosphere::contract;
 using atmosphere::Mat3;
 using atmosphere::transverse_projector;
-
-/// ⟨A, B⟩ = Σ_ij A_ij B_ij = tr(Aᵀ B).
-double contract(const Mat3& a, const Mat3& b);
 
 /// The rotation about k_in × k_out taking the unit vector k_in to k_out (the
 /// unit matrix for ν = 1; for ν = −1 a half turn about an axis across k_in).
