@@ -115,9 +115,12 @@ class SegmentedRay {
 /// The light arriving at the ray's start, eclipsed and in daylight, of the
 /// `orders` asked for: the single scattering and the ground's reflected direct
 /// sun (V); the multiple scattering (V̄ along the ray's direction) and the
-/// ground's reflected skylight (the skylight's share left).
+/// ground's reflected skylight (the skylight's share left). Where
+/// `polarization` is given, each segment's multiply scattered light times its
+/// excess Π − 2N is added to it.
 ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereModel& model, const MoonShadow& shadow,
-                        const glm::dvec3& view, std::size_t channels, ArrivingOrders orders) {
+                        const glm::dvec3& view, std::size_t channels, ArrivingOrders orders,
+                        ArrivingPolarization* polarization) {
   const bool single = orders != ArrivingOrders::multiply_scattered;
   const bool multiple = orders != ArrivingOrders::once_scattered;
   ArrivingLight light;
@@ -139,7 +142,16 @@ ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereMod
       if (multiple) {
         const double in = std::max(0.0, near.multiple[i] - far.multiple[i]);
         light.daylight[i] += in;
-        light.eclipsed[i] += shadow.scattered_light(middle, view, i) * in;
+        if (polarization) {
+          const MoonShadow::ScatteredLight s = shadow.polarized_scattered_light(middle, view, i);
+          light.eclipsed[i] += s.share_left * in;
+          for (std::size_t c = 0; c < 6; ++c) {
+            polarization->eclipsed[i][c] += s.share_left * in * s.excess_eclipsed[c];
+            polarization->daylight[i][c] += in * s.excess_daylight[c];
+          }
+        } else {
+          light.eclipsed[i] += shadow.scattered_light(middle, view, i) * in;
+        }
       }
     }
     near = far;
@@ -172,18 +184,20 @@ atmosphere::Spectrum eclipsed_sky_radiance(const atmosphere::lut::TableQueries& 
   const std::optional<SegmentedRay> ray =
       SegmentedRay::make(tables, camera_m, view, shadow.geometry().sun_direction, segments);
   if (!ray) return result;
-  const ArrivingLight light = sum_along(*ray, model, shadow, view, tables.channels(), ArrivingOrders::all);
+  const ArrivingLight light = sum_along(*ray, model, shadow, view, tables.channels(), ArrivingOrders::all, nullptr);
   for (std::size_t i = 0; i < tables.channels(); ++i) result[i] = light.eclipsed[i];
   return result;
 }
 
 ArrivingLight arriving_light(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
                              const MoonShadow& shadow, const glm::dvec3& point_m, const glm::dvec3& direction,
-                             int segments, ArrivingOrders orders) {
+                             int segments, ArrivingOrders orders, ArrivingPolarization* multiple_polarization) {
+  if (multiple_polarization && orders == ArrivingOrders::once_scattered)
+    throw std::invalid_argument("arriving_light: the multiply scattered light's polarization needs its orders");
   const std::optional<SegmentedRay> ray =
       SegmentedRay::make(tables, point_m, direction, shadow.geometry().sun_direction, segments);
   if (!ray) return {};
-  return sum_along(*ray, model, shadow, direction, tables.channels(), orders);
+  return sum_along(*ray, model, shadow, direction, tables.channels(), orders, multiple_polarization);
 }
 
 }  // namespace zenith::astro

@@ -55,14 +55,25 @@ enum class ArrivingOrders {
 /// light, the gas's (Rayleigh's) part is also given apart: the only light
 /// arriving polarized (across the plane of the Sun and the ray) in the
 /// model's terms — the aerosols scatter the unpolarized sun unpolarized and
-/// the ground reflects it so; the multiply scattered light is taken as
-/// unpolarized.
+/// the ground reflects it so. The multiply scattered light's polarization,
+/// which varies along the ray, is summed apart where asked for
+/// (ArrivingPolarization).
 struct ArrivingLight {
   std::array<double, atmosphere::lut::kMaxChannels> eclipsed{}, daylight{};
   std::array<double, atmosphere::lut::kMaxChannels> rayleigh_single_eclipsed{}, rayleigh_single_daylight{};
 };
+/// Of the multiply scattered light arriving, Σ L (Π − 2N) along the ray,
+/// eclipsed and in daylight, in the shadow's basis: each segment's light
+/// times its excess (MoonShadow::ScatteredLight). The skylight the ground
+/// reflects arrives unpolarized.
+struct ArrivingPolarization {
+  std::array<ShadowTensor, atmosphere::lut::kMaxChannels> eclipsed{}, daylight{};
+};
+/// `multiple_polarization`, where given, has the multiply scattered light's
+/// polarization added to it (the orders must include that light).
 ArrivingLight arriving_light(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
                              const MoonShadow& shadow, const glm::dvec3& point_m, const glm::dvec3& direction,
-                             int segments, ArrivingOrders orders);
+                             int segments, ArrivingOrders orders,
+                             ArrivingPolarization* multiple_polarization = nullptr);
 
 }  // namespace zenith::astro

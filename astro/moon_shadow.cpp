@@ -65,6 +65,23 @@ std::pair<double, double> legendre_k1_k2(Phase phase) {
   return {k1, k2};
 }
 
+/// ∫ P(ω·v) L dω for a scatterer, from a node's sums (the header; the 1/4π
+/// dropped, it cancels): a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2 + (3Δ/4) vᵀPv,
+/// M and P as xx, yy, zz, xy, xz, yz, v in the field's basis.
+double phase_weight(const double* v, double a, const double* m, const double* M, const double* P,
+                    const MoonShadow::Scatterer& t) {
+  const auto quadratic = [&](const double* T) {
+    return T[0] * v[0] * v[0] + T[1] * v[1] * v[1] + T[2] * v[2] * v[2] +
+           2.0 * (T[3] * v[0] * v[1] + T[4] * v[0] * v[2] + T[5] * v[1] * v[2]);
+  };
+  const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
+  return a + 3.0 * t.k1 * mv + 2.5 * t.k2 * (3.0 * quadratic(M) - a) + t.dipole * quadratic(P);
+}
+
+glm::dmat3 symmetric(const double* t) { return glm::dmat3(t[0], t[3], t[4], t[3], t[1], t[5], t[4], t[5], t[2]); }
+
+ShadowTensor components(const glm::dmat3& t) { return {t[0][0], t[1][1], t[2][2], t[0][1], t[0][2], t[1][2]}; }
+
 }  // namespace
 
 MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQueries& tables,
@@ -193,9 +210,13 @@ std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& 
     // the rays keep their place relative to the node's horizon and sun, so no ray crosses the horizon
     // from one frame to the next and the field changes smoothly with the eclipse.
     const glm::dvec3 up = glm::normalize(p), toward_sun = across(up, s), side = glm::cross(up, toward_sun);
+    // The multiply scattered light's polarization, summed over every ray (each has the same weight).
+    const bool polarized_multiple = o.polarized && orders == ArrivingOrders::multiply_scattered;
+    ArrivingPolarization multiple;
     for (const glm::dvec3& local : directions) {
       const glm::dvec3 d = local.x * toward_sun + local.y * side + local.z * up;
-      const ArrivingLight l = arriving_light(tables, model, *this, p, d, o.segments, orders);
+      const ArrivingLight l =
+          arriving_light(tables, model, *this, p, d, o.segments, orders, polarized_multiple ? &multiple : nullptr);
       const double w[3] = {glm::dot(d, e1_), glm::dot(d, e2_), glm::dot(d, s)};
       const double moments[10] = {1.0,         w[0],        w[1],        w[2],        w[0] * w[0],
                                   w[1] * w[1], w[2] * w[2], w[0] * w[1], w[0] * w[2], w[1] * w[2]};
@@ -218,6 +239,12 @@ std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& 
           out[i * kLightSums + 26 + c] += weight * l.rayleigh_single_daylight[i] * polarization[c];
         }
     }
+    if (!polarized_multiple) return;
+    for (std::size_t i = 0; i < wavelengths_; ++i)
+      for (std::size_t c = 0; c < 6; ++c) {
+        out[i * kLightSums + 20 + c] += weight * multiple.eclipsed[i][c];
+        out[i * kLightSums + 26 + c] += weight * multiple.daylight[i][c];
+      }
   });
   return sums;
 }
@@ -272,12 +299,16 @@ double MoonShadow::scattered_light(const glm::dvec3& p, const glm::dvec3& direct
   return scattered_light(place(p), direction, i);
 }
 
+std::array<MoonShadow::Scatterer, 2> MoonShadow::air_at(const Place& place, std::size_t i) const {
+  const double h = std::clamp(place.altitude_m, 0.0, options_.field_altitudes_m.back());
+  return {Scatterer{rayleigh_[i].scattering_m1 * rayleigh_density_(h), rayleigh_[i].k1, rayleigh_[i].k2,
+                    rayleigh_[i].dipole},
+          Scatterer{mie_[i].scattering_m1 * mie_density_(h), mie_[i].k1, mie_[i].k2}};
+}
+
 double MoonShadow::scattered_light(const Place& place, const glm::dvec3& direction, std::size_t i) const {
   if (std::isinf(place.limb_rad)) return 1.0;
-  const double h = std::clamp(place.altitude_m, 0.0, options_.field_altitudes_m.back());
-  const Scatterer air[2] = {
-      {rayleigh_[i].scattering_m1 * rayleigh_density_(h), rayleigh_[i].k1, rayleigh_[i].k2, rayleigh_[i].dipole},
-      {mie_[i].scattering_m1 * mie_density_(h), mie_[i].k1, mie_[i].k2}};
+  const std::array<Scatterer, 2> air = air_at(place, i);
   return share_left(place, direction, i, air);
 }
 
@@ -289,15 +320,18 @@ double MoonShadow::skylight_left(const glm::dvec3& ground_m, std::size_t i) cons
   return share_left(place, glm::normalize(ground_m), i, lambert);
 }
 
-double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, std::size_t i,
-                              std::span<const Scatterer> scatterers) const {
+double MoonShadow::reach(const Place& place) const {
+  return std::hypot(place.across_m[0], place.across_m[1]) / field_end_m_;
+}
+
+MoonShadow::FieldSample MoonShadow::field_at(const Place& place, const glm::dvec3& direction, std::size_t i) const {
   const MoonShadowOptions& o = options_;
+  FieldSample f;
   // Beyond the penumbra the nodes' edge holds light arriving from inside it;
   // farther out, over one more penumbra radius, V̄ eases to 1, so a shadow
   // that first reaches the air a camera sees changes nothing at once.
-  const double reach = std::hypot(place.across_m[0], place.across_m[1]) / field_end_m_;
-  if (reach >= 2.0) return 1.0;
-  const double fade = reach <= 1.0 ? 0.0 : (reach - 1.0) * (reach - 1.0) * (3.0 - 2.0 * (reach - 1.0));
+  const double r = reach(place);
+  f.fade = r <= 1.0 ? 0.0 : r >= 2.0 ? 1.0 : (r - 1.0) * (r - 1.0) * (3.0 - 2.0 * (r - 1.0));
   // Node coordinates: q·e1 = end t|t| over [−1, 1], |q·e2| = end t² over [0, 1]: crowded toward the axis.
   const double u = std::clamp(place.across_m[0] / field_end_m_, -1.0, 1.0);
   const double fu = 0.5 * (1.0 + std::copysign(std::sqrt(std::abs(u)), u)) * double(o.field_across - 1);
@@ -312,37 +346,78 @@ double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, s
   const std::size_t upper = std::min(level + 1, z.size() - 1);
   const double tz = upper == level ? 0.0 : (altitude - z[level]) / (z[upper] - z[level]);
   // Trilinear weights of the eight nodes around the point.
-  double values[kShadowFieldValues] = {};
   for (std::size_t corner = 0; corner < 8; ++corner) {
     const std::size_t dj = corner & 1, dk = (corner >> 1) & 1, dl = corner >> 2;
     const double weight = (dj ? tu : 1.0 - tu) * (dk ? tv : 1.0 - tv) * (dl ? tz : 1.0 - tz);
     if (weight == 0.0) continue;
     const std::size_t node = ((dl ? upper : level) * o.field_side + k + dk) * o.field_across + j + dj;
     const float* at = &field_[(node * wavelengths_ + i) * kShadowFieldValues];
-    for (std::size_t c = 0; c < kShadowFieldValues; ++c) values[c] += weight * double(at[c]);
+    for (std::size_t c = 0; c < kShadowFieldValues; ++c) f.values[c] += weight * double(at[c]);
   }
   // v in the basis (e1, e2, s), mirrored across the plane of the axis and e1 where the point lies beyond it.
-  const glm::dvec3& s = geometry_.sun_direction;
-  const double v[3] = {glm::dot(direction, e1_), (place.across_m[1] < 0.0 ? -1.0 : 1.0) * glm::dot(direction, e2_),
-                       glm::dot(direction, s)};
-  // ∫ P(ω·v) L dω with P = (1/4π) Σ (2l+1) k_l P_l to l = 2 (the 1/4π dropped: it cancels), and the
-  // polarization's part for the gas (the header):
-  //   a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2 + (3Δ/4) vᵀPv.
-  const auto quadratic = [&](const double* M) {
-    return M[0] * v[0] * v[0] + M[1] * v[1] * v[1] + M[2] * v[2] * v[2] +
-           2.0 * (M[3] * v[0] * v[1] + M[4] * v[0] * v[2] + M[5] * v[1] * v[2]);
-  };
-  const auto weighted = [&](double a, const double* m, const double* M, const double* P, const Scatterer& t) {
-    const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
-    return a + 3.0 * t.k1 * mv + 2.5 * t.k2 * (3.0 * quadratic(M) - a) + t.dipole * quadratic(P);
-  };
+  f.mirrored = place.across_m[1] < 0.0;
+  f.v[0] = glm::dot(direction, e1_);
+  f.v[1] = (f.mirrored ? -1.0 : 1.0) * glm::dot(direction, e2_);
+  f.v[2] = glm::dot(direction, geometry_.sun_direction);
+  return f;
+}
+
+double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, std::size_t i,
+                              std::span<const Scatterer> scatterers) const {
+  if (reach(place) >= 2.0) return 1.0;
+  return share_left(field_at(place, direction, i), scatterers);
+}
+
+double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> scatterers) {
+  const double* values = f.values;
   double eclipsed = 0.0, daylight = 0.0;
   for (const Scatterer& t : scatterers) {
-    eclipsed += t.scattering_m1 * std::max(0.0, weighted(values[0], values + 1, values + 4, values + 19, t));
-    daylight += t.scattering_m1 * std::max(0.0, weighted(1.0, values + 10, values + 13, values + 25, t));
+    eclipsed += t.scattering_m1 * std::max(0.0, phase_weight(f.v, values[0], values + 1, values + 4, values + 19, t));
+    daylight += t.scattering_m1 * std::max(0.0, phase_weight(f.v, 1.0, values + 10, values + 13, values + 25, t));
   }
   if (!(daylight > 0.0)) return 1.0;
-  return std::clamp(eclipsed / daylight, 0.0, 1.0) * (1.0 - fade) + fade;
+  return std::clamp(eclipsed / daylight, 0.0, 1.0) * (1.0 - f.fade) + f.fade;
+}
+
+MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& place, const glm::dvec3& direction,
+                                                                 std::size_t i) const {
+  ScatteredLight light;
+  const FieldSample f = field_at(place, direction, i);
+  const std::array<Scatterer, 2> air = air_at(place, i);
+  const bool in_field = !std::isinf(place.limb_rad) && f.fade < 1.0;
+  light.share_left = in_field ? share_left(f, air) : 1.0;
+  if (!options_.polarized) return light;
+  // The gas's share of Π(v) − 2N per unit of what the air scatters along v:
+  //   β_R (w_R Π(v) − 2 T) / Σ β w,   T = eq. (1) of 𝒯 = (a·1 − M − P)/2,   w_R = tr T,
+  // its scalar weight (phase_weight's, exactly: tests/atmosphere/polarization_test.cpp).
+  const glm::dvec3 v{f.v[0], f.v[1], f.v[2]};
+  const auto excess = [&](double a, const double* m, const double* M, const double* P) {
+    const glm::dmat3 arriving = 0.5 * (a * glm::dmat3(1.0) - symmetric(M) - symmetric(P));
+    const glm::dmat3 t = atmosphere::rayleigh_scattered_coherency(dipole_share_, v, arriving);
+    const double gas = std::max(0.0, t[0][0] + t[1][1] + t[2][2]);
+    double all = 0.0;
+    for (const Scatterer& s : air) all += s.scattering_m1 * std::max(0.0, phase_weight(f.v, a, m, M, P, s));
+    if (!(all > 0.0) || !(gas > 0.0)) return glm::dmat3(0.0);
+    return air[0].scattering_m1 / all * (gas * atmosphere::transverse_projector(v) - 2.0 * t);
+  };
+  const double* values = f.values;
+  const glm::dmat3 daylight = excess(1.0, values + 10, values + 13, values + 25);
+  glm::dmat3 eclipsed = daylight;
+  if (in_field && light.share_left > 0.0) {
+    // Where V̄ eases to daylight, so does its light's polarization: the share (1 − fade) V̄_field is the
+    // eclipsed field's light, the rest daylight's.
+    const double field_share = light.share_left - f.fade;
+    eclipsed =
+        (field_share * excess(values[0], values + 1, values + 4, values + 19) + f.fade * daylight) / light.share_left;
+  }
+  light.excess_eclipsed = components(eclipsed);
+  light.excess_daylight = components(daylight);
+  if (f.mirrored)  // back across the plane of the axis and e1: e2 changes sign
+    for (ShadowTensor* t : {&light.excess_eclipsed, &light.excess_daylight}) {
+      (*t)[3] = -(*t)[3];
+      (*t)[5] = -(*t)[5];
+    }
+  return light;
 }
 
 double MoonShadow::axis_zenith_rad(const EclipseGeometry& g) const {

@@ -46,16 +46,26 @@
 // the 430/680 nm ratio at the zenith in the 1970 study). With T the
 // arriving light's coherency tensor (tr T = L), eq. (1) weights it by
 // (1 + Δ/2) tr T − (3Δ/2) vᵀTv; the gas's once-scattered light has
-// T = L₁ N(ω), N its eq. (1) shape of trace 1, all other light (the aerosols'
-// scattering of the unpolarized sun, the ground's, and — an approximation —
-// every higher order) T = L Π(ω)/2. So against the scalar weight the gas's
-// gains
+// T = L₁ N(ω), N its eq. (1) shape of trace 1, the aerosols' scattering of
+// the unpolarized sun and the ground's light T = L Π(ω)/2 (the multiply
+// scattered light: below). So against the scalar weight the gas's gains
 //   (3Δ/4) vᵀ P v,   P = ∫ L₁ (Π(ω) − 2 N(ω)) dω   (traceless, 0 for unpolarized light),
 // added to its l ≤ 2 weight above; Δ = (1 − ρ)/(1 + ρ/2) the dipole's share of
 // the gas's scattering. A node keeps P of the eclipsed light and of the
-// daylight too: 31 numbers per wavelength. The tables' multiple scattering
-// stays scalar (by day its error is under 1 % at the zenith), and V̄ is the
-// vector transfer's share of it.
+// daylight too: 31 numbers per wavelength.
+// The multiply scattered light is polarized too: in totality it is the light
+// that lights the zenith's air, and three quarters of it at 440 nm has been
+// scattered three times or more. The coherency arriving at a node, summed over
+// its rays, is 𝒯 = (a·1 − M − P)/2 (unpolarized light gives (aI − M)/2, the
+// gas's once-scattered light L₁ N less L₁ (Π − 2N)/2), so the gas there
+// scatters toward the next point the coherency eq. (1) of 𝒯 — its second
+// order's exactly, given to every higher order as the scalar passes give V̄.
+// From the second pass on, P also sums the multiply scattered light's
+// L (Π(ω) − 2 N(ω)), N from the field of the pass before at each point of
+// the ray, weighted by the gas's share of what the air there scatters
+// (MoonShadow::ScatteredLight; the aerosols scatter as if unpolarized).
+// The tables' multiple scattering stays scalar (by day its error is under 1 %
+// at the zenith), and V̄ is the vector transfer's share of it.
 // The nodes lie over (q·e1, |q·e2|, altitude), q the offset of p from the
 // axis and e1 the direction from the axis toward the planet's centre (the
 // planet and the shadow are mirror images of themselves across the plane of
@@ -71,6 +81,7 @@
 // ground: the planet is a sphere, so the air around the axis is the same
 // wherever along the planet the shadow falls for the same b. A moving shadow
 // reads the same tables while these hold (MoonShadow::still_fits).
+#include <array>
 #include <cstddef>
 #include <span>
 #include <stdexcept>
@@ -134,6 +145,9 @@ struct MoonShadowOptions {
   unsigned threads = 0;  ///< 0: all
 };
 
+/// A symmetric tensor in the shadow's basis (e1, e2, s): xx, yy, zz, xy, xz, yz.
+using ShadowTensor = std::array<double, 6>;
+
 /// Numbers per node and wavelength of V̄'s table: a_e, m_e, M_e, m_d, M_d, P_e,
 /// P_d, in the basis (e1, e2, s), m as x, y, z and M, P as xx, yy, zz, xy, xz, yz.
 inline constexpr std::size_t kShadowFieldValues = 31;
@@ -184,6 +198,18 @@ class MoonShadow {
   double direct_light(const Place& place, std::size_t wavelength) const;
   double scattered_light(const Place& place, const glm::dvec3& direction, std::size_t wavelength) const;
 
+  /// V̄ at a point and the polarization of the light its air scatters along v:
+  /// per unit of that light, eclipsed and in daylight, the gas's share of
+  /// Π(v) − 2N, N the unit coherency the gas scatters by eq. (1) from the
+  /// coherency arriving there, (a·1 − M − P)/2 from the field (the header).
+  /// Zero where the shadow is not polarized.
+  struct ScatteredLight {
+    double share_left = 1.0;
+    ShadowTensor excess_eclipsed{}, excess_daylight{};
+  };
+  ScatteredLight polarized_scattered_light(const Place& place, const glm::dvec3& direction,
+                                           std::size_t wavelength) const;
+
   /// The same shadow with `geometry` seen from `camera_m`: whether the tables
   /// still hold (the same limb darkening, r_m0 and r_s within 1e-3 relative,
   /// the axis' zenith angle within 0.3°). The caller then moves this one (move_to).
@@ -220,9 +246,23 @@ class MoonShadow {
 
  private:
   double profile_at(double limb_rad, std::size_t wavelength) const;
+  /// The field's values at a place, the fade from the nodes' edge to daylight
+  /// (1 beyond it) and v in the field's basis (mirrored where q·e2 < 0).
+  struct FieldSample {
+    double values[kShadowFieldValues] = {};
+    double fade = 1.0;
+    double v[3] = {};
+    bool mirrored = false;
+  };
+  FieldSample field_at(const Place& place, const glm::dvec3& direction, std::size_t wavelength) const;
+  /// The air's scatterers at a place: Rayleigh's and the aerosols'.
+  std::array<Scatterer, 2> air_at(const Place& place, std::size_t wavelength) const;
+  /// The point's distance from the axis in units of the field's end.
+  double reach(const Place& place) const;
   /// V̄ at `place` for light scattered along `direction` by `scatterers`.
   double share_left(const Place& place, const glm::dvec3& direction, std::size_t wavelength,
                     std::span<const Scatterer> scatterers) const;
+  static double share_left(const FieldSample& field, std::span<const Scatterer> scatterers);
   void set_frame(const glm::dvec3& camera_m);
   void fill_profile();
   void fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
