@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <stop_token>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -76,6 +77,17 @@ MoonShadowOptions fewer_rays() {
   o.directions = 32;
   o.higher_order_directions = 16;
   return o;
+}
+
+/// The same shadow twice: weighting the light's polarization, and not (the scalar transfer's).
+struct PolarizedAndScalar {
+  MoonShadow polarized, scalar;
+};
+PolarizedAndScalar polarized_and_scalar(const TableQueries& q, const AtmosphereModel& model, const EclipseSetup& e,
+                                        MoonShadowOptions o) {
+  MoonShadow polarized(e.geometry, q, model, e.observer_m, o);
+  o.polarized = false;
+  return {std::move(polarized), MoonShadow(e.geometry, q, model, e.observer_m, o)};
 }
 
 class EclipsedSky : public ::testing::Test {
@@ -231,13 +243,10 @@ TEST_F(EclipsedSky, ThePolarizationOfTheLightFromAfarBrightensTheTotalityZenithA
   // three wavelengths.
   const TableQueries q(*model_, *tables_);
   const EclipseSetup e = setup_at(*model_, totality());
-  MoonShadowOptions o = fewer_rays();
-  const MoonShadow vector(e.geometry, q, *model_, e.observer_m, o);
-  o.polarized = false;
-  const MoonShadow scalar(e.geometry, q, *model_, e.observer_m, o);
+  const PolarizedAndScalar shadows = polarized_and_scalar(q, *model_, e, fewer_rays());
   const glm::dvec3 up{0, 0, 1};
-  const atmosphere::Spectrum tables_vector = eclipsed_sky_radiance(q, *model_, vector, e.observer_m, up);
-  const atmosphere::Spectrum tables_scalar = eclipsed_sky_radiance(q, *model_, scalar, e.observer_m, up);
+  const atmosphere::Spectrum tables_vector = eclipsed_sky_radiance(q, *model_, shadows.polarized, e.observer_m, up);
+  const atmosphere::Spectrum tables_scalar = eclipsed_sky_radiance(q, *model_, shadows.scalar, e.observer_m, up);
 
   atmosphere::reference::SunDisc sun;
   sun.direction = e.geometry.sun_direction;
@@ -269,10 +278,8 @@ TEST_F(EclipsedSky, TheLightTheAirScattersOnIsPolarizedAcrossItsWay) {
   // light's polarization is the daylight's; a scalar shadow has none.
   const TableQueries q(*model_, *tables_);
   const EclipseSetup e = setup_at(*model_, totality());
-  MoonShadowOptions o = quick();
-  const MoonShadow shadow(e.geometry, q, *model_, e.observer_m, o);
-  o.polarized = false;
-  const MoonShadow scalar(e.geometry, q, *model_, e.observer_m, o);
+  const PolarizedAndScalar shadows = polarized_and_scalar(q, *model_, e, quick());
+  const MoonShadow &shadow = shadows.polarized, &scalar = shadows.scalar;
   const glm::dvec3 basis[3] = {shadow.axis_1(), shadow.axis_2(), e.geometry.sun_direction};
   const auto world = [&](const ShadowTensor& t) {
     const double c[3][3] = {{t[0], t[3], t[4]}, {t[3], t[1], t[5]}, {t[4], t[5], t[2]}};
