@@ -394,11 +394,12 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
   const auto excess = [&](double a, const double* m, const double* M, const double* P) {
     const glm::dmat3 arriving = 0.5 * (a * glm::dmat3(1.0) - symmetric(M) - symmetric(P));
     const glm::dmat3 t = atmosphere::rayleigh_scattered_coherency(dipole_share_, v, arriving);
-    const double gas = std::max(0.0, t[0][0] + t[1][1] + t[2][2]);
+    const double gas_weight = std::max(0.0, t[0][0] + t[1][1] + t[2][2]);
     double all = 0.0;
     for (const Scatterer& s : air) all += s.scattering_m1 * std::max(0.0, phase_weight(f.v, a, m, M, P, s));
-    if (!(all > 0.0) || !(gas > 0.0)) return glm::dmat3(0.0);
-    return air[0].scattering_m1 / all * (gas * atmosphere::transverse_projector(v) - 2.0 * t);
+    if (!(all > 0.0) || !(gas_weight > 0.0)) return glm::dmat3(0.0);
+    const Scatterer& gas = air[0];  // air_at's first: Rayleigh's
+    return gas.scattering_m1 / all * (gas_weight * atmosphere::transverse_projector(v) - 2.0 * t);
   };
   const double* values = f.values;
   const glm::dmat3 daylight = excess(1.0, values + 10, values + 13, values + 25);
