@@ -153,7 +153,8 @@ using ShadowTensor = std::array<double, 6>;
 inline constexpr std::size_t kShadowFieldValues = 31;
 /// Sums per node and wavelength while V̄'s table is made: L, L ω and L ωωᵀ
 /// (10 numbers) of the eclipsed light, then of the daylight; then P's
-/// integrand, L₁ (Π(ω) − 2 N(ω)) (6), of the eclipsed light and of the daylight.
+/// integrand, L (Π(ω) − 2 N(ω)) (6) of the gas's once-scattered light and,
+/// from the second pass on, of the multiply scattered light, eclipsed and in daylight.
 inline constexpr std::size_t kLightSums = 32;
 
 /// Thrown by MoonShadow's constructor when its `stop` was requested: a build
