@@ -33,6 +33,7 @@ struct SampleArgs {
   int orders = atmosphere::lut::kDefaultScatteringOrders;
   bool cpu = false, colour = false, polarized = false;
   std::vector<double> colour_band_nm = {410.0, 800.0};
+  std::vector<int> reference_orders;  ///< first, last scattering order of --method reference (empty: all)
   unsigned threads = 0;
 };
 
@@ -120,6 +121,18 @@ void run_sample(const SampleArgs& a) {
         "--polarized is the reference solver's vector radiative transfer; it needs --method "
         "reference (the tables are scalar)");
   r.polarized = a.polarized;
+  if (!a.reference_orders.empty()) {
+    if (a.method != "reference")
+      throw std::invalid_argument(
+          "--reference-orders splits the reference solver's light by order; it needs "
+          "--method reference (the tables sum their orders)");
+    if (!(a.reference_orders[0] >= 1 && a.reference_orders[0] <= a.reference_orders[1]))
+      throw std::invalid_argument(
+          fmt::format("--reference-orders {},{}: the first order must be at least 1 and not "
+                      "above the last",
+                      a.reference_orders[0], a.reference_orders[1]));
+    r.reference_orders = {a.reference_orders[0], a.reference_orders[1]};
+  }
   r.seed = a.seed;
   r.directions = a.directions_file.empty() ? grid_directions(a.grid.empty() ? "10x4" : a.grid)
                                            : read_directions(a.directions_file);
@@ -188,6 +201,12 @@ void register_sample_command(CLI::App& app) {
   cmd->add_flag("--polarized", args->polarized,
                 "--method reference: vector radiative transfer, the light's linear polarization carried through "
                 "every scattering (default: scalar, as the tables)");
+  cmd->add_option("--reference-orders", args->reference_orders,
+                  "--method reference: only the light scattered FIRST to LAST times, as FIRST,LAST in [1, 1000] "
+                  "(1: single scattering and the direct sun the ground reflects; default: all)")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(CLI::Range(1, 1000));
   cmd->add_option("--orders", args->orders, "Scattering orders of the tables")->check(CLI::Range(1, 50));
   cmd->add_option("--tables", args->tables,
                   "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "

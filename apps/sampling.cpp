@@ -36,6 +36,8 @@ reference::PathTracerOptions tracer_options(const SamplingRequest& r) {
   o.seed = r.seed;
   o.thread_count = r.threads;
   o.polarized = r.polarized;
+  o.min_scattering_order = r.reference_orders[0];
+  o.max_scattering_order = r.reference_orders[1];
   return o;
 }
 

@@ -25,6 +25,9 @@ struct SamplingRequest {
   atmosphere::reference::Occulter occulter;
   std::size_t reference_samples = 4096;  ///< Monte Carlo paths per wavelength and direction
   bool polarized = false;                ///< reference method: vector radiative transfer instead of scalar
+  /// Reference method: only the light scattered this many times, first to last (1: single scattering and the
+  /// direct sun the ground reflects), to split a sky by order (atmosphere/reference/path_tracer.h).
+  std::array<int, 2> reference_orders = {1, 1000};
   /// Radiance: also each direction's colour — CIE 1931 x, y of the spectral radiance, its correlated colour
   /// temperature and Duv, and its effective blackbody temperature over `colour_band_nm` (image/colour.h);
   /// needs wavelengths that span the visible (colour_spectrum_problem).

@@ -2,7 +2,8 @@
 // into the reference solver and the tables (apps/sampling.h). At the point of
 // greatest eclipse of 2017-08-21 in totality the zenith keeps ~1e-4 of its
 // light and turns bluer (Dandekar & Turtle 1971, Appl. Opt. 10(6): ~1e-4 with
-// the sun 40–50° up; ~11 000 K against ~9 000 K), by both methods.
+// the sun 40–50° up; ~11 000 K against ~9 000 K), by both methods. And the
+// reference solver's sky split by scattering order (--reference-orders).
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -65,6 +66,34 @@ TEST(SampleEclipse, AtTheGreatestEclipseOf2017TheZenithKeepsATenThousandthOfItsL
     std::printf("%.0f nm: tables / reference in totality %.3f\n", m.wavelengths_nm[i], from_tables[i] / dark[i]);
     // validate eclipse's tolerance (docs/validation.md, "Eclipses"): 25 % plus the reference's noise here (~10 %).
     EXPECT_NEAR(from_tables[i] / dark[i], 1.0, 0.25 + 3.0 * 0.1) << m.wavelengths_nm[i];
+  }
+}
+
+TEST(SampleOrders, TheReferenceSkySplitByOrderAddsUpToTheWholeSky) {
+  // --reference-orders: the light scattered once and twice, and three times or more, make up the whole sky
+  // within the three estimates' noise (a daylit zenith, the sun 60° down from it, 200 000 paths each:
+  // relative standard errors ≲ 1 %); the single scattering alone is well under the whole.
+  const atmosphere::AtmosphereModel m = atmosphere::load_preset("earth-advanced").model;
+  SamplingRequest all;
+  all.method = SamplingMethod::Reference;
+  all.reference_samples = 200000;
+  all.directions = {{0.0, 0.0}};
+  all.geometry.sun_zenith_deg = 60.0;
+  SamplingRequest low = all, high = all, single = all;
+  low.reference_orders = {1, 2};
+  high.reference_orders = {3, 1000};
+  single.reference_orders = {1, 1};
+  single.reference_samples = 20000;
+  const std::vector<double> whole = first_radiance_row(sample_radiance_csv(m, all), 3);
+  const std::vector<double> first_two = first_radiance_row(sample_radiance_csv(m, low), 3);
+  const std::vector<double> rest = first_radiance_row(sample_radiance_csv(m, high), 3);
+  const std::vector<double> once = first_radiance_row(sample_radiance_csv(m, single), 3);
+  for (std::size_t i = 0; i < 3; ++i) {
+    std::printf("%.0f nm: orders 1-2 %.3e + 3- %.3e against all %.3e; order 1 %.3e\n", m.wavelengths_nm[i],
+                first_two[i], rest[i], whole[i], once[i]);
+    EXPECT_NEAR((first_two[i] + rest[i]) / whole[i], 1.0, 0.04) << m.wavelengths_nm[i] << " nm";
+    EXPECT_GT(rest[i], 0.02 * whole[i]) << m.wavelengths_nm[i] << " nm";
+    EXPECT_LT(once[i], 0.95 * whole[i]) << m.wavelengths_nm[i] << " nm";
   }
 }
 

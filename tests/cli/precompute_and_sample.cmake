@@ -91,6 +91,20 @@ execute_process(COMMAND ${ZENITH} sample --atmosphere mars --method reference --
 if(NOT rc EQUAL 0 OR NOT out MATCHES "\n0,0,[0-9.e-]+,")
   message(FATAL_ERROR "sample --method reference --polarized failed (${rc}):\n${out}\n${err}")
 endif()
+# --reference-orders splits the path tracer's light by order: the tables refuse it, a first order above the
+# last is refused naming both.
+execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --grid 1x1 --reference-orders 2,2
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${err}" "--reference-orders splits the reference solver's light by order; it needs --method reference" pos)
+if(rc EQUAL 0 OR pos EQUAL -1)
+  message(FATAL_ERROR "sample --reference-orders with the tables not refused (${rc}): ${err}")
+endif()
+execute_process(COMMAND ${ZENITH} sample --atmosphere mars --method reference --samples 200 --grid 1x1
+                        --reference-orders 3,2 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${err}" "--reference-orders 3,2: the first order must be at least 1 and not above the last" pos)
+if(rc EQUAL 0 OR pos EQUAL -1)
+  message(FATAL_ERROR "sample --reference-orders 3,2 not refused (${rc}): ${err}")
+endif()
 
 # A malformed directions file is rejected naming the file and the line.
 file(WRITE "${WORK_DIR}/bad-directions.csv" "0,0\n200,0\n")
