@@ -145,10 +145,7 @@ ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereMod
         if (polarization) {
           const MoonShadow::ScatteredLight s = shadow.polarized_scattered_light(middle, view, i);
           light.eclipsed[i] += s.share_left * in;
-          for (std::size_t c = 0; c < 6; ++c) {
-            polarization->eclipsed[i][c] += s.share_left * in * s.excess_eclipsed[c];
-            polarization->daylight[i][c] += in * s.excess_daylight[c];
-          }
+          for (std::size_t c = 0; c < 6; ++c) polarization->eclipsed[i][c] += s.share_left * in * s.excess[c];
         } else {
           light.eclipsed[i] += shadow.scattered_light(middle, view, i) * in;
         }

@@ -62,12 +62,12 @@ struct ArrivingLight {
   std::array<double, atmosphere::lut::kMaxChannels> eclipsed{}, daylight{};
   std::array<double, atmosphere::lut::kMaxChannels> rayleigh_single_eclipsed{}, rayleigh_single_daylight{};
 };
-/// Of the multiply scattered light arriving, Σ L (Π − 2N) along the ray,
-/// eclipsed and in daylight, in the shadow's basis: each segment's light
-/// times its excess (MoonShadow::ScatteredLight). The skylight the ground
-/// reflects arrives unpolarized.
+/// Of the multiply scattered light arriving eclipsed, Σ L (Π − 2N) along the
+/// ray, in the shadow's basis: each segment's light times its excess
+/// (MoonShadow::ScatteredLight). The skylight the ground reflects arrives
+/// unpolarized.
 struct ArrivingPolarization {
-  std::array<ShadowTensor, atmosphere::lut::kMaxChannels> eclipsed{}, daylight{};
+  std::array<ShadowTensor, atmosphere::lut::kMaxChannels> eclipsed{};
 };
 /// `multiple_polarization`, where given, has the multiply scattered light's
 /// polarization added to it (the orders must include that light).

@@ -67,7 +67,8 @@ std::pair<double, double> legendre_k1_k2(Phase phase) {
 
 /// ∫ P(ω·v) L dω for a scatterer, from a node's sums (the header; the 1/4π
 /// dropped, it cancels): a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2 + (3Δ/4) vᵀPv,
-/// M and P as xx, yy, zz, xy, xz, yz, v in the field's basis.
+/// M and P as xx, yy, zz, xy, xz, yz, v in the field's basis; without P
+/// (null) as scalar transfer weighs it.
 double phase_weight(const double* v, double a, const double* m, const double* M, const double* P,
                     const MoonShadow::Scatterer& t) {
   const auto quadratic = [&](const double* T) {
@@ -75,7 +76,7 @@ double phase_weight(const double* v, double a, const double* m, const double* M,
            2.0 * (T[3] * v[0] * v[1] + T[4] * v[0] * v[2] + T[5] * v[1] * v[2]);
   };
   const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
-  return a + 3.0 * t.k1 * mv + 2.5 * t.k2 * (3.0 * quadratic(M) - a) + t.dipole * quadratic(P);
+  return a + 3.0 * t.k1 * mv + 2.5 * t.k2 * (3.0 * quadratic(M) - a) + (P ? t.dipole * quadratic(P) : 0.0);
 }
 
 glm::dmat3 symmetric(const double* t) { return glm::dmat3(t[0], t[3], t[4], t[3], t[1], t[5], t[4], t[5], t[2]); }
@@ -163,10 +164,22 @@ void MoonShadow::fill_field(const atmosphere::lut::TableQueries& tables, const a
   // The once-scattered light does not depend on V̄ (only on V): summed once,
   // and each later pass adds to it only the multiply scattered light under
   // the V̄ before.
-  const std::vector<double> once = light_sums(tables, model, ArrivingOrders::once_scattered, stop);
+  const MoonShadowOptions& o = options_;
+  const std::vector<double> once =
+      light_sums(tables, model, ArrivingOrders::once_scattered, o.directions, o.polarized, stop);
   field_ = field_from(once);
-  for (int pass = 1; pass < options_.iterations; ++pass) {
-    std::vector<double> all = light_sums(tables, model, ArrivingOrders::multiply_scattered, stop);
+  for (int pass = 1; pass < o.iterations; ++pass) {
+    if (o.polarized) {
+      // The coherency arriving at each point with the multiply scattered light in it, as if unpolarized:
+      // the polarization of all the light the gas there scatters on (the header).
+      std::vector<double> arriving =
+          light_sums(tables, model, ArrivingOrders::multiply_scattered, o.coherency_directions, false, stop);
+      for (std::size_t n = 0; n < arriving.size(); ++n) arriving[n] += once[n];
+      coherency_ = field_from(arriving);
+    }
+    std::vector<double> all =
+        light_sums(tables, model, ArrivingOrders::multiply_scattered, o.higher_order_directions, o.polarized, stop);
+    coherency_.clear();
     for (std::size_t n = 0; n < all.size(); ++n) all[n] += once[n];
     field_ = field_from(all);
   }
@@ -174,11 +187,10 @@ void MoonShadow::fill_field(const atmosphere::lut::TableQueries& tables, const a
 
 std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& tables,
                                            const atmosphere::AtmosphereModel& model, ArrivingOrders orders,
-                                           const std::stop_token& stop) const {
+                                           std::size_t rays, bool polarization, const std::stop_token& stop) const {
   const MoonShadowOptions& o = options_;
   const glm::dvec3& s = geometry_.sun_direction;
-  const std::vector<glm::dvec3> directions =
-      sphere_directions(orders == ArrivingOrders::multiply_scattered ? o.higher_order_directions : o.directions);
+  const std::vector<glm::dvec3> directions = sphere_directions(rays);
   const double weight = 1.0 / double(directions.size());  // means over the sphere: passes may differ in rays
   const std::size_t nodes = o.field_across * o.field_side * o.field_altitudes_m.size();
   std::vector<double> sums(nodes * wavelengths_ * kLightSums, 0.0);
@@ -211,7 +223,7 @@ std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& 
     // from one frame to the next and the field changes smoothly with the eclipse.
     const glm::dvec3 up = glm::normalize(p), toward_sun = across(up, s), side = glm::cross(up, toward_sun);
     // The multiply scattered light's polarization, summed over every ray (each has the same weight).
-    const bool polarized_multiple = o.polarized && orders == ArrivingOrders::multiply_scattered;
+    const bool polarized_multiple = polarization && orders == ArrivingOrders::multiply_scattered;
     ArrivingPolarization multiple;
     for (const glm::dvec3& local : directions) {
       const glm::dvec3 d = local.x * toward_sun + local.y * side + local.z * up;
@@ -225,26 +237,23 @@ std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& 
           out[i * kLightSums + c] += weight * l.eclipsed[i] * moments[c];
           out[i * kLightSums + 10 + c] += weight * l.daylight[i] * moments[c];
         }
-      if (!o.polarized || orders == ArrivingOrders::multiply_scattered) continue;
+      if (!polarization || orders == ArrivingOrders::multiply_scattered) continue;
       // The gas's once-scattered light, from the sun's beam along −s into −d: Π(d) − 2 N, in the basis (e1, e2, s).
       const glm::dmat3 excess = atmosphere::transverse_projector(d) -
                                 2.0 * atmosphere::once_scattered_rayleigh_coherency(dipole_share_, -s, -d);
       const glm::dvec3 basis[3] = {e1_, e2_, s};
       const auto component = [&](int row, int column) { return glm::dot(basis[row], excess * basis[column]); };
-      const double polarization[6] = {component(0, 0), component(1, 1), component(2, 2),
-                                      component(0, 1), component(0, 2), component(1, 2)};
+      const double shape[6] = {component(0, 0), component(1, 1), component(2, 2),
+                               component(0, 1), component(0, 2), component(1, 2)};
       for (std::size_t i = 0; i < wavelengths_; ++i)
         for (std::size_t c = 0; c < 6; ++c) {
-          out[i * kLightSums + 20 + c] += weight * l.rayleigh_single_eclipsed[i] * polarization[c];
-          out[i * kLightSums + 26 + c] += weight * l.rayleigh_single_daylight[i] * polarization[c];
+          out[i * kLightSums + 20 + c] += weight * l.rayleigh_single_eclipsed[i] * shape[c];
+          out[i * kLightSums + 26 + c] += weight * l.rayleigh_single_daylight[i] * shape[c];
         }
     }
     if (!polarized_multiple) return;
     for (std::size_t i = 0; i < wavelengths_; ++i)
-      for (std::size_t c = 0; c < 6; ++c) {
-        out[i * kLightSums + 20 + c] += weight * multiple.eclipsed[i][c];
-        out[i * kLightSums + 26 + c] += weight * multiple.daylight[i][c];
-      }
+      for (std::size_t c = 0; c < 6; ++c) out[i * kLightSums + 20 + c] += weight * multiple.eclipsed[i][c];
   });
   return sums;
 }
@@ -324,7 +333,8 @@ double MoonShadow::reach(const Place& place) const {
   return std::hypot(place.across_m[0], place.across_m[1]) / field_end_m_;
 }
 
-MoonShadow::FieldSample MoonShadow::field_at(const Place& place, const glm::dvec3& direction, std::size_t i) const {
+MoonShadow::FieldSample MoonShadow::field_at(const std::vector<float>& table, const Place& place,
+                                             const glm::dvec3& direction, std::size_t i) const {
   const MoonShadowOptions& o = options_;
   FieldSample f;
   // Beyond the penumbra the nodes' edge holds light arriving from inside it;
@@ -351,7 +361,7 @@ MoonShadow::FieldSample MoonShadow::field_at(const Place& place, const glm::dvec
     const double weight = (dj ? tu : 1.0 - tu) * (dk ? tv : 1.0 - tv) * (dl ? tz : 1.0 - tz);
     if (weight == 0.0) continue;
     const std::size_t node = ((dl ? upper : level) * o.field_side + k + dk) * o.field_across + j + dj;
-    const float* at = &field_[(node * wavelengths_ + i) * kShadowFieldValues];
+    const float* at = &table[(node * wavelengths_ + i) * kShadowFieldValues];
     for (std::size_t c = 0; c < kShadowFieldValues; ++c) f.values[c] += weight * double(at[c]);
   }
   // v in the basis (e1, e2, s), mirrored across the plane of the axis and e1 where the point lies beyond it.
@@ -365,7 +375,7 @@ MoonShadow::FieldSample MoonShadow::field_at(const Place& place, const glm::dvec
 double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, std::size_t i,
                               std::span<const Scatterer> scatterers) const {
   if (reach(place) >= 2.0) return 1.0;
-  return share_left(field_at(place, direction, i), scatterers);
+  return share_left(field_at(field_, place, direction, i), scatterers);
 }
 
 double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> scatterers) {
@@ -373,7 +383,8 @@ double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> s
   double eclipsed = 0.0, daylight = 0.0;
   for (const Scatterer& t : scatterers) {
     eclipsed += t.scattering_m1 * std::max(0.0, phase_weight(f.v, values[0], values + 1, values + 4, values + 19, t));
-    daylight += t.scattering_m1 * std::max(0.0, phase_weight(f.v, 1.0, values + 10, values + 13, values + 25, t));
+    // The daylight as the tables' scalar transfer has it (the header).
+    daylight += t.scattering_m1 * std::max(0.0, phase_weight(f.v, 1.0, values + 10, values + 13, nullptr, t));
   }
   if (!(daylight > 0.0)) return 1.0;
   return std::clamp(eclipsed / daylight, 0.0, 1.0) * (1.0 - f.fade) + f.fade;
@@ -382,7 +393,7 @@ double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> s
 MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& place, const glm::dvec3& direction,
                                                                  std::size_t i) const {
   ScatteredLight light;
-  const FieldSample f = field_at(place, direction, i);
+  const FieldSample f = field_at(field_, place, direction, i);
   const std::array<Scatterer, 2> air = air_at(place, i);
   const bool in_field = !std::isinf(place.limb_rad) && f.fade < 1.0;
   light.share_left = in_field ? share_left(f, air) : 1.0;
@@ -401,7 +412,9 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
     const Scatterer& gas = air[0];  // air_at's first: Rayleigh's
     return gas.scattering_m1 / all * (gas_weight * atmosphere::transverse_projector(v) - 2.0 * t);
   };
-  const double* values = f.values;
+  // While the table is made, the polarization is the coherency pass's (the header).
+  const FieldSample arriving = coherency_.empty() ? f : field_at(coherency_, place, direction, i);
+  const double* values = arriving.values;
   const glm::dmat3 daylight = excess(1.0, values + 10, values + 13, values + 25);
   glm::dmat3 eclipsed = daylight;
   if (in_field && light.share_left > 0.0) {
@@ -411,13 +424,11 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
     eclipsed =
         (field_share * excess(values[0], values + 1, values + 4, values + 19) + f.fade * daylight) / light.share_left;
   }
-  light.excess_eclipsed = components(eclipsed);
-  light.excess_daylight = components(daylight);
-  if (f.mirrored)  // back across the plane of the axis and e1: e2 changes sign
-    for (ShadowTensor* t : {&light.excess_eclipsed, &light.excess_daylight}) {
-      (*t)[3] = -(*t)[3];
-      (*t)[5] = -(*t)[5];
-    }
+  light.excess = components(eclipsed);
+  if (f.mirrored) {  // back across the plane of the axis and e1: e2 changes sign
+    light.excess[3] = -light.excess[3];
+    light.excess[5] = -light.excess[5];
+  }
   return light;
 }
 

@@ -58,14 +58,28 @@
 // scattered three times or more. The coherency arriving at a node, summed over
 // its rays, is 𝒯 = (a·1 − M − P)/2 (unpolarized light gives (aI − M)/2, the
 // gas's once-scattered light L₁ N less L₁ (Π − 2N)/2), so the gas there
-// scatters toward the next point the coherency eq. (1) of 𝒯 — its second
-// order's exactly, given to every higher order as the scalar passes give V̄.
-// From the second pass on, P also sums the multiply scattered light's
-// L (Π(ω) − 2 N(ω)), N from the field of the pass before at each point of
-// the ray, weighted by the gas's share of what the air there scatters
-// (MoonShadow::ScatteredLight; the aerosols scatter as if unpolarized).
+// scatters toward the next point the coherency eq. (1) of 𝒯. From the second
+// pass on, P also sums the multiply scattered light's L (Π(ω) − 2 N(ω)) along
+// each ray, weighted by the gas's share of what the air there scatters
+// (MoonShadow::ScatteredLight; the aerosols scatter as if unpolarized), N from
+// the coherency of all the light arriving at each point of the ray: the
+// once-scattered light's, polarized, and the multiply scattered light's
+// under the V̄ before, taken as unpolarized — a scalar pass before each
+// (MoonShadowOptions::coherency_directions). The pass before alone would give
+// all the multiply scattered light the second order's polarization, which
+// each further scattering spends (the path tracer split by order,
+// docs/validation.md: order 3 keeps a third to a half of order 2's gain,
+// orders ≥ 4 little).
 // The tables' multiple scattering stays scalar (by day its error is under 1 %
-// at the zenith), and V̄ is the vector transfer's share of it.
+// at the zenith), so V̄ takes it to the vector transfer's eclipsed light: it
+// divides the eclipsed light, weighted with its polarization, by the
+// daylight weighted as scalar transfer weights it — the tables' own. (Over
+// the daylight weighted with its polarization it was the vector transfer's
+// share, which takes the daylight's own gain off the tables' scalar light: at
+// mid-totality 2017 from Hopkinsville, 3–25 % at the zenith's air, most in
+// the blue and higher up.) The daylight's P is the build's: it gives the
+// light beyond the shadow its polarization; the sky reads the first 25
+// numbers (kShadowSkyValues).
 // The nodes lie over (q·e1, |q·e2|, altitude), q the offset of p from the
 // axis and e1 the direction from the axis toward the planet's centre (the
 // planet and the shadow are mirror images of themselves across the plane of
@@ -125,6 +139,12 @@ struct MoonShadowOptions {
   /// which comes from all around: at mid-totality 2017 (paper tables) 32 rays
   /// give the zenith within 1 % and the sky 10° up within 5 % of 64 rays (16: 11 %).
   std::size_t higher_order_directions = 32;
+  /// Rays per node for the scalar pass before each later polarized one, which
+  /// gives the coherency arriving at each point the multiply scattered light
+  /// (the header): 8 give the mid-totality zenith of 2017 from Hopkinsville
+  /// within 0.2 % of 32 at 680, 550 and 440 nm (paper tables), for 1 s of the
+  /// build instead of 2.5 s on 2 cores.
+  std::size_t coherency_directions = 8;
   int segments = 12;  ///< segments per ray
   /// 1: V̄ from the once-scattered light, given to every order. Each more
   /// pass adds to the light arriving at p the multiply scattered light under
@@ -151,10 +171,15 @@ using ShadowTensor = std::array<double, 6>;
 /// Numbers per node and wavelength of V̄'s table: a_e, m_e, M_e, m_d, M_d, P_e,
 /// P_d, in the basis (e1, e2, s), m as x, y, z and M, P as xx, yy, zz, xy, xz, yz.
 inline constexpr std::size_t kShadowFieldValues = 31;
+/// The first of them, which V̄ reads (P_d only gives the light beyond the
+/// shadow its polarization while the table is made).
+inline constexpr std::size_t kShadowSkyValues = 25;
 /// Sums per node and wavelength while V̄'s table is made: L, L ω and L ωωᵀ
 /// (10 numbers) of the eclipsed light, then of the daylight; then P's
-/// integrand, L (Π(ω) − 2 N(ω)) (6) of the gas's once-scattered light and,
-/// from the second pass on, of the multiply scattered light, eclipsed and in daylight.
+/// integrand, L (Π(ω) − 2 N(ω)) (6), eclipsed and in daylight: of the gas's
+/// once-scattered light and, from the second pass on, of the multiply
+/// scattered light eclipsed (the daylight's stays the once-scattered light's,
+/// as the coherency pass takes the multiply scattered light).
 inline constexpr std::size_t kLightSums = 32;
 
 /// Thrown by MoonShadow's constructor when its `stop` was requested: a build
@@ -199,14 +224,14 @@ class MoonShadow {
   double direct_light(const Place& place, std::size_t wavelength) const;
   double scattered_light(const Place& place, const glm::dvec3& direction, std::size_t wavelength) const;
 
-  /// V̄ at a point and the polarization of the light its air scatters along v:
-  /// per unit of that light, eclipsed and in daylight, the gas's share of
-  /// Π(v) − 2N, N the unit coherency the gas scatters by eq. (1) from the
-  /// coherency arriving there, (a·1 − M − P)/2 from the field (the header).
-  /// Zero where the shadow is not polarized.
+  /// V̄ at a point and the polarization of the light its air scatters along v,
+  /// eclipsed: per unit of that light, the gas's share of Π(v) − 2N, N the
+  /// unit coherency the gas scatters by eq. (1) from the coherency arriving
+  /// there, (a·1 − M − P)/2 from the field (while the table is made, from
+  /// the coherency pass's: the header). Zero where the shadow is not polarized.
   struct ScatteredLight {
     double share_left = 1.0;
-    ShadowTensor excess_eclipsed{}, excess_daylight{};
+    ShadowTensor excess{};
   };
   ScatteredLight polarized_scattered_light(const Place& place, const glm::dvec3& direction,
                                            std::size_t wavelength) const;
@@ -255,7 +280,8 @@ class MoonShadow {
     double v[3] = {};
     bool mirrored = false;
   };
-  FieldSample field_at(const Place& place, const glm::dvec3& direction, std::size_t wavelength) const;
+  FieldSample field_at(const std::vector<float>& table, const Place& place, const glm::dvec3& direction,
+                       std::size_t wavelength) const;
   /// The air's scatterers at a place: Rayleigh's and the aerosols'.
   std::array<Scatterer, 2> air_at(const Place& place, std::size_t wavelength) const;
   /// The point's distance from the axis in units of the field's end.
@@ -270,9 +296,11 @@ class MoonShadow {
                   const std::stop_token& stop);
   /// One pass over the nodes: the sums of the light of `orders` arriving
   /// at each (under this shadow's field so far), eclipsed and in daylight,
-  /// of 1, ω and ωωᵀ (kLightSums per wavelength, wavelengths, nodes).
+  /// of 1, ω and ωωᵀ, and with `polarization` of its P (kLightSums per
+  /// wavelength, wavelengths, nodes), over `directions` rays.
   std::vector<double> light_sums(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
-                                 ArrivingOrders orders, const std::stop_token& stop) const;
+                                 ArrivingOrders orders, std::size_t directions, bool polarization,
+                                 const std::stop_token& stop) const;
   /// V̄'s table from such sums.
   std::vector<float> field_from(const std::vector<double>& sums) const;
 
@@ -287,6 +315,10 @@ class MoonShadow {
   double profile_end_rad_ = 0.0, field_end_m_ = 0.0;
   glm::dvec3 e1_{1.0, 0.0, 0.0}, e2_{0.0, 1.0, 0.0};
   std::vector<float> profile_, field_;
+  /// While a polarized pass runs: the field of the coherency arriving with
+  /// the multiply scattered light in it (the header), which the light's
+  /// polarization is read from. Empty otherwise.
+  std::vector<float> coherency_;
   /// The air's scatterers at reference density per wavelength, and their density profiles.
   std::vector<Scatterer> rayleigh_, mie_;
   double dipole_share_ = 1.0;  ///< Δ of the gas

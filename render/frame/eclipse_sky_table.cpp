@@ -45,7 +45,7 @@ std::vector<gl::ShaderDefine> EclipseSkyTable::defines() {
           {"SHADOW_FIELD_ACROSS", std::to_string(shadow.field_across)},
           {"SHADOW_FIELD_SIDE", std::to_string(shadow.field_side)},
           {"SHADOW_FIELD_LEVELS", std::to_string(shadow.field_altitudes_m.size())},
-          {"SHADOW_FIELD_VALUES", std::to_string(astro::kShadowFieldValues)},
+          {"SHADOW_FIELD_VALUES", std::to_string(astro::kShadowSkyValues)},
           {"SHADOW_FIELD_ALTITUDES", float_array(shadow.field_altitudes_m)}};
 }
 
@@ -127,11 +127,11 @@ void EclipseSkyTable::set_shadow(std::unique_ptr<astro::MoonShadow> shadow) {
     for (std::size_t k = 0; k < samples; ++k)
       for (std::size_t l = 0; l < lanes; ++l) profile[k * kLanes + l] = s.profile()[k * n + first + l];
     profiles_.push_back(gl::Texture::create_2d(gl::TextureFormat::rgba32f, static_cast<int>(samples), 1, profile));
-    // V̄: texel (j, k, c · levels + level) holds value c of node (j, k, level).
-    std::vector<float> field(nodes_per_level * levels * astro::kShadowFieldValues * kLanes, 0.0f);
+    // V̄: texel (j, k, c · levels + level) holds value c of node (j, k, level), of the values V̄ reads.
+    std::vector<float> field(nodes_per_level * levels * astro::kShadowSkyValues * kLanes, 0.0f);
     for (std::size_t level = 0; level < levels; ++level)
       for (std::size_t node = 0; node < nodes_per_level; ++node)
-        for (std::size_t c = 0; c < astro::kShadowFieldValues; ++c)
+        for (std::size_t c = 0; c < astro::kShadowSkyValues; ++c)
           for (std::size_t l = 0; l < lanes; ++l) {
             const std::size_t from = ((level * nodes_per_level + node) * n + first + l) * astro::kShadowFieldValues + c;
             const std::size_t to = ((c * levels + level) * nodes_per_level + node) * kLanes + l;
@@ -139,7 +139,7 @@ void EclipseSkyTable::set_shadow(std::unique_ptr<astro::MoonShadow> shadow) {
           }
     fields_.push_back(gl::Texture::create_3d(gl::TextureFormat::rgba32f, static_cast<int>(o.field_across),
                                              static_cast<int>(o.field_side),
-                                             static_cast<int>(levels * astro::kShadowFieldValues), field));
+                                             static_cast<int>(levels * astro::kShadowSkyValues), field));
     for (std::size_t l = 0; l < lanes; ++l) {
       mie_k1_[g][l] = static_cast<float>(s.mie_scatterers()[first + l].k1);
       mie_k2_[g][l] = static_cast<float>(s.mie_scatterers()[first + l].k2);

@@ -13,17 +13,17 @@
 //   x(p) = atan(|q|, D) − (asin(R_m / √(D² + |q|²)) − r_m0)   the Moon's limb from the Sun's centre
 //
 // V(p) = profile(x), linear over PROFILE_SAMPLES texels as MoonShadow::profile_at;
-// V̄(p, v) from the 31 numbers per node (trilinear in the node coordinates
+// V̄(p, v) from the first 25 numbers per node (trilinear in the node coordinates
 // t_u = sign(u)√|u|, t_v = √|v|, the altitude), each scatterer's phase
-// function to its Legendre terms l ≤ 2, and for the gas the arriving light's
+// function to its Legendre terms l ≤ 2, and for the gas the eclipsed light's
 // polarization P (astro/moon_shadow.h):
 //   ∫ P(ω·v) L dω ∝ a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2 + (3Δ/4) vᵀPv,
-//   V̄ = Σ_scatterers β (eclipsed) / Σ_scatterers β (daylight),
+//   V̄ = Σ_scatterers β (eclipsed) / Σ_scatterers β (daylight, scalar: the tables' own),
 // eased to 1 between one and two penumbra radii from the axis.
 //
 // Include after atmosphere_common.glsl. Defines: SHADOW_PROFILE_SAMPLES,
 // SHADOW_FIELD_ACROSS, SHADOW_FIELD_SIDE, SHADOW_FIELD_LEVELS,
-// SHADOW_FIELD_VALUES (31), SHADOW_FIELD_ALTITUDES (a float[] literal, metres).
+// SHADOW_FIELD_VALUES (25), SHADOW_FIELD_ALTITUDES (a float[] literal, metres).
 
 /// V per texel for the group's wavelengths (width PROFILE_SAMPLES, height 1).
 layout(binding = SHADOW_PROFILE_UNIT) uniform sampler2D shadow_profile;
@@ -113,11 +113,11 @@ vec4 shadow_share_left(ShadowPlace p, vec3 v, vec4 beta_a, vec4 k1_a, vec4 k2_a,
   const vec4 m_d[3] = vec4[3](values[10], values[11], values[12]);
   const vec4 M_d[6] = vec4[6](values[13], values[14], values[15], values[16], values[17], values[18]);
   const vec4 P_e[6] = vec4[6](values[19], values[20], values[21], values[22], values[23], values[24]);
-  const vec4 P_d[6] = vec4[6](values[25], values[26], values[27], values[28], values[29], values[30]);
   const vec4 eclipsed = beta_a * max(phase_weighted(values[0], m_e, M_e, P_e, w, k1_a, k2_a, dipole_a), 0.0) +
                         beta_b * max(phase_weighted(values[0], m_e, M_e, P_e, w, k1_b, k2_b, vec4(0.0)), 0.0);
-  const vec4 daylight = beta_a * max(phase_weighted(vec4(1.0), m_d, M_d, P_d, w, k1_a, k2_a, dipole_a), 0.0) +
-                        beta_b * max(phase_weighted(vec4(1.0), m_d, M_d, P_d, w, k1_b, k2_b, vec4(0.0)), 0.0);
+  const vec4 unpolarized[6] = vec4[6](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+  const vec4 daylight = beta_a * max(phase_weighted(vec4(1.0), m_d, M_d, unpolarized, w, k1_a, k2_a, vec4(0.0)), 0.0) +
+                        beta_b * max(phase_weighted(vec4(1.0), m_d, M_d, unpolarized, w, k1_b, k2_b, vec4(0.0)), 0.0);
   const vec4 share = mix(vec4(1.0), clamp(eclipsed / daylight, 0.0, 1.0), greaterThan(daylight, vec4(0.0)));
   return mix(share, vec4(1.0), fade);
 }
