@@ -74,12 +74,16 @@
 // at the zenith), so V̄ takes it to the vector transfer's eclipsed light: it
 // divides the eclipsed light, weighted with its polarization, by the
 // daylight weighted as scalar transfer weights it — the tables' own. (Over
-// the daylight weighted with its polarization it was the vector transfer's
-// share, which takes the daylight's own gain off the tables' scalar light: at
-// mid-totality 2017 from Hopkinsville, 3–25 % at the zenith's air, most in
-// the blue and higher up.) The daylight's P is the build's: it gives the
-// light beyond the shadow its polarization; the sky reads the first 25
-// numbers (kShadowSkyValues).
+// the daylight weighted with its polarization V̄ would be the vector
+// transfer's share, which takes the daylight's own gain off the tables'
+// scalar light: at
+// mid-totality 2017 from Hopkinsville, 10, 16 and 22 % of the twice-scattered
+// zenith at 680, 550 and 440 nm, docs/validation.md.) So in the partial
+// phases too V̄ gives the vector transfer's light, V times the daylight's own
+// gain (at most 1) rather than V: the air the shadow reaches is vector
+// transfer's, the day sky beyond it the tables'. The daylight's P is the
+// build's: it gives the light beyond the shadow its polarization; the sky
+// reads the first 25 numbers (kShadowSkyValues).
 // The nodes lie over (q·e1, |q·e2|, altitude), q the offset of p from the
 // axis and e1 the direction from the axis toward the planet's centre (the
 // planet and the shadow are mirror images of themselves across the plane of
