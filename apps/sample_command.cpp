@@ -34,6 +34,8 @@ struct SampleArgs {
   bool cpu = false, colour = false, polarized = false;
   std::vector<double> colour_band_nm = {410.0, 800.0};
   std::vector<int> reference_orders;  ///< first, last scattering order of --method reference (empty: all)
+  int shadow_passes = 0;              ///< the tables' Moon's shadow: passes (0: MoonShadowOptions' own)
+  bool scalar_shadow = false;
   unsigned threads = 0;
 };
 
@@ -133,6 +135,12 @@ void run_sample(const SampleArgs& a) {
                       a.reference_orders[0], a.reference_orders[1]));
     r.reference_orders = {a.reference_orders[0], a.reference_orders[1]};
   }
+  if ((a.shadow_passes > 0 || a.scalar_shadow) && (a.method != "lut" || a.eclipse_at.empty()))
+    throw std::invalid_argument(
+        "--shadow-passes and --scalar-shadow shape the Moon's shadow over the tables; they need --method lut and "
+        "--eclipse-at");
+  if (a.shadow_passes > 0) r.shadow.iterations = a.shadow_passes;
+  r.shadow.polarized = !a.scalar_shadow;
   r.seed = a.seed;
   r.directions = a.directions_file.empty() ? grid_directions(a.grid.empty() ? "10x4" : a.grid)
                                            : read_directions(a.directions_file);
@@ -207,6 +215,13 @@ void register_sample_command(CLI::App& app) {
       ->delimiter(',')
       ->expected(2)
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--shadow-passes", args->shadow_passes,
+                  "--eclipse-at with the tables: passes of the Moon's shadow over the light arriving at its nodes, "
+                  "in [1, 4] (1: the once-scattered light's share for every order; default 2)")
+      ->check(CLI::Range(1, 4));
+  cmd->add_flag("--scalar-shadow", args->scalar_shadow,
+                "--eclipse-at with the tables: the Moon's shadow without the light's polarization (scalar "
+                "transfer, as the reference solver without --polarized)");
   cmd->add_option("--orders", args->orders, "Scattering orders of the tables")->check(CLI::Range(1, 50));
   cmd->add_option("--tables", args->tables,
                   "Table sizes: paper (default), twilight (128 mu_s texels and 200 ray samples, for dusk and night), "

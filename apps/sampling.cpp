@@ -69,7 +69,9 @@ std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequ
       const Vec3 observer = r.geometry.observer_m(model);
       const astro::EclipseGeometry g{r.occulter.centre_m, r.occulter.radius_m, r.geometry.sun_direction(),
                                      r.sun_angular_radius_deg * core::kDeg, r.limb_darkening};
-      const astro::MoonShadow shadow(g, queries, model, observer);
+      astro::MoonShadowOptions options = r.shadow;
+      options.threads = r.threads;
+      const astro::MoonShadow shadow(g, queries, model, observer, options);
       for (const ViewDirection& d : r.directions)
         samples.push_back({d, astro::eclipsed_sky_radiance(queries, model, shadow, observer, view_vector(d)), {}});
     } else {

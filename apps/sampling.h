@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "astro/moon_shadow.h"
 #include "astro/sky_positions.h"
 #include "atmosphere/reference/sun_disc.h"
 #include "atmosphere/sky_sampling.h"
@@ -28,6 +29,8 @@ struct SamplingRequest {
   /// Reference method: only the light scattered this many times, first to last (1: single scattering and the
   /// direct sun the ground reflects), to split a sky by order (atmosphere/reference/path_tracer.h).
   std::array<int, 2> reference_orders = {1, 1000};
+  /// Tables with the Moon in front of the sun: how its shadow is made (passes, polarization).
+  astro::MoonShadowOptions shadow;
   /// Radiance: also each direction's colour — CIE 1931 x, y of the spectral radiance, its correlated colour
   /// temperature and Duv, and its effective blackbody temperature over `colour_band_nm` (image/colour.h);
   /// needs wavelengths that span the visible (colour_spectrum_problem).

@@ -106,6 +106,21 @@ if(rc EQUAL 0 OR pos EQUAL -1)
   message(FATAL_ERROR "sample --reference-orders 3,2 not refused (${rc}): ${err}")
 endif()
 
+# --shadow-passes and --scalar-shadow shape the Moon's shadow over the tables: without an eclipse they are
+# refused, and passes out of [1, 4] are refused naming the option.
+execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --grid 1x1 --shadow-passes 1
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${err}" "--shadow-passes and --scalar-shadow shape the Moon's shadow over the tables; they need --method lut and --eclipse-at" pos)
+if(rc EQUAL 0 OR pos EQUAL -1)
+  message(FATAL_ERROR "sample --shadow-passes without an eclipse not refused (${rc}): ${err}")
+endif()
+execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --grid 1x1 --shadow-passes 5
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${err}" "--shadow-passes" pos)
+if(rc EQUAL 0 OR pos EQUAL -1)
+  message(FATAL_ERROR "sample --shadow-passes 5 not refused (${rc}): ${err}")
+endif()
+
 # A malformed directions file is rejected naming the file and the line.
 file(WRITE "${WORK_DIR}/bad-directions.csv" "0,0\n200,0\n")
 execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --directions "${WORK_DIR}/bad-directions.csv"
