@@ -2,8 +2,10 @@
 // into the reference solver and the tables (apps/sampling.h). At the point of
 // greatest eclipse of 2017-08-21 in totality the zenith keeps ~1e-4 of its
 // light and turns bluer (Dandekar & Turtle 1971, Appl. Opt. 10(6): ~1e-4 with
-// the sun 40–50° up; ~11 000 K against ~9 000 K), by both methods. And the
-// reference solver's sky split by scattering order (--reference-orders).
+// the sun 40–50° up; ~11 000 K against ~9 000 K), by both methods: the
+// reference solver in vector transfer, as the tables' shadow weights the
+// light's polarization. And the reference solver's sky split by scattering
+// order (--reference-orders).
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -38,6 +40,7 @@ TEST(SampleEclipse, AtTheGreatestEclipseOf2017TheZenithKeepsATenThousandthOfItsL
   SamplingRequest eclipsed;
   eclipsed.method = SamplingMethod::Reference;
   eclipsed.reference_samples = 400000;
+  eclipsed.polarized = true;
   eclipsed.directions = {{0.0, 0.0}};
   place_sun_and_moon(sky, m, eclipsed);
   EXPECT_NEAR(90.0 - eclipsed.geometry.sun_zenith_deg, 64.0, 1.0);  // NASA: the sun 64° up there
