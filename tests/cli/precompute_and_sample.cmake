@@ -2,6 +2,15 @@
 set(cache "${WORK_DIR}/cli-cache")
 file(REMOVE_RECURSE "${cache}")
 
+# `zenith sample ARGN` must fail with `needle` in its error output.
+function(expect_sample_refused needle)
+  execute_process(COMMAND ${ZENITH} sample ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${err}" "${needle}" pos)
+  if(rc EQUAL 0 OR pos EQUAL -1)
+    message(FATAL_ERROR "sample ${ARGN} not refused with '${needle}' (${rc}):\n${out}\n${err}")
+  endif()
+endfunction()
+
 execute_process(COMMAND ${ZENITH} precompute --atmosphere mars --tables small --cpu --orders 2 --cache "${cache}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -66,26 +75,13 @@ foreach(band_and_needle "720,800|wavelengths_nm: --colour-band-nm 720,800 holds 
   endif()
 endforeach()
 # Three wavelengths make no colour; a transmittance has none.
-execute_process(COMMAND ${ZENITH} sample --atmosphere mars --tables small --cpu --orders 2 --cache "${cache}" --colour
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(FIND "${err}" "wavelengths_nm: --colour: a spectrum's colour needs at least 16 wavelengths" pos)
-if(rc EQUAL 0 OR pos EQUAL -1)
-  message(FATAL_ERROR "sample --colour with 3 wavelengths not refused (${rc}): ${err}")
-endif()
-execute_process(COMMAND ${ZENITH} sample --atmosphere "${WORK_DIR}/earth-16.json" --quantity transmittance --colour
-                        --cache "${cache}"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(FIND "${err}" "does not apply to --quantity transmittance" pos)
-if(rc EQUAL 0 OR pos EQUAL -1)
-  message(FATAL_ERROR "sample --colour --quantity transmittance not refused (${rc}): ${err}")
-endif()
+expect_sample_refused("wavelengths_nm: --colour: a spectrum's colour needs at least 16 wavelengths"
+                      --atmosphere mars --tables small --cpu --orders 2 --cache "${cache}" --colour)
+expect_sample_refused("does not apply to --quantity transmittance"
+                      --atmosphere "${WORK_DIR}/earth-16.json" --quantity transmittance --colour --cache "${cache}")
 # --polarized is the path tracer's: the tables (scalar) refuse it, the reference method takes it.
-execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --grid 1x1 --polarized
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(FIND "${err}" "--polarized is the reference solver's vector radiative transfer; it needs --method reference" pos)
-if(rc EQUAL 0 OR pos EQUAL -1)
-  message(FATAL_ERROR "sample --polarized with the tables not refused (${rc}): ${err}")
-endif()
+expect_sample_refused("--polarized is the reference solver's vector radiative transfer; it needs --method reference"
+                      --atmosphere mars --cache "${cache}" --grid 1x1 --polarized)
 execute_process(COMMAND ${ZENITH} sample --atmosphere mars --method reference --samples 2000 --grid 1x1 --polarized
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT out MATCHES "\n0,0,[0-9.e-]+,")
@@ -93,40 +89,20 @@ if(NOT rc EQUAL 0 OR NOT out MATCHES "\n0,0,[0-9.e-]+,")
 endif()
 # --reference-orders splits the path tracer's light by order: the tables refuse it, a first order above the
 # last is refused naming both.
-execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --grid 1x1 --reference-orders 2,2
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(FIND "${err}" "--reference-orders splits the reference solver's light by order; it needs --method reference" pos)
-if(rc EQUAL 0 OR pos EQUAL -1)
-  message(FATAL_ERROR "sample --reference-orders with the tables not refused (${rc}): ${err}")
-endif()
-execute_process(COMMAND ${ZENITH} sample --atmosphere mars --method reference --samples 200 --grid 1x1
-                        --reference-orders 3,2 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(FIND "${err}" "--reference-orders 3,2: the first order must be at least 1 and not above the last" pos)
-if(rc EQUAL 0 OR pos EQUAL -1)
-  message(FATAL_ERROR "sample --reference-orders 3,2 not refused (${rc}): ${err}")
-endif()
+expect_sample_refused("--reference-orders splits the reference solver's light by order; it needs --method reference"
+                      --atmosphere mars --cache "${cache}" --grid 1x1 --reference-orders 2,2)
+expect_sample_refused("--reference-orders 3,2: the first order must be at least 1 and not above the last"
+                      --atmosphere mars --method reference --samples 200 --grid 1x1 --reference-orders 3,2)
 
 # --shadow-passes and --scalar-shadow shape the Moon's shadow over the tables: without an eclipse they are
 # refused, and passes out of [1, 4] are refused naming the option.
-execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --grid 1x1 --shadow-passes 1
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(FIND "${err}" "--shadow-passes and --scalar-shadow shape the Moon's shadow over the tables; they need --method lut and --eclipse-at" pos)
-if(rc EQUAL 0 OR pos EQUAL -1)
-  message(FATAL_ERROR "sample --shadow-passes without an eclipse not refused (${rc}): ${err}")
-endif()
-execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --grid 1x1 --shadow-passes 5
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(FIND "${err}" "--shadow-passes" pos)
-if(rc EQUAL 0 OR pos EQUAL -1)
-  message(FATAL_ERROR "sample --shadow-passes 5 not refused (${rc}): ${err}")
-endif()
+expect_sample_refused("--shadow-passes and --scalar-shadow shape the Moon's shadow over the tables; they need --method lut and --eclipse-at"
+                      --atmosphere mars --cache "${cache}" --grid 1x1 --shadow-passes 1)
+expect_sample_refused("--shadow-passes"
+                      --atmosphere mars --cache "${cache}" --grid 1x1 --shadow-passes 5)
 
 # A malformed directions file is rejected naming the file and the line.
 file(WRITE "${WORK_DIR}/bad-directions.csv" "0,0\n200,0\n")
-execute_process(COMMAND ${ZENITH} sample --atmosphere mars --cache "${cache}" --directions "${WORK_DIR}/bad-directions.csv"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(FIND "${err}" "line 2" pos)
-if(rc EQUAL 0 OR pos EQUAL -1)
-  message(FATAL_ERROR "bad directions not reported (${rc}): ${err}")
-endif()
+expect_sample_refused("line 2"
+                      --atmosphere mars --cache "${cache}" --directions "${WORK_DIR}/bad-directions.csv")
 file(REMOVE_RECURSE "${cache}")
