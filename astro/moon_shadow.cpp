@@ -187,10 +187,11 @@ void MoonShadow::fill_field(const atmosphere::lut::TableQueries& tables, const a
 
 std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& tables,
                                            const atmosphere::AtmosphereModel& model, ArrivingOrders orders,
-                                           std::size_t rays, bool polarization, const std::stop_token& stop) const {
+                                           std::size_t ray_count, bool polarization,
+                                           const std::stop_token& stop) const {
   const MoonShadowOptions& o = options_;
   const glm::dvec3& s = geometry_.sun_direction;
-  const std::vector<glm::dvec3> directions = sphere_directions(rays);
+  const std::vector<glm::dvec3> directions = sphere_directions(ray_count);
   const double weight = 1.0 / double(directions.size());  // means over the sphere: passes may differ in rays
   const std::size_t nodes = o.field_across * o.field_side * o.field_altitudes_m.size();
   std::vector<double> sums(nodes * wavelengths_ * kLightSums, 0.0);

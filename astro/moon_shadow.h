@@ -73,17 +73,16 @@
 // The tables' multiple scattering stays scalar (by day its error is under 1 %
 // at the zenith), so V̄ takes it to the vector transfer's eclipsed light: it
 // divides the eclipsed light, weighted with its polarization, by the
-// daylight weighted as scalar transfer weights it — the tables' own. (Over
+// daylight weighted as scalar transfer weighs it — the tables' own. (Over
 // the daylight weighted with its polarization V̄ would be the vector
 // transfer's share, which takes the daylight's own gain off the tables'
-// scalar light: at
-// mid-totality 2017 from Hopkinsville, 10, 16 and 22 % of the twice-scattered
-// zenith at 680, 550 and 440 nm, docs/validation.md.) So in the partial
-// phases too V̄ gives the vector transfer's light, V times the daylight's own
-// gain (at most 1) rather than V: the air the shadow reaches is vector
-// transfer's, the day sky beyond it the tables'. The daylight's P is the
-// build's: it gives the light beyond the shadow its polarization; the sky
-// reads the first 25 numbers (kShadowSkyValues).
+// scalar light: at mid-totality 2017 from Hopkinsville, 10, 16 and 22 % of
+// the twice-scattered zenith at 680, 550 and 440 nm, docs/validation.md.)
+// So in the partial phases too V̄ gives the vector transfer's light, V times
+// the daylight's own gain (at most 1) rather than V: the air the shadow
+// reaches is vector transfer's, the day sky beyond it the tables'. The
+// daylight's P is the build's: it gives the light beyond the shadow its
+// polarization; the sky reads the first 25 numbers (kShadowSkyValues).
 // The nodes lie over (q·e1, |q·e2|, altitude), q the offset of p from the
 // axis and e1 the direction from the axis toward the planet's centre (the
 // planet and the shadow are mirror images of themselves across the plane of
@@ -301,9 +300,9 @@ class MoonShadow {
   /// One pass over the nodes: the sums of the light of `orders` arriving
   /// at each (under this shadow's field so far), eclipsed and in daylight,
   /// of 1, ω and ωωᵀ, and with `polarization` of its P (kLightSums per
-  /// wavelength, wavelengths, nodes), over `directions` rays.
+  /// wavelength, wavelengths, nodes), over `ray_count` rays per node.
   std::vector<double> light_sums(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,
-                                 ArrivingOrders orders, std::size_t directions, bool polarization,
+                                 ArrivingOrders orders, std::size_t ray_count, bool polarization,
                                  const std::stop_token& stop) const;
   /// V̄'s table from such sums.
   std::vector<float> field_from(const std::vector<double>& sums) const;
