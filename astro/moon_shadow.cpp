@@ -46,37 +46,50 @@ std::vector<glm::dvec3> sphere_directions(std::size_t n) {
   return d;
 }
 
-/// k₁, k₂ of a phase function P(x) normalised over the sphere: P = (1/4π) Σ (2l+1) k_l P_l(x),
-/// k_l = 2π ∫ P(x) P_l(x) dx (Henyey–Greenstein: g, g²; Rayleigh: 0, 0.1), by 256 Gauss–Legendre nodes
+/// k₁, k₂, k₃ of a phase function P(x) normalised over the sphere: P = (1/4π) Σ (2l+1) k_l P_l(x),
+/// k_l = 2π ∫ P(x) P_l(x) dx (Henyey–Greenstein: g^l; Rayleigh: 0, 0.1, 0), by 256 Gauss–Legendre nodes
 /// on [−1, 1] in 16 panels crowded forward, where an aerosol's peak is.
 template <class Phase>
-std::pair<double, double> legendre_k1_k2(Phase phase) {
+std::array<double, 3> legendre_k1_k3(Phase phase) {
   static const atmosphere::lut::GaussLegendre rule(16);
   const double breaks[] = {-1.0, 0.0, 0.5, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995, 0.998, 0.999, 1.0};
-  double k1 = 0.0, k2 = 0.0;
+  std::array<double, 3> k{};
   for (std::size_t b = 0; b + 1 < std::size(breaks); ++b) {
     const double half = 0.5 * (breaks[b + 1] - breaks[b]), mid = 0.5 * (breaks[b + 1] + breaks[b]);
     for (std::size_t n = 0; n < rule.nodes.size(); ++n) {
       const double x = mid + half * rule.nodes[n], w = 2.0 * kPi * half * rule.weights[n] * phase(x);
-      k1 += w * x;
-      k2 += w * 0.5 * (3.0 * x * x - 1.0);
+      k[0] += w * x;
+      k[1] += w * 0.5 * (3.0 * x * x - 1.0);
+      k[2] += w * 0.5 * (5.0 * x * x * x - 3.0 * x);
     }
   }
-  return {k1, k2};
+  return k;
+}
+
+/// A scatterer from its phase function's k₁, k₂, k₃ by delta-M (Wiscombe 1977, J. Atmos. Sci. 34, 1408):
+/// the share f = k₃ of the scattering goes straight on, the rest has k_l' = (k_l − f)/(1 − f), so the
+/// l ≤ 2 terms are still k_l but the cut phase function no longer goes negative sideways (Henyey–Greenstein
+/// of g = 0.85 at 90°: 1 − 5g²/2 = −0.81 of isotropic cut, 0.123 exactly, 0.115 by delta-M).
+MoonShadow::Scatterer delta_m_scatterer(double scattering_m1, const std::array<double, 3>& k, double dipole) {
+  const double f = k[2] > 1e-6 ? std::min(k[2], 0.99) : 0.0;  // Rayleigh's k₃ is 0
+  return {scattering_m1, (k[0] - f) / (1.0 - f), (k[1] - f) / (1.0 - f), dipole, f};
 }
 
 /// ∫ P(ω·v) L dω for a scatterer, from a node's sums (the header; the 1/4π
-/// dropped, it cancels): a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2 + (3Δ/4) vᵀPv,
-/// M and P as xx, yy, zz, xy, xz, yz, v in the field's basis; without P
-/// (null) as scalar transfer weighs it.
+/// dropped, it cancels), never negative: (1 − f) [a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2
+/// + (3Δ/4) vᵀPv] + f L(v), M and P as xx, yy, zz, xy, xz, yz, v in the field's basis, L(v)
+/// the light arriving from straight behind (the forward share f's) to l ≤ 2, each part
+/// clipped at 0; without P (null) as scalar transfer weighs it.
 double phase_weight(const double* v, double a, const double* m, const double* M, const double* P,
                     const MoonShadow::Scatterer& t) {
   const auto quadratic = [&](const double* T) {
     return T[0] * v[0] * v[0] + T[1] * v[1] * v[1] + T[2] * v[2] * v[2] +
            2.0 * (T[3] * v[0] * v[1] + T[4] * v[0] * v[2] + T[5] * v[1] * v[2]);
   };
-  const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
-  return a + 3.0 * t.k1 * mv + 2.5 * t.k2 * (3.0 * quadratic(M) - a) + (P ? t.dipole * quadratic(P) : 0.0);
+  const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2], q = 2.5 * (3.0 * quadratic(M) - a);
+  const double spread = a + 3.0 * t.k1 * mv + t.k2 * q + (P ? t.dipole * quadratic(P) : 0.0);
+  const double straight = t.forward > 0.0 ? std::max(0.0, a + 3.0 * mv + q) : 0.0;
+  return (1.0 - t.forward) * std::max(0.0, spread) + t.forward * straight;
 }
 
 glm::dmat3 symmetric(const double* t) { return glm::dmat3(t[0], t[3], t[4], t[3], t[1], t[5], t[4], t[5], t[2]); }
@@ -113,15 +126,15 @@ MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQue
   ground_radius_m_ = model.ground_radius_m;
   rayleigh_density_ = model.rayleigh_density;
   mie_density_ = model.mie_density;
-  const auto r = legendre_k1_k2([&](double x) { return model.rayleigh_phase_function(x); });  // one for all λ
+  const auto r = legendre_k1_k3([&](double x) { return model.rayleigh_phase_function(x); });  // one for all λ
   if (!(model.rayleigh_depolarization >= 0.0) || !(model.rayleigh_depolarization < 1.0))
     throw std::invalid_argument(
         core::cat("MoonShadow: the gas's depolarization ", model.rayleigh_depolarization, " must be in [0, 1)"));
   dipole_share_ = atmosphere::dipole_share(model.rayleigh_depolarization);
   for (std::size_t i = 0; i < wavelengths_; ++i) {
-    const auto m = legendre_k1_k2([&](double x) { return model.mie_phase(i, x); });
-    rayleigh_.push_back({model.rayleigh_scattering_m1[i], r.first, r.second, 0.75 * dipole_share_});
-    mie_.push_back({model.mie_scattering_m1[i], m.first, m.second});
+    const auto m = legendre_k1_k3([&](double x) { return model.mie_phase(i, x); });
+    rayleigh_.push_back(delta_m_scatterer(model.rayleigh_scattering_m1[i], r, 0.75 * dipole_share_));
+    mie_.push_back(delta_m_scatterer(model.mie_scattering_m1[i], m, 0.0));
   }
   set_frame(camera_m);
   axis_zenith_0_rad_ = axis_zenith_rad(g);
@@ -311,9 +324,10 @@ double MoonShadow::scattered_light(const glm::dvec3& p, const glm::dvec3& direct
 
 std::array<MoonShadow::Scatterer, 2> MoonShadow::air_at(const Place& place, std::size_t i) const {
   const double h = std::clamp(place.altitude_m, 0.0, options_.field_altitudes_m.back());
-  return {Scatterer{rayleigh_[i].scattering_m1 * rayleigh_density_(h), rayleigh_[i].k1, rayleigh_[i].k2,
-                    rayleigh_[i].dipole},
-          Scatterer{mie_[i].scattering_m1 * mie_density_(h), mie_[i].k1, mie_[i].k2}};
+  Scatterer gas = rayleigh_[i], aerosol = mie_[i];
+  gas.scattering_m1 *= rayleigh_density_(h);
+  aerosol.scattering_m1 *= mie_density_(h);
+  return {gas, aerosol};
 }
 
 double MoonShadow::scattered_light(const Place& place, const glm::dvec3& direction, std::size_t i) const {
@@ -383,9 +397,9 @@ double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> s
   const double* values = f.values;
   double eclipsed = 0.0, daylight = 0.0;
   for (const Scatterer& t : scatterers) {
-    eclipsed += t.scattering_m1 * std::max(0.0, phase_weight(f.v, values[0], values + 1, values + 4, values + 19, t));
+    eclipsed += t.scattering_m1 * phase_weight(f.v, values[0], values + 1, values + 4, values + 19, t);
     // The daylight as the tables' scalar transfer has it (the header).
-    daylight += t.scattering_m1 * std::max(0.0, phase_weight(f.v, 1.0, values + 10, values + 13, nullptr, t));
+    daylight += t.scattering_m1 * phase_weight(f.v, 1.0, values + 10, values + 13, nullptr, t);
   }
   if (!(daylight > 0.0)) return 1.0;
   return std::clamp(eclipsed / daylight, 0.0, 1.0) * (1.0 - f.fade) + f.fade;
@@ -408,7 +422,7 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
     const glm::dmat3 t = atmosphere::rayleigh_scattered_coherency(dipole_share_, v, arriving);
     const double gas_weight = std::max(0.0, t[0][0] + t[1][1] + t[2][2]);
     double all = 0.0;
-    for (const Scatterer& s : air) all += s.scattering_m1 * std::max(0.0, phase_weight(f.v, a, m, M, P, s));
+    for (const Scatterer& s : air) all += s.scattering_m1 * phase_weight(f.v, a, m, M, P, s);
     if (!(all > 0.0) || !(gas_weight > 0.0)) return glm::dmat3(0.0);
     const Scatterer& gas = air[0];  // air_at's first: Rayleigh's
     return gas.scattering_m1 / all * (gas_weight * atmosphere::transverse_projector(v) - 2.0 * t);

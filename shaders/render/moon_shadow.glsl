@@ -15,9 +15,10 @@
 // V(p) = profile(x), linear over PROFILE_SAMPLES texels as MoonShadow::profile_at;
 // V̄(p, v) from the first 25 numbers per node (trilinear in the node coordinates
 // t_u = sign(u)√|u|, t_v = √|v|, the altitude), each scatterer's phase
-// function to its Legendre terms l ≤ 2, and for the gas the eclipsed light's
-// polarization P (astro/moon_shadow.h):
-//   ∫ P(ω·v) L dω ∝ a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2 + (3Δ/4) vᵀPv,
+// function to its Legendre terms l ≤ 2 past its forward share f (delta-M),
+// and for the gas the eclipsed light's polarization P (astro/moon_shadow.h):
+//   ∫ P(ω·v) L dω ∝ (1 − f) max(0, a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2 + (3Δ/4) vᵀPv)
+//                   + f max(0, a + 3 (m·v) + 5 (3 vᵀMv − a)/2),
 //   V̄ = Σ_scatterers β (eclipsed) / Σ_scatterers β (daylight, scalar: the tables' own),
 // eased to 1 between one and two penumbra radii from the axis.
 //
@@ -38,7 +39,8 @@ uniform float shadow_moon_radius;        // R_m [m]
 uniform float shadow_moon_radius_0;      // r_m0: the Moon's angular radius the profile was made for [rad]
 uniform float shadow_profile_end;        // r_s + r_m0 [rad]: beyond it V = 1
 uniform float shadow_field_end;          // the field's half width [m]: the penumbra's radius
-uniform vec4 shadow_mie_k1, shadow_mie_k2;  // the aerosols' Legendre k₁, k₂ per wavelength
+uniform vec4 shadow_mie_k1, shadow_mie_k2;  // the aerosols' Legendre k₁, k₂ past their forward share
+uniform vec4 shadow_mie_forward;            // the aerosols' forward share f (delta-M) per wavelength
 uniform float shadow_rayleigh_k1, shadow_rayleigh_k2;
 uniform float shadow_rayleigh_dipole;    // 3Δ/4: the weight of the arriving light's polarization for the gas
 
@@ -77,17 +79,21 @@ vec4 shadow_quadratic(vec4 M[6], vec3 v) {
   return M[0] * (v.x * v.x) + M[1] * (v.y * v.y) + M[2] * (v.z * v.z) +
          2.0 * (M[3] * (v.x * v.y) + M[4] * (v.x * v.z) + M[5] * (v.y * v.z));
 }
-/// ∫ P(ω·v) L dω (the 1/4π dropped) from a, m, M, P of the light and k₁, k₂, 3Δ/4 of the scatterer.
-vec4 phase_weighted(vec4 a, vec4 m[3], vec4 M[6], vec4 P[6], vec3 v, vec4 k1, vec4 k2, vec4 dipole) {
+/// ∫ P(ω·v) L dω (the 1/4π dropped), never negative, from a, m, M, P of the
+/// light and k₁, k₂, 3Δ/4 and the forward share f of the scatterer.
+vec4 phase_weighted(vec4 a, vec4 m[3], vec4 M[6], vec4 P[6], vec3 v, vec4 k1, vec4 k2, vec4 dipole, vec4 forward) {
   const vec4 mv = m[0] * v.x + m[1] * v.y + m[2] * v.z;
-  return a + 3.0 * k1 * mv + 2.5 * k2 * (3.0 * shadow_quadratic(M, v) - a) + dipole * shadow_quadratic(P, v);
+  const vec4 q = 2.5 * (3.0 * shadow_quadratic(M, v) - a);
+  const vec4 spread = a + 3.0 * k1 * mv + k2 * q + dipole * shadow_quadratic(P, v);
+  return (1.0 - forward) * max(spread, 0.0) + forward * max(a + 3.0 * mv + q, 0.0);
 }
 
 /// V̄ for light scattered along v by two scatterers (scattering coefficients
-/// β_a, β_b, Legendre k₁, k₂ each; the first's weight of the polarization,
-/// the second scatters all polarizations alike): MoonShadow::share_left.
+/// β_a, β_b, Legendre k₁, k₂ each; the first's weight of the polarization, it
+/// has no forward share; the second scatters all polarizations alike, its
+/// forward share f_b): MoonShadow::share_left.
 vec4 shadow_share_left(ShadowPlace p, vec3 v, vec4 beta_a, vec4 k1_a, vec4 k2_a, vec4 dipole_a, vec4 beta_b, vec4 k1_b,
-                       vec4 k2_b) {
+                       vec4 k2_b, vec4 f_b) {
   if (p.limb >= 1e29) return vec4(1.0);
   const float reach = length(p.across) / shadow_field_end;
   if (reach >= 2.0) return vec4(1.0);
@@ -113,11 +119,12 @@ vec4 shadow_share_left(ShadowPlace p, vec3 v, vec4 beta_a, vec4 k1_a, vec4 k2_a,
   const vec4 m_d[3] = vec4[3](values[10], values[11], values[12]);
   const vec4 M_d[6] = vec4[6](values[13], values[14], values[15], values[16], values[17], values[18]);
   const vec4 P_e[6] = vec4[6](values[19], values[20], values[21], values[22], values[23], values[24]);
-  const vec4 eclipsed = beta_a * max(phase_weighted(values[0], m_e, M_e, P_e, w, k1_a, k2_a, dipole_a), 0.0) +
-                        beta_b * max(phase_weighted(values[0], m_e, M_e, P_e, w, k1_b, k2_b, vec4(0.0)), 0.0);
-  const vec4 unpolarized[6] = vec4[6](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
-  const vec4 daylight = beta_a * max(phase_weighted(vec4(1.0), m_d, M_d, unpolarized, w, k1_a, k2_a, vec4(0.0)), 0.0) +
-                        beta_b * max(phase_weighted(vec4(1.0), m_d, M_d, unpolarized, w, k1_b, k2_b, vec4(0.0)), 0.0);
+  const vec4 none = vec4(0.0);
+  const vec4 eclipsed = beta_a * phase_weighted(values[0], m_e, M_e, P_e, w, k1_a, k2_a, dipole_a, none) +
+                        beta_b * phase_weighted(values[0], m_e, M_e, P_e, w, k1_b, k2_b, none, f_b);
+  const vec4 unpolarized[6] = vec4[6](none, none, none, none, none, none);
+  const vec4 daylight = beta_a * phase_weighted(vec4(1.0), m_d, M_d, unpolarized, w, k1_a, k2_a, none, none) +
+                        beta_b * phase_weighted(vec4(1.0), m_d, M_d, unpolarized, w, k1_b, k2_b, none, f_b);
   const vec4 share = mix(vec4(1.0), clamp(eclipsed / daylight, 0.0, 1.0), greaterThan(daylight, vec4(0.0)));
   return mix(share, vec4(1.0), fade);
 }
@@ -128,11 +135,12 @@ vec4 shadow_scattered_light(ShadowPlace p, vec3 v) {
   const vec4 beta_r = vec4(wavelength_field(FIELD_RAYLEIGH_SCATTERING) * rayleigh_density(real(h)));
   const vec4 beta_m = vec4(wavelength_field(FIELD_MIE_SCATTERING) * mie_density(real(h)));
   return shadow_share_left(p, v, beta_r, vec4(shadow_rayleigh_k1), vec4(shadow_rayleigh_k2),
-                           vec4(shadow_rayleigh_dipole), beta_m, shadow_mie_k1, shadow_mie_k2);
+                           vec4(shadow_rayleigh_dipole), beta_m, shadow_mie_k1, shadow_mie_k2, shadow_mie_forward);
 }
 
 /// The share of the skylight left on a horizontal surface of the ground whose
 /// outward normal is `up`: max(0, n·ω) = ¼ (1 + 2 P₁ + 5/4 P₂ + …).
 vec4 shadow_skylight_left(ShadowPlace p, vec3 up) {
-  return shadow_share_left(p, up, vec4(1.0), vec4(2.0 / 3.0), vec4(0.25), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+  return shadow_share_left(p, up, vec4(1.0), vec4(2.0 / 3.0), vec4(0.25), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0),
+                           vec4(0.0));
 }

@@ -235,11 +235,13 @@ TEST_F(EclipsedSky, ThePolarizationOfTheLightFromAfarBrightensTheTotalityZenithA
   // zenith at mid-totality is 15–30 % brighter than the scalar one's (docs/validation.md, "Eclipses").
   // V̄ weighting the light's polarization must move the tables' zenith the same way — brighter, the red
   // (scattered fewer times) more than the blue — by most of what the path tracer gains and never more
-  // (these small tables and fewer rays: +25, +23, +17 % at 680, 550, 440 nm against +28, +32, +22 %;
-  // over the daylight weighted with its polarization, V̄'s denominator before it became the scalar
-  // tables' own, +20, +17, +12 %, and with the once-scattered light's polarization alone +16, +12, +6 %:
-  // both fail). The path tracer's two estimates share their paths, so their ratio is far steadier than
-  // either; its own gain must be over 10 % at each of these three wavelengths.
+  // (these small tables and fewer rays: +21, +20, +16 % at 680, 550, 440 nm against +28, +32, +22 %:
+  // the aerosols, unpolarized, now scatter their delta-M share of the sideways light, which dilutes the
+  // gas's gain; before the aerosols' cut phase function had it at 0, +25, +23, +17 %. Over the daylight
+  // weighted with its polarization, V̄'s denominator before it became the scalar tables' own, +20, +17,
+  // +12 %, and with the once-scattered light's polarization alone +16, +12, +6 %, both without delta-M,
+  // which lowers every gain). The path tracer's two estimates share their paths, so their ratio is far
+  // steadier than either; its own gain must be over 10 % at each of these three wavelengths.
   const TableQueries q(*model_, *tables_);
   const EclipseSetup e = setup_at(*model_, totality());
   const PolarizedAndScalar shadows = polarized_and_scalar(q, *model_, e, fewer_rays());
@@ -264,7 +266,7 @@ TEST_F(EclipsedSky, ThePolarizationOfTheLightFromAfarBrightensTheTotalityZenithA
     std::printf("%.0f nm: vector / scalar zenith, tables %.3f, path tracer %.3f\n", model_->wavelengths_nm[i],
                 tables_gain[i], reference_gain[i]);
     EXPECT_GT(reference_gain[i], 1.1) << model_->wavelengths_nm[i] << " nm";
-    EXPECT_GT(tables_gain[i], 1.0 + 0.65 * (reference_gain[i] - 1.0)) << model_->wavelengths_nm[i] << " nm";
+    EXPECT_GT(tables_gain[i], 1.0 + 0.6 * (reference_gain[i] - 1.0)) << model_->wavelengths_nm[i] << " nm";
     EXPECT_LT(tables_gain[i], reference_gain[i] + 0.03) << model_->wavelengths_nm[i] << " nm";
   }
   EXPECT_GT(tables_gain[0], tables_gain[2]) << "680 nm gains more than 440 nm";
