@@ -236,8 +236,8 @@ TEST_F(EclipsedSky, ThePolarizationOfTheLightFromAfarBrightensTheTotalityZenithA
   // V̄ weighting the light's polarization must move the tables' zenith the same way — brighter, the red
   // (scattered fewer times) more than the blue — by most of what the path tracer gains and never more
   // (these small tables and fewer rays: +21, +20, +16 % at 680, 550, 440 nm against +28, +32, +22 %:
-  // the aerosols, unpolarized, now scatter their delta-M share of the sideways light, which dilutes the
-  // gas's gain; before the aerosols' cut phase function had it at 0, +25, +23, +17 %. Over the daylight
+  // the aerosols, unpolarized, scatter their delta-M share of the sideways light, which dilutes the
+  // gas's gain; with their cut phase function clipped at 0 there, +25, +23, +17 %. Over the daylight
   // weighted with its polarization, V̄'s denominator before it became the scalar tables' own, +20, +17,
   // +12 %, and with the once-scattered light's polarization alone +16, +12, +6 %, both without delta-M,
   // which lowers every gain). The path tracer's two estimates share their paths, so their ratio is far
@@ -321,6 +321,26 @@ TEST_F(EclipsedSky, TheLightTheAirScattersOnIsPolarizedAcrossItsWay) {
   const glm::dmat3 daylight = world(beyond.excess);
   EXPECT_NEAR(glm::length(daylight * up), 0.0, 1e-9);
   EXPECT_GT(std::sqrt(0.5 * atmosphere::contract(daylight, daylight)), 0.05);
+}
+
+TEST_F(EclipsedSky, TheAerosolsForwardPeakIsSplitOffByDeltaM) {
+  // earth-advanced's aerosol is one Henyey–Greenstein lobe of g = 0.85, whose Legendre terms are g^l: delta-M
+  // sends f = g³ straight on and keeps the terms l ≤ 2 of the whole, (1 − f) k_l' + f = g^l; the gas's
+  // k₃ is 0, so it has no forward share (astro/moon_shadow.h).
+  const TableQueries q(*model_, *tables_);
+  const EclipseSetup e = setup_at(*model_, totality());
+  const MoonShadow shadow(e.geometry, q, *model_, e.observer_m, quick());
+  const double g = 0.85;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const MoonShadow::Scatterer& aerosol = shadow.mie_scatterers()[i];
+    const double f = aerosol.forward;
+    EXPECT_NEAR(f, g * g * g, 1e-6);
+    EXPECT_NEAR((1.0 - f) * aerosol.k1 + f, g, 1e-6);
+    EXPECT_NEAR((1.0 - f) * aerosol.k2 + f, g * g, 1e-6);
+    const MoonShadow::Scatterer& gas = shadow.rayleigh_scatterers()[i];
+    EXPECT_EQ(gas.forward, 0.0);
+    EXPECT_NEAR(gas.k1, 0.0, 1e-9);
+  }
 }
 
 TEST_F(EclipsedSky, TheShadowsTablesFollowItAsItMoves) {
