@@ -2,8 +2,9 @@
 # contacts of 2017-08-21 at NASA's point of greatest eclipse, the zenith
 # through the eclipse by the reference solver and by the paper tables with the
 # Moon's shadow (the small ones are too coarse for the light in the umbra:
-# +60 % at the zenith in totality), every check within its tolerance (the
-# command fails otherwise), the CSV, gnuplot script and PNGs written. 200 000
+# +60 % at the zenith in totality), the same at the mid-totality of Lowman,
+# Idaho, where the SQM readings were taken, every check within its tolerance
+# (the command fails otherwise), the CSV, gnuplot script and PNGs written. 200 000
 # paths in totality (20 000 outside): ~35 s on 2 cores, plus ~25 s for the
 # paper tables the first time; the checks' noise allowances are three standard
 # errors of the estimates. Then the lunar eclipses: the Moon's
@@ -20,8 +21,9 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "validate eclipse failed (${rc}):\n${stdout}\n${err}")
 endif()
 foreach(needle "C2 2017-08-21T18:24:0" "totality 16" "Dandekar & Turtle 1971" "tables against the reference: mid-totality zenith"
+       "Lowman, Idaho, 44.0771, -115.6231 (the SQM readings): C2 2017-08-21T17:27:" "the sun 46."
        "lunar 2022-11-08: the drop at mid-totality" "lunar 2019-01-21: 04:43 UTC" "the umbra's edge beyond"
-       "22 checks, 0 outside their tolerance")
+       "23 checks, 0 outside their tolerance")
   expect_mentions("${stdout}" "${needle}" "the report")
 endforeach()
 # The Danjon class the model implies for 2022-11-08: the observers' 2.4 moved by 0.6 a magnitude of the
