@@ -15,6 +15,7 @@
 #include "atmosphere/lut/gauss_legendre.h"
 #include "atmosphere/rayleigh_polarization.h"
 #include "core/parallel_for.h"
+#include "core/spherical_harmonics.h"
 #include "core/strings.h"
 #include "core/units.h"
 
@@ -46,14 +47,14 @@ std::vector<glm::dvec3> sphere_directions(std::size_t n) {
   return d;
 }
 
-/// k₁, k₂, k₃ of a phase function P(x) normalised over the sphere: P = (1/4π) Σ (2l+1) k_l P_l(x),
-/// k_l = 2π ∫ P(x) P_l(x) dx (Henyey–Greenstein: g^l; Rayleigh: 0, 0.1, 0), by 256 Gauss–Legendre nodes
-/// on [−1, 1] in 16 panels crowded forward, where an aerosol's peak is.
+/// k₁ … k₅ of a phase function P(x) normalised over the sphere: P = (1/4π) Σ (2l+1) k_l P_l(x),
+/// k_l = 2π ∫ P(x) P_l(x) dx (Henyey–Greenstein: g^l; Rayleigh: 0, 0.1, 0, 0, 0), by Gauss–Legendre
+/// nodes on [−1, 1] in panels crowded forward, where an aerosol's peak is.
 template <class Phase>
-std::array<double, 3> legendre_k1_k3(Phase phase) {
+std::array<double, 5> legendre_k1_k5(Phase phase) {
   static const atmosphere::lut::GaussLegendre rule(16);
   const double breaks[] = {-1.0, 0.0, 0.5, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995, 0.998, 0.999, 1.0};
-  std::array<double, 3> k{};
+  std::array<double, 5> k{};
   for (std::size_t b = 0; b + 1 < std::size(breaks); ++b) {
     const double half = 0.5 * (breaks[b + 1] - breaks[b]), mid = 0.5 * (breaks[b + 1] + breaks[b]);
     for (std::size_t n = 0; n < rule.nodes.size(); ++n) {
@@ -61,33 +62,53 @@ std::array<double, 3> legendre_k1_k3(Phase phase) {
       k[0] += w * x;
       k[1] += w * 0.5 * (3.0 * x * x - 1.0);
       k[2] += w * 0.5 * (5.0 * x * x * x - 3.0 * x);
+      k[3] += w * (35.0 * x * x * x * x - 30.0 * x * x + 3.0) / 8.0;
+      k[4] += w * x * (63.0 * x * x * x * x - 70.0 * x * x + 15.0) / 8.0;
     }
   }
   return k;
 }
 
-/// A scatterer from its phase function's k₁, k₂, k₃ by delta-M (Wiscombe 1977, J. Atmos. Sci. 34, 1408):
-/// the share f = k₃ of the scattering goes straight on, the rest has k_l' = (k_l − f)/(1 − f), so the
-/// l ≤ 2 terms are still k_l but the cut phase function no longer goes negative sideways (Henyey–Greenstein
-/// of g = 0.85 at 90°: 1 − 5g²/2 = −0.81 of isotropic cut, 0.123 exactly, 0.115 by delta-M).
-MoonShadow::Scatterer delta_m_scatterer(double scattering_m1, const std::array<double, 3>& k, double dipole) {
-  const double f = k[2] > 1e-6 ? std::min(k[2], 0.99) : 0.0;  // Rayleigh's k₃ is 0
-  return {scattering_m1, (k[0] - f) / (1.0 - f), (k[1] - f) / (1.0 - f), dipole, f};
+/// A scatterer from its phase function's k₁ … k₅ by delta-M (Wiscombe 1977, J. Atmos. Sci. 34, 1408):
+/// the share f = k₅ of the scattering goes straight on, the rest has k_l' = (k_l − f)/(1 − f), so the
+/// l ≤ 4 terms are still k_l but the cut phase function no longer goes negative sideways (Henyey–Greenstein
+/// of g = 0.85 at 90°: 1 − 5g²/2 = −0.81 of isotropic cut at l ≤ 2, 0.123 exactly, 0.126 by delta-M).
+MoonShadow::Scatterer delta_m_scatterer(double scattering_m1, const std::array<double, 5>& k, double dipole) {
+  const double f = k[4] > 1e-6 ? std::min(k[4], 0.99) : 0.0;  // Rayleigh's k₅ is 0
+  const auto past = [&](double k_l) { return (k_l - f) / (1.0 - f); };
+  return {scattering_m1, past(k[0]), past(k[1]), dipole, f, past(k[2]), past(k[3])};
+}
+
+/// The terms l = 3 and 4 of ∫ P(ω·v) L dω, times 2l + 1: (2l + 1) ∫ P_l(ω·v) L dω = 4π Σ_m Y_lm(v) c_lm
+/// (core/spherical_harmonics.h), from a node's coefficients c of the light and v's harmonics.
+struct HigherTerms {
+  double l3 = 0.0, l4 = 0.0;
+};
+HigherTerms higher_terms(const double* c, const double* harmonics) {
+  HigherTerms t;
+  for (std::size_t n = 0; n < 7; ++n) t.l3 += c[n] * harmonics[n];
+  for (std::size_t n = 7; n < kShadowHigherMoments; ++n) t.l4 += c[n] * harmonics[n];
+  t.l3 *= 4.0 * kPi;
+  t.l4 *= 4.0 * kPi;
+  return t;
 }
 
 /// ∫ P(ω·v) L dω for a scatterer, from a node's sums (the header; the 1/4π
 /// dropped, it cancels), never negative: (1 − f) [a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2
-/// + (3Δ/4) vᵀPv] + f L(v), M and P as xx, yy, zz, xy, xz, yz, v in the field's basis, L(v)
-/// the light arriving from straight behind (the forward share f's) to l ≤ 2, each part
-/// clipped at 0; without P (null) as scalar transfer weighs it.
-double phase_weight(const double* v, double a, const double* m, const double* M, const double* P,
+/// + 7 k₃ ∫ P₃ L + 9 k₄ ∫ P₄ L + (3Δ/4) vᵀPv] + f L(v), M and P as xx, yy, zz, xy,
+/// xz, yz, the terms l = 3, 4 from the light's harmonics (higher_terms), v in the
+/// field's basis, L(v) the light arriving from straight behind (the forward share
+/// f's) to l ≤ 2 (the header), each part clipped at 0; without P (null) as scalar
+/// transfer weighs it.
+double phase_weight(const double* v, double a, const double* m, const double* M, const HigherTerms& h, const double* P,
                     const MoonShadow::Scatterer& t) {
   const auto quadratic = [&](const double* T) {
     return T[0] * v[0] * v[0] + T[1] * v[1] * v[1] + T[2] * v[2] * v[2] +
            2.0 * (T[3] * v[0] * v[1] + T[4] * v[0] * v[2] + T[5] * v[1] * v[2]);
   };
   const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2], q = 2.5 * (3.0 * quadratic(M) - a);
-  const double spread = a + 3.0 * t.k1 * mv + t.k2 * q + (P ? t.dipole * quadratic(P) : 0.0);
+  const double spread =
+      a + 3.0 * t.k1 * mv + t.k2 * q + t.k3 * h.l3 + t.k4 * h.l4 + (P ? t.dipole * quadratic(P) : 0.0);
   const double straight = t.forward > 0.0 ? std::max(0.0, a + 3.0 * mv + q) : 0.0;
   return (1.0 - t.forward) * std::max(0.0, spread) + t.forward * straight;
 }
@@ -126,13 +147,13 @@ MoonShadow::MoonShadow(const EclipseGeometry& g, const atmosphere::lut::TableQue
   ground_radius_m_ = model.ground_radius_m;
   rayleigh_density_ = model.rayleigh_density;
   mie_density_ = model.mie_density;
-  const auto r = legendre_k1_k3([&](double x) { return model.rayleigh_phase_function(x); });  // one for all λ
+  const auto r = legendre_k1_k5([&](double x) { return model.rayleigh_phase_function(x); });  // one for all λ
   if (!(model.rayleigh_depolarization >= 0.0) || !(model.rayleigh_depolarization < 1.0))
     throw std::invalid_argument(
         core::cat("MoonShadow: the gas's depolarization ", model.rayleigh_depolarization, " must be in [0, 1)"));
   dipole_share_ = atmosphere::dipole_share(model.rayleigh_depolarization);
   for (std::size_t i = 0; i < wavelengths_; ++i) {
-    const auto m = legendre_k1_k3([&](double x) { return model.mie_phase(i, x); });
+    const auto m = legendre_k1_k5([&](double x) { return model.mie_phase(i, x); });
     rayleigh_.push_back(delta_m_scatterer(model.rayleigh_scattering_m1[i], r, 0.75 * dipole_share_));
     mie_.push_back(delta_m_scatterer(model.mie_scattering_m1[i], m, 0.0));
   }
@@ -246,11 +267,17 @@ std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& 
       const double w[3] = {glm::dot(d, e1_), glm::dot(d, e2_), glm::dot(d, s)};
       const double moments[10] = {1.0,         w[0],        w[1],        w[2],        w[0] * w[0],
                                   w[1] * w[1], w[2] * w[2], w[0] * w[1], w[0] * w[2], w[1] * w[2]};
-      for (std::size_t i = 0; i < wavelengths_; ++i)
+      const std::array<double, kShadowHigherMoments> harmonics = core::spherical_harmonics_3_4(w[0], w[1], w[2]);
+      for (std::size_t i = 0; i < wavelengths_; ++i) {
         for (std::size_t c = 0; c < 10; ++c) {
           out[i * kLightSums + c] += weight * l.eclipsed[i] * moments[c];
           out[i * kLightSums + 10 + c] += weight * l.daylight[i] * moments[c];
         }
+        for (std::size_t c = 0; c < kShadowHigherMoments; ++c) {
+          out[i * kLightSums + 32 + c] += weight * l.eclipsed[i] * harmonics[c];
+          out[i * kLightSums + 32 + kShadowHigherMoments + c] += weight * l.daylight[i] * harmonics[c];
+        }
+      }
       if (!polarization || orders == ArrivingOrders::multiply_scattered) continue;
       // The gas's once-scattered light, from the sun's beam along −s into −d: Π(d) − 2 N, in the basis (e1, e2, s).
       const glm::dmat3 excess = atmosphere::transverse_projector(d) -
@@ -282,9 +309,12 @@ std::vector<float> MoonShadow::field_from(const std::vector<double>& sums) const
       values[0] = 1.0f;  // no light arrives even in daylight (the night side): nothing to take away
       continue;
     }
+    // a_e, m_e, M_e; m_d, M_d (a_d is 1); P_e; H_e, H_d; P_d (kShadowFieldValues).
     for (std::size_t c = 0; c < 10; ++c) values[c] = float(sum[c] / daylight);
     for (std::size_t c = 1; c < 10; ++c) values[9 + c] = float(sum[10 + c] / daylight);
-    for (std::size_t c = 0; c < 12; ++c) values[19 + c] = float(sum[20 + c] / daylight);
+    for (std::size_t c = 0; c < 6; ++c) values[19 + c] = float(sum[20 + c] / daylight);
+    for (std::size_t c = 0; c < 2 * kShadowHigherMoments; ++c) values[25 + c] = float(sum[32 + c] / daylight);
+    for (std::size_t c = 0; c < 6; ++c) values[kShadowSkyValues + c] = float(sum[26 + c] / daylight);
   }
   return field;
 }
@@ -384,6 +414,8 @@ MoonShadow::FieldSample MoonShadow::field_at(const std::vector<float>& table, co
   f.v[0] = glm::dot(direction, e1_);
   f.v[1] = (f.mirrored ? -1.0 : 1.0) * glm::dot(direction, e2_);
   f.v[2] = glm::dot(direction, geometry_.sun_direction);
+  const std::array<double, kShadowHigherMoments> harmonics = core::spherical_harmonics_3_4(f.v[0], f.v[1], f.v[2]);
+  std::copy(harmonics.begin(), harmonics.end(), f.harmonics);
   return f;
 }
 
@@ -395,11 +427,13 @@ double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, s
 
 double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> scatterers) {
   const double* values = f.values;
+  const HigherTerms higher_eclipsed = higher_terms(values + 25, f.harmonics),
+                    higher_daylight = higher_terms(values + 25 + kShadowHigherMoments, f.harmonics);
   double eclipsed = 0.0, daylight = 0.0;
   for (const Scatterer& t : scatterers) {
-    eclipsed += t.scattering_m1 * phase_weight(f.v, values[0], values + 1, values + 4, values + 19, t);
+    eclipsed += t.scattering_m1 * phase_weight(f.v, values[0], values + 1, values + 4, higher_eclipsed, values + 19, t);
     // The daylight as the tables' scalar transfer has it (the header).
-    daylight += t.scattering_m1 * phase_weight(f.v, 1.0, values + 10, values + 13, nullptr, t);
+    daylight += t.scattering_m1 * phase_weight(f.v, 1.0, values + 10, values + 13, higher_daylight, nullptr, t);
   }
   if (!(daylight > 0.0)) return 1.0;
   return std::clamp(eclipsed / daylight, 0.0, 1.0) * (1.0 - f.fade) + f.fade;
@@ -417,12 +451,13 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
   //   β_R (w_R Π(v) − 2 T) / Σ β w,   T = eq. (1) of 𝒯 = (a·1 − M − P)/2,   w_R = tr T,
   // its scalar weight (phase_weight's, exactly: tests/atmosphere/polarization_test.cpp).
   const glm::dvec3 v{f.v[0], f.v[1], f.v[2]};
-  const auto excess = [&](double a, const double* m, const double* M, const double* P) {
+  const auto excess = [&](double a, const double* m, const double* M, const double* H, const double* P) {
     const glm::dmat3 arriving = 0.5 * (a * glm::dmat3(1.0) - symmetric(M) - symmetric(P));
     const glm::dmat3 t = atmosphere::rayleigh_scattered_coherency(dipole_share_, v, arriving);
     const double gas_weight = std::max(0.0, t[0][0] + t[1][1] + t[2][2]);
     double all = 0.0;
-    for (const Scatterer& s : air) all += s.scattering_m1 * phase_weight(f.v, a, m, M, P, s);
+    const HigherTerms higher = higher_terms(H, f.harmonics);
+    for (const Scatterer& s : air) all += s.scattering_m1 * phase_weight(f.v, a, m, M, higher, P, s);
     if (!(all > 0.0) || !(gas_weight > 0.0)) return glm::dmat3(0.0);
     const Scatterer& gas = air[0];  // air_at's first: Rayleigh's
     return gas.scattering_m1 / all * (gas_weight * atmosphere::transverse_projector(v) - 2.0 * t);
@@ -430,14 +465,15 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
   // While the table is made, the polarization is the coherency pass's (the header).
   const FieldSample arriving = coherency_.empty() ? f : field_at(coherency_, place, direction, i);
   const double* values = arriving.values;
-  const glm::dmat3 daylight = excess(1.0, values + 10, values + 13, values + 25);
+  const glm::dmat3 daylight =
+      excess(1.0, values + 10, values + 13, values + 25 + kShadowHigherMoments, values + kShadowSkyValues);
   glm::dmat3 eclipsed = daylight;
   if (in_field && light.share_left > 0.0) {
     // Where V̄ eases to daylight, so does its light's polarization: the share (1 − fade) V̄_field is the
     // eclipsed field's light, the rest daylight's.
     const double field_share = light.share_left - f.fade;
-    eclipsed =
-        (field_share * excess(values[0], values + 1, values + 4, values + 19) + f.fade * daylight) / light.share_left;
+    eclipsed = (field_share * excess(values[0], values + 1, values + 4, values + 25, values + 19) + f.fade * daylight) /
+               light.share_left;
   }
   light.excess = components(eclipsed);
   if (f.mirrored) {  // back across the plane of the axis and e1: e2 changes sign

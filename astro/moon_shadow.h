@@ -30,23 +30,31 @@
 // then with the multiply scattered light under that V̄ added, the share of
 // every order (MoonShadowOptions::iterations). P is the phase
 // function of the air at p, Rayleigh's and the aerosols' by their scattering
-// coefficients there, to its Legendre terms l ≤ 2 (Rayleigh's are exact):
-//   ∫ P(ω·v) L dω = (1/4π) [a + 3 k₁ m·v + 5 k₂ (3 vᵀMv − a)/2],
-//   a = ∫ L dω,  m = ∫ L ω dω,  M = ∫ L ωωᵀ dω,
-// so a node keeps a, m and M of the eclipsed light and m, M of the daylight,
-// per unit a of daylight. An aerosol's forward peak is split off by delta-M
-// (Wiscombe 1977, J. Atmos. Sci. 34, 1408): its share f = k₃ goes straight
-// on, weighting the light from straight behind, L(v) to l ≤ 2 (k₁ = k₂ = 1
-// above), and the rest has k_l' = (k_l − f)/(1 − f); each part is clipped
-// at 0. The l ≤ 2 terms are still k_l, so where neither part is negative
-// nothing changes; but the cut phase function of g = 0.85 goes negative
-// sideways (1 − 5g²/2 = −0.81 of isotropic at 90°, where Henyey–Greenstein
-// has 0.123 and delta-M 0.115), and that is where the zenith's air in
-// totality scatters the light from around the umbra: clipped, the aerosols
-// scattered none of it. With the nodes, rays and segments refined and four
-// passes (nearer the method's limit) the scalar totality zenith of 2017 then
-// lay 9 % under the path tracer at 680 nm and 7 % over it at 440 nm; with
-// delta-M 8 % over at both (docs/validation.md, "Eclipses").
+// coefficients there, to its Legendre terms l ≤ 4 (Rayleigh's, l ≤ 2, exact):
+//   ∫ P(ω·v) L dω = (1/4π) [a + 3 k₁ m·v + 5 k₂ (3 vᵀMv − a)/2
+//                           + 4π Σ_{l=3,4} k_l Σ_m Y_lm(v) c_lm],
+//   a = ∫ L dω,  m = ∫ L ω dω,  M = ∫ L ωωᵀ dω,  c_lm = ∫ L Y_lm dω,
+// Y_lm the real spherical harmonics (core/spherical_harmonics.h: the addition
+// theorem), so a node keeps a, m, M and the 7 + 9 coefficients c of l = 3, 4
+// of the eclipsed light and all but a of the daylight, per unit a of
+// daylight. An aerosol's forward peak is split off by delta-M (Wiscombe 1977,
+// J. Atmos. Sci. 34, 1408): its share f = k₅ goes straight on, weighting the
+// light from straight behind, and the rest has k_l' = (k_l − f)/(1 − f); each
+// part is clipped at 0. The l ≤ 4 terms are still k_l, so where neither part
+// is negative nothing changes; but the phase function of g = 0.85 cut at
+// l ≤ 2 goes negative sideways (1 − 5g²/2 = −0.81 of isotropic at 90°, where
+// Henyey–Greenstein has 0.123, delta-M at l ≤ 2 0.115 and at l ≤ 4 0.126),
+// and that is where the zenith's air in totality scatters the light from
+// around the umbra: clipped, the aerosols scattered none of it. The light
+// from straight behind is taken to l ≤ 2, L(v) = a + 3 m·v + 5 (3 vᵀMv − a)/2:
+// in totality the light arriving at the air is a bright band low on its
+// horizon, whose terms l ≤ 4 put light where the band is not — straight
+// above the zenith's air (Lowman's mid-totality zenith then 24 % over the
+// path tracer at 680 nm; docs/validation.md, "Eclipses"). With the nodes,
+// rays and segments refined and four passes (nearer the method's limit) the
+// scalar totality zenith of 2017 lay 9 % under the path tracer at 680 nm
+// and 7 % over it at 440 nm with the terms l ≤ 2 and no delta-M; with
+// delta-M 8 % over at both.
 //
 // The light's polarization. The gas's once-scattered light arriving at p is
 // polarized across the plane of the Sun and its ray (94.6 % at 90° for air),
@@ -63,7 +71,7 @@
 //   (3Δ/4) vᵀ P v,   P = ∫ L₁ (Π(ω) − 2 N(ω)) dω   (traceless, 0 for unpolarized light),
 // added to its l ≤ 2 weight above; Δ = (1 − ρ)/(1 + ρ/2) the dipole's share of
 // the gas's scattering. A node keeps P of the eclipsed light and of the
-// daylight too: 31 numbers per wavelength.
+// daylight too: 63 numbers per wavelength.
 // The multiply scattered light is polarized too: in totality it is the light
 // that lights the zenith's air, and three quarters of it at 440 nm has been
 // scattered three times or more. The coherency arriving at a node, summed over
@@ -93,7 +101,7 @@
 // the daylight's own gain (at most 1) rather than V: the air the shadow
 // reaches is vector transfer's, the day sky beyond it the tables'. The
 // daylight's P is the build's: it gives the light beyond the shadow its
-// polarization; the sky reads the first 25 numbers (kShadowSkyValues).
+// polarization; the sky reads the first 57 numbers (kShadowSkyValues).
 // The nodes lie over (q·e1, |q·e2|, altitude), q the offset of p from the
 // axis and e1 the direction from the axis toward the planet's centre (the
 // planet and the shadow are mirror images of themselves across the plane of
@@ -183,18 +191,25 @@ struct MoonShadowOptions {
 using ShadowTensor = std::array<double, 6>;
 
 /// Numbers per node and wavelength of V̄'s table: a_e, m_e, M_e, m_d, M_d, P_e,
-/// P_d, in the basis (e1, e2, s), m as x, y, z and M, P as xx, yy, zz, xy, xz, yz.
-inline constexpr std::size_t kShadowFieldValues = 31;
+/// c_e, c_d, P_d, in the basis (e1, e2, s), m as x, y, z and M, P as xx, yy,
+/// zz, xy, xz, yz, c the harmonics' coefficients (kShadowHigherMoments).
+inline constexpr std::size_t kShadowFieldValues = 63;
 /// The first of them, which V̄ reads (P_d only gives the light beyond the
 /// shadow its polarization while the table is made).
-inline constexpr std::size_t kShadowSkyValues = 25;
+inline constexpr std::size_t kShadowSkyValues = 57;
+/// The light arriving at a node by its real spherical harmonics of degree 3
+/// and 4, c_lm = ∫ L Y_lm dω in core::spherical_harmonics_3_4's order (Y_3,−3
+/// … Y_3,3, Y_4,−4 … Y_4,4; shadow_harmonics in shaders/render/moon_shadow.glsl
+/// the same).
+inline constexpr std::size_t kShadowHigherMoments = 16;
 /// Sums per node and wavelength while V̄'s table is made: L, L ω and L ωωᵀ
 /// (10 numbers) of the eclipsed light, then of the daylight; then P's
 /// integrand, L (Π(ω) − 2 N(ω)) (6), eclipsed and in daylight: of the gas's
 /// once-scattered light and, from the second pass on, of the multiply
 /// scattered light eclipsed (the daylight's stays the once-scattered light's,
-/// as the coherency pass takes the multiply scattered light).
-inline constexpr std::size_t kLightSums = 32;
+/// as the coherency pass takes the multiply scattered light); then the
+/// harmonics' coefficients (kShadowHigherMoments), eclipsed and in daylight.
+inline constexpr std::size_t kLightSums = 64;
 
 /// Thrown by MoonShadow's constructor when its `stop` was requested: a build
 /// on a worker thread whose shadow no frame will use (the renderer going away).
@@ -277,9 +292,9 @@ class MoonShadow {
   /// function's Legendre k₁, k₂ (P = (1/4π) Σ (2l+1) k_l P_l) past its
   /// forward share (delta-M: the header), the weight of the arriving light's
   /// polarization P, 3Δ/4 for the gas (the header), 0 for what scatters all
-  /// polarizations alike, and the forward share f.
+  /// polarizations alike, the forward share f and the Legendre k₃, k₄ past it.
   struct Scatterer {
-    double scattering_m1, k1, k2, dipole = 0.0, forward = 0.0;
+    double scattering_m1, k1, k2, dipole = 0.0, forward = 0.0, k3 = 0.0, k4 = 0.0;
   };
   /// The air's Rayleigh and aerosol scatterers at reference density, per wavelength.
   const std::vector<Scatterer>& rayleigh_scatterers() const { return rayleigh_; }
@@ -293,6 +308,7 @@ class MoonShadow {
     double values[kShadowFieldValues] = {};
     double fade = 1.0;
     double v[3] = {};
+    double harmonics[kShadowHigherMoments] = {};  ///< of v: core::spherical_harmonics_3_4
     bool mirrored = false;
   };
   FieldSample field_at(const std::vector<float>& table, const Place& place, const glm::dvec3& direction,

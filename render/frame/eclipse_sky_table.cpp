@@ -121,6 +121,8 @@ void EclipseSkyTable::set_shadow(std::unique_ptr<astro::MoonShadow> shadow) {
   mie_k1_.assign(groups_, {});
   mie_k2_.assign(groups_, {});
   mie_forward_.assign(groups_, {});
+  mie_k3_.assign(groups_, {});
+  mie_k4_.assign(groups_, {});
   for (std::size_t g = 0; g < groups_; ++g) {
     const std::size_t first = g * kLanes, lanes = first < n ? std::min(kLanes, n - first) : 0;
     // V: texel k holds x_k's values for the group's wavelengths; lanes past the last wavelength 1.
@@ -145,6 +147,8 @@ void EclipseSkyTable::set_shadow(std::unique_ptr<astro::MoonShadow> shadow) {
       mie_k1_[g][l] = static_cast<float>(s.mie_scatterers()[first + l].k1);
       mie_k2_[g][l] = static_cast<float>(s.mie_scatterers()[first + l].k2);
       mie_forward_[g][l] = static_cast<float>(s.mie_scatterers()[first + l].forward);
+      mie_k3_[g][l] = static_cast<float>(s.mie_scatterers()[first + l].k3);
+      mie_k4_[g][l] = static_cast<float>(s.mie_scatterers()[first + l].k4);
     }
   }
   rayleigh_k1_ = static_cast<float>(s.rayleigh_scatterers().front().k1);
@@ -222,6 +226,8 @@ void EclipseSkyTable::set_uniforms(const gl::ShaderProgram& p, std::size_t group
   p.set_uniform("shadow_mie_k1", mie_k1_.at(group));
   p.set_uniform("shadow_mie_k2", mie_k2_.at(group));
   p.set_uniform("shadow_mie_forward", mie_forward_.at(group));
+  p.set_uniform("shadow_mie_k3", mie_k3_.at(group));
+  p.set_uniform("shadow_mie_k4", mie_k4_.at(group));
   p.set_uniform("eclipse_sky_h", vec3_of(azimuth_h_));
   p.set_uniform("eclipse_sky_w", vec3_of(azimuth_w_));
   p.set_uniform("eclipse_sky_theta_top", theta_top_rad_);

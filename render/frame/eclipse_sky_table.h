@@ -133,7 +133,7 @@ class EclipseSkyTable {
   std::future<std::unique_ptr<astro::MoonShadow>> next_;  // the one built on the worker thread
   std::stop_source next_stop_;                            // stops it
   std::vector<gl::Texture> profiles_, fields_;            // per group
-  std::vector<std::array<float, 4>> mie_k1_, mie_k2_, mie_forward_;
+  std::vector<std::array<float, 4>> mie_k1_, mie_k2_, mie_forward_, mie_k3_, mie_k4_;
   float rayleigh_k1_ = 0.0f, rayleigh_k2_ = 0.0f, rayleigh_dipole_ = 0.0f;
   // The camera of the last fill and its azimuth's axes: the tile passes read the table with them.
   glm::dvec3 camera_m_{0.0}, azimuth_h_{1.0, 0.0, 0.0}, azimuth_w_{0.0, 1.0, 0.0};

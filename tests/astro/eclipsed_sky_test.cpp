@@ -325,8 +325,8 @@ TEST_F(EclipsedSky, TheLightTheAirScattersOnIsPolarizedAcrossItsWay) {
 
 TEST_F(EclipsedSky, TheAerosolsForwardPeakIsSplitOffByDeltaM) {
   // earth-advanced's aerosol is one Henyey–Greenstein lobe of g = 0.85, whose Legendre terms are g^l: delta-M
-  // sends f = g³ straight on and keeps the terms l ≤ 2 of the whole, (1 − f) k_l' + f = g^l; the gas's
-  // k₃ is 0, so it has no forward share (astro/moon_shadow.h).
+  // sends f = g⁵ straight on and keeps the terms l ≤ 4 of the whole, (1 − f) k_l' + f = g^l; the gas's
+  // phase function is l ≤ 2, so it has no forward share (astro/moon_shadow.h).
   const TableQueries q(*model_, *tables_);
   const EclipseSetup e = setup_at(*model_, totality());
   const MoonShadow shadow(e.geometry, q, *model_, e.observer_m, quick());
@@ -334,12 +334,16 @@ TEST_F(EclipsedSky, TheAerosolsForwardPeakIsSplitOffByDeltaM) {
   for (std::size_t i = 0; i < 3; ++i) {
     const MoonShadow::Scatterer& aerosol = shadow.mie_scatterers()[i];
     const double f = aerosol.forward;
-    EXPECT_NEAR(f, g * g * g, 1e-6);
+    EXPECT_NEAR(f, std::pow(g, 5), 1e-6);
     EXPECT_NEAR((1.0 - f) * aerosol.k1 + f, g, 1e-6);
-    EXPECT_NEAR((1.0 - f) * aerosol.k2 + f, g * g, 1e-6);
+    EXPECT_NEAR((1.0 - f) * aerosol.k2 + f, std::pow(g, 2), 1e-6);
+    EXPECT_NEAR((1.0 - f) * aerosol.k3 + f, std::pow(g, 3), 1e-6);
+    EXPECT_NEAR((1.0 - f) * aerosol.k4 + f, std::pow(g, 4), 1e-6);
     const MoonShadow::Scatterer& gas = shadow.rayleigh_scatterers()[i];
     EXPECT_EQ(gas.forward, 0.0);
     EXPECT_NEAR(gas.k1, 0.0, 1e-9);
+    EXPECT_NEAR(gas.k3, 0.0, 1e-9);
+    EXPECT_NEAR(gas.k4, 0.0, 1e-9);
   }
 }
 
