@@ -79,6 +79,11 @@ MoonShadow::Scatterer delta_m_scatterer(double scattering_m1, const std::array<d
   return {scattering_m1, past(k[0]), past(k[1]), dipole, f, past(k[2]), past(k[3])};
 }
 
+/// Where the harmonics' coefficients lie: in a node's field values (kShadowFieldValues), eclipsed then in
+/// daylight, and in its sums while they are made (kLightSums).
+constexpr std::size_t kEclipsedHarmonics = 25, kDaylightHarmonics = kEclipsedHarmonics + kShadowHigherMoments;
+constexpr std::size_t kHarmonicsSums = 32;
+
 /// The terms l = 3 and 4 of ∫ P(ω·v) L dω, times 2l + 1: (2l + 1) ∫ P_l(ω·v) L dω = 4π Σ_m Y_lm(v) c_lm
 /// (core/spherical_harmonics.h), from a node's coefficients c of the light and v's harmonics.
 struct HigherTerms {
@@ -274,8 +279,8 @@ std::vector<double> MoonShadow::light_sums(const atmosphere::lut::TableQueries& 
           out[i * kLightSums + 10 + c] += weight * l.daylight[i] * moments[c];
         }
         for (std::size_t c = 0; c < kShadowHigherMoments; ++c) {
-          out[i * kLightSums + 32 + c] += weight * l.eclipsed[i] * harmonics[c];
-          out[i * kLightSums + 32 + kShadowHigherMoments + c] += weight * l.daylight[i] * harmonics[c];
+          out[i * kLightSums + kHarmonicsSums + c] += weight * l.eclipsed[i] * harmonics[c];
+          out[i * kLightSums + kHarmonicsSums + kShadowHigherMoments + c] += weight * l.daylight[i] * harmonics[c];
         }
       }
       if (!polarization || orders == ArrivingOrders::multiply_scattered) continue;
@@ -313,7 +318,8 @@ std::vector<float> MoonShadow::field_from(const std::vector<double>& sums) const
     for (std::size_t c = 0; c < 10; ++c) values[c] = float(sum[c] / daylight);
     for (std::size_t c = 1; c < 10; ++c) values[9 + c] = float(sum[10 + c] / daylight);
     for (std::size_t c = 0; c < 6; ++c) values[19 + c] = float(sum[20 + c] / daylight);
-    for (std::size_t c = 0; c < 2 * kShadowHigherMoments; ++c) values[25 + c] = float(sum[32 + c] / daylight);
+    for (std::size_t c = 0; c < 2 * kShadowHigherMoments; ++c)
+      values[kEclipsedHarmonics + c] = float(sum[kHarmonicsSums + c] / daylight);
     for (std::size_t c = 0; c < 6; ++c) values[kShadowSkyValues + c] = float(sum[26 + c] / daylight);
   }
   return field;
@@ -414,8 +420,7 @@ MoonShadow::FieldSample MoonShadow::field_at(const std::vector<float>& table, co
   f.v[0] = glm::dot(direction, e1_);
   f.v[1] = (f.mirrored ? -1.0 : 1.0) * glm::dot(direction, e2_);
   f.v[2] = glm::dot(direction, geometry_.sun_direction);
-  const std::array<double, kShadowHigherMoments> harmonics = core::spherical_harmonics_3_4(f.v[0], f.v[1], f.v[2]);
-  std::copy(harmonics.begin(), harmonics.end(), f.harmonics);
+  f.harmonics = core::spherical_harmonics_3_4(f.v[0], f.v[1], f.v[2]);
   return f;
 }
 
@@ -427,8 +432,8 @@ double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, s
 
 double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> scatterers) {
   const double* values = f.values;
-  const HigherTerms higher_eclipsed = higher_terms(values + 25, f.harmonics),
-                    higher_daylight = higher_terms(values + 25 + kShadowHigherMoments, f.harmonics);
+  const HigherTerms higher_eclipsed = higher_terms(values + kEclipsedHarmonics, f.harmonics.data()),
+                    higher_daylight = higher_terms(values + kDaylightHarmonics, f.harmonics.data());
   double eclipsed = 0.0, daylight = 0.0;
   for (const Scatterer& t : scatterers) {
     eclipsed += t.scattering_m1 * phase_weight(f.v, values[0], values + 1, values + 4, higher_eclipsed, values + 19, t);
@@ -456,7 +461,7 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
     const glm::dmat3 t = atmosphere::rayleigh_scattered_coherency(dipole_share_, v, arriving);
     const double gas_weight = std::max(0.0, t[0][0] + t[1][1] + t[2][2]);
     double all = 0.0;
-    const HigherTerms higher = higher_terms(H, f.harmonics);
+    const HigherTerms higher = higher_terms(H, f.harmonics.data());
     for (const Scatterer& s : air) all += s.scattering_m1 * phase_weight(f.v, a, m, M, higher, P, s);
     if (!(all > 0.0) || !(gas_weight > 0.0)) return glm::dmat3(0.0);
     const Scatterer& gas = air[0];  // air_at's first: Rayleigh's
@@ -466,13 +471,14 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
   const FieldSample arriving = coherency_.empty() ? f : field_at(coherency_, place, direction, i);
   const double* values = arriving.values;
   const glm::dmat3 daylight =
-      excess(1.0, values + 10, values + 13, values + 25 + kShadowHigherMoments, values + kShadowSkyValues);
+      excess(1.0, values + 10, values + 13, values + kDaylightHarmonics, values + kShadowSkyValues);
   glm::dmat3 eclipsed = daylight;
   if (in_field && light.share_left > 0.0) {
     // Where V̄ eases to daylight, so does its light's polarization: the share (1 − fade) V̄_field is the
     // eclipsed field's light, the rest daylight's.
     const double field_share = light.share_left - f.fade;
-    eclipsed = (field_share * excess(values[0], values + 1, values + 4, values + 25, values + 19) + f.fade * daylight) /
+    eclipsed = (field_share * excess(values[0], values + 1, values + 4, values + kEclipsedHarmonics, values + 19) +
+                f.fade * daylight) /
                light.share_left;
   }
   light.excess = components(eclipsed);

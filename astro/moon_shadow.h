@@ -308,7 +308,7 @@ class MoonShadow {
     double values[kShadowFieldValues] = {};
     double fade = 1.0;
     double v[3] = {};
-    double harmonics[kShadowHigherMoments] = {};  ///< of v: core::spherical_harmonics_3_4
+    std::array<double, kShadowHigherMoments> harmonics{};  ///< of v: core::spherical_harmonics_3_4
     bool mirrored = false;
   };
   FieldSample field_at(const std::vector<float>& table, const Place& place, const glm::dvec3& direction,
