@@ -15,6 +15,14 @@ namespace {
 using core::kPi;
 using Channels = std::array<double, atmosphere::lut::kMaxChannels>;
 
+/// Where the light arriving at a segment from straight behind comes from, for
+/// the aerosols' forward share (MoonShadow::scattered_light): the ray's own
+/// light beyond the segment's middle (the camera's view rays), or the terms
+/// l ≤ 2 of the light arriving at the shadow's nodes (the nodes' own rays:
+/// with their own light too, V̄ lit three eclipses' totality zeniths 2–9 %
+/// over the path tracer, docs/validation.md, "Eclipses").
+enum class ForwardLight { the_rays_own, the_nodes };
+
 /// The three table terms at one point of a ray, carried to its start: T(x, p) S(p).
 struct CarriedTerms {
   Channels rayleigh{}, mie{}, multiple{};
@@ -120,38 +128,58 @@ class SegmentedRay {
 /// excess Π − 2N is added to it.
 ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereModel& model, const MoonShadow& shadow,
                         const glm::dvec3& view, std::size_t channels, ArrivingOrders orders,
-                        ArrivingPolarization* polarization) {
+                        ArrivingPolarization* polarization, ForwardLight forward) {
   const bool single = orders != ArrivingOrders::multiply_scattered;
   const bool multiple = orders != ArrivingOrders::once_scattered;
+  if (forward == ForwardLight::the_rays_own && !(single && multiple))
+    throw std::invalid_argument("eclipsed sky: the ray's own light from behind needs all its orders");
+  // Summed from the ray's far end back to its start, so that each segment
+  // knows the light arriving at its middle from straight behind — the air's
+  // beyond it and the far half of its own, both orders, eclipsed and in
+  // daylight — which the aerosols' forward share scatters on
+  // (MoonShadow::scattered_light).
   ArrivingLight light;
   const double phase_r = model.rayleigh_phase_function(ray.nu());
-  CarriedTerms near = ray.carried(0, single, multiple);
-  for (int k = 0; k < ray.segments(); ++k) {
-    const CarriedTerms far = ray.carried(k + 1, single, multiple);
+  CarriedTerms far = ray.carried(ray.segments(), single, multiple);
+  for (int k = ray.segments() - 1; k >= 0; --k) {
+    const CarriedTerms near = ray.carried(k, single, multiple);
     const MoonShadow::Place middle = shadow.place(ray.middle(k));
     for (std::size_t i = 0; i < channels; ++i) {
+      double direct = 0.0, rayleigh = 0.0, single_in = 0.0;
       if (single) {
-        const double direct = shadow.direct_light(middle, i);
-        const double rayleigh = std::max(0.0, near.rayleigh[i] - far.rayleigh[i]) * phase_r;
-        const double in = rayleigh + std::max(0.0, near.mie[i] - far.mie[i]) * model.mie_phase(i, ray.nu());
-        light.daylight[i] += in;
-        light.eclipsed[i] += direct * in;
+        direct = shadow.direct_light(middle, i);
+        rayleigh = std::max(0.0, near.rayleigh[i] - far.rayleigh[i]) * phase_r;
+        single_in = rayleigh + std::max(0.0, near.mie[i] - far.mie[i]) * model.mie_phase(i, ray.nu());
+      }
+      const double multiple_in = multiple ? std::max(0.0, near.multiple[i] - far.multiple[i]) : 0.0;
+      // Both sums carry the light to the ray's start alike: their ratio is the share left where it
+      // arrives. The far half of the segment's own multiply scattered light is taken at the share of
+      // the light beyond it.
+      std::optional<double> behind_left;
+      if (forward == ForwardLight::the_rays_own && light.daylight[i] > 0.0) {
+        const double beyond = light.eclipsed[i] / light.daylight[i];
+        behind_left = (light.eclipsed[i] + 0.5 * (direct * single_in + beyond * multiple_in)) /
+                      (light.daylight[i] + 0.5 * (single_in + multiple_in));
+      }
+      if (single) {
+        light.daylight[i] += single_in;
+        light.eclipsed[i] += direct * single_in;
         light.rayleigh_single_daylight[i] += rayleigh;
         light.rayleigh_single_eclipsed[i] += direct * rayleigh;
       }
       if (multiple) {
-        const double in = std::max(0.0, near.multiple[i] - far.multiple[i]);
+        const double in = multiple_in;
         light.daylight[i] += in;
         if (polarization) {
-          const MoonShadow::ScatteredLight s = shadow.polarized_scattered_light(middle, view, i);
+          const MoonShadow::ScatteredLight s = shadow.polarized_scattered_light(middle, view, i, behind_left);
           light.eclipsed[i] += s.share_left * in;
           for (std::size_t c = 0; c < 6; ++c) polarization->eclipsed[i][c] += s.share_left * in * s.excess[c];
         } else {
-          light.eclipsed[i] += shadow.scattered_light(middle, view, i) * in;
+          light.eclipsed[i] += shadow.scattered_light(middle, view, i, behind_left) * in;
         }
       }
     }
-    near = far;
+    far = near;
   }
   if (ray.hits_ground()) {
     // Lambertian ground: ρ/π (E_sun V + E_sky V̄), carried to the ray's start.
@@ -181,7 +209,8 @@ atmosphere::Spectrum eclipsed_sky_radiance(const atmosphere::lut::TableQueries& 
   const std::optional<SegmentedRay> ray =
       SegmentedRay::make(tables, camera_m, view, shadow.geometry().sun_direction, segments);
   if (!ray) return result;
-  const ArrivingLight light = sum_along(*ray, model, shadow, view, tables.channels(), ArrivingOrders::all, nullptr);
+  const ArrivingLight light =
+      sum_along(*ray, model, shadow, view, tables.channels(), ArrivingOrders::all, nullptr, ForwardLight::the_rays_own);
   for (std::size_t i = 0; i < tables.channels(); ++i) result[i] = light.eclipsed[i];
   return result;
 }
@@ -194,7 +223,8 @@ ArrivingLight arriving_light(const atmosphere::lut::TableQueries& tables, const 
   const std::optional<SegmentedRay> ray =
       SegmentedRay::make(tables, point_m, direction, shadow.geometry().sun_direction, segments);
   if (!ray) return {};
-  return sum_along(*ray, model, shadow, direction, tables.channels(), orders, multiple_polarization);
+  return sum_along(*ray, model, shadow, direction, tables.channels(), orders, multiple_polarization,
+                   ForwardLight::the_nodes);
 }
 
 }  // namespace zenith::astro

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -98,23 +99,30 @@ HigherTerms higher_terms(const double* c, const double* harmonics) {
   return t;
 }
 
+/// vᵀTv for a symmetric T given as xx, yy, zz, xy, xz, yz.
+double quadratic(const double* T, const double* v) {
+  return T[0] * v[0] * v[0] + T[1] * v[1] * v[1] + T[2] * v[2] * v[2] +
+         2.0 * (T[3] * v[0] * v[1] + T[4] * v[0] * v[2] + T[5] * v[1] * v[2]);
+}
+
+/// The light arriving from straight behind, L(v) = a + 3 m·v + 5 (3 vᵀMv − a)/2 (its terms l ≤ 2: the
+/// header), clipped at 0.
+double straight_behind(const double* v, double a, const double* m, const double* M) {
+  return std::max(0.0, a + 3.0 * (m[0] * v[0] + m[1] * v[1] + m[2] * v[2]) + 2.5 * (3.0 * quadratic(M, v) - a));
+}
+
 /// ∫ P(ω·v) L dω for a scatterer, from a node's sums (the header; the 1/4π
 /// dropped, it cancels), never negative: (1 − f) [a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2
 /// + 7 k₃ ∫ P₃ L + 9 k₄ ∫ P₄ L + (3Δ/4) vᵀPv] + f L(v), M and P as xx, yy, zz, xy,
 /// xz, yz, the terms l = 3, 4 from the light's harmonics (higher_terms), v in the
-/// field's basis, L(v) the light arriving from straight behind (the forward share
-/// f's) to l ≤ 2 (the header), each part clipped at 0; without P (null) as scalar
+/// field's basis, `straight` the light L(v) arriving from straight behind (the
+/// forward share f's), the spread part clipped at 0; without P (null) as scalar
 /// transfer weighs it.
 double phase_weight(const double* v, double a, const double* m, const double* M, const HigherTerms& h, const double* P,
-                    const MoonShadow::Scatterer& t) {
-  const auto quadratic = [&](const double* T) {
-    return T[0] * v[0] * v[0] + T[1] * v[1] * v[1] + T[2] * v[2] * v[2] +
-           2.0 * (T[3] * v[0] * v[1] + T[4] * v[0] * v[2] + T[5] * v[1] * v[2]);
-  };
-  const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2], q = 2.5 * (3.0 * quadratic(M) - a);
+                    double straight, const MoonShadow::Scatterer& t) {
+  const double mv = m[0] * v[0] + m[1] * v[1] + m[2] * v[2], q = 2.5 * (3.0 * quadratic(M, v) - a);
   const double spread =
-      a + 3.0 * t.k1 * mv + t.k2 * q + t.k3 * h.l3 + t.k4 * h.l4 + (P ? t.dipole * quadratic(P) : 0.0);
-  const double straight = t.forward > 0.0 ? std::max(0.0, a + 3.0 * mv + q) : 0.0;
+      a + 3.0 * t.k1 * mv + t.k2 * q + t.k3 * h.l3 + t.k4 * h.l4 + (P ? t.dipole * quadratic(P, v) : 0.0);
   return (1.0 - t.forward) * std::max(0.0, spread) + t.forward * straight;
 }
 
@@ -366,18 +374,18 @@ std::array<MoonShadow::Scatterer, 2> MoonShadow::air_at(const Place& place, std:
   return {gas, aerosol};
 }
 
-double MoonShadow::scattered_light(const Place& place, const glm::dvec3& direction, std::size_t i) const {
-  if (std::isinf(place.limb_rad)) return 1.0;
-  const std::array<Scatterer, 2> air = air_at(place, i);
-  return share_left(place, direction, i, air);
+double MoonShadow::scattered_light(const Place& place, const glm::dvec3& direction, std::size_t i,
+                                   std::optional<double> behind_left) const {
+  if (std::isinf(place.limb_rad) || reach(place) >= 2.0) return 1.0;
+  return share_left(field_at(field_, place, direction, i), air_at(place, i), behind_left);
 }
 
 double MoonShadow::skylight_left(const glm::dvec3& ground_m, std::size_t i) const {
   const Place place = this->place(ground_m);
-  if (std::isinf(place.limb_rad)) return 1.0;
+  if (std::isinf(place.limb_rad) || reach(place) >= 2.0) return 1.0;
   // A horizontal surface weights the light from above by max(0, n·ω) = ¼ (1 + 2 P₁ + 5/4 P₂ + …).
   const Scatterer lambert[1] = {{1.0, 2.0 / 3.0, 0.25}};
-  return share_left(place, glm::normalize(ground_m), i, lambert);
+  return share_left(field_at(field_, place, glm::normalize(ground_m), i), lambert, std::nullopt);
 }
 
 double MoonShadow::reach(const Place& place) const {
@@ -424,45 +432,46 @@ MoonShadow::FieldSample MoonShadow::field_at(const std::vector<float>& table, co
   return f;
 }
 
-double MoonShadow::share_left(const Place& place, const glm::dvec3& direction, std::size_t i,
-                              std::span<const Scatterer> scatterers) const {
-  if (reach(place) >= 2.0) return 1.0;
-  return share_left(field_at(field_, place, direction, i), scatterers);
-}
-
-double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> scatterers) {
+double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> scatterers,
+                              std::optional<double> behind_left) {
   const double* values = f.values;
   const HigherTerms higher_eclipsed = higher_terms(values + kEclipsedHarmonics, f.harmonics.data()),
                     higher_daylight = higher_terms(values + kDaylightHarmonics, f.harmonics.data());
+  const double behind_daylight = straight_behind(f.v, 1.0, values + 10, values + 13);
+  const double behind_eclipsed =
+      behind_left ? *behind_left * behind_daylight : straight_behind(f.v, values[0], values + 1, values + 4);
   double eclipsed = 0.0, daylight = 0.0;
   for (const Scatterer& t : scatterers) {
-    eclipsed += t.scattering_m1 * phase_weight(f.v, values[0], values + 1, values + 4, higher_eclipsed, values + 19, t);
+    eclipsed += t.scattering_m1 *
+                phase_weight(f.v, values[0], values + 1, values + 4, higher_eclipsed, values + 19, behind_eclipsed, t);
     // The daylight as the tables' scalar transfer has it (the header).
-    daylight += t.scattering_m1 * phase_weight(f.v, 1.0, values + 10, values + 13, higher_daylight, nullptr, t);
+    daylight += t.scattering_m1 *
+                phase_weight(f.v, 1.0, values + 10, values + 13, higher_daylight, nullptr, behind_daylight, t);
   }
   if (!(daylight > 0.0)) return 1.0;
   return std::clamp(eclipsed / daylight, 0.0, 1.0) * (1.0 - f.fade) + f.fade;
 }
 
 MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& place, const glm::dvec3& direction,
-                                                                 std::size_t i) const {
+                                                                 std::size_t i,
+                                                                 std::optional<double> behind_left) const {
   ScatteredLight light;
   const FieldSample f = field_at(field_, place, direction, i);
   const std::array<Scatterer, 2> air = air_at(place, i);
   const bool in_field = !std::isinf(place.limb_rad) && f.fade < 1.0;
-  light.share_left = in_field ? share_left(f, air) : 1.0;
+  light.share_left = in_field ? share_left(f, air, behind_left) : 1.0;
   if (!options_.polarized) return light;
   // The gas's share of Π(v) − 2N per unit of what the air scatters along v:
   //   β_R (w_R Π(v) − 2 T) / Σ β w,   T = eq. (1) of 𝒯 = (a·1 − M − P)/2,   w_R = tr T,
   // its scalar weight (phase_weight's, exactly: tests/atmosphere/polarization_test.cpp).
   const glm::dvec3 v{f.v[0], f.v[1], f.v[2]};
-  const auto excess = [&](double a, const double* m, const double* M, const double* H, const double* P) {
+  const auto excess = [&](double a, const double* m, const double* M, const double* H, const double* P, double behind) {
     const glm::dmat3 arriving = 0.5 * (a * glm::dmat3(1.0) - symmetric(M) - symmetric(P));
     const glm::dmat3 t = atmosphere::rayleigh_scattered_coherency(dipole_share_, v, arriving);
     const double gas_weight = std::max(0.0, t[0][0] + t[1][1] + t[2][2]);
     double all = 0.0;
     const HigherTerms higher = higher_terms(H, f.harmonics.data());
-    for (const Scatterer& s : air) all += s.scattering_m1 * phase_weight(f.v, a, m, M, higher, P, s);
+    for (const Scatterer& s : air) all += s.scattering_m1 * phase_weight(f.v, a, m, M, higher, P, behind, s);
     if (!(all > 0.0) || !(gas_weight > 0.0)) return glm::dmat3(0.0);
     const Scatterer& gas = air[0];  // air_at's first: Rayleigh's
     return gas.scattering_m1 / all * (gas_weight * atmosphere::transverse_projector(v) - 2.0 * t);
@@ -470,14 +479,18 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
   // While the table is made, the polarization is the coherency pass's (the header).
   const FieldSample arriving = coherency_.empty() ? f : field_at(coherency_, place, direction, i);
   const double* values = arriving.values;
+  const double behind_daylight = straight_behind(f.v, 1.0, values + 10, values + 13);
+  const double behind_eclipsed =
+      behind_left ? *behind_left * behind_daylight : straight_behind(f.v, values[0], values + 1, values + 4);
   const glm::dmat3 daylight =
-      excess(1.0, values + 10, values + 13, values + kDaylightHarmonics, values + kShadowSkyValues);
+      excess(1.0, values + 10, values + 13, values + kDaylightHarmonics, values + kShadowSkyValues, behind_daylight);
   glm::dmat3 eclipsed = daylight;
   if (in_field && light.share_left > 0.0) {
     // Where V̄ eases to daylight, so does its light's polarization: the share (1 − fade) V̄_field is the
     // eclipsed field's light, the rest daylight's.
     const double field_share = light.share_left - f.fade;
-    eclipsed = (field_share * excess(values[0], values + 1, values + 4, values + kEclipsedHarmonics, values + 19) +
+    eclipsed = (field_share * excess(values[0], values + 1, values + 4, values + kEclipsedHarmonics, values + 19,
+                                     behind_eclipsed) +
                 f.fade * daylight) /
                light.share_left;
   }

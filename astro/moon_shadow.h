@@ -46,11 +46,17 @@
 // Henyey–Greenstein has 0.123, delta-M at l ≤ 2 0.115 and at l ≤ 4 0.126),
 // and that is where the zenith's air in totality scatters the light from
 // around the umbra: clipped, the aerosols scattered none of it. The light
-// from straight behind is taken to l ≤ 2, L(v) = a + 3 m·v + 5 (3 vᵀMv − a)/2:
-// in totality the light arriving at the air is a bright band low on its
-// horizon, whose terms l ≤ 4 put light where the band is not — straight
-// above the zenith's air (Lowman's mid-totality zenith then 24 % over the
-// path tracer at 680 nm; docs/validation.md, "Eclipses"). With the nodes,
+// from straight behind, along a camera's view ray, is that ray's own beyond
+// the point (astro/eclipsed_sky.h: its share left, `behind_left`, times the
+// daylight's L(v) below); elsewhere — the nodes' own rays — it is taken to
+// l ≤ 2, L(v) = a + 3 m·v + 5 (3 vᵀMv − a)/2. In totality the light
+// arriving at the air is a bright band low on its horizon: its terms l ≤ 2
+// smear the band into the dark sky around it (low in the umbra, along a ray
+// 10° up, V̄ 0.6–0.7 of the phase functions' own weighting, 0.75–0.9 with
+// the ray's own light: tests/astro/eclipsed_sky_test.cpp), and its terms
+// l ≤ 4 put light where the band is not — straight above the zenith's air
+// (Lowman's mid-totality zenith then 24 % over the path tracer at 680 nm;
+// docs/validation.md, "Eclipses"). With the nodes,
 // rays and segments refined and four passes (nearer the method's limit) the
 // scalar totality zenith of 2017 lay 9 % under the path tracer at 680 nm
 // and 7 % over it at 440 nm with the terms l ≤ 2 and no delta-M; with
@@ -119,6 +125,7 @@
 // reads the same tables while these hold (MoonShadow::still_fits).
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <stop_token>
@@ -251,7 +258,12 @@ class MoonShadow {
   /// direct_light and scattered_light at a point already placed (every
   /// wavelength of a point shares its place).
   double direct_light(const Place& place, std::size_t wavelength) const;
-  double scattered_light(const Place& place, const glm::dvec3& direction, std::size_t wavelength) const;
+  /// `behind_left`, where the caller knows it, is the share the Moon leaves of
+  /// the light arriving from straight behind (along v from beyond the point):
+  /// the aerosols' forward share scatters that light on (the header); without
+  /// it, that light is the node's terms l ≤ 2.
+  double scattered_light(const Place& place, const glm::dvec3& direction, std::size_t wavelength,
+                         std::optional<double> behind_left = std::nullopt) const;
 
   /// V̄ at a point and the polarization of the light its air scatters along v,
   /// eclipsed: per unit of that light, the gas's share of Π(v) − 2N, N the
@@ -262,8 +274,8 @@ class MoonShadow {
     double share_left = 1.0;
     ShadowTensor excess{};
   };
-  ScatteredLight polarized_scattered_light(const Place& place, const glm::dvec3& direction,
-                                           std::size_t wavelength) const;
+  ScatteredLight polarized_scattered_light(const Place& place, const glm::dvec3& direction, std::size_t wavelength,
+                                           std::optional<double> behind_left = std::nullopt) const;
 
   /// The same shadow with `geometry` seen from `camera_m`: whether the tables
   /// still hold (the same limb darkening, r_m0 and r_s within 1e-3 relative,
@@ -317,10 +329,9 @@ class MoonShadow {
   std::array<Scatterer, 2> air_at(const Place& place, std::size_t wavelength) const;
   /// The point's distance from the axis in units of the field's end.
   double reach(const Place& place) const;
-  /// V̄ at `place` for light scattered along `direction` by `scatterers`.
-  double share_left(const Place& place, const glm::dvec3& direction, std::size_t wavelength,
-                    std::span<const Scatterer> scatterers) const;
-  static double share_left(const FieldSample& field, std::span<const Scatterer> scatterers);
+  /// V̄ from the field at a place for light scattered along its direction by `scatterers`.
+  static double share_left(const FieldSample& field, std::span<const Scatterer> scatterers,
+                           std::optional<double> behind_left);
   void set_frame(const glm::dvec3& camera_m);
   void fill_profile();
   void fill_field(const atmosphere::lut::TableQueries& tables, const atmosphere::AtmosphereModel& model,

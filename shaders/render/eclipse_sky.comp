@@ -8,6 +8,9 @@
 // T(x, p_k+1) S(p_k+1)], and each segment is weighted by the shadow at its
 // middle m_k (moon_shadow.glsl):
 //   A share = Σ_k [V(m_k) ΔR_k P_R(ν) + V̄(m_k, v) Δmultiple_k] / Σ_k [ΔR_k P_R(ν) + Δmultiple_k]
+//   (summed from the far end, so that V̄(m_k, v) knows the light arriving from
+//   straight behind m_k — the segments beyond it and the far half of its own —
+//   which the aerosols' forward share scatters on)
 //   M share = Σ_k V(m_k) ΔM_k / Σ_k ΔM_k           (the Mie phase is the same along the ray)
 // so that the tile pass draws (A · A share + M P_M(ν) · M share) E_sun: the
 // sky-view table's fine detail (the horizon, the sun's azimuth) times a
@@ -105,27 +108,41 @@ void main() {
       d = distance_to_top(r, mu);
     }
     const float phase_r = float(rayleigh_phase(nu));
+    const vec4 phase_m = vec4(model_mie_phase(nu));
     vec4 day_a = vec4(0.0), dark_a = vec4(0.0), day_m = vec4(0.0), dark_m = vec4(0.0);
-    Carried near = carried(r, mu, mu_s, nu, ground, real(0), false);
-    for (int k = 0; k < ECLIPSE_SKY_SEGMENTS; ++k) {
-      const float n = float(ECLIPSE_SKY_SEGMENTS);
-      const real t_far = d * real(float((k + 1) * (k + 1)) / (n * n));
-      const Carried far = carried(r, mu, mu_s, nu, ground, t_far, k + 1 == ECLIPSE_SKY_SEGMENTS);
-      const real t_mid = real(0.5) * (d * real(float(k * k) / (n * n)) + t_far);
+    // From the far end back to the camera: each segment's air then knows the light arriving from straight
+    // behind its middle (the sums so far and the far half of its own, all carried to the camera alike),
+    // which the aerosols' forward share scatters on.
+    const float n = float(ECLIPSE_SKY_SEGMENTS);
+    Carried far = carried(r, mu, mu_s, nu, ground, d, true);
+    for (int k = ECLIPSE_SKY_SEGMENTS - 1; k >= 0; --k) {
+      const real t_near = d * real(float(k * k) / (n * n)), t_far = d * real(float((k + 1) * (k + 1)) / (n * n));
+      const Carried near = carried(r, mu, mu_s, nu, ground, t_near, false);
+      const real t_mid = real(0.5) * (t_near + t_far);
       const float r_mid = float(sqrt(t_mid * t_mid + real(2) * r * mu * t_mid + r * r));
       const ShadowPlace middle = shadow_place(v * float(entry + t_mid), r_mid - float(RB));
       const vec4 V = shadow_direct_light(middle);
       const vec4 rayleigh = max(near.rayleigh - far.rayleigh, 0.0) * phase_r;
       const vec4 mie = max(near.mie - far.mie, 0.0);
       const vec4 multiple = max(near.multiple - far.multiple, 0.0);
+#if MULTIPLE_SCATTERING
+      // The far half of the segment's own light lies behind its middle too, its multiply scattered light
+      // at the share of the light beyond (astro/eclipsed_sky.cpp).
+      const vec4 day_beyond = day_a + day_m * phase_m, dark_beyond = dark_a + dark_m * phase_m;
+      const bvec4 lit = greaterThan(day_beyond, vec4(0.0));
+      const vec4 beyond = mix(vec4(0.0), dark_beyond / day_beyond, lit);
+      const vec4 single_in = rayleigh + mie * phase_m;
+      const vec4 behind_left = mix(vec4(-1.0),
+                                   (dark_beyond + 0.5 * (V * single_in + beyond * multiple)) /
+                                       (day_beyond + 0.5 * (single_in + multiple)),
+                                   lit);
+      dark_a += shadow_scattered_light(middle, v, behind_left) * multiple;
+#endif
       day_a += rayleigh + multiple;
       dark_a += V * rayleigh;
-#if MULTIPLE_SCATTERING
-      dark_a += shadow_scattered_light(middle, v) * multiple;
-#endif
       day_m += mie;
       dark_m += V * mie;
-      near = far;
+      far = near;
     }
     const int layer = layer_base + (ground ? ECLIPSE_SKY_GROUND : ECLIPSE_SKY_SKY);
     imageStore(eclipse_sky_table, ivec3(texel, layer), mix(vec4(1.0), dark_a / day_a, greaterThan(day_a, vec4(0.0))));

@@ -19,7 +19,10 @@
 // and for the gas the eclipsed light's polarization P (astro/moon_shadow.h):
 //   ∫ P(ω·v) L dω ∝ (1 − f) max(0, a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2
 //                                  + 4π Σ_{l=3,4} k_l Σ_m Y_lm(v) c_lm + (3Δ/4) vᵀPv)
-//                   + f max(0, a + 3 (m·v) + 5 (3 vᵀMv − a)/2),
+//                   + f L(v),
+//   L(v) the light arriving from straight behind: the view ray's own beyond p
+//   (its share left, from eclipse_sky.comp, times the daylight's terms l ≤ 2),
+//   or where not known max(0, a + 3 (m·v) + 5 (3 vᵀMv − a)/2),
 //   c_lm the light's real spherical harmonics' coefficients (astro::kShadowHigherMoments),
 //   V̄ = Σ_scatterers β (eclipsed) / Σ_scatterers β (daylight, scalar: the tables' own),
 // eased to 1 between one and two penumbra radii from the axis.
@@ -113,22 +116,30 @@ void shadow_higher(vec4 values[SHADOW_FIELD_VALUES], int first, float harmonics[
   l3 *= 4.0 * PI_F;
   l4 *= 4.0 * PI_F;
 }
+/// The light arriving from straight behind to its terms l ≤ 2, a + 3 m·v + 5 (3 vᵀMv − a)/2, clipped at 0.
+vec4 shadow_straight_behind(vec4 a, vec4 m[3], vec4 M[6], vec3 v) {
+  return max(a + 3.0 * (m[0] * v.x + m[1] * v.y + m[2] * v.z) + 2.5 * (3.0 * shadow_quadratic(M, v) - a), 0.0);
+}
 /// ∫ P(ω·v) L dω (the 1/4π dropped), never negative, from a, m, M, P and the terms
-/// l = 3, 4 of the light and k₁ … k₄, 3Δ/4 and the forward share f of the scatterer.
-vec4 phase_weighted(vec4 a, vec4 m[3], vec4 M[6], vec4 P[6], vec4 l3, vec4 l4, vec3 v, vec4 k1, vec4 k2, vec4 k3,
-                    vec4 k4, vec4 dipole, vec4 forward) {
+/// l = 3, 4 of the light, the light `straight` arriving from straight behind, and
+/// k₁ … k₄, 3Δ/4 and the forward share f of the scatterer.
+vec4 phase_weighted(vec4 a, vec4 m[3], vec4 M[6], vec4 P[6], vec4 l3, vec4 l4, vec4 straight, vec3 v, vec4 k1,
+                    vec4 k2, vec4 k3, vec4 k4, vec4 dipole, vec4 forward) {
   const vec4 mv = m[0] * v.x + m[1] * v.y + m[2] * v.z;
   const vec4 q = 2.5 * (3.0 * shadow_quadratic(M, v) - a);
   const vec4 spread = a + 3.0 * k1 * mv + k2 * q + k3 * l3 + k4 * l4 + dipole * shadow_quadratic(P, v);
-  return (1.0 - forward) * max(spread, 0.0) + forward * max(a + 3.0 * mv + q, 0.0);
+  return (1.0 - forward) * max(spread, 0.0) + forward * straight;
 }
 
 /// V̄ for light scattered along v by two scatterers (scattering coefficients
 /// β_a, β_b, Legendre k₁, k₂ each; the first's weight of the polarization, it
 /// has no forward share and no terms l > 2; the second scatters all
 /// polarizations alike, its k₃, k₄ and forward share f_b): MoonShadow::share_left.
+/// `behind_left`, where ≥ 0, is the share left of the light arriving from
+/// straight behind (the view ray's own, beyond p); where < 0 that light is the
+/// node's terms l ≤ 2.
 vec4 shadow_share_left(ShadowPlace p, vec3 v, vec4 beta_a, vec4 k1_a, vec4 k2_a, vec4 dipole_a, vec4 beta_b, vec4 k1_b,
-                       vec4 k2_b, vec4 k3_b, vec4 k4_b, vec4 f_b) {
+                       vec4 k2_b, vec4 k3_b, vec4 k4_b, vec4 f_b, vec4 behind_left) {
   if (p.limb >= 1e29) return vec4(1.0);
   const float reach = length(p.across) / shadow_field_end;
   if (reach >= 2.0) return vec4(1.0);
@@ -160,30 +171,37 @@ vec4 shadow_share_left(ShadowPlace p, vec3 v, vec4 beta_a, vec4 k1_a, vec4 k2_a,
   shadow_higher(values, 25, harmonics, l3_e, l4_e);
   shadow_higher(values, 41, harmonics, l3_d, l4_d);
   const vec4 none = vec4(0.0);
+  const vec4 behind_d = shadow_straight_behind(vec4(1.0), m_d, M_d, w);
+  const vec4 behind_e = mix(shadow_straight_behind(values[0], m_e, M_e, w), behind_left * behind_d,
+                            greaterThanEqual(behind_left, vec4(0.0)));
   const vec4 eclipsed =
-      beta_a * phase_weighted(values[0], m_e, M_e, P_e, l3_e, l4_e, w, k1_a, k2_a, none, none, dipole_a, none) +
-      beta_b * phase_weighted(values[0], m_e, M_e, P_e, l3_e, l4_e, w, k1_b, k2_b, k3_b, k4_b, none, f_b);
+      beta_a *
+          phase_weighted(values[0], m_e, M_e, P_e, l3_e, l4_e, behind_e, w, k1_a, k2_a, none, none, dipole_a, none) +
+      beta_b * phase_weighted(values[0], m_e, M_e, P_e, l3_e, l4_e, behind_e, w, k1_b, k2_b, k3_b, k4_b, none, f_b);
   const vec4 unpolarized[6] = vec4[6](none, none, none, none, none, none);
   const vec4 daylight =
-      beta_a * phase_weighted(vec4(1.0), m_d, M_d, unpolarized, l3_d, l4_d, w, k1_a, k2_a, none, none, none, none) +
-      beta_b * phase_weighted(vec4(1.0), m_d, M_d, unpolarized, l3_d, l4_d, w, k1_b, k2_b, k3_b, k4_b, none, f_b);
+      beta_a * phase_weighted(vec4(1.0), m_d, M_d, unpolarized, l3_d, l4_d, behind_d, w, k1_a, k2_a, none, none,
+                              none, none) +
+      beta_b * phase_weighted(vec4(1.0), m_d, M_d, unpolarized, l3_d, l4_d, behind_d, w, k1_b, k2_b, k3_b, k4_b,
+                              none, f_b);
   const vec4 share = mix(vec4(1.0), clamp(eclipsed / daylight, 0.0, 1.0), greaterThan(daylight, vec4(0.0)));
   return mix(share, vec4(1.0), fade);
 }
 
-/// V̄ of the multiple scattering the air at p sends along v (the light travels along −v).
-vec4 shadow_scattered_light(ShadowPlace p, vec3 v) {
+/// V̄ of the multiple scattering the air at p sends along v (the light travels along −v), with the share
+/// left of the light arriving from straight behind where known (≥ 0: shadow_share_left).
+vec4 shadow_scattered_light(ShadowPlace p, vec3 v, vec4 behind_left) {
   const float h = clamp(p.altitude, 0.0, kShadowAltitudes[SHADOW_FIELD_LEVELS - 1]);
   const vec4 beta_r = vec4(wavelength_field(FIELD_RAYLEIGH_SCATTERING) * rayleigh_density(real(h)));
   const vec4 beta_m = vec4(wavelength_field(FIELD_MIE_SCATTERING) * mie_density(real(h)));
   return shadow_share_left(p, v, beta_r, vec4(shadow_rayleigh_k1), vec4(shadow_rayleigh_k2),
                            vec4(shadow_rayleigh_dipole), beta_m, shadow_mie_k1, shadow_mie_k2, shadow_mie_k3,
-                           shadow_mie_k4, shadow_mie_forward);
+                           shadow_mie_k4, shadow_mie_forward, behind_left);
 }
 
 /// The share of the skylight left on a horizontal surface of the ground whose
 /// outward normal is `up`: max(0, n·ω) = ¼ (1 + 2 P₁ + 5/4 P₂ + …).
 vec4 shadow_skylight_left(ShadowPlace p, vec3 up) {
   return shadow_share_left(p, up, vec4(1.0), vec4(2.0 / 3.0), vec4(0.25), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0),
-                           vec4(0.0), vec4(0.0), vec4(0.0));
+                           vec4(0.0), vec4(0.0), vec4(0.0), vec4(-1.0));
 }
