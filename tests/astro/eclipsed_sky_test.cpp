@@ -335,9 +335,9 @@ TEST_F(EclipsedSky, TheLightTheAirScattersOnIsPolarizedAcrossItsWay) {
 
 TEST_F(EclipsedSky, TheAerosolsForwardShareScattersOnTheViewRaysOwnLight) {
   // Low in the umbra, along a ray 10° up, most of what the air scatters toward the camera is the
-  // aerosols' (85–93 % at 440–680 nm), and their forward peak scatters on the light arriving from
-  // straight behind: the sunlit air far beyond the umbra, low on the air's horizon, which the node's
-  // terms l ≤ 2 smear into the dark sky around it. V̄ there against the phase functions themselves
+  // aerosols' (61–92 % at 440–680 nm, 0.35–1.7 km up), and their forward peak scatters on the light
+  // arriving from straight behind: the sunlit air far beyond the umbra, low on the air's horizon, which
+  // the node's terms l ≤ 2 smear into the dark sky around it. V̄ there against the phase functions themselves
   // weighting the light arriving from 2 000 directions (scalar: the shadow without polarization; the
   // default nodes and rays): with the view ray's own light from behind (eclipsed_sky_radiance's) 0.75–0.92
   // of it here, without 0.63–0.74. What is left is the peak's width, which delta-M makes a line: it also
