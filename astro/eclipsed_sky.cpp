@@ -168,14 +168,13 @@ ArrivingLight sum_along(const SegmentedRay& ray, const atmosphere::AtmosphereMod
         light.rayleigh_single_eclipsed[i] += direct * rayleigh;
       }
       if (multiple) {
-        const double in = multiple_in;
-        light.daylight[i] += in;
+        light.daylight[i] += multiple_in;
         if (polarization) {
           const MoonShadow::ScatteredLight s = shadow.polarized_scattered_light(middle, view, i, behind_left);
-          light.eclipsed[i] += s.share_left * in;
-          for (std::size_t c = 0; c < 6; ++c) polarization->eclipsed[i][c] += s.share_left * in * s.excess[c];
+          light.eclipsed[i] += s.share_left * multiple_in;
+          for (std::size_t c = 0; c < 6; ++c) polarization->eclipsed[i][c] += s.share_left * multiple_in * s.excess[c];
         } else {
-          light.eclipsed[i] += shadow.scattered_light(middle, view, i, behind_left) * in;
+          light.eclipsed[i] += shadow.scattered_light(middle, view, i, behind_left) * multiple_in;
         }
       }
     }

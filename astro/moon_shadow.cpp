@@ -111,6 +111,17 @@ double straight_behind(const double* v, double a, const double* m, const double*
   return std::max(0.0, a + 3.0 * (m[0] * v[0] + m[1] * v[1] + m[2] * v[2]) + 2.5 * (3.0 * quadratic(M, v) - a));
 }
 
+/// The light arriving from straight behind, eclipsed and in daylight per unit a of daylight, from a node's
+/// values: the daylight's terms l ≤ 2, and the eclipsed light as `behind_left` of it where the caller knows
+/// that share (the view ray's own light), else the eclipsed light's terms l ≤ 2.
+struct LightBehind {
+  double eclipsed, daylight;
+};
+LightBehind light_behind(const double* v, const double* values, std::optional<double> behind_left) {
+  const double daylight = straight_behind(v, 1.0, values + 10, values + 13);
+  return {behind_left ? *behind_left * daylight : straight_behind(v, values[0], values + 1, values + 4), daylight};
+}
+
 /// ∫ P(ω·v) L dω for a scatterer, from a node's sums (the header; the 1/4π
 /// dropped, it cancels), never negative: (1 − f) [a + 3 k₁ (m·v) + 5 k₂ (3 vᵀMv − a)/2
 /// + 7 k₃ ∫ P₃ L + 9 k₄ ∫ P₄ L + (3Δ/4) vᵀPv] + f L(v), M and P as xx, yy, zz, xy,
@@ -437,16 +448,14 @@ double MoonShadow::share_left(const FieldSample& f, std::span<const Scatterer> s
   const double* values = f.values;
   const HigherTerms higher_eclipsed = higher_terms(values + kEclipsedHarmonics, f.harmonics.data()),
                     higher_daylight = higher_terms(values + kDaylightHarmonics, f.harmonics.data());
-  const double behind_daylight = straight_behind(f.v, 1.0, values + 10, values + 13);
-  const double behind_eclipsed =
-      behind_left ? *behind_left * behind_daylight : straight_behind(f.v, values[0], values + 1, values + 4);
+  const LightBehind behind = light_behind(f.v, values, behind_left);
   double eclipsed = 0.0, daylight = 0.0;
   for (const Scatterer& t : scatterers) {
     eclipsed += t.scattering_m1 *
-                phase_weight(f.v, values[0], values + 1, values + 4, higher_eclipsed, values + 19, behind_eclipsed, t);
+                phase_weight(f.v, values[0], values + 1, values + 4, higher_eclipsed, values + 19, behind.eclipsed, t);
     // The daylight as the tables' scalar transfer has it (the header).
     daylight += t.scattering_m1 *
-                phase_weight(f.v, 1.0, values + 10, values + 13, higher_daylight, nullptr, behind_daylight, t);
+                phase_weight(f.v, 1.0, values + 10, values + 13, higher_daylight, nullptr, behind.daylight, t);
   }
   if (!(daylight > 0.0)) return 1.0;
   return std::clamp(eclipsed / daylight, 0.0, 1.0) * (1.0 - f.fade) + f.fade;
@@ -479,18 +488,16 @@ MoonShadow::ScatteredLight MoonShadow::polarized_scattered_light(const Place& pl
   // While the table is made, the polarization is the coherency pass's (the header).
   const FieldSample arriving = coherency_.empty() ? f : field_at(coherency_, place, direction, i);
   const double* values = arriving.values;
-  const double behind_daylight = straight_behind(f.v, 1.0, values + 10, values + 13);
-  const double behind_eclipsed =
-      behind_left ? *behind_left * behind_daylight : straight_behind(f.v, values[0], values + 1, values + 4);
+  const LightBehind behind = light_behind(f.v, values, behind_left);
   const glm::dmat3 daylight =
-      excess(1.0, values + 10, values + 13, values + kDaylightHarmonics, values + kShadowSkyValues, behind_daylight);
+      excess(1.0, values + 10, values + 13, values + kDaylightHarmonics, values + kShadowSkyValues, behind.daylight);
   glm::dmat3 eclipsed = daylight;
   if (in_field && light.share_left > 0.0) {
     // Where V̄ eases to daylight, so does its light's polarization: the share (1 − fade) V̄_field is the
     // eclipsed field's light, the rest daylight's.
     const double field_share = light.share_left - f.fade;
     eclipsed = (field_share * excess(values[0], values + 1, values + 4, values + kEclipsedHarmonics, values + 19,
-                                     behind_eclipsed) +
+                                     behind.eclipsed) +
                 f.fade * daylight) /
                light.share_left;
   }

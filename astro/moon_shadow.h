@@ -56,11 +56,10 @@
 // the ray's own light: tests/astro/eclipsed_sky_test.cpp), and its terms
 // l ≤ 4 put light where the band is not — straight above the zenith's air
 // (Lowman's mid-totality zenith then 24 % over the path tracer at 680 nm;
-// docs/validation.md, "Eclipses"). With the nodes,
-// rays and segments refined and four passes (nearer the method's limit) the
-// scalar totality zenith of 2017 lay 9 % under the path tracer at 680 nm
-// and 7 % over it at 440 nm with the terms l ≤ 2 and no delta-M; with
-// delta-M 8 % over at both.
+// docs/validation.md, "Eclipses"). With the nodes, rays and segments
+// refined and four passes (nearer the method's limit) the scalar totality
+// zenith of 2017 lay 9 % under the path tracer at 680 nm and 7 % over it at
+// 440 nm with the terms l ≤ 2 and no delta-M; with delta-M 8 % over at both.
 //
 // The light's polarization. The gas's once-scattered light arriving at p is
 // polarized across the plane of the Sun and its ray (94.6 % at 90° for air),
