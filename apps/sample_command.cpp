@@ -31,7 +31,7 @@ struct SampleArgs {
   std::uint64_t seed = 1;
   std::size_t samples = 4096;
   int orders = atmosphere::lut::kDefaultScatteringOrders;
-  bool cpu = false, colour = false, polarized = false;
+  bool cpu = false, colour = false, polarized = false, stokes = false;
   std::vector<double> colour_band_nm = {410.0, 800.0};
   std::vector<int> reference_orders;  ///< first, last scattering order of --method reference (empty: all)
   int shadow_passes = 0;              ///< the tables' Moon's shadow: passes (0: MoonShadowOptions' own)
@@ -123,6 +123,11 @@ void run_sample(const SampleArgs& a) {
         "--polarized is the reference solver's vector radiative transfer; it needs --method "
         "reference (the tables are scalar)");
   r.polarized = a.polarized;
+  if (a.stokes && !(a.polarized && a.quantity == "radiance"))
+    throw std::invalid_argument(
+        "--stokes is the polarization of the sky's radiance in the reference solver's vector transfer; it needs "
+        "--method reference --polarized (and --quantity radiance)");
+  r.stokes = a.stokes;
   if (!a.reference_orders.empty()) {
     if (a.method != "reference")
       throw std::invalid_argument(
@@ -209,6 +214,11 @@ void register_sample_command(CLI::App& app) {
   cmd->add_flag("--polarized", args->polarized,
                 "--method reference: vector radiative transfer, the light's linear polarization carried through "
                 "every scattering (default: scalar, as the tables)");
+  cmd->add_flag("--stokes", args->stokes,
+                "--method reference --polarized: add each direction's linear polarization per wavelength — Stokes "
+                "Q_rel and U_rel against the vertical (U > 0: the E-vector leaning toward increasing azimuth; at "
+                "the zenith the vertical points away from the row's azimuth), the degree P with its standard error "
+                "se_P, and chi, the E-vector's angle from the vertical [deg]");
   cmd->add_option("--reference-orders", args->reference_orders,
                   "--method reference: only the light scattered FIRST to LAST times, as FIRST,LAST in [1, 1000] "
                   "(1: single scattering and the direct sun the ground reflects; default: all)")

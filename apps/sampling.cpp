@@ -1,6 +1,7 @@
 #include "apps/sampling.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "astro/eclipsed_sky.h"
@@ -41,6 +42,37 @@ reference::PathTracerOptions tracer_options(const SamplingRequest& r) {
   return o;
 }
 
+/// The vertical across the view d: e₁ = −∂v/∂z, "up" on the sky — at the zenith, away from d's azimuth.
+Vec3 vertical_across(const ViewDirection& d) {
+  const double z = d.zenith_deg * kPi / 180.0, a = d.azimuth_deg * kPi / 180.0;
+  return {-std::cos(z) * std::cos(a), -std::cos(z) * std::sin(a), std::sin(z)};
+}
+
+/// Q and U per wavelength, then the degree P, its standard error to first order (the three estimates'
+/// correlation neglected) and the E-vector's angle from the vertical [deg].
+std::vector<double> polarization_row(const reference::StokesEstimate& e) {
+  std::vector<double> row(e.q.begin(), e.q.end());
+  row.insert(row.end(), e.u.begin(), e.u.end());
+  const std::size_t n = e.i.size();
+  std::vector<double> degree(n), error(n), angle(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double p = reference::degree_of_linear_polarization(e.i[k], e.q[k], e.u[k]);
+    const double linear = std::hypot(e.q[k], e.u[k]);
+    double se = 0.0;
+    if (e.i[k] > 0.0) {
+      const double from_qu =
+          linear > 0.0 ? std::hypot(e.q[k] * e.q_standard_error[k], e.u[k] * e.u_standard_error[k]) / (linear * e.i[k])
+                       : std::hypot(e.q_standard_error[k], e.u_standard_error[k]) / e.i[k];
+      se = std::hypot(from_qu, p * e.i_standard_error[k] / e.i[k]);
+    }
+    degree[k] = p;
+    error[k] = se;
+    angle[k] = reference::polarization_angle_rad(e.q[k], e.u[k]) * 180.0 / kPi;
+  }
+  for (const auto* column : {&degree, &error, &angle}) row.insert(row.end(), column->begin(), column->end());
+  return row;
+}
+
 std::string spectrum_header(const AtmosphereModel& m, const std::string& prefix) {
   std::string h;
   for (double w : m.wavelengths_nm) h += "," + prefix + std::to_string(int(std::lround(w))) + "nm";
@@ -60,7 +92,10 @@ void place_sun_and_moon(const astro::SkyPositions& sky, const AtmosphereModel& m
 }
 
 std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequest& r) {
+  if (r.stokes && !(r.method == SamplingMethod::Reference && r.polarized))
+    throw std::invalid_argument("the sky's polarization is the reference solver's in vector transfer (--polarized)");
   std::vector<RadianceSample> samples;
+  std::vector<std::vector<double>> polarization;  // per direction: polarization_row
   if (r.method == SamplingMethod::Tables) {
     const render::ObtainedTables t = render::obtain_tables(model, r.tables);
     const lut::TableQueries queries(model, t.tables);
@@ -83,15 +118,22 @@ std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequ
     for (std::size_t i = 0; i < r.directions.size(); ++i) {
       bar.update("direction " + std::to_string(i + 1) + "/" + std::to_string(r.directions.size()),
                  double(i) / double(r.directions.size()));
-      const auto e = reference::path_traced_radiance(model, observer, view_vector(r.directions[i]), sun_disc(r),
+      const ViewDirection& d = r.directions[i];
+      if (r.stokes) {
+        const auto e = reference::path_traced_stokes(model, observer, view_vector(d), vertical_across(d), sun_disc(r),
                                                      tracer_options(r));
-      samples.push_back({r.directions[i], e.mean, e.standard_error});
+        samples.push_back({d, e.i, e.i_standard_error});
+        polarization.push_back(polarization_row(e));
+      } else {
+        const auto e = reference::path_traced_radiance(model, observer, view_vector(d), sun_disc(r), tracer_options(r));
+        samples.push_back({d, e.mean, e.standard_error});
+      }
     }
   }
-  atmosphere::ExtraColumns colour;
+  atmosphere::ExtraColumns extra;  // the colour, then the polarization
   if (r.colour) {
     // The colour the sky has under the Kurucz sun (the CSV's spectral radiance columns).
-    colour.names = {"x", "y", "CCT_K", "Duv", "T_eff_K"};
+    extra.names = {"x", "y", "CCT_K", "Duv", "T_eff_K"};
     for (const RadianceSample& s : samples) {
       std::vector<double> spectral;
       for (std::size_t i = 0; i < model.wavelengths_nm.size(); ++i)
@@ -101,10 +143,23 @@ std::string sample_radiance_csv(const AtmosphereModel& model, const SamplingRequ
       // And the effective blackbody temperature, as eclipse photometry gives the sky's colour.
       const double effective = image::effective_blackbody_temperature_K(model.wavelengths_nm, spectral,
                                                                         r.colour_band_nm[0], r.colour_band_nm[1]);
-      colour.rows.push_back({c.x, c.y, t.kelvin, t.duv, effective});
+      extra.rows.push_back({c.x, c.y, t.kelvin, t.duv, effective});
     }
   }
-  return radiance_csv(model, samples, colour);
+  if (r.stokes) {
+    const auto add_columns = [&](const std::string& prefix, const std::string& unit) {
+      for (double w : model.wavelengths_nm) extra.names.push_back(prefix + std::to_string(int(std::lround(w))) + unit);
+    };
+    add_columns("Q_rel_", "nm_per_sr");
+    add_columns("U_rel_", "nm_per_sr");
+    add_columns("P_", "nm");
+    add_columns("se_P_", "nm");
+    add_columns("chi_", "nm_deg");
+    extra.rows.resize(samples.size());
+    for (std::size_t k = 0; k < samples.size(); ++k)
+      extra.rows[k].insert(extra.rows[k].end(), polarization[k].begin(), polarization[k].end());
+  }
+  return radiance_csv(model, samples, extra);
 }
 
 std::string sample_transmittance_csv(const AtmosphereModel& model, const SamplingRequest& r) {

@@ -26,6 +26,10 @@ struct SamplingRequest {
   atmosphere::reference::Occulter occulter;
   std::size_t reference_samples = 4096;  ///< Monte Carlo paths per wavelength and direction
   bool polarized = false;                ///< reference method: vector radiative transfer instead of scalar
+  /// Reference method with `polarized`: also each direction's linear polarization — Stokes Q and U against
+  /// the vertical (e₁ up across the view, e₂ toward increasing azimuth; at the zenith "up" is away from the
+  /// row's azimuth), the degree P with its standard error and the E-vector's angle from the vertical.
+  bool stokes = false;
   /// Reference method: only the light scattered this many times, first to last (1: single scattering and the
   /// direct sun the ground reflects), to split a sky by order (atmosphere/reference/path_tracer.h).
   std::array<int, 2> reference_orders = {1, 1000};

@@ -67,15 +67,27 @@ double PathIntegrator::direct_irradiance(const Vec3& point_m, const Vec3& normal
          transmittance_to_space(point_m, to_sun, i, rng, violations);
 }
 
-double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng, std::size_t& violations) const {
+double PathIntegrator::radiance(const Ray& ray, std::size_t i, Pcg32& rng, std::size_t& violations) const {
+  return traced(ray, Mat3(1.0), i, rng, violations);
+}
+
+double PathIntegrator::analysed_radiance(const Ray& ray, const Mat3& analyser, std::size_t i, Pcg32& rng,
+                                         std::size_t& violations) const {
+  if (!settings_.polarized)
+    throw std::logic_error("PathIntegrator::analysed_radiance: the light's polarization needs polarized settings");
+  return traced(ray, analyser, i, rng, violations);
+}
+
+double PathIntegrator::traced(const Ray& first_ray, const Mat3& analyser, std::size_t i, Pcg32& rng,
+                              std::size_t& violations) const {
   const AtmosphereModel& model = *model_;
   const double ground_radius = model.ground_radius_m;
   double radiance = 0.0, weight = 1.0;
   int order = 0;
   Ray ray = first_ray;
   // Vector transfer: the path's importance for the light's polarization, divided by the scalar weight
-  // (polarization.h); the camera measures the radiance, ⟨1, T⟩.
-  Mat3 importance(1.0);
+  // (polarization.h); the camera measures ⟨A, T⟩ — the radiance where the analyser A is 1.
+  Mat3 importance = analyser;
   while (true) {
     const AtmosphereInterval interval = atmosphere_interval(ray, ground_radius, model.top_radius_m);
     if (!interval.intersects) break;
@@ -110,7 +122,9 @@ double PathIntegrator::radiance(const Ray& first_ray, std::size_t i, Pcg32& rng,
         } else {
           phase = medium_.mixture_phase(c, i, cos_sun);
         }
-        if (phase > 0.0 && !occulted(sun_.occulter, vertex, to_sun))
+        // An analyser's ⟨A, ·⟩ may be negative or nil where the radiance's is not: the sun is looked
+        // at alike for every A, so that one generator state draws one path for all of them.
+        if ((settings_.polarized || phase > 0.0) && !occulted(sun_.occulter, vertex, to_sun))
           radiance += weight * sun_weight_ * limb_weight(sun_, to_sun, i) * phase *
                       transmittance_to_space(vertex, to_sun, i, rng, violations);
       }

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "atmosphere/atmosphere_model.h"
+#include "atmosphere/rayleigh_polarization.h"
 #include "atmosphere/reference/delta_tracking.h"
 #include "atmosphere/reference/geometry.h"
 #include "atmosphere/reference/majorant_grid.h"
@@ -39,6 +40,15 @@ class PathIntegrator {
   /// β_ext exceeded the majorant.
   double radiance(const Ray& ray, std::size_t wavelength, Pcg32& rng, std::size_t& majorant_violations) const;
 
+  /// One sample of what an analyser measures of that light: ⟨A, T⟩ for its coherency
+  /// tensor T (polarization.h), A symmetric and across the ray — A = 1 the radiance, as
+  /// radiance(); e₁e₁ᵀ − e₂e₂ᵀ and e₁e₂ᵀ + e₂e₁ᵀ its Stokes Q and U in a frame (e₁, e₂)
+  /// across it. The analyser changes only the path's importance, never its draws, so one
+  /// generator state gives one path for every A. Throws std::logic_error unless the
+  /// settings are polarized (scalar transfer knows only the radiance).
+  double analysed_radiance(const Ray& ray, const Mat3& analyser, std::size_t wavelength, Pcg32& rng,
+                           std::size_t& majorant_violations) const;
+
   /// One sample of the direct sun irradiance on a surface element at `point_m`
   /// with unit normal `normal`: L_sun Ω · max(0, n·ω_s) · T̂(point, ω_s), ω_s
   /// uniform on the disc, T̂ by ratio tracking [per unit solar irradiance].
@@ -55,6 +65,10 @@ class PathIntegrator {
   const SunDisc& sun() const { return sun_; }
 
  private:
+  /// The path behind radiance() and analysed_radiance(): the camera's importance starts at `analyser`.
+  double traced(const Ray& ray, const Mat3& analyser, std::size_t wavelength, Pcg32& rng,
+                std::size_t& majorant_violations) const;
+
   const AtmosphereModel* model_;
   AtmosphereMedium medium_;
   MajorantGrid majorants_;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <glm/matrix.hpp>
+
 #include "atmosphere/constants.h"
 #include "atmosphere/reference/direction_sampling.h"
 #include "atmosphere/reference/geometry.h"
@@ -71,6 +73,60 @@ RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& 
   estimate.majorant_violations = violations;
   return estimate;
 }
+
+StokesEstimate path_traced_stokes(const AtmosphereModel& model, const Vec3& observer_m, const Vec3& view_direction,
+                                  const Vec3& reference_axis, const SunDisc& sun, const PathTracerOptions& options) {
+  if (!options.polarized)
+    throw std::invalid_argument("path_traced_stokes: the light's polarization needs PathTracerOptions::polarized");
+  const PathSettings settings = path_settings(options);
+  const std::size_t n = model.wavelength_count();
+  if (length(observer_m) < model.ground_radius_m * (1.0 - 1e-12))
+    throw std::invalid_argument("path_traced_stokes: observer below the ground");
+  const Vec3 v = normalize(view_direction);
+  const Vec3 across = reference_axis - dot(reference_axis, v) * v;
+  if (!(length(across) > 1e-9 * length(reference_axis)))
+    throw std::invalid_argument("path_traced_stokes: the reference axis lies along the view direction");
+  const Vec3 e1 = normalize(across), e2 = cross(e1, v);
+  const Mat3 intensity(1.0);
+  const Mat3 stokes_q = glm::outerProduct(e1, e1) - glm::outerProduct(e2, e2);
+  const Mat3 stokes_u = glm::outerProduct(e1, e2) + glm::outerProduct(e2, e1);
+
+  StokesEstimate estimate;
+  estimate.i = estimate.q = estimate.u = Spectrum(n);
+  estimate.i_standard_error = estimate.q_standard_error = estimate.u_standard_error = Spectrum(n);
+  estimate.samples = options.samples_per_wavelength;
+  const Ray observer_ray(observer_m, v);
+  const AtmosphereInterval interval = atmosphere_interval(observer_ray, model.ground_radius_m, model.top_radius_m);
+  if (!interval.intersects) return estimate;
+  const Ray first_ray(observer_ray.point_at(interval.begin_t_m), v);
+
+  const PathIntegrator integrator(model, sun, settings);
+  std::atomic<std::size_t> violations{0};
+  const SampleMoments moments = run_parallel_estimator(
+      estimator_settings(model, options, 3), [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> values) {
+        std::size_t local_violations = 0, ignored = 0;
+        // One path for the three analysers: each starts from the same generator state.
+        Pcg32 q_rng = rng, u_rng = rng;
+        values[0] = integrator.analysed_radiance(first_ray, intensity, i, rng, local_violations);
+        values[1] = integrator.analysed_radiance(first_ray, stokes_q, i, q_rng, ignored);
+        values[2] = integrator.analysed_radiance(first_ray, stokes_u, i, u_rng, ignored);
+        if (local_violations != 0) violations += local_violations;
+      });
+  for (std::size_t i = 0; i < n; ++i) {
+    estimate.i[i] = moments.mean[i];
+    estimate.i_standard_error[i] = moments.standard_error[i];
+    estimate.q[i] = moments.mean[n + i];
+    estimate.q_standard_error[i] = moments.standard_error[n + i];
+    estimate.u[i] = moments.mean[2 * n + i];
+    estimate.u_standard_error[i] = moments.standard_error[2 * n + i];
+  }
+  estimate.majorant_violations = violations;
+  return estimate;
+}
+
+double degree_of_linear_polarization(double i, double q, double u) { return i > 0.0 ? std::hypot(q, u) / i : 0.0; }
+
+double polarization_angle_rad(double q, double u) { return 0.5 * std::atan2(u, q); }
 
 GroundIrradianceEstimate ground_irradiance(const AtmosphereModel& model, const Vec3& ground_point_m, const SunDisc& sun,
                                            const PathTracerOptions& options) {

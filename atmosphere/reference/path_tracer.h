@@ -104,6 +104,28 @@ struct RadianceEstimate {
 RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& observer_m, const Vec3& view_direction,
                                       const SunDisc& sun, const PathTracerOptions& options = {});
 
+/// The light's linear polarization arriving at the observer, as Stokes parameters in a frame across the
+/// view ray: e₁ = `reference_axis` made unit and across it, e₂ = e₁ × v̂; Q = I₁ − I₂, U = I₊₄₅ − I₋₄₅, the
+/// E-vector leaning from e₁ toward e₂ where U > 0 (polarization.h). Circular polarization is never made.
+struct StokesEstimate {
+  Spectrum i, q, u;  ///< [sr^-1 per unit solar irradiance]; i is path_traced_radiance's mean, path for path
+  Spectrum i_standard_error, q_standard_error, u_standard_error;
+  std::size_t samples = 0;
+  std::size_t majorant_violations = 0;
+};
+
+/// I, Q and U of the sky seen from `observer_m` along `view_direction` (path_traced_radiance's arguments),
+/// each from the same paths (the analyser changes a path's importance, not its draws). Needs
+/// options.polarized; throws std::invalid_argument otherwise or where `reference_axis` lies along the view.
+StokesEstimate path_traced_stokes(const AtmosphereModel& model, const Vec3& observer_m, const Vec3& view_direction,
+                                  const Vec3& reference_axis, const SunDisc& sun, const PathTracerOptions& options);
+
+/// √(Q² + U²) / I, the degree of linear polarization (0 where I is 0).
+double degree_of_linear_polarization(double i, double q, double u);
+
+/// ½ atan2(U, Q): the E-vector's angle from e₁ toward e₂ [rad], in (−π/2, π/2].
+double polarization_angle_rad(double q, double u);
+
 /// Irradiance on a horizontal ground element [per unit solar irradiance]:
 ///   E_direct  = ∫_disc L_sun T(g, ω) max(0, n·ω) dω   (attenuated sun disc),
 ///   E_diffuse = ∫_hemisphere L_sky(g, ω) (n·ω) dω      (all orders, including light

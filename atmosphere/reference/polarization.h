@@ -30,7 +30,13 @@
 // toward the sun (unpolarized, T = Π_in/2) is then ⟨M, L(Π_in/2)⟩ in place of
 // P(ν), and the two are equal while M is 1: the first order is the scalar
 // solver's, exactly. Every map keeps tensors positive semidefinite, so no
-// estimate is ever negative.
+// radiance estimate is ever negative.
+//
+// A camera behind a linear analyser starts the path with the analyser's tensor
+// A instead of 1 and measures ⟨A, T⟩: in a frame (e₁, e₂) across the view ray,
+// e₁e₁ᵀ − e₂e₂ᵀ gives Stokes Q = I₁ − I₂ and e₁e₂ᵀ + e₂e₁ᵀ gives U = I₊₄₅ − I₋₄₅.
+// These A are indefinite, so their estimates take either sign; the maps are
+// linear, so each is unbiased (path_tracer.h's path_traced_stokes).
 #include "atmosphere/rayleigh_polarization.h"
 #include "atmosphere/vec3.h"
 

@@ -87,6 +87,34 @@ execute_process(COMMAND ${ZENITH} sample --atmosphere mars --method reference --
 if(NOT rc EQUAL 0 OR NOT out MATCHES "\n0,0,[0-9.e-]+,")
   message(FATAL_ERROR "sample --method reference --polarized failed (${rc}):\n${out}\n${err}")
 endif()
+# --stokes is the path tracer's polarization: scalar transfer refuses it; in vector transfer each row gains
+# Q, U, the degree P with its standard error and the angle chi per wavelength, the degree within [0, 1].
+expect_sample_refused("--stokes is the polarization of the sky's radiance in the reference solver's vector transfer; it needs --method reference --polarized"
+                      --atmosphere mars --method reference --samples 200 --grid 1x1 --stokes)
+execute_process(COMMAND ${ZENITH} sample --atmosphere mars --method reference --samples 2000 --grid 1x1 --polarized
+                        --stokes --sun-zenith-deg 60
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES ",Q_rel_[0-9]+nm_per_sr,.*,U_rel_.*,P_[0-9]+nm,.*,se_P_.*,chi_[0-9]+nm_deg,")
+  message(FATAL_ERROR "sample --polarized --stokes: no polarization columns (${rc}):\n${out}\n${err}")
+endif()
+string(REGEX MATCH "^[^\n]*" header "${out}")
+string(REGEX MATCH "\n0,0,[^\n]*" row "${out}")
+string(STRIP "${row}" row)
+string(REPLACE "," ";" names "${header}")
+string(REPLACE "," ";" cells "${row}")
+set(degree "")
+list(LENGTH names column_count)
+math(EXPR last_column "${column_count} - 1")
+foreach(column RANGE 0 ${last_column})
+  list(GET names ${column} name)
+  if(name MATCHES "^P_[0-9]+nm$")
+    list(GET cells ${column} degree)
+    break()
+  endif()
+endforeach()
+if(NOT degree MATCHES "^0\\.[0-9]+$" AND NOT degree MATCHES "^[0-9.]+e-[0-9]+$")
+  message(FATAL_ERROR "sample --stokes: the zenith's degree of polarization '${degree}' is not within [0, 1):\n${out}")
+endif()
 # --reference-orders splits the path tracer's light by order: the tables refuse it, a first order above the
 # last is refused naming both.
 expect_sample_refused("--reference-orders splits the reference solver's light by order; it needs --method reference"
