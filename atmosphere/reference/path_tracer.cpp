@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <string>
 
 #include <glm/matrix.hpp>
 
@@ -40,23 +42,31 @@ ParallelEstimatorSettings estimator_settings(const AtmosphereModel& model, const
   return s;
 }
 
+/// The view ray from where it enters the atmosphere (the observer's own point when inside it); none where
+/// it misses the atmosphere. Throws std::invalid_argument naming `caller` for an observer below the ground.
+std::optional<Ray> view_ray_in_atmosphere(const AtmosphereModel& model, const Vec3& observer_m,
+                                          const Vec3& view_direction, const char* caller) {
+  if (length(observer_m) < model.ground_radius_m * (1.0 - 1e-12))
+    throw std::invalid_argument(std::string(caller) + ": observer below the ground");
+  const Ray observer_ray(observer_m, view_direction);
+  const AtmosphereInterval interval = atmosphere_interval(observer_ray, model.ground_radius_m, model.top_radius_m);
+  if (!interval.intersects) return std::nullopt;
+  return Ray(observer_ray.point_at(interval.begin_t_m), observer_ray.direction());
+}
+
 }  // namespace
 
 RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& observer_m, const Vec3& view_direction,
                                       const SunDisc& sun, const PathTracerOptions& options) {
   const PathSettings settings = path_settings(options);
   const std::size_t n = model.wavelength_count();
-  if (length(observer_m) < model.ground_radius_m * (1.0 - 1e-12))
-    throw std::invalid_argument("path_traced_radiance: observer below the ground");
+  const std::optional<Ray> view = view_ray_in_atmosphere(model, observer_m, view_direction, "path_traced_radiance");
   RadianceEstimate estimate;
   estimate.mean = Spectrum(n);
   estimate.standard_error = Spectrum(n);
   estimate.samples = options.samples_per_wavelength;
-
-  const Ray observer_ray(observer_m, view_direction);
-  const AtmosphereInterval interval = atmosphere_interval(observer_ray, model.ground_radius_m, model.top_radius_m);
-  if (!interval.intersects) return estimate;
-  const Ray first_ray(observer_ray.point_at(interval.begin_t_m), observer_ray.direction());
+  if (!view) return estimate;
+  const Ray& first_ray = *view;
 
   const PathIntegrator integrator(model, sun, settings);
   std::atomic<std::size_t> violations{0};
@@ -80,8 +90,7 @@ StokesEstimate path_traced_stokes(const AtmosphereModel& model, const Vec3& obse
     throw std::invalid_argument("path_traced_stokes: the light's polarization needs PathTracerOptions::polarized");
   const PathSettings settings = path_settings(options);
   const std::size_t n = model.wavelength_count();
-  if (length(observer_m) < model.ground_radius_m * (1.0 - 1e-12))
-    throw std::invalid_argument("path_traced_stokes: observer below the ground");
+  const std::optional<Ray> view = view_ray_in_atmosphere(model, observer_m, view_direction, "path_traced_stokes");
   const Vec3 v = normalize(view_direction);
   const Vec3 across = reference_axis - dot(reference_axis, v) * v;
   if (!(length(across) > 1e-9 * length(reference_axis)))
@@ -95,10 +104,8 @@ StokesEstimate path_traced_stokes(const AtmosphereModel& model, const Vec3& obse
   estimate.i = estimate.q = estimate.u = Spectrum(n);
   estimate.i_standard_error = estimate.q_standard_error = estimate.u_standard_error = Spectrum(n);
   estimate.samples = options.samples_per_wavelength;
-  const Ray observer_ray(observer_m, v);
-  const AtmosphereInterval interval = atmosphere_interval(observer_ray, model.ground_radius_m, model.top_radius_m);
-  if (!interval.intersects) return estimate;
-  const Ray first_ray(observer_ray.point_at(interval.begin_t_m), v);
+  if (!view) return estimate;
+  const Ray& first_ray = *view;
 
   const PathIntegrator integrator(model, sun, settings);
   std::atomic<std::size_t> violations{0};
