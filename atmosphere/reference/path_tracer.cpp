@@ -54,6 +54,25 @@ std::optional<Ray> view_ray_in_atmosphere(const AtmosphereModel& model, const Ve
   return Ray(observer_ray.point_at(interval.begin_t_m), observer_ray.direction());
 }
 
+/// Runs `sample(integrator, wavelength, rng, values, violations)` for every path of every wavelength, all on
+/// one PathIntegrator, each path writing `components` values; the majorant violations are counted into
+/// `majorant_violations`.
+template <class PathSample>
+SampleMoments run_paths(const AtmosphereModel& model, const SunDisc& sun, const PathSettings& settings,
+                        const PathTracerOptions& options, std::size_t components, std::size_t& majorant_violations,
+                        const PathSample& sample) {
+  const PathIntegrator integrator(model, sun, settings);
+  std::atomic<std::size_t> violations{0};
+  SampleMoments moments = run_parallel_estimator(estimator_settings(model, options, components),
+                                                 [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> values) {
+                                                   std::size_t local_violations = 0;
+                                                   sample(integrator, i, rng, values, local_violations);
+                                                   if (local_violations != 0) violations += local_violations;
+                                                 });
+  majorant_violations = violations;
+  return moments;
+}
+
 }  // namespace
 
 RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& observer_m, const Vec3& view_direction,
@@ -68,19 +87,14 @@ RadianceEstimate path_traced_radiance(const AtmosphereModel& model, const Vec3& 
   if (!view) return estimate;
   const Ray& first_ray = *view;
 
-  const PathIntegrator integrator(model, sun, settings);
-  std::atomic<std::size_t> violations{0};
-  const SampleMoments moments = run_parallel_estimator(
-      estimator_settings(model, options, 1), [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> values) {
-        std::size_t local_violations = 0;
-        values[0] = integrator.radiance(first_ray, i, rng, local_violations);
-        if (local_violations != 0) violations += local_violations;
-      });
+  const SampleMoments moments =
+      run_paths(model, sun, settings, options, 1, estimate.majorant_violations,
+                [&](const PathIntegrator& integrator, std::size_t i, Pcg32& rng, std::span<double> values,
+                    std::size_t& violations) { values[0] = integrator.radiance(first_ray, i, rng, violations); });
   for (std::size_t i = 0; i < n; ++i) {
     estimate.mean[i] = moments.mean[i];
     estimate.standard_error[i] = moments.standard_error[i];
   }
-  estimate.majorant_violations = violations;
   return estimate;
 }
 
@@ -107,18 +121,17 @@ StokesEstimate path_traced_stokes(const AtmosphereModel& model, const Vec3& obse
   if (!view) return estimate;
   const Ray& first_ray = *view;
 
-  const PathIntegrator integrator(model, sun, settings);
-  std::atomic<std::size_t> violations{0};
-  const SampleMoments moments = run_parallel_estimator(
-      estimator_settings(model, options, 3), [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> values) {
-        std::size_t local_violations = 0, ignored = 0;
-        // One path for the three analysers: each starts from the same generator state.
-        Pcg32 q_rng = rng, u_rng = rng;
-        values[0] = integrator.analysed_radiance(first_ray, intensity, i, rng, local_violations);
-        values[1] = integrator.analysed_radiance(first_ray, stokes_q, i, q_rng, ignored);
-        values[2] = integrator.analysed_radiance(first_ray, stokes_u, i, u_rng, ignored);
-        if (local_violations != 0) violations += local_violations;
-      });
+  const SampleMoments moments =
+      run_paths(model, sun, settings, options, 3, estimate.majorant_violations,
+                [&](const PathIntegrator& integrator, std::size_t i, Pcg32& rng, std::span<double> values,
+                    std::size_t& violations) {
+                  // One path for the three analysers: each starts from the same generator state.
+                  Pcg32 q_rng = rng, u_rng = rng;
+                  std::size_t same_path = 0;
+                  values[0] = integrator.analysed_radiance(first_ray, intensity, i, rng, violations);
+                  values[1] = integrator.analysed_radiance(first_ray, stokes_q, i, q_rng, same_path);
+                  values[2] = integrator.analysed_radiance(first_ray, stokes_u, i, u_rng, same_path);
+                });
   for (std::size_t i = 0; i < n; ++i) {
     estimate.i[i] = moments.mean[i];
     estimate.i_standard_error[i] = moments.standard_error[i];
@@ -127,7 +140,6 @@ StokesEstimate path_traced_stokes(const AtmosphereModel& model, const Vec3& obse
     estimate.u[i] = moments.mean[2 * n + i];
     estimate.u_standard_error[i] = moments.standard_error[2 * n + i];
   }
-  estimate.majorant_violations = violations;
   return estimate;
 }
 
@@ -143,21 +155,19 @@ GroundIrradianceEstimate ground_irradiance(const AtmosphereModel& model, const V
   const Vec3 normal = normalize(ground_point_m);
   const Vec3 point = model.ground_radius_m * normal;
 
-  const PathIntegrator integrator(model, sun, settings);
-  std::atomic<std::size_t> violations{0};
-  const SampleMoments moments = run_parallel_estimator(
-      estimator_settings(model, options, 3), [&](std::size_t i, std::size_t, Pcg32& rng, std::span<double> values) {
-        std::size_t local_violations = 0;
-        const double direct = integrator.direct_irradiance(point, normal, i, rng, local_violations);
-        const double u1 = rng.uniform(), u2 = rng.uniform();
-        const Ray sky_ray(point, sample_cosine_hemisphere(normal, u1, u2));
-        const double diffuse = kPi * integrator.radiance(sky_ray, i, rng, local_violations);
-        values[0] = direct;
-        values[1] = diffuse;
-        values[2] = direct + diffuse;
-        if (local_violations != 0) violations += local_violations;
-      });
   GroundIrradianceEstimate estimate;
+  const SampleMoments moments =
+      run_paths(model, sun, settings, options, 3, estimate.majorant_violations,
+                [&](const PathIntegrator& integrator, std::size_t i, Pcg32& rng, std::span<double> values,
+                    std::size_t& violations) {
+                  const double direct = integrator.direct_irradiance(point, normal, i, rng, violations);
+                  const double u1 = rng.uniform(), u2 = rng.uniform();
+                  const Ray sky_ray(point, sample_cosine_hemisphere(normal, u1, u2));
+                  const double diffuse = kPi * integrator.radiance(sky_ray, i, rng, violations);
+                  values[0] = direct;
+                  values[1] = diffuse;
+                  values[2] = direct + diffuse;
+                });
   estimate.direct_mean = estimate.direct_standard_error = Spectrum(n);
   estimate.diffuse_mean = estimate.diffuse_standard_error = Spectrum(n);
   estimate.total_mean = estimate.total_standard_error = Spectrum(n);
@@ -170,7 +180,6 @@ GroundIrradianceEstimate ground_irradiance(const AtmosphereModel& model, const V
     estimate.total_standard_error[i] = moments.standard_error[2 * n + i];
   }
   estimate.samples = options.samples_per_wavelength;
-  estimate.majorant_violations = violations;
   return estimate;
 }
 
