@@ -31,7 +31,7 @@ struct SampleArgs {
   std::uint64_t seed = 1;
   std::size_t samples = 4096;
   int orders = atmosphere::lut::kDefaultScatteringOrders;
-  bool cpu = false, colour = false, polarized = false, stokes = false;
+  bool cpu = false, colour = false, polarized = false, stokes = false, aerosol_depolarizes = false;
   std::vector<double> colour_band_nm = {410.0, 800.0};
   std::vector<int> reference_orders;  ///< first, last scattering order of --method reference (empty: all)
   int shadow_passes = 0;              ///< the tables' Moon's shadow: passes (0: MoonShadowOptions' own)
@@ -128,6 +128,11 @@ void run_sample(const SampleArgs& a) {
         "--stokes is the polarization of the sky's radiance in the reference solver's vector transfer; it needs "
         "--method reference --polarized (and --quantity radiance)");
   r.stokes = a.stokes;
+  if (a.aerosol_depolarizes && !a.polarized)
+    throw std::invalid_argument(
+        "--aerosol-depolarizes bounds the aerosols' share of the reference solver's vector transfer; it needs "
+        "--method reference --polarized");
+  r.aerosol_depolarizes = a.aerosol_depolarizes;
   if (!a.reference_orders.empty()) {
     if (a.method != "reference")
       throw std::invalid_argument(
@@ -219,6 +224,9 @@ void register_sample_command(CLI::App& app) {
                 "Q_rel and U_rel against the vertical (U > 0: the E-vector leaning toward increasing azimuth; at "
                 "the zenith the vertical points away from the row's azimuth), the degree P with its standard error "
                 "se_P, and chi, the E-vector's angle from the vertical [deg]");
+  cmd->add_flag("--aerosol-depolarizes", args->aerosol_depolarizes,
+                "--method reference --polarized: the aerosols send their light on unpolarized, the other bound of "
+                "their scattering matrix (default: the polarization carried through unchanged)");
   cmd->add_option("--reference-orders", args->reference_orders,
                   "--method reference: only the light scattered FIRST to LAST times, as FIRST,LAST in [1, 1000] "
                   "(1: single scattering and the direct sun the ground reflects; default: all)")

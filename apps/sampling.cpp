@@ -37,6 +37,7 @@ reference::PathTracerOptions tracer_options(const SamplingRequest& r) {
   o.seed = r.seed;
   o.thread_count = r.threads;
   o.polarized = r.polarized;
+  o.aerosol_depolarizes = r.aerosol_depolarizes;
   o.min_scattering_order = r.reference_orders[0];
   o.max_scattering_order = r.reference_orders[1];
   return o;

@@ -30,6 +30,9 @@ struct SamplingRequest {
   /// the vertical (e₁ up across the view, e₂ toward increasing azimuth; at the zenith "up" is away from the
   /// row's azimuth), the degree P with its standard error and the E-vector's angle from the vertical.
   bool stokes = false;
+  /// Reference method with `polarized`: the aerosols send their light on unpolarized (the other bound of their
+  /// scattering matrix; atmosphere/reference/polarization.h).
+  bool aerosol_depolarizes = false;
   /// Reference method: only the light scattered this many times, first to last (1: single scattering and the
   /// direct sun the ground reflects), to split a sky by order (atmosphere/reference/path_tracer.h).
   std::array<int, 2> reference_orders = {1, 1000};

@@ -20,16 +20,19 @@ const PathSettings& checked(const PathSettings& s) {
   if (s.russian_roulette_start_order < 1)
     throw std::invalid_argument("PathSettings: russian_roulette_start_order must be >= 1");
   if (s.majorant_shell_count == 0) throw std::invalid_argument("PathSettings: majorant_shell_count must be > 0");
+  if (s.aerosol_depolarizes && !s.polarized)
+    throw std::invalid_argument("PathSettings: aerosol_depolarizes is a bound of vector transfer; it needs polarized");
   return s;
 }
 
 /// The scalar parts of what scatters at a point with coefficients `c`, for light turned by cos ν.
-PolarizedScatterers scatterers(const AtmosphereModel& model, const LocalCoefficients& c, std::size_t wavelength,
-                               double cos_scattering) {
+PolarizedScatterers scatterers(const AtmosphereModel& model, const PathSettings& settings, const LocalCoefficients& c,
+                               std::size_t wavelength, double cos_scattering) {
   PolarizedScatterers s;
   s.rayleigh_m1_sr1 = c.rayleigh_scattering_m1 * model.rayleigh_phase_function(cos_scattering);
   if (c.mie_scattering_m1 > 0.0) s.aerosol_m1_sr1 = c.mie_scattering_m1 * model.mie_phase(wavelength, cos_scattering);
   s.depolarization = model.rayleigh_depolarization;
+  s.aerosol_depolarizes = settings.aerosol_depolarizes;
   return s;
 }
 
@@ -116,8 +119,8 @@ double PathIntegrator::traced(const Ray& first_ray, const Mat3& analyser, std::s
         if (settings_.polarized) {
           // The sun's light is unpolarized: T = Π(k_in)/2 along k_in = −ω_s, leaving along −d.
           const Vec3 k_in = -to_sun;
-          const Mat3 scattered =
-              scattered_coherency(scatterers(model, c, i, cos_sun), k_in, -d, 0.5 * transverse_projector(k_in));
+          const Mat3 scattered = scattered_coherency(scatterers(model, settings_, c, i, cos_sun), k_in, -d,
+                                                     0.5 * transverse_projector(k_in));
           phase = contract(importance, scattered) / scattering;
         } else {
           phase = medium_.mixture_phase(c, i, cos_sun);
@@ -136,7 +139,7 @@ double PathIntegrator::traced(const Ray& first_ray, const Mat3& analyser, std::s
       next_direction = direction_with_cosine(d, scattered.cos_scattering, u_phi);
       if (settings_.polarized) {
         // Divided by β_scat P(ν), the scalar part the weight already carries.
-        const PolarizedScatterers parts = scatterers(model, c, i, scattered.cos_scattering);
+        const PolarizedScatterers parts = scatterers(model, settings_, c, i, scattered.cos_scattering);
         const double scalar_part = parts.rayleigh_m1_sr1 + parts.aerosol_m1_sr1;
         if (!(scalar_part > 0.0)) break;
         importance = scattered_importance(parts, -next_direction, -d, importance) / scalar_part;

@@ -22,6 +22,7 @@ struct PathSettings {
   int russian_roulette_start_order = 4;    ///< ≥ 1
   std::size_t majorant_shell_count = 128;  ///< sub-shells of the delta-tracking majorant
   bool polarized = false;                  ///< vector radiative transfer (polarization.h); scalar if false
+  bool aerosol_depolarizes = false;        ///< with polarized: the aerosols' light leaves unpolarized (polarization.h)
 };
 
 /// Read-only after construction; share one between threads. Keeps a reference

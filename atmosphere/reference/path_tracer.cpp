@@ -28,6 +28,7 @@ PathSettings path_settings(const PathTracerOptions& o) {
   s.russian_roulette_start_order = o.russian_roulette_start_order;
   s.majorant_shell_count = o.majorant_shell_count;
   s.polarized = o.polarized;
+  s.aerosol_depolarizes = o.aerosol_depolarizes;
   return s;
 }
 

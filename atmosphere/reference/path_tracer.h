@@ -88,6 +88,9 @@ struct PathTracerOptions {
   int russian_roulette_start_order = 4;    ///< first order after which roulette may end a path
   std::size_t majorant_shell_count = 128;  ///< sub-shells of the delta-tracking majorant
   bool polarized = false;                  ///< vector radiative transfer (polarization.h) instead of scalar
+  /// With polarized: the aerosols send their light on unpolarized — the other bound of an aerosol's scattering
+  /// matrix from the default, which carries the polarization through unchanged (polarization.h).
+  bool aerosol_depolarizes = false;
 };
 
 struct RadianceEstimate {

@@ -40,8 +40,12 @@ Mat3 scattered_coherency(const PolarizedScatterers& s, const Vec3& k_in, const V
     out += (s.rayleigh_m1_sr1 / atmosphere::depolarized_rayleigh_shape(delta, dot(k_in, k_out))) *
            atmosphere::rayleigh_scattered_coherency(delta, k_out, t_in);
   if (s.aerosol_m1_sr1 > 0.0) {
-    const Mat3 r = rotation_between(k_in, k_out);
-    out += s.aerosol_m1_sr1 * (r * t_in * glm::transpose(r));
+    if (s.aerosol_depolarizes) {
+      out += (0.5 * s.aerosol_m1_sr1 * contract(Mat3(1.0), t_in)) * transverse_projector(k_out);
+    } else {
+      const Mat3 r = rotation_between(k_in, k_out);
+      out += s.aerosol_m1_sr1 * (r * t_in * glm::transpose(r));
+    }
   }
   return out;
 }
@@ -53,8 +57,13 @@ Mat3 scattered_importance(const PolarizedScatterers& s, const Vec3& k_in, const 
     in += (s.rayleigh_m1_sr1 / atmosphere::depolarized_rayleigh_shape(delta, dot(k_in, k_out))) *
           atmosphere::rayleigh_scattered_importance(delta, k_out, m_out);
   if (s.aerosol_m1_sr1 > 0.0) {
-    const Mat3 r = rotation_between(k_in, k_out);
-    in += s.aerosol_m1_sr1 * (glm::transpose(r) * m_out * r);
+    if (s.aerosol_depolarizes) {
+      // The adjoint of T ↦ tr(T) Π_out/2: M ↦ ⟨M, Π_out⟩/2 · 1.
+      in += (0.5 * s.aerosol_m1_sr1 * contract(m_out, transverse_projector(k_out))) * Mat3(1.0);
+    } else {
+      const Mat3 r = rotation_between(k_in, k_out);
+      in += s.aerosol_m1_sr1 * (glm::transpose(r) * m_out * r);
+    }
   }
   return in;
 }

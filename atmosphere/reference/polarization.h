@@ -18,7 +18,10 @@
 //              T_out = R T_in Rᵀ, R the rotation taking k_in to k_out about
 //              k_in × k_out), times P_M(ν) — what a large particle's forward
 //              peak, which carries nearly all its scattering, does; the model
-//              has no aerosol scattering matrix to do better;
+//              has no aerosol scattering matrix to do better. The other bound,
+//              PolarizedScatterers::aerosol_depolarizes, sends the aerosols'
+//              light on unpolarized, tr(T_in) Π_out/2 times P_M(ν), as the
+//              ground does: a real haze lies between the two;
 //   the ground Lambertian, so unpolarized: tr(T_in) Π_out/2 times the BRDF.
 //
 // A backward path (from the camera toward the sun) carries the adjoint: an
@@ -53,9 +56,10 @@ Mat3 rotation_between(const Vec3& k_in, const Vec3& k_out);
 /// What scatters at one point, for the light turned from k_in to k_out: the
 /// scalar parts of β_scat P(ν), and the gas's depolarization.
 struct PolarizedScatterers {
-  double rayleigh_m1_sr1 = 0.0;  ///< β_R P_R(ν) [m^-1 sr^-1]
-  double aerosol_m1_sr1 = 0.0;   ///< β_M P_M(ν) [m^-1 sr^-1]
-  double depolarization = 0.0;   ///< ρ of the gas, in [0, 1)
+  double rayleigh_m1_sr1 = 0.0;      ///< β_R P_R(ν) [m^-1 sr^-1]
+  double aerosol_m1_sr1 = 0.0;       ///< β_M P_M(ν) [m^-1 sr^-1]
+  double depolarization = 0.0;       ///< ρ of the gas, in [0, 1)
+  bool aerosol_depolarizes = false;  ///< the aerosols' light leaves unpolarized instead of as it came
 };
 
 /// The coherency tensor scattered toward k_out by unit volume of the medium,

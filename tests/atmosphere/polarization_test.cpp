@@ -81,6 +81,19 @@ TEST(Polarization, ALargeParticleKeepsAPolarizedBeamPolarized) {
   EXPECT_NEAR(contract(Mat3(1.0), t), 1.0, 1e-12);
 }
 
+TEST(Polarization, ADepolarizingAerosolSendsItsLightOnUnpolarized) {
+  // The other bound of an aerosol's scattering matrix: a fully polarized beam leaves as Π_out/2 times
+  // its radiance (the degree 0), scattered by the same scalar share.
+  const Vec3 k_in = unit(0.2, 0.1, -1.0), k_out = unit(0.4, -0.3, -1.0);
+  const Vec3 e = normalize(cross(k_in, Vec3(1.0, 0.0, 0.0)));
+  PolarizedScatterers s{0.0, 1.0, 0.0};
+  s.aerosol_depolarizes = true;
+  const Mat3 t = scattered_coherency(s, k_in, k_out, glm::outerProduct(e, e));
+  const Mat3 unpolarized = 0.5 * transverse_projector(k_out);
+  for (int c = 0; c < 3; ++c)
+    for (int l = 0; l < 3; ++l) EXPECT_NEAR(t[c][l], unpolarized[c][l], 1e-12) << c << l;
+}
+
 TEST(Polarization, TheImportanceMapIsTheAdjointOfTheScatteringMap) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -92,7 +105,8 @@ TEST(Polarization, TheImportanceMapIsTheAdjointOfTheScatteringMap) {
   };
   for (int trial = 0; trial < 20; ++trial) {
     const Vec3 k_in = unit(u(rng), u(rng), u(rng)), k_out = unit(u(rng), u(rng), u(rng));
-    const PolarizedScatterers s{0.5 + u(rng) * 0.4, 1.0 + u(rng) * 0.5, 0.0279};
+    PolarizedScatterers s{0.5 + u(rng) * 0.4, 1.0 + u(rng) * 0.5, 0.0279};
+    s.aerosol_depolarizes = trial % 2 == 1;  // both bounds of the aerosols' scattering matrix
     const Mat3 across_in = transverse_projector(k_in);
     const Mat3 t = across_in * random_symmetric() * across_in, m = random_symmetric();
     EXPECT_NEAR(contract(scattered_importance(s, k_in, k_out, m), t),

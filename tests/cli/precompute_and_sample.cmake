@@ -109,11 +109,27 @@ foreach(column RANGE 0 ${last_column})
   list(GET names ${column} name)
   if(name MATCHES "^P_[0-9]+nm$")
     list(GET cells ${column} degree)
+    set(degree_column ${column})
     break()
   endif()
 endforeach()
 if(NOT degree MATCHES "^0\\.[0-9]+$" AND NOT degree MATCHES "^[0-9.]+e-[0-9]+$")
   message(FATAL_ERROR "sample --stokes: the zenith's degree of polarization '${degree}' is not within [0, 1):\n${out}")
+endif()
+# --aerosol-depolarizes bounds the aerosols' share of vector transfer: refused in scalar transfer; with
+# --polarized the Martian dust then sends its light on unpolarized, and the zenith's degree falls.
+expect_sample_refused("--aerosol-depolarizes bounds the aerosols' share of the reference solver's vector transfer; it needs --method reference --polarized"
+                      --atmosphere mars --method reference --samples 200 --grid 1x1 --aerosol-depolarizes)
+execute_process(COMMAND ${ZENITH} sample --atmosphere mars --method reference --samples 2000 --grid 1x1 --polarized
+                        --stokes --sun-zenith-deg 60 --aerosol-depolarizes
+                RESULT_VARIABLE rc OUTPUT_VARIABLE depolarized_out ERROR_VARIABLE err)
+string(REGEX MATCH "\n0,0,[^\n]*" depolarized_row "${depolarized_out}")
+string(STRIP "${depolarized_row}" depolarized_row)
+string(REPLACE "," ";" depolarized_cells "${depolarized_row}")
+list(GET depolarized_cells ${degree_column} depolarized_degree)
+if(NOT rc EQUAL 0 OR NOT depolarized_degree LESS degree)
+  message(FATAL_ERROR "sample --aerosol-depolarizes: the zenith's degree ${depolarized_degree} is not below "
+                      "${degree} (${rc}):\n${depolarized_out}\n${err}")
 endif()
 # --reference-orders splits the path tracer's light by order: the tables refuse it, a first order above the
 # last is refused naming both.
