@@ -53,7 +53,7 @@ DRY_GRASS_SAMPLE = (0.142, 0.157, 0.180, 0.205, 0.229, 0.251, 0.276, 0.306, 0.32
 COASTAL_PLAIN_GROUNDS = ("evergreen-needleleaf-forest-step", "evergreen-needleleaf-forest-ramp", "mixed-forest-step",
                          "mixed-forest-ramp", "cropland-mosaic-step", "cropland-mosaic-ramp", "water-step",
                          "dry-grass-sample")
-# The measurers' fit ran to 800 nm, the studies' wavelengths to 755: the grounds carried there, at one place.
+# The measurers' fit ran to 800 nm, the studies' wavelengths to 755: the grounds carried there.
 BAND_CHECK_GROUNDS = (0.1, "cropland-mosaic-step", "cropland-mosaic-ramp", "mixed-forest-step", "dry-grass-sample")
 
 
