@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -134,12 +135,15 @@ atmosphere::reference::PathTracerOptions paths(std::size_t samples) {
 /// it: their day sky, a 9 000 K Planck curve, times the ratio R(λ) of the
 /// zenith with and without the Moon (free of any instrument's calibration),
 /// fitted by a Planck curve over the model's wavelengths; +∞ where the
-/// result falls faster with wavelength than any Planck curve.
+/// result falls faster with wavelength than any Planck curve; NaN where a
+/// wavelength kept no light (an estimate of too few paths).
 constexpr double kMeasuredDaySky_K = 9000.0, kMeasuredTotality_K = 11000.0;
 double totality_temperature_K(const std::vector<double>& wavelengths_nm, const std::vector<double>& ratio) {
   std::vector<double> sky;
-  for (std::size_t i = 0; i < wavelengths_nm.size(); ++i)
+  for (std::size_t i = 0; i < wavelengths_nm.size(); ++i) {
+    if (!(std::isfinite(ratio[i]) && ratio[i] > 0.0)) return std::numeric_limits<double>::quiet_NaN();
     sky.push_back(core::planck_W_m2_sr_nm(wavelengths_nm[i], kMeasuredDaySky_K) * ratio[i]);
+  }
   const auto [shortest, longest] = std::minmax_element(wavelengths_nm.begin(), wavelengths_nm.end());
   return image::effective_blackbody_temperature_K(wavelengths_nm, sky, *shortest, *longest);
 }
@@ -439,9 +443,10 @@ void validate_eclipse(const EclipseValidationOptions& o, const TablesFor& tables
     std::vector<double> zenith_ratio;
     for (std::size_t i = 0; i < model.wavelengths_nm.size(); ++i) zenith_ratio.push_back(ratio(measured, i));
     const double totality_K = totality_temperature_K(model.wavelengths_nm, zenith_ratio);
-    std::string in_their_terms = std::isfinite(totality_K)
-                                     ? fmt::format("{:.0f} K, {:.0f} mireds", totality_K, shift_mireds(totality_K))
-                                     : std::string("bluer than any Planck curve");
+    std::string in_their_terms = std::isnan(totality_K) ? std::string("no colour (a wavelength kept no light)")
+                                 : std::isinf(totality_K)
+                                     ? std::string("bluer than any Planck curve")
+                                     : fmt::format("{:.0f} K, {:.0f} mireds", totality_K, shift_mireds(totality_K));
     const double colour = ratio(measured, blue) / ratio(measured, red),
                  colour_error = std::hypot(solver.ratio_error(measured, blue), solver.ratio_error(measured, red));
     if (colour_error > 0.0)  // the reference's estimate: its noise moves the temperature as much
